@@ -1,0 +1,55 @@
+"""tumble: rigid-body rotation, from mass properties to the tennis-racket effect.
+
+Top-level names are loaded on first use (PEP 562), so ``import tumble`` and ``tumble --help``
+stay fast and plotting is never imported by the physics.
+
+Examples
+--------
+>>> import tumble
+>>> body = tumble.t_handle()          # the seed study's T-handle: two 1 m, 1.5 kg rods
+>>> body.principal_moments.tolist()
+[0.125, 0.3125, 0.4375]
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from ._version import __version__
+
+_EXPORTS = {
+    # mass properties
+    "Body": "tumble.mass",
+    "MassProperties": "tumble.mass",
+    "Part": "tumble.mass",
+    "Rod": "tumble.mass",
+    "Cylinder": "tumble.mass",
+    "Tube": "tumble.mass",
+    "Cone": "tumble.mass",
+    "Box": "tumble.mass",
+    "Ellipsoid": "tumble.mass",
+    "Sphere": "tumble.mass",
+    "Shell": "tumble.mass",
+    "PointMass": "tumble.mass",
+    "Mesh": "tumble.mass",
+    "t_handle": "tumble.mass",
+    "iss_t_handle": "tumble.mass",
+    # files
+    "load_body": "tumble.io",
+}
+
+__all__ = ["__version__", *_EXPORTS]
+
+
+def __getattr__(name: str):
+    try:
+        module = _EXPORTS[name]
+    except KeyError:
+        raise AttributeError(f"module 'tumble' has no attribute {name!r}") from None
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

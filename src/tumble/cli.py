@@ -1,0 +1,107 @@
+"""The ``tumble`` command line.
+
+Every error is one line on stderr: exit status 2 for bad input (files, values, options), 1 for a
+failure of the computation, never a traceback unless ``--debug`` is given. Heavy modules are
+imported inside the commands so that ``tumble --help`` answers at once.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from ._version import __version__
+
+EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with tumble's one-line error format and exit status 2."""
+
+    def error(self, message: str):  # noqa: D102 - argparse API
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def _cmd_inertia(args) -> int:
+    from .io import load_body, mass_properties_dict, mass_properties_table
+
+    body = load_body(args.body)
+    if args.json:
+        print(json.dumps(mass_properties_dict(body), indent=2))
+    else:
+        print(mass_properties_table(body))
+    return EXIT_OK
+
+
+def _cmd_demo(args) -> int:
+    from .demo import run_demo
+
+    run_demo(args.out)
+    return EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (also used to document the CLI)."""
+    parser = _Parser(
+        prog="tumble",
+        description="Rigid-body rotation: mass properties, Euler's equations, the tennis-racket effect.",
+        epilog="Example: tumble inertia t-handle --json",
+    )
+    parser.add_argument("--version", action="version", version=f"tumble {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+
+    p = sub.add_parser(
+        "inertia",
+        help="mass properties of a body file or preset",
+        description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.",
+        epilog="Examples: tumble inertia t-handle | tumble inertia iss-t-handle --json | "
+        "tumble inertia examples/t_handle.toml",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("body", metavar="BODY", help="a body file (TOML) or a preset: t-handle, iss-t-handle")
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    p.set_defaults(func=_cmd_inertia)
+
+    p = sub.add_parser(
+        "demo",
+        help="the T-handle study on built-in defaults",
+        description="Runs the T-handle study and writes its data to a folder.",
+        epilog="Example: tumble demo --out tumble-demo",
+    )
+    p.add_argument("--out", default="tumble-demo", metavar="DIR", help="output folder (default: tumble-demo)")
+    p.set_defaults(func=_cmd_demo)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``tumble`` console command; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_USAGE
+    try:
+        return args.func(args)
+    except KeyboardInterrupt:
+        print("tumble: interrupted", file=sys.stderr)
+        return 130
+    except (ValueError, OSError) as exc:
+        if args.debug:
+            raise
+        print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # a failure of the computation, not of the input
+        if args.debug:
+            raise
+        print(f"tumble: computation failed: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

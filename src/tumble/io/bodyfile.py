@@ -1,0 +1,172 @@
+"""Body files (TOML): the public format that describes a rigid body.
+
+::
+
+    [body]
+    name = "T-handle"
+
+    [[body.parts]]
+    kind = "rod"
+    mass = 1.5                 # kg
+    length = 1.0               # m
+    center = [0.0, 0.0, 0.0]   # m, design frame
+    axis = [0.0, 0.0, 1.0]
+
+A file may instead say ``preset = "t-handle"`` (or ``"iss-t-handle"``) with the preset's
+keyword arguments. Keys are checked strictly: unknown and missing keys, wrong types and
+non-finite numbers raise ``ValueError`` with one line naming the part's index and the field.
+The part constructors do the physical validation, so Python and files give the same messages.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import os
+import tomllib
+from pathlib import Path
+
+from ..mass import PART_KINDS, PRESETS, Body
+
+__all__ = ["body_from_table", "load_body", "part_from_table", "read_toml"]
+
+
+def read_toml(path) -> dict:
+    """Read a TOML file, turning every way it can fail into one clear ``ValueError``."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise ValueError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise ValueError(f"{path}: is a directory, not a file") from None
+    except OSError as exc:
+        raise ValueError(f"{path}: cannot be read: {exc.strerror}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ValueError(f"{path}: not a text file (not valid UTF-8)") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML: {exc}") from None
+    if not data:
+        raise ValueError(f"{path}: the file is empty")
+    return data
+
+
+def _init_fields(cls) -> dict[str, dataclasses.Field]:
+    return {f.name: f for f in dataclasses.fields(cls) if f.init}
+
+
+def part_from_table(table, *, base_dir: Path | None = None, where: str = "part"):
+    """Build a part from a TOML table (a dict); ``mesh`` paths are relative to ``base_dir``."""
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table with a 'kind', got {type(table).__name__}")
+    kind = table.get("kind")
+    if kind is None:
+        raise ValueError(f"{where}: missing key 'kind' (one of {', '.join(PART_KINDS)})")
+    if kind not in PART_KINDS:
+        raise ValueError(f"{where}: kind = {kind!r} is unknown; allowed: {', '.join(PART_KINDS)}")
+    cls = PART_KINDS[kind]
+    where = f"{where} ({kind})"
+    fields = _init_fields(cls)
+    allowed = [k for k in fields if cls.solid or k not in ("density", "subtract")]
+    kwargs = {k: v for k, v in table.items() if k != "kind"}
+    unknown = sorted(set(kwargs) - set(allowed))
+    if unknown:
+        raise ValueError(
+            f"{where}: unknown key {unknown[0]!r}; allowed: kind, {', '.join(sorted(allowed))}"
+        )
+    missing = [
+        k
+        for k, f in fields.items()
+        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        and k not in kwargs
+    ]
+    if missing:
+        raise ValueError(f"{where}: missing key {missing[0]!r}")
+    if kind == "mesh":
+        mesh = kwargs["mesh"]
+        if not isinstance(mesh, str):
+            raise ValueError(f"{where}: mesh = {mesh!r} must be a file path (a string)")
+        kwargs["mesh"] = os.path.join(base_dir or ".", mesh)
+    try:
+        return cls(**kwargs)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+
+
+def body_from_table(table, *, base_dir: Path | None = None, where: str = "body") -> Body:
+    """Build a body from the contents of a ``[body]`` table."""
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table, got {type(table).__name__}")
+    name = table.get("name", "body")
+    if not isinstance(name, str):
+        raise ValueError(f"{where}.name = {name!r} must be a string")
+    if "preset" in table:
+        return _preset_from_table(table, where)
+    unknown = sorted(set(table) - {"name", "parts"})
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r}; allowed: name, parts, preset")
+    parts = table.get("parts")
+    if parts is None:
+        raise ValueError(f"{where}: missing key 'parts' (a list of [[{where}.parts]] tables) or 'preset'")
+    if not isinstance(parts, list) or not parts:
+        raise ValueError(f"{where}.parts must be a non-empty list of [[{where}.parts]] tables")
+    built = tuple(
+        part_from_table(p, base_dir=base_dir, where=f"{where}.parts[{i}]") for i, p in enumerate(parts)
+    )
+    try:
+        return Body(built, name=name)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+
+
+def _preset_from_table(table: dict, where: str) -> Body:
+    preset = table["preset"]
+    if preset not in PRESETS:
+        raise ValueError(f"{where}.preset = {preset!r} is unknown; allowed: {', '.join(PRESETS)}")
+    fn = PRESETS[preset]
+    kwargs = {k: v for k, v in table.items() if k != "preset"}
+    allowed = list(inspect.signature(fn).parameters)
+    unknown = sorted(set(kwargs) - set(allowed))
+    if unknown:
+        allowed_text = ", ".join(allowed) if allowed else "no parameters besides 'preset'"
+        raise ValueError(f"{where}: unknown key {unknown[0]!r} for preset {preset!r}; allowed: {allowed_text}")
+    try:
+        return fn(**kwargs)
+    except ValueError as exc:
+        raise ValueError(f"{where} (preset {preset!r}): {exc}") from None
+
+
+def load_body(source) -> Body:
+    """A body from a body file (TOML) or a preset name (``"t-handle"``, ``"iss-t-handle"``).
+
+    Parameters
+    ----------
+    source : str or os.PathLike
+        A preset name or the path of a body file.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, the part's index and the field.
+    """
+    if isinstance(source, str) and source in PRESETS and not os.path.exists(source):
+        return PRESETS[source]()
+    path = Path(source)
+    if not path.exists() and isinstance(source, str) and path.suffix == "":
+        raise ValueError(
+            f"{source!r} is neither a body file nor a preset; presets: {', '.join(PRESETS)}"
+        )
+    data = read_toml(path)
+    unknown = sorted(set(data) - {"body"})
+    if "body" not in data:
+        raise ValueError(f"{path}: missing table [body]")
+    if unknown:
+        raise ValueError(f"{path}: unknown top-level key {unknown[0]!r}; a body file has only [body]")
+    try:
+        return body_from_table(data["body"], base_dir=path.parent)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None

@@ -1,0 +1,73 @@
+"""Mass properties as JSON-ready data and as a readable table."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..mass import AXIS_ROLES, Body
+
+__all__ = ["mass_properties_dict", "mass_properties_table"]
+
+_DESIGN_AXES = ("x", "y", "z")
+
+
+def mass_properties_dict(body: Body) -> dict:
+    """The public JSON form of ``tumble inertia --json`` (SI units, design frame).
+
+    Keys: ``name``, ``mass`` (kg), ``com`` (m), ``inertia`` (3x3 about the COM, kg m^2),
+    ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes`` (unit vectors of
+    I1, I2, I3 in that order), ``intermediate_axis`` (unit vector, or null when two moments are
+    equal), ``symmetry``.
+    """
+    p = body.properties
+    axis = p.intermediate_axis
+    return {
+        "name": body.name,
+        "units": {"mass": "kg", "length": "m", "inertia": "kg m^2"},
+        "mass": p.mass,
+        "com": p.com.tolist(),
+        "inertia": p.inertia.tolist(),
+        "principal_moments": p.principal_moments.tolist(),
+        "principal_axes": p.principal_axes.T.tolist(),
+        "intermediate_axis": None if axis is None else axis.tolist(),
+        "symmetry": p.degeneracy,
+    }
+
+
+def describe_axis(v) -> str:
+    """``"+x"`` for a vector along a design axis, else the rounded components."""
+    v = np.asarray(v, float)
+    k = int(np.argmax(np.abs(v)))
+    if abs(abs(v[k]) - 1.0) < 1e-9:
+        return ("+" if v[k] > 0 else "-") + _DESIGN_AXES[k]
+    return "(" + ", ".join(f"{c:+.4f}" for c in v) + ")"
+
+
+def mass_properties_table(body: Body) -> str:
+    """A plain-text table for people (the default output of ``tumble inertia``)."""
+    p = body.properties
+
+    def vec(v) -> str:
+        return "  ".join(f"{x:12.6g}" for x in v)
+
+    lines = [
+        f"{body.name}: {len(body.parts)} part{'s' if len(body.parts) != 1 else ''}",
+        f"  mass              {p.mass:.6g} kg",
+        f"  centre of mass    {vec(p.com)}   m",
+        "  inertia about the COM, design frame (kg m^2)",
+    ]
+    lines += [f"                    {vec(row)}" for row in p.inertia]
+    lines.append("  principal axes (design frame), ascending moments")
+    for j, role in enumerate(AXIS_ROLES):
+        axis = p.principal_axes[:, j]
+        lines.append(
+            f"    I{j + 1} {p.principal_moments[j]:12.6g} kg m^2  {role:<12}  axis {describe_axis(axis)}"
+        )
+    if p.intermediate_axis is None:
+        lines.append(f"  {p.degeneracy} body: no intermediate axis, no tennis-racket flip")
+    else:
+        lines.append(
+            f"  intermediate axis {describe_axis(p.intermediate_axis)}: spin about it is unstable "
+            f"(tennis-racket theorem)"
+        )
+    return "\n".join(lines)

@@ -1,0 +1,45 @@
+"""Mass properties of rigid bodies built from parts (layer 1: numpy only, trimesh lazily)."""
+
+from .body import AXIS_ROLES, Body, MassProperties, mass_properties
+from .mesh import Mesh  # registers the 'mesh' kind; trimesh is imported on first use
+from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+from .presets import PRESETS, iss_t_handle, t_handle
+from .tensor import (
+    INERTIA_RTOL,
+    check_inertia,
+    inertia_about_point,
+    parallel_axis,
+    point_mass_inertia,
+    principal_frame,
+    rotate_inertia,
+)
+
+
+__all__ = [
+    "AXIS_ROLES",
+    "Body",
+    "Box",
+    "Cone",
+    "Cylinder",
+    "Ellipsoid",
+    "INERTIA_RTOL",
+    "MassProperties",
+    "Mesh",
+    "PART_KINDS",
+    "PRESETS",
+    "Part",
+    "PointMass",
+    "Rod",
+    "Shell",
+    "Sphere",
+    "Tube",
+    "check_inertia",
+    "inertia_about_point",
+    "iss_t_handle",
+    "mass_properties",
+    "parallel_axis",
+    "point_mass_inertia",
+    "principal_frame",
+    "rotate_inertia",
+    "t_handle",
+]

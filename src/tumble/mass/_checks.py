@@ -1,0 +1,113 @@
+"""Validation of the numbers that describe a part: one place, one wording.
+
+Each checker returns the cleaned value or raises ``ValueError`` whose message names the field,
+the value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``.
+Python constructors, the TOML loader and the CLI all surface these same messages.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+import numpy as np
+
+__all__ = [
+    "check_direction",
+    "check_positive",
+    "check_rotation",
+    "check_vector",
+]
+
+
+def _number(field: str, value, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
+        raise ValueError(f"{field} = {value!r} must be a number ({unit})")
+    x = float(value)
+    if not math.isfinite(x):
+        raise ValueError(f"{field} = {value!r} must be a finite number ({unit})")
+    return x
+
+
+def check_positive(field: str, value, unit: str, *, allow_zero: bool = False) -> float:
+    """A finite number > 0 (or >= 0 with ``allow_zero``)."""
+    x = _number(field, value, unit)
+    if x < 0 or (x == 0 and not allow_zero):
+        allowed = "a non-negative" if allow_zero else "a positive"
+        raise ValueError(f"{field} = {value!r} must be {allowed} finite number ({unit})")
+    return x
+
+
+def check_vector(field: str, value, unit: str) -> tuple[float, float, float]:
+    """Three finite numbers."""
+    if isinstance(value, (str, bytes)):
+        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})")
+    try:
+        seq = list(value)
+    except TypeError:
+        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})") from None
+    if len(seq) != 3:
+        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})")
+    return tuple(_number(f"{field}[{i}]", v, unit) for i, v in enumerate(seq))  # type: ignore[return-value]
+
+
+def check_direction(field: str, value) -> tuple[float, float, float]:
+    """A non-zero finite 3-vector, returned as a unit vector (a direction has no length)."""
+    v = np.array(check_vector(field, value, "a direction, any length"))
+    n = float(np.linalg.norm(v))
+    if n == 0.0:
+        raise ValueError(f"{field} = {value!r} must be a non-zero vector (a direction)")
+    return tuple(float(x) for x in v / n)  # type: ignore[return-value]
+
+
+#: A quaternion given by hand, e.g. [0, 0, 0.7071, 0.7071], is accepted and renormalised if its
+#: norm is within this of 1; anything further off is almost surely a mistake and is refused.
+QUAT_NORM_TOL = 1e-3
+#: A matrix given by hand must be orthonormal to this tolerance (|R^T R - E|).
+MATRIX_ORTHO_TOL = 1e-6
+
+
+def check_rotation(field: str, value) -> tuple[float, float, float, float]:
+    """An orientation: a scipy Rotation, a quaternion [x, y, z, w] or a 3x3 rotation matrix.
+
+    Returns the unit quaternion, scalar last (scipy's convention).
+    """
+    from scipy.spatial.transform import Rotation
+
+    if isinstance(value, Rotation):
+        if not value.single:
+            raise ValueError(f"{field} must be a single rotation, got a stack of {len(value)}")
+        return tuple(float(x) for x in value.as_quat())  # type: ignore[return-value]
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"{field} = {value!r} must be a quaternion [x, y, z, w] or a 3x3 rotation matrix"
+        ) from None
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{field} = {value!r} must contain only finite numbers")
+    if arr.shape == (4,):
+        n = float(np.linalg.norm(arr))
+        if abs(n - 1.0) > QUAT_NORM_TOL:
+            raise ValueError(
+                f"{field} = {value!r} is a quaternion of norm {n:.6g}; a rotation needs a unit "
+                f"quaternion [x, y, z, w] (scalar last)"
+            )
+        return tuple(float(x) for x in Rotation.from_quat(arr).as_quat())  # type: ignore[return-value]
+    if arr.shape == (3, 3):
+        err = float(np.max(np.abs(arr.T @ arr - np.eye(3))))
+        if err > MATRIX_ORTHO_TOL:
+            raise ValueError(
+                f"{field} is not an orthonormal matrix (max |R^T R - E| = {err:.3g}); "
+                f"a rotation matrix has orthonormal columns"
+            )
+        det = float(np.linalg.det(arr))
+        if det < 0:
+            raise ValueError(
+                f"{field} has determinant {det:.6g}, which should be +1; it is a rotoreflection "
+                f"(it mirrors the part), not a rotation"
+            )
+        return tuple(float(x) for x in Rotation.from_matrix(arr).as_quat())  # type: ignore[return-value]
+    raise ValueError(
+        f"{field} must be a quaternion [x, y, z, w] or a 3x3 rotation matrix, got shape {arr.shape}"
+    )

@@ -1,0 +1,133 @@
+"""A part given by a closed triangle mesh (STL, OBJ, PLY, ... via trimesh).
+
+The mesh is read with trimesh (imported here only, so the rest of tumble runs without it) and
+its volume, centre of mass and inertia come from trimesh's exact integration over the
+triangles (Eberly, *Polyhedral Mass Properties (Revisited)*, 2003; Tonon, J. Math. Stat. 1,
+2004). A mesh that does not enclose a volume has no such properties, so it is refused.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ._checks import check_positive, check_vector
+from .parts import PART_KINDS, _Oriented
+
+__all__ = ["Mesh"]
+
+
+def _trimesh():
+    try:
+        import trimesh
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise ValueError(
+            "mesh parts need the optional dependency trimesh: pip install 'tumble[mesh]'"
+        ) from None
+    return trimesh
+
+
+def _load(source) -> Any:
+    trimesh = _trimesh()
+    if isinstance(source, trimesh.Trimesh):
+        return source.copy()
+    path = os.fspath(source)
+    if not os.path.isfile(path):
+        raise ValueError(f"mesh = {path!r}: no such file")
+    try:
+        # process=True merges the duplicated vertices of STL files, without which no STL is
+        # watertight; the watertightness check below catches what merging cannot mend.
+        mesh = trimesh.load(path, force="mesh", process=True)
+    except Exception as exc:  # trimesh raises many types for malformed files
+        raise ValueError(f"mesh = {path!r} could not be read: {exc}") from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise ValueError(f"mesh = {path!r} holds no triangles")
+    return mesh
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Mesh(_Oriented):
+    """A solid bounded by a closed, consistently wound triangle mesh.
+
+    Parameters
+    ----------
+    mesh : str, os.PathLike or trimesh.Trimesh
+        The surface: a file trimesh can read, or a mesh object.
+    scale : float
+        Factor from file units to metres (e.g. 0.001 for a file in mm). Default 1.
+    origin : array_like, shape (3,)
+        Where the mesh's own origin goes in the design frame, m. Default (0, 0, 0), so a
+        file's coordinates are design coordinates.
+    rotation : quaternion [x, y, z, w], 3x3 matrix or scipy Rotation
+        Orientation of the mesh's own frame in the design frame (applied about its origin).
+    mass or density : float
+        Total mass (kg) or uniform density (kg/m^3), exactly one.
+
+    Notes
+    -----
+    ``center`` is derived: the centre of mass of the placed mesh. Refused: meshes that are
+    not watertight, not consistently wound, or enclose no positive volume (inward normals).
+    """
+
+    kind: ClassVar[str] = "mesh"
+    mesh: Any
+    scale: float = 1.0
+    origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    center: tuple[float, float, float] = field(default=(0.0, 0.0, 0.0), init=False)
+    _volume: float = field(default=0.0, init=False, repr=False)
+    _com_local: Any = field(default=None, init=False, repr=False)
+    _unit_inertia: Any = field(default=None, init=False, repr=False)
+
+    def _check_shape(self) -> None:
+        super()._check_shape()
+        scale = check_positive("scale", self.scale, "m per file unit")
+        self._set("scale", scale)
+        self._set("origin", check_vector("origin", self.origin, "m"))
+        name = self.mesh if isinstance(self.mesh, (str, os.PathLike)) else "mesh"
+        mesh = _load(self.mesh)
+        if scale != 1.0:
+            mesh.apply_scale(scale)
+        if not mesh.is_watertight:
+            raise ValueError(
+                f"mesh {name!s} is not watertight (it has open edges), so it encloses no volume "
+                f"and has no mass properties; close its holes first"
+            )
+        if not mesh.is_winding_consistent:
+            raise ValueError(f"mesh {name!s} is not consistently wound; fix its face orientation")
+        props = mesh.mass_properties  # density 1: inertia per unit density
+        volume = float(props.volume)
+        if not volume > 0:
+            raise ValueError(
+                f"mesh {name!s} encloses volume {volume:.6g} m^3; a negative volume means its "
+                f"faces point inward (fix the normals)"
+            )
+        self._set("mesh", mesh)
+        self._set("_volume", volume)
+        self._set("_com_local", np.array(props.center_mass, dtype=float))
+        self._set("_unit_inertia", np.array(props.inertia, dtype=float) / volume)
+        com = self.orientation.apply(self._com_local) + np.array(self.origin)
+        self._set("center", tuple(float(x) for x in com))
+
+    @property
+    def volume(self) -> float:
+        return self._volume
+
+    def _local_inertia(self) -> np.ndarray:
+        return self.mass * self._unit_inertia
+
+    def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Mesh:
+        """The same part after a rigid motion ``x -> R x + t`` of the design frame."""
+        return Mesh(
+            mesh=self.mesh,
+            origin=tuple(rotation.apply(self.origin) + np.asarray(translation, float)),
+            rotation=tuple((rotation * self.orientation).as_quat()),
+            mass=None if self.density is not None else self.mass,
+            density=self.density,
+            subtract=self.subtract,
+        )
+
+
+PART_KINDS[Mesh.kind] = Mesh

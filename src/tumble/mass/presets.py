@@ -1,0 +1,107 @@
+"""Ready-made bodies: the seed's T-handle and the one that flips on the space station.
+
+Design frame of both: the shaft along z with its centre at the origin, the crossbar along x,
+y normal to the plane of the T.
+"""
+
+from __future__ import annotations
+
+from ._checks import check_positive
+from .body import Body
+from .parts import Cylinder, Rod
+
+__all__ = ["PRESETS", "iss_t_handle", "t_handle"]
+
+#: Density of steel used for the space-station handle, kg/m^3 (Peterson & Schwalm 2021).
+STEEL_DENSITY = 8050.0
+
+
+def t_handle(
+    *,
+    shaft_length: float = 1.0,
+    crossbar_length: float = 1.0,
+    shaft_mass: float | None = None,
+    crossbar_mass: float | None = None,
+    shaft_radius: float = 0.0,
+    crossbar_radius: float = 0.0,
+    density: float | None = None,
+    name: str = "T-handle",
+) -> Body:
+    """A T-handle: a shaft along z with a crossbar along x across its top end.
+
+    The defaults are the seed study's: two thin rods of 1 m and 1.5 kg, the crossbar centred on
+    the shaft's top end. Its tensor about the COM (0, 0, 0.25) m is
+    diag(0.3125, 0.4375, 0.125) kg m^2, so the shaft (z) is the *minor* axis and the crossbar
+    (x) the intermediate one (docs/seed-errata.md).
+
+    With radii > 0 the rods become solid cylinders. The crossbar's axis then sits one crossbar
+    radius above the shaft's top end, so the two solids touch instead of overlapping (overlap
+    would count the shared material twice); for thin rods this is the seed's geometry.
+
+    Parameters
+    ----------
+    shaft_length, crossbar_length : float
+        Lengths, m.
+    shaft_mass, crossbar_mass : float, optional
+        Masses, kg (default 1.5 each unless ``density`` is given).
+    shaft_radius, crossbar_radius : float
+        Radii of solid cylinders, m; 0 for a thin rod.
+    density : float, optional
+        Uniform density, kg/m^3, instead of masses (needs both radii > 0).
+    name : str
+        Label of the body.
+    """
+    if density is not None and (shaft_mass is not None or crossbar_mass is not None):
+        raise ValueError("t_handle takes either 'density' or the masses, not both")
+    try:
+        shaft_radius = check_positive("shaft_radius", shaft_radius, "m", allow_zero=True)
+        crossbar_radius = check_positive("crossbar_radius", crossbar_radius, "m", allow_zero=True)
+    except ValueError as exc:
+        raise ValueError(f"t_handle: {exc}") from None
+    if density is None:
+        shaft_mass = 1.5 if shaft_mass is None else shaft_mass
+        crossbar_mass = 1.5 if crossbar_mass is None else crossbar_mass
+
+    def bar(label, length, mass, radius, center, axis):
+        try:
+            if radius == 0:
+                if density is not None:
+                    raise ValueError(
+                        f"a thin rod has no volume; give {label}_radius > 0 to use 'density'"
+                    )
+                return Rod(mass=mass, length=length, center=center, axis=axis)
+            return Cylinder(
+                mass=mass, density=density, radius=radius, length=length, center=center, axis=axis
+            )
+        except ValueError as exc:
+            raise ValueError(f"{label}: {exc}") from None
+
+    shaft = bar("shaft", shaft_length, shaft_mass, shaft_radius, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    top = 0.5 * shaft.length + crossbar_radius
+    crossbar = bar(
+        "crossbar", crossbar_length, crossbar_mass, crossbar_radius, (0.0, 0.0, top), (1.0, 0.0, 0.0)
+    )
+    return Body((shaft, crossbar), name=name)
+
+
+def iss_t_handle(*, name: str = "ISS T-handle") -> Body:
+    """The T-handle that flips on the International Space Station (the Dzhanibekov effect).
+
+    Geometry estimated by Peterson & Schwalm, "Euler's rigid rotators, Jacobi elliptic
+    functions, and the Dzhanibekov or tennis racket effect", Am. J. Phys. 89, 349 (2021):
+    steel (8050 kg/m^3), a shaft of radius 4 mm and length 50 mm, a crossbar of radius 7.5 mm and
+    length 100 mm. Here the shaft axis (z) is the *intermediate* axis: spun about the shaft,
+    the handle flips.
+    """
+    return t_handle(
+        shaft_length=0.050,
+        shaft_radius=0.004,
+        crossbar_length=0.100,
+        crossbar_radius=0.0075,
+        density=STEEL_DENSITY,
+        name=name,
+    )
+
+
+#: Presets by the name used on the command line and in body files.
+PRESETS = {"t-handle": t_handle, "iss-t-handle": iss_t_handle}

@@ -1,0 +1,278 @@
+"""Operations on inertia tensors: rotate, shift, validate, decompose.
+
+Pure functions over numpy arrays. Every function broadcasts over leading batch axes, so the
+same code serves one tensor of shape ``(3, 3)`` or a stack of shape ``(..., 3, 3)``.
+
+Units are SI throughout: masses in kg, lengths in m, inertia tensors in kg m^2.
+
+References
+----------
+- Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed. (2002), sections 5.3-5.4: the
+  inertia tensor, its transformation under rotation, principal axes.
+- Seed study (../shared/seed/), eq. (4): the parallel-axis theorem in tensor form.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "INERTIA_RTOL",
+    "check_inertia",
+    "inertia_about_point",
+    "parallel_axis",
+    "point_mass_inertia",
+    "principal_frame",
+    "rotate_inertia",
+]
+
+#: Relative tolerance of the physical-validity checks: a condition such as ``I1 + I2 >= I3``
+#: may be violated by at most ``INERTIA_RTOL * trace(I)``. Planar bodies (thin rods, point
+#: masses in one plane) sit exactly *on* the triangle inequality, so round-off alone can
+#: violate it by a few ulps; 1e-9 of the trace is far above round-off (~1e-16) and far below
+#: any physical violation worth catching.
+INERTIA_RTOL = 1e-9
+
+
+def _as_tensor(inertia) -> np.ndarray:
+    I = np.asarray(inertia, dtype=float)
+    if I.shape[-2:] != (3, 3):
+        raise ValueError(f"inertia tensor must have shape (..., 3, 3), got {I.shape}")
+    return I
+
+
+def point_mass_inertia(mass, offset) -> np.ndarray:
+    """Inertia tensor of point masses about the origin: ``m (|d|^2 E - d d^T)``.
+
+    This is the parallel-axis term of the seed's eq. (4) (Goldstein eq. 5.7 for a point).
+
+    Parameters
+    ----------
+    mass : array_like, shape (...)
+        Masses in kg.
+    offset : array_like, shape (..., 3)
+        Positions of the masses relative to the reference point, in m.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        Inertia tensor in kg m^2.
+    """
+    d = np.asarray(offset, dtype=float)
+    m = np.asarray(mass, dtype=float)[..., None, None]
+    dd = np.einsum("...i,...i->...", d, d)[..., None, None]
+    return m * (dd * np.eye(3) - d[..., :, None] * d[..., None, :])
+
+
+def parallel_axis(inertia_com, mass, offset) -> np.ndarray:
+    """Shift an inertia tensor from the centre of mass to another point.
+
+    ``I_P = I_com + m (|d|^2 E - d d^T)`` with ``d`` the position of the COM relative to P
+    (seed eq. 4; Goldstein sec. 5.3). The shift is only valid *from* the COM; to move between
+    two arbitrary points go through the COM (see :func:`inertia_about_point`).
+
+    Parameters
+    ----------
+    inertia_com : array_like, shape (..., 3, 3)
+        Tensor about the centre of mass, kg m^2.
+    mass : array_like, shape (...)
+        Mass, kg.
+    offset : array_like, shape (..., 3)
+        Position of the centre of mass relative to the new reference point, m.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        Tensor about the new point, kg m^2.
+    """
+    return _as_tensor(inertia_com) + point_mass_inertia(mass, offset)
+
+
+def inertia_about_point(inertia_com, mass, com, point) -> np.ndarray:
+    """Inertia tensor about an arbitrary ``point`` given the tensor about the COM.
+
+    Parameters
+    ----------
+    inertia_com : array_like, shape (..., 3, 3)
+        Tensor about the centre of mass, kg m^2.
+    mass : array_like, shape (...)
+        Mass, kg.
+    com, point : array_like, shape (..., 3)
+        Centre of mass and the new reference point, same frame, m.
+    """
+    return parallel_axis(inertia_com, mass, np.asarray(com, float) - np.asarray(point, float))
+
+
+def rotate_inertia(inertia, rotation) -> np.ndarray:
+    """Express a tensor given in frame A in frame B: ``I_B = R I_A R^T``.
+
+    ``R`` maps A-coordinates to B-coordinates (``x_B = R @ x_A``), Goldstein eq. (5.10).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (..., 3, 3)
+        Tensor in frame A, kg m^2.
+    rotation : array_like, shape (..., 3, 3) or scipy.spatial.transform.Rotation
+        Rotation matrix from A to B.
+    """
+    R = rotation.as_matrix() if hasattr(rotation, "as_matrix") else np.asarray(rotation, float)
+    I = _as_tensor(inertia)
+    return R @ I @ np.swapaxes(R, -1, -2)
+
+
+def _scale(I: np.ndarray) -> np.ndarray:
+    """A non-negative size of each tensor (its trace, or its largest entry if trace <= 0)."""
+    tr = np.abs(np.trace(I, axis1=-2, axis2=-1))
+    big = np.max(np.abs(I), axis=(-2, -1))
+    return np.maximum(tr, big)
+
+
+def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia tensor") -> np.ndarray:
+    """Check that a tensor can be the inertia tensor of a real body and return it as an array.
+
+    The conditions (Goldstein sec. 5.4; the triangle inequality follows from
+    ``I_a + I_b - I_c = 2 * integral rho r_c^2 dV >= 0`` in the principal frame):
+
+    1. finite and symmetric, ``|I - I^T| <= rtol * trace``;
+    2. positive semidefinite: every principal moment ``>= -rtol * trace``;
+    3. triangle inequality on the principal moments: ``I1 + I2 >= I3 - rtol * trace``.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (..., 3, 3)
+        Tensor in kg m^2 (any frame; any reference point).
+    rtol : float
+        Relative tolerance, see :data:`INERTIA_RTOL`.
+    what : str
+        Name used in error messages.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        The tensor, symmetrised ``(I + I^T) / 2``.
+
+    Raises
+    ------
+    ValueError
+        Naming the broken condition, the offending values and, for a batch, the index.
+    """
+    I = _as_tensor(inertia)
+    batch = I.shape[:-2]
+
+    def where(idx) -> str:
+        return f" (at index {tuple(int(i) for i in idx)})" if batch else ""
+
+    bad = ~np.all(np.isfinite(I), axis=(-2, -1))
+    if np.any(bad):
+        idx = np.argwhere(bad)[0] if batch else ()
+        raise ValueError(f"{what}{where(idx)} has non-finite entries: {I[tuple(idx)].tolist()}")
+
+    scale = _scale(I)
+    tol = rtol * scale
+    asym = np.max(np.abs(I - np.swapaxes(I, -1, -2)), axis=(-2, -1))
+    bad = asym > tol
+    if np.any(bad):
+        idx = np.argwhere(bad)[0] if batch else ()
+        raise ValueError(
+            f"{what}{where(idx)} is not symmetric (largest |I_ij - I_ji| = {asym[tuple(idx)]:.6g} "
+            f"kg m^2); an inertia tensor is symmetric by definition"
+        )
+    I = 0.5 * (I + np.swapaxes(I, -1, -2))
+    moments = np.linalg.eigvalsh(I)
+
+    bad = moments[..., 0] < -tol
+    if np.any(bad):
+        idx = tuple(np.argwhere(bad)[0]) if batch else ()
+        raise ValueError(
+            f"{what}{where(idx)} has a negative principal moment: moments "
+            f"{_fmt(moments[idx])} kg m^2; a moment of inertia is an integral of "
+            f"mass x distance^2 and cannot be negative"
+        )
+    excess = moments[..., 2] - moments[..., 0] - moments[..., 1]
+    bad = excess > tol
+    if np.any(bad):
+        idx = tuple(np.argwhere(bad)[0]) if batch else ()
+        m = moments[idx]
+        raise ValueError(
+            f"{what}{where(idx)}: principal moments {_fmt(m)} kg m^2 violate the triangle "
+            f"inequality I1 + I2 >= I3 ({m[0]:.6g} + {m[1]:.6g} < {m[2]:.6g}); no distribution "
+            f"of positive mass has them"
+        )
+    return I
+
+
+def _fmt(values) -> str:
+    return "(" + ", ".join(f"{v:.6g}" for v in np.asarray(values).ravel()) + ")"
+
+
+def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray, np.ndarray]:
+    """Principal moments and axes, with tumble's deterministic conventions.
+
+    Conventions (docs/conventions.md):
+
+    - moments ascending, ``I1 <= I2 <= I3``;
+    - axes are the *columns* of a proper rotation matrix ``A`` (``det A = +1``) that maps
+      principal coordinates to the input frame: ``inertia = A @ diag(I) @ A.T``;
+    - sign: the component of largest magnitude of axes 1 and 2 is positive (the first such
+      component on a tie); axis 3 is ``e1 x e2`` so the frame is right-handed;
+    - degenerate moments (equal within ``rtol * trace``): the axes of the degenerate subspace are
+      the input frame's x, y, z axes projected onto it and orthonormalised in that order, so a
+      symmetric top along z gets axes x, y and a sphere gets the identity.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (..., 3, 3)
+        Symmetric tensor, kg m^2.
+    rtol : float
+        Relative tolerance under which two moments count as equal.
+
+    Returns
+    -------
+    moments : ndarray, shape (..., 3)
+        Principal moments ascending, kg m^2.
+    axes : ndarray, shape (..., 3, 3)
+        Rotation matrices whose columns are the principal axes, in the input frame.
+    """
+    I = _as_tensor(inertia)
+    I = 0.5 * (I + np.swapaxes(I, -1, -2))
+    moments, vecs = np.linalg.eigh(I)  # ascending eigenvalues
+
+    tol = (rtol * _scale(I))[..., None]
+    gaps = np.diff(moments, axis=-1) <= tol  # (..., 2): 1~2 and 2~3 degenerate
+    flat_vecs = vecs.reshape(-1, 3, 3).copy()
+    flat_gaps = gaps.reshape(-1, 2)
+    for k in np.flatnonzero(flat_gaps.any(axis=-1)):
+        flat_vecs[k] = _degenerate_axes(flat_vecs[k], flat_gaps[k])
+    vecs = flat_vecs.reshape(vecs.shape)
+
+    # Sign rule on axes 1 and 2: largest-magnitude component positive.
+    for j in (0, 1):
+        col = vecs[..., :, j]
+        pivot = np.argmax(np.abs(col) > np.max(np.abs(col), axis=-1, keepdims=True) - 1e-12, axis=-1)
+        sign = np.sign(np.take_along_axis(col, pivot[..., None], axis=-1))
+        sign[sign == 0] = 1.0
+        vecs[..., :, j] = col * sign
+    vecs[..., :, 2] = np.cross(vecs[..., :, 0], vecs[..., :, 1])
+    return moments, vecs
+
+
+def _degenerate_axes(vecs: np.ndarray, gaps: np.ndarray) -> np.ndarray:
+    """Replace the eigenvectors of a degenerate cluster by projected frame axes."""
+    out = vecs.copy()
+    if gaps.all():  # three equal moments: any frame is principal; take the input frame
+        return np.eye(3)
+    cluster = [0, 1] if gaps[0] else [1, 2]
+    basis = vecs[:, cluster]  # orthonormal basis of the degenerate plane
+    projector = basis @ basis.T
+    chosen = []
+    for e in np.eye(3):
+        v = projector @ e
+        for c in chosen:
+            v = v - (c @ v) * c
+        n = np.linalg.norm(v)
+        if n > 1e-6:
+            chosen.append(v / n)
+        if len(chosen) == 2:
+            break
+    out[:, cluster[0]], out[:, cluster[1]] = chosen
+    return out

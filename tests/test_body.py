@@ -1,0 +1,134 @@
+"""Composite bodies: the seed T-handle, the space-station handle, and physical properties."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+from hypothesis import given
+from scipy.spatial.transform import Rotation
+from strategies import bodies, rotations, vectors
+
+import tumble
+
+
+def test_seed_t_handle_closed_form():
+    """Seed parameters (thin rods, 1 m, 1.5 kg, crossbar centred on the shaft's top end).
+
+    By hand: COM at z = (1.5 * 0 + 1.5 * 0.5) / 3 = 0.25 m. About the COM each rod is 0.25 m away
+    along z, so I_x = 1.5/12 + 1.5 * 0.25^2 (shaft) + 0 + 1.5 * 0.25^2 (crossbar) = 0.3125;
+    I_y = 1.5/12 + 1.5/16 + 1.5/12 + 1.5/16 = 0.4375; I_z = 0 + 1.5/12 = 0.125 kg m^2.
+    """
+    body = tumble.t_handle()
+    assert body.mass == 3.0
+    np.testing.assert_allclose(body.com, [0, 0, 0.25], atol=1e-15)
+    np.testing.assert_allclose(body.inertia, np.diag([0.3125, 0.4375, 0.125]), atol=1e-15)
+    np.testing.assert_allclose(body.principal_moments, [0.125, 0.3125, 0.4375], atol=1e-15)
+    # shaft (z) minor, crossbar (x) intermediate, normal to the T (y) major
+    np.testing.assert_allclose(body.principal_axes, [[0, 1, 0], [0, 0, 1], [1, 0, 0]], atol=1e-15)
+    np.testing.assert_allclose(body.properties.intermediate_axis, [1, 0, 0], atol=1e-15)
+
+
+def test_seed_printed_formula_differs():
+    """The seed's sec. 2.4 total omits the shaft's own parallel-axis term (docs/seed-errata.md)."""
+    m, L = 1.5, 1.0
+    d_x, d_z = 0.25, 0.25  # the seed's offsets read as the crossbar's distance from the COM
+    seed = np.diag([m * L**2 / 12 + m * d_x**2, m * L**2 / 12 + m * L**2 / 12, m * L**2 / 12 + m * d_z**2])
+    assert not np.allclose(seed, tumble.t_handle().inertia)
+
+
+def test_iss_handle_shaft_is_intermediate():
+    body = tumble.iss_t_handle()
+    np.testing.assert_allclose(body.properties.intermediate_axis, [0, 0, 1], atol=1e-12)
+    # steel 8050 kg/m^3: pi (0.004^2 * 0.05 + 0.0075^2 * 0.1) * 8050
+    assert body.mass == pytest.approx(np.pi * (0.004**2 * 0.05 + 0.0075**2 * 0.1) * 8050, rel=1e-14)
+
+
+def test_iss_handle_against_a_mesh_of_the_same_solid():
+    body = tumble.iss_t_handle()
+    shaft = trimesh.creation.cylinder(radius=0.004, height=0.05, sections=256)
+    bar = trimesh.creation.cylinder(radius=0.0075, height=0.1, sections=256)
+    bar.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    bar.apply_translation([0, 0, 0.025 + 0.0075])  # touching, as the preset documents
+    both = trimesh.util.concatenate([shaft, bar])
+    assert both.is_watertight
+    props = both.mass_properties
+    np.testing.assert_allclose(props.center_mass, body.com, atol=1e-6)
+    I = props.inertia * 8050
+    np.testing.assert_allclose(I, body.inertia, atol=5e-4 * np.trace(I))
+
+
+def test_t_handle_with_radii_accepts_density_or_masses_not_both():
+    with pytest.raises(ValueError, match="either 'density' or the masses"):
+        tumble.t_handle(shaft_radius=0.01, crossbar_radius=0.01, density=1000.0, shaft_mass=1.0)
+    with pytest.raises(ValueError, match="shaft: .*thin rod has no volume"):
+        tumble.t_handle(density=1000.0)
+
+
+@given(bodies(), rotations(), vectors)
+def test_moving_a_body_rotates_its_tensor(body, rot, shift):
+    """Independent route: move every part, recompute; equals R I R^T and R com + t."""
+    moved = body.moved(rot, shift)
+    R = rot.as_matrix()
+    scale = np.trace(body.inertia)
+    np.testing.assert_allclose(moved.inertia, R @ body.inertia @ R.T, atol=1e-9 * scale)
+    np.testing.assert_allclose(moved.com, R @ body.com + shift, atol=1e-9 * (1 + np.abs(body.com).max()))
+    assert moved.mass == pytest.approx(body.mass, rel=1e-14)
+
+
+@given(bodies(planar=True))
+def test_perpendicular_axis_theorem_for_planar_bodies(body):
+    # for a lamina in the xy plane, I_zz = I_xx + I_yy (Goldstein sec. 5.3)
+    I = body.inertia
+    assert I[2, 2] == pytest.approx(I[0, 0] + I[1, 1], rel=1e-9, abs=1e-12)
+
+
+@given(bodies())
+def test_every_constructed_body_satisfies_the_triangle_inequality(body):
+    I1, I2, I3 = body.principal_moments
+    assert I1 >= -1e-12 * I3
+    assert I1 + I2 >= I3 * (1 - 1e-9)
+
+
+def test_body_needs_positive_total_mass():
+    with pytest.raises(ValueError, match="total mass .* not positive"):
+        tumble.Body([tumble.Sphere(density=1.0, radius=1.0), tumble.Sphere(density=1.0, radius=1.0, subtract=True)])
+    with pytest.raises(ValueError, match="at least one part"):
+        tumble.Body([])
+
+
+def test_hole_that_makes_the_body_unphysical_is_refused():
+    # a small central hole is fine
+    tumble.Body([tumble.Sphere(density=1.0, radius=1.0), tumble.Cylinder(density=1.0, radius=0.1, length=0.5, subtract=True)])
+    # removing a wide disc from a small ball removes more axial inertia than there was
+    with pytest.raises(ValueError, match="negative principal moment"):
+        tumble.Body([tumble.Sphere(mass=1.0, radius=0.1), tumble.Cylinder(mass=0.5, radius=0.5, length=0.01, subtract=True)])
+
+
+def test_a_body_is_immutable():
+    body = tumble.t_handle()
+    with pytest.raises(AttributeError):
+        body.name = "x"
+    with pytest.raises(ValueError):
+        body.inertia[0, 0] = 1.0
+
+
+def test_symmetric_body_has_no_intermediate_axis():
+    top = tumble.Body([tumble.Cylinder(mass=1.0, radius=0.3, length=2.0)])
+    assert top.properties.degeneracy == "symmetric"
+    assert top.properties.intermediate_axis is None
+    ball = tumble.Body([tumble.Sphere(mass=1.0, radius=0.3)])
+    assert ball.properties.degeneracy == "spherical"
+
+
+def test_inertia_about_another_point():
+    body = tumble.t_handle()
+    # about the shaft's bottom end (0, 0, -0.5): x-moment = 0.3125 + 3 * 0.75^2
+    assert body.inertia_about([0, 0, -0.5])[0, 0] == pytest.approx(0.3125 + 3 * 0.75**2)
+
+
+def test_rotation_of_a_rotated_box_composes():
+    r1, r2 = Rotation.from_rotvec([0.1, 0.2, 0.3]), Rotation.from_rotvec([-1.0, 0.5, 0.0])
+    box = tumble.Box(mass=1.0, size=(1, 2, 3), rotation=r1)
+    moved = box.moved(r2)
+    np.testing.assert_allclose(moved.orientation.as_matrix(), (r2 * r1).as_matrix(), atol=1e-15)

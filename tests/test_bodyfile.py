@@ -1,0 +1,98 @@
+"""Body files (TOML): every kind parses; every malformed file gets one line naming the field."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble.mass import PART_KINDS
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_example_t_handle_file_equals_the_preset():
+    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "t_handle.toml").inertia, tumble.t_handle().inertia)
+
+
+def test_every_part_example_uses_every_kind():
+    body = tumble.load_body(EXAMPLES / "every_part.toml")
+    assert {p.kind for p in body.parts} == set(PART_KINDS)
+    assert any(p.subtract for p in body.parts)
+
+
+def test_preset_names_and_preset_files():
+    np.testing.assert_allclose(tumble.load_body("iss-t-handle").inertia, tumble.iss_t_handle().inertia)
+    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "iss_t_handle.toml").inertia, tumble.iss_t_handle().inertia)
+    alu = tumble.load_body(EXAMPLES / "wing_nut.toml")
+    assert alu.name == "aluminium T-handle"
+
+
+def write(tmp_path, text: str) -> Path:
+    path = tmp_path / "body.toml"
+    path.write_text(text)
+    return path
+
+
+ROD = 'kind = "rod"\nmass = 1.0\nlength = 1.0\n'
+
+BAD_FILES = [
+    ("", "the file is empty"),
+    ("[body\n", "not valid TOML"),
+    ("x = 1\n", "missing table \\[body\\]"),
+    ("[body]\nname = 'a'\n", "missing key 'parts'"),
+    ("[body]\nparts = []\n", "non-empty list"),
+    ("[body]\nparts = 3\n", "non-empty list"),
+    ("[body]\nname = 3\n[[body.parts]]\n" + ROD, "body.name = 3 must be a string"),
+    ("[[body.parts]]\n" + ROD + "[other]\n", "unknown top-level key 'other'"),
+    ("[body]\ncolour = 'red'\n[[body.parts]]\n" + ROD, "unknown key 'colour'"),
+    ("[[body.parts]]\nmass = 1.0\n", r"body.parts\[0\]: missing key 'kind'"),
+    ("[[body.parts]]\nkind = 'blob'\n", r"body.parts\[0\]: kind = 'blob' is unknown; allowed: rod"),
+    ("[[body.parts]]\nkind = 'rod'\nmass = 1.0\n", r"body.parts\[0\] \(rod\): missing key 'length'"),
+    ("[[body.parts]]\n" + ROD + "lenght = 2.0\n", r"body.parts\[0\] \(rod\): unknown key 'lenght'; allowed: kind, axis, center, length, mass"),
+    ("[[body.parts]]\n" + ROD + "[[body.parts]]\nkind = 'rod'\nmass = -1.0\nlength = 1.0\n", r"body.parts\[1\] \(rod\): mass = -1.0 must be a positive"),
+    ("[[body.parts]]\nkind = 'rod'\nmass = nan\nlength = 1.0\n", r"mass = nan must be a finite number"),
+    ("[[body.parts]]\nkind = 'rod'\nmass = inf\nlength = 1.0\n", r"mass = inf must be a finite number"),
+    ("[[body.parts]]\nkind = 'rod'\nmass = '1'\nlength = 1.0\n", r"mass = '1' must be a number"),
+    ("[[body.parts]]\nkind = 'sphere'\nmass = 1.0\nradius = 0.0\n", r"radius = 0.0 must be a positive"),
+    ("[[body.parts]]\nkind = 'box'\nmass = 1.0\nsize = [1.0, 2.0]\n", r"size = \[1.0, 2.0\] must be a list of 3 numbers"),
+    ("[[body.parts]]\nkind = 'box'\nmass = 1.0\nsize = [1, 1, 1]\nrotation = [0, 0, 0, 0]\n", r"quaternion of norm 0"),
+    ("[[body.parts]]\nkind = 'rod'\nmass = 1.0\nlength = 1.0\naxis = [0, 0, 0]\n", r"axis = \[0, 0, 0\] must be a non-zero"),
+    ("[[body.parts]]\nkind = 'point'\nmass = 1.0\ndensity = 1.0\n", r"unknown key 'density'"),
+    ("[[body.parts]]\nkind = 'mesh'\nmesh = 'nope.stl'\nmass = 1.0\n", r"body.parts\[0\] \(mesh\): mesh = '.*nope.stl': no such file"),
+    ("[[body.parts]]\nkind = 'mesh'\nmesh = 3\nmass = 1.0\n", r"mesh = 3 must be a file path"),
+    (
+        "[[body.parts]]\nkind = 'sphere'\ndensity = 1.0\nradius = 1.0\n[[body.parts]]\nkind = 'sphere'\ndensity = 1.0\nradius = 1.0\nsubtract = true\n",
+        r"total mass 0 kg is not positive",
+    ),
+    ("[body]\npreset = 'cube'\n", r"preset = 'cube' is unknown; allowed: t-handle, iss-t-handle"),
+    ("[body]\npreset = 't-handle'\nshaft_lenght = 2.0\n", r"unknown key 'shaft_lenght' for preset 't-handle'"),
+    ("[body]\npreset = 't-handle'\nshaft_length = -2.0\n", r"shaft: length = -2.0 must be a positive"),
+    ("[body]\npreset = 'iss-t-handle'\nradius = 1.0\n", r"unknown key 'radius' for preset 'iss-t-handle'"),
+]
+
+
+@pytest.mark.parametrize(("text", "pattern"), BAD_FILES)
+def test_malformed_body_files(tmp_path, text, pattern):
+    path = write(tmp_path, text)
+    with pytest.raises(ValueError, match=pattern) as info:
+        tumble.load_body(path)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(str(path))
+
+
+def test_binary_junk(tmp_path):
+    path = tmp_path / "junk.toml"
+    path.write_bytes(bytes(range(256)))
+    with pytest.raises(ValueError, match="not a text file"):
+        tumble.load_body(path)
+
+
+def test_missing_file_and_unknown_preset(tmp_path):
+    with pytest.raises(ValueError, match="no such file"):
+        tumble.load_body(tmp_path / "none.toml")
+    with pytest.raises(ValueError, match="neither a body file nor a preset"):
+        tumble.load_body("cube")

@@ -1,0 +1,103 @@
+"""The command line: output formats, one-line errors with exit status 2, fast --help."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("source", ["t-handle", "iss-t-handle", str(EXAMPLES / "every_part.toml")])
+def test_inertia_json(capsys, source):
+    code, out, err = run(capsys, "inertia", source, "--json")
+    assert code == 0 and err == ""
+    data = json.loads(out)
+    body = tumble.load_body(source)
+    assert data["mass"] == pytest.approx(body.mass)
+    np.testing.assert_allclose(data["com"], body.com)
+    np.testing.assert_allclose(data["inertia"], body.inertia)
+    I, A = np.array(data["principal_moments"]), np.array(data["principal_axes"]).T
+    assert np.all(np.diff(I) >= 0)
+    np.testing.assert_allclose(A @ np.diag(I) @ A.T, data["inertia"], atol=1e-12 * I.sum())
+    np.testing.assert_allclose(data["intermediate_axis"], A[:, 1])
+
+
+def test_inertia_json_seed_values(capsys):
+    data = json.loads(run(capsys, "inertia", "t-handle", "--json")[1])
+    np.testing.assert_allclose(data["principal_moments"], [0.125, 0.3125, 0.4375])
+    np.testing.assert_allclose(data["intermediate_axis"], [1, 0, 0])  # the crossbar
+
+
+def test_inertia_table(capsys):
+    code, out, _ = run(capsys, "inertia", "iss-t-handle")
+    assert code == 0
+    assert "intermediate axis +z" in out
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["inertia", "no-such-thing"],
+        ["inertia", "/nonexistent/body.toml"],
+        ["inertia"],
+        ["frobnicate"],
+        ["inertia", "t-handle", "--bogus"],
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(capsys, argv):
+    with pytest.raises(SystemExit) as info:
+        code = main(argv)
+        raise SystemExit(code)
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_bad_file_through_the_installed_command(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text("[[body.parts]]\nkind = 'rod'\nmass = -1\nlength = 1\n")
+    proc = subprocess.run([sys.executable, "-m", "tumble", "inertia", str(path)], capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert proc.stdout == ""
+    assert proc.stderr.strip() == f"tumble: error: {path}: body.parts[0] (rod): mass = -1 must be a positive finite number (kg)"
+
+
+def test_debug_shows_the_traceback(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "tumble", "--debug", "inertia", "nope"], capture_output=True, text=True)
+    assert proc.returncode != 0 and "Traceback" in proc.stderr
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0
+    assert capsys.readouterr().out.strip() == f"tumble {tumble.__version__}"
+
+
+def test_help_imports_no_heavy_module():
+    """--help must answer at once: the CLI module loads neither numpy, scipy nor matplotlib."""
+    code = "import sys, tumble.cli; print(sorted(m for m in ('numpy', 'scipy', 'matplotlib', 'trimesh') if m in sys.modules))"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert proc.stdout.strip() == "[]"
+
+
+def test_demo_writes_its_folder(tmp_path, capsys):
+    code, out, _ = run(capsys, "demo", "--out", str(tmp_path / "d"))
+    assert code == 0
+    data = json.loads((tmp_path / "d" / "mass_properties.json").read_text())
+    assert len(data) == 2

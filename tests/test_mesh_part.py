@@ -1,0 +1,77 @@
+"""Triangle-mesh parts: loading, placement, refusal of meshes that enclose no volume."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+from scipy.spatial.transform import Rotation
+
+import tumble
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_torus_file_against_closed_form():
+    """Torus, major radius R, minor r: I_axial = m (R^2 + 3 r^2 / 4), I_perp = m (R^2 / 2 + 5 r^2 / 8)
+    (Meriam & Kraige Table D/4). The shipped mesh has 48 x 16 sections, so the polygonal
+    under-estimate is ~ (2 pi / 16)^2 / 6 = 2.6e-2 of the minor-circle part; allow 1e-2 overall."""
+    R, r = 0.04, 0.01
+    part = tumble.Mesh(mesh=EXAMPLES / "meshes" / "torus.stl", mass=1.0)
+    np.testing.assert_allclose(np.diag(part.inertia), [R**2 / 2 + 5 * r**2 / 8] * 2 + [R**2 + 3 * r**2 / 4], rtol=1e-2)
+    np.testing.assert_allclose(part.center, 0.0, atol=1e-12)
+
+
+def test_mesh_part_equals_the_primitive_it_meshes(tmp_path):
+    rot = Rotation.from_rotvec([0.4, 0.1, -0.9])
+    box = trimesh.creation.box(extents=(0.1, 0.2, 0.4))
+    box.apply_translation([0.05, 0.0, 0.0])  # mesh origin is not its centre
+    path = tmp_path / "box.stl"
+    box.export(path)
+    part = tumble.Mesh(mesh=path, density=1000.0, origin=(1.0, 2.0, 3.0), rotation=rot)
+    ref = tumble.Box(density=1000.0, size=(0.1, 0.2, 0.4), rotation=rot, center=rot.apply([0.05, 0, 0]) + [1, 2, 3])
+    f32 = 1e-6  # binary STL stores float32 coordinates (eps 6e-8), a few eps of error
+    assert part.mass == pytest.approx(ref.mass, rel=f32)
+    np.testing.assert_allclose(part.center, ref.center, atol=f32)
+    np.testing.assert_allclose(part.inertia, ref.inertia, atol=f32 * np.trace(ref.inertia))
+    moved = part.moved(Rotation.from_rotvec([0, 0, 1.0]), (0, 0, 1))
+    assert moved.mass == pytest.approx(part.mass, rel=1e-12)
+
+
+def test_scale_converts_millimetres(tmp_path):
+    mesh = trimesh.creation.box(extents=(10.0, 20.0, 30.0))  # mm
+    path = tmp_path / "box_mm.stl"
+    mesh.export(path)
+    part = tumble.Mesh(mesh=path, scale=1e-3, density=1000.0)
+    assert part.volume == pytest.approx(6e-6, rel=1e-6)  # float32 in the file
+
+
+def test_open_mesh_is_refused(tmp_path):
+    mesh = trimesh.creation.box(extents=(1, 1, 1))
+    mesh.update_faces(np.arange(len(mesh.faces)) != 0)  # knock out one triangle
+    path = tmp_path / "open.stl"
+    mesh.export(path)
+    with pytest.raises(ValueError, match="not watertight"):
+        tumble.Mesh(mesh=path, mass=1.0)
+
+
+def test_inside_out_mesh_is_refused():
+    mesh = trimesh.creation.box(extents=(1, 1, 1))
+    mesh.invert()
+    with pytest.raises(ValueError, match="negative volume means its faces point inward"):
+        tumble.Mesh(mesh=mesh, mass=1.0)
+
+
+@pytest.mark.parametrize("content", [b"", b"\x00\x01\x02 junk", b"solid x\nendsolid x\n"])
+def test_malformed_mesh_files(tmp_path, content):
+    path = tmp_path / "bad.stl"
+    path.write_bytes(content)
+    with pytest.raises(ValueError, match="bad.stl"):
+        tumble.Mesh(mesh=path, mass=1.0)
+
+
+def test_missing_mesh_file():
+    with pytest.raises(ValueError, match="no such file"):
+        tumble.Mesh(mesh="does/not/exist.stl", mass=1.0)
