@@ -14,19 +14,19 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 def test_example_t_handle_file_equals_the_preset():
-    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "t_handle.toml").inertia, tumble.t_handle().inertia)
+    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "bodies" / "t_handle.toml").inertia, tumble.t_handle().inertia)
 
 
 def test_every_part_example_uses_every_kind():
-    body = tumble.load_body(EXAMPLES / "every_part.toml")
+    body = tumble.load_body(EXAMPLES / "bodies" / "every_part.toml")
     assert {p.kind for p in body.parts} == set(PART_KINDS)
     assert any(p.subtract for p in body.parts)
 
 
 def test_preset_names_and_preset_files():
     np.testing.assert_allclose(tumble.load_body("iss-t-handle").inertia, tumble.iss_t_handle().inertia)
-    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "iss_t_handle.toml").inertia, tumble.iss_t_handle().inertia)
-    alu = tumble.load_body(EXAMPLES / "wing_nut.toml")
+    np.testing.assert_allclose(tumble.load_body(EXAMPLES / "bodies" / "iss_t_handle.toml").inertia, tumble.iss_t_handle().inertia)
+    alu = tumble.load_body(EXAMPLES / "bodies" / "wing_nut.toml")
     assert alu.name == "aluminium T-handle"
 
 

@@ -22,7 +22,7 @@ def run(capsys, *argv):
     return code, out, err
 
 
-@pytest.mark.parametrize("source", ["t-handle", "iss-t-handle", str(EXAMPLES / "every_part.toml")])
+@pytest.mark.parametrize("source", ["t-handle", "iss-t-handle", str(EXAMPLES / "bodies" / "every_part.toml")])
 def test_inertia_json(capsys, source):
     code, out, err = run(capsys, "inertia", source, "--json")
     assert code == 0 and err == ""
@@ -96,8 +96,10 @@ def test_help_imports_no_heavy_module():
     assert proc.stdout.strip() == "[]"
 
 
-def test_demo_writes_its_folder(tmp_path, capsys):
-    code, out, _ = run(capsys, "demo", "--out", str(tmp_path / "d"))
-    assert code == 0
-    data = json.loads((tmp_path / "d" / "mass_properties.json").read_text())
-    assert len(data) == 2
+def test_demo_cli_writes_its_folder(tmp_path, capsys, monkeypatch):
+    import tumble.demo
+
+    calls = {}
+    monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate: calls.update(out=out, animate=animate))
+    code, _, _ = run(capsys, "demo", "--out", str(tmp_path / "d"), "--no-animation")
+    assert code == 0 and calls == {"out": str(tmp_path / "d"), "animate": False}

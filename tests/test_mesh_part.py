@@ -19,7 +19,7 @@ def test_torus_file_against_closed_form():
     (Meriam & Kraige Table D/4). The shipped mesh has 48 x 16 sections, so the polygonal
     under-estimate is ~ (2 pi / 16)^2 / 6 = 2.6e-2 of the minor-circle part; allow 1e-2 overall."""
     R, r = 0.04, 0.01
-    part = tumble.Mesh(mesh=EXAMPLES / "meshes" / "torus.stl", mass=1.0)
+    part = tumble.Mesh(mesh=EXAMPLES / "bodies" / "meshes" / "torus.stl", mass=1.0)
     np.testing.assert_allclose(np.diag(part.inertia), [R**2 / 2 + 5 * r**2 / 8] * 2 + [R**2 + 3 * r**2 / 4], rtol=1e-2)
     np.testing.assert_allclose(part.center, 0.0, atol=1e-12)
 

@@ -34,8 +34,17 @@ _EXPORTS = {
     "Mesh": "tumble.mass",
     "t_handle": "tumble.mass",
     "iss_t_handle": "tumble.mass",
+    # dynamics and analysis
+    "simulate": "tumble.dynamics",
+    "Trajectory": "tumble.dynamics",
+    "ConstantTorque": "tumble.dynamics",
+    "METHODS": "tumble.dynamics",
+    "linearised_rate": "tumble.analysis",
+    "flip_interval": "tumble.analysis",
+    "stability_report": "tumble.analysis",
     # files
     "load_body": "tumble.io",
+    "load_scenario": "tumble.io",
 }
 
 __all__ = ["__version__", *_EXPORTS]

@@ -37,8 +37,48 @@ def _cmd_inertia(args) -> int:
 def _cmd_demo(args) -> int:
     from .demo import run_demo
 
-    run_demo(args.out)
+    run_demo(args.out, animate=not args.no_animation)
     return EXIT_OK
+
+
+def _cmd_simulate(args) -> int:
+    from .io.scenario import load_scenario
+
+    scenario = load_scenario(args.scenario)  # every check before anything is computed or written
+    traj = scenario.run()
+
+    from pathlib import Path
+
+    from .analysis import trajectory_summary
+    from .io.export import write_csv, write_json, write_npz
+    from .viz import figure_omega
+
+    out = Path(args.out)
+    summary = trajectory_summary(traj)
+    summary["scenario"] = str(args.scenario)
+    write_csv(traj, out / "trajectory.csv")
+    write_npz(traj, out / "trajectory.npz")
+    figure_omega(traj, out / "omega.png", f"{scenario.name}: {traj.body_name}, {traj.method}")
+    write_json(summary, out / "summary.json")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(_simulate_line(summary, out))
+    return EXIT_OK
+
+
+def _simulate_line(summary: dict, out) -> str:
+    """One line for people: what the spin did and how well the invariants held."""
+    s, d = summary["stability"], summary["drift"]
+    head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
+    spin = "started at rest" if s["axis"] is None else (
+        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flips")
+    if summary["torque_free"]:
+        drift = ", ".join(f"{k} {'-' if v is None else format(v, '.1e')}" for k, v in d.items())
+        tail = f"relative drift: {drift}"
+    else:
+        tail = "torque acted, so energy and L change"
+    return f"{head}: {spin}; {tail}; wrote {out}/"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -57,7 +97,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="mass properties of a body file or preset",
         description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.",
         epilog="Examples: tumble inertia t-handle | tumble inertia iss-t-handle --json | "
-        "tumble inertia examples/t_handle.toml",
+        "tumble inertia examples/bodies/t_handle.toml",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("body", metavar="BODY", help="a body file (TOML) or a preset: t-handle, iss-t-handle")
@@ -65,12 +105,26 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_inertia)
 
     p = sub.add_parser(
+        "simulate",
+        help="integrate a scenario file and write trajectory, summary and plot",
+        description="Integrates the scenario and writes DIR/trajectory.csv, DIR/trajectory.npz, "
+        "DIR/summary.json and DIR/omega.png. Nothing is written if the scenario is invalid.",
+        epilog="Example: tumble simulate examples/seed_flip.toml --out runs/flip --json",
+    )
+    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser(
         "demo",
         help="the T-handle study on built-in defaults",
-        description="Runs the T-handle study and writes its data to a folder.",
+        description="Runs the T-handle study (seed T-handle and space-station handle, spin about each "
+        "axis) and writes figures, animations, trajectories and a summary table to a folder.",
         epilog="Example: tumble demo --out tumble-demo",
     )
     p.add_argument("--out", default="tumble-demo", metavar="DIR", help="output folder (default: tumble-demo)")
+    p.add_argument("--no-animation", action="store_true", help="skip the GIF animations (faster)")
     p.set_defaults(func=_cmd_demo)
     return parser
 

@@ -1,6 +1,7 @@
-"""Files in and out: body files (TOML), reports (JSON, text)."""
+"""Files in and out: body and scenario files (TOML); reports, trajectories (CSV, NPZ, JSON)."""
 
 from .bodyfile import body_from_table, load_body, part_from_table, read_toml
+from .scenario import Scenario, load_scenario
 from .report import mass_properties_dict, mass_properties_table
 
 __all__ = [
@@ -10,4 +11,6 @@ __all__ = [
     "mass_properties_table",
     "part_from_table",
     "read_toml",
+    "Scenario",
+    "load_scenario",
 ]

@@ -21,10 +21,10 @@ __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
 AXIS_ROLES = ("minor", "intermediate", "major")
 
 
-def _readonly(a) -> np.ndarray:
-    a = np.array(a, dtype=float)
-    a.flags.writeable = False
-    return a
+def _array(a) -> np.ndarray:
+    # Arrays are left writeable: scipy's Rotation.apply refuses read-only input, and users
+    # apply rotations to these vectors. The dataclass is frozen; do not modify arrays in place.
+    return np.array(a, dtype=float)
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,7 +58,7 @@ class MassProperties:
         """Validate ``inertia`` (about the COM) and decompose it."""
         I = check_inertia(inertia, what="inertia tensor about the centre of mass")
         moments, axes = principal_frame(I)
-        return cls(float(mass), _readonly(com), _readonly(I), _readonly(moments), _readonly(axes))
+        return cls(float(mass), _array(com), _array(I), _array(moments), _array(axes))
 
     @property
     def degeneracy(self) -> str:

@@ -138,12 +138,10 @@ class Part:
     def inertia(self) -> np.ndarray:
         """Tensor about the part's own COM in the design frame, ``R I R^T`` (kg m^2).
 
-        Negative for removed material. Computed once (the part is immutable), read-only.
+        Negative for removed material. Computed once (the part is immutable).
         """
         I = self._design_inertia()
-        I = -I if self.subtract else I
-        I.flags.writeable = False
-        return I
+        return -I if self.subtract else I
 
     def _design_inertia(self) -> np.ndarray:
         R = self.orientation.as_matrix()

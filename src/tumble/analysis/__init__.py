@@ -1,0 +1,22 @@
+"""Analysis of motions (layer 3): stability of the principal axes, flips and their period."""
+
+from .stability import (
+    axis_of,
+    energy_momentum_gaps,
+    flip_interval,
+    flip_times,
+    linearised_rate,
+    perturbation_exponent,
+)
+from .summary import stability_report, trajectory_summary
+
+__all__ = [
+    "axis_of",
+    "energy_momentum_gaps",
+    "flip_interval",
+    "flip_times",
+    "linearised_rate",
+    "perturbation_exponent",
+    "stability_report",
+    "trajectory_summary",
+]

@@ -1,0 +1,69 @@
+"""What a trajectory says about stability: the summary written by ``tumble simulate``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..dynamics import Trajectory
+from ..mass import AXIS_ROLES
+from .stability import axis_of, energy_momentum_gaps, flip_interval, flip_times, linearised_rate
+
+__all__ = ["stability_report", "trajectory_summary"]
+
+
+def stability_report(traj: Trajectory) -> dict:
+    """Prediction against observation for the axis that carries most of the initial spin.
+
+    Keys: ``axis`` (1, 2 or 3, principal, ascending moments; None for a body starting at
+    rest, and then every prediction is None), ``role``, ``predicted``
+    ("stable" or "unstable", the linearised theory), ``growth_rate`` (1/s) or
+    ``wobble_frequency`` (rad/s) of that theory, ``flips`` (sign changes of that component in
+    the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
+    flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
+    component flips; torque-free only).
+    """
+    w0 = traj.omega[0]
+    if not np.any(w0):
+        return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
+                "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None}
+    a = int(axis_of(w0))
+    I = traj.moments
+    growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a]))
+    distinct = bool(np.all(np.diff(I) > 1e-9 * I.sum()))
+    times = flip_times(traj.t, traj.omega[:, a])
+    exact = None
+    if traj.torque_free and distinct:
+        # the component about which omega circulates (dn in Landau & Lifshitz eq. 37.10) never
+        # changes sign: axis 3 when L^2 > 2 E I2, axis 1 below; the other two flip
+        circulation_axis = 2 if energy_momentum_gaps(w0, I)[1] > 0 else 0
+        value = float(flip_interval(w0, I))
+        if a != circulation_axis and np.isfinite(value):
+            exact = value
+    return {
+        "axis": a + 1,
+        "role": AXIS_ROLES[a],
+        "predicted": "unstable" if growth > 0 else "stable",
+        "growth_rate": growth if growth > 0 else None,
+        "wobble_frequency": wobble if wobble > 0 else None,
+        "flips": len(times),
+        "flip_period": float(np.mean(np.diff(times))) if len(times) >= 2 else None,
+        "flip_period_exact": exact,
+    }
+
+
+def trajectory_summary(traj: Trajectory) -> dict:
+    """The JSON summary of a run (``summary.json``): inputs, invariants, drift and stability."""
+    return {
+        "body": traj.body_name,
+        "principal_moments": traj.moments.tolist(),
+        "principal_axes": traj.principal_axes.T.tolist(),
+        "method": traj.method,
+        "t_end": float(traj.t[-1]),
+        "samples": len(traj),
+        "omega0": traj.omega[0].tolist(),
+        "torque_free": traj.torque_free,
+        "energy": float(traj.energy[0]),
+        "L_norm": float(traj.angular_momentum_norm[0]),
+        "drift": traj.drift,
+        "stability": stability_report(traj),
+    }

@@ -1,0 +1,25 @@
+"""Rotational dynamics (layer 2): Euler's equations, torques, integrators, trajectories."""
+
+from .euler import angular_momentum, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
+from .integrators import METHODS, Method, get_method
+from .simulate import DEFAULT_METHOD, FRAMES, simulate
+from .torques import ConstantTorque, FunctionTorque, as_torque
+from .trajectory import Trajectory
+
+__all__ = [
+    "DEFAULT_METHOD",
+    "FRAMES",
+    "METHODS",
+    "ConstantTorque",
+    "FunctionTorque",
+    "Method",
+    "Trajectory",
+    "angular_momentum",
+    "as_torque",
+    "euler_rhs",
+    "euler_rhs_tensor",
+    "get_method",
+    "kinetic_energy",
+    "quaternion_rate",
+    "simulate",
+]

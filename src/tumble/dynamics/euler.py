@@ -1,0 +1,106 @@
+"""Euler's equations for a rigid body and the quantities they conserve.
+
+Pure functions over numpy arrays; each broadcasts over leading batch axes (``omega`` of shape
+``(..., 3)``). Angular velocity and momentum are in the body's principal frame unless a name
+ends in ``_world``. Units: rad/s, kg m^2, N m, J, kg m^2/s.
+
+References
+----------
+- Seed study sec. 3: ``tau = I omega' + omega x (I omega)`` in the principal frame.
+- Landau & Lifshitz, *Mechanics*, 3rd ed., sec. 36, eq. (36.5); Goldstein, Poole & Safko,
+  *Classical Mechanics*, 3rd ed., eq. (5.39').
+- Quaternion kinematics ``q' = q (x) (omega, 0) / 2`` for body-frame rates (Hamilton product,
+  scalar last as in scipy): Shuster, "A survey of attitude representations", J. Astronaut. Sci.
+  41 (1993) 439, eq. (305).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "angular_momentum",
+    "euler_rhs",
+    "euler_rhs_tensor",
+    "kinetic_energy",
+    "quaternion_rate",
+]
+
+
+def euler_rhs(omega, moments, torque=0.0) -> np.ndarray:
+    """Angular acceleration from Euler's equations in the principal frame.
+
+    ``I_1 w1' = (I_2 - I_3) w2 w3 + tau_1`` and cyclic (seed sec. 3, rearranged).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity in the principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments ``(I1, I2, I3)``, kg m^2.
+    torque : array_like, shape (..., 3), optional
+        External torque about the COM in the principal frame, N m.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ``d omega / dt`` in the principal frame, rad/s^2.
+    """
+    w = np.asarray(omega, dtype=float)
+    I = np.asarray(moments, dtype=float)
+    return (np.cross(I * w, w) + torque) / I
+
+
+def euler_rhs_tensor(omega, inertia, torque=0.0) -> np.ndarray:
+    """Euler's equations with a full tensor, in any frame fixed to the body.
+
+    ``I omega' = tau - omega x (I omega)`` (Goldstein eq. 5.39'); used to check the principal
+    form and for bodies described in their design frame.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity in that body frame, rad/s.
+    inertia : array_like, shape (..., 3, 3)
+        Inertia tensor about the COM in that frame, kg m^2.
+    torque : array_like, shape (..., 3), optional
+        External torque in that frame, N m.
+    """
+    w = np.asarray(omega, dtype=float)
+    I = np.asarray(inertia, dtype=float)
+    L = np.einsum("...ij,...j->...i", I, w)
+    rhs = torque - np.cross(w, L)
+    return np.linalg.solve(I, rhs[..., None])[..., 0]
+
+
+def angular_momentum(omega, moments) -> np.ndarray:
+    """``L = I omega`` in the principal frame, kg m^2/s; shape (..., 3)."""
+    return np.asarray(moments, float) * np.asarray(omega, float)
+
+
+def kinetic_energy(omega, moments) -> np.ndarray:
+    """Rotational kinetic energy ``T = omega . I omega / 2``, J; shape (...)."""
+    w = np.asarray(omega, float)
+    return 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1)
+
+
+def quaternion_rate(quat, omega) -> np.ndarray:
+    """Time derivative of the attitude quaternion for body-frame angular velocity.
+
+    ``q' = q (x) (omega, 0) / 2``, written out for scalar-last quaternions ``(v, s)``:
+    ``v' = (s omega + v x omega) / 2``, ``s' = -(v . omega) / 2`` (Shuster 1993, eq. 305).
+    With ``R(q)`` mapping body to world this is ``R' = R [omega]_x``.
+
+    Parameters
+    ----------
+    quat : array_like, shape (..., 4)
+        Unit quaternion ``[x, y, z, w]``, body to world.
+    omega : array_like, shape (..., 3)
+        Angular velocity in the body frame, rad/s.
+    """
+    q = np.asarray(quat, float)
+    w = np.asarray(omega, float)
+    v, s = q[..., :3], q[..., 3:]
+    dv = 0.5 * (s * w + np.cross(v, w))
+    ds = -0.5 * np.sum(v * w, axis=-1, keepdims=True)
+    return np.concatenate([dv, ds], axis=-1)

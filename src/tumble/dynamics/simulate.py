@@ -1,0 +1,145 @@
+"""One entry point for every integration method: :func:`simulate`."""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..mass import Body, MassProperties
+from ..mass._checks import check_positive, check_rotation, check_vector
+from .integrators import METHODS, get_method
+from .torques import as_torque
+from .trajectory import Trajectory
+
+__all__ = ["DEFAULT_METHOD", "FRAMES", "simulate"]
+
+#: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
+DEFAULT_METHOD = "dop853"
+#: Frames in which ``omega0`` (and a body-frame torque) may be given.
+FRAMES = ("principal", "design")
+#: Upper bound on samples, to refuse a typo such as 5e9 before allocating memory.
+MAX_SAMPLES = 10_000_000
+
+
+def simulate(
+    body,
+    omega0,
+    *,
+    t_end: float,
+    samples: int = 500,
+    method: str | None = None,
+    frame: str = "principal",
+    torque=None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    attitude0=None,
+) -> Trajectory:
+    """Integrate the rotation of a rigid body from an initial angular velocity.
+
+    Parameters
+    ----------
+    body : Body or MassProperties
+        The body; its principal frame (``I1 <= I2 <= I3``) is the body frame of the motion.
+    omega0 : array_like, shape (3,)
+        Initial angular velocity, rad/s, in ``frame``.
+    t_end : float
+        Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``.
+    samples : int
+        Number of samples (>= 2), default 500 as in the seed study.
+    method : str, optional
+        A name from :data:`tumble.dynamics.METHODS` (``"dop853"``, ``"rk45"``, ``"seed"``);
+        default :data:`DEFAULT_METHOD`.
+    frame : {"principal", "design"}
+        Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
+        design frame. A body-frame torque is read in the same frame.
+    torque : callable or torque model, optional
+        ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.torques`).
+    rtol, atol : float, optional
+        Tolerances; the method's defaults if not given. For ``"dop853"`` ``atol`` is relative
+        to the size of omega.
+    attitude0 : scipy Rotation, quaternion or matrix, optional
+        Initial rotation of the *design* frame to the world frame; default identity (the body
+        starts as it was designed).
+
+    Returns
+    -------
+    Trajectory
+
+    Raises
+    ------
+    ValueError
+        For bad input, naming the argument and what is allowed.
+    """
+    props, spec, w0, t_end, rtol, atol = check_inputs(
+        body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol
+    )
+    name = body.name if isinstance(body, Body) else "body"
+    model = as_torque(torque)
+    if model is not None and not spec.supports_torque:
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
+        raise ValueError(f"method {spec.name!r} cannot take a torque; use one of: {allowed}")
+
+    A = props.principal_axes  # principal -> design
+    if frame == "design":
+        w0 = A.T @ w0
+        if model is not None and model.frame == "body":
+            model = _design_torque(model, A)
+    design_to_world = Rotation.identity() if attitude0 is None else Rotation.from_quat(check_rotation("attitude0", attitude0))
+    q0 = (design_to_world * Rotation.from_matrix(A)).as_quat()
+
+    moments = props.principal_moments
+    if spec.atol_scaled and atol is not None:
+        scale = max(float(np.linalg.norm(w0)), _torque_scale(model, w0, q0, moments, t_end), 1e-300)
+        atol = np.array([atol * scale] * 3 + [atol] * 4)
+    t = np.linspace(0.0, t_end, samples)
+    omega, quat = spec.integrate(moments, w0, q0, t, model, rtol, atol)
+    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(quat))):
+        raise RuntimeError(f"the {spec.name} integration produced non-finite values")
+    return Trajectory(
+        t=t, omega=omega, attitude=Rotation.from_quat(quat), moments=moments, principal_axes=A,
+        method=spec.name, torque_free=model is None, body_name=name,
+    )
+
+
+def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol, atol):
+    """Validate :func:`simulate`'s arguments; return ``(props, method, omega0, t_end, rtol, atol)``.
+
+    Raises ``ValueError`` whose message starts with the argument's name.
+    """
+    props = body.properties if isinstance(body, Body) else body
+    if not isinstance(props, MassProperties):
+        raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
+    spec = get_method(DEFAULT_METHOD if method is None else method)
+    if frame not in FRAMES:
+        raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
+    w0 = np.array(check_vector("omega0", omega0, "rad/s"))
+    t_end = check_positive("t_end", t_end, "s")
+    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
+        raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
+    rtol = spec.rtol if rtol is None else check_positive("rtol", rtol, "relative")
+    atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
+    moments = props.principal_moments
+    if np.any(moments <= 0):
+        raise ValueError(
+            f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
+            f"a point) has no well-posed rotation about that axis; give it some thickness"
+        )
+    return props, spec, w0, t_end, rtol, atol
+
+
+def _design_torque(model, A):
+    """Wrap a body-frame torque given in design coordinates so it returns principal ones."""
+    from .torques import FunctionTorque
+
+    return FunctionTorque(lambda t, w, att: A.T @ np.asarray(model(t, A @ w, att), float), "body")
+
+
+def _torque_scale(model, w0, q0, moments, t_end) -> float:
+    """Size of omega a torque can build up over the run, rad/s (for absolute tolerances)."""
+    if model is None:
+        return 0.0
+    tau = np.asarray(model(0.0, w0, Rotation.from_quat(q0)), dtype=float)
+    return float(np.linalg.norm(tau) / moments.min() * t_end) if np.all(np.isfinite(tau)) else 0.0
+

@@ -1,0 +1,19 @@
+"""Pictures (the shell): figures, animations and the scene description they share.
+
+matplotlib is imported inside the drawing functions, never by the physics layers.
+"""
+
+from .animate import animate_body_frame, animate_ground_frame
+from .plots import figure_omega, figure_omega_grid, plot_omega
+from .scene import body_lines, body_size, part_lines
+
+__all__ = [
+    "animate_body_frame",
+    "animate_ground_frame",
+    "body_lines",
+    "body_size",
+    "figure_omega",
+    "figure_omega_grid",
+    "part_lines",
+    "plot_omega",
+]

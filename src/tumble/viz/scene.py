@@ -1,0 +1,87 @@
+"""One scene description of a body, shared by every picture of it.
+
+A body is drawn as wireframe polylines in its design frame, relative to its centre of mass,
+built from its parts (so a figure always shows the body whose physics was computed). The
+animations transform these lines by the attitude; numpy only, no plotting here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..mass import Body
+from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+
+__all__ = ["body_lines", "body_size", "part_lines"]
+
+
+def _circle(radius: float, n: int) -> np.ndarray:
+    a = np.linspace(0.0, 2.0 * np.pi, n + 1)
+    return np.column_stack([radius * np.cos(a), radius * np.sin(a), np.zeros_like(a)])
+
+
+def _local_lines(part: Part, n: int) -> list[np.ndarray]:
+    """Polylines in the part's own frame (axis of symmetry = local z), about its centre."""
+    if isinstance(part, Rod):
+        h = part.length / 2
+        return [np.array([[0, 0, -h], [0, 0, h]], float)]
+    if isinstance(part, (Cylinder, Tube)):
+        h = part.length / 2
+        radii = [part.radius] if isinstance(part, Cylinder) else [part.inner_radius, part.outer_radius]
+        lines = []
+        for r in radii:
+            if r <= 0:
+                continue
+            ring = _circle(r, n)
+            lines += [ring + [0, 0, -h], ring + [0, 0, h]]
+            lines += [np.array([[r * np.cos(a), r * np.sin(a), -h], [r * np.cos(a), r * np.sin(a), h]])
+                      for a in np.linspace(0, 2 * np.pi, 4, endpoint=False)]
+        return lines
+    if isinstance(part, Cone):
+        base, apex = -part.height / 4, 3 * part.height / 4
+        ring = _circle(part.radius, n) + [0, 0, base]
+        spokes = [np.array([ring[k], [0, 0, apex]]) for k in range(0, n, max(n // 6, 1))]
+        return [ring, *spokes]
+    if isinstance(part, Box):
+        a, b, c = np.array(part.size) / 2
+        corners = np.array([[x, y, z] for x in (-a, a) for y in (-b, b) for z in (-c, c)])
+        edges = [(i, j) for i in range(8) for j in range(i + 1, 8) if bin(i ^ j).count("1") == 1]
+        return [corners[[i, j]] for i, j in edges]
+    if isinstance(part, (Sphere, Shell, Ellipsoid)):
+        s = np.array(part.semi_axes) if isinstance(part, Ellipsoid) else np.full(3, part.radius)
+        ring = _circle(1.0, n)
+        return [ring * s, ring[:, [2, 0, 1]] * s, ring[:, [1, 2, 0]] * s]
+    if isinstance(part, PointMass):
+        return [np.zeros((1, 3))]
+    return _mesh_lines(part)
+
+
+def _mesh_lines(part, max_edges: int = 400) -> list[np.ndarray]:
+    mesh = part.mesh
+    edges = mesh.edges_unique
+    if len(edges) > max_edges:
+        edges = edges[np.linspace(0, len(edges) - 1, max_edges).astype(int)]
+    verts = mesh.vertices - part._com_local  # about the mesh's own centre of mass
+    return [verts[e] for e in edges]
+
+
+def part_lines(part: Part, n: int = 32) -> list[np.ndarray]:
+    """Polylines of a part in the design frame (m), each an array of shape (k, 3)."""
+    R = part.orientation.as_matrix()
+    c = np.asarray(part.com)
+    return [pts @ R.T + c for pts in _local_lines(part, n)]
+
+
+def body_lines(body: Body, n: int = 32) -> list[tuple[np.ndarray, bool]]:
+    """Polylines of every part, design frame, relative to the body's COM (m).
+
+    Returns ``(points, removed)`` pairs; ``removed`` marks subtracted material (drawn dashed).
+    """
+    com = np.asarray(body.com)
+    return [(pts - com, p.subtract) for p in body.parts for pts in part_lines(p, n)]
+
+
+def body_size(body: Body) -> float:
+    """Largest distance of a drawn point from the COM, m (for axis limits and arrow lengths)."""
+    pts = np.concatenate([pts for pts, _ in body_lines(body, 8)])
+    return float(np.max(np.linalg.norm(pts, axis=1))) or 1.0
