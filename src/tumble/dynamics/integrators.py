@@ -14,6 +14,11 @@ method is added here and nowhere else.
   the attitude by ``R <- R exp([omega] dt)`` from the sampled omega (seed sec. 5). This update
   is first order in the sample spacing dt (the rate is frozen over each interval), so its
   attitude error shrinks only in proportion to dt.
+- ``"exact"``: the closed-form torque-free motion, omega and attitude
+  (:mod:`tumble.dynamics.exact`); the default when there is no torque.
+- ``"geometric"`` (4th order), ``"geometric2"``, ``"geometric6"``: fixed-step splitting into
+  exact rotations (:mod:`tumble.dynamics.geometric`): |L| and L_world kept to round-off, energy
+  error bounded; torques allowed.
 """
 
 from __future__ import annotations
@@ -42,6 +47,8 @@ class Method:
     description: str
     #: Whether ``atol`` is relative to the size of omega (rad/s) rather than absolute.
     atol_scaled: bool = False
+    #: Whether the method steps with a fixed ``step`` (s) instead of tolerances.
+    fixed_step: bool = False
 
 
 def _body_torque(torque, t, omega, quat):
@@ -56,7 +63,7 @@ def _body_torque(torque, t, omega, quat):
 
 
 def _solve_full(method: str):
-    def integrate(moments, omega0, quat0, t, torque, rtol, atol):
+    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
         moments = np.asarray(moments, float)
 
         def rhs(time, y):
@@ -75,7 +82,7 @@ def _solve_full(method: str):
     return integrate
 
 
-def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol):
+def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol, step=None):
     """The seed's computation: RK45 for omega, then ``R <- R exp([omega] dt)`` (seed sec. 5)."""
     moments = np.asarray(moments, float)
     sol = solve_ivp(
@@ -96,13 +103,38 @@ def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol):
     return omega, quats
 
 
+def _integrate_exact(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+    from .exact import FreeRotation
+
+    motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))
+    return motion.omega(t), motion.attitude(t).as_quat()
+
+
+def _geometric(order: int):
+    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+        from .geometric import propagate
+
+        omega, quat = propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque)
+        return omega[:, 0], quat[:, 0]
+
+    return integrate
+
+
 METHODS: dict[str, Method] = {
+    "exact": Method("exact", _integrate_exact, False, None, None,
+                    "closed form (Jacobi elliptic functions, elliptic integral of the third kind)"),
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
                      "DOP853, omega and attitude together, tight tolerances (rtol 1e-12)", atol_scaled=True),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
                    "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it"),
     "seed": Method("seed", _integrate_seed, False, None, None,
                    "the seed's computation: RK45 defaults for omega, then R <- R exp([w] dt) (first order)"),
+    "geometric": Method("geometric", _geometric(4), True, None, None,
+                        "splitting into exact rotations, 4th-order Yoshida composition, fixed step", fixed_step=True),
+    "geometric2": Method("geometric2", _geometric(2), True, None, None,
+                         "splitting into exact rotations, 2nd order (Strang), fixed step", fixed_step=True),
+    "geometric6": Method("geometric6", _geometric(6), True, None, None,
+                         "splitting into exact rotations, 6th-order Yoshida composition, fixed step", fixed_step=True),
 }
 
 

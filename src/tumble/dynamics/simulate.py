@@ -16,7 +16,9 @@ from .trajectory import Trajectory
 __all__ = ["DEFAULT_METHOD", "FRAMES", "simulate"]
 
 #: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
-DEFAULT_METHOD = "dop853"
+#: Without torque the exact solution; with a torque, DOP853 at tight tolerances.
+DEFAULT_METHOD = "exact"
+DEFAULT_TORQUE_METHOD = "dop853"
 #: Frames in which ``omega0`` (and a body-frame torque) may be given.
 FRAMES = ("principal", "design")
 #: Upper bound on samples, to refuse a typo such as 5e9 before allocating memory.
@@ -35,6 +37,7 @@ def simulate(
     rtol: float | None = None,
     atol: float | None = None,
     attitude0=None,
+    step: float | None = None,
 ) -> Trajectory:
     """Integrate the rotation of a rigid body from an initial angular velocity.
 
@@ -49,8 +52,9 @@ def simulate(
     samples : int
         Number of samples (>= 2), default 500 as in the seed study.
     method : str, optional
-        A name from :data:`tumble.dynamics.METHODS` (``"dop853"``, ``"rk45"``, ``"seed"``);
-        default :data:`DEFAULT_METHOD`.
+        A name from :data:`tumble.dynamics.METHODS`: ``"exact"``, ``"dop853"``, ``"rk45"``,
+        ``"seed"``, ``"geometric"`` (``2``, ``6``). Default ``"exact"`` without torque,
+        ``"dop853"`` with one.
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
@@ -62,6 +66,9 @@ def simulate(
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
+    step : float, optional
+        Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
+        of rotation per step); ignored by the others.
 
     Returns
     -------
@@ -72,9 +79,13 @@ def simulate(
     ValueError
         For bad input, naming the argument and what is allowed.
     """
+    if method is None:
+        method = DEFAULT_METHOD if torque is None else DEFAULT_TORQUE_METHOD
     props, spec, w0, t_end, rtol, atol = check_inputs(
         body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol
     )
+    if step is not None:
+        step = check_positive("step", step, "s")
     name = body.name if isinstance(body, Body) else "body"
     model = as_torque(torque)
     if model is not None and not spec.supports_torque:
@@ -94,7 +105,7 @@ def simulate(
         scale = max(float(np.linalg.norm(w0)), _torque_scale(model, w0, q0, moments, t_end), 1e-300)
         atol = np.array([atol * scale] * 3 + [atol] * 4)
     t = np.linspace(0.0, t_end, samples)
-    omega, quat = spec.integrate(moments, w0, q0, t, model, rtol, atol)
+    omega, quat = spec.integrate(moments, w0, q0, t, model, rtol, atol, step)
     if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(quat))):
         raise RuntimeError(f"the {spec.name} integration produced non-finite values")
     return Trajectory(
