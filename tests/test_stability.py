@@ -47,7 +47,7 @@ def test_flips_happen_exactly_for_the_intermediate_axis(moments, axis, spin):
     # long enough for several flips if the axis is unstable: a flip interval is about
     # ln(1/eps)/lambda; take 4 of the exact ones (or 40 wobble periods for stable axes)
     t_end = 4 * flip_interval(w0, moments) if axis == 1 else 40 * 2 * np.pi / wobble
-    traj = simulate(free_body(moments), w0, t_end=float(t_end), samples=4000, rtol=1e-10)
+    traj = simulate(free_body(moments), w0, t_end=float(t_end), samples=4000, method="dop853", rtol=1e-10)
     report = stability_report(traj)
     assert report["predicted"] == ("unstable" if axis == 1 else "stable")
     if axis == 1:
@@ -64,7 +64,7 @@ def test_linearised_growth_rate_matches_simulation(preset):
     w0 = np.array([1e-9, W, 1e-9]) * [1, 1, 1]
     lam, _ = linearised_rate(body.principal_moments, 1, W)
     t_end = np.log(1e7) / lam  # grows ~1e7 fold, still < 1e-2 of W
-    traj = simulate(body, w0, t_end=float(t_end), samples=400, rtol=1e-13, atol=1e-20)
+    traj = simulate(body, w0, t_end=float(t_end), samples=400, method="dop853", rtol=1e-13, atol=1e-20)
     amp = np.hypot(traj.omega[:, 0] * np.sqrt(body.principal_moments[0]), traj.omega[:, 2] * np.sqrt(body.principal_moments[2]))
     late = traj.t > 0.3 * t_end  # after the decaying mode has died out
     slope = np.polyfit(traj.t[late], np.log(amp[late]), 1)[0]
@@ -78,7 +78,7 @@ def test_wobble_frequency_matches_simulation(axis):
     w0 = np.full(3, 1e-4)
     w0[axis] = W
     _, wobble = linearised_rate(body.principal_moments, axis, W)
-    traj = simulate(body, w0, t_end=float(20 * 2 * np.pi / wobble), samples=4000)
+    traj = simulate(body, w0, t_end=float(20 * 2 * np.pi / wobble), samples=4000, method="dop853")
     other = (axis + 1) % 3
     crossings = flip_times(traj.t, traj.omega[:, other])
     assert np.mean(np.diff(crossings)) == pytest.approx(np.pi / wobble, rel=1e-6)
@@ -88,7 +88,7 @@ def test_wobble_frequency_matches_simulation(axis):
 def test_exact_flip_interval_matches_simulated_flips(w0):
     body = tumble.t_handle()
     T = flip_interval(w0, body.principal_moments)
-    traj = simulate(body, w0, t_end=float(6.5 * T), samples=20000)
+    traj = simulate(body, w0, t_end=float(6.5 * T), samples=20000, method="dop853")
     gaps = energy_momentum_gaps(w0, body.principal_moments)
     flipping = 0 if gaps[1] > 0 else 2  # the axis that is not the circulation axis nor axis 2
     crossings = flip_times(traj.t, traj.omega[:, 1])

@@ -24,6 +24,7 @@ __all__ = [
     "axis_of",
     "energy_momentum_gaps",
     "flip_interval",
+    "flip_interval_asymptotic",
     "flip_times",
     "linearised_rate",
     "perturbation_exponent",
@@ -111,16 +112,37 @@ def flip_interval(omega, moments) -> np.ndarray:
         The flip interval, s; ``inf`` on the separatrix (``L^2 = 2 E I2``). Near a stable
         axis it tends to half the wobble period, ``pi / sqrt(-s)``.
     """
+    p, m1 = _elliptic_parameters(omega, moments)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        interval = 2.0 * ellipkm1(m1) / p
+    return np.where((m1 == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
+
+
+def _elliptic_parameters(omega, moments):
+    """``p`` (1/s) and ``1 - k^2`` of the motion through ``omega`` (see :func:`flip_interval`)."""
     I = np.asarray(moments, float)
-    g = energy_momentum_gaps(omega, I)  # L^2 - 2 E I_j
+    g = energy_momentum_gaps(omega, I)
     I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
     g1, g2, g3 = g[..., 0], g[..., 1], g[..., 2]
-    upper = g2 > 0  # L^2 > 2 E I2: circulation about the major axis
+    upper = g2 > 0
     with np.errstate(divide="ignore", invalid="ignore"):
         p2 = np.where(upper, (I3 - I2) * g1, (I2 - I1) * -g3) / (I1 * I2 * I3)
         m1 = np.where(upper, (I3 - I1) * g2 / ((I3 - I2) * g1), (I3 - I1) * -g2 / ((I2 - I1) * -g3))
-        interval = 2.0 * ellipkm1(m1) / np.sqrt(p2)
-    return np.where((g2 == 0) | ~np.isfinite(interval) | (p2 <= 0), np.inf, interval)
+    return np.sqrt(p2), m1
+
+
+def flip_interval_asymptotic(omega, moments) -> np.ndarray:
+    """Small-perturbation form of :func:`flip_interval`: ``ln(16 / (1 - k^2)) / p``, s.
+
+    From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun 17.3.26) with
+    ``k'^2 = 1 - k^2``, which is proportional to the square of the perturbation of a spin about
+    the intermediate axis: the interval grows like ``(2 / lambda) ln(1 / eps)`` as the spin
+    nears the axis, with ``p -> lambda``, the linearised growth exponent. Relative error
+    ``O(1 - k^2)``.
+    """
+    p, m1 = _elliptic_parameters(omega, moments)
+    with np.errstate(divide="ignore"):
+        return np.log(16.0 / m1) / p
 
 
 def flip_times(t, component) -> np.ndarray:

@@ -6,7 +6,14 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
-from .stability import axis_of, energy_momentum_gaps, flip_interval, flip_times, linearised_rate
+from .stability import (
+    axis_of,
+    energy_momentum_gaps,
+    flip_interval,
+    flip_interval_asymptotic,
+    flip_times,
+    linearised_rate,
+)
 
 __all__ = ["stability_report", "trajectory_summary"]
 
@@ -20,18 +27,20 @@ def stability_report(traj: Trajectory) -> dict:
     ``wobble_frequency`` (rad/s) of that theory, ``flips`` (sign changes of that component in
     the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
     flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
-    component flips; torque-free only).
+    component flips; torque-free only), ``flip_period_asymptotic`` (its small-perturbation
+    logarithmic form).
     """
     w0 = traj.omega[0]
     if not np.any(w0):
         return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
-                "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None}
+                "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None,
+                "flip_period_asymptotic": None}
     a = int(axis_of(w0))
     I = traj.moments
     growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a]))
     distinct = bool(np.all(np.diff(I) > 1e-9 * I.sum()))
     times = flip_times(traj.t, traj.omega[:, a])
-    exact = None
+    exact = asymptotic = None
     if traj.torque_free and distinct:
         # the component about which omega circulates (dn in Landau & Lifshitz eq. 37.10) never
         # changes sign: axis 3 when L^2 > 2 E I2, axis 1 below; the other two flip
@@ -39,6 +48,7 @@ def stability_report(traj: Trajectory) -> dict:
         value = float(flip_interval(w0, I))
         if a != circulation_axis and np.isfinite(value):
             exact = value
+            asymptotic = float(flip_interval_asymptotic(w0, I))
     return {
         "axis": a + 1,
         "role": AXIS_ROLES[a],
@@ -48,6 +58,7 @@ def stability_report(traj: Trajectory) -> dict:
         "flips": len(times),
         "flip_period": float(np.mean(np.diff(times))) if len(times) >= 2 else None,
         "flip_period_exact": exact,
+        "flip_period_asymptotic": asymptotic,
     }
 
 

@@ -16,7 +16,8 @@ without cancellation, as Celledoni, Fasso, Safstrom & Zanna advise):
 - ``g2 = 0``, the separatrix: ``m = 1``, so ``sn = tanh``, ``cn = dn = sech``.
 
 The sign ``s`` is that of the component that never changes sign (the dn one); Euler's equations
-fix the other signs (``I2 a2 p = (I3 - I1) a1 a3`` with ``s^2 = 1``). Symmetric bodies fall out
+fix the other signs (``I2 a2 p = (I3 - I1) a1 a3``); on the separatrix, where cn = sech keeps
+its sign, the branches with ``w_c w_r < 0`` take ``w2 = -a2 sn(u)``, ``w_c = -s a_c cn(u)``. Symmetric bodies fall out
 with ``m = 0`` (circular functions); steady rotations about a principal axis (``w x I w = 0``)
 are handled as what they are.
 
@@ -46,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .elliptic import ellipf, ellippi, jacobi
+from .elliptic import carlson_f, carlson_pi, ellipk, jacobi, jacobi_reduced, pi_complete
 
 __all__ = ["FreeRotation"]
 
@@ -107,16 +108,31 @@ class FreeRotation:
             amp = np.sqrt([-g3 / (I1 * (I3 - I1)), g1 / (I2 * (I2 - I1)), g1 / (I3 * (I3 - I1))])
         m, m1 = min(max(m, 0.0), 1.0), min(max(m1, 0.0), 1.0)
         sign = 1.0 if w[r] >= 0 else -1.0
-        # phase at t = 0: sn(u0) = w2 / a2, cn(u0) = w_c / (s a_c)
-        am0 = np.arctan2(w[1] / amp[1], w[c] / (sign * amp[c]))
-        u0 = float(ellipf(am0, m, m1))
+        # On the separatrix cn = sech > 0 never changes sign, so the two branches on which w_c
+        # and w_r have opposite signs need sn's sign reversed (Euler's equations then still
+        # hold: I2 a2 p = (I3 - I1) a1 a3 with sign2 * sign_c * sign_r = +1).
+        sign2 = -1.0 if (m1 == 0.0 and w[c] * sign < 0) else 1.0
+        sign_c = sign * sign2
+        # phase at t = 0 from sn(u0) = w2 / (sign2 a2) and cn(u0) = w_c / (sign_c a_c), taken
+        # straight into Carlson's integrals (no angle): u0 = 2 K j0 + F(phi_r), |phi_r| <= pi/2
+        s0, c0 = w[1] / (sign2 * amp[1]), w[c] / (sign_c * amp[c])
+        h = np.hypot(s0, c0)
+        s0, c0 = s0 / h, c0 / h
+        j0 = 0.0
+        if c0 < 0 and m1 > 0:  # am(u0) beyond +-pi/2: one half period further
+            j0 = 1.0 if s0 >= 0 else -1.0
+            s0, c0 = -s0, -c0
+        c0 = max(c0, 0.0)
+        d0 = np.sqrt(c0 * c0 + m1 * s0 * s0)
         Io = I[2] if r == 0 else I[0]
         Ir = I[r]
         n = -Ir * (I2 - Io) / (Io * (Ir - I2))
+        pi_c = pi_complete(n, m1) if m1 > 0 else 0.0
+        u0 = float(carlson_f(s0, c0, m1)) + (2.0 * j0 * ellipk(m, m1) if j0 else 0.0)
         Lnorm = float(np.linalg.norm(L))
-        self._set(r=r, c=c, sign=sign, amp=amp, p=float(np.sqrt(p2)), m=m, m1=m1, u0=u0, n=n,
-                  Lnorm=Lnorm, rate0=Lnorm / Ir, rate1=Lnorm * (Ir - Io) / (I1 * I3),
-                  pi0=float(ellippi(n, am0, m, m1)))
+        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=float(np.sqrt(p2)), m=m, m1=m1, u0=u0, n=n,
+                  Lnorm=Lnorm, rate0=Lnorm / Ir, rate1=Lnorm * (Ir - Io) / (I1 * I3), pi_c=pi_c,
+                  pi0=float(carlson_pi(n, s0, c0, d0)) + 2.0 * j0 * pi_c)
         perm = Rotation.from_matrix(np.eye(3)[list(_CYCLE[r])])  # body -> relabelled coordinates
         B0 = self._tilt(L[None, :])[0]
         # R0 = G Rz(0) B0 P  =>  G = R0 P^-1 B0^-1
@@ -127,19 +143,18 @@ class FreeRotation:
             object.__setattr__(self, k, v)
 
     # -- angular velocity ---------------------------------------------------------------
-    def _phase(self, t):
-        u = self.u0 + self.p * np.asarray(t, float)
-        return u, jacobi(u, self.m, self.m1)
+    def _phase(self, t) -> np.ndarray:
+        return self.u0 + self.p * np.asarray(t, float)
 
     def omega(self, t) -> np.ndarray:
         """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3)."""
         t = np.asarray(t, float)
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
-        _, (sn, cn, dn, _) = self._phase(t)
+        sn, cn, dn = jacobi(self._phase(t), self.m, self.m1)
         w = np.empty(t.shape + (3,))
-        w[..., self.c] = self.sign * self.amp[self.c] * cn
-        w[..., 1] = self.amp[1] * sn
+        w[..., self.c] = self.sign_c * self.amp[self.c] * cn
+        w[..., 1] = self.sign2 * self.amp[1] * sn
         w[..., self.r] = self.sign * self.amp[self.r] * dn
         return w
 
@@ -155,8 +170,9 @@ class FreeRotation:
     def precession_angle(self, t) -> np.ndarray:
         """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz eq. 37.14)."""
         t = np.asarray(t, float)
-        _, (_, _, _, am) = self._phase(t)
-        return self.rate0 * t + self.rate1 / self.p * (ellippi(self.n, am, self.m, self.m1) - self.pi0)
+        j, sn, cn, dn = jacobi_reduced(self._phase(t), self.m, self.m1)
+        pi_u = carlson_pi(self.n, sn, cn, dn) + (2.0 * j * self.pi_c if self.m1 > 0 else 0.0)
+        return self.rate0 * t + self.rate1 / self.p * (pi_u - self.pi0)
 
     def attitude(self, t) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""

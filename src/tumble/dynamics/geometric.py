@@ -79,7 +79,7 @@ def _body_torque(torque, t, L, q, inv_I):
     att = Rotation.from_quat(q)
     omega = L * inv_I
     tau = np.asarray(torque(t, omega, att), dtype=float)
-    tau = np.broadcast_to(tau, L.shape)
+    tau = np.array(np.broadcast_to(tau, L.shape))  # a writeable copy: Rotation.apply needs one
     return att.inv().apply(tau) if torque.frame == "world" else tau
 
 

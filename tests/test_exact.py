@@ -1,0 +1,181 @@
+"""The exact torque-free motion: against DOP853, arbitrary precision, and its invariants."""
+
+from __future__ import annotations
+
+import itertools
+
+import mpmath as mp
+import numpy as np
+import pytest
+from scipy.special import ellipj, ellipk as scipy_ellipk
+from scipy.spatial.transform import Rotation
+
+import tumble
+from tumble.analysis import flip_interval, flip_interval_asymptotic, linearised_rate
+from tumble.dynamics import simulate
+from tumble.dynamics.elliptic import carlson_pi, ellipk, jacobi, jacobi_reduced
+from tumble.dynamics.exact import FreeRotation
+from tumble.mass import MassProperties
+
+
+def free_body(moments):
+    return MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+
+
+# -- the elliptic functions ------------------------------------------------------------------
+
+@pytest.mark.parametrize("m1", [0.9, 0.3, 1e-3, 1e-9, 1e-15, 1e-22])
+def test_jacobi_functions_against_mpmath(m1):
+    mp.mp.dps = 40
+    m = 1.0 - m1
+    M = mp.mpf(1) - mp.mpf(m1)
+    K = float(mp.ellipk(M))
+    u = np.array([0.1, 0.5 * K, 0.97 * K, K + 0.01, 1.9 * K, 3.3 * K, -2.2 * K, 41.0])
+    sn, cn, dn = jacobi(u, m, m1)
+    for k, ours in zip(("sn", "cn", "dn"), (sn, cn, dn)):
+        ref = np.array([float(mp.ellipfun(k, mp.mpf(x), m=M)) for x in u])
+        # absolute, on functions of size 1: a few ulps, amplified at |u - j K| ~ K/2 by the
+        # Landen recursion's arcsin, whose argument there is 1 - O(m1^(1/4)) (module docstring)
+        np.testing.assert_allclose(ours, ref, rtol=0, atol=3e-14 + 1e-16 * m1**-0.25)
+        # and relative near the zeros of cn and dn (u = K + 0.01): the shift formulas keep it
+        assert abs(ours[3] / ref[3] - 1) < 1e-11
+    assert ellipk(m, m1) == pytest.approx(K, rel=1e-15)
+
+
+def test_scipy_ellipj_fails_where_ours_holds():
+    """Why tumble evaluates Jacobi functions itself: scipy's loses 1 - m near the separatrix."""
+    m1 = 1e-15
+    u = np.array([40.0, -17.0])
+    mp.mp.dps = 40
+    ref = np.array([float(mp.ellipfun("cn", mp.mpf(x), m=mp.mpf(1) - mp.mpf(m1))) for x in u])
+    assert np.max(np.abs(ellipj(u, 1.0 - m1)[1] - ref)) > 1e-6
+    assert np.max(np.abs(jacobi(u, 1.0 - m1, m1)[1] - ref)) < 1e-14
+
+
+def test_incomplete_pi_against_mpmath():
+    mp.mp.dps = 30
+    for m1, n in [(0.5, -0.7), (1e-8, -2.5), (1e-14, -0.1)]:
+        m = 1 - m1
+        M = mp.mpf(1) - mp.mpf(m1)
+        K = float(mp.ellipk(M))
+        for u in (0.3, 0.8 * K, 0.999 * K, -0.6 * K):
+            _, s, c, d = jacobi_reduced(np.array([u]), m, m1)
+            phi = mp.asin(mp.ellipfun("sn", mp.mpf(u), m=M))
+            ref = float(mp.ellippi(mp.mpf(n), phi, M))
+            # rel 1e-12: near u = K the reduced argument u - K carries the rounding of K itself
+            assert carlson_pi(n, s, c, d)[0] == pytest.approx(ref, rel=1e-12)
+    assert scipy_ellipk(0.5) == pytest.approx(ellipk(0.5, 0.5), rel=1e-15)
+
+
+# -- against DOP853 ----------------------------------------------------------------------------
+
+CASES = [
+    ((0.125, 0.3125, 0.4375), (0.1, 10.0, 0.1)),   # seed handle, intermediate axis (L^2 > 2 E I2)
+    ((0.125, 0.3125, 0.4375), (0.3, -2.0, 1e-3)),  # L^2 < 2 E I2
+    ((0.125, 0.3125, 0.4375), (10.0, 0.1, 0.1)),   # near the minor axis
+    ((0.125, 0.3125, 0.4375), (0.1, 0.1, -10.0)),  # near the major axis, negative spin
+    ((3.0, 4.0, 6.0), (2.0, 1.0, 1.0)),            # exactly on the separatrix (g2 = 0)
+    ((3.0, 4.0, 6.0), (2.0, -1.0, -1.0)),          # the separatrix branch with w1 w3 < 0
+    ((1.0, 1.0, 1.5), (0.3, 0.4, 2.0)),            # oblate symmetric top
+    ((1.0, 1.5, 1.5), (2.0, 0.4, -0.3)),           # prolate symmetric top
+    ((1.0, 1.0, 1.0), (1.0, 2.0, 3.0)),            # sphere
+    ((1.0, 2.0, 2.5), (0.0, 1.0, 0.0)),            # steady spin about the intermediate axis
+    ((1.0, 2.0, 2.5), (0.0, 0.0, 3.0)),            # steady spin about the major axis
+]
+
+
+@pytest.mark.parametrize(("moments", "w0"), CASES)
+def test_exact_matches_tight_dop853(moments, w0):
+    body = free_body(moments)
+    att0 = Rotation.from_rotvec([0.4, -0.3, 1.2])
+    ex = simulate(body, w0, t_end=10.0, samples=200, attitude0=att0)
+    ref = simulate(body, w0, t_end=10.0, samples=200, attitude0=att0, method="dop853", rtol=1e-13)
+    assert ex.method == "exact"
+    scale = np.max(np.abs(ref.omega))
+    np.testing.assert_allclose(ex.omega, ref.omega, atol=1e-9 * scale, rtol=0)
+    assert np.max((ex.attitude * ref.attitude.inv()).magnitude()) < 1e-9
+
+
+@pytest.mark.parametrize("order", list(itertools.permutations(range(3))))
+def test_all_six_orderings_of_the_design_axes(order):
+    """Sorting the design axes by moment can reverse handedness: the world-frame motion of a
+    box must not depend on which design axis carries which moment."""
+    P = np.eye(3)[list(order)]  # design coordinates of this box = P @ those of the base box
+    size = P @ np.array([0.1, 0.25, 0.4])
+    body = tumble.Body([tumble.Box(mass=2.0, size=tuple(size))])
+    # omega is a pseudovector: under a relabelling of odd parity it also changes sign
+    w_base = np.array([0.2, 3.0, -0.4])
+    w_design = np.linalg.det(P) * P @ w_base
+    ex = simulate(body, w_design, frame="design", t_end=6.0, samples=120)
+    ref = simulate(body, w_design, frame="design", t_end=6.0, samples=120, method="dop853", rtol=1e-13)
+    assert np.max((ex.design_attitude() * ref.design_attitude().inv()).magnitude()) < 1e-9
+    np.testing.assert_allclose(ex.omega_world, ref.omega_world, atol=1e-9 * 3.0)
+    # the same physical motion whatever the labelling
+    base = tumble.Body([tumble.Box(mass=2.0, size=(0.1, 0.25, 0.4))])
+    b = simulate(base, w_base, frame="design", t_end=6.0, samples=120)
+    np.testing.assert_allclose(ex.omega_world, np.linalg.det(P) * b.omega_world @ P.T, atol=1e-11)
+
+
+# -- against arbitrary precision, near the separatrix ------------------------------------------
+
+def _mp_reference(moments, w0, times, dps=30):
+    """Taylor-series integration of Euler's equations + quaternion kinematics at ``dps`` digits."""
+    mp.mp.dps = dps
+    I = [mp.mpf(x) for x in moments]
+
+    def rhs(t, y):
+        w, (v1, v2, v3, s) = y[:3], y[3:]
+        dw = [(I[1] - I[2]) * w[1] * w[2] / I[0], (I[2] - I[0]) * w[2] * w[0] / I[1], (I[0] - I[1]) * w[0] * w[1] / I[2]]
+        cr = [v2 * w[2] - v3 * w[1], v3 * w[0] - v1 * w[2], v1 * w[1] - v2 * w[0]]
+        dv = [(s * w[i] + cr[i]) / 2 for i in range(3)]
+        return dw + dv + [-(v1 * w[0] + v2 * w[1] + v3 * w[2]) / 2]
+
+    sol = mp.odefun(rhs, 0, [mp.mpf(x) for x in w0] + [0, 0, 0, 1])
+    return np.array([[float(x) for x in sol(mp.mpf(t))] for t in times])
+
+
+@pytest.mark.parametrize(
+    "w0",
+    [
+        (1e-6, 10.0, 1e-6),    # 1 - k^2 ~ 1e-14, circulating about the major axis
+        (2e-6, 10.0, 1e-7),    # ... about the minor axis
+    ],
+)
+def test_exact_near_the_separatrix_against_mpmath(w0):
+    """DOP853 at rtol 1e-13 is good to ~1e-9 here; the exact solution to 1e-10 or better."""
+    moments = (0.125, 0.3125, 0.4375)
+    times = [0.7, 1.9, 3.1]
+    ref = _mp_reference(moments, w0, times)
+    motion = FreeRotation(np.array(moments), np.array(w0), Rotation.identity())
+    assert motion.m1 < 1e-12
+    w = motion.omega(times)
+    q = motion.attitude(times).as_quat()
+    q *= np.sign(np.sum(q * ref[:, 3:], axis=1))[:, None]
+    np.testing.assert_allclose(w, ref[:, :3], atol=1e-10 * 10.0, rtol=0)
+    np.testing.assert_allclose(q, ref[:, 3:], atol=1e-10, rtol=0)
+
+
+def test_L_world_constant_over_ten_thousand_periods():
+    body = tumble.iss_t_handle()
+    w0 = [0.5, 10.0, -0.3]
+    T = 2 * flip_interval(w0, body.principal_moments)
+    traj = simulate(body, w0, t_end=float(1e4 * T), samples=20001)
+    assert traj.drift["L_world"] < 1e-13
+    assert traj.drift["energy"] < 1e-13 and traj.drift["L_norm"] < 1e-13
+
+
+# -- flip period ---------------------------------------------------------------------------
+
+def test_flip_interval_asymptotic_converges():
+    I = np.array([0.125, 0.3125, 0.4375])
+    lam, _ = linearised_rate(I, 1, 10.0)
+    errors = []
+    for eps in (1e-2, 1e-4, 1e-6):
+        w = [eps, 10.0, eps]
+        exact, approx = flip_interval(w, I), flip_interval_asymptotic(w, I)
+        errors.append(abs(approx / exact - 1))
+    assert errors[0] > errors[1] > errors[2]  # O(1 - k^2) = O(eps^2)
+    assert errors[2] < 1e-9
+    # and its leading behaviour is logarithmic: (2 / lambda) ln(1 / eps)
+    d = flip_interval_asymptotic([1e-8, 10.0, 1e-8], I) - flip_interval_asymptotic([1e-6, 10.0, 1e-6], I)
+    assert d == pytest.approx(2 * np.log(100) / lam, rel=1e-6)
