@@ -159,13 +159,14 @@ class FreeRotation:
         return w
 
     # -- attitude ------------------------------------------------------------------------
-    def _tilt(self, L) -> Rotation:
-        """``Rx(theta) Rz(psi)`` that takes relabelled ``L_body`` to ``|L| e_z``."""
+    def _tilt_angles(self, L) -> tuple[np.ndarray, np.ndarray]:
+        """``theta, psi`` of ``Rx(theta) Rz(psi)``, which takes relabelled L_body to |L| e_z."""
         i, j, r = _CYCLE[self.r]
         Li, Lj, Lr = L[..., i], L[..., j], L[..., r]
-        theta = np.arctan2(np.hypot(Li, Lj), Lr)
-        psi = np.arctan2(Li, Lj)
-        return Rotation.from_euler("XZ", np.stack([theta, psi], axis=-1))
+        return np.arctan2(np.hypot(Li, Lj), Lr), np.arctan2(Li, Lj)
+
+    def _tilt(self, L) -> Rotation:
+        return Rotation.from_euler("XZ", np.stack(self._tilt_angles(L), axis=-1))
 
     def precession_angle(self, t) -> np.ndarray:
         """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz eq. 37.14)."""
@@ -180,5 +181,7 @@ class FreeRotation:
         if self.steady:
             return self.attitude0 * Rotation.from_rotvec(np.outer(t, self.omega0))
         L = self.moments * self.omega(t)
-        spin = Rotation.from_rotvec(np.outer(self.precession_angle(t), [0.0, 0.0, 1.0]))
-        return self.G * spin * self._tilt(L) * self.perm
+        theta, psi = self._tilt_angles(L)
+        # Rz(phi) Rx(theta) Rz(psi) in one call: intrinsic z-x-z Euler angles
+        euler = Rotation.from_euler("ZXZ", np.stack([self.precession_angle(t), theta, psi], axis=-1))
+        return self.G * euler * self.perm
