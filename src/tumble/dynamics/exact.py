@@ -34,10 +34,11 @@ and ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (derived by substituting ``dn^2 =
 
     phi(t) = |L| t / I_r + |L| (I_r - I_o) / (I1 I3 p) [Pi(n; am u | m) - Pi(n; am u0 | m)],
 
-with Legendre's incomplete integral of the third kind (Celledoni et al., SIAM J. Sci. Comput.
-30 (2008) 2084, sec. 3, whose printed sign of this term in its two main cases we do not follow:
-the form here is derived directly and checked against DOP853 on all six orderings of the design
-axes and against arbitrary-precision integration near the separatrix, in tests/).
+with Legendre's incomplete integral of the third kind (the construction of Celledoni, Fasso,
+Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, sec. 3, whose printed signs are reported
+to be wrong; the form here is derived directly from Landau & Lifshitz and checked against DOP853
+on all six orderings of the design axes and against arbitrary-precision integration near the
+separatrix, in tests/test_exact.py).
 """
 
 from __future__ import annotations

@@ -81,11 +81,10 @@ def simulate(
     """
     if method is None:
         method = DEFAULT_METHOD if torque is None else DEFAULT_TORQUE_METHOD
-    props, spec, w0, t_end, rtol, atol = check_inputs(
-        body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol
+    props, spec, w0, t_end, rtol, atol, step = check_inputs(
+        body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol,
+        step=step,
     )
-    if step is not None:
-        step = check_positive("step", step, "s")
     name = body.name if isinstance(body, Body) else "body"
     model = as_torque(torque)
     if model is not None and not spec.supports_torque:
@@ -114,8 +113,11 @@ def simulate(
     )
 
 
-def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol, atol):
-    """Validate :func:`simulate`'s arguments; return ``(props, method, omega0, t_end, rtol, atol)``.
+def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol=None, step=None):
+    """Validate :func:`simulate`'s arguments.
+
+    Returns ``(props, method, omega0, t_end, rtol, atol, step)`` with the method's defaults
+    filled in.
 
     Raises ``ValueError`` whose message starts with the argument's name.
     """
@@ -131,13 +133,14 @@ def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol, atol):
         raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
     rtol = spec.rtol if rtol is None else check_positive("rtol", rtol, "relative")
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
+    step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
     if np.any(moments <= 0):
         raise ValueError(
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
         )
-    return props, spec, w0, t_end, rtol, atol
+    return props, spec, w0, t_end, rtol, atol, step
 
 
 def _design_torque(model, A):

@@ -18,11 +18,11 @@ from ..mass._checks import check_vector
 
 __all__ = ["ConstantTorque", "FunctionTorque", "as_torque"]
 
-FRAMES = ("body", "world")
+TORQUE_FRAMES = ("body", "world")
 
 
 def _check_frame(frame: str) -> str:
-    if frame not in FRAMES:
+    if frame not in TORQUE_FRAMES:
         raise ValueError(f"torque frame = {frame!r} is not allowed; allowed: body, world")
     return frame
 

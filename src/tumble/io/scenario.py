@@ -11,9 +11,10 @@
     [simulation]
     t_end = 20.0               # s
     samples = 500
-    method = "dop853"          # "rk45", "dop853", "seed"
-    # rtol = 1e-12             # optional tolerances
+    method = "exact"           # "exact", "dop853", "rk45", "seed", "geometric", "geometric2", "geometric6"
+    # rtol = 1e-12             # optional tolerances (dop853, rk45, seed)
     # atol = 1e-12
+    # step = 1e-3              # optional largest step of the geometric methods, s
 
     [torque]                   # optional: a constant torque
     vector = [0.0, 0.0, 0.01]  # N m
@@ -36,7 +37,7 @@ __all__ = ["Scenario", "load_scenario", "scenario_from_table"]
 
 _SECTIONS = {
     "initial": {"omega", "frame"},
-    "simulation": {"t_end", "samples", "method", "rtol", "atol"},
+    "simulation": {"t_end", "samples", "method", "rtol", "atol", "step"},
     "torque": {"vector", "frame"},
 }
 
@@ -53,6 +54,7 @@ class Scenario:
     method: str | None = None
     rtol: float | None = None
     atol: float | None = None
+    step: float | None = None
     torque: ConstantTorque | None = None
     name: str = "scenario"
 
@@ -60,7 +62,7 @@ class Scenario:
         """Simulate the scenario."""
         return simulate(
             self.body, self.omega, t_end=self.t_end, samples=self.samples, method=self.method,
-            frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol,
+            frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol, step=self.step,
         )
 
 
@@ -92,7 +94,8 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
         raise ValueError(f"simulation.method = {method!r} is unknown; allowed: {', '.join(METHODS)}")
     model = None
     if torque and method is not None and not METHODS[method].supports_torque:
-        raise ValueError(f"simulation.method = {method!r} cannot take a torque; remove [torque] or use dop853 or rk45")
+        allowed = ", ".join(m for m, spec in METHODS.items() if spec.supports_torque)
+        raise ValueError(f"simulation.method = {method!r} cannot take a torque; remove [torque] or use one of: {allowed}")
     if torque:
         if "vector" not in torque:
             raise ValueError("torque: missing key 'vector' (N m)")
@@ -103,7 +106,7 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     scenario = Scenario(
         body=body, omega=initial["omega"], frame=frame, t_end=sim.get("t_end", 20.0),
         samples=sim.get("samples", 500), method=method, rtol=sim.get("rtol"), atol=sim.get("atol"),
-        torque=model, name=name,
+        step=sim.get("step"), torque=model, name=name,
     )
     _validate(scenario)
     return scenario
@@ -129,10 +132,10 @@ def _validate(s: Scenario) -> None:
     names are replaced by the file's keys.
     """
     keys = {"omega0": "initial.omega", "t_end": "simulation.t_end", "samples": "simulation.samples",
-            "rtol": "simulation.rtol", "atol": "simulation.atol"}
+            "rtol": "simulation.rtol", "atol": "simulation.atol", "step": "simulation.step"}
     try:
         check_inputs(s.body, s.omega, t_end=s.t_end, samples=s.samples, method=s.method,
-                     frame=s.frame, rtol=s.rtol, atol=s.atol)
+                     frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step)
     except ValueError as exc:
         message = str(exc)
         for old, new in keys.items():
