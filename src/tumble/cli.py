@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import warnings
 
 from ._version import __version__
 
@@ -137,7 +138,10 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return EXIT_USAGE
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
+            warnings.simplefilter("error", RuntimeWarning)
+            return args.func(args)
     except KeyboardInterrupt:
         print("tumble: interrupted", file=sys.stderr)
         return 130

@@ -22,7 +22,14 @@ DEFAULT_TORQUE_METHOD = "dop853"
 #: Frames in which ``omega0`` (and a body-frame torque) may be given.
 FRAMES = ("principal", "design")
 #: Upper bound on samples, to refuse a typo such as 5e9 before allocating memory.
-MAX_SAMPLES = 10_000_000
+MAX_SAMPLES = 1_000_000
+#: Longest run, s (about 30,000 years): beyond it the phase of any motion loses all its digits.
+MAX_T_END = 1e12
+#: Most rotation (|omega0| t_end, rad) a stepping method is asked to follow: ~1.6e7 turns, hours
+#: of DOP853; the exact solution has no such limit.
+MAX_ROTATION = 1e8
+#: Most steps a fixed-step method is asked to take.
+MAX_STEPS = 1e8
 
 
 def simulate(
@@ -129,12 +136,28 @@ def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
     t_end = check_positive("t_end", t_end, "s")
+    if t_end > MAX_T_END:
+        raise ValueError(f"t_end = {t_end!r} must be at most {MAX_T_END:g} s")
     if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
         raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
     rtol = spec.rtol if rtol is None else check_positive("rtol", rtol, "relative")
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
+    with np.errstate(over="ignore", invalid="ignore"):
+        energy = 0.5 * float(np.sum(moments * w0 * w0))
+        momentum = float(np.linalg.norm(moments * w0))
+        spin = float(np.linalg.norm(w0))
+    if not (np.isfinite(energy) and np.isfinite(momentum) and np.isfinite(spin)):
+        raise ValueError(f"omega0 = {w0.tolist()} rad/s is too large: the kinetic energy of this body overflows")
+    if step is not None and spec.fixed_step and t_end / step > MAX_STEPS:
+        raise ValueError(f"step = {step!r} s makes {t_end / step:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
+    turns = spin * t_end
+    if spec.name != "exact" and turns > MAX_ROTATION:
+        raise ValueError(
+            f"t_end = {t_end!r} s at |omega0| = {spin:.6g} rad/s is {turns:.3g} rad of rotation, "
+            f"more than method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); use method 'exact' or a shorter run"
+        )
     if np.any(moments <= 0):
         raise ValueError(
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "

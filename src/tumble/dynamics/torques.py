@@ -22,7 +22,7 @@ TORQUE_FRAMES = ("body", "world")
 
 
 def _check_frame(frame: str) -> str:
-    if frame not in TORQUE_FRAMES:
+    if not isinstance(frame, str) or frame not in TORQUE_FRAMES:
         raise ValueError(f"torque frame = {frame!r} is not allowed; allowed: body, world")
     return frame
 

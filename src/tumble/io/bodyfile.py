@@ -66,7 +66,7 @@ def part_from_table(table, *, base_dir: Path | None = None, where: str = "part")
     kind = table.get("kind")
     if kind is None:
         raise ValueError(f"{where}: missing key 'kind' (one of {', '.join(PART_KINDS)})")
-    if kind not in PART_KINDS:
+    if not isinstance(kind, str) or kind not in PART_KINDS:
         raise ValueError(f"{where}: kind = {kind!r} is unknown; allowed: {', '.join(PART_KINDS)}")
     cls = PART_KINDS[kind]
     where = f"{where} ({kind})"
@@ -125,7 +125,7 @@ def body_from_table(table, *, base_dir: Path | None = None, where: str = "body")
 
 def _preset_from_table(table: dict, where: str) -> Body:
     preset = table["preset"]
-    if preset not in PRESETS:
+    if not isinstance(preset, str) or preset not in PRESETS:
         raise ValueError(f"{where}.preset = {preset!r} is unknown; allowed: {', '.join(PRESETS)}")
     fn = PRESETS[preset]
     kwargs = {k: v for k, v in table.items() if k != "preset"}

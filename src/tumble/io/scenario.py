@@ -87,10 +87,10 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     if "omega" not in initial:
         raise ValueError("initial: missing key 'omega' (rad/s)")
     frame = initial.get("frame", "principal")
-    if frame not in FRAMES:
+    if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"initial.frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
     method = sim.get("method")
-    if method is not None and method not in METHODS:
+    if method is not None and (not isinstance(method, str) or method not in METHODS):
         raise ValueError(f"simulation.method = {method!r} is unknown; allowed: {', '.join(METHODS)}")
     model = None
     if torque and method is not None and not METHODS[method].supports_torque:

@@ -54,10 +54,11 @@ def check_vector(field: str, value, unit: str) -> tuple[float, float, float]:
 def check_direction(field: str, value) -> tuple[float, float, float]:
     """A non-zero finite 3-vector, returned as a unit vector (a direction has no length)."""
     v = np.array(check_vector(field, value, "a direction, any length"))
-    n = float(np.linalg.norm(v))
-    if n == 0.0:
+    big = float(np.max(np.abs(v)))
+    if big == 0.0:
         raise ValueError(f"{field} = {value!r} must be a non-zero vector (a direction)")
-    return tuple(float(x) for x in v / n)  # type: ignore[return-value]
+    v = v / big  # scale first, so that the norm of [1e308, 1e308, 0] does not overflow
+    return tuple(float(x) for x in v / np.linalg.norm(v))  # type: ignore[return-value]
 
 
 #: A quaternion given by hand, e.g. [0, 0, 0.7071, 0.7071], is accepted and renormalised if its

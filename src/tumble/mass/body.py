@@ -103,9 +103,12 @@ def mass_properties(parts) -> MassProperties:
             f"mass as the others hold, or more"
         )
     r = np.array([p.com for p in parts])
-    com = (m[:, None] * r).sum(axis=0) / total  # seed eq. (1)
-    own = np.array([p.inertia for p in parts])  # signed: holes count negative
-    inertia = parallel_axis(own, m, r - com).sum(axis=0)  # seed eq. (4) for every part
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is caught as non-finite below
+        com = (m[:, None] * r).sum(axis=0) / total  # seed eq. (1)
+        own = np.array([p.inertia for p in parts])  # signed: holes count negative
+        inertia = parallel_axis(own, m, r - com).sum(axis=0)  # seed eq. (4) for every part
+    if not (np.isfinite(total) and np.all(np.isfinite(com))):
+        raise ValueError("total mass or centre of mass overflows double precision; use SI units of a sensible size")
     return MassProperties.from_inertia(total, com, inertia)
 
 

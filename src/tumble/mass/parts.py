@@ -92,9 +92,27 @@ class Part:
                 )
             rho = check_positive("density", self.density, "kg/m^3")
             self._set("density", rho)
-            self._set("mass", rho * self.volume)
+            try:
+                mass = rho * self.volume
+            except OverflowError:
+                mass = float("inf")
+            self._set("mass", mass)
         else:
             self._set("mass", check_positive("mass", self.mass, "kg"))
+        self._check_representable()
+
+    def _check_representable(self) -> None:
+        """Sizes and masses so large that volume or inertia overflow double precision."""
+        try:
+            with np.errstate(over="raise", invalid="raise"):
+                finite = np.isfinite(self.mass) and np.all(np.isfinite(self.inertia))
+        except (OverflowError, FloatingPointError):
+            finite = False
+        if not finite:
+            raise ValueError(
+                f"a {self.kind} of mass {self.mass!r} kg with these sizes has an inertia beyond double "
+                f"precision (overflow); use SI units of a sensible size"
+            )
 
     # -- helpers for subclasses -------------------------------------------------------------
     def _set(self, name: str, value) -> None:
