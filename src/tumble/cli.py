@@ -17,6 +17,17 @@ from ._version import __version__
 EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
 
 
+def _working(message: str):
+    """A spinner on stderr while a long computation runs on a terminal; silent when piped."""
+    import contextlib
+
+    if not sys.stderr.isatty():
+        return contextlib.nullcontext()
+    from rich.console import Console
+
+    return Console(stderr=True).status(message)
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse with tumble's one-line error format and exit status 2."""
 
@@ -46,7 +57,8 @@ def _cmd_simulate(args) -> int:
     from .io.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)  # every check before anything is computed or written
-    traj = scenario.run()
+    with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
+        traj = scenario.run()
 
     from pathlib import Path
 
@@ -65,6 +77,63 @@ def _cmd_simulate(args) -> int:
         print(json.dumps(summary, indent=2))
     else:
         print(_simulate_line(summary, out))
+    return EXIT_OK
+
+
+#: The figures of `tumble plot`: name -> function in tumble.viz.
+PLOTS = ("omega", "polhode", "herpolhode", "drift")
+
+
+def _cmd_plot(args) -> int:
+    from .io.scenario import load_scenario
+
+    import dataclasses
+
+    scenario = load_scenario(args.scenario)
+    # the phase portraits need the path drawn finely: at least 5000 samples
+    with _working(f"integrating {scenario.name}"):
+        traj = dataclasses.replace(scenario, samples=max(scenario.samples, 5000)).run()
+
+    from pathlib import Path
+
+    from . import viz
+
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    title = f"{scenario.name}: {traj.body_name}, {traj.method}"
+    makers = {"omega": viz.figure_omega, "polhode": viz.figure_polhode,
+              "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
+    written = []
+    for name in PLOTS:
+        for fmt in args.format:
+            path = out / f"{name}.{fmt}"
+            tmp = out / f".{name}.tmp.{fmt}"
+            try:
+                makers[name](traj, tmp, title if name == "omega" else None)
+                tmp.replace(path)
+            finally:
+                tmp.unlink(missing_ok=True)
+            written.append(path.name)
+    print(f"wrote {', '.join(written)} to {out}/")
+    return EXIT_OK
+
+
+def _cmd_view(args) -> int:
+    from pathlib import Path
+
+    from .io.scenario import load_scenario
+
+    out = Path(args.out)
+    if out.suffix.lower() != ".html":
+        raise ValueError(f"--out {out}: the page is written as one .html file")
+    scenario = load_scenario(args.scenario)
+    with _working(f"integrating {scenario.name}"):
+        traj = scenario.run()
+
+    from .viz.page import write_page
+
+    write_page(scenario.body, traj, out, frames=args.frames, title=f"{scenario.name}: {traj.body_name}, {traj.method}")
+    print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
     return EXIT_OK
 
 
@@ -116,6 +185,32 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser(
+        "plot",
+        help="figures of a scenario: omega(t), polhode, herpolhode, drift",
+        description="Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere "
+        "with the family of polhodes and the separatrices), DIR/herpolhode (omega in the invariable "
+        "plane) and DIR/drift (energy, |L|, L_world errors), each as PNG and SVG.",
+        epilog="Example: tumble plot examples/seed_flip.toml --out figures",
+    )
+    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--format", nargs="+", default=["png", "svg"], choices=["png", "svg", "pdf"],
+                   help="file formats (default: png svg)")
+    p.set_defaults(func=_cmd_plot)
+
+    p = sub.add_parser(
+        "view",
+        help="one self-contained interactive HTML page of a scenario",
+        description="Writes ONE HTML file that works offline: the body tumbling in the ground frame with "
+        "its omega and L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons.",
+        epilog="Example: tumble view examples/seed_flip.toml --out flip.html",
+    )
+    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
+    p.add_argument("--out", required=True, metavar="FILE.html", help="the page to write")
+    p.add_argument("--frames", type=int, default=150, help="animation frames (default 150)")
+    p.set_defaults(func=_cmd_view)
 
     p = sub.add_parser(
         "demo",

@@ -4,7 +4,8 @@ matplotlib is imported inside the drawing functions, never by the physics layers
 """
 
 from .animate import animate_body_frame, animate_ground_frame
-from .plots import figure_omega, figure_omega_grid, plot_omega
+from .phase import figure_herpolhode, figure_polhode, polhode_family, separatrices
+from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
 
 __all__ = [
@@ -12,8 +13,13 @@ __all__ = [
     "animate_ground_frame",
     "body_lines",
     "body_size",
+    "figure_drift",
+    "figure_herpolhode",
     "figure_omega",
     "figure_omega_grid",
+    "figure_polhode",
     "part_lines",
     "plot_omega",
+    "polhode_family",
+    "separatrices",
 ]

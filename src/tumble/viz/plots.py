@@ -11,7 +11,7 @@ import numpy as np
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
 
-__all__ = ["figure_omega", "figure_omega_grid", "plot_omega"]
+__all__ = ["figure_drift", "figure_omega", "figure_omega_grid", "plot_omega"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
 
@@ -60,4 +60,31 @@ def figure_omega_grid(cases: list[tuple[str, Trajectory]], path, ncols: int = 3,
     if suptitle:
         fig.suptitle(suptitle)
     fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def figure_drift(traj: Trajectory, path, title: str | None = None) -> None:
+    """Relative error of energy, |L| and L_world against time, on a log scale.
+
+    ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``: zero
+    for the exact motion, round-off (~1e-16) for the best methods. Zeros are drawn at 1e-17.
+    """
+    plt = _plt()
+    E, Ln, Lw = traj.energy, traj.angular_momentum_norm, traj.angular_momentum_world
+    ref_E, ref_L = (E[0] if E[0] > 0 else 1.0), (Ln[0] if Ln[0] > 0 else 1.0)
+    series = {
+        "energy": np.abs(E - E[0]) / ref_E,
+        "|L|": np.abs(Ln - Ln[0]) / ref_L,
+        r"$L_{world}$": np.linalg.norm(Lw - Lw[0], axis=1) / ref_L,
+    }
+    fig, ax = plt.subplots(figsize=(7.5, 3.6), layout="constrained")
+    for (label, values), color in zip(series.items(), COLORS):
+        ax.semilogy(traj.t, np.maximum(values, 1e-17), color=color, lw=1.1, label=label)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("relative drift")
+    ax.set_xlim(traj.t[0], traj.t[-1])
+    note = "" if traj.torque_free else " (a torque acts: these change physically)"
+    ax.set_title(title or f"{traj.body_name}: drift of the invariants, {traj.method}{note}", fontsize=10)
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -1,0 +1,125 @@
+"""Poinsot's picture of free rotation: polhodes on the momentum sphere and the herpolhode.
+
+- **Polhode** (Landau & Lifshitz, *Mechanics*, sec. 37; Goldstein sec. 5.6): in the body frame,
+  L moves on the intersection of the momentum sphere ``|L| = const`` with the energy ellipsoid
+  ``L1^2/I1 + L2^2/I2 + L3^2/I3 = 2 E``. The family of such curves through one |L| circles the
+  minor and the major axis; the two great circles ``L3 = +-k L1``,
+  ``k^2 = (1/I1 - 1/I2) / (1/I2 - 1/I3)`` (energy ``|L|^2 / (2 I2)``) are the separatrices that
+  divide them and meet at the unstable intermediate axis.
+- **Herpolhode**: in the ground frame the tip of omega stays in the invariable plane
+  ``omega . L = 2 E`` (at distance ``2 E / |L|`` from the fixed point) and traces the herpolhode.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..analysis import flip_interval
+from ..dynamics import Trajectory
+from ..dynamics.exact import FreeRotation
+
+__all__ = ["figure_herpolhode", "figure_polhode", "polhode_family", "separatrices"]
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def polhode_family(moments, L_norm: float, count: int = 9, points: int = 240) -> list[np.ndarray]:
+    """Closed polhodes through one |L| (kg m^2/s), body frame; each of shape (points, 3).
+
+    Starting points ``|L| (cos b, 0, sin b)`` sweep the energy from ``|L|^2/(2 I1)`` (b = 0) to
+    ``|L|^2/(2 I3)`` (b = pi/2); each curve is one period of the exact motion, drawn with its
+    mirror image ``-L``.
+    """
+    from scipy.spatial.transform import Rotation
+
+    I = np.asarray(moments, float)
+    k = np.sqrt((1 / I[0] - 1 / I[1]) / (1 / I[1] - 1 / I[2]))
+    b_sep = np.arctan(k)  # the start point on the separatrix
+    curves = []
+    betas = np.concatenate([np.linspace(0.08, b_sep - 0.06, count // 2), np.linspace(b_sep + 0.06, np.pi / 2 - 0.08, count - count // 2)])
+    for b in betas:
+        L0 = L_norm * np.array([np.cos(b), 0.0, np.sin(b)])
+        w0 = L0 / I
+        period = 2.0 * float(flip_interval(w0, I))
+        t = np.linspace(0.0, period, points)
+        L = I * FreeRotation(I, w0, Rotation.identity()).omega(t)
+        curves += [L, -L]
+    return curves
+
+
+def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
+    """The two separatrix great circles on the momentum sphere, each of shape (points, 3)."""
+    I = np.asarray(moments, float)
+    k = np.sqrt((1 / I[0] - 1 / I[1]) / (1 / I[1] - 1 / I[2]))
+    s = np.linspace(0.0, 2.0 * np.pi, points)[:, None]
+    e2 = np.array([0.0, 1.0, 0.0])
+    out = []
+    for sign in (1.0, -1.0):
+        n = np.array([1.0, 0.0, sign * k]) / np.hypot(1.0, k)
+        out.append(L_norm * (np.cos(s) * e2 + np.sin(s) * n))
+    return out
+
+
+def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
+    """L in the body frame on the momentum sphere, with its family of polhodes and separatrices."""
+    plt = _plt()
+    I = traj.moments
+    L = traj.angular_momentum
+    R = float(traj.angular_momentum_norm[0])
+    fig = plt.figure(figsize=(6.4, 6.0), layout="constrained")
+    ax = fig.add_subplot(projection="3d")
+    if R > 0:
+        u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
+        ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5)
+        if np.all(np.diff(I) > 1e-9 * I.sum()):
+            for c in polhode_family(I, R):
+                ax.plot(*c.T, color="tab:gray", lw=0.8)
+            for k, c in enumerate(separatrices(I, R)):
+                ax.plot(*c.T, color="tab:red", lw=1.4, ls="--", label="separatrix" if k == 0 else None)
+    ax.plot(*L.T, color="tab:blue", lw=2.4, label=f"this run ({traj.method})")
+    ax.scatter(*L[0], color="tab:blue", s=25)
+    for j, name in enumerate(("minor", "intermediate", "major")):
+        tip = np.zeros(3)
+        tip[j] = 1.25 * R
+        ax.plot(*np.stack([-tip, tip]).T, color="k", lw=0.6)
+        ax.text(*tip, f"$L_{j + 1}$ ({name})", fontsize=8)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel(r"$L_1$ (kg m$^2$/s)")
+    ax.set_ylabel(r"$L_2$")
+    ax.set_zlabel(r"$L_3$")
+    ax.set_title(title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g}", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
+    """The tip of omega in the invariable plane (ground frame), Poinsot's construction."""
+    plt = _plt()
+    Lw = traj.angular_momentum_world[0]
+    n = Lw / np.linalg.norm(Lw)
+    u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    v = np.cross(n, u)
+    w = traj.omega_world
+    height = w @ n  # = 2 E / |L|, constant without torque
+    fig, ax = plt.subplots(figsize=(5.6, 5.6), layout="constrained")
+    ax.plot(w @ u, w @ v, color="tab:purple", lw=1.0)
+    ax.scatter([w[0] @ u], [w[0] @ v], color="tab:purple", s=20, zorder=3, label="t = 0")
+    ax.scatter([0.0], [0.0], marker="+", color="k", s=60, label="foot of L")
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"$\omega \cdot u$ (rad/s)")
+    ax.set_ylabel(r"$\omega \cdot v$ (rad/s)")
+    spread = float(np.ptp(height))
+    ax.set_title(title or f"{traj.body_name}: herpolhode in the invariable plane\n"
+                 f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e})", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,78 @@
+"""The interactive page: one self-contained HTML file that plays in a real, offline browser."""
+
+from __future__ import annotations
+
+import io
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tumble.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+# Flags as Debian's Chromium needs them headless, as root, with software WebGL and no network.
+FLAGS = ["--no-sandbox", "--disable-gpu", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+         "--disable-background-networking", "--disable-component-update", "--no-first-run", "--disable-sync",
+         "--disable-quic"]
+
+
+@pytest.fixture(scope="module")
+def page_file(tmp_path_factory):
+    out = tmp_path_factory.mktemp("page") / "flip.html"
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(out), "--frames", "60"]) == 0
+    return out
+
+
+def test_page_is_one_self_contained_file(page_file):
+    html = page_file.read_text()
+    assert "<script src=" not in html  # no CDN, nothing to fetch
+    assert "Plotly.newPlot" in html or "Plotly.react" in html
+    assert len(html) > 1_000_000  # the plotly.js bundle is inside
+    assert not list(page_file.parent.glob(".*tmp*"))
+
+
+def test_view_refuses_other_suffixes(tmp_path, capsys):
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(tmp_path / "x.png")]) == 2
+    assert "written as one .html file" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(CHROMIUM is None and not os.environ.get("CI"), reason="Debian's chromium is not installed (CI installs it)")
+def test_page_plays_offline_in_chromium(page_file):
+    from PIL import Image
+    from playwright.sync_api import sync_playwright
+
+    assert CHROMIUM, "CI must install Debian's chromium (see .ci/run)"
+    errors, outside = [], []
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=FLAGS)
+        try:
+            page = browser.new_page(viewport={"width": 1300, "height": 900})
+            page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+            page.on("pageerror", lambda e: errors.append(str(e)))
+            page.route("**/*", lambda route: (outside.append(route.request.url), route.abort())
+                       if not route.request.url.startswith(("file:", "data:", "blob:")) else route.continue_())
+            page.goto(page_file.as_uri())
+            page.wait_for_selector(".js-plotly-plot .main-svg", timeout=60_000)
+            page.locator(".updatemenu-button", has_text="Play").first.click()
+            active = "document.querySelector('.js-plotly-plot')._fullLayout.sliders[0].active"
+            page.wait_for_function(f"{active} >= 5", timeout=60_000)
+            first = page.screenshot()
+            page.wait_for_function(f"{active} >= 20", timeout=60_000)
+            later = page.screenshot()
+        finally:
+            browser.close()
+    assert errors == [] and outside == []
+
+    def ground(png):  # the ground-frame scene, upper left
+        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[180:600, :650]
+
+    a, b = ground(first), ground(later)
+    red = ((a[..., 0] > 150) & (a[..., 1] < 90) & (a[..., 2] < 90)).sum()
+    blue = ((a[..., 2] > 150) & (a[..., 0] < 90) & (a[..., 1] < 160)).sum()
+    assert red + blue > 100, "no omega / L arrows drawn: blank WebGL canvas?"
+    moved = np.any(np.abs(a - b) > 60, axis=-1).sum()
+    assert moved > 300, "the body does not move while the page plays"
