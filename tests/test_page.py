@@ -35,6 +35,13 @@ def test_page_is_one_self_contained_file(page_file):
     assert not list(page_file.parent.glob(".*tmp*"))
 
 
+@pytest.mark.parametrize("scenario", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.stem)
+def test_view_works_for_every_example(scenario, tmp_path):
+    out = tmp_path / "page.html"
+    assert main(["view", str(scenario), "--out", str(out), "--frames", "10"]) == 0
+    assert out.stat().st_size > 1_000_000
+
+
 def test_view_refuses_other_suffixes(tmp_path, capsys):
     assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(tmp_path / "x.png")]) == 2
     assert "written as one .html file" in capsys.readouterr().err

@@ -151,6 +151,17 @@ def _simulate_line(summary: dict, out) -> str:
     return f"{head}: {spin}; {tail}; wrote {out}/"
 
 
+def _frames(text: str) -> int:
+    """argparse type: a whole number of animation frames from 2 to 2000."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if not 2 <= value <= 2000:
+        raise argparse.ArgumentTypeError(f"{value} frames: allowed 2 to 2000")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (also used to document the CLI)."""
     parser = _Parser(
@@ -174,43 +185,38 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
     p.set_defaults(func=_cmd_inertia)
 
-    p = sub.add_parser(
-        "simulate",
-        help="integrate a scenario file and write trajectory, summary and plot",
-        description="Integrates the scenario and writes DIR/trajectory.csv, DIR/trajectory.npz, "
-        "DIR/summary.json and DIR/omega.png. Nothing is written if the scenario is invalid.",
-        epilog="Example: tumble simulate examples/seed_flip.toml --out runs/flip --json",
-    )
-    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_cmd_simulate)
+    def scenario_command(name, func, summary, description, example, out_metavar, out_help):
+        cmd = sub.add_parser(name, help=summary, description=description, epilog=f"Example: {example}")
+        cmd.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
+        cmd.add_argument("--out", required=True, metavar=out_metavar, help=out_help)
+        cmd.set_defaults(func=func)
+        return cmd
 
-    p = sub.add_parser(
-        "plot",
-        help="figures of a scenario: omega(t), polhode, herpolhode, drift",
-        description="Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere "
-        "with the family of polhodes and the separatrices), DIR/herpolhode (omega in the invariable "
-        "plane) and DIR/drift (energy, |L|, L_world errors), each as PNG and SVG.",
-        epilog="Example: tumble plot examples/seed_flip.toml --out figures",
+    p = scenario_command(
+        "simulate", _cmd_simulate, "integrate a scenario file and write trajectory, summary and plot",
+        "Integrates the scenario and writes DIR/trajectory.csv, DIR/trajectory.npz, DIR/summary.json and "
+        "DIR/omega.png. Nothing is written if the scenario is invalid.",
+        "tumble simulate examples/seed_flip.toml --out runs/flip --json", "DIR", "output folder",
     )
-    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+    p = scenario_command(
+        "plot", _cmd_plot, "figures of a scenario: omega(t), polhode, herpolhode, drift",
+        "Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere with the family "
+        "of polhodes and the separatrices), DIR/herpolhode (omega in the invariable plane) and DIR/drift "
+        "(energy, |L|, L_world errors), each as PNG and SVG.",
+        "tumble plot examples/seed_flip.toml --out figures", "DIR", "output folder",
+    )
     p.add_argument("--format", nargs="+", default=["png", "svg"], choices=["png", "svg", "pdf"],
                    help="file formats (default: png svg)")
-    p.set_defaults(func=_cmd_plot)
 
-    p = sub.add_parser(
-        "view",
-        help="one self-contained interactive HTML page of a scenario",
-        description="Writes ONE HTML file that works offline: the body tumbling in the ground frame with "
-        "its omega and L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons.",
-        epilog="Example: tumble view examples/seed_flip.toml --out flip.html",
+    p = scenario_command(
+        "view", _cmd_view, "one self-contained interactive HTML page of a scenario",
+        "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
+        "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons.",
+        "tumble view examples/seed_flip.toml --out flip.html", "FILE.html", "the page to write",
     )
-    p.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
-    p.add_argument("--out", required=True, metavar="FILE.html", help="the page to write")
-    p.add_argument("--frames", type=int, default=150, help="animation frames (default 150)")
-    p.set_defaults(func=_cmd_view)
+    p.add_argument("--frames", type=_frames, default=150, help="animation frames, 2 to 2000 (default 150)")
 
     p = sub.add_parser(
         "demo",

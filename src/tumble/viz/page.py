@@ -81,7 +81,8 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
             x, y, z = _arrow(vec * s)
             tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines+markers", marker=dict(size=[0, 5], color=color),
                                    line=dict(color=color, width=8), name=name, showlegend=False))
-        path_tip = w_body[: k + 1] * sw
+        stride = max(1, len(traj) // 400)  # keep each frame small: at most ~400 path points
+        path_tip = np.vstack([w_body[: k + 1 : stride], w_body[k]]) * sw
         tr.append(go.Scatter3d(x=path_tip[:, 0], y=path_tip[:, 1], z=path_tip[:, 2], mode="lines",
                                line=dict(color=_W, width=2), opacity=0.5, name="omega path", showlegend=False))
         t = float(traj.t[k])
