@@ -14,17 +14,10 @@ import numpy as np
 from ..dynamics import Trajectory
 from ..mass import Body
 from .scene import body_lines, body_size
+from ._backend import pyplot
 
 __all__ = ["animate_body_frame", "animate_ground_frame", "writer_for"]
 
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def writer_for(path: Path, fps: int):
@@ -67,7 +60,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
     L is fixed in space for a torque-free run; omega wanders. Arrow lengths are scaled to the
     body's size (each vector by its own largest magnitude over the run).
     """
-    plt = _plt()
+    plt = pyplot()
     path = Path(path)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
@@ -102,7 +95,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
 def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
                        title: str | None = None, dpi: int = 72) -> Path:
     """omega and L seen from the body (design axes), with the path of omega's tip (polhode)."""
-    plt = _plt()
+    plt = pyplot()
     path = Path(path)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
@@ -135,7 +128,7 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
 
 def _save(fig, draw, frames, path: Path, fps: int, dpi: int) -> None:
     """Render every frame into a temporary file, then rename it into place."""
-    plt = _plt()
+    plt = pyplot()
     writer = writer_for(path, fps)
     tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -17,17 +17,10 @@ import numpy as np
 from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.exact import FreeRotation
+from ._backend import pyplot
 
 __all__ = ["figure_herpolhode", "figure_polhode", "polhode_family", "separatrices"]
 
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def polhode_family(moments, L_norm: float, count: int = 9, points: int = 240) -> list[np.ndarray]:
@@ -69,7 +62,7 @@ def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
 
 def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
     """L in the body frame on the momentum sphere, with its family of polhodes and separatrices."""
-    plt = _plt()
+    plt = pyplot()
     I = traj.moments
     L = traj.angular_momentum
     R = float(traj.angular_momentum_norm[0])
@@ -102,7 +95,7 @@ def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
 
 def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
     """The tip of omega in the invariable plane (ground frame), Poinsot's construction."""
-    plt = _plt()
+    plt = pyplot()
     Lw = traj.angular_momentum_world[0]
     n = Lw / np.linalg.norm(Lw)
     u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])

@@ -10,19 +10,12 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
+from ._backend import pyplot
 
 __all__ = ["figure_drift", "figure_omega", "figure_omega_grid", "plot_omega"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
 
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def plot_omega(traj: Trajectory, ax, title: str | None = None) -> None:
@@ -41,7 +34,7 @@ def plot_omega(traj: Trajectory, ax, title: str | None = None) -> None:
 
 def figure_omega(traj: Trajectory, path, title: str | None = None) -> None:
     """omega(t) of one run, written to ``path`` (PNG or SVG by its suffix)."""
-    plt = _plt()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.5, 3.6), layout="constrained")
     plot_omega(traj, ax, title)
     fig.savefig(path, dpi=110)
@@ -50,7 +43,7 @@ def figure_omega(traj: Trajectory, path, title: str | None = None) -> None:
 
 def figure_omega_grid(cases: list[tuple[str, Trajectory]], path, ncols: int = 3, suptitle: str | None = None) -> None:
     """Several runs side by side (the seed's Figure 1, for every case of the study)."""
-    plt = _plt()
+    plt = pyplot()
     nrows = int(np.ceil(len(cases) / ncols))
     fig, axes = plt.subplots(nrows, ncols, figsize=(5.0 * ncols, 3.2 * nrows), layout="constrained", squeeze=False)
     for ax, (title, traj) in zip(axes.flat, cases):
@@ -69,7 +62,7 @@ def figure_drift(traj: Trajectory, path, title: str | None = None) -> None:
     ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``: zero
     for the exact motion, round-off (~1e-16) for the best methods. Zeros are drawn at 1e-17.
     """
-    plt = _plt()
+    plt = pyplot()
     E, Ln, Lw = traj.energy, traj.angular_momentum_norm, traj.angular_momentum_world
     ref_E, ref_L = (E[0] if E[0] > 0 else 1.0), (Ln[0] if Ln[0] > 0 else 1.0)
     series = {
