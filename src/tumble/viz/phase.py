@@ -17,7 +17,7 @@ import numpy as np
 from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.exact import FreeRotation
-from ._backend import pyplot
+from ._backend import pyplot, save_figure
 
 __all__ = ["figure_herpolhode", "figure_polhode", "polhode_family", "separatrices"]
 
@@ -89,8 +89,7 @@ def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
     ax.set_zlabel(r"$L_3$")
     ax.set_title(title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g}", fontsize=10)
     ax.legend(loc="upper left", fontsize=8)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
@@ -114,5 +113,4 @@ def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
     ax.set_title(title or f"{traj.body_name}: herpolhode in the invariable plane\n"
                  f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e})", fontsize=9)
     ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)

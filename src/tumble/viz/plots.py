@@ -10,7 +10,7 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
-from ._backend import pyplot
+from ._backend import pyplot, save_figure
 
 __all__ = ["figure_drift", "figure_omega", "figure_omega_grid", "plot_omega"]
 
@@ -37,8 +37,7 @@ def figure_omega(traj: Trajectory, path, title: str | None = None) -> None:
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.5, 3.6), layout="constrained")
     plot_omega(traj, ax, title)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
 
 
 def figure_omega_grid(cases: list[tuple[str, Trajectory]], path, ncols: int = 3, suptitle: str | None = None) -> None:
@@ -52,8 +51,7 @@ def figure_omega_grid(cases: list[tuple[str, Trajectory]], path, ncols: int = 3,
         ax.set_visible(False)
     if suptitle:
         fig.suptitle(suptitle)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
 
 
 def figure_drift(traj: Trajectory, path, title: str | None = None) -> None:
@@ -79,5 +77,4 @@ def figure_drift(traj: Trajectory, path, title: str | None = None) -> None:
     note = "" if traj.torque_free else " (a torque acts: these change physically)"
     ax.set_title(title or f"{traj.body_name}: drift of the invariants, {traj.method}{note}", fontsize=10)
     ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path, dpi=110)
