@@ -3,7 +3,8 @@
 Left: the body in the ground frame with its omega (red) and L (blue) arrows; right: the same
 seen from the body, with the path of omega's tip; below: omega(t) with a moving time marker.
 Play / pause, a time slider and speed buttons. The body is drawn from the scene description
-(:mod:`tumble.viz.scene`) that the GIF animations use, so page and animation show the same body.
+(:mod:`tumble.viz.scene`) that the GIF animations use, so page and animation show the same body
+(subtracted material dashed in both).
 plotly.js is embedded in the file (no CDN): the page opens without a network.
 """
 
@@ -51,7 +52,9 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
         raise ValueError("the interactive page needs plotly: pip install 'tumble[view]'") from None
 
     path = Path(path)
-    lines = [pts for pts, _ in body_lines(body)]
+    drawn = body_lines(body)
+    lines = [pts for pts, removed in drawn if not removed]
+    holes = [pts for pts, removed in drawn if removed]  # subtracted material: dashed
     size = 1.25 * body_size(body)
     idx = np.unique(np.linspace(0, len(traj) - 1, min(frames, len(traj))).astype(int))
     rot = traj.design_attitude().as_matrix()
@@ -73,6 +76,9 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
         tr = []
         x, y, z = _polyline(lines, rot[k])
         tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color=_BODY, width=5), name="body", showlegend=False))
+        x, y, z = _polyline(holes, rot[k])
+        tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color=_BODY, width=3, dash="dash"),
+                               name="removed", showlegend=False))
         for vec, s, color, name in ((w_world[k], sw, _W, "omega"), (L_world[k], sL, _L, "L")):
             x, y, z = _arrow(vec * s)
             tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines+markers", marker=dict(size=[0, 5], color=color),
@@ -90,12 +96,14 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
         tr.append(go.Scatter(x=[t, t], y=[-lim, lim], mode="lines", line=dict(color="black", width=1), name="now", showlegend=False))
         return tr
 
-    where = [(1, 1), (1, 1), (1, 1), (1, 2), (1, 2), (1, 2), (2, 1)]
+    where = [(1, 1), (1, 1), (1, 1), (1, 1), (1, 2), (1, 2), (1, 2), (2, 1)]
     for trace, (r, c) in zip(dynamic(k0), where):
         fig.add_trace(trace, row=r, col=c)
     dynamic_indices = list(range(len(where)))
-    x, y, z = _polyline(lines)
-    fig.add_trace(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color="#999999", width=4), name="body", showlegend=False), row=1, col=2)
+    for group, style in ((lines, dict(width=4)), (holes, dict(width=3, dash="dash"))):
+        x, y, z = _polyline(group)
+        fig.add_trace(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color="#999999", **style), showlegend=False),
+                      row=1, col=2)
     for j, color in enumerate(("#1f77b4", "#ff7f0e", "#2ca02c")):  # as in the matplotlib figures
         fig.add_trace(go.Scatter(x=traj.t, y=traj.omega[:, j], mode="lines", line=dict(color=color),
                                  name=f"omega_{j + 1} ({AXIS_ROLES[j]})"), row=2, col=1)
