@@ -2,6 +2,7 @@
 
 from .stability import (
     axis_of,
+    circulation_axis,
     energy_momentum_gaps,
     flip_interval,
     flip_interval_asymptotic,
@@ -13,6 +14,7 @@ from .summary import stability_report, trajectory_summary
 
 __all__ = [
     "axis_of",
+    "circulation_axis",
     "energy_momentum_gaps",
     "flip_interval",
     "flip_interval_asymptotic",

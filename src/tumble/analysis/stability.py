@@ -20,8 +20,12 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import ellipkm1
 
+from ..dynamics.euler import energy_momentum_gaps
+from ..dynamics.exact import elliptic_parameters
+
 __all__ = [
     "axis_of",
+    "circulation_axis",
     "energy_momentum_gaps",
     "flip_interval",
     "flip_interval_asymptotic",
@@ -71,18 +75,6 @@ def linearised_rate(moments, axis, spin) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(np.maximum(s, 0.0)), np.sqrt(np.maximum(-s, 0.0))
 
 
-def energy_momentum_gaps(omega, moments) -> np.ndarray:
-    """``L^2 - 2 E I_j`` for j = 1, 2, 3, computed without cancellation, (kg m^2/s)^2 kg m^2.
-
-    ``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) omega_i^2``: each term carries its own sign, so the
-    difference of two nearly equal large numbers is never formed (Celledoni et al., SIAM J.
-    Sci. Comput. 30 (2008) 2084, sec. 2). Shape (..., 3).
-    """
-    w2 = np.asarray(omega, float)[..., None, :] ** 2
-    I = np.asarray(moments, float)
-    return np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1)
-
-
 def flip_interval(omega, moments) -> np.ndarray:
     """Exact time between sign changes of the oscillating components of omega, s.
 
@@ -95,7 +87,7 @@ def flip_interval(omega, moments) -> np.ndarray:
       ``1 - k^2 = (I3 - I1)(L^2 - 2 E I2) / ((I3 - I2)(L^2 - 2 E I1))``;
     - ``L^2 < 2 E I2``: indices 1 and 3 exchanged.
 
-    ``1 - k^2`` is formed directly (from the gaps of :func:`energy_momentum_gaps`) and fed to
+    ``1 - k^2`` is formed directly (:func:`tumble.dynamics.exact.elliptic_parameters`) and fed to
     ``scipy.special.ellipkm1``, so the interval stays accurate as the motion nears the
     separatrix, where it diverges logarithmically.
 
@@ -112,23 +104,11 @@ def flip_interval(omega, moments) -> np.ndarray:
         The flip interval, s; ``inf`` on the separatrix (``L^2 = 2 E I2``). Near a stable
         axis it tends to half the wobble period, ``pi / sqrt(-s)``.
     """
-    p, m1 = _elliptic_parameters(omega, moments)
+    e = elliptic_parameters(omega, moments)
+    p, m1 = e.p, e.m1
     with np.errstate(divide="ignore", invalid="ignore"):
         interval = 2.0 * ellipkm1(m1) / p
     return np.where((m1 == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
-
-
-def _elliptic_parameters(omega, moments):
-    """``p`` (1/s) and ``1 - k^2`` of the motion through ``omega`` (see :func:`flip_interval`)."""
-    I = np.asarray(moments, float)
-    g = energy_momentum_gaps(omega, I)
-    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
-    g1, g2, g3 = g[..., 0], g[..., 1], g[..., 2]
-    upper = g2 > 0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p2 = np.where(upper, (I3 - I2) * g1, (I2 - I1) * -g3) / (I1 * I2 * I3)
-        m1 = np.where(upper, (I3 - I1) * g2 / ((I3 - I2) * g1), (I3 - I1) * -g2 / ((I2 - I1) * -g3))
-    return np.sqrt(p2), m1
 
 
 def flip_interval_asymptotic(omega, moments) -> np.ndarray:
@@ -140,9 +120,15 @@ def flip_interval_asymptotic(omega, moments) -> np.ndarray:
     nears the axis, with ``p -> lambda``, the linearised growth exponent. Relative error
     ``O(1 - k^2)``.
     """
-    p, m1 = _elliptic_parameters(omega, moments)
+    e = elliptic_parameters(omega, moments)
     with np.errstate(divide="ignore"):
-        return np.log(16.0 / m1) / p
+        return np.log(16.0 / e.m1) / e.p
+
+
+def circulation_axis(omega, moments) -> np.ndarray:
+    """Index (0 or 2) of the principal axis about which omega circulates, whose component never
+    changes sign (dn in Landau & Lifshitz eq. 37.10): 2 (major) when ``L^2 >= 2 E I2``, else 0."""
+    return np.where(elliptic_parameters(omega, moments).upper, 2, 0)
 
 
 def flip_times(t, component) -> np.ndarray:

@@ -8,7 +8,7 @@ from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
 from .stability import (
     axis_of,
-    energy_momentum_gaps,
+    circulation_axis,
     flip_interval,
     flip_interval_asymptotic,
     flip_times,
@@ -42,11 +42,9 @@ def stability_report(traj: Trajectory) -> dict:
     times = flip_times(traj.t, traj.omega[:, a])
     exact = asymptotic = None
     if traj.torque_free and distinct:
-        # the component about which omega circulates (dn in Landau & Lifshitz eq. 37.10) never
-        # changes sign: axis 3 when L^2 > 2 E I2, axis 1 below; the other two flip
-        circulation_axis = 2 if energy_momentum_gaps(w0, I)[1] > 0 else 0
+        # the component about which omega circulates never changes sign; the other two flip
         value = float(flip_interval(w0, I))
-        if a != circulation_axis and np.isfinite(value):
+        if a != int(circulation_axis(w0, I)) and np.isfinite(value):
             exact = value
             asymptotic = float(flip_interval_asymptotic(w0, I))
     return {

@@ -1,6 +1,6 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, integrators, trajectories."""
 
-from .euler import angular_momentum, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
+from .euler import angular_momentum, energy_momentum_gaps, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
 from .integrators import METHODS, Method, get_method
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .torques import ConstantTorque, FunctionTorque, as_torque
@@ -15,6 +15,7 @@ __all__ = [
     "Method",
     "Trajectory",
     "angular_momentum",
+    "energy_momentum_gaps",
     "as_torque",
     "euler_rhs",
     "euler_rhs_tensor",

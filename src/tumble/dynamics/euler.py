@@ -20,6 +20,7 @@ import numpy as np
 
 __all__ = [
     "angular_momentum",
+    "energy_momentum_gaps",
     "euler_rhs",
     "euler_rhs_tensor",
     "kinetic_energy",
@@ -104,3 +105,15 @@ def quaternion_rate(quat, omega) -> np.ndarray:
     dv = 0.5 * (s * w + np.cross(v, w))
     ds = -0.5 * np.sum(v * w, axis=-1, keepdims=True)
     return np.concatenate([dv, ds], axis=-1)
+
+
+def energy_momentum_gaps(omega, moments) -> np.ndarray:
+    """``L^2 - 2 E I_j`` for j = 1, 2, 3, computed without cancellation, (kg m^2/s)^2 kg m^2.
+
+    ``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) omega_i^2``: each term carries its own sign, so the
+    difference of two nearly equal large numbers is never formed (Celledoni et al., SIAM J.
+    Sci. Comput. 30 (2008) 2084, sec. 2). Shape (..., 3).
+    """
+    w2 = np.asarray(omega, float)[..., None, :] ** 2
+    I = np.asarray(moments, float)
+    return np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1)

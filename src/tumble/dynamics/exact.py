@@ -44,13 +44,46 @@ separatrix, in tests/test_exact.py).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .elliptic import carlson_f, carlson_pi, ellipk, jacobi, jacobi_reduced, pi_complete
+from .euler import energy_momentum_gaps
 
-__all__ = ["FreeRotation"]
+__all__ = ["EllipticParameters", "FreeRotation", "elliptic_parameters"]
+
+class EllipticParameters(NamedTuple):
+    """Parameters of the torque-free motion through one omega (module docstring); arrays (...)."""
+
+    upper: np.ndarray  # L^2 >= 2 E I2: omega circulates about axis 3 (else about axis 1)
+    p: np.ndarray  # rate of the elliptic argument u = u0 + p t, 1/s
+    m: np.ndarray  # parameter k^2
+    m1: np.ndarray  # 1 - k^2, formed directly
+    amplitudes: np.ndarray  # a1, a2, a3 (rad/s), shape (..., 3)
+
+
+def elliptic_parameters(omega, moments) -> EllipticParameters:
+    """``p``, ``m``, ``1 - m`` and the amplitudes of the motion through ``omega``, for
+    ascending moments, by the formulas of the module docstring; broadcasts over (..., 3).
+
+    The differences ``g_j = L^2 - 2 E I_j`` come from :func:`energy_momentum_gaps`, and
+    ``1 - m`` is formed from them directly, never as ``1 - m``.
+    """
+    I = np.asarray(moments, float)
+    g = energy_momentum_gaps(omega, I)
+    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
+    g1, g2, g3 = g[..., 0], g[..., 1], g[..., 2]
+    upper = g2 >= 0  # the separatrix is taken from this side
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p2 = np.where(upper, (I3 - I2) * g1, (I2 - I1) * -g3) / (I1 * I2 * I3)
+        m = np.where(upper, (I2 - I1) * -g3 / ((I3 - I2) * g1), (I3 - I2) * g1 / ((I2 - I1) * -g3))
+        m1 = np.where(upper, (I3 - I1) * g2 / ((I3 - I2) * g1), (I3 - I1) * -g2 / ((I2 - I1) * -g3))
+        a2 = np.where(upper, -g3 / (I2 * (I3 - I2)), g1 / (I2 * (I2 - I1)))
+        amps = np.stack([-g3 / (I1 * (I3 - I1)), a2, g1 / (I3 * (I3 - I1))], axis=-1)
+    return EllipticParameters(upper, np.sqrt(p2), np.clip(m, 0.0, 1.0), np.clip(m1, 0.0, 1.0), np.sqrt(amps))
+
 
 # Cyclic relabellings of the body axes that put the reference axis last: (i, j, r).
 _CYCLE = {2: (0, 1, 2), 0: (1, 2, 0)}
@@ -92,22 +125,10 @@ class FreeRotation:
         self._set(steady=not np.any(np.cross(L, w)))  # Euler's right-hand side vanishes
         if self.steady:
             return
-        g = np.array([np.sum(I * (I - I[j]) * w * w) for j in range(3)])  # L^2 - 2 E I_j
-        I1, I2, I3 = I
-        g1, g2, g3 = g
-        upper = g2 >= 0  # circulation about axis 3 (or the separatrix, taken from this side)
-        r, c, o = (2, 0, 0) if upper else (0, 2, 2)  # dn axis, cn axis, other extreme axis
-        if upper:
-            p2 = (I3 - I2) * g1 / (I1 * I2 * I3)
-            m = (I2 - I1) * -g3 / ((I3 - I2) * g1)
-            m1 = (I3 - I1) * g2 / ((I3 - I2) * g1)
-            amp = np.sqrt([-g3 / (I1 * (I3 - I1)), -g3 / (I2 * (I3 - I2)), g1 / (I3 * (I3 - I1))])
-        else:
-            p2 = (I2 - I1) * -g3 / (I1 * I2 * I3)
-            m = (I3 - I2) * g1 / ((I2 - I1) * -g3)
-            m1 = (I3 - I1) * -g2 / ((I2 - I1) * -g3)
-            amp = np.sqrt([-g3 / (I1 * (I3 - I1)), g1 / (I2 * (I2 - I1)), g1 / (I3 * (I3 - I1))])
-        m, m1 = min(max(m, 0.0), 1.0), min(max(m1, 0.0), 1.0)
+        e = elliptic_parameters(w, I)
+        upper, m, m1 = bool(e.upper), float(e.m), float(e.m1)
+        r, c = (2, 0) if upper else (0, 2)  # dn axis, cn axis
+        amp = e.amplitudes
         sign = 1.0 if w[r] >= 0 else -1.0
         # On the separatrix cn = sech > 0 never changes sign, so the two branches on which w_c
         # and w_r have opposite signs need sn's sign reversed (Euler's equations then still
@@ -127,12 +148,12 @@ class FreeRotation:
         d0 = np.sqrt(c0 * c0 + m1 * s0 * s0)
         Io = I[2] if r == 0 else I[0]
         Ir = I[r]
-        n = -Ir * (I2 - Io) / (Io * (Ir - I2))
+        n = -Ir * (I[1] - Io) / (Io * (Ir - I[1]))
         pi_c = pi_complete(n, m1) if m1 > 0 else 0.0
         u0 = float(carlson_f(s0, c0, m1)) + (2.0 * j0 * ellipk(m, m1) if j0 else 0.0)
         Lnorm = float(np.linalg.norm(L))
-        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=float(np.sqrt(p2)), m=m, m1=m1, u0=u0, n=n,
-                  Lnorm=Lnorm, rate0=Lnorm / Ir, rate1=Lnorm * (Ir - Io) / (I1 * I3), pi_c=pi_c,
+        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=float(e.p), m=m, m1=m1, u0=u0, n=n,
+                  Lnorm=Lnorm, rate0=Lnorm / Ir, rate1=Lnorm * (Ir - Io) / (I[0] * I[2]), pi_c=pi_c,
                   pi0=float(carlson_pi(n, s0, c0, d0)) + 2.0 * j0 * pi_c)
         perm = Rotation.from_matrix(np.eye(3)[list(_CYCLE[r])])  # body -> relabelled coordinates
         B0 = self._tilt(L[None, :])[0]
