@@ -10,6 +10,7 @@ import tumble
 from tumble.dynamics import (
     METHODS,
     ConstantTorque,
+    FunctionTorque,
     euler_rhs,
     euler_rhs_tensor,
     kinetic_energy,
@@ -162,7 +163,7 @@ def test_energy_matches_definition():
         (dict(method="euler"), r"method = 'euler' is unknown; allowed: exact, dop853, rk45, seed, geometric"),
         (dict(frame="world"), r"frame = 'world' is not allowed; allowed: principal, design"),
         (dict(rtol=0.0), r"rtol = 0.0 must be a positive"),
-        (dict(method="seed", torque=ConstantTorque((0, 0, 1.0))), r"method 'seed' cannot take a torque"),
+        (dict(method="seed", torque=ConstantTorque((0, 0, 1.0))), r"method = 'seed' cannot take a torque"),
     ],
 )
 def test_bad_simulate_input(kwargs, pattern):
@@ -180,3 +181,10 @@ def test_a_body_with_a_zero_moment_is_refused():
 
 def test_registry_names_every_method():
     assert set(METHODS) >= {"exact", "rk45", "dop853", "seed", "geometric", "geometric2", "geometric6"}
+
+
+@pytest.mark.parametrize("method", ["dop853", "rk45", "geometric"])
+def test_a_bad_torque_model_gets_a_clear_error_from_every_method(method):
+    bad = FunctionTorque(lambda t, w, att: [1.0, 2.0], "body")
+    with pytest.raises(ValueError, match=r"the torque model returned \[1.0, 2.0\] at t = 0 s; expected finite numbers"):
+        simulate(tumble.t_handle(), [1.0, 0.0, 0.0], t_end=0.1, samples=3, method=method, torque=bad)

@@ -29,6 +29,8 @@ import math
 
 import numpy as np
 
+from .torques import body_torque
+
 __all__ = ["COMPOSITIONS", "free_flow_substeps", "propagate"]
 
 _CBRT2 = 2.0 ** (1.0 / 3.0)
@@ -73,14 +75,10 @@ def _rotate(L, q, axis: int, tau: float, inv_I) -> None:
 
 
 def _body_torque(torque, t, L, q, inv_I):
-    """Torque on every body in its principal frame, shape (3, N)."""
+    """Torque on every body in its principal frame, shape (3, N) (rows: components)."""
     from scipy.spatial.transform import Rotation
 
-    att = Rotation.from_quat(q.T)
-    omega = (L * inv_I).T
-    tau = np.asarray(torque(t, omega, att), dtype=float)
-    tau = np.array(np.broadcast_to(tau, omega.shape))  # a writeable copy: Rotation.apply needs one
-    return (att.inv().apply(tau) if torque.frame == "world" else tau).T
+    return body_torque(torque, t, (L * inv_I).T, Rotation.from_quat(q.T)).T
 
 
 def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None = None, torque=None):

@@ -31,6 +31,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from .euler import euler_rhs, quaternion_rate
+from .torques import body_torque
 
 __all__ = ["METHODS", "Method", "get_method"]
 
@@ -51,24 +52,13 @@ class Method:
     fixed_step: bool = False
 
 
-def _body_torque(torque, t, omega, quat):
-    """The torque in the principal frame, N m (zero without a model)."""
-    if torque is None:
-        return 0.0
-    attitude = Rotation.from_quat(quat)
-    tau = np.asarray(torque(t, omega, attitude), dtype=float)
-    if tau.shape != (3,) or not np.all(np.isfinite(tau)):
-        raise ValueError(f"the torque model returned {tau!r} at t = {t:.6g} s; expected 3 finite numbers (N m)")
-    return attitude.inv().apply(tau) if torque.frame == "world" else tau
-
-
 def _solve_full(method: str):
     def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
         moments = np.asarray(moments, float)
 
         def rhs(time, y):
             w, q = y[:3], y[3:]
-            tau = _body_torque(torque, time, w, q / np.linalg.norm(q))
+            tau = 0.0 if torque is None else body_torque(torque, time, w, Rotation.from_quat(q))
             return np.concatenate([euler_rhs(w, moments, tau), quaternion_rate(q, w)])
 
         y0 = np.concatenate([omega0, quat0])

@@ -10,7 +10,7 @@ from scipy.spatial.transform import Rotation
 from ..mass import Body, MassProperties
 from ..mass._checks import check_positive, check_rotation, check_vector
 from .integrators import METHODS, get_method
-from .torques import as_torque
+from .torques import as_torque, body_torque
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "simulate"]
@@ -86,17 +86,11 @@ def simulate(
     ValueError
         For bad input, naming the argument and what is allowed.
     """
-    if method is None:
-        method = DEFAULT_METHOD if torque is None else DEFAULT_TORQUE_METHOD
-    props, spec, w0, t_end, rtol, atol, step = check_inputs(
+    props, spec, w0, t_end, rtol, atol, step, model = check_inputs(
         body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol,
-        step=step,
+        step=step, torque=torque,
     )
     name = body.name if isinstance(body, Body) else "body"
-    model = as_torque(torque)
-    if model is not None and not spec.supports_torque:
-        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
-        raise ValueError(f"method {spec.name!r} cannot take a torque; use one of: {allowed}")
 
     A = props.principal_axes  # principal -> design
     if frame == "design":
@@ -120,18 +114,24 @@ def simulate(
     )
 
 
-def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol=None, step=None):
-    """Validate :func:`simulate`'s arguments.
+def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol=None, step=None, torque=None):
+    """Validate :func:`simulate`'s arguments (scenario files use it too, before anything runs).
 
-    Returns ``(props, method, omega0, t_end, rtol, atol, step)`` with the method's defaults
-    filled in.
+    Returns ``(props, method, omega0, t_end, rtol, atol, step, torque model)`` with the
+    defaults filled in: the method is ``"exact"`` without a torque, ``"dop853"`` with one.
 
     Raises ``ValueError`` whose message starts with the argument's name.
     """
     props = body.properties if isinstance(body, Body) else body
     if not isinstance(props, MassProperties):
         raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
-    spec = get_method(DEFAULT_METHOD if method is None else method)
+    model = as_torque(torque)
+    if method is None:
+        method = DEFAULT_METHOD if model is None else DEFAULT_TORQUE_METHOD
+    spec = get_method(method)
+    if model is not None and not spec.supports_torque:
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
+        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
     if frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
@@ -163,7 +163,7 @@ def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
         )
-    return props, spec, w0, t_end, rtol, atol, step
+    return props, spec, w0, t_end, rtol, atol, step, model
 
 
 def _design_torque(model, A):
@@ -177,6 +177,6 @@ def _torque_scale(model, w0, q0, moments, t_end) -> float:
     """Size of omega a torque can build up over the run, rad/s (for absolute tolerances)."""
     if model is None:
         return 0.0
-    tau = np.asarray(model(0.0, w0, Rotation.from_quat(q0)), dtype=float)
-    return float(np.linalg.norm(tau) / moments.min() * t_end) if np.all(np.isfinite(tau)) else 0.0
+    tau = body_torque(model, 0.0, w0, Rotation.from_quat(q0))  # checks the model's answer
+    return float(np.linalg.norm(tau) / moments.min() * t_end)
 

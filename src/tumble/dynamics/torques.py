@@ -16,7 +16,7 @@ import numpy as np
 
 from ..mass._checks import check_vector
 
-__all__ = ["ConstantTorque", "FunctionTorque", "as_torque"]
+__all__ = ["ConstantTorque", "FunctionTorque", "as_torque", "body_torque"]
 
 TORQUE_FRAMES = ("body", "world")
 
@@ -70,3 +70,33 @@ def as_torque(torque):
         _check_frame(torque.frame)
         return torque
     return FunctionTorque(torque, "body")
+
+
+def body_torque(model, t: float, omega, attitude) -> np.ndarray:
+    """Evaluate a torque model and return the torque in the principal (body) frame, N m.
+
+    Parameters
+    ----------
+    model : torque model
+        See the module docstring; its result is checked here, for every integrator.
+    t : float
+        Time, s.
+    omega : ndarray, shape (3,) or (N, 3)
+        Angular velocity in the principal frame, rad/s.
+    attitude : scipy Rotation (one, or a stack of N)
+        Principal body frame to world.
+
+    Raises
+    ------
+    ValueError
+        If the model returns anything but finite numbers of omega's shape (or shape (3,)).
+    """
+    raw = np.asarray(model(t, omega, attitude), dtype=float)
+    shape = np.shape(omega)
+    if raw.shape not in ((3,), shape) or not np.all(np.isfinite(raw)):
+        raise ValueError(
+            f"the torque model returned {raw.tolist()!r} at t = {t:.6g} s; expected finite numbers "
+            f"of shape (3,){'' if shape == (3,) else f' or {shape}'} (N m)"
+        )
+    tau = np.array(np.broadcast_to(raw, shape))  # a writeable copy: Rotation.apply needs one
+    return attitude.inv().apply(tau) if model.frame == "world" else tau
