@@ -42,6 +42,14 @@ def test_view_works_for_every_example(scenario, tmp_path):
     assert out.stat().st_size > 1_000_000
 
 
+@pytest.mark.parametrize("frames", ["1", "-3", "5000"])
+def test_view_refuses_a_bad_frame_count_before_integrating(tmp_path, capsys, frames):
+    out = tmp_path / "page.html"
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(out), "--frames", frames]) == 2
+    assert "must be a whole number from 2 to 2000" in capsys.readouterr().err
+    assert not out.exists()
+
+
 def test_view_refuses_other_suffixes(tmp_path, capsys):
     assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(tmp_path / "x.png")]) == 2
     assert "written as one .html file" in capsys.readouterr().err

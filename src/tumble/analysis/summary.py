@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..mass import AXIS_ROLES
+from ..mass import AXIS_ROLES, moment_degeneracy
 from .stability import (
     axis_of,
     circulation_axis,
@@ -38,7 +38,7 @@ def stability_report(traj: Trajectory) -> dict:
     a = int(axis_of(w0))
     I = traj.moments
     growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a]))
-    distinct = bool(np.all(np.diff(I) > 1e-9 * I.sum()))
+    distinct = moment_degeneracy(I) == "asymmetric"
     times = flip_times(traj.t, traj.omega[:, a])
     exact = asymptotic = None
     if traj.torque_free and distinct:

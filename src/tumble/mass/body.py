@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .parts import Part
-from .tensor import INERTIA_RTOL, check_inertia, inertia_about_point, parallel_axis, principal_frame
+from .tensor import check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
 
@@ -63,10 +63,7 @@ class MassProperties:
     @property
     def degeneracy(self) -> str:
         """``"asymmetric"``, ``"symmetric"`` (two equal moments) or ``"spherical"``."""
-        I1, I2, I3 = self.principal_moments
-        tol = INERTIA_RTOL * max(I1 + I2 + I3, 0.0)
-        equal = int(I2 - I1 <= tol) + int(I3 - I2 <= tol)
-        return ("asymmetric", "symmetric", "spherical")[equal]
+        return moment_degeneracy(self.principal_moments)
 
     @property
     def intermediate_axis(self) -> np.ndarray | None:

@@ -19,6 +19,7 @@ import numpy as np
 __all__ = [
     "INERTIA_RTOL",
     "check_inertia",
+    "moment_degeneracy",
     "inertia_about_point",
     "parallel_axis",
     "point_mass_inertia",
@@ -203,6 +204,17 @@ def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia t
 
 def _fmt(values) -> str:
     return "(" + ", ".join(f"{v:.6g}" for v in np.asarray(values).ravel()) + ")"
+
+
+def moment_degeneracy(moments, *, rtol: float = INERTIA_RTOL) -> str:
+    """``"asymmetric"``, ``"symmetric"`` (two equal moments) or ``"spherical"`` (three).
+
+    Ascending moments count as equal when they differ by at most ``rtol * (I1 + I2 + I3)``, the
+    rule :func:`principal_frame` uses. Only an asymmetric body has an intermediate axis.
+    """
+    I1, I2, I3 = (float(x) for x in moments)
+    tol = rtol * max(I1 + I2 + I3, 0.0)
+    return ("asymmetric", "symmetric", "spherical")[int(I2 - I1 <= tol) + int(I3 - I2 <= tol)]
 
 
 def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray, np.ndarray]:

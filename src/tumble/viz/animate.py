@@ -13,7 +13,7 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import Body
-from .scene import body_lines, body_size
+from .scene import arrow_scale, body_lines, body_size, frame_indices
 from ._backend import pyplot
 
 __all__ = ["animate_body_frame", "animate_ground_frame", "writer_for"]
@@ -33,10 +33,6 @@ def writer_for(path: Path, fps: int):
     raise ValueError(f"{path}: animations are written as .gif or .mp4")
 
 
-def _frames(traj: Trajectory, max_frames: int) -> np.ndarray:
-    return np.unique(np.linspace(0, len(traj) - 1, min(max_frames, len(traj))).astype(int))
-
-
 def _setup_axes(ax, size: float, title: str) -> None:
     ax.set_xlim(-size, size)
     ax.set_ylim(-size, size)
@@ -46,11 +42,6 @@ def _setup_axes(ax, size: float, title: str) -> None:
     ax.set_ylabel("y")
     ax.set_zlabel("z")
     ax.set_title(title, fontsize=9)
-
-
-def _arrow_scale(vectors: np.ndarray, size: float) -> float:
-    peak = float(np.max(np.linalg.norm(vectors, axis=-1)))
-    return 0.9 * size / peak if peak > 0 else 0.0
 
 
 def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
@@ -66,7 +57,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
     size = 1.25 * body_size(body)
     rot = traj.design_attitude()  # design frame -> world
     w, L = traj.omega_world, traj.angular_momentum_world
-    sw, sL = _arrow_scale(w, size), _arrow_scale(L, size)
+    sw, sL = arrow_scale(w, size), arrow_scale(L, size)
 
     fig = plt.figure(figsize=(4.8, 4.8))
     ax = fig.add_subplot(projection="3d")
@@ -88,7 +79,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
             line.set_data_3d([0, tip[0]], [0, tip[1]], [0, tip[2]])
         stamp.set_text(f"t = {traj.t[k]:.2f} s")
 
-    _save(fig, draw, _frames(traj, max_frames), path, fps, dpi)
+    _save(fig, draw, frame_indices(len(traj), max_frames), path, fps, dpi)
     return path
 
 
@@ -101,7 +92,7 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
     size = 1.25 * body_size(body)
     A = traj.principal_axes  # principal -> design
     w, L = traj.omega @ A.T, traj.angular_momentum @ A.T
-    sw, sL = _arrow_scale(w, size), _arrow_scale(L, size)
+    sw, sL = arrow_scale(w, size), arrow_scale(L, size)
 
     fig = plt.figure(figsize=(4.8, 4.8))
     ax = fig.add_subplot(projection="3d")
@@ -122,7 +113,7 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
             line.set_data_3d([0, tip[0]], [0, tip[1]], [0, tip[2]])
         stamp.set_text(f"t = {traj.t[k]:.2f} s")
 
-    _save(fig, draw, _frames(traj, max_frames), path, fps, dpi)
+    _save(fig, draw, frame_indices(len(traj), max_frames), path, fps, dpi)
     return path
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES, Body
-from .scene import body_lines, body_size
+from .scene import arrow_scale, body_lines, body_size, frame_indices
 
 __all__ = ["write_page"]
 
@@ -38,11 +38,6 @@ def _arrow(tip):
     return [0.0, float(tip[0])], [0.0, float(tip[1])], [0.0, float(tip[2])]
 
 
-def _scale(vectors, size: float) -> float:
-    peak = float(np.max(np.linalg.norm(vectors, axis=-1)))
-    return 0.9 * size / peak if peak > 0 else 0.0
-
-
 def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: str | None = None) -> Path:
     """Write the interactive page to ``path`` (written to a temporary file, then renamed)."""
     try:
@@ -56,12 +51,12 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
     lines = [pts for pts, removed in drawn if not removed]
     holes = [pts for pts, removed in drawn if removed]  # subtracted material: dashed
     size = 1.25 * body_size(body)
-    idx = np.unique(np.linspace(0, len(traj) - 1, min(frames, len(traj))).astype(int))
+    idx = frame_indices(len(traj), frames)
     rot = traj.design_attitude().as_matrix()
     w_world, L_world = traj.omega_world, traj.angular_momentum_world
     A = traj.principal_axes
     w_body, L_body = traj.omega @ A.T, traj.angular_momentum @ A.T  # design axes of the body
-    sw, sL = _scale(w_world, size), _scale(L_world, size)
+    sw, sL = arrow_scale(w_world, size), arrow_scale(L_world, size)
 
     fig = make_subplots(
         rows=2, cols=2, row_heights=[0.66, 0.34], horizontal_spacing=0.02, vertical_spacing=0.08,

@@ -17,6 +17,7 @@ import numpy as np
 from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.exact import FreeRotation
+from ..mass import moment_degeneracy
 from ._backend import pyplot, save_figure
 
 __all__ = ["figure_herpolhode", "figure_polhode", "polhode_family", "separatrices"]
@@ -71,7 +72,7 @@ def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
     if R > 0:
         u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
         ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5)
-        if np.all(np.diff(I) > 1e-9 * I.sum()):
+        if moment_degeneracy(I) == "asymmetric":
             for c in polhode_family(I, R):
                 ax.plot(*c.T, color="tab:gray", lw=0.8)
             for k, c in enumerate(separatrices(I, R)):

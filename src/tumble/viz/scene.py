@@ -12,7 +12,7 @@ import numpy as np
 from ..mass import Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
 
-__all__ = ["body_lines", "body_size", "part_lines"]
+__all__ = ["arrow_scale", "body_lines", "body_size", "frame_indices", "part_lines"]
 
 
 def _circle(radius: float, n: int) -> np.ndarray:
@@ -85,3 +85,20 @@ def body_size(body: Body) -> float:
     """Largest distance of a drawn point from the COM, m (for axis limits and arrow lengths)."""
     pts = np.concatenate([pts for pts, _ in body_lines(body, 8)])
     return float(np.max(np.linalg.norm(pts, axis=1))) or 1.0
+
+
+def arrow_scale(vectors, size: float) -> float:
+    """Factor that draws the longest of ``vectors`` (shape (n, 3)) at 0.9 ``size``; 0 if all zero."""
+    peak = float(np.max(np.linalg.norm(vectors, axis=-1)))
+    return 0.9 * size / peak if peak > 0 else 0.0
+
+
+def frame_indices(samples: int, frames: int) -> np.ndarray:
+    """At most ``frames`` sample indices, evenly spread, first and last included."""
+    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 2 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames = {frames!r} must be a whole number from 2 to {MAX_FRAMES}")
+    return np.unique(np.linspace(0, samples - 1, min(frames, samples)).astype(int))
+
+
+#: Most animation frames of a GIF or the page (each frame is stored).
+MAX_FRAMES = 2000
