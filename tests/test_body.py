@@ -132,3 +132,14 @@ def test_rotation_of_a_rotated_box_composes():
     box = tumble.Box(mass=1.0, size=(1, 2, 3), rotation=r1)
     moved = box.moved(r2)
     np.testing.assert_allclose(moved.orientation.as_matrix(), (r2 * r1).as_matrix(), atol=1e-15)
+
+
+def test_moving_takes_any_rotation_form_and_refuses_reflections():
+    body = tumble.t_handle()
+    a = body.moved(Rotation.from_rotvec([0, 0, np.pi / 2]), (1, 0, 0))
+    b = body.moved(Rotation.from_rotvec([0, 0, np.pi / 2]).as_matrix(), (1, 0, 0))
+    np.testing.assert_allclose(a.inertia, b.inertia, atol=1e-15)
+    with pytest.raises(ValueError, match="rotoreflection"):
+        body.moved(np.diag([1.0, 1.0, -1.0]))
+    with pytest.raises(ValueError, match="translation = "):
+        body.moved(Rotation.identity(), (0.0, 1.0))

@@ -87,3 +87,20 @@ def test_geometric_needs_no_positive_definite_trick_for_symmetric_bodies():
     g = simulate(top, w0, t_end=5.0, samples=11, method="geometric6", step=5e-3)
     e = simulate(top, w0, t_end=5.0, samples=11)
     np.testing.assert_allclose(g.omega, e.omega, atol=1e-10)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "pattern"),
+    [
+        (dict(moments=[1.0, 0.0, 2.0]), "moments must be finite and positive"),
+        (dict(omega0=[np.nan, 0.0, 0.0]), "omega0 and quat0 must be finite"),
+        (dict(quat0=[0.0, 0.0, 0.0, 0.0]), "not zero"),
+        (dict(t=[0.0, 1.0, 0.5]), "strictly increasing"),
+        (dict(step=-0.1), r"step = -0.1 must be a positive"),
+    ],
+)
+def test_propagate_refuses_bad_input(kwargs, pattern):
+    args = dict(moments=[1.0, 2.0, 3.0], omega0=[0.1, 1.0, 0.0], quat0=[0.0, 0.0, 0.0, 1.0], t=[0.0, 1.0])
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=pattern):
+        propagate(args["moments"], args["omega0"], args["quat0"], args["t"], step=args.get("step"))

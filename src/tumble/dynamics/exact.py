@@ -121,6 +121,8 @@ class FreeRotation:
         object.__setattr__(self, "omega0", w)
         if not (I.shape == (3,) and np.all(I > 0) and np.all(np.diff(I) >= 0)):
             raise ValueError(f"moments = {I.tolist()} must be three positive numbers in ascending order (kg m^2)")
+        if not (w.shape == (3,) and np.all(np.isfinite(w))):
+            raise ValueError(f"omega0 = {w.tolist()} must be three finite numbers (rad/s)")
         L = I * w
         self._set(steady=not np.any(np.cross(L, w)))  # Euler's right-hand side vanishes
         if self.steady:

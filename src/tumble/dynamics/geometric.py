@@ -113,8 +113,9 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
     q = np.atleast_2d(np.array(quat0, dtype=float))
     N = max(len(I), len(L), len(q))
     I, L, q = (np.broadcast_to(a, (N, a.shape[1])).copy() for a in (I, L, q))
-    inv_I = 1.0 / I
     t = np.asarray(t, float)
+    _check_batch(I, L, q, t, step)
+    inv_I = 1.0 / I
     if order not in COMPOSITIONS:
         raise ValueError(f"order = {order!r} is not available; allowed: {', '.join(map(str, COMPOSITIONS))}")
     if step is None:
@@ -149,6 +150,20 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
         q /= np.linalg.norm(q, axis=0)
         omega_out[s], quat_out[s] = (L * inv_I).T, q.T
     return omega_out, quat_out
+
+
+def _check_batch(I, L, q, t, step) -> None:
+    """Refuse what would give silently wrong numbers (``simulate`` checks its own arguments)."""
+    if not (np.all(np.isfinite(I)) and np.all(I > 0)):
+        raise ValueError("moments must be finite and positive (kg m^2)")
+    if not (np.all(np.isfinite(L)) and np.all(np.isfinite(q))):
+        raise ValueError("omega0 and quat0 must be finite")
+    if np.any(np.linalg.norm(q, axis=1) == 0):
+        raise ValueError("quat0 must be unit quaternions [x, y, z, w], not zero")
+    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise ValueError("t must be at least two finite, strictly increasing times (s)")
+    if step is not None and not (np.isfinite(step) and step > 0):
+        raise ValueError(f"step = {step!r} must be a positive finite number (s)")
 
 
 def _steps(dt: float, step: float) -> tuple[int, float]:

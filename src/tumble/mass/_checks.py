@@ -14,6 +14,7 @@ import numpy as np
 
 __all__ = [
     "check_direction",
+    "check_motion",
     "check_positive",
     "check_rotation",
     "check_vector",
@@ -112,3 +113,12 @@ def check_rotation(field: str, value) -> tuple[float, float, float, float]:
     raise ValueError(
         f"{field} must be a quaternion [x, y, z, w] or a 3x3 rotation matrix, got shape {arr.shape}"
     )
+
+
+def check_motion(rotation, translation):
+    """A rigid motion ``x -> R x + t``: ``(scipy Rotation, ndarray (3,))`` from anything
+    :func:`check_rotation` and :func:`check_vector` accept."""
+    from scipy.spatial.transform import Rotation
+
+    R = Rotation.from_quat(check_rotation("rotation", rotation))
+    return R, np.array(check_vector("translation", translation, "m"))

@@ -14,7 +14,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ._checks import check_positive, check_vector
+from ._checks import check_motion, check_positive, check_vector
 from .parts import PART_KINDS, _Oriented
 
 __all__ = ["Mesh"]
@@ -120,9 +120,10 @@ class Mesh(_Oriented):
 
     def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Mesh:
         """The same part after a rigid motion ``x -> R x + t`` of the design frame."""
+        rotation, translation = check_motion(rotation, translation)
         return Mesh(
             mesh=self.mesh,
-            origin=tuple(rotation.apply(self.origin) + np.asarray(translation, float)),
+            origin=tuple(rotation.apply(self.origin) + translation),
             rotation=tuple((rotation * self.orientation).as_quat()),
             mass=None if self.density is not None else self.mass,
             density=self.density,

@@ -29,7 +29,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ._checks import check_direction, check_positive, check_rotation, check_vector
+from ._checks import check_direction, check_motion, check_positive, check_rotation, check_vector
 
 __all__ = [
     "PART_KINDS",
@@ -170,12 +170,13 @@ class Part:
 
         Parameters
         ----------
-        rotation : scipy Rotation
+        rotation : scipy Rotation, quaternion [x, y, z, w] or 3x3 matrix
             The rotation R.
         translation : array_like, shape (3,)
             The translation t, m.
         """
-        changes = {"center": tuple(rotation.apply(self.center) + np.asarray(translation, float))}
+        rotation, translation = check_motion(rotation, translation)
+        changes = {"center": tuple(rotation.apply(self.center) + translation)}
         if self.density is not None:
             changes["mass"] = None  # recomputed from the density
         changes.update(self._moved_orientation(rotation))
