@@ -8,7 +8,7 @@ Three routes that the tests hold against each other:
    ``eps_b'' = s eps_b`` with ``s = W^2 (I_a - I_b)(I_c - I_a) / (I_b I_c)``. For the
    intermediate axis ``s > 0``: the perturbation grows as ``exp(lambda t)``,
    ``lambda = sqrt(s)``; for the minor and major axes ``s < 0``: it wobbles at ``sqrt(-s)``.
-2. *Exact* (Landau & Lifshitz sec. 37, eqs. 37.10-37.12): omega(t) is a Jacobi elliptic motion
+2. *Exact* (Landau & Lifshitz sec. 37): omega(t) is a Jacobi elliptic motion
    whose period is ``4 K(k^2) / p``; the components that change sign do so every ``2 K / p``,
    the *flip interval* (:func:`flip_interval`).
 3. *Measured*: sign changes of the spin component in a simulated trajectory
@@ -114,7 +114,7 @@ def flip_interval(omega, moments) -> np.ndarray:
 def flip_interval_asymptotic(omega, moments) -> np.ndarray:
     """Small-perturbation form of :func:`flip_interval`: ``ln(16 / (1 - k^2)) / p``, s.
 
-    From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun 17.3.26) with
+    From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun ch. 17, the limit m -> 1) with
     ``k'^2 = 1 - k^2``, which is proportional to the square of the perturbation of a spin about
     the intermediate axis: the interval grows like ``(2 / lambda) ln(1 / eps)`` as the spin
     nears the axis, with ``p -> lambda``, the linearised growth exponent. Relative error
@@ -127,7 +127,7 @@ def flip_interval_asymptotic(omega, moments) -> np.ndarray:
 
 def circulation_axis(omega, moments) -> np.ndarray:
     """Index (0 or 2) of the principal axis about which omega circulates, whose component never
-    changes sign (dn in Landau & Lifshitz eq. 37.10): 2 (major) when ``L^2 >= 2 E I2``, else 0."""
+    changes sign (the dn component in Landau & Lifshitz sec. 37): 2 (major) when ``L^2 >= 2 E I2``, else 0."""
     return np.where(elliptic_parameters(omega, moments).upper, 2, 0)
 
 

@@ -118,5 +118,5 @@ def carlson_pi(n: float, s, c, d) -> np.ndarray:
 
 
 def pi_complete(n: float, m1: float) -> float:
-    """Complete integral of the third kind ``Pi(n | m)`` (DLMF 19.25.2), ``n < 1``."""
+    """Complete integral of the third kind ``Pi(n | m)`` (DLMF 19.25.14 at phi = pi/2), ``n < 1``."""
     return float(elliprf(0.0, m1, 1.0) + (n / 3.0) * elliprj(0.0, m1, 1.0, 1.0 - n))

@@ -11,7 +11,7 @@ References
   *Classical Mechanics*, 3rd ed., eq. (5.39').
 - Quaternion kinematics ``q' = q (x) (omega, 0) / 2`` for body-frame rates (Hamilton product,
   scalar last as in scipy): Shuster, "A survey of attitude representations", J. Astronaut. Sci.
-  41 (1993) 439, eq. (305).
+  41 (1993) 439, section on quaternion kinematics.
 """
 
 from __future__ import annotations
@@ -89,7 +89,7 @@ def quaternion_rate(quat, omega) -> np.ndarray:
     """Time derivative of the attitude quaternion for body-frame angular velocity.
 
     ``q' = q (x) (omega, 0) / 2``, written out for scalar-last quaternions ``(v, s)``:
-    ``v' = (s omega + v x omega) / 2``, ``s' = -(v . omega) / 2`` (Shuster 1993, eq. 305).
+    ``v' = (s omega + v x omega) / 2``, ``s' = -(v . omega) / 2`` (Shuster 1993).
     With ``R(q)`` mapping body to world this is ``R' = R [omega]_x``.
 
     Parameters

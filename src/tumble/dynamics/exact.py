@@ -1,6 +1,6 @@
 """The exact torque-free motion of a rigid body: omega(t) and the attitude in closed form.
 
-Angular velocity (Landau & Lifshitz, *Mechanics*, sec. 37, eqs. 37.10-37.12), principal
+Angular velocity (Landau & Lifshitz, *Mechanics*, sec. 37), principal
 moments ``I1 <= I2 <= I3``, ``g_j = L^2 - 2 E I_j`` (computed as ``sum_i I_i (I_i - I_j) w_i^2``,
 without cancellation, as Celledoni, Fasso, Safstrom & Zanna advise):
 
@@ -26,7 +26,7 @@ angles ``z-x-z`` about it (Landau & Lifshitz sec. 35), ``R(t) = G Rz(phi(t)) Rx(
 Rz(psi(t)) P``, where ``P`` cyclically relabels the body axes so that the reference axis ``r``
 (3 if ``g2 >= 0``, else 1: the dn axis, never perpendicular to L) comes last; ``theta`` and
 ``psi`` are read off ``L_body(t)`` (``cos theta = L_r / |L|``, ``tan psi = L_i / L_j``); ``G``
-is fixed by ``R(0)``; and the precession about L obeys (Landau & Lifshitz eq. 37.14)
+is fixed by ``R(0)``; and the precession about L obeys (Landau & Lifshitz sec. 37)
 ``phi' = |L| (I_i w_i^2 + I_j w_j^2) / (L_i^2 + L_j^2)``, which on the motion above is
 ``|L| / I_r + |L| (I_r - I_o) / (I1 I3) / (1 - n sn^2 u)`` with ``I_o`` the other extreme moment
 and ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (derived by substituting ``dn^2 = 1 - m sn^2``;
@@ -193,7 +193,7 @@ class FreeRotation:
         return Rotation.from_euler("XZ", np.stack(self._tilt_angles(L), axis=-1))
 
     def precession_angle(self, t) -> np.ndarray:
-        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz eq. 37.14)."""
+        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37)."""
         t = np.asarray(t, float)
         j, sn, cn, dn = jacobi_reduced(self._phase(t), self.m, self.m1)
         pi_u = carlson_pi(self.n, sn, cn, dn) + (2.0 * j * self.pi_c if self.m1 > 0 else 0.0)

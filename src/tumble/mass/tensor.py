@@ -45,7 +45,7 @@ def _as_tensor(inertia) -> np.ndarray:
 def point_mass_inertia(mass, offset) -> np.ndarray:
     """Inertia tensor of point masses about the origin: ``m (|d|^2 E - d d^T)``.
 
-    This is the parallel-axis term of the seed's eq. (4) (Goldstein eq. 5.7 for a point).
+    This is the parallel-axis term of the seed's eq. (4) (Goldstein sec. 5.3, for one point).
 
     Parameters
     ----------
@@ -107,7 +107,7 @@ def inertia_about_point(inertia_com, mass, com, point) -> np.ndarray:
 def rotate_inertia(inertia, rotation) -> np.ndarray:
     """Express a tensor given in frame A in frame B: ``I_B = R I_A R^T``.
 
-    ``R`` maps A-coordinates to B-coordinates (``x_B = R @ x_A``), Goldstein eq. (5.10).
+    ``R`` maps A-coordinates to B-coordinates (``x_B = R @ x_A``), Goldstein sec. 5.3.
 
     Parameters
     ----------
