@@ -18,14 +18,10 @@ def save_figure(fig, path, dpi: int = 110) -> None:
 
     A failure midway leaves no half-written figure behind.
     """
-    from pathlib import Path
+    from ..io.atomic import atomic_path
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
     try:
-        fig.savefig(tmp, dpi=dpi)
-        tmp.replace(path)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=dpi)
     finally:
-        tmp.unlink(missing_ok=True)
         pyplot().close(fig)

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import Body
+from ..io.atomic import atomic_path
 from .scene import arrow_scale, body_lines, body_size, frame_indices
 from ._backend import pyplot
 
@@ -121,14 +122,11 @@ def _save(fig, draw, frames, path: Path, fps: int, dpi: int) -> None:
     """Render every frame into a temporary file, then rename it into place."""
     plt = pyplot()
     writer = writer_for(path, fps)
-    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
-    path.parent.mkdir(parents=True, exist_ok=True)
     try:
-        with writer.saving(fig, str(tmp), dpi):
-            for k in frames:
-                draw(int(k))
-                writer.grab_frame()
-        tmp.replace(path)
+        with atomic_path(path) as tmp:
+            with writer.saving(fig, str(tmp), dpi):
+                for k in frames:
+                    draw(int(k))
+                    writer.grab_frame()
     finally:
-        tmp.unlink(missing_ok=True)
         plt.close(fig)

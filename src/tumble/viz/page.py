@@ -16,6 +16,7 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES, Body
+from ..io.atomic import atomic_path
 from .scene import arrow_scale, body_lines, body_size, frame_indices
 
 __all__ = ["write_page"]
@@ -129,12 +130,7 @@ def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: 
                              for n, k in enumerate(idx)])],
     )
     fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    tmp = path.with_name(f".{path.name}.tmp")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
+    with atomic_path(path) as tmp:
         fig.write_html(tmp, include_plotlyjs=True, full_html=True, auto_play=False,
                        config={"displaylogo": False, "topojsonURL": ""})
-        tmp.replace(path)
-    finally:
-        tmp.unlink(missing_ok=True)
     return path
