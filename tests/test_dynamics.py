@@ -188,3 +188,13 @@ def test_a_bad_torque_model_gets_a_clear_error_from_every_method(method):
     bad = FunctionTorque(lambda t, w, att: [1.0, 2.0], "body")
     with pytest.raises(ValueError, match=r"the torque model returned \[1.0, 2.0\] at t = 0 s; expected finite numbers"):
         simulate(tumble.t_handle(), [1.0, 0.0, 0.0], t_end=0.1, samples=3, method=method, torque=bad)
+
+
+def test_body_torque_in_design_coordinates():
+    """frame="design" reads a body-frame torque in design axes: a torque about the T-handle's
+    crossbar (design x = principal axis 2) spins it up about that axis alone, w = tau t / I_x."""
+    body = tumble.t_handle()
+    traj = simulate(body, [0.0, 0.0, 0.0], frame="design", t_end=2.0, samples=11,
+                    torque=ConstantTorque((0.03, 0.0, 0.0)))
+    omega_design = traj.omega @ body.principal_axes.T
+    np.testing.assert_allclose(omega_design, np.outer(traj.t, [0.03 / 0.3125, 0.0, 0.0]), atol=1e-12)
