@@ -2,7 +2,8 @@
 
 Each case is timed beside a baseline measured in the same run and reported as a ratio, plus
 the absolute numbers the issues' targets name. Results go to ``benchmarks/results/<name>.md``
-and ``.json`` (and figures); ``docs/benchmarks.md`` summarises them.
+and ``.json`` (and figures); ``docs/benchmarks.md`` summarises them. ``--quick`` writes to
+``benchmarks/results/quick/`` (not tracked) instead.
 """
 
 from __future__ import annotations
@@ -59,8 +60,9 @@ def main(argv=None) -> int:
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
     parser.add_argument("--suite", action="append", choices=SUITES, help="run only these suites")
     args = parser.parse_args(argv)
-    out = HERE / "results"
-    out.mkdir(exist_ok=True)
+    # a quick run is a smoke test: it never overwrites the full results that docs/ quotes
+    out = HERE / "results" / "quick" if args.quick else HERE / "results"
+    out.mkdir(parents=True, exist_ok=True)
     sys.path.insert(0, str(HERE))
     for name in args.suite or SUITES:
         module = importlib.import_module(name)
