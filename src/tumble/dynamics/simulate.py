@@ -2,42 +2,67 @@
 
 from __future__ import annotations
 
+import math
 import numbers
+from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import Body, MassProperties
 from ..mass._checks import check_positive, check_rotation, check_vector
-from .integrators import METHODS, get_method
+from .integrators import METHODS, Method, get_method
 from .torques import as_torque, body_torque
 from .trajectory import Trajectory
 
-__all__ = ["DEFAULT_METHOD", "FRAMES", "simulate"]
+__all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
 
 #: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
 #: Without torque the exact solution; with a torque, DOP853 at tight tolerances.
 DEFAULT_METHOD = "exact"
 DEFAULT_TORQUE_METHOD = "dop853"
+#: Default number of samples when neither ``samples``, ``dt`` nor ``times`` is given (the seed's).
+DEFAULT_SAMPLES = 500
 #: Frames in which ``omega0`` (and a body-frame torque) may be given.
 FRAMES = ("principal", "design")
 #: Upper bound on samples, to refuse a typo such as 5e9 before allocating memory.
 MAX_SAMPLES = 1_000_000
 #: Longest run, s (about 30,000 years): beyond it the phase of any motion loses all its digits.
 MAX_T_END = 1e12
-#: Most rotation (|omega0| t_end, rad) a stepping method is asked to follow: ~1.6e7 turns, hours
-#: of DOP853; the exact solution has no such limit.
-MAX_ROTATION = 1e8
+#: Most rotation (rad) a stepping method is asked to follow, counting the spin a torque can
+#: build up: 1e6 rad (160,000 turns) is about 4e7 right-hand sides of DOP853 at rtol 1e-12
+#: (~40 per radian, measured), half an hour here; the exact solution has no such limit.
+MAX_ROTATION = 1e6
 #: Most steps a fixed-step method is asked to take.
-MAX_STEPS = 1e8
+MAX_STEPS = 2e7
+#: Ranges of the relative tolerance: scipy clips rtol below 100 eps (with a warning), and above
+#: 0.1 an adaptive step control no longer controls anything.
+RTOL_RANGE = (100 * np.finfo(float).eps, 0.1)
+
+
+class RunInputs(NamedTuple):
+    """The checked inputs of one run, defaults filled in (see :func:`check_inputs`)."""
+
+    props: MassProperties
+    method: Method
+    omega0: np.ndarray  # principal frame, rad/s
+    quat0: np.ndarray  # principal body frame -> world, scalar last
+    t: np.ndarray  # times the integrator is sampled at, s, starting at 0
+    keep: slice  # the samples returned (all but a leading t = 0 the caller did not ask for)
+    rtol: float | None
+    atol: float | None
+    step: float | None
+    torque: object  # a torque model in the principal frame, or None
 
 
 def simulate(
     body,
     omega0,
     *,
-    t_end: float,
-    samples: int = 500,
+    t_end: float | None = None,
+    samples: int | None = None,
+    dt: float | None = None,
+    times=None,
     method: str | None = None,
     frame: str = "principal",
     torque=None,
@@ -53,11 +78,18 @@ def simulate(
     body : Body or MassProperties
         The body; its principal frame (``I1 <= I2 <= I3``) is the body frame of the motion.
     omega0 : array_like, shape (3,)
-        Initial angular velocity, rad/s, in ``frame``.
-    t_end : float
-        Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``.
-    samples : int
-        Number of samples (>= 2), default 500 as in the seed study.
+        Initial angular velocity at t = 0, rad/s, in ``frame``.
+    t_end : float, optional
+        Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``,
+        or every ``dt`` seconds from 0 up to ``t_end``.
+    samples : int, optional
+        Number of samples (>= 2) with ``t_end``; default 500 as in the seed study.
+    dt : float, optional
+        Sample spacing, s, with ``t_end`` (instead of ``samples``): samples at ``0, dt, 2 dt,
+        ...`` up to ``t_end`` (the last one is ``t_end`` when ``t_end / dt`` is whole).
+    times : array_like, shape (n,), optional
+        The sample times themselves, s: finite, strictly increasing, ``times[0] >= 0``
+        (instead of ``t_end``). The motion starts at t = 0 in every case.
     method : str, optional
         A name from :data:`tumble.dynamics.METHODS`: ``"exact"``, ``"dop853"``, ``"rk45"``,
         ``"seed"``, ``"geometric"`` (``2``, ``6``). Default ``"exact"`` without torque,
@@ -68,14 +100,14 @@ def simulate(
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.torques`).
     rtol, atol : float, optional
-        Tolerances; the method's defaults if not given. For ``"dop853"`` ``atol`` is relative
-        to the size of omega.
+        Tolerances; the method's defaults if not given. ``rtol`` from 100 eps to 0.1. For
+        ``"dop853"`` ``atol`` is relative to the size of omega.
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
     step : float, optional
         Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
-        of rotation per step); ignored by the others.
+        of rotation per step, counting the spin a torque builds up); ignored by the others.
 
     Returns
     -------
@@ -84,41 +116,89 @@ def simulate(
     Raises
     ------
     ValueError
-        For bad input, naming the argument and what is allowed.
+        For bad input, naming the argument and what is allowed, and for a run that would turn
+        the body more than a stepping method can follow (:data:`MAX_ROTATION`).
+    RuntimeError
+        When an integration fails or exceeds its work budget.
     """
-    props, spec, w0, t_end, rtol, atol, step, model = check_inputs(
-        body, omega0, t_end=t_end, samples=samples, method=method, frame=frame, rtol=rtol, atol=atol,
-        step=step, torque=torque,
+    run = check_inputs(
+        body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
+        rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0,
     )
-    name = body.name if isinstance(body, Body) else "body"
-
-    A = props.principal_axes  # principal -> design
-    if frame == "design":
-        w0 = A.T @ w0
-        if model is not None and model.frame == "body":
-            model = _design_torque(model, A)
-    design_to_world = Rotation.identity() if attitude0 is None else Rotation.from_quat(check_rotation("attitude0", attitude0))
-    q0 = (design_to_world * Rotation.from_matrix(A)).as_quat()
-
-    moments = props.principal_moments
+    spec, model, atol = run.method, run.torque, run.atol
+    moments = run.props.principal_moments
     if spec.atol_scaled and atol is not None:
-        scale = max(float(np.linalg.norm(w0)), _torque_scale(model, w0, q0, moments, t_end), 1e-300)
+        scale = max(float(np.linalg.norm(run.omega0)), _spin_gain(model, run), 1e-300)
         atol = np.array([atol * scale] * 3 + [atol] * 4)
-    t = np.linspace(0.0, t_end, samples)
-    omega, quat = spec.integrate(moments, w0, q0, t, model, rtol, atol, step)
+    omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
     if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(quat))):
         raise RuntimeError(f"the {spec.name} integration produced non-finite values")
     return Trajectory(
-        t=t, omega=omega, attitude=Rotation.from_quat(quat), moments=moments, principal_axes=A,
-        method=spec.name, torque_free=model is None, body_name=name,
+        t=run.t[run.keep], omega=omega[run.keep], attitude=Rotation.from_quat(quat[run.keep]), moments=moments,
+        principal_axes=run.props.principal_axes, method=spec.name, torque_free=model is None,
+        body_name=body.name if isinstance(body, Body) else "body",
     )
 
 
-def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol=None, step=None, torque=None):
+def sample_times(t_end=None, samples=None, dt=None, times=None) -> tuple[np.ndarray, slice]:
+    """The times to sample, from exactly one of ``t_end`` (with ``samples`` or ``dt``) or ``times``.
+
+    Returns the grid the integrator follows (always starting at t = 0) and the slice of it
+    that the caller asked for. Raises ``ValueError`` naming the argument.
+    """
+    if times is not None:
+        if t_end is not None or samples is not None or dt is not None:
+            raise ValueError("times = [...] replaces t_end, samples and dt: give times alone")
+        if isinstance(times, (str, bytes, dict, set)) or np.ndim(times) != 1:
+            raise ValueError(f"times = {times!r} must be a list of sample times (s)")
+        try:
+            t = np.array(times, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"times = {times!r} must be a list of numbers (s)") from None
+        if not 1 <= len(t) <= MAX_SAMPLES:
+            raise ValueError(f"times has {len(t)} entries; allowed: 1 to {MAX_SAMPLES}")
+        if not np.all(np.isfinite(t)):
+            raise ValueError(f"times[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not a finite number (s)")
+        if t[0] < 0:
+            raise ValueError(f"times[0] = {float(t[0])!r} must be >= 0 s: the motion starts at t = 0")
+        if np.any(np.diff(t) <= 0):
+            k = int(np.flatnonzero(np.diff(t) <= 0)[0])
+            raise ValueError(f"times must increase strictly; times[{k + 1}] = {float(t[k + 1])!r} follows {float(t[k])!r}")
+        if not 0 < t[-1] <= MAX_T_END:
+            raise ValueError(f"times[-1] = {float(t[-1])!r} must be after 0 and at most {MAX_T_END:g} s")
+        if t[0] > 0:  # the integrator starts from the initial state at t = 0
+            return np.concatenate([[0.0], t]), slice(1, None)
+        return t, slice(None)
+    if t_end is None:
+        raise ValueError("t_end (s) or times = [...] is needed: how long to run")
+    t_end = check_positive("t_end", t_end, "s")
+    if t_end > MAX_T_END:
+        raise ValueError(f"t_end = {t_end!r} must be at most {MAX_T_END:g} s")
+    if dt is not None:
+        if samples is not None:
+            raise ValueError("give samples or dt, not both")
+        dt = check_positive("dt", dt, "s")
+        n = math.floor(t_end / dt * (1 + 1e-12)) + 1 if t_end / dt < MAX_SAMPLES else MAX_SAMPLES + 1
+        if not 2 <= n <= MAX_SAMPLES:
+            raise ValueError(f"dt = {dt!r} s gives {n} samples over {t_end:g} s; allowed: 2 to {MAX_SAMPLES}")
+        t = dt * np.arange(n)
+        t[-1] = min(t[-1], t_end)  # a whole t_end / dt ends exactly at t_end
+        return t, slice(None)
+    samples = DEFAULT_SAMPLES if samples is None else samples
+    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
+        raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
+    return np.linspace(0.0, t_end, int(samples)), slice(None)
+
+
+def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None, method=None,
+                 frame="principal", rtol=None, atol=None, step=None, torque=None, attitude0=None) -> RunInputs:
     """Validate :func:`simulate`'s arguments (scenario files use it too, before anything runs).
 
-    Returns ``(props, method, omega0, t_end, rtol, atol, step, torque model)`` with the
-    defaults filled in: the method is ``"exact"`` without a torque, ``"dop853"`` with one.
+    Fills in the defaults (the method is ``"exact"`` without a torque, ``"dop853"`` with one),
+    converts ``omega0`` and a body-frame torque to the principal frame, and bounds the work:
+    a run that would turn the body more than :data:`MAX_ROTATION` rad under a stepping method,
+    counting the spin the torque builds up (``|omega| <= |omega0| + |tau| t / I1``), is refused
+    before it starts.
 
     Raises ``ValueError`` whose message starts with the argument's name.
     """
@@ -132,38 +212,75 @@ def check_inputs(body, omega0, *, t_end, samples, method, frame, rtol=None, atol
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
-    if frame not in FRAMES:
+    if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
-    t_end = check_positive("t_end", t_end, "s")
-    if t_end > MAX_T_END:
-        raise ValueError(f"t_end = {t_end!r} must be at most {MAX_T_END:g} s")
-    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
-        raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
-    rtol = spec.rtol if rtol is None else check_positive("rtol", rtol, "relative")
+    t, keep = sample_times(t_end, samples, dt, times)
+    t_end = float(t[-1])
+    if rtol is not None:
+        rtol = check_positive("rtol", rtol, "relative")
+        if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
+            raise ValueError(f"rtol = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
+    rtol = spec.rtol if rtol is None else rtol
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
-    with np.errstate(over="ignore", invalid="ignore"):
-        energy = 0.5 * float(np.sum(moments * w0 * w0))
-        momentum = float(np.linalg.norm(moments * w0))
-        spin = float(np.linalg.norm(w0))
-    if not (np.isfinite(energy) and np.isfinite(momentum) and np.isfinite(spin)):
-        raise ValueError(f"omega0 = {w0.tolist()} rad/s is too large: the kinetic energy of this body overflows")
-    if step is not None and spec.fixed_step and t_end / step > MAX_STEPS:
-        raise ValueError(f"step = {step!r} s makes {t_end / step:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
-    turns = spin * t_end
-    if spec.name != "exact" and turns > MAX_ROTATION:
-        raise ValueError(
-            f"t_end = {t_end!r} s at |omega0| = {spin:.6g} rad/s is {turns:.3g} rad of rotation, "
-            f"more than method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); use method 'exact' or a shorter run"
-        )
     if np.any(moments <= 0):
         raise ValueError(
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
         )
-    return props, spec, w0, t_end, rtol, atol, step, model
+    with np.errstate(over="ignore", invalid="ignore"):
+        energy = 0.5 * float(np.sum(moments * w0 * w0))
+        momentum = float(np.linalg.norm(moments * w0))
+    if not (np.isfinite(energy) and np.isfinite(momentum)):
+        raise ValueError(f"omega0 = {w0.tolist()} rad/s is too large: the kinetic energy of this body overflows")
+    A = props.principal_axes  # principal -> design
+    if frame == "design":
+        w0 = A.T @ w0
+        if model is not None and model.frame == "body":
+            model = _design_torque(model, A)
+    design_to_world = Rotation.identity() if attitude0 is None else Rotation.from_quat(check_rotation("attitude0", attitude0))
+    q0 = (design_to_world * Rotation.from_matrix(A)).as_quat()
+    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model)
+    _check_work(run)
+    return run
+
+
+def _check_work(run: RunInputs) -> None:
+    """Refuse a run whose rotation or step count no stepping method can follow in bounded time."""
+    spec, t_end = run.method, float(run.t[-1])
+    if spec.name == "exact":
+        return
+    spin = float(np.linalg.norm(run.omega0))
+    with np.errstate(over="ignore", invalid="ignore"):
+        gain = _spin_gain(run.torque, run)  # spin the torque can add over the run, rad/s
+        turns = spin * t_end + 0.5 * gain * t_end
+    if not turns <= MAX_ROTATION:
+        cause = f"|omega0| = {spin:.6g} rad/s" if gain == 0 else (
+            f"|omega0| = {spin:.6g} rad/s and a torque that can spin it up by {gain:.3g} rad/s")
+        raise ValueError(
+            f"t_end = {t_end:g} s with {cause} is up to {turns:.3g} rad of rotation, more than "
+            f"method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); "
+            f"{'shorten the run or weaken the torque' if gain else 'use method exact or a shorter run'}"
+        )
+    if spec.fixed_step:
+        from .geometric import default_step
+
+        h = run.step or default_step(spin, gain)
+        if t_end / h > MAX_STEPS:
+            raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
+
+
+def _spin_gain(model, run: RunInputs) -> float:
+    """Bound on the spin (rad/s) a torque adds over the run, ``|tau| t_end / I1``, from the
+    torque at t = 0 (exact for a constant torque: ``|L(t) - L(0)| <= |tau| t``, ``|omega| <=
+    |L| / I1``). 0 without a torque."""
+    if model is None:
+        return 0.0
+    tau = body_torque(model, 0.0, run.omega0, Rotation.from_quat(run.quat0))  # checks the model's answer
+    with np.errstate(over="ignore", invalid="ignore"):
+        return float(np.linalg.norm(tau) / run.props.principal_moments.min() * run.t[-1])
 
 
 def _design_torque(model, A):
@@ -171,12 +288,3 @@ def _design_torque(model, A):
     from .torques import FunctionTorque
 
     return FunctionTorque(lambda t, w, att: A.T @ np.asarray(model(t, A @ w, att), float), "body")
-
-
-def _torque_scale(model, w0, q0, moments, t_end) -> float:
-    """Size of omega a torque can build up over the run, rad/s (for absolute tolerances)."""
-    if model is None:
-        return 0.0
-    tau = body_torque(model, 0.0, w0, Rotation.from_quat(q0))  # checks the model's answer
-    return float(np.linalg.norm(tau) / moments.min() * t_end)
-

@@ -1,0 +1,107 @@
+"""What simulate() accepts and how much work it agrees to do: sample times, tolerances, the
+rotation a torque can build up, the default step of the splitting methods under a torque."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble import ConstantTorque, simulate
+from tumble.dynamics import integrators
+from tumble.dynamics.torques import FunctionTorque
+
+BODY = tumble.t_handle()
+
+
+# -- sample times -----------------------------------------------------------------------
+
+def test_times_give_the_motion_at_exactly_those_times():
+    """Uneven times, starting after 0: the same motion as a fine uniform run, at those times."""
+    times = np.array([0.25, 0.3, 1.7, 4.0, 9.99])
+    traj = simulate(BODY, [0.1, 10.0, 0.1], times=times)
+    np.testing.assert_array_equal(traj.t, times)
+    fine = simulate(BODY, [0.1, 10.0, 0.1], t_end=9.99, samples=999 + 1)
+    k = [25, 30, 170, 400, 999]
+    np.testing.assert_allclose(traj.t, fine.t[k], rtol=1e-15)
+    np.testing.assert_allclose(traj.omega, fine.omega[k], atol=1e-12)
+    assert max((traj.attitude * fine.attitude[k].inv()).magnitude()) < 1e-12
+
+
+@pytest.mark.parametrize("method", ["dop853", "geometric", "seed"])
+def test_times_with_every_kind_of_method(method):
+    times = [0.0, 0.1, 0.15, 1.0]
+    traj = simulate(BODY, [0.1, 10.0, 0.1], times=times, method=method)
+    ref = simulate(BODY, [0.1, 10.0, 0.1], times=times)
+    np.testing.assert_array_equal(traj.t, times)
+    np.testing.assert_allclose(traj.omega, ref.omega, atol=5e-2 if method == "seed" else 1e-4)
+
+
+def test_dt_samples_every_dt_up_to_t_end():
+    traj = simulate(BODY, [1.0, 2.0, 3.0], t_end=2.0, dt=0.1)
+    assert len(traj) == 21 and traj.t[-1] == 2.0
+    np.testing.assert_allclose(np.diff(traj.t), 0.1, rtol=1e-12)
+    short = simulate(BODY, [1.0, 2.0, 3.0], t_end=1.05, dt=0.1)  # t_end not a multiple of dt
+    assert len(short) == 11 and short.t[-1] == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "pattern"),
+    [
+        (dict(times=[0.0, 1.0], t_end=1.0), "times = \\[...\\] replaces t_end"),
+        (dict(times=[1.0, 0.5]), r"times must increase strictly; times\[1\] = 0.5 follows 1.0"),
+        (dict(times=[-1.0, 0.5]), r"times\[0\] = -1.0 must be >= 0"),
+        (dict(times=[0.0, np.nan]), r"times\[1\] is not a finite number"),
+        (dict(times=[0.0]), r"times\[-1\] = 0.0 must be after 0"),
+        (dict(times=[[0.0, 1.0]]), r"must be a list of sample times"),
+        (dict(times={0.0, 1.0}), r"must be a list of sample times"),
+        (dict(times="0 1"), r"must be a list of sample times"),
+        (dict(), r"t_end \(s\) or times = \[...\] is needed"),
+        (dict(t_end=1.0, dt=0.1, samples=10), "give samples or dt, not both"),
+        (dict(t_end=1.0, dt=0.0), r"dt = 0.0 must be a positive"),
+        (dict(t_end=1.0, dt=2.0), r"dt = 2.0 s gives 1 samples"),
+        (dict(t_end=1e6, dt=1e-9), r"dt = 1e-09 s gives 1000001 samples"),
+        (dict(t_end=1.0, rtol=10), r"rtol = 10.0 must be from 2.22e-14 to 0.1"),
+        (dict(t_end=1.0, rtol=1e-20, method="dop853"), r"rtol = 1e-20 must be from"),
+    ],
+)
+def test_bad_sampling_and_tolerances_are_refused(kwargs, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        simulate(BODY, [1.0, 0.0, 0.0], **kwargs)
+
+
+# -- work bounds -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("magnitude", [1e5, 1e200])
+@pytest.mark.parametrize("method", ["dop853", "rk45", "geometric"])
+def test_a_torque_that_spins_the_body_up_without_bound_is_refused_at_once(magnitude, method):
+    """1e5 N m on the T-handle for 20 s: up to 1.6e7 rad/s, 1.6e8 rad of rotation (it hung)."""
+    with pytest.raises(ValueError, match=r"rad of rotation, more than method .* follows"):
+        simulate(BODY, [0.0, 1.0, 0.0], t_end=20.0, torque=ConstantTorque((magnitude, 0.0, 0.0)), method=method)
+
+
+def test_a_torque_that_grows_later_hits_the_work_budget(monkeypatch):
+    """A torque that is zero at t = 0 escapes the bound computed before the run: the adaptive
+    integrator then gives up with a clear message after its budget of evaluations."""
+    monkeypatch.setattr(integrators, "MAX_EVALUATIONS", 2000)
+    growing = FunctionTorque(lambda t, w, att: np.array([1e3 * t**6, 0.0, 0.0]), "body")
+    with pytest.raises(RuntimeError, match=r"DOP853 gave up after 2,000 evaluations at t = .* of 20 s"):
+        simulate(BODY, [0.0, 1.0, 0.0], t_end=20.0, torque=growing)
+
+
+def test_the_geometric_default_step_follows_the_torque():
+    """100 N m in the world frame on the T-handle for 1 s (omega grows ~100-fold): with a step
+    chosen from |omega0| alone the splitting was off by 170 %; now its default step counts the
+    spin the torque adds, and the error is that of a torque-free run."""
+    torque = ConstantTorque((100.0, 0.0, 0.0), "world")
+    w0 = [0.1, 1.0, 0.1]
+    ref = simulate(BODY, w0, t_end=1.0, samples=11, torque=torque, method="dop853", rtol=1e-13)
+    scale = np.linalg.norm(ref.omega, axis=1)[:, None]
+
+    def error(method, **kw):
+        traj = simulate(BODY, w0, t_end=1.0, samples=11, torque=torque, method=method, **kw)
+        return np.max(np.abs(traj.omega - ref.omega) / scale)
+
+    assert error("geometric", step=0.05 / np.linalg.norm(w0)) > 1.0  # the old default
+    assert error("geometric") < 1e-3
+    assert error("geometric6") < 1e-7
