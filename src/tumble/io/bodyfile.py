@@ -27,21 +27,40 @@ import tomllib
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body
+from ..mass._checks import read_input_file
 
-__all__ = ["body_from_table", "load_body", "part_from_table", "read_toml"]
+__all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "part_from_table", "read_toml"]
+
+
+#: The largest body or scenario file (TOML) that :func:`read_toml` reads, in bytes (1 MiB).
+#: The largest real file is a few kB; a bigger one is almost surely a mistake (a mesh or a
+#: device such as /dev/zero given in its place) and would only use memory.
+MAX_TOML_BYTES = 1 << 20
 
 
 def read_toml(path) -> dict:
-    """Read a TOML file, turning every way it can fail into one clear ``ValueError``."""
+    """Read a body or scenario file (TOML), turning every way it can fail into one ``ValueError``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file. It must be a regular file (not a directory, FIFO, socket or device) of at most
+        :data:`MAX_TOML_BYTES`; both are checked before it is opened, and it is read with a
+        bounded read.
+
+    Returns
+    -------
+    dict
+        The parsed TOML, never empty.
+
+    Raises
+    ------
+    ValueError
+        One line starting with the path: missing, not a regular file, too large, not UTF-8, not
+        valid TOML, or empty.
+    """
     path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise ValueError(f"{path}: is a directory, not a file") from None
-    except OSError as exc:
-        raise ValueError(f"{path}: cannot be read: {exc.strerror}") from None
+    raw = read_input_file(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:

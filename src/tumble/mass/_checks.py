@@ -122,3 +122,76 @@ def check_motion(rotation, translation):
 
     R = Rotation.from_quat(check_rotation("rotation", rotation))
     return R, np.array(check_vector("translation", translation, "m"))
+
+
+def read_input_file(path, *, limit: int, what: str, label: str | None = None) -> bytes:
+    """The bytes of an input file, refusing anything but a regular file of at most ``limit`` bytes.
+
+    The file is checked with :func:`os.stat` before it is opened, so a FIFO is never opened
+    (opening one for reading would wait forever for a writer) and ``/dev/zero`` is never read.
+    It is then opened without blocking, checked again on the open descriptor (the path may have
+    been replaced meanwhile), and read up to ``limit + 1`` bytes, so a file that grows while it is
+    read cannot exhaust memory.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    limit : int
+        The largest size allowed, bytes.
+    what : str
+        What the file is, for the messages, e.g. ``"a body or scenario file (TOML)"``.
+    label : str, optional
+        How the messages name the file; default the path itself.
+
+    Returns
+    -------
+    bytes
+        The whole content of the file.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the rule: missing, not a regular file (directory, FIFO,
+        socket, device), unreadable, or larger than ``limit``.
+    """
+    import os
+    import stat
+
+    label = os.fspath(path) if label is None else label
+
+    def _refuse(mode: int) -> None:
+        if stat.S_ISREG(mode):
+            return
+        kinds = [(stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                 (stat.S_ISSOCK, "a socket"), (stat.S_ISCHR, "a character device"),
+                 (stat.S_ISBLK, "a block device")]
+        kind = next((name for test, name in kinds if test(mode)), "not a regular file")
+        raise ValueError(f"{label}: is {kind}; {what} must be a regular file")
+
+    def _size(size: int, how: str) -> None:
+        if size > limit:
+            raise ValueError(
+                f"{label}: {how}; {what} may be at most {limit:,} bytes ({limit / 2**20:g} MiB)"
+            )
+
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        raise ValueError(f"{label}: no such file") from None
+    except OSError as exc:
+        raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
+    _refuse(info.st_mode)
+    _size(info.st_size, f"is {info.st_size:,} bytes")
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    except OSError as exc:
+        raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
+    with os.fdopen(fd, "rb") as file:
+        _refuse(os.fstat(fd).st_mode)  # the path may have been swapped since the stat
+        try:
+            data = file.read(limit + 1)
+        except OSError as exc:
+            raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
+    _size(len(data), f"grew past {limit:,} bytes while being read")
+    return data

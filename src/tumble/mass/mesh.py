@@ -8,16 +8,17 @@ triangles (Eberly, *Polyhedral Mass Properties (Revisited)*, 2003; Tonon, J. Mat
 
 from __future__ import annotations
 
+import io
 import os
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
 
-from ._checks import check_motion, check_positive, check_vector
+from ._checks import check_motion, check_positive, check_vector, read_input_file
 from .parts import PART_KINDS, _Oriented
 
-__all__ = ["Mesh"]
+__all__ = ["MAX_MESH_BYTES", "Mesh"]
 
 
 def _trimesh():
@@ -30,21 +31,29 @@ def _trimesh():
     return trimesh
 
 
+#: The largest mesh file a :class:`Mesh` part reads, in bytes (200 MiB): about four million
+#: triangles in binary STL, far more than mass properties need. The file is checked before it is
+#: opened and read with a bounded read, so a device, a FIFO or a huge file is refused at once.
+MAX_MESH_BYTES = 200 << 20
+
+
 def _load(source) -> Any:
+    """A trimesh.Trimesh from a mesh object (copied) or a file (size and type checked first)."""
     trimesh = _trimesh()
     if isinstance(source, trimesh.Trimesh):
         return source.copy()
     path = os.fspath(source)
-    if not os.path.isfile(path):
-        raise ValueError(f"mesh = {path!r}: no such file")
+    label = f"mesh = {path!r}"
+    data = read_input_file(path, limit=MAX_MESH_BYTES, what="a mesh file", label=label)
+    file_type = os.path.splitext(path)[1].lstrip(".").lower()
     try:
         # process=True merges the duplicated vertices of STL files, without which no STL is
         # watertight; the watertightness check below catches what merging cannot mend.
-        mesh = trimesh.load(path, force="mesh", process=True)
+        mesh = trimesh.load(io.BytesIO(data), file_type=file_type, force="mesh", process=True)
     except Exception as exc:  # trimesh raises many types for malformed files
-        raise ValueError(f"mesh = {path!r} could not be read: {exc}") from None
+        raise ValueError(f"{label} could not be read: {exc}") from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ValueError(f"mesh = {path!r} holds no triangles")
+        raise ValueError(f"{label} holds no triangles")
     return mesh
 
 
@@ -55,7 +64,8 @@ class Mesh(_Oriented):
     Parameters
     ----------
     mesh : str, os.PathLike or trimesh.Trimesh
-        The surface: a file trimesh can read, or a mesh object.
+        The surface: a file trimesh can read (a regular file of at most
+        :data:`MAX_MESH_BYTES`), or a mesh object.
     scale : float
         Factor from file units to metres (e.g. 0.001 for a file in mm). Default 1.
     origin : array_like, shape (3,)
