@@ -1,4 +1,4 @@
-"""Input files that are not what they seem: devices, FIFOs, directories, huge files.
+"""Input files that are not what they seem: devices, FIFOs, directories, huge or deeply nested files.
 
 Each is refused at once with one line naming the file and the rule, through the Python API
 (``ValueError``) and through the CLI (exit status 2, one line on stderr). The checks run before
@@ -158,3 +158,37 @@ def test_mesh_special_files_refused_by_the_cli(tmp_path, kind):
     body = tmp_path / "body.toml"
     body.write_text(f"[body]\n[[body.parts]]\nkind = 'mesh'\nmesh = '{mesh}'\nmass = 1.0\n")
     _assert_one_line_error(_child(cli=["inertia", str(body)]), body, RULES[kind])
+
+
+# --- deeply nested TOML ----------------------------------------------------------------------------
+
+NESTED = {
+    "arrays": "a = " + "[" * 10000 + "]" * 10000 + "\n",
+    "inline_tables": "a = " + "{b = " * 10000 + "1" + "}" * 10000 + "\n",
+    "arrays_in_a_part": "[body]\n[[body.parts]]\nkind = 'box'\nmass = 1.0\nsize = " + "[" * 5000 + "]" * 5000 + "\n",
+}
+
+
+@pytest.mark.parametrize("form", NESTED)
+def test_deeply_nested_toml_refused_by_the_api(tmp_path, form):
+    path = tmp_path / "deep.toml"
+    path.write_text(NESTED[form])
+    for loader in (read_toml, tumble.load_body, tumble.load_scenario):
+        with pytest.raises(ValueError, match="nested too deeply") as info:
+            loader(path)
+        assert str(info.value).startswith(f"{path}: ") and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("form", NESTED)
+@pytest.mark.parametrize("command", ["inertia", "simulate"])
+def test_deeply_nested_toml_refused_by_the_cli(tmp_path, capsys, form, command):
+    from tumble.cli import main
+
+    path = tmp_path / "deep.toml"
+    path.write_text(NESTED[form])
+    out = tmp_path / "out"
+    assert main([command, str(path)] + (["--out", str(out)] if command == "simulate" else [])) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err == f"tumble: error: {path}: nested too deeply (arrays or inline tables inside each other); a body or scenario file needs at most a few levels\n"
+    assert not out.exists()

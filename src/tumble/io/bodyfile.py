@@ -57,7 +57,7 @@ def read_toml(path) -> dict:
     ------
     ValueError
         One line starting with the path: missing, not a regular file, too large, not UTF-8, not
-        valid TOML, or empty.
+        valid TOML, nested too deeply, or empty.
     """
     path = Path(path)
     raw = read_input_file(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
@@ -69,6 +69,11 @@ def read_toml(path) -> dict:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ValueError(
+            f"{path}: nested too deeply (arrays or inline tables inside each other); "
+            f"a body or scenario file needs at most a few levels"
+        ) from None
     if not data:
         raise ValueError(f"{path}: the file is empty")
     return data
