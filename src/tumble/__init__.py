@@ -11,9 +11,7 @@ Examples
 [0.125, 0.3125, 0.4375]
 """
 
-from __future__ import annotations
-
-import importlib
+import importlib as _importlib
 
 from ._version import __version__
 
@@ -55,10 +53,12 @@ def __getattr__(name: str):
         module = _EXPORTS[name]
     except KeyError:
         raise AttributeError(f"module 'tumble' has no attribute {name!r}") from None
-    value = getattr(importlib.import_module(module), name)
+    value = getattr(_importlib.import_module(module), name)
     globals()[name] = value
     return value
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+    """The public names (loaded or not), the subpackages imported so far, and the dunders."""
+    names = {n for n in globals() if not n.startswith("_") or (n.startswith("__") and n.endswith("__"))}
+    return sorted(names | set(_EXPORTS))
