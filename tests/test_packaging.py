@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+import os
 import re
 import shutil
 import subprocess
@@ -12,8 +14,15 @@ from pathlib import Path
 import pytest
 
 import tumble
+from tumble.io.examples import copy_examples, list_examples
 
 ROOT = Path(__file__).resolve().parents[1]
+PACKAGED = ROOT / "src" / "tumble" / "examples"
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    """Every file below ``folder``: relative path -> content."""
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 @pytest.fixture(scope="module")
@@ -83,3 +92,85 @@ def test_dir_and_import_stay_lazy():
             "print(sorted(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules), 'Body' in names)")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert proc.stdout.split() == ["[]", "True"], proc.stderr
+
+
+# --- the examples ship in the package ----------------------------------------------------------
+
+def test_wheel_ships_every_example(wheel):
+    shipped = {n[len("tumble/examples/"):]: wheel.read(n) for n in wheel.namelist() if n.startswith("tumble/examples/")}
+    assert shipped == _tree(PACKAGED)
+    assert {"seed_flip.toml", "bodies/t_handle.toml", "bodies/meshes/torus.stl"} <= set(shipped)
+    assert not [n for n in wheel.namelist() if n.startswith("tumble/examples/") and n.endswith(".py")]
+
+
+def test_repository_examples_is_a_relative_link_to_the_packaged_ones():
+    link = ROOT / "examples"
+    assert link.is_symlink() and os.readlink(link) == "src/tumble/examples"
+    assert link.resolve() == PACKAGED.resolve()
+    if (ROOT / ".git").exists():
+        proc = subprocess.run(["git", "-C", str(ROOT), "ls-files", "-s", "examples"], capture_output=True, text=True)
+        assert proc.stdout.startswith("120000 "), proc.stdout  # git keeps the link, not a copy
+
+
+def test_list_examples_names_every_scenario_and_body_with_its_first_comment_line():
+    examples = list_examples()
+    by_path = {e.path: e for e in examples}
+    assert set(by_path) == {p for p in _tree(PACKAGED) if p.endswith(".toml")}
+    for e in examples:
+        assert e.kind == ("body" if e.path.startswith("bodies/") else "scenario")
+        assert e.name == Path(e.path).stem
+        first = (PACKAGED / e.path).read_text().splitlines()[0]
+        assert first == f"# {e.description}"
+    assert [e.kind for e in examples] == sorted((e.kind for e in examples), key=lambda k: k != "scenario")
+    assert by_path["seed_flip.toml"].description.startswith("The seed's first run")
+
+
+def test_list_examples_falls_back_to_the_name(monkeypatch, tmp_path):
+    from tumble.io import examples as module
+
+    (tmp_path / "bodies").mkdir()
+    (tmp_path / "no_comment.toml").write_text("body = 't-handle'\n# a comment further down\n")
+    (tmp_path / "bodies" / "plain_box.toml").write_text("\n#\n[body]\n")
+    monkeypatch.setattr(module, "_root", lambda: tmp_path)
+    assert [(e.name, e.kind, e.description) for e in list_examples()] == [
+        ("no_comment", "scenario", "no comment"), ("plain_box", "body", "plain box")]
+
+
+def test_copied_examples_run_from_anywhere(tmp_path, monkeypatch):
+    dest = tmp_path / "new" / "examples"
+    written = copy_examples(dest)
+    assert written == sorted(dest / p for p in _tree(PACKAGED))
+    assert _tree(dest) == _tree(PACKAGED)
+    assert not [p for p in dest.parent.iterdir() if p != dest]  # no temporary folder left
+    monkeypatch.chdir(tmp_path)  # relative paths must resolve against the files, not the cwd
+    scenarios = [e for e in list_examples() if e.kind == "scenario"]
+    assert len(scenarios) >= 5
+    for e in scenarios:
+        scenario = tumble.load_scenario(dest / e.path)
+        traj = dataclasses.replace(scenario, t_end=0.5, samples=20).run()
+        assert traj.omega.shape == (20, 3), e.path
+    for e in list_examples():
+        if e.kind == "body":
+            assert tumble.load_body(dest / e.path).mass > 0, e.path
+
+
+def test_copy_fills_an_existing_folder_without_overwriting(tmp_path):
+    dest = tmp_path / "mine"
+    dest.mkdir()
+    assert len(copy_examples(dest)) == len(_tree(PACKAGED))
+    assert _tree(dest) == _tree(PACKAGED)
+
+    other = tmp_path / "other"
+    (other / "bodies").mkdir(parents=True)
+    (other / "bodies" / "t_handle.toml").write_text("mine")
+    (other / "notes.txt").write_text("keep")
+    with pytest.raises(ValueError, match=r"other/bodies/t_handle\.toml: already exists; copy_examples never overwrites"):
+        copy_examples(other)
+    assert _tree(other) == {"bodies/t_handle.toml": b"mine", "notes.txt": b"keep"}  # nothing written
+
+
+def test_copy_refuses_a_file_as_destination(tmp_path):
+    target = tmp_path / "a_file"
+    target.write_text("x")
+    with pytest.raises(ValueError, match=r"a_file: exists and is not a folder"):
+        copy_examples(target)

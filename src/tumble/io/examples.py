@@ -1,0 +1,159 @@
+"""The examples that ship inside the package: scenario files, body files and a mesh.
+
+They live in ``tumble/examples/`` (package data, so a ``pip install`` has them too; the
+repository's ``examples/`` is a link to the same folder). Scenario files sit at the top and name
+their bodies by relative paths (``body = "bodies/t_handle.toml"``), and body files name their
+meshes the same way (``mesh = "meshes/torus.stl"``), so a copy of the whole tree runs as it is.
+
+Examples
+--------
+>>> from tumble.io.examples import list_examples
+>>> [e.path for e in list_examples() if e.name == "seed_flip"]
+['seed_flip.toml']
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from .atomic import _umask
+
+__all__ = ["Example", "copy_examples", "list_examples"]
+
+#: The folder of the body files, relative to the examples' root; every other ``.toml`` at the
+#: root is a scenario.
+BODIES = "bodies"
+
+
+@dataclass(frozen=True)
+class Example:
+    """One example file.
+
+    Attributes
+    ----------
+    name : str
+        The file's stem, e.g. ``"seed_flip"``.
+    path : str
+        Its path relative to the examples' root, with ``/``, e.g. ``"bodies/t_handle.toml"``.
+    kind : str
+        ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``) or ``"body"`` (for
+        ``tumble inertia``).
+    description : str
+        One line: the file's first comment line, or its name if it has none.
+    """
+
+    name: str
+    path: str
+    kind: str
+    description: str
+
+
+def _root():
+    """The examples' root folder as an importlib.resources Traversable."""
+    return resources.files("tumble").joinpath("examples")
+
+
+def _walk(folder, prefix: str = ""):
+    """Yield ``(relative path, Traversable)`` for every data file below ``folder``, sorted."""
+    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
+        if entry.name.startswith((".", "__pycache__")):
+            continue
+        rel = f"{prefix}{entry.name}"
+        if entry.is_dir():
+            yield from _walk(entry, f"{rel}/")
+        else:
+            yield rel, entry
+
+
+def _description(text: str, name: str) -> str:
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("#"):
+            described = line.lstrip("#").strip()
+            if described:
+                return described
+        elif line:
+            break  # the comment block, if any, is over
+    return name.replace("_", " ")
+
+
+def list_examples() -> list[Example]:
+    """The scenario and body files that ship with tumble, scenarios first.
+
+    Returns
+    -------
+    list of Example
+        Each with its name, relative path, kind (``"scenario"`` or ``"body"``) and one-line
+        description. Meshes and other files the examples refer to are not listed.
+    """
+    found = []
+    for rel, entry in _walk(_root()):
+        folder, _, filename = rel.rpartition("/")
+        if not filename.endswith(".toml") or folder not in ("", BODIES):
+            continue
+        name = filename[: -len(".toml")]
+        kind = "body" if folder == BODIES else "scenario"
+        found.append(Example(name, rel, kind, _description(entry.read_text(encoding="utf-8"), name)))
+    return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
+
+
+def copy_examples(dest) -> list[Path]:
+    """Copy the whole examples tree (scenarios, bodies, meshes) into ``dest``, ready to run.
+
+    A new ``dest`` is built in a temporary folder beside it and renamed into place, so it appears
+    whole or not at all. An existing folder ``dest`` is filled, but no file in it is ever
+    overwritten: every conflict is looked for before anything is written.
+
+    Parameters
+    ----------
+    dest : str or os.PathLike
+        The folder to create (its parents are created too), or an existing folder to fill.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, under ``dest``, sorted.
+
+    Raises
+    ------
+    ValueError
+        ``dest`` exists and is not a folder, or a file the examples would write already exists
+        there (the message names it); nothing is written then.
+    """
+    dest = Path(dest)
+    files = list(_walk(_root()))
+    if dest.exists() or dest.is_symlink():
+        if not dest.is_dir():
+            raise ValueError(f"{dest}: exists and is not a folder; give a new or existing folder")
+        for rel, _ in files:
+            target = dest / rel
+            if target.exists() or target.is_symlink():
+                raise ValueError(f"{target}: already exists; copy_examples never overwrites a file")
+        written = []
+        for rel, entry in files:
+            target = dest / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            with open(target, "xb") as out:  # "x": fail rather than overwrite, even in a race
+                out.write(entry.read_bytes())
+            written.append(target)
+        return sorted(written)
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
+    try:
+        for rel, entry in files:
+            target = tmp / rel
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_bytes(entry.read_bytes())
+        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
+        try:
+            os.rename(tmp, dest)  # atomic; fails if dest appeared meanwhile and is not empty
+        except OSError as exc:
+            raise ValueError(f"{dest}: could not be created ({exc.strerror}); nothing was copied") from None
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return sorted(dest / rel for rel, _ in files)
