@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import os
 import shutil
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -13,11 +14,47 @@ import pytest
 from tumble.cli import main
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+#: Browsers looked for on PATH, in this order, when TUMBLE_CHROMIUM is not set.
+BROWSERS = ("chromium", "chromium-browser", "google-chrome")
+INSTALL = ("install Debian's Chromium (apt-get install chromium), or set TUMBLE_CHROMIUM=/path/to/chromium "
+           f"(any Chromium or Chrome; also found on PATH as {', '.join(BROWSERS)})")
 # Flags as Debian's Chromium needs them headless, as root, with software WebGL and no network.
 FLAGS = ["--no-sandbox", "--disable-gpu", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
          "--disable-background-networking", "--disable-component-update", "--no-first-run", "--disable-sync",
          "--disable-quic"]
+
+
+class BrowserMissingWarning(UserWarning):
+    """The browser test of the interactive page could not run: no Chromium was found."""
+
+
+def _in_ci(environ) -> bool:
+    return environ.get("CI", "").strip().lower() in ("1", "true", "yes")
+
+
+def find_browser(environ=os.environ) -> str | None:
+    """The Chromium to drive: ``TUMBLE_CHROMIUM`` if set (it must be an executable), else the first
+    of :data:`BROWSERS` on ``PATH``, else None."""
+    chosen = environ.get("TUMBLE_CHROMIUM")
+    if chosen:
+        found = shutil.which(chosen, path=environ.get("PATH"))
+        if found is None:
+            pytest.fail(f"TUMBLE_CHROMIUM={chosen!r} is not an executable file; {INSTALL}")
+        return found
+    return next(filter(None, (shutil.which(name, path=environ.get("PATH")) for name in BROWSERS)), None)
+
+
+def browser_or_skip(environ=os.environ) -> str:
+    """The browser, or a loud skip (a warning in the test summary saying what to install); in CI
+    (``CI=true``) a missing browser fails the test instead."""
+    browser = find_browser(environ)
+    if browser is not None:
+        return browser
+    message = f"no Chromium for the browser test of the interactive page: {INSTALL}"
+    if _in_ci(environ):
+        pytest.fail(f"CI must run the browser test: {message}")
+    warnings.warn(BrowserMissingWarning(message), stacklevel=2)
+    pytest.skip(message)
 
 
 @pytest.fixture(scope="module")
@@ -55,15 +92,48 @@ def test_view_refuses_other_suffixes(tmp_path, capsys):
     assert "written as one .html file" in capsys.readouterr().err
 
 
-@pytest.mark.skipif(CHROMIUM is None and not os.environ.get("CI"), reason="Debian's chromium is not installed (CI installs it)")
+def _fake_browser(folder: Path, name: str) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / name
+    path.write_text("#!/bin/sh\n")
+    path.chmod(0o755)
+    return path
+
+
+def test_browser_found_by_env_var_then_on_path(tmp_path):
+    bin_dir = tmp_path / "bin"
+    chrome = _fake_browser(bin_dir, "google-chrome")
+    own = _fake_browser(tmp_path / "opt", "my-chromium")
+    assert find_browser({"PATH": str(bin_dir)}) == str(chrome)
+    assert find_browser({"PATH": str(bin_dir), "TUMBLE_CHROMIUM": str(own)}) == str(own)
+    assert find_browser({"PATH": str(tmp_path / "empty")}) is None
+    _fake_browser(bin_dir, "chromium-browser")
+    assert find_browser({"PATH": str(bin_dir)}) == str(bin_dir / "chromium-browser")  # before google-chrome
+
+
+def test_a_wrong_env_var_fails_instead_of_falling_back(tmp_path):
+    _fake_browser(tmp_path, "chromium")
+    with pytest.raises(pytest.fail.Exception, match="TUMBLE_CHROMIUM='/nowhere/chromium' is not an executable"):
+        find_browser({"PATH": str(tmp_path), "TUMBLE_CHROMIUM": "/nowhere/chromium"})
+
+
+def test_missing_browser_skips_loudly_but_fails_in_ci(tmp_path):
+    empty = {"PATH": str(tmp_path)}
+    with pytest.warns(BrowserMissingWarning, match=r"apt-get install chromium.*TUMBLE_CHROMIUM"):
+        with pytest.raises(pytest.skip.Exception, match=r"apt-get install chromium.*TUMBLE_CHROMIUM"):
+            browser_or_skip(empty)
+    with pytest.raises(pytest.fail.Exception, match="CI must run the browser test: .*apt-get install chromium"):
+        browser_or_skip({**empty, "CI": "true"})
+
+
 def test_page_plays_offline_in_chromium(page_file):
     from PIL import Image
     from playwright.sync_api import sync_playwright
 
-    assert CHROMIUM, "CI must install Debian's chromium (see .ci/run)"
+    chromium = browser_or_skip()
     errors, outside = [], []
     with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=FLAGS)
+        browser = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
         try:
             page = browser.new_page(viewport={"width": 1300, "height": 900})
             page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
