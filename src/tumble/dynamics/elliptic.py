@@ -117,6 +117,21 @@ def carlson_pi(n: float, s, c, d) -> np.ndarray:
     return s * elliprf(c2, d2, 1.0) + (n / 3.0) * s**3 * elliprj(c2, d2, 1.0, 1.0 - n * s * s)
 
 
+def carlson_pi_excess(n: float, s, c, d) -> np.ndarray:
+    """``Pi(n; phi | m) - F(phi | m) = (n / 3) sin^3 phi R_J(c^2, Delta^2, 1, 1 - n sin^2 phi)``.
+
+    The second term of DLMF 19.25.14 alone: ``O(n)``, so a caller that knows ``F`` exactly
+    (``F(am u) = u``) loses nothing to the cancellation ``Pi - F`` when ``n`` is small.
+    """
+    s, c, d = (np.asarray(x, float) for x in (s, c, d))
+    return (n / 3.0) * s**3 * elliprj(c * c, d * d, 1.0, 1.0 - n * s * s)
+
+
+def pi_excess_complete(n: float, m1: float) -> float:
+    """``Pi(n | m) - K(m) = (n / 3) R_J(0, m1, 1, 1 - n)`` (DLMF 19.25.14 at phi = pi/2)."""
+    return float((n / 3.0) * elliprj(0.0, m1, 1.0, 1.0 - n))
+
+
 def pi_complete(n: float, m1: float) -> float:
     """Complete integral of the third kind ``Pi(n | m)`` (DLMF 19.25.14 at phi = pi/2), ``n < 1``."""
     return float(elliprf(0.0, m1, 1.0) + (n / 3.0) * elliprj(0.0, m1, 1.0, 1.0 - n))

@@ -17,9 +17,14 @@ without cancellation, as Celledoni, Fasso, Safstrom & Zanna advise):
 
 The sign ``s`` is that of the component that never changes sign (the dn one); Euler's equations
 fix the other signs (``I2 a2 p = (I3 - I1) a1 a3``); on the separatrix, where cn = sech keeps
-its sign, the branches with ``w_c w_r < 0`` take ``w2 = -a2 sn(u)``, ``w_c = -s a_c cn(u)``. Symmetric bodies fall out
-with ``m = 0`` (circular functions); steady rotations about a principal axis (``w x I w = 0``)
-are handled as what they are.
+its sign, the branches with ``w_c w_r < 0`` take ``w2 = -a2 sn(u)``, ``w_c = -s a_c cn(u)``.
+
+The case is decided by exact comparisons of the moments and of the components of omega, never
+by evaluating ``w x I w`` (round-off): a sphere, omega along a principal axis, or a symmetric
+top spinning in its degenerate plane (``I1 == I2, w3 == 0`` or ``I2 == I3, w1 == 0``) rotate
+steadily; any other symmetric top (``I1 == I2`` or ``I2 == I3``) falls out of the formulas
+above with ``m = 0``: circular functions, the regular precession of Landau & Lifshitz sec. 33.
+Bodies built by :func:`tumble.mass.principal_frame` have degenerate moments exactly equal.
 
 Attitude (``R`` maps body to world). With the fixed unit vector ``l`` along L_world and Euler
 angles ``z-x-z`` about it (Landau & Lifshitz sec. 35), ``R(t) = G Rz(phi(t)) Rx(theta(t))
@@ -33,6 +38,11 @@ and ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (derived by substituting ``dn^2 =
 ``n <= 0`` always, so the integrand has no pole). Hence
 
     phi(t) = |L| t / I_r + |L| (I_r - I_o) / (I1 I3 p) [Pi(n; am u | m) - Pi(n; am u0 | m)],
+
+evaluated as a secular part plus a bounded one (see ``FreeRotation.__post_init__``): for
+``|n| <= 1`` through ``Pi = F + (Pi - F)`` with ``F(am u) = u`` exact, so that a tiny ``p``
+(a symmetric top spun almost perpendicular to its axis) costs no accuracy; for the symmetric
+top ``n = 0`` and ``phi = |L| t / I_perp`` exactly (Landau & Lifshitz sec. 33),
 
 with Legendre's incomplete integral of the third kind (the construction of Celledoni, Fasso,
 Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, sec. 3, whose printed signs are reported
@@ -49,7 +59,16 @@ from typing import NamedTuple
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .elliptic import carlson_f, carlson_pi, ellipk, jacobi, jacobi_reduced, pi_complete
+from .elliptic import (
+    carlson_f,
+    carlson_pi,
+    carlson_pi_excess,
+    ellipk,
+    jacobi,
+    jacobi_reduced,
+    pi_complete,
+    pi_excess_complete,
+)
 from .euler import energy_momentum_gaps
 
 __all__ = ["EllipticParameters", "FreeRotation", "elliptic_parameters"]
@@ -83,6 +102,20 @@ def elliptic_parameters(omega, moments) -> EllipticParameters:
         a2 = np.where(upper, -g3 / (I2 * (I3 - I2)), g1 / (I2 * (I2 - I1)))
         amps = np.stack([-g3 / (I1 * (I3 - I1)), a2, g1 / (I3 * (I3 - I1))], axis=-1)
     return EllipticParameters(upper, np.sqrt(p2), np.clip(m, 0.0, 1.0), np.clip(m1, 0.0, 1.0), np.sqrt(amps))
+
+
+def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
+    """Whether ``omega`` is constant: ``w x I w = 0`` decided by exact comparisons.
+
+    Not by evaluating ``cross(L, w) == 0``, which depends on round-off. The cases
+    (Landau & Lifshitz sec. 33, 37): a sphere (``I1 == I3``); omega along a principal axis (two
+    components zero); a symmetric top spinning in its degenerate plane (``I1 == I2`` with
+    ``w3 == 0``, ``I2 == I3`` with ``w1 == 0``), where every axis of the plane is principal.
+    Moments that are equal only to round-off are not equal here: a body declared symmetric is
+    made exactly so by :func:`tumble.mass.principal_frame`.
+    """
+    zeros = int(np.count_nonzero(w == 0.0))
+    return bool(I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w[2] == 0.0) or (I[1] == I[2] and w[0] == 0.0))
 
 
 # Cyclic relabellings of the body axes that put the reference axis last: (i, j, r).
@@ -124,7 +157,7 @@ class FreeRotation:
         if not (w.shape == (3,) and np.all(np.isfinite(w))):
             raise ValueError(f"omega0 = {w.tolist()} must be three finite numbers (rad/s)")
         L = I * w
-        self._set(steady=not np.any(np.cross(L, w)))  # Euler's right-hand side vanishes
+        self._set(steady=_is_steady(I, w))
         if self.steady:
             return
         e = elliptic_parameters(w, I)
@@ -151,12 +184,28 @@ class FreeRotation:
         Io = I[2] if r == 0 else I[0]
         Ir = I[r]
         n = -Ir * (I[1] - Io) / (Io * (Ir - I[1]))
-        pi_c = pi_complete(n, m1) if m1 > 0 else 0.0
-        u0 = float(carlson_f(s0, c0, m1)) + (2.0 * j0 * ellipk(m, m1) if j0 else 0.0)
+        K = ellipk(m, m1) if m1 > 0 else np.inf
+        u0 = float(carlson_f(s0, c0, m1)) + (2.0 * j0 * K if j0 else 0.0)
         Lnorm = float(np.linalg.norm(L))
-        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=float(e.p), m=m, m1=m1, u0=u0, n=n,
-                  Lnorm=Lnorm, rate0=Lnorm / Ir, rate1=Lnorm * (Ir - Io) / (I[0] * I[2]), pi_c=pi_c,
-                  pi0=float(carlson_pi(n, s0, c0, d0)) + 2.0 * j0 * pi_c)
+        p = float(e.p)
+        rate0, rate1 = Lnorm / Ir, Lnorm * (Ir - Io) / (I[0] * I[2])
+        # phi(t) = rate0 t + (rate1 / p) [Pi(u) - Pi(u0)] (module docstring), split into a secular
+        # part A t + B j and a bounded one b(u_r) - b(u0_r) that is evaluated without cancellation:
+        # - m1 = 0: Pi(n; am u | 1) = (u + a atan(a tanh u)) / (1 - n), a = sqrt(-n) (integrate
+        #   1 / ((1 - n x^2)(1 - x^2)) in x = sin theta by partial fractions);
+        # - |n| <= 1: Pi = F + (Pi - F) with F(am u) = u exactly, so only the O(n) excess is
+        #   evaluated: when p is tiny (a nearly symmetric body, a symmetric top spun almost
+        #   perpendicular to its axis) rate1 / p is huge and Pi(u) - Pi(u0) would lose it all;
+        # - |n| > 1: Pi itself, which is then O(1 / sqrt(-n)).
+        if m1 == 0.0:
+            mode, A, B = "separatrix", rate0 + rate1 / (1.0 - n), 0.0
+        elif abs(n) <= 1.0:
+            mode, A, B = "excess", rate0 + rate1, 2.0 * rate1 / p * pi_excess_complete(n, m1)
+        else:
+            mode, A, B = "pi", rate0, 2.0 * rate1 / p * pi_complete(n, m1)
+        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=p, m=m, m1=m1, u0=u0, n=n,
+                  Lnorm=Lnorm, rate0=rate0, rate1=rate1, mode=mode, secular=(A, B), j0=j0)
+        self._set(b0=float(self._bounded(np.array(u0), *(np.array(x) for x in (s0, c0, d0)))))
         perm = Rotation.from_matrix(np.eye(3)[list(_CYCLE[r])])  # body -> relabelled coordinates
         B0 = self._tilt(L[None, :])[0]
         # R0 = G Rz(0) B0 P  =>  G = R0 P^-1 B0^-1
@@ -192,12 +241,23 @@ class FreeRotation:
     def _tilt(self, L) -> Rotation:
         return Rotation.from_euler("XZ", np.stack(self._tilt_angles(L), axis=-1))
 
+    def _bounded(self, u, sn, cn, dn) -> np.ndarray:
+        """The bounded part of ``phi`` at reduced phases (``sn, cn, dn`` of ``u_r``), rad."""
+        n, scale = self.n, self.rate1 / self.p
+        if self.mode == "separatrix":
+            a = np.sqrt(-n)
+            return scale * a * np.arctan(a * np.tanh(u)) / (1.0 - n)
+        if self.mode == "excess":
+            return scale * carlson_pi_excess(n, sn, cn, dn)
+        return scale * carlson_pi(n, sn, cn, dn)
+
     def precession_angle(self, t) -> np.ndarray:
         """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37)."""
         t = np.asarray(t, float)
-        j, sn, cn, dn = jacobi_reduced(self._phase(t), self.m, self.m1)
-        pi_u = carlson_pi(self.n, sn, cn, dn) + (2.0 * j * self.pi_c if self.m1 > 0 else 0.0)
-        return self.rate0 * t + self.rate1 / self.p * (pi_u - self.pi0)
+        u = self._phase(t)
+        j, sn, cn, dn = jacobi_reduced(u, self.m, self.m1)
+        A, B = self.secular
+        return A * t + B * (j - self.j0) + (self._bounded(u, sn, cn, dn) - self.b0)
 
     def attitude(self, t) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""

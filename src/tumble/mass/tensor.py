@@ -227,9 +227,13 @@ def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray,
       principal coordinates to the input frame: ``inertia = A @ diag(I) @ A.T``;
     - sign: the component of largest magnitude of axes 1 and 2 is positive (the first such
       component on a tie); axis 3 is ``e1 x e2`` so the frame is right-handed;
-    - degenerate moments (equal within ``rtol * trace``): the axes of the degenerate subspace are
+    - degenerate moments (equal within ``rtol * trace``) are returned *exactly* equal, as their
+      mean, so that a body declared symmetric or spherical is exactly so downstream (the free
+      motion classifies its case by exact comparisons); the axes of the degenerate subspace are
       the input frame's x, y, z axes projected onto it and orthonormalised in that order, so a
-      symmetric top along z gets axes x, y and a sphere gets the identity.
+      symmetric top along z gets axes x, y and a sphere gets the identity. The tensor is then
+      rebuilt to within the gap that was declared degenerate, as any choice of axes in a
+      nearly degenerate subspace would have it.
 
     Parameters
     ----------
@@ -241,7 +245,7 @@ def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray,
     Returns
     -------
     moments : ndarray, shape (..., 3)
-        Principal moments ascending, kg m^2.
+        Principal moments ascending, kg m^2; degenerate ones exactly equal.
     axes : ndarray, shape (..., 3, 3)
         Rotation matrices whose columns are the principal axes, in the input frame.
     """
@@ -251,6 +255,7 @@ def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray,
 
     tol = (rtol * _scale(I))[..., None]
     gaps = np.diff(moments, axis=-1) <= tol  # (..., 2): 1~2 and 2~3 degenerate
+    moments = _equalise(moments, gaps)
     flat_vecs = vecs.reshape(-1, 3, 3).copy()
     flat_gaps = gaps.reshape(-1, 2)
     for k in np.flatnonzero(flat_gaps.any(axis=-1)):
@@ -266,6 +271,20 @@ def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray,
         vecs[..., :, j] = col * sign
     vecs[..., :, 2] = np.cross(vecs[..., :, 0], vecs[..., :, 1])
     return moments, vecs
+
+
+def _equalise(moments: np.ndarray, gaps: np.ndarray) -> np.ndarray:
+    """Ascending moments with each degenerate cluster replaced by its mean (stays ascending)."""
+    out = moments.copy()
+    pair = [(0, 1), (1, 2)]
+    for g, (a, b) in enumerate(pair):
+        only = gaps[..., g] & ~gaps[..., 1 - g]
+        mean = 0.5 * (moments[..., a] + moments[..., b])
+        out[..., a] = np.where(only, mean, out[..., a])
+        out[..., b] = np.where(only, mean, out[..., b])
+    three = gaps[..., 0] & gaps[..., 1]  # a chain 1~2~3: the sphere rule of _degenerate_axes
+    out = np.where(three[..., None], np.mean(moments, axis=-1, keepdims=True), out)
+    return out
 
 
 def _degenerate_axes(vecs: np.ndarray, gaps: np.ndarray) -> np.ndarray:
