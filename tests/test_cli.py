@@ -100,6 +100,6 @@ def test_demo_cli_writes_its_folder(tmp_path, capsys, monkeypatch):
     import tumble.demo
 
     calls = {}
-    monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate: calls.update(out=out, animate=animate))
+    monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate, argv: calls.update(out=out, animate=animate))
     code, _, _ = run(capsys, "demo", "--out", str(tmp_path / "d"), "--no-animation")
     assert code == 0 and calls == {"out": str(tmp_path / "d"), "animate": False}

@@ -7,7 +7,9 @@ import json
 import numpy as np
 import pytest
 
+from tumble import __version__
 from tumble.demo import CASES, run_demo
+from tumble.io.export import CSV_COLUMNS
 
 
 @pytest.fixture(scope="module")
@@ -21,7 +23,7 @@ def test_demo_writes_every_output(demo):
     for case in CASES:
         assert (demo / f"omega_{case.key}.png").stat().st_size > 10_000
         header = (demo / f"trajectory_{case.key}.csv").read_text().splitlines()[0]
-        assert header.startswith("t,omega_1,omega_2,omega_3,q_x,q_y,q_z,q_w")
+        assert header == ",".join(CSV_COLUMNS)
     for name in ("omega_all.png", "summary.md", "summary.json", "ground_seed_axis2.gif", "body_iss_axis2.gif"):
         assert (demo / name).stat().st_size > 0
 
@@ -42,5 +44,6 @@ def test_demo_summary_agrees_with_theory(demo):
     assert rows["seed_literal_1"]["stability"]["flips"] >= 1
     # and the seed's computation drifts by per cent
     assert rows["seed_literal_10_seedmethod"]["drift"]["energy"] > 1e-3
+    assert data["provenance"]["tumble"] == __version__
     seed_body = data["bodies"]["seed"]
     np.testing.assert_allclose(seed_body["principal_moments"], [0.125, 0.3125, 0.4375])

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import signal
 import sys
 import warnings
 
@@ -49,30 +50,44 @@ def _cmd_inertia(args) -> int:
 def _cmd_demo(args) -> int:
     from .demo import run_demo
 
-    run_demo(args.out, animate=not args.no_animation)
+    run_demo(args.out, animate=not args.no_animation, argv=args.argv)
     return EXIT_OK
 
 
-def _cmd_simulate(args) -> int:
-    from .io.scenario import load_scenario
+def _resolve(args):
+    """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
+    from .io.scenario import resolve_run
 
-    scenario = load_scenario(args.scenario)  # every check before anything is computed or written
+    return resolve_run(args.source, omega=args.omega, frame=args.frame, t_end=args.t_end,
+                       samples=args.samples, dt=args.dt, method=args.method)
+
+
+#: The files `tumble simulate` writes into its folder.
+SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.png")
+
+
+def _cmd_simulate(args) -> int:
+    from .io.output import check_output_dir
+
+    scenario = _resolve(args)  # every check before anything is computed or written
+    out = check_output_dir(args.out)
     with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
         traj = scenario.run()
 
-    from pathlib import Path
-
     from .analysis import trajectory_summary
     from .io.export import write_csv, write_json, write_npz
+    from .io.output import output_dir
+    from .io.provenance import provenance
     from .viz import figure_omega
 
-    out = Path(args.out)
     summary = trajectory_summary(traj)
-    summary["scenario"] = str(args.scenario)
-    write_csv(traj, out / "trajectory.csv")
-    write_npz(traj, out / "trajectory.npz")
-    figure_omega(traj, out / "omega.png", f"{scenario.name}: {traj.body_name}, {traj.method}")
-    write_json(summary, out / "summary.json")
+    summary["scenario"] = str(args.source)
+    summary["provenance"] = provenance(args.argv, scenario.sources)
+    with output_dir(out, SIMULATE_WRITES) as stage:
+        write_csv(traj, stage / "trajectory.csv")
+        write_npz(traj, stage / "trajectory.npz", summary["provenance"])
+        figure_omega(traj, stage / "omega.png", f"{scenario.name}: {traj.body_name}, {traj.method}")
+        write_json(summary, stage / "summary.json")
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
@@ -80,54 +95,53 @@ def _cmd_simulate(args) -> int:
     return EXIT_OK
 
 
-#: The figures of `tumble plot`: name -> function in tumble.viz.
+#: The figures of `tumble plot`, in the order they are drawn.
 PLOTS = ("omega", "polhode", "herpolhode", "drift")
 
 
 def _cmd_plot(args) -> int:
-    from .io.scenario import load_scenario
-
     import dataclasses
 
-    scenario = load_scenario(args.scenario)
-    # the phase portraits need the path drawn finely: at least 5000 samples
-    with _working(f"integrating {scenario.name}"):
-        traj = dataclasses.replace(scenario, samples=max(scenario.samples, 5000)).run()
+    from .io.output import check_output_dir
 
-    from pathlib import Path
+    scenario = _resolve(args)
+    out = check_output_dir(args.out)
+    if scenario.times is None and scenario.dt is None:  # the phase portraits need a fine path
+        scenario = dataclasses.replace(scenario, samples=max(scenario.sample_count, 5000))
+    with _working(f"integrating {scenario.name}"):
+        traj = scenario.run()
 
     from . import viz
+    from .io.output import output_dir
 
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     title = f"{scenario.name}: {traj.body_name}, {traj.method}"
     makers = {"omega": viz.figure_omega, "polhode": viz.figure_polhode,
               "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
+    skipped = viz.phase_portrait_problem(traj)
+    names = [n for n in PLOTS if not (skipped and n in viz.PHASE_PORTRAITS)]
     written = []
-    for name in PLOTS:
-        for fmt in args.format:
-            path = out / f"{name}.{fmt}"
-            makers[name](traj, path, title if name == "omega" else None)  # written atomically
-            written.append(path.name)
+    with output_dir(out, [f"{name}.*" for name in PLOTS]) as stage:
+        for name in names:
+            for fmt in args.format:
+                makers[name](traj, stage / f"{name}.{fmt}", title if name == "omega" else None)
+                written.append(f"{name}.{fmt}")
     print(f"wrote {', '.join(written)} to {out}/")
+    if skipped:
+        print(f"skipped {', '.join(viz.PHASE_PORTRAITS)}: {skipped}")
     return EXIT_OK
 
 
 def _cmd_view(args) -> int:
-    from pathlib import Path
-
-    from .io.scenario import load_scenario
-
-    out = Path(args.out)
-    if out.suffix.lower() != ".html":
-        raise ValueError(f"--out {out}: the page is written as one .html file")
-    from .viz.page import write_page
+    from .io.output import check_output_file
     from .viz.scene import frame_indices
 
-    scenario = load_scenario(args.scenario)
-    frame_indices(scenario.samples, args.frames)  # refuse a bad --frames before integrating
+    out = check_output_file(args.out, ".html")
+    scenario = _resolve(args)
+    frame_indices(scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
     with _working(f"integrating {scenario.name}"):
         traj = scenario.run()
+
+    from .viz.page import write_page
 
     write_page(scenario.body, traj, out, frames=args.frames, title=f"{scenario.name}: {traj.body_name}, {traj.method}")
     print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
@@ -157,6 +171,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"tumble {__version__}")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    # --debug is accepted after the subcommand too; SUPPRESS keeps the top-level value otherwise
+    debug = argparse.ArgumentParser(add_help=False)
+    debug.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
     p = sub.add_parser(
@@ -165,16 +182,27 @@ def build_parser() -> argparse.ArgumentParser:
         description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.",
         epilog="Examples: tumble inertia t-handle | tumble inertia iss-t-handle --json | "
         "tumble inertia examples/bodies/t_handle.toml",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        formatter_class=argparse.RawDescriptionHelpFormatter, parents=[debug],
     )
     p.add_argument("body", metavar="BODY", help="a body file (TOML) or a preset: t-handle, iss-t-handle")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
     p.set_defaults(func=_cmd_inertia)
 
     def scenario_command(name, func, summary, description, example, out_metavar, out_help):
-        cmd = sub.add_parser(name, help=summary, description=description, epilog=f"Example: {example}")
-        cmd.add_argument("scenario", metavar="SCENARIO", help="a scenario file (TOML)")
+        cmd = sub.add_parser(name, help=summary, description=description, epilog=f"Examples: {example}",
+                             parents=[debug])
+        cmd.add_argument("source", metavar="INPUT",
+                         help="a scenario file (TOML); or a body file or preset (t-handle, iss-t-handle) with --omega")
         cmd.add_argument("--out", required=True, metavar=out_metavar, help=out_help)
+        run = cmd.add_argument_group("the run, without a scenario file (or overriding the file's values)")
+        run.add_argument("--omega", nargs=3, type=float, metavar=("W1", "W2", "W3"),
+                         help="initial angular velocity, rad/s (principal frame, axes ordered I1 <= I2 <= I3)")
+        run.add_argument("--frame", metavar="FRAME", help="frame of --omega: principal (default) or design")
+        run.add_argument("--t-end", type=float, metavar="S", help="duration, s (default 20)")
+        run.add_argument("--samples", type=int, metavar="N", help="number of samples (default 500)")
+        run.add_argument("--dt", type=float, metavar="S", help="sample every S seconds instead of --samples")
+        run.add_argument("--method", metavar="NAME",
+                         help="exact (default), dop853, rk45, seed, geometric, geometric2, geometric6")
         cmd.set_defaults(func=func)
         return cmd
 
@@ -182,7 +210,8 @@ def build_parser() -> argparse.ArgumentParser:
         "simulate", _cmd_simulate, "integrate a scenario file and write trajectory, summary and plot",
         "Integrates the scenario and writes DIR/trajectory.csv, DIR/trajectory.npz, DIR/summary.json and "
         "DIR/omega.png. Nothing is written if the scenario is invalid.",
-        "tumble simulate examples/seed_flip.toml --out runs/flip --json", "DIR", "output folder",
+        "tumble simulate examples/seed_flip.toml --out runs/flip --json | "
+        "tumble simulate t-handle --omega 0.1 10 0.1 --t-end 30 --out runs/flip2", "DIR", "output folder",
     )
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 
@@ -191,7 +220,8 @@ def build_parser() -> argparse.ArgumentParser:
         "Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere with the family "
         "of polhodes and the separatrices), DIR/herpolhode (omega in the invariable plane) and DIR/drift "
         "(energy, |L|, L_world errors), each as PNG and SVG.",
-        "tumble plot examples/seed_flip.toml --out figures", "DIR", "output folder",
+        "tumble plot examples/seed_flip.toml --out figures | "
+        "tumble plot examples/bodies/wing_nut.toml --omega 0.1 5 0.1 --out figures", "DIR", "output folder",
     )
     p.add_argument("--format", nargs="+", default=["png", "svg"], choices=["png", "svg", "pdf"],
                    help="file formats (default: png svg)")
@@ -200,7 +230,8 @@ def build_parser() -> argparse.ArgumentParser:
         "view", _cmd_view, "one self-contained interactive HTML page of a scenario",
         "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
         "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons.",
-        "tumble view examples/seed_flip.toml --out flip.html", "FILE.html", "the page to write",
+        "tumble view examples/seed_flip.toml --out flip.html | "
+        "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html", "FILE.html", "the page to write",
     )
     p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
 
@@ -209,7 +240,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="the T-handle study on built-in defaults",
         description="Runs the T-handle study (seed T-handle and space-station handle, spin about each "
         "axis) and writes figures, animations, trajectories and a summary table to a folder.",
-        epilog="Example: tumble demo --out tumble-demo",
+        epilog="Example: tumble demo --out tumble-demo", parents=[debug],
     )
     p.add_argument("--out", default="tumble-demo", metavar="DIR", help="output folder (default: tumble-demo)")
     p.add_argument("--no-animation", action="store_true", help="skip the GIF animations (faster)")
@@ -217,31 +248,62 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _Terminated(BaseException):
+    """Raised by the SIGTERM handler, so that partial output is cleaned up as on Ctrl-C."""
+
+
+def _on_sigterm(signum, frame):  # noqa: ARG001 - signal handler API
+    raise _Terminated
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``tumble`` console command; returns the exit status."""
+    """Entry point of the ``tumble`` console command; returns the exit status.
+
+    0: success; 2: bad input (nothing written); 1: a failed computation or an I/O failure
+    (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
+    by SIGINT / SIGTERM (nothing half-written).
+    """
     parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
     if args.command is None:
         parser.print_help()
         return EXIT_USAGE
+    args.argv = argv
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread: leave signals alone
+        previous = None
     try:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
             return args.func(args)
     except KeyboardInterrupt:
-        print("tumble: interrupted", file=sys.stderr)
+        print("tumble: interrupted; nothing written", file=sys.stderr)
         return 130
-    except (ValueError, OSError) as exc:
+    except _Terminated:
+        print("tumble: terminated; nothing written", file=sys.stderr)
+        return 143
+    except ValueError as exc:
         if args.debug:
             raise
         print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
+    except OSError as exc:  # the input was fine; writing failed (disk full, permissions)
+        if args.debug:
+            raise
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written", file=sys.stderr)
+        return EXIT_FAILURE
     except Exception as exc:  # a failure of the computation, not of the input
         if args.debug:
             raise
         print(f"tumble: computation failed: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
         return EXIT_FAILURE
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 def _one_line(exc: BaseException) -> str:

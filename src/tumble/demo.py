@@ -25,6 +25,8 @@ from .analysis import trajectory_summary
 from .dynamics import Trajectory, simulate
 from .io.atomic import atomic_write_text
 from .io.export import write_csv, write_json
+from .io.output import check_output_dir, output_dir
+from .io.provenance import provenance
 from .io.report import describe_axis, mass_properties_dict
 from .mass import AXIS_ROLES, Body, iss_t_handle, t_handle
 
@@ -95,12 +97,21 @@ class _Progress:
             self.bar.stop()
 
 
-def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True) -> Path:
-    """Run the whole study and write its figures and data to ``out``; return the folder."""
+#: Glob patterns of the files the study writes (a rerun replaces them as a set).
+DEMO_WRITES = ("omega_*.png", "ground_*.gif", "body_*.gif", "ground_*.mp4", "body_*.mp4",
+               "trajectory_*.csv", "summary.json", "summary.md")
+
+
+def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True,
+             argv=None) -> Path:
+    """Run the whole study and write its figures and data to ``out``; return the folder.
+
+    The folder appears whole or not at all (:func:`tumble.io.output.output_dir`); ``argv``
+    (the command line, if any) is recorded in the summary's provenance.
+    """
     from .viz import animate_body_frame, animate_ground_frame, figure_omega, figure_omega_grid
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = check_output_dir(out)
     bodies: dict[str, Body] = {
         "seed": t_handle(name="seed T-handle"),
         "iss": iss_t_handle(),
@@ -110,33 +121,35 @@ def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES,
     runs: dict[str, Trajectory] = {}
     rows = []
     try:
-        for case in CASES:
-            traj = simulate(bodies[case.body], case.omega, t_end=t_end, samples=samples,
-                            method=case.method, frame=case.frame)
-            runs[case.key] = traj
-            figure_omega(traj, out / f"omega_{case.key}.png", case.label)
-            write_csv(traj, out / f"trajectory_{case.key}.csv")
-            summary = trajectory_summary(traj)
-            summary.update(case=case.key, label=case.label, omega0_given=list(case.omega), frame=case.frame)
-            rows.append(summary)
-            progress.step(case.label)
-        figure_omega_grid([(c.label, runs[c.key]) for c in CASES if c.method is None], out / "omega_all.png",
-                          suptitle="Angular velocity in the principal frame (cf. the seed's Figure 1)")
-        progress.step("combined figure")
-        if animate:
-            for key in ANIMATED:
-                case = next(c for c in CASES if c.key == key)
-                animate_ground_frame(bodies[case.body], runs[key], out / f"ground_{key}.gif", title=case.label)
-                progress.step(f"ground-frame animation {key}")
-                animate_body_frame(bodies[case.body], runs[key], out / f"body_{key}.gif", title=case.label)
-                progress.step(f"body-frame animation {key}")
-        data = {
-            "bodies": {k: mass_properties_dict(b) for k, b in bodies.items()},
-            "cases": rows,
-        }
-        write_json(data, out / "summary.json")
-        atomic_write_text(out / "summary.md", summary_markdown(bodies, rows))
-        progress.step("summary")
+        with output_dir(out, DEMO_WRITES) as stage:
+            for case in CASES:
+                traj = simulate(bodies[case.body], case.omega, t_end=t_end, samples=samples,
+                                method=case.method, frame=case.frame)
+                runs[case.key] = traj
+                figure_omega(traj, stage / f"omega_{case.key}.png", case.label)
+                write_csv(traj, stage / f"trajectory_{case.key}.csv")
+                summary = trajectory_summary(traj)
+                summary.update(case=case.key, label=case.label, omega0_given=list(case.omega), frame=case.frame)
+                rows.append(summary)
+                progress.step(case.label)
+            figure_omega_grid([(c.label, runs[c.key]) for c in CASES if c.method is None], stage / "omega_all.png",
+                              suptitle="Angular velocity in the principal frame (cf. the seed's Figure 1)")
+            progress.step("combined figure")
+            if animate:
+                for key in ANIMATED:
+                    case = next(c for c in CASES if c.key == key)
+                    animate_ground_frame(bodies[case.body], runs[key], stage / f"ground_{key}.gif", title=case.label)
+                    progress.step(f"ground-frame animation {key}")
+                    animate_body_frame(bodies[case.body], runs[key], stage / f"body_{key}.gif", title=case.label)
+                    progress.step(f"body-frame animation {key}")
+            data = {
+                "bodies": {k: mass_properties_dict(b) for k, b in bodies.items()},
+                "cases": rows,
+                "provenance": provenance(argv),
+            }
+            write_json(data, stage / "summary.json")
+            atomic_write_text(stage / "summary.md", summary_markdown(bodies, rows))
+            progress.step("summary")
     finally:
         progress.close()
     print(summary_markdown(bodies, rows))

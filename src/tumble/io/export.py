@@ -16,11 +16,12 @@ from .atomic import atomic_write_bytes, atomic_write_text
 
 __all__ = ["CSV_COLUMNS", "trajectory_csv", "write_csv", "write_json", "write_npz"]
 
-#: Columns of the trajectory CSV: SI units; omega in the principal frame; the quaternion maps
-#: body to world, scalar last (scipy); L in the world frame; kinetic energy.
+#: Columns of the trajectory CSV, each with its SI unit in brackets (the quaternion has none):
+#: omega in the principal frame; the quaternion maps body to world, scalar last (scipy); L in
+#: the world frame; kinetic energy.
 CSV_COLUMNS = (
-    "t", "omega_1", "omega_2", "omega_3", "q_x", "q_y", "q_z", "q_w",
-    "L_world_x", "L_world_y", "L_world_z", "energy",
+    "t [s]", "omega_1 [rad/s]", "omega_2 [rad/s]", "omega_3 [rad/s]", "q_x", "q_y", "q_z", "q_w",
+    "L_world_x [kg m^2/s]", "L_world_y [kg m^2/s]", "L_world_z [kg m^2/s]", "energy [J]",
 )
 
 
@@ -37,18 +38,20 @@ def write_csv(traj: Trajectory, path) -> None:
     atomic_write_text(path, trajectory_csv(traj))
 
 
-def write_npz(traj: Trajectory, path) -> None:
+def write_npz(traj: Trajectory, path, provenance: dict | None = None) -> None:
     """Every array of the trajectory in one compressed NPZ file, written atomically.
 
     Arrays: ``t`` (s), ``omega``, ``omega_world`` (rad/s), ``quat`` (body to world, scalar
     last), ``L``, ``L_world`` (kg m^2/s), ``energy`` (J), ``moments`` (kg m^2),
-    ``principal_axes`` (principal -> design), ``method``.
+    ``principal_axes`` (principal -> design; columns are the axes), ``method``, and
+    ``provenance`` (a JSON string, :func:`tumble.io.provenance.provenance`) when given.
     """
     buf = io.BytesIO()
+    extra = {} if provenance is None else {"provenance": np.array(json.dumps(provenance))}
     np.savez_compressed(
         buf, t=traj.t, omega=traj.omega, omega_world=traj.omega_world, quat=traj.quat,
         L=traj.angular_momentum, L_world=traj.angular_momentum_world, energy=traj.energy,
-        moments=traj.moments, principal_axes=traj.principal_axes, method=np.array(traj.method),
+        moments=traj.moments, principal_axes=traj.principal_axes, method=np.array(traj.method), **extra,
     )
     atomic_write_bytes(path, buf.getvalue())
 

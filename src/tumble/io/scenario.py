@@ -10,7 +10,7 @@
 
     [simulation]
     t_end = 20.0               # s
-    samples = 500
+    samples = 500              # or dt = 0.01 (s), or times = [0.0, 0.5, 2.0] instead of t_end
     method = "exact"           # "exact", "dop853", "rk45", "seed", "geometric", "geometric2", "geometric6"
     # rtol = 1e-12             # optional tolerances (dop853, rk45, seed)
     # atol = 1e-12
@@ -21,23 +21,30 @@
     frame = "body"             # "body" or "world"
 
 Keys are checked strictly; every error is one line naming the file and the key.
+:func:`resolve_run` is what the CLI uses: a scenario file, or a body file or preset name plus
+an initial spin, with command-line values overriding the file's.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..dynamics import ConstantTorque, Trajectory, simulate
-from ..dynamics.simulate import check_inputs
+from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body
 from .bodyfile import body_from_table, load_body, read_toml
+from .provenance import file_sha256
 
-__all__ = ["Scenario", "load_scenario", "scenario_from_table"]
+__all__ = ["Scenario", "load_scenario", "resolve_run", "scenario_from_table"]
+
+#: Duration of a run when neither the file nor the command line says, s.
+DEFAULT_T_END = 20.0
 
 _SECTIONS = {
     "initial": {"omega", "frame"},
-    "simulation": {"t_end", "samples", "method", "rtol", "atol", "step"},
+    "simulation": {"t_end", "samples", "dt", "times", "method", "rtol", "atol", "step"},
     "torque": {"vector", "frame"},
 }
 
@@ -49,21 +56,32 @@ class Scenario:
     body: Body
     omega: tuple[float, float, float]
     frame: str = "principal"
-    t_end: float = 20.0
-    samples: int = 500
+    t_end: float | None = DEFAULT_T_END
+    samples: int | None = None
     method: str | None = None
     rtol: float | None = None
     atol: float | None = None
     step: float | None = None
     torque: ConstantTorque | None = None
     name: str = "scenario"
+    dt: float | None = None
+    times: tuple[float, ...] | None = None
+    #: ``(path, sha256)`` of the files it was read from (provenance).
+    sources: tuple[tuple[str, str], ...] = ()
 
     def run(self) -> Trajectory:
         """Simulate the scenario."""
         return simulate(
-            self.body, self.omega, t_end=self.t_end, samples=self.samples, method=self.method,
-            frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol, step=self.step,
+            self.body, self.omega, t_end=self.t_end, samples=self.samples, dt=self.dt, times=self.times,
+            method=self.method, frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol,
+            step=self.step,
         )
+
+    @property
+    def sample_count(self) -> int:
+        """How many samples :meth:`run` returns."""
+        t, keep = sample_times(self.t_end, self.samples, self.dt, self.times)
+        return len(t[keep])
 
 
 def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str = "scenario") -> Scenario:
@@ -96,10 +114,12 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
             model = ConstantTorque(torque["vector"], torque.get("frame", "body"))
         except ValueError as exc:
             raise ValueError(f"torque: {exc}") from None
+    times = sim.get("times")
     scenario = Scenario(
-        body=body, omega=initial["omega"], frame=frame, t_end=sim.get("t_end", 20.0),
-        samples=sim.get("samples", 500), method=method, rtol=sim.get("rtol"), atol=sim.get("atol"),
-        step=sim.get("step"), torque=model, name=name,
+        body=body, omega=initial["omega"], frame=frame,
+        t_end=sim.get("t_end", None if times is not None else DEFAULT_T_END),
+        samples=sim.get("samples"), dt=sim.get("dt"), times=times, method=method, rtol=sim.get("rtol"),
+        atol=sim.get("atol"), step=sim.get("step"), torque=model, name=name,
     )
     _validate(scenario)
     return scenario
@@ -118,18 +138,27 @@ def _body(spec, base_dir: Path | None) -> Body:
     return load_body(path)
 
 
-def _validate(s: Scenario) -> None:
+#: Where each argument of :func:`simulate` comes from in a scenario file and on the command line.
+_FILE_KEYS = {"omega0": "initial.omega", "frame": "initial.frame", "t_end": "simulation.t_end",
+              "samples": "simulation.samples", "dt": "simulation.dt", "times": "simulation.times",
+              "method": "simulation.method", "rtol": "simulation.rtol", "atol": "simulation.atol",
+              "step": "simulation.step"}
+_OPTIONS = {"omega": "--omega", "frame": "--frame", "t_end": "--t-end", "samples": "--samples",
+            "dt": "--dt", "method": "--method"}
+
+
+def _validate(s: Scenario, options=()) -> None:
     """Check the numbers now, so that nothing is computed or written for a bad file.
 
     :func:`simulate`'s own checks keep one source of truth for the messages; the argument
-    names are replaced by the file's keys.
+    names are replaced by the file's keys, or by the command-line options in ``options``
+    (the fields that the command line set).
     """
-    keys = {"omega0": "initial.omega", "t_end": "simulation.t_end", "samples": "simulation.samples",
-            "rtol": "simulation.rtol", "atol": "simulation.atol", "step": "simulation.step",
-            "method": "simulation.method", "frame": "initial.frame"}
+    keys = {arg: _OPTIONS[field] if field in options else key
+            for arg, key in _FILE_KEYS.items() for field in ["omega" if arg == "omega0" else arg]}
     try:
-        check_inputs(s.body, s.omega, t_end=s.t_end, samples=s.samples, method=s.method,
-                     frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step, torque=s.torque)
+        check_inputs(s.body, s.omega, t_end=s.t_end, samples=s.samples, dt=s.dt, times=s.times,
+                     method=s.method, frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step, torque=s.torque)
     except ValueError as exc:
         message = str(exc)
         for old, new in keys.items():
@@ -144,6 +173,58 @@ def load_scenario(path) -> Scenario:
     path = Path(path)
     data = read_toml(path)
     try:
-        return scenario_from_table(data, base_dir=path.parent, name=path.stem)
+        scenario = scenario_from_table(data, base_dir=path.parent, name=path.stem)
     except ValueError as exc:
         raise ValueError(f"{path}: {exc}") from None
+    files = [path]
+    if isinstance(data.get("body"), str) and data["body"] not in PRESETS:
+        files.append(path.parent / data["body"])
+    return dataclasses.replace(scenario, sources=tuple((str(f), file_sha256(f)) for f in files))
+
+
+def resolve_run(source, *, omega=None, frame=None, t_end=None, samples=None, dt=None, method=None) -> Scenario:
+    """The run the command line asks for: a scenario file, or a body file or preset name plus
+    ``omega`` (rad/s); any value given here overrides the file's.
+
+    ``t_end``, ``samples`` and ``dt`` given here replace the file's sampling (its ``times``
+    too). Errors are one line naming the file, or the option (``--omega``, ``--t-end``, ...).
+    """
+    given = {k: v for k, v in dict(omega=omega, frame=frame, t_end=t_end, samples=samples, dt=dt,
+                                   method=method).items() if v is not None}
+    if isinstance(source, str) and source in PRESETS and not Path(source).exists():
+        body, name, what, sources = PRESETS[source](), source, f"{source!r} is a preset body", ()
+    else:
+        path = Path(source)
+        if not path.exists() and not path.is_symlink() and path.suffix == "":
+            raise ValueError(f"{source!r} is neither a scenario or body file nor a preset; presets: {', '.join(PRESETS)}")
+        data = read_toml(path)
+        if set(data) != {"body"} or not isinstance(data["body"], dict):
+            scenario = load_scenario(path)
+            return _override(scenario, given, where=f"{path}: ") if given else scenario
+        body, name, what = load_body(path), path.stem, f"{path} is a body file"
+        sources = ((str(path), file_sha256(path)),)
+    if omega is None:
+        raise ValueError(
+            f"{what}; a run also needs an initial spin: add --omega W1 W2 W3 (rad/s, principal frame) "
+            f"and optionally --t-end, --samples or --dt, --method; or write a scenario file, which adds "
+            f"[initial] omega and [simulation] t_end, samples, method (see 'tumble examples')"
+        )
+    return _override(Scenario(body=body, omega=omega, name=name, sources=sources), given, where="")
+
+
+def _override(scenario: Scenario, given: dict, where: str) -> Scenario:
+    """``scenario`` with the command line's values; sampling given there replaces the file's."""
+    changes = dict(given)
+    if {"t_end", "samples", "dt"} & set(given):
+        changes.setdefault("t_end", scenario.t_end if scenario.t_end is not None else DEFAULT_T_END)
+        changes["times"] = None
+        if "dt" in given:
+            changes.setdefault("samples", None)
+        if "samples" in given:
+            changes.setdefault("dt", None)
+    updated = dataclasses.replace(scenario, **changes)
+    try:
+        _validate(updated, options=given)
+    except ValueError as exc:
+        raise ValueError(f"{where}{exc}") from None
+    return updated

@@ -4,11 +4,12 @@ matplotlib is imported inside the drawing functions, never by the physics layers
 """
 
 from .animate import animate_body_frame, animate_ground_frame
-from .phase import figure_herpolhode, figure_polhode, polhode_family, separatrices
+from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
 
 __all__ = [
+    "PHASE_PORTRAITS",
     "animate_body_frame",
     "animate_ground_frame",
     "body_lines",
@@ -19,6 +20,7 @@ __all__ = [
     "figure_omega_grid",
     "figure_polhode",
     "part_lines",
+    "phase_portrait_problem",
     "plot_omega",
     "polhode_family",
     "separatrices",

@@ -20,7 +20,31 @@ from ..dynamics.exact import FreeRotation
 from ..mass import moment_degeneracy
 from ._backend import pyplot, save_figure
 
-__all__ = ["figure_herpolhode", "figure_polhode", "polhode_family", "separatrices"]
+__all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
+           "separatrices"]
+
+#: The figures that picture a torque-free motion (a fixed L and energy).
+PHASE_PORTRAITS = ("polhode", "herpolhode")
+
+
+def phase_portrait_problem(traj: Trajectory) -> str | None:
+    """Why the polhode and herpolhode cannot be drawn for ``traj``, or None if they can.
+
+    Both picture the torque-free motion: the polhode lies on the momentum sphere and the energy
+    ellipsoid, the herpolhode in the invariable plane normal to the fixed L. Under a torque L
+    and the energy change, and a body at rest has no L to draw them about.
+    """
+    if not traj.torque_free:
+        return "a torque acts, so L and the energy change: they picture torque-free motion only"
+    if not traj.angular_momentum_norm[0] > 0:
+        return "the body is at rest (L = 0): there is no motion to picture"
+    return None
+
+
+def _require_free_motion(traj: Trajectory, figure: str) -> None:
+    problem = phase_portrait_problem(traj)
+    if problem:
+        raise ValueError(f"no {figure} for this run: {problem}")
 
 
 
@@ -62,21 +86,24 @@ def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
 
 
 def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
-    """L in the body frame on the momentum sphere, with its family of polhodes and separatrices."""
+    """L in the body frame on the momentum sphere, with its family of polhodes and separatrices.
+
+    Raises ``ValueError`` for a run that is not a torque-free motion (:func:`phase_portrait_problem`).
+    """
+    _require_free_motion(traj, "polhode")
     plt = pyplot()
     I = traj.moments
     L = traj.angular_momentum
     R = float(traj.angular_momentum_norm[0])
     fig = plt.figure(figsize=(6.4, 6.0), layout="constrained")
     ax = fig.add_subplot(projection="3d")
-    if R > 0:
-        u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
-        ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5)
-        if moment_degeneracy(I) == "asymmetric":
-            for c in polhode_family(I, R):
-                ax.plot(*c.T, color="tab:gray", lw=0.8)
-            for k, c in enumerate(separatrices(I, R)):
-                ax.plot(*c.T, color="tab:red", lw=1.4, ls="--", label="separatrix" if k == 0 else None)
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
+    ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5)
+    if moment_degeneracy(I) == "asymmetric":
+        for c in polhode_family(I, R):
+            ax.plot(*c.T, color="tab:gray", lw=0.8)
+        for k, c in enumerate(separatrices(I, R)):
+            ax.plot(*c.T, color="tab:red", lw=1.4, ls="--", label="separatrix" if k == 0 else None)
     ax.plot(*L.T, color="tab:blue", lw=2.4, label=f"this run ({traj.method})")
     ax.scatter(*L[0], color="tab:blue", s=25)
     for j, name in enumerate(("minor", "intermediate", "major")):
@@ -94,7 +121,11 @@ def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
 
 
 def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
-    """The tip of omega in the invariable plane (ground frame), Poinsot's construction."""
+    """The tip of omega in the invariable plane (ground frame), Poinsot's construction.
+
+    Raises ``ValueError`` for a run that is not a torque-free motion (:func:`phase_portrait_problem`).
+    """
+    _require_free_motion(traj, "herpolhode")
     plt = pyplot()
     Lw = traj.angular_momentum_world[0]
     n = Lw / np.linalg.norm(Lw)

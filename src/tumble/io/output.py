@@ -1,0 +1,150 @@
+"""A command's output as a set: it appears whole or not at all.
+
+A command that writes several files (``tumble simulate``, ``plot``, ``demo``) writes them into
+a temporary folder beside ``--out`` and, once everything is written, swaps that folder into
+place under an exclusive lock on the parent folder. So
+
+- a failure, a full disk, Ctrl-C or SIGTERM midway leaves the previous output untouched and no
+  temporary folder behind (the CLI turns SIGTERM into an exception so this cleanup runs);
+- two runs into the same ``--out`` at once each swap in a whole folder: the last one wins,
+  never a mix;
+- the output path is checked before anything is computed (:func:`check_output_dir`,
+  :func:`check_output_file`).
+
+An existing folder is updated, not emptied: files that do not belong to the command (the glob
+patterns ``owns``, e.g. ``omega.*`` for ``tumble plot``) are carried over into the new folder as
+hard links, so ``tumble plot --out run`` beside ``tumble simulate --out run`` keeps both; the
+command's own files from an earlier run are replaced as a set (a stale ``polhode.svg`` never
+sits beside a new ``polhode.png``). A folder holding sub-folders or links is refused (``--out .``
+in a project, say): only folders of plain files are replaced. A SIGKILL (which no program can
+catch) may leave a ``.NAME.tmp-*`` folder beside the output.
+
+Written by hand: the standard library has the pieces (``os.rename``, ``fcntl.flock``,
+``tempfile``) but no "replace a folder as a whole" operation.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import fnmatch
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+from .atomic import _umask
+
+__all__ = ["check_output_dir", "check_output_file", "output_dir"]
+
+
+def _refuse(path: Path, why: str) -> ValueError:
+    return ValueError(f"--out {path}: {why}")
+
+
+def _check_parent(path: Path) -> None:
+    """The nearest existing ancestor must be a writable folder (a file on the way is refused)."""
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise _refuse(path, f"{parent} is a file, not a folder")
+            if not os.access(parent, os.W_OK | os.X_OK):
+                raise _refuse(path, f"cannot write in {parent} (permission denied)")
+            return
+        if parent.is_symlink():  # a dangling link on the way
+            raise _refuse(path, f"{parent} is a broken symbolic link")
+
+
+def check_output_dir(path) -> Path:
+    """Check before computing that ``path`` can receive a command's output folder.
+
+    Allowed: a path that does not exist yet (its parents are created) or a folder of plain
+    files. Raises ``ValueError`` naming the path and the rule.
+    """
+    path = Path(path)
+    if path.exists() or path.is_symlink():
+        if path.is_symlink() or not path.is_dir():
+            raise _refuse(path, "exists and is not a folder" if not path.is_dir() else "is a symbolic link; give the folder itself")
+        _check_plain(path)
+    _check_parent(path)
+    return path
+
+
+def _check_plain(path: Path) -> None:
+    odd = next((e for e in sorted(path.iterdir()) if e.is_symlink() or not e.is_file()), None)
+    if odd is not None:
+        raise _refuse(path, f"holds {odd.name!r}, not a plain file; tumble updates folders of plain files only: "
+                      "give a new or empty folder")
+
+
+def check_output_file(path, suffix: str) -> Path:
+    """Check before computing that the single file ``path`` (with ``suffix``) can be written."""
+    path = Path(path)
+    if path.suffix.lower() != suffix:
+        raise _refuse(path, f"the output is written as one {suffix} file; give a name ending in {suffix}")
+    if path.is_dir():
+        raise _refuse(path, "is a folder; give a file name")
+    _check_parent(path)
+    return path
+
+
+@contextlib.contextmanager
+def output_dir(path, owns=()):
+    """Yield an empty staging folder; on success swap it in as ``path``, on failure delete it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The output folder (checked again here with :func:`check_output_dir`).
+    owns : iterable of str
+        Glob patterns of the files that belong to the command: an earlier run's files that
+        match are dropped, all others in the folder are kept.
+    """
+    path = Path(path).absolute()
+    check_output_dir(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=path.parent))
+    try:
+        yield stage
+        os.chmod(stage, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
+        with _locked(path.parent):
+            _swap_in(stage, path, tuple(owns))
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def _locked(folder: Path):
+    """An exclusive ``flock`` on ``folder`` itself (no lock file left behind)."""
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # closing releases the lock
+
+
+def _swap_in(stage: Path, path: Path, owns: tuple[str, ...]) -> None:
+    """Put ``stage`` in place of ``path``, carrying over the files the command does not own."""
+    if not path.exists():
+        os.rename(stage, path)
+        return
+    if not path.is_dir():
+        raise _refuse(path, "was replaced by a file meanwhile; nothing written")
+    _check_plain(path)  # again, under the lock
+    for entry in path.iterdir():
+        if not any(fnmatch.fnmatch(entry.name, pattern) for pattern in owns) and not (stage / entry.name).exists():
+            try:
+                os.link(entry, stage / entry.name)
+            except OSError:  # a file system without hard links
+                shutil.copy2(entry, stage / entry.name)
+    os.chmod(stage, path.stat().st_mode & 0o7777)
+    old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old-", dir=path.parent))
+    os.rename(path, old / "previous")
+    try:
+        os.rename(stage, path)
+    except BaseException:
+        os.rename(old / "previous", path)  # put the previous output back
+        os.rmdir(old)
+        raise
+    shutil.rmtree(old, ignore_errors=True)

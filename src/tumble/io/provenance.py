@@ -1,0 +1,57 @@
+"""Where a result came from: versions, the command, the inputs' content hashes, the time.
+
+Written into ``summary.json`` (key ``provenance``) and into the NPZ (a JSON string under the
+same name), so a file found later can be traced to the code and the inputs that made it.
+"""
+
+from __future__ import annotations
+
+import datetime
+import hashlib
+import platform
+import shlex
+from pathlib import Path
+
+__all__ = ["file_sha256", "provenance"]
+
+
+def file_sha256(path) -> str:
+    """SHA-256 of a file's bytes, hex."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def provenance(argv=None, inputs=()) -> dict:
+    """The provenance record of a run.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The command's arguments after ``tumble`` (None from the Python API).
+    inputs : iterable of (str, str)
+        ``(path, sha256)`` of every input file read (scenario, body file).
+
+    Returns
+    -------
+    dict
+        ``tumble``, ``numpy``, ``scipy``, ``python`` versions, ``platform``, ``command`` (the
+        command line, or None), ``inputs`` (path -> sha256) and ``created`` (UTC, ISO 8601).
+    """
+    import numpy
+    import scipy
+
+    from .._version import __version__
+
+    return {
+        "tumble": __version__,
+        "numpy": numpy.__version__,
+        "scipy": scipy.__version__,
+        "python": platform.python_version(),
+        "platform": platform.platform(terse=True),
+        "command": None if argv is None else shlex.join(["tumble", *map(str, argv)]),
+        "inputs": {str(Path(p)): h for p, h in inputs},
+        "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+    }

@@ -1,0 +1,241 @@
+"""A command's output appears whole or not at all: failures, full disks, signals, concurrent
+runs, bad output paths (checked before integrating); provenance; runs without a scenario file."""
+
+from __future__ import annotations
+
+import errno
+import hashlib
+import json
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tumble.io.export
+from tumble import __version__
+from tumble.cli import main
+from tumble.io.export import CSV_COLUMNS
+from tumble.io.scenario import Scenario
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+SEED = str(EXAMPLES / "seed_flip.toml")
+
+
+def simulate(out, *extra):
+    return main(["simulate", SEED, "--out", str(out), "--samples", "50", *extra])
+
+
+def snapshot(folder: Path) -> dict:
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+
+
+def leftovers(parent: Path, keep: str) -> list[str]:
+    return sorted(p.name for p in parent.iterdir() if p.name != keep)
+
+
+# -- all or nothing ----------------------------------------------------------------------
+
+def test_a_full_disk_midway_keeps_the_previous_output_and_exits_1(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "run"
+    assert simulate(out) == 0
+    before = snapshot(out)
+
+    def full(traj, path, provenance=None):
+        Path(path).write_bytes(b"half")
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    monkeypatch.setattr(tumble.io.export, "write_npz", full)
+    capsys.readouterr()
+    assert simulate(out, "--omega", "1", "2", "3") == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device" in err and "trajectory.npz" in err
+    assert snapshot(out) == before  # the previous run, whole: not a mix of two runs
+    assert leftovers(tmp_path, "run") == []
+
+
+@pytest.mark.parametrize(("signum", "code"), [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
+def test_a_signal_midway_leaves_the_previous_output_and_no_temporary_files(tmp_path, monkeypatch, capsys, signum, code):
+    out = tmp_path / "run"
+    assert simulate(out) == 0
+    before = snapshot(out)
+    write_csv = tumble.io.export.write_csv
+
+    def interrupted(traj, path):
+        write_csv(traj, path)
+        os.kill(os.getpid(), signum)
+
+    monkeypatch.setattr(tumble.io.export, "write_csv", interrupted)
+    assert simulate(out, "--omega", "1", "2", "3") == code
+    assert "nothing written" in capsys.readouterr().err
+    assert snapshot(out) == before
+    assert leftovers(tmp_path, "run") == []
+    assert signal.getsignal(signal.SIGTERM) is signal.SIG_DFL or signum == signal.SIGINT
+
+
+def test_concurrent_runs_into_one_folder_never_mix(tmp_path):
+    """Two runs with different spins into the same --out, three times: both succeed and the
+    folder always holds one run's files, whole (CSV, NPZ and summary agree)."""
+    out = tmp_path / "run"
+    for trial in range(3):
+        procs = [
+            subprocess.Popen([sys.executable, "-m", "tumble", "simulate", SEED, "--out", str(out), "--samples", "2000",
+                              "--omega", str(w), "10", "0.1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+            for w in (0.1, 0.2)
+        ]
+        for p in procs:
+            _, err = p.communicate(timeout=120)
+            assert p.returncode == 0, err
+        summary = json.loads((out / "summary.json").read_text())
+        csv_row = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1, max_rows=1)
+        npz = np.load(out / "trajectory.npz")
+        assert summary["omega0"] == csv_row[1:4].tolist() == npz["omega"][0].tolist()
+        assert json.loads(str(npz["provenance"])) == summary["provenance"]
+        assert leftovers(tmp_path, "run") == []
+
+
+# -- the output path, checked before integrating ---------------------------------------------
+
+@pytest.mark.parametrize(
+    ("make", "pattern"),
+    [
+        (lambda d: (d / "out").write_text("x") and d / "out", "exists and is not a folder"),
+        (lambda d: (d / "f").write_text("x") and d / "f" / "sub", "is a file, not a folder"),
+        (lambda d: ((d / "out" / "inner").mkdir(parents=True), d / "out")[1], "holds 'inner', not a plain file"),
+    ],
+)
+@pytest.mark.parametrize("command", ["simulate", "plot"])
+def test_a_bad_output_folder_is_refused_before_integrating(tmp_path, monkeypatch, capsys, make, pattern, command):
+    def never(self):
+        raise AssertionError("integrated before checking --out")
+
+    monkeypatch.setattr(Scenario, "run", never)
+    out = make(tmp_path)
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    assert main([command, SEED, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert pattern in err and err.count("\n") == 1
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+def test_a_bad_page_path_is_refused_before_integrating(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(Scenario, "run", lambda self: pytest.fail("integrated before checking --out"))
+    (tmp_path / "f").write_text("x")
+    assert main(["view", SEED, "--out", str(tmp_path / "f" / "page.html")]) == 2
+    assert "is a file, not a folder" in capsys.readouterr().err
+    (tmp_path / "dir.html").mkdir()
+    assert main(["view", SEED, "--out", str(tmp_path / "dir.html")]) == 2
+
+
+def test_other_files_in_the_folder_are_kept_and_stale_ones_dropped(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert simulate(out) == 0
+    (out / "notes.txt").write_text("mine")
+    assert main(["plot", SEED, "--out", str(out), "--format", "svg"]) == 0
+    assert main(["plot", SEED, "--out", str(out), "--format", "png"]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert {"trajectory.csv", "trajectory.npz", "summary.json", "omega.png", "notes.txt", "polhode.png"} <= names
+    assert not any(n.endswith(".svg") for n in names)  # the earlier plot's files, replaced as a set
+    assert (out / "notes.txt").read_text() == "mine"
+
+
+# -- plots of runs that are not a free motion ------------------------------------------------
+
+@pytest.mark.parametrize(
+    ("argv", "reason"),
+    [
+        ([str(EXAMPLES / "torqued_box.toml")], "a torque acts"),
+        (["t-handle", "--omega", "0", "0", "0", "--t-end", "1"], "the body is at rest"),
+    ],
+)
+def test_plot_skips_the_phase_portraits_where_they_mean_nothing(tmp_path, capsys, argv, reason):
+    out = tmp_path / "fig"
+    assert main(["plot", *argv, "--out", str(out), "--format", "png"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["drift.png", "omega.png"]
+    assert f"skipped polhode, herpolhode: {reason}" in capsys.readouterr().out
+
+
+# -- provenance and units --------------------------------------------------------------------
+
+def test_summary_and_npz_carry_provenance_and_the_csv_its_units(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert simulate(out) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    prov = summary["provenance"]
+    import numpy
+    import scipy
+
+    assert (prov["tumble"], prov["numpy"], prov["scipy"]) == (__version__, numpy.__version__, scipy.__version__)
+    assert prov["command"] == f"tumble simulate {SEED} --out {out} --samples 50"
+    assert prov["inputs"] == {SEED: hashlib.sha256(Path(SEED).read_bytes()).hexdigest()}
+    assert prov["created"].endswith("+00:00")
+    assert json.loads(str(np.load(out / "trajectory.npz")["provenance"])) == prov
+    header = (out / "trajectory.csv").read_text().splitlines()[0]
+    assert header == ",".join(CSV_COLUMNS) and header.startswith("t [s],omega_1 [rad/s]")
+
+
+# -- runs without a scenario file ------------------------------------------------------------
+
+def test_a_body_file_without_a_spin_says_what_a_scenario_adds(tmp_path, capsys):
+    body = str(EXAMPLES / "bodies" / "t_handle.toml")
+    assert main(["view", body, "--out", str(tmp_path / "p.html")]) == 2
+    err = capsys.readouterr().err
+    assert "is a body file; a run also needs an initial spin: add --omega W1 W2 W3" in err
+    assert "a scenario file, which adds [initial] omega and [simulation]" in err
+
+
+@pytest.mark.parametrize("body", ["t-handle", str(EXAMPLES / "bodies" / "t_handle.toml")])
+def test_a_body_and_omega_run_without_a_scenario_file(tmp_path, capsys, body):
+    out = tmp_path / "run"
+    assert main(["simulate", body, "--omega", "0.1", "10", "0.1", "--t-end", "5", "--dt", "0.01",
+                 "--method", "dop853", "--out", str(out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["t_end"] == 5.0 and summary["samples"] == 501 and summary["method"] == "dop853"
+    assert summary["omega0"] == [0.1, 10.0, 0.1] and summary["stability"]["flips"] >= 2
+
+
+def test_options_override_the_scenario_file(tmp_path, capsys):
+    assert main(["simulate", SEED, "--t-end", "2", "--samples", "11", "--out", str(tmp_path / "r"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["t_end"], summary["samples"]) == (2.0, 11)
+
+
+@pytest.mark.parametrize(
+    ("argv", "pattern"),
+    [
+        (["--omega", "nan", "1", "0"], r"--omega\[0\] = nan must be a finite number"),
+        (["--t-end", "-1"], "--t-end = -1.0 must be a positive"),
+        (["--samples", "1"], "--samples = 1 must be a whole number from 2"),
+        (["--method", "euler"], "--method = 'euler' is unknown"),
+        (["--dt", "0.1", "--samples", "5"], "give samples or dt, not both"),
+    ],
+)
+def test_bad_options_name_the_option(tmp_path, capsys, argv, pattern):
+    import re
+
+    assert main(["simulate", "t-handle", "--omega", "0", "1", "0", "--out", str(tmp_path / "r"), *argv]) == 2
+    err = capsys.readouterr().err
+    assert re.search(pattern, err), err
+    assert not (tmp_path / "r").exists()
+
+
+def test_debug_is_accepted_after_the_subcommand(tmp_path):
+    with pytest.raises(ValueError, match="neither a scenario or body file nor a preset"):
+        main(["simulate", "no-such-body", "--out", str(tmp_path / "r"), "--debug"])
+
+
+def test_scenario_files_take_dt_and_times(tmp_path):
+    from tumble.io.scenario import load_scenario
+
+    path = tmp_path / "s.toml"
+    path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\ntimes = [0.5, 1.0, 7.25]\n')
+    traj = load_scenario(path).run()
+    assert traj.t.tolist() == [0.5, 1.0, 7.25]
+    path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\nt_end = 2.0\ndt = 0.5\n')
+    assert load_scenario(path).run().t.tolist() == [0.0, 0.5, 1.0, 1.5, 2.0]
+    path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\ntimes = [1.0, 0.5]\n')
+    with pytest.raises(ValueError, match=r"simulation.times must increase strictly"):
+        load_scenario(path)
