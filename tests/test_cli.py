@@ -103,3 +103,15 @@ def test_demo_cli_writes_its_folder(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate, argv: calls.update(out=out, animate=animate))
     code, _, _ = run(capsys, "demo", "--out", str(tmp_path / "d"), "--no-animation")
     assert code == 0 and calls == {"out": str(tmp_path / "d"), "animate": False}
+
+
+def test_examples_are_listed_and_copied_ready_to_run(tmp_path, capsys):
+    code, out, _ = run(capsys, "examples")
+    assert code == 0
+    listed = [line.split()[0] for line in out.splitlines()[:-1]]
+    assert "seed_flip.toml" in listed and "bodies/t_handle.toml" in listed
+    code, out, _ = run(capsys, "examples", "--copy", str(tmp_path / "ex"))
+    assert code == 0 and sorted(p.relative_to(tmp_path / "ex").as_posix() for p in (tmp_path / "ex").rglob("*.toml")) == sorted(listed)
+    assert run(capsys, "simulate", str(tmp_path / "ex" / "every_part_spin.toml"), "--t-end", "1", "--out", str(tmp_path / "r"))[0] == 0
+    code, _, err = run(capsys, "examples", "--copy", str(tmp_path / "ex"))  # never overwrites
+    assert code == 2 and "already exists" in err

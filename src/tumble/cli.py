@@ -54,6 +54,21 @@ def _cmd_demo(args) -> int:
     return EXIT_OK
 
 
+def _cmd_examples(args) -> int:
+    from .io.examples import copy_examples, list_examples
+
+    if args.copy:
+        written = copy_examples(args.copy)
+        print(f"copied {len(written)} files to {args.copy}/; try: tumble simulate {args.copy}/seed_flip.toml --out run")
+        return EXIT_OK
+    examples = list_examples()
+    width = max(len(e.path) for e in examples)
+    for e in examples:
+        print(f"{e.path:<{width}}  {e.kind:<8}  {e.description}")
+    print("copy them with: tumble examples --copy DIR")
+    return EXIT_OK
+
+
 def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from .io.scenario import resolve_run
@@ -234,6 +249,16 @@ def build_parser() -> argparse.ArgumentParser:
         "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html", "FILE.html", "the page to write",
     )
     p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
+
+    p = sub.add_parser(
+        "examples",
+        help="list the example scenario and body files, or copy them",
+        description="Lists the scenario and body files that ship with tumble; --copy DIR copies them, "
+        "ready to run (scenarios name their bodies and meshes by relative paths).",
+        epilog="Examples: tumble examples | tumble examples --copy my-examples", parents=[debug],
+    )
+    p.add_argument("--copy", metavar="DIR", help="copy every example into DIR (never overwrites a file)")
+    p.set_defaults(func=_cmd_examples)
 
     p = sub.add_parser(
         "demo",
