@@ -58,13 +58,14 @@ def seed_literal(body, w0, frame, t_end=20.0, samples=500):
     return sol.y.T, np.array(out)
 
 
-def _best_time(fn, repeat: int) -> tuple[float, object]:
-    best, result = np.inf, None
+def _median_time(fn, repeat: int) -> tuple[float, object]:
+    """Median wall time over ``repeat`` calls (one call for the slow cases), and the result."""
+    times, result = [], None
     for _ in range(repeat):
         t0 = time.perf_counter()
         result = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, result
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times)), result
 
 
 def mpmath_check(body, w0, frame, times, dps: int = 25) -> float:
@@ -96,7 +97,7 @@ def work_precision(quick: bool) -> tuple[list[dict], dict]:
         base = None
         for label, method, opts in METHODS:
             repeat = 1 if (quick or method.startswith("geometric")) else 3
-            seconds, traj = _best_time(lambda: simulate(body, w0, frame=frame, t_end=20.0, method=method, **opts), repeat)
+            seconds, traj = _median_time(lambda: simulate(body, w0, frame=frame, t_end=20.0, method=method, **opts), repeat)
             err = np.linalg.norm(traj.omega - ref.omega, axis=1) / scale
             att = (traj.attitude * ref.attitude.inv()).magnitude()
             base = seconds if base is None else base
@@ -111,7 +112,7 @@ def work_precision(quick: bool) -> tuple[list[dict], dict]:
             })
             if case.startswith("seed") and method != "exact":
                 curves[label] = (traj.t, np.maximum(err, 1e-17))
-        seconds, (w_lit, _) = _best_time(lambda: seed_literal(body, w0, frame), 1 if quick else 3)
+        seconds, (w_lit, _) = _median_time(lambda: seed_literal(body, w0, frame), 1 if quick else 3)
         rows.append({"case": case, "method": "seed, literal (rk45 + scipy.linalg.expm per sample)",
                      "seconds": seconds, "time_vs_rk45": seconds / base,
                      "omega_error": float(np.max(np.linalg.norm(w_lit - ref.omega, axis=1)) / scale),

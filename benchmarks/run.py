@@ -16,41 +16,67 @@ import sys
 import timeit
 from pathlib import Path
 
+import numpy as np
+
 HERE = Path(__file__).resolve().parent
 SUITES = ["bench_mass", "bench_dynamics"]
 
 
-def best_time(fn, repeat: int) -> float:
-    timer = timeit.Timer(fn)
-    number, _ = timer.autorange()
-    return min(timer.repeat(repeat=repeat, number=number)) / number
+def _per_call(timer: timeit.Timer, number: int) -> float:
+    return timer.timeit(number=number) / number
+
+
+def paired_times(candidate, baseline, repeat: int) -> dict:
+    """Time candidate and baseline in alternation, ``repeat`` times each (``timeit``'s autorange
+    picks the number of calls per repeat), so a load that comes and goes hits both alike.
+
+    Returns the medians and ranges (s) and the median of the per-repeat ratios.
+    """
+    timers = [timeit.Timer(candidate), timeit.Timer(baseline)]
+    numbers = [t.autorange()[0] for t in timers]
+    pairs = [tuple(_per_call(t, n) for t, n in zip(timers, numbers)) for _ in range(repeat)]
+    cand, base = (np.array(x) for x in zip(*pairs))
+    return {
+        "seconds": float(np.median(cand)), "seconds_range": [float(cand.min()), float(cand.max())],
+        "baseline_seconds": float(np.median(base)), "baseline_range": [float(base.min()), float(base.max())],
+        "ratio": float(np.median(cand / base)), "ratio_range": [float((cand / base).min()), float((cand / base).max())],
+        "repeats": repeat,
+    }
 
 
 def run_suite(name: str, repeat: int) -> list[dict]:
     module = importlib.import_module(name)
     rows = []
     for title, candidate, baseline, baseline_name, target in module.cases():
-        t_c, t_b = best_time(candidate, repeat), best_time(baseline, repeat)
+        stats = paired_times(candidate, baseline, repeat)
         rows.append({
-            "case": title, "seconds": t_c, "baseline": baseline_name, "baseline_seconds": t_b,
-            "ratio": t_c / t_b, "target_seconds": target,
-            "meets_target": None if target is None else bool(t_c <= target),
+            "case": title, "baseline": baseline_name, **stats, "target_seconds": target,
+            "meets_target": None if target is None else bool(stats["seconds"] <= target),
         })
     return rows
 
 
+def _ms(x: float) -> str:
+    return f"{x * 1e3:.3g}"
+
+
 def to_markdown(name: str, rows: list[dict]) -> str:
     lines = [
-        f"# {name}", "", f"Python {platform.python_version()} on {platform.machine()}, {platform.node()}", "",
-        "| case | time | baseline | baseline time | ratio | target | met |",
+        f"# {name}", "", f"Python {platform.python_version()} on {platform.machine()}, {platform.node()}; "
+        f"medians over {rows[0]['repeats'] if rows else 0} alternating repeats, range in brackets", "",
+        "| case | time (ms) | baseline | baseline time (ms) | ratio | target | met (median) |",
         "|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         target = "-" if r["target_seconds"] is None else f"{r['target_seconds'] * 1e3:.3g} ms"
         met = "-" if r["meets_target"] is None else ("yes" if r["meets_target"] else "NO")
+        lo, hi = r["seconds_range"]
+        blo, bhi = r["baseline_range"]
+        rlo, rhi = r["ratio_range"]
         lines.append(
-            f"| {r['case']} | {r['seconds'] * 1e3:.4g} ms | {r['baseline']} | {r['baseline_seconds'] * 1e3:.4g} ms "
-            f"| {r['ratio']:.3g} | {target} | {met} |"
+            f"| {r['case']} | {_ms(r['seconds'])} [{_ms(lo)}-{_ms(hi)}] | {r['baseline']} "
+            f"| {_ms(r['baseline_seconds'])} [{_ms(blo)}-{_ms(bhi)}] | {r['ratio']:.3g} [{rlo:.3g}-{rhi:.3g}] "
+            f"| {target} | {met} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -69,7 +95,7 @@ def main(argv=None) -> int:
         if hasattr(module, "run"):  # a suite that measures and tabulates itself
             text = module.run(out, quick=args.quick)
         else:
-            rows = run_suite(name, repeat=3 if args.quick else 7)
+            rows = run_suite(name, repeat=3 if args.quick else 15)
             text = to_markdown(name, rows)
             (out / f"{name}.json").write_text(json.dumps(rows, indent=2) + "\n")
         print(text)
