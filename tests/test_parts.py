@@ -4,7 +4,7 @@ Route 1: trimesh's exact integration over a fine mesh of the same solid. An insc
 with n sides under-estimates r^2-weighted integrals by a relative O((2 pi / n)^2 / 6); for
 n = 256 that is 1.0e-4, so the mass-normalised tensors are compared at rtol 5e-4. An icosphere of
 5 subdivisions has a volume deficit of 5.4e-4, so spheres and ellipsoids are compared at 2e-3.
-Route 2: direct numerical quadrature of seed eq. (2.1), I_ij = integral rho (r^2 d_ij - r_i r_j) dV.
+Route 2: direct numerical quadrature of the seed study's definition (sec. 2.1, docs/seed-study.md), I_ij = integral rho (r^2 d_ij - r_i r_j) dV.
 """
 
 from __future__ import annotations
@@ -112,7 +112,7 @@ def test_point_mass_has_no_inertia_of_its_own():
     np.testing.assert_array_equal(p.inertia, np.zeros((3, 3)))
 
 
-# -- route 2: quadrature of seed eq. (2.1) ------------------------------------------------
+# -- route 2: quadrature of the seed's sec. 2.1 definition ---------------------------------------
 
 def test_cone_by_quadrature_of_the_definition():
     """Integrate rho (r^2 delta_ij - r_i r_j) over a cone in cylindrical coordinates."""

@@ -83,7 +83,7 @@ def simulate(
         Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``,
         or every ``dt`` seconds from 0 up to ``t_end``.
     samples : int, optional
-        Number of samples (>= 2) with ``t_end``; default 500 as in the seed study.
+        Number of samples (>= 2) with ``t_end``; default 500.
     dt : float, optional
         Sample spacing, s, with ``t_end`` (instead of ``samples``): samples at ``0, dt, 2 dt,
         ...`` up to ``t_end`` (the last one is ``t_end`` when ``t_end / dt`` is whole).
