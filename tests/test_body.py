@@ -143,3 +143,29 @@ def test_moving_takes_any_rotation_form_and_refuses_reflections():
         body.moved(np.diag([1.0, 1.0, -1.0]))
     with pytest.raises(ValueError, match="translation = "):
         body.moved(Rotation.identity(), (0.0, 1.0))
+
+
+@pytest.mark.parametrize("point, message", [
+    ([np.nan, 0.0, 0.0], r"^point = \[nan, 0.0, 0.0\] must be finite numbers \(m\)"),
+    ([0.0, np.inf, 0.0], r"^point = \[0.0, inf, 0.0\] must be finite numbers \(m\)"),
+    ([0.0, 0.0], r"^point = \[0.0, 0.0\] must be real numbers of shape \(\.\.\., 3\) \(m\), not shape \(2,\)"),
+    (1.0, r"^point = 1.0 must be real numbers of shape \(\.\.\., 3\) \(m\), not shape \(\)"),
+    ("xyz", r"^point = 'xyz' must be real numbers"),
+    ({0: 0.0, 1: 0.0, 2: 0.0}, r"^point = \{0: 0.0, 1: 0.0, 2: 0.0\} must be real numbers"),
+    ([[0.0, 0.0, 0.0], [0.0, np.nan, 1.0]], r"^point\[1\] = \[0.0, nan, 1.0\] must be finite numbers \(m\)"),
+])
+def test_inertia_about_refuses_a_bad_point(point, message):
+    body = tumble.t_handle()
+    for inertia_about in (body.inertia_about, body.properties.inertia_about):
+        with pytest.raises(ValueError, match=message):
+            inertia_about(point)
+
+
+def test_inertia_about_a_batch_of_points():
+    body = tumble.t_handle()
+    points = np.array([[0.0, 0.0, -0.5], [1.0, 2.0, 3.0], [0.0, 0.0, 0.25]])
+    stack = body.inertia_about(points)
+    assert stack.shape == (3, 3, 3)
+    for point, tensor in zip(points, stack):
+        np.testing.assert_array_equal(tensor, body.inertia_about(tuple(point)))
+    np.testing.assert_allclose(stack[2], body.inertia, atol=1e-15)  # about the COM itself

@@ -9,10 +9,14 @@ from hypothesis import strategies as st
 
 import tumble
 from tumble.analysis import (
+    axis_of,
+    circulation_axis,
     energy_momentum_gaps,
     flip_interval,
+    flip_interval_asymptotic,
     flip_times,
     linearised_rate,
+    perturbation_exponent,
     stability_report,
 )
 from tumble.dynamics import simulate
@@ -35,22 +39,23 @@ def asymmetric_moments(draw):
 
 
 @settings(max_examples=25)
-@given(asymmetric_moments(), st.sampled_from([0, 1, 2]), st.floats(0.5, 5.0))
+@given(asymmetric_moments(), st.sampled_from([1, 2, 3]), st.floats(0.5, 5.0))
 def test_flips_happen_exactly_for_the_intermediate_axis(moments, axis, spin):
     if moments is None:
         return
     eps = 1e-3 * spin
     w0 = np.full(3, eps)
-    w0[axis] = spin
+    w0[axis - 1] = spin
     growth, wobble = linearised_rate(moments, axis, spin)
-    assert (growth > 0) == (axis == 1) and (wobble > 0) == (axis != 1)
+    assert (growth > 0) == (axis == 2) and (wobble > 0) == (axis != 2)
     # long enough for several flips if the axis is unstable: a flip interval is about
     # ln(1/eps)/lambda; take 4 of the exact ones (or 40 wobble periods for stable axes)
-    t_end = 4 * flip_interval(w0, moments) if axis == 1 else 40 * 2 * np.pi / wobble
+    t_end = 4 * flip_interval(w0, moments) if axis == 2 else 40 * 2 * np.pi / wobble
     traj = simulate(free_body(moments), w0, t_end=float(t_end), samples=4000, method="dop853", rtol=1e-10)
     report = stability_report(traj)
-    assert report["predicted"] == ("unstable" if axis == 1 else "stable")
-    if axis == 1:
+    assert report["axis"] == axis == axis_of(w0)
+    assert report["predicted"] == ("unstable" if axis == 2 else "stable")
+    if axis == 2:
         assert report["flips"] >= 3
     else:
         assert report["flips"] == 0
@@ -62,7 +67,7 @@ def test_linearised_growth_rate_matches_simulation(preset):
     body = tumble.load_body(preset)
     W = 5.0
     w0 = np.array([1e-9, W, 1e-9]) * [1, 1, 1]
-    lam, _ = linearised_rate(body.principal_moments, 1, W)
+    lam, _ = linearised_rate(body.principal_moments, 2, W)
     t_end = np.log(1e7) / lam  # grows ~1e7 fold, still < 1e-2 of W
     traj = simulate(body, w0, t_end=float(t_end), samples=400, method="dop853", rtol=1e-13, atol=1e-20)
     amp = np.hypot(traj.omega[:, 0] * np.sqrt(body.principal_moments[0]), traj.omega[:, 2] * np.sqrt(body.principal_moments[2]))
@@ -71,15 +76,15 @@ def test_linearised_growth_rate_matches_simulation(preset):
     assert slope == pytest.approx(lam, rel=2e-3)
 
 
-@pytest.mark.parametrize("axis", [0, 2])
+@pytest.mark.parametrize("axis", [1, 3])
 def test_wobble_frequency_matches_simulation(axis):
     body = tumble.iss_t_handle()
     W = 10.0
     w0 = np.full(3, 1e-4)
-    w0[axis] = W
+    w0[axis - 1] = W
     _, wobble = linearised_rate(body.principal_moments, axis, W)
     traj = simulate(body, w0, t_end=float(20 * 2 * np.pi / wobble), samples=4000, method="dop853")
-    other = (axis + 1) % 3
+    other = axis % 3  # 0-based index of the next axis
     crossings = flip_times(traj.t, traj.omega[:, other])
     assert np.mean(np.diff(crossings)) == pytest.approx(np.pi / wobble, rel=1e-6)
 
@@ -99,15 +104,15 @@ def test_exact_flip_interval_matches_simulated_flips(w0):
 def test_flip_interval_limits():
     I = np.array([1.0, 2.0, 2.5])
     # near a stable axis the interval tends to half the linearised wobble period
-    for axis in (0, 2):
+    for axis in (1, 3):
         w = np.full(3, 1e-7)
-        w[axis] = 3.0
+        w[axis - 1] = 3.0
         _, wobble = linearised_rate(I, axis, 3.0)
         assert flip_interval(w, I) == pytest.approx(np.pi / wobble, rel=1e-9)
     # on the separatrix it is infinite; near it each flip lingers at a saddle, approaching and
     # leaving it, so the interval grows like 2 log(1/eps) / lambda
     assert flip_interval([0.0, 1.0, 0.0], I) == np.inf
-    lam, _ = linearised_rate(I, 1, 1.0)
+    lam, _ = linearised_rate(I, 2, 1.0)
     t1 = flip_interval([1e-6, 1.0, 1e-6], I)
     t2 = flip_interval([1e-8, 1.0, 1e-8], I)
     assert t2 - t1 == pytest.approx(2 * np.log(100) / lam, rel=1e-3)
@@ -124,3 +129,167 @@ def test_energy_momentum_gaps_match_the_naive_formula(rng):
 def test_flip_times_interpolates_zero_crossings():
     t = np.linspace(0, 10, 1001)
     np.testing.assert_allclose(flip_times(t, np.sin(t)), [np.pi, 2 * np.pi, 3 * np.pi], atol=1e-5)
+
+
+# -- one numbering of the principal axes: 1, 2, 3 or minor, intermediate, major --------------
+
+I_ASYM = np.array([1.0, 2.0, 2.5])
+
+
+@pytest.mark.parametrize("number, name", [(1, "minor"), (2, "intermediate"), (3, "major")])
+def test_axes_are_numbered_from_one_or_named(number, name):
+    W = 3.0
+    # s = W^2 (I_a - I_b)(I_c - I_a) / (I_b I_c) for a = that axis, written out by hand
+    by_hand = {1: W**2 * (1.0 - 2.0) * (2.5 - 1.0) / (2.0 * 2.5),
+               2: W**2 * (2.0 - 2.5) * (1.0 - 2.0) / (2.5 * 1.0),
+               3: W**2 * (2.5 - 1.0) * (2.0 - 2.5) / (1.0 * 2.0)}[number]
+    assert perturbation_exponent(I_ASYM, number, W) == pytest.approx(by_hand, rel=1e-15)
+    assert perturbation_exponent(I_ASYM, name, W) == pytest.approx(by_hand, rel=1e-15)
+    assert perturbation_exponent(I_ASYM, np.int32(number), W) == pytest.approx(by_hand, rel=1e-15)
+    growth, wobble = linearised_rate(I_ASYM, number, W)
+    assert (growth > 0) == (number == 2) and (wobble > 0) == (number != 2)
+    assert linearised_rate(I_ASYM, name, W) == (growth, wobble)
+
+
+def test_batched_axes_broadcast():
+    one_by_one = np.array([perturbation_exponent(I_ASYM, a, 2.0) for a in (1, 2, 3)])
+    np.testing.assert_array_equal(perturbation_exponent(I_ASYM, [1, 2, 3], 2.0), one_by_one)
+    np.testing.assert_array_equal(perturbation_exponent(I_ASYM, ["minor", "intermediate", "major"], 2.0), one_by_one)
+    # a (2, 1) column of axes and of moments against a (3,) row of spins
+    I = np.array([I_ASYM, 2 * I_ASYM])[:, None, :]
+    growth, wobble = linearised_rate(I, [[2], [1]], [1.0, 2.0, 3.0])
+    assert growth.shape == wobble.shape == (2, 3)
+    np.testing.assert_allclose(growth[0], [linearised_rate(I[0, 0], 2, w)[0] for w in (1.0, 2.0, 3.0)], rtol=1e-15)
+    np.testing.assert_allclose(wobble[1], [linearised_rate(I[1, 0], 1, w)[1] for w in (1.0, 2.0, 3.0)], rtol=1e-15)
+    assert np.all(growth[1] == 0) and np.all(wobble[0] == 0)
+
+
+@pytest.mark.parametrize("bad", [0, -1, 4, 2.5, 2.0, True, "x", "Major", None, {2: 1}, [1, 0], np.array([1, 2, 4])])
+@pytest.mark.parametrize("function", [linearised_rate, perturbation_exponent])
+def test_any_other_axis_is_refused(function, bad):
+    with pytest.raises(ValueError, match=r"^axis(\[\d+\])? = .* must be 1, 2 or 3 .*'minor', 'intermediate' or 'major'"):
+        function(I_ASYM, bad, 1.0)
+
+
+def test_refused_axis_names_its_index():
+    with pytest.raises(ValueError, match=r"^axis\[2\] = 0 must be"):
+        linearised_rate(I_ASYM, [1, 2, 0, -1], 1.0)
+    with pytest.raises(ValueError, match=r"^axis\[1\] = 'x' must be"):
+        linearised_rate(I_ASYM, ["minor", "x"], 1.0)
+
+
+def test_returned_axes_count_from_one():
+    assert axis_of([0.1, 10.0, 0.1]) == 2
+    np.testing.assert_array_equal(axis_of([[5.0, 0.1, 0.1], [0.1, 5.0, 0.1], [0.1, 0.1, -5.0]]), [1, 2, 3])
+    # near the major axis omega circulates about it, near the minor axis about that one
+    assert circulation_axis([0.1, 0.1, 10.0], I_ASYM) == 3
+    assert circulation_axis([10.0, 0.1, 0.1], I_ASYM) == 1
+    # either side of the unstable intermediate axis: L^2 - 2 E I2 = sum I_i (I_i - I2) w_i^2
+    np.testing.assert_array_equal(circulation_axis([[0.1, 10.0, 0.2], [0.2, 10.0, 0.1]], I_ASYM), [3, 1])
+
+
+def test_report_axis_is_the_circulation_numbering():
+    """The report's axis, axis_of and circulation_axis speak of the same axes: spin near axis 3
+    circulates about axis 3, so it never flips and has no flip period."""
+    body = tumble.t_handle()
+    traj = simulate(body, [0.1, 0.1, 10.0], t_end=5.0)
+    report = stability_report(traj)
+    assert report["axis"] == 3 == circulation_axis(traj.omega[0], traj.moments)
+    assert report["role"] == "major" and report["flips"] == 0 and report["flip_period_exact"] is None
+
+
+# -- one validator for moments and omega -------------------------------------------------------
+
+FUNCTIONS_OF_MOTION = {
+    "flip_interval": flip_interval,
+    "flip_interval_asymptotic": flip_interval_asymptotic,
+    "circulation_axis": circulation_axis,
+    "linearised_rate": lambda w, I: linearised_rate(I, 2, np.asarray(w, float)[..., 1]),
+    "perturbation_exponent": lambda w, I: perturbation_exponent(I, 2, np.asarray(w, float)[..., 1]),
+}
+
+
+@pytest.mark.parametrize("name", FUNCTIONS_OF_MOTION)
+@pytest.mark.parametrize("moments, message", [
+    ([1.0, 3.0, 2.0], r"^moments = \[1.0, 3.0, 2.0\] must be ascending"),
+    ([2.0, 1.0, 2.5], r"^moments = \[2.0, 1.0, 2.5\] must be ascending"),
+    ([0.0, 1.0, 1.0], r"^moments = \[0.0, 1.0, 1.0\] must be positive"),
+    ([-1.0, 1.0, 2.0], r"^moments = \[-1.0, 1.0, 2.0\] must be positive"),
+    ([1.0, 2.0, np.nan], r"^moments = \[1.0, 2.0, nan\] must be finite"),
+    ([1.0, 2.0, np.inf], r"^moments = \[1.0, 2.0, inf\] must be finite"),
+    ([1.0, 2.0], r"^moments = \[1.0, 2.0\] must be .*shape \(\.\.\., 3\)"),
+    ([[1.0, 2.0, 3.0]] * 3 + [[1.0, 3.0, 2.0]], r"^moments\[3\] = \[1.0, 3.0, 2.0\] must be ascending"),
+    ("abc", r"^moments = 'abc' must be real numbers"),
+])
+def test_bad_moments_are_refused(name, moments, message):
+    with pytest.raises(ValueError, match=message):
+        FUNCTIONS_OF_MOTION[name]([0.1, 1.0, 0.1], moments)
+
+
+@pytest.mark.parametrize("name", ["flip_interval", "flip_interval_asymptotic", "circulation_axis"])
+@pytest.mark.parametrize("omega, message", [
+    ([np.nan, 1.0, 0.0], r"^omega = \[nan, 1.0, 0.0\] must be finite"),
+    ([0.0, np.inf, 0.0], r"^omega = \[0.0, inf, 0.0\] must be finite"),
+    ([[0.1, 1.0, 0.1], [0.1, 1.0, 0.1], [0.1, np.nan, 0.1]], r"^omega\[2\] = \[0.1, nan, 0.1\] must be finite"),
+    ([1.0, 2.0], r"^omega = \[1.0, 2.0\] must be .*shape \(\.\.\., 3\)"),
+    ({0: 1.0, 1: 2.0, 2: 3.0}, r"^omega = \{0: 1.0, 1: 2.0, 2: 3.0\} must be real numbers"),
+    ({1.0, 2.0, 3.0}, r"^omega = \{1.0, 2.0, 3.0\} must be real numbers"),
+    ([True, False, True], r"^omega = \[True, False, True\] must be real numbers"),
+])
+def test_bad_omega_is_refused(name, omega, message):
+    with pytest.raises(ValueError, match=message):
+        FUNCTIONS_OF_MOTION[name](omega, I_ASYM)
+
+
+def test_batches_that_do_not_broadcast_are_refused():
+    with pytest.raises(ValueError, match=r"omega \(batch shape \(2,\)\), moments \(batch shape \(3,\)\) must broadcast"):
+        flip_interval(np.ones((2, 3)), np.tile(I_ASYM, (3, 1)))
+    with pytest.raises(ValueError, match=r"axis \(batch shape \(2,\)\), spin \(batch shape \(3,\)\)"):
+        linearised_rate(I_ASYM, [1, 2], [1.0, 2.0, 3.0])
+
+
+@pytest.mark.parametrize("spin", [np.nan, np.inf, [1.0, np.nan]])
+def test_non_finite_spin_is_refused(spin):
+    with pytest.raises(ValueError, match=r"^spin(\[1\])? = (nan|inf) must be a finite number \(rad/s\)"):
+        linearised_rate(I_ASYM, 2, spin)
+
+
+def test_valid_batches_still_give_the_single_answers():
+    w = np.array([[0.1, 10.0, 0.1], [1.0, 0.1, 0.1], [0.1, 0.1, 1.0]])
+    np.testing.assert_array_equal(flip_interval(w, I_ASYM), [flip_interval(x, I_ASYM) for x in w])
+    # equal moments (a symmetric top) are ascending too, and a body at rest has no flips
+    assert np.isfinite(flip_interval([1.0, 0.5, 0.1], [1.0, 1.0, 2.0]))
+    assert flip_interval([0.0, 0.0, 0.0], I_ASYM) == np.inf
+
+
+not_an_array_of_numbers = st.one_of(
+    st.dictionaries(st.integers(0, 2), st.floats(allow_nan=False), min_size=1),
+    st.sets(st.floats(allow_nan=False), min_size=1),
+    st.text(),
+    st.none(),
+    st.booleans(),
+    st.lists(st.booleans(), min_size=3, max_size=3),
+    st.lists(st.text(min_size=1), min_size=3, max_size=3),
+    st.builds(lambda xs: (x for x in xs), st.lists(st.floats(), min_size=3, max_size=3)),
+)
+
+
+@given(not_an_array_of_numbers)
+def test_no_non_numeric_omega_or_moments_is_accepted(value):
+    for function in (flip_interval, flip_interval_asymptotic, circulation_axis):
+        with pytest.raises(ValueError, match=r"^omega"):
+            function(value, I_ASYM)
+        with pytest.raises(ValueError, match=r"^moments"):
+            function([0.1, 1.0, 0.1], value)
+    with pytest.raises(ValueError, match=r"^omega"):
+        axis_of(value)
+
+
+@given(st.one_of(st.integers(), st.floats(), st.text(), st.booleans(), st.none()))
+def test_an_axis_is_accepted_only_if_it_is_one_of_the_six_labels(value):
+    labels = {1: 0, 2: 1, 3: 2, "minor": 0, "intermediate": 1, "major": 2}
+    if not isinstance(value, (bool, float)) and value in labels:
+        assert perturbation_exponent(I_ASYM, value, 1.0) == perturbation_exponent(I_ASYM, [1, 2, 3][labels[value]], 1.0)
+    else:
+        with pytest.raises(ValueError, match=r"^axis = "):
+            perturbation_exponent(I_ASYM, value, 1.0)

@@ -132,3 +132,28 @@ def test_inertia_about_point_for_point_masses():
     I_com = point_mass_inertia(m, r - com).sum(0)
     direct = sum(mi * ((ri - p) @ (ri - p) * np.eye(3) - np.outer(ri - p, ri - p)) for mi, ri in zip(m, r))
     np.testing.assert_allclose(inertia_about_point(I_com, m.sum(), com, p), direct, rtol=1e-12, atol=1e-12)
+
+
+def test_inertia_about_point_names_the_bad_argument_and_index():
+    I_com, m = np.diag([1.0, 2.0, 2.5]), 2.0
+    with pytest.raises(ValueError, match=r"^point = \[nan, 0.0, 0.0\] must be finite numbers \(m\)"):
+        inertia_about_point(I_com, m, [0.0, 0.0, 0.0], [np.nan, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"^point\[1, 0\] = \[0.0, 0.0, inf\] must be finite"):
+        inertia_about_point(I_com, m, [0.0, 0.0, 0.0], [[[0.0, 0.0, 0.0]], [[0.0, 0.0, np.inf]]])
+    with pytest.raises(ValueError, match=r"^com = \[0.0, 0.0\] must be real numbers of shape \(\.\.\., 3\)"):
+        inertia_about_point(I_com, m, [0.0, 0.0], [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"^point = \[True, False, True\] must be real numbers"):
+        inertia_about_point(I_com, m, [0.0, 0.0, 0.0], [True, False, True])
+
+
+@given(st.one_of(
+    st.dictionaries(st.integers(0, 2), st.floats(), min_size=3, max_size=3),
+    st.sets(st.floats(allow_nan=False), min_size=3, max_size=3),
+    st.text(),
+    st.lists(st.floats(), min_size=0, max_size=2),
+    st.lists(st.floats(), min_size=4, max_size=6),
+    st.tuples(st.floats(), st.floats(), st.floats()).filter(lambda v: not np.all(np.isfinite(v))),
+))
+def test_inertia_about_point_never_returns_nan(point):
+    with pytest.raises(ValueError, match=r"^point"):
+        inertia_about_point(np.eye(3), 1.0, [0.0, 0.0, 0.0], point)

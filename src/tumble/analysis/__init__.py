@@ -1,4 +1,9 @@
-"""Analysis of motions (layer 3): stability of the principal axes, flips and their period."""
+"""Analysis of motions (layer 3): stability of the principal axes, flips and their period.
+
+Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
+``"intermediate"``, ``"major"`` in every argument and every result (docs/conventions.md,
+"Numbering the principal axes").
+"""
 
 from .stability import (
     axis_of,

@@ -13,6 +13,13 @@ Three routes that the tests hold against each other:
    the *flip interval* (:func:`flip_interval`).
 3. *Measured*: sign changes of the spin component in a simulated trajectory
    (:func:`flip_times`).
+
+Principal axes are numbered as everywhere a user sees them (docs/conventions.md, "Numbering
+the principal axes"): 1, 2, 3 in ascending order of moment, or by name, ``"minor"``,
+``"intermediate"``, ``"major"``. Every function here takes and returns axes that way; 0, -1,
+floats and booleans are refused, never read as Python indices. Moments are ``(..., 3)``
+arrays, positive and ascending (``I1 <= I2 <= I3``), and every array argument is checked as a
+whole by one validator, whose message names the first bad index.
 """
 
 from __future__ import annotations
@@ -22,6 +29,8 @@ from scipy.special import ellipkm1
 
 from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.exact import elliptic_parameters
+from ..mass import AXIS_ROLES
+from ..mass.tensor import _short_repr, check_vectors, refuse_first
 
 __all__ = [
     "axis_of",
@@ -34,10 +43,71 @@ __all__ = [
     "perturbation_exponent",
 ]
 
+_AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
+
+
+def _axis_index(axis) -> np.ndarray:
+    """0-based indices (0, 1, 2) of public axis labels: 1, 2, 3 or a name, or arrays of them.
+
+    Raises ``ValueError`` for anything else (0, -1, 4, 2.5, True, 'x', a dict ...), naming the
+    first bad entry of an array.
+    """
+    try:
+        a = np.asarray(axis)
+    except (TypeError, ValueError):  # ragged nested sequences
+        a = np.empty((), dtype=object)
+    if a.dtype.kind == "U":
+        index = np.full(a.shape, -1)
+        for k, name in enumerate(AXIS_ROLES):
+            index[a == name] = k
+    elif a.dtype.kind in "iu":
+        index = np.where((a >= 1) & (a <= 3), a, 0).astype(np.intp) - 1  # uint-safe
+    else:
+        raise ValueError(f"axis = {_short_repr(axis)} must be {_AXES_ALLOWED}")
+    refuse_first("axis", a, index < 0, f"must be {_AXES_ALLOWED}")
+    return index
+
+
+def _check_moments(moments) -> np.ndarray:
+    """Principal moments as a float array (..., 3): finite, positive and ascending."""
+    I = check_vectors("moments", moments, "kg m^2")
+    refuse_first("moments", I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
+    refuse_first("moments", I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
+    return I
+
+
+def _check_motion(omega, moments) -> tuple[np.ndarray, np.ndarray]:
+    """The shared validator of ``(omega, moments)``: finite omega (..., 3), moments as
+    :func:`_check_moments`, batch shapes that broadcast together."""
+    w = check_vectors("omega", omega, "rad/s")
+    I = _check_moments(moments)
+    _broadcast(omega=w.shape[:-1], moments=I.shape[:-1])
+    return w, I
+
+
+def _broadcast(**shapes) -> tuple[int, ...]:
+    """The broadcast batch shape of named arguments, or a ``ValueError`` naming them."""
+    try:
+        return np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        given = ", ".join(f"{name} (batch shape {shape})" for name, shape in shapes.items())
+        raise ValueError(f"{given} must broadcast together") from None
+
 
 def axis_of(omega) -> np.ndarray:
-    """Index 0, 1 or 2 of the principal axis carrying most of ``omega`` (largest |component|)."""
-    return np.argmax(np.abs(np.asarray(omega, float)), axis=-1)
+    """Principal axis (1, 2 or 3) carrying most of ``omega``: its largest |component|.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame (axes ordered I1 <= I2 <= I3), rad/s.
+
+    Returns
+    -------
+    ndarray of int, shape (...)
+        1, 2 or 3; on a tie the lower axis (and 1 for ``omega = 0``).
+    """
+    return np.argmax(np.abs(check_vectors("omega", omega, "rad/s")), axis=-1) + 1
 
 
 def perturbation_exponent(moments, axis, spin) -> np.ndarray:
@@ -46,30 +116,68 @@ def perturbation_exponent(moments, axis, spin) -> np.ndarray:
     Parameters
     ----------
     moments : array_like, shape (..., 3)
-        Principal moments, kg m^2.
-    axis : int or array_like of int, shape (...)
-        Spin axis ``a`` (0, 1, 2).
+        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+    axis : {1, 2, 3, 'minor', 'intermediate', 'major'} or array_like of them, shape (...)
+        Spin axis ``a``: 1 minor, 2 intermediate, 3 major.
     spin : array_like, shape (...)
         Spin rate W about that axis, rad/s.
 
     Returns
     -------
     ndarray, shape (...)
-        ``s`` in 1/s^2: positive means exponential growth, negative means a wobble.
+        ``s`` in 1/s^2 (the batch shapes of the three arguments broadcast): positive means
+        exponential growth, negative means a wobble.
+
+    Raises
+    ------
+    ValueError
+        For an axis other than those, moments that are not positive, finite and ascending, a
+        non-finite spin, or batch shapes that do not broadcast; naming the first bad index.
     """
-    I = np.asarray(moments, float)
-    a = np.asarray(axis)
-    Ia = np.take_along_axis(I, a[..., None], axis=-1)[..., 0]
-    Ib = np.take_along_axis(I, ((a + 1) % 3)[..., None], axis=-1)[..., 0]
-    Ic = np.take_along_axis(I, ((a + 2) % 3)[..., None], axis=-1)[..., 0]
-    return np.asarray(spin, float) ** 2 * (Ia - Ib) * (Ic - Ia) / (Ib * Ic)
+    I = _check_moments(moments)
+    a = _axis_index(axis)
+    W = check_vectors("spin", spin, "rad/s", size=None)
+    shape = _broadcast(moments=I.shape[:-1], axis=a.shape, spin=W.shape)
+    I = np.broadcast_to(I, shape + (3,))
+    a = np.broadcast_to(a, shape)[..., None]
+    Ia = np.take_along_axis(I, a, axis=-1)[..., 0]
+    Ib = np.take_along_axis(I, (a + 1) % 3, axis=-1)[..., 0]
+    Ic = np.take_along_axis(I, (a + 2) % 3, axis=-1)[..., 0]
+    return W**2 * (Ia - Ib) * (Ic - Ia) / (Ib * Ic)
 
 
 def linearised_rate(moments, axis, spin) -> tuple[np.ndarray, np.ndarray]:
     """Growth exponent (1/s) and wobble angular frequency (rad/s) for spin about ``axis``.
 
     Exactly one of the two is non-zero for an asymmetric body: the growth exponent for the
-    intermediate axis, the wobble frequency for the minor and major axes.
+    intermediate axis (2), the wobble frequency for the minor (1) and major (3) axes.
+
+    Parameters
+    ----------
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+    axis : {1, 2, 3, 'minor', 'intermediate', 'major'} or array_like of them, shape (...)
+        Spin axis: 1 minor, 2 intermediate, 3 major.
+    spin : array_like, shape (...)
+        Spin rate about that axis, rad/s.
+
+    Returns
+    -------
+    growth : ndarray, shape (...)
+        Exponent ``lambda`` of ``exp(lambda t)`` growth of a perturbation, 1/s (0 if stable).
+    wobble : ndarray, shape (...)
+        Angular frequency of the wobble, rad/s (0 if unstable).
+
+    Raises
+    ------
+    ValueError
+        As :func:`perturbation_exponent`.
+
+    Examples
+    --------
+    >>> growth, wobble = linearised_rate([1.0, 2.0, 2.5], "intermediate", 3.0)
+    >>> round(float(growth), 6), float(wobble)
+    (1.341641, 0.0)
     """
     s = perturbation_exponent(moments, axis, spin)
     return np.sqrt(np.maximum(s, 0.0)), np.sqrt(np.maximum(-s, 0.0))
@@ -94,17 +202,24 @@ def flip_interval(omega, moments) -> np.ndarray:
     Parameters
     ----------
     omega : array_like, shape (..., 3)
-        Angular velocity at any instant (principal frame), rad/s.
+        Angular velocity at any instant (principal frame), finite, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, strictly ascending, kg m^2.
+        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
 
     Returns
     -------
     ndarray, shape (...)
-        The flip interval, s; ``inf`` on the separatrix (``L^2 = 2 E I2``). Near a stable
-        axis it tends to half the wobble period, ``pi / sqrt(-s)``.
+        The flip interval, s; ``inf`` on the separatrix (``L^2 = 2 E I2``) and at rest. Near
+        a stable axis it tends to half the wobble period, ``pi / sqrt(-s)``.
+
+    Raises
+    ------
+    ValueError
+        If ``omega`` is not finite numbers of shape (..., 3), ``moments`` are not positive,
+        finite and ascending, or their batch shapes do not broadcast; the message names the
+        first bad index, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be ascending, ...``.
     """
-    e = elliptic_parameters(omega, moments)
+    e = elliptic_parameters(*_check_motion(omega, moments))
     p, m1 = e.p, e.m1
     with np.errstate(divide="ignore", invalid="ignore"):
         interval = 2.0 * ellipkm1(m1) / p
@@ -119,16 +234,39 @@ def flip_interval_asymptotic(omega, moments) -> np.ndarray:
     the intermediate axis: the interval grows like ``(2 / lambda) ln(1 / eps)`` as the spin
     nears the axis, with ``p -> lambda``, the linearised growth exponent. Relative error
     ``O(1 - k^2)``.
+
+    Parameters and errors as :func:`flip_interval`; returns an ndarray of shape (...), s.
     """
-    e = elliptic_parameters(omega, moments)
+    e = elliptic_parameters(*_check_motion(omega, moments))
     with np.errstate(divide="ignore"):
         return np.log(16.0 / e.m1) / e.p
 
 
 def circulation_axis(omega, moments) -> np.ndarray:
-    """Index (0 or 2) of the principal axis about which omega circulates, whose component never
-    changes sign (the dn component in Landau & Lifshitz sec. 37): 2 (major) when ``L^2 >= 2 E I2``, else 0."""
-    return np.where(elliptic_parameters(omega, moments).upper, 2, 0)
+    """Principal axis (1 or 3) about which omega circulates: its component never changes sign.
+
+    That is the dn component in Landau & Lifshitz sec. 37: axis 3 (major) when
+    ``L^2 >= 2 E I2`` (the separatrix and rest included), else axis 1 (minor). The other two
+    components flip.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, finite, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+
+    Returns
+    -------
+    ndarray of int, shape (...)
+        1 or 3.
+
+    Raises
+    ------
+    ValueError
+        As :func:`flip_interval`.
+    """
+    return np.where(elliptic_parameters(*_check_motion(omega, moments)).upper, 3, 1)
 
 
 def flip_times(t, component) -> np.ndarray:

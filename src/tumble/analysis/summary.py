@@ -35,11 +35,11 @@ def stability_report(traj: Trajectory) -> dict:
         return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
                 "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None,
                 "flip_period_asymptotic": None}
-    a = int(axis_of(w0))
+    a = int(axis_of(w0))  # 1, 2 or 3
     I = traj.moments
-    growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a]))
+    growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a - 1]))
     distinct = moment_degeneracy(I) == "asymmetric"
-    times = flip_times(traj.t, traj.omega[:, a])
+    times = flip_times(traj.t, traj.omega[:, a - 1])
     exact = asymptotic = None
     if traj.torque_free and distinct:
         # the component about which omega circulates never changes sign; the other two flip
@@ -48,8 +48,8 @@ def stability_report(traj: Trajectory) -> dict:
             exact = value
             asymptotic = float(flip_interval_asymptotic(w0, I))
     return {
-        "axis": a + 1,
-        "role": AXIS_ROLES[a],
+        "axis": a,
+        "role": AXIS_ROLES[a - 1],
         "predicted": "unstable" if growth > 0 else "stable",
         "growth_rate": growth if growth > 0 else None,
         "wobble_frequency": wobble if wobble > 0 else None,
@@ -61,11 +61,19 @@ def stability_report(traj: Trajectory) -> dict:
 
 
 def trajectory_summary(traj: Trajectory) -> dict:
-    """The JSON summary of a run (``summary.json``): inputs, invariants, drift and stability."""
+    """The JSON summary of a run (``summary.json``): inputs, invariants, drift and stability.
+
+    Keys: ``body``, ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes``
+    (the 3x3 matrix ``traj.principal_axes`` as nested lists, row by row: principal -> design,
+    its *columns* are the axes of I1, I2, I3 in the design frame, so
+    ``np.array(summary["principal_axes"]) == traj.principal_axes``), ``method``, ``t_end`` (s),
+    ``samples``, ``omega0`` (rad/s, principal frame), ``torque_free``, ``energy`` (J),
+    ``L_norm`` (kg m^2/s), ``drift`` (relative) and ``stability`` (:func:`stability_report`).
+    """
     return {
         "body": traj.body_name,
         "principal_moments": traj.moments.tolist(),
-        "principal_axes": traj.principal_axes.T.tolist(),
+        "principal_axes": traj.principal_axes.tolist(),
         "method": traj.method,
         "t_end": float(traj.t[-1]),
         "samples": len(traj),

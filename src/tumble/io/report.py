@@ -15,9 +15,11 @@ def mass_properties_dict(body: Body) -> dict:
     """The public JSON form of ``tumble inertia --json`` (SI units, design frame).
 
     Keys: ``name``, ``mass`` (kg), ``com`` (m), ``inertia`` (3x3 about the COM, kg m^2),
-    ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes`` (unit vectors of
-    I1, I2, I3 in that order), ``intermediate_axis`` (unit vector, or null when two moments are
-    equal), ``symmetry``.
+    ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes`` (the 3x3 matrix
+    ``body.principal_axes`` as nested lists, row by row: principal -> design, its *columns* are
+    the axes of I1, I2, I3 in the design frame, so
+    ``np.array(d["principal_axes"]) == body.principal_axes``), ``intermediate_axis`` (unit
+    vector, or null when two moments are equal), ``symmetry``.
     """
     p = body.properties
     axis = p.intermediate_axis
@@ -28,7 +30,7 @@ def mass_properties_dict(body: Body) -> dict:
         "com": p.com.tolist(),
         "inertia": p.inertia.tolist(),
         "principal_moments": p.principal_moments.tolist(),
-        "principal_axes": p.principal_axes.T.tolist(),
+        "principal_axes": p.principal_axes.tolist(),
         "intermediate_axis": None if axis is None else axis.tolist(),
         "symmetry": p.degeneracy,
     }

@@ -8,9 +8,12 @@ Python constructors, the TOML loader and the CLI all surface these same messages
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from numbers import Real
 
 import numpy as np
+
+from .tensor import _short_repr
 
 __all__ = [
     "check_direction",
@@ -40,16 +43,18 @@ def check_positive(field: str, value, unit: str, *, allow_zero: bool = False) ->
 
 
 def check_vector(field: str, value, unit: str) -> tuple[float, float, float]:
-    """Three finite numbers."""
-    if isinstance(value, (str, bytes)):
-        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})")
-    try:
-        seq = list(value)
-    except TypeError:
-        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})") from None
-    if len(seq) != 3:
-        raise ValueError(f"{field} = {value!r} must be a list of 3 numbers ({unit})")
-    return tuple(_number(f"{field}[{i}]", v, unit) for i, v in enumerate(seq))  # type: ignore[return-value]
+    """Three finite numbers, given as a list, a tuple (any sequence) or a numpy array of shape (3,).
+
+    Anything else is refused, not converted: a dict or a set (whose keys or members have no
+    meaningful order), a generator, a string, a nested list or an array of another shape.
+    """
+    if isinstance(value, np.ndarray):
+        ok = value.shape == (3,)
+    else:
+        ok = isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)) and len(value) == 3
+    if not ok:
+        raise ValueError(f"{field} = {_short_repr(value)} must be a list of 3 numbers ({unit})")
+    return tuple(_number(f"{field}[{i}]", v, unit) for i, v in enumerate(value))  # type: ignore[return-value]
 
 
 def check_direction(field: str, value) -> tuple[float, float, float]:

@@ -42,9 +42,11 @@ class MassProperties:
     principal_moments : ndarray, shape (3,)
         ``I1 <= I2 <= I3``, kg m^2.
     principal_axes : ndarray, shape (3, 3)
-        Proper rotation matrix whose *columns* are the principal axes of I1, I2, I3 in the
-        design frame; it maps principal coordinates to design coordinates, so
-        ``inertia = principal_axes @ diag(principal_moments) @ principal_axes.T``.
+        Proper rotation matrix whose *columns* are the axes of I1, I2, I3 (unit vectors in the
+        design frame): column ``j - 1`` is principal axis ``j``. It maps principal coordinates
+        to design coordinates, so
+        ``inertia = principal_axes @ diag(principal_moments) @ principal_axes.T``. The JSON
+        outputs (``tumble inertia --json``, ``summary.json``) hold this same matrix, row by row.
     """
 
     mass: float
@@ -75,7 +77,24 @@ class MassProperties:
         return self.principal_axes[:, 1].copy() if self.degeneracy == "asymmetric" else None
 
     def inertia_about(self, point) -> np.ndarray:
-        """Inertia tensor about ``point`` (design frame, m), kg m^2."""
+        """Inertia tensor about another point, kg m^2 (parallel-axis theorem).
+
+        Parameters
+        ----------
+        point : array_like, shape (3,) or (..., 3)
+            The reference point(s), design frame, m: finite real numbers.
+
+        Returns
+        -------
+        ndarray, shape (3, 3) or (..., 3, 3)
+            The tensor about each point, design frame, kg m^2.
+
+        Raises
+        ------
+        ValueError
+            If ``point`` is not finite numbers of shape (..., 3), e.g.
+            ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
+        """
         return inertia_about_point(self.inertia, self.mass, self.com, point)
 
 
@@ -169,11 +188,12 @@ class Body:
 
     @property
     def principal_axes(self) -> np.ndarray:
-        """Rotation matrix principal -> design; its columns are the principal axes."""
+        """Rotation matrix principal -> design, shape (3, 3); columns are the axes of I1, I2, I3."""
         return self.properties.principal_axes
 
     def inertia_about(self, point) -> np.ndarray:
-        """Inertia tensor about ``point`` (design frame, m), kg m^2."""
+        """Inertia tensor about ``point`` (design frame, m), kg m^2; see
+        :meth:`MassProperties.inertia_about` (shapes, and the ``ValueError`` for a bad point)."""
         return self.properties.inertia_about(point)
 
     def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Body:
