@@ -31,7 +31,7 @@ def test_inertia_json(capsys, source):
     assert data["mass"] == pytest.approx(body.mass)
     np.testing.assert_allclose(data["com"], body.com)
     np.testing.assert_allclose(data["inertia"], body.inertia)
-    I, A = np.array(data["principal_moments"]), np.array(data["principal_axes"]).T
+    I, A = np.array(data["principal_moments"]), np.array(data["principal_axes"])
     assert np.all(np.diff(I) >= 0)
     np.testing.assert_allclose(A @ np.diag(I) @ A.T, data["inertia"], atol=1e-12 * I.sum())
     np.testing.assert_allclose(data["intermediate_axis"], A[:, 1])

@@ -9,7 +9,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..mass import Body, MassProperties
+from ..mass import INERTIA_RTOL, Body, MassProperties
 from ..mass._checks import check_positive, check_rotation, check_vector
 from .integrators import METHODS, Method, get_method
 from .torques import as_torque, body_torque
@@ -225,7 +225,9 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
-    if np.any(moments <= 0):
+    # a moment within the validity checks' tolerance of zero is a zero moment (a single thin
+    # rod's eigh gives ~1e-17, not 0): the rotation about that axis is not well posed
+    if np.any(moments <= INERTIA_RTOL * np.sum(moments)):
         raise ValueError(
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
