@@ -9,7 +9,7 @@ References
 ----------
 - Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed. (2002), sections 5.3-5.4: the
   inertia tensor, its transformation under rotation, principal axes.
-- Seed study (../shared/seed/), eq. (4): the parallel-axis theorem in tensor form.
+- Seed study, eq. (4) (docs/seed-study.md): the parallel-axis theorem in tensor form.
 """
 
 from __future__ import annotations
