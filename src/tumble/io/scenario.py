@@ -143,7 +143,7 @@ _FILE_KEYS = {"omega0": "initial.omega", "frame": "initial.frame", "t_end": "sim
               "samples": "simulation.samples", "dt": "simulation.dt", "times": "simulation.times",
               "method": "simulation.method", "rtol": "simulation.rtol", "atol": "simulation.atol",
               "step": "simulation.step"}
-_OPTIONS = {"omega": "--omega", "frame": "--frame", "t_end": "--t-end", "samples": "--samples",
+_OPTIONS = {"omega0": "--omega", "frame": "--frame", "t_end": "--t-end", "samples": "--samples",
             "dt": "--dt", "method": "--method"}
 
 
@@ -151,11 +151,10 @@ def _validate(s: Scenario, options=()) -> None:
     """Check the numbers now, so that nothing is computed or written for a bad file.
 
     :func:`simulate`'s own checks keep one source of truth for the messages; the argument
-    names are replaced by the file's keys, or by the command-line options in ``options``
-    (the fields that the command line set).
+    names are replaced by the file's keys, or by the command-line options for the arguments
+    named in ``options`` (those the command line set).
     """
-    keys = {arg: _OPTIONS[field] if field in options else key
-            for arg, key in _FILE_KEYS.items() for field in ["omega" if arg == "omega0" else arg]}
+    keys = {arg: _OPTIONS[arg] if arg in options else key for arg, key in _FILE_KEYS.items()}
     try:
         check_inputs(s.body, s.omega, t_end=s.t_end, samples=s.samples, dt=s.dt, times=s.times,
                      method=s.method, frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step, torque=s.torque)
@@ -224,7 +223,7 @@ def _override(scenario: Scenario, given: dict, where: str) -> Scenario:
             changes.setdefault("dt", None)
     updated = dataclasses.replace(scenario, **changes)
     try:
-        _validate(updated, options=given)
+        _validate(updated, options={"omega0" if k == "omega" else k for k in given})
     except ValueError as exc:
         raise ValueError(f"{where}{exc}") from None
     return updated
