@@ -4,6 +4,7 @@ arbitrary-precision mpmath) and the invariants of the motion."""
 
 from __future__ import annotations
 
+import mpmath as mp
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -12,6 +13,8 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.dynamics import simulate
+from tumble.dynamics.carlson import legendre_f, legendre_pi_excess
+from tumble.dynamics.elliptic import carlson_pi
 from tumble.dynamics.exact import FreeRotation
 from tumble.mass import MassProperties, principal_frame
 
@@ -129,3 +132,120 @@ def test_principal_frame_returns_degenerate_moments_equal():
     # batched, with the cluster's mean
     I, _ = principal_frame(np.stack([np.diag([1.0, 1.0 + 1e-12, 3.0]), np.diag([1.0, 2.0, 3.0])]))
     assert I[0, 0] == I[0, 1] == 0.5 * (1.0 + (1.0 + 1e-12)) and I[1].tolist() == [1.0, 2.0, 3.0]
+
+
+# -- 2: underflow (components 1e-300 .. 1e-160, 1 - m below the smallest double) -------------
+
+def _mp_closed_form(moments, w0, times, dps):
+    """omega(t) of Landau & Lifshitz sec. 37 evaluated by mpmath alone (its ``ellipf`` and
+    ``ellipfun``) with the parameters formed exactly at ``dps`` digits, the half period
+    ``2 K / p``, the first time at which ``w2`` changes sign (s) and ``p`` (1/s). Not on the
+    separatrix."""
+    mp.mp.dps = dps
+    I = [mp.mpf(x) for x in moments]
+    w = [mp.mpf(x) for x in w0]
+    I1, I2, I3 = I
+    g1, g2, g3 = (sum(I[i] * (I[i] - I[j]) * w[i] ** 2 for i in range(3)) for j in range(3))
+    if g2 >= 0:  # circulating about axis 3
+        r, c = 2, 0
+        p = mp.sqrt((I3 - I2) * g1 / (I1 * I2 * I3))
+        m = (I2 - I1) * -g3 / ((I3 - I2) * g1)
+        a2 = mp.sqrt(-g3 / (I2 * (I3 - I2)))
+    else:
+        r, c = 0, 2
+        p = mp.sqrt((I2 - I1) * -g3 / (I1 * I2 * I3))
+        m = (I3 - I2) * g1 / ((I2 - I1) * -g3)
+        a2 = mp.sqrt(g1 / (I2 * (I2 - I1)))
+    a = [mp.sqrt(-g3 / (I1 * (I3 - I1))), a2, mp.sqrt(g1 / (I3 * (I3 - I1)))]
+    s = 1 if w[r] >= 0 else -1
+    u0 = mp.ellipf(mp.atan2(w[1] / a[1], w[c] / (s * a[c])), m)
+    rows = []
+    for t in times:
+        u = u0 + p * mp.mpf(t)
+        sn, cn, dn = (mp.ellipfun(k, u, m=m) for k in ("sn", "cn", "dn"))
+        row = [0, 0, 0]
+        row[c], row[1], row[r] = s * a[c] * cn, a[1] * sn, s * a[r] * dn
+        rows.append([float(x) for x in row])
+    twoK = 2 * mp.ellipk(m)
+    first_flip = (twoK * mp.floor(u0 / twoK + 1) - u0) / p
+    return np.array(rows), float(twoK / p), float(first_flip), float(p)
+
+
+UNDERFLOW_BODIES = {
+    "t_handle": (0.125, 0.3125, 0.4375),
+    "box": (1.0, 2.0, 2.5),
+    "flat": (0.3, 2.0, 2.2),
+}
+UNDERFLOW_OMEGAS = [(0.0, 1.0, 1e-160), (1e-200, 1.0, 0.0), (1e-170, 1.0, 1e-170), (0.0, -2.0, -1e-300)]
+
+
+def _digits(w0) -> int:
+    return 40 + 2 * int(-np.log10(min(abs(x) for x in w0 if x)))
+
+
+@pytest.mark.parametrize("name", list(UNDERFLOW_BODIES))
+@pytest.mark.parametrize("w0", UNDERFLOW_OMEGAS)
+def test_underflow_spin_flips_as_dop853_says(name, w0):
+    """A steady spin for ~ln(4 / k') / lambda seconds, then a flip: through the first flip
+    DOP853 (rtol 1e-12) is a reference; not much further, as its energy error (~1e-12) puts it
+    on an orbit with k' ~ 1e-6, which leaves the next saddle a thousand seconds early."""
+    moments = UNDERFLOW_BODIES[name]
+    body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    _, half, first, p = _mp_closed_form(moments, w0, [], _digits(w0))
+    assert half > 800.0  # k' ~ 1e-160 and below: a long stay near the saddle
+    t_end = first + 20.0 / p
+    ex = simulate(body, w0, t_end=t_end, samples=300)
+    ref = simulate(body, w0, t_end=t_end, samples=300, method="dop853")
+    assert np.count_nonzero(np.diff(np.sign(ex.omega[:, 1]))) == 1  # it flipped, once
+    np.testing.assert_allclose(ex.omega, ref.omega, atol=1e-6 * max(abs(x) for x in w0), rtol=0)
+    assert np.max((ex.attitude * ref.attitude.inv()).magnitude()) < 1e-6
+    assert max(ex.drift.values()) < 1e-13
+
+
+@pytest.mark.parametrize("w0", UNDERFLOW_OMEGAS)
+def test_underflow_against_mpmath_over_two_periods(w0):
+    """Every component to 1e-12 relative (where it is a normal double) against mpmath's own
+    elliptic functions with exact parameters, across two full periods and four flips."""
+    moments = UNDERFLOW_BODIES["t_handle"]
+    _, half, _, _ = _mp_closed_form(moments, w0, [], _digits(w0))
+    times = np.linspace(0.0, 4.4 * half, 23)
+    ref, _, _, _ = _mp_closed_form(moments, w0, times, _digits(w0))
+    w = FreeRotation(np.array(moments), np.array(w0), Rotation.identity()).omega(times)
+    normal = np.abs(ref) > 1e-290
+    np.testing.assert_allclose(w[normal], ref[normal], rtol=1e-12, atol=0)
+    np.testing.assert_allclose(w[~normal], ref[~normal], rtol=0, atol=1e-300)
+    flips = np.count_nonzero(np.diff(np.sign(w[:, 1])))
+    assert flips == np.count_nonzero(np.diff(np.sign(ref[:, 1]))) >= 4
+
+
+@pytest.mark.parametrize(("kp", "c"), [(1e-170, 1e-170), (1e-160, 3e-161), (1e-300, 2e-300), (1e-20, 1e-150)])
+def test_integrals_where_squares_underflow(kp, c):
+    """F and Pi - F near phi = pi/2 with cos phi and Delta both below 1e-150 (their squares,
+    Carlson's arguments, underflow), against mpmath."""
+    mp.mp.dps = 900
+    KP, C = mp.mpf(kp), mp.mpf(c)
+    M = 1 - KP**2
+    S = mp.sqrt(1 - C**2)
+    D = mp.sqrt(C**2 + KP**2 * S**2)
+    phi, n = mp.acos(C), -5.25
+    f = legendre_f(float(S), float(C), float(D))
+    excess = legendre_pi_excess(n, float(S), float(C), float(D), m=1.0)
+    ref_f, ref_pi = mp.ellipf(phi, M), mp.ellippi(n, phi, M)
+    assert float(f) == pytest.approx(float(ref_f), rel=1e-14)
+    assert float(excess) == pytest.approx(float(ref_pi - ref_f), rel=1e-14)
+    assert float(carlson_pi(n, float(S), float(C), float(D))) == pytest.approx(float(ref_pi), rel=1e-14)
+
+
+tiny = st.builds(lambda e, s: s * 10.0**-e, st.floats(20.0, 310.0), st.sampled_from([-1.0, 1.0]))
+
+
+@SETTINGS
+@given(st.sampled_from(list(UNDERFLOW_BODIES.values())), st.permutations([0, 1, 2]), tiny, tiny | st.just(0.0),
+       st.floats(0.2, 3.0))
+def test_tiny_components_any_body(moments, order, a, b, big):
+    """One ordinary component and two tiny (or zero) ones, in any order: the motion is right
+    (DOP853 over a short run) and keeps its invariants."""
+    w0 = np.zeros(3)
+    w0[order[0]], w0[order[1]], w0[order[2]] = big, a, b
+    body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    _check_against_dop853(body, w0, frame="principal", t_end=5.0)

@@ -1,68 +1,165 @@
-"""Jacobi elliptic functions and Legendre's integrals that keep their accuracy near m = 1.
+"""Jacobi elliptic functions and Legendre's integrals that keep their accuracy near m = 1,
+at any argument, and down to ``1 - m`` below the smallest double.
 
 Why not ``scipy.special.ellipj`` / ``ellipkinc``: they take the parameter ``m`` only. Near the
-separatrix of the free rigid body ``m = 1 - m1`` with ``m1`` as small as 1e-20, and ``1 - m``
+separatrix of the free rigid body ``m = 1 - m1`` with ``m1`` as small as 1e-320, and ``1 - m``
 cannot hold ``m1`` in double precision (at m1 = 1e-15 ``ellipj`` is off by O(1)). They also go
 through the amplitude ``am(u)``, which is ill-conditioned exactly where the body lingers near a
 saddle: ``cn = cos(am)`` is then tiny and loses its relative accuracy. So here
 
-- every function takes both ``m`` and ``m1 = 1 - m``, formed by the caller without
-  cancellation;
-- ``u`` is reduced to ``|v| <= K/2`` about the nearest multiple of the quarter period ``K``,
-  and the shift formulas ``sn(v + K) = cd v``, ``cn(v + K) = -sqrt(m1) sd v``,
-  ``dn(v + K) = sqrt(m1) nd v`` (DLMF 22.4.3) give cn and dn with full *relative* accuracy near
-  their zeros;
-- the Jacobi functions of ``v`` come from the arithmetic-geometric mean and the descending Landen
-  transformation started at ``b0 = sqrt(m1)`` (Abramowitz & Stegun 16.4, as Cephes' ``ellpj``),
-  with ``dn = sqrt(m1 + m cn^2)``;
-- ``K`` = pi / (2 AGM(1, sqrt(m1))); ``F`` and ``Pi`` come from Carlson's symmetric integrals
-  (scipy's ``elliprf``, ``elliprj``; DLMF 19.25.5, 19.25.14) fed with ``sin``, ``cos`` and
-  ``Delta`` directly, never with an angle.
+- a :class:`Modulus` carries ``k = sqrt(m)`` and ``k' = sqrt(m1)`` (each representable where
+  ``m1`` or ``m`` is not: ``k' = 1e-160`` for ``m1 = 1e-320``) and ``K`` in double-double;
+- ``u`` is reduced to ``|v| <= K/2`` about the nearest multiple of the quarter period ``K``, in
+  double-double (:mod:`tumble.dynamics.ddouble`), so the reduced argument is right and lies in
+  that range at *any* ``u``, and the shift formulas ``sn(v + K) = cd v``,
+  ``cn(v + K) = -k' sd v``, ``dn(v + K) = k' nd v`` (DLMF 22.4.3) give cn and dn with full
+  *relative* accuracy near their zeros;
+- for ``m <= 1/2`` the functions of ``v`` come from the AGM of ``(1, k')`` and the descending
+  Landen transformation (Abramowitz & Stegun 16.4, as Cephes' ``ellpj``), whose arcsin sees an
+  argument below ``(c_1 / a_1) <= 0.172``; ``dn = hypot(k', k cn)``;
+- for ``m > 1/2`` (where that arcsin's argument would approach 1 and cost cn its relative
+  accuracy near ``|v| = K/2``) from Jacobi's imaginary transformation (DLMF 22.6.iv:
+  ``sn(iz, k) = i sc(z, k')``, ``cn(iz, k) = nc(z, k')``, ``dn(iz, k) = dc(z, k')``) with the
+  descending Landen transformation of the complementary modulus: the AGM of ``(1, k)`` with
+  ``c_0 = k'``, ``psi_N = 2^N a_N v``, ``psi_{n-1} = (psi_n + asinh((c_n / a_n) sinh psi_n)) / 2``
+  (the amplitude stays imaginary, ``phi = -i psi``), and ``sn = tanh psi_0``,
+  ``cn = sech psi_0``, ``dn = hypot(1, k' sinh psi_0) / cosh psi_0``: real, with
+  ``c_1 / a_1 = (1 - k) / (1 + k) <= 0.172`` and a well-conditioned asinh;
+- the AGM's ``c_{n+1} = c_n^2 / (4 a_{n+1})`` (equal to ``(a_n - b_n) / 2``) avoids cancellation;
+- ``K``, ``F`` and ``Pi`` come from :mod:`tumble.dynamics.carlson`.
 
-Accuracy (tests/test_exact.py, against mpmath): a few ulps, except that at ``|v|`` near ``K/2``
-the arcsin of the Landen recursion sees an argument ``1 - O(m1^(1/4))`` and the absolute error
-grows to about ``1e-16 m1^(-1/4)``: 2e-12 at ``m1 = 1e-22``, far below what the rigid body
-needs. The reduction ``u - j K`` carries the rounding of ``u`` and ``K`` (inherent).
+Accuracy (tests/test_exact.py and tests/test_exact_hardening.py, against mpmath at 40 digits):
+sn, cn, dn to a few ulps *relative*, also near the zeros of cn and dn and at ``|v| = K/2``, for
+``1 - m`` from 1 down to 0, given the argument; ``sn^2 + cn^2 = 1`` and ``dn^2 + m sn^2 = 1`` to
+round-off at any argument.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import elliprf, elliprj
 
-__all__ = ["carlson_f", "carlson_pi", "ellipk", "jacobi", "jacobi_reduced", "pi_complete"]
+from . import ddouble as dd
+from .carlson import complete_integrals, legendre_f, legendre_pi_excess
+
+__all__ = [
+    "Modulus",
+    "carlson_f",
+    "carlson_pi",
+    "carlson_pi_excess",
+    "ellipk",
+    "jacobi",
+    "jacobi_reduced",
+    "pi_complete",
+    "pi_excess_complete",
+]
 
 
-def _agm_sequence(m: float, m1: float) -> tuple[list[float], list[float]]:
-    """The a_n and c_n of the AGM of (1, sqrt(m1)) until |c_N| < 1.1e-16 a_N."""
-    a, b, c = 1.0, math.sqrt(m1), math.sqrt(m)
+def _agm(b0: float, c0: float) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The ``a_n`` and ``c_n`` of the AGM of ``(1, b0)``, ``c0^2 = 1 - b0^2``, until
+    ``c_N <= 1.1e-16 a_N`` (A&S 16.4); ``c_{n+1} = c_n^2 / (4 a_{n+1})`` without cancellation."""
+    a, b, c = 1.0, b0, c0
     As, Cs = [a], [c]
-    while abs(c) > 1.1e-16 * a and len(As) < 60:
-        a, b, c = 0.5 * (a + b), math.sqrt(a * b), 0.5 * (a - b)
+    while c > 1.1e-16 * a and len(As) < 60:
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        c = c * c / (4.0 * a)
         As.append(a)
         Cs.append(c)
-    return As, Cs
+    return tuple(As), tuple(Cs)
+
+
+@dataclass(frozen=True)
+class Modulus:
+    """The modulus of a family of Jacobi functions: ``k = sqrt(m)``, ``k' = sqrt(1 - m)``.
+
+    Parameters
+    ----------
+    k, kp : float
+        ``k`` and ``k'``, both in [0, 1], ``k^2 + k'^2 = 1`` to round-off; ``k'`` may be 0 (or
+        underflow) while ``K`` stays finite, see ``K``.
+    K : tuple of float
+        The quarter period as a double-double; infinite for the separatrix ``k' = 0``.
+    """
+
+    k: float
+    kp: float
+    K: tuple[float, float]
+
+    def __post_init__(self) -> None:
+        big = self.k > self.kp  # m > 1/2: the imaginary transformation
+        As, Cs = _agm(self.k, self.kp) if big else _agm(self.kp, self.k)
+        object.__setattr__(self, "_route", (big, As, Cs))
+
+    @classmethod
+    def from_parameter(cls, m: float, m1: float) -> Modulus:
+        """From ``m`` and ``m1 = 1 - m``, each formed by the caller without cancellation.
+
+        ``K`` is that of ``m1`` as given (``k'`` taken in double-double), so that the
+        reduction of a large argument adds no error of its own.
+        """
+        if not m1 > 0:
+            return cls(math.sqrt(m), 0.0, (math.inf, 0.0))
+        e = math.frexp(m1)[1] // 2  # m1 = x 4^e: its root 2^e sqrt(x), however small m1
+        kp = dd.sqrt((math.ldexp(m1, -2 * e), 0.0))
+        return cls(math.sqrt(m), math.sqrt(m1), complete_integrals(0.0, kp, e)[0])
+
+    # -- v in [-K/2, K/2] ----------------------------------------------------------------
+    def _landen(self, v):
+        big, As, Cs = self._route
+        N = len(As) - 1
+        x = (2.0**N) * As[N] * v
+        if big:
+            for n in range(N, 0, -1):
+                x = 0.5 * (x + np.arcsinh(Cs[n] / As[n] * np.sinh(x)))
+            ch = np.cosh(x)
+            return np.tanh(x), 1.0 / ch, np.hypot(1.0, self.kp * np.sinh(x)) / ch
+        for n in range(N, 0, -1):
+            x = 0.5 * (x + np.arcsin(np.clip(Cs[n] / As[n] * np.sin(x), -1.0, 1.0)))
+        cn = np.cos(x)
+        return np.sin(x), cn, np.hypot(self.kp, self.k * cn)
+
+    # -- any u --------------------------------------------------------------------------
+    def reduce(self, u):
+        """Exact reduction of ``u`` (a double-double ``(hi, lo)`` of arrays) by half periods.
+
+        Returns ``(j1, j2)`` (the number of half periods ``j = j1 + j2``, as two integral
+        floats, since beyond 2^53 their sum is not exact), ``odd`` (whether ``j`` is odd), and
+        ``sn, cn, dn`` of ``u_r = u - 2 K j`` with ``|u_r| <= K``, ``cn(u_r) >= 0``.
+        """
+        u = (np.asarray(u[0], float), np.asarray(u[1], float))
+        if math.isinf(self.K[0]):  # the separatrix: no period
+            with np.errstate(over="ignore"):
+                sech = 1.0 / np.cosh(u[0])
+            zero = np.zeros_like(u[0])
+            return (zero, zero), np.zeros(u[0].shape, bool), np.tanh(u[0]), sech, sech
+        twoK = (2.0 * self.K[0], 2.0 * self.K[1])
+        j1 = np.rint(u[0] / twoK[0])
+        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
+        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        q = np.rint(r[0] / self.K[0])  # -1, 0 or 1: the nearest quarter period
+        v = dd.add(r, _neg(dd.mul_d(self.K, q)))
+        s, c, d = self._landen(v[0] + v[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sn = np.where(q == 0, s, q * c / d)
+            cn = np.where(q == 0, c, -q * self.kp * s / d)
+            dn = np.where(q == 0, d, self.kp / d)
+        odd = (np.fmod(np.abs(j1), 2.0) + np.abs(j2)) % 2.0 == 1.0
+        return (j1, j2), odd, sn, cn, np.where(np.isfinite(dn), dn, 0.0)
+
+
+def _neg(x):
+    return -x[0], -x[1]
 
 
 def ellipk(m: float, m1: float) -> float:
-    """Complete elliptic integral of the first kind, ``K(m) = pi / (2 AGM(1, sqrt(m1)))``."""
+    """Complete elliptic integral of the first kind ``K(m)`` (Bulirsch's ``cel``, via
+    :func:`tumble.dynamics.carlson.complete_integrals`); ``m1 = 1 - m`` given separately."""
     if m1 == 0.0:
         return math.inf
-    As, _ = _agm_sequence(m, m1)
-    return math.pi / (2.0 * As[-1])
-
-
-def _landen(v, m: float, m1: float):
-    """sn, cn, dn for |v| <= K/2 by the AGM and descending Landen transformation (A&S 16.4)."""
-    As, Cs = _agm_sequence(m, m1)
-    N = len(As) - 1
-    phi = (2.0**N) * As[N] * v
-    for n in range(N, 0, -1):
-        phi = 0.5 * (phi + np.arcsin(np.clip(Cs[n] / As[n] * np.sin(phi), -1.0, 1.0)))
-    sn, cn = np.sin(phi), np.cos(phi)
-    return sn, cn, np.sqrt(m1 + m * cn * cn)
+    return complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0]
 
 
 def jacobi_reduced(u, m: float, m1: float):
@@ -70,68 +167,57 @@ def jacobi_reduced(u, m: float, m1: float):
 
     ``cn(u_r) >= 0``, i.e. ``am(u_r)`` lies in [-pi/2, pi/2]; ``sn(u) = (-1)^j sn(u_r)``,
     ``cn(u) = (-1)^j cn(u_r)``, ``dn(u) = dn(u_r)``. For ``m1 = 0`` (the separatrix) ``j = 0``
-    and the functions are ``tanh`` and ``sech``.
+    and the functions are ``tanh`` and ``sech``. The reduction is exact (double-double), so the
+    three functions stay on their curves (``sn^2 + cn^2 = 1``) at any ``u``.
     """
     u = np.asarray(u, dtype=float)
-    if m1 == 0.0:
-        sech = 1.0 / np.cosh(u)
-        return np.zeros_like(u), np.tanh(u), sech, sech
-    if m == 0.0:
-        j = np.rint(u / np.pi)
-        ur = u - np.pi * j
-        return j, np.sin(ur), np.cos(ur), np.ones_like(ur)
-    K = ellipk(m, m1)
-    j = np.rint(u / (2.0 * K))
-    ur = u - 2.0 * K * j
-    k = np.rint(ur / K)  # -1, 0 or 1: nearest quarter period
-    v = ur - K * k
-    s, c, d = _landen(v, m, m1)
-    rk = math.sqrt(m1)
-    sn = np.where(k == 0, s, k * c / d)
-    cn = np.where(k == 0, c, -k * rk * s / d)
-    dn = np.where(k == 0, d, rk / d)
-    return j, sn, cn, dn
+    (j1, j2), _, sn, cn, dn = Modulus.from_parameter(m, m1).reduce((u, np.zeros_like(u)))
+    return j1 + j2, sn, cn, dn
 
 
 def jacobi(u, m: float, m1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``sn, cn, dn`` of ``u`` for parameter ``m`` (``m1 = 1 - m`` given separately)."""
-    j, sn, cn, dn = jacobi_reduced(u, m, m1)
-    sign = 1.0 - 2.0 * (np.abs(j) % 2)
+    u = np.asarray(u, dtype=float)
+    _, odd, sn, cn, dn = Modulus.from_parameter(m, m1).reduce((u, np.zeros_like(u)))
+    sign = np.where(odd, -1.0, 1.0)
     return sign * sn, sign * cn, dn
 
 
 def carlson_f(s, c, m1: float) -> np.ndarray:
     """``F(phi | m)`` for ``|phi| <= pi/2`` from ``s = sin phi``, ``c = cos phi >= 0``."""
     s, c = np.asarray(s, float), np.asarray(c, float)
-    return s * elliprf(c * c, c * c + m1 * s * s, 1.0)
+    return legendre_f(s, c, np.hypot(c, math.sqrt(m1) * s))
 
 
 def carlson_pi(n: float, s, c, d) -> np.ndarray:
     """``Pi(n; phi | m)`` for ``|phi| <= pi/2`` from ``sin phi``, ``cos phi`` and
-    ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n < 1``.
+    ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n <= 0``.
 
     ``Pi(n; phi | m) = int_0^phi d theta / ((1 - n sin^2 theta) sqrt(1 - m sin^2 theta))``.
     """
-    s, c, d = (np.asarray(x, float) for x in (s, c, d))
-    c2, d2 = c * c, d * d
-    return s * elliprf(c2, d2, 1.0) + (n / 3.0) * s**3 * elliprj(c2, d2, 1.0, 1.0 - n * s * s)
+    return legendre_f(s, c, d) + carlson_pi_excess(n, s, c, d)
 
 
-def carlson_pi_excess(n: float, s, c, d) -> np.ndarray:
+def carlson_pi_excess(n: float, s, c, d, m: float | None = None) -> np.ndarray:
     """``Pi(n; phi | m) - F(phi | m) = (n / 3) sin^3 phi R_J(c^2, Delta^2, 1, 1 - n sin^2 phi)``.
 
     The second term of DLMF 19.25.14 alone: ``O(n)``, so a caller that knows ``F`` exactly
-    (``F(am u) = u``) loses nothing to the cancellation ``Pi - F`` when ``n`` is small.
+    (``F(am u) = u``) loses nothing to the cancellation ``Pi - F`` when ``n`` is small. ``m``,
+    if given, spares forming ``1 - Delta^2`` (:func:`tumble.dynamics.carlson.legendre_pi_excess`).
     """
-    s, c, d = (np.asarray(x, float) for x in (s, c, d))
-    return (n / 3.0) * s**3 * elliprj(c * c, d * d, 1.0, 1.0 - n * s * s)
+    return legendre_pi_excess(n, s, c, d, m=m)
 
 
 def pi_excess_complete(n: float, m1: float) -> float:
-    """``Pi(n | m) - K(m) = (n / 3) R_J(0, m1, 1, 1 - n)`` (DLMF 19.25.14 at phi = pi/2)."""
-    return float((n / 3.0) * elliprj(0.0, m1, 1.0, 1.0 - n))
+    """``Pi(n | m) - K(m)`` (``n <= 0``; double-double internally, see :func:`pi_complete`)."""
+    if m1 == 0.0:
+        return -math.inf if n < 0 else 0.0
+    K, Pi = complete_integrals(n, (math.sqrt(m1), 0.0))
+    return dd.add(Pi, _neg(K))[0]
 
 
 def pi_complete(n: float, m1: float) -> float:
-    """Complete integral of the third kind ``Pi(n | m)`` (DLMF 19.25.14 at phi = pi/2), ``n < 1``."""
-    return float(elliprf(0.0, m1, 1.0) + (n / 3.0) * elliprj(0.0, m1, 1.0, 1.0 - n))
+    """Complete integral of the third kind ``Pi(n | m)``, ``n <= 0`` (Bulirsch's ``cel``)."""
+    if m1 == 0.0:
+        return math.inf
+    return complete_integrals(n, (math.sqrt(m1), 0.0))[1][0]

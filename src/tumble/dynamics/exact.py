@@ -49,59 +49,60 @@ Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, sec. 3, whose printed sig
 to be wrong; the form here is derived directly from Landau & Lifshitz and checked against DOP853
 on all six orderings of the design axes and against arbitrary-precision integration near the
 separatrix, in tests/test_exact.py).
+
+Accuracy and limits (tests/test_exact.py, tests/test_exact_hardening.py). The parameters come
+from :mod:`tumble.dynamics.exact_parameters` (double-double, scaled: nothing underflows that the
+answer does not, so ``omega0 = (0, 1, 1e-160)`` stays a steady spin for ~370 / lambda seconds,
+then flips). The phase ``u = u0 + p t``, its reduction by ``2 K`` and the secular part of
+``phi`` (``A t + B j``, reduced mod 2 pi) are carried in double-double, so every angle of the
+motion is good to ~1e-31 of the phase reached, plus round-off: to ~1e-15 rad at 1e17 rad. The
+functions of the reduced phase are evaluated in double precision (:mod:`tumble.dynamics.elliptic`):
+omega to a few ulps relative per component, the attitude to ~1e-14 rad, also at ``1 - m``
+down to 0; energy, ``|L|`` and ``L_world`` hold to round-off at any phase. Beyond
+``MAX_PHASE`` (1e22 rad), where the phase error would approach 1e-9 rad, and before it
+would reach 1e-6 rad, the motion refuses to answer (``ValueError``, :func:`check_phase_limit`);
+``t_end = 1e12`` s reaches that only at ``|omega| ~ 1e10`` rad/s.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .elliptic import (
-    carlson_f,
-    carlson_pi,
-    carlson_pi_excess,
-    ellipk,
-    jacobi,
-    jacobi_reduced,
-    pi_complete,
-    pi_excess_complete,
-)
-from .euler import energy_momentum_gaps
+from . import ddouble as dd
+from .carlson import complete_integrals, legendre_f, legendre_pi_excess
+from .elliptic import Modulus
+from .exact_parameters import EllipticParameters, elliptic_parameters, scaled_core
 
-__all__ = ["EllipticParameters", "FreeRotation", "elliptic_parameters"]
+__all__ = ["MAX_PHASE", "EllipticParameters", "FreeRotation", "check_phase_limit", "elliptic_parameters"]
 
-class EllipticParameters(NamedTuple):
-    """Parameters of the torque-free motion through one omega (module docstring); arrays (...)."""
-
-    upper: np.ndarray  # L^2 >= 2 E I2: omega circulates about axis 3 (else about axis 1)
-    p: np.ndarray  # rate of the elliptic argument u = u0 + p t, 1/s
-    m: np.ndarray  # parameter k^2
-    m1: np.ndarray  # 1 - k^2, formed directly
-    amplitudes: np.ndarray  # a1, a2, a3 (rad/s), shape (..., 3)
+#: Largest phase (rad) the exact solution follows: the elliptic argument ``u = u0 + p t`` and
+#: the precession angle are carried in double-double (relative error ~1e-31), so here their
+#: error is still ~1e-9 rad; a factor of 1000 further it would reach 1e-6 rad.
+MAX_PHASE = 1e22
 
 
-def elliptic_parameters(omega, moments) -> EllipticParameters:
-    """``p``, ``m``, ``1 - m`` and the amplitudes of the motion through ``omega``, for
-    ascending moments, by the formulas of the module docstring; broadcasts over (..., 3).
+def check_phase_limit(moments, omega0, t_end: float) -> None:
+    """Refuse a run whose phase would exceed :data:`MAX_PHASE`.
 
-    The differences ``g_j = L^2 - 2 E I_j`` come from :func:`energy_momentum_gaps`, and
-    ``1 - m`` is formed from them directly, never as ``1 - m``.
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments ``I1 <= I2 <= I3``, kg m^2.
+    omega0 : array_like, shape (3,)
+        Initial angular velocity, principal frame, rad/s.
+    t_end : float
+        Duration, s.
+
+    Raises
+    ------
+    ValueError
+        Naming ``t_end``, the phase it reaches and the limit.
     """
-    I = np.asarray(moments, float)
-    g = energy_momentum_gaps(omega, I)
-    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
-    g1, g2, g3 = g[..., 0], g[..., 1], g[..., 2]
-    upper = g2 >= 0  # the separatrix is taken from this side
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p2 = np.where(upper, (I3 - I2) * g1, (I2 - I1) * -g3) / (I1 * I2 * I3)
-        m = np.where(upper, (I2 - I1) * -g3 / ((I3 - I2) * g1), (I3 - I2) * g1 / ((I2 - I1) * -g3))
-        m1 = np.where(upper, (I3 - I1) * g2 / ((I3 - I2) * g1), (I3 - I1) * -g2 / ((I2 - I1) * -g3))
-        a2 = np.where(upper, -g3 / (I2 * (I3 - I2)), g1 / (I2 * (I2 - I1)))
-        amps = np.stack([-g3 / (I1 * (I3 - I1)), a2, g1 / (I3 * (I3 - I1))], axis=-1)
-    return EllipticParameters(upper, np.sqrt(p2), np.clip(m, 0.0, 1.0), np.clip(m1, 0.0, 1.0), np.sqrt(amps))
+    FreeRotation(np.asarray(moments, float), np.asarray(omega0, float), Rotation.identity())._check_time(t_end)
 
 
 def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
@@ -116,6 +117,22 @@ def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
     """
     zeros = int(np.count_nonzero(w == 0.0))
     return bool(I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w[2] == 0.0) or (I[1] == I[2] and w[0] == 0.0))
+
+
+def _dd_float(x) -> tuple[float, float]:
+    return float(x[0]), float(x[1])
+
+
+def _norm(v) -> tuple[tuple[float, float], int]:
+    """``|v|`` of three double-doubles ``v`` as a double-double mantissa and a power of two:
+    scaled first, so that no square underflows."""
+    big = max(abs(float(x[0])) for x in v)
+    e = math.frexp(big)[1] if big > 0 else 0
+    acc = (0.0, 0.0)
+    for x in v:
+        x = (math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e))
+        acc = dd.add(acc, dd.mul(x, x))
+    return dd.sqrt(acc), e
 
 
 # Cyclic relabellings of the body axes that put the reference axis last: (i, j, r).
@@ -134,6 +151,11 @@ class FreeRotation:
         Angular velocity at t = 0, principal frame, rad/s.
     attitude0 : scipy Rotation
         Body (principal) to world at t = 0.
+
+    Notes
+    -----
+    Times with ``|t| > max_time`` (where a phase would exceed :data:`MAX_PHASE`) raise
+    ``ValueError``.
 
     Examples
     --------
@@ -156,39 +178,59 @@ class FreeRotation:
             raise ValueError(f"moments = {I.tolist()} must be three positive numbers in ascending order (kg m^2)")
         if not (w.shape == (3,) and np.all(np.isfinite(w))):
             raise ValueError(f"omega0 = {w.tolist()} must be three finite numbers (rad/s)")
-        L = I * w
         self._set(steady=_is_steady(I, w))
         if self.steady:
+            spin, e = _norm([(x, 0.0) for x in w])
+            self._set(spin=dd.ldexp(spin, e), axis=np.ldexp(w, -e) / spin[0] if spin[0] > 0 else w)
+            self._set(phase_rate=self.spin[0])
             return
-        e = elliptic_parameters(w, I)
-        upper, m, m1 = bool(e.upper), float(e.m), float(e.m1)
+        self._elliptic(I, w)
+
+    def _elliptic(self, I: np.ndarray, w: np.ndarray) -> None:
+        core = scaled_core(w, I)
+        upper = bool(core["upper"])
+        p = _dd_float(core["p"])
+        (k_m, k_e), (kp_m, kp_e) = core["k"], core["kp"]
+        kp_m, kp_e = _dd_float(kp_m), int(kp_e)
+        n = _dd_float(core["n"])
+        separatrix = kp_m[0] == 0.0  # g2 == 0 exactly
+        k, kp = min(math.ldexp(float(k_m[0]), int(k_e)), 1.0), min(math.ldexp(kp_m[0], kp_e), 1.0)
+        if k == 0.0:  # a symmetric top: circular functions, exactly
+            kp_m, kp_e, kp = (1.0, 0.0), 0, 1.0
+        if separatrix:
+            k, K, Pi = 1.0, (math.inf, 0.0), (math.inf, 0.0)
+        else:
+            K, Pi = complete_integrals(n, kp_m, kp_e)
+        modulus = Modulus(k, kp, K)
         r, c = (2, 0) if upper else (0, 2)  # dn axis, cn axis
-        amp = e.amplitudes
+        amp = core["amplitudes"]
         sign = 1.0 if w[r] >= 0 else -1.0
         # On the separatrix cn = sech > 0 never changes sign, so the two branches on which w_c
         # and w_r have opposite signs need sn's sign reversed (Euler's equations then still
         # hold: I2 a2 p = (I3 - I1) a1 a3 with sign2 * sign_c * sign_r = +1).
-        sign2 = -1.0 if (m1 == 0.0 and w[c] * sign < 0) else 1.0
+        sign2 = -1.0 if (separatrix and w[c] * sign < 0) else 1.0
         sign_c = sign * sign2
         # phase at t = 0 from sn(u0) = w2 / (sign2 a2) and cn(u0) = w_c / (sign_c a_c), taken
         # straight into Carlson's integrals (no angle): u0 = 2 K j0 + F(phi_r), |phi_r| <= pi/2
         s0, c0 = w[1] / (sign2 * amp[1]), w[c] / (sign_c * amp[c])
-        h = np.hypot(s0, c0)
+        h = math.hypot(s0, c0)
         s0, c0 = s0 / h, c0 / h
         j0 = 0.0
-        if c0 < 0 and m1 > 0:  # am(u0) beyond +-pi/2: one half period further
+        if c0 < 0 and not separatrix:  # am(u0) beyond +-pi/2: one half period further
             j0 = 1.0 if s0 >= 0 else -1.0
             s0, c0 = -s0, -c0
         c0 = max(c0, 0.0)
-        d0 = np.sqrt(c0 * c0 + m1 * s0 * s0)
-        Io = I[2] if r == 0 else I[0]
-        Ir = I[r]
-        n = -Ir * (I[1] - Io) / (Io * (Ir - I[1]))
-        K = ellipk(m, m1) if m1 > 0 else np.inf
-        u0 = float(carlson_f(s0, c0, m1)) + (2.0 * j0 * K if j0 else 0.0)
-        Lnorm = float(np.linalg.norm(L))
-        p = float(e.p)
-        rate0, rate1 = Lnorm / Ir, Lnorm * (Ir - Io) / (I[0] * I[2])
+        d0 = math.hypot(c0, kp * s0)
+        u0 = dd.add(dd.mul_d((2.0 * K[0], 2.0 * K[1]), j0) if j0 else (0.0, 0.0), self._initial_phase(s0, c0, d0, kp, K))
+        # Rates of the precession about L (module docstring), from the scaled moments and omega
+        Is = [float(x) for x in core["moments"]]
+        Ir, Io = Is[r], Is[2 - r]
+        Ln, e = _norm([dd.two_prod(x, float(y)) for x, y in zip(Is, w)])  # |L| for the scaled moments
+        Ln = dd.ldexp(Ln, e)
+        rate0 = dd.div(Ln, (Ir, 0.0))
+        rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[0], Is[2]))
+        scale = dd.div(rate1, p)
+        one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))
         # phi(t) = rate0 t + (rate1 / p) [Pi(u) - Pi(u0)] (module docstring), split into a secular
         # part A t + B j and a bounded one b(u_r) - b(u0_r) that is evaluated without cancellation:
         # - m1 = 0: Pi(n; am u | 1) = (u + a atan(a tanh u)) / (1 - n), a = sqrt(-n) (integrate
@@ -197,37 +239,76 @@ class FreeRotation:
         #   evaluated: when p is tiny (a nearly symmetric body, a symmetric top spun almost
         #   perpendicular to its axis) rate1 / p is huge and Pi(u) - Pi(u0) would lose it all;
         # - |n| > 1: Pi itself, which is then O(1 / sqrt(-n)).
-        if m1 == 0.0:
-            mode, A, B = "separatrix", rate0 + rate1 / (1.0 - n), 0.0
-        elif abs(n) <= 1.0:
-            mode, A, B = "excess", rate0 + rate1, 2.0 * rate1 / p * pi_excess_complete(n, m1)
+        zero = (0.0, 0.0)
+        if separatrix:
+            mode, A, B = "separatrix", dd.add(rate0, dd.div(rate1, one_n)), zero
+        elif abs(n[0]) <= 1.0:
+            mode, A = "excess", dd.add(rate0, rate1)
+            B = dd.mul(dd.mul_d(scale, 2.0), dd.add(Pi, (-K[0], -K[1])))
         else:
-            mode, A, B = "pi", rate0, 2.0 * rate1 / p * pi_complete(n, m1)
-        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=p, m=m, m1=m1, u0=u0, n=n,
-                  Lnorm=Lnorm, rate0=rate0, rate1=rate1, mode=mode, secular=(A, B), j0=j0)
-        self._set(b0=float(self._bounded(np.array(u0), *(np.array(x) for x in (s0, c0, d0)))))
+            mode, A, B = "pi", rate0, dd.mul(dd.mul_d(scale, 2.0), Pi)
+        excess_c = dd.add(Pi, (-K[0], -K[1]))[0] if not separatrix else -math.inf
+        self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=p, m=k * k,
+                  m1=math.ldexp(kp_m[0] ** 2, 2 * kp_e) if kp_e > -600 else 0.0, k=k, kp=kp,
+                  modulus=modulus, u0=u0, j0=j0, n=n[0], Lnorm=float(np.linalg.norm(I * w)),
+                  rate0=rate0[0], rate1=rate1[0], mode=mode, secular=(A, B),
+                  _scale=scale[0], _complete=(K[0], excess_c), _one_n=one_n[0])
+        self._set(b0=float(self._bounded(*(np.array(x) for x in (s0, c0, d0)))))
+        half = 2.0 * K[0] / p[0] if not separatrix else math.inf
+        self._set(phase_rate=max(p[0], abs(A[0]) + abs(B[0]) / half))
         perm = Rotation.from_matrix(np.eye(3)[list(_CYCLE[r])])  # body -> relabelled coordinates
-        B0 = self._tilt(L[None, :])[0]
+        B0 = self._tilt((I * w)[None, :])[0]
         # R0 = G Rz(0) B0 P  =>  G = R0 P^-1 B0^-1
         self._set(perm=perm, G=self.attitude0 * perm.inv() * B0.inv())
+
+    @staticmethod
+    def _initial_phase(s0: float, c0: float, d0: float, kp: float, K) -> tuple[float, float]:
+        """``u_r = F(phi | m)``, ``|phi| <= pi/2``, as a double-double; past the midpoint
+        ``|u_r| = K/2`` measured from ``+-K`` instead, by the co-amplitude of ``u' = K - |u_r|``:
+        ``sn u' = cd u_r``, ``cn u' = k' sd |u_r|``, ``dn u' = k' nd u_r`` (DLMF 22.4.3), so that a
+        start near ``cn = 0`` carries no error of size eps K (relative accuracy of cn there)."""
+        if kp > 0 and abs(s0) * d0 > c0 and not math.isinf(K[0]):
+            u1 = float(legendre_f(c0 / d0, kp * abs(s0) / d0, kp / d0)) if d0 > 0 else 0.0
+            far = dd.add(K, (-u1, 0.0))
+            return (far[0], far[1]) if s0 > 0 else (-far[0], -far[1])
+        return float(legendre_f(s0, c0, d0, K=K[0])), 0.0
 
     def _set(self, **values) -> None:
         for k, v in values.items():
             object.__setattr__(self, k, v)
 
+    @property
+    def max_time(self) -> float:
+        """Longest ``|t|`` (s) before a phase of the motion exceeds :data:`MAX_PHASE`."""
+        return MAX_PHASE / self.phase_rate if self.phase_rate > 0 else math.inf
+
+    def _check_time(self, t) -> None:
+        t_max = float(np.max(np.abs(t))) if np.size(t) else 0.0
+        if not t_max <= self.max_time:
+            raise ValueError(
+                f"t_end = {t_max:g} s takes this motion to a phase of {t_max * self.phase_rate:.3g} rad, beyond "
+                f"the {MAX_PHASE:g} rad up to which the exact solution keeps its phase error below 1e-6 rad; "
+                f"at most {self.max_time:.6g} s"
+            )
+
     # -- angular velocity ---------------------------------------------------------------
-    def _phase(self, t) -> np.ndarray:
-        return self.u0 + self.p * np.asarray(t, float)
+    def _reduced(self, t):
+        """Half-period counts ``(j1, j2)``, parity, and ``sn, cn, dn`` of the reduced phase."""
+        t = np.asarray(t, float)
+        self._check_time(t)
+        u = dd.add(dd.mul_d(self.p, t), self.u0)
+        return self.modulus.reduce(u)
 
     def omega(self, t) -> np.ndarray:
         """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3)."""
         t = np.asarray(t, float)
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
-        sn, cn, dn = jacobi(self._phase(t), self.m, self.m1)
+        _, odd, sn, cn, dn = self._reduced(t)
+        sign = np.where(odd, -1.0, 1.0)
         w = np.empty(t.shape + (3,))
-        w[..., self.c] = self.sign_c * self.amp[self.c] * cn
-        w[..., 1] = self.sign2 * self.amp[1] * sn
+        w[..., self.c] = self.sign_c * self.amp[self.c] * sign * cn
+        w[..., 1] = self.sign2 * self.amp[1] * sign * sn
         w[..., self.r] = self.sign * self.amp[self.r] * dn
         return w
 
@@ -241,31 +322,41 @@ class FreeRotation:
     def _tilt(self, L) -> Rotation:
         return Rotation.from_euler("XZ", np.stack(self._tilt_angles(L), axis=-1))
 
-    def _bounded(self, u, sn, cn, dn) -> np.ndarray:
+    def _bounded(self, sn, cn, dn) -> np.ndarray:
         """The bounded part of ``phi`` at reduced phases (``sn, cn, dn`` of ``u_r``), rad."""
-        n, scale = self.n, self.rate1 / self.p
+        n, scale = self.n, self._scale
         if self.mode == "separatrix":
-            a = np.sqrt(-n)
-            return scale * a * np.arctan(a * np.tanh(u)) / (1.0 - n)
+            a = math.sqrt(-n)
+            return scale * a * np.arctan(a * sn) / self._one_n  # sn = tanh u
+        excess = legendre_pi_excess(n, sn, cn, dn, m=self.m, excess_complete=self._complete[1])
         if self.mode == "excess":
-            return scale * carlson_pi_excess(n, sn, cn, dn)
-        return scale * carlson_pi(n, sn, cn, dn)
+            return scale * excess
+        return scale * (legendre_f(sn, cn, dn, K=self._complete[0]) + excess)
+
+    def _precession(self, t):
+        """``phi(t)`` as its secular part (double-double) and its bounded part (double)."""
+        (j1, j2), _, sn, cn, dn = self._reduced(t)
+        A, B = self.secular
+        secular = dd.add(dd.mul_d(A, t), dd.add(dd.mul_d(B, j1), dd.mul_d(B, j2 - self.j0)))
+        return secular, self._bounded(sn, cn, dn) - self.b0
 
     def precession_angle(self, t) -> np.ndarray:
-        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37)."""
-        t = np.asarray(t, float)
-        u = self._phase(t)
-        j, sn, cn, dn = jacobi_reduced(u, self.m, self.m1)
-        A, B = self.secular
-        return A * t + B * (j - self.j0) + (self._bounded(u, sn, cn, dn) - self.b0)
+        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37);
+        to double precision of its size (the attitude uses it reduced mod 2 pi, exactly)."""
+        secular, bounded = self._precession(np.asarray(t, float))
+        return secular[0] + (secular[1] + bounded)
 
     def attitude(self, t) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""
         t = np.atleast_1d(np.asarray(t, float))
         if self.steady:
-            return self.attitude0 * Rotation.from_rotvec(np.outer(t, self.omega0))
+            self._check_time(t)
+            angle = dd.reduce_2pi(dd.mul_d(self.spin, t))
+            return self.attitude0 * Rotation.from_rotvec(np.outer(angle, self.axis))
         L = self.moments * self.omega(t)
         theta, psi = self._tilt_angles(L)
+        secular, bounded = self._precession(t)
+        phi = dd.reduce_2pi(secular) + bounded
         # Rz(phi) Rx(theta) Rz(psi) in one call: intrinsic z-x-z Euler angles
-        euler = Rotation.from_euler("ZXZ", np.stack([self.precession_angle(t), theta, psi], axis=-1))
+        euler = Rotation.from_euler("ZXZ", np.stack([phi, theta, psi], axis=-1))
         return self.G * euler * self.perm

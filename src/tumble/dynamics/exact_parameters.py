@@ -1,0 +1,126 @@
+"""Parameters of the torque-free motion through one omega: in double-double, free of underflow.
+
+The formulas are those of :mod:`tumble.dynamics.exact` (Landau & Lifshitz, *Mechanics*, sec.
+37), with ``g_j = L^2 - 2 E I_j = sum_{i != j} I_i (I_i - I_j) w_i^2`` (without cancellation,
+Celledoni, Fasso, Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, sec. 2). What is
+added here is only how they are evaluated:
+
+- ``g_j`` does not contain ``w_j``, and it is homogeneous of degree 2 in omega: each is formed
+  from omega scaled by the power of two ``2^e_j`` nearest above its largest *other* component,
+  ``g_j = 4^e_j gt_j`` exactly, so that no square underflows (``omega = (0, 1, 1e-160)`` has
+  ``g2 ~ 1e-320``, below the normal range, but ``gt2`` is of order 1); the moments are scaled by
+  a power of two too (every parameter is homogeneous of degree 0 in them);
+- the products and quotients are taken in double-double (:mod:`tumble.dynamics.ddouble`) with
+  the moment differences formed exactly, so that ``p``, ``k'``, ``n`` and the rates are good to
+  ~1e-31, as the phase of a long run needs (``u = u0 + p t`` with ``p t`` up to 1e20);
+- ``k = sqrt(m)`` and ``k' = sqrt(1 - m)`` are formed as ``2^(e_a - e_b) sqrt(ratio)``:
+  ``k' = 1e-160`` stays representable where ``1 - m = 1e-320`` is not even a normal double,
+  and ``k'`` is also returned as a double-double mantissa and a binary exponent, from which
+  ``K`` is found however small ``k'`` is (:func:`tumble.dynamics.carlson.complete_integrals`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from . import ddouble as dd
+
+__all__ = ["EllipticParameters", "elliptic_parameters"]
+
+
+class EllipticParameters(NamedTuple):
+    """Parameters of the torque-free motion through one omega (module docstring); arrays (...)."""
+
+    upper: np.ndarray  # L^2 >= 2 E I2: omega circulates about axis 3 (else about axis 1)
+    p: np.ndarray  # rate of the elliptic argument u = u0 + p t, 1/s
+    m: np.ndarray  # parameter k^2 (may underflow where k does not)
+    m1: np.ndarray  # 1 - k^2, formed directly (may underflow where k' does not)
+    amplitudes: np.ndarray  # a1, a2, a3 (rad/s), shape (..., 3)
+    k: np.ndarray  # sqrt(m), formed directly
+    kp: np.ndarray  # k' = sqrt(1 - m), formed directly
+
+
+def _neg(x):
+    return -x[0], -x[1]
+
+
+def _where(cond, x, y):
+    return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
+
+
+def _scaled_root(num, den, exponent):
+    """``sqrt(num / den)`` (double-doubles) as a double-double mantissa and ``2^exponent``."""
+    return dd.sqrt(dd.div(num, den)), exponent
+
+
+def scaled_core(omega, moments) -> dict:
+    """Everything the exact solution needs, in double-double and in scaled form (module
+    docstring); broadcasts over (..., 3). Keys: ``upper``, ``moments`` (scaled, ``I3`` in
+    [1/2, 1)), ``gaps`` and ``exponents`` (``g_j = 4^e_j gt_j`` for the scaled moments), ``p``
+    (double-double, 1/s), ``k``, ``kp`` (each ``(mantissa dd, exponent)``), ``amplitudes``
+    (double, rad/s), ``n`` (double-double: the characteristic of the attitude's Pi)."""
+    w = np.asarray(omega, float)
+    I = np.asarray(moments, float)
+    w, I = np.broadcast_arrays(w, I)
+    I = np.ldexp(I, -np.frexp(I[..., 2])[1][..., None])
+    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
+    gaps, exps = [], []
+    for j in range(3):
+        a, b = (i for i in range(3) if i != j)
+        big = np.maximum(np.abs(w[..., a]), np.abs(w[..., b]))
+        e = np.where(big > 0, np.frexp(big)[1], 0)
+        g = (0.0 * big, 0.0 * big)
+        for i in (a, b):
+            x = np.ldexp(w[..., i], -e)
+            term = dd.mul(dd.mul_d(dd.two_sum(I[..., i], -I[..., j]), I[..., i]), dd.two_prod(x, x))
+            g = dd.add(g, term)
+        gaps.append(g)
+        exps.append(e)
+    (g1, g2, g3), (e1, e2, e3) = gaps, exps
+    upper = g2[0] >= 0  # the separatrix is taken from this side
+    d21, d31, d32 = dd.two_sum(I2, -I1), dd.two_sum(I3, -I1), dd.two_sum(I3, -I2)
+    prod = dd.mul_d(dd.two_prod(I1, I2), I3)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        up = {
+            "p": _scaled_root(dd.mul(d32, g1), prod, e1),
+            "k": _scaled_root(dd.mul(d21, _neg(g3)), dd.mul(d32, g1), e3 - e1),
+            "kp": _scaled_root(dd.mul(d31, g2), dd.mul(d32, g1), e2 - e1),
+            "a2": _scaled_root(_neg(g3), dd.mul_d(d32, I2), e3),
+            "n": _neg(dd.div(dd.mul_d(d21, I3), dd.mul_d(d32, I1))),
+        }
+        low = {
+            "p": _scaled_root(dd.mul(d21, _neg(g3)), prod, e3),
+            "k": _scaled_root(dd.mul(d32, g1), dd.mul(d21, _neg(g3)), e1 - e3),
+            "kp": _scaled_root(dd.mul(d31, _neg(g2)), dd.mul(d21, _neg(g3)), e2 - e3),
+            "a2": _scaled_root(g1, dd.mul_d(d21, I2), e1),
+            "n": _neg(dd.div(dd.mul_d(d32, I1), dd.mul_d(d21, I3))),
+        }
+        a1 = _scaled_root(_neg(g3), dd.mul_d(d31, I1), e3)
+        a3 = _scaled_root(g1, dd.mul_d(d31, I3), e1)
+        out = {key: (_where(upper, up[key][0], low[key][0]), np.where(upper, up[key][1], low[key][1]))
+               for key in ("p", "k", "kp", "a2")}
+        amps = [np.ldexp(x[0][0], x[1]) for x in (a1, out["a2"], a3)]
+        n = _where(upper, up["n"], low["n"])
+    p = dd.ldexp(*out["p"])
+    return {"upper": upper, "moments": I, "gaps": gaps, "exponents": exps, "p": p, "k": out["k"],
+            "kp": out["kp"], "amplitudes": np.stack(amps, axis=-1), "n": n}
+
+
+def elliptic_parameters(omega, moments) -> EllipticParameters:
+    """``p``, ``m``, ``1 - m``, the amplitudes, ``k`` and ``k'`` of the motion through
+    ``omega``, for ascending moments (:mod:`tumble.dynamics.exact`); broadcasts over (..., 3).
+
+    ``1 - m`` is formed from the energy-momentum gaps directly, never as ``1 - m``; nothing
+    underflows that the answer does not (module docstring).
+    """
+    c = scaled_core(omega, moments)
+
+    def value(x, power=1):
+        (hi, _), e = x
+        with np.errstate(over="ignore", invalid="ignore"):
+            return np.clip(np.ldexp(hi**power, power * e), 0.0, 1.0)
+
+    return EllipticParameters(c["upper"], c["p"][0], value(c["k"], 2), value(c["kp"], 2), c["amplitudes"],
+                              value(c["k"]), value(c["kp"]))
