@@ -18,6 +18,8 @@ from tumble.dynamics.elliptic import carlson_pi
 from tumble.dynamics.exact import FreeRotation
 from tumble.mass import MassProperties, principal_frame
 
+from test_exact import _mp_reference  # Taylor-series integration at arbitrary precision
+
 SETTINGS = settings(max_examples=25, deadline=None, derandomize=True)
 
 
@@ -249,3 +251,21 @@ def test_tiny_components_any_body(moments, order, a, b, big):
     w0[order[0]], w0[order[1]], w0[order[2]] = big, a, b
     body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
     _check_against_dop853(body, w0, frame="principal", t_end=5.0)
+
+
+# -- 1: accuracy near the intermediate axis, 1 - m -> 0 ---------------------------------------
+
+@pytest.mark.parametrize(("eps", "times"), [(1e-12, [5.0, 26.03, 40.0]), (1e-14, [29.9, 40.0])])
+def test_near_the_intermediate_axis_against_34_digit_integration(eps, times):
+    """I = (1, 2, 3), omega0 = (e, 1, e): 1 - m ~ 2 e^2. Against a Taylor-series integration of
+    Euler's equations and the quaternion kinematics at 34 digits: every omega component to
+    1e-12 *relative* (the small ones too, ~1e-7 at these times) and the attitude to 1e-12 rad.
+    The audit found 1.3e-3 and 7.8e-4 rad here: at |u - j K| ~ K/2 the Landen recursion of m
+    left cn with a relative error ~1e-16 / sqrt(1 - m)."""
+    moments, w0 = (1.0, 2.0, 3.0), (eps, 1.0, eps)
+    ref = _mp_reference(moments, w0, times, dps=34)
+    motion = FreeRotation(np.array(moments), np.array(w0), Rotation.identity())
+    w = motion.omega(times)
+    np.testing.assert_allclose(w, ref[:, :3], rtol=1e-12, atol=0)
+    err = (motion.attitude(times) * Rotation.from_quat(ref[:, 3:]).inv()).magnitude()
+    assert np.max(err) < 1e-12

@@ -57,7 +57,7 @@ then flips). The phase ``u = u0 + p t``, its reduction by ``2 K`` and the secula
 ``phi`` (``A t + B j``, reduced mod 2 pi) are carried in double-double, so every angle of the
 motion is good to ~1e-31 of the phase reached, plus round-off: to ~1e-15 rad at 1e17 rad. The
 functions of the reduced phase are evaluated in double precision (:mod:`tumble.dynamics.elliptic`):
-omega to a few ulps relative per component, the attitude to ~1e-14 rad, also at ``1 - m``
+omega to a few ulps relative per component, the attitude to ~5e-14 rad, also at ``1 - m``
 down to 0; energy, ``|L|`` and ``L_world`` hold to round-off at any phase. Beyond
 ``MAX_PHASE`` (1e22 rad), where the phase error would approach 1e-9 rad, and before it
 would reach 1e-6 rad, the motion refuses to answer (``ValueError``, :func:`check_phase_limit`);
