@@ -14,8 +14,8 @@ from scipy.spatial.transform import Rotation
 import tumble
 from tumble.dynamics import simulate
 from tumble.dynamics.carlson import legendre_f, legendre_pi_excess
-from tumble.dynamics.elliptic import carlson_pi
-from tumble.dynamics.exact import FreeRotation
+from tumble.dynamics.elliptic import carlson_pi, jacobi
+from tumble.dynamics.exact import FreeRotation, check_phase_limit
 from tumble.mass import MassProperties, principal_frame
 
 from test_exact import _mp_reference  # Taylor-series integration at arbitrary precision
@@ -269,3 +269,107 @@ def test_near_the_intermediate_axis_against_34_digit_integration(eps, times):
     np.testing.assert_allclose(w, ref[:, :3], rtol=1e-12, atol=0)
     err = (motion.attitude(times) * Rotation.from_quat(ref[:, 3:]).inv()).magnitude()
     assert np.max(err) < 1e-12
+
+
+# -- 3: huge phases ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("m1", [0.5, 1e-3, 1e-12, 1e-200])
+def test_jacobi_functions_stay_on_their_curves_at_any_argument(m1):
+    m = 1.0 - m1
+    u = np.array([1e15, -1e17, 3.3e20, 1e25, 7e40, 1e100, -1e300, 1.7e308])
+    sn, cn, dn = jacobi(u, m, m1)
+    np.testing.assert_allclose(sn**2 + cn**2, 1.0, rtol=0, atol=5e-16)
+    np.testing.assert_allclose(dn**2 + m * sn**2, 1.0, rtol=0, atol=5e-16)
+    assert np.all(dn > 0)
+    # and where the phase is still kept (~1e-32 |u|), the values themselves, against mpmath
+    mp.mp.dps = 60 - int(np.log10(m1))
+    M = mp.mpf(1) - mp.mpf(m1)
+    for x, s, c, d in zip(u[:3], sn, cn, dn):
+        ref = [float(mp.ellipfun(k, mp.mpf(x), m=M)) for k in ("sn", "cn", "dn")]
+        np.testing.assert_allclose([s, c, d], ref, rtol=0, atol=1e-14 + 3e-32 * abs(x))
+
+
+@pytest.mark.parametrize(("w0", "t_end"), [((1e8, 1e7, 1e7), 1e9), ((1e5, 1.0, 1.0), 1e12)])
+def test_invariants_hold_at_huge_phases(w0, t_end):
+    """The audit's cases: energy drift 1.9 and 2e-8, with no error, before the reduction was
+    exact; now the motion stays on its energy surface whatever the phase (~6.6e16 here)."""
+    traj = simulate(tumble.t_handle(), w0, t_end=t_end, samples=2001)
+    for name, value in traj.drift.items():
+        assert value < 1e-13, (name, value)
+
+
+def _mp_period(moments, w0, dps):
+    """The period ``T = 4 K / p`` of omega and the precession ``dphi`` about L over one period
+    (``rate0 T + (rate1 / p) 4 Pi(n | m)``, Landau & Lifshitz sec. 37), by mpmath alone."""
+    mp.mp.dps = dps
+    I = [mp.mpf(x) for x in moments]
+    w = [mp.mpf(x) for x in w0]
+    I1, I2, I3 = I
+    g1, g2, g3 = (sum(I[i] * (I[i] - I[j]) * w[i] ** 2 for i in range(3)) for j in range(3))
+    if g2 >= 0:
+        r, o = 2, 0
+        p, m = mp.sqrt((I3 - I2) * g1 / (I1 * I2 * I3)), (I2 - I1) * -g3 / ((I3 - I2) * g1)
+    else:
+        r, o = 0, 2
+        p, m = mp.sqrt((I2 - I1) * -g3 / (I1 * I2 * I3)), (I3 - I2) * g1 / ((I2 - I1) * -g3)
+    n = -I[r] * (I2 - I[o]) / (I[o] * (I[r] - I2))
+    L = mp.sqrt(sum((I[i] * w[i]) ** 2 for i in range(3)))
+    T = 4 * mp.ellipk(m) / p
+    return T, L / I[r] * T + L * (I[r] - I[o]) / (I1 * I3) / p * 4 * mp.ellippi(n, m)
+
+
+@pytest.mark.parametrize(
+    ("moments", "w0", "t", "dps"),
+    [
+        ((0.125, 0.3125, 0.4375), (1e8, 1e7, 1e7), 1e9 + 0.123, 60),     # phase 6.6e16
+        ((0.125, 0.3125, 0.4375), (1e5, 1.0, 1.0), 1e12, 60),            # phase 6.6e16
+        ((0.125, 0.3125, 0.4375), (0.1, 10.0, 0.1), 1e12, 60),           # near the separatrix
+        ((0.125, 0.3125, 0.4375), (3.0, 1.0, 1e-3), 1e11, 60),           # about the minor axis
+        ((1.0, 1.0, 1.5), (0.3, 0.4, 2.0), 1e12, 60),                    # symmetric tops
+        ((1.0, 1.5, 1.5), (2.0, 0.4, -0.3), 1e12, 60),
+        ((0.125, 0.3125, 0.4375), (1e-150, 1e9, 1e-150), 1e11, 700),     # 1 - m ~ 1e-300, phase 1e20
+        ((0.125, 0.3125, 0.4375), (1e10, 1e9, 1e9), 1e11, 60),           # phase 6.6e20
+    ],
+)
+def test_huge_phases_against_mpmath(moments, w0, t, dps):
+    """omega against mpmath's closed form at the exact phase; the attitude by the period: after
+    N periods T the body is back, turned about L_world by N dphi (both from mpmath), so
+    ``R(N T + tau) = Rot(l, N dphi) R(tau)``. Error budget: ~1.5e-32 of the phase (double-double)."""
+    T, dphi = _mp_period(moments, w0, dps)
+    N = mp.floor(mp.mpf(t) / T)
+    tau = float(mp.mpf(t) - N * T)
+    angle = float(mp.fmod(N * dphi, 2 * mp.pi))
+    motion = FreeRotation(np.array(moments), np.array(w0), Rotation.identity())
+    L = np.array(moments) * np.array(w0)
+    phase = np.max(np.abs(w0)) * max(moments) / min(moments) * t
+    ref_R = Rotation.from_rotvec(angle * L / np.linalg.norm(L)) * motion.attitude([tau])
+    assert (motion.attitude([t]) * ref_R.inv()).magnitude()[0] < 2e-14 + 1e-31 * phase
+    ref_w, _, _, _ = _mp_closed_form(moments, w0, [t], dps)
+    np.testing.assert_allclose(motion.omega([t]), ref_w, rtol=0, atol=(1e-15 + 1e-31 * phase) * np.max(np.abs(w0)))
+
+
+def test_steady_spin_at_huge_phase():
+    """A steady spin turns by |omega| t: 0.3 rad/s x 1e12 s is 3e11 rad, which as a rounded
+    double is off by up to ~3e-5 rad; the product is carried in double-double."""
+    body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag([1.0, 2.0, 2.5]))
+    t = 1e12 - 0.1
+    traj = simulate(body, [0.0, 0.0, 0.3], t_end=t, samples=2)
+    mp.mp.dps = 50
+    angle = float(mp.fmod(mp.mpf(0.3) * mp.mpf(t), 2 * mp.pi))
+    assert (traj.attitude[-1] * Rotation.from_rotvec([0.0, 0.0, angle]).inv()).magnitude() < 1e-15
+
+
+def test_beyond_the_phase_limit_is_refused():
+    """Never a silently wrong motion: beyond MAX_PHASE (1e24 rad) a clear ValueError."""
+    I, w0 = np.array([0.125, 0.3125, 0.4375]), np.array([1e13, 1e12, 1e12])
+    motion = FreeRotation(I, w0, Rotation.identity())
+    assert motion.max_time < 1e12
+    with pytest.raises(ValueError, match=r"t_end = 1e\+12 s takes this motion to a phase of .* rad, beyond the 1e\+24 rad"):
+        motion.attitude([0.0, 1e12])
+    with pytest.raises(ValueError, match=r"t_end = 1e\+12 s"):
+        check_phase_limit(I, w0, 1e12)
+    with pytest.raises(ValueError, match="phase"):
+        simulate(MassProperties.from_inertia(1.0, np.zeros(3), np.diag(I)), w0, t_end=1e12)
+    check_phase_limit(I, w0, 1e10)  # 6.6e22 rad: allowed
+    with pytest.raises(ValueError, match="phase"):  # a steady spin too
+        check_phase_limit(I, [0.0, 0.0, 1e13], 1e12)

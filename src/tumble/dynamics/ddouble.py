@@ -31,6 +31,7 @@ __all__ = [
     "div",
     "mul",
     "mul_d",
+    "mul_scaled",
     "reduce_2pi",
     "sqrt",
     "two_prod",
@@ -89,6 +90,13 @@ def mul_d(x, b):
     """``x * b`` for a double-double ``x`` and a double ``b``."""
     p, e = two_prod(x[0], b)
     return _fast_two_sum(p, e + x[1] * b)
+
+
+def mul_scaled(x, b):
+    """``x * b`` for a double-double ``x`` and doubles ``b``, both scaled by powers of two
+    first (exactly), so that Dekker's splitting cannot overflow however large ``x`` is."""
+    e = math.frexp(float(x[0]))[1]
+    return mul_d((math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e)), np.ldexp(b, e))
 
 
 def div(x, y):

@@ -126,7 +126,10 @@ class Modulus:
 
         Returns ``(j1, j2)`` (the number of half periods ``j = j1 + j2``, as two integral
         floats, since beyond 2^53 their sum is not exact), ``odd`` (whether ``j`` is odd), and
-        ``sn, cn, dn`` of ``u_r = u - 2 K j`` with ``|u_r| <= K``, ``cn(u_r) >= 0``.
+        ``sn, cn, dn`` of ``u_r = u - 2 K j`` with ``|u_r| <= K``, ``cn(u_r) >= 0``. The phase
+        is kept to ~1e-32 of ``u``; beyond ``|u| = 1e30``, where that is no longer below 0.01,
+        ``u`` is first reduced by ``fmod(u, 4 K)`` (exact, but with ``K`` rounded to double):
+        the functions then keep their identities only.
         """
         u = (np.asarray(u[0], float), np.asarray(u[1], float))
         if math.isinf(self.K[0]):  # the separatrix: no period
@@ -135,6 +138,9 @@ class Modulus:
             zero = np.zeros_like(u[0])
             return (zero, zero), np.zeros(u[0].shape, bool), np.tanh(u[0]), sech, sech
         twoK = (2.0 * self.K[0], 2.0 * self.K[1])
+        lost = np.abs(u[0]) > 1e30  # no phase left to keep: stay on the curve, at least
+        if np.any(lost):
+            u = (np.where(lost, np.fmod(u[0], 4.0 * self.K[0]), u[0]), np.where(lost, 0.0, u[1]))
         j1 = np.rint(u[0] / twoK[0])
         r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
         j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
