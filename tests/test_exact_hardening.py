@@ -14,8 +14,8 @@ from scipy.spatial.transform import Rotation
 import tumble
 from tumble.dynamics import simulate
 from tumble.dynamics.carlson import legendre_f, legendre_pi_excess
-from tumble.dynamics.elliptic import carlson_pi, jacobi
-from tumble.dynamics.exact import FreeRotation, check_phase_limit
+from tumble.dynamics.elliptic import carlson_pi, ellipk_kp, jacobi
+from tumble.dynamics.exact import FreeRotation, check_phase_limit, elliptic_parameters
 from tumble.mass import MassProperties, principal_frame
 
 from test_exact import _mp_reference  # Taylor-series integration at arbitrary precision
@@ -236,6 +236,18 @@ def test_integrals_where_squares_underflow(kp, c):
     assert float(f) == pytest.approx(float(ref_f), rel=1e-14)
     assert float(excess) == pytest.approx(float(ref_pi - ref_f), rel=1e-14)
     assert float(carlson_pi(n, float(S), float(C), float(D))) == pytest.approx(float(ref_pi), rel=1e-14)
+
+
+def test_quarter_period_from_the_complementary_modulus():
+    """``K`` from ``k'`` where ``1 - m = k'^2`` is below the smallest double (for callers of
+    EllipticParameters.kp, e.g. the flip interval), against mpmath."""
+    kp = np.array([1.0, 0.7, 1e-3, 1e-20, 1e-100, 1e-200, 1e-300, 5e-324])
+    mp.mp.dps = 900
+    ref = [float(mp.ellipk(1 - mp.mpf(x) ** 2)) for x in kp]
+    np.testing.assert_allclose(ellipk_kp(kp), ref, rtol=5e-16)
+    assert ellipk_kp(0.0) == np.inf
+    e = elliptic_parameters([1e-200, 1.0, 0.0], UNDERFLOW_BODIES["t_handle"])
+    assert e.m1 == 0.0 and e.kp == pytest.approx(1e-200, rel=1e-15)  # sqrt(1 - m), formed directly
 
 
 tiny = st.builds(lambda e, s: s * 10.0**-e, st.floats(20.0, 310.0), st.sampled_from([-1.0, 1.0]))

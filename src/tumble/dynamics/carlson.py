@@ -24,11 +24,11 @@ since scipy's ``elliprj`` itself loses accuracy (1e-3 at ``x = y = 1e-170``, mea
 mpmath) when two arguments are below ~1e-150. Only ``c = d = 0`` (``phi = pi/2`` with ``m1``
 below the smallest double) is left, and there the complete values are used.
 
-Complete integrals ``K(m)`` and ``Pi(n | m)`` (double-double, scalars) by Bulirsch's ``cel``
-(Bulirsch, "Numerical calculation of elliptic integrals and elliptic functions III", Numer.
-Math. 13 (1969) 305; as in Press et al., *Numerical Recipes*, 2nd ed., sec. 6.11):
-``K = cel(k', 1, 1, 1)``, ``Pi(n | m) = cel(k', 1 - n, 1, 1)``, quadratically convergent (a
-Gauss AGM in disguise) and without cancellation for ``n <= 0``. For ``k' < 2^-60`` both are
+Complete integrals ``K(m)`` and ``Pi(n | m)`` (double-double, scalars): ``K = pi / (2 AGM(1,
+k'))`` (Abramowitz & Stegun 17.6), and ``Pi(n | m) = cel(k', 1 - n, 1, 1)`` by Bulirsch's
+``cel`` (Bulirsch, "Numerical calculation of elliptic integrals and elliptic functions III",
+Numer. Math. 13 (1969) 305; as in Press et al., *Numerical Recipes*, 2nd ed., sec. 6.11),
+quadratically convergent (a Gauss AGM in disguise) and without cancellation for ``n <= 0``. For ``k' < 2^-60`` both are
 shifted from ``k'_60 = k' 2^(E + 60)`` (``k' = mantissa 2^E``): ``K(k') = K(k'_60) + (-60 - E)
 ln 2`` and ``Pi(n | k') = Pi(n | k'_60) + (-60 - E) ln 2 / (1 - n)``, exact to ``O(k'^2 ln k')``
 < 1e-34 (from ``K = ln(4 / k') + O(k'^2 ln k')``, DLMF 19.12.1, and the same logarithmic
@@ -64,7 +64,8 @@ def legendre_f(s, c, d, K=np.inf) -> np.ndarray:
 
 
 #: Duplication steps before scipy's R_J, whose accuracy fails (1e-3) when two of its arguments
-#: are below ~1e-150; each step takes a tiny argument x to ~sqrt(x): three take 1e-320 to 1e-40.
+#: are below ~1e-150 (and holds at 1e-100); each step takes a tiny argument x to ~sqrt(x):
+#: three take 1e-320 to 1e-40. One suffices where ``c + d > 1e-90``, none where ``c, d > 1e-50``.
 _RJ_STEPS = 3
 
 
@@ -82,15 +83,17 @@ def legendre_pi_excess(n: float, s, c, d, m: float | None = None, excess_complet
     roots = [c, d, np.ones_like(c), np.sqrt(p)]  # sqrt x, y, z, p
     args = [c * c, d * d, np.ones_like(c), p]
     rj = np.zeros_like(c)
+    # none needed where c^2, d^2 > 1e-100; after one step every argument exceeds c + d
+    steps = 0 if np.all(np.minimum(c, d) > 1e-50) else 1 if np.all(c + d > 1e-90) else _RJ_STEPS
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for step in range(_RJ_STEPS):
+        for step in range(steps):
             sx, sy, sz, sp = roots
             lam = sx * sy + sy * sz + sz * sx
             D = (sp + sx) * (sp + sy) * (sp + sz)
             rj = rj + 2.0**step * 6.0 / D * elliprc(1.0, 1.0 + delta / (D * D))
             args = [a + lam for a in args]
             roots = [np.sqrt(a) for a in args]
-        rj = rj + 2.0**_RJ_STEPS * elliprj(*args)
+        rj = rj + 2.0**steps * elliprj(*args)
         value = (n / 3.0) * s * s2 * rj
     return np.where(d > 0, value, np.copysign(1.0, s) * excess_complete)
 
@@ -103,9 +106,9 @@ def _cel(kc, pp):
     p = dd.sqrt(pp)
     a, b = one, dd.div(one, p)
     for _ in range(40):
-        f = a
-        a = dd.add(a, dd.div(b, p))
-        g = dd.div(e, p)
+        f, inv = a, dd.div(one, p)
+        a = dd.add(a, dd.mul(b, inv))
+        g = dd.mul(e, inv)
         b = dd.add(b, dd.mul(f, g))
         b = (2.0 * b[0], 2.0 * b[1])
         p = dd.add(g, p)
@@ -117,6 +120,17 @@ def _cel(kc, pp):
         qc = (2.0 * qc[0], 2.0 * qc[1])
         e = dd.mul(qc, em)
     return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
+
+
+def _agm_k(kp):
+    """``K = pi / (2 AGM(1, k'))`` in double-double (A&S 17.6); quadratically convergent: once
+    ``|a - b| <= 1e-17 a`` the mean is the limit to ~1e-34."""
+    a, b = (1.0, 0.0), kp
+    for _ in range(40):
+        if abs(a[0] - b[0]) <= 1e-17 * a[0]:
+            break
+        a, b = dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
+    return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
 
 
 def complete_integrals(n, kp: tuple[float, float], exponent: int = 0):
@@ -131,7 +145,7 @@ def complete_integrals(n, kp: tuple[float, float], exponent: int = 0):
     kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
     n = (float(n[0]), float(n[1])) if isinstance(n, tuple) else (float(n), 0.0)
     one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))  # 1 - n, without rounding n first
-    K = _cel(kp, (1.0, 0.0))
+    K = _agm_k(kp)
     Pi = K if n[0] == 0.0 else _cel(kp, one_n)
     if shift > 0:
         log = dd.mul_d(dd.LN2, float(shift))

@@ -50,6 +50,7 @@ __all__ = [
     "carlson_pi",
     "carlson_pi_excess",
     "ellipk",
+    "ellipk_kp",
     "jacobi",
     "jacobi_reduced",
     "pi_complete",
@@ -166,6 +167,21 @@ def ellipk(m: float, m1: float) -> float:
     if m1 == 0.0:
         return math.inf
     return complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0]
+
+
+def ellipk_kp(kp) -> np.ndarray:
+    """``K(m)`` from ``k' = sqrt(1 - m)`` (array_like, in [0, 1]), vectorised:
+    ``pi / (2 AGM(1, k'))`` (Abramowitz & Stegun 17.6); ``inf`` for ``k' = 0``.
+
+    For callers that hold ``k'`` (:class:`tumble.dynamics.exact.EllipticParameters` ``.kp``),
+    which stays representable where ``1 - m = k'^2`` underflows: ``k' = 1e-200`` gives
+    ``K = ln(4 / k') = 461.9`` where ``1 - m`` is 0 in double precision.
+    """
+    kp = np.asarray(kp, float)
+    a, b = np.ones_like(kp), kp
+    for _ in range(12):  # converged to round-off for every k' > 0 a double holds
+        a, b = 0.5 * (a + b), np.sqrt(a * b)
+    return np.where(kp > 0, np.pi / (a + b), np.inf)
 
 
 def jacobi_reduced(u, m: float, m1: float):

@@ -295,18 +295,27 @@ class FreeRotation:
 
     # -- angular velocity ---------------------------------------------------------------
     def _reduced(self, t):
-        """Half-period counts ``(j1, j2)``, parity, and ``sn, cn, dn`` of the reduced phase."""
+        """Half-period counts ``(j1, j2)``, parity, and ``sn, cn, dn`` of the reduced phase;
+        the last answer is kept, as ``omega(t)`` and ``attitude(t)`` are asked for the same t."""
         t = np.asarray(t, float)
+        last = self.__dict__.get("_last")
+        if last is not None and last[0].shape == t.shape and np.array_equal(last[0], t):
+            return last[1]
         self._check_time(t)
         u = dd.add(dd.mul_scaled(self.p, t), self.u0)
-        return self.modulus.reduce(u)
+        reduced = self.modulus.reduce(u)
+        object.__setattr__(self, "_last", (t.copy(), reduced))
+        return reduced
 
     def omega(self, t) -> np.ndarray:
         """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3)."""
         t = np.asarray(t, float)
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
-        _, odd, sn, cn, dn = self._reduced(t)
+        return self._omega(t, self._reduced(t))
+
+    def _omega(self, t, reduced) -> np.ndarray:
+        _, odd, sn, cn, dn = reduced
         sign = np.where(odd, -1.0, 1.0)
         w = np.empty(t.shape + (3,))
         w[..., self.c] = self.sign_c * self.amp[self.c] * sign * cn
@@ -335,9 +344,9 @@ class FreeRotation:
             return scale * excess
         return scale * (legendre_f(sn, cn, dn, K=self._complete[0]) + excess)
 
-    def _precession(self, t):
+    def _precession(self, t, reduced=None):
         """``phi(t)`` as its secular part (double-double) and its bounded part (double)."""
-        (j1, j2), _, sn, cn, dn = self._reduced(t)
+        (j1, j2), _, sn, cn, dn = self._reduced(t) if reduced is None else reduced
         A, B = self.secular
         secular = dd.add(dd.mul_scaled(A, t), dd.add(dd.mul_scaled(B, j1), dd.mul_scaled(B, j2 - self.j0)))
         return secular, self._bounded(sn, cn, dn) - self.b0
@@ -355,9 +364,10 @@ class FreeRotation:
             self._check_time(t)
             angle = dd.reduce_2pi(dd.mul_scaled(self.spin, t))
             return self.attitude0 * Rotation.from_rotvec(np.outer(angle, self.axis))
-        L = self.moments * self.omega(t)
+        reduced = self._reduced(t)
+        L = self.moments * self._omega(t, reduced)
         theta, psi = self._tilt_angles(L)
-        secular, bounded = self._precession(t)
+        secular, bounded = self._precession(t, reduced)
         phi = dd.reduce_2pi(secular) + bounded
         # Rz(phi) Rx(theta) Rz(psi) in one call: intrinsic z-x-z Euler angles
         euler = Rotation.from_euler("ZXZ", np.stack([phi, theta, psi], axis=-1))

@@ -21,6 +21,7 @@ added here is only how they are evaluated:
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -46,8 +47,27 @@ def _neg(x):
     return -x[0], -x[1]
 
 
-def _where(cond, x, y):
-    return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
+# Scalars (one motion: FreeRotation) go through Python floats and only the branch taken, which
+# is several times faster than numpy's 0-d arrays; arrays (a batch) through numpy. Same code.
+def _exponent(x):
+    """``e`` with ``x = f 2^e``, ``1/2 <= |f| < 1`` (0 for x = 0)."""
+    return math.frexp(x)[1] if isinstance(x, float) else np.frexp(x)[1]
+
+
+def _ldexp(x, e):
+    if isinstance(x, float):
+        return math.ldexp(x, e)  # OverflowError is caught by scaled_core
+    with np.errstate(over="ignore"):
+        return np.ldexp(x, e)
+
+
+def _branch(cond, upper, lower):
+    """``upper()`` where ``cond``, else ``lower()``; both, selected, for arrays."""
+    if isinstance(cond, bool):
+        return upper() if cond else lower()
+    x, y = upper(), lower()
+    pick = (lambda a, b: np.where(cond, a, b))
+    return (pick(x[0][0], y[0][0]), pick(x[0][1], y[0][1])), pick(x[1], y[1])
 
 
 def _scaled_root(num, den, exponent):
@@ -58,23 +78,34 @@ def _scaled_root(num, den, exponent):
 def scaled_core(omega, moments) -> dict:
     """Everything the exact solution needs, in double-double and in scaled form (module
     docstring); broadcasts over (..., 3). Keys: ``upper``, ``moments`` (scaled, ``I3`` in
-    [1/2, 1)), ``gaps`` and ``exponents`` (``g_j = 4^e_j gt_j`` for the scaled moments), ``p``
-    (double-double, 1/s), ``k``, ``kp`` (each ``(mantissa dd, exponent)``), ``amplitudes``
-    (double, rad/s), ``n`` (double-double: the characteristic of the attitude's Pi)."""
+    [1/2, 1)), ``p`` (double-double, 1/s), ``k``, ``kp`` (each ``(mantissa dd, exponent)``),
+    ``amplitudes`` (double, rad/s), ``n`` (double-double: the characteristic of the attitude's
+    Pi). Moments must be ascending; degenerate ones give inf or nan (never an exception)."""
     w = np.asarray(omega, float)
     I = np.asarray(moments, float)
+    if w.shape == (3,) and I.shape == (3,):
+        try:
+            return _core([float(x) for x in w], [float(x) for x in I])
+        except (ZeroDivisionError, OverflowError):  # degenerate moments: as numpy would
+            pass
     w, I = np.broadcast_arrays(w, I)
-    I = np.ldexp(I, -np.frexp(I[..., 2])[1][..., None])
-    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        return _core([w[..., i] for i in range(3)], [I[..., i] for i in range(3)])
+
+
+def _core(w: list, I: list) -> dict:
+    eI = _exponent(I[2])
+    I = [_ldexp(x, -eI) for x in I]
+    I1, I2, I3 = I
     gaps, exps = [], []
     for j in range(3):
         a, b = (i for i in range(3) if i != j)
-        big = np.maximum(np.abs(w[..., a]), np.abs(w[..., b]))
-        e = np.where(big > 0, np.frexp(big)[1], 0)
-        g = (0.0 * big, 0.0 * big)
+        big = max(abs(w[a]), abs(w[b])) if isinstance(w[a], float) else np.maximum(abs(w[a]), abs(w[b]))
+        e = _exponent(big)
+        g = (0.0, 0.0)
         for i in (a, b):
-            x = np.ldexp(w[..., i], -e)
-            term = dd.mul(dd.mul_d(dd.two_sum(I[..., i], -I[..., j]), I[..., i]), dd.two_prod(x, x))
+            x = _ldexp(w[i], -e)
+            term = dd.mul(dd.mul_d(dd.two_sum(I[i], -I[j]), I[i]), dd.two_prod(x, x))
             g = dd.add(g, term)
         gaps.append(g)
         exps.append(e)
@@ -82,30 +113,21 @@ def scaled_core(omega, moments) -> dict:
     upper = g2[0] >= 0  # the separatrix is taken from this side
     d21, d31, d32 = dd.two_sum(I2, -I1), dd.two_sum(I3, -I1), dd.two_sum(I3, -I2)
     prod = dd.mul_d(dd.two_prod(I1, I2), I3)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
-        up = {
-            "p": _scaled_root(dd.mul(d32, g1), prod, e1),
-            "k": _scaled_root(dd.mul(d21, _neg(g3)), dd.mul(d32, g1), e3 - e1),
-            "kp": _scaled_root(dd.mul(d31, g2), dd.mul(d32, g1), e2 - e1),
-            "a2": _scaled_root(_neg(g3), dd.mul_d(d32, I2), e3),
-            "n": _neg(dd.div(dd.mul_d(d21, I3), dd.mul_d(d32, I1))),
-        }
-        low = {
-            "p": _scaled_root(dd.mul(d21, _neg(g3)), prod, e3),
-            "k": _scaled_root(dd.mul(d32, g1), dd.mul(d21, _neg(g3)), e1 - e3),
-            "kp": _scaled_root(dd.mul(d31, _neg(g2)), dd.mul(d21, _neg(g3)), e2 - e3),
-            "a2": _scaled_root(g1, dd.mul_d(d21, I2), e1),
-            "n": _neg(dd.div(dd.mul_d(d32, I1), dd.mul_d(d21, I3))),
-        }
-        a1 = _scaled_root(_neg(g3), dd.mul_d(d31, I1), e3)
-        a3 = _scaled_root(g1, dd.mul_d(d31, I3), e1)
-        out = {key: (_where(upper, up[key][0], low[key][0]), np.where(upper, up[key][1], low[key][1]))
-               for key in ("p", "k", "kp", "a2")}
-        amps = [np.ldexp(x[0][0], x[1]) for x in (a1, out["a2"], a3)]
-        n = _where(upper, up["n"], low["n"])
-    p = dd.ldexp(*out["p"])
-    return {"upper": upper, "moments": I, "gaps": gaps, "exponents": exps, "p": p, "k": out["k"],
-            "kp": out["kp"], "amplitudes": np.stack(amps, axis=-1), "n": n}
+    p = _branch(upper, lambda: _scaled_root(dd.mul(d32, g1), prod, e1),
+                lambda: _scaled_root(dd.mul(d21, _neg(g3)), prod, e3))
+    k = _branch(upper, lambda: _scaled_root(dd.mul(d21, _neg(g3)), dd.mul(d32, g1), e3 - e1),
+                lambda: _scaled_root(dd.mul(d32, g1), dd.mul(d21, _neg(g3)), e1 - e3))
+    kp = _branch(upper, lambda: _scaled_root(dd.mul(d31, g2), dd.mul(d32, g1), e2 - e1),
+                 lambda: _scaled_root(dd.mul(d31, _neg(g2)), dd.mul(d21, _neg(g3)), e2 - e3))
+    a2 = _branch(upper, lambda: _scaled_root(_neg(g3), dd.mul_d(d32, I2), e3),
+                 lambda: _scaled_root(g1, dd.mul_d(d21, I2), e1))
+    n, _ = _branch(upper, lambda: (_neg(dd.div(dd.mul_d(d21, I3), dd.mul_d(d32, I1))), 0),
+                   lambda: (_neg(dd.div(dd.mul_d(d32, I1), dd.mul_d(d21, I3))), 0))
+    a1 = _scaled_root(_neg(g3), dd.mul_d(d31, I1), e3)
+    a3 = _scaled_root(g1, dd.mul_d(d31, I3), e1)
+    amps = [_ldexp(x[0][0], x[1]) for x in (a1, a2, a3)]
+    return {"upper": upper, "moments": np.stack(I, axis=-1), "p": (_ldexp(p[0][0], p[1]), _ldexp(p[0][1], p[1])),
+            "k": k, "kp": kp, "amplitudes": np.stack(amps, axis=-1), "n": n}
 
 
 def elliptic_parameters(omega, moments) -> EllipticParameters:
@@ -122,5 +144,5 @@ def elliptic_parameters(omega, moments) -> EllipticParameters:
         with np.errstate(over="ignore", invalid="ignore"):
             return np.clip(np.ldexp(hi**power, power * e), 0.0, 1.0)
 
-    return EllipticParameters(c["upper"], c["p"][0], value(c["k"], 2), value(c["kp"], 2), c["amplitudes"],
-                              value(c["k"]), value(c["kp"]))
+    fields = (c["upper"], c["p"][0], value(c["k"], 2), value(c["kp"], 2), c["amplitudes"], value(c["k"]), value(c["kp"]))
+    return EllipticParameters(*(np.asarray(x)[()] for x in fields))  # numpy types, as numpy math gives
