@@ -346,7 +346,7 @@ def _mp_period(moments, w0, dps):
 def test_huge_phases_against_mpmath(moments, w0, t, dps):
     """omega against mpmath's closed form at the exact phase; the attitude by the period: after
     N periods T the body is back, turned about L_world by N dphi (both from mpmath), so
-    ``R(N T + tau) = Rot(l, N dphi) R(tau)``. Error budget: ~1.5e-32 of the phase (double-double)."""
+    ``R(N T + tau) = Rot(l, N dphi) R(tau)``. Error budget: ~3e-32 of the phase (double-double)."""
     T, dphi = _mp_period(moments, w0, dps)
     N = mp.floor(mp.mpf(t) / T)
     tau = float(mp.mpf(t) - N * T)

@@ -55,12 +55,12 @@ from :mod:`tumble.dynamics.exact_parameters` (double-double, scaled: nothing und
 answer does not, so ``omega0 = (0, 1, 1e-160)`` stays a steady spin for ~370 / lambda seconds,
 then flips). The phase ``u = u0 + p t``, its reduction by ``2 K`` and the secular part of
 ``phi`` (``A t + B j``, reduced mod 2 pi) are carried in double-double, so every angle of the
-motion is good to ~1.5e-32 of the phase reached, on top of round-off (measured against
-mpmath: 1e-15 rad at a phase of 6.6e16 rad, 9e-12 rad at 6.6e20 rad). The functions of the
+motion is good to ~3e-32 of the phase reached, on top of round-off (measured against
+mpmath: 3e-15 rad at a phase of 6.6e16 rad, 2e-11 rad at 6.6e20 rad, 7e-10 rad at 6.6e22). The functions of the
 reduced phase are evaluated in double precision (:mod:`tumble.dynamics.elliptic`): omega to a
 few ulps relative per component, the attitude to ~5e-14 rad, also at ``1 - m`` down to 0;
 energy, ``|L|`` and ``L_world`` hold to round-off at any phase. Beyond :data:`MAX_PHASE`
-(1e24 rad, where the phase error is ~1.5e-8 rad; it would reach 1e-6 rad at ~7e25 rad) the
+(1e24 rad, where the phase error is ~3e-8 rad; it would reach 1e-6 rad at ~3e25 rad) the
 motion refuses to answer with a ``ValueError`` (:func:`check_phase_limit` checks a run before
 it starts); ``t_end = 1e12`` s reaches it only at ``|omega| ~ 1e12`` rad/s.
 """
@@ -81,9 +81,9 @@ from .exact_parameters import EllipticParameters, elliptic_parameters, scaled_co
 __all__ = ["MAX_PHASE", "EllipticParameters", "FreeRotation", "check_phase_limit", "elliptic_parameters"]
 
 #: Largest phase (rad) the exact solution follows: the elliptic argument ``u = u0 + p t`` and
-#: the precession angle are carried in double-double, with an error of ~1.5e-32 of the phase
-#: (measured against mpmath: 9e-12 rad at 6.6e20 rad), so ~1.5e-8 rad here; 1e-6 rad would be
-#: reached at ~7e25 rad.
+#: the precession angle are carried in double-double, with an error of ~3e-32 of the phase
+#: (measured against mpmath: 2e-11 rad at 6.6e20 rad), so ~3e-8 rad here; 1e-6 rad would be
+#: reached at ~3e25 rad.
 MAX_PHASE = 1e24
 
 
