@@ -293,3 +293,17 @@ def test_an_axis_is_accepted_only_if_it_is_one_of_the_six_labels(value):
     else:
         with pytest.raises(ValueError, match=r"^axis = "):
             perturbation_exponent(I_ASYM, value, 1.0)
+
+
+@pytest.mark.parametrize("omega0", [[0.0, 1.0, 1e-160], [1e-200, 1.0, 0.0], [1e-170, 1.0, 1e-170]])
+def test_flip_interval_where_one_minus_m_underflows(omega0):
+    """1 - k^2 ~ 1e-320 is no double (it overflowed 16 / m1, and the CLI exited 1); k' is, and
+    K = ln(4 / k') + O(k'^2) there (A&S 17.3.26), so the interval is 2 ln(4 / k') / p."""
+    from tumble.dynamics.exact import elliptic_parameters
+
+    I = np.array([1.0, 2.0, 3.0])
+    e = elliptic_parameters(np.array(omega0), I)
+    assert 0 < e.kp < 1e-150
+    expected = 2.0 * np.log(4.0 / e.kp) / e.p
+    assert float(flip_interval(omega0, I)) == pytest.approx(expected, rel=1e-15)
+    assert float(flip_interval_asymptotic(omega0, I)) == pytest.approx(expected, rel=1e-15)

@@ -25,9 +25,9 @@ whole by one validator, whose message names the first bad index.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ellipkm1
 
 from ..dynamics.euler import energy_momentum_gaps
+from ..dynamics.elliptic import ellipk_kp
 from ..dynamics.exact import elliptic_parameters
 from ..mass import AXIS_ROLES
 from ..mass.tensor import _short_repr, check_vectors, refuse_first
@@ -195,9 +195,11 @@ def flip_interval(omega, moments) -> np.ndarray:
       ``1 - k^2 = (I3 - I1)(L^2 - 2 E I2) / ((I3 - I2)(L^2 - 2 E I1))``;
     - ``L^2 < 2 E I2``: indices 1 and 3 exchanged.
 
-    ``1 - k^2`` is formed directly (:func:`tumble.dynamics.exact.elliptic_parameters`) and fed to
-    ``scipy.special.ellipkm1``, so the interval stays accurate as the motion nears the
-    separatrix, where it diverges logarithmically.
+    ``k' = sqrt(1 - k^2)`` is formed directly, without cancellation or underflow
+    (:func:`tumble.dynamics.exact.elliptic_parameters`; ``k' = 1e-160`` where ``1 - k^2`` is
+    not a double), and ``K`` comes from it by the AGM (:func:`tumble.dynamics.elliptic.ellipk_kp`),
+    so the interval stays accurate as the motion nears the separatrix, where it diverges
+    logarithmically.
 
     Parameters
     ----------
@@ -220,14 +222,14 @@ def flip_interval(omega, moments) -> np.ndarray:
         first bad index, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be ascending, ...``.
     """
     e = elliptic_parameters(*_check_motion(omega, moments))
-    p, m1 = e.p, e.m1
+    p, kp = e.p, e.kp
     with np.errstate(divide="ignore", invalid="ignore"):
-        interval = 2.0 * ellipkm1(m1) / p
-    return np.where((m1 == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
+        interval = 2.0 * ellipk_kp(kp) / p
+    return np.where((kp == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
 
 
 def flip_interval_asymptotic(omega, moments) -> np.ndarray:
-    """Small-perturbation form of :func:`flip_interval`: ``ln(16 / (1 - k^2)) / p``, s.
+    """Small-perturbation form of :func:`flip_interval`: ``2 ln(4 / k') / p = ln(16 / (1 - k^2)) / p``, s.
 
     From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun ch. 17, the limit m -> 1) with
     ``k'^2 = 1 - k^2``, which is proportional to the square of the perturbation of a spin about
@@ -239,7 +241,7 @@ def flip_interval_asymptotic(omega, moments) -> np.ndarray:
     """
     e = elliptic_parameters(*_check_motion(omega, moments))
     with np.errstate(divide="ignore"):
-        return np.log(16.0 / e.m1) / e.p
+        return 2.0 * np.log(4.0 / e.kp) / e.p
 
 
 def circulation_axis(omega, moments) -> np.ndarray:
