@@ -18,8 +18,10 @@ def test_example_t_handle_file_equals_the_preset():
 
 
 def test_every_part_example_uses_every_kind():
+    """Every rigid kind; a rotor would make the body a gyrostat, which the example's scenario
+    (method exact) cannot run: rotor files are tested in test_gyrostat.py."""
     body = tumble.load_body(EXAMPLES / "bodies" / "every_part.toml")
-    assert {p.kind for p in body.parts} == set(PART_KINDS)
+    assert {p.kind for p in body.parts} == set(PART_KINDS) - {"rotor"}
     assert any(p.subtract for p in body.parts)
 
 

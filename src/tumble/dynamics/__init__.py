@@ -1,7 +1,8 @@
-"""Rotational dynamics (layer 2): Euler's equations, torques, integrators, trajectories."""
+"""Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
 from .euler import angular_momentum, energy_momentum_gaps, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
 from .integrators import METHODS, Method, get_method
+from .internal import SphericalDamper, gyrostat_rate
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .torques import ConstantTorque, FunctionTorque, as_torque
 from .trajectory import Trajectory
@@ -13,6 +14,7 @@ __all__ = [
     "ConstantTorque",
     "FunctionTorque",
     "Method",
+    "SphericalDamper",
     "Trajectory",
     "angular_momentum",
     "energy_momentum_gaps",
@@ -20,6 +22,7 @@ __all__ = [
     "euler_rhs",
     "euler_rhs_tensor",
     "get_method",
+    "gyrostat_rate",
     "kinetic_energy",
     "quaternion_rate",
     "simulate",

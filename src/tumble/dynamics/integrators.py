@@ -19,6 +19,12 @@ method is added here and nowhere else.
 - ``"geometric"`` (4th order), ``"geometric2"``, ``"geometric6"``: fixed-step splitting into
   exact rotations (:mod:`tumble.dynamics.geometric`): |L| and L_world kept to round-off, energy
   error bounded; torques allowed.
+
+Rotors and dampers (:mod:`tumble.dynamics.internal`) go through ``Method.integrate_internal``,
+which takes the :class:`~tumble.dynamics.internal.InternalModel` and returns its samples:
+``"dop853"`` and ``"rk45"`` integrate the model's ODE (total momentum, attitude, the damper's
+state and energy budgets), the ``"geometric"`` methods split it into exact rotations and the
+damper's exact relaxation. ``"exact"`` and ``"seed"`` have none and refuse such runs.
 """
 
 from __future__ import annotations
@@ -70,26 +76,51 @@ class Method:
     atol_scaled: bool = False
     #: Whether the method steps with a fixed ``step`` (s) instead of tolerances.
     fixed_step: bool = False
+    #: ``integrate_internal(model, omega0, quat0, t, torque, rtol, atol, step)`` ->
+    #: :class:`~tumble.dynamics.internal.InternalSamples` for rotors and dampers; None if the
+    #: method cannot take them.
+    integrate_internal: Callable | None = None
+
+    @property
+    def supports_internal(self) -> bool:
+        """Whether the method takes rotors and a damper."""
+        return self.integrate_internal is not None
+
+
+def _solve(method: str, rhs, y0, t, rtol, atol) -> np.ndarray:
+    """solve_ivp under the work budget; the states at ``t``, shape (n, len(y0))."""
+    budget = _Budget(method, t[-1])
+
+    def counted(time, y):
+        budget(time)
+        return rhs(time, y)
+
+    sol = solve_ivp(counted, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol)
+    if not sol.success:
+        raise RuntimeError(f"{method} integration failed: {sol.message}")
+    return sol.y.T
 
 
 def _solve_full(method: str):
     def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
         moments = np.asarray(moments, float)
-        budget = _Budget(method, t[-1])
 
         def rhs(time, y):
-            budget(time)
             w, q = y[:3], y[3:]
             tau = 0.0 if torque is None else body_torque(torque, time, w, Rotation.from_quat(q))
             return np.concatenate([euler_rhs(w, moments, tau), quaternion_rate(q, w)])
 
-        y0 = np.concatenate([omega0, quat0])
-        sol = solve_ivp(rhs, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol)
-        if not sol.success:
-            raise RuntimeError(f"{method} integration failed: {sol.message}")
-        omega = sol.y[:3].T
-        quat = sol.y[3:].T
-        return omega, quat / np.linalg.norm(quat, axis=1, keepdims=True)
+        Y = _solve(method, rhs, np.concatenate([omega0, quat0]), t, rtol, atol)
+        return Y[:, :3], Y[:, 3:] / np.linalg.norm(Y[:, 3:], axis=1, keepdims=True)
+
+    return integrate
+
+
+def _solve_internal(method: str):
+    def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
+        tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
+        Y = _solve(method, lambda time, y: model.rhs(time, y, tau), model.initial_state(omega0, quat0), t, rtol, atol)
+        return model.samples(t, Y)
 
     return integrate
 
@@ -138,21 +169,35 @@ def _geometric(order: int):
     return integrate
 
 
+def _geometric_internal(order: int):
+    def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
+        from .geometric import propagate_internal
+
+        return propagate_internal(model, omega0, quat0, t, order=order, step=step, torque=torque)
+
+    return integrate
+
+
 METHODS: dict[str, Method] = {
     "exact": Method("exact", _integrate_exact, False, None, None,
                     "closed form (Jacobi elliptic functions, elliptic integral of the third kind)"),
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
-                     "DOP853, omega and attitude together, tight tolerances (rtol 1e-12)", atol_scaled=True),
+                     "DOP853, omega and attitude together, tight tolerances (rtol 1e-12)", atol_scaled=True,
+                     integrate_internal=_solve_internal("DOP853")),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
-                   "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it"),
+                   "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it",
+                   integrate_internal=_solve_internal("RK45")),
     "seed": Method("seed", _integrate_seed, False, None, None,
                    "the seed's computation: RK45 defaults for omega, then R <- R exp([w] dt) (first order)"),
     "geometric": Method("geometric", _geometric(4), True, None, None,
-                        "splitting into exact rotations, 4th-order Yoshida composition, fixed step", fixed_step=True),
+                        "splitting into exact rotations, 4th-order Yoshida composition, fixed step", fixed_step=True,
+                        integrate_internal=_geometric_internal(4)),
     "geometric2": Method("geometric2", _geometric(2), True, None, None,
-                         "splitting into exact rotations, 2nd order (Strang), fixed step", fixed_step=True),
+                         "splitting into exact rotations, 2nd order (Strang), fixed step", fixed_step=True,
+                         integrate_internal=_geometric_internal(2)),
     "geometric6": Method("geometric6", _geometric(6), True, None, None,
-                         "splitting into exact rotations, 6th-order Yoshida composition, fixed step", fixed_step=True),
+                         "splitting into exact rotations, 6th-order Yoshida composition, fixed step", fixed_step=True,
+                         integrate_internal=_geometric_internal(6)),
 }
 
 

@@ -12,13 +12,14 @@ from scipy.spatial.transform import Rotation
 from ..mass import INERTIA_RTOL, Body, MassProperties
 from ..mass._checks import check_positive, check_rotation, check_vector
 from .integrators import METHODS, Method, get_method
+from .internal import InternalModel, Rotors, SphericalDamper
 from .torques import as_torque, body_torque
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
 
 #: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
-#: Without torque the exact solution; with a torque, DOP853 at tight tolerances.
+#: Without torque the exact solution; with a torque, rotors or a damper, DOP853 at tight tolerances.
 DEFAULT_METHOD = "exact"
 DEFAULT_TORQUE_METHOD = "dop853"
 #: Default number of samples when neither ``samples``, ``dt`` nor ``times`` is given (the seed's).
@@ -53,6 +54,7 @@ class RunInputs(NamedTuple):
     atol: float | None
     step: float | None
     torque: object  # a torque model in the principal frame, or None
+    internal: InternalModel | None = None  # rotors and/or a damper, or None
 
 
 def simulate(
@@ -70,6 +72,7 @@ def simulate(
     atol: float | None = None,
     attitude0=None,
     step: float | None = None,
+    damper: SphericalDamper | None = None,
 ) -> Trajectory:
     """Integrate the rotation of a rigid body from an initial angular velocity.
 
@@ -77,6 +80,8 @@ def simulate(
     ----------
     body : Body or MassProperties
         The body; its principal frame (``I1 <= I2 <= I3``) is the body frame of the motion.
+        A body with :class:`~tumble.mass.Rotor` parts is a gyrostat: their internal momentum
+        enters Euler's equations (:mod:`tumble.dynamics.internal`).
     omega0 : array_like, shape (3,)
         Initial angular velocity at t = 0, rad/s, in ``frame``.
     t_end : float, optional
@@ -93,7 +98,8 @@ def simulate(
     method : str, optional
         A name from :data:`tumble.dynamics.METHODS`: ``"exact"``, ``"dop853"``, ``"rk45"``,
         ``"seed"``, ``"geometric"`` (``2``, ``6``). Default ``"exact"`` without torque,
-        ``"dop853"`` with one.
+        ``"dop853"`` with one, or with rotors or a damper (which ``"exact"`` and ``"seed"``
+        refuse).
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
@@ -108,6 +114,9 @@ def simulate(
     step : float, optional
         Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
         of rotation per step, counting the spin a torque builds up); ignored by the others.
+    damper : SphericalDamper, optional
+        A spherical nutation damper inside the body (:class:`~tumble.dynamics.internal.
+        SphericalDamper`), starting with the body's angular velocity.
 
     Returns
     -------
@@ -123,20 +132,27 @@ def simulate(
     """
     run = check_inputs(
         body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
-        rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0,
+        rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0, damper=damper,
     )
-    spec, model, atol = run.method, run.torque, run.atol
+    spec, model, atol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
     if spec.atol_scaled and atol is not None:
-        scale = max(float(np.linalg.norm(run.omega0)), _spin_gain(model, run), 1e-300)
-        atol = np.array([atol * scale] * 3 + [atol] * 4)
-    omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
+        scale = max(_spin_bound(run), _spin_gain(model, run), 1e-300)
+        atol = np.array([atol * scale] * 3 + [atol] * 4) if internal is None else internal.atol(atol, scale)
+    extra: dict = {}
+    if internal is None:
+        omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
+    else:
+        out = spec.integrate_internal(internal, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
+        omega, quat = out.omega, out.quat
+        extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
+                 for k, v in internal.trajectory_fields(run.t, out).items()}
     if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(quat))):
         raise RuntimeError(f"the {spec.name} integration produced non-finite values")
     return Trajectory(
         t=run.t[run.keep], omega=omega[run.keep], attitude=Rotation.from_quat(quat[run.keep]), moments=moments,
         principal_axes=run.props.principal_axes, method=spec.name, torque_free=model is None,
-        body_name=body.name if isinstance(body, Body) else "body",
+        body_name=body.name if isinstance(body, Body) else "body", **extra,
     )
 
 
@@ -191,10 +207,12 @@ def sample_times(t_end=None, samples=None, dt=None, times=None) -> tuple[np.ndar
 
 
 def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None, method=None,
-                 frame="principal", rtol=None, atol=None, step=None, torque=None, attitude0=None) -> RunInputs:
+                 frame="principal", rtol=None, atol=None, step=None, torque=None, attitude0=None,
+                 damper=None) -> RunInputs:
     """Validate :func:`simulate`'s arguments (scenario files use it too, before anything runs).
 
-    Fills in the defaults (the method is ``"exact"`` without a torque, ``"dop853"`` with one),
+    Fills in the defaults (the method is ``"exact"`` without a torque, rotors or damper,
+    ``"dop853"`` with any of them),
     converts ``omega0`` and a body-frame torque to the principal frame, and bounds the work:
     a run that would turn the body more than :data:`MAX_ROTATION` rad under a stepping method,
     counting the spin the torque builds up (``|omega| <= |omega0| + |tau| t / I1``), is refused
@@ -206,12 +224,22 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     if not isinstance(props, MassProperties):
         raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
     model = as_torque(torque)
+    if damper is not None and not isinstance(damper, SphericalDamper):
+        raise ValueError(f"damper = {damper!r} must be a tumble.SphericalDamper(inertia=..., damping=...) or None")
+    rotors = Rotors.of(body)
+    internal = None
+    if rotors is not None or damper is not None:
+        internal = InternalModel(props.principal_moments, rotors, damper)
     if method is None:
-        method = DEFAULT_METHOD if model is None else DEFAULT_TORQUE_METHOD
+        method = DEFAULT_METHOD if model is None and internal is None else DEFAULT_TORQUE_METHOD
     spec = get_method(method)
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
+    if internal is not None and not spec.supports_internal:
+        what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_internal)
+        raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
@@ -244,7 +272,7 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
             model = _design_torque(model, A)
     design_to_world = Rotation.identity() if attitude0 is None else Rotation.from_quat(check_rotation("attitude0", attitude0))
     q0 = (design_to_world * Rotation.from_matrix(A)).as_quat()
-    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model)
+    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal)
     _check_work(run)
     return run
 
@@ -254,13 +282,14 @@ def _check_work(run: RunInputs) -> None:
     spec, t_end = run.method, float(run.t[-1])
     if spec.name == "exact":
         return
-    spin = float(np.linalg.norm(run.omega0))
+    spin = _spin_bound(run)
     with np.errstate(over="ignore", invalid="ignore"):
         gain = _spin_gain(run.torque, run)  # spin the torque can add over the run, rad/s
         turns = spin * t_end + 0.5 * gain * t_end
     if not turns <= MAX_ROTATION:
-        cause = f"|omega0| = {spin:.6g} rad/s" if gain == 0 else (
-            f"|omega0| = {spin:.6g} rad/s and a torque that can spin it up by {gain:.3g} rad/s")
+        what = "|omega0|" if run.internal is None or run.internal.rotors is None else "|omega0| + 2 max|h| / I1"
+        cause = f"{what} = {spin:.6g} rad/s" if gain == 0 else (
+            f"{what} = {spin:.6g} rad/s and a torque that can spin it up by {gain:.3g} rad/s")
         raise ValueError(
             f"t_end = {t_end:g} s with {cause} is up to {turns:.3g} rad of rotation, more than "
             f"method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); "
@@ -269,9 +298,18 @@ def _check_work(run: RunInputs) -> None:
     if spec.fixed_step:
         from .geometric import default_step
 
-        h = run.step or default_step(spin, gain)
+        rate = 0.0 if run.internal is None else run.internal.relaxation_rate
+        h = run.step or default_step(spin, gain, rate)
         if t_end / h > MAX_STEPS:
             raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
+
+
+def _spin_bound(run: RunInputs) -> float:
+    """The spin (rad/s) a run starts from, with what rotors can hand the body
+    (:meth:`~tumble.dynamics.internal.InternalModel.spin_bound`)."""
+    if run.internal is None:
+        return float(np.linalg.norm(run.omega0))
+    return run.internal.spin_bound(run.omega0, run.t)
 
 
 def _spin_gain(model, run: RunInputs) -> float:

@@ -1,4 +1,9 @@
-"""The result of a simulation: a sampled rigid-body motion and what it conserves."""
+"""The result of a simulation: a sampled rigid-body motion and what it conserves.
+
+With rotors (a gyrostat) or a damper (:mod:`tumble.dynamics.internal`) the trajectory carries
+their state per sample, and ``energy``, ``angular_momentum`` and ``angular_momentum_world`` are
+the totals of body, rotors and damper.
+"""
 
 from __future__ import annotations
 
@@ -11,6 +16,10 @@ from scipy.spatial.transform import Rotation
 from .euler import angular_momentum, kinetic_energy
 
 __all__ = ["Trajectory"]
+
+
+_OPTIONAL_ARRAYS = ("internal_momentum", "rotor_spin", "rotor_axial_moments", "motor_work", "damper_omega",
+                    "dissipated")
 
 
 def _array(a) -> np.ndarray:
@@ -41,6 +50,21 @@ class Trajectory:
         Whether no external torque acted (then energy, |L| and L_world are conserved).
     body_name : str
         Label of the body.
+    internal_momentum : ndarray, shape (n, 3), optional
+        The rotors' internal angular momentum ``h``, principal frame, kg m^2/s (None: no rotors).
+    rotor_spin : ndarray, shape (n, k), optional
+        Each rotor's spin relative to the body, rad/s.
+    rotor_axial_moments : ndarray, shape (k,), optional
+        Each rotor's axial moment ``J_k``, kg m^2.
+    motor_work : ndarray, shape (n,), optional
+        Work done by the rotors' motors since t = 0, J (None without rotors, or for a
+        spin function given without its derivative).
+    damper_inertia : float, optional
+        The spherical damper's moment ``J``, kg m^2 (None: no damper).
+    damper_omega : ndarray, shape (n, 3), optional
+        The damper sphere's inertial angular velocity in principal-frame components, rad/s.
+    dissipated : ndarray, shape (n,), optional
+        Energy dissipated by the damper since t = 0, J.
     """
 
     t: np.ndarray
@@ -51,10 +75,19 @@ class Trajectory:
     method: str
     torque_free: bool = True
     body_name: str = "body"
+    internal_momentum: np.ndarray | None = None
+    rotor_spin: np.ndarray | None = None
+    rotor_axial_moments: np.ndarray | None = None
+    motor_work: np.ndarray | None = None
+    damper_inertia: float | None = None
+    damper_omega: np.ndarray | None = None
+    dissipated: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        for name in ("t", "omega", "moments", "principal_axes"):
-            object.__setattr__(self, name, _array(getattr(self, name)))
+        for name in ("t", "omega", "moments", "principal_axes", *_OPTIONAL_ARRAYS):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _array(value))
 
     def __len__(self) -> int:
         return len(self.t)
@@ -66,13 +99,29 @@ class Trajectory:
 
     @functools.cached_property
     def angular_momentum(self) -> np.ndarray:
-        """``L = I omega`` in the principal frame, kg m^2/s; shape (n, 3)."""
-        return _array(angular_momentum(self.omega, self.moments))
+        """Total ``L = I omega + h + J omega_d`` (body, rotors, damper) in the principal frame,
+        kg m^2/s; shape (n, 3). ``I omega`` for a rigid body."""
+        L = angular_momentum(self.omega, self.moments)
+        if self.internal_momentum is not None:
+            L = L + self.internal_momentum
+        if self.damper_omega is not None:
+            L = L + self.damper_inertia * self.damper_omega
+        return _array(L)
 
     @functools.cached_property
     def angular_momentum_world(self) -> np.ndarray:
-        """L in the world frame, kg m^2/s; constant without torque; shape (n, 3)."""
+        """Total L in the world frame, kg m^2/s; constant without external torque (rotors and
+        dampers exchange momentum with the body only); shape (n, 3)."""
         return _array(self.attitude.apply(self.angular_momentum))
+
+    @functools.cached_property
+    def nutation_angle(self) -> np.ndarray:
+        """Angle between the major axis (axis 3, as a line) and the total L, rad, in
+        [0, pi/2]; shape (n,). 0 for a flat spin about the major axis (either way round), what
+        a damper drives towards; NaN where L = 0."""
+        L = self.angular_momentum
+        angle = np.arctan2(np.hypot(L[:, 0], L[:, 1]), np.abs(L[:, 2]))
+        return _array(np.where(np.any(L != 0, axis=1), angle, np.nan))
 
     @functools.cached_property
     def omega_world(self) -> np.ndarray:
@@ -81,7 +130,28 @@ class Trajectory:
 
     @functools.cached_property
     def energy(self) -> np.ndarray:
-        """Rotational kinetic energy, J; shape (n,)."""
+        """Total rotational kinetic energy, J; shape (n,).
+
+        ``omega.I omega / 2`` for a rigid body; with rotors ``+ omega.h + sum_k J_k s_k^2 / 2``
+        (each rotor turns at ``omega + s_k n_k``); with a damper ``+ J |omega_d|^2 / 2``
+        (:mod:`tumble.dynamics.internal`). Changes by the motors' work and the damper's
+        dissipation (and the work of an external torque): see :attr:`drift`.
+        """
+        E = kinetic_energy(self.omega, self.moments)
+        if self.internal_momentum is not None:
+            s = self.rotor_spin
+            E = E + np.sum(self.omega * self.internal_momentum, axis=1)
+            E = E + 0.5 * np.sum(self.rotor_axial_moments * s * s, axis=1)
+        if self.damper_omega is not None:
+            E = E + 0.5 * self.damper_inertia * np.sum(self.damper_omega**2, axis=1)
+        return _array(E)
+
+    @functools.cached_property
+    def hamiltonian(self) -> np.ndarray:
+        """The gyrostat Hamiltonian ``sum_i (L_i - h_i)^2 / (2 I_i) = omega.I omega / 2``, J;
+        shape (n,). ``L = I omega + h`` is the momentum of body and rotors; conserved for constant
+        rotor spins without damper or external torque (Hall 1996). Equal to :attr:`energy` for a
+        rigid body."""
         return _array(kinetic_energy(self.omega, self.moments))
 
     @functools.cached_property
@@ -93,14 +163,20 @@ class Trajectory:
     def drift(self) -> dict[str, float | None]:
         """Largest relative departure from the initial value over the run.
 
-        ``energy``: max |E - E0| / E0; ``L_norm``: max ||L| - |L0|| / |L0|; ``L_world``:
-        max |L_world - L_world(0)| / |L0|. Meaningful as errors only when ``torque_free``.
-        None where the initial value is zero (a body starting at rest): no relative drift.
+        ``energy``: max |E - E0| / E0 of the energy balance ``E = energy - motor_work +
+        dissipated`` (the kinetic energy for a rigid body); ``L_norm``: max ||L| - |L0|| / |L0|;
+        ``L_world``: max |L_world - L_world(0)| / |L0|, all totals. Meaningful as errors only
+        when ``torque_free``. None where the initial value is zero (a body starting at rest): no
+        relative drift; ``energy`` is None too when the motors' work is unknown.
         """
         E, Ln, Lw = self.energy, self.angular_momentum_norm, self.angular_momentum_world
+        if self.internal_momentum is not None:
+            E = E - self.motor_work if self.motor_work is not None else np.full_like(E, np.nan)
+        if self.dissipated is not None:
+            E = E + self.dissipated
 
         def rel(dev, ref):
-            return float(np.max(dev) / ref) if ref > 0 else None
+            return float(np.max(dev) / ref) if ref > 0 and np.all(np.isfinite(dev)) else None
 
         return {
             "energy": rel(np.abs(E - E[0]), E[0]),

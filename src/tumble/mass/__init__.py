@@ -2,7 +2,7 @@
 
 from .body import AXIS_ROLES, Body, MassProperties, mass_properties
 from .mesh import Mesh  # registers the 'mesh' kind; trimesh is imported on first use
-from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Rotor, Shell, Sphere, Tube
 from .presets import PRESETS, iss_t_handle, t_handle
 from .tensor import (
     INERTIA_RTOL,
@@ -31,6 +31,7 @@ __all__ = [
     "Part",
     "PointMass",
     "Rod",
+    "Rotor",
     "Shell",
     "Sphere",
     "Tube",

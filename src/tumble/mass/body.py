@@ -4,6 +4,9 @@ Seed sections 2.3-2.4 done right: total mass, centre of mass (seed eq. 1), and t
 tensor about the COM as the sum over parts of each part's own tensor, rotated into the design
 frame (``R I R^T``) and shifted to the body's COM with the parallel-axis theorem (seed eq. 4)
 -- *every* part shifted, including the shaft that the seed's printed total (sec. 2.4) forgot.
+
+Rotors (:class:`~tumble.mass.parts.Rotor`) count in the mass properties like any part (locked);
+the body also exposes them and their internal angular momentum for the gyrostat's dynamics.
 """
 
 from __future__ import annotations
@@ -12,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .parts import Part
+from .parts import Part, Rotor
 from .tensor import check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
@@ -195,6 +198,34 @@ class Body:
         """Inertia tensor about ``point`` (design frame, m), kg m^2; see
         :meth:`MassProperties.inertia_about` (shapes, and the ``ValueError`` for a bad point)."""
         return self.properties.inertia_about(point)
+
+    @property
+    def rotors(self) -> tuple[Rotor, ...]:
+        """The parts that spin relative to the body (:class:`~tumble.mass.parts.Rotor`), in order."""
+        return tuple(p for p in self.parts if isinstance(p, Rotor))
+
+    def internal_momentum(self, t=0.0) -> np.ndarray:
+        """Internal angular momentum of the rotors in the *principal* frame, kg m^2/s.
+
+        ``h(t) = sum_k J_k s_k(t) n_k`` over the rotors (axial moment ``J_k``, relative spin
+        ``s_k(t)``, axis ``n_k``), turned from the design frame by ``principal_axes^T``; zero for
+        a body without rotors. This is what the gyrostat's equations add to ``I omega``
+        (:mod:`tumble.dynamics.internal`).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time(s), s.
+
+        Returns
+        -------
+        ndarray, shape ``np.shape(t) + (3,)``
+        """
+        t = np.asarray(t, dtype=float)
+        h = np.zeros(t.shape + (3,))
+        for rotor in self.rotors:
+            h += rotor.momentum(t)
+        return h @ self.principal_axes  # rows: (A^T h_design)^T
 
     def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Body:
         """The body after a rigid motion ``x -> R x + t`` of all its parts."""

@@ -1,0 +1,340 @@
+"""Internal models: rotors (the gyrostat) and a spherical nutation damper.
+
+Both exchange angular momentum with the body through internal torques only, so the total
+angular momentum is conserved without an external torque. Every vector is in the body's
+principal frame (``I1 <= I2 <= I3``); units kg m^2, rad/s, kg m^2/s, N m, J, W.
+
+Gyrostat
+--------
+A body carrying axisymmetric rotors that spin relative to it about fixed axes ``n_k`` at
+``s_k(t)`` (Hughes, *Spacecraft Attitude Dynamics*, Wiley 1986, the chapters on gyrostats and
+multi-spin vehicles; Hall, "Momentum transfer in two-rotor gyrostats", J. Guid. Control Dyn. 19
+(1996) 1157). With ``I`` the inertia of the whole, rotors locked, and the internal momentum
+``h = sum_k J_k s_k n_k`` (axial moments ``J_k``), the total momentum is ``L = I w + h`` and
+Euler's law ``dL/dt|inertial = tau`` in the rotating body frame (Landau & Lifshitz, *Mechanics*,
+sec. 36) reads
+
+    ``I w' + w x (I w + h) = tau - h'``.
+
+tumble integrates it in the momentum form ``L' = L x w + tau``, ``w = I^-1 (L - h(t))``, which
+needs no ``h'`` and keeps ``L = 0`` exactly when it starts at 0 (a wheel spun up from rest:
+``I w = -h`` at every instant).
+
+Energy: the total kinetic energy of body and rotors (each rotor's absolute angular velocity is
+``w + s_k n_k``) is ``T = w.I w / 2 + w.h + sum_k J_k s_k^2 / 2``. The motors do work on the
+rotors at the rate ``P = sum_k J_k s_k (n_k.w' + s_k')`` (axial torque ``J_k d(n_k.w + s_k)/dt``
+times the relative rate ``s_k``), and ``dT/dt = tau.w + P``. Integrating by parts,
+``W(t) = [w.h + sum_k J_k s_k^2 / 2]_0^t - integral_0^t h'.w dt``. For constant spins the
+conserved quantity is the gyrostat Hamiltonian ``H = sum_i (L_i - h_i)^2 / (2 I_i) = w.I w / 2``
+(Hall 1996), while ``T`` itself changes by exactly the motor work.
+
+Linearised about a spin ``W`` about axis 2 with ``h = h e2`` (``h`` along ``W`` when positive),
+``I1 x'' = -((I3 - I2) W - h) z'``, ``I3 z' = -((I2 - I1) W + h) x``, so perturbations grow at
+``lambda = sqrt(((I3 - I2) W - h) ((I2 - I1) W + h) / (I1 I3))`` when the product is positive
+and wobble at ``sqrt(-product / (I1 I3))`` when it is negative: a wheel with
+``h > (I3 - I2) W`` stabilises the intermediate axis (:func:`gyrostat_rate`).
+
+Spherical damper
+----------------
+A sphere of moment of inertia ``J`` about its centre turns freely in a concentric spherical
+cavity of the body and is coupled to it by a viscous torque ``c (w_d - w)`` on the body (and
+its opposite on the sphere); ``w_d`` is the sphere's inertial angular velocity in body
+components. For creeping flow of a fluid of viscosity ``mu`` between a sphere of radius ``a`` and
+a cavity of radius ``b``, ``c = 8 pi mu a^3 b^3 / (b^3 - a^3)`` (the torque between concentric
+rotating spheres, Landau & Lifshitz, *Fluid Mechanics*, section on flow at small Reynolds
+numbers). The equations are Euler's law for each of the two bodies (L&L *Mechanics* sec. 36):
+
+    ``I w' + w x (I w + h) = tau - h' + c (w_d - w)``,
+    ``J (w_d' + w x w_d) = -c (w_d - w)``,
+
+so ``L = I w + h + J w_d`` is conserved and the kinetic energy falls by the dissipation
+``c |w_d - w|^2`` (Likins, *Effects of energy dissipation on the free body motions of
+spacecraft*, JPL TR 32-860, 1966: the energy-sink argument for the major-axis rule). The end
+state is a rigid spin about the major axis, ``|w| = |L| / (I3 + J)`` (``h = 0``).
+The damper's moment ``J`` is *not* part of the body's inertia ``I``: the body's parts hold the
+sphere's mass (its centre's parallel-axis term) but not its own ``J``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from ..mass._checks import check_positive
+from .euler import quaternion_rate
+
+__all__ = ["InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
+
+
+@dataclass(frozen=True)
+class SphericalDamper:
+    """A spherical nutation damper: a sphere of moment ``inertia`` in a viscous spherical cavity.
+
+    Parameters
+    ----------
+    inertia : float
+        ``J``, the sphere's moment of inertia about its centre, kg m^2 (> 0). Not included in
+        the body's parts.
+    damping : float
+        ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
+
+    The sphere starts turning with the body (``w_d(0) = w(0)``). See the module docstring for the
+    equations and their sources.
+    """
+
+    inertia: float
+    damping: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "inertia", check_positive("inertia", self.inertia, "kg m^2"))
+        object.__setattr__(self, "damping", check_positive("damping", self.damping, "N m s", allow_zero=True))
+
+    def rates(self, moments) -> np.ndarray:
+        """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments."""
+        return self.damping / self.inertia * (1.0 + self.inertia / np.asarray(moments, float))
+
+    def relax(self, free, omega_d, moments, dt):
+        """Exact flow of the viscous coupling alone for ``dt`` s (L and the attitude fixed).
+
+        With ``w = (free - J w_d) / I`` (``free = L - h``) the coupling
+        ``w_d' = -(c / J)(w_d - w)`` separates by component:
+        ``w_d,i -> w_inf,i + (w_d,i - w_inf,i) exp(-k_i dt)``, ``w_inf,i = free_i / (I_i + J)``,
+        and the energy dissipated, ``integral c |w_d - w|^2 dt``, is
+        ``sum_i J (1 + J / I_i) (w_d,i - w_inf,i)^2 (1 - exp(-2 k_i dt)) / 2``.
+
+        Parameters
+        ----------
+        free, omega_d, moments : ndarray, shape (3, ...)
+            ``L - h`` (kg m^2/s), ``w_d`` (rad/s) and ``I`` (kg m^2), components first.
+        dt : float
+            Duration, s (negative steps of a composition run the flow backwards).
+
+        Returns
+        -------
+        omega_d : ndarray, shape (3, ...)
+        dissipated : ndarray, shape (...)
+            J.
+        """
+        J = self.inertia
+        k = self.rates(moments)
+        w_inf = free / (moments + J)
+        delta = omega_d - w_inf
+        e1 = -np.expm1(-2.0 * k * dt)  # 1 - exp(-2 k dt), accurate for small k dt
+        lost = 0.5 * J * np.sum((1.0 + J / moments) * delta * delta * e1, axis=0)
+        return w_inf + delta * np.exp(-k * dt), lost
+
+
+@dataclass(frozen=True, eq=False)
+class Rotors:
+    """The rotors of a body as the dynamics sees them, in its principal frame.
+
+    Attributes
+    ----------
+    parts : tuple of Rotor
+        The rotor parts (their spin functions).
+    axial_moments : ndarray, shape (k,)
+        ``J_k``, kg m^2.
+    axes : ndarray, shape (k, 3)
+        Unit spin axes ``n_k``, principal frame.
+    """
+
+    parts: tuple
+    axial_moments: np.ndarray
+    axes: np.ndarray
+
+    @classmethod
+    def of(cls, body) -> Rotors | None:
+        """The rotors of a :class:`~tumble.mass.Body` (None without any; a bare
+        :class:`~tumble.mass.MassProperties` has none)."""
+        parts = tuple(getattr(body, "rotors", ()))
+        if not parts:
+            return None
+        A = body.principal_axes  # principal -> design
+        return cls(parts, np.array([p.axial_moment for p in parts]), np.array([A.T @ p.axis for p in parts]))
+
+    @property
+    def constant(self) -> bool:
+        """Whether every spin is constant (then ``h`` is, and ``H`` is conserved)."""
+        return all(p.constant_spin for p in self.parts)
+
+    @property
+    def derivative_known(self) -> bool:
+        """Whether every ``ds/dt`` is known (needed for the motor's work only)."""
+        return all(p.constant_spin or not callable(p.spin_rate) or p.spin_acceleration is not None
+                   for p in self.parts)
+
+    def spins(self, t) -> np.ndarray:
+        """Relative spins ``s_k(t)``, rad/s; shape ``np.shape(t) + (k,)``."""
+        return np.stack([p.spin(t) for p in self.parts], axis=-1)
+
+    def spin_derivatives(self, t) -> np.ndarray:
+        """``ds_k/dt``, rad/s^2; shape ``np.shape(t) + (k,)`` (requires :attr:`derivative_known`)."""
+        return np.stack([p.spin_derivative(t) for p in self.parts], axis=-1)
+
+    def momentum(self, t) -> np.ndarray:
+        """``h(t) = sum_k J_k s_k(t) n_k``, kg m^2/s; shape ``np.shape(t) + (3,)``."""
+        return self.spins(t) @ (self.axial_moments[:, None] * self.axes)
+
+    def momentum_rate(self, t) -> np.ndarray:
+        """``h'(t)``, N m; shape ``np.shape(t) + (3,)``."""
+        return self.spin_derivatives(t) @ (self.axial_moments[:, None] * self.axes)
+
+    def spin_energy(self, t) -> np.ndarray:
+        """``sum_k J_k s_k^2 / 2``, J; shape ``np.shape(t)``."""
+        s = self.spins(t)
+        return 0.5 * np.sum(self.axial_moments * s * s, axis=-1)
+
+
+def gyrostat_rate(moments, spin, momentum):
+    """Linearised rate about a spin about the intermediate axis with a rotor along it.
+
+    Parameters
+    ----------
+    moments : array_like, shape (..., 3)
+        ``I1 <= I2 <= I3`` of the whole (rotors locked), kg m^2.
+    spin : array_like
+        ``W``, the body's spin about axis 2, rad/s.
+    momentum : array_like
+        ``h``, the rotors' momentum along axis 2 (positive along ``W``), kg m^2/s.
+
+    Returns
+    -------
+    growth, wobble : ndarray
+        ``sqrt(p / (I1 I3))`` for ``p = ((I3 - I2) W - h)((I2 - I1) W + h) > 0`` (1/s, else 0)
+        and ``sqrt(-p / (I1 I3))`` for ``p < 0`` (rad/s, else 0); derived in the module
+        docstring.
+    """
+    I = np.asarray(moments, float)
+    W, h = np.asarray(spin, float), np.asarray(momentum, float)
+    p = ((I[..., 2] - I[..., 1]) * W - h) * ((I[..., 1] - I[..., 0]) * W + h) / (I[..., 0] * I[..., 2])
+    return np.sqrt(np.maximum(p, 0.0)), np.sqrt(np.maximum(-p, 0.0))
+
+
+class InternalSamples(NamedTuple):
+    """What an integrator returns for a run with internal models, at the sample times."""
+
+    omega: np.ndarray  # (n, 3) rad/s
+    quat: np.ndarray  # (n, 4) body -> world, scalar last
+    damper_omega: np.ndarray | None  # (n, 3) rad/s
+    dissipated: np.ndarray | None  # (n,) J
+    work_integral: np.ndarray | None  # (n,) J: integral of h'.w dt
+
+
+@dataclass(frozen=True, eq=False)
+class InternalModel:
+    """Rotors and/or a damper on a body of principal ``moments``: the equations every
+    integrator that supports them uses.
+
+    ODE state (DOP853, RK45): ``[L (3), q (4), w_d (3, with a damper), A (1, with varying spins
+    of known rate), D (1, with a damper)]``: total momentum, attitude, the damper's rate, the
+    integral ``A = integral h'.w dt`` and the energy dissipated.
+    """
+
+    moments: np.ndarray
+    rotors: Rotors | None = None
+    damper: SphericalDamper | None = None
+
+    @property
+    def tracks_work(self) -> bool:
+        """Whether ``A = integral h'.w dt`` must be integrated (spins that vary at a known rate)."""
+        return self.rotors is not None and not self.rotors.constant and self.rotors.derivative_known
+
+    @property
+    def damper_inertia(self) -> float:
+        return 0.0 if self.damper is None else self.damper.inertia
+
+    @property
+    def relaxation_rate(self) -> float:
+        """The damper's fastest relaxation rate ``max_i k_i``, 1/s (0 without a damper)."""
+        return 0.0 if self.damper is None else float(np.max(self.damper.rates(self.moments)))
+
+    def spin_bound(self, omega0, t) -> float:
+        """An estimate of the fastest body spin of a run, rad/s: ``|w0| + 2 max |h| / I1`` over
+        the sample times ``t`` (the rotors can hand the body their momentum and reverse it)."""
+        spin = float(np.linalg.norm(omega0))
+        if self.rotors is None:
+            return spin
+        h = np.linalg.norm(self.rotors.momentum(np.asarray(t, float)), axis=-1)
+        return spin + 2.0 * float(np.max(h)) / float(np.min(self.moments))
+
+    def momentum(self, t) -> np.ndarray:
+        """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors)."""
+        if self.rotors is None:
+            return np.zeros(np.shape(t) + (3,))
+        return self.rotors.momentum(t)
+
+    def momentum_rate(self, t) -> np.ndarray:
+        return self.rotors.momentum_rate(t) if self.tracks_work else np.zeros(np.shape(t) + (3,))
+
+    def initial_state(self, omega0, quat0) -> np.ndarray:
+        """The ODE state at t = 0 (the damper turning with the body)."""
+        w0 = np.asarray(omega0, float)
+        J = self.damper_inertia
+        parts = [self.moments * w0 + self.momentum(0.0) + J * w0, quat0]
+        if self.damper is not None:
+            parts.append(w0)
+        parts += [[0.0]] * (int(self.tracks_work) + int(self.damper is not None))
+        return np.concatenate(parts)
+
+    def atol(self, atol: float, spin: float) -> np.ndarray:
+        """Absolute tolerances per state component for a relative ``atol`` and a spin scale (rad/s)."""
+        I = float(np.max(self.moments)) + self.damper_inertia
+        n_energy = int(self.tracks_work) + int(self.damper is not None)
+        wd = [atol * spin] * (3 if self.damper is not None else 0)
+        return np.array([atol * spin * I] * 3 + [atol] * 4 + wd + [atol * spin * spin * I] * n_energy)
+
+    def rhs(self, t: float, y, torque) -> np.ndarray:
+        """``dy/dt``; ``torque(t, w, q)`` returns the external torque in the body frame (N m)."""
+        L, q = y[:3], y[3:7]
+        h = self.momentum(t)
+        wd = y[7:10] if self.damper is not None else None
+        free = L - h
+        w = (free if wd is None else free - self.damper.inertia * wd) / self.moments
+        dL = np.cross(L, w)
+        if torque is not None:
+            dL = dL + torque(t, w, q)
+        out = [dL, quaternion_rate(q, w)]
+        if wd is not None:
+            slip = wd - w
+            out.append(np.cross(wd, w) - (self.damper.damping / self.damper.inertia) * slip)
+        if self.tracks_work:
+            out.append([self.momentum_rate(t) @ w])
+        if wd is not None:
+            out.append([self.damper.damping * (slip @ slip)])
+        return np.concatenate(out)
+
+    def samples(self, t, Y) -> InternalSamples:
+        """Unpack ODE states ``Y`` (shape (n, m)) at the times ``t`` (shape (n,))."""
+        L, q = Y[:, :3], Y[:, 3:7]
+        wd = Y[:, 7:10] if self.damper is not None else None
+        k = 10 if self.damper is not None else 7
+        A = Y[:, k] if self.tracks_work else None
+        D = Y[:, -1] if self.damper is not None else None
+        return InternalSamples(self.omega(t, L, wd), q / np.linalg.norm(q, axis=1, keepdims=True), wd, D, A)
+
+    def omega(self, t, L, omega_d=None) -> np.ndarray:
+        """``w = I^-1 (L - h(t) - J w_d)``, rad/s; ``L`` and ``w_d`` of shape (n, 3)."""
+        free = L - self.momentum(t)
+        if omega_d is not None:
+            free = free - self.damper.inertia * omega_d
+        return free / self.moments
+
+    def trajectory_fields(self, t, run: InternalSamples) -> dict:
+        """The optional :class:`~tumble.dynamics.trajectory.Trajectory` fields of a run."""
+        fields: dict = {}
+        if self.rotors is not None:
+            h = self.rotors.momentum(t)
+            fields.update(internal_momentum=h, rotor_spin=self.rotors.spins(t),
+                          rotor_axial_moments=self.rotors.axial_moments)
+            if self.rotors.derivative_known:
+                # W(t) = [w.h + sum J s^2 / 2]_0^t - integral h'.w dt (module docstring)
+                boundary = np.sum(run.omega * h, axis=1) + self.rotors.spin_energy(t)
+                boundary = boundary - (np.sum(run.omega[0] * h[0]) + self.rotors.spin_energy(t[:1])[0])
+                A = np.zeros(len(t)) if run.work_integral is None else run.work_integral - run.work_integral[0]
+                fields["motor_work"] = boundary - A
+        if self.damper is not None:
+            fields.update(damper_inertia=self.damper.inertia, damper_omega=run.damper_omega,
+                          dissipated=run.dissipated - run.dissipated[0])
+        return fields
