@@ -115,3 +115,14 @@ def test_a_thin_rod_in_any_direction_has_a_zero_moment(axis, method):
     rod = tumble.Body([tumble.Rod(mass=1.0, length=1.0, axis=axis)])
     with pytest.raises(ValueError, match="a body with a zero moment"):
         simulate(rod, [1.0, 0.0, 0.0], t_end=1.0, method=method)
+
+
+def test_the_exact_phase_limit_is_checked_before_the_run(monkeypatch):
+    """A run past MAX_PHASE is refused by the input checks (scenario files and the CLI use
+    them before anything is computed), not from inside the integration."""
+    from tumble.dynamics.exact import FreeRotation
+    from tumble.io.scenario import resolve_run
+
+    monkeypatch.setattr(FreeRotation, "__post_init__", lambda self: pytest.fail("integrated before checking"))
+    with pytest.raises(ValueError, match=r"--t-end = 1e\+12 s takes this motion to a phase of 6.58e\+24 rad"):
+        resolve_run("t-handle", omega=[1e13, 1e12, 1e12], t_end=1e12)

@@ -280,7 +280,10 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
 def _check_work(run: RunInputs) -> None:
     """Refuse a run whose rotation or step count no stepping method can follow in bounded time."""
     spec, t_end = run.method, float(run.t[-1])
-    if spec.name == "exact":
+    if spec.name == "exact":  # no steps; only its phase is bounded (MAX_PHASE)
+        from .exact import check_phase_limit
+
+        check_phase_limit(run.props.principal_moments, run.omega0, t_end)
         return
     spin = _spin_bound(run)
     with np.errstate(over="ignore", invalid="ignore"):
