@@ -1,6 +1,7 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
 from .euler import angular_momentum, energy_momentum_gaps, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
+from .gravity import GravityGradient, gravity_gradient_stability, inertia_ratios, lvlh_state, orbit_frame_angles
 from .integrators import METHODS, Method, get_method
 from .internal import SphericalDamper, gyrostat_rate
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
@@ -13,6 +14,7 @@ __all__ = [
     "METHODS",
     "ConstantTorque",
     "FunctionTorque",
+    "GravityGradient",
     "Method",
     "SphericalDamper",
     "Trajectory",
@@ -23,7 +25,11 @@ __all__ = [
     "euler_rhs_tensor",
     "get_method",
     "gyrostat_rate",
+    "gravity_gradient_stability",
+    "inertia_ratios",
     "kinetic_energy",
+    "lvlh_state",
+    "orbit_frame_angles",
     "quaternion_rate",
     "simulate",
 ]

@@ -4,6 +4,7 @@ matplotlib is imported inside the drawing functions, never by the physics layers
 """
 
 from .animate import animate_body_frame, animate_ground_frame
+from .gravity import figure_gravity_stability
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
@@ -15,6 +16,7 @@ __all__ = [
     "body_lines",
     "body_size",
     "figure_drift",
+    "figure_gravity_stability",
     "figure_herpolhode",
     "figure_omega",
     "figure_omega_grid",

@@ -1,0 +1,568 @@
+"""Gravity-gradient torque on a rigid body in a circular orbit, and its orbiting frame.
+
+The body's centre of mass moves on a circular orbit of radius ``r`` (m) in the world x-y
+plane, about a point mass ``mu`` (m^3/s^2) at the world origin: its unit radius vector is
+``(cos n t, sin n t, 0)`` (t in s, from t = 0), the orbit normal is +z and the mean motion is
+``n = sqrt(mu / r^3) = 2 pi / period`` (rad/s). The orbit is not disturbed by the attitude
+(the restricted problem). Expanding the gravitational potential of the body to second order in
+its size gives, in the principal (body) frame,
+
+``tau = 3 n^2 r_b x (I r_b)``,  ``V = (3/2) n^2 r_b . I r_b`` (+ a constant)
+
+with ``r_b`` the unit radius vector in body coordinates and ``I = diag(I1, I2, I3)`` (N m, J):
+Hughes, *Spacecraft Attitude Dynamics* (Wiley 1986; Dover 2004), ch. 8 (gravitational
+torques); Kane, Likins & Levinson, *Spacecraft Dynamics* (McGraw-Hill 1983). The torque is
+``-dV/d(theta)`` for a small rotation ``theta`` of the body: ``dr_b = -theta x r_b`` gives
+``dV = -3 n^2 theta . (r_b x I r_b)``.
+
+**Orbiting frame (LVLH).** Its axes, as columns in the world frame at time t:
+roll ``x_o`` along the orbital velocity ``(-sin n t, cos n t, 0)``, pitch ``y_o`` along the
+orbit normal ``(0, 0, 1)``, yaw ``z_o`` along the local vertical (the radius, pointing away from
+the Earth) ``(cos n t, sin n t, 0)``; ``x_o x y_o = z_o``, so the frame is right-handed. (The
+usual aerospace LVLH has z towards the Earth and y along the negative orbit normal; the
+moments of inertia about an axis do not depend on its sign, so every result here holds there.)
+The frame turns at ``n`` about +z: a body at rest in it has ``omega_world = n e_z``.
+
+A body's *roll, pitch and yaw axes* are three of its principal axes: ``pitch_axis`` and
+``yaw_axis`` (1, 2, 3 or "minor", "intermediate", "major") and the remaining one for roll.
+Their moments are ``I_roll``, ``I_pitch``, ``I_yaw``. When (roll, pitch, yaw) is an odd
+permutation of (1, 2, 3) the body's roll direction is *minus* its roll principal axis, so the
+body's roll-pitch-yaw frame is right-handed. Its attitude relative to the orbiting frame is
+given by a pitch-roll-yaw (2-1-3) sequence: a rotation by ``pitch`` about the orbit normal,
+then by ``roll`` about the once-turned roll axis, then by ``yaw`` about the body's yaw axis
+(scipy ``from_euler("YXZ", [pitch, roll, yaw])``); roll is the middle angle, so the sequence is
+regular wherever ``|roll| < pi/2``, and a pure pitch libration is a pure pitch angle.
+
+**Linear stability** about the orbiting frame (Hughes ch. 9, gravitational stabilization;
+DeBra & Delp, J. Astronaut. Sci. 8 (1961) 14): with
+``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
+``k_Y = (I_pitch - I_roll) / I_yaw`` the linearised equations (in units of n, derived for this
+frame in docs/gravity-gradient.md) are
+
+- pitch: ``theta'' + 3 n^2 k_P theta = 0``, stable iff ``k_P > 0`` (``I_roll > I_yaw``;
+  ``k_P (1 - k_R k_Y) = k_R - k_Y``, so ``k_R > k_Y`` but at the corners ``k_R = k_Y = +-1``),
+- roll-yaw: ``s^4 + (1 + 3 k_R + k_R k_Y) n^2 s^2 + 4 k_R k_Y n^4 = 0``, stable iff
+  ``k_R k_Y > 0`` and ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``.
+
+Both hold in the Lagrange region (``k_R > k_Y > 0``: ``I_pitch > I_roll > I_yaw``, where the
+orbiting-frame energy is a minimum) and in the DeBra-Delp region (``k_Y < k_R < 0``, near
+``k_R = 0``: stable only by the gyroscopic coupling of roll and yaw).
+
+**Energy budget.** The Lagrangian in coordinates relative to the orbiting frame does not depend
+on time, so its energy function (the Jacobi integral; Goldstein, *Classical Mechanics*, ch. 2,
+the energy function ``h``) is conserved:
+``h = T2 - T0 + V = (1/2) w_r . I w_r - (1/2) n^2 o_b . I o_b + (3/2) n^2 r_b . I r_b`` (J),
+with ``w_r = omega - n o_b`` the angular velocity relative to the orbiting frame and ``o_b`` the
+orbit normal, both in the body frame (Hughes ch. 9 uses it as the Liapunov function of the
+Lagrange region).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from dataclasses import dataclass, field, replace
+from typing import NamedTuple
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..mass.body import AXIS_ROLES
+from ..mass._checks import check_positive
+from ..mass.tensor import _short_repr, check_vectors, refuse_first
+
+__all__ = [
+    "MU_EARTH",
+    "RATIO_ATOL",
+    "R_EARTH",
+    "STABILITY_REGIONS",
+    "GravityGradient",
+    "LVLHState",
+    "OrbitAngles",
+    "StabilityClass",
+    "gravity_gradient_from_table",
+    "gravity_gradient_stability",
+    "inertia_ratios",
+    "lvlh_state",
+    "lvlh_state_from_table",
+    "orbit_frame_angles",
+    "relative_attitude",
+]
+
+#: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
+MU_EARTH = 3.986004418e14
+#: The Earth's equatorial radius, m (IERS Conventions 2010: 6378136.6 m, rounded): with
+#: ``mu = MU_EARTH`` an orbit must have a larger radius.
+R_EARTH = 6.3781e6
+
+_AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
+
+
+@dataclass(frozen=True)
+class GravityGradient:
+    """The gravity-gradient torque of a circular orbit (a torque model, world frame).
+
+    A *description* of the orbit; :meth:`bind` gives it the principal moments of the body it
+    acts on (``simulate`` does that itself), or pass ``moments`` here. Called as
+    ``model(t, omega, attitude)`` it returns ``3 n^2 r x (I r)`` (N m) in the world frame; see
+    the module docstring for the orbit, the formula and its sources.
+
+    Parameters
+    ----------
+    orbit_period : float, optional
+        Orbital period, s. Exactly one of ``orbit_period`` and ``orbit_radius``.
+    orbit_radius : float, optional
+        Orbit radius, m (from the centre of the attracting body).
+    mu : float
+        Gravitational parameter, m^3/s^2; default the Earth's, :data:`MU_EARTH`, and then the
+        orbit must lie above the Earth's equatorial radius :data:`R_EARTH` = 6.3781e6 m.
+    moments : array_like, shape (3,) or (N, 3), optional
+        Principal moments ``I1 <= I2 <= I3`` of the body (kg m^2), or of N bodies (a batch).
+
+    Raises
+    ------
+    ValueError
+        Naming the field, the value and what is allowed.
+
+    Examples
+    --------
+    >>> gg = GravityGradient(orbit_period=5400.0)
+    >>> round(gg.radius / 1e3)   # km
+    6653
+    """
+
+    orbit_period: float | None = None
+    orbit_radius: float | None = None
+    mu: float = MU_EARTH
+    moments: tuple | None = None
+    #: Frame of the returned torque: the world frame, so a ``frame="design"`` run leaves it as it is.
+    frame: str = field(default="world", init=False)
+    _n: float = field(default=0.0, init=False, repr=False, compare=False)
+    _r: float = field(default=0.0, init=False, repr=False, compare=False)
+    _I: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        mu = check_positive("mu", self.mu, "m^3/s^2")
+        given = [name for name in ("orbit_period", "orbit_radius") if getattr(self, name) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of orbit_period (s) and orbit_radius (m)"
+                             + (", not both" if given else ""))
+        if given == ["orbit_period"]:  # Kepler's third law, n^2 r^3 = mu, n = 2 pi / T
+            T = check_positive("orbit_period", self.orbit_period, "s")
+            n = 2.0 * math.pi / T
+            r = math.cbrt(mu) * (T / (2.0 * math.pi)) ** (2.0 / 3.0)  # cannot overflow: power < 1
+        else:
+            r = check_positive("orbit_radius", self.orbit_radius, "m")
+            n = math.sqrt(mu / r) / r  # sqrt(mu / r^3) without overflowing r^3
+        name, value = given[0], getattr(self, given[0])
+        if not (0.0 < n < math.inf and 0.0 < r < math.inf):
+            raise ValueError(f"{name} = {value!r} gives a mean motion of {n!r} rad/s; it must be a positive finite number")
+        if mu == MU_EARTH and r <= R_EARTH:
+            shortest = 2.0 * math.pi * math.sqrt(R_EARTH**3 / MU_EARTH)
+            raise ValueError(
+                f"{name} = {value!r} puts the orbit at radius {r:.6g} m, inside the Earth (equatorial "
+                f"radius R_E = {R_EARTH:g} m); allowed: orbit_radius > {R_EARTH:g} m, orbit_period > "
+                f"{shortest:.6g} s (or give another mu)"
+            )
+        object.__setattr__(self, "mu", mu)
+        object.__setattr__(self, "_n", n)
+        object.__setattr__(self, "_r", r)
+        if self.moments is not None:
+            I = _check_moments(self.moments)
+            if I.ndim > 2:
+                raise ValueError(f"moments has shape {I.shape}; allowed: (3,) or (N, 3) (kg m^2)")
+            object.__setattr__(self, "moments", tuple(map(float, I)) if I.ndim == 1 else tuple(map(tuple, I.tolist())))
+            object.__setattr__(self, "_I", I)
+
+    @property
+    def mean_motion(self) -> float:
+        """Mean motion ``n = sqrt(mu / r^3) = 2 pi / period``, rad/s."""
+        return self._n
+
+    @property
+    def period(self) -> float:
+        """Orbital period ``2 pi / n``, s."""
+        return 2.0 * math.pi / self._n
+
+    @property
+    def radius(self) -> float:
+        """Orbit radius ``(mu / n^2)^(1/3)``, m."""
+        return self._r
+
+    def bind(self, body) -> GravityGradient:
+        """The same orbit acting on ``body``: a Body, MassProperties or principal moments (kg m^2).
+
+        Raises ``ValueError`` if this model already holds other moments (more than 1e-9
+        relative apart): the torque would belong to another body.
+        """
+        moments = getattr(body, "principal_moments", body)
+        if self._I is not None:
+            I = check_vectors("moments", moments, "kg m^2")
+            if I.shape != self._I.shape or not np.allclose(I, self._I, rtol=1e-9, atol=0.0):
+                raise ValueError(
+                    f"this GravityGradient holds moments {self._I.tolist()} kg m^2, not the body's "
+                    f"{I.tolist()}: leave moments out and let simulate bind it"
+                )
+            return self
+        return replace(self, moments=moments)
+
+    def radial_direction(self, t) -> np.ndarray:
+        """Unit radius vector ``(cos n t, sin n t, 0)`` in the world frame at ``t`` (s); shape ``t.shape + (3,)``."""
+        nt = self._n * np.asarray(t, dtype=float)
+        return np.stack([np.cos(nt), np.sin(nt), np.zeros_like(nt)], axis=-1)
+
+    def orbit_frame(self, t) -> Rotation:
+        """The orbiting (LVLH) frame to world at ``t`` (s): columns roll (velocity), pitch
+        (orbit normal), yaw (radius); one rotation, or a stack for an array of times."""
+        nt = self._n * np.asarray(t, dtype=float)
+        return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * _LVLH0
+
+    def __call__(self, t, omega, attitude) -> np.ndarray:
+        """World-frame torque ``3 n^2 R (r_b x I r_b)``, N m, shape of ``omega`` (or (N, 3)).
+
+        Parameters
+        ----------
+        t : float
+            Time, s.
+        omega : ndarray, shape (3,) or (N, 3)
+            Angular velocity, principal frame, rad/s (the torque does not depend on it).
+        attitude : scipy Rotation, one or a stack of N
+            Principal body frame to world.
+        """
+        I = self._moments()
+        r_b = attitude.inv().apply(self.radial_direction(float(t)))
+        tau_b = 3.0 * self._n**2 * np.cross(r_b, I * r_b)
+        return attitude.apply(tau_b)
+
+    def jacobi_integral(self, t, omega, attitude) -> np.ndarray:
+        """The orbiting-frame energy (Jacobi integral) ``h``, J; conserved along the motion.
+
+        ``h = (1/2) w_r . I w_r - (1/2) n^2 o_b . I o_b + (3/2) n^2 r_b . I r_b`` with
+        ``w_r = omega - n o_b`` (module docstring; Goldstein ch. 2, Hughes ch. 9).
+
+        Parameters
+        ----------
+        t : float or ndarray, shape (n,)
+            Times, s.
+        omega : ndarray, shape (3,) or (n, 3)
+            Angular velocity, principal frame, rad/s.
+        attitude : scipy Rotation, one or a stack of n
+            Principal body frame to world.
+
+        Returns
+        -------
+        ndarray, shape () or (n,)
+        """
+        I, n = self._moments(), self._n
+        inv = attitude.inv()
+        r_b = inv.apply(self.radial_direction(t))
+        o_b = inv.apply([0.0, 0.0, 1.0])
+        w_r = np.asarray(omega, dtype=float) - n * o_b
+        return 0.5 * np.sum(w_r * I * w_r, axis=-1) + 0.5 * n**2 * np.sum(3.0 * r_b * I * r_b - o_b * I * o_b, axis=-1)
+
+    def max_spin(self, t, omega, attitude) -> np.ndarray:
+        """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state.
+
+        The Jacobi integral ``h`` is conserved and ``o_b . I o_b <= I3``, ``r_b . I r_b >= I1``,
+        so the relative kinetic energy ``T2 = (1/2) w_r . I w_r <= h + (1/2) n^2 I3 - (3/2) n^2 I1``
+        for ever, and ``|omega| <= n + sqrt(2 T2_max / I1)``: at rest in the orbiting frame with
+        the minor axis on the radius and the major axis on the orbit normal, exactly ``n``.
+        Arguments as :meth:`jacobi_integral`; for bounding the work of a run.
+        """
+        I, n = self._moments(), self._n
+        h = self.jacobi_integral(t, omega, attitude)
+        t2_max = h + 0.5 * n**2 * np.max(I, axis=-1) - 1.5 * n**2 * np.min(I, axis=-1)
+        return n + np.sqrt(2.0 * np.maximum(t2_max, 0.0) / np.min(I, axis=-1))
+
+    def _moments(self) -> np.ndarray:
+        if self._I is None:
+            raise ValueError("this GravityGradient has no moments: use gg.bind(body) or give moments=[I1, I2, I3] (kg m^2)")
+        return self._I
+
+
+#: The orbiting frame at t = 0: roll along +y_world (velocity), pitch along +z_world (orbit
+#: normal), yaw along +x_world (radius).
+_LVLH0 = Rotation.from_matrix([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+
+
+def _check_moments(moments) -> np.ndarray:
+    """Principal moments (..., 3) as floats: finite, positive and ascending, else ``ValueError``."""
+    I = check_vectors("moments", moments, "kg m^2")
+    refuse_first("moments", I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
+    refuse_first("moments", I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
+    return I
+
+
+def _axis(name: str, value) -> int:
+    """0-based index of one public axis label (1, 2, 3 or a name)."""
+    if isinstance(value, str) and value in AXIS_ROLES:
+        return AXIS_ROLES.index(value)
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool) and 1 <= value <= 3:
+        return int(value) - 1
+    raise ValueError(f"{name} = {_short_repr(value)} must be {_AXES_ALLOWED}")
+
+
+def _rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
+    """0-based (roll, pitch, yaw) principal indices and the matrix whose columns are the body's
+    roll, pitch and yaw directions in principal coordinates (a proper rotation)."""
+    b, c = _axis("pitch_axis", pitch_axis), _axis("yaw_axis", yaw_axis)
+    if b == c:
+        raise ValueError(
+            f"pitch_axis = {pitch_axis!r} and yaw_axis = {yaw_axis!r} must be different principal axes "
+            f"(together with the roll axis, a permutation of 1, 2, 3)"
+        )
+    a = 3 - b - c
+    P = np.zeros((3, 3))
+    P[a, 0], P[b, 1], P[c, 2] = 1.0, 1.0, 1.0
+    P[a, 0] = np.linalg.det(P)  # -1 for an odd permutation: roll along minus its axis
+    return (a, b, c), P
+
+
+def _angles(name: str, value) -> np.ndarray:
+    a = check_vectors(name, value, "rad", size=None)
+    if a.ndim > 1:
+        raise ValueError(f"{name} has shape {a.shape}; allowed: a number or a 1-d array (rad)")
+    return a
+
+
+class LVLHState(NamedTuple):
+    """A body at rest in the orbiting frame at t = 0 (see :func:`lvlh_state`)."""
+
+    #: Initial angular velocity, principal frame, rad/s: ``n e_z`` in the world frame.
+    omega0: np.ndarray
+    #: Design frame to world: what ``simulate(..., attitude0=...)`` takes.
+    attitude0: Rotation
+    #: Principal body frame to world (a Trajectory's ``attitude`` convention).
+    attitude: Rotation
+
+
+def lvlh_state(gg: GravityGradient, body, *, roll=0.0, pitch=0.0, yaw=0.0, pitch_axis=3, yaw_axis=1) -> LVLHState:
+    """Attitude and angular velocity of ``body`` at rest in the orbiting (LVLH) frame at t = 0.
+
+    The body's roll, pitch and yaw axes (principal axes, module docstring) point along the
+    orbital velocity, the orbit normal and the local vertical, turned by the pitch-roll-yaw
+    sequence ``(pitch, roll, yaw)``; the body turns with the frame, ``omega_world = n e_z``.
+    With all angles zero this is an equilibrium of the gravity-gradient torque for every choice
+    of axes; the default (pitch = major, yaw = minor) is the Lagrange-stable one.
+
+    Parameters
+    ----------
+    gg : GravityGradient
+        The orbit (its mean motion n, rad/s).
+    body : Body or MassProperties
+        Gives the principal axes (principal -> design) for ``attitude0``.
+    roll, pitch, yaw : float or ndarray, shape (N,)
+        Offsets from the orbiting frame, rad; arrays broadcast and give stacks of N states.
+    pitch_axis, yaw_axis : {1, 2, 3, "minor", "intermediate", "major"}
+        Principal axes along the orbit normal and the radius; the third is the roll axis.
+
+    Returns
+    -------
+    LVLHState
+        ``omega0`` (principal frame, rad/s), ``attitude0`` (design -> world, for
+        :func:`tumble.simulate`'s ``attitude0``) and ``attitude`` (principal -> world).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> gg = GravityGradient(orbit_period=5400.0)
+    >>> s = lvlh_state(gg, body, pitch=0.01)
+    >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg.bind(body),
+    ...                        t_end=5400.0, method="dop853")
+    """
+    if not isinstance(gg, GravityGradient):
+        raise ValueError(f"gg = {_short_repr(gg)} must be a GravityGradient")
+    axes = getattr(body, "principal_axes", None)
+    if axes is None:
+        raise ValueError(f"body = {_short_repr(body)} must be a tumble Body or MassProperties")
+    _, P = _rpy_axes(pitch_axis, yaw_axis)
+    r, p, y = np.broadcast_arrays(_angles("roll", roll), _angles("pitch", pitch), _angles("yaw", yaw))
+    rel = Rotation.from_euler("YXZ", np.stack([p, r, y], axis=-1))
+    principal = _LVLH0 * rel * Rotation.from_matrix(P.T)
+    omega0 = principal.inv().apply([0.0, 0.0, gg.mean_motion])
+    design = principal * Rotation.from_matrix(np.asarray(axes, dtype=float)).inv()
+    return LVLHState(omega0, design, principal)
+
+
+def relative_attitude(gg: GravityGradient, t, attitude, *, pitch_axis=3, yaw_axis=1) -> Rotation:
+    """The body's roll-pitch-yaw frame to the orbiting frame at times ``t`` (s).
+
+    ``attitude`` maps the principal frame to world (one rotation, or a stack matching ``t``).
+    The identity means the body's yaw axis is on the local vertical, its pitch axis on the
+    orbit normal.
+    """
+    _, P = _rpy_axes(pitch_axis, yaw_axis)
+    return gg.orbit_frame(t).inv() * attitude * Rotation.from_matrix(P)
+
+
+class OrbitAngles(NamedTuple):
+    """Roll, pitch and yaw of a body relative to the orbiting frame, rad (pitch-roll-yaw sequence)."""
+
+    roll: np.ndarray
+    pitch: np.ndarray
+    yaw: np.ndarray
+
+
+def orbit_frame_angles(traj, gg: GravityGradient, *, pitch_axis=3, yaw_axis=1) -> OrbitAngles:
+    """Roll, pitch and yaw of a run relative to the orbiting (LVLH) frame, against ``traj.t``.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        A run (its ``t``, s, and ``attitude``, principal -> world).
+    gg : GravityGradient
+        The orbit the run followed.
+    pitch_axis, yaw_axis : {1, 2, 3, "minor", "intermediate", "major"}
+        As in :func:`lvlh_state`.
+
+    Returns
+    -------
+    OrbitAngles
+        Arrays of shape (n,), rad: ``pitch`` and ``yaw`` in (-pi, pi], ``roll`` in
+        [-pi/2, pi/2] (the sequence is singular at |roll| = pi/2).
+    """
+    with warnings.catch_warnings():  # a tumbling body passes |roll| = pi/2; the docstring says so
+        warnings.filterwarnings("ignore", message="Gimbal lock detected")
+        pry = relative_attitude(gg, traj.t, traj.attitude, pitch_axis=pitch_axis, yaw_axis=yaw_axis).as_euler("YXZ")
+    return OrbitAngles(pry[..., 1], pry[..., 0], pry[..., 2])
+
+
+def inertia_ratios(moments, *, pitch_axis=3, yaw_axis=1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The inertia ratios ``(k_R, k_P, k_Y)`` of bodies whose pitch and yaw axes are given.
+
+    ``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
+    ``k_Y = (I_pitch - I_roll) / I_yaw`` (Hughes ch. 9; module docstring).
+
+    Parameters
+    ----------
+    moments : array_like, shape (..., 3)
+        Principal moments ``I1 <= I2 <= I3``, kg m^2.
+    pitch_axis, yaw_axis : {1, 2, 3, "minor", "intermediate", "major"}
+
+    Returns
+    -------
+    tuple of three ndarrays, shape (...)
+    """
+    I = _check_moments(moments)
+    (a, b, c), _ = _rpy_axes(pitch_axis, yaw_axis)
+    Ir, Ip, Iy = I[..., a], I[..., b], I[..., c]
+    return (Ip - Iy) / Ir, (Ir - Iy) / Ip, (Ip - Ir) / Iy
+
+
+class StabilityClass(NamedTuple):
+    """Linear stability about the orbiting frame (see :func:`gravity_gradient_stability`)."""
+
+    #: Pitch stable: ``k_P > 0`` (``I_roll > I_yaw``).
+    pitch: np.ndarray
+    #: Roll-yaw stable: ``k_R k_Y > 0`` and ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``.
+    roll_yaw: np.ndarray
+    #: One of :data:`STABILITY_REGIONS`.
+    region: np.ndarray
+
+
+#: The names :func:`gravity_gradient_stability` gives a region: both stable with ``k_R > 0``,
+#: both stable with ``k_R < 0``, one of the two unstable, both unstable.
+STABILITY_REGIONS = ("lagrange", "debra-delp", "pitch unstable", "roll-yaw unstable", "unstable")
+#: How far ``k_P (1 - k_R k_Y)`` may be from ``k_R - k_Y`` for three ratios of one body.
+RATIO_ATOL = 1e-9
+
+
+def gravity_gradient_stability(k_roll, k_pitch, k_yaw) -> StabilityClass:
+    """Linear stability of a body at rest in the orbiting frame, from its inertia ratios.
+
+    The conditions (Hughes ch. 9; DeBra & Delp 1961; derived for this frame in
+    docs/gravity-gradient.md): pitch ``k_P > 0``; roll-yaw ``k_R k_Y > 0`` and
+    ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``. Strict inequalities: a boundary point counts as
+    unstable. Stable in both with ``k_R > 0`` is the Lagrange region (``I_pitch > I_roll >
+    I_yaw``), with ``k_R < 0`` the DeBra-Delp region. ``gravity_gradient_stability(
+    *inertia_ratios(moments))`` classifies bodies.
+
+    Parameters
+    ----------
+    k_roll, k_pitch, k_yaw : float or array_like
+        ``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
+        ``k_Y = (I_pitch - I_roll) / I_yaw`` (:func:`inertia_ratios`), each in [-1, 1] for a
+        real body (triangle inequality), broadcasting together. One body's ratios satisfy
+        ``k_P (1 - k_R k_Y) = k_R - k_Y`` (checked to :data:`RATIO_ATOL`), so ``k_P`` has the
+        sign of ``k_R - k_Y`` except at the corners ``k_R = k_Y = +-1`` (planar bodies, e.g.
+        ``I_pitch = I_roll + I_yaw``), where ``k_R`` and ``k_Y`` alone do not decide pitch.
+
+    Returns
+    -------
+    StabilityClass
+        Boolean arrays ``pitch``, ``roll_yaw`` and the string array ``region``.
+    """
+    ks = {name: check_vectors(name, k, "dimensionless", size=None)
+          for name, k in (("k_roll", k_roll), ("k_pitch", k_pitch), ("k_yaw", k_yaw))}
+    for name, k in ks.items():
+        refuse_first(name, k, np.abs(k) > 1.0, "must be from -1 to 1 (the triangle inequality of the moments)")
+    try:
+        kr, kp, ky = np.broadcast_arrays(*ks.values())
+    except ValueError:
+        shapes = ", ".join(f"{name} (shape {k.shape})" for name, k in ks.items())
+        raise ValueError(f"{shapes} must broadcast together") from None
+    off = np.abs(kp * (1.0 - kr * ky) - (kr - ky)) > RATIO_ATOL
+    if np.any(off):
+        i = tuple(int(j) for j in np.argwhere(off)[0])
+        raise ValueError(
+            f"k_pitch{list(i) if i else ''} = {float(kp[i])!r} does not belong with k_roll = {float(kr[i])!r} "
+            f"and k_yaw = {float(ky[i])!r}: one body has k_pitch (1 - k_roll k_yaw) = k_roll - k_yaw (use inertia_ratios)"
+        )
+    pitch = kp > 0
+    prod = kr * ky
+    roll_yaw = (prod > 0) & (1.0 + 3.0 * kr + prod > 4.0 * np.sqrt(np.maximum(prod, 0.0)))
+    region = np.select(
+        [pitch & roll_yaw & (kr > 0), pitch & roll_yaw, ~pitch & roll_yaw, pitch & ~roll_yaw],
+        list(STABILITY_REGIONS[:4]), default=STABILITY_REGIONS[4],
+    )
+    return StabilityClass(pitch, roll_yaw, region)
+
+
+_TORQUE_KEYS = ("kind", "orbit_period", "orbit_radius", "mu")
+_LVLH_KEYS = ("roll", "pitch", "yaw", "pitch_axis", "yaw_axis")
+
+
+def _check_keys(where: str, table, allowed) -> None:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table, not {_short_repr(table)}")
+    for key in table:
+        if key not in allowed:
+            raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
+
+
+def gravity_gradient_from_table(table: dict) -> GravityGradient:
+    """A :class:`GravityGradient` from a scenario file's ``[torque]`` table.
+
+    Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
+    ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
+    missing key, or a bad value, raises ``ValueError`` with one line starting ``torque:``.
+    """
+    _check_keys("torque", table, _TORQUE_KEYS)
+    if "kind" in table and table["kind"] != "gravity_gradient":
+        raise ValueError(f"torque: kind = {table['kind']!r} is not 'gravity_gradient'")
+    if "orbit_period" not in table and "orbit_radius" not in table:
+        raise ValueError("torque: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
+    try:
+        return GravityGradient(orbit_period=table.get("orbit_period"), orbit_radius=table.get("orbit_radius"),
+                               mu=table.get("mu", MU_EARTH))
+    except ValueError as exc:
+        raise ValueError(f"torque: {exc}") from None
+
+
+def lvlh_state_from_table(table: dict, gg: GravityGradient, body) -> LVLHState:
+    """:func:`lvlh_state` from a scenario file's ``[initial.orbit_frame]`` table.
+
+    Keys, all optional: ``roll``, ``pitch``, ``yaw`` (rad, default 0), ``pitch_axis`` (default 3)
+    and ``yaw_axis`` (default 1). An unknown key or a bad value raises ``ValueError`` with one
+    line starting ``initial.orbit_frame:``.
+    """
+    _check_keys("initial.orbit_frame", table, _LVLH_KEYS)
+    for key in ("roll", "pitch", "yaw"):
+        if key in table and (isinstance(table[key], bool) or not isinstance(table[key], (int, float))):
+            raise ValueError(f"initial.orbit_frame: {key} = {table[key]!r} must be a number (rad)")
+    try:
+        return lvlh_state(gg, body, **table)
+    except ValueError as exc:
+        raise ValueError(f"initial.orbit_frame: {exc}") from None

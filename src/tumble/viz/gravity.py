@@ -1,0 +1,99 @@
+"""The gravity-gradient stability diagram over the inertia ratios (k_R, k_Y).
+
+The classification is :func:`tumble.dynamics.gravity.gravity_gradient_stability` (Hughes,
+*Spacecraft Attitude Dynamics*, ch. 9; DeBra & Delp, J. Astronaut. Sci. 8 (1961) 14); this
+module only draws it. matplotlib is imported on first use, on the Agg backend.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..dynamics.gravity import STABILITY_REGIONS, gravity_gradient_stability
+from ._backend import pyplot, save_figure
+
+__all__ = ["figure_gravity_stability"]
+
+#: One colour per region of :data:`~tumble.dynamics.gravity.STABILITY_REGIONS`, in its order.
+REGION_COLORS = ("#4daf4a", "#377eb8", "#fbb4ae", "#fed9a6", "#d9d9d9")
+REGION_LABELS = ("Lagrange (stable)", "DeBra-Delp (stable)", "pitch unstable", "roll-yaw unstable",
+                 "pitch and roll-yaw unstable")
+
+
+def _draw_regions(ax, kr_range, ky_range, n: int) -> None:
+    """Fill the regions on an ``n`` x ``n`` grid over the ranges and draw their boundaries."""
+    from matplotlib.colors import ListedColormap
+
+    def centres(lo, hi):  # cell centres: never the corners k_R = k_Y = +-1, where k_P is 0/0
+        return lo + (hi - lo) * (np.arange(n) + 0.5) / n
+
+    kr, ky = np.meshgrid(centres(*kr_range), centres(*ky_range))
+    region = gravity_gradient_stability(kr, (kr - ky) / (1.0 - kr * ky), ky).region
+    code = np.select([region == name for name in STABILITY_REGIONS], range(len(STABILITY_REGIONS)))
+    ax.pcolormesh(kr, ky, code, cmap=ListedColormap(REGION_COLORS), vmin=-0.5,
+                  vmax=len(STABILITY_REGIONS) - 0.5, shading="nearest", rasterized=True)
+    with np.errstate(invalid="ignore"):  # the roll-yaw boundary, where k_R k_Y > 0
+        prod = kr * ky
+        margin = np.where(prod > 0, 1.0 + 3.0 * kr + prod - 4.0 * np.sqrt(np.abs(prod)), np.nan)
+    ax.contour(kr, ky, margin, levels=[0.0], colors="0.25", linewidths=0.8)
+    ax.plot(kr_range, kr_range, color="0.25", lw=0.8)  # k_R = k_Y: the pitch boundary
+    ax.axhline(0.0, color="0.25", lw=0.8)
+    ax.axvline(0.0, color="0.25", lw=0.8)
+    ax.set_xlim(*kr_range)
+    ax.set_ylim(*ky_range)
+
+
+def figure_gravity_stability(path=None, ax=None, *, points=None):
+    """Linear gravity-gradient stability of a body at rest in the orbiting frame, over (k_R, k_Y).
+
+    ``k_R = (I_pitch - I_yaw) / I_roll`` (horizontal) and ``k_Y = (I_pitch - I_roll) / I_yaw``
+    (vertical); every real body lies in the square [-1, 1]^2. Pitch is stable below the diagonal
+    (``k_R > k_Y``); roll-yaw where ``k_R k_Y > 0`` and ``1 + 3 k_R + k_R k_Y > 4
+    sqrt(k_R k_Y)``. The Lagrange region is the triangle ``k_R > k_Y > 0``; the DeBra-Delp region
+    the thin sliver ``k_Y < k_R < 0`` near ``k_R = 0``, shown enlarged in the inset.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        Where to write the figure (PNG, SVG, ... by its suffix); the figure is closed after.
+    ax : matplotlib Axes, optional
+        Draw on these axes instead of a new figure.
+    points : dict of str to (float, float), optional
+        Bodies to mark, label -> ``(k_R, k_Y)`` (:func:`tumble.dynamics.gravity.inertia_ratios`).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    from matplotlib.patches import Patch
+
+    plt = pyplot()
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
+    else:
+        fig = ax.figure
+    _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 601)
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"$k_R = (I_{pitch} - I_{yaw}) / I_{roll}$")
+    ax.set_ylabel(r"$k_Y = (I_{pitch} - I_{roll}) / I_{yaw}$")
+    ax.set_title("Gravity-gradient stability in a circular orbit (linearised)", fontsize=10)
+    ax.text(0.55, 0.2, "Lagrange", ha="center", fontsize=9)
+    ax.annotate("DeBra-Delp", xy=(-0.02, -0.6), xytext=(-0.75, -0.85), fontsize=9,
+                arrowprops={"arrowstyle": "->", "lw": 0.8})
+    inset = ax.inset_axes([0.04, 0.42, 0.28, 0.5])
+    _draw_regions(inset, (-0.1, 0.02), (-1.0, 0.0), 241)
+    inset.set_xticks([-0.1, -0.05, 0.0])
+    inset.set_yticks([-1.0, -0.5, 0.0])
+    inset.tick_params(labelsize=6)
+    inset.set_title("DeBra-Delp, enlarged", fontsize=7)
+    for label, (kr, ky) in (points or {}).items():
+        for axes in (ax, inset):
+            axes.plot([kr], [ky], "k*", ms=7)
+        right = kr > 0.5  # keep the label inside the square
+        ax.annotate(label, (kr, ky), xytext=(-5 if right else 5, -10 if ky > 0.9 else 4),
+                    textcoords="offset points", ha="right" if right else "left", fontsize=8)
+    handles = [Patch(color=c, label=lbl) for c, lbl in zip(REGION_COLORS, REGION_LABELS)]
+    ax.legend(handles=handles, fontsize=7, loc="lower right", framealpha=0.9)
+    if path is not None:
+        save_figure(fig, path, dpi=110)
+    return fig
