@@ -123,6 +123,7 @@ def test_the_exact_phase_limit_is_checked_before_the_run(monkeypatch):
     from tumble.dynamics.exact import FreeRotation
     from tumble.io.scenario import resolve_run
 
-    monkeypatch.setattr(FreeRotation, "__post_init__", lambda self: pytest.fail("integrated before checking"))
+    for name in ("omega", "attitude"):
+        monkeypatch.setattr(FreeRotation, name, lambda self, t: pytest.fail("evaluated before checking"))
     with pytest.raises(ValueError, match=r"--t-end = 1e\+12 s takes this motion to a phase of 6.58e\+24 rad"):
         resolve_run("t-handle", omega=[1e13, 1e12, 1e12], t_end=1e12)
