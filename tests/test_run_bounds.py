@@ -127,3 +127,18 @@ def test_the_exact_phase_limit_is_checked_before_the_run(monkeypatch):
         monkeypatch.setattr(FreeRotation, name, lambda self, t: pytest.fail("evaluated before checking"))
     with pytest.raises(ValueError, match=r"--t-end = 1e\+12 s takes this motion to a phase of 6.58e\+24 rad"):
         resolve_run("t-handle", omega=[1e13, 1e12, 1e12], t_end=1e12)
+
+
+def test_simulate_binds_the_gravity_gradient_and_bounds_its_spin_by_the_jacobi_integral():
+    """simulate() gives the model the body's moments; a 2000-orbit run from near the local
+    vertical is within the work bound (its |omega| stays below the Jacobi-integral bound,
+    where |tau(0)| t_end / I1 grows with t_end^2 and refused it)."""
+    from tumble.dynamics.simulate import check_inputs
+
+    gg = tumble.GravityGradient(orbit_period=5400.0)
+    start = tumble.lvlh_state(gg, BODY, pitch=0.3, roll=0.2)
+    run = check_inputs(BODY, start.omega0, t_end=2000 * 5400.0, torque=gg, attitude0=start.attitude0, method="dop853")
+    assert run.torque.moments is not None
+    np.testing.assert_array_equal(run.torque.moments, BODY.principal_moments)
+    traj = simulate(BODY, start.omega0, t_end=5400.0, samples=5, torque=gg, attitude0=start.attitude0)
+    assert np.all(np.linalg.norm(traj.omega, axis=1) <= gg.bind(BODY).max_spin(0.0, start.omega0, start.attitude))

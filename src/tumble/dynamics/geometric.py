@@ -47,7 +47,9 @@ import math
 import numpy as np
 
 from .internal import InternalSamples
-from .torques import body_torque
+from scipy.spatial.transform import Rotation
+
+from .torques import body_torque, spin_gain
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]
 
@@ -124,8 +126,6 @@ def _rotate(L, q, axis: int, tau: float, inv_I, h=None, J: float = 0.0, wd=None)
 def _body_torque(torque, t, omega, q):
     """Torque on every body in its principal frame, shape (3, N) (rows: components); ``omega``
     and ``q`` are rows too."""
-    from scipy.spatial.transform import Rotation
-
     return body_torque(torque, t, omega.T, Rotation.from_quat(q.T)).T
 
 
@@ -169,10 +169,7 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
         raise ValueError(f"order = {order!r} is not available; allowed: {', '.join(map(str, COMPOSITIONS))}")
     if step is None:
         spin = float(np.max(np.linalg.norm(L * inv_I, axis=1), initial=0.0))
-        gain = 0.0
-        if torque is not None:  # the spin the torque can add over the run (default_step)
-            tau = _body_torque(torque, t[0], (L * inv_I).T, q.T).T
-            gain = float(np.max(np.linalg.norm(tau, axis=1) * np.min(inv_I, axis=1))) * (t[-1] - t[0])
+        gain = spin_gain(torque, t[0], L * inv_I, Rotation.from_quat(q), I, t[-1] - t[0])
         step = default_step(spin, gain)
     subflows = free_flow_substeps(order)
     q /= np.linalg.norm(q, axis=1, keepdims=True)
@@ -222,10 +219,7 @@ def propagate_internal(model, omega0, quat0, t, *, order: int = 4, step: float |
     if order not in COMPOSITIONS:
         raise ValueError(f"order = {order!r} is not available; allowed: {', '.join(map(str, COMPOSITIONS))}")
     if step is None:
-        gain = 0.0
-        if torque is not None:
-            tau = _body_torque(torque, t[0], w0.T, q.T).T
-            gain = float(np.linalg.norm(tau) / np.min(I)) * (t[-1] - t[0])
+        gain = spin_gain(torque, t[0], w0, Rotation.from_quat(q), I, t[-1] - t[0])
         step = default_step(model.spin_bound(w0[0], t), gain, model.relaxation_rate)
     q /= np.linalg.norm(q, axis=1, keepdims=True)
     constant = model.rotors is None or model.rotors.constant

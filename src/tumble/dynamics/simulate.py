@@ -13,7 +13,7 @@ from ..mass import INERTIA_RTOL, Body, MassProperties
 from ..mass._checks import check_positive, check_rotation, check_vector
 from .integrators import METHODS, Method, get_method
 from .internal import InternalModel, Rotors, SphericalDamper
-from .torques import as_torque, body_torque
+from .torques import as_torque, spin_gain
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
@@ -224,6 +224,8 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     if not isinstance(props, MassProperties):
         raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
     model = as_torque(torque)
+    if model is not None and hasattr(model, "bind"):  # a torque that needs the body's moments
+        model = model.bind(props)
     if damper is not None and not isinstance(damper, SphericalDamper):
         raise ValueError(f"damper = {damper!r} must be a tumble.SphericalDamper(inertia=..., damping=...) or None")
     rotors = Rotors.of(body)
@@ -316,14 +318,8 @@ def _spin_bound(run: RunInputs) -> float:
 
 
 def _spin_gain(model, run: RunInputs) -> float:
-    """Bound on the spin (rad/s) a torque adds over the run, ``|tau| t_end / I1``, from the
-    torque at t = 0 (exact for a constant torque: ``|L(t) - L(0)| <= |tau| t``, ``|omega| <=
-    |L| / I1``). 0 without a torque."""
-    if model is None:
-        return 0.0
-    tau = body_torque(model, 0.0, run.omega0, Rotation.from_quat(run.quat0))  # checks the model's answer
-    with np.errstate(over="ignore", invalid="ignore"):
-        return float(np.linalg.norm(tau) / run.props.principal_moments.min() * run.t[-1])
+    """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
+    return spin_gain(model, 0.0, run.omega0, Rotation.from_quat(run.quat0), run.props.principal_moments, float(run.t[-1]))
 
 
 def _design_torque(model, A):

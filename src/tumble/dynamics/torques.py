@@ -16,7 +16,7 @@ import numpy as np
 
 from ..mass._checks import check_vector
 
-__all__ = ["ConstantTorque", "FunctionTorque", "as_torque", "body_torque"]
+__all__ = ["ConstantTorque", "FunctionTorque", "as_torque", "body_torque", "spin_gain"]
 
 TORQUE_FRAMES = ("body", "world")
 
@@ -100,3 +100,25 @@ def body_torque(model, t: float, omega, attitude) -> np.ndarray:
         )
     tau = np.array(np.broadcast_to(raw, shape))  # a writeable copy: Rotation.apply needs one
     return attitude.inv().apply(tau) if model.frame == "world" else tau
+
+
+def spin_gain(model, t: float, omega, attitude, moments, duration: float) -> float:
+    """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
+    bounding a run's work and choosing default steps.
+
+    A model that knows a bound on ``|omega|`` for the whole motion says so through a method
+    ``max_spin(t, omega, attitude)`` (the gravity gradient does, from its Jacobi integral);
+    otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
+    |tau| t`` and ``|omega| <= |L| / I1``) and an estimate from the start for any other. 0
+    without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for :func:`body_torque`;
+    ``moments`` (3,) or (N, 3), kg m^2; the largest gain over the batch.
+    """
+    if model is None:
+        return 0.0
+    w = np.asarray(omega, float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        if hasattr(model, "max_spin"):
+            top = np.asarray(model.max_spin(t, w, attitude), float)
+            return float(np.max(np.maximum(top - np.linalg.norm(w, axis=-1), 0.0)))
+        tau = body_torque(model, t, w, attitude)  # checks the model's answer
+        return float(np.max(np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1))) * duration
