@@ -8,8 +8,8 @@ Gyrostat
 --------
 A body carrying axisymmetric rotors that spin relative to it about fixed axes ``n_k`` at
 ``s_k(t)`` (Hughes, *Spacecraft Attitude Dynamics*, Wiley 1986, the chapters on gyrostats and
-multi-spin vehicles; Hall, "Momentum transfer in two-rotor gyrostats", J. Guid. Control Dyn. 19
-(1996) 1157). With ``I`` the inertia of the whole, rotors locked, and the internal momentum
+multi-spin vehicles; Hall, "Momentum transfer in two-rotor gyrostats", J. Guid. Control Dyn.
+19(5), 1996). With ``I`` the inertia of the whole, rotors locked, and the internal momentum
 ``h = sum_k J_k s_k n_k`` (axial moments ``J_k``), the total momentum is ``L = I w + h`` and
 Euler's law ``dL/dt|inertial = tau`` in the rotating body frame (Landau & Lifshitz, *Mechanics*,
 sec. 36) reads
@@ -26,10 +26,12 @@ rotors at the rate ``P = sum_k J_k s_k (n_k.w' + s_k')`` (axial torque ``J_k d(n
 times the relative rate ``s_k``), and ``dT/dt = tau.w + P``. Integrating by parts,
 ``W(t) = [w.h + sum_k J_k s_k^2 / 2]_0^t - integral_0^t h'.w dt``. For constant spins the
 conserved quantity is the gyrostat Hamiltonian ``H = sum_i (L_i - h_i)^2 / (2 I_i) = w.I w / 2``
-(Hall 1996), while ``T`` itself changes by exactly the motor work.
+(its rate ``w.I w' = -w.(w x (I w + h)) = 0`` when ``h' = 0`` and ``tau = 0``), while ``T``
+itself changes by exactly the motor work.
 
 Linearised about a spin ``W`` about axis 2 with ``h = h e2`` (``h`` along ``W`` when positive),
-``I1 x'' = -((I3 - I2) W - h) z'``, ``I3 z' = -((I2 - I1) W + h) x``, so perturbations grow at
+the perturbation ``w = (x, W + y, z)`` obeys ``I1 x' = -((I3 - I2) W - h) z``,
+``I3 z' = -((I2 - I1) W + h) x`` (``y`` decouples), so perturbations grow at
 ``lambda = sqrt(((I3 - I2) W - h) ((I2 - I1) W + h) / (I1 I3))`` when the product is positive
 and wobble at ``sqrt(-product / (I1 I3))`` when it is negative: a wheel with
 ``h > (I3 - I2) W`` stabilises the intermediate axis (:func:`gyrostat_rate`).

@@ -150,7 +150,7 @@ class Trajectory:
     def hamiltonian(self) -> np.ndarray:
         """The gyrostat Hamiltonian ``sum_i (L_i - h_i)^2 / (2 I_i) = omega.I omega / 2``, J;
         shape (n,). ``L = I omega + h`` is the momentum of body and rotors; conserved for constant
-        rotor spins without damper or external torque (Hall 1996). Equal to :attr:`energy` for a
+        rotor spins without damper or external torque (:mod:`tumble.dynamics.internal`). Equal to :attr:`energy` for a
         rigid body."""
         return _array(kinetic_energy(self.omega, self.moments))
 
