@@ -20,6 +20,19 @@
     vector = [0.0, 0.0, 0.01]  # N m
     frame = "body"             # "body" or "world"
 
+    # or the gravity gradient of a circular orbit (tumble.GravityGradient):
+    # [torque]
+    # kind = "gravity_gradient"
+    # orbit_period = 5400.0    # s (or orbit_radius, m; mu, m^3/s^2, default the Earth's)
+    # [initial.orbit_frame]    # instead of omega: start at rest in the orbiting frame
+    # pitch = 0.01             # rad (roll, pitch, yaw; pitch_axis = 3, yaw_axis = 1)
+
+    [damper]                   # optional: a spherical nutation damper (tumble.SphericalDamper)
+    inertia = 0.01             # kg m^2, the sphere's moment of inertia
+    damping = 0.05             # N m s, the viscous coupling
+
+Rotors are parts of the body (``kind = "rotor"`` in a body file).
+
 Keys are checked strictly; every error is one line naming the file and the key.
 :func:`resolve_run` is what the CLI uses: a scenario file, or a body file or preset name plus
 an initial spin, with command-line values overriding the file's.
@@ -31,7 +44,8 @@ import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..dynamics import ConstantTorque, Trajectory, simulate
+from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
+from ..dynamics.gravity import GravityGradient, gravity_gradient_from_table, lvlh_state_from_table
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body
 from .bodyfile import body_from_table, load_body, read_toml
@@ -43,10 +57,13 @@ __all__ = ["Scenario", "load_scenario", "resolve_run", "scenario_from_table"]
 DEFAULT_T_END = 20.0
 
 _SECTIONS = {
-    "initial": {"omega", "frame"},
+    "initial": {"omega", "frame", "orbit_frame"},
     "simulation": {"t_end", "samples", "dt", "times", "method", "rtol", "atol", "step"},
-    "torque": {"vector", "frame"},
+    "torque": {"kind", "vector", "frame", "orbit_period", "orbit_radius", "mu"},
+    "damper": {"inertia", "damping"},
 }
+#: Keys of each kind of ``[torque]`` table.
+_TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,19 +79,22 @@ class Scenario:
     rtol: float | None = None
     atol: float | None = None
     step: float | None = None
-    torque: ConstantTorque | None = None
+    torque: ConstantTorque | GravityGradient | None = None
     name: str = "scenario"
     dt: float | None = None
     times: tuple[float, ...] | None = None
     #: ``(path, sha256)`` of the files it was read from (provenance).
     sources: tuple[tuple[str, str], ...] = ()
+    #: Design frame to world at t = 0 (scipy Rotation), or None for the identity.
+    attitude0: object = None
+    damper: SphericalDamper | None = None
 
     def run(self) -> Trajectory:
         """Simulate the scenario."""
         return simulate(
             self.body, self.omega, t_end=self.t_end, samples=self.samples, dt=self.dt, times=self.times,
             method=self.method, frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol,
-            step=self.step,
+            step=self.step, attitude0=self.attitude0, damper=self.damper,
         )
 
     @property
@@ -101,28 +121,64 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
         if bad:
             raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
         tables[section] = table
-    initial, sim, torque = tables["initial"], tables["simulation"], tables["torque"]
-    if "omega" not in initial:
-        raise ValueError("initial: missing key 'omega' (rad/s)")
-    frame = initial.get("frame", "principal")
-    method = sim.get("method")
-    model = None
-    if torque:
-        if "vector" not in torque:
-            raise ValueError("torque: missing key 'vector' (N m)")
+    initial, sim = tables["initial"], tables["simulation"]
+    model = _torque(tables["torque"])
+    omega, frame, attitude0 = _initial(initial, model, body)
+    damper = None
+    if tables["damper"]:
+        missing = sorted(_SECTIONS["damper"] - set(tables["damper"]))
+        if missing:
+            raise ValueError(f"damper: missing key {missing[0]!r}")
         try:
-            model = ConstantTorque(torque["vector"], torque.get("frame", "body"))
+            damper = SphericalDamper(**tables["damper"])
         except ValueError as exc:
-            raise ValueError(f"torque: {exc}") from None
+            raise ValueError(f"damper: {exc}") from None
     times = sim.get("times")
     scenario = Scenario(
-        body=body, omega=initial["omega"], frame=frame,
+        body=body, omega=omega, frame=frame,
         t_end=sim.get("t_end", None if times is not None else DEFAULT_T_END),
-        samples=sim.get("samples"), dt=sim.get("dt"), times=times, method=method, rtol=sim.get("rtol"),
-        atol=sim.get("atol"), step=sim.get("step"), torque=model, name=name,
+        samples=sim.get("samples"), dt=sim.get("dt"), times=times, method=sim.get("method"), rtol=sim.get("rtol"),
+        atol=sim.get("atol"), step=sim.get("step"), torque=model, name=name, attitude0=attitude0, damper=damper,
     )
     _validate(scenario)
     return scenario
+
+
+def _torque(table: dict):
+    """The model of a ``[torque]`` table: ``kind = "constant"`` (the default) or ``"gravity_gradient"``."""
+    if not table:
+        return None
+    kind = table.get("kind", "constant")
+    if not isinstance(kind, str) or kind not in _TORQUE_KINDS:
+        raise ValueError(f"torque: kind = {kind!r} is unknown; allowed: {', '.join(_TORQUE_KINDS)}")
+    bad = sorted(set(table) - _TORQUE_KINDS[kind])
+    if bad:
+        raise ValueError(f"torque: key {bad[0]!r} does not go with kind = {kind!r}; allowed: {', '.join(sorted(_TORQUE_KINDS[kind]))}")
+    if kind == "gravity_gradient":
+        return gravity_gradient_from_table(table)
+    if "vector" not in table:
+        raise ValueError("torque: missing key 'vector' (N m)")
+    try:
+        return ConstantTorque(table["vector"], table.get("frame", "body"))
+    except ValueError as exc:
+        raise ValueError(f"torque: {exc}") from None
+
+
+def _initial(table: dict, model, body: Body):
+    """``omega``, its frame and the initial attitude (or None) from the ``[initial]`` table."""
+    if "orbit_frame" not in table:
+        if "omega" not in table:
+            raise ValueError("initial: missing key 'omega' (rad/s), or an [initial.orbit_frame] table")
+        return table["omega"], table.get("frame", "principal"), None
+    if "omega" in table or "frame" in table:
+        raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
+    if not isinstance(model, GravityGradient):
+        raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
+    sub = table["orbit_frame"]
+    if not isinstance(sub, dict):
+        raise ValueError("initial.orbit_frame must be a table [initial.orbit_frame]")
+    start = lvlh_state_from_table(sub, model, body)
+    return tuple(start.omega0), "principal", start.attitude0
 
 
 def _body(spec, base_dir: Path | None) -> Body:
@@ -157,7 +213,8 @@ def _validate(s: Scenario, options=()) -> None:
     keys = {arg: _OPTIONS[arg] if arg in options else key for arg, key in _FILE_KEYS.items()}
     try:
         check_inputs(s.body, s.omega, t_end=s.t_end, samples=s.samples, dt=s.dt, times=s.times,
-                     method=s.method, frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step, torque=s.torque)
+                     method=s.method, frame=s.frame, rtol=s.rtol, atol=s.atol, step=s.step, torque=s.torque,
+                     attitude0=s.attitude0, damper=s.damper)
     except ValueError as exc:
         message = str(exc)
         for old, new in keys.items():
