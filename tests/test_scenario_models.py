@@ -69,3 +69,47 @@ def test_bad_model_tables_are_one_line_exit_2(tmp_path, capsys, text, pattern):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and re.search(pattern, err), err
     assert not (tmp_path / "out").exists()
+
+
+def test_summary_and_files_of_a_damped_run(tmp_path, capsys):
+    """The summary states the major-axis rule and the budget; the CSV and NPZ carry the damper."""
+    import json
+
+    path = scenario(tmp_path, "[initial]\nomega = [10.0, 0.3, 0.2]\n[simulation]\nt_end = 400.0\nsamples = 200\n"
+                    "[damper]\ninertia = 0.01\ndamping = 0.01\n")
+    out = tmp_path / "run"
+    assert main(["simulate", str(path), "--out", str(out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    s, d = summary["stability"], summary["damper"]
+    assert (s["theory"], s["predicted"], s["flip_period_exact"]) == ("energy sink", "unstable", None)
+    assert d["final_spin_rate"] == pytest.approx(d["flat_spin_rate"], rel=1e-6)
+    assert d["nutation_angle"][0] > 1.4 and d["nutation_angle"][1] < 1e-3  # still relaxing, exponentially
+    assert summary["drift"]["energy"] < 1e-9  # energy + dissipated, the budget
+    header = (out / "trajectory.csv").read_text().splitlines()[0].split(",")
+    assert header[-1] == "dissipated [J]"
+    table = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1)
+    np.testing.assert_allclose(table[:, 11] + table[:, 12], table[0, 11], rtol=1e-9)
+    npz = np.load(out / "trajectory.npz")
+    assert npz["damper_omega"].shape == (200, 3) and npz["nutation_angle"][-1] < 1e-3
+
+
+@pytest.mark.parametrize(("factor", "flips", "predicted"), [(0.0, True, "unstable"), (2.0, False, "stable")])
+def test_a_wheel_along_the_intermediate_axis_stops_the_flip(factor, flips, predicted):
+    """The gyrostat's linearised theory, stated in the summary, agrees with the run: a wheel with
+    h = 2 (I3 - I2) W along the intermediate axis stops the T-handle's flip."""
+    from tumble.analysis import trajectory_summary
+
+    rods = tumble.t_handle().parts
+    wheel = tumble.Rotor(mass=0.05, radius=0.1, length=0.01, axis=(1.0, 0.0, 0.0), center=(0.0, 0.0, 0.5), spin_rate=1.0)
+    body = tumble.Body([*rods, wheel])
+    I = body.principal_moments
+    W = 10.0
+    J = wheel.axial_moment
+    rate = factor * (I[2] - I[1]) * W / J
+    body = tumble.Body([*rods, tumble.Rotor(mass=0.05, radius=0.1, length=0.01, axis=(1.0, 0.0, 0.0),
+                                            center=(0.0, 0.0, 0.5), spin_rate=rate)])
+    traj = tumble.simulate(body, [0.1, W, 0.1], t_end=20.0, samples=2000)
+    s = trajectory_summary(traj)["stability"]
+    assert s["theory"] == "gyrostat"  # a wheel at rest is still a rotor of the body
+    assert s["predicted"] == predicted
+    assert (s["flips"] > 0) == flips

@@ -307,3 +307,31 @@ def test_flip_interval_where_one_minus_m_underflows(omega0):
     expected = 2.0 * np.log(4.0 / e.kp) / e.p
     assert float(flip_interval(omega0, I)) == pytest.approx(expected, rel=1e-15)
     assert float(flip_interval_asymptotic(omega0, I)) == pytest.approx(expected, rel=1e-15)
+
+
+@settings(max_examples=40)
+@given(
+    st.lists(st.floats(0.1, 10.0), min_size=3, max_size=3),
+    st.sampled_from([1, 2, 3]),
+    st.floats(-5.0, 5.0),
+    st.floats(-20.0, 20.0),
+)
+def test_the_gyrostat_exponent_is_the_linearisation_of_eulers_equations(moments, axis, spin, h):
+    """s with a rotor momentum h along the spin axis equals minus the product of the off-diagonal
+    terms of the Jacobian of I w' = -w x (I w + h e_a) at w = W e_a, taken by finite differences."""
+    I = np.sort(np.array(moments))
+    a = axis - 1
+    b, c = (a + 1) % 3, (a + 2) % 3
+    hv = np.zeros(3)
+    hv[a] = h
+    w0 = np.zeros(3)
+    w0[a] = spin
+
+    def rhs(w):
+        return -np.cross(w, I * w + hv) / I
+
+    eps = 1e-6
+    J = np.array([(rhs(w0 + eps * e) - rhs(w0 - eps * e)) / (2 * eps) for e in np.eye(3)]).T
+    expected = J[b, c] * J[c, b]  # eps_b'' = s eps_b
+    scale = (abs(spin) * I.max() + abs(h)) ** 2 / (I.min() ** 2)
+    assert float(perturbation_exponent(I, axis, spin, h)) == pytest.approx(expected, abs=1e-8 * scale)

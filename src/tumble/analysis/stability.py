@@ -110,8 +110,16 @@ def axis_of(omega) -> np.ndarray:
     return np.argmax(np.abs(check_vectors("omega", omega, "rad/s")), axis=-1) + 1
 
 
-def perturbation_exponent(moments, axis, spin) -> np.ndarray:
+def perturbation_exponent(moments, axis, spin, momentum=0.0) -> np.ndarray:
     """``s = W^2 (I_a - I_b)(I_c - I_a) / (I_b I_c)`` of the linearised equations (see module).
+
+    With a rotor's momentum ``h`` along the spin axis (a gyrostat, rotors locked into the
+    moments), ``s = ((I_a - I_b) W + h)((I_c - I_a) W - h) / (I_b I_c)`` for ``(a, b, c)`` in
+    cyclic order: Euler's equations ``I w' + w x (I w + h) = 0`` linearised about ``W e_a``
+    (Hughes, *Spacecraft Attitude Dynamics*, the gyrostat chapter; for the intermediate axis it
+    is ``((I3 - I2) W - h)((I2 - I1) W + h) / (I1 I3)``, the form of
+    :func:`tumble.dynamics.internal.gyrostat_rate`). A large enough ``h`` along the spin makes
+    any axis stable; one against it can make the minor or major axis unstable.
 
     Parameters
     ----------
@@ -121,6 +129,8 @@ def perturbation_exponent(moments, axis, spin) -> np.ndarray:
         Spin axis ``a``: 1 minor, 2 intermediate, 3 major.
     spin : array_like, shape (...)
         Spin rate W about that axis, rad/s.
+    momentum : array_like, shape (...), optional
+        Rotor momentum ``h`` along that axis (positive along the spin), kg m^2/s; default 0.
 
     Returns
     -------
@@ -137,16 +147,17 @@ def perturbation_exponent(moments, axis, spin) -> np.ndarray:
     I = _check_moments(moments)
     a = _axis_index(axis)
     W = check_vectors("spin", spin, "rad/s", size=None)
-    shape = _broadcast(moments=I.shape[:-1], axis=a.shape, spin=W.shape)
+    h = check_vectors("momentum", momentum, "kg m^2/s", size=None)
+    shape = _broadcast(moments=I.shape[:-1], axis=a.shape, spin=W.shape, momentum=h.shape)
     I = np.broadcast_to(I, shape + (3,))
     a = np.broadcast_to(a, shape)[..., None]
     Ia = np.take_along_axis(I, a, axis=-1)[..., 0]
     Ib = np.take_along_axis(I, (a + 1) % 3, axis=-1)[..., 0]
     Ic = np.take_along_axis(I, (a + 2) % 3, axis=-1)[..., 0]
-    return W**2 * (Ia - Ib) * (Ic - Ia) / (Ib * Ic)
+    return ((Ia - Ib) * W + h) * ((Ic - Ia) * W - h) / (Ib * Ic)
 
 
-def linearised_rate(moments, axis, spin) -> tuple[np.ndarray, np.ndarray]:
+def linearised_rate(moments, axis, spin, momentum=0.0) -> tuple[np.ndarray, np.ndarray]:
     """Growth exponent (1/s) and wobble angular frequency (rad/s) for spin about ``axis``.
 
     Exactly one of the two is non-zero for an asymmetric body: the growth exponent for the
@@ -160,6 +171,8 @@ def linearised_rate(moments, axis, spin) -> tuple[np.ndarray, np.ndarray]:
         Spin axis: 1 minor, 2 intermediate, 3 major.
     spin : array_like, shape (...)
         Spin rate about that axis, rad/s.
+    momentum : array_like, shape (...), optional
+        Rotor momentum along that axis, kg m^2/s (a gyrostat; :func:`perturbation_exponent`).
 
     Returns
     -------
@@ -179,7 +192,7 @@ def linearised_rate(moments, axis, spin) -> tuple[np.ndarray, np.ndarray]:
     >>> round(float(growth), 6), float(wobble)
     (1.341641, 0.0)
     """
-    s = perturbation_exponent(moments, axis, spin)
+    s = perturbation_exponent(moments, axis, spin, momentum)
     return np.sqrt(np.maximum(s, 0.0)), np.sqrt(np.maximum(-s, 0.0))
 
 

@@ -28,20 +28,24 @@ def stability_report(traj: Trajectory) -> dict:
     the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
     flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
     component flips; torque-free only), ``flip_period_asymptotic`` (its small-perturbation
-    logarithmic form).
+    logarithmic form), ``theory`` (what the prediction rests on: ``"rigid body"``,
+    ``"gyrostat"`` for rotors whose momentum lies along the spin axis, ``"energy sink"`` with a
+    damper (the major-axis rule: only spin about the major axis is stable), or None when no
+    theory applies, e.g. rotor momentum across the spin axis; then ``predicted`` is None).
+    Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
     """
     w0 = traj.omega[0]
     if not np.any(w0):
         return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
                 "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None,
-                "flip_period_asymptotic": None}
+                "flip_period_asymptotic": None, "theory": None}
     a = int(axis_of(w0))  # 1, 2 or 3
     I = traj.moments
-    growth, wobble = (float(x) for x in linearised_rate(I, a, w0[a - 1]))
+    theory, predicted, growth, wobble = _prediction(traj, a)
     distinct = moment_degeneracy(I) == "asymmetric"
     times = flip_times(traj.t, traj.omega[:, a - 1])
     exact = asymptotic = None
-    if traj.torque_free and distinct:
+    if traj.torque_free and traj.rigid and distinct:
         # the component about which omega circulates never changes sign; the other two flip
         value = float(flip_interval(w0, I))
         if a != int(circulation_axis(w0, I)) and np.isfinite(value):
@@ -50,14 +54,31 @@ def stability_report(traj: Trajectory) -> dict:
     return {
         "axis": a,
         "role": AXIS_ROLES[a - 1],
-        "predicted": "unstable" if growth > 0 else "stable",
+        "predicted": predicted,
         "growth_rate": growth if growth > 0 else None,
         "wobble_frequency": wobble if wobble > 0 else None,
         "flips": len(times),
         "flip_period": float(np.mean(np.diff(times))) if len(times) >= 2 else None,
         "flip_period_exact": exact,
         "flip_period_asymptotic": asymptotic,
+        "theory": theory,
     }
+
+
+def _prediction(traj: Trajectory, a: int) -> tuple[str | None, str | None, float, float]:
+    """``(theory, predicted, growth, wobble)`` for spin about axis ``a`` (1-based)."""
+    W = traj.omega[0, a - 1]
+    if traj.damper_omega is not None:  # energy sink: the major-axis rule (Likins 1966)
+        return "energy sink", "stable" if a == 3 else "unstable", 0.0, 0.0
+    h = 0.0
+    if traj.internal_momentum is not None:
+        h0 = traj.internal_momentum[0]
+        across = np.delete(h0, a - 1)
+        if np.max(np.abs(across)) > 1e-12 * max(float(np.linalg.norm(h0)), 1e-300):
+            return None, None, 0.0, 0.0  # rotor momentum across the spin: no steady spin to perturb
+        h = float(h0[a - 1])
+    growth, wobble = (float(x) for x in linearised_rate(traj.moments, a, W, h))
+    return ("rigid body" if traj.rigid else "gyrostat"), ("unstable" if growth > 0 else "stable"), growth, wobble
 
 
 def trajectory_summary(traj: Trajectory) -> dict:
@@ -68,7 +89,11 @@ def trajectory_summary(traj: Trajectory) -> dict:
     its *columns* are the axes of I1, I2, I3 in the design frame, so
     ``np.array(summary["principal_axes"]) == traj.principal_axes``), ``method``, ``t_end`` (s),
     ``samples``, ``omega0`` (rad/s, principal frame), ``torque_free``, ``energy`` (J),
-    ``L_norm`` (kg m^2/s), ``drift`` (relative) and ``stability`` (:func:`stability_report`).
+    ``L_norm`` (kg m^2/s), ``drift`` (relative) and ``stability`` (:func:`stability_report`);
+    with rotors ``rotors`` (``internal_momentum0``, kg m^2/s, principal frame; ``motor_work``, J),
+    with a damper ``damper`` (``inertia``, ``dissipated`` J, ``nutation_angle`` [start, end] rad,
+    ``flat_spin_rate`` ``|L| / (I3 + J)`` the major-axis rule predicts and ``final_spin_rate``,
+    rad/s). Energy, L and drift are totals over body, rotors and damper.
     """
     return {
         "body": traj.body_name,
@@ -83,4 +108,26 @@ def trajectory_summary(traj: Trajectory) -> dict:
         "L_norm": float(traj.angular_momentum_norm[0]),
         "drift": traj.drift,
         "stability": stability_report(traj),
+        **_budgets(traj),
     }
+
+
+def _budgets(traj: Trajectory) -> dict:
+    """The internal models' part of the summary: what the motors did and the damper spent."""
+    out = {}
+    if traj.internal_momentum is not None:
+        out["rotors"] = {
+            "internal_momentum0": traj.internal_momentum[0].tolist(),
+            "motor_work": None if traj.motor_work is None else float(traj.motor_work[-1]),
+        }
+    if traj.damper_omega is not None:
+        L = float(traj.angular_momentum_norm[0])
+        out["damper"] = {
+            "inertia": traj.damper_inertia,
+            "dissipated": float(traj.dissipated[-1]),
+            "nutation_angle": [float(traj.nutation_angle[0]), float(traj.nutation_angle[-1])],
+            # the major-axis rule's end state: a flat spin about axis 3 with the sphere locked
+            "flat_spin_rate": L / (traj.moments[2] + traj.damper_inertia),
+            "final_spin_rate": float(np.linalg.norm(traj.omega[-1])),
+        }
+    return out

@@ -89,6 +89,11 @@ class Trajectory:
             if value is not None:
                 object.__setattr__(self, name, _array(value))
 
+    @property
+    def rigid(self) -> bool:
+        """Whether this is one rigid body: no rotors and no damper."""
+        return self.internal_momentum is None and self.damper_omega is None
+
     def __len__(self) -> int:
         return len(self.t)
 

@@ -25,11 +25,18 @@ CSV_COLUMNS = (
 )
 
 
+#: Columns added after :data:`CSV_COLUMNS` when the run has them: the damper's dissipated energy
+#: and the rotors' motor work since t = 0 (``energy`` is then the total kinetic energy).
+CSV_BUDGET_COLUMNS = {"dissipated": "dissipated [J]", "motor_work": "motor_work [J]"}
+
+
 def trajectory_csv(traj: Trajectory) -> str:
     """The CSV text of a trajectory (header + one row per sample, full double precision)."""
-    table = np.column_stack([traj.t, traj.omega, traj.quat, traj.angular_momentum_world, traj.energy])
+    extra = {k: getattr(traj, k) for k in CSV_BUDGET_COLUMNS if getattr(traj, k) is not None}
+    table = np.column_stack([traj.t, traj.omega, traj.quat, traj.angular_momentum_world, traj.energy, *extra.values()])
+    header = [*CSV_COLUMNS, *(CSV_BUDGET_COLUMNS[k] for k in extra)]
     buf = io.StringIO()
-    np.savetxt(buf, table, delimiter=",", header=",".join(CSV_COLUMNS), comments="", fmt="%.17g")
+    np.savetxt(buf, table, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
     return buf.getvalue()
 
 
@@ -44,10 +51,18 @@ def write_npz(traj: Trajectory, path, provenance: dict | None = None) -> None:
     Arrays: ``t`` (s), ``omega``, ``omega_world`` (rad/s), ``quat`` (body to world, scalar
     last), ``L``, ``L_world`` (kg m^2/s), ``energy`` (J), ``moments`` (kg m^2),
     ``principal_axes`` (principal -> design; columns are the axes), ``method``, and
-    ``provenance`` (a JSON string, :func:`tumble.io.provenance.provenance`) when given.
+    ``provenance`` (a JSON string, :func:`tumble.io.provenance.provenance`) when given; with
+    rotors ``internal_momentum`` (kg m^2/s, principal frame), ``rotor_spin`` (rad/s),
+    ``motor_work`` (J); with a damper ``damper_omega`` (rad/s), ``dissipated`` (J) and
+    ``nutation_angle`` (rad).
     """
     buf = io.BytesIO()
     extra = {} if provenance is None else {"provenance": np.array(json.dumps(provenance))}
+    for name in ("internal_momentum", "rotor_spin", "motor_work", "damper_omega", "dissipated"):
+        if getattr(traj, name) is not None:
+            extra[name] = getattr(traj, name)
+    if traj.damper_omega is not None:
+        extra["nutation_angle"] = traj.nutation_angle
     np.savez_compressed(
         buf, t=traj.t, omega=traj.omega, omega_world=traj.omega_world, quat=traj.quat,
         L=traj.angular_momentum, L_world=traj.angular_momentum_world, energy=traj.energy,

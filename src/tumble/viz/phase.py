@@ -36,6 +36,8 @@ def phase_portrait_problem(traj: Trajectory) -> str | None:
     """
     if not traj.torque_free:
         return "a torque acts, so L and the energy change: they picture torque-free motion only"
+    if not traj.rigid:
+        return "rotors or a damper move inside the body: they picture a single rigid body only"
     if not traj.angular_momentum_norm[0] > 0:
         return "the body is at rest (L = 0): there is no motion to picture"
     return None
