@@ -113,3 +113,17 @@ def test_a_wheel_along_the_intermediate_axis_stops_the_flip(factor, flips, predi
     assert s["theory"] == "gyrostat"  # a wheel at rest is still a rotor of the body
     assert s["predicted"] == predicted
     assert (s["flips"] > 0) == flips
+
+
+def test_a_gravity_gradient_run_reports_its_jacobi_integral(tmp_path, capsys):
+    import json
+
+    path = scenario(tmp_path, GG + "[initial.orbit_frame]\npitch = 0.05\n[simulation]\nt_end = 54000.0\n"
+                    "samples = 400\nmethod = \"dop853\"\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run"), "--json"]) == 0
+    g = json.loads(capsys.readouterr().out)["gravity_gradient"]
+    assert g["orbits"] == 10.0 and g["jacobi_drift"] < 1e-10
+    assert g["max_angle"]["pitch"] == pytest.approx(0.05, rel=1e-9)  # a libration's amplitude is its start
+    assert g["max_angle"]["roll"] < 1e-9 and g["max_angle"]["yaw"] < 1e-9
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
+    assert "10 orbits, Jacobi integral drift" in capsys.readouterr().out

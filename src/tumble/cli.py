@@ -96,6 +96,10 @@ def _cmd_simulate(args) -> int:
     from .viz import figure_omega
 
     summary = trajectory_summary(traj)
+    if hasattr(scenario.torque, "jacobi_integral"):  # the gravity gradient: its own error measure
+        from .analysis.summary import gravity_gradient_summary
+
+        summary["gravity_gradient"] = gravity_gradient_summary(traj, scenario.torque)
     summary["scenario"] = str(args.source)
     summary["provenance"] = provenance(args.argv, scenario.sources)
     with output_dir(out, SIMULATE_WRITES) as stage:
@@ -169,7 +173,11 @@ def _simulate_line(summary: dict, out) -> str:
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
     spin = "started at rest" if s["axis"] is None else (
         f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flips")
-    if summary["torque_free"]:
+    if "gravity_gradient" in summary:
+        g = summary["gravity_gradient"]
+        tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
+                f"orbiting frame {max(g['max_angle'].values()):.3g} rad")
+    elif summary["torque_free"]:
         drift = ", ".join(f"{k} {'-' if v is None else format(v, '.1e')}" for k, v in d.items())
         tail = f"relative drift: {drift}"
     else:

@@ -15,7 +15,7 @@ from .stability import (
     linearised_rate,
 )
 
-__all__ = ["stability_report", "trajectory_summary"]
+__all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
 
 
 def stability_report(traj: Trajectory) -> dict:
@@ -131,3 +131,27 @@ def _budgets(traj: Trajectory) -> dict:
             "final_spin_rate": float(np.linalg.norm(traj.omega[-1])),
         }
     return out
+
+
+def gravity_gradient_summary(traj: Trajectory, gg, *, pitch_axis=3, yaw_axis=1) -> dict:
+    """What a run under the gravity gradient did, relative to the orbiting frame.
+
+    Energy and L are not conserved under this torque; the orbiting-frame energy (the Jacobi
+    integral, :meth:`tumble.GravityGradient.jacobi_integral`) is, and its relative drift is the
+    run's error measure. Keys: ``orbit_period`` (s), ``orbits`` (run length in orbits),
+    ``jacobi_drift`` (max |h - h0| over ``n^2 (I1 + I2 + I3)``, the scale of the potential),
+    ``max_angle`` (rad: the largest |roll|, |pitch|, |yaw| from the orbiting frame, with
+    ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`).
+    """
+    from ..dynamics.gravity import orbit_frame_angles
+
+    gg = gg.bind(traj.moments)
+    h = gg.jacobi_integral(traj.t, traj.omega, traj.attitude)
+    scale = gg.mean_motion**2 * float(np.sum(traj.moments))
+    angles = orbit_frame_angles(traj, gg, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
+    return {
+        "orbit_period": gg.period,
+        "orbits": float(traj.t[-1] / gg.period),
+        "jacobi_drift": float(np.max(np.abs(h - h[0])) / scale),
+        "max_angle": {name: float(np.max(np.abs(getattr(angles, name)))) for name in ("roll", "pitch", "yaw")},
+    }
