@@ -8,6 +8,14 @@ from .gravity import figure_gravity_stability
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
+from .spacecraft import (
+    figure_energy,
+    figure_nutation,
+    figure_omega_panels,
+    figure_orbit_angles,
+    major_axis_angle,
+    spacecraft_figures,
+)
 
 __all__ = [
     "PHASE_PORTRAITS",
@@ -16,14 +24,20 @@ __all__ = [
     "body_lines",
     "body_size",
     "figure_drift",
+    "figure_energy",
     "figure_gravity_stability",
     "figure_herpolhode",
+    "figure_nutation",
     "figure_omega",
     "figure_omega_grid",
+    "figure_omega_panels",
+    "figure_orbit_angles",
     "figure_polhode",
+    "major_axis_angle",
     "part_lines",
     "phase_portrait_problem",
     "plot_omega",
     "polhode_family",
     "separatrices",
+    "spacecraft_figures",
 ]

@@ -1,0 +1,278 @@
+"""Figures of the spacecraft models: energy budget, nutation angle, attitude in the orbiting frame.
+
+- :func:`figure_energy`: the total kinetic energy of body, rotors and damper against t, with its
+  budget ``E0 + motor work - dissipated`` (:mod:`tumble.dynamics.internal`), J.
+- :func:`figure_nutation`: the angle between the total angular momentum L and the major axis,
+  which an energy sink drives to 0 (the major-axis rule; Likins, JPL TR 32-860, 1966).
+- :func:`figure_orbit_angles`: roll, pitch and yaw relative to the orbiting (LVLH) frame of a
+  gravity-gradient run (:func:`tumble.dynamics.gravity.orbit_frame_angles`), rad, against t in
+  orbits.
+- :func:`figure_omega_panels`: omega(t) of several runs in panels one above the other (a run
+  with and without a wheel).
+- :func:`spacecraft_figures`: which of these apply to a run, for the command line.
+
+:func:`figure_energy`, :func:`figure_nutation` and :func:`figure_orbit_angles` take the
+trajectory, an optional ``path`` (written, then the figure is closed) and an optional matplotlib
+``ax`` (drawn there instead of on a new figure) and return the Figure. matplotlib is imported on first use, on the Agg backend; legends sit outside the axes,
+so they never cover the data.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from ..dynamics import Trajectory
+from ..dynamics.gravity import GravityGradient, orbit_frame_angles
+from ..mass import AXIS_ROLES, INERTIA_RTOL
+from ._backend import pyplot, save_figure
+
+__all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", "major_axis_angle",
+           "spacecraft_figures"]
+
+COLORS = ("tab:blue", "tab:orange", "tab:green")
+
+
+def _axes(ax, figsize=(7.5, 3.6)):
+    """``(figure, ax)``: a new constrained-layout figure unless ``ax`` is given."""
+    if ax is not None:
+        return ax.figure, ax
+    fig, ax = pyplot().subplots(figsize=figsize, layout="constrained")
+    return fig, ax
+
+
+def _legend(ax) -> None:
+    """The legend to the right of the axes, outside them: never over the data."""
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, framealpha=0.9)
+
+
+def _finish(fig, ax, path):
+    """Place the legend and write the figure to ``path`` if given."""
+    _legend(ax)
+    if path is not None:
+        save_figure(fig, path, dpi=100)
+    return fig
+
+
+def _has_internal_models(traj: Trajectory) -> bool:
+    return traj.dissipated is not None or traj.internal_momentum is not None
+
+
+#: |L| counts as 0 (no direction, no nutation angle) below this fraction of the momenta that
+#: make it up, ``max |I w| + max |h| + J max |w_d|``: the round-off of their sum.
+ZERO_MOMENTUM_RTOL = 1e-12
+
+
+def _momentum_is_zero(traj: Trajectory) -> np.ndarray:
+    """Per sample: whether the total L is 0 to round-off (see :data:`ZERO_MOMENTUM_RTOL`)."""
+    scale = float(np.max(np.linalg.norm(traj.moments * traj.omega, axis=1)))
+    if traj.internal_momentum is not None:
+        scale += float(np.max(np.linalg.norm(traj.internal_momentum, axis=1)))
+    if traj.damper_omega is not None:
+        scale += traj.damper_inertia * float(np.max(np.linalg.norm(traj.damper_omega, axis=1)))
+    return traj.angular_momentum_norm <= ZERO_MOMENTUM_RTOL * scale
+
+
+def major_axis_angle(traj: Trajectory) -> np.ndarray:
+    """Angle between the total L and the nearest major axis, rad, in [0, pi/2]; shape (n,).
+
+    The major axes are the eigenspace of the largest moment: for ``I2 < I3`` the line of axis 3
+    (then this is :attr:`Trajectory.nutation_angle`, ``arctan(hypot(L1, L2) / |L3|)``); for a
+    prolate symmetric body, ``I1 < I2 = I3`` (moments equal within ``INERTIA_RTOL`` of their sum,
+    tumble's rule), every axis normal to axis 1 is a major axis and the angle is that between L
+    and their plane, ``arctan(|L1| / hypot(L2, L3))``; for a sphere it is 0. NaN where L is 0 to
+    round-off (a slew from rest: ``I w + h`` cancels to ~1e-17).
+    """
+    I = np.asarray(traj.moments, float)
+    L = traj.angular_momentum
+    tol = INERTIA_RTOL * float(np.sum(I))
+    if I[2] - I[0] <= tol:  # spherical: every axis is a major axis
+        angle = np.zeros(len(L))
+    elif I[2] - I[1] <= tol:  # prolate symmetric: the major axes fill the plane normal to axis 1
+        angle = np.arctan2(np.abs(L[:, 0]), np.hypot(L[:, 1], L[:, 2]))
+    else:
+        angle = traj.nutation_angle
+    return np.where(_momentum_is_zero(traj), np.nan, angle)
+
+
+def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
+    """Total kinetic energy and its budget against t, J.
+
+    Draws ``traj.energy`` (body, rotors and damper) and, where the run has rotors or a damper,
+    the budget ``E0 + W - D`` (``W`` the motors' work, when known; ``D`` the energy the damper
+    dissipated): the two coincide, to the integrator's error, when the books balance. The title
+    gives the largest difference relative to ``E0``.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    path : str or Path, optional
+        Where to write the figure (PNG, SVG, ... by its suffix); the figure is closed after.
+    ax : matplotlib Axes, optional
+        Draw on these axes instead of a new figure.
+    log : bool
+        A logarithmic energy axis (for a run whose energy falls by orders of magnitude).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    fig, ax = _axes(ax)
+    E = traj.energy
+    ax.plot(traj.t, E, color=COLORS[0], lw=1.4, label="kinetic energy T (J)")
+    budget, terms = np.full_like(E, E[0]), []
+    if traj.motor_work is not None:
+        budget, terms = budget + traj.motor_work, terms + ["+ motor work"]
+    if traj.dissipated is not None:
+        budget, terms = budget - traj.dissipated, terms + ["- dissipated"]
+    title = f"{traj.body_name}: energy, {traj.method}"
+    if terms:
+        ax.plot(traj.t, budget, color=COLORS[1], lw=1.2, ls="--", label=r"$E_0$ " + " ".join(terms) + " (J)")
+        scale = max(abs(float(E[0])), float(np.max(np.abs(E))))
+        if scale > 0:
+            title += f"; budget closes to {np.max(np.abs(E - budget)) / scale:.1e} of max T"
+    if log:
+        ax.set_yscale("log")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("energy (J)")
+    ax.set_xlim(traj.t[0], traj.t[-1])
+    ax.set_title(title, fontsize=9)
+    return _finish(fig, ax, path)
+
+
+def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = True, log: bool = False):
+    """The nutation angle between L and the major axis against t (:func:`major_axis_angle`).
+
+    0 is a rigid spin about the major axis, the end state an energy sink drives any spin to.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    path, ax
+        As for :func:`figure_energy`.
+    degrees : bool
+        Degrees (default) or radians.
+    log : bool
+        A logarithmic angle axis (zeros are not drawn).
+
+    Raises
+    ------
+    ValueError
+        When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest): there
+        is no angle.
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    angle = major_axis_angle(traj)
+    if not np.any(np.isfinite(angle)):
+        raise ValueError("no nutation angle for this run: its angular momentum L is 0 at every sample")
+    fig, ax = _axes(ax)
+    unit = "deg" if degrees else "rad"
+    values = np.degrees(angle) if degrees else angle
+    if log:
+        values = np.where(values > 0, values, np.nan)
+        ax.set_yscale("log")
+    ax.plot(traj.t, values, color=COLORS[2], lw=1.4, label=f"angle between L and the major axis ({unit})")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel(f"nutation angle ({unit})")
+    ax.set_xlim(traj.t[0], traj.t[-1])
+    ax.set_title(f"{traj.body_name}: nutation, {traj.method}", fontsize=9)
+    return _finish(fig, ax, path)
+
+
+def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, path=None, ax=None, **axes):
+    """Roll, pitch and yaw relative to the orbiting (LVLH) frame against t in orbits, rad.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        A run under ``gravity`` (its ``t``, s, and ``attitude``).
+    gravity : GravityGradient
+        The orbit the run followed (bound to the body or not: only the orbit is used).
+    path, ax
+        As for :func:`figure_energy`.
+    **axes
+        ``pitch_axis``, ``yaw_axis`` as in :func:`tumble.dynamics.gravity.orbit_frame_angles`
+        (default 3 and 1).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    angles = orbit_frame_angles(traj, gravity, **axes)
+    fig, ax = _axes(ax)
+    orbits = traj.t / gravity.period
+    for name, symbol, values, color in zip(("roll", "pitch", "yaw"), (r"\phi", r"\theta", r"\psi"), angles, COLORS):
+        ax.plot(orbits, values, color=color, lw=1.2, label=rf"{name} ${symbol}$ (rad)")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel(f"t (orbits of {gravity.period:.6g} s)")
+    ax.set_ylabel("angle from the orbiting frame (rad)")
+    ax.set_xlim(orbits[0], orbits[-1])
+    ax.set_title(f"{traj.body_name}: attitude in the orbiting frame, {traj.method}", fontsize=9)
+    return _finish(fig, ax, path)
+
+
+def figure_omega_panels(cases, path=None, *, sharey: bool = True):
+    """omega(t) of several runs, principal frame, rad/s: one panel per run, one above the other.
+
+    Parameters
+    ----------
+    cases : list of (str, Trajectory)
+        Panel titles and runs (e.g. a body with its wheel spinning and with it stopped).
+    path : str or Path, optional
+        Where to write the figure; the figure is closed after.
+    sharey : bool
+        One omega scale for every panel (default), so the runs compare at a glance.
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    if not cases:
+        raise ValueError("cases is empty: give at least one (title, trajectory) pair")
+    plt = pyplot()
+    fig, axes = plt.subplots(len(cases), 1, figsize=(7.5, 2.6 * len(cases)), layout="constrained", squeeze=False,
+                             sharey=sharey)
+    for ax, (title, traj) in zip(axes[:, 0], cases):
+        for j in range(3):
+            ax.plot(traj.t, traj.omega[:, j], color=COLORS[j], lw=1.1,
+                    label=rf"$\omega_{j + 1}$, {AXIS_ROLES[j]} axis (rad/s)")
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_xlim(traj.t[0], traj.t[-1])
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(r"$\omega$ (rad/s)")
+        ax.set_title(title, fontsize=9)
+        _legend(ax)
+    if path is not None:
+        save_figure(fig, path, dpi=100)
+    return fig
+
+
+def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str, object]]:
+    """The spacecraft figures that apply to a run, in drawing order: ``[(name, maker), ...]``.
+
+    ``name`` is a file stem (``"energy"``, ``"nutation"``, ``"orbit_angles"``); ``maker(path=None,
+    ax=None)`` draws that figure of this run and returns the Figure (written to ``path`` and closed
+    when a path is given), i.e. the figure function with the run bound.
+
+    - ``"energy"`` (:func:`figure_energy`): the run has a damper (``traj.dissipated`` is not None)
+      or rotors (``traj.internal_momentum`` is not None);
+    - ``"nutation"`` (:func:`figure_nutation`): the same, and L is not 0 (to round-off,
+      :data:`ZERO_MOMENTUM_RTOL`) at every sample: a slew from rest has no nutation;
+    - ``"orbit_angles"`` (:func:`figure_orbit_angles`): ``torque`` is a
+      :class:`~tumble.dynamics.gravity.GravityGradient`; ``axes`` (``pitch_axis``, ``yaw_axis``)
+      go to it.
+
+    An empty list for a rigid body under no torque or a constant one.
+    """
+    makers: list[tuple[str, object]] = []
+    if _has_internal_models(traj):
+        makers.append(("energy", functools.partial(figure_energy, traj)))
+        if not np.all(_momentum_is_zero(traj)):
+            makers.append(("nutation", functools.partial(figure_nutation, traj)))
+    if isinstance(torque, GravityGradient):
+        makers.append(("orbit_angles", functools.partial(figure_orbit_angles, traj, torque, **axes)))
+    return makers
