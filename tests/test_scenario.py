@@ -13,7 +13,7 @@ import pytest
 
 import tumble
 from tumble.cli import main
-from tumble.io.export import CSV_COLUMNS
+from tumble.io.export import CSV_BUDGET_COLUMNS, CSV_COLUMNS
 from tumble.io.scenario import load_scenario
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -36,7 +36,8 @@ def test_every_example_scenario_runs(path, tmp_path, capsys):
     assert set(summary["stability"]) >= {"axis", "predicted", "flips", "flip_period"}
     with open(out / "trajectory.csv") as fh:
         rows = list(csv.reader(fh))
-    assert tuple(rows[0]) == CSV_COLUMNS
+    assert tuple(rows[0][: len(CSV_COLUMNS)]) == CSV_COLUMNS
+    assert set(rows[0][len(CSV_COLUMNS):]) <= set(CSV_BUDGET_COLUMNS.values())  # damper, rotors
     assert len(rows) - 1 == summary["samples"]
     data = np.load(out / "trajectory.npz")
     np.testing.assert_allclose(data["omega"][:, 0], [float(r[1]) for r in rows[1:]], rtol=1e-15)

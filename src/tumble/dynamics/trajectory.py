@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..mass import INERTIA_RTOL
 from .euler import angular_momentum, kinetic_energy
 
 __all__ = ["Trajectory"]
@@ -20,6 +21,10 @@ __all__ = ["Trajectory"]
 
 _OPTIONAL_ARRAYS = ("internal_momentum", "rotor_spin", "rotor_axial_moments", "motor_work", "damper_omega",
                     "dissipated")
+
+
+#: Relative size under which a total angular momentum counts as zero (round-off of a sum).
+ZERO_MOMENTUM_RTOL = 1e-12
 
 
 def _array(a) -> np.ndarray:
@@ -120,13 +125,38 @@ class Trajectory:
         return _array(self.attitude.apply(self.angular_momentum))
 
     @functools.cached_property
+    def momentum_is_zero(self) -> np.ndarray:
+        """Per sample: whether the total L is 0 to round-off, at most ``ZERO_MOMENTUM_RTOL`` of
+        the momenta it is the sum of (a wheel spun up from rest: ``I w + h`` cancels to ~1e-17);
+        shape (n,)."""
+        scale = float(np.max(np.linalg.norm(self.moments * self.omega, axis=1)))
+        if self.internal_momentum is not None:
+            scale += float(np.max(np.linalg.norm(self.internal_momentum, axis=1)))
+        if self.damper_omega is not None:
+            scale += self.damper_inertia * float(np.max(np.linalg.norm(self.damper_omega, axis=1)))
+        return self.angular_momentum_norm <= ZERO_MOMENTUM_RTOL * scale
+
+    @functools.cached_property
     def nutation_angle(self) -> np.ndarray:
-        """Angle between the major axis (axis 3, as a line) and the total L, rad, in
-        [0, pi/2]; shape (n,). 0 for a flat spin about the major axis (either way round), what
-        a damper drives towards; NaN where L = 0."""
-        L = self.angular_momentum
-        angle = np.arctan2(np.hypot(L[:, 0], L[:, 1]), np.abs(L[:, 2]))
-        return _array(np.where(np.any(L != 0, axis=1), angle, np.nan))
+        """Angle between the total L and the nearest major axis, rad, in [0, pi/2]; shape (n,).
+
+        0 for a flat spin about a major axis (either way round), what a damper drives towards.
+        The major axes are the eigenspace of the largest moment: for ``I2 < I3`` the line of axis
+        3, ``arctan(hypot(L1, L2) / |L3|)``; for a prolate symmetric body (``I2 = I3``, equal
+        within :data:`tumble.mass.INERTIA_RTOL` of the trace, the principal frame's rule; Explorer
+        1) every axis normal to axis 1 is a major axis and the angle is that between L and their
+        plane, ``arctan(|L1| / hypot(L2, L3))``; for a sphere 0. NaN where L is 0 to round-off
+        (:attr:`momentum_is_zero`).
+        """
+        I, L = self.moments, self.angular_momentum
+        tol = INERTIA_RTOL * float(np.sum(I))
+        if I[2] - I[0] <= tol:  # spherical: every axis is a major axis
+            angle = np.zeros(len(L))
+        elif I[2] - I[1] <= tol:  # prolate symmetric: the major axes fill the plane normal to axis 1
+            angle = np.arctan2(np.abs(L[:, 0]), np.hypot(L[:, 1], L[:, 2]))
+        else:
+            angle = np.arctan2(np.hypot(L[:, 0], L[:, 1]), np.abs(L[:, 2]))
+        return _array(np.where(self.momentum_is_zero, np.nan, angle))
 
     @functools.cached_property
     def omega_world(self) -> np.ndarray:

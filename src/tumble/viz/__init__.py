@@ -13,7 +13,6 @@ from .spacecraft import (
     figure_nutation,
     figure_omega_panels,
     figure_orbit_angles,
-    major_axis_angle,
     spacecraft_figures,
 )
 
@@ -33,7 +32,6 @@ __all__ = [
     "figure_omega_panels",
     "figure_orbit_angles",
     "figure_polhode",
-    "major_axis_angle",
     "part_lines",
     "phase_portrait_problem",
     "plot_omega",

@@ -25,10 +25,10 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..dynamics.gravity import GravityGradient, orbit_frame_angles
-from ..mass import AXIS_ROLES, INERTIA_RTOL
+from ..mass import AXIS_ROLES
 from ._backend import pyplot, save_figure
 
-__all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", "major_axis_angle",
+__all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", 
            "spacecraft_figures"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
@@ -57,43 +57,6 @@ def _finish(fig, ax, path):
 
 def _has_internal_models(traj: Trajectory) -> bool:
     return traj.dissipated is not None or traj.internal_momentum is not None
-
-
-#: |L| counts as 0 (no direction, no nutation angle) below this fraction of the momenta that
-#: make it up, ``max |I w| + max |h| + J max |w_d|``: the round-off of their sum.
-ZERO_MOMENTUM_RTOL = 1e-12
-
-
-def _momentum_is_zero(traj: Trajectory) -> np.ndarray:
-    """Per sample: whether the total L is 0 to round-off (see :data:`ZERO_MOMENTUM_RTOL`)."""
-    scale = float(np.max(np.linalg.norm(traj.moments * traj.omega, axis=1)))
-    if traj.internal_momentum is not None:
-        scale += float(np.max(np.linalg.norm(traj.internal_momentum, axis=1)))
-    if traj.damper_omega is not None:
-        scale += traj.damper_inertia * float(np.max(np.linalg.norm(traj.damper_omega, axis=1)))
-    return traj.angular_momentum_norm <= ZERO_MOMENTUM_RTOL * scale
-
-
-def major_axis_angle(traj: Trajectory) -> np.ndarray:
-    """Angle between the total L and the nearest major axis, rad, in [0, pi/2]; shape (n,).
-
-    The major axes are the eigenspace of the largest moment: for ``I2 < I3`` the line of axis 3
-    (then this is :attr:`Trajectory.nutation_angle`, ``arctan(hypot(L1, L2) / |L3|)``); for a
-    prolate symmetric body, ``I1 < I2 = I3`` (moments equal within ``INERTIA_RTOL`` of their sum,
-    tumble's rule), every axis normal to axis 1 is a major axis and the angle is that between L
-    and their plane, ``arctan(|L1| / hypot(L2, L3))``; for a sphere it is 0. NaN where L is 0 to
-    round-off (a slew from rest: ``I w + h`` cancels to ~1e-17).
-    """
-    I = np.asarray(traj.moments, float)
-    L = traj.angular_momentum
-    tol = INERTIA_RTOL * float(np.sum(I))
-    if I[2] - I[0] <= tol:  # spherical: every axis is a major axis
-        angle = np.zeros(len(L))
-    elif I[2] - I[1] <= tol:  # prolate symmetric: the major axes fill the plane normal to axis 1
-        angle = np.arctan2(np.abs(L[:, 0]), np.hypot(L[:, 1], L[:, 2]))
-    else:
-        angle = traj.nutation_angle
-    return np.where(_momentum_is_zero(traj), np.nan, angle)
 
 
 def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
@@ -142,7 +105,7 @@ def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
 
 
 def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = True, log: bool = False):
-    """The nutation angle between L and the major axis against t (:func:`major_axis_angle`).
+    """The nutation angle between L and the major axis against t (:attr:`Trajectory.nutation_angle`).
 
     0 is a rigid spin about the major axis, the end state an energy sink drives any spin to.
 
@@ -166,7 +129,7 @@ def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = Tru
     -------
     matplotlib Figure
     """
-    angle = major_axis_angle(traj)
+    angle = traj.nutation_angle
     if not np.any(np.isfinite(angle)):
         raise ValueError("no nutation angle for this run: its angular momentum L is 0 at every sample")
     fig, ax = _axes(ax)
@@ -271,7 +234,7 @@ def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str,
     makers: list[tuple[str, object]] = []
     if _has_internal_models(traj):
         makers.append(("energy", functools.partial(figure_energy, traj)))
-        if not np.all(_momentum_is_zero(traj)):
+        if not np.all(traj.momentum_is_zero):
             makers.append(("nutation", functools.partial(figure_nutation, traj)))
     if isinstance(torque, GravityGradient):
         makers.append(("orbit_angles", functools.partial(figure_orbit_angles, traj, torque, **axes)))
