@@ -127,3 +127,19 @@ def test_a_gravity_gradient_run_reports_its_jacobi_integral(tmp_path, capsys):
     assert g["max_angle"]["roll"] < 1e-9 and g["max_angle"]["yaw"] < 1e-9
     assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
     assert "10 orbits, Jacobi integral drift" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("example", "figures"),
+    [("explorer1", {"omega", "drift", "energy", "nutation"}), ("gravity_boom", {"omega", "drift", "orbit_angles"}),
+     ("seed_flip", {"omega", "polhode", "herpolhode", "drift"})],
+)
+def test_plot_draws_the_figures_that_apply_to_the_run(tmp_path, capsys, example, figures):
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / f"{example}.toml"
+    out = tmp_path / "fig"
+    assert main(["plot", str(path), "--out", str(out), "--format", "png", "--t-end", "60"
+                 if example != "gravity_boom" else "10800"]) == 0
+    assert {p.stem for p in out.iterdir()} == figures
+    assert all(p.stat().st_size > 5_000 for p in out.iterdir())

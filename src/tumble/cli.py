@@ -114,8 +114,10 @@ def _cmd_simulate(args) -> int:
     return EXIT_OK
 
 
-#: The figures of `tumble plot`, in the order they are drawn.
+#: The figures of `tumble plot`, in the order they are drawn; the spacecraft figures
+#: (`tumble.viz.spacecraft_figures`) follow where they apply.
 PLOTS = ("omega", "polhode", "herpolhode", "drift")
+SPACECRAFT_PLOTS = ("energy", "nutation", "orbit_angles")
 
 
 def _cmd_plot(args) -> int:
@@ -138,11 +140,16 @@ def _cmd_plot(args) -> int:
               "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
     skipped = viz.phase_portrait_problem(traj)
     names = [n for n in PLOTS if not (skipped and n in viz.PHASE_PORTRAITS)]
+    extra = viz.spacecraft_figures(traj, scenario.torque)  # energy, nutation, orbit angles
     written = []
-    with output_dir(out, [f"{name}.*" for name in PLOTS]) as stage:
+    with output_dir(out, [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]) as stage:
         for name in names:
             for fmt in args.format:
                 makers[name](traj, stage / f"{name}.{fmt}", title if name == "omega" else None)
+                written.append(f"{name}.{fmt}")
+        for name, make in extra:
+            for fmt in args.format:
+                make(path=stage / f"{name}.{fmt}")
                 written.append(f"{name}.{fmt}")
     print(f"wrote {', '.join(written)} to {out}/")
     if skipped:
@@ -242,7 +249,8 @@ def build_parser() -> argparse.ArgumentParser:
         "plot", _cmd_plot, "figures of a scenario: omega(t), polhode, herpolhode, drift",
         "Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere with the family "
         "of polhodes and the separatrices), DIR/herpolhode (omega in the invariable plane) and DIR/drift "
-        "(energy, |L|, L_world errors), each as PNG and SVG.",
+        "(energy, |L|, L_world errors), each as PNG and SVG; with a damper or rotors DIR/energy (and its "
+        "budget) and DIR/nutation, under the gravity gradient DIR/orbit_angles (roll, pitch, yaw).",
         "tumble plot examples/seed_flip.toml --out figures | "
         "tumble plot examples/bodies/wing_nut.toml --omega 0.1 5 0.1 --out figures", "DIR", "output folder",
     )
