@@ -35,6 +35,8 @@ _EXPORTS = {
     "iss_t_handle": "tumble.mass",
     # dynamics and analysis
     "simulate": "tumble.dynamics",
+    "simulate_batch": "tumble.dynamics",
+    "BatchTrajectory": "tumble.dynamics",
     "Trajectory": "tumble.dynamics",
     "ConstantTorque": "tumble.dynamics",
     "SphericalDamper": "tumble.dynamics",

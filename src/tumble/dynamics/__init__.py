@@ -1,5 +1,6 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
+from .batch import BatchTrajectory, simulate_batch
 from .euler import angular_momentum, energy_momentum_gaps, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
 from .gravity import GravityGradient, gravity_gradient_stability, inertia_ratios, lvlh_state, orbit_frame_angles
 from .integrators import METHODS, Method, get_method
@@ -9,6 +10,8 @@ from .torques import ConstantTorque, FunctionTorque, as_torque
 from .trajectory import Trajectory
 
 __all__ = [
+    "BatchTrajectory",
+    "simulate_batch",
     "DEFAULT_METHOD",
     "FRAMES",
     "METHODS",

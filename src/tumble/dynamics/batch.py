@@ -1,0 +1,305 @@
+"""Many rigid bodies at once: :func:`simulate_batch` and its result, :class:`BatchTrajectory`.
+
+N bodies, each with its own principal moments, initial angular velocity and attitude, sampled
+at the same times. The methods are those of :func:`tumble.simulate` (:data:`METHODS`):
+
+- ``"exact"``: the closed-form torque-free motion of :mod:`tumble.dynamics.exact`, vectorised
+  over bodies and times (:mod:`tumble.dynamics.exact_batch`);
+- ``"geometric"``, ``"geometric2"``, ``"geometric6"``: the splitting integrators, which
+  already advance every body together (:func:`tumble.dynamics.geometric.propagate`); torques
+  allowed, called with arrays of N bodies;
+- ``"dop853"``, ``"rk45"``, ``"seed"``: a loop of :func:`tumble.simulate`, one body at a time.
+
+Each body's moments, omega and attitude are checked before anything runs; a bad one is named
+by its index (``omega0[3] = [nan, 1.0, 0.0] must be three finite numbers (rad/s)``).
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..mass import INERTIA_RTOL, MassProperties
+from ..mass._checks import QUAT_NORM_TOL
+from .euler import angular_momentum, kinetic_energy
+from .integrators import METHODS, get_method
+from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
+from .torques import as_torque, spin_gain
+from .trajectory import Trajectory
+
+__all__ = ["MAX_BATCH_VALUES", "BatchTrajectory", "rotate_by_quaternion", "simulate_batch"]
+
+#: Most samples a batch may hold, bodies x times (``omega`` and ``quat`` take 56 bytes per
+#: sample: 2.8 GB here), to refuse a typo before allocating memory.
+MAX_BATCH_VALUES = 50_000_000
+
+
+def rotate_by_quaternion(quat, v) -> np.ndarray:
+    """``v`` rotated by unit quaternions ``quat`` (scalar last, as scipy): ``q v q*``.
+
+    ``v' = v + 2 w (u x v) + 2 u x (u x v)`` for ``q = (u, w)`` (Shuster, J. Astronaut. Sci. 41
+    (1993) 439, the rotation formula expanded); broadcasts over leading axes.
+
+    Parameters
+    ----------
+    quat : array_like, shape (..., 4)
+        Unit quaternions ``[x, y, z, w]``.
+    v : array_like, shape (..., 3)
+        Vectors.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    q = np.asarray(quat, float)
+    v = np.asarray(v, float)
+    u, w = q[..., :3], q[..., 3:]
+    uv = np.cross(u, v)
+    return v + 2.0 * (w * uv + np.cross(u, uv))
+
+
+@dataclass(frozen=True, eq=False)
+class BatchTrajectory:
+    """The sampled motions of N rigid bodies at common times. Frozen; derived quantities are
+    computed once, so its arrays must not be modified in place.
+
+    Attributes
+    ----------
+    t : ndarray, shape (T,)
+        Sample times, s.
+    omega : ndarray, shape (N, T, 3)
+        Angular velocities, principal frame of each body, rad/s.
+    quat : ndarray, shape (N, T, 4)
+        Attitude quaternions ``[x, y, z, w]`` (scalar last), principal body frame to world.
+    moments : ndarray, shape (N, 3)
+        Principal moments ``I1 <= I2 <= I3`` of each body, kg m^2.
+    method : str
+        Name of the integration method.
+    torque_free : bool
+        Whether no external torque acted.
+    """
+
+    t: np.ndarray
+    omega: np.ndarray
+    quat: np.ndarray
+    moments: np.ndarray
+    method: str
+    torque_free: bool = True
+
+    def __len__(self) -> int:
+        """The number of bodies, N."""
+        return len(self.moments)
+
+    def __getitem__(self, i) -> Trajectory:
+        """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory`
+        (its principal frame is its design frame)."""
+        if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
+            raise TypeError(f"a BatchTrajectory is indexed by a whole number, not {i!r}")
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError(f"body {i} is out of range: this batch holds {n}")
+        return Trajectory(
+            t=self.t, omega=self.omega[i], attitude=Rotation.from_quat(self.quat[i]), moments=self.moments[i],
+            principal_axes=np.eye(3), method=self.method, torque_free=self.torque_free, body_name=f"body {int(i) % n}",
+        )
+
+    @functools.cached_property
+    def energy(self) -> np.ndarray:
+        """Kinetic energy ``omega . I omega / 2``, J; shape (N, T)."""
+        return kinetic_energy(self.omega, self.moments[:, None, :])
+
+    @functools.cached_property
+    def angular_momentum(self) -> np.ndarray:
+        """``L = I omega``, principal frame, kg m^2/s; shape (N, T, 3)."""
+        return angular_momentum(self.omega, self.moments[:, None, :])
+
+    @functools.cached_property
+    def angular_momentum_world(self) -> np.ndarray:
+        """L in the world frame, kg m^2/s; constant without torque; shape (N, T, 3)."""
+        return rotate_by_quaternion(self.quat, self.angular_momentum)
+
+
+def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, samples: int | None = None,
+                   attitude0=None, method: str = "exact", torque=None, step: float | None = None) -> BatchTrajectory:
+    """Integrate the rotation of N rigid bodies, sampled at the same times.
+
+    Parameters
+    ----------
+    moments : array_like, shape (N, 3) or (3,)
+        Principal moments of each body, ascending (``I1 <= I2 <= I3``), positive, kg m^2;
+        one row is used for every body. Used as given: moments that are equal only to
+        round-off are not a symmetric top (:func:`tumble.mass.principal_frame` makes them so).
+    omega0 : array_like, shape (N, 3) or (3,)
+        Initial angular velocities at t = 0, principal frame, rad/s; one row for every body.
+    t_end : float, optional
+        Duration, s: ``samples`` equally spaced times in ``[0, t_end]``.
+    times : array_like, shape (T,), optional
+        The sample times themselves, s (instead of ``t_end``): finite, strictly increasing,
+        ``times[0] >= 0``; the motion starts at t = 0.
+    samples : int, optional
+        Number of samples with ``t_end`` (default 500).
+    attitude0 : array_like, shape (N, 4) or (4,), optional
+        Initial attitudes, unit quaternions ``[x, y, z, w]`` (scalar last), principal frame to
+        world; default identity. Norms within 1e-3 of 1 are accepted and renormalised.
+    method : str
+        A name from :data:`tumble.dynamics.METHODS`; default ``"exact"``.
+    torque : callable or torque model, optional
+        ``tau(t, omega, attitude)``, N m, in the principal frame or the world frame as the model
+        says (:mod:`tumble.dynamics.torques`). The geometric methods call it once per kick with
+        ``omega`` of shape (N, 3) and a stack of N rotations, and it may return (3,) or (N, 3);
+        the loop methods call it per body. A model with ``bind`` (the gravity gradient) is bound
+        to the moments of the bodies.
+    step : float, optional
+        Largest step of the geometric methods, s; default 0.05 rad of rotation per step at the
+        fastest spin of the batch (so each body gets at most the step a lone run would).
+
+    Returns
+    -------
+    BatchTrajectory
+
+    Raises
+    ------
+    ValueError
+        For bad input, with one line naming the argument and the first bad body's index, and
+        for a run no method can follow (the limits of :func:`tumble.simulate`).
+    """
+    spec = get_method(method)
+    model = as_torque(torque)
+    if model is not None and not spec.supports_torque:
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
+        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
+    I, w0, q0 = check_batch(moments, omega0, attitude0)
+    t, keep = sample_times(t_end, samples, None, times)
+    if len(I) * len(t) > MAX_BATCH_VALUES:
+        raise ValueError(f"{len(I)} bodies x {len(t)} samples is more than {MAX_BATCH_VALUES:,} samples in all; "
+                         f"split the batch or sample fewer times")
+    if spec.name == "exact":
+        from .exact_batch import free_rotation_batch
+
+        omega, quat = free_rotation_batch(I, w0, q0, t)
+    elif spec.fixed_step:
+        omega, quat = _geometric(spec, I, w0, q0, t, model, step)
+    else:
+        omega, quat = _loop(spec.name, I, w0, q0, t, torque, step)
+    return BatchTrajectory(t=t[keep], omega=omega[:, keep], quat=quat[:, keep], moments=I, method=spec.name,
+                           torque_free=model is None)
+
+
+def _first(bad: np.ndarray) -> int:
+    return int(np.flatnonzero(bad)[0])
+
+
+def _rows(name: str, value, width: int, unit: str) -> np.ndarray:
+    """``value`` as an array of shape (n, width) (a single row is (1, width)), or one line
+    saying what it must be."""
+    if isinstance(value, (str, bytes, dict, set)):
+        raise ValueError(f"{name} = {value!r} must be an array of shape (N, {width}) or ({width},) ({unit})")
+    try:
+        a = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of numbers of shape (N, {width}) or ({width},) ({unit})") from None
+    if a.ndim == 1 and a.shape == (width,):
+        a = a[None, :]
+    if a.ndim != 2 or a.shape[1] != width or len(a) == 0:
+        raise ValueError(f"{name} has shape {a.shape}; it must be (N, {width}) or ({width},) ({unit})")
+    bad = ~np.all(np.isfinite(a), axis=1)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"{name}[{i}] = {a[i].tolist()} must be {width} finite numbers ({unit})")
+    return a
+
+
+def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Validate a batch's moments, omega and attitudes and broadcast them to N bodies.
+
+    Parameters
+    ----------
+    moments, omega0, attitude0
+        As :func:`simulate_batch`.
+
+    Returns
+    -------
+    moments : ndarray, shape (N, 3)
+    omega0 : ndarray, shape (N, 3)
+    quat0 : ndarray, shape (N, 4)
+        Unit quaternions (renormalised).
+
+    Raises
+    ------
+    ValueError
+        One line naming the argument and the first bad index.
+    """
+    I = _rows("moments", moments, 3, "kg m^2")
+    w = _rows("omega0", omega0, 3, "rad/s")
+    q = _rows("attitude0", [0.0, 0.0, 0.0, 1.0] if attitude0 is None else attitude0, 4, "unit quaternions [x, y, z, w]")
+    sizes = {len(a) for a in (I, w, q) if len(a) > 1}
+    if len(sizes) > 1:
+        raise ValueError(f"moments ({len(I)}), omega0 ({len(w)}) and attitude0 ({len(q)}) hold different numbers "
+                         f"of bodies; give each N rows, or one row for all")
+    n = sizes.pop() if sizes else 1
+    bad = ~(I[:, 0] > 0)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"moments[{i}] = {I[i].tolist()} must be positive (kg m^2)")
+    bad = np.any(np.diff(I, axis=1) < 0, axis=1)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"moments[{i}] = {I[i].tolist()} must be ascending, I1 <= I2 <= I3 (kg m^2)")
+    bad = I[:, 0] <= INERTIA_RTOL * np.sum(I, axis=1)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"moments[{i}] = {I[i].tolist()} kg m^2: a body with a zero moment (a thin rod, a point) "
+                         f"has no well-posed rotation about that axis; give it some thickness")
+    norms = np.linalg.norm(q, axis=1)
+    bad = ~(np.abs(norms - 1.0) <= QUAT_NORM_TOL)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"attitude0[{i}] = {q[i].tolist()} is a quaternion of norm {norms[i]:.6g}; a rotation needs "
+                         f"a unit quaternion [x, y, z, w] (scalar last)")
+    q = q / norms[:, None]
+    I, w, q = (np.ascontiguousarray(np.broadcast_to(a, (n, a.shape[1]))) for a in (I, w, q))
+    with np.errstate(over="ignore", invalid="ignore"):
+        big = np.max(np.abs(w), axis=1)[:, None]
+        scaled = np.where(big > 0, w / np.where(big > 0, big, 1.0), 0.0)
+        energy = 0.5 * np.sum(I * scaled * scaled, axis=1) * big[:, 0] ** 2
+    bad = ~np.isfinite(energy)
+    if np.any(bad):
+        i = _first(bad)
+        raise ValueError(f"omega0[{i}] = {w[i].tolist()} rad/s is too large: the kinetic energy of this body overflows")
+    return I, w, q
+
+
+def _geometric(spec, I, w0, q0, t, model, step):
+    """The splitting integrators, every body together; the work bounds of :func:`tumble.simulate`."""
+    from .geometric import default_step, propagate
+
+    if model is not None and hasattr(model, "bind"):  # a torque that needs the bodies' moments
+        model = model.bind(I)
+    t_end = float(t[-1])
+    spin = float(np.max(np.linalg.norm(w0, axis=1)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        gain = spin_gain(model, 0.0, w0, Rotation.from_quat(q0), I, t_end)
+        turns = spin * t_end + 0.5 * gain * t_end
+    if not turns <= MAX_ROTATION:
+        raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} "
+                         f"rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} follows (at "
+                         f"most {MAX_ROTATION:g} rad); use method exact or a shorter run")
+    h = step if step is not None else default_step(spin, gain)  # what propagate takes by default
+    if t_end / h > MAX_STEPS:
+        raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
+    order = {"geometric": 4, "geometric2": 2, "geometric6": 6}[spec.name]
+    omega, quat = propagate(I, w0, q0, t, order=order, step=step, torque=model)
+    return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
+
+
+def _loop(name, I, w0, q0, t, torque, step):
+    """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's)."""
+    omega, quat = np.empty((len(I), len(t), 3)), np.empty((len(I), len(t), 4))
+    for i in range(len(I)):
+        props = MassProperties(1.0, np.zeros(3), np.diag(I[i]), I[i].copy(), np.eye(3))
+        traj = simulate(props, w0[i], times=t, method=name, torque=torque, attitude0=q0[i], step=step)
+        omega[i], quat[i] = traj.omega, traj.quat
+    return omega, quat

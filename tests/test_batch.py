@@ -1,0 +1,222 @@
+"""simulate_batch: N bodies at once, against a loop of tumble.simulate (one body at a time)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
+
+import tumble
+from tumble.dynamics.batch import BatchTrajectory, rotate_by_quaternion, simulate_batch
+
+
+def props(I) -> tumble.MassProperties:
+    """A body with these principal moments along the design axes (principal = design frame)."""
+    I = np.asarray(I, float)
+    return tumble.MassProperties(1.0, np.zeros(3), np.diag(I), I.copy(), np.eye(3))
+
+
+def loop(I, w, q, t, method="exact", **kw):
+    """The reference: one tumble.simulate per body; omega (N, T, 3) and quat (N, T, 4)."""
+    runs = [tumble.simulate(props(I[i]), w[i], times=t, method=method, attitude0=q[i], **kw) for i in range(len(I))]
+    return np.array([r.omega for r in runs]), np.array([r.quat for r in runs]), runs
+
+
+def mixed_bodies(rng, n: int = 40):
+    """Moments, omega0 and attitudes covering every case of the free motion: random bodies on both
+    sides of the separatrix, next to it (1e-6 and 1e-12 off the intermediate axis), on it,
+    symmetric tops (both kinds), spheres, steady spins about each axis, and at rest."""
+    I = np.sort(rng.uniform(0.1, 2.0, (n, 3)), axis=1)
+    w = rng.normal(size=(n, 3)) * rng.uniform(0.1, 10.0, (n, 1))
+    I[0], w[0] = (1.0, 2.0, 3.0), (1e-6, 3.0, 1e-6)
+    I[1], w[1] = (1.0, 2.0, 3.0), (-1e-12, 3.0, 2e-12)
+    I[2], w[2] = (0.5, 0.5, 1.0), (0.3, -0.2, 2.0)   # oblate top
+    I[3], w[3] = (0.5, 1.0, 1.0), (2.0, 0.3, -0.2)   # prolate top
+    I[4], w[4] = (0.7, 0.7, 0.7), (1.0, -2.0, 3.0)   # sphere
+    I[5], w[5] = (1.0, 2.0, 3.0), (0.0, 0.0, 4.0)    # steady spins
+    I[6], w[6] = (1.0, 2.0, 3.0), (0.0, -4.0, 0.0)
+    I[7], w[7] = (1.0, 2.0, 3.0), (4.0, 0.0, 0.0)
+    I[8], w[8] = (1.0, 2.0, 3.0), (0.0, 0.0, 0.0)    # at rest
+    # on the separatrix, exactly: I1 (I2 - I1) w1^2 = I3 (I3 - I2) w3^2, with w1 w3 < 0
+    I[9], w[9] = (1.0, 5.0, 9.0), (3.0, 1.0, -1.0)
+    q = Rotation.random(n, random_state=rng.integers(1 << 31)).as_quat()
+    return I, w, q
+
+
+def assert_same_motion(batch, omega, quat, rtol: float, angle: float) -> None:
+    """Omega within ``rtol`` of each body's largest component, attitudes within ``angle`` rad."""
+    scale = np.max(np.abs(omega), axis=(1, 2), keepdims=True)
+    assert np.max(np.abs(batch.omega - omega) / np.where(scale > 0, scale, 1.0)) <= rtol
+    turn = (Rotation.from_quat(batch.quat.reshape(-1, 4)).inv() * Rotation.from_quat(quat.reshape(-1, 4))).magnitude()
+    assert np.max(turn) <= angle
+
+
+T = np.linspace(0.0, 20.0, 41)
+
+
+@pytest.fixture(scope="module")
+def bodies():
+    return mixed_bodies(np.random.default_rng(7))
+
+
+def test_exact_equals_a_loop_of_simulate(bodies):
+    I, w, q = bodies
+    batch = simulate_batch(I, w, times=T, attitude0=q)
+    omega, quat, _ = loop(I, w, q, T)
+    assert isinstance(batch, BatchTrajectory) and batch.method == "exact"
+    assert batch.omega.shape == (len(I), len(T), 3) and batch.quat.shape == (len(I), len(T), 4)
+    assert_same_motion(batch, omega, quat, 1e-13, 1e-12)
+
+
+@pytest.mark.parametrize("method", ["geometric", "geometric2", "geometric6"])
+def test_geometric_equals_a_loop_of_simulate(bodies, method):
+    # the batch advances all bodies together, a lone run momentum first: the same rotations with
+    # other round-off, which grows over 2000 steps (measured: 2e-12 relative). Left out: the
+    # motions on and next to the separatrix (bodies 0, 1, 9), where any difference of round-off
+    # grows like exp(p t) near the saddle (measured 1e-7 on the separatrix after 20 s)
+    I, w, q = (a[[2, 3, 4, 5, 6, 7, 8, *range(10, len(a))]] for a in bodies)
+    step = 1e-2
+    batch = simulate_batch(I, w, times=T, attitude0=q, method=method, step=step)
+    omega, quat, _ = loop(I, w, q, T, method=method, step=step)
+    assert_same_motion(batch, omega, quat, 1e-11, 1e-11)
+
+
+@pytest.mark.parametrize("method", ["dop853", "rk45", "seed"])
+def test_loop_methods_equal_simulate(bodies, method):
+    I, w, q = (a[:12] for a in bodies)
+    batch = simulate_batch(I, w, times=T, attitude0=q, method=method)
+    omega, quat, _ = loop(I, w, q, T, method=method)
+    np.testing.assert_array_equal(batch.omega, omega)
+    np.testing.assert_array_equal(batch.quat, quat)
+
+
+def test_geometric_with_a_torque_equals_a_loop(bodies):
+    I, w, q = (a[10:30] for a in bodies)
+    torque = tumble.ConstantTorque((0.01, -0.02, 0.03), frame="world")
+    batch = simulate_batch(I, w, times=T, attitude0=q, method="geometric", torque=torque, step=1e-2)
+    omega, quat, _ = loop(I, w, q, T, method="geometric", torque=torque, step=1e-2)
+    assert not batch.torque_free
+    assert np.max(np.abs(batch.omega - omega)) <= 1e-11 * np.max(np.abs(omega))
+    np.testing.assert_allclose(np.abs(np.sum(batch.quat * quat, axis=-1)), 1.0, atol=1e-12)
+
+
+def test_default_geometric_step_is_the_fastest_bodys(bodies):
+    """Without a step each body gets the step of the fastest one: at least as fine as its own."""
+    I, w, q = (a[10:14] for a in bodies)
+    batch = simulate_batch(I, w, times=T, attitude0=q, method="geometric")
+    fastest = int(np.argmax(np.linalg.norm(w, axis=1)))
+    alone = tumble.simulate(props(I[fastest]), w[fastest], times=T, method="geometric", attitude0=q[fastest])
+    assert np.max(np.abs(batch.omega[fastest] - alone.omega)) <= 1e-11 * np.max(np.abs(alone.omega))
+
+
+# components 0 or above 1e-100 in size: a symmetric top with omega_1 ~ 1e-178 (I2 = I3) is
+# refused by FreeRotation itself (p underflows in exact_parameters' scaling: ZeroDivisionError),
+# so by tumble.simulate too; reported, not this module's to fix
+components = st.floats(-10.0, 10.0).filter(lambda x: x == 0.0 or abs(x) > 1e-100)
+
+
+@given(
+    moments=st.lists(st.floats(0.05, 5.0), min_size=3, max_size=3).map(sorted),
+    omega=st.lists(components, min_size=3, max_size=3),
+    degenerate=st.sampled_from([None, "12", "23", "123"]),
+    t_end=st.floats(0.1, 100.0),
+)
+def test_hypothesis_exact_equals_simulate(moments, omega, degenerate, t_end):
+    I = np.array(moments)
+    if degenerate == "12":
+        I[1] = I[0]
+    elif degenerate == "23":
+        I[1] = I[2]
+    elif degenerate == "123":
+        I[:] = I[0]
+    if I[0] <= 1e-9 * I.sum():
+        return
+    t = np.linspace(0.0, t_end, 7)
+    w = np.array(omega)
+    batch = simulate_batch(np.stack([I, I]), np.stack([w, -w]), times=t)
+    for k, sign in enumerate((1.0, -1.0)):
+        ref = tumble.simulate(props(I), sign * w, times=t)
+        scale = max(float(np.max(np.abs(ref.omega))), 1e-300)
+        assert np.max(np.abs(batch.omega[k] - ref.omega)) <= 1e-13 * scale
+        angle = (Rotation.from_quat(batch.quat[k]).inv() * ref.attitude).magnitude()
+        assert np.max(angle) <= 1e-12
+
+
+def test_trajectory_of_one_body_and_derived_quantities(bodies):
+    I, w, q = bodies
+    batch = simulate_batch(I, w, times=T, attitude0=q)
+    _, _, runs = loop(I, w, q, T)
+    assert len(batch) == len(I)
+    for i in (0, 3, len(I) - 1, -1):
+        one, ref = batch[i], runs[i]
+        assert isinstance(one, tumble.Trajectory) and one.method == "exact"
+        np.testing.assert_array_equal(one.t, T)
+        np.testing.assert_array_equal(one.omega, batch.omega[i])
+        np.testing.assert_allclose(one.quat, batch.quat[i], rtol=0, atol=1e-15)
+    # energy and L against each simulate's Trajectory; L_world through scipy's Rotation.apply
+    E = np.array([r.energy for r in runs])
+    np.testing.assert_allclose(batch.energy, E, rtol=1e-13, atol=1e-300)
+    L = np.array([r.angular_momentum for r in runs])
+    np.testing.assert_allclose(batch.angular_momentum, L, rtol=1e-13, atol=1e-14 * np.max(np.abs(L)))
+    Lw = Rotation.from_quat(batch.quat.reshape(-1, 4)).apply(batch.angular_momentum.reshape(-1, 3)).reshape(L.shape)
+    np.testing.assert_allclose(batch.angular_momentum_world, Lw, rtol=0, atol=1e-14 * np.max(np.abs(L)))
+    with pytest.raises(IndexError, match="body 40 is out of range"):
+        batch[len(I)]
+    with pytest.raises(TypeError):
+        batch[1:3]
+
+
+def test_rotate_by_quaternion_matches_scipy(rng):
+    q = Rotation.random(1000, random_state=1).as_quat()
+    v = rng.normal(size=(1000, 3))
+    np.testing.assert_allclose(rotate_by_quaternion(q, v), Rotation.from_quat(q).apply(v), rtol=0, atol=1e-14)
+
+
+def test_broadcasting_and_defaults():
+    I = np.array([1.0, 2.0, 3.0])
+    w = np.array([[0.1, 3.0, 0.1], [1.0, 0.2, 0.3], [0.0, 0.5, 2.0]])
+    batch = simulate_batch(I, w, t_end=5.0)
+    assert batch.omega.shape == (3, 500, 3) and batch.moments.shape == (3, 3)
+    np.testing.assert_array_equal(batch.t, np.linspace(0.0, 5.0, 500))
+    np.testing.assert_allclose(batch.quat[:, 0], np.tile([0.0, 0.0, 0.0, 1.0], (3, 1)), rtol=0, atol=1e-15)
+    one = simulate_batch(I, w[0], t_end=5.0, samples=11)
+    assert one.omega.shape == (1, 11, 3)
+    same = simulate_batch(np.tile(I, (3, 1)), w[1], times=[1.0, 2.0])
+    np.testing.assert_array_equal(same.t, [1.0, 2.0])
+    assert np.all(same.omega == same.omega[0])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"moments": [[1, 2, 3], [1, 3, 2]]}, r"^moments\[1\] = \[1.0, 3.0, 2.0\] must be ascending"),
+    ({"moments": [[1, 2, 3], [0, 2, 3]]}, r"^moments\[1\] = \[0.0, 2.0, 3.0\] must be positive"),
+    ({"moments": [[1, 2, 3], [1e-12, 2, 3]]}, r"^moments\[1\] .* a body with a zero moment"),
+    ({"moments": [[1, 2, 3], [1, np.nan, 3]]}, r"^moments\[1\] = \[1.0, nan, 3.0\] must be 3 finite numbers"),
+    ({"moments": [[1, 2, 3, 4]]}, r"^moments has shape \(1, 4\); it must be \(N, 3\) or \(3,\)"),
+    ({"moments": "heavy"}, r"^moments = 'heavy' must be an array"),
+    ({"omega0": [[0, 1, 0], [0, np.inf, 0]]}, r"^omega0\[1\] = \[0.0, inf, 0.0\] must be 3 finite numbers"),
+    ({"omega0": [[0, 1, 0]] * 3}, r"^moments \(2\), omega0 \(3\) and attitude0 \(1\) hold different numbers"),
+    ({"omega0": [[0, 1e200, 0], [0, 1, 0]]}, r"^omega0\[0\] = .* is too large"),
+    ({"attitude0": [[0, 0, 0, 1], [0, 0, 0, 2]]}, r"^attitude0\[1\] = \[0.0, 0.0, 0.0, 2.0\] is a quaternion of norm 2"),
+    ({"attitude0": [[0, 0, 0, 1], [0, 0, 0, np.nan]]}, r"^attitude0\[1\] = .* must be 4 finite numbers"),
+    ({"method": "euler"}, r"^method = 'euler' is unknown"),
+    ({"torque": tumble.ConstantTorque((0, 0, 1))}, r"^method = 'exact' cannot take a torque"),
+    ({"t_end": None}, r"^t_end \(s\) or times"),
+    ({"t_end": 1.0, "times": [1.0]}, r"^times = \[\.\.\.\] replaces t_end"),
+    ({"t_end": 1e30}, r"^t_end = 1e\+30 must be at most"),
+])
+def test_bad_input_is_refused_with_one_line(kwargs, message):
+    args = {"moments": [[1, 2, 3], [1, 2, 3]], "omega0": [[0, 1, 0], [0, 1, 0.1]], "t_end": 1.0} | kwargs
+    with pytest.raises(ValueError, match=message) as err:
+        simulate_batch(args.pop("moments"), args.pop("omega0"), **args)
+    assert "\n" not in str(err.value)
+
+
+def test_work_limits_are_those_of_simulate():
+    with pytest.raises(ValueError, match=r"omega0\[1\]: t_end = .* beyond the 1e\+24 rad"):
+        simulate_batch([1.0, 2.0, 3.0], [[0, 1, 0.1], [1e12, 1e11, 1e12]], t_end=1e12, samples=2)
+    with pytest.raises(ValueError, match="more than method 'geometric' follows"):
+        simulate_batch([1.0, 2.0, 3.0], [[0, 1, 0.1], [1e3, 1e2, 1e3]], t_end=1e4, samples=2, method="geometric")
+    with pytest.raises(ValueError, match="samples in all"):
+        simulate_batch([1.0, 2.0, 3.0], np.zeros((200_000, 3)), t_end=1.0, samples=1000)
