@@ -22,15 +22,14 @@ from tumble.dynamics.gravity import (
     R_EARTH,
     STABILITY_REGIONS,
     GravityGradient,
-    gravity_gradient_from_table,
     gravity_gradient_stability,
     inertia_ratios,
     lvlh_state,
-    lvlh_state_from_table,
     orbit_frame_angles,
     relative_attitude,
 )
 from tumble.dynamics.torques import body_torque
+from tumble.io.scenario import gravity_gradient_from_table, lvlh_state_from_table
 from tumble.mass import MassProperties
 
 PERIOD = 5400.0  # s, a low Earth orbit

@@ -45,13 +45,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
-from ..dynamics.gravity import GravityGradient, gravity_gradient_from_table, lvlh_state_from_table
+from ..dynamics.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
+from ..mass.tensor import _short_repr
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body
 from .bodyfile import body_from_table, load_body, read_toml
 from .provenance import file_sha256
 
-__all__ = ["Scenario", "load_scenario", "resolve_run", "scenario_from_table"]
+__all__ = ["Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
+           "scenario_from_table"]
 
 #: Duration of a run when neither the file nor the command line says, s.
 DEFAULT_T_END = 20.0
@@ -284,3 +286,51 @@ def _override(scenario: Scenario, given: dict, where: str) -> Scenario:
     except ValueError as exc:
         raise ValueError(f"{where}{exc}") from None
     return updated
+
+
+_TORQUE_KEYS = ("kind", "orbit_period", "orbit_radius", "mu")
+_LVLH_KEYS = ("roll", "pitch", "yaw", "pitch_axis", "yaw_axis")
+
+
+def _check_keys(where: str, table, allowed) -> None:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table, not {_short_repr(table)}")
+    for key in table:
+        if key not in allowed:
+            raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
+
+
+def gravity_gradient_from_table(table: dict) -> GravityGradient:
+    """A :class:`GravityGradient` from a scenario file's ``[torque]`` table.
+
+    Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
+    ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
+    missing key, or a bad value, raises ``ValueError`` with one line starting ``torque:``.
+    """
+    _check_keys("torque", table, _TORQUE_KEYS)
+    if "kind" in table and table["kind"] != "gravity_gradient":
+        raise ValueError(f"torque: kind = {table['kind']!r} is not 'gravity_gradient'")
+    if "orbit_period" not in table and "orbit_radius" not in table:
+        raise ValueError("torque: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
+    try:
+        return GravityGradient(orbit_period=table.get("orbit_period"), orbit_radius=table.get("orbit_radius"),
+                               mu=table.get("mu", MU_EARTH))
+    except ValueError as exc:
+        raise ValueError(f"torque: {exc}") from None
+
+
+def lvlh_state_from_table(table: dict, gg: GravityGradient, body) -> LVLHState:
+    """:func:`lvlh_state` from a scenario file's ``[initial.orbit_frame]`` table.
+
+    Keys, all optional: ``roll``, ``pitch``, ``yaw`` (rad, default 0), ``pitch_axis`` (default 3)
+    and ``yaw_axis`` (default 1). An unknown key or a bad value raises ``ValueError`` with one
+    line starting ``initial.orbit_frame:``.
+    """
+    _check_keys("initial.orbit_frame", table, _LVLH_KEYS)
+    for key in ("roll", "pitch", "yaw"):
+        if key in table and (isinstance(table[key], bool) or not isinstance(table[key], (int, float))):
+            raise ValueError(f"initial.orbit_frame: {key} = {table[key]!r} must be a number (rad)")
+    try:
+        return lvlh_state(gg, body, **table)
+    except ValueError as exc:
+        raise ValueError(f"initial.orbit_frame: {exc}") from None

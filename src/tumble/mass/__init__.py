@@ -2,7 +2,8 @@
 
 from .body import AXIS_ROLES, Body, MassProperties, mass_properties
 from .mesh import Mesh  # registers the 'mesh' kind; trimesh is imported on first use
-from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Rotor, Shell, Sphere, Tube
+from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+from .rotor import Rotor
 from .presets import PRESETS, iss_t_handle, t_handle
 from .tensor import (
     INERTIA_RTOL,

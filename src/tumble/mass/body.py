@@ -5,7 +5,7 @@ tensor about the COM as the sum over parts of each part's own tensor, rotated in
 frame (``R I R^T``) and shifted to the body's COM with the parallel-axis theorem (seed eq. 4)
 -- *every* part shifted, including the shaft that the seed's printed total (sec. 2.4) forgot.
 
-Rotors (:class:`~tumble.mass.parts.Rotor`) count in the mass properties like any part (locked);
+Rotors (:class:`~tumble.mass.rotor.Rotor`) count in the mass properties like any part (locked);
 the body also exposes them and their internal angular momentum for the gyrostat's dynamics.
 """
 
@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .parts import Part, Rotor
+from .parts import Part
+from .rotor import Rotor
 from .tensor import check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
@@ -201,7 +202,7 @@ class Body:
 
     @property
     def rotors(self) -> tuple[Rotor, ...]:
-        """The parts that spin relative to the body (:class:`~tumble.mass.parts.Rotor`), in order."""
+        """The parts that spin relative to the body (:class:`~tumble.mass.rotor.Rotor`), in order."""
         return tuple(p for p in self.parts if isinstance(p, Rotor))
 
     def internal_momentum(self, t=0.0) -> np.ndarray:
