@@ -1,0 +1,238 @@
+"""The cases of a sweep: a nominal body with its dispersions, initial rates, a design.
+
+:class:`Ensemble` says everything that defines the cases; :meth:`Ensemble.inputs` makes any
+range of them, each from its own random numbers (:mod:`tumble.ensemble.sampling`), so a case
+comes out the same whether made alone, in a chunk of 7 or in one of 10,000.
+
+Case ``i`` takes point ``i`` of the design: the first 3 numbers (when the initial rates are
+dispersed) give the rates, the rest the body's deviates (:class:`~tumble.ensemble.dispersions.
+BodySampler`). A body draw that is not physical is drawn again from the case's own generator,
+up to ``max_resamples`` times (then the sweep is refused, naming the case); the rates keep
+their draw, so a Latin hypercube stays stratified in them. How many redraws each case needed
+is part of its inputs (``resampled``).
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..mass._checks import check_vector
+from .dispersions import BodySampler
+from .sampling import DISTRIBUTIONS, Design, check_seed, deviates
+
+__all__ = ["FRAMES", "CaseInputs", "Ensemble", "InitialRates"]
+
+#: Frames the initial rates may be given in.
+FRAMES = ("principal", "design")
+
+
+@dataclass(frozen=True)
+class InitialRates:
+    """The initial angular velocity of the cases: nominal, dispersed, or a grid.
+
+    Parameters
+    ----------
+    omega : sequence of 3 floats, optional
+        The nominal rate, rad/s, in ``frame`` (not with ``grid``).
+    frame : {"principal", "design"}
+        ``"principal"``: components along each case's own principal axes (ascending moments);
+        ``"design"``: along the body's design axes, so that a case whose axes are turned
+        (dispersions of parts or axes) is spun off its principal axes.
+    distribution : {"normal", "uniform"}, optional
+        Disperse each component by ``spread`` (one standard deviation, or the half-width).
+    spread : sequence of 3 floats
+        Per component, rad/s, >= 0.
+    grid : three sequences of floats, optional
+        Instead of ``omega``: the values of each component, rad/s; the cases run through
+        their Cartesian product, the third component fastest, case ``i`` at point ``i mod G``
+        (``G`` points: take a multiple of ``G`` cases to give every point the same number).
+    """
+
+    omega: tuple | None = None
+    frame: str = "principal"
+    distribution: str | None = None
+    spread: tuple = (0.0, 0.0, 0.0)
+    grid: tuple | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.frame, str) or self.frame not in FRAMES:
+            raise ValueError(f"frame = {self.frame!r} is unknown; allowed: {', '.join(FRAMES)}")
+        if (self.grid is None) == (self.omega is None):
+            raise ValueError("initial rates need omega = [w1, w2, w3] (rad/s) or a grid of them, not both")
+        if self.omega is not None:
+            object.__setattr__(self, "omega", check_vector("omega", self.omega, "rad/s"))
+        spread = check_vector("spread", self.spread, "rad/s")
+        if min(spread) < 0:
+            raise ValueError(f"spread = {list(spread)} must be >= 0 (rad/s)")
+        object.__setattr__(self, "spread", spread)
+        if self.distribution is not None:
+            if not isinstance(self.distribution, str) or self.distribution not in DISTRIBUTIONS:
+                raise ValueError(f"distribution = {self.distribution!r} is unknown; allowed: {', '.join(DISTRIBUTIONS)}")
+            if self.grid is not None:
+                raise ValueError("a grid of initial rates takes no distribution: give one or the other")
+        if self.grid is not None:
+            object.__setattr__(self, "grid", _grid(self.grid))
+
+    @property
+    def dims(self) -> int:
+        """Deviates per case: 3 when dispersed, else 0."""
+        return 3 if self.distribution is not None else 0
+
+    @property
+    def points(self) -> int:
+        """Points of the grid (1 without one)."""
+        return int(np.prod([len(g) for g in self.grid])) if self.grid is not None else 1
+
+    def rate(self, index: int, u) -> np.ndarray:
+        """Case ``index``'s rate in :attr:`frame`, rad/s, from its unit numbers ``u`` (shape (dims,))."""
+        if self.grid is not None:
+            point = np.unravel_index(index % self.points, [len(g) for g in self.grid])
+            return np.array([g[k] for g, k in zip(self.grid, point)])
+        omega = np.array(self.omega)
+        if self.distribution is None:
+            return omega
+        return omega + np.array(self.spread) * deviates(u, self.distribution)
+
+
+def _grid(grid) -> tuple:
+    if not isinstance(grid, (list, tuple)) or len(grid) != 3:
+        raise ValueError(f"grid = {grid!r} must be three lists of rates, one per component (rad/s)")
+    out = []
+    for j, values in enumerate(grid):
+        if not isinstance(values, (list, tuple)) or not values:
+            raise ValueError(f"grid[{j}] = {values!r} must be a non-empty list of rates (rad/s)")
+        try:
+            a = np.array(values, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"grid[{j}] = {values!r} must be a list of numbers (rad/s)") from None
+        if any(isinstance(v, bool) for v in values) or a.ndim != 1 or not np.all(np.isfinite(a)):
+            raise ValueError(f"grid[{j}] = {values!r} must be a list of finite numbers (rad/s)")
+        out.append(tuple(float(v) for v in a))
+    return tuple(out)
+
+
+@dataclass(frozen=True, eq=False)
+class CaseInputs:
+    """The inputs of a range of cases, ``m`` of them.
+
+    Attributes
+    ----------
+    index : ndarray of int, shape (m,)
+        Case numbers, from 0.
+    moments : ndarray, shape (m, 3)
+        Principal moments, ascending, kg m^2.
+    axes : ndarray, shape (m, 3, 3)
+        Principal axes (columns) in the design frame.
+    omega0 : ndarray, shape (m, 3)
+        Initial angular velocity in each case's principal frame, rad/s.
+    quat0 : ndarray, shape (m, 4)
+        Initial attitude, principal frame to world, ``[x, y, z, w]``: the design frame starts
+        aligned with the world.
+    values : ndarray, shape (m, p)
+        The drawn quantities (:attr:`BodySampler.names`).
+    resampled : ndarray of int, shape (m,)
+        How many body draws of each case were refused as unphysical and drawn again.
+    """
+
+    index: np.ndarray
+    moments: np.ndarray
+    axes: np.ndarray
+    omega0: np.ndarray
+    quat0: np.ndarray
+    values: np.ndarray
+    resampled: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+
+@dataclass(frozen=True, eq=False)
+class Ensemble:
+    """Everything that defines a sweep's cases.
+
+    Parameters
+    ----------
+    bodies : BodySampler
+        The nominal body and its dispersions.
+    rates : InitialRates
+        The initial angular velocities.
+    cases : int
+        How many cases, >= 1.
+    seed : int
+        The sweep's seed, 0 to 2^64 - 1.
+    sampling : {"random", "lhs", "sobol"}
+        How the unit cube is sampled (:mod:`tumble.ensemble.sampling`).
+    max_resamples : int
+        Redraws allowed per case before the sweep is refused (>= 0).
+    """
+
+    bodies: BodySampler
+    rates: InitialRates
+    cases: int
+    seed: int = 0
+    sampling: str = "random"
+    max_resamples: int = 100
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.bodies, BodySampler):
+            raise ValueError(f"bodies = {self.bodies!r} must be a tumble.ensemble.BodySampler")
+        if not isinstance(self.rates, InitialRates):
+            raise ValueError(f"rates = {self.rates!r} must be a tumble.ensemble.InitialRates")
+        check_seed(self.seed)
+        m = self.max_resamples
+        if isinstance(m, bool) or not isinstance(m, (int, np.integer)) or m < 0:
+            raise ValueError(f"max_resamples = {m!r} must be a whole number >= 0")
+        _ = self.design  # checks cases and sampling
+
+    @functools.cached_property
+    def design(self) -> Design:
+        """The unit-cube design: rates first, then the body's deviates."""
+        return Design(self.sampling, self.seed, self.cases, self.rates.dims + self.bodies.dims)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Names of :attr:`CaseInputs.values`."""
+        return self.bodies.names
+
+    def inputs(self, start: int = 0, stop: int | None = None) -> CaseInputs:
+        """The inputs of cases ``start`` to ``stop - 1`` (default: all).
+
+        Raises
+        ------
+        ValueError
+            For a range outside the sweep, or a case whose body draws were refused
+            ``max_resamples + 1`` times in a row (naming the case and the last reason).
+        """
+        stop = self.cases if stop is None else stop
+        rows = self.design.rows(start, stop)
+        k = self.rates.dims
+        out = []
+        for i, row in zip(range(start, stop), rows):
+            drawn, resampled = self._body(i, row[k:])
+            out.append((drawn, self.rates.rate(i, row[:k]), resampled))
+        m = len(out)
+        moments = np.array([d.moments for d, _, _ in out]).reshape(m, 3)
+        axes = np.array([d.axes for d, _, _ in out]).reshape(m, 3, 3)
+        given = np.array([w for _, w, _ in out]).reshape(m, 3)
+        omega0 = np.einsum("nji,nj->ni", axes, given) if self.rates.frame == "design" else given
+        quat0 = Rotation.from_matrix(axes).as_quat().reshape(m, 4) if m else np.empty((0, 4))
+        values = np.array([d.values for d, _, _ in out]).reshape(m, len(self.names))
+        return CaseInputs(np.arange(start, stop), moments, axes, omega0, quat0, values,
+                          np.array([r for _, _, r in out], dtype=np.int64))
+
+    def _body(self, index: int, u: np.ndarray):
+        """Case ``index``'s body from its unit numbers ``u``, drawn again while unphysical."""
+        rng = None
+        for redraws in range(self.max_resamples + 1):
+            try:
+                return self.bodies.sample(self.bodies.deviates(u)), redraws
+            except ValueError as exc:
+                reason = " ".join(str(exc).split())
+            rng = rng or self.design.generator(index)
+            u = rng.random(self.bodies.dims)
+        raise ValueError(f"case {index}: no physical body in {self.max_resamples + 1} draw(s) (last: {reason}); "
+                         f"narrow the dispersions or raise max_resamples = {self.max_resamples}")

@@ -1,0 +1,342 @@
+"""Dispersions that stay physical: uncertain parts, preset parameters, moments and axes.
+
+A :class:`Dispersion` names one uncertain quantity and its spread:
+
+- ``target = "preset"``: a parameter of the preset the body was made from
+  (``shaft_length`` of :func:`tumble.t_handle`, ...): the body is built again from the
+  perturbed parameters, so parts stay attached as the preset places them;
+- ``target = "part"``: a field of ``body.parts[part]`` (``mass``, ``density``, a size such as
+  ``length``, ``radius``, ``size``, ``semi_axes``, or ``center``); a vector field is perturbed
+  component by component. A part given by density keeps its density (its mass follows its
+  size); a part given by mass keeps its mass;
+- ``target = "moments"``: each principal moment times ``1 + s z`` (relative spreads only);
+- ``target = "axes"``: the principal axes turned by a small random rotation, the rotation
+  vector ``s z`` (rad, absolute spreads only, one deviate per design axis x, y, z).
+
+``z`` is a standard deviate (:func:`tumble.ensemble.sampling.deviates`): normal (``s`` is one
+standard deviation) or uniform on [-1, 1] (``s`` is the half-width); ``relative = True`` makes
+a field ``v (1 + s z)``, ``False`` makes it ``v + s z`` (in the field's unit).
+
+Physical validity. The perturbed parts go through the part and body constructors, and the
+perturbed tensor ``A diag(I) A^T`` through :meth:`tumble.mass.MassProperties.from_inertia`
+(symmetric, positive semidefinite, triangle inequality ``I1 + I2 >= I3``; Goldstein sec. 5.4),
+and a moment within :data:`tumble.mass.INERTIA_RTOL` of zero is refused as
+:func:`tumble.simulate` refuses it: :meth:`BodySampler.sample` raises ``ValueError`` for a draw
+that breaks any rule, and the caller draws again (:mod:`tumble.ensemble.cases`). A draw is
+never clipped or repaired, so the accepted cases follow the dispersions *conditioned* on being
+physical (for a planar body, whose moments sit on the triangle inequality, half of all
+independent moment draws are refused).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties
+from .sampling import DISTRIBUTIONS, deviates
+
+__all__ = ["TARGETS", "BodySampler", "Dispersion", "Sampled"]
+
+#: What a dispersion can act on.
+TARGETS = ("preset", "part", "moments", "axes")
+#: Part fields that are orientations, not numbers: not dispersed (use target "axes").
+_NOT_NUMBERS = ("axis", "rotation", "subtract", "spin_acceleration")
+
+
+def _unit(field: str) -> str:
+    """The SI unit of a part field or preset parameter, from its name."""
+    if "density" in field:
+        return "kg/m^3"
+    if "mass" in field:
+        return "kg"
+    if "spin" in field:
+        return "rad/s"
+    return "m"
+
+
+@dataclass(frozen=True)
+class Dispersion:
+    """One uncertain quantity and its spread (module docstring).
+
+    Parameters
+    ----------
+    target : {"preset", "part", "moments", "axes"}
+        What is perturbed.
+    spread : float
+        ``s`` >= 0: a fraction with ``relative``, else in the quantity's unit (rad for axes).
+        One standard deviation (normal) or the half-width (uniform).
+    field : str, optional
+        The preset parameter or part field (targets "preset" and "part" only).
+    part : int, optional
+        Index into ``body.parts``, from 0 (target "part" only).
+    relative : bool
+        ``v (1 + s z)`` (True) or ``v + s z`` (False). Moments take relative spreads only,
+        axes absolute ones only.
+    distribution : {"normal", "uniform"}
+        Of the deviate ``z``.
+    """
+
+    target: str
+    spread: float
+    field: str | None = None
+    part: int | None = None
+    relative: bool = True
+    distribution: str = "normal"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.target, str) or self.target not in TARGETS:
+            raise ValueError(f"target = {self.target!r} is unknown; allowed: {', '.join(TARGETS)}")
+        if not isinstance(self.distribution, str) or self.distribution not in DISTRIBUTIONS:
+            raise ValueError(f"distribution = {self.distribution!r} is unknown; allowed: {', '.join(DISTRIBUTIONS)}")
+        s = self.spread
+        if isinstance(s, bool) or not isinstance(s, (int, float, np.integer, np.floating)) or not (
+                math.isfinite(s) and s >= 0):
+            raise ValueError(f"spread = {s!r} must be a finite number >= 0")
+        object.__setattr__(self, "spread", float(s))
+        if not isinstance(self.relative, bool):
+            raise ValueError(f"relative = {self.relative!r} must be true or false")
+        named = self.target in ("preset", "part")
+        if named != isinstance(self.field, str):
+            raise ValueError(f"field = {self.field!r}: target {self.target!r} "
+                             f"{'needs a field name' if named else 'takes no field'}")
+        if (self.target == "part") != (self.part is not None):
+            raise ValueError(f"part = {self.part!r}: only target 'part' takes a part index, and it needs one")
+        if self.part is not None and (isinstance(self.part, bool) or not isinstance(self.part, (int, np.integer))
+                                      or self.part < 0):
+            raise ValueError(f"part = {self.part!r} must be a whole number >= 0 (an index into the body's parts)")
+        if self.target == "moments" and not self.relative:
+            raise ValueError("target 'moments' takes a relative spread only (a fraction of each moment)")
+        if self.target == "axes" and self.relative:
+            raise ValueError("target 'axes' takes an absolute spread only (rad, the small rotation's size)")
+
+    @property
+    def label(self) -> str:
+        """Its name in tables: ``shaft_length``, ``parts[1].length``, ``moments``, ``axes``."""
+        if self.target == "preset":
+            return str(self.field)
+        if self.target == "part":
+            return f"parts[{self.part}].{self.field}"
+        return self.target
+
+
+@dataclass(frozen=True, eq=False)
+class Sampled:
+    """One drawn body: what the dynamics needs and the values drawn.
+
+    Attributes
+    ----------
+    moments : ndarray, shape (3,)
+        Principal moments, ascending, kg m^2.
+    axes : ndarray, shape (3, 3)
+        Principal axes (columns) in the design frame: principal -> design.
+    values : ndarray, shape (p,)
+        The drawn quantities, in the order of :attr:`BodySampler.names`.
+    """
+
+    moments: np.ndarray
+    axes: np.ndarray
+    values: np.ndarray
+
+
+def _is_number(v) -> bool:
+    return not isinstance(v, (bool, np.bool_)) and isinstance(v, (int, float, np.integer, np.floating))
+
+
+def _width(value) -> int:
+    """1 for a number, 3 for a vector of 3 numbers, 0 for anything else."""
+    if _is_number(value):
+        return 1
+    if isinstance(value, tuple) and len(value) == 3 and all(_is_number(v) for v in value):
+        return 3
+    return 0
+
+
+def _perturb(value, d: Dispersion, z: np.ndarray):
+    v = np.asarray(value, dtype=float)
+    out = v * (1.0 + d.spread * z) if d.relative else v + d.spread * z
+    return float(out[0]) if out.shape == (1,) and np.ndim(value) == 0 else tuple(float(x) for x in out)
+
+
+@dataclass(frozen=True, eq=False)
+class BodySampler:
+    """A nominal body and its dispersions, checked against each other.
+
+    Parameters
+    ----------
+    body : Body
+        The nominal body (rigid: no rotors).
+    dispersions : sequence of Dispersion
+        Applied in order: preset parameters, then parts, then moments, then axes (whatever
+        the order given), each taking its deviates in the order given.
+    preset : str, optional
+        The name of the preset the body was made from (needed by target "preset").
+    parameters : dict, optional
+        The keyword arguments the preset was called with.
+
+    Raises
+    ------
+    ValueError
+        One line naming the dispersion (by its index) and the rule: a part index out of range,
+        a field the part does not have or that is not a number, a preset parameter that the
+        preset does not take or that has no number to perturb, a body with rotors.
+    """
+
+    body: Body
+    dispersions: tuple[Dispersion, ...] = ()
+    preset: str | None = None
+    parameters: dict | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.body, Body):
+            raise ValueError(f"body = {self.body!r} must be a tumble Body")
+        if self.body.rotors:
+            raise ValueError(f"the body has {len(self.body.rotors)} rotor(s); sweeps run rigid bodies only")
+        items = tuple(self.dispersions)
+        for k, d in enumerate(items):
+            if not isinstance(d, Dispersion):
+                raise ValueError(f"dispersions[{k}] = {d!r} is not a tumble.ensemble.Dispersion")
+        if self.preset is not None and self.preset not in PRESETS:
+            raise ValueError(f"preset = {self.preset!r} is unknown; allowed: {', '.join(PRESETS)}")
+        object.__setattr__(self, "dispersions", items)
+        object.__setattr__(self, "parameters", dict(self.parameters or {}))
+        widths = [self._width(k, d) for k, d in enumerate(items)]
+        object.__setattr__(self, "_widths", tuple(widths))
+
+    def _nominal_parameters(self) -> dict:
+        signature = inspect.signature(PRESETS[self.preset])
+        defaults = {k: p.default for k, p in signature.parameters.items()}
+        return {**defaults, **self.parameters}
+
+    def _width(self, k: int, d: Dispersion) -> int:
+        where = f"dispersions[{k}] ({d.label})"
+        if d.target in ("moments", "axes"):
+            return 3
+        if d.target == "preset":
+            if self.preset is None:
+                raise ValueError(f"{where}: target 'preset' needs a body given as a preset ({', '.join(PRESETS)})")
+            params = self._nominal_parameters()
+            if d.field not in params:
+                raise ValueError(f"{where}: preset {self.preset!r} has no parameter {d.field!r}; "
+                                 f"allowed: {', '.join(k for k in params if k != 'name')}")
+            if not _is_number(params[d.field]):
+                raise ValueError(f"{where}: preset parameter {d.field} = {params[d.field]!r} has no number to "
+                                 f"perturb; give it a value in the body table")
+            return 1
+        if d.part >= len(self.body.parts):
+            raise ValueError(f"{where}: part = {d.part} is out of range; the body has parts 0 to "
+                             f"{len(self.body.parts) - 1}")
+        part = self.body.parts[d.part]
+        fields = [f.name for f in dataclasses.fields(part) if f.init and f.name not in _NOT_NUMBERS]
+        value = getattr(part, d.field, None) if d.field in fields else None
+        width = _width(value)
+        if not width:
+            numeric = [f for f in fields if _width(getattr(part, f))]
+            raise ValueError(f"{where}: a {part.kind} has no number {d.field!r} to perturb; "
+                             f"allowed: {', '.join(numeric)}")
+        if d.field == "density" and part.density is None:
+            raise ValueError(f"{where}: this {part.kind} was given by its mass, not a density; perturb 'mass'")
+        return width
+
+    @property
+    def widths(self) -> tuple[int, ...]:
+        """Deviates each dispersion takes (1 or 3), in order."""
+        return self._widths  # type: ignore[attr-defined]
+
+    @property
+    def dims(self) -> int:
+        """Deviates per case, in all."""
+        return sum(self.widths)
+
+    @property
+    def distributions(self) -> tuple[str, ...]:
+        """The distribution of each deviate, shape (dims,)."""
+        return tuple(d.distribution for d, w in zip(self.dispersions, self.widths) for _ in range(w))
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Column names (with units) of the drawn values :attr:`Sampled.values`."""
+        out = []
+        for d, w in zip(self.dispersions, self.widths):
+            if d.target == "moments":
+                out += [f"moment_factor_{j}" for j in (1, 2, 3)]
+            elif d.target == "axes":
+                out += [f"axes_rotvec_{c} [rad]" for c in "xyz"]
+            elif w == 3:
+                out += [f"{d.label}[{j}] [{_unit(d.field)}]" for j in range(3)]
+            else:
+                out.append(f"{d.label} [{_unit(d.field)}]")
+        return tuple(out)
+
+    def deviates(self, u) -> np.ndarray:
+        """Map a unit-cube point (shape (dims,)) to the deviates ``z`` of the dispersions."""
+        u = np.asarray(u, dtype=float)
+        z = np.empty(self.dims)
+        names = np.array(self.distributions)
+        for name in set(self.distributions):
+            z[names == name] = deviates(u[names == name], name)
+        return z
+
+    def sample(self, z) -> Sampled:
+        """The body for the deviates ``z`` (shape (dims,)).
+
+        Raises
+        ------
+        ValueError
+            When the draw is not a physical body (module docstring): the caller draws again.
+        """
+        z = np.asarray(z, dtype=float)
+        chunks = np.split(z, np.cumsum(self.widths)[:-1]) if self.dispersions else []
+        drawn = dict(zip(range(len(self.dispersions)), chunks))
+        values: dict[int, np.ndarray] = {}
+        body = self.body
+        by_target = {t: [k for k, d in enumerate(self.dispersions) if d.target == t] for t in TARGETS}
+        if by_target["preset"]:
+            kwargs = dict(self.parameters)
+            nominal = self._nominal_parameters()
+            for k in by_target["preset"]:
+                d = self.dispersions[k]
+                kwargs[d.field] = _perturb(nominal[d.field], d, drawn[k])
+                values[k] = np.atleast_1d(kwargs[d.field])
+            body = PRESETS[self.preset](**kwargs)
+        if by_target["part"]:
+            parts = list(body.parts)
+            for k in by_target["part"]:
+                d = self.dispersions[k]
+                new = _perturb(getattr(parts[d.part], d.field), d, drawn[k])
+                parts[d.part] = _replace(parts[d.part], d.field, new)
+                values[k] = np.atleast_1d(new)
+            body = Body(tuple(parts), body.name)
+        moments, axes = body.principal_moments, body.principal_axes
+        if by_target["moments"] or by_target["axes"]:
+            factor, turn = np.ones(3), Rotation.identity()
+            for k in by_target["moments"]:
+                values[k] = 1.0 + self.dispersions[k].spread * drawn[k]
+                factor = factor * values[k]
+            for k in by_target["axes"]:
+                values[k] = self.dispersions[k].spread * drawn[k]
+                turn = Rotation.from_rotvec(values[k]) * turn
+            A = turn.as_matrix() @ axes
+            tensor = A @ np.diag(moments * factor) @ A.T
+            props = MassProperties.from_inertia(body.mass, body.com, tensor)
+            moments, axes = props.principal_moments, props.principal_axes
+        if np.any(moments <= INERTIA_RTOL * np.sum(moments)):
+            raise ValueError(f"principal moments {moments.tolist()} kg m^2 include a zero moment")
+        flat = [values[k] for k in range(len(self.dispersions))]
+        return Sampled(np.array(moments), np.array(axes), np.concatenate(flat) if flat else np.empty(0))
+
+
+def _replace(part, field: str, value):
+    """``part`` with ``field = value``: by density its mass follows, by mass its mass stays."""
+    if field == "mass":
+        return dataclasses.replace(part, mass=value, density=None)
+    if field == "density":
+        return dataclasses.replace(part, density=value, mass=None)
+    if part.density is not None:
+        return dataclasses.replace(part, **{field: value, "mass": None})
+    return dataclasses.replace(part, **{field: value})
