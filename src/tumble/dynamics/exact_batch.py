@@ -1,8 +1,28 @@
-"""The exact torque-free motion of N rigid bodies at common times.
+"""The exact torque-free motion of N rigid bodies at common times, vectorised over both.
 
 The mathematics is that of :mod:`tumble.dynamics.exact` (Landau & Lifshitz, *Mechanics*,
-sec. 37): omega from Jacobi's elliptic functions, the attitude from the precession angle about
-L given by the incomplete elliptic integral of the third kind.
+sec. 37; read its module docstring), evaluated step for step in the same floating-point
+operations, on arrays of bodies instead of one body at a time:
+
+- the parameters ``p``, ``k``, ``k'``, the amplitudes and the characteristic ``n`` from
+  :func:`tumble.dynamics.exact_parameters.scaled_core` (which broadcasts);
+- the complete integrals ``K(m)`` and ``Pi(n | m)`` in double-double by the AGM (Abramowitz &
+  Stegun 17.6) and Bulirsch's ``cel`` (Numer. Math. 13 (1969) 305), with the shift for
+  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`; each body stops iterating where the scalar
+  routine stops (a mask), so the values are the scalar ones;
+- the phase ``u = u0 + p t`` and its reduction by half periods in double-double, and ``sn, cn,
+  dn`` of the reduced phase by the AGM and descending Landen transformation (``m <= 1/2``) or
+  Jacobi's imaginary transformation (``m > 1/2``) of :class:`tumble.dynamics.elliptic.Modulus`,
+  each body with its own number of Landen steps;
+- the attitude ``R(t) = G Rz(phi) Rx(theta) Rz(psi) P`` with quaternion algebra written out on
+  arrays (Hamilton product, scalar last, as scipy), the precession ``phi`` from Legendre's
+  integrals (:func:`tumble.dynamics.carlson.legendre_f`, :func:`~tumble.dynamics.carlson.
+  legendre_pi_excess`, vectorised already), its secular part in double-double.
+
+Steady rotations (spheres, spins about a principal axis, a symmetric top in its degenerate
+plane) are rotations about the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi).
+Bodies exactly on the separatrix (``k' = 0``: no period), and any whose parameters come out
+non-finite, are handed to :class:`tumble.dynamics.exact.FreeRotation` one by one.
 """
 
 from __future__ import annotations
@@ -10,13 +30,57 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .exact import FreeRotation, check_phase_limit
+from . import ddouble as dd
+from .carlson import legendre_f, legendre_pi_excess
+from .exact import MAX_PHASE, FreeRotation, check_phase_limit
+from .exact_parameters import scaled_core
 
-__all__ = ["free_rotation_batch"]
+__all__ = ["free_rotation_batch", "quat_multiply", "quat_zxz"]
+
+#: Bodies x samples evaluated at once (memory: a few dozen arrays of this many doubles).
+_CHUNK = 1 << 17
+#: The body-to-relabelled-coordinates permutation ``P`` (exact.py's ``_CYCLE``) by reference axis:
+#: the identity for axis 3 (index 2), the cyclic ``(x, y, z) -> (y, z, x)`` for axis 1 (index 0).
+_PERM = {2: Rotation.identity().as_quat(), 0: Rotation.from_matrix(np.eye(3)[[1, 2, 0]]).as_quat()}
 
 
-def free_rotation_batch(moments, omega0, quat0, t) -> tuple[np.ndarray, np.ndarray]:
-    """Omega and attitude of N free rigid bodies at times ``t``.
+def quat_multiply(a, b) -> np.ndarray:
+    """Hamilton product ``a (x) b`` of quaternions, scalar last (scipy: ``Ra * Rb``).
+
+    ``(u, w)(v, s) = (w v + s u + u x v, w s - u . v)`` (Shuster, J. Astronaut. Sci. 41 (1993)
+    439); broadcasts over leading axes; shapes (..., 4).
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    u, w, v, s = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., :3] = w * v + s * u + np.cross(u, v)
+    out[..., 3] = (w * s)[..., 0] - np.sum(u * v, axis=-1)
+    return out
+
+
+def quat_conjugate(q) -> np.ndarray:
+    """The inverse of unit quaternions, scalar last."""
+    out = np.array(q, float)
+    out[..., :3] *= -1.0
+    return out
+
+
+def quat_zxz(phi, theta, psi) -> np.ndarray:
+    """``Rz(phi) Rx(theta) Rz(psi)`` (intrinsic z-x-z Euler angles, rad) as quaternions, scalar
+    last: the product of the three elementary quaternions written out,
+    ``(sb (ca cc + sa sc), sb (sa cc - ca sc), cb (sa cc + ca sc), cb (ca cc - sa sc))`` with
+    ``sa, ca = sin, cos(phi/2)``, ``sb, cb`` of ``theta/2``, ``sc, cc`` of ``psi/2`` (each angle
+    on its own, so a large ``phi`` costs no more than its own rounding); shape
+    ``broadcast(phi, theta, psi) + (4,)``."""
+    sa, ca = np.sin(0.5 * phi), np.cos(0.5 * phi)
+    sb, cb = np.sin(0.5 * theta), np.cos(0.5 * theta)
+    sc, cc = np.sin(0.5 * psi), np.cos(0.5 * psi)
+    return np.stack([sb * (ca * cc + sa * sc), sb * (sa * cc - ca * sc), cb * (sa * cc + ca * sc), cb * (ca * cc - sa * sc)],
+                    axis=-1)
+
+
+def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
+    """Omega and attitude of N free rigid bodies at times ``t``, without a loop over bodies.
 
     Parameters
     ----------
@@ -28,25 +92,361 @@ def free_rotation_batch(moments, omega0, quat0, t) -> tuple[np.ndarray, np.ndarr
         Unit quaternions, principal frame to world at t = 0, scalar last.
     t : ndarray, shape (T,)
         Times, s.
+    attitude : bool
+        Whether to compute the attitude (``quat`` is None without).
 
     Returns
     -------
     omega : ndarray, shape (N, T, 3)
-    quat : ndarray, shape (N, T, 4)
+        rad/s, equal to :meth:`FreeRotation.omega` to a few ulps of each body's amplitudes.
+    quat : ndarray, shape (N, T, 4) or None
+        Principal frame to world, equal to :meth:`FreeRotation.attitude` to ~1e-15 rad.
 
     Raises
     ------
     ValueError
-        If a body's phase would exceed :data:`tumble.dynamics.exact.MAX_PHASE` (naming the body).
+        If a body's phase would exceed :data:`tumble.dynamics.exact.MAX_PHASE`, naming the body.
     """
+    I, w, q0 = (np.asarray(a, float) for a in (moments, omega0, quat0))
     t = np.asarray(t, float)
-    t_end = float(np.max(np.abs(t)))
-    omega, quat = np.empty((len(moments), len(t), 3)), np.empty((len(moments), len(t), 4))
-    for i in range(len(moments)):
+    _check_phases(I, w, t)
+    N, T = len(I), len(t)
+    omega = np.empty((N, T, 3))
+    quat = np.empty((N, T, 4)) if attitude else None
+    steady = _is_steady(I, w)
+    idx = np.flatnonzero(steady)
+    if len(idx):
+        omega[idx] = w[idx, None, :]
+        if attitude:
+            quat[idx] = _steady_attitude(w[idx], q0[idx], t)
+    rest = np.flatnonzero(~steady)
+    step = max(1, _CHUNK // max(T, 1))
+    single = []
+    for start in range(0, len(rest), step):
+        chunk = rest[start:start + step]
+        motion = _Elliptic(I[chunk], w[chunk], t)
+        ok = motion.ok
+        omega[chunk[ok]] = motion.omega
+        if attitude:
+            quat[chunk[ok]] = motion.attitude(q0[chunk[ok]])
+        single.extend(chunk[~ok].tolist())
+    for i in single:  # the separatrix and anything the arrays could not hold
+        one = FreeRotation(I[i], w[i], Rotation.from_quat(q0[i]))
+        omega[i] = one.omega(t)
+        if attitude:
+            quat[i] = one.attitude(t).as_quat()
+    return omega, quat
+
+
+def _check_phases(I, w, t) -> None:
+    """:func:`check_phase_limit` for the bodies that could come near it (a cheap bound first)."""
+    if not t.size:
+        return
+    t_max = float(np.max(np.abs(t)))
+    with np.errstate(over="ignore"):
+        bound = np.linalg.norm(I * w, axis=1) / I[:, 0] * t_max
+    for i in np.flatnonzero(~(bound <= 1e-3 * MAX_PHASE)):
         try:
-            check_phase_limit(moments[i], omega0[i], t_end)
+            check_phase_limit(I[i], w[i], t_max)
         except ValueError as err:
             raise ValueError(f"omega0[{i}]: {err}") from None
-        motion = FreeRotation(moments[i], omega0[i], Rotation.from_quat(quat0[i]))
-        omega[i], quat[i] = motion.omega(t), motion.attitude(t).as_quat()
-    return omega, quat
+
+
+def _is_steady(I, w) -> np.ndarray:
+    """exact.py's ``_is_steady`` on arrays: the same exact comparisons."""
+    zeros = np.count_nonzero(w == 0.0, axis=1)
+    return ((I[:, 0] == I[:, 2]) | (zeros >= 2) | ((I[:, 0] == I[:, 1]) & (w[:, 2] == 0.0))
+            | ((I[:, 1] == I[:, 2]) & (w[:, 0] == 0.0)))
+
+
+def _norm(v):
+    """``|v|`` of three double-doubles (arrays) as a double-double mantissa and a power of two,
+    scaled first so that no square underflows (exact.py's ``_norm``, elementwise)."""
+    big = np.maximum(np.maximum(np.abs(v[0][0]), np.abs(v[1][0])), np.abs(v[2][0]))
+    e = np.frexp(big)[1]
+    acc = (np.zeros_like(big), np.zeros_like(big))
+    for x in v:
+        x = (np.ldexp(x[0], -e), np.ldexp(x[1], -e))
+        acc = dd.add(acc, dd.mul(x, x))
+    return dd.sqrt(acc), e
+
+
+def _times(x, t):
+    """``x t`` for double-doubles ``x`` of shape (n,) and times ``t`` (n, T) or (T,), scaled by
+    powers of two first (:func:`tumble.dynamics.ddouble.mul_scaled`, elementwise)."""
+    e = np.frexp(x[0])[1][:, None]
+    return dd.mul_d((np.ldexp(x[0][:, None], -e), np.ldexp(x[1][:, None], -e)), np.ldexp(t, e))
+
+
+def _steady_attitude(w, q0, t) -> np.ndarray:
+    """``q0 (x) exp(|w| t e_w)``: the turn about the fixed omega, its angle in double-double."""
+    spin, e = _norm([(x, np.zeros_like(x)) for x in w.T])
+    axis = np.where(spin[0][:, None] > 0, np.ldexp(w, -e[:, None]) / np.where(spin[0] > 0, spin[0], 1.0)[:, None], w)
+    angle = 0.5 * dd.reduce_2pi(_times(dd.ldexp(spin, e), t))
+    turn = np.concatenate([np.sin(angle)[..., None] * axis[:, None, :], np.cos(angle)[..., None]], axis=-1)
+    return quat_multiply(q0[:, None, :], turn)
+
+
+def _pick(cond, x, y):
+    """``x`` where ``cond``, else ``y``, for double-doubles."""
+    return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
+
+
+def _masked_loop(state, step, limit: int = 40):
+    """Iterate ``state = step(state)`` elementwise, the last item of the state saying where an
+    element has stopped; stopped elements are frozen from then on (the scalar loops' ``break``,
+    on arrays). Items are arrays or double-doubles."""
+    done = np.zeros(np.shape(state[-1]), bool)
+    for _ in range(limit):
+        new = step(state)
+        state = tuple(_pick(done, so, sn) if isinstance(so, tuple) else np.where(done, so, sn)
+                      for so, sn in zip(state, new))
+        done = done | new[-1]
+        if np.all(done):
+            break
+    return state
+
+
+def _agm_k(kp):
+    """``K = pi / (2 AGM(1, k'))`` in double-double, elementwise (carlson's ``_agm_k``)."""
+    one = (np.ones_like(kp[0]), np.zeros_like(kp[0]))
+
+    def step(s):  # carlson's loop tests |a - b| before a step: an element stops unchanged
+        a, b, _ = s
+        stop = np.abs(a[0] - b[0]) <= 1e-17 * a[0]
+        a2, b2 = dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
+        return _pick(stop, a, a2), _pick(stop, b, b2), stop
+
+    a, b, _ = _masked_loop((one, kp, np.zeros(kp[0].shape, bool)), step)
+    return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
+
+
+def _cel(kc, pp):
+    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double, elementwise (carlson's ``_cel``)."""
+    one = (np.ones_like(kc[0]), np.zeros_like(kc[0]))
+    p = dd.sqrt(pp)
+    a, b = one, dd.div(one, p)
+
+    def step(s):
+        a, b, p, e, em, qc, _ = s
+        f, inv = a, dd.div(one, p)
+        a = dd.add(a, dd.mul(b, inv))
+        g = dd.mul(e, inv)
+        b = dd.add(b, dd.mul(f, g))
+        b = (2.0 * b[0], 2.0 * b[1])
+        p = dd.add(g, p)
+        g = em
+        em = dd.add(qc, em)
+        stop = np.abs(g[0] - qc[0]) <= 1e-17 * g[0]  # the break comes before qc and e change
+        root = dd.sqrt(e)
+        qc2 = _pick(stop, qc, (2.0 * root[0], 2.0 * root[1]))
+        return a, b, p, _pick(stop, e, dd.mul(qc2, em)), em, qc2, stop
+
+    state = (a, b, p, kc, one, kc, np.zeros(kc[0].shape, bool))
+    a, b, p, _, em, _, _ = _masked_loop(state, step)
+    return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
+
+
+def _complete_k(kp_m, kp_e):
+    """``K`` (a double-double) for ``k' = kp_m 2^kp_e``, elementwise (carlson's
+    ``complete_integrals``, with its shift for ``k' < 2^-61``); also the shifted ``k'`` and the
+    shift, for :func:`_complete_pi`."""
+    e = np.frexp(kp_m[0])[1] + kp_e
+    shift = np.maximum(-61 - e, 0)
+    kp = (np.ldexp(kp_m[0], kp_e + shift), np.ldexp(kp_m[1], kp_e + shift))
+    K = _agm_k(kp)
+    log = dd.mul_d(dd.LN2, shift.astype(float))
+    return _pick(shift > 0, dd.add(K, log), K), kp, shift
+
+
+def _complete_pi(n, kp, shift, K):
+    """``Pi(n | m)`` (a double-double), ``n <= 0``, from :func:`_complete_k`'s answers."""
+    one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), (-n[0], -n[1]))
+    Pi = _pick(n[0] == 0.0, K, _cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
+    log = dd.mul_d(dd.LN2, shift.astype(float))
+    return _pick(shift > 0, dd.add(Pi, dd.div(log, one_n)), Pi)
+
+
+def _agm_tables(b0, c0):
+    """The ``a_n``, ``c_n`` of the AGM of ``(1, b0)`` for each element (elliptic's ``_agm``):
+    arrays of shape (L, n) and the number of steps each element takes."""
+    a, b, c = np.ones_like(b0), b0, c0
+    As, Cs = [a], [c]
+    count = np.zeros(b0.shape, int)
+    for _ in range(59):
+        go = c > 1.1e-16 * a
+        if not np.any(go):
+            break
+        a2 = 0.5 * (a + b)
+        a, b, c = np.where(go, a2, a), np.where(go, np.sqrt(a * b), b), np.where(go, c * c / (4.0 * a2), c)
+        As.append(a)
+        Cs.append(c)
+        count += go
+    return np.array(As), np.array(Cs), count
+
+
+class _Elliptic:
+    """The elliptic (non-steady) motions of a chunk of bodies at times ``t``; ``ok`` marks the
+    bodies computed here (the rest go to :class:`FreeRotation`)."""
+
+    def __init__(self, I, w, t):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+            self._parameters(I, w)
+            self._phase(t)
+
+    def _parameters(self, I, w) -> None:
+        core = scaled_core(w, I)
+        upper = np.asarray(core["upper"])
+        p = core["p"]
+        (k_m, k_e), (kp_m, kp_e) = core["k"], core["kp"]
+        k = np.minimum(np.ldexp(k_m[0], k_e), 1.0)
+        top = k == 0.0  # a symmetric top: circular functions, exactly
+        kp_m = (np.where(top, 1.0, kp_m[0]), np.where(top, 0.0, kp_m[1]))
+        kp_e = np.where(top, 0, kp_e)
+        kp = np.minimum(np.ldexp(kp_m[0], kp_e), 1.0)
+        amp = core["amplitudes"]
+        # k' = 0 is the separatrix (no period); the rest must have come out finite
+        ok = (kp_m[0] > 0) & (p[0] > 0) & np.isfinite(p[0]) & np.all(amp > 0, axis=1) & np.all(np.isfinite(amp), axis=1)
+        sel = np.flatnonzero(ok)
+        self.ok = ok
+        I, w, upper, p, k, kp, amp = I[sel], w[sel], upper[sel], (p[0][sel], p[1][sel]), k[sel], kp[sel], amp[sel]
+        K, kp_shifted, shift = _complete_k((kp_m[0][sel], kp_m[1][sel]), kp_e[sel])
+        rows = np.arange(len(sel))
+        r = np.where(upper, 2, 0)
+        sign = np.where(w[rows, r] >= 0, 1.0, -1.0)
+        # phase at t = 0 (exact.py's _elliptic): sn(u0) = w2 / a2, cn(u0) = w_c / (sign a_c)
+        s0, c0 = w[:, 1] / amp[:, 1], w[rows, 2 - r] / (sign * amp[rows, 2 - r])
+        h = np.hypot(s0, c0)
+        s0, c0 = s0 / h, c0 / h
+        back = c0 < 0  # am(u0) beyond +-pi/2: one half period further
+        j0 = np.where(back, np.where(s0 >= 0, 1.0, -1.0), 0.0)
+        s0, c0 = np.where(back, -s0, s0), np.maximum(np.where(back, -c0, c0), 0.0)
+        d0 = np.hypot(c0, kp * s0)
+        u0 = dd.add(dd.mul_d((2.0 * K[0], 2.0 * K[1]), j0), self._initial_phase(s0, c0, d0, kp, K))
+        self.I, self.w, self.upper, self.p, self.k, self.kp, self.K = I, w, upper, p, k, kp, K
+        self.amp, self.sign, self.u0, self.j0 = amp, sign, u0, j0
+        big = k > kp  # m > 1/2: Jacobi's imaginary transformation
+        self.tables = _agm_tables(np.where(big, k, kp), np.where(big, kp, k))
+        self.big = big
+        # for the attitude only (_precession_parameters)
+        self._later = (core["moments"][sel], (core["n"][0][sel], core["n"][1][sel]), kp_shifted, shift, (s0, c0, d0))
+
+    def _precession_parameters(self) -> None:
+        """Rates of the precession about L (exact.py's module docstring and ``_elliptic``), from
+        the scaled moments: ``phi(t) = A t + B j + b(u_r) - b(u0_r)``."""
+        Is, n, kp_shifted, shift, start = self._later
+        K, p, rows = self.K, self.p, np.arange(len(Is))
+        r = np.where(self.upper, 2, 0)
+        Ir, Io = Is[rows, r], Is[rows, 2 - r]
+        Ln, e = _norm([dd.two_prod(Is[:, i], self.w[:, i]) for i in range(3)])
+        Ln = dd.ldexp(Ln, e)
+        rate0 = dd.div(Ln, (Ir, np.zeros_like(Ir)))
+        rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[:, 0], Is[:, 2]))
+        scale = dd.div(rate1, p)
+        Pi = _complete_pi(n, kp_shifted, shift, K)
+        pi_mode = np.abs(n[0]) > 1.0  # else the excess form: Pi - F with F(am u) = u exactly
+        excess = dd.add(Pi, (-K[0], -K[1]))
+        self.A = _pick(pi_mode, rate0, dd.add(rate0, rate1))
+        self.B = dd.mul(dd.mul_d(scale, 2.0), _pick(pi_mode, Pi, excess))
+        self.n, self.scale, self.pi_mode, self.excess_c = n[0], scale[0], pi_mode, excess[0]
+        self.b0 = self._bounded(*start)
+
+    @staticmethod
+    def _initial_phase(s0, c0, d0, kp, K):
+        """``u_r = F(phi | m)`` (exact.py's ``_initial_phase``): past ``|u_r| = K/2`` from ``+-K``
+        by the co-amplitude, so that a start near ``cn = 0`` keeps its relative accuracy."""
+        far = (kp > 0) & (np.abs(s0) * d0 > c0) & np.isfinite(K[0])
+        dfar = np.where(d0 > 0, d0, 1.0)
+        u1 = np.where(d0 > 0, legendre_f(c0 / dfar, kp * np.abs(s0) / dfar, kp / dfar), 0.0)
+        shifted = dd.add(K, (-u1, np.zeros_like(u1)))
+        shifted = _pick(s0 > 0, shifted, _neg(shifted))
+        near = legendre_f(s0, c0, d0, K=K[0])
+        return np.where(far, shifted[0], near), np.where(far, shifted[1], 0.0)
+
+    def _phase(self, t) -> None:
+        """``u = u0 + p t`` reduced by half periods (elliptic's ``Modulus.reduce``), and omega."""
+        u = dd.add(_times(self.p, t), (self.u0[0][:, None], self.u0[1][:, None]))
+        K = (self.K[0][:, None], self.K[1][:, None])
+        twoK = (2.0 * K[0], 2.0 * K[1])
+        j1 = np.rint(u[0] / twoK[0])
+        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        j2 = np.rint(r[0] / twoK[0])
+        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        q = np.rint(r[0] / K[0])
+        v = dd.add(r, _neg(dd.mul_d(K, q)))
+        s, c, d = self._landen(v[0] + v[1])
+        kp = self.kp[:, None]
+        sn = np.where(q == 0, s, q * c / d)
+        cn = np.where(q == 0, c, -q * kp * s / d)
+        dn = np.where(q == 0, d, kp / d)
+        dn = np.where(np.isfinite(dn), dn, 0.0)
+        odd = (np.fmod(np.abs(j1), 2.0) + np.abs(j2)) % 2.0 == 1.0
+        self.t, self.j, self.sncndn = t, (j1, j2), (sn, cn, dn)
+        flip = np.where(odd, -1.0, 1.0)
+        a, sign, up = self.amp, self.sign[:, None], self.upper[:, None]
+        wc = sign * np.where(up, a[:, None, 0], a[:, None, 2]) * flip * cn
+        wr = sign * np.where(up, a[:, None, 2], a[:, None, 0]) * dn
+        self.omega = np.stack([np.where(up, wc, wr), a[:, None, 1] * flip * sn, np.where(up, wr, wc)], axis=-1)
+
+    def _landen(self, v):
+        """``sn, cn, dn`` of ``|v| <= K/2`` (elliptic's ``Modulus._landen``), each body with its
+        own AGM and number of Landen steps."""
+        As, Cs, count = self.tables
+        rows = np.arange(len(count))
+        x = (np.ldexp(1.0, count) * As[count, rows])[:, None] * v
+        big = self.big[:, None]
+        for n in range(len(As) - 1, 0, -1):
+            ratio = (Cs[n] / As[n])[:, None]
+            go = (n <= count)[:, None]
+            hyper = 0.5 * (x + np.arcsinh(ratio * np.sinh(x)))
+            circ = 0.5 * (x + np.arcsin(np.clip(ratio * np.sin(x), -1.0, 1.0)))
+            x = np.where(go, np.where(big, hyper, circ), x)
+        kp, k = self.kp[:, None], self.k[:, None]
+        ch = np.cosh(x)
+        cn_c = np.cos(x)
+        sn = np.where(big, np.tanh(x), np.sin(x))
+        cn = np.where(big, 1.0 / ch, cn_c)
+        dn = np.where(big, np.hypot(1.0, kp * np.sinh(x)) / ch, np.hypot(kp, k * cn_c))
+        return sn, cn, dn
+
+    def _bounded(self, sn, cn, dn):
+        """The bounded part of ``phi`` at reduced phases, rad (exact.py's ``_bounded``)."""
+        col = (lambda x: x) if np.ndim(sn) == 1 else (lambda x: x[:, None])
+        excess = np.empty(np.shape(sn))
+        # legendre_pi_excess takes 0, 1 or 3 duplication steps as all its arguments need: taken
+        # for each body's own samples, as FreeRotation does (other steps change the round-off
+        # of an excess that reaches ~100 next to the separatrix: 2e-13 rad)
+        small = np.minimum(cn, dn).reshape(len(sn), -1)
+        need = np.where(np.all(small > 1e-50, axis=1), 0, np.where(np.all((cn + dn).reshape(len(sn), -1) > 1e-90, axis=1), 1, 3))
+        for steps in np.unique(need):
+            g = need == steps
+            excess[g] = legendre_pi_excess(col(self.n[g]), sn[g], cn[g], dn[g], m=col(self.k[g] ** 2),
+                                           excess_complete=col(self.excess_c[g]))
+        whole = legendre_f(sn, cn, dn, K=col(self.K[0]))
+        return col(self.scale) * np.where(col(self.pi_mode), whole + excess, excess)
+
+    def attitude(self, q0) -> np.ndarray:
+        """Body to world at every time: ``G Rz(phi) Rx(theta) Rz(psi) P``, G fixed by ``q0``."""
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+            self._precession_parameters()
+            (j1, j2), (sn, cn, dn) = self.j, self.sncndn
+            secular = dd.add(_times(self.A, self.t), dd.add(_times(self.B, j1), _times(self.B, j2 - self.j0[:, None])))
+            phi = dd.reduce_2pi(secular) + (self._bounded(sn, cn, dn) - self.b0[:, None])
+            theta, psi = self._tilt(self.I[:, None, :] * self.omega)
+            theta0, psi0 = self._tilt(self.I * self.w)
+        perm = np.where(self.upper[:, None], _PERM[2], _PERM[0])
+        tilt0 = quat_zxz(0.0, theta0, psi0)  # Rx(theta0) Rz(psi0)
+        G = quat_multiply(quat_multiply(q0, quat_conjugate(perm)), quat_conjugate(tilt0))
+        return quat_multiply(quat_multiply(G[:, None, :], quat_zxz(phi, theta, psi)), perm[:, None, :])
+
+    def _tilt(self, L):
+        """``theta, psi`` of ``Rx(theta) Rz(psi)``, which takes the relabelled L to ``|L| e_z``."""
+        up = self.upper if L.ndim == 2 else self.upper[:, None]
+        Li = np.where(up, L[..., 0], L[..., 1])
+        Lj = np.where(up, L[..., 1], L[..., 2])
+        Lr = np.where(up, L[..., 2], L[..., 0])
+        return np.arctan2(np.hypot(Li, Lj), Lr), np.arctan2(Li, Lj)
+
+
+def _neg(x):
+    return -x[0], -x[1]
