@@ -210,3 +210,275 @@ def test_bad_rates_are_refused_in_one_line():
         InitialRates(omega=(1, 2, 3), frame="world")
     with pytest.raises(ValueError, match=r"^grid\[1\] = \[\] must be a non-empty list of rates \(rad/s\)$"):
         InitialRates(grid=([1.0], [], [3.0]))
+
+
+# --- per-case results against the one-trajectory analysis -----------------------------------------
+
+from tumble.analysis import flip_interval, stability_report  # noqa: E402
+from tumble.ensemble import (  # noqa: E402
+    Counts,
+    Criterion,
+    KeyedSample,
+    RunningMoments,
+    RunSettings,
+    Sweep,
+    case_keys,
+    compute_chunk,
+    nutation_angle,
+    run_chunks,
+    runs_needed,
+    stability_map,
+    success_lower_bound,
+    summarize,
+)
+from tumble.mass import MassProperties  # noqa: E402
+
+T_HANDLE_SPREAD = (Dispersion("preset", 0.05, field="shaft_length", distribution="uniform"),
+                   Dispersion("preset", 0.05, field="crossbar_length", distribution="uniform"),
+                   Dispersion("axes", 0.02, relative=False))
+NEAR_INTERMEDIATE = InitialRates(omega=(10.0, 0.1, 0.1), frame="design", distribution="normal",
+                                 spread=(0.0, 0.05, 0.05))
+
+
+def t_handle_sweep(cases=24, *, seed=7, settings=None, criterion=None, sampling="random") -> Sweep:
+    e = ensemble(T_HANDLE_SPREAD, cases, preset="t-handle", rates=NEAR_INTERMEDIATE, seed=seed, sampling=sampling)
+    return Sweep(e, settings or RunSettings(t_end=20.0, samples=400), criterion)
+
+
+def props_of(moments, axes) -> MassProperties:
+    return MassProperties(1.0, np.zeros(3), axes @ np.diag(moments) @ axes.T, moments, axes)
+
+
+def test_each_row_is_what_the_trajectory_of_that_case_reports():
+    sweep = t_handle_sweep(6)
+    cols = compute_chunk(sweep, 0, 6)
+    x = sweep.ensemble.inputs(0, 6)
+    for i in range(6):
+        traj = tumble.simulate(props_of(x.moments[i], x.axes[i]), x.omega0[i], t_end=20.0, samples=400)
+        report = stability_report(traj)
+        assert cols["axis"][i] == report["axis"] == 2
+        assert cols["predicted"][i] == report["predicted"] == "unstable"
+        assert cols["flips"][i] == report["flips"] >= 8
+        assert cols["flip_period [s]"][i] == pytest.approx(report["flip_period"], rel=1e-12)
+        assert cols["flip_period_exact [s]"][i] == pytest.approx(report["flip_period_exact"], rel=1e-12)
+        assert cols["growth_rate [1/s]"][i] == pytest.approx(report["growth_rate"], rel=1e-12)
+        assert cols["max_nutation [rad]"][i] == pytest.approx(np.max(traj.nutation_angle), rel=1e-12)
+        q = [cols[f"q_end_{c}"][i] for c in "xyzw"]
+        assert np.allclose(q, traj.design_attitude()[-1].as_quat(canonical=True), atol=1e-12)
+        w = [cols[f"omega_end_{j} [rad/s]"][i] for j in (1, 2, 3)]
+        assert np.allclose(w, traj.omega[-1], rtol=0, atol=1e-12)
+        # the measured period is the exact one to the sampling's resolution (dt = 0.05 s)
+        assert abs(cols["flip_period [s]"][i] / cols["flip_period_exact [s]"][i] - 1) < 1e-3
+    assert np.all(np.abs(cols["energy_change"]) < 1e-14) and np.all(cols["L_world_angle [rad]"] < 1e-14)
+
+
+def test_a_stable_spin_does_not_flip_and_has_no_flip_period():
+    rates = InitialRates(omega=(0.1, 0.1, 10.0), frame="design", distribution="normal", spread=(0.05, 0.05, 0.0))
+    sweep = Sweep(ensemble(T_HANDLE_SPREAD, 8, preset="t-handle", rates=rates, seed=2), RunSettings(t_end=10.0))
+    cols = compute_chunk(sweep, 0, 8)  # about the shaft: the minor axis
+    assert set(cols["predicted"]) == {"stable"} and set(cols["axis"]) == {1} and set(cols["circulation"]) == {1}
+    assert np.all(cols["flips"] == 0) and np.all(np.isnan(cols["flip_period [s]"]))
+    assert np.all(np.isnan(cols["flip_period_exact [s]"]))
+    assert np.all(cols["wobble_frequency [rad/s]"] > 0)
+
+
+def test_nutation_follows_the_trajectory_rule_for_prolate_and_asymmetric_bodies():
+    rng = np.random.default_rng(0)
+    for moments in ([1.0, 3.0, 3.0], [1.0, 2.0, 2.5], [2.0, 2.0, 2.0]):
+        w = rng.normal(size=(1, 50, 3))
+        body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+        traj = tumble.simulate(body, w[0, 0], times=np.linspace(0, 1, 50))
+        batch = nutation_angle(traj.omega[None], np.array([moments], float))
+        assert np.allclose(batch[0], traj.nutation_angle, rtol=1e-14, atol=0)
+
+
+def test_with_a_torque_the_energy_grows_by_the_work_done():
+    # spin W0 about the major axis and a torque tau along it: omega_3 = W0 + tau t / I3, so
+    # E(t) / E0 = (1 + tau t / (I3 W0))^2 and L keeps its direction
+    tau, W0, t_end = 0.02, 2.0, 5.0
+    rates = InitialRates(omega=(0.0, 0.0, W0))
+    e = ensemble([Dispersion("preset", 0.05, field="crossbar_length", distribution="uniform")], 4,
+                 preset="t-handle", rates=rates, seed=1)
+    settings = RunSettings(t_end=t_end, samples=50, torque=tumble.ConstantTorque((0.0, 0.0, tau)))
+    assert settings.method == "dop853"
+    cols = compute_chunk(Sweep(e, settings), 0, 4)
+    I3 = cols["I3 [kg m^2]"]
+    assert np.allclose(cols["energy_change"], (1 + tau * t_end / (I3 * W0)) ** 2 - 1, rtol=1e-9)
+    assert np.allclose(cols["omega_end_3 [rad/s]"], W0 + tau * t_end / I3, rtol=1e-10)
+    assert np.all(cols["L_world_angle [rad]"] < 1e-12) and np.all(np.isnan(cols["flip_period_exact [s]"]))
+
+
+def test_a_fixed_step_method_needs_its_step_in_a_sweep():
+    with pytest.raises(ValueError, match=r"^method = 'geometric' needs a step \(s\) in a sweep"):
+        RunSettings(t_end=1.0, method="geometric")
+
+
+# --- the stability map -------------------------------------------------------------------------
+
+def test_the_stability_map_is_the_simulated_flip_period_at_sample_points():
+    m = stability_map(10.0, (0.01, 0.01), resolution=40)
+    assert m.flip_interval.shape == (20, 40) and m.inside.sum() > 150
+    X, Y = np.meshgrid(m.x, m.y)
+    assert np.all(np.isnan(m.flip_interval[~m.inside])) and np.all(np.isfinite(m.flip_interval[m.inside]))
+    assert np.all((X + Y > 1) == (m.inside | (X >= Y) | (Y >= 1)))
+    points = [(i, j) for i, j in zip(*np.nonzero(m.inside))][::41][:4]
+    for i, j in points:
+        moments = np.array([m.x[j], m.y[i], 1.0])
+        T = m.flip_interval[i, j]
+        traj = tumble.simulate(MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments)), m.omega0,
+                               t_end=6.5 * T, samples=6000, method="dop853", rtol=1e-11)
+        report = stability_report(traj)
+        assert report["flips"] == 6
+        assert report["flip_period"] == pytest.approx(T, rel=2e-4), (moments, T)
+        # omega_3 keeps its sign iff omega circulates about the major axis
+        assert (np.all(np.sign(traj.omega[:, 2]) == np.sign(traj.omega[0, 2]))) == (m.circulation[i, j] == 3)
+
+
+def test_the_map_circulates_about_the_axis_nearer_in_energy():
+    # L^2 > 2 E I2 (circulation about axis 3) iff I1 (I2 - I1) w1^2 < I3 (I3 - I2) w3^2 for
+    # w2 the intermediate spin (Landau & Lifshitz sec. 37): the boundary is a curve in (x, y)
+    m = stability_map(5.0, (0.02, 0.01), resolution=60)
+    X, Y = np.meshgrid(m.x, m.y)
+    upper = X * (Y - X) * 0.02**2 < (1 - Y) * 0.01**2
+    assert np.array_equal(m.circulation[m.inside] == 3, upper[m.inside])
+
+
+# --- streaming statistics ----------------------------------------------------------------------
+
+def test_running_moments_of_one_to_n_have_the_closed_form_mean_and_variance():
+    n = 10_001
+    values = np.arange(1.0, n + 1)[:, None]
+    blocks = np.array_split(values, 13)
+    total = RunningMoments.of(blocks[0])
+    for b in blocks[1:]:
+        total = total.merge(RunningMoments.of(b))
+    assert total.count[0] == n and total.mean[0] == (n + 1) / 2
+    assert total.variance[0] == pytest.approx(n * (n + 1) / 12, rel=1e-14)  # sample variance of 1..n
+    assert total.minimum[0] == 1 and total.maximum[0] == n
+
+
+def test_merging_in_any_order_gives_the_same_moments_to_round_off():
+    rng = np.random.default_rng(1)
+    data = np.column_stack([rng.lognormal(3.0, 1.0, 5000), rng.normal(1e6, 1.0, 5000)])
+    data[rng.random(5000) < 0.1, 0] = np.nan  # NaN is left out
+    cuts = np.sort(rng.choice(np.arange(1, 5000), 20, replace=False))
+    parts = [RunningMoments.of(b) for b in np.split(data, cuts)]
+    results = []
+    for _ in range(5):
+        order = rng.permutation(len(parts))
+        total = parts[order[0]]
+        for k in order[1:]:
+            total = total.merge(parts[k])
+        results.append(total)
+    finite = [data[np.isfinite(data[:, j]), j] for j in range(2)]
+    for r in results:
+        assert r.count.tolist() == [len(f) for f in finite]
+        assert np.allclose(r.mean, [f.mean() for f in finite], rtol=1e-14, atol=0)
+        assert np.allclose(r.variance, [f.var(ddof=1) for f in finite], rtol=1e-11, atol=0)
+
+
+def test_the_keyed_sample_is_the_same_in_any_order_and_exact_when_it_holds_everything():
+    rng = np.random.default_rng(2)
+    n, size = 3000, 500
+    values = rng.random((n, 2))
+    keys = case_keys(42, np.arange(n))
+    assert len(set(keys.tolist())) == n
+    parts = [KeyedSample.of(keys[s], values[s], size) for s in np.array_split(rng.permutation(n), 7)]
+    a, b = parts[0], parts[-1]
+    for p in parts[1:]:
+        a = a.merge(p)
+    for p in parts[-2::-1]:
+        b = b.merge(p)
+    assert np.array_equal(a.keys, b.keys) and np.array_equal(a.values, b.values)
+    assert a.seen == n and not a.exact and len(a.keys) == size
+    # Uniform(0, 1) values: the quantile estimates are within the stated rank error (95 %)
+    q = np.array([0.05, 0.5, 0.95])
+    assert np.all(np.abs(a.quantiles(q) - q[:, None]) <= a.rank_error(0.05)[None, :])
+    whole = KeyedSample.of(keys[:1000], values[:1000], n).merge(KeyedSample.of(keys[1000:], values[1000:], n))
+    assert whole.exact and np.all(whole.rank_error() == 0)
+    assert np.array_equal(whole.quantiles(q), np.quantile(values, q, axis=0))
+
+
+def test_counts_add_up():
+    a = Counts.of({"axis": np.array([1, 2, 2]), "predicted": np.array(["stable", "unstable", "unstable"])})
+    b = Counts.of({"axis": np.array([3, 2]), "predicted": np.array(["unstable", "unstable"])})
+    assert a.merge(b).as_dict() == {"axis": {"1": 1, "2": 3, "3": 1}, "predicted": {"stable": 1, "unstable": 4}}
+
+
+def test_the_order_statistics_statement_of_hanson_and_beard():
+    # NASA/TP-2010-216447: with no failure, success >= (1 - c)^(1/n)
+    assert success_lower_bound(852, 0, 0.90) == pytest.approx(0.9973, abs=5e-5)
+    assert runs_needed(0.9973, 0.90) == 852
+    assert runs_needed(0.999, 0.95) == 2995 and runs_needed(0.99, 0.95) == 299
+    assert runs_needed(0.99, 0.95, failures=1) == 473  # the one-failure row of the usual table
+    # with k failures the bound p makes n - k or more successes exactly 1 - c probable
+    for n, k, c in ((100, 3, 0.9), (1000, 10, 0.95), (50, 49, 0.5)):
+        p = success_lower_bound(n, k, c)
+        assert stats.binom.sf(n - k - 1, n, p) == pytest.approx(1 - c, rel=1e-9)
+    assert success_lower_bound(10, 10, 0.9) == 0.0
+    with pytest.raises(ValueError, match=r"^confidence = 1.0 must be a number strictly between 0 and 1$"):
+        success_lower_bound(10, 0, 1.0)
+    with pytest.raises(ValueError, match=r"^failures = 11 must be at most cases = 10$"):
+        success_lower_bound(10, 11, 0.9)
+
+
+# --- chunks: the results do not depend on them ---------------------------------------------------
+
+def _frozen(chunks) -> dict:
+    cols = list(chunks)
+    return {k: np.concatenate([c[k] for c in cols]) for k in cols[0]}
+
+
+@pytest.mark.parametrize("sampling", ["random", "lhs"])
+def test_rows_and_statistics_are_the_same_whatever_the_chunk_size(sampling, monkeypatch):
+    import tumble.ensemble.sweep as module
+
+    monkeypatch.setattr(module, "STATS_BLOCK", 16)  # several statistics blocks in 37 cases
+    criterion = Criterion("flips", minimum=1)
+    sweep = t_handle_sweep(37, sampling=sampling, criterion=criterion)
+    runs = {}
+    for chunk in (5, 16, 37, 100):
+        seen = []
+        summary = summarize(run_chunks(sweep, chunk=chunk), 7, criterion, sample_size=20, on_chunk=seen.append)
+        runs[chunk] = (_frozen(seen), summary.as_dict(criterion))
+    first_cols, first_summary = runs[5]
+    assert first_summary["criterion"]["passed"] + first_summary["criterion"]["failed"] == 37
+    for cols, summary in runs.values():
+        assert cols.keys() == first_cols.keys()
+        for k in cols:
+            assert np.array_equal(cols[k], first_cols[k]), k
+        assert summary == first_summary
+
+
+def test_run_chunks_resumes_from_a_store_and_computes_only_what_is_missing():
+    class Store:
+        def __init__(self):
+            self.chunks = {}
+
+        def has(self, k):
+            return k in self.chunks
+
+        def load(self, k):
+            return self.chunks[k]
+
+        def save(self, k, columns):
+            self.chunks[k] = columns
+
+    class Counting:
+        calls = 0
+
+        def map(self, fn, tasks):
+            for k, task in enumerate(tasks):
+                Counting.calls += 1
+                yield k, fn(*task)
+
+    sweep = t_handle_sweep(20)
+    store = Store()
+    partial = run_chunks(sweep, chunk=4, store=store, backend=Counting())
+    next(partial), next(partial)
+    partial.close()  # interrupted after two of five chunks
+    assert sorted(store.chunks) == [0, 1] and Counting.calls == 2
+    resumed = _frozen(run_chunks(sweep, chunk=4, store=store, backend=Counting()))
+    assert Counting.calls == 5  # three more
+    fresh = _frozen(run_chunks(sweep, chunk=4))
+    assert all(np.array_equal(resumed[k], fresh[k]) for k in fresh)

@@ -1,0 +1,244 @@
+"""Per-case results, not trajectories: what each case's motion did, in a few numbers.
+
+:func:`reduce_cases` turns a chunk of cases (:class:`~tumble.ensemble.cases.CaseInputs`) and
+their motions (:func:`tumble.dynamics.simulate_batch`) into columns, one value per case, the
+same quantities :func:`tumble.analysis.stability_report` gives for one trajectory:
+
+- the *spin axis* (1, 2, 3: the principal axis carrying most of the initial spin,
+  :func:`tumble.analysis.axis_of`), its linearised class (``stable`` / ``unstable``,
+  :func:`tumble.analysis.linearised_rate`: growth exponent or wobble frequency; the torque-free
+  theory of the initial spin), and the axis omega circulates about (1 or 3,
+  :func:`tumble.analysis.circulation_axis`);
+- ``flips``: sign changes of the spin-axis component over the samples (so a flip faster than
+  the sampling is missed: sample a few times per flip), and the measured mean time between
+  flips (the first to the last crossing, linearly interpolated, over ``flips - 1``; as
+  :func:`tumble.analysis.flip_times`); the exact interval (:func:`tumble.analysis.flip_interval`,
+  elliptic K) for a torque-free asymmetric body whose spin-axis component flips;
+- the final omega (principal frame) and attitude (the *design* frame to world, a quaternion
+  ``[x, y, z, w]`` with ``w >= 0``; the design frame starts aligned with the world);
+- the largest nutation angle over the samples: the angle between L and the nearest major axis,
+  as :attr:`tumble.Trajectory.nutation_angle`;
+- ``energy_change`` ``(E(t_end) - E0) / E0`` and ``L_world_angle``, the angle (rad) between
+  ``L_world`` at the end and at t = 0: round-off without a torque (the run's error), the
+  torque's work and how far it turned the angular momentum with one.
+
+:func:`stability_map` evaluates the flip interval and the circulation axis over the triangle
+of inertia ratios for a perturbed spin about the intermediate axis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..analysis import axis_of, circulation_axis, flip_interval, linearised_rate
+from ..dynamics.batch import rotate_by_quaternion
+from ..mass import INERTIA_RTOL
+from .cases import CaseInputs
+
+__all__ = ["RESULT_COLUMNS", "StabilityMap", "input_columns", "nutation_angle", "reduce_cases", "stability_map"]
+
+#: The result columns of :func:`reduce_cases` (after the inputs), with their units.
+RESULT_COLUMNS = (
+    "axis", "predicted", "growth_rate [1/s]", "wobble_frequency [rad/s]", "circulation", "flips",
+    "flip_period [s]", "flip_period_exact [s]", "omega_end_1 [rad/s]", "omega_end_2 [rad/s]",
+    "omega_end_3 [rad/s]", "q_end_x", "q_end_y", "q_end_z", "q_end_w", "max_nutation [rad]",
+    "energy_change", "L_world_angle [rad]",
+)
+
+
+def input_columns(inputs: CaseInputs, names) -> dict[str, np.ndarray]:
+    """The inputs of each case as columns: ``case``, ``I1..I3 [kg m^2]``, ``omega0_1..3 [rad/s]``
+    (principal frame), the drawn values (``names``) and ``resampled``."""
+    cols = {"case": inputs.index}
+    cols.update({f"I{j + 1} [kg m^2]": inputs.moments[:, j] for j in range(3)})
+    cols.update({f"omega0_{j + 1} [rad/s]": inputs.omega0[:, j] for j in range(3)})
+    cols.update({name: inputs.values[:, k] for k, name in enumerate(names)})
+    cols["resampled"] = inputs.resampled
+    return cols
+
+
+def nutation_angle(omega, moments) -> np.ndarray:
+    """Angle between ``L = I omega`` and the nearest major axis, rad, in [0, pi/2].
+
+    The rule of :attr:`tumble.Trajectory.nutation_angle`, for a batch: ``arctan(hypot(L1, L2) /
+    |L3|)`` for ``I2 < I3``; for a prolate symmetric body (``I2 = I3`` within
+    :data:`~tumble.mass.INERTIA_RTOL` of the trace) the angle to the plane of axes 2 and 3,
+    ``arctan(|L1| / hypot(L2, L3))``; 0 for a sphere; NaN where L = 0.
+
+    Parameters
+    ----------
+    omega : ndarray, shape (N, T, 3)
+        Principal-frame angular velocities, rad/s.
+    moments : ndarray, shape (N, 3)
+        Ascending principal moments, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (N, T)
+    """
+    I = np.asarray(moments, float)[:, None, :]
+    L = I * np.asarray(omega, float)
+    tol = INERTIA_RTOL * np.sum(I, axis=-1)
+    prolate = I[..., 2] - I[..., 1] <= tol
+    sphere = I[..., 2] - I[..., 0] <= tol
+    angle = np.where(prolate, np.arctan2(np.abs(L[..., 0]), np.hypot(L[..., 1], L[..., 2])),
+                     np.arctan2(np.hypot(L[..., 0], L[..., 1]), np.abs(L[..., 2])))
+    angle = np.where(sphere, 0.0, angle)
+    return np.where(np.any(L != 0, axis=-1), angle, np.nan)
+
+
+def _crossing(t, y, k) -> np.ndarray:
+    """Time where ``y[n]`` changes sign between samples ``k[n]`` and ``k[n] + 1`` (linear)."""
+    n = np.arange(len(y))
+    y0, y1 = y[n, k], y[n, k + 1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return t[k] - y0 * (t[k + 1] - t[k]) / (y1 - y0)
+
+
+def _flips(t, component) -> tuple[np.ndarray, np.ndarray]:
+    """Number of sign changes of each row of ``component`` (N, T) and the mean time between
+    them (NaN with fewer than two)."""
+    change = np.signbit(component[:, :-1]) != np.signbit(component[:, 1:])
+    flips = change.sum(axis=1)
+    if change.shape[1] == 0:
+        return flips, np.full(len(flips), np.nan)
+    first = np.argmax(change, axis=1)
+    last = change.shape[1] - 1 - np.argmax(change[:, ::-1], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        period = (_crossing(t, component, last) - _crossing(t, component, first)) / (flips - 1)
+    return flips, np.where(flips >= 2, period, np.nan)
+
+
+def reduce_cases(inputs: CaseInputs, batch, names=()) -> dict[str, np.ndarray]:
+    """The per-case columns of a chunk: its inputs (:func:`input_columns`) and results.
+
+    Parameters
+    ----------
+    inputs : CaseInputs
+        The chunk's m cases.
+    batch : BatchTrajectory
+        Their motions, from :func:`tumble.dynamics.simulate_batch` with ``inputs.moments``,
+        ``inputs.omega0`` and ``attitude0=inputs.quat0``.
+    names : sequence of str
+        Names of ``inputs.values`` (:attr:`Ensemble.names`).
+
+    Returns
+    -------
+    dict of str to ndarray, each of shape (m,)
+        :func:`input_columns`, then :data:`RESULT_COLUMNS` (module docstring). ``predicted``
+        holds strings; ``axis``, ``circulation`` and ``flips`` integers; a quantity that does
+        not apply is NaN.
+    """
+    I, w0 = inputs.moments, inputs.omega0
+    m = len(inputs)
+    axis = axis_of(w0)
+    growth, wobble = linearised_rate(I, axis, w0[np.arange(m), axis - 1])
+    circulation = circulation_axis(w0, I)
+    spin = batch.omega[np.arange(m), :, axis - 1]
+    flips, period = _flips(batch.t, spin)
+    tol = INERTIA_RTOL * np.sum(I, axis=1)
+    asymmetric = (I[:, 1] - I[:, 0] > tol) & (I[:, 2] - I[:, 1] > tol)
+    exact = flip_interval(w0, I)
+    exact = np.where(batch.torque_free & asymmetric & (axis != circulation) & np.isfinite(exact), exact, np.nan)
+    end = Rotation.from_quat(batch.quat[:, -1]) * Rotation.from_matrix(inputs.axes).inv()
+    E0 = 0.5 * np.sum(I * w0 * w0, axis=1)
+    E1 = 0.5 * np.sum(I * batch.omega[:, -1] ** 2, axis=1)
+    L0 = rotate_by_quaternion(inputs.quat0, I * w0)
+    L1 = rotate_by_quaternion(batch.quat[:, -1], I * batch.omega[:, -1])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        energy_change = np.where(E0 > 0, (E1 - E0) / E0, np.nan)
+    turned = np.arctan2(np.linalg.norm(np.cross(L0, L1), axis=1), np.sum(L0 * L1, axis=1))
+    cols = input_columns(inputs, names)
+    results = [
+        axis, np.where(growth > 0, "unstable", "stable"), growth, wobble, circulation, flips, period, exact,
+        *batch.omega[:, -1].T, *end.as_quat(canonical=True).reshape(m, 4).T,
+        np.fmax.reduce(nutation_angle(batch.omega, I), axis=1), energy_change,
+        np.where(np.any(L0 != 0, axis=1), turned, np.nan),
+    ]
+    cols.update(zip(RESULT_COLUMNS, results))
+    return cols
+
+
+@dataclass(frozen=True, eq=False)
+class StabilityMap:
+    """Flip interval and circulation over the triangle of inertia ratios.
+
+    Attributes
+    ----------
+    x : ndarray, shape (nx,)
+        ``I1 / I3`` at the cell centres.
+    y : ndarray, shape (ny,)
+        ``I2 / I3`` at the cell centres.
+    inside : ndarray of bool, shape (ny, nx)
+        Points of a physical asymmetric body: ``x < y < 1`` and ``x + y > 1`` (the triangle
+        inequality).
+    flip_interval : ndarray, shape (ny, nx)
+        Exact time between sign changes of omega_2, s (NaN outside).
+    circulation : ndarray of int, shape (ny, nx)
+        Axis omega circulates about, 1 (minor) or 3 (major); 0 outside.
+    growth_rate : ndarray, shape (ny, nx)
+        Linearised growth exponent of the intermediate-axis spin, 1/s (NaN outside).
+    omega0 : ndarray, shape (3,)
+        The initial spin, rad/s, principal frame.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    inside: np.ndarray
+    flip_interval: np.ndarray
+    circulation: np.ndarray
+    growth_rate: np.ndarray
+    omega0: np.ndarray
+
+
+def stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, resolution: int = 200) -> StabilityMap:
+    """Flip interval and circulation axis over ``(I1/I3, I2/I3)`` for a perturbed intermediate spin.
+
+    The spin is ``omega0 = spin * (p1, 1, p3)`` (principal frame), the moments
+    ``(x, y, 1) I3``: every quantity here is homogeneous of degree 0 in the moments, so the
+    ratios decide it (:func:`tumble.analysis.flip_interval`, Landau & Lifshitz sec. 37). The
+    triangle: ``0 < x <= y <= 1`` with ``x + y >= 1``; its edges are the planar bodies
+    (``x + y = 1``), the prolate (``x = y``) and the oblate (``y = 1``) symmetric ones.
+
+    Parameters
+    ----------
+    spin : float
+        The spin about the intermediate axis, rad/s (> 0).
+    perturbation : (float, float)
+        ``(p1, p3)``: the components along the minor and major axes as fractions of ``spin``.
+    resolution : int
+        Cells along ``I1/I3`` (0 to 1); half as many along ``I2/I3`` (0.5 to 1). 10 to 2000.
+
+    Returns
+    -------
+    StabilityMap
+
+    Raises
+    ------
+    ValueError
+        For a spin that is not a positive finite number, a perturbation that is not two finite
+        numbers, or a resolution outside 10 to 2000.
+    """
+    if isinstance(spin, bool) or not isinstance(spin, (int, float, np.integer, np.floating)) or not (
+            np.isfinite(spin) and spin > 0):
+        raise ValueError(f"spin = {spin!r} must be a positive finite number (rad/s)")
+    p = np.asarray(perturbation, dtype=float) if not isinstance(perturbation, (str, bytes)) else np.empty(0)
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"perturbation = {perturbation!r} must be two finite numbers (fractions of the spin)")
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or not 10 <= resolution <= 2000:
+        raise ValueError(f"resolution = {resolution!r} must be a whole number from 10 to 2000")
+    x = (np.arange(resolution) + 0.5) / resolution
+    ny = resolution // 2
+    y = 0.5 + 0.5 * (np.arange(ny) + 0.5) / ny
+    X, Y = np.meshgrid(x, y)
+    inside = (X < Y) & (Y < 1.0) & (X + Y > 1.0)
+    moments = np.stack([X[inside], Y[inside], np.ones(inside.sum())], axis=-1)
+    w0 = float(spin) * np.array([p[0], 1.0, p[1]])
+    interval, circulation, growth = np.full(X.shape, np.nan), np.zeros(X.shape, dtype=int), np.full(X.shape, np.nan)
+    interval[inside] = flip_interval(w0, moments)
+    circulation[inside] = circulation_axis(w0, moments)
+    growth[inside] = linearised_rate(moments, 2, float(spin))[0]
+    return StabilityMap(x, y, inside, interval, circulation, growth, w0)

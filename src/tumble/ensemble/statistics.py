@@ -1,0 +1,350 @@
+"""Streaming statistics of many cases, in memory independent of the number of cases.
+
+Every summary here is a frozen value built from one block of cases (``of``) and combined with
+another (``merge``); a sweep folds its chunks into one summary in any order and grouping.
+
+- :class:`RunningMoments`: count, mean, variance, min and max per column. A block's mean and
+  sum of squared deviations are taken in two passes, and blocks are combined by the pairwise
+  formulae of Chan, Golub & LeVeque ("Algorithms for computing the sample variance: analysis
+  and recommendations", Am. Stat. 37 (1983) 242, eqs. 1.5): with ``d = mean_b - mean_a``,
+  ``n = n_a + n_b``, ``mean = mean_a + d n_b / n`` and ``M2 = M2_a + M2_b + d^2 n_a n_b / n``,
+  Welford's update (Technometrics 4 (1962) 419) for blocks. Merging in any order gives the
+  same result to round-off (a few ulps of the mean, relative 1e-15 or so of the variance).
+- :class:`KeyedSample`: a bounded uniform random sample of the cases for quantiles, chosen
+  *by key*: each case gets a pseudo-random 64-bit key from ``(seed, index)`` (SplitMix64's
+  finaliser, Steele, Lea & Flood, OOPSLA 2014), and the sample is the ``size`` cases with the
+  smallest keys ("bottom-k" sampling). The sample is thus a function of the set of cases alone:
+  merging in any order or grouping gives it *exactly*, bit for bit. With ``n <= size`` cases
+  it holds them all and the quantiles are exact. Otherwise it is a simple random sample of
+  ``m = size`` cases drawn without replacement, and the rank of each quantile estimate is off
+  by at most ``eps = sqrt(ln(2 / alpha) / (2 m))`` with probability ``1 - alpha``
+  (Hoeffding's inequality, which holds for sampling without replacement too: Hoeffding,
+  J. Am. Stat. Assoc. 58 (1963) 13, sec. 6): ``m = 10,000``, ``alpha = 0.05`` give
+  ``eps = 0.0136``, so the estimated median lies between the true 48.6 % and 51.4 % points
+  (:meth:`KeyedSample.rank_error`).
+- :class:`Counts`: how often each value of a categorical column occurs (sums, exact).
+- :func:`success_lower_bound`: the order-statistics (Clopper-Pearson) confidence statement on
+  a fraction of successes; :func:`runs_needed` its inverse (Hanson & Beard, "Applying Monte
+  Carlo simulation to launch vehicle design and requirements verification", NASA/TP-2010-216447,
+  sec. 4).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "Counts",
+    "KeyedSample",
+    "RunningMoments",
+    "case_keys",
+    "runs_needed",
+    "success_lower_bound",
+    "success_statement",
+]
+
+_MASK = (1 << 64) - 1
+
+
+def _splitmix(x: np.ndarray) -> np.ndarray:
+    """SplitMix64's finaliser on uint64 (a bijection; Steele, Lea & Flood 2014, fig. 3)."""
+    with np.errstate(over="ignore"):
+        x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        return x ^ (x >> np.uint64(31))
+
+
+def case_keys(seed: int, index) -> np.ndarray:
+    """Pseudo-random 64-bit keys of cases: SplitMix64 of ``seed_mix + index * golden``.
+
+    Distinct indices get distinct keys (the finaliser is a bijection and ``index * golden`` is
+    one modulo 2^64 for an odd constant), so the order of a sample by key has no ties.
+
+    Parameters
+    ----------
+    seed : int
+        The sweep's seed (any non-negative integer).
+    index : array_like of int, shape (n,)
+        Case indices, >= 0.
+
+    Returns
+    -------
+    ndarray of uint64, shape (n,)
+    """
+    mixed = int(_splitmix(np.array([seed & _MASK], dtype=np.uint64))[0])
+    idx = np.asarray(index, dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        return _splitmix(np.uint64(mixed) + idx * np.uint64(0x9E3779B97F4A7C15))
+
+
+def _as_table(values) -> np.ndarray:
+    a = np.asarray(values, dtype=float)
+    if a.ndim != 2:
+        raise ValueError(f"values has shape {a.shape}; it must be (cases, columns)")
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class RunningMoments:
+    """Count, mean, sum of squared deviations, min and max of each column, NaN ignored.
+
+    Attributes
+    ----------
+    count : ndarray of int, shape (k,)
+        Finite values seen per column.
+    mean : ndarray, shape (k,)
+        Their mean (NaN for a column with none).
+    m2 : ndarray, shape (k,)
+        Sum of squared deviations from the mean.
+    minimum, maximum : ndarray, shape (k,)
+        Extremes (NaN for a column with none).
+    """
+
+    count: np.ndarray
+    mean: np.ndarray
+    m2: np.ndarray
+    minimum: np.ndarray
+    maximum: np.ndarray
+
+    @classmethod
+    def of(cls, values) -> RunningMoments:
+        """The moments of one block, ``values`` of shape (cases, columns); two passes."""
+        a = _as_table(values)
+        finite = np.isfinite(a)
+        count = finite.sum(axis=0)
+        x = np.where(finite, a, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mean = np.where(count > 0, x.sum(axis=0) / count, np.nan)
+        dev = np.where(finite, a - mean, 0.0)
+        m2 = np.sum(dev * dev, axis=0)
+        some = count > 0
+        lo = np.where(some, np.min(np.where(finite, a, np.inf), axis=0, initial=np.inf), np.nan)
+        hi = np.where(some, np.max(np.where(finite, a, -np.inf), axis=0, initial=-np.inf), np.nan)
+        return cls(count.astype(np.int64), mean, m2, lo, hi)
+
+    def merge(self, other: RunningMoments) -> RunningMoments:
+        """The moments of both blocks together (Chan, Golub & LeVeque 1983)."""
+        na, nb = self.count, other.count
+        n = na + nb
+        with np.errstate(invalid="ignore", divide="ignore"):
+            d = np.where(nb > 0, other.mean, 0.0) - np.where(na > 0, self.mean, 0.0)
+            frac = np.where(n > 0, nb / np.maximum(n, 1), 0.0)
+            mean = np.where(na == 0, other.mean, np.where(nb == 0, self.mean, self.mean + d * frac))
+            m2 = self.m2 + other.m2 + np.where((na > 0) & (nb > 0), d * d * na * frac, 0.0)
+        return RunningMoments(n, mean, m2, np.fmin(self.minimum, other.minimum), np.fmax(self.maximum, other.maximum))
+
+    @property
+    def variance(self) -> np.ndarray:
+        """Sample variance (``M2 / (n - 1)``), NaN with fewer than two values; shape (k,)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(self.count > 1, self.m2 / np.maximum(self.count - 1, 1), np.nan)
+
+    @property
+    def std(self) -> np.ndarray:
+        """Sample standard deviation, shape (k,)."""
+        return np.sqrt(self.variance)
+
+
+@dataclass(frozen=True, eq=False)
+class KeyedSample:
+    """The ``size`` cases with the smallest keys (see the module docstring), for quantiles.
+
+    Attributes
+    ----------
+    size : int
+        Capacity.
+    keys : ndarray of uint64, shape (m,)
+        Keys held, ascending, ``m <= size``.
+    values : ndarray, shape (m, k)
+        The cases' values, in the order of ``keys``.
+    seen : int
+        Cases offered to the sample in all (``m = min(seen, size)``).
+    """
+
+    size: int
+    keys: np.ndarray
+    values: np.ndarray
+    seen: int
+
+    @classmethod
+    def of(cls, keys, values, size: int) -> KeyedSample:
+        """The sample of one block: ``keys`` (uint64, distinct) and ``values`` (cases, columns)."""
+        if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 1:
+            raise ValueError(f"size = {size!r} must be a whole number >= 1 (cases kept for quantiles)")
+        keys = np.asarray(keys, dtype=np.uint64)
+        a = _as_table(values)
+        order = np.argsort(keys, kind="stable")[:size]
+        return cls(int(size), keys[order], a[order], len(keys))
+
+    def merge(self, other: KeyedSample) -> KeyedSample:
+        """The sample of both blocks: the same whatever the order or grouping, bit for bit."""
+        both = KeyedSample.of(np.concatenate([self.keys, other.keys]),
+                              np.concatenate([self.values, other.values]), min(self.size, other.size))
+        return KeyedSample(both.size, both.keys, both.values, self.seen + other.seen)
+
+    def quantiles(self, q) -> np.ndarray:
+        """Quantiles ``q`` (in [0, 1]) of each column over its finite values, linear
+        interpolation between order statistics (numpy's default); NaN for an empty column.
+
+        Returns
+        -------
+        ndarray, shape (len(q), k)
+        """
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        out = np.full((len(q), self.values.shape[1]), np.nan)
+        for j in range(self.values.shape[1]):
+            column = self.values[:, j]
+            column = column[np.isfinite(column)]
+            if column.size:
+                out[:, j] = np.quantile(column, q)
+        return out
+
+    def rank_error(self, alpha: float = 0.05) -> np.ndarray:
+        """Bound on the rank error of each column's quantiles, with probability ``1 - alpha``.
+
+        0 where the sample holds every case (:attr:`exact`); else ``sqrt(ln(2 / alpha) / (2 m))``
+        with ``m`` the finite values in the sample (Hoeffding 1963); NaN for an empty column.
+        Shape (k,).
+        """
+        m = np.isfinite(self.values).sum(axis=0)
+        with np.errstate(divide="ignore"):
+            eps = np.sqrt(math.log(2.0 / alpha) / (2.0 * m)) if not self.exact else np.zeros(len(m))
+        return np.where(m > 0, eps, np.nan)
+
+    @property
+    def exact(self) -> bool:
+        """Whether the sample holds every case offered (then its quantiles are exact)."""
+        return self.seen <= self.size
+
+
+@dataclass(frozen=True, eq=False)
+class Counts:
+    """How often each value occurs in categorical columns.
+
+    Attributes
+    ----------
+    table : tuple of (str, tuple of (value, int))
+        Per column, its values (sorted) and their counts.
+    """
+
+    table: tuple
+
+    @classmethod
+    def of(cls, columns: dict) -> Counts:
+        """Counts of each column of ``columns`` (name -> array of ints or strings)."""
+        rows = []
+        for name, values in columns.items():
+            found, counts = np.unique(np.asarray(values), return_counts=True)
+            rows.append((name, tuple((v.item(), int(c)) for v, c in zip(found, counts))))
+        return cls(tuple(rows))
+
+    def merge(self, other: Counts) -> Counts:
+        """Sums of both (columns matched by name)."""
+        mine, theirs = dict(self.table), dict(other.table)
+        rows = []
+        for name in dict.fromkeys([*mine, *theirs]):
+            total: dict = {}
+            for value, count in (*mine.get(name, ()), *theirs.get(name, ())):
+                total[value] = total.get(value, 0) + count
+            rows.append((name, tuple(sorted(total.items()))))
+        return Counts(tuple(rows))
+
+    def as_dict(self) -> dict:
+        """``{column: {str(value): count}}`` (JSON-ready)."""
+        return {name: {str(v): c for v, c in values} for name, values in self.table}
+
+
+def _check_confidence(confidence) -> float:
+    if isinstance(confidence, bool) or not isinstance(confidence, (int, float, np.floating)) \
+            or not 0.0 < float(confidence) < 1.0:
+        raise ValueError(f"confidence = {confidence!r} must be a number strictly between 0 and 1")
+    return float(confidence)
+
+
+def _check_count(name: str, value, low: int = 0) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+        raise ValueError(f"{name} = {value!r} must be a whole number >= {low}")
+    return int(value)
+
+
+def success_lower_bound(cases: int, failures: int, confidence: float) -> float:
+    """Lower confidence bound on the probability of success from ``cases`` independent runs.
+
+    The one-sided Clopper-Pearson bound (Clopper & Pearson, Biometrika 26 (1934) 404): the
+    smallest ``p`` for which ``cases - failures`` or more successes are at least ``1 -
+    confidence`` probable, ``p = B^-1(1 - confidence; n - k, k + 1)`` with ``B^-1`` the inverse
+    of the beta distribution's CDF (``scipy.stats.beta.ppf``). With no failure it is
+    ``(1 - confidence)^(1 / n)``, the order-statistics statement of Hanson & Beard
+    (NASA/TP-2010-216447, sec. 4): 852 runs without failure show 99.73 % success at 90 %
+    confidence, 2,995 runs show 99.9 % at 95 %.
+
+    Parameters
+    ----------
+    cases : int
+        Number of runs n, >= 1.
+    failures : int
+        Number of failures k, ``0 <= k <= n``.
+    confidence : float
+        Confidence level, in (0, 1), e.g. 0.9.
+
+    Returns
+    -------
+    float
+        The bound, in [0, 1) (0 when every run failed).
+
+    Raises
+    ------
+    ValueError
+        For counts that are not whole numbers in range or a confidence outside (0, 1).
+    """
+    n = _check_count("cases", cases, 1)
+    k = _check_count("failures", failures)
+    if k > n:
+        raise ValueError(f"failures = {k} must be at most cases = {n}")
+    c = _check_confidence(confidence)
+    if k == n:
+        return 0.0
+    if k == 0:
+        return (1.0 - c) ** (1.0 / n)
+    from scipy.stats import beta
+
+    return float(beta.ppf(1.0 - c, n - k, k + 1))
+
+
+def runs_needed(success: float, confidence: float, failures: int = 0) -> int:
+    """Fewest runs whose :func:`success_lower_bound` with ``failures`` failures reaches ``success``.
+
+    With no failure ``n = ceil(ln(1 - confidence) / ln(success))`` (Hanson & Beard,
+    NASA/TP-2010-216447, sec. 4): 852 runs for 99.73 % at 90 %, 2,995 for 99.9 % at 95 %.
+
+    Raises
+    ------
+    ValueError
+        For ``success`` outside (0, 1), a confidence outside (0, 1) or a bad count.
+    """
+    if isinstance(success, bool) or not isinstance(success, (int, float, np.floating)) or not 0.0 < success < 1.0:
+        raise ValueError(f"success = {success!r} must be a number strictly between 0 and 1")
+    c = _check_confidence(confidence)
+    k = _check_count("failures", failures)
+    n = max(k + 1, math.ceil(math.log(1.0 - c) / math.log(success)))
+    while success_lower_bound(n, k, c) < success:  # k > 0: the bound rises with n; a short search
+        n = max(n + 1, int(n * 1.01))
+    lo = max(k + 1, math.ceil(math.log(1.0 - c) / math.log(success)))
+    while lo < n:  # bisect down to the fewest
+        mid = (lo + n) // 2
+        if success_lower_bound(mid, k, c) >= success:
+            n = mid
+        else:
+            lo = mid + 1
+    return n
+
+
+def success_statement(cases: int, failures: int, confidence: float) -> str:
+    """One line: ``"852 cases, 0 failures: success probability >= 99.73 % at 90 % confidence"``."""
+    bound = success_lower_bound(cases, failures, confidence)
+    return (f"{cases} cases, {failures} failure{'s' if failures != 1 else ''}: success probability >= "
+            f"{100 * bound:.4g} % at {100 * confidence:.4g} % confidence (Clopper-Pearson; Hanson & Beard, "
+            f"NASA/TP-2010-216447)")
