@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..analysis import axis_of, circulation_axis, flip_interval, linearised_rate
+from ..analysis import axis_of, circulation_axis, energy_momentum_gaps, flip_interval, linearised_rate
 from ..dynamics.batch import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
 from .cases import CaseInputs
@@ -181,6 +181,9 @@ class StabilityMap:
         Axis omega circulates about, 1 (minor) or 3 (major); 0 outside.
     growth_rate : ndarray, shape (ny, nx)
         Linearised growth exponent of the intermediate-axis spin, 1/s (NaN outside).
+    separatrix_gap : ndarray, shape (ny, nx)
+        ``(L^2 - 2 E I2) / L^2``: positive where omega circulates about the major axis, 0 on
+        the separatrix (NaN outside; :func:`tumble.analysis.energy_momentum_gaps`).
     omega0 : ndarray, shape (3,)
         The initial spin, rad/s, principal frame.
     """
@@ -191,6 +194,7 @@ class StabilityMap:
     flip_interval: np.ndarray
     circulation: np.ndarray
     growth_rate: np.ndarray
+    separatrix_gap: np.ndarray
     omega0: np.ndarray
 
 
@@ -237,8 +241,10 @@ def stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, resolution: 
     inside = (X < Y) & (Y < 1.0) & (X + Y > 1.0)
     moments = np.stack([X[inside], Y[inside], np.ones(inside.sum())], axis=-1)
     w0 = float(spin) * np.array([p[0], 1.0, p[1]])
-    interval, circulation, growth = np.full(X.shape, np.nan), np.zeros(X.shape, dtype=int), np.full(X.shape, np.nan)
+    interval, growth, gap = (np.full(X.shape, np.nan) for _ in range(3))
+    circulation = np.zeros(X.shape, dtype=int)
     interval[inside] = flip_interval(w0, moments)
     circulation[inside] = circulation_axis(w0, moments)
     growth[inside] = linearised_rate(moments, 2, float(spin))[0]
-    return StabilityMap(x, y, inside, interval, circulation, growth, w0)
+    gap[inside] = energy_momentum_gaps(w0, moments)[:, 1] / np.sum((moments * w0) ** 2, axis=1)
+    return StabilityMap(x, y, inside, interval, circulation, growth, gap, w0)

@@ -5,6 +5,7 @@ matplotlib is imported inside the drawing functions, never by the physics layers
 
 from .animate import animate_body_frame, animate_ground_frame
 from .gravity import figure_gravity_stability
+from .maps import figure_stability_map, figure_sweep
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
@@ -32,6 +33,8 @@ __all__ = [
     "figure_omega_panels",
     "figure_orbit_angles",
     "figure_polhode",
+    "figure_stability_map",
+    "figure_sweep",
     "part_lines",
     "phase_portrait_problem",
     "plot_omega",

@@ -1,0 +1,168 @@
+"""Maps over the triangle of inertia ratios, and the figure of a sweep.
+
+- :func:`figure_stability_map`: the exact flip interval of a perturbed spin about the
+  intermediate axis over ``(I1/I3, I2/I3)``, and which axis omega then circulates about
+  (:func:`tumble.ensemble.stability_map`; Landau & Lifshitz sec. 37). Every body lies in the
+  triangle ``I1 <= I2 <= I3``, ``I1 + I2 >= I3``: its lower-left edge is the triangle
+  inequality (planar bodies), the diagonal the prolate symmetric bodies (``I1 = I2``), the top
+  edge the oblate ones (``I2 = I3``).
+- :func:`figure_sweep`: what a sweep's cases did (its bounded sample,
+  :meth:`tumble.ensemble.SweepSummary.sample_columns`): the distribution of flip periods and the
+  cases on the inertia-ratio plane.
+
+Both take an optional ``path`` (written, then the figure is closed) and return the Figure;
+matplotlib is imported on first use, on the Agg backend.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..ensemble import stability_map
+from ._backend import pyplot, save_figure
+
+__all__ = ["figure_stability_map", "figure_sweep"]
+
+#: The edges of the triangle of inertia ratios: (label, x pair, y pair, line width).
+_EDGES = (
+    (r"$I_1 + I_2 = I_3$: planar bodies (triangle inequality)", (0.0, 0.5), (1.0, 0.5), 1.6),
+    (r"$I_1 = I_2$: prolate symmetric", (0.5, 1.0), (0.5, 1.0), 0.8),
+    (r"$I_2 = I_3$: oblate symmetric", (0.0, 1.0), (1.0, 1.0), 0.8),
+)
+_RATIO_LABELS = (r"$I_1 / I_3$ (dimensionless)", r"$I_2 / I_3$ (dimensionless)")
+
+
+def _triangle(ax) -> None:
+    """Draw the edges of the triangle of physical bodies, labelled, and set the labels."""
+    for (label, xs, ys, lw), style in zip(_EDGES, ("-", "--", ":")):
+        ax.plot(xs, ys, color="k", lw=lw, ls=style, label=label)
+    ax.set_xlabel(_RATIO_LABELS[0])
+    ax.set_ylabel(_RATIO_LABELS[1])
+
+
+def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=None, ax=None, *,
+                         resolution: int = 300, points: dict | None = None):
+    """The flip interval and the circulation axis over the triangle of inertia ratios.
+
+    Parameters
+    ----------
+    spin : float
+        Spin about the intermediate axis, rad/s.
+    perturbation : (float, float)
+        Components along the minor and major axes, as fractions of ``spin``.
+    path : str or Path, optional
+        Where to write the figure (PNG, SVG, ... by its suffix).
+    ax : matplotlib Axes, optional
+        Draw on these axes instead of a new figure (the colour bar goes beside them).
+    resolution : int
+        Cells along ``I1/I3`` (:func:`tumble.ensemble.stability_map`).
+    points : dict of str to (float, float), optional
+        Bodies to mark, label -> ``(I1/I3, I2/I3)``.
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    from matplotlib.colors import LogNorm
+
+    m = stability_map(spin, perturbation, resolution=resolution)
+    plt = pyplot()
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7.6, 4.3), layout="constrained")
+    else:
+        fig = ax.figure
+    values = np.ma.masked_invalid(m.flip_interval)
+    mesh = ax.pcolormesh(m.x, m.y, values, shading="nearest", cmap="viridis", rasterized=True,
+                         norm=LogNorm(vmin=float(values.min()), vmax=float(values.max())))
+    fig.colorbar(mesh, ax=ax, label="flip interval (s)", shrink=0.8)
+    X, Y = np.meshgrid(m.x, m.y)
+    ax.contour(X, Y, m.separatrix_gap, levels=[0.0], colors="w", linewidths=1.2)
+    ax.plot([], [], color="w", lw=1.2, label="separatrix ($L^2 = 2 E I_2$)")
+    for axis, name in ((1, "minor"), (3, "major")):
+        where = m.inside & (m.circulation == axis)
+        if np.any(where):
+            cx, cy = float(np.median(X[where])), float(np.median(Y[where]))
+            ax.text(cx, cy, f"circulates about\nthe {name} axis", ha="center", va="center", fontsize=8, color="w")
+    _triangle(ax)
+    for label, (x, y) in (points or {}).items():
+        ax.plot([x], [y], "r*", ms=9)
+        ax.annotate(label, (x, y), xytext=(5, 4), textcoords="offset points", fontsize=8, color="r")
+    ax.set_xlim(0.0, 1.0)
+    ax.set_ylim(0.5, 1.005)  # the top edge in view
+    ax.set_aspect("equal")
+    p1, p3 = m.omega0[0] / m.omega0[1], m.omega0[2] / m.omega0[1]
+    ax.set_title(f"Exact flip interval, spin {spin:g} rad/s about the intermediate axis\n"
+                 f"perturbed by ({p1:g}, {p3:g}) of it along the minor and major axes", fontsize=9)
+    ax.legend(fontsize=7, loc="lower right", framealpha=0.9, facecolor="0.85")
+    if path is not None:
+        save_figure(fig, path, dpi=110)
+    return fig
+
+
+def _column(columns: dict, name: str) -> np.ndarray | None:
+    """The values of the column named ``name`` (without its unit), or None."""
+    for key, values in columns.items():
+        if key.split(" [", 1)[0] == name:
+            return np.asarray(values, dtype=float)
+    return None
+
+
+def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: int | None = None):
+    """What a sweep's cases did: their flip periods, and where they lie among the inertia ratios.
+
+    Left: the histogram of the measured and the exact flip period (or, when no case flips, of
+    the largest nutation angle). Right: the cases on the ``(I1/I3, I2/I3)`` plane, coloured by
+    their exact flip period (or by their number of flips), with the triangle's edges in view.
+
+    Parameters
+    ----------
+    columns : dict of str to array
+        Columns of ``cases.csv`` (names with units), e.g. a sweep's bounded sample
+        (:meth:`tumble.ensemble.SweepSummary.sample_columns`).
+    path : str or Path, optional
+        Where to write the figure.
+    title : str, optional
+        The figure's title.
+    cases : int, optional
+        How many cases the sweep had, when ``columns`` hold a sample of them (said in the title).
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    plt = pyplot()
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.2), layout="constrained")
+    I1, I2, I3 = (_column(columns, f"I{j}") for j in (1, 2, 3))
+    measured, exact = _column(columns, "flip_period"), _column(columns, "flip_period_exact")
+    shown = len(I1)
+    finite = [v[np.isfinite(v)] for v in (measured, exact)]
+    if any(v.size for v in finite):
+        both = np.concatenate(finite)
+        bins = np.linspace(both.min(), both.max(), 41) if both.max() > both.min() else 10
+        for values, label, color in zip(finite, ("measured (mean between flips)", "exact (elliptic K)"),
+                                        ("tab:blue", "tab:orange")):
+            if values.size:
+                left.hist(values, bins=bins, histtype="step", lw=1.4, color=color, label=f"{label}: {values.size}")
+        left.set_xlabel("flip period (s)")
+        left.legend(fontsize=7)
+    else:
+        nutation = _column(columns, "max_nutation")
+        left.hist(nutation[np.isfinite(nutation)], bins=40, color="tab:blue")
+        left.set_xlabel("largest nutation angle (rad): no case flips")
+    left.set_ylabel("cases")
+    x, y = I1 / I3, I2 / I3
+    colour = exact if np.any(np.isfinite(exact)) else _column(columns, "flips")
+    what = "exact flip period (s)" if colour is exact else "flips"
+    dots = right.scatter(x, y, c=colour, s=6, cmap="viridis", rasterized=True, zorder=3)  # over the edges
+    fig.colorbar(dots, ax=right, label=what)
+    pad = max(0.01, 0.1 * max(np.ptp(x), np.ptp(y)))
+    _triangle(right)
+    right.set_xlim(x.min() - pad, x.max() + pad)
+    right.set_ylim(y.min() - pad, min(y.max() + pad, 1.0 + pad))
+    right.legend(fontsize=6, loc="best", framealpha=0.9)
+    right.set_title("cases among the inertia ratios", fontsize=9)
+    sampled = f" ({shown} of {cases} cases)" if cases is not None and cases > shown else f" ({shown} cases)"
+    fig.suptitle((title or "sweep") + sampled, fontsize=10)
+    if path is not None:
+        save_figure(fig, path, dpi=110)
+    return fig
