@@ -156,7 +156,7 @@ class Criterion:
         """Which cases of ``columns`` succeed, shape (m,)."""
         found = {base_name(k): k for k in columns}
         if self.column not in found:
-            raise ValueError(f"criterion column = {self.column!r} is not a column; allowed: {', '.join(found)}")
+            raise ValueError(f"column = {self.column!r} is not a column of the cases; allowed: {', '.join(found)}")
         x = np.asarray(columns[found[self.column]], dtype=float)
         ok = np.isfinite(x)
         if self.minimum is not None:

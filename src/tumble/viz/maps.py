@@ -138,7 +138,11 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
     finite = [v[np.isfinite(v)] for v in (measured, exact)]
     if any(v.size for v in finite):
         both = np.concatenate(finite)
-        bins = np.linspace(both.min(), both.max(), 41) if both.max() > both.min() else 10
+        lo, hi = float(both.min()), float(both.max())
+        wide = hi > 3 * lo  # a long tail (bodies near a symmetric one): logarithmic bins
+        bins = (np.geomspace if wide else np.linspace)(lo, hi, 41) if hi > lo else 10
+        if wide:
+            left.set_xscale("log")
         for values, label, color in zip(finite, ("measured (mean between flips)", "exact (elliptic K)"),
                                         ("tab:blue", "tab:orange")):
             if values.size:

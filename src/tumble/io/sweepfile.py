@@ -1,0 +1,447 @@
+"""Sweep files (TOML) and the run that writes their results: ``tumble sweep SWEEP.toml --out DIR``.
+
+::
+
+    # The first comment line describes the sweep.
+    body = "t-handle"            # a preset name, a body file (relative to this file), or a [body] table
+                                 # (parts, or preset = "..." with its parameters)
+
+    [sweep]
+    cases = 4096                 # how many cases
+    seed = 1                     # 0 to 2^64 - 1; case i draws from SeedSequence(seed).spawn(...)[i]
+    sampling = "lhs"             # "random" (default), "lhs" (Latin hypercube), "sobol"
+    chunk = 1024                 # cases per chunk: memory and resume granularity, not the results
+    max_resamples = 100          # redraws of an unphysical body per case before the sweep is refused
+
+    [[dispersion]]               # any number of them
+    target = "preset"            # "preset" (a preset parameter), "part", "moments" or "axes"
+    field = "shaft_length"       # the preset parameter or the part's field (not for moments or axes)
+    # part = 0                   # target "part": index into the body's parts, from 0
+    relative = 0.05              # a fraction; or absolute = 0.002 (the field's unit; rad for axes)
+    distribution = "uniform"     # "normal" (default: the spread is one standard deviation) or
+                                 # "uniform" (the spread is the half-width)
+
+    [initial]
+    omega = [10.0, 0.1, 0.1]     # rad/s, nominal
+    frame = "design"             # "principal" (each case's own principal axes) or "design"
+    distribution = "normal"      # optional: disperse each component ...
+    spread = [0.0, 0.05, 0.05]   # ... by this much, rad/s
+    # grid = [[10.0], [0.05, 0.1], [0.1]]   # instead of omega: the Cartesian product, case i at point i mod G
+
+    [simulation]
+    t_end = 20.0                 # s (default 20), or times = [...]
+    samples = 400                # default 500: a few per flip, to count the flips
+    method = "exact"             # default exact; dop853 with a torque; a geometric method needs step (s)
+
+    [torque]                     # optional, as in scenario files
+    vector = [0.0, 0.0, 0.01]    # N m
+    frame = "body"
+
+    [criterion]                  # optional: what counts as success, for the order-statistics statement
+    column = "flips"             # a column of cases.csv, without its unit
+    min = 1                      # and/or max; inclusive; a NaN value fails
+    confidence = 0.9             # default 0.9
+
+:func:`run_sweep` writes into ``DIR``, all at once or not at all (:func:`tumble.io.output.output_dir`):
+
+- ``cases.csv``: one row per case (:func:`tumble.ensemble.reduce_cases`): ``case``, ``I1 [kg m^2]``
+  to ``I3``, ``omega0_1 [rad/s]`` to ``omega0_3`` (principal frame), the drawn values (one column
+  per dispersed quantity, e.g. ``shaft_length [m]``), ``resampled``, then ``axis``, ``predicted``,
+  ``growth_rate [1/s]``, ``wobble_frequency [rad/s]``, ``circulation``, ``flips``,
+  ``flip_period [s]``, ``flip_period_exact [s]``, ``omega_end_1 [rad/s]`` to ``_3``, ``q_end_x``
+  to ``q_end_w``, ``max_nutation [rad]``, ``energy_change``, ``L_world_angle [rad]``. Floats are
+  written as Python's shortest round-trip repr (``nan`` where a quantity does not apply);
+- ``cases.parquet``: the same table, when pyarrow is installed (``pip install 'tumble[table]'``);
+- ``summary.json``: the sweep's settings, the streaming statistics
+  (:meth:`tumble.ensemble.SweepSummary.as_dict`), the criterion's success statement and the
+  provenance (:func:`tumble.io.provenance.provenance`);
+- a figure, ``sweep.png``, when the caller passes one (the command line passes
+  :func:`tumble.viz.figure_sweep`; this layer draws nothing).
+
+Resume: each finished chunk is kept in ``DIR.resume/`` beside the output (a fingerprint of the
+sweep file, the body files, the chunk size and the versions of tumble, numpy and scipy says
+which run they belong to; another run's chunks are discarded). Run again after an
+interruption, the sweep computes only the missing chunks, and since every case's row is the
+same in any chunk, ``cases.csv`` comes out byte for byte as an uninterrupted run's. The folder
+is removed once the output is in place.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..dynamics.simulate import sample_times
+from ..ensemble import (
+    DEFAULT_CHUNK,
+    BodySampler,
+    Criterion,
+    Dispersion,
+    Ensemble,
+    InitialRates,
+    RunSettings,
+    Sweep,
+    compute_chunk,
+    make_backend,
+    run_chunks,
+    summarize,
+)
+from ..mass import PRESETS, Body
+from .atomic import atomic_path, atomic_write_text
+from .bodyfile import body_from_table, read_toml
+from .export import write_json
+from .output import check_output_dir, output_dir
+from .provenance import file_sha256, provenance
+from .scenario import DEFAULT_T_END, _torque
+
+__all__ = ["SWEEP_WRITES", "ChunkFolder", "SweepFile", "load_sweep", "run_sweep", "run_sweep_command", "sweep_from_table"]
+
+#: The files a sweep writes into its folder (an earlier run's are replaced as a set).
+SWEEP_WRITES = ("cases.csv", "cases.parquet", "summary.json", "sweep.png")
+
+_SECTIONS = {
+    "sweep": {"cases", "seed", "sampling", "chunk", "max_resamples"},
+    "initial": {"omega", "frame", "distribution", "spread", "grid"},
+    "simulation": {"t_end", "samples", "times", "method", "step"},
+    "torque": {"kind", "vector", "frame", "orbit_period", "orbit_radius", "mu"},
+    "criterion": {"column", "min", "max", "confidence"},
+}
+_DISPERSION_KEYS = {"target", "field", "part", "relative", "absolute", "distribution"}
+
+
+@dataclass(frozen=True, eq=False)
+class SweepFile:
+    """A parsed sweep file: the sweep and what the output records about it."""
+
+    sweep: Sweep
+    name: str
+    chunk: int
+    #: ``(path, sha256)`` of the files read (provenance, and the resume fingerprint).
+    sources: tuple = ()
+    #: The file's tables as read (recorded in summary.json).
+    settings: dict | None = None
+
+
+def _table(data: dict, section: str) -> dict:
+    table = data.get(section, {})
+    if not isinstance(table, dict):
+        raise ValueError(f"{section} must be a table [{section}]")
+    bad = sorted(set(table) - _SECTIONS[section])
+    if bad:
+        raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(_SECTIONS[section]))}")
+    return table
+
+
+def _nominal(spec, base_dir: Path | None) -> tuple[Body, str | None, dict, list[Path]]:
+    """``(body, preset, parameters, files read)`` of the ``body`` key."""
+    if isinstance(spec, str) and spec in PRESETS:
+        return PRESETS[spec](), spec, {}, []
+    if isinstance(spec, str):
+        path = Path(spec) if base_dir is None else base_dir / spec
+        if not path.exists():
+            raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
+        data = read_toml(path)
+        if set(data) != {"body"}:
+            raise ValueError(f"body = {spec!r}: a body file has one table, [body]")
+        try:
+            body, preset, parameters, _ = _nominal(data["body"], path.parent)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
+        return body, preset, parameters, [path]
+    if not isinstance(spec, dict):
+        raise ValueError(f"body = {spec!r} must be a preset name, a body file path or a [body] table")
+    body = body_from_table(spec, base_dir=base_dir)
+    if "preset" in spec:
+        return body, spec["preset"], {k: v for k, v in spec.items() if k != "preset"}, []
+    return body, None, {}, []
+
+
+def _dispersion(table, k: int) -> Dispersion:
+    where = f"dispersion[{k}]"
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table [[dispersion]]")
+    bad = sorted(set(table) - _DISPERSION_KEYS)
+    if bad:
+        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(_DISPERSION_KEYS))}")
+    if ("relative" in table) == ("absolute" in table):
+        raise ValueError(f"{where}: give relative = (a fraction) or absolute = (in the field's unit), one of them")
+    relative = "relative" in table
+    if "target" not in table:
+        raise ValueError(f"{where}: missing key 'target' (preset, part, moments or axes)")
+    try:
+        return Dispersion(table["target"], table["relative" if relative else "absolute"], field=table.get("field"),
+                          part=table.get("part"), relative=relative, distribution=table.get("distribution", "normal"))
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+
+
+def _criterion(table: dict) -> Criterion | None:
+    if not table:
+        return None
+    if "column" not in table:
+        raise ValueError("criterion: missing key 'column' (a column of cases.csv, without its unit)")
+    try:
+        return Criterion(table["column"], table.get("min"), table.get("max"), table.get("confidence", 0.9))
+    except ValueError as exc:
+        raise ValueError(f"criterion: {exc}") from None
+
+
+def _in(section: str, build):
+    """``build()``, its ValueError prefixed with the section's name."""
+    try:
+        return build()
+    except ValueError as exc:
+        raise ValueError(f"{section}: {exc}") from None
+
+
+def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "sweep") -> SweepFile:
+    """Build (and check) a sweep from parsed TOML; errors are one line naming the key.
+
+    Case 0 is made and run as a check, so that a sweep that cannot run fails here, before any
+    output.
+    """
+    unknown = sorted(set(data) - {"body", "dispersion", *_SECTIONS})
+    if unknown:
+        raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, dispersion, {', '.join(_SECTIONS)}")
+    if "body" not in data:
+        raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
+    tables = {section: _table(data, section) for section in _SECTIONS}
+    sweep, initial, sim = tables["sweep"], tables["initial"], tables["simulation"]
+    if "cases" not in sweep:
+        raise ValueError("sweep: missing key 'cases' (how many cases)")
+    body, preset, parameters, files = _nominal(data["body"], base_dir)
+    items = data.get("dispersion", [])
+    if not isinstance(items, list):
+        raise ValueError("dispersion must be a list of [[dispersion]] tables")
+    dispersions = tuple(_dispersion(t, k) for k, t in enumerate(items))
+    bodies = BodySampler(body, dispersions, preset, parameters)
+    rates = _in("initial", lambda: InitialRates(**initial))
+    ensemble = _in("sweep", lambda: Ensemble(bodies, rates, **{k: v for k, v in sweep.items() if k != "chunk"}))
+    times = sim.get("times")
+    t_end = sim.get("t_end", None if times is not None else DEFAULT_T_END)
+    _in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))
+    settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
+                                                      method=sim.get("method"), torque=_torque(tables["torque"]),
+                                                      step=sim.get("step")))
+    chunk = sweep.get("chunk", DEFAULT_CHUNK)
+    if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
+        raise ValueError(f"sweep: chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
+    result = Sweep(ensemble, settings, _criterion(tables["criterion"]))
+    first = compute_chunk(result, 0, 1)  # case 0 runs: the sweep can run
+    if result.criterion is not None:
+        _in("criterion", lambda: result.criterion.passed(first))
+    return SweepFile(result, name, chunk, tuple((str(f), file_sha256(f)) for f in files), dict(data))
+
+
+def load_sweep(path) -> SweepFile:
+    """Read and check a sweep file; errors are one line starting with the file's name."""
+    path = Path(path)
+    data = read_toml(path)
+    try:
+        parsed = sweep_from_table(data, base_dir=path.parent, name=path.stem)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
+    return SweepFile(parsed.sweep, parsed.name, parsed.chunk, ((str(path), file_sha256(path)), *parsed.sources),
+                     parsed.settings)
+
+
+class ChunkFolder:
+    """Finished chunks in a folder (``chunk-000012.npz``) with the fingerprint of their sweep.
+
+    A folder holding another sweep's chunks (another fingerprint) is emptied first.
+    """
+
+    def __init__(self, folder, fingerprint: dict) -> None:
+        self.folder = Path(folder)
+        self.folder.mkdir(parents=True, exist_ok=True)
+        mark = self.folder / "fingerprint.json"
+        text = json.dumps(fingerprint, sort_keys=True)
+        if not mark.exists() or mark.read_text() != text:
+            for old in self.folder.glob("chunk-*.npz"):
+                old.unlink()
+            atomic_write_text(mark, text)
+
+    def _path(self, number: int) -> Path:
+        return self.folder / f"chunk-{number:06d}.npz"
+
+    def has(self, number: int) -> bool:
+        """Whether chunk ``number`` is there."""
+        return self._path(number).is_file()
+
+    def load(self, number: int) -> dict:
+        """Chunk ``number``'s columns."""
+        with np.load(self._path(number), allow_pickle=False) as data:
+            names = data["names"].tolist()
+            return {name: data[f"c{k}"] for k, name in enumerate(names)}
+
+    def save(self, number: int, columns: dict) -> None:
+        """Keep chunk ``number``'s columns (written atomically)."""
+        arrays = {f"c{k}": np.asarray(v) for k, v in enumerate(columns.values())}
+        with atomic_path(self._path(number)) as tmp:
+            np.savez(tmp, names=np.array(list(columns)), **arrays)
+
+    def remove(self) -> None:
+        """Delete the folder and its chunks."""
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _fingerprint(parsed: SweepFile) -> dict:
+    import scipy
+
+    from .._version import __version__
+
+    return {"tumble": __version__, "numpy": np.__version__, "scipy": scipy.__version__, "chunk": parsed.chunk,
+            "inputs": [h for _, h in parsed.sources]}
+
+
+def _text(values: np.ndarray) -> list[str]:
+    """A column as CSV fields: whole numbers as such, floats as their shortest repr."""
+    kind = values.dtype.kind
+    if kind == "f":
+        return [repr(v) for v in values.tolist()]
+    return [str(v) for v in values.tolist()]
+
+
+class _Tables:
+    """Writes the chunks to ``cases.csv`` (and ``cases.parquet`` with pyarrow) as they pass."""
+
+    def __init__(self, folder: Path) -> None:
+        self.csv = open(folder / "cases.csv", "w", encoding="utf-8", newline="")
+        self.parquet_path = folder / "cases.parquet"
+        self.parquet = None
+        self.header = None
+
+    def __call__(self, columns: dict) -> None:
+        if self.header is None:
+            self.header = list(columns)
+            self.csv.write(",".join(self.header) + "\n")
+        fields = [_text(np.asarray(v)) for v in columns.values()]
+        self.csv.write("".join(",".join(row) + "\n" for row in zip(*fields)))
+        try:
+            import pyarrow as pa
+            import pyarrow.parquet as pq
+        except ImportError:
+            return
+        table = pa.table({k: np.asarray(v) for k, v in columns.items()})
+        if self.parquet is None:
+            self.parquet = pq.ParquetWriter(self.parquet_path, table.schema)
+        self.parquet.write_table(table)
+
+    def close(self) -> None:
+        self.csv.close()
+        if self.parquet is not None:
+            self.parquet.close()
+
+
+def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = None, argv=None,
+              figure=None) -> dict:
+    """Run a sweep file and write its results into the folder ``out`` (module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The sweep file.
+    out : str or Path
+        The output folder (new, or a folder of plain files; checked before anything runs).
+    workers : int, optional
+        Run the chunks on a local Dask cluster of this many processes.
+    scheduler : str, optional
+        Run them on the Dask scheduler at this address.
+    argv : list of str, optional
+        The command line, for the provenance.
+    figure : callable, optional
+        ``figure(columns, path, title=..., cases=...)`` draws the sample of cases into
+        ``sweep.png`` (:func:`tumble.viz.figure_sweep`).
+
+    Returns
+    -------
+    dict
+        What ``summary.json`` holds.
+
+    Raises
+    ------
+    ValueError
+        For a bad file, value or output path: nothing is computed or written.
+    """
+    parsed = load_sweep(path)
+    out = check_output_dir(out).absolute()
+    store = ChunkFolder(out.parent / f"{out.name}.resume", _fingerprint(parsed))
+    resumed = sum(store.has(k) for k in range(-(-parsed.sweep.ensemble.cases // parsed.chunk)))
+    backend = make_backend(workers, scheduler)
+    sweep = parsed.sweep
+    try:
+        with output_dir(out, SWEEP_WRITES) as stage:
+            tables = _Tables(stage)
+            try:
+                summary = summarize(run_chunks(sweep, chunk=parsed.chunk, store=store, backend=backend),
+                                    sweep.ensemble.seed, sweep.criterion, on_chunk=tables)
+            finally:
+                tables.close()
+            settings = sweep.settings
+            data = {
+                "sweep": str(path),
+                "body": sweep.ensemble.bodies.body.name,
+                "nominal_moments": sweep.ensemble.bodies.body.principal_moments.tolist(),
+                "cases": sweep.ensemble.cases, "seed": sweep.ensemble.seed, "sampling": sweep.ensemble.sampling,
+                "chunk": parsed.chunk, "method": settings.method,
+                "t_end": None if settings.times is not None else settings.t_end,
+                "settings": parsed.settings, "backend": backend.describe(), "resumed_chunks": resumed,
+                **summary.as_dict(sweep.criterion),
+                "provenance": provenance(argv, parsed.sources),
+            }
+            write_json(_plain(data), stage / "summary.json")
+            if figure is not None:
+                figure(summary.sample_columns(), stage / "sweep.png",
+                       title=f"{parsed.name}: {data['body']}, {settings.method}", cases=summary.cases)
+    finally:
+        backend.close()
+    store.remove()
+    return data
+
+
+def _plain(value):
+    """``value`` with numpy scalars and arrays turned into plain Python (for JSON)."""
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def run_sweep_command(path, out, *, workers: int | None = None, scheduler: str | None = None, argv=None,
+                      figure=None) -> int:
+    """``tumble sweep PATH --out OUT``: :func:`run_sweep`, then one line for people; returns 0.
+
+    Errors propagate (``ValueError`` for bad input: the command line's exit status 2).
+    """
+    data = run_sweep(path, out, workers=workers, scheduler=scheduler, argv=argv, figure=figure)
+    print(sweep_line(data, out))
+    return 0
+
+
+def sweep_line(data: dict, out) -> str:
+    """One line: how many cases flipped, the flip period's median and 5-95 % range, the criterion."""
+    counts, stats = data["counts"], data["statistics"]
+    unstable = counts["predicted"].get("unstable", 0)
+    flips = stats["flips"]
+    period = stats["flip_period"]
+    text = f"{data['cases']} cases ({data['method']}): {unstable} predicted unstable"
+    if period["count"]:
+        q = period["quantiles"]
+        text += (f"; {period['count']} flipped twice or more, flip period median {q['0.5']:.4g} s "
+                 f"(5-95 %: {q['0.05']:.4g} to {q['0.95']:.4g} s)")
+    else:
+        text += f"; at most {flips['max']:g} flip(s) per case"
+    if data.get("redraws"):
+        text += f"; {data['redraws']} unphysical draws redrawn"
+    if "criterion" in data:
+        text += f"; {data['criterion']['statement']}"
+    return f"{text}; wrote {out}/"

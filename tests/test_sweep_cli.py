@@ -1,0 +1,252 @@
+"""Sweep files and their output: cases.csv, cases.parquet, summary.json, resume after an interruption."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tumble.ensemble.sweep as sweep_module
+from tumble.ensemble import success_lower_bound
+from tumble.io.sweepfile import load_sweep, run_sweep, run_sweep_command
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "src" / "tumble" / "examples" / "sweeps" / "t_handle_dimensions.toml"
+
+SMALL = """\
+# A small sweep of the seed's T-handle spun near its crossbar
+body = "t-handle"
+
+[sweep]
+cases = {cases}
+seed = 5
+sampling = "{sampling}"
+chunk = {chunk}
+
+[[dispersion]]
+target = "preset"
+field = "crossbar_length"
+relative = 0.05
+distribution = "uniform"
+
+[[dispersion]]
+target = "axes"
+absolute = 0.01
+
+[initial]
+omega = [10.0, 0.1, 0.1]
+frame = "design"
+distribution = "normal"
+spread = [0.0, 0.05, 0.05]
+
+[simulation]
+t_end = 15.0
+samples = 300
+
+[criterion]
+column = "flips"
+min = 1
+"""
+
+
+def write(folder: Path, *, cases=40, chunk=8, sampling="random", name="small.toml", text=SMALL) -> Path:
+    path = folder / name
+    path.write_text(text.format(cases=cases, chunk=chunk, sampling=sampling))
+    return path
+
+
+def read_cases(path: Path) -> tuple[list[str], dict[str, np.ndarray]]:
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    header, body = rows[0], rows[1:]
+    cols = {}
+    for j, name in enumerate(header):
+        values = [r[j] for r in body]
+        try:
+            cols[name] = np.array([float(v) for v in values])
+        except ValueError:
+            cols[name] = np.array(values)
+    return header, cols
+
+
+def test_a_sweep_writes_its_cases_summary_and_figure(tmp_path):
+    from tumble.viz import figure_sweep
+
+    out = tmp_path / "out"
+    data = run_sweep(write(tmp_path), out, figure=figure_sweep, argv=["sweep", "small.toml", "--out", "out"])
+    assert sorted(p.name for p in out.iterdir()) == ["cases.csv", "cases.parquet", "summary.json", "sweep.png"]
+    assert not (tmp_path / "out.resume").exists()  # removed once the output is in place
+    header, cols = read_cases(out / "cases.csv")
+    assert header[:7] == ["case", "I1 [kg m^2]", "I2 [kg m^2]", "I3 [kg m^2]", "omega0_1 [rad/s]",
+                          "omega0_2 [rad/s]", "omega0_3 [rad/s]"]
+    assert {"flips", "flip_period [s]", "crossbar_length [m]", "axes_rotvec_x [rad]"} <= set(header)
+    assert cols["case"].tolist() == list(range(40))
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary == json.loads(json.dumps(data))
+    assert summary["provenance"]["command"] == "tumble sweep small.toml --out out"
+    # the streaming statistics are those of the whole table (all 40 cases in the sample: exact)
+    for name, column in (("flip_period", "flip_period [s]"), ("max_nutation", "max_nutation [rad]"),
+                         ("I2", "I2 [kg m^2]")):
+        x = cols[column][np.isfinite(cols[column])]
+        s = summary["statistics"][name]
+        assert s["count"] == len(x) and s["quantile_rank_error"] == 0.0
+        assert s["mean"] == pytest.approx(x.mean(), rel=1e-13)
+        assert s["std"] == pytest.approx(x.std(ddof=1), rel=1e-10)
+        assert s["quantiles"]["0.5"] == pytest.approx(np.median(x), rel=1e-15)
+        assert (s["min"], s["max"]) == (x.min(), x.max())
+    c = summary["criterion"]
+    failed = int(np.sum(~(cols["flips"] >= 1)))
+    assert (c["passed"], c["failed"]) == (40 - failed, failed)
+    assert c["success_lower_bound"] == success_lower_bound(40, failed, 0.9)
+    assert summary["counts"]["predicted"] == {"unstable": 40}
+
+
+def test_parquet_holds_the_same_table(tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")
+    out = tmp_path / "out"
+    run_sweep(write(tmp_path, cases=20), out)
+    table = pq.read_table(out / "cases.parquet")
+    header, cols = read_cases(out / "cases.csv")
+    assert table.column_names == header
+    for name in header:
+        column = table.column(name).to_numpy()
+        if column.dtype.kind in "fi":
+            assert np.array_equal(column.astype(float), cols[name], equal_nan=True), name
+        else:
+            assert column.tolist() == cols[name].tolist()
+
+
+@pytest.mark.parametrize("sampling", ["random", "lhs", "sobol"])
+def test_cases_csv_is_byte_for_byte_the_same_whatever_the_chunk_size(tmp_path, sampling):
+    texts, stats = [], []
+    for chunk in (3, 16, 64):
+        folder = tmp_path / f"c{chunk}"
+        folder.mkdir()
+        data = run_sweep(write(folder, cases=37, chunk=chunk, sampling=sampling), folder / "out")
+        texts.append((folder / "out" / "cases.csv").read_bytes())
+        stats.append((data["statistics"], data["counts"], data["criterion"]))
+    assert texts[0] == texts[1] == texts[2]
+    assert stats[0] == stats[1] == stats[2]
+
+
+def test_an_interrupted_sweep_resumes_from_its_finished_chunks_byte_for_byte(tmp_path, monkeypatch):
+    path = write(tmp_path, cases=40, chunk=8)
+    computed = []
+    original = sweep_module.compute_chunk
+
+    def interrupted(sweep, start, stop):
+        if len(computed) == 2:
+            raise KeyboardInterrupt  # Ctrl-C during the third chunk
+        computed.append(start)
+        return original(sweep, start, stop)
+
+    monkeypatch.setattr(sweep_module, "compute_chunk", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(path, tmp_path / "out")
+    assert not (tmp_path / "out").exists()  # nothing half-written
+    resume = tmp_path / "out.resume"
+    assert sorted(p.name for p in resume.glob("chunk-*.npz")) == ["chunk-000000.npz", "chunk-000001.npz"]
+
+    def counting(sweep, start, stop):
+        computed.append(start)
+        return original(sweep, start, stop)
+
+    monkeypatch.setattr(sweep_module, "compute_chunk", counting)
+    data = run_sweep(path, tmp_path / "out")
+    assert computed == [0, 8, 16, 24, 32] and data["resumed_chunks"] == 2  # three more chunks
+    assert not resume.exists()
+    fresh = tmp_path / "fresh"
+    fresh.mkdir()
+    run_sweep(write(fresh, cases=40, chunk=8), fresh / "out")
+    assert (tmp_path / "out" / "cases.csv").read_bytes() == (fresh / "out" / "cases.csv").read_bytes()
+
+
+def test_chunks_of_another_sweep_are_not_resumed(tmp_path, monkeypatch):
+    path = write(tmp_path, cases=16, chunk=8)
+    original = sweep_module.compute_chunk
+
+    def once(sweep, start, stop):
+        if start:
+            raise KeyboardInterrupt
+        return original(sweep, start, stop)
+
+    monkeypatch.setattr(sweep_module, "compute_chunk", once)
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(path, tmp_path / "out")
+    assert len(list((tmp_path / "out.resume").glob("chunk-*.npz"))) == 1
+    monkeypatch.undo()
+    write(tmp_path, cases=16, chunk=8, text=SMALL.replace("seed = 5", "seed = 6"))  # another sweep, same file
+    data = run_sweep(path, tmp_path / "out")
+    assert data["resumed_chunks"] == 0 and data["seed"] == 6
+
+
+def test_the_command_prints_one_line(tmp_path, capsys):
+    assert run_sweep_command(write(tmp_path), tmp_path / "out") == 0
+    line = capsys.readouterr().out
+    assert line.count("\n") == 1
+    assert line.startswith("40 cases (exact): 40 predicted unstable; 40 flipped twice or more, flip period median ")
+    assert f"wrote {tmp_path / 'out'}/" in line and "success probability >= " in line
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    (("[sweep]", "[sweep]\nworkers = 2"), r"small\.toml: sweep: unknown key 'workers'; allowed: cases, chunk, max_resamples, "
+                                          r"sampling, seed$"),
+    (("target = \"axes\"", "target = \"tilt\""), r"small\.toml: dispersion\[1\]: target = 'tilt' is unknown; allowed: "),
+    (("absolute = 0.01", "absolute = 0.01\nrelative = 0.1"), r"small\.toml: dispersion\[1\]: give relative = "),
+    (("field = \"crossbar_length\"", "field = \"bar_length\""),
+     r"small\.toml: dispersions\[0\] \(bar_length\): preset 't-handle' has no parameter 'bar_length'; allowed: "),
+    (("sampling = \"{sampling}\"", "sampling = \"grid\""),
+     r"small\.toml: sweep: sampling = 'grid' is unknown; allowed: random, lhs, sobol$"),
+    (("samples = 300", "samples = 1"), r"small\.toml: simulation: samples = 1 must be a whole number from 2 to "),
+    (("[criterion]\ncolumn = \"flips\"", "[criterion]\ncolumn = \"flops\""),
+     r"small\.toml: criterion: column = 'flops' is not a column of the cases; allowed: case, "),
+    (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\""), r"small\.toml: simulation: method = 'geometric' needs a "
+                                                               r"step \(s\) in a sweep"),
+    (("chunk = {chunk}", "chunk = 0"), r"small\.toml: sweep: chunk = 0 must be a whole number >= 1 \(cases per chunk\)$"),
+])
+def test_bad_sweep_files_are_refused_in_one_line_before_anything_is_written(tmp_path, change, message):
+    old, new = change
+    assert old in SMALL
+    path = write(tmp_path, text=SMALL.replace(old, new))
+    with pytest.raises(ValueError, match=message) as info:
+        run_sweep(path, tmp_path / "out")
+    assert "\n" not in str(info.value)
+    assert not (tmp_path / "out").exists() and not (tmp_path / "out.resume").exists()
+
+
+def test_an_impossible_dispersion_is_refused_naming_the_case(tmp_path):
+    text = SMALL.replace('target = "axes"\nabsolute = 0.01', 'target = "moments"\nrelative = 0.05')
+    text = text.replace("[sweep]", "[sweep]\nmax_resamples = 0")
+    with pytest.raises(ValueError, match=r"small\.toml: case 0: no physical body in 1 draw\(s\)|case \d+: no physical"):
+        run_sweep(write(tmp_path, text=text), tmp_path / "out")
+
+
+@pytest.mark.skipif(not EXAMPLE.exists(), reason="the example sweep lands with io/examples.py listing sweeps/")
+def test_the_example_sweep_runs_in_seconds_and_every_flip_matches_the_elliptic_period(tmp_path):
+    import time
+
+    parsed = load_sweep(EXAMPLE)
+    assert parsed.sweep.ensemble.cases == 4096 and parsed.sweep.ensemble.sampling == "sobol"
+    start = time.perf_counter()
+    data = run_sweep(EXAMPLE, tmp_path / "out")
+    elapsed = time.perf_counter() - start
+    assert elapsed < 60, elapsed  # ~4 s on one core
+    _, cols = read_cases(tmp_path / "out" / "cases.csv")
+    assert len(cols["case"]) == 4096 and data["redraws"] == 0
+    # every dimension within +-5 % of the nominal (uniform), the masses following (density)
+    for name, nominal in (("shaft_length [m]", 0.08), ("crossbar_radius [m]", 0.006)):
+        assert np.all(np.abs(cols[name] / nominal - 1) <= 0.05)
+    # a case spun about its intermediate axis flips at the exact elliptic interval, to the sampling
+    both = np.isfinite(cols["flip_period [s]"]) & np.isfinite(cols["flip_period_exact [s]"])
+    assert both.sum() > 3900
+    ratio = cols["flip_period [s]"][both] / cols["flip_period_exact [s]"][both]
+    assert np.max(np.abs(ratio - 1)) < 0.01
+    # where the dimensions make the shaft the minor axis the spin is stable: no flip period
+    stable = cols["predicted"] == "stable"
+    assert np.all(cols["axis"][stable] != 2) and np.all(np.isnan(cols["flip_period_exact [s]"][stable]))
+    assert data["counts"]["predicted"]["stable"] == int(stable.sum())
+    assert math.isclose(data["criterion"]["success_lower_bound"],
+                        success_lower_bound(4096, data["criterion"]["failed"], 0.9))
