@@ -518,3 +518,26 @@ def test_the_sweep_figure_shows_flip_periods_or_nutation(tmp_path):
     assert fig.axes[0].get_xlabel() == "largest nutation angle (rad): no case flips"
     assert fig.axes[2].get_ylabel() == "flips"
     pyplot().close(fig)
+
+
+def test_chunks_finishing_out_of_order_are_put_back_in_order():
+    class Reversed:  # a backend whose chunks finish last to first, as a cluster's may
+        def map(self, fn, tasks):
+            done = [(k, fn(*task)) for k, task in enumerate(tasks)]
+            yield from reversed(done)
+
+    sweep = t_handle_sweep(21)
+    saved = []
+
+    class Store:
+        def has(self, k):
+            return False
+
+        def save(self, k, columns):
+            saved.append(k)
+
+    shuffled = _frozen(run_chunks(sweep, chunk=4, store=Store(), backend=Reversed()))
+    assert saved == [5, 4, 3, 2, 1, 0]  # each kept as soon as it finished
+    plain = _frozen(run_chunks(sweep, chunk=4))
+    assert shuffled["case"].tolist() == list(range(21))
+    assert all(np.array_equal(shuffled[k], plain[k]) for k in plain)
