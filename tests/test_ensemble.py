@@ -46,7 +46,7 @@ def test_moments_of_a_planar_body_are_redrawn_half_the_time():
     assert np.all(I > 0) and np.all(np.diff(I, axis=1) >= 0)
     assert np.all(I[:, 0] + I[:, 1] - I[:, 2] >= -INERTIA_RTOL * I.sum(axis=1))
     total = int(x.resampled.sum())
-    assert abs(total - n) < 4 * math.sqrt(2 * n), total  # measured: 2001
+    assert abs(total - n) < 4 * math.sqrt(2 * n), total  # measured: 1960
     assert abs(x.resampled.var() - 2.0) < 0.4
 
 
@@ -329,7 +329,7 @@ def test_the_stability_map_is_the_simulated_flip_period_at_sample_points():
                                t_end=6.5 * T, samples=6000, method="dop853", rtol=1e-11)
         report = stability_report(traj)
         assert report["flips"] == 6
-        assert report["flip_period"] == pytest.approx(T, rel=2e-4), (moments, T)
+        assert report["flip_period"] == pytest.approx(T, rel=1e-6), (moments, T)  # measured: 1.3e-9
         # omega_3 keeps its sign iff omega circulates about the major axis
         assert (np.all(np.sign(traj.omega[:, 2]) == np.sign(traj.omega[0, 2]))) == (m.circulation[i, j] == 3)
 
