@@ -229,7 +229,6 @@ def test_an_impossible_dispersion_is_refused_naming_the_case(tmp_path):
         run_sweep(write(tmp_path, text=text), tmp_path / "out")
 
 
-@pytest.mark.skipif(not EXAMPLE.exists(), reason="the example sweep lands with io/examples.py listing sweeps/")
 def test_the_example_sweep_runs_in_seconds_and_every_flip_matches_the_elliptic_period(tmp_path):
     import time
 
@@ -290,3 +289,23 @@ def test_a_running_dask_scheduler_writes_the_same_cases(tmp_path):
     assert there["backend"] == f"dask scheduler {cluster.scheduler_address}"
     assert (tmp_path / "here" / "cases.csv").read_bytes() == (tmp_path / "there" / "cases.csv").read_bytes()
     assert here["criterion"] == there["criterion"]
+
+
+def test_the_sweep_and_map_commands(tmp_path, capsys):
+    """`tumble sweep` runs the shipped example through the CLI (one line, exit 0, the files);
+    `tumble map` draws the map; bad options are one line and exit 2."""
+    from tumble.cli import main
+
+    out = tmp_path / "sweep"
+    assert main(["sweep", str(EXAMPLE), "--out", str(out)]) == 0
+    line = capsys.readouterr().out
+    assert line.startswith("4096 cases") and "success probability" in line
+    assert {"cases.csv", "summary.json", "sweep.png"} <= {p.name for p in out.iterdir()}
+    assert not (tmp_path / "sweep.resume").exists()
+    assert main(["map", "--out", str(tmp_path / "map.png"), "--resolution", "40"]) == 0
+    assert (tmp_path / "map.png").stat().st_size > 5_000
+    for argv in (["map", "--out", str(tmp_path / "m.png"), "--spin", "-1"],
+                 ["sweep", str(EXAMPLE), "--out", str(tmp_path / "s2"), "--workers", "2", "--scheduler", "tcp://x:1"]):
+        capsys.readouterr()
+        assert main(argv) == 2
+        assert capsys.readouterr().err.count("\n") == 1

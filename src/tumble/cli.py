@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import signal
 import sys
 import warnings
@@ -66,6 +67,38 @@ def _cmd_examples(args) -> int:
     for e in examples:
         print(f"{e.path:<{width}}  {e.kind:<8}  {e.description}")
     print("copy them with: tumble examples --copy DIR")
+    return EXIT_OK
+
+
+def _cmd_sweep(args) -> int:
+    from .io.sweepfile import run_sweep_command
+    from .viz.maps import figure_sweep
+
+    if args.workers is not None and args.scheduler is not None:
+        raise ValueError("give --workers (a local cluster) or --scheduler (an existing one), not both")
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise ValueError(f"--workers = {args.workers} must be from 1 to 256")
+    with _working("sweeping"):
+        return run_sweep_command(args.sweep, args.out, workers=args.workers, scheduler=args.scheduler,
+                                 argv=args.argv, figure=figure_sweep)
+
+
+def _cmd_map(args) -> int:
+    from .io.output import check_output_file
+    from .mass._checks import check_positive
+
+    suffix = os.path.splitext(str(args.out))[1].lower()
+    out = check_output_file(args.out, suffix if suffix in (".png", ".svg") else ".png")
+    spin = check_positive("--spin", args.spin, "rad/s")
+    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s") for i, p in enumerate(args.perturbation))
+    if not 20 <= args.resolution <= 2000:
+        raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")
+    from .viz.maps import figure_stability_map
+
+    with _working("mapping"):
+        figure_stability_map(spin, perturbation, out, resolution=args.resolution)
+    print(f"wrote {out}: flip interval and circulation axis over (I1/I3, I2/I3), spin {spin:g} rad/s "
+          f"about the intermediate axis, perturbation {perturbation[0]:g}, {perturbation[1]:g} rad/s")
     return EXIT_OK
 
 
@@ -275,6 +308,36 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--copy", metavar="DIR", help="copy every example into DIR (never overwrites a file)")
     p.set_defaults(func=_cmd_examples)
+
+    p = sub.add_parser(
+        "sweep",
+        help="a Monte Carlo sweep or a grid of cases from a sweep file",
+        description="Runs every case of a sweep file (dispersed bodies and initial rates) and writes DIR/cases.csv "
+        "(a row per case; DIR/cases.parquet with pyarrow), DIR/summary.json (statistics, the order-statistics "
+        "confidence statement, provenance) and DIR/sweep.png. Interrupted, a re-run resumes from the finished "
+        "chunks kept in DIR.resume/.",
+        epilog="Examples: tumble sweep examples/sweeps/t_handle_dimensions.toml --out runs/sweep | "
+        "tumble sweep SWEEP.toml --out DIR --workers 2", parents=[debug],
+    )
+    p.add_argument("sweep", metavar="SWEEP", help="a sweep file (TOML)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--workers", type=int, metavar="N", help="run on a local Dask cluster of N workers (tumble[cluster])")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on an existing Dask cluster (tumble[cluster])")
+    p.set_defaults(func=_cmd_sweep)
+
+    p = sub.add_parser(
+        "map",
+        help="stability map: flip interval over the triangle of inertia ratios",
+        description="Draws the exact flip interval and the circulation axis of a spin about the intermediate axis "
+        "with a small perturbation, over the triangle of inertia ratios (I1/I3, I2/I3).",
+        epilog="Example: tumble map --out map.png --spin 10 --perturbation 0.01 0.01", parents=[debug],
+    )
+    p.add_argument("--out", required=True, metavar="FILE", help="the figure (.png or .svg)")
+    p.add_argument("--spin", type=float, default=10.0, metavar="W", help="spin about the intermediate axis, rad/s (default 10)")
+    p.add_argument("--perturbation", type=float, nargs=2, default=(0.01, 0.01), metavar=("W1", "W3"),
+                   help="rates about the minor and major axes, rad/s (default 0.01 0.01)")
+    p.add_argument("--resolution", type=int, default=300, metavar="N", help="grid points per side (default 300)")
+    p.set_defaults(func=_cmd_map)
 
     p = sub.add_parser(
         "demo",

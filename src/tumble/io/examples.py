@@ -28,6 +28,8 @@ __all__ = ["Example", "copy_examples", "list_examples"]
 #: The folder of the body files, relative to the examples' root; every other ``.toml`` at the
 #: root is a scenario.
 BODIES = "bodies"
+#: The folder of the sweep files (``tumble sweep``).
+SWEEPS = "sweeps"
 
 
 @dataclass(frozen=True)
@@ -41,8 +43,8 @@ class Example:
     path : str
         Its path relative to the examples' root, with ``/``, e.g. ``"bodies/t_handle.toml"``.
     kind : str
-        ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``) or ``"body"`` (for
-        ``tumble inertia``).
+        ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"body"`` (for
+        ``tumble inertia``) or ``"sweep"`` (for ``tumble sweep``).
     description : str
         One line: the file's first comment line, or its name if it has none.
     """
@@ -88,16 +90,16 @@ def list_examples() -> list[Example]:
     Returns
     -------
     list of Example
-        Each with its name, relative path, kind (``"scenario"`` or ``"body"``) and one-line
+        Each with its name, relative path, kind (``"scenario"``, ``"body"`` or ``"sweep"``) and one-line
         description. Meshes and other files the examples refer to are not listed.
     """
     found = []
     for rel, entry in _walk(_root()):
         folder, _, filename = rel.rpartition("/")
-        if not filename.endswith(".toml") or folder not in ("", BODIES):
+        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS):
             continue
         name = filename[: -len(".toml")]
-        kind = "body" if folder == BODIES else "scenario"
+        kind = {BODIES: "body", SWEEPS: "sweep"}.get(folder, "scenario")
         found.append(Example(name, rel, kind, _description(entry.read_text(encoding="utf-8"), name)))
     return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
 
