@@ -385,3 +385,21 @@ def test_beyond_the_phase_limit_is_refused():
     check_phase_limit(I, w0, 1e10)  # 6.6e22 rad: allowed
     with pytest.raises(ValueError, match="phase"):  # a steady spin too
         check_phase_limit(I, [0.0, 0.0, 1e13], 1e12)
+
+
+@pytest.mark.parametrize("eps", [1e-160, 3e-178, 1e-200, 1e-300])
+@pytest.mark.parametrize(("moments", "axis"), [((1.0, 2.0, 2.0), 0), ((1.0, 1.0, 2.0), 2)])
+def test_a_symmetric_top_with_a_vanishing_axial_spin(moments, axis, eps):
+    """A prolate (I2 = I3) or oblate (I1 = I2) top whose spin along its symmetry axis is
+    1e-160..1e-300 of the rest: its square underflowed when the energy-momentum gaps were scaled
+    by the component whose coefficient is zero, and the run divided by zero. The motion is a
+    steady rotation about omega to within |Omega| t ~ eps t: R(t) = R0 exp(t [omega])."""
+    from scipy.spatial.transform import Rotation
+
+    w0 = np.array([1.0, 1.0, 1.0])
+    w0[axis] = eps
+    body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    traj = tumble.simulate(body, w0, t_end=1000.0, samples=11)
+    np.testing.assert_allclose(traj.omega, np.broadcast_to(w0, traj.omega.shape), rtol=1e-15, atol=0)
+    expected = traj.attitude[0] * Rotation.from_rotvec(np.outer(traj.t, w0))
+    assert np.max((traj.attitude * expected.inv()).magnitude()) < 1e-12

@@ -239,7 +239,10 @@ class FreeRotation:
         Ln = dd.ldexp(Ln, e)
         rate0 = dd.div(Ln, (Ir, 0.0))
         rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[0], Is[2]))
-        scale = dd.div(rate1, p)
+        # n = 0 exactly for a symmetric top about its symmetry axis (I2 equal to the other
+        # extreme moment): Pi(0; phi | m) = F(phi | m), the excess vanishes, and rate1 / p (huge
+        # for a vanishing axial spin, 1e300 at 1e-300 rad/s) must not be formed
+        scale = dd.div(rate1, p) if n != (0.0, 0.0) else (0.0, 0.0)
         one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))
         # phi(t) = rate0 t + (rate1 / p) [Pi(u) - Pi(u0)] (module docstring), split into a secular
         # part A t + B j and a bounded one b(u_r) - b(u0_r) that is evaluated without cancellation:

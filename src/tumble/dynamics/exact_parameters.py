@@ -98,13 +98,25 @@ def _core(w: list, I: list) -> dict:
     I = [_ldexp(x, -eI) for x in I]
     I1, I2, I3 = I
     gaps, exps = [], []
+    scalar = isinstance(w[0], float)
     for j in range(3):
         a, b = (i for i in range(3) if i != j)
-        big = max(abs(w[a]), abs(w[b])) if isinstance(w[a], float) else np.maximum(abs(w[a]), abs(w[b]))
+        # Scale by the larger component whose coefficient I_i - I_j is not zero: a component with
+        # a zero coefficient (a symmetric top) adds nothing, and scaling by it would underflow
+        # the other one's square (moments (1, 2, 2), omega (3e-178, 1, 1)); it is left out.
+        live = [I[i] != I[j] for i in (a, b)]
+        size = [abs(w[i]) if scalar else np.abs(w[i]) for i in (a, b)]
+        if scalar:
+            big = max((x for x, on in zip(size, live) if on), default=max(size))
+        else:
+            big = np.maximum(np.where(live[0], size[0], 0.0), np.where(live[1], size[1], 0.0))
+            big = np.where(live[0] | live[1], big, np.maximum(*size))
         e = _exponent(big)
         g = (0.0, 0.0)
-        for i in (a, b):
-            x = _ldexp(w[i], -e)
+        for i, on in zip((a, b), live):
+            x = _ldexp(w[i], -e) if (not scalar or on) else 0.0
+            if not scalar:
+                x = np.where(on, x, 0.0)
             term = dd.mul(dd.mul_d(dd.two_sum(I[i], -I[j]), I[i]), dd.two_prod(x, x))
             g = dd.add(g, term)
         gaps.append(g)
