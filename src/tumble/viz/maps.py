@@ -142,11 +142,18 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
         wide = hi > 3 * lo  # a long tail (bodies near a symmetric one): logarithmic bins
         bins = (np.geomspace if wide else np.linspace)(lo, hi, 41) if hi > lo else 10
         if wide:
+            from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
             left.set_xscale("log")
-        for values, label, color in zip(finite, ("measured (mean between flips)", "exact (elliptic K)"),
-                                        ("tab:blue", "tab:orange")):
+            left.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            left.xaxis.set_major_formatter(ScalarFormatter())
+            left.xaxis.set_minor_formatter(NullFormatter())  # no crowded 2x10^0, 3x10^0 labels
+        # the exact periods as a step line, the measured ones dashed on top: they nearly coincide
+        for values, label, color, style in zip(finite, ("measured (mean between flips)", "exact (elliptic K)"),
+                                               ("tab:blue", "tab:orange"), ("--", "-")):
             if values.size:
-                left.hist(values, bins=bins, histtype="step", lw=1.4, color=color, label=f"{label}: {values.size}")
+                left.hist(values, bins=bins, histtype="step", lw=1.4, ls=style, color=color,
+                          label=f"{label} (s): {values.size} cases", zorder=3 if style == "--" else 2)
         left.set_xlabel("flip period (s)")
         left.legend(fontsize=7)
     else:
