@@ -15,6 +15,16 @@ from .stability import (
     linearised_rate,
     perturbation_exponent,
 )
+from .periods import (
+    montgomery_angle,
+    npa_periods,
+    npa_periods_measured,
+    period,
+    polhode_solid_angle,
+    precession_per_period,
+    rotation_per_period,
+    symmetric_top_rates,
+)
 from .summary import stability_report, trajectory_summary
 
 __all__ = [
@@ -25,7 +35,15 @@ __all__ = [
     "flip_interval_asymptotic",
     "flip_times",
     "linearised_rate",
+    "montgomery_angle",
+    "npa_periods",
+    "npa_periods_measured",
+    "period",
     "perturbation_exponent",
+    "polhode_solid_angle",
+    "precession_per_period",
+    "rotation_per_period",
     "stability_report",
+    "symmetric_top_rates",
     "trajectory_summary",
 ]

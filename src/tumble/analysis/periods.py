@@ -1,0 +1,367 @@
+"""Periods and angles of torque-free motion: the body-frame period, Montgomery's rotation per
+period, the symmetric top's two rates and the periods of tumbling (non-principal-axis) rotation.
+
+Notation as :mod:`tumble.analysis.stability` and :mod:`tumble.dynamics.exact` (Landau &
+Lifshitz, *Mechanics*, sec. 37): principal moments ``I1 <= I2 <= I3``; omega circulates about
+axis ``r`` = 3 (major) when ``L^2 >= 2 E I2``, about ``r`` = 1 (minor) otherwise; ``o`` is the
+other extreme axis; ``u = u0 + p t`` the elliptic argument and ``m = k^2`` its parameter.
+
+- **Period of the body-frame motion** ``T = 4 K(m) / p`` (Landau & Lifshitz sec. 37): after
+  ``T`` omega, L_body and the energy ellipsoid's polhode are back where they were; the flip
+  interval of :func:`tumble.analysis.flip_interval` is ``T / 2``. For a symmetric top ``m = 0``
+  and ``T = 2 pi / p`` with ``p = |(I_s - I_perp) w_s / I_perp|`` (Landau & Lifshitz sec. 33).
+- **Precession per period.** The exact solution writes the attitude as ``Rz(phi) Rx(theta)
+  Rz(psi)`` about L (z-x-z Euler angles, Landau & Lifshitz sec. 35) with
+  ``phi' = |L| / I_r + |L| (I_r - I_o) / (I1 I3) / (1 - n sn^2 u)``,
+  ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (:mod:`tumble.dynamics.exact`, derived from Landau &
+  Lifshitz sec. 37). Over one period ``am u`` advances by ``2 pi`` and Legendre's integral of
+  the third kind by ``4 Pi(n | m)`` (complete), so
+
+      Delta phi = |L| T / I_r + 4 |L| (I_r - I_o) Pi(n | m) / (I1 I3 p).
+
+  ``Pi(n | m) = R_F(0, 1 - m, 1) + (n / 3) R_J(0, 1 - m, 1, 1 - n)`` (DLMF 19.25.2, Carlson's
+  symmetric integrals, evaluated by scipy).
+- **Montgomery's formula** (R. Montgomery, "How much does the rigid body rotate? A Berry's
+  phase from the 18th century", Am. J. Phys. 59 (1991) 394): after one period the body has
+  turned about L by ``Delta theta = 2 E T / |L| - Omega (mod 2 pi)``, ``Omega`` the solid angle
+  that L_body / |L| sweeps on the unit sphere. Here ``Omega`` is the oriented area of the cap the
+  polhode encloses around the circulation axis on L's side, positive when L circulates
+  counter-clockwise seen from outside that cap: positive for circulation about the major axis,
+  negative about the minor axis, ``|Omega| < 2 pi``. It follows from the same Euler angles: the
+  component of omega along L is ``2 E / |L| = phi' + psi' cos theta``; with the azimuth of L in
+  the body ``alpha = pi / 2 - psi`` (which turns by ``+-2 pi`` per period),
+  ``Delta phi = 2 E T / |L| + Delta alpha - Omega``, i.e. the closed form
+
+      Omega = 2 E T / |L| - Delta phi + 2 pi sigma,   sigma = +1 (major axis), -1 (minor axis),
+
+  which is :func:`polhode_solid_angle`; ``Delta theta = Delta phi mod 2 pi`` is
+  :func:`montgomery_angle`. The tests hold ``Omega`` against the solid-angle integral
+  ``oint (1 - cos theta) d alpha`` of the polhode computed with mpmath (an independent route) and
+  ``Delta theta`` against the rotation measured on DOP853 runs (:func:`rotation_per_period`).
+- **Tumbling (NPA) rotation**: see :func:`npa_periods`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import elliprf, elliprj
+
+from ..dynamics import Trajectory
+from ..dynamics.exact import elliptic_parameters
+from ..mass import INERTIA_RTOL
+from ..mass.tensor import refuse_first
+from .stability import _check_motion, circulation_axis, flip_interval
+
+__all__ = [
+    "montgomery_angle",
+    "npa_periods",
+    "npa_periods_measured",
+    "period",
+    "polhode_solid_angle",
+    "precession_per_period",
+    "rotation_per_period",
+    "symmetric_top_rates",
+]
+
+TWO_PI = 2.0 * np.pi
+
+
+def period(omega, moments) -> np.ndarray:
+    """Period of the body-frame motion, ``T = 4 K(m) / p``, s (module docstring).
+
+    Twice :func:`tumble.analysis.flip_interval`. For a symmetric top ``2 pi / p``, the period of
+    omega's precession about the symmetry axis in the body (Landau & Lifshitz sec. 33).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity at any instant, principal frame (``I1 <= I2 <= I3``), rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        ``T`` in s; ``inf`` on the separatrix (``L^2 = 2 E I2``), at rest, for a sphere and for a
+        symmetric top spinning steadily in its degenerate plane.
+
+    Raises
+    ------
+    ValueError
+        As :func:`tumble.analysis.flip_interval` (the shared validator names the first bad index).
+    """
+    return 2.0 * flip_interval(omega, moments)
+
+
+def _precession(w: np.ndarray, I: np.ndarray):
+    """``(T, Delta phi, 2 E T / |L|, sigma)`` of the motion through ``w`` (module docstring)."""
+    e = elliptic_parameters(w, I)
+    T = 2.0 * flip_interval(w, I)
+    w, I = np.broadcast_arrays(w, I)
+    I1, I2, I3 = I[..., 0], I[..., 1], I[..., 2]
+    upper = np.asarray(e.upper)
+    Ir, Io = np.where(upper, I3, I1), np.where(upper, I1, I3)
+    L = np.linalg.norm(I * w, axis=-1)
+    twoE = np.sum(I * w * w, axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        n = -Ir * (I2 - Io) / (Io * (Ir - I2))
+        n = np.where(Ir == I2, 0.0, n)  # a prolate/oblate top about its symmetry axis: n = 0
+        m1 = np.asarray(e.kp, float) ** 2
+        K = elliprf(0.0, m1, 1.0)
+        Pi = K + np.where(n == 0, 0.0, n / 3.0 * elliprj(0.0, m1, 1.0, 1.0 - n))
+        dphi = L * T / Ir + 4.0 * L * (Ir - Io) * Pi / (I1 * I3 * e.p)
+        dphi = np.where(Ir == Io, L * T / Ir, dphi)  # sphere (T is inf there anyway)
+        secular = twoE * T / L
+    finite = np.isfinite(T) & (L > 0)
+    sigma = np.where(upper, 1.0, -1.0)
+    return (T, np.where(finite, dphi, np.nan), np.where(finite, secular, np.nan), sigma)
+
+
+def precession_per_period(omega, moments) -> np.ndarray:
+    """``Delta phi``: the angle the circulation axis precesses about L in one period, rad.
+
+    ``|L| T / I_r + 4 |L| (I_r - I_o) Pi(n | m) / (I1 I3 p)`` (module docstring), not reduced;
+    ``|L| T / I_perp`` for a symmetric top (Landau & Lifshitz sec. 33). NaN where the period is
+    infinite.
+
+    Parameters and errors as :func:`period`; returns an ndarray of shape (...), rad.
+    """
+    return _precession(*_check_motion(omega, moments))[1]
+
+
+def montgomery_angle(omega, moments) -> np.ndarray:
+    """Montgomery's rotation per period ``Delta theta = 2 E T / |L| - Omega (mod 2 pi)``, rad.
+
+    Computed by the closed form of the module docstring: ``Delta theta = Delta phi mod 2 pi``
+    with ``Delta phi`` from the complete elliptic integral of the third kind (the solid angle
+    ``Omega`` is :func:`polhode_solid_angle`). The angle by which the body, after one period
+    ``T`` of its body-frame motion (:func:`period`), has turned about L (R. Montgomery, Am. J.
+    Phys. 59 (1991) 394); measured on a trajectory by :func:`rotation_per_period`.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity at any instant, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        ``Delta theta`` in ``[0, 2 pi)``, rad, counter-clockwise about L; NaN where the period is
+        infinite (separatrix, rest, sphere).
+
+    Raises
+    ------
+    ValueError
+        As :func:`period`.
+    """
+    dphi = _precession(*_check_motion(omega, moments))[1]
+    return np.mod(dphi, TWO_PI)
+
+
+def polhode_solid_angle(omega, moments) -> np.ndarray:
+    """Oriented solid angle ``Omega`` enclosed by the path of L_body / |L| in one period, sr.
+
+    ``Omega = 2 E T / |L| - Delta phi + 2 pi sigma`` (module docstring; ``sigma = +1`` for
+    circulation about the major axis, ``-1`` about the minor axis): the cap around the
+    circulation axis on L's side, positive (counter-clockwise seen from outside the cap) about
+    the major axis, negative about the minor axis; ``|Omega| < 2 pi``. For a symmetric top
+    ``2 pi sigma (1 - |cos theta|)``, theta the angle between L and the symmetry axis.
+
+    Parameters and errors as :func:`period`; returns an ndarray of shape (...), sr (NaN where
+    the period is infinite).
+    """
+    T, dphi, secular, sigma = _precession(*_check_motion(omega, moments))
+    return secular - dphi + TWO_PI * sigma
+
+
+def _check_trajectory(traj) -> None:
+    if not isinstance(traj, Trajectory):
+        raise TypeError(f"traj must be a tumble Trajectory, got {type(traj).__name__}")
+    if not (traj.torque_free and traj.rigid):
+        raise ValueError("traj must be a torque-free rigid body (no torque, rotors or damper): "
+                         "the periods are those of free rotation")
+    if len(traj.t) < 2:
+        raise ValueError(f"traj has {len(traj.t)} sample(s); at least 2 are needed")
+
+
+def rotation_per_period(traj, period_s=None) -> float:
+    """Rotation of the body about L_world over one body-frame period, measured, rad.
+
+    The angle of ``R(t0 + T) R(t0)^-1`` about ``L_world`` (counter-clockwise), in ``[0, 2 pi)``,
+    where ``t0 = traj.t[0]``. After one period the body-frame state is back, so that rotation
+    leaves L_world fixed and is a rotation about it by Montgomery's ``Delta theta``
+    (:func:`montgomery_angle`).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        A torque-free rigid motion sampled at ``t0`` and at ``t0 + T`` (e.g.
+        ``tumble.simulate(body, w0, times=[0, T], method="dop853")``).
+    period_s : float, optional
+        ``T`` in s; default :func:`period` of ``traj.omega[0]``.
+
+    Returns
+    -------
+    float
+        The angle in rad.
+
+    Raises
+    ------
+    ValueError
+        If the trajectory is not torque-free and rigid, the period is not finite, or no sample
+        lies at ``t0 + T`` (within ``1e-9 T``).
+    """
+    _check_trajectory(traj)
+    T = float(period(traj.omega[0], traj.moments)) if period_s is None else float(period_s)
+    if not (np.isfinite(T) and T > 0):
+        raise ValueError(f"period = {T!r} s: the rotation per period needs a finite positive period")
+    target = traj.t[0] + T
+    k = int(np.argmin(np.abs(traj.t - target)))
+    if not abs(traj.t[k] - target) <= 1e-9 * T:
+        raise ValueError(f"traj has no sample at t0 + T = {target!r} s (nearest {traj.t[k]!r} s); "
+                         "sample it there, e.g. times=[0, T]")
+    Q = (traj.attitude[k] * traj.attitude[0].inv()).as_quat()  # [x, y, z, w]
+    Lw = traj.angular_momentum_world[0]
+    axis = Lw / np.linalg.norm(Lw)
+    return float(np.mod(2.0 * np.arctan2(np.dot(Q[:3], axis), Q[3]), TWO_PI))
+
+
+def symmetric_top_rates(omega, moments) -> tuple[np.ndarray, np.ndarray]:
+    """The two rates of a free symmetric top (Landau & Lifshitz, *Mechanics*, sec. 33), rad/s.
+
+    For moments ``I_perp, I_perp, I_s`` (oblate, ``I1 = I2``, symmetry axis 3) or ``I_s,
+    I_perp, I_perp`` (prolate, ``I2 = I3``, symmetry axis 1): the symmetry axis precesses about
+    L at ``|L| / I_perp``, and in the body omega and L precess about the symmetry axis at
+    ``(I_s - I_perp) w_s / I_perp`` (for an oblate top ``(I3 - I1) w3 / I1``: the Eulerian free
+    nutation of a rigid Earth). Two moments count as equal within ``1e-9`` of the trace
+    (:data:`tumble.mass.INERTIA_RTOL`, the principal frame's rule); a sphere counts as oblate.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending, two of them equal, kg m^2.
+
+    Returns
+    -------
+    precession : ndarray, shape (...)
+        ``|L| / I_perp``, rad/s (>= 0).
+    body_rate : ndarray, shape (...)
+        ``(I_s - I_perp) w_s / I_perp``, rad/s, signed: counter-clockwise about the symmetry
+        axis' positive direction when positive.
+
+    Raises
+    ------
+    ValueError
+        As :func:`period`, or for moments with no two equal (naming the first such index).
+    """
+    w, I = _check_motion(omega, moments)
+    tol = INERTIA_RTOL * np.sum(I, axis=-1)
+    oblate = I[..., 1] - I[..., 0] <= tol
+    prolate = I[..., 2] - I[..., 1] <= tol
+    refuse_first("moments", I, ~(oblate | prolate), "must be a symmetric top: I1 == I2 or I2 == I3 "
+                 f"(within {INERTIA_RTOL:g} of the trace)")
+    w, I = np.broadcast_arrays(w, I)
+    oblate = np.broadcast_to(oblate, w.shape[:-1])
+    I_perp = np.where(oblate, I[..., 0], I[..., 2])
+    I_s = np.where(oblate, I[..., 2], I[..., 0])
+    w_s = np.where(oblate, w[..., 2], w[..., 0])
+    L = np.linalg.norm(I * w, axis=-1)
+    return L / I_perp, (I_s - I_perp) * w_s / I_perp
+
+
+def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Periods of non-principal-axis rotation (a tumbling asteroid) from moments and omega.
+
+    Conventions (those named in Samarasinha & A'Hearn, Icarus 93 (1991) 194, and Kaasalainen,
+    A&A 376 (2001) 302, as this project reads them; only the papers' abstracts were checked):
+    the *long-axis mode* (LAM) is circulation about the minor axis (the long axis of the body,
+    ``L^2 < 2 E I2``), the *short-axis mode* (SAM) about the major axis (``L^2 > 2 E I2``);
+
+    - ``P_psi`` is the period of the body-frame motion, ``T = 4 K / p`` (:func:`period`): that of
+      the rotation angle psi about the circulation axis and of the nutation theta;
+    - ``P_phi`` is the mean precession period of the *long axis* (axis 1) about L: in LAM the
+      long axis is the circulation axis, and ``P_phi = 2 pi T / Delta phi``; in SAM the long
+      axis also turns with psi, once per period in the sense of the precession, and
+      ``P_phi = 2 pi T / (Delta phi - 2 pi)`` (``Delta phi``: :func:`precession_per_period`).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending, kg m^2.
+
+    Returns
+    -------
+    P_phi : ndarray, shape (...)
+        Mean precession period of the long axis about L, s.
+    P_psi : ndarray, shape (...)
+        Period of the body-frame motion, s (``inf`` on the separatrix).
+    mode : ndarray of str, shape (...)
+        ``"SAM"`` or ``"LAM"``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`period`.
+    """
+    T, dphi, _, sigma = _precession(*_check_motion(omega, moments))
+    sam = sigma > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        P_phi = TWO_PI * T / np.where(sam, dphi - TWO_PI, dphi)
+    return P_phi, T, np.where(sam, "SAM", "LAM")
+
+
+def _upward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
+    k = np.flatnonzero((y[:-1] < 0) & (y[1:] >= 0))
+    return t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
+
+
+def npa_periods_measured(traj) -> tuple[float, float, str]:
+    """``P_phi`` and ``P_psi`` measured on a sampled torque-free trajectory (:func:`npa_periods`).
+
+    ``P_psi``: the mean interval between upward zero crossings of ``omega_2`` (the component
+    along the intermediate axis changes sign in both modes, once upward per period), linearly
+    interpolated. ``P_phi``: ``2 pi`` over the mean rate of the azimuth of the long axis (axis 1)
+    about L_world, unwrapped and linearly interpolated, between the first and last of those
+    crossings (a whole number of periods, so the bounded part of the precession cancels).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        Torque-free rigid motion, sampled densely (tens of samples per period or more) over at
+        least two periods.
+
+    Returns
+    -------
+    P_phi, P_psi : float
+        s.
+    mode : str
+        ``"SAM"`` or ``"LAM"`` (from the initial state).
+
+    Raises
+    ------
+    ValueError
+        If the trajectory is not torque-free and rigid, or spans fewer than two upward crossings.
+    """
+    _check_trajectory(traj)
+    t = traj.t
+    up = _upward_crossings(t, traj.omega[:, 1])
+    if len(up) < 2:
+        raise ValueError(f"traj shows {len(up)} upward crossing(s) of omega_2; at least 2 (one full "
+                         "period) are needed: run it longer or sample it more densely")
+    P_psi = (up[-1] - up[0]) / (len(up) - 1)
+    Lw = traj.angular_momentum_world[0]
+    z = Lw / np.linalg.norm(Lw)
+    x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)
+    a = traj.attitude.apply(np.array([1.0, 0.0, 0.0]))
+    az = np.unwrap(np.arctan2(a @ y, a @ x))
+    rate = (np.interp(up[-1], t, az) - np.interp(up[0], t, az)) / (up[-1] - up[0])
+    mode = "SAM" if int(circulation_axis(traj.omega[0], traj.moments)) == 3 else "LAM"
+    return float(TWO_PI / rate), float(P_psi), mode
