@@ -189,9 +189,7 @@ def test_symmetric_top_rates_against_dop853(moments, omega, s):
     axis = np.eye(3)[s]
     # the symmetry axis keeps its angle to L and precesses uniformly: its azimuth rate is exact
     assert _azimuth_rate(traj, axis) == pytest.approx(float(precession), rel=1e-9)  # measured: at most 4.7e-13
-    i, j = [k for k in range(3) if k != s][0], [k for k in range(3) if k != s][1]
-    if s == 0:
-        i, j = 1, 2
+    i, j = (s + 1) % 3, (s + 2) % 3  # right-handed about the symmetry axis
     ang = np.unwrap(np.arctan2(traj.omega[:, j], traj.omega[:, i]))
     measured = (ang[-1] - ang[0]) / traj.t[-1]
     assert measured == pytest.approx(float(body_rate), rel=1e-9)

@@ -276,10 +276,13 @@ def symmetric_top_rates(omega, moments) -> tuple[np.ndarray, np.ndarray]:
 def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Periods of non-principal-axis rotation (a tumbling asteroid) from moments and omega.
 
-    Conventions (those named in Samarasinha & A'Hearn, Icarus 93 (1991) 194, and Kaasalainen,
-    A&A 376 (2001) 302, as this project reads them; only the papers' abstracts were checked):
-    the *long-axis mode* (LAM) is circulation about the minor axis (the long axis of the body,
-    ``L^2 < 2 E I2``), the *short-axis mode* (SAM) about the major axis (``L^2 > 2 E I2``);
+    Conventions: the names are those of Samarasinha & A'Hearn, Icarus 93 (1991) 194, and
+    Kaasalainen, A&A 376 (2001) 302, but the definitions below are this module's; the papers
+    could not be read here beyond Kaasalainen's abstract and introduction, so that they agree
+    with the papers' own definitions (in SAM, which axis's precession ``P_phi`` follows) is
+    *unverified*. The *long-axis mode* (LAM) is circulation about the minor axis (the body's
+    long axis, ``L^2 < 2 E I2``), the *short-axis mode* (SAM) about the major axis
+    (``L^2 > 2 E I2``);
 
     - ``P_psi`` is the period of the body-frame motion, ``T = 4 K / p`` (:func:`period`): that of
       the rotation angle psi about the circulation axis and of the nutation theta;
