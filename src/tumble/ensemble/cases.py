@@ -10,6 +10,12 @@ BodySampler`). A body draw that is not physical is drawn again from the case's o
 up to ``max_resamples`` times (then the sweep is refused, naming the case); the rates keep
 their draw, so a Latin hypercube stays stratified in them. How many redraws each case needed
 is part of its inputs (``resampled``).
+
+A chunk is made with arrays where it can be: the random numbers of all its cases at once
+(:func:`~tumble.ensemble.sampling.case_uniforms`), the rates, and bodies dispersed by their
+moments and axes (:meth:`~tumble.ensemble.dispersions.BodySampler.sample_many`); a body
+dispersed by its parts or preset parameters, and a draw near a rule's edge, are made one case
+at a time. Both ways give each case bit for bit the same inputs (tested).
 """
 
 from __future__ import annotations
@@ -96,6 +102,18 @@ class InitialRates:
         if self.distribution is None:
             return omega
         return omega + np.array(self.spread) * deviates(u, self.distribution)
+
+    def rates(self, index, u) -> np.ndarray:
+        """:meth:`rate` of many cases at once, bit for bit: ``index`` shape (m,), ``u`` shape
+        (m, dims); returns shape (m, 3)."""
+        index = np.asarray(index)
+        if self.grid is not None:
+            point = np.unravel_index(index % self.points, [len(g) for g in self.grid])
+            return np.stack([np.asarray(g)[k] for g, k in zip(self.grid, point)], axis=-1).reshape(len(index), 3)
+        omega = np.array(self.omega)
+        if self.distribution is None:
+            return np.tile(omega, (len(index), 1))
+        return omega + np.array(self.spread) * deviates(np.asarray(u).reshape(len(index), 3), self.distribution)
 
 
 def _grid(grid) -> tuple:
@@ -209,20 +227,21 @@ class Ensemble:
         """
         stop = self.cases if stop is None else stop
         rows = self.design.rows(start, stop)
-        k = self.rates.dims
-        out = []
-        for i, row in zip(range(start, stop), rows):
-            drawn, resampled = self._body(i, row[k:])
-            out.append((drawn, self.rates.rate(i, row[:k]), resampled))
-        m = len(out)
-        moments = np.array([d.moments for d, _, _ in out]).reshape(m, 3)
-        axes = np.array([d.axes for d, _, _ in out]).reshape(m, 3, 3)
-        given = np.array([w for _, w, _ in out]).reshape(m, 3)
+        index = np.arange(start, stop)
+        m, k = len(index), self.rates.dims
+        given = self.rates.rates(index, rows[:, :k])
+        moments, axes = np.empty((m, 3)), np.empty((m, 3, 3))
+        values, resampled = np.empty((m, len(self.names))), np.zeros(m, dtype=np.int64)
+        fast = self.bodies.sample_many(self.bodies.deviates(rows[:, k:])) if m else None
+        slow = np.arange(m) if fast is None else np.flatnonzero(~fast[3])
+        if fast is not None:
+            moments[:], axes[:], values[:] = fast[:3]
+        for j in slow:  # a body drawn part by part, or a draw near a rule's edge: one by one
+            drawn, resampled[j] = self._body(start + int(j), rows[j, k:])
+            moments[j], axes[j], values[j] = drawn.moments, drawn.axes, drawn.values
         omega0 = np.einsum("nji,nj->ni", axes, given) if self.rates.frame == "design" else given
         quat0 = Rotation.from_matrix(axes).as_quat().reshape(m, 4) if m else np.empty((0, 4))
-        values = np.array([d.values for d, _, _ in out]).reshape(m, len(self.names))
-        return CaseInputs(np.arange(start, stop), moments, axes, omega0, quat0, values,
-                          np.array([r for _, _, r in out], dtype=np.int64))
+        return CaseInputs(index, moments, axes, omega0, quat0, values, resampled)
 
     def _body(self, index: int, u: np.ndarray):
         """Case ``index``'s body from its unit numbers ``u``, drawn again while unphysical."""

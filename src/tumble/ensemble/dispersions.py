@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties
+from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties, principal_frame
 from .sampling import DISTRIBUTIONS, deviates
 
 __all__ = ["TARGETS", "BodySampler", "Dispersion", "Sampled"]
@@ -274,13 +274,68 @@ class BodySampler:
         return tuple(out)
 
     def deviates(self, u) -> np.ndarray:
-        """Map a unit-cube point (shape (dims,)) to the deviates ``z`` of the dispersions."""
+        """Map unit-cube points (shape (dims,) or (m, dims)) to the deviates ``z`` of the dispersions."""
         u = np.asarray(u, dtype=float)
-        z = np.empty(self.dims)
+        z = np.empty(u.shape[:-1] + (self.dims,))
         names = np.array(self.distributions)
         for name in set(self.distributions):
-            z[names == name] = deviates(u[names == name], name)
+            z[..., names == name] = deviates(u[..., names == name], name)
         return z
+
+    def sample_many(self, z):
+        """:meth:`sample` for many draws at once, where it can be done with arrays.
+
+        Only for dispersions of the moments and axes (none of parts or preset parameters): the
+        rows come out bit for bit as :meth:`sample` makes them one by one (tested). A row whose
+        tensor lies within ``1e-6`` of its trace of a rule's edge (a zero or negative moment, the
+        triangle inequality) is not decided here: the caller makes it with :meth:`sample`, which
+        refuses it or not exactly as for a single draw.
+
+        Parameters
+        ----------
+        z : ndarray, shape (m, dims)
+            The deviates (:meth:`deviates`).
+
+        Returns
+        -------
+        tuple or None
+            ``(moments (m, 3), axes (m, 3, 3), values (m, p), decided (m,) of bool)``; None when
+            a dispersion acts on parts or preset parameters.
+        """
+        if any(d.target in ("preset", "part") for d in self.dispersions):
+            return None
+        z = np.asarray(z, dtype=float)
+        m = len(z)
+        chunks = np.split(z, np.cumsum(self.widths)[:-1], axis=1) if self.dispersions else []
+        values = np.empty((m, 0)) if not chunks else np.empty((m, self.dims))
+        moments, axes = self.body.principal_moments, self.body.principal_axes
+        factor, turn = np.ones((m, 3)), Rotation.identity()
+        col = np.cumsum((0,) + self.widths)
+        for k, d in enumerate(self.dispersions):
+            if d.target == "moments":
+                values[:, col[k]:col[k + 1]] = 1.0 + d.spread * chunks[k]
+        for k, d in enumerate(self.dispersions):
+            if d.target == "moments":
+                factor = factor * values[:, col[k]:col[k + 1]]
+        for k, d in enumerate(self.dispersions):
+            if d.target == "axes":
+                values[:, col[k]:col[k + 1]] = d.spread * chunks[k]
+                turn = Rotation.from_rotvec(values[:, col[k]:col[k + 1]]) * turn
+        if not self.dispersions:  # the nominal body: sample's only rule is the zero moment
+            ok = not np.any(moments <= INERTIA_RTOL * np.sum(moments))
+            return np.tile(moments, (m, 1)), np.tile(axes, (m, 1, 1)), values, np.full(m, ok)
+        else:
+            A = turn.as_matrix().reshape(-1, 3, 3) @ axes
+            D = np.zeros((m, 3, 3))
+            D[:, [0, 1, 2], [0, 1, 2]] = moments * factor
+            tensor = A @ D @ np.swapaxes(A, -1, -2)
+            tensor = 0.5 * (tensor + np.swapaxes(tensor, -1, -2))  # as check_inertia returns it
+            out_moments, out_axes = principal_frame(tensor)
+        trace = np.sum(out_moments, axis=1)
+        margin = 1e-6 * np.abs(trace)
+        decided = (np.all(np.isfinite(out_moments), axis=1) & (out_moments[:, 0] > margin)
+                   & (out_moments[:, 2] - out_moments[:, 0] - out_moments[:, 1] < -margin))
+        return np.array(out_moments), np.array(out_axes), values, decided
 
     def sample(self, z) -> Sampled:
         """The body for the deviates ``z`` (shape (dims,)).
