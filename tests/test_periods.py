@@ -50,8 +50,6 @@ def test_period_is_twice_the_flip_interval_and_2pi_over_p_for_a_top():
     assert P.period([[0.0, 1.0, 0.0]] * 2, [1.0, 1.0, 1.0]).tolist() == [np.inf, np.inf]  # a sphere (batch)
 
 
-@pytest.mark.xfail(strict=True, raises=TypeError, reason="flip_interval's scalar path at rest or for a sphere: "
-                   "exact_parameters._ldexp gets a numpy int exponent (math.ldexp refuses it); not in this module")
 def test_period_at_rest_single():
     assert P.period([0.0, 0.0, 0.0], [1.0, 2.0, 3.0]) == np.inf
 

@@ -55,7 +55,7 @@ def _exponent(x):
 
 
 def _ldexp(x, e):
-    if isinstance(x, float):
+    if isinstance(x, float) and isinstance(e, int):  # not for numpy exponents (0-d arrays)
         return math.ldexp(x, e)  # OverflowError is caught by scaled_core
     with np.errstate(over="ignore"):
         return np.ldexp(x, e)
