@@ -48,6 +48,7 @@ _EXPORTS = {
     "linearised_rate": "tumble.analysis",
     "flip_interval": "tumble.analysis",
     "stability_report": "tumble.analysis",
+    "fit_rotation": "tumble.analysis",
     # files
     "load_body": "tumble.io",
     "load_scenario": "tumble.io",

@@ -1,10 +1,12 @@
-"""Analysis of motions (layer 3): stability of the principal axes, flips and their period.
+"""Analysis of motions (layer 3): stability of the principal axes, flips and their period; fitting
+a measured tumble (the inertia ratios from a gyroscope record).
 
 Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 ``"intermediate"``, ``"major"`` in every argument and every result (docs/conventions.md,
 "Numbering the principal axes").
 """
 
+from .fit import RotationFit, fit_rotation
 from .stability import (
     axis_of,
     circulation_axis,
@@ -28,9 +30,11 @@ from .periods import (
 from .summary import stability_report, trajectory_summary
 
 __all__ = [
+    "RotationFit",
     "axis_of",
     "circulation_axis",
     "energy_momentum_gaps",
+    "fit_rotation",
     "flip_interval",
     "flip_interval_asymptotic",
     "flip_times",

@@ -4,6 +4,7 @@ matplotlib is imported inside the drawing functions, never by the physics layers
 """
 
 from .animate import animate_body_frame, animate_ground_frame
+from .fit import figure_fit
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
@@ -25,6 +26,7 @@ __all__ = [
     "body_size",
     "figure_drift",
     "figure_energy",
+    "figure_fit",
     "figure_gravity_stability",
     "figure_herpolhode",
     "figure_nutation",
