@@ -4,6 +4,11 @@ A backend has one method, ``map(fn, tasks)``, which calls ``fn(*task)`` for each
 yields ``(position, result)`` pairs as they finish (in any order); the runner
 (:mod:`tumble.ensemble.sweep`) puts them back in order, so the results do not depend on the
 backend. Dask (``pip install 'tumble[cluster]'``) is imported only when asked for.
+
+A worker that dies mid-sweep costs only the chunks it held: the scheduler runs them again on
+another worker, and when it gives up on a chunk (:class:`distributed.KilledWorker`, after the
+scheduler's ``allowed-failures``) :class:`DaskBackend` submits it again itself, up to
+``retries`` times. A chunk's columns depend only on the chunk, so a re-run gives the same rows.
 """
 
 from __future__ import annotations
@@ -33,6 +38,15 @@ class DaskBackend:
     """Compute the tasks on a Dask cluster: a local one of ``workers`` processes, or the
     scheduler at ``scheduler`` (an address such as ``tcp://10.0.0.5:8786``).
 
+    Parameters
+    ----------
+    workers : int, optional
+        Processes of a local cluster (one thread each); default 1.
+    scheduler : str, optional
+        The address of a running scheduler, instead.
+    retries : int
+        How many times a chunk whose workers kept dying is submitted again (module docstring).
+
     Raises
     ------
     ValueError
@@ -40,7 +54,10 @@ class DaskBackend:
         for a worker count that is not a whole number >= 1.
     """
 
-    def __init__(self, workers: int | None = None, scheduler: str | None = None) -> None:
+    def __init__(self, workers: int | None = None, scheduler: str | None = None, retries: int = 3) -> None:
+        if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
+            raise ValueError(f"retries = {retries!r} must be a whole number >= 0")
+        self.retries = retries
         try:
             from dask.distributed import Client, LocalCluster
         except ImportError:
@@ -62,13 +79,36 @@ class DaskBackend:
             self._where = f"dask local cluster of {n} workers"
 
     def map(self, fn: Callable, tasks: Iterable[tuple]) -> Iterator[tuple[int, object]]:
-        """Submit every task, then yield ``(position, result)`` as each finishes."""
-        from dask.distributed import as_completed
+        """Submit every task, then yield ``(position, result)`` as each finishes; a task lost
+        with its workers is submitted again (class docstring).
 
+        Raises
+        ------
+        ValueError
+            When a task was lost with its worker ``retries + 1`` times.
+        """
+        from dask.distributed import KilledWorker, as_completed
+
+        tasks = list(tasks)
         futures = {self._client.submit(fn, *task, pure=False): k for k, task in enumerate(tasks)}
+        lost = dict.fromkeys(range(len(tasks)), 0)
+        pending = as_completed(futures)
         try:
-            for future in as_completed(futures):
-                yield futures[future], future.result()
+            for future in pending:
+                k = futures.pop(future)
+                try:
+                    result = future.result()
+                except KilledWorker as exc:
+                    lost[k] += 1
+                    if lost[k] > self.retries:
+                        why = " ".join(str(exc).split())
+                        raise ValueError(f"task {k}: its workers kept dying; given up after {lost[k]} "
+                                         f"submission(s), retries = {self.retries} (Dask: {why})") from None
+                    again = self._client.submit(fn, *tasks[k], pure=False)
+                    futures[again] = k
+                    pending.add(again)
+                    continue
+                yield k, result
         finally:
             for future in futures:
                 future.cancel()
