@@ -266,6 +266,13 @@ def test_the_command_writes_fit_json_and_the_figure(tmp_path, capsys):
     with pytest.raises(ValueError, match=r"steady\.csv: omega is constant"):
         run_fit_command(bad, out)
     assert json.loads((out / "fit.json").read_text(encoding="utf-8")) == data
+    # a window of the record (the free flight of a toss)
+    assert run_fit_command(data_file, tmp_path / "part", start=2.0, end=9.0) == 0
+    part = json.loads((tmp_path / "part" / "fit.json").read_text(encoding="utf-8"))
+    assert part["start"] == 2.0 and 690 <= part["samples"] <= 710 and part["t0"] >= 2.0
+    assert abs(part["I2_over_I3"] - phone_ratios()[1]) < 1e-3 and not (tmp_path / "part" / "fit.png").exists()
+    with pytest.raises(ValueError, match="must be before"):
+        run_fit_command(data_file, tmp_path / "x", start=5.0, end=1.0)
 
 
 def test_public_name():

@@ -147,6 +147,7 @@ class RotationFit:
             "I2_over_I3": float(self.ratios[1]),
             "I1_over_I3_std": float(self.ratios_std[0]),
             "I2_over_I3_std": float(self.ratios_std[1]),
+            "ratios_correlation": float(self.covariance[0, 1] / (self.ratios_std[0] * self.ratios_std[1])),
             "omega0": listed(self.omega0),
             "omega0_std": listed(self.omega0_std),
             "t0": float(self.t[0]),
@@ -159,7 +160,7 @@ class RotationFit:
             "samples": int(self.samples),
             "parameters": list(self.parameter_names),
             "units": {"ratios": "dimensionless", "omega0": "rad/s", "rotvec": "rad", "bias": "rad/s",
-                      "residual_rms": "rad/s", "t0": "s"},
+                      "residual_rms": "rad/s", "t0": "s", "ratios_correlation": "dimensionless"},
         }
 
 

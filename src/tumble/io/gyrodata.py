@@ -121,7 +121,8 @@ def read_gyro_csv(path) -> tuple[np.ndarray, np.ndarray]:
     return rows[:, 0].copy(), rows[:, 1:].copy()
 
 
-def run_fit_command(path, out, *, argv=None, figure=None, **options) -> int:
+def run_fit_command(path, out, *, argv=None, figure=None, start: float | None = None, end: float | None = None,
+                    **options) -> int:
     """``tumble fit DATA.csv --out DIR``: fit a gyroscope record and write the result.
 
     Writes ``DIR/fit.json`` (the fitted values and uncertainties of
@@ -140,6 +141,9 @@ def run_fit_command(path, out, *, argv=None, figure=None, **options) -> int:
     figure : callable, optional
         ``figure(fit, omega_measured, path)`` writing the figure (the viz layer's
         :func:`tumble.viz.figure_fit`; io cannot import viz).
+    start, end : float, optional
+        Fit only the samples with ``start <= t <= end``, s (the free flight of a toss: the
+        record of a phone thrown and caught holds the throw and the catch too).
     **options
         Passed to :func:`tumble.analysis.fit.fit_rotation` (``sensor_rotation``, ``bias``).
 
@@ -150,12 +154,19 @@ def run_fit_command(path, out, *, argv=None, figure=None, **options) -> int:
     """
     check_output_dir(out)
     t, omega = read_gyro_csv(path)
+    if start is not None or end is not None:
+        lo = -np.inf if start is None else float(start)
+        hi = np.inf if end is None else float(end)
+        if not lo < hi:
+            raise ValueError(f"--start {start} must be before --end {end} (s)")
+        keep = (t >= lo) & (t <= hi)
+        t, omega = t[keep], omega[keep]
     digest = file_sha256(path)
     try:
         fit = fit_rotation(t, omega, **options)
     except ValueError as err:
         raise ValueError(f"{os.fspath(path)}: {err}") from None
-    record = {"input": os.fspath(path), **fit.summary(),
+    record = {"input": os.fspath(path), "start": start, "end": end, **fit.summary(),
               "method": "least squares on the exact torque-free solution (Landau & Lifshitz sec. 37), "
                         "uncertainties sqrt(diag((J^T J)^-1) s^2) (Numerical Recipes sec. 15.5)",
               "provenance": provenance(argv, [(path, digest)])}

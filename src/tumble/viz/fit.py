@@ -43,7 +43,7 @@ def figure_fit(fit, omega_measured, path=None):
         axes[3].plot(t, w[:, k] - fit.omega_model[:, k], ".", ms=1.5, color=f"C{k}", label=name)
     axes[3].set_ylabel("residual (rad/s)")
     axes[3].set_xlabel(f"time since the first sample, t - {fit.t[0]:.3g} s (s)")
-    axes[3].legend(loc="upper right", fontsize=8, ncol=3)
+    axes[3].legend(loc="upper right", fontsize=8, ncol=3, markerscale=6)
     (x, y), (sx, sy) = fit.ratios, fit.ratios_std
     fig.suptitle(f"I1/I3 = {x:.5f} \u00b1 {sx:.1g},  I2/I3 = {y:.5f} \u00b1 {sy:.1g},  "
                  f"residual RMS {fit.residual_rms:.3g} rad/s ({fit.samples} samples)", fontsize=10)
