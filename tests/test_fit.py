@@ -17,7 +17,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import tumble
-from tumble.analysis.fit import RotationFit, fit_rotation
+from tumble.analysis.fit import RotationFit, fit_rotation, periods_consistent
+from tumble.analysis.periods import npa_periods_measured
 from tumble.dynamics.exact import FreeRotation
 from tumble.io.gyrodata import read_gyro_csv, run_fit_command
 
@@ -277,3 +278,38 @@ def test_the_command_writes_fit_json_and_the_figure(tmp_path, capsys):
 
 def test_public_name():
     assert tumble.fit_rotation is fit_rotation
+
+
+# --- from periods -------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("omega0, mode", [((0.3, 0.2, 1.0), "SAM"), ((1.0, 0.3, 0.2), "LAM")])
+def test_periods_measured_on_dop853_give_back_the_energy_and_momentum(omega0, mode):
+    """The periods measured on a DOP853 run (npa_periods_measured: zero crossings and the long
+    axis's azimuth), solved at the true ratios: one solution is the true motion. Measured:
+    energy and |L|/I3 to 1e-9 relative (SAM 1.0271012, 1.0205671; LAM 1.9430010, 0.5226414)."""
+    body = tumble.Body([tumble.Box(mass=1.0, size=(3.0, 2.0, 1.2))])
+    I = body.principal_moments
+    w0 = np.array(omega0)
+    traj = tumble.simulate(body, w0, t_end=200.0, samples=40001, method="dop853", rtol=1e-12, atol=1e-12)
+    P_phi, P_psi, measured_mode = npa_periods_measured(traj)
+    assert measured_mode == mode
+    fam = periods_consistent(P_phi, P_psi, ratios=[I[:2] / I[2]])
+    L = np.linalg.norm(I * w0)
+    energy, L_over_I3 = w0 @ (I * w0) * I[2] / L ** 2, L / I[2]
+    k = int(np.argmin(np.abs(fam.energy - energy)))
+    assert fam.mode[k] == mode
+    assert abs(fam.energy[k] / energy - 1) < 1e-6 and abs(fam.L_over_I3[k] / L_over_I3 - 1) < 1e-6
+
+
+def test_periods_do_not_determine_the_ratios():
+    """Over the triangle, a wide family of bodies (in both modes) has the same two periods.
+    Measured for P_phi = 6.07 s, P_psi = 10.91 s: 1694 solutions on the 40 x 40 grid, I1/I3 from
+    0.036 to 0.64, both SAM and LAM."""
+    fam = periods_consistent(6.0728647, 10.911819)
+    assert len(fam.mode) > 100 and set(fam.mode.tolist()) == {"SAM", "LAM"}
+    assert np.ptp(fam.ratios[:, 0]) > 0.3
+    assert np.all(fam.ratios[:, 0] < fam.ratios[:, 1]) and np.all(fam.energy >= 1.0)
+    with pytest.raises(ValueError, match="positive and finite"):
+        periods_consistent(-1.0, 2.0)
+    with pytest.raises(ValueError, match=r"ratios\[0\] = \[0.8, 0.4\]"):
+        periods_consistent(1.0, 2.0, ratios=[[0.8, 0.4]])

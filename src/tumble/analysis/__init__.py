@@ -6,7 +6,7 @@ Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 "Numbering the principal axes").
 """
 
-from .fit import RotationFit, fit_rotation
+from .fit import PeriodFamily, RotationFit, fit_rotation, periods_consistent
 from .stability import (
     axis_of,
     circulation_axis,
@@ -30,6 +30,7 @@ from .periods import (
 from .summary import stability_report, trajectory_summary
 
 __all__ = [
+    "PeriodFamily",
     "RotationFit",
     "axis_of",
     "circulation_axis",
@@ -43,6 +44,7 @@ __all__ = [
     "npa_periods",
     "npa_periods_measured",
     "period",
+    "periods_consistent",
     "perturbation_exponent",
     "polhode_solid_angle",
     "precession_per_period",
