@@ -115,3 +115,20 @@ def test_examples_are_listed_and_copied_ready_to_run(tmp_path, capsys):
     assert run(capsys, "simulate", str(tmp_path / "ex" / "every_part_spin.toml"), "--t-end", "1", "--out", str(tmp_path / "r"))[0] == 0
     code, _, err = run(capsys, "examples", "--copy", str(tmp_path / "ex"))  # never overwrites
     assert code == 2 and "already exists" in err
+
+
+def test_fit_command_on_the_shipped_record(tmp_path, capsys):
+    """`tumble fit` on the synthetic phone toss (a box 15 x 7.5 x 0.8 cm: I1/I3 = 0.2023,
+    I2/I3 = 0.8023 from its dimensions, Meriam & Kraige Table D/4) recovers the ratios."""
+    a, b, c = 0.15, 0.075, 0.008
+    I = np.sort([b * b + c * c, a * a + c * c, a * a + b * b])
+    code, out, err = run(capsys, "fit", str(EXAMPLES / "data" / "phone_toss.csv"), "--out", str(tmp_path / "fit"))
+    assert code == 0 and err == "", err
+    data = json.loads((tmp_path / "fit" / "fit.json").read_text())
+    assert "ratios" in json.dumps(data)
+    from tumble.io.gyrodata import read_gyro_csv
+
+    fit = tumble.fit_rotation(*read_gyro_csv(EXAMPLES / "data" / "phone_toss.csv"))
+    np.testing.assert_allclose(fit.ratios, I[:2] / I[2], atol=1e-3)
+    code, _, err = run(capsys, "fit", str(tmp_path / "missing.csv"), "--out", str(tmp_path / "f2"))
+    assert code == 2 and err.count("\n") == 1

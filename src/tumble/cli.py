@@ -102,6 +102,15 @@ def _cmd_map(args) -> int:
     return EXIT_OK
 
 
+def _cmd_fit(args) -> int:
+    from .io.gyrodata import run_fit_command
+    from .viz import figure_fit
+
+    with _working("fitting"):
+        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, start=args.start,
+                               end=args.end, sensor_rotation=args.sensor, bias=not args.no_bias)
+
+
 def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from .io.scenario import resolve_run
@@ -338,6 +347,24 @@ def build_parser() -> argparse.ArgumentParser:
                    help="rates about the minor and major axes, rad/s (default 0.01 0.01)")
     p.add_argument("--resolution", type=int, default=300, metavar="N", help="grid points per side (default 300)")
     p.set_defaults(func=_cmd_map)
+
+    p = sub.add_parser(
+        "fit",
+        help="inertia ratios from a gyroscope record (phyphox or t,wx,wy,wz CSV)",
+        description="Fits the inertia ratios I1/I3 and I2/I3, the initial omega, the sensor's rotation and a "
+        "constant bias to a record of angular velocity (least squares on the exact torque-free motion) and "
+        "writes DIR/fit.json (values with standard uncertainties, residual, provenance) and DIR/fit.png. "
+        "Fit only the free flight: trim the throw and the catch with --start and --end.",
+        epilog="Example: tumble fit examples/data/phone_toss.csv --out fitted", parents=[debug],
+    )
+    p.add_argument("data", metavar="DATA", help="a CSV: phyphox's gyroscope export or t, wx, wy, wz (s, rad/s)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--sensor", choices=["fit", "identity"], default="fit",
+                   help="fit the sensor's rotation to the principal axes (default) or take it as identity")
+    p.add_argument("--no-bias", action="store_true", help="assume an unbiased gyroscope")
+    p.add_argument("--start", type=float, metavar="S", help="first time to fit, s")
+    p.add_argument("--end", type=float, metavar="S", help="last time to fit, s")
+    p.set_defaults(func=_cmd_fit)
 
     p = sub.add_parser(
         "demo",
