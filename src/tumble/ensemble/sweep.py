@@ -82,8 +82,9 @@ class RunSettings:
         Samples with ``t_end`` (default 500): a few per flip, to count flips and measure
         their period. ``samples = 2`` asks only for the final state: the exact method is then
         evaluated at ``t_end`` alone (the t = 0 sample is the case's initial state, as the
-        method returns it), which makes a torque-free sweep of final states and exact flip
-        intervals (``flip_period_exact``) about a third faster; ``flips``, ``flip_period`` and
+        method returns it), which makes the run of a torque-free sweep of final states and exact
+        flip intervals (``flip_period_exact``) about a fifth faster (measured: 0.44 s against
+        0.55 s for 100,000 cases); ``flips``, ``flip_period`` and
         ``max_nutation`` then see only t = 0 and ``t_end`` (``flip_period`` is NaN).
     times : sequence of float, optional
         The sample times, s, instead of ``t_end``.
