@@ -1,7 +1,8 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
 #   make demo   creates .venv if needed, installs tumble, runs the T-handle study
 #   make test   same set-up, then the import-layer contract and the whole test suite
-#   make bench  same set-up, then the benchmarks (ratios against a baseline in the same run)
+#   make bench  same set-up plus the benchmark-only extra (MuJoCo), then the benchmarks (ratios
+#               against a baseline in the same run)
 
 PYTHON ?= python3
 VENV   := .venv
@@ -24,6 +25,7 @@ test: $(STAMP)
 	$(PY) -m pytest
 
 bench: $(STAMP)
+	$(PY) -m pip install --quiet -e '.[bench]'
 	$(PY) benchmarks/run.py
 
 clean:
