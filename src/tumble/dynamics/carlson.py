@@ -106,19 +106,35 @@ def _cel(kc, pp):
     p = dd.sqrt(pp)
     a, b = one, dd.div(one, p)
     for _ in range(40):
-        f, inv = a, dd.div(one, p)
-        a = dd.add(a, dd.mul(b, inv))
-        g = dd.mul(e, inv)
-        b = dd.add(b, dd.mul(f, g))
-        b = (2.0 * b[0], 2.0 * b[1])
-        p = dd.add(g, p)
-        g = em
-        em = dd.add(qc, em)
+        a, b, p, g, em = cel_step(a, b, p, e, em, qc)
         if abs(g[0] - qc[0]) <= 1e-17 * g[0]:  # quadratic: the last step gains the other half
             break
-        qc = dd.sqrt(e)
-        qc = (2.0 * qc[0], 2.0 * qc[1])
-        e = dd.mul(qc, em)
+        qc, e = cel_next(e, em)
+    return cel_value(a, b, p, em)
+
+
+def cel_step(a, b, p, e, em, qc):
+    """One step of Bulirsch's ``cel`` up to its convergence test (:func:`_cel`): new ``a, b, p``,
+    the previous ``em`` (``g``, tested against ``qc``) and the new ``em``. Double-doubles of
+    floats or of arrays (the batched kernel runs the same arithmetic elementwise)."""
+    f, inv = a, dd.div((1.0, 0.0), p)
+    a = dd.add(a, dd.mul(b, inv))
+    g = dd.mul(e, inv)
+    b = dd.add(b, dd.mul(f, g))
+    b = (2.0 * b[0], 2.0 * b[1])
+    p = dd.add(g, p)
+    return a, b, p, em, dd.add(qc, em)
+
+
+def cel_next(e, em):
+    """The ``qc, e`` of the next step of :func:`_cel`, once it has not converged."""
+    qc = dd.sqrt(e)
+    qc = (2.0 * qc[0], 2.0 * qc[1])
+    return qc, dd.mul(qc, em)
+
+
+def cel_value(a, b, p, em):
+    """``cel`` from the converged ``a, b, p, em`` of :func:`_cel`."""
     return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
 
 
@@ -129,7 +145,17 @@ def _agm_k(kp):
     for _ in range(40):
         if abs(a[0] - b[0]) <= 1e-17 * a[0]:
             break
-        a, b = dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
+        a, b = agm_step(a, b)
+    return agm_k_value(a, b)
+
+
+def agm_step(a, b):
+    """One step of the arithmetic-geometric mean in double-double (floats or arrays)."""
+    return dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
+
+
+def agm_k_value(a, b):
+    """``K = pi / (2 AGM)`` from the converged ``a, b`` of :func:`_agm_k`."""
     return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
 
 

@@ -31,7 +31,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from . import ddouble as dd
-from .carlson import legendre_f, legendre_pi_excess
+from .carlson import agm_k_value, agm_step, cel_next, cel_step, cel_value, legendre_f, legendre_pi_excess
 from .exact import MAX_PHASE, FreeRotation, check_phase_limit
 from .exact_parameters import scaled_core
 
@@ -226,37 +226,30 @@ def _agm_k(kp):
     def step(s):  # carlson's loop tests |a - b| before a step: an element stops unchanged
         a, b, _ = s
         stop = np.abs(a[0] - b[0]) <= 1e-17 * a[0]
-        a2, b2 = dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
+        a2, b2 = agm_step(a, b)
         return _pick(stop, a, a2), _pick(stop, b, b2), stop
 
     a, b, _ = _masked_loop((one, kp, np.zeros(kp[0].shape, bool)), step)
-    return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
+    return agm_k_value(a, b)
 
 
 def _cel(kc, pp):
-    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double, elementwise (carlson's ``_cel``)."""
+    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double, elementwise: carlson's ``_cel`` with its
+    steps (:func:`tumble.dynamics.carlson.cel_step`) masked per element."""
     one = (np.ones_like(kc[0]), np.zeros_like(kc[0]))
     p = dd.sqrt(pp)
     a, b = one, dd.div(one, p)
 
     def step(s):
         a, b, p, e, em, qc, _ = s
-        f, inv = a, dd.div((1.0, 0.0), p)
-        a = dd.add(a, dd.mul(b, inv))
-        g = dd.mul(e, inv)
-        b = dd.add(b, dd.mul(f, g))
-        b = (2.0 * b[0], 2.0 * b[1])
-        p = dd.add(g, p)
-        g = em
-        em = dd.add(qc, em)
+        a, b, p, g, em = cel_step(a, b, p, e, em, qc)
         stop = np.abs(g[0] - qc[0]) <= 1e-17 * g[0]  # the break comes before qc and e change
-        root = dd.sqrt(e)
-        qc2 = _pick(stop, qc, (2.0 * root[0], 2.0 * root[1]))
-        return a, b, p, _pick(stop, e, dd.mul(qc2, em)), em, qc2, stop
+        qc2, e2 = cel_next(e, em)
+        return a, b, p, _pick(stop, e, e2), em, _pick(stop, qc, qc2), stop
 
     state = (a, b, p, kc, one, kc, np.zeros(kc[0].shape, bool))
     a, b, p, _, em, _, _ = _masked_loop(state, step)
-    return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
+    return cel_value(a, b, p, em)
 
 
 def _complete_k(kp_m, kp_e):
