@@ -1,6 +1,7 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
 #   make demo   creates .venv if needed, installs tumble, runs the T-handle study
 #   make test   same set-up, then the import-layer contract and the whole test suite
+#   make docs   same set-up, then the API reference and guides built offline into site/
 #   make bench  same set-up plus the benchmark-only extra (MuJoCo), then the benchmarks (ratios
 #               against a baseline in the same run)
 
@@ -9,12 +10,12 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.tumble-installed
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench docs clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,cluster]'
+	$(PY) -m pip install --quiet -e '.[test,cluster,docs]'
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -24,9 +25,12 @@ test: $(STAMP)
 	$(VENV)/bin/lint-imports --no-cache
 	$(PY) -m pytest
 
+docs: $(STAMP)
+	$(VENV)/bin/mkdocs build --strict --site-dir site
+
 bench: $(STAMP)
 	$(PY) -m pip install --quiet -e '.[bench]'
 	$(PY) benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) build src/*.egg-info .pytest_cache .hypothesis
+	rm -rf $(VENV) build site src/*.egg-info .pytest_cache .hypothesis
