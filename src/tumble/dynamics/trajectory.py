@@ -14,6 +14,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL
+from . import _display
 from .euler import angular_momentum, kinetic_energy
 
 __all__ = ["Trajectory"]
@@ -101,6 +102,13 @@ class Trajectory:
 
     def __len__(self) -> int:
         return len(self.t)
+
+    def __repr__(self) -> str:
+        return _display.trajectory_repr(self)
+
+    def _repr_html_(self) -> str:
+        """A summary table and a small omega(t) plot (inline SVG): Jupyter's rich display."""
+        return _display.trajectory_html(self)
 
     @functools.cached_property
     def quat(self) -> np.ndarray:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import _display
 from .parts import Part
 from .rotor import Rotor
 from .tensor import check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
@@ -100,6 +101,13 @@ class MassProperties:
             ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
         """
         return inertia_about_point(self.inertia, self.mass, self.com, point)
+
+    def __repr__(self) -> str:
+        return _display.properties_repr(self)
+
+    def _repr_html_(self) -> str:
+        """An HTML table of the mass properties (Jupyter's rich display)."""
+        return _display.properties_html(self)
 
 
 def mass_properties(parts) -> MassProperties:
@@ -231,3 +239,10 @@ class Body:
     def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Body:
         """The body after a rigid motion ``x -> R x + t`` of all its parts."""
         return Body(tuple(p.moved(rotation, translation) for p in self.parts), self.name)
+
+    def __repr__(self) -> str:
+        return _display.body_repr(self)
+
+    def _repr_html_(self) -> str:
+        """The mass properties and the parts as HTML tables (Jupyter's rich display)."""
+        return _display.body_html(self)

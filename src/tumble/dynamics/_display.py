@@ -1,0 +1,145 @@
+"""Short plain repr and Jupyter's rich HTML display of a trajectory.
+
+The HTML is a summary table and a small omega(t) plot drawn as inline SVG with numpy alone:
+the physics layers may not import matplotlib (the import-linter contract in pyproject.toml).
+"""
+
+from __future__ import annotations
+
+import html
+
+import numpy as np
+
+from ..mass._display import fmt, html_table, short_name, vec
+
+__all__ = ["SVG_POINTS", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
+
+#: Most points per curve in the omega(t) plot: enough for the eye, small in a notebook file.
+SVG_POINTS = 300
+#: The matplotlib default colours, as in tumble's figures and page (omega_1, omega_2, omega_3).
+COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c")
+
+
+def _extras(traj) -> list[str]:
+    extras = []
+    if traj.rotor_axial_moments is not None:
+        k = len(traj.rotor_axial_moments)
+        extras.append(f"{k} rotor{'' if k == 1 else 's'}")
+    if traj.damper_omega is not None:
+        extras.append("damper")
+    return extras
+
+
+def trajectory_repr(traj) -> str:
+    """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``."""
+    n = len(traj)
+    span = f"t = {fmt(traj.t[0])}..{fmt(traj.t[-1])} s" if n else "no samples"
+    parts = [short_name(traj.body_name), str(traj.method)[:20], f"{n} sample{'' if n == 1 else 's'}", span,
+             "torque-free" if traj.torque_free else "torqued", *_extras(traj)]
+    return f"Trajectory({', '.join(parts)})"
+
+
+def subsample(n: int, points: int = SVG_POINTS) -> np.ndarray:
+    """At most ``points`` sample indices spread evenly over ``range(n)``, first and last included."""
+    if n <= points:
+        return np.arange(n)
+    return np.unique(np.linspace(0, n - 1, points).round().astype(int))
+
+
+def _span(lo: float, hi: float) -> tuple[float, float]:
+    """A drawable range: a zero-width one (a body at rest, one sample) widened around its value."""
+    if hi > lo:
+        return lo, hi
+    pad = abs(lo) * 0.5 or 1.0
+    return lo - pad, hi + pad
+
+
+def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SVG_POINTS) -> str:
+    """omega_1, omega_2, omega_3 against t as an inline SVG picture (one polyline each).
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Times, s.
+    omega : array_like, shape (n, 3)
+        Angular velocity, principal frame, rad/s.
+    width, height : int
+        Size of the picture in pixels.
+    points : int
+        Most points per polyline (the samples are thinned evenly, first and last kept).
+
+    Returns
+    -------
+    str
+        An ``<svg>`` element: the three curves, the line omega = 0 when in range, and the
+        ranges of t and omega written at the axes.
+    """
+    t, omega = np.asarray(t, dtype=float), np.asarray(omega, dtype=float)
+    idx = subsample(len(t), points)
+    ts, ws = t[idx], omega[idx]
+    finite = np.isfinite(ws)
+    left, right, top, bottom = 46.0, 8.0, 8.0, 20.0
+    if len(ts):
+        t0, t1 = _span(float(ts[0]), float(ts[-1]))
+        w0, w1 = _span(float(np.min(ws[finite], initial=0.0)), float(np.max(ws[finite], initial=0.0)))
+    else:
+        (t0, t1), (w0, w1) = (0.0, 1.0), (-1.0, 1.0)
+    sx = (width - left - right) / (t1 - t0)
+    sy = (height - top - bottom) / (w1 - w0)
+
+    def y(w):
+        return top + (w1 - w) * sy
+
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+           f'viewBox="0 0 {width} {height}" font-size="10" font-family="sans-serif">',
+           f'<rect x="{left}" y="{top}" width="{width - left - right}" height="{height - top - bottom}" '
+           f'fill="none" stroke="#bbb"/>']
+    if w0 < 0 < w1:
+        out.append(f'<line x1="{left}" x2="{width - right}" y1="{y(0.0):.2f}" y2="{y(0.0):.2f}" stroke="#ccc"/>')
+    for j, color in enumerate(COLORS):
+        ok = finite[:, j]
+        xy = " ".join(f"{left + (a - t0) * sx:.2f},{y(b):.2f}" for a, b in zip(ts[ok], ws[ok, j]))
+        out.append(f'<polyline fill="none" stroke="{color}" stroke-width="1.2" points="{xy}">'
+                   f"<title>omega_{j + 1} (rad/s)</title></polyline>")
+    labels = (
+        (left - 3, top + 8, "end", f"{fmt(w1, 3)}"),
+        (left - 3, height - bottom, "end", f"{fmt(w0, 3)}"),
+        (left, height - 6, "start", f"t = {fmt(t0, 3)} s"),
+        (width - right, height - 6, "end", f"{fmt(t1, 3)} s"),
+        ((left + width - right) / 2, height - 6, "middle", "omega_1, omega_2, omega_3 (rad/s), principal frame"),
+    )
+    out += [f'<text x="{x:.1f}" y="{yy:.1f}" text-anchor="{anchor}">{html.escape(text)}</text>'
+            for x, yy, anchor, text in labels]
+    out.append("</svg>")
+    return "".join(out)
+
+
+def _drift_text(value) -> str:
+    return "n/a (starts at zero)" if value is None else f"{value:.2e}"
+
+
+def trajectory_html(traj) -> str:
+    """A run's summary table and its omega(t) as HTML (Jupyter's ``_repr_html_``)."""
+    n = len(traj)
+    rows = [("body", traj.body_name), ("method", traj.method), ("samples", n)]
+    if n:
+        rows += [
+            ("time span", f"{fmt(traj.t[0])} to {fmt(traj.t[-1])} s"),
+            ("external torque", "none (torque-free)" if traj.torque_free else "yes"),
+            ("omega(0), principal frame", f"{vec(traj.omega[0])} rad/s"),
+            ("energy E(0)", f"{fmt(traj.energy[0], 6)} J"),
+            ("|L|(0)", f"{fmt(traj.angular_momentum_norm[0], 6)} kg m^2/s"),
+        ]
+        word = "drift" if traj.torque_free else "change (a torque acts)"
+        drift = traj.drift
+        rows += [(f"energy {word}, max |E - E0| / E0", _drift_text(drift["energy"])),
+                 (f"|L| {word}, max ||L| - |L0|| / |L0|", _drift_text(drift["L_norm"])),
+                 (f"L_world {word}, max |L_w - L_w(0)| / |L0|", _drift_text(drift["L_world"]))]
+    if traj.rotor_axial_moments is not None:
+        rows.append(("rotors, axial moments", f"{vec(traj.rotor_axial_moments)} kg m^2"))
+    if traj.damper_inertia is not None:
+        rows.append(("damper moment J", f"{fmt(traj.damper_inertia, 6)} kg m^2"))
+        if traj.dissipated is not None and n:
+            rows.append(("energy dissipated by the damper", f"{fmt(traj.dissipated[-1], 6)} J"))
+    table = html_table(rows, caption=f"Trajectory: {traj.body_name}")
+    return f'<div>{table}{omega_svg(traj.t, traj.omega) if n else ""}</div>'
