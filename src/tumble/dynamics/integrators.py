@@ -178,6 +178,7 @@ def _geometric_internal(order: int):
     return integrate
 
 
+#: The integration methods by name: what ``simulate(method=...)`` accepts (docs/methods.md compares them).
 METHODS: dict[str, Method] = {
     "exact": Method("exact", _integrate_exact, False, None, None,
                     "closed form (Jacobi elliptic functions, elliptic integral of the third kind)"),

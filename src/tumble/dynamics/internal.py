@@ -82,6 +82,8 @@ class SphericalDamper:
     damping : float
         ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
 
+    Notes
+    -----
     The sphere starts turning with the body (``w_d(0) = w(0)``). See the module docstring for the
     equations and their sources.
     """
