@@ -7,6 +7,7 @@ from .animate import animate_body_frame, animate_ground_frame
 from .fit import figure_fit
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
+from .notebook import show
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
@@ -42,5 +43,6 @@ __all__ = [
     "plot_omega",
     "polhode_family",
     "separatrices",
+    "show",
     "spacecraft_figures",
 ]

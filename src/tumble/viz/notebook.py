@@ -1,0 +1,84 @@
+"""The interactive page inside a Jupyter notebook.
+
+:func:`show` embeds the page of :mod:`tumble.viz.page` (plotly, bundled, offline) in an
+``<iframe srcdoc=...>``: the page runs in a document of its own, so its scripts and styles
+neither touch the notebook nor depend on the notebook front end's plotly, and the output
+plays again when the saved notebook is opened without a kernel.
+"""
+
+from __future__ import annotations
+
+import html
+
+import numpy as np
+
+from ..dynamics import Trajectory
+from ..mass import INERTIA_RTOL, Body
+
+__all__ = ["DEFAULT_HEIGHT", "show"]
+
+#: Height of the frame, pixels: the page's 900 px figure and its margins.
+DEFAULT_HEIGHT = 940
+
+
+def _ipython_html():
+    try:
+        from IPython.display import HTML
+    except ImportError:
+        raise ImportError("tumble.viz.show displays in Jupyter and needs IPython: pip install 'tumble[notebook]'") from None
+    return HTML
+
+
+def _check(trajectory, body, height) -> None:
+    if not isinstance(trajectory, Trajectory):
+        raise ValueError(f"trajectory = {type(trajectory).__name__} object must be a tumble Trajectory "
+                         f"(what tumble.simulate returns)")
+    if not isinstance(body, Body):
+        raise ValueError(f"body = {type(body).__name__} object must be the tumble Body that was simulated: a "
+                         f"Trajectory holds the motion and the principal moments, not the parts the page draws")
+    tol = INERTIA_RTOL * float(np.sum(trajectory.moments))
+    if not np.allclose(body.principal_moments, trajectory.moments, rtol=0.0, atol=tol):
+        raise ValueError(f"body = {body!r} is not the body of this trajectory: its principal moments "
+                         f"{body.principal_moments.tolist()} kg m^2 differ from the run's {trajectory.moments.tolist()}")
+    if isinstance(height, bool) or not isinstance(height, int) or height <= 0:
+        raise ValueError(f"height = {height!r} must be a whole number of pixels > 0")
+
+
+def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int = DEFAULT_HEIGHT, title: str | None = None):
+    """The interactive page of a run, for display in a Jupyter notebook.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        The run (:func:`tumble.simulate`).
+    body : Body
+        The body that was simulated: the page draws its parts, which a trajectory does not hold.
+    frames : int
+        Animation frames (fewer make a smaller notebook).
+    height : int
+        Height of the frame, pixels.
+    title : str, optional
+        The page's title; by default the body's name, the method and the duration.
+
+    Returns
+    -------
+    IPython.display.HTML
+        The page in an ``<iframe>`` (its ``srcdoc``, escaped), with plotly.js inside it: the
+        output plays without a network, and without a kernel once saved.
+
+    Raises
+    ------
+    ImportError
+        Without IPython (``pip install 'tumble[notebook]'``).
+    ValueError
+        If ``body`` is not a Body whose principal moments are the trajectory's, or ``height`` is
+        not a positive whole number; and as the page raises it (``frames``, missing plotly).
+    """
+    HTML = _ipython_html()
+    _check(trajectory, body, height)
+    from .page import page_html
+
+    page = page_html(body, trajectory, frames=frames, title=title)
+    label = html.escape(f"tumble: {trajectory.body_name}, {trajectory.method}", quote=True)
+    return HTML(f'<iframe srcdoc="{html.escape(page, quote=True)}" title="{label}" width="100%" '
+                f'height="{height}" style="border:none" sandbox="allow-scripts"></iframe>')
