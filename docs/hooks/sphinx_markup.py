@@ -5,6 +5,8 @@ tumble's docstrings are numpydoc and use two pieces of Sphinx markup that griffe
 - ``#:`` comments above a module constant, its documentation (Sphinx autodoc's attribute
   comments); they become the constant's docstring, so ``INERTIA_RTOL`` and the like appear in
   the reference with their text;
+- literal blocks, a paragraph ending in ``::`` and an indented block (the formulas); each
+  becomes a fenced code block;
 - cross-reference roles, ``:func:`name```, ``:class:`~tumble.mass.Body```, ...; each becomes a
   link to the object's entry when the reference renders one, and plain code otherwise. Names are
   resolved the way Python would from the docstring's scope (imports included); ``tumble.X`` for a
@@ -26,6 +28,41 @@ import griffe
 
 _ROLE = re.compile(r":(?:py:)?(?:func|class|mod|data|meth|attr|obj|exc|const):`(?P<name>[^`]+)`")
 _LINK = '<autoref identifier="{target}" optional><code>{text}</code></autoref>'
+
+
+def _indent(line: str) -> int:
+    return len(line) - len(line.lstrip())
+
+
+def _literal_blocks(text: str) -> str:
+    """reST literal blocks (``text::`` + an indented block) as fenced Markdown code blocks."""
+    lines = text.split("\n")
+    out: list[str] = []
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        j = i + 1
+        while j < len(lines) and not lines[j].strip():
+            j += 1
+        if not line.rstrip().endswith("::") or j == len(lines) or _indent(lines[j]) <= _indent(line):
+            out.append(line)
+            i += 1
+            continue
+        head = line.rstrip()[:-2]
+        if head.strip():  # "text::" reads "text:", "text ::" reads "text" (the reST rule)
+            out.append(head.rstrip() if head.endswith(" ") else head + ":")
+        # inside a list item, Python-Markdown wants the block indented by four
+        fence = " " * (_indent(line) + (4 if line.lstrip().startswith(("- ", "* ")) else 0))
+        end = j
+        while end < len(lines) and (not lines[end].strip() or _indent(lines[end]) >= _indent(lines[j])):
+            end += 1
+        while not lines[end - 1].strip():
+            end -= 1
+        cut = _indent(lines[j])
+        out += ["", fence + "```text", *(fence + row[cut:] if row.strip() else "" for row in lines[j:end]),
+                fence + "```"]
+        i = end
+    return "\n".join(out)
 
 
 def _comment_above(lines: list[str], lineno: int) -> str | None:
@@ -75,14 +112,14 @@ def _rewrite(obj: griffe.Object, exports: dict[str, str]) -> None:
                 return f"``{text}``"
             return _LINK.format(target=html.escape(target), text=html.escape(text))
 
-        obj.docstring.value = _ROLE.sub(link, obj.docstring.value)
+        obj.docstring.value = _ROLE.sub(link, _literal_blocks(obj.docstring.value))
     for member in obj.members.values():
         if not member.is_alias:
             _rewrite(member, exports)
 
 
 class SphinxMarkup(griffe.Extension):
-    """Attribute comments to docstrings, cross-reference roles to links."""
+    """Attribute comments to docstrings, literal blocks to code blocks, roles to links."""
 
     def on_attribute_instance(self, *, node, attr: griffe.Attribute, **kwargs) -> None:
         if attr.docstring is not None or attr.lineno is None or attr.filepath is None:
