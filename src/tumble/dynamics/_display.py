@@ -106,10 +106,12 @@ def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SV
         (left - 3, height - bottom, "end", f"{fmt(w0, 3)}"),
         (left, height - 6, "start", f"t = {fmt(t0, 3)} s"),
         (width - right, height - 6, "end", f"{fmt(t1, 3)} s"),
-        ((left + width - right) / 2, height - 6, "middle", "omega_1, omega_2, omega_3 (rad/s), principal frame"),
     )
     out += [f'<text x="{x:.1f}" y="{yy:.1f}" text-anchor="{anchor}">{html.escape(text)}</text>'
             for x, yy, anchor, text in labels]
+    key = "".join(f'<tspan fill="{color}">omega_{j + 1}</tspan>, ' for j, color in enumerate(COLORS))
+    out.append(f'<text x="{(left + width - right) / 2:.1f}" y="{height - 6:.1f}" text-anchor="middle">'
+               f'{key}rad/s, principal frame</text>')
     out.append("</svg>")
     return "".join(out)
 

@@ -21,7 +21,7 @@ MAX_PARTS_SHOWN = 20
 #: Names of the principal axes in ascending order of moment (as :data:`tumble.mass.AXIS_ROLES`).
 _ROLES = ("minor", "intermediate", "major")
 _STYLE = "border-collapse:collapse;font-size:0.9em;margin:0.3em 0"
-_CELL = "text-align:left"
+_CELL = "text-align:left;padding:1px 14px 1px 2px"
 
 
 def fmt(x, digits: int = 4) -> str:

@@ -17,8 +17,9 @@ from ..mass import INERTIA_RTOL, Body
 
 __all__ = ["DEFAULT_HEIGHT", "show"]
 
-#: Height of the frame, pixels: the page's 900 px figure and its margins.
-DEFAULT_HEIGHT = 940
+#: Height of the frame, pixels: the page's controls, live-mode form and figure (about 1040 px in
+#: Chromium at widths from 900 px up).
+DEFAULT_HEIGHT = 1060
 
 
 def _ipython_html():
@@ -80,5 +81,6 @@ def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int =
 
     page = page_html(body, trajectory, frames=frames, title=title)
     label = html.escape(f"tumble: {trajectory.body_name}, {trajectory.method}", quote=True)
-    return HTML(f'<iframe srcdoc="{html.escape(page, quote=True)}" title="{label}" width="100%" '
-                f'height="{height}" style="border:none" sandbox="allow-scripts"></iframe>')
+    # in a <div>: IPython's HTML warns about a bare <iframe> (it suggests IFrame, which takes a URL only)
+    return HTML(f'<div><iframe srcdoc="{html.escape(page, quote=True)}" title="{label}" width="100%" '
+                f'height="{height}" style="border:none" sandbox="allow-scripts"></iframe></div>')
