@@ -8,6 +8,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 
 import tumble
 from tumble.dynamics._display import SVG_POINTS, omega_svg
@@ -187,6 +190,22 @@ def test_omega_svg_with_one_or_two_samples(n):
     t = np.linspace(0.0, 1.0, n)
     svg = parse(omega_svg(t, np.full((n, 3), 2.0)))
     assert all(len(p) == n and np.all(np.isfinite(p)) for p in polylines(svg))
+
+
+@given(n=st.integers(1, 2 * SVG_POINTS), data=st.data())
+def test_omega_svg_stays_in_its_box(n, data):
+    t = np.cumsum(data.draw(arrays(float, n, elements=st.floats(0.0, 10.0))))
+    omega = data.draw(arrays(float, (n, 3), elements=st.floats(-1e6, 1e6)))
+    svg = parse(omega_svg(t, omega))
+    box = svg.find(f"{SVG}rect")
+    x0, y0 = float(box.get("x")), float(box.get("y"))
+    x1, y1 = x0 + float(box.get("width")), y0 + float(box.get("height"))
+    lines = polylines(svg)
+    assert [len(p) for p in lines] == [min(n, SVG_POINTS)] * 3
+    pts = np.vstack(lines)
+    assert np.all((pts[:, 0] >= x0 - 0.01) & (pts[:, 0] <= x1 + 0.01) & (pts[:, 1] >= y0 - 0.01) & (pts[:, 1] <= y1 + 0.01))
+    if np.ptp(omega) > 1e-9 * np.max(np.abs(omega)):  # a range to fill: the extremes touch the box
+        assert pts[:, 1].min() == pytest.approx(y0, abs=0.01) and pts[:, 1].max() == pytest.approx(y1, abs=0.01)
 
 
 def test_gyrostat_run():

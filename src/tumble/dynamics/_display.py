@@ -79,11 +79,9 @@ def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SV
     ts, ws = t[idx], omega[idx]
     finite = np.isfinite(ws)
     left, right, top, bottom = 46.0, 8.0, 8.0, 20.0
-    if len(ts):
-        t0, t1 = _span(float(ts[0]), float(ts[-1]))
-        w0, w1 = _span(float(np.min(ws[finite], initial=0.0)), float(np.max(ws[finite], initial=0.0)))
-    else:
-        (t0, t1), (w0, w1) = (0.0, 1.0), (-1.0, 1.0)
+    t0, t1 = _span(float(ts[0]), float(ts[-1])) if len(ts) else (0.0, 1.0)
+    values = ws[finite]
+    w0, w1 = _span(float(values.min()), float(values.max())) if values.size else (-1.0, 1.0)
     sx = (width - left - right) / (t1 - t0)
     sy = (height - top - bottom) / (w1 - w0)
 
