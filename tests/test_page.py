@@ -2,16 +2,24 @@
 
 from __future__ import annotations
 
+import dataclasses
 import io
+import json
 import os
 import shutil
 import warnings
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 from tumble.cli import main
+from tumble.io.scenario import load_scenario
+from tumble.viz.page import page_html
+from tumble.viz.scene import frame_indices
+from tumble.viz.surfaces import body_surfaces
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: Browsers looked for on PATH, in this order, when TUMBLE_CHROMIUM is not set.
@@ -57,6 +65,23 @@ def browser_or_skip(environ=os.environ) -> str:
     pytest.skip(message)
 
 
+#: The page's size limit, plotly.js (about 4.8 MB) included.
+MAX_PAGE_BYTES = 6_000_000
+
+
+def page_json(html: str) -> dict:
+    """The page's ``tumble-data`` (all it plays: geometry once, then per-frame numbers)."""
+    start = html.index('<script type="application/json" id="tumble-data">')
+    start = html.index(">", start) + 1
+    return json.loads(html[start : html.index("</script>", start)])
+
+
+@pytest.fixture(scope="module")
+def flip():
+    scenario = load_scenario(EXAMPLES / "seed_flip.toml")
+    return scenario, scenario.run()
+
+
 @pytest.fixture(scope="module")
 def page_file(tmp_path_factory):
     out = tmp_path_factory.mktemp("page") / "flip.html"
@@ -66,17 +91,79 @@ def page_file(tmp_path_factory):
 
 def test_page_is_one_self_contained_file(page_file):
     html = page_file.read_text()
-    assert "<script src=" not in html  # no CDN, nothing to fetch
-    assert "Plotly.newPlot" in html or "Plotly.react" in html
+    assert "<script src=" not in html  # no CDN, nothing to fetch (the browser test watches requests)
+    assert "Plotly.react" in html and "window.tumbleViewer" in html  # viewer.js inlined
     assert len(html) > 1_000_000  # the plotly.js bundle is inside
+    assert '<div id="tumble-live"></div>' in html
     assert not list(page_file.parent.glob(".*tmp*"))
 
 
+def test_live_scripts_come_before_the_viewer_and_only_in_live_mode(flip):
+    scenario, traj = flip
+    live, still = page_html(scenario.body, traj, frames=10), page_html(scenario.body, traj, frames=10, live=False)
+    viewer = live.index("window.tumbleViewer = {")
+    for name in ("splitting.js", "live.js"):
+        asset = resources.files("tumble.viz").joinpath("assets", name)
+        if asset.is_file():
+            first_line = asset.read_text().splitlines()[1]
+            assert live.index(first_line) < viewer and first_line not in still
+    assert "window.tumbleViewer = {" in still
+
+
+def test_the_data_holds_what_live_mode_needs(flip):
+    scenario, traj = flip
+    data = page_json(page_html(scenario.body, traj, frames=40))
+    np.testing.assert_array_equal(data["moments"], traj.moments)
+    np.testing.assert_array_equal(data["omega0"], traj.omega[0])
+    np.testing.assert_array_equal(data["quat0"], traj.quat[0])
+    np.testing.assert_array_equal(data["principal_axes"], traj.principal_axes)
+    axes = Rotation.from_quat(data["principal_axes_quat"]).as_matrix()
+    np.testing.assert_allclose(axes, traj.principal_axes, atol=1e-12)
+    assert data["t_end"] == traj.t[-1] and data["method"] == traj.method and data["body_name"] == traj.body_name
+
+
+def test_per_frame_data_is_attitude_and_arrows_only(flip):
+    """The geometry is stored once; a frame is t, a quaternion and two vectors (11 numbers)."""
+    scenario, traj = flip
+    data = page_json(page_html(scenario.body, traj, frames=60))
+    frames = data["frames"]
+    assert set(frames) == {"t", "q", "w", "L"}
+    assert len(frames["t"]) == 60
+    assert np.shape(frames["q"]) == (60, 4) and np.shape(frames["w"]) == np.shape(frames["L"]) == (60, 3)
+    assert len(json.dumps(frames)) < 60 * 11 * 16  # at most ~16 characters a number
+    vertices = sum(len(v) for v, _, removed in body_surfaces(scenario.body) if not removed)
+    assert len(data["geometry"]["solid"]["v"]) == 3 * vertices  # once, not once a frame
+    # The stored attitude turns the design frame: design -> world applied to omega in design
+    # coordinates (A omega) gives omega_world, which the trajectory computes the other way round.
+    idx = frame_indices(len(traj), 60)
+    omega_design = traj.omega[idx] @ traj.principal_axes.T
+    np.testing.assert_allclose(Rotation.from_quat(frames["q"]).apply(omega_design), traj.omega_world[idx],
+                               atol=1e-4 * np.abs(traj.omega).max())
+    np.testing.assert_allclose(frames["L"], traj.angular_momentum_world[idx], rtol=1e-4)
+    # Vertices to 1/20000 of the body's size.
+    unit = data["geometry"]["unit"]
+    stored = np.array(data["geometry"]["solid"]["v"]).reshape(-1, 3) * unit
+    drawn = np.concatenate([v for v, _, removed in body_surfaces(scenario.body) if not removed])
+    np.testing.assert_allclose(stored, drawn, atol=unit / 2 + 1e-15)
+
+
+def test_long_runs_subsample_the_curves(flip):
+    scenario, traj = flip
+    long = dataclasses.replace(traj, t=np.linspace(0, 1, 9001), omega=np.ones((9001, 3)),
+                               attitude=Rotation.identity(9001))
+    curves = page_json(page_html(scenario.body, long, frames=10))["curves"]
+    assert curves["stride"] == 3 and curves["samples"] == 9001
+    assert len(curves["t"]) == 3001 and curves["t"][-1] == 1.0  # every 3rd sample, the last one kept
+    assert np.shape(curves["omega"]) == (3, 3001)
+
+
 @pytest.mark.parametrize("scenario", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.stem)
-def test_view_works_for_every_example(scenario, tmp_path):
+def test_view_works_for_every_example_within_the_size_limit(scenario, tmp_path):
     out = tmp_path / "page.html"
-    assert main(["view", str(scenario), "--out", str(out), "--frames", "10"]) == 0
-    assert out.stat().st_size > 1_000_000
+    assert main(["view", str(scenario), "--out", str(out)]) == 0  # the view defaults: 150 frames
+    assert 1_000_000 < out.stat().st_size <= MAX_PAGE_BYTES
+    data = page_json(out.read_text())
+    assert len(data["frames"]["t"]) == min(150, load_scenario(scenario).sample_count)
 
 
 @pytest.mark.parametrize("frames", ["1", "-3", "5000"])
@@ -126,38 +213,95 @@ def test_missing_browser_skips_loudly_but_fails_in_ci(tmp_path):
         browser_or_skip({**empty, "CI": "true"})
 
 
-def test_page_plays_offline_in_chromium(page_file):
+def open_page(p, url, errors, outside):
+    """A Chromium page at ``url`` with console errors and outside requests recorded, after the
+    viewer's ``tumble:ready`` event."""
+    browser = p.chromium.launch(executable_path=browser_or_skip(), headless=True, args=FLAGS)
+    page = browser.new_page(viewport={"width": 1300, "height": 1000})
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.route("**/*", lambda route: (outside.append(route.request.url), route.abort())
+               if not route.request.url.startswith(("file:", "data:", "blob:")) else route.continue_())
+    page.add_init_script("document.addEventListener('tumble:ready', () => { window.readyEvents = (window.readyEvents || 0) + 1; })")
+    page.goto(url)
+    page.wait_for_function("window.readyEvents === 1 && window.tumbleViewer.ready", timeout=60_000)
+    return browser, page
+
+
+def pixels(png) -> np.ndarray:
     from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+
+
+def test_page_plays_offline_in_chromium_with_a_shaded_body(page_file):
     from playwright.sync_api import sync_playwright
 
-    chromium = browser_or_skip()
     errors, outside = [], []
     with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
+        browser, page = open_page(p, page_file.as_uri(), errors, outside)
         try:
-            page = browser.new_page(viewport={"width": 1300, "height": 900})
-            page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-            page.on("pageerror", lambda e: errors.append(str(e)))
-            page.route("**/*", lambda route: (outside.append(route.request.url), route.abort())
-                       if not route.request.url.startswith(("file:", "data:", "blob:")) else route.continue_())
-            page.goto(page_file.as_uri())
-            page.wait_for_selector(".js-plotly-plot .main-svg", timeout=60_000)
-            page.locator(".updatemenu-button", has_text="Play").first.click()
-            active = "document.querySelector('.js-plotly-plot')._fullLayout.sliders[0].active"
-            page.wait_for_function(f"{active} >= 5", timeout=60_000)
-            first = page.screenshot()
-            page.wait_for_function(f"{active} >= 20", timeout=60_000)
-            later = page.screenshot()
+            assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
+            page.click("#tumble-play")
+            page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
+            first = page.locator("#tumble-ground").screenshot()
+            page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=60_000)
+            later = page.locator("#tumble-ground").screenshot()
+            assert page.evaluate("tumbleViewer.state().playing")
+            page.click("#tumble-play")
+            assert not page.evaluate("tumbleViewer.state().playing")
+            page.locator("#tumble-slider").fill("59")  # the slider moves to the last frame
+            page.wait_for_function("tumbleViewer.state().frame === 59", timeout=60_000)
+            assert "t = 20.00 s" in page.text_content("#tumble-time")
         finally:
             browser.close()
     assert errors == [] and outside == []
 
-    def ground(png):  # the ground-frame scene, upper left
-        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[180:600, :650]
-
-    a, b = ground(first), ground(later)
+    a, b = pixels(first), pixels(later)
     red = ((a[..., 0] > 150) & (a[..., 1] < 90) & (a[..., 2] < 90)).sum()
     blue = ((a[..., 2] > 150) & (a[..., 0] < 90) & (a[..., 1] < 160)).sum()
     assert red + blue > 100, "no omega / L arrows drawn: blank WebGL canvas?"
+    # The body's colour is a blue grey (blue above red); lit, its pixels range from dark to light.
+    body = a[(a[..., 2] - a[..., 0] > 12) & (a[..., 2] < 235) & (a[..., 0] > 40)]
+    assert len(body) > 300, "no shaded body in the ground-frame scene"
+    brightness = body.sum(axis=1) / 3
+    assert np.percentile(brightness, 95) - np.percentile(brightness, 5) > 40, "the body is flat, not lit"
     moved = np.any(np.abs(a - b) > 60, axis=-1).sum()
     assert moved > 300, "the body does not move while the page plays"
+
+
+def _ground_vertices(page, frame):
+    page.evaluate(f"tumbleViewer.show({frame})")
+    return np.array(page.evaluate("(() => { const d = document.getElementById('tumble-ground').data[0];"
+                                  " return [Array.from(d.x), Array.from(d.y), Array.from(d.z)]; })()")).T
+
+
+def test_set_run_turns_the_body_or_a_box_as_python_does(page_file, flip):
+    """setRun's principal -> design conversion gives the vertices the page's own frames give;
+    a box run draws the box turned by the principal attitude; reset restores the run."""
+    from playwright.sync_api import sync_playwright
+
+    _, traj = flip
+    idx = frame_indices(len(traj), 60)
+    run = {"t": traj.t[idx].tolist(), "quat": traj.quat[idx].tolist(), "omega": traj.omega[idx].tolist(),
+           "moments": traj.moments.tolist(), "box": None}
+    errors, outside = [], []
+    with sync_playwright() as p:
+        browser, page = open_page(p, page_file.as_uri(), errors, outside)
+        try:
+            own = _ground_vertices(page, 37)
+            page.evaluate(f"tumbleViewer.setRun({json.dumps(run)})")
+            assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
+            np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-4)
+            page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'box': [0.3, 0.2, 0.1]})})")
+            box = _ground_vertices(page, 37)
+            half = traj.attitude[idx[37]].inv().apply(box)  # back to the principal frame
+            assert len(box) == 24
+            np.testing.assert_allclose(np.abs(half), np.tile([0.3, 0.2, 0.1], (24, 1)), atol=1e-9)
+            with pytest.raises(Exception, match="run.omega must hold 60 rows"):
+                page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'omega': run['omega'][:5]})})")
+            page.evaluate("tumbleViewer.reset()")
+            np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-12)
+        finally:
+            browser.close()
+    assert errors == [] and outside == []

@@ -1,136 +1,189 @@
-"""One self-contained interactive HTML page of a tumbling body (plotly, bundled, works offline).
+"""One self-contained interactive HTML page of a tumbling body (plotly.js inlined, works offline).
 
-Left: the body in the ground frame with its omega (red) and L (blue) arrows; right: the same
-seen from the body, with the path of omega's tip; below: omega(t) with a moving time marker.
-Play / pause, a time slider and speed buttons. The body is drawn from the scene description
-(:mod:`tumble.viz.scene`) that the GIF animations use, so page and animation show the same body
-(subtracted material dashed in both).
-plotly.js is embedded in the file (no CDN): the page opens without a network.
+Top: play / pause, a time slider and speed buttons, and (live mode) a form to run a new motion
+in the browser. Left: the body, shaded, in the ground frame with its omega (red) and L (blue)
+arrows over an orientation grid (the invariable plane's direction, normal to L, for a torque-free
+run; else the ground); right: the same seen from the body, with the path of omega's tip; below:
+omega(t) with a moving time marker.
+
+The body's triangles (:mod:`tumble.viz.surfaces`) are stored once; each frame holds only the
+time, the design-frame attitude quaternion and the world-frame omega and L, as compact JSON in
+``<script id="tumble-data">``. A small hand-written script (``assets/viewer.js``) turns the
+vertices frame by frame with ``Plotly.restyle``. Live mode inlines ``assets/splitting.js`` and
+``assets/live.js`` (when installed) before ``viewer.js``; see the head of ``viewer.js`` for the
+interface they use (``window.tumbleViewer``, the ``tumble:ready`` event).
 """
 
 from __future__ import annotations
 
+import html
+import json
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..mass import AXIS_ROLES, Body
-from ..io.atomic import atomic_path
-from .scene import arrow_scale, body_lines, body_size, frame_indices
+from ..io.atomic import atomic_write_text
+from ..mass import Body
+from .scene import frame_indices
+from .surfaces import body_surfaces
 
-__all__ = ["write_page"]
+__all__ = ["CURVE_POINTS", "page_data", "page_html", "write_page"]
 
-_W, _L, _BODY = "#d62728", "#1f77b4", "#333333"
-
-
-def _polyline(lines, R=None):
-    """Concatenate polylines into x, y, z lists with None between them (one plotly trace)."""
-    xs, ys, zs = [], [], []
-    for pts in lines:
-        q = pts if R is None else pts @ R.T
-        xs += q[:, 0].tolist() + [None]
-        ys += q[:, 1].tolist() + [None]
-        zs += q[:, 2].tolist() + [None]
-    return xs, ys, zs
+#: Most points drawn per omega(t) curve (and in the omega path); longer runs are subsampled.
+CURVE_POINTS = 4000
+#: Vertices are stored as integers in units of the body's size / GRID (m).
+GRID = 20000
+#: Significant digits of the per-frame numbers and of the curves.
+DIGITS = 5
 
 
-def _arrow(tip):
-    return [0.0, float(tip[0])], [0.0, float(tip[1])], [0.0, float(tip[2])]
+def _rounded(a, digits: int = DIGITS):
+    """Nested lists of floats with at most ``digits`` significant digits (compact JSON)."""
+    a = np.asarray(a, dtype=float)
+    flat = [float(f"{x:.{digits}g}") for x in a.ravel()]
+    return np.array(flat).reshape(a.shape).tolist()
 
 
-def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: str | None = None) -> Path:
-    """Write the interactive page to ``path`` (written to a temporary file, then renamed)."""
+def _merged(surfaces, unit: float):
+    """One triangle list of several surfaces: integer vertices (units of ``unit``), flat faces."""
+    if not surfaces:
+        return None
+    verts, faces, offset = [], [], 0
+    for v, f in surfaces:
+        verts.append(v)
+        faces.append(f + offset)
+        offset += len(v)
+    v = np.rint(np.concatenate(verts) / unit).astype(np.int64)
+    return {"v": v.ravel().tolist(), "f": np.concatenate(faces).ravel().tolist()}
+
+
+def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None = None) -> dict:
+    """What the page's viewer plays, as JSON-ready data.
+
+    Keys (SI units): ``moments`` (kg m^2), ``omega0`` (principal frame, rad/s), ``quat0``
+    (principal -> world at t = 0, scalar last), ``principal_axes`` (principal -> design, rows
+    as in ``summary.json``) and its quaternion ``principal_axes_quat``, ``t_end`` (s), ``method``,
+    ``body_name``, ``title``, ``torque_free``, ``rigid``, ``size`` (largest distance of the body
+    from its COM, m); ``geometry`` (``unit`` in m; ``solid`` and ``removed``: ``v`` flat integer
+    vertex coordinates in units of ``unit``, design frame about the COM, ``f`` flat vertex indices,
+    three per triangle; ``removed`` is None without subtracted material); ``frames`` (``t``; ``q``
+    design -> world quaternions; ``w`` omega_world, rad/s; ``L`` L_world, kg m^2/s; one row per
+    frame, no geometry); ``curves`` (omega(t) in the principal frame, every ``stride``-th of
+    ``samples`` samples, ``t`` and ``omega`` as three rows).
+    """
+    from scipy.spatial.transform import Rotation
+
+    idx = frame_indices(len(traj), frames)
+    surfaces = body_surfaces(body)
+    size = float(max(np.max(np.linalg.norm(v, axis=1)) for v, _, _ in surfaces)) or 1.0
+    unit = size / GRID
+    stride = max(1, -(-len(traj) // CURVE_POINTS))
+    keep = np.unique(np.append(np.arange(0, len(traj), stride), len(traj) - 1))
+    return {
+        "title": title or f"{traj.body_name}: {traj.method}, {traj.t[-1]:g} s",
+        "body_name": traj.body_name,
+        "method": traj.method,
+        "t_end": float(traj.t[-1]),
+        "torque_free": bool(traj.torque_free),
+        "rigid": bool(traj.rigid),
+        "moments": np.asarray(traj.moments, float).tolist(),
+        "omega0": np.asarray(traj.omega[0], float).tolist(),
+        "quat0": np.asarray(traj.quat[0], float).tolist(),
+        "principal_axes": np.asarray(traj.principal_axes, float).tolist(),
+        "principal_axes_quat": Rotation.from_matrix(traj.principal_axes).as_quat().tolist(),
+        "size": size,
+        "geometry": {
+            "unit": unit,
+            "solid": _merged([(v, f) for v, f, removed in surfaces if not removed], unit),
+            "removed": _merged([(v, f) for v, f, removed in surfaces if removed], unit),
+        },
+        "frames": {
+            "t": _rounded(traj.t[idx], 8),
+            "q": _rounded(traj.design_attitude()[idx].as_quat()),
+            "w": _rounded(traj.omega_world[idx]),
+            "L": _rounded(traj.angular_momentum_world[idx]),
+        },
+        "curves": {"t": _rounded(traj.t[keep], 8), "omega": _rounded(traj.omega[keep].T),
+                   "stride": int(stride), "samples": len(traj)},
+    }
+
+
+def _asset(name: str) -> str | None:
+    """The text of ``assets/<name>``, or None where it is not installed."""
+    path = resources.files("tumble.viz").joinpath("assets", name)
+    return path.read_text(encoding="utf-8") if path.is_file() else None
+
+
+def _script(text: str) -> str:
+    return "<script>" + text.replace("</script", "<\\/script") + "</script>"
+
+
+_STYLE = """
+body { font-family: system-ui, sans-serif; margin: 8px 14px; color: #222; }
+h1 { font-size: 19px; margin: 4px 0 6px; }
+#tumble-controls { display: flex; align-items: center; gap: 8px; flex-wrap: wrap; margin-bottom: 4px; }
+#tumble-controls button { padding: 3px 10px; }
+#tumble-controls button.active { background: #333; color: #fff; }
+#tumble-slider { flex: 1; min-width: 200px; }
+#tumble-time { min-width: 170px; font-variant-numeric: tabular-nums; }
+#tumble-scenes { display: flex; gap: 6px; }
+.tumble-scene { flex: 1; height: 560px; min-width: 0; }
+#tumble-omega { height: 300px; }
+#tumble-note { color: #555; font-size: 13px; margin: 2px 0; }
+"""
+
+_SPEEDS = (0.25, 0.5, 1, 2, 4)
+
+
+def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | None = None, live: bool = True) -> str:
+    """The interactive page as one HTML document (str), plotly.js and the data inlined.
+
+    Parameters
+    ----------
+    body : Body
+        The body whose triangles are drawn (design frame).
+    traj : Trajectory
+        Its motion; at most ``frames`` evenly spread samples become animation frames.
+    frames : int
+        Animation frames, 2 to :data:`tumble.viz.scene.MAX_FRAMES`.
+    title : str, optional
+        Page heading (default: body, method, duration).
+    live : bool
+        Include live mode (``assets/splitting.js`` and ``assets/live.js``, where installed).
+    """
     try:
-        import plotly.graph_objects as go
-        from plotly.subplots import make_subplots
+        from plotly.offline import get_plotlyjs
     except ImportError:  # pragma: no cover - depends on the environment
         raise ValueError("the interactive page needs plotly: pip install 'tumble[view]'") from None
+    data = page_data(body, traj, frames, title)
+    blob = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    scripts = [_asset(name) for name in (("splitting.js", "live.js") if live else ())]
+    speeds = "".join(f'<button class="tumble-speed" data-speed="{s:g}">x{s:g}</button>' for s in _SPEEDS)
+    parts = [
+        "<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{html.escape(data['title'])}</title>", f"<style>{_STYLE}</style>",
+        _script(get_plotlyjs()), "</head><body>",
+        f'<h1 id="tumble-title">{html.escape(data["title"])}</h1>',
+        '<div id="tumble-controls"><button id="tumble-play">Play</button>'
+        '<input id="tumble-slider" type="range" min="0" max="0" step="1" value="0" aria-label="frame">'
+        f'<span id="tumble-time"></span><span>speed</span>{speeds}</div>',
+        '<div id="tumble-live"></div>',
+        '<div id="tumble-scenes"><div id="tumble-ground" class="tumble-scene"></div>'
+        '<div id="tumble-body" class="tumble-scene"></div></div>',
+        '<div id="tumble-omega"></div><p id="tumble-note"></p>',
+        f'<script type="application/json" id="tumble-data">{blob}</script>',
+        *(_script(text) for text in scripts if text is not None),
+        _script(_asset("viewer.js")),
+        "</body></html>",
+    ]
+    return "\n".join(parts)
 
+
+def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: str | None = None,
+               live: bool = True) -> Path:
+    """Write :func:`page_html` to ``path`` whole or not at all (temporary file, then renamed)."""
     path = Path(path)
-    drawn = body_lines(body)
-    lines = [pts for pts, removed in drawn if not removed]
-    holes = [pts for pts, removed in drawn if removed]  # subtracted material: dashed
-    size = 1.25 * body_size(body)
-    idx = frame_indices(len(traj), frames)
-    rot = traj.design_attitude().as_matrix()
-    w_world, L_world = traj.omega_world, traj.angular_momentum_world
-    A = traj.principal_axes
-    w_body, L_body = traj.omega @ A.T, traj.angular_momentum @ A.T  # design axes of the body
-    sw, sL = arrow_scale(w_world, size), arrow_scale(L_world, size)
-
-    fig = make_subplots(
-        rows=2, cols=2, row_heights=[0.66, 0.34], horizontal_spacing=0.02, vertical_spacing=0.08,
-        specs=[[{"type": "scene"}, {"type": "scene"}], [{"type": "xy", "colspan": 2}, None]],
-        subplot_titles=("ground frame: the body tumbles, L stays fixed", "body frame: omega wanders, L with it",
-                        "omega in the principal frame (rad/s)"),
-    )
-    k0 = int(idx[0])
-
-    def dynamic(k):
-        """The traces that change from frame to frame, in a fixed order."""
-        tr = []
-        x, y, z = _polyline(lines, rot[k])
-        tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color=_BODY, width=5), name="body", showlegend=False))
-        x, y, z = _polyline(holes, rot[k])
-        tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color=_BODY, width=3, dash="dash"),
-                               name="removed", showlegend=False))
-        for vec, s, color, name in ((w_world[k], sw, _W, "omega"), (L_world[k], sL, _L, "L")):
-            x, y, z = _arrow(vec * s)
-            tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines+markers", marker=dict(size=[0, 5], color=color),
-                                   line=dict(color=color, width=8), name=name, showlegend=False))
-        for vec, s, color, name in ((w_body[k], sw, _W, "omega"), (L_body[k], sL, _L, "L")):
-            x, y, z = _arrow(vec * s)
-            tr.append(go.Scatter3d(x=x, y=y, z=z, mode="lines+markers", marker=dict(size=[0, 5], color=color),
-                                   line=dict(color=color, width=8), name=name, showlegend=False))
-        stride = max(1, len(traj) // 400)  # keep each frame small: at most ~400 path points
-        path_tip = np.vstack([w_body[: k + 1 : stride], w_body[k]]) * sw
-        tr.append(go.Scatter3d(x=path_tip[:, 0], y=path_tip[:, 1], z=path_tip[:, 2], mode="lines",
-                               line=dict(color=_W, width=2), opacity=0.5, name="omega path", showlegend=False))
-        t = float(traj.t[k])
-        lim = float(np.max(np.abs(traj.omega))) * 1.05 or 1.0
-        tr.append(go.Scatter(x=[t, t], y=[-lim, lim], mode="lines", line=dict(color="black", width=1), name="now", showlegend=False))
-        return tr
-
-    where = [(1, 1), (1, 1), (1, 1), (1, 1), (1, 2), (1, 2), (1, 2), (2, 1)]
-    for trace, (r, c) in zip(dynamic(k0), where):
-        fig.add_trace(trace, row=r, col=c)
-    dynamic_indices = list(range(len(where)))
-    for group, style in ((lines, dict(width=4)), (holes, dict(width=3, dash="dash"))):
-        x, y, z = _polyline(group)
-        fig.add_trace(go.Scatter3d(x=x, y=y, z=z, mode="lines", line=dict(color="#999999", **style), showlegend=False),
-                      row=1, col=2)
-    for j, color in enumerate(("#1f77b4", "#ff7f0e", "#2ca02c")):  # as in the matplotlib figures
-        fig.add_trace(go.Scatter(x=traj.t, y=traj.omega[:, j], mode="lines", line=dict(color=color),
-                                 name=f"omega_{j + 1} ({AXIS_ROLES[j]})"), row=2, col=1)
-
-    fig.frames = [go.Frame(data=dynamic(int(k)), traces=dynamic_indices, name=str(n)) for n, k in enumerate(idx)]
-
-    def play(duration):
-        return [None, {"frame": {"duration": duration, "redraw": True}, "transition": {"duration": 0},
-                       "fromcurrent": True, "mode": "immediate"}]
-
-    axis = dict(range=[-size, size], autorange=False, showbackground=False)
-    scene = dict(xaxis=dict(axis, title="x"), yaxis=dict(axis, title="y"), zaxis=dict(axis, title="z"), aspectmode="cube")
-    fig.update_layout(
-        title=dict(text=title or f"{traj.body_name}: {traj.method}, {traj.t[-1]:g} s", y=0.985),
-        height=900, margin=dict(l=10, r=10, t=170, b=10), scene=scene, scene2=scene,
-        legend=dict(orientation="h", x=0.0, y=0.3),
-        updatemenus=[dict(type="buttons", direction="left", x=0.0, y=1.2, xanchor="left", yanchor="top", showactive=True, buttons=[
-            dict(label="Play", method="animate", args=play(60)),
-            dict(label="Pause", method="animate", args=[[None], {"frame": {"duration": 0, "redraw": False}, "mode": "immediate"}]),
-            dict(label="speed x0.5", method="animate", args=play(120)),
-            dict(label="x1", method="animate", args=play(60)),
-            dict(label="x2", method="animate", args=play(30)),
-            dict(label="x4", method="animate", args=play(15)),
-        ])],
-        sliders=[dict(active=0, x=0.36, y=1.24, yanchor="top", len=0.64, currentvalue=dict(prefix="t = ", suffix=" s"),
-                      steps=[dict(label=f"{traj.t[k]:.2f}", method="animate",
-                                  args=[[str(n)], {"mode": "immediate", "frame": {"duration": 0, "redraw": True}}])
-                             for n, k in enumerate(idx)])],
-    )
-    fig.update_xaxes(title_text="t (s)", row=2, col=1)
-    with atomic_path(path) as tmp:
-        fig.write_html(tmp, include_plotlyjs=True, full_html=True, auto_play=False,
-                       config={"displaylogo": False, "topojsonURL": ""})
+    atomic_write_text(path, page_html(body, traj, frames=frames, title=title, live=live))
     return path
