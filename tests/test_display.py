@@ -208,6 +208,17 @@ def test_omega_svg_stays_in_its_box(n, data):
         assert pts[:, 1].min() == pytest.approx(y0, abs=0.01) and pts[:, 1].max() == pytest.approx(y1, abs=0.01)
 
 
+@pytest.mark.parametrize("t, w", [
+    ([5e-324, 1e-323], 1.0),  # a subnormal time span
+    ([0.0], 1.1125369292536007e-308),  # one sample of a subnormal-sized omega
+    ([0.0, 1.0], 1e308),  # values whose range overflows a double
+])
+def test_omega_svg_at_the_ends_of_double_range(t, w):
+    omega = np.array([[w, -w, 0.5 * w]] * len(t))
+    lines = polylines(parse(omega_svg(t, omega)))  # no overflow or invalid-value warning (errors here)
+    assert all(np.all(np.isfinite(p)) for p in lines)
+
+
 def test_gyrostat_run():
     traj = resolve_run(EXAMPLES / "wheel_t_handle.toml", t_end=2.0, samples=41).run()
     assert repr(traj) == "Trajectory('T-handle with wheel', dop853, 41 samples, t = 0..2 s, torque-free, 1 rotor)"

@@ -77,26 +77,27 @@ def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SV
     t, omega = np.asarray(t, dtype=float), np.asarray(omega, dtype=float)
     idx = subsample(len(t), points)
     ts, ws = t[idx], omega[idx]
-    finite = np.isfinite(ws)
     left, right, top, bottom = 46.0, 8.0, 8.0, 20.0
     t0, t1 = _span(float(ts[0]), float(ts[-1])) if len(ts) else (0.0, 1.0)
-    values = ws[finite]
+    values = ws[np.isfinite(ws)]
     w0, w1 = _span(float(values.min()), float(values.max())) if values.size else (-1.0, 1.0)
-    sx = (width - left - right) / (t1 - t0)
-    sy = (height - top - bottom) / (w1 - w0)
-
-    def y(w):
-        return top + (w1 - w) * sy
+    # fractions of the ranges first, pixels after: no overflow for tiny (subnormal) ranges; a value
+    # beyond double range (never a physical one) is left out instead of warning
+    with np.errstate(over="ignore", invalid="ignore"):
+        px = left + (ts - t0) / (t1 - t0) * (width - left - right)
+        py = top + (w1 - ws) / (w1 - w0) * (height - top - bottom)
+        y_zero = top + w1 / (w1 - w0) * (height - top - bottom)
+    shown = np.isfinite(py) & np.isfinite(px)[:, None]
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}" font-size="10" font-family="sans-serif">',
            f'<rect x="{left}" y="{top}" width="{width - left - right}" height="{height - top - bottom}" '
            f'fill="none" stroke="#bbb"/>']
-    if w0 < 0 < w1:
-        out.append(f'<line x1="{left}" x2="{width - right}" y1="{y(0.0):.2f}" y2="{y(0.0):.2f}" stroke="#ccc"/>')
+    if w0 < 0 < w1 and np.isfinite(y_zero):
+        out.append(f'<line x1="{left}" x2="{width - right}" y1="{y_zero:.2f}" y2="{y_zero:.2f}" stroke="#ccc"/>')
     for j, color in enumerate(COLORS):
-        ok = finite[:, j]
-        xy = " ".join(f"{left + (a - t0) * sx:.2f},{y(b):.2f}" for a, b in zip(ts[ok], ws[ok, j]))
+        ok = shown[:, j]
+        xy = " ".join(f"{a:.2f},{b:.2f}" for a, b in zip(px[ok], py[ok, j]))
         out.append(f'<polyline fill="none" stroke="{color}" stroke-width="1.2" points="{xy}">'
                    f"<title>omega_{j + 1} (rad/s)</title></polyline>")
     labels = (
