@@ -25,8 +25,8 @@ def _t_handle_page(r: dict) -> str:
     return f"""# The T-handle's flip period (internal consistency)
 
 *An internal consistency entry: tumble's simulation against tumble's closed form, no published
-number.* (Peterson & Schwalm, Am. J. Phys. 89 (2021) 349, treat the same effect; their numbers
-were not verified here and are not used.)
+number.* (Peterson & Schwalm's space-station handle, Am. J. Phys. 89 (2021) 349, has its own page,
+[the space-station T-handle](iss-t-handle.md); they publish no flip period.)
 
 **Quantity.** The interval between flips of the seed's T-handle (`tumble.t_handle()`, principal
 moments {r['moments']} kg m^2) spun at 10 rad/s about its intermediate axis with 0.1 rad/s about
