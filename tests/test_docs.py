@@ -196,3 +196,16 @@ def test_attribute_comments_are_read_from_the_lines_above():
     lines = ["x = 1", "#: first line", "#: second", "NAME = 2", "", "OTHER = 3"]
     assert above(lines, 4) == "first line\nsecond"
     assert above(lines, 6) is None
+
+
+def test_roles_resolve_in_their_scope_and_through_the_top_level_names():
+    griffe = pytest.importorskip("griffe")
+    markup = _markup_module()
+    tumble = griffe.load("tumble", search_paths=[str(ROOT / "src")],
+                         extensions=griffe.load_extensions(markup.SphinxMarkup()))
+    assert markup._top_level_exports(tumble)["t_handle"] == "tumble.mass"
+    # dispersions.py cites :func:`tumble.t_handle` (a lazy top-level name): to mass's entry
+    assert 'identifier="tumble.mass.t_handle"' in tumble["ensemble.dispersions"].docstring.value
+    # a bare name resolves through the module's imports, to the object's own path
+    assert markup._target(tumble["analysis.summary"], "flip_interval", {}) == "tumble.analysis.stability.flip_interval"
+    assert markup._target(tumble["analysis.summary"], "os", {}) is None  # not tumble's: plain code

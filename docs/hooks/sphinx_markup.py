@@ -13,12 +13,12 @@ tumble's docstrings are numpydoc and use two pieces of Sphinx markup that griffe
   top-level name goes to the subpackage that defines it (``tumble._EXPORTS``), since griffe cannot
   follow the lazy ``__getattr__``.
 
-A constant whose value is longer than a line (``METHODS``, a dict of ``Method`` objects built
+A public constant whose value is longer than a line (``METHODS``, a dict of ``Method`` objects built
 from private functions) is shown by its type and docstring alone.
 
 Used by mkdocs.yml (``extensions`` of the mkdocstrings Python handler); it changes nothing in the
 package, only what the documentation build reads. The package griffe-sphinx does the first part
-alone; the second has no package.
+alone; the others have no package.
 """
 
 from __future__ import annotations
@@ -126,7 +126,7 @@ class SphinxMarkup(griffe.Extension):
     """Attribute comments to docstrings, literal blocks to code blocks, roles to links."""
 
     def on_attribute_instance(self, *, node, attr: griffe.Attribute, **kwargs) -> None:
-        if attr.value is not None and len(str(attr.value)) > _LONGEST_VALUE:
+        if attr.is_public and attr.value is not None and len(str(attr.value)) > _LONGEST_VALUE:
             attr.value = None
         if attr.docstring is not None or attr.lineno is None or attr.filepath is None:
             return
