@@ -77,7 +77,8 @@ sphere locked to the body: `|omega| = |L| / (I3 + J)`, `E = |L|^2 / (2 (I3 + J))
 to the minor axis, `|L| ~ (I1 + J) omega0`, so the rate falls by `(I1 + J) / (I3 + J)`.
 
 **Conditions.** The body of `examples/bodies/explorer1.toml`: the published length 205.1 cm,
-diameter 15.2 cm and mass 13.97 kg (NSSDCA 1958-001A) as a uniform cylinder, with four whip
+diameter 15.2 cm and mass 13.97 kg (NSSDCA 1958-001A, as cited by the example; checked against
+Wikipedia's "Explorer 1", read in a mirror) as a uniform cylinder, with four whip
 antennas whose length, mass and place are illustrative: `I1 = {sig(I1, 6)}`, `I2 = I3 =
 {sig(I3, 6)}` kg m^2. Spin {SPIN0_REV_S:g} rev/s (Bollay) about the long axis plus an illustrative
 {WOBBLE0} rad/s about an antenna axis, so `L` starts {sig(r['angle0'], 3)}° from the long axis. The
