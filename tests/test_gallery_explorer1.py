@@ -89,12 +89,12 @@ N m s. The geometric (splitting) integrator, step 0.01 s, 200 s, 1001 samples.
 |---|---|---|---|
 | angle of `L` from the long axis at the start, deg | {sig(r['angle0'], 6)} | | |
 | angle of `L` from the long axis at the end, deg | {sig(r['angle_end'], 9)} | 90 | {magnitude(r['angle_end'] - 90)} |
-| `|omega_1| / |omega|` at the end (spin about the long axis) | {magnitude(r['axis1_end'])} | 0 | |
-| `|L|` drift, relative | {magnitude(r['L_drift'])} | 0 | |
-| `L_world` drift, relative to `|L|` | {magnitude(r['L_world_drift'])} | 0 | |
-| energy budget, max of `|E + dissipated - E0| / E0` | {magnitude(r['budget'])} | 0 | |
+| share of the long axis in the end rate, `abs(omega_1) / norm(omega)` | {magnitude(r['axis1_end'])} | 0 | |
+| drift of `norm(L)`, relative | {magnitude(r['L_drift'])} | 0 | |
+| drift of `L_world`, relative to `norm(L)` | {magnitude(r['L_world_drift'])} | 0 | |
+| energy budget, max of `abs(E + dissipated - E0) / E0` | {magnitude(r['budget'])} | 0 | |
 | largest rise of `E` between samples, `/ E0` (round-off) | {magnitude(r['energy_rise'])} | 0 | |
-| final rate, rad/s | {sig(r['rate_end'])} | {sig(r['rate_closed'])} `= |L| / (I3 + J)` | {magnitude(r['rate_end'] - r['rate_closed'])} |
+| final rate, rad/s | {sig(r['rate_end'])} | {sig(r['rate_closed'])} `= norm(L) / (I3 + J)` | {magnitude(r['rate_end'] - r['rate_closed'])} |
 | final energy, J | {sig(r['energy_end'])} | {sig(r['energy_closed'])} | {magnitude(r['energy_end'] - r['energy_closed'])} |
 | final rate, rev/s | {sig(r['rate_end'] / (2 * np.pi), 3)} | | |
 
