@@ -100,9 +100,15 @@ def test_demo_cli_writes_its_folder(tmp_path, capsys, monkeypatch):
     import tumble.demo
 
     calls = {}
-    monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate, argv: calls.update(out=out, animate=animate))
+    monkeypatch.setattr(tumble.demo, "run_demo", lambda out, animate, animation_format, argv: calls.update(
+        out=out, animate=animate, animation_format=animation_format))
     code, _, _ = run(capsys, "demo", "--out", str(tmp_path / "d"), "--no-animation")
-    assert code == 0 and calls == {"out": str(tmp_path / "d"), "animate": False}
+    assert code == 0 and calls == {"out": str(tmp_path / "d"), "animate": False, "animation_format": "auto"}
+    code, _, _ = run(capsys, "demo", "--out", str(tmp_path / "d"), "--animation-format", "gif")
+    assert code == 0 and calls["animation_format"] == "gif" and calls["animate"]
+    with pytest.raises(SystemExit) as info:
+        main(["demo", "--out", str(tmp_path / "d"), "--animation-format", "avi"])
+    assert info.value.code == 2 and "invalid choice: 'avi'" in capsys.readouterr().err
 
 
 def test_examples_are_listed_and_copied_ready_to_run(tmp_path, capsys):

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from tumble import __version__
-from tumble.demo import CASES, run_demo
+from tumble.demo import CASES, animation_suffix, run_demo
 from tumble.io.export import CSV_COLUMNS
 
 
@@ -24,8 +24,11 @@ def test_demo_writes_every_output(demo):
         assert (demo / f"omega_{case.key}.png").stat().st_size > 10_000
         header = (demo / f"trajectory_{case.key}.csv").read_text().splitlines()[0]
         assert header == ",".join(CSV_COLUMNS)
-    for name in ("omega_all.png", "summary.md", "summary.json", "ground_seed_axis2.gif", "body_iss_axis2.gif"):
+    suffix, _ = animation_suffix()  # MP4 where an ffmpeg is found, GIF otherwise
+    for name in ("omega_all.png", "summary.md", "summary.json", f"ground_seed_axis2{suffix}", f"body_iss_axis2{suffix}"):
         assert (demo / name).stat().st_size > 0
+    magic = {".mp4": (4, b"ftyp"), ".gif": (0, b"GIF89a")}[suffix]
+    assert (demo / f"body_iss_axis2{suffix}").read_bytes()[magic[0]:magic[0] + len(magic[1])] == magic[1]
 
 
 def test_demo_summary_agrees_with_theory(demo):

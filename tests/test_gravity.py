@@ -553,14 +553,15 @@ def test_lvlh_state_from_table():
 # -- the figure ----------------------------------------------------------------------------------
 
 def test_stability_figure(tmp_path):
-    from tumble.viz import figure_gravity_stability
-    from tumble.viz._backend import pyplot
+    from matplotlib.figure import Figure
+
+    from tumble.viz import figure_gravity_stability, save_figure
 
     path = tmp_path / "stability.png"
-    fig = figure_gravity_stability(path, points={"T-handle": (1.0, 1.0)})
+    fig = figure_gravity_stability(points={"T-handle": (1.0, 1.0)})
+    save_figure(fig, path)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert labels[:2] == ["Lagrange (stable)", "DeBra-Delp (stable)"]
-    _, ax = pyplot().subplots()
+    ax = Figure().subplots()
     assert figure_gravity_stability(ax=ax) is ax.figure
-    pyplot().close(ax.figure)

@@ -1,13 +1,23 @@
-"""Figures: the geometry they draw is the physics (polhodes, separatrices, herpolhode)."""
+"""Figures: the geometry they draw is the physics (polhodes, separatrices, herpolhode), and
+they are readable: units on every axis, legends off the data, markers on top, long runs as
+envelopes, runs under a torque or at rest drawn without a crash."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+import warnings
+from io import BytesIO
 from pathlib import Path
 
 import numpy as np
 import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import PathCollection, PolyCollection
+from matplotlib.figure import Figure
 
 import tumble
+from tumble import viz
 from tumble.cli import main
 from tumble.viz import body_lines, polhode_family, separatrices
 
@@ -75,3 +85,205 @@ def test_every_subcommand_has_help_with_an_example(command, capsys):
         main([command, "--help"])
     assert info.value.code == 0
     assert "Example" in capsys.readouterr().out
+
+
+# -- the figure functions: signature, units, legends, markers ------------------------------------
+
+@pytest.fixture(scope="module")
+def flip():
+    return tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=10.0, samples=800)
+
+
+def _one_run_figures():
+    """Every figure of one run: name -> function(traj, ax=...)."""
+    return {"omega": viz.figure_omega, "drift": viz.figure_drift, "polhode": viz.figure_polhode,
+            "herpolhode": viz.figure_herpolhode}
+
+
+def test_every_figure_function_returns_its_figure_and_writes_nothing(flip, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for name, figure in _one_run_figures().items():
+        fig = figure(flip)
+        assert isinstance(fig, Figure) and fig.axes, name
+        given = Figure()
+        assert figure(flip, ax=given.subplots()) is given, name  # drawn where asked (polhode: in 3D there)
+    assert isinstance(viz.figure_omega_grid([("a", flip), ("b", flip)]), Figure)
+    given = Figure()
+    assert viz.figure_omega_grid([("a", flip)], fig=given) is given and len(given.axes) == 1
+    assert list(tmp_path.iterdir()) == []  # saving is a separate step
+    viz.save_figure(viz.figure_omega(flip), tmp_path / "omega.svg")
+    assert (tmp_path / "omega.svg").read_text().lstrip().startswith("<?xml")
+    assert [p.name for p in tmp_path.iterdir()] == ["omega.svg"]  # no temporary left
+
+
+def test_the_polhode_replaces_a_flat_axes_by_a_3d_one_in_its_place(flip):
+    fig = Figure()
+    left, right = fig.subplots(1, 2)
+    viz.figure_polhode(flip, ax=right)
+    assert len(fig.axes) == 2 and fig.axes[0] is left and fig.axes[1].name == "3d"
+    assert fig.axes[1].get_subplotspec().colspan == right.get_subplotspec().colspan
+
+
+def test_omega_axes_and_legend_carry_units_and_the_moments(flip):
+    (ax,) = viz.figure_omega(flip).axes
+    assert ax.get_xlabel() == "t (s)" and ax.get_ylabel().endswith("(rad/s)")
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    for j, label in enumerate(labels):  # the moments of the seed's T-handle, with their unit
+        assert f"$I_{j + 1}$ = {[0.125, 0.3125, 0.4375][j]:.4g} kg m$^2$" in label
+    (ax,) = viz.figure_drift(flip).axes
+    assert ax.get_xlabel() == "t (s)" and ax.get_ylabel() == "relative drift (dimensionless)"
+    (ax,) = viz.figure_herpolhode(flip).axes
+    assert ax.get_xlabel().endswith("(rad/s)") and ax.get_ylabel().endswith("(rad/s)")
+    ax = viz.figure_polhode(flip).axes[0]
+    assert all(label.endswith("(kg m$^2$/s)") for label in (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()))
+
+
+def _legend_clear_of_axes(ax) -> bool:
+    """The legend's box and the axes' box (display units, after layout) do not overlap."""
+    ax.figure.draw_without_rendering()  # the layout done
+    return not ax.get_legend().get_window_extent().overlaps(ax.get_window_extent())
+
+
+@pytest.mark.parametrize("name", ["omega", "drift", "herpolhode"])
+def test_legends_never_cover_the_data(flip, name):
+    (ax,) = _one_run_figures()[name](flip).axes
+    assert _legend_clear_of_axes(ax)
+
+
+def test_the_grid_keeps_every_legend_off_its_panel(flip):
+    fig = viz.figure_omega_grid([("a", flip), ("b", flip), ("c", flip), ("d", flip)], ncols=3)
+    visible = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(visible) == 4 and all(_legend_clear_of_axes(ax) for ax in visible)
+
+
+def test_markers_are_drawn_above_the_curves(flip):
+    (ax,) = viz.figure_herpolhode(flip).axes
+    markers = [c for c in ax.collections if isinstance(c, PathCollection)]
+    assert len(markers) == 2  # t = 0 and the foot of L
+    assert min(m.get_zorder() for m in markers) > max(line.get_zorder() for line in ax.lines)
+    ax = viz.figure_polhode(flip).axes[0]
+    assert not ax.computed_zorder  # mplot3d would otherwise re-sort by depth and hide the marker
+    (start,) = [c for c in ax.collections if isinstance(c, PathCollection)]
+    assert start.get_zorder() > max(line.get_zorder() for line in ax.lines)
+
+
+# -- long runs: envelopes -------------------------------------------------------------------------
+
+def test_the_envelope_holds_every_sample_between_its_bounds():
+    rng = np.random.default_rng(1)
+    t = np.sort(rng.uniform(0.0, 50.0, 10_007))
+    y = rng.normal(size=(10_007, 3))
+    times, low, high = viz.envelope(t, y, bins=97)
+    assert times.shape == (194,) and low.shape == high.shape == (194, 3)
+    for k in range(97):  # bin k is held from times[2k] to times[2k+1]
+        inside = (t >= times[2 * k]) & (t <= times[2 * k + 1])
+        np.testing.assert_array_equal(low[2 * k], y[inside].min(axis=0))
+        np.testing.assert_array_equal(high[2 * k], y[inside].max(axis=0))
+    assert np.all(np.diff(times) >= 0) and times[0] == t[0] and times[-1] == t[-1]
+    covered = np.zeros(len(t), bool)
+    for k in range(97):
+        covered |= (t >= times[2 * k]) & (t <= times[2 * k + 1])
+    assert covered.all()
+
+
+def test_a_long_run_is_drawn_as_an_envelope_with_a_note():
+    long = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1000.0, samples=100_000)
+    (ax,) = viz.figure_omega(long, title="1000 s").axes
+    assert max(len(line.get_xdata()) for line in ax.lines) <= viz.plots.MAX_POINTS
+    bands = [c for c in ax.collections if isinstance(c, PolyCollection)]
+    assert len(bands) == 3
+    for j, band in enumerate(bands):  # each band spans the component's whole range
+        (verts,) = [p.vertices for p in band.get_paths()]
+        assert verts[:, 1].min() == pytest.approx(long.omega[:, j].min())
+        assert verts[:, 1].max() == pytest.approx(long.omega[:, j].max())
+    assert ax.get_title().splitlines()[0] == "1000 s" and "100000 samples" in ax.get_title()
+    (ax,) = viz.figure_drift(long).axes
+    assert max(len(line.get_xdata()) for line in ax.lines) <= viz.plots.MAX_POINTS
+    short = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=10.0, samples=viz.plots.MAX_POINTS)
+    (ax,) = viz.figure_omega(short).axes
+    assert not ax.collections and ax.get_title() == ""  # every sample drawn, nothing to say
+
+
+# -- runs under a torque and from rest ------------------------------------------------------------
+
+def test_phase_portraits_of_a_torqued_run_say_why_they_are_empty():
+    traj = tumble.simulate(tumble.t_handle(), [0.1, 5.0, 0.1], t_end=2.0, torque=tumble.ConstantTorque((0.0, 0.0, 0.1)))
+    for name in ("polhode", "herpolhode"):
+        ax = _one_run_figures()[name](traj).axes[0]
+        assert not ax.lines and not ax.axison
+        (note,) = [t.get_text() for t in ax.texts]
+        assert note == f"no {name} for this run: a torque acts, so L and the energy change: they picture torque-free motion only"
+    assert "a torque acts" in viz.figure_drift(traj).axes[0].get_title()
+
+
+@pytest.mark.parametrize("torque", [None, (0.0, 0.0, 0.1)])
+def test_a_run_from_rest_draws_every_figure_without_a_warning(torque):
+    body = tumble.t_handle()
+    traj = tumble.simulate(body, [0.0, 0.0, 0.0], t_end=1.0, samples=50,
+                           torque=None if torque is None else tumble.ConstantTorque(torque))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # every warning, not only RuntimeWarning
+        figures = [f(traj) for f in _one_run_figures().values()]
+        figures += [viz.figure_omega_grid([("rest", traj)]), viz.figure_omega_panels([("rest", traj)]),
+                    viz.figure_energy(traj), viz.figure_nutation(traj)]
+        for fig in figures:
+            fig.savefig(BytesIO(), format="png")
+    drift = figures[1].axes[0]
+    if torque is not None:  # measured against the largest value: it starts at 0
+        assert all("max" in t.get_text() for t in drift.get_legend().get_texts())
+        assert np.all(np.isfinite(np.concatenate([line.get_ydata() for line in drift.lines])))
+
+
+# -- animations: readable axes, MP4 with ffmpeg, GIF without ---------------------------------------
+
+def test_animation_tick_labels_do_not_overlap():
+    body = tumble.t_handle()
+    fig, ax = viz.animate.scene_axes(1.25 * tumble.viz.body_size(body), "T-handle")
+    canvas = FigureCanvasAgg(fig)
+    fig.set_dpi(90)  # the GIF's
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        lo, hi = sorted(axis.get_view_interval())
+        labels = [t for loc, t in zip(axis.get_majorticklocs(), axis.get_ticklabels()) if lo <= loc <= hi]
+        assert 2 <= len(labels) <= 3 and all(t.get_fontsize() >= 8 for t in labels)
+        boxes = [t.get_window_extent(renderer) for t in labels]
+        assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+    assert all(label.endswith("(m)") for label in (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()))
+
+
+@pytest.fixture(scope="module")
+def short_flip():
+    return tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1.0, samples=20)
+
+
+@pytest.mark.skipif(viz.ffmpeg_path() is None, reason="no ffmpeg (tumble[video])")
+def test_an_mp4_is_written_where_ffmpeg_is_found(short_flip, tmp_path):
+    path = viz.animate_ground_frame(tumble.t_handle(), short_flip, tmp_path / "g.mp4", max_frames=5)
+    assert path == tmp_path / "g.mp4" and path.read_bytes()[4:8] == b"ftyp"  # an MP4 (ISO media) file
+    assert [p.name for p in tmp_path.iterdir()] == ["g.mp4"]
+
+
+def test_without_ffmpeg_the_gif_is_written_and_said(short_flip, tmp_path, monkeypatch):
+    monkeypatch.setattr(viz.animate, "ffmpeg_path", lambda: None)
+    path, note = viz.animation_path(tmp_path / "b.mp4")
+    assert path == tmp_path / "b.gif" and note.startswith("no ffmpeg found") and "\n" not in note
+    written = viz.animate_body_frame(tumble.t_handle(), short_flip, tmp_path / "b.mp4", max_frames=5)
+    assert written == tmp_path / "b.gif" and written.read_bytes()[:6] == b"GIF89a"
+    assert [p.name for p in tmp_path.iterdir()] == ["b.gif"]
+    from tumble.demo import animation_suffix
+
+    assert animation_suffix("auto") == (".gif", note) and animation_suffix("gif") == (".gif", None)
+    with pytest.raises(ValueError, match="mp4 or .gif"):
+        viz.animation_path(tmp_path / "b.avi")
+
+
+# -- notebooks --------------------------------------------------------------------------------------
+
+def test_a_figure_displays_in_a_notebook_without_pyplot(flip):
+    """Jupyter shows a bare Figure as text unless pyplot was imported; ours carries its PNG."""
+    fig = viz.figure_omega(flip)
+    assert fig._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    code = "import sys, tumble.viz; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"  # importing tumble.viz does not import matplotlib

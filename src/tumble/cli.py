@@ -51,8 +51,22 @@ def _cmd_inertia(args) -> int:
 def _cmd_demo(args) -> int:
     from .demo import run_demo
 
-    run_demo(args.out, animate=not args.no_animation, argv=args.argv)
+    run_demo(args.out, animate=not args.no_animation, animation_format=args.animation_format, argv=args.argv)
     return EXIT_OK
+
+
+def _written(figure, dpi: int = 110):
+    """``figure`` as the io layer calls it, ``write(*data, path, **options)``: draw, then save to ``path``.
+
+    The io layer cannot import the viz layer, so the command line hands it this.
+    """
+    from .viz import save_figure
+
+    def write(*args, **options):
+        *data, path = args
+        save_figure(figure(*data, **options), path, dpi=dpi)
+
+    return write
 
 
 def _cmd_examples(args) -> int:
@@ -80,7 +94,7 @@ def _cmd_sweep(args) -> int:
         raise ValueError(f"--workers = {args.workers} must be from 1 to 256")
     with _working("sweeping"):
         return run_sweep_command(args.sweep, args.out, workers=args.workers, scheduler=args.scheduler,
-                                 argv=args.argv, figure=figure_sweep)
+                                 argv=args.argv, figure=_written(figure_sweep))
 
 
 def _cmd_map(args) -> int:
@@ -93,10 +107,10 @@ def _cmd_map(args) -> int:
     perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s") for i, p in enumerate(args.perturbation))
     if not 20 <= args.resolution <= 2000:
         raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")
-    from .viz.maps import figure_stability_map
+    from .viz import figure_stability_map, save_figure
 
     with _working("mapping"):
-        figure_stability_map(spin, perturbation, out, resolution=args.resolution)
+        save_figure(figure_stability_map(spin, perturbation, resolution=args.resolution), out)
     print(f"wrote {out}: flip interval and circulation axis over (I1/I3, I2/I3), spin {spin:g} rad/s "
           f"about the intermediate axis, perturbation {perturbation[0]:g}, {perturbation[1]:g} rad/s")
     return EXIT_OK
@@ -107,7 +121,7 @@ def _cmd_fit(args) -> int:
     from .viz import figure_fit
 
     with _working("fitting"):
-        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, start=args.start,
+        return run_fit_command(args.data, args.out, argv=args.argv, figure=_written(figure_fit), start=args.start,
                                end=args.end, sensor_rotation=args.sensor, bias=not args.no_bias)
 
 
@@ -135,7 +149,7 @@ def _cmd_simulate(args) -> int:
     from .io.export import write_csv, write_json, write_npz
     from .io.output import output_dir
     from .io.provenance import provenance
-    from .viz import figure_omega
+    from .viz import figure_omega, save_figure
 
     summary = trajectory_summary(traj)
     if hasattr(scenario.torque, "jacobi_integral"):  # the gravity gradient: its own error measure
@@ -147,7 +161,7 @@ def _cmd_simulate(args) -> int:
     with output_dir(out, SIMULATE_WRITES) as stage:
         write_csv(traj, stage / "trajectory.csv")
         write_npz(traj, stage / "trajectory.npz", summary["provenance"])
-        figure_omega(traj, stage / "omega.png", f"{scenario.name}: {traj.body_name}, {traj.method}")
+        save_figure(figure_omega(traj, title=f"{scenario.name}: {traj.body_name}, {traj.method}"), stage / "omega.png")
         write_json(summary, stage / "summary.json")
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -185,13 +199,10 @@ def _cmd_plot(args) -> int:
     extra = viz.spacecraft_figures(traj, scenario.torque)  # energy, nutation, orbit angles
     written = []
     with output_dir(out, [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]) as stage:
-        for name in names:
+        figures = [(name, makers[name](traj, title=title if name == "omega" else None)) for name in names]
+        for name, fig in figures + [(name, make()) for name, make in extra]:
             for fmt in args.format:
-                makers[name](traj, stage / f"{name}.{fmt}", title if name == "omega" else None)
-                written.append(f"{name}.{fmt}")
-        for name, make in extra:
-            for fmt in args.format:
-                make(path=stage / f"{name}.{fmt}")
+                viz.save_figure(fig, stage / f"{name}.{fmt}")
                 written.append(f"{name}.{fmt}")
     print(f"wrote {', '.join(written)} to {out}/")
     if skipped:
@@ -374,7 +385,9 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Example: tumble demo --out tumble-demo", parents=[debug],
     )
     p.add_argument("--out", default="tumble-demo", metavar="DIR", help="output folder (default: tumble-demo)")
-    p.add_argument("--no-animation", action="store_true", help="skip the GIF animations (faster)")
+    p.add_argument("--no-animation", action="store_true", help="skip the animations (faster)")
+    p.add_argument("--animation-format", choices=["auto", "mp4", "gif"], default="auto",
+                   help="auto (default): MP4 where an ffmpeg is found (tumble[video]), GIF otherwise")
     p.set_defaults(func=_cmd_demo)
     return parser
 

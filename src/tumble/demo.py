@@ -10,8 +10,9 @@ Cases (t in [0, 20] s, 500 samples, as in the seed):
 
 Every case runs with the accurate default method; the seed's literal vectors also run with the
 seed's own computation ("seed": RK45 at default tolerances + R <- R exp([w] dt)) to show its
-drift. Outputs: omega(t) per case and combined (PNG), ground- and body-frame animations (GIF),
-trajectories (CSV), and a summary table (Markdown and JSON).
+drift. Outputs: omega(t) per case and combined (PNG), ground- and body-frame animations (MP4
+where an ffmpeg is found, GIF otherwise), trajectories (CSV), and a summary table (Markdown and
+JSON).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from .io.provenance import provenance
 from .io.report import describe_axis, mass_properties_dict
 from .mass import AXIS_ROLES, Body, iss_t_handle, t_handle
 
-__all__ = ["CASES", "Case", "run_demo"]
+__all__ = ["CASES", "Case", "animation_suffix", "run_demo"]
 
 T_END, SAMPLES = 20.0, 500
 
@@ -102,14 +103,31 @@ DEMO_WRITES = ("omega_*.png", "ground_*.gif", "body_*.gif", "ground_*.mp4", "bod
                "trajectory_*.csv", "summary.json", "summary.md")
 
 
+def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
+    """The suffix of the study's animations and a one-line note when MP4 was wanted but cannot be.
+
+    ``"auto"``: ``.mp4`` where an ffmpeg is found (:func:`tumble.viz.ffmpeg_path`), else
+    ``.gif`` with a note; ``"gif"``: ``.gif``; ``"mp4"``: ``.mp4``, or ``.gif`` with a note.
+    """
+    from .viz import animation_path
+
+    if animation_format not in ("auto", "mp4", "gif"):
+        raise ValueError(f"animation_format = {animation_format!r} must be 'auto', 'mp4' or 'gif'")
+    path, note = animation_path("x.gif" if animation_format == "gif" else "x.mp4")
+    return path.suffix, note
+
+
 def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True,
-             argv=None) -> Path:
+             animation_format: str = "auto", argv=None) -> Path:
     """Run the whole study and write its figures and data to ``out``; return the folder.
 
     The folder appears whole or not at all (:func:`tumble.io.output.output_dir`); ``argv``
-    (the command line, if any) is recorded in the summary's provenance.
+    (the command line, if any) is recorded in the summary's provenance. The animations are
+    MP4 or GIF (:func:`animation_suffix` of ``animation_format``).
     """
-    from .viz import animate_body_frame, animate_ground_frame, figure_omega, figure_omega_grid
+    from .viz import animate_body_frame, animate_ground_frame, figure_omega, figure_omega_grid, save_figure
+
+    suffix, note = animation_suffix(animation_format)
 
     out = check_output_dir(out)
     bodies: dict[str, Body] = {
@@ -126,21 +144,22 @@ def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES,
                 traj = simulate(bodies[case.body], case.omega, t_end=t_end, samples=samples,
                                 method=case.method, frame=case.frame)
                 runs[case.key] = traj
-                figure_omega(traj, stage / f"omega_{case.key}.png", case.label)
+                save_figure(figure_omega(traj, title=case.label), stage / f"omega_{case.key}.png")
                 write_csv(traj, stage / f"trajectory_{case.key}.csv")
                 summary = trajectory_summary(traj)
                 summary.update(case=case.key, label=case.label, omega0_given=list(case.omega), frame=case.frame)
                 rows.append(summary)
                 progress.step(case.label)
-            figure_omega_grid([(c.label, runs[c.key]) for c in CASES if c.method is None], stage / "omega_all.png",
-                              suptitle="Angular velocity in the principal frame (cf. the seed's Figure 1)")
+            grid = figure_omega_grid([(c.label, runs[c.key]) for c in CASES if c.method is None],
+                                     suptitle="Angular velocity in the principal frame (cf. the seed's Figure 1)")
+            save_figure(grid, stage / "omega_all.png", dpi=100)
             progress.step("combined figure")
             if animate:
                 for key in ANIMATED:
                     case = next(c for c in CASES if c.key == key)
-                    animate_ground_frame(bodies[case.body], runs[key], stage / f"ground_{key}.gif", title=case.label)
+                    animate_ground_frame(bodies[case.body], runs[key], stage / f"ground_{key}{suffix}", title=case.label)
                     progress.step(f"ground-frame animation {key}")
-                    animate_body_frame(bodies[case.body], runs[key], stage / f"body_{key}.gif", title=case.label)
+                    animate_body_frame(bodies[case.body], runs[key], stage / f"body_{key}{suffix}", title=case.label)
                     progress.step(f"body-frame animation {key}")
             data = {
                 "bodies": {k: mass_properties_dict(b) for k, b in bodies.items()},
@@ -153,6 +172,8 @@ def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES,
     finally:
         progress.close()
     print(summary_markdown(bodies, rows))
+    if animate and note:
+        print(f"animations: {note}")
     print(f"wrote {out}/ in {time.perf_counter() - start:.1f} s")
     return out
 

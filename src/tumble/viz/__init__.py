@@ -1,15 +1,18 @@
 """Pictures (the shell): figures, animations and the scene description they share.
 
-matplotlib is imported inside the drawing functions, never by the physics layers.
+Every ``figure_*`` function draws on a given matplotlib ``ax`` (``fig`` for several panels) or
+on a new Figure, and returns the Figure; nothing is written until :func:`save_figure`. The
+animations write an MP4 (with ffmpeg) or a GIF. The physics layers never import matplotlib.
 """
 
-from .animate import animate_body_frame, animate_ground_frame
+from ._backend import save_figure
+from .animate import animate_body_frame, animate_ground_frame, animation_path, ffmpeg_path
 from .fit import figure_fit
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
 from .notebook import show
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
-from .plots import figure_drift, figure_omega, figure_omega_grid, plot_omega
+from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
 from .spacecraft import (
     figure_energy,
@@ -23,8 +26,11 @@ __all__ = [
     "PHASE_PORTRAITS",
     "animate_body_frame",
     "animate_ground_frame",
+    "animation_path",
     "body_lines",
     "body_size",
+    "envelope",
+    "ffmpeg_path",
     "figure_drift",
     "figure_energy",
     "figure_fit",
@@ -42,6 +48,7 @@ __all__ = [
     "phase_portrait_problem",
     "plot_omega",
     "polhode_family",
+    "save_figure",
     "separatrices",
     "show",
     "spacecraft_figures",

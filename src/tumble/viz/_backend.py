@@ -1,27 +1,98 @@
-"""matplotlib, imported on first use with the non-interactive Agg backend (no screen needed)."""
+"""Figures without pyplot: every figure function returns a :class:`matplotlib.figure.Figure`.
+
+Why not pyplot: ``pyplot.subplots`` registers each figure in pyplot's global list (it stays in
+memory until closed, and a notebook's inline backend shows it again at the end of the cell) and
+needs a backend, which would mean choosing one for the user (``matplotlib.use("Agg")`` switches
+a notebook's inline backend off). A bare ``Figure`` needs none: it renders through Agg when it is
+saved, whatever backend the user chose, and is freed like any other object.
+
+One catch, checked by running a notebook (nbclient, ipykernel with matplotlib-inline): Jupyter
+shows a bare ``Figure`` as a picture only once pyplot has been imported (matplotlib-inline then
+registers a PNG formatter for ``Figure``); before that it prints ``<Figure size ... with 1
+Axes>``. ``TumbleFigure`` adds ``_repr_png_`` so the figure displays either way; where a
+formatter is registered, IPython uses that one instead (both give the same PNG).
+
+Saving is a separate step, :func:`save_figure`, atomic through :mod:`tumble.io.atomic`.
+"""
 
 from __future__ import annotations
 
+import io
 
-def pyplot():
-    """``matplotlib.pyplot`` on the Agg backend, unless the user already chose a backend."""
-    import matplotlib
+__all__ = ["TumbleFigure", "figure_and_axes", "legend_outside", "new_figure", "note_only", "save_figure"]
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
 
-    return plt
+def _repr_png_(self) -> bytes:
+    buffer = io.BytesIO()
+    self.savefig(buffer, format="png", dpi=100)
+    return buffer.getvalue()
+
+
+def __getattr__(name: str):
+    """``TumbleFigure``: a matplotlib Figure that a notebook displays as a PNG without pyplot.
+
+    Made on first use, so that importing :mod:`tumble.viz` does not import matplotlib.
+    """
+    if name != "TumbleFigure":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    if "TumbleFigure" in globals():  # called directly by new_figure
+        return globals()["TumbleFigure"]
+    from matplotlib.figure import Figure
+
+    cls = type("TumbleFigure", (Figure,), {"__module__": __name__, "_repr_png_": _repr_png_,
+                                           "__doc__": "A matplotlib Figure with ``_repr_png_`` (see the module)."})
+    globals()["TumbleFigure"] = cls
+    return cls
+
+
+def new_figure(figsize=(7.5, 3.6), **kwargs):
+    """A new ``TumbleFigure`` (constrained layout unless ``layout`` is given), not registered with pyplot."""
+    kwargs.setdefault("layout", "constrained")
+    return __getattr__("TumbleFigure")(figsize=figsize, **kwargs)
+
+
+def figure_and_axes(ax=None, figsize=(7.5, 3.6), **subplot_kw):
+    """``(figure, ax)``: ``ax`` and its figure when given, else a new figure with one axes."""
+    if ax is not None:
+        return ax.figure, ax
+    fig = new_figure(figsize)
+    return fig, fig.add_subplot(**subplot_kw)
+
+
+def legend_outside(ax, **kwargs) -> None:
+    """The legend to the right of the axes, outside them: it never covers the data."""
+    handles, _ = ax.get_legend_handles_labels()
+    if handles:
+        ax.legend(**{"fontsize": 7, "loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "borderaxespad": 0.0,
+                     "framealpha": 0.9, **kwargs})
+
+
+def note_only(ax, note: str, title: str | None = None) -> None:
+    """An empty panel that says, in one line, why there is nothing to draw."""
+    ax.set_axis_off()
+    text = ax.text2D if ax.name == "3d" else ax.text
+    text(0.5, 0.5, note, ha="center", va="center", wrap=True, fontsize=9, transform=ax.transAxes)
+    if title:
+        ax.set_title(title, fontsize=9)
 
 
 def save_figure(fig, path, dpi: int = 110) -> None:
-    """Save ``fig`` (format from the suffix) to a temporary name, rename it into place, close it.
+    """Write ``fig`` to ``path`` (format from the suffix: PNG, SVG, PDF, ...), whole or not at all.
 
-    A failure midway leaves no half-written figure behind.
+    The figure is written to a temporary name in the same folder and renamed into place
+    (:func:`tumble.io.atomic.atomic_path`), so a failure midway leaves no half-written file.
+    The figure stays open: it can be shown or saved again.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+        What a ``figure_*`` function returned (or any Figure).
+    path : str or Path
+        The file to write.
+    dpi : int
+        Dots per inch of a raster format.
     """
     from ..io.atomic import atomic_path
 
-    try:
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=dpi)
-    finally:
-        pyplot().close(fig)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=dpi)

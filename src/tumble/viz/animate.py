@@ -1,74 +1,124 @@
-"""Animations of a tumbling body: in the ground frame and in the body frame.
+"""Animations of a tumbling body: in the ground frame and in the body frame, as MP4 or GIF.
 
 Both are built from the scene description (:mod:`tumble.viz.scene`) and update their artists
-in place (``set_data_3d``) instead of redrawing. GIF through Pillow (a matplotlib dependency);
-MP4 when matplotlib finds an ffmpeg.
+in place (``set_data_3d``) instead of redrawing. MP4 goes through matplotlib's ``FFMpegWriter``
+when an ffmpeg binary is found (:func:`ffmpeg_path`: on ``PATH``, else the one the optional
+``imageio-ffmpeg`` package ships, ``pip install tumble[video]``); GIF through Pillow (a
+matplotlib dependency). Asked for an MP4 without ffmpeg, they write the GIF instead and say so
+(:func:`animation_path`).
 """
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..mass import Body
 from ..io.atomic import atomic_path
+from ..mass import Body
+from ._backend import new_figure
 from .scene import arrow_scale, body_lines, body_size, frame_indices
-from ._backend import pyplot
 
-__all__ = ["animate_body_frame", "animate_ground_frame", "writer_for"]
+__all__ = ["ANIMATION_SUFFIXES", "animate_body_frame", "animate_ground_frame", "animation_path", "ffmpeg_path",
+           "scene_axes", "writer_for"]
 
+#: The formats the animations are written in, by suffix.
+ANIMATION_SUFFIXES = (".mp4", ".gif")
+
+
+def ffmpeg_path() -> str | None:
+    """The ffmpeg binary MP4s are written with: ``ffmpeg`` on ``PATH``, else imageio-ffmpeg's, else None."""
+    found = shutil.which("ffmpeg")
+    if found:
+        return found
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        return None
+    try:
+        return imageio_ffmpeg.get_ffmpeg_exe()
+    except RuntimeError:  # the package without its binary
+        return None
+
+
+def animation_path(path) -> tuple[Path, str | None]:
+    """Where an animation asked for at ``path`` is written, and a one-line note if not there.
+
+    ``.gif`` and ``.mp4`` with ffmpeg available are kept; ``.mp4`` without ffmpeg becomes the
+    ``.gif`` of the same name, with a note saying why. Any other suffix is a ``ValueError``.
+    """
+    path = Path(path)
+    if path.suffix not in ANIMATION_SUFFIXES:
+        raise ValueError(f"{path}: animations are written as .mp4 or .gif, not {path.suffix or 'no suffix'!r}")
+    if path.suffix == ".mp4" and ffmpeg_path() is None:
+        gif = path.with_suffix(".gif")
+        return gif, "no ffmpeg found (install tumble[video] or put ffmpeg on PATH): GIF written instead of MP4"
+    return path, None
 
 
 def writer_for(path: Path, fps: int):
-    """A matplotlib writer for the suffix of ``path`` (``.gif`` or ``.mp4``)."""
+    """A matplotlib writer for the suffix of ``path`` (``.gif``, or ``.mp4`` with ffmpeg found)."""
     from matplotlib import animation
 
+    path = Path(path)
     if path.suffix == ".mp4":
-        if not animation.writers.is_available("ffmpeg"):
-            raise ValueError(f"{path}: writing MP4 needs ffmpeg; write a .gif instead")
-        return animation.FFMpegWriter(fps=fps)
+        if ffmpeg_path() is None:
+            raise ValueError(f"{path}: writing MP4 needs ffmpeg (tumble[video]); write a .gif instead")
+        return animation.FFMpegWriter(fps=fps, codec="h264", extra_args=["-pix_fmt", "yuv420p"])
     if path.suffix == ".gif":
         return animation.PillowWriter(fps=fps)
-    raise ValueError(f"{path}: animations are written as .gif or .mp4")
+    raise ValueError(f"{path}: animations are written as .mp4 or .gif")
 
 
-def _setup_axes(ax, size: float, title: str) -> None:
-    ax.set_xlim(-size, size)
-    ax.set_ylim(-size, size)
-    ax.set_zlim(-size, size)
+def scene_axes(size: float, title: str, figsize=(5.4, 5.4)):
+    """A new figure with one 3D axes of half-width ``size`` (m), labelled for a small frame.
+
+    At most three ticks per axis and 8-point labels keep the tick labels apart at GIF sizes.
+    """
+    from matplotlib.ticker import MaxNLocator
+
+    fig = new_figure(figsize)
+    ax = fig.add_subplot(projection="3d")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(nbins=2, symmetric=True))
+    for axis in "xyz":
+        getattr(ax, f"set_{axis}lim")(-size, size)
+        getattr(ax, f"set_{axis}label")(f"{axis} (m)", fontsize=9, labelpad=2)
+    ax.tick_params(labelsize=8, pad=0)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=10)
+    return fig, ax
+
+
+def _legend(ax) -> None:
+    ax.legend(loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 1.0))
 
 
 def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
-                         title: str | None = None, dpi: int = 72) -> Path:
-    """The body tumbling in the ground (world) frame with its omega and L arrows.
+                         title: str | None = None, dpi: int = 90) -> Path:
+    """The body tumbling in the ground (world) frame with its omega and L arrows; returns the file written.
 
     L is fixed in space for a torque-free run; omega wanders. Arrow lengths are scaled to the
-    body's size (each vector by its own largest magnitude over the run).
+    body's size (each vector by its own largest magnitude over the run). ``path`` ends in
+    ``.mp4`` or ``.gif``; an MP4 without ffmpeg is written as the GIF of the same name
+    (:func:`animation_path`), whose path is returned.
     """
-    plt = pyplot()
-    path = Path(path)
+    path, _ = animation_path(path)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
     rot = traj.design_attitude()  # design frame -> world
     w, L = traj.omega_world, traj.angular_momentum_world
     sw, sL = arrow_scale(w, size), arrow_scale(L, size)
 
-    fig = plt.figure(figsize=(4.8, 4.8))
-    ax = fig.add_subplot(projection="3d")
-    _setup_axes(ax, size, title or f"{traj.body_name}: ground frame")
+    fig, ax = scene_axes(size, title or f"{traj.body_name}: ground frame")
     artists = [ax.plot([], [], [], color="0.2", lw=1.6, ls="--" if removed else "-", marker="o" if len(p) == 1 else None)[0]
                for p, removed in lines]
-    w_line, = ax.plot([], [], [], color="tab:red", lw=2.2, label=r"$\omega$")
-    L_line, = ax.plot([], [], [], color="tab:blue", lw=2.2, label="L")
-    stamp = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=8)
-    ax.legend(loc="upper right", fontsize=8)
+    w_line, = ax.plot([], [], [], color="tab:red", lw=2.2, label=r"$\omega$ (rad/s, scaled)")
+    L_line, = ax.plot([], [], [], color="tab:blue", lw=2.2, label="L (kg m$^2$/s, scaled)")
+    stamp = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
+    _legend(ax)
 
     def draw(k: int):
         R = rot[k].as_matrix()
@@ -85,27 +135,27 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
 
 
 def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
-                       title: str | None = None, dpi: int = 72) -> Path:
-    """omega and L seen from the body (design axes), with the path of omega's tip (polhode)."""
-    plt = pyplot()
-    path = Path(path)
+                       title: str | None = None, dpi: int = 90) -> Path:
+    """omega and L seen from the body (design axes), with the path of omega's tip; returns the file written.
+
+    ``path`` as for :func:`animate_ground_frame`.
+    """
+    path, _ = animation_path(path)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
     A = traj.principal_axes  # principal -> design
     w, L = traj.omega @ A.T, traj.angular_momentum @ A.T
     sw, sL = arrow_scale(w, size), arrow_scale(L, size)
 
-    fig = plt.figure(figsize=(4.8, 4.8))
-    ax = fig.add_subplot(projection="3d")
-    _setup_axes(ax, size, title or f"{traj.body_name}: body frame")
+    fig, ax = scene_axes(size, title or f"{traj.body_name}: body frame")
     for pts, removed in lines:
         ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], color="0.55", lw=0.9, ls="--" if removed else "-",
                 marker="o" if len(pts) == 1 else None)
     trace, = ax.plot([], [], [], color="tab:red", lw=0.8, alpha=0.6)
-    w_line, = ax.plot([], [], [], color="tab:red", lw=2.2, label=r"$\omega$")
-    L_line, = ax.plot([], [], [], color="tab:blue", lw=2.2, label="L")
-    stamp = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=8)
-    ax.legend(loc="upper right", fontsize=8)
+    w_line, = ax.plot([], [], [], color="tab:red", lw=2.2, label=r"$\omega$ (rad/s, scaled)")
+    L_line, = ax.plot([], [], [], color="tab:blue", lw=2.2, label="L (kg m$^2$/s, scaled)")
+    stamp = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
+    _legend(ax)
     tips = w * sw
 
     def draw(k: int):
@@ -120,13 +170,12 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
 
 def _save(fig, draw, frames, path: Path, fps: int, dpi: int) -> None:
     """Render every frame into a temporary file, then rename it into place."""
-    plt = pyplot()
+    import matplotlib
+
     writer = writer_for(path, fps)
-    try:
-        with atomic_path(path) as tmp:
-            with writer.saving(fig, str(tmp), dpi):
-                for k in frames:
-                    draw(int(k))
-                    writer.grab_frame()
-    finally:
-        plt.close(fig)
+    settings = {"animation.ffmpeg_path": ffmpeg_path()} if path.suffix == ".mp4" else {}
+    with matplotlib.rc_context(settings), atomic_path(path) as tmp:
+        with writer.saving(fig, str(tmp), dpi):
+            for k in frames:
+                draw(int(k))
+                writer.grab_frame()

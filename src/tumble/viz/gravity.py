@@ -2,7 +2,7 @@
 
 The classification is :func:`tumble.dynamics.gravity.gravity_gradient_stability` (Hughes,
 *Spacecraft Attitude Dynamics*, ch. 9; DeBra & Delp, J. Astronaut. Sci. 8 (1961) 14); this
-module only draws it. matplotlib is imported on first use, on the Agg backend.
+module only draws it, on a given ``ax`` or a new figure, and returns the Figure.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..dynamics.gravity import STABILITY_REGIONS, gravity_gradient_stability
-from ._backend import pyplot, save_figure
+from ._backend import figure_and_axes
 
 __all__ = ["figure_gravity_stability"]
 
@@ -43,7 +43,7 @@ def _draw_regions(ax, kr_range, ky_range, n: int) -> None:
     ax.set_ylim(*ky_range)
 
 
-def figure_gravity_stability(path=None, ax=None, *, points=None):
+def figure_gravity_stability(*, ax=None, points=None):
     """Linear gravity-gradient stability of a body at rest in the orbiting frame, over (k_R, k_Y).
 
     ``k_R = (I_pitch - I_yaw) / I_roll`` (horizontal) and ``k_Y = (I_pitch - I_roll) / I_yaw``
@@ -54,8 +54,6 @@ def figure_gravity_stability(path=None, ax=None, *, points=None):
 
     Parameters
     ----------
-    path : str or Path, optional
-        Where to write the figure (PNG, SVG, ... by its suffix); the figure is closed after.
     ax : matplotlib Axes, optional
         Draw on these axes instead of a new figure.
     points : dict of str to (float, float), optional
@@ -67,15 +65,11 @@ def figure_gravity_stability(path=None, ax=None, *, points=None):
     """
     from matplotlib.patches import Patch
 
-    plt = pyplot()
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
-    else:
-        fig = ax.figure
+    fig, ax = figure_and_axes(ax, figsize=(8.4, 5.6))
     _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 601)
     ax.set_aspect("equal")
-    ax.set_xlabel(r"$k_R = (I_{pitch} - I_{yaw}) / I_{roll}$")
-    ax.set_ylabel(r"$k_Y = (I_{pitch} - I_{roll}) / I_{yaw}$")
+    ax.set_xlabel(r"$k_R = (I_{pitch} - I_{yaw}) / I_{roll}$ (dimensionless)")
+    ax.set_ylabel(r"$k_Y = (I_{pitch} - I_{roll}) / I_{yaw}$ (dimensionless)")
     ax.set_title("Gravity-gradient stability in a circular orbit (linearised)", fontsize=10)
     ax.text(0.55, 0.2, "Lagrange", ha="center", fontsize=9)
     ax.annotate("DeBra-Delp", xy=(-0.02, -0.6), xytext=(-0.75, -0.85), fontsize=9,
@@ -88,12 +82,10 @@ def figure_gravity_stability(path=None, ax=None, *, points=None):
     inset.set_title("DeBra-Delp, enlarged", fontsize=7)
     for label, (kr, ky) in (points or {}).items():
         for axes in (ax, inset):
-            axes.plot([kr], [ky], "k*", ms=7)
+            axes.plot([kr], [ky], "k*", ms=7, zorder=5)
         right = kr > 0.5  # keep the label inside the square
         ax.annotate(label, (kr, ky), xytext=(-5 if right else 5, -10 if ky > 0.9 else 4),
                     textcoords="offset points", ha="right" if right else "left", fontsize=8)
     handles = [Patch(color=c, label=lbl) for c, lbl in zip(REGION_COLORS, REGION_LABELS)]
-    ax.legend(handles=handles, fontsize=7, loc="lower right", framealpha=0.9)
-    if path is not None:
-        save_figure(fig, path, dpi=110)
+    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     return fig

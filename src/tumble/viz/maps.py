@@ -10,8 +10,8 @@
   :meth:`tumble.ensemble.SweepSummary.sample_columns`): the distribution of flip periods and the
   cases on the inertia-ratio plane.
 
-Both take an optional ``path`` (written, then the figure is closed) and return the Figure;
-matplotlib is imported on first use, on the Agg backend.
+Both draw on a given ``ax`` (``fig``) or a new figure and return the Figure
+(:func:`tumble.viz.save_figure` writes it); legends sit outside the axes.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..ensemble import stability_map
-from ._backend import pyplot, save_figure
+from ._backend import figure_and_axes, legend_outside, new_figure
 
 __all__ = ["figure_stability_map", "figure_sweep"]
 
@@ -40,8 +40,8 @@ def _triangle(ax) -> None:
     ax.set_ylabel(_RATIO_LABELS[1])
 
 
-def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=None, ax=None, *,
-                         resolution: int = 300, points: dict | None = None):
+def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, ax=None, resolution: int = 300,
+                         points: dict | None = None):
     """The flip interval and the circulation axis over the triangle of inertia ratios.
 
     Parameters
@@ -50,10 +50,8 @@ def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=Non
         Spin about the intermediate axis, rad/s.
     perturbation : (float, float)
         Components along the minor and major axes, as fractions of ``spin``.
-    path : str or Path, optional
-        Where to write the figure (PNG, SVG, ... by its suffix).
     ax : matplotlib Axes, optional
-        Draw on these axes instead of a new figure (the colour bar goes beside them).
+        Draw on these axes instead of a new figure (the colour bar goes below them).
     resolution : int
         Cells along ``I1/I3`` (:func:`tumble.ensemble.stability_map`).
     points : dict of str to (float, float), optional
@@ -66,15 +64,11 @@ def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=Non
     from matplotlib.colors import LogNorm
 
     m = stability_map(spin, perturbation, resolution=resolution)
-    plt = pyplot()
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(7.6, 4.3), layout="constrained")
-    else:
-        fig = ax.figure
+    fig, ax = figure_and_axes(ax, figsize=(10.0, 4.3))
     values = np.ma.masked_invalid(m.flip_interval)
     mesh = ax.pcolormesh(m.x, m.y, values, shading="nearest", cmap="viridis", rasterized=True,
                          norm=LogNorm(vmin=float(values.min()), vmax=float(values.max())))
-    fig.colorbar(mesh, ax=ax, label="flip interval (s)", shrink=0.8)
+    fig.colorbar(mesh, ax=ax, label="flip interval (s)", shrink=0.6, location="bottom", aspect=40)
     X, Y = np.meshgrid(m.x, m.y)
     ax.contour(X, Y, m.separatrix_gap, levels=[0.0], colors="w", linewidths=1.2)
     ax.plot([], [], color="w", lw=1.2, label="separatrix ($L^2 = 2 E I_2$)")
@@ -85,7 +79,7 @@ def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=Non
             ax.text(cx, cy, f"circulates about\nthe {name} axis", ha="center", va="center", fontsize=8, color="w")
     _triangle(ax)
     for label, (x, y) in (points or {}).items():
-        ax.plot([x], [y], "r*", ms=9)
+        ax.plot([x], [y], "r*", ms=9, zorder=5)
         ax.annotate(label, (x, y), xytext=(5, 4), textcoords="offset points", fontsize=8, color="r")
     ax.set_xlim(0.0, 1.0)
     ax.set_ylim(0.5, 1.005)  # the top edge in view
@@ -93,9 +87,7 @@ def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), path=Non
     p1, p3 = m.omega0[0] / m.omega0[1], m.omega0[2] / m.omega0[1]
     ax.set_title(f"Exact flip interval, spin {spin:g} rad/s about the intermediate axis\n"
                  f"perturbed by ({p1:g}, {p3:g}) of it along the minor and major axes", fontsize=9)
-    ax.legend(fontsize=7, loc="lower right", framealpha=0.9, facecolor="0.85")
-    if path is not None:
-        save_figure(fig, path, dpi=110)
+    legend_outside(ax, facecolor="0.85")
     return fig
 
 
@@ -107,7 +99,7 @@ def _column(columns: dict, name: str) -> np.ndarray | None:
     return None
 
 
-def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: int | None = None):
+def figure_sweep(columns: dict, *, fig=None, title: str | None = None, cases: int | None = None):
     """What a sweep's cases did: their flip periods, and where they lie among the inertia ratios.
 
     Left: the histogram of the measured and the exact flip period (or, when no case flips, of
@@ -119,8 +111,8 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
     columns : dict of str to array
         Columns of ``cases.csv`` (names with units), e.g. a sweep's bounded sample
         (:meth:`tumble.ensemble.SweepSummary.sample_columns`).
-    path : str or Path, optional
-        Where to write the figure.
+    fig : matplotlib Figure, optional
+        An empty figure to draw the two panels on (a new one by default).
     title : str, optional
         The figure's title.
     cases : int, optional
@@ -130,8 +122,8 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
     -------
     matplotlib Figure
     """
-    plt = pyplot()
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.2), layout="constrained")
+    fig = fig if fig is not None else new_figure((12.5, 4.4))
+    left, right = fig.subplots(1, 2)
     I1, I2, I3 = (_column(columns, f"I{j}") for j in (1, 2, 3))
     measured, exact = _column(columns, "flip_period"), _column(columns, "flip_period_exact")
     shown = len(I1)
@@ -155,7 +147,7 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
                 left.hist(values, bins=bins, histtype="step", lw=1.4, ls=style, color=color,
                           label=f"{label} (s): {values.size} cases", zorder=3 if style == "--" else 2)
         left.set_xlabel("flip period (s)")
-        left.legend(fontsize=7)
+        left.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.01), borderaxespad=0.0)
     else:
         nutation = _column(columns, "max_nutation")
         left.hist(nutation[np.isfinite(nutation)], bins=40, color="tab:blue")
@@ -165,15 +157,13 @@ def figure_sweep(columns: dict, path=None, *, title: str | None = None, cases: i
     colour = exact if np.any(np.isfinite(exact)) else _column(columns, "flips")
     what = "exact flip period (s)" if colour is exact else "flips"
     dots = right.scatter(x, y, c=colour, s=6, cmap="viridis", rasterized=True, zorder=3)  # over the edges
-    fig.colorbar(dots, ax=right, label=what)
+    fig.colorbar(dots, ax=right, label=what, location="bottom", aspect=40)  # the legend goes right
     pad = max(0.01, 0.1 * max(np.ptp(x), np.ptp(y)))
     _triangle(right)
     right.set_xlim(x.min() - pad, x.max() + pad)
     right.set_ylim(y.min() - pad, min(y.max() + pad, 1.0 + pad))
-    right.legend(fontsize=6, loc="best", framealpha=0.9)
+    legend_outside(right, fontsize=6)
     right.set_title("cases among the inertia ratios", fontsize=9)
     sampled = f" ({shown} of {cases} cases)" if cases is not None and cases > shown else f" ({shown} cases)"
     fig.suptitle((title or "sweep") + sampled, fontsize=10)
-    if path is not None:
-        save_figure(fig, path, dpi=110)
     return fig

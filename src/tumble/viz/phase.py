@@ -18,7 +18,7 @@ from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.exact import FreeRotation
 from ..mass import moment_degeneracy
-from ._backend import pyplot, save_figure
+from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 
 __all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
            "separatrices"]
@@ -41,13 +41,6 @@ def phase_portrait_problem(traj: Trajectory) -> str | None:
     if not traj.angular_momentum_norm[0] > 0:
         return "the body is at rest (L = 0): there is no motion to picture"
     return None
-
-
-def _require_free_motion(traj: Trajectory, figure: str) -> None:
-    problem = phase_portrait_problem(traj)
-    if problem:
-        raise ValueError(f"no {figure} for this run: {problem}")
-
 
 
 def polhode_family(moments, L_norm: float, count: int = 9, points: int = 240) -> list[np.ndarray]:
@@ -87,48 +80,99 @@ def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
     return out
 
 
-def figure_polhode(traj: Trajectory, path, title: str | None = None) -> None:
-    """L in the body frame on the momentum sphere, with its family of polhodes and separatrices.
+def _axes_3d(ax):
+    """``(figure, ax)`` with ``ax`` a 3D axes: a new figure, the given 3D axes, or a 3D axes put in
+    place of a given 2D one (same figure, same slot)."""
+    if ax is None:
+        fig = new_figure((7.4, 6.0))
+        return fig, fig.add_subplot(projection="3d")
+    if ax.name == "3d":
+        return ax.figure, ax
+    fig, spec = ax.figure, ax.get_subplotspec()
+    if spec is None:
+        raise ValueError("ax: the polhode is drawn in 3D; give an axes made with projection='3d'")
+    ax.remove()
+    return fig, fig.add_subplot(spec, projection="3d")
 
-    Raises ``ValueError`` for a run that is not a torque-free motion (:func:`phase_portrait_problem`).
+
+def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
+    """L in the body frame on the momentum sphere (kg m^2/s), with its family of polhodes and separatrices.
+
+    For a run that is not a torque-free motion of one rigid body, or a body at rest
+    (:func:`phase_portrait_problem`), the figure says so in one line instead.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    ax : matplotlib Axes, optional
+        Draw here instead of on a new figure; a 2D axes is replaced by a 3D one in its place.
+    title : str, optional
+        The title (default: body and |L|).
+
+    Returns
+    -------
+    matplotlib Figure
     """
-    _require_free_motion(traj, "polhode")
-    plt = pyplot()
+    fig, ax = _axes_3d(ax)
+    problem = phase_portrait_problem(traj)
+    if problem:
+        note_only(ax, f"no polhode for this run: {problem}", title or f"{traj.body_name}: polhode")
+        return fig
     I = traj.moments
     L = traj.angular_momentum
     R = float(traj.angular_momentum_norm[0])
-    fig = plt.figure(figsize=(6.4, 6.0), layout="constrained")
-    ax = fig.add_subplot(projection="3d")
+    ax.computed_zorder = False  # draw in the order given: sphere, curves, this run, markers
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
-    ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5)
+    ax.plot_wireframe(R * np.cos(u) * np.sin(v), R * np.sin(u) * np.sin(v), R * np.cos(v), color="0.88", lw=0.5,
+                      zorder=0)
     if moment_degeneracy(I) == "asymmetric":
-        for c in polhode_family(I, R):
-            ax.plot(*c.T, color="tab:gray", lw=0.8)
+        for k, c in enumerate(polhode_family(I, R)):
+            ax.plot(*c.T, color="tab:gray", lw=0.8, zorder=1, label="polhodes through this |L|" if k == 0 else None)
         for k, c in enumerate(separatrices(I, R)):
-            ax.plot(*c.T, color="tab:red", lw=1.4, ls="--", label="separatrix" if k == 0 else None)
-    ax.plot(*L.T, color="tab:blue", lw=2.4, label=f"this run ({traj.method})")
-    ax.scatter(*L[0], color="tab:blue", s=25)
+            ax.plot(*c.T, color="tab:red", lw=1.4, ls="--", zorder=2, label="separatrix" if k == 0 else None)
+    ax.plot(*L.T, color="tab:blue", lw=2.4, zorder=3, label=f"this run ({traj.method})")
+    ax.scatter(*L[0], color="k", edgecolor="w", s=40, zorder=5, depthshade=False, label="t = 0")
     for j, name in enumerate(("minor", "intermediate", "major")):
         tip = np.zeros(3)
         tip[j] = 1.25 * R
-        ax.plot(*np.stack([-tip, tip]).T, color="k", lw=0.6)
-        ax.text(*tip, f"$L_{j + 1}$ ({name})", fontsize=8)
+        ax.plot(*np.stack([-tip, tip]).T, color="k", lw=0.6, zorder=1)
+        ax.text(*tip, f"$L_{j + 1}$ ({name})", fontsize=8, zorder=6)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel(r"$L_1$ (kg m$^2$/s)")
-    ax.set_ylabel(r"$L_2$")
-    ax.set_zlabel(r"$L_3$")
-    ax.set_title(title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g}", fontsize=10)
-    ax.legend(loc="upper left", fontsize=8)
-    save_figure(fig, path, dpi=110)
+    for axis, j in zip("xyz", range(3)):
+        getattr(ax, f"set_{axis}label")(rf"$L_{j + 1}$ (kg m$^2$/s)", fontsize=8)
+        ax.locator_params(axis=axis, nbins=4)
+    ax.tick_params(labelsize=7)
+    ax.set_title(title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g} kg m$^2$/s",
+                 fontsize=9)
+    # in the corner, over the empty panes: a 3D axes' layout box leaves out a legend outside it
+    ax.legend(loc="upper left", bbox_to_anchor=(-0.02, 1.0), fontsize=7, framealpha=0.9)
+    return fig
 
 
-def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
-    """The tip of omega in the invariable plane (ground frame), Poinsot's construction.
+def figure_herpolhode(traj: Trajectory, *, ax=None, title: str | None = None):
+    """The tip of omega (rad/s) in the invariable plane, ground frame: Poinsot's construction.
 
-    Raises ``ValueError`` for a run that is not a torque-free motion (:func:`phase_portrait_problem`).
+    For a run that is not a torque-free motion of one rigid body, or a body at rest
+    (:func:`phase_portrait_problem`), the figure says so in one line instead: under a torque
+    there is no invariable plane.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    ax : matplotlib Axes, optional
+        Draw here instead of on a new figure.
+    title : str, optional
+        The title (default: body and the plane's height).
+
+    Returns
+    -------
+    matplotlib Figure
     """
-    _require_free_motion(traj, "herpolhode")
-    plt = pyplot()
+    fig, ax = figure_and_axes(ax, figsize=(7.4, 5.4))
+    problem = phase_portrait_problem(traj)
+    if problem:
+        note_only(ax, f"no herpolhode for this run: {problem}", title or f"{traj.body_name}: herpolhode")
+        return fig
     Lw = traj.angular_momentum_world[0]
     n = Lw / np.linalg.norm(Lw)
     u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
@@ -136,15 +180,14 @@ def figure_herpolhode(traj: Trajectory, path, title: str | None = None) -> None:
     v = np.cross(n, u)
     w = traj.omega_world
     height = w @ n  # = 2 E / |L|, constant without torque
-    fig, ax = plt.subplots(figsize=(5.6, 5.6), layout="constrained")
-    ax.plot(w @ u, w @ v, color="tab:purple", lw=1.0)
-    ax.scatter([w[0] @ u], [w[0] @ v], color="tab:purple", s=20, zorder=3, label="t = 0")
-    ax.scatter([0.0], [0.0], marker="+", color="k", s=60, label="foot of L")
-    ax.set_aspect("equal")
+    ax.plot(w @ u, w @ v, color="tab:purple", lw=1.0, zorder=2, label=r"tip of $\omega$ (rad/s)")
+    ax.scatter([w[0] @ u], [w[0] @ v], color="k", edgecolor="w", s=40, zorder=5, label="t = 0")
+    ax.scatter([0.0], [0.0], marker="+", color="k", s=80, linewidths=1.5, zorder=5, label="foot of L")
+    ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(r"$\omega \cdot u$ (rad/s)")
     ax.set_ylabel(r"$\omega \cdot v$ (rad/s)")
     spread = float(np.ptp(height))
     ax.set_title(title or f"{traj.body_name}: herpolhode in the invariable plane\n"
-                 f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e})", fontsize=9)
-    ax.legend(fontsize=8)
-    save_figure(fig, path, dpi=110)
+                 f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e} rad/s)", fontsize=9)
+    legend_outside(ax)
+    return fig

@@ -1,7 +1,10 @@
-"""Static figures: omega(t) per case and the combined figure like the seed's Figure 1.
+"""Static figures of one run: omega(t), the seed's Figure 1 for every case, the drift of the invariants.
 
-matplotlib is imported here only (never by the physics) and with the non-interactive Agg
-backend, so figures are written to files on machines without a screen.
+Every function draws on a given matplotlib ``ax`` (or ``fig`` for several panels), or on a new
+figure, and returns the Figure; :func:`tumble.viz.save_figure` writes it. Legends sit outside
+the axes, so they never cover the data. A run longer than :data:`MAX_POINTS` samples is drawn as
+its envelope (the smallest and largest value in each of :data:`ENVELOPE_BINS` bins), said in
+the title: drawn point by point it would be a solid block of colour.
 """
 
 from __future__ import annotations
@@ -10,71 +13,171 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
-from ._backend import pyplot, save_figure
+from ._backend import figure_and_axes, legend_outside, new_figure
 
-__all__ = ["figure_drift", "figure_omega", "figure_omega_grid", "plot_omega"]
+__all__ = ["ENVELOPE_BINS", "MAX_POINTS", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
+           "plot_omega"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
 
+#: Most samples drawn point by point per curve; a longer run is drawn as its envelope.
+MAX_POINTS = 2000
+#: Bins of the envelope of a long run.
+ENVELOPE_BINS = 400
 
 
-def plot_omega(traj: Trajectory, ax, title: str | None = None) -> None:
-    """Draw omega_1, omega_2, omega_3 (principal frame, rad/s) against t on ``ax``."""
-    for j in range(3):
-        ax.plot(traj.t, traj.omega[:, j], color=COLORS[j], lw=1.2,
-                label=rf"$\omega_{j + 1}$ ({AXIS_ROLES[j]}, $I_{j + 1}$ = {traj.moments[j]:.4g})")
-    ax.axhline(0.0, color="0.6", lw=0.6)
+def envelope(t, y, bins: int = ENVELOPE_BINS):
+    """The envelope of ``y(t)``: ``(t, low, high)``, each bin's first and last time with its min and max.
+
+    ``t`` has shape (n,), ``y`` shape (n,) or (n, k); ``n`` samples are split into ``bins`` runs
+    of (nearly) equal length. The outputs have ``2 * bins`` rows (each bin's value held over the
+    bin), so a step-wise band drawn through them covers every sample.
+    """
+    t, y = np.asarray(t, float), np.asarray(y, float)
+    starts = np.linspace(0, len(t), min(bins, len(t)) + 1).astype(int)
+    first, last = starts[:-1], starts[1:] - 1
+    low, high = np.minimum.reduceat(y, first, axis=0), np.maximum.reduceat(y, first, axis=0)
+    times = np.column_stack([t[first], t[last]]).ravel()
+    return times, np.repeat(low, 2, axis=0), np.repeat(high, 2, axis=0)
+
+
+def _inertia_label(traj: Trajectory, j: int) -> str:
+    return rf"$\omega_{j + 1}$ ({AXIS_ROLES[j]}, $I_{j + 1}$ = {traj.moments[j]:.4g} kg m$^2$)"
+
+
+def plot_omega(traj: Trajectory, ax, title: str | None = None) -> str | None:
+    """Draw omega_1, omega_2, omega_3 (principal frame, rad/s) against t (s) on ``ax``.
+
+    A run of more than :data:`MAX_POINTS` samples is drawn as its :func:`envelope`. Returns the
+    note that says so (None when every sample is drawn); it is also the second line of the title.
+    """
+    note = None
+    if len(traj) > MAX_POINTS:
+        times, low, high = envelope(traj.t, traj.omega)
+        for j in range(3):
+            ax.fill_between(times, low[:, j], high[:, j], facecolor=COLORS[j], edgecolor=COLORS[j], alpha=0.3,
+                            lw=0.8, label=_inertia_label(traj, j))
+        note = (f"{len(traj)} samples: band = min to max of each component in {len(times) // 2} bins "
+                f"of {(traj.t[-1] - traj.t[0]) / (len(times) // 2):.3g} s")
+    else:
+        for j in range(3):
+            ax.plot(traj.t, traj.omega[:, j], color=COLORS[j], lw=1.2, label=_inertia_label(traj, j))
+    ax.axhline(0.0, color="0.6", lw=0.6, zorder=0)
     ax.set_xlabel("t (s)")
-    ax.set_ylabel(r"$\omega$ (rad/s), principal frame")
-    ax.set_xlim(traj.t[0], traj.t[-1])
-    if title:
-        ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=7, loc="best", framealpha=0.85)
+    ax.set_ylabel(r"$\omega$, principal frame (rad/s)")
+    if len(traj) > 1:
+        ax.set_xlim(traj.t[0], traj.t[-1])
+    heading = "\n".join(s for s in (title, note) if s)
+    if heading:
+        ax.set_title(heading, fontsize=9)
+    legend_outside(ax)
+    return note
 
 
-def figure_omega(traj: Trajectory, path, title: str | None = None) -> None:
-    """omega(t) of one run, written to ``path`` (PNG or SVG by its suffix)."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7.5, 3.6), layout="constrained")
+def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
+    """omega(t) of one run, principal frame (rad/s), against t (s).
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run.
+    ax : matplotlib Axes, optional
+        Draw here instead of on a new figure.
+    title : str, optional
+        The axes' title.
+
+    Returns
+    -------
+    matplotlib Figure
+        ``ax.figure`` when ``ax`` was given; write it with :func:`tumble.viz.save_figure`.
+    """
+    fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
     plot_omega(traj, ax, title)
-    save_figure(fig, path, dpi=110)
+    return fig
 
 
-def figure_omega_grid(cases: list[tuple[str, Trajectory]], path, ncols: int = 3, suptitle: str | None = None) -> None:
-    """Several runs side by side (the seed's Figure 1, for every case of the study)."""
-    plt = pyplot()
+def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig=None, ncols: int = 3,
+                      suptitle: str | None = None):
+    """Several runs side by side, one panel each (the seed's Figure 1, for every case of the study).
+
+    Parameters
+    ----------
+    cases : list of (str, Trajectory)
+        Panel titles and runs.
+    fig : matplotlib Figure, optional
+        An empty figure to draw the panels on (a new one by default).
+    ncols : int
+        Panels per row.
+    suptitle : str, optional
+        The figure's title.
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    if not cases:
+        raise ValueError("cases is empty: give at least one (title, trajectory) pair")
+    if isinstance(ncols, bool) or not isinstance(ncols, (int, np.integer)) or ncols < 1:
+        raise ValueError(f"ncols = {ncols!r} must be a whole number of at least 1")
+    ncols = min(int(ncols), len(cases))
     nrows = int(np.ceil(len(cases) / ncols))
-    fig, axes = plt.subplots(nrows, ncols, figsize=(5.0 * ncols, 3.2 * nrows), layout="constrained", squeeze=False)
+    fig = fig if fig is not None else new_figure((6.2 * ncols, 3.2 * nrows))
+    axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, (title, traj) in zip(axes.flat, cases):
         plot_omega(traj, ax, title)
     for ax in list(axes.flat)[len(cases):]:
         ax.set_visible(False)
     if suptitle:
         fig.suptitle(suptitle)
-    save_figure(fig, path, dpi=100)
+    return fig
 
 
-def figure_drift(traj: Trajectory, path, title: str | None = None) -> None:
-    """Relative error of energy, |L| and L_world against time, on a log scale.
+def _reference(size: np.ndarray) -> tuple[float, str]:
+    """What a drift is measured against: the initial value, or the largest one if that is 0."""
+    if size[0] > 0:
+        return float(size[0]), "0"
+    return (float(np.max(size)) or 1.0), "max"
 
-    ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``: zero
-    for the exact motion, round-off (~1e-16) for the best methods. Zeros are drawn at 1e-17.
+
+def figure_drift(traj: Trajectory, *, ax=None, title: str | None = None):
+    """Relative error of energy, |L| and L_world against time (s), on a log scale.
+
+    ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``
+    (dimensionless): zero for the exact motion, round-off (~1e-16) for the best methods. Zeros
+    are drawn at 1e-17. A run that starts at rest is measured against the largest value instead.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The run (its energy, |L| and L_world).
+    ax : matplotlib Axes, optional
+        Where to draw (default: on a new figure).
+    title : str, optional
+        The axes' title (default: body, method and, under a torque, that these change physically).
+
+    Returns
+    -------
+    matplotlib Figure
     """
-    plt = pyplot()
+    fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
     E, Ln, Lw = traj.energy, traj.angular_momentum_norm, traj.angular_momentum_world
-    ref_E, ref_L = (E[0] if E[0] > 0 else 1.0), (Ln[0] if Ln[0] > 0 else 1.0)
-    series = {
-        "energy": np.abs(E - E[0]) / ref_E,
-        "|L|": np.abs(Ln - Ln[0]) / ref_L,
-        r"$L_{world}$": np.linalg.norm(Lw - Lw[0], axis=1) / ref_L,
-    }
-    fig, ax = plt.subplots(figsize=(7.5, 3.6), layout="constrained")
-    for (label, values), color in zip(series.items(), COLORS):
-        ax.semilogy(traj.t, np.maximum(values, 1e-17), color=color, lw=1.1, label=label)
+    (ref_E, at_E), (ref_L, at_L) = _reference(np.abs(E)), _reference(Ln)
+    series = [
+        (np.abs(E - E[0]) / ref_E, rf"energy: |E - E$_0$| / E$_{{{at_E}}}$"),
+        (np.abs(Ln - Ln[0]) / ref_L, rf"|L|: ||L| - |L$_0$|| / |L|$_{{{at_L}}}$"),
+        (np.linalg.norm(Lw - Lw[0], axis=1) / ref_L, rf"$L_{{world}}$: |$L_w - L_{{w,0}}$| / |L|$_{{{at_L}}}$"),
+    ]
+    for (values, label), color in zip(series, COLORS):
+        if len(traj) > MAX_POINTS:
+            times, _, high = envelope(traj.t, values)
+            ax.semilogy(times, np.maximum(high, 1e-17), color=color, lw=1.1, label=label + ", max per bin")
+        else:
+            ax.semilogy(traj.t, np.maximum(values, 1e-17), color=color, lw=1.1, label=label)
     ax.set_xlabel("t (s)")
-    ax.set_ylabel("relative drift")
-    ax.set_xlim(traj.t[0], traj.t[-1])
-    note = "" if traj.torque_free else " (a torque acts: these change physically)"
-    ax.set_title(title or f"{traj.body_name}: drift of the invariants, {traj.method}{note}", fontsize=10)
-    ax.legend(fontsize=8)
-    save_figure(fig, path, dpi=110)
+    ax.set_ylabel("relative drift (dimensionless)")
+    if len(traj) > 1:
+        ax.set_xlim(traj.t[0], traj.t[-1])
+    note = "" if traj.torque_free else "\n(a torque acts: these change physically)"
+    ax.set_title(title or f"{traj.body_name}: drift of the invariants, {traj.method}{note}", fontsize=9)
+    legend_outside(ax)
+    return fig

@@ -12,9 +12,9 @@
 - :func:`spacecraft_figures`: which of these apply to a run, for the command line.
 
 :func:`figure_energy`, :func:`figure_nutation` and :func:`figure_orbit_angles` take the
-trajectory, an optional ``path`` (written, then the figure is closed) and an optional matplotlib
-``ax`` (drawn there instead of on a new figure) and return the Figure. matplotlib is imported on first use, on the Agg backend; legends sit outside the axes,
-so they never cover the data.
+trajectory and an optional matplotlib ``ax`` (drawn there instead of on a new figure) and return
+the Figure (:func:`tumble.viz.save_figure` writes it). Legends sit outside the axes, so they never
+cover the data.
 """
 
 from __future__ import annotations
@@ -25,41 +25,19 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..dynamics.gravity import GravityGradient, orbit_frame_angles
-from ..mass import AXIS_ROLES
-from ._backend import pyplot, save_figure
+from .plots import plot_omega
+from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 
-__all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", 
-           "spacecraft_figures"]
+__all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", "spacecraft_figures"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
-
-
-def _axes(ax, figsize=(7.5, 3.6)):
-    """``(figure, ax)``: a new constrained-layout figure unless ``ax`` is given."""
-    if ax is not None:
-        return ax.figure, ax
-    fig, ax = pyplot().subplots(figsize=figsize, layout="constrained")
-    return fig, ax
-
-
-def _legend(ax) -> None:
-    """The legend to the right of the axes, outside them: never over the data."""
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, framealpha=0.9)
-
-
-def _finish(fig, ax, path):
-    """Place the legend and write the figure to ``path`` if given."""
-    _legend(ax)
-    if path is not None:
-        save_figure(fig, path, dpi=100)
-    return fig
 
 
 def _has_internal_models(traj: Trajectory) -> bool:
     return traj.dissipated is not None or traj.internal_momentum is not None
 
 
-def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
+def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
     """Total kinetic energy and its budget against t, J.
 
     Draws ``traj.energy`` (body, rotors and damper) and, where the run has rotors or a damper,
@@ -70,8 +48,6 @@ def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
     Parameters
     ----------
     traj : Trajectory
-    path : str or Path, optional
-        Where to write the figure (PNG, SVG, ... by its suffix); the figure is closed after.
     ax : matplotlib Axes, optional
         Draw on these axes instead of a new figure.
     log : bool
@@ -81,7 +57,7 @@ def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
     -------
     matplotlib Figure
     """
-    fig, ax = _axes(ax)
+    fig, ax = figure_and_axes(ax)
     E = traj.energy
     ax.plot(traj.t, E, color=COLORS[0], lw=1.4, label="kinetic energy T (J)")
     budget, terms = np.full_like(E, E[0]), []
@@ -101,10 +77,11 @@ def figure_energy(traj: Trajectory, path=None, ax=None, *, log: bool = False):
     ax.set_ylabel("energy (J)")
     ax.set_xlim(traj.t[0], traj.t[-1])
     ax.set_title(title, fontsize=9)
-    return _finish(fig, ax, path)
+    legend_outside(ax)
+    return fig
 
 
-def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = True, log: bool = False):
+def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: bool = False):
     """The nutation angle between L and the major axis against t (:attr:`Trajectory.nutation_angle`).
 
     0 is a rigid spin about the major axis, the end state an energy sink drives any spin to.
@@ -112,27 +89,26 @@ def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = Tru
     Parameters
     ----------
     traj : Trajectory
-    path, ax
-        As for :func:`figure_energy`.
+    ax : matplotlib Axes, optional
+        Draw here instead of on a new figure.
     degrees : bool
         Degrees (default) or radians.
     log : bool
         A logarithmic angle axis (zeros are not drawn).
 
-    Raises
-    ------
-    ValueError
-        When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest): there
-        is no angle.
+    When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest) there is no
+    angle: the figure says so in one line.
 
     Returns
     -------
     matplotlib Figure
     """
     angle = traj.nutation_angle
+    fig, ax = figure_and_axes(ax)
     if not np.any(np.isfinite(angle)):
-        raise ValueError("no nutation angle for this run: its angular momentum L is 0 at every sample")
-    fig, ax = _axes(ax)
+        note_only(ax, "no nutation angle for this run: its angular momentum L is 0 at every sample",
+                  f"{traj.body_name}: nutation, {traj.method}")
+        return fig
     unit = "deg" if degrees else "rad"
     values = np.degrees(angle) if degrees else angle
     if log:
@@ -143,10 +119,11 @@ def figure_nutation(traj: Trajectory, path=None, ax=None, *, degrees: bool = Tru
     ax.set_ylabel(f"nutation angle ({unit})")
     ax.set_xlim(traj.t[0], traj.t[-1])
     ax.set_title(f"{traj.body_name}: nutation, {traj.method}", fontsize=9)
-    return _finish(fig, ax, path)
+    legend_outside(ax)
+    return fig
 
 
-def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, path=None, ax=None, **axes):
+def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax=None, **axes):
     """Roll, pitch and yaw relative to the orbiting (LVLH) frame against t in orbits, rad.
 
     Parameters
@@ -155,8 +132,8 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, path=None, a
         A run under ``gravity`` (its ``t``, s, and ``attitude``).
     gravity : GravityGradient
         The orbit the run followed (bound to the body or not: only the orbit is used).
-    path, ax
-        As for :func:`figure_energy`.
+    ax : matplotlib Axes, optional
+        Draw here instead of on a new figure.
     **axes
         ``pitch_axis``, ``yaw_axis`` as in :func:`tumble.dynamics.gravity.orbit_frame_angles`
         (default 3 and 1).
@@ -166,7 +143,7 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, path=None, a
     matplotlib Figure
     """
     angles = orbit_frame_angles(traj, gravity, **axes)
-    fig, ax = _axes(ax)
+    fig, ax = figure_and_axes(ax)
     orbits = traj.t / gravity.period
     for name, symbol, values, color in zip(("roll", "pitch", "yaw"), (r"\phi", r"\theta", r"\psi"), angles, COLORS):
         ax.plot(orbits, values, color=color, lw=1.2, label=rf"{name} ${symbol}$ (rad)")
@@ -175,18 +152,19 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, path=None, a
     ax.set_ylabel("angle from the orbiting frame (rad)")
     ax.set_xlim(orbits[0], orbits[-1])
     ax.set_title(f"{traj.body_name}: attitude in the orbiting frame, {traj.method}", fontsize=9)
-    return _finish(fig, ax, path)
+    legend_outside(ax)
+    return fig
 
 
-def figure_omega_panels(cases, path=None, *, sharey: bool = True):
+def figure_omega_panels(cases, *, fig=None, sharey: bool = True):
     """omega(t) of several runs, principal frame, rad/s: one panel per run, one above the other.
 
     Parameters
     ----------
     cases : list of (str, Trajectory)
         Panel titles and runs (e.g. a body with its wheel spinning and with it stopped).
-    path : str or Path, optional
-        Where to write the figure; the figure is closed after.
+    fig : matplotlib Figure, optional
+        An empty figure to draw the panels on (a new one by default).
     sharey : bool
         One omega scale for every panel (default), so the runs compare at a glance.
 
@@ -196,30 +174,19 @@ def figure_omega_panels(cases, path=None, *, sharey: bool = True):
     """
     if not cases:
         raise ValueError("cases is empty: give at least one (title, trajectory) pair")
-    plt = pyplot()
-    fig, axes = plt.subplots(len(cases), 1, figsize=(7.5, 2.6 * len(cases)), layout="constrained", squeeze=False,
-                             sharey=sharey)
+    fig = fig if fig is not None else new_figure((8.6, 2.6 * len(cases)))
+    axes = fig.subplots(len(cases), 1, squeeze=False, sharey=sharey)
     for ax, (title, traj) in zip(axes[:, 0], cases):
-        for j in range(3):
-            ax.plot(traj.t, traj.omega[:, j], color=COLORS[j], lw=1.1,
-                    label=rf"$\omega_{j + 1}$, {AXIS_ROLES[j]} axis (rad/s)")
-        ax.axhline(0.0, color="0.6", lw=0.6)
-        ax.set_xlim(traj.t[0], traj.t[-1])
-        ax.set_xlabel("t (s)")
-        ax.set_ylabel(r"$\omega$ (rad/s)")
-        ax.set_title(title, fontsize=9)
-        _legend(ax)
-    if path is not None:
-        save_figure(fig, path, dpi=100)
+        plot_omega(traj, ax, title)
     return fig
 
 
 def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str, object]]:
     """The spacecraft figures that apply to a run, in drawing order: ``[(name, maker), ...]``.
 
-    ``name`` is a file stem (``"energy"``, ``"nutation"``, ``"orbit_angles"``); ``maker(path=None,
-    ax=None)`` draws that figure of this run and returns the Figure (written to ``path`` and closed
-    when a path is given), i.e. the figure function with the run bound.
+    ``name`` is a file stem (``"energy"``, ``"nutation"``, ``"orbit_angles"``); ``maker(ax=None)``
+    draws that figure of this run and returns the Figure, i.e. the figure function with the run
+    bound.
 
     - ``"energy"`` (:func:`figure_energy`): the run has a damper (``traj.dissipated`` is not None)
       or rotors (``traj.internal_momentum`` is not None);
