@@ -244,7 +244,7 @@
       legend: {x: 0, y: 0.99, bgcolor: "rgba(255,255,255,0.7)", font: {size: 11}},
       uirevision: "keep",
       scene: {xaxis: axis(names[0]), yaxis: axis(names[1]), zaxis: axis(names[2]), aspectmode: "cube",
-              camera: {eye: {x: 0.95, y: 0.95, z: 0.6}}},
+              camera: {eye: {x: 0.9, y: 0.9, z: 0.55}}},
     };
   }
 
@@ -304,8 +304,8 @@
     state.frame = 0; state.pos = 0;
     ui.slider.max = String(m.t.length - 1);
     ui.slider.value = "0";
-    var gl = sceneLayout(size, "ground frame: the body tumbles; without torque L stays fixed", ["x", "y", "z"]);
-    var bl = sceneLayout(size, "body frame (" + m.frameName + "): omega wanders, L with it", ["x", "y", "z"]);
+    var gl = sceneLayout(size, "ground frame (axes in m): the body tumbles; without torque L stays fixed", ["x", "y", "z"]);
+    var bl = sceneLayout(size, "body frame (" + m.frameName + ", m): omega wanders, L with it", ["x", "y", "z"]);
     gl.uirevision = bl.uirevision = String(Math.random());  // a new run: new camera defaults
     return Promise.all([
       Plotly.react(gd.ground, ground, gl, CONFIG),
