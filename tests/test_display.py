@@ -58,8 +58,11 @@ def test_body_repr_is_one_short_line_with_the_numbers(body):
     assert str(body) == text
 
 
-def test_mass_properties_repr(body):
+def test_mass_properties_repr_and_html(body):
     assert repr(body.properties) == "MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)"
+    table = parse(body.properties._repr_html_())
+    assert table.find("caption").text == "MassProperties"
+    assert rows(table) == rows(parse(body._repr_html_()).find("table"))  # the body's first table
 
 
 def test_reprs_stay_short_for_long_names_and_many_parts():
