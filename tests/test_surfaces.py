@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from tumble.io.bodyfile import load_body
@@ -146,3 +148,30 @@ def test_a_point_mass_body_is_drawn_with_a_size():
                  PointMass(mass=1.0, center=(0.0, 0.5, 0.0))])
     for v, f, _ in body_surfaces(body):
         assert surface_volume(v, f) > 0 and np.ptp(v, axis=0).max() > 0
+
+
+lengths = st.floats(0.01, 10.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(kind=st.sampled_from(["cylinder", "tube", "cone", "box"]), a=lengths, b=lengths, c=lengths,
+       n=st.integers(3, 64), rotvec=st.tuples(*[st.floats(-3.0, 3.0)] * 3))
+def test_any_prism_or_pyramid_encloses_its_polygonal_volume(kind, a, b, c, n, rotvec):
+    """Over shapes, sizes, step counts and orientations: closed, outward, and the volume of the
+    solid over the inscribed n-gon ((n/2) sin(2 pi/n) r^2 for the disc)."""
+    turn = Rotation.from_rotvec(rotvec)
+    axis, polygon = tuple(turn.apply([0.0, 0.0, 1.0])), n / 2 * math.sin(2 * math.pi / n)
+    if kind == "cylinder":
+        part, volume = Cylinder(mass=1.0, radius=a, length=b, axis=axis), polygon * a**2 * b
+    elif kind == "tube":
+        inner, outer = sorted((a, a + b))
+        part, volume = Tube(mass=1.0, inner_radius=inner, outer_radius=outer, length=c, axis=axis), \
+            polygon * (outer**2 - inner**2) * c
+    elif kind == "cone":
+        part, volume = Cone(mass=1.0, radius=a, height=b, axis=axis), polygon * a**2 * b / 3
+    else:
+        part, volume = Box(mass=1.0, size=(a, b, c), rotation=turn.as_quat()), a * b * c
+    v, f = part_surface(part, n)
+    assert_closed(v, f)
+    assert surface_volume(v, f) == pytest.approx(volume, rel=1e-9)
+    np.testing.assert_allclose(centroid(v, f), part.com, atol=1e-9 * max(a, b, c))

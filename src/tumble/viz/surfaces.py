@@ -16,6 +16,7 @@ import numpy as np
 
 from ..mass import Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+from .scene import body_size
 
 __all__ = ["MAX_MESH_FACES", "body_surfaces", "decimate", "part_surface", "surface_volume"]
 
@@ -177,8 +178,6 @@ def body_surfaces(body: Body, n: int = 32) -> list[tuple[np.ndarray, np.ndarray,
     Returns ``(vertices, faces, removed)`` triples; ``removed`` marks subtracted material.
     Rods are drawn with a radius of 2 % of the body's size, point masses as spheres of 3 % of it.
     """
-    from .scene import body_size
-
     size, com = body_size(body), np.asarray(body.com)
     out = []
     for part in body.parts:
