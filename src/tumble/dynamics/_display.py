@@ -133,7 +133,9 @@ def trajectory_html(traj) -> str:
         ]
         word = "drift" if traj.torque_free else "change (a torque acts)"
         drift = traj.drift
-        rows += [(f"energy {word}, max |E - E0| / E0", _drift_text(drift["energy"])),
+        # with rotors or a damper the balance E - motor work + dissipated is what is conserved (Trajectory.drift)
+        energy = "energy" if traj.rigid else "energy balance E - W_motor + E_dissipated"
+        rows += [(f"{energy} {word}, max |E - E0| / E0", _drift_text(drift["energy"])),
                  (f"|L| {word}, max ||L| - |L0|| / |L0|", _drift_text(drift["L_norm"])),
                  (f"L_world {word}, max |L_w - L_w(0)| / |L0|", _drift_text(drift["L_world"]))]
     if traj.rotor_axial_moments is not None:
