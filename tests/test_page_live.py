@@ -1,0 +1,326 @@
+"""Live mode of the interactive page, in headless Chromium.
+
+The JavaScript port of tumble's splitting integrator (``assets/splitting.js``) against tumble's
+own :func:`tumble.dynamics.geometric.propagate` for the same input (to 1e-9 of |omega| over
+20 s) and against the closed form (its order of convergence); then the form (``assets/live.js``)
+on a page written by ``tumble view``: Run recomputes the motion in the browser, the viewer plays
+it, bad input is shown in the form, nothing goes to the network and no console error appears.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+from test_page import FLAGS, browser_or_skip
+
+import tumble.viz
+from tumble.cli import main
+from tumble.dynamics.exact import FreeRotation
+from tumble.dynamics.geometric import MAX_STEP_ANGLE, default_step, propagate
+from tumble.mass.presets import t_handle
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+SPLITTING = Path(tumble.viz.__file__).parent / "assets" / "splitting.js"
+#: The issue's bound: browser and Python agree to this, relative to |omega| (and in rad of attitude).
+AGREE = 1e-9
+SEED = t_handle().properties.principal_moments.tolist()  # diag(0.125, 0.3125, 0.4375) kg m^2
+SEED_FLIP = [0.1, 10.0, 0.1]  # examples/seed_flip.toml's omega in the principal frame: near axis 2
+#: The T-handle spun 8 degrees off its intermediate axis: it flips every ~1 s, yet far enough from
+#: the separatrix that a 1-ulp change of omega0 moves tumble's own 20 s run by ~3e-11 only. The
+#: seed's 0.6 degrees is so close that 1 ulp moves it by up to 1.9e-9 (measured), more than the
+#: issue's 1e-9: that case is held to its own round-off sensitivity instead (test_seed_flip_*).
+FLIP = [1.0, 10.0, 1.0]
+TWENTY = np.linspace(0.0, 20.0, 401)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from playwright.sync_api import sync_playwright
+
+    chromium = browser_or_skip()
+    with sync_playwright() as p:
+        launched = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
+        try:
+            yield launched
+        finally:
+            launched.close()
+
+
+class Watched:
+    """A browser page that records console errors, uncaught exceptions and outside requests."""
+
+    def __init__(self, browser):
+        self.page = browser.new_page(viewport={"width": 1300, "height": 1000})
+        self.errors, self.outside = [], []
+        self.page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+        self.page.route("**/*", self._route)
+
+    def _route(self, route):
+        if route.request.url.startswith(("file:", "data:", "blob:", "about:")):
+            return route.continue_()
+        self.outside.append(route.request.url)
+        return route.abort()
+
+    def clean(self) -> bool:
+        return self.errors == [] and self.outside == []
+
+
+@pytest.fixture
+def js(browser):
+    """A blank page holding splitting.js alone (no viewer needed)."""
+    w = Watched(browser)
+    w.page.set_content(f"<!DOCTYPE html><html><body><script>{SPLITTING.read_text()}</script></body></html>")
+    yield w
+    assert w.clean(), (w.errors, w.outside)
+    w.page.close()
+
+
+def js_propagate(page, moments, omega0, quat0, t, order, step=None):
+    return page.evaluate(
+        "([I, w, q, t, order, step]) => tumbleSplitting.propagate(I, w, q, t, {order: order, step: step})",
+        [list(moments), list(omega0), list(quat0), list(map(float, t)), order, step],
+    )
+
+
+def difference(run, omega, quat, scale):
+    """Largest difference of omega (relative to ``scale``) and of the attitude (rad)."""
+    d_omega = np.max(np.abs(np.asarray(run["omega"]) - np.asarray(omega))) / scale
+    d_angle = np.max((Rotation.from_quat(run["quat"]).inv() * Rotation.from_quat(quat)).magnitude())
+    return max(d_omega, d_angle)
+
+
+def assert_as_tumble(run, moments, omega0, quat0, t, order, step=None):
+    """The browser's run equals tumble's Python run of the same input, to AGREE."""
+    omega, quat = propagate(moments, omega0, quat0, np.asarray(t), order=order, step=step)
+    assert difference(run, omega[:, 0], quat[:, 0], np.linalg.norm(omega0)) <= AGREE
+
+
+def ulp_sensitivity(moments, omega0, quat0, t, order) -> float:
+    """How far tumble's own run moves when one component of omega0 moves by one ulp (either way):
+    the round-off floor of the problem, which no port can beat."""
+    omega, quat = propagate(moments, omega0, quat0, np.asarray(t), order=order)
+    worst = 0.0
+    for k in range(6):
+        nudged = list(omega0)
+        nudged[k % 3] = float(np.nextafter(nudged[k % 3], math.inf if k < 3 else -math.inf))
+        w, q = propagate(moments, nudged, quat0, np.asarray(t), order=order)
+        worst = max(worst, difference({"omega": w[:, 0], "quat": q[:, 0]}, omega[:, 0], quat[:, 0],
+                                      np.linalg.norm(omega0)))
+    return worst
+
+
+def assert_within_round_off(run, moments, omega0, quat0, t, order):
+    """The browser's run is as close to tumble's as tumble's is to itself after a 1-ulp change."""
+    omega, quat = propagate(moments, omega0, quat0, np.asarray(t), order=order)
+    got = difference(run, omega[:, 0], quat[:, 0], np.linalg.norm(omega0))
+    assert got <= 2.0 * ulp_sensitivity(moments, omega0, quat0, t, order), got
+
+
+CASES = {  # moments (kg m^2), omega0 (rad/s), quat0, times (s), order, step (s)
+    "flip, order 4": (SEED, FLIP, [0, 0, 0, 1], TWENTY, 4, None),
+    "flip, order 6, turned start": (SEED, FLIP, [0.1, -0.2, 0.3, 0.9], TWENTY, 6, None),
+    "stable, minor axis, order 2": (SEED, [10.0, 0.1, 0.1], [0, 0, 0, 1], TWENTY, 2, None),
+    "near-symmetric, tilted spin": ([0.0075520833, 0.0078, 0.0147520833], [2.0, 0.0, 6.0], [0, 0, 0, 1], TWENTY, 6,
+                                    None),
+    "uneven samples, given step": (SEED, [3.0, -4.0, 0.5], [0, 0, 0, 1], 20.0 * np.linspace(0, 1, 60) ** 2, 4, 0.004),
+    "at rest": (SEED, [0.0, 0.0, 0.0], [0, 0, 0, 1], TWENTY[:5], 4, None),
+}
+
+
+@pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
+def test_splitting_js_follows_tumble(js, case):
+    moments, omega0, quat0, t, order, step = case
+    run = js_propagate(js.page, moments, omega0, quat0, t, order, step)
+    assert len(run["omega"]) == len(t) == len(run["quat"])
+    if np.any(omega0):
+        assert_as_tumble(run, moments, omega0, quat0, t, order, step)
+        expected = step or default_step(float(np.linalg.norm(omega0)))
+        assert math.isclose(run["step"], expected, rel_tol=1e-15)
+    else:  # a body at rest stays at rest, where it was
+        assert np.all(np.asarray(run["omega"]) == 0) and np.all(np.asarray(run["quat"]) == np.asarray(quat0, float))
+
+
+@pytest.mark.parametrize("order", [4, 6])
+def test_seed_flip_agrees_to_its_round_off_floor(js, order):
+    run = js_propagate(js.page, SEED, SEED_FLIP, [0, 0, 0, 1], TWENTY, order)
+    assert_within_round_off(run, SEED, SEED_FLIP, [0, 0, 0, 1], TWENTY, order)
+
+
+@pytest.mark.parametrize("order", [2, 4, 6])
+def test_splitting_js_converges_at_its_order_to_the_closed_form(js, order):
+    """Halving the step divides the error against the exact solution (Jacobi elliptic functions,
+    :class:`tumble.dynamics.exact.FreeRotation`) by 2^order: seed flip over 20 s, steps 4 and 2
+    times the default (coarse enough to stay clear of round-off)."""
+    exact = FreeRotation(SEED, SEED_FLIP, Rotation.identity()).omega(TWENTY)
+    h = MAX_STEP_ANGLE / np.linalg.norm(SEED_FLIP)
+    err = [np.max(np.abs(np.asarray(js_propagate(js.page, SEED, SEED_FLIP, [0, 0, 0, 1], TWENTY, order, k * h)["omega"])
+                         - exact)) for k in (4, 2)]
+    assert abs(math.log2(err[0] / err[1]) - order) < 0.25, err
+
+
+def test_splitting_js_sin_cos_are_correctly_rounded(js):
+    """The momentum's sub-flows use sin and cos rounded correctly (what lets the browser follow
+    tumble's glibc-backed run bit for bit): checked against mpmath at 200 bits."""
+    rng = np.random.default_rng(12)
+    x = np.concatenate([rng.uniform(-0.05, 0.05, 1500), rng.uniform(-1.0, 1.0, 1500), [0.0, 1e-9, -2.6e-8, 1.0]])
+    got = js.page.evaluate("(xs) => xs.map((x) => [tumbleSplitting.sinCR(x), tumbleSplitting.cosCR(x)])", x.tolist())
+    with mpmath.workprec(200):
+        want = [[float(mpmath.sin(mpmath.mpf(v))), float(mpmath.cos(mpmath.mpf(v)))] for v in x.tolist()]
+    assert got == want
+
+
+BAD = {  # (moments, omega0, times, order) -> the message names the field and the rule
+    "triangle": (([0.1, 0.2, 0.4], FLIP, [0, 1], 4), "triangle inequality I1 + I2 >= I3"),
+    "descending": (([0.3, 0.2, 0.1], FLIP, [0, 1], 4), "must be ascending, I1 <= I2 <= I3"),
+    "zero moment": (([0.0, 0.2, 0.2], FLIP, [0, 1], 4), "I1 = 0 must be positive"),
+    "NaN moment": (([0.1, float("nan"), 0.2], FLIP, [0, 1], 4), "must be three finite numbers (kg m^2)"),
+    "infinite omega": ((SEED, [0.0, float("inf"), 0.0], [0, 1], 4), "omega0 = [0, Infinity, 0] must be three finite"),
+    "times backwards": ((SEED, FLIP, [0, 2, 1], 4), "times must increase strictly"),
+    "one time": ((SEED, FLIP, [0], 4), "at least two sample times"),
+    "order 5": ((SEED, FLIP, [0, 1], 5), "order = 5 is not available; allowed: 2, 4, 6"),
+    "too much work": ((SEED, [0.0, 1e6, 0.0], [0, 1e3], 4), "steps of at most"),
+}
+
+
+@pytest.mark.parametrize("bad", BAD.values(), ids=BAD.keys())
+def test_splitting_js_refuses_bad_input(js, bad):
+    (moments, omega0, t, order), message = bad
+    caught = js.page.evaluate(
+        """([I, w, t, order]) => {
+             try { tumbleSplitting.propagate(I, w, [0, 0, 0, 1], t, {order: order}); return null; }
+             catch (e) { return [e.name, e.message]; }
+           }""", [moments, omega0, t, order])
+    assert caught is not None and caught[0] == "SplittingInputError" and message in caught[1], caught
+
+
+# ---- the form on a page written by `tumble view` ------------------------------------------------
+
+@pytest.fixture(scope="module")
+def page_file(tmp_path_factory):
+    out = tmp_path_factory.mktemp("live") / "flip.html"
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(out), "--frames", "60"]) == 0
+    return out
+
+
+@pytest.fixture
+def live(browser, page_file):
+    w = Watched(browser)
+    w.page.goto(page_file.as_uri())
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    yield w
+    w.page.close()
+
+
+def run_form(page, moments=None, omega0=None, t_end=None, preset=None):
+    """Pick a preset and/or type values, press Run, wait for the viewer; the run's record."""
+    drawn = page.evaluate("window.tumbleLive.drawn")
+    if preset is not None:
+        index = page.evaluate("(s) => Array.from(document.querySelectorAll('#tumble-live-preset option'))"
+                              ".findIndex((o) => o.textContent.includes(s))", preset)
+        assert index >= 0, f"no preset {preset!r}"
+        page.select_option("#tumble-live-preset", str(index))
+    for i, v in enumerate(moments or ()):
+        page.fill(f"#tumble-live-I{i + 1}", repr(v))
+    for i, v in enumerate(omega0 or ()):
+        page.fill(f"#tumble-live-w{i + 1}", repr(v))
+    if t_end is not None:
+        page.fill("#tumble-live-tend", repr(t_end))
+    page.click("#tumble-live-run")
+    page.wait_for_function(f"window.tumbleLive.drawn > {drawn}", timeout=60_000)
+    assert page.inner_text("#tumble-live-error") == ""
+    return page.evaluate("window.tumbleLive.lastRun")
+
+
+def ground(png):  # the ground-frame scene, left half below the form
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)[300:750, :650]
+
+
+def test_live_run_of_a_flip_is_tumbles_and_plays(live):
+    page = live.page
+    run = run_form(page, moments=SEED, omega0=FLIP, t_end=20.0)
+    assert run["t"][0] == 0 and run["t"][-1] == 20.0 and run["moments"] == SEED and run["omega0"] == FLIP
+    assert run["box"] is None  # the page's own body: its own geometry is kept
+    assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
+    w2 = np.asarray(run["omega"])[:, 1]
+    assert w2.max() > 9.0 and w2.min() < -9.0, "the handle flips: omega_2 reverses"
+    seed = run_form(page, preset="this body")  # the page's own flip, 0.6 degrees off axis 2
+    assert seed["omega0"] == pytest.approx(SEED_FLIP, rel=1e-12) and seed["t"][-1] == 20.0
+    assert_within_round_off(seed, seed["moments"], seed["omega0"], seed["quat0"], seed["t"], seed["order"])
+    status = page.inner_text("#tumble-live-status")
+    assert "energy" in status and "|L|" in status
+
+    frames = page.evaluate("window.tumbleViewer.state().frames")
+    page.evaluate("window.tumbleViewer.show(0)")
+    first = page.screenshot()
+    page.evaluate(f"window.tumbleViewer.show({frames // 4})")  # 5 s on: the handle has turned
+    later = page.screenshot()
+    a, b = ground(first), ground(later)
+    grey_blue = (a[..., 2] - a[..., 0] > 12) & (a[..., 2] - a[..., 0] < 90) & (a[..., 0] > 40)  # the body, lit
+    assert grey_blue.sum() > 1000 and len(np.unique(a[grey_blue] // 4, axis=0)) > 20, "no shaded body drawn"
+    assert np.any(np.abs(a - b) > 60, axis=-1).sum() > 300, "the body does not move in the live run"
+    assert live.clean(), (live.errors, live.outside)
+
+
+def polhode_bound(moments, omega0, axis, other):
+    """Largest |L_other| on the polhode about a stable axis (0 or 2), from the two invariants:
+    L^2 - 2 E I_axis = sum_j L_j^2 (1 - I_axis / I_j) (Landau & Lifshitz, Mechanics, sec. 37)."""
+    I, L = np.asarray(moments), np.asarray(moments) * np.asarray(omega0)
+    c = np.sum(L**2 * (1 - I[axis] / I))
+    return math.sqrt(c / (1 - I[axis] / I[other]))
+
+
+def test_live_presets_near_symmetric_and_stable_axes(live):
+    page = live.page
+    plate = run_form(page, preset="near-symmetric")
+    assert_as_tumble(plate, plate["moments"], plate["omega0"], plate["quat0"], plate["t"], plate["order"])
+    # drawn as the uniform box with those moments: the 300 x 295 x 60 mm plate the preset names
+    np.testing.assert_allclose(plate["box"], [0.150, 0.1475, 0.030], rtol=1e-9)
+    w = np.asarray(plate["omega"])
+    assert np.ptp(w[:, 2]) < 0.01 * abs(w[0, 2]), "near-symmetric: omega_3 stays nearly constant"
+
+    for preset, axis in (("smallest axis", 0), ("largest axis", 2)):
+        run = run_form(page, preset=preset)
+        assert run["box"] is None and run["moments"] == pytest.approx(SEED, rel=1e-12)
+        assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
+        w = np.asarray(run["omega"])
+        L = w * np.asarray(run["moments"])
+        for other in {0, 1, 2} - {axis}:
+            bound = polhode_bound(run["moments"], run["omega0"], axis, other)
+            assert np.max(np.abs(L[:, other])) <= bound * (1 + 1e-9)
+        cosine = np.abs(w[:, axis]) / np.linalg.norm(w, axis=1)
+        assert cosine.min() > 0.999, f"the spin about axis {axis + 1} stays near it"
+    assert live.clean(), (live.errors, live.outside)
+
+
+BAD_FORM = [  # (field, typed value, what the form says)
+    ("#tumble-live-I3", "0.9", "violate the triangle inequality I1 + I2 >= I3"),
+    ("#tumble-live-I1", "0.5", "must be ascending, I1 <= I2 <= I3"),
+    ("#tumble-live-I2", "heavy", "I2 = 'heavy' must be a finite number (kg m^2)"),
+    ("#tumble-live-w1", "", "omega_1 = '' must be a finite number (rad/s)"),
+    ("#tumble-live-w3", "1e300", "is too large: the kinetic energy of this body overflows"),
+    ("#tumble-live-tend", "0", "t_end = 0 s must be after 0 and at most 1000 s"),
+    ("#tumble-live-tend", "5000", "t_end = 5000 s must be after 0 and at most 1000 s"),
+]
+
+
+def test_live_bad_input_is_shown_in_the_form(live):
+    page = live.page
+    for field, value, message in BAD_FORM:
+        page.fill(field, value)
+        page.click("#tumble-live-run")
+        page.wait_for_function("window.tumbleLive.error !== ''", timeout=10_000)
+        assert message in page.inner_text("#tumble-live-error"), (field, value)
+        assert page.evaluate("window.tumbleLive.lastRun") is None
+        page.click("#tumble-live-reset")  # back to the page's body and run, error cleared
+        page.wait_for_function("window.tumbleLive.error === ''", timeout=10_000)
+        assert page.input_value("#tumble-live-I3") == repr(SEED[2])
+    assert live.clean(), (live.errors, live.outside)
