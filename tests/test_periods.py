@@ -210,11 +210,28 @@ def test_npa_periods_closed_form_against_measured(moments, omega, mode):
     assert phi_m == pytest.approx(float(P_phi), rel=1e-8)  # measured: at most 6.9e-11
 
 
-def test_npa_in_lam_the_long_axis_precesses_with_the_circulation_axis():
-    """In LAM ``P_phi = 2 pi T / Delta phi``; in SAM one turn per period less (module docs)."""
-    w, I = [1.0, 0.5, 0.1], [1.0, 2.0, 3.0]
-    P_phi, T, _ = P.npa_periods(w, I)
-    assert float(P_phi) == pytest.approx(2 * np.pi * float(T) / float(P.precession_per_period(w, I)), rel=1e-15)
-    w = [0.2, 0.3, 1.0]
-    P_phi, T, _ = P.npa_periods(w, I)
-    assert float(P_phi) == pytest.approx(2 * np.pi * float(T) / (float(P.precession_per_period(w, I)) - 2 * np.pi), rel=1e-15)
+def test_npa_p_phi_is_the_circulation_axis_precession_in_both_modes():
+    """``P_phi = 2 pi T / Delta phi`` in LAM and in SAM (module docs)."""
+    I = [1.0, 2.0, 3.0]
+    for w, mode in (([1.0, 0.5, 0.1], "LAM"), ([0.2, 0.3, 1.0], "SAM")):
+        P_phi, T, m = P.npa_periods(w, I)
+        assert str(m) == mode
+        assert float(P_phi) == pytest.approx(2 * np.pi * float(T) / float(P.precession_per_period(w, I)), rel=1e-15)
+
+
+def test_npa_in_sam_the_long_axis_turns_once_per_period_less():
+    """In SAM the long axis's mean precession period is ``1 / (1/P_phi - 1/P_psi)``: measured on a
+    DOP853 run from the unwrapped azimuth of axis 1 about L over whole periods."""
+    I, w = [1.0, 2.0, 3.0], [0.2, 0.3, 1.0]
+    P_phi, P_psi = (float(v) for v in P.npa_periods(w, I)[:2])
+    traj = tumble.simulate(body(I), w, t_end=8.2 * P_psi, samples=20001, method="dop853")
+    t, w2 = traj.t, traj.omega[:, 1]
+    k = np.flatnonzero((w2[:-1] < 0) & (w2[1:] >= 0))
+    up = t[k] - w2[k] * (t[k + 1] - t[k]) / (w2[k + 1] - w2[k])
+    z = traj.angular_momentum_world[0] / np.linalg.norm(traj.angular_momentum_world[0])
+    x = np.cross(z, [1.0, 0.0, 0.0])
+    x /= np.linalg.norm(x)
+    a = traj.attitude.apply([1.0, 0.0, 0.0])
+    az = np.unwrap(np.arctan2(a @ np.cross(z, x), a @ x))
+    long_axis = 2 * np.pi * (up[-1] - up[0]) / (np.interp(up[-1], t, az) - np.interp(up[0], t, az))
+    assert long_axis == pytest.approx(1 / (1 / P_phi - 1 / P_psi), rel=1e-8)

@@ -594,7 +594,8 @@ def periods_consistent(P_phi: float, P_psi: float, *, ratios=None, resolution: i
     """Inertia ratios, energies and momenta consistent with an observed pair of periods.
 
     A tumbling (non-principal-axis) body, e.g. an asteroid's light curve, shows two periods:
-    ``P_phi``, the mean precession of the long axis about L, and ``P_psi``, the period of the
+    ``P_phi``, the mean precession about L of the axis the body circulates about (the long
+    axis in LAM, the short axis in SAM), and ``P_psi``, the period of the
     body-frame motion (definitions and conventions of :func:`tumble.analysis.npa_periods`).
     A torque-free motion has four free numbers beyond the orientation of L (``I1/I3``,
     ``I2/I3``, the dimensionless energy ``2 E I3 / |L|^2`` and ``|L| / I3``); two periods fix two

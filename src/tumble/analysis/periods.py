@@ -277,19 +277,23 @@ def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Periods of non-principal-axis rotation (a tumbling asteroid) from moments and omega.
 
     Conventions: the names are those of Samarasinha & A'Hearn, Icarus 93 (1991) 194, and
-    Kaasalainen, A&A 376 (2001) 302, but the definitions below are this module's; the papers
-    could not be read here beyond Kaasalainen's abstract and introduction, so that they agree
-    with the papers' own definitions (in SAM, which axis's precession ``P_phi`` follows) is
-    *unverified*. The *long-axis mode* (LAM) is circulation about the minor axis (the body's
-    long axis, ``L^2 < 2 E I2``), the *short-axis mode* (SAM) about the major axis
-    (``L^2 > 2 E I2``);
+    Kaasalainen, A&A 376 (2001) 302. The *long-axis mode* (LAM) is circulation about the minor
+    axis (the body's long axis, ``L^2 < 2 E I2``), the *short-axis mode* (SAM) about the major
+    axis (the short axis, ``L^2 > 2 E I2``);
 
     - ``P_psi`` is the period of the body-frame motion, ``T = 4 K / p`` (:func:`period`): that of
       the rotation angle psi about the circulation axis and of the nutation theta;
-    - ``P_phi`` is the mean precession period of the *long axis* (axis 1) about L: in LAM the
-      long axis is the circulation axis, and ``P_phi = 2 pi T / Delta phi``; in SAM the long
-      axis also turns with psi, once per period in the sense of the precession, and
-      ``P_phi = 2 pi T / (Delta phi - 2 pi)`` (``Delta phi``: :func:`precession_per_period`).
+    - ``P_phi`` is the mean precession period about L of the *circulation axis* (the long axis in
+      LAM, the short axis in SAM): ``P_phi = 2 pi T / Delta phi`` (``Delta phi``:
+      :func:`precession_per_period`). In SAM the long axis turns about L once per period less,
+      with the mean period ``1 / (1 / P_phi - 1 / P_psi)``.
+
+    Which axis's precession the asteroid literature calls ``P_phi`` in SAM is established here
+    from published numbers, not from the papers' definitions (which were not read): Pravec et
+    al., Icarus 233 (2014) 48, give for (99942) Apophis (SAM) ``P_phi = 27.38`` h, ``P_psi = 263``
+    h and the strongest light-curve harmonic ``P1 = 30.56`` h, and ``1 / (1/27.38 - 1/263) =
+    30.56`` h is the long axis's period only if ``P_phi`` is the short axis's
+    (docs/gallery/tumbling-asteroids.md checks it).
 
     Parameters
     ----------
@@ -301,7 +305,7 @@ def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     Returns
     -------
     P_phi : ndarray, shape (...)
-        Mean precession period of the long axis about L, s.
+        Mean precession period of the circulation axis about L, s.
     P_psi : ndarray, shape (...)
         Period of the body-frame motion, s (``inf`` on the separatrix).
     mode : ndarray of str, shape (...)
@@ -313,10 +317,9 @@ def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         As :func:`period`.
     """
     T, dphi, _, sigma = _precession(*_check_motion(omega, moments))
-    sam = sigma > 0
     with np.errstate(divide="ignore", invalid="ignore"):
-        P_phi = TWO_PI * T / np.where(sam, dphi - TWO_PI, dphi)
-    return P_phi, T, np.where(sam, "SAM", "LAM")
+        P_phi = TWO_PI * T / dphi
+    return P_phi, T, np.where(sigma > 0, "SAM", "LAM")
 
 
 def _upward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -329,8 +332,8 @@ def npa_periods_measured(traj) -> tuple[float, float, str]:
 
     ``P_psi``: the mean interval between upward zero crossings of ``omega_2`` (the component
     along the intermediate axis changes sign in both modes, once upward per period), linearly
-    interpolated. ``P_phi``: ``2 pi`` over the mean rate of the azimuth of the long axis (axis 1)
-    about L_world, unwrapped and linearly interpolated, between the first and last of those
+    interpolated. ``P_phi``: ``2 pi`` over the mean rate of the azimuth of the circulation axis
+    (axis 1 in LAM, axis 3 in SAM) about L_world, unwrapped and linearly interpolated, between the first and last of those
     crossings (a whole number of periods, so the bounded part of the precession cancels).
 
     Parameters
@@ -363,8 +366,8 @@ def npa_periods_measured(traj) -> tuple[float, float, str]:
     x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
     x /= np.linalg.norm(x)
     y = np.cross(z, x)
-    a = traj.attitude.apply(np.array([1.0, 0.0, 0.0]))
+    mode = "SAM" if int(circulation_axis(traj.omega[0], traj.moments)) == 3 else "LAM"
+    a = traj.attitude.apply(np.eye(3)[2 if mode == "SAM" else 0])
     az = np.unwrap(np.arctan2(a @ y, a @ x))
     rate = (np.interp(up[-1], t, az) - np.interp(up[0], t, az)) / (up[-1] - up[0])
-    mode = "SAM" if int(circulation_axis(traj.omega[0], traj.moments)) == 3 else "LAM"
     return float(TWO_PI / rate), float(P_psi), mode
