@@ -65,7 +65,7 @@ def figure_gravity_stability(*, ax=None, points=None):
     """
     from matplotlib.patches import Patch
 
-    fig, ax = figure_and_axes(ax, figsize=(8.4, 5.6))
+    fig, ax = figure_and_axes(ax, figsize=(7.6, 5.6))
     _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 601)
     ax.set_aspect("equal")
     ax.set_xlabel(r"$k_R = (I_{pitch} - I_{yaw}) / I_{roll}$ (dimensionless)")

@@ -64,7 +64,7 @@ def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, ax=No
     from matplotlib.colors import LogNorm
 
     m = stability_map(spin, perturbation, resolution=resolution)
-    fig, ax = figure_and_axes(ax, figsize=(10.0, 4.3))
+    fig, ax = figure_and_axes(ax, figsize=(8.8, 4.6))
     values = np.ma.masked_invalid(m.flip_interval)
     mesh = ax.pcolormesh(m.x, m.y, values, shading="nearest", cmap="viridis", rasterized=True,
                          norm=LogNorm(vmin=float(values.min()), vmax=float(values.max())))

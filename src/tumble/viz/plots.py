@@ -21,9 +21,9 @@ __all__ = ["ENVELOPE_BINS", "MAX_POINTS", "envelope", "figure_drift", "figure_om
 COLORS = ("tab:blue", "tab:orange", "tab:green")
 
 #: Most samples drawn point by point per curve; a longer run is drawn as its envelope.
-MAX_POINTS = 2000
+MAX_POINTS = 10_000
 #: Bins of the envelope of a long run.
-ENVELOPE_BINS = 400
+ENVELOPE_BINS = 500
 
 
 def envelope(t, y, bins: int = ENVELOPE_BINS):
