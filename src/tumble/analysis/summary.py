@@ -21,18 +21,26 @@ __all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
 def stability_report(traj: Trajectory) -> dict:
     """Prediction against observation for the axis that carries most of the initial spin.
 
-    Keys: ``axis`` (1, 2 or 3, principal, ascending moments; None for a body starting at
-    rest, and then every prediction is None), ``role``, ``predicted``
-    ("stable" or "unstable", the linearised theory), ``growth_rate`` (1/s) or
-    ``wobble_frequency`` (rad/s) of that theory, ``flips`` (sign changes of that component in
-    the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
-    flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
-    component flips; torque-free only), ``flip_period_asymptotic`` (its small-perturbation
-    logarithmic form), ``theory`` (what the prediction rests on: ``"rigid body"``,
-    ``"gyrostat"`` for rotors whose momentum lies along the spin axis, ``"energy sink"`` with a
-    damper (the major-axis rule: only spin about the major axis is stable), or None when no
-    theory applies, e.g. rotor momentum across the spin axis; then ``predicted`` is None).
-    Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
+    Parameters
+    ----------
+    traj : Trajectory
+        A run of :func:`tumble.simulate`.
+
+    Returns
+    -------
+    dict
+        Keys: ``axis`` (1, 2 or 3, principal, ascending moments; None for a body starting at
+        rest, and then every prediction is None), ``role``, ``predicted``
+        ("stable" or "unstable", the linearised theory), ``growth_rate`` (1/s) or
+        ``wobble_frequency`` (rad/s) of that theory, ``flips`` (sign changes of that component in
+        the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
+        flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
+        component flips; torque-free only), ``flip_period_asymptotic`` (its small-perturbation
+        logarithmic form), ``theory`` (what the prediction rests on: ``"rigid body"``,
+        ``"gyrostat"`` for rotors whose momentum lies along the spin axis, ``"energy sink"`` with a
+        damper (the major-axis rule: only spin about the major axis is stable), or None when no
+        theory applies, e.g. rotor momentum across the spin axis; then ``predicted`` is None).
+        Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
     """
     w0 = traj.omega[0]
     if not np.any(w0):
@@ -84,16 +92,24 @@ def _prediction(traj: Trajectory, a: int) -> tuple[str | None, str | None, float
 def trajectory_summary(traj: Trajectory) -> dict:
     """The JSON summary of a run (``summary.json``): inputs, invariants, drift and stability.
 
-    Keys: ``body``, ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes``
-    (the 3x3 matrix ``traj.principal_axes`` as nested lists, row by row: principal -> design,
-    its *columns* are the axes of I1, I2, I3 in the design frame, so
-    ``np.array(summary["principal_axes"]) == traj.principal_axes``), ``method``, ``t_end`` (s),
-    ``samples``, ``omega0`` (rad/s, principal frame), ``torque_free``, ``energy`` (J),
-    ``L_norm`` (kg m^2/s), ``drift`` (relative) and ``stability`` (:func:`stability_report`);
-    with rotors ``rotors`` (``internal_momentum0``, kg m^2/s, principal frame; ``motor_work``, J),
-    with a damper ``damper`` (``inertia``, ``dissipated`` J, ``nutation_angle`` [start, end] rad,
-    ``flat_spin_rate`` ``|L| / (I3 + J)`` the major-axis rule predicts and ``final_spin_rate``,
-    rad/s). Energy, L and drift are totals over body, rotors and damper.
+    Parameters
+    ----------
+    traj : Trajectory
+        A run of :func:`tumble.simulate`.
+
+    Returns
+    -------
+    dict
+        Keys: ``body``, ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes``
+        (the 3x3 matrix ``traj.principal_axes`` as nested lists, row by row: principal -> design,
+        its *columns* are the axes of I1, I2, I3 in the design frame, so
+        ``np.array(summary["principal_axes"]) == traj.principal_axes``), ``method``, ``t_end`` (s),
+        ``samples``, ``omega0`` (rad/s, principal frame), ``torque_free``, ``energy`` (J),
+        ``L_norm`` (kg m^2/s), ``drift`` (relative) and ``stability`` (:func:`stability_report`);
+        with rotors ``rotors`` (``internal_momentum0``, kg m^2/s, principal frame; ``motor_work``, J),
+        with a damper ``damper`` (``inertia``, ``dissipated`` J, ``nutation_angle`` [start, end] rad,
+        ``flat_spin_rate`` ``|L| / (I3 + J)`` the major-axis rule predicts and ``final_spin_rate``,
+        rad/s). Energy, L and drift are totals over body, rotors and damper.
     """
     return {
         "body": traj.body_name,

@@ -75,12 +75,38 @@ def euler_rhs_tensor(omega, inertia, torque=0.0) -> np.ndarray:
 
 
 def angular_momentum(omega, moments) -> np.ndarray:
-    """``L = I omega`` in the principal frame, kg m^2/s; shape (..., 3)."""
+    """``L = I omega`` in the principal frame, kg m^2/s.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments ``[I1, I2, I3]``, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Angular momentum, principal frame, kg m^2/s.
+    """
     return np.asarray(moments, float) * np.asarray(omega, float)
 
 
 def kinetic_energy(omega, moments) -> np.ndarray:
-    """Rotational kinetic energy ``T = omega . I omega / 2``, J; shape (...)."""
+    """Rotational kinetic energy ``T = omega . I omega / 2``, J.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments ``[I1, I2, I3]``, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Kinetic energy, J.
+    """
     w = np.asarray(omega, float)
     return 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1)
 
@@ -108,11 +134,23 @@ def quaternion_rate(quat, omega) -> np.ndarray:
 
 
 def energy_momentum_gaps(omega, moments) -> np.ndarray:
-    """``L^2 - 2 E I_j`` for j = 1, 2, 3, computed without cancellation, (kg m^2/s)^2 kg m^2.
+    """``L^2 - 2 E I_j`` for j = 1, 2, 3, computed without cancellation.
 
     ``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) omega_i^2``: each term carries its own sign, so the
     difference of two nearly equal large numbers is never formed (Celledoni et al., SIAM J.
-    Sci. Comput. 30 (2008) 2084, sec. 2). Shape (..., 3).
+    Sci. Comput. 30 (2008) 2084, sec. 2).
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity, principal frame, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments ``[I1, I2, I3]``, kg m^2.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ``L^2 - 2 E I_j`` for j = 1, 2, 3, (kg m^2/s)^2.
     """
     w2 = np.asarray(omega, float)[..., None, :] ** 2
     I = np.asarray(moments, float)

@@ -203,7 +203,22 @@ METHODS: dict[str, Method] = {
 
 
 def get_method(name: str) -> Method:
-    """The registered method called ``name``; a clear error listing the others if none."""
+    """The registered method called ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`METHODS`.
+
+    Returns
+    -------
+    Method
+
+    Raises
+    ------
+    ValueError
+        For an unknown name; the message lists the known ones.
+    """
     try:
         return METHODS[name]
     except (KeyError, TypeError):

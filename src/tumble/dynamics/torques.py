@@ -63,7 +63,19 @@ class FunctionTorque:
 
 
 def as_torque(torque):
-    """``None``, a torque model, or a plain callable (body frame) -> a model or None."""
+    """The torque model for ``torque``: models pass through, a plain callable acts in the body frame.
+
+    Parameters
+    ----------
+    torque : None, torque model or callable
+        A model (an object with a ``frame`` that is called as ``tau(t, omega, attitude)``, such as
+        :class:`ConstantTorque`), a plain callable ``tau(t, omega, attitude)`` returning N m in
+        the body (principal) frame, or None.
+
+    Returns
+    -------
+    torque model or None
+    """
     if torque is None:
         return None
     if hasattr(torque, "frame") and callable(torque):

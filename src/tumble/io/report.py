@@ -14,12 +14,20 @@ _DESIGN_AXES = ("x", "y", "z")
 def mass_properties_dict(body: Body) -> dict:
     """The public JSON form of ``tumble inertia --json`` (SI units, design frame).
 
-    Keys: ``name``, ``mass`` (kg), ``com`` (m), ``inertia`` (3x3 about the COM, kg m^2),
-    ``principal_moments`` ([I1, I2, I3] ascending, kg m^2), ``principal_axes`` (the 3x3 matrix
-    ``body.principal_axes`` as nested lists, row by row: principal -> design, its *columns* are
-    the axes of I1, I2, I3 in the design frame, so
-    ``np.array(d["principal_axes"]) == body.principal_axes``), ``intermediate_axis`` (unit
-    vector, or null when two moments are equal), ``symmetry``.
+    Parameters
+    ----------
+    body : Body
+        The body.
+
+    Returns
+    -------
+    dict
+        Keys: ``name``, ``units`` (of mass, length, inertia), ``mass`` (kg), ``com`` (m),
+        ``inertia`` (3x3 about the COM, kg m^2), ``principal_moments`` ([I1, I2, I3] ascending,
+        kg m^2), ``principal_axes`` (the 3x3 matrix ``body.principal_axes`` as nested lists, row by
+        row: principal -> design, its *columns* are the axes of I1, I2, I3 in the design frame, so
+        ``np.array(d["principal_axes"]) == body.principal_axes``), ``intermediate_axis`` (unit
+        vector, or null when two moments are equal), ``symmetry``.
     """
     p = body.properties
     axis = p.intermediate_axis
@@ -46,7 +54,19 @@ def describe_axis(v) -> str:
 
 
 def mass_properties_table(body: Body) -> str:
-    """A plain-text table for people (the default output of ``tumble inertia``)."""
+    """A plain-text table for people (the default output of ``tumble inertia``).
+
+    Parameters
+    ----------
+    body : Body
+        The body.
+
+    Returns
+    -------
+    str
+        Mass (kg), centre of mass (m), inertia about the COM in the design frame (kg m^2), the
+        principal moments with their roles and axes, and the intermediate axis.
+    """
     p = body.properties
 
     def vec(v) -> str:

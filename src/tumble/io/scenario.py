@@ -227,7 +227,23 @@ def _validate(s: Scenario, options=()) -> None:
 
 
 def load_scenario(path) -> Scenario:
-    """Read and validate a scenario file; errors are one line starting with the file's name."""
+    """Read and validate a scenario file (TOML); the file's format is in the README.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scenario file. Body and mesh files it names are read relative to its folder.
+
+    Returns
+    -------
+    Scenario
+        The body, initial state, times, method and torque; ``.run()`` simulates it.
+
+    Raises
+    ------
+    ValueError
+        Any problem with the file or its values, in one line starting with the file's name.
+    """
     path = Path(path)
     data = read_toml(path)
     try:

@@ -92,6 +92,16 @@ def iss_t_handle(*, name: str = "ISS T-handle") -> Body:
     steel (8050 kg/m^3), a shaft of radius 4 mm and length 50 mm, a crossbar of radius 7.5 mm and
     length 100 mm. Here the shaft axis (z) is the *intermediate* axis: spun about the shaft,
     the handle flips.
+
+    Parameters
+    ----------
+    name : str
+        Label of the body.
+
+    Returns
+    -------
+    Body
+        The handle, in :func:`t_handle`'s design frame.
     """
     return t_handle(
         shaft_length=0.050,
