@@ -6,7 +6,7 @@ import numpy as np
 
 import tumble
 from gallery import Entry, body, code, page_test, sig
-from tumble.analysis import npa_periods, npa_periods_measured, periods_consistent
+from tumble.analysis import axis_precession_period, npa_periods, npa_periods_measured, periods_consistent
 
 DAY, HOUR = 86400.0, 3600.0
 
@@ -50,21 +50,6 @@ def motion(family, row):
     return family.L_over_I3[row] * np.array([np.sin(b) / x, 0.0, np.cos(b)])
 
 
-def axis_period(traj, axis):
-    """Mean precession period of body axis ``axis`` (0, 1, 2) about L_world on a run, s: 2 pi
-    over the mean rate of its unwrapped azimuth between the first and last upward crossings of
-    omega_2 (a whole number of body-frame periods)."""
-    t, w2 = traj.t, traj.omega[:, 1]
-    k = np.flatnonzero((w2[:-1] < 0) & (w2[1:] >= 0))
-    up = t[k] - w2[k] * (t[k + 1] - t[k]) / (w2[k + 1] - w2[k])
-    z = traj.angular_momentum_world[0] / np.linalg.norm(traj.angular_momentum_world[0])
-    x = np.cross(z, [0.0, 1.0, 0.0])
-    x /= np.linalg.norm(x)
-    a = traj.attitude.apply(np.eye(3)[axis])
-    az = np.unwrap(np.arctan2(a @ np.cross(z, x), a @ x))
-    return 2 * np.pi * (up[-1] - up[0]) / (np.interp(up[-1], t, az) - np.interp(up[0], t, az))
-
-
 def compute_toutatis():
     toutatis = tumble.Body([tumble.Ellipsoid(semi_axes=TOUTATIS_SEMI_AXES, density=1.0)])
     ratios = toutatis.principal_moments[:2] / toutatis.principal_moments[2]
@@ -98,7 +83,7 @@ def compute_apophis():
             rows.append({"source": source, "reading": reading, "P_phi": P_phi, "P_psi": P_psi,
                          "modes": sorted(fam.mode.tolist()), "energy": float(fam.energy[sam]),
                          "measured_mode": m_mode, "psi": m_psi / HOUR, "short": m_phi / HOUR,
-                         "short_axis3": axis_period(traj, 2) / HOUR, "long": axis_period(traj, 0) / HOUR})
+                         "short_axis3": axis_precession_period(traj, 3) / HOUR, "long": axis_precession_period(traj, 1) / HOUR})
     return {"rows": rows}
 
 
@@ -193,7 +178,7 @@ published `P_phi` as the short axis's precession (tumble's `P_phi`), and as the 
 **Conditions.** Lee et al.'s ratios `I1/I3 = 0.64`, `I2/I3 = 0.97`; for each source and reading,
 `periods_consistent` solves for the energy (the SAM solution is kept) and `|L|`; the motion is
 run by DOP853 over 3 `P_psi`, 30001 samples. Measured: `P_psi` and the short axis's period by
-`npa_periods_measured`, the long axis's by the same azimuth method (`axis_period` below).
+`npa_periods_measured`, the long axis's by the same azimuth method (`tumble.analysis.axis_precession_period`).
 
 | source | `P_phi` (h) | `P_psi` (h) | `P_phi` read as | modes found | SAM `E/E0` | measured `P_psi` (h) | long axis (h) | short axis (h) |
 |---|---|---|---|---|---|---|---|---|
@@ -210,7 +195,7 @@ and `Delta phi` from `tumble.analysis.precession_per_period`), which is what tum
 `npa_periods` and `periods_consistent` take as `P_phi`. (This rests on the numbers, not on a
 definition read in the papers.)
 
-{code(motion, axis_period, compute_toutatis, compute_apophis)}"""
+{code(motion, compute_toutatis, compute_apophis)}"""
 
 
 ENTRY = Entry(

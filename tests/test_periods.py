@@ -222,16 +222,11 @@ def test_npa_p_phi_is_the_circulation_axis_precession_in_both_modes():
 def test_npa_in_sam_the_long_axis_turns_once_per_period_less():
     """In SAM the long axis's mean precession period is ``1 / (1/P_phi - 1/P_psi)``: measured on a
     DOP853 run from the unwrapped azimuth of axis 1 about L over whole periods."""
+    with pytest.raises(ValueError, match="axis = 0 must be 1, 2 or 3"):
+        P.axis_precession_period(None, 0)
     I, w = [1.0, 2.0, 3.0], [0.2, 0.3, 1.0]
     P_phi, P_psi = (float(v) for v in P.npa_periods(w, I)[:2])
     traj = tumble.simulate(body(I), w, t_end=8.2 * P_psi, samples=20001, method="dop853")
-    t, w2 = traj.t, traj.omega[:, 1]
-    k = np.flatnonzero((w2[:-1] < 0) & (w2[1:] >= 0))
-    up = t[k] - w2[k] * (t[k + 1] - t[k]) / (w2[k + 1] - w2[k])
-    z = traj.angular_momentum_world[0] / np.linalg.norm(traj.angular_momentum_world[0])
-    x = np.cross(z, [1.0, 0.0, 0.0])
-    x /= np.linalg.norm(x)
-    a = traj.attitude.apply([1.0, 0.0, 0.0])
-    az = np.unwrap(np.arctan2(a @ np.cross(z, x), a @ x))
-    long_axis = 2 * np.pi * (up[-1] - up[0]) / (np.interp(up[-1], t, az) - np.interp(up[0], t, az))
+    long_axis = P.axis_precession_period(traj, 1)
+    assert P.axis_precession_period(traj, 3) == pytest.approx(P_phi, rel=1e-8)
     assert long_axis == pytest.approx(1 / (1 / P_phi - 1 / P_psi), rel=1e-8)

@@ -18,6 +18,7 @@ from .stability import (
     perturbation_exponent,
 )
 from .periods import (
+    axis_precession_period,
     montgomery_angle,
     npa_periods,
     npa_periods_measured,
@@ -33,6 +34,7 @@ __all__ = [
     "PeriodFamily",
     "RotationFit",
     "axis_of",
+    "axis_precession_period",
     "circulation_axis",
     "energy_momentum_gaps",
     "fit_rotation",

@@ -53,6 +53,7 @@ from ..mass.tensor import refuse_first
 from .stability import _check_motion, circulation_axis, flip_interval
 
 __all__ = [
+    "axis_precession_period",
     "montgomery_angle",
     "npa_periods",
     "npa_periods_measured",
@@ -327,14 +328,65 @@ def _upward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
     return t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
 
 
+def axis_precession_period(traj, axis: int) -> float:
+    """Mean precession period of a principal axis about L, measured on a sampled free motion, s.
+
+    ``2 pi`` over the mean rate of the azimuth of body axis ``axis`` about L_world, unwrapped and
+    linearly interpolated, between the first and last upward zero crossings of ``omega_2`` (the
+    component along the intermediate axis changes sign in both modes, once upward per period): a
+    whole number of body-frame periods, so the bounded part of the precession cancels.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        Torque-free rigid motion, sampled densely (tens of samples per period or more) over at
+        least two periods.
+    axis : int
+        Principal axis, 1, 2 or 3 (``I1 <= I2 <= I3``).
+
+    Returns
+    -------
+    float
+        s (negative if the axis turns against L).
+
+    Raises
+    ------
+    ValueError
+        If the trajectory is not torque-free and rigid, spans fewer than two upward crossings,
+        or ``axis`` is not 1, 2 or 3.
+    """
+    if isinstance(axis, bool) or axis not in (1, 2, 3):
+        raise ValueError(f"axis = {axis!r} must be 1, 2 or 3 (principal axes, I1 <= I2 <= I3)")
+    up = _whole_periods(traj)
+    t = traj.t
+    Lw = traj.angular_momentum_world[0]
+    z = Lw / np.linalg.norm(Lw)
+    x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)
+    a = traj.attitude.apply(np.eye(3)[axis - 1])
+    az = np.unwrap(np.arctan2(a @ y, a @ x))
+    rate = (np.interp(up[-1], t, az) - np.interp(up[0], t, az)) / (up[-1] - up[0])
+    return float(TWO_PI / rate)
+
+
+def _whole_periods(traj) -> np.ndarray:
+    """Upward zero crossings of omega_2 on a checked free rigid trajectory, at least two, s."""
+    _check_trajectory(traj)
+    up = _upward_crossings(traj.t, traj.omega[:, 1])
+    if len(up) < 2:
+        raise ValueError(f"traj shows {len(up)} upward crossing(s) of omega_2; at least 2 (one full "
+                         "period) are needed: run it longer or sample it more densely")
+    return up
+
+
 def npa_periods_measured(traj) -> tuple[float, float, str]:
     """``P_phi`` and ``P_psi`` measured on a sampled torque-free trajectory (:func:`npa_periods`).
 
     ``P_psi``: the mean interval between upward zero crossings of ``omega_2`` (the component
     along the intermediate axis changes sign in both modes, once upward per period), linearly
-    interpolated. ``P_phi``: ``2 pi`` over the mean rate of the azimuth of the circulation axis
-    (axis 1 in LAM, axis 3 in SAM) about L_world, unwrapped and linearly interpolated, between the first and last of those
-    crossings (a whole number of periods, so the bounded part of the precession cancels).
+    interpolated. ``P_phi``: :func:`axis_precession_period` of the circulation axis (axis 1 in
+    LAM, axis 3 in SAM).
 
     Parameters
     ----------
@@ -354,20 +406,8 @@ def npa_periods_measured(traj) -> tuple[float, float, str]:
     ValueError
         If the trajectory is not torque-free and rigid, or spans fewer than two upward crossings.
     """
-    _check_trajectory(traj)
-    t = traj.t
-    up = _upward_crossings(t, traj.omega[:, 1])
-    if len(up) < 2:
-        raise ValueError(f"traj shows {len(up)} upward crossing(s) of omega_2; at least 2 (one full "
-                         "period) are needed: run it longer or sample it more densely")
-    P_psi = (up[-1] - up[0]) / (len(up) - 1)
-    Lw = traj.angular_momentum_world[0]
-    z = Lw / np.linalg.norm(Lw)
-    x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
-    x /= np.linalg.norm(x)
-    y = np.cross(z, x)
+    up = _whole_periods(traj)
     mode = "SAM" if int(circulation_axis(traj.omega[0], traj.moments)) == 3 else "LAM"
-    a = traj.attitude.apply(np.eye(3)[2 if mode == "SAM" else 0])
-    az = np.unwrap(np.arctan2(a @ y, a @ x))
-    rate = (np.interp(up[-1], t, az) - np.interp(up[0], t, az)) / (up[-1] - up[0])
-    return float(TWO_PI / rate), float(P_psi), mode
+    P_phi = axis_precession_period(traj, 3 if mode == "SAM" else 1)
+    return P_phi, float((up[-1] - up[0]) / (len(up) - 1)), mode
+
