@@ -199,6 +199,13 @@ def test_a_long_run_is_drawn_as_an_envelope_with_a_note():
     assert ax.get_title().splitlines()[0] == "1000 s" and "100000 samples" in ax.get_title()
     (ax,) = viz.figure_drift(long).axes
     assert max(len(line.get_xdata()) for line in ax.lines) <= viz.plots.MAX_POINTS
+    # the phase portraits draw the first stretch (the herpolhode would fill its annulus solid)
+    first = long.t[viz.plots.MAX_POINTS - 1]
+    for name in ("polhode", "herpolhode"):
+        ax = _one_run_figures()[name](long).axes[0]
+        this_run = max(ax.lines, key=lambda line: len(line.get_xdata()))
+        assert len(this_run.get_xdata()) == viz.plots.MAX_POINTS
+        assert ax.get_title().endswith(f"the first {first:.4g} s of 1000 s ({viz.plots.MAX_POINTS} of 100000 samples)")
     short = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=10.0, samples=viz.plots.MAX_POINTS)
     (ax,) = viz.figure_omega(short).axes
     assert not ax.collections and ax.get_title() == ""  # every sample drawn, nothing to say

@@ -18,6 +18,7 @@ from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.exact import FreeRotation
 from ..mass import moment_degeneracy
+from .plots import MAX_POINTS
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 
 __all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
@@ -80,6 +81,18 @@ def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
     return out
 
 
+def _first_samples(traj: Trajectory) -> tuple[int, str]:
+    """How many samples a phase portrait draws (the first :data:`MAX_POINTS`) and the note if not all.
+
+    A long run would fill its curve's region solid (the herpolhode is quasi-periodic); the
+    first stretch shows the curve and how it winds.
+    """
+    n = min(len(traj), MAX_POINTS)
+    if n == len(traj):
+        return n, ""
+    return n, f"\nthe first {traj.t[n - 1] - traj.t[0]:.4g} s of {traj.t[-1] - traj.t[0]:.4g} s ({n} of {len(traj)} samples)"
+
+
 def _axes_3d(ax):
     """``(figure, ax)`` with ``ax`` a 3D axes: a new figure, the given 3D axes, or a 3D axes put in
     place of a given 2D one (same figure, same slot)."""
@@ -119,7 +132,8 @@ def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
         note_only(ax, f"no polhode for this run: {problem}", title or f"{traj.body_name}: polhode")
         return fig
     I = traj.moments
-    L = traj.angular_momentum
+    count, shown = _first_samples(traj)
+    L = traj.angular_momentum[:count]
     R = float(traj.angular_momentum_norm[0])
     ax.computed_zorder = False  # draw in the order given: sphere, curves, this run, markers
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
@@ -142,7 +156,7 @@ def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
         getattr(ax, f"set_{axis}label")(rf"$L_{j + 1}$ (kg m$^2$/s)", fontsize=8)
         ax.locator_params(axis=axis, nbins=4)
     ax.tick_params(labelsize=7)
-    ax.set_title(title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g} kg m$^2$/s",
+    ax.set_title((title or f"{traj.body_name}: polhodes on the momentum sphere |L| = {R:.4g} kg m$^2$/s") + shown,
                  fontsize=9)
     # in the corner, over the empty panes: a 3D axes' layout box leaves out a legend outside it
     ax.legend(loc="upper left", bbox_to_anchor=(-0.02, 1.0), fontsize=7, framealpha=0.9)
@@ -178,8 +192,9 @@ def figure_herpolhode(traj: Trajectory, *, ax=None, title: str | None = None):
     u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
     u /= np.linalg.norm(u)
     v = np.cross(n, u)
-    w = traj.omega_world
-    height = w @ n  # = 2 E / |L|, constant without torque
+    height = traj.omega_world @ n  # = 2 E / |L|, constant without torque (over the whole run)
+    count, shown = _first_samples(traj)
+    w = traj.omega_world[:count]
     ax.plot(w @ u, w @ v, color="tab:purple", lw=1.0, zorder=2, label=r"tip of $\omega$ (rad/s)")
     ax.scatter([w[0] @ u], [w[0] @ v], color="k", edgecolor="w", s=40, zorder=5, label="t = 0")
     ax.scatter([0.0], [0.0], marker="+", color="k", s=80, linewidths=1.5, zorder=5, label="foot of L")
@@ -187,7 +202,7 @@ def figure_herpolhode(traj: Trajectory, *, ax=None, title: str | None = None):
     ax.set_xlabel(r"$\omega \cdot u$ (rad/s)")
     ax.set_ylabel(r"$\omega \cdot v$ (rad/s)")
     spread = float(np.ptp(height))
-    ax.set_title(title or f"{traj.body_name}: herpolhode in the invariable plane\n"
-                 f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e} rad/s)", fontsize=9)
+    ax.set_title((title or f"{traj.body_name}: herpolhode in the invariable plane\n"
+                  f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e} rad/s)") + shown, fontsize=9)
     legend_outside(ax)
     return fig
