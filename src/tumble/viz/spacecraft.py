@@ -85,6 +85,8 @@ def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: boo
     """The nutation angle between L and the major axis against t (:attr:`Trajectory.nutation_angle`).
 
     0 is a rigid spin about the major axis, the end state an energy sink drives any spin to.
+    When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest) there is no
+    angle: the figure says so in one line.
 
     Parameters
     ----------
@@ -95,9 +97,6 @@ def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: boo
         Degrees (default) or radians.
     log : bool
         A logarithmic angle axis (zeros are not drawn).
-
-    When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest) there is no
-    angle: the figure says so in one line.
 
     Returns
     -------
