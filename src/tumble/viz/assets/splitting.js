@@ -39,8 +39,8 @@
   var MAX_STEP_ANGLE = 0.05;
   /** Relative tolerance of the physical-validity checks (tumble.mass.tensor.INERTIA_RTOL). */
   var INERTIA_RTOL = 1e-9;
-  /** Most steps one run may take in the browser (tumble allows 2e7; a page must stay responsive). */
-  var MAX_STEPS = 2e6;
+  /** Most steps of one run in the browser (tumble allows 2e7): about a second, so the page stays responsive. */
+  var MAX_STEPS = 1e6;
 
   var CBRT2 = Math.pow(2.0, 1.0 / 3.0);
   var Y4 = [1.0 / (2.0 - CBRT2), -CBRT2 / (2.0 - CBRT2), 1.0 / (2.0 - CBRT2)];
@@ -73,61 +73,93 @@
    * sub-flow angles. V8's Math.sin/cos (fdlibm, error < 1 ulp) and the C library behind
    * Python's math.sin/cos (glibc, correctly rounded in nearly every case) differ by 1 ulp for
    * about 1 argument in 1000 (measured on 2e5 angles in [-0.035, 0.035]); near the separatrix
-   * of a flip such a difference grows about a millionfold over 20 s. Summing the Taylor series
-   * in double-double arithmetic (Dekker, Numer. Math. 18 (1971) 224: exact products by
-   * Veltkamp's splitting, exact sums by Knuth's two-sum) and rounding once gives the correctly
-   * rounded value, and the browser follows tumble's momentum bit for bit. |x| <= 1 only (the
-   * default step turns at most ~0.1 rad per sub-flow); beyond it Math.sin/cos.
+   * of a flip such a difference grows some ten-millionfold over 20 s (measured: one ulp in omega0
+   * moves tumble's own 20 s seed flip by up to 2e-9). Here sin x = x + x^3 P(x^2) and
+   * cos x = 1 + x^2 Q(x^2) are summed in double and kept where every value within the error
+   * bound rounds the same way; the rest (0.5 % on the seed's flip) sum the Taylor series in double-double
+   * arithmetic (Dekker, Numer. Math. 18 (1971) 224: exact products by Veltkamp's splitting,
+   * exact sums by Knuth's two-sum) and round once. Either way the result is the correctly
+   * rounded value: the browser follows tumble's momentum bit for bit wherever glibc rounds
+   * correctly too. |x| <= 1 only (the default step turns at most ~0.1 rad per sub-flow); beyond
+   * it Math.sin/cos.
    */
-  function twoSum(a, b) {
-    var s = a + b, bb = s - a;
-    return [s, (a - (s - bb)) + (b - bb)];
-  }
+  var SPLIT = 134217729.0; // 2^27 + 1: Veltkamp's split of a double into two 26-bit halves
 
-  function twoProd(a, b) {
-    var p = a * b, ca = 134217729.0 * a, cb = 134217729.0 * b; // 2^27 + 1: Veltkamp's split
-    var ah = ca - (ca - a), al = a - ah, bh = cb - (cb - b), bl = b - bh;
-    return [p, ((ah * bh - p) + ah * bl + al * bh) + al * bl];
-  }
-
-  function quickTwoSum(a, b) { // |a| >= |b|
-    var s = a + b;
-    return [s, b - (s - a)];
-  }
-
-  function ddAdd(a, b) {
-    var s = twoSum(a[0], b[0]);
-    return quickTwoSum(s[0], s[1] + a[1] + b[1]);
-  }
-
-  function ddMul(a, b) {
-    var p = twoProd(a[0], b[0]);
-    return quickTwoSum(p[0], p[1] + (a[0] * b[1] + a[1] * b[0]));
-  }
-
-  function ddDivInt(a, d) { // a / d for an integer d
-    var q1 = a[0] / d, p = twoProd(q1, d), s = twoSum(a[0], -p[0]);
-    return quickTwoSum(q1, (s[0] + (s[1] - p[1] + a[1])) / d);
-  }
-
-  /** sum_k (-1)^k x^(start + 2k) / (start + 2k)! in double-double, rounded once to a double. */
+  /**
+   * sum_k (-1)^k x^(start + 2k) / (start + 2k)! in double-double (hi, lo), rounded once to a
+   * double. Each term is the previous one times x^2 (an exact product: Dekker's two-product)
+   * divided by (n + 1)(n + 2) (a double-double quotient); each sum is Knuth's two-sum. Written
+   * out on scalars: no arrays, as it runs four times per sub-flow.
+   */
   function taylor(x, start) {
-    var x2 = twoProd(x, x);
-    var term = start === 0 ? [1.0, 0.0] : [x, 0.0];
-    var sum = term;
-    for (var n = start; Math.abs(term[0]) > 1e-40; n += 2) {
-      term = ddDivInt(ddMul(term, x2), -(n + 1) * (n + 2));
-      sum = ddAdd(sum, term);
+    var c = SPLIT * x, xh = c - (c - x), xl = x - xh;
+    var x2h = x * x, x2l = ((xh * xh - x2h) + 2.0 * xh * xl) + xl * xl;
+    c = SPLIT * x2h;
+    var bh = c - (c - x2h), bl = x2h - bh;
+    var th = start === 0 ? 1.0 : x, tl = 0.0, sh = th, sl = 0.0;
+    for (var n = start; ; n += 2) {
+      // (th, tl) * (x2h, x2l), renormalised
+      var p = th * x2h;
+      c = SPLIT * th;
+      var ah = c - (c - th), al = th - ah;
+      var e = ((ah * bh - p) + ah * bl + al * bh) + al * bl + (th * x2l + tl * x2h);
+      var mh = p + e, ml = e - (mh - p);
+      // divided by d = -(n + 1)(n + 2), an integer of a few bits: q1 d is exact in two parts
+      var d = -(n + 1) * (n + 2), q1 = mh / d;
+      c = SPLIT * q1;
+      var qh = c - (c - q1), ql = q1 - qh, qd = q1 * d, qe = (qh * d - qd) + ql * d;
+      var r = mh - qd, rb = r - mh, re = (mh - (r - rb)) + (-qd - rb);
+      var q2 = (r + (re - qe + ml)) / d;
+      th = q1 + q2;
+      tl = q2 - (th - q1);
+      // (sh, sl) += (th, tl)
+      var s = sh + th, sb = s - sh, se = (sh - (s - sb)) + (th - sb) + sl + tl;
+      sh = s + se;
+      sl = se - (sh - s);
+      if (!(Math.abs(th) > 1e-34 * Math.abs(sh))) return sh + sl;
     }
-    return sum[0] + sum[1];
+  }
+
+  // Taylor coefficients 1/3!, -1/5!, ... of (sin x - x) / x^3 and 1/2!, ... of (cos x - 1) / x^2,
+  // to x^21 and x^20: the first omitted term is below 1e-21 of the sum for |x| <= 1
+  var SIN_C = [3, 5, 7, 9, 11, 13, 15, 17, 19, 21].map(inverseFactorial);
+  var COS_C = [2, 4, 6, 8, 10, 12, 14, 16, 18, 20].map(inverseFactorial);
+
+  function inverseFactorial(n) {
+    var f = 1.0;
+    for (var k = 2; k <= n; k++) f *= k;
+    return ((n / 2) | 0) % 2 === 1 ? -1.0 / f : 1.0 / f;
+  }
+
+  function horner(c, z) {
+    var p = c[c.length - 1];
+    for (var k = c.length - 2; k >= 0; k--) p = p * z + c[k];
+    return p;
+  }
+
+  /**
+   * head + t rounded correctly, t known to within 2^-48 |t| (a bound four times the Horner
+   * sum's error): y = fl(head + t) and its exact remainder (Knuth's fast two-sum, |t| <= |head|);
+   * when every value that close rounds to y too, y is the correctly rounded result; otherwise
+   * (under 1 argument in 100 at the default step) the double-double series decides.
+   */
+  function roundedOrSeries(head, t, x, start) {
+    var y = head + t, err = t - (y - head), b = Math.abs(t) * 3.552713678800501e-15;
+    return y + (err + b) === y && y + (err - b) === y ? y : taylor(x, start);
   }
 
   function sinCR(x) {
-    return x === 0 || !(Math.abs(x) <= 1.0) ? Math.sin(x) : taylor(x, 1);
+    var ax = Math.abs(x);
+    if (!(ax <= 1.0)) return Math.sin(x);
+    if (ax < 1.4901161193847656e-8) return x; // |x| < 2^-26: x^3 / 6 is below half an ulp of x
+    var z = x * x;
+    return roundedOrSeries(x, x * (z * horner(SIN_C, z)), x, 1);
   }
 
   function cosCR(x) {
-    return !(Math.abs(x) <= 1.0) ? Math.cos(x) : taylor(x, 0);
+    if (!(Math.abs(x) <= 1.0)) return Math.cos(x);
+    var z = x * x;
+    return roundedOrSeries(1.0, z * horner(COS_C, z), x, 0);
   }
 
   /** The default largest step, s: MAX_STEP_ANGLE of rotation at the fastest spin (rad/s). */
