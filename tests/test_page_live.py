@@ -325,3 +325,18 @@ def test_live_bad_input_is_shown_in_the_form(live):
         page.wait_for_function("window.tumbleLive.error === ''", timeout=10_000)
         assert page.input_value("#tumble-live-I3") == repr(SEED[2])
     assert live.clean(), (live.errors, live.outside)
+
+
+def test_live_mode_on_a_page_with_a_torque_runs_the_free_body(browser, tmp_path):
+    out = tmp_path / "gravity.html"  # a boom under the gravity-gradient torque
+    assert main(["view", str(EXAMPLES / "gravity_boom.toml"), "--out", str(out), "--frames", "20"]) == 0
+    w = Watched(browser)
+    try:
+        w.page.goto(out.as_uri())
+        w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+        run = run_form(w.page, preset="this body")
+        assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
+        assert "the live run is the free rigid body" in w.page.inner_text("#tumble-live-status")
+        assert w.clean(), (w.errors, w.outside)
+    finally:
+        w.page.close()

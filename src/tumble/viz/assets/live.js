@@ -238,7 +238,9 @@
         "), " + FRAMES + " samples over " + tEnd + " s. Largest change over the run (relative; invariants of " +
         "the free body): energy " + d.energy.toExponential(1) + ", |L| " + d.momentum.toExponential(1) +
         ", L_world " + d.world.toExponential(1) + "." + (box ? " Drawn as the uniform box with these moments (" +
-        box.map(function (h) { return (2 * h).toPrecision(3); }).join(" x ") + " m)." : "");
+        box.map(function (h) { return (2 * h).toPrecision(3); }).join(" x ") + " m)." : "") +
+        (data && (data.torque_free === false || data.rigid === false)
+          ? " This page's own run has a torque, rotors or a damper; the live run is the free rigid body." : "");
       var title = "live run: I = [" + moments.join(", ") + "] kg m^2, omega0 = [" + omega0.join(", ") +
         "] rad/s, " + tEnd + " s";
       show({ t: t, quat: out.quat, omega: out.omega, moments: moments, box: box, title: title });
