@@ -8,7 +8,7 @@
  * wherever the C library's sin and cos round correctly (all but about 3 in 1e5 of these
  * angles with glibc), the attitude (a product of the same rotations, grouped differently) to a
  * few ulps. tests/test_page_live.py holds the two to 1e-9 of |omega| over 20 s; a run near the
- * separatrix (the seed's flip, 0.6 degrees off the intermediate axis) amplifies one ulp to ~2e-9
+ * separatrix (the seed's flip, 0.8 degrees off the intermediate axis) amplifies one ulp to ~2e-9
  * in 20 s, in tumble itself as here, and is held to that round-off floor instead.
  *
  * The method (as tumble.dynamics.geometric cites it): the Hamiltonian
