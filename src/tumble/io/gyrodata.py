@@ -139,8 +139,9 @@ def run_fit_command(path, out, *, argv=None, figure=None, start: float | None = 
     argv : list of str, optional
         The command line after ``tumble``, for the provenance.
     figure : callable, optional
-        ``figure(fit, omega_measured, path)`` writing the figure (the viz layer's
-        :func:`tumble.viz.figure_fit`; io cannot import viz).
+        ``figure(fit, omega_measured, path)`` drawing the figure and writing it to ``path``
+        (the command line: :func:`tumble.viz.figure_fit`, then :func:`tumble.viz.save_figure`;
+        io cannot import viz).
     start, end : float, optional
         Fit only the samples with ``start <= t <= end``, s (the free flight of a toss: the
         record of a phone thrown and caught holds the throw and the catch too).

@@ -56,7 +56,8 @@
   (:meth:`tumble.ensemble.SweepSummary.as_dict`), the criterion's success statement and the
   provenance (:func:`tumble.io.provenance.provenance`);
 - a figure, ``sweep.png``, when the caller passes one (the command line passes
-  :func:`tumble.viz.figure_sweep`; this layer draws nothing).
+  :func:`tumble.viz.figure_sweep` followed by :func:`tumble.viz.save_figure`; this layer draws
+  nothing).
 
 Resume: each finished chunk is kept in ``DIR.resume/`` beside the output (a fingerprint of the
 sweep file, the body files, the chunk size and the versions of tumble, numpy and scipy says
@@ -354,8 +355,9 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
     argv : list of str, optional
         The command line, for the provenance.
     figure : callable, optional
-        ``figure(columns, path, title=..., cases=...)`` draws the sample of cases into
-        ``sweep.png`` (:func:`tumble.viz.figure_sweep`).
+        ``figure(columns, path, title=..., cases=...)`` draws the sample of cases and writes
+        it to ``sweep.png`` (the command line: :func:`tumble.viz.figure_sweep`, then
+        :func:`tumble.viz.save_figure`).
 
     Returns
     -------
