@@ -17,7 +17,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import tumble
-from tumble.analysis.fit import RotationFit, fit_rotation, periods_consistent
+from tumble.analysis.fit import RotationFit, fit_rotation
+from tumble.analysis.period_inversion import periods_consistent
 from tumble.analysis.periods import npa_periods, npa_periods_measured
 from tumble.dynamics.exact import FreeRotation
 from tumble.io.gyrodata import read_gyro_csv, run_fit_command

@@ -6,7 +6,8 @@ Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 "Numbering the principal axes").
 """
 
-from .fit import PeriodFamily, RotationFit, fit_rotation, periods_consistent
+from .fit import RotationFit, fit_rotation
+from .period_inversion import PeriodFamily, periods_consistent
 from .stability import (
     axis_of,
     circulation_axis,
