@@ -39,6 +39,15 @@ def trajectory_repr(traj) -> str:
     return f"Trajectory({', '.join(parts)})"
 
 
+def batch_repr(batch) -> str:
+    """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``."""
+    n, k = len(batch), len(batch.t)
+    span = f"t = {fmt(batch.t[0])}..{fmt(batch.t[-1])} s" if k else "no samples"
+    parts = [f"{n} bod{'y' if n == 1 else 'ies'}", str(batch.method)[:20], f"{k} sample{'' if k == 1 else 's'}",
+             span, "torque-free" if batch.torque_free else "torqued"]
+    return f"BatchTrajectory({', '.join(parts)})"
+
+
 def subsample(n: int, points: int = SVG_POINTS) -> np.ndarray:
     """At most ``points`` sample indices spread evenly over ``range(n)``, first and last included."""
     if n <= points:

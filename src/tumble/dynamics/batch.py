@@ -24,6 +24,7 @@ from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, MassProperties
 from ..mass._checks import QUAT_NORM_TOL
+from . import _display
 from .euler import angular_momentum, kinetic_energy
 from .integrators import METHODS, get_method
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
@@ -92,6 +93,9 @@ class BatchTrajectory:
     def __len__(self) -> int:
         """The number of bodies, N."""
         return len(self.moments)
+
+    def __repr__(self) -> str:
+        return _display.batch_repr(self)
 
     def __getitem__(self, i) -> Trajectory:
         """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory`
