@@ -138,6 +138,24 @@ def test_omega_axes_and_legend_carry_units_and_the_moments(flip):
     assert all(label.endswith("(kg m$^2$/s)") for label in (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()))
 
 
+def test_a_run_of_many_oscillations_gets_a_detail_panel(flip):
+    """300 flips in 1000 s are a block of colour at any resolution: a second panel shows the first
+    few flips. The detail ends at the 10th sign change of the busiest component; the run's own
+    flips are counted independently from omega_2 (two sign changes per period)."""
+    handle = tumble.t_handle()
+    long_run = tumble.simulate(handle, [0.1, 10.0, 0.1], t_end=1000.0, samples=20001)
+    fig = viz.figure_omega(long_run)
+    whole, detail = fig.axes
+    end = detail.get_xlim()[1]
+    period = 2 * float(tumble.flip_interval([0.1, 10.0, 0.1], handle.principal_moments))
+    assert viz.plots.DETAIL_SHOWN * period / 2 <= end <= (viz.plots.DETAIL_SHOWN + 1) * period  # a few periods
+    assert whole.get_xlim() == (0.0, 1000.0) and whole.get_legend() is not None
+    assert len(viz.figure_omega(flip).axes) == 1  # 20 s, a handful of flips: one panel
+    given = Figure()
+    assert len(viz.figure_omega(long_run, ax=given.subplots()).axes) == 1  # drawn where asked, no panel added
+    assert viz.plots.detail_window(tumble.simulate(handle, [0.0, 0.0, 10.0], t_end=1000.0)) is None  # steady: no sign change
+
+
 def _legend_clear_of_axes(ax) -> bool:
     """The legend's box and the axes' box (display units, after layout) do not overlap."""
     ax.figure.draw_without_rendering()  # the layout done
@@ -188,7 +206,7 @@ def test_the_envelope_holds_every_sample_between_its_bounds():
 
 def test_a_long_run_is_drawn_as_an_envelope_with_a_note():
     long = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1000.0, samples=100_000)
-    (ax,) = viz.figure_omega(long, title="1000 s").axes
+    ax, _ = viz.figure_omega(long, title="1000 s").axes  # the whole run; the detail panel is tested below
     assert max(len(line.get_xdata()) for line in ax.lines) <= viz.plots.MAX_POINTS
     bands = [c for c in ax.collections if isinstance(c, PolyCollection)]
     assert len(bands) == 3

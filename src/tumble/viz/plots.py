@@ -4,7 +4,9 @@ Every function draws on a given matplotlib ``ax`` (or ``fig`` for several panels
 figure, and returns the Figure; :func:`tumble.viz.save_figure` writes it. Legends sit outside
 the axes, so they never cover the data. A run longer than :data:`MAX_POINTS` samples is drawn as
 its envelope (the smallest and largest value in each of :data:`ENVELOPE_BINS` bins), said in
-the title: drawn point by point it would be a solid block of colour.
+the title: drawn point by point it would be a solid block of colour. A run that oscillates more
+than :data:`DETAIL_CYCLES` times is a block of colour however it is drawn, so :func:`figure_omega`
+adds a second panel with its first few oscillations in detail.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
 from ._backend import figure_and_axes, legend_outside, new_figure
 
-__all__ = ["ENVELOPE_BINS", "MAX_POINTS", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
+__all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
            "plot_omega"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
@@ -24,6 +26,25 @@ COLORS = ("tab:blue", "tab:orange", "tab:green")
 MAX_POINTS = 10_000
 #: Bins of the envelope of a long run.
 ENVELOPE_BINS = 500
+#: More oscillations than this (of the busiest component) and :func:`figure_omega` adds a detail
+#: panel of the first :data:`DETAIL_SHOWN` of them.
+DETAIL_CYCLES = 30
+DETAIL_SHOWN = 5
+
+
+def detail_window(traj: Trajectory) -> float | None:
+    """The end time (s) of a window that holds the run's first :data:`DETAIL_SHOWN` oscillations, or
+    None when no component oscillates more than :data:`DETAIL_CYCLES` times over the run.
+
+    An oscillation is counted as two sign changes of a component of omega (a flip reverses
+    omega_2, a wobble swings omega_1 and omega_2 through zero).
+    """
+    w = np.asarray(traj.omega)
+    changes = [np.flatnonzero(np.signbit(w[1:, j]) != np.signbit(w[:-1, j])) + 1 for j in range(3)]
+    busiest = max(changes, key=len)
+    if len(busiest) <= 2 * DETAIL_CYCLES:
+        return None
+    return float(traj.t[busiest[2 * DETAIL_SHOWN]])
 
 
 def envelope(t, y, bins: int = ENVELOPE_BINS):
@@ -77,12 +98,16 @@ def plot_omega(traj: Trajectory, ax, title: str | None = None) -> str | None:
 def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
     """omega(t) of one run, principal frame (rad/s), against t (s).
 
+    On a new figure, a run whose components oscillate more than :data:`DETAIL_CYCLES` times gets
+    a second panel with its first :data:`DETAIL_SHOWN` oscillations (:func:`detail_window`), shaded
+    on the first: the whole run shows the envelope, the detail the motion.
+
     Parameters
     ----------
     traj : Trajectory
         The run.
     ax : matplotlib Axes, optional
-        Draw here instead of on a new figure.
+        Draw here instead of on a new figure (one panel, no detail).
     title : str, optional
         The axes' title.
 
@@ -91,8 +116,24 @@ def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
     matplotlib Figure
         ``ax.figure`` when ``ax`` was given; write it with :func:`tumble.viz.save_figure`.
     """
-    fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
-    plot_omega(traj, ax, title)
+    end = detail_window(traj) if ax is None else None
+    if end is None:
+        fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
+        plot_omega(traj, ax, title)
+        return fig
+    fig = new_figure((8.6, 6.2))
+    whole, detail = fig.subplots(2, 1)
+    plot_omega(traj, whole, title)
+    whole.axvspan(traj.t[0], end, color="0.8", alpha=0.6, zorder=0, lw=0)
+    k = int(np.searchsorted(traj.t, end, side="right"))
+    for j in range(3):
+        detail.plot(traj.t[:k], traj.omega[:k, j], color=COLORS[j], lw=1.2, marker="." if k < 60 else None, ms=3)
+    detail.axhline(0.0, color="0.6", lw=0.6, zorder=0)
+    detail.set_xlim(traj.t[0], end)
+    detail.set_xlabel("t (s)")
+    detail.set_ylabel(r"$\omega$ (rad/s)")
+    detail.set_title(f"detail: the first {DETAIL_SHOWN} oscillations, t = {traj.t[0]:.4g} to {end:.4g} s "
+                     "(shaded above); colours as above", fontsize=9)
     return fig
 
 
