@@ -12,7 +12,7 @@ import numpy as np
 
 from ..mass._display import fmt, html_table, short_name, vec
 
-__all__ = ["SVG_POINTS", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
+__all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
 
 #: Most points per curve in the omega(t) plot: enough for the eye, small in a notebook file.
 SVG_POINTS = 300
@@ -30,22 +30,25 @@ def _extras(traj) -> list[str]:
     return extras
 
 
+def _run_repr(kind: str, first: str, t, method, torque_free: bool, extras=()) -> str:
+    """``Kind(first, method, n samples, t = a..b s, torque-free, extras...)``."""
+    n = len(t)
+    span = f"t = {fmt(t[0])}..{fmt(t[-1])} s" if n else "no samples"
+    parts = [first, str(method)[:20], f"{n} sample{'' if n == 1 else 's'}", span,
+             "torque-free" if torque_free else "torqued", *extras]
+    return f"{kind}({', '.join(parts)})"
+
+
 def trajectory_repr(traj) -> str:
     """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``."""
-    n = len(traj)
-    span = f"t = {fmt(traj.t[0])}..{fmt(traj.t[-1])} s" if n else "no samples"
-    parts = [short_name(traj.body_name), str(traj.method)[:20], f"{n} sample{'' if n == 1 else 's'}", span,
-             "torque-free" if traj.torque_free else "torqued", *_extras(traj)]
-    return f"Trajectory({', '.join(parts)})"
+    return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method, traj.torque_free, _extras(traj))
 
 
 def batch_repr(batch) -> str:
     """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``."""
-    n, k = len(batch), len(batch.t)
-    span = f"t = {fmt(batch.t[0])}..{fmt(batch.t[-1])} s" if k else "no samples"
-    parts = [f"{n} bod{'y' if n == 1 else 'ies'}", str(batch.method)[:20], f"{k} sample{'' if k == 1 else 's'}",
-             span, "torque-free" if batch.torque_free else "torqued"]
-    return f"BatchTrajectory({', '.join(parts)})"
+    n = len(batch)
+    return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t, batch.method,
+                     batch.torque_free)
 
 
 def subsample(n: int, points: int = SVG_POINTS) -> np.ndarray:

@@ -11,6 +11,8 @@ import html
 
 import numpy as np
 
+from .tensor import AXIS_ROLES
+
 __all__ = ["body_html", "body_repr", "fmt", "html_table", "properties_html", "properties_repr", "short_name",
            "vec"]
 
@@ -18,8 +20,6 @@ __all__ = ["body_html", "body_repr", "fmt", "html_table", "properties_html", "pr
 NAME_CHARS = 40
 #: Most parts listed in the HTML table; the rest are counted.
 MAX_PARTS_SHOWN = 20
-#: Names of the principal axes in ascending order of moment (as :data:`tumble.mass.AXIS_ROLES`).
-_ROLES = ("minor", "intermediate", "major")
 _STYLE = "border-collapse:collapse;font-size:0.9em;margin:0.3em 0"
 _CELL = "text-align:left;padding:1px 14px 1px 2px"
 
@@ -82,7 +82,7 @@ def body_repr(body) -> str:
 
 def _properties_rows(p) -> list[tuple[str, str]]:
     rows = [("mass", f"{fmt(p.mass, 6)} kg"), ("centre of mass (design frame)", f"{vec(p.com, 6)} m")]
-    for j, role in enumerate(_ROLES):
+    for j, role in enumerate(AXIS_ROLES):
         rows.append((f"I{j + 1} ({role}), axis in the design frame",
                      f"{fmt(p.principal_moments[j], 6)} kg m^2 along {vec(p.principal_axes[:, j])}"))
     if p.intermediate_axis is None:

@@ -18,13 +18,9 @@ import numpy as np
 from . import _display
 from .parts import Part
 from .rotor import Rotor
-from .tensor import check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
+from .tensor import AXIS_ROLES, check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
-
-#: Names of the principal axes in ascending order of moment.
-AXIS_ROLES = ("minor", "intermediate", "major")
-
 
 def _array(a) -> np.ndarray:
     # Arrays are left writeable: scipy's Rotation.apply refuses read-only input, and users

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = [
+    "AXIS_ROLES",
     "INERTIA_RTOL",
     "check_inertia",
     "check_vectors",
@@ -28,6 +29,9 @@ __all__ = [
     "refuse_first",
     "rotate_inertia",
 ]
+
+#: Names of the principal axes in ascending order of moment.
+AXIS_ROLES = ("minor", "intermediate", "major")
 
 #: Relative tolerance of the physical-validity checks: a condition such as ``I1 + I2 >= I3``
 #: may be violated by at most ``INERTIA_RTOL * trace(I)``. Planar bodies (thin rods, point
