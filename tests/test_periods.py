@@ -222,11 +222,14 @@ def test_npa_p_phi_is_the_circulation_axis_precession_in_both_modes():
 def test_npa_in_sam_the_long_axis_turns_once_per_period_less():
     """In SAM the long axis's mean precession period is ``1 / (1/P_phi - 1/P_psi)``: measured on a
     DOP853 run from the unwrapped azimuth of axis 1 about L over whole periods."""
-    with pytest.raises(ValueError, match="axis = 0 must be 1, 2 or 3"):
-        P.axis_precession_period(None, 0)
+    for bad in (0, 4, True, "x", 2.0):
+        with pytest.raises(ValueError, match=r"axis = .* must be 1, 2 or 3"):
+            P.axis_precession_period(None, bad)
+    with pytest.raises(ValueError, match=r"axis = \[1, 3\] must be one axis"):
+        P.axis_precession_period(None, [1, 3])
     I, w = [1.0, 2.0, 3.0], [0.2, 0.3, 1.0]
     P_phi, P_psi = (float(v) for v in P.npa_periods(w, I)[:2])
     traj = tumble.simulate(body(I), w, t_end=8.2 * P_psi, samples=20001, method="dop853")
-    long_axis = P.axis_precession_period(traj, 1)
+    long_axis = P.axis_precession_period(traj, "minor")
     assert P.axis_precession_period(traj, 3) == pytest.approx(P_phi, rel=1e-8)
     assert long_axis == pytest.approx(1 / (1 / P_phi - 1 / P_psi), rel=1e-8)

@@ -50,7 +50,7 @@ from ..dynamics import Trajectory
 from ..dynamics.exact import elliptic_parameters
 from ..mass import INERTIA_RTOL
 from ..mass.tensor import refuse_first
-from .stability import _check_motion, circulation_axis, flip_interval
+from .stability import _AXES_ALLOWED, _axis_index, _check_motion, circulation_axis, flip_interval
 
 __all__ = [
     "axis_precession_period",
@@ -341,8 +341,8 @@ def axis_precession_period(traj, axis: int) -> float:
     traj : Trajectory
         Torque-free rigid motion, sampled densely (tens of samples per period or more) over at
         least two periods.
-    axis : int
-        Principal axis, 1, 2 or 3 (``I1 <= I2 <= I3``).
+    axis : {1, 2, 3, 'minor', 'intermediate', 'major'}
+        One principal axis (``I1 <= I2 <= I3``).
 
     Returns
     -------
@@ -353,10 +353,11 @@ def axis_precession_period(traj, axis: int) -> float:
     ------
     ValueError
         If the trajectory is not torque-free and rigid, spans fewer than two upward crossings,
-        or ``axis`` is not 1, 2 or 3.
+        or ``axis`` is not one principal axis.
     """
-    if isinstance(axis, bool) or axis not in (1, 2, 3):
-        raise ValueError(f"axis = {axis!r} must be 1, 2 or 3 (principal axes, I1 <= I2 <= I3)")
+    index = _axis_index(axis)
+    if index.ndim:
+        raise ValueError(f"axis = {axis!r} must be one axis: {_AXES_ALLOWED}")
     up = _whole_periods(traj)
     t = traj.t
     Lw = traj.angular_momentum_world[0]
@@ -364,7 +365,7 @@ def axis_precession_period(traj, axis: int) -> float:
     x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
     x /= np.linalg.norm(x)
     y = np.cross(z, x)
-    a = traj.attitude.apply(np.eye(3)[axis - 1])
+    a = traj.attitude.apply(np.eye(3)[int(index)])
     az = np.unwrap(np.arctan2(a @ y, a @ x))
     rate = (np.interp(up[-1], t, az) - np.interp(up[0], t, az)) / (up[-1] - up[0])
     return float(TWO_PI / rate)
