@@ -318,5 +318,12 @@ def test_periods_do_not_determine_the_ratios():
     assert np.all(fam.ratios[:, 0] < fam.ratios[:, 1]) and np.all(fam.energy >= 1.0)
     with pytest.raises(ValueError, match="positive and finite"):
         periods_consistent(-1.0, 2.0)
+    with pytest.raises(ValueError, match="positive and finite"):
+        periods_consistent("abc", 2.0)
+    for name, bad in (("resolution", 0), ("resolution", 2.5), ("angles", 1), ("angles", True), ("angles", 10**6)):
+        with pytest.raises(ValueError, match=f"{name} = .* must be a whole number"):
+            periods_consistent(1.0, 2.0, **{name: bad})
+    with pytest.raises(ValueError, match="more than 10,000,000 at once"):
+        periods_consistent(1.0, 2.0, resolution=400, angles=20000)
     with pytest.raises(ValueError, match=r"ratios\[0\] = \[0.8, 0.4\]"):
         periods_consistent(1.0, 2.0, ratios=[[0.8, 0.4]])

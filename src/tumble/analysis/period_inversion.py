@@ -17,6 +17,12 @@ from .periods import npa_periods
 
 __all__ = ["PeriodFamily", "periods_consistent"]
 
+#: Most grid points along each ratio, and most angles per body.
+MAX_RESOLUTION = 400
+MAX_ANGLES = 20000
+#: Most motions searched at once (bodies times angles, each a few arrays of doubles): about 1 GB.
+MAX_MOTIONS = 10_000_000
+
 
 @dataclass(frozen=True)
 class PeriodFamily:
@@ -69,7 +75,7 @@ def periods_consistent(P_phi: float, P_psi: float, *, ratios=None, resolution: i
         Grid points along each ratio (default grid only).
     angles : int
         Points along the family of polhodes of each body where the periods' quotient is
-        bracketed; the roots are then refined by the secant method.
+        bracketed; the roots are then refined by regula falsi (the Illinois variant).
 
     Returns
     -------
@@ -84,9 +90,19 @@ def periods_consistent(P_phi: float, P_psi: float, *, ratios=None, resolution: i
     is computed on a grid of ``beta`` with :func:`tumble.analysis.npa_periods`, its crossings
     of the observed quotient bracketed and refined; ``|L| / I3 = P_psi(beta; |L| = 1) / P_psi``.
     """
-    P_phi, P_psi = float(P_phi), float(P_psi)
+    try:
+        P_phi, P_psi = float(P_phi), float(P_psi)
+    except (TypeError, ValueError):
+        raise ValueError(f"periods P_phi = {P_phi!r}, P_psi = {P_psi!r} must be positive and finite (s)") from None
     if not (np.isfinite(P_phi) and np.isfinite(P_psi) and P_phi > 0 and P_psi > 0):
         raise ValueError(f"periods P_phi = {P_phi}, P_psi = {P_psi} must be positive and finite (s)")
+    for name, value, low, high in (("resolution", resolution, 1, MAX_RESOLUTION), ("angles", angles, 2, MAX_ANGLES)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
+            raise ValueError(f"{name} = {value!r} must be a whole number from {low} to {high}")
+    bodies = resolution ** 2 if ratios is None else np.size(ratios) // 2
+    if bodies * angles > MAX_MOTIONS:
+        raise ValueError(f"{bodies} bodies x angles = {angles} is {bodies * angles} motions, more than "
+                         f"{MAX_MOTIONS:,} at once: lower resolution or angles")
     if ratios is None:
         y = np.linspace(0.5, 1.0, resolution + 2)[1:-1]
         f = np.linspace(0.0, 1.0, resolution + 2)[1:-1]
