@@ -293,14 +293,32 @@ def test_without_ffmpeg_the_gif_is_written_and_said(short_flip, tmp_path, monkey
     monkeypatch.setattr(viz.animate, "ffmpeg_path", lambda: None)
     path, note = viz.animation_path(tmp_path / "b.mp4")
     assert path == tmp_path / "b.gif" and note.startswith("no ffmpeg found") and "\n" not in note
-    written = viz.animate_body_frame(tumble.t_handle(), short_flip, tmp_path / "b.mp4", max_frames=5)
+    with pytest.warns(UserWarning, match=r"b.mp4: no ffmpeg found .*GIF written instead"):
+        written = viz.animate_body_frame(tumble.t_handle(), short_flip, tmp_path / "b.mp4", max_frames=5)
     assert written == tmp_path / "b.gif" and written.read_bytes()[:6] == b"GIF89a"
     assert [p.name for p in tmp_path.iterdir()] == ["b.gif"]
     from tumble.demo import animation_suffix
 
     assert animation_suffix("auto") == (".gif", note) and animation_suffix("gif") == (".gif", None)
+    with pytest.raises(ValueError, match=r"animation_format = 'mp4' needs ffmpeg and none was found"):
+        animation_suffix("mp4")
     with pytest.raises(ValueError, match="mp4 or .gif"):
         viz.animation_path(tmp_path / "b.avi")
+
+
+def test_animations_refuse_bad_input_in_one_line(short_flip, tmp_path):
+    body = tumble.t_handle()
+    cases = [(dict(fps=0), "fps = 0 must be a whole number"), (dict(dpi=2.5), "dpi = 2.5 must be a whole number"),
+             (dict(max_frames=1), "max_frames = 1 must be a whole number")]
+    for options, message in cases:
+        with pytest.raises(ValueError, match=message):
+            viz.animate_ground_frame(body, short_flip, tmp_path / "g.gif", **options)
+    box = tumble.Body([tumble.Box(mass=1.0, size=(1.0, 2.0, 3.0))])
+    with pytest.raises(ValueError, match="is not the body of this trajectory"):
+        viz.animate_body_frame(box, short_flip, tmp_path / "b.gif")
+    with pytest.raises(ValueError, match="trajectory = str object must be a tumble Trajectory"):
+        viz.animate_body_frame(body, "x", tmp_path / "b.gif")
+    assert list(tmp_path.iterdir()) == []
 
 
 # -- notebooks --------------------------------------------------------------------------------------

@@ -107,13 +107,17 @@ def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
     """The suffix of the study's animations and a one-line note when MP4 was wanted but cannot be.
 
     ``"auto"``: ``.mp4`` where an ffmpeg is found (:func:`tumble.viz.ffmpeg_path`), else
-    ``.gif`` with a note; ``"gif"``: ``.gif``; ``"mp4"``: ``.mp4``, or ``.gif`` with a note.
+    ``.gif`` with a note; ``"gif"``: ``.gif``; ``"mp4"``: ``.mp4``, and a ``ValueError`` where
+    no ffmpeg is found (asked for by name, MP4 is not replaced silently).
     """
     from .viz import animation_path
 
     if animation_format not in ("auto", "mp4", "gif"):
         raise ValueError(f"animation_format = {animation_format!r} must be 'auto', 'mp4' or 'gif'")
     path, note = animation_path("x.gif" if animation_format == "gif" else "x.mp4")
+    if note and animation_format == "mp4":
+        raise ValueError("animation_format = 'mp4' needs ffmpeg and none was found: install tumble[video] or put "
+                         "ffmpeg on PATH, or ask for 'auto' or 'gif'")
     return path.suffix, note
 
 

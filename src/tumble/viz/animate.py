@@ -11,6 +11,7 @@ matplotlib dependency). Asked for an MP4 without ffmpeg, they write the GIF inst
 from __future__ import annotations
 
 import shutil
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +20,7 @@ from ..dynamics import Trajectory
 from ..io.atomic import atomic_path
 from ..mass import Body
 from ._backend import new_figure
-from .scene import arrow_scale, body_lines, body_size, frame_indices
+from .scene import arrow_scale, body_lines, body_size, check_body_and_run, frame_indices
 
 __all__ = ["ANIMATION_SUFFIXES", "animate_body_frame", "animate_ground_frame", "animation_path", "ffmpeg_path",
            "scene_axes", "writer_for"]
@@ -105,7 +106,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
     ``.mp4`` or ``.gif``; an MP4 without ffmpeg is written as the GIF of the same name
     (:func:`animation_path`), whose path is returned.
     """
-    path, _ = animation_path(path)
+    path, frames = _prepare(body, traj, path, max_frames, fps, dpi)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
     rot = traj.design_attitude()  # design frame -> world
@@ -130,7 +131,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
             line.set_data_3d([0, tip[0]], [0, tip[1]], [0, tip[2]])
         stamp.set_text(f"t = {traj.t[k]:.2f} s")
 
-    _save(fig, draw, frame_indices(len(traj), max_frames), path, fps, dpi)
+    _save(fig, draw, frames, path, fps, dpi)
     return path
 
 
@@ -140,7 +141,7 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
 
     ``path`` as for :func:`animate_ground_frame`.
     """
-    path, _ = animation_path(path)
+    path, frames = _prepare(body, traj, path, max_frames, fps, dpi)
     lines = body_lines(body)
     size = 1.25 * body_size(body)
     A = traj.principal_axes  # principal -> design
@@ -164,8 +165,22 @@ def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 
             line.set_data_3d([0, tip[0]], [0, tip[1]], [0, tip[2]])
         stamp.set_text(f"t = {traj.t[k]:.2f} s")
 
-    _save(fig, draw, frame_indices(len(traj), max_frames), path, fps, dpi)
+    _save(fig, draw, frames, path, fps, dpi)
     return path
+
+
+def _prepare(body: Body, traj: Trajectory, path, max_frames: int, fps: int, dpi: int) -> tuple[Path, np.ndarray]:
+    """The checked inputs of an animation: the path it is written to (an MP4 without ffmpeg
+    becomes a GIF, with a warning that says so) and the frames drawn."""
+    check_body_and_run(body, traj)
+    for name, value in (("fps", fps), ("dpi", dpi)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= value <= 1000:
+            raise ValueError(f"{name} = {value!r} must be a whole number from 1 to 1000")
+    frames = frame_indices(len(traj), max_frames, "max_frames")
+    path, note = animation_path(path)
+    if note:
+        warnings.warn(f"{path.with_suffix('.mp4')}: {note}", stacklevel=3)
+    return path, frames
 
 
 def _save(fig, draw, frames, path: Path, fps: int, dpi: int) -> None:

@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import html
 
-import numpy as np
-
 from ..dynamics import Trajectory
-from ..mass import INERTIA_RTOL, Body
+from ..mass import Body
+from .scene import check_body_and_run
 
 __all__ = ["DEFAULT_HEIGHT", "show"]
 
@@ -31,16 +30,7 @@ def _ipython_html():
 
 
 def _check(trajectory, body, height) -> None:
-    if not isinstance(trajectory, Trajectory):
-        raise ValueError(f"trajectory = {type(trajectory).__name__} object must be a tumble Trajectory "
-                         f"(what tumble.simulate returns)")
-    if not isinstance(body, Body):
-        raise ValueError(f"body = {type(body).__name__} object must be the tumble Body that was simulated: a "
-                         f"Trajectory holds the motion and the principal moments, not the parts the page draws")
-    tol = INERTIA_RTOL * float(np.sum(trajectory.moments))
-    if not np.allclose(body.principal_moments, trajectory.moments, rtol=0.0, atol=tol):
-        raise ValueError(f"body = {body!r} is not the body of this trajectory: its principal moments "
-                         f"{body.principal_moments.tolist()} kg m^2 differ from the run's {trajectory.moments.tolist()}")
+    check_body_and_run(body, trajectory)
     if isinstance(height, bool) or not isinstance(height, int) or height <= 0:
         raise ValueError(f"height = {height!r} must be a whole number of pixels > 0")
 

@@ -26,7 +26,7 @@ import numpy as np
 from ..dynamics import Trajectory
 from ..io.atomic import atomic_write_text
 from ..mass import Body
-from .scene import frame_indices
+from .scene import check_body_and_run, frame_indices
 from .surfaces import body_surfaces
 
 __all__ = ["CURVE_POINTS", "page_data", "page_html", "write_page"]
@@ -75,6 +75,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     """
     from scipy.spatial.transform import Rotation
 
+    check_body_and_run(body, traj)
     idx = frame_indices(len(traj), frames)
     surfaces = body_surfaces(body)
     size = float(max(np.max(np.linalg.norm(v, axis=1)) for v, _, _ in surfaces)) or 1.0

@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mass import Body
+from ..dynamics import Trajectory
+from ..mass import INERTIA_RTOL, Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
 
-__all__ = ["arrow_scale", "body_lines", "body_size", "frame_indices", "part_lines"]
+__all__ = ["arrow_scale", "body_lines", "body_size", "check_body_and_run", "check_run", "frame_indices", "part_lines"]
 
 
 def _circle(radius: float, n: int) -> np.ndarray:
@@ -93,12 +94,36 @@ def arrow_scale(vectors, size: float) -> float:
     return 0.9 * size / peak if peak > 0 else 0.0
 
 
-def frame_indices(samples: int, frames: int) -> np.ndarray:
-    """At most ``frames`` sample indices, evenly spread, first and last included."""
+def frame_indices(samples: int, frames: int, name: str = "frames") -> np.ndarray:
+    """At most ``frames`` sample indices, evenly spread, first and last included (``name``: the
+    argument's name in the error)."""
     if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 2 <= frames <= MAX_FRAMES:
-        raise ValueError(f"frames = {frames!r} must be a whole number from 2 to {MAX_FRAMES}")
+        raise ValueError(f"{name} = {frames!r} must be a whole number from 2 to {MAX_FRAMES}")
     return np.unique(np.linspace(0, samples - 1, min(frames, samples)).astype(int))
 
 
 #: Most animation frames of a GIF or the page (each frame is stored).
 MAX_FRAMES = 2000
+
+
+def check_run(traj, name: str = "trajectory") -> None:
+    """Refuse, in one line, anything but a :class:`~tumble.dynamics.Trajectory` with samples."""
+    if not isinstance(traj, Trajectory):
+        raise ValueError(f"{name} = {type(traj).__name__} object must be a tumble Trajectory (what tumble.simulate "
+                         "returns)")
+    if len(traj) == 0:
+        raise ValueError(f"{name} has no samples: there is nothing to draw")
+
+
+def check_body_and_run(body, traj) -> None:
+    """Refuse a body that is not the one simulated: the pictures draw the body's parts moved by
+    the run's attitude, so they must share their principal moments (within
+    :data:`~tumble.mass.INERTIA_RTOL` of the trace)."""
+    check_run(traj)
+    if not isinstance(body, Body):
+        raise ValueError(f"body = {type(body).__name__} object must be the tumble Body that was simulated: a "
+                         "Trajectory holds the motion and the principal moments, not the parts drawn")
+    tol = INERTIA_RTOL * float(np.sum(traj.moments))
+    if not np.allclose(body.principal_moments, traj.moments, rtol=0.0, atol=tol):
+        raise ValueError(f"body = {body!r} is not the body of this trajectory: its principal moments "
+                         f"{body.principal_moments.tolist()} kg m^2 differ from the run's {traj.moments.tolist()}")
