@@ -103,10 +103,8 @@ def test_live_scripts_come_before_the_viewer_and_only_in_live_mode(flip):
     live, still = page_html(scenario.body, traj, frames=10), page_html(scenario.body, traj, frames=10, live=False)
     viewer = live.index("window.tumbleViewer = {")
     for name in ("splitting.js", "live.js"):
-        asset = resources.files("tumble.viz").joinpath("assets", name)
-        if asset.is_file():
-            first_line = asset.read_text().splitlines()[1]
-            assert live.index(first_line) < viewer and first_line not in still
+        first_line = resources.files("tumble.viz").joinpath("assets", name).read_text().splitlines()[1]
+        assert live.index(first_line) < viewer and first_line not in still
     assert "window.tumbleViewer = {" in still
 
 

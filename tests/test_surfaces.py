@@ -130,8 +130,12 @@ def test_decimation_keeps_a_big_mesh_under_the_limit_and_its_shape():
     assert 1000 < len(small_f) <= 5000
     assert surface_volume(small_v, small_f) == pytest.approx(4 / 3 * math.pi, rel=0.05)
     assert np.all(np.linalg.norm(small_v, axis=1) <= 1 + 1e-12)  # averages of points on the sphere
+    assert np.array_equal(np.unique(small_f), np.arange(len(small_v)))  # every vertex used, none dangling
     few = f[:5]
     assert decimate(v, few, 5000) == (v, few)  # small enough: unchanged
+    point, faces = np.zeros((3, 3)), np.array([[0, 1, 2]] * 10)
+    kept_v, kept_f = decimate(point, faces, 5)  # zero extent: nothing to cluster (and no 0/0 warning)
+    assert kept_v is point and kept_f is faces
 
 
 def test_body_surfaces_are_about_the_com_and_mark_removed_material():

@@ -306,6 +306,29 @@ def test_without_ffmpeg_the_gif_is_written_and_said(short_flip, tmp_path, monkey
         viz.animation_path(tmp_path / "b.avi")
 
 
+def test_figures_refuse_what_is_not_a_run_and_save_by_a_known_suffix(flip, tmp_path):
+    for figure in (*_one_run_figures().values(), viz.figure_energy, viz.figure_nutation):
+        with pytest.raises(ValueError, match="trajectory = str object must be a tumble Trajectory"):
+            figure("x")
+    for grid in (viz.figure_omega_grid, viz.figure_omega_panels):
+        with pytest.raises(ValueError, match=r"cases\[0\] = Trajectory object must be a \(title, trajectory\) pair"):
+            grid([flip])
+        with pytest.raises(ValueError, match=r"cases\[1\]\[1\] = str object must be a tumble Trajectory"):
+            grid([("a", flip), ("b", "x")])
+    fig = viz.figure_omega(flip)
+    with pytest.raises(ValueError, match=r"omega: a figure is written as .*\.png.*\.svg.* not 'no suffix'"):
+        viz.save_figure(fig, tmp_path / "omega")
+    with pytest.raises(ValueError, match=r"not '\.docx'"):
+        viz.save_figure(fig, tmp_path / "omega.docx")
+    with pytest.raises(ValueError, match="fig = str object must be a matplotlib Figure"):
+        viz.save_figure("x", tmp_path / "omega.png")
+    with pytest.raises(ValueError, match="dpi = 0 must be a number"):
+        viz.save_figure(fig, tmp_path / "omega.png", dpi=0)
+    assert list(tmp_path.iterdir()) == []
+    viz.save_figure(fig, tmp_path / "omega.PDF")  # the suffix in any case
+    assert (tmp_path / "omega.PDF").read_bytes()[:5] == b"%PDF-"
+
+
 def test_animations_refuse_bad_input_in_one_line(short_flip, tmp_path):
     body = tumble.t_handle()
     cases = [(dict(fps=0), "fps = 0 must be a whole number"), (dict(dpi=2.5), "dpi = 2.5 must be a whole number"),

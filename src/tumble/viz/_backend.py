@@ -92,7 +92,19 @@ def save_figure(fig, path, dpi: int = 110) -> None:
     dpi : int
         Dots per inch of a raster format.
     """
+    from pathlib import Path
+
     from ..io.atomic import atomic_path
 
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=dpi)
+    if not hasattr(fig, "savefig") or not hasattr(fig, "canvas"):
+        raise ValueError(f"fig = {type(fig).__name__} object must be a matplotlib Figure (what a figure_* function returns)")
+    if isinstance(dpi, bool) or not isinstance(dpi, (int, float)) or not 1 <= dpi <= 2000:
+        raise ValueError(f"dpi = {dpi!r} must be a number from 1 to 2000")
+    path = Path(path)
+    kinds = fig.canvas.get_supported_filetypes()
+    kind = path.suffix[1:].lower()
+    if kind not in kinds:
+        raise ValueError(f"{path}: a figure is written as {', '.join('.' + k for k in sorted(kinds))} (by the "
+                         f"suffix), not {path.suffix or 'no suffix'!r}")
+    with atomic_path(path) as tmp:  # the temporary name has its own suffix: the format is given
+        fig.savefig(tmp, dpi=dpi, format=kind)

@@ -111,10 +111,9 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     }
 
 
-def _asset(name: str) -> str | None:
-    """The text of ``assets/<name>``, or None where it is not installed."""
-    path = resources.files("tumble.viz").joinpath("assets", name)
-    return path.read_text(encoding="utf-8") if path.is_file() else None
+def _asset(name: str) -> str:
+    """The text of ``assets/<name>`` (package data, installed with tumble)."""
+    return resources.files("tumble.viz").joinpath("assets", name).read_text(encoding="utf-8")
 
 
 def _script(text: str) -> str:
@@ -175,7 +174,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         '<div id="tumble-body" class="tumble-scene"></div></div>',
         '<div id="tumble-omega"></div><p id="tumble-note"></p>',
         f'<script type="application/json" id="tumble-data">{blob}</script>',
-        *(_script(text) for text in scripts if text is not None),
+        *(_script(text) for text in scripts),
         _script(_asset("viewer.js")),
         "</body></html>",
     ]

@@ -20,6 +20,7 @@ from ..dynamics.exact import FreeRotation
 from ..mass import moment_degeneracy
 from .plots import MAX_POINTS
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
+from .scene import check_run
 
 __all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
            "separatrices"]
@@ -126,6 +127,7 @@ def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
     -------
     matplotlib Figure
     """
+    check_run(traj)
     fig, ax = _axes_3d(ax)
     problem = phase_portrait_problem(traj)
     if problem:
@@ -182,6 +184,7 @@ def figure_herpolhode(traj: Trajectory, *, ax=None, title: str | None = None):
     -------
     matplotlib Figure
     """
+    check_run(traj)
     fig, ax = figure_and_axes(ax, figsize=(7.4, 5.4))
     problem = phase_portrait_problem(traj)
     if problem:

@@ -16,6 +16,7 @@ import numpy as np
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
 from ._backend import figure_and_axes, legend_outside, new_figure
+from .scene import check_run
 
 __all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
            "plot_omega"]
@@ -72,6 +73,7 @@ def plot_omega(traj: Trajectory, ax, title: str | None = None) -> str | None:
     A run of more than :data:`MAX_POINTS` samples is drawn as its :func:`envelope`. Returns the
     note that says so (None when every sample is drawn); it is also the second line of the title.
     """
+    check_run(traj)
     note = None
     if len(traj) > MAX_POINTS:
         times, low, high = envelope(traj.t, traj.omega)
@@ -116,6 +118,7 @@ def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
     matplotlib Figure
         ``ax.figure`` when ``ax`` was given; write it with :func:`tumble.viz.save_figure`.
     """
+    check_run(traj)
     end = detail_window(traj) if ax is None else None
     if end is None:
         fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
@@ -138,7 +141,7 @@ def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
 
 
 def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig=None, ncols: int = 3,
-                      suptitle: str | None = None):
+                      suptitle: str | None = None, sharey: bool = False):
     """Several runs side by side, one panel each (the seed's Figure 1, for every case of the study).
 
     Parameters
@@ -151,19 +154,26 @@ def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig=None, ncols: i
         Panels per row.
     suptitle : str, optional
         The figure's title.
+    sharey : bool
+        One omega scale for every panel.
 
     Returns
     -------
     matplotlib Figure
     """
+    cases = list(cases)
     if not cases:
         raise ValueError("cases is empty: give at least one (title, trajectory) pair")
+    for k, case in enumerate(cases):
+        if not (isinstance(case, (tuple, list)) and len(case) == 2):
+            raise ValueError(f"cases[{k}] = {type(case).__name__} object must be a (title, trajectory) pair")
+        check_run(case[1], f"cases[{k}][1]")
     if isinstance(ncols, bool) or not isinstance(ncols, (int, np.integer)) or ncols < 1:
         raise ValueError(f"ncols = {ncols!r} must be a whole number of at least 1")
     ncols = min(int(ncols), len(cases))
     nrows = int(np.ceil(len(cases) / ncols))
     fig = fig if fig is not None else new_figure((6.2 * ncols, 3.2 * nrows))
-    axes = fig.subplots(nrows, ncols, squeeze=False)
+    axes = fig.subplots(nrows, ncols, squeeze=False, sharey=sharey)
     for ax, (title, traj) in zip(axes.flat, cases):
         plot_omega(traj, ax, title)
     for ax in list(axes.flat)[len(cases):]:
@@ -200,6 +210,7 @@ def figure_drift(traj: Trajectory, *, ax=None, title: str | None = None):
     -------
     matplotlib Figure
     """
+    check_run(traj)
     fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
     E, Ln, Lw = traj.energy, traj.angular_momentum_norm, traj.angular_momentum_world
     (ref_E, at_E), (ref_L, at_L) = _reference(np.abs(E)), _reference(Ln)

@@ -25,12 +25,11 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..dynamics.gravity import GravityGradient, orbit_frame_angles
-from .plots import plot_omega
+from .plots import COLORS, figure_omega_grid
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
+from .scene import check_run
 
 __all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", "spacecraft_figures"]
-
-COLORS = ("tab:blue", "tab:orange", "tab:green")
 
 
 def _has_internal_models(traj: Trajectory) -> bool:
@@ -57,6 +56,7 @@ def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
     -------
     matplotlib Figure
     """
+    check_run(traj)
     fig, ax = figure_and_axes(ax)
     E = traj.energy
     ax.plot(traj.t, E, color=COLORS[0], lw=1.4, label="kinetic energy T (J)")
@@ -102,6 +102,7 @@ def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: boo
     -------
     matplotlib Figure
     """
+    check_run(traj)
     angle = traj.nutation_angle
     fig, ax = figure_and_axes(ax)
     if not np.any(np.isfinite(angle)):
@@ -141,6 +142,7 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax=None, 
     -------
     matplotlib Figure
     """
+    check_run(traj)
     angles = orbit_frame_angles(traj, gravity, **axes)
     fig, ax = figure_and_axes(ax)
     orbits = traj.t / gravity.period
@@ -171,13 +173,9 @@ def figure_omega_panels(cases, *, fig=None, sharey: bool = True):
     -------
     matplotlib Figure
     """
-    if not cases:
-        raise ValueError("cases is empty: give at least one (title, trajectory) pair")
-    fig = fig if fig is not None else new_figure((8.6, 2.6 * len(cases)))
-    axes = fig.subplots(len(cases), 1, squeeze=False, sharey=sharey)
-    for ax, (title, traj) in zip(axes[:, 0], cases):
-        plot_omega(traj, ax, title)
-    return fig
+    cases = list(cases)
+    fig = fig if fig is not None else new_figure((8.6, 2.6 * max(len(cases), 1)))
+    return figure_omega_grid(cases, fig=fig, ncols=1, sharey=sharey)
 
 
 def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str, object]]:

@@ -98,11 +98,13 @@ def _cylinder(radius: float, length: float, n: int) -> tuple[np.ndarray, np.ndar
 def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_FACES):
     """At most ``max_faces`` triangles by vertex clustering (Rossignac & Borrel, "Multi-resolution
     3D approximations for rendering complex scenes", 1993): vertices are snapped to a grid, merged
-    per cell, and triangles that collapse are dropped. The grid is refined until the result fits.
-    A mesh already small enough is returned unchanged."""
-    if len(faces) <= max_faces:
-        return vertices, faces
+    per cell, and triangles that collapse are dropped. The grid is coarsened until the result
+    fits, down to 2 cells a side (whatever remains then is returned, so a mesh of many separate
+    pieces may keep more). A mesh already small enough, or of zero extent, is returned
+    unchanged; vertices no triangle uses are dropped."""
     lo, span = vertices.min(axis=0), np.ptp(vertices, axis=0).max()
+    if len(faces) <= max_faces or not span > 0:
+        return vertices, faces
     cells = max(int(np.sqrt(max_faces / 2)), 2)
     while True:
         key = np.floor((vertices - lo) / span * cells).astype(np.int64)
@@ -116,7 +118,8 @@ def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_
         if len(new_faces) <= max_faces or cells <= 2:
             counts = np.bincount(inverse)
             centres = np.stack([np.bincount(inverse, weights=vertices[:, k]) for k in range(3)], axis=1)
-            return centres / counts[:, None], new_faces
+            used, compact = np.unique(new_faces, return_inverse=True)
+            return centres[used] / counts[used, None], compact.reshape(new_faces.shape)
         cells = int(cells * 0.8)
 
 
