@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import tumble
+from tumble.io.atomic import atomic_path
 
 GALLERY = Path(__file__).resolve().parents[1] / "docs" / "gallery"
 TESTS = Path(__file__).resolve().parent
@@ -65,7 +66,8 @@ def write_if_changed(path: Path, text: str) -> None:
     old = path.read_text() if path.exists() else None
     if old != text:
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text)
+        with atomic_path(path) as tmp:  # never a half-written page, even with two runs at once
+            tmp.write_text(text)
     assert old == text, f"{path} was stale and has been rewritten: review and commit it"
 
 

@@ -6,7 +6,7 @@ import numpy as np
 
 import tumble
 from gallery import Entry, body, code, page_test, sig
-from tumble.analysis import axis_precession_period, npa_periods, npa_periods_measured, periods_consistent
+from tumble.analysis import axis_precession_period, npa_periods_measured, periods_consistent
 
 DAY, HOUR = 86400.0, 3600.0
 

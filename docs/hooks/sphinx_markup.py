@@ -1,6 +1,6 @@
 """griffe extension: read tumble's Sphinx-style markup for the API reference.
 
-tumble's docstrings are numpydoc and use two pieces of Sphinx markup that griffe does not read:
+tumble's docstrings are numpydoc and use three pieces of Sphinx markup that griffe does not read:
 
 - ``#:`` comments above a module constant, its documentation (Sphinx autodoc's attribute
   comments); they become the constant's docstring, so ``INERTIA_RTOL`` and the like appear in
