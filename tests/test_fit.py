@@ -250,15 +250,12 @@ def test_bad_files_are_refused_in_one_line(tmp_path, text, message):
 
 
 def test_the_command_writes_fit_json_and_the_figure(tmp_path, capsys):
-    from tumble.viz import figure_fit, save_figure
-
-    def figure(fit, omega, path):
-        save_figure(figure_fit(fit, omega), path)
+    from tumble.viz import figure_fit
 
     data_file = tmp_path / "phone_toss.csv"
     write_phone_csv(data_file)  # the example file's content (examples/data/phone_toss.csv)
     out = tmp_path / "run"
-    assert run_fit_command(data_file, out, argv=["fit", str(data_file), "--out", str(out)], figure=figure) == 0
+    assert run_fit_command(data_file, out, argv=["fit", str(data_file), "--out", str(out)], figure=figure_fit) == 0
     data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
     assert abs(data["I1_over_I3"] - phone_ratios()[0]) < 1e-3 and abs(data["I2_over_I3"] - phone_ratios()[1]) < 1e-3
     assert data["provenance"]["command"].startswith("tumble fit ") and list(data["provenance"]["inputs"].values())[0]

@@ -73,13 +73,10 @@ def read_cases(path: Path) -> tuple[list[str], dict[str, np.ndarray]]:
 
 
 def test_a_sweep_writes_its_cases_summary_and_figure(tmp_path):
-    from tumble.viz import figure_sweep, save_figure
-
-    def figure(columns, path, **options):
-        save_figure(figure_sweep(columns, **options), path)
+    from tumble.viz import figure_sweep
 
     out = tmp_path / "out"
-    data = run_sweep(write(tmp_path), out, figure=figure, argv=["sweep", "small.toml", "--out", "out"])
+    data = run_sweep(write(tmp_path), out, figure=figure_sweep, argv=["sweep", "small.toml", "--out", "out"])
     try:
         import pyarrow  # noqa: F401
         table = ["cases.parquet"]

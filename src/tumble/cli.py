@@ -55,20 +55,6 @@ def _cmd_demo(args) -> int:
     return EXIT_OK
 
 
-def _written(figure, dpi: int = 110):
-    """``figure`` as the io layer calls it, ``write(*data, path, **options)``: draw, then save to ``path``.
-
-    The io layer cannot import the viz layer, so the command line hands it this.
-    """
-    from .viz import save_figure
-
-    def write(*args, **options):
-        *data, path = args
-        save_figure(figure(*data, **options), path, dpi=dpi)
-
-    return write
-
-
 def _cmd_examples(args) -> int:
     from .io.examples import copy_examples, list_examples
 
@@ -94,7 +80,7 @@ def _cmd_sweep(args) -> int:
         raise ValueError(f"--workers = {args.workers} must be from 1 to 256")
     with _working("sweeping"):
         return run_sweep_command(args.sweep, args.out, workers=args.workers, scheduler=args.scheduler,
-                                 argv=args.argv, figure=_written(figure_sweep))
+                                 argv=args.argv, figure=figure_sweep)
 
 
 def _cmd_map(args) -> int:
@@ -121,7 +107,7 @@ def _cmd_fit(args) -> int:
     from .viz import figure_fit
 
     with _working("fitting"):
-        return run_fit_command(args.data, args.out, argv=args.argv, figure=_written(figure_fit), start=args.start,
+        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, start=args.start,
                                end=args.end, sensor_rotation=args.sensor, bias=not args.no_bias)
 
 

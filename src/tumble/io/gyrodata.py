@@ -29,7 +29,7 @@ import numpy as np
 
 from ..analysis.fit import fit_rotation
 from ..mass._checks import read_input_file
-from .output import check_output_dir, output_dir
+from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
 
 __all__ = ["MAX_GYRO_FILE_BYTES", "read_gyro_csv", "run_fit_command"]
@@ -139,9 +139,8 @@ def run_fit_command(path, out, *, argv=None, figure=None, start: float | None = 
     argv : list of str, optional
         The command line after ``tumble``, for the provenance.
     figure : callable, optional
-        ``figure(fit, omega_measured, path)`` drawing the figure and writing it to ``path``
-        (the command line: :func:`tumble.viz.figure_fit`, then :func:`tumble.viz.save_figure`;
-        io cannot import viz).
+        ``figure(fit, omega_measured)`` returning the figure (a matplotlib Figure:
+        :func:`tumble.viz.figure_fit`; io cannot import viz), saved as ``fit.png``.
     start, end : float, optional
         Fit only the samples with ``start <= t <= end``, s (the free flight of a toss: the
         record of a phone thrown and caught holds the throw and the catch too).
@@ -174,8 +173,8 @@ def run_fit_command(path, out, *, argv=None, figure=None, start: float | None = 
     owns = ("fit.json", "fit.png")
     with output_dir(out, owns=owns) as stage:
         (Path(stage) / "fit.json").write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-        if figure is not None:
-            figure(fit, omega, Path(stage) / "fit.png")
+        if figure is not None:  # drawn by the caller's layer, written here into the staged folder
+            figure(fit, omega).savefig(Path(stage) / "fit.png", dpi=FIGURE_DPI)
     written = "fit.json" + (" and fit.png" if figure is not None else "")
     print(f"fit {os.fspath(path)}: I1/I3 = {fit.ratios[0]:.5f} +- {fit.ratios_std[0]:.1g}, "
           f"I2/I3 = {fit.ratios[1]:.5f} +- {fit.ratios_std[1]:.1g}, residual {fit.residual_rms:.3g} rad/s "

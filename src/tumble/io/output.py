@@ -35,7 +35,10 @@ from pathlib import Path
 
 from .atomic import _umask
 
-__all__ = ["check_output_dir", "check_output_file", "output_dir"]
+__all__ = ["FIGURE_DPI", "check_output_dir", "check_output_file", "output_dir"]
+
+#: Resolution of the raster figures the commands write, dots per inch.
+FIGURE_DPI = 110
 
 
 def _refuse(path: Path, why: str) -> ValueError:

@@ -55,9 +55,8 @@
 - ``summary.json``: the sweep's settings, the streaming statistics
   (:meth:`tumble.ensemble.SweepSummary.as_dict`), the criterion's success statement and the
   provenance (:func:`tumble.io.provenance.provenance`);
-- a figure, ``sweep.png``, when the caller passes one (the command line passes
-  :func:`tumble.viz.figure_sweep` followed by :func:`tumble.viz.save_figure`; this layer draws
-  nothing).
+- a figure, ``sweep.png``, when the caller passes the function that draws it (the command line
+  passes :func:`tumble.viz.figure_sweep`; this layer draws nothing, it saves the figure).
 
 Resume: each finished chunk is kept in ``DIR.resume/`` beside the output (a fingerprint of the
 sweep file, the body files, the chunk size and the versions of tumble, numpy and scipy says
@@ -95,7 +94,7 @@ from ..mass import PRESETS, Body
 from .atomic import atomic_path, atomic_write_text
 from .bodyfile import body_from_table, read_toml
 from .export import write_json
-from .output import check_output_dir, output_dir
+from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
 from .scenario import DEFAULT_T_END, _torque
 
@@ -355,9 +354,8 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
     argv : list of str, optional
         The command line, for the provenance.
     figure : callable, optional
-        ``figure(columns, path, title=..., cases=...)`` draws the sample of cases and writes
-        it to ``sweep.png`` (the command line: :func:`tumble.viz.figure_sweep`, then
-        :func:`tumble.viz.save_figure`).
+        ``figure(columns, title=..., cases=...)`` returns the figure of the sample of cases
+        (a matplotlib Figure: :func:`tumble.viz.figure_sweep`), saved as ``sweep.png``.
 
     Returns
     -------
@@ -396,9 +394,10 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
                 "provenance": provenance(argv, parsed.sources),
             }
             write_json(_plain(data), stage / "summary.json")
-            if figure is not None:
-                figure(summary.sample_columns(), stage / "sweep.png",
-                       title=f"{parsed.name}: {data['body']}, {settings.method}", cases=summary.cases)
+            if figure is not None:  # drawn by the caller's layer, written here into the staged folder
+                drawn = figure(summary.sample_columns(), title=f"{parsed.name}: {data['body']}, {settings.method}",
+                               cases=summary.cases)
+                drawn.savefig(stage / "sweep.png", dpi=FIGURE_DPI)
     finally:
         backend.close()
     store.remove()

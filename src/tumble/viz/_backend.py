@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import io
 
+from ..io.output import FIGURE_DPI
+
 __all__ = ["TumbleFigure", "figure_and_axes", "legend_outside", "new_figure", "note_only", "save_figure"]
 
 
@@ -76,7 +78,7 @@ def note_only(ax, note: str, title: str | None = None) -> None:
         ax.set_title(title, fontsize=9)
 
 
-def save_figure(fig, path, dpi: int = 110) -> None:
+def save_figure(fig, path, dpi: int = FIGURE_DPI) -> None:
     """Write ``fig`` to ``path`` (format from the suffix: PNG, SVG, PDF, ...), whole or not at all.
 
     The figure is written to a temporary name in the same folder and renamed into place
