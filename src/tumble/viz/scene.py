@@ -39,7 +39,7 @@ def _local_lines(part: Part, n: int) -> list[np.ndarray]:
                       for a in np.linspace(0, 2 * np.pi, 4, endpoint=False)]
         return lines
     if isinstance(part, Cone):
-        base, apex = -part.height / 4, 3 * part.height / 4
+        base, apex = cone_span(part)
         ring = _circle(part.radius, n) + [0, 0, base]
         spokes = [np.array([ring[k], [0, 0, apex]]) for k in range(0, n, max(n // 6, 1))]
         return [ring, *spokes]
@@ -62,15 +62,30 @@ def _mesh_lines(part, max_edges: int = 400) -> list[np.ndarray]:
     edges = mesh.edges_unique
     if len(edges) > max_edges:
         edges = edges[np.linspace(0, len(edges) - 1, max_edges).astype(int)]
-    verts = mesh.vertices - part._com_local  # about the mesh's own centre of mass
+    verts = mesh_vertices_about_com(part)
     return [verts[e] for e in edges]
+
+
+def cone_span(part: Cone) -> tuple[float, float]:
+    """Base and apex of a solid cone along its axis from its centre of mass, m: the centroid lies a
+    quarter of the height above the base (as :class:`tumble.mass.Cone` places it; Meriam &
+    Kraige, *Engineering Mechanics: Dynamics*, Table D/4)."""
+    return -part.height / 4, 3 * part.height / 4
+
+
+def mesh_vertices_about_com(part) -> np.ndarray:
+    """A mesh part's vertices in its own frame about its own centre of mass, m."""
+    return np.asarray(part.mesh.vertices, float) - part._com_local
+
+
+def to_design(part: Part, points: np.ndarray) -> np.ndarray:
+    """Points of a part's own frame (about its centre of mass) in the design frame, m."""
+    return points @ part.orientation.as_matrix().T + np.asarray(part.com)
 
 
 def part_lines(part: Part, n: int = 32) -> list[np.ndarray]:
     """Polylines of a part in the design frame (m), each an array of shape (k, 3)."""
-    R = part.orientation.as_matrix()
-    c = np.asarray(part.com)
-    return [pts @ R.T + c for pts in _local_lines(part, n)]
+    return [to_design(part, pts) for pts in _local_lines(part, n)]
 
 
 def body_lines(body: Body, n: int = 32) -> list[tuple[np.ndarray, bool]]:

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..mass import Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
-from .scene import body_size
+from .scene import body_size, cone_span, mesh_vertices_about_com, to_design
 
 __all__ = ["MAX_MESH_FACES", "body_surfaces", "decimate", "part_surface", "surface_volume"]
 
@@ -132,8 +132,8 @@ def _local_surface(part: Part, n: int, thin: float) -> tuple[np.ndarray, np.ndar
     if isinstance(part, Tube):
         h, ri, ro = part.length / 2, part.inner_radius, part.outer_radius
         return _revolve([[(ri, -h), (ro, -h)], [(ro, -h), (ro, h)], [(ro, h), (ri, h)], [(ri, h), (ri, -h)]], n)
-    if isinstance(part, Cone):  # base a quarter of the height below the COM, apex 3/4 above
-        base, apex = -part.height / 4, 3 * part.height / 4
+    if isinstance(part, Cone):
+        base, apex = cone_span(part)
         return _revolve([[(0.0, base), (part.radius, base)], [(part.radius, base), (0.0, apex)]], n)
     if isinstance(part, Box):
         return _box(part.size)
@@ -144,8 +144,7 @@ def _local_surface(part: Part, n: int, thin: float) -> tuple[np.ndarray, np.ndar
         return _sphere(part.radius, n)
     if isinstance(part, PointMass):
         return _sphere(thin, 12)
-    mesh = part.mesh  # a Mesh part: its own triangles about its own centre of mass
-    return decimate(np.asarray(mesh.vertices, float) - part._com_local, np.asarray(mesh.faces, np.int64))
+    return decimate(mesh_vertices_about_com(part), np.asarray(part.mesh.faces, np.int64))  # a Mesh part
 
 
 def part_surface(part: Part, n: int = 32, thin: float | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -172,7 +171,7 @@ def part_surface(part: Part, n: int = 32, thin: float | None = None) -> tuple[np
     if thin is None:
         thin = 0.015 * part.length if isinstance(part, Rod) else 0.01
     v, f = _local_surface(part, n, thin)
-    return v @ part.orientation.as_matrix().T + np.asarray(part.com), f
+    return to_design(part, v), f
 
 
 def body_surfaces(body: Body, n: int = 32) -> list[tuple[np.ndarray, np.ndarray, bool]]:
