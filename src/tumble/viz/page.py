@@ -25,11 +25,11 @@ import numpy as np
 
 from ..dynamics import Trajectory
 from ..io.atomic import atomic_write_text
-from ..mass import Body
+from ..mass import Body, Box, t_handle
 from .scene import check_body_and_run, frame_indices
 from .surfaces import body_surfaces
 
-__all__ = ["CURVE_POINTS", "page_data", "page_html", "write_page"]
+__all__ = ["BRODY_RACKET_MOMENTS", "CURVE_POINTS", "live_presets", "page_data", "page_html", "write_page"]
 
 #: Most points drawn per omega(t) curve (and in the omega path); longer runs are subsampled.
 CURVE_POINTS = 4000
@@ -59,6 +59,33 @@ def _merged(surfaces, unit: float):
     return {"v": v.ravel().tolist(), "f": np.concatenate(faces).ravel().tolist()}
 
 
+#: Brody's measured tennis racket, kg m^2 (1985, as quoted by Ashbaugh, Chicone & Cushman,
+#: J. Dyn. Diff. Eq. 3 (1991) 67, footnote 4; docs/gallery/tennis-racket-twist.md).
+BRODY_RACKET_MOMENTS = (0.00121, 0.01638, 0.01748)
+
+
+def _tidy(values) -> list[float]:
+    return [float(f"{x:.12g}") for x in values]  # readable in the form; round-off of the sums dropped
+
+
+def live_presets() -> list[dict]:
+    """The live mode's fixed presets: ``name``, ``moments`` (kg m^2), ``omega0`` (principal frame,
+    rad/s) and ``mass`` (kg, sets only the size of the uniform box drawn for them)."""
+    handle = t_handle()
+    plate = Body([Box(mass=1.0, size=(0.300, 0.295, 0.060))])
+    return [
+        {"name": "T-handle flip: the seed's handle about its intermediate axis (examples/seed_flip.toml)",
+         "moments": _tidy(handle.principal_moments), "omega0": [0.1, 10.0, 0.1], "mass": float(handle.mass)},
+        # illustrative: I1 and I2 3 % apart, spun 18 degrees off axis 3
+        {"name": "near-symmetric body: a 1 kg plate 300 x 295 x 60 mm, tilted spin",
+         "moments": _tidy(plate.principal_moments), "omega0": [2.0, 0.0, 6.0], "mass": 1.0},
+        # handle along the minor axis, tossed about the in-plane axis across it; the racket's mass
+        # is not given in the source: 0.35 kg is assumed, for the size of the box drawn only
+        {"name": "tennis racket (Brody's measured moments): toss about the intermediate axis",
+         "moments": list(BRODY_RACKET_MOMENTS), "omega0": [0.2, 12.0, 0.2], "mass": 0.35},
+    ]
+
+
 def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None = None) -> dict:
     """What the page's viewer plays, as JSON-ready data.
 
@@ -71,7 +98,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     three per triangle; ``removed`` is None without subtracted material); ``frames`` (``t``; ``q``
     design -> world quaternions; ``w`` omega_world, rad/s; ``L`` L_world, kg m^2/s; one row per
     frame, no geometry); ``curves`` (omega(t) in the principal frame, every ``stride``-th of
-    ``samples`` samples, ``t`` and ``omega`` as three rows).
+    ``samples`` samples, ``t`` and ``omega`` as three rows); ``presets`` (:func:`live_presets`).
     """
     from scipy.spatial.transform import Rotation
 
@@ -108,6 +135,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
         },
         "curves": {"t": _rounded(traj.t[keep], 8), "omega": _rounded(traj.omega[keep].T),
                    "stride": int(stride), "samples": len(traj)},
+        "presets": live_presets(),
     }
 
 

@@ -48,12 +48,6 @@
     return h.map(function (x) { return Math.max(x, floor); });
   }
 
-  /** Principal moments (kg m^2) of a uniform box of mass m (kg) and full edges e (m), longest first. */
-  function boxMoments(m, e) {
-    return [m * (e[1] * e[1] + e[2] * e[2]) / 12, m * (e[0] * e[0] + e[2] * e[2]) / 12,
-            m * (e[0] * e[0] + e[1] * e[1]) / 12].map(function (x) { return round(x, 12); });
-  }
-
   function presets(data) {
     var list = [];
     if (data && data.moments && data.omega0) {
@@ -63,20 +57,9 @@
       list.push({ name: "stable: this body spun about its smallest axis (1)", moments: I, omega0: [spin, p, p] });
       list.push({ name: "stable: this body spun about its largest axis (3)", moments: I, omega0: [p, p, spin] });
     }
-    // the seed's T-handle (tumble.mass.presets.t_handle, diag(0.125, 0.3125, 0.4375) kg m^2 in the
-    // principal frame) and examples/seed_flip.toml's omega, [10, 0.1, 0.1] rad/s about the crossbar
-    list.push({ name: "T-handle flip: the seed's handle about its intermediate axis (examples/seed_flip.toml)",
-                moments: [0.125, 0.3125, 0.4375], omega0: [0.1, 10.0, 0.1], mass: 3.0 });
-    // illustrative: a 1 kg plate 300 x 295 x 60 mm, I1 and I2 3 % apart, spun 18 degrees off its axis 3
-    list.push({ name: "near-symmetric body: a 1 kg plate 300 x 295 x 60 mm, tilted spin",
-                moments: boxMoments(1.0, [0.300, 0.295, 0.060]), omega0: [2.0, 0.0, 6.0], mass: 1.0 });
-    // Brody's measured racket (1985), as quoted by Ashbaugh, Chicone & Cushman, J. Dyn. Diff. Eq.
-    // 3 (1991) 67, footnote 4: I1 = 0.00121, I2 = 0.01638, I3 = 0.01748 kg m^2
-    // (docs/gallery/tennis-racket-twist.md); its mass is not given there: 0.35 kg is assumed, and
-    // only sets the size of the box drawn. Handle along the minor axis 1, tossed about the
-    // in-plane axis across the handle (axis 2)
-    list.push({ name: "tennis racket (Brody's measured moments): toss about the intermediate axis",
-                moments: [0.00121, 0.01638, 0.01748], omega0: [0.2, 12.0, 0.2], mass: 0.35 });
+    // the fixed presets come from tumble (tumble.viz.page.live_presets): the seed's T-handle, a
+    // near-symmetric plate and Brody's measured racket, with their sources
+    (data && data.presets || []).forEach(function (p) { list.push(p); });
     return list;
   }
 
