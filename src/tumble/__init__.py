@@ -49,6 +49,7 @@ _EXPORTS = {
     "flip_interval": "tumble.analysis",
     "stability_report": "tumble.analysis",
     "fit_rotation": "tumble.analysis",
+    "fit_recording": "tumble.analysis",
     # files
     "load_body": "tumble.io",
     "load_scenario": "tumble.io",

@@ -102,13 +102,44 @@ def _cmd_map(args) -> int:
     return EXIT_OK
 
 
-def _cmd_fit(args) -> int:
-    from .io.gyrodata import run_fit_command
-    from .viz import figure_fit
+class _Bar:
+    """A rich progress bar of the flights examined, on a terminal only (silent when piped)."""
 
-    with _working("fitting"):
-        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, start=args.start,
-                               end=args.end, sensor_rotation=args.sensor, bias=not args.no_bias)
+    def __init__(self):
+        self.bar = self.task = None
+        if sys.stderr.isatty():
+            from rich.console import Console
+            from rich.progress import Progress
+
+            self.bar = Progress(console=Console(stderr=True), transient=True)
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            return
+        if self.task is None:
+            self.bar.start()
+            self.task = self.bar.add_task("fitting flights", total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None and self.task is not None:
+            self.bar.stop()
+
+
+def _cmd_fit(args) -> int:
+    from .io.fitcommand import run_fit_command
+    from .viz import figure_fit, figure_recording
+
+    if args.saturation is not None and not (args.saturation > 0 and args.saturation < float("inf")):
+        raise ValueError(f"--saturation = {args.saturation} must be a positive number of rad/s")
+    bar = _Bar()
+    try:
+        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
+                               start=args.start, end=args.end, body=args.body, progress=bar,
+                               sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
+                               saturation=args.saturation)
+    finally:
+        bar.close()
 
 
 def _resolve(args):
@@ -347,20 +378,28 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "fit",
-        help="inertia ratios from a gyroscope record (phyphox or t,wx,wy,wz CSV)",
-        description="Fits the inertia ratios I1/I3 and I2/I3, the initial omega, the sensor's rotation and a "
-        "constant bias to a record of angular velocity (least squares on the exact torque-free motion) and "
-        "writes DIR/fit.json (values with standard uncertainties, residual, provenance) and DIR/fit.png. "
-        "Fit only the free flight: trim the throw and the catch with --start and --end.",
-        epilog="Example: tumble fit examples/data/phone_toss.csv --out fitted", parents=[debug],
+        help="inertia ratios from a gyroscope recording (phyphox export or t,wx,wy,wz CSV)",
+        description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
+        "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
+        "jointly (shared ratios, sensor rotation, bias and drag) and writes DIR/fit.json (pooled values with "
+        "standard uncertainties and 95 %% intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
+        "With --start/--end the samples between are fitted as one flight.",
+        epilog="Example: tumble fit examples/data/racquet_tosses.csv --out fitted", parents=[debug],
     )
-    p.add_argument("data", metavar="DATA", help="a CSV: phyphox's gyroscope export or t, wx, wy, wz (s, rad/s)")
+    p.add_argument("data", metavar="RECORDING",
+                   help="a CSV (phyphox's gyroscope export or t, wx, wy, wz in s, rad/s), or phyphox's export "
+                   "folder or .zip (Raw Data.csv and meta/time.csv)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--sensor", choices=["fit", "identity"], default="fit",
                    help="fit the sensor's rotation to the principal axes (default) or take it as identity")
     p.add_argument("--no-bias", action="store_true", help="assume an unbiased gyroscope")
-    p.add_argument("--start", type=float, metavar="S", help="first time to fit, s")
-    p.add_argument("--end", type=float, metavar="S", help="last time to fit, s")
+    p.add_argument("--drag", choices=["auto", "none", "linear", "quadratic"], default="auto",
+                   help="aerodynamic drag about each principal axis: chosen by the BIC (default), or as named")
+    p.add_argument("--saturation", type=float, metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+    p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
+    p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s")
+    p.add_argument("--end", type=float, metavar="S", help="fit one flight: last time, s")
     p.set_defaults(func=_cmd_fit)
 
     p = sub.add_parser(

@@ -6,7 +6,7 @@ Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 "Numbering the principal axes").
 """
 
-from .fit import RotationFit, fit_rotation
+from .fit import RecordingFit, RotationFit, Toss, fit_recording, fit_rotation
 from .period_inversion import PeriodFamily, periods_consistent
 from .stability import (
     axis_of,
@@ -33,11 +33,14 @@ from .summary import stability_report, trajectory_summary
 
 __all__ = [
     "PeriodFamily",
+    "RecordingFit",
     "RotationFit",
+    "Toss",
     "axis_of",
     "axis_precession_period",
     "circulation_axis",
     "energy_momentum_gaps",
+    "fit_recording",
     "fit_rotation",
     "flip_interval",
     "flip_interval_asymptotic",

@@ -1,5 +1,4 @@
-"""Gyroscope records in: a phone's phyphox export or a plain ``t, wx, wy, wz`` CSV; and the
-``tumble fit`` command (fit the record, write ``fit.json`` and optionally ``fit.png``).
+"""Gyroscope records in: a phone's phyphox export or a plain ``t, wx, wy, wz`` CSV.
 
 Formats read by :func:`read_gyro_csv`:
 
@@ -20,19 +19,14 @@ are :func:`tumble.analysis.fit.fit_rotation`'s, reported with the file's name.
 
 from __future__ import annotations
 
-import json
 import os
 import re
-from pathlib import Path
 
 import numpy as np
 
-from ..analysis.fit import fit_rotation
 from ..mass._checks import read_input_file
-from .output import FIGURE_DPI, check_output_dir, output_dir
-from .provenance import file_sha256, provenance
 
-__all__ = ["MAX_GYRO_FILE_BYTES", "read_gyro_csv", "run_fit_command"]
+__all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "parse_gyro_csv", "parse_time_csv", "read_gyro_csv", "read_recording"]
 
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
 MAX_GYRO_FILE_BYTES = 64 << 20
@@ -74,8 +68,12 @@ def read_gyro_csv(path) -> tuple[np.ndarray, np.ndarray]:
         One line naming the file (and the line): not a readable regular file, larger than
         :data:`MAX_GYRO_FILE_BYTES`, not text, a missing column, a value that is not a number.
     """
-    label = os.fspath(path)
     raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+    return parse_gyro_csv(raw, os.fspath(path))
+
+
+def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`read_gyro_csv` on the bytes of a file already read (``label`` names it)."""
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as err:
@@ -121,62 +119,112 @@ def read_gyro_csv(path) -> tuple[np.ndarray, np.ndarray]:
     return rows[:, 0].copy(), rows[:, 1:].copy()
 
 
-def run_fit_command(path, out, *, argv=None, figure=None, start: float | None = None, end: float | None = None,
-                    **options) -> int:
-    """``tumble fit DATA.csv --out DIR``: fit a gyroscope record and write the result.
+#: The phyphox export's file of START/PAUSE events, inside the folder or the zip.
+TIME_CSV = "meta/time.csv"
 
-    Writes ``DIR/fit.json`` (the fitted values and uncertainties of
-    :meth:`tumble.analysis.fit.RotationFit.summary`, the input file and the provenance) and,
-    when ``figure`` is given, ``DIR/fit.png``, all or nothing (:func:`tumble.io.output.output_dir`);
-    prints one line.
+
+def parse_time_csv(raw: bytes, label: str) -> list[tuple[str, float]]:
+    """phyphox's ``meta/time.csv``: ``[(event, experiment time in s), ...]``.
+
+    Its header is ``"event","experiment time","system time","system time text"``; the events
+    are ``START`` and ``PAUSE`` (after a pause the experiment time carries on from the pause).
+    """
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
+    lines = [(i + 1, line) for i, line in enumerate(text.splitlines()) if line.strip()]
+    if not lines:
+        return []
+    sep = _separator(lines[0][1]) or ","
+    head = [h.lower() for h in _split(lines[0][1], sep)]
+    if "event" not in head or "experiment time" not in head:
+        raise ValueError(f"{label}, line {lines[0][0]}: expected the columns \"event\" and \"experiment time\" "
+                         "(phyphox's meta/time.csv)")
+    ie, it = head.index("event"), head.index("experiment time")
+    events = []
+    for no, line in lines[1:]:
+        cells = _split(line, sep)
+        if len(cells) <= max(ie, it):
+            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {len(head)}")
+        name, value = cells[ie].upper(), cells[it]
+        if name not in ("START", "PAUSE"):
+            raise ValueError(f"{label}, line {no}: event {cells[ie][:20]!r}; expected START or PAUSE")
+        if not _NUMBER.match(value):
+            raise ValueError(f"{label}, line {no}: experiment time {value[:40]!r} is not a number")
+        events.append((name, float(value.replace(",", ".") if sep == ";" else value)))
+    return events
+
+
+def _pick_csv(names, label) -> str:
+    """The gyroscope CSV of a phyphox export: ``Raw Data.csv``, else the only CSV at the top."""
+    top = [n for n in names if n.lower().endswith(".csv") and "/" not in n.strip("/")]
+    for n in top:
+        if n.lower() in ("raw data.csv", "gyroscope.csv"):
+            return n
+    if len(top) == 1:
+        return top[0]
+    raise ValueError(f"{label}: a phyphox export holds \"Raw Data.csv\" (the gyroscope's data) at its top; found "
+                     f"{len(top)} CSV files ({', '.join(sorted(top)[:4]) or 'none'})")
+
+
+def read_recording(path) -> tuple[np.ndarray, np.ndarray, list]:
+    """A whole recording: a CSV file, or a phyphox export (its folder or its ``.zip``).
 
     Parameters
     ----------
     path : str or Path
-        The gyroscope record (:func:`read_gyro_csv`).
-    out : str or Path
-        The output folder.
-    argv : list of str, optional
-        The command line after ``tumble``, for the provenance.
-    figure : callable, optional
-        ``figure(fit, omega_measured)`` returning the figure (a matplotlib Figure:
-        :func:`tumble.viz.figure_fit`; io cannot import viz), saved as ``fit.png``.
-    start, end : float, optional
-        Fit only the samples with ``start <= t <= end``, s (the free flight of a toss: the
-        record of a phone thrown and caught holds the throw and the catch too).
-    **options
-        Passed to :func:`tumble.analysis.fit.fit_rotation` (``sensor_rotation``, ``bias``).
+        A gyroscope CSV (:func:`read_gyro_csv`), or phyphox's export: a folder or a zip holding
+        ``Raw Data.csv`` and ``meta/time.csv`` (the START/PAUSE events; optional).
 
     Returns
     -------
-    int
-        0 on success (errors raise ``ValueError`` with one line).
+    t : ndarray, shape (n,)
+        Times (phyphox's experiment time), s.
+    omega : ndarray, shape (n, 3)
+        rad/s, sensor axes.
+    events : list of (str, float)
+        START/PAUSE events (empty for a plain CSV).
+
+    Raises
+    ------
+    ValueError
+        One line naming the file: as :func:`read_gyro_csv`, a zip that is not one or whose
+        members are too large, an export without its gyroscope CSV.
     """
-    check_output_dir(out)
+    import zipfile
+
+    label = os.fspath(path)
+    if os.path.isdir(path):
+        names = [e for e in os.listdir(path) if os.path.isfile(os.path.join(path, e))]
+        name = _pick_csv(names, label)
+        t, omega = read_gyro_csv(os.path.join(path, name))
+        meta = os.path.join(path, *TIME_CSV.split("/"))
+        events = []
+        if os.path.isfile(meta):
+            events = parse_time_csv(read_input_file(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
+        return t, omega, events
+    if label.lower().endswith(".zip"):
+        raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a phyphox export (zip)")
+        import io
+
+        try:
+            archive = zipfile.ZipFile(io.BytesIO(raw))
+        except zipfile.BadZipFile:
+            raise ValueError(f"{label}: not a zip archive (a phyphox export is a .zip of CSV files)") from None
+        with archive:
+            infos = {i.filename: i for i in archive.infolist() if not i.is_dir()}
+            name = _pick_csv(list(infos), label)
+
+            def member(n, limit):
+                if infos[n].file_size > limit:
+                    raise ValueError(f"{label}: {n} unpacks to {infos[n].file_size} bytes; at most {limit} are read")
+                return archive.read(n)
+
+            t, omega = parse_gyro_csv(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
+            events = []
+            if TIME_CSV in infos:
+                events = parse_time_csv(member(TIME_CSV, 1 << 20), f"{label}/{TIME_CSV}")
+        return t, omega, events
     t, omega = read_gyro_csv(path)
-    if start is not None or end is not None:
-        lo = -np.inf if start is None else float(start)
-        hi = np.inf if end is None else float(end)
-        if not lo < hi:
-            raise ValueError(f"--start {start} must be before --end {end} (s)")
-        keep = (t >= lo) & (t <= hi)
-        t, omega = t[keep], omega[keep]
-    digest = file_sha256(path)
-    try:
-        fit = fit_rotation(t, omega, **options)
-    except ValueError as err:
-        raise ValueError(f"{os.fspath(path)}: {err}") from None
-    record = {"input": os.fspath(path), "start": start, "end": end, **fit.summary(),
-              "method": "least squares on the exact torque-free solution (Landau & Lifshitz sec. 37), "
-                        "uncertainties sqrt(diag((J^T J)^-1) s^2) (Numerical Recipes sec. 15.5)",
-              "provenance": provenance(argv, [(path, digest)])}
-    owns = ("fit.json", "fit.png")
-    with output_dir(out, owns=owns) as stage:
-        (Path(stage) / "fit.json").write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
-        if figure is not None:  # drawn by the caller's layer, written here into the staged folder
-            figure(fit, omega).savefig(Path(stage) / "fit.png", dpi=FIGURE_DPI)
-    written = "fit.json" + (" and fit.png" if figure is not None else "")
-    print(f"fit {os.fspath(path)}: I1/I3 = {fit.ratios[0]:.5f} +- {fit.ratios_std[0]:.1g}, "
-          f"I2/I3 = {fit.ratios[1]:.5f} +- {fit.ratios_std[1]:.1g}, residual {fit.residual_rms:.3g} rad/s "
-          f"({fit.samples} samples); wrote {written} in {os.fspath(out)}")
-    return 0
+    return t, omega, []

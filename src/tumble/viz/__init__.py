@@ -7,7 +7,7 @@ animations write an MP4 (with ffmpeg) or a GIF. The physics layers never import 
 
 from ._backend import save_figure
 from .animate import animate_body_frame, animate_ground_frame, animation_path, ffmpeg_path
-from .fit import figure_fit
+from .fit import figure_fit, figure_recording
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
 from .notebook import show
@@ -34,6 +34,7 @@ __all__ = [
     "figure_drift",
     "figure_energy",
     "figure_fit",
+    "figure_recording",
     "figure_gravity_stability",
     "figure_herpolhode",
     "figure_nutation",

@@ -11,7 +11,7 @@ import numpy as np
 
 from ._backend import legend_outside, new_figure
 
-__all__ = ["figure_fit"]
+__all__ = ["figure_fit", "figure_recording"]
 
 
 def figure_fit(fit, omega_measured, *, fig=None):
@@ -47,4 +47,73 @@ def figure_fit(fit, omega_measured, *, fig=None):
     (x, y), (sx, sy) = fit.ratios, fit.ratios_std
     fig.suptitle(f"I1/I3 = {x:.5f} \u00b1 {sx:.1g},  I2/I3 = {y:.5f} \u00b1 {sy:.1g},  "
                  f"residual RMS {fit.residual_rms:.3g} rad/s ({fit.samples} samples)", fontsize=10)
+    return fig
+
+
+def figure_recording(rec, *, fig=None, max_flights: int = 12):
+    """A whole recording fitted (:func:`tumble.analysis.fit.fit_recording`).
+
+    Top: the recording, its flights shaded (green: used; grey: skipped). Bottom left: the used
+    flights side by side (the first ``max_flights``), samples as dots and the joint fit as lines.
+    Bottom right: each flight's ratios with their standard uncertainties in the triangle of
+    inertia ratios, the pooled value in black, and the triangle's planar edge.
+
+    Parameters
+    ----------
+    rec : RecordingFit
+    fig : matplotlib Figure, optional
+    max_flights : int
+        Most flights drawn in the middle panel.
+
+    Returns
+    -------
+    matplotlib Figure
+    """
+    fig = fig if fig is not None else new_figure((12, 8))
+    grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2], hspace=0.35, wspace=0.3)
+    top = fig.add_subplot(grid[0, :])
+    t0 = rec.t[0]
+    for k, name in enumerate("xyz"):
+        top.plot(rec.t - t0, rec.omega[:, k], lw=0.5, color=f"C{k}", label=rf"$\omega_{name}$")
+    for toss in rec.tosses:
+        top.axvspan(toss.start - t0, toss.end - t0, color="tab:green" if toss.status == "ok" else "0.6", alpha=0.25,
+                    lw=0)
+    top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)")
+    top.set_ylabel("angular velocity, sensor axes (rad/s)")
+    top.set_title(f"{len(rec.tosses)} flights found, {rec.tosses_used} used (green), "
+                  f"{len(rec.tosses) - rec.tosses_used} skipped (grey)", fontsize=9)
+    legend_outside(top, fontsize=8)
+    mid = fig.add_subplot(grid[1, :2])
+    used = [toss for toss in rec.tosses if toss.status == "ok"]
+    offset = 0.0
+    for j, (toss, model) in enumerate(zip(used[:max_flights], rec.omega_models)):
+        sel = (rec.t >= toss.start) & (rec.t <= toss.end)
+        x = rec.t[sel] - toss.start + offset
+        for k in range(3):
+            mid.plot(x, rec.omega[sel, k], ".", ms=1.5, color="0.45")
+            mid.plot(x, model[:len(x), k], "-", lw=0.9, color=f"C{k}")
+        mid.text(offset, 1.0, str(j + 1), transform=mid.get_xaxis_transform(), fontsize=7, va="bottom")
+        offset = x[-1] + 0.15
+    mid.set_xlabel("flights side by side (s within each)")
+    mid.set_ylabel("omega (rad/s): samples dots, joint fit lines")
+    tri = fig.add_subplot(grid[1, 2])
+    fits = [toss.fit for toss in used if toss.fit is not None]
+    if fits:
+        r = np.array([f.ratios for f in fits])
+        s = np.array([f.ratios_std for f in fits])
+        tri.errorbar(r[:, 0], r[:, 1], xerr=s[:, 0], yerr=s[:, 1], fmt="o", ms=3, color="tab:green", alpha=0.7,
+                     lw=0.8, label="each flight")
+    p = rec.pooled
+    tri.errorbar([p.ratios[0]], [p.ratios[1]], xerr=[p.ratios_std[0]], yerr=[p.ratios_std[1]], fmt="s", ms=5,
+                 color="k", lw=1.5, label="pooled", zorder=5)
+    lo_x, hi_x = tri.get_xlim()
+    xs = np.linspace(max(0.0, lo_x), min(0.5, hi_x), 50)
+    tri.plot(xs, 1 - xs, "--", color="0.3", lw=0.8, label="planar: I1 + I2 = I3")
+    tri.set_xlim(lo_x, hi_x)
+    tri.set_xlabel("I1/I3")
+    tri.set_ylabel("I2/I3")
+    tri.legend(fontsize=7, loc="best")
+    chi = f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""
+    fig.suptitle(f"pooled I1/I3 = {p.ratios[0]:.4f} \u00b1 {p.ratios_std[0]:.2g},  I2/I3 = {p.ratios[1]:.4f} "
+                 f"\u00b1 {p.ratios_std[1]:.2g}  ({rec.tosses_used} flights{chi}; drag {p.drag})", fontsize=10)
     return fig

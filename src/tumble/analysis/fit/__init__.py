@@ -1,0 +1,24 @@
+"""The inverse problem: inertia ratios from a measured tumble (a gyroscope's angular velocity).
+
+Rooms: :mod:`~tumble.analysis.fit.triangle` (the closed triangle of ratios and the fit's
+coordinates), :mod:`~tumble.analysis.fit.model` (one or many flights of one body seen by a
+rotated, biased sensor, with drag), :mod:`~tumble.analysis.fit.start` (starting values),
+:mod:`~tumble.analysis.fit.solve` (least squares, undetermined parameters, the drag model),
+:mod:`~tumble.analysis.fit.uncertainty` (the HAC sandwich, intervals, pooling),
+:mod:`~tumble.analysis.fit.single` (one flight: :func:`fit_rotation`),
+:mod:`~tumble.analysis.fit.flights` (finding the free flights of a whole recording),
+:mod:`~tumble.analysis.fit.recording` (fitting them one by one and jointly:
+:func:`fit_recording`) and :mod:`~tumble.analysis.fit.synthetic` (realistic phone recordings,
+for tests and examples).
+
+From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consistent`
+(:mod:`tumble.analysis.period_inversion`).
+"""
+
+from .flights import Flight, find_flights
+from .recording import RecordingFit, Toss, fit_recording
+from .single import MIN_SAMPLES, RotationFit, fit_rotation, saturation_mask
+from .uncertainty import SCALE_UNCERTAINTY
+
+__all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "RecordingFit", "RotationFit", "Toss", "find_flights",
+           "fit_recording", "fit_rotation", "saturation_mask"]

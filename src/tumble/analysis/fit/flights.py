@@ -1,0 +1,238 @@
+"""Finding the free flights in a whole gyroscope recording, from the gyroscope alone.
+
+A recording of tosses alternates holds (small, slow rates), throws (the spin ramps up under
+the hand's torque), free flights and catches (the spin killed in tens of milliseconds). The
+search (:func:`find_flights`):
+
+1. **Runs.** The record is cut at phyphox's PAUSE events (after a pause the experiment time
+   carries on without a gap, so a jump in omega would otherwise look like a torque) and at gaps
+   in the samples longer than ``max_gap``.
+2. **Active stretches**: where ``|omega|`` (a 3-sample median) exceeds ``min_spin``; in a free
+   flight ``|omega| >= |L| / I3`` never dips to zero, while a hold stays below a rad/s.
+3. **The free part of each stretch.** Its middle (from 35 % to 80 % of the stretch: past any
+   throw, before any catch) is fitted with the torque-free model (:mod:`~tumble.analysis.fit.single`),
+   then the window grows on each side while the model, extrapolated (its time origin kept at
+   the middle's first sample: near the separatrix, moving ``omega0`` to another sample by the
+   model's own extrapolation can carry it across), still follows the samples
+   within ``max(6 x`` the fit's RMS ``, 3 % of |omega|)``; two samples in a row beyond that
+   end the flight (the throw's torque before, the catch after). Fit and growth alternate until
+   the window stops moving.
+4. **Usable or not**, with a reason: too short (under ``min_duration`` or 30 samples),
+   saturated (more than a third of its samples at the rail), a steady spin (no tumble: the
+   ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
+   undetermined or uncertain by more than ``max_std``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .model import Model
+from .single import MIN_SAMPLES, fit_solution, ratio_summary, saturation_mask
+from .uncertainty import SCALE_UNCERTAINTY
+from .solve import Solution
+
+__all__ = ["Flight", "find_flights", "pause_times"]
+
+
+@dataclass(frozen=True)
+class Flight:
+    """A stretch of a recording taken for a free flight.
+
+    Attributes
+    ----------
+    start, end : float
+        First and last sample's time, s.
+    first, stop : int
+        Sample indices: the flight is ``t[first:stop]``.
+    status : str
+        ``"ok"`` or ``"skipped"``.
+    reason : str
+        Why it was skipped ("" when ok).
+    solution : Solution or None
+        The per-flight fit (``tumble.analysis.fit.solve.Solution``) when one was made.
+    anchor : float
+        The time its ``omega0`` refers to (inside the flight), s.
+    """
+
+    start: float
+    end: float
+    first: int
+    stop: int
+    status: str = "ok"
+    reason: str = ""
+    solution: Solution | None = None
+    anchor: float = 0.0
+
+    @property
+    def samples(self) -> int:
+        return self.stop - self.first
+
+
+def pause_times(events) -> list[float]:
+    """Experiment times of phyphox's PAUSE events (``[(name, time), ...]``), s."""
+    return sorted(float(te) for name, te in (events or []) if str(name).upper() == "PAUSE")
+
+
+def _runs(t, pauses, max_gap):
+    """Index ranges ``[i, j)`` not crossing a pause or a gap."""
+    cuts = set(np.flatnonzero(np.diff(t) > max_gap) + 1)
+    for tp in pauses:
+        cuts.add(int(np.searchsorted(t, tp, side="right")))
+    edges = [0] + sorted(c for c in cuts if 0 < c < len(t)) + [len(t)]
+    return list(zip(edges[:-1], edges[1:]))
+
+
+def _stretches(speed, lo, hi, min_spin):
+    active = speed[lo:hi] > min_spin
+    d = np.diff(np.r_[0, active.astype(int), 0])
+    return [(lo + a, lo + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
+
+
+def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
+    """The solved flight's model in sensor axes at times ``t`` (s), its time origin ``t0``."""
+    m = sol.model
+    probe = Model([np.asarray(t, float) - t0], m.rotation, m.bias, m.drag, m.speeds)
+    return probe.sensor(sol.P)[0]
+
+
+def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
+    """Grow ``[a, b)`` while the extrapolated model follows the samples (module docstring)."""
+    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+    new = [a, b]
+    for side in (-1, 1):
+        idx = np.arange(a - 1, max(lo, a - 400) - 1, -1) if side < 0 else np.arange(b, min(hi, b + 400))
+        if not idx.size:
+            continue
+        pred = _extrapolate(sol, t[idx], anchor)
+        err = np.abs(pred - omega[idx])
+        tol = np.maximum(6.0 * rms, 0.03 * np.linalg.norm(pred, axis=1))[:, None]
+        bad = np.any((err > tol) & keep[idx], axis=1)
+        run = np.flatnonzero(bad[:-1] & bad[1:]) if len(bad) > 1 else np.flatnonzero(bad)
+        n_ok = int(run[0]) if run.size else len(idx)
+        if side < 0:
+            new[0] = a - n_ok
+        else:
+            new[1] = b + n_ok
+    return new[0], new[1]
+
+
+def _drag_free(sol: Solution) -> np.ndarray:
+    """The parameters of ``sol`` in the drag-free layout (a start for the next window)."""
+    m, P = sol.model, sol.P
+    free = Model([np.zeros(2)], m.rotation, m.bias)
+    rv = P[m.index["rotvec_x"]:m.index["rotvec_x"] + 3] if m.rotation else np.zeros(3)
+    return free.pack(P[0], P[1], rv, m.bias_vector(P), m.omega0(P))
+
+
+def find_flights(t, omega, *, events=None, saturation: float | None = None, min_spin: float = 3.0,
+                 min_duration: float = 0.3, max_gap: float = 0.25, max_std: float = 0.1,
+                 drag: str = "auto", rotation: bool = True, bias: bool = True,
+                 scale_uncertainty: float = SCALE_UNCERTAINTY, progress=None) -> list[Flight]:
+    """The free flights of a whole recording, each fitted or skipped with a reason.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        Times, s, strictly increasing.
+    omega : ndarray, shape (n, 3)
+        Gyroscope samples, sensor axes, rad/s.
+    events : list of (str, float), optional
+        phyphox's START/PAUSE events (experiment time, s).
+    saturation : float, optional
+        The gyroscope's full scale, rad/s (found from the data when not given).
+    min_spin : float
+        ``|omega|`` above which a stretch may be a flight, rad/s.
+    min_duration : float
+        Shortest usable flight, s.
+    max_gap : float
+        Longest gap in the samples inside a flight, s.
+    max_std : float
+        Largest standard uncertainty of a ratio for a usable flight.
+    drag, rotation, bias, scale_uncertainty
+        The per-flight fit's options (:func:`tumble.analysis.fit.fit_rotation`).
+    progress : callable, optional
+        ``progress(done, total)`` after each active stretch.
+
+    Returns
+    -------
+    list of Flight
+        In time order; ``status`` says whether each is usable.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(2, tosses=2)
+    >>> [f.status for f in find_flights(rec.t, rec.omega, events=rec.events)]
+    ['ok', 'ok']
+    """
+    t = np.asarray(t, float)
+    omega = np.asarray(omega, float)
+    keep, _ = saturation_mask(omega, saturation)
+    speed = np.linalg.norm(omega, axis=1)
+    if len(speed) >= 3:
+        speed = np.median(np.stack([np.r_[speed[0], speed[:-1]], speed, np.r_[speed[1:], speed[-1]]]), axis=0)
+    stretches = [(a0, b0) for lo, hi in _runs(t, pause_times(events), max_gap)
+                 for a0, b0 in _stretches(speed, lo, hi, min_spin)]
+    flights = []
+    for k, (a0, b0) in enumerate(stretches):
+        flights.append(_one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, scale_uncertainty))
+        if progress is not None:
+            progress(k + 1, len(stretches))
+    return flights
+
+
+def _skip(t, a, b, reason, sol=None) -> Flight:
+    return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "skipped", reason, sol)
+
+
+def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, scale_uncertainty) -> Flight:
+    length = t[b0 - 1] - t[a0]
+    if length < min_duration or b0 - a0 < max(30, MIN_SAMPLES):
+        return _skip(t, a0, b0, f"too short ({length:.2f} s, {b0 - a0} samples; a flight needs {min_duration} s "
+                                f"and 30 samples)")
+    sat = np.mean(~np.all(keep[a0:b0], axis=1))
+    if sat > 1 / 3:
+        return _skip(t, a0, b0, f"saturated ({100 * sat:.0f} % of the samples at the gyroscope's rail)")
+    w = omega[a0:b0]
+    spread = np.sqrt(np.mean(np.sum((w - w.mean(axis=0)) ** 2, axis=1)))
+    if spread < 0.05 * np.sqrt(np.mean(np.sum(w ** 2, axis=1))):
+        return _skip(t, a0, b0, "steady spin (omega nearly constant: no tumble, the ratios do not enter)")
+    a = a0 + int(0.35 * (b0 - a0))
+    b = a0 + int(0.80 * (b0 - a0))
+    if b - a < MIN_SAMPLES:
+        a, b = a0, b0
+    sol, P0, anchor = None, None, t[a]
+    try:
+        for _ in range(6):
+            sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag="linear", P0=P0,
+                               t0=anchor, covariance=False)
+            rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+            level = float(np.sqrt(np.mean(np.sum(omega[a:b] ** 2, axis=1)) / 3))
+            if rms > 0.1 * level:
+                return _skip(t, a0, b0, f"no free flight: the samples do not follow a torque-free motion (residual "
+                                        f"{rms:.2g} rad/s against rates of {level:.2g} rad/s)", sol)
+            a2, b2 = _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
+            if (a2, b2) == (a, b):
+                break
+            P0 = _drag_free(sol)
+            a, b = a2, b2
+        length = t[b - 1] - t[a]
+        if length < min_duration or b - a < 30:
+            return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)
+        sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag=drag,
+                           P0=_drag_free(sol), t0=anchor, scale_uncertainty=scale_uncertainty)
+    except (ValueError, np.linalg.LinAlgError) as err:
+        return _skip(t, a, b, f"fit failed: {err}", sol)
+    _, std, _, _ = ratio_summary(sol)
+    if {"s", "g"} & set(sol.undetermined) or np.max(std) > max_std:
+        wp = sol.model.principal(sol.P)[0, :b - a]
+        share = np.abs(wp[:, 1]) / np.maximum(np.linalg.norm(wp, axis=1), 1e-300)
+        what = ("stable-axis toss (spun about the minor or major axis)" if np.max(share) < 0.5 else
+                "too little of the tumble recorded")
+        return _skip(t, a, b, f"{what}: the ratios are not both determined (uncertainties {std[0]:.2g}, "
+                              f"{std[1]:.2g} > {max_std}; a longer or faster toss about the intermediate axis fixes "
+                              f"both)", sol)
+    return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "ok", "", sol, float(anchor))

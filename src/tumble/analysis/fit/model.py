@@ -1,0 +1,218 @@
+"""The model a gyroscope's samples are fitted with: one or many free flights of one body.
+
+A flight ``j`` is a torque-free motion (the exact solution, :mod:`tumble.dynamics.exact_omega`),
+or one slowed by an aerodynamic drag about each principal axis (``drag_1..3``, linear or
+quadratic in omega, :mod:`tumble.dynamics.drag`), seen by a sensor fixed in the body::
+
+    omega_sensor(t) = R^T omega_principal(t - t_j0) + b
+
+with the body's ratios ``(I1/I3, I2/I3)`` (square coordinates ``(s, g)`` of
+:mod:`tumble.analysis.fit.triangle`), the rotation ``R`` from the sensor's axes to the principal
+axes (a rotation vector, rad), the sensor's constant bias ``b`` (rad/s) and the drag
+coefficients divided by ``I3`` (linear: 1/s; quadratic: 1/rad) shared by every flight, and each
+flight's own
+``omega0`` (principal frame, rad/s, at its first sample). One flight is the case ``F = 1``.
+
+The Jacobian is taken by forward differences, all columns in one vectorised evaluation: the
+ratios, the drag and each flight's ``omega0`` need the elliptic functions again (one body per
+perturbed parameter and flight); the rotation and the bias act on the principal-frame motion
+already computed (the bias exactly). For many flights it is sparse (a flight's rows touch the
+shared columns and its own three), and returned as such.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import sparse
+from scipy.spatial.transform import Rotation
+
+from ...dynamics.drag import drag_omega
+from ...dynamics.exact_omega import free_omega
+from .triangle import S_MIN, ratios
+
+__all__ = ["DRAG_MODELS", "Model"]
+
+#: The drag models and their parameters (per principal axis, divided by I3).
+DRAG_MODELS = {"none": (), "linear": ("drag_1", "drag_2", "drag_3"), "quadratic": ("drag_1", "drag_2", "drag_3")}
+#: The largest RK4 step, as a turn of the fastest sample: an error of ~(0.04)^4 / 120 per step.
+_TURN_PER_STEP = 0.04
+
+
+class Model:
+    """The parameter vector's layout, its bounds, the model's samples and their Jacobian.
+
+    Parameters
+    ----------
+    taus : list of ndarray
+        Each flight's times since its first sample, s.
+    rotation, bias : bool
+        Whether the sensor's rotation and bias are fitted.
+    drag : {"none", "linear", "quadratic"}
+        Which drag is fitted.
+    speeds : list of float, optional
+        Each flight's largest measured ``|omega|``, rad/s: it sets the integrator's step (the
+        same for every parameter vector, so that finite differences are clean).
+    """
+
+    def __init__(self, taus, rotation: bool, bias: bool, drag: str = "none", speeds=None):
+        self.F = len(taus)
+        self.lengths = np.array([len(t) for t in taus])
+        T = int(self.lengths.max())
+        self.tau = np.empty((self.F, T))
+        self.valid = np.zeros((self.F, T), bool)
+        for j, t in enumerate(taus):
+            self.tau[j, :len(t)] = t
+            self.tau[j, len(t):] = t[-1]
+            self.valid[j, :len(t)] = True
+        self.rotation, self.bias, self.drag = bool(rotation), bool(bias), drag
+        speeds = np.ones(self.F) if speeds is None else np.maximum(np.asarray(speeds, float), 1e-3)
+        self.speeds = speeds
+        self.hmax = _TURN_PER_STEP / speeds
+        shared = ["s", "g"]
+        if rotation:
+            shared += ["rotvec_x", "rotvec_y", "rotvec_z"]
+        if bias:
+            shared += ["bias_x", "bias_y", "bias_z"]
+        shared += list(DRAG_MODELS[drag])
+        self.shared = tuple(shared)
+        self.ns = len(shared)
+        per = ("omega0_1", "omega0_2", "omega0_3")
+        self.names = self.shared + (per if self.F == 1 else tuple(f"{p}[{j}]" for j in range(self.F) for p in per))
+        self.n = self.ns + 3 * self.F
+        self.index = {name: i for i, name in enumerate(self.shared)}
+        lo, hi = np.full(self.n, -np.inf), np.full(self.n, np.inf)
+        lo[0], hi[0], lo[1], hi[1] = S_MIN, 1.0, 0.0, 1.0
+        for name in DRAG_MODELS[drag]:
+            lo[self.index[name]] = 0.0
+        self.bounds = (lo, hi)
+
+    # -- the parameter vector ------------------------------------------------------------------
+    def pack(self, s, g, rotvec, bias, omega0, drag=(0.0, 0.0, 0.0)) -> np.ndarray:
+        """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers)."""
+        P = [s, g]
+        if self.rotation:
+            P += list(np.asarray(rotvec, float))
+        if self.bias:
+            P += list(np.asarray(bias, float))
+        if self.drag != "none":
+            P += list(np.asarray(drag, float))
+        return np.concatenate([np.array(P, float), np.asarray(omega0, float).reshape(-1)])
+
+    def get(self, P, name, default=0.0) -> float:
+        return float(P[self.index[name]]) if name in self.index else default
+
+    def rotation_matrix(self, P) -> np.ndarray:
+        if not self.rotation:
+            return np.eye(3)
+        k = self.index["rotvec_x"]
+        return Rotation.from_rotvec(P[k:k + 3]).as_matrix()
+
+    def bias_vector(self, P) -> np.ndarray:
+        if not self.bias:
+            return np.zeros(3)
+        k = self.index["bias_x"]
+        return np.asarray(P[k:k + 3], float)
+
+    def drag_vector(self, P) -> np.ndarray:
+        if self.drag == "none":
+            return np.zeros(3)
+        k = self.index["drag_1"]
+        return np.asarray(P[k:k + 3], float)
+
+    def omega0(self, P) -> np.ndarray:
+        return np.asarray(P[self.ns:], float).reshape(self.F, 3)
+
+    def moments(self, P) -> np.ndarray:
+        x, y = ratios(P[0], P[1])
+        return np.array([float(x), float(y), 1.0])
+
+    # -- evaluation ----------------------------------------------------------------------------
+    def _principal(self, physics, omega0, rows) -> np.ndarray:
+        """omega_principal for parameter sets ``physics`` (K, 5: s, g, drag_1..3) and ``omega0``
+        (K, 3) at the times of flights ``rows`` (K,); shape (K, T, 3)."""
+        x, y = ratios(physics[:, 0], physics[:, 1])
+        I = np.stack([x, y, np.ones_like(x)], axis=1)
+        with np.errstate(all="ignore"):
+            if self.drag == "none":
+                return free_omega(I, omega0, self.tau[rows])
+            d = physics[:, 2:5]
+            lin, quad = (d, None) if self.drag == "linear" else (None, d)
+            return drag_omega(I, omega0, self.tau[rows], lin, quad, max_step=self.hmax[rows])
+
+    def _physics(self, P) -> np.ndarray:
+        return np.concatenate([[P[0], P[1]], self.drag_vector(P)])
+
+    def principal(self, P) -> np.ndarray:
+        """omega in the principal frame of every flight, shape (F, T, 3), rad/s."""
+        phys = np.tile(self._physics(P), (self.F, 1))
+        return self._principal(phys, self.omega0(P), np.arange(self.F))
+
+    def sensor(self, P, principal=None) -> np.ndarray:
+        """The model's samples along the sensor's axes, bias included, shape (F, T, 3), rad/s."""
+        wp = self.principal(P) if principal is None else principal
+        return wp @ self.rotation_matrix(P) + self.bias_vector(P)
+
+    def jacobian(self, P, mask, principal=None):
+        """d(model samples[mask]) / dP by forward differences (module docstring).
+
+        Returns a dense array for one flight and a CSR matrix for several."""
+        F, T = self.F, self.tau.shape[1]
+        lo, hi = self.bounds
+        h = 1e-7 * np.maximum(1.0, np.abs(P))
+        h = np.where(P + h > hi, -h, h)  # step into the box at an upper bound
+        R = self.rotation_matrix(P)
+        wp = self.principal(P) if principal is None else principal
+        base_phys = self._physics(P)
+        w0 = self.omega0(P)
+        # the parameters that need the elliptic functions again: s, g, the drag, omega0
+        phys_cols = [0, 1] + [self.index[n] for n in DRAG_MODELS[self.drag]]
+        phys_slot = {col: i for i, col in enumerate(phys_cols)}
+        sets_phys, sets_w0, rows = [], [], []
+        for col in phys_cols:
+            ph = base_phys.copy()
+            ph[phys_slot[col]] += h[col]
+            sets_phys.append(np.tile(ph, (F, 1)))
+            sets_w0.append(w0)
+            rows.append(np.arange(F))
+        for k in range(3):
+            dw = w0.copy()
+            dw[:, k] += h[self.ns + 3 * np.arange(F) + k]
+            sets_phys.append(np.tile(base_phys, (F, 1)))
+            sets_w0.append(dw)
+            rows.append(np.arange(F))
+        out = self._principal(np.vstack(sets_phys), np.vstack(sets_w0), np.concatenate(rows))
+        out = out.reshape(len(phys_cols) + 3, F, T, 3)
+        cols = {}  # column -> derivative of the sensor samples, (F, T, 3)
+        for i, col in enumerate(phys_cols):
+            cols[col] = ((out[i] - wp) @ R) / h[col]
+        if self.rotation:
+            k0 = self.index["rotvec_x"]
+            for k in range(3):
+                Pk = P.copy()
+                Pk[k0 + k] += h[k0 + k]
+                cols[k0 + k] = (wp @ (self.rotation_matrix(Pk) - R)) / h[k0 + k]
+        if self.bias:
+            k0 = self.index["bias_x"]
+            for k in range(3):
+                d = np.zeros((F, T, 3))
+                d[:, :, k] = 1.0
+                cols[k0 + k] = d
+        d_w0 = [((out[len(phys_cols) + k] - wp) @ R) / h[self.ns + 3 * np.arange(F) + k][:, None, None]
+                for k in range(3)]
+        if F == 1:
+            J = np.empty((int(mask.sum()), self.n))
+            for col, d in cols.items():
+                J[:, col] = d[mask]
+            for k in range(3):
+                J[:, self.ns + k] = d_w0[k][mask]
+            return J
+        # sparse: shared columns everywhere, a flight's omega0 columns on its own rows
+        flight = np.broadcast_to(np.arange(F)[:, None, None], mask.shape)[mask]
+        m = int(mask.sum())
+        data, ri, ci = [], [], []
+        row = np.arange(m)
+        for col, d in cols.items():
+            data.append(d[mask]), ri.append(row), ci.append(np.full(m, col))
+        for k in range(3):
+            data.append(d_w0[k][mask]), ri.append(row), ci.append(self.ns + 3 * flight + k)
+        return sparse.csr_matrix((np.concatenate(data), (np.concatenate(ri), np.concatenate(ci))), shape=(m, self.n))

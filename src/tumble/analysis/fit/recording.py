@@ -1,0 +1,251 @@
+"""A whole recording: its free flights fitted one by one and jointly (:func:`fit_recording`).
+
+The flights (:func:`~tumble.analysis.fit.flights.find_flights`) share the body and the sensor,
+so the joint model (:class:`~tumble.analysis.fit.model.Model` with ``F`` flights) shares the
+ratios, the sensor's rotation and bias and the drag, and gives each flight its own ``omega0``.
+It starts from the flight whose ratios are nearest the flights' medians (the others' ``omega0``
+turned into its principal frame) and keeps the drag model most flights chose.
+
+The pooled uncertainty: the joint fit's covariance (each flight's residuals scaled for their own
+autocorrelation; flights independent of one another), its statistical part multiplied by the
+Birge ratio squared ``chi^2 / dof`` when the flights' own ratios scatter about the pooled ones
+more than their statistical uncertainties allow (:func:`~tumble.analysis.fit.uncertainty.birge_chi2`),
+plus the gyroscope's scale-factor part, which no number of flights averages away.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .flights import Flight, find_flights, pause_times
+from .model import Model
+from .single import RotationFit, _check, public_covariance, ratio_summary, rotation_fit, saturation_mask
+from .solve import Solution, solve
+from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
+
+__all__ = ["RecordingFit", "Toss", "fit_recording"]
+
+
+@dataclass(frozen=True)
+class Toss:
+    """One flight of a recording: where it is, and its own fit or why it was skipped.
+
+    Attributes
+    ----------
+    start, end : float
+        First and last sample's time, s.
+    samples : int
+    status : str
+        ``"ok"`` (fitted and used in the pooled fit) or ``"skipped"``.
+    reason : str
+    fit : RotationFit or None
+        The flight's own fit (None when there was none).
+    """
+
+    start: float
+    end: float
+    samples: int
+    status: str
+    reason: str
+    fit: RotationFit | None = field(default=None, repr=False)
+
+    def summary(self) -> dict:
+        """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None)."""
+        f = self.fit
+
+        def num(v):
+            return None if v is None or not np.isfinite(v) else float(v)
+
+        return {"start": self.start, "end": self.end, "samples": self.samples,
+                "I1_over_I3": num(f.ratios[0]) if f else None, "I2_over_I3": num(f.ratios[1]) if f else None,
+                "I1_over_I3_std": num(f.ratios_std[0]) if f else None,
+                "I2_over_I3_std": num(f.ratios_std[1]) if f else None,
+                "residual_rms": num(f.residual_rms) if f else None, "status": self.status, "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class RecordingFit:
+    """The flights of a recording and the body's ratios pooled over them.
+
+    Attributes
+    ----------
+    tosses : tuple of Toss
+        Every flight found, usable or not, in time order.
+    pooled : RotationFit
+        The joint fit's ratios, sensor rotation, bias and drag (its ``omega0`` and
+        ``omega_model`` are those of the first flight used).
+    chi2_dof : float
+        ``chi^2 / dof`` of the flights' ratios about the pooled ones (statistical uncertainties).
+    tosses_used : int
+    t, omega : ndarray
+        The whole recording (s; rad/s, sensor axes).
+    omega_models : tuple of ndarray
+        The joint model at each used flight's samples, sensor axes, rad/s.
+    """
+
+    tosses: tuple
+    pooled: RotationFit
+    chi2_dof: float
+    tosses_used: int
+    t: np.ndarray = field(repr=False)
+    omega: np.ndarray = field(repr=False)
+    omega_models: tuple = field(default=(), repr=False)
+
+    def summary(self) -> dict:
+        """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"`` and ``"pooled"``."""
+        p = self.pooled
+        out = p.summary()
+        out["tosses"] = [toss.summary() for toss in self.tosses]
+        out["pooled"] = {"I1_over_I3": float(p.ratios[0]), "I2_over_I3": float(p.ratios[1]),
+                         "I1_over_I3_std": float(p.ratios_std[0]), "I2_over_I3_std": float(p.ratios_std[1]),
+                         "I1_over_I3_interval": [float(v) for v in p.ratios_interval[0]],
+                         "I2_over_I3_interval": [float(v) for v in p.ratios_interval[1]],
+                         "edge": p.edge, "tosses_used": int(self.tosses_used),
+                         "chi2_dof": float(self.chi2_dof) if np.isfinite(self.chi2_dof) else None}
+        return out
+
+
+def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit", bias: bool = True,
+                  drag: str = "auto", saturation: float | None = None,
+                  scale_uncertainty: float = SCALE_UNCERTAINTY, min_spin: float = 3.0, max_std: float = 0.1,
+                  progress=None) -> RecordingFit:
+    """Find the free flights of a whole recording, fit each, and fit them jointly.
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Sample times, s, strictly increasing (phyphox's experiment time).
+    omega_measured : array_like, shape (n, 3)
+        Gyroscope samples, sensor axes, rad/s.
+    events : list of (str, float), optional
+        phyphox's START/PAUSE events (``meta/time.csv``), experiment time in s.
+    sensor_rotation, bias, drag, saturation, scale_uncertainty
+        As for :func:`tumble.analysis.fit.fit_rotation`.
+    min_spin : float
+        ``|omega|`` above which a stretch may be a flight, rad/s.
+    max_std : float
+        Largest standard uncertainty of a ratio for a flight to be used.
+    progress : callable, optional
+        ``progress(done, total)`` after each stretch examined.
+
+    Returns
+    -------
+    RecordingFit
+
+    Raises
+    ------
+    ValueError
+        Bad input (as :func:`~tumble.analysis.fit.fit_rotation`), or no usable flight: one line
+        saying what was found and why each was skipped.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(2, tosses=3)
+    >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)
+    >>> fit.tosses_used, bool(abs(fit.pooled.ratios[1] - rec.ratios[1]) < 3 * fit.pooled.ratios_std[1])
+    (3, True)
+    """
+    if sensor_rotation not in ("fit", "identity"):
+        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
+    if drag not in ("auto", "none", "linear", "quadratic"):
+        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
+    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
+        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
+    if not (np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
+        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
+    t, omega = _check(t, omega_measured)
+    keep, rail = saturation_mask(omega, saturation)
+    rotation = sensor_rotation == "fit"
+    flights = find_flights(t, omega, events=events, saturation=rail, min_spin=min_spin, max_std=max_std,
+                           drag=drag, rotation=rotation, bias=bool(bias), progress=progress,
+                           scale_uncertainty=scale_uncertainty)
+    tosses = tuple(_toss(f, t, omega, keep) for f in flights)
+    used = [f for f in flights if f.status == "ok"]
+    if not used:
+        if not flights:
+            raise ValueError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
+                             f"({len(t)} samples over {t[-1] - t[0]:.3g} s, {len(pause_times(events))} pauses)")
+        why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
+        raise ValueError(f"no usable flight among {len(flights)} found: "
+                         + ", ".join(f"{n} {r}" for r, n in why.most_common()))
+    if len(used) == 1:
+        only = next(toss for toss in tosses if toss.status == "ok")
+        return RecordingFit(tosses, only.fit, float("nan"), 1, t, omega, (only.fit.omega_model,))
+    joint, models = _joint(used, t, omega, keep, drag, scale_uncertainty)
+    return _pooled(joint, used, tosses, t, omega, keep, models)
+
+
+def _toss(f: Flight, t, omega, keep) -> Toss:
+    fit = None
+    if f.solution is not None and f.status == "ok":
+        sl = slice(f.first, f.stop)
+        fit = rotation_fit(f.solution, t[sl], omega[sl], keep[sl])
+    return Toss(f.start, f.end, f.samples, f.status, f.reason, fit)
+
+
+def _joint(used, t, omega, keep, drag, scale_uncertainty) -> tuple[Solution, list]:
+    """The joint solution over the used flights (module docstring)."""
+    sols = [f.solution for f in used]
+    rat = np.array([ratio_summary(s)[0] for s in sols])
+    ref = int(np.argmin(np.sum((rat - np.median(rat, axis=0)) ** 2, axis=1)))
+    kinds = Counter(s.model.drag for s in sols)
+    kind = drag if drag != "auto" else kinds.most_common(1)[0][0]
+    m_ref, P_ref = sols[ref].model, sols[ref].P
+    R_ref = m_ref.rotation_matrix(P_ref)
+    taus, data, mask, speeds = [], [], [], []
+    for f in used:
+        sl = slice(f.first, f.stop)
+        taus.append(t[sl] - f.anchor)
+        speeds.append(float(np.max(np.linalg.norm(omega[sl], axis=1))))
+    model = Model(taus, m_ref.rotation, m_ref.bias, kind, speeds)
+    T = model.tau.shape[1]
+    data = np.zeros((len(used), T, 3))
+    mask = np.zeros((len(used), T, 3), bool)
+    for j, f in enumerate(used):
+        n = f.stop - f.first
+        data[j, :n] = omega[f.first:f.stop]
+        mask[j, :n] = keep[f.first:f.stop]
+    w0 = np.array([R_ref @ s.model.rotation_matrix(s.P).T @ s.model.omega0(s.P)[0] for s in sols])
+    same = [s.model.drag_vector(s.P) for s in sols if s.model.drag == kind]
+    drag0 = np.median(same, axis=0) if same and kind != "none" else np.zeros(3)
+    rv = Rotation.from_matrix(R_ref).as_rotvec() if m_ref.rotation else np.zeros(3)
+    P0 = model.pack(P_ref[0], P_ref[1], rv, m_ref.bias_vector(P_ref), w0, drag0)
+    sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
+    return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)]
+
+
+def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
+    rat_joint = ratio_summary(sol)[0]
+    values, covs = [], []
+    for f in used:
+        _, v, c = public_covariance(f.solution, statistical=True)
+        values.append(v[:2])
+        covs.append(c[:2, :2])
+    chi2, dof = birge_chi2(np.array(values), np.array(covs), rat_joint)
+    scale = max(1.0, chi2 / dof)
+    # inflate the statistical part by chi2/dof, keep the systematic part as it is
+    cov = sol.cov_stat * scale + (np.nan_to_num(sol.cov) - np.nan_to_num(sol.cov_stat))
+    inflated = Solution(sol.model, sol.P, cov, sol.cov_stat * scale, sol.residuals, sol.omega_model,
+                        sol.undetermined, sol.nfev, sol.bandwidth, sol.ssr, sol.m)
+    first = used[0]
+    sl = slice(first.first, first.stop)
+    one = _first_flight_view(inflated)
+    pooled = rotation_fit(one, t[sl], omega[sl], keep[sl])
+    return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models))
+
+
+def _first_flight_view(sol: Solution) -> Solution:
+    """The joint solution seen as a one-flight solution (its first flight's omega0 and samples),
+    so that :func:`rotation_fit` reports the shared parameters with their pooled covariance."""
+    m = sol.model
+    keep = list(range(m.ns + 3))
+    n = int(m.lengths[0])
+    one = Model([m.tau[0, :n]], m.rotation, m.bias, m.drag, m.speeds[:1])
+    undetermined = tuple(name for name in sol.undetermined if name in one.names)
+    return Solution(one, sol.P[keep], sol.cov[np.ix_(keep, keep)], sol.cov_stat[np.ix_(keep, keep)],
+                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.bandwidth, sol.ssr, sol.m)

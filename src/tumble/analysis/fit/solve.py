@@ -1,0 +1,198 @@
+"""The least-squares solution of a :class:`~tumble.analysis.fit.model.Model` and what it determines.
+
+:func:`scipy.optimize.least_squares` (the dogbox trust region, box bounds for the triangle's
+square and the drag's signs, ``x_scale="jac"``) on the residuals ``model - data`` of the
+samples kept by a mask (a saturated axis is left out, not the whole sample). At the optimum:
+
+- **undetermined parameters**: the Jacobian's columns scaled to unit norm; while the smallest
+  eigenvalue of their normal matrix is below ``RANK_TOL^2`` of the largest, the parameter with
+  the largest share of its eigenvector is named undetermined and left at its value (e.g. the
+  sensor's rotation about a symmetric body's axis); the rest keep their uncertainties;
+- **covariance**: :mod:`tumble.analysis.fit.uncertainty` (the statistical part from the
+  residuals, plus the systematic part of the gyroscope's scale-factor tolerance);
+- **drag**: with ``drag="auto"`` the models ``none``, ``linear`` and ``quadratic`` (per axis,
+  :mod:`tumble.dynamics.drag`) are fitted
+  and the one of least Bayesian information criterion ``m ln(SSR/m) + n ln m`` kept (Schwarz,
+  Ann. Stat. 6 (1978) 461).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from .model import DRAG_MODELS, Model
+from .uncertainty import effective_covariance, sandwich_covariance, scale_covariance
+
+__all__ = ["RANK_TOL", "Solution", "solve", "solve_drag"]
+
+#: Scaled singular values below this fraction of the largest mark undetermined parameters.
+RANK_TOL = 1e-7
+#: How the covariance is estimated: "effective" (autocorrelation-scaled) or "sandwich" (HAC).
+COVARIANCE = "effective"
+#: Parameters that may be named undetermined, in the order they are tried on a tie.
+_FIXABLE = ("drag_3", "drag_1", "drag_2", "rotvec_x", "rotvec_y", "rotvec_z", "g", "s", "bias_x", "bias_y", "bias_z")
+
+
+@dataclass
+class Solution:
+    """A solved model: parameters, their covariance (undetermined ones with NaN; ``cov_stat``
+    without the systematic part of the gyroscope's scale factor), residuals."""
+
+    model: Model
+    P: np.ndarray
+    cov: np.ndarray
+    cov_stat: np.ndarray
+    residuals: np.ndarray
+    omega_model: np.ndarray
+    undetermined: tuple
+    nfev: int
+    bandwidth: float
+    ssr: float
+    m: int
+
+    @property
+    def bic(self) -> float:
+        kept = self.model.n - len(self.undetermined)
+        return self.m * np.log(max(self.ssr, 1e-300) / self.m) + kept * np.log(self.m)
+
+
+def _least_squares(model: Model, data, mask, P, max_nfev, bounds=None):
+    def fun(Q):
+        return (model.sensor(Q) - data)[mask]
+
+    def jac(Q):
+        return model.jacobian(Q, mask)
+
+    bounds = model.bounds if bounds is None else bounds
+    P = np.clip(P, *bounds)
+    kw = {"tr_solver": "lsmr"} if model.F > 1 else {}
+    with np.errstate(all="ignore"):
+        return least_squares(fun, P, jac=jac, bounds=bounds, method="dogbox", x_scale="jac",
+                             max_nfev=max_nfev, **kw)
+
+
+def _undetermined(J, names) -> list[int]:
+    """Indices of the columns to fix (module docstring)."""
+    JtJ = J.T @ J
+    JtJ = JtJ.toarray() if hasattr(JtJ, "toarray") else np.asarray(JtJ)
+    keep = list(range(len(names)))
+    fixed = []
+    while keep:
+        A = JtJ[np.ix_(keep, keep)]
+        d = np.sqrt(np.diag(A))
+        zero = [keep[i] for i in np.flatnonzero(d == 0)]
+        if zero:
+            fixed += zero
+            keep = [k for k in keep if k not in zero]
+            continue
+        vals, vecs = np.linalg.eigh(A / np.outer(d, d))
+        if vals[0] >= RANK_TOL ** 2 * vals[-1]:
+            break
+        v = np.abs(vecs[:, 0])
+        cand = [i for i, k in enumerate(keep) if names[k] in _FIXABLE or names[k].startswith("omega0")]
+        i = max(cand, key=lambda i: (v[i], -_FIXABLE.index(names[keep[i]]) if names[keep[i]] in _FIXABLE else -99))
+        fixed.append(keep.pop(i))
+    return fixed
+
+
+def solve(model: Model, data, mask, P0, *, max_nfev: int = 100, scale_uncertainty: float = 0.0,
+          covariance: bool = True, pin: tuple | None = None) -> Solution:
+    """Solve from ``P0`` and characterise the optimum (module docstring); ``covariance=False``
+    skips that (NaN covariance), for intermediate solves; ``pin = (index, value)`` holds one
+    coordinate at a bound of the box."""
+    bounds = None
+    if pin is not None:
+        lo, hi = (b.copy() for b in model.bounds)
+        i, v = pin
+        lo[i], hi[i] = (v, v + 1e-12) if v <= lo[i] else (v - 1e-12, v)
+        bounds = (lo, hi)
+    res = _least_squares(model, data, mask, P0, max_nfev, bounds)
+    P = res.x
+    wp = model.principal(P)
+    omega_model = model.sensor(P, wp)
+    r = (omega_model - data)[mask]
+    if not covariance:
+        nan = np.full((model.n, model.n), np.nan)
+        return Solution(model, P, nan, nan, r, omega_model, (), int(res.nfev), 0.0, float(r @ r), int(r.size))
+    J = model.jacobian(P, mask, wp)
+    fixed = _undetermined(J, model.names)
+    keep = [k for k in range(model.n) if k not in fixed]
+    F, T = model.tau.shape
+    sample_index = np.cumsum(np.r_[0, model.lengths])
+    # each masked residual's sample number, flights one after another
+    sample_of = np.broadcast_to((sample_index[:-1, None] + np.arange(T))[:, :, None], mask.shape)[mask]
+    Jk = J[:, keep]
+    if COVARIANCE == "sandwich":
+        cov_k, S = sandwich_covariance(Jk, r, sample_of, sample_index)
+    else:
+        cov_k, S = effective_covariance(Jk, r, sample_index)
+    cov_stat = np.full((model.n, model.n), np.nan)
+    cov_stat[np.ix_(keep, keep)] = cov_k
+    if scale_uncertainty:
+        cov_k = cov_k + scale_covariance(Jk, data, mask, scale_uncertainty)
+    cov = np.full((model.n, model.n), np.nan)
+    cov[np.ix_(keep, keep)] = cov_k
+    return Solution(model, P, cov, cov_stat, r, omega_model, tuple(model.names[k] for k in fixed), int(res.nfev), S,
+                    float(r @ r), int(r.size))
+
+
+def _with_drag(model: Model, drag: str) -> Model:
+    taus = [model.tau[j, :n] for j, n in enumerate(model.lengths)]
+    return Model(taus, model.rotation, model.bias, drag, model.speeds)
+
+
+def _convert(P, src: Model, dst: Model, drag) -> np.ndarray:
+    rv = P[src.index["rotvec_x"]:src.index["rotvec_x"] + 3] if src.rotation else np.zeros(3)
+    return dst.pack(P[0], P[1], rv, src.bias_vector(P), src.omega0(P), drag)
+
+
+def solve_drag(model: Model, data, mask, P0, drag: str, *, max_nfev: int = 100,
+               scale_uncertainty: float = 0.0, covariance: bool = True) -> Solution:
+    """:func:`solve` with the drag model named, or chosen by the BIC with ``drag="auto"``.
+
+    ``model`` is the drag-free layout and ``P0`` its parameters."""
+    if drag not in ("auto", *DRAG_MODELS):
+        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
+    first = "none" if drag == "auto" else drag
+    start = dict.fromkeys(DRAG_MODELS, (0.0, 0.0, 0.0))  # from the drag-free optimum, on the bound
+    m1 = model if first == model.drag else _with_drag(model, first)
+    kw = {"max_nfev": max_nfev, "scale_uncertainty": scale_uncertainty, "covariance": covariance}
+    sol = solve(m1, data, mask, P0 if m1 is model else _convert(P0, model, m1, start[first]), **kw)
+    best = sol
+    if drag == "auto":
+        for name in ("linear", "quadratic"):
+            mk = _with_drag(model, name)
+            trial = solve(mk, data, mask, _convert(sol.P, sol.model, mk, start[name]), **kw)
+            if trial.bic < best.bic:
+                best = trial
+    return snap_to_edges(best, data, mask, **kw) if covariance else best
+
+
+#: The box faces that are edges of the triangle: (coordinate index, bound).
+_EDGE_FACES = ((1, 0.0), (1, 1.0), (0, 1.0))
+
+
+def snap_to_edges(sol: Solution, data, mask, **kw) -> Solution:
+    """Move an optimum near an edge of the triangle onto it when the data allow.
+
+    For each edge whose coordinate lies within three standard uncertainties of its bound (or
+    is undetermined), the fit is repeated with the coordinate held on the edge; the edge wins
+    when its Bayesian information criterion (one parameter fewer) is not larger. A body that
+    is symmetric or planar within the data's resolution is so reported, and what the edge
+    leaves undetermined (a symmetric body's rotation about its axis) is named instead of
+    spoiling the other parameters' uncertainties."""
+    best = sol
+    for i, bound in _EDGE_FACES:
+        sd = np.sqrt(sol.cov_stat[i, i]) if np.isfinite(sol.cov_stat[i, i]) else np.inf
+        gap = abs(sol.P[i] - bound)
+        if gap == 0.0 or gap > 3.0 * sd:
+            continue
+        P0 = sol.P.copy()
+        P0[i] = bound
+        trial = solve(sol.model, data, mask, P0, pin=(i, bound), **kw)
+        if trial.bic - np.log(trial.m) <= best.bic:
+            best = trial
+    return best

@@ -1,0 +1,69 @@
+"""The closed triangle of inertia ratios and the coordinates the fit moves in.
+
+Every rigid body has ``I1 <= I2 <= I3`` and ``I1 + I2 >= I3`` (the triangle inequality of the
+principal moments: Landau & Lifshitz, *Mechanics*, sec. 32, problem 1), so
+``(x, y) = (I1/I3, I2/I3)`` lies in the closed triangle ``1/2 <= y <= 1``, ``1 - y <= x <= y``.
+Its edges are bodies that people toss: ``x = 1 - y`` the **planar** ones (a thin plate, a phone,
+a racquet, a book: ``I1 + I2 = I3`` within a few per cent), ``x = y`` the symmetric tops with
+``I1 = I2`` and ``y = 1`` those with ``I2 = I3``.
+
+The fit works on coordinates ``(s, g)`` of a square, spanned from the triangle's rod corner
+``B = (0, 1)`` (a body with ``I1 = 0``, which does not exist) towards the other two::
+
+    (x, y) = B + s ((1 - g) (A - B) + g (C - B)),   A = (1/2, 1/2) the disc, C = (1, 1) the sphere,
+    x = s (1 + g) / 2,   y = 1 - s (1 - g) / 2,     s = (I1 + I3 - I2) / I3,  g = 1 - 2 (1 - y) / s,
+
+with box bounds ``S_MIN <= s <= 1``, ``0 <= g <= 1`` (:func:`scipy.optimize.least_squares`),
+so that every point of the closed triangle but a sliver at the rod corner is reachable, edges
+included, each edge a face of the box: ``g = 0`` the planar edge, ``g = 1`` the edge
+``I2 = I3``, ``s = 1`` the edge ``I1 = I2``. The map's Jacobian determinant is ``s / 2``: it is
+regular everywhere in the box (the corner ``s = 0``, where Euler's equations degenerate to
+0/0 for the rod's axis, is left out). The uncertainties are carried to ``(x, y)`` by the chain
+rule (:func:`ratio_jacobian`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["EDGES", "S_MIN", "edge_of", "ratio_jacobian", "ratios", "square"]
+
+#: Names of the triangle's edges, in the terms a user knows.
+EDGES = {"planar": "planar (I1 + I2 = I3)", "I1=I2": "symmetric (I1 = I2)", "I2=I3": "symmetric (I2 = I3)",
+         "rod": "rod limit ((I1 + I3 - I2) / I3 at its floor)"}
+#: Smallest ``s = (I1 + I3 - I2) / I3`` fitted: bodies thinner than this are rods to the fit.
+S_MIN = 1e-3
+#: A coordinate within this of its bound is on the edge.
+_ON_EDGE = 1e-7
+
+
+def ratios(s, g):
+    """Square coordinates ``(s, g)`` -> ``(I1/I3, I2/I3)``; broadcasts."""
+    s, g = np.asarray(s, float), np.asarray(g, float)
+    return 0.5 * s * (1.0 + g), 1.0 - 0.5 * s * (1.0 - g)
+
+
+def square(x, y):
+    """``(I1/I3, I2/I3)`` in the closed triangle -> ``(s, g)``, clipped into the box."""
+    x, y = float(x), float(y)
+    s = min(max(x + 1.0 - y, S_MIN), 1.0)
+    g = 1.0 - 2.0 * (1.0 - y) / s
+    return s, min(max(g, 0.0), 1.0)
+
+
+def ratio_jacobian(s, g) -> np.ndarray:
+    """``d(I1/I3, I2/I3) / d(s, g)``, 2 x 2."""
+    return np.array([[0.5 * (1.0 + g), 0.5 * s], [-0.5 * (1.0 - g), 0.5 * s]])
+
+
+def edge_of(s, g) -> str | None:
+    """The edge ``(s, g)`` lies on (:data:`EDGES`' value), or None inside."""
+    if g <= _ON_EDGE:
+        return EDGES["planar"]
+    if g >= 1.0 - _ON_EDGE:
+        return EDGES["I2=I3"]
+    if s >= 1.0 - _ON_EDGE:
+        return EDGES["I1=I2"]
+    if s <= S_MIN * (1 + 1e-6):
+        return EDGES["rod"]
+    return None

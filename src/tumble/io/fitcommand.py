@@ -1,0 +1,159 @@
+"""The ``tumble fit`` command: fit a gyroscope recording and write the result, all or nothing.
+
+- **A whole recording** (a CSV, or phyphox's export: its folder or its ``.zip``): the free
+  flights are found, each fitted, and all fitted jointly (:func:`tumble.analysis.fit.fit_recording`).
+  ``DIR/fit.json`` has the pooled values under the one-flight keys, plus ``"tosses"`` (one entry
+  a flight) and ``"pooled"``; ``DIR/tosses.csv`` is the table of the flights; ``DIR/fit.png``
+  the figure.
+- **One flight** (``--start``/``--end``): the samples between are fitted as one free flight
+  (:func:`tumble.analysis.fit.fit_rotation`); ``DIR/fit.json`` and ``DIR/fit.png``.
+
+``--body FILE`` adds the ratios the body file predicts and how many standard uncertainties they
+lie from the fit.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.fit import fit_recording, fit_rotation
+from .gyrodata import read_recording
+from .output import FIGURE_DPI, check_output_dir, output_dir
+from .provenance import file_sha256, provenance
+
+__all__ = ["TOSS_COLUMNS", "run_fit_command"]
+
+#: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries).
+TOSS_COLUMNS = ("start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
+                "residual_rms", "status", "reason")
+
+_METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz sec. 37) or Euler's equations "
+           "with per-axis drag (RK4); uncertainties: (J^T J)^-1 s^2 scaled by (1 + rho) / (1 - rho) for the "
+           "residuals' autocorrelation (Bayley & Hammersley 1946), plus the gyroscope's scale-factor tolerance "
+           "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1")
+
+
+def _digest(path) -> str:
+    if os.path.isdir(path):
+        import hashlib
+
+        h = hashlib.sha256()
+        for name in sorted(os.listdir(path)):
+            full = os.path.join(path, name)
+            if os.path.isfile(full):
+                h.update(name.encode() + b"\0" + file_sha256(full).encode())
+        meta = os.path.join(path, "meta", "time.csv")
+        if os.path.isfile(meta):
+            h.update(b"meta/time.csv\0" + file_sha256(meta).encode())
+        return h.hexdigest()
+    return file_sha256(path)
+
+
+def _body_comparison(body_source, ratios, std) -> dict:
+    from .bodyfile import load_body
+
+    body = load_body(body_source)
+    I = np.asarray(body.principal_moments, float)
+    pred = I[:2] / I[2]
+    z = (pred - np.asarray(ratios)) / np.asarray(std)
+    return {"source": os.fspath(body_source), "I1_over_I3": float(pred[0]), "I2_over_I3": float(pred[1]),
+            "I1_over_I3_sigmas": float(z[0]), "I2_over_I3_sigmas": float(z[1])}
+
+
+def _tosses_csv(rows) -> str:
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=TOSS_COLUMNS, lineterminator="\n")
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: ("" if row[k] is None else row[k]) for k in TOSS_COLUMNS})
+    return buf.getvalue()
+
+
+def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None, start: float | None = None,
+                    end: float | None = None, body=None, progress=None, **options) -> int:
+    """``tumble fit RECORDING --out DIR`` (module docstring); prints one line.
+
+    Parameters
+    ----------
+    path : str or Path
+        A gyroscope CSV or a phyphox export (folder or ``.zip``):
+        :func:`tumble.io.gyrodata.read_recording`.
+    out : str or Path
+        The output folder (written whole or not at all).
+    argv : list of str, optional
+        The command line after ``tumble``, for the provenance.
+    figure : callable, optional
+        ``figure(fit, omega_measured)`` -> matplotlib Figure for one flight
+        (:func:`tumble.viz.figure_fit`; io cannot import viz).
+    recording_figure : callable, optional
+        ``recording_figure(recording_fit)`` -> Figure for a whole recording
+        (:func:`tumble.viz.figure_recording`).
+    start, end : float, optional
+        Fit only the samples with ``start <= t <= end`` as one flight, s.
+    body : str or Path, optional
+        A body file or preset whose ratios are compared with the fit.
+    progress : callable, optional
+        ``progress(done, total)`` while the flights of a recording are fitted.
+    **options
+        Passed to the fit (``sensor_rotation``, ``bias``, ``drag``, ``saturation``).
+
+    Returns
+    -------
+    int
+        0 on success (bad input raises ``ValueError`` with one line; nothing is written).
+    """
+    check_output_dir(out)
+    t, omega, events = read_recording(path)
+    label = os.fspath(path)
+    if body is not None:
+        from .bodyfile import load_body
+
+        load_body(body)  # a bad body file is bad input before anything is computed
+    digest = _digest(path)
+    record = {"input": label}
+    files = {}
+    try:
+        if start is not None or end is not None:
+            lo = -np.inf if start is None else float(start)
+            hi = np.inf if end is None else float(end)
+            if not lo < hi:
+                raise ValueError(f"--start {start} must be before --end {end} (s)")
+            sel = (t >= lo) & (t <= hi)
+            fit = fit_rotation(t[sel], omega[sel], **options)
+            record.update({"start": start, "end": end, **fit.summary()})
+            pooled, line = fit, f"{fit.samples} samples"
+            draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
+        else:
+            rec = fit_recording(t, omega, events=events, progress=progress, **options)
+            record.update({"start": None, "end": None, **rec.summary()})
+            files["tosses.csv"] = _tosses_csv(record["tosses"])
+            pooled = rec.pooled
+            skipped = len(rec.tosses) - rec.tosses_used
+            line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
+                    + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
+            draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
+    except ValueError as err:
+        raise ValueError(f"{label}: {err}") from None
+    if body is not None:
+        record["body"] = _body_comparison(body, pooled.ratios, pooled.ratios_std)
+    record["method"] = _METHOD
+    record["provenance"] = provenance(argv, [(path, digest)])
+    owns = ("fit.json", "fit.png", "tosses.csv")
+    with output_dir(out, owns=owns) as stage:
+        (Path(stage) / "fit.json").write_text(json.dumps(record, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        for name, text in files.items():
+            (Path(stage) / name).write_text(text, encoding="utf-8")
+        if draw is not None:  # drawn by the caller's layer, written here into the staged folder
+            draw().savefig(Path(stage) / "fit.png", dpi=FIGURE_DPI)
+    written = ", ".join(["fit.json", *files, *(["fit.png"] if draw is not None else [])])
+    (x, y), (sx, sy) = pooled.ratios, pooled.ratios_std
+    edge = f" [{pooled.edge}]" if pooled.edge else ""
+    print(f"fit {label}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
+          f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s; wrote {written} in {os.fspath(out)}")
+    return 0
