@@ -32,7 +32,8 @@ import numpy as np
 from .model import Model
 from .single import MIN_SAMPLES, fit_solution, ratio_summary, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY
-from .solve import Solution
+from .solve import Solution, solve
+from .triangle import EDGES
 
 __all__ = ["Flight", "find_flights", "pause_times"]
 
@@ -204,11 +205,12 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
     b = a0 + int(0.80 * (b0 - a0))
     if b - a < MIN_SAMPLES:
         a, b = a0, b0
-    sol, P0, anchor = None, None, t[a]
+    anchor = t[a]
     try:
+        # the middle, from the samples alone, then with a quadratic drag
+        sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag="quadratic", t0=anchor,
+                           covariance=False, max_nfev=40)
         for _ in range(6):
-            sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag="linear", P0=P0,
-                               t0=anchor, covariance=False)
             rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
             level = float(np.sqrt(np.mean(np.sum(omega[a:b] ** 2, axis=1)) / 3))
             if rms > 0.1 * level:
@@ -217,16 +219,22 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
             a2, b2 = _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
             if (a2, b2) == (a, b):
                 break
-            P0 = _drag_free(sol)
             a, b = a2, b2
+            m = sol.model
+            window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
+            sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
             return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)
         sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag=drag,
-                           P0=_drag_free(sol), t0=anchor, scale_uncertainty=scale_uncertainty)
+                           P0=_drag_free(sol), drag0=sol.model.drag_vector(sol.P), t0=anchor,
+                           scale_uncertainty=scale_uncertainty)
     except (ValueError, np.linalg.LinAlgError) as err:
         return _skip(t, a, b, f"fit failed: {err}", sol)
-    _, std, _, _ = ratio_summary(sol)
+    _, std, _, edge = ratio_summary(sol)
+    if edge == EDGES["rod"]:
+        return _skip(t, a, b, "fit failed: it ran to the rod limit of the triangle (I1 -> 0), where no toss of a "
+                              "phone, racquet or book lies", sol)
     if {"s", "g"} & set(sol.undetermined) or np.max(std) > max_std:
         wp = sol.model.principal(sol.P)[0, :b - a]
         share = np.abs(wp[:, 1]) / np.maximum(np.linalg.norm(wp, axis=1), 1e-300)

@@ -24,18 +24,40 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import sparse
-from scipy.spatial.transform import Rotation
 
 from ...dynamics.drag import drag_omega
 from ...dynamics.exact_omega import free_omega
 from .triangle import S_MIN, ratios
 
-__all__ = ["DRAG_MODELS", "Model"]
+__all__ = ["BIAS_MAX", "DRAG_MODELS", "Model", "rotvec_matrix"]
 
 #: The drag models and their parameters (per principal axis, divided by I3).
 DRAG_MODELS = {"none": (), "linear": ("drag_1", "drag_2", "drag_3"), "quadratic": ("drag_1", "drag_2", "drag_3")}
+#: Largest gyroscope bias fitted, rad/s: 20 times a phone's zero-rate offset (about 3 deg/s,
+#: 0.05 rad/s; Bosch BMI160/BMI270, ST LSM6DSO datasheets), so that the search has room. The bound
+#: matters: a free bias
+#: lets a near-spherical body spinning at a thousand rad/s, its spin cancelled by the bias,
+#: mimic a tumble at ten (seen on real and synthetic tosses); so does the bound on omega0.
+BIAS_MAX = 1.0
 #: The largest RK4 step, as a turn of the fastest sample: an error of ~(0.04)^4 / 120 per step.
 _TURN_PER_STEP = 0.04
+
+
+def rotvec_matrix(rv) -> np.ndarray:
+    """The rotation matrix of a rotation vector (rad), by Rodrigues' formula
+    ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``K`` the cross-product matrix of the unit axis
+    (Shuster, J. Astronaut. Sci. 41 (1993) 439, sec. 3); equal to scipy's
+    ``Rotation.from_rotvec(rv).as_matrix()`` (tested), written out because the fit's Jacobian
+    calls it thousands of times and scipy's object costs 60 us a call."""
+    rv = np.asarray(rv, float)
+    a = float(np.sqrt(rv @ rv))
+    if a < 1e-8:  # second order: sin(a)/a = 1, (1 - cos a)/a^2 = 1/2 to ~1e-17
+        s1, s2 = 1.0, 0.5
+    else:
+        s1, s2 = np.sin(a) / a, (1.0 - np.cos(a)) / (a * a)
+    x, y, z = rv
+    K = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + s1 * K + s2 * (K @ K)
 
 
 class Model:
@@ -51,7 +73,10 @@ class Model:
         Which drag is fitted.
     speeds : list of float, optional
         Each flight's largest measured ``|omega|``, rad/s: it sets the integrator's step (the
-        same for every parameter vector, so that finite differences are clean).
+        same for every parameter vector, so that finite differences are clean); given, it bounds
+        each component of ``omega0`` by ``2 speed + BIAS_MAX`` and the bias by ``BIAS_MAX``
+        (without, they are free: the start's search for the right basin goes through values
+        beyond them).
     """
 
     def __init__(self, taus, rotation: bool, bias: bool, drag: str = "none", speeds=None):
@@ -65,6 +90,7 @@ class Model:
             self.tau[j, len(t):] = t[-1]
             self.valid[j, :len(t)] = True
         self.rotation, self.bias, self.drag = bool(rotation), bool(bias), drag
+        bounded = speeds is not None
         speeds = np.ones(self.F) if speeds is None else np.maximum(np.asarray(speeds, float), 1e-3)
         self.speeds = speeds
         self.hmax = _TURN_PER_STEP / speeds
@@ -84,6 +110,12 @@ class Model:
         lo[0], hi[0], lo[1], hi[1] = S_MIN, 1.0, 0.0, 1.0
         for name in DRAG_MODELS[drag]:
             lo[self.index[name]] = 0.0
+        if bias and bounded:
+            k = self.index["bias_x"]
+            lo[k:k + 3], hi[k:k + 3] = -BIAS_MAX, BIAS_MAX
+        if bounded:  # omega0 within twice the largest rate measured
+            cap = np.repeat(2.0 * self.speeds + BIAS_MAX, 3)
+            lo[self.ns:], hi[self.ns:] = -cap, cap
         self.bounds = (lo, hi)
 
     # -- the parameter vector ------------------------------------------------------------------
@@ -105,7 +137,7 @@ class Model:
         if not self.rotation:
             return np.eye(3)
         k = self.index["rotvec_x"]
-        return Rotation.from_rotvec(P[k:k + 3]).as_matrix()
+        return rotvec_matrix(P[k:k + 3])
 
     def bias_vector(self, P) -> np.ndarray:
         if not self.bias:

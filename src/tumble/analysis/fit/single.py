@@ -335,24 +335,27 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
 
 
 def fit_solution(t, omega, keep, *, rotation: bool = True, bias: bool = True, drag: str = "auto", guess=None,
-                 P0=None, t0=None, max_nfev: int = 100, scale_uncertainty: float = SCALE_UNCERTAINTY,
-                 covariance: bool = True) -> Solution:
+                 P0=None, drag0=None, t0=None, max_nfev: int = 100,
+                 scale_uncertainty: float = SCALE_UNCERTAINTY, covariance: bool = True) -> Solution:
     """The solved model of one flight (checked inputs; ``keep`` the unsaturated sample axes).
 
-    ``P0``: drag-free parameters to start from instead of the automatic starting values, with
-    ``omega0`` at time ``t0`` (default ``t[0]``; samples before it are fitted backward in time:
+    ``P0``: drag-free parameters to start from instead of the automatic starting values (and
+    ``drag0`` the quadratic drag's), with ``omega0`` at time ``t0`` (default ``t[0]``; samples before it are fitted backward in time:
     near the separatrix re-anchoring ``omega0`` at another sample would move it across)."""
     tau = t - (t[0] if t0 is None else t0)
     speed = [float(np.max(np.linalg.norm(omega, axis=1)))]
     P = _start(tau, omega, keep, rotation, bias, guess, max_nfev) if P0 is None else P0
     model = Model([tau], rotation, bias, speeds=speed)
     P = _canonical(P, model)
-    return solve_drag(model, omega[None], keep[None], P, drag, max_nfev=max_nfev, scale_uncertainty=scale_uncertainty,
-                      covariance=covariance)
+    return solve_drag(model, omega[None], keep[None], P, drag, drag0=drag0, max_nfev=max_nfev,
+                      scale_uncertainty=scale_uncertainty, covariance=covariance)
 
 
 def _start(tau, omega, keep, rotation, bias, guess, max_nfev) -> np.ndarray:
-    """The drag-free parameters refined on windows that double up to the whole record."""
+    """The drag-free parameters refined on windows that double up to the whole record.
+
+    The bias and omega0 are free here (the way from a start to the right basin may pass through
+    large values); the final solve bounds them."""
     ok = np.all(keep, axis=1)
     spin = float(np.max(np.sqrt(np.mean(omega[ok] ** 2, axis=0))))
     horizon = min(tau[-1], max(2 * np.pi / max(spin, 1e-300), tau[min(len(tau) - 1, 24)]))
@@ -368,9 +371,9 @@ def _start(tau, omega, keep, rotation, bias, guess, max_nfev) -> np.ndarray:
     if len(starts) > 1:
         costs = [float(np.sum(((window.sensor(P) - data)[mask]) ** 2)) for P in starts]
         order = [0] + [i for i in np.argsort(np.nan_to_num(costs, nan=np.inf)) if i != 0]
-        # a start in the right basin fits to the noise plus the model's error (a drag, a flex:
-        # well under 2 % of the rates); a wrong one leaves tens of per cent
-        good = (0.02 * spin) ** 2 * 3 * n
+        # a start in the right basin fits to the noise plus the model's error (a racquet's drag
+        # without its model: a few per cent of the rates); a wrong one leaves tens of per cent
+        good = (0.05 * spin) ** 2 * 3 * n
         best = None
         for i in order[:6]:
             sol = solve(window, data, mask, starts[i], max_nfev=15, covariance=False)

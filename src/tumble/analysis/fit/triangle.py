@@ -32,7 +32,7 @@ __all__ = ["EDGES", "S_MIN", "edge_of", "ratio_jacobian", "ratios", "square"]
 EDGES = {"planar": "planar (I1 + I2 = I3)", "I1=I2": "symmetric (I1 = I2)", "I2=I3": "symmetric (I2 = I3)",
          "rod": "rod limit ((I1 + I3 - I2) / I3 at its floor)"}
 #: Smallest ``s = (I1 + I3 - I2) / I3`` fitted: bodies thinner than this are rods to the fit.
-S_MIN = 1e-3
+S_MIN = 1e-2
 #: A coordinate within this of its bound is on the edge.
 _ON_EDGE = 1e-7
 
