@@ -21,7 +21,7 @@ from scipy.spatial.transform import Rotation
 from .model import Model
 from .solve import Solution, solve, solve_drag
 from .start import candidates, first_value
-from .triangle import EDGES, edge_of, ratio_jacobian, ratios, square
+from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios, square
 from .uncertainty import SCALE_UNCERTAINTY, interval, noise_floor
 
 __all__ = ["MIN_SAMPLES", "RotationFit", "fit_rotation", "fit_solution", "saturation_mask"]
@@ -215,7 +215,7 @@ def saturation_mask(omega, saturation: float | None = None) -> tuple[np.ndarray,
     saturation : float, optional
         The sensor's full scale, rad/s. Without it the rail is found from the data: the largest
         ``|omega|`` of any axis counts as a rail when at least three samples lie within 0.2 % of
-        it but fewer than a fifth of those above half of it (an unclipped signal touches its
+        it but fewer than half of those above half of it (an unclipped signal touches its
         peak once; a clipped one sits there a while; a steady spin sits there throughout).
 
     Returns
@@ -231,7 +231,7 @@ def saturation_mask(omega, saturation: float | None = None) -> tuple[np.ndarray,
         at = np.count_nonzero(a >= 0.998 * top)
         # a rail is a flat top: several samples on it, but few of those that come near it (a
         # steady spin sits at its maximum throughout and is not clipped)
-        if top > 0 and at >= 3 and at < 0.2 * np.count_nonzero(a > 0.5 * top):
+        if top > 0 and at >= 3 and at < 0.5 * np.count_nonzero(a > 0.5 * top):
             rail = top
     if rail is None:
         return np.ones(a.shape, bool), None
@@ -434,17 +434,31 @@ def public_covariance(sol: Solution, statistical: bool = False):
 
 
 def ratio_summary(sol: Solution):
-    """``(ratios, std, interval, edge)`` of a solution: std capped at half the triangle's range;
-    95 % intervals clipped to the triangle, one-sided at an edge that bounds that ratio."""
+    """``(ratios, std, interval, edge)`` of a solution.
+
+    The standard uncertainties are capped at half each ratio's range in the triangle. The 95 %
+    intervals: inside the triangle, ``+- 1.96 std`` clipped to it; on an edge, the interval of
+    the square's coordinates (one-sided in the one normal to the edge,
+    :func:`~tumble.analysis.fit.uncertainty.interval`) carried to the ratios through the map
+    of :mod:`~tumble.analysis.fit.triangle` (``I1/I3`` grows with both coordinates, ``I2/I3``
+    falls with ``s`` and grows with ``g``), so that an optimum held on the planar edge keeps an
+    interval along the edge."""
     names, values, cov = public_covariance(sol)
     x, y = values[0], values[1]
-    edge = edge_of(sol.P[0], sol.P[1])
+    sq, gq = float(sol.P[0]), float(sol.P[1])
+    edge = edge_of(sq, gq)
     std = np.sqrt(np.abs(np.diag(cov)[:2]))
     std = np.where(np.isfinite(std), np.minimum(std, _STD_CAP), _STD_CAP)
-    # I1/I3 lies between 1 - y and y: on the planar edge at its lower end, at I1 = I2 at its upper
-    planar, top12, top23 = (edge == EDGES[k] for k in ("planar", "I1=I2", "I2=I3"))
-    ix = interval(x, std[0], max(0.0, 1.0 - min(1.0, y + 2 * std[1])), 1.0, on_low_edge=planar, on_high_edge=top12)
-    iy = interval(y, std[1], 0.5, 1.0, on_high_edge=top23)
+    if edge is None or edge == EDGES["rod"]:
+        ix = interval(x, std[0], 0.0, 1.0)
+        iy = interval(y, std[1], 0.5, 1.0)
+        return np.array([x, y]), std, np.array([ix, iy]), edge
+    c = np.nan_to_num(sol.cov[:2, :2], nan=np.inf)
+    ss, sg = (float(np.sqrt(v)) if np.isfinite(v) else np.inf for v in np.diag(c))
+    s_lo, s_hi = interval(sq, ss, S_MIN, 1.0, on_high_edge=edge == EDGES["I1=I2"])
+    g_lo, g_hi = interval(gq, sg, 0.0, 1.0, on_low_edge=edge == EDGES["planar"], on_high_edge=edge == EDGES["I2=I3"])
+    ix = (float(ratios(s_lo, g_lo)[0]), float(ratios(s_hi, g_hi)[0]))
+    iy = (float(ratios(s_hi, g_lo)[1]), float(ratios(s_lo, g_hi)[1]))
     return np.array([x, y]), std, np.array([ix, iy]), edge
 
 
