@@ -22,7 +22,7 @@ from .model import Model
 from .solve import Solution, solve, solve_drag
 from .start import candidates, first_value
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios, square
-from .uncertainty import SCALE_UNCERTAINTY, interval, noise_floor
+from .uncertainty import SCALE_UNCERTAINTY, effective_dof, interval, noise_floor
 
 __all__ = ["MIN_SAMPLES", "RotationFit", "fit_rotation", "fit_solution", "saturation_mask"]
 
@@ -437,26 +437,34 @@ def ratio_summary(sol: Solution):
     """``(ratios, std, interval, edge)`` of a solution.
 
     The standard uncertainties are capped at half each ratio's range in the triangle. The 95 %
-    intervals: inside the triangle, ``+- 1.96 std`` clipped to it; on an edge, the interval of
+    intervals: inside the triangle, ``+- k std`` clipped to it (``k`` Student's for the
+    Welch-Satterthwaite degrees of freedom of the statistical part, ``m / tau - n``, and the
+    systematic one); on an edge, the interval of
     the square's coordinates (one-sided in the one normal to the edge,
     :func:`~tumble.analysis.fit.uncertainty.interval`) carried to the ratios through the map
     of :mod:`~tumble.analysis.fit.triangle` (``I1/I3`` grows with both coordinates, ``I2/I3``
     falls with ``s`` and grows with ``g``), so that an optimum held on the planar edge keeps an
     interval along the edge."""
     names, values, cov = public_covariance(sol)
+    _, _, cov_stat = public_covariance(sol, statistical=True)
     x, y = values[0], values[1]
     sq, gq = float(sol.P[0]), float(sol.P[1])
     edge = edge_of(sq, gq)
     std = np.sqrt(np.abs(np.diag(cov)[:2]))
     std = np.where(np.isfinite(std), np.minimum(std, _STD_CAP), _STD_CAP)
+    # the residuals hold m / tau independent values; n parameters were fitted to them
+    dof_stat = max(sol.m / max(sol.bandwidth, 1.0) - sol.model.n, 1.0)
+    dof = [effective_dof(cov_stat[i, i], cov[i, i], dof_stat) for i in range(2)]
     if edge is None or edge == EDGES["rod"]:
-        ix = interval(x, std[0], 0.0, 1.0)
-        iy = interval(y, std[1], 0.5, 1.0)
+        ix = interval(x, std[0], 0.0, 1.0, dof=dof[0])
+        iy = interval(y, std[1], 0.5, 1.0, dof=dof[1])
         return np.array([x, y]), std, np.array([ix, iy]), edge
     c = np.nan_to_num(sol.cov[:2, :2], nan=np.inf)
     ss, sg = (float(np.sqrt(v)) if np.isfinite(v) else np.inf for v in np.diag(c))
-    s_lo, s_hi = interval(sq, ss, S_MIN, 1.0, on_high_edge=edge == EDGES["I1=I2"])
-    g_lo, g_hi = interval(gq, sg, 0.0, 1.0, on_low_edge=edge == EDGES["planar"], on_high_edge=edge == EDGES["I2=I3"])
+    d = min(dof)
+    s_lo, s_hi = interval(sq, ss, S_MIN, 1.0, on_high_edge=edge == EDGES["I1=I2"], dof=d)
+    g_lo, g_hi = interval(gq, sg, 0.0, 1.0, on_low_edge=edge == EDGES["planar"], on_high_edge=edge == EDGES["I2=I3"],
+                          dof=d)
     ix = (float(ratios(s_lo, g_lo)[0]), float(ratios(s_hi, g_hi)[0]))
     iy = (float(ratios(s_hi, g_lo)[1]), float(ratios(s_lo, g_hi)[1]))
     return np.array([x, y]), std, np.array([ix, iy]), edge

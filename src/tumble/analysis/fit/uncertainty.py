@@ -34,7 +34,7 @@ import numpy as np
 from scipy import sparse
 
 __all__ = ["SCALE_UNCERTAINTY", "andrews_bandwidth", "autocorrelation_time", "birge_chi2", "effective_covariance",
-           "interval",
+           "effective_dof", "interval",
            "noise_floor", "sandwich_covariance", "scale_covariance"]
 
 #: Standard uncertainty of a MEMS gyroscope's scale factor per axis (sensitivity tolerance,
@@ -84,7 +84,7 @@ def andrews_bandwidth(scores, starts) -> float:
         den += s2 ** 2 / (1 - rho) ** 4
     if den <= 0:
         return 0.0
-    return float(min(1.1447 * (num / den * np.mean(T)) ** (1.0 / 3.0), np.max(T) - 1))
+    return float(min(1.1447 * (num / den * np.mean(T)) ** (1.0 / 3.0), np.mean(T) / 4))
 
 
 def sandwich_covariance(J, r, sample, starts) -> tuple[np.ndarray, float]:
@@ -135,16 +135,21 @@ def sandwich_covariance(J, r, sample, starts) -> tuple[np.ndarray, float]:
 
 
 def interval(value: float, std: float, lo: float, hi: float, *, on_low_edge: bool = False,
-             on_high_edge: bool = False, z: float = 1.959963984540054) -> tuple[float, float]:
+             on_high_edge: bool = False, dof: float = np.inf) -> tuple[float, float]:
     """A 95 % interval for a parameter confined to ``[lo, hi]``.
 
-    Inside: ``value +- z std`` clipped to the range. On an edge (the optimum at a bound, where
-    the estimator's distribution has a point mass): one-sided, from the edge to
-    ``z1 std`` inside it with ``z1 = 1.645`` (the one-sided 95 % point: the likelihood-ratio
-    statistic at a boundary is half chi^2_0, half chi^2_1, Chernoff, Ann. Math. Stat. 25 (1954)
-    573; Self & Liang, JASA 82 (1987) 605).
+    Inside: ``value +- k std`` clipped to the range, ``k`` Student's 97.5 % point for ``dof``
+    effective degrees of freedom (1.96 for infinitely many; the GUM's coverage factor for a
+    standard uncertainty estimated from the data, JCGM 100:2008, G.3-G.4). On an edge (the
+    optimum at a bound, where the estimator's distribution has a point mass): one-sided, from
+    the edge to the 95 % point inside it (1.645 for infinitely many degrees of freedom: the
+    likelihood-ratio statistic at a boundary is half chi^2_0, half chi^2_1, Chernoff, Ann.
+    Math. Stat. 25 (1954) 573; Self & Liang, JASA 82 (1987) 605).
     """
-    one_sided = 1.6448536269514722
+    from scipy.stats import t as student
+
+    z = float(student.ppf(0.975, dof)) if np.isfinite(dof) else 1.959963984540054
+    one_sided = float(student.ppf(0.95, dof)) if np.isfinite(dof) else 1.6448536269514722
     if on_low_edge:
         return lo, min(hi, value + one_sided * std)
     if on_high_edge:
@@ -169,7 +174,32 @@ def birge_chi2(values, covariances, pooled) -> tuple[float, int]:
     return chi2, max(k * (len(values) - 1), 1)
 
 
-def autocorrelation_time(r, starts, axes: int = 3) -> float:
+def autocorrelation_time(r, starts, axes: int = 3, block: int = 5) -> float:
+    """The residuals' integrated autocorrelation time, samples (at least 1): the larger of
+    :func:`_geyer_time` on the residuals and on their means over blocks of ``block`` samples
+    (times ``block`` and the ratio of the variances: the batch means of Flegal & Jones, Ann.
+    Stat. 38 (2010) 1034). The blocks matter when a fast oscillation (a flexing body, 15-35 Hz)
+    rides on a slow model error: its negative correlations end Geyer's sum before the slow
+    part is counted; averaging over a block removes the oscillation and keeps the slow part."""
+    R = r.reshape(-1, axes) if r.size % axes == 0 else r[:, None]
+    tau = _geyer_time(R, starts)
+    means, bstarts, total = [], [0], 0
+    for lo, hi in zip(starts[:-1], starts[1:]):
+        n = (hi - lo) // block
+        if n >= 4:
+            x = R[lo:lo + n * block] - R[lo:hi].mean(axis=0)
+            means.append(x.reshape(n, block, -1).mean(axis=1))
+            total += n
+            bstarts.append(total)
+    if means:
+        M = np.concatenate(means)
+        var_r = float(np.mean((R - R.mean(axis=0)) ** 2))
+        if var_r > 0:
+            tau = max(tau, block * float(np.mean(M ** 2)) / var_r * _geyer_time(M, np.array(bstarts)))
+    return max(tau, 1.0)
+
+
+def _geyer_time(R, starts) -> float:
     """The residuals' integrated autocorrelation time, samples (at least 1).
 
     ``tau = 1 + 2 sum_k rho_k`` with the autocorrelation ``rho_k`` pooled over the axes and the
@@ -178,7 +208,6 @@ def autocorrelation_time(r, starts, axes: int = 3) -> float:
     For white residuals it is 1; for the smooth residual a model error leaves, about the
     error's duration in samples. A mean of ``n`` such samples has the variance of ``n / tau``
     independent ones (Sokal, *Monte Carlo methods in statistical mechanics*, 1997, sec. 2)."""
-    R = r.reshape(-1, axes) if r.size % axes == 0 else r[:, None]
     longest = int(np.max(np.diff(starts)))
     acov = np.zeros(longest)
     var = 0.0
@@ -269,3 +298,12 @@ def scale_covariance(J, data, mask, sigma: float) -> np.ndarray:
     d = np.where(d > 0, d, 1.0)
     A = (np.linalg.pinv(JtJ / np.outer(d, d)) / np.outer(d, d)) @ JtD
     return sigma ** 2 * (A @ A.T)
+
+
+def effective_dof(var_stat: float, var_total: float, dof_stat: float) -> float:
+    """Welch-Satterthwaite's effective degrees of freedom of a standard uncertainty made of a
+    statistical part with ``dof_stat`` degrees of freedom and a systematic part known exactly
+    (infinitely many): ``nu = var_total^2 / (var_stat^2 / dof_stat)`` (JCGM 100:2008, G.4.1)."""
+    if not (var_stat > 0 and dof_stat > 0):
+        return np.inf
+    return float(var_total ** 2 / (var_stat ** 2 / dof_stat))
