@@ -98,7 +98,7 @@ def test_autocorrelation_time_of_first_order_autoregressive_noise():
         e = rng.normal(size=len(x))
         for i in range(1, len(x)):
             x[i] = rho * x[i - 1] + e[i]
-        tau = autocorrelation_time(np.repeat(x, 3), np.array([0, len(x)]))  # three identical axes
+        tau = autocorrelation_time(np.repeat(x[:, None], 3, axis=1), np.array([0, len(x)]))  # three identical axes
         assert abs(tau - (1 + rho) / (1 - rho)) < 0.05 * (1 + rho) / (1 - rho)
 
 
@@ -177,9 +177,10 @@ def test_saturated_samples_are_left_out_and_counted():
 
 # --- whole recordings: detection, coverage, pooling ------------------------------------------------
 
-#: 38 recordings of each body with 3 tosses: 228 flights, each recording with its own gyroscope
-#: (bias and scale errors are common to a recording's flights, so coverage needs many recordings).
-CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1038)]
+#: 57 recordings of each body with 2 tosses: 228 flights. Each recording has its own gyroscope,
+#: whose bias and scale errors its flights share: coverage needs many recordings, not many
+#: flights of a few (38 recordings of 3 measured 89 % to 97 % by the luck of 38 scale draws).
+CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1057)]
 
 
 def _iou(a, b, start, end):
@@ -191,13 +192,20 @@ def _iou(a, b, start, end):
 def campaign():
     rows, pooled = [], []
     for body, seed in CAMPAIGN:
-        rec = synthetic_recording(seed, body=body, tosses=3, pauses=1)
-        fit = fit_recording(rec.t, rec.omega, events=rec.events)
+        rec = synthetic_recording(seed, body=body, tosses=2, pauses=1)
+        try:
+            fit = fit_recording(rec.t, rec.omega, events=rec.events)
+        except ValueError as err:  # neither flight usable: said in one line; the flights found
+            assert str(err).startswith("no usable flight among")
+            fit, found = None, find_flights(rec.t, rec.omega, events=rec.events)
+            assert all(f.status == "skipped" and f.reason for f in found)
+        tosses = fit.tosses if fit is not None else found
         for a, b in rec.flights:
-            best = max(fit.tosses, key=lambda toss: _iou(a, b, toss.start, toss.end))
-            rows.append((body, _iou(a, b, best.start, best.end), best, rec.ratios))
-        p = fit.pooled
-        pooled.append(np.all(np.abs(p.ratios - rec.ratios) <= 2 * p.ratios_std))
+            best = max(tosses, key=lambda toss: _iou(a, b, toss.start, toss.end))
+            rows.append((body, _iou(a, b, best.start, best.end), best if fit is not None else None, rec.ratios))
+        if fit is not None:
+            p = fit.pooled
+            pooled.append(np.all(np.abs(p.ratios - rec.ratios) <= 2 * p.ratios_std))
     return rows, pooled
 
 
@@ -210,12 +218,14 @@ def test_flights_are_found(campaign):
 def test_no_flight_fails_or_reports_an_uncertainty_above_a_tenth(campaign):
     rows, _ = campaign
     for _, _, toss, _ in rows:
+        if toss is None:  # the recording had no usable flight: checked in the fixture
+            continue
         assert toss.status in ("ok", "skipped")
         if toss.status == "ok":
             assert np.all(toss.fit.ratios_std <= 0.1)
         else:
             assert toss.reason  # skipped with its reason
-    used = np.mean([toss.status == "ok" for _, _, toss, _ in rows])
+    used = np.mean([toss is not None and toss.status == "ok" for _, _, toss, _ in rows])
     assert used >= 0.85, used
 
 
@@ -227,7 +237,7 @@ def test_the_95_percent_intervals_cover_the_truth_in_90_to_98_percent_of_tosses(
     rows, _ = campaign
     inside = []
     for _, iou, toss, truth in rows:
-        if iou >= 0.5 and toss.status == "ok":
+        if iou >= 0.5 and toss is not None and toss.status == "ok":
             iv = toss.fit.ratios_interval
             inside.append([iv[0, 0] <= truth[0] <= iv[0, 1], iv[1, 0] <= truth[1] <= iv[1, 1]])
     inside = np.array(inside)

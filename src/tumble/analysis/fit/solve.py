@@ -24,14 +24,12 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from .model import DRAG_MODELS, Model
-from .uncertainty import effective_covariance, sandwich_covariance, scale_covariance
+from .uncertainty import effective_covariance, scale_covariance
 
 __all__ = ["RANK_TOL", "Solution", "solve", "solve_drag"]
 
 #: Scaled singular values below this fraction of the largest mark undetermined parameters.
 RANK_TOL = 1e-7
-#: How the covariance is estimated: "effective" (autocorrelation-scaled) or "sandwich" (HAC).
-COVARIANCE = "effective"
 #: The drag models ``drag="auto"`` chooses from. A hand-tossed body of 0.1-0.7 m at 5-25 rad/s
 #: meets the air at a Reynolds number ``w L^2 / nu`` of 1e4-1e5, where drag is quadratic
 #: (Hoerner, *Fluid-Dynamic Drag*, ch. 3); a linear (viscous) drag needs ``Re < ~1``. Offered
@@ -128,15 +126,13 @@ def solve(model: Model, data, mask, P0, *, max_nfev: int = 100, scale_uncertaint
     J = model.jacobian(P, mask, wp)
     fixed = _undetermined(J, model.names)
     keep = [k for k in range(model.n) if k not in fixed]
-    F, T = model.tau.shape
     sample_index = np.cumsum(np.r_[0, model.lengths])
-    # each masked residual's sample number, flights one after another
-    sample_of = np.broadcast_to((sample_index[:-1, None] + np.arange(T))[:, :, None], mask.shape)[mask]
     Jk = J[:, keep]
-    if COVARIANCE == "sandwich":
-        cov_k, S = sandwich_covariance(Jk, r, sample_of, sample_index)
-    else:
-        cov_k, S = effective_covariance(Jk, r, sample_index)
+    # the residuals as (samples, 3), flights one after another (a left-out axis counts as 0)
+    full = np.zeros(data.shape)
+    full[mask] = r
+    per_sample = np.concatenate([full[j, :n] for j, n in enumerate(model.lengths)])
+    cov_k, S = effective_covariance(Jk, r, per_sample, sample_index)
     cov_stat = np.full((model.n, model.n), np.nan)
     cov_stat[np.ix_(keep, keep)] = cov_k
     if scale_uncertainty:
