@@ -28,7 +28,6 @@ from tumble.analysis.fit.triangle import EDGES, S_MIN, ratios, square
 from tumble.analysis.fit.uncertainty import autocorrelation_time, birge_chi2
 from tumble.cli import main
 from tumble.dynamics.drag import drag_omega
-from tumble.dynamics.exact import FreeRotation
 from tumble.dynamics.exact_batch import free_rotation_batch
 from tumble.dynamics.exact_omega import free_omega
 from tumble.io.gyrodata import read_recording

@@ -17,7 +17,8 @@ From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consi
 
 from .flights import Flight, find_flights
 from .recording import RecordingFit, Toss, fit_recording
-from .single import MIN_SAMPLES, RotationFit, fit_rotation, saturation_mask
+from .result import RotationFit
+from .single import MIN_SAMPLES, fit_rotation, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY
 
 __all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "RecordingFit", "RotationFit", "Toss", "find_flights",

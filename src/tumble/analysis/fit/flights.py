@@ -30,7 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Model
-from .single import MIN_SAMPLES, fit_solution, ratio_summary, saturation_mask
+from .result import ratio_summary
+from .single import MIN_SAMPLES, fit_solution, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY
 from .solve import Solution, solve
 from .triangle import EDGES

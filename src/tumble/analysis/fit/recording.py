@@ -23,7 +23,8 @@ from scipy.spatial.transform import Rotation
 
 from .flights import Flight, find_flights, pause_times
 from .model import Model
-from .single import RotationFit, _check, public_covariance, ratio_summary, rotation_fit, saturation_mask
+from .result import RotationFit, public_covariance, ratio_summary, rotation_fit
+from .single import _check, saturation_mask
 from .solve import Solution, solve
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
 
