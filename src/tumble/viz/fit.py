@@ -70,7 +70,7 @@ def figure_recording(rec, *, fig=None, max_flights: int = 12):
     matplotlib Figure
     """
     fig = fig if fig is not None else new_figure((12, 8))
-    grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2], hspace=0.35, wspace=0.3)
+    grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2])
     top = fig.add_subplot(grid[0, :])
     t0 = rec.t[0]
     for k, name in enumerate("xyz"):
