@@ -16,9 +16,10 @@ plus the gyroscope's scale-factor part, which no number of flights averages away
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
+from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from .flights import Flight, find_flights, pause_times
@@ -177,7 +178,17 @@ def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit
     if len(used) == 1:
         only = next(toss for toss in tosses if toss.status == "ok")
         return RecordingFit(tosses, only.fit, float("nan"), 1, t, omega, (only.fit.omega_model,))
-    joint, models = _joint(used, t, omega, keep, drag, scale_uncertainty)
+    joint, models, outliers = _joint(used, t, omega, keep, drag, scale_uncertainty)
+    if outliers:
+        bad = {id(used[j]) for j in outliers}
+        tosses = tuple(
+            Toss(toss.start, toss.end, toss.samples, "skipped",
+                 "disagrees with the other flights: its own ratios lie more than five standard uncertainties "
+                 f"from theirs (I1/I3 = {toss.fit.ratios[0]:.4f}, I2/I3 = {toss.fit.ratios[1]:.4f})", toss.fit)
+            if id(f) in bad else toss for toss, f in zip(tosses, flights))
+        used = [f for f in used if id(f) not in bad]
+    if joint is None:
+        return _weighted(used, tosses, t, omega, keep)
     return _pooled(joint, used, tosses, t, omega, keep, models)
 
 
@@ -189,8 +200,11 @@ def _toss(f: Flight, t, omega, keep) -> Toss:
     return Toss(f.start, f.end, f.samples, f.status, f.reason, fit)
 
 
-def _joint(used, t, omega, keep, drag, scale_uncertainty) -> tuple[Solution, list]:
-    """The joint solution over the used flights (module docstring)."""
+def _joint(used, t, omega, keep, drag, scale_uncertainty):
+    """The joint solution over the used flights (module docstring), the joint model at each
+    flight, and the indices of the flights that disagree grossly with the others (their own
+    ratios more than five standard uncertainties from the reference flight's): left out.
+    The solution is None when fewer than two flights agree or the joint fit went astray."""
     sols = [f.solution for f in used]
     rat = np.array([ratio_summary(s)[0] for s in sols])
     ref = int(np.argmin(np.sum((rat - np.median(rat, axis=0)) ** 2, axis=1)))
@@ -216,8 +230,38 @@ def _joint(used, t, omega, keep, drag, scale_uncertainty) -> tuple[Solution, lis
     drag0 = np.median(same, axis=0) if same and kind != "none" else np.zeros(3)
     rv = Rotation.from_matrix(R_ref).as_rotvec() if m_ref.rotation else np.zeros(3)
     P0 = model.pack(P_ref[0], P_ref[1], rv, m_ref.bias_vector(P_ref), w0, drag0)
+    # each flight's omega0 refitted under the shared parameters: near the separatrix another
+    # flight's ratios move a flight onto another mode, and its own omega0 must follow
+    agree = []
+    for j, f in enumerate(used):
+        n = f.stop - f.first
+        one = Model([model.tau[j, :n]], model.rotation, model.bias, kind, model.speeds[j:j + 1])
+        shared = P0[:model.ns]
+
+        def fun(w, one=one, j=j, n=n, shared=shared):
+            return (one.sensor(np.concatenate([shared, w]))[0] - data[j, :n])[mask[j, :n]]
+
+        with np.errstate(all="ignore"):
+            fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
+        P0[model.ns + 3 * j:model.ns + 3 * j + 3] = fitted.x
+        # a gross outlier: its own ratios five standard uncertainties (its own and the
+        # reference's, statistical) from the reference's; the Birge ratio deals with the rest
+        dv = rat[j] - rat[ref]
+        C = public_covariance(sols[j], statistical=True)[2][:2, :2] + \
+            public_covariance(sols[ref], statistical=True)[2][:2, :2]
+        agree.append(bool(dv @ np.linalg.pinv(C) @ dv <= 25.0))
+    keep_idx = [j for j, ok in enumerate(agree) if ok]
+    if len(keep_idx) < len(used):
+        if len(keep_idx) < 2:
+            return None, [], [j for j in range(len(used)) if not agree[j]]
+        sub = [used[j] for j in keep_idx]
+        sol, models, _ = _joint(sub, t, omega, keep, drag, scale_uncertainty)
+        return sol, models, [j for j in range(len(used)) if not agree[j]]
     sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
-    return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)]
+    own = np.sqrt(sum(s.ssr for s in sols) / sum(s.m for s in sols))
+    if np.sqrt(sol.ssr / sol.m) > 2.0 * own + 0.01 * np.sqrt(np.mean(data[mask] ** 2)):
+        return None, [], []  # the joint fit went astray: the caller pools the flights' own fits
+    return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)], []
 
 
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
@@ -250,3 +294,27 @@ def _first_flight_view(sol: Solution) -> Solution:
     undetermined = tuple(name for name in sol.undetermined if name in one.names)
     return Solution(one, sol.P[keep], sol.cov[np.ix_(keep, keep)], sol.cov_stat[np.ix_(keep, keep)],
                     sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.bandwidth, sol.ssr, sol.m)
+
+
+def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
+    """The pooled ratios as the flights' inverse-covariance weighted mean (when the joint fit
+    cannot be made): statistical part scaled by the Birge ratio, the systematic part the
+    flights' mean (it is common to them, not averaged down)."""
+    values, stats, totals = [], [], []
+    for f in used:
+        _, v, c = public_covariance(f.solution, statistical=True)
+        _, _, ct = public_covariance(f.solution)
+        values.append(v[:2]), stats.append(c[:2, :2]), totals.append(ct[:2, :2])
+    values, stats, totals = np.array(values), np.array(stats), np.array(totals)
+    W = np.array([np.linalg.pinv(c) for c in stats])
+    cov_stat = np.linalg.pinv(W.sum(axis=0))
+    mean = cov_stat @ np.einsum("fij,fj->i", W, values)
+    chi2, dof = birge_chi2(values, stats, mean)
+    cov = cov_stat * max(1.0, chi2 / dof) + np.mean(totals - stats, axis=0)
+    ref = next(toss for toss in tosses if toss.status == "ok" and toss.fit is not None)
+    std = np.minimum(np.sqrt(np.diag(cov)), (0.5, 0.25))
+    iv = np.array([[max(0.0, mean[0] - 1.96 * std[0]), min(1.0, mean[0] + 1.96 * std[0])],
+                   [max(0.5, mean[1] - 1.96 * std[1]), min(1.0, mean[1] + 1.96 * std[1])]])
+    pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None)
+    return RecordingFit(tosses, pooled, chi2 / dof if len(used) > 1 else float("nan"), len(used), t, omega,
+                        tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"))
