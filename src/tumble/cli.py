@@ -382,7 +382,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
         "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
         "jointly (shared ratios, sensor rotation, bias and drag) and writes DIR/fit.json (pooled values with "
-        "standard uncertainties and 95 %% intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
+        "standard uncertainties and 95 percent intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
         "With --start/--end the samples between are fitted as one flight.",
         epilog="Example: tumble fit examples/data/racquet_tosses.csv --out fitted", parents=[debug],
     )

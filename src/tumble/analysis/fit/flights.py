@@ -20,7 +20,8 @@ search (:func:`find_flights`):
 4. **Usable or not**, with a reason: too short (under ``min_duration`` or 30 samples),
    saturated (more than a third of its samples at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
-   undetermined or uncertain by more than ``max_std``).
+   undetermined or uncertain by more than ``max_std``, or runs to the rod limit of the
+   triangle, where no tossed phone, racquet or book lies).
 """
 
 from __future__ import annotations
@@ -234,8 +235,8 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
         return _skip(t, a, b, f"fit failed: {err}", sol)
     _, std, _, edge = ratio_summary(sol)
     if edge == EDGES["rod"]:
-        return _skip(t, a, b, "fit failed: it ran to the rod limit of the triangle (I1 -> 0), where no toss of a "
-                              "phone, racquet or book lies", sol)
+        return _skip(t, a, b, "ratios not determined: the fit ran to the rod limit of the triangle (I1 -> 0), "
+                              "where no toss of a phone, racquet or book lies (seen on short or slow flights)", sol)
     if {"s", "g"} & set(sol.undetermined) or np.max(std) > max_std:
         wp = sol.model.principal(sol.P)[0, :b - a]
         share = np.abs(wp[:, 1]) / np.maximum(np.linalg.norm(wp, axis=1), 1e-300)
