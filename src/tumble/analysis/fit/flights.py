@@ -18,7 +18,7 @@ search (:func:`find_flights`):
    end the flight (the throw's torque before, the catch after). Fit and growth alternate until
    the window stops moving.
 4. **Usable or not**, with a reason: too short (under ``min_duration`` or 30 samples),
-   saturated (more than a third of its samples at the rail), a steady spin (no tumble: the
+   saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
    undetermined or uncertain by more than ``max_std``, or runs to the rod limit of the
    triangle, where no tossed phone, racquet or book lies).
@@ -197,7 +197,7 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
         return _skip(t, a0, b0, f"too short ({length:.2f} s, {b0 - a0} samples; a flight needs {min_duration} s "
                                 f"and 30 samples)")
     sat = np.mean(~np.all(keep[a0:b0], axis=1))
-    if sat > 1 / 3:
+    if sat > 0.6:
         return _skip(t, a0, b0, f"saturated ({100 * sat:.0f} % of the samples at the gyroscope's rail)")
     w = omega[a0:b0]
     spread = np.sqrt(np.mean(np.sum((w - w.mean(axis=0)) ** 2, axis=1)))
