@@ -10,7 +10,7 @@ search (:func:`find_flights`):
 2. **Active stretches**: where ``|omega|`` (a 3-sample median) exceeds ``min_spin``; in a free
    flight ``|omega| >= |L| / I3`` never dips to zero, while a hold stays below a rad/s.
 3. **The free part of each stretch.** Its middle (from 35 % to 80 % of the stretch: past any
-   throw, before any catch) is fitted with the torque-free model (:mod:`~tumble.analysis.fit.single`),
+   throw, before any catch) is fitted (:mod:`~tumble.analysis.fit.single`, with a quadratic drag),
    then the window grows on each side while the model, extrapolated (its time origin kept at
    the middle's first sample: near the separatrix, moving ``omega0`` to another sample by the
    model's own extrapolation can carry it across), still follows the samples
@@ -33,9 +33,9 @@ import numpy as np
 from .model import Model
 from .result import ratio_summary
 from .single import MIN_SAMPLES, fit_solution, saturation_mask
-from .uncertainty import SCALE_UNCERTAINTY
 from .solve import Solution, solve
 from .triangle import EDGES
+from .uncertainty import SCALE_UNCERTAINTY
 
 __all__ = ["Flight", "find_flights", "pause_times"]
 
