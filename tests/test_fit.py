@@ -332,3 +332,17 @@ def test_periods_do_not_determine_the_ratios():
         periods_consistent(1.0, 2.0, resolution=400, angles=20000)
     with pytest.raises(ValueError, match=r"ratios\[0\] = \[0.8, 0.4\]"):
         periods_consistent(1.0, 2.0, ratios=[[0.8, 0.4]])
+
+
+def test_units_named_in_a_plain_header_are_converted_or_refused(tmp_path):
+    """Hardening II, item 7: ``time (ms)`` was read as seconds and ``deg/s`` as rad/s."""
+    path = tmp_path / "units.csv"
+    path.write_text("t (ms),wx [deg/s],wy (dps),wz (rpm)\n0,180,90,60\n10,-180,0,30\n", encoding="utf-8")
+    t, w = read_gyro_csv(path)
+    assert np.allclose(t, [0.0, 0.01]) and np.allclose(w, [[np.pi, np.pi / 2, 2 * np.pi], [-np.pi, 0.0, np.pi]])
+    path.write_text("t (min),wx,wy,wz\n0,1,2,3\n1,1,2,3\n", encoding="utf-8")
+    with pytest.raises(ValueError, match=r"line 1, column 1: unknown unit 'min'"):
+        read_gyro_csv(path)
+    path.write_text("t,wx (furlong/s),wy,wz\n0,1,2,3\n1,1,2,3\n", encoding="utf-8")
+    with pytest.raises(ValueError, match=r"column 2: unknown unit 'furlong/s'"):
+        read_gyro_csv(path)

@@ -9,7 +9,10 @@ Formats read by :func:`read_gyro_csv`:
   ``"Absolute (rad/s)"`` are ignored). The three CSV flavours phyphox offers are accepted:
   comma-separated, tab-separated, and semicolon-separated with a decimal comma.
 - **plain**: four numeric columns ``t (s), wx, wy, wz (rad/s)``, with or without one header
-  line, separated by commas, semicolons, tabs or spaces.
+  line, separated by commas, semicolons, tabs or spaces. A header may name each column's unit
+  in brackets, ``t (ms)``, ``wx [deg/s]``: times in s, ms, us or ns and rates in rad/s, deg/s
+  (or dps), rpm, rev/s or Hz are converted to s and rad/s; any other unit is refused, naming
+  the column.
 
 Lines starting with ``#`` and blank lines are skipped. Every error is one line naming the file
 and the line: a missing column, a value that is not a number, a row of the wrong length, fewer
@@ -88,6 +91,7 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     head = _split(first, sep)
     columns = [0, 1, 2, 3]
     width = 4
+    scale = [1.0, 1.0, 1.0, 1.0]
     if not all(_NUMBER.match(c) for c in head):  # a header line
         names = [h.lower() for h in head]
         if "time (s)" in names or any(n.startswith("gyroscope") for n in names):
@@ -101,6 +105,9 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
         elif len(head) != 4:
             raise ValueError(f"{label}, line {first_no}: a header of {len(head)} columns; expected 4 (t, wx, wy, wz) "
                              "or a phyphox gyroscope export")
+        else:
+            scale = [_unit(head[0], _TIME_UNITS, label, first_no, 1)] + \
+                [_unit(h, _RATE_UNITS, label, first_no, j + 2) for j, h in enumerate(head[1:])]
         lines = lines[1:]
     elif len(head) != 4:
         raise ValueError(f"{label}, line {first_no}: {len(head)} columns; expected 4 (t, wx, wy, wz)")
@@ -116,7 +123,30 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
             rows[k, j] = float(cell.replace(",", ".") if decimal_comma else cell)
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a record needs many samples")
+    rows *= np.array(scale)
     return rows[:, 0].copy(), rows[:, 1:].copy()
+
+
+#: Units a plain header may name for the time, and their factor to s.
+_TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6, "ns": 1e-9}
+#: Units a plain header may name for a rate, and their factor to rad/s.
+_RATE_UNITS = {"rad/s": 1.0, "deg/s": np.pi / 180, "\u00b0/s": np.pi / 180, "dps": np.pi / 180,
+               "rpm": 2 * np.pi / 60, "rev/s": 2 * np.pi, "hz": 2 * np.pi}
+_UNIT = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]\s*$")
+
+
+def _unit(name: str, table: dict, label: str, line: int, column: int) -> float:
+    """The factor to SI of the unit a header cell names in brackets, ``"t (ms)"`` or
+    ``"wx [deg/s]"``; 1 when it names none (the documented s and rad/s). An unknown unit is
+    refused, naming the column: read as SI it would give wrong numbers with no error."""
+    match = _UNIT.search(name)
+    if match is None:
+        return 1.0
+    unit = match.group(1).strip().lower().replace(" ", "")
+    if unit not in table:
+        raise ValueError(f"{label}, line {line}, column {column}: unknown unit {match.group(1)!r} in header "
+                         f"{name!r}; use one of {', '.join(k for k in table if k.isascii())}")
+    return float(table[unit])
 
 
 #: The phyphox export's file of START/PAUSE events, inside the folder or the zip.
