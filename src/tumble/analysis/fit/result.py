@@ -60,7 +60,9 @@ class RotationFit:
     residual_rms : float
         Root mean square of the residuals over the samples and axes fitted, rad/s.
     noise : float
-        The white noise per axis the samples show (second differences), rad/s.
+        The white noise per axis, rad/s: from the second differences of the residuals (the fitted
+        motion removed first: at 100 Hz a fast spin's own second differences would swamp the
+        noise's), robust (median absolute deviation).
     samples : int
         Number of time samples.
     saturated : int
@@ -252,7 +254,8 @@ def rotation_fit(sol: Solution, t, omega, keep) -> RotationFit:
         covariance=cov, parameter_names=names, iterations=sol.nfev, ratios_interval=rint, edge=edge,
         undetermined=tuple(_public_name(n) for n in sol.undetermined), drag=model.drag,
         drag_coefficients=np.array(drag_c, float), drag_coefficients_std=np.array(drag_s, float),
-        noise=noise_floor(omega[np.all(keep, axis=1)]), saturated=int(np.count_nonzero(~keep)),
+        noise=noise_floor((omega - sol.omega_model[0, :len(omega)])[np.all(keep, axis=1)]),
+        saturated=int(np.count_nonzero(~keep)),
         bandwidth=float(sol.bandwidth))
 
 
