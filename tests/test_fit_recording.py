@@ -176,10 +176,10 @@ def test_saturated_samples_are_left_out_and_counted():
 
 # --- whole recordings: detection, coverage, pooling ------------------------------------------------
 
-#: 57 recordings of each body with 2 tosses: 228 flights. Each recording has its own gyroscope,
+#: 60 recordings of each body with 2 tosses: 240 flights. Each recording has its own gyroscope,
 #: whose bias and scale errors its flights share: coverage needs many recordings, not many
 #: flights of a few (38 recordings of 3 measured 89 % to 97 % by the luck of 38 scale draws).
-CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1057)]
+CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1060)]
 
 
 def _iou(a, b, start, end):
@@ -287,8 +287,9 @@ def test_flights_that_scatter_inflate_the_pooled_uncertainty():
     rec = synthetic_recording(8, body="phone", tosses=4, rate=200.0)
     fit = fit_recording(rec.t, rec.omega, events=rec.events)
     assert fit.chi2_dof > 10
-    stats = [toss.fit.ratios_std for toss in fit.tosses if toss.status == "ok"]
-    assert np.all(fit.pooled.ratios_std > np.min(stats, axis=0))  # not shrunk below the best flight's
+    own = np.array([toss.fit.ratios for toss in fit.tosses if toss.status == "ok"])
+    scatter = np.std(own, axis=0, ddof=1) / np.sqrt(len(own))  # what the flights' spread says
+    assert np.all(fit.pooled.ratios_std >= 0.5 * scatter), (fit.pooled.ratios_std, scatter)
 
 
 # --- files and the command ---------------------------------------------------------------------------

@@ -15,8 +15,9 @@ search (:func:`find_flights`):
    the middle's first sample: near the separatrix, moving ``omega0`` to another sample by the
    model's own extrapolation can carry it across), still follows the samples
    within ``max(6 x`` the fit's RMS ``, 3 % of |omega|)``; two samples in a row beyond that
-   end the flight (the throw's torque before, the catch after). Fit and growth alternate until
-   the window stops moving.
+   end the flight (the throw's torque before, the catch after), and so does one just before the
+   stretch's end. Fit and growth alternate until the window stops moving; end samples whose
+   residual exceeds five times the fit's RMS are then trimmed.
 4. **Usable or not**, with a reason: too short (under ``min_duration`` or 30 samples),
    saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
@@ -112,14 +113,29 @@ def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
         pred = _extrapolate(sol, t[idx], anchor)
         err = np.abs(pred - omega[idx])
         tol = np.maximum(6.0 * rms, 0.03 * np.linalg.norm(pred, axis=1))[:, None]
-        bad = np.any((err > tol) & keep[idx], axis=1)
-        run = np.flatnonzero(bad[:-1] & bad[1:]) if len(bad) > 1 else np.flatnonzero(bad)
-        n_ok = int(run[0]) if run.size else len(idx)
+        # the stretch's end counts as a bad sample: one bad sample just before it ends the flight
+        bad = np.append(np.any((err > tol) & keep[idx], axis=1), True)
+        pairs = np.flatnonzero(bad[:-1] & bad[1:])
+        n_ok = int(pairs[0]) if pairs.size else len(idx)
         if side < 0:
             new[0] = a - n_ok
         else:
             new[1] = b + n_ok
     return new[0], new[1]
+
+
+def _trim(omega, keep, a, b, sol: Solution, k: float = 5.0):
+    """Drop end samples of ``[a, b)`` whose residual exceeds ``k`` times the fit's RMS: the last
+    of the throw or the first of the catch that the growth's tolerance let in."""
+    model = sol.omega_model[0, :b - a]
+    err = np.max(np.where(keep[a:b], np.abs(model - omega[a:b]), 0.0), axis=1)
+    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+    lo, hi = 0, b - a
+    while hi - lo > 2 and err[lo] > k * rms:
+        lo += 1
+    while hi - lo > 2 and err[hi - 1] > k * rms:
+        hi -= 1
+    return a + lo, a + hi
 
 
 def _drag_free(sol: Solution) -> np.ndarray:
@@ -225,6 +241,7 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
             m = sol.model
             window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
             sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
+        a, b = _trim(omega, keep, a, b, sol)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
             return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)
