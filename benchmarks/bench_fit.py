@@ -22,7 +22,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from tumble.analysis.fit import fit_recording, fit_rotation
-from tumble.analysis.fit.synthetic import TOSS_BODIES, _drag_torque, synthetic_recording
+from tumble.analysis.fit.synthetic import TOSS_BODIES, plate_drag_torque, synthetic_recording
 
 TARGET_FLIGHT = 0.1
 TARGET_RECORDING = 10.0
@@ -54,7 +54,7 @@ def run(out, quick: bool = False) -> str:
     I = np.asarray(body.moments)
 
     def baseline():
-        solve_ivp(lambda _, x: (np.cross(I * x, x) + _drag_torque(body, x)) / I, (0.0, t[-1] - t[0]),
+        solve_ivp(lambda _, x: (np.cross(I * x, x) + plate_drag_torque(body, x)) / I, (0.0, t[-1] - t[0]),
                   rec.omega0[0], method="DOP853", rtol=1e-9, atol=1e-10, t_eval=t - t[0])
 
     fit_rotation(t, w)  # the compiled kernel's first call (numba's cache) is not timed
