@@ -27,20 +27,19 @@ error ``~(|w| h)^4`` (tests/test_exact_omega.py).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
-from numba import njit
 
 __all__ = ["drag_omega"]
 
 
-@njit(cache=True)
 def _rate(I, lin, quad, w, out):
     out[0] = ((I[1] - I[2]) * w[1] * w[2] - (lin[0] + quad[0] * abs(w[0])) * w[0]) / I[0]
     out[1] = ((I[2] - I[0]) * w[2] * w[0] - (lin[1] + quad[1] * abs(w[1])) * w[1]) / I[1]
     out[2] = ((I[0] - I[1]) * w[0] * w[1] - (lin[2] + quad[2] * abs(w[2])) * w[2]) / I[2]
 
 
-@njit(cache=True)
 def _advance(I, lin, quad, w, dt, n, k1, k2, k3, k4, tmp):
     h = dt / n
     for _ in range(n):
@@ -58,7 +57,6 @@ def _advance(I, lin, quad, w, dt, n, k1, k2, k3, k4, tmp):
             w[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
 
 
-@njit(cache=True)
 def _integrate(I, w0, lin, quad, tau, hmax):
     K, T = tau.shape
     out = np.empty((K, T, 3))
@@ -85,6 +83,20 @@ def _integrate(I, w0, lin, quad, tau, hmax):
                 for c in range(3):
                     out[b, j, c] = w[c]
     return out
+
+
+@functools.cache
+def _compiled():
+    """The kernel compiled by numba (``cache=True``: once per machine), on first use: importing
+    numba costs half a second, which every ``tumble`` command would pay at start otherwise.
+    The module's functions are replaced by their compiled versions in calling order, so that
+    each is compiled against the compiled ones it calls."""
+    from numba import njit
+
+    names = ("_rate", "_advance", "_integrate")
+    for name in names:
+        globals()[name] = njit(cache=True)(globals()[name])
+    return globals()["_integrate"]
 
 
 def drag_omega(moments, omega0, t, linear=None, quadratic=None, *, max_step=None) -> np.ndarray:
@@ -129,4 +141,4 @@ def drag_omega(moments, omega0, t, linear=None, quadratic=None, *, max_step=None
         hmax = 0.04 / np.where(speed > 0, speed, 1.0)
     else:
         hmax = np.ascontiguousarray(np.broadcast_to(np.asarray(max_step, float), (N,)))
-    return _integrate(I, w, lin, quad, tau, hmax)
+    return _compiled()(I, w, lin, quad, tau, hmax)
