@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from tumble.analysis.fit import find_flights, fit_recording, fit_rotation
+from tumble.analysis.fit import InadequateFitWarning, find_flights, fit_recording, fit_rotation
 from tumble.analysis.fit.model import rotvec_matrix
 from tumble.analysis.fit.synthetic import TOSS_BODIES, example_recording, synthetic_recording
 from tumble.analysis.fit.triangle import EDGES, S_MIN, ratios, square
@@ -156,8 +156,10 @@ def test_a_known_per_axis_quadratic_drag_is_recovered_and_chosen():
     (lo1, hi1), (lo2, hi2) = fit.ratios_interval
     assert lo1 <= 0.25 <= hi1 and lo2 <= 0.78 <= hi2
     assert abs(fit.drag_coefficients[1] - b[1]) < 3 * fit.drag_coefficients_std[1] + 1e-4
-    none = fit_rotation(t, w, drag="none", scale_uncertainty=0.0)
+    with pytest.warns(InadequateFitWarning, match="the model does not fit"):
+        none = fit_rotation(t, w, drag="none", scale_uncertainty=0.0)
     assert none.residual_rms > 5 * fit.residual_rms  # 25 % of the spin lost: no drag does not fit
+    assert fit.adequate and not none.adequate
 
 
 def test_saturated_samples_are_left_out_and_counted():
@@ -204,6 +206,7 @@ def campaign():
             rows.append((body, _iou(a, b, best.start, best.end), best if fit is not None else None, rec.ratios))
         if fit is not None:
             p = fit.pooled
+            assert p.adequate, p.adequacy
             pooled.append(np.all(np.abs(p.ratios - rec.ratios) <= 2 * p.ratios_std))
     return rows, pooled
 
@@ -225,6 +228,7 @@ def test_no_flight_fails_or_reports_an_uncertainty_above_a_tenth(campaign):
             # no spin of hundreds of rad/s hidden by the bias (seen on real data before the bounds)
             assert np.linalg.norm(toss.fit.omega0) <= 2 * np.max(np.abs(toss.fit.omega_model)) * np.sqrt(3) + 1.0
             assert np.all(np.abs(toss.fit.bias) <= 1.0)
+            assert toss.fit.adequate, toss.fit.adequacy
         else:
             assert toss.reason  # skipped with its reason
     used = np.mean([toss is not None and toss.status == "ok" for _, _, toss, _ in rows])

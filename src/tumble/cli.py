@@ -137,7 +137,7 @@ def _cmd_fit(args) -> int:
         return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
                                start=args.start, end=args.end, body=args.body, progress=bar,
                                sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
-                               saturation=args.saturation)
+                               saturation=args.saturation, accept_inadequate=args.accept_inadequate)
     finally:
         bar.close()
 
@@ -400,6 +400,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
     p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s")
     p.add_argument("--end", type=float, metavar="S", help="fit one flight: last time, s")
+    p.add_argument("--accept-inadequate", action="store_true",
+                   help="exit 0 even when the model does not describe the data (by default such a fit is written "
+                   "with \"adequate\": false, a warning printed and the exit status 1)")
     p.set_defaults(func=_cmd_fit)
 
     p = sub.add_parser(

@@ -18,11 +18,13 @@ import csv
 import io
 import json
 import os
+import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-from ..analysis.fit import fit_recording, fit_rotation
+from ..analysis.fit import InadequateFitWarning, fit_recording, fit_rotation
 from .gyrodata import read_recording
 from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
@@ -34,9 +36,10 @@ TOSS_COLUMNS = ("start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_
                 "residual_rms", "status", "reason")
 
 _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz sec. 37) or Euler's equations "
-           "with per-axis drag (RK4); uncertainties: (J^T J)^-1 s^2 scaled by (1 + rho) / (1 - rho) for the "
-           "residuals' autocorrelation (Bayley & Hammersley 1946), plus the gyroscope's scale-factor tolerance "
-           "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1")
+           "with per-axis drag (RK4); uncertainties: (J^T J)^-1 s^2 times the residuals' integrated "
+           "autocorrelation time (Geyer's initial positive sequence), plus the gyroscope's scale-factor tolerance "
+           "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1; "
+           "adequacy: the model's error beyond the noise at most 3 % of the rates")
 
 
 def _digest(path) -> str:
@@ -76,7 +79,8 @@ def _tosses_csv(rows) -> str:
 
 
 def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None, start: float | None = None,
-                    end: float | None = None, body=None, progress=None, **options) -> int:
+                    end: float | None = None, body=None, progress=None, accept_inadequate: bool = False,
+                    **options) -> int:
     """``tumble fit RECORDING --out DIR`` (module docstring); prints one line.
 
     Parameters
@@ -100,13 +104,18 @@ def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None,
         A body file or preset whose ratios are compared with the fit.
     progress : callable, optional
         ``progress(done, total)`` while the flights of a recording are fitted.
+    accept_inadequate : bool
+        Return 0 for a fit whose model does not describe the data (:mod:`tumble.analysis.fit.adequacy`);
+        by default such a fit is written (``"adequate": false`` and the reason in fit.json, for the
+        figure to show what is wrong), a warning line printed, and 1 returned.
     **options
         Passed to the fit (``sensor_rotation``, ``bias``, ``drag``, ``saturation``).
 
     Returns
     -------
     int
-        0 on success (bad input raises ``ValueError`` with one line; nothing is written).
+        0 on success, 1 for an inadequate fit unless accepted (bad input raises ``ValueError``
+        with one line; nothing is written).
     """
     check_output_dir(out)
     t, omega, events = read_recording(path)
@@ -119,25 +128,27 @@ def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None,
     record = {"input": label}
     files = {}
     try:
-        if start is not None or end is not None:
-            lo = -np.inf if start is None else float(start)
-            hi = np.inf if end is None else float(end)
-            if not lo < hi:
-                raise ValueError(f"--start {start} must be before --end {end} (s)")
-            sel = (t >= lo) & (t <= hi)
-            fit = fit_rotation(t[sel], omega[sel], **options)
-            record.update({"start": start, "end": end, **fit.summary()})
-            pooled, line = fit, f"{fit.samples} samples"
-            draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
-        else:
-            rec = fit_recording(t, omega, events=events, progress=progress, **options)
-            record.update({"start": None, "end": None, **rec.summary()})
-            files["tosses.csv"] = _tosses_csv(record["tosses"])
-            pooled = rec.pooled
-            skipped = len(rec.tosses) - rec.tosses_used
-            line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
-                    + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
-            draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", InadequateFitWarning)  # said below in one line
+            if start is not None or end is not None:
+                lo = -np.inf if start is None else float(start)
+                hi = np.inf if end is None else float(end)
+                if not lo < hi:
+                    raise ValueError(f"--start {start} must be before --end {end} (s)")
+                sel = (t >= lo) & (t <= hi)
+                fit = fit_rotation(t[sel], omega[sel], **options)
+                record.update({"start": start, "end": end, **fit.summary()})
+                pooled, line = fit, f"{fit.samples} samples"
+                draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
+            else:
+                rec = fit_recording(t, omega, events=events, progress=progress, **options)
+                record.update({"start": None, "end": None, **rec.summary()})
+                files["tosses.csv"] = _tosses_csv(record["tosses"])
+                pooled = rec.pooled
+                skipped = len(rec.tosses) - rec.tosses_used
+                line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
+                        + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
+                draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
     except ValueError as err:
         raise ValueError(f"{label}: {err}") from None
     if body is not None:
@@ -156,4 +167,10 @@ def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None,
     edge = f" [{pooled.edge}]" if pooled.edge else ""
     print(f"fit {label}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
           f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s; wrote {written} in {os.fspath(out)}")
+    if pooled.caveat:
+        print(f"warning: {pooled.caveat}", file=sys.stderr)
+    if not pooled.adequate:
+        print(f"warning: {pooled.adequacy}" + ("" if accept_inadequate else
+              " (fit.json says \"adequate\": false; --accept-inadequate to accept the fit)"), file=sys.stderr)
+        return 0 if accept_inadequate else 1
     return 0

@@ -4,7 +4,8 @@ Rooms: :mod:`~tumble.analysis.fit.triangle` (the closed triangle of ratios and t
 coordinates), :mod:`~tumble.analysis.fit.model` (one or many flights of one body seen by a
 rotated, biased sensor, with drag), :mod:`~tumble.analysis.fit.start` (starting values),
 :mod:`~tumble.analysis.fit.solve` (least squares, undetermined parameters, the drag model),
-:mod:`~tumble.analysis.fit.uncertainty` (the HAC sandwich, intervals, pooling),
+:mod:`~tumble.analysis.fit.uncertainty` (the residuals' autocorrelation, the scale factor, intervals,
+pooling), :mod:`~tumble.analysis.fit.adequacy` (whether the model fits at all),
 :mod:`~tumble.analysis.fit.single` (one flight: :func:`fit_rotation`),
 :mod:`~tumble.analysis.fit.flights` (finding the free flights of a whole recording),
 :mod:`~tumble.analysis.fit.recording` (fitting them one by one and jointly:
@@ -15,11 +16,12 @@ From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consi
 (:mod:`tumble.analysis.period_inversion`).
 """
 
+from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights
 from .recording import RecordingFit, Toss, fit_recording
 from .result import RotationFit
 from .single import MIN_SAMPLES, fit_rotation, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY
 
-__all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "RecordingFit", "RotationFit", "Toss", "find_flights",
+__all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "InadequateFitWarning", "RecordingFit", "RotationFit", "Toss", "find_flights",
            "fit_recording", "fit_rotation", "saturation_mask"]

@@ -22,17 +22,19 @@ search (:func:`find_flights`):
    saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
    undetermined or uncertain by more than ``max_std``, or runs to the rod limit of the
-   triangle, where no tossed phone, racquet or book lies).
+   triangle, where no tossed phone, racquet or book lies), or the model does not fit
+   (:mod:`~tumble.analysis.fit.adequacy`).
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
 
 from .model import Model
-from .result import ratio_summary
+from .result import determination, ratio_summary, solution_adequacy
 from .single import MIN_SAMPLES, fit_solution, saturation_mask
 from .solve import Solution, solve
 from .triangle import EDGES
@@ -86,7 +88,7 @@ def _runs(t, pauses, max_gap):
     for tp in pauses:
         cuts.add(int(np.searchsorted(t, tp, side="right")))
     edges = [0] + sorted(c for c in cuts if 0 < c < len(t)) + [len(t)]
-    return list(zip(edges[:-1], edges[1:]))
+    return list(itertools.pairwise(edges))
 
 
 def _stretches(speed, lo, hi, min_spin):
@@ -250,16 +252,14 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
                            scale_uncertainty=scale_uncertainty)
     except (ValueError, np.linalg.LinAlgError) as err:
         return _skip(t, a, b, f"fit failed: {err}", sol)
+    verdict = solution_adequacy(sol, omega[None, a:b], keep[None, a:b])
+    if not verdict.adequate:
+        return _skip(t, a, b, verdict.reason, sol)
     _, std, _, edge = ratio_summary(sol)
     if edge == EDGES["rod"]:
         return _skip(t, a, b, "ratios not determined: the fit ran to the rod limit of the triangle (I1 -> 0), "
                               "where no toss of a phone, racquet or book lies (seen on short or slow flights)", sol)
-    if {"s", "g"} & set(sol.undetermined) or np.max(std) > max_std:
-        wp = sol.model.principal(sol.P)[0, :b - a]
-        share = np.abs(wp[:, 1]) / np.maximum(np.linalg.norm(wp, axis=1), 1e-300)
-        what = ("stable-axis toss (spun about the minor or major axis)" if np.max(share) < 0.5 else
-                "too little of the tumble recorded")
-        return _skip(t, a, b, f"{what}: the ratios are not both determined (uncertainties {std[0]:.2g}, "
-                              f"{std[1]:.2g} > {max_std}; a longer or faster toss about the intermediate axis fixes "
-                              f"both)", sol)
+    why = determination(sol, std, max_std)
+    if why:
+        return _skip(t, a, b, why, sol)
     return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "ok", "", sol, float(anchor))

@@ -189,7 +189,7 @@ class Model:
 
         Returns a dense array for one flight and a CSR matrix for several."""
         F, T = self.F, self.tau.shape[1]
-        lo, hi = self.bounds
+        _lo, hi = self.bounds
         h = 1e-7 * np.maximum(1.0, np.abs(P))
         h = np.where(P + h > hi, -h, h)  # step into the box at an upper bound
         R = self.rotation_matrix(P)

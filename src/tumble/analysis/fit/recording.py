@@ -15,6 +15,7 @@ plus the gyroscope's scale-factor part, which no number of flights averages away
 
 from __future__ import annotations
 
+import warnings
 from collections import Counter
 from dataclasses import dataclass, field, replace
 
@@ -22,9 +23,16 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
+from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights, pause_times
 from .model import Model
-from .result import RotationFit, public_covariance, ratio_summary, rotation_fit
+from .result import (
+    RotationFit,
+    public_covariance,
+    ratio_summary,
+    rotation_fit,
+    solution_adequacy,
+)
 from .single import _check, saturation_mask
 from .solve import Solution, solve
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
@@ -218,13 +226,7 @@ def _joint(used, t, omega, keep, drag, scale_uncertainty):
         taus.append(t[sl] - f.anchor)
         speeds.append(float(np.max(np.linalg.norm(omega[sl], axis=1))))
     model = Model(taus, m_ref.rotation, m_ref.bias, kind, speeds)
-    T = model.tau.shape[1]
-    data = np.zeros((len(used), T, 3))
-    mask = np.zeros((len(used), T, 3), bool)
-    for j, f in enumerate(used):
-        n = f.stop - f.first
-        data[j, :n] = omega[f.first:f.stop]
-        mask[j, :n] = keep[f.first:f.stop]
+    data, mask = _stack(used, omega, keep)
     w0 = np.array([R_ref @ s.model.rotation_matrix(s.P).T @ s.model.omega0(s.P)[0] for s in sols])
     same = [s.model.drag_vector(s.P) for s in sols if s.model.drag == kind]
     drag0 = np.median(same, axis=0) if same and kind != "none" else np.zeros(3)
@@ -264,6 +266,18 @@ def _joint(used, t, omega, keep, drag, scale_uncertainty):
     return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)], []
 
 
+def _stack(used, omega, keep):
+    """The used flights' samples and kept axes laid out as a joint model's, shape ``(F, T, 3)``."""
+    T = max(f.stop - f.first for f in used)
+    data = np.zeros((len(used), T, 3))
+    mask = np.zeros((len(used), T, 3), bool)
+    for j, f in enumerate(used):
+        n = f.stop - f.first
+        data[j, :n] = omega[f.first:f.stop]
+        mask[j, :n] = keep[f.first:f.stop]
+    return data, mask
+
+
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
     rat_joint = ratio_summary(sol)[0]
     values, covs = [], []
@@ -276,11 +290,16 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     # inflate the statistical part by chi2/dof, keep the systematic part as it is
     cov = sol.cov_stat * scale + (np.nan_to_num(sol.cov) - np.nan_to_num(sol.cov_stat))
     inflated = Solution(sol.model, sol.P, cov, sol.cov_stat * scale, sol.residuals, sol.omega_model,
-                        sol.undetermined, sol.nfev, sol.bandwidth, sol.ssr, sol.m)
+                        sol.undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
     first = used[0]
     sl = slice(first.first, first.stop)
     one = _first_flight_view(inflated)
     pooled = rotation_fit(one, t[sl], omega[sl], keep[sl])
+    # judged on all the flights' residuals, not the first flight's view of them
+    verdict = solution_adequacy(sol, *_stack(used, omega, keep))
+    pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
+    if not verdict.adequate:
+        warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
     return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models))
 
 
@@ -293,7 +312,7 @@ def _first_flight_view(sol: Solution) -> Solution:
     one = Model([m.tau[0, :n]], m.rotation, m.bias, m.drag, m.speeds[:1])
     undetermined = tuple(name for name in sol.undetermined if name in one.names)
     return Solution(one, sol.P[keep], sol.cov[np.ix_(keep, keep)], sol.cov_stat[np.ix_(keep, keep)],
-                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.bandwidth, sol.ssr, sol.m)
+                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
 
 
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:

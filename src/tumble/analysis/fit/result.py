@@ -12,14 +12,18 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from .adequacy import Adequacy, judge
 from .solve import Solution
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios
 from .uncertainty import effective_dof, interval, noise_floor
 
-__all__ = ["RotationFit", "public_covariance", "ratio_summary", "rotation_fit"]
+__all__ = ["DETERMINED_STD", "RotationFit", "determination", "public_covariance", "ratio_summary", "rotation_fit", "solution_adequacy"]
 
 #: Largest standard uncertainties reported for I1/I3 and I2/I3: half their ranges in the triangle.
 _STD_CAP = (0.5, 0.25)
+#: A ratio whose standard uncertainty exceeds this is not determined by the data (dimensionless):
+#: a fifth of the range of I1/I3, nothing a user can take away from a toss.
+DETERMINED_STD = 0.1
 
 
 @dataclass(frozen=True)
@@ -31,7 +35,9 @@ class RotationFit:
     ratios : ndarray, shape (2,)
         ``I1/I3``, ``I2/I3`` (dimensionless, ascending, ``I3`` the largest moment).
     ratios_std : ndarray, shape (2,)
-        Their standard uncertainties (HAC sandwich), at most half their range in the triangle.
+        Their standard uncertainties (:mod:`~tumble.analysis.fit.uncertainty`: the residuals'
+        autocorrelation and the gyroscope's scale factor counted), at most half their range in
+        the triangle.
     ratios_interval : ndarray, shape (2, 2)
         95 % intervals ``[[lo, hi], [lo, hi]]``, inside the triangle; one-sided on an edge.
     edge : str or None
@@ -78,8 +84,19 @@ class RotationFit:
         coefficient when fitted.
     iterations : int
         Function evaluations of the final least-squares run.
-    bandwidth : float
-        The sandwich's Bartlett bandwidth, samples.
+    autocorrelation_time : float
+        The residuals' integrated autocorrelation time, samples: the textbook covariance is
+        multiplied by it (:func:`~tumble.analysis.fit.uncertainty.autocorrelation_time`).
+    adequate : bool
+        Whether the model describes the data (:mod:`~tumble.analysis.fit.adequacy`): when False
+        the ratios are not to be trusted, whatever their uncertainties say.
+    adequacy : str
+        What the residuals show against the noise, and for an inadequate fit what to check.
+    misfit : float
+        The model's error beyond the noise as a fraction of the rates (per axis, RMS).
+    caveat : str
+        Empty, or why the ratios of an adequate fit are not determined by the data
+        (:func:`determination`: a stable-axis toss, or too little of the tumble recorded).
     """
 
     ratios: np.ndarray
@@ -105,7 +122,11 @@ class RotationFit:
     drag_coefficients_std: np.ndarray = field(default_factory=lambda: np.full(3, np.nan))
     noise: float = 0.0
     saturated: int = 0
-    bandwidth: float = 0.0
+    autocorrelation_time: float = 1.0
+    adequate: bool = True
+    adequacy: str = ""
+    misfit: float = 0.0
+    caveat: str = ""
 
     @property
     def moments(self) -> np.ndarray:
@@ -150,9 +171,16 @@ class RotationFit:
             "samples": int(self.samples),
             "saturated": int(self.saturated),
             "parameters": list(self.parameter_names),
-            "covariance_method": f"HAC sandwich (Newey-West, Bartlett bandwidth {self.bandwidth:.1f} samples)",
+            "adequate": bool(self.adequate),
+            "adequacy": self.adequacy,
+            "misfit": num(self.misfit),
+            "caveat": self.caveat or None,
+            "covariance_method": ("(J^T J)^-1 s^2 times the residuals' integrated autocorrelation time "
+                                  f"({self.autocorrelation_time:.1f} samples; Geyer's initial positive sequence), "
+                                  "plus the gyroscope's scale-factor tolerance (GUM 5.1)"),
             "units": {"ratios": "dimensionless", "omega0": "rad/s", "rotvec": "rad", "bias": "rad/s",
                       "residual_rms": "rad/s", "noise": "rad/s", "t0": "s", "ratios_correlation": "dimensionless",
+                      "misfit": "dimensionless",
                       "drag_coefficients": {"none": "-", "linear": "1/s (a_i / I3)",
                                             "quadratic": "1/rad (b_i / I3)"}[self.drag]},
         }
@@ -197,7 +225,7 @@ def ratio_summary(sol: Solution):
     of :mod:`~tumble.analysis.fit.triangle` (``I1/I3`` grows with both coordinates, ``I2/I3``
     falls with ``s`` and grows with ``g``), so that an optimum held on the planar edge keeps an
     interval along the edge."""
-    names, values, cov = public_covariance(sol)
+    _names, values, cov = public_covariance(sol)
     _, _, cov_stat = public_covariance(sol, statistical=True)
     x, y = values[0], values[1]
     sq, gq = float(sol.P[0]), float(sol.P[1])
@@ -205,7 +233,7 @@ def ratio_summary(sol: Solution):
     std = np.sqrt(np.abs(np.diag(cov)[:2]))
     std = np.where(np.isfinite(std), np.minimum(std, _STD_CAP), _STD_CAP)
     # the residuals hold m / tau independent values; n parameters were fitted to them
-    dof_stat = max(sol.m / max(sol.bandwidth, 1.0) - sol.model.n, 1.0)
+    dof_stat = max(sol.m / max(sol.autocorrelation_time, 1.0) - sol.model.n, 1.0)
     dof = [effective_dof(cov_stat[i, i], cov[i, i], dof_stat) for i in range(2)]
     if edge is None or edge == EDGES["rod"]:
         ix = interval(x, std[0], 0.0, 1.0, dof=dof[0])
@@ -247,17 +275,59 @@ def rotation_fit(sol: Solution, t, omega, keep) -> RotationFit:
     else:
         drag_c, drag_s = np.zeros(3), np.full(3, np.nan)
     r = sol.residuals
+    rms = float(np.sqrt(np.mean(r ** 2)))
+    noise = noise_floor((omega - sol.omega_model[0, :len(omega)])[np.all(keep, axis=1)])
+    verdict = solution_adequacy(sol, omega[None], keep[None])
     return RotationFit(
         ratios=rat, ratios_std=rstd, omega0=values[2:5].copy(), omega0_std=std[2:5].copy(), sensor_rotation=R,
         rotvec_std=rotvec_std, bias=np.array(b, float), bias_std=bias_std,
-        residual_rms=float(np.sqrt(np.mean(r ** 2))), samples=len(t), t=t.copy(), omega_model=sol.omega_model[0],
+        residual_rms=rms, samples=len(t), t=t.copy(), omega_model=sol.omega_model[0],
         covariance=cov, parameter_names=names, iterations=sol.nfev, ratios_interval=rint, edge=edge,
         undetermined=tuple(_public_name(n) for n in sol.undetermined), drag=model.drag,
         drag_coefficients=np.array(drag_c, float), drag_coefficients_std=np.array(drag_s, float),
-        noise=noise_floor((omega - sol.omega_model[0, :len(omega)])[np.all(keep, axis=1)]),
-        saturated=int(np.count_nonzero(~keep)),
-        bandwidth=float(sol.bandwidth))
+        noise=noise, saturated=int(np.count_nonzero(~keep)), autocorrelation_time=float(sol.autocorrelation_time),
+        adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit,
+        caveat=determination(sol, rstd) if verdict.adequate else "")
 
 
 def _public_name(name: str) -> str:
     return {"s": "(I1 + I3 - I2)/I3", "g": "I2/I3 (across the triangle)"}.get(name, name)
+
+
+def solution_adequacy(sol: Solution, data, mask) -> Adequacy:
+    """:func:`~tumble.analysis.fit.adequacy.judge` on a solution of one or many flights.
+
+    ``data`` and ``mask`` are the samples and the kept axes as the solution's model lays them
+    out, shape ``(F, T, 3)``; the noise is each flight's (:func:`noise_floor` of its residuals at
+    the samples with all axes kept), combined over the flights weighted by their lengths."""
+    data, mask = np.asarray(data, float), np.asarray(mask, bool)
+    noise2, weight = 0.0, 0
+    for j, n in enumerate(sol.model.lengths):
+        n = int(n)
+        rows = np.all(mask[j, :n], axis=1)
+        noise2 += noise_floor((data[j, :n] - sol.omega_model[j, :n])[rows]) ** 2 * n
+        weight += n
+    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+    return judge(rms, float(np.sqrt(noise2 / max(weight, 1))), float(np.sqrt(np.mean(data[mask] ** 2))),
+                 sensor_rotation_fitted=sol.model.rotation)
+
+
+def determination(sol: Solution, std, max_std: float = DETERMINED_STD) -> str:
+    """Why a flight's ratios are not determined, or ``""`` when they are.
+
+    Not determined: a ratio's coordinate is undetermined, or a ratio's standard uncertainty
+    ``std`` exceeds ``max_std``. The reason tells a toss about a stable axis (the intermediate
+    axis never carries half of ``|omega|``) from a tumble recorded too briefly, with the
+    record's length in turns (``integral |omega| dt / 2 pi``)."""
+    if not ({"s", "g"} & set(sol.undetermined) or np.max(std) > max_std):
+        return ""
+    n = int(sol.model.lengths[0])
+    wp = sol.model.principal(sol.P)[0, :n]
+    speed = np.linalg.norm(wp, axis=1)
+    share = np.abs(wp[:, 1]) / np.maximum(speed, 1e-300)
+    tau = sol.model.tau[0, :n]
+    turns = float(np.sum(0.5 * (speed[1:] + speed[:-1]) * np.diff(tau)) / (2 * np.pi))
+    what = ("stable-axis toss (spun about the minor or major axis)" if np.max(share) < 0.5 else
+            f"too little of the tumble recorded ({tau[-1] - tau[0]:.2g} s, {turns:.2g} turns)")
+    return (f"{what}: the ratios are not both determined (uncertainties {std[0]:.2g}, {std[1]:.2g} > {max_std}; "
+            "a longer or faster toss about the intermediate axis fixes both)")

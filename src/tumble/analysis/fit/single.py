@@ -13,10 +13,12 @@ record). Uncertainties: :mod:`tumble.analysis.fit.uncertainty`.
 
 from __future__ import annotations
 
+import warnings
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from .adequacy import InadequateFitWarning
 from .model import Model
 from .result import RotationFit, rotation_fit
 from .solve import Solution, solve, solve_drag
@@ -24,10 +26,16 @@ from .start import candidates, first_value
 from .triangle import square
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
 
-__all__ = ["MIN_SAMPLES", "RotationFit", "fit_rotation", "fit_solution", "saturation_mask"]
+__all__ = ["MAX_RATE", "MAX_TIME", "MIN_SAMPLES", "RotationFit", "fit_rotation", "fit_solution", "saturation_mask"]
 
 #: Fewest samples accepted.
 MIN_SAMPLES = 20
+#: Largest |omega| accepted on any axis, rad/s (about 100 000 rpm): phones' gyroscopes end at
+#: 35-70 rad/s and no rate gyroscope exceeds a few hundred; beyond this a value is a unit or
+#: file error, and its square would overflow the fit's sums of squares.
+MAX_RATE = 1e4
+#: Largest |t| accepted, s: more than three centuries, so Unix times in seconds pass.
+MAX_TIME = 1e10
 #: The four rotations by 0 or pi about a principal axis map a torque-free motion onto itself:
 #: the sensor rotation is reported as the one of the four with the smallest angle.
 _D2 = (np.eye(3), np.diag([1.0, -1.0, -1.0]), np.diag([-1.0, 1.0, -1.0]), np.diag([-1.0, -1.0, 1.0]))
@@ -51,6 +59,15 @@ def _check(t, omega) -> tuple[np.ndarray, np.ndarray]:
     bad = np.flatnonzero(~np.all(np.isfinite(omega), axis=1))
     if bad.size:
         raise ValueError(f"omega_measured[{bad[0]}] = {omega[bad[0]].tolist()} is not finite")
+    bad = np.flatnonzero(np.abs(t) > MAX_TIME)
+    if bad.size:
+        raise ValueError(f"t[{bad[0]}] = {t[bad[0]]:.6g} s is beyond +-{MAX_TIME:.0e} s: is the time column in "
+                         "other units?")
+    big = np.abs(omega) > MAX_RATE
+    if big.any():
+        i, k = np.argwhere(big)[0]
+        raise ValueError(f"omega_measured[{i}] = {omega[i].tolist()}: its {'xyz'[k]} component exceeds "
+                         f"{MAX_RATE:.0e} rad/s, more than any gyroscope measures; is it in other units?")
     bad = np.flatnonzero(~(np.diff(t) > 0))
     if bad.size:
         i = bad[0] + 1
@@ -162,6 +179,12 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
         Too few samples, non-finite values, times not strictly increasing, a steady spin, an
         unknown option; one line naming what is wrong.
 
+    Warns
+    -----
+    InadequateFitWarning
+        When the model does not describe the data (:attr:`RotationFit.adequate` is False, the
+        reason in :attr:`RotationFit.adequacy`; :mod:`tumble.analysis.fit.adequacy`).
+
     Notes
     -----
     An optimum on an edge of the triangle (a planar or symmetric body) is a result, reported in
@@ -195,7 +218,10 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
         raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
     sol = fit_solution(t, omega, keep, rotation=sensor_rotation == "fit", bias=bool(bias), drag=drag,
                        guess=initial_guess, max_nfev=max_nfev, scale_uncertainty=scale_uncertainty)
-    return rotation_fit(sol, t, omega, keep)
+    fit = rotation_fit(sol, t, omega, keep)
+    if not fit.adequate:
+        warnings.warn(fit.adequacy, InadequateFitWarning, stacklevel=2)
+    return fit
 
 
 def fit_solution(t, omega, keep, *, rotation: bool = True, bias: bool = True, drag: str = "auto", guess=None,

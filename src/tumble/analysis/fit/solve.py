@@ -54,7 +54,7 @@ class Solution:
     omega_model: np.ndarray
     undetermined: tuple
     nfev: int
-    bandwidth: float
+    autocorrelation_time: float  # of the residuals, samples
     ssr: float
     m: int
 

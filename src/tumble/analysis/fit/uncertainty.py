@@ -27,6 +27,8 @@ does not shrink with the number of tosses while they scatter more than they shou
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 from scipy import sparse
 
@@ -98,7 +100,7 @@ def autocorrelation_time(R, starts, block: int = 5) -> float:
     R = np.asarray(R, float).reshape(len(R), -1)
     tau = _geyer_time(R, starts)
     means, bstarts, total = [], [0], 0
-    for lo, hi in zip(starts[:-1], starts[1:]):
+    for lo, hi in itertools.pairwise(starts):
         n = (hi - lo) // block
         if n >= 4:
             x = R[lo:lo + n * block] - R[lo:hi].mean(axis=0)
@@ -125,7 +127,7 @@ def _geyer_time(R, starts) -> float:
     longest = int(np.max(np.diff(starts)))
     acov = np.zeros(longest)
     var = 0.0
-    for lo, hi in zip(starts[:-1], starts[1:]):
+    for lo, hi in itertools.pairwise(starts):
         x = R[lo:hi] - R[lo:hi].mean(axis=0)
         n = len(x)
         if n < 2:
@@ -204,7 +206,7 @@ def scale_covariance(J, data, mask, sigma: float) -> np.ndarray:
     sigma : float
         Standard uncertainty of each axis's scale factor.
     """
-    m, n = J.shape
+    m, _n = J.shape
     axis = np.broadcast_to(np.arange(3), mask.shape)[mask]
     values = data[mask]
     D = np.zeros((m, 3))
