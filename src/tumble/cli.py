@@ -359,7 +359,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("sweep", metavar="SWEEP", help="a sweep file (TOML)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--workers", type=int, metavar="N", help="run on a local Dask cluster of N workers (tumble[cluster])")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run on an existing Dask cluster (tumble[cluster])")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster: its scheduler's address, e.g. tcp://10.0.0.5:8786 "
+                        "(tumble[cluster]); refused in seconds when no scheduler answers there")
     p.set_defaults(func=_cmd_sweep)
 
     p = sub.add_parser(

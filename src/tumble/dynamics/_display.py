@@ -6,10 +6,9 @@ the physics layers may not import matplotlib (the import-linter contract in pypr
 
 from __future__ import annotations
 
-import html
-
 import numpy as np
 
+from .._html import escape_text
 from ..mass._display import fmt, html_table, short_name, vec
 
 __all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
@@ -118,7 +117,7 @@ def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SV
         (left, height - 6, "start", f"t = {fmt(t0, 3)} s"),
         (width - right, height - 6, "end", f"{fmt(t1, 3)} s"),
     )
-    out += [f'<text x="{x:.1f}" y="{yy:.1f}" text-anchor="{anchor}">{html.escape(text)}</text>'
+    out += [f'<text x="{x:.1f}" y="{yy:.1f}" text-anchor="{anchor}">{escape_text(text)}</text>'
             for x, yy, anchor, text in labels]
     key = "".join(f'<tspan fill="{color}">omega_{j + 1}</tspan>, ' for j, color in enumerate(COLORS))
     out.append(f'<text x="{(left + width - right) / 2:.1f}" y="{height - 6:.1f}" text-anchor="middle">'

@@ -7,10 +7,9 @@ trajectories (:mod:`tumble.dynamics._display`), the layer above.
 
 from __future__ import annotations
 
-import html
-
 import numpy as np
 
+from .._html import escape_text
 from .tensor import AXIS_ROLES
 
 __all__ = ["body_html", "body_repr", "fmt", "html_table", "properties_html", "properties_repr", "short_name",
@@ -42,7 +41,7 @@ def short_name(name) -> str:
 
 
 def _cell(tag: str, text) -> str:
-    return f'<{tag} style="{_CELL}">{html.escape(str(text))}</{tag}>'
+    return f'<{tag} style="{_CELL}">{escape_text(text)}</{tag}>'
 
 
 def html_table(rows, header=None, caption=None) -> str:
@@ -59,7 +58,7 @@ def html_table(rows, header=None, caption=None) -> str:
     """
     out = [f'<table style="{_STYLE}">']
     if caption is not None:
-        out.append(f'<caption style="text-align:left;font-weight:bold">{html.escape(str(caption))}</caption>')
+        out.append(f'<caption style="text-align:left;font-weight:bold">{escape_text(caption)}</caption>')
     if header is not None:
         out.append("<thead><tr>" + "".join(_cell("th", h) for h in header) + "</tr></thead>")
     out.append("<tbody>")

@@ -8,8 +8,7 @@ plays again when the saved notebook is opened without a kernel.
 
 from __future__ import annotations
 
-import html
-
+from .._html import escape_text
 from ..dynamics import Trajectory
 from ..mass import Body
 from .scene import check_body_and_run
@@ -70,7 +69,7 @@ def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int =
     from .page import page_html
 
     page = page_html(body, trajectory, frames=frames, title=title)
-    label = html.escape(f"tumble: {trajectory.body_name}, {trajectory.method}", quote=True)
+    label = escape_text(f"tumble: {trajectory.body_name}, {trajectory.method}")
     # in a <div>: IPython's HTML warns about a bare <iframe> (it suggests IFrame, which takes a URL only)
-    return HTML(f'<div><iframe srcdoc="{html.escape(page, quote=True)}" title="{label}" width="100%" '
+    return HTML(f'<div><iframe srcdoc="{escape_text(page)}" title="{label}" width="100%" '
                 f'height="{height}" style="border:none" sandbox="allow-scripts"></iframe></div>')

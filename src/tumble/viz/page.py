@@ -16,13 +16,12 @@ interface they use (``window.tumbleViewer``, the ``tumble:ready`` event).
 
 from __future__ import annotations
 
-import html
-import json
 from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
+from .._html import escape_text, script_json
 from ..dynamics import Trajectory
 from ..io.atomic import atomic_write_text
 from ..mass import Body, Box, t_handle
@@ -186,14 +185,14 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     except ImportError:  # pragma: no cover - depends on the environment
         raise ValueError("the interactive page needs plotly: pip install 'tumble[view]'") from None
     data = page_data(body, traj, frames, title)
-    blob = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    title = escape_text(data["title"])
     scripts = [_asset(name) for name in (("splitting.js", "live.js") if live else ())]
     speeds = "".join(f'<button class="tumble-speed" data-speed="{s:g}">x{s:g}</button>' for s in _SPEEDS)
     parts = [
         "<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
-        f"<title>{html.escape(data['title'])}</title>", f"<style>{_STYLE}</style>",
+        f"<title>{title}</title>", f"<style>{_STYLE}</style>",
         _script(get_plotlyjs()), "</head><body>",
-        f'<h1 id="tumble-title">{html.escape(data["title"])}</h1>',
+        f'<h1 id="tumble-title">{title}</h1>',
         '<div id="tumble-controls"><button id="tumble-play">Play</button>'
         '<input id="tumble-slider" type="range" min="0" max="0" step="1" value="0" aria-label="frame">'
         f'<span id="tumble-time"></span><span>speed</span>{speeds}</div>',
@@ -201,7 +200,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         '<div id="tumble-scenes"><div id="tumble-ground" class="tumble-scene"></div>'
         '<div id="tumble-body" class="tumble-scene"></div></div>',
         '<div id="tumble-omega"></div><p id="tumble-note"></p>',
-        f'<script type="application/json" id="tumble-data">{blob}</script>',
+        f'<script type="application/json" id="tumble-data">{script_json(data)}</script>',
         *(_script(text) for text in scripts),
         _script(_asset("viewer.js")),
         "</body></html>",
