@@ -1,6 +1,7 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
 #   make demo   creates .venv if needed, installs tumble, runs the T-handle study
-#   make test   same set-up, then the import-layer contract and the whole test suite
+#   make test   same set-up, then the import-layer contract and the whole test suite (on every
+#               core: pytest-xdist, one file to a worker so module fixtures run once)
 #   make docs   same set-up, then the API reference and guides built offline into site/
 #   make bench  same set-up plus the benchmark-only extra (MuJoCo), then the benchmarks (ratios
 #               against a baseline in the same run)
@@ -23,7 +24,7 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/lint-imports --no-cache
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto --dist loadfile
 
 docs: $(STAMP)
 	$(VENV)/bin/mkdocs build --strict --site-dir site
