@@ -97,6 +97,22 @@ def sig(x: float, digits: int = 9) -> str:
     return f"{x:.{digits}g}"
 
 
+def to_tolerance(x: float, rel: float) -> str:
+    """A measured ``x`` to the significant digits that the asserted relative tolerance ``rel`` fixes.
+
+    The digits beyond it move with the platform (numpy's summation order, the libm): a page that
+    printed them went stale on another machine with the same code.
+    """
+    return sig(x, max(1, math.floor(-math.log10(rel))))
+
+
+def within(rel: float, unit: str = "relative") -> str:
+    """The bound a test asserts on a difference, for the page: ``< 1e-8 relative``."""
+    exponent = math.log10(rel)
+    text = f"1e{round(exponent)}" if exponent == round(exponent) else f"{rel:g}"
+    return f"< {text} {unit}".rstrip()
+
+
 def magnitude(d: float) -> str:
     """A difference as the power of ten just above it (stable across platforms)."""
     d = abs(d)

@@ -12,6 +12,7 @@ DOP853, scipy's Rotation, closed forms).
 from __future__ import annotations
 
 import json
+import re
 import zipfile
 
 import numpy as np
@@ -21,9 +22,9 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from tumble.analysis.fit import InadequateFitWarning, find_flights, fit_recording, fit_rotation
+from tumble.analysis.fit import InadequateFitWarning, find_flights, fit_recording, fit_rotation, saturation_mask
 from tumble.analysis.fit.model import rotvec_matrix
-from tumble.analysis.fit.synthetic import TOSS_BODIES, example_recording, synthetic_recording
+from tumble.analysis.fit.synthetic import FULL_SCALE, TOSS_BODIES, example_recording, synthetic_recording
 from tumble.analysis.fit.triangle import EDGES, S_MIN, ratios, square
 from tumble.analysis.fit.uncertainty import autocorrelation_time, birge_chi2
 from tumble.cli import main
@@ -133,10 +134,13 @@ def _toss(I, w0, duration, rate=100.0, seed=0, a=(0, 0, 0), b=(0, 0, 0), noise=0
 
 def test_an_exactly_planar_body_is_fitted_on_its_edge_with_intervals_that_hold_the_truth():
     """A thin plate (I1 + I2 = I3 exactly) tossed about its intermediate axis for a second: the
-    old fit failed on such bodies ('Jacobian singular') or reported 1e13 uncertainties."""
+    old fit failed on such bodies ('Jacobian singular') or reported 1e13 uncertainties. Seeds 1
+    and 14 failed later: Euler's regression clipped seed 1's start onto the planar edge, where the
+    first solve stalled (on some platforms), and seed 14's plateau about the intermediate axis
+    was taken for a gyroscope's rail."""
     I = np.array([0.2, 0.8, 1.0])
     hits = []
-    for seed in range(8):
+    for seed in range(16):
         t, w = _toss(I, [0.4, 12.0, 0.3], 1.0, seed=seed)
         fit = fit_rotation(t, w, drag="none")
         assert np.all(fit.ratios_std <= 0.05) and 1.0 - 1e-9 <= fit.ratios.sum() + 1e-3
@@ -144,7 +148,24 @@ def test_an_exactly_planar_body_is_fitted_on_its_edge_with_intervals_that_hold_t
         hits.append(lo1 <= 0.2 <= hi1 and lo2 <= 0.8 <= hi2)
         if fit.edge is not None:
             assert fit.edge == EDGES["planar"] and abs(fit.ratios.sum() - 1.0) < 1e-9
-    assert sum(hits) >= 7
+    assert sum(hits) >= 14
+
+
+def test_a_smooth_maximum_is_no_rail_but_a_clipped_one_is():
+    """A plate's spin about its intermediate axis stays within 0.2 % of its maximum for a third
+    of a second (seed 14: 31 samples); its samples differ in their noise. A gyroscope that clips
+    repeats its full-scale code."""
+    _, w = _toss(np.array([0.2, 0.8, 1.0]), [0.4, 12.0, 0.3], 1.0, seed=14)
+    top = np.abs(w).max()
+    assert np.count_nonzero(np.abs(w) >= 0.998 * top) >= 20  # the plateau the old test took for a rail
+    keep, rail = saturation_mask(w)
+    assert rail is None and keep.all()
+    clipped = np.clip(w, -0.99 * top, 0.99 * top)
+    keep, rail = saturation_mask(clipped)
+    assert rail == pytest.approx(0.99 * top, rel=1e-12)
+    assert np.array_equal(keep, np.abs(clipped) < 0.998 * rail) and not keep.all()
+    keep, rail = saturation_mask(w, saturation=0.95 * top)  # a given full scale is used as given
+    assert rail == 0.95 * top and not keep.all()
 
 
 def test_a_known_per_axis_quadratic_drag_is_recovered_and_chosen():
@@ -305,7 +326,12 @@ def test_the_example_recording_is_the_generator_s_output(tmp_path):
     t0, w0, _ = read_recording(fresh)
     t1, w1, _ = read_recording(RACQUET_EXAMPLE)
     assert RACQUET_EXAMPLE.read_text(encoding="utf-8").startswith("# SYNTHETIC")
-    assert np.allclose(t0, t1, rtol=0, atol=1e-8) and np.allclose(w0, w1, rtol=0, atol=1e-7)
+    assert np.allclose(t0, t1, rtol=0, atol=1e-8)
+    # the rates are quantised to the gyroscope's least significant bit: a value that falls within
+    # round-off of a rounding boundary lands in either code, depending on the platform's last
+    # digit (5 of 14547 values on one machine); more than a few such would be another recording
+    off = np.abs(w0 - w1) > 1e-7
+    assert np.all(np.abs(w0 - w1)[off] <= FULL_SCALE / 32768 + 1e-7) and np.count_nonzero(off) <= 30
 
 
 def _export(tmp_path, rec):
@@ -355,7 +381,8 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     out = tmp_path / "fit"
     assert main(["fit", str(RACQUET_EXAMPLE), "--out", str(out), "--body", "t-handle"]) == 0
     line = capsys.readouterr().out
-    assert line.count("\n") == 1 and "from 12 of 12 flights" in line and "I1/I3 = 0.06" in line
+    used = int(re.search(r"from (\d+) of 12 flights", line).group(1))
+    assert line.count("\n") == 1 and used >= 11 and "I1/I3 = 0.06" in line
     data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
     truth = np.array(TOSS_BODIES["racquet"].moments[:2]) / TOSS_BODIES["racquet"].moments[2]
     pooled = data["pooled"]
@@ -366,6 +393,8 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     keys = ["start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
             "residual_rms", "status", "reason"]
     assert len(data["tosses"]) == 12 and all(list(toss) == keys for toss in data["tosses"])
+    assert sum(toss["status"] == "ok" for toss in data["tosses"]) == used == pooled["tosses_used"]
+    assert all(toss["reason"] for toss in data["tosses"] if toss["status"] != "ok")
     csv_lines = (out / "tosses.csv").read_text(encoding="utf-8").splitlines()
     assert csv_lines[0] == ",".join(keys) and len(csv_lines) == 13
     assert (out / "fit.png").stat().st_size > 10_000

@@ -95,9 +95,14 @@ def saturation_mask(omega, saturation: float | None = None) -> tuple[np.ndarray,
         Samples, rad/s.
     saturation : float, optional
         The sensor's full scale, rad/s. Without it the rail is found from the data: the largest
-        ``|omega|`` of any axis counts as a rail when at least three samples lie within 0.2 % of
-        it but fewer than half of those above half of it (an unclipped signal touches its
-        peak once; a clipped one sits there a while; a steady spin sits there throughout).
+        ``|omega|`` of any axis counts as a rail when at least three samples repeat it exactly
+        (to 1e-9 relative) but fewer than half of those above half of it (a clipped gyroscope
+        returns its full-scale code again and again; an unclipped signal's samples near a
+        smooth maximum differ in their noise, even where they stay within 0.2 % of it, as
+        a plate's spin about its intermediate axis does for a third of a second; a steady spin
+        sits at its maximum throughout and is not clipped). Samples within 0.2 % of the rail are
+        left out on every axis (a calibrated phone subtracts each axis's own offset from the
+        rail).
 
     Returns
     -------
@@ -109,7 +114,7 @@ def saturation_mask(omega, saturation: float | None = None) -> tuple[np.ndarray,
     rail = saturation
     if rail is None:
         top = float(a.max()) if a.size else 0.0
-        at = np.count_nonzero(a >= 0.998 * top)
+        at = np.count_nonzero(a >= (1.0 - 1e-9) * top)
         # a rail is a flat top: several samples on it, but few of those that come near it (a
         # steady spin sits at its maximum throughout and is not clipped)
         if top > 0 and at >= 3 and at < 0.5 * np.count_nonzero(a > 0.5 * top):

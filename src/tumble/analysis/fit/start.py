@@ -26,7 +26,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["candidates", "euler_regression", "first_value", "principal_axes"]
+from .triangle import ratios, square
+
+__all__ = ["START_INSET", "candidates", "euler_regression", "first_value", "principal_axes"]
+
+#: How far inside the square's faces (:func:`~.triangle.square`) Euler's regression puts its
+#: ratios: a plate's estimate, clipped exactly onto the planar edge, had stalled the first solve
+#: (scipy's dogbox cut its first step to nothing at the face and stopped on ``xtol``), on some
+#: platforms and not others.
+START_INSET = 1e-3
 
 _PERMUTATIONS = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
 
@@ -65,7 +73,7 @@ def euler_regression(t, omega):
     Returns
     -------
     (x, y, R) or None
-        ``I1/I3``, ``I2/I3`` (inside the closed triangle) and ``R`` (sensor to principal), or
+        ``I1/I3``, ``I2/I3`` (inside the triangle, :data:`START_INSET` from its edges) and ``R`` (sensor to principal), or
         None when the equations do not single out a positive-definite tensor.
     """
     if len(t) < 5:
@@ -99,9 +107,7 @@ def euler_regression(t, omega):
         return None
     if np.linalg.det(vecs) < 0:
         vecs[:, 2] *= -1.0
-    x, y = vals[0] / vals[2], vals[1] / vals[2]
-    y = min(max(y, 0.5), 1.0)
-    x = min(max(x, 1.0 - y), y)
+    x, y = ratios(*square(vals[0] / vals[2], vals[1] / vals[2], START_INSET))
     return float(x), float(y), vecs.T
 
 

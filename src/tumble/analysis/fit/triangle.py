@@ -43,12 +43,17 @@ def ratios(s, g):
     return 0.5 * s * (1.0 + g), 1.0 - 0.5 * s * (1.0 - g)
 
 
-def square(x, y):
-    """``(I1/I3, I2/I3)`` in the closed triangle -> ``(s, g)``, clipped into the box."""
+def square(x, y, inset: float = 0.0):
+    """``(I1/I3, I2/I3)`` in the closed triangle -> ``(s, g)``, clipped into the box.
+
+    ``inset`` > 0 keeps the point that far inside the box's faces (a start for the fit: scipy's
+    dogbox, started exactly on a face, can take a first step that the face cuts to nothing and
+    stop there on its ``xtol`` test, far from the optimum).
+    """
     x, y = float(x), float(y)
-    s = min(max(x + 1.0 - y, S_MIN), 1.0)
+    s = min(max(x + 1.0 - y, S_MIN + inset), 1.0 - inset)
     g = 1.0 - 2.0 * (1.0 - y) / s
-    return s, min(max(g, 0.0), 1.0)
+    return s, min(max(g, inset), 1.0 - inset)
 
 
 def ratio_jacobian(s, g) -> np.ndarray:
