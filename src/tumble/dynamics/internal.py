@@ -64,10 +64,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..mass._checks import check_positive
+from ..mass._checks import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
 from .euler import quaternion_rate
 
-__all__ = ["STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
+__all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
+
+#: Largest damper inertia relative to the body's smallest moment: the body's rate
+#: ``w = (L - h - J w_d) / I`` loses ``log10(J / I1)`` digits to cancellation (6 here).
+MAX_DAMPER_RATIO = 1e6
 
 #: A damper that relaxes faster than this many times the run's spin rate makes the equations
 #: stiff: an explicit method's step is then set by the relaxation (stability), not by the
@@ -89,6 +93,10 @@ class SphericalDamper:
     damping : float
         ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
 
+    ``J`` is at most :data:`~tumble.mass._checks.MAX_INERTIA` (1e50 kg m^2) and the relaxation
+    rate ``c / J`` at most :data:`~tumble.mass._checks.MAX_RATE` (1e15 1/s); with a body, ``J``
+    is at most :data:`MAX_DAMPER_RATIO` times its smallest moment.
+
     Notes
     -----
     The sphere starts turning with the body (``w_d(0) = w(0)``). See the module docstring for the
@@ -99,8 +107,10 @@ class SphericalDamper:
     damping: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "inertia", check_positive("inertia", self.inertia, "kg m^2"))
+        object.__setattr__(self, "inertia", check_positive("inertia", self.inertia, "kg m^2", at_most=MAX_INERTIA))
         object.__setattr__(self, "damping", check_positive("damping", self.damping, "N m s", allow_zero=True))
+        check_at_most(f"damping = {self.damping!r} N m s with inertia = {self.inertia!r} kg m^2 relaxes at c / J",
+                      self.damping / self.inertia, "1/s", MAX_RATE)
 
     def rates(self, moments) -> np.ndarray:
         """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments."""
@@ -246,6 +256,13 @@ class InternalModel:
     moments: np.ndarray
     rotors: Rotors | None = None
     damper: SphericalDamper | None = None
+
+    def __post_init__(self) -> None:
+        I1 = float(np.min(self.moments))
+        if self.damper is not None and not self.damper.inertia <= MAX_DAMPER_RATIO * I1:
+            raise ValueError(f"damper: inertia = {self.damper.inertia!r} kg m^2 is more than {MAX_DAMPER_RATIO:g} times "
+                             f"the body's smallest moment {I1:.6g} kg m^2; the body's rate would lose "
+                             f"{np.log10(self.damper.inertia / I1):.0f} digits")
 
     @property
     def tracks_work(self) -> bool:

@@ -10,7 +10,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
-from ..mass._checks import check_positive, check_rotation, check_vector
+from ..mass._checks import MAX_INERTIA, MAX_RATE, check_positive, check_rotation, check_vector
 from .integrators import METHODS, Method, get_method
 from .internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .torques import as_torque, spin_gain
@@ -87,7 +87,8 @@ def simulate(
         A body with :class:`~tumble.mass.Rotor` parts is a gyrostat: their internal momentum
         enters Euler's equations (:mod:`tumble.dynamics.internal`).
     omega0 : array_like, shape (3,)
-        Initial angular velocity at t = 0, rad/s, in ``frame``.
+        Initial angular velocity at t = 0, rad/s, in ``frame``; each component at most 1e15
+        rad/s (:data:`~tumble.mass._checks.MAX_RATE`), the body's moments at most 1e50 kg m^2.
     t_end : float, optional
         Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``,
         or every ``dt`` seconds from 0 up to ``t_end``.
@@ -248,7 +249,7 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
         raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
-    w0 = np.array(check_vector("omega0", omega0, "rad/s"))
+    w0 = np.array(check_vector("omega0", omega0, "rad/s", at_most=MAX_RATE))
     t, keep = sample_times(t_end, samples, dt, times)
     t_end = float(t[-1])
     if rtol is not None:
@@ -259,6 +260,9 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
+    if not np.max(moments) <= MAX_INERTIA:
+        raise ValueError(f"principal moments {moments.tolist()} kg m^2: beyond {MAX_INERTIA:g} kg m^2, more than any "
+                         f"star's; use SI units of a sensible size")
     # a moment within the validity checks' tolerance of zero is a zero moment (a single thin
     # rod's eigh gives ~1e-17, not 0): the rotation about that axis is not well posed
     if np.any(moments <= INERTIA_RTOL * np.sum(moments)):
