@@ -10,7 +10,13 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
-from ..mass._checks import MAX_INERTIA, MAX_RATE, check_positive, check_rotation, check_vector
+from ..mass._checks import (
+    MAX_INERTIA,
+    MAX_RATE,
+    check_positive,
+    check_rotation,
+    check_vector,
+)
 from .integrators import METHODS, Method, get_method
 from .internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .torques import as_torque, spin_gain

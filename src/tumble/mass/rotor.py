@@ -131,7 +131,7 @@ class Rotor(Cylinder):
                     f"the rotor's {field} function returned {value!r} at t = {float(tk):.6g} s; "
                     f"expected a finite number ({unit})"
                 )
-            check_at_most(f"the rotor's {field} function at t = {float(tk):.6g} s returned", float(value), unit, bound)
+            check_at_most(f"the rotor's {field} function's value at t = {float(tk):.6g} s", float(value), unit, bound)
             out[k] = float(value)
         return out
 
