@@ -17,6 +17,7 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.dynamics import SphericalDamper, simulate
+from tumble.dynamics.internal import InternalModel, Rotors
 from tumble.mass import MassProperties
 
 BODY = MassProperties.from_inertia(1.0, np.zeros(3), np.diag([1.0, 2.0, 3.0]))
@@ -228,3 +229,89 @@ def test_damper_with_a_commanded_wheel_keeps_the_whole_budget(method):
     assert traj.dissipated[-1] > 1e-3 * traj.energy[0] and abs(traj.motor_work).max() > 1e-2 * traj.energy[0]
     assert traj.drift["L_world"] < (1e-10 if method == "dop853" else 1e-13)
     assert traj.drift["energy"] < (1e-10 if method == "dop853" else 1e-8)
+
+
+# -- a stiff damper ---------------------------------------------------------------------------------
+
+def test_the_analytic_jacobian_matches_finite_differences():
+    """The Jacobian that Radau uses, against central differences of the right-hand side, with a
+    commanded wheel (the work integral) and a damper."""
+    box = tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2))
+    wheel = tumble.Rotor(mass=0.2, radius=0.05, length=0.01, axis=(1, 1, 1), spin_rate=lambda t: 300 * np.sin(3 * t),
+                         spin_acceleration=lambda t: 900 * np.cos(3 * t))
+    body = tumble.Body([box, wheel])
+    model = InternalModel(body.properties.principal_moments, Rotors.of(body), SphericalDamper(inertia=0.01, damping=5.0))
+    y = model.initial_state([1.0, -2.0, 0.5], Rotation.from_rotvec([0.3, -0.2, 1.0]).as_quat())
+    y = y + np.random.default_rng(1).normal(scale=0.1, size=y.size)
+    assert len(y) == 12
+    jac = model.jacobian(0.7, y)
+    num = np.empty_like(jac)
+    for j in range(len(y)):
+        e = np.zeros(len(y))
+        e[j] = 1e-6
+        num[:, j] = (model.rhs(0.7, y + e, None) - model.rhs(0.7, y - e, None)) / 2e-6
+    np.testing.assert_allclose(jac, num, rtol=0, atol=1e-8 * np.max(np.abs(num)))
+
+
+@pytest.fixture
+def small_budget(monkeypatch):
+    """50,000 right-hand sides: Radau needs ~1,200 per radian; DOP853 ~2 k per second of a
+    stiff run (k the relaxation rate), 4e6 for the runs below (minutes, as before the fix)."""
+    monkeypatch.setattr(tumble.dynamics.integrators, "MAX_EVALUATIONS", 50_000)
+
+
+@pytest.mark.parametrize("c", [1e3, 1e4])
+def test_a_stiff_damper_is_followed_by_radau_and_tends_to_the_locked_body(small_budget, c):
+    """c / J = 1e5 and 1e6 /s against a spin of 1.66 rad/s (stiffness ratios 6e4, 6e5): in a
+    few thousand evaluations, the energy falls monotonically, |L| and L_world hold to 1e-11 and
+    the budget closes; the sphere is all but locked to the body, so the motion is that of the rigid
+    body of moments I + J (exact solution) up to O(spin / k): measured 0.017 / ratio."""
+    damper = SphericalDamper(inertia=0.01, damping=c)
+    traj = simulate(BODY, TUMBLE, t_end=2.0, samples=21, damper=damper)
+    ratio = damper.damping / damper.inertia * (1 + damper.inertia / I[0]) / np.linalg.norm(TUMBLE)
+    assert ratio > tumble.dynamics.internal.STIFF_RATIO
+    assert np.all(np.diff(traj.energy) <= 1e-13 * traj.energy[0]) and traj.dissipated[-1] > 0
+    assert traj.drift["L_norm"] < 1e-11 and traj.drift["L_world"] < 1e-11 and traj.drift["energy"] < 1e-11
+    locked = simulate(MassProperties.from_inertia(1.0, np.zeros(3), np.diag(I + damper.inertia)), TUMBLE,
+                      t_end=2.0, samples=21)
+    gap = np.max(np.abs(traj.omega - locked.omega)) / np.linalg.norm(TUMBLE)
+    assert 0 < gap < 0.05 / ratio
+
+
+def test_a_moderately_stiff_damper_matches_an_independent_radau_reference():
+    """c / J = 3,000 /s, stiffness ratio 1,800: against the test's own system solved by Radau at
+    rtol 1e-10 (measured 2.4e-12 rad/s apart)."""
+    J, c = 0.01, 30.0
+    t = np.linspace(0.0, 2.0, 21)
+    traj = simulate(BODY, TUMBLE, times=t, damper=SphericalDamper(inertia=J, damping=c))
+
+    def rhs(_, y):
+        w, wd = y[:3], y[3:6]
+        slip = wd - w
+        return np.concatenate([(-np.cross(w, I * w) + c * slip) / I, -np.cross(w, wd) - c / J * slip, [c * slip @ slip]])
+
+    ref = solve_ivp(rhs, (0.0, 2.0), np.concatenate([TUMBLE, TUMBLE, [0.0]]), method="Radau", t_eval=t,
+                    rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(traj.omega, ref.y[:3].T, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(traj.damper_omega, ref.y[3:6].T, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(traj.dissipated, ref.y[6], rtol=1e-8, atol=0)
+
+
+@pytest.mark.parametrize(("method", "why"), [
+    ("rk45", "an explicit method's steps would be held to the relaxation time"),
+    ("geometric", "the splitting's step would have to resolve the relaxation"),
+    ("geometric2", "the splitting's step would have to resolve the relaxation"),
+])
+def test_methods_that_cannot_follow_a_stiff_damper_refuse_it(small_budget, method, why):
+    damper = SphericalDamper(inertia=0.01, damping=1e4)
+    with pytest.raises(ValueError, match=(
+            r"^damper: its relaxation rate \(c / J\)\(1 \+ J / I1\) = 1\.01e\+06 1/s is 6\.07e\+05 times the spin rate "
+            rf"1\.66 rad/s \(stiff above 500\): method '{method}' cannot follow it \({why}\); use method dop853, "
+            r"which integrates a stiff damper with the implicit Radau$")):
+        simulate(BODY, TUMBLE, t_end=2.0, method=method, damper=damper)
+
+
+def test_a_stiff_run_is_bounded_by_radaus_rotation_limit(small_budget):
+    with pytest.raises(ValueError, match=r"^damper: .* \(stiff above 500\): t_end = 10000 s is up to 1\.66e\+04 rad "
+                                         r"of rotation, more than .* \(at most 10000 rad\); shorten the run$"):
+        simulate(BODY, TUMBLE, t_end=1e4, damper=SphericalDamper(inertia=0.01, damping=1e3))

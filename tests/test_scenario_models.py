@@ -143,3 +143,55 @@ def test_plot_draws_the_figures_that_apply_to_the_run(tmp_path, capsys, example,
                  if example != "gravity_boom" else "10800"]) == 0
     assert {p.stem for p in out.iterdir()} == figures
     assert all(p.stat().st_size > 5_000 for p in out.iterdir())
+
+
+# -- finite but extreme values (issue 19): refused at input, naming the field ---------------------
+
+@pytest.mark.parametrize(
+    ("text", "pattern"),
+    [
+        ("[initial]\nomega = [1e300, 0, 0]\n", r"omega\[0\] = 1e\+300 is beyond 1e\+15 rad/s: faster than any rotation"),
+        ("[initial]\nomega = [0, 2e15, 0]\n", r"omega\[1\] = 2000000000000000.0 is beyond 1e\+15 rad/s"),
+        ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 1e300\ndamping = 0.1\n",
+         r"damper: inertia = 1e\+300 is beyond 1e\+50 kg m\^2: more than any star's"),
+        ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 1.0\ndamping = 1e300\n",
+         r"damper: damping = 1e\+300 N m s with inertia = 1.0 kg m\^2 relaxes at c / J = 1e\+300 is beyond 1e\+15 1/s"),
+        ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 1e10\ndamping = 0.1\n",
+         r"damper: inertia = 10000000000.0 kg m\^2 is more than 1e\+06 times the body's smallest moment"),
+    ],
+)
+def test_extreme_values_are_one_line_exit_2(tmp_path, capsys, text, pattern):
+    """Before: "computation failed: RuntimeWarning: overflow" or a silently wrong result (a
+    damper of 1e300 kg m^2 gave omega = 0)."""
+    import re
+
+    path = scenario(tmp_path, text)
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and re.search(pattern, err), err
+
+
+def test_a_rotor_spinning_beyond_the_rate_bound_is_refused(tmp_path, capsys):
+    body = tmp_path / "wheel.toml"
+    body.write_text('[body]\nname = "wheel"\n[[body.parts]]\nkind = "box"\nmass = 3.0\nsize = [0.6, 0.4, 0.2]\n'
+                    '[[body.parts]]\n'
+                    'kind = "rotor"\nmass = 0.2\nradius = 0.05\nlength = 0.01\naxis = [1, 0, 0]\nspin_rate = 1e300\n')
+    path = tmp_path / "s.toml"
+    path.write_text('body = "wheel.toml"\n[initial]\nomega = [0.1, 1.0, 0.0]\n')
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "spin_rate = 1e+300 is beyond 1e+15 rad/s" in err, err
+    with pytest.raises(ValueError, match=r"^the rotor's spin_rate at t = 10 s = 1100000000000000.0 is beyond 1e\+15 rad/s"):
+        wheel = tumble.Rotor(mass=0.2, radius=0.05, length=0.01, axis=(1, 0, 0), spin_rate=1e14, spin_acceleration=1e14)
+        tumble.simulate(tumble.Body([tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2)), wheel]), [0.1, 1, 0], t_end=10.0,
+                        method="dop853")
+    with pytest.raises(ValueError, match=r"^the rotor's spin_rate function's value at t = 0 s = 1e\+300 is beyond"):
+        wheel = tumble.Rotor(mass=0.2, radius=0.05, length=0.01, axis=(1, 0, 0), spin_rate=lambda t: 1e300)
+        tumble.simulate(tumble.Body([tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2)), wheel]), [0.1, 1, 0], t_end=1.0,
+                        method="dop853")
+
+
+def test_simulate_refuses_a_body_beyond_the_inertia_bound():
+    heavy = tumble.Body([tumble.Box(mass=1e300, size=(0.6, 0.4, 0.2))])
+    with pytest.raises(ValueError, match=r"^principal moments \[.*\] kg m\^2: beyond 1e\+50 kg m\^2, more than any star's"):
+        tumble.simulate(heavy, [0.1, 1.0, 0.0], t_end=1.0)

@@ -23,7 +23,8 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, MassProperties
-from ..mass._checks import QUAT_NORM_TOL
+from ..mass._checks import _WHY, MAX_RATE, QUAT_NORM_TOL, check_moments
+from ..mass.tensor import _short_repr, refuse_first
 from . import _display
 from .euler import angular_momentum, kinetic_energy
 from .integrators import METHODS, get_method
@@ -133,11 +134,13 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
     Parameters
     ----------
     moments : array_like, shape (N, 3) or (3,)
-        Principal moments of each body, ascending (``I1 <= I2 <= I3``), positive, kg m^2;
-        one row is used for every body. Used as given: moments that are equal only to
+        Principal moments of each body, ascending (``I1 <= I2 <= I3``), positive, within the
+        triangle inequality ``I1 + I2 >= I3`` and at most 1e50 kg m^2; one row is used for
+        every body. Used as given: moments that are equal only to
         round-off are not a symmetric top (:func:`tumble.mass.principal_frame` makes them so).
     omega0 : array_like, shape (N, 3) or (3,)
-        Initial angular velocities at t = 0, principal frame, rad/s; one row for every body.
+        Initial angular velocities at t = 0, principal frame, rad/s (at most 1e15 rad/s per
+        component, :data:`~tumble.mass._checks.MAX_RATE`); one row for every body.
     t_end : float, optional
         Duration, s: ``samples`` equally spaced times in ``[0, t_end]``.
     times : array_like, shape (T,), optional
@@ -198,23 +201,40 @@ def _first(bad: np.ndarray) -> int:
 
 
 def _rows(name: str, value, width: int, unit: str) -> np.ndarray:
-    """``value`` as an array of shape (n, width) (a single row is (1, width)), or one line
-    saying what it must be."""
+    """``value`` as an array of shape (n, width), n >= 1 (a single row is (1, width)), of finite
+    real numbers, or one line naming the first bad row and saying what it must be."""
     if isinstance(value, (str, bytes, dict, set)):
-        raise ValueError(f"{name} = {value!r} must be an array of shape (N, {width}) or ({width},) ({unit})")
+        raise ValueError(f"{name} = {_short_repr(value)} must be an array of shape (N, {width}) or ({width},) ({unit})")
     try:
-        a = np.array(value, dtype=float)
-    except (TypeError, ValueError):
+        a = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
         raise ValueError(f"{name} must be an array of numbers of shape (N, {width}) or ({width},) ({unit})") from None
     if a.ndim == 1 and a.shape == (width,):
         a = a[None, :]
-    if a.ndim != 2 or a.shape[1] != width or len(a) == 0:
+    if a.ndim != 2 or a.shape[1] != width:
         raise ValueError(f"{name} has shape {a.shape}; it must be (N, {width}) or ({width},) ({unit})")
+    if len(a) == 0:
+        raise ValueError(f"{name} has no rows (shape {a.shape}): a batch needs at least one body")
+    # booleans, complex numbers, strings (numpy turns [[1, 0, 0], [True, 0, 0]] into integers):
+    # scan the rows as given unless they are already a real array
+    if a.dtype.kind not in "iuf" or not isinstance(value, np.ndarray):
+        rows = a.tolist() if isinstance(value, np.ndarray) or np.ndim(value) != 2 else list(value)
+        bad = [not all(_real(x) for x in row) for row in rows]
+        if any(bad):
+            imag = [any(isinstance(x, complex) and x.imag != 0 for x in row) for row in rows]
+            i = imag.index(True) if any(imag) else bad.index(True)
+            raise ValueError(f"{name}[{i}] = {list(rows[i])!r} must be {width} real numbers ({unit}); "
+                             f"booleans, complex numbers and strings are not")
+    a = a.astype(float)
     bad = ~np.all(np.isfinite(a), axis=1)
     if np.any(bad):
         i = _first(bad)
         raise ValueError(f"{name}[{i}] = {a[i].tolist()} must be {width} finite numbers ({unit})")
     return a
+
+
+def _real(x) -> bool:
+    return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
 
 
 def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -245,14 +265,8 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
         raise ValueError(f"moments ({len(I)}), omega0 ({len(w)}) and attitude0 ({len(q)}) hold different numbers "
                          f"of bodies; give each N rows, or one row for all")
     n = sizes.pop() if sizes else 1
-    bad = ~(I[:, 0] > 0)
-    if np.any(bad):
-        i = _first(bad)
-        raise ValueError(f"moments[{i}] = {I[i].tolist()} must be positive (kg m^2)")
-    bad = np.any(np.diff(I, axis=1) < 0, axis=1)
-    if np.any(bad):
-        i = _first(bad)
-        raise ValueError(f"moments[{i}] = {I[i].tolist()} must be ascending, I1 <= I2 <= I3 (kg m^2)")
+    check_moments("moments", I)
+    refuse_first("omega0", w, np.any(np.abs(w) > MAX_RATE, axis=1), f"is beyond {MAX_RATE:g} rad/s: {_WHY[MAX_RATE]}")
     bad = I[:, 0] <= INERTIA_RTOL * np.sum(I, axis=1)
     if np.any(bad):
         i = _first(bad)

@@ -25,6 +25,13 @@ which takes the :class:`~tumble.dynamics.internal.InternalModel` and returns its
 ``"dop853"`` and ``"rk45"`` integrate the model's ODE (total momentum, attitude, the damper's
 state and energy budgets), the ``"geometric"`` methods split it into exact rotations and the
 damper's exact relaxation. ``"exact"`` and ``"seed"`` have none and refuse such runs.
+
+A stiff damper (:data:`~tumble.dynamics.internal.STIFF_RATIO`: relaxing more than 500 times
+faster than the body spins) would hold an explicit method to steps of its relaxation time, not
+the rotation's: ``"dop853"`` then hands the run to scipy's Radau IIA (implicit, order 5,
+L-stable; Hairer & Wanner, *Solving ODEs II*, sec. IV.8) at the same tolerances, with the
+model's analytic Jacobian (:meth:`~tumble.dynamics.internal.InternalModel.jacobian`), and
+``simulate`` refuses such a run for ``"rk45"`` and the splitting methods, naming the ratio.
 """
 
 from __future__ import annotations
@@ -37,7 +44,8 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from .euler import euler_rhs, quaternion_rate
-from .torques import body_torque
+from .internal import STIFF_RATIO
+from .torques import body_torque, spin_gain
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 
@@ -87,15 +95,17 @@ class Method:
         return self.integrate_internal is not None
 
 
-def _solve(method: str, rhs, y0, t, rtol, atol) -> np.ndarray:
-    """solve_ivp under the work budget; the states at ``t``, shape (n, len(y0))."""
+def _solve(method: str, rhs, y0, t, rtol, atol, jac=None) -> np.ndarray:
+    """solve_ivp under the work budget; the states at ``t``, shape (n, len(y0)); ``jac`` for
+    the implicit methods."""
     budget = _Budget(method, t[-1])
 
     def counted(time, y):
         budget(time)
         return rhs(time, y)
 
-    sol = solve_ivp(counted, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol)
+    extra = {} if jac is None else {"jac": jac}
+    sol = solve_ivp(counted, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol, **extra)
     if not sol.success:
         raise RuntimeError(f"{method} integration failed: {sol.message}")
     return sol.y.T
@@ -116,10 +126,28 @@ def _solve_full(method: str):
     return integrate
 
 
+def stiffness(model, omega0, quat0, t, torque) -> tuple[float, float]:
+    """A run's damper stiffness ratio and the spin it is measured against (rad/s):
+    :meth:`~tumble.dynamics.internal.InternalModel.stiffness` at the run's fastest spin, its
+    spin bound plus what the torque can add (:func:`~tumble.dynamics.torques.spin_gain`)."""
+    t_end = float(t[-1] - t[0])
+    with np.errstate(over="ignore", invalid="ignore"):
+        gain = spin_gain(torque, float(t[0]), omega0, Rotation.from_quat(quat0), model.moments, t_end)
+    return model.stiffness(model.spin_bound(omega0, t) + gain, t_end)
+
+
 def _solve_internal(method: str):
     def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
         tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
-        Y = _solve(method, lambda time, y: model.rhs(time, y, tau), model.initial_state(omega0, quat0), t, rtol, atol)
+        y0 = model.initial_state(omega0, quat0)
+
+        def rhs(time, y):
+            return model.rhs(time, y, tau)
+
+        if method == "DOP853" and stiffness(model, omega0, quat0, t, torque)[0] > STIFF_RATIO:
+            Y = _solve("Radau", rhs, y0, t, rtol, atol, jac=model.jacobian)
+        else:
+            Y = _solve(method, rhs, y0, t, rtol, atol)
         return model.samples(t, Y)
 
     return integrate
@@ -183,7 +211,8 @@ METHODS: dict[str, Method] = {
     "exact": Method("exact", _integrate_exact, False, None, None,
                     "closed form (Jacobi elliptic functions, elliptic integral of the third kind)"),
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
-                     "DOP853, omega and attitude together, tight tolerances (rtol 1e-12)", atol_scaled=True,
+                     "DOP853, omega and attitude together, tight tolerances (rtol 1e-12); Radau for a stiff damper",
+                     atol_scaled=True,
                      integrate_internal=_solve_internal("DOP853")),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
                    "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it",

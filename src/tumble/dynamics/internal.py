@@ -64,10 +64,21 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..mass._checks import check_positive
+from ..mass._checks import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
 from .euler import quaternion_rate
 
-__all__ = ["InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
+__all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
+
+#: Largest damper inertia relative to the body's smallest moment: the body's rate
+#: ``w = (L - h - J w_d) / I`` loses ``log10(J / I1)`` digits to cancellation (6 here).
+MAX_DAMPER_RATIO = 1e6
+
+#: A damper that relaxes faster than this many times the run's spin rate makes the equations
+#: stiff: an explicit method's step is then set by the relaxation (stability), not by the
+#: rotation. Measured on the (1, 2, 3) kg m^2 tumble at 1.6 rad/s and rtol 1e-12: once stiff,
+#: DOP853 takes about 2 k right-hand sides per second of run (``k`` the relaxation rate, 1/s),
+#: Radau about 1,200 per radian of rotation whatever ``k``; they cost the same near k / spin = 500.
+STIFF_RATIO = 500.0
 
 
 @dataclass(frozen=True)
@@ -82,6 +93,10 @@ class SphericalDamper:
     damping : float
         ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
 
+    ``J`` is at most :data:`~tumble.mass._checks.MAX_INERTIA` (1e50 kg m^2) and the relaxation
+    rate ``c / J`` at most :data:`~tumble.mass._checks.MAX_RATE` (1e15 1/s); with a body, ``J``
+    is at most :data:`MAX_DAMPER_RATIO` times its smallest moment.
+
     Notes
     -----
     The sphere starts turning with the body (``w_d(0) = w(0)``). See the module docstring for the
@@ -92,8 +107,10 @@ class SphericalDamper:
     damping: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "inertia", check_positive("inertia", self.inertia, "kg m^2"))
+        object.__setattr__(self, "inertia", check_positive("inertia", self.inertia, "kg m^2", at_most=MAX_INERTIA))
         object.__setattr__(self, "damping", check_positive("damping", self.damping, "N m s", allow_zero=True))
+        check_at_most(f"damping = {self.damping!r} N m s with inertia = {self.inertia!r} kg m^2 relaxes at c / J",
+                      self.damping / self.inertia, "1/s", MAX_RATE)
 
     def rates(self, moments) -> np.ndarray:
         """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments."""
@@ -240,6 +257,13 @@ class InternalModel:
     rotors: Rotors | None = None
     damper: SphericalDamper | None = None
 
+    def __post_init__(self) -> None:
+        I1 = float(np.min(self.moments))
+        if self.damper is not None and not self.damper.inertia <= MAX_DAMPER_RATIO * I1:
+            raise ValueError(f"damper: inertia = {self.damper.inertia!r} kg m^2 is more than {MAX_DAMPER_RATIO:g} times "
+                             f"the body's smallest moment {I1:.6g} kg m^2; the body's rate would lose "
+                             f"{np.log10(self.damper.inertia / I1):.0f} digits")
+
     @property
     def tracks_work(self) -> bool:
         """Whether ``A = integral h'.w dt`` must be integrated (spins that vary at a known rate)."""
@@ -253,6 +277,27 @@ class InternalModel:
     def relaxation_rate(self) -> float:
         """The damper's fastest relaxation rate ``max_i k_i``, 1/s (0 without a damper)."""
         return 0.0 if self.damper is None else float(np.max(self.damper.rates(self.moments)))
+
+    def stiffness(self, spin: float, t_end: float) -> tuple[float, float]:
+        """The damper's stiffness ratio and the rate it is measured against.
+
+        Parameters
+        ----------
+        spin : float
+            The fastest spin of the run, rad/s (:meth:`spin_bound`, plus what a torque adds).
+        t_end : float
+            The run's duration, s: ``1 / t_end`` stands for the spin of a body at rest.
+
+        Returns
+        -------
+        ratio : float
+            ``max_i k_i / max(spin, 1 / t_end)``: 0 without a damper; above :data:`STIFF_RATIO`
+            the run is stiff.
+        slow : float
+            ``max(spin, 1 / t_end)``, rad/s.
+        """
+        slow = max(float(spin), 1.0 / float(t_end))
+        return self.relaxation_rate / slow, slow
 
     def spin_bound(self, omega0, t) -> float:
         """An estimate of the fastest body spin of a run, rad/s: ``|w0| + 2 max |h| / I1`` over
@@ -296,18 +341,59 @@ class InternalModel:
         wd = y[7:10] if self.damper is not None else None
         free = L - h
         w = (free if wd is None else free - self.damper.inertia * wd) / self.moments
-        dL = np.cross(L, w)
+        dL = _cross(L, w)
         if torque is not None:
             dL = dL + torque(t, w, q)
         out = [dL, quaternion_rate(q, w)]
         if wd is not None:
             slip = wd - w
-            out.append(np.cross(wd, w) - (self.damper.damping / self.damper.inertia) * slip)
+            out.append(_cross(wd, w) - (self.damper.damping / self.damper.inertia) * slip)
         if self.tracks_work:
             out.append([self.momentum_rate(t) @ w])
         if wd is not None:
             out.append([self.damper.damping * (slip @ slip)])
         return np.concatenate(out)
+
+    def jacobian(self, t: float, y) -> np.ndarray:
+        """``d(rhs)/dy`` of the torque-free part of :meth:`rhs`, shape (m, m), for implicit methods.
+
+        With ``M = diag(1 / I)``, ``w = M (L - h - J w_d)`` and the slip ``s = w_d - w``:
+        ``d(L x w) = -[w]x dL + [L]x dw``; the quaternion rate ``v' = (s_q w + v x w) / 2``,
+        ``s_q' = -v.w / 2`` is bilinear in ``q`` and ``w``; ``w_d' = w_d x w - (c / J) s``; the
+        work and dissipation rates ``h'.w`` and ``c |s|^2``. An external torque's own dependence
+        on the state is left out (the Newton iterations of an implicit method converge with it
+        all the same; only the step's error estimate decides the accuracy).
+        """
+        L, q = y[:3], y[3:7]
+        m = len(y)
+        M = np.diag(1.0 / self.moments)
+        damper = self.damper
+        wd = y[7:10] if damper is not None else None
+        free = L - self.momentum(t)
+        w = (free if wd is None else free - damper.inertia * wd) / self.moments
+        dw = np.zeros((3, m))  # dw/dy
+        dw[:, :3] = M
+        if wd is not None:
+            dw[:, 7:10] = -damper.inertia * M
+        out = np.zeros((m, m))
+        out[:3] = _cross_matrix(L) @ dw
+        out[:3, :3] -= _cross_matrix(w)
+        v, s = q[:3], q[3]
+        out[3:6] = 0.5 * (s * np.eye(3) + _cross_matrix(v)) @ dw
+        out[3:6, 3:6] -= 0.5 * _cross_matrix(w)
+        out[3:6, 6] = 0.5 * w
+        out[6] = -0.5 * (v @ dw)
+        out[6, 3:6] -= 0.5 * w
+        if wd is not None:
+            k0 = damper.damping / damper.inertia
+            ds = -dw
+            ds[:, 7:10] += np.eye(3)  # d(slip)/dy
+            out[7:10] = _cross_matrix(wd) @ dw - k0 * ds
+            out[7:10, 7:10] -= _cross_matrix(w)
+            out[-1] = 2.0 * damper.damping * ((wd - w) @ ds)
+        if self.tracks_work:
+            out[10 if wd is not None else 7] = self.momentum_rate(t) @ dw
+        return out
 
     def samples(self, t, Y) -> InternalSamples:
         """Unpack ODE states ``Y`` (shape (n, m)) at the times ``t`` (shape (n,))."""
@@ -342,3 +428,14 @@ class InternalModel:
             fields.update(damper_inertia=self.damper.inertia, damper_omega=run.damper_omega,
                           dissipated=run.dissipated - run.dissipated[0])
         return fields
+
+
+def _cross(a, b) -> np.ndarray:
+    """``a x b`` of two 3-vectors (np.cross costs ten times more on single vectors, and the
+    right-hand side is called hundreds of thousands of times)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _cross_matrix(v) -> np.ndarray:
+    """``[v]x``, the matrix of ``u -> v x u``."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])

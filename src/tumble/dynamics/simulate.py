@@ -10,9 +10,15 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
-from ..mass._checks import check_positive, check_rotation, check_vector
+from ..mass._checks import (
+    MAX_INERTIA,
+    MAX_RATE,
+    check_positive,
+    check_rotation,
+    check_vector,
+)
 from .integrators import METHODS, Method, get_method
-from .internal import InternalModel, Rotors, SphericalDamper
+from .internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .torques import as_torque, spin_gain
 from .trajectory import Trajectory
 
@@ -34,6 +40,10 @@ MAX_T_END = 1e12
 #: build up: 1e6 rad (160,000 turns) is about 4e7 right-hand sides of DOP853 at rtol 1e-12
 #: (~40 per radian, measured), half an hour here; the exact solution has no such limit.
 MAX_ROTATION = 1e6
+#: Most rotation (rad) a run with a stiff damper is asked to follow (``"dop853"`` hands it to
+#: Radau, :data:`~tumble.dynamics.internal.STIFF_RATIO`): Radau at rtol 1e-12 takes ~1,200
+#: right-hand sides per radian (measured), so 1e4 rad is about a quarter of an hour here.
+MAX_STIFF_ROTATION = 1e4
 #: Most steps a fixed-step method is asked to take.
 MAX_STEPS = 2e7
 #: Ranges of the relative tolerance: scipy clips rtol below 100 eps (with a warning), and above
@@ -83,7 +93,8 @@ def simulate(
         A body with :class:`~tumble.mass.Rotor` parts is a gyrostat: their internal momentum
         enters Euler's equations (:mod:`tumble.dynamics.internal`).
     omega0 : array_like, shape (3,)
-        Initial angular velocity at t = 0, rad/s, in ``frame``.
+        Initial angular velocity at t = 0, rad/s, in ``frame``; each component at most 1e15
+        rad/s (:data:`~tumble.mass._checks.MAX_RATE`), the body's moments at most 1e50 kg m^2.
     t_end : float, optional
         Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``,
         or every ``dt`` seconds from 0 up to ``t_end``.
@@ -244,7 +255,7 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
         raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")
-    w0 = np.array(check_vector("omega0", omega0, "rad/s"))
+    w0 = np.array(check_vector("omega0", omega0, "rad/s", at_most=MAX_RATE))
     t, keep = sample_times(t_end, samples, dt, times)
     t_end = float(t[-1])
     if rtol is not None:
@@ -255,6 +266,9 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
+    if not np.max(moments) <= MAX_INERTIA:
+        raise ValueError(f"principal moments {moments.tolist()} kg m^2: beyond {MAX_INERTIA:g} kg m^2, more than any "
+                         f"star's; use SI units of a sensible size")
     # a moment within the validity checks' tolerance of zero is a zero moment (a single thin
     # rod's eigh gives ~1e-17, not 0): the rotation about that axis is not well posed
     if np.any(moments <= INERTIA_RTOL * np.sum(moments)):
@@ -300,6 +314,8 @@ def _check_work(run: RunInputs) -> None:
             f"method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); "
             f"{'shorten the run or weaken the torque' if gain else 'use method exact or a shorter run'}"
         )
+    if run.internal is not None and run.internal.damper is not None:
+        _check_stiffness(run, spin + gain, turns)
     if spec.fixed_step:
         from .geometric import default_step
 
@@ -307,6 +323,25 @@ def _check_work(run: RunInputs) -> None:
         h = run.step or default_step(spin, gain, rate)
         if t_end / h > MAX_STEPS:
             raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
+
+
+def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
+    """Refuse a stiff damper (:data:`~tumble.dynamics.internal.STIFF_RATIO`) to the methods that
+    cannot follow it, and a longer run than :data:`MAX_STIFF_ROTATION` to the one that can."""
+    spec, t_end = run.method, float(run.t[-1])
+    ratio, slow = run.internal.stiffness(spin, t_end)
+    if not ratio > STIFF_RATIO:
+        return
+    stiff = (f"damper: its relaxation rate (c / J)(1 + J / I1) = {run.internal.relaxation_rate:.3g} 1/s is "
+             f"{ratio:.3g} times the spin rate {slow:.3g} rad/s (stiff above {STIFF_RATIO:g})")
+    if spec.name != "dop853":
+        why = "an explicit method's steps would be held to the relaxation time" if not spec.fixed_step else (
+            "the splitting's step would have to resolve the relaxation")
+        raise ValueError(f"{stiff}: method {spec.name!r} cannot follow it ({why}); use method dop853, which "
+                         f"integrates a stiff damper with the implicit Radau")
+    if turns > MAX_STIFF_ROTATION:
+        raise ValueError(f"{stiff}: t_end = {t_end:g} s is up to {turns:.3g} rad of rotation, more than the implicit "
+                         f"Radau that dop853 hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")
 
 
 def _spin_bound(run: RunInputs) -> float:

@@ -13,10 +13,13 @@ from numbers import Real
 
 import numpy as np
 
-from .tensor import _short_repr
+from .tensor import INERTIA_RTOL, _short_repr, check_vectors, refuse_first
 
 __all__ = [
+    "MAX_INERTIA",
+    "MAX_RATE",
     "check_direction",
+    "check_moments",
     "check_motion",
     "check_positive",
     "check_rotation",
@@ -24,26 +27,66 @@ __all__ = [
 ]
 
 
-def _number(field: str, value, unit: str) -> float:
+#: Largest rate accepted, rad/s (spins) or 1/s (relaxation): above any rotation of matter
+#: (optically levitated nanorotors reach ~6e9 rad/s, molecules ~1e13 rad/s), and far enough
+#: below the float range (1.8e308) that energies, momenta and phases of a run stay finite.
+MAX_RATE = 1e15
+#: Largest moment of inertia accepted, kg m^2: above any star's (the Sun's is ~6e46 kg m^2);
+#: with :data:`MAX_RATE` a kinetic energy stays below 1e80 J.
+MAX_INERTIA = 1e50
+
+#: Why a bound holds, for the messages.
+_WHY = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "more than any star's"}
+
+
+def _number(field: str, value, unit: str, at_most: float | None = None) -> float:
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
         raise ValueError(f"{field} = {value!r} must be a number ({unit})")
     x = float(value)
     if not math.isfinite(x):
         raise ValueError(f"{field} = {value!r} must be a finite number ({unit})")
+    check_at_most(field, x, unit, at_most)
     return x
 
 
-def check_positive(field: str, value, unit: str, *, allow_zero: bool = False) -> float:
-    """A finite number > 0 (or >= 0 with ``allow_zero``)."""
-    x = _number(field, value, unit)
+def check_at_most(field: str, value: float, unit: str, at_most: float | None) -> None:
+    """Refuse ``|value| > at_most`` (nothing when ``at_most`` is None), saying why the bound
+    holds for :data:`MAX_RATE` and :data:`MAX_INERTIA`."""
+    if at_most is not None and not abs(value) <= at_most:
+        why = f": {_WHY[at_most]}" if at_most in _WHY else ""
+        raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
+
+
+def check_moments(field: str, value) -> np.ndarray:
+    """Principal moments ``(..., 3)``, kg m^2, as floats: real and finite (no booleans, complex
+    numbers or strings), positive, ascending ``I1 <= I2 <= I3``, within the triangle inequality
+    ``I1 + I2 >= I3`` (to :data:`~tumble.mass.tensor.INERTIA_RTOL` of the trace; Goldstein sec.
+    5.4: no distribution of positive mass breaks it) and at most :data:`MAX_INERTIA`.
+
+    Raises ``ValueError`` naming the first bad entry by index, e.g.
+    ``moments[2] = [0.1, 0.2, 1.0] breaks the triangle inequality I1 + I2 >= I3 ...``.
+    """
+    I = check_vectors(field, value, "kg m^2")
+    refuse_first(field, I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
+    refuse_first(field, I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
+    refuse_first(field, I, I[..., 2] - I[..., 0] - I[..., 1] > INERTIA_RTOL * np.sum(I, axis=-1),
+                 "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
+    refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1), f"is beyond {MAX_INERTIA:g} kg m^2: {_WHY[MAX_INERTIA]}")
+    return I
+
+
+def check_positive(field: str, value, unit: str, *, allow_zero: bool = False, at_most: float | None = None) -> float:
+    """A finite number > 0 (or >= 0 with ``allow_zero``), at most ``at_most`` if given."""
+    x = _number(field, value, unit, at_most)
     if x < 0 or (x == 0 and not allow_zero):
         allowed = "a non-negative" if allow_zero else "a positive"
         raise ValueError(f"{field} = {value!r} must be {allowed} finite number ({unit})")
     return x
 
 
-def check_vector(field: str, value, unit: str) -> tuple[float, float, float]:
-    """Three finite numbers, given as a list, a tuple (any sequence) or a numpy array of shape (3,).
+def check_vector(field: str, value, unit: str, *, at_most: float | None = None) -> tuple[float, float, float]:
+    """Three finite numbers, given as a list, a tuple (any sequence) or a numpy array of shape (3,),
+    each at most ``at_most`` in magnitude if given.
 
     Anything else is refused, not converted: a dict or a set (whose keys or members have no
     meaningful order), a generator, a string, a nested list or an array of another shape.
@@ -54,7 +97,7 @@ def check_vector(field: str, value, unit: str) -> tuple[float, float, float]:
         ok = isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)) and len(value) == 3
     if not ok:
         raise ValueError(f"{field} = {_short_repr(value)} must be a list of 3 numbers ({unit})")
-    return tuple(_number(f"{field}[{i}]", v, unit) for i, v in enumerate(value))  # type: ignore[return-value]
+    return tuple(_number(f"{field}[{i}]", v, unit, at_most) for i, v in enumerate(value))  # type: ignore[return-value]
 
 
 def check_direction(field: str, value) -> tuple[float, float, float]:

@@ -14,7 +14,7 @@ from typing import Callable, ClassVar
 
 import numpy as np
 
-from ._checks import _number
+from ._checks import MAX_RATE, _number, check_at_most
 from .parts import PART_KINDS, Cylinder
 
 __all__ = ["Rotor"]
@@ -44,6 +44,10 @@ class Rotor(Cylinder):
         ``spin_rate``: its derivative ``s'(t)`` (rad/s^2), which only the motor's power and work
         need; without it they are not reported.
 
+    Spins are bounded by :data:`~tumble.mass._checks.MAX_RATE` (1e15 rad/s, faster than any
+    rotation of matter) at every time a run asks for, accelerations by its square (1e30 rad/s^2:
+    that rate reached within one radian of turning).
+
     Raises
     ------
     ValueError
@@ -72,13 +76,14 @@ class Rotor(Cylinder):
             raise ValueError(
                 f"spin_rate = {rate!r} must be a number (rad/s) or a function of time t (s) returning rad/s"
             )
-        self._set("spin_rate", _number("spin_rate", rate, "rad/s"))
+        self._set("spin_rate", _number("spin_rate", rate, "rad/s", MAX_RATE))
         if callable(accel):
             raise ValueError(
                 f"spin_acceleration = {accel!r} is a function but spin_rate = {rate!r} is a number; "
                 f"give a number (rad/s^2) for a linear ramp, or make spin_rate a function too"
             )
-        self._set("spin_acceleration", 0.0 if accel is None else _number("spin_acceleration", accel, "rad/s^2"))
+        self._set("spin_acceleration", 0.0 if accel is None else _number("spin_acceleration", accel, "rad/s^2",
+                                                                         MAX_RATE**2))
 
     @property
     def axial_moment(self) -> float:
@@ -111,8 +116,13 @@ class Rotor(Cylinder):
     @staticmethod
     def _evaluate(fn, slope, t, field: str, unit: str) -> np.ndarray:
         t = np.asarray(t, dtype=float)
+        bound = MAX_RATE if field == "spin_rate" else MAX_RATE**2
         if not callable(fn):
-            return fn + slope * t
+            out = fn + slope * t
+            if out.size and not np.max(np.abs(out)) <= bound:
+                k = np.unravel_index(np.argmax(np.abs(out)), out.shape)
+                check_at_most(f"the rotor's {field} at t = {float(t[k]):.6g} s", float(out[k]), unit, bound)
+            return out
         out = np.empty(t.shape)
         for k, tk in np.ndenumerate(t):
             value = fn(float(tk))
@@ -121,6 +131,7 @@ class Rotor(Cylinder):
                     f"the rotor's {field} function returned {value!r} at t = {float(tk):.6g} s; "
                     f"expected a finite number ({unit})"
                 )
+            check_at_most(f"the rotor's {field} function's value at t = {float(tk):.6g} s", float(value), unit, bound)
             out[k] = float(value)
         return out
 
