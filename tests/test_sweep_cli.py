@@ -12,6 +12,7 @@ import pytest
 
 import tumble.ensemble.sweep as sweep_module
 from tumble.ensemble import success_lower_bound
+from tumble.io.resume import ResumeWarning
 from tumble.io.sweepfile import load_sweep, run_sweep, run_sweep_command
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "src" / "tumble" / "examples" / "sweeps" / "t_handle_dimensions.toml"
@@ -184,7 +185,8 @@ def test_chunks_of_another_sweep_are_not_resumed(tmp_path, monkeypatch):
     assert len(list((tmp_path / "out.resume").glob("chunk-*.npz"))) == 1
     monkeypatch.undo()
     write(tmp_path, cases=16, chunk=8, text=SMALL.replace("seed = 5", "seed = 6"))  # another sweep, same file
-    data = run_sweep(path, tmp_path / "out")
+    with pytest.warns(ResumeWarning, match=r"out\.resume held 1 chunk\(s\) of another sweep"):
+        data = run_sweep(path, tmp_path / "out")
     assert data["resumed_chunks"] == 0 and data["seed"] == 6
 
 
