@@ -311,3 +311,15 @@ def test_the_sweep_and_map_commands(tmp_path, capsys):
         capsys.readouterr()
         assert main(argv) == 2
         assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_a_geometric_sweep_is_byte_for_byte_the_same_whatever_the_chunk_size(tmp_path):
+    text = SMALL.replace("t_end = 15.0\nsamples = 300", 't_end = 1.0\nsamples = 20\nmethod = "geometric"\nstep = 0.01')
+    texts = []
+    for chunk in (10, 512):
+        folder = tmp_path / f"c{chunk}"
+        folder.mkdir()
+        run_sweep(write(folder, cases=512, chunk=chunk, text=text.replace("[criterion]\ncolumn = \"flips\"\nmin = 1\n", "")),
+                  folder / "out")
+        texts.append((folder / "out" / "cases.csv").read_bytes())
+    assert texts[0] == texts[1]
