@@ -213,6 +213,15 @@ def test_the_command_prints_one_line(tmp_path, capsys):
     (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\""), r"small\.toml: simulation: method = 'geometric' needs a "
                                                                r"step \(s\) in a sweep"),
     (("chunk = {chunk}", "chunk = 0"), r"small\.toml: sweep: chunk = 0 must be a whole number >= 1 \(cases per chunk\)$"),
+    (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\"\nstep = 0.0"),
+     r"small\.toml: simulation: step = 0\.0 must be a positive finite number \(s\)$"),
+    (("min = 1", "min = 5\nmax = 1"),
+     r"small\.toml: criterion: min = 5 is above max = 1: no case could succeed; allowed: min <= max$"),
+    (("distribution = \"normal\"\nspread", "spread"),
+     r"small\.toml: initial: spread = \[0\.0, 0\.05, 0\.05\] needs distribution = \(one of normal, uniform\): "),
+    (("cases = {cases}", "cases = 1000000000000000000"),
+     r"small\.toml: sweep: cases = 1000000000000000000 must be a whole number from 1 to 100000000$"),
+    (("cases = {cases}", "cases = 1e3"), r"small\.toml: sweep: cases = 1000\.0 must be a whole number from 1 to 100000000$"),
 ])
 def test_bad_sweep_files_are_refused_in_one_line_before_anything_is_written(tmp_path, change, message):
     old, new = change

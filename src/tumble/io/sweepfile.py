@@ -7,7 +7,7 @@
                                  # (parts, or preset = "..." with its parameters)
 
     [sweep]
-    cases = 4096                 # how many cases
+    cases = 4096                 # how many cases: a whole number from 1 to 1e8
     seed = 1                     # 0 to 2^64 - 1; case i draws from SeedSequence(seed).spawn(...)[i]
     sampling = "lhs"             # "random" (default), "lhs" (Latin hypercube), "sobol"
     chunk = 1024                 # cases per chunk: memory and resume granularity, not the results
@@ -25,13 +25,13 @@
     omega = [10.0, 0.1, 0.1]     # rad/s, nominal
     frame = "design"             # "principal" (each case's own principal axes) or "design"
     distribution = "normal"      # optional: disperse each component ...
-    spread = [0.0, 0.05, 0.05]   # ... by this much, rad/s
+    spread = [0.0, 0.05, 0.05]   # ... by this much, rad/s (a spread needs the distribution)
     # grid = [[10.0], [0.05, 0.1], [0.1]]   # instead of omega: the Cartesian product, case i at point i mod G
 
     [simulation]
     t_end = 20.0                 # s (default 20), or times = [...]
     samples = 400                # default 500: a few per flip, to count the flips
-    method = "exact"             # default exact; dop853 with a torque; a geometric method needs step (s)
+    method = "exact"             # default exact; dop853 with a torque; a geometric method needs step (s, > 0)
 
     [torque]                     # optional, as in scenario files
     vector = [0.0, 0.0, 0.01]    # N m
@@ -39,7 +39,7 @@
 
     [criterion]                  # optional: what counts as success, for the order-statistics statement
     column = "flips"             # a column of cases.csv, without its unit
-    min = 1                      # and/or max; inclusive; a NaN value fails
+    min = 1                      # and/or max (min <= max); inclusive; a NaN value fails
     confidence = 0.9             # default 0.9
 
 :func:`run_sweep` writes into ``DIR``, all at once or not at all (:func:`tumble.io.output.output_dir`):
