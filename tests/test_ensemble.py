@@ -252,7 +252,8 @@ def test_design_frame_rates_follow_the_turned_axes():
 @pytest.mark.parametrize(("kwargs", "message"), [
     (dict(sampling="halton", seed=1, cases=4, dims=1), r"^sampling = 'halton' is unknown; allowed: random, lhs, sobol$"),
     (dict(sampling="lhs", seed=-1, cases=4, dims=1), r"^seed = -1 must be a whole number from 0 to 2\^64 - 1$"),
-    (dict(sampling="lhs", seed=1, cases=0, dims=1), r"^cases = 0 must be a whole number >= 1$"),
+    (dict(sampling="lhs", seed=1, cases=0, dims=1), r"^cases = 0 must be a whole number from 1 to 100000000$"),
+    (dict(sampling="random", seed=1, cases=10**8 + 1, dims=1), r"^cases = 100000001 must be a whole number from 1 to 100000000$"),
 ])
 def test_bad_designs_are_refused_in_one_line(kwargs, message):
     with pytest.raises(ValueError, match=message):

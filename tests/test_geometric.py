@@ -104,3 +104,19 @@ def test_propagate_refuses_bad_input(kwargs, pattern):
     args.update(kwargs)
     with pytest.raises(ValueError, match=pattern):
         propagate(args["moments"], args["omega0"], args["quat0"], args["t"], step=args.get("step"))
+
+
+@pytest.mark.parametrize("order", [2, 4, 6])
+def test_a_body_runs_bit_for_bit_the_same_alone_or_in_any_batch(order):
+    """A body's run does not depend on the batch it is in (a sweep's rows on its chunks): the
+    same operations for 1, 10 or 100 bodies (there was another path up to 16 bodies)."""
+    rng = np.random.default_rng(11)
+    n = 100
+    moments = np.sort(rng.uniform(0.5, 3.0, (n, 3)), axis=1)
+    omega0 = rng.normal(0.0, 1.0, (n, 3)) + [0.0, 8.0, 0.0]
+    quat0 = rng.normal(size=(n, 4))
+    t = np.linspace(0.0, 2.0, 21)
+    omega, quat = propagate(moments, omega0, quat0, t, order=order, step=0.01)
+    for lo, hi in ((0, 1), (37, 38), (99, 100), (10, 20), (50, 66)):
+        w, q = propagate(moments[lo:hi], omega0[lo:hi], quat0[lo:hi], t, order=order, step=0.01)
+        assert np.array_equal(w, omega[:, lo:hi]) and np.array_equal(q, quat[:, lo:hi]), (lo, hi)

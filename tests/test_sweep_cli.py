@@ -12,6 +12,7 @@ import pytest
 
 import tumble.ensemble.sweep as sweep_module
 from tumble.ensemble import success_lower_bound
+from tumble.io.resume import ResumeWarning
 from tumble.io.sweepfile import load_sweep, run_sweep, run_sweep_command
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "src" / "tumble" / "examples" / "sweeps" / "t_handle_dimensions.toml"
@@ -184,7 +185,8 @@ def test_chunks_of_another_sweep_are_not_resumed(tmp_path, monkeypatch):
     assert len(list((tmp_path / "out.resume").glob("chunk-*.npz"))) == 1
     monkeypatch.undo()
     write(tmp_path, cases=16, chunk=8, text=SMALL.replace("seed = 5", "seed = 6"))  # another sweep, same file
-    data = run_sweep(path, tmp_path / "out")
+    with pytest.warns(ResumeWarning, match=r"out\.resume held 1 chunk\(s\) of another sweep"):
+        data = run_sweep(path, tmp_path / "out")
     assert data["resumed_chunks"] == 0 and data["seed"] == 6
 
 
@@ -211,6 +213,15 @@ def test_the_command_prints_one_line(tmp_path, capsys):
     (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\""), r"small\.toml: simulation: method = 'geometric' needs a "
                                                                r"step \(s\) in a sweep"),
     (("chunk = {chunk}", "chunk = 0"), r"small\.toml: sweep: chunk = 0 must be a whole number >= 1 \(cases per chunk\)$"),
+    (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\"\nstep = 0.0"),
+     r"small\.toml: simulation: step = 0\.0 must be a positive finite number \(s\)$"),
+    (("min = 1", "min = 5\nmax = 1"),
+     r"small\.toml: criterion: min = 5 is above max = 1: no case could succeed; allowed: min <= max$"),
+    (("distribution = \"normal\"\nspread", "spread"),
+     r"small\.toml: initial: spread = \[0\.0, 0\.05, 0\.05\] needs distribution = \(one of normal, uniform\): "),
+    (("cases = {cases}", "cases = 1000000000000000000"),
+     r"small\.toml: sweep: cases = 1000000000000000000 must be a whole number from 1 to 100000000$"),
+    (("cases = {cases}", "cases = 1e3"), r"small\.toml: sweep: cases = 1000\.0 must be a whole number from 1 to 100000000$"),
 ])
 def test_bad_sweep_files_are_refused_in_one_line_before_anything_is_written(tmp_path, change, message):
     old, new = change
@@ -309,3 +320,15 @@ def test_the_sweep_and_map_commands(tmp_path, capsys):
         capsys.readouterr()
         assert main(argv) == 2
         assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_a_geometric_sweep_is_byte_for_byte_the_same_whatever_the_chunk_size(tmp_path):
+    text = SMALL.replace("t_end = 15.0\nsamples = 300", 't_end = 1.0\nsamples = 20\nmethod = "geometric"\nstep = 0.01')
+    texts = []
+    for chunk in (10, 512):
+        folder = tmp_path / f"c{chunk}"
+        folder.mkdir()
+        run_sweep(write(folder, cases=512, chunk=chunk, text=text.replace("[criterion]\ncolumn = \"flips\"\nmin = 1\n", "")),
+                  folder / "out")
+        texts.append((folder / "out" / "cases.csv").read_bytes())
+    assert texts[0] == texts[1]

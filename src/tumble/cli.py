@@ -352,7 +352,8 @@ def build_parser() -> argparse.ArgumentParser:
         description="Runs every case of a sweep file (dispersed bodies and initial rates) and writes DIR/cases.csv "
         "(a row per case; DIR/cases.parquet with pyarrow), DIR/summary.json (statistics, the order-statistics "
         "confidence statement, provenance) and DIR/sweep.png. Interrupted, a re-run resumes from the finished "
-        "chunks kept in DIR.resume/.",
+        "chunks kept in DIR.resume/ (checked: another run's or a damaged chunk is computed again; a second run "
+        "into the same DIR is refused while the first runs).",
         epilog="Examples: tumble sweep examples/sweeps/t_handle_dimensions.toml --out runs/sweep | "
         "tumble sweep SWEEP.toml --out DIR --workers 2", parents=[debug],
     )

@@ -45,10 +45,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-from .internal import InternalSamples
 from scipy.spatial.transform import Rotation
 
+from .internal import InternalSamples
 from .torques import body_torque, spin_gain
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]
@@ -174,7 +173,7 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
     subflows = free_flow_substeps(order)
     q /= np.linalg.norm(q, axis=1, keepdims=True)
 
-    if torque is None and N <= _FEW:
+    if torque is None:  # every batch size the same arithmetic: a body's run does not depend on its batch
         return _propagate_free(I, L, q, t, subflows, step)
     run = _propagate_split(I, L, q, t, order, step, torque)
     return run.omega, run.quat
@@ -249,8 +248,6 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
     J = 0.0 if damper is None else damper.inertia
     wd = None if damper is None else wd0.T.copy()
     A, D = np.zeros(N), np.zeros(N)
-    free_only = torque is None and model is None
-    subflows = free_flow_substeps(order)
 
     def h_at(time):
         return model.momentum(time)[:, None] if rotors else None
@@ -282,10 +279,6 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
     for s in range(1, n):
         n_steps, h = _steps(t[s] - t[s - 1], step)
         for m in range(n_steps):
-            if free_only:  # many bodies: every sub-flow vectorised over them
-                for axis, frac in subflows:
-                    _rotate(L, q, axis, frac * h, inv_I)
-                continue
             tc = t[s - 1] + m * h
             for gamma in COMPOSITIONS[order]:
                 hg = gamma * h
@@ -326,107 +319,63 @@ def _steps(dt: float, step: float) -> tuple[int, float]:
     return n, dt / n
 
 
-#: Up to this many bodies, torque-free runs take the momentum-first path below; beyond it,
-#: numpy's per-call overhead is amortised and sub-flows are applied to all bodies at once.
-_FEW = 16
-#: Largest number of sub-flow angles held at once (bodies x sub-steps), ~8 MB.
-_CHUNK = 1 << 20
 _NEXT = {0: (1, 2), 1: (2, 0), 2: (0, 1)}
 
 
 def _propagate_free(I, L, q, t, subflows, step, offset=None):
-    """Torque-free: the momentum does not depend on the attitude, so it is advanced first,
-    sub-step by sub-step (plain floats for one body, where numpy's per-call overhead would
-    dominate), recording each sub-flow's angle; the attitude is then the ordered product of
-    those elementary rotations, formed by pairwise (tree) products of whole blocks at once with
-    scipy's Rotation. Same arithmetic as :func:`_rotate`, far fewer Python-level calls.
-    ``offset``: a constant internal momentum h, shape (N, 3) (the rate about e_i is
-    ``(L_i - h_i) / I_i``).
+    """Torque-free: each sub-flow turns the body momentum by ``-a`` and the attitude by ``+a``
+    about ``e_axis``, ``a = frac h (L_axis - h_axis) / I_axis``, in place; the attitude is
+    renormalised once per sample. ``offset``: a constant internal momentum h, shape (N, 3).
+
+    The same operations for every batch size: one body runs on plain floats (numpy's per-call
+    overhead would dominate) with numpy's own ``cos`` and ``sin``, many on rows of bodies, so
+    a body's run is bit for bit the same alone or in any batch (tested) and a sweep's rows do
+    not depend on its chunks. The momentum's arithmetic is that of the browser's port
+    (``tumble/viz/assets/splitting.js``).
     """
-    from scipy.spatial.transform import Rotation
-
     N = len(I)
-    scalar = N == 1
     offset = np.zeros((N, 3)) if offset is None else np.broadcast_to(offset, (N, 3))
-    inv_I = [float(x) for x in 1.0 / I[0]] if scalar else list((1.0 / I).T)
-    comps = [float(x) for x in L[0]] if scalar else [L[:, i].copy() for i in range(3)]
-    off = [float(x) for x in offset[0]] if scalar else list(offset.T)
-    cos, sin = (math.cos, math.sin) if scalar else (np.cos, np.sin)
-    axes = np.array([a for a, _ in subflows])
-    per_step = len(subflows)
-    cap = max(1, _CHUNK // (per_step * N))  # whole steps per block
+    one = N == 1
+    if one:  # plain floats: numpy's trigonometry on each, every other operation IEEE alike
+        def rows(a):
+            return [float(x) for x in a[0]]
 
-    def advance(n_steps: int, h: float, angles: list) -> None:
-        for _ in range(n_steps):
-            for axis, frac in subflows:
-                j, l = _NEXT[axis]
-                a = frac * h * (comps[axis] - off[axis]) * inv_I[axis]
-                c, sn = cos(a), sin(a)
-                Lj, Ll = comps[j], comps[l]
-                comps[j] = c * Lj + sn * Ll  # body momentum turns by -a about e_axis
-                comps[l] = c * Ll - sn * Lj
-                angles.append(a)  # the attitude turns by +a
+        def trig(x):
+            return float(np.cos(x)), float(np.sin(x))
 
-    def block_product(angles: list, groups: int) -> np.ndarray:
-        A = np.asarray(angles, dtype=float).reshape(groups, -1, N)
-        return _ordered_product(np.tile(axes, A.shape[1] // per_step), A)
+        sqrt = math.sqrt
+    else:
+        def rows(a):
+            return [a[:, i].copy() for i in range(a.shape[1])]
+
+        def trig(x):
+            return np.cos(x), np.sin(x)
+
+        sqrt = np.sqrt
+    inv_I, comps, off, quat = rows(1.0 / I), rows(L), rows(np.asarray(offset, float)), rows(q)
+
+    def sample():
+        omega = [(comps[i] - off[i]) * inv_I[i] for i in range(3)]
+        norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3])
+        quat[:] = [x / norm for x in quat]
+        return np.stack(omega, axis=-1), np.stack(quat, axis=-1)
 
     omega_out = np.empty((len(t), N, 3))
     quat_out = np.empty((len(t), N, 4))
     omega_out[0], quat_out[0] = (L - offset) * (1.0 / I), q
-    rot = Rotation.from_quat(q)
-    plan = [_steps(t[s] - t[s - 1], step) for s in range(1, len(t))]
-    s = 1
-    while s < len(t):
-        n, h = plan[s - 1]
-        if n > cap:  # one long interval, cut into blocks
-            done = 0
-            while done < n:
-                m = min(cap, n - done)
-                angles: list = []
-                advance(m, h, angles)
-                rot = rot * Rotation.from_quat(block_product(angles, 1)[0])
-                done += m
-            groups, omegas = 1, [np.stack(comps, axis=-1).reshape(N, 3)]
-            segments = None
-        else:  # several equal intervals in one block
-            groups = 1
-            while s - 1 + groups < len(plan) and plan[s - 1 + groups] == (n, h) and (groups + 1) * n <= cap:
-                groups += 1
-            angles = []
-            omegas = []
-            for _ in range(groups):
-                advance(n, h, angles)
-                omegas.append(np.stack(comps, axis=-1).reshape(N, 3))
-            segments = block_product(angles, groups)
-        for g in range(groups):
-            if segments is not None:
-                rot = rot * Rotation.from_quat(segments[g])
-            omega_out[s + g] = (omegas[g] - offset) * (1.0 / I)
-            quat_out[s + g] = rot.as_quat()
-        s += groups
+    for s in range(1, len(t)):
+        n, h = _steps(t[s] - t[s - 1], step)
+        for _ in range(n):
+            for axis, frac in subflows:
+                j, k = _NEXT[axis]
+                a = frac * h * (comps[axis] - off[axis]) * inv_I[axis]
+                c, sn = trig(a)
+                Lj, Lk = comps[j], comps[k]
+                comps[j] = c * Lj + sn * Lk  # body momentum turns by -a about e_axis
+                comps[k] = c * Lk - sn * Lj
+                ch, sh = trig(0.5 * a)  # attitude q <- q (x) (sin(a/2) e_axis, cos(a/2))
+                qa, qj, qk, qw = quat[axis], quat[j], quat[k], quat[3]
+                quat[axis], quat[j] = ch * qa + sh * qw, ch * qj + sh * qk
+                quat[k], quat[3] = ch * qk - sh * qj, ch * qw - sh * qa
+        omega_out[s], quat_out[s] = sample()
     return omega_out, quat_out
-
-
-def _ordered_product(axes, angles) -> np.ndarray:
-    """Quaternions of ``exp(a_1 [e_{axis_1}]) exp(a_2 [e_{axis_2}]) ...``, block by block.
-
-    ``axes``: shape (K,); ``angles``: shape (G, K, N). Returns shape (G, N, 4). Pairwise
-    products keep the order and need only log2(K) vectorised compositions.
-    """
-    from scipy.spatial.transform import Rotation
-
-    G, K, N = angles.shape
-    quat = np.zeros((G, K, N, 4))
-    half = 0.5 * angles
-    quat[:, np.arange(K), :, axes] = np.sin(half).transpose(1, 0, 2)
-    quat[..., 3] = np.cos(half)
-    while quat.shape[1] > 1:
-        if quat.shape[1] % 2:
-            pad = np.zeros((G, 1, N, 4))
-            pad[..., 3] = 1.0
-            quat = np.concatenate([quat, pad], axis=1)
-        left = Rotation.from_quat(quat[:, 0::2].reshape(-1, 4))
-        right = Rotation.from_quat(quat[:, 1::2].reshape(-1, 4))
-        quat = (left * right).as_quat().reshape(G, -1, N, 4)
-    return quat[:, 0]

@@ -51,7 +51,7 @@ class InitialRates:
     distribution : {"normal", "uniform"}, optional
         Disperse each component by ``spread`` (one standard deviation, or the half-width).
     spread : sequence of 3 floats
-        Per component, rad/s, >= 0.
+        Per component, rad/s, >= 0; non-zero only with ``distribution``.
     grid : three sequences of floats, optional
         Instead of ``omega``: the values of each component, rad/s; the cases run through
         their Cartesian product, the third component fastest, case ``i`` at point ``i mod G``
@@ -75,6 +75,9 @@ class InitialRates:
         if min(spread) < 0:
             raise ValueError(f"spread = {list(spread)} must be >= 0 (rad/s)")
         object.__setattr__(self, "spread", spread)
+        if self.distribution is None and any(spread):
+            raise ValueError(f"spread = {list(spread)} needs distribution = (one of {', '.join(DISTRIBUTIONS)}): "
+                             f"without it the rates are not dispersed")
         if self.distribution is not None:
             if not isinstance(self.distribution, str) or self.distribution not in DISTRIBUTIONS:
                 raise ValueError(f"distribution = {self.distribution!r} is unknown; allowed: {', '.join(DISTRIBUTIONS)}")

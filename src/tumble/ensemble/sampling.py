@@ -30,12 +30,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["DISTRIBUTIONS", "SAMPLINGS", "Design", "case_generator", "case_uniforms", "check_seed", "deviates"]
+__all__ = ["DISTRIBUTIONS", "MAX_CASES", "SAMPLINGS", "Design", "case_generator", "case_uniforms", "check_seed", "deviates"]
 
 #: The samplings of the unit cube.
 SAMPLINGS = ("random", "lhs", "sobol")
 #: The distributions a unit number is mapped to.
 DISTRIBUTIONS = ("normal", "uniform")
+#: The most cases a sweep may have (1e8: about a day's work on one core with the exact method;
+#: a larger count is almost surely a typo, and 1e18 made the resume bookkeeping run forever).
+MAX_CASES = 100_000_000
 
 #: Unit numbers are kept this far inside (0, 1), so that the normal deviate stays finite
 #: (|z| <= 8.3): a Sobol' point may be exactly 0.
@@ -96,11 +99,12 @@ class Design:
         if not isinstance(self.sampling, str) or self.sampling not in SAMPLINGS:
             raise ValueError(f"sampling = {self.sampling!r} is unknown; allowed: {', '.join(SAMPLINGS)}")
         check_seed(self.seed)
-        for name in ("cases", "dims"):
-            value = getattr(self, name)
-            low = 1 if name == "cases" else 0
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-                raise ValueError(f"{name} = {value!r} must be a whole number >= {low}")
+        cases = self.cases
+        if isinstance(cases, bool) or not isinstance(cases, (int, np.integer)) or not 1 <= cases <= MAX_CASES:
+            raise ValueError(f"cases = {cases!r} must be a whole number from 1 to {MAX_CASES}")
+        dims = self.dims
+        if isinstance(dims, bool) or not isinstance(dims, (int, np.integer)) or dims < 0:
+            raise ValueError(f"dims = {dims!r} must be a whole number >= 0")
 
     def rows(self, start: int, stop: int) -> np.ndarray:
         """The points of cases ``start`` to ``stop - 1``, shape (stop - start, dims), in (0, 1)."""

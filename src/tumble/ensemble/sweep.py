@@ -94,13 +94,14 @@ class RunSettings:
         :class:`tumble.ConstantTorque`, :class:`tumble.GravityGradient` or any
         ``tau(t, omega, attitude)``.
     step : float, optional
-        Step of the fixed-step methods, s: needed with them (see the module docstring).
+        Step of the fixed-step methods, s, positive and finite: needed with them (see the
+        module docstring).
 
     Raises
     ------
     ValueError
-        For an unknown method, a torque the method cannot take, or a fixed-step method
-        without ``step``.
+        For an unknown method, a torque the method cannot take, a fixed-step method without
+        ``step``, or a ``step`` that is not a positive finite number.
     """
 
     t_end: float | None = None
@@ -116,6 +117,9 @@ class RunSettings:
         if self.method is None:
             object.__setattr__(self, "method", "exact" if self.torque is None else "dop853")
         spec = get_method(self.method)
+        if self.step is not None and (isinstance(self.step, bool) or not isinstance(self.step, (int, float))
+                                      or not math.isfinite(self.step) or self.step <= 0):
+            raise ValueError(f"step = {self.step!r} must be a positive finite number (s)")
         if as_torque(self.torque) is not None and not spec.supports_torque:
             raise ValueError(f"method = {self.method!r} cannot take a torque")
         if spec.fixed_step and self.step is None:
@@ -143,7 +147,7 @@ class Criterion:
     column : str
         A column's name without its unit (``"flips"``, ``"max_nutation"``, ...).
     minimum, maximum : float, optional
-        Bounds, inclusive; at least one.
+        Bounds, inclusive; at least one, and ``minimum <= maximum``.
     confidence : float
         Of the success statement, in (0, 1); default 0.9.
     """
@@ -162,6 +166,9 @@ class Criterion:
             v = getattr(self, name)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v)):
                 raise ValueError(f"{name[:3]} = {v!r} must be a number")
+        if self.minimum is not None and self.maximum is not None and self.minimum > self.maximum:
+            raise ValueError(f"min = {self.minimum!r} is above max = {self.maximum!r}: no case could succeed; "
+                             f"allowed: min <= max")
         success_lower_bound(1, 0, self.confidence)  # checks the confidence
 
     def passed(self, columns: dict) -> np.ndarray:

@@ -29,7 +29,7 @@ from pathlib import Path
 from ..mass import PART_KINDS, PRESETS, Body
 from ..mass._checks import read_input_file
 
-__all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "part_from_table", "read_toml"]
+__all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "mesh_files", "part_from_table", "read_toml"]
 
 
 #: The largest body or scenario file (TOML) that :func:`read_toml` reads, in bytes (1 MiB).
@@ -145,6 +145,26 @@ def body_from_table(table, *, base_dir: Path | None = None, where: str = "body")
         return Body(built, name=name)
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
+
+
+def mesh_files(table, base_dir: Path | None = None) -> list[Path]:
+    """The mesh files a ``[body]`` table's parts read (paths relative to ``base_dir``), in order.
+
+    What a body's mass properties depend on besides the table itself: their content hashes go
+    into a sweep's fingerprint and every output's provenance.
+
+    Examples
+    --------
+    >>> table = {"parts": [{"kind": "mesh", "mesh": "m/a.stl", "mass": 1.0},
+    ...                    {"kind": "sphere", "mass": 1.0, "radius": 0.1}]}
+    >>> [p.as_posix() for p in mesh_files(table, Path("bodies"))]
+    ['bodies/m/a.stl']
+    """
+    parts = table.get("parts") if isinstance(table, dict) else None
+    if not isinstance(parts, list):
+        return []
+    return [Path(os.path.join(base_dir or ".", p["mesh"])) for p in parts
+            if isinstance(p, dict) and p.get("kind") == "mesh" and isinstance(p.get("mesh"), str)]
 
 
 def _preset_from_table(table: dict, where: str) -> Body:

@@ -7,7 +7,7 @@
                                  # (parts, or preset = "..." with its parameters)
 
     [sweep]
-    cases = 4096                 # how many cases
+    cases = 4096                 # how many cases: a whole number from 1 to 1e8
     seed = 1                     # 0 to 2^64 - 1; case i draws from SeedSequence(seed).spawn(...)[i]
     sampling = "lhs"             # "random" (default), "lhs" (Latin hypercube), "sobol"
     chunk = 1024                 # cases per chunk: memory and resume granularity, not the results
@@ -25,13 +25,13 @@
     omega = [10.0, 0.1, 0.1]     # rad/s, nominal
     frame = "design"             # "principal" (each case's own principal axes) or "design"
     distribution = "normal"      # optional: disperse each component ...
-    spread = [0.0, 0.05, 0.05]   # ... by this much, rad/s
+    spread = [0.0, 0.05, 0.05]   # ... by this much, rad/s (a spread needs the distribution)
     # grid = [[10.0], [0.05, 0.1], [0.1]]   # instead of omega: the Cartesian product, case i at point i mod G
 
     [simulation]
     t_end = 20.0                 # s (default 20), or times = [...]
     samples = 400                # default 500: a few per flip, to count the flips
-    method = "exact"             # default exact; dop853 with a torque; a geometric method needs step (s)
+    method = "exact"             # default exact; dop853 with a torque; a geometric method needs step (s, > 0)
 
     [torque]                     # optional, as in scenario files
     vector = [0.0, 0.0, 0.01]    # N m
@@ -39,7 +39,7 @@
 
     [criterion]                  # optional: what counts as success, for the order-statistics statement
     column = "flips"             # a column of cases.csv, without its unit
-    min = 1                      # and/or max; inclusive; a NaN value fails
+    min = 1                      # and/or max (min <= max); inclusive; a NaN value fails
     confidence = 0.9             # default 0.9
 
 :func:`run_sweep` writes into ``DIR``, all at once or not at all (:func:`tumble.io.output.output_dir`):
@@ -58,18 +58,22 @@
 - a figure, ``sweep.png``, when the caller passes the function that draws it (the command line
   passes :func:`tumble.viz.figure_sweep`; this layer draws nothing, it saves the figure).
 
-Resume: each finished chunk is kept in ``DIR.resume/`` beside the output (a fingerprint of the
-sweep file, the body files, the chunk size and the versions of tumble, numpy and scipy says
-which run they belong to; another run's chunks are discarded). Run again after an
-interruption, the sweep computes only the missing chunks, and since every case's row is the
-same in any chunk, ``cases.csv`` comes out byte for byte as an uninterrupted run's. The folder
-is removed once the output is in place.
+Resume: each finished chunk is kept in ``DIR.resume/`` beside the output
+(:class:`tumble.io.resume.ChunkFolder`). Run again after an interruption, the sweep computes
+only the missing chunks, and since every case's row is the same in any chunk, ``cases.csv``
+comes out byte for byte as an uninterrupted run's. A fingerprint of everything that changes a
+result (the content hashes of the sweep file, the body file and its mesh files, the run's
+settings, the chunk size, the versions of tumble, numpy and scipy) says which run the chunks
+belong to: another run's are discarded. Each chunk records its cases and a checksum, and a bad
+one (copied, cut, truncated) is named in a warning line and computed again; a run holds a lock
+on the folder, so a second run into the same ``--out`` is refused while the first runs; a
+``DIR.resume`` that is a symbolic link is refused. The folder is removed once the output is in
+place.
 """
 
 from __future__ import annotations
 
-import json
-import shutil
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -91,11 +95,11 @@ from ..ensemble import (
     summarize,
 )
 from ..mass import PRESETS, Body
-from .atomic import atomic_path, atomic_write_text
-from .bodyfile import body_from_table, read_toml
+from .bodyfile import body_from_table, mesh_files, read_toml
 from .export import write_json
 from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
+from .resume import ChunkFolder
 from .scenario import DEFAULT_T_END, _torque
 
 __all__ = ["SWEEP_WRITES", "ChunkFolder", "SweepFile", "load_sweep", "run_sweep", "run_sweep_command", "sweep_from_table"]
@@ -148,16 +152,16 @@ def _nominal(spec, base_dir: Path | None) -> tuple[Body, str | None, dict, list[
         if set(data) != {"body"}:
             raise ValueError(f"body = {spec!r}: a body file has one table, [body]")
         try:
-            body, preset, parameters, _ = _nominal(data["body"], path.parent)
+            body, preset, parameters, inner = _nominal(data["body"], path.parent)
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
-        return body, preset, parameters, [path]
+        return body, preset, parameters, [path, *inner]
     if not isinstance(spec, dict):
         raise ValueError(f"body = {spec!r} must be a preset name, a body file path or a [body] table")
     body = body_from_table(spec, base_dir=base_dir)
     if "preset" in spec:
         return body, spec["preset"], {k: v for k, v in spec.items() if k != "preset"}, []
-    return body, None, {}, []
+    return body, None, {}, mesh_files(spec, base_dir)
 
 
 def _dispersion(table, k: int) -> Dispersion:
@@ -249,53 +253,19 @@ def load_sweep(path) -> SweepFile:
                      parsed.settings)
 
 
-class ChunkFolder:
-    """Finished chunks in a folder (``chunk-000012.npz``) with the fingerprint of their sweep.
-
-    A folder holding another sweep's chunks (another fingerprint) is emptied first.
-    """
-
-    def __init__(self, folder, fingerprint: dict) -> None:
-        self.folder = Path(folder)
-        self.folder.mkdir(parents=True, exist_ok=True)
-        mark = self.folder / "fingerprint.json"
-        text = json.dumps(fingerprint, sort_keys=True)
-        if not mark.exists() or mark.read_text() != text:
-            for old in self.folder.glob("chunk-*.npz"):
-                old.unlink()
-            atomic_write_text(mark, text)
-
-    def _path(self, number: int) -> Path:
-        return self.folder / f"chunk-{number:06d}.npz"
-
-    def has(self, number: int) -> bool:
-        """Whether chunk ``number`` is there."""
-        return self._path(number).is_file()
-
-    def load(self, number: int) -> dict:
-        """Chunk ``number``'s columns."""
-        with np.load(self._path(number), allow_pickle=False) as data:
-            names = data["names"].tolist()
-            return {name: data[f"c{k}"] for k, name in enumerate(names)}
-
-    def save(self, number: int, columns: dict) -> None:
-        """Keep chunk ``number``'s columns (written atomically)."""
-        arrays = {f"c{k}": np.asarray(v) for k, v in enumerate(columns.values())}
-        with atomic_path(self._path(number)) as tmp:
-            np.savez(tmp, names=np.array(list(columns)), **arrays)
-
-    def remove(self) -> None:
-        """Delete the folder and its chunks."""
-        shutil.rmtree(self.folder, ignore_errors=True)
-
-
 def _fingerprint(parsed: SweepFile) -> dict:
+    """Everything that changes a result: the versions, the content hashes of every file read
+    (sweep file, body file, mesh files), the run's settings as resolved and the chunk size."""
     import scipy
 
     from .._version import __version__
 
+    ensemble, settings = parsed.sweep.ensemble, parsed.sweep.settings
     return {"tumble": __version__, "numpy": np.__version__, "scipy": scipy.__version__, "chunk": parsed.chunk,
-            "inputs": [h for _, h in parsed.sources]}
+            "inputs": [h for _, h in parsed.sources], "file": parsed.settings,
+            "cases": ensemble.cases, "seed": ensemble.seed, "sampling": ensemble.sampling,
+            "method": settings.method, "step": settings.step, "t_end": settings.t_end, "samples": settings.samples,
+            "times": settings.times}
 
 
 def _text(values: np.ndarray) -> list[str]:
@@ -338,7 +308,7 @@ class _Tables:
 
 
 def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = None, argv=None,
-              figure=None) -> dict:
+              figure=None, warn=None) -> dict:
     """Run a sweep file and write its results into the folder ``out`` (module docstring).
 
     Parameters
@@ -356,6 +326,9 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
     figure : callable, optional
         ``figure(columns, title=..., cases=...)`` returns the figure of the sample of cases
         (a matplotlib Figure: :func:`tumble.viz.figure_sweep`), saved as ``sweep.png``.
+    warn : callable, optional
+        ``warn(message)`` for a resumed chunk that is not reused (:mod:`tumble.io.resume`);
+        default a :class:`tumble.io.resume.ResumeWarning`.
 
     Returns
     -------
@@ -365,12 +338,26 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
     Raises
     ------
     ValueError
-        For a bad file, value or output path: nothing is computed or written.
+        For a bad file, value or output path, or when another sweep is running into ``out``
+        (its resume folder is locked): nothing is computed or written.
     """
     parsed = load_sweep(path)
     out = check_output_dir(out).absolute()
-    store = ChunkFolder(out.parent / f"{out.name}.resume", _fingerprint(parsed))
-    resumed = sum(store.has(k) for k in range(-(-parsed.sweep.ensemble.cases // parsed.chunk)))
+    sweep = parsed.sweep
+    store = ChunkFolder(out.parent / f"{out.name}.resume", _fingerprint(parsed), cases=sweep.ensemble.cases,
+                        chunk=parsed.chunk, warn=warn)
+    try:
+        data = _run(parsed, path, out, store, workers, scheduler, argv, figure)
+    except BaseException:
+        store.close()  # the finished chunks stay for the next run
+        raise
+    store.remove()
+    return data
+
+
+def _run(parsed: SweepFile, path, out: Path, store: ChunkFolder, workers, scheduler, argv, figure) -> dict:
+    """:func:`run_sweep` under the resume folder's lock."""
+    resumed = sum(store.has(k) for k in range(store.chunks))
     backend = make_backend(workers, scheduler)
     sweep = parsed.sweep
     try:
@@ -387,7 +374,7 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
                 "body": sweep.ensemble.bodies.body.name,
                 "nominal_moments": sweep.ensemble.bodies.body.principal_moments.tolist(),
                 "cases": sweep.ensemble.cases, "seed": sweep.ensemble.seed, "sampling": sweep.ensemble.sampling,
-                "chunk": parsed.chunk, "method": settings.method,
+                "chunk": parsed.chunk, "method": settings.method, "step": settings.step,
                 "t_end": None if settings.times is not None else settings.t_end,
                 "settings": parsed.settings, "backend": backend.describe(), "resumed_chunks": resumed,
                 **summary.as_dict(sweep.criterion),
@@ -400,7 +387,6 @@ def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = 
                 drawn.savefig(stage / "sweep.png", dpi=FIGURE_DPI)
     finally:
         backend.close()
-    store.remove()
     return data
 
 
@@ -423,7 +409,8 @@ def run_sweep_command(path, out, *, workers: int | None = None, scheduler: str |
 
     Errors propagate (``ValueError`` for bad input: the command line's exit status 2).
     """
-    data = run_sweep(path, out, workers=workers, scheduler=scheduler, argv=argv, figure=figure)
+    data = run_sweep(path, out, workers=workers, scheduler=scheduler, argv=argv, figure=figure,
+                     warn=lambda message: print(f"warning: {message}", file=sys.stderr))
     print(sweep_line(data, out))
     return 0
 
