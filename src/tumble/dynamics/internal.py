@@ -92,10 +92,9 @@ class SphericalDamper:
         the body's parts.
     damping : float
         ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
-
-    ``J`` is at most :data:`~tumble.mass._checks.MAX_INERTIA` (1e50 kg m^2) and the relaxation
-    rate ``c / J`` at most :data:`~tumble.mass._checks.MAX_RATE` (1e15 1/s); with a body, ``J``
-    is at most :data:`MAX_DAMPER_RATIO` times its smallest moment.
+        ``J`` is at most :data:`~tumble.mass._checks.MAX_INERTIA` (1e50 kg m^2) and the
+        relaxation rate ``c / J`` at most :data:`~tumble.mass._checks.MAX_RATE` (1e15 1/s);
+        with a body, ``J`` is at most :data:`MAX_DAMPER_RATIO` times its smallest moment.
 
     Notes
     -----

@@ -43,10 +43,9 @@ class Rotor(Cylinder):
         ``s(t) = spin_rate + spin_acceleration t`` (default 0: constant spin). With a function
         ``spin_rate``: its derivative ``s'(t)`` (rad/s^2), which only the motor's power and work
         need; without it they are not reported.
-
-    Spins are bounded by :data:`~tumble.mass._checks.MAX_RATE` (1e15 rad/s, faster than any
-    rotation of matter) at every time a run asks for, accelerations by its square (1e30 rad/s^2:
-    that rate reached within one radian of turning).
+        Spins are bounded by :data:`~tumble.mass._checks.MAX_RATE` (1e15 rad/s, faster than
+        any rotation of matter) at every time a run asks for, accelerations by its square
+        (1e30 rad/s^2: that rate reached within one radian of turning).
 
     Raises
     ------
