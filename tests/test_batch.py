@@ -203,7 +203,8 @@ def test_broadcasting_and_defaults():
     ({"moments": [[1, 2, 3, 4]]}, r"^moments has shape \(1, 4\); it must be \(N, 3\) or \(3,\)"),
     ({"moments": "heavy"}, r"^moments = 'heavy' must be an array"),
     ({"omega0": [[0, 1, 0], [0, np.inf, 0]]}, r"^omega0\[1\] = \[0.0, inf, 0.0\] must be 3 finite numbers"),
-    ({"omega0": [[0, 1, 0]] * 3}, r"^moments \(2\), omega0 \(3\) and attitude0 \(1\) hold different numbers"),
+    ({"omega0": [[0, 1, 0]] * 3}, r"^moments \(2\) and omega0 \(3\) hold different numbers"),  # attitude0 not given: not named
+    ({"attitude0": [[0, 0, 0, 1]] * 3}, r"^moments \(2\), omega0 \(2\) and attitude0 \(3\) hold different numbers"),
     ({"omega0": [[0, 1e200, 0], [0, 1, 0]]}, (r"^omega0\[0\] = \[0.0, 1e\+200, 0.0\] is beyond 1e\+15 rad/s: faster than "
                                                r"any rotation of matter$")),
     ({"omega0": [[0, 1, 0], [0, -2e15, 0]]}, r"^omega0\[1\] = \[0.0, -2000000000000000.0, 0.0\] is beyond 1e\+15 rad/s"),

@@ -412,3 +412,18 @@ def test_a_recording_without_a_usable_flight_exits_2_and_writes_nothing(tmp_path
     assert err.count("\n") == 1 and "no free flight found" in err and not out.exists()
     assert main(["fit", str(RACQUET_EXAMPLE), "--out", str(out), "--saturation", "-3"]) == 2
     assert "--saturation" in capsys.readouterr().err and not out.exists()
+
+
+def test_a_recording_of_two_bodies_is_no_answer():
+    """Three tosses of the phone then three of the racquet in one file: the joint fit kept one
+    body's flights and dropped the other's as outliers, reporting the racquet's ratios with a
+    tight error bar as a success. A third or more of the flights disagreeing is a split."""
+    phone = synthetic_recording(2, body="phone", tosses=3)
+    racquet = synthetic_recording(5, body="racquet", tosses=3)
+    t = np.r_[phone.t, racquet.t + phone.t[-1] + 1.0]
+    with pytest.warns(InadequateFitWarning, match="the flights disagree"):
+        fit = fit_recording(t, np.r_[phone.omega, racquet.omega])
+    assert not fit.pooled.adequate and "more than one body" in fit.pooled.adequacy
+    assert fit.summary()["adequate"] is False
+    disagree = [toss for toss in fit.tosses if toss.reason.startswith("disagrees")]
+    assert len(disagree) >= 2

@@ -105,6 +105,9 @@ def test_concurrent_runs_into_one_folder_never_mix(tmp_path):
         (lambda d: (d / "out").write_text("x") and d / "out", "exists and is not a folder"),
         (lambda d: (d / "f").write_text("x") and d / "f" / "sub", "is a file, not a folder"),
         (lambda d: ((d / "out" / "inner").mkdir(parents=True), d / "out")[1], "holds 'inner', not a plain file"),
+        # a path that names no folder of its own: a sweep had made x/ and x/...resume/ first
+        (lambda d: d / "x" / "..", "does not name a folder of its own"),
+        (lambda d: Path("/"), "does not name a folder of its own"),
     ],
 )
 @pytest.mark.parametrize("command", ["simulate", "plot"])

@@ -225,3 +225,12 @@ def test_a_resume_folder_that_is_a_symbolic_link_is_refused(tmp_path, capsys):
     assert sorted(p.name for p in elsewhere.iterdir()) == ["chunk-000000.npz"]
     assert (elsewhere / "chunk-000000.npz").read_bytes() == b"someone else's"
     assert not (tmp_path / "out").exists()
+
+
+def test_an_out_that_names_no_folder_is_refused_before_the_resume_folder_is_made(tmp_path, capsys):
+    """``--out x/..`` was refused only at the end, after ``x/`` and ``x/...resume/`` were made."""
+    path = sweep_file(tmp_path)
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    with pytest.raises(ValueError, match="does not name a folder of its own"):
+        run_sweep(path, tmp_path / "x" / "..")
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before

@@ -27,6 +27,7 @@ from ..mass._checks import _WHY, MAX_RATE, QUAT_NORM_TOL, check_moments
 from ..mass.tensor import _short_repr, refuse_first
 from . import _display
 from .euler import angular_momentum, kinetic_energy
+from .exact_batch import rotate_by_quaternion
 from .integrators import METHODS, get_method
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .torques import as_torque, spin_gain
@@ -37,30 +38,6 @@ __all__ = ["MAX_BATCH_VALUES", "BatchTrajectory", "rotate_by_quaternion", "simul
 #: Most samples a batch may hold, bodies x times (``omega`` and ``quat`` take 56 bytes per
 #: sample: 2.8 GB here), to refuse a typo before allocating memory.
 MAX_BATCH_VALUES = 50_000_000
-
-
-def rotate_by_quaternion(quat, v) -> np.ndarray:
-    """``v`` rotated by unit quaternions ``quat`` (scalar last, as scipy): ``q v q*``.
-
-    ``v' = v + 2 w (u x v) + 2 u x (u x v)`` for ``q = (u, w)`` (Shuster, J. Astronaut. Sci. 41
-    (1993) 439, the rotation formula expanded); broadcasts over leading axes.
-
-    Parameters
-    ----------
-    quat : array_like, shape (..., 4)
-        Unit quaternions ``[x, y, z, w]``.
-    v : array_like, shape (..., 3)
-        Vectors.
-
-    Returns
-    -------
-    ndarray, shape (..., 3)
-    """
-    q = np.asarray(quat, float)
-    v = np.asarray(v, float)
-    u, w = q[..., :3], q[..., 3:]
-    uv = np.cross(u, v)
-    return v + 2.0 * (w * uv + np.cross(u, uv))
 
 
 @dataclass(frozen=True, eq=False)
@@ -262,8 +239,9 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
     q = _rows("attitude0", [0.0, 0.0, 0.0, 1.0] if attitude0 is None else attitude0, 4, "unit quaternions [x, y, z, w]")
     sizes = {len(a) for a in (I, w, q) if len(a) > 1}
     if len(sizes) > 1:
-        raise ValueError(f"moments ({len(I)}), omega0 ({len(w)}) and attitude0 ({len(q)}) hold different numbers "
-                         f"of bodies; give each N rows, or one row for all")
+        given = [("moments", I), ("omega0", w)] + ([("attitude0", q)] if attitude0 is not None else [])
+        listed = ", ".join(f"{name} ({len(a)})" for name, a in given[:-1]) + f" and {given[-1][0]} ({len(given[-1][1])})"
+        raise ValueError(f"{listed} hold different numbers of bodies; give each N rows, or one row for all")
     n = sizes.pop() if sizes else 1
     check_moments("moments", I)
     refuse_first("omega0", w, np.any(np.abs(w) > MAX_RATE, axis=1), f"is beyond {MAX_RATE:g} rad/s: {_WHY[MAX_RATE]}")

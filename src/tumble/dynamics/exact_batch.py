@@ -35,13 +35,37 @@ from .carlson import agm_k_value, agm_step, cel_next, cel_step, cel_value, legen
 from .exact import MAX_PHASE, FreeRotation, check_phase_limit
 from .exact_parameters import scaled_core
 
-__all__ = ["free_rotation_batch", "quat_multiply", "quat_zxz"]
+__all__ = ["free_rotation_batch", "quat_conjugate", "quat_multiply", "quat_zxz", "rotate_by_quaternion"]
 
 #: Bodies x samples evaluated at once: a few dozen arrays of this many doubles, which stay in
 #: cache (measured here: 10% faster than 1 << 17), but at least _MIN_BODIES bodies per chunk,
 #: so that each chunk's per-body work is not dominated by Python's overhead on many samples.
 _CHUNK = 1 << 14
 _MIN_BODIES = 64
+
+
+def rotate_by_quaternion(quat, v) -> np.ndarray:
+    """``v`` rotated by unit quaternions ``quat`` (scalar last, as scipy): ``q v q*``.
+
+    ``v' = v + 2 w (u x v) + 2 u x (u x v)`` for ``q = (u, w)`` (Shuster, J. Astronaut. Sci. 41
+    (1993) 439, the rotation formula expanded); broadcasts over leading axes.
+
+    Parameters
+    ----------
+    quat : array_like, shape (..., 4)
+        Unit quaternions ``[x, y, z, w]``.
+    v : array_like, shape (..., 3)
+        Vectors.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    q = np.asarray(quat, float)
+    v = np.asarray(v, float)
+    u, w = q[..., :3], q[..., 3:]
+    uv = np.cross(u, v)
+    return v + 2.0 * (w * uv + np.cross(u, uv))
 
 
 def quat_multiply(a, b) -> np.ndarray:

@@ -65,6 +65,8 @@ def check_output_dir(path) -> Path:
     files. Raises ``ValueError`` naming the path and the rule.
     """
     path = Path(path)
+    if Path(os.path.abspath(path)).name == "" or path.name in ("", ".", ".."):  # "/", ".", "x/..": no name to write under
+        raise _refuse(path, "does not name a folder of its own (it is the root or ends in '.' or '..'); give a new folder's name")
     if path.exists() or path.is_symlink():
         if path.is_symlink() or not path.is_dir():
             raise _refuse(path, "exists and is not a folder" if not path.is_dir() else "is a symbolic link; give the folder itself")

@@ -187,6 +187,7 @@ def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit
         only = next(toss for toss in tosses if toss.status == "ok")
         return RecordingFit(tosses, only.fit, float("nan"), 1, t, omega, (only.fit.omega_model,))
     joint, models, outliers = _joint(used, t, omega, keep, drag, scale_uncertainty)
+    split = _split_verdict(used, outliers)
     if outliers:
         bad = {id(used[j]) for j in outliers}
         tosses = tuple(
@@ -195,9 +196,29 @@ def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit
                  f"from theirs (I1/I3 = {toss.fit.ratios[0]:.4f}, I2/I3 = {toss.fit.ratios[1]:.4f})", toss.fit)
             if id(f) in bad else toss for toss, f in zip(tosses, flights))
         used = [f for f in used if id(f) not in bad]
-    if joint is None:
-        return _weighted(used, tosses, t, omega, keep)
-    return _pooled(joint, used, tosses, t, omega, keep, models)
+    fit = _weighted(used, tosses, t, omega, keep) if joint is None else \
+        _pooled(joint, used, tosses, t, omega, keep, models)
+    if split:
+        warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
+        fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
+    return fit
+
+
+#: Share of the fitted flights that may disagree with the others before the recording counts as
+#: holding more than one body: a third (one stray flight in twelve is a toss gone wrong; a third
+#: that agree among themselves is another body, a loose phone or a changed mount).
+MAX_DISAGREEING = 1.0 / 3.0
+
+
+def _split_verdict(used, outliers) -> str:
+    """The reason a recording's pooled value is no answer, or "" (:data:`MAX_DISAGREEING`)."""
+    if len(outliers) < 2 or len(outliers) < MAX_DISAGREEING * len(used):
+        return ""
+    own = np.array([ratio_summary(used[j].solution)[0] for j in outliers])
+    return (f"the flights disagree: {len(outliers)} of {len(used)} fitted flights lie more than five standard "
+            f"uncertainties from the others (their ratios I1/I3 {np.min(own[:, 0]):.4f} to {np.max(own[:, 0]):.4f}, "
+            f"I2/I3 {np.min(own[:, 1]):.4f} to {np.max(own[:, 1]):.4f}): the recording holds more than one body "
+            "or the phone moved on it; fit each group apart (--start/--end)")
 
 
 def _toss(f: Flight, t, omega, keep) -> Toss:
