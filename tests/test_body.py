@@ -169,3 +169,38 @@ def test_inertia_about_a_batch_of_points():
     for point, tensor in zip(points, stack):
         np.testing.assert_array_equal(tensor, body.inertia_about(tuple(point)))
     np.testing.assert_allclose(stack[2], body.inertia, atol=1e-15)  # about the COM itself
+
+
+def test_mass_properties_from_moments_is_the_body_of_those_moments():
+    """The seed T-handle's moments (kg m^2) give the T-handle's tensor in its principal frame:
+    its principal moments, inertia about any point and degeneracy, with the design axes as the
+    principal ones (so from_inertia of the same diagonal tensor agrees)."""
+    handle = tumble.t_handle().properties
+    props = tumble.MassProperties.from_moments(handle.principal_moments, mass=handle.mass, com=[0.1, -0.2, 0.3])
+    assert props.mass == 3.0 and props.com.tolist() == [0.1, -0.2, 0.3]
+    np.testing.assert_array_equal(props.principal_moments, [0.125, 0.3125, 0.4375])
+    np.testing.assert_array_equal(props.principal_axes, np.eye(3))
+    np.testing.assert_array_equal(props.inertia, np.diag([0.125, 0.3125, 0.4375]))
+    # parallel axis about the origin: I + m (|c|^2 E - c c^T), c = the COM
+    c = props.com
+    np.testing.assert_allclose(props.inertia_about([0, 0, 0]), props.inertia + 3.0 * (c @ c * np.eye(3) - np.outer(c, c)),
+                               rtol=1e-15)
+    R = handle.principal_axes  # the handle's own tensor, turned into its principal frame
+    np.testing.assert_allclose(props.inertia, R.T @ handle.inertia @ R, atol=1e-15)
+    again = tumble.MassProperties.from_inertia(3.0, c, np.diag([0.125, 0.3125, 0.4375]))
+    np.testing.assert_array_equal(again.principal_moments, props.principal_moments)
+    assert tumble.MassProperties.from_moments([1.0, 1.0, 2.0]).degeneracy == "symmetric"
+    assert tumble.MassProperties.from_moments([2.0, 3.0, 4.0]).mass == 1.0
+
+
+@pytest.mark.parametrize(("kwargs", "message"), [
+    ({"moments": [0.3, 0.2, 0.1]}, r"moments = \[0.3, 0.2, 0.1\] must be ascending, I1 <= I2 <= I3"),
+    ({"moments": [0.1, 0.2, 0.4]}, r"moments = \[0.1, 0.2, 0.4\] breaks the triangle inequality I1 \+ I2 >= I3"),
+    ({"moments": [0.0, 0.2, 0.2]}, r"moments = \[0.0, 0.2, 0.2\] must be positive"),
+    ({"moments": [[1, 2, 3], [1, 2, 3]]}, r"moments = \[\[1, 2, 3\], \[1, 2, 3\]\] must be three numbers"),
+    ({"moments": [1, 2, 3], "mass": -1.0}, r"mass = -1.0 must be a positive finite number \(kg\)"),
+    ({"moments": [1, 2, 3], "com": [0, 0]}, r"com = \[0, 0\] must be a list of 3 numbers \(m\)"),
+])
+def test_mass_properties_from_moments_refuses_a_body_that_cannot_be(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        tumble.MassProperties.from_moments(**kwargs)

@@ -16,9 +16,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _display
+from ._checks import check_moments, check_positive, check_vector
 from .parts import Part
 from .rotor import Rotor
-from .tensor import AXIS_ROLES, check_inertia, inertia_about_point, moment_degeneracy, parallel_axis, principal_frame
+from .tensor import (
+    AXIS_ROLES,
+    _short_repr,
+    check_inertia,
+    inertia_about_point,
+    moment_degeneracy,
+    parallel_axis,
+    principal_frame,
+)
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
 
@@ -62,6 +71,56 @@ class MassProperties:
         I = check_inertia(inertia, what="inertia tensor about the centre of mass")
         moments, axes = principal_frame(I)
         return cls(float(mass), _array(com), _array(I), _array(moments), _array(axes))
+
+    @classmethod
+    def from_moments(cls, moments, mass: float = 1.0, com=(0.0, 0.0, 0.0)) -> MassProperties:
+        """Mass properties of a body whose principal axes are the design axes.
+
+        The inertia tensor about the COM is ``diag(moments)`` and ``principal_axes`` is the
+        identity: the principal frame is the design frame. For a body known only by its
+        principal moments (a published inertia, a fitted one, a test case).
+
+        Parameters
+        ----------
+        moments : array_like, shape (3,)
+            Principal moments ``I1 <= I2 <= I3`` about the COM, kg m^2: positive, ascending and
+            within the triangle inequality ``I1 + I2 >= I3`` (Goldstein sec. 5.4).
+        mass : float, optional
+            Total mass, kg (> 0). Default 1 kg. Torque-free motion does not depend on it.
+        com : array_like, shape (3,), optional
+            Centre of mass in the design frame, m. Default the origin.
+
+        Returns
+        -------
+        MassProperties
+
+        Raises
+        ------
+        ValueError
+            For moments that are not three positive ascending numbers within the triangle
+            inequality, a mass that is not a positive number or a COM that is not three finite
+            numbers; the message names the argument and the rule.
+
+        Examples
+        --------
+        >>> from tumble.mass import MassProperties
+        >>> props = MassProperties.from_moments([0.125, 0.3125, 0.4375], mass=3.0)
+        >>> props.principal_moments.tolist(), props.principal_axes.tolist()[0]
+        ([0.125, 0.3125, 0.4375], [1.0, 0.0, 0.0])
+        >>> props.degeneracy
+        'asymmetric'
+        >>> MassProperties.from_moments([0.3, 0.2, 0.1])
+        Traceback (most recent call last):
+        ...
+        ValueError: moments = [0.3, 0.2, 0.1] must be ascending, I1 <= I2 <= I3 (kg m^2)
+        """
+        I = check_moments("moments", moments)
+        if I.shape != (3,):
+            raise ValueError(f"moments = {_short_repr(moments)} must be three numbers, one body's principal moments "
+                             "I1 <= I2 <= I3 (kg m^2)")
+        mass = check_positive("mass", mass, "kg")
+        center = check_vector("com", com, "m")
+        return cls(mass, _array(center), np.diag(I), _array(I), np.eye(3))
 
     @property
     def degeneracy(self) -> str:
