@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import shutil
+import warnings
 
 import numpy as np
 import pytest
@@ -18,3 +20,110 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 @pytest.fixture
 def rng():
     return np.random.default_rng(20261122)
+
+
+# -- one headless Chromium for every browser test ---------------------------------------------
+# The page, its live mode, hostile names, the notebook frame and the docs site all run in the
+# session's one browser (started on first use), each page in its own context under one offline
+# rule (LOCAL). No Chromium: a loud skip, or a failure in CI (CI=true).
+
+#: Browsers looked for on PATH, in this order, when TUMBLE_CHROMIUM is not set.
+BROWSERS = ("chromium", "chromium-browser", "google-chrome")
+INSTALL = ("install Debian's Chromium (apt-get install chromium), or set TUMBLE_CHROMIUM=/path/to/chromium "
+           f"(any Chromium or Chrome; also found on PATH as {', '.join(BROWSERS)})")
+# Flags as Debian's Chromium needs them headless, as root, with software WebGL and no network.
+FLAGS = ["--no-sandbox", "--disable-gpu", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+         "--disable-background-networking", "--disable-component-update", "--no-first-run", "--disable-sync",
+         "--disable-quic"]
+#: The offline rule: a page may load what the machine holds (files, inline data, blobs, about:
+#: pages such as an iframe's srcdoc) and nothing else; any other request is recorded and aborted.
+LOCAL = ("file:", "data:", "blob:", "about:")
+
+
+class BrowserMissingWarning(UserWarning):
+    """The browser tests could not run: no Chromium was found."""
+
+
+def _in_ci(environ) -> bool:
+    return environ.get("CI", "").strip().lower() in ("1", "true", "yes")
+
+
+def find_browser(environ=os.environ) -> str | None:
+    """The Chromium to drive: ``TUMBLE_CHROMIUM`` if set (it must be an executable), else the first
+    of :data:`BROWSERS` on ``PATH``, else None."""
+    chosen = environ.get("TUMBLE_CHROMIUM")
+    if chosen:
+        found = shutil.which(chosen, path=environ.get("PATH"))
+        if found is None:
+            pytest.fail(f"TUMBLE_CHROMIUM={chosen!r} is not an executable file; {INSTALL}")
+        return found
+    return next(filter(None, (shutil.which(name, path=environ.get("PATH")) for name in BROWSERS)), None)
+
+
+def browser_or_skip(environ=os.environ) -> str:
+    """The browser, or a loud skip (a warning in the test summary saying what to install); in CI
+    (``CI=true``) a missing browser fails the test instead."""
+    browser = find_browser(environ)
+    if browser is not None:
+        return browser
+    message = f"no Chromium for the browser test of the interactive page: {INSTALL}"
+    if _in_ci(environ):
+        pytest.fail(f"CI must run the browser test: {message}")
+    warnings.warn(BrowserMissingWarning(message), stacklevel=2)
+    pytest.skip(message)
+
+
+class Watched:
+    """A page of the shared browser, in a context of its own, that records console errors,
+    uncaught exceptions and the requests the offline rule refused (``outside``)."""
+
+    def __init__(self, browser, **options):
+        self.context = browser.new_context(**options)
+        self.context.route("**/*", self._route)
+        self.page = self.context.new_page()
+        self.errors, self.outside = [], []
+        self.page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+
+    def _route(self, route):
+        if route.request.url.startswith(LOCAL):
+            return route.continue_()
+        self.outside.append(route.request.url)
+        return route.abort()
+
+    def clean(self) -> bool:
+        return self.errors == [] and self.outside == []
+
+    def close(self) -> None:
+        self.context.close()
+
+
+@pytest.fixture(scope="session")
+def chromium():
+    """The session's headless Chromium (playwright's Browser)."""
+    path = browser_or_skip()
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=path, headless=True, args=FLAGS)
+        try:
+            yield browser
+        finally:
+            browser.close()
+
+
+@pytest.fixture
+def new_page(chromium):
+    """Opens :class:`Watched` pages (``new_page(viewport={...})``); they are closed after the
+    test, which fails if any of them asked the network for anything."""
+    opened: list[Watched] = []
+
+    def open_page(**options) -> Watched:
+        opened.append(Watched(chromium, **options))
+        return opened[-1]
+
+    yield open_page
+    for watched in opened:
+        watched.close()
+    outside = [url for watched in opened for url in watched.outside]
+    assert not outside, f"requests that left the machine: {outside}"

@@ -147,32 +147,19 @@ def test_the_site_loads_nothing_from_the_network(site):
     assert (site / "search" / "search_index.js").is_file()  # the offline plugin's inlined index
 
 
-def test_the_site_works_from_file_with_no_network_search_included(site):
-    sync_api = pytest.importorskip("playwright.sync_api")
-    from test_page import FLAGS, browser_or_skip
-
-    chromium = browser_or_skip()
-    remote, errors = [], []
-    with sync_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
-        try:
-            page = browser.new_page()
-            page.route(re.compile(r"^(?!file:|data:|blob:)"), lambda route: (remote.append(route.request.url),
-                                                                           route.abort()))
-            page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-            page.on("pageerror", lambda e: errors.append(str(e)))
-            page.goto((site / "api" / "analysis.html").as_uri())
-            assert page.locator('[id="tumble.analysis.fit_rotation"]').count() == 1
-            page.goto((site / "index.html").as_uri())
-            page.locator(".md-search__input").click()
-            page.keyboard.type("free_rotation_batch")  # typed: the search listens to key events
-            results = page.locator(".md-search-result__item")
-            results.first.wait_for(timeout=15_000)  # the search index runs in the iframe-worker shim
-            assert "kernels.html" in results.first.locator("a").first.get_attribute("href")
-        finally:
-            browser.close()
-    assert not remote, f"requests that left file://: {remote}"
-    assert not errors, errors
+def test_the_site_works_from_file_with_no_network_search_included(site, new_page):
+    watched = new_page()
+    page = watched.page
+    page.goto((site / "api" / "analysis.html").as_uri())
+    assert page.locator('[id="tumble.analysis.fit_rotation"]').count() == 1
+    page.goto((site / "index.html").as_uri())
+    page.locator(".md-search__input").click()
+    page.keyboard.type("free_rotation_batch")  # typed: the search listens to key events
+    results = page.locator(".md-search-result__item")
+    results.first.wait_for(timeout=15_000)  # the search index runs in the iframe-worker shim
+    assert "kernels.html" in results.first.locator("a").first.get_attribute("href")
+    assert not watched.outside, f"requests that left file://: {watched.outside}"
+    assert not watched.errors, watched.errors
 
 
 def _markup_module():

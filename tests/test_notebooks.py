@@ -67,34 +67,23 @@ def test_show_embeds_the_page_in_an_isolated_frame(run):
     assert html.escape(page, quote=True) in text
 
 
-def test_show_plays_in_its_sandboxed_frame(run, tmp_path):
+def test_show_plays_in_its_sandboxed_frame(run, tmp_path, new_page):
     """The sandbox (scripts only: no same-origin, no storage) leaves the page working: it draws and plays."""
-    from playwright.sync_api import sync_playwright
-    from test_page import FLAGS, browser_or_skip
-
-    chromium = browser_or_skip()
     body, traj = run
     notebook_page = tmp_path / "notebook.html"
     notebook_page.write_text(f"<!doctype html><html><body>{show(traj, body, frames=20).data}</body></html>")
-    errors = []
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
-        try:
-            page = browser.new_page(viewport={"width": 1100, "height": 1200})
-            page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-            page.on("pageerror", lambda e: errors.append(str(e)))
-            page.goto(notebook_page.as_uri())
-            page.wait_for_function("document.querySelector('iframe').contentWindow !== null")
-            frame = page.frames[1]
-            frame.wait_for_function("window.tumbleViewer !== undefined", timeout=60_000)
-            assert frame.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 20}
-            frame.click("#tumble-play")
-            frame.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
-            assert frame.evaluate("document.querySelectorAll('.js-plotly-plot').length") >= 2
-            assert page.evaluate("typeof window.tumbleViewer") == "undefined"  # nothing leaks into the notebook
-        finally:
-            browser.close()
-    assert errors == []
+    watched = new_page(viewport={"width": 1100, "height": 1200})
+    page = watched.page
+    page.goto(notebook_page.as_uri())
+    page.wait_for_function("document.querySelector('iframe').contentWindow !== null")
+    frame = page.frames[1]
+    frame.wait_for_function("window.tumbleViewer !== undefined", timeout=60_000)
+    assert frame.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 20}
+    frame.click("#tumble-play")
+    frame.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
+    assert frame.evaluate("document.querySelectorAll('.js-plotly-plot').length") >= 2
+    assert page.evaluate("typeof window.tumbleViewer") == "undefined"  # nothing leaks into the notebook
+    assert watched.errors == [] and watched.outside == []
 
 
 def test_show_needs_the_body_that_was_simulated(run):

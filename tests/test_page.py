@@ -5,14 +5,12 @@ from __future__ import annotations
 import dataclasses
 import io
 import json
-import os
-import shutil
-import warnings
 from importlib import resources
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import BrowserMissingWarning, browser_or_skip, find_browser
 from scipy.spatial.transform import Rotation
 
 from tumble.cli import main
@@ -22,49 +20,6 @@ from tumble.viz.scene import frame_indices
 from tumble.viz.surfaces import body_surfaces
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-#: Browsers looked for on PATH, in this order, when TUMBLE_CHROMIUM is not set.
-BROWSERS = ("chromium", "chromium-browser", "google-chrome")
-INSTALL = ("install Debian's Chromium (apt-get install chromium), or set TUMBLE_CHROMIUM=/path/to/chromium "
-           f"(any Chromium or Chrome; also found on PATH as {', '.join(BROWSERS)})")
-# Flags as Debian's Chromium needs them headless, as root, with software WebGL and no network.
-FLAGS = ["--no-sandbox", "--disable-gpu", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-         "--disable-background-networking", "--disable-component-update", "--no-first-run", "--disable-sync",
-         "--disable-quic"]
-
-
-class BrowserMissingWarning(UserWarning):
-    """The browser test of the interactive page could not run: no Chromium was found."""
-
-
-def _in_ci(environ) -> bool:
-    return environ.get("CI", "").strip().lower() in ("1", "true", "yes")
-
-
-def find_browser(environ=os.environ) -> str | None:
-    """The Chromium to drive: ``TUMBLE_CHROMIUM`` if set (it must be an executable), else the first
-    of :data:`BROWSERS` on ``PATH``, else None."""
-    chosen = environ.get("TUMBLE_CHROMIUM")
-    if chosen:
-        found = shutil.which(chosen, path=environ.get("PATH"))
-        if found is None:
-            pytest.fail(f"TUMBLE_CHROMIUM={chosen!r} is not an executable file; {INSTALL}")
-        return found
-    return next(filter(None, (shutil.which(name, path=environ.get("PATH")) for name in BROWSERS)), None)
-
-
-def browser_or_skip(environ=os.environ) -> str:
-    """The browser, or a loud skip (a warning in the test summary saying what to install); in CI
-    (``CI=true``) a missing browser fails the test instead."""
-    browser = find_browser(environ)
-    if browser is not None:
-        return browser
-    message = f"no Chromium for the browser test of the interactive page: {INSTALL}"
-    if _in_ci(environ):
-        pytest.fail(f"CI must run the browser test: {message}")
-    warnings.warn(BrowserMissingWarning(message), stacklevel=2)
-    pytest.skip(message)
-
-
 #: The page's size limit, plotly.js (about 4.8 MB) included.
 MAX_PAGE_BYTES = 6_000_000
 
@@ -211,19 +166,15 @@ def test_missing_browser_skips_loudly_but_fails_in_ci(tmp_path):
         browser_or_skip({**empty, "CI": "true"})
 
 
-def open_page(p, url, errors, outside):
-    """A Chromium page at ``url`` with console errors and outside requests recorded, after the
-    viewer's ``tumble:ready`` event."""
-    browser = p.chromium.launch(executable_path=browser_or_skip(), headless=True, args=FLAGS)
-    page = browser.new_page(viewport={"width": 1300, "height": 1000})
-    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.route("**/*", lambda route: (outside.append(route.request.url), route.abort())
-               if not route.request.url.startswith(("file:", "data:", "blob:")) else route.continue_())
+def open_viewer(new_page, url):
+    """A watched page of the shared Chromium (conftest's ``new_page``: console errors and refused
+    outside requests recorded) at ``url``, after the viewer's ``tumble:ready`` event."""
+    watched = new_page(viewport={"width": 1300, "height": 1000})
+    page = watched.page
     page.add_init_script("document.addEventListener('tumble:ready', () => { window.readyEvents = (window.readyEvents || 0) + 1; })")
     page.goto(url)
     page.wait_for_function("window.readyEvents === 1 && window.tumbleViewer.ready", timeout=60_000)
-    return browser, page
+    return watched
 
 
 def pixels(png) -> np.ndarray:
@@ -232,28 +183,22 @@ def pixels(png) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
 
 
-def test_page_plays_offline_in_chromium_with_a_shaded_body(page_file):
-    from playwright.sync_api import sync_playwright
-
-    errors, outside = [], []
-    with sync_playwright() as p:
-        browser, page = open_page(p, page_file.as_uri(), errors, outside)
-        try:
-            assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
-            page.click("#tumble-play")
-            page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
-            first = page.locator("#tumble-ground").screenshot()
-            page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=60_000)
-            later = page.locator("#tumble-ground").screenshot()
-            assert page.evaluate("tumbleViewer.state().playing")
-            page.click("#tumble-play")
-            assert not page.evaluate("tumbleViewer.state().playing")
-            page.locator("#tumble-slider").fill("59")  # the slider moves to the last frame
-            page.wait_for_function("tumbleViewer.state().frame === 59", timeout=60_000)
-            assert "t = 20.00 s" in page.text_content("#tumble-time")
-        finally:
-            browser.close()
-    assert errors == [] and outside == []
+def test_page_plays_offline_in_chromium_with_a_shaded_body(page_file, new_page):
+    watched = open_viewer(new_page, page_file.as_uri())
+    page = watched.page
+    assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
+    page.click("#tumble-play")
+    page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
+    first = page.locator("#tumble-ground").screenshot()
+    page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=60_000)
+    later = page.locator("#tumble-ground").screenshot()
+    assert page.evaluate("tumbleViewer.state().playing")
+    page.click("#tumble-play")
+    assert not page.evaluate("tumbleViewer.state().playing")
+    page.locator("#tumble-slider").fill("59")  # the slider moves to the last frame
+    page.wait_for_function("tumbleViewer.state().frame === 59", timeout=60_000)
+    assert "t = 20.00 s" in page.text_content("#tumble-time")
+    assert watched.errors == [] and watched.outside == []
 
     a, b = pixels(first), pixels(later)
     red = ((a[..., 0] > 150) & (a[..., 1] < 90) & (a[..., 2] < 90)).sum()
@@ -274,32 +219,38 @@ def _ground_vertices(page, frame):
                                   " return [Array.from(d.x), Array.from(d.y), Array.from(d.z)]; })()")).T
 
 
-def test_set_run_turns_the_body_or_a_box_as_python_does(page_file, flip):
+def test_set_run_turns_the_body_or_a_box_as_python_does(page_file, flip, new_page):
     """setRun's principal -> design conversion gives the vertices the page's own frames give;
     a box run draws the box turned by the principal attitude; reset restores the run."""
-    from playwright.sync_api import sync_playwright
-
     _, traj = flip
     idx = frame_indices(len(traj), 60)
     run = {"t": traj.t[idx].tolist(), "quat": traj.quat[idx].tolist(), "omega": traj.omega[idx].tolist(),
            "moments": traj.moments.tolist(), "box": None}
-    errors, outside = [], []
-    with sync_playwright() as p:
-        browser, page = open_page(p, page_file.as_uri(), errors, outside)
-        try:
-            own = _ground_vertices(page, 37)
-            page.evaluate(f"tumbleViewer.setRun({json.dumps(run)})")
-            assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
-            np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-4)
-            page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'box': [0.3, 0.2, 0.1]})})")
-            box = _ground_vertices(page, 37)
-            half = traj.attitude[idx[37]].inv().apply(box)  # back to the principal frame
-            assert len(box) == 24
-            np.testing.assert_allclose(np.abs(half), np.tile([0.3, 0.2, 0.1], (24, 1)), atol=1e-9)
-            with pytest.raises(Exception, match="run.omega must hold 60 rows"):
-                page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'omega': run['omega'][:5]})})")
-            page.evaluate("tumbleViewer.reset()")
-            np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-12)
-        finally:
-            browser.close()
-    assert errors == [] and outside == []
+    watched = open_viewer(new_page, page_file.as_uri())
+    page = watched.page
+    own = _ground_vertices(page, 37)
+    page.evaluate(f"tumbleViewer.setRun({json.dumps(run)})")
+    assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
+    np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-4)
+    page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'box': [0.3, 0.2, 0.1]})})")
+    box = _ground_vertices(page, 37)
+    half = traj.attitude[idx[37]].inv().apply(box)  # back to the principal frame
+    assert len(box) == 24
+    np.testing.assert_allclose(np.abs(half), np.tile([0.3, 0.2, 0.1], (24, 1)), atol=1e-9)
+    with pytest.raises(Exception, match="run.omega must hold 60 rows"):
+        page.evaluate(f"tumbleViewer.setRun({json.dumps({**run, 'omega': run['omega'][:5]})})")
+    page.evaluate("tumbleViewer.reset()")
+    np.testing.assert_allclose(_ground_vertices(page, 37), own, atol=1e-12)
+    assert watched.errors == [] and watched.outside == []
+
+
+def test_the_offline_rule_refuses_and_records_every_outside_request(new_page):
+    """conftest's one offline rule: a request that would leave the machine is aborted (the image
+    does not load) and recorded, while file: and data: URLs load."""
+    watched = new_page()
+    watched.page.set_content('<img id="far" src="http://example.invalid/a.png">'
+                             '<img id="near" src="data:image/gif;base64,R0lGODlhAQABAAAAACH5BAEAAAAALAAAAAABAAEAAAIBAAA=">')
+    watched.page.wait_for_function("document.images[0].complete && document.images[1].complete")
+    assert watched.page.evaluate("[document.images[0].naturalWidth, document.images[1].naturalWidth]") == [0, 1]
+    assert watched.outside == ["http://example.invalid/a.png"]
+    watched.outside.clear()  # seen: the fixture would fail the test for it

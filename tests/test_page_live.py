@@ -17,7 +17,6 @@ import mpmath
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
-from test_page import FLAGS, browser_or_skip
 
 import tumble.viz
 from tumble.cli import main
@@ -37,49 +36,16 @@ SEED_FLIP = [0.1, 10.0, 0.1]  # examples/seed_flip.toml's omega in the principal
 #: issue's 1e-9: that case is held to its own round-off sensitivity instead (test_seed_flip_*).
 FLIP = [1.0, 10.0, 1.0]
 TWENTY = np.linspace(0.0, 20.0, 401)
-
-
-@pytest.fixture(scope="module")
-def browser():
-    from playwright.sync_api import sync_playwright
-
-    chromium = browser_or_skip()
-    with sync_playwright() as p:
-        launched = p.chromium.launch(executable_path=chromium, headless=True, args=FLAGS)
-        try:
-            yield launched
-        finally:
-            launched.close()
-
-
-class Watched:
-    """A browser page that records console errors, uncaught exceptions and outside requests."""
-
-    def __init__(self, browser):
-        self.page = browser.new_page(viewport={"width": 1300, "height": 1000})
-        self.errors, self.outside = [], []
-        self.page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
-        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
-        self.page.route("**/*", self._route)
-
-    def _route(self, route):
-        if route.request.url.startswith(("file:", "data:", "blob:", "about:")):
-            return route.continue_()
-        self.outside.append(route.request.url)
-        return route.abort()
-
-    def clean(self) -> bool:
-        return self.errors == [] and self.outside == []
+VIEWPORT = {"width": 1300, "height": 1000}
 
 
 @pytest.fixture
-def js(browser):
+def js(new_page):
     """A blank page holding splitting.js alone (no viewer needed)."""
-    w = Watched(browser)
+    w = new_page(viewport=VIEWPORT)
     w.page.set_content(f"<!DOCTYPE html><html><body><script>{SPLITTING.read_text()}</script></body></html>")
     yield w
     assert w.clean(), (w.errors, w.outside)
-    w.page.close()
 
 
 def js_propagate(page, moments, omega0, quat0, t, order, step=None):
@@ -211,12 +177,11 @@ def page_file(tmp_path_factory):
 
 
 @pytest.fixture
-def live(browser, page_file):
-    w = Watched(browser)
+def live(new_page, page_file):
+    w = new_page(viewport=VIEWPORT)
     w.page.goto(page_file.as_uri())
     w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
-    yield w
-    w.page.close()
+    return w
 
 
 def run_form(page, moments=None, omega0=None, t_end=None, preset=None):
@@ -327,16 +292,13 @@ def test_live_bad_input_is_shown_in_the_form(live):
     assert live.clean(), (live.errors, live.outside)
 
 
-def test_live_mode_on_a_page_with_a_torque_runs_the_free_body(browser, tmp_path):
+def test_live_mode_on_a_page_with_a_torque_runs_the_free_body(new_page, tmp_path):
     out = tmp_path / "gravity.html"  # a boom under the gravity-gradient torque
     assert main(["view", str(EXAMPLES / "gravity_boom.toml"), "--out", str(out), "--frames", "20"]) == 0
-    w = Watched(browser)
-    try:
-        w.page.goto(out.as_uri())
-        w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
-        run = run_form(w.page, preset="this body")
-        assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
-        assert "the live run is the free rigid body" in w.page.inner_text("#tumble-live-status")
-        assert w.clean(), (w.errors, w.outside)
-    finally:
-        w.page.close()
+    w = new_page(viewport=VIEWPORT)
+    w.page.goto(out.as_uri())
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    run = run_form(w.page, preset="this body")
+    assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
+    assert "the live run is the free rigid body" in w.page.inner_text("#tumble-live-status")
+    assert w.clean(), (w.errors, w.outside)

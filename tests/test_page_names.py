@@ -12,7 +12,7 @@ import html
 import json
 
 import pytest
-from test_page import open_page
+from test_page import open_viewer
 
 import tumble
 from tumble._html import escape_text, script_json
@@ -77,29 +77,23 @@ def test_hostile_names_stay_inside_the_data_element(hostile_page):
     assert f"<title>{escaped}</title>" in page and f'<h1 id="tumble-title">{escaped}</h1>' in page
 
 
-def test_page_with_hostile_names_plays_in_chromium(hostile_page):
+def test_page_with_hostile_names_plays_in_chromium(hostile_page, new_page):
     """The viewer ran (its plots drawn, the form filled) and the names read as they were given."""
-    from playwright.sync_api import sync_playwright
-
-    errors, outside = [], []
-    with sync_playwright() as p:
-        browser, page = open_page(p, hostile_page.as_uri(), errors, outside)
-        try:
-            method = page.evaluate("JSON.parse(document.getElementById('tumble-data').textContent).method")
-            assert page.title() == title_of(method)
-            assert page.text_content("#tumble-title") == title_of(method)
-            assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 10}
-            # the page's own scripts only (plotly, splitting, live, viewer, data): none swallowed, none added
-            assert page.evaluate("document.scripts.length") == 5
-            for plot in ("#tumble-ground", "#tumble-body", "#tumble-omega"):
-                assert page.locator(f"{plot} .main-svg").count() >= 1, plot
-            assert page.locator("#tumble-ground canvas").count() >= 1  # WebGL scene
-            options = page.evaluate("Array.from(document.querySelectorAll('#tumble-live-preset option'),"
-                                    " (o) => o.textContent)")
-            assert f"this body ({HOSTILE})" in options[0]
-        finally:
-            browser.close()
-    assert errors == [] and outside == []
+    watched = open_viewer(new_page, hostile_page.as_uri())
+    page = watched.page
+    method = page.evaluate("JSON.parse(document.getElementById('tumble-data').textContent).method")
+    assert page.title() == title_of(method)
+    assert page.text_content("#tumble-title") == title_of(method)
+    assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 10}
+    # the page's own scripts only (plotly, splitting, live, viewer, data): none swallowed, none added
+    assert page.evaluate("document.scripts.length") == 5
+    for plot in ("#tumble-ground", "#tumble-body", "#tumble-omega"):
+        assert page.locator(f"{plot} .main-svg").count() >= 1, plot
+    assert page.locator("#tumble-ground canvas").count() >= 1  # WebGL scene
+    options = page.evaluate("Array.from(document.querySelectorAll('#tumble-live-preset option'),"
+                            " (o) => o.textContent)")
+    assert f"this body ({HOSTILE})" in options[0]
+    assert watched.errors == [] and watched.outside == []
 
 
 def test_notebook_frame_with_hostile_names():
