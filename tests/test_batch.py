@@ -18,8 +18,7 @@ from tumble.dynamics.exact_batch import quat_multiply, quat_zxz
 
 def props(I) -> tumble.MassProperties:
     """A body with these principal moments along the design axes (principal = design frame)."""
-    I = np.asarray(I, float)
-    return tumble.MassProperties(1.0, np.zeros(3), np.diag(I), I.copy(), np.eye(3))
+    return tumble.MassProperties.from_moments(I)
 
 
 def loop(I, w, q, t, method="exact", **kw):

@@ -21,7 +21,7 @@ from tumble.mass import MassProperties
 
 def free_body(moments):
     """A body with given principal moments along the design axes (no parts needed)."""
-    return MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    return MassProperties.from_moments(moments)
 
 
 def test_principal_and_full_tensor_forms_agree(rng):

@@ -365,7 +365,7 @@ def test_nutation_follows_the_trajectory_rule_for_prolate_and_asymmetric_bodies(
     rng = np.random.default_rng(0)
     for moments in ([1.0, 3.0, 3.0], [1.0, 2.0, 2.5], [2.0, 2.0, 2.0]):
         w = rng.normal(size=(1, 50, 3))
-        body = MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+        body = MassProperties.from_moments(moments)
         traj = tumble.simulate(body, w[0, 0], times=np.linspace(0, 1, 50))
         batch = nutation_angle(traj.omega[None], np.array([moments], float))
         assert np.allclose(batch[0], traj.nutation_angle, rtol=1e-14, atol=0)
@@ -404,7 +404,7 @@ def test_the_stability_map_is_the_simulated_flip_period_at_sample_points():
     for i, j in points:
         moments = np.array([m.x[j], m.y[i], 1.0])
         T = m.flip_interval[i, j]
-        traj = tumble.simulate(MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments)), m.omega0,
+        traj = tumble.simulate(MassProperties.from_moments(moments), m.omega0,
                                t_end=6.5 * T, samples=6000, method="dop853", rtol=1e-11)
         report = stability_report(traj)
         assert report["flips"] == 6

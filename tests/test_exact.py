@@ -19,7 +19,7 @@ from tumble.mass import MassProperties
 
 
 def free_body(moments):
-    return MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    return MassProperties.from_moments(moments)
 
 
 # -- the elliptic functions ------------------------------------------------------------------

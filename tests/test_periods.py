@@ -15,6 +15,8 @@ from tumble.analysis import flip_interval
 
 
 def body(moments):
+    # Field by field, not MassProperties.from_moments: some CASES ([1, 1, 3], [2, 2.5, 7]) lie
+    # outside the triangle inequality, which the closed forms and Euler's equations do not need.
     I = np.asarray(moments, float)
     return tumble.MassProperties(1.0, np.zeros(3), np.diag(I), I.copy(), np.eye(3))
 

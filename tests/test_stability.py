@@ -24,7 +24,7 @@ from tumble.mass import MassProperties
 
 
 def free_body(moments):
-    return MassProperties.from_inertia(1.0, np.zeros(3), np.diag(moments))
+    return MassProperties.from_moments(moments)
 
 
 @st.composite
