@@ -44,7 +44,7 @@ def assert_columns_are_the_principal_axes(A, body):
     assert np.linalg.det(A) == pytest.approx(1.0, abs=1e-12)
 
 
-# -- item 12: principal_axes is one matrix, columns are the axes, in Python and in JSON -------------
+# -- principal_axes is one matrix, columns are the axes, in Python and in JSON ----------------------
 
 @pytest.mark.parametrize("name", BODIES)
 def test_inertia_json_principal_axes_is_the_python_matrix(name):
@@ -89,7 +89,7 @@ def test_cli_simulate_summary_json_principal_axes(tmp_path):
     assert data["stability"]["axis"] == 2 and data["stability"]["role"] == "intermediate"
 
 
-# -- item 11: axes count from 1 in every output and every argument -------------------------------
+# -- axes count from 1 in every output and every argument ----------------------------------------
 
 @pytest.mark.parametrize("axis", [1, 2, 3])
 def test_every_output_numbers_the_spin_axis_alike(axis):
@@ -117,7 +117,7 @@ def test_top_level_linearised_rate_is_one_based():
         tumble.linearised_rate(tumble.t_handle().principal_moments, -1, 10.0)
 
 
-# -- item 13a: a vector given by hand is a list, a tuple or an array of exactly 3 numbers ----------
+# -- a vector given by hand is a list, a tuple or an array of exactly 3 numbers --------------------
 
 NOT_VECTORS = [
     {0: 1.0, 1: 2.0, 2: 3.0},  # a dict: its keys would become the vector

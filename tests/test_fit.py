@@ -335,7 +335,7 @@ def test_periods_do_not_determine_the_ratios():
 
 
 def test_units_named_in_a_plain_header_are_converted_or_refused(tmp_path):
-    """Hardening II, item 7: ``time (ms)`` was read as seconds and ``deg/s`` as rad/s."""
+    """A header's units count: ``time (ms)`` was once read as seconds and ``deg/s`` as rad/s."""
     path = tmp_path / "units.csv"
     path.write_text("t (ms),wx [deg/s],wy (dps),wz (rpm)\n0,180,90,60\n10,-180,0,30\n", encoding="utf-8")
     t, w = read_gyro_csv(path)
