@@ -170,7 +170,7 @@ def complete_integrals(n, kp: tuple[float, float], exponent: int = 0):
     shift = max(-61 - e, 0)  # k' = k'_60 2^-shift
     kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
     n = (float(n[0]), float(n[1])) if isinstance(n, tuple) else (float(n), 0.0)
-    one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))  # 1 - n, without rounding n first
+    one_n = dd.add((1.0, 0.0), dd.neg(n))  # 1 - n, without rounding n first
     K = _agm_k(kp)
     Pi = K if n[0] == 0.0 else _cel(kp, one_n)
     if shift > 0:

@@ -32,6 +32,7 @@ __all__ = [
     "mul",
     "mul_d",
     "mul_scaled",
+    "neg",
     "reduce_2pi",
     "sqrt",
     "two_prod",
@@ -124,7 +125,8 @@ def sqrt(x):
         return _fast_two_sum(y, np.where((y > 0) & (y < np.inf), corr, 0.0))
 
 
-def _neg(x):
+def neg(x):
+    """``-x`` for a double-double (exact)."""
     return -x[0], -x[1]
 
 
@@ -143,7 +145,7 @@ def reduce_2pi(x) -> np.ndarray:
     r = x
     for _ in range(2):
         q = np.rint(r[0] / _TWO_PI[0])
-        r = add(r, _neg(two_prod(q, _TWO_PI[0])))
-        r = add(r, _neg(two_prod(q, _TWO_PI[1])))
+        r = add(r, neg(two_prod(q, _TWO_PI[0])))
+        r = add(r, neg(two_prod(q, _TWO_PI[1])))
         r = add(r, (-q * _TWO_PI[2], 0.0 * q))
     return r[0] + r[1]

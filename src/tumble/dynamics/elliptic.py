@@ -143,11 +143,11 @@ class Modulus:
         if np.any(lost):
             u = (np.where(lost, np.fmod(u[0], 4.0 * self.K[0]), u[0]), np.where(lost, 0.0, u[1]))
         j1 = np.rint(u[0] / twoK[0])
-        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
         j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
-        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
         q = np.rint(r[0] / self.K[0])  # -1, 0 or 1: the nearest quarter period
-        v = dd.add(r, _neg(dd.mul_d(self.K, q)))
+        v = dd.add(r, dd.neg(dd.mul_d(self.K, q)))
         s, c, d = self._landen(v[0] + v[1])
         with np.errstate(divide="ignore", invalid="ignore"):
             sn = np.where(q == 0, s, q * c / d)
@@ -156,9 +156,6 @@ class Modulus:
         odd = (np.fmod(np.abs(j1), 2.0) + np.abs(j2)) % 2.0 == 1.0
         return (j1, j2), odd, sn, cn, np.where(np.isfinite(dn), dn, 0.0)
 
-
-def _neg(x):
-    return -x[0], -x[1]
 
 
 def ellipk(m: float, m1: float) -> float:
@@ -235,7 +232,7 @@ def pi_excess_complete(n: float, m1: float) -> float:
     if m1 == 0.0:
         return -math.inf if n < 0 else 0.0
     K, Pi = complete_integrals(n, (math.sqrt(m1), 0.0))
-    return dd.add(Pi, _neg(K))[0]
+    return dd.add(Pi, dd.neg(K))[0]
 
 
 def pi_complete(n: float, m1: float) -> float:

@@ -243,7 +243,7 @@ class FreeRotation:
         # extreme moment): Pi(0; phi | m) = F(phi | m), the excess vanishes, and rate1 / p (huge
         # for a vanishing axial spin, 1e300 at 1e-300 rad/s) must not be formed
         scale = dd.div(rate1, p) if n != (0.0, 0.0) else (0.0, 0.0)
-        one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))
+        one_n = dd.add((1.0, 0.0), dd.neg(n))
         # phi(t) = rate0 t + (rate1 / p) [Pi(u) - Pi(u0)] (module docstring), split into a secular
         # part A t + B j and a bounded one b(u_r) - b(u0_r) that is evaluated without cancellation:
         # - m1 = 0: Pi(n; am u | 1) = (u + a atan(a tanh u)) / (1 - n), a = sqrt(-n) (integrate
@@ -257,10 +257,10 @@ class FreeRotation:
             mode, A, B = "separatrix", dd.add(rate0, dd.div(rate1, one_n)), zero
         elif abs(n[0]) <= 1.0:
             mode, A = "excess", dd.add(rate0, rate1)
-            B = dd.mul(dd.mul_d(scale, 2.0), dd.add(Pi, (-K[0], -K[1])))
+            B = dd.mul(dd.mul_d(scale, 2.0), dd.add(Pi, dd.neg(K)))
         else:
             mode, A, B = "pi", rate0, dd.mul(dd.mul_d(scale, 2.0), Pi)
-        excess_c = dd.add(Pi, (-K[0], -K[1]))[0] if not separatrix else -math.inf
+        excess_c = dd.add(Pi, dd.neg(K))[0] if not separatrix else -math.inf
         self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=p, m=k * k,
                   m1=math.ldexp(kp_m[0] ** 2, 2 * kp_e) if kp_e > -600 else 0.0, k=k, kp=kp,
                   modulus=modulus, u0=u0, j0=j0, n=n[0], Lnorm=float(np.linalg.norm(I * w)),
@@ -283,7 +283,7 @@ class FreeRotation:
         if kp > 0 and abs(s0) * d0 > c0 and not math.isinf(K[0]):
             u1 = float(legendre_f(c0 / d0, kp * abs(s0) / d0, kp / d0)) if d0 > 0 else 0.0
             far = dd.add(K, (-u1, 0.0))
-            return (far[0], far[1]) if s0 > 0 else (-far[0], -far[1])
+            return (far[0], far[1]) if s0 > 0 else dd.neg(far)
         return float(legendre_f(s0, c0, d0, K=K[0])), 0.0
 
     def _set(self, **values) -> None:

@@ -290,7 +290,7 @@ def _complete_k(kp_m, kp_e):
 
 def _complete_pi(n, kp, shift, K):
     """``Pi(n | m)`` (a double-double), ``n <= 0``, from :func:`_complete_k`'s answers."""
-    one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), (-n[0], -n[1]))
+    one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), dd.neg(n))
     Pi = _pick(n[0] == 0.0, K, _cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
     log = dd.mul_d(dd.LN2, shift.astype(float))
     return _pick(shift > 0, dd.add(Pi, dd.div(log, one_n)), Pi)
@@ -374,7 +374,7 @@ class _Elliptic:
         scale = dd.div(rate1, p)
         Pi = _complete_pi(n, kp_shifted, shift, K)
         pi_mode = np.abs(n[0]) > 1.0  # else the excess form: Pi - F with F(am u) = u exactly
-        excess = dd.add(Pi, (-K[0], -K[1]))
+        excess = dd.add(Pi, dd.neg(K))
         self.A = _pick(pi_mode, rate0, dd.add(rate0, rate1))
         self.B = dd.mul(dd.mul_d(scale, 2.0), _pick(pi_mode, Pi, excess))
         self.n, self.scale, self.pi_mode, self.excess_c = n[0], scale[0], pi_mode, excess[0]
@@ -391,7 +391,7 @@ class _Elliptic:
         u1 = np.zeros_like(s0)
         u1[g] = legendre_f(c0[g] / dg, kp[g] * np.abs(s0[g]) / dg, kp[g] / dg)
         shifted = dd.add(K, (-u1, np.zeros_like(u1)))
-        shifted = _pick(s0 > 0, shifted, _neg(shifted))
+        shifted = _pick(s0 > 0, shifted, dd.neg(shifted))
         hi[far], lo[far] = shifted[0][far], shifted[1][far]
         hi[~far] = legendre_f(s0[~far], c0[~far], d0[~far], K=K[0][~far])
         return hi, lo
@@ -402,11 +402,11 @@ class _Elliptic:
         K = (self.K[0][:, None], self.K[1][:, None])
         twoK = (2.0 * K[0], 2.0 * K[1])
         j1 = np.rint(u[0] / twoK[0])
-        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
         j2 = np.rint(r[0] / twoK[0])
-        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
         q = np.rint(r[0] / K[0])
-        v = dd.add(r, _neg(dd.mul_d(K, q)))
+        v = dd.add(r, dd.neg(dd.mul_d(K, q)))
         s, c, d = self._landen(v[0] + v[1])
         kp = self.kp[:, None]
         sn = np.where(q == 0, s, q * c / d)
@@ -484,6 +484,3 @@ class _Elliptic:
         Lr = np.where(up, L[..., 2], L[..., 0])
         return np.arctan2(np.hypot(Li, Lj), Lr), np.arctan2(Li, Lj)
 
-
-def _neg(x):
-    return -x[0], -x[1]
