@@ -46,15 +46,11 @@ from .carlson import complete_integrals, legendre_f, legendre_pi_excess
 
 __all__ = [
     "Modulus",
-    "carlson_f",
     "carlson_pi",
-    "carlson_pi_excess",
     "ellipk",
     "ellipk_kp",
     "jacobi",
     "jacobi_reduced",
-    "pi_complete",
-    "pi_excess_complete",
 ]
 
 
@@ -202,41 +198,10 @@ def jacobi(u, m: float, m1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return sign * sn, sign * cn, dn
 
 
-def carlson_f(s, c, m1: float) -> np.ndarray:
-    """``F(phi | m)`` for ``|phi| <= pi/2`` from ``s = sin phi``, ``c = cos phi >= 0``."""
-    s, c = np.asarray(s, float), np.asarray(c, float)
-    return legendre_f(s, c, np.hypot(c, math.sqrt(m1) * s))
-
-
 def carlson_pi(n: float, s, c, d) -> np.ndarray:
     """``Pi(n; phi | m)`` for ``|phi| <= pi/2`` from ``sin phi``, ``cos phi`` and
     ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n <= 0``.
 
     ``Pi(n; phi | m) = int_0^phi d theta / ((1 - n sin^2 theta) sqrt(1 - m sin^2 theta))``.
     """
-    return legendre_f(s, c, d) + carlson_pi_excess(n, s, c, d)
-
-
-def carlson_pi_excess(n: float, s, c, d, m: float | None = None) -> np.ndarray:
-    """``Pi(n; phi | m) - F(phi | m) = (n / 3) sin^3 phi R_J(c^2, Delta^2, 1, 1 - n sin^2 phi)``.
-
-    The second term of DLMF 19.25.14 alone: ``O(n)``, so a caller that knows ``F`` exactly
-    (``F(am u) = u``) loses nothing to the cancellation ``Pi - F`` when ``n`` is small. ``m``,
-    if given, spares forming ``1 - Delta^2`` (:func:`tumble.dynamics.carlson.legendre_pi_excess`).
-    """
-    return legendre_pi_excess(n, s, c, d, m=m)
-
-
-def pi_excess_complete(n: float, m1: float) -> float:
-    """``Pi(n | m) - K(m)`` (``n <= 0``; double-double internally, see :func:`pi_complete`)."""
-    if m1 == 0.0:
-        return -math.inf if n < 0 else 0.0
-    K, Pi = complete_integrals(n, (math.sqrt(m1), 0.0))
-    return dd.add(Pi, dd.neg(K))[0]
-
-
-def pi_complete(n: float, m1: float) -> float:
-    """Complete integral of the third kind ``Pi(n | m)``, ``n <= 0`` (Bulirsch's ``cel``)."""
-    if m1 == 0.0:
-        return math.inf
-    return complete_integrals(n, (math.sqrt(m1), 0.0))[1][0]
+    return legendre_f(s, c, d) + legendre_pi_excess(n, s, c, d)

@@ -362,12 +362,6 @@ class FreeRotation:
         secular = dd.add(dd.mul_scaled(A, t), dd.add(dd.mul_scaled(B, j1), dd.mul_scaled(B, j2 - self.j0)))
         return secular, self._bounded(sn, cn, dn) - self.b0
 
-    def precession_angle(self, t) -> np.ndarray:
-        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37);
-        to double precision of its size (the attitude uses it reduced mod 2 pi, exactly)."""
-        secular, bounded = self._precession(np.asarray(t, float))
-        return secular[0] + (secular[1] + bounded)
-
     def attitude(self, t) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""
         t = np.atleast_1d(np.asarray(t, float))
