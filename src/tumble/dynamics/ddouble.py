@@ -33,6 +33,7 @@ __all__ = [
     "mul_d",
     "mul_scaled",
     "neg",
+    "norm",
     "reduce_2pi",
     "sqrt",
     "two_prod",
@@ -128,6 +129,21 @@ def sqrt(x):
 def neg(x):
     """``-x`` for a double-double (exact)."""
     return -x[0], -x[1]
+
+
+def norm(v):
+    """``|v|`` of a sequence of double-doubles (floats or arrays, elementwise), as a double-double
+    mantissa ``s`` and a power of two ``e``: ``|v| = s 2^e``. Each component is scaled by the
+    power of two of the largest first (exactly), so that no square underflows or overflows."""
+    big = abs(v[0][0])
+    for x in v[1:]:
+        big = np.maximum(big, abs(x[0]))
+    e = np.frexp(big)[1]  # 0 for big = 0
+    acc = (0.0, 0.0)
+    for x in v:
+        x = ldexp(x, -e)
+        acc = add(acc, mul(x, x))
+    return sqrt(acc), e
 
 
 def ldexp(x, e):

@@ -115,7 +115,7 @@ def check_phase_limit(moments, omega0, t_end: float) -> None:
     FreeRotation(I, w, Rotation.identity())._check_time(t_end)
 
 
-def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
+def is_steady(I, w) -> np.ndarray:
     """Whether ``omega`` is constant: ``w x I w = 0`` decided by exact comparisons.
 
     Not by evaluating ``cross(L, w) == 0``, which depends on round-off. The cases
@@ -123,26 +123,18 @@ def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
     components zero); a symmetric top spinning in its degenerate plane (``I1 == I2`` with
     ``w3 == 0``, ``I2 == I3`` with ``w1 == 0``), where every axis of the plane is principal.
     Moments that are equal only to round-off are not equal here: a body declared symmetric is
-    made exactly so by :func:`tumble.mass.principal_frame`.
+    made exactly so by :func:`tumble.mass.principal_frame`. ``I`` (ascending, kg m^2) and ``w``
+    (rad/s) of shape (..., 3); a bool array of shape (...), for one body as for a batch
+    (:func:`tumble.dynamics.exact_batch.free_rotation_batch`).
     """
-    zeros = int(np.count_nonzero(w == 0.0))
-    return bool(I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w[2] == 0.0) or (I[1] == I[2] and w[0] == 0.0))
+    I, w = np.asarray(I), np.asarray(w)
+    zeros = np.count_nonzero(w == 0.0, axis=-1)
+    return ((I[..., 0] == I[..., 2]) | (zeros >= 2) | ((I[..., 0] == I[..., 1]) & (w[..., 2] == 0.0))
+            | ((I[..., 1] == I[..., 2]) & (w[..., 0] == 0.0)))
 
 
 def _dd_float(x) -> tuple[float, float]:
     return float(x[0]), float(x[1])
-
-
-def _norm(v) -> tuple[tuple[float, float], int]:
-    """``|v|`` of three double-doubles ``v`` as a double-double mantissa and a power of two:
-    scaled first, so that no square underflows."""
-    big = max(abs(float(x[0])) for x in v)
-    e = math.frexp(big)[1] if big > 0 else 0
-    acc = (0.0, 0.0)
-    for x in v:
-        x = (math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e))
-        acc = dd.add(acc, dd.mul(x, x))
-    return dd.sqrt(acc), e
 
 
 # Cyclic relabellings of the body axes that put the reference axis last: (i, j, r).
@@ -188,9 +180,9 @@ class FreeRotation:
             raise ValueError(f"moments = {I.tolist()} must be three positive numbers in ascending order (kg m^2)")
         if not (w.shape == (3,) and np.all(np.isfinite(w))):
             raise ValueError(f"omega0 = {w.tolist()} must be three finite numbers (rad/s)")
-        self._set(steady=_is_steady(I, w))
+        self._set(steady=bool(is_steady(I, w)))
         if self.steady:
-            spin, e = _norm([(x, 0.0) for x in w])
+            spin, e = dd.norm([(x, 0.0) for x in w])
             self._set(spin=dd.ldexp(spin, e), axis=np.ldexp(w, -e) / spin[0] if spin[0] > 0 else w)
             self._set(phase_rate=self.spin[0])
             return
@@ -235,7 +227,7 @@ class FreeRotation:
         # Rates of the precession about L (module docstring), from the scaled moments and omega
         Is = [float(x) for x in core["moments"]]
         Ir, Io = Is[r], Is[2 - r]
-        Ln, e = _norm([dd.two_prod(x, float(y)) for x, y in zip(Is, w)])  # |L| for the scaled moments
+        Ln, e = dd.norm([dd.two_prod(x, float(y)) for x, y in zip(Is, w)])  # |L| for the scaled moments
         Ln = dd.ldexp(Ln, e)
         rate0 = dd.div(Ln, (Ir, 0.0))
         rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[0], Is[2]))

@@ -32,7 +32,7 @@ from scipy.spatial.transform import Rotation
 
 from . import ddouble as dd
 from .carlson import agm_k_value, agm_step, cel_next, cel_step, cel_value, legendre_f, legendre_pi_excess
-from .exact import MAX_PHASE, FreeRotation, check_phase_limit
+from .exact import MAX_PHASE, FreeRotation, check_phase_limit, is_steady
 from .exact_parameters import scaled_core
 
 __all__ = ["free_rotation_batch", "quat_conjugate", "quat_multiply", "quat_zxz", "rotate_by_quaternion"]
@@ -137,7 +137,7 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
     N, T = len(I), len(t)
     omega = np.empty((N, T, 3))
     quat = np.empty((N, T, 4)) if attitude else None
-    steady = _is_steady(I, w)
+    steady = is_steady(I, w)
     idx = np.flatnonzero(steady)
     if len(idx):
         omega[idx] = w[idx, None, :]
@@ -176,25 +176,6 @@ def _check_phases(I, w, t) -> None:
             raise ValueError(f"omega0[{i}]: {err}") from None
 
 
-def _is_steady(I, w) -> np.ndarray:
-    """exact.py's ``_is_steady`` on arrays: the same exact comparisons."""
-    zeros = np.count_nonzero(w == 0.0, axis=1)
-    return ((I[:, 0] == I[:, 2]) | (zeros >= 2) | ((I[:, 0] == I[:, 1]) & (w[:, 2] == 0.0))
-            | ((I[:, 1] == I[:, 2]) & (w[:, 0] == 0.0)))
-
-
-def _norm(v):
-    """``|v|`` of three double-doubles (arrays) as a double-double mantissa and a power of two,
-    scaled first so that no square underflows (exact.py's ``_norm``, elementwise)."""
-    big = np.maximum(np.maximum(np.abs(v[0][0]), np.abs(v[1][0])), np.abs(v[2][0]))
-    e = np.frexp(big)[1]
-    acc = (np.zeros_like(big), np.zeros_like(big))
-    for x in v:
-        x = (np.ldexp(x[0], -e), np.ldexp(x[1], -e))
-        acc = dd.add(acc, dd.mul(x, x))
-    return dd.sqrt(acc), e
-
-
 def _times(x, t):
     """``x t`` for double-doubles ``x`` of shape (n,) and times ``t`` (n, T) or (T,), scaled by
     powers of two first (:func:`tumble.dynamics.ddouble.mul_scaled`, elementwise)."""
@@ -204,7 +185,7 @@ def _times(x, t):
 
 def _steady_attitude(w, q0, t) -> np.ndarray:
     """``q0 (x) exp(|w| t e_w)``: the turn about the fixed omega, its angle in double-double."""
-    spin, e = _norm([(x, np.zeros_like(x)) for x in w.T])
+    spin, e = dd.norm([(x, np.zeros_like(x)) for x in w.T])
     axis = np.where(spin[0][:, None] > 0, np.ldexp(w, -e[:, None]) / np.where(spin[0] > 0, spin[0], 1.0)[:, None], w)
     angle = 0.5 * dd.reduce_2pi(_times(dd.ldexp(spin, e), t))
     turn = np.concatenate([np.sin(angle)[..., None] * axis[:, None, :], np.cos(angle)[..., None]], axis=-1)
@@ -367,7 +348,7 @@ class _Elliptic:
         K, p, rows = self.K, self.p, np.arange(len(Is))
         r = np.where(self.upper, 2, 0)
         Ir, Io = Is[rows, r], Is[rows, 2 - r]
-        Ln, e = _norm([dd.two_prod(Is[:, i], self.w[:, i]) for i in range(3)])
+        Ln, e = dd.norm([dd.two_prod(Is[:, i], self.w[:, i]) for i in range(3)])
         Ln = dd.ldexp(Ln, e)
         rate0 = dd.div(Ln, (Ir, np.zeros_like(Ir)))
         rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[:, 0], Is[:, 2]))
