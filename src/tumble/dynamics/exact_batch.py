@@ -8,8 +8,9 @@ operations, on arrays of bodies instead of one body at a time:
   :func:`tumble.dynamics.exact_parameters.scaled_core` (which broadcasts);
 - the complete integrals ``K(m)`` and ``Pi(n | m)`` in double-double by the AGM (Abramowitz &
   Stegun 17.6) and Bulirsch's ``cel`` (Numer. Math. 13 (1969) 305), with the shift for
-  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`; each body stops iterating where the scalar
-  routine stops (a mask), so the values are the scalar ones;
+  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`, whose kernels (:func:`~tumble.dynamics.
+  carlson.agm_k`, :func:`~tumble.dynamics.carlson.cel`) take arrays: each body stops iterating
+  where the one-body loop stops (a mask), so the values are the one-body ones;
 - the phase ``u = u0 + p t`` and its reduction by half periods in double-double, and ``sn, cn,
   dn`` of the reduced phase by the AGM and descending Landen transformation (``m <= 1/2``) or
   Jacobi's imaginary transformation (``m > 1/2``) of :class:`tumble.dynamics.elliptic.Modulus`,
@@ -31,7 +32,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from . import ddouble as dd
-from .carlson import agm_k_value, agm_step, cel_next, cel_step, cel_value, legendre_f, legendre_pi_excess
+from .carlson import agm_k, cel, legendre_f, legendre_pi_excess
 from .exact import MAX_PHASE, FreeRotation, check_phase_limit, is_steady
 from .exact_parameters import scaled_core
 
@@ -197,66 +198,6 @@ def _pick(cond, x, y):
     return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
 
 
-def _masked_loop(state, step, limit: int = 40):
-    """Iterate ``state = step(state)`` elementwise, the last item of the state saying where an
-    element has stopped; each element leaves the loop with the state it stopped in (the scalar
-    loops' ``break``, on arrays), and only the others go on. Items are arrays or double-doubles."""
-    def take(x, sel):
-        return tuple(a[sel] for a in x) if isinstance(x, tuple) else x[sel]
-
-    def put(out, idx, x):
-        for o, a in (zip(out, x) if isinstance(out, tuple) else ((out, x),)):
-            o[idx] = a
-
-    out = tuple(tuple(a.copy() for a in x) if isinstance(x, tuple) else x.copy() for x in state)
-    idx = np.arange(np.size(state[-1]))
-    for _ in range(limit):
-        state = step(state)
-        stop = state[-1]
-        for o, x in zip(out, state):
-            put(o, idx[stop], take(x, stop))
-        go = ~stop
-        idx, state = idx[go], tuple(take(x, go) for x in state)
-        if not idx.size:
-            break
-    for o, x in zip(out, state):  # the limit reached: as the scalar loop leaves them
-        put(o, idx, x)
-    return out
-
-
-def _agm_k(kp):
-    """``K = pi / (2 AGM(1, k'))`` in double-double, elementwise (carlson's ``_agm_k``)."""
-    one = (np.ones_like(kp[0]), np.zeros_like(kp[0]))
-
-    def step(s):  # carlson's loop tests |a - b| before a step: an element stops unchanged
-        a, b, _ = s
-        stop = np.abs(a[0] - b[0]) <= 1e-17 * a[0]
-        a2, b2 = agm_step(a, b)
-        return _pick(stop, a, a2), _pick(stop, b, b2), stop
-
-    a, b, _ = _masked_loop((one, kp, np.zeros(kp[0].shape, bool)), step)
-    return agm_k_value(a, b)
-
-
-def _cel(kc, pp):
-    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double, elementwise: carlson's ``_cel`` with its
-    steps (:func:`tumble.dynamics.carlson.cel_step`) masked per element."""
-    one = (np.ones_like(kc[0]), np.zeros_like(kc[0]))
-    p = dd.sqrt(pp)
-    a, b = one, dd.div(one, p)
-
-    def step(s):
-        a, b, p, e, em, qc, _ = s
-        a, b, p, g, em = cel_step(a, b, p, e, em, qc)
-        stop = np.abs(g[0] - qc[0]) <= 1e-17 * g[0]  # the break comes before qc and e change
-        qc2, e2 = cel_next(e, em)
-        return a, b, p, _pick(stop, e, e2), em, _pick(stop, qc, qc2), stop
-
-    state = (a, b, p, kc, one, kc, np.zeros(kc[0].shape, bool))
-    a, b, p, _, em, _, _ = _masked_loop(state, step)
-    return cel_value(a, b, p, em)
-
-
 def _complete_k(kp_m, kp_e):
     """``K`` (a double-double) for ``k' = kp_m 2^kp_e``, elementwise (carlson's
     ``complete_integrals``, with its shift for ``k' < 2^-61``); also the shifted ``k'`` and the
@@ -264,7 +205,7 @@ def _complete_k(kp_m, kp_e):
     e = np.frexp(kp_m[0])[1] + kp_e
     shift = np.maximum(-61 - e, 0)
     kp = (np.ldexp(kp_m[0], kp_e + shift), np.ldexp(kp_m[1], kp_e + shift))
-    K = _agm_k(kp)
+    K = agm_k(kp)
     log = dd.mul_d(dd.LN2, shift.astype(float))
     return _pick(shift > 0, dd.add(K, log), K), kp, shift
 
@@ -272,7 +213,7 @@ def _complete_k(kp_m, kp_e):
 def _complete_pi(n, kp, shift, K):
     """``Pi(n | m)`` (a double-double), ``n <= 0``, from :func:`_complete_k`'s answers."""
     one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), dd.neg(n))
-    Pi = _pick(n[0] == 0.0, K, _cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
+    Pi = _pick(n[0] == 0.0, K, cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
     log = dd.mul_d(dd.LN2, shift.astype(float))
     return _pick(shift > 0, dd.add(Pi, dd.div(log, one_n)), Pi)
 
