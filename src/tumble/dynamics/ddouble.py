@@ -135,13 +135,22 @@ def norm(v):
     """``|v|`` of a sequence of double-doubles (floats or arrays, elementwise), as a double-double
     mantissa ``s`` and a power of two ``e``: ``|v| = s 2^e``. Each component is scaled by the
     power of two of the largest first (exactly), so that no square underflows or overflows."""
-    big = abs(v[0][0])
-    for x in v[1:]:
-        big = np.maximum(big, abs(x[0]))
-    e = np.frexp(big)[1]  # 0 for big = 0
+    if np.ndim(v[0][0]) == 0:  # one vector: keep to Python's math (fast), as sqrt does
+        e = math.frexp(max(abs(float(x[0])) for x in v))[1]  # 0 for a zero vector
+
+        def scaled(x):
+            return math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e)
+    else:
+        big = abs(v[0][0])
+        for x in v[1:]:
+            big = np.maximum(big, abs(x[0]))
+        e = np.frexp(big)[1]  # 0 where big = 0
+
+        def scaled(x):
+            return ldexp(x, -e)
     acc = (0.0, 0.0)
     for x in v:
-        x = ldexp(x, -e)
+        x = scaled(x)
         acc = add(acc, mul(x, x))
     return sqrt(acc), e
 
