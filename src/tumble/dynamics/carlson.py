@@ -24,12 +24,12 @@ since scipy's ``elliprj`` itself loses accuracy (1e-3 at ``x = y = 1e-170``, mea
 mpmath) when two arguments are below ~1e-150. Only ``c = d = 0`` (``phi = pi/2`` with ``m1``
 below the smallest double) is left, and there the complete values are used.
 
-Complete integrals ``K(m)`` and ``Pi(n | m)`` (double-double, scalars): ``K = pi / (2 AGM(1,
-k'))`` (Abramowitz & Stegun 17.6), and ``Pi(n | m) = cel(k', 1 - n, 1, 1)`` by Bulirsch's
-``cel`` (Bulirsch, "Numerical calculation of elliptic integrals and elliptic functions III",
-Numer. Math. 13 (1969) 305; as in Press et al., *Numerical Recipes*, 2nd ed., sec. 6.11),
-quadratically convergent (a Gauss AGM in disguise) and without cancellation for ``n <= 0``. For ``k' < 2^-60`` both are
-shifted from ``k'_60 = k' 2^(E + 60)`` (``k' = mantissa 2^E``): ``K(k') = K(k'_60) + (-60 - E)
+Complete integrals ``K(m)`` and ``Pi(n | m)`` (double-double; the kernels take floats or
+arrays): ``K = pi / (2 AGM(1, k'))`` (Abramowitz & Stegun 17.6), and ``Pi(n | m) = cel(k', 1 - n,
+1, 1)`` by Bulirsch's ``cel`` (Bulirsch, "Numerical calculation of elliptic integrals and elliptic
+functions III", Numer. Math. 13 (1969) 305; as in Press et al., *Numerical Recipes*, 2nd ed., sec.
+6.11), quadratically convergent (a Gauss AGM in disguise) and without cancellation for ``n <= 0``.
+For ``k' < 2^-60`` both are shifted from ``k'_60 = k' 2^(E + 60)`` (``k' = mantissa 2^E``): ``K(k') = K(k'_60) + (-60 - E)
 ln 2`` and ``Pi(n | k') = Pi(n | k'_60) + (-60 - E) ln 2 / (1 - n)``, exact to ``O(k'^2 ln k')``
 < 1e-34 (from ``K = ln(4 / k') + O(k'^2 ln k')``, DLMF 19.12.1, and the same logarithmic
 singularity with weight 1 / (1 - n) in Pi; both checked against mpmath at 200 digits).
@@ -98,64 +98,89 @@ def legendre_pi_excess(n: float, s, c, d, m: float | None = None, excess_complet
     return np.where(d > 0, value, np.copysign(1.0, s) * excess_complete)
 
 
-def _cel(kc, pp):
-    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double for ``kc = k'`` (a double-double in
-    (2^-61, 1]) and ``pp = 1 - n >= 1`` (a double-double). Numerical Recipes, 2nd ed., sec. 6.11."""
-    one = (1.0, 0.0)
-    qc, e, em = kc, kc, one
-    p = dd.sqrt(pp)
-    a, b = one, dd.div(one, p)
-    for _ in range(40):
-        a, b, p, g, em = cel_step(a, b, p, e, em, qc)
-        if abs(g[0] - qc[0]) <= 1e-17 * g[0]:  # quadratic: the last step gains the other half
+def _one_like(x):
+    """The double-double 1 shaped as the double-double ``x``: floats stay Python floats (the
+    one-body path, fast), arrays give arrays (the batched path)."""
+    return (1.0, 0.0) if np.ndim(x[0]) == 0 else (np.ones_like(x[0]), np.zeros_like(x[0]))
+
+
+def _iterate(state, step, limit: int = 40):
+    """Iterate ``state = step(state)`` until it stops, at most ``limit`` times; ``state`` is a
+    tuple of double-doubles, of floats (one value) or of arrays (elementwise).
+
+    ``step(state)`` returns ``(stop, stopped, advance)``: whether to stop, the state to leave with
+    if so, and a function that gives the next state otherwise. On floats this is the plain loop
+    with its ``break`` (the one-body path, without numpy's overhead on single values); on arrays
+    each element leaves the loop with the state it stopped in and only the others go on, so that
+    every element gets the float loop's answer exactly (:mod:`tumble.dynamics.exact_batch`).
+    """
+    if np.ndim(state[0][0]) == 0:
+        for _ in range(limit):
+            stop, stopped, advance = step(state)
+            if stop:
+                return stopped
+            state = advance()
+        return state
+
+    def take(x, sel):
+        return tuple((a[sel], b[sel]) for a, b in x)
+
+    def put(idx, x):
+        for o, v in zip(out, x):
+            o[0][idx], o[1][idx] = v
+
+    out = tuple((a.copy(), b.copy()) for a, b in state)
+    idx = np.arange(np.size(state[0][0]))
+    for _ in range(limit):
+        stop, stopped, advance = step(state)
+        put(idx[stop], take(stopped, stop))
+        go = ~stop
+        idx, state = idx[go], take(advance(), go)
+        if not idx.size:
             break
-        qc, e = cel_next(e, em)
-    return cel_value(a, b, p, em)
+    put(idx, state)  # the limit reached: as the float loop leaves them
+    return out
 
 
-def cel_step(a, b, p, e, em, qc):
-    """One step of Bulirsch's ``cel`` up to its convergence test (:func:`_cel`): new ``a, b, p``,
-    the previous ``em`` (``g``, tested against ``qc``) and the new ``em``. Double-doubles of
-    floats or of arrays (the batched kernel runs the same arithmetic elementwise)."""
-    f, inv = a, dd.div((1.0, 0.0), p)
-    a = dd.add(a, dd.mul(b, inv))
-    g = dd.mul(e, inv)
-    b = dd.add(b, dd.mul(f, g))
-    b = (2.0 * b[0], 2.0 * b[1])
-    p = dd.add(g, p)
-    return a, b, p, em, dd.add(qc, em)
+def cel(kc, pp):
+    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double for ``kc = k'`` (a double-double in
+    (2^-61, 1]) and ``pp = 1 - n >= 1`` (a double-double), of floats or of arrays (elementwise,
+    the same arithmetic: :func:`_iterate`). Numerical Recipes, 2nd ed., sec. 6.11."""
+    one = _one_like(kc)
+    p = dd.sqrt(pp)
 
+    def step(state):
+        a, b, p, e, em, qc = state
+        f, inv = a, dd.div((1.0, 0.0), p)
+        a = dd.add(a, dd.mul(b, inv))
+        g = dd.mul(e, inv)
+        b = dd.add(b, dd.mul(f, g))
+        b = (2.0 * b[0], 2.0 * b[1])
+        p = dd.add(g, p)
+        g, em = em, dd.add(qc, em)
+        stop = abs(g[0] - qc[0]) <= 1e-17 * g[0]  # quadratic: the last step gains the other half
 
-def cel_next(e, em):
-    """The ``qc, e`` of the next step of :func:`_cel`, once it has not converged."""
-    qc = dd.sqrt(e)
-    qc = (2.0 * qc[0], 2.0 * qc[1])
-    return qc, dd.mul(qc, em)
+        def advance():
+            qc = dd.sqrt(e)
+            qc = (2.0 * qc[0], 2.0 * qc[1])
+            return a, b, p, dd.mul(qc, em), em, qc
 
+        return stop, (a, b, p, e, em, qc), advance
 
-def cel_value(a, b, p, em):
-    """``cel`` from the converged ``a, b, p, em`` of :func:`_cel`."""
+    a, b, p, _, em, _ = _iterate((one, dd.div(one, p), p, kc, one, kc), step)
     return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
 
 
-def _agm_k(kp):
-    """``K = pi / (2 AGM(1, k'))`` in double-double (A&S 17.6); quadratically convergent: once
+def agm_k(kp):
+    """``K = pi / (2 AGM(1, k'))`` in double-double (A&S 17.6) for ``k'`` a double-double of
+    floats or of arrays (elementwise: :func:`_iterate`); quadratically convergent: once
     ``|a - b| <= 1e-17 a`` the mean is the limit to ~1e-34."""
-    a, b = (1.0, 0.0), kp
-    for _ in range(40):
-        if abs(a[0] - b[0]) <= 1e-17 * a[0]:
-            break
-        a, b = agm_step(a, b)
-    return agm_k_value(a, b)
 
+    def step(state):
+        a, b = state
+        return abs(a[0] - b[0]) <= 1e-17 * a[0], state, lambda: (dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b)))
 
-def agm_step(a, b):
-    """One step of the arithmetic-geometric mean in double-double (floats or arrays)."""
-    return dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b))
-
-
-def agm_k_value(a, b):
-    """``K = pi / (2 AGM)`` from the converged ``a, b`` of :func:`_agm_k`."""
+    a, b = _iterate((_one_like(kp), kp), step)
     return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
 
 
@@ -170,9 +195,9 @@ def complete_integrals(n, kp: tuple[float, float], exponent: int = 0):
     shift = max(-61 - e, 0)  # k' = k'_60 2^-shift
     kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
     n = (float(n[0]), float(n[1])) if isinstance(n, tuple) else (float(n), 0.0)
-    one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))  # 1 - n, without rounding n first
-    K = _agm_k(kp)
-    Pi = K if n[0] == 0.0 else _cel(kp, one_n)
+    one_n = dd.add((1.0, 0.0), dd.neg(n))  # 1 - n, without rounding n first
+    K = agm_k(kp)
+    Pi = K if n[0] == 0.0 else cel(kp, one_n)
     if shift > 0:
         log = dd.mul_d(dd.LN2, float(shift))
         K = dd.add(K, log)

@@ -32,6 +32,8 @@ __all__ = [
     "mul",
     "mul_d",
     "mul_scaled",
+    "neg",
+    "norm",
     "reduce_2pi",
     "sqrt",
     "two_prod",
@@ -124,8 +126,33 @@ def sqrt(x):
         return _fast_two_sum(y, np.where((y > 0) & (y < np.inf), corr, 0.0))
 
 
-def _neg(x):
+def neg(x):
+    """``-x`` for a double-double (exact)."""
     return -x[0], -x[1]
+
+
+def norm(v):
+    """``|v|`` of a sequence of double-doubles (floats or arrays, elementwise), as a double-double
+    mantissa ``s`` and a power of two ``e``: ``|v| = s 2^e``. Each component is scaled by the
+    power of two of the largest first (exactly), so that no square underflows or overflows."""
+    if np.ndim(v[0][0]) == 0:  # one vector: keep to Python's math (fast), as sqrt does
+        e = math.frexp(max(abs(float(x[0])) for x in v))[1]  # 0 for a zero vector
+
+        def scaled(x):
+            return math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e)
+    else:
+        big = abs(v[0][0])
+        for x in v[1:]:
+            big = np.maximum(big, abs(x[0]))
+        e = np.frexp(big)[1]  # 0 where big = 0
+
+        def scaled(x):
+            return ldexp(x, -e)
+    acc = (0.0, 0.0)
+    for x in v:
+        x = scaled(x)
+        acc = add(acc, mul(x, x))
+    return sqrt(acc), e
 
 
 def ldexp(x, e):
@@ -143,7 +170,7 @@ def reduce_2pi(x) -> np.ndarray:
     r = x
     for _ in range(2):
         q = np.rint(r[0] / _TWO_PI[0])
-        r = add(r, _neg(two_prod(q, _TWO_PI[0])))
-        r = add(r, _neg(two_prod(q, _TWO_PI[1])))
+        r = add(r, neg(two_prod(q, _TWO_PI[0])))
+        r = add(r, neg(two_prod(q, _TWO_PI[1])))
         r = add(r, (-q * _TWO_PI[2], 0.0 * q))
     return r[0] + r[1]

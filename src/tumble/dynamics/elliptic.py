@@ -46,15 +46,11 @@ from .carlson import complete_integrals, legendre_f, legendre_pi_excess
 
 __all__ = [
     "Modulus",
-    "carlson_f",
     "carlson_pi",
-    "carlson_pi_excess",
     "ellipk",
     "ellipk_kp",
     "jacobi",
     "jacobi_reduced",
-    "pi_complete",
-    "pi_excess_complete",
 ]
 
 
@@ -143,11 +139,11 @@ class Modulus:
         if np.any(lost):
             u = (np.where(lost, np.fmod(u[0], 4.0 * self.K[0]), u[0]), np.where(lost, 0.0, u[1]))
         j1 = np.rint(u[0] / twoK[0])
-        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
         j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
-        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
         q = np.rint(r[0] / self.K[0])  # -1, 0 or 1: the nearest quarter period
-        v = dd.add(r, _neg(dd.mul_d(self.K, q)))
+        v = dd.add(r, dd.neg(dd.mul_d(self.K, q)))
         s, c, d = self._landen(v[0] + v[1])
         with np.errstate(divide="ignore", invalid="ignore"):
             sn = np.where(q == 0, s, q * c / d)
@@ -156,9 +152,6 @@ class Modulus:
         odd = (np.fmod(np.abs(j1), 2.0) + np.abs(j2)) % 2.0 == 1.0
         return (j1, j2), odd, sn, cn, np.where(np.isfinite(dn), dn, 0.0)
 
-
-def _neg(x):
-    return -x[0], -x[1]
 
 
 def ellipk(m: float, m1: float) -> float:
@@ -205,41 +198,10 @@ def jacobi(u, m: float, m1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return sign * sn, sign * cn, dn
 
 
-def carlson_f(s, c, m1: float) -> np.ndarray:
-    """``F(phi | m)`` for ``|phi| <= pi/2`` from ``s = sin phi``, ``c = cos phi >= 0``."""
-    s, c = np.asarray(s, float), np.asarray(c, float)
-    return legendre_f(s, c, np.hypot(c, math.sqrt(m1) * s))
-
-
 def carlson_pi(n: float, s, c, d) -> np.ndarray:
     """``Pi(n; phi | m)`` for ``|phi| <= pi/2`` from ``sin phi``, ``cos phi`` and
     ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n <= 0``.
 
     ``Pi(n; phi | m) = int_0^phi d theta / ((1 - n sin^2 theta) sqrt(1 - m sin^2 theta))``.
     """
-    return legendre_f(s, c, d) + carlson_pi_excess(n, s, c, d)
-
-
-def carlson_pi_excess(n: float, s, c, d, m: float | None = None) -> np.ndarray:
-    """``Pi(n; phi | m) - F(phi | m) = (n / 3) sin^3 phi R_J(c^2, Delta^2, 1, 1 - n sin^2 phi)``.
-
-    The second term of DLMF 19.25.14 alone: ``O(n)``, so a caller that knows ``F`` exactly
-    (``F(am u) = u``) loses nothing to the cancellation ``Pi - F`` when ``n`` is small. ``m``,
-    if given, spares forming ``1 - Delta^2`` (:func:`tumble.dynamics.carlson.legendre_pi_excess`).
-    """
-    return legendre_pi_excess(n, s, c, d, m=m)
-
-
-def pi_excess_complete(n: float, m1: float) -> float:
-    """``Pi(n | m) - K(m)`` (``n <= 0``; double-double internally, see :func:`pi_complete`)."""
-    if m1 == 0.0:
-        return -math.inf if n < 0 else 0.0
-    K, Pi = complete_integrals(n, (math.sqrt(m1), 0.0))
-    return dd.add(Pi, _neg(K))[0]
-
-
-def pi_complete(n: float, m1: float) -> float:
-    """Complete integral of the third kind ``Pi(n | m)``, ``n <= 0`` (Bulirsch's ``cel``)."""
-    if m1 == 0.0:
-        return math.inf
-    return complete_integrals(n, (math.sqrt(m1), 0.0))[1][0]
+    return legendre_f(s, c, d) + legendre_pi_excess(n, s, c, d)

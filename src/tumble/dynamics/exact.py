@@ -115,7 +115,7 @@ def check_phase_limit(moments, omega0, t_end: float) -> None:
     FreeRotation(I, w, Rotation.identity())._check_time(t_end)
 
 
-def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
+def is_steady(I, w) -> np.ndarray:
     """Whether ``omega`` is constant: ``w x I w = 0`` decided by exact comparisons.
 
     Not by evaluating ``cross(L, w) == 0``, which depends on round-off. The cases
@@ -123,26 +123,18 @@ def _is_steady(I: np.ndarray, w: np.ndarray) -> bool:
     components zero); a symmetric top spinning in its degenerate plane (``I1 == I2`` with
     ``w3 == 0``, ``I2 == I3`` with ``w1 == 0``), where every axis of the plane is principal.
     Moments that are equal only to round-off are not equal here: a body declared symmetric is
-    made exactly so by :func:`tumble.mass.principal_frame`.
+    made exactly so by :func:`tumble.mass.principal_frame`. ``I`` (ascending, kg m^2) and ``w``
+    (rad/s) of shape (..., 3); a bool array of shape (...), for one body as for a batch
+    (:func:`tumble.dynamics.exact_batch.free_rotation_batch`).
     """
-    zeros = int(np.count_nonzero(w == 0.0))
-    return bool(I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w[2] == 0.0) or (I[1] == I[2] and w[0] == 0.0))
+    I, w = np.asarray(I), np.asarray(w)
+    zeros = np.count_nonzero(w == 0.0, axis=-1)
+    return ((I[..., 0] == I[..., 2]) | (zeros >= 2) | ((I[..., 0] == I[..., 1]) & (w[..., 2] == 0.0))
+            | ((I[..., 1] == I[..., 2]) & (w[..., 0] == 0.0)))
 
 
 def _dd_float(x) -> tuple[float, float]:
     return float(x[0]), float(x[1])
-
-
-def _norm(v) -> tuple[tuple[float, float], int]:
-    """``|v|`` of three double-doubles ``v`` as a double-double mantissa and a power of two:
-    scaled first, so that no square underflows."""
-    big = max(abs(float(x[0])) for x in v)
-    e = math.frexp(big)[1] if big > 0 else 0
-    acc = (0.0, 0.0)
-    for x in v:
-        x = (math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e))
-        acc = dd.add(acc, dd.mul(x, x))
-    return dd.sqrt(acc), e
 
 
 # Cyclic relabellings of the body axes that put the reference axis last: (i, j, r).
@@ -188,9 +180,9 @@ class FreeRotation:
             raise ValueError(f"moments = {I.tolist()} must be three positive numbers in ascending order (kg m^2)")
         if not (w.shape == (3,) and np.all(np.isfinite(w))):
             raise ValueError(f"omega0 = {w.tolist()} must be three finite numbers (rad/s)")
-        self._set(steady=_is_steady(I, w))
+        self._set(steady=bool(is_steady(I, w)))
         if self.steady:
-            spin, e = _norm([(x, 0.0) for x in w])
+            spin, e = dd.norm([(x, 0.0) for x in w])
             self._set(spin=dd.ldexp(spin, e), axis=np.ldexp(w, -e) / spin[0] if spin[0] > 0 else w)
             self._set(phase_rate=self.spin[0])
             return
@@ -235,7 +227,7 @@ class FreeRotation:
         # Rates of the precession about L (module docstring), from the scaled moments and omega
         Is = [float(x) for x in core["moments"]]
         Ir, Io = Is[r], Is[2 - r]
-        Ln, e = _norm([dd.two_prod(x, float(y)) for x, y in zip(Is, w)])  # |L| for the scaled moments
+        Ln, e = dd.norm([dd.two_prod(x, float(y)) for x, y in zip(Is, w)])  # |L| for the scaled moments
         Ln = dd.ldexp(Ln, e)
         rate0 = dd.div(Ln, (Ir, 0.0))
         rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[0], Is[2]))
@@ -243,7 +235,7 @@ class FreeRotation:
         # extreme moment): Pi(0; phi | m) = F(phi | m), the excess vanishes, and rate1 / p (huge
         # for a vanishing axial spin, 1e300 at 1e-300 rad/s) must not be formed
         scale = dd.div(rate1, p) if n != (0.0, 0.0) else (0.0, 0.0)
-        one_n = dd.add((1.0, 0.0), (-n[0], -n[1]))
+        one_n = dd.add((1.0, 0.0), dd.neg(n))
         # phi(t) = rate0 t + (rate1 / p) [Pi(u) - Pi(u0)] (module docstring), split into a secular
         # part A t + B j and a bounded one b(u_r) - b(u0_r) that is evaluated without cancellation:
         # - m1 = 0: Pi(n; am u | 1) = (u + a atan(a tanh u)) / (1 - n), a = sqrt(-n) (integrate
@@ -257,10 +249,10 @@ class FreeRotation:
             mode, A, B = "separatrix", dd.add(rate0, dd.div(rate1, one_n)), zero
         elif abs(n[0]) <= 1.0:
             mode, A = "excess", dd.add(rate0, rate1)
-            B = dd.mul(dd.mul_d(scale, 2.0), dd.add(Pi, (-K[0], -K[1])))
+            B = dd.mul(dd.mul_d(scale, 2.0), dd.add(Pi, dd.neg(K)))
         else:
             mode, A, B = "pi", rate0, dd.mul(dd.mul_d(scale, 2.0), Pi)
-        excess_c = dd.add(Pi, (-K[0], -K[1]))[0] if not separatrix else -math.inf
+        excess_c = dd.add(Pi, dd.neg(K))[0] if not separatrix else -math.inf
         self._set(r=r, c=c, sign=sign, sign2=sign2, sign_c=sign_c, amp=amp, p=p, m=k * k,
                   m1=math.ldexp(kp_m[0] ** 2, 2 * kp_e) if kp_e > -600 else 0.0, k=k, kp=kp,
                   modulus=modulus, u0=u0, j0=j0, n=n[0], Lnorm=float(np.linalg.norm(I * w)),
@@ -283,7 +275,7 @@ class FreeRotation:
         if kp > 0 and abs(s0) * d0 > c0 and not math.isinf(K[0]):
             u1 = float(legendre_f(c0 / d0, kp * abs(s0) / d0, kp / d0)) if d0 > 0 else 0.0
             far = dd.add(K, (-u1, 0.0))
-            return (far[0], far[1]) if s0 > 0 else (-far[0], -far[1])
+            return (far[0], far[1]) if s0 > 0 else dd.neg(far)
         return float(legendre_f(s0, c0, d0, K=K[0])), 0.0
 
     def _set(self, **values) -> None:
@@ -361,12 +353,6 @@ class FreeRotation:
         A, B = self.secular
         secular = dd.add(dd.mul_scaled(A, t), dd.add(dd.mul_scaled(B, j1), dd.mul_scaled(B, j2 - self.j0)))
         return secular, self._bounded(sn, cn, dn) - self.b0
-
-    def precession_angle(self, t) -> np.ndarray:
-        """The angle ``phi(t)`` turned about L since t = 0, rad (Landau & Lifshitz sec. 37);
-        to double precision of its size (the attitude uses it reduced mod 2 pi, exactly)."""
-        secular, bounded = self._precession(np.asarray(t, float))
-        return secular[0] + (secular[1] + bounded)
 
     def attitude(self, t) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""

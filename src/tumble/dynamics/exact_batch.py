@@ -8,8 +8,9 @@ operations, on arrays of bodies instead of one body at a time:
   :func:`tumble.dynamics.exact_parameters.scaled_core` (which broadcasts);
 - the complete integrals ``K(m)`` and ``Pi(n | m)`` in double-double by the AGM (Abramowitz &
   Stegun 17.6) and Bulirsch's ``cel`` (Numer. Math. 13 (1969) 305), with the shift for
-  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`; each body stops iterating where the scalar
-  routine stops (a mask), so the values are the scalar ones;
+  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`, whose kernels (:func:`~tumble.dynamics.
+  carlson.agm_k`, :func:`~tumble.dynamics.carlson.cel`) take arrays: each body stops iterating
+  where the one-body loop stops (a mask), so the values are the one-body ones;
 - the phase ``u = u0 + p t`` and its reduction by half periods in double-double, and ``sn, cn,
   dn`` of the reduced phase by the AGM and descending Landen transformation (``m <= 1/2``) or
   Jacobi's imaginary transformation (``m > 1/2``) of :class:`tumble.dynamics.elliptic.Modulus`,
@@ -31,8 +32,8 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from . import ddouble as dd
-from .carlson import agm_k_value, agm_step, cel_next, cel_step, cel_value, legendre_f, legendre_pi_excess
-from .exact import MAX_PHASE, FreeRotation, check_phase_limit
+from .carlson import agm_k, cel, legendre_f, legendre_pi_excess
+from .exact import MAX_PHASE, FreeRotation, check_phase_limit, is_steady
 from .exact_parameters import scaled_core
 
 __all__ = ["free_rotation_batch", "quat_conjugate", "quat_multiply", "quat_zxz", "rotate_by_quaternion"]
@@ -137,7 +138,7 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
     N, T = len(I), len(t)
     omega = np.empty((N, T, 3))
     quat = np.empty((N, T, 4)) if attitude else None
-    steady = _is_steady(I, w)
+    steady = is_steady(I, w)
     idx = np.flatnonzero(steady)
     if len(idx):
         omega[idx] = w[idx, None, :]
@@ -176,25 +177,6 @@ def _check_phases(I, w, t) -> None:
             raise ValueError(f"omega0[{i}]: {err}") from None
 
 
-def _is_steady(I, w) -> np.ndarray:
-    """exact.py's ``_is_steady`` on arrays: the same exact comparisons."""
-    zeros = np.count_nonzero(w == 0.0, axis=1)
-    return ((I[:, 0] == I[:, 2]) | (zeros >= 2) | ((I[:, 0] == I[:, 1]) & (w[:, 2] == 0.0))
-            | ((I[:, 1] == I[:, 2]) & (w[:, 0] == 0.0)))
-
-
-def _norm(v):
-    """``|v|`` of three double-doubles (arrays) as a double-double mantissa and a power of two,
-    scaled first so that no square underflows (exact.py's ``_norm``, elementwise)."""
-    big = np.maximum(np.maximum(np.abs(v[0][0]), np.abs(v[1][0])), np.abs(v[2][0]))
-    e = np.frexp(big)[1]
-    acc = (np.zeros_like(big), np.zeros_like(big))
-    for x in v:
-        x = (np.ldexp(x[0], -e), np.ldexp(x[1], -e))
-        acc = dd.add(acc, dd.mul(x, x))
-    return dd.sqrt(acc), e
-
-
 def _times(x, t):
     """``x t`` for double-doubles ``x`` of shape (n,) and times ``t`` (n, T) or (T,), scaled by
     powers of two first (:func:`tumble.dynamics.ddouble.mul_scaled`, elementwise)."""
@@ -204,7 +186,7 @@ def _times(x, t):
 
 def _steady_attitude(w, q0, t) -> np.ndarray:
     """``q0 (x) exp(|w| t e_w)``: the turn about the fixed omega, its angle in double-double."""
-    spin, e = _norm([(x, np.zeros_like(x)) for x in w.T])
+    spin, e = dd.norm([(x, np.zeros_like(x)) for x in w.T])
     axis = np.where(spin[0][:, None] > 0, np.ldexp(w, -e[:, None]) / np.where(spin[0] > 0, spin[0], 1.0)[:, None], w)
     angle = 0.5 * dd.reduce_2pi(_times(dd.ldexp(spin, e), t))
     turn = np.concatenate([np.sin(angle)[..., None] * axis[:, None, :], np.cos(angle)[..., None]], axis=-1)
@@ -216,66 +198,6 @@ def _pick(cond, x, y):
     return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
 
 
-def _masked_loop(state, step, limit: int = 40):
-    """Iterate ``state = step(state)`` elementwise, the last item of the state saying where an
-    element has stopped; each element leaves the loop with the state it stopped in (the scalar
-    loops' ``break``, on arrays), and only the others go on. Items are arrays or double-doubles."""
-    def take(x, sel):
-        return tuple(a[sel] for a in x) if isinstance(x, tuple) else x[sel]
-
-    def put(out, idx, x):
-        for o, a in (zip(out, x) if isinstance(out, tuple) else ((out, x),)):
-            o[idx] = a
-
-    out = tuple(tuple(a.copy() for a in x) if isinstance(x, tuple) else x.copy() for x in state)
-    idx = np.arange(np.size(state[-1]))
-    for _ in range(limit):
-        state = step(state)
-        stop = state[-1]
-        for o, x in zip(out, state):
-            put(o, idx[stop], take(x, stop))
-        go = ~stop
-        idx, state = idx[go], tuple(take(x, go) for x in state)
-        if not idx.size:
-            break
-    for o, x in zip(out, state):  # the limit reached: as the scalar loop leaves them
-        put(o, idx, x)
-    return out
-
-
-def _agm_k(kp):
-    """``K = pi / (2 AGM(1, k'))`` in double-double, elementwise (carlson's ``_agm_k``)."""
-    one = (np.ones_like(kp[0]), np.zeros_like(kp[0]))
-
-    def step(s):  # carlson's loop tests |a - b| before a step: an element stops unchanged
-        a, b, _ = s
-        stop = np.abs(a[0] - b[0]) <= 1e-17 * a[0]
-        a2, b2 = agm_step(a, b)
-        return _pick(stop, a, a2), _pick(stop, b, b2), stop
-
-    a, b, _ = _masked_loop((one, kp, np.zeros(kp[0].shape, bool)), step)
-    return agm_k_value(a, b)
-
-
-def _cel(kc, pp):
-    """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double, elementwise: carlson's ``_cel`` with its
-    steps (:func:`tumble.dynamics.carlson.cel_step`) masked per element."""
-    one = (np.ones_like(kc[0]), np.zeros_like(kc[0]))
-    p = dd.sqrt(pp)
-    a, b = one, dd.div(one, p)
-
-    def step(s):
-        a, b, p, e, em, qc, _ = s
-        a, b, p, g, em = cel_step(a, b, p, e, em, qc)
-        stop = np.abs(g[0] - qc[0]) <= 1e-17 * g[0]  # the break comes before qc and e change
-        qc2, e2 = cel_next(e, em)
-        return a, b, p, _pick(stop, e, e2), em, _pick(stop, qc, qc2), stop
-
-    state = (a, b, p, kc, one, kc, np.zeros(kc[0].shape, bool))
-    a, b, p, _, em, _, _ = _masked_loop(state, step)
-    return cel_value(a, b, p, em)
-
-
 def _complete_k(kp_m, kp_e):
     """``K`` (a double-double) for ``k' = kp_m 2^kp_e``, elementwise (carlson's
     ``complete_integrals``, with its shift for ``k' < 2^-61``); also the shifted ``k'`` and the
@@ -283,15 +205,15 @@ def _complete_k(kp_m, kp_e):
     e = np.frexp(kp_m[0])[1] + kp_e
     shift = np.maximum(-61 - e, 0)
     kp = (np.ldexp(kp_m[0], kp_e + shift), np.ldexp(kp_m[1], kp_e + shift))
-    K = _agm_k(kp)
+    K = agm_k(kp)
     log = dd.mul_d(dd.LN2, shift.astype(float))
     return _pick(shift > 0, dd.add(K, log), K), kp, shift
 
 
 def _complete_pi(n, kp, shift, K):
     """``Pi(n | m)`` (a double-double), ``n <= 0``, from :func:`_complete_k`'s answers."""
-    one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), (-n[0], -n[1]))
-    Pi = _pick(n[0] == 0.0, K, _cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
+    one_n = dd.add((np.ones_like(n[0]), np.zeros_like(n[0])), dd.neg(n))
+    Pi = _pick(n[0] == 0.0, K, cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
     log = dd.mul_d(dd.LN2, shift.astype(float))
     return _pick(shift > 0, dd.add(Pi, dd.div(log, one_n)), Pi)
 
@@ -367,14 +289,14 @@ class _Elliptic:
         K, p, rows = self.K, self.p, np.arange(len(Is))
         r = np.where(self.upper, 2, 0)
         Ir, Io = Is[rows, r], Is[rows, 2 - r]
-        Ln, e = _norm([dd.two_prod(Is[:, i], self.w[:, i]) for i in range(3)])
+        Ln, e = dd.norm([dd.two_prod(Is[:, i], self.w[:, i]) for i in range(3)])
         Ln = dd.ldexp(Ln, e)
         rate0 = dd.div(Ln, (Ir, np.zeros_like(Ir)))
         rate1 = dd.div(dd.mul(Ln, dd.two_sum(Ir, -Io)), dd.two_prod(Is[:, 0], Is[:, 2]))
         scale = dd.div(rate1, p)
         Pi = _complete_pi(n, kp_shifted, shift, K)
         pi_mode = np.abs(n[0]) > 1.0  # else the excess form: Pi - F with F(am u) = u exactly
-        excess = dd.add(Pi, (-K[0], -K[1]))
+        excess = dd.add(Pi, dd.neg(K))
         self.A = _pick(pi_mode, rate0, dd.add(rate0, rate1))
         self.B = dd.mul(dd.mul_d(scale, 2.0), _pick(pi_mode, Pi, excess))
         self.n, self.scale, self.pi_mode, self.excess_c = n[0], scale[0], pi_mode, excess[0]
@@ -391,7 +313,7 @@ class _Elliptic:
         u1 = np.zeros_like(s0)
         u1[g] = legendre_f(c0[g] / dg, kp[g] * np.abs(s0[g]) / dg, kp[g] / dg)
         shifted = dd.add(K, (-u1, np.zeros_like(u1)))
-        shifted = _pick(s0 > 0, shifted, _neg(shifted))
+        shifted = _pick(s0 > 0, shifted, dd.neg(shifted))
         hi[far], lo[far] = shifted[0][far], shifted[1][far]
         hi[~far] = legendre_f(s0[~far], c0[~far], d0[~far], K=K[0][~far])
         return hi, lo
@@ -402,11 +324,11 @@ class _Elliptic:
         K = (self.K[0][:, None], self.K[1][:, None])
         twoK = (2.0 * K[0], 2.0 * K[1])
         j1 = np.rint(u[0] / twoK[0])
-        r = dd.add(u, _neg(dd.mul_d(twoK, j1)))
+        r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
         j2 = np.rint(r[0] / twoK[0])
-        r = dd.add(r, _neg(dd.mul_d(twoK, j2)))
+        r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
         q = np.rint(r[0] / K[0])
-        v = dd.add(r, _neg(dd.mul_d(K, q)))
+        v = dd.add(r, dd.neg(dd.mul_d(K, q)))
         s, c, d = self._landen(v[0] + v[1])
         kp = self.kp[:, None]
         sn = np.where(q == 0, s, q * c / d)
@@ -484,6 +406,3 @@ class _Elliptic:
         Lr = np.where(up, L[..., 2], L[..., 0])
         return np.arctan2(np.hypot(Li, Lj), Lr), np.arctan2(Li, Lj)
 
-
-def _neg(x):
-    return -x[0], -x[1]

@@ -43,9 +43,6 @@ class EllipticParameters(NamedTuple):
     kp: np.ndarray  # k' = sqrt(1 - m), formed directly
 
 
-def _neg(x):
-    return -x[0], -x[1]
-
 
 # Scalars (one motion: FreeRotation) go through Python floats and only the branch taken, which
 # is several times faster than numpy's 0-d arrays; arrays (a batch) through numpy. Same code.
@@ -126,16 +123,16 @@ def _core(w: list, I: list) -> dict:
     d21, d31, d32 = dd.two_sum(I2, -I1), dd.two_sum(I3, -I1), dd.two_sum(I3, -I2)
     prod = dd.mul_d(dd.two_prod(I1, I2), I3)
     p = _branch(upper, lambda: _scaled_root(dd.mul(d32, g1), prod, e1),
-                lambda: _scaled_root(dd.mul(d21, _neg(g3)), prod, e3))
-    k = _branch(upper, lambda: _scaled_root(dd.mul(d21, _neg(g3)), dd.mul(d32, g1), e3 - e1),
-                lambda: _scaled_root(dd.mul(d32, g1), dd.mul(d21, _neg(g3)), e1 - e3))
+                lambda: _scaled_root(dd.mul(d21, dd.neg(g3)), prod, e3))
+    k = _branch(upper, lambda: _scaled_root(dd.mul(d21, dd.neg(g3)), dd.mul(d32, g1), e3 - e1),
+                lambda: _scaled_root(dd.mul(d32, g1), dd.mul(d21, dd.neg(g3)), e1 - e3))
     kp = _branch(upper, lambda: _scaled_root(dd.mul(d31, g2), dd.mul(d32, g1), e2 - e1),
-                 lambda: _scaled_root(dd.mul(d31, _neg(g2)), dd.mul(d21, _neg(g3)), e2 - e3))
-    a2 = _branch(upper, lambda: _scaled_root(_neg(g3), dd.mul_d(d32, I2), e3),
+                 lambda: _scaled_root(dd.mul(d31, dd.neg(g2)), dd.mul(d21, dd.neg(g3)), e2 - e3))
+    a2 = _branch(upper, lambda: _scaled_root(dd.neg(g3), dd.mul_d(d32, I2), e3),
                  lambda: _scaled_root(g1, dd.mul_d(d21, I2), e1))
-    n, _ = _branch(upper, lambda: (_neg(dd.div(dd.mul_d(d21, I3), dd.mul_d(d32, I1))), 0),
-                   lambda: (_neg(dd.div(dd.mul_d(d32, I1), dd.mul_d(d21, I3))), 0))
-    a1 = _scaled_root(_neg(g3), dd.mul_d(d31, I1), e3)
+    n, _ = _branch(upper, lambda: (dd.neg(dd.div(dd.mul_d(d21, I3), dd.mul_d(d32, I1))), 0),
+                   lambda: (dd.neg(dd.div(dd.mul_d(d32, I1), dd.mul_d(d21, I3))), 0))
+    a1 = _scaled_root(dd.neg(g3), dd.mul_d(d31, I1), e3)
     a3 = _scaled_root(g1, dd.mul_d(d31, I3), e1)
     amps = [_ldexp(x[0][0], x[1]) for x in (a1, a2, a3)]
     return {"upper": upper, "moments": np.stack(I, axis=-1), "p": (_ldexp(p[0][0], p[1]), _ldexp(p[0][1], p[1])),
