@@ -20,7 +20,7 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.analysis import flip_interval
-from tumble.dynamics.exact_batch import free_rotation_batch
+from tumble.dynamics.methods.exact_batch import free_rotation_batch
 
 TARGET_SECONDS = 10.0
 TARGET_RATIO = 200.0

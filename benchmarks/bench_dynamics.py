@@ -16,7 +16,7 @@ from scipy.integrate import solve_ivp
 import tumble
 from tumble.analysis import flip_interval
 from tumble.dynamics import euler_rhs, simulate
-from tumble.dynamics.geometric import propagate
+from tumble.dynamics.methods.geometric import propagate
 
 CASES = {
     "seed T-handle, seed's [10, 0.1, 0.1] (design frame)": (tumble.t_handle(), (10.0, 0.1, 0.1), "design"),

@@ -12,9 +12,9 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.dynamics.batch import BatchTrajectory, rotate_by_quaternion, simulate_batch
-from tumble.dynamics.exact import FreeRotation
-from tumble.dynamics.exact_batch import quat_multiply, quat_zxz
-from tumble.dynamics.integrators import METHODS
+from tumble.dynamics.methods.exact import FreeRotation
+from tumble.dynamics.methods.exact_batch import quat_multiply, quat_zxz
+from tumble.dynamics.methods.integrators import METHODS
 
 
 def props(I) -> tumble.MassProperties:
@@ -252,7 +252,7 @@ def test_work_limits_are_those_of_simulate():
         simulate_batch([1.0, 2.0, 3.0], np.zeros((200_000, 3)), t_end=1.0, samples=1000)
 
 
-# --- the vectorised exact kernel (tumble.dynamics.exact_batch) -----------------------------------
+# --- the vectorised exact kernel (tumble.dynamics.methods.exact_batch) -----------------------------------
 
 def test_quaternion_algebra_matches_scipy(rng):
     a, b = Rotation.random(500, random_state=2), Rotation.random(500, random_state=3)
@@ -276,7 +276,7 @@ def many_bodies(rng, n: int):
 def test_vectorised_exact_equals_free_rotation_on_10000_bodies(monkeypatch):
     """Every body against FreeRotation (itself checked against mpmath in test_exact.py), at times
     up to 1e6 s (phases up to ~1e8 rad), with no per-body FreeRotation but on the separatrix."""
-    from tumble.dynamics import exact_batch
+    from tumble.dynamics.methods import exact_batch
 
     I, w, q = many_bodies(np.random.default_rng(11), 10_000)
     t = np.array([0.0, 0.3, 20.0, 1e3, 1e6])
@@ -307,7 +307,7 @@ def test_vectorised_exact_equals_free_rotation_on_10000_bodies(monkeypatch):
 
 
 def test_omega_alone_equals_omega_with_attitude():
-    from tumble.dynamics.exact_batch import free_rotation_batch
+    from tumble.dynamics.methods.exact_batch import free_rotation_batch
 
     I, w, q = many_bodies(np.random.default_rng(5), 500)
     t = np.array([0.0, 20.0])

@@ -17,8 +17,8 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.dynamics import SphericalDamper, simulate
-from tumble.dynamics.integrators import METHODS
-from tumble.dynamics.internal import InternalModel, Rotors
+from tumble.dynamics.methods.integrators import METHODS
+from tumble.dynamics.models.internal import InternalModel, Rotors
 from tumble.mass import MassProperties
 
 BODY = MassProperties.from_moments([1.0, 2.0, 3.0])
@@ -263,7 +263,7 @@ def test_the_analytic_jacobian_matches_finite_differences():
 def small_budget(monkeypatch):
     """50,000 right-hand sides: Radau needs ~1,200 per radian; DOP853 ~2 k per second of a
     stiff run (k the relaxation rate), 4e6 for the runs below (minutes, as before the fix)."""
-    monkeypatch.setattr(tumble.dynamics.integrators, "MAX_EVALUATIONS", 50_000)
+    monkeypatch.setattr(tumble.dynamics.methods.integrators, "MAX_EVALUATIONS", 50_000)
 
 
 @pytest.mark.parametrize("c", [1e3, 1e4])
@@ -275,7 +275,7 @@ def test_a_stiff_damper_is_followed_by_radau_and_tends_to_the_locked_body(small_
     damper = SphericalDamper(inertia=0.01, damping=c)
     traj = simulate(BODY, TUMBLE, t_end=2.0, samples=21, damper=damper)
     ratio = damper.damping / damper.inertia * (1 + damper.inertia / I[0]) / np.linalg.norm(TUMBLE)
-    assert ratio > tumble.dynamics.internal.STIFF_RATIO
+    assert ratio > tumble.dynamics.models.internal.STIFF_RATIO
     assert np.all(np.diff(traj.energy) <= 1e-13 * traj.energy[0]) and traj.dissipated[-1] > 0
     assert traj.drift["L_norm"] < 1e-11 and traj.drift["L_world"] < 1e-11 and traj.drift["energy"] < 1e-11
     locked = simulate(MassProperties.from_moments(I + damper.inertia), TUMBLE,

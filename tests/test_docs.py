@@ -76,8 +76,8 @@ def test_each_api_page_shows_every_name_of_its_subpackage(site, package):
 @pytest.mark.parametrize(("page", "name"), [
     ("dynamics", "tumble.dynamics.simulate.simulate"),
     ("dynamics", "tumble.dynamics.Trajectory"),
-    ("kernels", "tumble.dynamics.exact.FreeRotation"),
-    ("kernels", "tumble.dynamics.exact_batch.free_rotation_batch"),
+    ("kernels", "tumble.dynamics.methods.exact.FreeRotation"),
+    ("kernels", "tumble.dynamics.methods.exact_batch.free_rotation_batch"),
     ("analysis", "tumble.analysis.fit_rotation"),
     ("mass", "tumble.mass.Body"),
 ])

@@ -13,8 +13,8 @@ from scipy.spatial.transform import Rotation
 import tumble
 from tumble.analysis import flip_interval, flip_interval_asymptotic, linearised_rate
 from tumble.dynamics import simulate
-from tumble.dynamics.elliptic import carlson_pi, ellipk, jacobi, jacobi_reduced
-from tumble.dynamics.exact import FreeRotation
+from tumble.dynamics.special.elliptic import carlson_pi, ellipk, jacobi, jacobi_reduced
+from tumble.dynamics.methods.exact import FreeRotation
 from tumble.mass import MassProperties
 
 

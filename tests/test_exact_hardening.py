@@ -13,9 +13,9 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 from tumble.dynamics import simulate
-from tumble.dynamics.carlson import legendre_f, legendre_pi_excess
-from tumble.dynamics.elliptic import carlson_pi, ellipk_kp, jacobi
-from tumble.dynamics.exact import FreeRotation, check_phase_limit, elliptic_parameters
+from tumble.dynamics.special.carlson import legendre_f, legendre_pi_excess
+from tumble.dynamics.special.elliptic import carlson_pi, ellipk_kp, jacobi
+from tumble.dynamics.methods.exact import FreeRotation, check_phase_limit, elliptic_parameters
 from tumble.mass import MassProperties, principal_frame
 
 from test_exact import _mp_reference  # Taylor-series integration at arbitrary precision

@@ -2,7 +2,7 @@
 
 The synthetic records are made by an independent route: DOP853 on Euler's equations
 (``tumble.simulate(method="dop853")``) for the phone and the example file, the exact solution
-(:class:`tumble.dynamics.exact.FreeRotation`, one body at a time, not the batched kernel the fit
+(:class:`tumble.dynamics.methods.exact.FreeRotation`, one body at a time, not the batched kernel the fit
 evaluates) with known parameters for the coverage trials; then a rotation of the sensor, a bias
 and Gaussian noise. The fit is never checked against itself.
 """
@@ -20,7 +20,7 @@ import tumble
 from tumble.analysis.fit import RotationFit, fit_rotation
 from tumble.analysis.period_inversion import periods_consistent
 from tumble.analysis.periods import npa_periods, npa_periods_measured
-from tumble.dynamics.exact import FreeRotation
+from tumble.dynamics.methods.exact import FreeRotation
 from tumble.io.fitcommand import run_fit_command
 from tumble.io.gyrodata import read_gyro_csv
 

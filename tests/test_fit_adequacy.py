@@ -20,7 +20,7 @@ from tumble.analysis.fit import InadequateFitWarning, fit_recording, fit_rotatio
 from tumble.analysis.fit.adequacy import MISFIT_LIMIT, judge
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.cli import main
-from tumble.dynamics.exact import FreeRotation
+from tumble.dynamics.methods.exact import FreeRotation
 
 I = np.array([0.3, 0.72, 1.0])
 NOISE = 0.005

@@ -1,5 +1,5 @@
 """Whole recordings of real-looking tosses (tumble.analysis.fit: flights, recording, synthetic;
-tumble.io.fitcommand; tumble.dynamics.exact_omega and drag).
+tumble.io.fitcommand; tumble.dynamics.methods.exact_omega and drag).
 
 The recordings come from :func:`tumble.analysis.fit.synthetic.synthetic_recording`: Euler's
 equations by DOP853 with strip-theory plate drag (not the fit's per-axis drag model), flex,
@@ -28,9 +28,9 @@ from tumble.analysis.fit.synthetic import FULL_SCALE, TOSS_BODIES, example_recor
 from tumble.analysis.fit.triangle import EDGES, S_MIN, ratios, square
 from tumble.analysis.fit.uncertainty import autocorrelation_time, birge_chi2
 from tumble.cli import main
-from tumble.dynamics.drag import drag_omega
-from tumble.dynamics.exact_batch import free_rotation_batch
-from tumble.dynamics.exact_omega import free_omega
+from tumble.dynamics.models.drag import drag_omega
+from tumble.dynamics.methods.exact_batch import free_rotation_batch
+from tumble.dynamics.methods.exact_omega import free_omega
 from tumble.io.gyrodata import read_recording
 
 from test_fit import EXAMPLE

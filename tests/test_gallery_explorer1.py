@@ -69,7 +69,7 @@ read in a public scan; its figures (weights and dimensions) were not, and no pub
 inertia were found. The energy-sink explanation (flexing parts dissipate energy at fixed |L|, and
 the energy is least for a spin about the major axis) is Likins, *Effects of energy dissipation on
 the free body motions of spacecraft*, JPL TR 32-860 (1966), as cited by
-`tumble.dynamics.internal`; Bracewell & Garriott, Nature 182 (1958) 760, were not read here.
+`tumble.dynamics.models.internal`; Bracewell & Garriott, Nature 182 (1958) 760, were not read here.
 
 **Closed forms.** With no external torque `L` is conserved; a damper only removes energy, so the
 end state is the least energy at that `|L|`, a rigid spin about the major axis with the damper's

@@ -8,7 +8,7 @@ from scipy.special import ellipk
 
 import tumble
 from gallery import Entry, body, code, page_test, sig, to_tolerance, upward_crossings, within
-from tumble.dynamics.gravity import GravityGradient, inertia_ratios, lvlh_state, orbit_frame_angles
+from tumble.dynamics.models.gravity import GravityGradient, inertia_ratios, lvlh_state, orbit_frame_angles
 
 #: The Moon's ``gamma = (B - A) / C`` and ``beta = (C - A) / B`` with their uncertainties, as quoted
 #: (from lunar laser ranging) in the abstract of J. P. Gapcynski, W. T. Blackshear, R. H. Tolson &
@@ -84,7 +84,7 @@ def _moon_page(r: dict) -> str:
 frame with its major axis `C` on the orbit normal and its minor axis `A` on the local vertical,
 librates in pitch at `n sqrt(3 (B - A) / C)` for small amplitudes: the gravity-gradient torque
 `3 n^2 r x (I r)` about the orbit normal is `-(3/2) n^2 (B - A) sin 2 theta` (Hughes, *Spacecraft
-Attitude Dynamics*, ch. 8-9, as cited by `tumble.dynamics.gravity`; the linearised pitch
+Attitude Dynamics*, ch. 8-9, as cited by `tumble.dynamics.models.gravity`; the linearised pitch
 equation is derived for tumble's frame in `docs/gravity-gradient.md`), so
 `theta` is a pendulum in `2 theta` with period `4 K(sin^2 theta0) / (n sqrt(3 gamma))` for an
 amplitude `theta0` (Landau & Lifshitz, *Mechanics*, sec. 11, problem 1), `gamma = (B - A) / C`.

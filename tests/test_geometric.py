@@ -7,7 +7,7 @@ import pytest
 
 import tumble
 from tumble.dynamics import ConstantTorque, FunctionTorque, simulate
-from tumble.dynamics.geometric import free_flow_substeps, propagate
+from tumble.dynamics.methods.geometric import free_flow_substeps, propagate
 from tumble.mass import MassProperties
 
 BODY = tumble.iss_t_handle()

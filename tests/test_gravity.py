@@ -16,8 +16,8 @@ from scipy.spatial.transform import Rotation
 from scipy.special import ellipk
 
 import tumble
-from tumble.dynamics.geometric import propagate
-from tumble.dynamics.gravity import (
+from tumble.dynamics.methods.geometric import propagate
+from tumble.dynamics.models.gravity import (
     MU_EARTH,
     R_EARTH,
     STABILITY_REGIONS,
@@ -28,7 +28,7 @@ from tumble.dynamics.gravity import (
     orbit_frame_angles,
     relative_attitude,
 )
-from tumble.dynamics.torques import body_torque
+from tumble.dynamics.models.torques import body_torque
 from tumble.io.scenario import gravity_gradient_from_table, lvlh_state_from_table
 from tumble.mass import MassProperties
 

@@ -1,7 +1,7 @@
 """Live mode of the interactive page, in headless Chromium.
 
 The JavaScript port of tumble's splitting integrator (``assets/splitting.js``) against tumble's
-own :func:`tumble.dynamics.geometric.propagate` for the same input (to 1e-9 of |omega| over
+own :func:`tumble.dynamics.methods.geometric.propagate` for the same input (to 1e-9 of |omega| over
 20 s) and against the closed form (its order of convergence); then the form (``assets/live.js``)
 on a page written by ``tumble view``: Run recomputes the motion in the browser, the viewer plays
 it, bad input is shown in the form, nothing goes to the network and no console error appears.
@@ -20,8 +20,8 @@ from scipy.spatial.transform import Rotation
 
 import tumble.viz
 from tumble.cli import main
-from tumble.dynamics.exact import FreeRotation
-from tumble.dynamics.geometric import MAX_STEP_ANGLE, default_step, propagate
+from tumble.dynamics.methods.exact import FreeRotation
+from tumble.dynamics.methods.geometric import MAX_STEP_ANGLE, default_step, propagate
 from tumble.mass.presets import t_handle
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -122,7 +122,7 @@ def test_seed_flip_agrees_to_its_round_off_floor(js, order):
 @pytest.mark.parametrize("order", [2, 4, 6])
 def test_splitting_js_converges_at_its_order_to_the_closed_form(js, order):
     """Halving the step divides the error against the exact solution (Jacobi elliptic functions,
-    :class:`tumble.dynamics.exact.FreeRotation`) by 2^order: seed flip over 20 s, steps 4 and 2
+    :class:`tumble.dynamics.methods.exact.FreeRotation`) by 2^order: seed flip over 20 s, steps 4 and 2
     times the default (coarse enough to stay clear of round-off)."""
     exact = FreeRotation(SEED, SEED_FLIP, Rotation.identity()).omega(TWENTY)
     h = MAX_STEP_ANGLE / np.linalg.norm(SEED_FLIP)

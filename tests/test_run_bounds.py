@@ -8,9 +8,9 @@ import pytest
 
 import tumble
 from tumble import ConstantTorque, simulate
-from tumble.dynamics import integrators
-from tumble.dynamics.integrators import METHODS
-from tumble.dynamics.torques import FunctionTorque
+from tumble.dynamics.methods import integrators
+from tumble.dynamics.methods.integrators import METHODS
+from tumble.dynamics.models.torques import FunctionTorque
 
 BODY = tumble.t_handle()
 
@@ -122,7 +122,7 @@ def test_a_thin_rod_in_any_direction_has_a_zero_moment(axis, method):
 def test_the_exact_phase_limit_is_checked_before_the_run(monkeypatch):
     """A run past MAX_PHASE is refused by the input checks (scenario files and the CLI use
     them before anything is computed), not from inside the integration."""
-    from tumble.dynamics.exact import FreeRotation
+    from tumble.dynamics.methods.exact import FreeRotation
     from tumble.io.scenario import resolve_run
 
     for name in ("omega", "attitude"):

@@ -3,7 +3,7 @@
 - explorer1.toml: the flat spin (Likins 1966, the major-axis rule): from spin about the minor
   axis to a rigid spin about a major axis at |L| / (I3 + J), the energy budget closed;
 - wheel_t_handle.toml: a wheel with h > (I3 - I2) W stops the Dzhanibekov flip (the gyrostat's
-  linearisation, tumble.dynamics.internal); stopped, the same body flips;
+  linearisation, tumble.dynamics.models.internal); stopped, the same body flips;
 - reaction_wheel_slew.toml: L = I w + h = 0 from rest, so the body turns at w = -h / I;
 - gravity_boom.toml: Lagrange-stable libration about the local vertical at
   n sqrt(3 (I_roll - I_yaw) / I_pitch) (docs/gravity-gradient.md).
@@ -186,7 +186,7 @@ def test_gravity_boom_is_in_the_lagrange_region():
     roll, pitch = 50.0 * (0.4**2 + 0.4**2) / 12 + offsets, 50.0 * (0.6**2 + 0.4**2) / 12 + offsets
     np.testing.assert_allclose(I, [50.0 * (0.6**2 + 0.4**2) / 12, roll, pitch], rtol=1e-12)
     assert I[2] > I[1] > I[0]
-    kr, kp, ky = tumble.dynamics.gravity.inertia_ratios(I)
+    kr, kp, ky = tumble.dynamics.models.gravity.inertia_ratios(I)
     assert tumble.gravity_gradient_stability(kr, kp, ky).region == "lagrange"
     np.testing.assert_allclose(np.abs(scenario.body.principal_axes[:, 0]), [0, 0, 1], atol=1e-15)  # the boom
 

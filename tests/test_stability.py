@@ -299,7 +299,7 @@ def test_an_axis_is_accepted_only_if_it_is_one_of_the_six_labels(value):
 def test_flip_interval_where_one_minus_m_underflows(omega0):
     """1 - k^2 ~ 1e-320 is no double (it overflowed 16 / m1, and the CLI exited 1); k' is, and
     K = ln(4 / k') + O(k'^2) there (A&S 17.3.26), so the interval is 2 ln(4 / k') / p."""
-    from tumble.dynamics.exact import elliptic_parameters
+    from tumble.dynamics.methods.exact import elliptic_parameters
 
     I = np.array([1.0, 2.0, 3.0])
     e = elliptic_parameters(np.array(omega0), I)

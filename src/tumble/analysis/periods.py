@@ -1,7 +1,7 @@
 """Periods and angles of torque-free motion: the body-frame period, Montgomery's rotation per
 period, the symmetric top's two rates and the periods of tumbling (non-principal-axis) rotation.
 
-Notation as :mod:`tumble.analysis.stability` and :mod:`tumble.dynamics.exact` (Landau &
+Notation as :mod:`tumble.analysis.stability` and :mod:`tumble.dynamics.methods.exact` (Landau &
 Lifshitz, *Mechanics*, sec. 37): principal moments ``I1 <= I2 <= I3``; omega circulates about
 axis ``r`` = 3 (major) when ``L^2 >= 2 E I2``, about ``r`` = 1 (minor) otherwise; ``o`` is the
 other extreme axis; ``u = u0 + p t`` the elliptic argument and ``m = k^2`` its parameter.
@@ -13,7 +13,7 @@ other extreme axis; ``u = u0 + p t`` the elliptic argument and ``m = k^2`` its p
 - **Precession per period.** The exact solution writes the attitude as ``Rz(phi) Rx(theta)
   Rz(psi)`` about L (z-x-z Euler angles, Landau & Lifshitz sec. 35) with
   ``phi' = |L| / I_r + |L| (I_r - I_o) / (I1 I3) / (1 - n sn^2 u)``,
-  ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (:mod:`tumble.dynamics.exact`, derived from Landau &
+  ``n = -I_r (I2 - I_o) / (I_o (I_r - I2))`` (:mod:`tumble.dynamics.methods.exact`, derived from Landau &
   Lifshitz sec. 37). Over one period ``am u`` advances by ``2 pi`` and Legendre's integral of
   the third kind by ``4 Pi(n | m)`` (complete), so
 
@@ -47,7 +47,7 @@ import numpy as np
 from scipy.special import elliprf, elliprj
 
 from ..dynamics import Trajectory
-from ..dynamics.exact import elliptic_parameters
+from ..dynamics.methods.exact import elliptic_parameters
 from ..mass import INERTIA_RTOL
 from ..mass.tensor import refuse_first
 from .stability import _AXES_ALLOWED, _axis_index, _check_motion, circulation_axis, flip_interval

@@ -27,8 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..dynamics.euler import energy_momentum_gaps
-from ..dynamics.elliptic import ellipk_kp
-from ..dynamics.exact import elliptic_parameters
+from ..dynamics.methods.exact import elliptic_parameters
+from ..dynamics.special.elliptic import ellipk_kp
 from ..mass import AXIS_ROLES
 from ..mass.tensor import _short_repr, check_vectors, refuse_first
 
@@ -118,7 +118,7 @@ def perturbation_exponent(moments, axis, spin, momentum=0.0) -> np.ndarray:
     cyclic order: Euler's equations ``I w' + w x (I w + h) = 0`` linearised about ``W e_a``
     (Hughes, *Spacecraft Attitude Dynamics*, the gyrostat chapter; for the intermediate axis it
     is ``((I3 - I2) W - h)((I2 - I1) W + h) / (I1 I3)``, the form of
-    :func:`tumble.dynamics.internal.gyrostat_rate`). A large enough ``h`` along the spin makes
+    :func:`tumble.dynamics.models.internal.gyrostat_rate`). A large enough ``h`` along the spin makes
     any axis stable; one against it can make the minor or major axis unstable.
 
     Parameters
@@ -209,8 +209,8 @@ def flip_interval(omega, moments) -> np.ndarray:
     - ``L^2 < 2 E I2``: indices 1 and 3 exchanged.
 
     ``k' = sqrt(1 - k^2)`` is formed directly, without cancellation or underflow
-    (:func:`tumble.dynamics.exact.elliptic_parameters`; ``k' = 1e-160`` where ``1 - k^2`` is
-    not a double), and ``K`` comes from it by the AGM (:func:`tumble.dynamics.elliptic.ellipk_kp`),
+    (:func:`tumble.dynamics.methods.exact.elliptic_parameters`; ``k' = 1e-160`` where ``1 - k^2`` is
+    not a double), and ``K`` comes from it by the AGM (:func:`tumble.dynamics.special.elliptic.ellipk_kp`),
     so the interval stays accurate as the motion nears the separatrix, where it diverges
     logarithmically.
 

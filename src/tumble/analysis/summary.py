@@ -159,7 +159,7 @@ def gravity_gradient_summary(traj: Trajectory, gg, *, pitch_axis=3, yaw_axis=1) 
     ``max_angle`` (rad: the largest |roll|, |pitch|, |yaw| from the orbiting frame, with
     ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`).
     """
-    from ..dynamics.gravity import orbit_frame_angles
+    from ..dynamics.models.gravity import orbit_frame_angles
 
     gg = gg.bind(traj.moments)
     h = gg.jacobi_integral(traj.t, traj.omega, traj.attitude)

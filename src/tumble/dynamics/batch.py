@@ -3,10 +3,10 @@
 N bodies, each with its own principal moments, initial angular velocity and attitude, sampled
 at the same times. The methods are those of :func:`tumble.simulate` (:data:`METHODS`):
 
-- ``"exact"``: the closed-form torque-free motion of :mod:`tumble.dynamics.exact`, vectorised
-  over bodies and times (:mod:`tumble.dynamics.exact_batch`);
+- ``"exact"``: the closed-form torque-free motion of :mod:`tumble.dynamics.methods.exact`, vectorised
+  over bodies and times (:mod:`tumble.dynamics.methods.exact_batch`);
 - ``"geometric"``, ``"geometric2"``, ``"geometric6"``: the splitting integrators, which
-  already advance every body together (:func:`tumble.dynamics.geometric.propagate`); torques
+  already advance every body together (:func:`tumble.dynamics.methods.geometric.propagate`); torques
   allowed, called with arrays of N bodies;
 - ``"dop853"``, ``"rk45"``, ``"seed"``: a loop of :func:`tumble.simulate`, one body at a time.
 
@@ -27,10 +27,10 @@ from ..mass._checks import _WHY, MAX_RATE, QUAT_NORM_TOL, check_moments
 from ..mass.tensor import _short_repr, refuse_first
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .exact_batch import rotate_by_quaternion
-from .integrators import METHODS, get_method
+from .methods.exact_batch import rotate_by_quaternion
+from .methods.integrators import METHODS, get_method
+from .models.torques import as_torque, spin_gain
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
-from .torques import as_torque, spin_gain
 from .trajectory import Trajectory
 
 __all__ = ["MAX_BATCH_VALUES", "BatchTrajectory", "rotate_by_quaternion", "simulate_batch"]
@@ -132,7 +132,7 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
         A name from :data:`tumble.dynamics.METHODS`; default ``"exact"``.
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)``, N m, in the principal frame or the world frame as the model
-        says (:mod:`tumble.dynamics.torques`). The geometric methods call it once per kick with
+        says (:mod:`tumble.dynamics.models.torques`). The geometric methods call it once per kick with
         ``omega`` of shape (N, 3) and a stack of N rotations, and it may return (3,) or (N, 3);
         the loop methods call it per body. A model with ``bind`` (the gravity gradient) is bound
         to the moments of the bodies.
@@ -161,7 +161,7 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
         raise ValueError(f"{len(I)} bodies x {len(t)} samples is more than {MAX_BATCH_VALUES:,} samples in all; "
                          f"split the batch or sample fewer times")
     if spec.name == "exact":  # closed form: only the times asked for (no steps from t = 0)
-        from .exact_batch import free_rotation_batch
+        from .methods.exact_batch import free_rotation_batch
 
         t, keep = t[keep], slice(None)
         omega, quat = free_rotation_batch(I, w0, q0, t)
@@ -269,7 +269,7 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
 
 def _geometric(spec, I, w0, q0, t, model, step):
     """The splitting integrators, every body together; the work bounds of :func:`tumble.simulate`."""
-    from .geometric import default_step, propagate
+    from .methods.geometric import default_step, propagate
 
     if model is not None and hasattr(model, "bind"):  # a torque that needs the bodies' moments
         model = model.bind(I)

@@ -17,9 +17,9 @@ from ..mass._checks import (
     check_rotation,
     check_vector,
 )
-from .integrators import METHODS, Method, get_method
-from .internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
-from .torques import as_torque, spin_gain
+from .methods.integrators import METHODS, Method, get_method
+from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
+from .models.torques import as_torque, spin_gain
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
@@ -41,7 +41,7 @@ MAX_T_END = 1e12
 #: (~40 per radian, measured), half an hour here; the exact solution has no such limit.
 MAX_ROTATION = 1e6
 #: Most rotation (rad) a run with a stiff damper is asked to follow (``"dop853"`` hands it to
-#: Radau, :data:`~tumble.dynamics.internal.STIFF_RATIO`): Radau at rtol 1e-12 takes ~1,200
+#: Radau, :data:`~tumble.dynamics.models.internal.STIFF_RATIO`): Radau at rtol 1e-12 takes ~1,200
 #: right-hand sides per radian (measured), so 1e4 rad is about a quarter of an hour here.
 MAX_STIFF_ROTATION = 1e4
 #: Most steps a fixed-step method is asked to take.
@@ -91,7 +91,7 @@ def simulate(
     body : Body or MassProperties
         The body; its principal frame (``I1 <= I2 <= I3``) is the body frame of the motion.
         A body with :class:`~tumble.mass.Rotor` parts is a gyrostat: their internal momentum
-        enters Euler's equations (:mod:`tumble.dynamics.internal`).
+        enters Euler's equations (:mod:`tumble.dynamics.models.internal`).
     omega0 : array_like, shape (3,)
         Initial angular velocity at t = 0, rad/s, in ``frame``; each component at most 1e15
         rad/s (:data:`~tumble.mass._checks.MAX_RATE`), the body's moments at most 1e50 kg m^2.
@@ -115,7 +115,7 @@ def simulate(
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
     torque : callable or torque model, optional
-        ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.torques`).
+        ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
         Tolerances; the method's defaults if not given. ``rtol`` from 100 eps to 0.1. For
         ``"dop853"`` ``atol`` is relative to the size of omega.
@@ -126,7 +126,7 @@ def simulate(
         Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
         of rotation per step, counting the spin a torque builds up); ignored by the others.
     damper : SphericalDamper, optional
-        A spherical nutation damper inside the body (:class:`~tumble.dynamics.internal.
+        A spherical nutation damper inside the body (:class:`~tumble.dynamics.models.internal.
         SphericalDamper`), starting with the body's angular velocity.
 
     Returns
@@ -297,7 +297,7 @@ def _check_work(run: RunInputs) -> None:
     """Refuse a run whose rotation or step count no stepping method can follow in bounded time."""
     spec, t_end = run.method, float(run.t[-1])
     if spec.name == "exact":  # no steps; only its phase is bounded (MAX_PHASE)
-        from .exact import check_phase_limit
+        from .methods.exact import check_phase_limit
 
         check_phase_limit(run.props.principal_moments, run.omega0, t_end)
         return
@@ -317,7 +317,7 @@ def _check_work(run: RunInputs) -> None:
     if run.internal is not None and run.internal.damper is not None:
         _check_stiffness(run, spin + gain, turns)
     if spec.fixed_step:
-        from .geometric import default_step
+        from .methods.geometric import default_step
 
         rate = 0.0 if run.internal is None else run.internal.relaxation_rate
         h = run.step or default_step(spin, gain, rate)
@@ -326,7 +326,7 @@ def _check_work(run: RunInputs) -> None:
 
 
 def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
-    """Refuse a stiff damper (:data:`~tumble.dynamics.internal.STIFF_RATIO`) to the methods that
+    """Refuse a stiff damper (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`) to the methods that
     cannot follow it, and a longer run than :data:`MAX_STIFF_ROTATION` to the one that can."""
     spec, t_end = run.method, float(run.t[-1])
     ratio, slow = run.internal.stiffness(spin, t_end)
@@ -346,7 +346,7 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
 
 def _spin_bound(run: RunInputs) -> float:
     """The spin (rad/s) a run starts from, with what rotors can hand the body
-    (:meth:`~tumble.dynamics.internal.InternalModel.spin_bound`)."""
+    (:meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`)."""
     if run.internal is None:
         return float(np.linalg.norm(run.omega0))
     return run.internal.spin_bound(run.omega0, run.t)
@@ -359,6 +359,6 @@ def _spin_gain(model, run: RunInputs) -> float:
 
 def _design_torque(model, A):
     """Wrap a body-frame torque given in design coordinates so it returns principal ones."""
-    from .torques import FunctionTorque
+    from .models.torques import FunctionTorque
 
     return FunctionTorque(lambda t, w, att: A.T @ np.asarray(model(t, A @ w, att), float), "body")

@@ -1,6 +1,6 @@
 """The result of a simulation: a sampled rigid-body motion and what it conserves.
 
-With rotors (a gyrostat) or a damper (:mod:`tumble.dynamics.internal`) the trajectory carries
+With rotors (a gyrostat) or a damper (:mod:`tumble.dynamics.models.internal`) the trajectory carries
 their state per sample, and ``energy``, ``angular_momentum`` and ``angular_momentum_world`` are
 the totals of body, rotors and damper.
 """
@@ -177,7 +177,7 @@ class Trajectory:
 
         ``omega.I omega / 2`` for a rigid body; with rotors ``+ omega.h + sum_k J_k s_k^2 / 2``
         (each rotor turns at ``omega + s_k n_k``); with a damper ``+ J |omega_d|^2 / 2``
-        (:mod:`tumble.dynamics.internal`). Changes by the motors' work and the damper's
+        (:mod:`tumble.dynamics.models.internal`). Changes by the motors' work and the damper's
         dissipation (and the work of an external torque): see :attr:`drift`.
         """
         E = kinetic_energy(self.omega, self.moments)
@@ -193,7 +193,7 @@ class Trajectory:
     def hamiltonian(self) -> np.ndarray:
         """The gyrostat Hamiltonian ``sum_i (L_i - h_i)^2 / (2 I_i) = omega.I omega / 2``, J;
         shape (n,). ``L = I omega + h`` is the momentum of body and rotors; conserved for constant
-        rotor spins without damper or external torque (:mod:`tumble.dynamics.internal`). Equal to :attr:`energy` for a
+        rotor spins without damper or external torque (:mod:`tumble.dynamics.models.internal`). Equal to :attr:`energy` for a
         rigid body."""
         return _array(kinetic_energy(self.omega, self.moments))
 

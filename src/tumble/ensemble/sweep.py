@@ -25,8 +25,8 @@ import numpy as np
 
 from ..dynamics import simulate_batch
 from ..dynamics.batch import BatchTrajectory
-from ..dynamics.integrators import get_method
-from ..dynamics.torques import as_torque
+from ..dynamics.methods.integrators import get_method
+from ..dynamics.models.torques import as_torque
 from .backends import InProcess
 from .cases import Ensemble
 from .reductions import reduce_cases

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
-from ..dynamics.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
+from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
 from ..mass.tensor import _short_repr
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body

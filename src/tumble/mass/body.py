@@ -274,7 +274,7 @@ class Body:
         ``h(t) = sum_k J_k s_k(t) n_k`` over the rotors (axial moment ``J_k``, relative spin
         ``s_k(t)``, axis ``n_k``), turned from the design frame by ``principal_axes^T``; zero for
         a body without rotors. This is what the gyrostat's equations add to ``I omega``
-        (:mod:`tumble.dynamics.internal`).
+        (:mod:`tumble.dynamics.models.internal`).
 
         Parameters
         ----------

@@ -2,7 +2,7 @@
 
 A momentum or reaction wheel: its mass and (locked) inertia count like any part's
 (:class:`tumble.mass.parts.Cylinder`, Meriam & Kraige Table D/4), and its internal angular
-momentum ``h = J s axis`` enters the dynamics (:mod:`tumble.dynamics.internal`).
+momentum ``h = J s axis`` enters the dynamics (:mod:`tumble.dynamics.models.internal`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ class Rotor(Cylinder):
     the body's mass properties like a :class:`Cylinder`'s; its spin relative to the body,
     ``s(t)`` (rad/s, right-handed about ``axis``), adds the internal angular momentum
     ``h = J s(t) axis`` with ``J = m r^2 / 2`` the axial moment (kg m^2/s; Meriam & Kraige
-    Table D/4), which enters Euler's equations of the gyrostat (:mod:`tumble.dynamics.internal`).
+    Table D/4), which enters Euler's equations of the gyrostat (:mod:`tumble.dynamics.models.internal`).
 
     Parameters
     ----------

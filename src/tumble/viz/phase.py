@@ -16,7 +16,7 @@ import numpy as np
 
 from ..analysis import flip_interval
 from ..dynamics import Trajectory
-from ..dynamics.exact import FreeRotation
+from ..dynamics.methods.exact import FreeRotation
 from ..mass import moment_degeneracy
 from .plots import MAX_POINTS
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only

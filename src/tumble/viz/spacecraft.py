@@ -1,11 +1,11 @@
 """Figures of the spacecraft models: energy budget, nutation angle, attitude in the orbiting frame.
 
 - :func:`figure_energy`: the total kinetic energy of body, rotors and damper against t, with its
-  budget ``E0 + motor work - dissipated`` (:mod:`tumble.dynamics.internal`), J.
+  budget ``E0 + motor work - dissipated`` (:mod:`tumble.dynamics.models.internal`), J.
 - :func:`figure_nutation`: the angle between the total angular momentum L and the major axis,
   which an energy sink drives to 0 (the major-axis rule; Likins, JPL TR 32-860, 1966).
 - :func:`figure_orbit_angles`: roll, pitch and yaw relative to the orbiting (LVLH) frame of a
-  gravity-gradient run (:func:`tumble.dynamics.gravity.orbit_frame_angles`), rad, against t in
+  gravity-gradient run (:func:`tumble.dynamics.models.gravity.orbit_frame_angles`), rad, against t in
   orbits.
 - :func:`figure_omega_panels`: omega(t) of several runs in panels one above the other (a run
   with and without a wheel).
@@ -24,7 +24,7 @@ import functools
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..dynamics.gravity import GravityGradient, orbit_frame_angles
+from ..dynamics.models.gravity import GravityGradient, orbit_frame_angles
 from .plots import COLORS, figure_omega_grid
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 from .scene import check_run
@@ -135,7 +135,7 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax=None, 
     ax : matplotlib Axes, optional
         Draw here instead of on a new figure.
     **axes
-        ``pitch_axis``, ``yaw_axis`` as in :func:`tumble.dynamics.gravity.orbit_frame_angles`
+        ``pitch_axis``, ``yaw_axis`` as in :func:`tumble.dynamics.models.gravity.orbit_frame_angles`
         (default 3 and 1).
 
     Returns
@@ -190,7 +190,7 @@ def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str,
     - ``"nutation"`` (:func:`figure_nutation`): the same, and L is not 0 (to round-off,
       :data:`ZERO_MOMENTUM_RTOL`) at every sample: a slew from rest has no nutation;
     - ``"orbit_angles"`` (:func:`figure_orbit_angles`): ``torque`` is a
-      :class:`~tumble.dynamics.gravity.GravityGradient`; ``axes`` (``pitch_axis``, ``yaw_axis``)
+      :class:`~tumble.dynamics.models.gravity.GravityGradient`; ``axes`` (``pitch_axis``, ``yaw_axis``)
       go to it.
 
     An empty list for a rigid body under no torque or a constant one.

@@ -1,8 +1,8 @@
 """The model a gyroscope's samples are fitted with: one or many free flights of one body.
 
-A flight ``j`` is a torque-free motion (the exact solution, :mod:`tumble.dynamics.exact_omega`),
+A flight ``j`` is a torque-free motion (the exact solution, :mod:`tumble.dynamics.methods.exact_omega`),
 or one slowed by an aerodynamic drag about each principal axis (``drag_1..3``, linear or
-quadratic in omega, :mod:`tumble.dynamics.drag`), seen by a sensor fixed in the body::
+quadratic in omega, :mod:`tumble.dynamics.models.drag`), seen by a sensor fixed in the body::
 
     omega_sensor(t) = R^T omega_principal(t - t_j0) + b
 
@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 from scipy import sparse
 
-from ...dynamics.drag import drag_omega
-from ...dynamics.exact_omega import free_omega
+from ...dynamics.methods.exact_omega import free_omega
+from ...dynamics.models.drag import drag_omega
 from .triangle import S_MIN, ratios
 
 __all__ = ["BIAS_MAX", "DRAG_MODELS", "Model", "rotvec_matrix"]

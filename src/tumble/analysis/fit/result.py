@@ -60,7 +60,7 @@ class RotationFit:
     drag : str
         The drag model fitted: ``"none"``, ``"linear"`` or ``"quadratic"``.
     drag_coefficients, drag_coefficients_std : ndarray, shape (3,)
-        The drag about each principal axis divided by ``I3`` (:mod:`tumble.dynamics.drag`):
+        The drag about each principal axis divided by ``I3`` (:mod:`tumble.dynamics.models.drag`):
         ``a_i / I3`` in 1/s (linear) or ``b_i / I3`` in 1/rad (quadratic); zeros and NaN when
         no drag is fitted. Times ``I3`` (kg m^2) they are N m s or N m s^2.
     residual_rms : float

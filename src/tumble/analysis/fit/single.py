@@ -1,8 +1,8 @@
 """Fit one free flight: :func:`fit_rotation` and its result :class:`RotationFit`.
 
 The model (:mod:`tumble.analysis.fit.model`) is the exact torque-free motion of Landau &
-Lifshitz, *Mechanics*, sec. 37 (:mod:`tumble.dynamics.exact_omega`), or Euler's equations with
-an aerodynamic drag about each principal axis (:mod:`tumble.dynamics.drag`), seen by a sensor rotated by ``R`` from the principal axes
+Lifshitz, *Mechanics*, sec. 37 (:mod:`tumble.dynamics.methods.exact_omega`), or Euler's equations with
+an aerodynamic drag about each principal axis (:mod:`tumble.dynamics.models.drag`), seen by a sensor rotated by ``R`` from the principal axes
 and offset by a bias. It depends on the moments only through their ratios, so the scale is
 fixed by ``I3 = 1``. The ratios move on the closed triangle (:mod:`tumble.analysis.fit.triangle`),
 edges included; starting values come from the samples (:mod:`tumble.analysis.fit.start`): the
@@ -159,7 +159,7 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
     bias : bool
         Fit a constant bias on each sensor axis (rad/s).
     drag : {"auto", "none", "linear", "quadratic"}
-        The aerodynamic drag about each principal axis (:mod:`tumble.dynamics.drag`): fitted as
+        The aerodynamic drag about each principal axis (:mod:`tumble.dynamics.models.drag`): fitted as
         named, or chosen by the Bayesian information criterion (``"auto"``).
     saturation : float, optional
         The gyroscope's full scale, rad/s; sample axes at it are left out. Found from the data
@@ -199,7 +199,7 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.dynamics.exact import FreeRotation
+    >>> from tumble.dynamics.methods.exact import FreeRotation
     >>> from scipy.spatial.transform import Rotation
     >>> t = np.linspace(0.0, 10.0, 1001)
     >>> w = FreeRotation([0.3, 0.7, 1.0], [0.2, 5.0, 0.3], Rotation.identity()).omega(t)

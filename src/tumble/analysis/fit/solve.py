@@ -11,7 +11,7 @@ samples kept by a mask (a saturated axis is left out, not the whole sample). At 
 - **covariance**: :mod:`tumble.analysis.fit.uncertainty` (the statistical part from the
   residuals, plus the systematic part of the gyroscope's scale-factor tolerance);
 - **drag**: with ``drag="auto"`` the models ``none`` and ``quadratic`` (per axis,
-  :mod:`tumble.dynamics.drag`; see :data:`AUTO_DRAG` for why not ``linear``) are fitted
+  :mod:`tumble.dynamics.models.drag`; see :data:`AUTO_DRAG` for why not ``linear``) are fitted
   and the one of least Bayesian information criterion ``m ln(SSR/m) + n ln m`` kept (Schwarz,
   Ann. Stat. 6 (1978) 461).
 """

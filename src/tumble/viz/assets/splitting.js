@@ -1,7 +1,7 @@
 /*
  * tumble's splitting integrator of the FREE rigid body, ported to dependency-free JavaScript.
  *
- * A port of tumble.dynamics.geometric.propagate for one torque-free body (its path
+ * A port of tumble.dynamics.methods.geometric.propagate for one torque-free body (its path
  * _propagate_free, with default_step and free_flow_substeps): the same sub-flows in the same
  * order, the same step choice and the same arithmetic for the momentum, so that the browser's
  * run agrees with tumble's Python run of the same input to round-off: the momentum bit for bit
@@ -11,7 +11,7 @@
  * separatrix (the seed's flip, 0.8 degrees off the intermediate axis) amplifies one ulp to ~2e-9
  * in 20 s, in tumble itself as here, and is held to that round-off floor instead.
  *
- * The method (as tumble.dynamics.geometric cites it): the Hamiltonian
+ * The method (as tumble.dynamics.methods.geometric cites it): the Hamiltonian
  * H = L1^2/(2 I1) + L2^2/(2 I2) + L3^2/(2 I3) splits into three terms whose flows are exact
  * rotations (McLachlan, Nonlinearity 6 (1993) 585; Touma & Wisdom, Astron. J. 107 (1994) 1189;
  * Dullweber, Leimkuhler & McLachlan, J. Chem. Phys. 107 (1997) 5840): under H_i the body-frame

@@ -10,7 +10,7 @@ saddle: ``cn = cos(am)`` is then tiny and loses its relative accuracy. So here
 - a :class:`Modulus` carries ``k = sqrt(m)`` and ``k' = sqrt(m1)`` (each representable where
   ``m1`` or ``m`` is not: ``k' = 1e-160`` for ``m1 = 1e-320``) and ``K`` in double-double;
 - ``u`` is reduced to ``|v| <= K/2`` about the nearest multiple of the quarter period ``K``, in
-  double-double (:mod:`tumble.dynamics.ddouble`), so the reduced argument is right and lies in
+  double-double (:mod:`tumble.dynamics.special.ddouble`), so the reduced argument is right and lies in
   that range at *any* ``u``, and the shift formulas ``sn(v + K) = cd v``,
   ``cn(v + K) = -k' sd v``, ``dn(v + K) = k' nd v`` (DLMF 22.4.3) give cn and dn with full
   *relative* accuracy near their zeros;
@@ -26,7 +26,7 @@ saddle: ``cn = cos(am)`` is then tiny and loses its relative accuracy. So here
   ``cn = sech psi_0``, ``dn = hypot(1, k' sinh psi_0) / cosh psi_0``: real, with
   ``c_1 / a_1 = (1 - k) / (1 + k) <= 0.172`` and a well-conditioned asinh;
 - the AGM's ``c_{n+1} = c_n^2 / (4 a_{n+1})`` (equal to ``(a_n - b_n) / 2``) avoids cancellation;
-- ``K``, ``F`` and ``Pi`` come from :mod:`tumble.dynamics.carlson`.
+- ``K``, ``F`` and ``Pi`` come from :mod:`tumble.dynamics.special.carlson`.
 
 Accuracy (tests/test_exact.py and tests/test_exact_hardening.py, against mpmath at 40 digits):
 sn, cn, dn to a few ulps *relative*, also near the zeros of cn and dn and at ``|v| = K/2``, for
@@ -156,7 +156,7 @@ class Modulus:
 
 def ellipk(m: float, m1: float) -> float:
     """Complete elliptic integral of the first kind ``K(m)`` (Bulirsch's ``cel``, via
-    :func:`tumble.dynamics.carlson.complete_integrals`); ``m1 = 1 - m`` given separately."""
+    :func:`tumble.dynamics.special.carlson.complete_integrals`); ``m1 = 1 - m`` given separately."""
     if m1 == 0.0:
         return math.inf
     return complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0]
@@ -166,7 +166,7 @@ def ellipk_kp(kp) -> np.ndarray:
     """``K(m)`` from ``k' = sqrt(1 - m)`` (array_like, in [0, 1]), vectorised:
     ``pi / (2 AGM(1, k'))`` (Abramowitz & Stegun 17.6); ``inf`` for ``k' = 0``.
 
-    For callers that hold ``k'`` (:class:`tumble.dynamics.exact.EllipticParameters` ``.kp``),
+    For callers that hold ``k'`` (:class:`tumble.dynamics.methods.exact.EllipticParameters` ``.kp``),
     which stays representable where ``1 - m = k'^2`` underflows: ``k' = 1e-200`` gives
     ``K = ln(4 / k') = 461.9`` where ``1 - m`` is 0 in double precision.
     """

@@ -15,22 +15,22 @@ method is added here and nowhere else.
   is first order in the sample spacing dt (the rate is frozen over each interval), so its
   attitude error shrinks only in proportion to dt.
 - ``"exact"``: the closed-form torque-free motion, omega and attitude
-  (:mod:`tumble.dynamics.exact`); the default when there is no torque.
+  (:mod:`tumble.dynamics.methods.exact`); the default when there is no torque.
 - ``"geometric"`` (4th order), ``"geometric2"``, ``"geometric6"``: fixed-step splitting into
-  exact rotations (:mod:`tumble.dynamics.geometric`): |L| and L_world kept to round-off, energy
+  exact rotations (:mod:`tumble.dynamics.methods.geometric`): |L| and L_world kept to round-off, energy
   error bounded; torques allowed.
 
-Rotors and dampers (:mod:`tumble.dynamics.internal`) go through ``Method.integrate_internal``,
-which takes the :class:`~tumble.dynamics.internal.InternalModel` and returns its samples:
+Rotors and dampers (:mod:`tumble.dynamics.models.internal`) go through ``Method.integrate_internal``,
+which takes the :class:`~tumble.dynamics.models.internal.InternalModel` and returns its samples:
 ``"dop853"`` and ``"rk45"`` integrate the model's ODE (total momentum, attitude, the damper's
 state and energy budgets), the ``"geometric"`` methods split it into exact rotations and the
 damper's exact relaxation. ``"exact"`` and ``"seed"`` have none and refuse such runs.
 
-A stiff damper (:data:`~tumble.dynamics.internal.STIFF_RATIO`: relaxing more than 500 times
+A stiff damper (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`: relaxing more than 500 times
 faster than the body spins) would hold an explicit method to steps of its relaxation time, not
 the rotation's: ``"dop853"`` then hands the run to scipy's Radau IIA (implicit, order 5,
 L-stable; Hairer & Wanner, *Solving ODEs II*, sec. IV.8) at the same tolerances, with the
-model's analytic Jacobian (:meth:`~tumble.dynamics.internal.InternalModel.jacobian`), and
+model's analytic Jacobian (:meth:`~tumble.dynamics.models.internal.InternalModel.jacobian`), and
 ``simulate`` refuses such a run for ``"rk45"`` and the splitting methods, naming the ratio.
 """
 
@@ -43,9 +43,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from .euler import euler_rhs, quaternion_rate
-from .internal import STIFF_RATIO
-from .torques import body_torque, spin_gain
+from ..euler import euler_rhs, quaternion_rate
+from ..models.internal import STIFF_RATIO
+from ..models.torques import body_torque, spin_gain
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 
@@ -85,7 +85,7 @@ class Method:
     #: Whether the method steps with a fixed ``step`` (s) instead of tolerances.
     fixed_step: bool = False
     #: ``integrate_internal(model, omega0, quat0, t, torque, rtol, atol, step)`` ->
-    #: :class:`~tumble.dynamics.internal.InternalSamples` for rotors and dampers; None if the
+    #: :class:`~tumble.dynamics.models.internal.InternalSamples` for rotors and dampers; None if the
     #: method cannot take them.
     integrate_internal: Callable | None = None
 
@@ -128,8 +128,8 @@ def _solve_full(method: str):
 
 def stiffness(model, omega0, quat0, t, torque) -> tuple[float, float]:
     """A run's damper stiffness ratio and the spin it is measured against (rad/s):
-    :meth:`~tumble.dynamics.internal.InternalModel.stiffness` at the run's fastest spin, its
-    spin bound plus what the torque can add (:func:`~tumble.dynamics.torques.spin_gain`)."""
+    :meth:`~tumble.dynamics.models.internal.InternalModel.stiffness` at the run's fastest spin, its
+    spin bound plus what the torque can add (:func:`~tumble.dynamics.models.torques.spin_gain`)."""
     t_end = float(t[-1] - t[0])
     with np.errstate(over="ignore", invalid="ignore"):
         gain = spin_gain(torque, float(t[0]), omega0, Rotation.from_quat(quat0), model.moments, t_end)

@@ -22,7 +22,7 @@ Everything is vectorised over a leading batch axis: N bodies in one call (``(N, 
 so a sweep of 10,000 bodies costs little more than one. Written by hand because no library
 offers a Lie-group splitting integrator for rigid bodies on numpy arrays.
 
-Rotors and the spherical damper (:mod:`tumble.dynamics.internal`, :func:`propagate_internal`).
+Rotors and the spherical damper (:mod:`tumble.dynamics.models.internal`, :func:`propagate_internal`).
 With the total momentum ``L = I w + h + J w_d`` the conservative part of the motion is
 ``L' = L x w``, ``w_d' = w_d x w`` (the sphere's momentum is fixed in space), with
 ``w = I^-1 (L - h - J w_d)``. It splits the same way: ``H_i = (L_i - h_i - J w_d,i)^2 / (2 I_i)``
@@ -33,7 +33,7 @@ time as an extra coordinate, the symmetric step "advance t by h/2, rotate with h
 t by h/2" evaluates ``h`` at the middle of each Strang stage and keeps the composition's order.
 The damper's coupling alone (L and attitude fixed) is linear and separable,
 ``w_d,i' = -k_i (w_d,i - w_inf,i)``, and is solved exactly with its dissipated energy
-(:meth:`~tumble.dynamics.internal.SphericalDamper.relax`); it enters like the torque, as two
+(:meth:`~tumble.dynamics.models.internal.SphericalDamper.relax`); it enters like the torque, as two
 half steps around the rotations, and so does the integral ``integral h'.w dt`` of the motors'
 work. Each piece is exact (or symmetric) and the step is their symmetric (Strang) composition,
 composed again by Yoshida's coefficients; the order is measured in ``tests/test_gyrostat.py``
@@ -47,8 +47,8 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .internal import InternalSamples
-from .torques import body_torque, spin_gain
+from ..models.internal import InternalSamples
+from ..models.torques import body_torque, spin_gain
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]
 
@@ -62,7 +62,7 @@ def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
     """The default largest step, s: ``MAX_STEP_ANGLE`` of rotation at the fastest spin the run
     can reach, ``spin + gain`` (rad/s), where ``gain`` bounds what a torque adds over the run
     (``|tau| t_end / I1`` for a constant torque), and as fine against a damper's relaxation
-    ``rate`` (1/s, :meth:`~tumble.dynamics.internal.SphericalDamper.rates`). ``inf`` for a body
+    ``rate`` (1/s, :meth:`~tumble.dynamics.models.internal.SphericalDamper.rates`). ``inf`` for a body
     at rest without torque or damper.
 
     A torque that grows during the run (a function of time or state) is estimated from its
@@ -148,7 +148,7 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
         Default (:func:`default_step`): a sample interval, and no more than 0.05 rad of
         rotation per step at the fastest spin the run can reach, counting what the torque adds.
     torque : torque model, optional
-        ``tau(t, omega, attitude)`` (see :mod:`tumble.dynamics.torques`); called with arrays of
+        ``tau(t, omega, attitude)`` (see :mod:`tumble.dynamics.models.torques`); called with arrays of
         N bodies and may return shape (3,) or (N, 3).
 
     Returns
@@ -186,7 +186,7 @@ def propagate_internal(model, omega0, quat0, t, *, order: int = 4, step: float |
     Parameters
     ----------
     model : InternalModel
-        The body's moments, rotors and damper (:mod:`tumble.dynamics.internal`).
+        The body's moments, rotors and damper (:mod:`tumble.dynamics.models.internal`).
     omega0 : array_like, shape (3,)
         Initial angular velocity of the body, principal frame, rad/s (the damper starts with it).
     quat0 : array_like, shape (4,)
@@ -197,10 +197,10 @@ def propagate_internal(model, omega0, quat0, t, *, order: int = 4, step: float |
         Order of the composition.
     step : float, optional
         Largest step, s; default :func:`default_step` at the spin bound of
-        :meth:`~tumble.dynamics.internal.InternalModel.spin_bound`, the torque's gain and the
+        :meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`, the torque's gain and the
         damper's relaxation rate.
     torque : torque model, optional
-        External torque (see :mod:`tumble.dynamics.torques`).
+        External torque (see :mod:`tumble.dynamics.models.torques`).
 
     Returns
     -------

@@ -112,7 +112,7 @@ def _iterate(state, step, limit: int = 40):
     if so, and a function that gives the next state otherwise. On floats this is the plain loop
     with its ``break`` (the one-body path, without numpy's overhead on single values); on arrays
     each element leaves the loop with the state it stopped in and only the others go on, so that
-    every element gets the float loop's answer exactly (:mod:`tumble.dynamics.exact_batch`).
+    every element gets the float loop's answer exactly (:mod:`tumble.dynamics.methods.exact_batch`).
     """
     if np.ndim(state[0][0]) == 0:
         for _ in range(limit):

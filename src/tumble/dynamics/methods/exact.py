@@ -51,13 +51,13 @@ on all six orderings of the design axes and against arbitrary-precision integrat
 separatrix, in tests/test_exact.py).
 
 Accuracy and limits (tests/test_exact.py, tests/test_exact_hardening.py). The parameters come
-from :mod:`tumble.dynamics.exact_parameters` (double-double, scaled: nothing underflows that the
+from :mod:`tumble.dynamics.methods.exact_parameters` (double-double, scaled: nothing underflows that the
 answer does not, so ``omega0 = (0, 1, 1e-160)`` stays a steady spin for ~370 / lambda seconds,
 then flips). The phase ``u = u0 + p t``, its reduction by ``2 K`` and the secular part of
 ``phi`` (``A t + B j``, reduced mod 2 pi) are carried in double-double, so every angle of the
 motion is good to ~3e-32 of the phase reached, on top of round-off (measured against
 mpmath: 3e-15 rad at a phase of 6.6e16 rad, 2e-11 rad at 6.6e20 rad, 7e-10 rad at 6.6e22). The functions of the
-reduced phase are evaluated in double precision (:mod:`tumble.dynamics.elliptic`): omega to a
+reduced phase are evaluated in double precision (:mod:`tumble.dynamics.special.elliptic`): omega to a
 few ulps relative per component, the attitude to ~5e-14 rad, also at ``1 - m`` down to 0;
 energy, ``|L|`` and ``L_world`` hold to round-off at any phase. Beyond :data:`MAX_PHASE`
 (1e24 rad, where the phase error is ~3e-8 rad; it would reach 1e-6 rad at ~3e25 rad) the
@@ -73,9 +73,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from . import ddouble as dd
-from .carlson import complete_integrals, legendre_f, legendre_pi_excess
-from .elliptic import Modulus
+from ..special import ddouble as dd
+from ..special.carlson import complete_integrals, legendre_f, legendre_pi_excess
+from ..special.elliptic import Modulus
 from .exact_parameters import EllipticParameters, elliptic_parameters, scaled_core
 
 __all__ = ["MAX_PHASE", "EllipticParameters", "FreeRotation", "check_phase_limit", "elliptic_parameters"]
@@ -125,7 +125,7 @@ def is_steady(I, w) -> np.ndarray:
     Moments that are equal only to round-off are not equal here: a body declared symmetric is
     made exactly so by :func:`tumble.mass.principal_frame`. ``I`` (ascending, kg m^2) and ``w``
     (rad/s) of shape (..., 3); a bool array of shape (...), for one body as for a batch
-    (:func:`tumble.dynamics.exact_batch.free_rotation_batch`).
+    (:func:`tumble.dynamics.methods.exact_batch.free_rotation_batch`).
     """
     I, w = np.asarray(I), np.asarray(w)
     zeros = np.count_nonzero(w == 0.0, axis=-1)

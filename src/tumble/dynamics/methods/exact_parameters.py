@@ -1,6 +1,6 @@
 """Parameters of the torque-free motion through one omega: in double-double, free of underflow.
 
-The formulas are those of :mod:`tumble.dynamics.exact` (Landau & Lifshitz, *Mechanics*, sec.
+The formulas are those of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*, sec.
 37), with ``g_j = L^2 - 2 E I_j = sum_{i != j} I_i (I_i - I_j) w_i^2`` (without cancellation,
 Celledoni, Fasso, Safstrom & Zanna, SIAM J. Sci. Comput. 30 (2008) 2084, sec. 2). What is
 added here is only how they are evaluated:
@@ -10,13 +10,13 @@ added here is only how they are evaluated:
   ``g_j = 4^e_j gt_j`` exactly, so that no square underflows (``omega = (0, 1, 1e-160)`` has
   ``g2 ~ 1e-320``, below the normal range, but ``gt2`` is of order 1); the moments are scaled by
   a power of two too (every parameter is homogeneous of degree 0 in them);
-- the products and quotients are taken in double-double (:mod:`tumble.dynamics.ddouble`) with
+- the products and quotients are taken in double-double (:mod:`tumble.dynamics.special.ddouble`) with
   the moment differences formed exactly, so that ``p``, ``k'``, ``n`` and the rates are good to
   ~1e-31, as the phase of a long run needs (``u = u0 + p t`` with ``p t`` up to 1e20);
 - ``k = sqrt(m)`` and ``k' = sqrt(1 - m)`` are formed as ``2^(e_a - e_b) sqrt(ratio)``:
   ``k' = 1e-160`` stays representable where ``1 - m = 1e-320`` is not even a normal double,
   and ``k'`` is also returned as a double-double mantissa and a binary exponent, from which
-  ``K`` is found however small ``k'`` is (:func:`tumble.dynamics.carlson.complete_integrals`).
+  ``K`` is found however small ``k'`` is (:func:`tumble.dynamics.special.carlson.complete_integrals`).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import ddouble as dd
+from ..special import ddouble as dd
 
 __all__ = ["EllipticParameters", "elliptic_parameters"]
 
@@ -141,7 +141,7 @@ def _core(w: list, I: list) -> dict:
 
 def elliptic_parameters(omega, moments) -> EllipticParameters:
     """``p``, ``m``, ``1 - m``, the amplitudes, ``k`` and ``k'`` of the motion through
-    ``omega``, for ascending moments (:mod:`tumble.dynamics.exact`); broadcasts over (..., 3).
+    ``omega``, for ascending moments (:mod:`tumble.dynamics.methods.exact`); broadcasts over (..., 3).
 
     ``1 - m`` is formed from the energy-momentum gaps directly, never as ``1 - m``; nothing
     underflows that the answer does not (module docstring).

@@ -68,9 +68,9 @@ from typing import NamedTuple
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..mass.body import AXIS_ROLES
-from ..mass._checks import check_positive
-from ..mass.tensor import _short_repr, check_vectors, refuse_first
+from ...mass.body import AXIS_ROLES
+from ...mass._checks import check_positive
+from ...mass.tensor import _short_repr, check_vectors, refuse_first
 
 __all__ = [
     "MU_EARTH",

@@ -1,6 +1,6 @@
 """Omega alone of many free rigid bodies in double precision, each on its own times, for inner loops.
 
-The closed form is that of :mod:`tumble.dynamics.exact` (Landau & Lifshitz, *Mechanics*,
+The closed form is that of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*,
 sec. 37; its module docstring states it, with ``g_j = sum_i I_i (I_i - I_j) w_i^2``)::
 
     g2 > 0:  w1 = s a1 cn(u),  w2 = a2 sn(u),  w3 = s a3 dn(u)          (about the major axis)
@@ -10,7 +10,7 @@ sec. 37; its module docstring states it, with ``g_j = sum_i I_i (I_i - I_j) w_i^
 evaluated here in plain double precision with :func:`scipy.special.ellipj` and
 :func:`scipy.special.ellipkinc` (Cephes: the AGM and descending Landen transformation), on
 arrays of bodies **each with its own times**. Why a second evaluation of the same formula:
-:func:`tumble.dynamics.exact_batch.free_rotation_batch` carries the phase in double-double and
+:func:`tumble.dynamics.methods.exact_batch.free_rotation_batch` carries the phase in double-double and
 matches the one-body solution to a few ulps at any phase (1e24 rad), which costs about 3 ms for
 12 bodies x 100 samples; a least-squares fit of a one-second gyroscope record evaluates the model
 hundreds of times at phases below 1e3 rad, where this form agrees with it to ~1e-13 relative
@@ -49,7 +49,7 @@ def free_omega(moments, omega0, t) -> np.ndarray:
     Returns
     -------
     ndarray, shape (N, T, 3)
-        ``omega(t)``, rad/s, within ~1e-13 of :func:`tumble.dynamics.exact_batch.free_rotation_batch`
+        ``omega(t)``, rad/s, within ~1e-13 of :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch`
         relative to ``|omega|`` at phases ``p t`` up to 1e3 rad.
 
     Examples

@@ -4,7 +4,7 @@ About 32 significant digits (a relative rounding unit of ``2^-104 ~ 5e-32``), wi
 operations, so every function works alike on Python floats and on arrays (broadcasting). The
 exact solution of the free rigid body needs it for its phases: ``u = u0 + p t`` and the
 precession angle grow without bound, and a phase of 1e17 rad computed in double precision is
-wrong by more than a period (:mod:`tumble.dynamics.exact`).
+wrong by more than a period (:mod:`tumble.dynamics.methods.exact`).
 
 References
 ----------

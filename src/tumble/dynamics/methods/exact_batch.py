@@ -1,29 +1,29 @@
 """The exact torque-free motion of N rigid bodies at common times, vectorised over both.
 
-The mathematics is that of :mod:`tumble.dynamics.exact` (Landau & Lifshitz, *Mechanics*,
+The mathematics is that of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*,
 sec. 37; read its module docstring), evaluated step for step in the same floating-point
 operations, on arrays of bodies instead of one body at a time:
 
 - the parameters ``p``, ``k``, ``k'``, the amplitudes and the characteristic ``n`` from
-  :func:`tumble.dynamics.exact_parameters.scaled_core` (which broadcasts);
+  :func:`tumble.dynamics.methods.exact_parameters.scaled_core` (which broadcasts);
 - the complete integrals ``K(m)`` and ``Pi(n | m)`` in double-double by the AGM (Abramowitz &
   Stegun 17.6) and Bulirsch's ``cel`` (Numer. Math. 13 (1969) 305), with the shift for
-  ``k' < 2^-61`` of :mod:`tumble.dynamics.carlson`, whose kernels (:func:`~tumble.dynamics.
-  carlson.agm_k`, :func:`~tumble.dynamics.carlson.cel`) take arrays: each body stops iterating
+  ``k' < 2^-61`` of :mod:`tumble.dynamics.special.carlson`, whose kernels (:func:`~tumble.dynamics.
+  carlson.agm_k`, :func:`~tumble.dynamics.special.carlson.cel`) take arrays: each body stops iterating
   where the one-body loop stops (a mask), so the values are the one-body ones;
 - the phase ``u = u0 + p t`` and its reduction by half periods in double-double, and ``sn, cn,
   dn`` of the reduced phase by the AGM and descending Landen transformation (``m <= 1/2``) or
-  Jacobi's imaginary transformation (``m > 1/2``) of :class:`tumble.dynamics.elliptic.Modulus`,
+  Jacobi's imaginary transformation (``m > 1/2``) of :class:`tumble.dynamics.special.elliptic.Modulus`,
   each body with its own number of Landen steps;
 - the attitude ``R(t) = G Rz(phi) Rx(theta) Rz(psi) P`` with quaternion algebra written out on
   arrays (Hamilton product, scalar last, as scipy), the precession ``phi`` from Legendre's
-  integrals (:func:`tumble.dynamics.carlson.legendre_f`, :func:`~tumble.dynamics.carlson.
+  integrals (:func:`tumble.dynamics.special.carlson.legendre_f`, :func:`~tumble.dynamics.special.carlson.
   legendre_pi_excess`, vectorised already), its secular part in double-double.
 
 Steady rotations (spheres, spins about a principal axis, a symmetric top in its degenerate
 plane) are rotations about the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi).
 Bodies exactly on the separatrix (``k' = 0``: no period), and any whose parameters come out
-non-finite, are handed to :class:`tumble.dynamics.exact.FreeRotation` one by one.
+non-finite, are handed to :class:`tumble.dynamics.methods.exact.FreeRotation` one by one.
 """
 
 from __future__ import annotations
@@ -31,8 +31,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from . import ddouble as dd
-from .carlson import agm_k, cel, legendre_f, legendre_pi_excess
+from ..special import ddouble as dd
+from ..special.carlson import agm_k, cel, legendre_f, legendre_pi_excess
 from .exact import MAX_PHASE, FreeRotation, check_phase_limit, is_steady
 from .exact_parameters import scaled_core
 
@@ -130,7 +130,7 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
     Raises
     ------
     ValueError
-        If a body's phase would exceed :data:`tumble.dynamics.exact.MAX_PHASE`, naming the body.
+        If a body's phase would exceed :data:`tumble.dynamics.methods.exact.MAX_PHASE`, naming the body.
     """
     I, w, q0 = (np.asarray(a, float) for a in (moments, omega0, quat0))
     t = np.asarray(t, float)
@@ -179,7 +179,7 @@ def _check_phases(I, w, t) -> None:
 
 def _times(x, t):
     """``x t`` for double-doubles ``x`` of shape (n,) and times ``t`` (n, T) or (T,), scaled by
-    powers of two first (:func:`tumble.dynamics.ddouble.mul_scaled`, elementwise)."""
+    powers of two first (:func:`tumble.dynamics.special.ddouble.mul_scaled`, elementwise)."""
     e = np.frexp(x[0])[1][:, None]
     return dd.mul_d((np.ldexp(x[0][:, None], -e), np.ldexp(x[1][:, None], -e)), np.ldexp(t, e))
 

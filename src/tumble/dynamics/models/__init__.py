@@ -1,0 +1,12 @@
+"""Models the equations of motion call: external torques and internal bodies.
+
+- :mod:`~tumble.dynamics.models.torques`: constant and function torques, ``as_torque``.
+- :mod:`~tumble.dynamics.models.internal`: rotors (the gyrostat) and the spherical damper.
+- :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque and its stability regions.
+- :mod:`~tumble.dynamics.models.drag`: Euler's equations with an aerodynamic drag about each
+  principal axis, compiled (the fit's model).
+
+A new model (torque, actuator, internal body) is a new module here; the methods in
+:mod:`tumble.dynamics.methods` see it only through the right-hand side or the kicks it provides.
+The public names are exported from :mod:`tumble.dynamics`.
+"""
