@@ -13,7 +13,7 @@ from scipy.spatial.transform import Rotation
 import tumble
 from tumble.dynamics.batch import BatchTrajectory, rotate_by_quaternion, simulate_batch
 from tumble.dynamics.methods.exact import FreeRotation
-from tumble.dynamics.methods.exact_batch import quat_multiply, quat_zxz
+from tumble.dynamics.special.quaternion import quat_multiply, quat_zxz
 from tumble.dynamics.methods.integrators import METHODS
 
 

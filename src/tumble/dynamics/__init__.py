@@ -1,12 +1,25 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
 from .batch import BatchTrajectory, simulate_batch
-from .euler import angular_momentum, energy_momentum_gaps, euler_rhs, euler_rhs_tensor, kinetic_energy, quaternion_rate
+from .euler import (
+    angular_momentum,
+    energy_momentum_gaps,
+    euler_rhs,
+    euler_rhs_tensor,
+    kinetic_energy,
+)
 from .methods.integrators import METHODS, Method, get_method
-from .models.gravity import GravityGradient, gravity_gradient_stability, inertia_ratios, lvlh_state, orbit_frame_angles
+from .models.gravity import (
+    GravityGradient,
+    gravity_gradient_stability,
+    inertia_ratios,
+    lvlh_state,
+    orbit_frame_angles,
+)
 from .models.internal import SphericalDamper, gyrostat_rate
 from .models.torques import ConstantTorque, FunctionTorque, as_torque
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
+from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory
 
 __all__ = [

@@ -27,7 +27,7 @@ from ..mass._checks import _WHY, MAX_RATE, QUAT_NORM_TOL, check_moments
 from ..mass.tensor import _short_repr, refuse_first
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .methods.exact_batch import rotate_by_quaternion
+from .special.quaternion import rotate_by_quaternion
 from .methods.integrators import METHODS, get_method
 from .models.torques import as_torque, spin_gain
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate

@@ -9,9 +9,7 @@ References
 - Seed study sec. 3: ``tau = I omega' + omega x (I omega)`` in the principal frame.
 - Landau & Lifshitz, *Mechanics*, 3rd ed., sec. 36, eq. (36.5); Goldstein, Poole & Safko,
   *Classical Mechanics*, 3rd ed., eq. (5.39').
-- Quaternion kinematics ``q' = q (x) (omega, 0) / 2`` for body-frame rates (Hamilton product,
-  scalar last as in scipy): Shuster, "A survey of attitude representations", J. Astronaut. Sci.
-  41 (1993) 439, section on quaternion kinematics.
+- Quaternion kinematics (``quaternion_rate``): :mod:`tumble.dynamics.special.quaternion`.
 """
 
 from __future__ import annotations
@@ -24,7 +22,6 @@ __all__ = [
     "euler_rhs",
     "euler_rhs_tensor",
     "kinetic_energy",
-    "quaternion_rate",
 ]
 
 
@@ -109,28 +106,6 @@ def kinetic_energy(omega, moments) -> np.ndarray:
     """
     w = np.asarray(omega, float)
     return 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1)
-
-
-def quaternion_rate(quat, omega) -> np.ndarray:
-    """Time derivative of the attitude quaternion for body-frame angular velocity.
-
-    ``q' = q (x) (omega, 0) / 2``, written out for scalar-last quaternions ``(v, s)``:
-    ``v' = (s omega + v x omega) / 2``, ``s' = -(v . omega) / 2`` (Shuster 1993).
-    With ``R(q)`` mapping body to world this is ``R' = R [omega]_x``.
-
-    Parameters
-    ----------
-    quat : array_like, shape (..., 4)
-        Unit quaternion ``[x, y, z, w]``, body to world.
-    omega : array_like, shape (..., 3)
-        Angular velocity in the body frame, rad/s.
-    """
-    q = np.asarray(quat, float)
-    w = np.asarray(omega, float)
-    v, s = q[..., :3], q[..., 3:]
-    dv = 0.5 * (s * w + np.cross(v, w))
-    ds = -0.5 * np.sum(v * w, axis=-1, keepdims=True)
-    return np.concatenate([dv, ds], axis=-1)
 
 
 def energy_momentum_gaps(omega, moments) -> np.ndarray:

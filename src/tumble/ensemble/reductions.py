@@ -34,7 +34,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..analysis import axis_of, circulation_axis, energy_momentum_gaps, flip_interval, linearised_rate
-from ..dynamics.batch import rotate_by_quaternion
+from ..dynamics.special.quaternion import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
 from .cases import CaseInputs
 

@@ -43,7 +43,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from ..euler import euler_rhs, quaternion_rate
+from ..euler import euler_rhs
+from ..special.quaternion import quaternion_rate
 from ..models.internal import STIFF_RATIO
 from ..models.torques import body_torque, spin_gain
 

@@ -65,7 +65,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ...mass._checks import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
-from ..euler import quaternion_rate
+from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
 

@@ -15,7 +15,7 @@ from typing import Callable
 import numpy as np
 
 from ...mass._checks import check_vector
-from ..methods.exact_batch import quat_conjugate, rotate_by_quaternion
+from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 
 __all__ = ["ConstantTorque", "FunctionTorque", "as_torque", "body_torque", "spin_gain"]
 
