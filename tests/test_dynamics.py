@@ -11,10 +11,18 @@ from tumble.dynamics import (
     METHODS,
     ConstantTorque,
     FunctionTorque,
+    TorqueModel,
     euler_rhs,
     euler_rhs_tensor,
     kinetic_energy,
     simulate,
+)
+from tumble.dynamics.models.torques import (
+    BoundsSpin,
+    NeedsBody,
+    as_torque,
+    bind_to_body,
+    spin_gain,
 )
 from tumble.mass import MassProperties
 
@@ -198,3 +206,58 @@ def test_body_torque_in_design_coordinates():
                     torque=ConstantTorque((0.03, 0.0, 0.0)))
     omega_design = traj.omega @ body.principal_axes.T
     np.testing.assert_allclose(omega_design, np.outer(traj.t, [0.03 / 0.3125, 0.0, 0.0]), atol=1e-12)
+
+
+# -- the declared torque-model interface (tumble.dynamics.TorqueModel and its optional parts) ------
+
+class _SpinAboutMajor:
+    """A duck-typed model (no base class): ``tau = (0, 0, k I3)``, body frame; needs the moments."""
+
+    frame = "body"
+
+    def __init__(self, k, moments=None):
+        self.k, self.moments = k, moments
+
+    def bind(self, body):
+        return type(self)(self.k, np.asarray(getattr(body, "principal_moments", body), float))
+
+    def __call__(self, t, omega, attitude):
+        if self.moments is None:
+            raise AssertionError("called before bind")
+        return self.k * self.moments[..., 2:3] * np.array([0.0, 0.0, 1.0])
+
+
+def test_the_torque_interface_is_declared_and_checked_by_protocol():
+    model = _SpinAboutMajor(0.5)
+    assert isinstance(model, TorqueModel) and isinstance(model, NeedsBody) and not isinstance(model, BoundsSpin)
+    assert as_torque(model) is model  # a model passes through; a plain function is wrapped, body frame
+    assert not isinstance(lambda t, w, a: np.zeros(3), TorqueModel)
+    assert as_torque(lambda t, w, a: np.zeros(3)).frame == "body"
+    assert isinstance(tumble.dynamics.GravityGradient(orbit_period=5400.0), BoundsSpin)
+    constant = ConstantTorque((0.0, 0.0, 1.0))
+    assert bind_to_body(constant, [1.0, 2.0, 3.0]) is constant and bind_to_body(None, [1.0, 2.0, 3.0]) is None
+    np.testing.assert_array_equal(bind_to_body(model, free_body([1.0, 2.0, 3.0])).moments, [1.0, 2.0, 3.0])
+
+
+def test_simulate_and_simulate_batch_bind_a_model_that_needs_the_body():
+    # from rest, tau = k I3 e3 spins the body about its major axis: omega3 = k t for any I3
+    k, t = 0.5, np.linspace(0.0, 2.0, 5)
+    run = simulate(free_body([1.0, 2.0, 3.0]), [0.0, 0.0, 0.0], times=t, torque=_SpinAboutMajor(k))
+    np.testing.assert_allclose(run.omega[:, 2], k * t, rtol=1e-10, atol=1e-12)
+    batch = tumble.simulate_batch([[1.0, 2.0, 3.0], [2.0, 2.5, 4.0]], [0.0, 0.0, 0.0], times=t,
+                                  method="geometric", torque=_SpinAboutMajor(k))
+    np.testing.assert_allclose(batch.omega[:, :, 2], np.broadcast_to(k * t, (2, len(t))), rtol=1e-12, atol=1e-12)
+
+
+def test_a_model_that_bounds_its_spin_is_asked_for_the_bound():
+    class Bounded(_SpinAboutMajor):
+        def max_spin(self, t, omega, attitude):
+            return np.full(np.shape(omega)[:-1], 7.0)  # rad/s, whatever the torque
+
+    model = Bounded(0.5).bind([1.0, 2.0, 3.0])
+    assert isinstance(model, BoundsSpin)
+    w = np.array([0.0, 3.0, 4.0])  # |w| = 5 rad/s: the model can add at most 2 rad/s, for any duration
+    assert spin_gain(model, 0.0, w, Rotation.identity(), [1.0, 2.0, 3.0], 1e6) == pytest.approx(2.0, rel=1e-15)
+    # without max_spin: |tau| duration / I1 = 0.5 * 3 * 10 / 1
+    assert spin_gain(_SpinAboutMajor(0.5, np.array([1.0, 2.0, 3.0])), 0.0, w, Rotation.identity(),
+                     [1.0, 2.0, 3.0], 10.0) == pytest.approx(15.0, rel=1e-15)

@@ -17,7 +17,7 @@ from .models.gravity import (
     orbit_frame_angles,
 )
 from .models.internal import SphericalDamper, gyrostat_rate
-from .models.torques import ConstantTorque, FunctionTorque, as_torque
+from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory
@@ -32,6 +32,7 @@ __all__ = [
     "FunctionTorque",
     "GravityGradient",
     "Method",
+    "TorqueModel",
     "SphericalDamper",
     "Trajectory",
     "angular_momentum",

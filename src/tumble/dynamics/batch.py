@@ -29,7 +29,7 @@ from . import _display
 from .euler import angular_momentum, kinetic_energy
 from .special.quaternion import rotate_by_quaternion
 from .methods.integrators import METHODS, get_method
-from .models.torques import as_torque, spin_gain
+from .models.torques import as_torque, bind_to_body, spin_gain
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .trajectory import Trajectory
 
@@ -271,8 +271,7 @@ def _geometric(spec, I, w0, q0, t, model, step):
     """The splitting integrators, every body together; the work bounds of :func:`tumble.simulate`."""
     from .methods.geometric import default_step, propagate
 
-    if model is not None and hasattr(model, "bind"):  # a torque that needs the bodies' moments
-        model = model.bind(I)
+    model = bind_to_body(model, I)  # a torque that needs the bodies' moments (NeedsBody)
     t_end = float(t[-1])
     spin = float(np.max(np.linalg.norm(w0, axis=1)))
     with np.errstate(over="ignore", invalid="ignore"):

@@ -19,7 +19,7 @@ from ..mass._checks import (
 )
 from .methods.integrators import METHODS, Method, get_method
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
-from .models.torques import as_torque, spin_gain
+from .models.torques import as_torque, bind_to_body, spin_gain
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
@@ -235,8 +235,7 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
     if not isinstance(props, MassProperties):
         raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
     model = as_torque(torque)
-    if model is not None and hasattr(model, "bind"):  # a torque that needs the body's moments
-        model = model.bind(props)
+    model = bind_to_body(model, props)  # a torque that needs the body's moments (NeedsBody)
     if damper is not None and not isinstance(damper, SphericalDamper):
         raise ValueError(f"damper = {damper!r} must be a tumble.SphericalDamper(inertia=..., damping=...) or None")
     rotors = Rotors.of(body)

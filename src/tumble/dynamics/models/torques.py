@@ -1,25 +1,120 @@
-"""External torques about the centre of mass.
+"""External torques about the centre of mass, and the interface every torque model follows.
 
-A torque model is called as ``model(t, omega, attitude) -> tau`` with ``t`` in s, ``omega`` the
-principal-frame angular velocity (rad/s, shape (3,)) and ``attitude`` a scipy ``Rotation``
-(principal body frame to world); it returns a torque in N m, shape (3,), in the frame named by
-its ``frame`` attribute: ``"body"`` (the principal frame) or ``"world"``. A plain Python
-callable is taken as a body-frame torque.
+A torque model is any object that satisfies :class:`TorqueModel`:
+
+- ``model(t, omega, attitude) -> tau``, with ``t`` in s, ``omega`` the principal-frame angular
+  velocity (rad/s, shape (3,), or (N, 3) when a batched method calls it for N bodies at once)
+  and ``attitude`` a scipy ``Rotation`` (principal body frame to world; one, or a stack of N);
+  it returns a torque in N m, shape (3,) or that of ``omega``;
+- ``frame``: the frame of that torque, ``"body"`` (the principal frame) or ``"world"``.
+
+A plain Python callable is taken as a body-frame torque (:func:`as_torque` wraps it in a
+:class:`FunctionTorque`). Two methods are optional, each declared by its own protocol and
+looked for by the runs through ``isinstance``, never by name:
+
+- ``bind(body) -> TorqueModel`` (:class:`NeedsBody`): a model whose torque depends on the
+  body's principal moments (kg m^2), such as the gravity gradient, is bound to the body (a
+  Body, MassProperties or the moments, shape (3,) or (N, 3)) before a run starts
+  (:func:`bind_to_body`, used by ``simulate`` and ``simulate_batch`` alike);
+- ``max_spin(t, omega, attitude) -> ndarray`` (:class:`BoundsSpin`): an upper bound on
+  ``|omega|`` (rad/s) over the whole motion from this state, shape () or (N,); the runs then
+  bound their work and choose default steps from it (:func:`spin_gain`) instead of from
+  ``|tau| t / I1``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from tumble.dynamics.models.torques import ConstantTorque, TorqueModel, as_torque
+>>> isinstance(ConstantTorque((0.0, 0.0, 1.0), "world"), TorqueModel)
+True
+>>> as_torque(lambda t, omega, attitude: np.zeros(3)).frame
+'body'
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from ...mass._checks import check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 
-__all__ = ["ConstantTorque", "FunctionTorque", "as_torque", "body_torque", "spin_gain"]
+__all__ = [
+    "BoundsSpin",
+    "ConstantTorque",
+    "FunctionTorque",
+    "NeedsBody",
+    "TorqueModel",
+    "as_torque",
+    "bind_to_body",
+    "body_torque",
+    "spin_gain",
+]
 
 TORQUE_FRAMES = ("body", "world")
+
+
+@runtime_checkable
+class TorqueModel(Protocol):
+    """What every torque model is: called as ``model(t, omega, attitude)``, with a ``frame``.
+
+    Attributes
+    ----------
+    frame : str
+        ``"body"`` (the principal frame) or ``"world"``: the frame of the returned torque.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics import ConstantTorque, TorqueModel
+    >>> isinstance(ConstantTorque((0.0, 0.0, 1.0)), TorqueModel)
+    True
+    >>> isinstance(lambda t, omega, attitude: np.zeros(3), TorqueModel)  # no frame: as_torque wraps it
+    False
+    """
+
+    frame: str
+
+    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
+        """The torque at time ``t`` (s) for ``omega`` (rad/s, principal frame, (3,) or (N, 3)) and
+        ``attitude`` (principal frame to world), N m, in :attr:`frame`; shape (3,) or omega's."""
+
+
+@runtime_checkable
+class NeedsBody(Protocol):
+    """An optional part of :class:`TorqueModel`: a model whose torque depends on the body's moments.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ConstantTorque, GravityGradient
+    >>> from tumble.dynamics.models.torques import NeedsBody
+    >>> isinstance(GravityGradient(orbit_period=5400.0), NeedsBody), isinstance(ConstantTorque((0, 0, 1)), NeedsBody)
+    (True, False)
+    """
+
+    def bind(self, body) -> TorqueModel:
+        """The model acting on ``body`` (a Body, MassProperties or principal moments, kg m^2,
+        shape (3,) or (N, 3)); raises ``ValueError`` if it already holds other moments."""
+
+
+@runtime_checkable
+class BoundsSpin(Protocol):
+    """An optional part of :class:`TorqueModel`: a model that bounds the spin of the whole motion.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ConstantTorque, GravityGradient
+    >>> from tumble.dynamics.models.torques import BoundsSpin
+    >>> isinstance(GravityGradient(orbit_period=5400.0), BoundsSpin), isinstance(ConstantTorque((0, 0, 1)), BoundsSpin)
+    (True, False)
+    """
+
+    def max_spin(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
+        """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state (``omega``
+        (3,) or (N, 3), principal frame, rad/s); shape () or (N,)."""
 
 
 def _check_frame(frame: str) -> str:
@@ -79,11 +174,37 @@ def as_torque(torque):
     """
     if torque is None:
         return None
-    if hasattr(torque, "frame") and callable(torque):
+    if isinstance(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
         _check_frame(torque.frame)
         return torque
     return FunctionTorque(torque, "body")
 
+
+def bind_to_body(model, body):
+    """``model`` bound to ``body`` if it needs the body's moments (:class:`NeedsBody`), else itself.
+
+    Parameters
+    ----------
+    model : torque model or None
+        As returned by :func:`as_torque`.
+    body : Body, MassProperties or array_like, shape (3,) or (N, 3)
+        The body, or the principal moments of each body of a batch, kg m^2.
+
+    Returns
+    -------
+    torque model or None
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ConstantTorque, GravityGradient
+    >>> from tumble.dynamics.models.torques import bind_to_body
+    >>> bind_to_body(GravityGradient(orbit_period=5400.0), [1.0, 2.0, 3.0]).moments
+    (1.0, 2.0, 3.0)
+    >>> torque = ConstantTorque((0.0, 0.0, 1.0))
+    >>> bind_to_body(torque, [1.0, 2.0, 3.0]) is torque
+    True
+    """
+    return model.bind(body) if isinstance(model, NeedsBody) else model
 
 def body_torque(model, t: float, omega, attitude) -> np.ndarray:
     """Evaluate a torque model and return the torque in the principal (body) frame, N m.
@@ -125,7 +246,8 @@ def spin_gain(model, t: float, omega, attitude, moments, duration: float) -> flo
     bounding a run's work and choosing default steps.
 
     A model that knows a bound on ``|omega|`` for the whole motion says so through a method
-    ``max_spin(t, omega, attitude)`` (the gravity gradient does, from its Jacobi integral);
+    ``max_spin(t, omega, attitude)`` (:class:`BoundsSpin`; the gravity gradient does, from its
+    Jacobi integral);
     otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
     |tau| t`` and ``|omega| <= |L| / I1``) and an estimate from the start for any other. 0
     without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for :func:`body_torque`;
@@ -135,7 +257,7 @@ def spin_gain(model, t: float, omega, attitude, moments, duration: float) -> flo
         return 0.0
     w = np.asarray(omega, float)
     with np.errstate(over="ignore", invalid="ignore"):
-        if hasattr(model, "max_spin"):
+        if isinstance(model, BoundsSpin):
             top = np.asarray(model.max_spin(t, w, attitude), float)
             return float(np.max(np.maximum(top - np.linalg.norm(w, axis=-1), 0.0)))
         tau = body_torque(model, t, w, attitude)  # checks the model's answer
