@@ -89,8 +89,8 @@ def test_geometric_equals_a_loop_of_simulate(bodies, method):
     assert_same_motion(batch, omega, quat, 1e-11, 1e-11)
 
 
-# the methods simulate_batch runs as a loop of simulate: neither the closed form nor a fixed step
-@pytest.mark.parametrize("method", [name for name, m in METHODS.items() if name != "exact" and not m.fixed_step])
+# the methods simulate_batch runs as a loop of simulate: neither the closed form nor a splitting
+@pytest.mark.parametrize("method", [name for name, m in METHODS.items() if not m.batched])
 def test_loop_methods_equal_simulate(bodies, method):
     I, w, q = (a[:12] for a in bodies)
     batch = simulate_batch(I, w, times=T, attitude0=q, method=method)

@@ -261,3 +261,38 @@ def test_a_model_that_bounds_its_spin_is_asked_for_the_bound():
     # without max_spin: |tau| duration / I1 = 0.5 * 3 * 10 / 1
     assert spin_gain(_SpinAboutMajor(0.5, np.array([1.0, 2.0, 3.0])), 0.0, w, Rotation.identity(),
                      [1.0, 2.0, 3.0], 10.0) == pytest.approx(15.0, rel=1e-15)
+
+
+# -- the methods' declared capabilities (what simulate and simulate_batch read, never a name) -------
+
+@pytest.mark.parametrize("name", METHODS)
+def test_every_method_declares_its_capabilities_consistently(name):
+    m = METHODS[name]
+    assert m.name == name
+    assert isinstance(m.closed_form, bool) and isinstance(m.stiff_solver, bool)
+    assert (m.splitting_order is not None) == m.fixed_step  # the splittings are the fixed-step methods
+    assert m.splitting_order in (None, 2, 4, 6)
+    assert m.batched == (m.closed_form or m.splitting_order is not None)
+    if m.closed_form:  # no steps and no tolerances, so nothing to carry a torque, rotors or a damper
+        assert not m.fixed_step and m.rtol is None and m.atol is None
+        assert not m.supports_torque and not m.supports_internal
+    if m.stiff_solver:  # an adaptive method that takes a damper
+        assert m.supports_internal and not m.fixed_step and not m.closed_form and m.rtol is not None
+
+
+@pytest.mark.parametrize("name", [name for name, m in METHODS.items() if m.closed_form])
+def test_a_closed_form_method_takes_no_step_from_t_0(name):
+    # asked for t = 7 s alone (not starting at 0), it gives what it gives at t = 7 s on a grid from 0
+    I, w0, q0 = np.array([1.0, 2.0, 3.0]), np.array([0.3, 1.0, 0.2]), Rotation.from_rotvec([0.1, 0.2, 0.3]).as_quat()
+    integrate = METHODS[name].integrate
+    alone = integrate(I, w0, q0, np.array([7.0]), None, None, None)
+    grid = integrate(I, w0, q0, np.array([0.0, 2.5, 7.0]), None, None, None)
+    for a, b in zip(alone, grid):
+        np.testing.assert_allclose(a[0], b[-1], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(grid[0][0], w0, rtol=0, atol=1e-15)  # and t = 0 is the initial state
+
+
+def test_the_order_table_is_read_from_the_methods():
+    # simulate_batch takes each splitting's composition order from its Method, not from its name
+    assert {n: m.splitting_order for n, m in METHODS.items() if m.splitting_order} == {
+        "geometric": 4, "geometric2": 2, "geometric6": 6}

@@ -160,12 +160,12 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
     if len(I) * len(t) > MAX_BATCH_VALUES:
         raise ValueError(f"{len(I)} bodies x {len(t)} samples is more than {MAX_BATCH_VALUES:,} samples in all; "
                          f"split the batch or sample fewer times")
-    if spec.name == "exact":  # closed form: only the times asked for (no steps from t = 0)
+    if spec.closed_form:  # only the times asked for (no steps from t = 0)
         from .methods.exact_batch import free_rotation_batch
 
         t, keep = t[keep], slice(None)
         omega, quat = free_rotation_batch(I, w0, q0, t)
-    elif spec.fixed_step:
+    elif spec.splitting_order is not None:  # every body together
         omega, quat = _geometric(spec, I, w0, q0, t, model, step)
     else:
         omega, quat = _loop(spec.name, I, w0, q0, t, torque, step)
@@ -284,8 +284,7 @@ def _geometric(spec, I, w0, q0, t, model, step):
     h = step if step is not None else default_step(spin, gain)  # what propagate takes by default
     if t_end / h > MAX_STEPS:
         raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
-    order = {"geometric": 4, "geometric2": 2, "geometric6": 6}[spec.name]
-    omega, quat = propagate(I, w0, q0, t, order=order, step=step, torque=model)
+    omega, quat = propagate(I, w0, q0, t, order=spec.splitting_order, step=step, torque=model)
     return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
 
 

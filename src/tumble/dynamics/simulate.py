@@ -295,7 +295,7 @@ def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None,
 def _check_work(run: RunInputs) -> None:
     """Refuse a run whose rotation or step count no stepping method can follow in bounded time."""
     spec, t_end = run.method, float(run.t[-1])
-    if spec.name == "exact":  # no steps; only its phase is bounded (MAX_PHASE)
+    if spec.closed_form:  # no steps; only its phase is bounded (MAX_PHASE)
         from .methods.exact import check_phase_limit
 
         check_phase_limit(run.props.principal_moments, run.omega0, t_end)
@@ -333,14 +333,15 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
         return
     stiff = (f"damper: its relaxation rate (c / J)(1 + J / I1) = {run.internal.relaxation_rate:.3g} 1/s is "
              f"{ratio:.3g} times the spin rate {slow:.3g} rad/s (stiff above {STIFF_RATIO:g})")
-    if spec.name != "dop853":
+    if not spec.stiff_solver:
         why = "an explicit method's steps would be held to the relaxation time" if not spec.fixed_step else (
             "the splitting's step would have to resolve the relaxation")
-        raise ValueError(f"{stiff}: method {spec.name!r} cannot follow it ({why}); use method dop853, which "
+        able = ", ".join(m for m, s in METHODS.items() if s.stiff_solver)
+        raise ValueError(f"{stiff}: method {spec.name!r} cannot follow it ({why}); use method {able}, which "
                          f"integrates a stiff damper with the implicit Radau")
     if turns > MAX_STIFF_ROTATION:
         raise ValueError(f"{stiff}: t_end = {t_end:g} s is up to {turns:.3g} rad of rotation, more than the implicit "
-                         f"Radau that dop853 hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")
+                         f"Radau that {spec.name} hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")
 
 
 def _spin_bound(run: RunInputs) -> float:

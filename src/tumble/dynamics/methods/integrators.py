@@ -3,7 +3,10 @@
 Every method takes the same arguments and returns the sampled angular velocity (principal
 frame) and attitude quaternions (body to world, scalar last). One registry, :data:`METHODS`,
 maps a method's name to it; the CLI, scenario files and ``simulate()`` all read it, so a new
-method is added here and nowhere else.
+method is added here and nowhere else. A :class:`Method` declares what the runs need to know
+(``supports_torque``, ``supports_internal``, ``fixed_step``, ``closed_form``,
+``splitting_order``, ``stiff_solver``): ``simulate`` and ``simulate_batch`` read these fields,
+never a method's name.
 
 - ``"dop853"``: Euler's equations and the quaternion kinematics integrated together with
   scipy's 8th-order Dormand-Prince (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.10) at
@@ -89,11 +92,27 @@ class Method:
     #: :class:`~tumble.dynamics.models.internal.InternalSamples` for rotors and dampers; None if the
     #: method cannot take them.
     integrate_internal: Callable | None = None
+    #: Whether the method is a closed form: it evaluates the motion at the times asked for, with
+    #: no steps from t = 0 (``simulate`` bounds only its phase, not its rotation, and
+    #: ``simulate_batch`` evaluates it for every body at once, at those times alone).
+    closed_form: bool = False
+    #: Order of the composition of a splitting into exact rotations (2, 4 or 6), which
+    #: ``simulate_batch`` advances for every body together; None for the other methods.
+    splitting_order: int | None = None
+    #: Whether the method hands a stiff damper to an implicit solver (so ``simulate`` lets it
+    #: take one); the others refuse a stiff damper.
+    stiff_solver: bool = False
 
     @property
     def supports_internal(self) -> bool:
         """Whether the method takes rotors and a damper."""
         return self.integrate_internal is not None
+
+    @property
+    def batched(self) -> bool:
+        """Whether ``simulate_batch`` runs every body together (the closed form and the
+        splittings) rather than a loop of ``simulate``, one body at a time."""
+        return self.closed_form or self.splitting_order is not None
 
 
 def _solve(method: str, rhs, y0, t, rtol, atol, jac=None) -> np.ndarray:
@@ -207,28 +226,29 @@ def _geometric_internal(order: int):
     return integrate
 
 
+def _splitting(name: str, order: int, description: str) -> Method:
+    """A splitting method of composition ``order``: one value for its integrators and its field."""
+    return Method(name, _geometric(order), True, None, None, description, fixed_step=True,
+                  integrate_internal=_geometric_internal(order), splitting_order=order)
+
+
 #: The integration methods by name: what ``simulate(method=...)`` accepts (docs/methods.md compares them).
 METHODS: dict[str, Method] = {
     "exact": Method("exact", _integrate_exact, False, None, None,
-                    "closed form (Jacobi elliptic functions, elliptic integral of the third kind)"),
+                    "closed form (Jacobi elliptic functions, elliptic integral of the third kind)",
+                    closed_form=True),
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
                      "DOP853, omega and attitude together, tight tolerances (rtol 1e-12); Radau for a stiff damper",
                      atol_scaled=True,
-                     integrate_internal=_solve_internal("DOP853")),
+                     integrate_internal=_solve_internal("DOP853"), stiff_solver=True),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
                    "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it",
                    integrate_internal=_solve_internal("RK45")),
     "seed": Method("seed", _integrate_seed, False, None, None,
                    "the seed's computation: RK45 defaults for omega, then R <- R exp([w] dt) (first order)"),
-    "geometric": Method("geometric", _geometric(4), True, None, None,
-                        "splitting into exact rotations, 4th-order Yoshida composition, fixed step", fixed_step=True,
-                        integrate_internal=_geometric_internal(4)),
-    "geometric2": Method("geometric2", _geometric(2), True, None, None,
-                         "splitting into exact rotations, 2nd order (Strang), fixed step", fixed_step=True,
-                         integrate_internal=_geometric_internal(2)),
-    "geometric6": Method("geometric6", _geometric(6), True, None, None,
-                         "splitting into exact rotations, 6th-order Yoshida composition, fixed step", fixed_step=True,
-                         integrate_internal=_geometric_internal(6)),
+    "geometric": _splitting("geometric", 4, "splitting into exact rotations, 4th-order Yoshida composition, fixed step"),
+    "geometric2": _splitting("geometric2", 2, "splitting into exact rotations, 2nd order (Strang), fixed step"),
+    "geometric6": _splitting("geometric6", 6, "splitting into exact rotations, 6th-order Yoshida composition, fixed step"),
 }
 
 
