@@ -16,6 +16,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import pytest
+
 import tumble
 
 SRC = Path(tumble.__file__).resolve().parent
@@ -50,11 +52,15 @@ def _resolve(importer: str, is_package: bool, module: str | None, level: int) ->
     return ".".join(base + ([module] if module else []))
 
 
+def _is_private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
 def _private_module(module: str) -> str | None:
     """The first private part of a tumble module path, as a dotted prefix, or None."""
     parts = module.split(".")
     for i, part in enumerate(parts):
-        if part.startswith("_") and not part.startswith("__"):
+        if _is_private(part):
             return ".".join(parts[: i + 1])
     return None
 
@@ -83,9 +89,8 @@ def _violations_in(path: Path) -> list[str]:
             check_module(target, node.lineno)
             for alias in node.names:
                 full = f"{target}.{alias.name}"
-                if alias.name.startswith("_") and not alias.name.startswith("__") and foreign(target):
-                    if full not in ALLOWED_MODULES:
-                        found.append(f"{importer}:{node.lineno} imports {alias.name} from {target}")
+                if _is_private(alias.name) and foreign(target) and full not in ALLOWED_MODULES:
+                    found.append(f"{importer}:{node.lineno} imports {alias.name} from {target}")
                 aliases[alias.asname or alias.name] = full
         elif isinstance(node, ast.Import):
             for alias in node.names:
@@ -96,9 +101,8 @@ def _violations_in(path: Path) -> list[str]:
         if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
             target = aliases.get(node.value.id)
             name = node.attr
-            if target and name.startswith("_") and not name.startswith("__") and foreign(target):
-                if f"{target}.{name}" not in ALLOWED_MODULES:
-                    found.append(f"{importer}:{node.lineno} uses {node.value.id}.{name} ({target})")
+            if target and _is_private(name) and foreign(target) and f"{target}.{name}" not in ALLOWED_MODULES:
+                found.append(f"{importer}:{node.lineno} uses {node.value.id}.{name} ({target})")
     return found
 
 
@@ -107,9 +111,6 @@ def private_crossings() -> list[str]:
     for path in sorted(SRC.rglob("*.py")):
         found.extend(_violations_in(path))
     return found
-
-
-import pytest
 
 
 @pytest.mark.xfail(strict=True, reason="issue #17 item 3 in progress: _checks, _display and _short_repr still cross")
