@@ -19,7 +19,7 @@ from tumble.cli import main
 from tumble.io.export import CSV_COLUMNS
 from tumble.io.report import mass_properties_dict
 from tumble.mass import AXIS_ROLES
-from tumble.mass._checks import check_vector
+from tumble.validation import check_vector
 
 
 def random_box(seed: int) -> tumble.Body:

@@ -85,7 +85,7 @@ def _cmd_sweep(args) -> int:
 
 def _cmd_map(args) -> int:
     from .io.output import check_output_file
-    from .mass._checks import check_positive
+    from .validation import check_positive
 
     suffix = os.path.splitext(str(args.out))[1].lower()
     out = check_output_file(args.out, suffix if suffix in (".png", ".svg") else ".png")

@@ -50,7 +50,8 @@ from ..dynamics import Trajectory
 from ..dynamics.methods.exact import elliptic_parameters
 from ..mass import INERTIA_RTOL
 from ..mass.tensor import refuse_first
-from .stability import _AXES_ALLOWED, _axis_index, _check_motion, circulation_axis, flip_interval
+from ..validation import AXES_ALLOWED
+from .stability import _axis_index, _check_motion, circulation_axis, flip_interval
 
 __all__ = [
     "axis_precession_period",
@@ -357,7 +358,7 @@ def axis_precession_period(traj, axis: int) -> float:
     """
     index = _axis_index(axis)
     if index.ndim:
-        raise ValueError(f"axis = {axis!r} must be one axis: {_AXES_ALLOWED}")
+        raise ValueError(f"axis = {axis!r} must be one axis: {AXES_ALLOWED}")
     up = _whole_periods(traj)
     t = traj.t
     Lw = traj.angular_momentum_world[0]

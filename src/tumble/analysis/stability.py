@@ -29,8 +29,7 @@ import numpy as np
 from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
-from ..mass import AXIS_ROLES
-from ..mass.tensor import _short_repr, check_vectors, refuse_first
+from ..validation import axis_index, check_moments, check_vectors
 
 __all__ = [
     "axis_of",
@@ -43,37 +42,14 @@ __all__ = [
     "perturbation_exponent",
 ]
 
-_AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
-
-
 def _axis_index(axis) -> np.ndarray:
-    """0-based indices (0, 1, 2) of public axis labels: 1, 2, 3 or a name, or arrays of them.
-
-    Raises ``ValueError`` for anything else (0, -1, 4, 2.5, True, 'x', a dict ...), naming the
-    first bad entry of an array.
-    """
-    try:
-        a = np.asarray(axis)
-    except (TypeError, ValueError):  # ragged nested sequences
-        a = np.empty((), dtype=object)
-    if a.dtype.kind == "U":
-        index = np.full(a.shape, -1)
-        for k, name in enumerate(AXIS_ROLES):
-            index[a == name] = k
-    elif a.dtype.kind in "iu":
-        index = np.where((a >= 1) & (a <= 3), a, 0).astype(np.intp) - 1  # uint-safe
-    else:
-        raise ValueError(f"axis = {_short_repr(axis)} must be {_AXES_ALLOWED}")
-    refuse_first("axis", a, index < 0, f"must be {_AXES_ALLOWED}")
-    return index
+    """0-based indices (0, 1, 2) of public axis labels, by :func:`~tumble.validation.axis_index`."""
+    return axis_index("axis", axis)
 
 
 def _check_moments(moments) -> np.ndarray:
     """Principal moments as a float array (..., 3): finite, positive and ascending."""
-    I = check_vectors("moments", moments, "kg m^2")
-    refuse_first("moments", I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
-    refuse_first("moments", I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
-    return I
+    return check_moments("moments", moments, physical=False)
 
 
 def _check_motion(omega, moments) -> tuple[np.ndarray, np.ndarray]:

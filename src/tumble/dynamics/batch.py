@@ -23,14 +23,20 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, MassProperties
-from ..mass._checks import _WHY, MAX_RATE, QUAT_NORM_TOL, check_moments
-from ..mass.tensor import _short_repr, refuse_first
+from ..validation import (
+    BOUND_REASONS,
+    MAX_RATE,
+    QUAT_NORM_TOL,
+    check_moments,
+    refuse_first,
+    short_repr,
+)
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .special.quaternion import rotate_by_quaternion
 from .methods.integrators import METHODS, get_method
 from .models.torques import as_torque, bind_to_body, spin_gain
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
+from .special.quaternion import rotate_by_quaternion
 from .trajectory import Trajectory
 
 __all__ = ["MAX_BATCH_VALUES", "BatchTrajectory", "rotate_by_quaternion", "simulate_batch"]
@@ -117,7 +123,7 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
         round-off are not a symmetric top (:func:`tumble.mass.principal_frame` makes them so).
     omega0 : array_like, shape (N, 3) or (3,)
         Initial angular velocities at t = 0, principal frame, rad/s (at most 1e15 rad/s per
-        component, :data:`~tumble.mass._checks.MAX_RATE`); one row for every body.
+        component, :data:`~tumble.validation.MAX_RATE`); one row for every body.
     t_end : float, optional
         Duration, s: ``samples`` equally spaced times in ``[0, t_end]``.
     times : array_like, shape (T,), optional
@@ -181,7 +187,7 @@ def _rows(name: str, value, width: int, unit: str) -> np.ndarray:
     """``value`` as an array of shape (n, width), n >= 1 (a single row is (1, width)), of finite
     real numbers, or one line naming the first bad row and saying what it must be."""
     if isinstance(value, (str, bytes, dict, set)):
-        raise ValueError(f"{name} = {_short_repr(value)} must be an array of shape (N, {width}) or ({width},) ({unit})")
+        raise ValueError(f"{name} = {short_repr(value)} must be an array of shape (N, {width}) or ({width},) ({unit})")
     try:
         a = np.asarray(value)
     except (TypeError, ValueError):  # ragged nested sequences
@@ -244,7 +250,7 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
         raise ValueError(f"{listed} hold different numbers of bodies; give each N rows, or one row for all")
     n = sizes.pop() if sizes else 1
     check_moments("moments", I)
-    refuse_first("omega0", w, np.any(np.abs(w) > MAX_RATE, axis=1), f"is beyond {MAX_RATE:g} rad/s: {_WHY[MAX_RATE]}")
+    refuse_first("omega0", w, np.any(np.abs(w) > MAX_RATE, axis=1), f"is beyond {MAX_RATE:g} rad/s: {BOUND_REASONS[MAX_RATE]}")
     bad = I[:, 0] <= INERTIA_RTOL * np.sum(I, axis=1)
     if np.any(bad):
         i = _first(bad)

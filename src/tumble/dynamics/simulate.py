@@ -10,7 +10,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
-from ..mass._checks import (
+from ..validation import (
     MAX_INERTIA,
     MAX_RATE,
     check_positive,
@@ -94,7 +94,7 @@ def simulate(
         enters Euler's equations (:mod:`tumble.dynamics.models.internal`).
     omega0 : array_like, shape (3,)
         Initial angular velocity at t = 0, rad/s, in ``frame``; each component at most 1e15
-        rad/s (:data:`~tumble.mass._checks.MAX_RATE`), the body's moments at most 1e50 kg m^2.
+        rad/s (:data:`~tumble.validation.MAX_RATE`), the body's moments at most 1e50 kg m^2.
     t_end : float, optional
         Duration, s. Samples are taken at ``samples`` equally spaced times in ``[0, t_end]``,
         or every ``dt`` seconds from 0 up to ``t_end``.

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..mass._checks import check_vector
+from ..validation import check_vector
 from .dispersions import BodySampler
 from .sampling import DISTRIBUTIONS, Design, check_seed, deviates
 

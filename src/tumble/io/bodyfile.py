@@ -27,7 +27,7 @@ import tomllib
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body
-from ..mass._checks import read_input_file
+from ..validation import read_input_file
 
 __all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "mesh_files", "part_from_table", "read_toml"]
 

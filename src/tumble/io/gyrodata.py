@@ -27,7 +27,7 @@ import re
 
 import numpy as np
 
-from ..mass._checks import read_input_file
+from ..validation import read_input_file
 
 __all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "parse_gyro_csv", "parse_time_csv", "read_gyro_csv", "read_recording"]
 

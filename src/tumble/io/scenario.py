@@ -46,9 +46,9 @@ from pathlib import Path
 
 from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
 from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
-from ..mass.tensor import _short_repr
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body
+from ..validation import short_repr
 from .bodyfile import body_from_table, load_body, read_toml
 from .provenance import file_sha256
 
@@ -310,7 +310,7 @@ _LVLH_KEYS = ("roll", "pitch", "yaw", "pitch_axis", "yaw_axis")
 
 def _check_keys(where: str, table, allowed) -> None:
     if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table, not {_short_repr(table)}")
+        raise ValueError(f"{where} must be a table, not {short_repr(table)}")
     for key in table:
         if key not in allowed:
             raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")

@@ -15,13 +15,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..validation import check_moments, check_positive, check_vector, short_repr
 from . import _display
-from ._checks import check_moments, check_positive, check_vector
 from .parts import Part
 from .rotor import Rotor
 from .tensor import (
     AXIS_ROLES,
-    _short_repr,
     check_inertia,
     inertia_about_point,
     moment_degeneracy,
@@ -116,7 +115,7 @@ class MassProperties:
         """
         I = check_moments("moments", moments)
         if I.shape != (3,):
-            raise ValueError(f"moments = {_short_repr(moments)} must be three numbers, one body's principal moments "
+            raise ValueError(f"moments = {short_repr(moments)} must be three numbers, one body's principal moments "
                              "I1 <= I2 <= I3 (kg m^2)")
         mass = check_positive("mass", mass, "kg")
         center = check_vector("com", com, "m")

@@ -15,7 +15,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ._checks import check_motion, check_positive, check_vector, read_input_file
+from ..validation import check_motion, check_positive, check_vector, read_input_file
 from .parts import PART_KINDS, _Oriented
 
 __all__ = ["MAX_MESH_BYTES", "Mesh"]

@@ -32,7 +32,13 @@ from typing import ClassVar
 
 import numpy as np
 
-from ._checks import check_direction, check_motion, check_positive, check_rotation, check_vector
+from ..validation import (
+    check_direction,
+    check_motion,
+    check_positive,
+    check_rotation,
+    check_vector,
+)
 
 __all__ = [
     "PART_KINDS",

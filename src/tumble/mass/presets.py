@@ -6,7 +6,7 @@ y normal to the plane of the T.
 
 from __future__ import annotations
 
-from ._checks import check_positive
+from ..validation import check_positive
 from .body import Body
 from .parts import Cylinder, Rod
 

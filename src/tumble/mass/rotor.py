@@ -8,13 +8,14 @@ momentum ``h = J s axis`` enters the dynamics (:mod:`tumble.dynamics.models.inte
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from numbers import Real
-from typing import Callable, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
-from ._checks import MAX_RATE, _number, check_at_most
+from ..validation import MAX_RATE, check_at_most, check_number
 from .parts import PART_KINDS, Cylinder
 
 __all__ = ["Rotor"]
@@ -43,7 +44,7 @@ class Rotor(Cylinder):
         ``s(t) = spin_rate + spin_acceleration t`` (default 0: constant spin). With a function
         ``spin_rate``: its derivative ``s'(t)`` (rad/s^2), which only the motor's power and work
         need; without it they are not reported.
-        Spins are bounded by :data:`~tumble.mass._checks.MAX_RATE` (1e15 rad/s, faster than
+        Spins are bounded by :data:`~tumble.validation.MAX_RATE` (1e15 rad/s, faster than
         any rotation of matter) at every time a run asks for, accelerations by its square
         (1e30 rad/s^2: that rate reached within one radian of turning).
 
@@ -75,13 +76,13 @@ class Rotor(Cylinder):
             raise ValueError(
                 f"spin_rate = {rate!r} must be a number (rad/s) or a function of time t (s) returning rad/s"
             )
-        self._set("spin_rate", _number("spin_rate", rate, "rad/s", MAX_RATE))
+        self._set("spin_rate", check_number("spin_rate", rate, "rad/s", MAX_RATE))
         if callable(accel):
             raise ValueError(
                 f"spin_acceleration = {accel!r} is a function but spin_rate = {rate!r} is a number; "
                 f"give a number (rad/s^2) for a linear ramp, or make spin_rate a function too"
             )
-        self._set("spin_acceleration", 0.0 if accel is None else _number("spin_acceleration", accel, "rad/s^2",
+        self._set("spin_acceleration", 0.0 if accel is None else check_number("spin_acceleration", accel, "rad/s^2",
                                                                          MAX_RATE**2))
 
     @property

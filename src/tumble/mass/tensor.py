@@ -16,30 +16,21 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..validation import AXIS_ROLES, INERTIA_RTOL, check_vectors, refuse_first
+
 __all__ = [
     "AXIS_ROLES",
     "INERTIA_RTOL",
     "check_inertia",
     "check_vectors",
-    "moment_degeneracy",
     "inertia_about_point",
+    "moment_degeneracy",
     "parallel_axis",
     "point_mass_inertia",
     "principal_frame",
     "refuse_first",
     "rotate_inertia",
 ]
-
-#: Names of the principal axes in ascending order of moment.
-AXIS_ROLES = ("minor", "intermediate", "major")
-
-#: Relative tolerance of the physical-validity checks: a condition such as ``I1 + I2 >= I3``
-#: may be violated by at most ``INERTIA_RTOL * trace(I)``. Planar bodies (thin rods, point
-#: masses in one plane) sit exactly *on* the triangle inequality, so round-off alone can
-#: violate it by a few ulps; 1e-9 of the trace is far above round-off (~1e-16) and far below
-#: any physical violation worth catching.
-INERTIA_RTOL = 1e-9
-
 
 def _as_tensor(inertia) -> np.ndarray:
     I = np.asarray(inertia, dtype=float)
@@ -144,81 +135,6 @@ def _scale(I: np.ndarray) -> np.ndarray:
     tr = np.abs(np.trace(I, axis1=-2, axis2=-1))
     big = np.max(np.abs(I), axis=(-2, -1))
     return np.maximum(tr, big)
-
-
-def _short_repr(value, limit: int = 80) -> str:
-    """``repr(value)`` on one line and at most ``limit`` characters, for error messages."""
-    text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
-    text = " ".join(text.split())
-    return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def refuse_first(field: str, values: np.ndarray, bad, rule: str) -> None:
-    """Raise ``ValueError`` for the first entry of a batch where ``bad`` holds, else nothing.
-
-    The message names the index as scipy does, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be
-    ascending``: the whole batch is checked at once, and only the report looks at one entry.
-
-    Parameters
-    ----------
-    field : str
-        Name of the argument.
-    values : ndarray, shape (...) + trailing
-        The checked values; ``values[index]`` is quoted.
-    bad : array_like of bool, shape (...)
-        Where the rule is broken (the leading axes of ``values``).
-    rule : str
-        What is allowed, e.g. ``"must be positive (kg m^2)"``.
-    """
-    bad = np.asarray(bad, bool)
-    if not np.any(bad):
-        return
-    index = tuple(int(i) for i in np.argwhere(bad)[0])
-    where = f"[{', '.join(map(str, index))}]" if index else ""
-    raise ValueError(f"{field}{where} = {np.asarray(values)[index].tolist()!r} {rule}")
-
-
-def check_vectors(field: str, value, unit: str, *, size: int | None = 3) -> np.ndarray:
-    """Finite real numbers of shape ``(..., size)`` (any shape with ``size=None``), as floats.
-
-    The checker of batched numeric arguments (points, angular velocities, moments, rates):
-    integers and floats, in nested lists or arrays, are accepted; booleans, complex numbers,
-    strings, dicts, sets, generators and ragged lists are refused, as are NaN and infinities.
-
-    Parameters
-    ----------
-    field : str
-        Name of the argument, for the message.
-    value : array_like, shape (..., size)
-        The input.
-    unit : str
-        Its unit, for the message (e.g. ``"m"``).
-    size : int or None
-        Length of the last axis; None for any shape, scalars included.
-
-    Returns
-    -------
-    ndarray of float, shape of ``value``
-
-    Raises
-    ------
-    ValueError
-        Naming ``field``, the value (or the first non-finite entry, by index) and what is
-        allowed, e.g. ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
-    """
-    shape = "real numbers" if size is None else f"real numbers of shape (..., {size})"
-    try:
-        a = np.asarray(value)
-    except (TypeError, ValueError):  # ragged nested sequences
-        a = np.empty((), dtype=object)
-    if a.dtype.kind not in "iuf":
-        raise ValueError(f"{field} = {_short_repr(value)} must be {shape} ({unit})")
-    if size is not None and (a.ndim == 0 or a.shape[-1] != size):
-        raise ValueError(f"{field} = {_short_repr(value)} must be {shape} ({unit}), not shape {a.shape}")
-    a = a.astype(float)
-    finite = np.isfinite(a) if size is None else np.all(np.isfinite(a), axis=-1)
-    refuse_first(field, a, ~finite, f"must be {'a finite number' if size is None else 'finite numbers'} ({unit})")
-    return a
 
 
 def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia tensor") -> np.ndarray:

@@ -60,7 +60,6 @@ Lagrange region).
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from dataclasses import dataclass, field, replace
 from typing import NamedTuple
@@ -68,9 +67,15 @@ from typing import NamedTuple
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ...mass.body import AXIS_ROLES
-from ...mass._checks import check_positive
-from ...mass.tensor import _short_repr, check_vectors, refuse_first
+from ...validation import (
+    AXES_ALLOWED,
+    axis_index,
+    check_moments,
+    check_positive,
+    check_vectors,
+    refuse_first,
+    short_repr,
+)
 
 __all__ = [
     "MU_EARTH",
@@ -94,7 +99,6 @@ MU_EARTH = 3.986004418e14
 #: ``mu = MU_EARTH`` an orbit must have a larger radius.
 R_EARTH = 6.3781e6
 
-_AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
 
 
 @dataclass(frozen=True)
@@ -167,7 +171,7 @@ class GravityGradient:
         object.__setattr__(self, "_n", n)
         object.__setattr__(self, "_r", r)
         if self.moments is not None:
-            I = _check_moments(self.moments)
+            I = check_moments("moments", self.moments, physical=False)
             if I.ndim > 2:
                 raise ValueError(f"moments has shape {I.shape}; allowed: (3,) or (N, 3) (kg m^2)")
             object.__setattr__(self, "moments", tuple(map(float, I)) if I.ndim == 1 else tuple(map(tuple, I.tolist())))
@@ -284,21 +288,11 @@ class GravityGradient:
 _LVLH0 = Rotation.from_matrix([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
 
 
-def _check_moments(moments) -> np.ndarray:
-    """Principal moments (..., 3) as floats: finite, positive and ascending, else ``ValueError``."""
-    I = check_vectors("moments", moments, "kg m^2")
-    refuse_first("moments", I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
-    refuse_first("moments", I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
-    return I
-
-
 def _axis(name: str, value) -> int:
-    """0-based index of one public axis label (1, 2, 3 or a name)."""
-    if isinstance(value, str) and value in AXIS_ROLES:
-        return AXIS_ROLES.index(value)
-    if isinstance(value, numbers.Integral) and not isinstance(value, bool) and 1 <= value <= 3:
-        return int(value) - 1
-    raise ValueError(f"{name} = {_short_repr(value)} must be {_AXES_ALLOWED}")
+    """0-based index of one public axis label (1, 2, 3 or a name), by :func:`~tumble.validation.axis_index`."""
+    if np.ndim(value) != 0:
+        raise ValueError(f"{name} = {short_repr(value)} must be {AXES_ALLOWED}")
+    return int(axis_index(name, value))
 
 
 def _rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
@@ -371,10 +365,10 @@ def lvlh_state(gg: GravityGradient, body, *, roll=0.0, pitch=0.0, yaw=0.0, pitch
     ...                        t_end=5400.0, method="dop853")
     """
     if not isinstance(gg, GravityGradient):
-        raise ValueError(f"gg = {_short_repr(gg)} must be a GravityGradient")
+        raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient")
     axes = getattr(body, "principal_axes", None)
     if axes is None:
-        raise ValueError(f"body = {_short_repr(body)} must be a tumble Body or MassProperties")
+        raise ValueError(f"body = {short_repr(body)} must be a tumble Body or MassProperties")
     _, P = _rpy_axes(pitch_axis, yaw_axis)
     r, p, y = np.broadcast_arrays(_angles("roll", roll), _angles("pitch", pitch), _angles("yaw", yaw))
     rel = Rotation.from_euler("YXZ", np.stack([p, r, y], axis=-1))
@@ -443,7 +437,7 @@ def inertia_ratios(moments, *, pitch_axis=3, yaw_axis=1) -> tuple[np.ndarray, np
     -------
     tuple of three ndarrays, shape (...)
     """
-    I = _check_moments(moments)
+    I = check_moments("moments", moments, physical=False)
     (a, b, c), _ = _rpy_axes(pitch_axis, yaw_axis)
     Ir, Ip, Iy = I[..., a], I[..., b], I[..., c]
     return (Ip - Iy) / Ir, (Ir - Iy) / Ip, (Ip - Ir) / Iy

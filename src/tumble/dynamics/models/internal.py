@@ -64,7 +64,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...mass._checks import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
+from ...validation import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
 from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
@@ -92,8 +92,8 @@ class SphericalDamper:
         the body's parts.
     damping : float
         ``c``, the viscous coupling, N m s (>= 0): the torque on the body is ``c (w_d - w)``.
-        ``J`` is at most :data:`~tumble.mass._checks.MAX_INERTIA` (1e50 kg m^2) and the
-        relaxation rate ``c / J`` at most :data:`~tumble.mass._checks.MAX_RATE` (1e15 1/s);
+        ``J`` is at most :data:`~tumble.validation.MAX_INERTIA` (1e50 kg m^2) and the
+        relaxation rate ``c / J`` at most :data:`~tumble.validation.MAX_RATE` (1e15 1/s);
         with a body, ``J`` is at most :data:`MAX_DAMPER_RATIO` times its smallest moment.
 
     Notes

@@ -39,7 +39,7 @@ from typing import Callable, Protocol, runtime_checkable
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ...mass._checks import check_vector
+from ...validation import check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 
 __all__ = [

@@ -1,8 +1,10 @@
-"""Validation of the numbers that describe a part: one place, one wording.
+"""The checks of input every layer of tumble uses: one place, one wording per rule.
 
-Each checker returns the cleaned value or raises ``ValueError`` whose message names the field,
-the value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``.
-Python constructors, the TOML loader and the CLI all surface these same messages.
+Moments, axes, vectors, numbers, orientations and input files. Each checker returns the
+cleaned value or raises ``ValueError`` whose message names the field, the value and what is
+allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``; Python constructors, the
+TOML loader and the CLI all surface these same messages. This module is the lowest layer of the
+package: it imports nothing of tumble (an import-linter contract keeps it so). Units are SI.
 """
 
 from __future__ import annotations
@@ -13,18 +15,114 @@ from numbers import Real
 
 import numpy as np
 
-from .tensor import INERTIA_RTOL, _short_repr, check_vectors, refuse_first
-
 __all__ = [
+    "AXES_ALLOWED",
+    "AXIS_ROLES",
+    "BOUND_REASONS",
+    "INERTIA_RTOL",
+    "MATRIX_ORTHO_TOL",
     "MAX_INERTIA",
     "MAX_RATE",
+    "QUAT_NORM_TOL",
+    "axis_index",
+    "check_at_most",
     "check_direction",
     "check_moments",
     "check_motion",
+    "check_number",
     "check_positive",
     "check_rotation",
     "check_vector",
+    "check_vectors",
+    "read_input_file",
+    "refuse_first",
+    "short_repr",
 ]
+
+#: Names of the principal axes in ascending order of moment.
+AXIS_ROLES = ("minor", "intermediate", "major")
+
+#: Relative tolerance of the physical-validity checks: a condition such as ``I1 + I2 >= I3``
+#: may be violated by at most ``INERTIA_RTOL * trace(I)``. Planar bodies (thin rods, point
+#: masses in one plane) sit exactly *on* the triangle inequality, so round-off alone can
+#: violate it by a few ulps; 1e-9 of the trace is far above round-off (~1e-16) and far below
+#: any physical violation worth catching.
+INERTIA_RTOL = 1e-9
+
+
+def short_repr(value, limit: int = 80) -> str:
+    """``repr(value)`` on one line and at most ``limit`` characters, for error messages."""
+    text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def refuse_first(field: str, values: np.ndarray, bad, rule: str) -> None:
+    """Raise ``ValueError`` for the first entry of a batch where ``bad`` holds, else nothing.
+
+    The message names the index as scipy does, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be
+    ascending``: the whole batch is checked at once, and only the report looks at one entry.
+
+    Parameters
+    ----------
+    field : str
+        Name of the argument.
+    values : ndarray, shape (...) + trailing
+        The checked values; ``values[index]`` is quoted.
+    bad : array_like of bool, shape (...)
+        Where the rule is broken (the leading axes of ``values``).
+    rule : str
+        What is allowed, e.g. ``"must be positive (kg m^2)"``.
+    """
+    bad = np.asarray(bad, bool)
+    if not np.any(bad):
+        return
+    index = tuple(int(i) for i in np.argwhere(bad)[0])
+    where = f"[{', '.join(map(str, index))}]" if index else ""
+    raise ValueError(f"{field}{where} = {np.asarray(values)[index].tolist()!r} {rule}")
+
+
+def check_vectors(field: str, value, unit: str, *, size: int | None = 3) -> np.ndarray:
+    """Finite real numbers of shape ``(..., size)`` (any shape with ``size=None``), as floats.
+
+    The checker of batched numeric arguments (points, angular velocities, moments, rates):
+    integers and floats, in nested lists or arrays, are accepted; booleans, complex numbers,
+    strings, dicts, sets, generators and ragged lists are refused, as are NaN and infinities.
+
+    Parameters
+    ----------
+    field : str
+        Name of the argument, for the message.
+    value : array_like, shape (..., size)
+        The input.
+    unit : str
+        Its unit, for the message (e.g. ``"m"``).
+    size : int or None
+        Length of the last axis; None for any shape, scalars included.
+
+    Returns
+    -------
+    ndarray of float, shape of ``value``
+
+    Raises
+    ------
+    ValueError
+        Naming ``field``, the value (or the first non-finite entry, by index) and what is
+        allowed, e.g. ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
+    """
+    shape = "real numbers" if size is None else f"real numbers of shape (..., {size})"
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
+        a = np.empty((), dtype=object)
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{field} = {short_repr(value)} must be {shape} ({unit})")
+    if size is not None and (a.ndim == 0 or a.shape[-1] != size):
+        raise ValueError(f"{field} = {short_repr(value)} must be {shape} ({unit}), not shape {a.shape}")
+    a = a.astype(float)
+    finite = np.isfinite(a) if size is None else np.all(np.isfinite(a), axis=-1)
+    refuse_first(field, a, ~finite, f"must be {'a finite number' if size is None else 'finite numbers'} ({unit})")
+    return a
 
 
 #: Largest rate accepted, rad/s (spins) or 1/s (relaxation): above any rotation of matter
@@ -35,11 +133,13 @@ MAX_RATE = 1e15
 #: with :data:`MAX_RATE` a kinetic energy stays below 1e80 J.
 MAX_INERTIA = 1e50
 
-#: Why a bound holds, for the messages.
-_WHY = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "more than any star's"}
+#: Why a bound holds, for the messages that refuse a value beyond it.
+BOUND_REASONS = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "more than any star's"}
 
 
-def _number(field: str, value, unit: str, at_most: float | None = None) -> float:
+def check_number(field: str, value, unit: str, at_most: float | None = None) -> float:
+    """A real finite number (no boolean, complex number or string), at most ``at_most`` in
+    magnitude if given, as a float."""
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
         raise ValueError(f"{field} = {value!r} must be a number ({unit})")
     x = float(value)
@@ -53,31 +153,75 @@ def check_at_most(field: str, value: float, unit: str, at_most: float | None) ->
     """Refuse ``|value| > at_most`` (nothing when ``at_most`` is None), saying why the bound
     holds for :data:`MAX_RATE` and :data:`MAX_INERTIA`."""
     if at_most is not None and not abs(value) <= at_most:
-        why = f": {_WHY[at_most]}" if at_most in _WHY else ""
+        why = f": {BOUND_REASONS[at_most]}" if at_most in BOUND_REASONS else ""
         raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
 
 
-def check_moments(field: str, value) -> np.ndarray:
+def check_moments(field: str, value, *, physical: bool = True) -> np.ndarray:
     """Principal moments ``(..., 3)``, kg m^2, as floats: real and finite (no booleans, complex
-    numbers or strings), positive, ascending ``I1 <= I2 <= I3``, within the triangle inequality
-    ``I1 + I2 >= I3`` (to :data:`~tumble.mass.tensor.INERTIA_RTOL` of the trace; Goldstein sec.
-    5.4: no distribution of positive mass breaks it) and at most :data:`MAX_INERTIA`.
+    numbers or strings), positive and ascending ``I1 <= I2 <= I3``; with ``physical`` (the
+    default) also within the triangle inequality ``I1 + I2 >= I3`` (to :data:`INERTIA_RTOL` of
+    the trace; Goldstein sec. 5.4: no distribution of positive mass breaks it) and at most
+    :data:`MAX_INERTIA`. ``physical=False`` is for formulas that hold for any positive ascending
+    moments (the stability and gravity-gradient functions).
 
     Raises ``ValueError`` naming the first bad entry by index, e.g.
     ``moments[2] = [0.1, 0.2, 1.0] breaks the triangle inequality I1 + I2 >= I3 ...``.
+
+    Examples
+    --------
+    >>> check_moments("moments", [1, 2, 3]).tolist()
+    [1.0, 2.0, 3.0]
+    >>> check_moments("moments", [[1, 2, 3], [2, 1, 3]])
+    Traceback (most recent call last):
+    ...
+    ValueError: moments[1] = [2.0, 1.0, 3.0] must be ascending, I1 <= I2 <= I3 (kg m^2)
     """
     I = check_vectors(field, value, "kg m^2")
     refuse_first(field, I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
     refuse_first(field, I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
-    refuse_first(field, I, I[..., 2] - I[..., 0] - I[..., 1] > INERTIA_RTOL * np.sum(I, axis=-1),
-                 "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
-    refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1), f"is beyond {MAX_INERTIA:g} kg m^2: {_WHY[MAX_INERTIA]}")
+    if physical:
+        refuse_first(field, I, I[..., 2] - I[..., 0] - I[..., 1] > INERTIA_RTOL * np.sum(I, axis=-1),
+                     "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
+        refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1),
+                     f"is beyond {MAX_INERTIA:g} kg m^2: {BOUND_REASONS[MAX_INERTIA]}")
     return I
+
+
+AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
+
+
+def axis_index(field: str, value) -> np.ndarray:
+    """0-based indices (0, 1, 2) of public axis labels: 1, 2, 3 or a name of :data:`AXIS_ROLES`,
+    or arrays of them.
+
+    Raises ``ValueError`` for anything else (0, -1, 4, 2.5, True, 'x', a dict ...), naming the
+    first bad entry of an array.
+
+    Examples
+    --------
+    >>> axis_index("axis", 3).tolist(), axis_index("axis", ["minor", "major"]).tolist()
+    (2, [0, 2])
+    """
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
+        a = np.empty((), dtype=object)
+    if a.dtype.kind == "U":
+        index = np.full(a.shape, -1)
+        for k, name in enumerate(AXIS_ROLES):
+            index[a == name] = k
+    elif a.dtype.kind in "iu":
+        index = np.where((a >= 1) & (a <= 3), a, 0).astype(np.intp) - 1  # uint-safe
+    else:
+        raise ValueError(f"{field} = {short_repr(value)} must be {AXES_ALLOWED}")
+    refuse_first(field, a, index < 0, f"must be {AXES_ALLOWED}")
+    return index
 
 
 def check_positive(field: str, value, unit: str, *, allow_zero: bool = False, at_most: float | None = None) -> float:
     """A finite number > 0 (or >= 0 with ``allow_zero``), at most ``at_most`` if given."""
-    x = _number(field, value, unit, at_most)
+    x = check_number(field, value, unit, at_most)
     if x < 0 or (x == 0 and not allow_zero):
         allowed = "a non-negative" if allow_zero else "a positive"
         raise ValueError(f"{field} = {value!r} must be {allowed} finite number ({unit})")
@@ -96,8 +240,8 @@ def check_vector(field: str, value, unit: str, *, at_most: float | None = None) 
     else:
         ok = isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)) and len(value) == 3
     if not ok:
-        raise ValueError(f"{field} = {_short_repr(value)} must be a list of 3 numbers ({unit})")
-    return tuple(_number(f"{field}[{i}]", v, unit, at_most) for i, v in enumerate(value))  # type: ignore[return-value]
+        raise ValueError(f"{field} = {short_repr(value)} must be a list of 3 numbers ({unit})")
+    return tuple(check_number(f"{field}[{i}]", v, unit, at_most) for i, v in enumerate(value))  # type: ignore[return-value]
 
 
 def check_direction(field: str, value) -> tuple[float, float, float]:
