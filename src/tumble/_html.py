@@ -1,4 +1,5 @@
-"""Text and JSON pasted into HTML, escaped: the one place every page and display of tumble uses.
+"""Text and JSON pasted into HTML, escaped, and the small text helpers of every repr (numbers,
+vectors, names, tables): the one place every page and display of tumble uses.
 
 A user's strings (a body's name, a scenario file's name, a title) reach HTML in two ways:
 
@@ -17,7 +18,9 @@ from __future__ import annotations
 import html
 import json
 
-__all__ = ["escape_text", "script_json"]
+import numpy as np
+
+__all__ = ["NAME_CHARS", "escape_text", "fmt", "html_table", "script_json", "short_name", "vec"]
 
 #: Characters written as JSON escapes in :func:`script_json`: markup (``<``, ``>``, ``&``) and the
 #: two line separators that end a line in JavaScript before ES2019.
@@ -46,3 +49,53 @@ def script_json(data) -> str:
     '{"name":"\\\\u003c/script\\\\u003e\\\\u003c!--\\\\u003cscript\\\\u003e"}'
     """
     return json.dumps(data, separators=(",", ":")).translate(_SCRIPT_ESCAPES)
+
+
+#: Longest body name shown in a plain repr; longer names are cut with an ellipsis.
+NAME_CHARS = 40
+_STYLE = "border-collapse:collapse;font-size:0.9em;margin:0.3em 0"
+_CELL = "text-align:left;padding:1px 14px 1px 2px"
+
+
+def fmt(x, digits: int = 4) -> str:
+    """A number in ``digits`` significant figures; ``-0`` printed as ``0``."""
+    x = float(x)
+    return f"{x + 0.0:.{digits}g}" if x != 0 else "0"
+
+
+def vec(v, digits: int = 4) -> str:
+    """A vector as ``(a, b, c)``."""
+    return "(" + ", ".join(fmt(x, digits) for x in np.ravel(v)) + ")"
+
+
+def short_name(name) -> str:
+    """The name for a plain repr: quoted as ``repr`` does, cut to :data:`NAME_CHARS` characters."""
+    name = str(name)
+    return repr(name if len(name) <= NAME_CHARS else name[: NAME_CHARS - 3] + "...")
+
+
+def _cell(tag: str, text) -> str:
+    return f'<{tag} style="{_CELL}">{escape_text(text)}</{tag}>'
+
+
+def html_table(rows, header=None, caption=None) -> str:
+    """An HTML table of plain-text cells; every cell, header and caption is escaped.
+
+    Parameters
+    ----------
+    rows : iterable of sequences
+        The cells of each row (anything ``str`` turns into text).
+    header : sequence, optional
+        Column headings.
+    caption : str, optional
+        A caption above the table.
+    """
+    out = [f'<table style="{_STYLE}">']
+    if caption is not None:
+        out.append(f'<caption style="text-align:left;font-weight:bold">{escape_text(caption)}</caption>')
+    if header is not None:
+        out.append("<thead><tr>" + "".join(_cell("th", h) for h in header) + "</tr></thead>")
+    out.append("<tbody>")
+    out += ["<tr>" + "".join(_cell("td", c) for c in row) + "</tr>" for row in rows]
+    out.append("</tbody></table>")
+    return "".join(out)

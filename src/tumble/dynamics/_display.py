@@ -8,8 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._html import escape_text
-from ..mass._display import fmt, html_table, short_name, vec
+from .._html import escape_text, fmt, html_table, short_name, vec
 
 __all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
 

@@ -1,70 +1,20 @@
 """Short plain reprs and Jupyter's rich HTML display of bodies and mass properties.
 
 Numpy only (no plotting library): the physics layers may not import matplotlib. The small
-HTML helpers here (numbers, vectors, tables, all text escaped) are shared with the display of
-trajectories (:mod:`tumble.dynamics._display`), the layer above.
+helpers (numbers, vectors, names, tables, all text escaped) live in :mod:`tumble._html`, shared
+with the display of trajectories (:mod:`tumble.dynamics._display`), the layer above.
 """
 
 from __future__ import annotations
 
-import numpy as np
 
-from .._html import escape_text
+from .._html import fmt, html_table, short_name, vec
 from .tensor import AXIS_ROLES
 
-__all__ = ["body_html", "body_repr", "fmt", "html_table", "properties_html", "properties_repr", "short_name",
-           "vec"]
+__all__ = ["body_html", "body_repr", "properties_html", "properties_repr"]
 
-#: Longest body name shown in a plain repr; longer names are cut with an ellipsis.
-NAME_CHARS = 40
 #: Most parts listed in the HTML table; the rest are counted.
 MAX_PARTS_SHOWN = 20
-_STYLE = "border-collapse:collapse;font-size:0.9em;margin:0.3em 0"
-_CELL = "text-align:left;padding:1px 14px 1px 2px"
-
-
-def fmt(x, digits: int = 4) -> str:
-    """A number in ``digits`` significant figures; ``-0`` printed as ``0``."""
-    x = float(x)
-    return f"{x + 0.0:.{digits}g}" if x != 0 else "0"
-
-
-def vec(v, digits: int = 4) -> str:
-    """A vector as ``(a, b, c)``."""
-    return "(" + ", ".join(fmt(x, digits) for x in np.ravel(v)) + ")"
-
-
-def short_name(name) -> str:
-    """The name for a plain repr: quoted as ``repr`` does, cut to :data:`NAME_CHARS` characters."""
-    name = str(name)
-    return repr(name if len(name) <= NAME_CHARS else name[: NAME_CHARS - 3] + "...")
-
-
-def _cell(tag: str, text) -> str:
-    return f'<{tag} style="{_CELL}">{escape_text(text)}</{tag}>'
-
-
-def html_table(rows, header=None, caption=None) -> str:
-    """An HTML table of plain-text cells; every cell, header and caption is escaped.
-
-    Parameters
-    ----------
-    rows : iterable of sequences
-        The cells of each row (anything ``str`` turns into text).
-    header : sequence, optional
-        Column headings.
-    caption : str, optional
-        A caption above the table.
-    """
-    out = [f'<table style="{_STYLE}">']
-    if caption is not None:
-        out.append(f'<caption style="text-align:left;font-weight:bold">{escape_text(caption)}</caption>')
-    if header is not None:
-        out.append("<thead><tr>" + "".join(_cell("th", h) for h in header) + "</tr></thead>")
-    out.append("<tbody>")
-    out += ["<tr>" + "".join(_cell("td", c) for c in row) + "</tr>" for row in rows]
-    out.append("</tbody></table>")
-    return "".join(out)
 
 
 def properties_repr(p) -> str:
