@@ -8,7 +8,8 @@ from scipy.special import ellipk
 
 import tumble
 from gallery import Entry, body, code, page_test, sig, to_tolerance, upward_crossings, within
-from tumble.dynamics.models.gravity import GravityGradient, inertia_ratios, lvlh_state, orbit_frame_angles
+from tumble.analysis.gravity_stability import gravity_gradient_ratios
+from tumble.dynamics.models.gravity import GravityGradient, lvlh_state, orbit_frame_angles
 
 #: The Moon's ``gamma = (B - A) / C`` and ``beta = (C - A) / B`` with their uncertainties, as quoted
 #: (from lunar laser ranging) in the abstract of J. P. Gapcynski, W. T. Blackshear, R. H. Tolson &
@@ -56,7 +57,7 @@ def compute_moon():
     moments = moon_moments(MOON_GAMMA, MOON_BETA)
     gg = GravityGradient(orbit_period=SIDEREAL_MONTH_DAYS * DAY)  # circular; mu only sets the radius
     n = gg.mean_motion
-    k_roll, k_pitch, k_yaw = inertia_ratios(moments, pitch_axis=3, yaw_axis=1)  # C on the orbit normal
+    k_roll, k_pitch, k_yaw = gravity_gradient_ratios(moments, pitch_axis=3, yaw_axis=1)  # C on the orbit normal
     start = lvlh_state(gg, body(moments), pitch=PITCH0, pitch_axis=3, yaw_axis=1)  # A toward the Earth
     closed = pitch_period(MOON_GAMMA, n) / DAY
     traj = tumble.simulate(body(moments), start.omega0, attitude0=start.attitude0, torque=gg.bind(moments),

@@ -16,14 +16,16 @@ from scipy.spatial.transform import Rotation
 from scipy.special import ellipk
 
 import tumble
+from tumble.analysis.gravity_stability import (
+    STABILITY_REGIONS,
+    gravity_gradient_ratios,
+    gravity_gradient_stability,
+)
 from tumble.dynamics.methods.geometric import propagate
 from tumble.dynamics.models.gravity import (
     MU_EARTH,
     R_EARTH,
-    STABILITY_REGIONS,
     GravityGradient,
-    gravity_gradient_stability,
-    inertia_ratios,
     lvlh_state,
     orbit_frame_angles,
     relative_attitude,
@@ -354,7 +356,7 @@ def test_stability_classification_agrees_with_simulation(ratios):
     k_roll, k_yaw = ratios
     I_roll, I_pitch, I_yaw = moments_from_ratios(k_roll, k_yaw)
     props, pa, ya = body_rpy(I_roll, I_pitch, I_yaw)
-    cls = gravity_gradient_stability(*inertia_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya))
+    cls = gravity_gradient_stability(*gravity_gradient_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya))
     assert str(cls.region) == SAMPLES[ratios]
     _, angles = run(props, pa, ya, t_end=20 * PERIOD, dt=PERIOD / 50, rtol=1e-10, roll=0.01, pitch=0.01, yaw=0.01)
     A = np.abs(np.stack(angles))  # roll, pitch, yaw
@@ -370,10 +372,10 @@ def test_stability_classification_agrees_with_simulation(ratios):
         assert leader in ("roll", "yaw")
 
 
-def test_inertia_ratios_by_hand():
-    k = inertia_ratios([1.0, 2.0, 4.0], pitch_axis=3, yaw_axis=1)  # roll 2, pitch 4, yaw 1
+def test_gravity_gradient_ratios_by_hand():
+    k = gravity_gradient_ratios([1.0, 2.0, 4.0], pitch_axis=3, yaw_axis=1)  # roll 2, pitch 4, yaw 1
     np.testing.assert_allclose(k, [(4 - 1) / 2, (2 - 1) / 4, (4 - 2) / 1])
-    k = inertia_ratios([[1.0, 2.0, 4.0]] * 2, pitch_axis="minor", yaw_axis="major")  # roll 2, pitch 1, yaw 4
+    k = gravity_gradient_ratios([[1.0, 2.0, 4.0]] * 2, pitch_axis="minor", yaw_axis="major")  # roll 2, pitch 1, yaw 4
     np.testing.assert_allclose(np.transpose(k), [[(1 - 4) / 2, (2 - 4) / 1, (1 - 2) / 4]] * 2)
 
 
@@ -381,13 +383,13 @@ def test_ratios_of_real_bodies_fill_the_square_and_are_consistent(rng):
     I = np.sort(rng.uniform(0.0, 1.0, (2000, 3)), axis=1)
     I = I[I[:, 0] + I[:, 1] >= I[:, 2]]  # the triangle inequality
     for pitch_axis, yaw_axis in [(3, 1), (3, 2), (1, 2), (2, 3), (1, 3), (2, 1)]:
-        kr, kp, ky = inertia_ratios(I, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
+        kr, kp, ky = gravity_gradient_ratios(I, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
         assert np.all(np.abs([kr, kp, ky]) <= 1)
         np.testing.assert_allclose(kp * (1 - kr * ky), kr - ky, atol=1e-12)
         roll_axis = 6 - pitch_axis - yaw_axis
         cls = gravity_gradient_stability(kr, kp, ky)
         np.testing.assert_array_equal(cls.pitch, I[:, roll_axis - 1] > I[:, yaw_axis - 1])  # I_roll > I_yaw
-    kr, kp, ky = inertia_ratios(I, pitch_axis=2, yaw_axis=3)
+    kr, kp, ky = gravity_gradient_ratios(I, pitch_axis=2, yaw_axis=3)
     # round trip through moments_from_ratios (I_pitch = 1)
     Ir, Ip, Iy = moments_from_ratios(kr, ky)
     np.testing.assert_allclose(np.column_stack([Ir, Iy]), np.column_stack([I[:, 0], I[:, 2]]) / I[:, 1:2], rtol=1e-9)
@@ -408,7 +410,7 @@ def test_classification_on_the_boundaries_and_in_batches():
     # a planar body, I_pitch = I_roll + I_yaw, sits at the corner (1, 1): k_P alone decides pitch
     for I_roll, I_yaw, stable in ((2.0, 1.0, True), (1.0, 2.0, False)):
         props, pa, ya = body_rpy(I_roll, I_roll + I_yaw, I_yaw)
-        kr, kp, ky = inertia_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya)
+        kr, kp, ky = gravity_gradient_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya)
         assert (kr, ky) == pytest.approx((1.0, 1.0))
         assert bool(gravity_gradient_stability(kr, kp, ky).pitch) is stable
     assert set(STABILITY_REGIONS) >= set(SAMPLES.values())
@@ -565,3 +567,24 @@ def test_stability_figure(tmp_path):
     assert labels[:2] == ["Lagrange (stable)", "DeBra-Delp (stable)"]
     ax = Figure().subplots()
     assert figure_gravity_stability(ax=ax) is ax.figure
+
+
+def test_stability_lives_in_analysis_and_the_ratios_have_their_own_name():
+    """Issue #17: the stability classification is analysis, not the torque model, and its ratios
+    (k_R, k_P, k_Y) are not called inertia ratios (which mean I1/I3, I2/I3 elsewhere)."""
+    import tumble.analysis
+    import tumble.dynamics
+    from tumble.dynamics.models import gravity
+
+    assert tumble.gravity_gradient_stability is tumble.analysis.gravity_gradient_stability
+    assert tumble.analysis.gravity_gradient_ratios is gravity_gradient_ratios
+    for name in ("inertia_ratios", "gravity_gradient_stability", "STABILITY_REGIONS"):
+        assert not hasattr(gravity, name)
+        assert name not in tumble.dynamics.__all__
+    # the roll, pitch, yaw axes are the frame's: (roll, pitch, yaw) = (2, 3, 1) is even, so +roll
+    (a, b, c), P = gravity.rpy_axes(3, 1)
+    assert (a, b, c) == (1, 2, 0)
+    np.testing.assert_array_equal(P, [[0, 0, 1], [1, 0, 0], [0, 1, 0]])
+    (a, b, c), P = gravity.rpy_axes(1, 3)  # (2, 1, 3) is odd: roll along minus axis 2
+    assert (a, b, c) == (1, 0, 2) and P[1, 0] == -1.0
+    assert np.linalg.det(P) == 1.0

@@ -44,7 +44,7 @@ _EXPORTS = {
     "GravityGradient": "tumble.dynamics",
     "lvlh_state": "tumble.dynamics",
     "orbit_frame_angles": "tumble.dynamics",
-    "gravity_gradient_stability": "tumble.dynamics",
+    "gravity_gradient_stability": "tumble.analysis",
     "linearised_rate": "tumble.analysis",
     "flip_interval": "tumble.analysis",
     "stability_report": "tumble.analysis",

@@ -1,5 +1,6 @@
 """Analysis of motions (layer 3): stability of the principal axes, flips and their period; fitting
-a measured tumble (the inertia ratios from a gyroscope record).
+a measured tumble (the inertia ratios from a gyroscope record); the gravity-gradient stability
+of a body at rest in its orbiting frame.
 
 Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 ``"intermediate"``, ``"major"`` in every argument and every result (docs/conventions.md,
@@ -7,6 +8,7 @@ Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 """
 
 from .fit import RecordingFit, RotationFit, Toss, fit_recording, fit_rotation
+from .gravity_stability import STABILITY_REGIONS, gravity_gradient_ratios, gravity_gradient_stability
 from .period_inversion import PeriodFamily, periods_consistent
 from .stability import (
     axis_of,
@@ -32,6 +34,7 @@ from .periods import (
 from .summary import stability_report, trajectory_summary
 
 __all__ = [
+    "STABILITY_REGIONS",
     "PeriodFamily",
     "RecordingFit",
     "RotationFit",
@@ -45,6 +48,8 @@ __all__ = [
     "flip_interval",
     "flip_interval_asymptotic",
     "flip_times",
+    "gravity_gradient_ratios",
+    "gravity_gradient_stability",
     "linearised_rate",
     "montgomery_angle",
     "npa_periods",

@@ -11,8 +11,6 @@ from .euler import (
 from .methods.integrators import METHODS, Method, get_method
 from .models.gravity import (
     GravityGradient,
-    gravity_gradient_stability,
-    inertia_ratios,
     lvlh_state,
     orbit_frame_angles,
 )
@@ -42,8 +40,6 @@ __all__ = [
     "euler_rhs_tensor",
     "get_method",
     "gyrostat_rate",
-    "gravity_gradient_stability",
-    "inertia_ratios",
     "kinetic_energy",
     "lvlh_state",
     "orbit_frame_angles",

@@ -1,6 +1,6 @@
-"""The gravity-gradient stability diagram over the inertia ratios (k_R, k_Y).
+"""The gravity-gradient stability diagram over the gravity-gradient ratios (k_R, k_Y).
 
-The classification is :func:`tumble.dynamics.models.gravity.gravity_gradient_stability` (Hughes,
+The classification is :func:`tumble.analysis.gravity_stability.gravity_gradient_stability` (Hughes,
 *Spacecraft Attitude Dynamics*, ch. 9; DeBra & Delp, J. Astronaut. Sci. 8 (1961) 14); this
 module only draws it, on a given ``ax`` or a new figure, and returns the Figure.
 """
@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dynamics.models.gravity import STABILITY_REGIONS, gravity_gradient_stability
+from ..analysis.gravity_stability import STABILITY_REGIONS, gravity_gradient_stability
 from ._backend import figure_and_axes
 
 __all__ = ["figure_gravity_stability"]
 
-#: One colour per region of :data:`~tumble.dynamics.models.gravity.STABILITY_REGIONS`, in its order.
+#: One colour per region of :data:`~tumble.analysis.gravity_stability.STABILITY_REGIONS`, in its order.
 REGION_COLORS = ("#4daf4a", "#377eb8", "#fbb4ae", "#fed9a6", "#d9d9d9")
 REGION_LABELS = ("Lagrange (stable)", "DeBra-Delp (stable)", "pitch unstable", "roll-yaw unstable",
                  "pitch and roll-yaw unstable")
@@ -57,7 +57,7 @@ def figure_gravity_stability(*, ax=None, points=None):
     ax : matplotlib Axes, optional
         Draw on these axes instead of a new figure.
     points : dict of str to (float, float), optional
-        Bodies to mark, label -> ``(k_R, k_Y)`` (:func:`tumble.dynamics.models.gravity.inertia_ratios`).
+        Bodies to mark, label -> ``(k_R, k_Y)`` (:func:`tumble.analysis.gravity_stability.gravity_gradient_ratios`).
 
     Returns
     -------

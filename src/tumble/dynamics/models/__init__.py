@@ -2,7 +2,8 @@
 
 - :mod:`~tumble.dynamics.models.torques`: constant and function torques, ``as_torque``.
 - :mod:`~tumble.dynamics.models.internal`: rotors (the gyrostat) and the spherical damper.
-- :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque and its stability regions.
+- :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque and the orbiting (LVLH) frame
+  (its stability regions are :mod:`tumble.analysis.gravity_stability`).
 - :mod:`~tumble.dynamics.models.drag`: Euler's equations with an aerodynamic drag about each
   principal axis, compiled (the fit's model).
 

@@ -33,20 +33,8 @@ then by ``roll`` about the once-turned roll axis, then by ``yaw`` about the body
 (scipy ``from_euler("YXZ", [pitch, roll, yaw])``); roll is the middle angle, so the sequence is
 regular wherever ``|roll| < pi/2``, and a pure pitch libration is a pure pitch angle.
 
-**Linear stability** about the orbiting frame (Hughes ch. 9, gravitational stabilization;
-DeBra & Delp, J. Astronaut. Sci. 8 (1961) 14): with
-``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
-``k_Y = (I_pitch - I_roll) / I_yaw`` the linearised equations (in units of n, derived for this
-frame in docs/gravity-gradient.md) are
-
-- pitch: ``theta'' + 3 n^2 k_P theta = 0``, stable iff ``k_P > 0`` (``I_roll > I_yaw``;
-  ``k_P (1 - k_R k_Y) = k_R - k_Y``, so ``k_R > k_Y`` but at the corners ``k_R = k_Y = +-1``),
-- roll-yaw: ``s^4 + (1 + 3 k_R + k_R k_Y) n^2 s^2 + 4 k_R k_Y n^4 = 0``, stable iff
-  ``k_R k_Y > 0`` and ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``.
-
-Both hold in the Lagrange region (``k_R > k_Y > 0``: ``I_pitch > I_roll > I_yaw``, where the
-orbiting-frame energy is a minimum) and in the DeBra-Delp region (``k_Y < k_R < 0``, near
-``k_R = 0``: stable only by the gyroscopic coupling of roll and yaw).
+The linear stability of a body at rest in this frame (the Lagrange and DeBra-Delp regions) is
+:mod:`tumble.analysis.gravity_stability`.
 
 **Energy budget.** The Lagrangian in coordinates relative to the orbiting frame does not depend
 on time, so its energy function (the Jacobi integral; Goldstein, *Classical Mechanics*, ch. 2,
@@ -73,24 +61,19 @@ from ...validation import (
     check_moments,
     check_positive,
     check_vectors,
-    refuse_first,
     short_repr,
 )
 
 __all__ = [
     "MU_EARTH",
-    "RATIO_ATOL",
     "R_EARTH",
-    "STABILITY_REGIONS",
     "GravityGradient",
     "LVLHState",
     "OrbitAngles",
-    "StabilityClass",
-    "gravity_gradient_stability",
-    "inertia_ratios",
     "lvlh_state",
     "orbit_frame_angles",
     "relative_attitude",
+    "rpy_axes",
 ]
 
 #: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
@@ -295,9 +278,39 @@ def _axis(name: str, value) -> int:
     return int(axis_index(name, value))
 
 
-def _rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
-    """0-based (roll, pitch, yaw) principal indices and the matrix whose columns are the body's
-    roll, pitch and yaw directions in principal coordinates (a proper rotation)."""
+def rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
+    """The body's roll, pitch and yaw axes: principal indices and directions.
+
+    The roll axis is the principal axis left over; when (roll, pitch, yaw) is an odd
+    permutation of (1, 2, 3) the roll direction is minus that axis, so the three directions
+    form a right-handed frame (module docstring).
+
+    Parameters
+    ----------
+    pitch_axis, yaw_axis : {1, 2, 3, "minor", "intermediate", "major"}
+        Principal axes along the orbit normal and the local vertical; they must differ.
+
+    Returns
+    -------
+    indices : tuple of three ints
+        0-based principal indices of the roll, pitch and yaw axes.
+    matrix : ndarray, shape (3, 3)
+        Columns: the roll, pitch and yaw directions in principal coordinates (a proper
+        rotation, dimensionless).
+
+    Raises
+    ------
+    ValueError
+        If an axis is not one of the labels above, or the two are the same axis.
+
+    Examples
+    --------
+    >>> (roll, pitch, yaw), P = rpy_axes(pitch_axis="major", yaw_axis="minor")
+    >>> (roll, pitch, yaw)
+    (1, 2, 0)
+    >>> float(round(np.linalg.det(P)))
+    1.0
+    """
     b, c = _axis("pitch_axis", pitch_axis), _axis("yaw_axis", yaw_axis)
     if b == c:
         raise ValueError(
@@ -369,7 +382,7 @@ def lvlh_state(gg: GravityGradient, body, *, roll=0.0, pitch=0.0, yaw=0.0, pitch
     axes = getattr(body, "principal_axes", None)
     if axes is None:
         raise ValueError(f"body = {short_repr(body)} must be a tumble Body or MassProperties")
-    _, P = _rpy_axes(pitch_axis, yaw_axis)
+    _, P = rpy_axes(pitch_axis, yaw_axis)
     r, p, y = np.broadcast_arrays(_angles("roll", roll), _angles("pitch", pitch), _angles("yaw", yaw))
     rel = Rotation.from_euler("YXZ", np.stack([p, r, y], axis=-1))
     principal = _LVLH0 * rel * Rotation.from_matrix(P.T)
@@ -385,7 +398,7 @@ def relative_attitude(gg: GravityGradient, t, attitude, *, pitch_axis=3, yaw_axi
     The identity means the body's yaw axis is on the local vertical, its pitch axis on the
     orbit normal.
     """
-    _, P = _rpy_axes(pitch_axis, yaw_axis)
+    _, P = rpy_axes(pitch_axis, yaw_axis)
     return gg.orbit_frame(t).inv() * attitude * Rotation.from_matrix(P)
 
 
@@ -419,94 +432,3 @@ def orbit_frame_angles(traj, gg: GravityGradient, *, pitch_axis=3, yaw_axis=1) -
         warnings.filterwarnings("ignore", message="Gimbal lock detected")
         pry = relative_attitude(gg, traj.t, traj.attitude, pitch_axis=pitch_axis, yaw_axis=yaw_axis).as_euler("YXZ")
     return OrbitAngles(pry[..., 1], pry[..., 0], pry[..., 2])
-
-
-def inertia_ratios(moments, *, pitch_axis=3, yaw_axis=1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The inertia ratios ``(k_R, k_P, k_Y)`` of bodies whose pitch and yaw axes are given.
-
-    ``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
-    ``k_Y = (I_pitch - I_roll) / I_yaw`` (Hughes ch. 9; module docstring).
-
-    Parameters
-    ----------
-    moments : array_like, shape (..., 3)
-        Principal moments ``I1 <= I2 <= I3``, kg m^2.
-    pitch_axis, yaw_axis : {1, 2, 3, "minor", "intermediate", "major"}
-
-    Returns
-    -------
-    tuple of three ndarrays, shape (...)
-    """
-    I = check_moments("moments", moments, physical=False)
-    (a, b, c), _ = _rpy_axes(pitch_axis, yaw_axis)
-    Ir, Ip, Iy = I[..., a], I[..., b], I[..., c]
-    return (Ip - Iy) / Ir, (Ir - Iy) / Ip, (Ip - Ir) / Iy
-
-
-class StabilityClass(NamedTuple):
-    """Linear stability about the orbiting frame (see :func:`gravity_gradient_stability`)."""
-
-    #: Pitch stable: ``k_P > 0`` (``I_roll > I_yaw``).
-    pitch: np.ndarray
-    #: Roll-yaw stable: ``k_R k_Y > 0`` and ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``.
-    roll_yaw: np.ndarray
-    #: One of :data:`STABILITY_REGIONS`.
-    region: np.ndarray
-
-
-#: The names :func:`gravity_gradient_stability` gives a region: both stable with ``k_R > 0``,
-#: both stable with ``k_R < 0``, one of the two unstable, both unstable.
-STABILITY_REGIONS = ("lagrange", "debra-delp", "pitch unstable", "roll-yaw unstable", "unstable")
-#: How far ``k_P (1 - k_R k_Y)`` may be from ``k_R - k_Y`` for three ratios of one body.
-RATIO_ATOL = 1e-9
-
-
-def gravity_gradient_stability(k_roll, k_pitch, k_yaw) -> StabilityClass:
-    """Linear stability of a body at rest in the orbiting frame, from its inertia ratios.
-
-    The conditions (Hughes ch. 9; DeBra & Delp 1961; derived for this frame in
-    docs/gravity-gradient.md): pitch ``k_P > 0``; roll-yaw ``k_R k_Y > 0`` and
-    ``1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)``. Strict inequalities: a boundary point counts as
-    unstable. Stable in both with ``k_R > 0`` is the Lagrange region (``I_pitch > I_roll >
-    I_yaw``), with ``k_R < 0`` the DeBra-Delp region. ``gravity_gradient_stability(
-    *inertia_ratios(moments))`` classifies bodies.
-
-    Parameters
-    ----------
-    k_roll, k_pitch, k_yaw : float or array_like
-        ``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
-        ``k_Y = (I_pitch - I_roll) / I_yaw`` (:func:`inertia_ratios`), each in [-1, 1] for a
-        real body (triangle inequality), broadcasting together. One body's ratios satisfy
-        ``k_P (1 - k_R k_Y) = k_R - k_Y`` (checked to :data:`RATIO_ATOL`), so ``k_P`` has the
-        sign of ``k_R - k_Y`` except at the corners ``k_R = k_Y = +-1`` (planar bodies, e.g.
-        ``I_pitch = I_roll + I_yaw``), where ``k_R`` and ``k_Y`` alone do not decide pitch.
-
-    Returns
-    -------
-    StabilityClass
-        Boolean arrays ``pitch``, ``roll_yaw`` and the string array ``region``.
-    """
-    ks = {name: check_vectors(name, k, "dimensionless", size=None)
-          for name, k in (("k_roll", k_roll), ("k_pitch", k_pitch), ("k_yaw", k_yaw))}
-    for name, k in ks.items():
-        refuse_first(name, k, np.abs(k) > 1.0, "must be from -1 to 1 (the triangle inequality of the moments)")
-    try:
-        kr, kp, ky = np.broadcast_arrays(*ks.values())
-    except ValueError:
-        shapes = ", ".join(f"{name} (shape {k.shape})" for name, k in ks.items())
-        raise ValueError(f"{shapes} must broadcast together") from None
-    off = np.abs(kp * (1.0 - kr * ky) - (kr - ky)) > RATIO_ATOL
-    if np.any(off):
-        i = tuple(int(j) for j in np.argwhere(off)[0])
-        raise ValueError(
-            f"k_pitch{list(i) if i else ''} = {float(kp[i])!r} does not belong with k_roll = {float(kr[i])!r} "
-            f"and k_yaw = {float(ky[i])!r}: one body has k_pitch (1 - k_roll k_yaw) = k_roll - k_yaw (use inertia_ratios)"
-        )
-    pitch = kp > 0
-    prod = kr * ky
-    roll_yaw = (prod > 0) & (1.0 + 3.0 * kr + prod > 4.0 * np.sqrt(np.maximum(prod, 0.0)))
-    region = np.select(
-        [pitch & roll_yaw & (kr > 0), pitch & roll_yaw, ~pitch & roll_yaw, pitch & ~roll_yaw],
-        list(STABILITY_REGIONS[:4]), default=STABILITY_REGIONS[4],
-    )
-    return StabilityClass(pitch, roll_yaw, region)
