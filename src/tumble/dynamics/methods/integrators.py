@@ -99,9 +99,11 @@ class Method:
     #: Order of the composition of a splitting into exact rotations (2, 4 or 6), which
     #: ``simulate_batch`` advances for every body together; None for the other methods.
     splitting_order: int | None = None
-    #: Whether the method hands a stiff damper to an implicit solver (so ``simulate`` lets it
-    #: take one); the others refuse a stiff damper.
-    stiff_solver: bool = False
+    @property
+    def stiff_solver(self) -> bool:
+        """Whether the method hands a stiff damper to an implicit solver (so ``simulate`` lets it
+        take one); the others refuse a stiff damper. Read off its integrator, which does it."""
+        return bool(getattr(self.integrate_internal, "stiff_solver", False))
 
     @property
     def supports_internal(self) -> bool:
@@ -156,7 +158,11 @@ def stiffness(model, omega0, quat0, t, torque) -> tuple[float, float]:
     return model.stiffness(model.spin_bound(omega0, t) + gain, t_end)
 
 
-def _solve_internal(method: str):
+def _solve_internal(method: str, stiff: str | None = None):
+    """The internal-model integrator with scipy's ``method``; ``stiff``: the implicit method a
+    stiff damper's run is handed to (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`),
+    read back as :attr:`Method.stiff_solver` by the entry that uses it."""
+
     def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
         tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
         y0 = model.initial_state(omega0, quat0)
@@ -164,12 +170,13 @@ def _solve_internal(method: str):
         def rhs(time, y):
             return model.rhs(time, y, tau)
 
-        if method == "DOP853" and stiffness(model, omega0, quat0, t, torque)[0] > STIFF_RATIO:
-            Y = _solve("Radau", rhs, y0, t, rtol, atol, jac=model.jacobian)
+        if stiff is not None and stiffness(model, omega0, quat0, t, torque)[0] > STIFF_RATIO:
+            Y = _solve(stiff, rhs, y0, t, rtol, atol, jac=model.jacobian)
         else:
             Y = _solve(method, rhs, y0, t, rtol, atol)
         return model.samples(t, Y)
 
+    integrate.stiff_solver = stiff is not None
     return integrate
 
 
@@ -240,7 +247,7 @@ METHODS: dict[str, Method] = {
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
                      "DOP853, omega and attitude together, tight tolerances (rtol 1e-12); Radau for a stiff damper",
                      atol_scaled=True,
-                     integrate_internal=_solve_internal("DOP853"), stiff_solver=True),
+                     integrate_internal=_solve_internal("DOP853", stiff="Radau")),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
                    "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it",
                    integrate_internal=_solve_internal("RK45")),
