@@ -7,14 +7,15 @@ import itertools
 import mpmath as mp
 import numpy as np
 import pytest
-from scipy.special import ellipj, ellipk as scipy_ellipk
 from scipy.spatial.transform import Rotation
+from scipy.special import ellipj
+from scipy.special import ellipk as scipy_ellipk
 
 import tumble
 from tumble.analysis import flip_interval, flip_interval_asymptotic, linearised_rate
 from tumble.dynamics import simulate
-from tumble.dynamics.special.elliptic import carlson_pi, ellipk, jacobi, jacobi_reduced
 from tumble.dynamics.methods.exact import FreeRotation
+from tumble.dynamics.special.elliptic import carlson_pi, ellipk, jacobi, jacobi_reduced
 from tumble.mass import MassProperties
 
 
@@ -181,3 +182,43 @@ def test_flip_interval_asymptotic_converges():
     # and its leading behaviour is logarithmic: (2 / lambda) ln(1 / eps)
     d = flip_interval_asymptotic([1e-8, 10.0, 1e-8], I) - flip_interval_asymptotic([1e-6, 10.0, 1e-6], I)
     assert d == pytest.approx(2 * np.log(100) / lam, rel=1e-6)
+
+
+def test_a_modulus_per_body_gives_each_body_the_values_of_its_own_modulus():
+    """The batch's Modulus (one k, k', K per body: both sides of m = 1/2, different numbers of
+    Landen steps, the separatrix) reduces each row exactly as that body's own Modulus does."""
+    from tumble.dynamics.special.elliptic import Modulus
+
+    params = [(0.3, 0.7), (0.9, 0.1), (1.0 - 1e-12, 1e-12), (1e-20, 1.0), (0.5, 0.5), (1.0, 0.0)]
+    ones = [Modulus.from_parameter(m, m1) for m, m1 in params]
+    rng = np.random.default_rng(4)
+    u = rng.uniform(-50.0, 50.0, (len(params), 40)), rng.uniform(-1e-16, 1e-16, (len(params), 40))
+    batch = Modulus(np.array([x.k for x in ones]), np.array([x.kp for x in ones]),
+                    (np.array([x.K[0] for x in ones]), np.array([x.K[1] for x in ones])))
+    (j1, j2), odd, sn, cn, dn = batch.reduce(u)
+    for i, one in enumerate(ones):
+        (a1, a2), o, s, c, d = one.reduce((u[0][i], u[1][i]))
+        for x, y in ((j1, a1), (j2, a2), (odd, o), (sn, s), (cn, c), (dn, d)):
+            np.testing.assert_array_equal(x[i], y)
+    assert np.all(j1[-1] == 0) and np.allclose(sn[-1], np.tanh(u[0][-1]))  # the separatrix: no period
+
+
+def test_one_body_and_the_batch_run_one_kernel():
+    """FreeRotation (parameters through floats) and free_rotation_batch at N = 1 (through arrays
+    when in a chunk with others) give one body the same motion to a few ulps, and a lone body
+    bit for bit."""
+    from tumble.dynamics.methods.exact_batch import free_rotation_batch
+
+    I = np.array([[1.0, 2.0, 3.0], [0.4, 2.0, 2.1], [1.0, 2.0, 3.0]])
+    w = np.array([[0.1, 1.0, 0.1], [1.0, 0.2, -0.3], [3.0, 1.0, -3.0]])  # the last on the separatrix
+    q = Rotation.random(3, random_state=1).as_quat()
+    t = np.linspace(0.0, 40.0, 81)
+    omega, quat = free_rotation_batch(I, w, q, t)
+    for i in range(3):
+        one = FreeRotation(I[i], w[i], Rotation.from_quat(q[i]))
+        lone = free_rotation_batch(I[i:i + 1], w[i:i + 1], one.attitude0.as_quat()[None, :], t)
+        np.testing.assert_array_equal(lone[0][0], one.omega(t))
+        # (Rotation normalises the kernel's quaternions: compared through it)
+        np.testing.assert_array_equal(Rotation.from_quat(lone[1][0]).as_quat(), one.attitude(t).as_quat())
+        np.testing.assert_allclose(omega[i], one.omega(t), rtol=0, atol=4e-16 * np.max(np.abs(omega[i])))
+        assert np.max((Rotation.from_quat(quat[i]).inv() * one.attitude(t)).magnitude()) <= 1e-14

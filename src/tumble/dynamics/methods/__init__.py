@@ -2,9 +2,11 @@
 
 - :mod:`~tumble.dynamics.methods.integrators`: the registry (``METHODS``, ``get_method``): each
   method's name, capabilities and integrator.
-- :mod:`~tumble.dynamics.methods.exact`, :mod:`~tumble.dynamics.methods.exact_batch`,
-  :mod:`~tumble.dynamics.methods.exact_omega`, :mod:`~tumble.dynamics.methods.exact_parameters`:
-  the exact torque-free solution, one body and batched.
+- :mod:`~tumble.dynamics.methods.exact_kernel`: the exact torque-free solution, written once over
+  arrays of bodies; its two fronts :mod:`~tumble.dynamics.methods.exact` (one body, ``FreeRotation``)
+  and :mod:`~tumble.dynamics.methods.exact_batch` (N bodies); its parameters
+  (:mod:`~tumble.dynamics.methods.exact_parameters`); and :mod:`~tumble.dynamics.methods.exact_omega`,
+  omega alone in double precision for the fit's inner loop.
 - :mod:`~tumble.dynamics.methods.geometric`: the splitting (structure-preserving, fixed-step)
   integrators.
 

@@ -112,7 +112,7 @@ def _iterate(state, step, limit: int = 40):
     if so, and a function that gives the next state otherwise. On floats this is the plain loop
     with its ``break`` (the one-body path, without numpy's overhead on single values); on arrays
     each element leaves the loop with the state it stopped in and only the others go on, so that
-    every element gets the float loop's answer exactly (:mod:`tumble.dynamics.methods.exact_batch`).
+    every element gets the float loop's answer exactly (:mod:`tumble.dynamics.methods.exact_kernel`).
     """
     if np.ndim(state[0][0]) == 0:
         for _ in range(limit):
@@ -184,22 +184,34 @@ def agm_k(kp):
     return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
 
 
-def complete_integrals(n, kp: tuple[float, float], exponent: int = 0):
+def complete_integrals(n, kp, exponent=0):
     """``K(m)`` and ``Pi(n | m)`` as double-doubles, ``n <= 0`` (a double or a double-double),
     for ``k' = sqrt(1 - m) = kp * 2^exponent`` (``kp`` a double-double, ``0 < k' <= 1``).
 
-    ``exponent`` lets ``k'`` be far below the smallest double (module docstring).
+    ``exponent`` lets ``k'`` be far below the smallest double (module docstring). Floats give
+    floats (one motion, at Python's speed); arrays give arrays, elementwise, with the same
+    arithmetic (:func:`_iterate`): one body and a batch get the same values.
     """
-    kp = (float(kp[0]), float(kp[1]))
-    e = math.frexp(kp[0])[1] + int(exponent)  # k' = mantissa 2^e, mantissa in [1/2, 1)
-    shift = max(-61 - e, 0)  # k' = k'_60 2^-shift
-    kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
-    n = (float(n[0]), float(n[1])) if isinstance(n, tuple) else (float(n), 0.0)
-    one_n = dd.add((1.0, 0.0), dd.neg(n))  # 1 - n, without rounding n first
+    scalar = np.ndim(kp[0]) == 0 and np.ndim(exponent) == 0 and np.ndim(n[0] if isinstance(n, tuple) else n) == 0
+    if scalar:
+        kp, exponent = (float(kp[0]), float(kp[1])), int(exponent)
+        n = (float(n[0]), float(n[1])) if isinstance(n, tuple) else (float(n), 0.0)
+        e = math.frexp(kp[0])[1] + exponent  # k' = mantissa 2^e, mantissa in [1/2, 1)
+        shift = max(-61 - e, 0)  # k' = k'_60 2^-shift
+        kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
+    else:
+        n = (np.asarray(n[0], float), np.asarray(n[1], float)) if isinstance(n, tuple) else (np.asarray(n, float), np.zeros(np.shape(n)))
+        e = np.frexp(kp[0])[1] + exponent
+        shift = np.maximum(-61 - e, 0)
+        kp = (np.ldexp(kp[0], exponent + shift), np.ldexp(kp[1], exponent + shift))
+    one_n = dd.add(_one_like(kp), dd.neg(n))  # 1 - n, without rounding n first
     K = agm_k(kp)
-    Pi = K if n[0] == 0.0 else cel(kp, one_n)
-    if shift > 0:
-        log = dd.mul_d(dd.LN2, float(shift))
-        K = dd.add(K, log)
-        Pi = dd.add(Pi, dd.div(log, one_n))
+    if scalar:
+        Pi = K if n[0] == 0.0 else cel(kp, one_n)
+    else:
+        Pi = dd.where(n[0] == 0.0, K, cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
+    if np.any(shift > 0):
+        log = dd.mul_d(dd.LN2, shift * 1.0)
+        shifted = dd.add(K, log), dd.add(Pi, dd.div(log, one_n))
+        K, Pi = shifted if scalar else (dd.where(shift > 0, shifted[0], K), dd.where(shift > 0, shifted[1], Pi))
     return K, Pi

@@ -38,6 +38,7 @@ __all__ = [
     "sqrt",
     "two_prod",
     "two_sum",
+    "where",
 ]
 
 #: pi / 2 and ln 2 as double-doubles; 2 pi as a triple (for reductions of angles up to ~1e30).
@@ -96,9 +97,17 @@ def mul_d(x, b):
 
 def mul_scaled(x, b):
     """``x * b`` for a double-double ``x`` and doubles ``b``, both scaled by powers of two
-    first (exactly), so that Dekker's splitting cannot overflow however large ``x`` is."""
-    e = math.frexp(float(x[0]))[1]
-    return mul_d((math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e)), np.ldexp(b, e))
+    first (exactly), so that Dekker's splitting cannot overflow however large ``x`` is.
+
+    Elementwise with numpy broadcasting: ``x`` of shape (N, 1) and ``b`` of shape (T,) give
+    (N, T), one row per value of ``x``."""
+    e = np.frexp(x[0])[1]
+    return mul_d((np.ldexp(x[0], -e), np.ldexp(x[1], -e)), np.ldexp(b, e))
+
+
+def where(cond, x, y):
+    """``x`` where ``cond``, else ``y``, for double-doubles (``numpy.where`` on both parts)."""
+    return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
 
 
 def div(x, y):

@@ -46,6 +46,7 @@ from .carlson import complete_integrals, legendre_f, legendre_pi_excess
 
 __all__ = [
     "Modulus",
+    "agm_tables",
     "carlson_pi",
     "ellipk",
     "ellipk_kp",
@@ -54,40 +55,61 @@ __all__ = [
 ]
 
 
-def _agm(b0: float, c0: float) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """The ``a_n`` and ``c_n`` of the AGM of ``(1, b0)``, ``c0^2 = 1 - b0^2``, until
-    ``c_N <= 1.1e-16 a_N`` (A&S 16.4); ``c_{n+1} = c_n^2 / (4 a_{n+1})`` without cancellation."""
-    a, b, c = 1.0, b0, c0
+def agm_tables(b0, c0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The ``a_n`` and ``c_n`` of the AGM of ``(1, b0)``, ``c0^2 = 1 - b0^2``, for each element,
+    each stopping once ``c_N <= 1.1e-16 a_N`` (A&S 16.4); ``c_{n+1} = c_n^2 / (4 a_{n+1})``
+    without cancellation.
+
+    Returns arrays ``a`` and ``c`` of shape ``(L,) + shape(b0)`` (an element that stopped keeps
+    its last values) and the number of steps ``N`` each element took.
+    """
+    b0, c0 = np.asarray(b0, float), np.asarray(c0, float)
+    a, b, c = np.ones_like(b0), b0, c0
     As, Cs = [a], [c]
-    while c > 1.1e-16 * a and len(As) < 60:
-        a, b = 0.5 * (a + b), math.sqrt(a * b)
-        c = c * c / (4.0 * a)
+    count = np.zeros(b0.shape, int)
+    for _ in range(59):
+        go = c > 1.1e-16 * a
+        if not np.any(go):
+            break
+        a2 = 0.5 * (a + b)
+        a, b, c = np.where(go, a2, a), np.where(go, np.sqrt(a * b), b), np.where(go, c * c / (4.0 * a2), c)
         As.append(a)
         Cs.append(c)
-    return tuple(As), tuple(Cs)
+        count += go
+    return np.array(As), np.array(Cs), count
 
 
 @dataclass(frozen=True)
 class Modulus:
     """The modulus of a family of Jacobi functions: ``k = sqrt(m)``, ``k' = sqrt(1 - m)``.
 
+    One modulus (floats) or one per body (arrays of shape (N,)): the same code serves the one
+    motion and the batch (:mod:`tumble.dynamics.methods.exact_kernel`).
+
     Parameters
     ----------
-    k, kp : float
-        ``k`` and ``k'``, both in [0, 1], ``k^2 + k'^2 = 1`` to round-off; ``k'`` may be 0 (or
+    k, kp : float or ndarray, shape (N,)
+        ``k`` and ``k'``, in [0, 1], ``k^2 + k'^2 = 1`` to round-off; ``k'`` may be 0 (or
         underflow) while ``K`` stays finite, see ``K``.
-    K : tuple of float
+    K : tuple of float or of ndarray
         The quarter period as a double-double; infinite for the separatrix ``k' = 0``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> (j1, j2), odd, sn, cn, dn = Modulus.from_parameter(0.5, 0.5).reduce((np.array([0.3]), np.zeros(1)))
+    >>> bool(np.isclose(sn[0] ** 2 + cn[0] ** 2, 1.0))
+    True
     """
 
-    k: float
-    kp: float
-    K: tuple[float, float]
+    k: float | np.ndarray
+    kp: float | np.ndarray
+    K: tuple
 
     def __post_init__(self) -> None:
-        big = self.k > self.kp  # m > 1/2: the imaginary transformation
-        As, Cs = _agm(self.k, self.kp) if big else _agm(self.kp, self.k)
-        object.__setattr__(self, "_route", (big, As, Cs))
+        big = np.asarray(self.k > self.kp)  # m > 1/2: the imaginary transformation
+        As, Cs, count = agm_tables(np.where(big, self.k, self.kp), np.where(big, self.kp, self.k))
+        object.__setattr__(self, "_route", (big, As, Cs, count))
 
     @classmethod
     def from_parameter(cls, m: float, m1: float) -> Modulus:
@@ -102,20 +124,40 @@ class Modulus:
         kp = dd.sqrt((math.ldexp(m1, -2 * e), 0.0))
         return cls(math.sqrt(m), math.sqrt(m1), complete_integrals(0.0, kp, e)[0])
 
+    def _column(self, ndim: int):
+        """Shape one value per body to broadcast against arrays of ``ndim`` dimensions whose
+        first axis runs over the bodies (a single modulus: unchanged)."""
+        if np.ndim(self.k) == 0:
+            return lambda x: x
+        return lambda x: np.reshape(x, np.shape(x) + (1,) * (ndim - np.ndim(x)))
+
     # -- v in [-K/2, K/2] ----------------------------------------------------------------
     def _landen(self, v):
-        big, As, Cs = self._route
-        N = len(As) - 1
-        x = (2.0**N) * As[N] * v
-        if big:
-            for n in range(N, 0, -1):
-                x = 0.5 * (x + np.arcsinh(Cs[n] / As[n] * np.sinh(x)))
+        big, As, Cs, count = self._route
+        col = self._column(np.ndim(v))
+        x = col(np.ldexp(1.0, count) * np.take_along_axis(As, count[None, ...], axis=0)[0]) * v
+        # one modulus (or a batch all on one side of m = 1/2, all with as many steps) takes one
+        # branch and no masks: the one-body path keeps its speed
+        route = "hyper" if np.all(big) else "circ" if not np.any(big) else "mixed"
+        least, bigc = (int(count.min()) if count.size else 0), col(big)
+        for n in range(len(As) - 1, 0, -1):
+            ratio = col(Cs[n] / As[n])
+            if route != "circ":
+                hyper = 0.5 * (x + np.arcsinh(ratio * np.sinh(x)))
+            if route != "hyper":
+                circ = 0.5 * (x + np.arcsin(np.clip(ratio * np.sin(x), -1.0, 1.0)))
+            step = hyper if route == "hyper" else circ if route == "circ" else np.where(bigc, hyper, circ)
+            x = step if n <= least else np.where(col(n <= count), step, x)
+        kp, k = col(self.kp), col(self.k)
+        if route == "hyper":
             ch = np.cosh(x)
-            return np.tanh(x), 1.0 / ch, np.hypot(1.0, self.kp * np.sinh(x)) / ch
-        for n in range(N, 0, -1):
-            x = 0.5 * (x + np.arcsin(np.clip(Cs[n] / As[n] * np.sin(x), -1.0, 1.0)))
+            return np.tanh(x), 1.0 / ch, np.hypot(1.0, kp * np.sinh(x)) / ch
         cn = np.cos(x)
-        return np.sin(x), cn, np.hypot(self.kp, self.k * cn)
+        if route == "circ":
+            return np.sin(x), cn, np.hypot(kp, k * cn)
+        ch = np.cosh(x)
+        return (np.where(bigc, np.tanh(x), np.sin(x)), np.where(bigc, 1.0 / ch, cn),
+                np.where(bigc, np.hypot(1.0, kp * np.sinh(x)) / ch, np.hypot(kp, k * cn)))
 
     # -- any u --------------------------------------------------------------------------
     def reduce(self, u):
@@ -126,32 +168,44 @@ class Modulus:
         ``sn, cn, dn`` of ``u_r = u - 2 K j`` with ``|u_r| <= K``, ``cn(u_r) >= 0``. The phase
         is kept to ~1e-32 of ``u``; beyond ``|u| = 1e30``, where that is no longer below 0.01,
         ``u`` is first reduced by ``fmod(u, 4 K)`` (exact, but with ``K`` rounded to double):
-        the functions then keep their identities only.
+        the functions then keep their identities only. On the separatrix (``K`` infinite: no
+        period) ``j = 0`` and the functions are ``tanh`` and ``sech``. With one modulus per
+        body, ``u`` has one row per body.
         """
         u = (np.asarray(u[0], float), np.asarray(u[1], float))
-        if math.isinf(self.K[0]):  # the separatrix: no period
-            with np.errstate(over="ignore"):
-                sech = 1.0 / np.cosh(u[0])
+        col = self._column(u[0].ndim)
+        K = (col(self.K[0]), col(self.K[1]))
+        separatrix = np.isinf(K[0])
+        with np.errstate(over="ignore"):
+            sech = 1.0 / np.cosh(u[0]) if np.any(separatrix) else None
+        if np.all(separatrix):
             zero = np.zeros_like(u[0])
             return (zero, zero), np.zeros(u[0].shape, bool), np.tanh(u[0]), sech, sech
-        twoK = (2.0 * self.K[0], 2.0 * self.K[1])
+        twoK = (2.0 * K[0], 2.0 * K[1])
         lost = np.abs(u[0]) > 1e30  # no phase left to keep: stay on the curve, at least
         if np.any(lost):
-            u = (np.where(lost, np.fmod(u[0], 4.0 * self.K[0]), u[0]), np.where(lost, 0.0, u[1]))
-        j1 = np.rint(u[0] / twoK[0])
-        r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
-        j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
-        r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
-        q = np.rint(r[0] / self.K[0])  # -1, 0 or 1: the nearest quarter period
-        v = dd.add(r, dd.neg(dd.mul_d(self.K, q)))
-        s, c, d = self._landen(v[0] + v[1])
+            u = (np.where(lost, np.fmod(u[0], 4.0 * K[0]), u[0]), np.where(lost, 0.0, u[1]))
+        with np.errstate(invalid="ignore"):  # nan on the separatrix rows, replaced below
+            j1 = np.rint(u[0] / twoK[0])
+            r = dd.add(u, dd.neg(dd.mul_d(twoK, j1)))
+            j2 = np.rint(r[0] / twoK[0])  # 0 but at the rounding edge, or where j1 > 2^53
+            r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
+            q = np.rint(r[0] / K[0])  # -1, 0 or 1: the nearest quarter period
+            v = dd.add(r, dd.neg(dd.mul_d(K, q)))
+            s, c, d = self._landen(v[0] + v[1])
+        kp = col(self.kp)
         with np.errstate(divide="ignore", invalid="ignore"):
             sn = np.where(q == 0, s, q * c / d)
-            cn = np.where(q == 0, c, -q * self.kp * s / d)
-            dn = np.where(q == 0, d, self.kp / d)
+            cn = np.where(q == 0, c, -q * kp * s / d)
+            dn = np.where(q == 0, d, kp / d)
         odd = (np.fmod(np.abs(j1), 2.0) + np.abs(j2)) % 2.0 == 1.0
-        return (j1, j2), odd, sn, cn, np.where(np.isfinite(dn), dn, 0.0)
-
+        dn = np.where(np.isfinite(dn), dn, 0.0)
+        if sech is not None:  # some bodies on the separatrix, the others periodic
+            zero = np.zeros_like(u[0])
+            j1, j2 = np.where(separatrix, zero, j1), np.where(separatrix, zero, j2)
+            odd = odd & ~separatrix
+            sn, cn, dn = np.where(separatrix, np.tanh(u[0]), sn), np.where(separatrix, sech, cn), np.where(separatrix, sech, dn)
+        return (j1, j2), odd, sn, cn, dn
 
 
 def ellipk(m: float, m1: float) -> float:
