@@ -181,7 +181,7 @@ def test_refusals():
         fit_rotation(t, bad)
     tt = t.copy()
     tt[[3, 4]] = tt[[4, 3]]
-    with pytest.raises(ValueError, match=r"strictly increasing: t\[4\]"):
+    with pytest.raises(ValueError, match=r"t must increase strictly; t\[4\]"):
         fit_rotation(tt, w)
     with pytest.raises(ValueError, match="shape"):
         fit_rotation(t, w[:, :2])

@@ -95,7 +95,7 @@ def test_geometric_needs_no_positive_definite_trick_for_symmetric_bodies():
         (dict(moments=[1.0, 0.0, 2.0]), "moments must be finite and positive"),
         (dict(omega0=[np.nan, 0.0, 0.0]), "omega0 and quat0 must be finite"),
         (dict(quat0=[0.0, 0.0, 0.0, 0.0]), "not zero"),
-        (dict(t=[0.0, 1.0, 0.5]), "strictly increasing"),
+        (dict(t=[0.0, 1.0, 0.5]), r"t must increase strictly; t\[2\] = 0.5 follows 1.0"),
         (dict(step=-0.1), r"step = -0.1 must be a positive"),
     ],
 )

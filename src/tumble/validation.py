@@ -27,6 +27,7 @@ __all__ = [
     "axis_index",
     "check_at_most",
     "check_direction",
+    "check_increasing",
     "check_moments",
     "check_motion",
     "check_number",
@@ -155,6 +156,23 @@ def check_at_most(field: str, value: float, unit: str, at_most: float | None) ->
     if at_most is not None and not abs(value) <= at_most:
         why = f": {BOUND_REASONS[at_most]}" if at_most in BOUND_REASONS else ""
         raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
+
+
+def check_increasing(field: str, t: np.ndarray, unit: str = "s") -> None:
+    """Refuse samples that do not increase strictly, naming the first pair out of order.
+
+    Examples
+    --------
+    >>> check_increasing("times", np.array([0.0, 1.0, 0.5]))
+    Traceback (most recent call last):
+    ...
+    ValueError: times must increase strictly; times[2] = 0.5 follows 1.0 (s)
+    """
+    bad = np.flatnonzero(~(np.diff(t) > 0))
+    if bad.size:
+        k = int(bad[0]) + 1
+        raise ValueError(f"{field} must increase strictly; {field}[{k}] = {float(t[k])!r} follows "
+                         f"{float(t[k - 1])!r} ({unit})")
 
 
 def check_moments(field: str, value, *, physical: bool = True) -> np.ndarray:

@@ -13,6 +13,7 @@ from ..mass import INERTIA_RTOL, Body, MassProperties
 from ..validation import (
     MAX_INERTIA,
     MAX_RATE,
+    check_increasing,
     check_positive,
     check_rotation,
     check_vector,
@@ -188,9 +189,7 @@ def sample_times(t_end=None, samples=None, dt=None, times=None) -> tuple[np.ndar
             raise ValueError(f"times[{int(np.flatnonzero(~np.isfinite(t))[0])}] is not a finite number (s)")
         if t[0] < 0:
             raise ValueError(f"times[0] = {float(t[0])!r} must be >= 0 s: the motion starts at t = 0")
-        if np.any(np.diff(t) <= 0):
-            k = int(np.flatnonzero(np.diff(t) <= 0)[0])
-            raise ValueError(f"times must increase strictly; times[{k + 1}] = {float(t[k + 1])!r} follows {float(t[k])!r}")
+        check_increasing("times", t)
         if not 0 < t[-1] <= MAX_T_END:
             raise ValueError(f"times[-1] = {float(t[-1])!r} must be after 0 and at most {MAX_T_END:g} s")
         if t[0] > 0:  # the integrator starts from the initial state at t = 0

@@ -18,6 +18,7 @@ import warnings
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...validation import check_increasing
 from .adequacy import InadequateFitWarning
 from .model import Model
 from .result import RotationFit, rotation_fit
@@ -68,10 +69,7 @@ def _check(t, omega) -> tuple[np.ndarray, np.ndarray]:
         i, k = np.argwhere(big)[0]
         raise ValueError(f"omega_measured[{i}] = {omega[i].tolist()}: its {'xyz'[k]} component exceeds "
                          f"{MAX_RATE:.0e} rad/s, more than any gyroscope measures; is it in other units?")
-    bad = np.flatnonzero(~(np.diff(t) > 0))
-    if bad.size:
-        i = bad[0] + 1
-        raise ValueError(f"t must be strictly increasing: t[{i}] = {t[i]} follows t[{i - 1}] = {t[i - 1]} (s)")
+    check_increasing("t", t)
     return t, omega
 
 

@@ -47,6 +47,7 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...validation import check_increasing, short_repr
 from ..models.internal import InternalSamples
 from ..models.torques import body_torque, spin_gain
 
@@ -307,8 +308,9 @@ def _check_batch(I, L, q, t, step) -> None:
         raise ValueError("omega0 and quat0 must be finite")
     if np.any(np.linalg.norm(q, axis=1) == 0):
         raise ValueError("quat0 must be unit quaternions [x, y, z, w], not zero")
-    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-        raise ValueError("t must be at least two finite, strictly increasing times (s)")
+    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)):
+        raise ValueError(f"t = {short_repr(t)} must be at least two finite times (s)")
+    check_increasing("t", t)
     if step is not None and not (np.isfinite(step) and step > 0):
         raise ValueError(f"step = {step!r} must be a positive finite number (s)")
 
