@@ -295,4 +295,4 @@ def test_a_closed_form_method_takes_no_step_from_t_0(name):
 def test_the_order_table_is_read_from_the_methods():
     # simulate_batch takes each splitting's composition order from its Method, not from its name
     assert {n: m.splitting_order for n, m in METHODS.items() if m.splitting_order} == {
-        "geometric": 4, "geometric2": 2, "geometric6": 6}
+        "geometric": 4, "geometric2": 2, "geometric6": 6, "exact_split2": 2, "exact_split4": 4, "exact_split6": 6}

@@ -23,7 +23,7 @@ from tumble.analysis import flip_interval
 from tumble.dynamics import METHODS, gyrostat_rate, simulate
 
 BOX = tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2))  # principal axes 1, 2, 3 = design x, y, z
-SPLITTING = [name for name, m in METHODS.items() if m.fixed_step]  # splitting into exact rotations
+SPLITTING = [name for name, m in METHODS.items() if m.fixed_step and m.supports_internal]  # into exact rotations
 #: The methods that take rotors, and those that refuse them.
 INTERNAL = [name for name, m in METHODS.items() if m.supports_internal]
 NO_INTERNAL = [name for name in METHODS if name not in INTERNAL]

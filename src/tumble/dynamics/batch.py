@@ -172,7 +172,7 @@ def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, s
         t, keep = t[keep], slice(None)
         omega, quat = free_rotation_batch(I, w0, q0, t)
     elif spec.splitting_order is not None:  # every body together
-        omega, quat = _geometric(spec, I, w0, q0, t, model, step)
+        omega, quat = _splitting(spec, I, w0, q0, t, model, step)
     else:
         omega, quat = _loop(spec.name, I, w0, q0, t, torque, step)
     return BatchTrajectory(t=t[keep], omega=omega[:, keep], quat=quat[:, keep], moments=I, method=spec.name,
@@ -273,10 +273,8 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
     return I, w, q
 
 
-def _geometric(spec, I, w0, q0, t, model, step):
+def _splitting(spec, I, w0, q0, t, model, step):
     """The splitting integrators, every body together; the work bounds of :func:`tumble.simulate`."""
-    from .methods.geometric import default_step, propagate
-
     model = bind_to_body(model, I)  # a torque that needs the bodies' moments (NeedsBody)
     t_end = float(t[-1])
     spin = float(np.max(np.linalg.norm(w0, axis=1)))
@@ -287,10 +285,10 @@ def _geometric(spec, I, w0, q0, t, model, step):
         raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} "
                          f"rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} follows (at "
                          f"most {MAX_ROTATION:g} rad); use method exact or a shorter run")
-    h = step if step is not None else default_step(spin, gain)  # what propagate takes by default
+    h = step if step is not None else spec.default_step(spin, gain)  # what propagate takes by default
     if t_end / h > MAX_STEPS:
         raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
-    omega, quat = propagate(I, w0, q0, t, order=spec.splitting_order, step=step, torque=model)
+    omega, quat = spec.propagate(I, w0, q0, t, step=step, torque=model)
     return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
 
 

@@ -315,10 +315,8 @@ def _check_work(run: RunInputs) -> None:
     if run.internal is not None and run.internal.damper is not None:
         _check_stiffness(run, spin + gain, turns)
     if spec.fixed_step:
-        from .methods.geometric import default_step
-
         rate = 0.0 if run.internal is None else run.internal.relaxation_rate
-        h = run.step or default_step(spin, gain, rate)
+        h = run.step or spec.default_step(spin, gain, rate)
         if t_end / h > MAX_STEPS:
             raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
 

@@ -22,6 +22,10 @@ never a method's name.
 - ``"geometric"`` (4th order), ``"geometric2"``, ``"geometric6"``: fixed-step splitting into
   exact rotations (:mod:`tumble.dynamics.methods.geometric`): |L| and L_world kept to round-off, energy
   error bounded; torques allowed.
+- ``"exact_split2"``, ``"exact_split4"``, ``"exact_split6"``: fixed-step splitting into the exact
+  free flow and torque kicks (:mod:`tumble.dynamics.methods.exact_split`, Celledoni et al. 2008):
+  the free motion costs no error, so a weak torque allows steps longer than a flip; torques
+  allowed, rotors and dampers not.
 
 Rotors and dampers (:mod:`tumble.dynamics.models.internal`) go through ``Method.integrate_internal``,
 which takes the :class:`~tumble.dynamics.models.internal.InternalModel` and returns its samples:
@@ -39,17 +43,18 @@ model's analytic Jacobian (:meth:`~tumble.dynamics.models.internal.InternalModel
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
+from importlib import import_module
 
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ..euler import euler_rhs
-from ..special.quaternion import quaternion_rate
 from ..models.internal import STIFF_RATIO
 from ..models.torques import body_torque, spin_gain
+from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 
@@ -99,6 +104,13 @@ class Method:
     #: Order of the composition of a splitting into exact rotations (2, 4 or 6), which
     #: ``simulate_batch`` advances for every body together; None for the other methods.
     splitting_order: int | None = None
+    #: A splitting's propagator over N bodies, ``propagate(moments, omega0, quat0, t, *, step,
+    #: torque)`` -> ``(omega, quat)`` of shapes (n, N, 3) and (n, N, 4); None for the others.
+    propagate: Callable | None = None
+    #: A fixed-step method's default largest step, ``default_step(spin, gain, rate)`` in s
+    #: (:func:`tumble.dynamics.methods.geometric.default_step`); None for the others.
+    default_step: Callable | None = None
+
     @property
     def stiff_solver(self) -> bool:
         """Whether the method hands a stiff damper to an implicit solver (so ``simulate`` lets it
@@ -214,16 +226,6 @@ def _integrate_exact(moments, omega0, quat0, t, torque, rtol, atol, step=None):
     return motion.omega(t), motion.attitude(t).as_quat()
 
 
-def _geometric(order: int):
-    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
-        from .geometric import propagate
-
-        omega, quat = propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque)
-        return omega[:, 0], quat[:, 0]
-
-    return integrate
-
-
 def _geometric_internal(order: int):
     def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
         from .geometric import propagate_internal
@@ -233,10 +235,27 @@ def _geometric_internal(order: int):
     return integrate
 
 
-def _splitting(name: str, order: int, description: str) -> Method:
-    """A splitting method of composition ``order``: one value for its integrators and its field."""
-    return Method(name, _geometric(order), True, None, None, description, fixed_step=True,
-                  integrate_internal=_geometric_internal(order), splitting_order=order)
+def _splitting(name: str, order: int, description: str, family: str = "geometric") -> Method:
+    """A splitting method of composition ``order`` from the module ``family`` (``geometric``:
+    exact rotations, or ``exact_split``: the exact free flow): one value for its integrators,
+    its batch propagator and its default step."""
+
+    def module():
+        return import_module(f".{family}", __package__)
+
+    def propagate(moments, omega0, quat0, t, *, step=None, torque=None):
+        return module().propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque)
+
+    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+        omega, quat = propagate(moments, omega0, quat0, t, step=step, torque=torque)
+        return omega[:, 0], quat[:, 0]
+
+    def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
+        return module().default_step(spin, gain, rate)
+
+    internal = _geometric_internal(order) if family == "geometric" else None
+    return Method(name, integrate, True, None, None, description, fixed_step=True, integrate_internal=internal,
+                  splitting_order=order, propagate=propagate, default_step=default_step)
 
 
 #: The integration methods by name: what ``simulate(method=...)`` accepts (docs/methods.md compares them).
@@ -256,6 +275,12 @@ METHODS: dict[str, Method] = {
     "geometric": _splitting("geometric", 4, "splitting into exact rotations, 4th-order Yoshida composition, fixed step"),
     "geometric2": _splitting("geometric2", 2, "splitting into exact rotations, 2nd order (Strang), fixed step"),
     "geometric6": _splitting("geometric6", 6, "splitting into exact rotations, 6th-order Yoshida composition, fixed step"),
+    "exact_split2": _splitting("exact_split2", 2, "exact free flow and torque kicks, 2nd order (Strang), fixed step",
+                               "exact_split"),
+    "exact_split4": _splitting("exact_split4", 4, "exact free flow and torque kicks, 4th-order Yoshida composition, "
+                               "fixed step", "exact_split"),
+    "exact_split6": _splitting("exact_split6", 6, "exact free flow and torque kicks, 6th-order Yoshida composition, "
+                               "fixed step", "exact_split"),
 }
 
 
