@@ -436,7 +436,8 @@ def main(argv: list[str] | None = None) -> int:
 
     0: success; 2: bad input (nothing written); 1: a failed computation or an I/O failure
     (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
-    by SIGINT / SIGTERM (nothing half-written).
+    by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
+    (``tumble examples | head -2``) is a normal end: 0, quietly.
     """
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -453,7 +454,9 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
-            return args.func(args)
+            status = args.func(args)
+            sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
+            return status
     except KeyboardInterrupt:
         print("tumble: interrupted; nothing written", file=sys.stderr)
         return 130
@@ -466,6 +469,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # the input was fine; writing failed (disk full, permissions)
+        if isinstance(exc, BrokenPipeError) and exc.filename is None:
+            return _reader_gone()
         if args.debug:
             raise
         where = f"{exc.filename}: " if exc.filename else ""
@@ -479,6 +484,18 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _reader_gone() -> int:
+    """Standard output's reader closed the pipe (``tumble examples | head -2``): a normal end.
+
+    Standard output is pointed at the null device, so that the interpreter's last flush at exit
+    finds nothing to complain about (the recipe of Python's documentation of ``signal``).
+    """
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return EXIT_OK
 
 
 def _one_line(exc: BaseException) -> str:
