@@ -3,6 +3,9 @@
 
 from __future__ import annotations
 
+import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -61,3 +64,31 @@ def test_a_comment_that_does_not_hold_fails(code, message):
 
 def test_prose_comments_are_not_claims():
     assert run_checked("x = (1.0, 2.0)\nx   # totals, J\n# copy(...)   # -> the files written\n", "snippet") == []
+
+
+def _commands_out():
+    """(page, --out path) of every ``tumble`` command shown on the README and the guides."""
+    pages = [README, *sorted((ROOT / "docs").glob("*.md"))]
+    for page in pages:
+        for line in page.read_text(encoding="utf-8").splitlines():
+            match = re.match(r"\s*(?:\.venv/bin/)?tumble .*?--out (\S+)", line)
+            if match:
+                yield page.relative_to(ROOT), match.group(1).strip("`")
+
+
+def test_the_commands_shown_write_where_git_does_not_look():
+    """Trying the README's commands in a checkout leaves it clean: every --out is git-ignored (a
+    folder or a file at the top), and no tracked file is ignored."""
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("not a git checkout")
+    outs = sorted(set(_commands_out()))
+    assert len(outs) > 10 and any(out == "figures" for _, out in outs)
+    for page, out in outs:
+        if out.isupper() or out.startswith(("/", "$", '"')):  # placeholders, /tmp, a user's own files
+            continue
+        ignored = [subprocess.run(["git", "check-ignore", "-q", probe], cwd=ROOT, check=False).returncode == 0
+                   for probe in (out, f"{out}/probe")]
+        assert any(ignored), f"{page}: --out {out} writes into the repository where git would see it"
+    tracked = subprocess.run(["git", "ls-files", "-ci", "--exclude-standard"], cwd=ROOT, check=True,
+                             capture_output=True, text=True).stdout
+    assert tracked == "", f"tracked files that .gitignore ignores: {tracked}"
