@@ -1,35 +1,46 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
-#   make demo   creates .venv if needed, installs tumble, runs the T-handle study
-#   make test   same set-up, then the import-layer contract and the whole test suite (on every
-#               core: pytest-xdist, one file to a worker so module fixtures run once)
-#   make docs   same set-up, then the API reference and guides built offline into site/
-#   make bench  same set-up plus the benchmark-only extra (MuJoCo), then the benchmarks (ratios
-#               against a baseline in the same run)
+#   make demo   creates .venv if needed, installs tumble with what the demo needs (the video
+#               extra: an ffmpeg for the MP4s), runs the T-handle study
+#   make test   same set-up plus the test, cluster and docs tool chains, then the import-layer
+#               contract and the whole test suite (on every core: pytest-xdist, one file to a
+#               worker so module fixtures run once)
+#   make docs   the test set-up, then the API reference and guides built offline into site/
+#   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks
+#               (ratios against a baseline in the same run)
+# Each set-up is a stamp in .venv, remade when pyproject.toml changes; the test set-up holds the
+# demo's too (the test extra has imageio-ffmpeg), so it stamps both.
 
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
-STAMP  := $(VENV)/.tumble-installed
+DEMO_STAMP := $(VENV)/.tumble-demo
+TEST_STAMP := $(VENV)/.tumble-test
 
 .PHONY: demo test bench docs clean
 
-$(STAMP): pyproject.toml
+$(DEMO_STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[video]'
+	touch $(DEMO_STAMP)
+
+$(TEST_STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,cluster,docs]'
-	touch $(STAMP)
+	touch $(DEMO_STAMP) $(TEST_STAMP)
 
-demo: $(STAMP)
+demo: $(DEMO_STAMP)
 	$(VENV)/bin/tumble demo
 
-test: $(STAMP)
+test: $(TEST_STAMP)
 	$(VENV)/bin/lint-imports --no-cache
 	$(PY) -m pytest -n auto --dist loadfile
 
-docs: $(STAMP)
+docs: $(TEST_STAMP)
 	$(VENV)/bin/mkdocs build --strict --site-dir site
 
-bench: $(STAMP)
+bench: $(TEST_STAMP)
 	$(PY) -m pip install --quiet -e '.[bench]'
 	$(PY) benchmarks/run.py
 

@@ -82,6 +82,15 @@ def test_debug_shows_the_traceback(tmp_path):
     assert proc.returncode != 0 and "Traceback" in proc.stderr
 
 
+@pytest.mark.parametrize("argv", [["examples"], ["inertia", "t-handle", "--json"]])
+def test_a_reader_that_closes_the_pipe_early_is_a_normal_end(argv):
+    """``tumble examples | head -2``: the reader leaves before tumble writes; exit 0, nothing said."""
+    proc = subprocess.Popen([sys.executable, "-m", "tumble", *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()  # closed before the child writes a byte: its first write meets a broken pipe
+    err = proc.stderr.read()
+    assert proc.wait(timeout=60) == 0 and err == b""
+
+
 def test_version(capsys):
     with pytest.raises(SystemExit) as info:
         main(["--version"])

@@ -406,15 +406,22 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     assert data["body"]["I1_over_I3"] == pytest.approx(2 / 7) and data["body"]["I1_over_I3_sigmas"] > 10
 
 
-def test_a_recording_without_a_usable_flight_exits_2_and_writes_nothing(tmp_path, capsys):
+def test_a_recording_without_a_usable_flight_exits_1_and_writes_nothing(tmp_path, capsys):
+    """No flight to fit in a readable recording is a failed fit (1); a bad option is bad input (2)."""
     held = tmp_path / "held.csv"
     rng = np.random.default_rng(9)
     held.write_text("".join(f"{k * 0.01:.2f},{a:.5f},{b:.5f},{c:.5f}\n" for k, (a, b, c) in
                             enumerate(rng.normal(0, 0.2, (3000, 3)))), encoding="utf-8")
     out = tmp_path / "none"
-    assert main(["fit", str(held), "--out", str(out)]) == 2
+    assert main(["fit", str(held), "--out", str(out)]) == 1
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "no free flight found" in err and not out.exists()
+    assert err.count("\n") == 1 and "fit failed" in err and "no free flight found" in err and not out.exists()
+    # flights found, none usable (spins too steady to fix the ratios): failed too
+    steady = tmp_path / "steady.csv"
+    steady.write_text("".join(f"{k * 0.01:.2f},0,0,5\n" for k in range(300)), encoding="utf-8")
+    assert main(["fit", str(steady), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no usable flight among" in err and not out.exists()
     assert main(["fit", str(RACQUET_EXAMPLE), "--out", str(out), "--saturation", "-3"]) == 2
     assert "--saturation" in capsys.readouterr().err and not out.exists()
 

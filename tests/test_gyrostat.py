@@ -13,14 +13,19 @@ Closed forms used here:
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.integrate import cumulative_simpson, solve_ivp
 from scipy.spatial.transform import Rotation
 
 import tumble
-from tumble.analysis import flip_interval
+from tumble.analysis import flip_interval, stable_spin_range
 from tumble.dynamics import METHODS, gyrostat_rate, simulate
+from tumble.io.bodyfile import load_body
+from tumble.io.report import mass_properties_dict, mass_properties_table
 
 BOX = tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2))  # principal axes 1, 2, 3 = design x, y, z
 SPLITTING = [name for name, m in METHODS.items() if m.fixed_step and m.supports_internal]  # into exact rotations
@@ -396,3 +401,47 @@ def test_a_rigid_trajectory_has_no_internal_fields():
 
 
 BOX_BODY = tumble.Body([BOX])
+
+
+# -- what `tumble inertia` says of a body with a wheel ---------------------------------------
+
+WHEEL_BODY = Path(__file__).resolve().parents[1] / "examples" / "bodies" / "t_handle_wheel.toml"
+
+
+def test_the_stable_spin_range_is_what_runs_do():
+    """Inside ``stable_spin_range`` (either sense of spin) the wheel-stabilised T-handle, nudged
+    by 0.1 rad/s, keeps its spin (off-axis rates below a tenth of it); a quarter beyond either
+    end it tumbles (off-axis rates above half of it; with a wheel omega_2 need not change sign):
+    the linearised range against dop853 runs."""
+    body = load_body(WHEEL_BODY)
+    h = body.internal_momentum(0.0)
+    assert h[1] == pytest.approx(2.5) and np.allclose(h[[0, 2]], 0.0)
+    low, high = stable_spin_range(body.principal_moments, h[1])
+    I = body.principal_moments
+    assert (low, high) == pytest.approx((-h[1] / (I[1] - I[0]), h[1] / (I[2] - I[1])), rel=1e-15)
+    for W, stable in ((0.85 * high, True), (1.25 * high, False), (0.85 * low, True), (1.25 * low, False)):
+        off_axis = np.max(np.abs(simulate(body, [0.1, W, 0.1], t_end=5.0, samples=2001).omega[:, [0, 2]]))
+        assert off_axis < 0.1 * abs(W) if stable else off_axis > 0.5 * abs(W), (W, off_axis)
+    assert stable_spin_range(I, 0.0) == (0.0, 0.0)
+    with pytest.raises(ValueError, match="no intermediate axis"):
+        stable_spin_range([1.0, 2.0, 2.0], 1.0)
+
+
+def test_tumble_inertia_reports_what_the_wheel_does_to_the_intermediate_axis(capsys):
+    from tumble.cli import main
+
+    assert main(["inertia", str(WHEEL_BODY)]) == 0
+    text = capsys.readouterr().out
+    assert "spin about it stable from -10.56 to 20.4 rad/s" in text and "unstable" not in text
+    assert main(["inertia", str(WHEEL_BODY), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    body = load_body(WHEEL_BODY)
+    assert data["rotor_momentum"] == pytest.approx(body.internal_momentum(0.0).tolist())
+    assert data["intermediate_stable_spin"] == pytest.approx(list(stable_spin_range(body.principal_moments, 2.5)))
+    # the same wheel stopped, and no wheel: the tennis-racket theorem as before
+    stopped = tumble.Body([*body.parts[:2], tumble.Rotor(mass=1.0, radius=0.1, length=0.03, axis=(1, 0, 0),
+                                                          center=(0, 0, 0.5), spin_rate=0.0)])
+    for plain in (stopped, tumble.t_handle()):
+        assert "spin about it is unstable" in mass_properties_table(plain)
+    assert mass_properties_dict(stopped)["intermediate_stable_spin"] is None
+    assert "intermediate_stable_spin" not in mass_properties_dict(tumble.t_handle())

@@ -175,3 +175,34 @@ def test_copy_refuses_a_file_as_destination(tmp_path):
     target.write_text("x")
     with pytest.raises(ValueError, match=r"a_file: exists and is not a folder"):
         copy_examples(target)
+
+
+def _make_dry_run(folder: Path, target: str) -> list[str]:
+    proc = subprocess.run(["make", "-n", "-C", str(folder), target], capture_output=True, text=True, check=True)
+    return [line for line in proc.stdout.splitlines() if not line.startswith("make")]
+
+
+def test_make_demo_installs_only_what_the_demo_needs(tmp_path):
+    """On a fresh clone ``make demo`` installs tumble with its own extras (the video extra), not
+    the test, cluster and docs tool chains that ``make test`` adds; after ``make test`` it
+    installs nothing more."""
+    if shutil.which("make") is None:
+        pytest.skip("make is not installed")
+    for name in ("Makefile", "pyproject.toml"):
+        shutil.copy2(ROOT / name, tmp_path / name)
+    extras = {"test", "cluster", "docs"}
+    demo = [line for line in _make_dry_run(tmp_path, "demo") if "pip install" in line and "-e" in line]
+    assert demo, "make demo installs tumble"
+    for line in demo:
+        named = set(re.findall(r"\[([^\]]*)\]", line)[0].split(",")) if "[" in line else set()
+        assert not named & extras, f"make demo installs {sorted(named & extras)}: {line}"
+    assert any("tumble demo" in line for line in _make_dry_run(tmp_path, "demo"))
+    test = _make_dry_run(tmp_path, "test")
+    assert any("pip install" in line and all(e in line for e in extras) for line in test)
+    assert any("pytest" in line for line in test)
+    # what make test would do, done: its stamps; make demo then only runs the demo
+    stamps = [word for line in test if line.startswith("touch ") for word in line.split()[1:]]
+    for stamp in stamps:
+        (tmp_path / stamp).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / stamp).touch()
+    assert _make_dry_run(tmp_path, "demo") == [".venv/bin/tumble demo"]

@@ -18,10 +18,12 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
+import tumble
 import tumble.viz
 from tumble.cli import main
 from tumble.dynamics.methods.exact import FreeRotation
 from tumble.dynamics.methods.geometric import MAX_STEP_ANGLE, default_step, propagate
+from tumble.io.scenario import load_scenario
 from tumble.mass.presets import t_handle
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -302,3 +304,56 @@ def test_live_mode_on_a_page_with_a_torque_runs_the_free_body(new_page, tmp_path
     assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
     assert "the live run is the free rigid body" in w.page.inner_text("#tumble-live-status")
     assert w.clean(), (w.errors, w.outside)
+
+
+def test_live_mode_on_a_page_with_a_wheel_integrates_the_gyrostat(new_page, tmp_path):
+    """The page of examples/wheel_t_handle.toml draws the T-handle with its spinning wheel: live
+    mode runs Euler's equations with the wheel's momentum h (I w' + w x (I w + h) = 0), so the
+    handle does not flip, and agrees with Python's run of the same body and start (DOP853 at
+    rtol 1e-12) to AGREE of |omega| and in rad of the turn since t = 0. The same moments without
+    h flip."""
+    out = tmp_path / "wheel.html"
+    assert main(["view", str(EXAMPLES / "wheel_t_handle.toml"), "--out", str(out), "--frames", "20"]) == 0
+    w = new_page(viewport=VIEWPORT)
+    w.page.goto(out.as_uri())
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    run = run_form(w.page, preset="this body")
+    scenario = load_scenario(EXAMPLES / "wheel_t_handle.toml")
+    h = scenario.body.internal_momentum(0.0)
+    assert run["momentum"] == pytest.approx(h.tolist(), rel=1e-15) and h[1] == pytest.approx(2.5)
+    omega = np.asarray(run["omega"])
+    assert np.all(omega[:, 1] > 9.9), "the wheel keeps omega_2 at 10 rad/s: no flip"
+    traj = tumble.simulate(scenario.body, run["omega0"], times=run["t"], method="dop853")
+    turned = Rotation.from_quat(run["quat0"]).inv() * Rotation.from_quat(run["quat"])  # the turn since t = 0,
+    mine = {"omega": run["omega"], "quat": turned.as_quat()}                         # in the principal frame
+    assert difference(mine, traj.omega, (traj.attitude[0].inv() * traj.attitude).as_quat(),
+                      np.linalg.norm(run["omega0"])) <= AGREE  # measured 4.1e-10
+    assert "wheels' momentum h = [0, 2.5, 0]" in w.page.inner_text("#tumble-live-status")
+    # the same moments as a free rigid body flip (what live mode ran before it took h)
+    free = js_propagate(w.page, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
+    assert np.min(np.asarray(free["omega"])[:, 1]) < -9.0
+    assert w.clean(), (w.errors, w.outside)
+
+
+def test_toolbars_clear_the_titles_and_fields_show_every_digit(live):
+    """Plotly's toolbar (shown on hover) does not cover a 3-D pane's title, and the moment and
+    omega fields show the whole value a preset fills in (no digits cut)."""
+    page = live.page
+    for pane in ("#tumble-ground", "#tumble-body"):
+        page.hover(pane)
+        boxes = page.evaluate("""(pane) => {
+            const root = document.querySelector(pane), r = (e) => e.getBoundingClientRect();
+            return [r(root.querySelector('.modebar')), r(root.querySelector('.gtitle'))]
+                .map((b) => [b.left, b.top, b.right, b.bottom]);
+        }""", pane)
+        (l1, t1, r1, b1), (l2, t2, r2, b2) = boxes
+        assert r2 > l2 and b2 > t2, "the pane has a title"
+        assert r1 <= l2 or r2 <= l1 or b1 <= t2 or b2 <= t1, f"{pane}: the toolbar covers the title"
+    names = page.evaluate("Array.from(document.querySelectorAll('#tumble-live-preset option')).map((o) => o.textContent)")
+    assert any("0.00755208333333" in str(p["moments"]) for p in tumble.viz.page.live_presets())  # 16 characters
+    for preset in names:
+        run_form(page, preset=preset, t_end=1.0)
+        cut = page.evaluate("""() => Array.from(document.querySelectorAll('#tumble-live input'))
+            .filter((i) => i.scrollWidth > i.clientWidth).map((i) => i.id + ' = ' + i.value)""")
+        assert cut == [], cut
+    assert live.clean(), (live.errors, live.outside)

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -293,3 +295,15 @@ def test_omega_panels(tmp_path):
     assert len(fig.axes) == 2 and (tmp_path / "w.png").stat().st_size > 0
     with pytest.raises(ValueError, match="cases is empty"):
         spacecraft.figure_omega_panels([])
+
+
+def test_the_readme_wheel_figure_has_a_command_that_makes_it(tmp_path):
+    """The README's "spinning and stopped" figure: the command the README shows writes it."""
+    root = Path(__file__).resolve().parents[1]
+    command = "python docs/figures/make_wheel_figure.py --out figures"
+    assert command in (root / "README.md").read_text(encoding="utf-8")
+    proc = subprocess.run([sys.executable, str(root / "docs" / "figures" / "make_wheel_figure.py"), "--out",
+                           str(tmp_path)], capture_output=True, text=True, check=False, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    png = tmp_path / "wheel_t_handle.png"
+    assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

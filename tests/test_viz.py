@@ -354,3 +354,65 @@ def test_a_figure_displays_in_a_notebook_without_pyplot(flip):
     code = "import sys, tumble.viz; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"  # importing tumble.viz does not import matplotlib
+
+
+# -- what a new user read off the figures and the summary line (issue 20) -----------------------
+
+def _legend_texts(fig) -> list[str]:
+    return [t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+
+
+def test_a_drift_at_round_off_is_said_not_drawn_as_noise(flip):
+    """The exact method's drift (~1e-16) is one dashed line per invariant at its largest value and
+    the words "at round-off"; DOP853's (~1e-11) is drawn as it is."""
+    fig = viz.figure_drift(flip)
+    assert flip.method == "exact" and max(flip.drift.values()) < viz.plots.ROUND_OFF
+    labels = _legend_texts(fig)
+    assert len(labels) == 3 and all("at round-off (max " in label for label in labels)
+    assert any("at round-off" in t.get_text() for t in fig.axes[0].texts)
+    ax = fig.axes[0]
+    assert all(len(set(line.get_ydata())) == 1 for line in ax.get_lines())  # flat lines, no noise band
+    assert ax.get_yscale() == "log"
+    coarse = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=10.0, samples=800, method="dop853")
+    assert max(coarse.drift.values()) > viz.plots.ROUND_OFF
+    fig = viz.figure_drift(coarse)
+    assert not any("round-off" in label for label in _legend_texts(fig))
+    assert not fig.axes[0].texts
+
+
+def test_the_energy_axis_shows_the_energy_not_an_offset():
+    """A wheel's energy varies in its 6th digit: the axis reads 668.22 J, not "+6.6822e2" and 0.0005."""
+    wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.03, axis=(1, 0, 0), center=(0, 0, 0.5), spin_rate=500.0)
+    traj = tumble.simulate(tumble.Body([*tumble.t_handle().parts, wheel]), [0.1, 10, 0.1], t_end=5.0)
+    fig = viz.figure_energy(traj)
+    FigureCanvasAgg(fig).draw()
+    ax = fig.axes[0]
+    assert ax.yaxis.get_offset_text().get_text() == ""
+    ticks = [float(t.get_text().replace("\u2212", "-")) for t in ax.get_yticklabels() if t.get_text()]
+    assert ticks and all(600 < t < 700 for t in ticks)
+
+
+def test_titles_name_the_body_once(tmp_path, capsys):
+    """A scenario named after its body (a body file run with --omega) is titled "phone, exact",
+    not "phone: phone, exact"."""
+    body = tmp_path / "phone.toml"
+    body.write_text('[body]\nname = "phone"\n[[body.parts]]\nkind = "box"\nmass = 0.2\nsize = [0.15, 0.075, 0.008]\n')
+    page = tmp_path / "p.html"
+    assert main(["view", str(body), "--omega", "0.1", "10", "0.1", "--t-end", "1", "--samples", "20",
+                 "--out", str(page)]) == 0
+    text = page.read_text(encoding="utf-8")
+    assert "phone, exact" in text and "phone: phone" not in text
+    capsys.readouterr()
+
+
+def test_the_simulate_line_gives_the_flip_period_and_no_dashes(tmp_path, capsys):
+    """Torque-free with flips: their period (the closed form); a slew from rest, whose energy and L
+    start at 0: says so and gives the motors' work instead of "energy -, L_norm -, L_world -"."""
+    examples = Path(tumble.__file__).parent / "examples"
+    assert main(["simulate", str(examples / "seed_flip.toml"), "--out", str(tmp_path / "a")]) == 0
+    line = capsys.readouterr().out
+    exact = tumble.flip_interval([0.1, 10.0, 0.1], tumble.t_handle().principal_moments)  # seed_flip, principal frame
+    assert f"11 flips every {exact:.4g} s" in line
+    assert main(["simulate", str(examples / "reaction_wheel_slew.toml"), "--out", str(tmp_path / "b")]) == 0
+    line = capsys.readouterr().out
+    assert " -," not in line and "no relative drift" in line and "the motors did 56.2 J of work" in line

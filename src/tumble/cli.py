@@ -178,7 +178,7 @@ def _cmd_simulate(args) -> int:
     with output_dir(out, SIMULATE_WRITES) as stage:
         write_csv(traj, stage / "trajectory.csv")
         write_npz(traj, stage / "trajectory.npz", summary["provenance"])
-        save_figure(figure_omega(traj, title=f"{scenario.name}: {traj.body_name}, {traj.method}"), stage / "omega.png")
+        save_figure(figure_omega(traj, title=_run_title(scenario, traj)), stage / "omega.png")
         write_json(summary, stage / "summary.json")
     if args.json:
         print(json.dumps(summary, indent=2))
@@ -208,7 +208,7 @@ def _cmd_plot(args) -> int:
     from . import viz
     from .io.output import output_dir
 
-    title = f"{scenario.name}: {traj.body_name}, {traj.method}"
+    title = _run_title(scenario, traj)
     makers = {"omega": viz.figure_omega, "polhode": viz.figure_polhode,
               "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
     skipped = viz.phase_portrait_problem(traj)
@@ -239,9 +239,15 @@ def _cmd_view(args) -> int:
 
     from .viz.page import write_page
 
-    write_page(scenario.body, traj, out, frames=args.frames, title=f"{scenario.name}: {traj.body_name}, {traj.method}")
+    write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj))
     print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
     return EXIT_OK
+
+
+def _run_title(scenario, traj) -> str:
+    """``scenario: body, method``, without the body when the scenario is named after it."""
+    name = scenario.name if scenario.name != traj.body_name else None
+    return ", ".join(filter(None, (f"{name}: {traj.body_name}" if name else traj.body_name, traj.method)))
 
 
 def _simulate_line(summary: dict, out) -> str:
@@ -249,16 +255,24 @@ def _simulate_line(summary: dict, out) -> str:
     s, d = summary["stability"], summary["drift"]
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
     spin = "started at rest" if s["axis"] is None else (
-        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flips")
+        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flip{'' if s['flips'] == 1 else 's'}")
+    period = s["flip_period_exact"] if s["flip_period_exact"] is not None else s["flip_period"]
+    if summary["torque_free"] and s["flips"] and period is not None:
+        spin += f" every {period:.4g} s"
     if "gravity_gradient" in summary:
         g = summary["gravity_gradient"]
         tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
                 f"orbiting frame {max(g['max_angle'].values()):.3g} rad")
+    elif summary["torque_free"] and all(v is None for v in d.values()):
+        tail = "energy and L start at 0, so there is no relative drift to give"
+        work = summary.get("rotors", {}).get("motor_work")
+        if work is not None:
+            tail += f"; the motors did {work:.3g} J of work"
     elif summary["torque_free"]:
-        drift = ", ".join(f"{k} {'-' if v is None else format(v, '.1e')}" for k, v in d.items())
+        drift = ", ".join(f"{k} {'n/a' if v is None else format(v, '.1e')}" for k, v in d.items())
         tail = f"relative drift: {drift}"
     else:
-        tail = "torque acted, so energy and L change"
+        tail = "torque acted, so energy and L change (no budget to check)"
     return f"{head}: {spin}; {tail}; wrote {out}/"
 
 
@@ -436,7 +450,8 @@ def main(argv: list[str] | None = None) -> int:
 
     0: success; 2: bad input (nothing written); 1: a failed computation or an I/O failure
     (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
-    by SIGINT / SIGTERM (nothing half-written).
+    by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
+    (``tumble examples | head -2``) is a normal end: 0, quietly.
     """
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -453,7 +468,9 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
-            return args.func(args)
+            status = args.func(args)
+            sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
+            return status
     except KeyboardInterrupt:
         print("tumble: interrupted; nothing written", file=sys.stderr)
         return 130
@@ -466,6 +483,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # the input was fine; writing failed (disk full, permissions)
+        if isinstance(exc, BrokenPipeError) and exc.filename is None:
+            return _reader_gone()
         if args.debug:
             raise
         where = f"{exc.filename}: " if exc.filename else ""
@@ -479,6 +498,18 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _reader_gone() -> int:
+    """Standard output's reader closed the pipe (``tumble examples | head -2``): a normal end.
+
+    Standard output is pointed at the null device, so that the interpreter's last flush at exit
+    finds nothing to complain about (the recipe of Python's documentation of ``signal``).
+    """
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return EXIT_OK
 
 
 def _one_line(exc: BaseException) -> str:

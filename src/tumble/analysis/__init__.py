@@ -19,6 +19,7 @@ from .stability import (
     flip_times,
     linearised_rate,
     perturbation_exponent,
+    stable_spin_range,
 )
 from .periods import (
     axis_precession_period,
@@ -61,6 +62,7 @@ __all__ = [
     "precession_per_period",
     "rotation_per_period",
     "stability_report",
+    "stable_spin_range",
     "symmetric_top_rates",
     "trajectory_summary",
 ]

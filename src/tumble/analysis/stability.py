@@ -40,6 +40,7 @@ __all__ = [
     "flip_times",
     "linearised_rate",
     "perturbation_exponent",
+    "stable_spin_range",
 ]
 
 def _axis_index(axis) -> np.ndarray:
@@ -170,6 +171,51 @@ def linearised_rate(moments, axis, spin, momentum=0.0) -> tuple[np.ndarray, np.n
     """
     s = perturbation_exponent(moments, axis, spin, momentum)
     return np.sqrt(np.maximum(s, 0.0)), np.sqrt(np.maximum(-s, 0.0))
+
+
+def stable_spin_range(moments, momentum) -> tuple[float, float]:
+    """Spin rates about the intermediate axis that a rotor momentum along it keeps stable.
+
+    The zeros of :func:`perturbation_exponent` for the intermediate axis,
+    ``s = ((I3 - I2) W - h)((I2 - I1) W + h) / (I1 I3)``: a parabola in ``W`` that opens upwards,
+    so spin is stable (``s < 0``, a wobble) strictly between ``-h / (I2 - I1)`` and
+    ``h / (I3 - I2)`` and flips outside (Hughes, *Spacecraft Attitude Dynamics*, the gyrostat
+    chapter). Without a rotor (``h = 0``) the range is empty: the tennis-racket theorem.
+
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments (locked rotors included), positive and ascending with ``I1 < I2 < I3``,
+        kg m^2.
+    momentum : float
+        The rotors' momentum ``h`` along the intermediate axis (its sign along that axis's
+        direction), kg m^2/s.
+
+    Returns
+    -------
+    (float, float)
+        ``(W_low, W_high)`` in rad/s, signed along the same direction as ``h``: spin ``W`` about
+        the axis is stable (linearised) for ``W_low < W < W_high``; ``(0.0, 0.0)`` for ``h = 0``.
+
+    Raises
+    ------
+    ValueError
+        For moments that are not positive, finite and ascending, two equal moments (no
+        intermediate axis), or a non-finite momentum.
+
+    Examples
+    --------
+    >>> stable_spin_range([1.0, 2.0, 4.0], 3.0)   # h / (I3 - I2) = 1.5, -h / (I2 - I1) = -3
+    (-3.0, 1.5)
+    """
+    I = _check_moments(moments)
+    if I.shape != (3,):
+        raise ValueError(f"moments must be one body's three principal moments, got shape {I.shape} (kg m^2)")
+    if not I[0] < I[1] < I[2]:
+        raise ValueError(f"moments = {I.tolist()} have two equal: no intermediate axis (kg m^2)")
+    h = float(check_vectors("momentum", momentum, "kg m^2/s", size=None))
+    ends = sorted((h / (I[2] - I[1]), -h / (I[1] - I[0])))
+    return float(ends[0]) + 0.0, float(ends[1]) + 0.0
 
 
 def flip_interval(omega, moments) -> np.ndarray:

@@ -24,7 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.fit import InadequateFitWarning, fit_recording, fit_rotation
+from ..analysis.fit import (
+    InadequateFitWarning,
+    NoFlightError,
+    fit_recording,
+    fit_rotation,
+)
 from .gyrodata import read_recording
 from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
@@ -114,8 +119,9 @@ def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None,
     Returns
     -------
     int
-        0 on success, 1 for an inadequate fit unless accepted (bad input raises ``ValueError``
-        with one line; nothing is written).
+        0 on success; 1 for an inadequate fit unless accepted, or for a recording in which no
+        flight could be fitted (one line on stderr, nothing written); bad input raises
+        ``ValueError`` with one line (nothing is written).
     """
     check_output_dir(out)
     t, omega, events = read_recording(path)
@@ -149,6 +155,9 @@ def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None,
                 line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
                         + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
                 draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
+    except NoFlightError as err:  # a readable recording without a flight to fit: the fit failed
+        print(f"tumble: fit failed: {label}: {err}; nothing written", file=sys.stderr)
+        return 1
     except ValueError as err:
         raise ValueError(f"{label}: {err}") from None
     if body is not None:

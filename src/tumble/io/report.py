@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..analysis.stability import stable_spin_range
 from ..mass import AXIS_ROLES, Body
 
-__all__ = ["mass_properties_dict", "mass_properties_table"]
+__all__ = ["mass_properties_dict", "mass_properties_table", "rotor_stable_spin"]
 
 _DESIGN_AXES = ("x", "y", "z")
 
@@ -27,10 +28,17 @@ def mass_properties_dict(body: Body) -> dict:
         kg m^2), ``principal_axes`` (the 3x3 matrix ``body.principal_axes`` as nested lists, row by
         row: principal -> design, its *columns* are the axes of I1, I2, I3 in the design frame, so
         ``np.array(d["principal_axes"]) == body.principal_axes``), ``intermediate_axis`` (unit
-        vector, or null when two moments are equal), ``symmetry``.
+        vector, or null when two moments are equal), ``symmetry``; for a body with rotors also
+        ``rotor_momentum`` (their momentum at t = 0 in the principal frame, kg m^2/s) and
+        ``intermediate_stable_spin`` (:func:`rotor_stable_spin`: the spin rates about the
+        intermediate axis, rad/s, that the rotors keep stable, or null).
     """
     p = body.properties
     axis = p.intermediate_axis
+    rotors = {}
+    if body.rotors:
+        rotors = {"rotor_momentum": body.internal_momentum(0.0).tolist(),
+                  "intermediate_stable_spin": rotor_stable_spin(body)}
     return {
         "name": body.name,
         "units": {"mass": "kg", "length": "m", "inertia": "kg m^2"},
@@ -41,7 +49,24 @@ def mass_properties_dict(body: Body) -> dict:
         "principal_axes": p.principal_axes.tolist(),
         "intermediate_axis": None if axis is None else axis.tolist(),
         "symmetry": p.degeneracy,
+        **rotors,
     }
+
+
+def rotor_stable_spin(body: Body) -> list[float] | None:
+    """The spin rates about the intermediate axis that the body's rotors keep stable, rad/s.
+
+    Their momentum along that axis at t = 0 (:meth:`Body.internal_momentum`) turns the tennis-racket
+    theorem into a range (:func:`tumble.analysis.stable_spin_range`, linearised): ``[W_low,
+    W_high]``, signed along ``body.properties.intermediate_axis``. None for a body without an
+    intermediate axis or whose rotors have no momentum along it (the axis is then unstable).
+    """
+    if body.properties.intermediate_axis is None:
+        return None
+    h = float(body.internal_momentum(0.0)[1])
+    if h == 0.0:
+        return None
+    return list(stable_spin_range(body.principal_moments, h))
 
 
 def describe_axis(v) -> str:
@@ -87,6 +112,14 @@ def mass_properties_table(body: Body) -> str:
         )
     if p.intermediate_axis is None:
         lines.append(f"  {p.degeneracy} body: no intermediate axis, no tennis-racket flip")
+    elif (spins := rotor_stable_spin(body)) is not None:
+        h = body.internal_momentum(0.0)
+        lines.append(f"  rotors' momentum at t = 0 (principal frame) {vec(h)}   kg m^2/s")
+        lines.append(
+            f"  intermediate axis {describe_axis(p.intermediate_axis)}: the rotors' {h[1]:.6g} kg m^2/s along it keep "
+            f"spin about it stable from {spins[0]:.4g} to {spins[1]:.4g} rad/s (linearised gyrostat); "
+            f"faster spin tumbles"
+        )
     else:
         lines.append(
             f"  intermediate axis {describe_axis(p.intermediate_axis)}: spin about it is unstable "

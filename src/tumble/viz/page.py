@@ -85,13 +85,23 @@ def live_presets() -> list[dict]:
     ]
 
 
+def _constant_rotor_momentum(traj: Trajectory) -> list[float] | None:
+    """The rotors' momentum (principal frame, kg m^2/s) when live mode can integrate with it."""
+    h = traj.internal_momentum
+    if h is None or traj.dissipated is not None or not traj.torque_free or np.any(h != h[0]):
+        return None
+    return np.asarray(h[0], float).tolist()
+
+
 def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None = None) -> dict:
     """What the page's viewer plays, as JSON-ready data.
 
     Keys (SI units): ``moments`` (kg m^2), ``omega0`` (principal frame, rad/s), ``quat0``
     (principal -> world at t = 0, scalar last), ``principal_axes`` (principal -> design, rows
     as in ``summary.json``) and its quaternion ``principal_axes_quat``, ``t_end`` (s), ``method``,
-    ``body_name``, ``title``, ``torque_free``, ``rigid``, ``size`` (largest distance of the body
+    ``body_name``, ``title``, ``torque_free``, ``rigid``, ``rotor_momentum`` (the rotors' momentum
+    h, principal frame, kg m^2/s, when it is constant over a torque-free run without a damper:
+    live mode integrates the gyrostat with it; else None), ``size`` (largest distance of the body
     from its COM, m); ``geometry`` (``unit`` in m; ``solid`` and ``removed``: ``v`` flat integer
     vertex coordinates in units of ``unit``, design frame about the COM, ``f`` flat vertex indices,
     three per triangle; ``removed`` is None without subtracted material); ``frames`` (``t``; ``q``
@@ -115,6 +125,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
         "t_end": float(traj.t[-1]),
         "torque_free": bool(traj.torque_free),
         "rigid": bool(traj.rigid),
+        "rotor_momentum": _constant_rotor_momentum(traj),
         "moments": np.asarray(traj.moments, float).tolist(),
         "omega0": np.asarray(traj.omega[0], float).tolist(),
         "quat0": np.asarray(traj.quat[0], float).tolist(),

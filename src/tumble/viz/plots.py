@@ -18,7 +18,7 @@ from ..mass import AXIS_ROLES
 from ._backend import figure_and_axes, legend_outside, new_figure
 from .scene import check_run
 
-__all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
+__all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "ROUND_OFF", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
            "plot_omega"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
@@ -31,6 +31,9 @@ ENVELOPE_BINS = 500
 #: panel of the first :data:`DETAIL_SHOWN` of them.
 DETAIL_CYCLES = 30
 DETAIL_SHOWN = 5
+#: A relative drift below this (about 500 ulps of 1) is round-off: :func:`figure_drift` says so
+#: instead of drawing its noise.
+ROUND_OFF = 1e-13
 
 
 def detail_window(traj: Trajectory) -> float | None:
@@ -196,6 +199,8 @@ def figure_drift(traj: Trajectory, *, ax=None, title: str | None = None):
     ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``
     (dimensionless): zero for the exact motion, round-off (~1e-16) for the best methods. Zeros
     are drawn at 1e-17. A run that starts at rest is measured against the largest value instead.
+    A drift that stays below :data:`ROUND_OFF` is drawn as one dashed line at its largest value,
+    labelled "at round-off", instead of a band of noise.
 
     Parameters
     ----------
@@ -219,12 +224,20 @@ def figure_drift(traj: Trajectory, *, ax=None, title: str | None = None):
         (np.abs(Ln - Ln[0]) / ref_L, rf"|L|: ||L| - |L$_0$|| / |L|$_{{{at_L}}}$"),
         (np.linalg.norm(Lw - Lw[0], axis=1) / ref_L, rf"$L_{{world}}$: |$L_w - L_{{w,0}}$| / |L|$_{{{at_L}}}$"),
     ]
-    for (values, label), color in zip(series, COLORS):
-        if len(traj) > MAX_POINTS:
+    ax.set_yscale("log")
+    tops = [float(np.max(values)) for values, _ in series]
+    ax.set_ylim(5e-18, 3 * max(1e-13, *tops))  # set, not autoscaled: a flat line alone is singular
+    for (values, label), color, top in zip(series, COLORS, tops):
+        if top < ROUND_OFF:  # a band of round-off noise says nothing: one line at its largest value
+            ax.axhline(max(top, 1e-17), color=color, lw=1.1, ls="--", label=f"{label}: at round-off (max {top:.1e})")
+        elif len(traj) > MAX_POINTS:
             times, _, high = envelope(traj.t, values)
             ax.semilogy(times, np.maximum(high, 1e-17), color=color, lw=1.1, label=label + ", max per bin")
         else:
             ax.semilogy(traj.t, np.maximum(values, 1e-17), color=color, lw=1.1, label=label)
+    if max(tops) < ROUND_OFF:
+        ax.text(0.5, 0.8, f"at round-off: every drift below {ROUND_OFF:.0e}", transform=ax.transAxes, ha="center",
+                fontsize=10)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("relative drift (dimensionless)")
     if len(traj) > 1:

@@ -73,6 +73,8 @@ def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
             title += f"; budget closes to {np.max(np.abs(E - budget)) / scale:.1e} of max T"
     if log:
         ax.set_yscale("log")
+    else:  # the energy's own digits on the axis, not "+6.6822e2" above it and 0.0005 on the ticks
+        ax.ticklabel_format(axis="y", useOffset=False)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("energy (J)")
     ax.set_xlim(traj.t[0], traj.t[-1])

@@ -18,10 +18,10 @@ From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consi
 
 from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights
-from .recording import RecordingFit, Toss, fit_recording
+from .recording import NoFlightError, RecordingFit, Toss, fit_recording
 from .result import RotationFit
 from .single import MIN_SAMPLES, fit_rotation, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY
 
-__all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "InadequateFitWarning", "RecordingFit", "RotationFit", "Toss", "find_flights",
+__all__ = ["MIN_SAMPLES", "SCALE_UNCERTAINTY", "Flight", "InadequateFitWarning", "NoFlightError", "RecordingFit", "RotationFit", "Toss", "find_flights",
            "fit_recording", "fit_rotation", "saturation_mask"]

@@ -37,7 +37,15 @@ from .single import _check, saturation_mask
 from .solve import Solution, solve
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
 
-__all__ = ["RecordingFit", "Toss", "fit_recording"]
+__all__ = ["NoFlightError", "RecordingFit", "Toss", "fit_recording"]
+
+
+class NoFlightError(ValueError):
+    """A well-formed recording from which no flight could be fitted: none found, or every one skipped.
+
+    The computation failed, the input was readable (``tumble fit`` exits with status 1, not 2);
+    a ``ValueError`` still, so that code catching that keeps working.
+    """
 
 
 @dataclass(frozen=True)
@@ -149,8 +157,10 @@ def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit
     Raises
     ------
     ValueError
-        Bad input (as :func:`~tumble.analysis.fit.fit_rotation`), or no usable flight: one line
-        saying what was found and why each was skipped.
+        Bad input (as :func:`~tumble.analysis.fit.fit_rotation`).
+    NoFlightError
+        No usable flight (a ``ValueError`` too): one line saying what was found and why each was
+        skipped.
 
     Examples
     --------
@@ -178,10 +188,10 @@ def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit
     used = [f for f in flights if f.status == "ok"]
     if not used:
         if not flights:
-            raise ValueError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
+            raise NoFlightError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
                              f"({len(t)} samples over {t[-1] - t[0]:.3g} s, {len(pause_times(events))} pauses)")
         why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
-        raise ValueError(f"no usable flight among {len(flights)} found: "
+        raise NoFlightError(f"no usable flight among {len(flights)} found: "
                          + ", ".join(f"{n} {r}" for r, n in why.most_common()))
     if len(used) == 1:
         only = next(toss for toss in tosses if toss.status == "ok")

@@ -74,7 +74,7 @@
     input.id = id;
     input.type = "text";
     input.inputMode = "decimal";
-    input.size = width || 9;
+    input.size = width || 15;  // the 12 significant digits a preset fills in, sign and exponent: none cut
     input.setAttribute("aria-label", label + " (" + unit + ")");
     wrap.appendChild(input);
     if (unit) wrap.appendChild(document.createTextNode(" " + unit));
@@ -180,12 +180,16 @@
     return chosen.length ? chosen[0].mass : BOX_MASS;
   }
 
-  /** Largest relative change of the energy, |L| and L_world over the run (they are invariants). */
-  function drift(moments, omega, quat) {
-    var S = window.tumbleSplitting, first = S.invariants(moments, omega[0]), e = 0, l = 0, lw = 0, L0 = null;
+  /** Largest relative change of the energy, |L| and L_world over the run (they are invariants).
+   * With a rotor's constant momentum h: L = I w + h, and the energy is the gyrostat's conserved
+   * sum I w^2 / 2 (tumble's traj.hamiltonian). */
+  function drift(moments, omega, quat, h) {
+    var S = window.tumbleSplitting, e = 0, l = 0, lw = 0, L0 = null, first = null;
     for (var k = 0; k < omega.length; k++) {
-      var inv = S.invariants(moments, omega[k]), q = quat[k], x = q[0], y = q[1], z = q[2], w = q[3];
-      var Lb = [moments[0] * omega[k][0], moments[1] * omega[k][1], moments[2] * omega[k][2]];
+      var q = quat[k], x = q[0], y = q[1], z = q[2], w = q[3];
+      var Lb = [moments[0] * omega[k][0] + h[0], moments[1] * omega[k][1] + h[1], moments[2] * omega[k][2] + h[2]];
+      var inv = {energy: S.invariants(moments, omega[k]).energy, momentum: Math.hypot(Lb[0], Lb[1], Lb[2])};
+      if (first === null) first = inv;
       var Lw = [  // R L with R the rotation of q (principal -> world)
         (1 - 2 * (y * y + z * z)) * Lb[0] + 2 * (x * y - z * w) * Lb[1] + 2 * (x * z + y * w) * Lb[2],
         2 * (x * y + z * w) * Lb[0] + (1 - 2 * (x * x + z * z)) * Lb[1] + 2 * (y * z - x * w) * Lb[2],
@@ -211,13 +215,16 @@
       }
       var mine = samePage(moments);
       var quat0 = mine && data.quat0 ? data.quat0 : [0.0, 0.0, 0.0, 1.0];
+      // the page's body with its wheels spinning at a constant rate: their momentum h goes into
+      // Euler's equations, I w' + w x (I w + h) = 0, as in tumble's own run
+      var h = mine && data.rotor_momentum ? data.rotor_momentum : null;
       var t = [];
       for (var k = 0; k < FRAMES; k++) t.push(k === FRAMES - 1 ? tEnd : tEnd * k / (FRAMES - 1));
-      var out = S.propagate(moments, omega0, quat0, t, { order: ORDER });
+      var out = S.propagate(moments, omega0, quat0, t, { order: ORDER, momentum: h });
       var box = mine ? null : boxHalfSizes(moments, massOf(moments));
-      var d = drift(moments, out.omega, out.quat);
+      var d = drift(moments, out.omega, out.quat, h || [0, 0, 0]);
       live.lastRun = { t: t, omega: out.omega, quat: out.quat, moments: moments, omega0: omega0, quat0: quat0,
-                       order: ORDER, step: out.step, box: box };
+                       order: ORDER, step: out.step, box: box, momentum: h };
       showError("");
       el.status.textContent = "Computed here: tumble's splitting integrator (order " + ORDER + ", step " +
         (isFinite(out.step) ? out.step.toPrecision(3) + " s" : "one per sample: the body is at rest") +
@@ -225,11 +232,13 @@
         "the free body): energy " + d.energy.toExponential(1) + ", |L| " + d.momentum.toExponential(1) +
         ", L_world " + d.world.toExponential(1) + "." + (box ? " Drawn as the uniform box with these moments (" +
         box.map(function (h) { return (2 * h).toPrecision(3); }).join(" x ") + " m)." : "") +
-        (data && (data.torque_free === false || data.rigid === false)
+        (h ? " With the wheels' momentum h = [" + h.map(function (x) { return round(x, 4); }).join(", ") +
+             "] kg m^2/s (principal frame), as in this page's run." :
+         data && (data.torque_free === false || data.rigid === false)
           ? " This page's own run has a torque, rotors or a damper; the live run is the free rigid body." : "");
       var title = "live run: I = [" + moments.join(", ") + "] kg m^2, omega0 = [" + omega0.join(", ") +
         "] rad/s, " + tEnd + " s";
-      show({ t: t, quat: out.quat, omega: out.omega, moments: moments, box: box, title: title });
+      show({ t: t, quat: out.quat, omega: out.omega, moments: moments, box: box, title: title, momentum: h });
     } catch (e) {
       showError(e && e.message ? e.message : String(e));
     }

@@ -249,7 +249,11 @@
    * moments: [I1, I2, I3], kg m^2, ascending. omega0: principal frame, rad/s. quat0: principal
    * to world, [x, y, z, w] (normalised here). times: increasing, s, starting at the initial
    * time. options.order: 2, 4 (default) or 6; options.step: largest step, s (default
-   * defaultStep(|omega0|)). Returns {omega: n x 3 (rad/s), quat: n x 4, step: s, substeps: h}.
+   * defaultStep(|omega0|)); options.momentum: a constant rotor momentum h (principal frame,
+   * kg m^2/s; default none), a gyrostat I w' + w x (I w + h) = 0: L = I w + h and each sub-flow
+   * turns by a = tau (L_i - h_i) / I_i, still an exact rotation about e_i (L_i is constant
+   * under it), as tumble's geometric methods do. Returns {omega: n x 3 (rad/s), quat: n x 4,
+   * step: s, substeps: h}.
    */
   function propagate(moments, omega0, quat0, times, options) {
     options = options || {};
@@ -263,9 +267,11 @@
     if (!isFinite(inv.energy) || !isFinite(inv.momentum)) {
       refuse("omega0 = " + show(omega0) + " rad/s is too large: the kinetic energy of this body overflows");
     }
+    var hv = options.momentum === undefined || options.momentum === null ? [0, 0, 0] : options.momentum;
+    if (!isVector(hv, 3)) refuse("momentum = " + show(hv) + " must be three finite numbers (kg m^2/s)");
     var I = moments.slice(), L = [0, 0, 0], invI = [0, 0, 0];
     for (var i = 0; i < 3; i++) {
-      L[i] = omega0[i] * I[i];
+      L[i] = omega0[i] * I[i] + hv[i];
       invI[i] = 1.0 / I[i];
     }
     var qn = Math.sqrt(quat0[0] * quat0[0] + quat0[1] * quat0[1] + quat0[2] * quat0[2] + quat0[3] * quat0[3]);
@@ -273,7 +279,7 @@
     var q = [quat0[0] / qn, quat0[1] / qn, quat0[2] / qn, quat0[3] / qn];
     var step = options.step;
     if (step === undefined || step === null) {
-      var w0 = L[0] * invI[0], w1 = L[1] * invI[1], w2 = L[2] * invI[2];
+      var w0 = (L[0] - hv[0]) * invI[0], w1 = (L[1] - hv[1]) * invI[1], w2 = (L[2] - hv[2]) * invI[2];
       step = defaultStep(Math.sqrt(w0 * w0 + w1 * w1 + w2 * w2));
     } else if (typeof step !== "number" || !(isFinite(step) && step > 0)) {
       refuse("step = " + step + " must be a positive finite number (s)");
@@ -286,7 +292,7 @@
     }
 
     var n = times.length;
-    var omegaOut = [[L[0] * invI[0], L[1] * invI[1], L[2] * invI[2]]];
+    var omegaOut = [[(L[0] - hv[0]) * invI[0], (L[1] - hv[1]) * invI[1], (L[2] - hv[2]) * invI[2]]];
     var quatOut = [q.slice()];
     for (var s = 1; s < n; s++) {
       var plan = steps(times[s] - times[s - 1], step), ns = plan[0], h = plan[1];
@@ -295,7 +301,7 @@
       for (var m = 0; m < ns; m++) {
         for (var f = 0; f < subflows.length; f++) {
           var axis = subflows[f][0], j = NEXT[axis][0], l = NEXT[axis][1];
-          var a = subflows[f][1] * h * L[axis] * invI[axis];
+          var a = subflows[f][1] * h * (L[axis] - hv[axis]) * invI[axis];
           var c = cosCR(a), sn = sinCR(a), Lj = L[j], Ll = L[l];
           L[j] = c * Lj + sn * Ll; // body momentum turns by -a about e_axis
           L[l] = c * Ll - sn * Lj;
@@ -316,7 +322,7 @@
       var w = q[3] * sw - q[0] * sx - q[1] * sy - q[2] * sz;
       var norm = Math.sqrt(x * x + y * y + z * z + w * w);
       q = [x / norm, y / norm, z / norm, w / norm];
-      omegaOut.push([L[0] * invI[0], L[1] * invI[1], L[2] * invI[2]]);
+      omegaOut.push([(L[0] - hv[0]) * invI[0], (L[1] - hv[1]) * invI[1], (L[2] - hv[2]) * invI[2]]);
       quatOut.push(q);
     }
     return { omega: omegaOut, quat: quatOut, step: step };

@@ -181,7 +181,8 @@
     var motion = {t: [], q: [], w: [], L: [], torqueFree: true};
     idx.forEach(function (k) {
       var qp = run.quat[k], M = matrix(qp), om = run.omega[k];
-      var Lb = [run.moments[0] * om[0], run.moments[1] * om[1], run.moments[2] * om[2]];
+      var h = run.momentum || [0, 0, 0];  // a rotor's momentum (principal frame): L = I w + h
+      var Lb = [run.moments[0] * om[0] + h[0], run.moments[1] * om[1] + h[1], run.moments[2] * om[2] + h[2]];
       motion.t.push(run.t[k]);
       motion.q.push(box ? qp : quatMul(qp, inv));  // R_design = R_principal A^T
       motion.w.push(apply(M, om));
@@ -241,6 +242,7 @@
     };
     return {
       title: {text: title, font: {size: 15}}, margin: {l: 0, r: 0, t: 40, b: 0}, showlegend: true,
+      modebar: {orientation: "v"},  // down the right edge: a toolbar along the top covered the title
       legend: {x: 0, y: 0.99, bgcolor: "rgba(255,255,255,0.7)", font: {size: 11}},
       uirevision: "keep",
       scene: {xaxis: axis(names[0]), yaxis: axis(names[1]), zaxis: axis(names[2]), aspectmode: "cube",
