@@ -1,7 +1,8 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
 #   make demo   creates .venv if needed, installs tumble, runs the T-handle study
-#   make test   same set-up, then the import-layer contract and the whole test suite (on every
-#               core: pytest-xdist, one file to a worker so module fixtures run once)
+#   make test   same set-up, then the import-layer contract, mypy --strict on mass and dynamics
+#               ([tool.mypy] in pyproject.toml) and the whole test suite (on every core:
+#               pytest-xdist, one file to a worker so module fixtures run once)
 #   make docs   same set-up, then the API reference and guides built offline into site/
 #   make bench  same set-up plus the benchmark-only extra (MuJoCo), then the benchmarks (ratios
 #               against a baseline in the same run)
@@ -24,6 +25,7 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/lint-imports --no-cache
+	$(VENV)/bin/mypy
 	$(PY) -m pytest -n auto --dist loadfile
 
 docs: $(STAMP)
