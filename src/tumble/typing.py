@@ -33,7 +33,7 @@ from typing import Any, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["ArrayLike", "BoolArray", "FloatArray", "IntArray", "Matrix3", "NDArray", "Quaternion", "Vector3"]
+__all__ = ["ArrayLike", "BoolArray", "FloatArray", "FloatOrArray", "IntArray", "Matrix3", "NDArray", "Quaternion", "Vector3"]
 
 #: An array of floats (float64) of any shape: times (s), angles (rad), energies (J), ...
 FloatArray: TypeAlias = NDArray[np.float64]
@@ -48,6 +48,10 @@ Matrix3: TypeAlias = NDArray[np.float64]
 
 #: A float64 array of shape ``(4,)`` or ``(..., 4)``: a unit quaternion, scalar last.
 Quaternion: TypeAlias = NDArray[np.float64]
+
+#: A float or a float64 array: the arguments of the kernels that serve one body (Python floats,
+#: fast) and a batch (arrays, elementwise) alike.
+FloatOrArray: TypeAlias = float | NDArray[np.float64]
 
 #: An array of booleans (masks, per-case flags).
 BoolArray: TypeAlias = NDArray[np.bool_]
