@@ -22,9 +22,6 @@ from ..validation import check_moments, check_positive, check_vector, short_repr
 from . import _display
 from .parts import Part
 from .rotor import Rotor
-if TYPE_CHECKING:
-    from scipy.spatial.transform import Rotation
-
 from .tensor import (
     AXIS_ROLES,
     check_inertia,
@@ -33,6 +30,9 @@ from .tensor import (
     parallel_axis,
     principal_frame,
 )
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
 
