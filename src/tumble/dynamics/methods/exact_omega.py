@@ -20,9 +20,9 @@ hundreds of times at phases below 1e3 rad, where this form agrees with it to ~1e
 from __future__ import annotations
 
 import numpy as np
+from scipy.special import ellipj, ellipkinc
 
 from ...typing import ArrayLike, Vector3
-from scipy.special import ellipj, ellipkinc
 
 __all__ = ["free_omega"]
 
