@@ -2,7 +2,8 @@
 #   make demo   creates .venv if needed, installs tumble with what the demo needs (the video
 #               extra: an ffmpeg for the MP4s), runs the T-handle study
 #   make test   same set-up plus the test, cluster and docs tool chains, then the import-layer
-#               contract and the whole test suite (on every core: pytest-xdist, one file to a
+#               contracts, mypy --strict on mass and dynamics ([tool.mypy] in pyproject.toml)
+#               and the whole test suite (on every core: pytest-xdist, one file to a
 #               worker so module fixtures run once)
 #   make docs   the test set-up, then the API reference and guides built offline into site/
 #   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks
@@ -35,6 +36,7 @@ demo: $(DEMO_STAMP)
 
 test: $(TEST_STAMP)
 	$(VENV)/bin/lint-imports --no-cache
+	$(VENV)/bin/mypy
 	$(PY) -m pytest -n auto --dist loadfile
 
 docs: $(TEST_STAMP)

@@ -12,6 +12,7 @@ Examples
 """
 
 import importlib as _importlib
+from typing import Any as _Any
 
 from ._version import __version__
 
@@ -58,7 +59,7 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> _Any:
     try:
         module = _EXPORTS[name]
     except KeyError:
@@ -68,7 +69,7 @@ def __getattr__(name: str):
     return value
 
 
-def __dir__():
+def __dir__() -> list[str]:
     """The public names (loaded or not), the subpackages imported so far, and the dunders."""
     names = {n for n in globals() if not n.startswith("_") or (n.startswith("__") and n.endswith("__"))}
     return sorted(names | set(_EXPORTS))

@@ -17,8 +17,12 @@ from __future__ import annotations
 
 import html
 import json
+from collections.abc import Iterable, Sequence
+from typing import Any
 
 import numpy as np
+
+from .typing import ArrayLike
 
 __all__ = ["NAME_CHARS", "escape_text", "fmt", "html_table", "script_json", "short_name", "vec"]
 
@@ -27,7 +31,7 @@ __all__ = ["NAME_CHARS", "escape_text", "fmt", "html_table", "script_json", "sho
 _SCRIPT_ESCAPES = {ord(c): f"\\u{ord(c):04x}" for c in "<>&\u2028\u2029"}
 
 
-def escape_text(value) -> str:
+def escape_text(value: object) -> str:
     """``str(value)`` as HTML text or a quoted attribute value (``html.escape``, quotes too).
 
     Examples
@@ -38,7 +42,7 @@ def escape_text(value) -> str:
     return html.escape(str(value), quote=True)
 
 
-def script_json(data) -> str:
+def script_json(data: Any) -> str:
     """Compact JSON of ``data`` to paste inside ``<script type="application/json">``: it holds no
     ``<``, ``>`` or ``&`` (each written as its ``\\uXXXX`` escape), so no text of the data can
     end or change the element; ``JSON.parse`` of the element's text gives ``data`` back.
@@ -57,28 +61,30 @@ _STYLE = "border-collapse:collapse;font-size:0.9em;margin:0.3em 0"
 _CELL = "text-align:left;padding:1px 14px 1px 2px"
 
 
-def fmt(x, digits: int = 4) -> str:
+def fmt(x: float | np.floating[Any] | np.integer[Any], digits: int = 4) -> str:
     """A number in ``digits`` significant figures; ``-0`` printed as ``0``."""
-    x = float(x)
-    return f"{x + 0.0:.{digits}g}" if x != 0 else "0"
+    value = float(x)
+    return f"{value + 0.0:.{digits}g}" if value != 0 else "0"
 
 
-def vec(v, digits: int = 4) -> str:
+def vec(v: ArrayLike, digits: int = 4) -> str:
     """A vector as ``(a, b, c)``."""
     return "(" + ", ".join(fmt(x, digits) for x in np.ravel(v)) + ")"
 
 
-def short_name(name) -> str:
+def short_name(name: object) -> str:
     """The name for a plain repr: quoted as ``repr`` does, cut to :data:`NAME_CHARS` characters."""
-    name = str(name)
-    return repr(name if len(name) <= NAME_CHARS else name[: NAME_CHARS - 3] + "...")
+    text = str(name)
+    return repr(text if len(text) <= NAME_CHARS else text[: NAME_CHARS - 3] + "...")
 
 
-def _cell(tag: str, text) -> str:
+def _cell(tag: str, text: object) -> str:
     return f'<{tag} style="{_CELL}">{escape_text(text)}</{tag}>'
 
 
-def html_table(rows, header=None, caption=None) -> str:
+def html_table(
+    rows: Iterable[Sequence[object]], header: Sequence[object] | None = None, caption: str | None = None
+) -> str:
     """An HTML table of plain-text cells; every cell, header and caption is escaped.
 
     Parameters

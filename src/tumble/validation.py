@@ -10,10 +10,17 @@ package: it imports nothing of tumble (an import-linter contract keeps it so). U
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Sequence
 from numbers import Real
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
+
+from .typing import ArrayLike, BoolArray, FloatArray, IntArray, Vector3
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = [
     "AXES_ALLOWED",
@@ -51,14 +58,14 @@ AXIS_ROLES = ("minor", "intermediate", "major")
 INERTIA_RTOL = 1e-9
 
 
-def short_repr(value, limit: int = 80) -> str:
+def short_repr(value: object, limit: int = 80) -> str:
     """``repr(value)`` on one line and at most ``limit`` characters, for error messages."""
     text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def refuse_first(field: str, values: np.ndarray, bad, rule: str) -> None:
+def refuse_first(field: str, values: ArrayLike, bad: ArrayLike, rule: str) -> None:
     """Raise ``ValueError`` for the first entry of a batch where ``bad`` holds, else nothing.
 
     The message names the index as scipy does, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be
@@ -75,15 +82,15 @@ def refuse_first(field: str, values: np.ndarray, bad, rule: str) -> None:
     rule : str
         What is allowed, e.g. ``"must be positive (kg m^2)"``.
     """
-    bad = np.asarray(bad, bool)
-    if not np.any(bad):
+    mask: BoolArray = np.asarray(bad, bool)
+    if not np.any(mask):
         return
-    index = tuple(int(i) for i in np.argwhere(bad)[0])
+    index = tuple(int(i) for i in np.argwhere(mask)[0])
     where = f"[{', '.join(map(str, index))}]" if index else ""
     raise ValueError(f"{field}{where} = {np.asarray(values)[index].tolist()!r} {rule}")
 
 
-def check_vectors(field: str, value, unit: str, *, size: int | None = 3) -> np.ndarray:
+def check_vectors(field: str, value: ArrayLike, unit: str, *, size: int | None = 3) -> FloatArray:
     """Finite real numbers of shape ``(..., size)`` (any shape with ``size=None``), as floats.
 
     The checker of batched numeric arguments (points, angular velocities, moments, rates):
@@ -138,7 +145,7 @@ MAX_INERTIA = 1e50
 BOUND_REASONS = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "more than any star's"}
 
 
-def check_number(field: str, value, unit: str, at_most: float | None = None) -> float:
+def check_number(field: str, value: object, unit: str, at_most: float | None = None) -> float:
     """A real finite number (no boolean, complex number or string), at most ``at_most`` in
     magnitude if given, as a float."""
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
@@ -158,7 +165,7 @@ def check_at_most(field: str, value: float, unit: str, at_most: float | None) ->
         raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
 
 
-def check_increasing(field: str, t: np.ndarray, unit: str = "s") -> None:
+def check_increasing(field: str, t: FloatArray, unit: str = "s") -> None:
     """Refuse samples that do not increase strictly, naming the first pair out of order.
 
     Examples
@@ -175,7 +182,7 @@ def check_increasing(field: str, t: np.ndarray, unit: str = "s") -> None:
                          f"{float(t[k - 1])!r} ({unit})")
 
 
-def check_moments(field: str, value, *, physical: bool = True) -> np.ndarray:
+def check_moments(field: str, value: ArrayLike, *, physical: bool = True) -> Vector3:
     """Principal moments ``(..., 3)``, kg m^2, as floats: real and finite (no booleans, complex
     numbers or strings), positive and ascending ``I1 <= I2 <= I3``; with ``physical`` (the
     default) also within the triangle inequality ``I1 + I2 >= I3`` (to :data:`INERTIA_RTOL` of
@@ -209,7 +216,7 @@ def check_moments(field: str, value, *, physical: bool = True) -> np.ndarray:
 AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
 
 
-def axis_index(field: str, value) -> np.ndarray:
+def axis_index(field: str, value: object) -> IntArray:
     """0-based indices (0, 1, 2) of public axis labels: 1, 2, 3 or a name of :data:`AXIS_ROLES`,
     or arrays of them.
 
@@ -237,7 +244,7 @@ def axis_index(field: str, value) -> np.ndarray:
     return index
 
 
-def check_positive(field: str, value, unit: str, *, allow_zero: bool = False, at_most: float | None = None) -> float:
+def check_positive(field: str, value: object, unit: str, *, allow_zero: bool = False, at_most: float | None = None) -> float:
     """A finite number > 0 (or >= 0 with ``allow_zero``), at most ``at_most`` if given."""
     x = check_number(field, value, unit, at_most)
     if x < 0 or (x == 0 and not allow_zero):
@@ -246,7 +253,7 @@ def check_positive(field: str, value, unit: str, *, allow_zero: bool = False, at
     return x
 
 
-def check_vector(field: str, value, unit: str, *, at_most: float | None = None) -> tuple[float, float, float]:
+def check_vector(field: str, value: object, unit: str, *, at_most: float | None = None) -> tuple[float, float, float]:
     """Three finite numbers, given as a list, a tuple (any sequence) or a numpy array of shape (3,),
     each at most ``at_most`` in magnitude if given.
 
@@ -259,10 +266,11 @@ def check_vector(field: str, value, unit: str, *, at_most: float | None = None) 
         ok = isinstance(value, Sequence) and not isinstance(value, (str, bytes, bytearray)) and len(value) == 3
     if not ok:
         raise ValueError(f"{field} = {short_repr(value)} must be a list of 3 numbers ({unit})")
-    return tuple(check_number(f"{field}[{i}]", v, unit, at_most) for i, v in enumerate(value))  # type: ignore[return-value]
+    items = cast("Sequence[object]", value)  # a sequence or an array of shape (3,), checked above
+    return tuple(check_number(f"{field}[{i}]", v, unit, at_most) for i, v in enumerate(items))  # type: ignore[return-value]
 
 
-def check_direction(field: str, value) -> tuple[float, float, float]:
+def check_direction(field: str, value: object) -> tuple[float, float, float]:
     """A non-zero finite 3-vector, returned as a unit vector (a direction has no length)."""
     v = np.array(check_vector(field, value, "a direction, any length"))
     big = float(np.max(np.abs(v)))
@@ -279,7 +287,7 @@ QUAT_NORM_TOL = 1e-3
 MATRIX_ORTHO_TOL = 1e-6
 
 
-def check_rotation(field: str, value) -> tuple[float, float, float, float]:
+def check_rotation(field: str, value: object) -> tuple[float, float, float, float]:
     """An orientation: a scipy Rotation, a quaternion [x, y, z, w] or a 3x3 rotation matrix.
 
     Returns the unit quaternion, scalar last (scipy's convention).
@@ -325,7 +333,7 @@ def check_rotation(field: str, value) -> tuple[float, float, float, float]:
     )
 
 
-def check_motion(rotation, translation):
+def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vector3]:
     """A rigid motion ``x -> R x + t``: ``(scipy Rotation, ndarray (3,))`` from anything
     :func:`check_rotation` and :func:`check_vector` accept."""
     from scipy.spatial.transform import Rotation
@@ -334,7 +342,7 @@ def check_motion(rotation, translation):
     return R, np.array(check_vector("translation", translation, "m"))
 
 
-def read_input_file(path, *, limit: int, what: str, label: str | None = None) -> bytes:
+def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, label: str | None = None) -> bytes:
     """The bytes of an input file, refusing anything but a regular file of at most ``limit`` bytes.
 
     The file is checked with :func:`os.stat` before it is opened, so a FIFO is never opened
@@ -365,7 +373,6 @@ def read_input_file(path, *, limit: int, what: str, label: str | None = None) ->
         One line naming the file and the rule: missing, not a regular file (directory, FIFO,
         socket, device), unreadable, or larger than ``limit``.
     """
-    import os
     import stat
 
     label = os.fspath(path) if label is None else label

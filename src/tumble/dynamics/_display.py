@@ -6,9 +6,17 @@ the physics layers may not import matplotlib (the import-linter contract in pypr
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .._html import escape_text, fmt, html_table, short_name, vec
+from ..typing import ArrayLike, FloatArray, IntArray
+
+if TYPE_CHECKING:
+    from .batch import BatchTrajectory
+    from .trajectory import Trajectory
 
 __all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
 
@@ -18,8 +26,8 @@ SVG_POINTS = 300
 COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c")
 
 
-def _extras(traj) -> list[str]:
-    extras = []
+def _extras(traj: Trajectory) -> list[str]:
+    extras: list[str] = []
     if traj.rotor_axial_moments is not None:
         k = len(traj.rotor_axial_moments)
         extras.append(f"{k} rotor{'' if k == 1 else 's'}")
@@ -28,7 +36,9 @@ def _extras(traj) -> list[str]:
     return extras
 
 
-def _run_repr(kind: str, first: str, t, method, torque_free: bool, extras=()) -> str:
+def _run_repr(
+    kind: str, first: str, t: FloatArray, method: object, torque_free: bool, extras: Sequence[str] = ()
+) -> str:
     """``Kind(first, method, n samples, t = a..b s, torque-free, extras...)``."""
     n = len(t)
     span = f"t = {fmt(t[0])}..{fmt(t[-1])} s" if n else "no samples"
@@ -37,19 +47,19 @@ def _run_repr(kind: str, first: str, t, method, torque_free: bool, extras=()) ->
     return f"{kind}({', '.join(parts)})"
 
 
-def trajectory_repr(traj) -> str:
+def trajectory_repr(traj: Trajectory) -> str:
     """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``."""
     return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method, traj.torque_free, _extras(traj))
 
 
-def batch_repr(batch) -> str:
+def batch_repr(batch: BatchTrajectory) -> str:
     """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``."""
     n = len(batch)
     return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t, batch.method,
                      batch.torque_free)
 
 
-def subsample(n: int, points: int = SVG_POINTS) -> np.ndarray:
+def subsample(n: int, points: int = SVG_POINTS) -> IntArray:
     """At most ``points`` sample indices spread evenly over ``range(n)``, first and last included."""
     if n <= points:
         return np.arange(n)
@@ -64,7 +74,7 @@ def _span(lo: float, hi: float) -> tuple[float, float]:
     return lo - pad, hi + pad
 
 
-def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SVG_POINTS) -> str:
+def omega_svg(t: ArrayLike, omega: ArrayLike, *, width: int = 420, height: int = 150, points: int = SVG_POINTS) -> str:
     """omega_1, omega_2, omega_3 against t as an inline SVG picture (one polyline each).
 
     Parameters
@@ -125,11 +135,11 @@ def omega_svg(t, omega, *, width: int = 420, height: int = 150, points: int = SV
     return "".join(out)
 
 
-def _drift_text(value) -> str:
+def _drift_text(value: float | None) -> str:
     return "n/a (starts at zero)" if value is None else f"{value:.2e}"
 
 
-def trajectory_html(traj) -> str:
+def trajectory_html(traj: Trajectory) -> str:
     """A run's summary table and its omega(t) as HTML (Jupyter's ``_repr_html_``)."""
     n = len(traj)
     rows = [("body", traj.body_name), ("method", traj.method), ("samples", n)]

@@ -14,7 +14,11 @@ References
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
+
+from ..typing import ArrayLike, FloatArray, Vector3
 
 __all__ = [
     "angular_momentum",
@@ -25,7 +29,7 @@ __all__ = [
 ]
 
 
-def euler_rhs(omega, moments, torque=0.0) -> np.ndarray:
+def euler_rhs(omega: ArrayLike, moments: ArrayLike, torque: ArrayLike = 0.0) -> Vector3:
     """Angular acceleration from Euler's equations in the principal frame.
 
     ``I_1 w1' = (I_2 - I_3) w2 w3 + tau_1`` and cyclic (seed sec. 3, rearranged).
@@ -46,10 +50,10 @@ def euler_rhs(omega, moments, torque=0.0) -> np.ndarray:
     """
     w = np.asarray(omega, dtype=float)
     I = np.asarray(moments, dtype=float)
-    return (np.cross(I * w, w) + torque) / I
+    return cast(Vector3, (np.cross(I * w, w) + torque) / I)
 
 
-def euler_rhs_tensor(omega, inertia, torque=0.0) -> np.ndarray:
+def euler_rhs_tensor(omega: ArrayLike, inertia: ArrayLike, torque: ArrayLike = 0.0) -> Vector3:
     """Euler's equations with a full tensor, in any frame fixed to the body.
 
     ``I omega' = tau - omega x (I omega)`` (Goldstein eq. 5.39'); used to check the principal
@@ -68,10 +72,10 @@ def euler_rhs_tensor(omega, inertia, torque=0.0) -> np.ndarray:
     I = np.asarray(inertia, dtype=float)
     L = np.einsum("...ij,...j->...i", I, w)
     rhs = torque - np.cross(w, L)
-    return np.linalg.solve(I, rhs[..., None])[..., 0]
+    return cast(Vector3, np.linalg.solve(I, rhs[..., None])[..., 0])
 
 
-def angular_momentum(omega, moments) -> np.ndarray:
+def angular_momentum(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     """``L = I omega`` in the principal frame, kg m^2/s.
 
     Parameters
@@ -86,10 +90,10 @@ def angular_momentum(omega, moments) -> np.ndarray:
     ndarray, shape (..., 3)
         Angular momentum, principal frame, kg m^2/s.
     """
-    return np.asarray(moments, float) * np.asarray(omega, float)
+    return cast(Vector3, np.asarray(moments, float) * np.asarray(omega, float))
 
 
-def kinetic_energy(omega, moments) -> np.ndarray:
+def kinetic_energy(omega: ArrayLike, moments: ArrayLike) -> FloatArray:
     """Rotational kinetic energy ``T = omega . I omega / 2``, J.
 
     Parameters
@@ -105,10 +109,10 @@ def kinetic_energy(omega, moments) -> np.ndarray:
         Kinetic energy, J.
     """
     w = np.asarray(omega, float)
-    return 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1)
+    return cast(FloatArray, 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1))
 
 
-def energy_momentum_gaps(omega, moments) -> np.ndarray:
+def energy_momentum_gaps(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     """``L^2 - 2 E I_j`` for j = 1, 2, 3, computed without cancellation.
 
     ``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) omega_i^2``: each term carries its own sign, so the
@@ -129,4 +133,4 @@ def energy_momentum_gaps(omega, moments) -> np.ndarray:
     """
     w2 = np.asarray(omega, float)[..., None, :] ** 2
     I = np.asarray(moments, float)
-    return np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1)
+    return cast(Vector3, np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1))

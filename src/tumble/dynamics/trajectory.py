@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL
+from ..typing import ArrayLike, FloatArray
 from . import _display
 from .euler import angular_momentum, kinetic_energy
 
@@ -28,7 +30,7 @@ _OPTIONAL_ARRAYS = ("internal_momentum", "rotor_spin", "rotor_axial_moments", "m
 ZERO_MOMENTUM_RTOL = 1e-12
 
 
-def _array(a) -> np.ndarray:
+def _array(a: ArrayLike) -> FloatArray:
     # writeable on purpose: scipy's Rotation.apply refuses read-only arrays (see mass.body)
     return np.asarray(a, dtype=float)
 
@@ -141,7 +143,7 @@ class Trajectory:
         if self.internal_momentum is not None:
             scale += float(np.max(np.linalg.norm(self.internal_momentum, axis=1)))
         if self.damper_omega is not None:
-            scale += self.damper_inertia * float(np.max(np.linalg.norm(self.damper_omega, axis=1)))
+            scale += cast(float, self.damper_inertia) * float(np.max(np.linalg.norm(self.damper_omega, axis=1)))
         return self.angular_momentum_norm <= ZERO_MOMENTUM_RTOL * scale
 
     @functools.cached_property
@@ -182,11 +184,11 @@ class Trajectory:
         """
         E = kinetic_energy(self.omega, self.moments)
         if self.internal_momentum is not None:
-            s = self.rotor_spin
+            s = cast(FloatArray, self.rotor_spin)  # set with internal_momentum
             E = E + np.sum(self.omega * self.internal_momentum, axis=1)
-            E = E + 0.5 * np.sum(self.rotor_axial_moments * s * s, axis=1)
+            E = E + 0.5 * np.sum(cast(FloatArray, self.rotor_axial_moments) * s * s, axis=1)
         if self.damper_omega is not None:
-            E = E + 0.5 * self.damper_inertia * np.sum(self.damper_omega**2, axis=1)
+            E = E + 0.5 * cast(float, self.damper_inertia) * np.sum(self.damper_omega**2, axis=1)
         return _array(E)
 
     @functools.cached_property
@@ -218,7 +220,7 @@ class Trajectory:
         if self.dissipated is not None:
             E = E + self.dissipated
 
-        def rel(dev, ref):
+        def rel(dev: FloatArray, ref: float) -> float | None:
             return float(np.max(dev) / ref) if ref > 0 and np.all(np.isfinite(dev)) else None
 
         return {

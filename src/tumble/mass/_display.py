@@ -7,9 +7,15 @@ with the display of trajectories (:mod:`tumble.dynamics._display`), the layer ab
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, cast
 
 from .._html import fmt, html_table, short_name, vec
 from .tensor import AXIS_ROLES
+
+if TYPE_CHECKING:
+    from .body import Body, MassProperties
+    from .parts import Part
 
 __all__ = ["body_html", "body_repr", "properties_html", "properties_repr"]
 
@@ -17,19 +23,19 @@ __all__ = ["body_html", "body_repr", "properties_html", "properties_repr"]
 MAX_PARTS_SHOWN = 20
 
 
-def properties_repr(p) -> str:
+def properties_repr(p: MassProperties) -> str:
     """``MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)``."""
     return f"MassProperties(m = {fmt(p.mass)} kg, COM = {vec(p.com)} m, I = {vec(p.principal_moments)} kg m^2)"
 
 
-def body_repr(body) -> str:
+def body_repr(body: Body) -> str:
     """``Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2)``."""
     n = len(body.parts)
     return (f"Body({short_name(body.name)}, {n} part{'' if n == 1 else 's'}, m = {fmt(body.mass)} kg, "
             f"I = {vec(body.principal_moments)} kg m^2)")
 
 
-def _properties_rows(p) -> list[tuple[str, str]]:
+def _properties_rows(p: MassProperties) -> list[tuple[str, str]]:
     rows = [("mass", f"{fmt(p.mass, 6)} kg"), ("centre of mass (design frame)", f"{vec(p.com, 6)} m")]
     for j, role in enumerate(AXIS_ROLES):
         rows.append((f"I{j + 1} ({role}), axis in the design frame",
@@ -41,21 +47,21 @@ def _properties_rows(p) -> list[tuple[str, str]]:
     return rows
 
 
-def properties_html(p) -> str:
+def properties_html(p: MassProperties) -> str:
     """The mass properties as an HTML table (kg, m, kg m^2)."""
     return html_table(_properties_rows(p), caption="MassProperties")
 
 
-def _part_rows(parts) -> list[tuple]:
-    rows = []
+def _part_rows(parts: Sequence[Part]) -> list[tuple[object, ...]]:
+    rows: list[tuple[object, ...]] = []
     for i, part in enumerate(parts[:MAX_PARTS_SHOWN]):
-        rows.append((i, part.kind, fmt(part.mass, 6), vec(part.com), "removed" if part.subtract else ""))
+        rows.append((i, part.kind, fmt(cast(float, part.mass), 6), vec(part.com), "removed" if part.subtract else ""))
     if len(parts) > MAX_PARTS_SHOWN:
         rows.append(("...", f"and {len(parts) - MAX_PARTS_SHOWN} more parts", "", "", ""))
     return rows
 
 
-def body_html(body) -> str:
+def body_html(body: Body) -> str:
     """A body's mass properties and its parts as HTML (Jupyter's ``_repr_html_``)."""
     n = len(body.parts)
     head = f"Body {body.name!s}: {n} part{'' if n == 1 else 's'}"

@@ -11,10 +11,13 @@ the body also exposes them and their internal angular momentum for the gyrostat'
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..validation import check_moments, check_positive, check_vector, short_repr
 from . import _display
 from .parts import Part
@@ -28,9 +31,12 @@ from .tensor import (
     principal_frame,
 )
 
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
+
 __all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
 
-def _array(a) -> np.ndarray:
+def _array(a: ArrayLike) -> FloatArray:
     # Arrays are left writeable: scipy's Rotation.apply refuses read-only input, and users
     # apply rotations to these vectors. The dataclass is frozen; do not modify arrays in place.
     return np.array(a, dtype=float)
@@ -59,20 +65,20 @@ class MassProperties:
     """
 
     mass: float
-    com: np.ndarray
-    inertia: np.ndarray
-    principal_moments: np.ndarray
-    principal_axes: np.ndarray
+    com: Vector3
+    inertia: Matrix3
+    principal_moments: Vector3
+    principal_axes: Matrix3
 
     @classmethod
-    def from_inertia(cls, mass: float, com, inertia) -> MassProperties:
+    def from_inertia(cls, mass: float, com: ArrayLike, inertia: ArrayLike) -> MassProperties:
         """Validate ``inertia`` (about the COM) and decompose it."""
         I = check_inertia(inertia, what="inertia tensor about the centre of mass")
         moments, axes = principal_frame(I)
         return cls(float(mass), _array(com), _array(I), _array(moments), _array(axes))
 
     @classmethod
-    def from_moments(cls, moments, mass: float = 1.0, com=(0.0, 0.0, 0.0)) -> MassProperties:
+    def from_moments(cls, moments: ArrayLike, mass: float = 1.0, com: ArrayLike = (0.0, 0.0, 0.0)) -> MassProperties:
         """Mass properties of a body whose principal axes are the design axes.
 
         The inertia tensor about the COM is ``diag(moments)`` and ``principal_axes`` is the
@@ -127,7 +133,7 @@ class MassProperties:
         return moment_degeneracy(self.principal_moments)
 
     @property
-    def intermediate_axis(self) -> np.ndarray | None:
+    def intermediate_axis(self) -> Vector3 | None:
         """Unit vector of the intermediate axis (design frame), or None for a symmetric body.
 
         Spin about this axis is unstable (the tennis-racket theorem); a body with two equal
@@ -135,7 +141,7 @@ class MassProperties:
         """
         return self.principal_axes[:, 1].copy() if self.degeneracy == "asymmetric" else None
 
-    def inertia_about(self, point) -> np.ndarray:
+    def inertia_about(self, point: ArrayLike) -> Matrix3:
         """Inertia tensor about another point, kg m^2 (parallel-axis theorem).
 
         Parameters
@@ -164,7 +170,7 @@ class MassProperties:
         return _display.properties_html(self)
 
 
-def mass_properties(parts) -> MassProperties:
+def mass_properties(parts: Iterable[Part]) -> MassProperties:
     """Mass properties of a collection of parts (seed eqs. 1, 4 and 5, corrected).
 
     Raises
@@ -238,26 +244,26 @@ class Body:
         return self.properties.mass
 
     @property
-    def com(self) -> np.ndarray:
+    def com(self) -> Vector3:
         """Centre of mass in the design frame, m."""
         return self.properties.com
 
     @property
-    def inertia(self) -> np.ndarray:
+    def inertia(self) -> Matrix3:
         """Inertia tensor about the COM in the design frame, kg m^2."""
         return self.properties.inertia
 
     @property
-    def principal_moments(self) -> np.ndarray:
+    def principal_moments(self) -> Vector3:
         """Principal moments ``I1 <= I2 <= I3``, kg m^2."""
         return self.properties.principal_moments
 
     @property
-    def principal_axes(self) -> np.ndarray:
+    def principal_axes(self) -> Matrix3:
         """Rotation matrix principal -> design, shape (3, 3); columns are the axes of I1, I2, I3."""
         return self.properties.principal_axes
 
-    def inertia_about(self, point) -> np.ndarray:
+    def inertia_about(self, point: ArrayLike) -> Matrix3:
         """Inertia tensor about ``point`` (design frame, m), kg m^2; see
         :meth:`MassProperties.inertia_about` (shapes, and the ``ValueError`` for a bad point)."""
         return self.properties.inertia_about(point)
@@ -267,7 +273,7 @@ class Body:
         """The parts that spin relative to the body (:class:`~tumble.mass.rotor.Rotor`), in order."""
         return tuple(p for p in self.parts if isinstance(p, Rotor))
 
-    def internal_momentum(self, t=0.0) -> np.ndarray:
+    def internal_momentum(self, t: ArrayLike = 0.0) -> Vector3:
         """Internal angular momentum of the rotors in the *principal* frame, kg m^2/s.
 
         ``h(t) = sum_k J_k s_k(t) n_k`` over the rotors (axial moment ``J_k``, relative spin
@@ -284,13 +290,13 @@ class Body:
         -------
         ndarray, shape ``np.shape(t) + (3,)``
         """
-        t = np.asarray(t, dtype=float)
-        h = np.zeros(t.shape + (3,))
+        times = np.asarray(t, dtype=float)
+        h = np.zeros(times.shape + (3,))
         for rotor in self.rotors:
-            h += rotor.momentum(t)
+            h += rotor.momentum(times)
         return h @ self.principal_axes  # rows: (A^T h_design)^T
 
-    def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Body:
+    def moved(self, rotation: Rotation | ArrayLike, translation: ArrayLike = (0.0, 0.0, 0.0)) -> Body:
         """The body after a rigid motion ``x -> R x + t`` of all its parts."""
         return Body(tuple(p.moved(rotation, translation) for p in self.parts), self.name)
 

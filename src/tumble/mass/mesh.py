@@ -11,17 +11,22 @@ from __future__ import annotations
 import io
 import os
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
+from ..typing import ArrayLike, Matrix3
 from ..validation import check_motion, check_positive, check_vector, read_input_file
 from .parts import PART_KINDS, _Oriented
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = ["MAX_MESH_BYTES", "Mesh"]
 
 
-def _trimesh():
+def _trimesh() -> ModuleType:
     try:
         import trimesh
     except ImportError:  # pragma: no cover - depends on the environment
@@ -37,7 +42,7 @@ def _trimesh():
 MAX_MESH_BYTES = 200 << 20
 
 
-def _load(source) -> Any:
+def _load(source: Any) -> Any:
     """A trimesh.Trimesh from a mesh object (copied) or a file (size and type checked first)."""
     trimesh = _trimesh()
     if isinstance(source, trimesh.Trimesh):
@@ -125,16 +130,16 @@ class Mesh(_Oriented):
     def volume(self) -> float:
         return self._volume
 
-    def _local_inertia(self) -> np.ndarray:
-        return self.mass * self._unit_inertia
+    def _local_inertia(self) -> Matrix3:
+        return cast(Matrix3, cast(float, self.mass) * self._unit_inertia)
 
-    def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Mesh:
+    def moved(self, rotation: Rotation | ArrayLike, translation: ArrayLike = (0.0, 0.0, 0.0)) -> Mesh:
         """The same part after a rigid motion ``x -> R x + t`` of the design frame."""
-        rotation, translation = check_motion(rotation, translation)
+        R, t = check_motion(rotation, translation)
         return Mesh(
             mesh=self.mesh,
-            origin=tuple(rotation.apply(self.origin) + translation),
-            rotation=tuple((rotation * self.orientation).as_quat()),
+            origin=tuple(R.apply(self.origin) + t),
+            rotation=tuple((R * self.orientation).as_quat()),
             mass=None if self.density is not None else self.mass,
             density=self.density,
             subtract=self.subtract,

@@ -28,10 +28,11 @@ import dataclasses
 import functools
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
+from ..typing import ArrayLike, Matrix3, Vector3
 from ..validation import (
     check_direction,
     check_motion,
@@ -39,6 +40,9 @@ from ..validation import (
     check_rotation,
     check_vector,
 )
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = [
     "PART_KINDS",
@@ -114,7 +118,7 @@ class Part:
         """Sizes and masses so large that volume or inertia overflow double precision."""
         try:
             with np.errstate(over="raise", invalid="raise"):
-                finite = np.isfinite(self.mass) and np.all(np.isfinite(self.inertia))
+                finite = np.isfinite(cast(float, self.mass)) and np.all(np.isfinite(self.inertia))
         except (OverflowError, FloatingPointError):
             finite = False
         if not finite:
@@ -124,7 +128,7 @@ class Part:
             )
 
     # -- helpers for subclasses -------------------------------------------------------------
-    def _set(self, name: str, value) -> None:
+    def _set(self, name: str, value: object) -> None:
         object.__setattr__(self, name, value)
 
     def _check_shape(self) -> None:
@@ -137,32 +141,33 @@ class Part:
         return 0.0
 
     @property
-    def orientation(self):
+    def orientation(self) -> Rotation:
         """Rotation from the part's own frame to the design frame (scipy Rotation)."""
         from scipy.spatial.transform import Rotation
 
         return Rotation.identity()
 
     @property
-    def com(self) -> np.ndarray:
+    def com(self) -> Vector3:
         """Centre of mass in the design frame, shape (3,), m."""
         return np.array(self.center)
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         """Principal moments per unit mass in the part's own frame, m^2 (subclasses)."""
         raise NotImplementedError
 
-    def _local_inertia(self) -> np.ndarray:
+    def _local_inertia(self) -> Matrix3:
         """Tensor about the part's COM in its own frame, kg m^2 (positive mass)."""
-        return np.diag(self.mass * self._unit_moments())
+        return np.diag(cast(float, self.mass) * self._unit_moments())
 
     @property
     def signed_mass(self) -> float:
         """Mass contributed to the body, kg: negative for removed material."""
-        return -self.mass if self.subtract else self.mass
+        mass = cast(float, self.mass)  # always set by __post_init__
+        return -mass if self.subtract else mass
 
     @functools.cached_property
-    def inertia(self) -> np.ndarray:
+    def inertia(self) -> Matrix3:
         """Tensor about the part's own COM in the design frame, ``R I R^T`` (kg m^2).
 
         Negative for removed material. Computed once (the part is immutable).
@@ -170,11 +175,11 @@ class Part:
         I = self._design_inertia()
         return -I if self.subtract else I
 
-    def _design_inertia(self) -> np.ndarray:
-        R = self.orientation.as_matrix()
+    def _design_inertia(self) -> Matrix3:
+        R: Matrix3 = self.orientation.as_matrix()
         return R @ self._local_inertia() @ R.T
 
-    def moved(self, rotation, translation=(0.0, 0.0, 0.0)) -> Part:
+    def moved(self, rotation: Rotation | ArrayLike, translation: ArrayLike = (0.0, 0.0, 0.0)) -> Part:
         """The same part after a rigid motion ``x -> R x + t`` of the design frame.
 
         Parameters
@@ -184,14 +189,14 @@ class Part:
         translation : array_like, shape (3,)
             The translation t, m.
         """
-        rotation, translation = check_motion(rotation, translation)
-        changes = {"center": tuple(rotation.apply(self.center) + translation)}
+        R, t = check_motion(rotation, translation)
+        changes: dict[str, Any] = {"center": tuple(R.apply(self.center) + t)}
         if self.density is not None:
             changes["mass"] = None  # recomputed from the density
-        changes.update(self._moved_orientation(rotation))
+        changes.update(self._moved_orientation(R))
         return dataclasses.replace(self, **changes)
 
-    def _moved_orientation(self, rotation) -> dict:
+    def _moved_orientation(self, rotation: Rotation) -> dict[str, Any]:
         return {}
 
 
@@ -205,22 +210,22 @@ class _Axisymmetric(Part):
         self._set("axis", check_direction("axis", self.axis))
 
     @property
-    def orientation(self):
+    def orientation(self) -> Rotation:
         """Shortest-arc rotation taking local z to ``axis`` (the roll about it is immaterial)."""
         from scipy.spatial.transform import Rotation
 
         rot, _ = Rotation.align_vectors([self.axis], [_Z])
         return rot
 
-    def _design_inertia(self) -> np.ndarray:
+    def _design_inertia(self) -> Matrix3:
         # For a body of revolution R diag(p, p, a) R^T = p (E - n n^T) + a n n^T whatever the
         # roll about n; this form is exact for axis-aligned parts (no round-off from R).
-        p, _, a = self.mass * self._unit_moments()
+        p, _, a = cast(float, self.mass) * self._unit_moments()
         n = np.array(self.axis)
         nn = np.outer(n, n)
-        return p * (np.eye(3) - nn) + a * nn
+        return cast(Matrix3, p * (np.eye(3) - nn) + a * nn)
 
-    def _moved_orientation(self, rotation) -> dict:
+    def _moved_orientation(self, rotation: Rotation) -> dict[str, Any]:
         return {"axis": tuple(rotation.apply(self.axis))}
 
 
@@ -234,12 +239,12 @@ class _Oriented(Part):
         self._set("rotation", check_rotation("rotation", self.rotation))
 
     @property
-    def orientation(self):
+    def orientation(self) -> Rotation:
         from scipy.spatial.transform import Rotation
 
         return Rotation.from_quat(self.rotation)
 
-    def _moved_orientation(self, rotation) -> dict:
+    def _moved_orientation(self, rotation: Rotation) -> dict[str, Any]:
         return {"rotation": tuple((rotation * self.orientation).as_quat())}
 
 
@@ -258,7 +263,7 @@ class Rod(_Axisymmetric):
         super()._check_shape()
         self._set("length", check_positive("length", self.length, "m"))
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         p = self.length**2 / 12.0
         return np.array([p, p, 0.0])
 
@@ -283,7 +288,7 @@ class Cylinder(_Axisymmetric):
     def volume(self) -> float:
         return math.pi * self.radius**2 * self.length
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         r2, L2 = self.radius**2, self.length**2
         p = (3.0 * r2 + L2) / 12.0
         return np.array([p, p, r2 / 2.0])
@@ -318,7 +323,7 @@ class Tube(_Axisymmetric):
     def volume(self) -> float:
         return math.pi * (self.outer_radius**2 - self.inner_radius**2) * self.length
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         s = self.inner_radius**2 + self.outer_radius**2
         p = (3.0 * s + self.length**2) / 12.0
         return np.array([p, p, s / 2.0])
@@ -348,11 +353,11 @@ class Cone(_Axisymmetric):
         return math.pi * self.radius**2 * self.height / 3.0
 
     @property
-    def base_center(self) -> np.ndarray:
+    def base_center(self) -> Vector3:
         """Centre of the base disc in the design frame, m."""
         return np.array(self.center) - 0.25 * self.height * np.array(self.axis)
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         r2, h2 = self.radius**2, self.height**2
         p = 3.0 * (4.0 * r2 + h2) / 80.0
         return np.array([p, p, 0.3 * r2])
@@ -378,9 +383,9 @@ class Box(_Oriented):
         a, b, c = self.size
         return a * b * c
 
-    def _unit_moments(self) -> np.ndarray:
-        s2 = np.square(self.size)
-        return (s2.sum() - s2) / 12.0
+    def _unit_moments(self) -> Vector3:
+        s2: Vector3 = np.square(self.size)
+        return cast(Vector3, (s2.sum() - s2) / 12.0)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -406,9 +411,9 @@ class Ellipsoid(_Oriented):
         a, b, c = self.semi_axes
         return 4.0 / 3.0 * math.pi * a * b * c
 
-    def _unit_moments(self) -> np.ndarray:
-        s2 = np.square(self.semi_axes)
-        return (s2.sum() - s2) / 5.0
+    def _unit_moments(self) -> Vector3:
+        s2: Vector3 = np.square(self.semi_axes)
+        return cast(Vector3, (s2.sum() - s2) / 5.0)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -425,7 +430,7 @@ class Sphere(Part):
     def volume(self) -> float:
         return 4.0 / 3.0 * math.pi * self.radius**3
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         return np.full(3, 0.4 * self.radius**2)
 
 
@@ -443,7 +448,7 @@ class Shell(Part):
     def _check_shape(self) -> None:
         self._set("radius", check_positive("radius", self.radius, "m"))
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         return np.full(3, 2.0 / 3.0 * self.radius**2)
 
 
@@ -454,7 +459,7 @@ class PointMass(Part):
     kind: ClassVar[str] = "point"
     solid: ClassVar[bool] = False
 
-    def _unit_moments(self) -> np.ndarray:
+    def _unit_moments(self) -> Vector3:
         return np.zeros(3)
 
 

@@ -62,7 +62,10 @@ def t_handle(
         shaft_mass = 1.5 if shaft_mass is None else shaft_mass
         crossbar_mass = 1.5 if crossbar_mass is None else crossbar_mass
 
-    def bar(label, length, mass, radius, center, axis):
+    def bar(
+        label: str, length: float, mass: float | None, radius: float,
+        center: tuple[float, float, float], axis: tuple[float, float, float],
+    ) -> Rod | Cylinder:
         try:
             if radius == 0:
                 if density is not None:

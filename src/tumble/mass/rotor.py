@@ -11,10 +11,11 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from numbers import Real
-from typing import ClassVar
+from typing import ClassVar, cast
 
 import numpy as np
 
+from ..typing import ArrayLike, FloatArray, Vector3
 from ..validation import MAX_RATE, check_at_most, check_number
 from .parts import PART_KINDS, Cylinder
 
@@ -88,37 +89,40 @@ class Rotor(Cylinder):
     @property
     def axial_moment(self) -> float:
         """``J = m r^2 / 2``, the moment about the spin axis, kg m^2."""
-        return self.mass * self._unit_moments()[2]
+        return cast(float, cast(float, self.mass) * self._unit_moments()[2])
 
     @property
     def constant_spin(self) -> bool:
         """Whether the relative spin is a constant number (no ramp, no function)."""
         return not callable(self.spin_rate) and self.spin_acceleration == 0.0
 
-    def spin(self, t) -> np.ndarray:
+    def spin(self, t: ArrayLike) -> FloatArray:
         """The relative spin ``s(t)`` at the times ``t`` (s, any shape), rad/s; ``t``'s shape."""
         return self._evaluate(self.spin_rate, self.spin_acceleration, t, "spin_rate", "rad/s")
 
-    def spin_derivative(self, t) -> np.ndarray | None:
+    def spin_derivative(self, t: ArrayLike) -> FloatArray | None:
         """``ds/dt`` at the times ``t`` (s), rad/s^2; None when ``spin_rate`` is a function given
         without its derivative."""
         if callable(self.spin_rate):
             if self.spin_acceleration is None:
                 return None
             return self._evaluate(self.spin_acceleration, None, t, "spin_acceleration", "rad/s^2")
-        return np.full(np.shape(t), float(self.spin_acceleration))
+        return np.full(np.shape(t), float(cast(float, self.spin_acceleration)))
 
-    def momentum(self, t) -> np.ndarray:
+    def momentum(self, t: ArrayLike) -> Vector3:
         """Internal angular momentum ``J s(t) axis`` in the design frame, kg m^2/s; shape
         ``t.shape + (3,)``."""
-        return (self.axial_moment * self.spin(t))[..., None] * np.array(self.axis)
+        return cast(Vector3, (self.axial_moment * self.spin(t))[..., None] * np.array(self.axis))
 
     @staticmethod
-    def _evaluate(fn, slope, t, field: str, unit: str) -> np.ndarray:
-        t = np.asarray(t, dtype=float)
+    def _evaluate(
+        fn: float | Callable[[float], float], slope: float | Callable[[float], float] | None, t_in: ArrayLike,
+        field: str, unit: str,
+    ) -> FloatArray:
+        t = np.asarray(t_in, dtype=float)
         bound = MAX_RATE if field == "spin_rate" else MAX_RATE**2
         if not callable(fn):
-            out = fn + slope * t
+            out: FloatArray = fn + cast(float, slope) * t  # a number: set to 0.0 when not given
             if out.size and not np.max(np.abs(out)) <= bound:
                 k = np.unravel_index(np.argmax(np.abs(out)), out.shape)
                 check_at_most(f"the rotor's {field} at t = {float(t[k]):.6g} s", float(out[k]), unit, bound)
@@ -136,7 +140,7 @@ class Rotor(Cylinder):
         return out
 
 
-def _is_number(value) -> bool:
+def _is_number(value: object) -> bool:
     return not isinstance(value, (bool, np.bool_)) and isinstance(value, (Real, np.integer, np.floating))
 
 

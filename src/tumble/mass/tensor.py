@@ -14,9 +14,16 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, SupportsFloat, SupportsInt, cast
+
 import numpy as np
 
+from ..typing import ArrayLike, BoolArray, FloatArray, Matrix3, Vector3
 from ..validation import AXIS_ROLES, INERTIA_RTOL, check_vectors, refuse_first
+
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = [
     "AXIS_ROLES",
@@ -32,14 +39,14 @@ __all__ = [
     "rotate_inertia",
 ]
 
-def _as_tensor(inertia) -> np.ndarray:
+def _as_tensor(inertia: ArrayLike) -> Matrix3:
     I = np.asarray(inertia, dtype=float)
     if I.shape[-2:] != (3, 3):
         raise ValueError(f"inertia tensor must have shape (..., 3, 3), got {I.shape}")
     return I
 
 
-def point_mass_inertia(mass, offset) -> np.ndarray:
+def point_mass_inertia(mass: ArrayLike, offset: ArrayLike) -> Matrix3:
     """Inertia tensor of point masses about the origin: ``m (|d|^2 E - d d^T)``.
 
     This is the parallel-axis term of the seed's eq. (4) (Goldstein sec. 5.3, for one point).
@@ -58,11 +65,11 @@ def point_mass_inertia(mass, offset) -> np.ndarray:
     """
     d = np.asarray(offset, dtype=float)
     m = np.asarray(mass, dtype=float)[..., None, None]
-    dd = np.einsum("...i,...i->...", d, d)[..., None, None]
-    return m * (dd * np.eye(3) - d[..., :, None] * d[..., None, :])
+    dd: FloatArray = np.einsum("...i,...i->...", d, d)[..., None, None]
+    return cast(Matrix3, m * (dd * np.eye(3) - d[..., :, None] * d[..., None, :]))
 
 
-def parallel_axis(inertia_com, mass, offset) -> np.ndarray:
+def parallel_axis(inertia_com: ArrayLike, mass: ArrayLike, offset: ArrayLike) -> Matrix3:
     """Shift an inertia tensor from the centre of mass to another point.
 
     ``I_P = I_com + m (|d|^2 E - d d^T)`` with ``d`` the position of the COM relative to P
@@ -86,7 +93,7 @@ def parallel_axis(inertia_com, mass, offset) -> np.ndarray:
     return _as_tensor(inertia_com) + point_mass_inertia(mass, offset)
 
 
-def inertia_about_point(inertia_com, mass, com, point) -> np.ndarray:
+def inertia_about_point(inertia_com: ArrayLike, mass: ArrayLike, com: ArrayLike, point: ArrayLike) -> Matrix3:
     """Inertia tensor about an arbitrary ``point`` given the tensor about the COM.
 
     Parameters
@@ -113,7 +120,7 @@ def inertia_about_point(inertia_com, mass, com, point) -> np.ndarray:
     return parallel_axis(inertia_com, mass, d)
 
 
-def rotate_inertia(inertia, rotation) -> np.ndarray:
+def rotate_inertia(inertia: ArrayLike, rotation: Rotation | ArrayLike) -> Matrix3:
     """Express a tensor given in frame A in frame B: ``I_B = R I_A R^T``.
 
     ``R`` maps A-coordinates to B-coordinates (``x_B = R @ x_A``), Goldstein sec. 5.3.
@@ -125,19 +132,19 @@ def rotate_inertia(inertia, rotation) -> np.ndarray:
     rotation : array_like, shape (..., 3, 3) or scipy.spatial.transform.Rotation
         Rotation matrix from A to B.
     """
-    R = rotation.as_matrix() if hasattr(rotation, "as_matrix") else np.asarray(rotation, float)
+    R: Matrix3 = rotation.as_matrix() if hasattr(rotation, "as_matrix") else np.asarray(rotation, float)
     I = _as_tensor(inertia)
     return R @ I @ np.swapaxes(R, -1, -2)
 
 
-def _scale(I: np.ndarray) -> np.ndarray:
+def _scale(I: Matrix3) -> FloatArray:
     """A non-negative size of each tensor (its trace, or its largest entry if trace <= 0)."""
-    tr = np.abs(np.trace(I, axis1=-2, axis2=-1))
+    tr: FloatArray = np.abs(np.trace(I, axis1=-2, axis2=-1))
     big = np.max(np.abs(I), axis=(-2, -1))
-    return np.maximum(tr, big)
+    return cast(FloatArray, np.maximum(tr, big))
 
 
-def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia tensor") -> np.ndarray:
+def check_inertia(inertia: ArrayLike, *, rtol: float = INERTIA_RTOL, what: str = "inertia tensor") -> Matrix3:
     """Check that a tensor can be the inertia tensor of a real body and return it as an array.
 
     The conditions (Goldstein sec. 5.4; the triangle inequality follows from
@@ -169,7 +176,7 @@ def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia t
     I = _as_tensor(inertia)
     batch = I.shape[:-2]
 
-    def where(idx) -> str:
+    def where(idx: Iterable[SupportsInt]) -> str:
         return f" (at index {tuple(int(i) for i in idx)})" if batch else ""
 
     bad = ~np.all(np.isfinite(I), axis=(-2, -1))
@@ -211,11 +218,11 @@ def check_inertia(inertia, *, rtol: float = INERTIA_RTOL, what: str = "inertia t
     return I
 
 
-def _fmt(values) -> str:
+def _fmt(values: ArrayLike) -> str:
     return "(" + ", ".join(f"{v:.6g}" for v in np.asarray(values).ravel()) + ")"
 
 
-def moment_degeneracy(moments, *, rtol: float = INERTIA_RTOL) -> str:
+def moment_degeneracy(moments: Iterable[SupportsFloat], *, rtol: float = INERTIA_RTOL) -> str:
     """``"asymmetric"``, ``"symmetric"`` (two equal moments) or ``"spherical"`` (three).
 
     Ascending moments count as equal when they differ by at most ``rtol * (I1 + I2 + I3)``, the
@@ -226,7 +233,7 @@ def moment_degeneracy(moments, *, rtol: float = INERTIA_RTOL) -> str:
     return ("asymmetric", "symmetric", "spherical")[int(I2 - I1 <= tol) + int(I3 - I2 <= tol)]
 
 
-def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray, np.ndarray]:
+def principal_frame(inertia: ArrayLike, *, rtol: float = INERTIA_RTOL) -> tuple[Vector3, Matrix3]:
     """Principal moments and axes, with tumble's deterministic conventions.
 
     Conventions (docs/conventions.md):
@@ -282,7 +289,7 @@ def principal_frame(inertia, *, rtol: float = INERTIA_RTOL) -> tuple[np.ndarray,
     return moments, vecs
 
 
-def _equalise(moments: np.ndarray, gaps: np.ndarray) -> np.ndarray:
+def _equalise(moments: Vector3, gaps: BoolArray) -> Vector3:
     """Ascending moments with each degenerate cluster replaced by its mean (stays ascending)."""
     out = moments.copy()
     pair = [(0, 1), (1, 2)]
@@ -296,7 +303,7 @@ def _equalise(moments: np.ndarray, gaps: np.ndarray) -> np.ndarray:
     return out
 
 
-def _degenerate_axes(vecs: np.ndarray, gaps: np.ndarray) -> np.ndarray:
+def _degenerate_axes(vecs: Matrix3, gaps: BoolArray) -> Matrix3:
     """Replace the eigenvectors of a degenerate cluster by projected frame axes."""
     out = vecs.copy()
     if gaps.all():  # three equal moments: any frame is principal; take the input frame
@@ -304,7 +311,7 @@ def _degenerate_axes(vecs: np.ndarray, gaps: np.ndarray) -> np.ndarray:
     cluster = [0, 1] if gaps[0] else [1, 2]
     basis = vecs[:, cluster]  # orthonormal basis of the degenerate plane
     projector = basis @ basis.T
-    chosen = []
+    chosen: list[Vector3] = []
     for e in np.eye(3):
         v = projector @ e
         for c in chosen:

@@ -22,6 +22,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import ellipj, ellipkinc
 
+from ...typing import ArrayLike, Vector3
+
 __all__ = ["free_omega"]
 
 #: Largest parameter m used (the separatrix m = 1 has no period; a body exactly on it is
@@ -29,12 +31,12 @@ __all__ = ["free_omega"]
 _M_MAX = 1.0 - 2.0 ** -52
 
 
-def _g(I, w):
+def _g(I: Vector3, w: Vector3) -> Vector3:
     """``g_j = L^2 - 2 E I_j = sum_i I_i (I_i - I_j) w_i^2`` (no cancellation), shape (N, 3)."""
     return np.stack([np.sum(I * (I - I[:, j:j + 1]) * w * w, axis=1) for j in range(3)], axis=1)
 
 
-def free_omega(moments, omega0, t) -> np.ndarray:
+def free_omega(moments: ArrayLike, omega0: ArrayLike, t: ArrayLike) -> Vector3:
     """Angular velocity of N torque-free rigid bodies, principal frame, rad/s.
 
     Parameters

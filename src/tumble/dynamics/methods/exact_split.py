@@ -37,7 +37,8 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..models.torques import body_torque, spin_gain
+from ...typing import ArrayLike, FloatArray
+from ..models.torques import TorqueModel, body_torque, spin_gain
 from . import geometric
 from .exact_batch import free_rotation_batch
 
@@ -61,7 +62,8 @@ def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
     return geometric.default_step(spin, gain, rate)
 
 
-def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None = None, torque=None):
+def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, order: int = 4,
+              step: float | None = None, torque: TorqueModel | None = None) -> tuple[FloatArray, FloatArray]:
     """Integrate N bodies by exact-flow splitting, sampled at times ``t``.
 
     Parameters
@@ -116,8 +118,8 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
     omega_out, quat_out = np.empty((len(t), len(I), 3)), np.empty((len(t), len(I), 4))
     omega_out[0], quat_out[0] = w, q
 
-    def kick(time: float, d: float) -> None:
-        L[:] += d * body_torque(torque, time, L / I, Rotation.from_quat(q))
+    def kick(model: TorqueModel, time: float, d: float) -> None:
+        L[:] += d * body_torque(model, time, L / I, Rotation.from_quat(q))
 
     for s in range(1, len(t)):
         n_steps, h = geometric._steps(t[s] - t[s - 1], step)
@@ -126,12 +128,12 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
             for gamma in geometric.COMPOSITIONS[order]:
                 hg = gamma * h
                 if torque is not None:
-                    kick(tc, 0.5 * hg)
+                    kick(torque, tc, 0.5 * hg)
                 omega, quat = free_rotation_batch(I, L / I, q, np.array([hg]))
                 L[:], q[:] = I * omega[:, 0], quat[:, 0]
                 tc += hg
                 if torque is not None:
-                    kick(tc, 0.5 * hg)
+                    kick(torque, tc, 0.5 * hg)
         q /= np.linalg.norm(q, axis=1, keepdims=True)
         omega_out[s], quat_out[s] = L / I, q
     return omega_out, quat_out

@@ -46,14 +46,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import import_module
+from typing import Any, Protocol, TypeAlias, cast
 
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..euler import euler_rhs
-from ..models.internal import STIFF_RATIO
-from ..models.torques import body_torque, spin_gain
+from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
+from ..models.torques import TorqueModel, body_torque, spin_gain
 from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
@@ -64,10 +66,33 @@ __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 MAX_EVALUATIONS = 50_000_000
 
 
+#: ``integrate(moments, omega0, quat0, t, torque, rtol, atol, step)`` -> ``(omega, quat)`` at ``t``.
+Integrate: TypeAlias = Callable[
+    [ArrayLike, ArrayLike, ArrayLike, FloatArray, "TorqueModel | None", "float | None", "float | None", "float | None"],
+    tuple[Vector3, Quaternion],
+]
+#: ``integrate_internal(model, omega0, quat0, t, torque, rtol, atol, step)`` -> the samples of a run
+#: with rotors or a damper.
+IntegrateInternal: TypeAlias = Callable[
+    [InternalModel, ArrayLike, ArrayLike, FloatArray, "TorqueModel | None", "float | None", "float | FloatArray | None",
+     "float | None"],
+    InternalSamples,
+]
+#: ``default_step(spin, gain, rate)`` -> the largest step, s, of a fixed-step method.
+StepRule: TypeAlias = Callable[[float, float, float], float]
+
+
+class Propagate(Protocol):
+    """A splitting's propagator over N bodies: ``(omega, quat)`` of shapes (n, N, 3), (n, N, 4)."""
+
+    def __call__(self, moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *,
+                 step: float | None = None, torque: TorqueModel | None = None) -> tuple[FloatArray, FloatArray]: ...
+
+
 class _Budget:
     """Counts right-hand-side evaluations and gives up, with a clear message, past the budget."""
 
-    def __init__(self, method: str, t_end: float):
+    def __init__(self, method: str, t_end: float) -> None:
         self.method, self.t_end, self.limit, self.count = method, t_end, MAX_EVALUATIONS, 0
 
     def __call__(self, time: float) -> None:
@@ -84,7 +109,7 @@ class Method:
     """An integration method: its function, capabilities and default tolerances."""
 
     name: str
-    integrate: Callable
+    integrate: Integrate
     supports_torque: bool
     rtol: float | None
     atol: float | None
@@ -96,7 +121,7 @@ class Method:
     #: ``integrate_internal(model, omega0, quat0, t, torque, rtol, atol, step)`` ->
     #: :class:`~tumble.dynamics.models.internal.InternalSamples` for rotors and dampers; None if the
     #: method cannot take them.
-    integrate_internal: Callable | None = None
+    integrate_internal: IntegrateInternal | None = None
     #: Whether the method is a closed form: it evaluates the motion at the times asked for, with
     #: no steps from t = 0 (``simulate`` bounds only its phase, not its rotation, and
     #: ``simulate_batch`` evaluates it for every body at once, at those times alone).
@@ -106,10 +131,10 @@ class Method:
     splitting_order: int | None = None
     #: A splitting's propagator over N bodies, ``propagate(moments, omega0, quat0, t, *, step,
     #: torque)`` -> ``(omega, quat)`` of shapes (n, N, 3) and (n, N, 4); None for the others.
-    propagate: Callable | None = None
+    propagate: Propagate | None = None
     #: A fixed-step method's default largest step, ``default_step(spin, gain, rate)`` in s
     #: (:func:`tumble.dynamics.methods.geometric.default_step`); None for the others.
-    default_step: Callable | None = None
+    default_step: StepRule | None = None
 
     @property
     def stiff_solver(self) -> bool:
@@ -129,29 +154,35 @@ class Method:
         return self.closed_form or self.splitting_order is not None
 
 
-def _solve(method: str, rhs, y0, t, rtol, atol, jac=None) -> np.ndarray:
+def _solve(
+    method: str, rhs: Callable[[float, FloatArray], FloatArray], y0: FloatArray, t: FloatArray,
+    rtol: float | None, atol: float | FloatArray | None, jac: Callable[[float, FloatArray], FloatArray] | None = None,
+) -> FloatArray:
     """solve_ivp under the work budget; the states at ``t``, shape (n, len(y0)); ``jac`` for
     the implicit methods."""
     budget = _Budget(method, t[-1])
 
-    def counted(time, y):
+    def counted(time: float, y: FloatArray) -> FloatArray:
         budget(time)
         return rhs(time, y)
 
-    extra = {} if jac is None else {"jac": jac}
+    extra: dict[str, Any] = {} if jac is None else {"jac": jac}
     sol = solve_ivp(counted, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol, **extra)
     if not sol.success:
         raise RuntimeError(f"{method} integration failed: {sol.message}")
-    return sol.y.T
+    return cast(FloatArray, sol.y.T)
 
 
-def _solve_full(method: str):
-    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+def _solve_full(method: str) -> Integrate:
+    def integrate(
+        moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+        rtol: float | None, atol: float | None, step: float | None = None,
+    ) -> tuple[Vector3, Quaternion]:
         moments = np.asarray(moments, float)
 
-        def rhs(time, y):
+        def rhs(time: float, y: FloatArray) -> FloatArray:
             w, q = y[:3], y[3:]
-            tau = 0.0 if torque is None else body_torque(torque, time, w, Rotation.from_quat(q))
+            tau: float | Vector3 = 0.0 if torque is None else body_torque(torque, time, w, Rotation.from_quat(q))
             return np.concatenate([euler_rhs(w, moments, tau), quaternion_rate(q, w)])
 
         Y = _solve(method, rhs, np.concatenate([omega0, quat0]), t, rtol, atol)
@@ -160,7 +191,9 @@ def _solve_full(method: str):
     return integrate
 
 
-def stiffness(model, omega0, quat0, t, torque) -> tuple[float, float]:
+def stiffness(
+    model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None
+) -> tuple[float, float]:
     """A run's damper stiffness ratio and the spin it is measured against (rad/s):
     :meth:`~tumble.dynamics.models.internal.InternalModel.stiffness` at the run's fastest spin, its
     spin bound plus what the torque can add (:func:`~tumble.dynamics.models.torques.spin_gain`)."""
@@ -170,16 +203,19 @@ def stiffness(model, omega0, quat0, t, torque) -> tuple[float, float]:
     return model.stiffness(model.spin_bound(omega0, t) + gain, t_end)
 
 
-def _solve_internal(method: str, stiff: str | None = None):
+def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
     """The internal-model integrator with scipy's ``method``; ``stiff``: the implicit method a
     stiff damper's run is handed to (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`),
     read back as :attr:`Method.stiff_solver` by the entry that uses it."""
 
-    def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
+    def integrate(
+        model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
+    ) -> InternalSamples:
         tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
         y0 = model.initial_state(omega0, quat0)
 
-        def rhs(time, y):
+        def rhs(time: float, y: FloatArray) -> FloatArray:
             return model.rhs(time, y, tau)
 
         if stiff is not None and stiffness(model, omega0, quat0, t, torque)[0] > STIFF_RATIO:
@@ -188,16 +224,19 @@ def _solve_internal(method: str, stiff: str | None = None):
             Y = _solve(method, rhs, y0, t, rtol, atol)
         return model.samples(t, Y)
 
-    integrate.stiff_solver = stiff is not None
+    integrate.stiff_solver = stiff is not None  # type: ignore[attr-defined]  # read by Method.stiff_solver
     return integrate
 
 
-def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+def _integrate_seed(
+    moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+    rtol: float | None, atol: float | None, step: float | None = None,
+) -> tuple[Vector3, Quaternion]:
     """The seed's computation: RK45 for omega, then ``R <- R exp([omega] dt)`` (seed sec. 5)."""
     moments = np.asarray(moments, float)
     budget = _Budget("RK45", t[-1])
 
-    def rhs(time, w):
+    def rhs(time: float, w: Vector3) -> Vector3:
         budget(time)
         return euler_rhs(w, moments)
 
@@ -207,7 +246,7 @@ def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol, step=None):
     )
     if not sol.success:
         raise RuntimeError(f"RK45 integration failed: {sol.message}")
-    omega = sol.y.T
+    omega: Vector3 = sol.y.T
     # exp([w] dt) is the rotation by the vector w dt; scipy's from_rotvec is that exponential.
     steps = Rotation.from_rotvec(omega[:-1] * np.diff(t)[:, None])
     quats = np.empty((len(t), 4))
@@ -219,15 +258,22 @@ def _integrate_seed(moments, omega0, quat0, t, torque, rtol, atol, step=None):
     return omega, quats
 
 
-def _integrate_exact(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+def _integrate_exact(
+    moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+    rtol: float | None, atol: float | None, step: float | None = None,
+) -> tuple[Vector3, Quaternion]:
     from .exact import FreeRotation
 
-    motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))
+    # FreeRotation's __post_init__ converts array_like input; its fields say ndarray (exact.py not yet typed)
+    motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))  # type: ignore[arg-type]
     return motion.omega(t), motion.attitude(t).as_quat()
 
 
-def _geometric_internal(order: int):
-    def integrate(model, omega0, quat0, t, torque, rtol, atol, step=None):
+def _geometric_internal(order: int) -> IntegrateInternal:
+    def integrate(
+        model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
+    ) -> InternalSamples:
         from .geometric import propagate_internal
 
         return propagate_internal(model, omega0, quat0, t, order=order, step=step, torque=torque)
@@ -240,18 +286,21 @@ def _splitting(name: str, order: int, description: str, family: str = "geometric
     exact rotations, or ``exact_split``: the exact free flow): one value for its integrators,
     its batch propagator and its default step."""
 
-    def module():
+    def module() -> Any:
         return import_module(f".{family}", __package__)
 
-    def propagate(moments, omega0, quat0, t, *, step=None, torque=None):
-        return module().propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque)
+    def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *,
+                  step: float | None = None, torque: TorqueModel | None = None) -> tuple[FloatArray, FloatArray]:
+        return cast(tuple[FloatArray, FloatArray],
+                    module().propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque))
 
-    def integrate(moments, omega0, quat0, t, torque, rtol, atol, step=None):
+    def integrate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+                  rtol: float | None, atol: float | None, step: float | None = None) -> tuple[Vector3, Quaternion]:
         omega, quat = propagate(moments, omega0, quat0, t, step=step, torque=torque)
         return omega[:, 0], quat[:, 0]
 
     def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
-        return module().default_step(spin, gain, rate)
+        return float(module().default_step(spin, gain, rate))
 
     internal = _geometric_internal(order) if family == "geometric" else None
     return Method(name, integrate, True, None, None, description, fixed_step=True, integrate_internal=internal,

@@ -28,19 +28,26 @@ error ``~(|w| h)^4`` (tests/test_exact_omega.py).
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
+from typing import cast
 
 import numpy as np
+
+from ...typing import ArrayLike, FloatArray, Vector3
 
 __all__ = ["drag_omega"]
 
 
-def _rate(I, lin, quad, w, out):
+def _rate(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, out: FloatArray) -> None:
     out[0] = ((I[1] - I[2]) * w[1] * w[2] - (lin[0] + quad[0] * abs(w[0])) * w[0]) / I[0]
     out[1] = ((I[2] - I[0]) * w[2] * w[0] - (lin[1] + quad[1] * abs(w[1])) * w[1]) / I[1]
     out[2] = ((I[0] - I[1]) * w[0] * w[1] - (lin[2] + quad[2] * abs(w[2])) * w[2]) / I[2]
 
 
-def _advance(I, lin, quad, w, dt, n, k1, k2, k3, k4, tmp):
+def _advance(
+    I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, dt: float, n: int,
+    k1: FloatArray, k2: FloatArray, k3: FloatArray, k4: FloatArray, tmp: FloatArray,
+) -> None:
     h = dt / n
     for _ in range(n):
         _rate(I, lin, quad, w, k1)
@@ -57,7 +64,9 @@ def _advance(I, lin, quad, w, dt, n, k1, k2, k3, k4, tmp):
             w[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
 
 
-def _integrate(I, w0, lin, quad, tau, hmax):
+def _integrate(
+    I: FloatArray, w0: FloatArray, lin: FloatArray, quad: FloatArray, tau: FloatArray, hmax: FloatArray
+) -> FloatArray:
     K, T = tau.shape
     out = np.empty((K, T, 3))
     k1, k2, k3, k4, tmp = np.empty(3), np.empty(3), np.empty(3), np.empty(3), np.empty(3)
@@ -86,7 +95,7 @@ def _integrate(I, w0, lin, quad, tau, hmax):
 
 
 @functools.cache
-def _compiled():
+def _compiled() -> Callable[..., FloatArray]:
     """The kernel compiled by numba (``cache=True``: once per machine), on first use: importing
     numba costs half a second, which every ``tumble`` command would pay at start otherwise.
     The module's functions are replaced by their compiled versions in calling order, so that
@@ -96,10 +105,13 @@ def _compiled():
     names = ("_rate", "_advance", "_integrate")
     for name in names:
         globals()[name] = njit(cache=True)(globals()[name])
-    return globals()["_integrate"]
+    return cast("Callable[..., FloatArray]", globals()["_integrate"])
 
 
-def drag_omega(moments, omega0, t, linear=None, quadratic=None, *, max_step=None) -> np.ndarray:
+def drag_omega(
+    moments: ArrayLike, omega0: ArrayLike, t: ArrayLike, linear: ArrayLike | None = None,
+    quadratic: ArrayLike | None = None, *, max_step: ArrayLike | None = None,
+) -> Vector3:
     """Angular velocity of N bodies under per-axis drag (module docstring), principal frame.
 
     Parameters
@@ -131,8 +143,8 @@ def drag_omega(moments, omega0, t, linear=None, quadratic=None, *, max_step=None
     I = np.ascontiguousarray(np.atleast_2d(np.asarray(moments, float)))
     w = np.ascontiguousarray(np.atleast_2d(np.asarray(omega0, float)))
     N = len(I)
-    t = np.asarray(t, float)
-    tau = np.ascontiguousarray(np.broadcast_to(t, (N, t.shape[-1])))
+    times = np.asarray(t, float)
+    tau = np.ascontiguousarray(np.broadcast_to(times, (N, times.shape[-1])))
     lin = np.zeros((N, 3)) if linear is None else np.ascontiguousarray(np.broadcast_to(np.asarray(linear, float), (N, 3)))
     quad = np.zeros((N, 3)) if quadratic is None else np.ascontiguousarray(
         np.broadcast_to(np.asarray(quadratic, float), (N, 3)))

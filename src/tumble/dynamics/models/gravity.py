@@ -50,11 +50,12 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field, replace
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import (
     AXES_ALLOWED,
     axis_index,
@@ -63,6 +64,10 @@ from ...validation import (
     check_vectors,
     short_repr,
 )
+
+if TYPE_CHECKING:
+    from ...mass import Body, MassProperties
+    from ..trajectory import Trajectory
 
 __all__ = [
     "MU_EARTH",
@@ -120,7 +125,7 @@ class GravityGradient:
     orbit_period: float | None = None
     orbit_radius: float | None = None
     mu: float = MU_EARTH
-    moments: tuple | None = None
+    moments: tuple[float, ...] | None = None
     #: Frame of the returned torque: the world frame, so a ``frame="design"`` run leaves it as it is.
     frame: str = field(default="world", init=False)
     _n: float = field(default=0.0, init=False, repr=False, compare=False)
@@ -175,13 +180,13 @@ class GravityGradient:
         """Orbit radius ``(mu / n^2)^(1/3)``, m."""
         return self._r
 
-    def bind(self, body) -> GravityGradient:
+    def bind(self, body: Body | MassProperties | ArrayLike) -> GravityGradient:
         """The same orbit acting on ``body``: a Body, MassProperties or principal moments (kg m^2).
 
         Raises ``ValueError`` if this model already holds other moments (more than 1e-9
         relative apart): the torque would belong to another body.
         """
-        moments = getattr(body, "principal_moments", body)
+        moments = cast(ArrayLike, getattr(body, "principal_moments", body))
         if self._I is not None:
             I = check_vectors("moments", moments, "kg m^2")
             if I.shape != self._I.shape or not np.allclose(I, self._I, rtol=1e-9, atol=0.0):
@@ -190,20 +195,20 @@ class GravityGradient:
                     f"{I.tolist()}: leave moments out and let simulate bind it"
                 )
             return self
-        return replace(self, moments=moments)
+        return replace(self, moments=cast("tuple[float, ...]", moments))  # made a tuple by __post_init__
 
-    def radial_direction(self, t) -> np.ndarray:
+    def radial_direction(self, t: ArrayLike) -> Vector3:
         """Unit radius vector ``(cos n t, sin n t, 0)`` in the world frame at ``t`` (s); shape ``t.shape + (3,)``."""
         nt = self._n * np.asarray(t, dtype=float)
         return np.stack([np.cos(nt), np.sin(nt), np.zeros_like(nt)], axis=-1)
 
-    def orbit_frame(self, t) -> Rotation:
+    def orbit_frame(self, t: ArrayLike) -> Rotation:
         """The orbiting (LVLH) frame to world at ``t`` (s): columns roll (velocity), pitch
         (orbit normal), yaw (radius); one rotation, or a stack for an array of times."""
         nt = self._n * np.asarray(t, dtype=float)
         return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * _LVLH0
 
-    def __call__(self, t, omega, attitude) -> np.ndarray:
+    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
         """World-frame torque ``3 n^2 R (r_b x I r_b)``, N m, shape of ``omega`` (or (N, 3)).
 
         Parameters
@@ -218,9 +223,9 @@ class GravityGradient:
         I = self._moments()
         r_b = attitude.inv().apply(self.radial_direction(float(t)))
         tau_b = 3.0 * self._n**2 * np.cross(r_b, I * r_b)
-        return attitude.apply(tau_b)
+        return cast(Vector3, attitude.apply(tau_b))
 
-    def jacobi_integral(self, t, omega, attitude) -> np.ndarray:
+    def jacobi_integral(self, t: ArrayLike, omega: ArrayLike, attitude: Rotation) -> FloatArray:
         """The orbiting-frame energy (Jacobi integral) ``h``, J; conserved along the motion.
 
         ``h = (1/2) w_r . I w_r - (1/2) n^2 o_b . I o_b + (3/2) n^2 r_b . I r_b`` with
@@ -244,9 +249,10 @@ class GravityGradient:
         r_b = inv.apply(self.radial_direction(t))
         o_b = inv.apply([0.0, 0.0, 1.0])
         w_r = np.asarray(omega, dtype=float) - n * o_b
-        return 0.5 * np.sum(w_r * I * w_r, axis=-1) + 0.5 * n**2 * np.sum(3.0 * r_b * I * r_b - o_b * I * o_b, axis=-1)
+        return cast(FloatArray, 0.5 * np.sum(w_r * I * w_r, axis=-1)
+                    + 0.5 * n**2 * np.sum(3.0 * r_b * I * r_b - o_b * I * o_b, axis=-1))
 
-    def max_spin(self, t, omega, attitude) -> np.ndarray:
+    def max_spin(self, t: float, omega: np.ndarray, attitude: Rotation) -> FloatArray:
         """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state.
 
         The Jacobi integral ``h`` is conserved and ``o_b . I o_b <= I3``, ``r_b . I r_b >= I1``,
@@ -258,9 +264,9 @@ class GravityGradient:
         I, n = self._moments(), self._n
         h = self.jacobi_integral(t, omega, attitude)
         t2_max = h + 0.5 * n**2 * np.max(I, axis=-1) - 1.5 * n**2 * np.min(I, axis=-1)
-        return n + np.sqrt(2.0 * np.maximum(t2_max, 0.0) / np.min(I, axis=-1))
+        return cast(FloatArray, n + np.sqrt(2.0 * np.maximum(t2_max, 0.0) / np.min(I, axis=-1)))
 
-    def _moments(self) -> np.ndarray:
+    def _moments(self) -> Vector3:
         if self._I is None:
             raise ValueError("this GravityGradient has no moments: use gg.bind(body) or give moments=[I1, I2, I3] (kg m^2)")
         return self._I
@@ -271,14 +277,14 @@ class GravityGradient:
 _LVLH0 = Rotation.from_matrix([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
 
 
-def _axis(name: str, value) -> int:
+def _axis(name: str, value: int | str) -> int:
     """0-based index of one public axis label (1, 2, 3 or a name), by :func:`~tumble.validation.axis_index`."""
     if np.ndim(value) != 0:
         raise ValueError(f"{name} = {short_repr(value)} must be {AXES_ALLOWED}")
     return int(axis_index(name, value))
 
 
-def rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
+def rpy_axes(pitch_axis: int | str, yaw_axis: int | str) -> tuple[tuple[int, int, int], Matrix3]:
     """The body's roll, pitch and yaw axes: principal indices and directions.
 
     The roll axis is the principal axis left over; when (roll, pitch, yaw) is an odd
@@ -324,7 +330,7 @@ def rpy_axes(pitch_axis, yaw_axis) -> tuple[tuple[int, int, int], np.ndarray]:
     return (a, b, c), P
 
 
-def _angles(name: str, value) -> np.ndarray:
+def _angles(name: str, value: ArrayLike) -> FloatArray:
     a = check_vectors(name, value, "rad", size=None)
     if a.ndim > 1:
         raise ValueError(f"{name} has shape {a.shape}; allowed: a number or a 1-d array (rad)")
@@ -335,14 +341,17 @@ class LVLHState(NamedTuple):
     """A body at rest in the orbiting frame at t = 0 (see :func:`lvlh_state`)."""
 
     #: Initial angular velocity, principal frame, rad/s: ``n e_z`` in the world frame.
-    omega0: np.ndarray
+    omega0: Vector3
     #: Design frame to world: what ``simulate(..., attitude0=...)`` takes.
     attitude0: Rotation
     #: Principal body frame to world (a Trajectory's ``attitude`` convention).
     attitude: Rotation
 
 
-def lvlh_state(gg: GravityGradient, body, *, roll=0.0, pitch=0.0, yaw=0.0, pitch_axis=3, yaw_axis=1) -> LVLHState:
+def lvlh_state(
+    gg: GravityGradient, body: Body | MassProperties, *, roll: ArrayLike = 0.0, pitch: ArrayLike = 0.0,
+    yaw: ArrayLike = 0.0, pitch_axis: int | str = 3, yaw_axis: int | str = 1,
+) -> LVLHState:
     """Attitude and angular velocity of ``body`` at rest in the orbiting (LVLH) frame at t = 0.
 
     The body's roll, pitch and yaw axes (principal axes, module docstring) point along the
@@ -391,7 +400,9 @@ def lvlh_state(gg: GravityGradient, body, *, roll=0.0, pitch=0.0, yaw=0.0, pitch
     return LVLHState(omega0, design, principal)
 
 
-def relative_attitude(gg: GravityGradient, t, attitude, *, pitch_axis=3, yaw_axis=1) -> Rotation:
+def relative_attitude(
+    gg: GravityGradient, t: ArrayLike, attitude: Rotation, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
+) -> Rotation:
     """The body's roll-pitch-yaw frame to the orbiting frame at times ``t`` (s).
 
     ``attitude`` maps the principal frame to world (one rotation, or a stack matching ``t``).
@@ -405,12 +416,14 @@ def relative_attitude(gg: GravityGradient, t, attitude, *, pitch_axis=3, yaw_axi
 class OrbitAngles(NamedTuple):
     """Roll, pitch and yaw of a body relative to the orbiting frame, rad (pitch-roll-yaw sequence)."""
 
-    roll: np.ndarray
-    pitch: np.ndarray
-    yaw: np.ndarray
+    roll: FloatArray
+    pitch: FloatArray
+    yaw: FloatArray
 
 
-def orbit_frame_angles(traj, gg: GravityGradient, *, pitch_axis=3, yaw_axis=1) -> OrbitAngles:
+def orbit_frame_angles(
+    traj: Trajectory, gg: GravityGradient, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
+) -> OrbitAngles:
     """Roll, pitch and yaw of a run relative to the orbiting (LVLH) frame, against ``traj.t``.
 
     Parameters

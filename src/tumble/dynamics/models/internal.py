@@ -59,13 +59,18 @@ sphere's mass (its centre's parallel-axis term) but not its own ``J``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 
+from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ...validation import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
 from ..special.quaternion import quaternion_rate
+
+if TYPE_CHECKING:
+    from ...mass import Body, MassProperties, Rotor
 
 __all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
 
@@ -111,11 +116,11 @@ class SphericalDamper:
         check_at_most(f"damping = {self.damping!r} N m s with inertia = {self.inertia!r} kg m^2 relaxes at c / J",
                       self.damping / self.inertia, "1/s", MAX_RATE)
 
-    def rates(self, moments) -> np.ndarray:
+    def rates(self, moments: ArrayLike) -> Vector3:
         """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments."""
         return self.damping / self.inertia * (1.0 + self.inertia / np.asarray(moments, float))
 
-    def relax(self, free, omega_d, moments, dt):
+    def relax(self, free: FloatArray, omega_d: FloatArray, moments: FloatArray, dt: float) -> tuple[FloatArray, FloatArray]:
         """Exact flow of the viscous coupling alone for ``dt`` s (L and the attitude fixed).
 
         With ``w = (free - J w_d) / I`` (``free = L - h``) the coupling
@@ -160,18 +165,18 @@ class Rotors:
         Unit spin axes ``n_k``, principal frame.
     """
 
-    parts: tuple
-    axial_moments: np.ndarray
-    axes: np.ndarray
+    parts: tuple[Rotor, ...]
+    axial_moments: FloatArray
+    axes: FloatArray
 
     @classmethod
-    def of(cls, body) -> Rotors | None:
+    def of(cls, body: Body | MassProperties) -> Rotors | None:
         """The rotors of a :class:`~tumble.mass.Body` (None without any; a bare
         :class:`~tumble.mass.MassProperties` has none)."""
         parts = tuple(getattr(body, "rotors", ()))
         if not parts:
             return None
-        A = body.principal_axes  # principal -> design
+        A = body.principal_axes  # principal -> design (a Body: it has rotors)
         return cls(parts, np.array([p.axial_moment for p in parts]), np.array([A.T @ p.axis for p in parts]))
 
     @property
@@ -185,29 +190,29 @@ class Rotors:
         return all(p.constant_spin or not callable(p.spin_rate) or p.spin_acceleration is not None
                    for p in self.parts)
 
-    def spins(self, t) -> np.ndarray:
+    def spins(self, t: ArrayLike) -> FloatArray:
         """Relative spins ``s_k(t)``, rad/s; shape ``np.shape(t) + (k,)``."""
         return np.stack([p.spin(t) for p in self.parts], axis=-1)
 
-    def spin_derivatives(self, t) -> np.ndarray:
+    def spin_derivatives(self, t: ArrayLike) -> FloatArray:
         """``ds_k/dt``, rad/s^2; shape ``np.shape(t) + (k,)`` (requires :attr:`derivative_known`)."""
-        return np.stack([p.spin_derivative(t) for p in self.parts], axis=-1)
+        return np.stack([cast(FloatArray, p.spin_derivative(t)) for p in self.parts], axis=-1)
 
-    def momentum(self, t) -> np.ndarray:
+    def momentum(self, t: ArrayLike) -> Vector3:
         """``h(t) = sum_k J_k s_k(t) n_k``, kg m^2/s; shape ``np.shape(t) + (3,)``."""
         return self.spins(t) @ (self.axial_moments[:, None] * self.axes)
 
-    def momentum_rate(self, t) -> np.ndarray:
+    def momentum_rate(self, t: ArrayLike) -> Vector3:
         """``h'(t)``, N m; shape ``np.shape(t) + (3,)``."""
         return self.spin_derivatives(t) @ (self.axial_moments[:, None] * self.axes)
 
-    def spin_energy(self, t) -> np.ndarray:
+    def spin_energy(self, t: ArrayLike) -> FloatArray:
         """``sum_k J_k s_k^2 / 2``, J; shape ``np.shape(t)``."""
         s = self.spins(t)
-        return 0.5 * np.sum(self.axial_moments * s * s, axis=-1)
+        return cast(FloatArray, 0.5 * np.sum(self.axial_moments * s * s, axis=-1))
 
 
-def gyrostat_rate(moments, spin, momentum):
+def gyrostat_rate(moments: ArrayLike, spin: ArrayLike, momentum: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Linearised rate about a spin about the intermediate axis with a rotor along it.
 
     Parameters
@@ -235,11 +240,11 @@ def gyrostat_rate(moments, spin, momentum):
 class InternalSamples(NamedTuple):
     """What an integrator returns for a run with internal models, at the sample times."""
 
-    omega: np.ndarray  # (n, 3) rad/s
-    quat: np.ndarray  # (n, 4) body -> world, scalar last
-    damper_omega: np.ndarray | None  # (n, 3) rad/s
-    dissipated: np.ndarray | None  # (n,) J
-    work_integral: np.ndarray | None  # (n,) J: integral of h'.w dt
+    omega: Vector3  # (n, 3) rad/s
+    quat: Quaternion  # (n, 4) body -> world, scalar last
+    damper_omega: Vector3 | None  # (n, 3) rad/s
+    dissipated: FloatArray | None  # (n,) J
+    work_integral: FloatArray | None  # (n,) J: integral of h'.w dt
 
 
 @dataclass(frozen=True, eq=False)
@@ -252,7 +257,7 @@ class InternalModel:
     integral ``A = integral h'.w dt`` and the energy dissipated.
     """
 
-    moments: np.ndarray
+    moments: Vector3
     rotors: Rotors | None = None
     damper: SphericalDamper | None = None
 
@@ -298,7 +303,7 @@ class InternalModel:
         slow = max(float(spin), 1.0 / float(t_end))
         return self.relaxation_rate / slow, slow
 
-    def spin_bound(self, omega0, t) -> float:
+    def spin_bound(self, omega0: ArrayLike, t: ArrayLike) -> float:
         """An estimate of the fastest body spin of a run, rad/s: ``|w0| + 2 max |h| / I1`` over
         the sample times ``t`` (the rotors can hand the body their momentum and reverse it)."""
         spin = float(np.linalg.norm(omega0))
@@ -307,53 +312,54 @@ class InternalModel:
         h = np.linalg.norm(self.rotors.momentum(np.asarray(t, float)), axis=-1)
         return spin + 2.0 * float(np.max(h)) / float(np.min(self.moments))
 
-    def momentum(self, t) -> np.ndarray:
+    def momentum(self, t: ArrayLike) -> Vector3:
         """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors)."""
         if self.rotors is None:
             return np.zeros(np.shape(t) + (3,))
         return self.rotors.momentum(t)
 
-    def momentum_rate(self, t) -> np.ndarray:
-        return self.rotors.momentum_rate(t) if self.tracks_work else np.zeros(np.shape(t) + (3,))
+    def momentum_rate(self, t: ArrayLike) -> Vector3:
+        return cast(Rotors, self.rotors).momentum_rate(t) if self.tracks_work else np.zeros(np.shape(t) + (3,))
 
-    def initial_state(self, omega0, quat0) -> np.ndarray:
+    def initial_state(self, omega0: ArrayLike, quat0: ArrayLike) -> FloatArray:
         """The ODE state at t = 0 (the damper turning with the body)."""
         w0 = np.asarray(omega0, float)
         J = self.damper_inertia
-        parts = [self.moments * w0 + self.momentum(0.0) + J * w0, quat0]
+        parts: list[ArrayLike] = [self.moments * w0 + self.momentum(0.0) + J * w0, quat0]
         if self.damper is not None:
             parts.append(w0)
         parts += [[0.0]] * (int(self.tracks_work) + int(self.damper is not None))
         return np.concatenate(parts)
 
-    def atol(self, atol: float, spin: float) -> np.ndarray:
+    def atol(self, atol: float, spin: float) -> FloatArray:
         """Absolute tolerances per state component for a relative ``atol`` and a spin scale (rad/s)."""
         I = float(np.max(self.moments)) + self.damper_inertia
         n_energy = int(self.tracks_work) + int(self.damper is not None)
         wd = [atol * spin] * (3 if self.damper is not None else 0)
         return np.array([atol * spin * I] * 3 + [atol] * 4 + wd + [atol * spin * spin * I] * n_energy)
 
-    def rhs(self, t: float, y, torque) -> np.ndarray:
+    def rhs(self, t: float, y: FloatArray, torque: Callable[[float, Vector3, Quaternion], Vector3] | None) -> FloatArray:
         """``dy/dt``; ``torque(t, w, q)`` returns the external torque in the body frame (N m)."""
+        damper = cast(SphericalDamper, self.damper)  # read only where wd is set, i.e. with a damper
         L, q = y[:3], y[3:7]
         h = self.momentum(t)
         wd = y[7:10] if self.damper is not None else None
         free = L - h
-        w = (free if wd is None else free - self.damper.inertia * wd) / self.moments
+        w = (free if wd is None else free - damper.inertia * wd) / self.moments
         dL = _cross(L, w)
         if torque is not None:
             dL = dL + torque(t, w, q)
-        out = [dL, quaternion_rate(q, w)]
+        out: list[ArrayLike] = [dL, quaternion_rate(q, w)]
         if wd is not None:
             slip = wd - w
-            out.append(_cross(wd, w) - (self.damper.damping / self.damper.inertia) * slip)
+            out.append(_cross(wd, w) - (damper.damping / damper.inertia) * slip)
         if self.tracks_work:
             out.append([self.momentum_rate(t) @ w])
         if wd is not None:
-            out.append([self.damper.damping * (slip @ slip)])
+            out.append([damper.damping * (slip @ slip)])
         return np.concatenate(out)
 
-    def jacobian(self, t: float, y) -> np.ndarray:
+    def jacobian(self, t: float, y: FloatArray) -> FloatArray:
         """``d(rhs)/dy`` of the torque-free part of :meth:`rhs`, shape (m, m), for implicit methods.
 
         With ``M = diag(1 / I)``, ``w = M (L - h - J w_d)`` and the slip ``s = w_d - w``:
@@ -366,8 +372,8 @@ class InternalModel:
         L, q = y[:3], y[3:7]
         m = len(y)
         M = np.diag(1.0 / self.moments)
-        damper = self.damper
-        wd = y[7:10] if damper is not None else None
+        damper = cast(SphericalDamper, self.damper)  # read only where wd is set, i.e. with a damper
+        wd = y[7:10] if self.damper is not None else None
         free = L - self.momentum(t)
         w = (free if wd is None else free - damper.inertia * wd) / self.moments
         dw = np.zeros((3, m))  # dw/dy
@@ -394,7 +400,7 @@ class InternalModel:
             out[10 if wd is not None else 7] = self.momentum_rate(t) @ dw
         return out
 
-    def samples(self, t, Y) -> InternalSamples:
+    def samples(self, t: FloatArray, Y: FloatArray) -> InternalSamples:
         """Unpack ODE states ``Y`` (shape (n, m)) at the times ``t`` (shape (n,))."""
         L, q = Y[:, :3], Y[:, 3:7]
         wd = Y[:, 7:10] if self.damper is not None else None
@@ -403,16 +409,16 @@ class InternalModel:
         D = Y[:, -1] if self.damper is not None else None
         return InternalSamples(self.omega(t, L, wd), q / np.linalg.norm(q, axis=1, keepdims=True), wd, D, A)
 
-    def omega(self, t, L, omega_d=None) -> np.ndarray:
+    def omega(self, t: ArrayLike, L: Vector3, omega_d: Vector3 | None = None) -> Vector3:
         """``w = I^-1 (L - h(t) - J w_d)``, rad/s; ``L`` and ``w_d`` of shape (n, 3)."""
         free = L - self.momentum(t)
         if omega_d is not None:
-            free = free - self.damper.inertia * omega_d
+            free = free - cast(SphericalDamper, self.damper).inertia * omega_d
         return free / self.moments
 
-    def trajectory_fields(self, t, run: InternalSamples) -> dict:
+    def trajectory_fields(self, t: FloatArray, run: InternalSamples) -> dict[str, Any]:
         """The optional :class:`~tumble.dynamics.trajectory.Trajectory` fields of a run."""
-        fields: dict = {}
+        fields: dict[str, Any] = {}
         if self.rotors is not None:
             h = self.rotors.momentum(t)
             fields.update(internal_momentum=h, rotor_spin=self.rotors.spins(t),
@@ -425,16 +431,16 @@ class InternalModel:
                 fields["motor_work"] = boundary - A
         if self.damper is not None:
             fields.update(damper_inertia=self.damper.inertia, damper_omega=run.damper_omega,
-                          dissipated=run.dissipated - run.dissipated[0])
+                          dissipated=cast(FloatArray, run.dissipated) - cast(FloatArray, run.dissipated)[0])
         return fields
 
 
-def _cross(a, b) -> np.ndarray:
+def _cross(a: Vector3, b: Vector3) -> Vector3:
     """``a x b`` of two 3-vectors (np.cross costs ten times more on single vectors, and the
     right-hand side is called hundreds of thousands of times)."""
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
 
-def _cross_matrix(v) -> np.ndarray:
+def _cross_matrix(v: Vector3) -> Matrix3:
     """``[v]x``, the matrix of ``u -> v x u``."""
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])

@@ -33,14 +33,19 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike, Vector3
 from ...validation import check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
+
+if TYPE_CHECKING:
+    from ...mass import Body, MassProperties
 
 __all__ = [
     "BoundsSpin",
@@ -76,7 +81,9 @@ class TorqueModel(Protocol):
     False
     """
 
-    frame: str
+    @property
+    def frame(self) -> str:
+        """``"body"`` or ``"world"`` (read-only: models are frozen dataclasses)."""
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
         """The torque at time ``t`` (s) for ``omega`` (rad/s, principal frame, (3,) or (N, 3)) and
@@ -95,7 +102,7 @@ class NeedsBody(Protocol):
     (True, False)
     """
 
-    def bind(self, body) -> TorqueModel:
+    def bind(self, body: Body | MassProperties | ArrayLike) -> TorqueModel:
         """The model acting on ``body`` (a Body, MassProperties or principal moments, kg m^2,
         shape (3,) or (N, 3)); raises ``ValueError`` if it already holds other moments."""
 
@@ -138,7 +145,7 @@ class ConstantTorque:
         object.__setattr__(self, "vector", check_vector("torque vector", self.vector, "N m"))
         _check_frame(self.frame)
 
-    def __call__(self, t, omega, attitude) -> np.ndarray:
+    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
         return np.array(self.vector)
 
 
@@ -146,7 +153,7 @@ class ConstantTorque:
 class FunctionTorque:
     """Wraps ``fn(t, omega, attitude) -> tau`` with the frame its result is expressed in."""
 
-    fn: Callable
+    fn: Callable[[float, np.ndarray, Rotation], ArrayLike]
     frame: str = "body"
 
     def __post_init__(self) -> None:
@@ -154,11 +161,11 @@ class FunctionTorque:
             raise ValueError(f"torque = {self.fn!r} is not callable")
         _check_frame(self.frame)
 
-    def __call__(self, t, omega, attitude) -> np.ndarray:
+    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
         return np.asarray(self.fn(t, omega, attitude), dtype=float)
 
 
-def as_torque(torque):
+def as_torque(torque: TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike] | None) -> TorqueModel | None:
     """The torque model for ``torque``: models pass through, a plain callable acts in the body frame.
 
     Parameters
@@ -180,7 +187,7 @@ def as_torque(torque):
     return FunctionTorque(torque, "body")
 
 
-def bind_to_body(model, body):
+def bind_to_body(model: TorqueModel | None, body: Body | MassProperties | ArrayLike) -> TorqueModel | None:
     """``model`` bound to ``body`` if it needs the body's moments (:class:`NeedsBody`), else itself.
 
     Parameters
@@ -206,7 +213,7 @@ def bind_to_body(model, body):
     """
     return model.bind(body) if isinstance(model, NeedsBody) else model
 
-def body_torque(model, t: float, omega, attitude) -> np.ndarray:
+def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
     """Evaluate a torque model and return the torque in the principal (body) frame, N m.
 
     Parameters
@@ -241,7 +248,9 @@ def body_torque(model, t: float, omega, attitude) -> np.ndarray:
     return rotate_by_quaternion(quat_conjugate(attitude.as_quat()), tau)
 
 
-def spin_gain(model, t: float, omega, attitude, moments, duration: float) -> float:
+def spin_gain(
+    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation, moments: ArrayLike, duration: float
+) -> float:
     """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
     bounding a run's work and choosing default steps.
 

@@ -21,8 +21,12 @@ The constants were rounded from 80-digit mpmath values.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import TypeAlias
 
 import numpy as np
+
+from ...typing import BoolArray, FloatArray, FloatOrArray
 
 __all__ = [
     "LN2",
@@ -41,6 +45,9 @@ __all__ = [
     "where",
 ]
 
+#: A double-double ``(hi, lo)``: two floats (one number) or two float arrays (elementwise).
+DoubleDouble: TypeAlias = tuple[FloatOrArray, FloatOrArray]
+
 #: pi / 2 and ln 2 as double-doubles; 2 pi as a triple (for reductions of angles up to ~1e30).
 PI_2 = (1.5707963267948966, 6.123233995736766e-17)
 LN2 = (0.6931471805599453, 2.3190468138462996e-17)
@@ -48,26 +55,26 @@ _TWO_PI = (6.283185307179586, 2.4492935982947064e-16, -5.989539619436679e-33)
 _SPLITTER = 134217729.0  # 2^27 + 1 (Dekker 1971)
 
 
-def two_sum(a, b):
+def two_sum(a: FloatOrArray, b: FloatOrArray) -> DoubleDouble:
     """``s + e == a + b`` exactly, ``s = fl(a + b)`` (Knuth, Theorem 4.2.2B)."""
     s = a + b
     bb = s - a
     return s, (a - (s - bb)) + (b - bb)
 
 
-def _fast_two_sum(a, b):
+def _fast_two_sum(a: FloatOrArray, b: FloatOrArray) -> DoubleDouble:
     """``two_sum`` for ``|a| >= |b|`` (Dekker 1971)."""
     s = a + b
     return s, b - (s - a)
 
 
-def _split(a):
+def _split(a: FloatOrArray) -> DoubleDouble:
     t = _SPLITTER * a
     hi = t - (t - a)
     return hi, a - hi
 
 
-def two_prod(a, b):
+def two_prod(a: FloatOrArray, b: FloatOrArray) -> DoubleDouble:
     """``p + e == a * b`` exactly, ``p = fl(a * b)`` (Dekker 1971); ``|a|, |b| < ~1e300``."""
     p = a * b
     ah, al = _split(a)
@@ -75,7 +82,7 @@ def two_prod(a, b):
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
-def add(x, y):
+def add(x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
     """``x + y`` for double-doubles (Hida, Li & Bailey 2001, the IEEE-style sum)."""
     s, e = two_sum(x[0], y[0])
     t, f = two_sum(x[1], y[1])
@@ -83,19 +90,19 @@ def add(x, y):
     return _fast_two_sum(s, e + f)
 
 
-def mul(x, y):
+def mul(x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
     """``x * y`` for double-doubles (Hida, Li & Bailey 2001)."""
     p, e = two_prod(x[0], y[0])
     return _fast_two_sum(p, e + (x[0] * y[1] + x[1] * y[0]))
 
 
-def mul_d(x, b):
+def mul_d(x: DoubleDouble, b: FloatOrArray) -> DoubleDouble:
     """``x * b`` for a double-double ``x`` and a double ``b``."""
     p, e = two_prod(x[0], b)
     return _fast_two_sum(p, e + x[1] * b)
 
 
-def mul_scaled(x, b):
+def mul_scaled(x: DoubleDouble, b: FloatOrArray) -> DoubleDouble:
     """``x * b`` for a double-double ``x`` and doubles ``b``, both scaled by powers of two
     first (exactly), so that Dekker's splitting cannot overflow however large ``x`` is.
 
@@ -105,12 +112,12 @@ def mul_scaled(x, b):
     return mul_d((np.ldexp(x[0], -e), np.ldexp(x[1], -e)), np.ldexp(b, e))
 
 
-def where(cond, x, y):
+def where(cond: BoolArray, x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
     """``x`` where ``cond``, else ``y``, for double-doubles (``numpy.where`` on both parts)."""
     return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
 
 
-def div(x, y):
+def div(x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
     """``x / y`` for double-doubles: two quotient digits, ~2^-104 relative (the "sloppy"
     division of Hida, Li & Bailey 2001)."""
     q1 = x[0] / y[0]
@@ -119,13 +126,13 @@ def div(x, y):
     return _fast_two_sum(q1, r / y[0])
 
 
-def sqrt(x):
+def sqrt(x: DoubleDouble) -> DoubleDouble:
     """``sqrt(x)`` for a double-double ``x >= 0``: one Newton step from the double root
     (Hida, Li & Bailey 2001, after Karp & Markstein)."""
     if isinstance(x[0], float):  # a scalar: keep to Python's math (fast)
         if not 0.0 < x[0] < math.inf:  # 0, inf; nan for negative numbers, as numpy
             return (math.sqrt(x[0]) if x[0] >= 0 else math.nan), 0.0
-        y = math.sqrt(x[0])
+        y: FloatOrArray = math.sqrt(x[0])
         p, e = two_prod(y, y)
         return _fast_two_sum(y, ((x[0] - p) - e + x[1]) / (2.0 * y))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -135,41 +142,42 @@ def sqrt(x):
         return _fast_two_sum(y, np.where((y > 0) & (y < np.inf), corr, 0.0))
 
 
-def neg(x):
+def neg(x: DoubleDouble) -> DoubleDouble:
     """``-x`` for a double-double (exact)."""
     return -x[0], -x[1]
 
 
-def norm(v):
+def norm(v: Sequence[DoubleDouble]) -> tuple[DoubleDouble, int | FloatArray]:
     """``|v|`` of a sequence of double-doubles (floats or arrays, elementwise), as a double-double
     mantissa ``s`` and a power of two ``e``: ``|v| = s 2^e``. Each component is scaled by the
     power of two of the largest first (exactly), so that no square underflows or overflows."""
+    e: int | FloatArray
     if np.ndim(v[0][0]) == 0:  # one vector: keep to Python's math (fast), as sqrt does
-        e = math.frexp(max(abs(float(x[0])) for x in v))[1]  # 0 for a zero vector
+        e = e_int = math.frexp(max(abs(float(x[0])) for x in v))[1]  # 0 for a zero vector
 
-        def scaled(x):
-            return math.ldexp(float(x[0]), -e), math.ldexp(float(x[1]), -e)
+        def scaled(x: DoubleDouble) -> DoubleDouble:
+            return math.ldexp(float(x[0]), -e_int), math.ldexp(float(x[1]), -e_int)
     else:
-        big = abs(v[0][0])
+        big = np.abs(v[0][0])  # an array on this branch (np.abs and abs are the same ufunc)
         for x in v[1:]:
-            big = np.maximum(big, abs(x[0]))
+            big = np.maximum(big, np.abs(x[0]))
         e = np.frexp(big)[1]  # 0 where big = 0
 
-        def scaled(x):
+        def scaled(x: DoubleDouble) -> DoubleDouble:
             return ldexp(x, -e)
-    acc = (0.0, 0.0)
+    acc: DoubleDouble = (0.0, 0.0)
     for x in v:
         x = scaled(x)
         acc = add(acc, mul(x, x))
     return sqrt(acc), e
 
 
-def ldexp(x, e):
+def ldexp(x: DoubleDouble, e: int | FloatArray) -> DoubleDouble:
     """``x * 2^e`` for a double-double (exact unless it leaves the normal range)."""
     return np.ldexp(x[0], e), np.ldexp(x[1], e)
 
 
-def reduce_2pi(x) -> np.ndarray:
+def reduce_2pi(x: DoubleDouble) -> FloatOrArray:
     """A double-double angle reduced to ``[-pi, pi]``, rounded to double, rad.
 
     ``x - q 2 pi`` with ``q = rint(x / 2 pi)`` and ``2 pi`` carried to three doubles

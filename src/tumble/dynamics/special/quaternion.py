@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...typing import ArrayLike, FloatOrArray, Quaternion, Vector3
+
 __all__ = ["quat_conjugate", "quat_multiply", "quat_zxz", "quaternion_rate", "rotate_by_quaternion"]
 
 
-def rotate_by_quaternion(quat, v) -> np.ndarray:
+def rotate_by_quaternion(quat: ArrayLike, v: ArrayLike) -> Vector3:
     """``v`` rotated by unit quaternions ``quat`` (scalar last, as scipy): ``q v q*``.
 
     ``v' = v + 2 w (u x v) + 2 u x (u x v)`` for ``q = (u, w)`` (Shuster, J. Astronaut. Sci. 41
@@ -32,34 +34,34 @@ def rotate_by_quaternion(quat, v) -> np.ndarray:
     ndarray, shape (..., 3)
     """
     q = np.asarray(quat, float)
-    v = np.asarray(v, float)
+    x = np.asarray(v, float)
     u, w = q[..., :3], q[..., 3:]
-    uv = np.cross(u, v)
-    return v + 2.0 * (w * uv + np.cross(u, uv))
+    uv = np.cross(u, x)
+    return x + 2.0 * (w * uv + np.cross(u, uv))
 
 
-def quat_multiply(a, b) -> np.ndarray:
+def quat_multiply(a: ArrayLike, b: ArrayLike) -> Quaternion:
     """Hamilton product ``a (x) b`` of quaternions, scalar last (scipy: ``Ra * Rb``).
 
     ``(u, w)(v, s) = (w v + s u + u x v, w s - u . v)`` (Shuster, J. Astronaut. Sci. 41 (1993)
     439); broadcasts over leading axes; shapes (..., 4).
     """
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    u, w, v, s = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    qa, qb = np.asarray(a, float), np.asarray(b, float)
+    u, w, v, s = qa[..., :3], qa[..., 3:], qb[..., :3], qb[..., 3:]
+    out = np.empty(np.broadcast_shapes(qa.shape, qb.shape))
     out[..., :3] = w * v + s * u + np.cross(u, v)
     out[..., 3] = (w * s)[..., 0] - np.sum(u * v, axis=-1)
     return out
 
 
-def quat_conjugate(q) -> np.ndarray:
+def quat_conjugate(q: ArrayLike) -> Quaternion:
     """The inverse of unit quaternions, scalar last."""
     out = np.array(q, float)
     out[..., :3] *= -1.0
     return out
 
 
-def quat_zxz(phi, theta, psi) -> np.ndarray:
+def quat_zxz(phi: FloatOrArray, theta: FloatOrArray, psi: FloatOrArray) -> Quaternion:
     """``Rz(phi) Rx(theta) Rz(psi)`` (intrinsic z-x-z Euler angles, rad) as quaternions, scalar
     last: the product of the three elementary quaternions written out,
     ``(sb (ca cc + sa sc), sb (sa cc - ca sc), cb (sa cc + ca sc), cb (ca cc - sa sc))`` with
@@ -73,7 +75,7 @@ def quat_zxz(phi, theta, psi) -> np.ndarray:
                     axis=-1)
 
 
-def quaternion_rate(quat, omega) -> np.ndarray:
+def quaternion_rate(quat: ArrayLike, omega: ArrayLike) -> Quaternion:
     """Time derivative of the attitude quaternion for body-frame angular velocity.
 
     ``q' = q (x) (omega, 0) / 2``, written out for scalar-last quaternions ``(v, s)``:
