@@ -50,6 +50,7 @@ from scipy.spatial.transform import Rotation
 from ...validation import check_increasing, short_repr
 from ..models.internal import InternalSamples
 from ..models.torques import body_torque, spin_gain
+from .compiled import compiled_model, run_split
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]
 
@@ -129,7 +130,8 @@ def _body_torque(torque, t, omega, q):
     return body_torque(torque, t, omega.T, Rotation.from_quat(q.T)).T
 
 
-def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None = None, torque=None):
+def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None = None, torque=None,
+              compiled: bool = True):
     """Integrate N bodies with the composed splitting, sampled at times ``t``.
 
     Parameters
@@ -151,6 +153,12 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
     torque : torque model, optional
         ``tau(t, omega, attitude)`` (see :mod:`tumble.dynamics.models.torques`); called with arrays of
         N bodies and may return shape (3,) or (N, 3).
+
+    compiled : bool
+        Run a built-in torque (constant in the body or the world, gravity gradient) in the
+        compiled kernel (:mod:`tumble.dynamics.methods.compiled`), the default; False keeps the
+        numpy path, which calls the model from Python at every kick (the reference the tests
+        compare with).
 
     Returns
     -------
@@ -176,6 +184,9 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
 
     if torque is None:  # every batch size the same arithmetic: a body's run does not depend on its batch
         return _propagate_free(I, L, q, t, subflows, step)
+    builtin = compiled_model(torque)
+    if builtin is not None and compiled:  # a built-in torque: the whole run compiled
+        return run_split(I, L, q, t, step, COMPOSITIONS[order], builtin)
     run = _propagate_split(I, L, q, t, order, step, torque)
     return run.omega, run.quat
 
