@@ -10,9 +10,8 @@ warm-up (numba's compilation is not counted).
 
 What it shows: the exact-flow splitting (Celledoni, Fasso, Safstrom & Zanna 2008) makes no
 error in the free motion, so its error is proportional to the torque: at equal accuracy it
-takes steps 20-50 times longer than the geometric splitting into rotations. Its free flow is
-the double-double closed form evaluated from Python (~1.3 ms a step for one body), not yet
-compiled, so per run it is still slower than the compiled geometric methods.
+takes steps 20-50 times longer than the geometric splitting into rotations. Both run compiled
+here (a built-in torque): the exact flow costs ~1 us a step, a Strang step of rotations less.
 """
 
 from __future__ import annotations

@@ -32,6 +32,10 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
+from .compiled_flow import (  # free_flow: _run calls it; compiled in _compiled()
+    compiled_free_flow,
+    free_flow,
+)
 
 __all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
 
@@ -106,7 +110,8 @@ def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArr
 
 
 def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray, kind: int,
-         tau: FloatArray, n: float, omega_out: FloatArray, quat_out: FloatArray) -> None:  # pragma: no cover
+         tau: FloatArray, n: float, exact: bool, omega_out: FloatArray,
+         quat_out: FloatArray) -> None:  # pragma: no cover
     """Every body through every sample interval: equal steps no longer than
     ``step``, each the Yoshida composition ``gammas`` of the Strang step with half kicks."""
     N = I.shape[0]
@@ -126,15 +131,20 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                 tc = t[s - 1] + stepno * h
                 for g in range(gammas.shape[0]):
                     hg = gammas[g] * h
-                    _body_torque(kind, tau, n, Ib, q, tc, kick)
-                    for i in range(3):
-                        L[i] += 0.5 * hg * kick[i]
-                    for r in range(_AXES.shape[0]):
-                        _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I)
+                    if kind != 0:
+                        _body_torque(kind, tau, n, Ib, q, tc, kick)
+                        for i in range(3):
+                            L[i] += 0.5 * hg * kick[i]
+                    if exact:  # the exact free flow (exact-flow splitting)
+                        free_flow(Ib, L, q, hg)
+                    else:  # the Strang step of exact rotations (geometric splitting)
+                        for r in range(_AXES.shape[0]):
+                            _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I)
                     tc += hg
-                    _body_torque(kind, tau, n, Ib, q, tc, kick)
-                    for i in range(3):
-                        L[i] += 0.5 * hg * kick[i]
+                    if kind != 0:
+                        _body_torque(kind, tau, n, Ib, q, tc, kick)
+                        for i in range(3):
+                            L[i] += 0.5 * hg * kick[i]
             norm = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
             for i in range(4):
                 q[i] /= norm
@@ -148,14 +158,15 @@ def _compiled() -> Callable[..., None]:
     """The kernel compiled by numba on first use (see the module docstring)."""
     from numba import njit
 
+    globals()["free_flow"] = compiled_free_flow()
     for name in ("_body_torque", "_rotate"):
         globals()[name] = njit(cache=True, inline="always")(globals()[name])
     return cast("Callable[..., None]", njit(cache=True)(_run))
 
 
 def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float, gammas: tuple[float, ...],
-              model: tuple[int, FloatArray, float]) -> tuple[FloatArray, FloatArray]:
-    """The composed splitting of N bodies under a built-in torque, compiled.
+              model: tuple[int, FloatArray, float] | None, *, exact: bool = False) -> tuple[FloatArray, FloatArray]:
+    """The composed splitting of N bodies under a built-in torque (or none), compiled.
 
     Parameters
     ----------
@@ -169,8 +180,11 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
         Largest step, s.
     gammas : tuple of float
         The composition's coefficients (:data:`tumble.dynamics.methods.geometric.COMPOSITIONS`).
-    model : tuple
-        :func:`compiled_model`'s answer.
+    model : tuple or None
+        :func:`compiled_model`'s answer; None for no torque.
+    exact : bool
+        The free part by the exact flow (:func:`tumble.dynamics.methods.compiled_flow.free_flow`,
+        the exact-flow splitting) instead of the Strang step of rotations.
 
     Returns
     -------
@@ -186,10 +200,11 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     >>> round(float(omega[-1, 0, 2]), 12)  # d omega3 / dt = 0.3 / 3 about a principal axis
     1.1
     """
-    kind, tau, n = model
+    kind, tau, n = model if model is not None else (0, np.zeros(3), 0.0)
     N = len(I)
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
     _compiled()(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
                 np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(t, dtype=float), float(step),
-                np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), omega_out, quat_out)
+                np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), omega_out,
+                quat_out)
     return omega_out, quat_out

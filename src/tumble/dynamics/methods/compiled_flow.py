@@ -1,0 +1,239 @@
+"""The exact torque-free flow of one body over a step, in double precision, compiled by numba.
+
+The formulas are those of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*,
+sec. 37 for omega, sec. 35 and 37 for the attitude ``R = G Rz(phi) Rx(theta) Rz(psi) P`` and the
+precession ``phi``; read its module docstring), evaluated for one step ``h`` from the state
+``(L, q)``, as the exact-flow splitting (:mod:`tumble.dynamics.methods.exact_split`) needs it
+thousands of times per run. Why a second evaluation of the same formulas: the double-double
+kernel (:mod:`tumble.dynamics.methods.exact_kernel`) keeps every phase to ~1e-32 and follows
+the motion to the separatrix and beyond ``1 - m = 1e-300``, at ~1.3 ms per call for one body
+from Python; a splitting step needs neither (its error is far larger) but needs speed, and
+numba cannot call scipy's special functions, so the pieces are written here over floats:
+
+- Jacobi's ``sn, cn, dn`` by the AGM and the descending Landen transformation (Abramowitz &
+  Stegun 16.4; as Cephes' ``ellpj``) of the phase reduced to ``|u_r| <= K`` by half periods;
+- Carlson's ``R_F``, ``R_J``, ``R_C`` by duplication (Carlson, Numer. Algorithms 10 (1995) 13,
+  algorithms 1-3 with his series), for ``F = s R_F(c^2, d^2, 1)`` and the excess
+  ``Pi - F = (n / 3) s^3 R_J(c^2, d^2, 1, 1 - n s^2)`` (DLMF 19.25.5, 19.25.14);
+- the precession ``phi(h) = (|L| / I_r + r1) h + (r1 / p) [x(u) - x(u0)]``, ``x`` the excess
+  continued by ``2 j (Pi(n|m) - K)`` over ``j`` half periods, so that ``F(am u) = u`` is used
+  exactly and no ``Pi(u) - Pi(u0)`` cancels.
+
+Accuracy (tests/test_compiled.py): against the double-double kernel ~1e-13 in omega and the
+attitude away from the separatrix; ``1 - m`` is clamped at 2^-52 (a motion closer to the
+separatrix is evaluated as that one), where the phase's condition ``1 / (1 - m)`` costs
+accuracy as in any double-precision evaluation.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable
+from typing import cast
+
+import numpy as np
+
+from ...typing import FloatArray
+
+__all__ = ["compiled_free_flow", "free_flow"]
+
+_EPS = 2.0 ** -52
+
+
+def _rc1(e: float) -> float:  # pragma: no cover - compiled
+    """``R_C(1, 1 + e)`` (DLMF 19.2.18-19.2.19): atan or atanh of ``sqrt(|e|)`` over it."""
+    if abs(e) < 1e-8:
+        return 1.0 - e / 3.0 + e * e / 5.0
+    if e > 0.0:
+        r = math.sqrt(e)
+        return math.atan(r) / r
+    r = math.sqrt(-e)
+    return math.atanh(r) / r
+
+
+def _rf(x: float, y: float, z: float) -> float:  # pragma: no cover - compiled
+    """Carlson's ``R_F(x, y, z)``, at most one argument zero (Carlson 1995, algorithm 1)."""
+    a0 = (x + y + z) / 3.0
+    q = (3.0 * _EPS) ** (-1.0 / 6.0) * max(abs(a0 - x), abs(a0 - y), abs(a0 - z)) + 1e-300
+    a, fac = a0, 1.0
+    while fac * q > abs(a):
+        sx, sy, sz = math.sqrt(x), math.sqrt(y), math.sqrt(z)
+        lam = sx * sy + sx * sz + sy * sz
+        x, y, z, a = 0.25 * (x + lam), 0.25 * (y + lam), 0.25 * (z + lam), 0.25 * (a + lam)
+        fac *= 0.25
+    X, Y = (a - x) / a, (a - y) / a
+    Z = -X - Y
+    e2, e3 = X * Y - Z * Z, X * Y * Z
+    return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / math.sqrt(a)
+
+
+def _rj(x: float, y: float, z: float, p: float) -> float:  # pragma: no cover - compiled
+    """Carlson's ``R_J(x, y, z, p)``, ``p > 0`` (Carlson 1995, algorithm 3)."""
+    a0 = (x + y + z + 2.0 * p) / 5.0
+    delta = (p - x) * (p - y) * (p - z)
+    q = (0.25 * _EPS) ** (-1.0 / 6.0) * max(abs(a0 - x), abs(a0 - y), abs(a0 - z), abs(a0 - p)) + 1e-300
+    a, fac, total = a0, 1.0, 0.0
+    while fac * q > abs(a):
+        sx, sy, sz, sp = math.sqrt(x), math.sqrt(y), math.sqrt(z), math.sqrt(p)
+        lam = sx * sy + sx * sz + sy * sz
+        d = (sp + sx) * (sp + sy) * (sp + sz)
+        total += fac / d * _rc1(fac * fac * fac * delta / (d * d))
+        x, y, z, p, a = 0.25 * (x + lam), 0.25 * (y + lam), 0.25 * (z + lam), 0.25 * (p + lam), 0.25 * (a + lam)
+        fac *= 0.25
+    X, Y, Z = (a - x) / a, (a - y) / a, (a - z) / a
+    P = -0.5 * (X + Y + Z)
+    e2 = X * Y + X * Z + Y * Z - 3.0 * P * P
+    e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P
+    e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P
+    e5 = X * Y * Z * P * P
+    series = (1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0
+              + 3.0 * e5 / 26.0)
+    return fac * series / (a * math.sqrt(a)) + 6.0 * total
+
+
+def _jacobi(v: float, k2: float, kp: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """``sn, cn, dn`` of ``|v| <= K`` for ``m = k2``, ``k' = kp`` (A&S 16.4, the AGM of
+    ``(1, k')`` and the descending Landen transformation)."""
+    a_s = np.empty(40)
+    c_s = np.empty(40)
+    a, b, c = 1.0, kp, math.sqrt(k2)
+    a_s[0], c_s[0] = a, c
+    n = 0
+    while abs(c) > _EPS * a and n < 39:
+        a, b, c = 0.5 * (a + b), math.sqrt(a * b), 0.5 * (a - b)
+        n += 1
+        a_s[n], c_s[n] = a, c
+    phi = (2.0 ** n) * a_s[n] * v
+    for i in range(n, 0, -1):
+        phi = 0.5 * (phi + math.asin(max(-1.0, min(1.0, c_s[i] / a_s[i] * math.sin(phi)))))
+    sn, cn = math.sin(phi), math.cos(phi)
+    return sn, cn, math.sqrt(cn * cn + kp * kp * sn * sn)
+
+
+def _excess(n: float, k2: float, s: float, c: float, d: float) -> float:  # pragma: no cover - compiled
+    """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` from ``s, c >= 0, d`` (DLMF 19.25.14)."""
+    if n == 0.0 or s == 0.0:
+        return 0.0
+    return n / 3.0 * s * s * s * _rj(c * c, d * d, 1.0, 1.0 - n * s * s)
+
+
+def _zxz(phi: float, theta: float, psi: float, out: FloatArray) -> None:  # pragma: no cover - compiled
+    """``Rz(phi) Rx(theta) Rz(psi)`` as a quaternion, scalar last (special.quaternion.quat_zxz)."""
+    sa, ca = math.sin(0.5 * phi), math.cos(0.5 * phi)
+    sb, cb = math.sin(0.5 * theta), math.cos(0.5 * theta)
+    sc, cc = math.sin(0.5 * psi), math.cos(0.5 * psi)
+    out[0], out[1] = sb * (ca * cc + sa * sc), sb * (sa * cc - ca * sc)
+    out[2], out[3] = cb * (sa * cc + ca * sc), cb * (ca * cc - sa * sc)
+
+
+def _multiply(a: FloatArray, b: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
+    """Hamilton product ``a (x) b``, scalar last (special.quaternion.quat_multiply); ``out`` may be ``a``."""
+    x = a[3] * b[0] + b[3] * a[0] + a[1] * b[2] - a[2] * b[1]
+    y = a[3] * b[1] + b[3] * a[1] + a[2] * b[0] - a[0] * b[2]
+    z = a[3] * b[2] + b[3] * a[2] + a[0] * b[1] - a[1] * b[0]
+    w = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]
+    out[0], out[1], out[2], out[3] = x, y, z, w
+
+
+def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:  # pragma: no cover - compiled
+    """``theta, psi`` that take the relabelled L (reference axis last) to ``|L| e_z``."""
+    if upper:
+        li, lj, lr = L[0], L[1], L[2]
+    else:
+        li, lj, lr = L[1], L[2], L[0]
+    return math.atan2(math.hypot(li, lj), lr), math.atan2(li, lj)
+
+
+def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  # pragma: no cover - compiled
+    """Advance one body's ``L`` (principal frame, kg m^2/s) and ``q`` (body to world, scalar
+    last) by the exact torque-free motion over ``h`` (s, any sign), in place.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> L, q = np.array([0.0, 0.0, 3.0]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow(np.array([1.0, 2.0, 3.0]), L, q, np.pi)  # a half turn about the major axis
+    >>> np.round(q, 12) + 0.0
+    array([0., 0., 1., 0.])
+    """
+    w0, w1, w2 = L[0] / I[0], L[1] / I[1], L[2] / I[2]
+    zeros = int(w0 == 0.0) + int(w1 == 0.0) + int(w2 == 0.0)
+    if (I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w2 == 0.0) or (I[1] == I[2] and w0 == 0.0)):
+        spin = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)  # steady: a turn about the fixed omega
+        if spin == 0.0:
+            return
+        half = 0.5 * spin * h
+        s = math.sin(half) / spin
+        turn = np.array([s * w0, s * w1, s * w2, math.cos(half)])
+        _multiply(q, turn, q)
+        return
+    w = (w0, w1, w2)
+    g = np.empty(3)
+    for j in range(3):
+        g[j] = I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2
+    upper = g[1] >= 0.0
+    r, c = (2, 0) if upper else (0, 2)  # the dn axis, the cn axis
+    Ir, Ic, I2 = I[r], I[c], I[1]
+    span = Ir - Ic
+    a_c = math.sqrt(abs(g[r] / (Ic * span)))
+    a_2 = math.sqrt(abs(g[r] / (I2 * (Ir - I2))))
+    a_r = math.sqrt(abs(g[c] / (Ir * span)))
+    p = math.sqrt(abs((Ir - I2) * g[c] / (I[0] * I[1] * I[2])))
+    k2 = min(abs((I2 - Ic) * g[r] / ((Ir - I2) * g[c])), 1.0 - _EPS)
+    kp2 = max(abs(span * g[1] / ((Ir - I2) * g[c])), _EPS)
+    kp = math.sqrt(kp2)
+    sign = 1.0 if w[r] >= 0.0 else -1.0
+    # complete integrals: K = pi / (2 AGM(1, k')), Pi(n|m) - K = (n / 3) R_J(0, k'^2, 1, 1 - n)
+    a, b = 1.0, kp
+    while abs(a - b) > _EPS * a:
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    K = 0.5 * math.pi / a
+    n = -Ir * (I2 - Ic) / (Ic * (Ir - I2))
+    excess_c = n / 3.0 * _rj(0.0, kp2, 1.0, 1.0 - n) if n != 0.0 else 0.0
+    # the phase at the start: sn = w2 / a2, cn = w_c / (s a_c), reduced to cn >= 0
+    s0, c0 = w[1] / a_2, w[c] / (sign * a_c)
+    hyp = math.hypot(s0, c0)
+    s0, c0 = s0 / hyp, c0 / hyp
+    j0 = 0.0
+    if c0 < 0.0:
+        j0 = 1.0 if s0 >= 0.0 else -1.0
+        s0, c0 = -s0, -c0
+    d0 = math.sqrt(c0 * c0 + kp2 * s0 * s0)
+    u0 = 2.0 * K * j0 + s0 * _rf(c0 * c0, d0 * d0, 1.0)
+    x0 = _excess(n, k2, s0, c0, d0) + 2.0 * j0 * excess_c
+    # the phase at h, reduced by half periods
+    u = u0 + p * h
+    j = math.floor(u / (2.0 * K) + 0.5)
+    sn, cn, dn = _jacobi(u - 2.0 * K * j, k2, kp)
+    x = _excess(n, k2, sn, cn, dn) + 2.0 * j * excess_c
+    if j % 2.0 != 0.0:
+        sn, cn = -sn, -cn
+    out = np.empty(3)
+    out[c], out[1], out[r] = sign * a_c * cn, a_2 * sn, sign * a_r * dn
+    # the attitude: q <- q (x) P^-1 [B0^-1 Rz(dphi) Rx(theta) Rz(psi)] P
+    Ln = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
+    rate1 = Ln * (Ir - Ic) / (I[0] * I[2])
+    dphi = (Ln / Ir + rate1) * h + rate1 / p * (x - x0)
+    theta0, psi0 = _tilt(L, upper)
+    for i in range(3):
+        L[i] = I[i] * out[i]
+    theta, psi = _tilt(L, upper)
+    b0, e = np.empty(4), np.empty(4)
+    _zxz(0.0, theta0, psi0, b0)
+    b0[0], b0[1], b0[2] = -b0[0], -b0[1], -b0[2]
+    _zxz(dphi, theta, psi, e)
+    _multiply(b0, e, e)
+    if not upper:  # P^-1 X P turns the vector part: (x, y, z) -> (z, x, y)
+        e[0], e[1], e[2] = e[2], e[0], e[1]
+    _multiply(q, e, q)
+
+
+@functools.cache
+def compiled_free_flow() -> Callable[[FloatArray, FloatArray, FloatArray, float], None]:
+    """:func:`free_flow` compiled by numba (``cache=True``), each helper before its callers."""
+    from numba import njit
+
+    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "free_flow"):
+        globals()[name] = njit(cache=True)(globals()[name])
+    return cast("Callable[[FloatArray, FloatArray, FloatArray, float], None]", globals()["free_flow"])
