@@ -50,6 +50,8 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 exclude_patterns = [
     "_build", "hooks", "figures/*.py", "examples/*.ipynb", "examples/*.py", "examples/*.zip",
     "examples/*.md5", "examples/*.json",
+    # sphinx-gallery's timing tables load jQuery and DataTables from CDNs: not part of the site
+    "sg_execution_times.rst", "examples/sg_execution_times.rst",
 ]
 templates_path = ["_templates"]
 root_doc = "index"
@@ -151,13 +153,15 @@ sphinx_gallery_conf = {
     "plot_gallery": "True",
     "run_stale_examples": True,  # every build runs every script: a build that passes ran them
     "within_subsection_order": "FileNameSortKey",
-    "image_scrapers": ("matplotlib",),
+    # tumble.viz's figures bypass pyplot: docs/_ext/tumble_scraper.py saves those; plain pyplot
+    # figures go through sphinx-gallery's own scraper
+    "image_scrapers": ("matplotlib", "tumble_scraper"),
     "show_memory": False,
     "backreferences_dir": "api/backreferences",
     "doc_module": ("tumble",),
     "reference_url": {"tumble": None},
     "min_reported_time": 10**6,  # no timing lines in the pages
-    "write_computation_times": False,  # its page loads jQuery and DataTables from CDNs
+    "write_computation_times": False,  # (and the pages it would write are excluded above)
 }
 
 # -- HTML ----------------------------------------------------------------------------------------
@@ -176,3 +180,7 @@ html_theme_options = {
     "footer_end": [],
 }
 html_sidebars = {"**": ["sidebar-nav-bs"]}
+# The theme reads the colour mode from the page; without one it logs an error from file://.
+html_context = {"default_mode": "light"}
+# The search's summaries fetch() each hit's page, which a browser refuses from file://.
+html_show_search_summary = False

@@ -35,4 +35,4 @@ if __name__ == "__main__":  # Dask's worker processes import this script again: 
     flips = columns["flips"]
     print(f"{summary.cases} cases on {backend.describe()}: {np.count_nonzero(flips)} flipped, "
           f"median {np.median(flips):.0f} flips in 12 s")
-    figure_sweep(columns, title=parsed.name, cases=summary.cases)
+    fig = figure_sweep(columns, title=parsed.name, cases=summary.cases)

@@ -24,4 +24,4 @@ closed = float(tumble.flip_interval(omega0, body.principal_moments))
 print(f"{len(flips)} flips in 20 s; interval measured {measured:.5f} s, closed form {closed:.5f} s")
 print(tumble.stability_report(traj))
 
-figure_omega(traj, title="omega(t) of the T-handle: the intermediate component flips")
+fig = figure_omega(traj, title="omega(t) of the T-handle: the intermediate component flips")

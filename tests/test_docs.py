@@ -170,3 +170,25 @@ def test_the_site_loads_nothing_from_the_network(site):
                 found[url] = sheet.relative_to(site)
     assert not found, f"remote resources: {found}"
     assert (site / "searchindex.js").is_file()
+
+
+def test_the_site_works_from_file_with_no_network_search_included(site, new_page):
+    """Headless Chromium on the built site, every request outside file:// refused and recorded:
+    the home page, an API page, a gallery page and the search all work."""
+    watched = new_page()
+    page = watched.page
+    page.goto((site / "index.html").as_uri())
+    assert page.locator("h1").first.inner_text().startswith("tumble")
+    assert page.locator('a[href="api/index.html"]').count() >= 1  # the navigation bar
+    page.goto((site / "api" / "generated" / "tumble.analysis.fit_rotation.html").as_uri())
+    assert page.locator('[id="tumble.analysis.fit_rotation"]').count() == 1
+    page.goto((site / "examples" / "plot_t_handle_flip.html").as_uri())
+    figure = page.locator('img[src*="sphx_glr_plot_t_handle_flip"]').first
+    assert figure.evaluate("img => img.complete && img.naturalWidth > 0")  # the figure loaded
+    page.goto((site / "search.html").as_uri() + "?q=free_rotation_batch")
+    hits = page.locator("#search-results li")
+    hits.first.wait_for(timeout=15_000)  # the index (searchindex.js) loads and is searched
+    hrefs = [hits.nth(i).locator("a").first.get_attribute("href") for i in range(hits.count())]
+    assert any("tumble.dynamics.methods.exact_batch.free_rotation_batch.html" in h for h in hrefs), hrefs
+    assert not watched.outside, f"requests that left file://: {watched.outside}"
+    assert not watched.errors, "\n".join(watched.errors)
