@@ -9,7 +9,7 @@ The pages:
 - the guides, docs/*.md (MyST Markdown);
 - the published-results gallery, docs/gallery/*.md, written and checked by tests/test_gallery_*.py;
 - the example gallery, built by sphinx-gallery from gallery/plot_*.py (each script runs during
-  the build; tests/test_gallery_scripts.py runs them too) into docs/examples/ (generated). The
+  the build; tests/test_example_scripts.py runs them too) into docs/examples/ (generated). The
   scripts are not in examples/: that is a link to the package's data (src/tumble/examples),
   which ships in the wheel and holds no Python;
 - the API reference: one page per subpackage, written here from its ``__all__``
@@ -48,7 +48,7 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 exclude_patterns = [
-    "_build", "hooks", "figures/*.py", "examples/*.ipynb", "examples/*.py", "examples/*.zip",
+    "_build", "figures/*.py", "examples/*.ipynb", "examples/*.py", "examples/*.zip",
     "examples/*.md5", "examples/*.json",
     # sphinx-gallery's timing tables load jQuery and DataTables from CDNs: not part of the site
     "sg_execution_times.rst", "examples/sg_execution_times.rst",

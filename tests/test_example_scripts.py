@@ -16,8 +16,8 @@ import pytest
 from scipy.special import ellipk
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
+import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
 
 GALLERY = Path(__file__).resolve().parents[1] / "gallery"
 
