@@ -5,7 +5,8 @@
 #               contracts, mypy --strict on mass and dynamics ([tool.mypy] in pyproject.toml)
 #               and the whole test suite (on every core: pytest-xdist, one file to a
 #               worker so module fixtures run once)
-#   make docs   the test set-up, then the API reference and guides built offline into site/
+#   make docs   the test set-up, then the site (guides, galleries, API reference) built offline
+#               into site/ by Sphinx, every warning an error (open site/index.html)
 #   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks
 #               (ratios against a baseline in the same run)
 # Each set-up is a stamp in .venv, remade when pyproject.toml changes; the test set-up holds the
@@ -40,7 +41,7 @@ test: $(TEST_STAMP)
 	$(PY) -m pytest -n auto --dist loadfile
 
 docs: $(TEST_STAMP)
-	$(VENV)/bin/mkdocs build --strict --site-dir site
+	$(VENV)/bin/sphinx-build -W --keep-going -j 2 -q -b html docs site
 
 bench: $(TEST_STAMP)
 	$(PY) -m pip install --quiet -e '.[bench]'

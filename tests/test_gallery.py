@@ -9,9 +9,11 @@ from gallery import GALLERY, entries, write_if_changed
 
 
 def render_index() -> str:
-    """The Markdown text of the gallery's index page."""
+    """The Markdown (MyST) text of the gallery's index page: the list, and the hidden table of
+    contents that puts every page in the site's navigation, in the same order."""
     items = "\n".join(f"- [{e.title}]({e.slug}.md)" for e in entries())
-    return f"""# Gallery: published numbers tumble reproduces
+    toctree = "\n".join(e.slug for e in entries())
+    return f"""# Published results: numbers tumble reproduces
 
 Each page gives a published quantity, its source, the conditions, tumble's value, the
 difference and the code that makes it. The pages are generated and checked by the test suite
@@ -19,6 +21,12 @@ difference and the code that makes it. The pages are generated and checked by th
 computes fails the suite (the test rewrites it).
 
 {items}
+
+```{{toctree}}
+:hidden:
+
+{toctree}
+```
 """
 
 

@@ -13,17 +13,28 @@ from snippets import python_blocks, run_checked
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
+#: The README's former body: everything tumble does, with code (a page of the site).
+TOUR = ROOT / "docs" / "tour.md"
 #: Guides whose examples are run here (docs/architecture.md's has its own test; the gallery's
 #: pages are written by their tests).
 GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md")
 
 
 def test_readme_python_blocks_run_and_hold_their_comments(monkeypatch):
-    monkeypatch.chdir(ROOT)  # paths such as examples/data/... are relative to the repository
+    monkeypatch.chdir(ROOT)
     blocks = python_blocks(README.read_text(encoding="utf-8"))
     assert blocks
     checked = [claim for block in blocks for claim in run_checked(block, str(README))]
-    # the checker is not vacuous: the README's claims about values and runs were all seen
+    for claim in ("[0.125, 0.3125, 0.4375]", "(500, 3)", "11 flips", "period 1.7863 s", "1.7864", "no flip"):
+        assert claim in checked, (claim, checked)
+
+
+def test_tour_python_blocks_run_and_hold_their_comments(monkeypatch):
+    monkeypatch.chdir(ROOT)  # paths such as examples/data/... are relative to the repository
+    blocks = python_blocks(TOUR.read_text(encoding="utf-8"))
+    assert blocks
+    checked = [claim for block in blocks for claim in run_checked(block, str(TOUR))]
+    # the checker is not vacuous: the tour's claims about values and runs were all seen
     for claim in ("3.0", "[0, 0, 0.25]", "diag(0.3125, 0.4375, 0.125)", "[0.125, 0.3125, 0.4375]", "[1, 0, 0]",
                   "(500, 3)", "~1e-16", "11 flips", "period 1.7863 s", "1.7864", "no flip", "~0",
                   "['every_part_spin', 'explorer1']"):

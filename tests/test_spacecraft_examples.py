@@ -298,10 +298,11 @@ def test_omega_panels(tmp_path):
 
 
 def test_the_readme_wheel_figure_has_a_command_that_makes_it(tmp_path):
-    """The README's "spinning and stopped" figure: the command the README shows writes it."""
+    """The tour's "spinning and stopped" figure: the command the README and the tour show writes it."""
     root = Path(__file__).resolve().parents[1]
     command = "python docs/figures/make_wheel_figure.py --out figures"
     assert command in (root / "README.md").read_text(encoding="utf-8")
+    assert command in (root / "docs" / "tour.md").read_text(encoding="utf-8")
     proc = subprocess.run([sys.executable, str(root / "docs" / "figures" / "make_wheel_figure.py"), "--out",
                            str(tmp_path)], capture_output=True, text=True, check=False, timeout=300)
     assert proc.returncode == 0, proc.stderr

@@ -94,7 +94,7 @@ def angular_momentum(omega: ArrayLike, moments: ArrayLike) -> Vector3:
 
 
 def kinetic_energy(omega: ArrayLike, moments: ArrayLike) -> FloatArray:
-    """Rotational kinetic energy ``T = omega . I omega / 2``, J.
+    """Rotational kinetic energy ``T = omega @ I @ omega / 2``, J.
 
     Parameters
     ----------

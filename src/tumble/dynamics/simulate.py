@@ -127,8 +127,9 @@ def simulate(
         Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
         of rotation per step, counting the spin a torque builds up); ignored by the others.
     damper : SphericalDamper, optional
-        A spherical nutation damper inside the body (:class:`~tumble.dynamics.models.internal.
-        SphericalDamper`), starting with the body's angular velocity.
+        A spherical nutation damper inside the body
+        (:class:`~tumble.dynamics.models.internal.SphericalDamper`), starting with the body's
+        angular velocity.
 
     Returns
     -------

@@ -84,7 +84,8 @@ def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
 
 
 def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: bool = False):
-    """The nutation angle between L and the major axis against t (:attr:`Trajectory.nutation_angle`).
+    """The nutation angle between L and the major axis against t
+    (:attr:`~tumble.dynamics.Trajectory.nutation_angle`).
 
     0 is a rigid spin about the major axis, the end state an energy sink drives any spin to.
     When L is 0 (to round-off) at every sample (a body at rest, or a slew from rest) there is no
@@ -190,7 +191,7 @@ def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str,
     - ``"energy"`` (:func:`figure_energy`): the run has a damper (``traj.dissipated`` is not None)
       or rotors (``traj.internal_momentum`` is not None);
     - ``"nutation"`` (:func:`figure_nutation`): the same, and L is not 0 (to round-off,
-      :data:`ZERO_MOMENTUM_RTOL`) at every sample: a slew from rest has no nutation;
+      :data:`~tumble.dynamics.trajectory.ZERO_MOMENTUM_RTOL`) at every sample: a slew from rest has no nutation;
     - ``"orbit_angles"`` (:func:`figure_orbit_angles`): ``torque`` is a
       :class:`~tumble.dynamics.models.gravity.GravityGradient`; ``axes`` (``pitch_axis``, ``yaw_axis``)
       go to it.

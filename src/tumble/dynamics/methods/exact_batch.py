@@ -44,9 +44,11 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
     Returns
     -------
     omega : ndarray, shape (N, T, 3)
-        rad/s, equal to :meth:`FreeRotation.omega` to a few ulps of each body's amplitudes.
+        rad/s, equal to :meth:`~tumble.dynamics.methods.exact.FreeRotation.omega` to a few ulps
+        of each body's amplitudes.
     quat : ndarray, shape (N, T, 4) or None
-        Principal frame to world, equal to :meth:`FreeRotation.attitude` to ~1e-15 rad.
+        Principal frame to world, equal to
+        :meth:`~tumble.dynamics.methods.exact.FreeRotation.attitude` to ~1e-15 rad.
 
     Raises
     ------

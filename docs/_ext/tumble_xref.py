@@ -1,0 +1,272 @@
+"""Sphinx extension: cross-references to tumble's names, resolved the way Python resolves them.
+
+tumble's docstrings name objects where they are defined (``:func:`tumble.analysis.fit.fit_rotation```),
+through the top-level names (``:func:`tumble.simulate```) or bare, in the scope of their module
+(``:data:`ROUND_OFF```); the API reference documents each object once, under its public name
+(``tumble.analysis.fit_rotation``). For a reference Sphinx cannot find by its text, this looks the
+name up in Python (the module of the page's object, its class, the module named in the target) and:
+
+- an object the API reference documents (the same object, found by identity) links to its page;
+- a member of such a class links to the member's entry on the class page;
+- a module of tumble links to the module the API reference documents above it (its subpackage);
+- a name that exists in tumble but is not public (a module's constant, a helper) is shown as
+  code with no link: there is no page to link to, and the name is still checked to exist;
+- anything else stays unresolved, and the strict build fails on it (a misspelt or stale name).
+
+Names of other packages (numpy's ``ArrayLike``, scipy's ``Rotation``) found this way are shown as
+code too: without intersphinx (it downloads inventories) they cannot be linked offline.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+import importlib
+import importlib.util
+import inspect
+import re
+import types
+from typing import Any
+
+_MISSING = object()
+
+
+def _import_path(path: str) -> Any:
+    """The object at a dotted path, walking attributes first (a package's ``simulate`` is its
+    function, not the module of that name) and importing submodules where an attribute is
+    missing; then, where that fails, the longest importable module first (the module
+    ``tumble.dynamics.simulate`` behind the function of that name); ``_MISSING`` when none."""
+    found = _walk(path)
+    if found is _MISSING:
+        parts = path.split(".")
+        for n in range(len(parts) - 1, 1, -1):
+            try:
+                module = importlib.import_module(".".join(parts[:n]))
+            except ImportError:
+                continue
+            found = _walk_from(module, parts[n:], ".".join(parts[:n]))
+            break
+    return found
+
+
+def _walk(path: str) -> Any:
+    parts = path.split(".")
+    try:
+        obj: Any = importlib.import_module(parts[0])
+    except ImportError:
+        return _MISSING
+    return _walk_from(obj, parts[1:], parts[0])
+
+
+def _walk_from(obj: Any, parts: list[str], prefix: str) -> Any:
+    for part in parts:
+        prefix = f"{prefix}.{part}"
+        value = getattr(obj, part, _MISSING)
+        if value is _MISSING and isinstance(obj, types.ModuleType):
+            try:
+                value = importlib.import_module(prefix)
+            except ImportError:
+                value = _MISSING
+        if value is _MISSING and inspect.isclass(obj) and part in getattr(obj, "__annotations__", {}):
+            value = (obj, part)  # a dataclass field without a default: a member of its class
+        if value is _MISSING:
+            return _MISSING
+        obj = value
+    return obj
+
+
+class Resolver:
+    """Maps objects to the public names under which the API reference documents them."""
+
+    def __init__(self, modules: list[str]):
+        self.public: dict[int, str] = {}
+        self.modules: set[str] = set(modules)
+        for module_name in modules:
+            module = importlib.import_module(module_name)
+            for name in module.__all__:
+                self.public.setdefault(id(getattr(module, name)), f"{module_name}.{name}")
+
+    def scopes(self, node, docname: str) -> list[str]:
+        """Where a name in this reference may live: the module and class the directive sets, and
+        the defining module (and class) of the object whose page holds the reference."""
+        found = []
+        module, cls = node.get("py:module"), node.get("py:class")
+        if module and cls:
+            found.append(f"{module}.{cls}")
+        if module:
+            found.append(module)
+        page_object = _import_path(docname.rsplit("/", 1)[-1]) if docname.startswith("api/generated/") else _MISSING
+        if page_object is not _MISSING:
+            owner = page_object if inspect.isclass(page_object) else None
+            defining = getattr(page_object, "__module__", None)
+            if owner is not None and defining:
+                found.append(f"{defining}.{owner.__name__}")
+            if defining:
+                found.append(defining)
+        if cls and module:
+            found.append(cls)
+        return found
+
+    def public_name(self, path: str) -> str | None:
+        """The documented name of the object at ``path`` (or of its class's entry)."""
+        obj = _import_path(path)
+        if obj is _MISSING:
+            return None
+        if id(obj) in self.public:
+            return self.public[id(obj)]
+        parent, _, member = path.rpartition(".")
+        owner = _import_path(parent) if parent else _MISSING
+        if inspect.isclass(owner) and id(owner) in self.public:
+            return f"{self.public[id(owner)]}.{member}"
+        return None
+
+    def locate(self, target: str, node, docname: str) -> str | None:
+        """The full dotted path at which ``target`` exists, or None. A name a module imports only
+        for its annotations (under ``TYPE_CHECKING``) is followed to where it comes from."""
+        target = target.lstrip("~.")
+        scopes = self.scopes(node, docname)
+        for scope in ["", *scopes]:
+            path = f"{scope}.{target}" if scope else target
+            if _import_path(path) is not _MISSING:
+                return path
+        head, _, rest = target.partition(".")
+        for scope in scopes:
+            origin = imported_names(scope).get(head)
+            if origin is not None:
+                path = f"{origin}.{rest}" if rest else origin
+                if _import_path(path) is not _MISSING:
+                    return path
+        return None
+
+
+@functools.cache
+def imported_names(module_name: str) -> dict[str, str]:
+    """``{name: "module.name"}`` for every ``from module import name`` anywhere in a module's
+    source (also those under ``if TYPE_CHECKING:``); empty if it is not a module with source."""
+    try:
+        spec = importlib.util.find_spec(module_name)
+    except (ImportError, ValueError):
+        return {}
+    if spec is None or not spec.origin or not spec.origin.endswith(".py"):
+        return {}
+    package = module_name if spec.submodule_search_locations else module_name.rpartition(".")[0]
+    names = {}
+    with open(spec.origin, encoding="utf-8") as source:
+        tree = ast.parse(source.read())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                base = importlib.util.resolve_name("." * node.level + base, package)
+            for alias in node.names:
+                names.setdefault(alias.asname or alias.name, f"{base}.{alias.name}")
+    return names
+
+
+def defining_module(module_name: str, name: str) -> str:
+    """The module whose source assigns ``name``, following ``from ... import name`` from
+    ``module_name`` (a package re-exporting a constant of one of its modules)."""
+    seen = set()
+    while module_name not in seen:
+        seen.add(module_name)
+        origin = imported_names(module_name).get(name)
+        if origin is None:
+            return module_name
+        module_name = origin.rpartition(".")[0]
+    return module_name
+
+
+def data_docstring(app, what, name, obj, options, lines):
+    """A re-exported constant keeps its ``#:`` comment: autodoc reads comments in the module it
+    documents the name under, which for ``tumble.mass.INERTIA_RTOL`` only imports it; without
+    this it shows the docstring of the value's type (``str(object='') -> str``)."""
+    if what not in ("data", "attribute") or not name.startswith("tumble."):
+        return
+    module_name, _, attr = name.rpartition(".")
+    if not isinstance(_import_path(module_name), types.ModuleType):
+        return  # a class attribute: autodoc reads the class's own source
+    from sphinx.pycode import ModuleAnalyzer
+
+    origin = defining_module(module_name, attr)
+    comment = ModuleAnalyzer.for_module(origin).find_attr_docs().get(("", attr))
+    type_doc = inspect.getdoc(type(obj)) or ""
+    if comment:
+        lines[:] = [*comment]
+    elif type_doc and "\n".join(lines).strip() == type_doc.strip():
+        lines[:] = []
+
+
+def _documented_module(path: str, modules: set[str]) -> str | None:
+    """The nearest module at or above ``path`` that the API reference documents."""
+    parts = path.split(".")
+    for n in range(len(parts), 0, -1):
+        if ".".join(parts[:n]) in modules:
+            return ".".join(parts[:n])
+    return None
+
+
+def missing_reference(app, env, node, contnode):
+    if node.get("refdomain") != "py":
+        return None
+    resolver = _RESOLVER[0]
+    path = resolver.locate(node["reftarget"], node, node.get("refdoc", ""))
+    if path is None:
+        return None
+    domain = env.domains["py"]
+    obj = _import_path(path)
+    if isinstance(obj, types.ModuleType):
+        target = _documented_module(path, resolver.modules)
+        kind = "mod"
+    else:
+        target = resolver.public_name(path)
+        kind = "obj"
+    if target is not None:
+        resolved = domain.resolve_xref(env, node["refdoc"], app.builder, kind, target, node, contnode)
+        if resolved is not None:
+            return resolved
+    return contnode  # exists, but has no page: code, no link
+
+
+_RESOLVER: list[Resolver] = []
+
+
+_LITERAL = re.compile(r"(``.*?``|`[^`]*`)")
+
+
+def _escape_bars(text: str) -> str:
+    """``|`` escaped outside literals and roles: ``|L|`` is a norm, not a substitution."""
+    return "".join(part if i % 2 else part.replace("|", "\\|") for i, part in enumerate(_LITERAL.split(text)))
+
+
+def norm_bars(app, what, name, obj, options, lines):
+    """tumble's docstrings write norms as ``|L|`` and ``|omega|``, plain-text notation that
+    reStructuredText would read as substitution references (an error each): escape those bars,
+    leaving literals, roles and literal blocks (after ``::``) as they are."""
+    block_indent = None
+    after_colons = False
+    for i, line in enumerate(lines):
+        indent = len(line) - len(line.lstrip())
+        if block_indent is not None:
+            if line.strip() and indent <= block_indent:
+                block_indent = None
+            else:
+                continue
+        if after_colons and line.strip():
+            after_colons = False
+        if "|" in line:
+            lines[i] = _escape_bars(line)
+        if line.rstrip().endswith("::"):
+            block_indent, after_colons = indent, True
+
+
+def _make_resolver(app):
+    _RESOLVER[:] = [Resolver(app.config.tumble_api_modules)]
+
+
+def setup(app):
+    app.add_config_value("tumble_api_modules", [], "env")
+    app.connect("builder-inited", _make_resolver)
+    app.connect("missing-reference", missing_reference)
+    app.connect("autodoc-process-docstring", data_docstring)
+    app.connect("autodoc-process-docstring", norm_bars)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
