@@ -6,7 +6,8 @@ sensitivity to the invariants), under a constant body-frame torque of (1, -2, 1.
 against its own dynamics (|tau| / I3 ~ 4e-4 rad/s^2 against |omega|^2 ~ 100 rad/s^2), for 20 s. Each method runs at a range of steps (or tolerances); its
 error is the largest ``|omega - omega_ref| / max |omega_ref|`` over 21 samples against DOP853
 at rtol 1e-13 (itself checked against rtol 1e-12), its time the median of repeats after a
-warm-up (numba's compilation is not counted).
+warm-up (numba's compilation is not counted). MuJoCo's RK4 (one free body, ``qfrc_applied``)
+joins when ``mujoco`` imports.
 
 What it shows: the exact-flow splitting (Celledoni, Fasso, Safstrom & Zanna 2008) makes no
 error in the free motion, so its error is proportional to the torque: at equal accuracy it
@@ -60,6 +61,31 @@ def _timed(fn, repeat: int) -> tuple[float, list[float], object]:
     return float(np.median(times)), [min(times), max(times)], out
 
 
+def _mujoco(dt: float):
+    """MuJoCo's RK4 on the same body (one free body, no geom, gravity off): ``qfrc_applied`` on
+    the free joint's rotational dofs is a body-frame torque (as in bench_torqued.py)."""
+    import mujoco
+
+    xml = (f'<mujoco><option timestep="{dt!r}" integrator="RK4" gravity="0 0 0"/><worldbody>'
+           f'<body><freejoint/><inertial pos="0 0 0" mass="1" diaginertia="{I[0]!r} {I[1]!r} {I[2]!r}"/></body>'
+           f'</worldbody></mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    k = round(T_END / (SAMPLES - 1) / dt)
+
+    def run():
+        mujoco.mj_resetData(model, data)
+        data.qvel[3:6] = W0  # free joint: angular velocity in the body frame
+        data.qfrc_applied[3:6] = TAU
+        out = [np.array(W0)]
+        for _ in range(SAMPLES - 1):
+            mujoco.mj_step(model, data, nstep=k)
+            out.append(data.qvel[3:6].copy())
+        return np.array(out)
+
+    return run
+
+
 def run(out, quick: bool = False) -> str:
     repeat = 1 if quick else 3
     ref = _run("dop853", "rtol", 1e-13).omega
@@ -72,13 +98,21 @@ def run(out, quick: bool = False) -> str:
             seconds, span, traj = _timed(lambda m=method, k=key, v=value: _run(m, k, v), repeat)
             error = float(np.max(np.abs(traj.omega - ref))) / scale
             rows.append({"method": method, key: value, "seconds": seconds, "range": span, "error": error})
+    try:
+        for dt in (1e-2, 5e-3, 2e-3, 1e-3):
+            seconds, span, omega = _timed(_mujoco(dt), repeat)
+            rows.append({"method": "mujoco RK4", "step": dt, "seconds": seconds, "range": span,
+                         "error": float(np.max(np.abs(omega - ref))) / scale})
+        mujoco_note = ""
+    except ImportError:
+        mujoco_note = " MuJoCo is not installed here (`pip install -e .[bench]`): its rows are left out."
     _figure(rows, out / "exact_split_work_precision.png")
     (out / "bench_exact_split.json").write_text(json.dumps({"reference_error": ref_error, "rows": rows}, indent=2) + "\n")
     lines = ["# bench_exact_split: work-precision under a weak torque", "",
              f"One body (the seed's T-handle, omega0 {W0} rad/s, near its major axis) under a constant body "
              f"torque {TAU} N m for {T_END:g} s; error = max |omega - omega_ref| / max |omega_ref| over {SAMPLES} "
              f"samples against DOP853 rtol 1e-13 (its own error about {ref_error:.1e}); time = median of {repeat} "
-             f"run(s) after a warm-up (1 for runs over 1 s), range in brackets.", "",
+             f"run(s) after a warm-up (1 for runs over 1 s), range in brackets.{mujoco_note}", "",
              "| method | step (s) or rtol | time (s) | omega error (rel) |", "|---|---|---|---|"]
     for r in rows:
         setting = f"step {r['step']:g}" if "step" in r else f"rtol {r['rtol']:g}"
