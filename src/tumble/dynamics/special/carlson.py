@@ -38,29 +38,33 @@ singularity with weight 1 / (1 - n) in Pi; both checked against mpmath at 200 di
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import TypeAlias, cast
 
 import numpy as np
 from scipy.special import elliprc, elliprf, elliprj
 
+from ...typing import ArrayLike, BoolArray, FloatArray, FloatOrArray, IntArray
 from . import ddouble as dd
+from .ddouble import DoubleDouble
 
 __all__ = ["complete_integrals", "legendre_f", "legendre_pi_excess"]
 
 
-def _duplicate(c, d):
+def _duplicate(c: FloatArray, d: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Arguments of R_F(c^2, d^2, 1) after one duplication step, and the factor 2."""
     lam = c * d + c + d
     return c * c + lam, d * d + lam, 1.0 + lam
 
 
-def legendre_f(s, c, d, K=np.inf) -> np.ndarray:
+def legendre_f(s: ArrayLike, c: ArrayLike, d: ArrayLike, K: ArrayLike = np.inf) -> FloatArray:
     """``F(phi | m)`` for ``|phi| <= pi/2`` from ``s``, ``c >= 0``, ``d`` (module docstring);
     ``K`` (the complete value) is returned, with the sign of ``s``, where ``c = d = 0``."""
     s, c, d = (np.asarray(x, float) for x in (s, c, d))
     x, y, z = _duplicate(c, d)
     with np.errstate(divide="ignore", invalid="ignore"):
         f = 2.0 * s * elliprf(x, y, z)
-    return np.where(d > 0, f, np.copysign(1.0, s) * K)
+    return cast(FloatArray, np.where(d > 0, f, np.copysign(1.0, s) * K))
 
 
 #: Duplication steps before scipy's R_J, whose accuracy fails (1e-3) when two of its arguments
@@ -69,7 +73,9 @@ def legendre_f(s, c, d, K=np.inf) -> np.ndarray:
 _RJ_STEPS = 3
 
 
-def legendre_pi_excess(n: float, s, c, d, m: float | None = None, excess_complete=-np.inf) -> np.ndarray:
+def legendre_pi_excess(
+    n: float, s: ArrayLike, c: ArrayLike, d: ArrayLike, m: float | None = None, excess_complete: ArrayLike = -np.inf
+) -> FloatArray:
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` and ``n <= 0`` (module docstring);
     ``excess_complete = Pi(n | m) - K(m)`` is returned, with the sign of ``s``, where
     ``c = d = 0``. Without ``m``, ``(m - n) s^2`` is formed as ``1 - n s^2 - d^2``: an absolute
@@ -95,16 +101,24 @@ def legendre_pi_excess(n: float, s, c, d, m: float | None = None, excess_complet
             roots = [np.sqrt(a) for a in args]
         rj = rj + 2.0**steps * elliprj(*args)
         value = (n / 3.0) * s * s2 * rj
-    return np.where(d > 0, value, np.copysign(1.0, s) * excess_complete)
+    return cast(FloatArray, np.where(d > 0, value, np.copysign(1.0, s) * excess_complete))
 
 
-def _one_like(x):
+#: The state of :func:`_iterate`: a tuple of double-doubles (floats, or arrays elementwise).
+_State: TypeAlias = tuple[DoubleDouble, ...]
+#: What a step of :func:`_iterate` returns: whether to stop (a bool, or a mask elementwise), the
+#: state to leave with if so, and a function that gives the next state otherwise.
+_StepResult: TypeAlias = tuple["bool | BoolArray", _State, Callable[[], _State]]
+_Step: TypeAlias = Callable[[_State], _StepResult]
+
+
+def _one_like(x: DoubleDouble) -> DoubleDouble:
     """The double-double 1 shaped as the double-double ``x``: floats stay Python floats (the
     one-body path, fast), arrays give arrays (the batched path)."""
     return (1.0, 0.0) if np.ndim(x[0]) == 0 else (np.ones_like(x[0]), np.zeros_like(x[0]))
 
 
-def _iterate(state, step, limit: int = 40):
+def _iterate(state: _State, step: _Step, limit: int = 40) -> _State:
     """Iterate ``state = step(state)`` until it stops, at most ``limit`` times; ``state`` is a
     tuple of double-doubles, of floats (one value) or of arrays (elementwise).
 
@@ -122,14 +136,14 @@ def _iterate(state, step, limit: int = 40):
             state = advance()
         return state
 
-    def take(x, sel):
-        return tuple((a[sel], b[sel]) for a, b in x)
+    def take(x: _State, sel: int | BoolArray | IntArray) -> _State:  # arrays on this branch
+        return tuple((cast(FloatArray, a)[sel], cast(FloatArray, b)[sel]) for a, b in x)
 
-    def put(idx, x):
+    def put(idx: IntArray, x: _State) -> None:
         for o, v in zip(out, x):
             o[0][idx], o[1][idx] = v
 
-    out = tuple((a.copy(), b.copy()) for a, b in state)
+    out = tuple((cast(FloatArray, a).copy(), cast(FloatArray, b).copy()) for a, b in state)
     idx = np.arange(np.size(state[0][0]))
     for _ in range(limit):
         stop, stopped, advance = step(state)
@@ -142,14 +156,14 @@ def _iterate(state, step, limit: int = 40):
     return out
 
 
-def cel(kc, pp):
+def cel(kc: DoubleDouble, pp: DoubleDouble) -> DoubleDouble:
     """Bulirsch's ``cel(kc, pp, 1, 1)`` in double-double for ``kc = k'`` (a double-double in
     (2^-61, 1]) and ``pp = 1 - n >= 1`` (a double-double), of floats or of arrays (elementwise,
     the same arithmetic: :func:`_iterate`). Numerical Recipes, 2nd ed., sec. 6.11."""
     one = _one_like(kc)
     p = dd.sqrt(pp)
 
-    def step(state):
+    def step(state: _State) -> _StepResult:
         a, b, p, e, em, qc = state
         f, inv = a, dd.div((1.0, 0.0), p)
         a = dd.add(a, dd.mul(b, inv))
@@ -158,9 +172,9 @@ def cel(kc, pp):
         b = (2.0 * b[0], 2.0 * b[1])
         p = dd.add(g, p)
         g, em = em, dd.add(qc, em)
-        stop = abs(g[0] - qc[0]) <= 1e-17 * g[0]  # quadratic: the last step gains the other half
+        stop = cast(FloatOrArray, abs(g[0] - qc[0])) <= 1e-17 * g[0]  # quadratic: the last step gains the other half
 
-        def advance():
+        def advance() -> _State:
             qc = dd.sqrt(e)
             qc = (2.0 * qc[0], 2.0 * qc[1])
             return a, b, p, dd.mul(qc, em), em, qc
@@ -171,20 +185,22 @@ def cel(kc, pp):
     return dd.div(dd.mul(dd.PI_2, dd.add(b, dd.mul(a, em))), dd.mul(em, dd.add(em, p)))
 
 
-def agm_k(kp):
+def agm_k(kp: DoubleDouble) -> DoubleDouble:
     """``K = pi / (2 AGM(1, k'))`` in double-double (A&S 17.6) for ``k'`` a double-double of
     floats or of arrays (elementwise: :func:`_iterate`); quadratically convergent: once
     ``|a - b| <= 1e-17 a`` the mean is the limit to ~1e-34."""
 
-    def step(state):
+    def step(state: _State) -> _StepResult:
         a, b = state
-        return abs(a[0] - b[0]) <= 1e-17 * a[0], state, lambda: (dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b)))
+        return cast(FloatOrArray, abs(a[0] - b[0])) <= 1e-17 * a[0], state, lambda: (dd.mul_d(dd.add(a, b), 0.5), dd.sqrt(dd.mul(a, b)))
 
     a, b = _iterate((_one_like(kp), kp), step)
     return dd.div(dd.PI_2, dd.mul_d(dd.add(a, b), 0.5))
 
 
-def complete_integrals(n, kp, exponent=0):
+def complete_integrals(
+    n: FloatOrArray | DoubleDouble, kp: DoubleDouble, exponent: int | IntArray = 0
+) -> tuple[DoubleDouble, DoubleDouble]:
     """``K(m)`` and ``Pi(n | m)`` as double-doubles, ``n <= 0`` (a double or a double-double),
     for ``k' = sqrt(1 - m) = kp * 2^exponent`` (``kp`` a double-double, ``0 < k' <= 1``).
 
@@ -192,6 +208,8 @@ def complete_integrals(n, kp, exponent=0):
     floats (one motion, at Python's speed); arrays give arrays, elementwise, with the same
     arithmetic (:func:`_iterate`): one body and a batch get the same values.
     """
+    e: int | IntArray  # k' = mantissa 2^e
+    shift: int | IntArray  # k' = k'_60 2^-shift
     scalar = np.ndim(kp[0]) == 0 and np.ndim(exponent) == 0 and np.ndim(n[0] if isinstance(n, tuple) else n) == 0
     if scalar:
         kp, exponent = (float(kp[0]), float(kp[1])), int(exponent)
@@ -201,7 +219,7 @@ def complete_integrals(n, kp, exponent=0):
         kp = (math.ldexp(kp[0], exponent + shift), math.ldexp(kp[1], exponent + shift))
     else:
         n = (np.asarray(n[0], float), np.asarray(n[1], float)) if isinstance(n, tuple) else (np.asarray(n, float), np.zeros(np.shape(n)))
-        e = np.frexp(kp[0])[1] + exponent
+        e = cast(IntArray, np.frexp(kp[0])[1] + exponent)
         shift = np.maximum(-61 - e, 0)
         kp = (np.ldexp(kp[0], exponent + shift), np.ldexp(kp[1], exponent + shift))
     one_n = dd.add(_one_like(kp), dd.neg(n))  # 1 - n, without rounding n first
@@ -211,7 +229,7 @@ def complete_integrals(n, kp, exponent=0):
     else:
         Pi = dd.where(n[0] == 0.0, K, cel(kp, one_n))  # n = 0 (a symmetric top): Pi = K
     if np.any(shift > 0):
-        log = dd.mul_d(dd.LN2, shift * 1.0)
+        log = dd.mul_d(dd.LN2, cast(FloatOrArray, shift * 1.0))
         shifted = dd.add(K, log), dd.add(Pi, dd.div(log, one_n))
         K, Pi = shifted if scalar else (dd.where(shift > 0, shifted[0], K), dd.where(shift > 0, shifted[1], Pi))
     return K, Pi

@@ -112,7 +112,7 @@ def mul_scaled(x: DoubleDouble, b: FloatOrArray) -> DoubleDouble:
     return mul_d((np.ldexp(x[0], -e), np.ldexp(x[1], -e)), np.ldexp(b, e))
 
 
-def where(cond: BoolArray, x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
+def where(cond: bool | BoolArray, x: DoubleDouble, y: DoubleDouble) -> DoubleDouble:
     """``x`` where ``cond``, else ``y``, for double-doubles (``numpy.where`` on both parts)."""
     return np.where(cond, x[0], y[0]), np.where(cond, x[1], y[1])
 
