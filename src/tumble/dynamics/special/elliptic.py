@@ -37,12 +37,16 @@ round-off at any argument.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, cast
 
 import numpy as np
 
+from ...typing import ArrayLike, BoolArray, FloatArray, FloatOrArray, IntArray
 from . import ddouble as dd
 from .carlson import complete_integrals, legendre_f, legendre_pi_excess
+from .ddouble import DoubleDouble
 
 __all__ = [
     "Modulus",
@@ -55,7 +59,7 @@ __all__ = [
 ]
 
 
-def agm_tables(b0, c0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def agm_tables(b0: ArrayLike, c0: ArrayLike) -> tuple[FloatArray, FloatArray, IntArray]:
     """The ``a_n`` and ``c_n`` of the AGM of ``(1, b0)``, ``c0^2 = 1 - b0^2``, for each element,
     each stopping once ``c_N <= 1.1e-16 a_N`` (A&S 16.4); ``c_{n+1} = c_n^2 / (4 a_{n+1})``
     without cancellation.
@@ -102,9 +106,12 @@ class Modulus:
     True
     """
 
-    k: float | np.ndarray
-    kp: float | np.ndarray
-    K: tuple
+    k: FloatOrArray
+    kp: FloatOrArray
+    K: DoubleDouble
+    #: Set by ``__post_init__``: whether ``m > 1/2`` (the imaginary transformation), and the
+    #: :func:`agm_tables` of the modulus taken (``k`` there, ``k'`` otherwise).
+    _route: tuple[BoolArray, FloatArray, FloatArray, IntArray] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         big = np.asarray(self.k > self.kp)  # m > 1/2: the imaginary transformation
@@ -124,7 +131,7 @@ class Modulus:
         kp = dd.sqrt((math.ldexp(m1, -2 * e), 0.0))
         return cls(math.sqrt(m), math.sqrt(m1), complete_integrals(0.0, kp, e)[0])
 
-    def _column(self, ndim: int):
+    def _column(self, ndim: int) -> Callable[[FloatOrArray | BoolArray], Any]:
         """Shape one value per body to broadcast against arrays of ``ndim`` dimensions whose
         first axis runs over the bodies (a single modulus: unchanged)."""
         if np.ndim(self.k) == 0:
@@ -132,7 +139,7 @@ class Modulus:
         return lambda x: np.reshape(x, np.shape(x) + (1,) * (ndim - np.ndim(x)))
 
     # -- v in [-K/2, K/2] ----------------------------------------------------------------
-    def _landen(self, v):
+    def _landen(self, v: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         big, As, Cs, count = self._route
         col = self._column(np.ndim(v))
         x = col(np.ldexp(1.0, count) * np.take_along_axis(As, count[None, ...], axis=0)[0]) * v
@@ -160,7 +167,7 @@ class Modulus:
                 np.where(bigc, np.hypot(1.0, kp * np.sinh(x)) / ch, np.hypot(kp, k * cn)))
 
     # -- any u --------------------------------------------------------------------------
-    def reduce(self, u):
+    def reduce(self, u: DoubleDouble) -> tuple[tuple[FloatArray, FloatArray], BoolArray, FloatArray, FloatArray, FloatArray]:
         """Exact reduction of ``u`` (a double-double ``(hi, lo)`` of arrays) by half periods.
 
         Returns ``(j1, j2)`` (the number of half periods ``j = j1 + j2``, as two integral
@@ -180,7 +187,8 @@ class Modulus:
             sech = 1.0 / np.cosh(u[0]) if np.any(separatrix) else None
         if np.all(separatrix):
             zero = np.zeros_like(u[0])
-            return (zero, zero), np.zeros(u[0].shape, bool), np.tanh(u[0]), sech, sech
+            sech_all = cast(FloatArray, sech)  # not None: every row is on the separatrix
+            return (zero, zero), np.zeros(u[0].shape, bool), np.tanh(u[0]), sech_all, sech_all
         twoK = (2.0 * K[0], 2.0 * K[1])
         lost = np.abs(u[0]) > 1e30  # no phase left to keep: stay on the curve, at least
         if np.any(lost):
@@ -192,7 +200,7 @@ class Modulus:
             r = dd.add(r, dd.neg(dd.mul_d(twoK, j2)))
             q = np.rint(r[0] / K[0])  # -1, 0 or 1: the nearest quarter period
             v = dd.add(r, dd.neg(dd.mul_d(K, q)))
-            s, c, d = self._landen(v[0] + v[1])
+            s, c, d = self._landen(cast(FloatArray, v[0] + v[1]))
         kp = col(self.kp)
         with np.errstate(divide="ignore", invalid="ignore"):
             sn = np.where(q == 0, s, q * c / d)
@@ -213,10 +221,10 @@ def ellipk(m: float, m1: float) -> float:
     :func:`tumble.dynamics.special.carlson.complete_integrals`); ``m1 = 1 - m`` given separately."""
     if m1 == 0.0:
         return math.inf
-    return complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0]
+    return cast(float, complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0])  # floats in, floats out
 
 
-def ellipk_kp(kp) -> np.ndarray:
+def ellipk_kp(kp: ArrayLike) -> FloatArray:
     """``K(m)`` from ``k' = sqrt(1 - m)`` (array_like, in [0, 1]), vectorised:
     ``pi / (2 AGM(1, k'))`` (Abramowitz & Stegun 17.6); ``inf`` for ``k' = 0``.
 
@@ -231,7 +239,7 @@ def ellipk_kp(kp) -> np.ndarray:
     return np.where(kp > 0, np.pi / (a + b), np.inf)
 
 
-def jacobi_reduced(u, m: float, m1: float):
+def jacobi_reduced(u: ArrayLike, m: float, m1: float) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """Half-period index ``j`` and ``sn, cn, dn`` of ``u_r = u - 2 K j``, ``|u_r| <= K``.
 
     ``cn(u_r) >= 0``, i.e. ``am(u_r)`` lies in [-pi/2, pi/2]; ``sn(u) = (-1)^j sn(u_r)``,
@@ -244,7 +252,7 @@ def jacobi_reduced(u, m: float, m1: float):
     return j1 + j2, sn, cn, dn
 
 
-def jacobi(u, m: float, m1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def jacobi(u: ArrayLike, m: float, m1: float) -> tuple[FloatArray, FloatArray, FloatArray]:
     """``sn, cn, dn`` of ``u`` for parameter ``m`` (``m1 = 1 - m`` given separately)."""
     u = np.asarray(u, dtype=float)
     _, odd, sn, cn, dn = Modulus.from_parameter(m, m1).reduce((u, np.zeros_like(u)))
@@ -252,7 +260,7 @@ def jacobi(u, m: float, m1: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return sign * sn, sign * cn, dn
 
 
-def carlson_pi(n: float, s, c, d) -> np.ndarray:
+def carlson_pi(n: float, s: ArrayLike, c: ArrayLike, d: ArrayLike) -> FloatArray:
     """``Pi(n; phi | m)`` for ``|phi| <= pi/2`` from ``sin phi``, ``cos phi`` and
     ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n <= 0``.
 
