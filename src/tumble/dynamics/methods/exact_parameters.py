@@ -22,11 +22,14 @@ added here is only how they are evaluated:
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections.abc import Callable
+from typing import Any, NamedTuple, TypeAlias, TypedDict, cast
 
 import numpy as np
 
+from ...typing import ArrayLike, BoolArray, FloatArray, FloatOrArray, IntArray
 from ..special import ddouble as dd
+from ..special.ddouble import DoubleDouble
 
 __all__ = ["EllipticParameters", "elliptic_parameters"]
 
@@ -43,36 +46,52 @@ class EllipticParameters(NamedTuple):
     kp: np.ndarray  # k' = sqrt(1 - m), formed directly
 
 
+#: A double-double mantissa and a power of two: ``x = mantissa 2^exponent`` (floats and an
+#: int for one motion, arrays elementwise for a batch).
+Scaled: TypeAlias = tuple[DoubleDouble, "int | IntArray"]
+
+
+class ScaledCore(TypedDict):
+    """What :func:`scaled_core` returns (its docstring says what each entry is)."""
+
+    upper: bool | BoolArray
+    moments: FloatArray
+    p: DoubleDouble
+    k: Scaled
+    kp: Scaled
+    amplitudes: FloatArray
+    n: DoubleDouble
+
 
 # Scalars (one motion: FreeRotation) go through Python floats and only the branch taken, which
 # is several times faster than numpy's 0-d arrays; arrays (a batch) through numpy. Same code.
-def _exponent(x):
+def _exponent(x: FloatOrArray) -> int | IntArray:
     """``e`` with ``x = f 2^e``, ``1/2 <= |f| < 1`` (0 for x = 0)."""
     return math.frexp(x)[1] if isinstance(x, float) else np.frexp(x)[1]
 
 
-def _ldexp(x, e):
+def _ldexp(x: FloatOrArray, e: int | IntArray) -> FloatOrArray:
     if isinstance(x, float) and isinstance(e, int):  # not for numpy exponents (0-d arrays)
         return math.ldexp(x, e)  # OverflowError is caught by scaled_core
     with np.errstate(over="ignore"):
         return np.ldexp(x, e)
 
 
-def _branch(cond, upper, lower):
+def _branch(cond: bool | BoolArray, upper: Callable[[], Scaled], lower: Callable[[], Scaled]) -> Scaled:
     """``upper()`` where ``cond``, else ``lower()``; both, selected, for arrays."""
     if isinstance(cond, bool):
         return upper() if cond else lower()
     x, y = upper(), lower()
-    pick = (lambda a, b: np.where(cond, a, b))
+    pick: Callable[[ArrayLike, ArrayLike], Any] = (lambda a, b: np.where(cond, a, b))
     return (pick(x[0][0], y[0][0]), pick(x[0][1], y[0][1])), pick(x[1], y[1])
 
 
-def _scaled_root(num, den, exponent):
+def _scaled_root(num: DoubleDouble, den: DoubleDouble, exponent: int | IntArray) -> Scaled:
     """``sqrt(num / den)`` (double-doubles) as a double-double mantissa and ``2^exponent``."""
     return dd.sqrt(dd.div(num, den)), exponent
 
 
-def scaled_core(omega, moments) -> dict:
+def scaled_core(omega: ArrayLike, moments: ArrayLike) -> ScaledCore:
     """Everything the exact solution needs, in double-double and in scaled form (module
     docstring); broadcasts over (..., 3). Keys: ``upper``, ``moments`` (scaled, ``I3`` in
     [1/2, 1)), ``p`` (double-double, 1/s), ``k``, ``kp`` (each ``(mantissa dd, exponent)``),
@@ -90,7 +109,7 @@ def scaled_core(omega, moments) -> dict:
         return _core([w[..., i] for i in range(3)], [I[..., i] for i in range(3)])
 
 
-def _core(w: list, I: list) -> dict:
+def _core(w: list[FloatOrArray], I: list[FloatOrArray]) -> ScaledCore:
     eI = _exponent(I[2])
     I = [_ldexp(x, -eI) for x in I]
     I1, I2, I3 = I
@@ -102,14 +121,14 @@ def _core(w: list, I: list) -> dict:
         # a zero coefficient (a symmetric top) adds nothing, and scaling by it would underflow
         # the other one's square (moments (1, 2, 2), omega (3e-178, 1, 1)); it is left out.
         live = [I[i] != I[j] for i in (a, b)]
-        size = [abs(w[i]) if scalar else np.abs(w[i]) for i in (a, b)]
+        size = [cast(FloatOrArray, abs(w[i])) if scalar else np.abs(w[i]) for i in (a, b)]
         if scalar:
             big = max((x for x, on in zip(size, live) if on), default=max(size))
         else:
             big = np.maximum(np.where(live[0], size[0], 0.0), np.where(live[1], size[1], 0.0))
-            big = np.where(live[0] | live[1], big, np.maximum(*size))
+            big = np.where(live[0] | live[1], big, np.maximum(size[0], size[1]))
         e = _exponent(big)
-        g = (0.0, 0.0)
+        g: DoubleDouble = (0.0, 0.0)
         for i, on in zip((a, b), live):
             x = _ldexp(w[i], -e) if (not scalar or on) else 0.0
             if not scalar:
@@ -139,7 +158,7 @@ def _core(w: list, I: list) -> dict:
             "k": k, "kp": kp, "amplitudes": np.stack(amps, axis=-1), "n": n}
 
 
-def elliptic_parameters(omega, moments) -> EllipticParameters:
+def elliptic_parameters(omega: ArrayLike, moments: ArrayLike) -> EllipticParameters:
     """``p``, ``m``, ``1 - m``, the amplitudes, ``k`` and ``k'`` of the motion through
     ``omega``, for ascending moments (:mod:`tumble.dynamics.methods.exact`); broadcasts over (..., 3).
 
@@ -148,7 +167,7 @@ def elliptic_parameters(omega, moments) -> EllipticParameters:
     """
     c = scaled_core(omega, moments)
 
-    def value(x, power=1):
+    def value(x: Scaled, power: int = 1) -> FloatOrArray:
         (hi, _), e = x
         with np.errstate(over="ignore", invalid="ignore"):
             return np.clip(np.ldexp(hi**power, power * e), 0.0, 1.0)
