@@ -28,19 +28,30 @@ Steady rotations (:func:`is_steady`) are rotations about the fixed omega by ``|o
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import TypeAlias, cast
 
 import numpy as np
 
+from ...typing import ArrayLike, BoolArray, FloatArray, IntArray, Quaternion, Vector3
 from ..special import ddouble as dd
 from ..special.carlson import complete_integrals, legendre_f, legendre_pi_excess
+from ..special.ddouble import DoubleDouble
 from ..special.elliptic import Modulus
 from ..special.quaternion import quat_conjugate, quat_multiply, quat_zxz
-from .exact_parameters import scaled_core
+from .exact_parameters import ScaledCore, scaled_core
 
 __all__ = ["EllipticMotion", "is_steady", "steady_attitude"]
 
+#: A double-double of arrays: one value per body (N,), or per body and time (N, T).
+DDArray: TypeAlias = tuple[FloatArray, FloatArray]
 
-def is_steady(I, w) -> np.ndarray:
+#: What :meth:`EllipticMotion.reduce` returns, each of shape (N, T): the half-period counts
+#: ``(j1, j2)``, the parity of ``j1 + j2``, and ``sn, cn, dn`` of the reduced phase.
+Reduced: TypeAlias = tuple[tuple[FloatArray, FloatArray], BoolArray, FloatArray, FloatArray, FloatArray]
+
+
+def is_steady(I: ArrayLike, w: ArrayLike) -> BoolArray:
     """Whether ``omega`` is constant: ``w x I w = 0`` decided by exact comparisons.
 
     Not by evaluating ``cross(L, w) == 0``, which depends on round-off. The cases
@@ -68,11 +79,11 @@ def is_steady(I, w) -> np.ndarray:
     """
     I, w = np.asarray(I), np.asarray(w)
     zeros = np.count_nonzero(w == 0.0, axis=-1)
-    return ((I[..., 0] == I[..., 2]) | (zeros >= 2) | ((I[..., 0] == I[..., 1]) & (w[..., 2] == 0.0))
-            | ((I[..., 1] == I[..., 2]) & (w[..., 0] == 0.0)))
+    return cast(BoolArray, ((I[..., 0] == I[..., 2]) | (zeros >= 2) | ((I[..., 0] == I[..., 1]) & (w[..., 2] == 0.0))
+            | ((I[..., 1] == I[..., 2]) & (w[..., 0] == 0.0))))
 
 
-def steady_attitude(w, q0, t) -> np.ndarray:
+def steady_attitude(w: Vector3, q0: Quaternion, t: FloatArray) -> Quaternion:
     """``q0 (x) exp(|w| t e_w)``: the turn about a fixed omega, its angle in double-double.
 
     Parameters
@@ -96,23 +107,23 @@ def steady_attitude(w, q0, t) -> np.ndarray:
     >>> np.round(q[0, 0], 12) + 0.0  # half a turn about z
     array([0., 0., 1., 0.])
     """
-    spin, e = dd.norm([(x, np.zeros_like(x)) for x in w.T])
+    spin, e = cast(tuple[DDArray, IntArray], dd.norm([(x, np.zeros_like(x)) for x in w.T]))  # arrays in, out
     axis = np.where(spin[0][:, None] > 0, np.ldexp(w, -e[:, None]) / np.where(spin[0] > 0, spin[0], 1.0)[:, None], w)
     angle = 0.5 * dd.reduce_2pi(dd.mul_scaled(_column(dd.ldexp(spin, e)), t))
     turn = np.concatenate([np.sin(angle)[..., None] * axis[:, None, :], np.cos(angle)[..., None]], axis=-1)
     return quat_multiply(q0[:, None, :], turn)
 
 
-def _column(x):
+def _column(x: DoubleDouble) -> DDArray:
     """A double-double of shape (N,) as (N, 1), to broadcast against times (T,)."""
-    return x[0][:, None], x[1][:, None]
+    return cast(FloatArray, x[0])[:, None], cast(FloatArray, x[1])[:, None]  # arrays here
 
 
-def _lift(x) -> np.ndarray:
+def _lift(x: ArrayLike) -> FloatArray:
     return np.atleast_1d(np.asarray(x, float))
 
 
-def _lift_dd(x) -> tuple[np.ndarray, np.ndarray]:
+def _lift_dd(x: DoubleDouble) -> DDArray:
     return _lift(x[0]), _lift(x[1])
 
 
@@ -142,14 +153,16 @@ class EllipticMotion:
     ((1, 2, 3), True)
     """
 
-    def __init__(self, moments: np.ndarray, omega0: np.ndarray) -> None:
+    def __init__(self, moments: ArrayLike, omega0: ArrayLike) -> None:
         I, w = np.asarray(moments, float), np.asarray(omega0, float)
         self.I, self.w = I, w
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             self._parameters(I, w)
 
     # -- parameters ------------------------------------------------------------------
-    def _core(self, I, w):
+    def _core(self, I: FloatArray, w: FloatArray) -> tuple[
+        ScaledCore, BoolArray, FloatArray, FloatArray, FloatArray, DDArray, DDArray, DDArray
+    ]:
         """The motion's parameters and complete integrals, through floats for one body."""
         one = len(I) == 1
         core = scaled_core(w[0], I[0]) if one else scaled_core(w, I)
@@ -176,7 +189,7 @@ class EllipticMotion:
         m1 = np.where(kp_e > -600, np.ldexp(kp_m[0] ** 2, 2 * kp_e), 0.0)
         return core, separatrix, k, kp, m1, n, K, Pi
 
-    def _parameters(self, I, w) -> None:
+    def _parameters(self, I: FloatArray, w: FloatArray) -> None:
         core, separatrix, k, kp, m1, n, K, Pi = self._core(I, w)
         upper = np.atleast_1d(core["upper"])
         amp = np.atleast_2d(core["amplitudes"])
@@ -237,28 +250,28 @@ class EllipticMotion:
         excess = dd.add(Pi, dd.neg(K))
         A = dd.where(sep, dd.add(rate0, dd.div(rate1, one_n)), dd.where(pi_mode, rate0, dd.add(rate0, rate1)))
         B = dd.where(sep, zero, dd.mul(dd.mul_d(scale, 2.0), dd.where(pi_mode, Pi, excess)))
-        self.A, self.B, self.pi_mode, self.scale = A, B, pi_mode, scale[0]
-        self.excess_c, self.one_n = np.where(sep, -np.inf, excess[0]), one_n[0]
+        self.A, self.B, self.pi_mode, self.scale = A, B, pi_mode, cast(FloatArray, scale[0])  # arrays here
+        self.excess_c, self.one_n = np.where(sep, -np.inf, excess[0]), cast(FloatArray, one_n[0])
         self.b0 = self._bounded(*start)
         half = np.where(sep, np.inf, 2.0 * K[0] / p[0])
         self.rate = np.maximum(p[0], np.abs(A[0]) + np.abs(B[0]) / half)
 
     @property
-    def phase_rate(self) -> np.ndarray:
+    def phase_rate(self) -> FloatArray:
         """The fastest rate of any phase of each motion (1/s): ``p`` or the precession's."""
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             self._precession_parameters()
         return self.rate
 
     # -- evaluation ------------------------------------------------------------------
-    def reduce(self, t):
+    def reduce(self, t: ArrayLike) -> Reduced:
         """Half-period counts ``(j1, j2)``, parity and ``sn, cn, dn`` of the reduced phase of
         every body at times ``t`` (s, shape (T,)): arrays of shape (N, T)."""
         u = dd.add(dd.mul_scaled(_column(self.p), np.asarray(t, float)), _column(self.u0))
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             return self.modulus.reduce(u)
 
-    def omega(self, reduced) -> np.ndarray:
+    def omega(self, reduced: Reduced) -> Vector3:
         """Angular velocity (rad/s, principal frame), shape (N, T, 3), from :meth:`reduce`."""
         _, odd, sn, cn, dn = reduced
         flip = np.where(odd, -1.0, 1.0)
@@ -268,7 +281,7 @@ class EllipticMotion:
         up = self.upper[:, None]
         return np.stack([np.where(up, wc, wr), (self.sign2 * self.amp[:, 1])[:, None] * flip * sn, np.where(up, wr, wc)], axis=-1)
 
-    def attitude(self, q0, t, reduced, omega) -> np.ndarray:
+    def attitude(self, q0: ArrayLike, t: ArrayLike, reduced: Reduced, omega: Vector3) -> Quaternion:
         """Principal frame to world, shape (N, T, 4), scalar last: ``G Rz(phi) Rx(theta) Rz(psi)
         P`` with ``G`` fixed by ``q0`` (shape (N, 4)), from :meth:`reduce` and :meth:`omega`."""
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
@@ -287,7 +300,7 @@ class EllipticMotion:
         X[lower] = X[lower][..., [2, 0, 1, 3]]
         return quat_multiply(np.asarray(q0, float)[:, None, :], X)
 
-    def _tilt(self, L):
+    def _tilt(self, L: Vector3) -> tuple[FloatArray, FloatArray]:
         """``theta, psi`` of ``Rx(theta) Rz(psi)``, which takes the relabelled ``L_body`` (the
         reference axis last: (1, 2, 3) or (2, 3, 1)) to ``|L| e_z``."""
         up = self.upper if L.ndim == 2 else self.upper[:, None]
@@ -296,10 +309,10 @@ class EllipticMotion:
         Lr = np.where(up, L[..., 2], L[..., 0])
         return np.arctan2(np.hypot(Li, Lj), Lr), np.arctan2(Li, Lj)
 
-    def _bounded(self, sn, cn, dn) -> np.ndarray:
+    def _bounded(self, sn: FloatArray, cn: FloatArray, dn: FloatArray) -> FloatArray:
         """The bounded part of ``phi`` at reduced phases (``sn, cn, dn`` of ``u_r``, shape (N,)
         or (N, T)), rad."""
-        col = (lambda x: x) if np.ndim(sn) == 1 else (lambda x: x[:, None])
+        col: Callable[[FloatArray], FloatArray] = (lambda x: x) if np.ndim(sn) == 1 else (lambda x: x[:, None])
         excess = np.empty(np.shape(sn))
         sep = self.separatrix
         if np.any(sep):
@@ -320,7 +333,7 @@ class EllipticMotion:
         return col(self.scale) * excess
 
 
-def _initial_phase(s0, c0, d0, kp, K):
+def _initial_phase(s0: FloatArray, c0: FloatArray, d0: FloatArray, kp: FloatArray, K: DDArray) -> DDArray:
     """``u_r = F(phi | m)``, ``|phi| <= pi/2``, as a double-double; past the midpoint
     ``|u_r| = K/2`` measured from ``+-K`` instead, by the co-amplitude of ``u' = K - |u_r|``:
     ``sn u' = cd u_r``, ``cn u' = k' sd |u_r|``, ``dn u' = k' nd u_r`` (DLMF 22.4.3), so that a
@@ -332,7 +345,7 @@ def _initial_phase(s0, c0, d0, kp, K):
     u1 = np.zeros_like(s0)
     u1[g] = legendre_f(c0[g] / dg, kp[g] * np.abs(s0[g]) / dg, kp[g] / dg)
     shifted = dd.add(K, (-u1, np.zeros_like(u1)))
-    shifted = dd.where(s0 > 0, shifted, dd.neg(shifted))
+    shifted = cast(DDArray, dd.where(s0 > 0, shifted, dd.neg(shifted)))
     hi[far], lo[far] = shifted[0][far], shifted[1][far]
     hi[~far] = legendre_f(s0[~far], c0[~far], d0[~far], K=K[0][~far])
     return hi, lo

@@ -74,7 +74,7 @@ _RJ_STEPS = 3
 
 
 def legendre_pi_excess(
-    n: float, s: ArrayLike, c: ArrayLike, d: ArrayLike, m: float | None = None, excess_complete: ArrayLike = -np.inf
+    n: FloatOrArray, s: ArrayLike, c: ArrayLike, d: ArrayLike, m: FloatOrArray | None = None, excess_complete: ArrayLike = -np.inf
 ) -> FloatArray:
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` and ``n <= 0`` (module docstring);
     ``excess_complete = Pi(n | m) - K(m)`` is returned, with the sign of ``s``, where

@@ -26,7 +26,7 @@ from typing import TypeAlias
 
 import numpy as np
 
-from ...typing import BoolArray, FloatArray, FloatOrArray
+from ...typing import BoolArray, FloatOrArray, IntArray
 
 __all__ = [
     "LN2",
@@ -147,11 +147,11 @@ def neg(x: DoubleDouble) -> DoubleDouble:
     return -x[0], -x[1]
 
 
-def norm(v: Sequence[DoubleDouble]) -> tuple[DoubleDouble, int | FloatArray]:
+def norm(v: Sequence[DoubleDouble]) -> tuple[DoubleDouble, int | IntArray]:
     """``|v|`` of a sequence of double-doubles (floats or arrays, elementwise), as a double-double
     mantissa ``s`` and a power of two ``e``: ``|v| = s 2^e``. Each component is scaled by the
     power of two of the largest first (exactly), so that no square underflows or overflows."""
-    e: int | FloatArray
+    e: int | IntArray
     if np.ndim(v[0][0]) == 0:  # one vector: keep to Python's math (fast), as sqrt does
         e = e_int = math.frexp(max(abs(float(x[0])) for x in v))[1]  # 0 for a zero vector
 
@@ -172,7 +172,7 @@ def norm(v: Sequence[DoubleDouble]) -> tuple[DoubleDouble, int | FloatArray]:
     return sqrt(acc), e
 
 
-def ldexp(x: DoubleDouble, e: int | FloatArray) -> DoubleDouble:
+def ldexp(x: DoubleDouble, e: int | IntArray) -> DoubleDouble:
     """``x * 2^e`` for a double-double (exact unless it leaves the normal range)."""
     return np.ldexp(x[0], e), np.ldexp(x[1], e)
 
