@@ -68,13 +68,15 @@ it starts); ``t_end = 1e12`` s reaches it only at ``|omega| ~ 1e12`` rad/s.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..special import ddouble as dd
-from .exact_kernel import EllipticMotion, is_steady, steady_attitude
+from .exact_kernel import EllipticMotion, Reduced, is_steady, steady_attitude
 from .exact_parameters import EllipticParameters, elliptic_parameters
 
 __all__ = ["MAX_PHASE", "EllipticParameters", "FreeRotation", "check_phase_limit", "elliptic_parameters"]
@@ -86,7 +88,7 @@ __all__ = ["MAX_PHASE", "EllipticParameters", "FreeRotation", "check_phase_limit
 MAX_PHASE = 1e24
 
 
-def check_phase_limit(moments, omega0, t_end: float) -> None:
+def check_phase_limit(moments: ArrayLike, omega0: ArrayLike, t_end: float) -> None:
     """Refuse a run whose phase would exceed :data:`MAX_PHASE`.
 
     Parameters
@@ -152,9 +154,23 @@ class FreeRotation:
     (True, 2)
     """
 
-    moments: np.ndarray
-    omega0: np.ndarray
+    moments: Vector3
+    omega0: Vector3
     attitude0: Rotation
+    # Set by __post_init__ (not parameters): whether omega is constant (is_steady), the fastest
+    # rate of any phase (1/s), 1 - m (nan for a steady motion), the attitude at t = 0 as a
+    # (1, 4) quaternion, the kernel (elliptic motions only) and the last times asked for with
+    # their reduced phases and omega.
+    steady: bool = field(init=False, repr=False)
+    phase_rate: float = field(init=False, repr=False)
+    m1: float = field(init=False, repr=False)
+    _quat0: Quaternion = field(init=False, repr=False)
+    _motion: EllipticMotion = field(init=False, repr=False)
+    _last: tuple[FloatArray, tuple[Reduced, Vector3]] = field(init=False, repr=False)
+
+    if TYPE_CHECKING:  # the generated __init__ takes array_like; __post_init__ makes the arrays
+
+        def __init__(self, moments: ArrayLike, omega0: ArrayLike, attitude0: Rotation) -> None: ...
 
     def __post_init__(self) -> None:
         I = np.asarray(self.moments, float)
@@ -183,7 +199,7 @@ class FreeRotation:
         """Longest ``|t|`` (s) before a phase of the motion exceeds :data:`MAX_PHASE`."""
         return MAX_PHASE / self.phase_rate if self.phase_rate > 0 else math.inf
 
-    def _check_time(self, t) -> None:
+    def _check_time(self, t: ArrayLike) -> None:
         t_max = float(np.max(np.abs(t))) if np.size(t) else 0.0
         if not t_max <= self.max_time:
             raise ValueError(
@@ -192,9 +208,9 @@ class FreeRotation:
                 f"at most {self.max_time:.6g} s"
             )
 
-    def _reduced(self, t: np.ndarray):
+    def _reduced(self, t: FloatArray) -> tuple[Reduced, Vector3]:
         """The kernel's reduced phases and omega at times ``t`` (1-D), kept for the next call."""
-        last = self.__dict__.get("_last")
+        last: tuple[FloatArray, tuple[Reduced, Vector3]] | None = self.__dict__.get("_last")
         if last is not None and last[0].shape == t.shape and np.array_equal(last[0], t):
             return last[1]
         self._check_time(t)
@@ -203,14 +219,15 @@ class FreeRotation:
         object.__setattr__(self, "_last", (t.copy(), answer))
         return answer
 
-    def omega(self, t) -> np.ndarray:
+    def omega(self, t: ArrayLike) -> Vector3:
         """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3)."""
         t = np.asarray(t, float)
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
-        return self._reduced(t.ravel())[1][0].reshape(t.shape + (3,))
+        omega: Vector3 = self._reduced(t.ravel())[1][0].reshape(t.shape + (3,))
+        return omega
 
-    def attitude(self, t) -> Rotation:
+    def attitude(self, t: ArrayLike) -> Rotation:
         """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""
         t = np.atleast_1d(np.asarray(t, float))
         self._check_time(t)

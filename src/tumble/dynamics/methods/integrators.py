@@ -264,8 +264,7 @@ def _integrate_exact(
 ) -> tuple[Vector3, Quaternion]:
     from .exact import FreeRotation
 
-    # FreeRotation's __post_init__ converts array_like input; its fields say ndarray (exact.py not yet typed)
-    motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))  # type: ignore[arg-type]
+    motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))
     return motion.omega(t), motion.attitude(t).as_quat()
 
 
