@@ -11,8 +11,11 @@ the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi).
 
 from __future__ import annotations
 
+from typing import Literal, cast, overload
+
 import numpy as np
 
+from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from .exact import MAX_PHASE, check_phase_limit
 from .exact_kernel import EllipticMotion, is_steady, steady_attitude
 
@@ -25,7 +28,17 @@ _CHUNK = 1 << 14
 _MIN_BODIES = 64
 
 
-def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
+@overload
+def free_rotation_batch(
+    moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, attitude: Literal[True] = ...
+) -> tuple[Vector3, Quaternion]: ...
+@overload
+def free_rotation_batch(
+    moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, attitude: bool
+) -> tuple[Vector3, Quaternion | None]: ...
+def free_rotation_batch(
+    moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, attitude: bool = True
+) -> tuple[Vector3, Quaternion | None]:
     """Omega and attitude of N free rigid bodies at times ``t``, without a loop over bodies.
 
     Parameters
@@ -77,7 +90,7 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
     if len(idx):
         omega[idx] = w[idx, None, :]
         if attitude:
-            quat[idx] = steady_attitude(w[idx], q0[idx], t)
+            cast(Quaternion, quat)[idx] = steady_attitude(w[idx], q0[idx], t)
     rest = np.flatnonzero(~steady)
     step = max(_MIN_BODIES, _CHUNK // max(T, 1))
     for start in range(0, len(rest), step):
@@ -86,11 +99,11 @@ def free_rotation_batch(moments, omega0, quat0, t, *, attitude: bool = True):
         reduced = motion.reduce(t)
         omega[chunk] = motion.omega(reduced)
         if attitude:
-            quat[chunk] = motion.attitude(q0[chunk], t, reduced, omega[chunk])
+            cast(Quaternion, quat)[chunk] = motion.attitude(q0[chunk], t, reduced, omega[chunk])
     return omega, quat
 
 
-def _check_phases(I, w, t) -> None:
+def _check_phases(I: Vector3, w: Vector3, t: FloatArray) -> None:
     """:func:`check_phase_limit` for the bodies that could come near it (a cheap bound first)."""
     if not t.size:
         return
