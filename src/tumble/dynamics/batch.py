@@ -18,11 +18,13 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Any, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, MassProperties
+from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import (
     BOUND_REASONS,
     MAX_RATE,
@@ -33,8 +35,8 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .methods.integrators import METHODS, get_method
-from .models.torques import as_torque, bind_to_body, spin_gain
+from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
+from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, spin_gain
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion
 from .trajectory import Trajectory
@@ -67,10 +69,10 @@ class BatchTrajectory:
         Whether no external torque acted.
     """
 
-    t: np.ndarray
-    omega: np.ndarray
-    quat: np.ndarray
-    moments: np.ndarray
+    t: FloatArray
+    omega: Vector3
+    quat: Quaternion
+    moments: Vector3
     method: str
     torque_free: bool = True
 
@@ -81,7 +83,7 @@ class BatchTrajectory:
     def __repr__(self) -> str:
         return _display.batch_repr(self)
 
-    def __getitem__(self, i) -> Trajectory:
+    def __getitem__(self, i: int | np.integer[Any]) -> Trajectory:
         """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory`
         (its principal frame is its design frame)."""
         if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
@@ -95,23 +97,24 @@ class BatchTrajectory:
         )
 
     @functools.cached_property
-    def energy(self) -> np.ndarray:
+    def energy(self) -> FloatArray:
         """Kinetic energy ``omega . I omega / 2``, J; shape (N, T)."""
         return kinetic_energy(self.omega, self.moments[:, None, :])
 
     @functools.cached_property
-    def angular_momentum(self) -> np.ndarray:
+    def angular_momentum(self) -> Vector3:
         """``L = I omega``, principal frame, kg m^2/s; shape (N, T, 3)."""
         return angular_momentum(self.omega, self.moments[:, None, :])
 
     @functools.cached_property
-    def angular_momentum_world(self) -> np.ndarray:
+    def angular_momentum_world(self) -> Vector3:
         """L in the world frame, kg m^2/s; constant without torque; shape (N, T, 3)."""
         return rotate_by_quaternion(self.quat, self.angular_momentum)
 
 
-def simulate_batch(moments, omega0, *, t_end: float | None = None, times=None, samples: int | None = None,
-                   attitude0=None, method: str = "exact", torque=None, step: float | None = None) -> BatchTrajectory:
+def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None = None, times: ArrayLike | None = None,
+                   samples: int | None = None, attitude0: ArrayLike | None = None, method: str = "exact",
+                   torque: TorqueLike | None = None, step: float | None = None) -> BatchTrajectory:
     """Integrate the rotation of N rigid bodies, sampled at the same times.
 
     Parameters
@@ -183,7 +186,7 @@ def _first(bad: np.ndarray) -> int:
     return int(np.flatnonzero(bad)[0])
 
 
-def _rows(name: str, value, width: int, unit: str) -> np.ndarray:
+def _rows(name: str, value: Any, width: int, unit: str) -> FloatArray:
     """``value`` as an array of shape (n, width), n >= 1 (a single row is (1, width)), of finite
     real numbers, or one line naming the first bad row and saying what it must be."""
     if isinstance(value, (str, bytes, dict, set)):
@@ -216,11 +219,11 @@ def _rows(name: str, value, width: int, unit: str) -> np.ndarray:
     return a
 
 
-def _real(x) -> bool:
+def _real(x: object) -> bool:
     return isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_))
 
 
-def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def check_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike | None = None) -> tuple[Vector3, Vector3, Quaternion]:
     """Validate a batch's moments, omega and attitudes and broadcast them to N bodies.
 
     Parameters
@@ -273,7 +276,8 @@ def check_batch(moments, omega0, attitude0=None) -> tuple[np.ndarray, np.ndarray
     return I, w, q
 
 
-def _splitting(spec, I, w0, q0, t, model, step):
+def _splitting(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, model: TorqueModel | None,
+               step: float | None) -> tuple[Vector3, Quaternion]:
     """The splitting integrators, every body together; the work bounds of :func:`tumble.simulate`."""
     model = bind_to_body(model, I)  # a torque that needs the bodies' moments (NeedsBody)
     t_end = float(t[-1])
@@ -285,14 +289,16 @@ def _splitting(spec, I, w0, q0, t, model, step):
         raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} "
                          f"rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} follows (at "
                          f"most {MAX_ROTATION:g} rad); use method exact or a shorter run")
-    h = step if step is not None else spec.default_step(spin, gain)  # what propagate takes by default
+    # a splitting method has both default_step and propagate (integrators.py)
+    h = step if step is not None else cast(StepRule, spec.default_step)(spin, gain)  # what propagate takes by default
     if t_end / h > MAX_STEPS:
         raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
-    omega, quat = spec.propagate(I, w0, q0, t, step=step, torque=model)
+    omega, quat = cast(Propagate, spec.propagate)(I, w0, q0, t, step=step, torque=model)
     return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
 
 
-def _loop(name, I, w0, q0, t, torque, step):
+def _loop(name: str, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, torque: TorqueLike | None,
+          step: float | None) -> tuple[Vector3, Quaternion]:
     """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's)."""
     omega, quat = np.empty((len(I), len(t), 3)), np.empty((len(I), len(t), 4))
     for i in range(len(I)):

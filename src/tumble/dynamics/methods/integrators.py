@@ -78,8 +78,10 @@ IntegrateInternal: TypeAlias = Callable[
      "float | None"],
     InternalSamples,
 ]
-#: ``default_step(spin, gain, rate)`` -> the largest step, s, of a fixed-step method.
-StepRule: TypeAlias = Callable[[float, float, float], float]
+class StepRule(Protocol):
+    """``default_step(spin, gain, rate)`` -> the largest step, s, of a fixed-step method."""
+
+    def __call__(self, spin: float, gain: float = 0.0, rate: float = 0.0) -> float: ...
 
 
 class Propagate(Protocol):

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -165,7 +165,12 @@ class FunctionTorque:
         return np.asarray(self.fn(t, omega, attitude), dtype=float)
 
 
-def as_torque(torque: TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike] | None) -> TorqueModel | None:
+#: What ``torque=`` accepts: a torque model, or a plain callable ``tau(t, omega, attitude)`` (N m,
+#: body frame).
+TorqueLike: TypeAlias = "TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike]"
+
+
+def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     """The torque model for ``torque``: models pass through, a plain callable acts in the body frame.
 
     Parameters
