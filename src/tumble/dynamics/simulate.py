@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import NamedTuple
+from typing import Any, NamedTuple, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
+from ..typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ..validation import (
     MAX_INERTIA,
     MAX_RATE,
@@ -18,9 +19,22 @@ from ..validation import (
     check_rotation,
     check_vector,
 )
-from .methods.integrators import METHODS, Method, get_method
+from .methods.integrators import (
+    METHODS,
+    IntegrateInternal,
+    Method,
+    StepRule,
+    get_method,
+)
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
-from .models.torques import as_torque, bind_to_body, spin_gain
+from .models.torques import (
+    FunctionTorque,
+    TorqueLike,
+    TorqueModel,
+    as_torque,
+    bind_to_body,
+    spin_gain,
+)
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
@@ -57,31 +71,31 @@ class RunInputs(NamedTuple):
 
     props: MassProperties
     method: Method
-    omega0: np.ndarray  # principal frame, rad/s
-    quat0: np.ndarray  # principal body frame -> world, scalar last
-    t: np.ndarray  # times the integrator is sampled at, s, starting at 0
+    omega0: Vector3  # principal frame, rad/s
+    quat0: Quaternion  # principal body frame -> world, scalar last
+    t: FloatArray  # times the integrator is sampled at, s, starting at 0
     keep: slice  # the samples returned (all but a leading t = 0 the caller did not ask for)
     rtol: float | None
     atol: float | None
     step: float | None
-    torque: object  # a torque model in the principal frame, or None
+    torque: TorqueModel | None  # a torque model in the principal frame, or None
     internal: InternalModel | None = None  # rotors and/or a damper, or None
 
 
 def simulate(
-    body,
-    omega0,
+    body: Body | MassProperties,
+    omega0: ArrayLike,
     *,
     t_end: float | None = None,
     samples: int | None = None,
     dt: float | None = None,
-    times=None,
+    times: ArrayLike | None = None,
     method: str | None = None,
     frame: str = "principal",
-    torque=None,
+    torque: TorqueLike | None = None,
     rtol: float | None = None,
     atol: float | None = None,
-    attitude0=None,
+    attitude0: Rotation | ArrayLike | None = None,
     step: float | None = None,
     damper: SphericalDamper | None = None,
 ) -> Trajectory:
@@ -147,16 +161,18 @@ def simulate(
         body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
         rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0, damper=damper,
     )
-    spec, model, atol, internal = run.method, run.torque, run.atol, run.internal
+    tol: float | FloatArray | None  # atol; per component where the method scales it
+    spec, model, tol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
-    if spec.atol_scaled and atol is not None:
+    if spec.atol_scaled and tol is not None:
         scale = max(_spin_bound(run), _spin_gain(model, run), 1e-300)
-        atol = np.array([atol * scale] * 3 + [atol] * 4) if internal is None else internal.atol(atol, scale)
-    extra: dict = {}
+        tol = np.array([tol * scale] * 3 + [tol] * 4) if internal is None else internal.atol(tol, scale)
+    extra: dict[str, Any] = {}  # the rotors' and the damper's fields of the Trajectory
     if internal is None:
-        omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
+        omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, tol, run.step)
     else:
-        out = spec.integrate_internal(internal, run.omega0, run.quat0, run.t, model, run.rtol, atol, run.step)
+        # a method that takes rotors and a damper has integrate_internal (check_inputs)
+        out = cast(IntegrateInternal, spec.integrate_internal)(internal, run.omega0, run.quat0, run.t, model, run.rtol, tol, run.step)
         omega, quat = out.omega, out.quat
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
@@ -169,7 +185,8 @@ def simulate(
     )
 
 
-def sample_times(t_end=None, samples=None, dt=None, times=None) -> tuple[np.ndarray, slice]:
+def sample_times(t_end: float | None = None, samples: int | None = None, dt: float | None = None,
+                 times: ArrayLike | None = None) -> tuple[FloatArray, slice]:
     """The times to sample, from exactly one of ``t_end`` (with ``samples`` or ``dt``) or ``times``.
 
     Returns the grid the integrator follows (always starting at t = 0) and the slice of it
@@ -210,16 +227,18 @@ def sample_times(t_end=None, samples=None, dt=None, times=None) -> tuple[np.ndar
             raise ValueError(f"dt = {dt!r} s gives {n} samples over {t_end:g} s; allowed: 2 to {MAX_SAMPLES}")
         t = dt * np.arange(n)
         t[-1] = min(t[-1], t_end)  # a whole t_end / dt ends exactly at t_end
-        return t, slice(None)
+        return cast(FloatArray, t), slice(None)
     samples = DEFAULT_SAMPLES if samples is None else samples
     if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
         raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
-    return np.linspace(0.0, t_end, int(samples)), slice(None)
+    return cast(FloatArray, np.linspace(0.0, t_end, int(samples))), slice(None)
 
 
-def check_inputs(body, omega0, *, t_end=None, samples=None, dt=None, times=None, method=None,
-                 frame="principal", rtol=None, atol=None, step=None, torque=None, attitude0=None,
-                 damper=None) -> RunInputs:
+def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float | None = None, samples: int | None = None,
+                 dt: float | None = None, times: ArrayLike | None = None, method: str | None = None,
+                 frame: str = "principal", rtol: float | None = None, atol: float | None = None,
+                 step: float | None = None, torque: TorqueLike | None = None,
+                 attitude0: Rotation | ArrayLike | None = None, damper: SphericalDamper | None = None) -> RunInputs:
     """Validate :func:`simulate`'s arguments (scenario files use it too, before anything runs).
 
     Fills in the defaults (the method is ``"exact"`` without a torque, rotors or damper,
@@ -317,7 +336,7 @@ def _check_work(run: RunInputs) -> None:
         _check_stiffness(run, spin + gain, turns)
     if spec.fixed_step:
         rate = 0.0 if run.internal is None else run.internal.relaxation_rate
-        h = run.step or spec.default_step(spin, gain, rate)
+        h = run.step or cast(StepRule, spec.default_step)(spin, gain, rate)  # a fixed-step method has one
         if t_end / h > MAX_STEPS:
             raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
 
@@ -326,10 +345,11 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
     """Refuse a stiff damper (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`) to the methods that
     cannot follow it, and a longer run than :data:`MAX_STIFF_ROTATION` to the one that can."""
     spec, t_end = run.method, float(run.t[-1])
-    ratio, slow = run.internal.stiffness(spin, t_end)
+    internal = cast(InternalModel, run.internal)  # called with a damper only
+    ratio, slow = internal.stiffness(spin, t_end)
     if not ratio > STIFF_RATIO:
         return
-    stiff = (f"damper: its relaxation rate (c / J)(1 + J / I1) = {run.internal.relaxation_rate:.3g} 1/s is "
+    stiff = (f"damper: its relaxation rate (c / J)(1 + J / I1) = {internal.relaxation_rate:.3g} 1/s is "
              f"{ratio:.3g} times the spin rate {slow:.3g} rad/s (stiff above {STIFF_RATIO:g})")
     if not spec.stiff_solver:
         why = "an explicit method's steps would be held to the relaxation time" if not spec.fixed_step else (
@@ -350,13 +370,11 @@ def _spin_bound(run: RunInputs) -> float:
     return run.internal.spin_bound(run.omega0, run.t)
 
 
-def _spin_gain(model, run: RunInputs) -> float:
+def _spin_gain(model: TorqueModel | None, run: RunInputs) -> float:
     """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
     return spin_gain(model, 0.0, run.omega0, Rotation.from_quat(run.quat0), run.props.principal_moments, float(run.t[-1]))
 
 
-def _design_torque(model, A):
+def _design_torque(model: TorqueModel, A: Matrix3) -> FunctionTorque:
     """Wrap a body-frame torque given in design coordinates so it returns principal ones."""
-    from .models.torques import FunctionTorque
-
     return FunctionTorque(lambda t, w, att: A.T @ np.asarray(model(t, A @ w, att), float), "body")

@@ -68,7 +68,8 @@ MAX_EVALUATIONS = 50_000_000
 
 #: ``integrate(moments, omega0, quat0, t, torque, rtol, atol, step)`` -> ``(omega, quat)`` at ``t``.
 Integrate: TypeAlias = Callable[
-    [ArrayLike, ArrayLike, ArrayLike, FloatArray, "TorqueModel | None", "float | None", "float | None", "float | None"],
+    [ArrayLike, ArrayLike, ArrayLike, FloatArray, "TorqueModel | None", "float | None", "float | FloatArray | None",
+     "float | None"],
     tuple[Vector3, Quaternion],
 ]
 #: ``integrate_internal(model, omega0, quat0, t, torque, rtol, atol, step)`` -> the samples of a run
@@ -178,7 +179,7 @@ def _solve(
 def _solve_full(method: str) -> Integrate:
     def integrate(
         moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-        rtol: float | None, atol: float | None, step: float | None = None,
+        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> tuple[Vector3, Quaternion]:
         moments = np.asarray(moments, float)
 
@@ -232,7 +233,7 @@ def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
 
 def _integrate_seed(
     moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-    rtol: float | None, atol: float | None, step: float | None = None,
+    rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
 ) -> tuple[Vector3, Quaternion]:
     """The seed's computation: RK45 for omega, then ``R <- R exp([omega] dt)`` (seed sec. 5)."""
     moments = np.asarray(moments, float)
@@ -262,7 +263,7 @@ def _integrate_seed(
 
 def _integrate_exact(
     moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-    rtol: float | None, atol: float | None, step: float | None = None,
+    rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
 ) -> tuple[Vector3, Quaternion]:
     from .exact import FreeRotation
 
@@ -296,7 +297,7 @@ def _splitting(name: str, order: int, description: str, family: str = "geometric
                     module().propagate(moments, omega0, quat0, t, order=order, step=step, torque=torque))
 
     def integrate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-                  rtol: float | None, atol: float | None, step: float | None = None) -> tuple[Vector3, Quaternion]:
+                  rtol: float | None, atol: float | FloatArray | None, step: float | None = None) -> tuple[Vector3, Quaternion]:
         omega, quat = propagate(moments, omega0, quat0, t, step=step, torque=torque)
         return omega[:, 0], quat[:, 0]
 
