@@ -43,13 +43,16 @@ and ``tests/test_damper.py``.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike, FloatArray, FloatOrArray
 from ...validation import check_increasing, short_repr
-from ..models.internal import InternalSamples
-from ..models.torques import body_torque, spin_gain
+from ..models.internal import InternalModel, InternalSamples, Rotors
+from ..models.torques import TorqueModel, body_torque, spin_gain
 from .compiled import compiled_model, run_split
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]
@@ -97,7 +100,8 @@ def free_flow_substeps(order: int) -> list[tuple[int, float]]:
     return seq
 
 
-def _rotate(L, q, axis: int, tau: float, inv_I, h=None, J: float = 0.0, wd=None) -> None:
+def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArray, h: FloatArray | None = None,
+            J: float = 0.0, wd: FloatArray | None = None) -> None:
     """Exact flow of ``H_axis`` for time ``tau``, in place on (3, N) and (4, N) arrays.
 
     Components are rows (structure of arrays) so every operation runs on contiguous memory.
@@ -124,14 +128,15 @@ def _rotate(L, q, axis: int, tau: float, inv_I, h=None, J: float = 0.0, wd=None)
     q[axis], q[j], q[k], q[3] = ch * qa + sh * qw, ch * qj + sh * qk, ch * qk - sh * qj, ch * qw - sh * qa
 
 
-def _body_torque(torque, t, omega, q):
+def _body_torque(torque: TorqueModel, t: float, omega: FloatArray, q: FloatArray) -> FloatArray:
     """Torque on every body in its principal frame, shape (3, N) (rows: components); ``omega``
     and ``q`` are rows too."""
     return body_torque(torque, t, omega.T, Rotation.from_quat(q.T)).T
 
 
-def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None = None, torque=None,
-              compiled: bool = True):
+def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, order: int = 4,
+              step: float | None = None, torque: TorqueModel | None = None,
+              compiled: bool = True) -> tuple[FloatArray, FloatArray]:
     """Integrate N bodies with the composed splitting, sampled at times ``t``.
 
     Parameters
@@ -191,8 +196,8 @@ def propagate(moments, omega0, quat0, t, *, order: int = 4, step: float | None =
     return run.omega, run.quat
 
 
-def propagate_internal(model, omega0, quat0, t, *, order: int = 4, step: float | None = None,
-                       torque=None) -> InternalSamples:
+def propagate_internal(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, order: int = 4,
+                       step: float | None = None, torque: TorqueModel | None = None) -> InternalSamples:
     """Integrate one body with rotors and/or a damper by the composed splitting.
 
     Parameters
@@ -242,7 +247,9 @@ def propagate_internal(model, omega0, quat0, t, *, order: int = 4, step: float |
                            *(None if a is None else a[:, 0] for a in run[2:]))
 
 
-def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> InternalSamples:
+def _propagate_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, order: int, step: float,
+                     torque: TorqueModel | None, model: InternalModel | None = None,
+                     wd0: FloatArray | None = None) -> InternalSamples:
     """The composed splitting, all pieces: arrays of N bodies, ``(n, N, ...)`` samples out.
 
     Each Yoshida stage of length ``g`` from time ``tc`` is the symmetric step: half pieces at
@@ -254,17 +261,18 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
     inv_I = 1.0 / Ib
     L, q = L.T.copy(), q.T.copy()  # rows: components, columns: bodies
     rotors = model is not None and model.rotors is not None
-    varying = rotors and not model.rotors.constant
+    # model, its rotors, wd0 and the damper's arrays are read only where they are given (casts: for mypy)
+    varying = rotors and not cast(Rotors, cast(InternalModel, model).rotors).constant
     damper = None if model is None else model.damper
     track = model is not None and model.tracks_work
     J = 0.0 if damper is None else damper.inertia
-    wd = None if damper is None else wd0.T.copy()
+    wd = None if damper is None else cast(FloatArray, wd0).T.copy()
     A, D = np.zeros(N), np.zeros(N)
 
-    def h_at(time):
-        return model.momentum(time)[:, None] if rotors else None
+    def h_at(time: float) -> FloatArray | None:
+        return cast(InternalModel, model).momentum(time)[:, None] if rotors else None
 
-    def omega(h):
+    def omega(h: FloatArray | None) -> FloatArray:
         free = L if h is None else L - h
         return (free if wd is None else free - J * wd) * inv_I
 
@@ -272,9 +280,9 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
         hk = h_at(tk)
         for piece in ((0, 1, 2) if first else (2, 1, 0)):
             if piece == 0 and track:
-                A[:] += d * (model.momentum_rate(tk) @ omega(hk))
+                A[:] += d * (cast(InternalModel, model).momentum_rate(tk) @ omega(hk))
             elif piece == 1 and damper is not None:
-                wd[:], lost = damper.relax(L if hk is None else L - hk, wd, Ib, d)
+                cast(FloatArray, wd)[:], lost = damper.relax(L if hk is None else L - hk, cast(FloatArray, wd), Ib, d)
                 D[:] += lost
             elif piece == 2 and torque is not None:
                 L[:] += d * _body_torque(torque, tk, omega(hk), q)
@@ -286,7 +294,7 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
     D_out = np.zeros((n, N)) if damper is not None else None
     omega_out[0], quat_out[0] = omega(h_at(t[0])).T, q.T
     if wd_out is not None:
-        wd_out[0] = wd.T
+        wd_out[0] = cast(FloatArray, wd).T
     hm = h_at(t[0])
     for s in range(1, n):
         n_steps, h = _steps(t[s] - t[s - 1], step)
@@ -305,13 +313,13 @@ def _propagate_split(I, L, q, t, order, step, torque, model=None, wd0=None) -> I
         q /= np.linalg.norm(q, axis=0)
         omega_out[s], quat_out[s] = omega(h_at(t[s])).T, q.T
         if wd_out is not None:
-            wd_out[s], D_out[s] = wd.T, D
+            wd_out[s], cast(FloatArray, D_out)[s] = cast(FloatArray, wd).T, D
         if A_out is not None:
             A_out[s] = A
     return InternalSamples(omega_out, quat_out, wd_out, D_out, A_out)
 
 
-def _check_batch(I, L, q, t, step) -> None:
+def _check_batch(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float | None) -> None:
     """Refuse what would give silently wrong numbers (``simulate`` checks its own arguments)."""
     if not (np.all(np.isfinite(I)) and np.all(I > 0)):
         raise ValueError("moments must be finite and positive (kg m^2)")
@@ -335,7 +343,8 @@ def _steps(dt: float, step: float) -> tuple[int, float]:
 _NEXT = {0: (1, 2), 1: (2, 0), 2: (0, 1)}
 
 
-def _propagate_free(I, L, q, t, subflows, step, offset=None):
+def _propagate_free(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, subflows: list[tuple[int, float]],
+                    step: float, offset: FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """Torque-free: each sub-flow turns the body momentum by ``-a`` and the attitude by ``+a``
     about ``e_axis``, ``a = frac h (L_axis - h_axis) / I_axis``, in place; the attitude is
     renormalised once per sample. ``offset``: a constant internal momentum h, shape (N, 3).
@@ -349,25 +358,26 @@ def _propagate_free(I, L, q, t, subflows, step, offset=None):
     N = len(I)
     offset = np.zeros((N, 3)) if offset is None else np.broadcast_to(offset, (N, 3))
     one = N == 1
+    sqrt: Callable[[FloatOrArray], FloatOrArray]
     if one:  # plain floats: numpy's trigonometry on each, every other operation IEEE alike
-        def rows(a):
+        def rows(a: FloatArray) -> list[FloatOrArray]:
             return [float(x) for x in a[0]]
 
-        def trig(x):
+        def trig(x: FloatOrArray) -> tuple[FloatOrArray, FloatOrArray]:
             return float(np.cos(x)), float(np.sin(x))
 
         sqrt = math.sqrt
     else:
-        def rows(a):
+        def rows(a: FloatArray) -> list[FloatOrArray]:
             return [a[:, i].copy() for i in range(a.shape[1])]
 
-        def trig(x):
+        def trig(x: FloatOrArray) -> tuple[FloatOrArray, FloatOrArray]:
             return np.cos(x), np.sin(x)
 
         sqrt = np.sqrt
     inv_I, comps, off, quat = rows(1.0 / I), rows(L), rows(np.asarray(offset, float)), rows(q)
 
-    def sample():
+    def sample() -> tuple[FloatArray, FloatArray]:
         omega = [(comps[i] - off[i]) * inv_I[i] for i in range(3)]
         norm = sqrt(quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3])
         quat[:] = [x / norm for x in quat]
