@@ -50,6 +50,7 @@ from ..dynamics import Trajectory
 from ..dynamics.methods.exact import elliptic_parameters
 from ..mass import INERTIA_RTOL
 from ..mass.tensor import refuse_first
+from ..typing import ArrayLike
 from ..validation import AXES_ALLOWED
 from .stability import _axis_index, _check_motion, circulation_axis, flip_interval
 
@@ -68,7 +69,7 @@ __all__ = [
 TWO_PI = 2.0 * np.pi
 
 
-def period(omega, moments) -> np.ndarray:
+def period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Period of the body-frame motion, ``T = 4 K(m) / p``, s (module docstring).
 
     Twice :func:`tumble.analysis.flip_interval`. For a symmetric top ``2 pi / p``, the period of
@@ -119,7 +120,7 @@ def _precession(w: np.ndarray, I: np.ndarray):
     return (T, np.where(finite, dphi, np.nan), np.where(finite, secular, np.nan), sigma)
 
 
-def precession_per_period(omega, moments) -> np.ndarray:
+def precession_per_period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """``Delta phi``: the angle the circulation axis precesses about L in one period, rad.
 
     ``|L| T / I_r + 4 |L| (I_r - I_o) Pi(n | m) / (I1 I3 p)`` (module docstring), not reduced;
@@ -131,7 +132,7 @@ def precession_per_period(omega, moments) -> np.ndarray:
     return _precession(*_check_motion(omega, moments))[1]
 
 
-def montgomery_angle(omega, moments) -> np.ndarray:
+def montgomery_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Montgomery's rotation per period ``Delta theta = 2 E T / |L| - Omega (mod 2 pi)``, rad.
 
     Computed by the closed form of the module docstring: ``Delta theta = Delta phi mod 2 pi``
@@ -162,7 +163,7 @@ def montgomery_angle(omega, moments) -> np.ndarray:
     return np.mod(dphi, TWO_PI)
 
 
-def polhode_solid_angle(omega, moments) -> np.ndarray:
+def polhode_solid_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Oriented solid angle ``Omega`` enclosed by the path of L_body / |L| in one period, sr.
 
     ``Omega = 2 E T / |L| - Delta phi + 2 pi sigma`` (module docstring; ``sigma = +1`` for
@@ -188,7 +189,7 @@ def _check_trajectory(traj) -> None:
         raise ValueError(f"traj has {len(traj.t)} sample(s); at least 2 are needed")
 
 
-def rotation_per_period(traj, period_s=None) -> float:
+def rotation_per_period(traj: Trajectory, period_s: float | None = None) -> float:
     """Rotation of the body about L_world over one body-frame period, measured, rad.
 
     The angle of ``R(t0 + T) R(t0)^-1`` about ``L_world`` (counter-clockwise), in ``[0, 2 pi)``,
@@ -230,7 +231,7 @@ def rotation_per_period(traj, period_s=None) -> float:
     return float(np.mod(2.0 * np.arctan2(np.dot(Q[:3], axis), Q[3]), TWO_PI))
 
 
-def symmetric_top_rates(omega, moments) -> tuple[np.ndarray, np.ndarray]:
+def symmetric_top_rates(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The two rates of a free symmetric top (Landau & Lifshitz, *Mechanics*, sec. 33), rad/s.
 
     For moments ``I_perp, I_perp, I_s`` (oblate, ``I1 = I2``, symmetry axis 3) or ``I_s,
@@ -275,7 +276,7 @@ def symmetric_top_rates(omega, moments) -> tuple[np.ndarray, np.ndarray]:
     return L / I_perp, (I_s - I_perp) * w_s / I_perp
 
 
-def npa_periods(omega, moments) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def npa_periods(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Periods of non-principal-axis rotation (a tumbling asteroid) from moments and omega.
 
     Conventions: the names are those of Samarasinha & A'Hearn, Icarus 93 (1991) 194, and
@@ -329,7 +330,7 @@ def _upward_crossings(t: np.ndarray, y: np.ndarray) -> np.ndarray:
     return t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])
 
 
-def axis_precession_period(traj, axis: int) -> float:
+def axis_precession_period(traj: Trajectory, axis: int) -> float:
     """Mean precession period of a principal axis about L, measured on a sampled free motion, s.
 
     ``2 pi`` over the mean rate of the azimuth of body axis ``axis`` about L_world, unwrapped and
@@ -382,7 +383,7 @@ def _whole_periods(traj) -> np.ndarray:
     return up
 
 
-def npa_periods_measured(traj) -> tuple[float, float, str]:
+def npa_periods_measured(traj: Trajectory) -> tuple[float, float, str]:
     """``P_phi`` and ``P_psi`` measured on a sampled torque-free trajectory (:func:`npa_periods`).
 
     ``P_psi``: the mean interval between upward zero crossings of ``omega_2`` (the component

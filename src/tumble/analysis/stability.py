@@ -29,6 +29,7 @@ import numpy as np
 from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
+from ..typing import ArrayLike
 from ..validation import axis_index, check_moments, check_vectors
 
 __all__ = [
@@ -53,7 +54,7 @@ def _check_moments(moments) -> np.ndarray:
     return check_moments("moments", moments, physical=False)
 
 
-def _check_motion(omega, moments) -> tuple[np.ndarray, np.ndarray]:
+def _check_motion(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The shared validator of ``(omega, moments)``: finite omega (..., 3), moments as
     :func:`_check_moments`, batch shapes that broadcast together."""
     w = check_vectors("omega", omega, "rad/s")
@@ -71,7 +72,7 @@ def _broadcast(**shapes) -> tuple[int, ...]:
         raise ValueError(f"{given} must broadcast together") from None
 
 
-def axis_of(omega) -> np.ndarray:
+def axis_of(omega: ArrayLike) -> np.ndarray:
     """Principal axis (1, 2 or 3) carrying most of ``omega``: its largest |component|.
 
     Parameters
@@ -87,7 +88,7 @@ def axis_of(omega) -> np.ndarray:
     return np.argmax(np.abs(check_vectors("omega", omega, "rad/s")), axis=-1) + 1
 
 
-def perturbation_exponent(moments, axis, spin, momentum=0.0) -> np.ndarray:
+def perturbation_exponent(moments: ArrayLike, axis: int | str, spin: ArrayLike, momentum: ArrayLike = 0.0) -> np.ndarray:
     """``s = W^2 (I_a - I_b)(I_c - I_a) / (I_b I_c)`` of the linearised equations (see module).
 
     With a rotor's momentum ``h`` along the spin axis (a gyrostat, rotors locked into the
@@ -134,7 +135,7 @@ def perturbation_exponent(moments, axis, spin, momentum=0.0) -> np.ndarray:
     return ((Ia - Ib) * W + h) * ((Ic - Ia) * W - h) / (Ib * Ic)
 
 
-def linearised_rate(moments, axis, spin, momentum=0.0) -> tuple[np.ndarray, np.ndarray]:
+def linearised_rate(moments: ArrayLike, axis: int | str, spin: ArrayLike, momentum: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Growth exponent (1/s) and wobble angular frequency (rad/s) for spin about ``axis``.
 
     Exactly one of the two is non-zero for an asymmetric body: the growth exponent for the
@@ -173,7 +174,7 @@ def linearised_rate(moments, axis, spin, momentum=0.0) -> tuple[np.ndarray, np.n
     return np.sqrt(np.maximum(s, 0.0)), np.sqrt(np.maximum(-s, 0.0))
 
 
-def stable_spin_range(moments, momentum) -> tuple[float, float]:
+def stable_spin_range(moments: ArrayLike, momentum: float) -> tuple[float, float]:
     """Spin rates about the intermediate axis that a rotor momentum along it keeps stable.
 
     The zeros of :func:`perturbation_exponent` for the intermediate axis,
@@ -218,7 +219,7 @@ def stable_spin_range(moments, momentum) -> tuple[float, float]:
     return float(ends[0]) + 0.0, float(ends[1]) + 0.0
 
 
-def flip_interval(omega, moments) -> np.ndarray:
+def flip_interval(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Exact time between sign changes of the oscillating components of omega, s.
 
     Torque-free motion with ``I1 < I2 < I3`` (Landau & Lifshitz sec. 37): for
@@ -263,7 +264,7 @@ def flip_interval(omega, moments) -> np.ndarray:
     return np.where((kp == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
 
 
-def flip_interval_asymptotic(omega, moments) -> np.ndarray:
+def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Small-perturbation form of :func:`flip_interval`: ``2 ln(4 / k') / p = ln(16 / (1 - k^2)) / p``, s.
 
     From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun ch. 17, the limit m -> 1) with
@@ -279,7 +280,7 @@ def flip_interval_asymptotic(omega, moments) -> np.ndarray:
         return 2.0 * np.log(4.0 / e.kp) / e.p
 
 
-def circulation_axis(omega, moments) -> np.ndarray:
+def circulation_axis(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Principal axis (1 or 3) about which omega circulates: its component never changes sign.
 
     That is the dn component in Landau & Lifshitz sec. 37: axis 3 (major) when
@@ -306,7 +307,7 @@ def circulation_axis(omega, moments) -> np.ndarray:
     return np.where(elliptic_parameters(*_check_motion(omega, moments)).upper, 3, 1)
 
 
-def flip_times(t, component) -> np.ndarray:
+def flip_times(t: ArrayLike, component: ArrayLike) -> np.ndarray:
     """Times at which a sampled component changes sign (linear interpolation), s.
 
     Parameters
