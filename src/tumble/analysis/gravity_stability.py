@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..dynamics.models.gravity import rpy_axes
+from ..typing import ArrayLike
 from ..validation import check_moments, check_vectors, refuse_first
 
 __all__ = [
@@ -40,7 +41,7 @@ __all__ = [
 ]
 
 
-def gravity_gradient_ratios(moments, *, pitch_axis=3, yaw_axis=1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def gravity_gradient_ratios(moments: ArrayLike, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The gravity-gradient ratios ``(k_R, k_P, k_Y)`` of bodies whose pitch and yaw axes are given.
 
     ``k_R = (I_pitch - I_yaw) / I_roll``, ``k_P = (I_roll - I_yaw) / I_pitch``,
@@ -89,7 +90,7 @@ STABILITY_REGIONS = ("lagrange", "debra-delp", "pitch unstable", "roll-yaw unsta
 RATIO_ATOL = 1e-9
 
 
-def gravity_gradient_stability(k_roll, k_pitch, k_yaw) -> StabilityClass:
+def gravity_gradient_stability(k_roll: ArrayLike, k_pitch: ArrayLike, k_yaw: ArrayLike) -> StabilityClass:
     """Linear stability of a body at rest in the orbiting frame, from its gravity-gradient ratios.
 
     The conditions (Hughes ch. 9; DeBra & Delp 1961; derived for this frame in

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..typing import ArrayLike
 from .periods import npa_periods
 
 __all__ = ["PeriodFamily", "periods_consistent"]
@@ -49,7 +50,7 @@ def _periods_at(x, y, beta):
         return npa_periods(w, I)
 
 
-def periods_consistent(P_phi: float, P_psi: float, *, ratios=None, resolution: int = 40,
+def periods_consistent(P_phi: float, P_psi: float, *, ratios: ArrayLike | None = None, resolution: int = 40,
                        angles: int = 400) -> PeriodFamily:
     """Inertia ratios, energies and momenta consistent with an observed pair of periods.
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from ..dynamics import Trajectory
@@ -14,6 +16,9 @@ from .stability import (
     flip_times,
     linearised_rate,
 )
+
+if TYPE_CHECKING:
+    from ..dynamics.models.gravity import GravityGradient
 
 __all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
 
@@ -149,7 +154,8 @@ def _budgets(traj: Trajectory) -> dict:
     return out
 
 
-def gravity_gradient_summary(traj: Trajectory, gg, *, pitch_axis=3, yaw_axis=1) -> dict:
+def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axis: int | str = 3,
+                             yaw_axis: int | str = 1) -> dict[str, Any]:
     """What a run under the gravity gradient did, relative to the orbiting frame.
 
     Energy and L are not conserved under this torque; the orbiting-frame energy (the Jacobi

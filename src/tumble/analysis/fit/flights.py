@@ -29,10 +29,12 @@ search (:func:`find_flights`):
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
+from ...typing import ArrayLike
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
 from .single import MIN_SAMPLES, fit_solution, saturation_mask
@@ -77,7 +79,7 @@ class Flight:
         return self.stop - self.first
 
 
-def pause_times(events) -> list[float]:
+def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
     """Experiment times of phyphox's PAUSE events (``[(name, time), ...]``), s."""
     return sorted(float(te) for name, te in (events or []) if str(name).upper() == "PAUSE")
 
@@ -148,10 +150,11 @@ def _drag_free(sol: Solution) -> np.ndarray:
     return free.pack(P[0], P[1], rv, m.bias_vector(P), m.omega0(P))
 
 
-def find_flights(t, omega, *, events=None, saturation: float | None = None, min_spin: float = 3.0,
+def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, float]] | None = None, saturation: float | None = None, min_spin: float = 3.0,
                  min_duration: float = 0.3, max_gap: float = 0.25, max_std: float = 0.1,
                  drag: str = "auto", rotation: bool = True, bias: bool = True,
-                 scale_uncertainty: float = SCALE_UNCERTAINTY, progress=None) -> list[Flight]:
+                 scale_uncertainty: float = SCALE_UNCERTAINTY,
+                 progress: Callable[[int, int], None] | None = None) -> list[Flight]:
     """The free flights of a whole recording, each fitted or skipped with a reason.
 
     Parameters

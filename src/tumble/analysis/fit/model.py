@@ -22,11 +22,14 @@ shared columns and its own three), and returned as such.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from scipy import sparse
 
 from ...dynamics.methods.exact_omega import free_omega
 from ...dynamics.models.drag import drag_omega
+from ...typing import ArrayLike
 from .triangle import S_MIN, ratios
 
 __all__ = ["BIAS_MAX", "DRAG_MODELS", "Model", "rotvec_matrix"]
@@ -43,7 +46,7 @@ BIAS_MAX = 1.0
 _TURN_PER_STEP = 0.04
 
 
-def rotvec_matrix(rv) -> np.ndarray:
+def rotvec_matrix(rv: ArrayLike) -> np.ndarray:
     """The rotation matrix of a rotation vector (rad), by Rodrigues' formula
     ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``K`` the cross-product matrix of the unit axis
     (Shuster, J. Astronaut. Sci. 41 (1993) 439, sec. 3); equal to scipy's
@@ -79,7 +82,8 @@ class Model:
         beyond them).
     """
 
-    def __init__(self, taus, rotation: bool, bias: bool, drag: str = "none", speeds=None):
+    def __init__(self, taus: Sequence[np.ndarray], rotation: bool, bias: bool, drag: str = "none",
+                 speeds: Sequence[float] | None = None) -> None:
         self.F = len(taus)
         self.lengths = np.array([len(t) for t in taus])
         T = int(self.lengths.max())
@@ -119,7 +123,8 @@ class Model:
         self.bounds = (lo, hi)
 
     # -- the parameter vector ------------------------------------------------------------------
-    def pack(self, s, g, rotvec, bias, omega0, drag=(0.0, 0.0, 0.0)) -> np.ndarray:
+    def pack(self, s: float, g: float, rotvec: ArrayLike, bias: ArrayLike, omega0: ArrayLike,
+             drag: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
         """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers)."""
         P = [s, g]
         if self.rotation:
@@ -130,31 +135,31 @@ class Model:
             P += list(np.asarray(drag, float))
         return np.concatenate([np.array(P, float), np.asarray(omega0, float).reshape(-1)])
 
-    def get(self, P, name, default=0.0) -> float:
+    def get(self, P: np.ndarray, name: str, default: float = 0.0) -> float:
         return float(P[self.index[name]]) if name in self.index else default
 
-    def rotation_matrix(self, P) -> np.ndarray:
+    def rotation_matrix(self, P: np.ndarray) -> np.ndarray:
         if not self.rotation:
             return np.eye(3)
         k = self.index["rotvec_x"]
         return rotvec_matrix(P[k:k + 3])
 
-    def bias_vector(self, P) -> np.ndarray:
+    def bias_vector(self, P: np.ndarray) -> np.ndarray:
         if not self.bias:
             return np.zeros(3)
         k = self.index["bias_x"]
         return np.asarray(P[k:k + 3], float)
 
-    def drag_vector(self, P) -> np.ndarray:
+    def drag_vector(self, P: np.ndarray) -> np.ndarray:
         if self.drag == "none":
             return np.zeros(3)
         k = self.index["drag_1"]
         return np.asarray(P[k:k + 3], float)
 
-    def omega0(self, P) -> np.ndarray:
+    def omega0(self, P: np.ndarray) -> np.ndarray:
         return np.asarray(P[self.ns:], float).reshape(self.F, 3)
 
-    def moments(self, P) -> np.ndarray:
+    def moments(self, P: np.ndarray) -> np.ndarray:
         x, y = ratios(P[0], P[1])
         return np.array([float(x), float(y), 1.0])
 
@@ -174,17 +179,18 @@ class Model:
     def _physics(self, P) -> np.ndarray:
         return np.concatenate([[P[0], P[1]], self.drag_vector(P)])
 
-    def principal(self, P) -> np.ndarray:
+    def principal(self, P: np.ndarray) -> np.ndarray:
         """omega in the principal frame of every flight, shape (F, T, 3), rad/s."""
         phys = np.tile(self._physics(P), (self.F, 1))
         return self._principal(phys, self.omega0(P), np.arange(self.F))
 
-    def sensor(self, P, principal=None) -> np.ndarray:
+    def sensor(self, P: np.ndarray, principal: np.ndarray | None = None) -> np.ndarray:
         """The model's samples along the sensor's axes, bias included, shape (F, T, 3), rad/s."""
         wp = self.principal(P) if principal is None else principal
         return wp @ self.rotation_matrix(P) + self.bias_vector(P)
 
-    def jacobian(self, P, mask, principal=None):
+    def jacobian(self, P: np.ndarray, mask: np.ndarray,
+                 principal: np.ndarray | None = None) -> np.ndarray | sparse.csr_matrix:
         """d(model samples[mask]) / dP by forward differences (module docstring).
 
         Returns a dense array for one flight and a CSR matrix for several."""

@@ -17,12 +17,14 @@ from __future__ import annotations
 
 import warnings
 from collections import Counter
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike
 from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights, pause_times
 from .model import Model
@@ -127,10 +129,10 @@ class RecordingFit:
         return out
 
 
-def fit_recording(t, omega_measured, *, events=None, sensor_rotation: str = "fit", bias: bool = True,
+def fit_recording(t: ArrayLike, omega_measured: ArrayLike, *, events: Sequence[tuple[str, float]] | None = None, sensor_rotation: str = "fit", bias: bool = True,
                   drag: str = "auto", saturation: float | None = None,
                   scale_uncertainty: float = SCALE_UNCERTAINTY, min_spin: float = 3.0, max_std: float = 0.1,
-                  progress=None) -> RecordingFit:
+                  progress: Callable[[int, int], None] | None = None) -> RecordingFit:
     """Find the free flights of a whole recording, fit each, and fit them jointly.
 
     Parameters

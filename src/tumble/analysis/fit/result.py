@@ -186,7 +186,7 @@ class RotationFit:
         }
 
 
-def public_covariance(sol: Solution, statistical: bool = False):
+def public_covariance(sol: Solution, statistical: bool = False) -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
     """The ratios, their covariance with everything else in the public order, and the names.
 
     ``statistical``: leave out the scale factor's systematic part. Returns ``(names, values, cov)`` with ``I1/I3``, ``I2/I3``, ``omega0_*``, ``rotvec_*``,
@@ -213,7 +213,7 @@ def public_covariance(sol: Solution, statistical: bool = False):
     return tuple(names), values, cov
 
 
-def ratio_summary(sol: Solution):
+def ratio_summary(sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray, str | None]:
     """``(ratios, std, interval, edge)`` of a solution.
 
     The standard uncertainties are capped at half each ratio's range in the triangle. The 95 %
@@ -250,7 +250,7 @@ def ratio_summary(sol: Solution):
     return np.array([x, y]), std, np.array([ix, iy]), edge
 
 
-def rotation_fit(sol: Solution, t, omega, keep) -> RotationFit:
+def rotation_fit(sol: Solution, t: np.ndarray, omega: np.ndarray, keep: np.ndarray) -> RotationFit:
     """The public result of a solved flight."""
     model = sol.model
     names, values, cov = public_covariance(sol)
@@ -294,7 +294,7 @@ def _public_name(name: str) -> str:
     return {"s": "(I1 + I3 - I2)/I3", "g": "I2/I3 (across the triangle)"}.get(name, name)
 
 
-def solution_adequacy(sol: Solution, data, mask) -> Adequacy:
+def solution_adequacy(sol: Solution, data: np.ndarray, mask: np.ndarray) -> Adequacy:
     """:func:`~tumble.analysis.fit.adequacy.judge` on a solution of one or many flights.
 
     ``data`` and ``mask`` are the samples and the kept axes as the solution's model lays them
@@ -312,7 +312,7 @@ def solution_adequacy(sol: Solution, data, mask) -> Adequacy:
                  sensor_rotation_fitted=sol.model.rotation)
 
 
-def determination(sol: Solution, std, max_std: float = DETERMINED_STD) -> str:
+def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_STD) -> str:
     """Why a flight's ratios are not determined, or ``""`` when they are.
 
     Not determined: a ratio's coordinate is undetermined, or a ratio's standard uncertainty

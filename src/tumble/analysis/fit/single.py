@@ -14,10 +14,12 @@ record). Uncertainties: :mod:`tumble.analysis.fit.uncertainty`.
 from __future__ import annotations
 
 import warnings
+from typing import Any
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike
 from ...validation import check_increasing
 from .adequacy import InadequateFitWarning
 from .model import Model
@@ -84,7 +86,7 @@ def _check_not_steady(omega) -> None:
             "does not determine the inertia ratios; record a tumble")
 
 
-def saturation_mask(omega, saturation: float | None = None) -> tuple[np.ndarray, float | None]:
+def saturation_mask(omega: ArrayLike, saturation: float | None = None) -> tuple[np.ndarray, float | None]:
     """Sample axes inside the sensor's range, and the rail (rad/s) they were judged against.
 
     Parameters
@@ -140,7 +142,7 @@ def _canonical(P, model: Model) -> np.ndarray:
     return P
 
 
-def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool = True, drag: str = "auto",
+def fit_rotation(t: ArrayLike, omega_measured: ArrayLike, *, sensor_rotation: str = "fit", bias: bool = True, drag: str = "auto",
                  saturation: float | None = None, scale_uncertainty: float = SCALE_UNCERTAINTY,
                  initial_guess: dict | None = None, max_nfev: int = 100) -> RotationFit:
     """Fit a free rigid-body motion to angular-velocity samples (a gyroscope's record of a flight).
@@ -227,8 +229,9 @@ def fit_rotation(t, omega_measured, *, sensor_rotation: str = "fit", bias: bool 
     return fit
 
 
-def fit_solution(t, omega, keep, *, rotation: bool = True, bias: bool = True, drag: str = "auto", guess=None,
-                 P0=None, drag0=None, t0=None, max_nfev: int = 100,
+def fit_solution(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, *, rotation: bool = True, bias: bool = True,
+                 drag: str = "auto", guess: dict[str, Any] | None = None, P0: np.ndarray | None = None,
+                 drag0: ArrayLike | None = None, t0: float | None = None, max_nfev: int = 100,
                  scale_uncertainty: float = SCALE_UNCERTAINTY, covariance: bool = True) -> Solution:
     """The solved model of one flight (checked inputs; ``keep`` the unsaturated sample axes).
 

@@ -19,10 +19,12 @@ samples kept by a mask (a saturated axis is left out, not the whole sample). At 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.optimize import least_squares
 
+from ...typing import ArrayLike
 from .model import DRAG_MODELS, Model
 from .uncertainty import effective_covariance, scale_covariance
 
@@ -103,7 +105,7 @@ def _undetermined(J, names) -> list[int]:
     return fixed
 
 
-def solve(model: Model, data, mask, P0, *, max_nfev: int = 100, scale_uncertainty: float = 0.0,
+def solve(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray, *, max_nfev: int = 100, scale_uncertainty: float = 0.0,
           covariance: bool = True, pin: tuple | None = None) -> Solution:
     """Solve from ``P0`` and characterise the optimum (module docstring); ``covariance=False``
     skips that (NaN covariance), for intermediate solves; ``pin = (index, value)`` holds one
@@ -153,7 +155,8 @@ def _convert(P, src: Model, dst: Model, drag) -> np.ndarray:
     return dst.pack(P[0], P[1], rv, src.bias_vector(P), src.omega0(P), drag)
 
 
-def solve_drag(model: Model, data, mask, P0, drag: str, *, drag0=None, max_nfev: int = 100,
+def solve_drag(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray, drag: str, *,
+               drag0: ArrayLike | None = None, max_nfev: int = 100,
                scale_uncertainty: float = 0.0, covariance: bool = True) -> Solution:
     """:func:`solve` with the drag model named, or chosen by the BIC with ``drag="auto"``.
 
@@ -183,7 +186,7 @@ def solve_drag(model: Model, data, mask, P0, drag: str, *, drag0=None, max_nfev:
 _EDGE_FACES = ((1, 1.0), (0, 1.0))
 
 
-def snap_to_edges(sol: Solution, data, mask, **kw) -> Solution:
+def snap_to_edges(sol: Solution, data: np.ndarray, mask: np.ndarray, **kw: Any) -> Solution:
     """Move an optimum near an edge of the triangle onto it when the data allow.
 
     For each edge whose coordinate lies within one standard uncertainty of its bound (or

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...typing import ArrayLike
 from .triangle import ratios, square
 
 __all__ = ["START_INSET", "candidates", "euler_regression", "first_value", "principal_axes"]
@@ -39,7 +40,7 @@ START_INSET = 1e-3
 _PERMUTATIONS = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
 
 
-def principal_axes(omega) -> np.ndarray:
+def principal_axes(omega: np.ndarray) -> np.ndarray:
     """Columns: the principal axes in the sensor frame, from two conserved quadratic forms."""
     wx, wy, wz = omega.T
     Q = np.column_stack([wx * wx, wy * wy, wz * wz, 2 * wx * wy, 2 * wx * wz, 2 * wy * wz, -np.ones_like(wx)])
@@ -60,7 +61,7 @@ def principal_axes(omega) -> np.ndarray:
     return best
 
 
-def euler_regression(t, omega):
+def euler_regression(t: np.ndarray, omega: np.ndarray) -> tuple[float, float, np.ndarray] | None:
     """Ratios and principal axes from Euler's equations, linear in the inertia tensor (docstring).
 
     Parameters
@@ -129,7 +130,7 @@ def _direction_grid(n: int = 120):
 _GRID = None
 
 
-def candidates(omega, fit_rotation: bool, keep: int = 2, t=None) -> list[tuple[float, float, np.ndarray]]:
+def candidates(omega: np.ndarray, fit_rotation: bool, keep: int = 2, t: np.ndarray | None = None) -> list[tuple[float, float, np.ndarray]]:
     """Starting ``(I1/I3, I2/I3, R)`` triples (``R`` sensor to principal): Euler's regression
     first (when ``t`` is given), then the conserved forms' axes with the likeliest ratios."""
     global _GRID
@@ -162,7 +163,7 @@ def candidates(omega, fit_rotation: bool, keep: int = 2, t=None) -> list[tuple[f
     return first + [(x, y, R) for _, x, y, R in out]
 
 
-def first_value(tau, omega) -> np.ndarray:
+def first_value(tau: np.ndarray, omega: ArrayLike) -> np.ndarray:
     """omega at tau = 0: the first sample (a polynomial through several samples is worse once a
     sample interval turns the body by a tenth of a radian or more, as a fast toss at 100 Hz does)."""
     return np.asarray(omega[0], float)

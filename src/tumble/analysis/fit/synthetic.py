@@ -45,6 +45,8 @@ from scipy.integrate import solve_ivp
 from scipy.signal import lfilter
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike
+
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
            "synthetic_recording"]
 
@@ -83,7 +85,7 @@ TOSS_BODIES = {
 _GAUSS = np.polynomial.legendre.leggauss(8)
 
 
-def plate_drag_torque(body: TossBody, w) -> np.ndarray:
+def plate_drag_torque(body: TossBody, w: ArrayLike) -> np.ndarray:
     """Strip-theory drag on the body's plate (module docstring), principal frame, N m.
 
     Each element of the plate (``length`` along axis 1, ``width`` along axis 2, Gauss-Legendre
@@ -204,8 +206,9 @@ def _tilted(rng, spin, about, tilt_deg):
     return spin * w
 
 
-def synthetic_recording(seed: int, *, body="racquet", tosses: int = 10, rate: float = 100.0,
-                        spin=(5.0, 25.0), flight=(0.5, 1.5), tilt=(1.0, 10.0), noise=(0.002, 0.006),
+def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: int = 10, rate: float = 100.0,
+                        spin: tuple[float, float] = (5.0, 25.0), flight: tuple[float, float] = (0.5, 1.5),
+                        tilt: tuple[float, float] = (1.0, 10.0), noise: tuple[float, float] = (0.002, 0.006),
                         bias: float = 0.01, saturation: float = FULL_SCALE, pauses: int = 0,
                         stable: int = 0, flex: bool = True, drag: float = 1.0,
                         scale_error: float = 0.005) -> SyntheticRecording:

@@ -26,6 +26,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...typing import ArrayLike
+
 __all__ = ["EDGES", "S_MIN", "edge_of", "ratio_jacobian", "ratios", "square"]
 
 #: Names of the triangle's edges, in the terms a user knows.
@@ -37,13 +39,13 @@ S_MIN = 1e-2
 _ON_EDGE = 1e-7
 
 
-def ratios(s, g):
+def ratios(s: ArrayLike, g: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Square coordinates ``(s, g)`` -> ``(I1/I3, I2/I3)``; broadcasts."""
     s, g = np.asarray(s, float), np.asarray(g, float)
     return 0.5 * s * (1.0 + g), 1.0 - 0.5 * s * (1.0 - g)
 
 
-def square(x, y, inset: float = 0.0):
+def square(x: ArrayLike, y: ArrayLike, inset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """``(I1/I3, I2/I3)`` in the closed triangle -> ``(s, g)``, clipped into the box.
 
     ``inset`` > 0 keeps the point that far inside the box's faces (a start for the fit: scipy's
@@ -56,12 +58,12 @@ def square(x, y, inset: float = 0.0):
     return s, min(max(g, inset), 1.0 - inset)
 
 
-def ratio_jacobian(s, g) -> np.ndarray:
+def ratio_jacobian(s: float, g: float) -> np.ndarray:
     """``d(I1/I3, I2/I3) / d(s, g)``, 2 x 2."""
     return np.array([[0.5 * (1.0 + g), 0.5 * s], [-0.5 * (1.0 - g), 0.5 * s]])
 
 
-def edge_of(s, g) -> str | None:
+def edge_of(s: float, g: float) -> str | None:
     """The edge ``(s, g)`` lies on (:data:`EDGES`' value), or None inside."""
     if g <= _ON_EDGE:
         return EDGES["planar"]

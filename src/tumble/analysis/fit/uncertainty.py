@@ -28,9 +28,12 @@ does not shrink with the number of tosses while they scatter more than they shou
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 
 import numpy as np
 from scipy import sparse
+
+from ...typing import ArrayLike
 
 __all__ = ["SCALE_UNCERTAINTY", "autocorrelation_time", "birge_chi2", "effective_covariance", "effective_dof",
            "interval", "noise_floor", "scale_covariance"]
@@ -39,7 +42,7 @@ __all__ = ["SCALE_UNCERTAINTY", "autocorrelation_time", "birge_chi2", "effective
 #: dimensionless): phones do not calibrate it, and datasheets give about +-1 % as limits.
 SCALE_UNCERTAINTY = 0.005
 
-def noise_floor(omega) -> float:
+def noise_floor(omega: ArrayLike) -> float:
     """A robust estimate of the white noise per axis, rad/s, from second differences
     (``var(w[i+1] - 2 w[i] + w[i-1]) = 6 sigma^2`` for white noise on a smooth signal)."""
     omega = np.asarray(omega, float)
@@ -73,7 +76,7 @@ def interval(value: float, std: float, lo: float, hi: float, *, on_low_edge: boo
     return max(lo, value - z * std), min(hi, value + z * std)
 
 
-def birge_chi2(values, covariances, pooled) -> tuple[float, int]:
+def birge_chi2(values: ArrayLike, covariances: ArrayLike, pooled: ArrayLike) -> tuple[float, int]:
     """``chi^2`` of per-flight estimates about the pooled value, and its degrees of freedom.
 
     Parameters
@@ -90,7 +93,7 @@ def birge_chi2(values, covariances, pooled) -> tuple[float, int]:
     return chi2, max(k * (len(values) - 1), 1)
 
 
-def autocorrelation_time(R, starts, block: int = 5) -> float:
+def autocorrelation_time(R: np.ndarray, starts: Sequence[int], block: int = 5) -> float:
     """The residuals' integrated autocorrelation time, samples (at least 1): the larger of
     :func:`_geyer_time` on the residuals and on their means over blocks of ``block`` samples
     (times ``block`` and the ratio of the variances: the batch means of Flegal & Jones, Ann.
@@ -148,7 +151,8 @@ def _geyer_time(R, starts) -> float:
     return max(tau, 1.0)
 
 
-def effective_covariance(J, r, per_sample, starts) -> tuple[np.ndarray, float]:
+def effective_covariance(J: np.ndarray | sparse.csr_matrix, r: np.ndarray, per_sample: np.ndarray,
+                         starts: Sequence[int]) -> tuple[np.ndarray, float]:
     """The textbook covariance with the residual variance scaled for autocorrelation.
 
     ``cov = (J^T J)^-1 s^2 tau``: ``s^2 = SSR / (m - n)`` and ``tau`` the residuals' integrated
@@ -184,7 +188,7 @@ def effective_covariance(J, r, per_sample, starts) -> tuple[np.ndarray, float]:
     return 0.5 * (cov + cov.T), tau
 
 
-def scale_covariance(J, data, mask, sigma: float) -> np.ndarray:
+def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: np.ndarray, sigma: float) -> np.ndarray:
     """The parameters' covariance from the gyroscope's unknown scale factor on each axis.
 
     A scale error ``e_k`` on sensor axis ``k`` changes the samples by ``e_k omega_k``; the
