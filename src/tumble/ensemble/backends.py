@@ -248,7 +248,7 @@ def _check_scheduler(address: str, timeout: float) -> None:
     raise refuse(why)
 
 
-def dask_setup(worker) -> None:
+def dask_setup(worker: object) -> None:
     """Dask's preload hook, run in each worker of a local cluster as it starts: ignore SIGINT.
 
     Ctrl-C reaches every process of the terminal's group; a worker that took it would die with a
@@ -262,7 +262,7 @@ def dask_setup(worker) -> None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def make_backend(workers: int | None = None, scheduler: str | None = None):
+def make_backend(workers: int | None = None, scheduler: str | None = None) -> InProcess | DaskBackend:
     """:class:`InProcess` when neither is given, else a :class:`DaskBackend`."""
     if workers is None and scheduler is None:
         return InProcess()

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..typing import ArrayLike
 from ..validation import check_vector
 from .dispersions import BodySampler
 from .sampling import DISTRIBUTIONS, Design, check_seed, deviates
@@ -96,7 +97,7 @@ class InitialRates:
         """Points of the grid (1 without one)."""
         return int(np.prod([len(g) for g in self.grid])) if self.grid is not None else 1
 
-    def rate(self, index: int, u) -> np.ndarray:
+    def rate(self, index: int, u: ArrayLike) -> np.ndarray:
         """Case ``index``'s rate in :attr:`frame`, rad/s, from its unit numbers ``u`` (shape (dims,))."""
         if self.grid is not None:
             point = np.unravel_index(index % self.points, [len(g) for g in self.grid])
@@ -106,7 +107,7 @@ class InitialRates:
             return omega
         return omega + np.array(self.spread) * deviates(u, self.distribution)
 
-    def rates(self, index, u) -> np.ndarray:
+    def rates(self, index: ArrayLike, u: ArrayLike) -> np.ndarray:
         """:meth:`rate` of many cases at once, bit for bit: ``index`` shape (m,), ``u`` shape
         (m, dims); returns shape (m, 3)."""
         index = np.asarray(index)

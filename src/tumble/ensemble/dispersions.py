@@ -39,6 +39,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties, principal_frame
+from ..typing import ArrayLike
 from .sampling import DISTRIBUTIONS, deviates
 
 __all__ = ["TARGETS", "BodySampler", "Dispersion", "Sampled"]
@@ -273,7 +274,7 @@ class BodySampler:
                 out.append(f"{d.label} [{_unit(d.field)}]")
         return tuple(out)
 
-    def deviates(self, u) -> np.ndarray:
+    def deviates(self, u: ArrayLike) -> np.ndarray:
         """Map unit-cube points (shape (dims,) or (m, dims)) to the deviates ``z`` of the dispersions."""
         u = np.asarray(u, dtype=float)
         z = np.empty(u.shape[:-1] + (self.dims,))
@@ -282,7 +283,7 @@ class BodySampler:
             z[..., names == name] = deviates(u[..., names == name], name)
         return z
 
-    def sample_many(self, z):
+    def sample_many(self, z: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
         """:meth:`sample` for many draws at once, where it can be done with arrays.
 
         Only for dispersions of the moments and axes (none of parts or preset parameters): the
@@ -337,7 +338,7 @@ class BodySampler:
                    & (out_moments[:, 2] - out_moments[:, 0] - out_moments[:, 1] < -margin))
         return np.array(out_moments), np.array(out_axes), values, decided
 
-    def sample(self, z) -> Sampled:
+    def sample(self, z: ArrayLike) -> Sampled:
         """The body for the deviates ``z`` (shape (dims,)).
 
         Raises

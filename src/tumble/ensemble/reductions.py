@@ -28,7 +28,9 @@ of inertia ratios for a perturbed spin about the intermediate axis.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -36,7 +38,11 @@ from scipy.spatial.transform import Rotation
 from ..analysis import axis_of, circulation_axis, energy_momentum_gaps, flip_interval, linearised_rate
 from ..dynamics.special.quaternion import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
+from ..typing import ArrayLike
 from .cases import CaseInputs
+
+if TYPE_CHECKING:
+    from ..dynamics.batch import BatchTrajectory
 
 __all__ = ["RESULT_COLUMNS", "StabilityMap", "input_columns", "nutation_angle", "reduce_cases", "stability_map"]
 
@@ -49,7 +55,7 @@ RESULT_COLUMNS = (
 )
 
 
-def input_columns(inputs: CaseInputs, names) -> dict[str, np.ndarray]:
+def input_columns(inputs: CaseInputs, names: Sequence[str]) -> dict[str, np.ndarray]:
     """The inputs of each case as columns: ``case``, ``I1..I3 [kg m^2]``, ``omega0_1..3 [rad/s]``
     (principal frame), the drawn values (``names``) and ``resampled``."""
     cols = {"case": inputs.index}
@@ -60,7 +66,7 @@ def input_columns(inputs: CaseInputs, names) -> dict[str, np.ndarray]:
     return cols
 
 
-def nutation_angle(omega, moments) -> np.ndarray:
+def nutation_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Angle between ``L = I omega`` and the nearest major axis, rad, in [0, pi/2].
 
     The rule of :attr:`tumble.Trajectory.nutation_angle`, for a batch: ``arctan(hypot(L1, L2) /
@@ -112,7 +118,7 @@ def _flips(t, component) -> tuple[np.ndarray, np.ndarray]:
     return flips, np.where(flips >= 2, period, np.nan)
 
 
-def reduce_cases(inputs: CaseInputs, batch, names=()) -> dict[str, np.ndarray]:
+def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str] = ()) -> dict[str, np.ndarray]:
     """The per-case columns of a chunk: its inputs (:func:`input_columns`) and results.
 
     Parameters
@@ -198,7 +204,7 @@ class StabilityMap:
     omega0: np.ndarray
 
 
-def stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, resolution: int = 200) -> StabilityMap:
+def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01, 0.01), *, resolution: int = 200) -> StabilityMap:
     """Flip interval and circulation axis over ``(I1/I3, I2/I3)`` for a perturbed intermediate spin.
 
     The spin is ``omega0 = spin * (p1, 1, p3)`` (principal frame), the moments

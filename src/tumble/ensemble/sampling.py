@@ -30,6 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..typing import ArrayLike
+
 __all__ = ["DISTRIBUTIONS", "MAX_CASES", "SAMPLINGS", "Design", "case_generator", "case_uniforms", "check_seed", "deviates"]
 
 #: The samplings of the unit cube.
@@ -45,7 +47,7 @@ MAX_CASES = 100_000_000
 _EDGE = 2.0**-53
 
 
-def check_seed(seed) -> int:
+def check_seed(seed: object) -> int:
     """A seed: a whole number from 0 to 2^64 - 1; anything else is refused with one line."""
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**64:
         raise ValueError(f"seed = {seed!r} must be a whole number from 0 to 2^64 - 1")
@@ -57,7 +59,7 @@ def case_generator(seed: int, index: int) -> np.random.Generator:
     return np.random.default_rng(np.random.SeedSequence(check_seed(seed), spawn_key=(int(index),)))
 
 
-def deviates(u, distribution: str) -> np.ndarray:
+def deviates(u: ArrayLike, distribution: str) -> np.ndarray:
     """Map unit numbers ``u`` in (0, 1) to standard deviates.
 
     ``"normal"``: ``z = Phi^-1(u)`` (mean 0, standard deviation 1; the inverse normal CDF,
@@ -224,7 +226,7 @@ def _step(h, l, ih, il):
     return _add128(hi, lo, ih, il)
 
 
-def case_uniforms(seed: int, index, count: int) -> np.ndarray:
+def case_uniforms(seed: int, index: ArrayLike, count: int) -> np.ndarray:
     """The first ``count`` draws of ``case_generator(seed, i).random()`` for each case ``i``.
 
     Bit for bit those of the generators (tested), computed for all the cases at once.

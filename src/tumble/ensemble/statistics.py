@@ -36,6 +36,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..typing import ArrayLike
+
 __all__ = [
     "Counts",
     "KeyedSample",
@@ -57,7 +59,7 @@ def _splitmix(x: np.ndarray) -> np.ndarray:
         return x ^ (x >> np.uint64(31))
 
 
-def case_keys(seed: int, index) -> np.ndarray:
+def case_keys(seed: int, index: ArrayLike) -> np.ndarray:
     """Pseudo-random 64-bit keys of cases: SplitMix64 of ``seed_mix + index * golden``.
 
     Distinct indices get distinct keys (the finaliser is a bijection and ``index * golden`` is
@@ -110,7 +112,7 @@ class RunningMoments:
     maximum: np.ndarray
 
     @classmethod
-    def of(cls, values) -> RunningMoments:
+    def of(cls, values: ArrayLike) -> RunningMoments:
         """The moments of one block, ``values`` of shape (cases, columns); two passes."""
         a = _as_table(values)
         finite = np.isfinite(a)
@@ -170,7 +172,7 @@ class KeyedSample:
     seen: int
 
     @classmethod
-    def of(cls, keys, values, size: int) -> KeyedSample:
+    def of(cls, keys: ArrayLike, values: ArrayLike, size: int) -> KeyedSample:
         """The sample of one block: ``keys`` (uint64, distinct) and ``values`` (cases, columns)."""
         if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 1:
             raise ValueError(f"size = {size!r} must be a whole number >= 1 (cases kept for quantiles)")
@@ -185,7 +187,7 @@ class KeyedSample:
                               np.concatenate([self.values, other.values]), min(self.size, other.size))
         return KeyedSample(both.size, both.keys, both.values, self.seen + other.seen)
 
-    def quantiles(self, q) -> np.ndarray:
+    def quantiles(self, q: ArrayLike) -> np.ndarray:
         """Quantiles ``q`` (in [0, 1]) of each column over its finite values, linear
         interpolation between order statistics (numpy's default); NaN for an empty column.
 

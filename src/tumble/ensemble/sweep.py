@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Iterator, Protocol
+from typing import TYPE_CHECKING, Callable, Iterable, Iterator, Protocol
 
 import numpy as np
 
@@ -31,6 +31,10 @@ from .backends import InProcess
 from .cases import Ensemble
 from .reductions import reduce_cases
 from .statistics import Counts, KeyedSample, RunningMoments, case_keys, success_lower_bound, success_statement
+
+if TYPE_CHECKING:
+    from .backends import DaskBackend
+    from .cases import CaseInputs
 
 __all__ = [
     "CATEGORICAL",
@@ -126,7 +130,7 @@ class RunSettings:
             raise ValueError(f"method = {self.method!r} needs a step (s) in a sweep: its default step follows the "
                              f"fastest body of each chunk, and the results must not depend on the chunking")
 
-    def run(self, inputs):
+    def run(self, inputs: CaseInputs) -> BatchTrajectory:
         """The motions of the cases ``inputs`` (:class:`~tumble.ensemble.cases.CaseInputs`)."""
         # a closed form is evaluated at the times asked for, with no steps from t = 0
         closed_form = get_method(self.method).closed_form
@@ -224,7 +228,7 @@ class ChunkStore(Protocol):
 
 
 def run_chunks(sweep: Sweep, *, chunk: int = DEFAULT_CHUNK, store: ChunkStore | None = None,
-               backend=None) -> Iterator[dict[str, np.ndarray]]:
+               backend: InProcess | DaskBackend | None = None) -> Iterator[dict[str, np.ndarray]]:
     """Yield the columns of each chunk, in case order, computing only what ``store`` lacks.
 
     Parameters
@@ -362,7 +366,8 @@ class SweepSummary:
 
 
 def summarize(chunks: Iterable[dict], seed: int, criterion: Criterion | None = None, *,
-              sample_size: int = SAMPLE_SIZE, on_chunk=None) -> SweepSummary:
+              sample_size: int = SAMPLE_SIZE,
+              on_chunk: Callable[[dict[str, np.ndarray]], object] | None = None) -> SweepSummary:
     """Fold chunks (in case order) into a :class:`SweepSummary`, block by block.
 
     ``on_chunk(columns)``, if given, sees every chunk as it passes (to write it to a file).
