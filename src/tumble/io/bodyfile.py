@@ -26,7 +26,7 @@ import os
 import tomllib
 from pathlib import Path
 
-from ..mass import PART_KINDS, PRESETS, Body
+from ..mass import PART_KINDS, PRESETS, Body, Part
 from ..validation import read_input_file
 
 __all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "mesh_files", "part_from_table", "read_toml"]
@@ -38,7 +38,7 @@ __all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "mesh_files", "part
 MAX_TOML_BYTES = 1 << 20
 
 
-def read_toml(path) -> dict:
+def read_toml(path: str | os.PathLike[str]) -> dict:
     """Read a body or scenario file (TOML), turning every way it can fail into one ``ValueError``.
 
     Parameters
@@ -83,7 +83,7 @@ def _init_fields(cls) -> dict[str, dataclasses.Field]:
     return {f.name: f for f in dataclasses.fields(cls) if f.init}
 
 
-def part_from_table(table, *, base_dir: Path | None = None, where: str = "part"):
+def part_from_table(table: object, *, base_dir: Path | None = None, where: str = "part") -> Part:
     """Build a part from a TOML table (a dict); ``mesh`` paths are relative to ``base_dir``."""
     if not isinstance(table, dict):
         raise ValueError(f"{where} must be a table with a 'kind', got {type(table).__name__}")
@@ -121,7 +121,7 @@ def part_from_table(table, *, base_dir: Path | None = None, where: str = "part")
         raise ValueError(f"{where}: {exc}") from None
 
 
-def body_from_table(table, *, base_dir: Path | None = None, where: str = "body") -> Body:
+def body_from_table(table: object, *, base_dir: Path | None = None, where: str = "body") -> Body:
     """Build a body from the contents of a ``[body]`` table."""
     if not isinstance(table, dict):
         raise ValueError(f"{where} must be a table, got {type(table).__name__}")
@@ -147,7 +147,7 @@ def body_from_table(table, *, base_dir: Path | None = None, where: str = "body")
         raise ValueError(f"{where}: {exc}") from None
 
 
-def mesh_files(table, base_dir: Path | None = None) -> list[Path]:
+def mesh_files(table: dict, base_dir: Path | None = None) -> list[Path]:
     """The mesh files a ``[body]`` table's parts read (paths relative to ``base_dir``), in order.
 
     What a body's mass properties depend on besides the table itself: their content hashes go
@@ -184,7 +184,7 @@ def _preset_from_table(table: dict, where: str) -> Body:
         raise ValueError(f"{where} (preset {preset!r}): {exc}") from None
 
 
-def load_body(source) -> Body:
+def load_body(source: str | os.PathLike[str]) -> Body:
     """A body from a body file (TOML) or a preset name (``"t-handle"``, ``"iss-t-handle"``).
 
     Parameters

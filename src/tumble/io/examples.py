@@ -104,7 +104,7 @@ def list_examples() -> list[Example]:
     return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
 
 
-def copy_examples(dest) -> list[Path]:
+def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     """Copy the whole examples tree (scenarios, bodies, meshes) into ``dest``, ready to run.
 
     A new ``dest`` is built in a temporary folder beside it and renamed into place, so it appears

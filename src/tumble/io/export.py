@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 
 import numpy as np
 
@@ -40,12 +41,12 @@ def trajectory_csv(traj: Trajectory) -> str:
     return buf.getvalue()
 
 
-def write_csv(traj: Trajectory, path) -> None:
+def write_csv(traj: Trajectory, path: str | os.PathLike[str]) -> None:
     """Write :func:`trajectory_csv` to ``path`` atomically."""
     atomic_write_text(path, trajectory_csv(traj))
 
 
-def write_npz(traj: Trajectory, path, provenance: dict | None = None) -> None:
+def write_npz(traj: Trajectory, path: str | os.PathLike[str], provenance: dict | None = None) -> None:
     """Every array of the trajectory in one compressed NPZ file, written atomically.
 
     Arrays: ``t`` (s), ``omega``, ``omega_world`` (rad/s), ``quat`` (body to world, scalar
@@ -71,6 +72,6 @@ def write_npz(traj: Trajectory, path, provenance: dict | None = None) -> None:
     atomic_write_bytes(path, buf.getvalue())
 
 
-def write_json(data, path) -> None:
+def write_json(data: object, path: str | os.PathLike[str]) -> None:
     """Pretty JSON, written atomically."""
     atomic_write_text(path, json.dumps(data, indent=2) + "\n")

@@ -20,7 +20,9 @@ import json
 import os
 import sys
 import warnings
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -83,9 +85,11 @@ def _tosses_csv(rows) -> str:
     return buf.getvalue()
 
 
-def run_fit_command(path, out, *, argv=None, figure=None, recording_figure=None, start: float | None = None,
-                    end: float | None = None, body=None, progress=None, accept_inadequate: bool = False,
-                    **options) -> int:
+def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *, argv: Sequence[str] | None = None,
+                    figure: Callable[..., Any] | None = None, recording_figure: Callable[..., Any] | None = None,
+                    start: float | None = None, end: float | None = None, body: str | os.PathLike[str] | None = None,
+                    progress: Callable[[int, int], None] | None = None, accept_inadequate: bool = False,
+                    **options: Any) -> int:
     """``tumble fit RECORDING --out DIR`` (module docstring); prints one line.
 
     Parameters

@@ -50,7 +50,7 @@ def _separator(line: str) -> str | None:
     return None
 
 
-def read_gyro_csv(path) -> tuple[np.ndarray, np.ndarray]:
+def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """Read a gyroscope record: times and angular velocity along the sensor's axes.
 
     Parameters
@@ -198,7 +198,7 @@ def _pick_csv(names, label) -> str:
                      f"{len(top)} CSV files ({', '.join(sorted(top)[:4]) or 'none'})")
 
 
-def read_recording(path) -> tuple[np.ndarray, np.ndarray, list]:
+def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray, list]:
     """A whole recording: a CSV file, or a phyphox export (its folder or its ``.zip``).
 
     Parameters

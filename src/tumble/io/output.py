@@ -31,6 +31,7 @@ import fnmatch
 import os
 import shutil
 import tempfile
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from .atomic import _umask
@@ -58,7 +59,7 @@ def _check_parent(path: Path) -> None:
             raise _refuse(path, f"{parent} is a broken symbolic link")
 
 
-def check_output_dir(path) -> Path:
+def check_output_dir(path: str | os.PathLike[str]) -> Path:
     """Check before computing that ``path`` can receive a command's output folder.
 
     Allowed: a path that does not exist yet (its parents are created) or a folder of plain
@@ -82,7 +83,7 @@ def _check_plain(path: Path) -> None:
                       "give a new or empty folder")
 
 
-def check_output_file(path, suffix: str) -> Path:
+def check_output_file(path: str | os.PathLike[str], suffix: str) -> Path:
     """Check before computing that the single file ``path`` (with ``suffix``) can be written."""
     path = Path(path)
     if path.suffix.lower() != suffix:
@@ -94,7 +95,7 @@ def check_output_file(path, suffix: str) -> Path:
 
 
 @contextlib.contextmanager
-def output_dir(path, owns=()):
+def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterator[Path]:
     """Yield an empty staging folder; on success swap it in as ``path``, on failure delete it.
 
     Parameters

@@ -8,14 +8,16 @@ from __future__ import annotations
 
 import datetime
 import hashlib
+import os
 import platform
 import shlex
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 __all__ = ["file_sha256", "provenance"]
 
 
-def file_sha256(path) -> str:
+def file_sha256(path: str | os.PathLike[str]) -> str:
     """SHA-256 of a file's bytes, hex."""
     digest = hashlib.sha256()
     with open(path, "rb") as fh:
@@ -24,7 +26,7 @@ def file_sha256(path) -> str:
     return digest.hexdigest()
 
 
-def provenance(argv=None, inputs=()) -> dict:
+def provenance(argv: Sequence[str] | None = None, inputs: Iterable[tuple[str, str]] = ()) -> dict:
     """The provenance record of a run.
 
     Parameters

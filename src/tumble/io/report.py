@@ -6,6 +6,7 @@ import numpy as np
 
 from ..analysis.stability import stable_spin_range
 from ..mass import AXIS_ROLES, Body
+from ..typing import ArrayLike
 
 __all__ = ["mass_properties_dict", "mass_properties_table", "rotor_stable_spin"]
 
@@ -69,7 +70,7 @@ def rotor_stable_spin(body: Body) -> list[float] | None:
     return list(stable_spin_range(body.principal_moments, h))
 
 
-def describe_axis(v) -> str:
+def describe_axis(v: ArrayLike) -> str:
     """``"+x"`` for a vector along a design axis, else the rounded components."""
     v = np.asarray(v, float)
     k = int(np.argmax(np.abs(v)))

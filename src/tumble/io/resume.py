@@ -109,7 +109,7 @@ class ChunkFolder:
     >>> store.remove()
     """
 
-    def __init__(self, folder, fingerprint: dict, *, cases: int, chunk: int,
+    def __init__(self, folder: str | os.PathLike[str], fingerprint: dict, *, cases: int, chunk: int,
                  warn: Callable[[str], None] | None = None) -> None:
         self.folder = Path(folder)
         self.cases, self.chunk = int(cases), int(chunk)

@@ -41,13 +41,15 @@ an initial spin, with command-line values overriding the file's.
 from __future__ import annotations
 
 import dataclasses
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
 from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
 from ..dynamics.simulate import check_inputs, sample_times
-from ..mass import PRESETS, Body
+from ..mass import PRESETS, Body, MassProperties
+from ..typing import ArrayLike
 from ..validation import short_repr
 from .bodyfile import body_from_table, load_body, read_toml
 from .provenance import file_sha256
@@ -226,7 +228,7 @@ def _validate(s: Scenario, options=()) -> None:
         raise ValueError(message) from None
 
 
-def load_scenario(path) -> Scenario:
+def load_scenario(path: str | os.PathLike[str]) -> Scenario:
     """Read and validate a scenario file (TOML); the file's format is in the README.
 
     Parameters
@@ -256,7 +258,9 @@ def load_scenario(path) -> Scenario:
     return dataclasses.replace(scenario, sources=tuple((str(f), file_sha256(f)) for f in files))
 
 
-def resolve_run(source, *, omega=None, frame=None, t_end=None, samples=None, dt=None, method=None) -> Scenario:
+def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = None, frame: str | None = None,
+                t_end: float | None = None, samples: int | None = None, dt: float | None = None,
+                method: str | None = None) -> Scenario:
     """The run the command line asks for: a scenario file, or a body file or preset name plus
     ``omega`` (rad/s); any value given here overrides the file's.
 
@@ -335,7 +339,7 @@ def gravity_gradient_from_table(table: dict) -> GravityGradient:
         raise ValueError(f"torque: {exc}") from None
 
 
-def lvlh_state_from_table(table: dict, gg: GravityGradient, body) -> LVLHState:
+def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassProperties) -> LVLHState:
     """:func:`lvlh_state` from a scenario file's ``[initial.orbit_frame]`` table.
 
     Keys, all optional: ``roll``, ``pitch``, ``yaw`` (rad, default 0), ``pitch_axis`` (default 3)

@@ -73,9 +73,12 @@ place.
 
 from __future__ import annotations
 
+import os
 import sys
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -241,7 +244,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     return SweepFile(result, name, chunk, tuple((str(f), file_sha256(f)) for f in files), dict(data))
 
 
-def load_sweep(path) -> SweepFile:
+def load_sweep(path: str | os.PathLike[str]) -> SweepFile:
     """Read and check a sweep file; errors are one line starting with the file's name."""
     path = Path(path)
     data = read_toml(path)
@@ -307,8 +310,9 @@ class _Tables:
             self.parquet.close()
 
 
-def run_sweep(path, out, *, workers: int | None = None, scheduler: str | None = None, argv=None,
-              figure=None, warn=None) -> dict:
+def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, workers: int | None = None, scheduler: str | None = None,
+              argv: Sequence[str] | None = None, figure: Callable[..., Any] | None = None,
+              warn: Callable[[str], None] | None = None) -> dict:
     """Run a sweep file and write its results into the folder ``out`` (module docstring).
 
     Parameters
@@ -403,8 +407,8 @@ def _plain(value):
     return value
 
 
-def run_sweep_command(path, out, *, workers: int | None = None, scheduler: str | None = None, argv=None,
-                      figure=None) -> int:
+def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *, workers: int | None = None, scheduler: str | None = None,
+                      argv: Sequence[str] | None = None, figure: Callable[..., Any] | None = None) -> int:
     """``tumble sweep PATH --out OUT``: :func:`run_sweep`, then one line for people; returns 0.
 
     Errors propagate (``ValueError`` for bad input: the command line's exit status 2).
@@ -415,7 +419,7 @@ def run_sweep_command(path, out, *, workers: int | None = None, scheduler: str |
     return 0
 
 
-def sweep_line(data: dict, out) -> str:
+def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
     """One line: how many cases flipped, the flip period's median and 5-95 % range, the criterion."""
     counts, stats = data["counts"], data["statistics"]
     unstable = counts["predicted"].get("unstable", 0)
