@@ -17,8 +17,10 @@ JSON).
 
 from __future__ import annotations
 
+import os
 import sys
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -121,8 +123,8 @@ def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
     return path.suffix, note
 
 
-def run_demo(out="tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True,
-             animation_format: str = "auto", argv=None) -> Path:
+def run_demo(out: str | os.PathLike[str] = "tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True,
+             animation_format: str = "auto", argv: Sequence[str] | None = None) -> Path:
     """Run the whole study and write its figures and data to ``out``; return the folder.
 
     The folder appears whole or not at all (:func:`tumble.io.output.output_dir`); ``argv``

@@ -10,9 +10,11 @@ matplotlib dependency). Asked for an MP4 without ffmpeg, they write the GIF inst
 
 from __future__ import annotations
 
+import os
 import shutil
 import warnings
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -21,6 +23,10 @@ from ..io.atomic import atomic_path
 from ..mass import Body
 from ._backend import new_figure
 from .scene import arrow_scale, body_lines, body_size, check_body_and_run, frame_indices
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["ANIMATION_SUFFIXES", "animate_body_frame", "animate_ground_frame", "animation_path", "ffmpeg_path",
            "scene_axes", "writer_for"]
@@ -44,7 +50,7 @@ def ffmpeg_path() -> str | None:
         return None
 
 
-def animation_path(path) -> tuple[Path, str | None]:
+def animation_path(path: str | os.PathLike[str]) -> tuple[Path, str | None]:
     """Where an animation asked for at ``path`` is written, and a one-line note if not there.
 
     ``.gif`` and ``.mp4`` with ffmpeg available are kept; ``.mp4`` without ffmpeg becomes the
@@ -59,7 +65,7 @@ def animation_path(path) -> tuple[Path, str | None]:
     return path, None
 
 
-def writer_for(path: Path, fps: int):
+def writer_for(path: Path, fps: int) -> Any:
     """A matplotlib writer for the suffix of ``path`` (``.gif``, or ``.mp4`` with ffmpeg found)."""
     from matplotlib import animation
 
@@ -73,7 +79,7 @@ def writer_for(path: Path, fps: int):
     raise ValueError(f"{path}: animations are written as .mp4 or .gif")
 
 
-def scene_axes(size: float, title: str, figsize=(5.4, 5.4)):
+def scene_axes(size: float, title: str, figsize: tuple[float, float] = (5.4, 5.4)) -> tuple[Figure, Axes]:
     """A new figure with one 3D axes of half-width ``size`` (m), labelled for a small frame.
 
     At most three ticks per axis and 8-point labels keep the tick labels apart at GIF sizes.
@@ -97,7 +103,7 @@ def _legend(ax) -> None:
     ax.legend(loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 1.0))
 
 
-def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
+def animate_ground_frame(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, max_frames: int = 100, fps: int = 20,
                          title: str | None = None, dpi: int = 90) -> Path:
     """The body tumbling in the ground (world) frame with its omega and L arrows; returns the file written.
 
@@ -135,7 +141,7 @@ def animate_ground_frame(body: Body, traj: Trajectory, path, *, max_frames: int 
     return path
 
 
-def animate_body_frame(body: Body, traj: Trajectory, path, *, max_frames: int = 100, fps: int = 20,
+def animate_body_frame(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, max_frames: int = 100, fps: int = 20,
                        title: str | None = None, dpi: int = 90) -> Path:
     """omega and L seen from the body (design axes), with the path of omega's tip; returns the file written.
 

@@ -7,14 +7,22 @@ the residuals; the title gives the fitted ratios with their uncertainties.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+from ..typing import ArrayLike
 from ._backend import legend_outside, new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from ..analysis.fit import RecordingFit, RotationFit
 
 __all__ = ["figure_fit", "figure_recording"]
 
 
-def figure_fit(fit, omega_measured, *, fig=None):
+def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | None = None) -> Figure:
     """Measured angular velocity against the fit (:func:`tumble.analysis.fit.fit_rotation`).
 
     Parameters
@@ -50,7 +58,7 @@ def figure_fit(fit, omega_measured, *, fig=None):
     return fig
 
 
-def figure_recording(rec, *, fig=None, max_flights: int = 12):
+def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flights: int = 12) -> Figure:
     """A whole recording fitted (:func:`tumble.analysis.fit.fit_recording`).
 
     Top: the recording, its flights shaded (green: used; grey: skipped). Bottom left: the used

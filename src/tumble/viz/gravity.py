@@ -7,10 +7,16 @@ module only draws it, on a given ``ax`` or a new figure, and returns the Figure.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..analysis.gravity_stability import STABILITY_REGIONS, gravity_gradient_stability
 from ._backend import figure_and_axes
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["figure_gravity_stability"]
 
@@ -43,7 +49,8 @@ def _draw_regions(ax, kr_range, ky_range, n: int) -> None:
     ax.set_ylim(*ky_range)
 
 
-def figure_gravity_stability(*, ax=None, points=None):
+def figure_gravity_stability(*, ax: Axes | None = None,
+                             points: dict[str, tuple[float, float]] | None = None) -> Figure:
     """Linear gravity-gradient stability of a body at rest in the orbiting frame, over (k_R, k_Y).
 
     ``k_R = (I_pitch - I_yaw) / I_roll`` (horizontal) and ``k_Y = (I_pitch - I_roll) / I_yaw``

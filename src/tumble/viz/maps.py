@@ -16,10 +16,16 @@ Both draw on a given ``ax`` (``fig``) or a new figure and return the Figure
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..ensemble import stability_map
 from ._backend import figure_and_axes, legend_outside, new_figure
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["figure_stability_map", "figure_sweep"]
 
@@ -40,8 +46,8 @@ def _triangle(ax) -> None:
     ax.set_ylabel(_RATIO_LABELS[1])
 
 
-def figure_stability_map(spin: float = 10.0, perturbation=(0.01, 0.01), *, ax=None, resolution: int = 300,
-                         points: dict | None = None):
+def figure_stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01, 0.01), *, ax: Axes | None = None,
+                         resolution: int = 300, points: dict | None = None) -> Figure:
     """The flip interval and the circulation axis over the triangle of inertia ratios.
 
     Parameters
@@ -99,7 +105,8 @@ def _column(columns: dict, name: str) -> np.ndarray | None:
     return None
 
 
-def figure_sweep(columns: dict, *, fig=None, title: str | None = None, cases: int | None = None):
+def figure_sweep(columns: dict, *, fig: Figure | None = None, title: str | None = None,
+                 cases: int | None = None) -> Figure:
     """What a sweep's cases did: their flip periods, and where they lie among the inertia ratios.
 
     Left: the histogram of the measured and the exact flip period (or, when no case flips, of

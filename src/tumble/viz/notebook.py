@@ -8,10 +8,15 @@ plays again when the saved notebook is opened without a kernel.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from .._html import escape_text
 from ..dynamics import Trajectory
 from ..mass import Body
 from .scene import check_body_and_run
+
+if TYPE_CHECKING:
+    from IPython.display import HTML
 
 __all__ = ["DEFAULT_HEIGHT", "show"]
 
@@ -34,7 +39,7 @@ def _check(trajectory, body, height) -> None:
         raise ValueError(f"height = {height!r} must be a whole number of pixels > 0")
 
 
-def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int = DEFAULT_HEIGHT, title: str | None = None):
+def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int = DEFAULT_HEIGHT, title: str | None = None) -> HTML:
     """The interactive page of a run, for display in a Jupyter notebook.
 
     Parameters

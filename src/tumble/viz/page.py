@@ -16,6 +16,7 @@ interface they use (``window.tumbleViewer``, the ``tumble:ready`` event).
 
 from __future__ import annotations
 
+import os
 from importlib import resources
 from pathlib import Path
 
@@ -219,7 +220,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     return "\n".join(parts)
 
 
-def write_page(body: Body, traj: Trajectory, path, *, frames: int = 150, title: str | None = None,
+def write_page(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, frames: int = 150, title: str | None = None,
                live: bool = True) -> Path:
     """Write :func:`page_html` to ``path`` whole or not at all (temporary file, then renamed)."""
     path = Path(path)

@@ -12,15 +12,22 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..analysis import flip_interval
 from ..dynamics import Trajectory
 from ..dynamics.methods.exact import FreeRotation
 from ..mass import moment_degeneracy
+from ..typing import ArrayLike
 from .plots import MAX_POINTS
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 from .scene import check_run
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
            "separatrices"]
@@ -45,7 +52,7 @@ def phase_portrait_problem(traj: Trajectory) -> str | None:
     return None
 
 
-def polhode_family(moments, L_norm: float, count: int = 9, points: int = 240) -> list[np.ndarray]:
+def polhode_family(moments: ArrayLike, L_norm: float, count: int = 9, points: int = 240) -> list[np.ndarray]:
     """Closed polhodes through one |L| (kg m^2/s), body frame; each of shape (points, 3).
 
     Starting points ``|L| (cos b, 0, sin b)`` sweep the energy from ``|L|^2/(2 I1)`` (b = 0) to
@@ -69,7 +76,7 @@ def polhode_family(moments, L_norm: float, count: int = 9, points: int = 240) ->
     return curves
 
 
-def separatrices(moments, L_norm: float, points: int = 361) -> list[np.ndarray]:
+def separatrices(moments: ArrayLike, L_norm: float, points: int = 361) -> list[np.ndarray]:
     """The two separatrix great circles on the momentum sphere, each of shape (points, 3)."""
     I = np.asarray(moments, float)
     k = np.sqrt((1 / I[0] - 1 / I[1]) / (1 / I[1] - 1 / I[2]))
@@ -109,7 +116,7 @@ def _axes_3d(ax):
     return fig, fig.add_subplot(spec, projection="3d")
 
 
-def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
+def figure_polhode(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None) -> Figure:
     """L in the body frame on the momentum sphere (kg m^2/s), with its family of polhodes and separatrices.
 
     For a run that is not a torque-free motion of one rigid body, or a body at rest
@@ -165,7 +172,7 @@ def figure_polhode(traj: Trajectory, *, ax=None, title: str | None = None):
     return fig
 
 
-def figure_herpolhode(traj: Trajectory, *, ax=None, title: str | None = None):
+def figure_herpolhode(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None) -> Figure:
     """The tip of omega (rad/s) in the invariable plane, ground frame: Poinsot's construction.
 
     For a run that is not a torque-free motion of one rigid body, or a body at rest

@@ -11,12 +11,19 @@ adds a second panel with its first few oscillations in detail.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..dynamics import Trajectory
 from ..mass import AXIS_ROLES
+from ..typing import ArrayLike
 from ._backend import figure_and_axes, legend_outside, new_figure
 from .scene import check_run
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "ROUND_OFF", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
            "plot_omega"]
@@ -51,7 +58,7 @@ def detail_window(traj: Trajectory) -> float | None:
     return float(traj.t[busiest[2 * DETAIL_SHOWN]])
 
 
-def envelope(t, y, bins: int = ENVELOPE_BINS):
+def envelope(t: ArrayLike, y: ArrayLike, bins: int = ENVELOPE_BINS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The envelope of ``y(t)``: ``(t, low, high)``, each bin's first and last time with its min and max.
 
     ``t`` has shape (n,), ``y`` shape (n,) or (n, k); ``n`` samples are split into ``bins`` runs
@@ -70,7 +77,7 @@ def _inertia_label(traj: Trajectory, j: int) -> str:
     return rf"$\omega_{j + 1}$ ({AXIS_ROLES[j]}, $I_{j + 1}$ = {traj.moments[j]:.4g} kg m$^2$)"
 
 
-def plot_omega(traj: Trajectory, ax, title: str | None = None) -> str | None:
+def plot_omega(traj: Trajectory, ax: Axes, title: str | None = None) -> str | None:
     """Draw omega_1, omega_2, omega_3 (principal frame, rad/s) against t (s) on ``ax``.
 
     A run of more than :data:`MAX_POINTS` samples is drawn as its :func:`envelope`. Returns the
@@ -100,7 +107,7 @@ def plot_omega(traj: Trajectory, ax, title: str | None = None) -> str | None:
     return note
 
 
-def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
+def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None) -> Figure:
     """omega(t) of one run, principal frame (rad/s), against t (s).
 
     On a new figure, a run whose components oscillate more than :data:`DETAIL_CYCLES` times gets
@@ -143,8 +150,8 @@ def figure_omega(traj: Trajectory, *, ax=None, title: str | None = None):
     return fig
 
 
-def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig=None, ncols: int = 3,
-                      suptitle: str | None = None, sharey: bool = False):
+def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig: Figure | None = None, ncols: int = 3,
+                      suptitle: str | None = None, sharey: bool = False) -> Figure:
     """Several runs side by side, one panel each (the seed's Figure 1, for every case of the study).
 
     Parameters
@@ -193,7 +200,7 @@ def _reference(size: np.ndarray) -> tuple[float, str]:
     return (float(np.max(size)) or 1.0), "max"
 
 
-def figure_drift(traj: Trajectory, *, ax=None, title: str | None = None):
+def figure_drift(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None) -> Figure:
     """Relative error of energy, |L| and L_world against time (s), on a log scale.
 
     ``|E - E0| / E0``, ``||L| - |L0|| / |L0|`` and ``|L_world - L_world(0)| / |L0|``

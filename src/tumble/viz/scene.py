@@ -12,6 +12,7 @@ import numpy as np
 from ..dynamics import Trajectory
 from ..mass import INERTIA_RTOL, Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
+from ..typing import ArrayLike
 
 __all__ = ["arrow_scale", "body_lines", "body_size", "check_body_and_run", "check_run", "frame_indices", "part_lines"]
 
@@ -73,7 +74,7 @@ def cone_span(part: Cone) -> tuple[float, float]:
     return -part.height / 4, 3 * part.height / 4
 
 
-def mesh_vertices_about_com(part) -> np.ndarray:
+def mesh_vertices_about_com(part: Part) -> np.ndarray:
     """A mesh part's vertices in its own frame about its own centre of mass, m."""
     return np.asarray(part.mesh.vertices, float) - part._com_local
 
@@ -103,7 +104,7 @@ def body_size(body: Body) -> float:
     return float(np.max(np.linalg.norm(pts, axis=1))) or 1.0
 
 
-def arrow_scale(vectors, size: float) -> float:
+def arrow_scale(vectors: ArrayLike, size: float) -> float:
     """Factor that draws the longest of ``vectors`` (shape (n, 3)) at 0.9 ``size``; 0 if all zero."""
     peak = float(np.max(np.linalg.norm(vectors, axis=-1)))
     return 0.9 * size / peak if peak > 0 else 0.0
@@ -121,7 +122,7 @@ def frame_indices(samples: int, frames: int, name: str = "frames") -> np.ndarray
 MAX_FRAMES = 2000
 
 
-def check_run(traj, name: str = "trajectory") -> None:
+def check_run(traj: object, name: str = "trajectory") -> None:
     """Refuse, in one line, anything but a :class:`~tumble.dynamics.Trajectory` with samples."""
     if not isinstance(traj, Trajectory):
         raise ValueError(f"{name} = {type(traj).__name__} object must be a tumble Trajectory (what tumble.simulate "
@@ -130,7 +131,7 @@ def check_run(traj, name: str = "trajectory") -> None:
         raise ValueError(f"{name} has no samples: there is nothing to draw")
 
 
-def check_body_and_run(body, traj) -> None:
+def check_body_and_run(body: object, traj: object) -> None:
     """Refuse a body that is not the one simulated: the pictures draw the body's parts moved by
     the run's attitude, so they must share their principal moments (within
     :data:`~tumble.mass.INERTIA_RTOL` of the trace)."""

@@ -20,14 +20,20 @@ cover the data.
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..dynamics import Trajectory
 from ..dynamics.models.gravity import GravityGradient, orbit_frame_angles
+from ..dynamics.models.torques import TorqueLike
 from .plots import COLORS, figure_omega_grid
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 from .scene import check_run
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["figure_energy", "figure_nutation", "figure_omega_panels", "figure_orbit_angles", "spacecraft_figures"]
 
@@ -36,7 +42,7 @@ def _has_internal_models(traj: Trajectory) -> bool:
     return traj.dissipated is not None or traj.internal_momentum is not None
 
 
-def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
+def figure_energy(traj: Trajectory, *, ax: Axes | None = None, log: bool = False) -> Figure:
     """Total kinetic energy and its budget against t, J.
 
     Draws ``traj.energy`` (body, rotors and damper) and, where the run has rotors or a damper,
@@ -83,7 +89,7 @@ def figure_energy(traj: Trajectory, *, ax=None, log: bool = False):
     return fig
 
 
-def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: bool = False):
+def figure_nutation(traj: Trajectory, *, ax: Axes | None = None, degrees: bool = True, log: bool = False) -> Figure:
     """The nutation angle between L and the major axis against t
     (:attr:`~tumble.dynamics.Trajectory.nutation_angle`).
 
@@ -126,7 +132,8 @@ def figure_nutation(traj: Trajectory, *, ax=None, degrees: bool = True, log: boo
     return fig
 
 
-def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax=None, **axes):
+def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax: Axes | None = None,
+                        **axes: int | str) -> Figure:
     """Roll, pitch and yaw relative to the orbiting (LVLH) frame against t in orbits, rad.
 
     Parameters
@@ -160,7 +167,8 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax=None, 
     return fig
 
 
-def figure_omega_panels(cases, *, fig=None, sharey: bool = True):
+def figure_omega_panels(cases: list[tuple[str, Trajectory]], *, fig: Figure | None = None,
+                        sharey: bool = True) -> Figure:
     """omega(t) of several runs, principal frame, rad/s: one panel per run, one above the other.
 
     Parameters
@@ -181,7 +189,7 @@ def figure_omega_panels(cases, *, fig=None, sharey: bool = True):
     return figure_omega_grid(cases, fig=fig, ncols=1, sharey=sharey)
 
 
-def spacecraft_figures(traj: Trajectory, torque=None, **axes) -> list[tuple[str, object]]:
+def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | None = None, **axes: Any) -> list[tuple[str, object]]:
     """The spacecraft figures that apply to a run, in drawing order: ``[(name, maker), ...]``.
 
     ``name`` is a file stem (``"energy"``, ``"nutation"``, ``"orbit_angles"``); ``maker(ax=None)``

@@ -95,7 +95,7 @@ def _cylinder(radius: float, length: float, n: int) -> tuple[np.ndarray, np.ndar
     return _revolve([_disc_cap(radius, -h, False), [(radius, -h), (radius, h)], _disc_cap(radius, h, True)], n)
 
 
-def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_FACES):
+def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_FACES) -> tuple[np.ndarray, np.ndarray]:
     """At most ``max_faces`` triangles by vertex clustering (Rossignac & Borrel, "Multi-resolution
     3D approximations for rendering complex scenes", 1993): vertices are snapped to a grid, merged
     per cell, and triangles that collapse are dropped. The grid is coarsened until the result
