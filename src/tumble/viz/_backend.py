@@ -18,8 +18,14 @@ Saving is a separate step, :func:`save_figure`, atomic through :mod:`tumble.io.a
 from __future__ import annotations
 
 import io
+import os
+from typing import TYPE_CHECKING, Any
 
 from ..io.output import FIGURE_DPI
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 __all__ = ["TumbleFigure", "figure_and_axes", "legend_outside", "new_figure", "note_only", "save_figure"]
 
@@ -30,7 +36,7 @@ def _repr_png_(self) -> bytes:
     return buffer.getvalue()
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> type:
     """``TumbleFigure``: a matplotlib Figure that a notebook displays as a PNG without pyplot.
 
     Made on first use, so that importing :mod:`tumble.viz` does not import matplotlib.
@@ -47,13 +53,14 @@ def __getattr__(name: str):
     return cls
 
 
-def new_figure(figsize=(7.5, 3.6), **kwargs):
+def new_figure(figsize: tuple[float, float] = (7.5, 3.6), **kwargs: Any) -> Figure:
     """A new ``TumbleFigure`` (constrained layout unless ``layout`` is given), not registered with pyplot."""
     kwargs.setdefault("layout", "constrained")
     return __getattr__("TumbleFigure")(figsize=figsize, **kwargs)
 
 
-def figure_and_axes(ax=None, figsize=(7.5, 3.6), **subplot_kw):
+def figure_and_axes(ax: Axes | None = None, figsize: tuple[float, float] = (7.5, 3.6),
+                    **subplot_kw: Any) -> tuple[Figure, Axes]:
     """``(figure, ax)``: ``ax`` and its figure when given, else a new figure with one axes."""
     if ax is not None:
         return ax.figure, ax
@@ -61,7 +68,7 @@ def figure_and_axes(ax=None, figsize=(7.5, 3.6), **subplot_kw):
     return fig, fig.add_subplot(**subplot_kw)
 
 
-def legend_outside(ax, **kwargs) -> None:
+def legend_outside(ax: Axes, **kwargs: Any) -> None:
     """The legend to the right of the axes, outside them: it never covers the data."""
     handles, _ = ax.get_legend_handles_labels()
     if handles:
@@ -69,7 +76,7 @@ def legend_outside(ax, **kwargs) -> None:
                      "framealpha": 0.9, **kwargs})
 
 
-def note_only(ax, note: str, title: str | None = None) -> None:
+def note_only(ax: Axes, note: str, title: str | None = None) -> None:
     """An empty panel that says, in one line, why there is nothing to draw."""
     ax.set_axis_off()
     text = ax.text2D if ax.name == "3d" else ax.text
@@ -78,7 +85,7 @@ def note_only(ax, note: str, title: str | None = None) -> None:
         ax.set_title(title, fontsize=9)
 
 
-def save_figure(fig, path, dpi: int = FIGURE_DPI) -> None:
+def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = FIGURE_DPI) -> None:
     """Write ``fig`` to ``path`` (format from the suffix: PNG, SVG, PDF, ...), whole or not at all.
 
     The figure is written to a temporary name in the same folder and renamed into place
