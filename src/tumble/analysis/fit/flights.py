@@ -189,8 +189,11 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     --------
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(2, tosses=2)
-    >>> [f.status for f in find_flights(rec.t, rec.omega, events=rec.events)]
-    ['ok', 'ok']
+    >>> flights = find_flights(rec.t, rec.omega, events=rec.events)
+    >>> [f.status for f in flights]  # the first toss's samples do not follow a free motion
+    ['skipped', 'ok']
+    >>> flights[0].reason.startswith("no free flight")
+    True
     """
     t = np.asarray(t, float)
     omega = np.asarray(omega, float)
