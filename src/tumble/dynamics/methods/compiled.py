@@ -15,10 +15,11 @@ built-in models are known in advance and evaluated here inline:
   circular orbit of :class:`tumble.dynamics.models.gravity.GravityGradient` (Hughes, *Spacecraft
   Attitude Dynamics*, ch. 8).
 
-The compiled and numpy paths agree to round-off (tests/test_compiled.py). One thread: the
-bodies are independent, but ``parallel=True`` made the first call of every process 2.3 s (the
-threading layer's start-up, measured) against 0.96 s, for at most the number of cores (2 here).
-Compiled on first use with ``cache=True``, so once per machine: importing numba costs half a
+The compiled and numpy paths agree to round-off (tests/test_compiled.py). A batch of at least
+:data:`PARALLEL_BODIES` runs its bodies on every core (``numba.prange``); smaller ones on one
+thread, since the parallel kernel made the first call of a process 2.3 s against 0.96 s (the
+threading layer's start, measured). Each body gets the same arithmetic either way. Compiled on
+first use with ``cache=True``, so once per machine: importing numba costs half a
 second, which a command that never needs the kernel would pay otherwise.
 """
 
@@ -26,6 +27,7 @@ from __future__ import annotations
 
 import functools
 import math
+import types
 from collections.abc import Callable
 from typing import Any, cast
 
@@ -37,7 +39,7 @@ from .compiled_flow import (  # free_flow: _run calls it; compiled in _compiled(
     free_flow,
 )
 
-__all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
+__all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "PARALLEL_BODIES", "compiled_model", "run_split"]
 
 #: Kinds of built-in torque the kernel evaluates itself.
 CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT = 1, 2, 3
@@ -115,7 +117,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
     """Every body through every sample interval: equal steps no longer than
     ``step``, each the Yoshida composition ``gammas`` of the Strang step with half kicks."""
     N = I.shape[0]
-    for b in range(N):
+    for b in prange(N):  # independent bodies: threads where the parallel kernel is used
         Ib, L, q = I[b].copy(), L0[b].copy(), q0[b].copy()
         inv_I = 1.0 / Ib
         kick = np.empty(3)
@@ -153,15 +155,40 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                 omega_out[s, b, i] = L[i] * inv_I[i]
 
 
-@functools.cache
-def _compiled() -> Callable[..., None]:
-    """The kernel compiled by numba on first use (see the module docstring)."""
-    from numba import njit
+#: Bodies from which a batch runs on every core (``numba.prange``): the parallel kernel's first
+#: call in a process costs ~2 s more (the threading layer's start, measured), which only a large
+#: batch pays back.
+PARALLEL_BODIES = 256
 
-    globals()["free_flow"] = compiled_free_flow()
-    for name in ("_body_torque", "_rotate"):
-        globals()[name] = njit(cache=True, inline="always")(globals()[name])
-    return cast("Callable[..., None]", njit(cache=True)(_run))
+prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
+
+
+@functools.cache
+def _compiled(parallel: bool = False) -> Callable[..., None]:
+    """The kernel compiled by numba on first use (see the module docstring): one thread, or
+    one per core over the bodies (``parallel``); the same arithmetic for each body."""
+    from numba import njit
+    from numba import prange as numba_prange
+
+    if not _compiled.__dict__.get("helpers"):
+        globals()["free_flow"] = compiled_free_flow()
+        for name in ("_body_torque", "_rotate"):
+            globals()[name] = njit(cache=True, inline="always")(globals()[name])
+        globals()["prange"] = numba_prange
+        _compiled.__dict__["helpers"] = True
+    # the parallel kernel is a copy of _run under its own name, so that numba's cache keeps the two
+    # compiled versions apart (its cache files are named after the function)
+    run = _run
+    if parallel:
+        run = types.FunctionType(_run.__code__, globals(), "_run_parallel")
+        run.__qualname__ = "_run_parallel"
+    return cast("Callable[..., None]", njit(cache=True, parallel=parallel)(run))
+
+
+def _cores() -> int:
+    import os
+
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
 def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float, gammas: tuple[float, ...],
@@ -203,7 +230,8 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     kind, tau, n = model if model is not None else (0, np.zeros(3), 0.0)
     N = len(I)
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
-    _compiled()(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
+    kernel = _compiled(parallel=N >= PARALLEL_BODIES and _cores() > 1)
+    kernel(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
                 np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(t, dtype=float), float(step),
                 np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), omega_out,
                 quat_out)
