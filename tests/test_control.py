@@ -11,7 +11,13 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
+from tumble.dynamics.controllers import (
+    BDot,
+    Controller,
+    MRPFeedback,
+    bdot_gain,
+    pd_response,
+)
 from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import IGRF13_2020, DipoleField, UniformField
 from tumble.dynamics.models.orbit import CircularOrbit

@@ -112,6 +112,21 @@ def _matrix(q: FloatArray) -> FloatArray:
                      [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)]])
 
 
+class _Matrix:
+    """A rotation held as its matrix, with the two calls a torque model makes of a scipy
+    ``Rotation`` (``apply`` and ``inv``): the right-hand side builds one per call, and a
+    ``Rotation`` costs ~100 us to build and apply."""
+
+    def __init__(self, matrix: FloatArray) -> None:
+        self.matrix = matrix
+
+    def apply(self, v: ArrayLike) -> FloatArray:
+        return np.asarray(self.matrix @ np.asarray(v, float), float)
+
+    def inv(self) -> _Matrix:
+        return _Matrix(self.matrix.T)
+
+
 def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
     """``a x b`` of two 3-vectors, written out (numpy's ``cross`` costs ~30 us a call)."""
     a0, a1, a2 = float(a[0]), float(a[1]), float(a[2])
@@ -204,7 +219,7 @@ def simulate_controlled(
         if magnetorquers is not None and field is not None:
             tau = tau + _cross(dipole, R.T @ field.world(t))
         if gg is not None:
-            tau = tau + R.T @ gg(t, w, Rotation.from_matrix(R))
+            tau = tau + R.T @ gg(t, w, cast(Rotation, _Matrix(R)))
         u = wheels.applied_torque(u_cmd, s) if wheels is not None else np.zeros(0)
         h = (J * s) @ axes
         dw = I_rw_inv @ (tau - _cross(w, I * w + h) - u @ axes)
