@@ -159,6 +159,8 @@ def _cmd_simulate(args) -> int:
 
     scenario = _resolve(args)  # every check before anything is computed or written
     out = check_output_dir(args.out)
+    if not hasattr(scenario, "method"):  # a closed-loop (control) scenario
+        return _simulate_control(args, scenario, out)
     with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
         traj = scenario.run()
 
@@ -187,6 +189,42 @@ def _cmd_simulate(args) -> int:
     return EXIT_OK
 
 
+def _refuse_control(scenario, command: str) -> None:
+    if not hasattr(scenario, "method"):
+        raise ValueError(f"{scenario.name} is a control scenario ([control]); 'tumble {command}' does not take it yet: "
+                         "use 'tumble simulate FILE --out DIR'")
+
+
+def _simulate_control(args, scenario, out) -> int:
+    """`tumble simulate` of a control scenario: the closed loop, its summary and trajectory."""
+    from .io.controlfile import control_summary, write_control_run
+    from .io.export import write_json
+    from .io.output import output_dir
+    from .io.provenance import provenance
+    from .viz import figure_omega, save_figure
+
+    with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
+        run = scenario.run()
+    summary = control_summary(scenario, run)
+    summary["scenario"] = str(args.source)
+    summary["provenance"] = provenance(args.argv, scenario.sources)
+    with output_dir(out, SIMULATE_WRITES) as stage:
+        write_control_run(run, stage)
+        save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
+        write_json(summary, stage / "summary.json")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        done = summary["detumble_time"]
+        line = f"{summary['body']} ({scenario.kind}, {summary['t_end']:g} s): final rate {summary['final_rate']:.3g} rad/s"
+        if "pointing_error_final" in summary:
+            line += f", pointing error {summary['pointing_error_final']:.3g} rad"
+        elif done is not None:
+            line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
+        print(f"{line}; wrote {out}/")
+    return EXIT_OK
+
+
 #: The figures of `tumble plot`, in the order they are drawn; the spacecraft figures
 #: (`tumble.viz.spacecraft_figures`) follow where they apply.
 PLOTS = ("omega", "polhode", "herpolhode", "drift")
@@ -199,6 +237,7 @@ def _cmd_plot(args) -> int:
     from .io.output import check_output_dir
 
     scenario = _resolve(args)
+    _refuse_control(scenario, "plot")
     out = check_output_dir(args.out)
     if scenario.times is None and scenario.dt is None:  # the phase portraits need a fine path
         scenario = dataclasses.replace(scenario, samples=max(scenario.sample_count, 5000))
@@ -233,6 +272,7 @@ def _cmd_view(args) -> int:
 
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
+    _refuse_control(scenario, "view")
     frame_indices(scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
     with _working(f"integrating {scenario.name}"):
         traj = scenario.run()

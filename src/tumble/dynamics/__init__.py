@@ -1,6 +1,8 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
 from .batch import BatchTrajectory, simulate_batch
+from .controlled import ControlledRun, simulate_controlled
+from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
 from .euler import (
     angular_momentum,
     energy_momentum_gaps,
@@ -14,13 +16,32 @@ from .models.gravity import (
     lvlh_state,
     orbit_frame_angles,
 )
+from .models.actuators import Command, Magnetorquers, ReactionWheels
 from .models.internal import SphericalDamper, gyrostat_rate
+from .models.magnetic import DipoleField, UniformField
+from .models.orbit import CircularOrbit
+from .models.sensors import Measurement, Sensors
 from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory
 
 __all__ = [
+    "BDot",
+    "CircularOrbit",
+    "Command",
+    "ControlledRun",
+    "Controller",
+    "DipoleField",
+    "MRPFeedback",
+    "Magnetorquers",
+    "Measurement",
+    "ReactionWheels",
+    "Sensors",
+    "UniformField",
+    "bdot_gain",
+    "pd_response",
+    "simulate_controlled",
     "BatchTrajectory",
     "simulate_batch",
     "DEFAULT_METHOD",

@@ -30,6 +30,8 @@ __all__ = ["Example", "copy_examples", "list_examples"]
 BODIES = "bodies"
 #: The folder of the sweep files (``tumble sweep``).
 SWEEPS = "sweeps"
+#: The folder of the closed-loop control scenarios (``tumble simulate``; :mod:`tumble.io.controlfile`).
+CONTROL = "control"
 
 
 @dataclass(frozen=True)
@@ -43,8 +45,9 @@ class Example:
     path : str
         Its path relative to the examples' root, with ``/``, e.g. ``"bodies/t_handle.toml"``.
     kind : str
-        ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"body"`` (for
-        ``tumble inertia``) or ``"sweep"`` (for ``tumble sweep``).
+        ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"control"`` (a closed-loop
+        scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``) or ``"sweep"`` (for
+        ``tumble sweep``).
     description : str
         One line: the file's first comment line, or its name if it has none.
     """
@@ -90,16 +93,16 @@ def list_examples() -> list[Example]:
     Returns
     -------
     list of Example
-        Each with its name, relative path, kind (``"scenario"``, ``"body"`` or ``"sweep"``) and one-line
+        Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"`` or ``"sweep"``) and one-line
         description. Meshes and other files the examples refer to are not listed.
     """
     found = []
     for rel, entry in _walk(_root()):
         folder, _, filename = rel.rpartition("/")
-        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS):
+        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS, CONTROL):
             continue
         name = filename[: -len(".toml")]
-        kind = {BODIES: "body", SWEEPS: "sweep"}.get(folder, "scenario")
+        kind = {BODIES: "body", SWEEPS: "sweep", CONTROL: "control"}.get(folder, "scenario")
         found.append(Example(name, rel, kind, _description(entry.read_text(encoding="utf-8"), name)))
     return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
 

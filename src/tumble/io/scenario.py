@@ -52,6 +52,7 @@ from ..mass import PRESETS, Body, MassProperties
 from ..typing import ArrayLike
 from ..validation import short_repr
 from .bodyfile import body_from_table, load_body, read_toml
+from .controlfile import ControlScenario, is_control_file, load_control_scenario
 from .provenance import file_sha256
 
 __all__ = ["Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
@@ -228,7 +229,7 @@ def _validate(s: Scenario, options=()) -> None:
         raise ValueError(message) from None
 
 
-def load_scenario(path: str | os.PathLike[str]) -> Scenario:
+def load_scenario(path: str | os.PathLike[str]) -> Scenario | ControlScenario:
     """Read and validate a scenario file (TOML); the file's format is in the README.
 
     Parameters
@@ -238,8 +239,9 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario:
 
     Returns
     -------
-    Scenario
-        The body, initial state, times, method and torque; ``.run()`` simulates it.
+    Scenario or ControlScenario
+        The body, initial state, times, method and torque; ``.run()`` simulates it. A file with a
+        ``[control]`` table is a closed-loop run (:mod:`tumble.io.controlfile`).
 
     Raises
     ------
@@ -249,9 +251,15 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario:
     path = Path(path)
     data = read_toml(path)
     try:
-        scenario = scenario_from_table(data, base_dir=path.parent, name=path.stem)
+        if is_control_file(data):  # a closed-loop run: tumble.io.controlfile
+            if "body" not in data:
+                raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
+            scenario = load_control_scenario(path, data, _body(data["body"], path.parent))
+        else:
+            scenario = scenario_from_table(data, base_dir=path.parent, name=path.stem)
     except ValueError as exc:
-        raise ValueError(f"{path}: {exc}") from None
+        message = str(exc)
+        raise ValueError(message if message.startswith(f"{path}: ") else f"{path}: {message}") from None
     files = [path]
     if isinstance(data.get("body"), str) and data["body"] not in PRESETS:
         files.append(path.parent / data["body"])
@@ -278,6 +286,8 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
         data = read_toml(path)
         if set(data) != {"body"} or not isinstance(data["body"], dict):
             scenario = load_scenario(path)
+            if isinstance(scenario, ControlScenario):
+                return scenario.override(given) if given else scenario
             return _override(scenario, given, where=f"{path}: ") if given else scenario
         body, name, what = load_body(path), path.stem, f"{path} is a body file"
         sources = ((str(path), file_sha256(path)),)

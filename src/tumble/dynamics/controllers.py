@@ -1,0 +1,248 @@
+"""Attitude controllers that the controlled run calls at their period: B-dot and MRP feedback.
+
+A controller is any object with a ``period`` (s) and a call ``controller(t, measurement) ->
+Command`` (:class:`Controller`); the run samples the sensors every ``period``, calls it, and
+holds the command until the next step (zero-order hold). An optional ``reset()`` is called
+at the start of every run (for controllers with memory).
+
+**B-dot** (Stickler & Alfriend, "An elementary magnetic attitude control system", AIAA
+Mechanics and Control of Flight Conference, 1974, AIAA 74-923): ``m = -k_b dB/dt`` with B the
+field in the body frame. With the field's own motion along the orbit (~n) neglected against the
+spin, ``dB/dt ~ -omega x B = B x omega``, so ``m = k_b omega x B`` and the torque
+``m x B = -k_b |B|^2 (omega - (omega . b) b)`` (``b = B / |B|``) damps the spin across the field.
+The *normalised* form ``m = (k / |B|^2) omega x B`` gives ``tau = -k omega_perp`` with ``k`` in
+N m s; Avanzini & Giulietti ("Magnetic detumbling of a rigid spacecraft", J. Guid. Control Dyn.
+35(4), 2012) choose ``k = 2 n (1 + sin xi_m) I_min`` (:func:`bdot_gain`), ``xi_m`` the inclination
+of the orbit to the geomagnetic equator and ``I_min`` the smallest principal moment.
+``dB/dt`` is taken either from the gyroscope (``B x omega``, derivative="gyro") or from the
+difference of the last two magnetometer readings (derivative="difference"; zero at the first step).
+
+**MRP feedback** (Schaub & Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec.
+8.3-8.4): to hold an attitude fixed in the world (``omega_r = 0``) the body torque is
+``L_r = -K sigma - P omega + omega x (I_RW omega + G h_s)``, ``sigma`` the MRPs of the body
+relative to the target and ``h_s`` the wheels' absolute axial momenta, so that
+``I_RW omega + G h_s = I omega + h`` is the total momentum; the wheels make it with ``G u = -L_r`` (least squares). Linearised about
+the target, one principal axis obeys ``I_RW theta'' + P theta' + (K / 4) theta = 0``
+(``sigma ~ theta / 4``): natural frequency ``omega_n = sqrt(K / (4 I_RW))`` and damping ratio
+``zeta = P / sqrt(K I_RW)`` (:func:`pd_response`), ``I_RW`` the moment with the wheels' axial
+moments taken out (:mod:`~tumble.dynamics.models.actuators`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import NamedTuple, Protocol, runtime_checkable
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..typing import ArrayLike, FloatArray
+from ..validation import check_moments, check_positive, check_rotation
+from .models.actuators import Command, ReactionWheels
+from .models.sensors import Measurement
+from .special.mrp import mrp_from_quat
+
+__all__ = ["BDot", "Controller", "MRPFeedback", "PDResponse", "bdot_gain", "pd_response"]
+
+
+@runtime_checkable
+class Controller(Protocol):
+    """The controller interface: a period (s) and ``controller(t, measurement) -> Command``.
+
+    Examples
+    --------
+    >>> class Off:
+    ...     period = 1.0
+    ...     def __call__(self, t, measurement):
+    ...         return Command()
+    >>> isinstance(Off(), Controller)
+    True
+    """
+
+    period: float
+
+    def __call__(self, t: float, measurement: Measurement) -> Command:
+        """The command to hold from ``t`` (s) until the next step."""
+        ...
+
+
+def bdot_gain(mean_motion: float, geomagnetic_inclination: float, min_moment: float) -> float:
+    """Avanzini & Giulietti's B-dot gain ``k = 2 n (1 + sin xi_m) I_min``, N m s.
+
+    Parameters
+    ----------
+    mean_motion : float
+        Orbital mean motion ``n``, rad/s.
+    geomagnetic_inclination : float
+        ``xi_m``, the orbit's inclination to the geomagnetic equator, rad.
+    min_moment : float
+        Smallest principal moment ``I_min``, kg m^2.
+
+    Examples
+    --------
+    >>> round(bdot_gain(1.1e-3, math.pi / 2, 0.01), 9)
+    4.4e-05
+    """
+    n = check_positive("mean_motion", mean_motion, "rad/s")
+    i_min = check_positive("min_moment", min_moment, "kg m^2")
+    return 2.0 * n * (1.0 + math.sin(float(geomagnetic_inclination))) * i_min
+
+
+@dataclass
+class BDot:
+    """B-dot detumbling with magnetorquers.
+
+    Parameters
+    ----------
+    gain : float
+        ``k_b`` (A m^2 s/T) for form="classic", ``k`` (N m s) for form="normalized" (> 0).
+    period : float
+        Control period, s (> 0).
+    form : {"classic", "normalized"}
+        ``m = -k_b dB/dt`` or ``m = -(k / |B|^2) dB/dt`` (module docstring).
+    derivative : {"gyro", "difference"}
+        ``dB/dt`` from ``B x omega`` or from successive magnetometer readings.
+
+    Examples
+    --------
+    >>> c = BDot(gain=1e4, period=1.0)
+    >>> m = Measurement(0.0, np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 0.0]), None)
+    >>> (c(0.0, m).dipole + 0.0).round(12).tolist()   # k_b omega x B, A m^2
+    [0.0, 0.02, 0.0]
+    """
+
+    gain: float
+    period: float
+    form: str = "classic"
+    derivative: str = "gyro"
+    _last: tuple[float, FloatArray] | None = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        check_positive("gain", self.gain, "A m^2 s/T or N m s")
+        check_positive("period", self.period, "s")
+        if self.form not in ("classic", "normalized"):
+            raise ValueError(f"form = {self.form!r} is unknown; allowed: classic, normalized")
+        if self.derivative not in ("gyro", "difference"):
+            raise ValueError(f"derivative = {self.derivative!r} is unknown; allowed: gyro, difference")
+
+    def reset(self) -> None:
+        """Forget the last magnetometer reading (a new run)."""
+        self._last = None
+
+    def __call__(self, t: float, measurement: Measurement) -> Command:
+        """The dipole ``-k dB/dt`` (A m^2) for this reading; zero without a field reading."""
+        b = measurement.field
+        if b is None:
+            return Command(dipole=np.zeros(3))
+        if self.derivative == "gyro":
+            b_dot = np.cross(b, measurement.omega)
+        else:
+            b_dot = np.zeros(3) if self._last is None else (b - self._last[1]) / (t - self._last[0])
+            self._last = (float(t), b)
+        k = self.gain / float(b @ b) if self.form == "normalized" else self.gain
+        return Command(dipole=-k * b_dot)
+
+
+@dataclass
+class MRPFeedback:
+    """MRP proportional-derivative pointing to an attitude fixed in the world, with reaction wheels.
+
+    Parameters
+    ----------
+    K : float
+        Attitude gain, N m (> 0).
+    P : float
+        Rate gain, N m s (> 0).
+    period : float
+        Control period, s (> 0).
+    moments : array_like, shape (3,)
+        The body's principal moments ``I`` (kg m^2), wheels locked.
+    wheels : ReactionWheels
+        The wheels that make the torque.
+    target : scipy Rotation or quaternion [x, y, z, w]
+        The target frame to world; the body's principal frame is driven onto it.
+    gyroscopic : bool
+        Whether to add the feed-forward ``omega x (I omega + h)``.
+
+    Examples
+    --------
+    >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+    >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.007, 0.04, 0.04], wheels=rw)
+    >>> m = Measurement(0.0, np.zeros(3), None, Rotation.from_rotvec([0.0, 0.0, 0.1]), np.zeros(3))
+    >>> (c(0.0, m).wheel_torque * 1e6).round(3).tolist()   # -L_r = K sigma, sigma_3 = tan(0.1 / 4)
+    [0.0, 0.0, 25.005]
+    """
+
+    K: float
+    P: float
+    period: float
+    moments: FloatArray
+    wheels: ReactionWheels
+    target: Rotation | ArrayLike = field(default_factory=lambda: Rotation.identity())
+    gyroscopic: bool = True
+
+    def __post_init__(self) -> None:
+        check_positive("K", self.K, "N m")
+        check_positive("P", self.P, "N m s")
+        check_positive("period", self.period, "s")
+        self.moments = check_moments("moments", self.moments, physical=False)
+        if not isinstance(self.wheels, ReactionWheels):
+            raise ValueError(f"wheels = {self.wheels!r} must be ReactionWheels")  # noqa: TRY004 - one error type for bad input
+        self.target = Rotation.from_quat(check_rotation("target", self.target))
+        G = self.wheels.axes.T
+        if np.linalg.matrix_rank(G) < 3:
+            raise ValueError(f"wheels: the {self.wheels.count} wheel axes span fewer than 3 directions; "
+                             "MRP feedback needs torque about every axis")
+        self._pinv = np.linalg.pinv(G)
+        self._I_rw = np.diag(np.asarray(self.moments, float)) - self.wheels.locked_axial()
+
+    def error(self, attitude: Rotation) -> FloatArray:
+        """The MRPs ``sigma`` of the body relative to the target (short set, ``|sigma| <= 1``)."""
+        target = self.target if isinstance(self.target, Rotation) else Rotation.from_quat(self.target)
+        return np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)
+
+    def __call__(self, t: float, measurement: Measurement) -> Command:
+        """The wheel torques ``u = -G^+ L_r`` (N m) for this reading."""
+        if measurement.attitude is None:
+            raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
+        w = measurement.omega
+        L_r = -self.K * self.error(measurement.attitude) - self.P * w
+        if self.gyroscopic:  # I_RW w + G h_s = I w + h: the total momentum, body frame
+            L_r = L_r + np.cross(w, np.asarray(self.moments) * w + self.wheels.momentum(measurement.wheel_speed))
+        return Command(wheel_torque=-self._pinv @ L_r)
+
+
+class PDResponse(NamedTuple):
+    """The linearised one-axis closed loop of MRP feedback (:func:`pd_response`)."""
+
+    natural_frequency: float
+    damping_ratio: float
+    overshoot: float
+    settling_time: float
+
+
+def pd_response(K: float, P: float, moment: float) -> PDResponse:
+    """Natural frequency (rad/s), damping ratio, overshoot and 2 % settling time (s) of
+    ``I theta'' + P theta' + (K / 4) theta = 0`` released from rest at ``theta_0``.
+
+    ``omega_n = sqrt(K / (4 I))``, ``zeta = P / sqrt(K I)``; for ``zeta < 1`` the response
+    ``theta_0 e^(-zeta omega_n t) (cos omega_d t + zeta / sqrt(1 - zeta^2) sin omega_d t)`` swings
+    past zero by ``exp(-pi zeta / sqrt(1 - zeta^2))`` of ``theta_0`` at ``t = pi / omega_d``
+    (``omega_d = omega_n sqrt(1 - zeta^2)``), and its envelope falls to 2 % by
+    ``-ln(0.02 sqrt(1 - zeta^2)) / (zeta omega_n)`` (~ 4 / (zeta omega_n); Wie, *Space Vehicle
+    Dynamics and Control*, 2nd ed., sec. 2.4). Overdamped or critical: overshoot 0, settling NaN.
+
+    Examples
+    --------
+    >>> r = pd_response(K=4e-4, P=2e-3, moment=0.01)
+    >>> round(r.natural_frequency, 6), round(r.damping_ratio, 6), round(r.overshoot, 6)
+    (0.1, 1.0, 0.0)
+    """
+    I = check_positive("moment", moment, "kg m^2")
+    wn = math.sqrt(check_positive("K", K, "N m") / (4.0 * I))
+    zeta = check_positive("P", P, "N m s") / math.sqrt(K * I)
+    if zeta >= 1.0:
+        return PDResponse(wn, zeta, 0.0, math.nan)
+    root = math.sqrt(1.0 - zeta * zeta)
+    return PDResponse(wn, zeta, math.exp(-math.pi * zeta / root), -math.log(0.02 * root) / (zeta * wn))

@@ -1,0 +1,188 @@
+"""Actuators with limits: magnetorquers and reaction wheels, and the command a controller sends.
+
+Every vector is in the body's principal frame (``I1 <= I2 <= I3``); SI units.
+
+**Magnetorquers.** Rods along the unit axes ``a_j`` make the dipole ``m = sum_j m_j a_j``
+(A m^2), each ``|m_j| <= m_max,j``; in the field ``B`` (body frame, T) the body feels
+``tau = m x B`` (Wertz, *Spacecraft Attitude Determination and Control*, sec. 17.2). A commanded
+dipole is projected on the rods (``m_j = a_j . m_cmd`` for orthonormal rods) and each clipped.
+
+**Reaction wheels.** Axisymmetric wheels ``k`` of axial moment ``J_k`` spin at ``s_k`` (rad/s)
+relative to the body about fixed axes ``g_k``; the body's inertia ``I`` holds the wheels'
+mass locked (as :mod:`~tumble.dynamics.models.internal`), the wheels' relative momentum is
+``h = sum_k J_k s_k g_k`` and the total ``L = I w + h``. The motor torque ``u_k`` on wheel k
+changes its absolute axial momentum, ``d/dt [J_k (g_k . w + s_k)] = u_k``, so
+``(I - sum_k J_k g_k g_k^T) w' = tau_ext - w x (I w + h) - sum_k u_k g_k``
+(Schaub & Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec. 4.5, the reaction
+wheel equations of motion, with ``[I_RW] = I - sum J_k g_k g_k^T``). The applied ``u_k`` is the
+command clipped to ``|u_k| <= u_max``, set to zero when it would drive ``|s_k|`` beyond ``s_max``,
+less the bearing friction ``c_v s_k + c_c sign(s_k)`` (viscous N m s/rad, Coulomb N m; an
+internal torque, so ``L`` is untouched by it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
+from ...validation import check_positive, check_vectors
+
+__all__ = ["Command", "Magnetorquers", "ReactionWheels"]
+
+
+@dataclass(frozen=True)
+class Command:
+    """What a controller asks of the actuators until its next step (held: zero-order hold).
+
+    Parameters
+    ----------
+    dipole : array_like, shape (3,), optional
+        Magnetorquer dipole, principal frame, A m^2 (None: magnetorquers off).
+    wheel_torque : array_like, shape (k,), optional
+        Motor torque on each wheel, N m (None: motors off).
+
+    Examples
+    --------
+    >>> Command(dipole=[0.0, 0.1, 0.0]).dipole.tolist()
+    [0.0, 0.1, 0.0]
+    """
+
+    dipole: FloatArray | None = None
+    wheel_torque: FloatArray | None = None
+
+    def __post_init__(self) -> None:
+        if self.dipole is not None:
+            object.__setattr__(self, "dipole", check_vectors("dipole", self.dipole, "A m^2").reshape(3))
+        if self.wheel_torque is not None:
+            object.__setattr__(self, "wheel_torque",
+                               np.atleast_1d(check_vectors("wheel_torque", self.wheel_torque, "N m", size=None)))
+
+
+def _axes(name: str, axes: ArrayLike) -> FloatArray:
+    a = check_vectors(name, axes, "a direction, any length")
+    if a.ndim != 2 or len(a) == 0:
+        raise ValueError(f"{name} has shape {a.shape}; allowed: (k, 3), one row per axis")
+    norms = np.linalg.norm(a, axis=1)
+    if np.any(norms == 0.0):
+        raise ValueError(f"{name}[{int(np.argmin(norms))}] = [0, 0, 0] must be a non-zero direction")
+    return np.asarray(a / norms[:, None], float)
+
+
+def _per_axis(name: str, value: ArrayLike, k: int, unit: str, *, allow_zero: bool = False) -> FloatArray:
+    v = np.broadcast_to(check_vectors(name, value, unit, size=None), (k,)) if np.ndim(value) == 0 else \
+        check_vectors(name, value, unit, size=k)
+    for i, x in enumerate(v):
+        check_positive(f"{name}[{i}]", float(x), unit, allow_zero=allow_zero)
+    return np.array(v, dtype=float)
+
+
+@dataclass(frozen=True)
+class Magnetorquers:
+    """Magnetic torque rods with a dipole limit per rod.
+
+    Parameters
+    ----------
+    max_dipole : float or array_like, shape (k,)
+        Largest dipole of each rod, A m^2 (> 0).
+    axes : array_like, shape (k, 3)
+        Rod directions, principal frame (normalised); default the three principal axes.
+
+    Examples
+    --------
+    >>> mtq = Magnetorquers(0.2)
+    >>> mtq.saturate([0.5, -0.1, 0.0]).tolist()
+    [0.2, -0.1, 0.0]
+    >>> mtq.torque([0.2, 0.0, 0.0], [0.0, 3e-5, 0.0]).tolist()   # m x B, N m
+    [0.0, 0.0, 6e-06]
+    """
+
+    max_dipole: FloatArray | float = 0.2
+    axes: FloatArray = field(default_factory=lambda: np.eye(3))
+
+    def __post_init__(self) -> None:
+        axes = _axes("axes", self.axes)
+        object.__setattr__(self, "axes", axes)
+        object.__setattr__(self, "max_dipole", _per_axis("max_dipole", self.max_dipole, len(axes), "A m^2"))
+
+    def saturate(self, dipole: ArrayLike) -> Vector3:
+        """The dipole the rods make for a command (A m^2): projected on each rod and clipped."""
+        lim = np.asarray(self.max_dipole)
+        per_rod = np.clip(self.axes @ np.asarray(dipole, float), -lim, lim)
+        return np.asarray(per_rod @ self.axes, float)
+
+    def torque(self, dipole: ArrayLike, field_body: ArrayLike) -> Vector3:
+        """``tau = m x B`` (N m) for the dipole ``m`` (A m^2) in ``B`` (T), both principal frame."""
+        return np.asarray(np.cross(np.asarray(dipole, float), np.asarray(field_body, float)), float)
+
+
+@dataclass(frozen=True)
+class ReactionWheels:
+    """Reaction wheels driven by a commanded motor torque, with torque and speed limits.
+
+    Parameters
+    ----------
+    axes : array_like, shape (k, 3)
+        Spin axes ``g_k``, principal frame (normalised).
+    inertia : float or array_like, shape (k,)
+        Axial moments ``J_k``, kg m^2 (> 0).
+    max_torque : float or array_like, shape (k,)
+        Motor torque limit ``u_max``, N m (> 0).
+    max_speed : float or array_like, shape (k,)
+        Spin limit ``s_max`` relative to the body, rad/s (> 0).
+    viscous : float or array_like, shape (k,)
+        Viscous friction ``c_v``, N m s/rad (>= 0).
+    coulomb : float or array_like, shape (k,)
+        Coulomb friction ``c_c``, N m (>= 0).
+
+    Examples
+    --------
+    >>> rw = ReactionWheels(np.eye(3), inertia=1e-5, max_torque=1e-3, max_speed=600.0)
+    >>> rw.applied_torque([2e-3, -5e-4, 0.0], np.zeros(3)).tolist()
+    [0.001, -0.0005, 0.0]
+    >>> rw.momentum([100.0, 0.0, 0.0]).tolist()   # h = sum J s g, kg m^2/s
+    [0.001, 0.0, 0.0]
+    """
+
+    axes: FloatArray
+    inertia: FloatArray | float
+    max_torque: FloatArray | float = np.inf
+    max_speed: FloatArray | float = np.inf
+    viscous: FloatArray | float = 0.0
+    coulomb: FloatArray | float = 0.0
+
+    def __post_init__(self) -> None:
+        axes = _axes("axes", self.axes)
+        k = len(axes)
+        object.__setattr__(self, "axes", axes)
+        object.__setattr__(self, "inertia", _per_axis("inertia", self.inertia, k, "kg m^2"))
+        for name, unit in (("max_torque", "N m"), ("max_speed", "rad/s")):
+            value = getattr(self, name)
+            v = np.broadcast_to(np.asarray(value, float), (k,)) if np.ndim(value) == 0 else np.asarray(value, float)
+            if v.shape != (k,) or np.any(~(v > 0)):
+                raise ValueError(f"{name} = {value!r} must be a positive number or {k} of them ({unit}); inf: no limit")
+            object.__setattr__(self, name, np.array(v))
+        object.__setattr__(self, "viscous", _per_axis("viscous", self.viscous, k, "N m s/rad", allow_zero=True))
+        object.__setattr__(self, "coulomb", _per_axis("coulomb", self.coulomb, k, "N m", allow_zero=True))
+
+    @property
+    def count(self) -> int:
+        """Number of wheels ``k``."""
+        return len(self.axes)
+
+    def momentum(self, speed: ArrayLike) -> Vector3:
+        """The wheels' relative momentum ``h = sum_k J_k s_k g_k``, kg m^2/s, principal frame."""
+        return np.asarray((np.asarray(self.inertia) * np.asarray(speed, float)) @ self.axes, float)
+
+    def locked_axial(self) -> Matrix3:
+        """``sum_k J_k g_k g_k^T``, kg m^2: subtracted from ``I`` in the equations of motion."""
+        return np.asarray(np.einsum("k,ki,kj->ij", np.asarray(self.inertia), self.axes, self.axes), float)
+
+    def applied_torque(self, command: ArrayLike, speed: ArrayLike) -> FloatArray:
+        """The motor torque on each wheel (N m) for a command at spins ``speed`` (rad/s):
+        clipped to ``u_max``, zero where it would push ``|s|`` past ``s_max``, less the friction."""
+        s = np.asarray(speed, float)
+        u = np.clip(np.asarray(command, float), -np.asarray(self.max_torque), np.asarray(self.max_torque))
+        u = np.where((np.abs(s) >= np.asarray(self.max_speed)) & (u * s > 0.0), 0.0, u)
+        return np.asarray(u - np.asarray(self.viscous) * s - np.asarray(self.coulomb) * np.sign(s), float)

@@ -1,0 +1,135 @@
+"""Magnetic fields for magnetorquers and magnetometers: the Earth's tilted dipole, a uniform field.
+
+**The tilted dipole.** The degree-1 terms of the International Geomagnetic Reference Field,
+IGRF-13 (Alken et al., *Earth, Planets and Space* 73:49, 2021), epoch 2020.0:
+``g10 = -29404.8 nT``, ``g11 = -1450.9 nT``, ``h11 = 4652.5 nT``, reference radius
+``a = 6371.2 km``. The degree-1 potential ``V = a (a/r)^2 (g10 cos th + (g11 cos ph + h11 sin ph) sin th)``
+is that of a dipole at the Earth's centre with moment
+``m = (4 pi / mu0) a^3 (g11, h11, g10)`` (A m^2, Earth-fixed frame, ECEF), and ``B = -grad V`` is
+
+``B = (mu0 / 4 pi) (3 (m . r^) r^ - m) / r^3 = (a / r)^3 (3 (g . r^) r^ - g)``,  ``g = (g11, h11, g10)``
+
+(Wertz, *Spacecraft Attitude Determination and Control*, Reidel 1978, appendix H; Griffiths,
+*Introduction to Electrodynamics*, eq. 5.89). The moment points to the south (``g10 < 0``) and is
+tilted by ``acos(|g10| / |g|) = 9.4 deg`` from the spin axis. The Earth-fixed frame turns about
+ECI z at ``omega_E = 7.292115e-5 rad/s`` (IERS Conventions 2010): ECEF = ``R3(theta)`` ECI with
+``theta = gmst0 + omega_E t`` (``gmst0`` the Greenwich sidereal angle at t = 0, rad).
+
+Every field here is a callable ``field.world(t) -> B`` (T) in the world frame of the control run
+(the orbit-plane frame of :class:`~tumble.dynamics.models.orbit.CircularOrbit`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+
+from ...typing import FloatArray, Vector3
+from ...validation import check_number, check_vector
+from .orbit import CircularOrbit
+
+__all__ = ["IGRF13_2020", "OMEGA_EARTH", "DipoleField", "MagneticField", "UniformField"]
+
+#: IGRF-13 degree-1 Gauss coefficients at epoch 2020.0 (g10, g11, h11), T (Alken et al. 2021).
+IGRF13_2020 = (-29404.8e-9, -1450.9e-9, 4652.5e-9)
+#: IGRF reference radius, m.
+IGRF_RADIUS = 6371.2e3
+#: The Earth's rotation rate, rad/s (IERS Conventions 2010, sec. 1.2).
+OMEGA_EARTH = 7.292115e-5
+
+
+@runtime_checkable
+class MagneticField(Protocol):
+    """A magnetic field along the orbit: ``world(t)`` is B in the world frame, T."""
+
+    def world(self, t: float) -> Vector3:
+        """B at time ``t`` (s) in the world frame, T; shape (3,)."""
+        ...
+
+
+@dataclass(frozen=True)
+class UniformField:
+    """A field fixed in the world frame, ``B`` (T): the closed-form checks' field.
+
+    Examples
+    --------
+    >>> UniformField((2e-5, 0.0, 0.0)).world(10.0).tolist()
+    [2e-05, 0.0, 0.0]
+    """
+
+    vector: tuple[float, float, float]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "vector", check_vector("vector", self.vector, "T"))
+
+    def world(self, t: float) -> Vector3:
+        """The same B at every ``t``, T."""
+        return np.array(self.vector, dtype=float)
+
+
+@dataclass(frozen=True)
+class DipoleField:
+    """The Earth's tilted dipole (IGRF-13, 2020.0) seen along a circular orbit.
+
+    Parameters
+    ----------
+    orbit : CircularOrbit
+        Where the spacecraft is; B is returned in its world (orbit-plane) frame.
+    gmst0 : float
+        Greenwich sidereal angle at t = 0, rad (where the Earth-fixed x axis points in ECI).
+    coefficients : tuple of 3 floats
+        ``(g10, g11, h11)``, T; default :data:`IGRF13_2020`.
+    earth_rotation : bool
+        Whether the dipole turns with the Earth (True) or stays fixed in ECI at ``gmst0``.
+
+    Examples
+    --------
+    >>> orbit = CircularOrbit(altitude=500e3, inclination=0.0)
+    >>> b = DipoleField(orbit, coefficients=(-29404.8e-9, 0.0, 0.0)).world(0.0)
+    >>> round(float(b[2]) * 1e9, 1)   # nT: an axial dipole above the equator points north, (a/r)^3 |g10|
+    23371.0
+    """
+
+    orbit: CircularOrbit
+    gmst0: float = 0.0
+    coefficients: tuple[float, float, float] = IGRF13_2020
+    earth_rotation: bool = True
+    _world_from_eci: FloatArray = field(default_factory=lambda: np.eye(3), init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.orbit, CircularOrbit):
+            raise ValueError(f"orbit = {self.orbit!r} must be a CircularOrbit")  # noqa: TRY004 - one error type for bad input
+        check_number("gmst0", self.gmst0, "rad")
+        object.__setattr__(self, "coefficients", check_vector("coefficients", self.coefficients, "T"))
+        object.__setattr__(self, "_world_from_eci", self.orbit.eci_from_world.inv().as_matrix())
+
+    @property
+    def gauss_vector(self) -> Vector3:
+        """``g = (g11, h11, g10)``, T: the dipole's direction and strength, Earth-fixed frame."""
+        g10, g11, h11 = self.coefficients
+        return np.array([g11, h11, g10])
+
+    def ecef(self, r_ecef: Vector3) -> Vector3:
+        """``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r_ecef`` (m, Earth-fixed), T."""
+        r = np.asarray(r_ecef, float)
+        rn = float(np.linalg.norm(r))
+        u = r / rn
+        g = self.gauss_vector
+        return np.asarray((IGRF_RADIUS / rn) ** 3 * (3.0 * float(g @ u) * u - g), float)
+
+    def world(self, t: float) -> Vector3:
+        """B at ``t`` (s) in the world (orbit-plane) frame, T."""
+        theta = self.gmst0 + (OMEGA_EARTH * float(t) if self.earth_rotation else 0.0)
+        c, s = math.cos(theta), math.sin(theta)
+        eci_from_ecef = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        world_from_ecef = self._world_from_eci @ eci_from_ecef
+        r_ecef = world_from_ecef.T @ self.orbit.position_world(float(t))
+        return np.asarray(world_from_ecef @ self.ecef(r_ecef), float)
+
+    def dipole_tilt(self) -> float:
+        """Angle between the dipole and the Earth's spin axis, rad (9.4 deg for IGRF-13 2020)."""
+        g = self.gauss_vector
+        return math.acos(abs(g[2]) / float(np.linalg.norm(g)))

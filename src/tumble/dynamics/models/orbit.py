@@ -1,0 +1,123 @@
+"""A circular Keplerian orbit for the control runs: elements in, position and velocity out.
+
+The orbit has radius ``r`` (m) about a point mass ``mu`` (m^3/s^2), inclination ``i``, right
+ascension of the ascending node ``raan`` and argument of latitude ``u0`` at t = 0 (rad), all
+relative to an Earth-centred inertial frame (ECI: z the Earth's spin axis, x the vernal
+equinox). The mean motion is ``n = sqrt(mu / r^3)`` and the argument of latitude
+``u(t) = u0 + n t`` (Vallado, *Fundamentals of Astrodynamics and Applications*, 4th ed., sec.
+2.6, the circular case of COE2RV):
+
+``r_eci(t) = r R3(-raan) R1(-i) (cos u, sin u, 0)``, ``v_eci(t) = r n R3(-raan) R1(-i) (-sin u, cos u, 0)``.
+
+**The world frame of a control run** is the *orbit-plane frame*: inertial, with x along the
+radius at t = 0, z along the orbit normal (``r x v``), so that in it the radius is
+``(cos n t, sin n t, 0)`` exactly as :class:`~tumble.dynamics.models.gravity.GravityGradient`
+assumes; :attr:`CircularOrbit.eci_from_world` maps its vectors to ECI. The orbit is not
+disturbed by the attitude (the restricted problem) and keeps its plane (no J2).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, Vector3
+from ...validation import check_number, check_positive
+from .gravity import MU_EARTH, R_EARTH, GravityGradient
+
+__all__ = ["CircularOrbit"]
+
+
+@dataclass(frozen=True)
+class CircularOrbit:
+    """A circular orbit given by its elements (m, rad) about a central body ``mu`` (m^3/s^2).
+
+    Parameters
+    ----------
+    altitude : float
+        Height above the Earth's equatorial radius :data:`~tumble.dynamics.models.gravity.R_EARTH`, m (> 0);
+        the radius is ``R_EARTH + altitude``.
+    inclination : float
+        Inclination ``i`` to the equator, rad, in [0, pi].
+    raan : float
+        Right ascension of the ascending node, rad.
+    arg_latitude : float
+        Argument of latitude ``u0`` at t = 0 (angle from the ascending node), rad.
+    mu : float
+        Gravitational parameter, m^3/s^2 (default the Earth's).
+
+    Raises
+    ------
+    ValueError
+        Naming the field, the value and what is allowed.
+
+    Examples
+    --------
+    >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
+    >>> round(orbit.period)   # s
+    5677
+    >>> np.allclose(np.linalg.norm(orbit.position_eci(100.0)), orbit.radius)
+    True
+    """
+
+    altitude: float
+    inclination: float = 0.0
+    raan: float = 0.0
+    arg_latitude: float = 0.0
+    mu: float = MU_EARTH
+
+    def __post_init__(self) -> None:
+        check_positive("altitude", self.altitude, "m")
+        check_positive("mu", self.mu, "m^3/s^2")
+        inc = check_number("inclination", self.inclination, "rad")
+        if not 0.0 <= inc <= math.pi:
+            raise ValueError(f"inclination = {self.inclination!r} must lie in [0, pi] (rad)")
+        check_number("raan", self.raan, "rad")
+        check_number("arg_latitude", self.arg_latitude, "rad")
+
+    @property
+    def radius(self) -> float:
+        """Orbit radius ``R_EARTH + altitude``, m."""
+        return R_EARTH + float(self.altitude)
+
+    @property
+    def mean_motion(self) -> float:
+        """Mean motion ``n = sqrt(mu / r^3)``, rad/s."""
+        return math.sqrt(self.mu / self.radius) / self.radius
+
+    @property
+    def period(self) -> float:
+        """Orbital period ``2 pi / n``, s."""
+        return 2.0 * math.pi / self.mean_motion
+
+    @property
+    def eci_from_world(self) -> Rotation:
+        """The orbit-plane (world) frame to ECI: ``R3(-raan) R1(-i) R3(-u0)`` (module docstring)."""
+        return Rotation.from_euler("ZXZ", [self.raan, self.inclination, self.arg_latitude])
+
+    def position_world(self, t: ArrayLike) -> Vector3:
+        """Position in the world (orbit-plane) frame, ``r (cos n t, sin n t, 0)``, m; shape ``t.shape + (3,)``."""
+        nt = self.mean_motion * np.asarray(t, dtype=float)
+        return self.radius * np.stack([np.cos(nt), np.sin(nt), np.zeros_like(nt)], axis=-1)
+
+    def velocity_world(self, t: ArrayLike) -> Vector3:
+        """Velocity in the world frame, ``r n (-sin n t, cos n t, 0)``, m/s."""
+        nt = self.mean_motion * np.asarray(t, dtype=float)
+        return self.radius * self.mean_motion * np.stack([-np.sin(nt), np.cos(nt), np.zeros_like(nt)], axis=-1)
+
+    def position_eci(self, t: ArrayLike) -> Vector3:
+        """Position in ECI, m; shape ``t.shape + (3,)``."""
+        return np.asarray(self.eci_from_world.apply(self.position_world(t).reshape(-1, 3)), float).reshape(
+            np.shape(t) + (3,))
+
+    def velocity_eci(self, t: ArrayLike) -> Vector3:
+        """Velocity in ECI, m/s; shape ``t.shape + (3,)``."""
+        return np.asarray(self.eci_from_world.apply(self.velocity_world(t).reshape(-1, 3)), float).reshape(
+            np.shape(t) + (3,))
+
+    def gravity_gradient(self) -> GravityGradient:
+        """The gravity-gradient torque model of this orbit (the world frame is the same)."""
+        return GravityGradient(orbit_radius=self.radius, mu=self.mu)

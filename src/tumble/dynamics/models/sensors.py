@@ -1,0 +1,120 @@
+"""Sensors with noise and bias, sampled at the controller's period: gyroscope, magnetometer,
+attitude (ideal or a star tracker).
+
+Each reading is the true value plus a constant bias plus white Gaussian noise drawn anew at
+every sample (the discrete form of the usual rate-gyro model without the bias random walk;
+Crassidis & Junkins, *Optimal Estimation of Dynamic Systems*, 2nd ed., sec. 7.2.1). A star
+tracker's attitude is the true one turned by a small random rotation whose rotation vector has
+independent components of standard deviation ``attitude_noise`` (rad) about each body axis.
+Readings are in the body's principal frame; the controller holds them until its next step.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, FloatArray
+from ...validation import check_positive, check_vector
+
+__all__ = ["Measurement", "Sensors"]
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """What a controller sees at one of its steps.
+
+    Attributes
+    ----------
+    t : float
+        Time, s.
+    omega : ndarray, shape (3,)
+        Gyroscope reading, principal frame, rad/s.
+    field : ndarray, shape (3,) or None
+        Magnetometer reading, principal frame, T (None without a field).
+    attitude : scipy Rotation or None
+        Body (principal) to world, measured (None when no attitude sensor is fitted).
+    wheel_speed : ndarray, shape (k,)
+        Wheel spins relative to the body, rad/s (the tachometers; exact).
+    """
+
+    t: float
+    omega: FloatArray
+    field: FloatArray | None
+    attitude: Rotation | None
+    wheel_speed: FloatArray = dataclasses.field(default_factory=lambda: np.zeros(0))
+
+
+def _vec(name: str, value: ArrayLike, unit: str) -> FloatArray:
+    return np.array(check_vector(name, value, unit))
+
+
+@dataclass(frozen=True)
+class Sensors:
+    """The sensor suite: noise standard deviations and constant biases, and a seed.
+
+    Parameters
+    ----------
+    gyro_noise : float
+        Standard deviation of each gyroscope axis, rad/s (>= 0).
+    gyro_bias : array_like, shape (3,)
+        Constant gyroscope bias, rad/s.
+    magnetometer_noise : float
+        Standard deviation of each magnetometer axis, T (>= 0).
+    magnetometer_bias : array_like, shape (3,)
+        Constant magnetometer bias, T.
+    attitude : {"ideal", "star_tracker", "none"}
+        The attitude sensor: exact, noisy, or none fitted.
+    attitude_noise : float
+        Star tracker noise about each axis, rad (>= 0).
+    seed : int
+        Seed of the noise (numpy's default generator): a run is reproducible.
+
+    Examples
+    --------
+    >>> s = Sensors()
+    >>> m = s.sample(0.0, np.array([0.1, 0.0, 0.0]), Rotation.identity(), np.array([0.0, 2e-5, 0.0]),
+    ...              np.zeros(0), np.random.default_rng(0))
+    >>> m.omega.tolist(), m.field.tolist()
+    ([0.1, 0.0, 0.0], [0.0, 2e-05, 0.0])
+    """
+
+    gyro_noise: float = 0.0
+    gyro_bias: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    magnetometer_noise: float = 0.0
+    magnetometer_bias: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    attitude: str = "ideal"
+    attitude_noise: float = 0.0
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        check_positive("gyro_noise", self.gyro_noise, "rad/s", allow_zero=True)
+        check_positive("magnetometer_noise", self.magnetometer_noise, "T", allow_zero=True)
+        check_positive("attitude_noise", self.attitude_noise, "rad", allow_zero=True)
+        object.__setattr__(self, "gyro_bias", check_vector("gyro_bias", self.gyro_bias, "rad/s"))
+        object.__setattr__(self, "magnetometer_bias", check_vector("magnetometer_bias", self.magnetometer_bias, "T"))
+        if self.attitude not in ("ideal", "star_tracker", "none"):
+            raise ValueError(f"attitude = {self.attitude!r} is unknown; allowed: ideal, star_tracker, none")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or self.seed < 0:
+            raise ValueError(f"seed = {self.seed!r} must be a non-negative integer")
+
+    def rng(self) -> np.random.Generator:
+        """A fresh noise generator from :attr:`seed`."""
+        return np.random.default_rng(int(self.seed))
+
+    def sample(self, t: float, omega: FloatArray, attitude: Rotation, field_body: FloatArray | None,
+               wheel_speed: FloatArray, rng: np.random.Generator) -> Measurement:
+        """One reading of every sensor from the true state (rad/s, body to world, T, rad/s)."""
+        w = omega + np.asarray(self.gyro_bias) + self.gyro_noise * rng.standard_normal(3)
+        b = None
+        if field_body is not None:
+            b = field_body + np.asarray(self.magnetometer_bias) + self.magnetometer_noise * rng.standard_normal(3)
+        att: Rotation | None = None
+        if self.attitude == "ideal":
+            att = attitude
+        elif self.attitude == "star_tracker":
+            att = attitude * Rotation.from_rotvec(self.attitude_noise * rng.standard_normal(3))
+        return Measurement(float(t), np.asarray(w, float), b, att, np.array(wheel_speed, float))

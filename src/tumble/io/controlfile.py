@@ -1,0 +1,315 @@
+"""Control scenario files (TOML): a body, its orbit, actuators, sensors and controller.
+
+A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.dynamics.controlled.simulate_controlled`)::
+
+    body = "../bodies/cubesat_3u.toml"   # a preset, a body file (relative to this file) or a [body] table
+
+    [initial]
+    omega = [0.2, -0.2, 0.2]    # rad/s, in the design frame of the body file (frame = "principal" for the principal one)
+    # attitude = [0, 0, 0, 1]   # design frame to world, quaternion [x, y, z, w]
+
+    [simulation]
+    t_end = 6000.0              # s
+    # rtol = 1e-10, atol = 1e-12 (DOP853 between control steps)
+
+    [orbit]                     # circular; the world frame is the orbit-plane frame (x: radius at t = 0, z: orbit normal)
+    altitude = 500e3            # m
+    inclination = 1.7           # rad; raan, arg_latitude (rad) too
+    # gmst0 = 0.0               # rad: the Earth's sidereal angle at t = 0 (for the IGRF-13 2020 tilted dipole)
+    gravity_gradient = true     # the gravity-gradient torque of this orbit
+
+    [actuators.magnetorquers]
+    max_dipole = 0.2            # A m^2 per rod; rods along the design axes (axes = [[...], ...] to change)
+
+    [actuators.wheels]          # reaction wheels, axes in the design frame
+    axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    inertia = 1e-5              # kg m^2 (axial); max_torque (N m), max_speed (rad/s), viscous, coulomb, speed0
+
+    [sensors]                   # gyro_noise, gyro_bias, magnetometer_noise, magnetometer_bias, attitude, attitude_noise, seed
+
+    [control]
+    kind = "bdot"               # or "mrp_pd"
+    period = 1.0                # s
+    # bdot: gain (default Avanzini & Giulietti's k = 2 n (1 + sin xi_m) I_min with form = "normalized"),
+    #       form, derivative, threshold (rad/s, for the detumble time)
+    # mrp_pd: K (N m), P (N m s), target = [x, y, z, w] (design frame to world), gyroscopic
+
+Every value is checked by the constructor it feeds; errors are one line naming the table and key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..dynamics import Trajectory
+from ..dynamics.controlled import ControlledRun, command_summary, simulate_controlled
+from ..dynamics.controllers import BDot, MRPFeedback, bdot_gain
+from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
+from ..dynamics.models.magnetic import DipoleField
+from ..dynamics.models.orbit import CircularOrbit
+from ..dynamics.models.sensors import Sensors
+from ..mass import Body
+from ..validation import check_positive, check_rotation, check_vector
+
+__all__ = ["CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table", "control_summary", "write_control_run"]
+
+#: The tables of a control scenario and their keys.
+CONTROL_SECTIONS = {
+    "initial": {"omega", "frame", "attitude"},
+    "simulation": {"t_end", "rtol", "atol"},
+    "orbit": {"altitude", "inclination", "raan", "arg_latitude", "gmst0", "gravity_gradient", "earth_rotation"},
+    "actuators": {"magnetorquers", "wheels"},
+    "sensors": {f.name for f in dataclasses.fields(Sensors)},
+    "control": {"kind", "period", "gain", "form", "derivative", "threshold", "K", "P", "target", "gyroscopic"},
+}
+_CONTROL_KINDS = {"bdot": {"kind", "period", "gain", "form", "derivative", "threshold"},
+                  "mrp_pd": {"kind", "period", "K", "P", "target", "gyroscopic", "threshold"}}
+_MTQ_KEYS = {"max_dipole", "axes"}
+_WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb", "speed0"}
+#: Rate under which a run counts as detumbled when the file does not say, rad/s (0.5 deg/s).
+DEFAULT_THRESHOLD = math.radians(0.5)
+
+
+@dataclass(frozen=True, eq=False)
+class ControlScenario:
+    """A parsed control scenario; :meth:`run` simulates it."""
+
+    body: Body
+    omega: tuple[float, float, float]
+    attitude0: Rotation
+    t_end: float
+    kind: str
+    controller_args: dict[str, Any]
+    orbit: CircularOrbit | None = None
+    field: DipoleField | None = None
+    gravity_gradient: bool = False
+    magnetorquers: Magnetorquers | None = None
+    wheels: ReactionWheels | None = None
+    speed0: tuple[float, ...] | None = None
+    sensors: Sensors = dataclasses.field(default_factory=Sensors)
+    threshold: float = DEFAULT_THRESHOLD
+    target: Rotation | None = None
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    name: str = "scenario"
+    sources: tuple[tuple[str, str], ...] = ()
+
+    def controller(self) -> BDot | MRPFeedback:
+        """A fresh controller of this scenario."""
+        if self.kind == "bdot":
+            return BDot(**self.controller_args)
+        assert self.wheels is not None  # checked when the file was read
+        return MRPFeedback(**self.controller_args, moments=self.body.principal_moments, wheels=self.wheels,
+                           target=self.target if self.target is not None else Rotation.identity())
+
+    def run(self) -> ControlledRun:
+        """Simulate the scenario in closed loop."""
+        return simulate_controlled(
+            self.body.principal_moments, self.omega, t_end=self.t_end, controller=self.controller(),
+            attitude0=self.attitude0, field=self.field,
+            gravity_gradient=self.orbit.gravity_gradient() if (self.gravity_gradient and self.orbit) else None,
+            magnetorquers=self.magnetorquers, wheels=self.wheels, wheel_speed0=self.speed0, sensors=self.sensors,
+            rtol=self.rtol, atol=self.atol)
+
+    def trajectory(self, run: ControlledRun) -> Trajectory:
+        """The run as a :class:`~tumble.dynamics.Trajectory` (wheels as rotors), for the figures."""
+        h = None if self.wheels is None else run.wheel_speed * np.asarray(self.wheels.inertia) @ self.wheels.axes
+        return Trajectory(
+            t=run.t, omega=run.omega, attitude=run.attitude, moments=run.moments,
+            principal_axes=self.body.principal_axes, method=f"dop853, {self.kind} every "
+            f"{self.controller_args['period']:g} s", torque_free=False, body_name=self.body.name, internal_momentum=h,
+            rotor_spin=None if self.wheels is None else run.wheel_speed,
+            rotor_axial_moments=None if self.wheels is None else np.asarray(self.wheels.inertia))
+
+    def override(self, given: dict[str, Any]) -> ControlScenario:
+        """This scenario with the command line's ``t_end``; other options do not apply."""
+        other = sorted(set(given) - {"t_end"})
+        if other:
+            raise ValueError(f"{self.name}: --{other[0].replace('_', '-')} does not apply to a control scenario; "
+                             "allowed: --t-end")
+        return dataclasses.replace(self, t_end=check_positive("--t-end", given["t_end"], "s"))
+
+
+def _table(data: dict[str, Any], section: str) -> dict[str, Any]:
+    table = data.get(section, {})
+    if not isinstance(table, dict):
+        raise ValueError(f"{section} must be a table [{section}]")  # noqa: TRY004
+    bad = sorted(set(table) - CONTROL_SECTIONS[section])
+    if bad:
+        raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(CONTROL_SECTIONS[section]))}")
+    return table
+
+
+def _sub(where: str, table: object, keys: set[str]) -> dict[str, Any]:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table [{where}]")  # noqa: TRY004
+    bad = sorted(set(table) - keys)
+    if bad:
+        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
+    return table
+
+
+def _design_axes(value: object, body: Body) -> np.ndarray:
+    """Axes given in the body's design frame, in principal components (``P^T d``)."""
+    a = np.asarray(value, dtype=float)
+    return a @ np.asarray(body.principal_axes)
+
+
+def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str = "scenario") -> ControlScenario:
+    """Build a control scenario from parsed TOML (the body already built from its ``body`` key)."""
+    unknown = sorted(set(data) - {"body", *CONTROL_SECTIONS})
+    if unknown:
+        raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}")
+    t = {s: _table(data, s) for s in CONTROL_SECTIONS}
+    P = np.asarray(body.principal_axes)
+    initial, sim, orbit_t, act, control = t["initial"], t["simulation"], t["orbit"], t["actuators"], t["control"]
+    try:
+        if "omega" not in initial:
+            raise ValueError("missing key 'omega' (rad/s)")
+        frame = initial.get("frame", "design")
+        if frame not in ("design", "principal"):
+            raise ValueError(f"frame = {frame!r} is unknown; allowed: design, principal")
+        omega = np.array(check_vector("omega", initial["omega"], "rad/s"))
+        design_to_world = Rotation.from_quat(check_rotation("attitude", initial.get("attitude", [0, 0, 0, 1])))
+    except ValueError as exc:
+        raise ValueError(f"initial: {exc}") from None
+    if frame == "design":
+        omega = P.T @ omega
+    principal_to_design = Rotation.from_matrix(P)
+    attitude0 = design_to_world * principal_to_design
+    orbit = field = None
+    if orbit_t:
+        try:
+            elements = {k: v for k, v in orbit_t.items() if k in ("altitude", "inclination", "raan", "arg_latitude")}
+            if "altitude" not in elements:
+                raise ValueError("missing key 'altitude' (m)")
+            orbit = CircularOrbit(**elements)
+            field = DipoleField(orbit, gmst0=orbit_t.get("gmst0", 0.0), earth_rotation=bool(orbit_t.get("earth_rotation", True)))
+        except ValueError as exc:
+            raise ValueError(f"orbit: {exc}") from None
+    mtq = wheels = None
+    speed0 = None
+    try:
+        if "magnetorquers" in act:
+            m = _sub("actuators.magnetorquers", act["magnetorquers"], _MTQ_KEYS)
+            mtq = Magnetorquers(m.get("max_dipole", 0.2), _design_axes(m.get("axes", np.eye(3)), body))
+        if "wheels" in act:
+            w = _sub("actuators.wheels", act["wheels"], _WHEEL_KEYS)
+            if "axes" not in w or "inertia" not in w:
+                raise ValueError("actuators.wheels: missing key 'axes' (design frame) or 'inertia' (kg m^2)")
+            wheels = ReactionWheels(_design_axes(w["axes"], body), **{k: v for k, v in w.items() if k not in ("axes", "speed0")})
+            speed0 = tuple(float(x) for x in np.atleast_1d(w.get("speed0", np.zeros(wheels.count))))
+    except ValueError as exc:
+        raise ValueError(exc if str(exc).startswith("actuators") else f"actuators: {exc}") from None
+    try:
+        sensors = Sensors(**t["sensors"])
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"sensors: {exc}") from None
+    kind = control.get("kind")
+    if kind not in _CONTROL_KINDS:
+        raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(_CONTROL_KINDS)}")
+    bad = sorted(set(control) - _CONTROL_KINDS[kind])
+    if bad:
+        raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: "
+                         f"{', '.join(sorted(_CONTROL_KINDS[kind]))}")
+    args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}
+    target = None
+    try:
+        if "period" not in control:
+            raise ValueError("missing key 'period' (s)")
+        threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
+        if kind == "bdot":
+            if mtq is None or field is None:
+                raise ValueError('kind = "bdot" needs [actuators.magnetorquers] and an [orbit] (the field)')
+            if "gain" not in args:  # Avanzini & Giulietti 2012, with xi_m the orbit's inclination to the dipole's equator
+                assert orbit is not None
+                xi = _geomagnetic_inclination(orbit, field)
+                args["gain"] = bdot_gain(orbit.mean_motion, xi, float(np.min(body.principal_moments)))
+                args.setdefault("form", "normalized")
+            BDot(**args)
+        else:
+            if wheels is None:
+                raise ValueError('kind = "mrp_pd" needs [actuators.wheels]')
+            target = Rotation.from_quat(check_rotation("target", control.get("target", [0, 0, 0, 1]))) * principal_to_design
+            MRPFeedback(**args, moments=body.principal_moments, wheels=wheels, target=target)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"control: {exc}") from None
+    try:
+        t_end = check_positive("t_end", sim.get("t_end", 0.0) if "t_end" in sim else None, "s")
+    except ValueError:
+        raise ValueError(f"simulation: t_end = {sim.get('t_end')!r} must be a positive number (s)") from None
+    return ControlScenario(
+        body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=kind,  # type: ignore[arg-type]
+        controller_args=args, orbit=orbit, field=field, gravity_gradient=bool(orbit_t.get("gravity_gradient", False)),
+        magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=threshold, target=target,
+        rtol=check_positive("simulation.rtol", sim.get("rtol", 1e-10), ""),
+        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), ""), name=name)
+
+
+def _geomagnetic_inclination(orbit: CircularOrbit, field: DipoleField) -> float:
+    """The orbit's inclination to the dipole's equator at t = 0, rad: ``asin`` of the orbit
+    normal's component across the dipole axis (complement of their angle)."""
+    g = field.gauss_vector / np.linalg.norm(field.gauss_vector)
+    c, s = math.cos(field.gmst0), math.sin(field.gmst0)
+    axis = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ g  # ECI
+    normal = orbit.eci_from_world.apply([0.0, 0.0, 1.0])
+    return math.acos(min(1.0, abs(float(normal @ axis))))
+
+
+def control_summary(scenario: ControlScenario, run: ControlledRun) -> dict[str, Any]:
+    """The numbers of a run: final rate, detumble time or final pointing error, budgets, commands."""
+    summary: dict[str, Any] = {
+        "body": scenario.body.name, "kind": scenario.kind, "t_end": float(run.t[-1]),
+        "period": float(scenario.controller_args["period"]), "samples": len(run.t),
+        "principal_moments": run.moments.tolist(),
+        "final_rate": float(run.rate[-1]), "initial_rate": float(run.rate[0]),
+        "threshold": scenario.threshold, "detumble_time": run.detumble_time(scenario.threshold),
+        "momentum_budget_error": float(run.budget_error().max()),
+        "external_impulse": float(np.linalg.norm(run.impulse_world[-1])), **command_summary(run),
+    }
+    if scenario.kind == "bdot":
+        summary["gain"] = float(scenario.controller_args["gain"])
+        summary["form"] = scenario.controller_args.get("form", "classic")
+    if scenario.target is not None:
+        err = run.pointing_error(scenario.target)
+        summary["pointing_error_final"] = float(err[-1])
+        summary["pointing_error_initial"] = float(err[0])
+    if scenario.orbit is not None:
+        summary["orbit"] = {"altitude": scenario.orbit.altitude, "period": scenario.orbit.period,
+                            "inclination": scenario.orbit.inclination}
+    return summary
+
+
+def write_control_run(run: ControlledRun, folder: Path) -> None:
+    """``trajectory.csv`` and ``trajectory.npz`` of a control run into ``folder``: time, omega,
+    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI)."""
+    k = run.wheel_speed.shape[1]
+    columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
+               "wheel_torque": run.wheel_torque, "dipole": run.dipole, "field": run.field,
+               "L_world": run.momentum_world, "impulse_world": run.impulse_world}
+    names = ["t", "omega1", "omega2", "omega3", "qx", "qy", "qz", "qw", *[f"wheel{i + 1}_speed" for i in range(k)],
+             *[f"wheel{i + 1}_torque" for i in range(k)], "m1", "m2", "m3", "B1", "B2", "B3",
+             "Lx_world", "Ly_world", "Lz_world", "Jx_world", "Jy_world", "Jz_world"]
+    table = np.hstack(list(columns.values()))
+    np.savetxt(folder / "trajectory.csv", table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+    np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
+
+
+def is_control_file(data: dict[str, Any]) -> bool:
+    """Whether parsed TOML is a control scenario (it has a ``[control]`` table)."""
+    return "control" in data
+
+
+def load_control_scenario(path: Path, data: dict[str, Any], body: Body) -> ControlScenario:
+    """:func:`control_scenario_from_table` with errors prefixed by the file's name."""
+    try:
+        return control_scenario_from_table(data, body, name=Path(path).stem)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None

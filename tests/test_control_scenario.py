@@ -1,0 +1,101 @@
+"""Control scenario files (``[control]``) through ``tumble simulate``: summary.json and trajectory."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tumble.cli import main
+from tumble.io.examples import copy_examples, list_examples
+from tumble.io.scenario import load_scenario
+
+CONTROL = Path(__file__).resolve().parents[1] / "examples" / "control"
+
+
+def test_control_examples_are_listed_and_load_from_a_copy(tmp_path):
+    listed = {e.path: e.kind for e in list_examples()}
+    assert listed["control/detumble.toml"] == listed["control/point.toml"] == "control"
+    copy_examples(tmp_path / "ex")
+    for name in ("detumble", "point"):
+        scenario = load_scenario(tmp_path / "ex" / "control" / f"{name}.toml")
+        assert scenario.kind == {"detumble": "bdot", "point": "mrp_pd"}[name]
+
+
+def test_detumble_example_reports_its_rates_and_the_gain_of_avanzini_and_giulietti(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["simulate", str(CONTROL / "detumble.toml"), "--t-end", "30", "--out", str(out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary == json.loads((out / "summary.json").read_text())
+    scenario = load_scenario(CONTROL / "detumble.toml")
+    n, i_min = scenario.orbit.mean_motion, float(np.min(scenario.body.principal_moments))
+    assert 2 * n * i_min < summary["gain"] <= 4 * n * i_min  # k = 2 n (1 + sin xi_m) I_min
+    assert summary["initial_rate"] == pytest.approx(math.radians(20.0), rel=1e-3)
+    assert summary["final_rate"] < summary["initial_rate"] and summary["detumble_time"] is None
+    assert summary["max_dipole"] == pytest.approx(0.2)  # the rods saturate at 20 deg/s
+    assert summary["momentum_budget_error"] < 1e-12 * summary["initial_rate"] * i_min
+    data = np.load(out / "trajectory.npz")
+    rows = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1)
+    assert rows.shape == (31, 1 + 3 + 4 + 3 + 3 + 3 + 3)
+    np.testing.assert_array_equal(rows[:, 1:4], data["omega"])
+    assert np.linalg.norm(rows[-1, 1:4]) == pytest.approx(summary["final_rate"], rel=1e-15)
+    assert (out / "omega.png").stat().st_size > 0
+
+
+def test_detumble_time_is_when_the_rate_stays_below_the_threshold(tmp_path, capsys):
+    text = (CONTROL / "detumble.toml").read_text().replace("threshold = 0.0087", "threshold = 0.345")
+    path = tmp_path / "fast.toml"
+    path.write_text(text)
+    assert main(["simulate", str(path), "--t-end", "40", "--out", str(tmp_path / "run"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    data = np.load(tmp_path / "run" / "trajectory.npz")
+    rate = np.linalg.norm(data["omega"], axis=1)
+    assert summary["detumble_time"] is not None
+    stays = data["t"][:, 0] >= summary["detumble_time"]
+    assert np.all(rate[stays] < 0.345) and rate[~stays][-1] >= 0.345
+
+
+def test_point_example_drives_the_pointing_error_down_with_the_wheels(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["simulate", str(CONTROL / "point.toml"), "--t-end", "40", "--out", str(out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["pointing_error_initial"] == pytest.approx(math.radians(60.0), rel=1e-12)
+    assert summary["pointing_error_final"] < 0.3 * summary["pointing_error_initial"]
+    assert 0 < summary["max_wheel_torque"] <= 2e-3 and summary["max_wheel_speed"] > 0
+    data = np.load(out / "trajectory.npz")
+    assert data["wheel_speed"].shape == (81, 3) and data["wheel_torque"].shape == (81, 3)
+    L = data["L_world"] - data["impulse_world"]  # body + wheels less the gravity-gradient impulse
+    np.testing.assert_allclose(L, L[[0] * len(L)], rtol=0, atol=1e-12 * np.abs(data["L_world"]).max())
+
+
+@pytest.mark.parametrize(("old", "new", "message"), [
+    ('kind = "bdot"', 'kind = "pid"', r"control: kind = 'pid' is unknown; allowed: bdot, mrp_pd"),
+    ("max_dipole = 0.2 ", "max_dipole = -1.0 ", r"actuators: max_dipole\[0\] = -1.0 must be a positive"),
+    ("period = 1.0 ", "perio = 1.0 ", r"control: unknown key 'perio'; allowed: K, P, derivative"),
+    ("period = 1.0 ", "K = 1.0\nperiod = 1.0 ", r"control: key 'K' does not go with kind = 'bdot'; allowed: derivative, form"),
+    ("altitude = 500e3", "altitude = -5.0", r"orbit: altitude = -5.0 must be a positive"),
+])
+def test_bad_control_files_get_one_line_and_write_nothing(tmp_path, capsys, old, new, message):
+    text = (CONTROL / "detumble.toml").read_text()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    code = main(["simulate", str(path), "--out", str(tmp_path / "run")])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert re_search(message, err) and "bad.toml" in err
+    assert not (tmp_path / "run").exists()
+
+
+def test_plot_refuses_a_control_scenario_in_one_line(tmp_path, capsys):
+    assert main(["plot", str(CONTROL / "point.toml"), "--out", str(tmp_path / "p")]) == 2
+    assert "control scenario" in capsys.readouterr().err
+
+
+def re_search(pattern: str, text: str) -> bool:
+    import re
+
+    return re.search(pattern, text) is not None
