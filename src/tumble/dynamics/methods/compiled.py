@@ -99,10 +99,12 @@ def _body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatAr
     out[0], out[1], out[2] = k * (b1 * c2 - b2 * c1), k * (b2 * c0 - b0 * c2), k * (b0 * c1 - b1 * c0)
 
 
-def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArray) -> None:  # pragma: no cover
-    """The exact flow of ``H_axis`` for time ``tau`` (geometric._rotate), in place."""
+def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArray,
+            h: FloatArray) -> None:  # pragma: no cover
+    """The exact flow of ``H_axis`` for time ``tau`` (geometric._rotate), in place; ``h`` the
+    wheels' constant momentum (body frame), so the rate is ``(L_axis - h_axis) / I_axis``."""
     j, k = (axis + 1) % 3, (axis + 2) % 3
-    half = L[axis] * (0.5 * tau * inv_I[axis])
+    half = (L[axis] - h[axis]) * (0.5 * tau * inv_I[axis])
     ch, sh = math.cos(half), math.sin(half)
     c, s = 1.0 - 2.0 * sh * sh, 2.0 * sh * ch
     Lj, Lk = L[j], L[k]
@@ -112,17 +114,17 @@ def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArr
 
 
 def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray, kind: int,
-         tau: FloatArray, n: float, exact: bool, omega_out: FloatArray,
+         tau: FloatArray, n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
          quat_out: FloatArray) -> None:  # pragma: no cover
     """Every body through every sample interval: equal steps no longer than
     ``step``, each the Yoshida composition ``gammas`` of the Strang step with half kicks."""
     N = I.shape[0]
     for b in prange(N):  # independent bodies: threads where the parallel kernel is used
-        Ib, L, q = I[b].copy(), L0[b].copy(), q0[b].copy()
+        Ib, L, q, hb = I[b].copy(), L0[b].copy(), q0[b].copy(), offset[b].copy()
         inv_I = 1.0 / Ib
         kick = np.empty(3)
         for i in range(3):
-            omega_out[0, b, i] = L[i] * inv_I[i]
+            omega_out[0, b, i] = (L[i] - hb[i]) * inv_I[i]
         for i in range(4):
             quat_out[0, b, i] = q[i]
         for s in range(1, t.shape[0]):
@@ -141,7 +143,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                         free_flow(Ib, L, q, hg)
                     else:  # the Strang step of exact rotations (geometric splitting)
                         for r in range(_AXES.shape[0]):
-                            _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I)
+                            _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I, hb)
                     tc += hg
                     if kind != 0:
                         _body_torque(kind, tau, n, Ib, q, tc, kick)
@@ -152,7 +154,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                 q[i] /= norm
                 quat_out[s, b, i] = q[i]
             for i in range(3):
-                omega_out[s, b, i] = L[i] * inv_I[i]
+                omega_out[s, b, i] = (L[i] - hb[i]) * inv_I[i]
 
 
 #: Bodies from which a batch runs on every core (``numba.prange``): the parallel kernel's first
@@ -192,7 +194,8 @@ def _cores() -> int:
 
 
 def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float, gammas: tuple[float, ...],
-              model: tuple[int, FloatArray, float] | None, *, exact: bool = False) -> tuple[FloatArray, FloatArray]:
+              model: tuple[int, FloatArray, float] | None, *, exact: bool = False,
+              offset: FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """The composed splitting of N bodies under a built-in torque (or none), compiled.
 
     Parameters
@@ -209,6 +212,10 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
         The composition's coefficients (:data:`tumble.dynamics.methods.geometric.COMPOSITIONS`).
     model : tuple or None
         :func:`compiled_model`'s answer; None for no torque.
+    offset : ndarray, shape (N, 3) or (1, 3), optional
+        Constant internal momentum ``h`` of wheels spinning at constant rates (kg m^2/s, body
+        frame), with ``L = I omega + h``: the Strang step's rates are ``(L_i - h_i) / I_i``
+        (:mod:`tumble.dynamics.methods.geometric`). Not with ``exact``.
     exact : bool
         The free part by the exact flow (:func:`tumble.dynamics.methods.compiled_flow.free_flow`,
         the exact-flow splitting) instead of the Strang step of rotations.
@@ -229,10 +236,13 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     """
     kind, tau, n = model if model is not None else (0, np.zeros(3), 0.0)
     N = len(I)
+    h = np.zeros((N, 3)) if offset is None else np.ascontiguousarray(np.broadcast_to(offset, (N, 3)), dtype=float)
+    if exact and np.any(h):
+        raise ValueError("the exact free flow has no internal momentum: a body with wheels is a gyrostat")
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
     kernel = _compiled(parallel=N >= PARALLEL_BODIES and _cores() > 1)
     kernel(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
                 np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(t, dtype=float), float(step),
-                np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), omega_out,
+                np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), h, omega_out,
                 quat_out)
     return omega_out, quat_out

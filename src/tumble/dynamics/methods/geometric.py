@@ -197,7 +197,8 @@ def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayL
 
 
 def propagate_internal(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: ArrayLike, *, order: int = 4,
-                       step: float | None = None, torque: TorqueModel | None = None) -> InternalSamples:
+                       step: float | None = None, torque: TorqueModel | None = None,
+                       compiled: bool = True) -> InternalSamples:
     """Integrate one body with rotors and/or a damper by the composed splitting.
 
     Parameters
@@ -218,6 +219,9 @@ def propagate_internal(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike
         damper's relaxation rate.
     torque : torque model, optional
         External torque (see :mod:`tumble.dynamics.models.torques`).
+    compiled : bool
+        With wheels at constant rates, no damper and a built-in torque, run in the compiled
+        kernel (:mod:`tumble.dynamics.methods.compiled`), the default; False keeps the numpy path.
 
     Returns
     -------
@@ -241,6 +245,10 @@ def propagate_internal(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike
     constant = model.rotors is None or model.rotors.constant
     if torque is None and model.damper is None and constant:
         omega, quat = _propagate_free(I, L, q, t, free_flow_substeps(order), step, offset=h0)
+        return InternalSamples(omega[:, 0], quat[:, 0], None, None, None)
+    builtin = compiled_model(torque) if torque is not None else None
+    if compiled and builtin is not None and model.damper is None and constant:  # constant wheels, a built-in torque
+        omega, quat = run_split(I, L, q, t, step, COMPOSITIONS[order], builtin, offset=h0)
         return InternalSamples(omega[:, 0], quat[:, 0], None, None, None)
     run = _propagate_split(I, L, q, t, order, step, torque, model, w0)
     return InternalSamples(run.omega[:, 0], run.quat[:, 0],
