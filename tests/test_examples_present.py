@@ -5,8 +5,9 @@ modules): every public function and class, and every method, classmethod, static
 and ``__call__`` a public class defines itself. ``__init__`` is left out: numpydoc documents the
 constructor in the class's docstring, whose example builds the object. A name has an example when
 its docstring holds a numpydoc ``Examples`` section and ``doctest`` (as ``--doctest-modules`` runs
-it in ``make test``) finds at least one ``>>>`` line in it, so a docstring doctest never collects
-(a ``cached_property``'s, say) does not count.
+it in ``make test``) finds at least one ``>>>`` line in it. doctest skips a ``cached_property``'s
+docstring before Python 3.12, so this file runs those examples itself (``test_cached_property_example``)
+and counts them too.
 
 The names still without one are frozen in tests/examples_missing.txt (sorted, one a line). The
 list may only shrink: a new public name without an example fails, and so does a name in the file
@@ -22,12 +23,23 @@ import inspect
 import re
 from pathlib import Path
 
+import pytest
 from test_annotations import _members, _modules
 
 ALLOW_LIST = Path(__file__).with_name("examples_missing.txt")
 
 #: A numpydoc section heading: the title, then a line of dashes (any indentation).
 _EXAMPLES_HEADING = re.compile(r"^[ \t]*Examples[ \t]*\n[ \t]*-{3,}[ \t]*$", re.MULTILINE)
+
+
+@functools.cache
+def _cached_properties() -> frozenset[str]:
+    """The public names that are a ``functools.cached_property`` (doctest skips them before 3.12)."""
+    _public_names()
+    return frozenset(_CACHED)
+
+
+_CACHED: set[str] = set()
 
 
 @functools.cache
@@ -48,6 +60,8 @@ def _public_names() -> dict[str, object]:
                 for member, fn in _members(obj):
                     if member != "__init__":
                         found[f"{where}.{member}"] = fn
+                        if isinstance(vars(obj)[member], functools.cached_property):
+                            _CACHED.add(f"{where}.{member}")
     return found
 
 
@@ -70,7 +84,12 @@ def _doctested() -> frozenset[str]:
 def has_example(name: str) -> bool:
     """``name``'s docstring has an Examples section and doctest runs at least one line of it."""
     doc = inspect.getdoc(_public_names()[name]) or ""
-    return bool(_EXAMPLES_HEADING.search(doc)) and ">>>" in doc and name in _doctested()
+    run = name in _doctested() or name in _cached_properties()
+    return bool(_EXAMPLES_HEADING.search(doc)) and ">>>" in doc and run
+
+
+def _cached_examples() -> list[str]:
+    return sorted(name for name in _cached_properties() if has_example(name))
 
 
 def _allowed() -> list[str]:
@@ -112,3 +131,13 @@ def test_every_public_name_has_an_example_or_is_allowed_without():
 def test_the_allow_list_only_holds_names_still_missing():
     done = sorted(name for name in _allowed() if name in _public_names() and has_example(name))
     assert not done, f"these names have an example now: delete their lines from {ALLOW_LIST.name}: {done}"
+
+
+@pytest.mark.parametrize("name", _cached_examples())
+def test_cached_property_example(name):
+    fn = _public_names()[name]
+    module = importlib.import_module(fn.__module__)
+    test = doctest.DocTestParser().get_doctest(fn.__doc__, dict(vars(module)), name, inspect.getsourcefile(fn), 0)
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+    runner.run(test)
+    assert runner.summarize(verbose=False).failed == 0, f"the example of {name} fails (see the output above)"
