@@ -5,9 +5,9 @@ modules): every public function and class, and every method, classmethod, static
 and ``__call__`` a public class defines itself. ``__init__`` is left out: numpydoc documents the
 constructor in the class's docstring, whose example builds the object. A name has an example when
 its docstring holds a numpydoc ``Examples`` section and ``doctest`` (as ``--doctest-modules`` runs
-it in ``make test``) finds at least one ``>>>`` line in it. doctest skips a ``cached_property``'s
-docstring before Python 3.12, so this file runs those examples itself (``test_cached_property_example``)
-and counts them too.
+it in ``make test``) finds at least one ``>>>`` line in it. The standard library's doctest skips a
+``cached_property``'s docstring before Python 3.12, so this file runs those examples itself
+(``test_cached_property_example``) and counts them too, whatever the Python and the pytest.
 
 The names still without one are frozen in tests/examples_missing.txt (sorted, one a line). The
 list may only shrink: a new public name without an example fails, and so does a name in the file
