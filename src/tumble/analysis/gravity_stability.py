@@ -73,7 +73,20 @@ def gravity_gradient_ratios(moments: ArrayLike, *, pitch_axis: int | str = 3, ya
 
 
 class StabilityClass(NamedTuple):
-    """Linear stability about the orbiting frame (see :func:`gravity_gradient_stability`)."""
+    """Linear stability about the orbiting frame (see :func:`gravity_gradient_stability`).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+    >>> moments = tumble.t_handle().principal_moments
+    >>> cls = gravity_gradient_stability(*gravity_gradient_ratios(moments))   # pitch about the major axis
+    >>> bool(cls.pitch), bool(cls.roll_yaw), str(cls.region)
+    (True, True, 'lagrange')
+    >>> cls = gravity_gradient_stability(*gravity_gradient_ratios(moments, pitch_axis=2))   # about the intermediate
+    >>> bool(cls.pitch), bool(cls.roll_yaw), str(cls.region)
+    (True, False, 'roll-yaw unstable')
+    """
 
     #: Pitch stable: ``k_P > 0`` (``I_roll > I_yaw``).
     pitch: np.ndarray

@@ -33,6 +33,15 @@ class PeriodFamily:
     dimensionless energy ``2 E I3 / |L|^2`` (from 1, a spin about the major axis, to ``I3/I1``,
     about the minor axis); ``L_over_I3`` (k,) ``|L| / I3``, rad/s (the angular speed of a spin
     about the major axis with the same momentum); ``mode`` (k,) ``"SAM"`` or ``"LAM"``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.periods import npa_periods
+    >>> from tumble.analysis.period_inversion import periods_consistent
+    >>> P_phi, P_psi, _ = npa_periods([0.3, 0.2, 1.0], [1.0, 2.0, 3.0])
+    >>> family = periods_consistent(float(P_phi), float(P_psi), resolution=10)
+    >>> family.ratios.shape[1], len(family.energy) == len(family.mode) == len(family.L_over_I3) > 0
+    (2, True)
     """
 
     ratios: np.ndarray
@@ -90,6 +99,16 @@ def periods_consistent(P_phi: float, P_psi: float, *, ratios: ArrayLike | None =
     ``beta`` from 0 to pi/2 covers SAM, the separatrix and LAM. The quotient ``P_psi / P_phi``
     is computed on a grid of ``beta`` with :func:`tumble.analysis.npa_periods`, its crossings
     of the observed quotient bracketed and refined; ``|L| / I3 = P_psi(beta; |L| = 1) / P_psi``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import npa_periods
+    >>> from tumble.analysis.period_inversion import periods_consistent
+    >>> P_phi, P_psi, _ = npa_periods([0.3, 0.2, 1.0], [1.0, 2.0, 3.0])   # a body with I1/I3 = 1/3, I2/I3 = 2/3
+    >>> family = periods_consistent(float(P_phi), float(P_psi), ratios=[[1 / 3, 2 / 3]])
+    >>> bool(np.any(np.isclose(family.L_over_I3, np.linalg.norm([0.3, 0.4, 3.0]) / 3.0, rtol=1e-6)))   # |L| / I3 found again
+    True
     """
     try:
         P_phi, P_psi = float(P_phi), float(P_psi)

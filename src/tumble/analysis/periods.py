@@ -92,6 +92,17 @@ def period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     ------
     ValueError
         As :func:`tumble.analysis.flip_interval` (the shared validator names the first bad index).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import period
+    >>> from tumble.analysis.stability import flip_interval
+    >>> omega, moments = [0.3, 0.2, 1.0], [1.0, 2.0, 3.0]
+    >>> bool(np.isclose(period(omega, moments), 2 * flip_interval(omega, moments)))
+    True
+    >>> round(float(period([0.0, 0.1, 1.0], [1.0, 1.0, 2.0])), 6) == round(2 * np.pi / 1.0, 6)   # symmetric: 2 pi / ((I3 - I1) w3 / I1)
+    True
     """
     return 2.0 * flip_interval(omega, moments)
 
@@ -128,6 +139,15 @@ def precession_per_period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     infinite.
 
     Parameters and errors as :func:`period`; returns an ndarray of shape (...), rad.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import period, precession_per_period
+    >>> omega, moments = np.array([0.0, 0.1, 1.0]), np.array([1.0, 1.0, 2.0])   # a symmetric top
+    >>> L = np.linalg.norm(moments * omega)
+    >>> bool(np.isclose(precession_per_period(omega, moments), L * period(omega, moments) / moments[0]))   # |L| T / I_perp
+    True
     """
     return _precession(*_check_motion(omega, moments))[1]
 
@@ -158,6 +178,14 @@ def montgomery_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     ------
     ValueError
         As :func:`period`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import montgomery_angle, precession_per_period
+    >>> omega, moments = [0.3, 0.2, 1.0], [1.0, 2.0, 3.0]
+    >>> bool(np.isclose(montgomery_angle(omega, moments), precession_per_period(omega, moments) % (2 * np.pi)))
+    True
     """
     dphi = _precession(*_check_motion(omega, moments))[1]
     return np.mod(dphi, TWO_PI)
@@ -174,6 +202,16 @@ def polhode_solid_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
 
     Parameters and errors as :func:`period`; returns an ndarray of shape (...), sr (NaN where
     the period is infinite).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import polhode_solid_angle
+    >>> omega, moments = np.array([0.0, 0.1, 1.0]), np.array([1.0, 1.0, 2.0])   # a symmetric top, about the major axis
+    >>> L = moments * omega
+    >>> cos_theta = L[2] / np.linalg.norm(L)
+    >>> bool(np.isclose(polhode_solid_angle(omega, moments), 2 * np.pi * (1 - cos_theta)))   # the cap
+    True
     """
     T, dphi, secular, sigma = _precession(*_check_motion(omega, moments))
     return secular - dphi + TWO_PI * sigma
@@ -215,6 +253,16 @@ def rotation_per_period(traj: Trajectory, period_s: float | None = None) -> floa
     ValueError
         If the trajectory is not torque-free and rigid, the period is not finite, or no sample
         lies at ``t0 + T`` (within ``1e-9 T``).
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.analysis.periods import montgomery_angle, period, rotation_per_period
+    >>> body, omega0 = tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.3, 0.2, 1.0]
+    >>> T = float(period(omega0, body.principal_moments))
+    >>> traj = tumble.simulate(body, omega0, times=[0.0, T])
+    >>> bool(np.isclose(rotation_per_period(traj, T), montgomery_angle(omega0, body.principal_moments)))   # measured = closed form
+    True
     """
     _check_trajectory(traj)
     T = float(period(traj.omega[0], traj.moments)) if period_s is None else float(period_s)
@@ -260,6 +308,13 @@ def symmetric_top_rates(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarra
     ------
     ValueError
         As :func:`period`, or for moments with no two equal (naming the first such index).
+
+    Examples
+    --------
+    >>> from tumble.analysis.periods import symmetric_top_rates
+    >>> precession, body_rate = symmetric_top_rates([0.0, 0.1, 1.0], [1.0, 1.0, 2.0])
+    >>> round(float(precession), 6), round(float(body_rate), 6)   # |L| / I_perp, (I3 - I1) w3 / I1
+    (2.002498, 1.0)
     """
     w, I = _check_motion(omega, moments)
     tol = INERTIA_RTOL * np.sum(I, axis=-1)
@@ -318,6 +373,14 @@ def npa_periods(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.nd
     ------
     ValueError
         As :func:`period`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.periods import npa_periods, period
+    >>> P_phi, P_psi, mode = npa_periods([0.3, 0.2, 1.0], [1.0, 2.0, 3.0])
+    >>> str(mode), bool(np.isclose(P_psi, period([0.3, 0.2, 1.0], [1.0, 2.0, 3.0])))   # short-axis mode
+    ('SAM', True)
     """
     T, dphi, _, sigma = _precession(*_check_motion(omega, moments))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -356,6 +419,16 @@ def axis_precession_period(traj: Trajectory, axis: int) -> float:
     ValueError
         If the trajectory is not torque-free and rigid, spans fewer than two upward crossings,
         or ``axis`` is not one principal axis.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.analysis.periods import axis_precession_period, npa_periods
+    >>> body, omega0 = tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.3, 0.2, 1.0]
+    >>> P_phi, P_psi, mode = npa_periods(omega0, body.principal_moments)
+    >>> traj = tumble.simulate(body, omega0, t_end=5 * float(P_psi), samples=2001)
+    >>> bool(np.isclose(axis_precession_period(traj, 3), P_phi, rtol=1e-4))   # the short axis, in SAM
+    True
     """
     index = _axis_index(axis)
     if index.ndim:
@@ -408,6 +481,17 @@ def npa_periods_measured(traj: Trajectory) -> tuple[float, float, str]:
     ------
     ValueError
         If the trajectory is not torque-free and rigid, or spans fewer than two upward crossings.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.analysis.periods import npa_periods, npa_periods_measured
+    >>> body, omega0 = tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.3, 0.2, 1.0]
+    >>> P_phi, P_psi, mode = npa_periods(omega0, body.principal_moments)
+    >>> traj = tumble.simulate(body, omega0, t_end=5 * float(P_psi), samples=2001)
+    >>> phi, psi, measured_mode = npa_periods_measured(traj)
+    >>> bool(np.isclose(phi, P_phi, rtol=1e-4)), bool(np.isclose(psi, P_psi, rtol=1e-4)), measured_mode
+    (True, True, 'SAM')
     """
     up = _whole_periods(traj)
     mode = "SAM" if int(circulation_axis(traj.omega[0], traj.moments)) == 3 else "LAM"

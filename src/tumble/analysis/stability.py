@@ -84,6 +84,12 @@ def axis_of(omega: ArrayLike) -> np.ndarray:
     -------
     ndarray of int, shape (...)
         1, 2 or 3; on a tie the lower axis (and 1 for ``omega = 0``).
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import axis_of
+    >>> axis_of([[0.1, 5.0, 0.2], [3.0, 0.0, -4.0]]).tolist()
+    [2, 3]
     """
     return np.argmax(np.abs(check_vectors("omega", omega, "rad/s")), axis=-1) + 1
 
@@ -121,6 +127,14 @@ def perturbation_exponent(moments: ArrayLike, axis: int | str, spin: ArrayLike, 
     ValueError
         For an axis other than those, moments that are not positive, finite and ascending, a
         non-finite spin, or batch shapes that do not broadcast; naming the first bad index.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import perturbation_exponent
+    >>> perturbation_exponent([1.0, 2.0, 3.0], "intermediate", 1.0).round(6)   # > 0: a small tilt grows
+    np.float64(0.333333)
+    >>> float(perturbation_exponent([1.0, 2.0, 3.0], "major", 1.0)) < 0   # < 0: it wobbles
+    True
     """
     I = _check_moments(moments)
     a = _axis_index(axis)
@@ -256,6 +270,19 @@ def flip_interval(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
         If ``omega`` is not finite numbers of shape (..., 3), ``moments`` are not positive,
         finite and ascending, or their batch shapes do not broadcast; the message names the
         first bad index, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be ascending, ...``.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+    >>> omega0 = [0.01, 1.0, 0.0]   # near the intermediate axis
+    >>> T = float(tumble.flip_interval(omega0, body.principal_moments))
+    >>> round(T, 4)
+    20.7546
+    >>> traj = tumble.simulate(body, omega0, t_end=3.5 * T, samples=3001)
+    >>> from tumble.analysis.stability import flip_times
+    >>> bool(np.allclose(np.diff(flip_times(traj.t, traj.omega[:, 1])), T, rtol=1e-4))   # the run agrees
+    True
     """
     e = elliptic_parameters(*_check_motion(omega, moments))
     p, kp = e.p, e.kp
@@ -274,6 +301,14 @@ def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> np.ndarray
     ``O(1 - k^2)``.
 
     Parameters and errors as :func:`flip_interval`; returns an ndarray of shape (...), s.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import flip_interval, flip_interval_asymptotic
+    >>> exact = float(flip_interval([1e-4, 1.0, 0.0], [1.0, 2.0, 3.0]))
+    >>> approx = float(flip_interval_asymptotic([1e-4, 1.0, 0.0], [1.0, 2.0, 3.0]))
+    >>> abs(approx - exact) / exact < 1e-6   # O(1 - k^2): tiny this close to the axis
+    True
     """
     e = elliptic_parameters(*_check_motion(omega, moments))
     with np.errstate(divide="ignore"):
@@ -303,6 +338,12 @@ def circulation_axis(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     ------
     ValueError
         As :func:`flip_interval`.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import circulation_axis
+    >>> circulation_axis([[1.0, 0.1, 0.0], [0.0, 0.1, 1.0]], [1.0, 2.0, 3.0]).tolist()   # about minor, about major
+    [1, 3]
     """
     return np.where(elliptic_parameters(*_check_motion(omega, moments)).upper, 3, 1)
 
@@ -316,6 +357,14 @@ def flip_times(t: ArrayLike, component: ArrayLike) -> np.ndarray:
         Sample times, s.
     component : array_like, shape (n,)
         The sampled quantity, e.g. ``omega[:, axis]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.stability import flip_times
+    >>> t = np.linspace(0.0, 10.0, 1001)
+    >>> flip_times(t, np.cos(t)).round(4).tolist()   # pi/2, 3 pi/2, 5 pi/2
+    [1.5708, 4.7124, 7.854]
     """
     t = np.asarray(t, float)
     y = np.asarray(component, float)

@@ -46,6 +46,20 @@ def stability_report(traj: Trajectory) -> dict:
         damper (the major-axis rule: only spin about the major axis is stable), or None when no
         theory applies, e.g. rotor momentum across the spin axis; then ``predicted`` is None).
         Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> traj = tumble.simulate(tumble.t_handle(), [0.0, 10.0, 0.0], frame="design", t_end=5.0, samples=100)
+    >>> report = tumble.stability_report(traj)   # a spin about the crossbar-normal y: the major axis
+    >>> report["axis"], report["role"], report["predicted"], report["flips"]
+    (3, 'major', 'stable', 0)
+    >>> traj = tumble.simulate(tumble.t_handle(), [10.0, 0.1, 0.1], frame="design", t_end=5.0, samples=1000)
+    >>> report = tumble.stability_report(traj)   # about the crossbar x: the intermediate axis
+    >>> report["role"], report["predicted"], report["flips"] > 2
+    ('intermediate', 'unstable', True)
+    >>> abs(report["flip_period"] - report["flip_period_exact"]) / report["flip_period_exact"] < 0.01
+    True
     """
     w0 = traj.omega[0]
     if not np.any(w0):
@@ -115,6 +129,14 @@ def trajectory_summary(traj: Trajectory) -> dict:
         with a damper ``damper`` (``inertia``, ``dissipated`` J, ``nutation_angle`` [start, end] rad,
         ``flat_spin_rate`` ``|L| / (I3 + J)`` the major-axis rule predicts and ``final_spin_rate``,
         rad/s). Energy, L and drift are totals over body, rotors and damper.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.summary import trajectory_summary
+    >>> summary = trajectory_summary(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 2.0], t_end=1.0, samples=11))
+    >>> summary["body"], summary["samples"], summary["principal_moments"], round(summary["energy"], 6)
+    ('T-handle', 11, [0.125, 0.3125, 0.4375], 0.875)
     """
     return {
         "body": traj.body_name,
@@ -164,6 +186,19 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     ``jacobi_drift`` (max |h - h0| over ``n^2 (I1 + I2 + I3)``, the scale of the potential),
     ``max_angle`` (rad: the largest |roll|, |pitch|, |yaw| from the orbiting frame, with
     ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.summary import gravity_gradient_summary
+    >>> body, gg = tumble.t_handle(), tumble.GravityGradient(orbit_period=5400.0)
+    >>> s = tumble.lvlh_state(gg, body)   # at rest in the orbiting frame, shaft along the local vertical
+    >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg, t_end=2700.0, samples=50)
+    >>> out = gravity_gradient_summary(traj, gg)
+    >>> out["orbit_period"], round(out["orbits"], 6), out["jacobi_drift"] < 1e-12
+    (5400.0, 0.5, True)
+    >>> max(out["max_angle"].values()) < 1e-9   # it stays at rest in the orbiting frame
+    True
     """
     from ..dynamics.models.gravity import orbit_frame_angles
 

@@ -48,19 +48,42 @@ def _run_repr(
 
 
 def trajectory_repr(traj: Trajectory) -> str:
-    """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``."""
+    """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics._display import trajectory_repr
+    >>> trajectory_repr(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=20.0, samples=500))
+    "Trajectory('T-handle', exact, 500 samples, t = 0..20 s, torque-free)"
+    """
     return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method, traj.torque_free, _extras(traj))
 
 
 def batch_repr(batch: BatchTrajectory) -> str:
-    """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``."""
+    """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics._display import batch_repr
+    >>> batch_repr(tumble.simulate_batch([1.0, 2.0, 3.0], [[1.0, 0.0, 0.0]] * 3, t_end=2.0, samples=5))
+    'BatchTrajectory(3 bodies, exact, 5 samples, t = 0..2 s, torque-free)'
+    """
     n = len(batch)
     return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t, batch.method,
                      batch.torque_free)
 
 
 def subsample(n: int, points: int = SVG_POINTS) -> IntArray:
-    """At most ``points`` sample indices spread evenly over ``range(n)``, first and last included."""
+    """At most ``points`` sample indices spread evenly over ``range(n)``, first and last included.
+
+    Examples
+    --------
+    >>> from tumble.dynamics._display import subsample
+    >>> subsample(5).tolist(), subsample(1001, points=5).tolist()
+    ([0, 1, 2, 3, 4], [0, 250, 500, 750, 1000])
+    """
     if n <= points:
         return np.arange(n)
     return np.unique(np.linspace(0, n - 1, points).round().astype(int))
@@ -93,6 +116,15 @@ def omega_svg(t: ArrayLike, omega: ArrayLike, *, width: int = 420, height: int =
     str
         An ``<svg>`` element: the three curves, the line omega = 0 when in range, and the
         ranges of t and omega written at the axes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics._display import omega_svg
+    >>> t = np.linspace(0.0, 1.0, 50)
+    >>> svg = omega_svg(t, np.column_stack([np.sin(t), np.cos(t), t]))
+    >>> svg.startswith("<svg"), svg.count("<polyline")   # one line per component
+    (True, 3)
     """
     t, omega = np.asarray(t, dtype=float), np.asarray(omega, dtype=float)
     idx = subsample(len(t), points)
@@ -140,7 +172,16 @@ def _drift_text(value: float | None) -> str:
 
 
 def trajectory_html(traj: Trajectory) -> str:
-    """A run's summary table and its omega(t) as HTML (Jupyter's ``_repr_html_``)."""
+    """A run's summary table and its omega(t) as HTML (Jupyter's ``_repr_html_``).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics._display import trajectory_html
+    >>> html = trajectory_html(tumble.simulate(tumble.t_handle(), [0.1, 5.0, 0.1], t_end=2.0, samples=50))
+    >>> "<svg" in html, "T-handle" in html
+    (True, True)
+    """
     n = len(traj)
     rows = [("body", traj.body_name), ("method", traj.method), ("samples", n)]
     if n:

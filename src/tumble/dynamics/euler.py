@@ -47,6 +47,14 @@ def euler_rhs(omega: ArrayLike, moments: ArrayLike, torque: ArrayLike = 0.0) -> 
     -------
     ndarray, shape (..., 3)
         ``d omega / dt`` in the principal frame, rad/s^2.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import euler_rhs
+    >>> euler_rhs([1.0, 1.0, 1.0], [1.0, 2.0, 3.0]).tolist()   # ((I2 - I3) w2 w3 / I1, ...)
+    [-1.0, 1.0, -0.3333333333333333]
+    >>> euler_rhs([0.0, 0.0, 2.0], [1.0, 2.0, 3.0], torque=[0.0, 0.0, 3.0]).tolist()   # tau / I
+    [0.0, 0.0, 1.0]
     """
     w = np.asarray(omega, dtype=float)
     I = np.asarray(moments, dtype=float)
@@ -67,6 +75,14 @@ def euler_rhs_tensor(omega: ArrayLike, inertia: ArrayLike, torque: ArrayLike = 0
         Inertia tensor about the COM in that frame, kg m^2.
     torque : array_like, shape (..., 3), optional
         External torque in that frame, N m.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.euler import euler_rhs, euler_rhs_tensor
+    >>> bool(np.allclose(euler_rhs_tensor([1.0, 1.0, 1.0], np.diag([1.0, 2.0, 3.0])),
+    ...                  euler_rhs([1.0, 1.0, 1.0], [1.0, 2.0, 3.0])))   # a diagonal tensor: the principal form
+    True
     """
     w = np.asarray(omega, dtype=float)
     I = np.asarray(inertia, dtype=float)
@@ -89,6 +105,12 @@ def angular_momentum(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     -------
     ndarray, shape (..., 3)
         Angular momentum, principal frame, kg m^2/s.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import angular_momentum
+    >>> angular_momentum([1.0, 1.0, 2.0], [1.0, 2.0, 3.0]).tolist()
+    [1.0, 2.0, 6.0]
     """
     return cast(Vector3, np.asarray(moments, float) * np.asarray(omega, float))
 
@@ -107,6 +129,12 @@ def kinetic_energy(omega: ArrayLike, moments: ArrayLike) -> FloatArray:
     -------
     ndarray, shape (...)
         Kinetic energy, J.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import kinetic_energy
+    >>> float(kinetic_energy([1.0, 1.0, 2.0], [1.0, 2.0, 3.0]))   # (1 + 2 + 12) / 2
+    7.5
     """
     w = np.asarray(omega, float)
     return cast(FloatArray, 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1))
@@ -130,6 +158,13 @@ def energy_momentum_gaps(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     -------
     ndarray, shape (..., 3)
         ``L^2 - 2 E I_j`` for j = 1, 2, 3, (kg m^2/s)^2.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import energy_momentum_gaps
+    >>> gaps = energy_momentum_gaps([1.0, 0.0, 0.0], [1.0, 2.0, 3.0])   # spin about the minor axis
+    >>> gaps.shape
+    (3,)
     """
     w2 = np.asarray(omega, float)[..., None, :] ** 2
     I = np.asarray(moments, float)

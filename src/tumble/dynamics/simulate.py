@@ -67,7 +67,16 @@ RTOL_RANGE = (100 * np.finfo(float).eps, 0.1)
 
 
 class RunInputs(NamedTuple):
-    """The checked inputs of one run, defaults filled in (see :func:`check_inputs`)."""
+    """The checked inputs of one run, defaults filled in (see :func:`check_inputs`).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics.simulate import check_inputs
+    >>> run = check_inputs(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 0.0, 0.0], t_end=1.0, samples=3)
+    >>> run.method.name, run.t.tolist(), run.torque is None, run.internal is None
+    ('exact', [0.0, 0.5, 1.0], True, True)
+    """
 
     props: MassProperties
     method: Method
@@ -156,6 +165,23 @@ def simulate(
         the body more than a stepping method can follow (:data:`MAX_ROTATION`).
     RuntimeError
         When an integration fails or exceeds its work budget.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+    >>> traj = tumble.simulate(body, [0.01, 1.0, 0.0], t_end=20.0, samples=201)   # near the intermediate axis
+    >>> traj.method, traj.omega.shape
+    ('exact', (201, 3))
+    >>> bool(traj.omega[:, 1].min() < -0.9)   # the tennis-racket flip: omega_2 turns round
+    True
+    >>> traj.drift["energy"] < 1e-12, traj.drift["L_world"] < 1e-12   # conserved, torque-free
+    (True, True)
+    >>> spun = tumble.simulate(body, [0.0, 0.0, 0.0], t_end=2.0, samples=3,
+    ...                        torque=tumble.ConstantTorque((0.0, 0.0, 3.0), "body"))
+    >>> spun.method, spun.omega[-1].round(6).tolist()   # omega_3 = tau t / I3
+    ('dop853', [0.0, 0.0, 2.0])
     """
     run = check_inputs(
         body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
@@ -191,6 +217,16 @@ def sample_times(t_end: float | None = None, samples: int | None = None, dt: flo
 
     Returns the grid the integrator follows (always starting at t = 0) and the slice of it
     that the caller asked for. Raises ``ValueError`` naming the argument.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.simulate import sample_times
+    >>> t, keep = sample_times(t_end=1.0, samples=5)
+    >>> t.tolist(), t[keep].tolist()
+    ([0.0, 0.25, 0.5, 0.75, 1.0], [0.0, 0.25, 0.5, 0.75, 1.0])
+    >>> t, keep = sample_times(times=[0.5, 1.0])   # the run starts at 0; the caller gets its own times
+    >>> t.tolist(), t[keep].tolist()
+    ([0.0, 0.5, 1.0], [0.5, 1.0])
     """
     if times is not None:
         if t_end is not None or samples is not None or dt is not None:
@@ -249,6 +285,18 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     before it starts.
 
     Raises ``ValueError`` whose message starts with the argument's name.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics.simulate import check_inputs
+    >>> run = check_inputs(tumble.t_handle(), [0.0, 10.0, 0.0], t_end=1.0, frame="design")
+    >>> run.method.name, run.omega0.round(6).tolist(), len(run.t)   # design y is the major axis, I3
+    ('exact', [0.0, 0.0, 10.0], 500)
+    >>> check_inputs(tumble.t_handle(), [0.0, 10.0, 0.0], t_end=-1.0)   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: t_end = -1.0 ...
     """
     props = body.properties if isinstance(body, Body) else body
     if not isinstance(props, MassProperties):

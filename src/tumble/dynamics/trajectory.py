@@ -73,6 +73,17 @@ class Trajectory:
         The damper sphere's inertial angular velocity in principal-frame components, rad/s.
     dissipated : ndarray, shape (n,), optional
         Energy dissipated by the damper since t = 0, J.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> traj = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 2.0], t_end=3.0, samples=4)   # about the major axis
+    >>> traj
+    Trajectory('T-handle', exact, 4 samples, t = 0..3 s, torque-free)
+    >>> len(traj), traj.moments.round(6).tolist()
+    (4, [0.125, 0.3125, 0.4375])
+    >>> traj.omega[-1].round(6).tolist()   # a steady spin
+    [0.0, 0.0, 2.0]
     """
 
     t: np.ndarray
@@ -99,7 +110,14 @@ class Trajectory:
 
     @property
     def rigid(self) -> bool:
-        """Whether this is one rigid body: no rotors and no damper."""
+        """Whether this is one rigid body: no rotors and no damper.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.simulate(tumble.t_handle(), [0.0, 0.0, 2.0], t_end=1.0, samples=2).rigid
+        True
+        """
         return self.internal_momentum is None and self.damper_omega is None
 
     def __len__(self) -> int:
@@ -114,13 +132,29 @@ class Trajectory:
 
     @functools.cached_property
     def quat(self) -> np.ndarray:
-        """Attitude quaternions ``[x, y, z, w]`` (scalar last), body to world; shape (n, 4)."""
+        """Attitude quaternions ``[x, y, z, w]`` (scalar last), body to world; shape (n, 4).
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.0, 0.0, np.pi], t_end=1.0, samples=2)
+        >>> traj.quat.round(6).tolist()   # half a turn about z in one second
+        [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0]]
+        """
         return _array(self.attitude.as_quat())
 
     @functools.cached_property
     def angular_momentum(self) -> np.ndarray:
         """Total ``L = I omega + h + J omega_d`` (body, rotors, damper) in the principal frame,
-        kg m^2/s; shape (n, 3). ``I omega`` for a rigid body."""
+        kg m^2/s; shape (n, 3). ``I omega`` for a rigid body.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 1.0, 1.0], t_end=1.0, samples=2)
+        >>> traj.angular_momentum[0].round(6).tolist()   # I omega at t = 0
+        [1.0, 2.0, 3.0]
+        """
         L = angular_momentum(self.omega, self.moments)
         if self.internal_momentum is not None:
             L = L + self.internal_momentum
@@ -131,14 +165,30 @@ class Trajectory:
     @functools.cached_property
     def angular_momentum_world(self) -> np.ndarray:
         """Total L in the world frame, kg m^2/s; constant without external torque (rotors and
-        dampers exchange momentum with the body only); shape (n, 3)."""
+        dampers exchange momentum with the body only); shape (n, 3).
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 1.0, 1.0], t_end=10.0, samples=50)
+        >>> bool(np.allclose(traj.angular_momentum_world, [1.0, 2.0, 3.0]))   # fixed in space, torque-free
+        True
+        """
         return _array(self.attitude.apply(self.angular_momentum))
 
     @functools.cached_property
     def momentum_is_zero(self) -> np.ndarray:
         """Per sample: whether the total L is 0 to round-off, at most ``ZERO_MOMENTUM_RTOL`` of
         the momenta it is the sum of (a wheel spun up from rest: ``I w + h`` cancels to ~1e-17);
-        shape (n,)."""
+        shape (n,).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 0.0, 0.0], t_end=1.0, samples=2)
+        >>> traj.momentum_is_zero.tolist()
+        [False, False]
+        """
         scale = float(np.max(np.linalg.norm(self.moments * self.omega, axis=1)))
         if self.internal_momentum is not None:
             scale += float(np.max(np.linalg.norm(self.internal_momentum, axis=1)))
@@ -157,6 +207,13 @@ class Trajectory:
         1) every axis normal to axis 1 is a major axis and the angle is that between L and their
         plane, ``arctan(|L1| / hypot(L2, L3))``; for a sphere 0. NaN where L is 0 to round-off
         (:attr:`momentum_is_zero`).
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 0.0, 1.0], t_end=1.0, samples=2)
+        >>> round(float(traj.nutation_angle[0]), 6) == round(float(np.arctan2(1.0, 3.0)), 6)   # atan(|L1| / |L3|)
+        True
         """
         I, L = self.moments, self.angular_momentum
         tol = INERTIA_RTOL * float(np.sum(I))
@@ -170,7 +227,15 @@ class Trajectory:
 
     @functools.cached_property
     def omega_world(self) -> np.ndarray:
-        """Angular velocity in the world frame, rad/s; shape (n, 3)."""
+        """Angular velocity in the world frame, rad/s; shape (n, 3).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.0, 0.0, 2.0], t_end=1.0, samples=2)
+        >>> traj.omega_world.round(6).tolist()   # a steady spin about z stays along world z
+        [[0.0, 0.0, 2.0], [0.0, 0.0, 2.0]]
+        """
         return _array(self.attitude.apply(self.omega))
 
     @functools.cached_property
@@ -181,6 +246,13 @@ class Trajectory:
         (each rotor turns at ``omega + s_k n_k``); with a damper ``+ J |omega_d|^2 / 2``
         (:mod:`tumble.dynamics.models.internal`). Changes by the motors' work and the damper's
         dissipation (and the work of an external torque): see :attr:`drift`.
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 1.0, 1.0], t_end=5.0, samples=11)
+        >>> bool(np.allclose(traj.energy, 3.0))   # (1 + 2 + 3) / 2 J throughout
+        True
         """
         E = kinetic_energy(self.omega, self.moments)
         if self.internal_momentum is not None:
@@ -196,12 +268,28 @@ class Trajectory:
         """The gyrostat Hamiltonian ``sum_i (L_i - h_i)^2 / (2 I_i) = omega.I omega / 2``, J;
         shape (n,). ``L = I omega + h`` is the momentum of body and rotors; conserved for constant
         rotor spins without damper or external torque (:mod:`tumble.dynamics.models.internal`). Equal to :attr:`energy` for a
-        rigid body."""
+        rigid body.
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 1.0, 1.0], t_end=1.0, samples=3)
+        >>> bool(np.array_equal(traj.hamiltonian, traj.energy))   # a rigid body: the same
+        True
+        """
         return _array(kinetic_energy(self.omega, self.moments))
 
     @functools.cached_property
     def angular_momentum_norm(self) -> np.ndarray:
-        """|L|, kg m^2/s; shape (n,)."""
+        """|L|, kg m^2/s; shape (n,).
+
+        Examples
+        --------
+        >>> import numpy as np, tumble
+        >>> traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [1.0, 1.0, 1.0], t_end=1.0, samples=3)
+        >>> bool(np.allclose(traj.angular_momentum_norm, np.sqrt(14.0)))   # |(1, 2, 3)|
+        True
+        """
         return _array(np.linalg.norm(self.angular_momentum, axis=1))
 
     @functools.cached_property
@@ -213,6 +301,15 @@ class Trajectory:
         ``L_world``: max |L_world - L_world(0)| / |L0|, all totals. Meaningful as errors only
         when ``torque_free``. None where the initial value is zero (a body starting at rest): no
         relative drift; ``energy`` is None too when the motors' work is unknown.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> for method in ("rk45", "dop853"):   # the adaptive methods at their default tolerances
+        ...     traj = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=5.0, samples=50, method=method)
+        ...     print(method, {k: f"{v:.0e}" for k, v in traj.drift.items()})
+        rk45 {'energy': '6e-03', 'L_norm': '3e-03', 'L_world': '2e-02'}
+        dop853 {'energy': '4e-12', 'L_norm': '2e-12', 'L_world': '6e-12'}
         """
         E, Ln, Lw = self.energy, self.angular_momentum_norm, self.angular_momentum_world
         if self.internal_momentum is not None:
@@ -230,5 +327,13 @@ class Trajectory:
         }
 
     def design_attitude(self) -> Rotation:
-        """Rotation of the *design* frame to world: ``attitude * principal_axes^T``."""
+        """Rotation of the *design* frame to world: ``attitude * principal_axes^T``.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> traj = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=1.0, samples=2)
+        >>> traj.design_attitude()[0].as_matrix().round(6).tolist()   # the body starts as it was designed
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+        """
         return self.attitude * Rotation.from_matrix(self.principal_axes).inv()

@@ -58,6 +58,24 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
     ValueError
         One line starting with the path: missing, not a regular file, too large, not UTF-8, not
         valid TOML, nested too deeply, or empty.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.bodyfile import read_toml
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "brick.toml")
+    ...     _ = path.write_text('[body]\\nname = "brick"\\n')
+    ...     good = read_toml(path)
+    ...     _ = path.write_text('[body\\n')
+    ...     try:
+    ...         read_toml(path)
+    ...     except ValueError as exc:
+    ...         error = str(exc)
+    >>> good
+    {'body': {'name': 'brick'}}
+    >>> "brick.toml: not valid TOML" in error   # one line, naming the file
+    True
     """
     path = Path(path)
     raw = read_input_file(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
@@ -84,7 +102,19 @@ def _init_fields(cls) -> dict[str, dataclasses.Field]:
 
 
 def part_from_table(table: object, *, base_dir: Path | None = None, where: str = "part") -> Part:
-    """Build a part from a TOML table (a dict); ``mesh`` paths are relative to ``base_dir``."""
+    """Build a part from a TOML table (a dict); ``mesh`` paths are relative to ``base_dir``.
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import part_from_table
+    >>> rod = part_from_table({"kind": "rod", "mass": 3.0, "length": 2.0, "axis": [1, 0, 0]})
+    >>> type(rod).__name__, rod.inertia.round(6).diagonal().tolist()   # m L^2 / 12 across the x axis
+    ('Rod', [0.0, 1.0, 1.0])
+    >>> part_from_table({"kind": "rod", "mass": 3.0})   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: ...length...
+    """
     if not isinstance(table, dict):
         raise ValueError(f"{where} must be a table with a 'kind', got {type(table).__name__}")
     kind = table.get("kind")
@@ -122,7 +152,16 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
 
 
 def body_from_table(table: object, *, base_dir: Path | None = None, where: str = "body") -> Body:
-    """Build a body from the contents of a ``[body]`` table."""
+    """Build a body from the contents of a ``[body]`` table.
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> body = body_from_table({"name": "dumbbell", "parts": [{"kind": "point", "mass": 1.0, "center": [0, 0, 1]},
+    ...                                                      {"kind": "point", "mass": 1.0, "center": [0, 0, -1]}]})
+    >>> body.name, body.principal_moments.tolist()
+    ('dumbbell', [0.0, 2.0, 2.0])
+    """
     if not isinstance(table, dict):
         raise ValueError(f"{where} must be a table, got {type(table).__name__}")
     name = table.get("name", "body")
@@ -196,6 +235,18 @@ def load_body(source: str | os.PathLike[str]) -> Body:
     ------
     ValueError
         One line naming the file, the part's index and the field.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, tumble
+    >>> tumble.load_body("t-handle").principal_moments.tolist()   # a preset by name
+    [0.125, 0.3125, 0.4375]
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "brick.toml")
+    ...     _ = path.write_text('[body]\\nname = "brick"\\n[[body.parts]]\\nkind = "box"\\nmass = 12.0\\nsize = [1.0, 2.0, 3.0]\\n')
+    ...     body = tumble.load_body(path)
+    >>> body.name, body.principal_moments.round(6).tolist()   # m (b^2 + c^2) / 12 and cyclic, ascending
+    ('brick', [5.0, 10.0, 13.0])
     """
     if isinstance(source, str) and source in PRESETS and not os.path.exists(source):
         return PRESETS[source]()

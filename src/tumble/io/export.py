@@ -32,7 +32,16 @@ CSV_BUDGET_COLUMNS = {"dissipated": "dissipated [J]", "motor_work": "motor_work 
 
 
 def trajectory_csv(traj: Trajectory) -> str:
-    """The CSV text of a trajectory (header + one row per sample, full double precision)."""
+    """The CSV text of a trajectory (header + one row per sample, full double precision).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.io.export import trajectory_csv
+    >>> lines = trajectory_csv(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 2.0], t_end=1.0, samples=3)).splitlines()
+    >>> len(lines), lines[0].split(",")[:4]   # a header and one row per sample
+    (4, ['t [s]', 'omega_1 [rad/s]', 'omega_2 [rad/s]', 'omega_3 [rad/s]'])
+    """
     extra = {k: getattr(traj, k) for k in CSV_BUDGET_COLUMNS if getattr(traj, k) is not None}
     table = np.column_stack([traj.t, traj.omega, traj.quat, traj.angular_momentum_world, traj.energy, *extra.values()])
     header = [*CSV_COLUMNS, *(CSV_BUDGET_COLUMNS[k] for k in extra)]
@@ -42,7 +51,19 @@ def trajectory_csv(traj: Trajectory) -> str:
 
 
 def write_csv(traj: Trajectory, path: str | os.PathLike[str]) -> None:
-    """Write :func:`trajectory_csv` to ``path`` atomically."""
+    """Write :func:`trajectory_csv` to ``path`` atomically.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, numpy as np, tumble
+    >>> from tumble.io.export import write_csv
+    >>> traj = tumble.simulate(tumble.t_handle(), [0.1, 2.0, 0.1], t_end=1.0, samples=5)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_csv(traj, pathlib.Path(folder, "run.csv"))
+    ...     table = np.loadtxt(pathlib.Path(folder, "run.csv"), delimiter=",", skiprows=1)
+    >>> bool(np.array_equal(table[:, 1:4], traj.omega))   # full double precision
+    True
+    """
     atomic_write_text(path, trajectory_csv(traj))
 
 
@@ -56,6 +77,17 @@ def write_npz(traj: Trajectory, path: str | os.PathLike[str], provenance: dict |
     rotors ``internal_momentum`` (kg m^2/s, principal frame), ``rotor_spin`` (rad/s),
     ``motor_work`` (J); with a damper ``damper_omega`` (rad/s), ``dissipated`` (J) and
     ``nutation_angle`` (rad).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, numpy as np, tumble
+    >>> from tumble.io.export import write_npz
+    >>> traj = tumble.simulate(tumble.t_handle(), [0.1, 2.0, 0.1], t_end=1.0, samples=5)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_npz(traj, pathlib.Path(folder, "run.npz"))
+    ...     with np.load(pathlib.Path(folder, "run.npz")) as data:
+    ...         print(str(data["method"]), bool(np.array_equal(data["quat"], traj.quat)))
+    exact True
     """
     buf = io.BytesIO()
     extra = {} if provenance is None else {"provenance": np.array(json.dumps(provenance))}
@@ -73,5 +105,15 @@ def write_npz(traj: Trajectory, path: str | os.PathLike[str], provenance: dict |
 
 
 def write_json(data: object, path: str | os.PathLike[str]) -> None:
-    """Pretty JSON, written atomically."""
+    """Pretty JSON, written atomically.
+
+    Examples
+    --------
+    >>> import json, pathlib, tempfile
+    >>> from tumble.io.export import write_json
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     write_json({"moments": [0.125, 0.3125, 0.4375]}, pathlib.Path(folder, "out.json"))
+    ...     print(json.loads(pathlib.Path(folder, "out.json").read_text()))
+    {'moments': [0.125, 0.3125, 0.4375]}
+    """
     atomic_write_text(path, json.dumps(data, indent=2) + "\n")

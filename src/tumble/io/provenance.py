@@ -18,7 +18,18 @@ __all__ = ["file_sha256", "provenance"]
 
 
 def file_sha256(path: str | os.PathLike[str]) -> str:
-    """SHA-256 of a file's bytes, hex."""
+    """SHA-256 of a file's bytes, hex.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.provenance import file_sha256
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "empty")
+    ...     path.touch()
+    ...     print(file_sha256(path))   # the SHA-256 of no bytes
+    e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855
+    """
     digest = hashlib.sha256()
     with open(path, "rb") as fh:
         for block in iter(lambda: fh.read(1 << 20), b""):
@@ -41,6 +52,13 @@ def provenance(argv: Sequence[str] | None = None, inputs: Iterable[tuple[str, st
     dict
         ``tumble``, ``numpy``, ``scipy``, ``python`` versions, ``platform``, ``command`` (the
         command line, or None), ``inputs`` (path -> sha256) and ``created`` (UTC, ISO 8601).
+
+    Examples
+    --------
+    >>> from tumble.io.provenance import provenance
+    >>> record = provenance(["simulate", "spin.toml"], inputs=[("spin.toml", "ab12")])
+    >>> record["command"], record["inputs"], sorted(record)[:3]   # doctest: +ELLIPSIS
+    (..., {'spin.toml': 'ab12'}, ['command', 'created', 'inputs'])
     """
     import numpy
     import scipy

@@ -73,7 +73,17 @@ _TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"
 
 @dataclass(frozen=True, eq=False)
 class Scenario:
-    """A parsed scenario: everything :func:`tumble.simulate` needs."""
+    """A parsed scenario: everything :func:`tumble.simulate` needs.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.io.scenario import Scenario
+    >>> scenario = Scenario(body=tumble.t_handle(), omega=(0.0, 0.0, 2.0), t_end=4.0, samples=5)
+    >>> traj = scenario.run()
+    >>> traj.t.tolist(), traj.method
+    ([0.0, 1.0, 2.0, 3.0, 4.0], 'exact')
+    """
 
     body: Body
     omega: tuple[float, float, float]
@@ -95,7 +105,17 @@ class Scenario:
     damper: SphericalDamper | None = None
 
     def run(self) -> Trajectory:
-        """Simulate the scenario."""
+        """Simulate the scenario.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.io.scenario import Scenario
+        >>> torque = tumble.ConstantTorque((0.0, 0.0, 0.4375))   # N m about the major axis, I3 = 0.4375 kg m^2
+        >>> traj = Scenario(body=tumble.t_handle(), omega=(0.0, 0.0, 0.0), t_end=2.0, samples=3, torque=torque).run()
+        >>> traj.omega[:, 2].round(6).tolist()   # omega_3 = tau t / I3
+        [0.0, 1.0, 2.0]
+        """
         return simulate(
             self.body, self.omega, t_end=self.t_end, samples=self.samples, dt=self.dt, times=self.times,
             method=self.method, frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol,
@@ -104,13 +124,30 @@ class Scenario:
 
     @property
     def sample_count(self) -> int:
-        """How many samples :meth:`run` returns."""
+        """How many samples :meth:`run` returns.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.io.scenario import Scenario
+        >>> Scenario(body=tumble.t_handle(), omega=(0.0, 0.0, 1.0), t_end=1.0, dt=0.25).sample_count   # 0, 0.25, ..., 1
+        5
+        """
         t, keep = sample_times(self.t_end, self.samples, self.dt, self.times)
         return len(t[keep])
 
 
 def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str = "scenario") -> Scenario:
-    """Build a scenario from parsed TOML; values are validated by the constructors they feed."""
+    """Build a scenario from parsed TOML; values are validated by the constructors they feed.
+
+    Examples
+    --------
+    >>> from tumble.io.scenario import scenario_from_table
+    >>> scenario = scenario_from_table({"body": "t-handle", "initial": {"omega": [0.0, 10.0, 0.0], "frame": "design"},
+    ...                                 "simulation": {"t_end": 2.0, "samples": 21}}, name="flip")
+    >>> scenario.frame, scenario.t_end, scenario.sample_count
+    ('design', 2.0, 21)
+    """
     unknown = sorted(set(data) - {"body", *_SECTIONS})
     if unknown:
         raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, {', '.join(_SECTIONS)}")
@@ -247,6 +284,26 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario | ControlScenario:
     ------
     ValueError
         Any problem with the file or its values, in one line starting with the file's name.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, tumble
+    >>> text = '''
+    ... body = "t-handle"
+    ... [initial]
+    ... omega = [0.0, 0.0, 2.0]
+    ... [simulation]
+    ... t_end = 1.0
+    ... samples = 11
+    ... '''
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "spin.toml")
+    ...     _ = path.write_text(text)
+    ...     scenario = tumble.load_scenario(path)
+    >>> scenario.name, scenario.body.name, scenario.omega, scenario.sample_count
+    ('spin', 'T-handle', [0.0, 0.0, 2.0], 11)
+    >>> scenario.run().omega[-1].round(6).tolist()   # a steady spin about the major axis
+    [0.0, 0.0, 2.0]
     """
     path = Path(path)
     data = read_toml(path)

@@ -24,12 +24,28 @@ MAX_PARTS_SHOWN = 20
 
 
 def properties_repr(p: MassProperties) -> str:
-    """``MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)``."""
+    """``MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.mass._display import properties_repr
+    >>> properties_repr(tumble.t_handle().properties)
+    'MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)'
+    """
     return f"MassProperties(m = {fmt(p.mass)} kg, COM = {vec(p.com)} m, I = {vec(p.principal_moments)} kg m^2)"
 
 
 def body_repr(body: Body) -> str:
-    """``Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2)``."""
+    """``Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2)``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.mass._display import body_repr
+    >>> body_repr(tumble.t_handle())
+    "Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2)"
+    """
     n = len(body.parts)
     return (f"Body({short_name(body.name)}, {n} part{'' if n == 1 else 's'}, m = {fmt(body.mass)} kg, "
             f"I = {vec(body.principal_moments)} kg m^2)")
@@ -48,7 +64,16 @@ def _properties_rows(p: MassProperties) -> list[tuple[str, str]]:
 
 
 def properties_html(p: MassProperties) -> str:
-    """The mass properties as an HTML table (kg, m, kg m^2)."""
+    """The mass properties as an HTML table (kg, m, kg m^2).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.mass._display import properties_html
+    >>> html = properties_html(tumble.t_handle().properties)
+    >>> html.startswith("<table"), "tennis-racket theorem" in html
+    (True, True)
+    """
     return html_table(_properties_rows(p), caption="MassProperties")
 
 
@@ -62,7 +87,16 @@ def _part_rows(parts: Sequence[Part]) -> list[tuple[object, ...]]:
 
 
 def body_html(body: Body) -> str:
-    """A body's mass properties and its parts as HTML (Jupyter's ``_repr_html_``)."""
+    """A body's mass properties and its parts as HTML (Jupyter's ``_repr_html_``).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.mass._display import body_html
+    >>> html = body_html(tumble.t_handle())
+    >>> html.startswith("<div>"), html.count("rod")   # the two rods in the parts table
+    (True, 2)
+    """
     n = len(body.parts)
     head = f"Body {body.name!s}: {n} part{'' if n == 1 else 's'}"
     return ("<div>" + html_table(_properties_rows(body.properties), caption=head)

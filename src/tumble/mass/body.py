@@ -62,6 +62,17 @@ class MassProperties:
         to design coordinates, so
         ``inertia = principal_axes @ diag(principal_moments) @ principal_axes.T``. The JSON
         outputs (``tumble inertia --json``, ``summary.json``) hold this same matrix, row by row.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.mass import MassProperties
+    >>> props = MassProperties.from_inertia(3.0, (0, 0, 0.25), np.diag([0.3125, 0.4375, 0.125]))
+    >>> props.principal_moments.tolist()
+    [0.125, 0.3125, 0.4375]
+    >>> bool(np.allclose(props.principal_axes @ np.diag(props.principal_moments) @ props.principal_axes.T,
+    ...                  props.inertia))
+    True
     """
 
     mass: float
@@ -72,7 +83,18 @@ class MassProperties:
 
     @classmethod
     def from_inertia(cls, mass: float, com: ArrayLike, inertia: ArrayLike) -> MassProperties:
-        """Validate ``inertia`` (about the COM) and decompose it."""
+        """Validate ``inertia`` (about the COM) and decompose it.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.mass import MassProperties
+        >>> props = MassProperties.from_inertia(2.0, (0, 0, 0), [[2, 1, 0], [1, 2, 0], [0, 0, 2]])
+        >>> props.principal_moments.round(6).tolist()   # eigenvalues of the tensor, ascending
+        [1.0, 2.0, 3.0]
+        >>> round(float(np.linalg.det(props.principal_axes)), 6)   # a proper rotation
+        1.0
+        """
         I = check_inertia(inertia, what="inertia tensor about the centre of mass")
         moments, axes = principal_frame(I)
         return cls(float(mass), _array(com), _array(I), _array(moments), _array(axes))
@@ -129,7 +151,16 @@ class MassProperties:
 
     @property
     def degeneracy(self) -> str:
-        """``"asymmetric"``, ``"symmetric"`` (two equal moments) or ``"spherical"``."""
+        """``"asymmetric"``, ``"symmetric"`` (two equal moments) or ``"spherical"``.
+
+        Examples
+        --------
+        >>> from tumble.mass import MassProperties
+        >>> MassProperties.from_moments([1.0, 1.0, 1.5]).degeneracy
+        'symmetric'
+        >>> MassProperties.from_moments([2.0, 2.0, 2.0]).degeneracy
+        'spherical'
+        """
         return moment_degeneracy(self.principal_moments)
 
     @property
@@ -138,6 +169,14 @@ class MassProperties:
 
         Spin about this axis is unstable (the tennis-racket theorem); a body with two equal
         moments has no intermediate axis.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().properties.intermediate_axis.round(6).tolist()   # the crossbar, x
+        [1.0, 0.0, 0.0]
+        >>> tumble.MassProperties.from_moments([1.0, 1.0, 1.5]).intermediate_axis is None
+        True
         """
         return self.principal_axes[:, 1].copy() if self.degeneracy == "asymmetric" else None
 
@@ -159,6 +198,13 @@ class MassProperties:
         ValueError
             If ``point`` is not finite numbers of shape (..., 3), e.g.
             ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
+
+        Examples
+        --------
+        >>> from tumble.mass import MassProperties
+        >>> props = MassProperties.from_moments([0.5, 0.5, 0.5], mass=2.0)
+        >>> props.inertia_about((0, 0, 1)).round(6).tolist()   # adds m d^2 = 2 to I_x and I_y
+        [[2.5, 0.0, 0.0], [0.0, 2.5, 0.0], [0.0, 0.0, 0.5]]
         """
         return inertia_about_point(self.inertia, self.mass, self.com, point)
 
@@ -178,6 +224,14 @@ def mass_properties(parts: Iterable[Part]) -> MassProperties:
     ValueError
         If the total mass is not positive (more removed than present), or the resulting
         tensor is not physical.
+
+    Examples
+    --------
+    >>> from tumble.mass import PointMass
+    >>> from tumble.mass.body import mass_properties
+    >>> props = mass_properties([PointMass(mass=1.0, center=(-1, 0, 0)), PointMass(mass=1.0, center=(1, 0, 0))])
+    >>> props.mass, props.com.tolist(), props.principal_moments.tolist()   # a dumbbell along x
+    (2.0, [0.0, 0.0, 0.0], [0.0, 2.0, 2.0])
     """
     parts = tuple(parts)
     if not parts:
@@ -240,37 +294,89 @@ class Body:
     # Shortcuts to the mass properties --------------------------------------------------
     @property
     def mass(self) -> float:
-        """Total mass, kg."""
+        """Total mass, kg.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().mass
+        3.0
+        """
         return self.properties.mass
 
     @property
     def com(self) -> Vector3:
-        """Centre of mass in the design frame, m."""
+        """Centre of mass in the design frame, m.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().com.round(6).tolist()   # a quarter of the shaft above its middle
+        [0.0, 0.0, 0.25]
+        """
         return self.properties.com
 
     @property
     def inertia(self) -> Matrix3:
-        """Inertia tensor about the COM in the design frame, kg m^2."""
+        """Inertia tensor about the COM in the design frame, kg m^2.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().inertia.round(6).tolist()
+        [[0.3125, 0.0, 0.0], [0.0, 0.4375, 0.0], [0.0, 0.0, 0.125]]
+        """
         return self.properties.inertia
 
     @property
     def principal_moments(self) -> Vector3:
-        """Principal moments ``I1 <= I2 <= I3``, kg m^2."""
+        """Principal moments ``I1 <= I2 <= I3``, kg m^2.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().principal_moments.round(6).tolist()
+        [0.125, 0.3125, 0.4375]
+        """
         return self.properties.principal_moments
 
     @property
     def principal_axes(self) -> Matrix3:
-        """Rotation matrix principal -> design, shape (3, 3); columns are the axes of I1, I2, I3."""
+        """Rotation matrix principal -> design, shape (3, 3); columns are the axes of I1, I2, I3.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.t_handle().principal_axes.round(6).tolist()   # columns: the shaft z, the crossbar x, then y
+        [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
+        """
         return self.properties.principal_axes
 
     def inertia_about(self, point: ArrayLike) -> Matrix3:
         """Inertia tensor about ``point`` (design frame, m), kg m^2; see
-        :meth:`MassProperties.inertia_about` (shapes, and the ``ValueError`` for a bad point)."""
+        :meth:`MassProperties.inertia_about` (shapes, and the ``ValueError`` for a bad point).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> body = tumble.t_handle()
+        >>> body.inertia_about((0, 0, 0)).round(6).tolist()   # about the shaft's middle: + 3 kg (0.25 m)^2 on x and y
+        [[0.5, 0.0, 0.0], [0.0, 0.625, 0.0], [0.0, 0.0, 0.125]]
+        """
         return self.properties.inertia_about(point)
 
     @property
     def rotors(self) -> tuple[Rotor, ...]:
-        """The parts that spin relative to the body (:class:`~tumble.mass.rotor.Rotor`), in order."""
+        """The parts that spin relative to the body (:class:`~tumble.mass.rotor.Rotor`), in order.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=100.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 1.0, 1.0)), wheel])
+        >>> body.rotors == (wheel,)
+        True
+        """
         return tuple(p for p in self.parts if isinstance(p, Rotor))
 
     def internal_momentum(self, t: ArrayLike = 0.0) -> Vector3:
@@ -289,6 +395,16 @@ class Body:
         Returns
         -------
         ndarray, shape ``np.shape(t) + (3,)``
+
+        Examples
+        --------
+        >>> import tumble
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=100.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+        >>> body.internal_momentum().round(6).tolist()   # J s = (0.005 kg m^2)(100 rad/s) along z, I1's axis
+        [0.5, 0.0, 0.0]
+        >>> body.internal_momentum([0.0, 1.0]).shape
+        (2, 3)
         """
         times = np.asarray(t, dtype=float)
         h = np.zeros(times.shape + (3,))
@@ -297,7 +413,20 @@ class Body:
         return h @ self.principal_axes  # rows: (A^T h_design)^T
 
     def moved(self, rotation: Rotation | ArrayLike, translation: ArrayLike = (0.0, 0.0, 0.0)) -> Body:
-        """The body after a rigid motion ``x -> R x + t`` of all its parts."""
+        """The body after a rigid motion ``x -> R x + t`` of all its parts.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from scipy.spatial.transform import Rotation
+        >>> body = tumble.t_handle()
+        >>> moved = body.moved(Rotation.from_euler("x", 90, degrees=True), translation=(1.0, 0.0, 0.0))
+        >>> moved.com.round(6).tolist()
+        [1.0, -0.25, 0.0]
+        >>> bool(np.allclose(moved.principal_moments, body.principal_moments))   # a rigid motion keeps the moments
+        True
+        """
         return Body(tuple(p.moved(rotation, translation) for p in self.parts), self.name)
 
     def __repr__(self) -> str:

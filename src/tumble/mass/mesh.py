@@ -85,6 +85,13 @@ class Mesh(_Oriented):
     -----
     ``center`` is derived: the centre of mass of the placed mesh. Refused: meshes that are
     not watertight, not consistently wound, or enclose no positive volume (inward normals).
+
+    Examples
+    --------
+    >>> import trimesh, tumble
+    >>> cube = tumble.Mesh(mesh=trimesh.creation.box(extents=(1.0, 2.0, 3.0)), mass=12.0)
+    >>> cube.inertia.round(6).diagonal().tolist()   # as the closed-form Box: m (b^2 + c^2) / 12 and cyclic
+    [13.0, 10.0, 5.0]
     """
 
     kind: ClassVar[str] = "mesh"
@@ -128,13 +135,29 @@ class Mesh(_Oriented):
 
     @property
     def volume(self) -> float:
+        """Volume enclosed by the placed mesh, m^3.
+
+        Examples
+        --------
+        >>> import trimesh, tumble
+        >>> round(tumble.Mesh(mesh=trimesh.creation.box(extents=(1.0, 2.0, 3.0)), density=1.0).volume, 6)
+        6.0
+        """
         return self._volume
 
     def _local_inertia(self) -> Matrix3:
         return cast(Matrix3, cast(float, self.mass) * self._unit_inertia)
 
     def moved(self, rotation: Rotation | ArrayLike, translation: ArrayLike = (0.0, 0.0, 0.0)) -> Mesh:
-        """The same part after a rigid motion ``x -> R x + t`` of the design frame."""
+        """The same part after a rigid motion ``x -> R x + t`` of the design frame.
+
+        Examples
+        --------
+        >>> import trimesh, tumble
+        >>> cube = tumble.Mesh(mesh=trimesh.creation.box(extents=(1.0, 1.0, 1.0)), mass=1.0)
+        >>> cube.moved((0, 0, 0, 1), translation=(0.0, 0.0, 2.0)).com.round(6).tolist()
+        [0.0, 0.0, 2.0]
+        """
         R, t = check_motion(rotation, translation)
         return Mesh(
             mesh=self.mesh,

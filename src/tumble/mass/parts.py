@@ -75,6 +75,13 @@ class Part:
         Centre of mass of the part in the design frame, m.
     subtract : bool
         The part is removed material (a hole).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> rod = tumble.Rod(mass=1.5, length=1.0, center=(0, 0, 0.5))
+    >>> isinstance(rod, tumble.Part), rod.signed_mass, rod.com.tolist()
+    (True, 1.5, [0.0, 0.0, 0.5])
     """
 
     kind: ClassVar[str] = "part"
@@ -137,19 +144,43 @@ class Part:
     # -- geometry -------------------------------------------------------------------------
     @property
     def volume(self) -> float:
-        """Volume in m^3 (0 for thin parts)."""
+        """Volume in m^3 (0 for thin parts).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.Box(mass=1.0, size=(1.0, 2.0, 3.0)).volume
+        6.0
+        >>> tumble.Rod(mass=1.0, length=2.0).volume   # thin: no volume
+        0.0
+        """
         return 0.0
 
     @property
     def orientation(self) -> Rotation:
-        """Rotation from the part's own frame to the design frame (scipy Rotation)."""
+        """Rotation from the part's own frame to the design frame (scipy Rotation).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> rod = tumble.Rod(mass=1.0, length=1.0, axis=(1, 0, 0))
+        >>> rod.orientation.apply([0, 0, 1]).round(6).tolist()   # the part's own z goes to its axis
+        [1.0, 0.0, 0.0]
+        """
         from scipy.spatial.transform import Rotation
 
         return Rotation.identity()
 
     @property
     def com(self) -> Vector3:
-        """Centre of mass in the design frame, shape (3,), m."""
+        """Centre of mass in the design frame, shape (3,), m.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.Sphere(mass=1.0, radius=0.1, center=(1, 2, 3)).com.tolist()
+        [1.0, 2.0, 3.0]
+        """
         return np.array(self.center)
 
     def _unit_moments(self) -> Vector3:
@@ -162,7 +193,14 @@ class Part:
 
     @property
     def signed_mass(self) -> float:
-        """Mass contributed to the body, kg: negative for removed material."""
+        """Mass contributed to the body, kg: negative for removed material.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.Cylinder(mass=2.0, radius=0.1, length=0.5, subtract=True).signed_mass   # a hole
+        -2.0
+        """
         mass = cast(float, self.mass)  # always set by __post_init__
         return -mass if self.subtract else mass
 
@@ -171,6 +209,12 @@ class Part:
         """Tensor about the part's own COM in the design frame, ``R I R^T`` (kg m^2).
 
         Negative for removed material. Computed once (the part is immutable).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.Sphere(mass=5.0, radius=1.0).inertia.round(6).tolist()   # 2 m r^2 / 5
+        [[2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 2.0]]
         """
         I = self._design_inertia()
         return -I if self.subtract else I
@@ -188,6 +232,15 @@ class Part:
             The rotation R.
         translation : array_like, shape (3,)
             The translation t, m.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from scipy.spatial.transform import Rotation
+        >>> rod = tumble.Rod(mass=1.0, length=1.0, axis=(0, 0, 1), center=(0, 0, 1))
+        >>> turned = rod.moved(Rotation.from_euler("y", 90, degrees=True))
+        >>> turned.com.round(6).tolist(), [round(x, 6) for x in turned.axis]
+        ([1.0, 0.0, 0.0], [1.0, 0.0, 0.0])
         """
         R, t = check_motion(rotation, translation)
         changes: dict[str, Any] = {"center": tuple(R.apply(self.center) + t)}
@@ -253,6 +306,13 @@ class Rod(_Axisymmetric):
     """Thin uniform rod of ``length`` (m) along ``axis``, centred at ``center``.
 
     ``I_perp = m L^2 / 12``, ``I_axial = 0`` (seed eqs. 2-3; Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> rod = tumble.Rod(mass=3.0, length=2.0, axis=(0, 0, 1))
+    >>> rod.inertia.round(6).diagonal().tolist()   # m L^2 / 12 across, 0 along
+    [1.0, 1.0, 0.0]
     """
 
     kind: ClassVar[str] = "rod"
@@ -273,6 +333,13 @@ class Cylinder(_Axisymmetric):
     """Solid uniform circular cylinder of ``radius`` and ``length`` (m) along ``axis``.
 
     ``I_axial = m r^2 / 2``, ``I_perp = m (3 r^2 + L^2) / 12`` (Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> cyl = tumble.Cylinder(mass=12.0, radius=1.0, length=2.0, axis=(0, 0, 1))
+    >>> cyl.inertia.round(6).diagonal().tolist()   # m (3 r^2 + L^2) / 12 across, m r^2 / 2 along
+    [7.0, 7.0, 6.0]
     """
 
     kind: ClassVar[str] = "cylinder"
@@ -286,6 +353,14 @@ class Cylinder(_Axisymmetric):
 
     @property
     def volume(self) -> float:
+        """Volume ``pi r^2 L``, m^3.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> round(tumble.Cylinder(density=1000.0, radius=0.1, length=1.0).volume, 6)   # pi r^2 L, m^3
+        0.031416
+        """
         return math.pi * self.radius**2 * self.length
 
     def _unit_moments(self) -> Vector3:
@@ -300,6 +375,13 @@ class Tube(_Axisymmetric):
 
     ``I_axial = m (a^2 + b^2) / 2``, ``I_perp = m (3 (a^2 + b^2) + L^2) / 12`` with inner radius
     a and outer radius b (the cylinder's forms for b minus a, Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> tube = tumble.Tube(mass=2.0, inner_radius=1.0, outer_radius=2.0, length=1.0)
+    >>> round(float(tube.inertia[2, 2]), 6)   # m (a^2 + b^2) / 2 about its axis
+    5.0
     """
 
     kind: ClassVar[str] = "tube"
@@ -321,6 +403,15 @@ class Tube(_Axisymmetric):
 
     @property
     def volume(self) -> float:
+        """Volume ``pi (b^2 - a^2) L``, m^3.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tube = tumble.Tube(density=1.0, inner_radius=1.0, outer_radius=2.0, length=1.0)
+        >>> round(tube.volume, 6), round(tube.mass, 6)   # pi (b^2 - a^2) L = 3 pi m^3
+        (9.424778, 9.424778)
+        """
         return math.pi * (self.outer_radius**2 - self.inner_radius**2) * self.length
 
     def _unit_moments(self) -> Vector3:
@@ -337,6 +428,13 @@ class Cone(_Axisymmetric):
     the axis a quarter of the height above the base. About the COM:
     ``I_axial = 3 m r^2 / 10``, ``I_perp = 3 m (4 r^2 + h^2) / 80`` (Meriam & Kraige Table D/4,
     shifted from the apex by the parallel-axis theorem).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> cone = tumble.Cone(mass=10.0, radius=1.0, height=4.0, axis=(0, 0, 1))
+    >>> cone.inertia.round(6).diagonal().tolist()   # 3 m (4 r^2 + h^2) / 80 across, 3 m r^2 / 10 along
+    [7.5, 7.5, 3.0]
     """
 
     kind: ClassVar[str] = "cone"
@@ -350,11 +448,28 @@ class Cone(_Axisymmetric):
 
     @property
     def volume(self) -> float:
+        """Volume ``pi r^2 h / 3``, m^3.
+
+        Examples
+        --------
+        >>> import math, tumble
+        >>> cone = tumble.Cone(density=1.0, radius=1.0, height=3.0)
+        >>> round(cone.volume / math.pi, 6)   # pi r^2 h / 3
+        1.0
+        """
         return math.pi * self.radius**2 * self.height / 3.0
 
     @property
     def base_center(self) -> Vector3:
-        """Centre of the base disc in the design frame, m."""
+        """Centre of the base disc in the design frame, m.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> cone = tumble.Cone(mass=1.0, radius=1.0, height=4.0, axis=(0, 0, 1), center=(0, 0, 1))
+        >>> cone.base_center.tolist()   # the COM is a quarter of the height above the base
+        [0.0, 0.0, 0.0]
+        """
         return np.array(self.center) - 0.25 * self.height * np.array(self.axis)
 
     def _unit_moments(self) -> Vector3:
@@ -368,6 +483,13 @@ class Box(_Oriented):
     """Solid uniform cuboid with edge lengths ``size = (a, b, c)`` (m) along its own x, y, z.
 
     ``I_x = m (b^2 + c^2) / 12`` and cyclic (Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> box = tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0))
+    >>> box.inertia.round(6).diagonal().tolist()   # m (b^2 + c^2) / 12 and cyclic
+    [13.0, 10.0, 5.0]
     """
 
     kind: ClassVar[str] = "box"
@@ -380,6 +502,15 @@ class Box(_Oriented):
 
     @property
     def volume(self) -> float:
+        """Volume ``a b c``, m^3.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> box = tumble.Box(density=500.0, size=(1.0, 2.0, 3.0))
+        >>> box.volume, box.mass
+        (6.0, 3000.0)
+        """
         a, b, c = self.size
         return a * b * c
 
@@ -393,6 +524,13 @@ class Ellipsoid(_Oriented):
     """Solid uniform ellipsoid with semi-axes ``semi_axes = (a, b, c)`` (m) along its own x, y, z.
 
     ``I_x = m (b^2 + c^2) / 5`` and cyclic (Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> egg = tumble.Ellipsoid(mass=5.0, semi_axes=(1.0, 2.0, 3.0))
+    >>> egg.inertia.round(6).diagonal().tolist()   # m (b^2 + c^2) / 5 and cyclic
+    [13.0, 10.0, 5.0]
     """
 
     kind: ClassVar[str] = "ellipsoid"
@@ -408,6 +546,14 @@ class Ellipsoid(_Oriented):
 
     @property
     def volume(self) -> float:
+        """Volume ``4 pi a b c / 3``, m^3.
+
+        Examples
+        --------
+        >>> import math, tumble
+        >>> round(tumble.Ellipsoid(density=1.0, semi_axes=(1.0, 2.0, 3.0)).volume / math.pi, 6)   # 4 pi a b c / 3
+        8.0
+        """
         a, b, c = self.semi_axes
         return 4.0 / 3.0 * math.pi * a * b * c
 
@@ -418,7 +564,15 @@ class Ellipsoid(_Oriented):
 
 @dataclass(frozen=True, kw_only=True)
 class Sphere(Part):
-    """Solid uniform sphere of ``radius`` (m): ``I = 2 m r^2 / 5`` (Meriam & Kraige Table D/4)."""
+    """Solid uniform sphere of ``radius`` (m): ``I = 2 m r^2 / 5`` (Meriam & Kraige Table D/4).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> ball = tumble.Sphere(mass=5.0, radius=0.5)
+    >>> round(float(ball.inertia[0, 0]), 6)   # 2 m r^2 / 5
+    0.5
+    """
 
     kind: ClassVar[str] = "sphere"
     radius: float
@@ -428,6 +582,14 @@ class Sphere(Part):
 
     @property
     def volume(self) -> float:
+        """Volume ``4 pi r^3 / 3``, m^3.
+
+        Examples
+        --------
+        >>> import math, tumble
+        >>> round(tumble.Sphere(density=1.0, radius=3.0).volume / math.pi, 6)   # 4 pi r^3 / 3
+        36.0
+        """
         return 4.0 / 3.0 * math.pi * self.radius**3
 
     def _unit_moments(self) -> Vector3:
@@ -439,6 +601,13 @@ class Shell(Part):
     """Thin uniform spherical shell of ``radius`` (m): ``I = 2 m r^2 / 3`` (Meriam & Kraige D/4).
 
     For a shell of finite thickness subtract a sphere from a sphere.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> shell = tumble.Shell(mass=3.0, radius=1.0)
+    >>> round(float(shell.inertia[0, 0]), 6)   # 2 m r^2 / 3
+    2.0
     """
 
     kind: ClassVar[str] = "shell"
@@ -454,7 +623,15 @@ class Shell(Part):
 
 @dataclass(frozen=True, kw_only=True)
 class PointMass(Part):
-    """A point mass at ``center``: no inertia about its own position."""
+    """A point mass at ``center``: no inertia about its own position.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.Body([tumble.PointMass(mass=1.0, center=(0, 0, 1)), tumble.PointMass(mass=1.0, center=(0, 0, -1))])
+    >>> body.principal_moments.tolist()   # m d^2 twice across the line, nothing along it
+    [0.0, 2.0, 2.0]
+    """
 
     kind: ClassVar[str] = "point"
     solid: ClassVar[bool] = False

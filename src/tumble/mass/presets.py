@@ -50,6 +50,16 @@ def t_handle(
         Uniform density, kg/m^3, instead of masses (needs both radii > 0).
     name : str
         Label of the body.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> body.mass, body.principal_moments.round(6).tolist()
+    (3.0, [0.125, 0.3125, 0.4375])
+    >>> solid = tumble.t_handle(shaft_radius=0.01, crossbar_radius=0.01, density=7800.0)
+    >>> len(solid.parts), round(solid.mass, 3)   # two steel cylinders, 2 pi (0.01 m)^2 (1 m) 7800 kg/m^3
+    (2, 4.901)
     """
     if density is not None and (shaft_mass is not None or crossbar_mass is not None):
         raise ValueError("t_handle takes either 'density' or the masses, not both")
@@ -105,6 +115,15 @@ def iss_t_handle(*, name: str = "ISS T-handle") -> Body:
     -------
     Body
         The handle, in :func:`t_handle`'s design frame.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> handle = tumble.iss_t_handle()
+    >>> round(handle.mass * 1000, 1)   # grams of steel
+    162.5
+    >>> handle.properties.intermediate_axis.round(6).tolist()   # the shaft: spun about it, it flips
+    [0.0, 0.0, 1.0]
     """
     return t_handle(
         shaft_length=0.050,

@@ -55,6 +55,13 @@ class Rotor(Cylinder):
         As for :class:`Cylinder`, and for ``subtract=True`` (a hole cannot spin), a
         ``spin_rate`` that is neither a finite number nor a function, or a
         ``spin_acceleration`` of the other kind than ``spin_rate``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> wheel = tumble.Rotor(mass=2.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=50.0)
+    >>> round(float(wheel.axial_moment), 6), wheel.momentum(0.0).round(6).tolist()   # J = m r^2 / 2, h = J s axis
+    (0.01, [0.0, 0.0, 0.5])
     """
 
     kind: ClassVar[str] = "rotor"
@@ -88,21 +95,56 @@ class Rotor(Cylinder):
 
     @property
     def axial_moment(self) -> float:
-        """``J = m r^2 / 2``, the moment about the spin axis, kg m^2."""
+        """``J = m r^2 / 2``, the moment about the spin axis, kg m^2.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> float(tumble.Rotor(mass=4.0, radius=0.5, length=0.1, spin_rate=0.0).axial_moment)   # m r^2 / 2
+        0.5
+        """
         return cast(float, cast(float, self.mass) * self._unit_moments()[2])
 
     @property
     def constant_spin(self) -> bool:
-        """Whether the relative spin is a constant number (no ramp, no function)."""
+        """Whether the relative spin is a constant number (no ramp, no function).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> tumble.Rotor(mass=1.0, radius=0.1, length=0.1, spin_rate=10.0).constant_spin
+        True
+        >>> tumble.Rotor(mass=1.0, radius=0.1, length=0.1, spin_rate=10.0, spin_acceleration=2.0).constant_spin
+        False
+        """
         return not callable(self.spin_rate) and self.spin_acceleration == 0.0
 
     def spin(self, t: ArrayLike) -> FloatArray:
-        """The relative spin ``s(t)`` at the times ``t`` (s, any shape), rad/s; ``t``'s shape."""
+        """The relative spin ``s(t)`` at the times ``t`` (s, any shape), rad/s; ``t``'s shape.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.1, spin_rate=10.0, spin_acceleration=2.0)
+        >>> ramp.spin([0.0, 1.0, 5.0]).tolist()   # s(t) = 10 + 2 t
+        [10.0, 12.0, 20.0]
+        """
         return self._evaluate(self.spin_rate, self.spin_acceleration, t, "spin_rate", "rad/s")
 
     def spin_derivative(self, t: ArrayLike) -> FloatArray | None:
         """``ds/dt`` at the times ``t`` (s), rad/s^2; None when ``spin_rate`` is a function given
-        without its derivative."""
+        without its derivative.
+
+        Examples
+        --------
+        >>> import math, tumble
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.1, spin_rate=10.0, spin_acceleration=2.0)
+        >>> ramp.spin_derivative([0.0, 1.0]).tolist()
+        [2.0, 2.0]
+        >>> wave = tumble.Rotor(mass=1.0, radius=0.1, length=0.1, spin_rate=math.sin)
+        >>> wave.spin_derivative(0.0) is None   # a function given without its derivative
+        True
+        """
         if callable(self.spin_rate):
             if self.spin_acceleration is None:
                 return None
@@ -111,7 +153,15 @@ class Rotor(Cylinder):
 
     def momentum(self, t: ArrayLike) -> Vector3:
         """Internal angular momentum ``J s(t) axis`` in the design frame, kg m^2/s; shape
-        ``t.shape + (3,)``."""
+        ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> wheel = tumble.Rotor(mass=2.0, radius=0.1, length=0.02, axis=(1, 0, 0), spin_rate=100.0)
+        >>> wheel.momentum([0.0, 1.0]).round(6).tolist()   # J s along the axis, kg m^2/s
+        [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]
+        """
         return cast(Vector3, (self.axial_moment * self.spin(t))[..., None] * np.array(self.axis))
 
     @staticmethod

@@ -62,6 +62,14 @@ def point_mass_inertia(mass: ArrayLike, offset: ArrayLike) -> Matrix3:
     -------
     ndarray, shape (..., 3, 3)
         Inertia tensor in kg m^2.
+
+    Examples
+    --------
+    >>> from tumble.mass.tensor import point_mass_inertia
+    >>> point_mass_inertia(2.0, (0.0, 0.0, 1.0)).tolist()   # m (|d|^2 E - d d^T)
+    [[2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 0.0]]
+    >>> point_mass_inertia([1.0, 1.0], [(1, 0, 0), (0, 1, 0)]).shape
+    (2, 3, 3)
     """
     d = np.asarray(offset, dtype=float)
     m = np.asarray(mass, dtype=float)[..., None, None]
@@ -89,6 +97,13 @@ def parallel_axis(inertia_com: ArrayLike, mass: ArrayLike, offset: ArrayLike) ->
     -------
     ndarray, shape (..., 3, 3)
         Tensor about the new point, kg m^2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.mass.tensor import parallel_axis
+    >>> parallel_axis(np.diag([1.0, 1.0, 1.0]), 2.0, (3.0, 0.0, 0.0)).tolist()   # + m d^2 = 18 across x
+    [[1.0, 0.0, 0.0], [0.0, 19.0, 0.0], [0.0, 0.0, 19.0]]
     """
     return _as_tensor(inertia_com) + point_mass_inertia(mass, offset)
 
@@ -115,6 +130,13 @@ def inertia_about_point(inertia_com: ArrayLike, mass: ArrayLike, com: ArrayLike,
     ValueError
         If ``com`` or ``point`` is not an array of finite numbers of shape (..., 3), naming the
         argument and, for a batch, the first bad index (see :func:`check_vectors`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.mass.tensor import inertia_about_point
+    >>> inertia_about_point(np.zeros((3, 3)), 1.0, com=(1, 0, 0), point=(0, 0, 0)).tolist()
+    [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     """
     d = check_vectors("com", com, "m") - check_vectors("point", point, "m")
     return parallel_axis(inertia_com, mass, d)
@@ -131,6 +153,15 @@ def rotate_inertia(inertia: ArrayLike, rotation: Rotation | ArrayLike) -> Matrix
         Tensor in frame A, kg m^2.
     rotation : array_like, shape (..., 3, 3) or scipy.spatial.transform.Rotation
         Rotation matrix from A to B.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.mass.tensor import rotate_inertia
+    >>> R = Rotation.from_euler("z", 90, degrees=True)   # x of frame A is y of frame B
+    >>> rotate_inertia(np.diag([1.0, 2.0, 3.0]), R).round(6).diagonal().tolist()
+    [2.0, 1.0, 3.0]
     """
     R: Matrix3 = rotation.as_matrix() if hasattr(rotation, "as_matrix") else np.asarray(rotation, float)
     I = _as_tensor(inertia)
@@ -172,6 +203,16 @@ def check_inertia(inertia: ArrayLike, *, rtol: float = INERTIA_RTOL, what: str =
     ------
     ValueError
         Naming the broken condition, the offending values and, for a batch, the index.
+
+    Examples
+    --------
+    >>> from tumble.mass.tensor import check_inertia
+    >>> check_inertia([[1, 0, 0], [0, 1, 0], [0, 0, 1.5]]).diagonal().tolist()
+    [1.0, 1.0, 1.5]
+    >>> check_inertia([[1, 0, 0], [0, 1, 0], [0, 0, 3]])   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: ...triangle inequality...
     """
     I = _as_tensor(inertia)
     batch = I.shape[:-2]
@@ -227,6 +268,12 @@ def moment_degeneracy(moments: Iterable[SupportsFloat], *, rtol: float = INERTIA
 
     Ascending moments count as equal when they differ by at most ``rtol * (I1 + I2 + I3)``, the
     rule :func:`principal_frame` uses. Only an asymmetric body has an intermediate axis.
+
+    Examples
+    --------
+    >>> from tumble.mass.tensor import moment_degeneracy
+    >>> moment_degeneracy([1.0, 2.0, 3.0]), moment_degeneracy([1.0, 1.0, 2.0]), moment_degeneracy([1.0, 1.0, 1.0])
+    ('asymmetric', 'symmetric', 'spherical')
     """
     I1, I2, I3 = (float(x) for x in moments)
     tol = rtol * max(I1 + I2 + I3, 0.0)
@@ -264,6 +311,17 @@ def principal_frame(inertia: ArrayLike, *, rtol: float = INERTIA_RTOL) -> tuple[
         Principal moments ascending, kg m^2; degenerate ones exactly equal.
     axes : ndarray, shape (..., 3, 3)
         Rotation matrices whose columns are the principal axes, in the input frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.mass.tensor import principal_frame
+    >>> I = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 5.0]])
+    >>> moments, axes = principal_frame(I)
+    >>> moments.round(6).tolist()
+    [1.0, 3.0, 5.0]
+    >>> bool(np.allclose(axes @ np.diag(moments) @ axes.T, I)), round(float(np.linalg.det(axes)), 6)
+    (True, 1.0)
     """
     I = _as_tensor(inertia)
     I = 0.5 * (I + np.swapaxes(I, -1, -2))

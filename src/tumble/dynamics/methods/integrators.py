@@ -109,7 +109,15 @@ class _Budget:
 
 @dataclass(frozen=True)
 class Method:
-    """An integration method: its function, capabilities and default tolerances."""
+    """An integration method: its function, capabilities and default tolerances.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import METHODS
+    >>> exact = METHODS["exact"]
+    >>> exact.closed_form, exact.supports_torque, METHODS["dop853"].supports_torque
+    (True, False, True)
+    """
 
     name: str
     integrate: Integrate
@@ -142,18 +150,41 @@ class Method:
     @property
     def stiff_solver(self) -> bool:
         """Whether the method hands a stiff damper to an implicit solver (so ``simulate`` lets it
-        take one); the others refuse a stiff damper. Read off its integrator, which does it."""
+        take one); the others refuse a stiff damper. Read off its integrator, which does it.
+
+        Examples
+        --------
+        >>> from tumble.dynamics import METHODS
+        >>> sorted(name for name, m in METHODS.items() if m.stiff_solver)   # doctest: +ELLIPSIS
+        [...]
+        >>> METHODS["rk45"].stiff_solver
+        False
+        """
         return bool(getattr(self.integrate_internal, "stiff_solver", False))
 
     @property
     def supports_internal(self) -> bool:
-        """Whether the method takes rotors and a damper."""
+        """Whether the method takes rotors and a damper.
+
+        Examples
+        --------
+        >>> from tumble.dynamics import METHODS
+        >>> METHODS["dop853"].supports_internal, METHODS["exact"].supports_internal   # rotors and dampers
+        (True, False)
+        """
         return self.integrate_internal is not None
 
     @property
     def batched(self) -> bool:
         """Whether ``simulate_batch`` runs every body together (the closed form and the
-        splittings) rather than a loop of ``simulate``, one body at a time."""
+        splittings) rather than a loop of ``simulate``, one body at a time.
+
+        Examples
+        --------
+        >>> from tumble.dynamics import METHODS
+        >>> METHODS["exact"].batched, METHODS["rk45"].batched
+        (True, False)
+        """
         return self.closed_form or self.splitting_order is not None
 
 
@@ -351,6 +382,16 @@ def get_method(name: str) -> Method:
     ------
     ValueError
         For an unknown name; the message lists the known ones.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.integrators import get_method
+    >>> get_method("dop853").name
+    'dop853'
+    >>> get_method("euler")   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: method = 'euler' ...
     """
     try:
         return METHODS[name]

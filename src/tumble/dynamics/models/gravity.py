@@ -440,6 +440,18 @@ def orbit_frame_angles(
     OrbitAngles
         Arrays of shape (n,), rad: ``pitch`` and ``yaw`` in (-pi, pi], ``roll`` in
         [-pi/2, pi/2] (the sequence is singular at |roll| = pi/2).
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> body, gg = tumble.t_handle(), tumble.GravityGradient(orbit_period=5400.0)
+    >>> s = tumble.lvlh_state(gg, body, pitch=0.01)   # 0.01 rad of pitch from the orbiting frame
+    >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg, t_end=600.0, samples=3)
+    >>> angles = tumble.orbit_frame_angles(traj, gg)
+    >>> round(float(angles.pitch[0]), 6), round(float(angles.roll[0]), 6)
+    (0.01, 0.0)
+    >>> float(np.max(np.abs(angles.pitch))) < 0.011   # a pitch libration: bounded
+    True
     """
     with warnings.catch_warnings():  # a tumbling body passes |roll| = pi/2; the docstring says so
         warnings.filterwarnings("ignore", message="Gimbal lock detected")

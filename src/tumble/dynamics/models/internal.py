@@ -105,6 +105,17 @@ class SphericalDamper:
     -----
     The sphere starts turning with the body (``w_d(0) = w(0)``). See the module docstring for the
     equations and their sources.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])
+    >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
+    >>> traj = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)
+    >>> traj.nutation_angle.round(2).tolist()   # from a spin about the minor axis to a flat spin about the major one
+    [1.57, 1.13, 0.45, 0.13, 0.01]
+    >>> bool(traj.dissipated[-1] > 0)   # energy the damper took out, J
+    True
     """
 
     inertia: float

@@ -136,6 +136,15 @@ class ConstantTorque:
 
     A constant *body-frame* torque models a thruster fixed to the body; a constant
     *world-frame* torque changes L at a constant rate, ``dL_world/dt = tau``.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+    >>> push = tumble.ConstantTorque((0.0, 0.0, 0.5), "world")   # dL_world/dt = tau
+    >>> traj = tumble.simulate(body, [1.0, 0.2, 0.3], t_end=4.0, samples=5, torque=push)
+    >>> bool(np.allclose(traj.angular_momentum_world[-1] - traj.angular_momentum_world[0], [0.0, 0.0, 2.0]))
+    True
     """
 
     vector: tuple[float, float, float]
@@ -146,6 +155,15 @@ class ConstantTorque:
         _check_frame(self.frame)
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
+        """The torque, N m, in ``frame``: ``vector`` at every time ``t`` (s) and state.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble import ConstantTorque
+        >>> ConstantTorque((1.0, 0.0, 0.0))(0.0, np.zeros(3), None).tolist()   # the same at every time and state, N m
+        [1.0, 0.0, 0.0]
+        """
         return np.array(self.vector)
 
 

@@ -32,6 +32,14 @@ def rotate_by_quaternion(quat: ArrayLike, v: ArrayLike) -> Vector3:
     Returns
     -------
     ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.special.quaternion import rotate_by_quaternion
+    >>> quarter_z = [0.0, 0.0, np.sin(np.pi / 4), np.cos(np.pi / 4)]   # 90 degrees about z
+    >>> rotate_by_quaternion(quarter_z, [1.0, 0.0, 0.0]).round(6).tolist()
+    [0.0, 1.0, 0.0]
     """
     q = np.asarray(quat, float)
     x = np.asarray(v, float)
@@ -45,6 +53,15 @@ def quat_multiply(a: ArrayLike, b: ArrayLike) -> Quaternion:
 
     ``(u, w)(v, s) = (w v + s u + u x v, w s - u . v)`` (Shuster, J. Astronaut. Sci. 41 (1993)
     439); broadcasts over leading axes; shapes (..., 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.special.quaternion import quat_multiply
+    >>> a, b = Rotation.from_euler("x", 30, degrees=True), Rotation.from_euler("y", 40, degrees=True)
+    >>> bool(np.allclose(quat_multiply(a.as_quat(), b.as_quat()), (a * b).as_quat()))   # scipy's a * b
+    True
     """
     qa, qb = np.asarray(a, float), np.asarray(b, float)
     u, w, v, s = qa[..., :3], qa[..., 3:], qb[..., :3], qb[..., 3:]
@@ -55,7 +72,15 @@ def quat_multiply(a: ArrayLike, b: ArrayLike) -> Quaternion:
 
 
 def quat_conjugate(q: ArrayLike) -> Quaternion:
-    """The inverse of unit quaternions, scalar last."""
+    """The inverse of unit quaternions, scalar last.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.special.quaternion import quat_conjugate, quat_multiply
+    >>> q = [0.5, 0.5, 0.5, 0.5]
+    >>> quat_conjugate(q).tolist(), quat_multiply(q, quat_conjugate(q)).tolist()   # q q* = 1
+    ([-0.5, -0.5, -0.5, 0.5], [0.0, 0.0, 0.0, 1.0])
+    """
     out = np.array(q, float)
     out[..., :3] *= -1.0
     return out
@@ -67,7 +92,17 @@ def quat_zxz(phi: FloatOrArray, theta: FloatOrArray, psi: FloatOrArray) -> Quate
     ``(sb (ca cc + sa sc), sb (sa cc - ca sc), cb (sa cc + ca sc), cb (ca cc - sa sc))`` with
     ``sa, ca = sin, cos(phi/2)``, ``sb, cb`` of ``theta/2``, ``sc, cc`` of ``psi/2`` (each angle
     on its own, so a large ``phi`` costs no more than its own rounding); shape
-    ``broadcast(phi, theta, psi) + (4,)``."""
+    ``broadcast(phi, theta, psi) + (4,)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.special.quaternion import quat_zxz
+    >>> q = quat_zxz(0.3, 0.5, 0.7)
+    >>> bool(np.allclose(Rotation.from_quat(q).as_matrix(), Rotation.from_euler("ZXZ", [0.3, 0.5, 0.7]).as_matrix()))
+    True
+    """
     sa, ca = np.sin(0.5 * phi), np.cos(0.5 * phi)
     sb, cb = np.sin(0.5 * theta), np.cos(0.5 * theta)
     sc, cc = np.sin(0.5 * psi), np.cos(0.5 * psi)
@@ -88,6 +123,12 @@ def quaternion_rate(quat: ArrayLike, omega: ArrayLike) -> Quaternion:
         Unit quaternion ``[x, y, z, w]``, body to world.
     omega : array_like, shape (..., 3)
         Angular velocity in the body frame, rad/s.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.special.quaternion import quaternion_rate
+    >>> quaternion_rate([0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 2.0]).tolist()   # q' = q (x) (omega, 0) / 2
+    [0.0, 0.0, 1.0, -0.0]
     """
     q = np.asarray(quat, float)
     w = np.asarray(omega, float)
