@@ -59,7 +59,21 @@ def _duplicate(c: FloatArray, d: FloatArray) -> tuple[FloatArray, FloatArray, Fl
 
 def legendre_f(s: ArrayLike, c: ArrayLike, d: ArrayLike, K: ArrayLike = np.inf) -> FloatArray:
     """``F(phi | m)`` for ``|phi| <= pi/2`` from ``s``, ``c >= 0``, ``d`` (module docstring);
-    ``K`` (the complete value) is returned, with the sign of ``s``, where ``c = d = 0``."""
+    ``K`` (the complete value) is returned, with the sign of ``s``, where ``c = d = 0``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.special import ellipkinc
+    >>> from tumble.dynamics.special.carlson import legendre_f
+    >>> phi, m = 0.9, 0.7
+    >>> s, c = np.sin(phi), np.cos(phi)
+    >>> f = legendre_f(s, c, np.sqrt(1.0 - m * s * s))
+    >>> bool(np.isclose(f, ellipkinc(phi, m), rtol=1e-14))   # scipy's F(phi | m)
+    True
+    >>> float(legendre_f(1e-200, 0.0, 0.0, K=460.0))   # c = d = 0: the complete value K
+    460.0
+    """
     s, c, d = (np.asarray(x, float) for x in (s, c, d))
     x, y, z = _duplicate(c, d)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -79,7 +93,20 @@ def legendre_pi_excess(
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` and ``n <= 0`` (module docstring);
     ``excess_complete = Pi(n | m) - K(m)`` is returned, with the sign of ``s``, where
     ``c = d = 0``. Without ``m``, ``(m - n) s^2`` is formed as ``1 - n s^2 - d^2``: an absolute
-    error of round-off in the small correction ``e`` to ``R_C(1, 1 + e)``, harmless."""
+    error of round-off in the small correction ``e`` to ``R_C(1, 1 + e)``, harmless.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.integrate import quad
+    >>> from tumble.dynamics.special.carlson import legendre_pi_excess
+    >>> n, m, phi = -0.5, 0.7, 1.2
+    >>> s, c = np.sin(phi), np.cos(phi)
+    >>> excess = legendre_pi_excess(n, s, c, np.sqrt(1.0 - m * s * s))
+    >>> quadrature = quad(lambda t: (1 / (1 - n * np.sin(t) ** 2) - 1) / np.sqrt(1 - m * np.sin(t) ** 2), 0, phi)[0]
+    >>> bool(np.isclose(excess, quadrature, rtol=1e-12))   # Pi(n; phi | m) - F(phi | m) by quadrature
+    True
+    """
     s, c, d = (np.asarray(x, float) for x in (s, c, d))
     s2 = s * s
     p = 1.0 - n * s2
@@ -207,6 +234,21 @@ def complete_integrals(
     ``exponent`` lets ``k'`` be far below the smallest double (module docstring). Floats give
     floats (one motion, at Python's speed); arrays give arrays, elementwise, with the same
     arithmetic (:func:`_iterate`): one body and a batch get the same values.
+
+    Examples
+    --------
+    >>> import math
+    >>> from scipy.special import ellipk
+    >>> from tumble.dynamics.special.carlson import complete_integrals
+    >>> K, Pi = complete_integrals(0.0, (math.sqrt(0.5), 0.0))   # m = 1/2, n = 0: Pi = K
+    >>> math.isclose(K[0], ellipk(0.5), rel_tol=1e-15), K == Pi
+    (True, True)
+    >>> K, Pi = complete_integrals(-1.0, (1.0, 0.0))   # m = 0: K = pi / 2, Pi(n | 0) = pi / (2 sqrt(1 - n))
+    >>> math.isclose(K[0], math.pi / 2), math.isclose(Pi[0], math.pi / (2 * math.sqrt(2)))
+    (True, True)
+    >>> K, _ = complete_integrals(0.0, (1.0, 0.0), -1000)   # k' = 2^-1000, far below a double's reach
+    >>> math.isclose(K[0], math.log(4.0) + 1000 * math.log(2.0), rel_tol=1e-15)   # K = ln(4 / k')
+    True
     """
     e: int | IntArray  # k' = mantissa 2^e
     shift: int | IntArray  # k' = k'_60 2^-shift

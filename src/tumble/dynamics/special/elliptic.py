@@ -66,6 +66,16 @@ def agm_tables(b0: ArrayLike, c0: ArrayLike) -> tuple[FloatArray, FloatArray, In
 
     Returns arrays ``a`` and ``c`` of shape ``(L,) + shape(b0)`` (an element that stopped keeps
     its last values) and the number of steps ``N`` each element took.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.special.elliptic import agm_tables
+    >>> a, c, steps = agm_tables([0.6], [0.8])   # the AGM of (1, 0.6), c0^2 = 1 - 0.6^2
+    >>> int(steps[0]), a.shape
+    (5, (6, 1))
+    >>> bool(np.isclose(np.pi / (2 * a[steps[0], 0]), 1.9953027776647294))   # K(m = 0.64) = pi / (2 AGM)
+    True
     """
     b0, c0 = np.asarray(b0, float), np.asarray(c0, float)
     a, b, c = np.ones_like(b0), b0, c0
@@ -124,6 +134,18 @@ class Modulus:
 
         ``K`` is that of ``m1`` as given (``k'`` taken in double-double), so that the
         reduction of a large argument adds no error of its own.
+
+        Examples
+        --------
+        >>> import math
+        >>> from scipy.special import ellipk
+        >>> from tumble.dynamics.special.elliptic import Modulus
+        >>> mod = Modulus.from_parameter(0.75, 0.25)
+        >>> round(mod.k ** 2 + mod.kp ** 2, 15), round(float(mod.K[0] - ellipk(0.75)), 14)   # k^2 + k'^2 = 1; K as scipy's
+        (1.0, 0.0)
+        >>> K = Modulus.from_parameter(1.0, 1e-300).K   # m1 = 1e-300, k' = 1e-150: K = ln(4 / k'), finite
+        >>> round(K[0], 6), round(math.log(4e150), 6)
+        (346.774058, 346.774058)
         """
         if not m1 > 0:
             return cls(math.sqrt(m), 0.0, (math.inf, 0.0))
@@ -178,6 +200,18 @@ class Modulus:
         the functions then keep their identities only. On the separatrix (``K`` infinite: no
         period) ``j = 0`` and the functions are ``tanh`` and ``sech``. With one modulus per
         body, ``u`` has one row per body.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.special.elliptic import Modulus
+        >>> mod = Modulus.from_parameter(0.75, 0.25)
+        >>> u = 7.0 * mod.K[0] + 0.1   # three and a half periods 2K, and 0.1
+        >>> (j1, j2), odd, sn, cn, dn = mod.reduce((np.array([u]), np.zeros(1)))
+        >>> int(j1[0] + j2[0]), bool(odd[0]), bool(cn[0] >= 0)   # u - 2 K j lies in [-K, K]
+        (4, False, True)
+        >>> round(float(sn[0] ** 2 + cn[0] ** 2), 14), round(float(dn[0] ** 2 + 0.75 * sn[0] ** 2), 14)
+        (1.0, 1.0)
         """
         u = (np.asarray(u[0], float), np.asarray(u[1], float))
         col = self._column(u[0].ndim)
@@ -218,7 +252,18 @@ class Modulus:
 
 def ellipk(m: float, m1: float) -> float:
     """Complete elliptic integral of the first kind ``K(m)`` (Bulirsch's ``cel``, via
-    :func:`tumble.dynamics.special.carlson.complete_integrals`); ``m1 = 1 - m`` given separately."""
+    :func:`tumble.dynamics.special.carlson.complete_integrals`); ``m1 = 1 - m`` given separately.
+
+    Examples
+    --------
+    >>> import math
+    >>> from scipy.special import ellipk as scipy_ellipk
+    >>> from tumble.dynamics.special.elliptic import ellipk
+    >>> math.isclose(ellipk(0.3, 0.7), scipy_ellipk(0.3), rel_tol=1e-15), ellipk(0.0, 1.0) == math.pi / 2
+    (True, True)
+    >>> round(ellipk(1.0, 1e-20), 6), round(math.log(4.0 / 1e-10), 6)   # near m = 1: K ~ ln(4 / k')
+    (24.412145, 24.412145)
+    """
     if m1 == 0.0:
         return math.inf
     return cast(float, complete_integrals(0.0, (math.sqrt(m1), 0.0))[0][0])  # floats in, floats out
@@ -231,6 +276,17 @@ def ellipk_kp(kp: ArrayLike) -> FloatArray:
     For callers that hold ``k'`` (:class:`tumble.dynamics.methods.exact.EllipticParameters` ``.kp``),
     which stays representable where ``1 - m = k'^2`` underflows: ``k' = 1e-200`` gives
     ``K = ln(4 / k') = 461.9`` where ``1 - m`` is 0 in double precision.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.special import ellipk
+    >>> from tumble.dynamics.special.elliptic import ellipk_kp
+    >>> K = ellipk_kp([1.0, 0.5, 1e-200, 0.0])
+    >>> bool(np.isclose(K[1], ellipk(0.75))), round(float(K[2]), 1), float(K[3])
+    (True, 461.9, inf)
+    >>> bool(np.isclose(K[0], np.pi / 2))
+    True
     """
     kp = np.asarray(kp, float)
     a, b = np.ones_like(kp), kp
@@ -246,6 +302,19 @@ def jacobi_reduced(u: ArrayLike, m: float, m1: float) -> tuple[FloatArray, Float
     ``cn(u) = (-1)^j cn(u_r)``, ``dn(u) = dn(u_r)``. For ``m1 = 0`` (the separatrix) ``j = 0``
     and the functions are ``tanh`` and ``sech``. The reduction is exact (double-double), so the
     three functions stay on their curves (``sn^2 + cn^2 = 1``) at any ``u``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.special import ellipj, ellipk
+    >>> from tumble.dynamics.special.elliptic import jacobi_reduced
+    >>> u = 3.0 * ellipk(0.5) + 0.2   # nearest multiple of 2K: 4K, so j = 2
+    >>> j, sn, cn, dn = jacobi_reduced(u, 0.5, 0.5)
+    >>> int(j), bool(cn >= 0)
+    (2, True)
+    >>> s, c, d, _ = ellipj(u, 0.5)   # sn(u) = (-1)^j sn(u_r)
+    >>> bool(np.allclose([sn, cn, dn], [s, c, d], atol=1e-13))
+    True
     """
     u = np.asarray(u, dtype=float)
     (j1, j2), _, sn, cn, dn = Modulus.from_parameter(m, m1).reduce((u, np.zeros_like(u)))
@@ -253,7 +322,26 @@ def jacobi_reduced(u: ArrayLike, m: float, m1: float) -> tuple[FloatArray, Float
 
 
 def jacobi(u: ArrayLike, m: float, m1: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """``sn, cn, dn`` of ``u`` for parameter ``m`` (``m1 = 1 - m`` given separately)."""
+    """``sn, cn, dn`` of ``u`` for parameter ``m`` (``m1 = 1 - m`` given separately).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.special import ellipj
+    >>> from tumble.dynamics.special.elliptic import jacobi
+    >>> u = np.linspace(-5.0, 5.0, 11)
+    >>> sn, cn, dn = jacobi(u, 0.8, 0.2)
+    >>> bool(np.allclose(np.array([sn, cn, dn]), np.array(ellipj(u, 0.8)[:3]), atol=1e-14))   # scipy's
+    True
+    >>> bool(np.allclose(sn**2 + cn**2, 1.0) and np.allclose(dn**2 + 0.8 * sn**2, 1.0))
+    True
+    >>> sn, cn, dn = jacobi([1e20], 0.8, 0.2)   # any argument: still on the curves
+    >>> round(float(sn[0] ** 2 + cn[0] ** 2), 14)
+    1.0
+    >>> sn, cn, dn = jacobi([2.0], 1.0, 0.0)   # the separatrix: tanh and sech
+    >>> bool(np.isclose(sn[0], np.tanh(2.0)) and np.isclose(cn[0], 1 / np.cosh(2.0)))
+    True
+    """
     u = np.asarray(u, dtype=float)
     _, odd, sn, cn, dn = Modulus.from_parameter(m, m1).reduce((u, np.zeros_like(u)))
     sign = np.where(odd, -1.0, 1.0)
@@ -265,5 +353,17 @@ def carlson_pi(n: float, s: ArrayLike, c: ArrayLike, d: ArrayLike) -> FloatArray
     ``Delta = sqrt(1 - m sin^2 phi)`` (DLMF 19.25.14 with ``alpha^2 = n``); ``n <= 0``.
 
     ``Pi(n; phi | m) = int_0^phi d theta / ((1 - n sin^2 theta) sqrt(1 - m sin^2 theta))``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.integrate import quad
+    >>> from tumble.dynamics.special.elliptic import carlson_pi
+    >>> n, m, phi = -2.0, 0.4, 1.0
+    >>> s, c = np.sin(phi), np.cos(phi)
+    >>> value = carlson_pi(n, s, c, np.sqrt(1 - m * s * s))
+    >>> integrand = lambda t: 1 / ((1 - n * np.sin(t) ** 2) * np.sqrt(1 - m * np.sin(t) ** 2))
+    >>> bool(np.isclose(value, quad(integrand, 0, phi)[0], rtol=1e-13))
+    True
     """
     return legendre_f(s, c, d) + legendre_pi_excess(n, s, c, d)

@@ -30,7 +30,18 @@ def mrp_from_quat(quat: ArrayLike) -> Vector3:
 
 
 def mrp_angle(sigma: ArrayLike) -> FloatOrArray:
-    """The principal rotation angle ``phi = 4 atan |sigma|`` of MRPs, rad; shape (...)."""
+    """The principal rotation angle ``phi = 4 atan |sigma|`` of MRPs, rad; shape (...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.special.mrp import mrp_angle, mrp_from_quat
+    >>> q = [0.0, np.sin(1.2), 0.0, np.cos(1.2)]   # 2.4 rad about y
+    >>> round(float(mrp_angle(mrp_from_quat(q))), 12)
+    2.4
+    >>> round(float(mrp_angle([1.0, 0.0, 0.0])), 12) == round(np.pi, 12)   # |sigma| = 1: a half turn
+    True
+    """
     s: FloatArray = np.asarray(sigma, float)
     angle: FloatArray = 4.0 * np.arctan(np.linalg.norm(s, axis=-1))
     return angle
