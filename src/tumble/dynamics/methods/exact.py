@@ -196,7 +196,21 @@ class FreeRotation:
 
     @property
     def max_time(self) -> float:
-        """Longest ``|t|`` (s) before a phase of the motion exceeds :data:`MAX_PHASE`."""
+        """Longest ``|t|`` (s) before a phase of the motion exceeds :data:`MAX_PHASE`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.methods.exact import MAX_PHASE, FreeRotation
+        >>> motion = FreeRotation([1.0, 2.0, 3.0], [0.1, 1.0, 0.1], Rotation.identity())
+        >>> bool(np.isclose(motion.max_time * motion.phase_rate, MAX_PHASE))
+        True
+        >>> motion.omega(2.0 * motion.max_time)
+        Traceback (most recent call last):
+        ...
+        ValueError: t_end = ... s takes this motion to a phase of ... rad, beyond the ... rad up to which the exact solution keeps its phase error below 1e-6 rad; at most ... s
+        """
         return MAX_PHASE / self.phase_rate if self.phase_rate > 0 else math.inf
 
     def _check_time(self, t: ArrayLike) -> None:
@@ -220,7 +234,24 @@ class FreeRotation:
         return answer
 
     def omega(self, t: ArrayLike) -> Vector3:
-        """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3)."""
+        """Angular velocity at times ``t`` (s), principal frame, rad/s; shape (..., 3).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from scipy.special import ellipk
+        >>> from tumble.dynamics.methods.exact import FreeRotation, elliptic_parameters
+        >>> I, w0 = np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1])
+        >>> motion = FreeRotation(I, w0, Rotation.identity())
+        >>> par = elliptic_parameters(w0, I)
+        >>> period = 4.0 * ellipk(par.m) / par.p   # omega's period 4 K / p
+        >>> bool(np.allclose(motion.omega(period), w0, atol=1e-12))
+        True
+        >>> w = motion.omega(np.linspace(0.0, 50.0, 6))   # energy and |L| hold (no torque)
+        >>> bool(np.allclose((I * w**2).sum(-1), I @ w0**2) and np.allclose(np.linalg.norm(I * w, axis=-1), np.linalg.norm(I * w0)))
+        True
+        """
         t = np.asarray(t, float)
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
@@ -228,7 +259,20 @@ class FreeRotation:
         return omega
 
     def attitude(self, t: ArrayLike) -> Rotation:
-        """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack."""
+        """Body (principal) to world at times ``t`` (s, 1-D), as a Rotation stack.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.methods.exact import FreeRotation
+        >>> I, w0 = np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1])
+        >>> motion = FreeRotation(I, w0, Rotation.identity())
+        >>> t = np.array([0.0, 10.0, 1000.0])
+        >>> L_world = motion.attitude(t).apply(I * motion.omega(t))   # the angular momentum is fixed in space
+        >>> L_world.round(12).tolist()
+        [[0.1, 2.0, 0.3], [0.1, 2.0, 0.3], [0.1, 2.0, 0.3]]
+        """
         t = np.atleast_1d(np.asarray(t, float))
         self._check_time(t)
         if self.steady:

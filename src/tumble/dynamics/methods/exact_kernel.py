@@ -258,7 +258,22 @@ class EllipticMotion:
 
     @property
     def phase_rate(self) -> FloatArray:
-        """The fastest rate of any phase of each motion (1/s): ``p`` or the precession's."""
+        """The fastest rate of any phase of each motion (1/s): ``p`` or the precession's.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.methods.exact_kernel import EllipticMotion
+        >>> I, w0 = np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1])
+        >>> motion = EllipticMotion(I[None, :], w0[None, :])
+        >>> period = 4.0 * motion.K[0][0] / motion.p[0][0]   # omega's period 4 K / p
+        >>> t = np.linspace(0.0, period, 401)[:-1]
+        >>> w = motion.omega(motion.reduce(t))[0]
+        >>> L = np.linalg.norm(I * w0)   # the precession rate about L, averaged over a period (Landau & Lifshitz sec. 37)
+        >>> precession = L * (I[0] * w[:, 0]**2 + I[1] * w[:, 1]**2) / ((I[0] * w[:, 0])**2 + (I[1] * w[:, 1])**2)
+        >>> bool(np.isclose(motion.phase_rate[0], precession.mean(), rtol=1e-12)), bool(motion.phase_rate[0] > motion.p[0][0])
+        (True, True)
+        """
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             self._precession_parameters()
         return self.rate
@@ -266,13 +281,40 @@ class EllipticMotion:
     # -- evaluation ------------------------------------------------------------------
     def reduce(self, t: ArrayLike) -> Reduced:
         """Half-period counts ``(j1, j2)``, parity and ``sn, cn, dn`` of the reduced phase of
-        every body at times ``t`` (s, shape (T,)): arrays of shape (N, T)."""
+        every body at times ``t`` (s, shape (T,)): arrays of shape (N, T).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.methods.exact_kernel import EllipticMotion
+        >>> motion = EllipticMotion(np.array([[1.0, 2.0, 3.0]]), np.array([[0.1, 1.0, 0.1]]))
+        >>> period = 4.0 * motion.K[0][0] / motion.p[0][0]   # 4 K / p: two half periods of u
+        >>> (j1, j2), odd, sn, cn, dn = motion.reduce(np.array([0.0, period, 1e6 * period]))
+        >>> (j1 + j2 - (j1 + j2)[:, :1]).tolist(), sn.shape
+        ([[0.0, 2.0, 2000000.0]], (1, 3))
+        >>> bool(np.allclose(sn**2 + cn**2, 1.0))
+        True
+        """
         u = dd.add(dd.mul_scaled(_column(self.p), np.asarray(t, float)), _column(self.u0))
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             return self.modulus.reduce(u)
 
     def omega(self, reduced: Reduced) -> Vector3:
-        """Angular velocity (rad/s, principal frame), shape (N, T, 3), from :meth:`reduce`."""
+        """Angular velocity (rad/s, principal frame), shape (N, T, 3), from :meth:`reduce`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.methods.exact_kernel import EllipticMotion
+        >>> I = np.array([[1.0, 2.0, 3.0], [2.0, 2.5, 4.0]])   # two bodies
+        >>> w0 = np.array([[0.1, 1.0, 0.1], [1.0, -0.5, 0.3]])
+        >>> motion = EllipticMotion(I, w0)
+        >>> w = motion.omega(motion.reduce(np.linspace(0.0, 100.0, 5)))
+        >>> w.shape
+        (2, 5, 3)
+        >>> bool(np.allclose((I[:, None] * w**2).sum(-1), (I * w0**2).sum(-1)[:, None]))   # energy of each body
+        True
+        """
         _, odd, sn, cn, dn = reduced
         flip = np.where(odd, -1.0, 1.0)
         rows = self.rows
@@ -283,7 +325,22 @@ class EllipticMotion:
 
     def attitude(self, q0: ArrayLike, t: ArrayLike, reduced: Reduced, omega: Vector3) -> Quaternion:
         """Principal frame to world, shape (N, T, 4), scalar last: ``G Rz(phi) Rx(theta) Rz(psi)
-        P`` with ``G`` fixed by ``q0`` (shape (N, 4)), from :meth:`reduce` and :meth:`omega`."""
+        P`` with ``G`` fixed by ``q0`` (shape (N, 4)), from :meth:`reduce` and :meth:`omega`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.methods.exact_kernel import EllipticMotion
+        >>> I, w0 = np.array([[1.0, 2.0, 3.0]]), np.array([[0.1, 1.0, 0.1]])
+        >>> motion = EllipticMotion(I, w0)
+        >>> t = np.array([0.0, 10.0, 1000.0])
+        >>> reduced = motion.reduce(t)
+        >>> w = motion.omega(reduced)
+        >>> q = motion.attitude(np.array([[0.0, 0.0, 0.0, 1.0]]), t, reduced, w)
+        >>> from tumble.dynamics.special.quaternion import rotate_by_quaternion
+        >>> rotate_by_quaternion(q, I[:, None] * w).round(12).tolist()   # L is fixed in space
+        [[[0.1, 2.0, 0.3], [0.1, 2.0, 0.3], [0.1, 2.0, 0.3]]]
+        """
         with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
             self._precession_parameters()
             (j1, j2), _, sn, cn, dn = reduced

@@ -35,7 +35,18 @@ __all__ = ["EllipticParameters", "elliptic_parameters"]
 
 
 class EllipticParameters(NamedTuple):
-    """Parameters of the torque-free motion through one omega (module docstring); arrays (...)."""
+    """Parameters of the torque-free motion through one omega (module docstring); arrays (...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_parameters import elliptic_parameters
+    >>> par = elliptic_parameters([0.1, 1.0, 0.1], [1.0, 2.0, 3.0])
+    >>> par._fields
+    ('upper', 'p', 'm', 'm1', 'amplitudes', 'k', 'kp')
+    >>> bool(par.upper), round(float(par.m + par.m1), 15), round(float(par.k**2 + par.kp**2), 15)
+    (True, 1.0, 1.0)
+    """
 
     upper: np.ndarray  # L^2 >= 2 E I2: omega circulates about axis 3 (else about axis 1)
     p: np.ndarray  # rate of the elliptic argument u = u0 + p t, 1/s
@@ -164,6 +175,20 @@ def elliptic_parameters(omega: ArrayLike, moments: ArrayLike) -> EllipticParamet
 
     ``1 - m`` is formed from the energy-momentum gaps directly, never as ``1 - m``; nothing
     underflows that the answer does not (module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_parameters import elliptic_parameters
+    >>> I, w = np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1])
+    >>> L2, E2 = np.sum((I * w) ** 2), np.sum(I * w**2)   # |L|^2 and 2 E; L^2 > 2 E I2: about axis 3
+    >>> m = (I[1] - I[0]) * (E2 * I[2] - L2) / ((I[2] - I[1]) * (L2 - E2 * I[0]))   # Landau & Lifshitz sec. 37
+    >>> p = np.sqrt((I[2] - I[1]) * (L2 - E2 * I[0]) / np.prod(I))
+    >>> par = elliptic_parameters(w, I)
+    >>> bool(par.upper), bool(np.isclose(par.m, m, rtol=1e-14)), bool(np.isclose(par.p, p, rtol=1e-14))
+    (True, True, True)
+    >>> elliptic_parameters(np.array([w, [1.0, 0.1, 0.1]]), I).m1.shape   # broadcasts over (..., 3)
+    (2,)
     """
     c = scaled_core(omega, moments)
 
