@@ -128,7 +128,14 @@ class SphericalDamper:
                       self.damping / self.inertia, "1/s", MAX_RATE)
 
     def rates(self, moments: ArrayLike) -> Vector3:
-        """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments."""
+        """Relaxation rates ``k_i = (c / J)(1 + J / I_i)`` of ``w_d`` at fixed L, 1/s; shape of moments.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.internal import SphericalDamper
+        >>> SphericalDamper(inertia=0.5, damping=2.0).rates([1.0, 2.0, 5.0]).tolist()   # (c / J)(1 + J / I_i)
+        [6.0, 5.0, 4.4]
+        """
         return self.damping / self.inertia * (1.0 + self.inertia / np.asarray(moments, float))
 
     def relax(self, free: FloatArray, omega_d: FloatArray, moments: FloatArray, dt: float) -> tuple[FloatArray, FloatArray]:
@@ -152,6 +159,20 @@ class SphericalDamper:
         omega_d : ndarray, shape (3, ...)
         dissipated : ndarray, shape (...)
             J.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import SphericalDamper
+        >>> damper = SphericalDamper(inertia=0.5, damping=2.0)
+        >>> I, free, wd = np.array([1.0, 2.0, 5.0]), np.array([1.0, 0.0, 3.0]), np.zeros(3)
+        >>> wd_long, lost = damper.relax(free, wd, I, 100.0)   # long after: w_d = w = free / (I + J)
+        >>> wd_long.round(12).tolist()
+        [0.666666666667, 0.0, 0.545454545455]
+        >>> energy = lambda wd: 0.5 * np.sum((free - 0.5 * wd) ** 2 / I) + 0.5 * 0.5 * wd @ wd   # body + sphere
+        >>> wd_1, lost_1 = damper.relax(free, wd, I, 0.1)
+        >>> bool(np.isclose(energy(wd) - energy(wd_1), lost_1))   # what the energy lost, the damper dissipated
+        True
         """
         J = self.inertia
         k = self.rates(moments)
@@ -174,6 +195,15 @@ class Rotors:
         ``J_k``, kg m^2.
     axes : ndarray, shape (k, 3)
         Unit spin axes ``n_k``, principal frame.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics.models.internal import Rotors
+    >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=100.0)
+    >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel]))
+    >>> rotors.axial_moments.round(12).tolist(), rotors.axes.tolist()   # design z is principal axis 1 (I1's)
+    ([0.005], [[1.0, 0.0, 0.0]])
     """
 
     parts: tuple[Rotor, ...]
@@ -183,7 +213,17 @@ class Rotors:
     @classmethod
     def of(cls, body: Body | MassProperties) -> Rotors | None:
         """The rotors of a :class:`~tumble.mass.Body` (None without any; a bare
-        :class:`~tumble.mass.MassProperties` has none)."""
+        :class:`~tumble.mass.MassProperties` has none).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> wheel = tumble.Rotor(mass=2.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=50.0)
+        >>> box = tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0))
+        >>> Rotors.of(tumble.Body([box, wheel])).axial_moments.round(6).tolist(), Rotors.of(tumble.Body([box]))
+        ([0.01], None)
+        """
         parts = tuple(getattr(body, "rotors", ()))
         if not parts:
             return None
@@ -192,33 +232,108 @@ class Rotors:
 
     @property
     def constant(self) -> bool:
-        """Whether every spin is constant (then ``h`` is, and ``H`` is conserved)."""
+        """Whether every spin is constant (then ``h`` is, and ``H`` is conserved).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> box = tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0))
+        >>> steady = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> Rotors.of(tumble.Body([box, steady])).constant, Rotors.of(tumble.Body([box, ramp])).constant
+        (True, False)
+        """
         return all(p.constant_spin for p in self.parts)
 
     @property
     def derivative_known(self) -> bool:
-        """Whether every ``ds/dt`` is known (needed for the motor's work only)."""
+        """Whether every ``ds/dt`` is known (needed for the motor's work only).
+
+        Examples
+        --------
+        >>> import math
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> box = tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0))
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> wave = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=math.sin)   # no ds/dt given
+        >>> Rotors.of(tumble.Body([box, ramp])).derivative_known, Rotors.of(tumble.Body([box, wave])).derivative_known
+        (True, False)
+        """
         return all(p.constant_spin or not callable(p.spin_rate) or p.spin_acceleration is not None
                    for p in self.parts)
 
     def spins(self, t: ArrayLike) -> FloatArray:
-        """Relative spins ``s_k(t)``, rad/s; shape ``np.shape(t) + (k,)``."""
+        """Relative spins ``s_k(t)``, rad/s; shape ``np.shape(t) + (k,)``.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp]))
+        >>> rotors.spins([0.0, 1.0, 2.5]).tolist()   # s(t) = 100 + 2 t, one column per rotor
+        [[100.0], [102.0], [105.0]]
+        """
         return np.stack([p.spin(t) for p in self.parts], axis=-1)
 
     def spin_derivatives(self, t: ArrayLike) -> FloatArray:
-        """``ds_k/dt``, rad/s^2; shape ``np.shape(t) + (k,)`` (requires :attr:`derivative_known`)."""
+        """``ds_k/dt``, rad/s^2; shape ``np.shape(t) + (k,)`` (requires :attr:`derivative_known`).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp]))
+        >>> rotors.spin_derivatives([0.0, 7.0]).tolist()
+        [[2.0], [2.0]]
+        """
         return np.stack([cast(FloatArray, p.spin_derivative(t)) for p in self.parts], axis=-1)
 
     def momentum(self, t: ArrayLike) -> Vector3:
-        """``h(t) = sum_k J_k s_k(t) n_k``, kg m^2/s; shape ``np.shape(t) + (3,)``."""
+        """``h(t) = sum_k J_k s_k(t) n_k``, kg m^2/s; shape ``np.shape(t) + (3,)``.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0, 0, 1), spin_rate=100.0, spin_acceleration=2.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp]))
+        >>> rotors.momentum(1.0).round(12).tolist()   # J s n = 0.005 kg m^2 x 102 rad/s along principal axis 1
+        [0.51, 0.0, 0.0]
+        """
         return self.spins(t) @ (self.axial_moments[:, None] * self.axes)
 
     def momentum_rate(self, t: ArrayLike) -> Vector3:
-        """``h'(t)``, N m; shape ``np.shape(t) + (3,)``."""
+        """``h'(t)``, N m; shape ``np.shape(t) + (3,)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp]))
+        >>> dt = 1e-3   # h' against a central difference of h
+        >>> bool(np.allclose(rotors.momentum_rate(1.0), (rotors.momentum(1.0 + dt) - rotors.momentum(1.0 - dt)) / (2 * dt)))
+        True
+        """
         return self.spin_derivatives(t) @ (self.axial_moments[:, None] * self.axes)
 
     def spin_energy(self, t: ArrayLike) -> FloatArray:
-        """``sum_k J_k s_k^2 / 2``, J; shape ``np.shape(t)``."""
+        """``sum_k J_k s_k^2 / 2``, J; shape ``np.shape(t)``.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel]))
+        >>> round(float(rotors.spin_energy(0.0)), 12)   # J s^2 / 2 = 0.005 x 100^2 / 2
+        25.0
+        """
         s = self.spins(t)
         return cast(FloatArray, 0.5 * np.sum(self.axial_moments * s * s, axis=-1))
 
@@ -241,6 +356,15 @@ def gyrostat_rate(moments: ArrayLike, spin: ArrayLike, momentum: ArrayLike) -> t
         ``sqrt(p / (I1 I3))`` for ``p = ((I3 - I2) W - h)((I2 - I1) W + h) > 0`` (1/s, else 0)
         and ``sqrt(-p / (I1 I3))`` for ``p < 0`` (rad/s, else 0); derived in the module
         docstring.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.internal import gyrostat_rate
+    >>> I = [1.0, 2.0, 3.0]
+    >>> [round(float(x), 12) for x in gyrostat_rate(I, 1.0, 0.0)]   # no wheel: the intermediate axis is unstable
+    [0.57735026919, 0.0]
+    >>> [round(float(x), 12) for x in gyrostat_rate(I, 1.0, 2.0)]   # h > (I3 - I2) W: it wobbles instead
+    [0.0, 1.0]
     """
     I = np.asarray(moments, float)
     W, h = np.asarray(spin, float), np.asarray(momentum, float)
@@ -249,7 +373,22 @@ def gyrostat_rate(moments: ArrayLike, spin: ArrayLike, momentum: ArrayLike) -> t
 
 
 class InternalSamples(NamedTuple):
-    """What an integrator returns for a run with internal models, at the sample times."""
+    """What an integrator returns for a run with internal models, at the sample times.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.geometric import propagate_internal
+    >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+    >>> model = InternalModel(np.array([1.0, 2.0, 3.0]), damper=SphericalDamper(inertia=0.1, damping=0.5))
+    >>> run = propagate_internal(model, [0.1, 1.0, 0.1], [0.0, 0.0, 0.0, 1.0], np.linspace(0.0, 10.0, 6))
+    >>> run._fields
+    ('omega', 'quat', 'damper_omega', 'dissipated', 'work_integral')
+    >>> run.omega.shape, run.damper_omega.shape, run.work_integral is None   # no rotors: no motor work
+    ((6, 3), (6, 3), True)
+    >>> bool(np.all(np.diff(run.dissipated) > 0))
+    True
+    """
 
     omega: Vector3  # (n, 3) rad/s
     quat: Quaternion  # (n, 4) body -> world, scalar last
@@ -266,6 +405,19 @@ class InternalModel:
     ODE state (DOP853, RK45): ``[L (3), q (4), w_d (3, with a damper), A (1, with varying spins
     of known rate), D (1, with a damper)]``: total momentum, attitude, the damper's rate, the
     integral ``A = integral h'.w dt`` and the energy dissipated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import tumble
+    >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+    >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+    >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+    >>> model = InternalModel(body.principal_moments, Rotors.of(body))
+    >>> y0 = model.initial_state([0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0])
+    >>> dy = model.rhs(0.0, y0, None)   # L' = L x w: the total momentum only turns in the body frame
+    >>> bool(np.isclose(dy[:3] @ y0[:3], 0.0))
+    True
     """
 
     moments: Vector3
@@ -281,16 +433,46 @@ class InternalModel:
 
     @property
     def tracks_work(self) -> bool:
-        """Whether ``A = integral h'.w dt`` must be integrated (spins that vary at a known rate)."""
+        """Whether ``A = integral h'.w dt`` must be integrated (spins that vary at a known rate).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> box = tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0))
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> body = tumble.Body([box, ramp])
+        >>> InternalModel(body.principal_moments, Rotors.of(body)).tracks_work, InternalModel(np.ones(3)).tracks_work
+        (True, False)
+        """
         return self.rotors is not None and not self.rotors.constant and self.rotors.derivative_known
 
     @property
     def damper_inertia(self) -> float:
+        """The damper sphere's moment of inertia ``J``, kg m^2 (0 without a damper).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> InternalModel(np.ones(3), damper=SphericalDamper(inertia=0.2, damping=1.0)).damper_inertia, InternalModel(np.ones(3)).damper_inertia
+        (0.2, 0.0)
+        """
         return 0.0 if self.damper is None else self.damper.inertia
 
     @property
     def relaxation_rate(self) -> float:
-        """The damper's fastest relaxation rate ``max_i k_i``, 1/s (0 without a damper)."""
+        """The damper's fastest relaxation rate ``max_i k_i``, 1/s (0 without a damper).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> model = InternalModel(np.array([1.0, 2.0, 5.0]), damper=SphericalDamper(inertia=0.5, damping=2.0))
+        >>> model.relaxation_rate   # (c / J)(1 + J / I1), the largest rate
+        6.0
+        """
         return 0.0 if self.damper is None else float(np.max(self.damper.rates(self.moments)))
 
     def stiffness(self, spin: float, t_end: float) -> tuple[float, float]:
@@ -310,13 +492,36 @@ class InternalModel:
             the run is stiff.
         slow : float
             ``max(spin, 1 / t_end)``, rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> model = InternalModel(np.array([1.0, 2.0, 5.0]), damper=SphericalDamper(inertia=0.5, damping=2.0))
+        >>> model.stiffness(spin=3.0, t_end=100.0)   # 6 / s against 3 rad/s
+        (2.0, 3.0)
+        >>> model.stiffness(spin=0.0, t_end=0.5)   # at rest: 1 / t_end stands for the spin
+        (3.0, 2.0)
         """
         slow = max(float(spin), 1.0 / float(t_end))
         return self.relaxation_rate / slow, slow
 
     def spin_bound(self, omega0: ArrayLike, t: ArrayLike) -> float:
         """An estimate of the fastest body spin of a run, rad/s: ``|w0| + 2 max |h| / I1`` over
-        the sample times ``t`` (the rotors can hand the body their momentum and reverse it)."""
+        the sample times ``t`` (the rotors can hand the body their momentum and reverse it).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+        >>> model = InternalModel(body.principal_moments, Rotors.of(body))
+        >>> I1 = body.principal_moments[0]
+        >>> bool(np.isclose(model.spin_bound([0.0, 0.0, 1.0], [0.0, 1.0]), 1.0 + 2 * 0.5 / I1))   # |w0| + 2 |h| / I1
+        True
+        """
         spin = float(np.linalg.norm(omega0))
         if self.rotors is None:
             return spin
@@ -324,16 +529,50 @@ class InternalModel:
         return spin + 2.0 * float(np.max(h)) / float(np.min(self.moments))
 
     def momentum(self, t: ArrayLike) -> Vector3:
-        """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors)."""
+        """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+        >>> InternalModel(body.principal_moments, Rotors.of(body)).momentum(0.0).round(12).tolist()   # J s along axis 1
+        [0.5, 0.0, 0.0]
+        >>> InternalModel(np.ones(3)).momentum([0.0, 1.0]).tolist()
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+        """
         if self.rotors is None:
             return np.zeros(np.shape(t) + (3,))
         return self.rotors.momentum(t)
 
     def momentum_rate(self, t: ArrayLike) -> Vector3:
+        """``h'(t)``, N m, shape ``np.shape(t) + (3,)`` (zeros unless :attr:`tracks_work`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0, spin_acceleration=2.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp])
+        >>> InternalModel(body.principal_moments, Rotors.of(body)).momentum_rate(3.0).round(12).tolist()   # J s' along axis 1
+        [0.01, 0.0, 0.0]
+        """
         return cast(Rotors, self.rotors).momentum_rate(t) if self.tracks_work else np.zeros(np.shape(t) + (3,))
 
     def initial_state(self, omega0: ArrayLike, quat0: ArrayLike) -> FloatArray:
-        """The ODE state at t = 0 (the damper turning with the body)."""
+        """The ODE state at t = 0 (the damper turning with the body).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> model = InternalModel(np.array([1.0, 2.0, 3.0]), damper=SphericalDamper(inertia=0.5, damping=1.0))
+        >>> model.initial_state([1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]).tolist()   # L = (I + J) w, q, w_d = w, D = 0
+        [1.5, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0]
+        """
         w0 = np.asarray(omega0, float)
         J = self.damper_inertia
         parts: list[ArrayLike] = [self.moments * w0 + self.momentum(0.0) + J * w0, quat0]
@@ -343,14 +582,33 @@ class InternalModel:
         return np.concatenate(parts)
 
     def atol(self, atol: float, spin: float) -> FloatArray:
-        """Absolute tolerances per state component for a relative ``atol`` and a spin scale (rad/s)."""
+        """Absolute tolerances per state component for a relative ``atol`` and a spin scale (rad/s).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel
+        >>> InternalModel(np.array([1.0, 2.0, 4.0])).atol(1e-9, 2.0).tolist()   # L to atol spin I3, q to atol
+        [8e-09, 8e-09, 8e-09, 1e-09, 1e-09, 1e-09, 1e-09]
+        """
         I = float(np.max(self.moments)) + self.damper_inertia
         n_energy = int(self.tracks_work) + int(self.damper is not None)
         wd = [atol * spin] * (3 if self.damper is not None else 0)
         return np.array([atol * spin * I] * 3 + [atol] * 4 + wd + [atol * spin * spin * I] * n_energy)
 
     def rhs(self, t: float, y: FloatArray, torque: Callable[[float, Vector3, Quaternion], Vector3] | None) -> FloatArray:
-        """``dy/dt``; ``torque(t, w, q)`` returns the external torque in the body frame (N m)."""
+        """``dy/dt``; ``torque(t, w, q)`` returns the external torque in the body frame (N m).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel
+        >>> I, w = np.array([1.0, 2.0, 3.0]), np.array([0.3, 1.0, 0.2])
+        >>> model = InternalModel(I)
+        >>> dy = model.rhs(0.0, model.initial_state(w, [0.0, 0.0, 0.0, 1.0]), None)
+        >>> bool(np.allclose(dy[:3], np.cross(I * w, w)))   # no rotor, no damper: Euler's L' = L x w
+        True
+        """
         damper = cast(SphericalDamper, self.damper)  # read only where wd is set, i.e. with a damper
         L, q = y[:3], y[3:7]
         h = self.momentum(t)
@@ -379,6 +637,18 @@ class InternalModel:
         work and dissipation rates ``h'.w`` and ``c |s|^2``. An external torque's own dependence
         on the state is left out (the Newton iterations of an implicit method converge with it
         all the same; only the step's error estimate decides the accuracy).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> model = InternalModel(np.array([1.0, 2.0, 3.0]), damper=SphericalDamper(inertia=0.2, damping=0.5))
+        >>> y = model.initial_state([0.3, 1.0, 0.2], [0.1, 0.2, 0.3, 0.927])
+        >>> y[7:10] += [0.05, -0.02, 0.01]   # the sphere slipping
+        >>> eps = 1e-6   # against central differences of rhs
+        >>> numeric = np.array([(model.rhs(0.0, y + e, None) - model.rhs(0.0, y - e, None)) / (2 * eps) for e in eps * np.eye(len(y))]).T
+        >>> bool(np.allclose(model.jacobian(0.0, y), numeric, atol=1e-8))
+        True
         """
         L, q = y[:3], y[3:7]
         m = len(y)
@@ -412,7 +682,18 @@ class InternalModel:
         return out
 
     def samples(self, t: FloatArray, Y: FloatArray) -> InternalSamples:
-        """Unpack ODE states ``Y`` (shape (n, m)) at the times ``t`` (shape (n,))."""
+        """Unpack ODE states ``Y`` (shape (n, m)) at the times ``t`` (shape (n,)).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.internal import InternalModel, SphericalDamper
+        >>> model = InternalModel(np.array([1.0, 2.0, 3.0]), damper=SphericalDamper(inertia=0.5, damping=1.0))
+        >>> Y = model.initial_state([1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 2.0])[None, :]   # one state, q not unit
+        >>> run = model.samples(np.zeros(1), Y)
+        >>> run.omega.tolist(), run.quat.tolist(), run.dissipated.tolist()   # w = (L - J w_d) / I; q normalised
+        ([[1.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]], [0.0])
+        """
         L, q = Y[:, :3], Y[:, 3:7]
         wd = Y[:, 7:10] if self.damper is not None else None
         k = 10 if self.damper is not None else 7
@@ -421,14 +702,44 @@ class InternalModel:
         return InternalSamples(self.omega(t, L, wd), q / np.linalg.norm(q, axis=1, keepdims=True), wd, D, A)
 
     def omega(self, t: ArrayLike, L: Vector3, omega_d: Vector3 | None = None) -> Vector3:
-        """``w = I^-1 (L - h(t) - J w_d)``, rad/s; ``L`` and ``w_d`` of shape (n, 3)."""
+        """``w = I^-1 (L - h(t) - J w_d)``, rad/s; ``L`` and ``w_d`` of shape (n, 3).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+        >>> model = InternalModel(body.principal_moments, Rotors.of(body))
+        >>> model.omega(0.0, np.array([[0.5, 0.0, 0.0]])).round(12).tolist() == [[0.0, 0.0, 0.0]]   # L = h: the body at rest
+        True
+        """
         free = L - self.momentum(t)
         if omega_d is not None:
             free = free - cast(SphericalDamper, self.damper).inertia * omega_d
         return free / self.moments
 
     def trajectory_fields(self, t: FloatArray, run: InternalSamples) -> dict[str, Any]:
-        """The optional :class:`~tumble.dynamics.trajectory.Trajectory` fields of a run."""
+        """The optional :class:`~tumble.dynamics.trajectory.Trajectory` fields of a run.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.methods.geometric import propagate_internal
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> ramp = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=0.0, spin_acceleration=10.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), ramp])
+        >>> model = InternalModel(body.principal_moments, Rotors.of(body))
+        >>> t = np.linspace(0.0, 2.0, 3)
+        >>> fields = model.trajectory_fields(t, propagate_internal(model, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0], t))
+        >>> sorted(fields)
+        ['internal_momentum', 'motor_work', 'rotor_axial_moments', 'rotor_spin']
+        >>> J, I1, s = 0.005, body.principal_moments[0], 20.0   # spun up from rest: I w = -h, so the work is
+        >>> bool(np.isclose(fields["motor_work"][-1], 0.5 * J * s**2 * (1.0 - J / I1)))   # T = J s^2 / 2 - (J s)^2 / (2 I1)
+        True
+        """
         fields: dict[str, Any] = {}
         if self.rotors is not None:
             h = self.rotors.momentum(t)
