@@ -167,17 +167,40 @@ class GravityGradient:
 
     @property
     def mean_motion(self) -> float:
-        """Mean motion ``n = sqrt(mu / r^3) = 2 pi / period``, rad/s."""
+        """Mean motion ``n = sqrt(mu / r^3) = 2 pi / period``, rad/s.
+
+        Examples
+        --------
+        >>> import math
+        >>> from tumble.dynamics.models.gravity import MU_EARTH, GravityGradient
+        >>> gg = GravityGradient(orbit_radius=7.0e6)
+        >>> math.isclose(gg.mean_motion, math.sqrt(MU_EARTH / 7.0e6**3)), math.isclose(gg.mean_motion * gg.period, 2 * math.pi)
+        (True, True)
+        """
         return self._n
 
     @property
     def period(self) -> float:
-        """Orbital period ``2 pi / n``, s."""
+        """Orbital period ``2 pi / n``, s.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> round(GravityGradient(orbit_radius=7.0e6).period, 1)   # 2 pi sqrt(r^3 / mu), s
+        5828.5
+        """
         return 2.0 * math.pi / self._n
 
     @property
     def radius(self) -> float:
-        """Orbit radius ``(mu / n^2)^(1/3)``, m."""
+        """Orbit radius ``(mu / n^2)^(1/3)``, m.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> round(GravityGradient(orbit_period=86164.1).radius / 1e3)   # one sidereal day: the geostationary radius, km
+        42164
+        """
         return self._r
 
     def bind(self, body: Body | MassProperties | ArrayLike) -> GravityGradient:
@@ -185,6 +208,19 @@ class GravityGradient:
 
         Raises ``ValueError`` if this model already holds other moments (more than 1e-9
         relative apart): the torque would belong to another body.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+        >>> gg = GravityGradient(orbit_period=5400.0).bind(body)
+        >>> gg.moments, gg.bind([1.0, 2.0, 3.0]) is gg   # the same body again: unchanged
+        ((1.0, 2.0, 3.0), True)
+        >>> gg.bind([1.0, 2.0, 4.0])
+        Traceback (most recent call last):
+        ...
+        ValueError: this GravityGradient holds moments [1.0, 2.0, 3.0] kg m^2, not the body's [1.0, 2.0, 4.0]: leave moments out and let simulate bind it
         """
         moments = cast(ArrayLike, getattr(body, "principal_moments", body))
         if self._I is not None:
@@ -198,13 +234,33 @@ class GravityGradient:
         return replace(self, moments=cast("tuple[float, ...]", moments))  # made a tuple by __post_init__
 
     def radial_direction(self, t: ArrayLike) -> Vector3:
-        """Unit radius vector ``(cos n t, sin n t, 0)`` in the world frame at ``t`` (s); shape ``t.shape + (3,)``."""
+        """Unit radius vector ``(cos n t, sin n t, 0)`` in the world frame at ``t`` (s); shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> gg = GravityGradient(orbit_period=5400.0)
+        >>> gg.radial_direction([0.0, 1350.0, 2700.0]).round(12).tolist()   # a quarter and half an orbit on
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]
+        """
         nt = self._n * np.asarray(t, dtype=float)
         return np.stack([np.cos(nt), np.sin(nt), np.zeros_like(nt)], axis=-1)
 
     def orbit_frame(self, t: ArrayLike) -> Rotation:
         """The orbiting (LVLH) frame to world at ``t`` (s): columns roll (velocity), pitch
-        (orbit normal), yaw (radius); one rotation, or a stack for an array of times."""
+        (orbit normal), yaw (radius); one rotation, or a stack for an array of times.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> gg = GravityGradient(orbit_period=5400.0)
+        >>> gg.orbit_frame(0.0).as_matrix().round(12).tolist()   # columns: roll (velocity), pitch (normal), yaw (radius)
+        [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        >>> t = np.array([100.0, 2000.0])
+        >>> bool(np.allclose(gg.orbit_frame(t).apply([0.0, 0.0, 1.0]), gg.radial_direction(t)))   # yaw on the radius
+        True
+        """
         nt = self._n * np.asarray(t, dtype=float)
         return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * _LVLH0
 
@@ -219,6 +275,22 @@ class GravityGradient:
             Angular velocity, principal frame, rad/s (the torque does not depend on it).
         attitude : scipy Rotation, one or a stack of N
             Principal body frame to world.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.gravity import GravityGradient, lvlh_state
+        >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
+        >>> at_rest = lvlh_state(gg, body)   # major axis on the orbit normal, minor on the radius: no torque
+        >>> bool(np.abs(gg(0.0, at_rest.omega0, at_rest.attitude)).max() < 1e-20)
+        True
+        >>> theta = 0.3   # pitched: 3 n^2 (I2 - I1) sin(theta) cos(theta) back about the orbit normal (-z)
+        >>> s = lvlh_state(gg, body, pitch=theta)
+        >>> tau = gg(0.0, s.omega0, s.attitude)
+        >>> bool(np.allclose(tau, [0.0, 0.0, -3 * gg.mean_motion**2 * (2.0 - 1.0) * np.sin(theta) * np.cos(theta)]))
+        True
         """
         I = self._moments()
         r_b = attitude.inv().apply(self.radial_direction(float(t)))
@@ -243,6 +315,22 @@ class GravityGradient:
         Returns
         -------
         ndarray, shape () or (n,)
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.gravity import GravityGradient, lvlh_state
+        >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
+        >>> n, s = gg.mean_motion, lvlh_state(gg, body)   # at rest: h = -(1/2) n^2 I3 + (3/2) n^2 I1
+        >>> bool(np.isclose(gg.jacobi_integral(0.0, s.omega0, s.attitude), n**2 * (-0.5 * 3.0 + 1.5 * 1.0)))
+        True
+        >>> s = lvlh_state(gg, body, pitch=0.5, roll=0.2)   # conserved along a libration
+        >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg, t_end=3000.0, samples=4, method="dop853")
+        >>> h = gg.jacobi_integral(traj.t, traj.omega, traj.attitude)
+        >>> bool(np.allclose(h, h[0], rtol=1e-8))
+        True
         """
         I, n = self._moments(), self._n
         inv = attitude.inv()
@@ -260,6 +348,20 @@ class GravityGradient:
         for ever, and ``|omega| <= n + sqrt(2 T2_max / I1)``: at rest in the orbiting frame with
         the minor axis on the radius and the major axis on the orbit normal, exactly ``n``.
         Arguments as :meth:`jacobi_integral`; for bounding the work of a run.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.gravity import GravityGradient, lvlh_state
+        >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
+        >>> s = lvlh_state(gg, body)   # the stable equilibrium: the bound is exactly n
+        >>> bool(np.isclose(gg.max_spin(0.0, s.omega0, s.attitude), gg.mean_motion))
+        True
+        >>> s = lvlh_state(gg, body, pitch=0.5)
+        >>> bool(gg.max_spin(0.0, s.omega0, s.attitude) > np.linalg.norm(s.omega0))
+        True
         """
         I, n = self._moments(), self._n
         h = self.jacobi_integral(t, omega, attitude)
@@ -338,7 +440,20 @@ def _angles(name: str, value: ArrayLike) -> FloatArray:
 
 
 class LVLHState(NamedTuple):
-    """A body at rest in the orbiting frame at t = 0 (see :func:`lvlh_state`)."""
+    """A body at rest in the orbiting frame at t = 0 (see :func:`lvlh_state`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import tumble
+    >>> from tumble.dynamics.models.gravity import GravityGradient, lvlh_state
+    >>> gg = GravityGradient(orbit_period=5400.0)
+    >>> s = lvlh_state(gg, tumble.t_handle(), yaw=0.4)
+    >>> s._fields
+    ('omega0', 'attitude0', 'attitude')
+    >>> bool(np.allclose(s.attitude.apply(s.omega0), [0.0, 0.0, gg.mean_motion]))   # turning with the frame: n e_z
+    True
+    """
 
     #: Initial angular velocity, principal frame, rad/s: ``n e_z`` in the world frame.
     omega0: Vector3
@@ -408,13 +523,36 @@ def relative_attitude(
     ``attitude`` maps the principal frame to world (one rotation, or a stack matching ``t``).
     The identity means the body's yaw axis is on the local vertical, its pitch axis on the
     orbit normal.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import tumble
+    >>> from tumble.dynamics.models.gravity import GravityGradient, lvlh_state, relative_attitude
+    >>> gg, body = GravityGradient(orbit_period=5400.0), tumble.t_handle()
+    >>> s = lvlh_state(gg, body, roll=0.1, pitch=0.2, yaw=0.3)
+    >>> relative_attitude(gg, 0.0, s.attitude).as_euler("YXZ").round(12).tolist()   # pitch, roll, yaw back
+    [0.2, 0.1, 0.3]
+    >>> t = 1000.0   # carried round with the orbiting frame: the same relative attitude
+    >>> moved = gg.orbit_frame(t) * gg.orbit_frame(0.0).inv() * s.attitude
+    >>> relative_attitude(gg, t, moved).as_euler("YXZ").round(12).tolist()
+    [0.2, 0.1, 0.3]
     """
     _, P = rpy_axes(pitch_axis, yaw_axis)
     return gg.orbit_frame(t).inv() * attitude * Rotation.from_matrix(P)
 
 
 class OrbitAngles(NamedTuple):
-    """Roll, pitch and yaw of a body relative to the orbiting frame, rad (pitch-roll-yaw sequence)."""
+    """Roll, pitch and yaw of a body relative to the orbiting frame, rad (pitch-roll-yaw sequence).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.gravity import OrbitAngles
+    >>> angles = OrbitAngles(roll=np.zeros(2), pitch=np.array([0.01, -0.01]), yaw=np.zeros(2))
+    >>> angles._fields, angles.pitch.tolist()
+    (('roll', 'pitch', 'yaw'), [0.01, -0.01])
+    """
 
     roll: FloatArray
     pitch: FloatArray

@@ -83,11 +83,30 @@ class TorqueModel(Protocol):
 
     @property
     def frame(self) -> str:
-        """``"body"`` or ``"world"`` (read-only: models are frozen dataclasses)."""
+        """``"body"`` or ``"world"`` (read-only: models are frozen dataclasses).
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.torques import ConstantTorque, as_torque
+        >>> ConstantTorque((0.0, 0.0, 1.0), "world").frame, as_torque(lambda t, omega, attitude: (0.0, 0.0, 1.0)).frame
+        ('world', 'body')
+        """
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
         """The torque at time ``t`` (s) for ``omega`` (rad/s, principal frame, (3,) or (N, 3)) and
-        ``attitude`` (principal frame to world), N m, in :attr:`frame`; shape (3,) or omega's."""
+        ``attitude`` (principal frame to world), N m, in :attr:`frame`; shape (3,) or omega's.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.models.torques import ConstantTorque
+        >>> torque = ConstantTorque((0.0, 0.0, 2.0))
+        >>> torque(0.0, np.zeros(3), Rotation.identity()).tolist()   # N m, in torque.frame
+        [0.0, 0.0, 2.0]
+        >>> torque(0.0, np.zeros((2, 3)), Rotation.identity(2)).shape   # (3,) serves every body of a batch
+        (3,)
+        """
 
 
 @runtime_checkable
@@ -104,7 +123,17 @@ class NeedsBody(Protocol):
 
     def bind(self, body: Body | MassProperties | ArrayLike) -> TorqueModel:
         """The model acting on ``body`` (a Body, MassProperties or principal moments, kg m^2,
-        shape (3,) or (N, 3)); raises ``ValueError`` if it already holds other moments."""
+        shape (3,) or (N, 3)); raises ``ValueError`` if it already holds other moments.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> from tumble.dynamics.models.torques import NeedsBody
+        >>> gg = GravityGradient(orbit_period=5400.0)
+        >>> isinstance(gg, NeedsBody), gg.bind(tumble.MassProperties.from_moments([1.0, 2.0, 3.0])).moments
+        (True, (1.0, 2.0, 3.0))
+        """
 
 
 @runtime_checkable
@@ -121,7 +150,19 @@ class BoundsSpin(Protocol):
 
     def max_spin(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
         """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state (``omega``
-        (3,) or (N, 3), principal frame, rad/s); shape () or (N,)."""
+        (3,) or (N, 3), principal frame, rad/s); shape () or (N,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> from tumble.dynamics.models.torques import BoundsSpin
+        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
+        >>> omega = np.array([0.01, 0.0, 0.0])
+        >>> isinstance(gg, BoundsSpin), bool(gg.max_spin(0.0, omega, Rotation.identity()) >= np.linalg.norm(omega))
+        (True, True)
+        """
 
 
 def _check_frame(frame: str) -> str:
@@ -169,7 +210,21 @@ class ConstantTorque:
 
 @dataclass(frozen=True)
 class FunctionTorque:
-    """Wraps ``fn(t, omega, attitude) -> tau`` with the frame its result is expressed in."""
+    """Wraps ``fn(t, omega, attitude) -> tau`` with the frame its result is expressed in.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.torques import FunctionTorque
+    >>> damping = FunctionTorque(lambda t, omega, attitude: -0.1 * omega)   # body frame by default
+    >>> damping.frame, damping(0.0, np.array([1.0, 2.0, 0.0]), Rotation.identity()).tolist()
+    ('body', [-0.1, -0.2, -0.0])
+    >>> FunctionTorque(3.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: torque = 3.0 is not callable
+    """
 
     fn: Callable[[float, np.ndarray, Rotation], ArrayLike]
     frame: str = "body"
@@ -180,6 +235,17 @@ class FunctionTorque:
         _check_frame(self.frame)
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
+        """``fn(t, omega, attitude)`` as a float array, N m, in :attr:`frame`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.models.torques import FunctionTorque
+        >>> spin_up = FunctionTorque(lambda t, omega, attitude: [0, 0, t], "world")   # a list in, floats out
+        >>> spin_up(2.0, np.zeros(3), Rotation.identity()).tolist()
+        [0.0, 0.0, 2.0]
+        """
         return np.asarray(self.fn(t, omega, attitude), dtype=float)
 
 
@@ -201,6 +267,17 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     Returns
     -------
     torque model or None
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.torques import ConstantTorque, FunctionTorque, as_torque
+    >>> model = ConstantTorque((0.0, 0.0, 1.0))
+    >>> as_torque(model) is model, as_torque(None)
+    (True, None)
+    >>> wrapped = as_torque(lambda t, omega, attitude: np.zeros(3))
+    >>> isinstance(wrapped, FunctionTorque), wrapped.frame
+    (True, 'body')
     """
     if torque is None:
         return None
@@ -254,6 +331,19 @@ def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotat
     ------
     ValueError
         If the model returns anything but finite numbers of omega's shape (or shape (3,)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.torques import ConstantTorque, body_torque
+    >>> quarter = Rotation.from_euler("z", 90, degrees=True)   # body x is world y
+    >>> body_torque(ConstantTorque((1.0, 0.0, 0.0), "world"), 0.0, np.zeros(3), quarter).round(12).tolist()   # R^T tau
+    [0.0, -1.0, 0.0]
+    >>> body_torque(lambda t, omega, attitude: [np.nan, 0, 0], 0.0, np.zeros(3), quarter)
+    Traceback (most recent call last):
+    ...
+    ValueError: the torque model returned [nan, 0.0, 0.0] at t = 0 s; expected finite numbers of shape (3,) (N m)
     """
     raw = np.asarray(model(t, omega, attitude), dtype=float)
     shape = np.shape(omega)
@@ -284,6 +374,17 @@ def spin_gain(
     |tau| t`` and ``|omega| <= |L| / I1``) and an estimate from the start for any other. 0
     without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for :func:`body_torque`;
     ``moments`` (3,) or (N, 3), kg m^2; the largest gain over the batch.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.torques import ConstantTorque, spin_gain
+    >>> torque = ConstantTorque((0.0, 0.0, 0.5))   # |tau| t / I1: 0.5 N m for 10 s on I1 = 2 kg m^2
+    >>> spin_gain(torque, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
+    2.5
+    >>> spin_gain(None, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
+    0.0
     """
     if model is None:
         return 0.0
