@@ -51,7 +51,19 @@ def rotvec_matrix(rv: ArrayLike) -> np.ndarray:
     ``R = I + sin(a) K + (1 - cos(a)) K^2`` with ``K`` the cross-product matrix of the unit axis
     (Shuster, J. Astronaut. Sci. 41 (1993) 439, sec. 3); equal to scipy's
     ``Rotation.from_rotvec(rv).as_matrix()`` (tested), written out because the fit's Jacobian
-    calls it thousands of times and scipy's object costs 60 us a call."""
+    calls it thousands of times and scipy's object costs 60 us a call.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.analysis.fit.model import rotvec_matrix
+    >>> rv = [0.3, -1.2, 0.7]
+    >>> bool(np.allclose(rotvec_matrix(rv), Rotation.from_rotvec(rv).as_matrix(), atol=1e-15))   # scipy's
+    True
+    >>> rotvec_matrix([0.0, 0.0, np.pi / 2]).round(12).tolist()   # a quarter turn about z
+    [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+    """
     rv = np.asarray(rv, float)
     a = float(np.sqrt(rv @ rv))
     if a < 1e-8:  # second order: sin(a)/a = 1, (1 - cos a)/a^2 = 1/2 to ~1e-17
@@ -80,6 +92,17 @@ class Model:
         each component of ``omega0`` by ``2 speed + BIAS_MAX`` and the bias by ``BIAS_MAX``
         (without, they are free: the start's search for the right basin goes through values
         beyond them).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.model import Model
+    >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=True, bias=True)
+    >>> model.names
+    ('s', 'g', 'rotvec_x', 'rotvec_y', 'rotvec_z', 'bias_x', 'bias_y', 'bias_z', 'omega0_1', 'omega0_2', 'omega0_3')
+    >>> two = Model([np.linspace(0.0, 1.0, 50), np.linspace(0.0, 0.8, 40)], rotation=False, bias=False, drag="linear")
+    >>> two.names[2:], two.n, two.tau.shape   # the drag shared, omega0 per flight
+    (('drag_1', 'drag_2', 'drag_3', 'omega0_1[0]', 'omega0_2[0]', 'omega0_3[0]', 'omega0_1[1]', 'omega0_2[1]', 'omega0_3[1]'), 11, (2, 50))
     """
 
     def __init__(self, taus: Sequence[np.ndarray], rotation: bool, bias: bool, drag: str = "none",
@@ -125,7 +148,16 @@ class Model:
     # -- the parameter vector ------------------------------------------------------------------
     def pack(self, s: float, g: float, rotvec: ArrayLike, bias: ArrayLike, omega0: ArrayLike,
              drag: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
-        """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers)."""
+        """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=True, bias=True)
+        >>> model.pack(0.7, 0.4, [0.0, 0.0, 0.1], [0.01, 0.0, 0.0], [[1.0, 2.0, 3.0]]).tolist()   # in model.names' order
+        [0.7, 0.4, 0.0, 0.0, 0.1, 0.01, 0.0, 0.0, 1.0, 2.0, 3.0]
+        """
         P = [s, g]
         if self.rotation:
             P += list(np.asarray(rotvec, float))
@@ -136,30 +168,92 @@ class Model:
         return np.concatenate([np.array(P, float), np.asarray(omega0, float).reshape(-1)])
 
     def get(self, P: np.ndarray, name: str, default: float = 0.0) -> float:
+        """One named shared parameter of ``P`` (a name of :attr:`shared`), or ``default`` where it is not fitted.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=False, bias=True)
+        >>> P = model.pack(0.7, 0.4, None, [0.01, 0.02, 0.03], [[1.0, 2.0, 3.0]])
+        >>> model.get(P, "bias_y"), model.get(P, "drag_1"), model.get(P, "rotvec_x", default=-1.0)
+        (0.02, 0.0, -1.0)
+        """
         return float(P[self.index[name]]) if name in self.index else default
 
     def rotation_matrix(self, P: np.ndarray) -> np.ndarray:
+        """The rotation from the sensor's axes to the principal axes (the identity where it is not fitted).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=True, bias=False)
+        >>> P = model.pack(0.7, 0.4, [0.0, 0.0, np.pi], None, [[1.0, 2.0, 3.0]])   # half a turn about z
+        >>> (model.rotation_matrix(P).round(12) + 0.0).tolist()   # + 0.0: no signed zeros
+        [[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]]
+        """
         if not self.rotation:
             return np.eye(3)
         k = self.index["rotvec_x"]
         return rotvec_matrix(P[k:k + 3])
 
     def bias_vector(self, P: np.ndarray) -> np.ndarray:
+        """The sensor's bias, rad/s (zeros where it is not fitted).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=False, bias=True)
+        >>> model.bias_vector(model.pack(0.7, 0.4, None, [0.01, 0.02, 0.03], [[1.0, 2.0, 3.0]])).tolist()
+        [0.01, 0.02, 0.03]
+        """
         if not self.bias:
             return np.zeros(3)
         k = self.index["bias_x"]
         return np.asarray(P[k:k + 3], float)
 
     def drag_vector(self, P: np.ndarray) -> np.ndarray:
+        """The drag coefficients per principal axis divided by ``I3`` (linear: 1/s; quadratic: 1/rad); zeros without drag.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=False, bias=False, drag="quadratic")
+        >>> model.drag_vector(model.pack(0.7, 0.4, None, None, [[1.0, 2.0, 3.0]], drag=[0.1, 0.2, 0.3])).tolist()
+        [0.1, 0.2, 0.3]
+        """
         if self.drag == "none":
             return np.zeros(3)
         k = self.index["drag_1"]
         return np.asarray(P[k:k + 3], float)
 
     def omega0(self, P: np.ndarray) -> np.ndarray:
+        """Each flight's ``omega0``, principal frame, rad/s, shape (F, 3).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50), np.linspace(0.0, 1.0, 30)], rotation=False, bias=False)
+        >>> model.omega0(model.pack(0.7, 0.4, None, None, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])).tolist()
+        [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]
+        """
         return np.asarray(P[self.ns:], float).reshape(self.F, 3)
 
     def moments(self, P: np.ndarray) -> np.ndarray:
+        """The moments ``(I1/I3, I2/I3, 1)`` of the square coordinates ``(s, g)`` of ``P``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=False, bias=False)
+        >>> model.moments(model.pack(0.5, 0.0, None, None, [[1.0, 2.0, 3.0]])).tolist()   # g = 0: planar, I1 + I2 = I3
+        [0.25, 0.75, 1.0]
+        """
         x, y = ratios(P[0], P[1])
         return np.array([float(x), float(y), 1.0])
 
@@ -180,12 +274,40 @@ class Model:
         return np.concatenate([[P[0], P[1]], self.drag_vector(P)])
 
     def principal(self, P: np.ndarray) -> np.ndarray:
-        """omega in the principal frame of every flight, shape (F, T, 3), rad/s."""
+        """omega in the principal frame of every flight, shape (F, T, 3), rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.analysis.fit.model import Model
+        >>> from tumble.dynamics.methods.exact import FreeRotation
+        >>> tau = np.linspace(0.0, 1.0, 50)
+        >>> model = Model([tau], rotation=False, bias=False)
+        >>> P = model.pack(0.7, 0.4, None, None, [[3.0, 1.0, 6.0]])
+        >>> w = model.principal(P)
+        >>> exact = FreeRotation(model.moments(P), [3.0, 1.0, 6.0], Rotation.identity()).omega(tau)
+        >>> w.shape, bool(np.allclose(w[0], exact, atol=1e-12))   # the exact solution
+        ((1, 50, 3), True)
+        """
         phys = np.tile(self._physics(P), (self.F, 1))
         return self._principal(phys, self.omega0(P), np.arange(self.F))
 
     def sensor(self, P: np.ndarray, principal: np.ndarray | None = None) -> np.ndarray:
-        """The model's samples along the sensor's axes, bias included, shape (F, T, 3), rad/s."""
+        """The model's samples along the sensor's axes, bias included, shape (F, T, 3), rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)], rotation=True, bias=True)
+        >>> P = model.pack(0.7, 0.4, [0.1, 0.2, 0.3], [0.01, -0.02, 0.03], [[3.0, 1.0, 6.0]])
+        >>> wp = model.principal(P)
+        >>> bool(np.allclose(model.sensor(P, wp), wp @ model.rotation_matrix(P) + [0.01, -0.02, 0.03]))   # R^T w + b
+        True
+        >>> bool(np.allclose(np.linalg.norm(model.sensor(P) - [0.01, -0.02, 0.03], axis=-1), np.linalg.norm(wp, axis=-1)))
+        True
+        """
         wp = self.principal(P) if principal is None else principal
         return wp @ self.rotation_matrix(P) + self.bias_vector(P)
 
@@ -193,7 +315,23 @@ class Model:
                  principal: np.ndarray | None = None) -> np.ndarray | sparse.csr_matrix:
         """d(model samples[mask]) / dP by forward differences (module docstring).
 
-        Returns a dense array for one flight and a CSR matrix for several."""
+        Returns a dense array for one flight and a CSR matrix for several.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 40)], rotation=True, bias=True)
+        >>> P = model.pack(0.7, 0.4, [0.1, 0.2, 0.3], [0.0, 0.0, 0.0], [[3.0, 1.0, 6.0]])
+        >>> mask = np.ones((1, 40, 3), bool)
+        >>> J = model.jacobian(P, mask)
+        >>> J.shape, J[:3, 5:8].tolist()   # the bias columns: exactly one on their own axis
+        ((120, 11), [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+        >>> h = np.zeros(11); h[0] = 1e-6   # the s column against a central difference
+        >>> central = (model.sensor(P + h) - model.sensor(P - h))[mask] / 2e-6
+        >>> bool(np.allclose(J[:, 0], central, atol=1e-5 * np.abs(central).max()))
+        True
+        """
         F, T = self.F, self.tau.shape[1]
         _lo, hi = self.bounds
         h = 1e-7 * np.maximum(1.0, np.abs(P))

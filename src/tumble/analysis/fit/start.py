@@ -41,7 +41,20 @@ _PERMUTATIONS = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0
 
 
 def principal_axes(omega: np.ndarray) -> np.ndarray:
-    """Columns: the principal axes in the sensor frame, from two conserved quadratic forms."""
+    """Columns: the principal axes in the sensor frame, from two conserved quadratic forms.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.analysis.fit.start import principal_axes
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], np.linspace(0.0, 2.0, 400))[0]
+    >>> R = Rotation.from_rotvec([0.3, -0.2, 0.5]).as_matrix()   # sensor to principal
+    >>> V = principal_axes(w @ R)   # the samples on the sensor's axes
+    >>> np.abs(R @ V).max(axis=0).round(6).tolist()   # each column one of R's rows (up to order and sign)
+    [1.0, 1.0, 1.0]
+    """
     wx, wy, wz = omega.T
     Q = np.column_stack([wx * wx, wy * wy, wz * wz, 2 * wx * wy, 2 * wx * wz, 2 * wy * wz, -np.ones_like(wx)])
     scale = np.linalg.norm(Q, axis=0)
@@ -76,6 +89,21 @@ def euler_regression(t: np.ndarray, omega: np.ndarray) -> tuple[float, float, np
     (x, y, R) or None
         ``I1/I3``, ``I2/I3`` (inside the triangle, :data:`START_INSET` from its edges) and ``R`` (sensor to principal), or
         None when the equations do not single out a positive-definite tensor.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.analysis.fit.start import euler_regression
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 1.0, 1000)
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0]
+    >>> R = Rotation.from_rotvec([0.3, -0.2, 0.5]).as_matrix()
+    >>> x, y, R_fit = euler_regression(t, w @ R)   # I1/I3 = 0.5, I2/I3 = 0.8 back
+    >>> round(x, 4), round(y, 4), bool(np.allclose(np.abs(R_fit @ R.T), np.eye(3), atol=1e-4))
+    (0.5, 0.8, True)
+    >>> euler_regression(t[:4], w[:4]) is None   # too few samples
+    True
     """
     if len(t) < 5:
         return None
@@ -132,7 +160,20 @@ _GRID = None
 
 def candidates(omega: np.ndarray, fit_rotation: bool, keep: int = 2, t: np.ndarray | None = None) -> list[tuple[float, float, np.ndarray]]:
     """Starting ``(I1/I3, I2/I3, R)`` triples (``R`` sensor to principal): Euler's regression
-    first (when ``t`` is given), then the conserved forms' axes with the likeliest ratios."""
+    first (when ``t`` is given), then the conserved forms' axes with the likeliest ratios.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.start import candidates
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 1.0, 1000)
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0]
+    >>> starts = candidates(w, fit_rotation=False, t=t)
+    >>> x, y, R = starts[0]   # Euler's regression first
+    >>> round(x, 4), round(y, 4), R.tolist() == np.eye(3).tolist(), len(starts)   # then the two likeliest grid points
+    (0.5, 0.8, True, 3)
+    """
     global _GRID
     first = []
     if t is not None:
@@ -165,5 +206,13 @@ def candidates(omega: np.ndarray, fit_rotation: bool, keep: int = 2, t: np.ndarr
 
 def first_value(tau: np.ndarray, omega: ArrayLike) -> np.ndarray:
     """omega at tau = 0: the first sample (a polynomial through several samples is worse once a
-    sample interval turns the body by a tenth of a radian or more, as a fast toss at 100 Hz does)."""
+    sample interval turns the body by a tenth of a radian or more, as a fast toss at 100 Hz does).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.start import first_value
+    >>> first_value(np.array([0.0, 0.01]), [[1.0, 2.0, 3.0], [1.1, 2.0, 2.9]]).tolist()
+    [1.0, 2.0, 3.0]
+    """
     return np.asarray(omega[0], float)

@@ -40,7 +40,14 @@ _ON_EDGE = 1e-7
 
 
 def ratios(s: ArrayLike, g: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Square coordinates ``(s, g)`` -> ``(I1/I3, I2/I3)``; broadcasts."""
+    """Square coordinates ``(s, g)`` -> ``(I1/I3, I2/I3)``; broadcasts.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.triangle import ratios
+    >>> [tuple(float(v) for v in ratios(s, g)) for s, g in [(1.0, 0.0), (1.0, 1.0), (0.5, 0.0)]]   # disc, sphere, planar
+    [(0.5, 0.5), (1.0, 1.0), (0.25, 0.75)]
+    """
     s, g = np.asarray(s, float), np.asarray(g, float)
     return 0.5 * s * (1.0 + g), 1.0 - 0.5 * s * (1.0 - g)
 
@@ -51,6 +58,17 @@ def square(x: ArrayLike, y: ArrayLike, inset: float = 0.0) -> tuple[np.ndarray, 
     ``inset`` > 0 keeps the point that far inside the box's faces (a start for the fit: scipy's
     dogbox, started exactly on a face, can take a first step that the face cuts to nothing and
     stop there on its ``xtol`` test, far from the optimum).
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.triangle import ratios, square
+    >>> square(0.25, 0.75)   # a planar body, I1 + I2 = I3: g = 0
+    (0.5, 0.0)
+    >>> s, g = square(0.4, 0.8)
+    >>> [round(float(v), 12) for v in ratios(s, g)]   # and back
+    [0.4, 0.8]
+    >>> square(0.25, 0.75, inset=0.01)   # kept off the face, a start for the fit
+    (0.5, 0.01)
     """
     x, y = float(x), float(y)
     s = min(max(x + 1.0 - y, S_MIN + inset), 1.0 - inset)
@@ -59,12 +77,30 @@ def square(x: ArrayLike, y: ArrayLike, inset: float = 0.0) -> tuple[np.ndarray, 
 
 
 def ratio_jacobian(s: float, g: float) -> np.ndarray:
-    """``d(I1/I3, I2/I3) / d(s, g)``, 2 x 2."""
+    """``d(I1/I3, I2/I3) / d(s, g)``, 2 x 2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.triangle import ratio_jacobian, ratios
+    >>> s, g, h = 0.6, 0.3, 1e-6
+    >>> numeric = np.array([np.subtract(ratios(s + h, g), ratios(s - h, g)), np.subtract(ratios(s, g + h), ratios(s, g - h))]).T / (2 * h)
+    >>> J = ratio_jacobian(s, g)
+    >>> bool(np.allclose(J, numeric)), round(float(np.linalg.det(J)), 12)   # determinant s / 2
+    (True, 0.3)
+    """
     return np.array([[0.5 * (1.0 + g), 0.5 * s], [-0.5 * (1.0 - g), 0.5 * s]])
 
 
 def edge_of(s: float, g: float) -> str | None:
-    """The edge ``(s, g)`` lies on (:data:`EDGES`' value), or None inside."""
+    """The edge ``(s, g)`` lies on (:data:`EDGES`' value), or None inside.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.triangle import edge_of
+    >>> edge_of(0.5, 0.0), edge_of(1.0, 0.4), edge_of(0.6, 1.0), edge_of(0.5, 0.5)
+    ('planar (I1 + I2 = I3)', 'symmetric (I1 = I2)', 'symmetric (I2 = I3)', None)
+    """
     if g <= _ON_EDGE:
         return EDGES["planar"]
     if g >= 1.0 - _ON_EDGE:

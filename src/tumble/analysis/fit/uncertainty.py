@@ -44,7 +44,18 @@ SCALE_UNCERTAINTY = 0.005
 
 def noise_floor(omega: ArrayLike) -> float:
     """A robust estimate of the white noise per axis, rad/s, from second differences
-    (``var(w[i+1] - 2 w[i] + w[i-1]) = 6 sigma^2`` for white noise on a smooth signal)."""
+    (``var(w[i+1] - 2 w[i] + w[i-1]) = 6 sigma^2`` for white noise on a smooth signal).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import noise_floor
+    >>> t = np.linspace(0.0, 2.0, 2000)[:, None]
+    >>> smooth = np.hstack([np.sin(3 * t), np.cos(2 * t), 0.5 * t])   # rad/s
+    >>> noisy = smooth + np.random.default_rng(1).normal(0.0, 0.01, smooth.shape)
+    >>> round(noise_floor(noisy), 2), noise_floor(smooth) < 1e-5   # the white noise's sigma; the signal does not count
+    (0.01, True)
+    """
     omega = np.asarray(omega, float)
     if len(omega) < 3:
         return 0.0
@@ -64,6 +75,16 @@ def interval(value: float, std: float, lo: float, hi: float, *, on_low_edge: boo
     the edge to the 95 % point inside it (1.645 for infinitely many degrees of freedom: the
     likelihood-ratio statistic at a boundary is half chi^2_0, half chi^2_1, Chernoff, Ann.
     Math. Stat. 25 (1954) 573; Self & Liang, JASA 82 (1987) 605).
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.uncertainty import interval
+    >>> [round(v, 4) for v in interval(0.5, 0.1, 0.0, 1.0)]   # +- 1.96 sigma
+    [0.304, 0.696]
+    >>> [round(v, 4) for v in interval(0.5, 0.1, 0.0, 1.0, dof=5)]   # Student's 2.571 for 5 degrees of freedom
+    [0.2429, 0.7571]
+    >>> [round(v, 4) for v in interval(0.0, 0.1, 0.0, 1.0, on_low_edge=True)]   # one-sided from the edge: 1.645 sigma
+    [0.0, 0.1645]
     """
     from scipy.stats import t as student
 
@@ -84,6 +105,14 @@ def birge_chi2(values: ArrayLike, covariances: ArrayLike, pooled: ArrayLike) -> 
     values : ndarray, shape (F, k)
     covariances : ndarray, shape (F, k, k)
     pooled : ndarray, shape (k,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import birge_chi2
+    >>> values = np.array([[1.0], [3.0]])   # two flights 2 sigma apart
+    >>> birge_chi2(values, np.ones((2, 1, 1)), np.array([2.0]))   # chi^2 = 1 + 1, one degree of freedom
+    (2.0, 1)
     """
     chi2 = 0.0
     for v, c in zip(values, covariances):
@@ -99,7 +128,21 @@ def autocorrelation_time(R: np.ndarray, starts: Sequence[int], block: int = 5) -
     (times ``block`` and the ratio of the variances: the batch means of Flegal & Jones, Ann.
     Stat. 38 (2010) 1034). The blocks matter when a fast oscillation (a flexing body, 15-35 Hz)
     rides on a slow model error: its negative correlations end Geyer's sum before the slow
-    part is counted; averaging over a block removes the oscillation and keeps the slow part."""
+    part is counted; averaging over a block removes the oscillation and keeps the slow part.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import autocorrelation_time
+    >>> rng = np.random.default_rng(1)
+    >>> white = rng.normal(size=(20000, 1))
+    >>> round(float(autocorrelation_time(white, [0, 20000])))   # independent samples
+    1
+    >>> ar = np.convolve(white[:, 0], 0.8 ** np.arange(80))[:20000, None]   # AR(1), rho_k = 0.8^k:
+    >>> # tau = (1 + 0.8) / (1 - 0.8) = 9
+    >>> round(float(autocorrelation_time(ar, [0, 20000])))
+    9
+    """
     R = np.asarray(R, float).reshape(len(R), -1)
     tau = _geyer_time(R, starts)
     means, bstarts, total = [], [0], 0
@@ -176,6 +219,19 @@ def effective_covariance(J: np.ndarray | sparse.csr_matrix, r: np.ndarray, per_s
     cov : ndarray, shape (n, n)
     tau : float
         The factor applied, samples.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import effective_covariance
+    >>> rng = np.random.default_rng(2)
+    >>> x = np.linspace(0.0, 1.0, 400)
+    >>> J = np.column_stack([np.ones_like(x), x])   # a straight line a + b x
+    >>> r = rng.normal(0.0, 0.1, x.size)   # white residuals of sigma 0.1
+    >>> cov, tau = effective_covariance(J, r, r[:, None], [0, x.size])
+    >>> textbook = np.linalg.inv(J.T @ J) * (r @ r) / (x.size - 2)
+    >>> bool(np.allclose(cov, textbook * tau)), bool(tau < 1.2)   # white: tau about 1, the textbook covariance
+    (True, True)
     """
     m, n = J.shape
     JtJ = (J.T @ J).toarray() if sparse.issparse(J) else J.T @ J
@@ -209,6 +265,18 @@ def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: 
         The sample axes fitted (the rows of ``J``, in order).
     sigma : float
         Standard uncertainty of each axis's scale factor.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import scale_covariance
+    >>> data = np.zeros((1, 50, 3))
+    >>> data[0, :, 0] = 4.0   # a constant 4 rad/s on axis 1, fitted as one parameter
+    >>> mask = np.zeros(data.shape, bool)
+    >>> mask[0, :, 0] = True
+    >>> J = np.ones((50, 1))
+    >>> np.sqrt(scale_covariance(J, data, mask, 0.005)).round(12).tolist()   # 0.5 % of 4 rad/s, however many samples
+    [[0.02]]
     """
     m, _n = J.shape
     axis = np.broadcast_to(np.arange(3), mask.shape)[mask]
@@ -226,7 +294,14 @@ def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: 
 def effective_dof(var_stat: float, var_total: float, dof_stat: float) -> float:
     """Welch-Satterthwaite's effective degrees of freedom of a standard uncertainty made of a
     statistical part with ``dof_stat`` degrees of freedom and a systematic part known exactly
-    (infinitely many): ``nu = var_total^2 / (var_stat^2 / dof_stat)`` (JCGM 100:2008, G.4.1)."""
+    (infinitely many): ``nu = var_total^2 / (var_stat^2 / dof_stat)`` (JCGM 100:2008, G.4.1).
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.uncertainty import effective_dof
+    >>> effective_dof(1.0, 1.0, 10.0), effective_dof(0.5, 1.0, 10.0), effective_dof(0.0, 1.0, 10.0)   # half systematic: 4 x
+    (10.0, 40.0, inf)
+    """
     if not (var_stat > 0 and dof_stat > 0):
         return np.inf
     return float(var_total ** 2 / (var_stat ** 2 / dof_stat))
