@@ -40,7 +40,21 @@ NOISE_FACTOR = 3.0
 
 
 class InadequateFitWarning(UserWarning):
-    """The fitted model does not describe the data: its ratios are not to be trusted."""
+    """The fitted model does not describe the data: its ratios are not to be trusted.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import numpy as np
+    >>> from tumble.analysis.fit import InadequateFitWarning, fit_rotation
+    >>> t = np.linspace(0.0, 2.0, 201)
+    >>> w = np.column_stack([np.sin(7 * t), 2 + np.cos(3 * t), np.sin(11 * t)])   # no rigid body's tumble
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     fit = fit_rotation(t, w, sensor_rotation="identity", bias=False, drag="none")
+    >>> fit.adequate, [c.category.__name__ for c in caught]
+    (False, ['InadequateFitWarning'])
+    """
 
 
 @dataclass(frozen=True)
@@ -55,6 +69,15 @@ class Adequacy:
         RMS per axis, dimensionless.
     reason : str
         One sentence: what the residuals show, and for an inadequate fit what to check.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.adequacy import Adequacy, judge
+    >>> verdict = judge(0.05, 0.01, 5.0)   # residuals 5 x the noise, but 1 % of the rates: a right model's drag and flex
+    >>> isinstance(verdict, Adequacy), verdict.adequate, round(verdict.misfit, 4)   # sqrt(0.05^2 - 0.01^2) / 5
+    (True, True, 0.0098)
+    >>> judge(0.5, 0.01, 5.0).reason.startswith("the model does not fit")
+    True
     """
 
     adequate: bool

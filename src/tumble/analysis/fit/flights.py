@@ -63,6 +63,18 @@ class Flight:
         The per-flight fit (``tumble.analysis.fit.solve.Solution``) when one was made.
     anchor : float
         The time its ``omega0`` refers to (inside the flight), s.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.flights import find_flights
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(7, tosses=2, flight=(0.5, 0.8))
+    >>> flights = find_flights(rec.t, rec.omega, events=rec.events)
+    >>> [(f.status, f.first < f.stop) for f in flights]
+    [('ok', True), ('ok', True)]
+    >>> [bool(abs(f.start - release) < 0.05 and abs(f.end - catch) < 0.05) for f, (release, catch) in zip(flights, rec.flights)]
+    [True, True]
+    >>> # release and catch found to within 50 ms
     """
 
     start: float
@@ -76,11 +88,26 @@ class Flight:
 
     @property
     def samples(self) -> int:
+        """Number of samples, ``stop - first``.
+
+        Examples
+        --------
+        >>> from tumble.analysis.fit.flights import Flight
+        >>> Flight(start=1.0, end=1.99, first=100, stop=200).samples
+        100
+        """
         return self.stop - self.first
 
 
 def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
-    """Experiment times of phyphox's PAUSE events (``[(name, time), ...]``), s."""
+    """Experiment times of phyphox's PAUSE events (``[(name, time), ...]``), s.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.flights import pause_times
+    >>> pause_times([("START", 0.0), ("PAUSE", 12.5), ("START", 12.5), ("pause", 3.0)]), pause_times(None)
+    ([3.0, 12.5], [])
+    """
     return sorted(float(te) for name, te in (events or []) if str(name).upper() == "PAUSE")
 
 
@@ -188,11 +215,11 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     Examples
     --------
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
-    >>> rec = synthetic_recording(2, tosses=2)
+    >>> rec = synthetic_recording(22, tosses=2, flight=(0.5, 0.8))
     >>> flights = find_flights(rec.t, rec.omega, events=rec.events)
-    >>> [f.status for f in flights]  # the first toss's samples do not follow a free motion
-    ['skipped', 'ok']
-    >>> flights[0].reason.startswith("no free flight")
+    >>> [f.status for f in flights]  # the second toss's samples do not follow a free motion
+    ['ok', 'skipped']
+    >>> flights[1].reason.startswith("no free flight")
     True
     """
     t = np.asarray(t, float)

@@ -47,6 +47,19 @@ class NoFlightError(ValueError):
 
     The computation failed, the input was readable (``tumble fit`` exits with status 1, not 2);
     a ``ValueError`` still, so that code catching that keeps working.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.recording import NoFlightError, fit_recording
+    >>> t = np.linspace(0.0, 10.0, 1001)
+    >>> try:
+    ...     fit_recording(t, np.zeros((1001, 3)))   # a phone lying still
+    ... except NoFlightError as error:
+    ...     print(error)
+    no free flight found: |omega| never stays above 3.0 rad/s for a flight (1001 samples over 10 s, 0 pauses)
+    >>> issubclass(NoFlightError, ValueError)
+    True
     """
 
 
@@ -64,6 +77,15 @@ class Toss:
     reason : str
     fit : RotationFit or None
         The flight's own fit (None when there was none).
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.recording import Toss, fit_recording
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(22, tosses=2, flight=(0.5, 0.8))
+    >>> ok, skipped = fit_recording(rec.t, rec.omega, events=rec.events).tosses
+    >>> ok.status, ok.fit is not None, skipped.status, skipped.reason.startswith("no free flight")
+    ('ok', True, 'skipped', True)
     """
 
     start: float
@@ -74,7 +96,15 @@ class Toss:
     fit: RotationFit | None = field(default=None, repr=False)
 
     def summary(self) -> dict:
-        """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None)."""
+        """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None).
+
+        Examples
+        --------
+        >>> from tumble.analysis.fit.recording import Toss
+        >>> row = Toss(start=1.0, end=1.8, samples=81, status="skipped", reason="too short").summary()
+        >>> row["samples"], row["I1_over_I3"], row["status"]   # no fit: its numbers are None
+        (81, None, 'skipped')
+        """
         f = self.fit
 
         def num(v):
@@ -105,6 +135,16 @@ class RecordingFit:
         The whole recording (s; rad/s, sensor axes).
     omega_models : tuple of ndarray
         The joint model at each used flight's samples, sensor axes, rad/s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.recording import fit_recording
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+    >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)
+    >>> fit.tosses_used, len(fit.omega_models), bool(np.all(np.abs(fit.pooled.ratios - rec.ratios) < 3 * fit.pooled.ratios_std))
+    (2, 2, True)
     """
 
     tosses: tuple
@@ -116,7 +156,20 @@ class RecordingFit:
     omega_models: tuple = field(default=(), repr=False)
 
     def summary(self) -> dict:
-        """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"`` and ``"pooled"``."""
+        """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"`` and ``"pooled"``.
+
+        Examples
+        --------
+        >>> import json
+        >>> from tumble.analysis.fit.recording import fit_recording
+        >>> from tumble.analysis.fit.synthetic import synthetic_recording
+        >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+        >>> summary = fit_recording(rec.t, rec.omega, events=rec.events).summary()
+        >>> summary["pooled"]["tosses_used"], [toss["status"] for toss in summary["tosses"]], summary["pooled"]["I1_over_I3"] == summary["I1_over_I3"]
+        (2, ['ok', 'ok'], True)
+        >>> json.loads(json.dumps(summary)) == summary
+        True
+        """
         p = self.pooled
         out = p.summary()
         out["tosses"] = [toss.summary() for toss in self.tosses]

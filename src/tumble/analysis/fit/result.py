@@ -97,6 +97,22 @@ class RotationFit:
     caveat : str
         Empty, or why the ratios of an adequate fit are not determined by the data
         (:func:`determination`: a stable-axis toss, or too little of the tumble recorded).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import rotation_fit
+    >>> fit = rotation_fit(sol, t, w, keep)
+    >>> [bool(lo <= truth <= hi) for truth, (lo, hi) in zip([0.5, 0.8], fit.ratios_interval)]   # the 95 % intervals hold the truth
+    [True, True]
+    >>> fit.adequate, fit.edge, round(fit.noise, 2), fit.parameter_names
+    (True, None, 0.01, ('I1/I3', 'I2/I3', 'omega0_1', 'omega0_2', 'omega0_3'))
     """
 
     ratios: np.ndarray
@@ -130,12 +146,46 @@ class RotationFit:
 
     @property
     def moments(self) -> np.ndarray:
-        """Principal moments scaled so that ``I3 = 1`` (dimensionless), ascending."""
+        """Principal moments scaled so that ``I3 = 1`` (dimensionless), ascending.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.single import fit_solution
+        >>> from tumble.dynamics.methods.exact_omega import free_omega
+        >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+        >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+        >>> keep = np.ones(w.shape, bool)
+        >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+        >>> from tumble.analysis.fit.result import rotation_fit
+        >>> fit = rotation_fit(sol, t, w, keep)
+        >>> fit.moments.round(2).tolist()   # I3 = 1
+        [0.5, 0.8, 1.0]
+        """
         return np.array([self.ratios[0], self.ratios[1], 1.0])
 
     def summary(self) -> dict:
         """The fitted values and their uncertainties as plain JSON-ready numbers (SI units);
-        NaN (undetermined) is written as None."""
+        NaN (undetermined) is written as None.
+
+        Examples
+        --------
+        >>> import json
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.single import fit_solution
+        >>> from tumble.dynamics.methods.exact_omega import free_omega
+        >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+        >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+        >>> keep = np.ones(w.shape, bool)
+        >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+        >>> from tumble.analysis.fit.result import rotation_fit
+        >>> fit = rotation_fit(sol, t, w, keep)
+        >>> summary = fit.summary()
+        >>> summary["I1_over_I3"] == float(fit.ratios[0]), summary["bias_std"], summary["units"]["omega0"]   # bias not fitted: None
+        (True, None, 'rad/s')
+        >>> json.loads(json.dumps(summary)) == summary   # plain JSON numbers
+        True
+        """
         def num(v):
             v = float(v)
             return v if np.isfinite(v) else None
@@ -190,7 +240,26 @@ def public_covariance(sol: Solution, statistical: bool = False) -> tuple[tuple[s
     """The ratios, their covariance with everything else in the public order, and the names.
 
     ``statistical``: leave out the scale factor's systematic part. Returns ``(names, values, cov)`` with ``I1/I3``, ``I2/I3``, ``omega0_*``, ``rotvec_*``,
-    ``bias_*``, drag; undetermined parameters keep NaN rows."""
+    ``bias_*``, drag; undetermined parameters keep NaN rows.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import public_covariance
+    >>> from tumble.analysis.fit.triangle import ratio_jacobian, ratios
+    >>> names, values, cov = public_covariance(sol)
+    >>> names, bool(np.allclose(values[:2], ratios(sol.P[0], sol.P[1])))
+    (('I1/I3', 'I2/I3', 'omega0_1', 'omega0_2', 'omega0_3'), True)
+    >>> G = ratio_jacobian(sol.P[0], sol.P[1])   # (s, g) carried to the ratios by the chain rule
+    >>> bool(np.allclose(cov[:2, :2], G @ sol.cov[:2, :2] @ G.T))
+    True
+    """
     model, P = sol.model, sol.P
     per = list(model.names[model.ns:])
     rest = [n for n in model.shared if n not in ("s", "g")]
@@ -224,7 +293,24 @@ def ratio_summary(sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray, st
     :func:`~tumble.analysis.fit.uncertainty.interval`) carried to the ratios through the map
     of :mod:`~tumble.analysis.fit.triangle` (``I1/I3`` grows with both coordinates, ``I2/I3``
     falls with ``s`` and grows with ``g``), so that an optimum held on the planar edge keeps an
-    interval along the edge."""
+    interval along the edge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import public_covariance, ratio_summary
+    >>> rat, std, interval, edge = ratio_summary(sol)
+    >>> rat.round(2).tolist(), edge, bool(np.allclose(std, np.sqrt(np.diag(public_covariance(sol)[2])[:2])))
+    ([0.5, 0.8], None, True)
+    >>> bool(np.all(interval[:, 0] < rat) and np.all(rat < interval[:, 1]))   # about +- 2 std
+    True
+    """
     _names, values, cov = public_covariance(sol)
     _, _, cov_stat = public_covariance(sol, statistical=True)
     x, y = values[0], values[1]
@@ -251,7 +337,24 @@ def ratio_summary(sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray, st
 
 
 def rotation_fit(sol: Solution, t: np.ndarray, omega: np.ndarray, keep: np.ndarray) -> RotationFit:
-    """The public result of a solved flight."""
+    """The public result of a solved flight.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import rotation_fit
+    >>> fit = rotation_fit(sol, t, w, keep)
+    >>> fit.ratios.round(2).tolist(), fit.samples, fit.omega_model.shape, fit.drag
+    ([0.5, 0.8], 201, (201, 3), 'none')
+    >>> bool(np.allclose(fit.omega0, [3.0, 1.0, 6.0], atol=3 * fit.omega0_std))
+    True
+    """
     model = sol.model
     names, values, cov = public_covariance(sol)
     rat, rstd, rint, edge = ratio_summary(sol)
@@ -299,7 +402,22 @@ def solution_adequacy(sol: Solution, data: np.ndarray, mask: np.ndarray) -> Adeq
 
     ``data`` and ``mask`` are the samples and the kept axes as the solution's model lays them
     out, shape ``(F, T, 3)``; the noise is each flight's (:func:`noise_floor` of its residuals at
-    the samples with all axes kept), combined over the flights weighted by their lengths."""
+    the samples with all axes kept), combined over the flights weighted by their lengths.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import solution_adequacy
+    >>> verdict = solution_adequacy(sol, w[None], keep[None])
+    >>> verdict.adequate, verdict.misfit < 0.01   # residuals at the noise: the model describes the data
+    (True, True)
+    """
     data, mask = np.asarray(data, float), np.asarray(mask, bool)
     noise2, weight = 0.0, 0
     for j, n in enumerate(sol.model.lengths):
@@ -318,7 +436,24 @@ def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_ST
     Not determined: a ratio's coordinate is undetermined, or a ratio's standard uncertainty
     ``std`` exceeds ``max_std``. The reason tells a toss about a stable axis (the intermediate
     axis never carries half of ``|omega|``) from a tumble recorded too briefly, with the
-    record's length in turns (``integral |omega| dt / 2 pi``)."""
+    record's length in turns (``integral |omega| dt / 2 pi``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> keep = np.ones(w.shape, bool)
+    >>> sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    >>> from tumble.analysis.fit.result import determination, ratio_summary
+    >>> std = ratio_summary(sol)[1]
+    >>> determination(sol, std)   # both ratios known to better than 0.1: determined
+    ''
+    >>> print(determination(sol, std, max_std=0.001))   # a stricter limit: the reason says what is missing
+    too little of the tumble recorded (2 s, 2.1 turns): the ratios are not both determined (uncertainties 0.0043, 0.0027 > 0.001; a longer or faster toss about the intermediate axis fixes both)
+    """
     if not ({"s", "g"} & set(sol.undetermined) or np.max(std) > max_std):
         return ""
     n = int(sol.model.lengths[0])

@@ -109,6 +109,21 @@ def saturation_mask(omega: ArrayLike, saturation: float | None = None) -> tuple[
     keep : ndarray of bool, shape (n, 3)
         False where an axis is at the rail (within 0.2 %).
     rail : float or None
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import saturation_mask
+    >>> t = np.linspace(0.0, 1.0, 101)
+    >>> w = np.column_stack([40.0 * np.sin(2 * np.pi * t), np.cos(t), np.zeros_like(t)])
+    >>> clipped = np.clip(w, -34.9, 34.9)   # a gyroscope's 2000 deg/s rail
+    >>> keep, rail = saturation_mask(clipped)
+    >>> rail, bool(keep[:, 1:].all())   # found from the data
+    (34.9, True)
+    >>> bool(np.array_equal(~keep[:, 0], np.abs(w[:, 0]) >= 0.998 * 34.9))   # left out: the samples within 0.2 % of it
+    True
+    >>> saturation_mask(w)[1] is None   # a smooth maximum is no rail
+    True
     """
     a = np.abs(np.asarray(omega, float))
     rail = saturation
@@ -237,7 +252,19 @@ def fit_solution(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, *, rotation
 
     ``P0``: drag-free parameters to start from instead of the automatic starting values (and
     ``drag0`` the quadratic drag's), with ``omega0`` at time ``t0`` (default ``t[0]``; samples before it are fitted backward in time:
-    near the separatrix re-anchoring ``omega0`` at another sample would move it across)."""
+    near the separatrix re-anchoring ``omega0`` at another sample would move it across).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> sol = fit_solution(t, w, np.ones(w.shape, bool), rotation=False, bias=False, drag="none")
+    >>> sol.model.moments(sol.P).round(2).tolist()   # the automatic start finds I1/I3 = 0.5, I2/I3 = 0.8
+    [0.5, 0.8, 1.0]
+    """
     tau = t - (t[0] if t0 is None else t0)
     speed = [float(np.max(np.linalg.norm(omega, axis=1)))]
     P = _start(tau, omega, keep, rotation, bias, guess, max_nfev) if P0 is None else P0

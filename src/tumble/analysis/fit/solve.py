@@ -46,7 +46,21 @@ _FIXABLE = ("drag_3", "drag_1", "drag_2", "rotvec_x", "rotvec_y", "rotvec_z", "g
 @dataclass
 class Solution:
     """A solved model: parameters, their covariance (undetermined ones with NaN; ``cov_stat``
-    without the systematic part of the gyroscope's scale factor), residuals."""
+    without the systematic part of the gyroscope's scale factor), residuals.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.model import Model
+    >>> from tumble.analysis.fit.solve import solve
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t) + np.random.default_rng(0).normal(0.0, 0.01, (1, 201, 3))
+    >>> model = Model([t], rotation=False, bias=False)
+    >>> sol = solve(model, w, np.ones(w.shape, bool), model.pack(0.65, 0.45, None, None, [[2.8, 1.1, 6.2]]))
+    >>> sol.m, bool(np.isclose(sol.ssr, sol.residuals @ sol.residuals)), sol.cov.shape, sol.undetermined
+    (603, True, (5, 5), ())
+    """
 
     model: Model
     P: np.ndarray
@@ -62,6 +76,21 @@ class Solution:
 
     @property
     def bic(self) -> float:
+        """Schwarz's Bayesian information criterion ``m ln(SSR / m) + n ln m`` (``n`` the parameters determined): the smaller, the better.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> from tumble.analysis.fit.solve import solve
+        >>> from tumble.dynamics.methods.exact_omega import free_omega
+        >>> t = np.linspace(0.0, 2.0, 201)
+        >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t) + np.random.default_rng(0).normal(0.0, 0.01, (1, 201, 3))
+        >>> model = Model([t], rotation=False, bias=False)
+        >>> sol = solve(model, w, np.ones(w.shape, bool), model.pack(0.65, 0.45, None, None, [[2.8, 1.1, 6.2]]))
+        >>> bool(np.isclose(sol.bic, sol.m * np.log(sol.ssr / sol.m) + 5 * np.log(sol.m)))
+        True
+        """
         kept = self.model.n - len(self.undetermined)
         return self.m * np.log(max(self.ssr, 1e-300) / self.m) + kept * np.log(self.m)
 
@@ -109,7 +138,25 @@ def solve(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray, *, m
           covariance: bool = True, pin: tuple | None = None) -> Solution:
     """Solve from ``P0`` and characterise the optimum (module docstring); ``covariance=False``
     skips that (NaN covariance), for intermediate solves; ``pin = (index, value)`` holds one
-    coordinate at a bound of the box."""
+    coordinate at a bound of the box.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.model import Model
+    >>> from tumble.analysis.fit.solve import solve
+    >>> from tumble.analysis.fit.triangle import square
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t) + np.random.default_rng(0).normal(0.0, 0.01, (1, 201, 3))
+    >>> model = Model([t], rotation=False, bias=False)
+    >>> sol = solve(model, w, np.ones(w.shape, bool), model.pack(0.65, 0.45, None, None, [[2.8, 1.1, 6.2]]))
+    >>> truth = np.array([*square(0.5, 0.8), 3.0, 1.0, 6.0])   # I1/I3 = 0.5, I2/I3 = 0.8 as (s, g)
+    >>> bool(np.all(np.abs(sol.P - truth) < 3 * np.sqrt(np.diag(sol.cov))))   # within 3 sigma
+    True
+    >>> round(float(np.sqrt(np.mean(sol.residuals**2))), 3)   # the noise left
+    0.01
+    """
     bounds = None
     if pin is not None:
         lo, hi = (b.copy() for b in model.bounds)
@@ -162,7 +209,23 @@ def solve_drag(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray,
 
     ``model`` is the drag-free layout and ``P0`` its parameters; ``drag0`` (3 numbers, for the
     quadratic model) starts the drag where an earlier fit left it: a strong drag left out of a
-    long flight's start sends the solve to another basin."""
+    long flight's start sends the solve to another basin.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.model import Model
+    >>> from tumble.analysis.fit.solve import solve_drag
+    >>> from tumble.analysis.fit.triangle import square
+    >>> from tumble.dynamics.models.drag import drag_omega
+    >>> t = np.linspace(0.0, 1.0, 101)   # a flight slowed by a quadratic drag, b_i / I3 = 0.02, 0.03, 0.04
+    >>> w = drag_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t, quadratic=[[0.02, 0.03, 0.04]])
+    >>> w = w + np.random.default_rng(0).normal(0.0, 0.002, w.shape)
+    >>> model = Model([t], rotation=False, bias=False, speeds=[7.0])
+    >>> sol = solve_drag(model, w, np.ones(w.shape, bool), model.pack(*square(0.5, 0.8), None, None, w[:, 0]), "auto")
+    >>> sol.model.drag, sol.model.drag_vector(sol.P).round(3).tolist()   # the BIC picks the drag, and finds it
+    ('quadratic', [0.02, 0.03, 0.04])
+    """
     if drag not in ("auto", *DRAG_MODELS):
         raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
     kw = {"max_nfev": max_nfev, "scale_uncertainty": scale_uncertainty, "covariance": covariance}
