@@ -40,7 +40,15 @@ T_END, SAMPLES = 20.0, 500
 
 @dataclass(frozen=True)
 class Case:
-    """One run of the study."""
+    """One run of the study.
+
+    Examples
+    --------
+    >>> CASES[1].omega, CASES[1].frame  # 10 rad/s about the intermediate axis, 0.1 on the others
+    ((0.1, 10.0, 0.1), 'principal')
+    >>> [c.key for c in CASES if c.method == "seed"]  # the seed's own computation, to show its drift
+    ['seed_literal_10_seedmethod', 'seed_literal_1_seedmethod']
+    """
 
     key: str
     body: str  # "seed" or "iss"
@@ -111,6 +119,15 @@ def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
     ``"auto"``: ``.mp4`` where an ffmpeg is found (:func:`tumble.viz.ffmpeg_path`), else
     ``.gif`` with a note; ``"gif"``: ``.gif``; ``"mp4"``: ``.mp4``, and a ``ValueError`` where
     no ffmpeg is found (asked for by name, MP4 is not replaced silently).
+
+    Examples
+    --------
+    >>> animation_suffix("gif")
+    ('.gif', None)
+    >>> animation_suffix("avi")
+    Traceback (most recent call last):
+    ...
+    ValueError: animation_format = 'avi' must be 'auto', 'mp4' or 'gif'
     """
     from .viz import animation_path
 

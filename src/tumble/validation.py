@@ -59,7 +59,16 @@ INERTIA_RTOL = 1e-9
 
 
 def short_repr(value: object, limit: int = 80) -> str:
-    """``repr(value)`` on one line and at most ``limit`` characters, for error messages."""
+    """``repr(value)`` on one line and at most ``limit`` characters, for error messages.
+
+    Examples
+    --------
+    >>> short_repr(np.array([[1.0, 2.0],
+    ...                      [3.0, 4.0]]))
+    'array([[1.0, 2.0], [3.0, 4.0]])'
+    >>> short_repr(list(range(100)), limit=20)
+    '[0, 1, 2, 3, 4, 5...'
+    """
     text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
@@ -81,6 +90,13 @@ def refuse_first(field: str, values: ArrayLike, bad: ArrayLike, rule: str) -> No
         Where the rule is broken (the leading axes of ``values``).
     rule : str
         What is allowed, e.g. ``"must be positive (kg m^2)"``.
+
+    Examples
+    --------
+    >>> refuse_first("moments", [[1, 2, 3], [1, 3, 2]], [False, True], "must be ascending")
+    Traceback (most recent call last):
+    ...
+    ValueError: moments[1] = [1, 3, 2] must be ascending
     """
     mask: BoolArray = np.asarray(bad, bool)
     if not np.any(mask):
@@ -117,6 +133,15 @@ def check_vectors(field: str, value: ArrayLike, unit: str, *, size: int | None =
     ValueError
         Naming ``field``, the value (or the first non-finite entry, by index) and what is
         allowed, e.g. ``point = [nan, 0.0, 0.0] must be finite numbers (m)``.
+
+    Examples
+    --------
+    >>> check_vectors("omega", [[0, 0, 1], [1, 2, 3]], "rad/s").shape
+    (2, 3)
+    >>> check_vectors("point", [0.0, float("nan"), 0.0], "m")
+    Traceback (most recent call last):
+    ...
+    ValueError: point = [0.0, nan, 0.0] must be finite numbers (m)
     """
     shape = "real numbers" if size is None else f"real numbers of shape (..., {size})"
     try:
@@ -147,7 +172,17 @@ BOUND_REASONS = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "m
 
 def check_number(field: str, value: object, unit: str, at_most: float | None = None) -> float:
     """A real finite number (no boolean, complex number or string), at most ``at_most`` in
-    magnitude if given, as a float."""
+    magnitude if given, as a float.
+
+    Examples
+    --------
+    >>> check_number("mass", 2, "kg")
+    2.0
+    >>> check_number("mass", True, "kg")
+    Traceback (most recent call last):
+    ...
+    ValueError: mass = True must be a number (kg)
+    """
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
         raise ValueError(f"{field} = {value!r} must be a number ({unit})")
     x = float(value)
@@ -159,7 +194,16 @@ def check_number(field: str, value: object, unit: str, at_most: float | None = N
 
 def check_at_most(field: str, value: float, unit: str, at_most: float | None) -> None:
     """Refuse ``|value| > at_most`` (nothing when ``at_most`` is None), saying why the bound
-    holds for :data:`MAX_RATE` and :data:`MAX_INERTIA`."""
+    holds for :data:`MAX_RATE` and :data:`MAX_INERTIA`.
+
+    Examples
+    --------
+    >>> check_at_most("omega", 1e3, "rad/s", MAX_RATE)  # within the bound: nothing
+    >>> check_at_most("omega", 1e16, "rad/s", MAX_RATE)
+    Traceback (most recent call last):
+    ...
+    ValueError: omega = 1e+16 is beyond 1e+15 rad/s: faster than any rotation of matter
+    """
     if at_most is not None and not abs(value) <= at_most:
         why = f": {BOUND_REASONS[at_most]}" if at_most in BOUND_REASONS else ""
         raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
@@ -245,7 +289,17 @@ def axis_index(field: str, value: object) -> IntArray:
 
 
 def check_positive(field: str, value: object, unit: str, *, allow_zero: bool = False, at_most: float | None = None) -> float:
-    """A finite number > 0 (or >= 0 with ``allow_zero``), at most ``at_most`` if given."""
+    """A finite number > 0 (or >= 0 with ``allow_zero``), at most ``at_most`` if given.
+
+    Examples
+    --------
+    >>> check_positive("radius", 0.25, "m")
+    0.25
+    >>> check_positive("radius", -0.1, "m")
+    Traceback (most recent call last):
+    ...
+    ValueError: radius = -0.1 must be a positive finite number (m)
+    """
     x = check_number(field, value, unit, at_most)
     if x < 0 or (x == 0 and not allow_zero):
         allowed = "a non-negative" if allow_zero else "a positive"
@@ -259,6 +313,15 @@ def check_vector(field: str, value: object, unit: str, *, at_most: float | None 
 
     Anything else is refused, not converted: a dict or a set (whose keys or members have no
     meaningful order), a generator, a string, a nested list or an array of another shape.
+
+    Examples
+    --------
+    >>> check_vector("offset", np.array([1, 2, 3]), "m")
+    (1.0, 2.0, 3.0)
+    >>> check_vector("offset", {1, 2, 3}, "m")
+    Traceback (most recent call last):
+    ...
+    ValueError: offset = {1, 2, 3} must be a list of 3 numbers (m)
     """
     if isinstance(value, np.ndarray):
         ok = value.shape == (3,)
@@ -271,7 +334,13 @@ def check_vector(field: str, value: object, unit: str, *, at_most: float | None 
 
 
 def check_direction(field: str, value: object) -> tuple[float, float, float]:
-    """A non-zero finite 3-vector, returned as a unit vector (a direction has no length)."""
+    """A non-zero finite 3-vector, returned as a unit vector (a direction has no length).
+
+    Examples
+    --------
+    >>> check_direction("axis", [0, 3, 4])
+    (0.0, 0.6, 0.8)
+    """
     v = np.array(check_vector(field, value, "a direction, any length"))
     big = float(np.max(np.abs(v)))
     if big == 0.0:
@@ -291,6 +360,15 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
     """An orientation: a scipy Rotation, a quaternion [x, y, z, w] or a 3x3 rotation matrix.
 
     Returns the unit quaternion, scalar last (scipy's convention).
+
+    Examples
+    --------
+    >>> check_rotation("orientation", np.eye(3))
+    (0.0, 0.0, 0.0, 1.0)
+    >>> check_rotation("orientation", np.diag([1.0, 1.0, -1.0]))
+    Traceback (most recent call last):
+    ...
+    ValueError: orientation has determinant -1, which should be +1; it is a rotoreflection (it mirrors the part), not a rotation
     """
     from scipy.spatial.transform import Rotation
 
@@ -335,7 +413,14 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
 
 def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vector3]:
     """A rigid motion ``x -> R x + t``: ``(scipy Rotation, ndarray (3,))`` from anything
-    :func:`check_rotation` and :func:`check_vector` accept."""
+    :func:`check_rotation` and :func:`check_vector` accept.
+
+    Examples
+    --------
+    >>> R, t = check_motion([0, 0, np.sin(np.pi / 4), np.cos(np.pi / 4)], [1, 0, 0])
+    >>> np.round(R.apply([1.0, 0.0, 0.0]) + t, 12).tolist()  # x -> R x + t: a quarter turn about z
+    [1.0, 1.0, 0.0]
+    """
     from scipy.spatial.transform import Rotation
 
     R = Rotation.from_quat(check_rotation("rotation", rotation))
@@ -372,6 +457,21 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
     ValueError
         One line naming the file and the rule: missing, not a regular file (directory, FIFO,
         socket, device), unreadable, or larger than ``limit``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = os.path.join(folder, "body.toml")
+    ...     with open(path, "w") as f:
+    ...         _ = f.write("mass = 1.0")
+    ...     read_input_file(path, limit=1024, what="a body file")
+    b'mass = 1.0'
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     read_input_file(folder, limit=1024, what="a body file", label="bodies/")
+    Traceback (most recent call last):
+    ...
+    ValueError: bodies/: is a directory; a body file must be a regular file
     """
     import stat
 

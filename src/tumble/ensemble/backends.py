@@ -34,18 +34,44 @@ _DASK_LOGGERS = ("distributed", "tornado")
 
 
 class InProcess:
-    """Compute the tasks one after the other, here, lazily (one chunk in memory at a time)."""
+    """Compute the tasks one after the other, here, lazily (one chunk in memory at a time).
+
+    Examples
+    --------
+    >>> list(InProcess().map(pow, [(2, 10), (3, 4)]))  # (position, result), in order
+    [(0, 1024), (1, 81)]
+    """
 
     def map(self, fn: Callable, tasks: Iterable[tuple]) -> Iterator[tuple[int, object]]:
-        """Yield ``(position, fn(*task))`` in order."""
+        """Yield ``(position, fn(*task))`` in order.
+
+        Examples
+        --------
+        >>> done = InProcess().map(divmod, [(7, 2), (9, 4)])
+        >>> next(done)  # lazily: one task at a time
+        (0, (3, 1))
+        """
         for position, task in enumerate(tasks):
             yield position, fn(*task)
 
     def close(self) -> None:
-        """Nothing to release."""
+        """Nothing to release.
+
+        Examples
+        --------
+        >>> backend = InProcess()
+        >>> backend.close() is None
+        True
+        """
 
     def describe(self) -> str:
-        """One word for the provenance: ``"in-process"``."""
+        """One word for the provenance: ``"in-process"``.
+
+        Examples
+        --------
+        >>> InProcess().describe()
+        'in-process'
+        """
         return "in-process"
 
 
@@ -263,7 +289,17 @@ def dask_setup(worker: object) -> None:
 
 
 def make_backend(workers: int | None = None, scheduler: str | None = None) -> InProcess | DaskBackend:
-    """:class:`InProcess` when neither is given, else a :class:`DaskBackend`."""
+    """:class:`InProcess` when neither is given, else a :class:`DaskBackend`.
+
+    Examples
+    --------
+    >>> make_backend().describe()
+    'in-process'
+    >>> make_backend(workers=2, scheduler="tcp://10.0.0.5:8786")
+    Traceback (most recent call last):
+    ...
+    ValueError: give workers (a local Dask cluster) or scheduler (a running one), not both
+    """
     if workers is None and scheduler is None:
         return InProcess()
     if workers is not None and scheduler is not None:

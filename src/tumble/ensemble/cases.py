@@ -57,6 +57,13 @@ class InitialRates:
         Instead of ``omega``: the values of each component, rad/s; the cases run through
         their Cartesian product, the third component fastest, case ``i`` at point ``i mod G``
         (``G`` points: take a multiple of ``G`` cases to give every point the same number).
+
+    Examples
+    --------
+    >>> InitialRates(omega=(0.1, 10.0, 0.1)).rate(0, [])  # the nominal rate, rad/s
+    array([ 0.1, 10. ,  0.1])
+    >>> InitialRates(grid=([0.0], [1.0, 2.0], [5.0, 6.0, 7.0])).points
+    6
     """
 
     omega: tuple | None = None
@@ -89,16 +96,37 @@ class InitialRates:
 
     @property
     def dims(self) -> int:
-        """Deviates per case: 3 when dispersed, else 0."""
+        """Deviates per case: 3 when dispersed, else 0.
+
+        Examples
+        --------
+        >>> InitialRates(omega=(0, 5, 0)).dims, InitialRates(omega=(0, 5, 0), distribution="normal", spread=(0.1, 0.1, 0.1)).dims
+        (0, 3)
+        """
         return 3 if self.distribution is not None else 0
 
     @property
     def points(self) -> int:
-        """Points of the grid (1 without one)."""
+        """Points of the grid (1 without one).
+
+        Examples
+        --------
+        >>> InitialRates(grid=([1.0, 2.0], [0.0], [0.1, 0.2, 0.3])).points, InitialRates(omega=(0, 0, 1)).points
+        (6, 1)
+        """
         return int(np.prod([len(g) for g in self.grid])) if self.grid is not None else 1
 
     def rate(self, index: int, u: ArrayLike) -> np.ndarray:
-        """Case ``index``'s rate in :attr:`frame`, rad/s, from its unit numbers ``u`` (shape (dims,))."""
+        """Case ``index``'s rate in :attr:`frame`, rad/s, from its unit numbers ``u`` (shape (dims,)).
+
+        Examples
+        --------
+        >>> rates = InitialRates(omega=(0.0, 5.0, 0.0), distribution="uniform", spread=(0.0, 1.0, 0.0))
+        >>> rates.rate(0, [0.5, 0.75, 0.5]).tolist()  # 5 + 1 * (2 * 0.75 - 1)
+        [0.0, 5.5, 0.0]
+        >>> InitialRates(grid=([1.0, 2.0], [0.0], [7.0, 8.0])).rate(3, []).tolist()  # the last component fastest
+        [2.0, 0.0, 8.0]
+        """
         if self.grid is not None:
             point = np.unravel_index(index % self.points, [len(g) for g in self.grid])
             return np.array([g[k] for g, k in zip(self.grid, point)])
@@ -109,7 +137,15 @@ class InitialRates:
 
     def rates(self, index: ArrayLike, u: ArrayLike) -> np.ndarray:
         """:meth:`rate` of many cases at once, bit for bit: ``index`` shape (m,), ``u`` shape
-        (m, dims); returns shape (m, 3)."""
+        (m, dims); returns shape (m, 3).
+
+        Examples
+        --------
+        >>> grid = InitialRates(grid=([1.0, 2.0], [0.0], [7.0, 8.0]))
+        >>> out = grid.rates(np.arange(5), np.empty((5, 0)))
+        >>> out.shape, out[4].tolist() == grid.rate(4, []).tolist()  # case 4 is point 0 again
+        ((5, 3), True)
+        """
         index = np.asarray(index)
         if self.grid is not None:
             point = np.unravel_index(index % self.points, [len(g) for g in self.grid])
@@ -158,6 +194,14 @@ class CaseInputs:
         The drawn quantities (:attr:`BodySampler.names`).
     resampled : ndarray of int, shape (m,)
         How many body draws of each case were refused as unphysical and drawn again.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler
+    >>> inputs = Ensemble(BodySampler(tumble.t_handle()), InitialRates(omega=(0.1, 5.0, 0.1)), cases=4).inputs()
+    >>> len(inputs), inputs.moments.shape, inputs.omega0.shape, inputs.quat0.shape
+    (4, (4, 3), (4, 3), (4, 4))
     """
 
     index: np.ndarray
@@ -190,6 +234,15 @@ class Ensemble:
         How the unit cube is sampled (:mod:`tumble.ensemble.sampling`).
     max_resamples : int
         Redraws allowed per case before the sweep is refused (>= 0).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Dispersion
+    >>> bodies = BodySampler(tumble.t_handle(), (Dispersion("moments", 0.02),))
+    >>> cases = Ensemble(bodies, InitialRates(omega=(0.1, 5.0, 0.1)), cases=100, seed=7, sampling="lhs")
+    >>> cases.design.dims, cases.inputs(10, 20).moments.shape
+    (3, (10, 3))
     """
 
     bodies: BodySampler
@@ -212,12 +265,30 @@ class Ensemble:
 
     @functools.cached_property
     def design(self) -> Design:
-        """The unit-cube design: rates first, then the body's deviates."""
+        """The unit-cube design: rates first, then the body's deviates.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.ensemble import BodySampler, Dispersion
+        >>> rates = InitialRates(omega=(0, 5, 0), distribution="normal", spread=(0.1, 0.1, 0.1))
+        >>> Ensemble(BodySampler(tumble.t_handle(), (Dispersion("moments", 0.02),)), rates, cases=8).design
+        Design(sampling='random', seed=0, cases=8, dims=6)
+        """
         return Design(self.sampling, self.seed, self.cases, self.rates.dims + self.bodies.dims)
 
     @property
     def names(self) -> tuple[str, ...]:
-        """Names of :attr:`CaseInputs.values`."""
+        """Names of :attr:`CaseInputs.values`.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.ensemble import BodySampler, Dispersion
+        >>> bodies = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.05, field="shaft_length"),), preset="t-handle")
+        >>> Ensemble(bodies, InitialRates(omega=(0.1, 5.0, 0.1)), cases=8).names
+        ('shaft_length [m]',)
+        """
         return self.bodies.names
 
     def inputs(self, start: int = 0, stop: int | None = None) -> CaseInputs:
@@ -228,6 +299,17 @@ class Ensemble:
         ValueError
             For a range outside the sweep, or a case whose body draws were refused
             ``max_resamples + 1`` times in a row (naming the case and the last reason).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.ensemble import BodySampler, Dispersion
+        >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+        >>> cases = Ensemble(BodySampler(box, (Dispersion("moments", 0.05),)), InitialRates(omega=(0.0, 1.0, 0.0)),
+        ...                  cases=50, seed=3)
+        >>> whole, chunk = cases.inputs(), cases.inputs(20, 27)
+        >>> bool(np.array_equal(whole.moments[20:27], chunk.moments)), chunk.index.tolist()[:3]  # the same alone
+        (True, [20, 21, 22])
         """
         stop = self.cases if stop is None else stop
         rows = self.design.rows(start, stop)

@@ -81,6 +81,15 @@ class Dispersion:
         axes absolute ones only.
     distribution : {"normal", "uniform"}
         Of the deviate ``z``.
+
+    Examples
+    --------
+    >>> Dispersion("part", 0.02, field="length", part=1).label
+    'parts[1].length'
+    >>> Dispersion("moments", 0.01, relative=False)
+    Traceback (most recent call last):
+    ...
+    ValueError: target 'moments' takes a relative spread only (a fraction of each moment)
     """
 
     target: str
@@ -118,7 +127,13 @@ class Dispersion:
 
     @property
     def label(self) -> str:
-        """Its name in tables: ``shaft_length``, ``parts[1].length``, ``moments``, ``axes``."""
+        """Its name in tables: ``shaft_length``, ``parts[1].length``, ``moments``, ``axes``.
+
+        Examples
+        --------
+        >>> Dispersion("preset", 0.05, field="shaft_length").label, Dispersion("axes", 0.01, relative=False).label
+        ('shaft_length', 'axes')
+        """
         if self.target == "preset":
             return str(self.field)
         if self.target == "part":
@@ -138,6 +153,14 @@ class Sampled:
         Principal axes (columns) in the design frame: principal -> design.
     values : ndarray, shape (p,)
         The drawn quantities, in the order of :attr:`BodySampler.names`.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> drawn = BodySampler(box).sample([])
+    >>> drawn.moments.round(12).tolist(), drawn.values.shape  # the nominal body, m (b^2 + c^2) / 12
+    ([5.0, 10.0, 13.0], (0,))
     """
 
     moments: np.ndarray
@@ -186,6 +209,18 @@ class BodySampler:
         One line naming the dispersion (by its index) and the rule: a part index out of range,
         a field the part does not have or that is not a number, a preset parameter that the
         preset does not take or that has no number to perturb, a body with rotors.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.05, field="shaft_length"),
+    ...                                           Dispersion("axes", 0.01, relative=False)), preset="t-handle")
+    >>> sampler.dims, sampler.names
+    (4, ('shaft_length [m]', 'axes_rotvec_x [rad]', 'axes_rotvec_y [rad]', 'axes_rotvec_z [rad]'))
+    >>> BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="radius", part=0),))
+    Traceback (most recent call last):
+    ...
+    ValueError: dispersions[0] (parts[0].radius): a rod has no number 'radius' to perturb; allowed: mass, center, length
     """
 
     body: Body
@@ -246,22 +281,54 @@ class BodySampler:
 
     @property
     def widths(self) -> tuple[int, ...]:
-        """Deviates each dispersion takes (1 or 3), in order."""
+        """Deviates each dispersion takes (1 or 3), in order.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> body = tumble.t_handle()
+        >>> BodySampler(body, (Dispersion("part", 0.1, field="center", part=0, relative=False),
+        ...                    Dispersion("part", 0.1, field="mass", part=1))).widths  # a vector takes 3
+        (3, 1)
+        """
         return self._widths  # type: ignore[attr-defined]
 
     @property
     def dims(self) -> int:
-        """Deviates per case, in all."""
+        """Deviates per case, in all.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> BodySampler(tumble.t_handle(), (Dispersion("moments", 0.02),)).dims
+        3
+        """
         return sum(self.widths)
 
     @property
     def distributions(self) -> tuple[str, ...]:
-        """The distribution of each deviate, shape (dims,)."""
+        """The distribution of each deviate, shape (dims,).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=0, distribution="uniform"),
+        ...                                 Dispersion("moments", 0.02))).distributions
+        ('uniform', 'normal', 'normal', 'normal')
+        """
         return tuple(d.distribution for d, w in zip(self.dispersions, self.widths) for _ in range(w))
 
     @property
     def names(self) -> tuple[str, ...]:
-        """Column names (with units) of the drawn values :attr:`Sampled.values`."""
+        """Column names (with units) of the drawn values :attr:`Sampled.values`.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=1),
+        ...                                 Dispersion("moments", 0.02))).names
+        ('parts[1].mass [kg]', 'moment_factor_1', 'moment_factor_2', 'moment_factor_3')
+        """
         out = []
         for d, w in zip(self.dispersions, self.widths):
             if d.target == "moments":
@@ -275,7 +342,16 @@ class BodySampler:
         return tuple(out)
 
     def deviates(self, u: ArrayLike) -> np.ndarray:
-        """Map unit-cube points (shape (dims,) or (m, dims)) to the deviates ``z`` of the dispersions."""
+        """Map unit-cube points (shape (dims,) or (m, dims)) to the deviates ``z`` of the dispersions.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=0, distribution="uniform"),
+        ...                                           Dispersion("part", 0.1, field="mass", part=1)))
+        >>> sampler.deviates([0.75, 0.975]).round(3).tolist()  # uniform 2 u - 1, normal Phi^-1(u)
+        [0.5, 1.96]
+        """
         u = np.asarray(u, dtype=float)
         z = np.empty(u.shape[:-1] + (self.dims,))
         names = np.array(self.distributions)
@@ -302,6 +378,18 @@ class BodySampler:
         tuple or None
             ``(moments (m, 3), axes (m, 3, 3), values (m, p), decided (m,) of bool)``; None when
             a dispersion acts on parts or preset parameters.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+        >>> sampler = BodySampler(box, (Dispersion("moments", 0.01),))
+        >>> z = np.random.default_rng(0).normal(size=(5, 3))
+        >>> moments, axes, values, decided = sampler.sample_many(z)
+        >>> moments.shape, axes.shape, bool(decided.all())
+        ((5, 3), (5, 3, 3), True)
+        >>> bool(np.array_equal(moments[2], sampler.sample(z[2]).moments))  # bit for bit
+        True
         """
         if any(d.target in ("preset", "part") for d in self.dispersions):
             return None
@@ -345,6 +433,14 @@ class BodySampler:
         ------
         ValueError
             When the draw is not a physical body (module docstring): the caller draws again.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.1, field="shaft_length"),), preset="t-handle")
+        >>> drawn = sampler.sample([1.0])  # z = 1: a shaft 10 % longer
+        >>> drawn.values.tolist(), bool(np.allclose(drawn.moments, tumble.t_handle(shaft_length=1.1).principal_moments))
+        ([1.1], True)
         """
         z = np.asarray(z, dtype=float)
         chunks = np.split(z, np.cumsum(self.widths)[:-1]) if self.dispersions else []

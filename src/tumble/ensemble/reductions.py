@@ -57,7 +57,20 @@ RESULT_COLUMNS = (
 
 def input_columns(inputs: CaseInputs, names: Sequence[str]) -> dict[str, np.ndarray]:
     """The inputs of each case as columns: ``case``, ``I1..I3 [kg m^2]``, ``omega0_1..3 [rad/s]``
-    (principal frame), the drawn values (``names``) and ``resampled``."""
+    (principal frame), the drawn values (``names``) and ``resampled``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> inputs = Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), cases=3).inputs()
+    >>> cols = input_columns(inputs, ())
+    >>> list(cols)
+    ['case', 'I1 [kg m^2]', 'I2 [kg m^2]', 'I3 [kg m^2]', 'omega0_1 [rad/s]', 'omega0_2 [rad/s]', 'omega0_3 [rad/s]', 'resampled']
+    >>> cols["I3 [kg m^2]"].round(12).tolist()  # m (a^2 + b^2) / 12 of the box
+    [13.0, 13.0, 13.0]
+    """
     cols = {"case": inputs.index}
     cols.update({f"I{j + 1} [kg m^2]": inputs.moments[:, j] for j in range(3)})
     cols.update({f"omega0_{j + 1} [rad/s]": inputs.omega0[:, j] for j in range(3)})
@@ -84,6 +97,12 @@ def nutation_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     Returns
     -------
     ndarray, shape (N, T)
+
+    Examples
+    --------
+    >>> omega = [[[0.0, 0.0, 2.0], [1.0, 0.0, 1.0]]]  # one case, two samples, rad/s
+    >>> nutation_angle(omega, [[1.0, 2.0, 3.0]]).round(4).tolist()  # arctan(1 / 3) for L = (1, 0, 3)
+    [[0.0, 0.3218]]
     """
     I = np.asarray(moments, float)[:, None, :]
     L = I * np.asarray(omega, float)
@@ -137,6 +156,21 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
         :func:`input_columns`, then :data:`RESULT_COLUMNS` (module docstring). ``predicted``
         holds strings; ``axis``, ``circulation`` and ``flips`` integers; a quantity that does
         not apply is NaN.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))  # moments 5, 10, 13 kg m^2
+    >>> inputs = Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), cases=2).inputs()
+    >>> batch = tumble.simulate_batch(inputs.moments, inputs.omega0, t_end=60.0, samples=600, attitude0=inputs.quat0)
+    >>> cols = reduce_cases(inputs, batch)
+    >>> cols["axis"].tolist(), cols["predicted"].tolist(), cols["flips"].tolist()
+    ([2, 2], ['unstable', 'unstable'], [2, 2])
+    >>> round(float(cols["growth_rate [1/s]"][0]), 4)  # sqrt((I2 - I1) (I3 - I2) / (I1 I3)) = sqrt(15 / 65)
+    0.4804
+    >>> bool(np.isclose(cols["flip_period [s]"][0], cols["flip_period_exact [s]"][0], rtol=1e-4))  # measured vs exact
+    True
     """
     I, w0 = inputs.moments, inputs.omega0
     m = len(inputs)
@@ -192,6 +226,13 @@ class StabilityMap:
         the separatrix (NaN outside; :func:`tumble.analysis.energy_momentum_gaps`).
     omega0 : ndarray, shape (3,)
         The initial spin, rad/s, principal frame.
+
+    Examples
+    --------
+    >>> m = stability_map(10.0, resolution=40)
+    >>> inside = m.inside
+    >>> bool(np.all((m.separatrix_gap[inside] > 0) == (m.circulation[inside] == 3)))  # major axis above the separatrix
+    True
     """
 
     x: np.ndarray
@@ -231,6 +272,16 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     ValueError
         For a spin that is not a positive finite number, a perturbation that is not two finite
         numbers, or a resolution outside 10 to 2000.
+
+    Examples
+    --------
+    >>> m = stability_map(10.0, resolution=20)
+    >>> m.flip_interval.shape, sorted(set(m.circulation[m.inside].tolist()))
+    ((10, 20), [1, 3])
+    >>> j, i = np.argwhere(m.inside)[0]
+    >>> x, y = m.x[i], m.y[j]  # I1 / I3, I2 / I3
+    >>> bool(np.isclose(m.growth_rate[j, i], 10.0 * np.sqrt((y - x) * (1.0 - y) / x)))
+    True
     """
     if isinstance(spin, bool) or not isinstance(spin, (int, float, np.integer, np.floating)) or not (
             np.isfinite(spin) and spin > 0):

@@ -70,7 +70,13 @@ _NOT_SUMMARISED = ("case", "q_end_x", "q_end_y", "q_end_z", "q_end_w")
 
 
 def base_name(column: str) -> str:
-    """A column's name without its unit: ``"flip_period [s]"`` -> ``"flip_period"``."""
+    """A column's name without its unit: ``"flip_period [s]"`` -> ``"flip_period"``.
+
+    Examples
+    --------
+    >>> base_name("flip_period [s]"), base_name("flips")
+    ('flip_period', 'flips')
+    """
     return column.split(" [", 1)[0]
 
 
@@ -106,6 +112,16 @@ class RunSettings:
     ValueError
         For an unknown method, a torque the method cannot take, a fixed-step method without
         ``step``, or a ``step`` that is not a positive finite number.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> RunSettings(t_end=10.0).method, RunSettings(t_end=10.0, torque=tumble.ConstantTorque((0, 0, 0.1))).method
+    ('exact', 'dop853')
+    >>> RunSettings(t_end=10.0, method="geometric")
+    Traceback (most recent call last):
+    ...
+    ValueError: method = 'geometric' needs a step (s) in a sweep: its default step follows the fastest body of each chunk, and the results must not depend on the chunking
     """
 
     t_end: float | None = None
@@ -131,7 +147,18 @@ class RunSettings:
                              f"fastest body of each chunk, and the results must not depend on the chunking")
 
     def run(self, inputs: CaseInputs) -> BatchTrajectory:
-        """The motions of the cases ``inputs`` (:class:`~tumble.ensemble.cases.CaseInputs`)."""
+        """The motions of the cases ``inputs`` (:class:`~tumble.ensemble.cases.CaseInputs`).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+        >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+        >>> inputs = Ensemble(BodySampler(box), InitialRates(omega=(0.0, 0.0, 2.0)), cases=3).inputs()
+        >>> end = RunSettings(t_end=5.0, samples=2).run(inputs)  # the final state only
+        >>> end.omega.shape, bool(np.allclose(end.omega[:, -1], [0.0, 0.0, 2.0]))  # a steady spin about the major axis
+        ((3, 2, 3), True)
+        """
         # a closed form is evaluated at the times asked for, with no steps from t = 0
         closed_form = get_method(self.method).closed_form
         if self.samples == 2 and self.times is None and closed_form and as_torque(self.torque) is None:
@@ -157,6 +184,15 @@ class Criterion:
         Bounds, inclusive; at least one, and ``minimum <= maximum``.
     confidence : float
         Of the success statement, in (0, 1); default 0.9.
+
+    Examples
+    --------
+    >>> Criterion("max_nutation", maximum=0.2, confidence=0.95).minimum is None
+    True
+    >>> Criterion("flips", minimum=3, maximum=1)
+    Traceback (most recent call last):
+    ...
+    ValueError: min = 3 is above max = 1: no case could succeed; allowed: min <= max
     """
 
     column: str
@@ -179,7 +215,13 @@ class Criterion:
         success_lower_bound(1, 0, self.confidence)  # checks the confidence
 
     def passed(self, columns: dict) -> np.ndarray:
-        """Which cases of ``columns`` succeed, shape (m,)."""
+        """Which cases of ``columns`` succeed, shape (m,).
+
+        Examples
+        --------
+        >>> Criterion("max_nutation", maximum=0.2).passed({"max_nutation [rad]": np.array([0.1, 0.3, np.nan])}).tolist()
+        [True, False, False]
+        """
         found = {base_name(k): k for k in columns}
         if self.column not in found:
             raise ValueError(f"column = {self.column!r} is not a column of the cases; allowed: {', '.join(found)}")
@@ -194,7 +236,19 @@ class Criterion:
 
 @dataclass(frozen=True, eq=False)
 class Sweep:
-    """A sweep: the cases, how to run them, and what counts as success."""
+    """A sweep: the cases, how to run them, and what counts as success.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> cases = Ensemble(BodySampler(box, (Dispersion("moments", 0.02),)), InitialRates(omega=(0.01, 1.0, 0.01)), 8, seed=2)
+    >>> sweep = Sweep(cases, RunSettings(t_end=60.0, samples=600), Criterion("flips", minimum=1))
+    >>> summary = summarize(run_chunks(sweep, chunk=3), seed=2, criterion=sweep.criterion)
+    >>> summary.cases, summary.passed, summary.failed  # every intermediate-axis spin flips
+    (8, 8, 0)
+    """
 
     ensemble: Ensemble
     settings: RunSettings
@@ -202,29 +256,99 @@ class Sweep:
 
 
 def chunk_ranges(cases: int, chunk: int) -> list[tuple[int, int]]:
-    """``[(start, stop), ...]`` of consecutive chunks of ``chunk`` cases (the last one shorter)."""
+    """``[(start, stop), ...]`` of consecutive chunks of ``chunk`` cases (the last one shorter).
+
+    Examples
+    --------
+    >>> chunk_ranges(10, 4)
+    [(0, 4), (4, 8), (8, 10)]
+    """
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
         raise ValueError(f"chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
     return [(s, min(s + chunk, cases)) for s in range(0, cases, chunk)]
 
 
 def compute_chunk(sweep: Sweep, start: int, stop: int) -> dict[str, np.ndarray]:
-    """The columns of cases ``start`` to ``stop - 1`` (:func:`~tumble.ensemble.reductions.reduce_cases`)."""
+    """The columns of cases ``start`` to ``stop - 1`` (:func:`~tumble.ensemble.reductions.reduce_cases`).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> cases = Ensemble(BodySampler(box, (Dispersion("moments", 0.02),)), InitialRates(omega=(0.01, 1.0, 0.01)), 6)
+    >>> sweep = Sweep(cases, RunSettings(t_end=30.0, samples=300))
+    >>> alone, whole = compute_chunk(sweep, 4, 6), compute_chunk(sweep, 0, 6)
+    >>> alone["case"].tolist(), bool(np.array_equal(alone["flip_period_exact [s]"], whole["flip_period_exact [s]"][4:]))
+    ([4, 5], True)
+    """
     inputs = sweep.ensemble.inputs(start, stop)
     return reduce_cases(inputs, sweep.settings.run(inputs), sweep.ensemble.names)
 
 
 class ChunkStore(Protocol):
-    """Where finished chunks are kept between runs (resume): by chunk number."""
+    """Where finished chunks are kept between runs (resume): by chunk number.
+
+    Examples
+    --------
+    >>> class Memory(dict):  # a store in memory: these three methods are all a store needs
+    ...     def has(self, number): return number in self
+    ...     def load(self, number): return self[number]
+    ...     def save(self, number, columns): self[number] = columns
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> sweep = Sweep(Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), 5), RunSettings(t_end=10.0))
+    >>> store = Memory()
+    >>> first = list(run_chunks(sweep, chunk=2, store=store))
+    >>> sorted(store), all(a is b for a, b in zip(run_chunks(sweep, chunk=2, store=store), first))  # resumed
+    ([0, 1, 2], True)
+    """
 
     def has(self, number: int) -> bool:
-        """Whether the chunk is there."""
+        """Whether the chunk is there.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=5, chunk=2)
+        ...     store.save(2, {"case": np.array([4])})
+        ...     print(store.has(1), store.has(2))
+        ...     store.close()
+        False True
+        """
 
     def load(self, number: int) -> dict:
-        """The chunk's columns."""
+        """The chunk's columns.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=4, chunk=2)
+        ...     store.save(0, {"case": np.arange(2), "flips": np.array([2, 4])})
+        ...     print(store.load(0)["flips"].tolist())
+        ...     store.close()
+        [2, 4]
+        """
 
     def save(self, number: int, columns: dict) -> None:
-        """Keep the chunk's columns."""
+        """Keep the chunk's columns.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=4, chunk=2)
+        ...     store.save(1, {"case": np.arange(2, 4)})
+        ...     print(sorted(p.name for p in store.folder.glob("chunk-*")))
+        ...     store.close()
+        ['chunk-000001.npz']
+        """
 
 
 def run_chunks(sweep: Sweep, *, chunk: int = DEFAULT_CHUNK, store: ChunkStore | None = None,
@@ -241,6 +365,15 @@ def run_chunks(sweep: Sweep, *, chunk: int = DEFAULT_CHUNK, store: ChunkStore | 
         Finished chunks are loaded from it, and each new one saved to it as it finishes.
     backend : optional
         Where chunks are computed (:mod:`tumble.ensemble.backends`); default in this process.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
+    >>> sweep = Sweep(Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), 5), RunSettings(t_end=10.0))
+    >>> [chunk["case"].tolist() for chunk in run_chunks(sweep, chunk=2)]
+    [[0, 1], [2, 3], [4]]
     """
     ranges = chunk_ranges(sweep.ensemble.cases, chunk)
     stored = {k for k in range(len(ranges)) if store is not None and store.has(k)}
@@ -294,6 +427,14 @@ class SweepSummary:
         Cases meeting the criterion and not (0 and 0 without one).
     redraws : int
         Body draws refused as unphysical and drawn again, in all.
+
+    Examples
+    --------
+    >>> cols = {"case": np.arange(4), "axis": np.array([2, 2, 2, 3]), "predicted": np.array(["unstable"] * 3 + ["stable"]),
+    ...         "circulation": np.array([1, 3, 3, 3]), "flips": np.array([2, 4, 6, 0]), "resampled": np.zeros(4, int)}
+    >>> summary = SweepSummary.of(cols, seed=0)
+    >>> summary.columns, summary.moments.mean.tolist(), summary.counts.as_dict()["predicted"]
+    (('flips', 'resampled'), [3.0, 0.0], {'stable': 1, 'unstable': 3})
     """
 
     columns: tuple
@@ -307,7 +448,16 @@ class SweepSummary:
     @classmethod
     def of(cls, columns: dict, seed: int, criterion: Criterion | None = None,
            sample_size: int = SAMPLE_SIZE) -> SweepSummary:
-        """The summary of one block of cases."""
+        """The summary of one block of cases.
+
+        Examples
+        --------
+        >>> cols = {"case": np.arange(3), "axis": np.array([2, 2, 2]), "predicted": np.array(["unstable"] * 3),
+        ...         "circulation": np.array([1, 3, 3]), "flips": np.array([2, 4, 0]), "resampled": np.array([0, 1, 0])}
+        >>> summary = SweepSummary.of(cols, seed=0, criterion=Criterion("flips", minimum=1))
+        >>> summary.passed, summary.failed, summary.redraws
+        (2, 1, 1)
+        """
         names = tuple(k for k in columns if base_name(k) not in (*CATEGORICAL, *_NOT_SUMMARISED))
         table = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])
         ok = criterion.passed(columns) if criterion is not None else np.zeros(0, bool)
@@ -316,7 +466,18 @@ class SweepSummary:
                    int(np.sum(columns["resampled"])))
 
     def merge(self, other: SweepSummary) -> SweepSummary:
-        """Both together (same columns)."""
+        """Both together (same columns).
+
+        Examples
+        --------
+        >>> def block(start, flips):
+        ...     n = len(flips)
+        ...     return {"case": np.arange(start, start + n), "axis": np.full(n, 2), "predicted": np.array(["unstable"] * n),
+        ...             "circulation": np.full(n, 3), "flips": np.array(flips), "resampled": np.zeros(n, int)}
+        >>> both = SweepSummary.of(block(0, [1, 2]), seed=5).merge(SweepSummary.of(block(2, [3, 6]), seed=5))
+        >>> both.cases, both.moments.mean.tolist()[0], bool(np.array_equal(both.sample.values, SweepSummary.of(block(0, [1, 2, 3, 6]), 5).sample.values))
+        (4, 3.0, True)
+        """
         if self.columns != other.columns:
             raise ValueError("summaries of different columns cannot be merged")
         return SweepSummary(self.columns, self.moments.merge(other.moments), self.sample.merge(other.sample),
@@ -325,11 +486,28 @@ class SweepSummary:
 
     @property
     def cases(self) -> int:
-        """Cases summarised."""
+        """Cases summarised.
+
+        Examples
+        --------
+        >>> cols = {"case": np.arange(3), "axis": np.array([1, 2, 3]), "predicted": np.array(["stable", "unstable", "stable"]),
+        ...         "circulation": np.array([1, 3, 3]), "flips": np.zeros(3), "resampled": np.zeros(3, int)}
+        >>> SweepSummary.of(cols, seed=0).cases
+        3
+        """
         return int(sum(c for _, c in dict(self.counts.table)["axis"]))
 
     def sample_columns(self) -> dict[str, np.ndarray]:
-        """The sample as columns (name -> values), for figures."""
+        """The sample as columns (name -> values), for figures.
+
+        Examples
+        --------
+        >>> cols = {"case": np.arange(3), "axis": np.full(3, 2), "predicted": np.array(["unstable"] * 3),
+        ...         "circulation": np.full(3, 3), "flip_period [s]": np.array([20.0, 21.0, 22.0]), "resampled": np.zeros(3, int)}
+        >>> sample = SweepSummary.of(cols, seed=0).sample_columns()
+        >>> list(sample), sorted(sample["flip_period [s]"].tolist())  # every case, when fewer than the sample's size
+        (['flip_period [s]', 'resampled'], [20.0, 21.0, 22.0])
+        """
         return {k: self.sample.values[:, j] for j, k in enumerate(self.columns)}
 
     def as_dict(self, criterion: Criterion | None = None) -> dict:
@@ -337,7 +515,21 @@ class SweepSummary:
         ``unit``, ``count``, ``mean``, ``std``, ``min``, ``max``, ``quantiles`` {q: value},
         ``quantile_rank_error``: 0 when exact, else the 95 % bound), ``counts`` and, with a
         criterion, ``criterion`` (``column``, ``min``, ``max``, ``passed``, ``failed``,
-        ``confidence``, ``success_lower_bound``, ``statement``)."""
+        ``confidence``, ``success_lower_bound``, ``statement``).
+
+        Examples
+        --------
+        >>> cols = {"case": np.arange(4), "axis": np.full(4, 2), "predicted": np.array(["unstable"] * 4),
+        ...         "circulation": np.full(4, 3), "flip_period [s]": np.array([20.0, 21.0, 22.0, 23.0]),
+        ...         "resampled": np.zeros(4, int)}
+        >>> criterion = Criterion("flip_period", maximum=22.5)
+        >>> out = SweepSummary.of(cols, seed=0, criterion=criterion).as_dict(criterion)
+        >>> stats = out["statistics"]["flip_period"]
+        >>> stats["unit"], stats["mean"], stats["quantiles"]["0.5"], stats["quantile_rank_error"]
+        ('s', 21.5, 21.5, 0.0)
+        >>> out["criterion"]["passed"], out["criterion"]["failed"]
+        (3, 1)
+        """
         m, q, error = self.moments, self.sample.quantiles(QUANTILES), self.sample.rank_error(0.05)
 
         def num(x):
@@ -371,6 +563,16 @@ def summarize(chunks: Iterable[dict], seed: int, criterion: Criterion | None = N
     """Fold chunks (in case order) into a :class:`SweepSummary`, block by block.
 
     ``on_chunk(columns)``, if given, sees every chunk as it passes (to write it to a file).
+
+    Examples
+    --------
+    >>> chunks = [{"case": np.arange(k, k + 2), "axis": np.full(2, 2), "predicted": np.array(["unstable"] * 2),
+    ...            "circulation": np.full(2, 3), "flips": np.array([k, k + 1]), "resampled": np.zeros(2, int)}
+    ...           for k in (0, 2, 4)]
+    >>> seen = []
+    >>> summary = summarize(chunks, seed=1, on_chunk=lambda c: seen.append(len(c["case"])))
+    >>> summary.cases, float(summary.moments.mean[0]), seen  # flips 0 .. 5
+    (6, 2.5, [2, 2, 2])
     """
     def watched():
         for columns in chunks:

@@ -50,6 +50,11 @@ class Example:
         ``tumble sweep``).
     description : str
         One line: the file's first comment line, or its name if it has none.
+
+    Examples
+    --------
+    >>> [(e.path, e.kind) for e in list_examples() if e.name == "t_handle"]
+    [('bodies/t_handle.toml', 'body')]
     """
 
     name: str
@@ -95,6 +100,12 @@ def list_examples() -> list[Example]:
     list of Example
         Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"`` or ``"sweep"``) and one-line
         description. Meshes and other files the examples refer to are not listed.
+
+    Examples
+    --------
+    >>> found = list_examples()
+    >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
+    ('scenario', ['body', 'control', 'scenario', 'sweep'])
     """
     found = []
     for rel, entry in _walk(_root()):
@@ -129,6 +140,14 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     ValueError
         ``dest`` exists and is not a folder, or a file the examples would write already exists
         there (the message names it); nothing is written then.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     written = copy_examples(Path(folder) / "examples")
+    ...     print(Path(folder, "examples", "bodies", "t_handle.toml") in written, len(written) > len(list_examples()))
+    True True
     """
     dest = Path(dest)
     files = list(_walk(_root()))

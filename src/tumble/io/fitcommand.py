@@ -126,6 +126,18 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
         0 on success; 1 for an inadequate fit unless accepted, or for a recording in which no
         flight could be fitted (one line on stderr, nothing written); bad input raises
         ``ValueError`` with one line (nothing is written).
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from importlib import resources
+    >>> record = resources.files("tumble") / "examples/data/phone_toss.csv"  # a box 15 x 7.5 x 0.8 cm
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     status = run_fit_command(record, Path(folder) / "fit", end=2.0)  # doctest: +ELLIPSIS
+    ...     fit = json.loads((Path(folder) / "fit" / "fit.json").read_text())
+    fit ...: I1/I3 = 0.2023 +- 0.0023, I2/I3 = 0.8023 +- 0.0031 from 200 samples, ...
+    >>> status, round(fit["I1_over_I3"], 3), round((7.5**2 + 0.8**2) / (15**2 + 7.5**2), 3)  # fitted vs true
+    (0, 0.202, 0.202)
     """
     check_output_dir(out)
     t, omega, events = read_recording(path)

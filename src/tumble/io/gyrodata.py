@@ -70,13 +70,31 @@ def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]
     ValueError
         One line naming the file (and the line): not a readable regular file, larger than
         :data:`MAX_GYRO_FILE_BYTES`, not text, a missing column, a value that is not a number.
+
+    Examples
+    --------
+    >>> from importlib import resources
+    >>> t, omega = read_gyro_csv(resources.files("tumble") / "examples/data/phone_toss.csv")  # 15 s at 100 Hz
+    >>> t.shape, omega.shape, round(float(omega[0, 0]), 1)  # spun at 12 rad/s about the sensor's x
+    ((1500,), (1500, 3), 12.0)
     """
     raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
     return parse_gyro_csv(raw, os.fspath(path))
 
 
 def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`read_gyro_csv` on the bytes of a file already read (``label`` names it)."""
+    """:func:`read_gyro_csv` on the bytes of a file already read (``label`` names it).
+
+    Examples
+    --------
+    >>> t, omega = parse_gyro_csv(b"t (ms), wx [deg/s], wy [deg/s], wz [deg/s]\\n0, 180, 0, 0\\n10, 180, 0, 90\\n", "toss.csv")
+    >>> t.tolist(), omega.round(6).tolist()  # converted to s and rad/s
+    ([0.0, 0.01], [[3.141593, 0.0, 0.0], [3.141593, 0.0, 1.570796]])
+    >>> parse_gyro_csv(b"t, wx, wy\\n0, 1, 2\\n", "toss.csv")
+    Traceback (most recent call last):
+    ...
+    ValueError: toss.csv, line 1: a header of 3 columns; expected 4 (t, wx, wy, wz) or a phyphox gyroscope export
+    """
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as err:
@@ -158,6 +176,12 @@ def parse_time_csv(raw: bytes, label: str) -> list[tuple[str, float]]:
 
     Its header is ``"event","experiment time","system time","system time text"``; the events
     are ``START`` and ``PAUSE`` (after a pause the experiment time carries on from the pause).
+
+    Examples
+    --------
+    >>> raw = b'"event","experiment time","system time","system time text"\\nSTART,0.0,1.7e9,a\\nPAUSE,12.5,1.7e9,b\\n'
+    >>> parse_time_csv(raw, "meta/time.csv")
+    [('START', 0.0), ('PAUSE', 12.5)]
     """
     try:
         text = raw.decode("utf-8-sig")
@@ -221,6 +245,20 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
     ValueError
         One line naming the file: as :func:`read_gyro_csv`, a zip that is not one or whose
         members are too large, an export without its gyroscope CSV.
+
+    Examples
+    --------
+    >>> import tempfile, zipfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     export = Path(folder) / "toss.zip"  # a phyphox export, as the app writes it
+    ...     with zipfile.ZipFile(export, "w") as z:
+    ...         z.writestr("Raw Data.csv", '"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)",'
+    ...                    '"Gyroscope z (rad/s)"\\n0,1,0,0\\n0.01,1,0,0\\n0.02,1,0,0\\n')
+    ...         z.writestr("meta/time.csv", '"event","experiment time"\\nSTART,0\\nPAUSE,0.02\\n')
+    ...     t, omega, events = read_recording(export)
+    >>> t.tolist(), omega.shape, events
+    ([0.0, 0.01, 0.02], (3, 3), [('START', 0.0), ('PAUSE', 0.02)])
     """
     import zipfile
 

@@ -64,6 +64,19 @@ def check_output_dir(path: str | os.PathLike[str]) -> Path:
 
     Allowed: a path that does not exist yet (its parents are created) or a folder of plain
     files. Raises ``ValueError`` naming the path and the rule.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     print(check_output_dir(Path(folder) / "run").name)  # new: fine
+    run
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "taken").write_text("x")
+    ...     check_output_dir(Path(folder) / "taken")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: --out ...taken: exists and is not a folder
     """
     path = Path(path)
     if Path(os.path.abspath(path)).name == "" or path.name in ("", ".", ".."):  # "/", ".", "x/..": no name to write under
@@ -84,7 +97,17 @@ def _check_plain(path: Path) -> None:
 
 
 def check_output_file(path: str | os.PathLike[str], suffix: str) -> Path:
-    """Check before computing that the single file ``path`` (with ``suffix``) can be written."""
+    """Check before computing that the single file ``path`` (with ``suffix``) can be written.
+
+    Examples
+    --------
+    >>> check_output_file("run/figure.png", ".png").name
+    'figure.png'
+    >>> check_output_file("figure.svg", ".png")
+    Traceback (most recent call last):
+    ...
+    ValueError: --out figure.svg: the output is written as one .png file; give a name ending in .png
+    """
     path = Path(path)
     if path.suffix.lower() != suffix:
         raise _refuse(path, f"the output is written as one {suffix} file; give a name ending in {suffix}")
@@ -105,6 +128,18 @@ def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterat
     owns : iterable of str
         Glob patterns of the files that belong to the command: an earlier run's files that
         match are dropped, all others in the folder are kept.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     out = Path(folder) / "run"
+    ...     with output_dir(out) as stage:
+    ...         _ = (stage / "summary.json").write_text("{}")
+    ...         print(out.exists())  # nothing in place before the end
+    ...     print(sorted(p.name for p in out.iterdir()))
+    False
+    ['summary.json']
     """
     path = Path(path).absolute()
     check_output_dir(path)

@@ -33,6 +33,13 @@ def mass_properties_dict(body: Body) -> dict:
         ``rotor_momentum`` (their momentum at t = 0 in the principal frame, kg m^2/s) and
         ``intermediate_stable_spin`` (:func:`rotor_stable_spin`: the spin rates about the
         intermediate axis, rad/s, that the rotors keep stable, or null).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> d = mass_properties_dict(tumble.t_handle())
+    >>> d["mass"], d["principal_moments"], d["intermediate_axis"], d["symmetry"]
+    (3.0, [0.125, 0.3125, 0.4375], [1.0, 0.0, 0.0], 'asymmetric')
     """
     p = body.properties
     axis = p.intermediate_axis
@@ -61,6 +68,19 @@ def rotor_stable_spin(body: Body) -> list[float] | None:
     theorem into a range (:func:`tumble.analysis.stable_spin_range`, linearised): ``[W_low,
     W_high]``, signed along ``body.properties.intermediate_axis``. None for a body without an
     intermediate axis or whose rotors have no momentum along it (the axis is then unstable).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from importlib import resources
+    >>> body = tumble.load_body(resources.files("tumble") / "examples/bodies/t_handle_wheel.toml")
+    >>> low, high = rotor_stable_spin(body)
+    >>> I1, I2, I3 = body.principal_moments
+    >>> h = float(body.internal_momentum(0.0)[1])  # 2.5 kg m^2/s along the intermediate axis
+    >>> bool(np.allclose([low, high], [-h / (I2 - I1), h / (I3 - I2)]))  # where (I2 - I1) W + h or (I2 - I3) W + h vanish
+    True
+    >>> rotor_stable_spin(tumble.t_handle()) is None  # no rotor: no stable spin
+    True
     """
     if body.properties.intermediate_axis is None:
         return None
@@ -92,6 +112,17 @@ def mass_properties_table(body: Body) -> str:
     str
         Mass (kg), centre of mass (m), inertia about the COM in the design frame (kg m^2), the
         principal moments with their roles and axes, and the intermediate axis.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> print(mass_properties_table(tumble.t_handle()))  # doctest: +ELLIPSIS
+    T-handle: 2 parts
+      mass              3 kg
+    ...
+        I2       0.3125 kg m^2  intermediate  axis +x
+        I3       0.4375 kg m^2  major         axis +y
+      intermediate axis +x: spin about it is unstable (tennis-racket theorem)
     """
     p = body.properties
 

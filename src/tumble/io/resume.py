@@ -46,7 +46,21 @@ MARK = "fingerprint.json"
 
 
 class ResumeWarning(UserWarning):
-    """A resume folder's chunk (or whole content) was not reused: it is computed again."""
+    """A resume folder's chunk (or whole content) was not reused: it is computed again.
+
+    Examples
+    --------
+    >>> import tempfile, warnings
+    >>> with tempfile.TemporaryDirectory() as folder, warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     old = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+    ...     old.save(0, {"case": np.arange(2)})
+    ...     old.close()
+    ...     new = ChunkFolder(f"{folder}/out.resume", {"sweep": 2}, cases=2, chunk=2)  # another sweep
+    ...     new.close()
+    >>> [w.category.__name__ for w in caught], new.has(0)
+    (['ResumeWarning'], False)
+    """
 
 
 def _warn(message: str) -> None:
@@ -173,13 +187,36 @@ class ChunkFolder:
             os.close(fd)  # locked a file that was removed meanwhile: start again
 
     def close(self) -> None:
-        """Release the lock (the chunks stay for a later run)."""
+        """Release the lock (the chunks stay for a later run).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+        ...     store.save(0, {"case": np.arange(2)})
+        ...     store.close()  # the lock is released, the chunk stays for the next run
+        ...     again = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+        ...     print(again.has(0))
+        ...     again.close()
+        True
+        """
         if self._fd is not None:
             os.close(self._fd)
             self._fd = None
 
     def remove(self) -> None:
-        """Delete the folder and its chunks (under the lock), then release the lock."""
+        """Delete the folder and its chunks (under the lock), then release the lock.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+        ...     store.remove()
+        ...     print(store.folder.exists())
+        False
+        """
         try:
             if not self.folder.is_symlink():
                 shutil.rmtree(self.folder, ignore_errors=True)
@@ -189,11 +226,31 @@ class ChunkFolder:
     # --- the chunks ----------------------------------------------------------------------
     @property
     def chunks(self) -> int:
-        """How many chunks the sweep has."""
+        """How many chunks the sweep has.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=10, chunk=4)
+        ...     store.close()
+        >>> store.chunks  # 4 + 4 + 2 cases
+        3
+        """
         return -(-self.cases // self.chunk)
 
     def range(self, number: int) -> tuple[int, int]:
-        """``(start, stop)``: the cases chunk ``number`` holds (stop excluded)."""
+        """``(start, stop)``: the cases chunk ``number`` holds (stop excluded).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=10, chunk=4)
+        ...     store.close()
+        >>> store.range(0), store.range(2)  # the last chunk is shorter
+        ((0, 4), (8, 10))
+        """
         return number * self.chunk, min((number + 1) * self.chunk, self.cases)
 
     def _path(self, number: int) -> Path:
@@ -229,7 +286,18 @@ class ChunkFolder:
 
     def has(self, number: int) -> bool:
         """Whether chunk ``number`` is there and sound; a bad one is named in a warning and
-        deleted (it is computed again)."""
+        deleted (it is computed again).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=4, chunk=2)
+        ...     store.save(0, {"case": np.array([0, 1])})
+        ...     print(store.has(0), store.has(1))
+        ...     store.remove()
+        True False
+        """
         if number in self._good:
             return True
         path = self._path(number)
@@ -245,14 +313,36 @@ class ChunkFolder:
         return True
 
     def load(self, number: int) -> dict:
-        """Chunk ``number``'s columns (checked again as read)."""
+        """Chunk ``number``'s columns (checked again as read).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+        ...     store.save(0, {"case": np.array([0, 1]), "flips": np.array([3, 5])})
+        ...     print(store.load(0)["flips"].tolist())
+        ...     store.remove()
+        [3, 5]
+        """
         try:
             return self._read(number)
         except _BadChunk as why:
             raise ValueError(f"{self._path(number)}: {why} (changed during the run); run the sweep again") from None
 
     def save(self, number: int, columns: dict) -> None:
-        """Keep chunk ``number``'s columns with its cases and checksum (written atomically)."""
+        """Keep chunk ``number``'s columns with its cases and checksum (written atomically).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
+        ...     store.save(0, {"case": np.array([0, 1])})
+        ...     print(sorted(p.name for p in store.folder.iterdir()))
+        ...     store.remove()
+        ['chunk-000000.npz', 'fingerprint.json', 'lock']
+        """
         start, stop = self.range(number)
         columns = {k: np.asarray(v) for k, v in columns.items()}
         meta = {"start": start, "stop": stop, "sweep": self.digest, "sha256": chunk_checksum(columns)}

@@ -331,6 +331,16 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
 
     ``t_end``, ``samples`` and ``dt`` given here replace the file's sampling (its ``times``
     too). Errors are one line naming the file, or the option (``--omega``, ``--t-end``, ...).
+
+    Examples
+    --------
+    >>> run = resolve_run("t-handle", omega=[0.1, 5.0, 0.1], t_end=10.0, samples=101)
+    >>> run.name, run.t_end, run.samples
+    ('t-handle', 10.0, 101)
+    >>> resolve_run("t-handle")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: 't-handle' is a preset body; a run also needs an initial spin: add --omega W1 W2 W3 (rad/s, principal frame) ...
     """
     given = {k: v for k, v in dict(omega=omega, frame=frame, t_end=t_end, samples=samples, dt=dt,
                                    method=method).items() if v is not None}
@@ -393,6 +403,17 @@ def gravity_gradient_from_table(table: dict) -> GravityGradient:
     Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
     ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
     missing key, or a bad value, raises ``ValueError`` with one line starting ``torque:``.
+
+    Examples
+    --------
+    >>> import math
+    >>> gg = gravity_gradient_from_table({"kind": "gravity_gradient", "orbit_period": 5400.0})
+    >>> math.isclose(gg.mean_motion, 2 * math.pi / 5400.0)  # n = 2 pi / T, rad/s
+    True
+    >>> gravity_gradient_from_table({"orbit_period": 5400.0, "altitude": 4e5})
+    Traceback (most recent call last):
+    ...
+    ValueError: torque: unknown key 'altitude'; allowed: kind, orbit_period, orbit_radius, mu
     """
     _check_keys("torque", table, _TORQUE_KEYS)
     if "kind" in table and table["kind"] != "gravity_gradient":
@@ -412,6 +433,17 @@ def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassPro
     Keys, all optional: ``roll``, ``pitch``, ``yaw`` (rad, default 0), ``pitch_axis`` (default 3)
     and ``yaw_axis`` (default 1). An unknown key or a bad value raises ``ValueError`` with one
     line starting ``initial.orbit_frame:``.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> gg = gravity_gradient_from_table({"orbit_period": 5400.0})
+    >>> state = lvlh_state_from_table({"pitch": 0.1}, gg, tumble.t_handle())
+    >>> import numpy as np
+    >>> bool(np.allclose(state.omega0, [0.0, 0.0, 2 * np.pi / 5400.0]))  # once per orbit about pitch axis 3, rad/s
+    True
+    >>> round(float(state.attitude.magnitude()), 12)  # pitched by 0.1 rad from the orbit frame
+    0.1
     """
     _check_keys("initial.orbit_frame", table, _LVLH_KEYS)
     for key in ("roll", "pitch", "yaw"):

@@ -122,7 +122,15 @@ _DISPERSION_KEYS = {"target", "field", "part", "relative", "absolute", "distribu
 
 @dataclass(frozen=True, eq=False)
 class SweepFile:
-    """A parsed sweep file: the sweep and what the output records about it."""
+    """A parsed sweep file: the sweep and what the output records about it.
+
+    Examples
+    --------
+    >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 5.0, 0.1]},
+    ...                            "simulation": {"t_end": 5.0}}, name="spin")
+    >>> parsed.name, parsed.chunk, parsed.sweep.ensemble.cases
+    ('spin', 1024, 4)
+    """
 
     sweep: Sweep
     name: str
@@ -210,6 +218,18 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
 
     Case 0 is made and run as a check, so that a sweep that cannot run fails here, before any
     output.
+
+    Examples
+    --------
+    >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 16, "seed": 1},
+    ...                            "dispersion": [{"target": "moments", "relative": 0.02}],
+    ...                            "initial": {"omega": [0.1, 5.0, 0.1]}, "simulation": {"t_end": 5.0}})
+    >>> parsed.sweep.ensemble.names
+    ('moment_factor_1', 'moment_factor_2', 'moment_factor_3')
+    >>> sweep_from_table({"body": "t-handle", "sweep": {"cases": 0}, "initial": {"omega": [0, 5, 0]}})
+    Traceback (most recent call last):
+    ...
+    ValueError: sweep: cases = 0 must be a whole number from 1 to 100000000
     """
     unknown = sorted(set(data) - {"body", "dispersion", *_SECTIONS})
     if unknown:
@@ -245,7 +265,15 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
 
 
 def load_sweep(path: str | os.PathLike[str]) -> SweepFile:
-    """Read and check a sweep file; errors are one line starting with the file's name."""
+    """Read and check a sweep file; errors are one line starting with the file's name.
+
+    Examples
+    --------
+    >>> from importlib import resources
+    >>> parsed = load_sweep(resources.files("tumble") / "examples/sweeps/t_handle_dimensions.toml")
+    >>> parsed.name, parsed.sweep.ensemble.cases, parsed.sweep.ensemble.sampling, parsed.chunk
+    ('t_handle_dimensions', 4096, 'sobol', 1024)
+    """
     path = Path(path)
     data = read_toml(path)
     try:
@@ -344,6 +372,19 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     ValueError
         For a bad file, value or output path, or when another sweep is running into ``out``
         (its resume folder is locked): nothing is computed or written.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 8\\n[initial]\\n'
+    ...                                              'omega = [0.1, 5.0, 0.1]\\n[criterion]\\ncolumn = "flips"\\nmin = 1\\n')
+    ...     data = run_sweep(Path(folder, "spin.toml"), Path(folder, "out"))
+    ...     written = sorted(p.name for p in Path(folder, "out").iterdir())
+    >>> data["cases"], data["counts"]["predicted"], data["criterion"]["passed"]  # spun about the intermediate axis
+    (8, {'unstable': 8}, 8)
+    >>> written
+    ['cases.csv', 'cases.parquet', 'summary.json']
     """
     parsed = load_sweep(path)
     out = check_output_dir(out).absolute()
@@ -412,6 +453,17 @@ def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str],
     """``tumble sweep PATH --out OUT``: :func:`run_sweep`, then one line for people; returns 0.
 
     Errors propagate (``ValueError`` for bad input: the command line's exit status 2).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 4\\n[initial]\\n'
+    ...                                              'omega = [0.1, 5.0, 0.1]\\n')
+    ...     status = run_sweep_command(Path(folder, "spin.toml"), Path(folder, "out"))  # doctest: +ELLIPSIS
+    4 cases (exact): 4 predicted unstable; 4 flipped twice or more, flip period median ...; wrote .../out/
+    >>> status
+    0
     """
     data = run_sweep(path, out, workers=workers, scheduler=scheduler, argv=argv, figure=figure,
                      warn=lambda message: print(f"warning: {message}", file=sys.stderr))

@@ -85,7 +85,15 @@ def to_design(part: Part, points: np.ndarray) -> np.ndarray:
 
 
 def part_lines(part: Part, n: int = 32) -> list[np.ndarray]:
-    """Polylines of a part in the design frame (m), each an array of shape (k, 3)."""
+    """Polylines of a part in the design frame (m), each an array of shape (k, 3).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> crossbar = tumble.t_handle().parts[1]  # a rod of 1 m along x, its centre 0.5 m up
+    >>> part_lines(crossbar)[0].round(12).tolist()
+    [[-0.5, 0.0, 0.5], [0.5, 0.0, 0.5]]
+    """
     return [to_design(part, pts) for pts in _local_lines(part, n)]
 
 
@@ -93,26 +101,56 @@ def body_lines(body: Body, n: int = 32) -> list[tuple[np.ndarray, bool]]:
     """Polylines of every part, design frame, relative to the body's COM (m).
 
     Returns ``(points, removed)`` pairs; ``removed`` marks subtracted material (drawn dashed).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> lines = body_lines(tumble.t_handle())  # about the COM, 0.25 m up the shaft
+    >>> len(lines), lines[0][0].tolist(), lines[0][1]
+    (2, [[0.0, 0.0, -0.75], [0.0, 0.0, 0.25]], False)
     """
     com = np.asarray(body.com)
     return [(pts - com, p.subtract) for p in body.parts for pts in part_lines(p, n)]
 
 
 def body_size(body: Body) -> float:
-    """Largest distance of a drawn point from the COM, m (for axis limits and arrow lengths)."""
+    """Largest distance of a drawn point from the COM, m (for axis limits and arrow lengths).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body_size(tumble.t_handle())  # the shaft's foot, 0.75 m below the COM
+    0.75
+    """
     pts = np.concatenate([pts for pts, _ in body_lines(body, 8)])
     return float(np.max(np.linalg.norm(pts, axis=1))) or 1.0
 
 
 def arrow_scale(vectors: ArrayLike, size: float) -> float:
-    """Factor that draws the longest of ``vectors`` (shape (n, 3)) at 0.9 ``size``; 0 if all zero."""
+    """Factor that draws the longest of ``vectors`` (shape (n, 3)) at 0.9 ``size``; 0 if all zero.
+
+    Examples
+    --------
+    >>> arrow_scale([[0.0, 3.0, 4.0], [1.0, 0.0, 0.0]], size=1.0)  # the longest (5) drawn 0.9 long
+    0.18
+    >>> arrow_scale(np.zeros((2, 3)), 1.0)
+    0.0
+    """
     peak = float(np.max(np.linalg.norm(vectors, axis=-1)))
     return 0.9 * size / peak if peak > 0 else 0.0
 
 
 def frame_indices(samples: int, frames: int, name: str = "frames") -> np.ndarray:
     """At most ``frames`` sample indices, evenly spread, first and last included (``name``: the
-    argument's name in the error)."""
+    argument's name in the error).
+
+    Examples
+    --------
+    >>> frame_indices(101, 5).tolist()
+    [0, 25, 50, 75, 100]
+    >>> frame_indices(3, 10).tolist()  # never more than the samples
+    [0, 1, 2]
+    """
     if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 2 <= frames <= MAX_FRAMES:
         raise ValueError(f"{name} = {frames!r} must be a whole number from 2 to {MAX_FRAMES}")
     return np.unique(np.linspace(0, samples - 1, min(frames, samples)).astype(int))
@@ -123,7 +161,17 @@ MAX_FRAMES = 2000
 
 
 def check_run(traj: object, name: str = "trajectory") -> None:
-    """Refuse, in one line, anything but a :class:`~tumble.dynamics.Trajectory` with samples."""
+    """Refuse, in one line, anything but a :class:`~tumble.dynamics.Trajectory` with samples.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> check_run(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=1.0, samples=5))  # fine: nothing
+    >>> check_run(tumble.t_handle())
+    Traceback (most recent call last):
+    ...
+    ValueError: trajectory = Body object must be a tumble Trajectory (what tumble.simulate returns)
+    """
     if not isinstance(traj, Trajectory):
         raise ValueError(f"{name} = {type(traj).__name__} object must be a tumble Trajectory (what tumble.simulate "
                          "returns)")
@@ -134,7 +182,18 @@ def check_run(traj: object, name: str = "trajectory") -> None:
 def check_body_and_run(body: object, traj: object) -> None:
     """Refuse a body that is not the one simulated: the pictures draw the body's parts moved by
     the run's attitude, so they must share their principal moments (within
-    :data:`~tumble.mass.INERTIA_RTOL` of the trace)."""
+    :data:`~tumble.mass.INERTIA_RTOL` of the trace).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> run = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=1.0, samples=5)
+    >>> check_body_and_run(tumble.t_handle(), run)  # the body simulated: nothing
+    >>> check_body_and_run(tumble.iss_t_handle(), run)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: body = ... is not the body of this trajectory: its principal moments ... kg m^2 differ from the run's [0.125, 0.3125, 0.4375]
+    """
     check_run(traj)
     if not isinstance(body, Body):
         raise ValueError(f"body = {type(body).__name__} object must be the tumble Body that was simulated: a "
