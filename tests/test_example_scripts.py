@@ -143,3 +143,19 @@ def test_plot_mesh_mass_properties(run):
     np.testing.assert_allclose(scope["torus"].principal_moments, scope["closed"], rtol=0.01)
     np.testing.assert_allclose(scope["torus"].com, 0, atol=1e-12)
     assert figures == 1
+
+
+def test_plot_detumble(run):
+    scope, figures = run("plot_detumble.py")
+    assert scope["detumbled"] == {1.0: 1.0, 2.0: 1.0}  # every case below 0.5 deg/s
+    assert scope["medians"][2.0] < scope["medians"][1.0]  # more gain, faster
+    assert figures == 1
+
+
+def test_plot_pointing(run):
+    scope, figures = run("plot_pointing.py")
+    start, target = scope["start"], scope["target"]
+    assert scope["error"][0] == pytest.approx(np.degrees((target.inv() * start).magnitude()), abs=1e-9)
+    assert scope["error"][-1] < 2.0
+    assert scope["budget"] < 1e-9  # kg m^2/s of ~0.5: no external torque
+    assert figures == 1

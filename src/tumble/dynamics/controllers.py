@@ -43,7 +43,7 @@ from .models.actuators import Command, ReactionWheels
 from .models.sensors import Measurement
 from .special.mrp import mrp_from_quat
 
-__all__ = ["BDot", "Controller", "MRPFeedback", "PDResponse", "bdot_gain", "pd_response"]
+__all__ = ["BDot", "Controller", "MRPFeedback", "PDResponse", "bdot_dipole", "bdot_gain", "pd_response"]
 
 
 @runtime_checkable
@@ -87,6 +87,23 @@ def bdot_gain(mean_motion: float, geomagnetic_inclination: float, min_moment: fl
     n = check_positive("mean_motion", mean_motion, "rad/s")
     i_min = check_positive("min_moment", min_moment, "kg m^2")
     return 2.0 * n * (1.0 + math.sin(float(geomagnetic_inclination))) * i_min
+
+
+def bdot_dipole(b_dot: ArrayLike, field: ArrayLike, gain: ArrayLike, form: str = "classic") -> FloatArray:
+    """The B-dot dipole ``m = -k dB/dt`` (A m^2), ``k = gain`` (classic, A m^2 s/T) or
+    ``gain / |B|^2`` (normalized, gain in N m s); broadcast over leading axes (..., 3).
+
+    Examples
+    --------
+    >>> (bdot_dipole([0.0, 0.0, -2e-6], [2e-5, 0.0, 0.0], 1e4) + 0.0).tolist()   # A m^2
+    [0.0, 0.0, 0.02]
+    """
+    b_dot_ = np.asarray(b_dot, float)
+    k = np.asarray(gain, float)[..., None]
+    if form == "normalized":
+        b = np.asarray(field, float)
+        k = k / np.sum(b * b, axis=-1, keepdims=True)
+    return np.asarray(-k * b_dot_, float)
 
 
 @dataclass
@@ -140,8 +157,7 @@ class BDot:
         else:
             b_dot = np.zeros(3) if self._last is None else (b - self._last[1]) / (t - self._last[0])
             self._last = (float(t), b)
-        k = self.gain / float(b @ b) if self.form == "normalized" else self.gain
-        return Command(dipole=-k * b_dot)
+        return Command(dipole=bdot_dipole(b_dot, b, self.gain, self.form))
 
 
 @dataclass

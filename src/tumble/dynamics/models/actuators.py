@@ -107,9 +107,9 @@ class Magnetorquers:
         object.__setattr__(self, "max_dipole", _per_axis("max_dipole", self.max_dipole, len(axes), "A m^2"))
 
     def saturate(self, dipole: ArrayLike) -> Vector3:
-        """The dipole the rods make for a command (A m^2): projected on each rod and clipped."""
+        """The dipole the rods make for a command (A m^2): projected on each rod and clipped; shape (..., 3)."""
         lim = np.asarray(self.max_dipole)
-        per_rod = np.clip(self.axes @ np.asarray(dipole, float), -lim, lim)
+        per_rod = np.clip(np.asarray(dipole, float) @ self.axes.T, -lim, lim)
         return np.asarray(per_rod @ self.axes, float)
 
     def torque(self, dipole: ArrayLike, field_body: ArrayLike) -> Vector3:

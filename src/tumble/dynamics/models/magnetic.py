@@ -113,12 +113,12 @@ class DipoleField:
         return np.array([g11, h11, g10])
 
     def ecef(self, r_ecef: Vector3) -> Vector3:
-        """``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r_ecef`` (m, Earth-fixed), T."""
+        """``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r_ecef`` (m, Earth-fixed), T; shape (..., 3)."""
         r = np.asarray(r_ecef, float)
-        rn = float(np.linalg.norm(r))
+        rn = np.linalg.norm(r, axis=-1, keepdims=True)
         u = r / rn
         g = self.gauss_vector
-        return np.asarray((IGRF_RADIUS / rn) ** 3 * (3.0 * float(g @ u) * u - g), float)
+        return np.asarray((IGRF_RADIUS / rn) ** 3 * (3.0 * (u @ g)[..., None] * u - g), float)
 
     def world(self, t: float) -> Vector3:
         """B at ``t`` (s) in the world (orbit-plane) frame, T."""
