@@ -52,6 +52,13 @@ class DetumbleBatch:
         Final angular velocities, principal frames, rad/s.
     quat : ndarray, shape (N, 4)
         Final attitudes (principal frame to world), scalar last.
+
+    Examples
+    --------
+    >>> out = DetumbleBatch(t=np.array([0.0, 1.0, 2.0]), rate=np.array([[0.3, 0.1, 0.05]]),
+    ...                     omega=np.zeros((1, 3)), quat=np.array([[0.0, 0.0, 0.0, 1.0]]))
+    >>> out.rate.shape
+    (1, 3)
     """
 
     t: FloatArray
@@ -61,7 +68,15 @@ class DetumbleBatch:
 
     def detumble_time(self, threshold: float) -> FloatArray:
         """When each ``|omega|`` drops below ``threshold`` (rad/s) and stays there, s (NaN: never),
-        as :meth:`~tumble.dynamics.controlled.ControlledRun.detumble_time`."""
+        as :meth:`~tumble.dynamics.controlled.ControlledRun.detumble_time`.
+
+        Examples
+        --------
+        >>> out = DetumbleBatch(t=np.array([0.0, 1.0, 2.0]), rate=np.array([[0.3, 0.1, 0.05], [0.3, 0.05, 0.2]]),
+        ...                     omega=np.zeros((2, 3)), quat=np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
+        >>> out.detumble_time(0.08)  # the second body rose above the threshold again
+        array([ 2., nan])
+        """
         above = self.rate >= check_positive("threshold", threshold, "rad/s")
         n = above.shape[1]
         last = np.where(above.any(axis=1), n - 1 - np.argmax(above[:, ::-1], axis=1), -1)
