@@ -1,7 +1,9 @@
 """Models the equations of motion call: external torques and internal bodies.
 
 - :mod:`~tumble.dynamics.models.torques`: constant and function torques, ``as_torque``.
-- :mod:`~tumble.dynamics.models.internal`: rotors (the gyrostat) and the spherical damper.
+- :mod:`~tumble.dynamics.models.rotors` (the gyrostat) and :mod:`~tumble.dynamics.models.damper`
+  (the spherical nutation damper), joined into the equations of the whole by
+  :mod:`~tumble.dynamics.models.internal`.
 - :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque and the orbiting (LVLH) frame
   (its stability regions are :mod:`tumble.analysis.gravity_stability`).
 - :mod:`~tumble.dynamics.models.drag`: Euler's equations with an aerodynamic drag about each
