@@ -30,7 +30,7 @@ def test_the_torque_model_example_keeps_l_along_the_field():
 def test_the_rooms_named_on_the_page_hold_the_modules_it_names():
     text = PAGE.read_text(encoding="utf-8")
     for room, modules in {"special": ["elliptic", "carlson", "ddouble", "quaternion"],
-                          "models": ["torques", "internal", "rotors", "damper", "gravity", "drag"],
+                          "models": ["torques", "internal", "rotors", "damper", "gravity", "lvlh", "drag"],
                           "methods": ["integrators", "exact", "exact_batch", "geometric"]}.items():
         assert f"`dynamics/{room}/`" in text
         for name in modules:

@@ -4,7 +4,8 @@
 - :mod:`~tumble.dynamics.models.rotors` (the gyrostat) and :mod:`~tumble.dynamics.models.damper`
   (the spherical nutation damper), joined into the equations of the whole by
   :mod:`~tumble.dynamics.models.internal`.
-- :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque and the orbiting (LVLH) frame
+- :mod:`~tumble.dynamics.models.gravity`: the gravity-gradient torque; :mod:`~tumble.dynamics.models.lvlh`:
+  the orbiting (LVLH) frame, roll-pitch-yaw axes and attitudes relative to it
   (its stability regions are :mod:`tumble.analysis.gravity_stability`).
 - :mod:`~tumble.dynamics.models.drag`: Euler's equations with an aerodynamic drag about each
   principal axis, compiled (the fit's model).
