@@ -107,13 +107,42 @@ class Magnetorquers:
         object.__setattr__(self, "max_dipole", _per_axis("max_dipole", self.max_dipole, len(axes), "A m^2"))
 
     def saturate(self, dipole: ArrayLike) -> Vector3:
-        """The dipole the rods make for a command (A m^2): projected on each rod and clipped; shape (..., 3)."""
+        """The dipole the rods make for a command (A m^2): projected on each rod and clipped; shape (..., 3).
+
+        Examples
+        --------
+        Each rod clips on its own (the direction of the dipole may change); a batch of commands
+        at once:
+
+        >>> mtq = Magnetorquers([0.2, 0.2, 0.1])
+        >>> mtq.saturate([[0.5, -0.1, 0.3], [0.05, 0.0, -0.05]]).tolist()
+        [[0.2, -0.1, 0.1], [0.05, 0.0, -0.05]]
+
+        Two rods only: no dipole along the missing axis:
+
+        >>> Magnetorquers(1.0, axes=[[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]]).saturate([0.5, 0.5, 0.5]).tolist()
+        [0.5, 0.5, 0.0]
+        """
         lim = np.asarray(self.max_dipole)
         per_rod = np.clip(np.asarray(dipole, float) @ self.axes.T, -lim, lim)
         return np.asarray(per_rod @ self.axes, float)
 
     def torque(self, dipole: ArrayLike, field_body: ArrayLike) -> Vector3:
-        """``tau = m x B`` (N m) for the dipole ``m`` (A m^2) in ``B`` (T), both principal frame."""
+        """``tau = m x B`` (N m) for the dipole ``m`` (A m^2) in ``B`` (T), both principal frame.
+
+        Examples
+        --------
+        The torque is square to the field (a magnetorquer cannot torque about B) and largest,
+        ``|m| |B|``, for a dipole square to it:
+
+        >>> mtq = Magnetorquers(0.2)
+        >>> b = np.array([1e-5, -2e-5, 2e-5])
+        >>> tau = mtq.torque([0.0, 0.2, 0.2], b)
+        >>> bool(abs(tau @ b) < 1e-25), np.allclose(tau, [8e-6, 2e-6, -2e-6])
+        (True, True)
+        >>> mtq.torque(0.1 * b / np.linalg.norm(b), b).tolist()   # dipole along B: no torque
+        [0.0, 0.0, 0.0]
+        """
         return np.asarray(np.cross(np.asarray(dipole, float), np.asarray(field_body, float)), float)
 
 
@@ -168,20 +197,61 @@ class ReactionWheels:
 
     @property
     def count(self) -> int:
-        """Number of wheels ``k``."""
+        """Number of wheels ``k``.
+
+        Examples
+        --------
+        >>> ReactionWheels(np.eye(3)[:2], inertia=1e-5).count
+        2
+        """
         return len(self.axes)
 
     def momentum(self, speed: ArrayLike) -> Vector3:
-        """The wheels' relative momentum ``h = sum_k J_k s_k g_k``, kg m^2/s, principal frame."""
+        """The wheels' relative momentum ``h = sum_k J_k s_k g_k``, kg m^2/s, principal frame.
+
+        Examples
+        --------
+        Four wheels in a pyramid: equal spins on the two wheels of one face add along their
+        common component and cancel across it:
+
+        >>> c = 1 / np.sqrt(2)
+        >>> rw = ReactionWheels([[c, 0, c], [-c, 0, c], [0, c, c], [0, -c, c]], inertia=2e-5)
+        >>> h = rw.momentum([100.0, 100.0, 0.0, 0.0])
+        >>> np.allclose(h, [0.0, 0.0, 2 * 2e-5 * 100.0 * c])
+        True
+        """
         return np.asarray((np.asarray(self.inertia) * np.asarray(speed, float)) @ self.axes, float)
 
     def locked_axial(self) -> Matrix3:
-        """``sum_k J_k g_k g_k^T``, kg m^2: subtracted from ``I`` in the equations of motion."""
+        """``sum_k J_k g_k g_k^T``, kg m^2: subtracted from ``I`` in the equations of motion.
+
+        Examples
+        --------
+        Three wheels on the principal axes: ``diag(J_1, J_2, J_3)``; its trace is ``sum_k J_k`` whatever the axes:
+
+        >>> ReactionWheels(np.eye(3), inertia=[1e-5, 2e-5, 4e-5]).locked_axial().diagonal().tolist()
+        [1e-05, 2e-05, 4e-05]
+        >>> rw = ReactionWheels([[1.0, 1.0, 0.0], [0.0, 1.0, 1.0]], inertia=[1e-5, 3e-5])
+        >>> bool(np.isclose(np.trace(rw.locked_axial()), 4e-5))
+        True
+        """
         return np.asarray(np.einsum("k,ki,kj->ij", np.asarray(self.inertia), self.axes, self.axes), float)
 
     def applied_torque(self, command: ArrayLike, speed: ArrayLike) -> FloatArray:
         """The motor torque on each wheel (N m) for a command at spins ``speed`` (rad/s):
-        clipped to ``u_max``, zero where it would push ``|s|`` past ``s_max``, less the friction."""
+        clipped to ``u_max``, zero where it would push ``|s|`` past ``s_max``, less the friction.
+
+        Examples
+        --------
+        A wheel at its speed limit may slow down but not speed up; friction opposes the spin:
+
+        >>> rw = ReactionWheels(np.eye(3)[:2], inertia=1e-5, max_torque=1e-3, max_speed=600.0)
+        >>> rw.applied_torque([5e-4, -5e-4], [600.0, 600.0]).tolist()
+        [0.0, -0.0005]
+        >>> rub = ReactionWheels(np.eye(3)[:1], inertia=1e-5, viscous=1e-7, coulomb=1e-5)
+        >>> bool(np.isclose(rub.applied_torque([0.0], [100.0])[0], -(1e-7 * 100.0 + 1e-5)))
+        True
+        """
         s = np.asarray(speed, float)
         u = np.clip(np.asarray(command, float), -np.asarray(self.max_torque), np.asarray(self.max_torque))
         u = np.where((np.abs(s) >= np.asarray(self.max_speed)) & (u * s > 0.0), 0.0, u)

@@ -43,10 +43,33 @@ OMEGA_EARTH = 7.292115e-5
 
 @runtime_checkable
 class MagneticField(Protocol):
-    """A magnetic field along the orbit: ``world(t)`` is B in the world frame, T."""
+    """A magnetic field along the orbit: ``world(t)`` is B in the world frame, T.
+
+    Examples
+    --------
+    Any object with a ``world(t)`` method is one (the protocol is checked at run time):
+
+    >>> isinstance(UniformField((0.0, 0.0, 3e-5)), MagneticField)
+    True
+    >>> isinstance(DipoleField(CircularOrbit(altitude=500e3)), MagneticField), isinstance(3e-5, MagneticField)
+    (True, False)
+    """
 
     def world(self, t: float) -> Vector3:
-        """B at time ``t`` (s) in the world frame, T; shape (3,)."""
+        """B at time ``t`` (s) in the world frame, T; shape (3,).
+
+        Examples
+        --------
+        A field of one's own only needs this method; here one that grows linearly in time (T):
+
+        >>> class Ramp:
+        ...     def world(self, t):
+        ...         return np.array([0.0, 0.0, 3e-5 + 1e-6 * t])
+        >>> isinstance(Ramp(), MagneticField), Ramp().world(0.0).tolist()
+        (True, [0.0, 0.0, 3e-05])
+        >>> np.allclose(Ramp().world(10.0) - Ramp().world(0.0), [0.0, 0.0, 1e-5])
+        True
+        """
         ...
 
 
@@ -66,7 +89,14 @@ class UniformField:
         object.__setattr__(self, "vector", check_vector("vector", self.vector, "T"))
 
     def world(self, t: float) -> Vector3:
-        """The same B at every ``t``, T."""
+        """The same B at every ``t``, T.
+
+        Examples
+        --------
+        >>> field = UniformField((0.0, -2e-5, 4e-5))
+        >>> np.array_equal(field.world(0.0), field.world(5400.0)), field.world(1.0).tolist()
+        (True, [0.0, -2e-05, 4e-05])
+        """
         return np.array(self.vector, dtype=float)
 
 
@@ -108,12 +138,33 @@ class DipoleField:
 
     @property
     def gauss_vector(self) -> Vector3:
-        """``g = (g11, h11, g10)``, T: the dipole's direction and strength, Earth-fixed frame."""
+        """``g = (g11, h11, g10)``, T: the dipole's direction and strength, Earth-fixed frame.
+
+        Examples
+        --------
+        IGRF-13's degree-1 field is about 29,806 nT at the reference radius's equator, pointing south:
+
+        >>> g = DipoleField(CircularOrbit(altitude=500e3)).gauss_vector
+        >>> np.round(g * 1e9, 1).tolist(), round(float(np.linalg.norm(g)) * 1e9)   # nT
+        ([-1450.9, 4652.5, -29404.8], 29806)
+        """
         g10, g11, h11 = self.coefficients
         return np.array([g11, h11, g10])
 
     def ecef(self, r_ecef: Vector3) -> Vector3:
-        """``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r_ecef`` (m, Earth-fixed), T; shape (..., 3)."""
+        """``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r_ecef`` (m, Earth-fixed), T; shape (..., 3).
+
+        Examples
+        --------
+        An axial dipole ``g10`` at radius ``r``: ``B0 (a/r)^3`` north on the magnetic equator,
+        twice that (pointing down) over the pole, with ``B0 = |g10|``:
+
+        >>> field = DipoleField(CircularOrbit(altitude=500e3), coefficients=(-3e-5, 0.0, 0.0))
+        >>> r = 2 * IGRF_RADIUS
+        >>> b = field.ecef([[r, 0.0, 0.0], [0.0, 0.0, r]])
+        >>> np.allclose(b, [[0.0, 0.0, 3e-5 / 8], [0.0, 0.0, -2 * 3e-5 / 8]])
+        True
+        """
         r = np.asarray(r_ecef, float)
         rn = np.linalg.norm(r, axis=-1, keepdims=True)
         u = r / rn
@@ -121,7 +172,21 @@ class DipoleField:
         return np.asarray((IGRF_RADIUS / rn) ** 3 * (3.0 * (u @ g)[..., None] * u - g), float)
 
     def world(self, t: float) -> Vector3:
-        """B at ``t`` (s) in the world (orbit-plane) frame, T."""
+        """B at ``t`` (s) in the world (orbit-plane) frame, T.
+
+        Examples
+        --------
+        An axial dipole along a polar orbit: ``B0 (a/r)^3`` over the equator (t = 0, the
+        ascending node), ``2 B0 (a/r)^3`` over the north pole a quarter of a period later:
+
+        >>> orbit = CircularOrbit(altitude=500e3, inclination=math.pi / 2)
+        >>> field = DipoleField(orbit, coefficients=(-29404.8e-9, 0.0, 0.0))
+        >>> b0 = 29404.8e-9 * (IGRF_RADIUS / orbit.radius) ** 3
+        >>> equator = np.linalg.norm(field.world(0.0))
+        >>> pole = np.linalg.norm(field.world(orbit.period / 4))
+        >>> math.isclose(equator, b0), math.isclose(pole, 2 * b0)
+        (True, True)
+        """
         theta = self.gmst0 + (OMEGA_EARTH * float(t) if self.earth_rotation else 0.0)
         c, s = math.cos(theta), math.sin(theta)
         eci_from_ecef = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -130,6 +195,15 @@ class DipoleField:
         return np.asarray(world_from_ecef @ self.ecef(r_ecef), float)
 
     def dipole_tilt(self) -> float:
-        """Angle between the dipole and the Earth's spin axis, rad (9.4 deg for IGRF-13 2020)."""
+        """Angle between the dipole and the Earth's spin axis, rad (9.4 deg for IGRF-13 2020).
+
+        Examples
+        --------
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> round(math.degrees(DipoleField(orbit).dipole_tilt()), 1)
+        9.4
+        >>> DipoleField(orbit, coefficients=(-3e-5, 0.0, 0.0)).dipole_tilt()   # an axial dipole
+        0.0
+        """
         g = self.gauss_vector
         return math.acos(abs(g[2]) / float(np.linalg.norm(g)))

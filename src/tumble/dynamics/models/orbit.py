@@ -80,44 +80,130 @@ class CircularOrbit:
 
     @property
     def radius(self) -> float:
-        """Orbit radius ``R_EARTH + altitude``, m."""
+        """Orbit radius ``R_EARTH + altitude``, m.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.gravity import R_EARTH
+        >>> CircularOrbit(altitude=500e3).radius - R_EARTH   # m
+        500000.0
+        """
         return R_EARTH + float(self.altitude)
 
     @property
     def mean_motion(self) -> float:
-        """Mean motion ``n = sqrt(mu / r^3)``, rad/s."""
+        """Mean motion ``n = sqrt(mu / r^3)``, rad/s.
+
+        Examples
+        --------
+        >>> orbit = CircularOrbit(altitude=700e3)
+        >>> math.isclose(orbit.mean_motion**2 * orbit.radius**3, orbit.mu)   # Kepler's third law
+        True
+        """
         return math.sqrt(self.mu / self.radius) / self.radius
 
     @property
     def period(self) -> float:
-        """Orbital period ``2 pi / n``, s."""
+        """Orbital period ``2 pi / n``, s.
+
+        Examples
+        --------
+        A geostationary orbit (radius 42,164.137 km) goes round once a sidereal day, 86,164.1 s:
+
+        >>> from tumble.dynamics.models.gravity import R_EARTH
+        >>> round(CircularOrbit(altitude=42164137.0 - R_EARTH).period)   # s
+        86164
+        """
         return 2.0 * math.pi / self.mean_motion
 
     @property
     def eci_from_world(self) -> Rotation:
-        """The orbit-plane (world) frame to ECI: ``R3(-raan) R1(-i) R3(-u0)`` (module docstring)."""
+        """The orbit-plane (world) frame to ECI: ``R3(-raan) R1(-i) R3(-u0)`` (module docstring).
+
+        Examples
+        --------
+        A polar orbit with its node on ECI x: world x (the radius at t = 0) is ECI x, the orbit
+        normal ``r x v`` (world z) is ECI -y:
+
+        >>> frame = CircularOrbit(altitude=500e3, inclination=math.pi / 2).eci_from_world
+        >>> np.round(frame.apply([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]), 12).tolist()
+        [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
+        """
         return Rotation.from_euler("ZXZ", [self.raan, self.inclination, self.arg_latitude])
 
     def position_world(self, t: ArrayLike) -> Vector3:
-        """Position in the world (orbit-plane) frame, ``r (cos n t, sin n t, 0)``, m; shape ``t.shape + (3,)``."""
+        """Position in the world (orbit-plane) frame, ``r (cos n t, sin n t, 0)``, m; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        A quarter of a period after t = 0 the spacecraft is on world y:
+
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> r = orbit.position_world([0.0, orbit.period / 4])
+        >>> r.shape, np.allclose(r, [[orbit.radius, 0, 0], [0, orbit.radius, 0]], atol=1e-6)
+        ((2, 3), True)
+        """
         nt = self.mean_motion * np.asarray(t, dtype=float)
         return self.radius * np.stack([np.cos(nt), np.sin(nt), np.zeros_like(nt)], axis=-1)
 
     def velocity_world(self, t: ArrayLike) -> Vector3:
-        """Velocity in the world frame, ``r n (-sin n t, cos n t, 0)``, m/s."""
+        """Velocity in the world frame, ``r n (-sin n t, cos n t, 0)``, m/s.
+
+        Examples
+        --------
+        The circular speed ``sqrt(mu / r)``, square to the radius:
+
+        >>> orbit = CircularOrbit(altitude=700e3)
+        >>> v, r = orbit.velocity_world(123.0), orbit.position_world(123.0)
+        >>> math.isclose(np.linalg.norm(v), math.sqrt(orbit.mu / orbit.radius)), bool(abs(v @ r) < 1e-3)
+        (True, True)
+        >>> round(float(np.linalg.norm(v)), 1)   # m/s
+        7504.3
+        """
         nt = self.mean_motion * np.asarray(t, dtype=float)
         return self.radius * self.mean_motion * np.stack([-np.sin(nt), np.cos(nt), np.zeros_like(nt)], axis=-1)
 
     def position_eci(self, t: ArrayLike) -> Vector3:
-        """Position in ECI, m; shape ``t.shape + (3,)``."""
+        """Position in ECI, m; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        At the argument of latitude 90 deg the spacecraft is highest above the equator,
+        ``z = r sin i``:
+
+        >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(51.6), raan=1.0)
+        >>> r = orbit.position_eci(orbit.period / 4)
+        >>> math.isclose(r[2], orbit.radius * math.sin(orbit.inclination)), math.isclose(np.linalg.norm(r), orbit.radius)
+        (True, True)
+        """
         return np.asarray(self.eci_from_world.apply(self.position_world(t).reshape(-1, 3)), float).reshape(
             np.shape(t) + (3,))
 
     def velocity_eci(self, t: ArrayLike) -> Vector3:
-        """Velocity in ECI, m/s; shape ``t.shape + (3,)``."""
+        """Velocity in ECI, m/s; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        A polar orbit crosses its ascending node going due north (ECI +z), at ``sqrt(mu / r)``:
+
+        >>> orbit = CircularOrbit(altitude=500e3, inclination=math.pi / 2)
+        >>> v = orbit.velocity_eci(0.0)
+        >>> np.allclose(v, [0.0, 0.0, math.sqrt(orbit.mu / orbit.radius)])
+        True
+        >>> orbit.velocity_eci(np.zeros((4, 2))).shape
+        (4, 2, 3)
+        """
         return np.asarray(self.eci_from_world.apply(self.velocity_world(t).reshape(-1, 3)), float).reshape(
             np.shape(t) + (3,))
 
     def gravity_gradient(self) -> GravityGradient:
-        """The gravity-gradient torque model of this orbit (the world frame is the same)."""
+        """The gravity-gradient torque model of this orbit (the world frame is the same).
+
+        Examples
+        --------
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> gg = orbit.gravity_gradient()
+        >>> gg.radius == orbit.radius, math.isclose(gg.period, orbit.period)
+        (True, True)
+        """
         return GravityGradient(orbit_radius=self.radius, mu=self.mu)
