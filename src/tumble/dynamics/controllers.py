@@ -63,7 +63,23 @@ class Controller(Protocol):
     period: float
 
     def __call__(self, t: float, measurement: Measurement) -> Command:
-        """The command to hold from ``t`` (s) until the next step."""
+        """The command to hold from ``t`` (s) until the next step.
+
+        Examples
+        --------
+        A controller that always asks for the same dipole; :class:`BDot` and
+        :class:`MRPFeedback` are controllers too:
+
+        >>> class Hold:
+        ...     period = 2.0
+        ...     def __call__(self, t, measurement):
+        ...         return Command(dipole=[0.0, 0.0, 0.05])
+        >>> m = Measurement(0.0, np.zeros(3), np.array([2e-5, 0.0, 0.0]), None)
+        >>> Hold()(0.0, m).dipole.tolist(), Hold()(0.0, m).wheel_torque is None
+        ([0.0, 0.0, 0.05], True)
+        >>> isinstance(BDot(gain=1e4, period=1.0), Controller)
+        True
+        """
         ...
 
 
@@ -144,11 +160,56 @@ class BDot:
             raise ValueError(f"derivative = {self.derivative!r} is unknown; allowed: gyro, difference")
 
     def reset(self) -> None:
-        """Forget the last magnetometer reading (a new run)."""
+        """Forget the last magnetometer reading (a new run).
+
+        Examples
+        --------
+        With ``derivative="difference"`` the first step has no earlier reading and asks for no
+        dipole; after a reset the next step is a first step again:
+
+        >>> c = BDot(gain=1e4, period=1.0, derivative="difference")
+        >>> def reading(t, bx):
+        ...     return Measurement(t, np.zeros(3), np.array([bx, 0.0, 0.0]), None)
+        >>> bool(c(0.0, reading(0.0, 2e-5)).dipole.any())
+        False
+        >>> np.allclose(c(1.0, reading(1.0, 3e-5)).dipole, [-0.1, 0.0, 0.0])   # -k_b dB/dt
+        True
+        >>> c.reset()
+        >>> bool(c(2.0, reading(2.0, 4e-5)).dipole.any())
+        False
+        """
         self._last = None
 
     def __call__(self, t: float, measurement: Measurement) -> Command:
-        """The dipole ``-k dB/dt`` (A m^2) for this reading; zero without a field reading."""
+        """The dipole ``-k dB/dt`` (A m^2) for this reading; zero without a field reading.
+
+        Examples
+        --------
+        A body spinning at 0.1 rad/s about z sees a fixed field turn the other way. The
+        dipole opposes the field's change (``m . dB/dt < 0``), and the magnetometer difference
+        over a short step agrees with the gyroscope's ``B x omega`` at the step's middle:
+
+        >>> omega, b0, dt = np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 1e-5]), 0.01
+        >>> def reading(t):   # the field in the body frame at t
+        ...     return Measurement(t, omega, Rotation.from_rotvec(-omega * t).apply(b0), None)
+        >>> gyro = BDot(gain=1e4, period=dt)(dt / 2, reading(dt / 2)).dipole
+        >>> diff = BDot(gain=1e4, period=dt, derivative="difference")
+        >>> _ = diff(0.0, reading(0.0))
+        >>> m = diff(dt, reading(dt)).dipole
+        >>> b_dot = (reading(dt).field - reading(0.0).field) / dt
+        >>> bool(m @ b_dot < 0.0), np.allclose(m, gyro, rtol=1e-5, atol=1e-12)
+        (True, True)
+
+        The normalised form's torque is ``-k omega_perp`` whatever ``|B|``:
+
+        >>> c = BDot(gain=1e-4, period=1.0, form="normalized")
+        >>> b = np.array([0.0, 3e-5, 0.0])
+        >>> dipole = c(0.0, Measurement(0.0, np.array([0.1, 0.2, 0.0]), b, None)).dipole
+        >>> np.allclose(np.cross(dipole, b), [-1e-5, 0.0, 0.0])
+        True
+        >>> c(0.0, Measurement(0.0, omega, None, None)).dipole.tolist()   # no field reading
+        [0.0, 0.0, 0.0]
+        """
         b = measurement.field
         if b is None:
             return Command(dipole=np.zeros(3))
@@ -214,12 +275,47 @@ class MRPFeedback:
         self._I_rw = np.diag(np.asarray(self.moments, float)) - self.wheels.locked_axial()
 
     def error(self, attitude: Rotation) -> FloatArray:
-        """The MRPs ``sigma`` of the body relative to the target (short set, ``|sigma| <= 1``)."""
+        """The MRPs ``sigma`` of the body relative to the target (short set, ``|sigma| <= 1``).
+
+        Examples
+        --------
+        A turn of ``theta`` about x from the target gives ``sigma = tan(theta / 4) x``; a turn
+        of 300 deg is the short way round, -60 deg (the shadow set, ``|sigma| <= 1``):
+
+        >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+        >>> target = Rotation.from_rotvec([0.0, 0.0, 0.3])
+        >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, target=target)
+        >>> np.allclose(c.error(target), 0.0)
+        True
+        >>> np.allclose(c.error(target * Rotation.from_euler("x", 60, degrees=True)), [math.tan(math.radians(15)), 0, 0])
+        True
+        >>> np.allclose(c.error(target * Rotation.from_euler("x", 300, degrees=True)), [-math.tan(math.radians(15)), 0, 0])
+        True
+        """
         target = self.target if isinstance(self.target, Rotation) else Rotation.from_quat(self.target)
         return np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)
 
     def __call__(self, t: float, measurement: Measurement) -> Command:
-        """The wheel torques ``u = -G^+ L_r`` (N m) for this reading."""
+        """The wheel torques ``u = -G^+ L_r`` (N m) for this reading.
+
+        Examples
+        --------
+        On target and spinning, without the feed-forward: the wheels take ``u = P omega``, so
+        the body feels ``-P omega`` (rate damping); with three wheels on the axes ``G = 1``:
+
+        >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+        >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, gyroscopic=False)
+        >>> m = Measurement(0.0, np.array([0.01, -0.02, 0.0]), None, Rotation.identity(), np.zeros(3))
+        >>> np.allclose(c(0.0, m).wheel_torque, 2e-2 * m.omega)
+        True
+
+        Without an attitude reading it cannot point:
+
+        >>> c(0.0, Measurement(0.0, np.zeros(3), None, None, np.zeros(3)))
+        Traceback (most recent call last):
+        ...
+        ValueError: MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none
+        """
         if measurement.attitude is None:
             raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
         w = measurement.omega
@@ -230,7 +326,31 @@ class MRPFeedback:
 
 
 class PDResponse(NamedTuple):
-    """The linearised one-axis closed loop of MRP feedback (:func:`pd_response`)."""
+    """The linearised one-axis closed loop of MRP feedback (:func:`pd_response`).
+
+    Attributes
+    ----------
+    natural_frequency : float
+        ``omega_n = sqrt(K / (4 I))``, rad/s.
+    damping_ratio : float
+        ``zeta = P / sqrt(K I)``.
+    overshoot : float
+        The swing past zero, a fraction of ``theta_0`` (0 when ``zeta >= 1``).
+    settling_time : float
+        2 % settling time, s (NaN when ``zeta >= 1``).
+
+    Examples
+    --------
+    ``zeta = 0.5``: overshoot ``exp(-pi / sqrt(3)) = 16.3 %``, settling
+    ``-ln(0.02 sqrt(0.75)) / (0.5 omega_n)``:
+
+    >>> r = pd_response(K=4e-4, P=1e-3, moment=0.01)
+    >>> isinstance(r, PDResponse), r.damping_ratio, round(r.overshoot, 4)
+    (True, 0.5, 0.163)
+    >>> wn, zeta, overshoot, settling = r
+    >>> math.isclose(settling, -math.log(0.02 * math.sqrt(0.75)) / (0.5 * 0.1))
+    True
+    """
 
     natural_frequency: float
     damping_ratio: float
