@@ -79,7 +79,25 @@ DEFAULT_THRESHOLD = math.radians(0.5)
 
 @dataclass(frozen=True, eq=False)
 class ControlScenario:
-    """A parsed control scenario; :meth:`run` simulates it."""
+    """A parsed control scenario; :meth:`run` simulates it.
+
+    Made by :func:`control_scenario_from_table` (or ``tumble.io.load_scenario`` from a file);
+    vectors are in the body's principal frame.
+
+    Examples
+    --------
+    A box (principal axis 1 along the design z axis) turned 60 deg about design y, three
+    wheels; the spin given about design z is about principal axis 1:
+
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> scenario.kind, scenario.omega, scenario.wheels.count, scenario.orbit is None
+    ('mrp_pd', (0.01, 0.0, 0.0), 3, True)
+    """
 
     body: Body
     omega: tuple[float, float, float]
@@ -102,7 +120,31 @@ class ControlScenario:
     sources: tuple[tuple[str, str], ...] = ()
 
     def controller(self) -> BDot | MRPFeedback:
-        """A fresh controller of this scenario."""
+        """A fresh controller of this scenario.
+
+        Examples
+        --------
+        >>> from tumble.io.bodyfile import body_from_table
+        >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+        >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+        ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+        ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+        >>> scenario = control_scenario_from_table(table, body, name="point")
+        >>> c = scenario.controller()
+        >>> type(c).__name__, c.K, c.P, c.period, c is scenario.controller()
+        ('MRPFeedback', 0.001, 0.006, 0.5, False)
+
+        B-dot without a gain gets Avanzini & Giulietti's ``2 n (1 + sin xi_m) I_min``, between
+        ``2 n I_min`` and ``4 n I_min``:
+
+        >>> bdot = control_scenario_from_table({"initial": {"omega": [0.1, 0.1, 0.1]}, "simulation": {"t_end": 10.0},
+        ...     "orbit": {"altitude": 500e3, "inclination": 1.7}, "actuators": {"magnetorquers": {"max_dipole": 0.2}},
+        ...     "control": {"kind": "bdot", "period": 1.0}}, body)
+        >>> c = bdot.controller()
+        >>> low = 2 * bdot.orbit.mean_motion * body.principal_moments[0]
+        >>> c.form, bool(low < c.gain < 2 * low)
+        ('normalized', True)
+        """
         if self.kind == "bdot":
             return BDot(**self.controller_args)
         assert self.wheels is not None  # checked when the file was read
@@ -110,7 +152,27 @@ class ControlScenario:
                            target=self.target if self.target is not None else Rotation.identity())
 
     def run(self) -> ControlledRun:
-        """Simulate the scenario in closed loop."""
+        """Simulate the scenario in closed loop.
+
+        Examples
+        --------
+        >>> from tumble.io.bodyfile import body_from_table
+        >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+        >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+        ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+        ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+        >>> scenario = control_scenario_from_table(table, body, name="point")
+        >>> run = scenario.run()
+        >>> len(run.t), float(run.t[-1]), run.wheel_speed.shape
+        (21, 10.0, (21, 3))
+
+        It starts 60 deg off the target and turns towards it; the wheels take up momentum, the
+        total stays put (no external torque):
+
+        >>> error = run.pointing_error(scenario.target)
+        >>> math.isclose(error[0], math.pi / 3), bool(error[-1] < error[0]), bool(run.budget_error().max() < 1e-15)
+        (True, True, True)
+        """
         return simulate_controlled(
             self.body.principal_moments, self.omega, t_end=self.t_end, controller=self.controller(),
             attitude0=self.attitude0, field=self.field,
@@ -119,7 +181,23 @@ class ControlScenario:
             rtol=self.rtol, atol=self.atol)
 
     def trajectory(self, run: ControlledRun) -> Trajectory:
-        """The run as a :class:`~tumble.dynamics.Trajectory` (wheels as rotors), for the figures."""
+        """The run as a :class:`~tumble.dynamics.Trajectory` (wheels as rotors), for the figures.
+
+        Examples
+        --------
+        >>> from tumble.io.bodyfile import body_from_table
+        >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+        >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+        ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+        ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+        >>> scenario = control_scenario_from_table(table, body, name="point")
+        >>> run = scenario.run()
+        >>> traj = scenario.trajectory(run)
+        >>> traj.method, np.array_equal(traj.t, run.t), np.array_equal(traj.omega, run.omega)
+        ('dop853, mrp_pd every 0.5 s', True, True)
+        >>> np.allclose(traj.internal_momentum, scenario.wheels.momentum(run.wheel_speed))   # h = sum J s g
+        True
+        """
         h = None if self.wheels is None else run.wheel_speed * np.asarray(self.wheels.inertia) @ self.wheels.axes
         return Trajectory(
             t=run.t, omega=run.omega, attitude=run.attitude, moments=run.moments,
@@ -129,7 +207,23 @@ class ControlScenario:
             rotor_axial_moments=None if self.wheels is None else np.asarray(self.wheels.inertia))
 
     def override(self, given: dict[str, Any]) -> ControlScenario:
-        """This scenario with the command line's ``t_end``; other options do not apply."""
+        """This scenario with the command line's ``t_end``; other options do not apply.
+
+        Examples
+        --------
+        >>> from tumble.io.bodyfile import body_from_table
+        >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+        >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+        ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+        ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+        >>> scenario = control_scenario_from_table(table, body, name="point")
+        >>> scenario.override({"t_end": 2.5}).t_end, scenario.t_end
+        (2.5, 10.0)
+        >>> scenario.override({"t_end": 2.5, "rtol": 1e-8})
+        Traceback (most recent call last):
+        ...
+        ValueError: point: --rtol does not apply to a control scenario; allowed: --t-end
+        """
         other = sorted(set(given) - {"t_end"})
         if other:
             raise ValueError(f"{self.name}: --{other[0].replace('_', '-')} does not apply to a control scenario; "
@@ -163,7 +257,42 @@ def _design_axes(value: object, body: Body) -> np.ndarray:
 
 
 def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str = "scenario") -> ControlScenario:
-    """Build a control scenario from parsed TOML (the body already built from its ``body`` key)."""
+    """Build a control scenario from parsed TOML (the body already built from its ``body`` key).
+
+    Parameters
+    ----------
+    data : dict
+        The file's tables (module docstring); its ``body`` key is not read here.
+    body : Body
+        The body, built from the file's ``body`` key.
+    name : str
+        The scenario's name (the file's stem), used in messages.
+
+    Raises
+    ------
+    ValueError
+        One line naming the table, the key, the value and what is allowed.
+
+    Examples
+    --------
+    Vectors given in the body's design frame come out in its principal frame (here principal
+    axis 1 is design z, axis 3 design x):
+
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> scenario.omega, scenario.name
+    ((0.01, 0.0, 0.0), 'point')
+    >>> np.allclose(scenario.wheels.axes @ body.principal_axes.T, np.eye(3))   # the design axes, in principal components
+    True
+    >>> control_scenario_from_table({**table, "control": {"kind": "mrp_pd", "K": 1e-3, "P": 6e-3}}, body)
+    Traceback (most recent call last):
+    ...
+    ValueError: control: missing key 'period' (s)
+    """
     unknown = sorted(set(data) - {"body", *CONTROL_SECTIONS})
     if unknown:
         raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}")
@@ -264,7 +393,22 @@ def _geomagnetic_inclination(orbit: CircularOrbit, field: DipoleField) -> float:
 
 
 def control_summary(scenario: ControlScenario, run: ControlledRun) -> dict[str, Any]:
-    """The numbers of a run: final rate, detumble time or final pointing error, budgets, commands."""
+    """The numbers of a run: final rate, detumble time or final pointing error, budgets, commands.
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> summary = control_summary(scenario, scenario.run())
+    >>> summary["kind"], summary["samples"], summary["initial_rate"], summary["external_impulse"]
+    ('mrp_pd', 21, 0.01, 0.0)
+    >>> math.isclose(summary["pointing_error_initial"], math.pi / 3), summary["max_wheel_torque"] <= 2e-3
+    (True, True)
+    """
     summary: dict[str, Any] = {
         "body": scenario.body.name, "kind": scenario.kind, "t_end": float(run.t[-1]),
         "period": float(scenario.controller_args["period"]), "samples": len(run.t),
@@ -289,7 +433,29 @@ def control_summary(scenario: ControlScenario, run: ControlledRun) -> dict[str, 
 
 def write_control_run(run: ControlledRun, folder: Path) -> None:
     """``trajectory.csv`` and ``trajectory.npz`` of a control run into ``folder``: time, omega,
-    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI)."""
+    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI).
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> import tempfile
+    >>> run = scenario.run()
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_control_run(run, Path(tmp))
+    ...     header = (Path(tmp) / "trajectory.csv").read_text().splitlines()[0].split(",")
+    ...     rows = np.loadtxt(Path(tmp) / "trajectory.csv", delimiter=",", skiprows=1)
+    ...     with np.load(Path(tmp) / "trajectory.npz") as npz:
+    ...         same = np.array_equal(npz["omega"], run.omega) and np.array_equal(npz["L_world"], run.momentum_world)
+    >>> len(header), header[8:11], rows.shape, same
+    (26, ['wheel1_speed', 'wheel2_speed', 'wheel3_speed'], (21, 26), True)
+    >>> np.array_equal(rows[:, 1:4], run.omega)   # 17 significant digits: exact
+    True
+    """
     k = run.wheel_speed.shape[1]
     columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
                "wheel_torque": run.wheel_torque, "dipole": run.dipole, "field": run.field,
