@@ -170,6 +170,22 @@ class DaskBackend:
         ------
         ValueError
             When a task was lost with its worker ``retries + 1`` times.
+
+        Examples
+        --------
+        On a threads-only cluster in this process (the scheduler's address as for a remote
+        one); the results come as they finish, and in order they are :class:`InProcess`'s:
+
+        >>> from dask.distributed import LocalCluster
+        >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
+        ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
+        >>> backend = DaskBackend(scheduler=cluster.scheduler_address)
+        >>> tasks = [(7, 2), (9, 4), (20, 6)]
+        >>> sorted(backend.map(divmod, tasks))   # (position, result)
+        [(0, (3, 1)), (1, (2, 1)), (2, (3, 2))]
+        >>> sorted(backend.map(divmod, tasks)) == list(InProcess().map(divmod, tasks))
+        True
+        >>> backend.close(); cluster.close()
         """
         from dask.distributed import KilledWorker, as_completed
 
@@ -198,7 +214,25 @@ class DaskBackend:
                 future.cancel()
 
     def close(self) -> None:
-        """Shut the client, then a local cluster, down; Dask's loggers speak again after."""
+        """Shut the client, then a local cluster, down; Dask's loggers speak again after.
+
+        Examples
+        --------
+        Dask's logger is silent while the backend lives, and has its own level back after:
+
+        >>> import logging
+        >>> from dask.distributed import LocalCluster
+        >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
+        ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
+        >>> level = logging.getLogger("distributed").level
+        >>> backend = DaskBackend(scheduler=cluster.scheduler_address)
+        >>> logging.getLogger("distributed").level > logging.CRITICAL
+        True
+        >>> backend.close()
+        >>> logging.getLogger("distributed").level == level
+        True
+        >>> cluster.close()
+        """
         with self._quiet:
             if self._client is not None:
                 self._client.close()
@@ -206,7 +240,23 @@ class DaskBackend:
                 self._cluster.close()
 
     def describe(self) -> str:
-        """Where the chunks ran, for the provenance."""
+        """Where the chunks ran, for the provenance.
+
+        Examples
+        --------
+        >>> from dask.distributed import LocalCluster
+        >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
+        ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
+        >>> backend = DaskBackend(scheduler=cluster.scheduler_address)
+        >>> backend.describe() == f"dask scheduler {cluster.scheduler_address}"
+        True
+        >>> backend.close(); cluster.close()
+
+        A local cluster of its own (processes: seconds to start) says how many workers:
+
+        >>> DaskBackend(workers=2).describe()  # doctest: +SKIP
+        'dask local cluster of 2 workers'
+        """
         return self._where
 
 
