@@ -62,18 +62,39 @@ _CELL = "text-align:left;padding:1px 14px 1px 2px"
 
 
 def fmt(x: float | np.floating[Any] | np.integer[Any], digits: int = 4) -> str:
-    """A number in ``digits`` significant figures; ``-0`` printed as ``0``."""
+    """A number in ``digits`` significant figures; ``-0`` printed as ``0``.
+
+    Examples
+    --------
+    >>> fmt(3.14159265), fmt(0.000123456, 2), fmt(-0.0), fmt(-1e-20), fmt(12345678)
+    ('3.142', '0.00012', '0', '-1e-20', '1.235e+07')
+    """
     value = float(x)
     return f"{value + 0.0:.{digits}g}" if value != 0 else "0"
 
 
 def vec(v: ArrayLike, digits: int = 4) -> str:
-    """A vector as ``(a, b, c)``."""
+    """A vector as ``(a, b, c)``.
+
+    Examples
+    --------
+    >>> vec([1.0, -0.0, 2 / 3]), vec(np.eye(2), digits=2)   # flattened
+    ('(1, 0, 0.6667)', '(1, 0, 0, 1)')
+    """
     return "(" + ", ".join(fmt(x, digits) for x in np.ravel(v)) + ")"
 
 
 def short_name(name: object) -> str:
-    """The name for a plain repr: quoted as ``repr`` does, cut to :data:`NAME_CHARS` characters."""
+    """The name for a plain repr: quoted as ``repr`` does, cut to :data:`NAME_CHARS` characters.
+
+    Examples
+    --------
+    >>> short_name("T-handle"), short_name(42)   # any object, as its text
+    ("'T-handle'", "'42'")
+    >>> long = short_name("x" * 100)
+    >>> len(long) == NAME_CHARS + 2, long[-4:]   # the quotes, and the cut ends with "..."
+    (True, "...'")
+    """
     text = str(name)
     return repr(text if len(text) <= NAME_CHARS else text[: NAME_CHARS - 3] + "...")
 
@@ -95,6 +116,14 @@ def html_table(
         Column headings.
     caption : str, optional
         A caption above the table.
+
+    Examples
+    --------
+    >>> page = html_table([["I1", 0.5], ["<b>", "a & b"]], header=["axis", "kg m^2"], caption="moments")
+    >>> page.count("<tr>"), page.count("<th "), page.count("<td ")   # a header row, two rows of two cells
+    (3, 2, 4)
+    >>> "&lt;b&gt;" in page and "a &amp; b" in page and "<b>" not in page   # the cells are text, not markup
+    True
     """
     out = [f'<table style="{_STYLE}">']
     if caption is not None:
