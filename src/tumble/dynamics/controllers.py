@@ -326,18 +326,10 @@ class MRPFeedback:
 
 
 class PDResponse(NamedTuple):
-    """The linearised one-axis closed loop of MRP feedback (:func:`pd_response`).
-
-    Attributes
-    ----------
-    natural_frequency : float
-        ``omega_n = sqrt(K / (4 I))``, rad/s.
-    damping_ratio : float
-        ``zeta = P / sqrt(K I)``.
-    overshoot : float
-        The swing past zero, a fraction of ``theta_0`` (0 when ``zeta >= 1``).
-    settling_time : float
-        2 % settling time, s (NaN when ``zeta >= 1``).
+    """The linearised one-axis closed loop of MRP feedback (:func:`pd_response`): the natural
+    frequency ``omega_n = sqrt(K / (4 I))`` (rad/s), the damping ratio ``zeta = P / sqrt(K I)``,
+    the overshoot (a fraction of ``theta_0``; 0 when ``zeta >= 1``) and the 2 % settling time
+    (s; NaN when ``zeta >= 1``).
 
     Examples
     --------
