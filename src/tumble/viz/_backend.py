@@ -36,6 +36,23 @@ def _repr_png_(self) -> bytes:
     return buffer.getvalue()
 
 
+#: The docstring of ``TumbleFigure`` (the class is made on first use, by :func:`__getattr__`).
+_TUMBLE_FIGURE_DOC = """A matplotlib Figure with ``_repr_png_`` (see the module).
+
+    Examples
+    --------
+    >>> from tumble.viz._backend import TumbleFigure, new_figure
+    >>> fig = new_figure()
+    >>> isinstance(fig, TumbleFigure), fig.get_size_inches().tolist()
+    (True, [7.5, 3.6])
+    >>> fig._repr_png_()[1:4]  # what a notebook shows: a PNG, without pyplot
+    b'PNG'
+    """
+#: doctest collects the example even before the class is made (``--doctest-modules`` looks only
+#: at what the module holds when it is collected).
+__test__ = {"TumbleFigure": _TUMBLE_FIGURE_DOC}
+
+
 def __getattr__(name: str) -> type:
     """``TumbleFigure``: a matplotlib Figure that a notebook displays as a PNG without pyplot.
 
@@ -48,20 +65,40 @@ def __getattr__(name: str) -> type:
     from matplotlib.figure import Figure
 
     cls = type("TumbleFigure", (Figure,), {"__module__": __name__, "_repr_png_": _repr_png_,
-                                           "__doc__": "A matplotlib Figure with ``_repr_png_`` (see the module)."})
+                                           "__doc__": _TUMBLE_FIGURE_DOC})
     globals()["TumbleFigure"] = cls
     return cls
 
 
 def new_figure(figsize: tuple[float, float] = (7.5, 3.6), **kwargs: Any) -> Figure:
-    """A new ``TumbleFigure`` (constrained layout unless ``layout`` is given), not registered with pyplot."""
+    """A new ``TumbleFigure`` (constrained layout unless ``layout`` is given), not registered with pyplot.
+
+    ``figsize`` is (width, height) in inches.
+
+    Examples
+    --------
+    >>> fig = new_figure((4.0, 3.0))
+    >>> fig.get_size_inches().tolist(), type(fig.get_layout_engine()).__name__, fig.axes
+    ([4.0, 3.0], 'ConstrainedLayoutEngine', [])
+    """
     kwargs.setdefault("layout", "constrained")
     return __getattr__("TumbleFigure")(figsize=figsize, **kwargs)
 
 
 def figure_and_axes(ax: Axes | None = None, figsize: tuple[float, float] = (7.5, 3.6),
                     **subplot_kw: Any) -> tuple[Figure, Axes]:
-    """``(figure, ax)``: ``ax`` and its figure when given, else a new figure with one axes."""
+    """``(figure, ax)``: ``ax`` and its figure when given, else a new figure with one axes.
+
+    Examples
+    --------
+    >>> fig, ax = figure_and_axes()
+    >>> len(fig.axes), ax.figure is fig, fig.get_size_inches().tolist()
+    (1, True, [7.5, 3.6])
+    >>> figure_and_axes(ax) == (fig, ax)  # axes given: drawn there, no new figure
+    True
+    >>> figure_and_axes(projection="3d")[1].name  # keywords go to add_subplot
+    '3d'
+    """
     if ax is not None:
         return ax.figure, ax
     fig = new_figure(figsize)
@@ -69,7 +106,22 @@ def figure_and_axes(ax: Axes | None = None, figsize: tuple[float, float] = (7.5,
 
 
 def legend_outside(ax: Axes, **kwargs: Any) -> None:
-    """The legend to the right of the axes, outside them: it never covers the data."""
+    """The legend to the right of the axes, outside them: it never covers the data.
+
+    Nothing labelled, no legend. ``kwargs`` go to ``ax.legend`` (over the defaults).
+
+    Examples
+    --------
+    >>> fig, ax = figure_and_axes()
+    >>> legend_outside(ax)
+    >>> ax.get_legend() is None
+    True
+    >>> _ = ax.plot([0.0, 1.0], [0.0, 1.0], label="omega_1")
+    >>> legend_outside(ax)
+    >>> legend = ax.get_legend()
+    >>> [text.get_text() for text in legend.get_texts()], bool(legend.get_bbox_to_anchor().x0 > ax.bbox.x1)  # right of the axes
+    (['omega_1'], True)
+    """
     handles, _ = ax.get_legend_handles_labels()
     if handles:
         ax.legend(**{"fontsize": 7, "loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "borderaxespad": 0.0,
@@ -77,7 +129,15 @@ def legend_outside(ax: Axes, **kwargs: Any) -> None:
 
 
 def note_only(ax: Axes, note: str, title: str | None = None) -> None:
-    """An empty panel that says, in one line, why there is nothing to draw."""
+    """An empty panel that says, in one line, why there is nothing to draw.
+
+    Examples
+    --------
+    >>> fig, ax = figure_and_axes()
+    >>> note_only(ax, "no polhode for this run: a torque acts", "polhode")
+    >>> ax.axison, [text.get_text() for text in ax.texts], ax.get_title()
+    (False, ['no polhode for this run: a torque acts'], 'polhode')
+    """
     ax.set_axis_off()
     text = ax.text2D if ax.name == "3d" else ax.text
     text(0.5, 0.5, note, ha="center", va="center", wrap=True, fontsize=9, transform=ax.transAxes)
@@ -100,6 +160,24 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = FIGURE_DPI
         The file to write.
     dpi : int
         Dots per inch of a raster format.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> fig, ax = figure_and_axes(figsize=(4.0, 3.0))
+    >>> _ = ax.plot([0.0, 1.0], [1.0, 0.0])
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     save_figure(fig, Path(folder) / "line.png", dpi=50)
+    ...     png = Path(folder, "line.png").read_bytes()
+    ...     sorted(p.name for p in Path(folder).iterdir())  # no temporary file left behind
+    ['line.png']
+    >>> png[1:4], int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")  # 4 x 3 inches at 50 dpi
+    (b'PNG', 200, 150)
+    >>> save_figure(fig, "line.txt")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: line.txt: a figure is written as ... (by the suffix), not '.txt'
     """
     from pathlib import Path
 
