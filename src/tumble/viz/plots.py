@@ -49,6 +49,16 @@ def detail_window(traj: Trajectory) -> float | None:
 
     An oscillation is counted as two sign changes of a component of omega (a flip reverses
     omega_2, a wobble swings omega_1 and omega_2 through zero).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
+    >>> wobble = tumble.simulate(body, [0.1, 0.0, 10.0], t_end=25.0, samples=1001)  # near the major axis
+    >>> round(detail_window(wobble), 9)  # omega_1 ~ cos(10 t) (nutation rate 10 sqrt(2 * 1 / 2)): 11th zero 1.05 pi s
+    3.3
+    >>> detail_window(tumble.simulate(body, [0.1, 0.0, 10.0], t_end=2.0, samples=81)) is None  # 3 oscillations
+    True
     """
     w = np.asarray(traj.omega)
     changes = [np.flatnonzero(np.signbit(w[1:, j]) != np.signbit(w[:-1, j])) + 1 for j in range(3)]
@@ -64,6 +74,13 @@ def envelope(t: ArrayLike, y: ArrayLike, bins: int = ENVELOPE_BINS) -> tuple[np.
     ``t`` has shape (n,), ``y`` shape (n,) or (n, k); ``n`` samples are split into ``bins`` runs
     of (nearly) equal length. The outputs have ``2 * bins`` rows (each bin's value held over the
     bin), so a step-wise band drawn through them covers every sample.
+
+    Examples
+    --------
+    >>> t, y = np.arange(6.0), np.array([0.0, 3.0, 1.0, 5.0, 2.0, 4.0])
+    >>> times, low, high = envelope(t, y, bins=2)  # bins: samples 0-2 and 3-5
+    >>> times.tolist(), low.tolist(), high.tolist()
+    ([0.0, 2.0, 3.0, 5.0], [0.0, 0.0, 2.0, 2.0], [3.0, 3.0, 5.0, 5.0])
     """
     t, y = np.asarray(t, float), np.asarray(y, float)
     starts = np.linspace(0, len(t), min(bins, len(t)) + 1).astype(int)
@@ -82,6 +99,21 @@ def plot_omega(traj: Trajectory, ax: Axes, title: str | None = None) -> str | No
 
     A run of more than :data:`MAX_POINTS` samples is drawn as its :func:`envelope`. Returns the
     note that says so (None when every sample is drawn); it is also the second line of the title.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.viz._backend import figure_and_axes
+    >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> fig, ax = figure_and_axes()
+    >>> plot_omega(run, ax, "T-handle") is None  # every sample drawn: no note
+    True
+    >>> [line.get_label().split("(")[1].split(",")[0] for line in ax.lines[:3]]  # each component's axis
+    ['minor', 'intermediate', 'major']
+    >>> ax.lines[1].get_label().endswith("$I_2$ = 0.3125 kg m$^2$)")  # and its moment
+    True
+    >>> bool(np.array_equal(ax.lines[1].get_ydata(), run.omega[:, 1])), ax.get_xlabel(), ax.get_title()
+    (True, 't (s)', 'T-handle')
     """
     check_run(traj)
     note = None
@@ -127,6 +159,17 @@ def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     -------
     matplotlib Figure
         ``ax.figure`` when ``ax`` was given; write it with :func:`tumble.viz.save_figure`.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
+    >>> len(figure_omega(tumble.simulate(body, [0.1, 0.0, 10.0], t_end=2.0, samples=81)).axes)  # 3 wobbles
+    1
+    >>> wobble = tumble.simulate(body, [0.1, 0.0, 10.0], t_end=25.0, samples=1001)  # 40 wobbles
+    >>> whole, detail = figure_omega(wobble, title="near the major axis").axes
+    >>> whole.get_title(), detail.get_xlim() == (0.0, detail_window(wobble)), detail.get_title()[:35]
+    ('near the major axis', True, 'detail: the first 5 oscillations, t')
     """
     check_run(traj)
     end = detail_window(traj) if ax is None else None
@@ -170,6 +213,18 @@ def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig: Figure | None
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
+    >>> cases = [(f"omega_2 = {w:g} rad/s", tumble.simulate(body, [0.01, w, 0.0], t_end=3.0, samples=31))
+    ...          for w in (1.0, 2.0, 4.0)]
+    >>> fig = figure_omega_grid(cases, ncols=2, suptitle="flip faster with more spin")
+    >>> [ax.get_title() for ax in fig.axes], [ax.get_visible() for ax in fig.axes]  # 2 x 2, the 4th hidden
+    (['omega_2 = 1 rad/s', 'omega_2 = 2 rad/s', 'omega_2 = 4 rad/s', ''], [True, True, True, False])
+    >>> fig.get_suptitle(), bool(np.array_equal(fig.axes[2].lines[1].get_ydata(), cases[2][1].omega[:, 1]))
+    ('flip faster with more spin', True)
     """
     cases = list(cases)
     if not cases:
@@ -221,6 +276,19 @@ def figure_drift(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> rk45 = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101, method="rk45")
+    >>> ax = figure_drift(rk45).axes[0]
+    >>> ax.get_yscale(), ax.get_title(), [line.get_label().split(":")[0] for line in ax.lines]
+    ('log', 'T-handle: drift of the invariants, rk45', ['energy', '|L|', '$L_{world}$'])
+    >>> bool(np.isclose(ax.lines[0].get_ydata().max(), rk45.drift["energy"]))  # the run's largest energy error
+    True
+    >>> exact = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> [text.get_text() for text in figure_drift(exact).axes[0].texts]  # exact: one dashed line per invariant
+    ['at round-off: every drift below 1e-13']
     """
     check_run(traj)
     fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
