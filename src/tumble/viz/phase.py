@@ -42,6 +42,18 @@ def phase_portrait_problem(traj: Trajectory) -> str | None:
     Both picture the torque-free motion: the polhode lies on the momentum sphere and the energy
     ellipsoid, the herpolhode in the invariable plane normal to the fixed L. Under a torque L
     and the energy change, and a body at rest has no L to draw them about.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> phase_portrait_problem(tumble.simulate(body, [0.1, 10.0, 0.1], t_end=1.0, samples=5)) is None
+    True
+    >>> phase_portrait_problem(tumble.simulate(body, [0.0, 0.0, 0.0], t_end=1.0, samples=5))
+    'the body is at rest (L = 0): there is no motion to picture'
+    >>> push = tumble.ConstantTorque((0.0, 0.0, 0.1), "body")  # N m
+    >>> phase_portrait_problem(tumble.simulate(body, [0.1, 10.0, 0.1], t_end=1.0, samples=5, torque=push))
+    'a torque acts, so L and the energy change: they picture torque-free motion only'
     """
     if not traj.torque_free:
         return "a torque acts, so L and the energy change: they picture torque-free motion only"
@@ -58,6 +70,18 @@ def polhode_family(moments: ArrayLike, L_norm: float, count: int = 9, points: in
     Starting points ``|L| (cos b, 0, sin b)`` sweep the energy from ``|L|^2/(2 I1)`` (b = 0) to
     ``|L|^2/(2 I3)`` (b = pi/2); each curve is one period of the exact motion, drawn with its
     mirror image ``-L``.
+
+    Examples
+    --------
+    >>> I = np.array([0.125, 0.3125, 0.4375])  # the T-handle, kg m^2
+    >>> curves = polhode_family(I, 2.0, count=4, points=60)  # |L| = 2 kg m^2/s
+    >>> len(curves), curves[0].shape, bool(np.allclose(np.linalg.norm(curves, axis=2), 2.0))  # on the sphere
+    (8, (60, 3), True)
+    >>> energy = [np.sum(c**2 / I, axis=1) / 2 for c in curves]  # J
+    >>> bool(np.allclose([np.ptp(e) for e in energy], 0.0, atol=1e-12)), [np.allclose(c[0], c[-1]) for c in curves[:2]]
+    (True, [True, True])
+    >>> [bool(e[0] > 2.0**2 / (2 * I[1])) for e in energy]  # above the separatrix: round the minor axis
+    [True, True, True, True, False, False, False, False]
     """
     from scipy.spatial.transform import Rotation
 
@@ -77,7 +101,20 @@ def polhode_family(moments: ArrayLike, L_norm: float, count: int = 9, points: in
 
 
 def separatrices(moments: ArrayLike, L_norm: float, points: int = 361) -> list[np.ndarray]:
-    """The two separatrix great circles on the momentum sphere, each of shape (points, 3)."""
+    """The two separatrix great circles on the momentum sphere, each of shape (points, 3).
+
+    They lie on the energy ellipsoid of ``E = |L|^2 / (2 I2)``, J, and cross at ``+-|L| e2``,
+    the intermediate axis (``L_norm`` in kg m^2/s, ``moments`` in kg m^2).
+
+    Examples
+    --------
+    >>> I = np.array([0.125, 0.3125, 0.4375])  # the T-handle, kg m^2
+    >>> plus, minus = separatrices(I, 2.0, points=5)  # |L| = 2 kg m^2/s, a quarter turn apart
+    >>> plus.round(4).tolist()
+    [[0.0, 2.0, 0.0], [0.8, 0.0, 1.833], [0.0, -2.0, 0.0], [-0.8, -0.0, -1.833], [-0.0, 2.0, -0.0]]
+    >>> [np.round(np.sum(c**2 / I, axis=1) / 2, 12).tolist() for c in (plus, minus)]  # 2^2 / (2 I2) = 6.4 J
+    [[6.4, 6.4, 6.4, 6.4, 6.4], [6.4, 6.4, 6.4, 6.4, 6.4]]
+    """
     I = np.asarray(moments, float)
     k = np.sqrt((1 / I[0] - 1 / I[1]) / (1 / I[1] - 1 / I[2]))
     s = np.linspace(0.0, 2.0 * np.pi, points)[:, None]
@@ -133,6 +170,22 @@ def figure_polhode(traj: Trajectory, *, ax: Axes | None = None, title: str | Non
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip
+    >>> ax = figure_polhode(run).axes[0]
+    >>> ax.name, ax.get_title(), [text.get_text() for text in ax.get_legend().get_texts()]
+    ('3d', 'T-handle: polhodes on the momentum sphere |L| = 3.125 kg m$^2$/s', \
+['polhodes through this |L|', 'separatrix', 'this run (exact)', 't = 0'])
+    >>> line = next(line for line in ax.lines if line.get_label() == "this run (exact)")
+    >>> bool(np.array_equal(np.array(line.get_data_3d()).T, run.angular_momentum))  # L in the body frame
+    True
+    >>> push = tumble.ConstantTorque((0.0, 0.0, 0.1), "body")  # N m: no polhode, a note instead
+    >>> pushed = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1.0, samples=5, torque=push)
+    >>> [text.get_text()[:35] for text in figure_polhode(pushed).axes[0].texts]
+    ['no polhode for this run: a torque a']
     """
     check_run(traj)
     fig, ax = _axes_3d(ax)
@@ -190,6 +243,19 @@ def figure_herpolhode(traj: Trajectory, *, ax: Axes | None = None, title: str | 
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> ax = figure_herpolhode(run).axes[0]
+    >>> ax.get_title().splitlines()[0], len(ax.lines[0].get_xdata())  # the tip of omega at every sample
+    ('T-handle: herpolhode in the invariable plane', 101)
+    >>> [text.get_text() for text in ax.get_legend().get_texts()][1:]
+    ['t = 0', 'foot of L']
+    >>> height = 2 * run.energy[0] / run.angular_momentum_norm[0]  # the plane's distance, 2 E / |L|, rad/s
+    >>> f"omega . L/|L| = {height:.6g} rad/s" in ax.get_title()
+    True
     """
     check_run(traj)
     fig, ax = figure_and_axes(ax, figsize=(7.4, 5.4))
