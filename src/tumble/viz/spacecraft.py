@@ -61,6 +61,21 @@ def figure_energy(traj: Trajectory, *, ax: Axes | None = None, log: bool = False
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
+    >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
+    >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
+    >>> ax = figure_energy(run).axes[0]
+    >>> [line.get_label() for line in ax.lines], ax.get_title().split(";")[0]
+    (['kinetic energy T (J)', '$E_0$ - dissipated (J)'], 'body: energy, dop853')
+    >>> T, budget = (line.get_ydata() for line in ax.lines)
+    >>> bool(np.array_equal(T, run.energy)), bool(np.array_equal(budget, run.energy[0] - run.dissipated))
+    (True, True)
+    >>> bool(np.allclose(T, budget, rtol=1e-9)), bool(T[-1] < T[0])  # the books balance; the damper took energy out
+    (True, True)
     """
     check_run(traj)
     fig, ax = figure_and_axes(ax)
@@ -110,6 +125,19 @@ def figure_nutation(traj: Trajectory, *, ax: Axes | None = None, degrees: bool =
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
+    >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
+    >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
+    >>> ax = figure_nutation(run).axes[0]
+    >>> angle = ax.lines[0].get_ydata()  # deg: from a spin about the minor axis to one about the major axis
+    >>> ax.get_ylabel(), round(float(angle[0]), 6), bool(angle[-1] < 2.0), bool(np.all(np.diff(angle) < 0))
+    ('nutation angle (deg)', 90.0, True, True)
+    >>> figure_nutation(run, degrees=False).axes[0].lines[0].get_ydata().tolist() == run.nutation_angle.tolist()
+    True
     """
     check_run(traj)
     angle = traj.nutation_angle
@@ -151,6 +179,18 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax: Axes 
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body, gg = tumble.t_handle(), tumble.GravityGradient(orbit_period=5400.0)  # s
+    >>> s = tumble.lvlh_state(gg, body, pitch=0.01)  # 0.01 rad of pitch from the orbiting frame
+    >>> run = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg, t_end=600.0, samples=3)
+    >>> ax = figure_orbit_angles(run, gg).axes[0]
+    >>> ax.get_xlabel(), [line.get_label().split()[0] for line in ax.lines[:3]]
+    ('t (orbits of 5400 s)', ['roll', 'pitch', 'yaw'])
+    >>> ax.lines[1].get_xdata().round(4).tolist(), bool(np.array_equal(ax.lines[1].get_ydata(), tumble.orbit_frame_angles(run, gg).pitch))
+    ([0.0, 0.0556, 0.1111], True)
     """
     check_run(traj)
     angles = orbit_frame_angles(traj, gravity, **axes)
@@ -183,6 +223,17 @@ def figure_omega_panels(cases: list[tuple[str, Trajectory]], *, fig: Figure | No
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
+    >>> cases = [(f"spin {w:g} rad/s", tumble.simulate(body, [0.01, w, 0.0], t_end=3.0, samples=31)) for w in (1.0, 4.0)]
+    >>> fig = figure_omega_panels(cases)
+    >>> [ax.get_title() for ax in fig.axes], fig.get_size_inches().tolist()  # one above the other
+    (['spin 1 rad/s', 'spin 4 rad/s'], [8.6, 5.2])
+    >>> fig.axes[0].get_ylim() == fig.axes[1].get_ylim()  # one omega scale
+    True
     """
     cases = list(cases)
     fig = fig if fig is not None else new_figure((8.6, 2.6 * max(len(cases), 1)))
@@ -205,6 +256,21 @@ def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | 
       go to it.
 
     An empty list for a rigid body under no torque or a constant one.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
+    >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
+    >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
+    >>> figures = spacecraft_figures(run)
+    >>> [name for name, _ in figures], figures[1][1]().axes[0].get_ylabel()
+    (['energy', 'nutation'], 'nutation angle (deg)')
+    >>> spacecraft_figures(tumble.simulate(body, [1.0, 0.05, 0.0], t_end=1.0, samples=5))  # rigid, torque-free
+    []
+    >>> gg = tumble.GravityGradient(orbit_period=5400.0)
+    >>> [name for name, _ in spacecraft_figures(tumble.simulate(body, [0.0, 0.0, 0.001], t_end=60.0, samples=3, torque=gg), gg)]
+    ['orbit_angles']
     """
     makers: list[tuple[str, object]] = []
     if _has_internal_models(traj):
