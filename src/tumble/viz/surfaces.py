@@ -25,7 +25,17 @@ MAX_MESH_FACES = 6000
 
 
 def surface_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
-    """Volume enclosed by a closed, outward-wound triangle surface, m^3 (divergence theorem)."""
+    """Volume enclosed by a closed, outward-wound triangle surface, m^3 (divergence theorem).
+
+    ``vertices`` of shape (n, 3), m; ``faces`` of shape (m, 3), indices into them.
+
+    Examples
+    --------
+    >>> corner = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    >>> faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])  # outward normals
+    >>> round(surface_volume(corner, faces) * 6, 12), round(surface_volume(corner, faces[:, ::-1]) * 6, 12)  # wound inward: negative
+    (1.0, -1.0)
+    """
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
@@ -101,7 +111,18 @@ def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_
     per cell, and triangles that collapse are dropped. The grid is coarsened until the result
     fits, down to 2 cells a side (whatever remains then is returned, so a mesh of many separate
     pieces may keep more). A mesh already small enough, or of zero extent, is returned
-    unchanged; vertices no triangle uses are dropped."""
+    unchanged; vertices no triangle uses are dropped.
+
+    Examples
+    --------
+    >>> from tumble.mass import Sphere
+    >>> v, f = part_surface(Sphere(mass=1.0, radius=1.0), n=64)
+    >>> len(f), decimate(v, f)[1] is f  # small enough: unchanged
+    (3968, True)
+    >>> v2, f2 = decimate(v, f, max_faces=500)
+    >>> len(f2) <= 500, bool(f2.max() == len(v2) - 1), bool(0.9 < surface_volume(v2, f2) / surface_volume(v, f) < 1.0)
+    (True, True, True)
+    """
     lo, span = vertices.min(axis=0), np.ptp(vertices, axis=0).max()
     if len(faces) <= max_faces or not span > 0:
         return vertices, faces
@@ -167,6 +188,17 @@ def part_surface(part: Part, n: int = 32, thin: float | None = None) -> tuple[np
         Design-frame coordinates, m.
     faces : ndarray, shape (m, 3)
         Vertex indices, wound counter-clockwise seen from outside.
+
+    Examples
+    --------
+    >>> from tumble.mass import Box, Cylinder
+    >>> v, f = part_surface(Box(mass=1.0, size=(1.0, 2.0, 3.0), center=(1.0, 0.0, 0.0)))
+    >>> v.shape, f.shape, surface_volume(v, f), v.mean(axis=0).tolist()  # 6 faces of 2 triangles, 1 x 2 x 3 m
+    ((24, 3), (12, 3), 6.0, [1.0, 0.0, 0.0])
+    >>> v, f = part_surface(Cylinder(mass=1.0, radius=0.5, length=2.0), n=16)
+    >>> prism = 16 / 2 * 0.5**2 * np.sin(2 * np.pi / 16) * 2.0  # a 16-sided prism inscribed in the cylinder, m^3
+    >>> bool(np.isclose(surface_volume(v, f), prism)), np.ptp(v[:, 2]).item()  # along its axis, z
+    (True, 2.0)
     """
     if thin is None:
         thin = 0.015 * part.length if isinstance(part, Rod) else 0.01
@@ -179,6 +211,15 @@ def body_surfaces(body: Body, n: int = 32) -> list[tuple[np.ndarray, np.ndarray,
 
     Returns ``(vertices, faces, removed)`` triples; ``removed`` marks subtracted material.
     Rods are drawn with a radius of 2 % of the body's size, point masses as spheres of 3 % of it.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> (shaft, _, removed), crossbar = body_surfaces(tumble.t_handle())  # two rods, about the COM
+    >>> removed, shaft[:, 2].min().item(), shaft[:, 2].max().item()  # as body_lines: 0.75 m below, 0.25 m above
+    (False, -0.75, 0.25)
+    >>> round(float(np.abs(shaft[:, 0]).max()), 12)  # drawn 0.02 x 0.75 m thick
+    0.015
     """
     size, com = body_size(body), np.asarray(body.com)
     out = []
