@@ -68,6 +68,22 @@ def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int =
     ValueError
         If ``body`` is not a Body whose principal moments are the trajectory's, or ``height`` is
         not a positive whole number; and as the page raises it (``frames``, missing plotly).
+
+    Examples
+    --------
+    >>> import html
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> frame = show(run, body, frames=5, height=600, title="T-handle flip")  # in a notebook: the page, playing
+    >>> frame.data.startswith('<div><iframe srcdoc="'), 'height="600"' in frame.data, 'title="tumble: T-handle, exact"' in frame.data
+    (True, True, True)
+    >>> "<title>T-handle flip</title>" in html.unescape(frame.data)  # the page, escaped into srcdoc
+    True
+    >>> show(run, tumble.iss_t_handle())  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: body = ... is not the body of this trajectory: ...
     """
     HTML = _ipython_html()
     _check(trajectory, body, height)

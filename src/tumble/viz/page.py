@@ -70,7 +70,16 @@ def _tidy(values) -> list[float]:
 
 def live_presets() -> list[dict]:
     """The live mode's fixed presets: ``name``, ``moments`` (kg m^2), ``omega0`` (principal frame,
-    rad/s) and ``mass`` (kg, sets only the size of the uniform box drawn for them)."""
+    rad/s) and ``mass`` (kg, sets only the size of the uniform box drawn for them).
+
+    Examples
+    --------
+    >>> handle, plate, racket = live_presets()
+    >>> handle["moments"], handle["omega0"], handle["mass"]  # the T-handle spun about its intermediate axis
+    ([0.125, 0.3125, 0.4375], [0.1, 10.0, 0.1], 3.0)
+    >>> racket["moments"] == list(BRODY_RACKET_MOMENTS), all(p["moments"] == sorted(p["moments"]) for p in (handle, plate, racket))
+    (True, True)
+    """
     handle = t_handle()
     plate = Body([Box(mass=1.0, size=(0.300, 0.295, 0.060))])
     return [
@@ -109,6 +118,21 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     design -> world quaternions; ``w`` omega_world, rad/s; ``L`` L_world, kg m^2/s; one row per
     frame, no geometry); ``curves`` (omega(t) in the principal frame, every ``stride``-th of
     ``samples`` samples, ``t`` and ``omega`` as three rows); ``presets`` (:func:`live_presets`).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
+    >>> data = page_data(body, run, frames=5)
+    >>> data["title"], data["frames"]["t"], data["curves"]["samples"], data["geometry"]["removed"]
+    ('T-handle: exact, 2 s', [0.0, 0.5, 1.0, 1.5, 2.0], 101, None)
+    >>> q = run.design_attitude()[[0, 25, 50, 75, 100]].as_quat()  # design -> world at the frames' samples
+    >>> bool(np.allclose(data["frames"]["q"], q, atol=1e-4)), len(data["geometry"]["solid"]["f"]) // 3  # two rods
+    (True, 128)
+    >>> import json
+    >>> json.loads(json.dumps(data)) == data  # JSON-ready
+    True
     """
     from scipy.spatial.transform import Rotation
 
@@ -191,6 +215,21 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         Page heading (default: body, method, duration).
     live : bool
         Include live mode (``assets/splitting.js`` and ``assets/live.js``, where installed).
+
+    Examples
+    --------
+    >>> import json, re
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
+    >>> html = page_html(body, run, frames=5, title="T-handle flip")
+    >>> html.splitlines()[0], "<title>T-handle flip</title>" in html, '<h1 id="tumble-title">T-handle flip</h1>' in html
+    ('<!DOCTYPE html>', True, True)
+    >>> len(html) > 1_000_000  # plotly.js inside: the page works offline
+    True
+    >>> data = re.search(r'<script type="application/json" id="tumble-data">(.*?)</script>', html, re.S).group(1)
+    >>> json.loads(data)["frames"]["t"]  # the frames the viewer plays
+    [0.0, 0.5, 1.0, 1.5, 2.0]
     """
     try:
         from plotly.offline import get_plotlyjs
@@ -222,7 +261,24 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
 
 def write_page(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, frames: int = 150, title: str | None = None,
                live: bool = True) -> Path:
-    """Write :func:`page_html` to ``path`` whole or not at all (temporary file, then renamed)."""
+    """Write :func:`page_html` to ``path`` whole or not at all (temporary file, then renamed).
+
+    Returns the path written (UTF-8 HTML).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import tumble
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_page(body, run, Path(folder) / "flip.html", frames=5, title="T-handle flip")
+    ...     text = path.read_text(encoding="utf-8")
+    ...     path.name, sorted(p.name for p in Path(folder).iterdir())  # no temporary file left
+    ('flip.html', ['flip.html'])
+    >>> text == page_html(body, run, frames=5, title="T-handle flip")
+    True
+    """
     path = Path(path)
     atomic_write_text(path, page_html(body, traj, frames=frames, title=title, live=live))
     return path
