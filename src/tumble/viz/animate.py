@@ -36,7 +36,14 @@ ANIMATION_SUFFIXES = (".mp4", ".gif")
 
 
 def ffmpeg_path() -> str | None:
-    """The ffmpeg binary MP4s are written with: ``ffmpeg`` on ``PATH``, else imageio-ffmpeg's, else None."""
+    """The ffmpeg binary MP4s are written with: ``ffmpeg`` on ``PATH``, else imageio-ffmpeg's, else None.
+
+    Examples
+    --------
+    >>> found = ffmpeg_path()
+    >>> found is None or (os.path.isfile(found) and os.access(found, os.X_OK))  # an executable, if any
+    True
+    """
     found = shutil.which("ffmpeg")
     if found:
         return found
@@ -55,6 +62,19 @@ def animation_path(path: str | os.PathLike[str]) -> tuple[Path, str | None]:
 
     ``.gif`` and ``.mp4`` with ffmpeg available are kept; ``.mp4`` without ffmpeg becomes the
     ``.gif`` of the same name, with a note saying why. Any other suffix is a ``ValueError``.
+
+    Examples
+    --------
+    >>> path, note = animation_path("out/flip.gif")
+    >>> path.as_posix(), note
+    ('out/flip.gif', None)
+    >>> path, note = animation_path("out/flip.mp4")
+    >>> path.suffix == (".gif" if ffmpeg_path() is None else ".mp4"), (note is None) == (ffmpeg_path() is not None)
+    (True, True)
+    >>> animation_path("flip.avi")
+    Traceback (most recent call last):
+    ...
+    ValueError: flip.avi: animations are written as .mp4 or .gif, not '.avi'
     """
     path = Path(path)
     if path.suffix not in ANIMATION_SUFFIXES:
@@ -66,7 +86,22 @@ def animation_path(path: str | os.PathLike[str]) -> tuple[Path, str | None]:
 
 
 def writer_for(path: Path, fps: int) -> Any:
-    """A matplotlib writer for the suffix of ``path`` (``.gif``, or ``.mp4`` with ffmpeg found)."""
+    """A matplotlib writer for the suffix of ``path`` (``.gif``, or ``.mp4`` with ffmpeg found).
+
+    ``fps``: frames per second of the file written.
+
+    Examples
+    --------
+    >>> writer = writer_for(Path("flip.gif"), fps=20)
+    >>> type(writer).__name__, writer.fps
+    ('PillowWriter', 20)
+    >>> type(writer_for(Path("flip.mp4"), 20)).__name__  # doctest: +SKIP
+    'FFMpegWriter'
+    >>> writer_for(Path("flip.png"), 20)
+    Traceback (most recent call last):
+    ...
+    ValueError: flip.png: animations are written as .mp4 or .gif
+    """
     from matplotlib import animation
 
     path = Path(path)
@@ -83,6 +118,15 @@ def scene_axes(size: float, title: str, figsize: tuple[float, float] = (5.4, 5.4
     """A new figure with one 3D axes of half-width ``size`` (m), labelled for a small frame.
 
     At most three ticks per axis and 8-point labels keep the tick labels apart at GIF sizes.
+    ``figsize`` in inches.
+
+    Examples
+    --------
+    >>> fig, ax = scene_axes(0.5, "T-handle")
+    >>> ax.name, ax.get_title(), ax.get_xlim() == ax.get_zlim() == (-0.5, 0.5), ax.get_zlabel()
+    ('3d', 'T-handle', True, 'z (m)')
+    >>> fig.axes == [ax], fig.get_size_inches().tolist()
+    (True, [5.4, 5.4])
     """
     from matplotlib.ticker import MaxNLocator
 
@@ -111,6 +155,22 @@ def animate_ground_frame(body: Body, traj: Trajectory, path: str | os.PathLike[s
     body's size (each vector by its own largest magnitude over the run). ``path`` ends in
     ``.mp4`` or ``.gif``; an MP4 without ffmpeg is written as the GIF of the same name
     (:func:`animation_path`), whose path is returned.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import tumble
+    >>> from PIL import Image
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     gif = animate_ground_frame(body, run, Path(folder) / "flip.gif", max_frames=3, dpi=20)
+    ...     with Image.open(gif) as image:
+    ...         gif.name, image.format, image.n_frames, image.size  # 3 of the 101 samples; 5.4 in at 20 dpi
+    ('flip.gif', 'GIF', 3, (108, 108))
+    >>> with tempfile.TemporaryDirectory() as folder:  # doctest: +SKIP
+    ...     animate_ground_frame(body, run, Path(folder) / "flip.mp4").suffix  # through ffmpeg: slower
+    '.mp4'
     """
     path, frames = _prepare(body, traj, path, max_frames, fps, dpi)
     lines = body_lines(body)
@@ -146,6 +206,23 @@ def animate_body_frame(body: Body, traj: Trajectory, path: str | os.PathLike[str
     """omega and L seen from the body (design axes), with the path of omega's tip; returns the file written.
 
     ``path`` as for :func:`animate_ground_frame`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import tumble
+    >>> from PIL import Image
+    >>> body = tumble.t_handle()
+    >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     gif = animate_body_frame(body, run, Path(folder) / "flip.gif", max_frames=3, dpi=20)
+    ...     with Image.open(gif) as image:
+    ...         gif.name, image.format, image.n_frames  # 3 of the 101 samples
+    ('flip.gif', 'GIF', 3)
+    >>> animate_body_frame(tumble.iss_t_handle(), run, "flip.gif")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: body = ... is not the body of this trajectory: ...
     """
     path, frames = _prepare(body, traj, path, max_frames, fps, dpi)
     lines = body_lines(body)
