@@ -69,6 +69,20 @@ def figure_gravity_stability(*, ax: Axes | None = None,
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios
+    >>> k_R, _, k_Y = gravity_gradient_ratios([5.0, 10.0, 13.0])  # 12 kg box, 1 x 2 x 3 m; pitch major, yaw minor
+    >>> ax = figure_gravity_stability(points={"box": (float(k_R), float(k_Y))}).axes[0]
+    >>> ax.get_title(), ax.get_xlim() == ax.get_ylim() == (-1.0, 1.0)  # the square of every real body
+    ('Gravity-gradient stability in a circular orbit (linearised)', True)
+    >>> [text.get_text() for text in ax.get_legend().get_texts()][:2]  # the two stable regions
+    ['Lagrange (stable)', 'DeBra-Delp (stable)']
+    >>> [text.get_text() for text in ax.texts], [line.get_xydata().tolist() for line in ax.lines if line.get_marker() == "*"]
+    (['Lagrange', 'DeBra-Delp', 'box'], [[[0.8, 0.6]]])
+    >>> [inset.get_title() for inset in ax.child_axes]
+    ['DeBra-Delp, enlarged']
     """
     from matplotlib.patches import Patch
 

@@ -66,6 +66,18 @@ def figure_stability_map(spin: float = 10.0, perturbation: tuple[float, float] =
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> fig = figure_stability_map(10.0, (0.01, 0.01), resolution=40, points={"T-handle": (2 / 7, 5 / 7)})
+    >>> ax, colorbar = fig.axes
+    >>> ax.get_xlabel(), colorbar.get_xlabel(), [text.get_text() for text in ax.texts][-1]
+    ('$I_1 / I_3$ (dimensionless)', 'flip interval (s)', 'T-handle')
+    >>> m = stability_map(10.0, (0.01, 0.01), resolution=40)  # what is coloured: the exact flip interval, s
+    >>> bool(np.array_equal(np.ma.filled(ax.collections[0].get_array(), np.nan), m.flip_interval, equal_nan=True))
+    True
+    >>> [text.get_text().replace("\\n", " ") for text in ax.texts][:2]  # either side of the separatrix
+    ['circulates about the minor axis', 'circulates about the major axis']
     """
     from matplotlib.colors import LogNorm
 
@@ -128,6 +140,21 @@ def figure_sweep(columns: dict, *, fig: Figure | None = None, title: str | None 
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates, RunSettings, Sweep, compute_chunk
+    >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))  # kg, m
+    >>> spread = Ensemble(BodySampler(box, (Dispersion("moments", 0.02),)), InitialRates(omega=(0.01, 1.0, 0.01)), 6)
+    >>> columns = compute_chunk(Sweep(spread, RunSettings(t_end=80.0, samples=800)), 0, 6)  # 6 cases, 3 flips each
+    >>> fig = figure_sweep(columns, title="box, moments spread 2 %", cases=100)
+    >>> fig.get_suptitle(), [text.get_text() for text in fig.axes[0].get_legend().get_texts()]
+    ('box, moments spread 2 % (6 of 100 cases)', \
+['measured (mean between flips) (s): 6 cases', 'exact (elliptic K) (s): 6 cases'])
+    >>> ratios = np.column_stack([columns["I1 [kg m^2]"], columns["I2 [kg m^2]"]]) / columns["I3 [kg m^2]"][:, None]
+    >>> bool(np.array_equal(fig.axes[1].collections[0].get_offsets(), ratios))  # each case at (I1/I3, I2/I3)
+    True
     """
     fig = fig if fig is not None else new_figure((12.5, 4.4))
     left, right = fig.subplots(1, 2)
