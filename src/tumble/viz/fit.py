@@ -37,6 +37,21 @@ def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | Non
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.analysis.fit import fit_rotation
+    >>> from tumble.dynamics.methods.exact import FreeRotation
+    >>> t = np.linspace(0.0, 2.0, 201)  # s
+    >>> w = FreeRotation([0.3, 0.7, 1.0], [0.2, 5.0, 0.3], Rotation.identity()).omega(t)  # rad/s, exact
+    >>> fit = fit_rotation(t, w, sensor_rotation="identity", bias=False, drag="none")
+    >>> fig = figure_fit(fit, w)
+    >>> [ax.get_ylabel() for ax in fig.axes][3], fig.get_suptitle().startswith("I1/I3 = 0.30000")  # the truth
+    ('residual (rad/s)', True)
+    >>> measured, model = fig.axes[1].lines  # omega_y: the samples as dots, the fit as a line
+    >>> bool(np.array_equal(measured.get_ydata(), w[:, 1])), bool(np.array_equal(model.get_ydata(), fit.omega_model[:, 1]))
+    (True, True)
     """
     w = np.asarray(omega_measured, float)
     t = fit.t - fit.t[0]
@@ -76,6 +91,19 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit import fit_recording
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))  # a phone's recording of two tosses
+    >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)
+    >>> top, flights, triangle = figure_recording(fit).axes
+    >>> top.get_title(), len(flights.lines)  # each flight: 3 components, samples and joint fit
+    ('2 flights found, 2 used (green), 0 skipped (grey)', 12)
+    >>> pooled = next(c for c in triangle.containers if c.get_label() == "pooled")
+    >>> bool(np.allclose(pooled.lines[0].get_xydata(), [fit.pooled.ratios]))  # the pooled (I1/I3, I2/I3)
+    True
     """
     fig = fig if fig is not None else new_figure((12, 8))
     grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2])
