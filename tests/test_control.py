@@ -228,3 +228,27 @@ def test_a_user_controller_implements_the_interface():
 def test_bad_input_is_refused_with_one_clear_message(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_magnetorquers_unload_the_wheels_while_the_attitude_is_held():
+    """The cross-product law (Camillo & Markley 1980): in a 500 km polar orbit the wheels' momentum
+    falls as the field turns, while MRP feedback keeps the attitude; the total momentum changes by
+    exactly the magnetic impulse (the budget closes)."""
+    from tumble.dynamics.controllers import MomentumDumping
+
+    I = np.array([10.0, 12.0, 15.0])
+    wheels = ReactionWheels(np.eye(3), inertia=0.01)
+    pointing = MRPFeedback(K=0.5, P=1.7, period=5.0, moments=I, wheels=wheels)
+    orbit = CircularOrbit(500e3, math.radians(90.0))
+    run = simulate_controlled(I, [0.0, 0.0, 0.0], t_end=3000.0, controller=MomentumDumping(pointing, gain=2e-3),
+                              field=DipoleField(orbit), magnetorquers=Magnetorquers(20.0), wheels=wheels,
+                              wheel_speed0=[30.0, -20.0, 25.0])
+    h = np.linalg.norm(run.wheel_speed * 0.01, axis=1)  # kg m^2/s, three wheels on the axes
+    # measured: 0.439 -> 0.0149 kg m^2/s in 3000 s, pointing within 0.34 deg, budget 6e-16
+    assert h[-1] < 0.1 * h[0]
+    assert np.degrees(np.max(run.pointing_error(Rotation.identity()))) < 1.0  # the attitude held
+    assert float(run.budget_error().max()) < 1e-8 * h[0]
+    # the claim is not empty: the attitude loop alone keeps the wheels' momentum
+    alone = simulate_controlled(I, [0.0, 0.0, 0.0], t_end=3000.0, controller=pointing, field=DipoleField(orbit),
+                                magnetorquers=Magnetorquers(20.0), wheels=wheels, wheel_speed0=[30.0, -20.0, 25.0])
+    assert np.linalg.norm(alone.wheel_speed[-1] * 0.01) == pytest.approx(h[0], rel=1e-6)

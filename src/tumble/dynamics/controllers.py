@@ -26,6 +26,16 @@ the target, one principal axis obeys ``I_RW theta'' + P theta' + (K / 4) theta =
 (``sigma ~ theta / 4``): natural frequency ``omega_n = sqrt(K / (4 I_RW))`` and damping ratio
 ``zeta = P / sqrt(K I_RW)`` (:func:`pd_response`), ``I_RW`` the moment with the wheels' axial
 moments taken out (:mod:`~tumble.dynamics.models.actuators`).
+
+**Momentum dumping** (the cross-product law: Camillo & Markley, "Orbit-averaged behavior of
+magnetic control laws for momentum unloading", J. Guid. Control 3(6), 1980; Sidi, *Spacecraft
+Dynamics and Control*, 1997, sec. 7.5): while MRP feedback holds the attitude with the wheels,
+the magnetorquers are asked for the torque ``tau_d = -k_d (h - h_target)`` on the wheels'
+momentum ``h``; a dipole can only make torque across the field, and
+``m = B x tau_d / |B|^2`` gives ``m x B = tau_d - (tau_d . b) b``, its part across ``b = B / |B|``.
+The attitude loop keeps the body still, so the wheels take up that external torque:
+``dh/dt ~ -k_d (h - h_target)_perp``, and as the field turns along the orbit every component of
+``h`` decays (:class:`MomentumDumping`).
 """
 
 from __future__ import annotations
@@ -43,7 +53,8 @@ from .models.actuators import Command, ReactionWheels
 from .models.sensors import Measurement
 from .special.mrp import mrp_from_quat
 
-__all__ = ["BDot", "Controller", "MRPFeedback", "PDResponse", "bdot_dipole", "bdot_gain", "pd_response"]
+__all__ = ["BDot", "Controller", "MRPFeedback", "MomentumDumping", "PDResponse", "bdot_dipole", "bdot_gain",
+           "pd_response"]
 
 
 @runtime_checkable
@@ -323,6 +334,79 @@ class MRPFeedback:
         if self.gyroscopic:  # I_RW w + G h_s = I w + h: the total momentum, body frame
             L_r = L_r + np.cross(w, np.asarray(self.moments) * w + self.wheels.momentum(measurement.wheel_speed))
         return Command(wheel_torque=-self._pinv @ L_r)
+
+
+@dataclass
+class MomentumDumping:
+    """MRP feedback pointing with the wheels while the magnetorquers unload them (module docstring).
+
+    Parameters
+    ----------
+    pointing : MRPFeedback
+        The attitude loop; its period is this controller's.
+    gain : float
+        ``k_d`` of ``tau_d = -k_d (h - h_target)``, 1/s (> 0).
+    h_target : array_like, shape (3,)
+        The wheels' momentum to keep, body frame, kg m^2/s (default 0).
+
+    Examples
+    --------
+    The dipole is across the field and its torque opposes the wheels' momentum across it:
+
+    >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
+    >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), gain=1e-3)
+    >>> m = Measurement(0.0, np.zeros(3), np.array([0.0, 0.0, 3e-5]), Rotation.identity(), np.array([50.0, 0.0, 20.0]))
+    >>> cmd = c(0.0, m)
+    >>> float(cmd.dipole @ m.field)   # across the field
+    0.0
+    >>> np.round(np.cross(cmd.dipole, m.field), 12).tolist()   # tau = -k_d h_perp: h = (0.5, 0, 0.2)
+    [-0.0005, 0.0, 0.0]
+    """
+
+    pointing: MRPFeedback
+    gain: float
+    h_target: FloatArray = field(default_factory=lambda: np.zeros(3))
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.pointing, MRPFeedback):
+            raise ValueError(f"pointing = {self.pointing!r} must be an MRPFeedback")  # noqa: TRY004 - one error type
+        check_positive("gain", self.gain, "1/s")
+        self.h_target = np.asarray(self.h_target, float).reshape(3)
+
+    @property
+    def period(self) -> float:
+        """The control period, s: the attitude loop's.
+
+        Examples
+        --------
+        >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
+        >>> MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=2.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3).period
+        2.0
+        """
+        return float(self.pointing.period)
+
+    def __call__(self, t: float, measurement: Measurement) -> Command:
+        """The wheel torques of the attitude loop and the dipole ``m = B x tau_d / |B|^2`` (A m^2).
+
+        Examples
+        --------
+        Without a magnetometer reading there is no field to push against:
+
+        >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
+        >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3)
+        >>> c(0.0, Measurement(0.0, np.zeros(3), None, Rotation.identity(), np.zeros(3)))
+        Traceback (most recent call last):
+        ...
+        ValueError: momentum dumping needs a magnetometer reading (an [orbit] with its field)
+        """
+        wheels = self.pointing(t, measurement)
+        B = measurement.field
+        if B is None:
+            raise ValueError("momentum dumping needs a magnetometer reading (an [orbit] with its field)")
+        h = self.pointing.wheels.momentum(measurement.wheel_speed)
+        tau_d = -self.gain * (np.asarray(h, float) - self.h_target)
+        B = np.asarray(B, float)
+        return Command(dipole=np.cross(B, tau_d) / float(B @ B), wheel_torque=wheels.wheel_torque)
 
 
 class PDResponse(NamedTuple):
