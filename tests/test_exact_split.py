@@ -122,3 +122,8 @@ def test_rotors_are_refused_with_the_methods_that_take_them():
     body = tumble.load_body(EXAMPLES / "bodies" / "t_handle_wheel.toml")
     with pytest.raises(ValueError, match=r"method = 'exact_split4' cannot take rotors .* use one of: .*geometric"):
         simulate(body, [0.1, 10.0, 0.0], t_end=1.0, method="exact_split4")
+
+
+def test_moments_out_of_order_are_refused():
+    with pytest.raises(ValueError, match=r"moments\[0\] = \[3.0, 2.0, 1.0\] must be ascending"):
+        propagate([3.0, 2.0, 1.0], [0.1, 1.0, 0.1], [0.0, 0.0, 0.0, 1.0], np.array([0.0, 1.0]), step=0.1)

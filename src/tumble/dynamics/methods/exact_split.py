@@ -123,6 +123,10 @@ def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayL
     I, w, q = (np.broadcast_to(a, (N, a.shape[1])).copy() for a in (I, w, q))
     t = np.asarray(t, float)
     geometric._check_batch(I, I * w, q, t, step)
+    if np.any(np.diff(I, axis=1) < 0):  # the closed form's case analysis needs them ordered
+        i = int(np.flatnonzero(np.any(np.diff(I, axis=1) < 0, axis=1))[0])
+        raise ValueError(f"moments[{i}] = {I[i].tolist()} must be ascending, I1 <= I2 <= I3 (kg m^2): principal "
+                         "moments for the exact free flow")
     if order not in geometric.COMPOSITIONS:
         allowed = ", ".join(map(str, geometric.COMPOSITIONS))
         raise ValueError(f"order = {order!r} is not available; allowed: {allowed}")
