@@ -145,6 +145,17 @@ def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:  # pragma: no cove
     return math.atan2(math.hypot(li, lj), lr), math.atan2(li, lj)
 
 
+def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float) -> None:  # pragma: no cover - compiled
+    """``q <- q (x) exp(w h / 2)``: the turn about a fixed omega, in place."""
+    spin = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+    if spin == 0.0:
+        return
+    half = 0.5 * spin * h
+    s = math.sin(half) / spin
+    turn = np.array([s * w0, s * w1, s * w2, math.cos(half)])
+    _multiply(q, turn, q)
+
+
 def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  # pragma: no cover - compiled
     """Advance one body's ``L`` (principal frame, kg m^2/s) and ``q`` (body to world, scalar
     last) by the exact torque-free motion over ``h`` (s, any sign), in place.
@@ -160,13 +171,7 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
     w0, w1, w2 = L[0] / I[0], L[1] / I[1], L[2] / I[2]
     zeros = int(w0 == 0.0) + int(w1 == 0.0) + int(w2 == 0.0)
     if (I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w2 == 0.0) or (I[1] == I[2] and w0 == 0.0)):
-        spin = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)  # steady: a turn about the fixed omega
-        if spin == 0.0:
-            return
-        half = 0.5 * spin * h
-        s = math.sin(half) / spin
-        turn = np.array([s * w0, s * w1, s * w2, math.cos(half)])
-        _multiply(q, turn, q)
+        _steady(q, w0, w1, w2, h)
         return
     w = (w0, w1, w2)
     g = np.empty(3)
@@ -180,6 +185,11 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
     a_2 = math.sqrt(abs(g[r] / (I2 * (Ir - I2))))
     a_r = math.sqrt(abs(g[c] / (Ir * span)))
     p = math.sqrt(abs((Ir - I2) * g[c] / (I[0] * I[1] * I[2])))
+    if not (a_c > 0.0 and a_2 > 0.0 and a_r > 0.0 and p > 0.0) or not math.isfinite(a_c * a_2 * a_r * p):
+        # the components off a principal axis are so small that their squares underflow: the
+        # motion is steady to double precision (the double-double kernel follows it further)
+        _steady(q, w0, w1, w2, h)
+        return
     k2 = min(abs((I2 - Ic) * g[r] / ((Ir - I2) * g[c])), 1.0 - _EPS)
     kp2 = max(abs(span * g[1] / ((Ir - I2) * g[c])), _EPS)
     kp = math.sqrt(kp2)
@@ -234,6 +244,6 @@ def compiled_free_flow() -> Callable[[FloatArray, FloatArray, FloatArray, float]
     """:func:`free_flow` compiled by numba (``cache=True``), each helper before its callers."""
     from numba import njit
 
-    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "free_flow"):
+    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "_steady", "free_flow"):
         globals()[name] = njit(cache=True)(globals()[name])
     return cast("Callable[[FloatArray, FloatArray, FloatArray, float], None]", globals()["free_flow"])
