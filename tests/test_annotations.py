@@ -63,8 +63,10 @@ def _members(cls: type) -> list[tuple[str, object]]:
 
 
 @functools.cache
-def _public_callables() -> dict[str, object]:
-    found: dict[str, object] = {}
+def _public_objects() -> tuple[tuple[str, object, type | None, str | None], ...]:
+    """Every public function and class reachable from an ``__all__``, and every member of those
+    classes: ``(dotted name, object, owning class or None, member name or None)``."""
+    found: dict[str, tuple[str, object, type | None, str | None]] = {}
     for module_name in _modules():
         module = importlib.import_module(module_name)
         for name in getattr(module, "__all__", ()):
@@ -72,12 +74,18 @@ def _public_callables() -> dict[str, object]:
             if not getattr(obj, "__module__", "").startswith("tumble"):
                 continue
             where = f"{obj.__module__}.{getattr(obj, '__qualname__', name)}"
-            if inspect.isfunction(obj):
-                found[where] = obj
-            elif inspect.isclass(obj):
+            if inspect.isfunction(obj) or inspect.isclass(obj):
+                found[where] = (where, obj, None, None)
+            if inspect.isclass(obj):
                 for member, fn in _members(obj):
-                    found[f"{where}.{member}"] = fn
-    return found
+                    found[f"{where}.{member}"] = (f"{where}.{member}", fn, obj, member)
+    return tuple(found.values())
+
+
+@functools.cache
+def _public_callables() -> dict[str, object]:
+    """The functions and methods among :func:`_public_objects` (classes left out)."""
+    return {where: obj for where, obj, owner, _ in _public_objects() if owner is not None or inspect.isfunction(obj)}
 
 
 def test_the_walk_sees_the_api():

@@ -24,7 +24,7 @@ import re
 from pathlib import Path
 
 import pytest
-from test_annotations import _members, _modules
+from test_annotations import _modules, _public_objects
 
 ALLOW_LIST = Path(__file__).with_name("examples_missing.txt")
 
@@ -46,22 +46,12 @@ _CACHED: set[str] = set()
 def _public_names() -> dict[str, object]:
     """Dotted name (``module.qualname``) -> object, for every public callable (``__init__`` out)."""
     found: dict[str, object] = {}
-    for module_name in _modules():
-        module = importlib.import_module(module_name)
-        for name in getattr(module, "__all__", ()):
-            obj = getattr(module, name)
-            if not getattr(obj, "__module__", "").startswith("tumble"):
-                continue
-            where = f"{obj.__module__}.{getattr(obj, '__qualname__', name)}"
-            if inspect.isfunction(obj):
-                found[where] = obj
-            elif inspect.isclass(obj):
-                found[where] = obj
-                for member, fn in _members(obj):
-                    if member != "__init__":
-                        found[f"{where}.{member}"] = fn
-                        if isinstance(vars(obj)[member], functools.cached_property):
-                            _CACHED.add(f"{where}.{member}")
+    for where, obj, owner, member in _public_objects():
+        if member == "__init__":
+            continue
+        found[where] = obj
+        if owner is not None and isinstance(vars(owner)[member], functools.cached_property):
+            _CACHED.add(where)
     return found
 
 
