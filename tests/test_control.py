@@ -252,3 +252,14 @@ def test_magnetorquers_unload_the_wheels_while_the_attitude_is_held():
     alone = simulate_controlled(I, [0.0, 0.0, 0.0], t_end=3000.0, controller=pointing, field=DipoleField(orbit),
                                 magnetorquers=Magnetorquers(20.0), wheels=wheels, wheel_speed0=[30.0, -20.0, 25.0])
     assert np.linalg.norm(alone.wheel_speed[-1] * 0.01) == pytest.approx(h[0], rel=1e-6)
+
+
+def test_momentum_dumping_refuses_a_bad_target_momentum_in_one_line():
+    from tumble.dynamics.controllers import MomentumDumping
+
+    wheels = ReactionWheels(np.eye(3), inertia=0.01)
+    pointing = MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=wheels)
+    with pytest.raises(ValueError, match=r"h_target = .* \(kg m\^2/s\)"):
+        MomentumDumping(pointing, gain=1e-3, h_target=[1.0, 2.0])
+    with pytest.raises(ValueError, match=r"gain = -1"):
+        MomentumDumping(pointing, gain=-1.0)

@@ -48,7 +48,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..typing import ArrayLike, FloatArray
-from ..validation import check_moments, check_positive, check_rotation
+from ..validation import check_moments, check_positive, check_rotation, check_vector
 from .models.actuators import Command, ReactionWheels
 from .models.sensors import Measurement
 from .special.mrp import mrp_from_quat
@@ -371,7 +371,7 @@ class MomentumDumping:
         if not isinstance(self.pointing, MRPFeedback):
             raise ValueError(f"pointing = {self.pointing!r} must be an MRPFeedback")  # noqa: TRY004 - one error type
         check_positive("gain", self.gain, "1/s")
-        self.h_target = np.asarray(self.h_target, float).reshape(3)
+        self.h_target = np.array(check_vector("h_target", self.h_target, "kg m^2/s"))
 
     @property
     def period(self) -> float:

@@ -111,7 +111,7 @@ def _jacobi(v: float, k2: float, kp: float) -> tuple[float, float, float]:  # pr
     return sn, cn, math.sqrt(cn * cn + kp * kp * sn * sn)
 
 
-def _excess(n: float, k2: float, s: float, c: float, d: float) -> float:  # pragma: no cover - compiled
+def _excess(n: float, s: float, c: float, d: float) -> float:  # pragma: no cover - compiled
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` from ``s, c >= 0, d`` (DLMF 19.25.14)."""
     if n == 0.0 or s == 0.0:
         return 0.0
@@ -211,12 +211,12 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
         s0, c0 = -s0, -c0
     d0 = math.sqrt(c0 * c0 + kp2 * s0 * s0)
     u0 = 2.0 * K * j0 + s0 * _rf(c0 * c0, d0 * d0, 1.0)
-    x0 = _excess(n, k2, s0, c0, d0) + 2.0 * j0 * excess_c
+    x0 = _excess(n, s0, c0, d0) + 2.0 * j0 * excess_c
     # the phase at h, reduced by half periods
     u = u0 + p * h
     j = math.floor(u / (2.0 * K) + 0.5)
     sn, cn, dn = _jacobi(u - 2.0 * K * j, k2, kp)
-    x = _excess(n, k2, sn, cn, dn) + 2.0 * j * excess_c
+    x = _excess(n, sn, cn, dn) + 2.0 * j * excess_c
     if j % 2.0 != 0.0:
         sn, cn = -sn, -cn
     out = np.empty(3)
