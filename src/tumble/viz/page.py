@@ -11,7 +11,10 @@ time, the design-frame attitude quaternion and the world-frame omega and L, as c
 ``<script id="tumble-data">``. A small hand-written script (``assets/viewer.js``) turns the
 vertices frame by frame with ``Plotly.restyle``. Live mode inlines ``assets/splitting.js`` and
 ``assets/live.js`` (when installed) before ``viewer.js``; see the head of ``viewer.js`` for the
-interface they use (``window.tumbleViewer``, the ``tumble:ready`` event).
+interface they use (``window.tumbleViewer``, the ``tumble:ready`` event). A closed-loop run
+(``control``: :mod:`tumble.viz.control_page`) inlines ``assets/control.js`` there instead: the
+reaction wheels on the body, the commanded torque and dipole arrows, a readout and a time plot
+of the attitude error or ``|omega|`` (``window.tumbleExtra``, also described in ``viewer.js``).
 """
 
 from __future__ import annotations
@@ -44,6 +47,13 @@ def _rounded(a, digits: int = DIGITS):
     a = np.asarray(a, dtype=float)
     flat = [float(f"{x:.{digits}g}") for x in a.ravel()]
     return np.array(flat).reshape(a.shape).tolist()
+
+
+def _curve_indices(samples: int) -> tuple[int, np.ndarray]:
+    """The stride and the kept indices of a curve of ``samples`` samples: every ``stride``-th, at
+    most about :data:`CURVE_POINTS`, the last one kept."""
+    stride = max(1, -(-samples // CURVE_POINTS))
+    return int(stride), np.unique(np.append(np.arange(0, samples, stride), samples - 1))
 
 
 def _merged(surfaces, unit: float):
@@ -141,8 +151,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     surfaces = body_surfaces(body)
     size = float(max(np.max(np.linalg.norm(v, axis=1)) for v, _, _ in surfaces)) or 1.0
     unit = size / GRID
-    stride = max(1, -(-len(traj) // CURVE_POINTS))
-    keep = np.unique(np.append(np.arange(0, len(traj), stride), len(traj) - 1))
+    stride, keep = _curve_indices(len(traj))
     return {
         "title": title or f"{traj.body_name}: {traj.method}, {traj.t[-1]:g} s",
         "body_name": traj.body_name,
@@ -169,7 +178,7 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
             "L": _rounded(traj.angular_momentum_world[idx]),
         },
         "curves": {"t": _rounded(traj.t[keep], 8), "omega": _rounded(traj.omega[keep].T),
-                   "stride": int(stride), "samples": len(traj)},
+                   "stride": stride, "samples": len(traj)},
         "presets": live_presets(),
     }
 
@@ -194,13 +203,16 @@ h1 { font-size: 19px; margin: 4px 0 6px; }
 #tumble-scenes { display: flex; gap: 6px; }
 .tumble-scene { flex: 1; height: 560px; min-width: 0; }
 #tumble-omega { height: 300px; }
-#tumble-note { color: #555; font-size: 13px; margin: 2px 0; }
+#tumble-note, #tumble-control-note { color: #555; font-size: 13px; margin: 2px 0; }
+#tumble-readout { font-variant-numeric: tabular-nums; margin: 4px 0; }
+#tumble-error { height: 260px; }
 """
 
 _SPEEDS = (0.25, 0.5, 1, 2, 4)
 
 
-def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | None = None, live: bool = True) -> str:
+def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | None = None, live: bool = True,
+              control: dict | None = None) -> str:
     """The interactive page as one HTML document (str), plotly.js and the data inlined.
 
     Parameters
@@ -214,7 +226,12 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     title : str, optional
         Page heading (default: body, method, duration).
     live : bool
-        Include live mode (``assets/splitting.js`` and ``assets/live.js``, where installed).
+        Include live mode (``assets/splitting.js`` and ``assets/live.js``, where installed); never
+        with ``control`` (live mode integrates a free body, which a closed-loop run is not).
+    control : dict, optional
+        A closed-loop run's wheels, commanded torque and error curve
+        (:func:`tumble.viz.control_page.control_page_data` of the run behind ``traj``, with the same
+        ``frames``), drawn by ``assets/control.js``.
 
     Examples
     --------
@@ -236,8 +253,14 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     except ImportError:  # pragma: no cover - depends on the environment
         raise ValueError("the interactive page needs plotly: pip install 'tumble[view]'") from None
     data = page_data(body, traj, frames, title)
+    if control is not None:
+        if control.get("frames", {}).get("t") != data["frames"]["t"]:
+            raise ValueError("control = the closed-loop data of another run or frame count: its frames' times "
+                             "differ from the page's (make it with control_page_data(run, frames=frames))")
+        data["control"], live = control, False
     title = escape_text(data["title"])
-    scripts = [_asset(name) for name in (("splitting.js", "live.js") if live else ())]
+    names = ("splitting.js", "live.js") if live else ("control.js",) if control is not None else ()
+    scripts = [_asset(name) for name in names]
     speeds = "".join(f'<button class="tumble-speed" data-speed="{s:g}">x{s:g}</button>' for s in _SPEEDS)
     parts = [
         "<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
@@ -250,6 +273,8 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         '<div id="tumble-live"></div>',
         '<div id="tumble-scenes"><div id="tumble-ground" class="tumble-scene"></div>'
         '<div id="tumble-body" class="tumble-scene"></div></div>',
+        *(['<div id="tumble-control"><p id="tumble-readout"></p><div id="tumble-error"></div>'
+           '<p id="tumble-control-note"></p></div>'] if control is not None else []),
         '<div id="tumble-omega"></div><p id="tumble-note"></p>',
         f'<script type="application/json" id="tumble-data">{script_json(data)}</script>',
         *(_script(text) for text in scripts),
@@ -260,7 +285,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
 
 
 def write_page(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, frames: int = 150, title: str | None = None,
-               live: bool = True) -> Path:
+               live: bool = True, control: dict | None = None) -> Path:
     """Write :func:`page_html` to ``path`` whole or not at all (temporary file, then renamed).
 
     Returns the path written (UTF-8 HTML).
@@ -280,5 +305,5 @@ def write_page(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, fr
     True
     """
     path = Path(path)
-    atomic_write_text(path, page_html(body, traj, frames=frames, title=title, live=live))
+    atomic_write_text(path, page_html(body, traj, frames=frames, title=title, live=live, control=control))
     return path
