@@ -272,8 +272,10 @@ def _cmd_view(args) -> int:
 
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
-    _refuse_control(scenario, "view")
-    frame_indices(scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
+    control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
+    frame_indices(2 if control else scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
+    if control:
+        return _view_control(args, scenario, out)
     with _working(f"integrating {scenario.name}"):
         traj = scenario.run()
 
@@ -281,6 +283,24 @@ def _cmd_view(args) -> int:
 
     write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj))
     print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
+    return EXIT_OK
+
+
+def _view_control(args, scenario, out) -> int:
+    """`tumble view` of a control scenario: the page with the wheels, the commanded torque and the error."""
+    with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
+        run = scenario.run()
+
+    from .viz.control_page import control_page_data
+    from .viz.page import write_page
+
+    traj = scenario.trajectory(run)
+    control = control_page_data(run, frames=args.frames, wheel_axes=None if scenario.wheels is None else
+                                scenario.wheels.axes, target=scenario.target, threshold=scenario.threshold)
+    write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj), live=False,
+               control=control)
+    print(f"wrote {out} (self-contained: open it in any browser, no network needed; closed loop: "
+          "wheels, commanded torque, live mode off)")
     return EXIT_OK
 
 
@@ -384,8 +404,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = scenario_command(
         "view", _cmd_view, "one self-contained interactive HTML page of a scenario",
         "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
-        "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons.",
+        "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons. A control scenario "
+        "([control]) adds its reaction wheels turning on the body, the commanded torque (and dipole) arrows, a "
+        "readout and the attitude error or |omega| over time (only --t-end overrides it; no live mode).",
         "tumble view examples/seed_flip.toml --out flip.html | "
+        "tumble view examples/control/point.toml --out point.html | "
         "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html", "FILE.html", "the page to write",
     )
     p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")

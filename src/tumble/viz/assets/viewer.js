@@ -23,6 +23,13 @@
  *   reset()      restore the page's own run.
  *   state()      {playing, frame, frames}.
  *   play(), pause(), show(frame) -> Promise, setSpeed(factor); ready (true once drawn).
+ *
+ * window.tumbleExtra (optional, set by a script inlined before this one: control.js on a
+ * closed-loop run's page) adds traces to the page's own run (not to a setRun run):
+ *   traces(view, size) -> [plotly traces] appended to the "ground" or "body" plot;
+ *   install(size) -> Promise    draws its own plots (once the page's run is installed);
+ *   frame(k, M) -> {ground: [{x, y, z}], body: [{x, y, z}], done: Promise}: the new coordinates
+ *                of its traces at frame k, M the design -> world rotation matrix (rows).
  */
 (function () {
   "use strict";
@@ -152,7 +159,7 @@
       curves: {t: c.t, omega: c.omega, stride: c.stride, samples: c.samples},
       toGeometry: AXES,  // principal -> geometry (design) frame, for the omega path
       geometry: ORIGINAL, frameName: "design axes",
-      title: data.title,
+      title: data.title, extra: window.tumbleExtra || null,
     };
   }
 
@@ -193,6 +200,7 @@
     motion.geometry = box ? {solid: boxGeometry(run.box), removed: null, size: norm(run.box)} : ORIGINAL;
     motion.frameName = box ? "principal axes" : "design axes";
     motion.title = run.title || (data.title + " (new run)");
+    motion.extra = null;
     return motion;
   }
 
@@ -266,6 +274,7 @@
     index.w = ground.length; ground.push(arrowTrace(RED, wName));
     index.L = ground.length; ground.push(arrowTrace(BLUE, LName));
     ground.push(planeLines(m, size));
+    if (m.extra) { index.xg = ground.length; ground.push.apply(ground, m.extra.traces("ground", size)); }
 
     var I = [[1, 0, 0], [0, 1, 0], [0, 0, 1]], still = turned(g.solid, I);
     var body = [Object.assign(meshTrace(g.solid, false, !!g.removed), {x: still[0], y: still[1], z: still[2]})];
@@ -282,6 +291,7 @@
                hoverinfo: "skip", line: {color: RED, width: 2}, opacity: 0.5});
     index.bw = body.length; body.push(arrowTrace(RED, "omega (rad/s), same scale"));
     index.bL = body.length; body.push(arrowTrace(BLUE, "L (kg m^2/s), same scale"));
+    if (m.extra) { index.xb = body.length; body.push.apply(body, m.extra.traces("body", size)); }
 
     var lim = 0;
     c.omega.forEach(function (row) { row.forEach(function (x) { lim = Math.max(lim, Math.abs(x)); }); });
@@ -313,6 +323,7 @@
       Plotly.react(gd.ground, ground, gl, CONFIG),
       Plotly.react(gd.body, body, bl, CONFIG),
       Plotly.react(gd.omega, curves, omegaLayout, CONFIG),
+      m.extra ? m.extra.install(size) : null,
     ]).then(function () { return show(0); });
   }
 
@@ -332,11 +343,17 @@
       xs.push([0, a[0][0]]); ys.push([0, a[0][1]]); zs.push([0, a[0][2]]); which.push(a[1]);
     });
     var wb = applyT(M, w), Lb = applyT(M, L), t = m.t[k];
+    var bx = [[0, wb[0]], [0, Lb[0]]], by = [[0, wb[1]], [0, Lb[1]]], bz = [[0, wb[2]], [0, Lb[2]]];
+    var bwhich = [index.bw, index.bL], extra = m.extra ? m.extra.frame(k, M) : null;
+    if (extra) {
+      extra.ground.forEach(function (p, j) { xs.push(p.x); ys.push(p.y); zs.push(p.z); which.push(index.xg + j); });
+      extra.body.forEach(function (p, j) { bx.push(p.x); by.push(p.y); bz.push(p.z); bwhich.push(index.xb + j); });
+    }
     return Promise.all([
       Plotly.restyle(gd.ground, {x: xs, y: ys, z: zs}, which),
-      Plotly.restyle(gd.body, {x: [[0, wb[0]], [0, Lb[0]]], y: [[0, wb[1]], [0, Lb[1]]],
-                               z: [[0, wb[2]], [0, Lb[2]]]}, [index.bw, index.bL]),
+      Plotly.restyle(gd.body, {x: bx, y: by, z: bz}, bwhich),
       Plotly.restyle(gd.omega, {x: [[t, t]]}, [3]),
+      extra ? extra.done : null,
     ]);
   }
 
