@@ -268,7 +268,8 @@
     m.sL = 0.9 * size / (peak(m.L) || 1);
     var wName = "omega, red (rad/s): 1 rad/s drawn as " + fmt(m.sw) + " m";
     var LName = "L, blue (kg m^2/s): 1 kg m^2/s drawn as " + fmt(m.sL) + " m";
-    var ground = [meshTrace(g.solid, false, !!g.removed)];
+    // translucent with a hole to show, or with extras (a control run's torque arrow starts inside)
+    var ground = [meshTrace(g.solid, false, !!g.removed || !!m.extra)];
     index = {solid: 0};
     if (g.removed) { index.removed = ground.length; ground.push(meshTrace(g.removed, true, false)); }
     index.w = ground.length; ground.push(arrowTrace(RED, wName));
@@ -277,7 +278,7 @@
     if (m.extra) { index.xg = ground.length; ground.push.apply(ground, m.extra.traces("ground", size)); }
 
     var I = [[1, 0, 0], [0, 1, 0], [0, 0, 1]], still = turned(g.solid, I);
-    var body = [Object.assign(meshTrace(g.solid, false, !!g.removed), {x: still[0], y: still[1], z: still[2]})];
+    var body = [Object.assign(meshTrace(g.solid, false, !!g.removed || !!m.extra), {x: still[0], y: still[1], z: still[2]})];
     if (g.removed) {
       var hole = turned(g.removed, I);
       body.push(Object.assign(meshTrace(g.removed, true, false), {x: hole[0], y: hole[1], z: hole[2]}));
