@@ -117,8 +117,11 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
     >>> run = simulate_controlled([0.03, 0.04, 0.05], [0.01, 0.0, 0.0], t_end=10.0, controller=c,
     ...                           wheels=rw, attitude0=Rotation.from_rotvec([0.2, 0.0, 0.0]))
     >>> data = control_page_data(run, frames=5, wheel_axes=rw.axes, target=Rotation.identity())
-    >>> data["frames"]["t"], data["curve"]["name"], data["frames"]["dipole"], data["aliased"]
-    ([0.0, 2.5, 5.0, 7.5, 10.0], 'attitude error', None, False)
+    >>> data["frames"]["t"], data["curve"]["name"], data["frames"]["dipole"]
+    ([0.0, 2.5, 5.0, 7.5, 10.0], 'attitude error', None)
+    >>> turn = np.abs(np.diff(wheel_angle(run.t, run.wheel_speed)[::5], axis=0)).max()  # rad in 2.5 s
+    >>> data["aliased"], bool(turn > math.pi)   # more than half a turn between frames: stroboscopic
+    (True, True)
     >>> np.shape(data["frames"]["angle"]), data["frames"]["angle"][0]   # 5 frames, 3 wheels, from 0
     ((5, 3), [0.0, 0.0, 0.0])
     >>> import json

@@ -209,6 +209,9 @@ h1 { font-size: 19px; margin: 4px 0 6px; }
 """
 
 _SPEEDS = (0.25, 0.5, 1, 2, 4)
+#: A closed-loop run's readout, time plot and notes (filled by assets/control.js).
+_CONTROL_DIVS = ('<div id="tumble-control"><p id="tumble-readout"></p><div id="tumble-error"></div>'
+                 '<p id="tumble-control-note"></p></div>')
 
 
 def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | None = None, live: bool = True,
@@ -273,8 +276,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         '<div id="tumble-live"></div>',
         '<div id="tumble-scenes"><div id="tumble-ground" class="tumble-scene"></div>'
         '<div id="tumble-body" class="tumble-scene"></div></div>',
-        *(['<div id="tumble-control"><p id="tumble-readout"></p><div id="tumble-error"></div>'
-           '<p id="tumble-control-note"></p></div>'] if control is not None else []),
+        *([_CONTROL_DIVS] if control is not None else []),
         '<div id="tumble-omega"></div><p id="tumble-note"></p>',
         f'<script type="application/json" id="tumble-data">{script_json(data)}</script>',
         *(_script(text) for text in scripts),
