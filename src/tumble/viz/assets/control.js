@@ -151,7 +151,7 @@
     var notes = ["Live mode (a free body integrated in the browser) does not apply to a closed-loop run: the page " +
                  "plays the simulated run only."];
     if (curve.stride > 1) {
-      notes.push("The " + curve.name + " curve shows every " + curve.stride + "th of the " + curve.samples + " samples.");
+      notes.push("The " + curve.name + " curve keeps one sample in " + curve.stride + " of the " + curve.samples + ".");
     }
     if (c.aliased) {
       notes.push("The wheels turn by more than half a revolution between frames: their discs move stroboscopically " +
