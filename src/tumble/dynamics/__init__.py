@@ -17,6 +17,8 @@ from .models.gravity import (
     orbit_frame_angles,
 )
 from .models.actuators import Command, Magnetorquers, ReactionWheels
+from .models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
+from .models.igrf import IGRFField
 from .models.internal import SphericalDamper, gyrostat_rate
 from .models.magnetic import DipoleField, UniformField
 from .models.orbit import CircularOrbit
@@ -33,6 +35,10 @@ __all__ = [
     "ControlledRun",
     "Controller",
     "DipoleField",
+    "IGRFField",
+    "KeplerOrbit",
+    "OrbitGravityGradient",
+    "TLEOrbit",
     "MRPFeedback",
     "Magnetorquers",
     "Measurement",

@@ -65,6 +65,7 @@ __all__ = [
     "GravityGradient",
     "LVLHState",
     "OrbitAngles",
+    "gradient_torque",
     "lvlh_state",
     "orbit_frame_angles",
     "relative_attitude",
@@ -76,6 +77,33 @@ MU_EARTH = 3.986004418e14
 #: The Earth's equatorial radius, m (IERS Conventions 2010: 6378136.6 m, rounded): with
 #: ``mu = MU_EARTH`` an orbit must have a larger radius.
 R_EARTH = 6.3781e6
+
+
+def gradient_torque(r_b: ArrayLike, moments: ArrayLike, rate2: ArrayLike) -> Vector3:
+    """The gravity-gradient torque ``3 (mu / r^3) r_b x (I r_b)`` in the body frame, N m (module docstring).
+
+    Parameters
+    ----------
+    r_b : array_like, shape (..., 3)
+        Unit radius vector (from the attracting centre to the body), principal frame.
+    moments : array_like, shape (..., 3)
+        Principal moments, kg m^2.
+    rate2 : array_like, shape (...)
+        ``mu / r^3`` (``n^2`` on a circle), 1/s^2.
+
+    Examples
+    --------
+    Along a principal axis there is no torque; at 45 deg between axes 1 and 2 it is
+    ``(3/2) n^2 (I2 - I1)`` about axis 3:
+
+    >>> gradient_torque([1.0, 0.0, 0.0], [1.0, 2.0, 3.0], 1e-6).tolist()
+    [0.0, 0.0, 0.0]
+    >>> s = math.sqrt(0.5)
+    >>> np.allclose(gradient_torque([s, s, 0.0], [1.0, 2.0, 3.0], 1e-6), [0.0, 0.0, 1.5e-6])
+    True
+    """
+    r = np.asarray(r_b, float)
+    return np.asarray(3.0 * np.asarray(rate2, float)[..., None] * np.cross(r, np.asarray(moments, float) * r), float)
 
 
 
@@ -284,7 +312,7 @@ class GravityGradient:
         """
         I = self._moments()
         r_b = attitude.inv().apply(self.radial_direction(float(t)))
-        tau_b = 3.0 * self._n**2 * np.cross(r_b, I * r_b)
+        tau_b = gradient_torque(r_b, I, self._n**2)
         return cast(Vector3, attitude.apply(tau_b))
 
     def jacobi_integral(self, t: ArrayLike, omega: ArrayLike, attitude: Rotation) -> FloatArray:

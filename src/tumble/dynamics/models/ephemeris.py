@@ -1,0 +1,488 @@
+"""Orbits beyond the circle: a Keplerian ellipse from its elements, a two-line element set
+through SGP4, the Earth's sidereal angle, and the gravity-gradient torque along any of them.
+
+**Keplerian orbit** (Vallado, *Fundamentals of Astrodynamics and Applications*, 4th ed., 2013):
+the mean anomaly ``M = M0 + n t`` with ``n = sqrt(mu / a^3)``; Kepler's equation
+``M = E - e sin E`` solved for the eccentric anomaly ``E`` by Newton's method (sec. 2.2,
+algorithm 2); the position and velocity in the perifocal frame
+
+``r = a (cos E - e, sqrt(1 - e^2) sin E, 0)``,  ``v = sqrt(mu a) / |r| (-sin E, sqrt(1 - e^2) cos E, 0)``
+
+(sec. 2.2, eqs. 2-35 and 2-36), turned into ECI by ``R3(-raan) R1(-i) R3(-argp)`` (sec. 2.6,
+algorithm 10, COE2RV). The orbit is two-body: no J2, no drag.
+
+**TLE orbits** come from SGP4 (Vallado, Crawford, Hujsak & Kelso, "Revisiting Spacetrack Report
+#3", AIAA 2006-6753) through the ``sgp4`` package (``pip install tumble[orbit]``); SGP4 gives
+positions in its TEME frame, used here as the inertial frame (TEME differs from J2000 by
+precession and nutation, a few tenths of a degree, and turns into the Earth-fixed frame by
+the sidereal angle below, to polar motion).
+
+**World frame.** For these orbits the world frame of a control run is the inertial frame itself
+(ECI or TEME): ``eci_from_world`` is the identity and ``position_world`` is ``position_eci``
+(a :class:`~tumble.dynamics.models.orbit.CircularOrbit` keeps its orbit-plane frame).
+
+**Sidereal angle.** Greenwich mean sidereal time, IAU 1982 (Vallado sec. 3.5.2, eq. 3-45):
+``theta = 67310.54841 s + (876600 h + 8640184.812866 s) T + 0.093104 s T^2 - 6.2e-6 s T^3``,
+``T`` Julian centuries of UT1 from J2000.0 (UTC is used for UT1: within 0.9 s, 4e-3 deg).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any, cast
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, FloatArray, Vector3
+from ...validation import check_moments, check_number, check_positive
+from .gravity import MU_EARTH, R_EARTH, gradient_torque
+
+__all__ = ["KeplerOrbit", "OrbitGravityGradient", "TLEOrbit", "greenwich_sidereal_angle", "julian_date"]
+
+_J2000 = _dt.datetime(2000, 1, 1, 12, 0, 0, tzinfo=_dt.UTC)
+
+
+def julian_date(when: _dt.datetime | str) -> float:
+    """The Julian date of a UTC instant (a ``datetime``, naive read as UTC, or an ISO 8601 string).
+
+    Counted from J2000.0 = JD 2451545.0 (2000-01-01 12:00 UTC) in days of 86,400 s; leap seconds
+    are not counted (the Julian date of UTC, as SGP4 uses it).
+
+    Examples
+    --------
+    >>> julian_date("2000-01-01T12:00:00")
+    2451545.0
+    >>> julian_date("2026-11-25T00:00:00+00:00")
+    2461369.5
+    """
+    t = _utc(when, "epoch")
+    return 2451545.0 + (t - _J2000).total_seconds() / 86400.0
+
+
+def _utc(when: object, name: str) -> _dt.datetime:
+    if isinstance(when, str):
+        try:
+            when = _dt.datetime.fromisoformat(when)
+        except ValueError:
+            raise ValueError(f"{name} = {when!r} is not an ISO 8601 date and time, e.g. 2026-11-25T00:00:00") from None
+    if not isinstance(when, _dt.datetime):
+        raise ValueError(f"{name} = {when!r} must be a datetime or an ISO 8601 string (UTC)")  # noqa: TRY004 - one error type for bad input
+    return when.replace(tzinfo=_dt.UTC) if when.tzinfo is None else when.astimezone(_dt.UTC)
+
+
+def greenwich_sidereal_angle(jd_ut1: ArrayLike) -> FloatArray:
+    """Greenwich mean sidereal angle (IAU 1982) at Julian date(s) ``jd_ut1``, rad in [0, 2 pi).
+
+    Examples
+    --------
+    Vallado's example 3-5 (1992-08-20 12:14 UT1): 152.578787810 deg:
+
+    >>> jd = julian_date("1992-08-20T12:14:00")
+    >>> round(math.degrees(float(greenwich_sidereal_angle(jd))), 6)
+    152.578788
+    """
+    T = (np.asarray(jd_ut1, float) - 2451545.0) / 36525.0
+    seconds = 67310.54841 + (876600.0 * 3600.0 + 8640184.812866) * T + 0.093104 * T**2 - 6.2e-6 * T**3
+    return np.asarray(np.mod(seconds, 86400.0) * (2.0 * math.pi / 86400.0), float)
+
+
+def _kepler_eccentric(M: FloatArray, e: float) -> FloatArray:
+    """``E`` with ``E - e sin E = M`` by Newton's method (Vallado algorithm 2), to round-off."""
+    E = np.where(e < 0.8, M, math.pi * np.sign(np.sin(M)) + 0.0 * M)
+    for _ in range(60):
+        step = (E - e * np.sin(E) - M) / (1.0 - e * np.cos(E))
+        E = E - step
+        if np.all(np.abs(step) <= 4e-16 * np.maximum(1.0, np.abs(E))):
+            break
+    return np.asarray(E, float)
+
+
+@dataclass(frozen=True)
+class KeplerOrbit:
+    """A two-body Keplerian orbit from its classical elements (m, rad) about ``mu`` (m^3/s^2).
+
+    Parameters
+    ----------
+    semi_major_axis : float
+        ``a``, m (> 0); the perigee ``a (1 - e)`` must lie above the Earth's equatorial radius
+        when ``mu`` is the Earth's.
+    eccentricity : float
+        ``e`` in [0, 1).
+    inclination : float
+        ``i``, rad, in [0, pi].
+    raan, arg_perigee, mean_anomaly : float
+        Right ascension of the ascending node, argument of perigee, mean anomaly at t = 0; rad.
+    mu : float
+        Gravitational parameter, m^3/s^2 (default the Earth's).
+
+    Examples
+    --------
+    A Molniya orbit: 12 h, perigee 500 km, apogee near 39,900 km:
+
+    >>> orbit = KeplerOrbit(26_600e3, 0.74, math.radians(63.4), arg_perigee=math.radians(270.0))
+    >>> round(orbit.period / 3600, 2)   # h
+    11.99
+    >>> r = np.linalg.norm(orbit.position_eci([0.0, orbit.period / 2]), axis=1)
+    >>> np.round((r - R_EARTH) / 1e3).tolist()   # km above the equatorial radius: perigee, apogee
+    [538.0, 39906.0]
+    """
+
+    semi_major_axis: float
+    eccentricity: float = 0.0
+    inclination: float = 0.0
+    raan: float = 0.0
+    arg_perigee: float = 0.0
+    mean_anomaly: float = 0.0
+    mu: float = MU_EARTH
+
+    def __post_init__(self) -> None:
+        a = check_positive("semi_major_axis", self.semi_major_axis, "m")
+        e = check_number("eccentricity", self.eccentricity, "")
+        if not 0.0 <= e < 1.0:
+            raise ValueError(f"eccentricity = {self.eccentricity!r} must lie in [0, 1) (an ellipse)")
+        inc = check_number("inclination", self.inclination, "rad")
+        if not 0.0 <= inc <= math.pi:
+            raise ValueError(f"inclination = {self.inclination!r} must lie in [0, pi] (rad)")
+        for name in ("raan", "arg_perigee", "mean_anomaly"):
+            check_number(name, getattr(self, name), "rad")
+        check_positive("mu", self.mu, "m^3/s^2")
+        if self.mu == MU_EARTH and a * (1.0 - e) <= R_EARTH:
+            raise ValueError(f"semi_major_axis = {a!r} m with eccentricity = {e!r} puts the perigee at "
+                             f"{a * (1 - e):.6g} m, inside the Earth (R_E = {R_EARTH:g} m)")
+
+    @property
+    def mean_motion(self) -> float:
+        """``n = sqrt(mu / a^3)``, rad/s.
+
+        Examples
+        --------
+        >>> round(KeplerOrbit(7000e3).mean_motion, 9)
+        0.001078008
+        """
+        a = float(self.semi_major_axis)
+        return math.sqrt(self.mu / a) / a
+
+    @property
+    def period(self) -> float:
+        """``2 pi / n``, s.
+
+        Examples
+        --------
+        >>> round(KeplerOrbit(7000e3, 0.05).period)   # s: the same for every e
+        5829
+        """
+        return 2.0 * math.pi / self.mean_motion
+
+    @property
+    def eci_from_world(self) -> Rotation:
+        """The identity: the world frame of a run on this orbit is ECI (module docstring).
+
+        Examples
+        --------
+        >>> KeplerOrbit(7000e3).eci_from_world.as_quat().tolist()
+        [0.0, 0.0, 0.0, 1.0]
+        """
+        return Rotation.identity()
+
+    def _perifocal(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        a, e = float(self.semi_major_axis), float(self.eccentricity)
+        M = float(self.mean_anomaly) + self.mean_motion * np.asarray(t, float)
+        E = _kepler_eccentric(np.mod(M + math.pi, 2.0 * math.pi) - math.pi, e)
+        c, s, b = np.cos(E), np.sin(E), math.sqrt(1.0 - e * e)
+        r = np.stack([a * (c - e), a * b * s, np.zeros_like(E)], axis=-1)
+        speed = math.sqrt(self.mu * a) / (a * (1.0 - e * c))
+        v = speed[..., None] * np.stack([-s, b * c, np.zeros_like(E)], axis=-1)
+        return r, v
+
+    def _to_eci(self, x: FloatArray) -> Vector3:
+        frame = Rotation.from_euler("ZXZ", [self.raan, self.inclination, self.arg_perigee])
+        return np.asarray(frame.apply(x.reshape(-1, 3)), float).reshape(x.shape)
+
+    def position_eci(self, t: ArrayLike) -> Vector3:
+        """Position in ECI at ``t`` (s from the epoch of the elements), m; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        With ``e = 0`` the ellipse is the circle of
+        :class:`~tumble.dynamics.models.orbit.CircularOrbit` (argument of latitude ``argp + M0``):
+
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> k = KeplerOrbit(7000e3, 0.0, 1.0, raan=0.5, arg_perigee=0.2, mean_anomaly=0.3)
+        >>> c = CircularOrbit(7000e3 - R_EARTH, 1.0, raan=0.5, arg_latitude=0.5)
+        >>> np.allclose(k.position_eci([0.0, 1234.5]), c.position_eci([0.0, 1234.5]), rtol=0, atol=1e-6)
+        True
+        """
+        return self._to_eci(self._perifocal(t)[0])
+
+    def velocity_eci(self, t: ArrayLike) -> Vector3:
+        """Velocity in ECI at ``t`` (s), m/s; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        Vis-viva, ``v^2 = mu (2 / r - 1 / a)``:
+
+        >>> k = KeplerOrbit(9000e3, 0.2, 0.7)
+        >>> r, v = np.linalg.norm(k.position_eci(900.0)), np.linalg.norm(k.velocity_eci(900.0))
+        >>> math.isclose(v**2, k.mu * (2 / r - 1 / 9000e3), rel_tol=1e-13)
+        True
+        """
+        return self._to_eci(self._perifocal(t)[1])
+
+    position_world = position_eci
+    velocity_world = velocity_eci
+
+    def gravity_gradient(self) -> OrbitGravityGradient:
+        """The gravity-gradient torque along this orbit (world frame = ECI).
+
+        Examples
+        --------
+        >>> KeplerOrbit(7000e3, 0.01).gravity_gradient().orbit.eccentricity
+        0.01
+        """
+        return OrbitGravityGradient(self)
+
+
+@dataclass(frozen=True, eq=False)
+class TLEOrbit:
+    """An Earth orbit from a two-line element set, propagated by SGP4 (module docstring).
+
+    Needs the ``sgp4`` package: ``pip install tumble[orbit]``. Time ``t`` counts from the TLE's
+    epoch (:attr:`epoch`), s.
+
+    Parameters
+    ----------
+    line1, line2 : str
+        The two lines of the element set, as published (e.g. by CelesTrak).
+
+    Examples
+    --------
+    The ISS on 2008-09-20 (Vallado et al. 2006's test set format):
+
+    >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+    ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+    >>> iss.epoch.isoformat(timespec="seconds"), round(iss.period / 60, 2)   # UTC, min
+    ('2008-09-20T12:25:40+00:00', 91.6)
+    >>> round(float(np.linalg.norm(iss.position_eci(0.0)) - R_EARTH) / 1e3)   # km above the equator's radius
+    342
+    """
+
+    line1: str
+    line2: str
+    _satrec: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        try:
+            from sgp4.api import Satrec  # type: ignore[import-untyped]  # sgp4 ships no type hints
+        except ImportError:
+            raise ValueError("a TLE orbit needs the sgp4 package: pip install tumble[orbit]") from None
+        for name in ("line1", "line2"):
+            value = getattr(self, name)
+            if not isinstance(value, str) or len(value.strip()) < 60:
+                raise ValueError(f"{name} = {value!r} must be the {name[-1]}st/nd line of a TLE (69 characters)")
+        try:
+            sat = Satrec.twoline2rv(self.line1, self.line2)
+        except (ValueError, IndexError) as exc:
+            raise ValueError(f"the TLE does not parse ({exc}); give its two lines exactly as published") from None
+        if sat.error != 0:
+            raise ValueError(f"the TLE's elements are out of SGP4's range (sgp4 error {sat.error})")
+        object.__setattr__(self, "_satrec", sat)
+
+    @property
+    def epoch(self) -> _dt.datetime:
+        """The TLE's epoch, UTC.
+
+        Examples
+        --------
+        >>> TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...          "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537").epoch.year
+        2008
+        """
+        days = (self._satrec.jdsatepoch - 2451545.0) + self._satrec.jdsatepochF
+        return _J2000 + _dt.timedelta(days=float(days))
+
+    @property
+    def mean_motion(self) -> float:
+        """SGP4's mean motion (Kozai), rad/s.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> round(iss.mean_motion * 86400 / (2 * math.pi), 6)   # revolutions a day, as in line 2
+        15.721254
+        """
+        return float(self._satrec.no_kozai) / 60.0
+
+    @property
+    def period(self) -> float:
+        """``2 pi / n``, s.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> round(iss.period)
+        5496
+        """
+        return 2.0 * math.pi / self.mean_motion
+
+    @property
+    def inclination(self) -> float:
+        """Mean inclination at the epoch, rad.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> round(math.degrees(iss.inclination), 4)
+        51.6416
+        """
+        return float(self._satrec.inclo)
+
+    @property
+    def eci_from_world(self) -> Rotation:
+        """The identity: the world frame of a run on this orbit is TEME (module docstring).
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> float(iss.eci_from_world.magnitude())
+        0.0
+        """
+        return Rotation.identity()
+
+    def _state(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        tt = np.asarray(t, float)
+        flat = tt.reshape(-1)
+        if not np.all(np.isfinite(flat)):
+            raise ValueError(f"t = {t!r} must be finite times, s from the TLE epoch")
+        sat = self._satrec
+        days = flat / 86400.0 + sat.jdsatepochF
+        whole = np.floor(days)
+        err, r, v = sat.sgp4_array(np.full_like(flat, sat.jdsatepoch) + whole, days - whole)
+        if np.any(err != 0):
+            bad = int(np.argmax(err != 0))
+            raise RuntimeError(f"SGP4 failed at t = {flat[bad]!r} s (sgp4 error {int(err[bad])}: e.g. 6, the orbit decayed)")
+        return r.reshape(tt.shape + (3,)) * 1e3, v.reshape(tt.shape + (3,)) * 1e3
+
+    def position_eci(self, t: ArrayLike) -> Vector3:
+        """Position in TEME at ``t`` (s from the epoch), m; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> iss.position_eci([0.0, 60.0, 120.0]).shape
+        (3, 3)
+        """
+        return self._state(t)[0]
+
+    def velocity_eci(self, t: ArrayLike) -> Vector3:
+        """Velocity in TEME at ``t`` (s from the epoch), m/s; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> round(float(np.linalg.norm(iss.velocity_eci(0.0))))   # m/s
+        7705
+        """
+        return self._state(t)[1]
+
+    position_world = position_eci
+    velocity_world = velocity_eci
+
+    def gravity_gradient(self) -> OrbitGravityGradient:
+        """The gravity-gradient torque along this orbit (world frame = TEME).
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> iss.gravity_gradient().mu == MU_EARTH
+        True
+        """
+        return OrbitGravityGradient(self)
+
+
+@dataclass(frozen=True, eq=False)
+class OrbitGravityGradient:
+    """The gravity-gradient torque ``3 mu / r^3 R (r_b x I r_b)`` along an orbit's position (N m, world frame).
+
+    The formula of :class:`~tumble.dynamics.models.gravity.GravityGradient` (Hughes ch. 8) with
+    the radius ``r(t)`` read from ``orbit.position_world(t)``: for an ellipse or a TLE the
+    radius and the rate ``mu / r^3`` change along the orbit.
+
+    Parameters
+    ----------
+    orbit : KeplerOrbit or TLEOrbit (or any object with ``position_world(t)``, m)
+        The orbit.
+    mu : float
+        Gravitational parameter, m^3/s^2 (default the orbit's, or the Earth's).
+    moments : array_like, shape (3,), optional
+        Principal moments, kg m^2 (:meth:`bind` gives them).
+
+    Examples
+    --------
+    On a circle it is :class:`~tumble.dynamics.models.gravity.GravityGradient`:
+
+    >>> from tumble.dynamics.models.gravity import GravityGradient
+    >>> k = KeplerOrbit(7000e3)
+    >>> att = Rotation.from_rotvec([0.3, -0.2, 0.5])
+    >>> a = k.gravity_gradient().bind([1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
+    >>> b = GravityGradient(orbit_radius=7000e3, moments=[1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
+    >>> np.allclose(a, b, rtol=1e-12, atol=0.0)
+    True
+    """
+
+    orbit: Any
+    mu: float | None = None
+    moments: tuple[float, float, float] | None = None
+    frame: str = field(default="world", init=False)
+
+    def __post_init__(self) -> None:
+        if not callable(getattr(self.orbit, "position_world", None)):
+            raise ValueError(f"orbit = {self.orbit!r} must give position_world(t) (m): a KeplerOrbit or TLEOrbit")  # noqa: TRY004
+        mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
+        object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
+        if self.moments is not None:
+            I = check_moments("moments", self.moments, physical=False)
+            object.__setattr__(self, "moments", cast("tuple[float, float, float]", tuple(map(float, I))))
+
+    def bind(self, body: object) -> OrbitGravityGradient:
+        """The same orbit acting on ``body`` (a Body, MassProperties or principal moments, kg m^2).
+
+        Examples
+        --------
+        >>> KeplerOrbit(7000e3).gravity_gradient().bind([1.0, 2.0, 3.0]).moments
+        (1.0, 2.0, 3.0)
+        """
+        moments = getattr(body, "principal_moments", body)
+        I = check_moments("moments", cast(ArrayLike, moments), physical=False)
+        return replace(self, moments=(float(I[0]), float(I[1]), float(I[2])))
+
+    def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
+        """World-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world).
+
+        Examples
+        --------
+        At perigee of an ellipse the rate ``mu / r^3`` is ``(1 - e)^-3`` times that of the circle of radius ``a``:
+
+        >>> k = KeplerOrbit(8000e3, 0.2)
+        >>> att = Rotation.from_rotvec([0.0, 0.0, 0.4])
+        >>> perigee = k.gravity_gradient().bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
+        >>> circle = KeplerOrbit(8000e3).gravity_gradient().bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
+        >>> np.allclose(perigee, circle / 0.8**3)
+        True
+        """
+        if self.moments is None:
+            raise ValueError("this gravity gradient has no moments: use .bind(body)")
+        r = np.asarray(self.orbit.position_world(float(t)), float)
+        rn = float(np.linalg.norm(r))
+        mu = float(cast(float, self.mu))
+        r_b = attitude.inv().apply(r / rn)
+        return np.asarray(attitude.apply(gradient_torque(r_b, np.asarray(self.moments), mu / rn**3)), float)

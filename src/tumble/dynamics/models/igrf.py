@@ -1,0 +1,225 @@
+"""The International Geomagnetic Reference Field along an orbit, through the ``ppigrf`` package.
+
+The field is IGRF-14 (IAGA Division V Working Group V-MOD, "International Geomagnetic
+Reference Field: the fourteenth generation", 2024; the model file shipped with ``ppigrf``,
+Laundal, https://github.com/klaundal/ppigrf), spherical harmonics to degree 13 with the Gauss
+coefficients interpolated linearly between the five-yearly models (as IGRF prescribes). Install
+it with ``pip install tumble[orbit]``. The built-in
+:class:`~tumble.dynamics.models.magnetic.DipoleField` is its degree-1 part at epoch 2020.0.
+
+**Along an orbit.** At time ``t`` (s from ``epoch``) the spacecraft is at ``r_eci(t)`` (the
+orbit's ``position_eci``); the Earth-fixed frame is ECI turned by the sidereal angle
+``theta(t) = theta_GMST(epoch) + omega_E t``
+(:func:`~tumble.dynamics.models.ephemeris.greenwich_sidereal_angle`; polar motion and the
+difference between ECI and TEME are neglected, a few tenths of a degree); ``ppigrf`` gives
+``(B_r, B_theta, B_phi)`` at the geocentric radius, colatitude and longitude, turned back into
+the run's world frame.
+
+**Cost and accuracy.** One call of the full model costs ~20 ms, and an integrator asks for the
+field at every stage; so the field is sampled along the orbit every ``step`` seconds (one
+vectorised call per block of an hour) and interpolated by a cubic spline in time (scipy's
+``CubicSpline``). The field along a LEO orbit changes on scales of minutes (degree 13 over
+~7.5 km/s): measured at 600 km, the interpolation error is 5e-13 of |B| at a 1 s step, 3e-10 at
+the default 5 s, 8e-8 at 20 s and 6e-6 at 60 s, all far below IGRF's own uncertainty (tens of
+nT in 30,000); :meth:`IGRFField.world_direct` evaluates without the spline. The coefficients are held at the epoch's values: the secular variation (at most ~100 nT
+a year) moves the field by less than 0.3 nT in a day's run.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import functools
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ...typing import ArrayLike, FloatArray, Vector3
+from ...validation import check_positive
+from .ephemeris import _utc, greenwich_sidereal_angle, julian_date
+from .magnetic import OMEGA_EARTH
+
+__all__ = ["IGRFField"]
+
+#: Knots per interpolation block (an hour at the default 5 s step).
+_BLOCK = 720
+#: Extra knots on each side of a block, so that the spline's ends lie outside it.
+_MARGIN = 4
+
+
+def _ppigrf() -> Any:
+    try:
+        from ppigrf import ppigrf  # type: ignore[import-untyped]  # ppigrf ships no type hints
+    except ImportError:
+        raise ValueError("the IGRF field needs the ppigrf package: pip install tumble[orbit]") from None
+    return ppigrf
+
+
+@functools.lru_cache(maxsize=1)
+def _coefficients() -> tuple[Any, Any]:
+    """The model file's Gauss coefficients ``(g, h)`` (nT, pandas tables by date), read once."""
+    g, h = _ppigrf().read_shc()
+    return g, h
+
+
+@dataclass(frozen=True, eq=False)
+class IGRFField:
+    """IGRF-14 along an orbit, in the run's world frame (T); see the module docstring.
+
+    Parameters
+    ----------
+    orbit : CircularOrbit, KeplerOrbit or TLEOrbit
+        Where the spacecraft is (``position_eci(t)``, m, and ``eci_from_world``).
+    epoch : datetime or ISO 8601 str, optional
+        UTC at t = 0; default the TLE's epoch for a :class:`~tumble.dynamics.models.ephemeris.TLEOrbit`
+        (required otherwise). Must lie within the model's years (1900 to 2030 for IGRF-14).
+    max_degree : int
+        Highest degree of the expansion, 1 to 13 (1 is the tilted dipole).
+    step : float
+        Spacing of the interpolation knots, s (> 0, at most 60).
+
+    Examples
+    --------
+    Over the north geomagnetic pole region the field points down and is about twice as strong
+    as over the equator; at 500 km it is 20-50 microtesla:
+
+    >>> import math
+    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
+    >>> field = IGRFField(orbit, "2026-11-25T00:00:00")
+    >>> B = np.linalg.norm(field.world(np.linspace(0.0, orbit.period, 60)), axis=1)
+    >>> bool(18e-6 < B.min() < B.max() < 55e-6)
+    True
+    """
+
+    orbit: Any
+    epoch: _dt.datetime | str | None = None
+    max_degree: int = 13
+    step: float = 5.0
+    _blocks: dict[int, CubicSpline] = field(default_factory=dict, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if not callable(getattr(self.orbit, "position_eci", None)) or not hasattr(self.orbit, "eci_from_world"):
+            raise ValueError(f"orbit = {self.orbit!r} must be a CircularOrbit, KeplerOrbit or TLEOrbit")
+        epoch = self.epoch if self.epoch is not None else getattr(self.orbit, "epoch", None)
+        if epoch is None:
+            raise ValueError("epoch is needed (the UTC date and time at t = 0, e.g. '2026-11-25T00:00:00')")
+        when = _utc(epoch, "epoch")
+        g, _ = _coefficients()
+        first, last = g.index[0].to_pydatetime(), g.index[-1].to_pydatetime()
+        if not first <= when.replace(tzinfo=None) <= last + _dt.timedelta(days=5 * 365.25):
+            raise ValueError(f"epoch = {when.isoformat()} lies outside the model's years "
+                             f"({first.year} to {last.year + 5})")
+        object.__setattr__(self, "epoch", when)
+        if isinstance(self.max_degree, bool) or not isinstance(self.max_degree, int) or not 1 <= self.max_degree <= 13:
+            raise ValueError(f"max_degree = {self.max_degree!r} must be a whole number from 1 to 13")
+        check_positive("step", self.step, "s", at_most=60.0)
+
+    @property
+    def gmst0(self) -> float:
+        """The Greenwich sidereal angle at t = 0, rad.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> f = IGRFField(CircularOrbit(altitude=500e3), "1992-08-20T12:14:00")
+        >>> round(f.gmst0 * 180 / np.pi, 6)   # deg: Vallado's example 3-5
+        152.578788
+        """
+        return float(greenwich_sidereal_angle(julian_date(self._when)))
+
+    @property
+    def _when(self) -> _dt.datetime:
+        assert isinstance(self.epoch, _dt.datetime)
+        return self.epoch
+
+    def gauss_degree1(self) -> tuple[float, float, float]:
+        """The degree-1 Gauss coefficients ``(g10, g11, h11)`` at the epoch, T (linear in time between models).
+
+        These make :class:`~tumble.dynamics.models.magnetic.DipoleField` the degree-1 part of this field.
+
+        Examples
+        --------
+        IGRF-14's definitive 2020 model (DGRF 2020), nT:
+
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> g = IGRFField(CircularOrbit(altitude=500e3), "2020-01-01T00:00:00").gauss_degree1()
+        >>> [round(x * 1e9, 1) for x in g]
+        [-29403.4, -1451.4, 4653.4]
+        """
+        g, h = _coefficients()
+        stamps = np.array([t.timestamp() for t in g.index.to_pydatetime()])
+        at = self._when.replace(tzinfo=None).timestamp()
+
+        def value(table: Any, key: tuple[int, int]) -> float:
+            return float(np.interp(at, stamps, np.asarray(table[key], float)) * 1e-9)
+
+        return value(g, (1, 0)), value(g, (1, 1)), value(h, (1, 1))
+
+    def world_direct(self, t: ArrayLike) -> Vector3:
+        """B at ``t`` (s) from the full model, without interpolation, world frame, T; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> f = IGRFField(CircularOrbit(altitude=500e3, inclination=1.0), "2026-01-01T00:00:00")
+        >>> bool(np.allclose(f.world_direct([10.0, 2000.0]), f.world([10.0, 2000.0]), rtol=0, atol=1e-11))
+        True
+        """
+        tt = np.asarray(t, float)
+        return self._evaluate(tt.reshape(-1)).reshape(tt.shape + (3,))
+
+    def _evaluate(self, t: FloatArray) -> FloatArray:
+        r_eci = np.asarray(self.orbit.position_eci(t), float).reshape(-1, 3)
+        theta = self.gmst0 + OMEGA_EARTH * t
+        c, s = np.cos(theta), np.sin(theta)
+        x, y = c * r_eci[:, 0] + s * r_eci[:, 1], -s * r_eci[:, 0] + c * r_eci[:, 1]  # ECEF = R3(theta) ECI
+        z = r_eci[:, 2]
+        r = np.sqrt(x * x + y * y + z * z)
+        colat, lon = np.arccos(z / r), np.arctan2(y, x)
+        Br, Bt, Bp = (np.asarray(b, float).reshape(-1) * 1e-9 for b in _ppigrf().igrf_gc(
+            r / 1e3, np.degrees(colat), np.degrees(lon), self._when.replace(tzinfo=None), max_degree=self.max_degree))
+        st, ct, sp, cp = np.sin(colat), np.cos(colat), np.sin(lon), np.cos(lon)
+        bx = Br * st * cp + Bt * ct * cp - Bp * sp  # ECEF from (r^, theta^, phi^)
+        by = Br * st * sp + Bt * ct * sp + Bp * cp
+        bz = Br * ct - Bt * st
+        b_eci = np.stack([c * bx - s * by, s * bx + c * by, bz], axis=-1)
+        return np.asarray(self.orbit.eci_from_world.inv().apply(b_eci), float)
+
+    def _spline(self, block: int) -> CubicSpline:
+        spline = self._blocks.get(block)
+        if spline is None:
+            h = float(self.step)
+            knots = np.asarray((block * _BLOCK + np.arange(-_MARGIN, _BLOCK + _MARGIN + 1)) * h, float)
+            spline = CubicSpline(knots, self._evaluate(knots), axis=0)
+            self._blocks[block] = spline
+        return spline
+
+    def world(self, t: ArrayLike) -> Vector3:
+        """B at ``t`` (s from the epoch) in the world frame, T; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        The degree-1 field is the tilted dipole of
+        :class:`~tumble.dynamics.models.magnetic.DipoleField` with this epoch's coefficients:
+
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.models.magnetic import DipoleField
+        >>> orbit = CircularOrbit(altitude=600e3, inclination=1.2, raan=0.3)
+        >>> f = IGRFField(orbit, "2020-01-01T00:00:00", max_degree=1)
+        >>> dipole = DipoleField(orbit, gmst0=f.gmst0, coefficients=f.gauss_degree1())
+        >>> t = np.linspace(1.3, 3001.7, 7)   # between the spline's knots
+        >>> bool(np.allclose(f.world(t), [dipole.world(x) for x in t], rtol=0, atol=1e-14))   # T, of ~4e-5
+        True
+        """
+        tt = np.asarray(t, float)
+        flat = tt.reshape(-1)
+        if not np.all(np.isfinite(flat)):
+            raise ValueError(f"t = {t!r} must be finite times, s from the epoch")
+        blocks = np.floor(flat / (_BLOCK * float(self.step))).astype(int)
+        out = np.empty((flat.size, 3))
+        for block in np.unique(blocks):
+            chosen = blocks == block
+            out[chosen] = self._spline(int(block))(flat[chosen])
+        return out.reshape(tt.shape + (3,))
