@@ -28,9 +28,8 @@ with wheels only and no external torque ``L_world`` is constant.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -45,6 +44,9 @@ from .models.magnetic import MagneticField
 from .models.sensors import Sensors
 from .special.mrp import mrp_angle, mrp_from_quat
 from .special.quaternion import rotate_by_quaternion
+
+if TYPE_CHECKING:
+    from .methods.compiled_control import ControlKernel
 
 __all__ = ["ControlledRun", "simulate_controlled"]
 
@@ -213,10 +215,10 @@ def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
-def _compiled_advance(compiled: bool | None, I: FloatArray, I_rw_inv: FloatArray, field: MagneticField | None,
-                      gg: GravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
-                      rtol: float, atol: float) -> Callable[..., FloatArray] | None:
-    """The compiled interval integrator's ``advance`` for these models, or None for scipy's path."""
+def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: FloatArray, field: MagneticField | None,
+            gg: GravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
+            rtol: float, atol: float) -> ControlKernel | None:
+    """The compiled interval integrator for these models, or None for scipy's path."""
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
     if compiled is False:
@@ -229,7 +231,7 @@ def _compiled_advance(compiled: bool | None, I: FloatArray, I_rw_inv: FloatArray
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
     n_gg = gg.mean_motion if gg is not None else 0.0
-    return ControlKernel(I, I_rw_inv, wheels, field, n_gg, rtol, atol).advance
+    return ControlKernel(I, I_rw_inv, wheels, field, n_gg, rtol, atol)
 
 
 def simulate_controlled(
@@ -322,7 +324,7 @@ def simulate_controlled(
     I_rw_inv = np.linalg.inv(I_rw)
     axes = wheels.axes if wheels is not None else np.zeros((0, 3))
     J = np.asarray(wheels.inertia) if wheels is not None else np.zeros(0)
-    advance = _compiled_advance(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol)
+    kernel = _kernel(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol)
 
     def rhs(t: float, y: FloatArray, dipole: FloatArray, u_cmd: FloatArray) -> FloatArray:
         q, w, s = y[:4] / math.sqrt(float(y[:4] @ y[:4])), y[4:7], y[7:7 + k]
@@ -352,7 +354,8 @@ def simulate_controlled(
         q, w, s = y[:4] / np.linalg.norm(y[:4]), y[4:7], y[7:7 + k]
         y[:4] = q
         att = Rotation.from_quat(q)
-        b_body = rotate_by_quaternion(q * [-1.0, -1.0, -1.0, 1.0], field.world(t)) if field is not None else None
+        b_body = None if field is None else kernel.field_body(q, t) if kernel is not None else \
+            rotate_by_quaternion(q * [-1.0, -1.0, -1.0, 1.0], field.world(t))
         command = controller(t, sensors.sample(t, w, att, b_body, s, rng)) if i < steps else Command()
         if not isinstance(command, Command):
             raise ValueError(f"the controller returned {command!r}; it must return a Command")  # noqa: TRY004
@@ -367,8 +370,8 @@ def simulate_controlled(
         fields.append(b_body if b_body is not None else np.zeros(3))
         if i == steps:
             break
-        if advance is not None:
-            y = advance(y, t, float(grid[i + 1]), dipole, u_cmd)
+        if kernel is not None:
+            y = kernel.advance(y, t, float(grid[i + 1]), dipole, u_cmd)
             continue
         sol = solve_ivp(rhs, (t, float(grid[i + 1])), y, method="DOP853", rtol=rtol, atol=atol, args=(dipole, u_cmd))
         if not sol.success:

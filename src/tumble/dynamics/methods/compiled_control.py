@@ -118,6 +118,13 @@ def _field_world(kind: int, p: FloatArray, gmst0: float, t: float, out: FloatArr
     out[2] = p[6] * e0 + p[7] * e1 + p[8] * e2
 
 
+def _field_body(kind: int, p: FloatArray, q: FloatArray, t: float, out: FloatArray) -> None:  # pragma: no cover
+    """B (T) in the body frame of the unit quaternion ``q`` at ``t`` (s) into ``out``: ``R^T B_world``."""
+    world = np.empty(3)
+    _field_world(kind, p, p[12], t, world)
+    _to_body(q, world, out)
+
+
 def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
                   coulomb: float) -> float:  # pragma: no cover - compiled
     """One wheel's applied torque (N m), as :meth:`ReactionWheels.applied_torque`: clipped,
@@ -375,7 +382,7 @@ def _detumble_rhs(b_world: FloatArray, I: FloatArray, m: FloatArray, q: FloatArr
 
 prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
 
-_HELPERS = ("_field_world", "_wheel_torque", "_bdot", "_rhs", "_rms", "_to_body", "_detumble_rhs")
+_HELPERS = ("_field_world", "_field_body", "_wheel_torque", "_bdot", "_rhs", "_rms", "_to_body", "_detumble_rhs")
 
 
 @functools.cache
@@ -465,6 +472,13 @@ class ControlKernel:
         self.tableau = tuple(np.ascontiguousarray(a, dtype=float) for a in
                              (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5))
         self.kernel = _compiled("_advance")
+        self.field_kernel = _compiled("_field_body")
+
+    def field_body(self, q: FloatArray, t: float) -> FloatArray:
+        """B (T) in the body frame of the unit quaternion ``q`` (body to world, scalar last) at ``t`` (s)."""
+        out = np.empty(3)
+        self.field_kernel(self.field_kind, self.fp, np.ascontiguousarray(q, dtype=float), float(t), out)
+        return out
 
     def advance(self, y: FloatArray, t_start: float, t_end: float, dipole: FloatArray, command: FloatArray) -> FloatArray:
         """The state ``(q, omega, s, impulse)`` at ``t_end`` (s) from ``y`` at ``t_start``, the dipole
