@@ -102,14 +102,22 @@ def _field_world(kind: int, p: FloatArray, gmst0: float, t: float, out: FloatArr
         return
     nt = p[15] * t
     r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
-    e0, e1, e2 = p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1
     theta = gmst0 + OMEGA_EARTH * t * p[13]
-    c, s = math.cos(theta), math.sin(theta)
+    _dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1, math.cos(theta),
+            math.sin(theta), out)
+
+
+def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float, s: float,
+            out: FloatArray) -> None:  # pragma: no cover - compiled
+    """The dipole's B (T, world frame) at ``r_eci = (e0, e1, e2)`` (m) with ``(c, s)`` the cosine
+    and sine of the Earth's angle: ``r_ecef = R3(theta)^T r_eci``,
+    ``B = (a/r)^3 (3 (g . r^) r^ - g)`` there (:meth:`DipoleField.ecef`), turned back to ECI and world."""
     x0, x1, x2 = c * e0 + s * e1, -s * e0 + c * e1, e2
     rn = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
     u0, u1, u2 = x0 / rn, x1 / rn, x2 / rn
     g0, g1, g2 = p[9], p[10], p[11]
-    f = (IGRF_RADIUS / rn) ** 3
+    f = IGRF_RADIUS / rn
+    f = f * f * f
     gu = 3.0 * (u0 * g0 + u1 * g1 + u2 * g2)
     b0, b1, b2 = f * (gu * u0 - g0), f * (gu * u1 - g1), f * (gu * u2 - g2)
     e0, e1, e2 = c * b0 - s * b1, s * b0 + c * b1, b2
@@ -307,32 +315,60 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
             return 0
 
 
+def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> FloatArray:  # pragma: no cover
+    """What every body of a batch shares at each RK4 node: ``r_eci`` (m) and ``cos, sin(omega_E t)``;
+    node ``(i, 0)`` at ``t = i period``, ``(i, 2 j + 1)`` and ``(i, 2 j + 2)`` the middle and end of substep j."""
+    h = period / substeps
+    table = np.empty((steps, 2 * substeps + 1, 5))
+    for i in range(steps):
+        t = i * period
+        for m in range(2 * substeps + 1):
+            s = t + ((m - 1) // 2) * h
+            tm = t if m == 0 else (s + h / 2 if m % 2 == 1 else s + h)
+            nt = fp[15] * tm
+            r0, r1 = fp[14] * math.cos(nt), fp[14] * math.sin(nt)
+            table[i, m, 0] = fp[0] * r0 + fp[3] * r1
+            table[i, m, 1] = fp[1] * r0 + fp[4] * r1
+            table[i, m, 2] = fp[2] * r0 + fp[5] * r1
+            table[i, m, 3] = math.cos(OMEGA_EARTH * tm)
+            table[i, m, 4] = math.sin(OMEGA_EARTH * tm)
+    return table
+
+
+def _batch_field(fp: FloatArray, node: FloatArray, cg: float, sg: float, out: FloatArray) -> None:  # pragma: no cover
+    """The dipole at a table node for a body whose Earth angle at t = 0 has cosine ``cg`` and sine ``sg``
+    (``theta = gmst0 + omega_E t`` by the angle-addition formulas)."""
+    c = cg * node[3] - sg * node[4]
+    s = sg * node[3] + cg * node[4]
+    _dipole(fp, node[0], node[1], node[2], c, s, out)
+
+
 def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
               normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
               substeps: int, rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
     """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each
-    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body)."""
+    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body; the
+    orbit's share of the field once for all, :func:`_orbit_table`)."""
     N = I.shape[0]
+    table = _orbit_table(fp, period, steps, substeps)
     for b in prange(N):  # independent bodies: threads where the parallel kernel is used
-        Ib, q, w, th = I[b].copy(), q0[b].copy(), w0[b].copy(), gmst0[b]
-        m, bw, bb = np.empty(3), np.empty(3), np.empty(3)
+        Ib, q, w = I[b].copy(), q0[b].copy(), w0[b].copy()
+        cg, sg = math.cos(gmst0[b]), math.sin(gmst0[b])
+        m, bb = np.empty(3), np.empty(3)
         b_start, b_mid, b_end = np.empty(3), np.empty(3), np.empty(3)
         kq, kw, qs, ws = np.empty((4, 4)), np.empty((4, 3)), np.empty(4), np.empty(3)
         h = period / substeps
         for i in range(steps + 1):
-            t = i * period
             rates[b, i] = math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
             if i == steps:
                 break
-            _field_world(FIELD_DIPOLE, fp, th, t, bw)
-            _to_body(q, bw, bb)
+            _batch_field(fp, table[i, 0], cg, sg, b_end)
+            _to_body(q, b_end, bb)
             _bdot(bb, w, gain[b], normalized, axes, limit, m)
-            _field_world(FIELD_DIPOLE, fp, th, t, b_end)
             for j in range(substeps):
-                s = t + j * h
                 b_start[:] = b_end
-                _field_world(FIELD_DIPOLE, fp, th, s + h / 2, b_mid)
-                _field_world(FIELD_DIPOLE, fp, th, s + h, b_end)
+                _batch_field(fp, table[i, 2 * j + 1], cg, sg, b_mid)
+                _batch_field(fp, table[i, 2 * j + 2], cg, sg, b_end)
                 for stage in range(4):
                     a = 0.0 if stage == 0 else (h if stage == 3 else h / 2)
                     for r in range(4):
@@ -382,7 +418,7 @@ def _detumble_rhs(b_world: FloatArray, I: FloatArray, m: FloatArray, q: FloatArr
 
 prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
 
-_HELPERS = ("_field_world", "_field_body", "_wheel_torque", "_bdot", "_rhs", "_rms", "_to_body", "_detumble_rhs")
+_HELPERS = ("_dipole", "_field_world", "_field_body", "_orbit_table", "_batch_field", "_wheel_torque", "_bdot", "_rhs", "_rms", "_to_body", "_detumble_rhs")
 
 
 @functools.cache
@@ -539,8 +575,7 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
     kernel = _compiled("_detumble", parallel=N >= PARALLEL_BODIES and _cores() > 1)
     c = np.ascontiguousarray
-    p = np.array(fp, dtype=float)
-    p[13] = 1.0  # the batch's Earth always turns (detumble_batch)
+    p = np.array(fp, dtype=float)  # the batch's Earth always turns (detumble_batch)
     kernel(c(I, dtype=float), c(q0, dtype=float), c(w0, dtype=float), c(gmst0, dtype=float), c(gain, dtype=float),
            bool(normalized), c(axes, dtype=float), c(limit, dtype=float), p, float(period), int(steps),
            int(substeps), rates, w_out, q_out)
