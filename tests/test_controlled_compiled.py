@@ -105,7 +105,7 @@ def test_bdot_in_the_dipole_field_with_gravity_gradient_agrees_with_scipy():
 def _pointing(**wheel_args):
     rw = ReactionWheels(np.eye(3), inertia=2e-5, **wheel_args)
     c = MRPFeedback(K=2e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
-    return dict(moments=[0.03, 0.04, 0.05], controller=c, wheels=rw, attitude0=Rotation.from_rotvec([0.4, -0.3, 0.2]))
+    return {"moments": [0.03, 0.04, 0.05], "controller": c, "wheels": rw, "attitude0": Rotation.from_rotvec([0.4, -0.3, 0.2])}
 
 
 def test_mrp_pointing_with_limited_rubbing_wheels_agrees_with_scipy():
@@ -152,8 +152,8 @@ class Ramp:
 
 
 def test_a_user_model_takes_scipys_path_and_compiled_true_names_it():
-    kw = dict(moments=CUBESAT, omega0=[0.1, 0.0, 0.1], t_end=3.0, controller=BDot(gain=3e-5, period=1.0),
-              field=Ramp(), magnetorquers=Magnetorquers(0.2))
+    kw = {"moments": CUBESAT, "omega0": [0.1, 0.0, 0.1], "t_end": 3.0, "controller": BDot(gain=3e-5, period=1.0),
+              "field": Ramp(), "magnetorquers": Magnetorquers(0.2)}
     with pytest.raises(ValueError, match=r"compiled=True needs built-in models; field = Ramp \(a DipoleField or "
                                          r"UniformField\) is not one"):
         simulate_controlled(compiled=True, **kw)
@@ -188,9 +188,9 @@ def test_the_compiled_detumble_batch_is_the_numpy_batch(form):
     I = np.array(CUBESAT) * (1 + 0.1 * rng.uniform(-1, 1, (n, 3)))
     w = rng.normal(size=(n, 3)) * 0.2
     q = Rotation.random(n, random_state=4).as_quat()
-    kw = dict(field=DipoleField(ORBIT), gmst0=rng.uniform(0, 2 * math.pi, n), gain=3e-5 if form == "normalized"
-              else 2e4, magnetorquers=Magnetorquers([0.2, 0.2, 0.1]), period=1.0, t_end=300.0, form=form,
-              substeps=3)
+    kw = {"field": DipoleField(ORBIT), "gmst0": rng.uniform(0, 2 * math.pi, n), "gain": 3e-5 if form == "normalized"
+              else 2e4, "magnetorquers": Magnetorquers([0.2, 0.2, 0.1]), "period": 1.0, "t_end": 300.0, "form": form,
+              "substeps": 3}
     fast = detumble_batch(I, w, q, **kw)
     slow = detumble_batch(I, w, q, compiled=False, **kw)
     assert np.array_equal(fast.t, slow.t)

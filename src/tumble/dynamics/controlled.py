@@ -215,7 +215,7 @@ def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
-def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: FloatArray, field: MagneticField | None,
+def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: MagneticField | None,
             gg: GravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
             rtol: float, atol: float) -> ControlKernel | None:
     """The compiled interval integrator for these models, or None for scipy's path."""
@@ -231,7 +231,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: FloatArray, field: M
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
     n_gg = gg.mean_motion if gg is not None else 0.0
-    return ControlKernel(I, I_rw_inv, wheels, field, n_gg, rtol, atol)
+    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, n_gg, rtol, atol)
 
 
 def simulate_controlled(
