@@ -15,7 +15,7 @@ is computed from the exact state, clipped rod by rod, and held. Between steps, `
 classical RK4 steps of ``h = period / substeps`` (the field is evaluated at every stage).
 
 **Two paths.** By default each body runs through a compiled kernel
-(:func:`~tumble.dynamics.methods.compiled_control.detumble_run`: the same arithmetic, body by
+(:func:`~tumble.dynamics.methods.compiled_detumble.detumble_run`: the same arithmetic, body by
 body, on every core for a large batch); ``compiled=False`` runs the numpy path, vectorised over
 the bodies, which is the reference (the two agree to round-off, tests/test_controlled_compiled.py).
 In numpy one RK4 stage is some fifty operations on arrays of N, and the batch is bound by memory
@@ -197,7 +197,8 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     D = check_positive("period", period, "s")
     steps = max(1, math.ceil(check_positive("t_end", t_end, "s") / D - 1e-9))
     if compiled:
-        from .methods.compiled_control import detumble_run, field_params
+        from .methods.compiled_control import field_params
+        from .methods.compiled_detumble import detumble_run
 
         rates, w_end, q_end = detumble_run(
             I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.axes,

@@ -1,13 +1,10 @@
 """The closed-loop equations under the built-in models, compiled: one hold interval, or a B-dot batch, in numba.
 
-Two kernels over plain arrays, compiled by numba on first use (``cache=True``):
-
-- :func:`advance` integrates one zero-order-hold interval of the controlled equations of
-  :mod:`tumble.dynamics.controlled` (quaternion, omega, wheel spins, external impulse) for
-  :func:`~tumble.dynamics.controlled.simulate_controlled`;
-- :func:`detumble_run` runs the whole B-dot loop of :func:`tumble.dynamics.detumble.detumble_batch`
-  (control law, rods, classical RK4 substeps) for each of N bodies, over every core from
-  :data:`~tumble.dynamics.methods.compiled.PARALLEL_BODIES` bodies.
+:meth:`ControlKernel.advance` integrates one zero-order-hold interval of the controlled
+equations of :mod:`tumble.dynamics.controlled` (quaternion, omega, wheel spins, external impulse)
+for :func:`~tumble.dynamics.controlled.simulate_controlled`, over plain arrays, compiled by numba
+on first use (``cache=True``). The B-dot batch's kernel, which shares the field with it, is
+:mod:`~tumble.dynamics.methods.compiled_detumble`.
 
 **Why compiled, and which scheme.** The Python path calls scipy's ``solve_ivp`` once per control
 period, ~1 ms of Python overhead per interval and ~0.1 ms per right-hand side: a two-orbit
@@ -33,15 +30,12 @@ and tests/test_controlled_compiled.py checks each against it to round-off):
   (:class:`~tumble.dynamics.models.gravity.GravityGradient`);
 - the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
   torque limit, speed limit, viscous and Coulomb friction);
-- the B-dot dipole (:func:`~tumble.dynamics.controllers.bdot_dipole`) and the rods' clipping
-  (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`).
 """
 
 from __future__ import annotations
 
 import functools
 import math
-import types
 from collections.abc import Callable
 from typing import Any, cast
 
@@ -49,10 +43,8 @@ import numpy as np
 
 from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
-from .compiled import PARALLEL_BODIES, _cores
 
-__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
-           "detumble_run", "field_params"]
+__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models", "field_params"]
 
 #: Kinds of field the kernels evaluate: none, uniform, the tilted dipole.
 FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE = 0, 1, 2
@@ -103,12 +95,12 @@ def _field_world(kind: int, p: FloatArray, gmst0: float, t: float, out: FloatArr
     nt = p[15] * t
     r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
     theta = gmst0 + OMEGA_EARTH * t * p[13]
-    _dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1, math.cos(theta),
-            math.sin(theta), out)
+    out[0], out[1], out[2] = _dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1,
+                                     math.cos(theta), math.sin(theta))
 
 
-def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float, s: float,
-            out: FloatArray) -> None:  # pragma: no cover - compiled
+def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
+            s: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
     """The dipole's B (T, world frame) at ``r_eci = (e0, e1, e2)`` (m) with ``(c, s)`` the cosine
     and sine of the Earth's angle: ``r_ecef = R3(theta)^T r_eci``,
     ``B = (a/r)^3 (3 (g . r^) r^ - g)`` there (:meth:`DipoleField.ecef`), turned back to ECI and world."""
@@ -121,16 +113,13 @@ def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float, s: float,
     gu = 3.0 * (u0 * g0 + u1 * g1 + u2 * g2)
     b0, b1, b2 = f * (gu * u0 - g0), f * (gu * u1 - g1), f * (gu * u2 - g2)
     e0, e1, e2 = c * b0 - s * b1, s * b0 + c * b1, b2
-    out[0] = p[0] * e0 + p[1] * e1 + p[2] * e2
-    out[1] = p[3] * e0 + p[4] * e1 + p[5] * e2
-    out[2] = p[6] * e0 + p[7] * e1 + p[8] * e2
+    return p[0] * e0 + p[1] * e1 + p[2] * e2, p[3] * e0 + p[4] * e1 + p[5] * e2, p[6] * e0 + p[7] * e1 + p[8] * e2
 
 
 def _field_body(kind: int, p: FloatArray, q: FloatArray, t: float, out: FloatArray) -> None:  # pragma: no cover
     """B (T) in the body frame of the unit quaternion ``q`` at ``t`` (s) into ``out``: ``R^T B_world``."""
-    world = np.empty(3)
-    _field_world(kind, p, p[12], t, world)
-    _to_body(q, world, out)
+    _field_world(kind, p, p[12], t, out)
+    out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
 
 
 def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
@@ -142,22 +131,6 @@ def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: fl
         u = 0.0
     sign = 1.0 if speed > 0.0 else (-1.0 if speed < 0.0 else 0.0)
     return u - viscous * speed - coulomb * sign
-
-
-def _bdot(b: FloatArray, w: FloatArray, gain: float, normalized: bool, axes: FloatArray, limit: FloatArray,
-          out: FloatArray) -> None:  # pragma: no cover - compiled
-    """The gyro B-dot dipole ``-k (B x omega)`` (``k = gain / |B|^2`` normalised), clipped rod by
-    rod (:func:`bdot_dipole`, :meth:`Magnetorquers.saturate`), into ``out`` (A m^2)."""
-    k = gain / (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) if normalized else gain
-    m0 = -k * (b[1] * w[2] - b[2] * w[1])
-    m1 = -k * (b[2] * w[0] - b[0] * w[2])
-    m2 = -k * (b[0] * w[1] - b[1] * w[0])
-    out[0], out[1], out[2] = 0.0, 0.0, 0.0
-    for j in range(axes.shape[0]):
-        rod = min(max(m0 * axes[j, 0] + m1 * axes[j, 1] + m2 * axes[j, 2], -limit[j]), limit[j])
-        out[0] += rod * axes[j, 0]
-        out[1] += rod * axes[j, 1]
-        out[2] += rod * axes[j, 2]
 
 
 def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,
@@ -315,131 +288,30 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
             return 0
 
 
-def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> FloatArray:  # pragma: no cover
-    """What every body of a batch shares at each RK4 node: ``r_eci`` (m) and ``cos, sin(omega_E t)``;
-    node ``(i, 0)`` at ``t = i period``, ``(i, 2 j + 1)`` and ``(i, 2 j + 2)`` the middle and end of substep j."""
-    h = period / substeps
-    table = np.empty((steps, 2 * substeps + 1, 5))
-    for i in range(steps):
-        t = i * period
-        for m in range(2 * substeps + 1):
-            s = t + ((m - 1) // 2) * h
-            tm = t if m == 0 else (s + h / 2 if m % 2 == 1 else s + h)
-            nt = fp[15] * tm
-            r0, r1 = fp[14] * math.cos(nt), fp[14] * math.sin(nt)
-            table[i, m, 0] = fp[0] * r0 + fp[3] * r1
-            table[i, m, 1] = fp[1] * r0 + fp[4] * r1
-            table[i, m, 2] = fp[2] * r0 + fp[5] * r1
-            table[i, m, 3] = math.cos(OMEGA_EARTH * tm)
-            table[i, m, 4] = math.sin(OMEGA_EARTH * tm)
-    return table
+def _to_body(x: float, y: float, z: float, w: float, v0: float, v1: float,
+             v2: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """``R^T v`` for the quaternion ``(x, y, z, w)`` (not normalised), R as Shuster 1993 eq. 161
+    (the numpy batch's ``detumble._to_body``)."""
+    return ((1 - 2 * (y * y + z * z)) * v0 + 2 * (x * y + z * w) * v1 + 2 * (x * z - y * w) * v2,
+            2 * (x * y - z * w) * v0 + (1 - 2 * (x * x + z * z)) * v1 + 2 * (y * z + x * w) * v2,
+            2 * (x * z + y * w) * v0 + 2 * (y * z - x * w) * v1 + (1 - 2 * (x * x + y * y)) * v2)
 
 
-def _batch_field(fp: FloatArray, node: FloatArray, cg: float, sg: float, out: FloatArray) -> None:  # pragma: no cover
-    """The dipole at a table node for a body whose Earth angle at t = 0 has cosine ``cg`` and sine ``sg``
-    (``theta = gmst0 + omega_E t`` by the angle-addition formulas)."""
-    c = cg * node[3] - sg * node[4]
-    s = sg * node[3] + cg * node[4]
-    _dipole(fp, node[0], node[1], node[2], c, s, out)
-
-
-def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
-              normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
-              substeps: int, rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
-    """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each
-    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body; the
-    orbit's share of the field once for all, :func:`_orbit_table`)."""
-    N = I.shape[0]
-    table = _orbit_table(fp, period, steps, substeps)
-    for b in prange(N):  # independent bodies: threads where the parallel kernel is used
-        Ib, q, w = I[b].copy(), q0[b].copy(), w0[b].copy()
-        cg, sg = math.cos(gmst0[b]), math.sin(gmst0[b])
-        m, bb = np.empty(3), np.empty(3)
-        b_start, b_mid, b_end = np.empty(3), np.empty(3), np.empty(3)
-        kq, kw, qs, ws = np.empty((4, 4)), np.empty((4, 3)), np.empty(4), np.empty(3)
-        h = period / substeps
-        for i in range(steps + 1):
-            rates[b, i] = math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
-            if i == steps:
-                break
-            _batch_field(fp, table[i, 0], cg, sg, b_end)
-            _to_body(q, b_end, bb)
-            _bdot(bb, w, gain[b], normalized, axes, limit, m)
-            for j in range(substeps):
-                b_start[:] = b_end
-                _batch_field(fp, table[i, 2 * j + 1], cg, sg, b_mid)
-                _batch_field(fp, table[i, 2 * j + 2], cg, sg, b_end)
-                for stage in range(4):
-                    a = 0.0 if stage == 0 else (h if stage == 3 else h / 2)
-                    for r in range(4):
-                        qs[r] = q[r] + (a * kq[stage - 1, r] if stage else 0.0)
-                    for r in range(3):
-                        ws[r] = w[r] + (a * kw[stage - 1, r] if stage else 0.0)
-                    field = b_start if stage == 0 else (b_end if stage == 3 else b_mid)
-                    _detumble_rhs(field, Ib, m, qs, ws, kq[stage], kw[stage])
-                for r in range(4):
-                    q[r] = q[r] + h / 6 * (kq[0, r] + 2 * kq[1, r] + 2 * kq[2, r] + kq[3, r])
-                for r in range(3):
-                    w[r] = w[r] + h / 6 * (kw[0, r] + 2 * kw[1, r] + 2 * kw[2, r] + kw[3, r])
-                nq = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-                for r in range(4):
-                    q[r] /= nq
-        for r in range(3):
-            w_out[b, r] = w[r]
-        for r in range(4):
-            q_out[b, r] = q[r]
-
-
-def _to_body(q: FloatArray, v: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
-    """``R^T v`` for the quaternion ``q`` (not normalised), R as Shuster 1993 eq. 161 (detumble._to_body)."""
-    x, y, z, w = q[0], q[1], q[2], q[3]
-    out[0] = (1 - 2 * (y * y + z * z)) * v[0] + 2 * (x * y + z * w) * v[1] + 2 * (x * z - y * w) * v[2]
-    out[1] = 2 * (x * y - z * w) * v[0] + (1 - 2 * (x * x + z * z)) * v[1] + 2 * (y * z + x * w) * v[2]
-    out[2] = 2 * (x * z + y * w) * v[0] + 2 * (y * z - x * w) * v[1] + (1 - 2 * (x * x + y * y)) * v[2]
-
-
-def _detumble_rhs(b_world: FloatArray, I: FloatArray, m: FloatArray, q: FloatArray, w: FloatArray, dq: FloatArray,
-                  dw: FloatArray) -> None:  # pragma: no cover - compiled
-    """``(q', omega')`` of ``I omega' = m x B - omega x I omega`` (detumble._rhs) for one body."""
-    x, y, z, c = q[0], q[1], q[2], q[3]
-    bx = (1 - 2 * (y * y + z * z)) * b_world[0] + 2 * (x * y + z * c) * b_world[1] + 2 * (x * z - y * c) * b_world[2]
-    by = 2 * (x * y - z * c) * b_world[0] + (1 - 2 * (x * x + z * z)) * b_world[1] + 2 * (y * z + x * c) * b_world[2]
-    bz = 2 * (x * z + y * c) * b_world[0] + 2 * (y * z - x * c) * b_world[1] + (1 - 2 * (x * x + y * y)) * b_world[2]
-    w0, w1, w2 = w[0], w[1], w[2]
-    h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2
-    dw[0] = (m[1] * bz - m[2] * by - (w1 * h2 - w2 * h1)) / I[0]
-    dw[1] = (m[2] * bx - m[0] * bz - (w2 * h0 - w0 * h2)) / I[1]
-    dw[2] = (m[0] * by - m[1] * bx - (w0 * h1 - w1 * h0)) / I[2]
-    dq[0] = 0.5 * (c * w0 + y * w2 - z * w1)
-    dq[1] = 0.5 * (c * w1 + z * w0 - x * w2)
-    dq[2] = 0.5 * (c * w2 + x * w1 - y * w0)
-    dq[3] = 0.5 * -(x * w0 + y * w1 + z * w2)
-
-
-prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
-
-_HELPERS = ("_dipole", "_field_world", "_field_body", "_orbit_table", "_batch_field", "_wheel_torque", "_bdot", "_rhs", "_rms", "_to_body", "_detumble_rhs")
+_HELPERS = ("_dipole", "_field_world", "_field_body", "_wheel_torque", "_rhs", "_rms", "_to_body")
 
 
 @functools.cache
-def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
-    """The kernel ``name`` compiled by numba on first use (helpers inlined); ``parallel`` the
-    detumble kernel over every core (a copy under its own name, as in :mod:`.compiled`)."""
+def _compiled(name: str) -> Callable[..., Any]:
+    """The function ``name`` compiled by numba on first use, with every helper (the helpers are
+    compiled first so that the kernels call compiled code)."""
     from numba import njit
-    from numba import prange as numba_prange
 
     if not _compiled.__dict__.get("helpers"):
         for helper in _HELPERS:
             globals()[helper] = njit(cache=True)(globals()[helper])
-        globals()["prange"] = numba_prange
         _compiled.__dict__["helpers"] = True
     function = globals()[name]
-    if name in _HELPERS:
-        return cast("Callable[..., Any]", function)
-    if parallel:
-        function = types.FunctionType(function.__code__, globals(), name + "_parallel")
-        function.__qualname__ = name + "_parallel"
-    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel)(function))
+    return cast("Callable[..., Any]", function if name in _HELPERS else njit(cache=True)(function))
 
 
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:
@@ -527,56 +399,3 @@ class ControlKernel:
         if status != 0:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
         return out
-
-
-def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
-                 normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
-                 substeps: int) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The compiled B-dot batch of :func:`tumble.dynamics.detumble.detumble_batch` (checked inputs).
-
-    Parameters
-    ----------
-    I, w0 : ndarray, shape (N, 3)
-        Principal moments (kg m^2) and initial rates (rad/s).
-    q0 : ndarray, shape (N, 4)
-        Unit quaternions, principal frame to world, scalar last.
-    gmst0, gain : ndarray, shape (N,)
-        Each body's Earth angle at t = 0 (rad) and B-dot gain.
-    normalized : bool
-        The normalised law (gain in N m s) or the classic one (A m^2 s/T).
-    axes, limit : ndarray, shapes (r, 3) and (r,)
-        The rods' unit axes and dipole limits, A m^2.
-    fp : ndarray, shape (16,)
-        :func:`field_params` of the dipole (its ``gmst0`` unused).
-    period : float
-        Control period, s.
-    steps, substeps : int
-        Control periods, RK4 steps per period.
-
-    Returns
-    -------
-    rates : ndarray, shape (N, steps + 1)
-    omega, quat : ndarray, shapes (N, 3) and (N, 4)
-
-    Examples
-    --------
-    No rate, no dipole: nothing moves.
-
-    >>> from tumble.dynamics.models.magnetic import DipoleField
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
-    >>> _, fp = field_params(DipoleField(CircularOrbit(altitude=500e3)))
-    >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),
-    ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.eye(3), limit=np.ones(3),
-    ...                            fp=fp, period=1.0, steps=3, substeps=2)
-    >>> rates.tolist(), q.tolist()
-    ([[0.0, 0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
-    """
-    N = len(I)
-    rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
-    kernel = _compiled("_detumble", parallel=N >= PARALLEL_BODIES and _cores() > 1)
-    c = np.ascontiguousarray
-    p = np.array(fp, dtype=float)  # the batch's Earth always turns (detumble_batch)
-    kernel(c(I, dtype=float), c(q0, dtype=float), c(w0, dtype=float), c(gmst0, dtype=float), c(gain, dtype=float),
-           bool(normalized), c(axes, dtype=float), c(limit, dtype=float), p, float(period), int(steps),
-           int(substeps), rates, w_out, q_out)
-    return rates, w_out, q_out
