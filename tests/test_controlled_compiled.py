@@ -198,3 +198,17 @@ def test_the_compiled_detumble_batch_is_the_numpy_batch(form):
     _close(fast.rate, slow.rate, 1e-12)
     _close(fast.omega, slow.omega, 1e-12)
     _close(fast.quat, slow.quat, 1e-11)
+
+
+def test_the_parallel_batch_kernel_gives_each_body_the_same_arithmetic(monkeypatch):
+    rng = np.random.default_rng(2)
+    n = 40  # more than one block of bodies, the last one partial
+    args = (np.array(CUBESAT) * (1 + 0.1 * rng.uniform(-1, 1, (n, 3))), rng.normal(size=(n, 3)) * 0.2,
+            Rotation.random(n, random_state=1).as_quat())
+    kw = {"field": DipoleField(ORBIT), "gmst0": rng.uniform(0, 2 * math.pi, n), "gain": 3e-5,
+          "magnetorquers": Magnetorquers(0.2), "period": 1.0, "t_end": 20.0}
+    serial = detumble_batch(*args, **kw)
+    monkeypatch.setattr(cd, "PARALLEL_BODIES", 2)
+    monkeypatch.setattr(cd, "_cores", lambda: 2)
+    parallel = detumble_batch(*args, **kw)
+    assert np.array_equal(parallel.rate, serial.rate) and np.array_equal(parallel.quat, serial.quat)

@@ -308,10 +308,10 @@ def _compiled(name: str) -> Callable[..., Any]:
 
     if not _compiled.__dict__.get("helpers"):
         for helper in _HELPERS:
-            globals()[helper] = njit(cache=True)(globals()[helper])
+            globals()[helper] = njit(cache=True, error_model="numpy")(globals()[helper])
         _compiled.__dict__["helpers"] = True
     function = globals()[name]
-    return cast("Callable[..., Any]", function if name in _HELPERS else njit(cache=True)(function))
+    return cast("Callable[..., Any]", function if name in _HELPERS else njit(cache=True, error_model="numpy")(function))
 
 
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:

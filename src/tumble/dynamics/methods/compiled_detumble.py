@@ -75,60 +75,83 @@ def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> Fl
     return table
 
 
-def _batch_field(fp: FloatArray, node: FloatArray, cg: float,
+def _batch_field(fp: FloatArray, table: FloatArray, i: int, node: int, cg: float,
                  sg: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """The dipole (T, world) at a table node for a body whose Earth angle at t = 0 has cosine ``cg``
-    and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition formulas)."""
-    c = cg * node[3] - sg * node[4]
-    s = sg * node[3] + cg * node[4]
-    return _dipole(fp, node[0], node[1], node[2], c, s)
+    """The dipole (T, world) at the table's node ``(i, node)`` for a body whose Earth angle at t = 0
+    has cosine ``cg`` and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition formulas)."""
+    c = cg * table[i, node, 3] - sg * table[i, node, 4]
+    s = sg * table[i, node, 3] + cg * table[i, node, 4]
+    return _dipole(fp, table[i, node, 0], table[i, node, 1], table[i, node, 2], c, s)
+
+
+#: Bodies advanced side by side in the kernel's inner loops: one body's RK4 stages depend on each
+#: other (a chain of divisions and products), the bodies of a block do not, so the processor
+#: overlaps them.
+BLOCK = 32
 
 
 def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
               normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
               substeps: int, rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
     """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each
-    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body, over
-    scalars so that a body's state stays in registers; the orbit's share of the field once for
-    all, :func:`_orbit_table`)."""
+    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body), in blocks
+    of :data:`BLOCK` bodies; the orbit's share of the field once for all (:func:`_orbit_table`)."""
     N = I.shape[0]
     table = _orbit_table(fp, period, steps, substeps)
-    for b in prange(N):  # independent bodies: threads where the parallel kernel is used
-        I0, I1, I2 = I[b, 0], I[b, 1], I[b, 2]
-        x, y, z, c = q0[b, 0], q0[b, 1], q0[b, 2], q0[b, 3]
-        w0_, w1, w2 = w0[b, 0], w0[b, 1], w0[b, 2]
-        cg, sg = math.cos(gmst0[b]), math.sin(gmst0[b])
-        h = period / substeps
-        a, e = h / 2, h / 6
+    h = period / substeps
+    a, e = h / 2, h / 6
+    for block in prange((N + BLOCK - 1) // BLOCK):  # independent blocks: threads in the parallel kernel
+        lo = block * BLOCK
+        nb = min(BLOCK, N - lo)
+        S = np.empty((7, nb))  # x, y, z, w of q, then omega
+        for r in range(nb):
+            for k in range(4):
+                S[k, r] = q0[lo + r, k]
+            for k in range(3):
+                S[4 + k, r] = w0[lo + r, k]
+        cg, sg = np.cos(gmst0[lo:lo + nb]), np.sin(gmst0[lo:lo + nb])
+        M, B0, B1, B2 = np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb))
+        K = np.zeros((4, 7, nb))  # zeros: stage 1 adds 0 * K[0]
         for i in range(steps + 1):
-            rates[b, i] = math.sqrt(w0_ ** 2 + w1 ** 2 + w2 ** 2)
+            for r in range(nb):
+                rates[lo + r, i] = math.sqrt(S[4, r] ** 2 + S[5, r] ** 2 + S[6, r] ** 2)
             if i == steps:
                 break
-            e0, e1, e2 = _batch_field(fp, table[i, 0], cg, sg)
-            bx, by, bz = _to_body(x, y, z, c, e0, e1, e2)
-            m0, m1, m2 = _bdot(bx, by, bz, w0_, w1, w2, gain[b], normalized, axes, limit)
+            for r in range(nb):
+                e0, e1, e2 = _batch_field(fp, table, i, 0, cg[r], sg[r])
+                B2[0, r], B2[1, r], B2[2, r] = e0, e1, e2
+                bx, by, bz = _to_body(S[0, r], S[1, r], S[2, r], S[3, r], e0, e1, e2)
+                M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, S[4, r], S[5, r], S[6, r], gain[lo + r], normalized,
+                                                  axes, limit)
             for j in range(substeps):
-                s0, s1, s2 = e0, e1, e2
-                c0, c1, c2 = _batch_field(fp, table[i, 2 * j + 1], cg, sg)
-                e0, e1, e2 = _batch_field(fp, table[i, 2 * j + 2], cg, sg)
-                k1 = _detumble_rhs(s0, s1, s2, I0, I1, I2, m0, m1, m2, x, y, z, c, w0_, w1, w2)
-                k2 = _detumble_rhs(c0, c1, c2, I0, I1, I2, m0, m1, m2, x + a * k1[0], y + a * k1[1], z + a * k1[2],
-                                   c + a * k1[3], w0_ + a * k1[4], w1 + a * k1[5], w2 + a * k1[6])
-                k3 = _detumble_rhs(c0, c1, c2, I0, I1, I2, m0, m1, m2, x + a * k2[0], y + a * k2[1], z + a * k2[2],
-                                   c + a * k2[3], w0_ + a * k2[4], w1 + a * k2[5], w2 + a * k2[6])
-                k4 = _detumble_rhs(e0, e1, e2, I0, I1, I2, m0, m1, m2, x + h * k3[0], y + h * k3[1], z + h * k3[2],
-                                   c + h * k3[3], w0_ + h * k3[4], w1 + h * k3[5], w2 + h * k3[6])
-                x = x + e * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
-                y = y + e * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
-                z = z + e * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2])
-                c = c + e * (k1[3] + 2 * k2[3] + 2 * k3[3] + k4[3])
-                w0_ = w0_ + e * (k1[4] + 2 * k2[4] + 2 * k3[4] + k4[4])
-                w1 = w1 + e * (k1[5] + 2 * k2[5] + 2 * k3[5] + k4[5])
-                w2 = w2 + e * (k1[6] + 2 * k2[6] + 2 * k3[6] + k4[6])
-                nq = math.sqrt(x * x + y * y + z * z + c * c)
-                x, y, z, c = x / nq, y / nq, z / nq, c / nq
-        w_out[b, 0], w_out[b, 1], w_out[b, 2] = w0_, w1, w2
-        q_out[b, 0], q_out[b, 1], q_out[b, 2], q_out[b, 3] = x, y, z, c
+                for r in range(nb):
+                    B0[0, r], B0[1, r], B0[2, r] = B2[0, r], B2[1, r], B2[2, r]
+                    B1[0, r], B1[1, r], B1[2, r] = _batch_field(fp, table, i, 2 * j + 1, cg[r], sg[r])
+                    B2[0, r], B2[1, r], B2[2, r] = _batch_field(fp, table, i, 2 * j + 2, cg[r], sg[r])
+                for stage in range(4):
+                    Bs = B0 if stage == 0 else (B2 if stage == 3 else B1)
+                    f = 0.0 if stage == 0 else (h if stage == 3 else a)
+                    prev = max(stage - 1, 0)
+                    for r in range(nb):
+                        d = _detumble_rhs(Bs[0, r], Bs[1, r], Bs[2, r], I[lo + r, 0], I[lo + r, 1], I[lo + r, 2],
+                                          M[0, r], M[1, r], M[2, r],
+                                          S[0, r] + f * K[prev, 0, r], S[1, r] + f * K[prev, 1, r],
+                                          S[2, r] + f * K[prev, 2, r], S[3, r] + f * K[prev, 3, r],
+                                          S[4, r] + f * K[prev, 4, r], S[5, r] + f * K[prev, 5, r],
+                                          S[6, r] + f * K[prev, 6, r])
+                        for c in range(7):
+                            K[stage, c, r] = d[c]
+                for r in range(nb):
+                    for c in range(7):
+                        S[c, r] = S[c, r] + e * (K[0, c, r] + 2 * K[1, c, r] + 2 * K[2, c, r] + K[3, c, r])
+                    nq = math.sqrt(S[0, r] * S[0, r] + S[1, r] * S[1, r] + S[2, r] * S[2, r] + S[3, r] * S[3, r])
+                    for c in range(4):
+                        S[c, r] = S[c, r] / nq
+        for r in range(nb):
+            for k in range(3):
+                w_out[lo + r, k] = S[4 + k, r]
+            for k in range(4):
+                q_out[lo + r, k] = S[k, r]
 
 
 def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: float, m0: float, m1: float, m2: float,
@@ -163,7 +186,7 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
         for helper in ("_dipole", "_to_body"):
             globals()[helper] = compiled_control._compiled(helper)
         for helper in _HELPERS:
-            globals()[helper] = njit(cache=True)(globals()[helper])
+            globals()[helper] = njit(cache=True, error_model="numpy")(globals()[helper])
         globals()["prange"] = numba_prange
         _compiled.__dict__["helpers"] = True
     function = globals()[name]
@@ -172,7 +195,7 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
     if parallel:
         function = types.FunctionType(function.__code__, globals(), name + "_parallel")
         function.__qualname__ = name + "_parallel"
-    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel)(function))
+    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel, error_model="numpy")(function))
 
 
 def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
