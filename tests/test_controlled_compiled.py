@@ -73,6 +73,26 @@ def test_the_kernels_wheel_torque_is_applied_torque_exactly():
         assert np.array_equal(got, expected)
 
 
+def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
+    # the impulse's rate in the kernel's right-hand side is R tau, tau = m x R^T B + R^T gg(t, R)
+    rng = np.random.default_rng(8)
+    field, gg = DipoleField(ORBIT, gmst0=0.2), ORBIT.gravity_gradient().bind(CUBESAT)
+    kind, p = cc.field_params(field)
+    rhs = cc._compiled("_rhs")
+    for t in (0.0, 777.0, 5000.0):
+        att = Rotation.from_rotvec(rng.normal(size=3))
+        dipole, w = rng.normal(size=3) * 0.1, rng.normal(size=3) * 0.2
+        y = np.concatenate([att.as_quat(), w, np.zeros(3)])
+        out = np.empty(10)
+        rhs(t, y, np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)), np.zeros((0, 8)), dipole, np.zeros(0), kind, p,
+            gg.mean_motion, np.zeros(0), out)
+        tau_world = att.apply(np.cross(dipole, att.inv().apply(field.world(t)))) + gg(t, w, att)
+        np.testing.assert_allclose(out[7:], tau_world, rtol=1e-12, atol=1e-12 * np.abs(tau_world).max())
+        w_dot = (np.cross(dipole, att.inv().apply(field.world(t))) + att.inv().apply(gg(t, w, att))
+                 - np.cross(w, np.array(CUBESAT) * w)) / np.array(CUBESAT)  # Euler's equations
+        np.testing.assert_allclose(out[4:7], w_dot, rtol=1e-12, atol=1e-12 * np.abs(w_dot).max())
+
+
 @pytest.mark.parametrize("form", ["normalized", "classic"])
 def test_the_kernels_bdot_dipole_is_the_controllers_clipped_by_the_rods(form):
     rods = Magnetorquers([0.2, 0.1], axes=[[1.0, 0.0, 0.0], [0.0, 1.0, 1.0]])

@@ -16,7 +16,8 @@ read and the controller called.
 **Two paths, the same steps.** With the built-in models only (``DipoleField`` or
 ``UniformField``, ``GravityGradient``, ``Magnetorquers``, ``ReactionWheels``) each interval is
 integrated by a compiled copy of scipy's DOP853
-(:mod:`~tumble.dynamics.methods.compiled_control`: the same steps, ~100 times faster); with a
+(:mod:`~tumble.dynamics.methods.compiled_control`: the same steps; a two-orbit detumble, 11,400
+periods, in 1 s instead of 41 s, most of it now the Python controller); with a
 model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. The controller and
 the sensors are Python either way, called once a period.
 

@@ -1,4 +1,4 @@
-"""The closed-loop equations under the built-in models, compiled: one hold interval, or a B-dot batch, in numba.
+"""The closed-loop equations under the built-in models, compiled: one hold interval in numba.
 
 :meth:`ControlKernel.advance` integrates one zero-order-hold interval of the controlled
 equations of :mod:`tumble.dynamics.controlled` (quaternion, omega, wheel spins, external impulse)
@@ -9,7 +9,7 @@ on first use (``cache=True``). The B-dot batch's kernel, which shares the field 
 **Why compiled, and which scheme.** The Python path calls scipy's ``solve_ivp`` once per control
 period, ~1 ms of Python overhead per interval and ~0.1 ms per right-hand side: a two-orbit
 detumble (11,400 one-second periods) took 41 s. No library offers an ODE solver callable from
-numba's compiled code, so :func:`advance` is scipy's DOP853 written out: the Dormand-Prince 8(5,3)
+numba's compiled code, so :meth:`ControlKernel.advance` is scipy's DOP853 written out: the Dormand-Prince 8(5,3)
 pair of Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., sec. II.10
 (coefficients taken from :class:`scipy.integrate.DOP853`, which copies them from Hairer's
 Fortran code), with scipy's error norm (the 5th- and 3rd-order estimates combined, RMS norm with
@@ -27,9 +27,10 @@ and tests/test_controlled_compiled.py checks each against it to round-off):
   :class:`~tumble.dynamics.models.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
   Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of a circular orbit
-  (:class:`~tumble.dynamics.models.gravity.GravityGradient`);
+  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), and with the field's ``m x B`` the
+  external torque whose world-frame value is the impulse's rate;
 - the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
-  torque limit, speed limit, viscous and Coulomb friction);
+  torque limit, speed limit, viscous and Coulomb friction).
 """
 
 from __future__ import annotations
