@@ -384,14 +384,39 @@ class ControlKernel:
         self.field_kernel = _compiled("_field_body")
 
     def field_body(self, q: FloatArray, t: float) -> FloatArray:
-        """B (T) in the body frame of the unit quaternion ``q`` (body to world, scalar last) at ``t`` (s)."""
+        """B (T) in the body frame of the unit quaternion ``q`` (body to world, scalar last) at ``t`` (s).
+
+        Examples
+        --------
+        A field along world x seen from a body turned by 90 deg about z: along body -y.
+
+        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), 0.0, 1e-10, 1e-12)
+        >>> c = np.sqrt(0.5)
+        >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
+        True
+        """
         out = np.empty(3)
         self.field_kernel(self.field_kind, self.fp, np.ascontiguousarray(q, dtype=float), float(t), out)
         return out
 
     def advance(self, y: FloatArray, t_start: float, t_end: float, dipole: FloatArray, command: FloatArray) -> FloatArray:
         """The state ``(q, omega, s, impulse)`` at ``t_end`` (s) from ``y`` at ``t_start``, the dipole
-        (A m^2) and the wheels' commanded torques (N m) held; RuntimeError if the step collapses."""
+        (A m^2) and the wheels' commanded torques (N m) held; RuntimeError if the step collapses.
+
+        Examples
+        --------
+        A dipole of 0.1 A m^2 along x in 3e-5 T along y: 3e-6 N m about z, held for 10 s on a body
+        at rest with I3 = 3 kg m^2 (it barely turns): omega_3 = 1e-5 rad/s and the impulse 3e-5 N m s:
+
+        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None,
+        ...                        UniformField((0.0, 3e-5, 0.0)), 0.0, 1e-10, 1e-12)
+        >>> y = kernel.advance(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.0, 10.0,
+        ...                    np.array([0.1, 0.0, 0.0]), np.zeros(0))
+        >>> np.allclose(y[4:7], [0.0, 0.0, 1e-5], rtol=1e-6, atol=1e-15), np.allclose(y[7:], [0.0, 0.0, 3e-5], rtol=1e-6)
+        (True, True)
+        """
         out = np.array(y, dtype=float)
         status = self.kernel(out, float(t_start), float(t_end), self.rtol, self.atol, self.I, self.I_rw_inv,
                              self.wheels, np.ascontiguousarray(dipole, dtype=float),
