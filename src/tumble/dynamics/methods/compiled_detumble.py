@@ -75,13 +75,14 @@ def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> Fl
     return table
 
 
-def _batch_field(fp: FloatArray, table: FloatArray, i: int, node: int, cg: float,
+def _batch_field(fp: Any, node: tuple[float, float, float, float, float], cg: float,
                  sg: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """The dipole (T, world) at the table's node ``(i, node)`` for a body whose Earth angle at t = 0
-    has cosine ``cg`` and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition formulas)."""
-    c = cg * table[i, node, 3] - sg * table[i, node, 4]
-    s = sg * table[i, node, 3] + cg * table[i, node, 4]
-    return _dipole(fp, table[i, node, 0], table[i, node, 1], table[i, node, 2], c, s)
+    """The dipole (T, world) at a table node (its five numbers) for a body whose Earth angle at
+    t = 0 has cosine ``cg`` and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition
+    formulas); ``fp`` the field's parameters (a tuple: the compiler then knows they stay put)."""
+    c = cg * node[3] - sg * node[4]
+    s = sg * node[3] + cg * node[4]
+    return _dipole(fp, node[0], node[1], node[2], c, s)
 
 
 #: Bodies advanced side by side in the kernel's inner loops: one body's RK4 stages depend on each
@@ -98,6 +99,7 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
     of :data:`BLOCK` bodies; the orbit's share of the field once for all (:func:`_orbit_table`)."""
     N = I.shape[0]
     table = _orbit_table(fp, period, steps, substeps)
+    fpt = (fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10], fp[11])
     h = period / substeps
     a, e = h / 2, h / 6
     for block in prange((N + BLOCK - 1) // BLOCK):  # independent blocks: threads in the parallel kernel
@@ -117,17 +119,21 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
                 rates[lo + r, i] = math.sqrt(S[4, r] ** 2 + S[5, r] ** 2 + S[6, r] ** 2)
             if i == steps:
                 break
+            node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4])
             for r in range(nb):
-                e0, e1, e2 = _batch_field(fp, table, i, 0, cg[r], sg[r])
+                e0, e1, e2 = _batch_field(fpt, node, cg[r], sg[r])
                 B2[0, r], B2[1, r], B2[2, r] = e0, e1, e2
                 bx, by, bz = _to_body(S[0, r], S[1, r], S[2, r], S[3, r], e0, e1, e2)
                 M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, S[4, r], S[5, r], S[6, r], gain[lo + r], normalized,
                                                   axes, limit)
             for j in range(substeps):
+                m1, m2 = 2 * j + 1, 2 * j + 2
+                mid = (table[i, m1, 0], table[i, m1, 1], table[i, m1, 2], table[i, m1, 3], table[i, m1, 4])
+                end = (table[i, m2, 0], table[i, m2, 1], table[i, m2, 2], table[i, m2, 3], table[i, m2, 4])
                 for r in range(nb):
                     B0[0, r], B0[1, r], B0[2, r] = B2[0, r], B2[1, r], B2[2, r]
-                    B1[0, r], B1[1, r], B1[2, r] = _batch_field(fp, table, i, 2 * j + 1, cg[r], sg[r])
-                    B2[0, r], B2[1, r], B2[2, r] = _batch_field(fp, table, i, 2 * j + 2, cg[r], sg[r])
+                    B1[0, r], B1[1, r], B1[2, r] = _batch_field(fpt, mid, cg[r], sg[r])
+                    B2[0, r], B2[1, r], B2[2, r] = _batch_field(fpt, end, cg[r], sg[r])
                 for stage in range(4):
                     Bs = B0 if stage == 0 else (B2 if stage == 3 else B1)
                     f = 0.0 if stage == 0 else (h if stage == 3 else a)
