@@ -377,7 +377,8 @@ class ControlKernel:
             wheels.axes, wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous, wheels.coulomb]),
             dtype=float)
         self.field_kind, self.fp = field_params(field)
-        self.n_gg, self.rtol, self.atol = float(n_gg), float(rtol), float(atol)
+        # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
+        self.n_gg, self.rtol, self.atol = float(n_gg), max(float(rtol), 100 * np.finfo(float).eps), float(atol)
         self.tableau = tuple(np.ascontiguousarray(a, dtype=float) for a in
                              (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5))
         self.kernel = _compiled("_advance")
