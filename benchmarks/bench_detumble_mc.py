@@ -5,9 +5,9 @@ The 3U CubeSat of ``examples/control/detumble.toml`` (moments (0.0067, 0.0419, 0
 threshold 0.5 deg/s) in the 500 km sun-synchronous orbit, for two orbits (11,400 s), without
 gravity gradient or sensor noise. Dispersed: the initial rate uniform in 5-20 deg/s in a
 uniform direction, each moment +-10 % (uniform), the field epoch (Earth angle) uniform, the
-attitude uniform. ``tumble.ensemble.detumble_monte_carlo`` (numpy RK4 over chunks of cases,
-two substeps a period); ``--quick`` runs 500 cases. Writes the table, the JSON and
-``detumble_mc.png`` (histogram and CDF, with the median and the 95th percentile).
+attitude uniform. ``tumble.ensemble.detumble_monte_carlo`` (RK4 over chunks of cases, two
+substeps a period, each case compiled: ``tumble.dynamics.methods.compiled_detumble``);
+``--quick`` runs 500 cases. Writes the table, the JSON and ``detumble_mc.png`` (histogram and CDF, with the median and the 95th percentile).
 """
 
 from __future__ import annotations

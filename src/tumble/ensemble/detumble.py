@@ -6,7 +6,7 @@ the backend): the initial rate ``|omega0|`` uniform in ``[rate_min, rate_max]`` 
 direction uniform on the sphere; each principal moment ``I_j (1 + s z_j)``, ``z_j`` uniform on
 [-1, 1] (``s`` = ``moment_spread``, relative); the field epoch ``gmst0`` (the Earth's sidereal
 angle at t = 0, rad) uniform on [0, 2 pi); the initial attitude uniform on SO(3). Chunks of
-cases run through :func:`tumble.dynamics.detumble.detumble_batch`, vectorised over the chunk.
+cases run through :func:`tumble.dynamics.detumble.detumble_batch` (a compiled kernel, parallel over the cases of a chunk).
 """
 
 from __future__ import annotations
