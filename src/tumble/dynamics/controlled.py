@@ -40,6 +40,7 @@ from ..typing import ArrayLike, FloatArray
 from ..validation import check_moments, check_positive, check_rotation, check_vector
 from .controllers import Controller
 from .models.actuators import Command, Magnetorquers, ReactionWheels
+from .models.ephemeris import OrbitGravityGradient
 from .models.gravity import GravityGradient
 from .models.magnetic import MagneticField
 from .models.sensors import Sensors
@@ -217,7 +218,7 @@ def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
 
 
 def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: MagneticField | None,
-            gg: GravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
+            gg: GravityGradient | OrbitGravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
             rtol: float, atol: float) -> ControlKernel | None:
     """The compiled interval integrator for these models, or None for scipy's path."""
     if compiled is not None and not isinstance(compiled, bool):
@@ -231,7 +232,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Ma
         if compiled:
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
-    n_gg = gg.mean_motion if gg is not None else 0.0
+    n_gg = gg.mean_motion if isinstance(gg, GravityGradient) else 0.0
     return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, n_gg, rtol, atol)
 
 
@@ -243,7 +244,7 @@ def simulate_controlled(
     controller: Controller,
     attitude0: Rotation | ArrayLike | None = None,
     field: MagneticField | None = None,
-    gravity_gradient: GravityGradient | None = None,
+    gravity_gradient: GravityGradient | OrbitGravityGradient | None = None,
     magnetorquers: Magnetorquers | None = None,
     wheels: ReactionWheels | None = None,
     wheel_speed0: ArrayLike | None = None,
@@ -268,8 +269,9 @@ def simulate_controlled(
         Principal frame to world at t = 0 (default identity).
     field : MagneticField, optional
         The field for the magnetorquers and the magnetometer (world frame).
-    gravity_gradient : GravityGradient, optional
-        The gravity-gradient torque of the same orbit (bound to ``moments`` here).
+    gravity_gradient : GravityGradient or OrbitGravityGradient, optional
+        The gravity-gradient torque of the same orbit (bound to ``moments`` here): a circular
+        orbit's, or one along a Keplerian or TLE orbit (``orbit.gravity_gradient()``).
     magnetorquers, wheels : optional
         The actuators.
     wheel_speed0 : array_like, shape (k,), optional
