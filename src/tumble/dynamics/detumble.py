@@ -1,18 +1,30 @@
 """B-dot detumbling of many bodies at once: the closed loop of :func:`simulate_controlled`,
 vectorised over N bodies with numpy and integrated by fixed-step RK4 between control steps.
 
-The model is the magnetorquer case of :mod:`~tumble.dynamics.controlled` with ideal sensors and
-the gyro form of the B-dot law (:class:`~tumble.dynamics.controllers.BDot`, ``derivative="gyro"``),
-no wheels and no gravity gradient: for each body ``i`` (principal moments ``I_i``)
+The model is the magnetorquer case of :mod:`~tumble.dynamics.controlled` with the gyro form of
+the B-dot law (:class:`~tumble.dynamics.controllers.BDot`, ``derivative="gyro"``) and no wheels:
+for each body ``i`` (principal moments ``I_i``)
 
-``I_i omega' = m_i x B_i - omega x I_i omega``,  ``q' = q (x) (omega, 0) / 2``,
+``I_i omega' = m_i x B_i + tau_gg,i - omega x I_i omega``,  ``q' = q (x) (omega, 0) / 2``,
 
 ``B_i`` the tilted dipole (:class:`~tumble.dynamics.models.magnetic.DipoleField`) along one
 shared circular orbit, seen from an Earth whose sidereal angle at t = 0 is ``gmst0_i`` (the
-*field epoch*: where the dipole points when the run starts), turned into the body frame. At
-every control step ``t_k = k period`` the dipole ``m_i = -k dB/dt`` with ``dB/dt = B x omega``
-is computed from the exact state, clipped rod by rod, and held. Between steps, ``substeps``
-classical RK4 steps of ``h = period / substeps`` (the field is evaluated at every stage).
+*field epoch*: where the dipole points when the run starts), turned into the body frame;
+``tau_gg`` the gravity-gradient torque ``3 n^2 r_b x (I r_b)`` of the same orbit
+(:class:`~tumble.dynamics.models.gravity.GravityGradient`, optional). At every control step
+``t_k = k period`` the sensors are read as :meth:`~tumble.dynamics.models.sensors.Sensors.sample`
+reads them (gyro ``omega + bias + noise``, magnetometer ``B + bias + noise``, the noise white and
+Gaussian, drawn anew each step from the body's own seed), the dipole ``m_i = -k dB/dt`` with
+``dB/dt = B x omega`` of the readings is computed, clipped rod by rod, and held. Between steps,
+``substeps`` classical RK4 steps of ``h = period / substeps`` (the field and the orbit's radius
+direction are evaluated at every stage).
+
+**The noise is the single-body loop's.** Body ``i`` with sensors ``S_i`` draws from
+``numpy.random.default_rng(S_i.seed)`` in the order ``Sensors.sample`` does (three gyro numbers,
+three magnetometer numbers, and three more that a star tracker would use, at each step), so
+body ``i`` of the batch sees the readings that ``simulate_controlled(..., sensors=S_i)`` sees,
+whatever the other bodies, the batch's size or the path (tested). The noise is drawn a segment of
+steps at a time (a few tens of MB), and the kernel runs segment by segment.
 
 **Two paths.** By default each body runs through a compiled kernel
 (:func:`~tumble.dynamics.methods.compiled_detumble.detumble_run`: the same arithmetic, body by
@@ -21,12 +33,13 @@ the bodies, which is the reference (the two agree to round-off, tests/test_contr
 In numpy one RK4 stage is some fifty operations on arrays of N, and the batch is bound by memory
 traffic; compiled, a body's state stays in registers. **Accuracy.** RK4's error is ``O(h^4)``; with the default
 four substeps a step and rates up to ~0.5 rad/s it agrees with :func:`simulate_controlled`
-(DOP853, rtol 1e-10) to ~1e-9 rad/s (tested).
+(DOP853, rtol 1e-10) to ~1e-9 rad/s, gravity gradient and sensor noise included (tested).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +48,9 @@ from ..typing import ArrayLike, FloatArray
 from ..validation import check_positive
 from .controllers import bdot_dipole
 from .models.actuators import Magnetorquers
+from .models.gravity import GravityGradient, gradient_torque
 from .models.magnetic import OMEGA_EARTH, DipoleField
+from .models.sensors import Sensors
 
 __all__ = ["DetumbleBatch", "detumble_batch"]
 
@@ -112,23 +127,107 @@ def _to_body(q: FloatArray, b: Vec) -> Vec:
             2 * (x * z + y * w) * bx + 2 * (y * z - x * w) * by + (1 - 2 * (x * x + y * y)) * bz)
 
 
-def _rhs(b_world: Vec, I: FloatArray, m: FloatArray, q: FloatArray, w: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """``(q', omega')`` (4, N) and (3, N) of ``I omega' = m x B - omega x I omega``."""
+def _rhs(b_world: Vec, I: FloatArray, m: FloatArray, q: FloatArray, w: FloatArray,
+         gg: tuple[float, float, float] | None) -> tuple[FloatArray, FloatArray]:
+    """``(q', omega')`` (4, N) and (3, N) of ``I omega' = m x B + tau_gg - omega x I omega``;
+    ``gg = (n, cos n t, sin n t)`` for the gravity gradient of the circular orbit (or None)."""
     bx, by, bz = _to_body(q, b_world)
+    g: FloatArray | float = 0.0
+    if gg is not None:
+        n, c_t, s_t = gg
+        r_b = np.stack(_to_body(q, (np.full_like(bx, c_t), np.full_like(bx, s_t), np.zeros_like(bx))), axis=-1)
+        g = gradient_torque(r_b, I.T, n * n).T
+    g = np.broadcast_to(g, (3, len(bx)))
     w0, w1, w2 = w
     h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2
-    dw = np.array([(m[1] * bz - m[2] * by - (w1 * h2 - w2 * h1)) / I[0],
-                   (m[2] * bx - m[0] * bz - (w2 * h0 - w0 * h2)) / I[1],
-                   (m[0] * by - m[1] * bx - (w0 * h1 - w1 * h0)) / I[2]])
+    dw = np.array([(m[1] * bz - m[2] * by + g[0] - (w1 * h2 - w2 * h1)) / I[0],
+                   (m[2] * bx - m[0] * bz + g[1] - (w2 * h0 - w0 * h2)) / I[1],
+                   (m[0] * by - m[1] * bx + g[2] - (w0 * h1 - w1 * h0)) / I[2]])
     x, y, z, c = q
     dq = 0.5 * np.array([c * w0 + y * w2 - z * w1, c * w1 + z * w0 - x * w2, c * w2 + x * w1 - y * w0,
                          -(x * w0 + y * w1 + z * w2)])
     return dq, dw
 
 
+#: Sensor-noise numbers held at once (8 bytes each): the noise is drawn and the kernel run a
+#: segment of steps at a time, so that a long run of many noisy bodies needs ~32 MB for it.
+NOISE_VALUES = 1 << 22
+
+
+@dataclass(frozen=True, eq=False)
+class _SensorErrors:
+    """Each body's sensor biases (N, 6: gyro rad/s, magnetometer T), noise sigmas (N, 2), seeds
+    (N,) and numbers drawn a step (6, or 9 with a star tracker), from :class:`Sensors`."""
+
+    bias: FloatArray
+    sigma: FloatArray
+    seeds: list[int]
+    draws: list[int]
+
+    @property
+    def noisy(self) -> bool:
+        return bool(np.any(self.sigma > 0.0))
+
+    def segments(self, steps: int) -> Iterator[tuple[int, int, FloatArray | None]]:
+        """``(i0, i1, noise)``: the steps ``i0 <= i < i1`` and their noise (N, i1 - i0, 6), or None
+        without any; each body's numbers drawn from its own generator in ``Sensors.sample``'s order."""
+        n = len(self.seeds)
+        if not self.noisy:
+            yield 0, steps, None
+            return
+        rngs = [np.random.default_rng(seed) if np.any(self.sigma[i] > 0.0) else None
+                for i, seed in enumerate(self.seeds)]
+        size = max(1, NOISE_VALUES // (6 * n))
+        for i0 in range(0, steps, size):
+            i1 = min(i0 + size, steps)
+            noise = np.zeros((n, i1 - i0, 6))
+            for i, rng in enumerate(rngs):
+                if rng is not None:
+                    z = rng.standard_normal((i1 - i0, self.draws[i]))
+                    noise[i, :, :3] = self.sigma[i, 0] * z[:, :3]
+                    noise[i, :, 3:] = self.sigma[i, 1] * z[:, 3:6]
+            yield i0, i1, noise
+
+
+def _sensor_errors(sensors: Sensors | Sequence[Sensors] | None, n: int) -> _SensorErrors:
+    """The sensors of each of ``n`` bodies: one for all (body ``i`` with ``seed + i``) or one each."""
+    if sensors is None:
+        return _SensorErrors(np.zeros((n, 6)), np.zeros((n, 2)), [0] * n, [6] * n)
+    if isinstance(sensors, Sensors):
+        each = [sensors] * n
+        seeds = [int(sensors.seed) + i for i in range(n)]
+    else:
+        each = list(sensors)
+        if len(each) != n or not all(isinstance(s, Sensors) for s in each):
+            raise ValueError(f"sensors must be one Sensors or a sequence of {n} (one per body); got {len(each)} "
+                             "items" + ("" if all(isinstance(s, Sensors) for s in each) else " that are not all Sensors"))
+        seeds = [int(s.seed) for s in each]
+    bias = np.array([[*s.gyro_bias, *s.magnetometer_bias] for s in each], float).reshape(n, 6)
+    sigma = np.array([[s.gyro_noise, s.magnetometer_noise] for s in each], float).reshape(n, 2)
+    draws = [9 if s.attitude == "star_tracker" else 6 for s in each]
+    return _SensorErrors(bias, sigma, seeds, draws)
+
+
+def _gravity_gradient(gravity_gradient: GravityGradient | None, field: DipoleField) -> float:
+    """The mean motion of the gravity gradient's orbit, rad/s (0: none), checked to be the field's orbit."""
+    if gravity_gradient is None:
+        return 0.0
+    if type(gravity_gradient) is not GravityGradient:
+        raise ValueError(f"gravity_gradient = {gravity_gradient!r} must be a GravityGradient (the circular orbit's, "
+                         "orbit.gravity_gradient()) or None")
+    if gravity_gradient.moments is not None:
+        raise ValueError("gravity_gradient holds moments; leave them out: each body's own moments are used")
+    n, n_field = gravity_gradient.mean_motion, field.orbit.mean_motion
+    if abs(n - n_field) > 1e-9 * n_field:
+        raise ValueError(f"gravity_gradient has mean motion {n!r} rad/s, the field's orbit {n_field!r} rad/s: the "
+                         "batch has one circular orbit; pass field.orbit.gravity_gradient()")
+    return float(n)
+
+
 def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, *, field: DipoleField,
                    gmst0: ArrayLike, gain: ArrayLike, magnetorquers: Magnetorquers, period: float, t_end: float,
-                   form: str = "normalized", substeps: int = 4, compiled: bool = True) -> DetumbleBatch:
+                   form: str = "normalized", substeps: int = 4, gravity_gradient: GravityGradient | None = None,
+                   sensors: Sensors | Sequence[Sensors] | None = None, compiled: bool = True) -> DetumbleBatch:
     """B-dot detumbling of N bodies at once (module docstring).
 
     Parameters
@@ -155,6 +254,13 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
         The B-dot law (:class:`~tumble.dynamics.controllers.BDot`).
     substeps : int
         RK4 steps per control period (>= 1).
+    gravity_gradient : GravityGradient, optional
+        The gravity-gradient torque of the field's circular orbit (``field.orbit.gravity_gradient()``;
+        as in :func:`simulate_controlled`, without moments: each body's own act); default none.
+    sensors : Sensors or sequence of N Sensors, optional
+        Gyro and magnetometer noise (rad/s, T, 1 sigma) and biases (rad/s, T), as in
+        :func:`simulate_controlled`: one for every body (body ``i`` then draws its noise from
+        seed ``sensors.seed + i``) or one per body (its own seed and biases). Default: ideal sensors.
     compiled : bool
         The compiled kernel (True) or the numpy reference path (False); module docstring.
 
@@ -165,12 +271,22 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     Examples
     --------
     >>> from tumble.dynamics.models.orbit import CircularOrbit
-    >>> field = DipoleField(CircularOrbit(altitude=500e3, inclination=1.7))
+    >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
     >>> out = detumble_batch([[0.0067, 0.0419, 0.0419]] * 2, [[0.2, -0.2, 0.2], [0.1, 0.1, -0.2]],
-    ...                      [[0.0, 0.0, 0.0, 1.0]] * 2, field=field, gmst0=[0.0, 1.0], gain=5e-5,
+    ...                      [[0.0, 0.0, 0.0, 1.0]] * 2, field=DipoleField(orbit), gmst0=[0.0, 1.0], gain=5e-5,
     ...                      magnetorquers=Magnetorquers(0.2), period=1.0, t_end=60.0)
     >>> out.rate.shape, bool(np.all(out.rate[:, -1] < out.rate[:, 0]))
     ((2, 61), True)
+
+    With the gravity gradient and noisy sensors (1e-4 rad/s and 100 nT, a 2e-4 rad/s gyro bias):
+
+    >>> noisy = detumble_batch([[0.0067, 0.0419, 0.0419]] * 2, [[0.2, -0.2, 0.2], [0.1, 0.1, -0.2]],
+    ...                        [[0.0, 0.0, 0.0, 1.0]] * 2, field=DipoleField(orbit), gmst0=[0.0, 1.0], gain=5e-5,
+    ...                        magnetorquers=Magnetorquers(0.2), period=1.0, t_end=60.0,
+    ...                        gravity_gradient=orbit.gravity_gradient(),
+    ...                        sensors=Sensors(gyro_noise=1e-4, gyro_bias=(2e-4, 0.0, 0.0), magnetometer_noise=1e-7))
+    >>> bool(0.0 < np.max(np.abs(noisy.rate - out.rate)) < 1e-3)
+    True
     """
     I = np.atleast_2d(np.asarray(moments, float))
     n = len(I)
@@ -196,45 +312,59 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
         raise ValueError(f"substeps = {substeps!r} must be a whole number >= 1")
     D = check_positive("period", period, "s")
     steps = max(1, math.ceil(check_positive("t_end", t_end, "s") / D - 1e-9))
+    n_gg = _gravity_gradient(gravity_gradient, field)
+    errors = _sensor_errors(sensors, n)
+    rates = np.empty((n, steps + 1))
     if compiled:
         from .methods.compiled_control import field_params
         from .methods.compiled_detumble import detumble_run
 
-        rates, w_end, q_end = detumble_run(
-            I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.axes,
-            limit=np.asarray(magnetorquers.max_dipole, float), fp=field_params(field)[1], period=float(D),
-            steps=steps, substeps=int(substeps))
+        fp = field_params(field)[1]
+        for i0, i1, noise in errors.segments(steps):
+            part, w, q = detumble_run(
+                I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.axes,
+                limit=np.asarray(magnetorquers.max_dipole, float), fp=fp, period=float(D), steps=i1 - i0,
+                substeps=int(substeps), n_gg=n_gg, bias=errors.bias, noise=noise, step0=i0)
+            rates[:, i0:i1 + 1] = part
     else:
-        rates, w_end, q_end = _detumble_numpy(I, q, w, field, theta0, k, magnetorquers, float(D), steps,
-                                              int(substeps), form)
-    return DetumbleBatch(np.arange(steps + 1, dtype=float) * float(D), rates, w_end, q_end)
+        w, q = _detumble_numpy(I, q, w, field, theta0, k, magnetorquers, float(D), steps, int(substeps), form, n_gg,
+                               errors, rates)
+    return DetumbleBatch(np.arange(steps + 1, dtype=float) * float(D), rates, w, q)
 
 
 def _detumble_numpy(I: FloatArray, q: FloatArray, w: FloatArray, field: DipoleField, theta0: FloatArray,
                     k: FloatArray, magnetorquers: Magnetorquers, D: float, steps: int, substeps: int,
-                    form: str) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The numpy path of :func:`detumble_batch`, vectorised over the bodies: rates (N, steps + 1),
-    final omega (N, 3) and quaternions (N, 4)."""
-    n = len(I)
+                    form: str, n_gg: float, errors: _SensorErrors, rates: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The numpy path of :func:`detumble_batch`, vectorised over the bodies: rates (N, steps + 1)
+    into ``rates``; returns the final omega (N, 3) and quaternions (N, 4)."""
     h = D / substeps
-    rates = np.empty((n, steps + 1))
     I, q, w = I.T.copy(), q.T.copy(), w.T.copy()  # by component: (3, N), (4, N), (3, N)
-    for i in range(steps + 1):
-        t = i * D
-        rates[:, i] = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
-        if i == steps:
-            break
-        b = np.array(_to_body(q, _field_world(field, t, theta0))).T
-        m = magnetorquers.saturate(bdot_dipole(np.cross(b, w.T), b, k, form)).T.copy()
-        b_end = _field_world(field, t, theta0)
-        for j in range(substeps):
-            s = t + j * h
-            b_start, b_mid, b_end = b_end, _field_world(field, s + h / 2, theta0), _field_world(field, s + h, theta0)
-            k1q, k1w = _rhs(b_start, I, m, q, w)
-            k2q, k2w = _rhs(b_mid, I, m, q + h / 2 * k1q, w + h / 2 * k1w)
-            k3q, k3w = _rhs(b_mid, I, m, q + h / 2 * k2q, w + h / 2 * k2w)
-            k4q, k4w = _rhs(b_end, I, m, q + h * k3q, w + h * k3w)
-            q = q + h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q)
-            w = w + h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w)
-            q /= np.sqrt(np.sum(q * q, axis=0))
-    return rates, w.T.copy(), q.T.copy()
+    bias = errors.bias.T
+
+    def gg(t: float) -> tuple[float, float, float] | None:
+        return (n_gg, math.cos(n_gg * t), math.sin(n_gg * t)) if n_gg > 0.0 else None
+
+    for i0, i1, noise in errors.segments(steps):
+        for i in range(i0, i1 + 1):
+            t = i * D
+            rates[:, i] = np.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
+            if i == i1:
+                break
+            b = np.array(_to_body(q, _field_world(field, t, theta0))) + bias[3:]  # the readings (Sensors.sample)
+            w_read = w + bias[:3]
+            if noise is not None:
+                w_read, b = w_read + noise[:, i - i0, :3].T, b + noise[:, i - i0, 3:].T
+            m = magnetorquers.saturate(bdot_dipole(np.cross(b.T, w_read.T), b.T, k, form)).T.copy()
+            b_end, r_end = _field_world(field, t, theta0), gg(t)
+            for j in range(substeps):
+                s = t + j * h
+                b_start, b_mid, b_end = b_end, _field_world(field, s + h / 2, theta0), _field_world(field, s + h, theta0)
+                r_start, r_mid, r_end = r_end, gg(s + h / 2), gg(s + h)  # as the field: the last end is the start
+                k1q, k1w = _rhs(b_start, I, m, q, w, r_start)
+                k2q, k2w = _rhs(b_mid, I, m, q + h / 2 * k1q, w + h / 2 * k1w, r_mid)
+                k3q, k3w = _rhs(b_mid, I, m, q + h / 2 * k2q, w + h / 2 * k2w, r_mid)
+                k4q, k4w = _rhs(b_end, I, m, q + h * k3q, w + h * k3w, r_end)
+                q = q + h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q)
+                w = w + h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w)
+                q /= np.sqrt(np.sum(q * q, axis=0))
+    return w.T.copy(), q.T.copy()

@@ -123,6 +123,16 @@ def _field_body(kind: int, p: FloatArray, q: FloatArray, t: float, out: FloatArr
     out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
 
 
+def _gravity_gradient(n: float, I0: float, I1: float, I2: float, b0: float, b1: float,
+                      b2: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """The gravity-gradient torque ``3 n^2 r_b x (I r_b)`` (N m, body frame) of a circular orbit of
+    mean motion ``n`` (rad/s), ``r_b = (b0, b1, b2)`` the unit radius vector in the principal frame
+    and ``I = diag(I0, I1, I2)`` (kg m^2) (:func:`~tumble.dynamics.models.gravity.gradient_torque`)."""
+    g = 3.0 * n * n
+    c0, c1, c2 = I0 * b0, I1 * b1, I2 * b2
+    return g * (b1 * c2 - b2 * c1), g * (b2 * c0 - b0 * c2), g * (b0 * c1 - b1 * c0)
+
+
 def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
                   coulomb: float) -> float:  # pragma: no cover - compiled
     """One wheel's applied torque (N m), as :meth:`ReactionWheels.applied_torque`: clipped,
@@ -158,14 +168,13 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
         t0 += dipole[1] * b2 - dipole[2] * b1
         t1 += dipole[2] * b0 - dipole[0] * b2
         t2 += dipole[0] * b1 - dipole[1] * b0
-    if n_gg > 0.0:  # 3 n^2 r_b x (I r_b), r_b = R^T (cos n t, sin n t, 0)
+    if n_gg > 0.0:  # r_b = R^T (cos n t, sin n t, 0)
         v0, v1 = math.cos(n_gg * t), math.sin(n_gg * t)
-        b0, b1, b2 = r00 * v0 + r10 * v1, r01 * v0 + r11 * v1, r02 * v0 + r12 * v1
-        g = 3.0 * n_gg * n_gg
-        c0, c1, c2 = I[0] * b0, I[1] * b1, I[2] * b2
-        t0 += g * (b1 * c2 - b2 * c1)
-        t1 += g * (b2 * c0 - b0 * c2)
-        t2 += g * (b0 * c1 - b1 * c0)
+        g0, g1, g2 = _gravity_gradient(n_gg, I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
+                                       r02 * v0 + r12 * v1)
+        t0 += g0
+        t1 += g1
+        t2 += g2
     h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2
     a0, a1, a2 = t0, t1, t2
     for j in range(k):
@@ -298,7 +307,7 @@ def _to_body(x: float, y: float, z: float, w: float, v0: float, v1: float,
             2 * (x * z + y * w) * v0 + 2 * (y * z - x * w) * v1 + (1 - 2 * (x * x + y * y)) * v2)
 
 
-_HELPERS = ("_dipole", "_field_world", "_field_body", "_wheel_torque", "_rhs", "_rms", "_to_body")
+_HELPERS = ("_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms", "_to_body")
 
 
 @functools.cache

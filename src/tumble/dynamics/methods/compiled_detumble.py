@@ -8,12 +8,16 @@ the bodies spread over every core from :data:`~tumble.dynamics.methods.compiled.
 numpy path, step by step (the numpy path is the reference: tests/test_controlled_compiled.py
 checks the two agree to round-off), with the formulas written out once more over floats:
 
-- the gyro B-dot dipole ``-k (B x omega)``, ``k = gain / |B|^2`` normalised
+- the sensors: the gyro reads ``(omega + bias) + noise``, the magnetometer ``(B + bias) + noise``
+  (:meth:`~tumble.dynamics.models.sensors.Sensors.sample`), the noise drawn in numpy and passed in
+  a control step at a time;
+- the gyro B-dot dipole ``-k (B x omega)`` of the readings, ``k = gain / |B|^2`` normalised
   (:func:`~tumble.dynamics.controllers.bdot_dipole`), clipped rod by rod
   (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`), checked against them;
 - ``I omega' = m x B - omega x I omega``, ``q' = q (x) (omega, 0) / 2`` (the numpy path's ``_rhs``);
-- the field: the dipole of :mod:`~tumble.dynamics.methods.compiled_control` (one compiled
-  formula for both kernels), with what all bodies share (the orbit's position in ECI and the
+- the gravity gradient ``3 n^2 r_b x (I r_b)`` of the circular orbit and the field: the
+  functions of :mod:`~tumble.dynamics.methods.compiled_control` (one compiled formula for both
+  kernels), with what all bodies share (the orbit's position in ECI and the
   Earth's turn since t = 0 at each RK4 node) computed once for the batch, and each body's
   sidereal angle ``gmst0 + omega_E t`` by the angle-addition formulas (a round-off apart from
   the numpy path's ``cos(gmst0 + omega_E t)``).
@@ -32,7 +36,7 @@ import numpy as np
 from ...typing import FloatArray
 from ..models.magnetic import OMEGA_EARTH
 from .compiled import PARALLEL_BODIES, _cores
-from .compiled_control import _dipole, _to_body
+from .compiled_control import _dipole, _gravity_gradient, _to_body
 
 __all__ = ["detumble_run"]
 
@@ -54,14 +58,16 @@ def _bdot(b0: float, b1: float, b2: float, w0: float, w1: float, w2: float, gain
     return out0, out1, out2
 
 
-def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> FloatArray:  # pragma: no cover
-    """What every body of a batch shares at each RK4 node: ``r_eci`` (m) and ``cos, sin(omega_E t)``
-    (the Earth always turns in the batch, whatever the field's ``earth_rotation``, as in the numpy path);
-    node ``(i, 0)`` at ``t = i period``, ``(i, 2 j + 1)`` and ``(i, 2 j + 2)`` the middle and end of substep j."""
+def _orbit_table(fp: FloatArray, n_gg: float, period: float, step0: int, steps: int,
+                 substeps: int) -> FloatArray:  # pragma: no cover
+    """What every body of a batch shares at each RK4 node: ``r_eci`` (m), ``cos, sin(omega_E t)``
+    (the Earth always turns in the batch, whatever the field's ``earth_rotation``, as in the numpy path)
+    and the gravity gradient's radius direction ``cos, sin(n_gg t)`` (world frame); node ``(i, 0)`` at
+    ``t = (step0 + i) period``, ``(i, 2 j + 1)`` and ``(i, 2 j + 2)`` the middle and end of substep j."""
     h = period / substeps
-    table = np.empty((steps, 2 * substeps + 1, 5))
+    table = np.empty((steps, 2 * substeps + 1, 7))
     for i in range(steps):
-        t = i * period
+        t = (step0 + i) * period
         for m in range(2 * substeps + 1):
             s = t + ((m - 1) // 2) * h
             tm = t if m == 0 else (s + h / 2 if m % 2 == 1 else s + h)
@@ -72,12 +78,14 @@ def _orbit_table(fp: FloatArray, period: float, steps: int, substeps: int) -> Fl
             table[i, m, 2] = fp[2] * r0 + fp[5] * r1
             table[i, m, 3] = math.cos(OMEGA_EARTH * tm)
             table[i, m, 4] = math.sin(OMEGA_EARTH * tm)
+            table[i, m, 5] = math.cos(n_gg * tm)
+            table[i, m, 6] = math.sin(n_gg * tm)
     return table
 
 
-def _batch_field(fp: Any, node: tuple[float, float, float, float, float], cg: float,
+def _batch_field(fp: Any, node: tuple[float, float, float, float, float, float, float], cg: float,
                  sg: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """The dipole (T, world) at a table node (its five numbers) for a body whose Earth angle at
+    """The dipole (T, world) at a table node (its seven numbers) for a body whose Earth angle at
     t = 0 has cosine ``cg`` and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition
     formulas); ``fp`` the field's parameters (a tuple: the compiler then knows they stay put)."""
     c = cg * node[3] - sg * node[4]
@@ -92,13 +100,17 @@ BLOCK = 32
 
 
 def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
-              normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
-              substeps: int, rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
-    """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each
-    (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by body), in blocks
-    of :data:`BLOCK` bodies; the orbit's share of the field once for all (:func:`_orbit_table`)."""
+              normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, n_gg: float, bias: FloatArray,
+              noise: FloatArray, period: float, step0: int, steps: int, substeps: int, rates: FloatArray,
+              w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
+    """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each, from
+    ``t = step0 period`` (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by
+    body), in blocks of :data:`BLOCK` bodies; the orbit's share of the field once for all
+    (:func:`_orbit_table`). ``bias`` (N, 6): gyro and magnetometer biases; ``noise`` (N, steps, 6)
+    their noise at each step, or (N, 0, 6) for none; ``n_gg`` 0 for no gravity gradient."""
     N = I.shape[0]
-    table = _orbit_table(fp, period, steps, substeps)
+    table = _orbit_table(fp, n_gg, period, step0, steps, substeps)
+    noisy = noise.shape[1] > 0
     fpt = (fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10], fp[11])
     h = period / substeps
     a, e = h / 2, h / 6
@@ -119,17 +131,25 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
                 rates[lo + r, i] = math.sqrt(S[4, r] ** 2 + S[5, r] ** 2 + S[6, r] ** 2)
             if i == steps:
                 break
-            node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4])
+            node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4], table[i, 0, 5],
+                    table[i, 0, 6])
             for r in range(nb):
                 e0, e1, e2 = _batch_field(fpt, node, cg[r], sg[r])
                 B2[0, r], B2[1, r], B2[2, r] = e0, e1, e2
                 bx, by, bz = _to_body(S[0, r], S[1, r], S[2, r], S[3, r], e0, e1, e2)
-                M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, S[4, r], S[5, r], S[6, r], gain[lo + r], normalized,
-                                                  axes, limit)
+                b = bias[lo + r]
+                gx, gy, gz = S[4, r] + b[0], S[5, r] + b[1], S[6, r] + b[2]  # the readings (Sensors.sample)
+                bx, by, bz = bx + b[3], by + b[4], bz + b[5]
+                if noisy:
+                    z = noise[lo + r, i]
+                    gx, gy, gz, bx, by, bz = gx + z[0], gy + z[1], gz + z[2], bx + z[3], by + z[4], bz + z[5]
+                M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, gx, gy, gz, gain[lo + r], normalized, axes, limit)
             for j in range(substeps):
                 m1, m2 = 2 * j + 1, 2 * j + 2
-                mid = (table[i, m1, 0], table[i, m1, 1], table[i, m1, 2], table[i, m1, 3], table[i, m1, 4])
-                end = (table[i, m2, 0], table[i, m2, 1], table[i, m2, 2], table[i, m2, 3], table[i, m2, 4])
+                mid = (table[i, m1, 0], table[i, m1, 1], table[i, m1, 2], table[i, m1, 3], table[i, m1, 4],
+                       table[i, m1, 5], table[i, m1, 6])
+                end = (table[i, m2, 0], table[i, m2, 1], table[i, m2, 2], table[i, m2, 3], table[i, m2, 4],
+                       table[i, m2, 5], table[i, m2, 6])
                 for r in range(nb):
                     B0[0, r], B0[1, r], B0[2, r] = B2[0, r], B2[1, r], B2[2, r]
                     B1[0, r], B1[1, r], B1[2, r] = _batch_field(fpt, mid, cg[r], sg[r])
@@ -138,9 +158,11 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
                     Bs = B0 if stage == 0 else (B2 if stage == 3 else B1)
                     f = 0.0 if stage == 0 else (h if stage == 3 else a)
                     prev = max(stage - 1, 0)
+                    node_s = 2 * j + (stage + 1) // 2  # the stage's table node: start, middle, middle, end
+                    rc, rs = table[i, node_s, 5], table[i, node_s, 6]
                     for r in range(nb):
                         d = _detumble_rhs(Bs[0, r], Bs[1, r], Bs[2, r], I[lo + r, 0], I[lo + r, 1], I[lo + r, 2],
-                                          M[0, r], M[1, r], M[2, r],
+                                          M[0, r], M[1, r], M[2, r], n_gg, rc, rs,
                                           S[0, r] + f * K[prev, 0, r], S[1, r] + f * K[prev, 1, r],
                                           S[2, r] + f * K[prev, 2, r], S[3, r] + f * K[prev, 3, r],
                                           S[4, r] + f * K[prev, 4, r], S[5, r] + f * K[prev, 5, r],
@@ -161,17 +183,22 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
 
 
 def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: float, m0: float, m1: float, m2: float,
-                  x: float, y: float, z: float, c: float, w0: float, w1: float,
+                  n_gg: float, rc: float, rs: float, x: float, y: float, z: float, c: float, w0: float, w1: float,
                   w2: float) -> tuple[float, float, float, float, float, float, float]:  # pragma: no cover
-    """``(q', omega')`` of ``I omega' = m x B - omega x I omega`` for one body, B in the world frame
-    turned to the body by the (unnormalised) quaternion, as the numpy path's ``_rhs``."""
+    """``(q', omega')`` of ``I omega' = m x B + tau_gg - omega x I omega`` for one body, B and the
+    radius direction ``(rc, rs, 0)`` in the world frame turned to the body by the (unnormalised)
+    quaternion, as the numpy path's ``_rhs``; ``n_gg`` 0: no gravity gradient."""
     bx, by, bz = _to_body(x, y, z, c, b0, b1, b2)
+    g0, g1, g2 = 0.0, 0.0, 0.0
+    if n_gg > 0.0:
+        r0, r1, r2 = _to_body(x, y, z, c, rc, rs, 0.0)
+        g0, g1, g2 = _gravity_gradient(n_gg, I0, I1, I2, r0, r1, r2)
     h0, h1, h2 = I0 * w0, I1 * w1, I2 * w2
     return (0.5 * (c * w0 + y * w2 - z * w1), 0.5 * (c * w1 + z * w0 - x * w2), 0.5 * (c * w2 + x * w1 - y * w0),
             0.5 * -(x * w0 + y * w1 + z * w2),
-            (m1 * bz - m2 * by - (w1 * h2 - w2 * h1)) / I0,
-            (m2 * bx - m0 * bz - (w2 * h0 - w0 * h2)) / I1,
-            (m0 * by - m1 * bx - (w0 * h1 - w1 * h0)) / I2)
+            (m1 * bz - m2 * by + g0 - (w1 * h2 - w2 * h1)) / I0,
+            (m2 * bx - m0 * bz + g1 - (w2 * h0 - w0 * h2)) / I1,
+            (m0 * by - m1 * bx + g2 - (w0 * h1 - w1 * h0)) / I2)
 
 
 prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
@@ -189,7 +216,7 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
     from . import compiled_control
 
     if not _compiled.__dict__.get("helpers"):
-        for helper in ("_dipole", "_to_body"):
+        for helper in ("_dipole", "_gravity_gradient", "_to_body"):
             globals()[helper] = compiled_control._compiled(helper)
         for helper in _HELPERS:
             globals()[helper] = njit(cache=True, error_model="numpy")(globals()[helper])
@@ -206,7 +233,8 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
 
 def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
                  normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
-                 substeps: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+                 substeps: int, n_gg: float = 0.0, bias: FloatArray | None = None, noise: FloatArray | None = None,
+                 step0: int = 0) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The compiled B-dot batch of :func:`tumble.dynamics.detumble.detumble_batch` (checked inputs).
 
     Parameters
@@ -227,6 +255,14 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
         Control period, s.
     steps, substeps : int
         Control periods, RK4 steps per period.
+    n_gg : float
+        Mean motion of the gravity gradient's circular orbit, rad/s (0: no gravity gradient).
+    bias : ndarray, shape (N, 6), optional
+        Each body's gyro bias (rad/s) and magnetometer bias (T); default none.
+    noise : ndarray, shape (N, steps, 6), optional
+        The gyro (rad/s) and magnetometer (T) noise added to the readings at each step; default none.
+    step0 : int
+        The first step's index: the run starts at ``t = step0 period`` (a run in segments).
 
     Returns
     -------
@@ -251,7 +287,10 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
     kernel = _compiled("_detumble", parallel=N >= PARALLEL_BODIES and _cores() > 1)
     c = np.ascontiguousarray
+    bias = np.zeros((N, 6)) if bias is None else bias
+    noise = np.zeros((N, 0, 6)) if noise is None else noise
     kernel(c(I, dtype=float), c(q0, dtype=float), c(w0, dtype=float), c(gmst0, dtype=float), c(gain, dtype=float),
-           bool(normalized), c(axes, dtype=float), c(limit, dtype=float), c(fp, dtype=float), float(period), int(steps),
-           int(substeps), rates, w_out, q_out)
+           bool(normalized), c(axes, dtype=float), c(limit, dtype=float), c(fp, dtype=float), float(n_gg),
+           c(bias, dtype=float), c(noise, dtype=float), float(period), int(step0), int(steps), int(substeps), rates,
+           w_out, q_out)
     return rates, w_out, q_out
