@@ -117,3 +117,104 @@ def test_bad_models_name_the_field():
         detumble_batch(*args, gravity_gradient=True, **kw)
     with pytest.raises(ValueError, match="sequence of 1"):
         detumble_batch(*args, sensors=[Sensors(), Sensors()], **kw)
+
+
+# --- the Monte Carlo --------------------------------------------------------------------------------
+
+MC = {"field": FIELD, "gain": GAIN, "magnetorquers": Magnetorquers(0.2), "period": 2.0, "t_end": 120.0,
+      "threshold": 0.05, "gravity_gradient": ORBIT.gravity_gradient(),
+      "sensors": Sensors(gyro_noise=5e-4, magnetometer_noise=2e-7, magnetometer_bias=(0.0, 1e-7, 0.0)),
+      "history": 9}
+
+
+def _mc_cases(n=60):
+    from tumble.ensemble.detumble import detumble_cases
+
+    return detumble_cases(n, moments=MOMENTS, rate_min=0.02, rate_max=0.15, gyro_bias_sigma=1e-3, seed=13)
+
+
+def test_the_monte_carlo_does_not_depend_on_the_chunking_or_the_backend():
+    """Chunks of 7 and of 50 cases, and a Dask cluster (threads of this process): the same times
+    and histories, bit for bit, noise and per-case biases included."""
+    from tumble.ensemble.detumble import detumble_monte_carlo
+
+    cases = _mc_cases()
+    a = detumble_monte_carlo(cases, chunk=7, **MC)
+    b = detumble_monte_carlo(cases, chunk=50, **MC)
+    np.testing.assert_array_equal(a.times, b.times)
+    np.testing.assert_array_equal(a.history, b.history)
+    assert 0.0 < a.detumbled < 1.0  # a distribution, not all alike
+    distributed = pytest.importorskip("dask.distributed")
+    from tumble.ensemble.backends import DaskBackend
+
+    with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
+                                  protocol="tcp", host="127.0.0.1") as cluster:
+        backend = DaskBackend(scheduler=cluster.scheduler_address)
+        try:
+            c = detumble_monte_carlo(cases, chunk=7, backend=backend, **MC)
+        finally:
+            backend.close()
+    np.testing.assert_array_equal(a.times, c.times)
+    np.testing.assert_array_equal(a.history, c.history)
+
+
+def test_a_monte_carlo_case_is_simulate_controlled_with_its_sensors():
+    """Case 2 alone in the one-body loop with ``mc.case_sensors(2)`` (its bias, its seed) and the
+    gravity gradient: the same rate history to RK4's error (8 substeps)."""
+    from tumble.ensemble.detumble import detumble_monte_carlo
+
+    cases = _mc_cases(6)
+    kw = dict(MC, history=61, period=1.0, t_end=60.0)
+    mc = detumble_monte_carlo(cases, substeps=8, **kw)
+    i = 2
+    I = cases.moments[i]
+    assert np.all(np.diff(I) > 0)  # simulate_controlled wants I1 <= I2 <= I3: this case has it
+    run = simulate_controlled(I, cases.omega0[i], t_end=60.0, attitude0=cases.quat0[i],
+                              controller=BDot(GAIN, period=1.0, form="normalized"),
+                              field=DipoleField(ORBIT, gmst0=float(cases.gmst0[i])), magnetorquers=Magnetorquers(0.2),
+                              gravity_gradient=ORBIT.gravity_gradient(), sensors=mc.case_sensors(i))
+    assert np.array_equal(mc.history_t, run.t)
+    assert np.max(np.abs(mc.history[i] - run.rate)) < 1e-9
+    assert np.any(mc.case_sensors(i).gyro_bias != mc.case_sensors(i - 1).gyro_bias)
+
+
+def test_the_summary_is_the_sorted_times():
+    """Percentiles, maximum, fractions and the worst cases against a plain sort of the times."""
+    from tumble.ensemble.detumble import detumble_monte_carlo
+
+    cases = _mc_cases()
+    mc = detumble_monte_carlo(cases, chunk=25, **MC)
+    s = mc.summary(worst=4)
+    finite = np.sort(mc.times[np.isfinite(mc.times)])
+    key = np.sort(np.where(np.isfinite(mc.times), mc.times, np.inf))
+    n = len(mc.times)
+    assert s["cases"] == n and s["not_detumbled"] == n - len(finite) > 0
+    assert s["detumbled"] == len(finite) / n and s["max_s"] == finite[-1]
+    for name, p in (("median_s", 50), ("p95_s", 95), ("p99_s", 99)):
+        value = key[math.ceil(p / 100 * (n - 1))]  # numpy's "higher" method
+        assert s[name] == value or (math.isnan(s[name]) and math.isinf(value))
+    never = np.flatnonzero(~np.isfinite(mc.times))
+    finals = mc.history[never, -1]
+    expected = list(never[np.argsort(-finals)])[:4]
+    assert [w["index"] for w in s["worst"]] == expected
+    assert s["worst"][0]["final_rate"] == finals.max() > MC["threshold"]
+    assert s["worst"][0]["moments"] == cases.moments[expected[0]].tolist()
+    assert s["gravity_gradient"] and s["gyro_noise_rad_s"] == 5e-4
+    bands = mc.rate_percentiles([5, 50, 95])
+    assert np.all(bands[0] <= bands[1]) and np.all(bands[1] <= bands[2])
+    np.testing.assert_array_equal(bands[1], np.percentile(mc.history, 50, axis=0))
+
+
+def test_the_gyro_bias_disperses_the_cases():
+    """The cases' gyro biases are Gaussian with the given sigma (180 numbers: the sample standard
+    deviation within 15 %), and without them (sigma 0) the same cases are drawn as before."""
+    from tumble.ensemble.detumble import detumble_cases
+
+    cases = _mc_cases()
+    assert np.std(cases.gyro_bias) == pytest.approx(1e-3, rel=0.15)
+    plain = detumble_cases(60, moments=MOMENTS, rate_min=0.02, rate_max=0.15, seed=13)
+    np.testing.assert_array_equal(plain.omega0, cases.omega0)
+    np.testing.assert_array_equal(plain.quat0, cases.quat0)
+    assert not np.any(plain.gyro_bias)
+    with pytest.raises(ValueError, match="gyro_bias_sigma"):
+        detumble_cases(3, moments=MOMENTS, rate_min=0.1, rate_max=0.2, gyro_bias_sigma=-1.0)
