@@ -10,6 +10,7 @@ from .animate import animate_body_frame, animate_ground_frame, animation_path, f
 from .fit import figure_fit, figure_recording
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
+from .montecarlo import figure_detumble_mc
 from .notebook import show
 from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
 from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
@@ -31,6 +32,7 @@ __all__ = [
     "body_size",
     "envelope",
     "ffmpeg_path",
+    "figure_detumble_mc",
     "figure_drift",
     "figure_energy",
     "figure_fit",
