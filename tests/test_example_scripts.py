@@ -149,6 +149,14 @@ def test_plot_detumble(run):
     scope, figures = run("plot_detumble.py")
     assert scope["detumbled"] == {1.0: 1.0, 2.0: 1.0}  # every case below 0.5 deg/s
     assert scope["medians"][2.0] < scope["medians"][1.0]  # more gain, faster
+    mc, summary = scope["runs"][1.0], scope["summary"]
+    assert mc.gravity_gradient and mc.sensors.gyro_noise == 1e-4 and mc.cases.gyro_bias.std() > 5e-5
+    finite = np.sort(mc.times)
+    assert summary["median_s"] <= summary["p95_s"] <= summary["p99_s"] <= summary["max_s"] == finite[-1]
+    assert summary["worst"][0]["detumble_time"] == finite[-1]
+    # the figure's distribution: a step of 1/200 at each detumble time (minutes)
+    cdf = scope["fig"].axes[1].lines[0]
+    assert np.array_equal(cdf.get_xdata()[1:-1], finite / 60.0)
     assert figures == 1
 
 
