@@ -170,23 +170,43 @@ class _SensorErrors:
 
     def segments(self, steps: int) -> Iterator[tuple[int, int, FloatArray | None]]:
         """``(i0, i1, noise)``: the steps ``i0 <= i < i1`` and their noise (N, i1 - i0, 6), or None
-        without any; each body's numbers drawn from its own generator in ``Sensors.sample``'s order."""
+        without any; each body's numbers drawn from its own generator in ``Sensors.sample``'s order.
+
+        The bodies' draws are spread over threads (numpy draws without the interpreter's lock),
+        and the next segment is drawn while the caller integrates this one; each generator is
+        used by one thread at a time and draws its segments in order, so the numbers do not
+        depend on the threads."""
         n = len(self.seeds)
         if not self.noisy:
             yield 0, steps, None
             return
-        rngs = [np.random.default_rng(seed) if np.any(self.sigma[i] > 0.0) else None
-                for i, seed in enumerate(self.seeds)]
+        from concurrent.futures import ThreadPoolExecutor
+
+        from .methods.compiled import _cores
+
+        rngs = {i: np.random.default_rng(self.seeds[i]) for i in np.flatnonzero(np.any(self.sigma > 0.0, axis=1))}
+        scale = np.repeat(self.sigma, 3, axis=1)  # (N, 6): the gyro's sigma thrice, the magnetometer's thrice
         size = max(1, NOISE_VALUES // (6 * n))
-        for i0 in range(0, steps, size):
-            i1 = min(i0 + size, steps)
-            noise = np.zeros((n, i1 - i0, 6))
-            for i, rng in enumerate(rngs):
-                if rng is not None:
-                    z = rng.standard_normal((i1 - i0, self.draws[i]))
-                    noise[i, :, :3] = self.sigma[i, 0] * z[:, :3]
-                    noise[i, :, 3:] = self.sigma[i, 1] * z[:, 3:6]
-            yield i0, i1, noise
+        groups = [g for g in np.array_split(np.array(sorted(rngs), dtype=int), min(_cores(), 8)) if len(g)]
+
+        def fill(noise: FloatArray, group: FloatArray) -> None:
+            for i in group:
+                z = rngs[int(i)].standard_normal((noise.shape[1], self.draws[int(i)]))
+                np.multiply(scale[i], z[:, :6], out=noise[i])  # sigma z, as Sensors.sample
+
+        with ThreadPoolExecutor(len(groups)) as pool, ThreadPoolExecutor(1) as producer:
+            def draw(i0: int) -> FloatArray:
+                noise = np.zeros((n, min(i0 + size, steps) - i0, 6))
+                for future in [pool.submit(fill, noise, g) for g in groups]:
+                    future.result()
+                return noise
+
+            ahead = producer.submit(draw, 0)
+            for i0 in range(0, steps, size):
+                noise = ahead.result()
+                if i0 + size < steps:
+                    ahead = producer.submit(draw, i0 + size)
+                yield i0, min(i0 + size, steps), noise
 
 
 def _sensor_errors(sensors: Sensors | Sequence[Sensors] | None, n: int) -> _SensorErrors:

@@ -228,7 +228,8 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
     if parallel:
         function = types.FunctionType(function.__code__, globals(), name + "_parallel")
         function.__qualname__ = name + "_parallel"
-    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel, error_model="numpy")(function))
+    # nogil: the batch draws the next segment's sensor noise in other threads meanwhile
+    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel, nogil=True, error_model="numpy")(function))
 
 
 def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
