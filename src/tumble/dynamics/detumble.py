@@ -184,7 +184,7 @@ class _SensorErrors:
 
         from .methods.compiled import _cores
 
-        rngs = {i: np.random.default_rng(self.seeds[i]) for i in np.flatnonzero(np.any(self.sigma > 0.0, axis=1))}
+        rngs = {int(i): np.random.default_rng(self.seeds[i]) for i in np.flatnonzero(np.any(self.sigma > 0.0, axis=1))}
         scale = np.repeat(self.sigma, 3, axis=1)  # (N, 6): the gyro's sigma thrice, the magnetometer's thrice
         size = max(1, NOISE_VALUES // (6 * n))
         groups = [g for g in np.array_split(np.array(sorted(rngs), dtype=int), min(_cores(), 8)) if len(g)]
