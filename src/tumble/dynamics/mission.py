@@ -90,9 +90,10 @@ class DetumbleThenPoint:
 
     def __post_init__(self) -> None:
         if not isinstance(self.detumble, BDot):
-            raise ValueError(f"detumble = {self.detumble!r} must be a BDot controller")  # noqa: TRY004 - one error type
+            raise ValueError(f"detumble = {type(self.detumble).__name__} object must be a BDot controller")  # noqa: TRY004 - one error type
         if not isinstance(self.point, (MRPFeedback, MomentumDumping)):
-            raise ValueError(f"point = {self.point!r} must be an MRPFeedback or a MomentumDumping controller")  # noqa: TRY004
+            kind = type(self.point).__name__
+            raise ValueError(f"point = {kind} object must be an MRPFeedback or a MomentumDumping controller")  # noqa: TRY004
         self.switch_rate = check_positive("switch_rate", self.switch_rate, "rad/s")
         self.dwell = check_positive("dwell", self.dwell, "s", allow_zero=True)
         a, b = float(self.detumble.period), float(self.point.period)

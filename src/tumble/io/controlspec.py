@@ -171,6 +171,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: CircularOrbit |
             for key, unit in (("switch_rate", "rad/s"), ("dwell", "s")):
                 if key not in control:
                     raise ValueError(f"missing key {key!r} ({unit})")
+            if wheels is None:
+                raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
             if sensors.attitude == "none":
                 raise ValueError('kind = "detumble_point" points with the wheels and needs an attitude sensor; '
                                  'sensors.attitude = "none" gives none')
@@ -184,6 +186,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: CircularOrbit |
                                        "_target": point_t.get("target"), "period": period},
                                       body, wheels, principal_to_design, kind)
             dumping = point_t.get("dumping_gain")
+            if dumping is not None:
+                dumping = check_positive("dumping_gain", dumping, "1/s")
             args = {"period": period, "switch_rate": control["switch_rate"], "dwell": control["dwell"],
                     "detumble": detumble, "point": point, "dumping_gain": dumping}
             where = "control"
