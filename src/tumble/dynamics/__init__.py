@@ -3,6 +3,7 @@
 from .batch import BatchTrajectory, simulate_batch
 from .controlled import ControlledRun, simulate_controlled
 from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
+from .mission import DetumbleThenPoint
 from .euler import (
     angular_momentum,
     energy_momentum_gaps,
@@ -32,6 +33,7 @@ __all__ = [
     "Command",
     "ControlledRun",
     "Controller",
+    "DetumbleThenPoint",
     "DipoleField",
     "MRPFeedback",
     "Magnetorquers",
