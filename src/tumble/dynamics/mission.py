@@ -61,6 +61,8 @@ class DetumbleThenPoint:
 
     Attributes
     ----------
+    period : float
+        The control period, s: the sub-controllers' (they must share it).
     switch_time : float or None
         The time of the step that handed over to pointing, s; None before (and in a run that
         never switches). :meth:`reset` clears it (the run calls it at its start).
@@ -77,14 +79,19 @@ class DetumbleThenPoint:
     ...     return Measurement(t, np.array([rate, 0.0, 0.0]), np.array([0.0, 2e-5, 0.0]), Rotation.identity(), np.zeros(3))
     >>> [mission.mode for t, rate in enumerate([0.1, 0.005, 0.02, 0.005, 0.005, 0.005, 0.1]) if mission(t, reading(t, rate))]
     ['detumble', 'detumble', 'detumble', 'detumble', 'detumble', 'point', 'point']
-    >>> mission.switch_time   # below at t = 3, 4 and 5 s: 2 s of dwell
-    5.0
+    >>> mission.switch_time, mission.period   # below at t = 3, 4 and 5 s: 2 s of dwell
+    (5.0, 1.0)
+    >>> DetumbleThenPoint(BDot(gain=1e4, period=0.5), mission.point, switch_rate=0.01, dwell=10.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: detumble.period = 0.5 s and point.period = 1 s differ; the mission calls both at one period: give them the same
     """
 
     detumble: BDot
     point: MRPFeedback | MomentumDumping
     switch_rate: float
     dwell: float
+    period: float = field(init=False)
     switch_time: float | None = field(default=None, init=False)
     _below_since: float | None = field(default=None, init=False, repr=False)
 
@@ -100,24 +107,7 @@ class DetumbleThenPoint:
         if not math.isclose(a, b, rel_tol=1e-12):
             raise ValueError(f"detumble.period = {a:g} s and point.period = {b:g} s differ; the mission calls both "
                              "at one period: give them the same")
-
-    @property
-    def period(self) -> float:
-        """The control period, s: the sub-controllers' (they share it).
-
-        Examples
-        --------
-        >>> from tumble.dynamics.models.actuators import ReactionWheels
-        >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
-        >>> point = MRPFeedback(K=1e-3, P=6e-3, period=0.5, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
-        >>> DetumbleThenPoint(BDot(gain=1e4, period=0.5), point, switch_rate=0.01, dwell=10.0).period
-        0.5
-        >>> DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=10.0)
-        Traceback (most recent call last):
-        ...
-        ValueError: detumble.period = 1 s and point.period = 0.5 s differ; the mission calls both at one period: give them the same
-        """
-        return float(self.detumble.period)
+        self.period = a
 
     @property
     def mode(self) -> str:

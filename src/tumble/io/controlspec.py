@@ -217,8 +217,6 @@ def build_controller(spec: ControlSpec, body: Body, wheels: ReactionWheels | Non
     if spec.kind == "mrp_pd":
         return MRPFeedback(**spec.args, moments=body.principal_moments, wheels=wheels, target=target)
     a = spec.args
-    point: MRPFeedback | MomentumDumping = MRPFeedback(**a["point"], moments=body.principal_moments, wheels=wheels,
-                                                       target=target)
-    if a.get("dumping_gain") is not None:
-        point = MomentumDumping(point, gain=a["dumping_gain"])
+    mrp = MRPFeedback(**a["point"], moments=body.principal_moments, wheels=wheels, target=target)
+    point = mrp if a.get("dumping_gain") is None else MomentumDumping(mrp, gain=a["dumping_gain"])
     return DetumbleThenPoint(BDot(**a["detumble"]), point, switch_rate=a["switch_rate"], dwell=a["dwell"])

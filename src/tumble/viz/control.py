@@ -14,7 +14,7 @@ file name ``tumble simulate`` writes each under.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -104,7 +104,7 @@ def figure_attitude_error(run: ControlledRun, target: Rotation | None, *, switch
     if ax is None:
         fig, (ax,) = _figure(title, 1)
     else:
-        fig = ax.figure
+        fig = cast("Figure", ax.figure)
     if target is None:
         note_only(ax, "no target: this run does not point", "attitude error")
         return fig
@@ -190,7 +190,7 @@ def figure_dipole(run: ControlledRun, *, switch_time: float | None = None, title
     if ax is None:
         fig, (ax,) = _figure(title, 1)
     else:
-        fig = ax.figure
+        fig = cast("Figure", ax.figure)
     if not np.any(run.dipole):
         note_only(ax, "no magnetorquer dipole in this run", "dipole")
         return fig
