@@ -204,7 +204,7 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
                            fig: Figure | None = None) -> Figure:
     """Where the angular momentum is (kg m^2/s) above, and how well the budget closes below.
 
-    Above: the wheels' ``|h|`` (:func:`wheel_momentum`), the body's ``|I omega|`` and the external
+    Above: the wheels' ``|h|`` (``tumble.viz.control.wheel_momentum``), the body's ``|I omega|`` and the external
     angular impulse ``|int tau_world dt|``. Below (log scale): ``|L_world(t) - L_world(0) -
     impulse(t)|`` (:meth:`~tumble.dynamics.controlled.ControlledRun.budget_error`), zero in exact
     arithmetic; samples where it is exactly zero are left out of the log axis.
@@ -242,7 +242,7 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
 
 def control_figures(run: ControlledRun, *, target: Rotation | None = None, switch_time: float | None = None,
                     title: str | None = None) -> dict[str, Figure]:
-    """Every figure of a control run, by the file name it is written under (:data:`CONTROL_FIGURES`).
+    """Every figure of a control run, by the file name it is written under (``tumble.viz.control.CONTROL_FIGURES``).
 
     Parameters
     ----------
