@@ -3,7 +3,6 @@
 from .batch import BatchTrajectory, simulate_batch
 from .controlled import ControlledRun, simulate_controlled
 from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
-from .mission import DetumbleThenPoint
 from .euler import (
     angular_momentum,
     energy_momentum_gaps,
@@ -12,6 +11,7 @@ from .euler import (
     kinetic_energy,
 )
 from .methods.integrators import METHODS, Method, get_method
+from .mission import DetumbleThenPoint
 from .models.gravity import (
     GravityGradient,
     lvlh_state,
