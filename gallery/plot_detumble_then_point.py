@@ -21,11 +21,11 @@ import math
 import numpy as np
 
 from tumble.dynamics import (
-                            BDot,
-                            DetumbleThenPoint,
-                            MRPFeedback,
-                            bdot_gain,
-                            simulate_controlled,
+    BDot,
+    DetumbleThenPoint,
+    MRPFeedback,
+    bdot_gain,
+    simulate_controlled,
 )
 from tumble.dynamics.controllers import MomentumDumping
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
