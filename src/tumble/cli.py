@@ -152,6 +152,8 @@ def _resolve(args):
 
 #: The files `tumble simulate` writes into its folder.
 SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.png")
+#: The figures `tumble simulate` adds for a control scenario (`tumble.viz.control.CONTROL_FIGURES`).
+CONTROL_WRITES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
 
 
 def _cmd_simulate(args) -> int:
@@ -201,22 +203,29 @@ def _simulate_control(args, scenario, out) -> int:
     from .io.export import write_json
     from .io.output import output_dir
     from .io.provenance import provenance
-    from .viz import figure_omega, save_figure
+    from .viz import control_figures, figure_omega, save_figure
 
+    controller = scenario.controller()
     with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
-        run = scenario.run()
-    summary = control_summary(scenario, run)
+        run = scenario.run(controller)
+    summary = control_summary(scenario, run, controller)
     summary["scenario"] = str(args.source)
     summary["provenance"] = provenance(args.argv, scenario.sources)
-    with output_dir(out, SIMULATE_WRITES) as stage:
+    figures = control_figures(run, target=scenario.target, switch_time=summary.get("switch_time"),
+                              title=f"{scenario.name} ({scenario.kind})")
+    with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES)) as stage:
         write_control_run(run, stage)
         save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
+        for name, fig in figures.items():
+            save_figure(fig, stage / name)
         write_json(summary, stage / "summary.json")
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
         done = summary["detumble_time"]
         line = f"{summary['body']} ({scenario.kind}, {summary['t_end']:g} s): final rate {summary['final_rate']:.3g} rad/s"
+        if summary.get("switch_time") is not None:
+            line += f", pointing from t = {summary['switch_time']:g} s"
         if "pointing_error_final" in summary:
             line += f", pointing error {summary['pointing_error_final']:.3g} rad"
         elif done is not None:
