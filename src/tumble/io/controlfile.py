@@ -17,6 +17,7 @@ A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.d
     inclination = 1.7           # rad; raan, arg_latitude (rad) too
     # gmst0 = 0.0               # rad: the Earth's sidereal angle at t = 0 (for the IGRF-13 2020 tilted dipole)
     gravity_gradient = true     # the gravity-gradient torque of this orbit
+    # Keplerian (semi_major_axis, eccentricity, ...) or TLE orbits and the IGRF-14 field: tumble.io.controlorbit
 
     [actuators.magnetorquers]
     max_dipole = 0.2            # A m^2 per rod; rods along the design axes (axes = [[...], ...] to change)
@@ -51,11 +52,10 @@ from ..dynamics.controlled import ControlledRun, simulate_controlled
 from ..dynamics.controllers import BDot, Controller, MRPFeedback
 from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
-from ..dynamics.models.magnetic import DipoleField
-from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..mass import Body
 from ..validation import check_positive, check_rotation, check_vector
+from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
 from .controlspec import (
     CONTROL_KEYS,
@@ -72,7 +72,7 @@ __all__ = ["CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table",
 CONTROL_SECTIONS = {
     "initial": {"omega", "frame", "attitude"},
     "simulation": {"t_end", "rtol", "atol"},
-    "orbit": {"altitude", "inclination", "raan", "arg_latitude", "gmst0", "gravity_gradient", "earth_rotation"},
+    "orbit": ORBIT_KEYS,
     "actuators": {"magnetorquers", "wheels"},
     "sensors": {f.name for f in dataclasses.fields(Sensors)},
     "control": CONTROL_KEYS,
@@ -109,8 +109,8 @@ class ControlScenario:
     t_end: float
     kind: str
     controller_args: dict[str, Any]
-    orbit: CircularOrbit | None = None
-    field: DipoleField | None = None
+    orbit: Orbit | None = None
+    field: Field | None = None
     gravity_gradient: bool = False
     magnetorquers: Magnetorquers | None = None
     wheels: ReactionWheels | None = None
@@ -309,14 +309,11 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         omega = P.T @ omega
     principal_to_design = Rotation.from_matrix(P)
     attitude0 = design_to_world * principal_to_design
-    orbit = field = None
+    orbit: Orbit | None = None
+    field: Field | None = None
     if orbit_t:
         try:
-            elements = {k: v for k, v in orbit_t.items() if k in ("altitude", "inclination", "raan", "arg_latitude")}
-            if "altitude" not in elements:
-                raise ValueError("missing key 'altitude' (m)")
-            orbit = CircularOrbit(**elements)
-            field = DipoleField(orbit, gmst0=orbit_t.get("gmst0", 0.0), earth_rotation=bool(orbit_t.get("earth_rotation", True)))
+            orbit, field = orbit_from_table(orbit_t)
         except ValueError as exc:
             raise ValueError(f"orbit: {exc}") from None
     mtq = wheels = None

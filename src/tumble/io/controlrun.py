@@ -16,6 +16,7 @@ import numpy as np
 from ..dynamics.controlled import ControlledRun, command_summary
 from ..dynamics.controllers import Controller
 from ..dynamics.mission import DetumbleThenPoint
+from .controlorbit import orbit_summary
 
 if TYPE_CHECKING:
     from .controlfile import ControlScenario
@@ -70,9 +71,8 @@ def control_summary(scenario: ControlScenario, run: ControlledRun, controller: C
         err = run.pointing_error(scenario.target)
         summary["pointing_error_final"] = float(err[-1])
         summary["pointing_error_initial"] = float(err[0])
-    if scenario.orbit is not None:
-        summary["orbit"] = {"altitude": scenario.orbit.altitude, "period": scenario.orbit.period,
-                            "inclination": scenario.orbit.inclination}
+    if scenario.orbit is not None and scenario.field is not None:
+        summary["orbit"] = orbit_summary(scenario.orbit, scenario.field)
     return summary
 
 

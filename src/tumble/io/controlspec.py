@@ -35,11 +35,10 @@ from scipy.spatial.transform import Rotation
 from ..dynamics.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
 from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
-from ..dynamics.models.magnetic import DipoleField
-from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..mass import Body
 from ..validation import check_positive, check_rotation
+from .controlorbit import Field, Orbit, geomagnetic_inclination
 
 __all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
 
@@ -82,24 +81,14 @@ def _sub(where: str, table: object, keys: set[str]) -> dict[str, Any]:
     return table
 
 
-def _geomagnetic_inclination(orbit: CircularOrbit, field: DipoleField) -> float:
-    """The orbit's inclination to the dipole's equator at t = 0, rad: ``asin`` of the orbit
-    normal's component across the dipole axis (complement of their angle)."""
-    g = field.gauss_vector / np.linalg.norm(field.gauss_vector)
-    c, s = math.cos(field.gmst0), math.sin(field.gmst0)
-    axis = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ g  # ECI
-    normal = orbit.eci_from_world.apply([0.0, 0.0, 1.0])
-    return math.acos(min(1.0, abs(float(normal @ axis))))
-
-
-def _bdot_args(args: dict[str, Any], body: Body, orbit: CircularOrbit | None, field: DipoleField | None,
+def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Field | None,
                magnetorquers: Magnetorquers | None, kind: str) -> dict[str, Any]:
     """B-dot's arguments, the gain defaulting to Avanzini & Giulietti's (normalised form)."""
     if magnetorquers is None or orbit is None or field is None:
         raise ValueError(f'kind = "{kind}" needs [actuators.magnetorquers] and an [orbit] (the field)')
     args = dict(args)
     if "gain" not in args:  # Avanzini & Giulietti 2012, xi_m the orbit's inclination to the dipole's equator
-        args["gain"] = bdot_gain(orbit.mean_motion, _geomagnetic_inclination(orbit, field),
+        args["gain"] = bdot_gain(orbit.mean_motion, geomagnetic_inclination(orbit, field),
                                  float(np.min(body.principal_moments)))
         args.setdefault("form", "normalized")
     BDot(**args)
@@ -116,7 +105,7 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
     return args, target * principal_to_design
 
 
-def parse_control(control: dict[str, Any], *, body: Body, orbit: CircularOrbit | None, field: DipoleField | None,
+def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, field: Field | None,
                   magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None, sensors: Sensors,
                   principal_to_design: Rotation) -> ControlSpec:
     """Check a ``[control]`` table against the file's actuators and build its :class:`ControlSpec`.
@@ -130,6 +119,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: CircularOrbit |
     Examples
     --------
     >>> from tumble.mass import MassProperties
+    >>> from tumble.dynamics import CircularOrbit, DipoleField
     >>> body = MassProperties.from_moments([0.0067, 0.0419, 0.0419])
     >>> wheels = ReactionWheels(np.eye(3), inertia=2e-5)
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
