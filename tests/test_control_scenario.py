@@ -18,11 +18,12 @@ CONTROL = Path(__file__).resolve().parents[1] / "examples" / "control"
 
 def test_control_examples_are_listed_and_load_from_a_copy(tmp_path):
     listed = {e.path: e.kind for e in list_examples()}
-    assert listed["control/detumble.toml"] == listed["control/point.toml"] == "control"
+    kinds = {"detumble": "bdot", "point": "mrp_pd", "detumble_point": "detumble_point"}
+    assert {listed[f"control/{name}.toml"] for name in kinds} == {"control"}
     copy_examples(tmp_path / "ex")
-    for name in ("detumble", "point"):
+    for name, kind in kinds.items():
         scenario = load_scenario(tmp_path / "ex" / "control" / f"{name}.toml")
-        assert scenario.kind == {"detumble": "bdot", "point": "mrp_pd"}[name]
+        assert scenario.kind == kind
 
 
 def test_detumble_example_reports_its_rates_and_the_gain_of_avanzini_and_giulietti(tmp_path, capsys):

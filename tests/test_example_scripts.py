@@ -160,6 +160,17 @@ def test_plot_detumble(run):
     assert figures == 1
 
 
+def test_plot_detumble_then_point(run):
+    scope, figures = run("plot_detumble_then_point.py")
+    mission, run_ = scope["mission"], scope["run"]
+    k = round(mission.switch_time / mission.period)
+    assert mission.switch_time is not None and np.all(run_.rate[k - 60:k + 1] < np.radians(1.0))  # a minute below
+    assert np.all(run_.wheel_torque[:k] == 0.0) and np.any(run_.wheel_torque[k:] != 0.0)  # the wheels from the switch
+    assert scope["error"][-1] < 0.5 and scope["error"][k] > 10 * scope["error"][-1]  # deg: it points
+    assert scope["budget"] < 1e-14 * np.linalg.norm(run_.moments * run_.omega[0])  # round-off of the momentum
+    assert figures == 5
+
+
 def test_plot_pointing(run):
     scope, figures = run("plot_pointing.py")
     start, target = scope["start"], scope["target"]

@@ -11,6 +11,7 @@ from .euler import (
     kinetic_energy,
 )
 from .methods.integrators import METHODS, Method, get_method
+from .mission import DetumbleThenPoint
 from .models.gravity import (
     GravityGradient,
     lvlh_state,
@@ -34,6 +35,7 @@ __all__ = [
     "Command",
     "ControlledRun",
     "Controller",
+    "DetumbleThenPoint",
     "DipoleField",
     "IGRFField",
     "KeplerOrbit",

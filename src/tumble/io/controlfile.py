@@ -17,22 +17,21 @@ A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.d
     inclination = 1.7           # rad; raan, arg_latitude (rad) too
     # gmst0 = 0.0               # rad: the Earth's sidereal angle at t = 0 (for the IGRF-13 2020 tilted dipole)
     gravity_gradient = true     # the gravity-gradient torque of this orbit
+    # Keplerian (semi_major_axis, eccentricity, ...) or TLE orbits and the IGRF-14 field: tumble.io.controlorbit
 
     [actuators.magnetorquers]
     max_dipole = 0.2            # A m^2 per rod; rods along the design axes (axes = [[...], ...] to change)
 
-    [actuators.wheels]          # reaction wheels, axes in the design frame
-    axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    [actuators.wheels]          # reaction wheels
+    axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]   # design frame (default: one wheel on each design axis)
     inertia = 1e-5              # kg m^2 (axial); max_torque (N m), max_speed (rad/s), viscous, coulomb, speed0
 
     [sensors]                   # gyro_noise, gyro_bias, magnetometer_noise, magnetometer_bias, attitude, attitude_noise, seed
 
     [control]
-    kind = "bdot"               # or "mrp_pd"
+    kind = "bdot"               # or "mrp_pd", or "detumble_point" (B-dot, then MRP feedback)
     period = 1.0                # s
-    # bdot: gain (default Avanzini & Giulietti's k = 2 n (1 + sin xi_m) I_min with form = "normalized"),
-    #       form, derivative, threshold (rad/s, for the detumble time)
-    # mrp_pd: K (N m), P (N m s), target = [x, y, z, w] (design frame to world), gyroscopic
+    # the keys of each kind: tumble.io.controlspec
 
 Every value is checked by the constructor it feeds; errors are one line naming the table and key.
 """
@@ -40,7 +39,7 @@ Every value is checked by the constructor it feeds; errors are one line naming t
 from __future__ import annotations
 
 import dataclasses
-import math
+import math  # noqa: F401 - the examples in the docstrings use it
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -49,14 +48,23 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..dynamics import Trajectory
-from ..dynamics.controlled import ControlledRun, command_summary, simulate_controlled
-from ..dynamics.controllers import BDot, MRPFeedback, bdot_gain
+from ..dynamics.controlled import ControlledRun, simulate_controlled
+from ..dynamics.controllers import BDot, Controller, MRPFeedback
+from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
-from ..dynamics.models.magnetic import DipoleField
-from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..mass import Body
 from ..validation import check_positive, check_rotation, check_vector
+from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
+from .controlrun import control_summary, write_control_run
+from .controlspec import (
+    CONTROL_KEYS,
+    DEFAULT_THRESHOLD,
+    ControlSpec,
+    _sub,
+    build_controller,
+    parse_control,
+)
 
 __all__ = ["CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table", "control_summary", "write_control_run"]
 
@@ -64,17 +72,13 @@ __all__ = ["CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table",
 CONTROL_SECTIONS = {
     "initial": {"omega", "frame", "attitude"},
     "simulation": {"t_end", "rtol", "atol"},
-    "orbit": {"altitude", "inclination", "raan", "arg_latitude", "gmst0", "gravity_gradient", "earth_rotation"},
+    "orbit": ORBIT_KEYS,
     "actuators": {"magnetorquers", "wheels"},
     "sensors": {f.name for f in dataclasses.fields(Sensors)},
-    "control": {"kind", "period", "gain", "form", "derivative", "threshold", "K", "P", "target", "gyroscopic"},
+    "control": CONTROL_KEYS,
 }
-_CONTROL_KINDS = {"bdot": {"kind", "period", "gain", "form", "derivative", "threshold"},
-                  "mrp_pd": {"kind", "period", "K", "P", "target", "gyroscopic", "threshold"}}
 _MTQ_KEYS = {"max_dipole", "axes"}
 _WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb", "speed0"}
-#: Rate under which a run counts as detumbled when the file does not say, rad/s (0.5 deg/s).
-DEFAULT_THRESHOLD = math.radians(0.5)
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,8 +109,8 @@ class ControlScenario:
     t_end: float
     kind: str
     controller_args: dict[str, Any]
-    orbit: CircularOrbit | None = None
-    field: DipoleField | None = None
+    orbit: Orbit | None = None
+    field: Field | None = None
     gravity_gradient: bool = False
     magnetorquers: Magnetorquers | None = None
     wheels: ReactionWheels | None = None
@@ -119,7 +123,7 @@ class ControlScenario:
     name: str = "scenario"
     sources: tuple[tuple[str, str], ...] = ()
 
-    def controller(self) -> BDot | MRPFeedback:
+    def controller(self) -> BDot | MRPFeedback | DetumbleThenPoint:
         """A fresh controller of this scenario.
 
         Examples
@@ -145,14 +149,14 @@ class ControlScenario:
         >>> c.form, bool(low < c.gain < 2 * low)
         ('normalized', True)
         """
-        if self.kind == "bdot":
-            return BDot(**self.controller_args)
-        assert self.wheels is not None  # checked when the file was read
-        return MRPFeedback(**self.controller_args, moments=self.body.principal_moments, wheels=self.wheels,
-                           target=self.target if self.target is not None else Rotation.identity())
+        return build_controller(ControlSpec(self.kind, self.controller_args, self.target, self.threshold), self.body,
+                                self.wheels)
 
-    def run(self) -> ControlledRun:
-        """Simulate the scenario in closed loop.
+    def run(self, controller: Controller | None = None) -> ControlledRun:
+        """Simulate the scenario in closed loop, with ``controller`` (default a fresh :meth:`controller`).
+
+        Pass the controller to read what it keeps after the run, such as the switch time of a
+        ``detumble_point`` mission (:class:`~tumble.dynamics.mission.DetumbleThenPoint`).
 
         Examples
         --------
@@ -174,7 +178,8 @@ class ControlScenario:
         (True, True, True)
         """
         return simulate_controlled(
-            self.body.principal_moments, self.omega, t_end=self.t_end, controller=self.controller(),
+            self.body.principal_moments, self.omega, t_end=self.t_end,
+            controller=controller if controller is not None else self.controller(),
             attitude0=self.attitude0, field=self.field,
             gravity_gradient=self.orbit.gravity_gradient() if (self.gravity_gradient and self.orbit) else None,
             magnetorquers=self.magnetorquers, wheels=self.wheels, wheel_speed0=self.speed0, sensors=self.sensors,
@@ -241,15 +246,6 @@ def _table(data: dict[str, Any], section: str) -> dict[str, Any]:
     return table
 
 
-def _sub(where: str, table: object, keys: set[str]) -> dict[str, Any]:
-    if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table [{where}]")  # noqa: TRY004
-    bad = sorted(set(table) - keys)
-    if bad:
-        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
-    return table
-
-
 def _design_axes(value: object, body: Body) -> np.ndarray:
     """Axes given in the body's design frame, in principal components (``P^T d``)."""
     a = np.asarray(value, dtype=float)
@@ -313,14 +309,11 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         omega = P.T @ omega
     principal_to_design = Rotation.from_matrix(P)
     attitude0 = design_to_world * principal_to_design
-    orbit = field = None
+    orbit: Orbit | None = None
+    field: Field | None = None
     if orbit_t:
         try:
-            elements = {k: v for k, v in orbit_t.items() if k in ("altitude", "inclination", "raan", "arg_latitude")}
-            if "altitude" not in elements:
-                raise ValueError("missing key 'altitude' (m)")
-            orbit = CircularOrbit(**elements)
-            field = DipoleField(orbit, gmst0=orbit_t.get("gmst0", 0.0), earth_rotation=bool(orbit_t.get("earth_rotation", True)))
+            orbit, field = orbit_from_table(orbit_t)
         except ValueError as exc:
             raise ValueError(f"orbit: {exc}") from None
     mtq = wheels = None
@@ -331,9 +324,10 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
             mtq = Magnetorquers(m.get("max_dipole", 0.2), _design_axes(m.get("axes", np.eye(3)), body))
         if "wheels" in act:
             w = _sub("actuators.wheels", act["wheels"], _WHEEL_KEYS)
-            if "axes" not in w or "inertia" not in w:
-                raise ValueError("actuators.wheels: missing key 'axes' (design frame) or 'inertia' (kg m^2)")
-            wheels = ReactionWheels(_design_axes(w["axes"], body), **{k: v for k, v in w.items() if k not in ("axes", "speed0")})
+            if "inertia" not in w:
+                raise ValueError("actuators.wheels: missing key 'inertia' (kg m^2)")
+            wheels = ReactionWheels(_design_axes(w.get("axes", np.eye(3)), body),
+                                    **{k: v for k, v in w.items() if k not in ("axes", "speed0")})
             speed0 = tuple(float(x) for x in np.atleast_1d(w.get("speed0", np.zeros(wheels.count))))
     except ValueError as exc:
         raise ValueError(exc if str(exc).startswith("actuators") else f"actuators: {exc}") from None
@@ -341,131 +335,18 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         sensors = Sensors(**t["sensors"])
     except (ValueError, TypeError) as exc:
         raise ValueError(f"sensors: {exc}") from None
-    kind = control.get("kind")
-    if kind not in _CONTROL_KINDS:
-        raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(_CONTROL_KINDS)}")
-    bad = sorted(set(control) - _CONTROL_KINDS[kind])
-    if bad:
-        raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: "
-                         f"{', '.join(sorted(_CONTROL_KINDS[kind]))}")
-    args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}
-    target = None
-    try:
-        if "period" not in control:
-            raise ValueError("missing key 'period' (s)")
-        threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
-        if kind == "bdot":
-            if mtq is None or field is None:
-                raise ValueError('kind = "bdot" needs [actuators.magnetorquers] and an [orbit] (the field)')
-            if "gain" not in args:  # Avanzini & Giulietti 2012, with xi_m the orbit's inclination to the dipole's equator
-                assert orbit is not None
-                xi = _geomagnetic_inclination(orbit, field)
-                args["gain"] = bdot_gain(orbit.mean_motion, xi, float(np.min(body.principal_moments)))
-                args.setdefault("form", "normalized")
-            BDot(**args)
-        else:
-            if wheels is None:
-                raise ValueError('kind = "mrp_pd" needs [actuators.wheels]')
-            target = Rotation.from_quat(check_rotation("target", control.get("target", [0, 0, 0, 1]))) * principal_to_design
-            MRPFeedback(**args, moments=body.principal_moments, wheels=wheels, target=target)
-    except (ValueError, TypeError) as exc:
-        raise ValueError(f"control: {exc}") from None
+    spec = parse_control(control, body=body, orbit=orbit, field=field, magnetorquers=mtq, wheels=wheels,
+                         sensors=sensors, principal_to_design=principal_to_design)
     try:
         t_end = check_positive("t_end", sim.get("t_end", 0.0) if "t_end" in sim else None, "s")
     except ValueError:
         raise ValueError(f"simulation: t_end = {sim.get('t_end')!r} must be a positive number (s)") from None
     return ControlScenario(
-        body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=kind,  # type: ignore[arg-type]
-        controller_args=args, orbit=orbit, field=field, gravity_gradient=bool(orbit_t.get("gravity_gradient", False)),
-        magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=threshold, target=target,
+        body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=spec.kind,  # type: ignore[arg-type]
+        controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=bool(orbit_t.get("gravity_gradient", False)),
+        magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
         rtol=check_positive("simulation.rtol", sim.get("rtol", 1e-10), ""),
         atol=check_positive("simulation.atol", sim.get("atol", 1e-12), ""), name=name)
-
-
-def _geomagnetic_inclination(orbit: CircularOrbit, field: DipoleField) -> float:
-    """The orbit's inclination to the dipole's equator at t = 0, rad: ``asin`` of the orbit
-    normal's component across the dipole axis (complement of their angle)."""
-    g = field.gauss_vector / np.linalg.norm(field.gauss_vector)
-    c, s = math.cos(field.gmst0), math.sin(field.gmst0)
-    axis = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ g  # ECI
-    normal = orbit.eci_from_world.apply([0.0, 0.0, 1.0])
-    return math.acos(min(1.0, abs(float(normal @ axis))))
-
-
-def control_summary(scenario: ControlScenario, run: ControlledRun) -> dict[str, Any]:
-    """The numbers of a run: final rate, detumble time or final pointing error, budgets, commands.
-
-    Examples
-    --------
-    >>> from tumble.io.bodyfile import body_from_table
-    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
-    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
-    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
-    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
-    >>> scenario = control_scenario_from_table(table, body, name="point")
-    >>> summary = control_summary(scenario, scenario.run())
-    >>> summary["kind"], summary["samples"], summary["initial_rate"], summary["external_impulse"]
-    ('mrp_pd', 21, 0.01, 0.0)
-    >>> math.isclose(summary["pointing_error_initial"], math.pi / 3), summary["max_wheel_torque"] <= 2e-3
-    (True, True)
-    """
-    summary: dict[str, Any] = {
-        "body": scenario.body.name, "kind": scenario.kind, "t_end": float(run.t[-1]),
-        "period": float(scenario.controller_args["period"]), "samples": len(run.t),
-        "principal_moments": run.moments.tolist(),
-        "final_rate": float(run.rate[-1]), "initial_rate": float(run.rate[0]),
-        "threshold": scenario.threshold, "detumble_time": run.detumble_time(scenario.threshold),
-        "momentum_budget_error": float(run.budget_error().max()),
-        "external_impulse": float(np.linalg.norm(run.impulse_world[-1])), **command_summary(run),
-    }
-    if scenario.kind == "bdot":
-        summary["gain"] = float(scenario.controller_args["gain"])
-        summary["form"] = scenario.controller_args.get("form", "classic")
-    if scenario.target is not None:
-        err = run.pointing_error(scenario.target)
-        summary["pointing_error_final"] = float(err[-1])
-        summary["pointing_error_initial"] = float(err[0])
-    if scenario.orbit is not None:
-        summary["orbit"] = {"altitude": scenario.orbit.altitude, "period": scenario.orbit.period,
-                            "inclination": scenario.orbit.inclination}
-    return summary
-
-
-def write_control_run(run: ControlledRun, folder: Path) -> None:
-    """``trajectory.csv`` and ``trajectory.npz`` of a control run into ``folder``: time, omega,
-    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI).
-
-    Examples
-    --------
-    >>> from tumble.io.bodyfile import body_from_table
-    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
-    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
-    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
-    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
-    >>> scenario = control_scenario_from_table(table, body, name="point")
-    >>> import tempfile
-    >>> run = scenario.run()
-    >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     write_control_run(run, Path(tmp))
-    ...     header = (Path(tmp) / "trajectory.csv").read_text().splitlines()[0].split(",")
-    ...     rows = np.loadtxt(Path(tmp) / "trajectory.csv", delimiter=",", skiprows=1)
-    ...     with np.load(Path(tmp) / "trajectory.npz") as npz:
-    ...         same = np.array_equal(npz["omega"], run.omega) and np.array_equal(npz["L_world"], run.momentum_world)
-    >>> len(header), header[8:11], rows.shape, same
-    (26, ['wheel1_speed', 'wheel2_speed', 'wheel3_speed'], (21, 26), True)
-    >>> np.array_equal(rows[:, 1:4], run.omega)   # 17 significant digits: exact
-    True
-    """
-    k = run.wheel_speed.shape[1]
-    columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
-               "wheel_torque": run.wheel_torque, "dipole": run.dipole, "field": run.field,
-               "L_world": run.momentum_world, "impulse_world": run.impulse_world}
-    names = ["t", "omega1", "omega2", "omega3", "qx", "qy", "qz", "qw", *[f"wheel{i + 1}_speed" for i in range(k)],
-             *[f"wheel{i + 1}_torque" for i in range(k)], "m1", "m2", "m3", "B1", "B2", "B3",
-             "Lx_world", "Ly_world", "Lz_world", "Jx_world", "Jy_world", "Jz_world"]
-    table = np.hstack(list(columns.values()))
-    np.savetxt(folder / "trajectory.csv", table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
-    np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
 
 
 def is_control_file(data: dict[str, Any]) -> bool:

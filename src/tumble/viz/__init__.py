@@ -7,6 +7,14 @@ animations write an MP4 (with ffmpeg) or a GIF. The physics layers never import 
 
 from ._backend import save_figure
 from .animate import animate_body_frame, animate_ground_frame, animation_path, ffmpeg_path
+from .control import (
+    control_figures,
+    figure_attitude_error,
+    figure_body_rates,
+    figure_dipole,
+    figure_momentum_budget,
+    figure_wheels,
+)
 from .fit import figure_fit, figure_recording
 from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
@@ -30,15 +38,20 @@ __all__ = [
     "animation_path",
     "body_lines",
     "body_size",
+    "control_figures",
     "envelope",
     "ffmpeg_path",
+    "figure_attitude_error",
+    "figure_body_rates",
     "figure_detumble_mc",
+    "figure_dipole",
     "figure_drift",
     "figure_energy",
     "figure_fit",
     "figure_recording",
     "figure_gravity_stability",
     "figure_herpolhode",
+    "figure_momentum_budget",
     "figure_nutation",
     "figure_omega",
     "figure_omega_grid",
@@ -47,6 +60,7 @@ __all__ = [
     "figure_polhode",
     "figure_stability_map",
     "figure_sweep",
+    "figure_wheels",
     "part_lines",
     "phase_portrait_problem",
     "plot_omega",

@@ -1,0 +1,102 @@
+"""The ``tumble`` command line.
+
+Every error is one line on stderr: exit status 2 for bad input (files, values, options), 1 for a
+failure of the computation, never a traceback unless ``--debug`` is given. Heavy modules are
+imported inside the commands so that ``tumble --help`` answers at once.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import warnings
+
+from ._common import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from .control import CONTROL_WRITES, SIMULATE_WRITES
+from .parser import build_parser
+
+__all__ = ["CONTROL_WRITES", "EXIT_FAILURE", "EXIT_OK", "EXIT_USAGE", "SIMULATE_WRITES", "build_parser", "main"]
+
+
+class _Terminated(BaseException):
+    """Raised by the SIGTERM handler, so that partial output is cleaned up as on Ctrl-C."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``tumble`` console command; returns the exit status.
+
+    0: success; 2: bad input (nothing written); 1: a failed computation or an I/O failure
+    (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
+    by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
+    (``tumble examples | head -2``) is a normal end: 0, quietly.
+    """
+    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_USAGE
+    args.argv = argv
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread: leave signals alone
+        previous = None
+    try:
+        with warnings.catch_warnings():
+            # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
+            warnings.simplefilter("error", RuntimeWarning)
+            status = args.func(args)
+            sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
+            return status
+    except KeyboardInterrupt:
+        print("tumble: interrupted; nothing written", file=sys.stderr)
+        return 130
+    except _Terminated:
+        print("tumble: terminated; nothing written", file=sys.stderr)
+        return 143
+    except ValueError as exc:
+        if args.debug:
+            raise
+        print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as exc:  # the input was fine; writing failed (disk full, permissions)
+        if isinstance(exc, BrokenPipeError) and exc.filename is None:
+            return _reader_gone()
+        if args.debug:
+            raise
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written", file=sys.stderr)
+        return EXIT_FAILURE
+    except Exception as exc:  # a failure of the computation, not of the input
+        if args.debug:
+            raise
+        print(f"tumble: computation failed: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_FAILURE
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _reader_gone() -> int:
+    """Standard output's reader closed the pipe (``tumble examples | head -2``): a normal end.
+
+    Standard output is pointed at the null device, so that the interpreter's last flush at exit
+    finds nothing to complain about (the recipe of Python's documentation of ``signal``).
+    """
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return EXIT_OK
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,248 @@
+"""The commands of ``tumble``; the closed-loop (control) runs are :mod:`tumble.cli.control`.
+
+Heavy modules are imported inside the commands so that ``tumble --help`` answers at once.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+
+from ._common import EXIT_OK, _run_title, _working
+from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_control
+
+
+def _cmd_inertia(args) -> int:
+    from ..io import load_body, mass_properties_dict, mass_properties_table
+
+    body = load_body(args.body)
+    if args.json:
+        print(json.dumps(mass_properties_dict(body), indent=2))
+    else:
+        print(mass_properties_table(body))
+    return EXIT_OK
+
+
+def _cmd_demo(args) -> int:
+    from ..demo import run_demo
+
+    run_demo(args.out, animate=not args.no_animation, animation_format=args.animation_format, argv=args.argv)
+    return EXIT_OK
+
+
+def _cmd_examples(args) -> int:
+    from ..io.examples import copy_examples, list_examples
+
+    if args.copy:
+        written = copy_examples(args.copy)
+        print(f"copied {len(written)} files to {args.copy}/; try: tumble simulate {args.copy}/seed_flip.toml --out run")
+        return EXIT_OK
+    examples = list_examples()
+    width = max(len(e.path) for e in examples)
+    for e in examples:
+        print(f"{e.path:<{width}}  {e.kind:<8}  {e.description}")
+    print("copy them with: tumble examples --copy DIR")
+    return EXIT_OK
+
+
+def _cmd_sweep(args) -> int:
+    from ..io.sweepfile import run_sweep_command
+    from ..viz.maps import figure_sweep
+
+    if args.workers is not None and args.scheduler is not None:
+        raise ValueError("give --workers (a local cluster) or --scheduler (an existing one), not both")
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise ValueError(f"--workers = {args.workers} must be from 1 to 256")
+    with _working("sweeping"):
+        return run_sweep_command(args.sweep, args.out, workers=args.workers, scheduler=args.scheduler,
+                                 argv=args.argv, figure=figure_sweep)
+
+
+def _cmd_map(args) -> int:
+    from ..io.output import check_output_file
+    from ..validation import check_positive
+
+    suffix = os.path.splitext(str(args.out))[1].lower()
+    out = check_output_file(args.out, suffix if suffix in (".png", ".svg") else ".png")
+    spin = check_positive("--spin", args.spin, "rad/s")
+    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s") for i, p in enumerate(args.perturbation))
+    if not 20 <= args.resolution <= 2000:
+        raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")
+    from ..viz import figure_stability_map, save_figure
+
+    with _working("mapping"):
+        save_figure(figure_stability_map(spin, perturbation, resolution=args.resolution), out)
+    print(f"wrote {out}: flip interval and circulation axis over (I1/I3, I2/I3), spin {spin:g} rad/s "
+          f"about the intermediate axis, perturbation {perturbation[0]:g}, {perturbation[1]:g} rad/s")
+    return EXIT_OK
+
+
+class _Bar:
+    """A rich progress bar of the flights examined, on a terminal only (silent when piped)."""
+
+    def __init__(self):
+        self.bar = self.task = None
+        if sys.stderr.isatty():
+            from rich.console import Console
+            from rich.progress import Progress
+
+            self.bar = Progress(console=Console(stderr=True), transient=True)
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            return
+        if self.task is None:
+            self.bar.start()
+            self.task = self.bar.add_task("fitting flights", total=total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None and self.task is not None:
+            self.bar.stop()
+
+
+def _cmd_fit(args) -> int:
+    from ..io.fitcommand import run_fit_command
+    from ..viz import figure_fit, figure_recording
+
+    if args.saturation is not None and not (args.saturation > 0 and args.saturation < float("inf")):
+        raise ValueError(f"--saturation = {args.saturation} must be a positive number of rad/s")
+    bar = _Bar()
+    try:
+        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
+                               start=args.start, end=args.end, body=args.body, progress=bar,
+                               sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
+                               saturation=args.saturation, accept_inadequate=args.accept_inadequate)
+    finally:
+        bar.close()
+
+
+def _resolve(args):
+    """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
+    from ..io.scenario import resolve_run
+
+    return resolve_run(args.source, omega=args.omega, frame=args.frame, t_end=args.t_end,
+                       samples=args.samples, dt=args.dt, method=args.method)
+
+
+def _cmd_simulate(args) -> int:
+    from ..io.output import check_output_dir
+
+    scenario = _resolve(args)  # every check before anything is computed or written
+    out = check_output_dir(args.out)
+    if not hasattr(scenario, "method"):  # a closed-loop (control) scenario
+        return simulate_control(args, scenario, out)
+    with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
+        traj = scenario.run()
+
+    from ..analysis import trajectory_summary
+    from ..io.export import write_csv, write_json, write_npz
+    from ..io.output import output_dir
+    from ..io.provenance import provenance
+    from ..viz import figure_omega, save_figure
+
+    summary = trajectory_summary(traj)
+    if hasattr(scenario.torque, "jacobi_integral"):  # the gravity gradient: its own error measure
+        from ..analysis.summary import gravity_gradient_summary
+
+        summary["gravity_gradient"] = gravity_gradient_summary(traj, scenario.torque)
+    summary["scenario"] = str(args.source)
+    summary["provenance"] = provenance(args.argv, scenario.sources)
+    with output_dir(out, SIMULATE_WRITES) as stage:
+        write_csv(traj, stage / "trajectory.csv")
+        write_npz(traj, stage / "trajectory.npz", summary["provenance"])
+        save_figure(figure_omega(traj, title=_run_title(scenario, traj)), stage / "omega.png")
+        write_json(summary, stage / "summary.json")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(_simulate_line(summary, out))
+    return EXIT_OK
+
+
+#: The figures of `tumble plot`, in the order they are drawn; the spacecraft figures
+#: (`tumble.viz.spacecraft_figures`) follow where they apply.
+PLOTS = ("omega", "polhode", "herpolhode", "drift")
+SPACECRAFT_PLOTS = ("energy", "nutation", "orbit_angles")
+
+
+def _cmd_plot(args) -> int:
+    import dataclasses
+
+    from ..io.output import check_output_dir
+
+    scenario = _resolve(args)
+    refuse_control(scenario, "plot")
+    out = check_output_dir(args.out)
+    if scenario.times is None and scenario.dt is None:  # the phase portraits need a fine path
+        scenario = dataclasses.replace(scenario, samples=max(scenario.sample_count, 5000))
+    with _working(f"integrating {scenario.name}"):
+        traj = scenario.run()
+
+    from .. import viz
+    from ..io.output import output_dir
+
+    title = _run_title(scenario, traj)
+    makers = {"omega": viz.figure_omega, "polhode": viz.figure_polhode,
+              "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
+    skipped = viz.phase_portrait_problem(traj)
+    names = [n for n in PLOTS if not (skipped and n in viz.PHASE_PORTRAITS)]
+    extra = viz.spacecraft_figures(traj, scenario.torque)  # energy, nutation, orbit angles
+    written = []
+    with output_dir(out, [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]) as stage:
+        figures = [(name, makers[name](traj, title=title if name == "omega" else None)) for name in names]
+        for name, fig in figures + [(name, make()) for name, make in extra]:
+            for fmt in args.format:
+                viz.save_figure(fig, stage / f"{name}.{fmt}")
+                written.append(f"{name}.{fmt}")
+    print(f"wrote {', '.join(written)} to {out}/")
+    if skipped:
+        print(f"skipped {', '.join(viz.PHASE_PORTRAITS)}: {skipped}")
+    return EXIT_OK
+
+
+def _cmd_view(args) -> int:
+    from ..io.output import check_output_file
+    from ..viz.scene import frame_indices
+
+    out = check_output_file(args.out, ".html")
+    scenario = _resolve(args)
+    control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
+    frame_indices(2 if control else scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
+    if control:
+        return view_control(args, scenario, out)
+    with _working(f"integrating {scenario.name}"):
+        traj = scenario.run()
+
+    from ..viz.page import write_page
+
+    write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj))
+    print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
+    return EXIT_OK
+
+
+def _simulate_line(summary: dict, out) -> str:
+    """One line for people: what the spin did and how well the invariants held."""
+    s, d = summary["stability"], summary["drift"]
+    head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
+    spin = "started at rest" if s["axis"] is None else (
+        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flip{'' if s['flips'] == 1 else 's'}")
+    period = s["flip_period_exact"] if s["flip_period_exact"] is not None else s["flip_period"]
+    if summary["torque_free"] and s["flips"] and period is not None:
+        spin += f" every {period:.4g} s"
+    if "gravity_gradient" in summary:
+        g = summary["gravity_gradient"]
+        tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
+                f"orbiting frame {max(g['max_angle'].values()):.3g} rad")
+    elif summary["torque_free"] and all(v is None for v in d.values()):
+        tail = "energy and L start at 0, so there is no relative drift to give"
+        work = summary.get("rotors", {}).get("motor_work")
+        if work is not None:
+            tail += f"; the motors did {work:.3g} J of work"
+    elif summary["torque_free"]:
+        drift = ", ".join(f"{k} {'n/a' if v is None else format(v, '.1e')}" for k, v in d.items())
+        tail = f"relative drift: {drift}"
+    else:
+        tail = "torque acted, so energy and L change (no budget to check)"
+    return f"{head}: {spin}; {tail}; wrote {out}/"

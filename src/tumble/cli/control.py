@@ -1,0 +1,73 @@
+"""``tumble simulate`` and ``tumble view`` of a closed-loop (control) scenario."""
+
+from __future__ import annotations
+
+import json
+
+from ._common import EXIT_OK, _run_title, _working
+
+#: The files `tumble simulate` writes into its folder (every run).
+SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.png")
+#: The figures `tumble simulate` adds for a control scenario (`tumble.viz.control.CONTROL_FIGURES`).
+CONTROL_WRITES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
+
+
+def refuse_control(scenario, command: str) -> None:
+    if not hasattr(scenario, "method"):
+        raise ValueError(f"{scenario.name} is a control scenario ([control]); 'tumble {command}' does not take it yet: "
+                         "use 'tumble simulate FILE --out DIR'")
+
+
+def simulate_control(args, scenario, out) -> int:
+    """`tumble simulate` of a control scenario: the closed loop, its summary and trajectory."""
+    from ..io.controlfile import control_summary, write_control_run
+    from ..io.export import write_json
+    from ..io.output import output_dir
+    from ..io.provenance import provenance
+    from ..viz import control_figures, figure_omega, save_figure
+
+    controller = scenario.controller()
+    with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
+        run = scenario.run(controller)
+    summary = control_summary(scenario, run, controller)
+    summary["scenario"] = str(args.source)
+    summary["provenance"] = provenance(args.argv, scenario.sources)
+    figures = control_figures(run, target=scenario.target, switch_time=summary.get("switch_time"),
+                              title=f"{scenario.name} ({scenario.kind})")
+    with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES)) as stage:
+        write_control_run(run, stage)
+        save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
+        for name, fig in figures.items():
+            save_figure(fig, stage / name)
+        write_json(summary, stage / "summary.json")
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        done = summary["detumble_time"]
+        line = f"{summary['body']} ({scenario.kind}, {summary['t_end']:g} s): final rate {summary['final_rate']:.3g} rad/s"
+        if summary.get("switch_time") is not None:
+            line += f", pointing from t = {summary['switch_time']:g} s"
+        if "pointing_error_final" in summary:
+            line += f", pointing error {summary['pointing_error_final']:.3g} rad"
+        elif done is not None:
+            line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
+        print(f"{line}; wrote {out}/")
+    return EXIT_OK
+
+
+def view_control(args, scenario, out) -> int:
+    """`tumble view` of a control scenario: the page with the wheels, the commanded torque and the error."""
+    with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
+        run = scenario.run()
+
+    from ..viz.control_page import control_page_data
+    from ..viz.page import write_page
+
+    traj = scenario.trajectory(run)
+    control = control_page_data(run, frames=args.frames, wheel_axes=None if scenario.wheels is None else
+                                scenario.wheels.axes, target=scenario.target, threshold=scenario.threshold)
+    write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj), live=False,
+               control=control)
+    print(f"wrote {out} (self-contained: open it in any browser, no network needed; closed loop: "
+          "wheels, commanded torque, live mode off)")
+    return EXIT_OK

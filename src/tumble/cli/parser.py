@@ -1,0 +1,180 @@
+"""The argument parser of ``tumble`` (also used to document the command line)."""
+
+from __future__ import annotations
+
+import argparse
+
+from .._version import __version__
+from . import commands as c
+from ._common import EXIT_USAGE
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with tumble's one-line error format and exit status 2."""
+
+    def error(self, message: str):
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (also used to document the CLI)."""
+    parser = _Parser(
+        prog="tumble",
+        description="Rigid-body rotation: mass properties, Euler's equations, the tennis-racket effect.",
+        epilog="Example: tumble inertia t-handle --json",
+    )
+    parser.add_argument("--version", action="version", version=f"tumble {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    # --debug is accepted after the subcommand too; SUPPRESS keeps the top-level value otherwise
+    debug = argparse.ArgumentParser(add_help=False)
+    debug.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show the traceback of an error")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+
+    p = sub.add_parser(
+        "inertia",
+        help="mass properties of a body file or preset",
+        description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.",
+        epilog="Examples: tumble inertia t-handle | tumble inertia iss-t-handle --json | "
+        "tumble inertia examples/bodies/t_handle.toml",
+        formatter_class=argparse.RawDescriptionHelpFormatter, parents=[debug],
+    )
+    p.add_argument("body", metavar="BODY", help="a body file (TOML) or a preset: t-handle, iss-t-handle")
+    p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    p.set_defaults(func=c._cmd_inertia)
+
+    def scenario_command(name, func, summary, description, example, out_metavar, out_help):
+        cmd = sub.add_parser(name, help=summary, description=description, epilog=f"Examples: {example}",
+                             parents=[debug])
+        cmd.add_argument("source", metavar="INPUT",
+                         help="a scenario file (TOML); or a body file or preset (t-handle, iss-t-handle) with --omega")
+        cmd.add_argument("--out", required=True, metavar=out_metavar, help=out_help)
+        run = cmd.add_argument_group("the run, without a scenario file (or overriding the file's values)")
+        run.add_argument("--omega", nargs=3, type=float, metavar=("W1", "W2", "W3"),
+                         help="initial angular velocity, rad/s (principal frame, axes ordered I1 <= I2 <= I3)")
+        run.add_argument("--frame", metavar="FRAME", help="frame of --omega: principal (default) or design")
+        run.add_argument("--t-end", type=float, metavar="S", help="duration, s (default 20)")
+        run.add_argument("--samples", type=int, metavar="N", help="number of samples (default 500)")
+        run.add_argument("--dt", type=float, metavar="S", help="sample every S seconds instead of --samples")
+        run.add_argument("--method", metavar="NAME",
+                         help="exact (default), dop853, rk45, seed, geometric, geometric2, geometric6")
+        cmd.set_defaults(func=func)
+        return cmd
+
+    p = scenario_command(
+        "simulate", c._cmd_simulate, "integrate a scenario file and write trajectory, summary and plot",
+        "Integrates the scenario and writes DIR/trajectory.csv, DIR/trajectory.npz, DIR/summary.json and "
+        "DIR/omega.png. Nothing is written if the scenario is invalid.",
+        "tumble simulate examples/seed_flip.toml --out runs/flip --json | "
+        "tumble simulate t-handle --omega 0.1 10 0.1 --t-end 30 --out runs/flip2", "DIR", "output folder",
+    )
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+    p = scenario_command(
+        "plot", c._cmd_plot, "figures of a scenario: omega(t), polhode, herpolhode, drift",
+        "Integrates the scenario and writes DIR/omega, DIR/polhode (L on the momentum sphere with the family "
+        "of polhodes and the separatrices), DIR/herpolhode (omega in the invariable plane) and DIR/drift "
+        "(energy, |L|, L_world errors), each as PNG and SVG; with a damper or rotors DIR/energy (and its "
+        "budget) and DIR/nutation, under the gravity gradient DIR/orbit_angles (roll, pitch, yaw).",
+        "tumble plot examples/seed_flip.toml --out figures | "
+        "tumble plot examples/bodies/wing_nut.toml --omega 0.1 5 0.1 --out figures", "DIR", "output folder",
+    )
+    p.add_argument("--format", nargs="+", default=["png", "svg"], choices=["png", "svg", "pdf"],
+                   help="file formats (default: png svg)")
+
+    p = scenario_command(
+        "view", c._cmd_view, "one self-contained interactive HTML page of a scenario",
+        "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
+        "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons. A control scenario "
+        "([control]) adds its reaction wheels turning on the body, the commanded torque (and dipole) arrows, a "
+        "readout and the attitude error or |omega| over time (only --t-end overrides it; no live mode).",
+        "tumble view examples/seed_flip.toml --out flip.html | "
+        "tumble view examples/control/point.toml --out point.html | "
+        "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html", "FILE.html", "the page to write",
+    )
+    p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
+
+    p = sub.add_parser(
+        "examples",
+        help="list the example scenario and body files, or copy them",
+        description="Lists the scenario and body files that ship with tumble; --copy DIR copies them, "
+        "ready to run (scenarios name their bodies and meshes by relative paths).",
+        epilog="Examples: tumble examples | tumble examples --copy my-examples", parents=[debug],
+    )
+    p.add_argument("--copy", metavar="DIR", help="copy every example into DIR (never overwrites a file)")
+    p.set_defaults(func=c._cmd_examples)
+
+    p = sub.add_parser(
+        "sweep",
+        help="a Monte Carlo sweep or a grid of cases from a sweep file",
+        description="Runs every case of a sweep file (dispersed bodies and initial rates) and writes DIR/cases.csv "
+        "(a row per case; DIR/cases.parquet with pyarrow), DIR/summary.json (statistics, the order-statistics "
+        "confidence statement, provenance) and DIR/sweep.png. Interrupted, a re-run resumes from the finished "
+        "chunks kept in DIR.resume/ (checked: another run's or a damaged chunk is computed again; a second run "
+        "into the same DIR is refused while the first runs).",
+        epilog="Examples: tumble sweep examples/sweeps/t_handle_dimensions.toml --out runs/sweep | "
+        "tumble sweep SWEEP.toml --out DIR --workers 2", parents=[debug],
+    )
+    p.add_argument("sweep", metavar="SWEEP", help="a sweep file (TOML)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--workers", type=int, metavar="N", help="run on a local Dask cluster of N workers (tumble[cluster])")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run on an existing Dask cluster: its scheduler's address, e.g. tcp://10.0.0.5:8786 "
+                        "(tumble[cluster]); refused in seconds when no scheduler answers there")
+    p.set_defaults(func=c._cmd_sweep)
+
+    p = sub.add_parser(
+        "map",
+        help="stability map: flip interval over the triangle of inertia ratios",
+        description="Draws the exact flip interval and the circulation axis of a spin about the intermediate axis "
+        "with a small perturbation, over the triangle of inertia ratios (I1/I3, I2/I3).",
+        epilog="Example: tumble map --out map.png --spin 10 --perturbation 0.01 0.01", parents=[debug],
+    )
+    p.add_argument("--out", required=True, metavar="FILE", help="the figure (.png or .svg)")
+    p.add_argument("--spin", type=float, default=10.0, metavar="W", help="spin about the intermediate axis, rad/s (default 10)")
+    p.add_argument("--perturbation", type=float, nargs=2, default=(0.01, 0.01), metavar=("W1", "W3"),
+                   help="rates about the minor and major axes, rad/s (default 0.01 0.01)")
+    p.add_argument("--resolution", type=int, default=300, metavar="N", help="grid points per side (default 300)")
+    p.set_defaults(func=c._cmd_map)
+
+    p = sub.add_parser(
+        "fit",
+        help="inertia ratios from a gyroscope recording (phyphox export or t,wx,wy,wz CSV)",
+        description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
+        "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
+        "jointly (shared ratios, sensor rotation, bias and drag) and writes DIR/fit.json (pooled values with "
+        "standard uncertainties and 95 percent intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
+        "With --start/--end the samples between are fitted as one flight.",
+        epilog="Example: tumble fit examples/data/racquet_tosses.csv --out fitted", parents=[debug],
+    )
+    p.add_argument("data", metavar="RECORDING",
+                   help="a CSV (phyphox's gyroscope export or t, wx, wy, wz in s, rad/s), or phyphox's export "
+                   "folder or .zip (Raw Data.csv and meta/time.csv)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--sensor", choices=["fit", "identity"], default="fit",
+                   help="fit the sensor's rotation to the principal axes (default) or take it as identity")
+    p.add_argument("--no-bias", action="store_true", help="assume an unbiased gyroscope")
+    p.add_argument("--drag", choices=["auto", "none", "linear", "quadratic"], default="auto",
+                   help="aerodynamic drag about each principal axis: chosen by the BIC (default), or as named")
+    p.add_argument("--saturation", type=float, metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+    p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
+    p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s")
+    p.add_argument("--end", type=float, metavar="S", help="fit one flight: last time, s")
+    p.add_argument("--accept-inadequate", action="store_true",
+                   help="exit 0 even when the model does not describe the data (by default such a fit is written "
+                   "with \"adequate\": false, a warning printed and the exit status 1)")
+    p.set_defaults(func=c._cmd_fit)
+
+    p = sub.add_parser(
+        "demo",
+        help="the T-handle study on built-in defaults",
+        description="Runs the T-handle study (seed T-handle and space-station handle, spin about each "
+        "axis) and writes figures, animations, trajectories and a summary table to a folder.",
+        epilog="Example: tumble demo --out tumble-demo", parents=[debug],
+    )
+    p.add_argument("--out", default="tumble-demo", metavar="DIR", help="output folder (default: tumble-demo)")
+    p.add_argument("--no-animation", action="store_true", help="skip the animations (faster)")
+    p.add_argument("--animation-format", choices=["auto", "mp4", "gif"], default="auto",
+                   help="auto (default): MP4 where an ffmpeg is found (tumble[video]), GIF otherwise")
+    p.set_defaults(func=c._cmd_demo)
+    return parser

@@ -1,0 +1,183 @@
+"""A mission's mode logic: detumble with the magnetorquers, then point with the wheels.
+
+After separation a small satellite tumbles at a few to tens of deg/s; the first mode of its
+attitude control damps that spin with B-dot and magnetorquers (Stickler & Alfriend 1974; gain
+of Avanzini & Giulietti 2012: :class:`~tumble.dynamics.controllers.BDot`), and only when the
+rate is low does a fine mode take over and point with reaction wheels (MRP feedback, Schaub &
+Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec. 8.3-8.4:
+:class:`~tumble.dynamics.controllers.MRPFeedback`), optionally with the magnetorquers unloading
+the wheels (:class:`~tumble.dynamics.controllers.MomentumDumping`). This is the usual mode
+sequence of small-satellite attitude control: a detumbling mode on magnetometer and
+magnetorquers after deployment, then pointing modes with the wheels (for example the SAGE
+CubeSat's "ADCS operational modes", https://sage-docs.pages.dev/engineering/space-segment/ADCS/ADCS-Operational-Modes,
+and the ArcticSat detumbling analysis, which tests the "transition to sun-pointing after
+successfully detumbling"). The hand-over rule below (a rate threshold held for a dwell time)
+is the obvious design, not taken from one source.
+
+**The switch.** :class:`DetumbleThenPoint` reads the gyroscope at every control step; once
+``|omega_gyro| < switch_rate`` at every step of a window of ``dwell`` s (``dwell / period + 1``
+steps in a row; a step at or above the threshold starts the window again) it hands over to the
+pointing controller at that step and never hands back. The dwell keeps a rate that dips below
+the threshold for a moment, as a tumbling body's measured rate can with noise, from starting a
+pointing manoeuvre the wheels cannot finish. It does not switch back because the pointing
+mode's own transient (the slew to the target, when the wheels take up the body's momentum)
+raises the rate for a while, and a law that switched back on it would chatter between modes;
+going back to detumbling is a fault response (safe mode), outside this controller.
+
+**Periods.** Both sub-controllers are called at the mission's one period: they must have the
+same ``period`` (a ``ValueError`` names both otherwise).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..validation import check_positive
+from .controllers import BDot, MomentumDumping, MRPFeedback
+from .models.actuators import Command
+from .models.sensors import Measurement
+
+__all__ = ["DetumbleThenPoint"]
+
+
+@dataclass
+class DetumbleThenPoint:
+    """B-dot until the measured rate has stayed below ``switch_rate`` for ``dwell`` s, then pointing.
+
+    Parameters
+    ----------
+    detumble : BDot
+        The detumbling mode (magnetorquers).
+    point : MRPFeedback or MomentumDumping
+        The pointing mode (wheels; with :class:`~tumble.dynamics.controllers.MomentumDumping` the
+        magnetorquers unload them).
+    switch_rate : float
+        Rate below which the gyroscope's ``|omega|`` must stay, rad/s (> 0).
+    dwell : float
+        How long it must stay below, s (>= 0; 0 switches at the first step below).
+
+    Attributes
+    ----------
+    period : float
+        The control period, s: the sub-controllers' (they must share it).
+    switch_time : float or None
+        The time of the step that handed over to pointing, s; None before (and in a run that
+        never switches). :meth:`reset` clears it (the run calls it at its start).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.actuators import ReactionWheels
+    >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
+    >>> mission = DetumbleThenPoint(BDot(gain=3e-5, period=1.0, form="normalized"),
+    ...     MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw),
+    ...     switch_rate=0.01, dwell=2.0)
+    >>> from scipy.spatial.transform import Rotation
+    >>> def reading(t, rate):
+    ...     return Measurement(t, np.array([rate, 0.0, 0.0]), np.array([0.0, 2e-5, 0.0]), Rotation.identity(), np.zeros(3))
+    >>> [mission.mode for t, rate in enumerate([0.1, 0.005, 0.02, 0.005, 0.005, 0.005, 0.1]) if mission(t, reading(t, rate))]
+    ['detumble', 'detumble', 'detumble', 'detumble', 'detumble', 'point', 'point']
+    >>> mission.switch_time, mission.period   # below at t = 3, 4 and 5 s: 2 s of dwell
+    (5.0, 1.0)
+    >>> DetumbleThenPoint(BDot(gain=1e4, period=0.5), mission.point, switch_rate=0.01, dwell=10.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: detumble.period = 0.5 s and point.period = 1 s differ; the mission calls both at one period: give them the same
+    """
+
+    detumble: BDot
+    point: MRPFeedback | MomentumDumping
+    switch_rate: float
+    dwell: float
+    period: float = field(init=False)
+    switch_time: float | None = field(default=None, init=False)
+    _below_since: float | None = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.detumble, BDot):
+            raise ValueError(f"detumble = {type(self.detumble).__name__} object must be a BDot controller")  # noqa: TRY004 - one error type
+        if not isinstance(self.point, (MRPFeedback, MomentumDumping)):
+            kind = type(self.point).__name__
+            raise ValueError(f"point = {kind} object must be an MRPFeedback or a MomentumDumping controller")  # noqa: TRY004
+        self.switch_rate = check_positive("switch_rate", self.switch_rate, "rad/s")
+        self.dwell = check_positive("dwell", self.dwell, "s", allow_zero=True)
+        a, b = float(self.detumble.period), float(self.point.period)
+        if not math.isclose(a, b, rel_tol=1e-12):
+            raise ValueError(f"detumble.period = {a:g} s and point.period = {b:g} s differ; the mission calls both "
+                             "at one period: give them the same")
+        self.period = a
+
+    @property
+    def mode(self) -> str:
+        """``"detumble"`` before the switch, ``"point"`` from it on.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
+        >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
+        >>> DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=0.0).mode
+        'detumble'
+        """
+        return "detumble" if self.switch_time is None else "point"
+
+    def reset(self) -> None:
+        """Back to detumbling, the dwell window and the switch time cleared; the sub-controllers reset.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from scipy.spatial.transform import Rotation
+        >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
+        >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
+        >>> mission = DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=0.0)
+        >>> still = Measurement(0.0, np.zeros(3), np.array([2e-5, 0.0, 0.0]), Rotation.identity(), np.zeros(3))
+        >>> _ = mission(0.0, still)
+        >>> mission.switch_time, mission.mode
+        (0.0, 'point')
+        >>> mission.reset()
+        >>> mission.switch_time, mission.mode
+        (None, 'detumble')
+        """
+        for sub in (self.detumble, self.point):
+            reset = getattr(sub, "reset", None)
+            if callable(reset):
+                reset()
+        self.switch_time = None
+        self._below_since = None
+
+    def __call__(self, t: float, measurement: Measurement) -> Command:
+        """The detumbling mode's command until the switch, the pointing mode's from it on.
+
+        Examples
+        --------
+        Before the switch the command is B-dot's dipole and no wheel torque; from the switch on
+        it is MRP feedback's wheel torques:
+
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from scipy.spatial.transform import Rotation
+        >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
+        >>> bdot = BDot(gain=1e4, period=1.0)
+        >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
+        >>> mission = DetumbleThenPoint(bdot, point, switch_rate=0.05, dwell=0.0)
+        >>> spin = Measurement(0.0, np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 0.0]), Rotation.identity(), np.zeros(3))
+        >>> cmd = mission(0.0, spin)
+        >>> np.array_equal(cmd.dipole, bdot(0.0, spin).dipole), cmd.wheel_torque is None
+        (True, True)
+        >>> slow = Measurement(1.0, np.array([0.0, 0.0, 0.01]), spin.field, Rotation.from_rotvec([0.1, 0.0, 0.0]), np.zeros(3))
+        >>> np.array_equal(mission(1.0, slow).wheel_torque, point(1.0, slow).wheel_torque), mission.switch_time
+        (True, 1.0)
+        """
+        if self.switch_time is None:
+            if float(np.linalg.norm(measurement.omega)) < self.switch_rate:
+                if self._below_since is None:
+                    self._below_since = float(t)
+                if float(t) - self._below_since >= self.dwell - 1e-9 * self.period:
+                    self.switch_time = float(t)
+            else:
+                self._below_since = None
+        if self.switch_time is None:
+            return self.detumble(t, measurement)
+        return self.point(t, measurement)

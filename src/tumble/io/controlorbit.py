@@ -1,0 +1,139 @@
+"""The ``[orbit]`` table of a control scenario: which orbit, which magnetic field.
+
+One of three orbits::
+
+    [orbit]
+    altitude = 500e3               # m: a circular orbit (inclination, raan, arg_latitude, rad)
+    # semi_major_axis = 7.2e6      # m: a Keplerian ellipse (eccentricity; inclination, raan, arg_perigee, mean_anomaly, rad)
+    # tle = ["1 25544U ...", "2 25544 ..."]   # SGP4 from a two-line element set (pip install tumble[orbit])
+    field = "dipole"               # or "igrf": IGRF-14 to igrf_degree (default 13; pip install tumble[orbit])
+    # epoch = "2026-11-25T00:00:00"  # UTC at t = 0, for "igrf" (a TLE's own epoch by default)
+    # gmst0 = 0.0                  # rad, for "dipole": the Earth's sidereal angle at t = 0
+    gravity_gradient = true        # the gravity-gradient torque along this orbit
+
+The world frame of the run is the orbit-plane frame for a circular orbit and the inertial frame
+(ECI, or TEME for a TLE) for the others (:mod:`tumble.dynamics.models.ephemeris`). The built-in
+dipole (IGRF-13, 2020.0) needs no package and no date but only a circular orbit.
+"""
+
+from __future__ import annotations
+
+import datetime
+import math
+from typing import Any
+
+import numpy as np
+
+from ..dynamics.models.ephemeris import KeplerOrbit, TLEOrbit
+from ..dynamics.models.igrf import IGRFField
+from ..dynamics.models.magnetic import DipoleField
+from ..dynamics.models.orbit import CircularOrbit
+
+__all__ = ["ORBIT_KEYS", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_summary"]
+
+Orbit = CircularOrbit | KeplerOrbit | TLEOrbit
+Field = DipoleField | IGRFField
+
+_CIRCULAR = ("altitude", "inclination", "raan", "arg_latitude")
+_KEPLER = ("semi_major_axis", "eccentricity", "inclination", "raan", "arg_perigee", "mean_anomaly")
+#: The keys of ``[orbit]``.
+ORBIT_KEYS = {*_CIRCULAR, *_KEPLER, "tle", "field", "epoch", "igrf_degree", "gmst0", "earth_rotation",
+              "gravity_gradient"}
+
+
+def _orbit(table: dict[str, Any]) -> Orbit:
+    given = [key for key in ("altitude", "semi_major_axis", "tle") if key in table]
+    if len(given) != 1:
+        raise ValueError("give exactly one of altitude (m, a circular orbit), semi_major_axis (m, a Keplerian "
+                         "ellipse) and tle (two lines)" + (f", not {' and '.join(given)}" if given else ""))
+    kind = given[0]
+    allowed = {"altitude": _CIRCULAR, "semi_major_axis": _KEPLER, "tle": ("tle",)}[kind]
+    stray = sorted(k for k in table if k in {*_CIRCULAR, *_KEPLER} and k not in allowed)
+    if stray:
+        raise ValueError(f"{stray[0]} does not go with {kind}; allowed with {kind}: {', '.join(allowed)}")
+    if kind == "tle":
+        lines = table["tle"]
+        if not isinstance(lines, list) or len(lines) != 2:
+            raise ValueError(f"tle = {lines!r} must be a list of the two lines of a TLE")
+        return TLEOrbit(lines[0], lines[1])
+    elements = {k: v for k, v in table.items() if k in allowed}
+    return CircularOrbit(**elements) if kind == "altitude" else KeplerOrbit(**elements)
+
+
+def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
+    """The orbit and the field of an ``[orbit]`` table (module docstring); errors name the key.
+
+    Examples
+    --------
+    >>> orbit, field = orbit_from_table({"altitude": 500e3, "inclination": 1.7})
+    >>> type(orbit).__name__, type(field).__name__
+    ('CircularOrbit', 'DipoleField')
+    >>> orbit_from_table({"semi_major_axis": 7.2e6, "eccentricity": 0.01})
+    Traceback (most recent call last):
+    ...
+    ValueError: field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis or tle use field = "igrf" and an epoch
+    """
+    orbit = _orbit(table)
+    kind = table.get("field", "dipole")
+    if kind == "dipole":
+        extra = sorted(k for k in ("epoch", "igrf_degree") if k in table)
+        if extra:
+            raise ValueError(f'{extra[0]} goes with field = "igrf", not "dipole"')
+        if not isinstance(orbit, CircularOrbit):
+            raise ValueError('field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis '
+                             'or tle use field = "igrf" and an epoch')
+        return orbit, DipoleField(orbit, gmst0=table.get("gmst0", 0.0),
+                                  earth_rotation=bool(table.get("earth_rotation", True)))
+    if kind == "igrf":
+        dipole_keys = sorted(key for key in ("gmst0", "earth_rotation") if key in table)
+        if dipole_keys:
+            raise ValueError(f'{dipole_keys[0]} goes with field = "dipole"; for "igrf" the epoch sets the Earth\'s angle')
+        return orbit, IGRFField(orbit, table.get("epoch"), max_degree=table.get("igrf_degree", 13))
+    raise ValueError(f"field = {kind!r} is unknown; allowed: dipole, igrf")
+
+
+def geomagnetic_inclination(orbit: Orbit, field: Field) -> float:
+    """The orbit's inclination to the field's dipole equator at t = 0, rad: the angle between
+    the orbit normal ``r x v`` and the dipole axis, folded into [0, pi/2] (the ``xi_m`` of
+    Avanzini & Giulietti's B-dot gain).
+
+    Examples
+    --------
+    An equatorial orbit under an axial dipole lies in the magnetic equator:
+
+    >>> orbit = CircularOrbit(altitude=500e3)
+    >>> geomagnetic_inclination(orbit, DipoleField(orbit, coefficients=(-3e-5, 0.0, 0.0)))
+    0.0
+    """
+    g10, g11, h11 = field.coefficients if isinstance(field, DipoleField) else field.gauss_degree1()
+    g = np.array([g11, h11, g10]) / math.sqrt(g10 * g10 + g11 * g11 + h11 * h11)
+    c, s = math.cos(field.gmst0), math.sin(field.gmst0)
+    axis = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ g  # ECI
+    normal = orbit.eci_from_world.apply(np.cross(orbit.position_world(0.0), orbit.velocity_world(0.0)))
+    return math.acos(min(1.0, abs(float(normal @ axis)) / float(np.linalg.norm(normal))))
+
+
+def orbit_summary(orbit: Orbit, field: Field) -> dict[str, Any]:
+    """The orbit and field as summary.json reports them (m, s, rad).
+
+    Examples
+    --------
+    >>> orbit, field = orbit_from_table({"altitude": 500e3, "inclination": 1.7})
+    >>> s = orbit_summary(orbit, field)
+    >>> s["kind"], s["altitude"], round(s["period"]), s["field"]
+    ('circular', 500000.0, 5677, 'dipole')
+    """
+    out: dict[str, Any] = {"period": orbit.period, "inclination": orbit.inclination}
+    if isinstance(orbit, CircularOrbit):
+        out.update(kind="circular", altitude=orbit.altitude)
+    elif isinstance(orbit, KeplerOrbit):
+        out.update(kind="kepler", semi_major_axis=orbit.semi_major_axis, eccentricity=orbit.eccentricity)
+    else:
+        out.update(kind="tle", tle=[orbit.line1, orbit.line2], epoch=orbit.epoch.isoformat())
+    if isinstance(field, IGRFField):
+        epoch = field.epoch
+        out.update(field="igrf", igrf_degree=field.max_degree,
+                   epoch=epoch.isoformat() if isinstance(epoch, datetime.datetime) else epoch)
+    else:
+        out.update(field="dipole", gmst0=field.gmst0)
+    return out

@@ -1,0 +1,116 @@
+"""What ``tumble simulate`` keeps of a control run: ``summary.json``'s numbers and the trajectory files.
+
+:func:`control_summary` gives the final rate, the detumble time (when ``|omega|`` drops below the
+scenario's threshold and stays there), the pointing error against the target, the momentum
+budget, the largest commands and, for a ``detumble_point`` mission, the switch time;
+:func:`write_control_run` writes ``trajectory.csv`` and ``trajectory.npz``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..dynamics.controlled import ControlledRun, command_summary
+from ..dynamics.controllers import Controller
+from ..dynamics.mission import DetumbleThenPoint
+from .controlorbit import orbit_summary
+
+if TYPE_CHECKING:
+    from .controlfile import ControlScenario
+
+__all__ = ["control_summary", "write_control_run"]
+
+
+def control_summary(scenario: ControlScenario, run: ControlledRun, controller: Controller | None = None) -> dict[str, Any]:
+    """The numbers of a run: final rate, detumble time, final pointing error, budgets, commands.
+
+    ``controller`` is the one the run used (``scenario.run(controller)``): a ``detumble_point``
+    mission's switch time is kept by it (``switch_time``, s, None when it never switched).
+
+    Examples
+    --------
+    >>> import math
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> from tumble.io.controlfile import control_scenario_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> summary = control_summary(scenario, scenario.run())
+    >>> summary["kind"], summary["samples"], summary["initial_rate"], summary["external_impulse"]
+    ('mrp_pd', 21, 0.01, 0.0)
+    >>> math.isclose(summary["pointing_error_initial"], math.pi / 3), summary["max_wheel_torque"] <= 2e-3
+    (True, True)
+    """
+    summary: dict[str, Any] = {
+        "body": scenario.body.name, "kind": scenario.kind, "t_end": float(run.t[-1]),
+        "period": float(scenario.controller_args["period"]), "samples": len(run.t),
+        "principal_moments": run.moments.tolist(),
+        "final_rate": float(run.rate[-1]), "initial_rate": float(run.rate[0]),
+        "threshold": scenario.threshold, "detumble_time": run.detumble_time(scenario.threshold),
+        "momentum_budget_error": float(run.budget_error().max()),
+        "external_impulse": float(np.linalg.norm(run.impulse_world[-1])), **command_summary(run),
+    }
+    if scenario.kind == "bdot":
+        summary["gain"] = float(scenario.controller_args["gain"])
+        summary["form"] = scenario.controller_args.get("form", "classic")
+    if scenario.kind == "detumble_point":
+        if not isinstance(controller, DetumbleThenPoint):
+            raise ValueError(f"{scenario.name}: the switch time of a detumble_point run is its controller's: "
+                             "pass the controller the run used")
+        args = scenario.controller_args
+        summary["switch_time"] = controller.switch_time
+        summary.update(switch_rate=float(args["switch_rate"]), dwell=float(args["dwell"]),
+                       gain=float(args["detumble"]["gain"]), form=args["detumble"].get("form", "classic"),
+                       dumping_gain=args.get("dumping_gain"))
+    if scenario.target is not None:
+        err = run.pointing_error(scenario.target)
+        summary["pointing_error_final"] = float(err[-1])
+        summary["pointing_error_initial"] = float(err[0])
+    if scenario.orbit is not None and scenario.field is not None:
+        summary["orbit"] = orbit_summary(scenario.orbit, scenario.field)
+    return summary
+
+
+def write_control_run(run: ControlledRun, folder: Path) -> None:
+    """``trajectory.csv`` and ``trajectory.npz`` of a control run into ``folder``: time, omega,
+    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI).
+
+    Examples
+    --------
+    >>> import math, tempfile
+    >>> from tumble.io.bodyfile import body_from_table
+    >>> from tumble.io.controlfile import control_scenario_from_table
+    >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
+    >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
+    ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+    ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
+    >>> scenario = control_scenario_from_table(table, body, name="point")
+    >>> run = scenario.run()
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write_control_run(run, Path(tmp))
+    ...     header = (Path(tmp) / "trajectory.csv").read_text().splitlines()[0].split(",")
+    ...     rows = np.loadtxt(Path(tmp) / "trajectory.csv", delimiter=",", skiprows=1)
+    ...     with np.load(Path(tmp) / "trajectory.npz") as npz:
+    ...         same = np.array_equal(npz["omega"], run.omega) and np.array_equal(npz["L_world"], run.momentum_world)
+    >>> len(header), header[8:11], rows.shape, same
+    (26, ['wheel1_speed', 'wheel2_speed', 'wheel3_speed'], (21, 26), True)
+    >>> np.array_equal(rows[:, 1:4], run.omega)   # 17 significant digits: exact
+    True
+    """
+    k = run.wheel_speed.shape[1]
+    columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
+               "wheel_torque": run.wheel_torque, "dipole": run.dipole, "field": run.field,
+               "L_world": run.momentum_world, "impulse_world": run.impulse_world}
+    names = ["t", "omega1", "omega2", "omega3", "qx", "qy", "qz", "qw", *[f"wheel{i + 1}_speed" for i in range(k)],
+             *[f"wheel{i + 1}_torque" for i in range(k)], "m1", "m2", "m3", "B1", "B2", "B3",
+             "Lx_world", "Ly_world", "Lz_world", "Jx_world", "Jy_world", "Jz_world"]
+    table = np.hstack(list(columns.values()))
+    np.savetxt(folder / "trajectory.csv", table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+    np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
+
+

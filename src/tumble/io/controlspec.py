@@ -1,0 +1,212 @@
+"""The ``[control]`` table of a control scenario: its kinds, their keys, and the controller each builds.
+
+Three kinds (:mod:`tumble.io.controlfile` for the rest of the file)::
+
+    [control]
+    kind = "bdot"               # B-dot with the magnetorquers (needs [orbit] and [actuators.magnetorquers])
+    period = 1.0                # s
+    # gain (default Avanzini & Giulietti's k = 2 n (1 + sin xi_m) I_min with form = "normalized"),
+    # form, derivative, threshold (rad/s, for the detumble time)
+
+    kind = "mrp_pd"             # MRP feedback with the wheels (needs [actuators.wheels])
+    # K (N m), P (N m s), target = [x, y, z, w] (design frame to world), gyroscopic
+
+    kind = "detumble_point"     # B-dot, then MRP feedback (tumble.dynamics.mission.DetumbleThenPoint)
+    switch_rate = 0.0175        # rad/s: the gyroscope's |omega| must stay below it ...
+    dwell = 60.0                # s: ... for this long, then the wheels point; never back
+    # threshold (rad/s, for the detumble time of the summary)
+    [control.detumble]          # the B-dot keys: gain, form, derivative (period: the mission's)
+    [control.point]             # the MRP keys: K, P, target, gyroscopic; dumping_gain (1/s): the
+                                # magnetorquers unload the wheels while they point (MomentumDumping)
+
+The sub-tables may be written inline (``point = {K = 1.1e-3, P = 6e-3}``). Each value is checked
+by the constructor it feeds; errors are one line naming the table and the key.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..dynamics.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
+from ..dynamics.mission import DetumbleThenPoint
+from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
+from ..dynamics.models.sensors import Sensors
+from ..mass import Body
+from ..validation import check_positive, check_rotation
+from .controlorbit import Field, Orbit, geomagnetic_inclination
+
+__all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
+
+_BDOT_KEYS = {"gain", "form", "derivative"}
+_MRP_KEYS = {"K", "P", "target", "gyroscopic"}
+#: The keys of each kind of ``[control]``.
+CONTROL_KINDS = {"bdot": {"kind", "period", "threshold", *_BDOT_KEYS},
+                 "mrp_pd": {"kind", "period", "threshold", *_MRP_KEYS},
+                 "detumble_point": {"kind", "period", "threshold", "switch_rate", "dwell", "detumble", "point"}}
+#: Every key ``[control]`` may hold (those of its kind are checked after).
+CONTROL_KEYS = set().union(*CONTROL_KINDS.values())
+_SUB_KEYS = {"detumble": _BDOT_KEYS, "point": _MRP_KEYS | {"dumping_gain"}}
+#: Rate under which a run counts as detumbled when the file does not say, rad/s (0.5 deg/s).
+DEFAULT_THRESHOLD = math.radians(0.5)
+
+
+@dataclass(frozen=True, eq=False)
+class ControlSpec:
+    """A parsed ``[control]`` table: the kind, the controller's arguments (SI), the target
+    (principal frame to world; None for B-dot) and the detumble threshold (rad/s).
+
+    Examples
+    --------
+    >>> ControlSpec("bdot", {"gain": 1e4, "period": 1.0}, None, 0.01).kind
+    'bdot'
+    """
+
+    kind: str
+    args: dict[str, Any]
+    target: Rotation | None
+    threshold: float
+
+
+def _sub(where: str, table: object, keys: set[str]) -> dict[str, Any]:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table [{where}]")  # noqa: TRY004 - one error type for bad input
+    bad = sorted(set(table) - keys)
+    if bad:
+        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
+    return table
+
+
+def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Field | None,
+               magnetorquers: Magnetorquers | None, kind: str) -> dict[str, Any]:
+    """B-dot's arguments, the gain defaulting to Avanzini & Giulietti's (normalised form)."""
+    if magnetorquers is None or orbit is None or field is None:
+        raise ValueError(f'kind = "{kind}" needs [actuators.magnetorquers] and an [orbit] (the field)')
+    args = dict(args)
+    if "gain" not in args:  # Avanzini & Giulietti 2012, xi_m the orbit's inclination to the dipole's equator
+        args["gain"] = bdot_gain(orbit.mean_motion, geomagnetic_inclination(orbit, field),
+                                 float(np.min(body.principal_moments)))
+        args.setdefault("form", "normalized")
+    BDot(**args)
+    return args
+
+
+def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, principal_to_design: Rotation,
+              kind: str) -> tuple[dict[str, Any], Rotation]:
+    """MRP feedback's arguments without the target, and the target (principal frame to world)."""
+    if wheels is None:
+        raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
+    args = {k: v for k, v in args.items() if k != "target"}
+    target = Rotation.from_quat(check_rotation("target", args.pop("_target", None) or [0, 0, 0, 1]))
+    return args, target * principal_to_design
+
+
+def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, field: Field | None,
+                  magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None, sensors: Sensors,
+                  principal_to_design: Rotation) -> ControlSpec:
+    """Check a ``[control]`` table against the file's actuators and build its :class:`ControlSpec`.
+
+    Raises
+    ------
+    ValueError
+        One line starting ``control:`` (or ``control.point:``, ``control.detumble:``) naming the
+        key, the value and what is allowed.
+
+    Examples
+    --------
+    >>> from tumble.mass import MassProperties
+    >>> from tumble.dynamics import CircularOrbit, DipoleField
+    >>> body = MassProperties.from_moments([0.0067, 0.0419, 0.0419])
+    >>> wheels = ReactionWheels(np.eye(3), inertia=2e-5)
+    >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
+    >>> spec = parse_control({"kind": "detumble_point", "period": 1.0, "switch_rate": 0.0175, "dwell": 60.0,
+    ...                       "point": {"K": 1e-3, "P": 6e-3, "dumping_gain": 1e-3}}, body=body, orbit=orbit,
+    ...                      field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2), wheels=wheels,
+    ...                      sensors=Sensors(), principal_to_design=Rotation.identity())
+    >>> spec.kind, spec.args["detumble"]["form"], spec.args["point"], spec.args["dumping_gain"]
+    ('detumble_point', 'normalized', {'K': 0.001, 'P': 0.006, 'period': 1.0}, 0.001)
+    >>> type(build_controller(spec, body, wheels)).__name__
+    'DetumbleThenPoint'
+    >>> parse_control({"kind": "detumble_point", "period": 1.0, "switch_rate": 0.0175, "dwell": 60.0,
+    ...                "point": {"K": 1e-3, "P": 6e-3, "Ki": 1.0}}, body=body, orbit=orbit, field=DipoleField(orbit),
+    ...               magnetorquers=Magnetorquers(0.2), wheels=wheels, sensors=Sensors(), principal_to_design=Rotation.identity())
+    Traceback (most recent call last):
+    ...
+    ValueError: control.point: unknown key 'Ki'; allowed: K, P, dumping_gain, gyroscopic, target
+    """
+    kind = control.get("kind")
+    if kind not in CONTROL_KINDS:
+        raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(CONTROL_KINDS)}")
+    bad = sorted(set(control) - CONTROL_KINDS[kind])
+    if bad:
+        raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: "
+                         f"{', '.join(sorted(CONTROL_KINDS[kind]))}")
+    args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}
+    target = None
+    where = "control"
+    try:
+        if "period" not in control:
+            raise ValueError("missing key 'period' (s)")
+        threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
+        if kind == "bdot":
+            args = _bdot_args(args, body, orbit, field, magnetorquers, kind)
+        elif kind == "mrp_pd":
+            args, target = _mrp_args({**args, "_target": control.get("target")}, body, wheels, principal_to_design, kind)
+            MRPFeedback(**args, moments=body.principal_moments, wheels=wheels, target=target)  # type: ignore[arg-type]
+        else:
+            for key, unit in (("switch_rate", "rad/s"), ("dwell", "s")):
+                if key not in control:
+                    raise ValueError(f"missing key {key!r} ({unit})")
+            if wheels is None:
+                raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
+            if sensors.attitude == "none":
+                raise ValueError('kind = "detumble_point" points with the wheels and needs an attitude sensor; '
+                                 'sensors.attitude = "none" gives none')
+            period = control["period"]
+            where = "control.detumble"
+            detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_KEYS["detumble"]),
+                                   "period": period}, body, orbit, field, magnetorquers, kind)
+            where = "control.point"
+            point_t = _sub(where, control.get("point", {}), _SUB_KEYS["point"])
+            point, target = _mrp_args({**{k: v for k, v in point_t.items() if k != "dumping_gain"},
+                                       "_target": point_t.get("target"), "period": period},
+                                      body, wheels, principal_to_design, kind)
+            dumping = point_t.get("dumping_gain")
+            if dumping is not None:
+                dumping = check_positive("dumping_gain", dumping, "1/s")
+            args = {"period": period, "switch_rate": control["switch_rate"], "dwell": control["dwell"],
+                    "detumble": detumble, "point": point, "dumping_gain": dumping}
+            where = "control"
+            build_controller(ControlSpec(kind, args, target, threshold), body, wheels)
+    except (ValueError, TypeError) as exc:
+        text = str(exc)
+        raise ValueError(text if text.startswith(("control:", "control.")) else f"{where}: {text}") from None
+    return ControlSpec(kind, args, target, threshold)
+
+
+def build_controller(spec: ControlSpec, body: Body, wheels: ReactionWheels | None
+                     ) -> BDot | MRPFeedback | DetumbleThenPoint:
+    """A fresh controller of a parsed ``[control]`` table, for ``body`` and its ``wheels``.
+
+    Examples
+    --------
+    >>> from tumble.mass import MassProperties
+    >>> c = build_controller(ControlSpec("bdot", {"gain": 1e4, "period": 1.0}, None, 0.01),
+    ...                      MassProperties.from_moments([1.0, 2.0, 3.0]), None)
+    >>> type(c).__name__, c.gain
+    ('BDot', 10000.0)
+    """
+    target = spec.target if spec.target is not None else Rotation.identity()
+    if spec.kind == "bdot":
+        return BDot(**spec.args)
+    assert wheels is not None  # checked when the file was read
+    if spec.kind == "mrp_pd":
+        return MRPFeedback(**spec.args, moments=body.principal_moments, wheels=wheels, target=target)
+    a = spec.args
+    mrp = MRPFeedback(**a["point"], moments=body.principal_moments, wheels=wheels, target=target)
+    point = mrp if a.get("dumping_gain") is None else MomentumDumping(mrp, gain=a["dumping_gain"])
+    return DetumbleThenPoint(BDot(**a["detumble"]), point, switch_rate=a["switch_rate"], dwell=a["dwell"])
