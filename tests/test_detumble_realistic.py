@@ -5,6 +5,7 @@ the batch's make-up, its segmentation, the Monte Carlo's chunking and the backen
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -35,10 +36,12 @@ def _bodies(n, seed):
             Rotation.random(n, random_state=seed).as_quat(), rng.uniform(0, 2 * math.pi, n))
 
 
-@pytest.mark.parametrize("sensors", [None, NOISY], ids=["ideal", "noisy"])
+@pytest.mark.parametrize("sensors", [None, NOISY, dataclasses.replace(NOISY, attitude="star_tracker", attitude_noise=1e-3)],
+                         ids=["ideal", "noisy", "noisy-star-tracker"])
 def test_one_body_is_simulate_controlled_with_the_same_model_and_noise(sensors):
     """Gravity gradient and sensors as in the one-body loop (DOP853, rtol 1e-10): the batch draws
-    the very noise that Sensors(seed=42) gives there, so the runs agree to RK4's error, which falls
+    the very noise that Sensors(seed=42) gives there (a star tracker's draws, unused by B-dot,
+    skipped as they are taken there), so the runs agree to RK4's error, which falls
     ~16x from 4 to 8 substeps (fourth order); the noise itself moves the rate by far more."""
     w0, q0 = np.array([0.2, -0.15, 0.25]), Rotation.from_rotvec([0.3, -1.0, 0.5]).as_quat()
     gg = ORBIT.gravity_gradient()
