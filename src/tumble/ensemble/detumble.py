@@ -320,7 +320,7 @@ class DetumbleMonteCarlo:
             "gravity_gradient": self.gravity_gradient,
             "gyro_noise_rad_s": sensors.gyro_noise if sensors is not None else 0.0,
             "magnetometer_noise_T": sensors.magnetometer_noise if sensors is not None else 0.0,
-            "gyro_bias_sigma_rad_s": float(np.std(self.cases.biases())) if self.cases.gyro_bias is not None else 0.0,
+            "gyro_bias_std_rad_s": float(np.std(self.cases.biases())) if self.cases.gyro_bias is not None else 0.0,
             "worst": worst_cases,
         }
 

@@ -39,7 +39,7 @@ def _model(mc: DetumbleMonteCarlo) -> str:
     else:
         parts.append("ideal sensors")
     if mc.cases.gyro_bias is not None and np.any(mc.cases.gyro_bias):
-        parts.append(f"gyro bias {math.degrees(float(np.std(mc.cases.gyro_bias))):.2g} deg/s (1 sigma)")
+        parts.append(f"gyro bias {math.degrees(float(np.std(mc.cases.gyro_bias))):.2g} deg/s (std over the cases)")
     return ", ".join(parts)
 
 
