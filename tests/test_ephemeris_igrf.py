@@ -20,7 +20,7 @@ from tumble.dynamics import (
     TLEOrbit,
     simulate_controlled,
 )
-from tumble.dynamics.models.ephemeris import greenwich_sidereal_angle, julian_date
+from tumble.dynamics.models.sidereal import greenwich_sidereal_angle, julian_date
 from tumble.dynamics.models.gravity import MU_EARTH, R_EARTH
 
 ISS_2019 = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",

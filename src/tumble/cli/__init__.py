@@ -34,6 +34,14 @@ def main(argv: list[str] | None = None) -> int:
     (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
     by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
     (``tumble examples | head -2``) is a normal end: 0, quietly.
+
+    Examples
+    --------
+    >>> main(["inertia", "t-handle", "--json"]) == EXIT_OK   # prints the mass properties as JSON
+    {...
+    True
+    >>> main(["simulate", "no-such-file.toml", "--out", "x"])   # bad input: one line on stderr, nothing written
+    2
     """
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)

@@ -17,7 +17,14 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser (also used to document the CLI)."""
+    """The argument parser (also used to document the CLI).
+
+    Examples
+    --------
+    >>> args = build_parser().parse_args(["simulate", "examples/seed_flip.toml", "--out", "runs/flip"])
+    >>> args.command, args.out
+    ('simulate', 'runs/flip')
+    """
     parser = _Parser(
         prog="tumble",
         description="Rigid-body rotation: mass properties, Euler's equations, the tennis-racket effect.",

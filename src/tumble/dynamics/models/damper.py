@@ -22,15 +22,11 @@ sphere's mass (its centre's parallel-axis term) but not its own ``J``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
-
-if TYPE_CHECKING:
-    pass
 
 __all__ = ["MAX_DAMPER_RATIO", "SphericalDamper"]
 

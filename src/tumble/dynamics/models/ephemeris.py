@@ -1,5 +1,5 @@
 """Orbits beyond the circle: a Keplerian ellipse from its elements, a two-line element set
-through SGP4, the Earth's sidereal angle, and the gravity-gradient torque along any of them.
+through SGP4, and the gravity-gradient torque along any of them.
 
 **Keplerian orbit** (Vallado, *Fundamentals of Astrodynamics and Applications*, 4th ed., 2013):
 the mean anomaly ``M = M0 + n t`` with ``n = sqrt(mu / a^3)``; Kepler's equation
@@ -21,9 +21,7 @@ the sidereal angle below, to polar motion).
 (ECI or TEME): ``eci_from_world`` is the identity and ``position_world`` is ``position_eci``
 (a :class:`~tumble.dynamics.models.orbit.CircularOrbit` keeps its orbit-plane frame).
 
-**Sidereal angle.** Greenwich mean sidereal time, IAU 1982 (Vallado sec. 3.5.2, eq. 3-45):
-``theta = 67310.54841 s + (876600 h + 8640184.812866 s) T + 0.093104 s T^2 - 6.2e-6 s T^3``,
-``T`` Julian centuries of UT1 from J2000.0 (UTC is used for UT1: within 0.9 s, 4e-3 deg).
+The dates and the Earth's sidereal angle are :mod:`~tumble.dynamics.models.sidereal`.
 """
 
 from __future__ import annotations
@@ -39,54 +37,9 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_moments, check_number, check_positive
 from .gravity import MU_EARTH, R_EARTH, gradient_torque
+from .sidereal import J2000
 
-__all__ = ["KeplerOrbit", "OrbitGravityGradient", "TLEOrbit", "greenwich_sidereal_angle", "julian_date"]
-
-_J2000 = _dt.datetime(2000, 1, 1, 12, 0, 0, tzinfo=_dt.UTC)
-
-
-def julian_date(when: _dt.datetime | str) -> float:
-    """The Julian date of a UTC instant (a ``datetime``, naive read as UTC, or an ISO 8601 string).
-
-    Counted from J2000.0 = JD 2451545.0 (2000-01-01 12:00 UTC) in days of 86,400 s; leap seconds
-    are not counted (the Julian date of UTC, as SGP4 uses it).
-
-    Examples
-    --------
-    >>> julian_date("2000-01-01T12:00:00")
-    2451545.0
-    >>> julian_date("2026-11-25T00:00:00+00:00")
-    2461369.5
-    """
-    t = _utc(when, "epoch")
-    return 2451545.0 + (t - _J2000).total_seconds() / 86400.0
-
-
-def _utc(when: object, name: str) -> _dt.datetime:
-    if isinstance(when, str):
-        try:
-            when = _dt.datetime.fromisoformat(when)
-        except ValueError:
-            raise ValueError(f"{name} = {when!r} is not an ISO 8601 date and time, e.g. 2026-11-25T00:00:00") from None
-    if not isinstance(when, _dt.datetime):
-        raise ValueError(f"{name} = {when!r} must be a datetime or an ISO 8601 string (UTC)")  # noqa: TRY004 - one error type for bad input
-    return when.replace(tzinfo=_dt.UTC) if when.tzinfo is None else when.astimezone(_dt.UTC)
-
-
-def greenwich_sidereal_angle(jd_ut1: ArrayLike) -> FloatArray:
-    """Greenwich mean sidereal angle (IAU 1982) at Julian date(s) ``jd_ut1``, rad in [0, 2 pi).
-
-    Examples
-    --------
-    Vallado's example 3-5 (1992-08-20 12:14 UT1): 152.578787810 deg:
-
-    >>> jd = julian_date("1992-08-20T12:14:00")
-    >>> round(math.degrees(float(greenwich_sidereal_angle(jd))), 6)
-    152.578788
-    """
-    T = (np.asarray(jd_ut1, float) - 2451545.0) / 36525.0
-    seconds = 67310.54841 + (876600.0 * 3600.0 + 8640184.812866) * T + 0.093104 * T**2 - 6.2e-6 * T**3
-    return np.asarray(np.mod(seconds, 86400.0) * (2.0 * math.pi / 86400.0), float)
+__all__ = ["KeplerOrbit", "OrbitGravityGradient", "TLEOrbit"]
 
 
 def _kepler_eccentric(M: FloatArray, e: float) -> FloatArray:
@@ -231,8 +184,27 @@ class KeplerOrbit:
         """
         return self._to_eci(self._perifocal(t)[1])
 
-    position_world = position_eci
-    velocity_world = velocity_eci
+    def position_world(self, t: ArrayLike) -> Vector3:
+        """Position in the world frame of a run, which is ECI here: :meth:`position_eci`, m.
+
+        Examples
+        --------
+        >>> k = KeplerOrbit(7000e3, 0.01)
+        >>> bool(np.array_equal(k.position_world([0.0, 60.0]), k.position_eci([0.0, 60.0])))
+        True
+        """
+        return self.position_eci(t)
+
+    def velocity_world(self, t: ArrayLike) -> Vector3:
+        """Velocity in the world frame of a run, which is ECI here: :meth:`velocity_eci`, m/s.
+
+        Examples
+        --------
+        >>> k = KeplerOrbit(7000e3, 0.01)
+        >>> bool(np.array_equal(k.velocity_world(60.0), k.velocity_eci(60.0)))
+        True
+        """
+        return self.velocity_eci(t)
 
     def gravity_gradient(self) -> OrbitGravityGradient:
         """The gravity-gradient torque along this orbit (world frame = ECI).
@@ -301,7 +273,7 @@ class TLEOrbit:
         2008
         """
         days = (self._satrec.jdsatepoch - 2451545.0) + self._satrec.jdsatepochF
-        return _J2000 + _dt.timedelta(days=float(days))
+        return J2000 + _dt.timedelta(days=float(days))
 
     @property
     def mean_motion(self) -> float:
@@ -393,8 +365,29 @@ class TLEOrbit:
         """
         return self._state(t)[1]
 
-    position_world = position_eci
-    velocity_world = velocity_eci
+    def position_world(self, t: ArrayLike) -> Vector3:
+        """Position in the world frame of a run, which is TEME here: :meth:`position_eci`, m.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> bool(np.array_equal(iss.position_world(30.0), iss.position_eci(30.0)))
+        True
+        """
+        return self.position_eci(t)
+
+    def velocity_world(self, t: ArrayLike) -> Vector3:
+        """Velocity in the world frame of a run, which is TEME here: :meth:`velocity_eci`, m/s.
+
+        Examples
+        --------
+        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+        >>> bool(np.array_equal(iss.velocity_world(30.0), iss.velocity_eci(30.0)))
+        True
+        """
+        return self.velocity_eci(t)
 
     def gravity_gradient(self) -> OrbitGravityGradient:
         """The gravity-gradient torque along this orbit (world frame = TEME).

@@ -10,7 +10,7 @@ it with ``pip install tumble[orbit]``. The built-in
 **Along an orbit.** At time ``t`` (s from ``epoch``) the spacecraft is at ``r_eci(t)`` (the
 orbit's ``position_eci``); the Earth-fixed frame is ECI turned by the sidereal angle
 ``theta(t) = theta_GMST(epoch) + omega_E t``
-(:func:`~tumble.dynamics.models.ephemeris.greenwich_sidereal_angle`; polar motion and the
+(:func:`~tumble.dynamics.models.sidereal.greenwich_sidereal_angle`; polar motion and the
 difference between ECI and TEME are neglected, a few tenths of a degree); ``ppigrf`` gives
 ``(B_r, B_theta, B_phi)`` at the geocentric radius, colatitude and longitude, turned back into
 the run's world frame.
@@ -37,8 +37,8 @@ from scipy.interpolate import CubicSpline
 
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_positive
-from .ephemeris import _utc, greenwich_sidereal_angle, julian_date
 from .magnetic import OMEGA_EARTH
+from .sidereal import greenwich_sidereal_angle, julian_date, utc_datetime
 
 __all__ = ["IGRFField"]
 
@@ -105,7 +105,7 @@ class IGRFField:
         epoch = self.epoch if self.epoch is not None else getattr(self.orbit, "epoch", None)
         if epoch is None:
             raise ValueError("epoch is needed (the UTC date and time at t = 0, e.g. '2026-11-25T00:00:00')")
-        when = _utc(epoch, "epoch")
+        when = utc_datetime(epoch, "epoch")
         g, _ = _coefficients()
         first, last = g.index[0].to_pydatetime(), g.index[-1].to_pydatetime()
         if not first <= when.replace(tzinfo=None) <= last + _dt.timedelta(days=5 * 365.25):

@@ -15,15 +15,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, NamedTuple, cast
+from typing import Any, NamedTuple, cast
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ..special.quaternion import quaternion_rate
-
-if TYPE_CHECKING:
-    pass
 from .damper import MAX_DAMPER_RATIO, SphericalDamper
 from .rotors import Rotors, gyrostat_rate
 

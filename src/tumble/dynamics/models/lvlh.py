@@ -174,7 +174,9 @@ def lvlh_state(
     >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg.bind(body),
     ...                        t_end=5400.0, method="dop853")
     """
-    from .gravity import GravityGradient  # here: gravity.py re-exports this module's names
+    from .gravity import (
+        GravityGradient,  # here: gravity.py re-exports this module's names
+    )
 
     if not isinstance(gg, GravityGradient):
         raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient")
