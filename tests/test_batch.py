@@ -316,3 +316,21 @@ def test_omega_alone_equals_omega_with_attitude():
     both, _ = free_rotation_batch(I, w, q, t)
     assert quat is None
     np.testing.assert_array_equal(omega, both)
+
+
+def test_elliptic_parameters_in_chunks_equal_each_motion_alone(monkeypatch):
+    """Many motions are taken in chunks (cache-sized): every field, shape and value, is what
+    each motion gives alone, for a batch shape (4, 5) and moments broadcast from one body."""
+    from tumble.dynamics.methods import exact_parameters as ep
+
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=(4, 5, 3))
+    I = np.array([1.0, 2.0, 3.0])
+    monkeypatch.setattr(ep, "_CHUNK", 7)  # 20 motions: three chunks, the last one short
+    many = ep.elliptic_parameters(w, I)
+    assert many.amplitudes.shape == (4, 5, 3) and many.p.shape == (4, 5)
+    for i in range(4):
+        for j in range(5):
+            one = ep.elliptic_parameters(w[i, j], I)
+            for field, a, b in zip(one._fields, many, one):
+                np.testing.assert_array_equal(np.asarray(a)[i, j], b, err_msg=field)
