@@ -18,6 +18,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from .exact import MAX_PHASE, check_phase_limit
 from .exact_kernel import EllipticMotion, is_steady, steady_attitude
+from .exact_parameters import run_chunks
 
 __all__ = ["free_rotation_batch"]
 
@@ -93,13 +94,16 @@ def free_rotation_batch(
             cast(Quaternion, quat)[idx] = steady_attitude(w[idx], q0[idx], t)
     rest = np.flatnonzero(~steady)
     step = max(_MIN_BODIES, _CHUNK // max(T, 1))
-    for start in range(0, len(rest), step):
+
+    def run(start: int) -> None:
         chunk = rest[start:start + step]
         motion = EllipticMotion(I[chunk], w[chunk])
         reduced = motion.reduce(t)
         omega[chunk] = motion.omega(reduced)
         if attitude:
             cast(Quaternion, quat)[chunk] = motion.attitude(q0[chunk], t, reduced, omega[chunk])
+
+    run_chunks(run, range(0, len(rest), step))  # on every core (numpy releases the GIL in each operation)
     return omega, quat
 
 
