@@ -181,7 +181,19 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
 
 def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
                    work: FloatArray) -> None:  # pragma: no cover - compiled
-    """:func:`free_flow` with its scratch space given: ``work``, :data:`WORK` doubles (any values)."""
+    """:func:`free_flow` with its scratch space given: ``work``, :data:`WORK` doubles (any values).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> I, work = np.array([1.0, 2.0, 3.0]), np.empty(WORK)
+    >>> L, q = I * np.array([0.1, 1.0, 0.1]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow_into(I, L, q, 5.0, work)
+    >>> L2, q2 = I * np.array([0.1, 1.0, 0.1]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow(I, L2, q2, 5.0)   # the same arithmetic, its scratch space its own
+    >>> bool(np.array_equal(L, L2) and np.array_equal(q, q2))
+    True
+    """
     w0, w1, w2 = L[0] / I[0], L[1] / I[1], L[2] / I[2]
     zeros = int(w0 == 0.0) + int(w1 == 0.0) + int(w2 == 0.0)
     if (I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w2 == 0.0) or (I[1] == I[2] and w0 == 0.0)):
