@@ -6,7 +6,9 @@ sec. 37; read its module docstring), evaluated by the one kernel both fronts sha
 gets what :class:`tumble.dynamics.methods.exact.FreeRotation` gives it, to a few ulps (the
 kernel picks its parameter path, floats or arrays, by the chunk's size). Steady rotations
 (spheres, spins about a principal axis, a symmetric top in its degenerate plane) are turns about
-the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi).
+the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi). The chunks run on every core
+(:func:`tumble.dynamics.methods.exact_parameters.run_chunks`: threads, since numpy releases the
+GIL within each operation; each chunk's arithmetic is the same on any thread).
 """
 
 from __future__ import annotations
