@@ -18,6 +18,17 @@ rate ``dt``). Torques, each a dynamic effector evaluated at every RK4 stage:
   (:func:`earth_mu`) and ``orbit_radius = r``. (Basilisk integrates the orbit too, with the same
   RK4; on a circle over 20 s its deviation is far below the attitude errors compared here.)
 
+A reaction wheel (``wheel=``): one ``reactionWheelStateEffector`` wheel, ``BalancedWheels``, at
+the hub's origin, no friction, no speed or torque limit, and no motor torque (no command
+message: ``u = 0``), made with ``simIncludeRW.rwFactory().create("custom", ...)``. Without a
+motor torque the wheel keeps its absolute axial momentum ``a = Js (g . omega + Omega)``
+(``Omega`` its speed relative to the hub), so the hub moves as a gyrostat with the constant
+internal momentum ``a g`` and the inertia ``[I_RW] = I - Js g g^T`` (Schaub & Junkins, sec. 4.5,
+the reaction wheel equations with ``u = 0``): ``L = [I_RW] omega + a g``. That is tumble's
+gyrostat of a :class:`tumble.Rotor` at a constant relative spin ``s``, ``L = I omega + J s g``
+(:mod:`tumble.dynamics.models.rotors`), when tumble's locked inertia ``I`` is Basilisk's
+``[I_RW]`` and ``J s = a``: :func:`wheel_setup` makes the Basilisk wheel from tumble's body so.
+
 Attitude: tumble's quaternion ``[x, y, z, w]`` (principal frame to world, active) is the
 rotation ``[NB]``; Basilisk's MRP ``sigma_BN`` describes the same rotation of B relative to N,
 ``sigma = (x, y, z) / (1 + w)``, and back ``q = (2 sigma, 1 - s^2) / (1 + s^2)`` with
@@ -69,8 +80,37 @@ def quat_from_mrp(sigma) -> np.ndarray:
     return np.column_stack([2.0 * sigma / (1.0 + s2)[:, None], (1.0 - s2) / (1.0 + s2)])
 
 
+@dataclass(frozen=True)
+class Wheel:
+    """One Basilisk reaction wheel: spin axis ``g`` (unit, hub frame), ``Js`` (kg m^2), initial
+    speed relative to the hub ``Omega`` (rad/s)."""
+
+    axis: tuple[float, float, float]
+    js: float
+    omega: float
+
+
+def wheel_setup(moments, axis, axial_moment: float, spin: float, omega0) -> tuple[np.ndarray, Wheel]:
+    """The Basilisk hub inertia (kg m^2, 3x3) and wheel whose free-wheel gyrostat is tumble's.
+
+    tumble: principal moments ``moments`` (the whole, the rotor locked in), a rotor of axial
+    moment ``J = axial_moment`` along the unit ``axis`` (principal frame) at the constant relative
+    spin ``s = spin`` (rad/s); the body starts at ``omega0`` (rad/s). Basilisk (bsk 2.12: a
+    ``BalancedWheels`` wheel adds no mass properties, so the spacecraft's inertia is the hub's):
+    a wheel with ``Js = J`` whose ``[I_RW] = I_hub - Js g g^T`` equals ``diag(moments)``, so
+    ``I_hub = diag(moments) + J g g^T``, and whose absolute axial momentum
+    ``Js (g . omega0 + Omega0)`` equals ``J s``: ``Omega0 = s - g . omega0``.
+    """
+    g = np.asarray(axis, dtype=float)
+    g = g / np.linalg.norm(g)
+    hub = np.diag(np.asarray(moments, dtype=float)) + float(axial_moment) * np.outer(g, g)
+    w0 = float(g @ np.asarray(omega0, dtype=float))
+    return hub, Wheel(tuple(float(v) for v in g), float(axial_moment), float(spin) - w0)
+
+
 def run_basilisk(moments, omega0, quat0, *, dt_ns: int, sample_steps: int, samples: int,
-                 torque=None, orbit_radius: float | None = None) -> BasiliskRun:
+                 torque=None, orbit_radius: float | None = None, hub_inertia=None,
+                 wheel: Wheel | None = None) -> BasiliskRun:
     """Integrate one spacecraft with Basilisk's RK4.
 
     Parameters
@@ -90,6 +130,10 @@ def run_basilisk(moments, omega0, quat0, *, dt_ns: int, sample_steps: int, sampl
         A constant body-frame torque, N m (``extForceTorque``).
     orbit_radius : float, optional
         The gravity gradient of a circular orbit of this radius, m, about a point-mass Earth.
+    hub_inertia : array_like, shape (3, 3), optional
+        The hub's inertia, kg m^2, instead of ``diag(moments)`` (with a wheel: :func:`wheel_setup`).
+    wheel : Wheel, optional
+        A free reaction wheel on the hub (no motor torque).
 
     Returns
     -------
@@ -104,7 +148,8 @@ def run_basilisk(moments, omega0, quat0, *, dt_ns: int, sample_steps: int, sampl
     sc = spacecraft.Spacecraft()
     sc.ModelTag = "hub"
     sc.hub.mHub = MASS
-    sc.hub.IHubPntBc_B = np.diag(np.asarray(moments, dtype=float)).tolist()
+    hub = np.diag(np.asarray(moments, dtype=float)) if hub_inertia is None else np.asarray(hub_inertia, dtype=float)
+    sc.hub.IHubPntBc_B = hub.tolist()
     sc.hub.sigma_BNInit = mrp_from_quat(quat0)
     sc.hub.omega_BN_BInit = [[float(v)] for v in omega0]
     sim.AddModelToTask("task", sc)
@@ -116,6 +161,18 @@ def run_basilisk(moments, omega0, quat0, *, dt_ns: int, sample_steps: int, sampl
         sc.addDynamicEffector(ext)
         sim.AddModelToTask("task", ext)
         keep.append(ext)
+    if wheel is not None:
+        from Basilisk.architecture import messaging
+        from Basilisk.simulation import reactionWheelStateEffector
+        from Basilisk.utilities import macros, simIncludeRW
+
+        factory = simIncludeRW.rwFactory()
+        rw = factory.create("custom", list(wheel.axis), Js=wheel.js, Omega=wheel.omega / macros.RPM,
+                            useMaxTorque=False, RWModel=messaging.BalancedWheels)
+        effector = reactionWheelStateEffector.ReactionWheelStateEffector()
+        factory.addToSpacecraft("wheels", effector, sc)
+        sim.AddModelToTask("task", effector)
+        keep += [factory, rw, effector]
     if orbit_radius is not None:
         grav = simIncludeGravBody.gravBodyFactory()
         earth = grav.createEarth()

@@ -44,6 +44,7 @@ DT = 1e-3
 TAU = (0.01, -0.02, 0.015)
 SPIN = 6.0
 TARGET_RATIO = 100.0
+BODIES = 2000  # the batch
 N_REF = 4
 INTERVAL = T_END / (SAMPLES - 1)
 
@@ -120,9 +121,9 @@ def _errors(omega, quat, ref) -> tuple[float, float]:
 
 
 def measure(quick: bool = False) -> dict:
-    n = 100 if quick else 1000
+    n = 100 if quick else BODIES
     repeat = 1 if quick else 3
-    I, w0, q0 = (a[:n] for a in _bodies(1000))  # --quick: the first 100 of the same bodies
+    I, w0, q0 = (a[:n] for a in _bodies(BODIES))  # --quick: the first 100 of the same bodies
     ref = _reference(I[:N_REF], w0[:N_REF], q0[:N_REF], 1e-13)
     ref12 = _reference(I[:N_REF], w0[:N_REF], q0[:N_REF], 1e-12)
     ref_bound = _errors(np.array([w for w, _ in ref12]), np.array([q for _, q in ref12]), ref)

@@ -21,7 +21,13 @@ import tumble
 pytest.importorskip("Basilisk", reason="Basilisk (pip install bsk) is not installed")
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from basilisk_runner import earth_mu, mrp_from_quat, quat_from_mrp, run_basilisk
+from basilisk_runner import (
+    earth_mu,
+    mrp_from_quat,
+    quat_from_mrp,
+    run_basilisk,
+    wheel_setup,
+)
 
 MOMENTS = (10.0, 12.0, 15.0)  # kg m^2
 OMEGA0 = (0.05, 1.0, 0.05)  # rad/s, near the intermediate axis
@@ -69,3 +75,29 @@ def test_gravity_gradient_agrees():
     _compare(run, _tumble(gg, run.times))
     free = _tumble(None, run.times)
     assert np.max(np.abs(free.omega - run.omega)) > 1e-4
+
+
+def test_free_reaction_wheel_agrees_with_the_rotor_gyrostat():
+    """A Basilisk wheel without motor torque (its absolute axial momentum kept) set up by
+    ``wheel_setup`` moves the hub as tumble's body with a constant-spin Rotor: the same gyrostat."""
+    from tumble.dynamics.models.rotors import Rotors
+
+    spin = 200.0  # rad/s relative to the body: 4.5 N m s
+    body = tumble.Body([tumble.Box(mass=120.0, size=(1.2, 1.0, 0.8)),
+                        tumble.Rotor(mass=2.0, radius=0.15, length=0.05, axis=(0, 0, 1), spin_rate=spin)])
+    rotors = Rotors.of(body)
+    I = body.principal_moments
+    hub, wheel = wheel_setup(I, rotors.axes[0], float(rotors.axial_moments[0]), spin, OMEGA0)
+    assert np.isclose(wheel.js * (rotors.axes[0] @ OMEGA0 + wheel.omega), rotors.axial_moments[0] * spin)
+    tau = (0.01, -0.02, 0.015)  # N m, body frame
+    run = run_basilisk(I, OMEGA0, QUAT0, dt_ns=DT_NS, sample_steps=STEPS, samples=SAMPLES, torque=tau,
+                       hub_inertia=hub, wheel=wheel)
+    ref = tumble.simulate(body, OMEGA0, times=run.times, attitude0=QUAT0, method="dop853", rtol=1e-12, atol=1e-14,
+                          torque=tumble.ConstantTorque(tau))
+    _compare(run, ref)
+    fast = tumble.simulate(body, OMEGA0, times=run.times, attitude0=QUAT0, method="geometric6", step=0.05,
+                           torque=tumble.ConstantTorque(tau))  # the compiled kernel the benchmark times
+    np.testing.assert_allclose(fast.omega, run.omega, rtol=0, atol=1e-8)
+    # the wheel acts: the same hub without it moves otherwise, by far more than the tolerance
+    bare = run_basilisk(I, OMEGA0, QUAT0, dt_ns=DT_NS, sample_steps=STEPS, samples=SAMPLES, torque=tau)
+    assert np.max(np.abs(bare.omega - run.omega)) > 1e-2

@@ -316,3 +316,43 @@ def test_omega_alone_equals_omega_with_attitude():
     both, _ = free_rotation_batch(I, w, q, t)
     assert quat is None
     np.testing.assert_array_equal(omega, both)
+
+
+def test_elliptic_parameters_in_chunks_equal_each_motion_alone(monkeypatch):
+    """Many motions are taken in chunks (cache-sized): every field, shape and value, is what
+    each motion gives alone, for a batch shape (4, 5) and moments broadcast from one body."""
+    from tumble.dynamics.methods import exact_parameters as ep
+
+    rng = np.random.default_rng(3)
+    w = rng.normal(size=(4, 5, 3))
+    I = np.array([1.0, 2.0, 3.0])
+    monkeypatch.setattr(ep, "_CHUNK", 7)  # 20 motions: three chunks, the last one short
+    many = ep.elliptic_parameters(w, I)
+    assert many.amplitudes.shape == (4, 5, 3) and many.p.shape == (4, 5)
+    for i in range(4):
+        for j in range(5):
+            one = ep.elliptic_parameters(w[i, j], I)
+            for field, a, b in zip(one._fields, many, one):
+                np.testing.assert_array_equal(np.asarray(a)[i, j], b, err_msg=field)
+
+
+def test_free_rotation_batch_on_threads_equals_one_thread(monkeypatch):
+    """Chunks spread over threads give every body exactly what one thread gives it, and each
+    thread keeps the caller's numpy error state."""
+    from tumble.dynamics.methods import exact_batch
+    from tumble.dynamics.methods import exact_parameters as ep
+
+    rng = np.random.default_rng(4)
+    I = np.sort(rng.uniform(1.0, 2.0, (50, 3)), axis=1)
+    w, q = rng.normal(size=(50, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (50, 1))
+    t = np.linspace(0.0, 7.0, 3)
+    monkeypatch.setattr(exact_batch, "_MIN_BODIES", 8)
+    monkeypatch.setattr(exact_batch, "_CHUNK", 8)  # seven chunks of 8 bodies or fewer
+    monkeypatch.setattr(ep, "THREADS", 1)
+    one = exact_batch.free_rotation_batch(I, w, q, t)
+    monkeypatch.setattr(ep, "THREADS", 3)
+    many = exact_batch.free_rotation_batch(I, w, q, t)
+    for a, b in zip(one, many):
+        np.testing.assert_array_equal(a, b)
+    with np.errstate(divide="raise"):
+        assert ep.run_chunks(lambda s: np.geterr()["divide"], range(4)) == ["raise"] * 4

@@ -34,9 +34,10 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
-from .compiled_flow import (  # free_flow: _run calls it; compiled in _compiled()
+from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _compiled()
+    WORK,
     compiled_free_flow,
-    free_flow,
+    free_flow_into,
 )
 
 __all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "PARALLEL_BODIES", "compiled_model", "run_split"]
@@ -123,6 +124,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
         Ib, L, q, hb = I[b].copy(), L0[b].copy(), q0[b].copy(), offset[b].copy()
         inv_I = 1.0 / Ib
         kick = np.empty(3)
+        work = np.empty(WORK)  # the exact flow's scratch space, once per body
         for i in range(3):
             omega_out[0, b, i] = (L[i] - hb[i]) * inv_I[i]
         for i in range(4):
@@ -140,7 +142,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                         for i in range(3):
                             L[i] += 0.5 * hg * kick[i]
                     if exact:  # the exact free flow (exact-flow splitting)
-                        free_flow(Ib, L, q, hg)
+                        free_flow_into(Ib, L, q, hg, work)
                     else:  # the Strang step of exact rotations (geometric splitting)
                         for r in range(_AXES.shape[0]):
                             _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I, hb)
@@ -173,7 +175,10 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
     from numba import prange as numba_prange
 
     if not _compiled.__dict__.get("helpers"):
-        globals()["free_flow"] = compiled_free_flow()
+        compiled_free_flow()
+        from . import compiled_flow
+
+        globals()["free_flow_into"] = compiled_flow.free_flow_into
         for name in ("_body_torque", "_rotate"):
             globals()[name] = njit(cache=True, inline="always")(globals()[name])
         globals()["prange"] = numba_prange

@@ -17,7 +17,8 @@ numba cannot call scipy's special functions, so the pieces are written here over
   ``Pi - F = (n / 3) s^3 R_J(c^2, d^2, 1, 1 - n s^2)`` (DLMF 19.25.5, 19.25.14);
 - the precession ``phi(h) = (|L| / I_r + r1) h + (r1 / p) [x(u) - x(u0)]``, ``x`` the excess
   continued by ``2 j (Pi(n|m) - K)`` over ``j`` half periods, so that ``F(am u) = u`` is used
-  exactly and no ``Pi(u) - Pi(u0)`` cancels.
+  exactly and no ``Pi(u) - Pi(u0)`` cancels; the complete ``Pi(n|m) - K`` is evaluated only
+  for a step that crosses a half period.
 
 Accuracy (tests/test_compiled.py): against the double-double kernel ~1e-13 in omega and the
 attitude away from the separatrix; ``1 - m`` is clamped at 2^-52 (a motion closer to the
@@ -36,9 +37,13 @@ import numpy as np
 
 from ...typing import FloatArray
 
-__all__ = ["compiled_free_flow", "free_flow"]
+__all__ = ["WORK", "compiled_free_flow", "free_flow", "free_flow_into"]
 
 _EPS = 2.0 ** -52
+#: Doubles of scratch space :func:`free_flow_into` needs: the Landen sequence (2 x 40), omega (3),
+#: two quaternions (2 x 4). A caller that flows many times allocates it once (measured: the six
+#: small arrays each flow allocated were a quarter of its time).
+WORK = 91
 
 
 def _rc1(e: float) -> float:  # pragma: no cover - compiled
@@ -92,21 +97,19 @@ def _rj(x: float, y: float, z: float, p: float) -> float:  # pragma: no cover - 
     return fac * series / (a * math.sqrt(a)) + 6.0 * total
 
 
-def _jacobi(v: float, k2: float, kp: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, float, float]:  # pragma: no cover
     """``sn, cn, dn`` of ``|v| <= K`` for ``m = k2``, ``k' = kp`` (A&S 16.4, the AGM of
-    ``(1, k')`` and the descending Landen transformation)."""
-    a_s = np.empty(40)
-    c_s = np.empty(40)
+    ``(1, k')`` and the descending Landen transformation); ``work[:80]`` holds the sequence."""
     a, b, c = 1.0, kp, math.sqrt(k2)
-    a_s[0], c_s[0] = a, c
+    work[0], work[40] = a, c
     n = 0
     while abs(c) > _EPS * a and n < 39:
         a, b, c = 0.5 * (a + b), math.sqrt(a * b), 0.5 * (a - b)
         n += 1
-        a_s[n], c_s[n] = a, c
-    phi = (2.0 ** n) * a_s[n] * v
+        work[n], work[40 + n] = a, c
+    phi = (2.0 ** n) * work[n] * v
     for i in range(n, 0, -1):
-        phi = 0.5 * (phi + math.asin(max(-1.0, min(1.0, c_s[i] / a_s[i] * math.sin(phi)))))
+        phi = 0.5 * (phi + math.asin(max(-1.0, min(1.0, work[40 + i] / work[i] * math.sin(phi)))))
     sn, cn = math.sin(phi), math.cos(phi)
     return sn, cn, math.sqrt(cn * cn + kp * kp * sn * sn)
 
@@ -145,15 +148,20 @@ def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:  # pragma: no cove
     return math.atan2(math.hypot(li, lj), lr), math.atan2(li, lj)
 
 
-def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float) -> None:  # pragma: no cover - compiled
-    """``q <- q (x) exp(w h / 2)``: the turn about a fixed omega, in place."""
+def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float, turn: FloatArray) -> None:  # pragma: no cover
+    """``q <- q (x) exp(w h / 2)``: the turn about a fixed omega, in place (``turn``: 4 doubles of scratch)."""
     spin = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
     if spin == 0.0:
         return
     half = 0.5 * spin * h
     s = math.sin(half) / spin
-    turn = np.array([s * w0, s * w1, s * w2, math.cos(half)])
+    turn[0], turn[1], turn[2], turn[3] = s * w0, s * w1, s * w2, math.cos(half)
     _multiply(q, turn, q)
+
+
+def _gap(I: FloatArray, w0: float, w1: float, w2: float, j: int) -> float:  # pragma: no cover - compiled
+    """``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) w_i^2``, kg^2 m^4/s^2."""
+    return I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2
 
 
 def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  # pragma: no cover - compiled
@@ -168,15 +176,31 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
     >>> np.round(q, 12) + 0.0
     array([0., 0., 1., 0.])
     """
+    free_flow_into(I, L, q, h, np.empty(WORK))
+
+
+def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
+                   work: FloatArray) -> None:  # pragma: no cover - compiled
+    """:func:`free_flow` with its scratch space given: ``work``, :data:`WORK` doubles (any values).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> I, work = np.array([1.0, 2.0, 3.0]), np.empty(WORK)
+    >>> L, q = I * np.array([0.1, 1.0, 0.1]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow_into(I, L, q, 5.0, work)
+    >>> L2, q2 = I * np.array([0.1, 1.0, 0.1]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow(I, L2, q2, 5.0)   # the same arithmetic, its scratch space its own
+    >>> bool(np.array_equal(L, L2) and np.array_equal(q, q2))
+    True
+    """
     w0, w1, w2 = L[0] / I[0], L[1] / I[1], L[2] / I[2]
     zeros = int(w0 == 0.0) + int(w1 == 0.0) + int(w2 == 0.0)
     if (I[0] == I[2] or zeros >= 2 or (I[0] == I[1] and w2 == 0.0) or (I[1] == I[2] and w0 == 0.0)):
-        _steady(q, w0, w1, w2, h)
+        _steady(q, w0, w1, w2, h, work[87:91])
         return
     w = (w0, w1, w2)
-    g = np.empty(3)
-    for j in range(3):
-        g[j] = I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2
+    g = (_gap(I, w0, w1, w2, 0), _gap(I, w0, w1, w2, 1), _gap(I, w0, w1, w2, 2))
     upper = g[1] >= 0.0
     r, c = (2, 0) if upper else (0, 2)  # the dn axis, the cn axis
     Ir, Ic, I2 = I[r], I[c], I[1]
@@ -188,19 +212,18 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
     if not (a_c > 0.0 and a_2 > 0.0 and a_r > 0.0 and p > 0.0) or not math.isfinite(a_c * a_2 * a_r * p):
         # the components off a principal axis are so small that their squares underflow: the
         # motion is steady to double precision (the double-double kernel follows it further)
-        _steady(q, w0, w1, w2, h)
+        _steady(q, w0, w1, w2, h, work[87:91])
         return
     k2 = min(abs((I2 - Ic) * g[r] / ((Ir - I2) * g[c])), 1.0 - _EPS)
     kp2 = max(abs(span * g[1] / ((Ir - I2) * g[c])), _EPS)
     kp = math.sqrt(kp2)
     sign = 1.0 if w[r] >= 0.0 else -1.0
-    # complete integrals: K = pi / (2 AGM(1, k')), Pi(n|m) - K = (n / 3) R_J(0, k'^2, 1, 1 - n)
+    # K = pi / (2 AGM(1, k'))
     a, b = 1.0, kp
     while abs(a - b) > _EPS * a:
         a, b = 0.5 * (a + b), math.sqrt(a * b)
     K = 0.5 * math.pi / a
     n = -Ir * (I2 - Ic) / (Ic * (Ir - I2))
-    excess_c = n / 3.0 * _rj(0.0, kp2, 1.0, 1.0 - n) if n != 0.0 else 0.0
     # the phase at the start: sn = w2 / a2, cn = w_c / (s a_c), reduced to cn >= 0
     s0, c0 = w[1] / a_2, w[c] / (sign * a_c)
     hyp = math.hypot(s0, c0)
@@ -211,25 +234,30 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
         s0, c0 = -s0, -c0
     d0 = math.sqrt(c0 * c0 + kp2 * s0 * s0)
     u0 = 2.0 * K * j0 + s0 * _rf(c0 * c0, d0 * d0, 1.0)
-    x0 = _excess(n, s0, c0, d0) + 2.0 * j0 * excess_c
+    x0 = _excess(n, s0, c0, d0)
     # the phase at h, reduced by half periods
     u = u0 + p * h
     j = math.floor(u / (2.0 * K) + 0.5)
-    sn, cn, dn = _jacobi(u - 2.0 * K * j, k2, kp)
-    x = _excess(n, sn, cn, dn) + 2.0 * j * excess_c
+    sn, cn, dn = _jacobi(u - 2.0 * K * j, k2, kp, work)
+    # the excess gained: its change within the half periods, plus 2 (j - j0) complete excesses
+    # (n / 3) R_J(0, k'^2, 1, 1 - n), evaluated only when the step crosses one (a short step
+    # of the splitting mostly does not: this R_J was a sixth of the flow's time)
+    gained = _excess(n, sn, cn, dn) - x0
+    if j != j0 and n != 0.0:
+        gained += 2.0 * (j - j0) * (n / 3.0 * _rj(0.0, kp2, 1.0, 1.0 - n))
     if j % 2.0 != 0.0:
         sn, cn = -sn, -cn
-    out = np.empty(3)
+    out = work[80:83]
     out[c], out[1], out[r] = sign * a_c * cn, a_2 * sn, sign * a_r * dn
     # the attitude: q <- q (x) P^-1 [B0^-1 Rz(dphi) Rx(theta) Rz(psi)] P
     Ln = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
     rate1 = Ln * (Ir - Ic) / (I[0] * I[2])
-    dphi = (Ln / Ir + rate1) * h + rate1 / p * (x - x0)
+    dphi = (Ln / Ir + rate1) * h + rate1 / p * gained
     theta0, psi0 = _tilt(L, upper)
     for i in range(3):
         L[i] = I[i] * out[i]
     theta, psi = _tilt(L, upper)
-    b0, e = np.empty(4), np.empty(4)
+    b0, e = work[83:87], work[87:91]
     _zxz(0.0, theta0, psi0, b0)
     b0[0], b0[1], b0[2] = -b0[0], -b0[1], -b0[2]
     _zxz(dphi, theta, psi, e)
@@ -244,6 +272,7 @@ def compiled_free_flow() -> Callable[[FloatArray, FloatArray, FloatArray, float]
     """:func:`free_flow` compiled by numba (``cache=True``), each helper before its callers."""
     from numba import njit
 
-    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "_steady", "free_flow"):
+    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "_steady", "_gap", "free_flow_into",
+                 "free_flow"):
         globals()[name] = njit(cache=True)(globals()[name])
     return cast("Callable[[FloatArray, FloatArray, FloatArray, float], None]", globals()["free_flow"])

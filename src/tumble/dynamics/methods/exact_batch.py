@@ -6,7 +6,9 @@ sec. 37; read its module docstring), evaluated by the one kernel both fronts sha
 gets what :class:`tumble.dynamics.methods.exact.FreeRotation` gives it, to a few ulps (the
 kernel picks its parameter path, floats or arrays, by the chunk's size). Steady rotations
 (spheres, spins about a principal axis, a symmetric top in its degenerate plane) are turns about
-the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi).
+the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi). The chunks run on every core
+(:func:`tumble.dynamics.methods.exact_parameters.run_chunks`: threads, since numpy releases the
+GIL within each operation; each chunk's arithmetic is the same on any thread).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from .exact import MAX_PHASE, check_phase_limit
 from .exact_kernel import EllipticMotion, is_steady, steady_attitude
+from .exact_parameters import run_chunks
 
 __all__ = ["free_rotation_batch"]
 
@@ -93,13 +96,16 @@ def free_rotation_batch(
             cast(Quaternion, quat)[idx] = steady_attitude(w[idx], q0[idx], t)
     rest = np.flatnonzero(~steady)
     step = max(_MIN_BODIES, _CHUNK // max(T, 1))
-    for start in range(0, len(rest), step):
+
+    def run(start: int) -> None:
         chunk = rest[start:start + step]
         motion = EllipticMotion(I[chunk], w[chunk])
         reduced = motion.reduce(t)
         omega[chunk] = motion.omega(reduced)
         if attitude:
             cast(Quaternion, quat)[chunk] = motion.attitude(q0[chunk], t, reduced, omega[chunk])
+
+    run_chunks(run, range(0, len(rest), step))  # on every core (numpy releases the GIL in each operation)
     return omega, quat
 
 
