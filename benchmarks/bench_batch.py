@@ -1,7 +1,8 @@
 """Batch benchmarks: ``tumble.simulate_batch`` against a loop of ``tumble.simulate``, per case.
 
-The ensembles issue's target: 1,000,000 bodies' final omega at t_end = 20 s plus their flip
-interval in at most 10 s, i.e. at least 200x a loop of ``simulate`` per case. Each repeat times
+The target: 1,000,000 bodies' final omega at t_end = 20 s plus their flip interval in at most
+5 s on 2 cores (the speed issue, 18; the ensembles issue had asked for 10 s), and at least 200x a
+loop of ``simulate`` per case. Each repeat times
 the batch and the loop (on a sample of the same bodies) in alternation, so a load that comes and
 goes hits both alike; the ratio is (loop time per case) / (batch time per case), and the medians
 over the repeats are reported with their ranges. Bodies: random moments in [0.1, 1] kg m^2 (those
@@ -23,7 +24,7 @@ import tumble
 from tumble.analysis import flip_interval
 from tumble.dynamics.methods.exact_batch import free_rotation_batch
 
-TARGET_SECONDS = 10.0
+TARGET_SECONDS = 5.0  # s for 1e6 cases (issue 18)
 TARGET_RATIO = 200.0
 
 
