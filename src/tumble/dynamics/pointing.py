@@ -1,0 +1,277 @@
+"""Pointing targets for MRP feedback: a frame fixed in the world, or a moving reference such as nadir.
+
+A *reference* is any object with ``attitude(t)`` (the reference frame R to world, a scipy
+``Rotation``; a stack for an array of times), ``rate(t)`` (its angular velocity ``omega_r``,
+world frame, rad/s) and optionally ``rate_derivative(t)`` (``d omega_r / dt``, world frame,
+rad/s^2; zero when absent) (:class:`Reference`). A fixed ``Rotation`` is the special case
+``omega_r = 0``.
+
+**Tracking errors** (Schaub & Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec.
+8.3, the MRP tracking problem): ``sigma = sigma_B/R`` the MRPs of the body frame B relative to R
+(short set) and ``delta_omega = omega - [BR] omega_r`` in the body frame. The feed-forward of the
+tracking law needs the reference's angular acceleration as the body sees it,
+``B d(omega_r)/dt = omega_r' - omega x omega_r`` (all in B; ``omega_r'`` the inertial
+derivative), so that with ``L_r = -K sigma - P delta_omega + I_RW (omega_r' - omega x omega_r)
++ omega x (I omega + h)`` the wheel-driven body obeys ``I_RW B d(delta_omega)/dt = -K sigma -
+P delta_omega + tau_ext`` (:class:`~tumble.dynamics.controllers.MRPFeedback`): the Lyapunov
+function ``V = 2 K ln(1 + |sigma|^2) + delta_omega . I_RW delta_omega / 2`` has
+``V' = -delta_omega . P delta_omega`` without disturbance.
+
+**Nadir** (:class:`NadirTarget`): on a circular orbit the world frame of a control run is the
+orbit-plane frame (:mod:`~tumble.dynamics.models.orbit`): the radius at ``t`` is
+``(cos n t, sin n t, 0)``, the orbit normal +z. The target puts one body axis on nadir
+(``-radius``) and another on the orbit normal: ``R(t) = R_z(n t) R(0)``, ``omega_r = n z``
+(constant, ``omega_r' = 0``). The default, the minor axis on nadir and the major axis on the
+orbit normal (the intermediate axis along the velocity), is the gravity-gradient stable
+attitude (the Lagrange region; :mod:`~tumble.analysis.gravity_stability`): there the gravity
+gradient exerts no torque and the wheels hold the body with none of their momentum.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..typing import ArrayLike, FloatArray
+from ..validation import axis_index, check_positive
+from .special.mrp import mrp_from_quat
+
+__all__ = ["NadirTarget", "Reference", "TrackingError", "is_reference", "target_attitude", "tracking_error"]
+
+
+@runtime_checkable
+class Reference(Protocol):
+    """A moving target: ``attitude(t)`` (reference frame to world) and ``rate(t)`` (world frame, rad/s).
+
+    Examples
+    --------
+    >>> isinstance(NadirTarget(1e-3), Reference), isinstance(Rotation.identity(), Reference)
+    (True, False)
+    """
+
+    def attitude(self, t: ArrayLike) -> Rotation:
+        """The reference frame to world at ``t`` (s).
+
+        Examples
+        --------
+        >>> NadirTarget(1e-3).attitude([0.0, 1.0]).single
+        False
+        """
+        ...
+
+    def rate(self, t: ArrayLike) -> FloatArray:
+        """The reference's angular velocity ``omega_r`` at ``t`` (s), world frame, rad/s.
+
+        Examples
+        --------
+        >>> NadirTarget(1e-3).rate(0.0).tolist()
+        [0.0, 0.0, 0.001]
+        """
+        ...
+
+
+def is_reference(target: object) -> bool:
+    """Whether ``target`` is a moving reference (:class:`Reference`) rather than a fixed attitude.
+
+    Examples
+    --------
+    >>> is_reference(NadirTarget(1e-3)), is_reference(Rotation.identity()), is_reference([0, 0, 0, 1])
+    (True, False, False)
+    """
+    return not isinstance(target, Rotation) and isinstance(target, Reference)
+
+
+def target_attitude(target: Rotation | Reference, t: ArrayLike) -> Rotation:
+    """The target frame to world at ``t`` (s): a fixed ``Rotation`` itself, or ``target.attitude(t)``.
+
+    Examples
+    --------
+    >>> fixed = Rotation.from_rotvec([0.0, 0.0, 0.3])
+    >>> target_attitude(fixed, [0.0, 5.0]) is fixed
+    True
+    >>> nadir = NadirTarget(0.01)   # turns n t = 1 rad in 100 s
+    >>> round(float((target_attitude(nadir, 100.0) * target_attitude(nadir, 0.0).inv()).magnitude()), 12)
+    1.0
+    """
+    return target.attitude(t) if is_reference(target) else target  # type: ignore[union-attr]
+
+
+@dataclass(frozen=True)
+class TrackingError:
+    """The errors and feed-forward of one control step, body frame (module docstring).
+
+    Attributes
+    ----------
+    sigma : ndarray, shape (3,)
+        MRPs of the body relative to the reference, short set.
+    delta_omega : ndarray, shape (3,)
+        ``omega - [BR] omega_r``, rad/s.
+    omega_r : ndarray, shape (3,)
+        ``[BR] omega_r``, the reference's rate in the body frame, rad/s.
+    omega_r_dot : ndarray, shape (3,)
+        The inertial derivative of ``omega_r``, body frame, rad/s^2.
+
+    Examples
+    --------
+    >>> e = tracking_error(Rotation.identity(), 0.0, Rotation.identity(), np.array([0.0, 0.0, 0.1]))
+    >>> e.sigma.tolist(), e.delta_omega.tolist(), e.omega_r.tolist()
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 0.1], [0.0, 0.0, 0.0])
+    """
+
+    sigma: FloatArray
+    delta_omega: FloatArray
+    omega_r: FloatArray
+    omega_r_dot: FloatArray
+
+
+def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, omega: FloatArray) -> TrackingError:
+    """``sigma_B/R``, ``delta_omega``, ``omega_r`` and ``omega_r'`` (body frame) at ``t`` (s).
+
+    Parameters
+    ----------
+    target : scipy Rotation or Reference
+        A fixed target frame (to world) or a moving reference.
+    t : float
+        Time, s.
+    attitude : scipy Rotation
+        The body's principal frame to world.
+    omega : ndarray, shape (3,)
+        The body's angular velocity, principal frame, rad/s.
+
+    Examples
+    --------
+    On the nadir reference and turning with it, both errors are zero:
+
+    >>> nadir = NadirTarget(1e-3)
+    >>> R = nadir.attitude(50.0)
+    >>> e = tracking_error(nadir, 50.0, R, R.inv().apply(nadir.rate(50.0)))
+    >>> bool(np.abs(e.sigma).max() < 1e-15), bool(np.abs(e.delta_omega).max() < 1e-18)
+    (True, True)
+    """
+    if not is_reference(target):
+        zero = np.zeros(3)
+        sigma = np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)  # type: ignore[union-attr]
+        return TrackingError(sigma, np.asarray(omega, float), zero, zero)
+    ref: Reference = target  # type: ignore[assignment]
+    R = ref.attitude(t)
+    sigma = np.asarray(mrp_from_quat((R.inv() * attitude).as_quat()), float)
+    to_body = attitude.inv()
+    w_r = np.asarray(to_body.apply(ref.rate(t)), float)
+    derivative = getattr(ref, "rate_derivative", None)
+    w_r_dot = np.zeros(3) if derivative is None else np.asarray(to_body.apply(derivative(t)), float)
+    return TrackingError(sigma, np.asarray(omega, float) - w_r, w_r, w_r_dot)
+
+
+def _direction(name: str, value: int | str | ArrayLike) -> FloatArray:
+    """A principal axis label (1, 2, 3, "minor", "intermediate", "major") or a unit 3-vector."""
+    if np.ndim(value) == 0:
+        e = np.zeros(3)
+        e[axis_index(name, value)] = 1.0  # type: ignore[arg-type]
+        return e
+    v = np.asarray(value, float)
+    if v.shape != (3,) or not np.all(np.isfinite(v)) or not np.linalg.norm(v) > 0.0:
+        raise ValueError(f"{name} = {value!r} must be 1, 2, 3, minor, intermediate, major or a nonzero 3-vector "
+                         "(principal frame)")
+    return v / np.linalg.norm(v)
+
+
+@dataclass(frozen=True)
+class NadirTarget:
+    """A body axis on nadir and another on the orbit normal, on a circular orbit (module docstring).
+
+    Parameters
+    ----------
+    orbit : float or object with ``mean_motion``
+        The orbit's mean motion ``n`` (rad/s, > 0), or a
+        :class:`~tumble.dynamics.models.orbit.CircularOrbit` or
+        :class:`~tumble.dynamics.models.gravity.GravityGradient` (its ``mean_motion``).
+    nadir_axis : {1, 2, 3, "minor", "intermediate", "major"} or array_like, shape (3,)
+        The body axis (principal frame) to point at nadir, ``-radius`` (default "minor").
+    normal_axis : same
+        The body axis along the orbit normal, world +z (default "major"); square to ``nadir_axis``.
+
+    Examples
+    --------
+    The minor axis (1) looks down, the major (3) along the orbit normal; a quarter orbit on, nadir is -y:
+
+    >>> nadir = NadirTarget(2 * math.pi / 5400.0)
+    >>> np.round(nadir.attitude(0.0).apply([[1.0, 0, 0], [0, 0, 1.0]]), 12).tolist()
+    [[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+    >>> np.round(nadir.attitude(1350.0).apply([1.0, 0.0, 0.0]), 12).tolist()
+    [-0.0, -1.0, 0.0]
+    >>> NadirTarget(1e-3, nadir_axis=[1.0, 1.0, 0.0], normal_axis=[1.0, 0.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: normal_axis = [1.0, 0.0, 0.0] must be square to nadir_axis = [1.0, 1.0, 0.0] (their angle is 45 deg)
+    """
+
+    orbit: object
+    nadir_axis: int | str | ArrayLike = "minor"
+    normal_axis: int | str | ArrayLike = "major"
+
+    def __post_init__(self) -> None:
+        n = self.orbit if isinstance(self.orbit, (int, float)) else getattr(self.orbit, "mean_motion", None)
+        object.__setattr__(self, "_n", check_positive("orbit.mean_motion", n, "rad/s"))
+        a = _direction("nadir_axis", self.nadir_axis)
+        b = _direction("normal_axis", self.normal_axis)
+        if abs(float(a @ b)) > 1e-9:
+            angle = math.degrees(math.acos(max(-1.0, min(1.0, float(a @ b)))))
+            raise ValueError(f"normal_axis = {self.normal_axis!r} must be square to nadir_axis = {self.nadir_axis!r} "
+                             f"(their angle is {angle:.3g} deg)")
+        # R(0) (principal to world): a -> -x (nadir at t = 0), b -> +z, a x b -> (-x) x z = +y
+        body = np.column_stack([a, b, np.cross(a, b)])
+        world = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]).T
+        object.__setattr__(self, "_r0", Rotation.from_matrix(world @ body.T))
+
+    @property
+    def mean_motion(self) -> float:
+        """The orbit's mean motion ``n``, rad/s.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> NadirTarget(orbit).mean_motion == orbit.mean_motion
+        True
+        """
+        return float(self._n)  # type: ignore[attr-defined]
+
+    def attitude(self, t: ArrayLike) -> Rotation:
+        """The target frame (the body's principal axes on target) to world, ``R_z(n t) R(0)``.
+
+        Examples
+        --------
+        The nadir axis follows ``-(cos n t, sin n t, 0)``:
+
+        >>> nadir = NadirTarget(1e-3, nadir_axis="major", normal_axis="minor")
+        >>> t = np.array([0.0, 700.0])
+        >>> np.allclose(nadir.attitude(t).apply([0.0, 0.0, 1.0]), -np.stack([np.cos(1e-3 * t), np.sin(1e-3 * t), 0 * t], -1))
+        True
+        """
+        nt = self.mean_motion * np.asarray(t, dtype=float)
+        return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * self._r0  # type: ignore[attr-defined, no-any-return]
+
+    def rate(self, t: ArrayLike) -> FloatArray:
+        """``omega_r = n z``, world frame, rad/s (shape ``t.shape + (3,)``).
+
+        Examples
+        --------
+        >>> NadirTarget(1e-3).rate([0.0, 1.0]).tolist()
+        [[0.0, 0.0, 0.001], [0.0, 0.0, 0.001]]
+        """
+        shape = np.shape(t)
+        return np.broadcast_to(np.array([0.0, 0.0, self.mean_motion]), shape + (3,)).copy()
+
+    def rate_derivative(self, t: ArrayLike) -> FloatArray:
+        """``d omega_r / dt = 0`` (a circular orbit), world frame, rad/s^2.
+
+        Examples
+        --------
+        >>> NadirTarget(1e-3).rate_derivative(0.0).tolist()
+        [0.0, 0.0, 0.0]
+        """
+        return np.zeros(np.shape(t) + (3,))
