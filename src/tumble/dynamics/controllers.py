@@ -25,7 +25,16 @@ relative to the target and ``h_s`` the wheels' absolute axial momenta, so that
 the target, one principal axis obeys ``I_RW theta'' + P theta' + (K / 4) theta = 0``
 (``sigma ~ theta / 4``): natural frequency ``omega_n = sqrt(K / (4 I_RW))`` and damping ratio
 ``zeta = P / sqrt(K I_RW)`` (:func:`pd_response`), ``I_RW`` the moment with the wheels' axial
-moments taken out (:mod:`~tumble.dynamics.models.actuators`).
+moments taken out (:mod:`~tumble.dynamics.models.actuators`). To track a moving reference R(t)
+(nadir: :class:`~tumble.dynamics.pointing.NadirTarget`) the law is sec. 8.3's tracking law,
+``L_r = -K sigma - P delta_omega + I_RW (omega_r' - omega x omega_r) + omega x (I omega + h)``
+with ``sigma = sigma_B/R`` and ``delta_omega = omega - [BR] omega_r`` (:mod:`~tumble.dynamics.pointing`).
+The *integral term* (sec. 8.4's integral feedback; Basilisk's ``mrpFeedback`` with ``Ki`` and
+``integralLimit``) adds ``-z``, ``z = Ki K sum sigma_j dt`` over the earlier steps (N m), each
+component held within ``integral_limit`` (anti-windup): per axis
+``I_RW theta'' + P theta' + (K / 4) (theta + Ki int theta dt) = tau``, stable for ``Ki < P / I_RW``
+(Routh), so a constant disturbance ``tau`` leaves no steady error where PD leaves
+``sigma = tau / K`` (``theta ~ 4 tau / K``).
 
 **Momentum dumping** (the cross-product law: Camillo & Markley, "Orbit-averaged behavior of
 magnetic control laws for momentum unloading", J. Guid. Control 3(6), 1980; Sidi, *Spacecraft
@@ -51,6 +60,7 @@ from ..typing import ArrayLike, FloatArray
 from ..validation import check_moments, check_positive, check_rotation, check_vector
 from .models.actuators import Command, ReactionWheels
 from .models.sensors import Measurement
+from .pointing import Reference, is_reference, tracking_error
 from .special.mrp import mrp_from_quat
 
 __all__ = ["BDot", "Controller", "MRPFeedback", "MomentumDumping", "PDResponse", "bdot_dipole", "bdot_gain",
@@ -248,10 +258,15 @@ class MRPFeedback:
         The body's principal moments ``I`` (kg m^2), wheels locked.
     wheels : ReactionWheels
         The wheels that make the torque.
-    target : scipy Rotation or quaternion [x, y, z, w]
-        The target frame to world; the body's principal frame is driven onto it.
+    target : scipy Rotation, quaternion [x, y, z, w] or Reference
+        The target frame to world, fixed, or a moving reference (``attitude(t)``, ``rate(t)``:
+        :class:`~tumble.dynamics.pointing.NadirTarget`); the principal frame is driven onto it.
     gyroscopic : bool
         Whether to add the feed-forward ``omega x (I omega + h)``.
+    Ki : float
+        Integral gain, 1/s (>= 0; 0, the default, is the PD law).
+    integral_limit : float
+        Largest magnitude of each component of the integral term, N m (> 0; default no limit).
 
     Examples
     --------
@@ -267,8 +282,11 @@ class MRPFeedback:
     period: float
     moments: FloatArray
     wheels: ReactionWheels
-    target: Rotation | ArrayLike = field(default_factory=lambda: Rotation.identity())
+    target: Rotation | ArrayLike | Reference = field(default_factory=lambda: Rotation.identity())
     gyroscopic: bool = True
+    Ki: float = 0.0
+    integral_limit: float = math.inf
+    _integral: FloatArray = field(default_factory=lambda: np.zeros(3), init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_positive("K", self.K, "N m")
@@ -277,7 +295,11 @@ class MRPFeedback:
         self.moments = check_moments("moments", self.moments, physical=False)
         if not isinstance(self.wheels, ReactionWheels):
             raise ValueError(f"wheels = {self.wheels!r} must be ReactionWheels")  # noqa: TRY004 - one error type for bad input
-        self.target = Rotation.from_quat(check_rotation("target", self.target))
+        if not is_reference(self.target):
+            self.target = Rotation.from_quat(check_rotation("target", self.target))
+        self.Ki = check_positive("Ki", self.Ki, "1/s", allow_zero=True)
+        if self.integral_limit != math.inf:
+            self.integral_limit = check_positive("integral_limit", self.integral_limit, "N m")
         G = self.wheels.axes.T
         if np.linalg.matrix_rank(G) < 3:
             raise ValueError(f"wheels: the {self.wheels.count} wheel axes span fewer than 3 directions; "
@@ -285,8 +307,25 @@ class MRPFeedback:
         self._pinv = np.linalg.pinv(G)
         self._I_rw = np.diag(np.asarray(self.moments, float)) - self.wheels.locked_axial()
 
-    def error(self, attitude: Rotation) -> FloatArray:
-        """The MRPs ``sigma`` of the body relative to the target (short set, ``|sigma| <= 1``).
+    def reset(self) -> None:
+        """Clear the integral term (a new run; :func:`~tumble.dynamics.controlled.simulate_controlled` calls it).
+
+        Examples
+        --------
+        >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+        >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, Ki=0.1)
+        >>> m = Measurement(0.0, np.zeros(3), None, Rotation.from_rotvec([0.0, 0.0, 0.4]), np.zeros(3))
+        >>> first = c(0.0, m).wheel_torque
+        >>> bool(c(0.5, m).wheel_torque[2] > first[2])   # the integral has grown
+        True
+        >>> c.reset()
+        >>> np.array_equal(c(1.0, m).wheel_torque, first)
+        True
+        """
+        self._integral = np.zeros(3)
+
+    def error(self, attitude: Rotation, t: float = 0.0) -> FloatArray:
+        """The MRPs ``sigma`` of the body relative to the target at ``t`` (s) (short set, ``|sigma| <= 1``).
 
         Examples
         --------
@@ -303,6 +342,8 @@ class MRPFeedback:
         >>> np.allclose(c.error(target * Rotation.from_euler("x", 300, degrees=True)), [-math.tan(math.radians(15)), 0, 0])
         True
         """
+        if is_reference(self.target):
+            return tracking_error(self.target, t, attitude, np.zeros(3)).sigma  # type: ignore[arg-type]
         target = self.target if isinstance(self.target, Rotation) else Rotation.from_quat(self.target)
         return np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)
 
@@ -330,7 +371,17 @@ class MRPFeedback:
         if measurement.attitude is None:
             raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
         w = measurement.omega
-        L_r = -self.K * self.error(measurement.attitude) - self.P * w
+        if is_reference(self.target):  # the tracking law (module docstring)
+            e = tracking_error(self.target, t, measurement.attitude, w)  # type: ignore[arg-type]
+            sigma = e.sigma
+            L_r = -self.K * sigma - self.P * e.delta_omega + self._I_rw @ (e.omega_r_dot - np.cross(w, e.omega_r))
+        else:
+            sigma = self.error(measurement.attitude)
+            L_r = -self.K * sigma - self.P * w
+        if self.Ki > 0.0:  # z of the earlier steps, then advanced by this one's sigma
+            L_r = L_r - self._integral
+            lim = self.integral_limit
+            self._integral = np.clip(self._integral + self.Ki * self.K * self.period * sigma, -lim, lim)
         if self.gyroscopic:  # I_RW w + G h_s = I w + h: the total momentum, body frame
             L_r = L_r + np.cross(w, np.asarray(self.moments) * w + self.wheels.momentum(measurement.wheel_speed))
         return Command(wheel_torque=-self._pinv @ L_r)
@@ -372,6 +423,17 @@ class MomentumDumping:
             raise ValueError(f"pointing = {self.pointing!r} must be an MRPFeedback")  # noqa: TRY004 - one error type
         check_positive("gain", self.gain, "1/s")
         self.h_target = np.array(check_vector("h_target", self.h_target, "kg m^2/s"))
+
+    def reset(self) -> None:
+        """Reset the attitude loop (its integral term).
+
+        Examples
+        --------
+        >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
+        >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3)
+        >>> c.reset()
+        """
+        self.pointing.reset()
 
     @property
     def period(self) -> float:
