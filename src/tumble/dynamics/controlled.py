@@ -44,6 +44,7 @@ from .models.ephemeris import OrbitGravityGradient
 from .models.gravity import GravityGradient
 from .models.magnetic import MagneticField
 from .models.sensors import Sensors
+from .pointing import Reference, target_attitude
 from .special.mrp import mrp_angle, mrp_from_quat
 from .special.quaternion import rotate_by_quaternion
 
@@ -149,8 +150,11 @@ class ControlledRun:
         last = int(above[-1])
         return None if last == len(self.t) - 1 else float(self.t[last + 1])
 
-    def pointing_error(self, target: Rotation) -> FloatArray:
+    def pointing_error(self, target: Rotation | Reference) -> FloatArray:
         """Angle from the target frame (to world) to the body's principal frame at each sample, rad.
+
+        ``target`` is a fixed frame or a moving reference (:mod:`~tumble.dynamics.pointing`):
+        then the angle is to the reference at each sample's time.
 
         Examples
         --------
@@ -163,8 +167,18 @@ class ControlledRun:
         True
         >>> np.allclose(run.pointing_error(Rotation.from_rotvec([0.0, 0.0, 1.0]))[-1], 0.0)
         True
+
+        The same spin is on a reference turning at 0.1 rad/s about the major axis, minor axis to nadir:
+
+        >>> from tumble.dynamics.pointing import NadirTarget
+        >>> nadir = NadirTarget(0.1)
+        >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
+        ...     controller=BDot(gain=1e-3, period=1.0), attitude0=nadir.attitude(0.0))
+        >>> bool(run.pointing_error(nadir).max() < 1e-9)
+        True
         """
-        return np.asarray(mrp_angle(mrp_from_quat((target.inv() * self.attitude).as_quat())), float)
+        frame = target_attitude(target, self.t)
+        return np.asarray(mrp_angle(mrp_from_quat((frame.inv() * self.attitude).as_quat())), float)
 
     def budget_error(self) -> FloatArray:
         """``|L_world(t) - L_world(0) - impulse(t)|`` at each sample, kg m^2/s (0 in exact arithmetic).

@@ -53,6 +53,7 @@ from ..dynamics.controllers import BDot, Controller, MRPFeedback
 from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
+from ..dynamics.pointing import NadirTarget
 from ..mass import Body
 from ..validation import check_positive, check_rotation, check_vector
 from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
@@ -117,7 +118,7 @@ class ControlScenario:
     speed0: tuple[float, ...] | None = None
     sensors: Sensors = dataclasses.field(default_factory=Sensors)
     threshold: float = DEFAULT_THRESHOLD
-    target: Rotation | None = None
+    target: Rotation | NadirTarget | None = None
     rtol: float = 1e-10
     atol: float = 1e-12
     name: str = "scenario"

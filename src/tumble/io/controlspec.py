@@ -9,14 +9,17 @@ Three kinds (:mod:`tumble.io.controlfile` for the rest of the file)::
     # form, derivative, threshold (rad/s, for the detumble time)
 
     kind = "mrp_pd"             # MRP feedback with the wheels (needs [actuators.wheels])
-    # K (N m), P (N m s), target = [x, y, z, w] (design frame to world), gyroscopic
+    # K (N m), P (N m s), target = [x, y, z, w] (design frame to world) or "nadir" (needs a circular
+    # [orbit]; nadir_axis, default "minor", and normal_axis, default "major": principal axis labels
+    # 1, 2, 3, minor, intermediate, major or design-frame vectors), gyroscopic,
+    # Ki (1/s, integral term; default 0), integral_limit (N m)
 
     kind = "detumble_point"     # B-dot, then MRP feedback (tumble.dynamics.mission.DetumbleThenPoint)
     switch_rate = 0.0175        # rad/s: the gyroscope's |omega| must stay below it ...
     dwell = 60.0                # s: ... for this long, then the wheels point; never back
     # threshold (rad/s, for the detumble time of the summary)
     [control.detumble]          # the B-dot keys: gain, form, derivative (period: the mission's)
-    [control.point]             # the MRP keys: K, P, target, gyroscopic; dumping_gain (1/s): the
+    [control.point]             # the MRP keys: K, P, target, ..., Ki; dumping_gain (1/s): the
                                 # magnetorquers unload the wheels while they point (MomentumDumping)
 
 The sub-tables may be written inline (``point = {K = 1.1e-3, P = 6e-3}``). Each value is checked
@@ -35,7 +38,9 @@ from scipy.spatial.transform import Rotation
 from ..dynamics.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
 from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
+from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
+from ..dynamics.pointing import NadirTarget
 from ..mass import Body
 from ..validation import check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination
@@ -43,7 +48,7 @@ from .controlorbit import Field, Orbit, geomagnetic_inclination
 __all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
 
 _BDOT_KEYS = {"gain", "form", "derivative"}
-_MRP_KEYS = {"K", "P", "target", "gyroscopic"}
+_MRP_KEYS = {"K", "P", "target", "gyroscopic", "Ki", "integral_limit", "nadir_axis", "normal_axis"}
 #: The keys of each kind of ``[control]``.
 CONTROL_KINDS = {"bdot": {"kind", "period", "threshold", *_BDOT_KEYS},
                  "mrp_pd": {"kind", "period", "threshold", *_MRP_KEYS},
@@ -68,7 +73,7 @@ class ControlSpec:
 
     kind: str
     args: dict[str, Any]
-    target: Rotation | None
+    target: Rotation | NadirTarget | None
     threshold: float
 
 
@@ -96,12 +101,25 @@ def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Fie
 
 
 def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, principal_to_design: Rotation,
-              kind: str) -> tuple[dict[str, Any], Rotation]:
-    """MRP feedback's arguments without the target, and the target (principal frame to world)."""
+              kind: str, orbit: Orbit | None) -> tuple[dict[str, Any], Rotation | NadirTarget]:
+    """MRP feedback's arguments without the target, and the target (principal frame to world, or nadir)."""
     if wheels is None:
         raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
-    args = {k: v for k, v in args.items() if k != "target"}
-    target = Rotation.from_quat(check_rotation("target", args.pop("_target", None) or [0, 0, 0, 1]))
+    axes = {k: args[k] for k in ("nadir_axis", "normal_axis") if k in args}
+    args = {k: v for k, v in args.items() if k not in ("target", "nadir_axis", "normal_axis")}
+    given = args.pop("_target", None)
+    if isinstance(given, str):
+        if given != "nadir":
+            raise ValueError(f'target = {given!r} is unknown; allowed: "nadir" or a quaternion [x, y, z, w]')
+        if not isinstance(orbit, CircularOrbit):
+            raise ValueError('target = "nadir" needs a circular [orbit] (altitude, inclination, ...): '
+                             + ("there is none" if orbit is None else f"a {type(orbit).__name__} is not one"))
+        to_principal = principal_to_design.inv()  # vectors are given in the design frame
+        axes = {k: v if np.ndim(v) == 0 else to_principal.apply(np.asarray(v, float)) for k, v in axes.items()}
+        return args, NadirTarget(orbit, **axes)
+    if axes:
+        raise ValueError(f'{sorted(axes)[0]} goes with target = "nadir" only')
+    target = Rotation.from_quat(check_rotation("target", given if given is not None else [0, 0, 0, 1]))
     return args, target * principal_to_design
 
 
@@ -132,11 +150,11 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     >>> type(build_controller(spec, body, wheels)).__name__
     'DetumbleThenPoint'
     >>> parse_control({"kind": "detumble_point", "period": 1.0, "switch_rate": 0.0175, "dwell": 60.0,
-    ...                "point": {"K": 1e-3, "P": 6e-3, "Ki": 1.0}}, body=body, orbit=orbit, field=DipoleField(orbit),
+    ...                "point": {"K": 1e-3, "P": 6e-3, "Kd": 1.0}}, body=body, orbit=orbit, field=DipoleField(orbit),
     ...               magnetorquers=Magnetorquers(0.2), wheels=wheels, sensors=Sensors(), principal_to_design=Rotation.identity())
     Traceback (most recent call last):
     ...
-    ValueError: control.point: unknown key 'Ki'; allowed: K, P, dumping_gain, gyroscopic, target
+    ValueError: control.point: unknown key 'Kd'; allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
     """
     kind = control.get("kind")
     if kind not in CONTROL_KINDS:
@@ -155,7 +173,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
         if kind == "bdot":
             args = _bdot_args(args, body, orbit, field, magnetorquers, kind)
         elif kind == "mrp_pd":
-            args, target = _mrp_args({**args, "_target": control.get("target")}, body, wheels, principal_to_design, kind)
+            args, target = _mrp_args({**args, "_target": control.get("target")}, body, wheels, principal_to_design,
+                                     kind, orbit)
             MRPFeedback(**args, moments=body.principal_moments, wheels=wheels, target=target)  # type: ignore[arg-type]
         else:
             for key, unit in (("switch_rate", "rad/s"), ("dwell", "s")):
@@ -174,7 +193,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
             point_t = _sub(where, control.get("point", {}), _SUB_KEYS["point"])
             point, target = _mrp_args({**{k: v for k, v in point_t.items() if k != "dumping_gain"},
                                        "_target": point_t.get("target"), "period": period},
-                                      body, wheels, principal_to_design, kind)
+                                      body, wheels, principal_to_design, kind, orbit)
             dumping = point_t.get("dumping_gain")
             if dumping is not None:
                 dumping = check_positive("dumping_gain", dumping, "1/s")

@@ -26,6 +26,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from scipy.spatial.transform import Rotation
 
+    from ..dynamics.pointing import Reference
+
 __all__ = ["CONTROL_FIGURES", "control_figures", "figure_attitude_error", "figure_body_rates", "figure_dipole",
            "figure_momentum_budget", "figure_wheels", "wheel_momentum"]
 
@@ -83,9 +85,12 @@ def wheel_momentum(run: ControlledRun) -> np.ndarray:
     return np.asarray(run.attitude.inv().apply(run.momentum_world) - run.moments * run.omega, float).reshape(-1, 3)
 
 
-def figure_attitude_error(run: ControlledRun, target: Rotation | None, *, switch_time: float | None = None,
+def figure_attitude_error(run: ControlledRun, target: Rotation | Reference | None, *, switch_time: float | None = None,
                           title: str | None = None, ax: Axes | None = None) -> Figure:
     """The angle from the target to the body's principal frame (deg, log scale) against time (s).
+
+    ``target`` is fixed (a scipy Rotation, target frame to world) or a moving reference
+    (:mod:`tumble.dynamics.pointing`: the error to it at each time).
 
     Examples
     --------
@@ -240,7 +245,7 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
     return fig
 
 
-def control_figures(run: ControlledRun, *, target: Rotation | None = None, switch_time: float | None = None,
+def control_figures(run: ControlledRun, *, target: Rotation | Reference | None = None, switch_time: float | None = None,
                     title: str | None = None) -> dict[str, Figure]:
     """Every figure of a control run, by the file name it is written under (``tumble.viz.control.CONTROL_FIGURES``).
 
@@ -248,8 +253,9 @@ def control_figures(run: ControlledRun, *, target: Rotation | None = None, switc
     ----------
     run : ControlledRun
         The run.
-    target : scipy Rotation, optional
-        The target frame to world, for the attitude error (None: the panel says there is none).
+    target : scipy Rotation or Reference, optional
+        The target frame to world, fixed or moving, for the attitude error (None: the panel says
+        there is none).
     switch_time : float, optional
         The mission's switch from detumbling to pointing, s, marked in every panel.
     title : str, optional

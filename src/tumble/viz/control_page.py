@@ -22,6 +22,7 @@ from scipy.integrate import cumulative_trapezoid
 from scipy.spatial.transform import Rotation
 
 from ..dynamics.controlled import ControlledRun
+from ..dynamics.pointing import Reference, is_reference
 from ..typing import ArrayLike
 from .page import _curve_indices, _rounded
 from .scene import frame_indices
@@ -78,7 +79,7 @@ def _axes(wheel_axes: ArrayLike | None, k: int) -> np.ndarray:
 
 
 def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: ArrayLike | None = None,
-                      target: Rotation | None = None, threshold: float | None = None) -> dict[str, Any]:
+                      target: Rotation | Reference | None = None, threshold: float | None = None) -> dict[str, Any]:
     """What the page draws of a closed-loop run, as JSON-ready data (SI units).
 
     Parameters
@@ -90,9 +91,10 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
     wheel_axes : array_like, shape (k, 3), optional
         The reaction wheels' axes, principal frame (``ReactionWheels.axes``); needed when the run
         has wheels. Normalised here.
-    target : scipy Rotation, optional
-        The pointing target (target frame to world, the run's principal frame): the time plot
-        shows the attitude error to it; without, ``|omega|``.
+    target : scipy Rotation or Reference, optional
+        The pointing target (target frame to world, the run's principal frame), fixed or moving
+        (:mod:`tumble.dynamics.pointing`, the error to it at each time): the time plot shows the
+        attitude error to it; without, ``|omega|``.
     threshold : float, optional
         Drawn as a line on the ``|omega|`` plot, rad/s (the detumble threshold).
 
@@ -135,8 +137,9 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
     turns = np.abs(np.diff(angle[idx], axis=0))
     has_dipole = bool(np.any(run.dipole != 0.0))
     if target is not None:
-        if not isinstance(target, Rotation) or not target.single:
-            raise ValueError(f"target = {target!r} must be one scipy Rotation (target frame to world)")
+        if not is_reference(target) and (not isinstance(target, Rotation) or not target.single):
+            raise ValueError(f"target = {target!r} must be one scipy Rotation (target frame to world) "
+                             "or a moving reference (attitude(t), rate(t))")
         name, unit, y = "attitude error", "rad", run.pointing_error(target)
     else:
         name, unit, y = "|omega|", "rad/s", run.rate
