@@ -1,0 +1,171 @@
+"""MRP feedback to a moving (nadir) reference and its integral term: closed-form checks (issue 21, item 3)."""
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+from scipy.spatial.transform import Rotation
+
+from tumble.dynamics.controlled import simulate_controlled
+from tumble.dynamics.controllers import MomentumDumping, MRPFeedback, pd_response
+from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
+from tumble.dynamics.models.magnetic import UniformField
+from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.models.sensors import Measurement
+from tumble.dynamics.pointing import NadirTarget
+from tumble.dynamics.special.mrp import mrp_from_quat
+
+ROOT = Path(__file__).resolve().parents[1]
+ORBIT = CircularOrbit(altitude=500e3)
+I = np.array([0.03, 0.04, 0.05])
+RW = ReactionWheels(np.eye(3), inertia=1e-5)
+
+
+def _signed_angle(c, run, axis):
+    """Signed error angle about one principal axis, 4 atan(sigma_axis), rad."""
+    return np.array([4.0 * math.atan(c.error(run.attitude[i], float(t))[axis]) for i, t in enumerate(run.t)])
+
+
+def test_nadir_reference_frame():
+    """R(t) = R_z(n t) R(0): the nadir axis on -radius, the normal axis on r x v, omega_r = n z."""
+    nadir = NadirTarget(ORBIT, nadir_axis="minor", normal_axis="intermediate")
+    t = np.linspace(0.0, ORBIT.period, 7)
+    r = ORBIT.position_world(t)
+    R = nadir.attitude(t)
+    assert np.allclose(R.apply([1.0, 0.0, 0.0]), -r / ORBIT.radius, atol=1e-15)
+    normal = np.cross(r, ORBIT.velocity_world(t))
+    assert np.allclose(R.apply([0.0, 1.0, 0.0]), normal / np.linalg.norm(normal, axis=1)[:, None], atol=1e-15)
+    # omega_r from the frame's own motion: (R(t + h) R(t)^T) ~ exp(omega_r h)
+    h = 1e-2
+    w = (nadir.attitude(t + h) * R.inv()).as_rotvec() / h
+    assert np.allclose(w, nadir.rate(t), rtol=1e-9, atol=1e-15)
+    with pytest.raises(ValueError, match="orbit.mean_motion"):
+        NadirTarget(object())
+
+
+def test_on_the_reference_it_stays_there():
+    """(a) Started on the nadir reference (the minor axis down, the major on the orbit normal) with
+    omega = omega_r, in the gravity gradient, it stays on it to the integrator's accuracy: the law
+    damps delta_omega, not omega (a fixed-target law would brake the orbital rate)."""
+    nadir = NadirTarget(ORBIT)
+    R0 = nadir.attitude(0.0)
+    c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, target=nadir)
+    run = simulate_controlled(I, R0.inv().apply(nadir.rate(0.0)), t_end=600.0, controller=c, wheels=RW,
+                              attitude0=R0, gravity_gradient=ORBIT.gravity_gradient())
+    assert run.pointing_error(nadir).max() < 1e-10
+    assert np.abs(run.wheel_speed).max() < 1e-8   # the wheels did nothing
+
+
+def test_feed_forward_off_the_principal_axes():
+    """(a') Axes that are not principal: omega_r is not a principal axis and the wheels must make
+    omega x I omega. With the feed-forward the error is the zero-order hold's alone (the wheels'
+    momentum, and omega x h with it, changes within a period): it halves with the period; without
+    it the error is ~ 4 |omega x I omega| / K."""
+    nadir = NadirTarget(ORBIT, nadir_axis=[1.0, 1.0, 0.0], normal_axis=[1.0, -1.0, 1.0])
+    R0 = nadir.attitude(0.0)
+    w0 = R0.inv().apply(nadir.rate(0.0))
+    final = {}
+    for gyroscopic, period in ((True, 0.5), (True, 0.25), (False, 0.5)):
+        c = MRPFeedback(K=1e-3, P=2e-2, period=period, moments=I, wheels=RW, target=nadir, gyroscopic=gyroscopic)
+        run = simulate_controlled(I, w0, t_end=300.0, controller=c, wheels=RW, attitude0=R0)
+        final[gyroscopic, period] = run.pointing_error(nadir)[-1]
+    tau = np.linalg.norm(np.cross(w0, I * w0))
+    zoh = 4 * np.linalg.norm(np.cross(w0, np.cross(w0, I * w0))) * 0.5 / 2 / 1e-3   # 4 |d(omega x h)/dt| dt / 2 / K
+    assert final[True, 0.5] < 2 * zoh
+    assert final[True, 0.5] / final[True, 0.25] == pytest.approx(2.0, rel=0.05)
+    assert final[False, 0.5] == pytest.approx(4 * tau / 1e-3, rel=0.1)
+
+
+def test_small_error_decays_like_the_linearised_pd_loop():
+    """(b) 0.02 rad off the nadir reference about the orbit normal (the major axis, I3): the error
+    follows I_RW theta'' + P theta' + (K / 4) theta = 0 (pd_response's overshoot and settling)."""
+    nadir = NadirTarget(ORBIT)
+    I_rw = I[2] - 1e-5
+    K = 1e-3
+    P = 0.5 * math.sqrt(K * I_rw)   # zeta = 0.5
+    theta0 = 0.02
+    R0 = nadir.attitude(0.0) * Rotation.from_rotvec([0.0, 0.0, theta0])
+    c = MRPFeedback(K=K, P=P, period=0.05, moments=I, wheels=RW, target=nadir)
+    run = simulate_controlled(I, R0.inv().apply(nadir.rate(0.0)), t_end=200.0, controller=c, wheels=RW, attitude0=R0)
+    theta = _signed_angle(c, run, 2)
+    r = pd_response(K, P, I_rw)
+    zeta, wn = r.damping_ratio, r.natural_frequency
+    wd = wn * math.sqrt(1 - zeta**2)
+    linear = theta0 * np.exp(-zeta * wn * run.t) * (np.cos(wd * run.t) + zeta / math.sqrt(1 - zeta**2) * np.sin(wd * run.t))
+    assert np.abs(theta - linear).max() < 5e-3 * theta0   # the zero-order hold's delay (wn dt / 2 ~ 0.4 %)
+    assert -theta.min() / theta0 == pytest.approx(r.overshoot, rel=0.02)
+    settled = run.t[np.nonzero(np.abs(theta) > 0.02 * theta0)[0][-1] + 1]
+    assert settled <= r.settling_time + 0.05
+    assert settled > 0.75 * r.settling_time   # the envelope bound is tight to within a half swing
+
+
+class _ConstantDipole:
+    """MRP feedback plus a constant magnetorquer dipole: a constant disturbance in a uniform field."""
+
+    def __init__(self, mrp, dipole):
+        self.mrp, self.dipole, self.period = mrp, np.asarray(dipole, float), mrp.period
+
+    def reset(self):
+        self.mrp.reset()
+
+    def __call__(self, t, m):
+        return Command(dipole=self.dipole, wheel_torque=self.mrp(t, m).wheel_torque)
+
+
+@pytest.mark.parametrize(("Ki", "limit"), [(0.0, math.inf), (0.05, math.inf), (0.05, 1e-6)])
+def test_integral_term_removes_the_steady_error(Ki, limit):
+    """(c) A dipole m y in a field B x makes the torque -m B cos(theta) z at an error theta about z.
+    PD settles where K tan(theta / 4) = -m B cos(theta); the integral term takes the error to zero;
+    an integral limit L below m B leaves K tan(theta / 4) = -(m B cos(theta) - L)."""
+    K, mB = 4e-3, 3e-6
+    c = MRPFeedback(K=K, P=math.sqrt(K * I[2]), period=0.5, moments=I, wheels=RW, Ki=Ki, integral_limit=limit)
+    run = simulate_controlled(I, np.zeros(3), t_end=800.0, controller=_ConstantDipole(c, [0.0, 0.1, 0.0]),
+                              field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(1.0), wheels=RW)
+    theta = _signed_angle(c, run, 2)[-1]
+    held = 0.0 if Ki == 0.0 else min(limit, mB)
+    expected = brentq(lambda th: K * math.tan(th / 4) + mB * math.cos(th) - held, -1.0, 1.0, xtol=1e-16)
+    pd = brentq(lambda th: K * math.tan(th / 4) + mB * math.cos(th), -1.0, 1.0, xtol=1e-16)
+    assert pd == pytest.approx(-4 * mB / K, rel=1e-3)   # ~ tau / K' with K' = K / 4 per radian
+    if Ki == 0.0 or limit < mB:
+        assert theta == pytest.approx(expected, rel=1e-7)
+    else:
+        assert abs(theta) < 1e-6 * abs(pd)
+
+
+def test_fixed_target_without_integral_is_todays_law_to_the_bit():
+    """(d) Ki = 0 and a fixed target: u = -G^+ (-K sigma - P omega + omega x (I omega + h)), as before."""
+    rng = np.random.default_rng(7)
+    wheels = ReactionWheels(rng.normal(size=(4, 3)), inertia=2e-5)
+    target = Rotation.random(random_state=3)
+    c = MRPFeedback(K=1.1e-3, P=6e-3, period=0.5, moments=[0.0067, 0.0419, 0.0419], wheels=wheels, target=target)
+    pinv = np.linalg.pinv(wheels.axes.T)
+    for i in range(50):
+        att = Rotation.random(random_state=100 + i)
+        w, s = rng.normal(scale=0.05, size=3), rng.normal(scale=100.0, size=4)
+        sigma = np.asarray(mrp_from_quat((target.inv() * att).as_quat()), float)
+        L_r = -1.1e-3 * sigma - 6e-3 * w
+        L_r = L_r + np.cross(w, np.asarray(c.moments) * w + wheels.momentum(s))
+        got = c(float(i), Measurement(float(i), w, None, att, s)).wheel_torque
+        assert np.array_equal(got, -pinv @ L_r)
+
+
+def test_reset_reaches_the_integral_through_momentum_dumping():
+    c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, Ki=0.1)
+    md = MomentumDumping(c, gain=1e-3)
+    m = Measurement(0.0, np.zeros(3), np.array([0.0, 0.0, 3e-5]), Rotation.from_rotvec([0.1, 0.0, 0.0]), np.zeros(3))
+    first = md(0.0, m).wheel_torque
+    assert not np.array_equal(md(0.5, m).wheel_torque, first)
+    md.reset()
+    assert np.array_equal(md(1.0, m).wheel_torque, first)
+
+
+def test_bad_gains_are_one_clear_error():
+    with pytest.raises(ValueError, match="Ki"):
+        MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, Ki=-1.0)
+    with pytest.raises(ValueError, match="integral_limit"):
+        MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, integral_limit=0.0)
