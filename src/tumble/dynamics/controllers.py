@@ -343,7 +343,7 @@ class MRPFeedback:
         True
         """
         if is_reference(self.target):
-            return tracking_error(self.target, t, attitude, np.zeros(3)).sigma  # type: ignore[arg-type]
+            return tracking_error(self.target, t, attitude, np.zeros(3)).sigma
         target = self.target if isinstance(self.target, Rotation) else Rotation.from_quat(self.target)
         return np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)
 
@@ -372,7 +372,7 @@ class MRPFeedback:
             raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
         w = measurement.omega
         if is_reference(self.target):  # the tracking law (module docstring)
-            e = tracking_error(self.target, t, measurement.attitude, w)  # type: ignore[arg-type]
+            e = tracking_error(self.target, t, measurement.attitude, w)
             sigma = e.sigma
             L_r = -self.K * sigma - self.P * e.delta_omega + self._I_rw @ (e.omega_r_dot - np.cross(w, e.omega_r))
         else:

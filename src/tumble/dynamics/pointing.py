@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+from typing import Protocol, TypeGuard, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -74,7 +74,7 @@ class Reference(Protocol):
         ...
 
 
-def is_reference(target: object) -> bool:
+def is_reference(target: object) -> TypeGuard[Reference]:
     """Whether ``target`` is a moving reference (:class:`Reference`) rather than a fixed attitude.
 
     Examples
@@ -97,7 +97,7 @@ def target_attitude(target: Rotation | Reference, t: ArrayLike) -> Rotation:
     >>> round(float((target_attitude(nadir, 100.0) * target_attitude(nadir, 0.0).inv()).magnitude()), 12)
     1.0
     """
-    return target.attitude(t) if is_reference(target) else target  # type: ignore[union-attr]
+    return target.attitude(t) if is_reference(target) else target
 
 
 @dataclass(frozen=True)
@@ -152,31 +152,32 @@ def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, o
     >>> bool(np.abs(e.sigma).max() < 1e-15), bool(np.abs(e.delta_omega).max() < 1e-18)
     (True, True)
     """
+    w = np.asarray(omega, dtype=np.float64)
     if not is_reference(target):
         zero = np.zeros(3)
-        sigma = np.asarray(mrp_from_quat((target.inv() * attitude).as_quat()), float)  # type: ignore[union-attr]
-        return TrackingError(sigma, np.asarray(omega, float), zero, zero)
-    ref: Reference = target  # type: ignore[assignment]
+        fixed: Rotation = target
+        return TrackingError(np.asarray(mrp_from_quat((fixed.inv() * attitude).as_quat()), dtype=np.float64), w, zero, zero)
+    ref = target
     R = ref.attitude(t)
-    sigma = np.asarray(mrp_from_quat((R.inv() * attitude).as_quat()), float)
+    sigma = np.asarray(mrp_from_quat((R.inv() * attitude).as_quat()), dtype=np.float64)
     to_body = attitude.inv()
-    w_r = np.asarray(to_body.apply(ref.rate(t)), float)
+    w_r = np.asarray(to_body.apply(ref.rate(t)), dtype=np.float64)
     derivative = getattr(ref, "rate_derivative", None)
-    w_r_dot = np.zeros(3) if derivative is None else np.asarray(to_body.apply(derivative(t)), float)
-    return TrackingError(sigma, np.asarray(omega, float) - w_r, w_r, w_r_dot)
+    w_r_dot = np.zeros(3) if derivative is None else np.asarray(to_body.apply(derivative(t)), dtype=np.float64)
+    return TrackingError(sigma, w - w_r, w_r, w_r_dot)
 
 
 def _direction(name: str, value: int | str | ArrayLike) -> FloatArray:
     """A principal axis label (1, 2, 3, "minor", "intermediate", "major") or a unit 3-vector."""
     if np.ndim(value) == 0:
         e = np.zeros(3)
-        e[axis_index(name, value)] = 1.0  # type: ignore[arg-type]
+        e[axis_index(name, value)] = 1.0
         return e
     v = np.asarray(value, float)
     if v.shape != (3,) or not np.all(np.isfinite(v)) or not np.linalg.norm(v) > 0.0:
         raise ValueError(f"{name} = {value!r} must be 1, 2, 3, minor, intermediate, major or a nonzero 3-vector "
                          "(principal frame)")
-    return v / np.linalg.norm(v)
+    return np.asarray(v / np.linalg.norm(v), dtype=np.float64)
 
 
 @dataclass(frozen=True)
@@ -253,7 +254,7 @@ class NadirTarget:
         True
         """
         nt = self.mean_motion * np.asarray(t, dtype=float)
-        return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * self._r0  # type: ignore[attr-defined, no-any-return]
+        return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * self._r0  # type: ignore[attr-defined]
 
     def rate(self, t: ArrayLike) -> FloatArray:
         """``omega_r = n z``, world frame, rad/s (shape ``t.shape + (3,)``).

@@ -112,13 +112,13 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
         if given != "nadir":
             raise ValueError(f'target = {given!r} is unknown; allowed: "nadir" or a quaternion [x, y, z, w]')
         if not isinstance(orbit, CircularOrbit):
-            raise ValueError('target = "nadir" needs a circular [orbit] (altitude, inclination, ...): '
-                             + ("there is none" if orbit is None else f"a {type(orbit).__name__} is not one"))
+            found = "there is none" if orbit is None else f"a {type(orbit).__name__} is not one"
+            raise ValueError(f'target = "nadir" needs a circular [orbit] (altitude, inclination, ...): {found}')  # noqa: TRY004 - one error type for bad input
         to_principal = principal_to_design.inv()  # vectors are given in the design frame
         axes = {k: v if np.ndim(v) == 0 else to_principal.apply(np.asarray(v, float)) for k, v in axes.items()}
         return args, NadirTarget(orbit, **axes)
     if axes:
-        raise ValueError(f'{sorted(axes)[0]} goes with target = "nadir" only')
+        raise ValueError(f'{min(axes)} goes with target = "nadir" only')
     target = Rotation.from_quat(check_rotation("target", given if given is not None else [0, 0, 0, 1]))
     return args, target * principal_to_design
 
