@@ -216,3 +216,18 @@ def test_scenario_keys_for_nadir_and_the_integral_term():
         parse_control({"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3, "target": "nadir"}, body=s.body,
                       orbit=KeplerOrbit(7.2e6, 0.01, 0.0), field=None, magnetorquers=None, wheels=s.wheels,
                       sensors=Sensors(), principal_to_design=Rotation.identity())
+
+
+def test_detumble_point_points_at_nadir_with_the_integral_term():
+    from tumble.dynamics import DipoleField
+    from tumble.dynamics.models.sensors import Sensors
+    from tumble.io.controlspec import build_controller, parse_control
+    s = _scenario({}, None)
+    orbit = CircularOrbit(altitude=500e3, inclination=1.7)
+    spec = parse_control({"kind": "detumble_point", "period": 1.0, "switch_rate": 0.0175, "dwell": 60.0,
+                          "point": {"K": 1e-3, "P": 6e-3, "target": "nadir", "Ki": 0.01, "dumping_gain": 1e-3}},
+                         body=s.body, orbit=orbit, field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2),
+                         wheels=s.wheels, sensors=Sensors(), principal_to_design=Rotation.identity())
+    mission = build_controller(spec, s.body, s.wheels)
+    assert isinstance(spec.target, NadirTarget) and spec.target.mean_motion == orbit.mean_motion
+    assert mission.point.pointing.target is spec.target and mission.point.pointing.Ki == 0.01
