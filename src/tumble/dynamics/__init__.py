@@ -25,6 +25,7 @@ from .models.magnetic import DipoleField, UniformField
 from .models.orbit import CircularOrbit
 from .models.sensors import Measurement, Sensors
 from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
+from .pointing import NadirTarget
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory
@@ -42,6 +43,7 @@ __all__ = [
     "OrbitGravityGradient",
     "TLEOrbit",
     "MRPFeedback",
+    "NadirTarget",
     "Magnetorquers",
     "Measurement",
     "ReactionWheels",

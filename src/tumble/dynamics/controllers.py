@@ -25,16 +25,9 @@ relative to the target and ``h_s`` the wheels' absolute axial momenta, so that
 the target, one principal axis obeys ``I_RW theta'' + P theta' + (K / 4) theta = 0``
 (``sigma ~ theta / 4``): natural frequency ``omega_n = sqrt(K / (4 I_RW))`` and damping ratio
 ``zeta = P / sqrt(K I_RW)`` (:func:`pd_response`), ``I_RW`` the moment with the wheels' axial
-moments taken out (:mod:`~tumble.dynamics.models.actuators`). To track a moving reference R(t)
-(nadir: :class:`~tumble.dynamics.pointing.NadirTarget`) the law is sec. 8.3's tracking law,
-``L_r = -K sigma - P delta_omega + I_RW (omega_r' - omega x omega_r) + omega x (I omega + h)``
-with ``sigma = sigma_B/R`` and ``delta_omega = omega - [BR] omega_r`` (:mod:`~tumble.dynamics.pointing`).
-The *integral term* (sec. 8.4's integral feedback; Basilisk's ``mrpFeedback`` with ``Ki`` and
-``integralLimit``) adds ``-z``, ``z = Ki K sum sigma_j dt`` over the earlier steps (N m), each
-component held within ``integral_limit`` (anti-windup): per axis
-``I_RW theta'' + P theta' + (K / 4) (theta + Ki int theta dt) = tau``, stable for ``Ki < P / I_RW``
-(Routh), so a constant disturbance ``tau`` leaves no steady error where PD leaves
-``sigma = tau / K`` (``theta ~ 4 tau / K``).
+moments taken out (:mod:`~tumble.dynamics.models.actuators`). A moving reference (nadir:
+sec. 8.3's tracking law) and the integral term (sec. 8.4; ``Ki``, ``integral_limit``):
+:mod:`~tumble.dynamics.pointing`.
 
 **Momentum dumping** (the cross-product law: Camillo & Markley, "Orbit-averaged behavior of
 magnetic control laws for momentum unloading", J. Guid. Control 3(6), 1980; Sidi, *Spacecraft

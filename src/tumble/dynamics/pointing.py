@@ -17,6 +17,16 @@ P delta_omega + tau_ext`` (:class:`~tumble.dynamics.controllers.MRPFeedback`): t
 function ``V = 2 K ln(1 + |sigma|^2) + delta_omega . I_RW delta_omega / 2`` has
 ``V' = -delta_omega . P delta_omega`` without disturbance.
 
+**The integral term** (sec. 8.4's integral feedback; Basilisk's ``mrpFeedback`` with ``Ki`` and
+``integralLimit``): :class:`~tumble.dynamics.controllers.MRPFeedback` with ``Ki > 0`` (1/s) adds
+``-z``, ``z = Ki K sum_j sigma_j dt`` over the earlier control steps (N m), each component held
+within ``integral_limit`` (anti-windup). Per axis, linearised (``sigma ~ theta / 4``),
+``I_RW theta'' + P theta' + (K / 4) (theta + Ki int theta dt) = tau``: stable for ``Ki < P / I_RW``
+(Routh), and a constant disturbance ``tau`` leaves no steady error where PD leaves
+``sigma = tau / K`` (``theta ~ 4 tau / K``). This ``z`` is the plain PID form: the book's (and
+Basilisk's) integral variable also carries an inertia-weighted rate part, so their ``Ki`` is not
+this one.
+
 **Nadir** (:class:`NadirTarget`): on a circular orbit the world frame of a control run is the
 orbit-plane frame (:mod:`~tumble.dynamics.models.orbit`): the radius at ``t`` is
 ``(cos n t, sin n t, 0)``, the orbit normal +z. The target puts one body axis on nadir
