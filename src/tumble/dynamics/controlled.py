@@ -13,8 +13,9 @@ command held, ``u`` the wheels' applied torque and ``tau`` the body
 torques: the magnetorquers' ``m x B`` and the gravity gradient. At each ``t_k`` the sensors are
 read and the controller called.
 
-**Two paths, the same steps.** With the built-in models only (``DipoleField`` or
-``UniformField``, ``GravityGradient``, ``Magnetorquers``, ``ReactionWheels``) each interval is
+**Two paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
+or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular, Keplerian or TLE
+orbit, ``Magnetorquers``, ``ReactionWheels``) each interval is
 integrated by a compiled copy of scipy's DOP853
 (:mod:`~tumble.dynamics.methods.compiled_control`: the same steps; a two-orbit detumble, 11,400
 periods, in 1 s instead of 41 s, most of it now the Python controller); with a
