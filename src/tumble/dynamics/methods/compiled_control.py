@@ -26,16 +26,12 @@ and tests/test_controlled_compiled.py checks each against it to round-off):
 - the field: :class:`~tumble.dynamics.models.magnetic.UniformField`, or the tilted dipole of
   :class:`~tumble.dynamics.models.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
   Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`), or
-  :class:`~tumble.dynamics.models.igrf.IGRFField`'s cubic spline blocks over the run
-  (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`, a
-  :class:`~tumble.dynamics.models.tabulated.CubicTable`: the same interval rule and Horner sums);
+  :class:`~tumble.dynamics.models.igrf.IGRFField`'s spline blocks (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of a circular orbit
-  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), or ``3 mu/r^3 r_b x (I r_b)`` along
-  a Keplerian or TLE orbit (:class:`~tumble.dynamics.models.ephemeris.OrbitGravityGradient`) with
-  ``r(t)`` from the orbit's position tabulated by
-  :func:`~tumble.dynamics.models.tabulated.position_table` (relative error ~1e-12, so the two
-  paths agree to ~1e-11, not to round-off); with the field's ``m x B`` the external torque whose
-  world-frame value is the impulse's rate;
+  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), or with ``n^2 = mu / r^3`` along a
+  Keplerian or TLE orbit (:class:`~tumble.dynamics.models.ephemeris.OrbitGravityGradient`), ``r(t)``
+  from :func:`~tumble.dynamics.models.tabulated.position_table` (~1e-12 of r: the paths agree to
+  ~1e-11 there); with the field's ``m x B`` the external torque whose world-frame value is the impulse's rate;
 - the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
   torque limit, speed limit, viscous and Coulomb friction).
 """

@@ -96,7 +96,7 @@ class CubicTable:
         >>> CubicTable(10.0, 5.0, np.zeros((4, 3, 3))).t_end
         25.0
         """
-        return self.t0 + self.coefficients.shape[1] * self.step
+        return float(self.t0 + self.coefficients.shape[1] * self.step)
 
     def __call__(self, t: ArrayLike) -> FloatArray:
         """The function at ``t`` (s); shape ``t.shape + (3,)``.
