@@ -54,7 +54,7 @@ def test_the_kernels_field_is_the_models_field(field):
     f = cc._compiled("_field_world")
     out = np.empty(3)
     for t in (0.0, 1.0, 1234.5, 11399.0):
-        f(kind, p, p[12], t, out)
+        f(kind, p, cc._NO_TABLE, p[12], t, out)
         np.testing.assert_allclose(out, field.world(t), rtol=1e-13, atol=1e-13 * np.linalg.norm(field.world(t)))
 
 
@@ -85,7 +85,7 @@ def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
         y = np.concatenate([att.as_quat(), w, np.zeros(3)])
         out = np.empty(10)
         rhs(t, y, np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)), np.zeros((0, 8)), dipole, np.zeros(0), kind, p,
-            gg.mean_motion, np.zeros(0), out)
+            cc._NO_TABLE, np.array([gg.mean_motion, 0.0, 0.0, 0.0]), cc._NO_TABLE, np.zeros(0), out)
         tau_world = att.apply(np.cross(dipole, att.inv().apply(field.world(t)))) + gg(t, w, att)
         np.testing.assert_allclose(out[7:], tau_world, rtol=1e-12, atol=1e-12 * np.abs(tau_world).max())
         w_dot = (np.cross(dipole, att.inv().apply(field.world(t))) + att.inv().apply(gg(t, w, att))
@@ -174,8 +174,8 @@ class Ramp:
 def test_a_user_model_takes_scipys_path_and_compiled_true_names_it():
     kw = {"moments": CUBESAT, "omega0": [0.1, 0.0, 0.1], "t_end": 3.0, "controller": BDot(gain=3e-5, period=1.0),
               "field": Ramp(), "magnetorquers": Magnetorquers(0.2)}
-    with pytest.raises(ValueError, match=r"compiled=True needs built-in models; field = Ramp \(a DipoleField or "
-                                         r"UniformField\) is not one"):
+    with pytest.raises(ValueError, match=r"compiled=True needs built-in models; field = Ramp \(a DipoleField, "
+                                         r"UniformField or IGRFField\) is not one"):
         simulate_controlled(compiled=True, **kw)
     np.testing.assert_array_equal(simulate_controlled(**kw).omega, simulate_controlled(compiled=False, **kw).omega)
     with pytest.raises(ValueError, match="compiled = 'yes' must be True, False or None"):

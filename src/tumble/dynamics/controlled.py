@@ -13,8 +13,9 @@ command held, ``u`` the wheels' applied torque and ``tau`` the body
 torques: the magnetorquers' ``m x B`` and the gravity gradient. At each ``t_k`` the sensors are
 read and the controller called.
 
-**Two paths, the same steps.** With the built-in models only (``DipoleField`` or
-``UniformField``, ``GravityGradient``, ``Magnetorquers``, ``ReactionWheels``) each interval is
+**Two paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
+or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular, Keplerian or TLE
+orbit, ``Magnetorquers``, ``ReactionWheels``) each interval is
 integrated by a compiled copy of scipy's DOP853
 (:mod:`~tumble.dynamics.methods.compiled_control`: the same steps; a two-orbit detumble, 11,400
 periods, in 1 s instead of 41 s, most of it now the Python controller); with a
@@ -233,7 +234,7 @@ def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
 
 def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: MagneticField | None,
             gg: GravityGradient | OrbitGravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
-            rtol: float, atol: float) -> ControlKernel | None:
+            rtol: float, atol: float, t_end: float) -> ControlKernel | None:
     """The compiled interval integrator for these models, or None for scipy's path."""
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
@@ -246,8 +247,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Ma
         if compiled:
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
-    n_gg = gg.mean_motion if isinstance(gg, GravityGradient) else 0.0
-    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, n_gg, rtol, atol)
+    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, gg, rtol, atol, t_end)
 
 
 def simulate_controlled(
@@ -341,7 +341,7 @@ def simulate_controlled(
     I_rw_inv = np.linalg.inv(I_rw)
     axes = wheels.axes if wheels is not None else np.zeros((0, 3))
     J = np.asarray(wheels.inertia) if wheels is not None else np.zeros(0)
-    kernel = _kernel(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol)
+    kernel = _kernel(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol, T)
 
     def rhs(t: float, y: FloatArray, dipole: FloatArray, u_cmd: FloatArray) -> FloatArray:
         q, w, s = y[:4] / math.sqrt(float(y[:4] @ y[:4])), y[4:7], y[7:7 + k]

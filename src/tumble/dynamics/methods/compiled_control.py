@@ -25,10 +25,13 @@ and tests/test_controlled_compiled.py checks each against it to round-off):
 
 - the field: :class:`~tumble.dynamics.models.magnetic.UniformField`, or the tilted dipole of
   :class:`~tumble.dynamics.models.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
-  Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`);
+  Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`), or
+  :class:`~tumble.dynamics.models.igrf.IGRFField`'s spline blocks (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of a circular orbit
-  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), and with the field's ``m x B`` the
-  external torque whose world-frame value is the impulse's rate;
+  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), or with ``n^2 = mu / r^3`` along a
+  Keplerian or TLE orbit (:class:`~tumble.dynamics.models.ephemeris.OrbitGravityGradient`), ``r(t)``
+  from :func:`~tumble.dynamics.models.tabulated.position_table` (~1e-12 of r: the paths agree to
+  ~1e-11 there); with the field's ``m x B`` the external torque whose world-frame value is the impulse's rate;
 - the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
   torque limit, speed limit, viscous and Coulomb friction).
 """
@@ -44,11 +47,15 @@ import numpy as np
 
 from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
+from ..models.tabulated import horner as _horner
 
-__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models", "field_params"]
+__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
+           "field_params"]
 
-#: Kinds of field the kernels evaluate: none, uniform, the tilted dipole.
-FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE = 0, 1, 2
+#: Kinds of field the kernels evaluate: none, uniform, the tilted dipole, a CubicTable (IGRF).
+FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
+#: An empty table (the kernels' argument where there is none).
+_NO_TABLE = np.zeros((4, 1, 3))
 
 
 def field_params(field: Any) -> tuple[int, FloatArray]:
@@ -56,7 +63,9 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
 
     The parameters (16 floats): for a uniform field ``B`` (T) in the first three; for the dipole
     the world-from-ECI matrix (9, row by row), the Gauss vector ``g`` (3, T), ``gmst0`` (rad),
-    1 if the Earth turns else 0, the orbit radius (m) and mean motion (rad/s).
+    1 if the Earth turns else 0, the orbit radius (m) and mean motion (rad/s); for an
+    :class:`~tumble.dynamics.models.igrf.IGRFField` the start (0 s) and knot spacing (s) of its
+    table (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`, passed apart).
 
     Examples
     --------
@@ -65,6 +74,7 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
     >>> kind == FIELD_UNIFORM, p[:3].tolist()
     (True, [0.0, 0.0, 3e-05])
     """
+    from ..models.igrf import IGRFField
     from ..models.magnetic import DipoleField, UniformField
 
     p = np.zeros(16)
@@ -78,12 +88,27 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
         p[9:12] = field.gauss_vector
         p[12:16] = (field.gmst0, 1.0 if field.earth_rotation else 0.0, field.orbit.radius, field.orbit.mean_motion)
         return FIELD_DIPOLE, p
-    raise ValueError(f"field = {field!r} is not a built-in field (DipoleField, UniformField): the compiled path "
+    if type(field) is IGRFField:
+        p[:2] = (0.0, field.step)
+        return FIELD_TABLE, p
+    raise ValueError(f"field = {field!r} is not a built-in field (DipoleField, UniformField, IGRFField): the compiled path "
                      "cannot evaluate it; use compiled=False")
 
 
-def _field_world(kind: int, p: FloatArray, gmst0: float, t: float, out: FloatArray) -> None:  # pragma: no cover
-    """B (T) in the world frame at ``t`` (s) into ``out``; ``gmst0`` the Earth's angle at t = 0 (rad).
+def _table(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, float, float]:  # pragma: no cover
+    """A :class:`~tumble.dynamics.models.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
+    spacing ``h``, s) at ``t`` (s), by its rule: interval ``floor((t - t0) / h)`` clipped, Horner."""
+    i = int(min(max(math.floor((t - t0) / h), 0.0), c.shape[1] - 1.0))
+    d = t - (t0 + i * h)
+    return (_horner(c[0, i, 0], c[1, i, 0], c[2, i, 0], c[3, i, 0], d),
+            _horner(c[0, i, 1], c[1, i, 1], c[2, i, 1], c[3, i, 1], d),
+            _horner(c[0, i, 2], c[1, i, 2], c[2, i, 2], c[3, i, 2], d))
+
+
+def _field_world(kind: int, p: FloatArray, table: FloatArray, gmst0: float, t: float,
+                 out: FloatArray) -> None:  # pragma: no cover
+    """B (T) in the world frame at ``t`` (s) into ``out``; ``gmst0`` the Earth's angle at t = 0 (rad),
+    ``table`` the coefficients of a tabulated field (start ``p[0]``, spacing ``p[1]``).
 
     The dipole: ``r_eci = W^T r_world``, ``r_ecef = R3(theta)^T r_eci``, B in ECEF, then back
     (:meth:`DipoleField.world`, with ``world_from_ecef = W R3(theta)`` applied in two factors)."""
@@ -92,6 +117,9 @@ def _field_world(kind: int, p: FloatArray, gmst0: float, t: float, out: FloatArr
         return
     if kind == FIELD_UNIFORM:
         out[0], out[1], out[2] = p[0], p[1], p[2]
+        return
+    if kind == FIELD_TABLE:
+        out[0], out[1], out[2] = _table(table, p[0], p[1], t)
         return
     nt = p[15] * t
     r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
@@ -117,9 +145,10 @@ def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
     return p[0] * e0 + p[1] * e1 + p[2] * e2, p[3] * e0 + p[4] * e1 + p[5] * e2, p[6] * e0 + p[7] * e1 + p[8] * e2
 
 
-def _field_body(kind: int, p: FloatArray, q: FloatArray, t: float, out: FloatArray) -> None:  # pragma: no cover
+def _field_body(kind: int, p: FloatArray, table: FloatArray, q: FloatArray, t: float,
+                out: FloatArray) -> None:  # pragma: no cover
     """B (T) in the body frame of the unit quaternion ``q`` at ``t`` (s) into ``out``: ``R^T B_world``."""
-    _field_world(kind, p, p[12], t, out)
+    _field_world(kind, p, table, p[12], t, out)
     out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
 
 
@@ -145,11 +174,13 @@ def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: fl
 
 
 def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,
-         command: FloatArray, field_kind: int, fp: FloatArray, n_gg: float, u: FloatArray,
-         out: FloatArray) -> None:  # pragma: no cover - compiled
+         command: FloatArray, field_kind: int, fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray,
+         u: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
     """The controlled equations (module docstring of :mod:`tumble.dynamics.controlled`) into ``out``.
 
-    ``y = (q, omega, s, impulse)``; ``wheels`` rows ``(g (3), J, u_max, s_max, c_v, c_c)``."""
+    ``y = (q, omega, s, impulse)``; ``wheels`` rows ``(g (3), J, u_max, s_max, c_v, c_c)``; ``ft``
+    the field's table; ``gp = (n, mu, t0, h)`` the gravity gradient: a circle's mean motion
+    (rad/s, > 0) or ``mu`` (m^3/s^2, > 0) with the position table ``gt`` (m; start, spacing, s)."""
     k = wheels.shape[0]
     nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
     x, yq, z, c = y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq
@@ -160,7 +191,7 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
     w0, w1, w2 = y[4], y[5], y[6]
     t0, t1, t2 = 0.0, 0.0, 0.0  # external torque, body frame
     if field_kind != FIELD_NONE:
-        _field_world(field_kind, fp, fp[12], t, out)  # out as scratch
+        _field_world(field_kind, fp, ft, fp[12], t, out)  # out as scratch
         v0, v1, v2 = out[0], out[1], out[2]
         b0 = r00 * v0 + r10 * v1 + r20 * v2
         b1 = r01 * v0 + r11 * v1 + r21 * v2
@@ -168,10 +199,19 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
         t0 += dipole[1] * b2 - dipole[2] * b1
         t1 += dipole[2] * b0 - dipole[0] * b2
         t2 += dipole[0] * b1 - dipole[1] * b0
-    if n_gg > 0.0:  # r_b = R^T (cos n t, sin n t, 0)
-        v0, v1 = math.cos(n_gg * t), math.sin(n_gg * t)
-        g0, g1, g2 = _gravity_gradient(n_gg, I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
+    if gp[0] > 0.0:  # r_b = R^T (cos n t, sin n t, 0)
+        v0, v1 = math.cos(gp[0] * t), math.sin(gp[0] * t)
+        g0, g1, g2 = _gravity_gradient(gp[0], I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
                                        r02 * v0 + r12 * v1)
+        t0 += g0
+        t1 += g1
+        t2 += g2
+    elif gp[1] > 0.0:  # r_b = R^T r / |r|, rate sqrt(mu / r^3)
+        v0, v1, v2 = _table(gt, gp[2], gp[3], t)
+        rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+        v0, v1, v2 = v0 / rn, v1 / rn, v2 / rn
+        g0, g1, g2 = _gravity_gradient(math.sqrt(gp[1] / rn) / rn, I[0], I[1], I[2], r00 * v0 + r10 * v1 + r20 * v2,
+                                       r01 * v0 + r11 * v1 + r21 * v2, r02 * v0 + r12 * v1 + r22 * v2)
         t0 += g0
         t1 += g1
         t2 += g2
@@ -216,7 +256,7 @@ def _rms(x: FloatArray, scale: FloatArray) -> float:  # pragma: no cover - compi
 
 def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: float, I: FloatArray,
              I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray, command: FloatArray, field_kind: int,
-             fp: FloatArray, n_gg: float, A: FloatArray, B: FloatArray, C: FloatArray, E3: FloatArray,
+             fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray, A: FloatArray, B: FloatArray, C: FloatArray, E3: FloatArray,
              E5: FloatArray) -> int:  # pragma: no cover - compiled
     """DOP853 from ``t_start`` to ``t_end`` (s) as scipy's ``solve_ivp`` runs it, ``y`` in place;
     0 on success, 1 if the step fell below scipy's smallest (10 ulp of t)."""
@@ -226,7 +266,7 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
     K = np.empty((stages + 1, n))
     f, f1, y1, scale = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     err5, err3 = np.empty(n), np.empty(n)
-    _rhs(t_start, y, I, I_rw_inv, wheels, dipole, command, field_kind, fp, n_gg, u, f)
+    _rhs(t_start, y, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, f)
     # the starting step (scipy's select_initial_step, HNW sec. II.4; order 7 of the error estimate)
     interval = abs(t_end - t_start)
     for i in range(n):
@@ -236,7 +276,7 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
     h0 = min(h0, interval)
     for i in range(n):
         y1[i] = y[i] + h0 * f[i]
-    _rhs(t_start + h0, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, n_gg, u, f1)
+    _rhs(t_start + h0, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, f1)
     for i in range(n):
         f1[i] -= f[i]
     d2 = _rms(f1, scale) / h0
@@ -263,13 +303,13 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
                     for r in range(s):
                         acc += K[r, i] * A[s, r]
                     y1[i] = y[i] + acc * h
-                _rhs(t + C[s] * h, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, n_gg, u, K[s])
+                _rhs(t + C[s] * h, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, K[s])
             for i in range(n):
                 acc = 0.0
                 for r in range(stages):
                     acc += K[r, i] * B[r]
                 y1[i] = y[i] + h * acc
-            _rhs(t_new, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, n_gg, u, K[stages])
+            _rhs(t_new, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, K[stages])
             for i in range(n):
                 scale[i] = atol + max(abs(y[i]), abs(y1[i])) * rtol
                 a5, a3 = 0.0, 0.0
@@ -307,7 +347,7 @@ def _to_body(x: float, y: float, z: float, w: float, v0: float, v1: float,
             2 * (x * z + y * w) * v0 + 2 * (y * z - x * w) * v1 + (1 - 2 * (x * x + y * y)) * v2)
 
 
-_HELPERS = ("_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms", "_to_body")
+_HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms", "_to_body")
 
 
 @functools.cache
@@ -333,19 +373,26 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
     >>> compiled_control_models(UniformField((0.0, 0.0, 3e-5)), None, None, None) is None
     True
     >>> compiled_control_models(None, lambda t, w, R: w, None, None)
-    'gravity_gradient = <lambda> (a GravityGradient)'
+    'gravity_gradient = <lambda> (a GravityGradient or OrbitGravityGradient)'
     """
     from ..models.actuators import Magnetorquers, ReactionWheels
+    from ..models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
     from ..models.gravity import GravityGradient
+    from ..models.igrf import IGRFField
     from ..models.magnetic import DipoleField, UniformField
+    from ..models.orbit import CircularOrbit
 
-    for name, model, kinds in (("field", field, (DipoleField, UniformField)),
-                               ("gravity_gradient", gravity_gradient, (GravityGradient,)),
+    if type(gravity_gradient) is OrbitGravityGradient and \
+            type(gravity_gradient.orbit) not in (CircularOrbit, KeplerOrbit, TLEOrbit):
+        return f"gravity_gradient's orbit = {type(gravity_gradient.orbit).__name__} (a CircularOrbit, KeplerOrbit or TLEOrbit)"
+    for name, model, kinds in (("field", field, (DipoleField, UniformField, IGRFField)),
+                               ("gravity_gradient", gravity_gradient, (GravityGradient, OrbitGravityGradient)),
                                ("magnetorquers", magnetorquers, (Magnetorquers,)),
                                ("wheels", wheels, (ReactionWheels,))):
         if model is not None and type(model) not in kinds:
             label = getattr(model, "__name__", None) or type(model).__name__
-            return f"{name} = {label} (a {' or '.join(k.__name__ for k in kinds)})"
+            names = [k.__name__ for k in kinds]
+            return f"{name} = {label} (a {' or '.join([', '.join(names[:-1]), names[-1]] if names[:-1] else names)})"
     return None
 
 
@@ -359,26 +406,31 @@ class ControlKernel:
     I_rw_inv : ndarray, shape (3, 3)
         ``(I - sum J g g^T)^-1``, 1/(kg m^2).
     wheels : ReactionWheels or None
-    field : DipoleField, UniformField or None
-    n_gg : float
-        Mean motion of the gravity gradient's orbit, rad/s (0: none).
+    field : DipoleField, UniformField, IGRFField or None
+    gravity_gradient : GravityGradient, OrbitGravityGradient (bound to the moments) or None
     rtol, atol : float
         DOP853's tolerances.
+    t_end : float, optional
+        End of the run, s: the span of the tables of an IGRF field and of an orbit's position
+        (needed with those models).
 
     Examples
     --------
     A spin about a principal axis, no torque: the rate stays, the attitude turns by ``0.1 t``:
 
-    >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None, None, 0.0, 1e-10, 1e-12)
+    >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None, None, None, 1e-10, 1e-12)
     >>> y = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
     >>> y = kernel.advance(y, 0.0, 10.0, np.zeros(3), np.zeros(0))
     >>> np.allclose(y[:4], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-10)
     True
     """
 
-    def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, n_gg: float,
-                 rtol: float, atol: float) -> None:
+    def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, gravity_gradient: Any,
+                 rtol: float, atol: float, t_end: float | None = None) -> None:
         from scipy.integrate import DOP853
+
+        from ..models.ephemeris import OrbitGravityGradient
+        from ..models.tabulated import position_table
 
         self.I = np.ascontiguousarray(moments, dtype=float)
         self.I_rw_inv = np.ascontiguousarray(I_rw_inv, dtype=float)
@@ -386,8 +438,18 @@ class ControlKernel:
             wheels.axes, wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous, wheels.coulomb]),
             dtype=float)
         self.field_kind, self.fp = field_params(field)
+        tables = self.field_kind == FIELD_TABLE or isinstance(gravity_gradient, OrbitGravityGradient)
+        if tables and (t_end is None or not t_end > 0.0):
+            raise ValueError(f"t_end = {t_end!r} must be given (s, > 0) with an IGRF field or an orbit's gravity gradient")
+        self.ft = field.tabulate(cast(float, t_end)).coefficients if self.field_kind == FIELD_TABLE else _NO_TABLE
+        self.gp, self.gt = np.zeros(4), _NO_TABLE
+        if isinstance(gravity_gradient, OrbitGravityGradient):
+            table = position_table(gravity_gradient.orbit, cast(float, t_end))
+            self.gp[1:], self.gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
+        elif gravity_gradient is not None:
+            self.gp[0] = gravity_gradient.mean_motion
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
-        self.n_gg, self.rtol, self.atol = float(n_gg), max(float(rtol), 100 * np.finfo(float).eps), float(atol)
+        self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
         self.tableau = tuple(np.ascontiguousarray(a, dtype=float) for a in
                              (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5))
         self.kernel = _compiled("_advance")
@@ -401,13 +463,13 @@ class ControlKernel:
         A field along world x seen from a body turned by 90 deg about z: along body -y.
 
         >>> from tumble.dynamics.models.magnetic import UniformField
-        >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), 0.0, 1e-10, 1e-12)
+        >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
         >>> c = np.sqrt(0.5)
         >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
         True
         """
         out = np.empty(3)
-        self.field_kernel(self.field_kind, self.fp, np.ascontiguousarray(q, dtype=float), float(t), out)
+        self.field_kernel(self.field_kind, self.fp, self.ft, np.ascontiguousarray(q, dtype=float), float(t), out)
         return out
 
     def advance(self, y: FloatArray, t_start: float, t_end: float, dipole: FloatArray, command: FloatArray) -> FloatArray:
@@ -421,7 +483,7 @@ class ControlKernel:
 
         >>> from tumble.dynamics.models.magnetic import UniformField
         >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None,
-        ...                        UniformField((0.0, 3e-5, 0.0)), 0.0, 1e-10, 1e-12)
+        ...                        UniformField((0.0, 3e-5, 0.0)), None, 1e-10, 1e-12)
         >>> y = kernel.advance(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.0, 10.0,
         ...                    np.array([0.1, 0.0, 0.0]), np.zeros(0))
         >>> np.allclose(y[4:7], [0.0, 0.0, 1e-5], rtol=1e-6, atol=1e-15), np.allclose(y[7:], [0.0, 0.0, 3e-5], rtol=1e-6)
@@ -430,7 +492,8 @@ class ControlKernel:
         out = np.array(y, dtype=float)
         status = self.kernel(out, float(t_start), float(t_end), self.rtol, self.atol, self.I, self.I_rw_inv,
                              self.wheels, np.ascontiguousarray(dipole, dtype=float),
-                             np.ascontiguousarray(command, dtype=float), self.field_kind, self.fp, self.n_gg,
+                             np.ascontiguousarray(command, dtype=float), self.field_kind, self.fp, self.ft,
+                             self.gp, self.gt,
                              *self.tableau)
         if status != 0:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")

@@ -161,7 +161,7 @@ def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float, turn: Floa
 
 def _gap(I: FloatArray, w0: float, w1: float, w2: float, j: int) -> float:  # pragma: no cover - compiled
     """``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) w_i^2``, kg^2 m^4/s^2."""
-    return I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2
+    return float(I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2)
 
 
 def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  # pragma: no cover - compiled
