@@ -231,3 +231,20 @@ def test_detumble_point_points_at_nadir_with_the_integral_term():
     mission = build_controller(spec, s.body, s.wheels)
     assert isinstance(spec.target, NadirTarget) and spec.target.mean_motion == orbit.mean_motion
     assert mission.point.pointing.target is spec.target and mission.point.pointing.Ki == 0.01
+
+
+def test_figures_and_page_measure_the_error_to_the_moving_target():
+    """The attitude-error figure and the page's curve are run.pointing_error(nadir): zero on the
+    reference, where the error to the frame it started in grows as n t."""
+    pytest.importorskip("matplotlib")
+    from tumble.viz.control import figure_attitude_error
+    from tumble.viz.control_page import control_page_data
+    nadir = NadirTarget(0.01)
+    R0 = nadir.attitude(0.0)
+    c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, target=nadir)
+    run = simulate_controlled(I, R0.inv().apply(nadir.rate(0.0)), t_end=20.0, controller=c, wheels=RW, attitude0=R0)
+    assert np.allclose(run.pointing_error(R0), 0.01 * run.t, atol=1e-9)
+    curve = control_page_data(run, frames=5, wheel_axes=RW.axes, target=nadir)["curve"]
+    assert curve["name"] == "attitude error" and max(curve["y"]) < 1e-9
+    line = figure_attitude_error(run, nadir).axes[0].lines[0]
+    assert np.array_equal(line.get_ydata(), np.degrees(run.pointing_error(nadir)))
