@@ -61,15 +61,16 @@ def test_the_kernels_field_is_the_models_field(field):
 def test_the_kernels_wheel_torque_is_applied_torque_exactly():
     rw = ReactionWheels([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]], inertia=2e-5,
                         max_torque=[1e-3, 2e-3, 1e-3, 5e-4], max_speed=[600.0, 500.0, np.inf, 600.0],
-                        viscous=1e-7, coulomb=[1e-5, 0.0, 2e-5, 1e-5])
+                        viscous=1e-7, coulomb=[1e-5, 0.0, 2e-5, 1e-5], limit_cycle_speed=[1e-4, 1e-4, 1e-3, 2e-4])
     rng = np.random.default_rng(3)
     f = cc._compiled("_wheel_torque")
     for command, speed in [(rng.normal(size=4) * 2e-3, rng.normal(size=4) * 700.0),
                            ([5e-4, -5e-4, 1e-4, 2e-3], [600.0, -500.0, 0.0, -600.0]),
-                           ([0.0, 0.0, 0.0, 0.0], [0.0, -0.0, 1e-300, -1e-300])]:
+                           ([0.0, 0.0, 0.0, 0.0], [0.0, -0.0, 1e-300, -1e-300]),
+                           (rng.normal(size=4) * 1e-5, rng.normal(size=4) * 3e-4)]:   # in and near the linear region
         expected = rw.applied_torque(command, speed)
         got = [f(float(command[j]), float(speed[j]), rw.max_torque[j], rw.max_speed[j], rw.viscous[j],
-                 rw.coulomb[j]) for j in range(4)]
+                 rw.coulomb[j], rw.limit_cycle_speed[j]) for j in range(4)]
         assert np.array_equal(got, expected)
 
 

@@ -79,7 +79,7 @@ CONTROL_SECTIONS = {
     "control": CONTROL_KEYS,
 }
 _MTQ_KEYS = {"max_dipole", "axes"}
-_WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb", "speed0"}
+_WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb", "limit_cycle_speed", "speed0"}
 
 
 @dataclass(frozen=True, eq=False)

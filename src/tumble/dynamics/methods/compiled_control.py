@@ -16,9 +16,8 @@ Fortran code), with scipy's error norm (the 5th- and 3rd-order estimates combine
 ``scale = atol + rtol max(|y|, |y_new|)``), its step control (safety 0.9, factors in [0.2, 10],
 no growth after a rejection) and its starting step (``select_initial_step``, HNW sec. II.4).
 So both paths take the same steps and agree to round-off, not only to the tolerance (tested);
-an adaptive scheme also finds its own steps across the wheels' Coulomb friction, which jumps
-at zero speed (``sign(s)``, evaluated as in the Python path: the step control shrinks the step
-there, as in scipy).
+an adaptive scheme also follows the wheels' Coulomb friction through zero speed (linear below
+``limit_cycle_speed``, as in the Python path).
 
 **The built-in models written out** (one formula each; the numpy versions are the references,
 and tests/test_controlled_compiled.py checks each against it to round-off):
@@ -163,14 +162,13 @@ def _gravity_gradient(n: float, I0: float, I1: float, I2: float, b0: float, b1: 
 
 
 def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
-                  coulomb: float) -> float:  # pragma: no cover - compiled
+                  coulomb: float, limit_cycle: float) -> float:  # pragma: no cover - compiled
     """One wheel's applied torque (N m), as :meth:`ReactionWheels.applied_torque`: clipped,
-    zero where it would push ``|s|`` past ``s_max``, less ``c_v s + c_c sign(s)``."""
+    zero where it would push ``|s|`` past ``s_max``, less ``c_v s + c_c sat(s / s_lc)``."""
     u = min(max(command, -max_torque), max_torque)
     if abs(speed) >= max_speed and u * speed > 0.0:
         u = 0.0
-    sign = 1.0 if speed > 0.0 else (-1.0 if speed < 0.0 else 0.0)
-    return u - viscous * speed - coulomb * sign
+    return u - viscous * speed - coulomb * min(max(speed / limit_cycle, -1.0), 1.0)
 
 
 def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,
@@ -219,7 +217,7 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
     a0, a1, a2 = t0, t1, t2
     for j in range(k):
         s = y[7 + j]
-        u[j] = _wheel_torque(command[j], s, wheels[j, 4], wheels[j, 5], wheels[j, 6], wheels[j, 7])
+        u[j] = _wheel_torque(command[j], s, wheels[j, 4], wheels[j, 5], wheels[j, 6], wheels[j, 7], wheels[j, 8])
         js = wheels[j, 3] * s
         h0 += js * wheels[j, 0]
         h1 += js * wheels[j, 1]
@@ -434,8 +432,9 @@ class ControlKernel:
 
         self.I = np.ascontiguousarray(moments, dtype=float)
         self.I_rw_inv = np.ascontiguousarray(I_rw_inv, dtype=float)
-        self.wheels = np.zeros((0, 8)) if wheels is None else np.ascontiguousarray(np.column_stack([
-            wheels.axes, wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous, wheels.coulomb]),
+        self.wheels = np.zeros((0, 9)) if wheels is None else np.ascontiguousarray(np.column_stack([
+            wheels.axes, wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous, wheels.coulomb,
+            wheels.limit_cycle_speed]),
             dtype=float)
         self.field_kind, self.fp = field_params(field)
         tables = self.field_kind == FIELD_TABLE or isinstance(gravity_gradient, OrbitGravityGradient)
