@@ -12,13 +12,13 @@ from .euler import (
 )
 from .methods.integrators import METHODS, Method, get_method
 from .mission import DetumbleThenPoint
+from .models.actuators import Command, Magnetorquers, ReactionWheels
+from .models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
 from .models.gravity import (
     GravityGradient,
     lvlh_state,
     orbit_frame_angles,
 )
-from .models.actuators import Command, Magnetorquers, ReactionWheels
-from .models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
 from .models.igrf import IGRFField
 from .models.internal import SphericalDamper, gyrostat_rate
 from .models.magnetic import DipoleField, UniformField
@@ -31,42 +31,39 @@ from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory
 
 __all__ = [
+    "DEFAULT_METHOD",
+    "FRAMES",
+    "METHODS",
     "BDot",
+    "BatchTrajectory",
     "CircularOrbit",
     "Command",
+    "ConstantTorque",
     "ControlledRun",
     "Controller",
     "DetumbleThenPoint",
     "DipoleField",
-    "IGRFField",
-    "KeplerOrbit",
-    "OrbitGravityGradient",
-    "TLEOrbit",
-    "MRPFeedback",
-    "NadirTarget",
-    "Magnetorquers",
-    "Measurement",
-    "ReactionWheels",
-    "Sensors",
-    "UniformField",
-    "bdot_gain",
-    "pd_response",
-    "simulate_controlled",
-    "BatchTrajectory",
-    "simulate_batch",
-    "DEFAULT_METHOD",
-    "FRAMES",
-    "METHODS",
-    "ConstantTorque",
     "FunctionTorque",
     "GravityGradient",
+    "IGRFField",
+    "KeplerOrbit",
+    "MRPFeedback",
+    "Magnetorquers",
+    "Measurement",
     "Method",
-    "TorqueModel",
+    "NadirTarget",
+    "OrbitGravityGradient",
+    "ReactionWheels",
+    "Sensors",
     "SphericalDamper",
+    "TLEOrbit",
+    "TorqueModel",
     "Trajectory",
+    "UniformField",
     "angular_momentum",
-    "energy_momentum_gaps",
     "as_torque",
+    "bdot_gain",
+    "energy_momentum_gaps",
     "euler_rhs",
     "euler_rhs_tensor",
     "get_method",
@@ -74,6 +71,9 @@ __all__ = [
     "kinetic_energy",
     "lvlh_state",
     "orbit_frame_angles",
+    "pd_response",
     "quaternion_rate",
     "simulate",
+    "simulate_batch",
+    "simulate_controlled",
 ]

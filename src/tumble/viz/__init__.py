@@ -6,7 +6,12 @@ animations write an MP4 (with ffmpeg) or a GIF. The physics layers never import 
 """
 
 from ._backend import save_figure
-from .animate import animate_body_frame, animate_ground_frame, animation_path, ffmpeg_path
+from .animate import (
+    animate_body_frame,
+    animate_ground_frame,
+    animation_path,
+    ffmpeg_path,
+)
 from .control import (
     control_figures,
     figure_attitude_error,
@@ -20,7 +25,14 @@ from .gravity import figure_gravity_stability
 from .maps import figure_stability_map, figure_sweep
 from .montecarlo import figure_detumble_mc
 from .notebook import show
-from .phase import PHASE_PORTRAITS, figure_herpolhode, figure_polhode, phase_portrait_problem, polhode_family, separatrices
+from .phase import (
+    PHASE_PORTRAITS,
+    figure_herpolhode,
+    figure_polhode,
+    phase_portrait_problem,
+    polhode_family,
+    separatrices,
+)
 from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
 from .scene import body_lines, body_size, part_lines
 from .spacecraft import (
@@ -48,7 +60,6 @@ __all__ = [
     "figure_drift",
     "figure_energy",
     "figure_fit",
-    "figure_recording",
     "figure_gravity_stability",
     "figure_herpolhode",
     "figure_momentum_budget",
@@ -58,6 +69,7 @@ __all__ = [
     "figure_omega_panels",
     "figure_orbit_angles",
     "figure_polhode",
+    "figure_recording",
     "figure_stability_map",
     "figure_sweep",
     "figure_wheels",
