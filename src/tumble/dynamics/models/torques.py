@@ -33,6 +33,7 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
@@ -56,6 +57,7 @@ __all__ = [
     "as_torque",
     "bind_to_body",
     "body_torque",
+    "conforms",
     "spin_gain",
 ]
 
@@ -163,6 +165,41 @@ class BoundsSpin(Protocol):
         >>> isinstance(gg, BoundsSpin), bool(gg.max_spin(0.0, omega, Rotation.identity()) >= np.linalg.norm(omega))
         (True, True)
         """
+
+
+#: The members of each protocol, for :func:`conforms`.
+_MEMBERS: dict[type, tuple[str, ...]] = {TorqueModel: ("frame", "__call__"), NeedsBody: ("bind",), BoundsSpin: ("max_spin",)}
+#: ``(class, protocol) -> answer`` for the classes whose every instance gives the same answer.
+_CONFORMS: dict[tuple[type, type], bool] = {}
+
+
+def conforms(obj: object, protocol: type) -> bool:
+    """``isinstance(obj, protocol)`` for :class:`TorqueModel`, :class:`NeedsBody` or
+    :class:`BoundsSpin`, remembered per class where that class decides it.
+
+    typing's runtime protocol check looks up every member at each call (~25 us, a tenth of a
+    short compiled run). Its answer depends on the class alone when the class itself has every
+    member (an instance cannot lose a class attribute), or when it lacks one and is a frozen
+    dataclass (whose instances take no new attributes): those answers are kept.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.torques import BoundsSpin, ConstantTorque, TorqueModel, conforms
+    >>> conforms(ConstantTorque((0.0, 0.0, 1.0)), TorqueModel), conforms(ConstantTorque((0.0, 0.0, 1.0)), BoundsSpin)
+    (True, False)
+    >>> conforms(lambda t, omega, attitude: omega, TorqueModel)   # no frame
+    False
+    """
+    key = (type(obj), protocol)
+    known = _CONFORMS.get(key)
+    if known is not None:
+        return known
+    answer = isinstance(obj, protocol)
+    cls = type(obj)
+    if all(hasattr(cls, name) for name in _MEMBERS[protocol]) or (
+            dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen):  # type: ignore[attr-defined]
+        _CONFORMS[key] = answer
+    return answer
 
 
 def _check_frame(frame: str) -> str:
@@ -281,7 +318,7 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     """
     if torque is None:
         return None
-    if isinstance(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
+    if conforms(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
         _check_frame(torque.frame)
         return torque
     return FunctionTorque(torque, "body")
@@ -311,7 +348,7 @@ def bind_to_body(model: TorqueModel | None, body: Body | MassProperties | ArrayL
     >>> bind_to_body(torque, [1.0, 2.0, 3.0]) is torque
     True
     """
-    return model.bind(body) if isinstance(model, NeedsBody) else model
+    return model.bind(body) if model is not None and conforms(model, NeedsBody) else model
 
 def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
     """Evaluate a torque model and return the torque in the principal (body) frame, N m.
@@ -390,7 +427,7 @@ def spin_gain(
         return 0.0
     w = np.asarray(omega, float)
     with np.errstate(over="ignore", invalid="ignore"):
-        if isinstance(model, BoundsSpin):
+        if conforms(model, BoundsSpin):
             top = np.asarray(model.max_spin(t, w, attitude), float)
             return float(np.max(np.maximum(top - np.linalg.norm(w, axis=-1), 0.0)))
         tau = body_torque(model, t, w, attitude)  # checks the model's answer
