@@ -406,7 +406,7 @@ class InternalModel:
         if self.rotors is not None:
             h = self.rotors.momentum(t)
             fields.update(internal_momentum=h, rotor_spin=self.rotors.spins(t),
-                          rotor_axial_moments=self.rotors.axial_moments)
+                          rotor_axial_moments=self.rotors.axial_moments.copy())
             if self.rotors.derivative_known:
                 # W(t) = [w.h + sum J s^2 / 2]_0^t - integral h'.w dt (module docstring)
                 boundary = np.sum(run.omega * h, axis=1) + self.rotors.spin_energy(t)

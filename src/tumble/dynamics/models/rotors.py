@@ -33,7 +33,8 @@ and wobble at ``sqrt(-product / (I1 I3))`` when it is negative: a wheel with
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, cast
 
 import numpy as np
@@ -72,6 +73,8 @@ class Rotors:
     parts: tuple[Rotor, ...]
     axial_moments: FloatArray
     axes: FloatArray
+    #: The last few :meth:`spins` of spins that are numbers (no function), by the times' bytes.
+    _spins: dict[tuple[tuple[int, ...], bytes], FloatArray] = field(default_factory=dict, init=False, repr=False)
 
     @classmethod
     def of(cls, body: Body | MassProperties) -> Rotors | None:
@@ -87,9 +90,11 @@ class Rotors:
         >>> Rotors.of(tumble.Body([box, wheel])).axial_moments.round(6).tolist(), Rotors.of(tumble.Body([box]))
         ([0.01], None)
         """
-        parts = tuple(getattr(body, "rotors", ()))
-        if not parts:
-            return None
+        return _rotors_of(body) if getattr(body, "rotors", ()) else None
+
+    @classmethod
+    def _build(cls, body: Body) -> Rotors:
+        parts = tuple(body.rotors)
         A = body.principal_axes  # principal -> design (a Body: it has rotors)
         return cls(parts, np.array([p.axial_moment for p in parts]), np.array([A.T @ p.axis for p in parts]))
 
@@ -139,7 +144,17 @@ class Rotors:
         >>> rotors.spins([0.0, 1.0, 2.5]).tolist()   # s(t) = 100 + 2 t, one column per rotor
         [[100.0], [102.0], [105.0]]
         """
-        return np.stack([p.spin(t) for p in self.parts], axis=-1)
+        if any(callable(p.spin_rate) for p in self.parts):  # a function: called every time
+            return np.stack([p.spin(t) for p in self.parts], axis=-1)
+        times = np.asarray(t, dtype=float)
+        key = (times.shape, times.tobytes())
+        spins = self._spins.get(key)
+        if spins is None:
+            spins = np.stack([p.spin(times) for p in self.parts], axis=-1)
+            if len(self._spins) >= _KEPT_SPINS:
+                self._spins.pop(next(iter(self._spins)))
+            self._spins[key] = spins
+        return spins.copy()
 
     def spin_derivatives(self, t: ArrayLike) -> FloatArray:
         """``ds_k/dt``, rad/s^2; shape ``np.shape(t) + (k,)`` (requires :attr:`derivative_known`).
@@ -197,6 +212,18 @@ class Rotors:
         """
         s = self.spins(t)
         return cast(FloatArray, 0.5 * np.sum(self.axial_moments * s * s, axis=-1))
+
+
+#: How many :meth:`Rotors.spins` a body's rotors keep (a run asks for three: the samples, t = 0
+#: and the first sample).
+_KEPT_SPINS = 4
+
+
+@functools.lru_cache(maxsize=64)
+def _rotors_of(body: Body) -> Rotors:
+    """:meth:`Rotors.of` a body with rotors, kept for its next runs (a Body is immutable and
+    hashed by identity)."""
+    return Rotors._build(body)
 
 
 def gyrostat_rate(moments: ArrayLike, spin: ArrayLike, momentum: ArrayLike) -> tuple[FloatArray, FloatArray]:
