@@ -9,6 +9,7 @@ package: it imports nothing of tumble (an import-linter contract keeps it so). U
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from collections.abc import Sequence
@@ -356,6 +357,15 @@ QUAT_NORM_TOL = 1e-3
 MATRIX_ORTHO_TOL = 1e-6
 
 
+@functools.lru_cache(maxsize=256)
+def _unit_quaternion(raw: bytes) -> tuple[float, float, float, float]:
+    """scipy's unit quaternion (its normalisation, its sign) for the float64 bytes of a quaternion,
+    kept for the next call with the same one (``Rotation.from_quat`` costs ~10 us)."""
+    from scipy.spatial.transform import Rotation
+
+    return tuple(float(x) for x in Rotation.from_quat(np.frombuffer(raw)).as_quat())  # type: ignore[return-value]
+
+
 def check_rotation(field: str, value: object) -> tuple[float, float, float, float]:
     """An orientation: a scipy Rotation, a quaternion [x, y, z, w] or a 3x3 rotation matrix.
 
@@ -391,7 +401,7 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
                 f"{field} = {value!r} is a quaternion of norm {n:.6g}; a rotation needs a unit "
                 f"quaternion [x, y, z, w] (scalar last)"
             )
-        return tuple(float(x) for x in Rotation.from_quat(arr).as_quat())  # type: ignore[return-value]
+        return _unit_quaternion(arr.tobytes())
     if arr.shape == (3, 3):
         err = float(np.max(np.abs(arr.T @ arr - np.eye(3))))
         if err > MATRIX_ORTHO_TOL:

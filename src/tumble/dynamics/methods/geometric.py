@@ -384,13 +384,14 @@ def _propagate_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray,
 
 def _check_batch(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float | None) -> None:
     """Refuse what would give silently wrong numbers (``simulate`` checks its own arguments)."""
-    if not (np.all(np.isfinite(I)) and np.all(I > 0)):
+    # the arrays' own .all() / .any(): numpy's module functions add ~2 us each, a tenth of this
+    if not (np.isfinite(I).all() and (I > 0).all()):
         raise ValueError("moments must be finite and positive (kg m^2)")
-    if not (np.all(np.isfinite(L)) and np.all(np.isfinite(q))):
+    if not (np.isfinite(L).all() and np.isfinite(q).all()):
         raise ValueError("omega0 and quat0 must be finite")
-    if np.any(np.linalg.norm(q, axis=1) == 0):
+    if ((q * q).sum(axis=1) == 0).any():  # |q| = sqrt of this sum (numpy's norm)
         raise ValueError("quat0 must be unit quaternions [x, y, z, w], not zero")
-    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)):
+    if t.ndim != 1 or len(t) < 2 or not np.isfinite(t).all():
         raise ValueError(f"t = {short_repr(t)} must be at least two finite times (s)")
     check_increasing("t", t)
     if step is not None and not (np.isfinite(step) and step > 0):
