@@ -203,7 +203,7 @@ def simulate(
         omega, quat = out.omega, out.quat
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
-    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(quat))):
+    if not (np.isfinite(omega).all() and np.isfinite(quat).all()):
         raise RuntimeError(f"the {spec.name} integration produced non-finite values")
     return Trajectory(
         t=run.t[run.keep], omega=omega[run.keep], attitude=Rotation.from_quat(quat[run.keep]), moments=moments,

@@ -220,11 +220,10 @@ def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayL
         spin = float(np.max(np.linalg.norm(L * inv_I, axis=1), initial=0.0))
         gain = spin_gain(torque, t[0], L * inv_I, Rotation.from_quat(q), I, t[-1] - t[0])
         step = default_step(spin, gain)
-    subflows = free_flow_substeps(order)
     q /= np.linalg.norm(q, axis=1, keepdims=True)
 
     if torque is None:  # every batch size the same arithmetic: a body's run does not depend on its batch
-        return _propagate_free(I, L, q, t, subflows, step)
+        return _propagate_free(I, L, q, t, free_flow_substeps(order), step)
     builtin = compiled_model(torque)
     if builtin is not None and compiled:  # a built-in torque: the whole run compiled
         return run_split(I, L, q, t, step, COMPOSITIONS[order], builtin)
