@@ -144,15 +144,15 @@ class Rotors:
         >>> rotors.spins([0.0, 1.0, 2.5]).tolist()   # s(t) = 100 + 2 t, one column per rotor
         [[100.0], [102.0], [105.0]]
         """
-        if any(callable(p.spin_rate) for p in self.parts):  # a function: called every time
-            return np.stack([p.spin(t) for p in self.parts], axis=-1)
         times = np.asarray(t, dtype=float)
+        if times.size > _KEPT_SAMPLES or any(callable(p.spin_rate) for p in self.parts):  # a function: every call
+            return np.stack([p.spin(t) for p in self.parts], axis=-1)
         key = (times.shape, times.tobytes())
         spins = self._spins.get(key)
         if spins is None:
             spins = np.stack([p.spin(times) for p in self.parts], axis=-1)
-            if len(self._spins) >= _KEPT_SPINS:
-                self._spins.pop(next(iter(self._spins)))
+            if len(self._spins) >= _KEPT_SPINS:  # clear(): one step, safe between threads
+                self._spins.clear()
             self._spins[key] = spins
         return spins.copy()
 
@@ -217,6 +217,8 @@ class Rotors:
 #: How many :meth:`Rotors.spins` a body's rotors keep (a run asks for three: the samples, t = 0
 #: and the first sample).
 _KEPT_SPINS = 4
+#: Longest sample times whose spins are kept (the fixed cost matters in short runs only).
+_KEPT_SAMPLES = 10_000
 
 
 @functools.lru_cache(maxsize=64)
