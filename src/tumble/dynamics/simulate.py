@@ -436,5 +436,7 @@ def _spin_gain(model: TorqueModel | None, run: RunInputs) -> float:
 
 
 def _design_torque(model: TorqueModel, A: Matrix3) -> FunctionTorque:
-    """Wrap a body-frame torque given in design coordinates so it returns principal ones."""
-    return FunctionTorque(lambda t, w, att: A.T @ np.asarray(model(t, A @ w, att), float), "body")
+    """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``w`` is
+    one angular velocity (3,) or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T``
+    is ``A w`` for each row)."""
+    return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att), float) @ A, "body")
