@@ -36,7 +36,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, TypeAlias, cast, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -319,8 +319,9 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     if torque is None:
         return None
     if conforms(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
-        _check_frame(torque.frame)
-        return torque
+        model = cast(TorqueModel, torque)
+        _check_frame(model.frame)
+        return model
     return FunctionTorque(torque, "body")
 
 
@@ -348,7 +349,7 @@ def bind_to_body(model: TorqueModel | None, body: Body | MassProperties | ArrayL
     >>> bind_to_body(torque, [1.0, 2.0, 3.0]) is torque
     True
     """
-    return model.bind(body) if model is not None and conforms(model, NeedsBody) else model
+    return cast(NeedsBody, model).bind(body) if model is not None and conforms(model, NeedsBody) else model
 
 def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
     """Evaluate a torque model and return the torque in the principal (body) frame, N m.
@@ -428,7 +429,7 @@ def spin_gain(
     w = np.asarray(omega, float)
     with np.errstate(over="ignore", invalid="ignore"):
         if conforms(model, BoundsSpin):
-            top = np.asarray(model.max_spin(t, w, attitude), float)
+            top = np.asarray(cast(BoundsSpin, model).max_spin(t, w, attitude), float)
             return float(np.max(np.maximum(top - np.linalg.norm(w, axis=-1), 0.0)))
         tau = body_torque(model, t, w, attitude)  # checks the model's answer
         return float(np.max(np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1))) * duration
