@@ -20,8 +20,8 @@ from tumble.dynamics import (
     TLEOrbit,
     simulate_controlled,
 )
-from tumble.dynamics.models.sidereal import greenwich_sidereal_angle, julian_date
 from tumble.dynamics.models.gravity import MU_EARTH, R_EARTH
+from tumble.dynamics.models.sidereal import greenwich_sidereal_angle, julian_date
 
 ISS_2019 = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
             "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482")
@@ -65,6 +65,22 @@ def test_kepler_equation_solved_to_round_off_at_high_eccentricity():
     v = np.linalg.norm(orbit.velocity_eci(t), axis=1)
     np.testing.assert_allclose(v**2, MU_EARTH * (2 / r - 1 / 140_000e3), rtol=1e-11)   # vis-viva
     assert r.min() == pytest.approx(140_000e3 * 0.05, rel=1e-12)   # perigee at t = 0
+
+
+def test_kepler_orbit_orientation_is_the_textbook_one():
+    """The orbit normal and the perigee direction in closed form from the classical elements (the
+    perifocal-to-inertial rotation written out: Vallado 4th ed. sec. 2.6; Curtis, *Orbital
+    Mechanics for Engineering Students*, ch. 4), not the module's composition of scipy rotations."""
+    a, e, inc, raan, argp = 12_000e3, 0.45, 1.1, 2.0, 0.7
+    orbit = KeplerOrbit(a, e, inc, raan=raan, arg_perigee=argp, mean_anomaly=0.0)
+    normal = [math.sin(inc) * math.sin(raan), -math.sin(inc) * math.cos(raan), math.cos(inc)]
+    perigee = [math.cos(raan) * math.cos(argp) - math.sin(raan) * math.sin(argp) * math.cos(inc),
+               math.sin(raan) * math.cos(argp) + math.cos(raan) * math.sin(argp) * math.cos(inc),
+               math.sin(argp) * math.sin(inc)]
+    t = np.linspace(0.0, orbit.period, 7)
+    h = np.cross(orbit.position_eci(t), orbit.velocity_eci(t))
+    np.testing.assert_allclose(h / np.linalg.norm(h, axis=1)[:, None], np.tile(normal, (7, 1)), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(orbit.position_eci(0.0), a * (1 - e) * np.array(perigee), rtol=0, atol=1e-8)   # m, of 7e6
 
 
 @pytest.mark.parametrize(("kwargs", "match"), [

@@ -34,6 +34,9 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
+from .compiled_control import (  # _body_torque calls it (the closed loop's formula); compiled in _compiled()
+    _gravity_gradient,
+)
 from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _compiled()
     WORK,
     compiled_free_flow,
@@ -95,9 +98,7 @@ def _body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatAr
     if kind == CONSTANT_WORLD:
         out[0], out[1], out[2] = b0, b1, b2
         return
-    k = 3.0 * n * n  # gravity gradient: 3 n^2 r_b x (I r_b)
-    c0, c1, c2 = I[0] * b0, I[1] * b1, I[2] * b2
-    out[0], out[1], out[2] = k * (b1 * c2 - b2 * c1), k * (b2 * c0 - b0 * c2), k * (b0 * c1 - b1 * c0)
+    out[0], out[1], out[2] = _gravity_gradient(n, I[0], I[1], I[2], b0, b1, b2)  # 3 n^2 r_b x (I r_b)
 
 
 def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArray,
@@ -176,9 +177,10 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
 
     if not _compiled.__dict__.get("helpers"):
         compiled_free_flow()
-        from . import compiled_flow
+        from . import compiled_control, compiled_flow
 
         globals()["free_flow_into"] = compiled_flow.free_flow_into
+        globals()["_gravity_gradient"] = compiled_control._compiled("_gravity_gradient")
         for name in ("_body_torque", "_rotate"):
             globals()[name] = njit(cache=True, inline="always")(globals()[name])
         globals()["prange"] = numba_prange
