@@ -55,7 +55,7 @@ from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.pointing import NadirTarget
 from ..mass import Body
-from ..validation import check_positive, check_rotation, check_vector
+from ..validation import check_bool, check_positive, check_rotation, check_vector
 from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
 from .controlspec import (
@@ -312,8 +312,10 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     attitude0 = design_to_world * principal_to_design
     orbit: Orbit | None = None
     field: Field | None = None
+    gravity_gradient = False
     if orbit_t:
         try:
+            gravity_gradient = check_bool("gravity_gradient", orbit_t.get("gravity_gradient", False))
             orbit, field = orbit_from_table(orbit_t)
         except ValueError as exc:
             raise ValueError(f"orbit: {exc}") from None
@@ -344,7 +346,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         raise ValueError(f"simulation: t_end = {sim.get('t_end')!r} must be a positive number (s)") from None
     return ControlScenario(
         body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=spec.kind,  # type: ignore[arg-type]
-        controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=bool(orbit_t.get("gravity_gradient", False)),
+        controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
         rtol=check_positive("simulation.rtol", sim.get("rtol", 1e-10), ""),
         atol=check_positive("simulation.atol", sim.get("atol", 1e-12), ""), name=name)

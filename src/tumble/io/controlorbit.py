@@ -83,7 +83,7 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
             raise ValueError('field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis '
                              'or tle use field = "igrf" and an epoch')
         return orbit, DipoleField(orbit, gmst0=table.get("gmst0", 0.0),
-                                  earth_rotation=bool(table.get("earth_rotation", True)))
+                                  earth_rotation=table.get("earth_rotation", True))
     if kind == "igrf":
         dipole_keys = sorted(key for key in ("gmst0", "earth_rotation") if key in table)
         if dipole_keys:

@@ -157,7 +157,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     ValueError: control.point: unknown key 'Kd'; allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
     """
     kind = control.get("kind")
-    if kind not in CONTROL_KINDS:
+    if not isinstance(kind, str) or kind not in CONTROL_KINDS:
         raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(CONTROL_KINDS)}")
     bad = sorted(set(control) - CONTROL_KINDS[kind])
     if bad:
