@@ -54,3 +54,35 @@ def test_the_cli_gives_one_line_and_exit_2_and_writes_nothing(tmp_path, capsys):
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and "control: kind = [1] is unknown" in err
     assert not out.exists()
+
+
+@pytest.mark.parametrize(("table", "axes", "message"), [
+    ("magnetorquers", [[1, 0], [0, 1]], (r"^actuators\.magnetorquers: axes = \[\[1, 0\], \[0, 1\]\] must be real "
+                                         r"numbers of shape \(\.\.\., 3\) \(design frame\), not shape \(2, 2\)$")),
+    ("wheels", "x", r"^actuators\.wheels: axes = 'x' must be real numbers of shape \(\.\.\., 3\) \(design frame\)$")])
+def test_actuator_axes_of_the_wrong_shape_are_named_not_a_numpy_error(table, axes, message):
+    base = DETUMBLE if table == "magnetorquers" else POINT
+    with pytest.raises(ValueError, match=message):
+        _build(base, "actuators", **{table: {**base["actuators"][table], "axes": axes}})
+
+
+@pytest.mark.parametrize("speed0", [[1.0, 2.0], "x", [[1.0, 2.0, 3.0]]])
+def test_wheel_speed0_must_hold_one_speed_per_wheel(speed0):
+    with pytest.raises(ValueError, match=r"^actuators\.wheels: speed0 = .* must be "):
+        _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "speed0": speed0})
+    one = {"axes": [[0.0, 0.0, 1.0]], "inertia": 2e-5}
+    one_wheel = _build(DETUMBLE, "actuators", wheels={**one, "speed0": 5})
+    assert one_wheel.speed0 == (5.0,)  # one wheel: a number will do
+    three = _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "speed0": [1, 2, 3]})
+    assert three.speed0 == (1.0, 2.0, 3.0)
+
+
+@pytest.mark.parametrize("degree", [True, "13", 13.5, 0])
+def test_igrf_degree_errors_name_the_file_key(degree):
+    with pytest.raises(ValueError, match=r"^orbit: igrf_degree = .* must be a whole number from 1 to 13$"):
+        _build(DETUMBLE, "orbit", field="igrf", epoch="2026-11-25T00:00:00", igrf_degree=degree)
+
+
+def test_a_nadir_axis_vector_of_the_wrong_length_is_named():
+    with pytest.raises(ValueError, match=r"^control: nadir_axis = \[1, 0\] must be a list of 3 numbers"):
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[1, 0])

@@ -88,7 +88,12 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
         dipole_keys = sorted(key for key in ("gmst0", "earth_rotation") if key in table)
         if dipole_keys:
             raise ValueError(f'{dipole_keys[0]} goes with field = "dipole"; for "igrf" the epoch sets the Earth\'s angle')
-        return orbit, IGRFField(orbit, table.get("epoch"), max_degree=table.get("igrf_degree", 13))
+        try:
+            return orbit, IGRFField(orbit, table.get("epoch"), max_degree=table.get("igrf_degree", 13))
+        except ValueError as exc:  # the constructor's argument is the file's igrf_degree
+            text = str(exc)
+            raise ValueError("igrf_degree" + text.removeprefix("max_degree") if text.startswith("max_degree")
+                             else text) from None
     raise ValueError(f"field = {kind!r} is unknown; allowed: dipole, igrf")
 
 
