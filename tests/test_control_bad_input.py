@@ -86,3 +86,13 @@ def test_igrf_degree_errors_name_the_file_key(degree):
 def test_a_nadir_axis_vector_of_the_wrong_length_is_named():
     with pytest.raises(ValueError, match=r"^control: nadir_axis = \[1, 0\] must be a list of 3 numbers"):
         _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[1, 0])
+
+
+@pytest.mark.parametrize(("tle", "message"), [
+    ([1, 2], r"^orbit: tle = \[1, 2\] must be a list of the two lines of a TLE \(strings\)$"),
+    (["a", "b"], r"^orbit: tle\[0\] = 'a' must be the first line of a TLE \(a string of 69 characters\)$")])
+def test_tle_lines_that_are_not_two_strings_are_named_by_the_file_key(tle, message):
+    pytest.importorskip("sgp4")
+    orbit = {"tle": tle, "field": "igrf"}
+    with pytest.raises(ValueError, match=message):
+        control_scenario_from_table({**DETUMBLE, "orbit": orbit}, body_from_table(BODY))

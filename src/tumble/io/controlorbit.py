@@ -53,9 +53,15 @@ def _orbit(table: dict[str, Any]) -> Orbit:
         raise ValueError(f"{stray[0]} does not go with {kind}; allowed with {kind}: {', '.join(allowed)}")
     if kind == "tle":
         lines = table["tle"]
-        if not isinstance(lines, list) or len(lines) != 2:
-            raise ValueError(f"tle = {lines!r} must be a list of the two lines of a TLE")
-        return TLEOrbit(lines[0], lines[1])
+        if not isinstance(lines, list) or len(lines) != 2 or not all(isinstance(line, str) for line in lines):
+            raise ValueError(f"tle = {lines!r} must be a list of the two lines of a TLE (strings)")
+        try:
+            return TLEOrbit(lines[0], lines[1])
+        except ValueError as exc:  # the constructor's line1/line2 are the file's tle[0]/tle[1]
+            text = str(exc)
+            for i, name in enumerate(("line1", "line2")):
+                text = f"tle[{i}]" + text.removeprefix(name) if text.startswith(name) else text
+            raise ValueError(text) from None
     elements = {k: v for k, v in table.items() if k in allowed}
     return CircularOrbit(**elements) if kind == "altitude" else KeplerOrbit(**elements)
 
