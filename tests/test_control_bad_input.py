@@ -96,3 +96,32 @@ def test_tle_lines_that_are_not_two_strings_are_named_by_the_file_key(tle, messa
     orbit = {"tle": tle, "field": "igrf"}
     with pytest.raises(ValueError, match=message):
         control_scenario_from_table({**DETUMBLE, "orbit": orbit}, body_from_table(BODY))
+
+
+def test_a_control_run_that_fails_while_writing_leaves_the_folder_as_it_was(tmp_path, monkeypatch, capsys):
+    import tumble.viz
+
+    path = tmp_path / "point.toml"
+    path.write_text('body = { name = "b", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+                    "initial = { omega = [0.0, 0.0, 0.01] }\nsimulation = { t_end = 1.0 }\n"
+                    "[actuators.wheels]\ninertia = 2e-5\n[control]\nkind = \"mrp_pd\"\nperiod = 0.5\nK = 1e-3\nP = 6e-3\n")
+    out = tmp_path / "out"
+    real = tumble.viz.save_figure
+
+    def failing(fig, file, *args, **kwargs):
+        if file.name == "wheels.png":  # after trajectory.*, omega.png and two figures are staged
+            raise OSError("disk full")
+        return real(fig, file, *args, **kwargs)
+
+    monkeypatch.setattr(tumble.viz, "save_figure", failing)
+    assert main(["simulate", str(path), "--out", str(out)]) == 1
+    assert "disk full" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["point.toml"]  # no folder, no staging left
+    monkeypatch.setattr(tumble.viz, "save_figure", real)
+    assert main(["simulate", str(path), "--out", str(out)]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert set(before) == {"trajectory.csv", "trajectory.npz", "summary.json", "omega.png", "attitude_error.png",
+                           "rates.png", "wheels.png", "dipole.png", "momentum.png"}
+    monkeypatch.setattr(tumble.viz, "save_figure", failing)
+    assert main(["simulate", str(path), "--t-end", "0.5", "--out", str(out)]) == 1
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # the earlier run, whole
