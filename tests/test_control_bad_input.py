@@ -125,3 +125,12 @@ def test_a_control_run_that_fails_while_writing_leaves_the_folder_as_it_was(tmp_
     monkeypatch.setattr(tumble.viz, "save_figure", failing)
     assert main(["simulate", str(path), "--t-end", "0.5", "--out", str(out)]) == 1
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # the earlier run, whole
+
+
+@pytest.mark.parametrize("speed", [0, -1.0])
+def test_an_actuator_error_names_its_table(speed):
+    with pytest.raises(ValueError, match=rf"^actuators\.wheels: limit_cycle_speed\[0\] = {float(speed)} must be a "
+                                         r"positive finite number \(rad/s\)$"):
+        _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "limit_cycle_speed": speed})
+    with pytest.raises(ValueError, match=r"^actuators\.magnetorquers: max_dipole = 'x' must be real numbers"):
+        _build(DETUMBLE, "actuators", magnetorquers={"max_dipole": "x"})

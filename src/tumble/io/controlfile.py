@@ -331,12 +331,15 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
             raise ValueError(f"orbit: {exc}") from None
     mtq = wheels = None
     speed0 = None
+    where = "actuators"
     try:
         if "magnetorquers" in act:
+            where = "actuators.magnetorquers"
             m = _sub("actuators.magnetorquers", act["magnetorquers"], _MTQ_KEYS)
             mtq = Magnetorquers(m.get("max_dipole", 0.2),
                                 _design_axes(m.get("axes", np.eye(3)), body, "actuators.magnetorquers"))
         if "wheels" in act:
+            where = "actuators.wheels"
             w = _sub("actuators.wheels", act["wheels"], _WHEEL_KEYS)
             if "inertia" not in w:
                 raise ValueError("actuators.wheels: missing key 'inertia' (kg m^2)")
@@ -350,7 +353,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
                                  "one per wheel")
             speed0 = tuple(float(x) for x in s0)
     except ValueError as exc:
-        raise ValueError(exc if str(exc).startswith("actuators") else f"actuators: {exc}") from None
+        raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
     try:
         sensors = Sensors(**t["sensors"])
     except (ValueError, TypeError) as exc:
