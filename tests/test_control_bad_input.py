@@ -134,3 +134,18 @@ def test_an_actuator_error_names_its_table(speed):
         _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "limit_cycle_speed": speed})
     with pytest.raises(ValueError, match=r"^actuators\.magnetorquers: max_dipole = 'x' must be real numbers"):
         _build(DETUMBLE, "actuators", magnetorquers={"max_dipole": "x"})
+
+
+@pytest.mark.parametrize("rtol", [1e-20, 5.0])
+def test_a_relative_tolerance_out_of_range_is_refused_by_the_file_and_by_simulate_controlled(rtol):
+    from tumble.dynamics.controlled import simulate_controlled
+    from tumble.dynamics.controllers import BDot
+
+    with pytest.raises(ValueError, match=rf"^simulation\.rtol = {rtol!r} must be from 2\.22e-14 to 0\.1 \(relative\)$"):
+        _build(POINT, "simulation", rtol=rtol)
+    with pytest.raises(ValueError, match=rf"^rtol = {rtol!r} must be from "):
+        simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
+                            rtol=rtol)
+    with pytest.raises(ValueError, match=r"^atol = -1\.0 must be a positive finite number \(absolute\)$"):
+        simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
+                            atol=-1.0)

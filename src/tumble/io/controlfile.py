@@ -54,6 +54,7 @@ from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.pointing import NadirTarget
+from ..dynamics.simulate import check_rtol
 from ..mass import Body
 from ..validation import (
     check_bool,
@@ -368,8 +369,8 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=spec.kind,  # type: ignore[arg-type]
         controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
-        rtol=check_positive("simulation.rtol", sim.get("rtol", 1e-10), ""),
-        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), ""), name=name)
+        rtol=check_rtol("simulation.rtol", sim.get("rtol", 1e-10)),
+        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name)
 
 
 def is_control_file(data: dict[str, Any]) -> bool:
