@@ -86,6 +86,13 @@ def test_igrf_degree_errors_name_the_file_key(degree):
 def test_a_nadir_axis_vector_of_the_wrong_length_is_named():
     with pytest.raises(ValueError, match=r"^control: nadir_axis = \[1, 0\] must be a list of 3 numbers"):
         _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[1, 0])
+    with pytest.raises(ValueError, match=r"^control: nadir_axis = \[0, 0, 0\] must be a non-zero vector"):  # as given
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[0, 0, 0])
+
+
+def test_an_empty_orbit_table_is_refused_not_read_as_no_orbit():
+    with pytest.raises(ValueError, match=r"^orbit: give exactly one of altitude"):
+        control_scenario_from_table({**POINT, "orbit": {}}, body_from_table(BODY))
 
 
 @pytest.mark.parametrize(("tle", "message"), [

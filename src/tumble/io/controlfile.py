@@ -324,7 +324,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     orbit: Orbit | None = None
     field: Field | None = None
     gravity_gradient = False
-    if orbit_t:
+    if "orbit" in data:  # an empty [orbit] is refused by the parser, not read as no orbit
         try:
             gravity_gradient = check_bool("gravity_gradient", orbit_t.get("gravity_gradient", False))
             orbit, field = orbit_from_table(orbit_t)

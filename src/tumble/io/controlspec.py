@@ -42,7 +42,7 @@ from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.pointing import NadirTarget
 from ..mass import Body
-from ..validation import check_positive, check_rotation, check_vector
+from ..validation import check_direction, check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination
 
 __all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
@@ -115,7 +115,7 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
             found = "there is none" if orbit is None else f"a {type(orbit).__name__} is not one"
             raise ValueError(f'target = "nadir" needs a circular [orbit] (altitude, inclination, ...): {found}')  # noqa: TRY004 - one error type for bad input
         to_principal = principal_to_design.inv()  # vectors are given in the design frame
-        axes = {k: v if np.ndim(v) == 0 else to_principal.apply(check_vector(k, v, "design frame"))
+        axes = {k: v if np.ndim(v) == 0 else to_principal.apply(check_direction(k, v))
                 for k, v in axes.items()}
         return args, NadirTarget(orbit, **axes)
     if axes:
