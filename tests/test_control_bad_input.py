@@ -156,3 +156,16 @@ def test_a_relative_tolerance_out_of_range_is_refused_by_the_file_and_by_simulat
     with pytest.raises(ValueError, match=r"^atol = -1\.0 must be a positive finite number \(absolute\)$"):
         simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
                             atol=-1.0)
+
+
+def test_mrp_pd_without_an_attitude_sensor_is_refused_when_the_file_is_read():
+    with pytest.raises(ValueError, match=r'^control: kind = "mrp_pd" points with the wheels and needs an attitude '
+                                         r'sensor; sensors.attitude = "none" gives none$'):
+        _build({**POINT, "sensors": {}}, "sensors", attitude="none")
+
+
+def test_magnetorquers_without_an_orbit_are_refused_when_the_file_is_read():
+    table = copy.deepcopy(POINT)
+    table["actuators"]["magnetorquers"] = {"max_dipole": 0.2}
+    with pytest.raises(ValueError, match=r"^actuators\.magnetorquers need an \[orbit\] \(its magnetic field\)$"):
+        control_scenario_from_table(table, body_from_table(BODY))

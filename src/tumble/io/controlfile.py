@@ -355,6 +355,8 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
             speed0 = tuple(float(x) for x in s0)
     except ValueError as exc:
         raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
+    if mtq is not None and field is None:
+        raise ValueError("actuators.magnetorquers need an [orbit] (its magnetic field)")
     try:
         sensors = Sensors(**t["sensors"])
     except (ValueError, TypeError) as exc:

@@ -171,6 +171,9 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
         if "period" not in control:
             raise ValueError("missing key 'period' (s)")
         threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
+        if kind != "bdot" and wheels is not None and sensors.attitude == "none":
+            raise ValueError(f'kind = "{kind}" points with the wheels and needs an attitude sensor; '
+                             'sensors.attitude = "none" gives none')
         if kind == "bdot":
             args = _bdot_args(args, body, orbit, field, magnetorquers, kind)
         elif kind == "mrp_pd":
@@ -183,9 +186,6 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
                     raise ValueError(f"missing key {key!r} ({unit})")
             if wheels is None:
                 raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
-            if sensors.attitude == "none":
-                raise ValueError('kind = "detumble_point" points with the wheels and needs an attitude sensor; '
-                                 'sensors.attitude = "none" gives none')
             period = control["period"]
             where = "control.detumble"
             detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_KEYS["detumble"]),
