@@ -34,6 +34,7 @@ __all__ = [
     "QUAT_NORM_TOL",
     "axis_index",
     "check_at_most",
+    "check_bool",
     "check_direction",
     "check_increasing",
     "check_moments",
@@ -169,6 +170,25 @@ MAX_INERTIA = 1e50
 
 #: Why a bound holds, for the messages that refuse a value beyond it.
 BOUND_REASONS = {MAX_RATE: "faster than any rotation of matter", MAX_INERTIA: "more than any star's"}
+
+
+def check_bool(field: str, value: object) -> bool:
+    """``value`` if it is a boolean (``true``/``false`` in TOML), else one ValueError naming ``field``.
+
+    A string such as ``"no"`` is refused rather than read as true.
+
+    Examples
+    --------
+    >>> check_bool("gravity_gradient", True), check_bool("gravity_gradient", np.bool_(False))
+    (True, False)
+    >>> check_bool("gravity_gradient", "no")
+    Traceback (most recent call last):
+    ...
+    ValueError: gravity_gradient = 'no' must be true or false
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{field} = {short_repr(value)} must be true or false")  # noqa: TRY004 - one error type for bad input
+    return bool(value)
 
 
 def check_number(field: str, value: object, unit: str, at_most: float | None = None) -> float:

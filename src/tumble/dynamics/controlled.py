@@ -46,6 +46,7 @@ from .models.gravity import GravityGradient
 from .models.magnetic import MagneticField
 from .models.sensors import Sensors
 from .pointing import Reference, target_attitude
+from .simulate import check_rtol
 from .special.mrp import mrp_angle, mrp_from_quat
 from .special.quaternion import rotate_by_quaternion
 
@@ -324,6 +325,8 @@ def simulate_controlled(
     I = check_moments("moments", moments, physical=False)
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
     T = check_positive("t_end", t_end, "s")
+    rtol = check_rtol("rtol", rtol)
+    atol = check_positive("atol", atol, "absolute")
     period = check_positive("controller.period", getattr(controller, "period", None), "s")
     q0 = np.array(check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0))
     if magnetorquers is not None and field is None:

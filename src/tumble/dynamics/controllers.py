@@ -50,7 +50,13 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..typing import ArrayLike, FloatArray
-from ..validation import check_moments, check_positive, check_rotation, check_vector
+from ..validation import (
+    check_bool,
+    check_moments,
+    check_positive,
+    check_rotation,
+    check_vector,
+)
 from .models.actuators import Command, ReactionWheels
 from .models.sensors import Measurement
 from .pointing import Reference, is_reference, tracking_error
@@ -291,6 +297,7 @@ class MRPFeedback:
         if not is_reference(self.target):
             self.target = Rotation.from_quat(check_rotation("target", self.target))
         self.Ki = check_positive("Ki", self.Ki, "1/s", allow_zero=True)
+        self.gyroscopic = check_bool("gyroscopic", self.gyroscopic)
         if self.integral_limit != math.inf:
             self.integral_limit = check_positive("integral_limit", self.integral_limit, "N m")
         G = self.wheels.axes.T

@@ -38,7 +38,7 @@ from .models.torques import (
 )
 from .trajectory import Trajectory
 
-__all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
+__all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "check_rtol", "sample_times", "simulate"]
 
 #: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
 #: Without torque the exact solution; with a torque, rotors or a damper, DOP853 at tight tolerances.
@@ -65,6 +65,24 @@ MAX_STEPS = 2e7
 #: Ranges of the relative tolerance: scipy clips rtol below 100 eps (with a warning), and above
 #: 0.1 an adaptive step control no longer controls anything.
 RTOL_RANGE = (100 * np.finfo(float).eps, 0.1)
+
+
+def check_rtol(field: str, value: object) -> float:
+    """A relative tolerance in :data:`RTOL_RANGE`, as a float; else one ValueError naming ``field``.
+
+    Examples
+    --------
+    >>> check_rtol("rtol", 1e-10)
+    1e-10
+    >>> check_rtol("simulation.rtol", 5.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: simulation.rtol = 5.0 must be from 2.22e-14 to 0.1 (relative)
+    """
+    rtol = check_positive(field, value, "relative")
+    if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
+        raise ValueError(f"{field} = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
+    return rtol
 
 
 class RunInputs(NamedTuple):
@@ -326,9 +344,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     t, keep = sample_times(t_end, samples, dt, times)
     t_end = float(t[-1])
     if rtol is not None:
-        rtol = check_positive("rtol", rtol, "relative")
-        if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
-            raise ValueError(f"rtol = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
+        rtol = check_rtol("rtol", rtol)
     rtol = spec.rtol if rtol is None else rtol
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")

@@ -54,8 +54,15 @@ from ..dynamics.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.pointing import NadirTarget
+from ..dynamics.simulate import check_rtol
 from ..mass import Body
-from ..validation import check_positive, check_rotation, check_vector
+from ..validation import (
+    check_bool,
+    check_positive,
+    check_rotation,
+    check_vector,
+    check_vectors,
+)
 from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
 from .controlspec import (
@@ -247,10 +254,14 @@ def _table(data: dict[str, Any], section: str) -> dict[str, Any]:
     return table
 
 
-def _design_axes(value: object, body: Body) -> np.ndarray:
-    """Axes given in the body's design frame, in principal components (``P^T d``)."""
-    a = np.asarray(value, dtype=float)
-    return a @ np.asarray(body.principal_axes)
+def _design_axes(value: object, body: Body, where: str) -> np.ndarray:
+    """Axes given in the body's design frame, in principal components (``P^T d``); the rows'
+    count and norms are checked by the actuator they feed."""
+    try:
+        a = check_vectors("axes", value, "design frame")  # type: ignore[arg-type]
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    return np.asarray(a @ np.asarray(body.principal_axes), float)
 
 
 def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str = "scenario") -> ControlScenario:
@@ -312,26 +323,40 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     attitude0 = design_to_world * principal_to_design
     orbit: Orbit | None = None
     field: Field | None = None
-    if orbit_t:
+    gravity_gradient = False
+    if "orbit" in data:  # an empty [orbit] is refused by the parser, not read as no orbit
         try:
+            gravity_gradient = check_bool("gravity_gradient", orbit_t.get("gravity_gradient", False))
             orbit, field = orbit_from_table(orbit_t)
         except ValueError as exc:
             raise ValueError(f"orbit: {exc}") from None
     mtq = wheels = None
     speed0 = None
+    where = "actuators"
     try:
         if "magnetorquers" in act:
+            where = "actuators.magnetorquers"
             m = _sub("actuators.magnetorquers", act["magnetorquers"], _MTQ_KEYS)
-            mtq = Magnetorquers(m.get("max_dipole", 0.2), _design_axes(m.get("axes", np.eye(3)), body))
+            mtq = Magnetorquers(m.get("max_dipole", 0.2),
+                                _design_axes(m.get("axes", np.eye(3)), body, "actuators.magnetorquers"))
         if "wheels" in act:
+            where = "actuators.wheels"
             w = _sub("actuators.wheels", act["wheels"], _WHEEL_KEYS)
             if "inertia" not in w:
                 raise ValueError("actuators.wheels: missing key 'inertia' (kg m^2)")
-            wheels = ReactionWheels(_design_axes(w.get("axes", np.eye(3)), body),
+            wheels = ReactionWheels(_design_axes(w.get("axes", np.eye(3)), body, "actuators.wheels"),
                                     **{k: v for k, v in w.items() if k not in ("axes", "speed0")})
-            speed0 = tuple(float(x) for x in np.atleast_1d(w.get("speed0", np.zeros(wheels.count))))
+            s0 = w.get("speed0", [0.0] * wheels.count)
+            s0 = check_vectors("actuators.wheels: speed0", [s0] if isinstance(s0, (int, float)) else s0, "rad/s",
+                               size=None)
+            if s0.shape != (wheels.count,):
+                raise ValueError(f"actuators.wheels: speed0 = {w['speed0']!r} must be {wheels.count} numbers (rad/s), "
+                                 "one per wheel")
+            speed0 = tuple(float(x) for x in s0)
     except ValueError as exc:
-        raise ValueError(exc if str(exc).startswith("actuators") else f"actuators: {exc}") from None
+        raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
+    if mtq is not None and field is None:
+        raise ValueError("actuators.magnetorquers need an [orbit] (its magnetic field)")
     try:
         sensors = Sensors(**t["sensors"])
     except (ValueError, TypeError) as exc:
@@ -344,10 +369,10 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         raise ValueError(f"simulation: t_end = {sim.get('t_end')!r} must be a positive number (s)") from None
     return ControlScenario(
         body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=spec.kind,  # type: ignore[arg-type]
-        controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=bool(orbit_t.get("gravity_gradient", False)),
+        controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
-        rtol=check_positive("simulation.rtol", sim.get("rtol", 1e-10), ""),
-        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), ""), name=name)
+        rtol=check_rtol("simulation.rtol", sim.get("rtol", 1e-10)),
+        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name)
 
 
 def is_control_file(data: dict[str, Any]) -> bool:

@@ -53,9 +53,15 @@ def _orbit(table: dict[str, Any]) -> Orbit:
         raise ValueError(f"{stray[0]} does not go with {kind}; allowed with {kind}: {', '.join(allowed)}")
     if kind == "tle":
         lines = table["tle"]
-        if not isinstance(lines, list) or len(lines) != 2:
-            raise ValueError(f"tle = {lines!r} must be a list of the two lines of a TLE")
-        return TLEOrbit(lines[0], lines[1])
+        if not isinstance(lines, list) or len(lines) != 2 or not all(isinstance(line, str) for line in lines):
+            raise ValueError(f"tle = {lines!r} must be a list of the two lines of a TLE (strings)")
+        try:
+            return TLEOrbit(lines[0], lines[1])
+        except ValueError as exc:  # the constructor's line1/line2 are the file's tle[0]/tle[1]
+            text = str(exc)
+            for i, name in enumerate(("line1", "line2")):
+                text = f"tle[{i}]" + text.removeprefix(name) if text.startswith(name) else text
+            raise ValueError(text) from None
     elements = {k: v for k, v in table.items() if k in allowed}
     return CircularOrbit(**elements) if kind == "altitude" else KeplerOrbit(**elements)
 
@@ -83,12 +89,17 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
             raise ValueError('field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis '
                              'or tle use field = "igrf" and an epoch')
         return orbit, DipoleField(orbit, gmst0=table.get("gmst0", 0.0),
-                                  earth_rotation=bool(table.get("earth_rotation", True)))
+                                  earth_rotation=table.get("earth_rotation", True))
     if kind == "igrf":
         dipole_keys = sorted(key for key in ("gmst0", "earth_rotation") if key in table)
         if dipole_keys:
             raise ValueError(f'{dipole_keys[0]} goes with field = "dipole"; for "igrf" the epoch sets the Earth\'s angle')
-        return orbit, IGRFField(orbit, table.get("epoch"), max_degree=table.get("igrf_degree", 13))
+        try:
+            return orbit, IGRFField(orbit, table.get("epoch"), max_degree=table.get("igrf_degree", 13))
+        except ValueError as exc:  # the constructor's argument is the file's igrf_degree
+            text = str(exc)
+            raise ValueError("igrf_degree" + text.removeprefix("max_degree") if text.startswith("max_degree")
+                             else text) from None
     raise ValueError(f"field = {kind!r} is unknown; allowed: dipole, igrf")
 
 

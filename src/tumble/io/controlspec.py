@@ -42,7 +42,7 @@ from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.pointing import NadirTarget
 from ..mass import Body
-from ..validation import check_positive, check_rotation
+from ..validation import check_direction, check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination
 
 __all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
@@ -115,7 +115,8 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
             found = "there is none" if orbit is None else f"a {type(orbit).__name__} is not one"
             raise ValueError(f'target = "nadir" needs a circular [orbit] (altitude, inclination, ...): {found}')  # noqa: TRY004 - one error type for bad input
         to_principal = principal_to_design.inv()  # vectors are given in the design frame
-        axes = {k: v if np.ndim(v) == 0 else to_principal.apply(np.asarray(v, float)) for k, v in axes.items()}
+        axes = {k: v if np.ndim(v) == 0 else to_principal.apply(check_direction(k, v))
+                for k, v in axes.items()}
         return args, NadirTarget(orbit, **axes)
     if axes:
         raise ValueError(f'{min(axes)} goes with target = "nadir" only')
@@ -157,7 +158,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     ValueError: control.point: unknown key 'Kd'; allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
     """
     kind = control.get("kind")
-    if kind not in CONTROL_KINDS:
+    if not isinstance(kind, str) or kind not in CONTROL_KINDS:
         raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(CONTROL_KINDS)}")
     bad = sorted(set(control) - CONTROL_KINDS[kind])
     if bad:
@@ -170,6 +171,9 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
         if "period" not in control:
             raise ValueError("missing key 'period' (s)")
         threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
+        if kind != "bdot" and wheels is not None and sensors.attitude == "none":
+            raise ValueError(f'kind = "{kind}" points with the wheels and needs an attitude sensor; '
+                             'sensors.attitude = "none" gives none')
         if kind == "bdot":
             args = _bdot_args(args, body, orbit, field, magnetorquers, kind)
         elif kind == "mrp_pd":
@@ -182,9 +186,6 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
                     raise ValueError(f"missing key {key!r} ({unit})")
             if wheels is None:
                 raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
-            if sensors.attitude == "none":
-                raise ValueError('kind = "detumble_point" points with the wheels and needs an attitude sensor; '
-                                 'sensors.attitude = "none" gives none')
             period = control["period"]
             where = "control.detumble"
             detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_KEYS["detumble"]),

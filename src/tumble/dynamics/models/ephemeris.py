@@ -253,7 +253,8 @@ class TLEOrbit:
         for name in ("line1", "line2"):
             value = getattr(self, name)
             if not isinstance(value, str) or len(value.strip()) < 60:
-                raise ValueError(f"{name} = {value!r} must be the {name[-1]}st/nd line of a TLE (69 characters)")
+                raise ValueError(f"{name} = {value!r} must be the {'first' if name == 'line1' else 'second'} line of a TLE "
+                                 "(a string of 69 characters)")
         try:
             sat = Satrec.twoline2rv(self.line1, self.line2)
         except (ValueError, IndexError) as exc:

@@ -28,7 +28,7 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from ...typing import FloatArray, Vector3
-from ...validation import check_number, check_vector
+from ...validation import check_bool, check_number, check_vector
 from .orbit import CircularOrbit
 
 __all__ = ["IGRF13_2020", "OMEGA_EARTH", "DipoleField", "MagneticField", "UniformField"]
@@ -133,6 +133,7 @@ class DipoleField:
         if not isinstance(self.orbit, CircularOrbit):
             raise ValueError(f"orbit = {self.orbit!r} must be a CircularOrbit")  # noqa: TRY004 - one error type for bad input
         check_number("gmst0", self.gmst0, "rad")
+        object.__setattr__(self, "earth_rotation", check_bool("earth_rotation", self.earth_rotation))
         object.__setattr__(self, "coefficients", check_vector("coefficients", self.coefficients, "T"))
         object.__setattr__(self, "_world_from_eci", self.orbit.eci_from_world.inv().as_matrix())
 

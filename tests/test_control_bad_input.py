@@ -1,0 +1,171 @@
+"""Bad values in a control scenario: one ValueError naming the key (the CLI's one line and exit 2)."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+
+from tumble.cli import main
+from tumble.io.bodyfile import body_from_table
+from tumble.io.controlfile import control_scenario_from_table
+
+BODY = {"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]}
+POINT = {"initial": {"omega": [0.0, 0.0, 0.01]}, "simulation": {"t_end": 1.0},
+         "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
+         "actuators": {"wheels": {"inertia": 2e-5, "max_torque": 2e-3}}}
+DETUMBLE = {"initial": {"omega": [0.1, 0.1, 0.1]}, "simulation": {"t_end": 1.0},
+            "orbit": {"altitude": 500e3, "inclination": 1.7}, "actuators": {"magnetorquers": {"max_dipole": 0.2}},
+            "control": {"kind": "bdot", "period": 1.0}}
+
+
+def _build(base: dict, section: str, **changes: object):
+    table = copy.deepcopy(base)
+    table[section].update(changes)
+    return control_scenario_from_table(table, body_from_table(BODY))
+
+
+@pytest.mark.parametrize("kind", [[1], {"a": 1}, 3])
+def test_a_kind_that_is_not_a_string_is_refused_by_name(kind):
+    with pytest.raises(ValueError, match=r"^control: kind = .* is unknown; allowed: bdot, mrp_pd, detumble_point$"):
+        _build(POINT, "control", kind=kind)
+
+
+@pytest.mark.parametrize(("section", "base", "key"), [("orbit", DETUMBLE, "gravity_gradient"),
+                                                      ("orbit", DETUMBLE, "earth_rotation"),
+                                                      ("control", POINT, "gyroscopic")])
+def test_a_switch_given_as_a_string_is_refused_not_read_as_true(section, base, key):
+    with pytest.raises(ValueError, match=rf"^{section}: {key} = 'no' must be true or false$"):
+        _build(base, section, **{key: "no"})
+    on = _build(base, section, **{key: True})
+    off = _build(base, section, **{key: False})
+    value = {"gravity_gradient": lambda s: s.gravity_gradient, "earth_rotation": lambda s: s.field.earth_rotation,
+             "gyroscopic": lambda s: s.controller().gyroscopic}[key]
+    assert (value(on), value(off)) == (True, False)
+
+
+def test_the_cli_gives_one_line_and_exit_2_and_writes_nothing(tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text('body = { name = "b", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+                    "initial = { omega = [0.0, 0.0, 0.01] }\nsimulation = { t_end = 1.0 }\n"
+                    "[actuators.wheels]\ninertia = 2e-5\n[control]\nkind = [1]\nperiod = 0.5\n")
+    out = tmp_path / "out"
+    assert main(["simulate", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "control: kind = [1] is unknown" in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(("table", "axes", "message"), [
+    ("magnetorquers", [[1, 0], [0, 1]], (r"^actuators\.magnetorquers: axes = \[\[1, 0\], \[0, 1\]\] must be real "
+                                         r"numbers of shape \(\.\.\., 3\) \(design frame\), not shape \(2, 2\)$")),
+    ("wheels", "x", r"^actuators\.wheels: axes = 'x' must be real numbers of shape \(\.\.\., 3\) \(design frame\)$")])
+def test_actuator_axes_of_the_wrong_shape_are_named_not_a_numpy_error(table, axes, message):
+    base = DETUMBLE if table == "magnetorquers" else POINT
+    with pytest.raises(ValueError, match=message):
+        _build(base, "actuators", **{table: {**base["actuators"][table], "axes": axes}})
+
+
+@pytest.mark.parametrize("speed0", [[1.0, 2.0], "x", [[1.0, 2.0, 3.0]]])
+def test_wheel_speed0_must_hold_one_speed_per_wheel(speed0):
+    with pytest.raises(ValueError, match=r"^actuators\.wheels: speed0 = .* must be "):
+        _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "speed0": speed0})
+    one = {"axes": [[0.0, 0.0, 1.0]], "inertia": 2e-5}
+    one_wheel = _build(DETUMBLE, "actuators", wheels={**one, "speed0": 5})
+    assert one_wheel.speed0 == (5.0,)  # one wheel: a number will do
+    three = _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "speed0": [1, 2, 3]})
+    assert three.speed0 == (1.0, 2.0, 3.0)
+
+
+@pytest.mark.parametrize("degree", [True, "13", 13.5, 0])
+def test_igrf_degree_errors_name_the_file_key(degree):
+    with pytest.raises(ValueError, match=r"^orbit: igrf_degree = .* must be a whole number from 1 to 13$"):
+        _build(DETUMBLE, "orbit", field="igrf", epoch="2026-11-25T00:00:00", igrf_degree=degree)
+
+
+def test_a_nadir_axis_vector_of_the_wrong_length_is_named():
+    with pytest.raises(ValueError, match=r"^control: nadir_axis = \[1, 0\] must be a list of 3 numbers"):
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[1, 0])
+    with pytest.raises(ValueError, match=r"^control: nadir_axis = \[0, 0, 0\] must be a non-zero vector"):  # as given
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[0, 0, 0])
+
+
+def test_an_empty_orbit_table_is_refused_not_read_as_no_orbit():
+    with pytest.raises(ValueError, match=r"^orbit: give exactly one of altitude"):
+        control_scenario_from_table({**POINT, "orbit": {}}, body_from_table(BODY))
+
+
+@pytest.mark.parametrize(("tle", "message"), [
+    ([1, 2], r"^orbit: tle = \[1, 2\] must be a list of the two lines of a TLE \(strings\)$"),
+    (["a", "b"], r"^orbit: tle\[0\] = 'a' must be the first line of a TLE \(a string of 69 characters\)$")])
+def test_tle_lines_that_are_not_two_strings_are_named_by_the_file_key(tle, message):
+    pytest.importorskip("sgp4")
+    orbit = {"tle": tle, "field": "igrf"}
+    with pytest.raises(ValueError, match=message):
+        control_scenario_from_table({**DETUMBLE, "orbit": orbit}, body_from_table(BODY))
+
+
+def test_a_control_run_that_fails_while_writing_leaves_the_folder_as_it_was(tmp_path, monkeypatch, capsys):
+    import tumble.viz
+
+    path = tmp_path / "point.toml"
+    path.write_text('body = { name = "b", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+                    "initial = { omega = [0.0, 0.0, 0.01] }\nsimulation = { t_end = 1.0 }\n"
+                    "[actuators.wheels]\ninertia = 2e-5\n[control]\nkind = \"mrp_pd\"\nperiod = 0.5\nK = 1e-3\nP = 6e-3\n")
+    out = tmp_path / "out"
+    real = tumble.viz.save_figure
+
+    def failing(fig, file, *args, **kwargs):
+        if file.name == "wheels.png":  # after trajectory.*, omega.png and two figures are staged
+            raise OSError("disk full")
+        return real(fig, file, *args, **kwargs)
+
+    monkeypatch.setattr(tumble.viz, "save_figure", failing)
+    assert main(["simulate", str(path), "--out", str(out)]) == 1
+    assert "disk full" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["point.toml"]  # no folder, no staging left
+    monkeypatch.setattr(tumble.viz, "save_figure", real)
+    assert main(["simulate", str(path), "--out", str(out)]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert set(before) == {"trajectory.csv", "trajectory.npz", "summary.json", "omega.png", "attitude_error.png",
+                           "rates.png", "wheels.png", "dipole.png", "momentum.png"}
+    monkeypatch.setattr(tumble.viz, "save_figure", failing)
+    assert main(["simulate", str(path), "--t-end", "0.5", "--out", str(out)]) == 1
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # the earlier run, whole
+
+
+@pytest.mark.parametrize("speed", [0, -1.0])
+def test_an_actuator_error_names_its_table(speed):
+    with pytest.raises(ValueError, match=rf"^actuators\.wheels: limit_cycle_speed\[0\] = {float(speed)} must be a "
+                                         r"positive finite number \(rad/s\)$"):
+        _build(POINT, "actuators", wheels={**POINT["actuators"]["wheels"], "limit_cycle_speed": speed})
+    with pytest.raises(ValueError, match=r"^actuators\.magnetorquers: max_dipole = 'x' must be real numbers"):
+        _build(DETUMBLE, "actuators", magnetorquers={"max_dipole": "x"})
+
+
+@pytest.mark.parametrize("rtol", [1e-20, 5.0])
+def test_a_relative_tolerance_out_of_range_is_refused_by_the_file_and_by_simulate_controlled(rtol):
+    from tumble.dynamics.controlled import simulate_controlled
+    from tumble.dynamics.controllers import BDot
+
+    with pytest.raises(ValueError, match=rf"^simulation\.rtol = {rtol!r} must be from 2\.22e-14 to 0\.1 \(relative\)$"):
+        _build(POINT, "simulation", rtol=rtol)
+    with pytest.raises(ValueError, match=rf"^rtol = {rtol!r} must be from "):
+        simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
+                            rtol=rtol)
+    with pytest.raises(ValueError, match=r"^atol = -1\.0 must be a positive finite number \(absolute\)$"):
+        simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
+                            atol=-1.0)
+
+
+def test_mrp_pd_without_an_attitude_sensor_is_refused_when_the_file_is_read():
+    with pytest.raises(ValueError, match=r'^control: kind = "mrp_pd" points with the wheels and needs an attitude '
+                                         r'sensor; sensors.attitude = "none" gives none$'):
+        _build({**POINT, "sensors": {}}, "sensors", attitude="none")
+
+
+def test_magnetorquers_without_an_orbit_are_refused_when_the_file_is_read():
+    table = copy.deepcopy(POINT)
+    table["actuators"]["magnetorquers"] = {"max_dipole": 0.2}
+    with pytest.raises(ValueError, match=r"^actuators\.magnetorquers need an \[orbit\] \(its magnetic field\)$"):
+        control_scenario_from_table(table, body_from_table(BODY))
