@@ -24,7 +24,7 @@ from ...validation import check_increasing
 from .adequacy import InadequateFitWarning
 from .model import Model
 from .result import RotationFit, rotation_fit
-from .solve import Solution, solve, solve_drag
+from .solve import Solution, check_drag, solve, solve_drag
 from .start import candidates, first_value
 from .triangle import square
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
@@ -73,6 +73,17 @@ def _check(t, omega) -> tuple[np.ndarray, np.ndarray]:
                          f"{MAX_RATE:.0e} rad/s, more than any gyroscope measures; is it in other units?")
     check_increasing("t", t)
     return t, omega
+
+
+def _check_options(sensor_rotation, drag, saturation, scale_uncertainty) -> None:
+    """The options :func:`fit_rotation` and :func:`~tumble.analysis.fit.recording.fit_recording` share."""
+    if sensor_rotation not in ("fit", "identity"):
+        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
+    check_drag(drag)
+    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
+        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
+    if not (np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
+        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
 
 
 def _check_not_steady(omega) -> None:
@@ -222,20 +233,13 @@ def fit_rotation(t: ArrayLike, omega_measured: ArrayLike, *, sensor_rotation: st
     >>> np.round(fit.ratios, 6).tolist()
     [0.3, 0.7]
     """
-    if sensor_rotation not in ("fit", "identity"):
-        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
-    if drag not in ("auto", "none", "linear", "quadratic"):
-        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
-    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
-        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
+    _check_options(sensor_rotation, drag, saturation, scale_uncertainty)
     t, omega = _check(t, omega_measured)
     keep, _ = saturation_mask(omega, saturation)
     if np.count_nonzero(np.all(keep, axis=1)) < MIN_SAMPLES:
         raise ValueError(f"only {np.count_nonzero(np.all(keep, axis=1))} samples are below the gyroscope's rail; "
                          f"give at least {MIN_SAMPLES} unsaturated samples")
     _check_not_steady(omega[np.all(keep, axis=1)])
-    if not (np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
-        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
     sol = fit_solution(t, omega, keep, rotation=sensor_rotation == "fit", bias=bool(bias), drag=drag,
                        guess=initial_guess, max_nfev=max_nfev, scale_uncertainty=scale_uncertainty)
     fit = rotation_fit(sol, t, omega, keep)
