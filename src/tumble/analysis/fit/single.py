@@ -75,7 +75,7 @@ def _check(t, omega) -> tuple[np.ndarray, np.ndarray]:
     return t, omega
 
 
-def _check_options(sensor_rotation, drag, saturation, scale_uncertainty) -> None:
+def _check_options(sensor_rotation: str, drag: str, saturation: float | None, scale_uncertainty: float) -> None:
     """The options :func:`fit_rotation` and :func:`~tumble.analysis.fit.recording.fit_recording` share."""
     if sensor_rotation not in ("fit", "identity"):
         raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
