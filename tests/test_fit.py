@@ -194,6 +194,23 @@ def test_refusals():
         fit_rotation(np.linspace(0, 5, 500), steady)
 
 
+@pytest.mark.parametrize(("options", "message"), [
+    ({"max_nfev": 0}, r"max_nfev = 0 must be a positive integer"),
+    ({"max_nfev": 2.5}, r"max_nfev = 2.5 must be a positive integer"),
+    ({"scale_uncertainty": None}, r"scale_uncertainty = None must be a number in \[0, 0.5\)"),
+    ({"initial_guess": {"ratios": 0.5}}, r"initial_guess ratios = 0.5 must be 2 finite numbers"),
+    ({"initial_guess": {"ratios": (0.5, 0.8, 1.0)}}, r"initial_guess ratios = \(0.5, 0.8, 1.0\) must be 2 finite"),
+    ({"initial_guess": {"ratios": (0.5, 0.8), "omega0": [1.0, 2.0]}}, r"initial_guess omega0 = \[1.0, 2.0\] must be 3 finite numbers \(rad/s\)"),
+    ({"initial_guess": {"ratios": (0.5, 0.8), "rotvec": [1.0, 2.0]}}, r"initial_guess rotvec = .* must be 3 finite numbers \(rad\)"),
+    ({"initial_guess": {"ratios": (0.5, 0.8), "bias": [0.0, np.nan, 0.0]}}, r"initial_guess bias = .* must be 3 finite numbers"),
+])
+def test_bad_options_and_guesses_get_one_clear_error(options, message):
+    """Each used to end in a traceback from numpy or scipy (or, for max_nfev = 2.5, to run)."""
+    t, w, _, _ = _synthetic(1, duration=2.0)
+    with pytest.raises(ValueError, match=message):
+        fit_rotation(t, w, **options)
+
+
 def test_a_symmetric_body_is_not_refused_and_its_intervals_hold_the_truth():
     """I2 = I3 (a prolate top): the sensor's rotation about the symmetry axis is (nearly)
     undetermined. The fit is a result, not an error: the 95 % intervals contain the truth and

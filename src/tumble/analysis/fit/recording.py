@@ -35,7 +35,7 @@ from .result import (
     rotation_fit,
     solution_adequacy,
 )
-from .single import _check, saturation_mask
+from .single import _check, _check_options, saturation_mask
 from .solve import Solution, solve
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
 
@@ -225,14 +225,7 @@ def fit_recording(t: ArrayLike, omega_measured: ArrayLike, *, events: Sequence[t
     >>> fit.tosses_used, bool(abs(fit.pooled.ratios[1] - rec.ratios[1]) < 3 * fit.pooled.ratios_std[1])
     (3, True)
     """
-    if sensor_rotation not in ("fit", "identity"):
-        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
-    if drag not in ("auto", "none", "linear", "quadratic"):
-        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
-    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
-        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
-    if not (np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
-        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
+    _check_options(sensor_rotation, drag, saturation, scale_uncertainty)
     t, omega = _check(t, omega_measured)
     keep, rail = saturation_mask(omega, saturation)
     rotation = sensor_rotation == "fit"

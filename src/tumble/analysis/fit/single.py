@@ -14,6 +14,7 @@ record). Uncertainties: :mod:`tumble.analysis.fit.uncertainty`.
 from __future__ import annotations
 
 import warnings
+from numbers import Integral, Real
 from typing import Any
 
 import numpy as np
@@ -24,7 +25,7 @@ from ...validation import check_increasing
 from .adequacy import InadequateFitWarning
 from .model import Model
 from .result import RotationFit, rotation_fit
-from .solve import Solution, solve, solve_drag
+from .solve import Solution, check_drag, solve, solve_drag
 from .start import candidates, first_value
 from .triangle import square
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
@@ -73,6 +74,17 @@ def _check(t, omega) -> tuple[np.ndarray, np.ndarray]:
                          f"{MAX_RATE:.0e} rad/s, more than any gyroscope measures; is it in other units?")
     check_increasing("t", t)
     return t, omega
+
+
+def _check_options(sensor_rotation: str, drag: str, saturation: float | None, scale_uncertainty: float) -> None:
+    """The options :func:`fit_rotation` and :func:`~tumble.analysis.fit.recording.fit_recording` share."""
+    if sensor_rotation not in ("fit", "identity"):
+        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
+    check_drag(drag)
+    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
+        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
+    if not (isinstance(scale_uncertainty, Real) and np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
+        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
 
 
 def _check_not_steady(omega) -> None:
@@ -222,20 +234,15 @@ def fit_rotation(t: ArrayLike, omega_measured: ArrayLike, *, sensor_rotation: st
     >>> np.round(fit.ratios, 6).tolist()
     [0.3, 0.7]
     """
-    if sensor_rotation not in ("fit", "identity"):
-        raise ValueError(f"sensor_rotation = {sensor_rotation!r} must be 'fit' or 'identity'")
-    if drag not in ("auto", "none", "linear", "quadratic"):
-        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
-    if saturation is not None and not (np.isfinite(saturation) and saturation > 0):
-        raise ValueError(f"saturation = {saturation!r} must be a positive number of rad/s")
+    _check_options(sensor_rotation, drag, saturation, scale_uncertainty)
+    if isinstance(max_nfev, bool) or not isinstance(max_nfev, Integral) or max_nfev < 1:
+        raise ValueError(f"max_nfev = {max_nfev!r} must be a positive integer (function evaluations)")
     t, omega = _check(t, omega_measured)
     keep, _ = saturation_mask(omega, saturation)
     if np.count_nonzero(np.all(keep, axis=1)) < MIN_SAMPLES:
         raise ValueError(f"only {np.count_nonzero(np.all(keep, axis=1))} samples are below the gyroscope's rail; "
                          f"give at least {MIN_SAMPLES} unsaturated samples")
     _check_not_steady(omega[np.all(keep, axis=1)])
-    if not (np.isfinite(scale_uncertainty) and 0 <= scale_uncertainty < 0.5):
-        raise ValueError(f"scale_uncertainty = {scale_uncertainty!r} must be a number in [0, 0.5)")
     sol = fit_solution(t, omega, keep, rotation=sensor_rotation == "fit", bias=bool(bias), drag=drag,
                        guess=initial_guess, max_nfev=max_nfev, scale_uncertainty=scale_uncertainty)
     fit = rotation_fit(sol, t, omega, keep)
@@ -319,11 +326,22 @@ def _from_guess(guess: dict, omega, model: Model) -> np.ndarray:
     if not isinstance(guess, dict) or "ratios" not in guess:
         raise ValueError("initial_guess must be a dict with 'ratios' (I1/I3, I2/I3) and optionally "
                          "'omega0', 'rotvec', 'bias'")
-    x, y = (float(v) for v in guess["ratios"])
+    x, y = (float(v) for v in _guess_entry(guess, "ratios", 2, "(I1/I3, I2/I3)"))
     if not (0.5 <= y <= 1.0 and 1.0 - y <= x <= y):
         raise ValueError(f"initial_guess ratios = ({x}, {y}) must satisfy I1 <= I2 <= I3 and I1 + I2 >= I3")
-    rv = np.asarray(guess.get("rotvec", np.zeros(3)), float)
+    rv = _guess_entry(guess, "rotvec", 3, "rad") if "rotvec" in guess else np.zeros(3)
     R = Rotation.from_rotvec(rv).as_matrix()
-    b = np.asarray(guess.get("bias", np.zeros(3)), float)
-    w0 = np.asarray(guess["omega0"], float) if "omega0" in guess else R @ (omega[0] - b)
+    b = _guess_entry(guess, "bias", 3, "rad/s") if "bias" in guess else np.zeros(3)
+    w0 = _guess_entry(guess, "omega0", 3, "rad/s") if "omega0" in guess else R @ (omega[0] - b)
     return model.pack(*square(x, y), rv, b, w0[None])
+
+
+def _guess_entry(guess: dict[str, Any], key: str, size: int, unit: str) -> np.ndarray:
+    """``initial_guess[key]`` as ``size`` finite numbers, or one ValueError naming it."""
+    try:
+        v = np.asarray(guess[key], float)
+    except (TypeError, ValueError):
+        v = None
+    if v is None or v.shape != (size,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"initial_guess {key} = {guess[key]!r} must be {size} finite numbers ({unit})")
+    return v

@@ -28,7 +28,7 @@ from ...typing import ArrayLike
 from .model import DRAG_MODELS, Model
 from .uncertainty import effective_covariance, scale_covariance
 
-__all__ = ["RANK_TOL", "Solution", "solve", "solve_drag"]
+__all__ = ["RANK_TOL", "Solution", "check_drag", "solve", "solve_drag"]
 
 #: Scaled singular values below this fraction of the largest mark undetermined parameters.
 RANK_TOL = 1e-7
@@ -192,6 +192,22 @@ def solve(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray, *, m
                     float(r @ r), int(r.size))
 
 
+def check_drag(drag: str) -> None:
+    """Raise a ValueError unless ``drag`` names a drag model or ``"auto"``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.solve import check_drag
+    >>> check_drag("quadratic")
+    >>> check_drag("cubic")
+    Traceback (most recent call last):
+    ...
+    ValueError: drag = 'cubic' must be 'auto', 'none', 'linear' or 'quadratic'
+    """
+    if drag not in ("auto", *DRAG_MODELS):
+        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
+
+
 def _with_drag(model: Model, drag: str) -> Model:
     taus = [model.tau[j, :n] for j, n in enumerate(model.lengths)]
     return Model(taus, model.rotation, model.bias, drag, model.speeds)
@@ -226,8 +242,7 @@ def solve_drag(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray,
     >>> sol.model.drag, sol.model.drag_vector(sol.P).round(3).tolist()   # the BIC picks the drag, and finds it
     ('quadratic', [0.02, 0.03, 0.04])
     """
-    if drag not in ("auto", *DRAG_MODELS):
-        raise ValueError(f"drag = {drag!r} must be 'auto', 'none', 'linear' or 'quadratic'")
+    check_drag(drag)
     kw = {"max_nfev": max_nfev, "scale_uncertainty": scale_uncertainty, "covariance": covariance}
     zero = (0.0, 0.0, 0.0)
     best = None
