@@ -191,7 +191,8 @@ def test_registry_names_every_method():
     assert set(METHODS) >= {"exact", "rk45", "dop853", "seed", "geometric", "geometric2", "geometric6"}
 
 
-@pytest.mark.parametrize("method", [name for name, m in METHODS.items() if m.supports_torque])
+# the compiled-only steppers (rk4, rk8) refuse any Python torque before it is called (tests/test_engine.py)
+@pytest.mark.parametrize("method", [name for name, m in METHODS.items() if m.supports_torque and not m.compiled_only])
 def test_a_bad_torque_model_gets_a_clear_error_from_every_method(method):
     bad = FunctionTorque(lambda t, w, att: [1.0, 2.0], "body")
     with pytest.raises(ValueError, match=r"the torque model returned \[1.0, 2.0\] at t = 0 s; expected finite numbers"):
@@ -270,7 +271,8 @@ def test_every_method_declares_its_capabilities_consistently(name):
     m = METHODS[name]
     assert m.name == name
     assert isinstance(m.closed_form, bool) and isinstance(m.stiff_solver, bool)
-    assert (m.splitting_order is not None) == m.fixed_step  # the splittings are the fixed-step methods
+    # the fixed-step methods: the splittings, and the engine's Runge-Kutta steppers (compiled only)
+    assert (m.splitting_order is not None or m.compiled_only) == m.fixed_step
     assert m.splitting_order in (None, 2, 4, 6)
     assert m.batched == (m.closed_form or m.splitting_order is not None)
     if m.closed_form:  # no steps and no tolerances, so nothing to carry a torque, rotors or a damper

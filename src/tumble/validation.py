@@ -344,6 +344,17 @@ def check_vector(field: str, value: object, unit: str, *, at_most: float | None 
     ...
     ValueError: offset = {1, 2, 3} must be a list of 3 numbers (m)
     """
+    if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
+        # the plain case first, in float arithmetic; anything it does not pass gets the full checks
+        x0, x1, x2 = value.tolist()
+        top = math.inf if at_most is None else at_most
+        if abs(x0) <= top and abs(x1) <= top and abs(x2) <= top and math.isfinite(x0 + x1 + x2):
+            return x0, x1, x2
+    elif type(value) in (tuple, list) and len(value) == 3 and all(type(v) in (float, int) for v in value):  # type: ignore[arg-type]
+        x0, x1, x2 = (float(v) for v in value)  # type: ignore[union-attr]
+        top = math.inf if at_most is None else at_most
+        if abs(x0) <= top and abs(x1) <= top and abs(x2) <= top and math.isfinite(x0 + x1 + x2):
+            return x0, x1, x2
     if isinstance(value, np.ndarray):
         ok = value.shape == (3,)
     else:
@@ -406,6 +417,11 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
         if not value.single:
             raise ValueError(f"{field} must be a single rotation, got a stack of {len(value)}")
         return tuple(float(x) for x in value.as_quat())  # type: ignore[return-value]
+    if type(value) is np.ndarray and value.shape == (4,) and value.dtype == np.float64:
+        # the plain case first: a quaternion near unit norm, in float arithmetic
+        x, y, z, w = value.tolist()
+        if abs(math.sqrt(x * x + y * y + z * z + w * w) - 1.0) <= QUAT_NORM_TOL:
+            return _unit_quaternion(value.tobytes())
     try:
         arr = np.array(value, dtype=float)
     except (TypeError, ValueError):

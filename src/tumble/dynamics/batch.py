@@ -8,7 +8,10 @@ at the same times. The methods are those of :func:`tumble.simulate` (:data:`METH
 - ``"geometric"``, ``"geometric2"``, ``"geometric6"``: the splitting integrators, which
   already advance every body together (:func:`tumble.dynamics.methods.geometric.propagate`); torques
   allowed, called with arrays of N bodies;
-- ``"dop853"``, ``"rk45"``, ``"seed"``: a loop of :func:`tumble.simulate`, one body at a time.
+- ``"dop853"``, ``"rk4"``, ``"rk8"`` under a built-in torque model (or none): the compiled engine
+  (:mod:`tumble.dynamics.engine`), every body on every core, each as a lone run would go;
+- ``"dop853"`` with a Python torque, ``"rk45"``, ``"seed"``: a loop of :func:`tumble.simulate`, one
+  body at a time.
 
 Each body's moments, omega and attitude are checked before anything runs; a bad one is named
 by its index (``omega0[3] = [nan, 1.0, 0.0] must be three finite numbers (rad/s)``).
@@ -17,6 +20,7 @@ by its index (``omega0[3] = [nan, 1.0, 0.0] must be three finite numbers (rad/s)
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 from typing import Any, cast
 
@@ -30,14 +34,23 @@ from ..validation import (
     MAX_RATE,
     QUAT_NORM_TOL,
     check_moments,
+    check_positive,
     refuse_first,
     short_repr,
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
-from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, spin_gain
-from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
+from .models.torques import (
+    TorqueLike,
+    TorqueModel,
+    as_torque,
+    bind_to_body,
+    kernel_form,
+    spin_gain,
+    spin_gains,
+)
+from .simulate import MAX_ROTATION, MAX_STEPS, check_rtol, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion
 from .trajectory import Trajectory
 
@@ -153,7 +166,8 @@ class BatchTrajectory:
 
 def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None = None, times: ArrayLike | None = None,
                    samples: int | None = None, attitude0: ArrayLike | None = None, method: str = "exact",
-                   torque: TorqueLike | None = None, step: float | None = None) -> BatchTrajectory:
+                   torque: TorqueLike | None = None, step: float | None = None, rtol: float | None = None,
+                   atol: float | None = None) -> BatchTrajectory:
     """Integrate the rotation of N rigid bodies, sampled at the same times.
 
     Parameters
@@ -185,8 +199,12 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         the loop methods call it per body. A model with ``bind`` (the gravity gradient) is bound
         to the moments of the bodies.
     step : float, optional
-        Largest step of the geometric methods, s; default 0.05 rad of rotation per step at the
-        fastest spin of the batch (so each body gets at most the step a lone run would).
+        Largest step of the fixed-step methods (the splittings, ``"rk4"``, ``"rk8"``), s; by
+        default the method's rotation per step (0.05 rad for the splittings) at the fastest spin
+        of the batch (so each body gets at most the step a lone run would).
+    rtol, atol : float, optional
+        Tolerances of ``"dop853"`` (and ``"rk45"``), as :func:`tumble.simulate` takes them; the
+        method's defaults if not given.
 
     Returns
     -------
@@ -228,8 +246,10 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         omega, quat = free_rotation_batch(I, w0, q0, t)
     elif spec.splitting_order is not None:  # every body together
         omega, quat = _splitting(spec, I, w0, q0, t, model, step)
+    elif spec.engine and kernel_form(bind_to_body(model, I)) is not None:  # compiled, every body on every core
+        omega, quat = _engine(spec, I, w0, q0, t, bind_to_body(model, I), step, rtol, atol)
     else:
-        omega, quat = _loop(spec.name, I, w0, q0, t, torque, step)
+        omega, quat = _loop(spec.name, I, w0, q0, t, torque, step, rtol, atol)
     return BatchTrajectory(t=t[keep], omega=omega[:, keep], quat=quat[:, keep], moments=I, method=spec.name,
                            torque_free=model is None)
 
@@ -349,12 +369,47 @@ def _splitting(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatAr
     return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
 
 
+def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, model: TorqueModel | None,
+            step: float | None, rtol: float | None, atol: float | None) -> tuple[Vector3, Quaternion]:
+    """The compiled engine's steppers (:mod:`tumble.dynamics.engine`), every body on every core,
+    each body with the tolerances or the step a lone :func:`tumble.simulate` run gives it."""
+    from .engine import run_bodies
+
+    t_end = float(t[-1])
+    spin = np.array([math.hypot(*w) for w in w0.tolist()])  # as simulate takes it, to the last bit
+    gains = np.broadcast_to(spin_gains(model, 0.0, w0, Rotation.from_quat(q0), I, t_end), spin.shape)  # per body
+    gain = float(np.max(gains))
+    with np.errstate(over="ignore", invalid="ignore"):
+        turns = float(np.max(spin)) * t_end + 0.5 * gain * t_end
+    if not turns <= MAX_ROTATION:
+        raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {float(np.max(spin)):.6g} rad/s (and a torque gain of "
+                         f"{gain:.3g} rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} "
+                         f"follows (at most {MAX_ROTATION:g} rad); use method exact or a shorter run")
+    form = cast(tuple[int, tuple[float, ...]], kernel_form(model))
+    if spec.fixed_step:  # each body's own default step, as a lone run takes it
+        rule = cast(StepRule, spec.default_step)
+        h = np.full(len(I), step) if step is not None else np.array([rule(s, g) for s, g in zip(spin.tolist(),
+                                                                                                 gains.tolist())])
+        if t_end / float(np.min(h)) > MAX_STEPS:
+            raise ValueError(f"step = {float(np.min(h)):.3g} s makes {t_end / float(np.min(h)):.3g} steps of a {t_end:g} s "
+                             f"run; at most {MAX_STEPS:g}")
+        omega, quat = run_bodies(spec.name, I, w0, q0, t, form, step=h)
+    else:
+        r = spec.rtol if rtol is None else check_rtol("rtol", rtol)
+        a = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
+        scale = np.maximum(np.maximum(spin, gains), 1e-300)  # atol relative to each body's omega, as simulate's
+        tol = np.column_stack([np.outer(a * scale, np.ones(3)), np.full((len(I), 4), a)])
+        omega, quat = run_bodies(spec.name, I, w0, q0, t, form, rtol=r, atol=tol)
+    return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
+
+
 def _loop(name: str, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, torque: TorqueLike | None,
-          step: float | None) -> tuple[Vector3, Quaternion]:
+          step: float | None, rtol: float | None = None, atol: float | None = None) -> tuple[Vector3, Quaternion]:
     """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's)."""
     omega, quat = np.empty((len(I), len(t), 3)), np.empty((len(I), len(t), 4))
     for i in range(len(I)):
         props = MassProperties(1.0, np.zeros(3), np.diag(I[i]), I[i].copy(), np.eye(3))
-        traj = simulate(props, w0[i], times=t, method=name, torque=torque, attitude0=q0[i], step=step)
+        traj = simulate(props, w0[i], times=t, method=name, torque=torque, attitude0=q0[i], step=step, rtol=rtol,
+                        atol=atol)
         omega[i], quat[i] = traj.omega, traj.quat
     return omega, quat

@@ -14,7 +14,7 @@ References
 
 from __future__ import annotations
 
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
@@ -23,6 +23,7 @@ from ..typing import ArrayLike, FloatArray, Vector3
 __all__ = [
     "angular_momentum",
     "energy_momentum_gaps",
+    "euler_components",
     "euler_rhs",
     "euler_rhs_tensor",
     "kinetic_energy",
@@ -58,7 +59,42 @@ def euler_rhs(omega: ArrayLike, moments: ArrayLike, torque: ArrayLike = 0.0) -> 
     """
     w = np.asarray(omega, dtype=float)
     I = np.asarray(moments, dtype=float)
-    return cast(Vector3, (np.cross(I * w, w) + torque) / I)
+    tau = np.asarray(torque, dtype=float)
+    w, I, tau = np.broadcast_arrays(w, I, tau if tau.ndim else np.full(3, float(tau)))
+    return cast(Vector3, np.stack(euler_components(w[..., 0], w[..., 1], w[..., 2], I[..., 0], I[..., 1], I[..., 2],
+                                                   tau[..., 0], tau[..., 1], tau[..., 2]), axis=-1))
+
+
+def euler_components(w0: Any, w1: Any, w2: Any, I0: Any, I1: Any, I2: Any, t0: Any, t1: Any, t2: Any) -> tuple[Any, Any, Any]:
+    """Euler's equations component by component: the one writing of the formula, over floats or arrays.
+
+    ``I1 w1' = (I2 w2) w3 - (I3 w3) w2 + tau_1`` and cyclic, i.e. ``((I w) x w + tau) / I``
+    (Goldstein, *Classical Mechanics*, 3rd ed., eq. 5.39'). Arguments are floats (the compiled
+    engine calls it, :mod:`tumble.dynamics.engine`) or arrays of one shape (:func:`euler_rhs`
+    calls it on columns): one formula for both paths.
+
+    Parameters
+    ----------
+    w0, w1, w2 : float or ndarray
+        Angular velocity, principal frame, rad/s.
+    I0, I1, I2 : float or ndarray
+        Principal moments, kg m^2.
+    t0, t1, t2 : float or ndarray
+        External torque, principal frame, N m.
+
+    Returns
+    -------
+    tuple of three floats or ndarrays
+        ``d omega / dt``, rad/s^2.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import euler_components
+    >>> euler_components(1.0, 1.0, 1.0, 1.0, 2.0, 3.0, 0.0, 0.0, 0.0)
+    (-1.0, 1.0, -0.3333333333333333)
+    """
+    a0, a1, a2 = I0 * w0, I1 * w1, I2 * w2
+    return (a1 * w2 - a2 * w1 + t0) / I0, (a2 * w0 - a0 * w2 + t1) / I1, (a0 * w1 - a1 * w0 + t2) / I2
 
 
 def euler_rhs_tensor(omega: ArrayLike, inertia: ArrayLike, torque: ArrayLike = 0.0) -> Vector3:

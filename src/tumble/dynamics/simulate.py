@@ -29,11 +29,14 @@ from .methods.integrators import (
 )
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import (
+    KERNEL_BODY,
+    ConstantTorque,
     FunctionTorque,
     TorqueLike,
     TorqueModel,
     as_torque,
     bind_to_body,
+    kernel_form,
     spin_gain,
 )
 from .trajectory import Trajectory
@@ -108,6 +111,8 @@ class RunInputs(NamedTuple):
     step: float | None
     torque: TorqueModel | None  # a torque model in the principal frame, or None
     internal: InternalModel | None = None  # rotors and/or a damper, or None
+    spin: float = 0.0  # the spin the run starts from, rad/s (_spin_bound; 0 for the closed form)
+    gain: float = 0.0  # bound on the spin the torque adds over the run, rad/s (_spin_gain; 0 for the closed form)
 
 
 def simulate(
@@ -210,7 +215,7 @@ def simulate(
     spec, model, tol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
     if spec.atol_scaled and tol is not None:
-        scale = max(_spin_bound(run), _spin_gain(model, run), 1e-300)
+        scale = max(run.spin, run.gain, 1e-300)
         tol = np.array([tol * scale] * 3 + [tol] * 4) if internal is None else internal.atol(tol, scale)
     extra: dict[str, Any] = {}  # the rotors' and the damper's fields of the Trajectory
     if internal is None:
@@ -221,10 +226,11 @@ def simulate(
         omega, quat = out.omega, out.quat
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
-    if not (np.isfinite(omega).all() and np.isfinite(quat).all()):
+    # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a sum)
+    if not math.isfinite(float(omega.sum()) + float(quat.sum())):
         raise RuntimeError(f"the {spec.name} integration produced non-finite values")
-    return Trajectory(
-        t=run.t[run.keep], omega=omega[run.keep], attitude=Rotation.from_quat(quat[run.keep]), moments=moments,
+    return Trajectory(  # the quaternions: the Rotation is built when first asked for
+        t=run.t[run.keep], omega=omega[run.keep], attitude=quat[run.keep], moments=moments,
         principal_axes=run.props.principal_axes, method=spec.name, torque_free=model is None,
         body_name=body.name if isinstance(body, Body) else "body", **extra,
     )
@@ -286,7 +292,14 @@ def sample_times(t_end: float | None = None, samples: int | None = None, dt: flo
     samples = DEFAULT_SAMPLES if samples is None else samples
     if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
         raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
-    return cast(FloatArray, np.linspace(0.0, t_end, int(samples))), slice(None)
+    return _grid(t_end, int(samples)).copy(), slice(None)
+
+
+@functools.lru_cache(maxsize=64)
+def _grid(t_end: float, samples: int) -> FloatArray:
+    """``linspace(0, t_end, samples)``, kept for repeated runs (numpy's linspace costs ~10 us);
+    callers get a copy."""
+    return np.linspace(0.0, t_end, samples)
 
 
 def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float | None = None, samples: int | None = None,
@@ -334,6 +347,10 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
+    if spec.compiled_only and kernel_form(model) is None:
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
+        raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
+                         f"(ConstantTorque, GravityGradient); for torque = {torque!r} use one of: {allowed}")
     if internal is not None and not spec.supports_internal:
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_internal)
@@ -343,26 +360,30 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     w0 = np.array(check_vector("omega0", omega0, "rad/s", at_most=MAX_RATE))
     t, keep = sample_times(t_end, samples, dt, times)
     t_end = float(t[-1])
-    if rtol is not None:
+    if rtol is not None and not (type(rtol) is float and RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]):  # else checked here
         rtol = check_rtol("rtol", rtol)
     rtol = spec.rtol if rtol is None else rtol
     atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
-    if not np.max(moments) <= MAX_INERTIA:
+    I = moments.tolist()  # float arithmetic: these checks cost nothing for plain inputs
+    if not max(I) <= MAX_INERTIA:
         raise ValueError(f"principal moments {moments.tolist()} kg m^2: beyond {MAX_INERTIA:g} kg m^2, more than any "
                          f"star's; use SI units of a sensible size")
     # a moment within the validity checks' tolerance of zero is a zero moment (a single thin
     # rod's eigh gives ~1e-17, not 0): the rotation about that axis is not well posed
-    if np.any(moments <= INERTIA_RTOL * np.sum(moments)):
+    if min(I) <= INERTIA_RTOL * (I[0] + I[1] + I[2]):
         raise ValueError(
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
         )
-    with np.errstate(over="ignore", invalid="ignore"):
-        energy = 0.5 * float(np.sum(moments * w0 * w0))
-        momentum = float(np.linalg.norm(moments * w0))
-    if not (np.isfinite(energy) and np.isfinite(momentum)):
+    w = w0.tolist()
+    try:
+        energy = 0.5 * (I[0] * w[0] * w[0] + I[1] * w[1] * w[1] + I[2] * w[2] * w[2])
+        momentum = math.hypot(I[0] * w[0], I[1] * w[1], I[2] * w[2])
+    except OverflowError:  # pragma: no cover - float arithmetic gives inf, not an error
+        energy = math.inf
+    if not (math.isfinite(energy) and math.isfinite(momentum)):
         raise ValueError(f"omega0 = {w0.tolist()} rad/s is too large: the kinetic energy of this body overflows")
     A = props.principal_axes  # principal -> design
     if frame == "design":
@@ -371,7 +392,11 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
             model = _design_torque(model, A)
     design_to_world = None if attitude0 is None else np.array(check_rotation("attitude0", attitude0)).tobytes()
     q0 = np.array(_initial_quat(design_to_world, np.asarray(A, float).tobytes()))
-    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal)
+    spin = gain = 0.0
+    if not spec.closed_form:  # a stepping method: its work is bounded by the spin it follows
+        spin = _spin_bound(internal, w0, t)
+        gain = _spin_gain(model, w0, q0, moments, t_end)
+    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal, spin, gain)
     _check_work(run)
     return run
 
@@ -395,10 +420,8 @@ def _check_work(run: RunInputs) -> None:
 
         check_phase_limit(run.props.principal_moments, run.omega0, t_end)
         return
-    spin = _spin_bound(run)
-    with np.errstate(over="ignore", invalid="ignore"):
-        gain = _spin_gain(run.torque, run)  # spin the torque can add over the run, rad/s
-        turns = spin * t_end + 0.5 * gain * t_end
+    spin, gain = run.spin, run.gain  # the spin the run starts from, and what the torque can add, rad/s
+    turns = spin * t_end + 0.5 * gain * t_end  # Python floats: an overflow is inf, refused below
     if not turns <= MAX_ROTATION:
         what = "|omega0|" if run.internal is None or run.internal.rotors is None else "|omega0| + 2 max|h| / I1"
         cause = f"{what} = {spin:.6g} rad/s" if gain == 0 else (
@@ -438,21 +461,33 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
                          f"Radau that {spec.name} hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")
 
 
-def _spin_bound(run: RunInputs) -> float:
+def _spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -> float:
     """The spin (rad/s) a run starts from, with what rotors can hand the body
     (:meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`)."""
-    if run.internal is None:
-        return float(np.linalg.norm(run.omega0))
-    return run.internal.spin_bound(run.omega0, run.t)
+    if internal is None:
+        return math.hypot(*omega0.tolist())
+    return float(internal.spin_bound(omega0, t))
 
 
-def _spin_gain(model: TorqueModel | None, run: RunInputs) -> float:
+def _spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion, moments: Vector3, t_end: float) -> float:
     """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
-    return spin_gain(model, 0.0, run.omega0, Rotation.from_quat(run.quat0), run.props.principal_moments, float(run.t[-1]))
+    if model is None:
+        return 0.0
+    return float(spin_gain(model, 0.0, omega0, _rotation(quat0.tobytes()), moments, t_end))
 
 
-def _design_torque(model: TorqueModel, A: Matrix3) -> FunctionTorque:
+@functools.lru_cache(maxsize=256)
+def _rotation(quat: bytes) -> Rotation:
+    """The scipy Rotation of a quaternion's float64 bytes, kept for repeated runs (~10 us each);
+    Rotation objects are not changed in place, so one can be shared."""
+    return Rotation.from_quat(np.frombuffer(quat))
+
+
+def _design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``w`` is
     one angular velocity (3,) or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T``
     is ``A w`` for each row)."""
+    form = kernel_form(model)
+    if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
+        return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
     return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att), float) @ A, "body")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -35,6 +35,37 @@ def _array(a: ArrayLike) -> FloatArray:
     return np.asarray(a, dtype=float)
 
 
+class _LazyRotation:
+    """A field of scipy Rotations that may be given as unit quaternions, (n, 4) scalar last, and
+    is made a Rotation on first use: building one costs ~10 us, more than a compiled run of a
+    few hundred steps (issue 31), and :attr:`Trajectory.quat` reads the quaternions without it.
+
+    A data descriptor, set on the class after the dataclass is made (so the field keeps no
+    default): the generated ``__init__`` stores through :meth:`__set__`.
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.slot = f"_{name}_value"
+
+    def __get__(self, obj: object, owner: type | None = None) -> Any:
+        if obj is None:  # on the class: the descriptor itself, as a property
+            return self
+        value = obj.__dict__[self.slot]
+        if not isinstance(value, Rotation):
+            value = Rotation.from_quat(value)
+            obj.__dict__[self.slot] = value
+        return value
+
+    def __set__(self, obj: object, value: Rotation | FloatArray) -> None:
+        obj.__dict__[self.slot] = value if isinstance(value, Rotation) else _array(value)
+
+    @staticmethod
+    def quaternions(obj: object, name: str) -> FloatArray:
+        """The field's quaternions, without building the Rotation if it was given as quaternions."""
+        value = obj.__dict__[f"_{name}_value"]
+        return value if not isinstance(value, Rotation) else _array(value.as_quat())
+
+
 @dataclass(frozen=True, eq=False)
 class Trajectory:
     """A sampled motion of a rigid body. Frozen; derived quantities are computed once, so
@@ -47,7 +78,8 @@ class Trajectory:
     omega : ndarray, shape (n, 3)
         Angular velocity in the principal frame, rad/s.
     attitude : scipy.spatial.transform.Rotation, n rotations
-        Body (principal) frame to world: ``x_world = attitude[k].apply(x_body)``.
+        Body (principal) frame to world: ``x_world = attitude[k].apply(x_body)``. May be given
+        as unit quaternions (n, 4), scalar last: the Rotation is then built on first use.
     moments : ndarray, shape (3,)
         Principal moments ``I1 <= I2 <= I3``, kg m^2.
     principal_axes : ndarray, shape (3, 3)
@@ -88,7 +120,7 @@ class Trajectory:
 
     t: np.ndarray
     omega: np.ndarray
-    attitude: Rotation
+    attitude: Rotation  # made a _LazyRotation after the class (below): it has no default
     moments: np.ndarray
     principal_axes: np.ndarray
     method: str
@@ -141,7 +173,7 @@ class Trajectory:
         >>> traj.quat.round(6).tolist()   # half a turn about z in one second
         [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 0.0]]
         """
-        return _array(self.attitude.as_quat())
+        return _LazyRotation.quaternions(self, "attitude")
 
     @functools.cached_property
     def angular_momentum(self) -> np.ndarray:
@@ -337,3 +369,8 @@ class Trajectory:
         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
         """
         return self.attitude * Rotation.from_matrix(self.principal_axes).inv()
+
+
+_ATTITUDE = _LazyRotation()
+_ATTITUDE.__set_name__(Trajectory, "attitude")
+setattr(Trajectory, "attitude", _ATTITUDE)  # noqa: B010 - the field, stored lazily (_LazyRotation)

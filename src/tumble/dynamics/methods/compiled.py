@@ -172,7 +172,7 @@ prange = range  # the uncompiled kernel's loop over bodies; numba's prange once 
 def _compiled(parallel: bool = False) -> Callable[..., None]:
     """The kernel compiled by numba on first use (see the module docstring): one thread, or
     one per core over the bodies (``parallel``); the same arithmetic for each body."""
-    from numba import njit
+    from ...jit import jit
     from numba import prange as numba_prange
 
     if not _compiled.__dict__.get("helpers"):
@@ -182,7 +182,7 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
         globals()["free_flow_into"] = compiled_flow.free_flow_into
         globals()["_gravity_gradient"] = compiled_control._compiled("_gravity_gradient")
         for name in ("_body_torque", "_rotate"):
-            globals()[name] = njit(cache=True, inline="always")(globals()[name])
+            globals()[name] = jit(inline="always")(globals()[name])
         globals()["prange"] = numba_prange
         _compiled.__dict__["helpers"] = True
     # the parallel kernel is a copy of _run under its own name, so that numba's cache keeps the two
@@ -191,7 +191,7 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
     if parallel:
         run = types.FunctionType(_run.__code__, globals(), "_run_parallel")
         run.__qualname__ = "_run_parallel"
-    return cast("Callable[..., None]", njit(cache=True, parallel=parallel)(run))
+    return cast("Callable[..., None]", jit(parallel=parallel)(run))
 
 
 def _cores() -> int:

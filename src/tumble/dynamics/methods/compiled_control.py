@@ -352,14 +352,14 @@ _HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gra
 def _compiled(name: str) -> Callable[..., Any]:
     """The function ``name`` compiled by numba on first use, with every helper (the helpers are
     compiled first so that the kernels call compiled code)."""
-    from numba import njit
+    from ...jit import jit
 
     if not _compiled.__dict__.get("helpers"):
         for helper in _HELPERS:
-            globals()[helper] = njit(cache=True, error_model="numpy")(globals()[helper])
+            globals()[helper] = jit(error_model="numpy")(globals()[helper])
         _compiled.__dict__["helpers"] = True
     function = globals()[name]
-    return cast("Callable[..., Any]", function if name in _HELPERS else njit(cache=True, error_model="numpy")(function))
+    return cast("Callable[..., Any]", function if name in _HELPERS else jit(error_model="numpy")(function))
 
 
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:

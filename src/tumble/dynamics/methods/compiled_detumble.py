@@ -210,7 +210,7 @@ _HELPERS = ("_bdot", "_orbit_table", "_batch_field", "_detumble_rhs")
 def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
     """The function ``name`` compiled by numba on first use; ``parallel`` the kernel over every
     core (a copy under its own name, so that numba's cache keeps the two apart, as in :mod:`.compiled`)."""
-    from numba import njit
+    from ...jit import jit
     from numba import prange as numba_prange
 
     from . import compiled_control
@@ -219,7 +219,7 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
         for helper in ("_dipole", "_gravity_gradient", "_to_body"):
             globals()[helper] = compiled_control._compiled(helper)
         for helper in _HELPERS:
-            globals()[helper] = njit(cache=True, error_model="numpy")(globals()[helper])
+            globals()[helper] = jit(error_model="numpy")(globals()[helper])
         globals()["prange"] = numba_prange
         _compiled.__dict__["helpers"] = True
     function = globals()[name]
@@ -229,7 +229,7 @@ def _compiled(name: str, parallel: bool = False) -> Callable[..., Any]:
         function = types.FunctionType(function.__code__, globals(), name + "_parallel")
         function.__qualname__ = name + "_parallel"
     # nogil: the batch draws the next segment's sensor noise in other threads meanwhile
-    return cast("Callable[..., Any]", njit(cache=True, parallel=parallel, nogil=True, error_model="numpy")(function))
+    return cast("Callable[..., Any]", jit(parallel=parallel, nogil=True, error_model="numpy")(function))
 
 
 def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,

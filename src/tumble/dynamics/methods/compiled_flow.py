@@ -270,9 +270,9 @@ def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
 @functools.cache
 def compiled_free_flow() -> Callable[[FloatArray, FloatArray, FloatArray, float], None]:
     """:func:`free_flow` compiled by numba (``cache=True``), each helper before its callers."""
-    from numba import njit
+    from ...jit import jit
 
     for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "_steady", "_gap", "free_flow_into",
                  "free_flow"):
-        globals()[name] = njit(cache=True)(globals()[name])
+        globals()[name] = jit()(globals()[name])
     return cast("Callable[[FloatArray, FloatArray, FloatArray, float], None]", globals()["free_flow"])

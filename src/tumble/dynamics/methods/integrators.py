@@ -55,7 +55,7 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
-from ..models.torques import TorqueModel, body_torque, spin_gain
+from ..models.torques import TorqueModel, body_torque, kernel_form, spin_gain
 from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
@@ -146,6 +146,12 @@ class Method:
     #: A fixed-step method's default largest step, ``default_step(spin, gain, rate)`` in s
     #: (:func:`tumble.dynamics.methods.geometric.default_step`); None for the others.
     default_step: StepRule | None = None
+    #: Whether the compiled engine (:mod:`tumble.dynamics.engine`) runs it when the torque is a
+    #: built-in model (:class:`~tumble.dynamics.models.torques.KernelForm`) and there are no rotors
+    #: or damper; ``simulate_batch`` then runs every body there, on every core.
+    engine: bool = False
+    #: Whether it runs only there: a torque that is a Python function is refused.
+    compiled_only: bool = False
 
     @property
     def stiff_solver(self) -> bool:
@@ -212,6 +218,13 @@ def _solve_full(method: str) -> Integrate:
         moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
         rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> tuple[Vector3, Quaternion]:
+        form = kernel_form(torque) if method == "DOP853" else None
+        if form is not None:  # a built-in model (or none): the compiled engine takes scipy's steps
+            from ..engine import run_body
+
+            tol = atol if isinstance(atol, np.ndarray) and atol.shape == (7,) else np.full(7, atol, dtype=float)
+            return run_body("dop853", np.asarray(moments, float), np.asarray(omega0, float), np.asarray(quat0, float),
+                            t, form, rtol=rtol, atol=tol)
         moments = np.asarray(moments, float)
 
         def rhs(time: float, y: FloatArray) -> FloatArray:
@@ -302,6 +315,43 @@ def _integrate_exact(
     return motion.omega(t), motion.attitude(t).as_quat()
 
 
+#: Default largest step of the fixed-step Runge-Kutta methods, as rotation per step (rad) at
+#: the fastest spin the run can reach: ~1e-13 of omega per step for RK8 and ~1e-10 for RK4
+#: (local errors (omega h)^(p+1), measured on the bench cases); ``step`` overrides it.
+RK_STEP_ANGLE = {"rk4": 0.01, "rk8": 0.2}
+
+
+def _engine_rk(name: str) -> Integrate:
+    """The compiled engine's fixed-step Runge-Kutta ``name`` (``"rk4"``, ``"rk8"``)."""
+
+    def integrate(
+        moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
+    ) -> tuple[Vector3, Quaternion]:
+        from ..engine import run_body
+
+        form = kernel_form(torque)
+        if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
+            raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "
+                             f"(ConstantTorque, GravityGradient) or none; use dop853 for {torque!r}")
+        w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
+        if step is None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), I, float(t[-1] - t[0]))
+            step = _rk_step(name)(float(np.linalg.norm(w0)), gain)
+        return run_body(name, I, w0, q0, t, form, step=step)
+
+    return integrate
+
+
+def _rk_step(name: str) -> StepRule:
+    def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
+        top = max(spin + gain, rate)
+        return RK_STEP_ANGLE[name] / top if top > 0 else float(np.inf)
+
+    return default_step
+
+
 def _geometric_internal(order: int) -> IntegrateInternal:
     def integrate(
         model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
@@ -347,7 +397,7 @@ METHODS: dict[str, Method] = {
                     closed_form=True),
     "dop853": Method("dop853", _solve_full("DOP853"), True, 1e-12, 1e-12,
                      "DOP853, omega and attitude together, tight tolerances (rtol 1e-12); Radau for a stiff damper",
-                     atol_scaled=True,
+                     atol_scaled=True, engine=True,
                      integrate_internal=_solve_internal("DOP853", stiff="Radau")),
     "rk45": Method("rk45", _solve_full("RK45"), True, 1e-3, 1e-6,
                    "RK45 at scipy's default tolerances (rtol 1e-3, atol 1e-6), as the seed ran it",
@@ -363,6 +413,12 @@ METHODS: dict[str, Method] = {
                                "fixed step", "exact_split"),
     "exact_split6": _splitting("exact_split6", 6, "exact free flow and torque kicks, 6th-order Yoshida composition, "
                                "fixed step", "exact_split"),
+    "rk4": Method("rk4", _engine_rk("rk4"), True, None, None,
+                  "classical RK4 at a fixed step, compiled (built-in torques only)",
+                  fixed_step=True, default_step=_rk_step("rk4"), engine=True, compiled_only=True),
+    "rk8": Method("rk8", _engine_rk("rk8"), True, None, None,
+                  "DOP853's 8th-order weights at a fixed step, compiled (built-in torques only)",
+                  fixed_step=True, default_step=_rk_step("rk8"), engine=True, compiled_only=True),
 }
 
 

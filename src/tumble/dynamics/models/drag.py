@@ -100,11 +100,11 @@ def _compiled() -> Callable[..., FloatArray]:
     numba costs half a second, which every ``tumble`` command would pay at start otherwise.
     The module's functions are replaced by their compiled versions in calling order, so that
     each is compiled against the compiled ones it calls."""
-    from numba import njit
+    from ...jit import jit
 
     names = ("_rate", "_advance", "_integrate")
     for name in names:
-        globals()[name] = njit(cache=True)(globals()[name])
+        globals()[name] = jit()(globals()[name])
     return cast("Callable[..., FloatArray]", globals()["_integrate"])
 
 

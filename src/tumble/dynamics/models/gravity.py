@@ -32,9 +32,10 @@ Lagrange region).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -49,6 +50,8 @@ from ...validation import (
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
 
+from ..special.quaternion import to_body
+from .torques import KERNEL_CIRCULAR_GRAVITY
 from .lvlh import (
     _LVLH0,
     LVLHState,
@@ -65,6 +68,7 @@ __all__ = [
     "GravityGradient",
     "LVLHState",
     "OrbitAngles",
+    "gradient_components",
     "gradient_torque",
     "lvlh_state",
     "orbit_frame_angles",
@@ -102,8 +106,28 @@ def gradient_torque(r_b: ArrayLike, moments: ArrayLike, rate2: ArrayLike) -> Vec
     >>> np.allclose(gradient_torque([s, s, 0.0], [1.0, 2.0, 3.0], 1e-6), [0.0, 0.0, 1.5e-6])
     True
     """
-    r = np.asarray(r_b, float)
-    return np.asarray(3.0 * np.asarray(rate2, float)[..., None] * np.cross(r, np.asarray(moments, float) * r), float)
+    r, I = np.broadcast_arrays(np.asarray(r_b, float), np.asarray(moments, float))
+    rate = np.asarray(rate2, float)
+    return np.stack(gradient_components(rate, I[..., 0], I[..., 1], I[..., 2], r[..., 0], r[..., 1], r[..., 2]), axis=-1)
+
+
+def gradient_components(rate2: Any, I0: Any, I1: Any, I2: Any, b0: Any, b1: Any, b2: Any) -> tuple[Any, Any, Any]:
+    """``3 rate2 r_b x (I r_b)`` component by component (N m, body frame): the one writing of
+    the gravity-gradient torque (Hughes, *Spacecraft Attitude Dynamics*, ch. 8, eq. 8.1.21),
+    over floats (the compiled kernels) or arrays of one shape (:func:`gradient_torque`).
+
+    ``rate2`` is ``mu / r^3`` (``n^2`` on a circle, 1/s^2), ``I0, I1, I2`` the principal moments
+    (kg m^2), ``b0, b1, b2`` the unit radius vector in the principal frame.
+
+    Examples
+    --------
+    >>> s = math.sqrt(0.5)
+    >>> [round(float(x), 12) for x in gradient_components(1e-6, 1.0, 2.0, 3.0, s, s, 0.0)]
+    [0.0, 0.0, 1.5e-06]
+    """
+    g = 3.0 * rate2
+    c0, c1, c2 = I0 * b0, I1 * b1, I2 * b2
+    return g * (b1 * c2 - b2 * c1), g * (b2 * c0 - b0 * c2), g * (b0 * c1 - b1 * c0)
 
 
 
@@ -249,7 +273,11 @@ class GravityGradient:
                     f"{I.tolist()}: leave moments out and let simulate bind it"
                 )
             return self
-        return replace(self, moments=cast("tuple[float, ...]", moments))  # made a tuple by __post_init__
+        try:
+            key = np.asarray(moments, dtype=float)
+        except (TypeError, ValueError):  # the constructor's checks name what is wrong
+            return replace(self, moments=cast("tuple[float, ...]", moments))
+        return _bound(self, key.tobytes(), key.shape)
 
     def radial_direction(self, t: ArrayLike) -> Vector3:
         """Unit radius vector ``(cos n t, sin n t, 0)`` in the world frame at ``t`` (s); shape ``t.shape + (3,)``.
@@ -351,12 +379,23 @@ class GravityGradient:
         True
         """
         I, n = self._moments(), self._n
-        inv = attitude.inv()
-        r_b = inv.apply(self.radial_direction(t))
-        o_b = inv.apply([0.0, 0.0, 1.0])
-        w_r = np.asarray(omega, dtype=float) - n * o_b
-        return cast(FloatArray, 0.5 * np.sum(w_r * I * w_r, axis=-1)
-                    + 0.5 * n**2 * np.sum(3.0 * r_b * I * r_b - o_b * I * o_b, axis=-1))
+        q, w = attitude.as_quat(), np.asarray(omega, dtype=float)
+        c: Any
+        si: Any
+        if q.ndim == 1 and w.shape == (3,) and I.ndim == 1 and np.ndim(t) == 0:  # one state: float arithmetic
+            (x, y, z, s), (w0, w1, w2), (I0, I1, I2) = q.tolist(), w.tolist(), I.tolist()
+            c, si = math.cos(n * float(cast(float, t))), math.sin(n * float(cast(float, t)))
+        else:
+            x, y, z, s, w0, w1, w2 = q[..., 0], q[..., 1], q[..., 2], q[..., 3], w[..., 0], w[..., 1], w[..., 2]
+            I0, I1, I2 = I[..., 0], I[..., 1], I[..., 2]
+            nt = n * np.asarray(t, dtype=float)
+            c, si = np.cos(nt), np.sin(nt)
+        r0, r1, r2 = to_body(x, y, z, s, c, si, 0.0)  # R^T r, r in the orbit plane
+        o0, o1, o2 = to_body(x, y, z, s, 0.0, 0.0, 1.0)  # R^T (orbit normal)
+        u0, u1, u2 = w0 - n * o0, w1 - n * o1, w2 - n * o2  # omega relative to the orbiting frame
+        kinetic = I0 * u0 * u0 + I1 * u1 * u1 + I2 * u2 * u2
+        potential = 3.0 * (I0 * r0 * r0 + I1 * r1 * r1 + I2 * r2 * r2) - (I0 * o0 * o0 + I1 * o1 * o1 + I2 * o2 * o2)
+        return cast(FloatArray, np.asarray(0.5 * kinetic + 0.5 * n**2 * potential, dtype=float))
 
     def max_spin(self, t: float, omega: np.ndarray, attitude: Rotation) -> FloatArray:
         """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state.
@@ -383,8 +422,27 @@ class GravityGradient:
         """
         I, n = self._moments(), self._n
         h = self.jacobi_integral(t, omega, attitude)
+        if I.ndim == 1 and h.ndim == 0:  # one state: float arithmetic (I ascending, as principal moments are)
+            low, high = min(I.tolist()), max(I.tolist())
+            return cast(FloatArray, np.float64(n + math.sqrt(2.0 * max(float(h) + 0.5 * n**2 * high - 1.5 * n**2 * low, 0.0) / low)))
         t2_max = h + 0.5 * n**2 * np.max(I, axis=-1) - 1.5 * n**2 * np.min(I, axis=-1)
         return cast(FloatArray, n + np.sqrt(2.0 * np.maximum(t2_max, 0.0) / np.min(I, axis=-1)))
+
+    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
+        """The compiled engine's form (:class:`~tumble.dynamics.models.torques.KernelForm`): the
+        mean motion (rad/s) of the circle; the engine reads the moments from the body it runs,
+        the ones this model is bound to. None before :meth:`bind` (a model with no moments).
+
+        Examples
+        --------
+        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
+        >>> kind, (n,) = gg.kernel_form()
+        >>> kind == KERNEL_CIRCULAR_GRAVITY, round(n * 5400.0 / math.pi, 12)
+        (True, 2.0)
+        """
+        if self._I is None:
+            return None
+        return KERNEL_CIRCULAR_GRAVITY, (float(self._n),)
 
     def _moments(self) -> Vector3:
         if self._I is None:
@@ -392,3 +450,9 @@ class GravityGradient:
         return self._I
 
 
+@functools.lru_cache(maxsize=64)
+def _bound(model: GravityGradient, moments: bytes, shape: tuple[int, ...]) -> GravityGradient:
+    """``model`` bound to the moments of these float64 bytes, kept for repeated runs of a body
+    (the constructor's checks cost ~60 us); the models are frozen, so one can be shared."""
+    I = np.frombuffer(moments).reshape(shape).copy()
+    return replace(model, moments=cast("tuple[float, ...]", I.tolist() if I.ndim == 1 else I))

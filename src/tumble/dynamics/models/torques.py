@@ -34,6 +34,7 @@ True
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, TypeAlias, cast, runtime_checkable
@@ -41,7 +42,7 @@ from typing import TYPE_CHECKING, Protocol, TypeAlias, cast, runtime_checkable
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ...typing import ArrayLike, Vector3
+from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 
@@ -52,13 +53,20 @@ __all__ = [
     "BoundsSpin",
     "ConstantTorque",
     "FunctionTorque",
+    "KERNEL_BODY",
+    "KERNEL_CIRCULAR_GRAVITY",
+    "KERNEL_NONE",
+    "KERNEL_WORLD",
+    "KernelForm",
     "NeedsBody",
     "TorqueModel",
     "as_torque",
     "bind_to_body",
     "body_torque",
     "conforms",
+    "kernel_form",
     "spin_gain",
+    "spin_gains",
 ]
 
 TORQUE_FRAMES = ("body", "world")
@@ -208,6 +216,46 @@ def _check_frame(frame: str) -> str:
     return frame
 
 
+#: The kinds of torque the compiled engine evaluates itself (:mod:`tumble.dynamics.engine`),
+#: named by a model's :meth:`KernelForm.kernel_form`: none, a constant body-frame torque, a
+#: constant world-frame torque, the gravity gradient of a circular orbit.
+KERNEL_NONE, KERNEL_BODY, KERNEL_WORLD, KERNEL_CIRCULAR_GRAVITY = 0, 1, 2, 3
+
+
+@runtime_checkable
+class KernelForm(Protocol):
+    """A torque model the compiled engine evaluates itself: the one declared interface.
+
+    ``kernel_form()`` returns ``(kind, parameters)``: a kind from ``KERNEL_*`` and the floats the
+    engine's formula for that kind reads (:func:`tumble.dynamics.engine.kernels.external_torque`),
+    or None when this instance cannot be compiled (then the run keeps the Python path, which
+    calls the model). A subclass that changes ``__call__`` must change or drop ``kernel_form``.
+
+    Examples
+    --------
+    >>> ConstantTorque((0.0, 0.0, 1.0), "world").kernel_form() == (KERNEL_WORLD, (0.0, 0.0, 1.0))
+    True
+    """
+
+    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None: ...
+
+
+def kernel_form(model: object) -> tuple[int, tuple[float, ...]] | None:
+    """``model.kernel_form()`` for a model that declares one (:class:`KernelForm`), else None.
+
+    Examples
+    --------
+    >>> kernel_form(None) == (KERNEL_NONE, ())
+    True
+    >>> kernel_form(FunctionTorque(lambda t, omega, attitude: -omega)) is None   # Python's to call
+    True
+    """
+    if model is None:
+        return KERNEL_NONE, ()
+    form = getattr(model, "kernel_form", None)
+    return form() if callable(form) else None
+
+
 @dataclass(frozen=True)
 class ConstantTorque:
     """A constant torque vector (N m), fixed in the body or in the world frame.
@@ -243,6 +291,16 @@ class ConstantTorque:
         [1.0, 0.0, 0.0]
         """
         return np.array(self.vector)
+
+    def kernel_form(self) -> tuple[int, tuple[float, ...]]:
+        """The compiled engine's form (:class:`KernelForm`): the vector (N m) in its frame.
+
+        Examples
+        --------
+        >>> ConstantTorque((1.0, 0.0, 0.0)).kernel_form() == (KERNEL_BODY, (1.0, 0.0, 0.0))
+        True
+        """
+        return (KERNEL_WORLD if self.frame == "world" else KERNEL_BODY), tuple(float(v) for v in self.vector)
 
 
 @dataclass(frozen=True)
@@ -403,15 +461,8 @@ def spin_gain(
     model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation, moments: ArrayLike, duration: float
 ) -> float:
     """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
-    bounding a run's work and choosing default steps.
-
-    A model that knows a bound on ``|omega|`` for the whole motion says so through a method
-    ``max_spin(t, omega, attitude)`` (:class:`BoundsSpin`; the gravity gradient does, from its
-    Jacobi integral);
-    otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
-    |tau| t`` and ``|omega| <= |L| / I1``) and an estimate from the start for any other. 0
-    without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for :func:`body_torque`;
-    ``moments`` (3,) or (N, 3), kg m^2; the largest gain over the batch.
+    bounding a run's work and choosing default steps: the largest of :func:`spin_gains` over
+    a batch.
 
     Examples
     --------
@@ -426,10 +477,45 @@ def spin_gain(
     """
     if model is None:
         return 0.0
+    return float(np.max(spin_gains(model, t, omega, attitude, moments, duration)))
+
+
+def spin_gains(
+    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
+    duration: float,
+) -> FloatArray:
+    """Per body, a bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s).
+
+    A model that knows a bound on ``|omega|`` for the whole motion says so through a method
+    ``max_spin(t, omega, attitude)`` (:class:`BoundsSpin`; the gravity gradient does, from its
+    Jacobi integral);
+    otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
+    |tau| t`` and ``|omega| <= |L| / I1``; no attitude needed) and an estimate from the start
+    for any other. 0 without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for
+    :func:`body_torque`; ``moments`` (3,) or (N, 3), kg m^2. Shape () or (N,).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.torques import ConstantTorque, spin_gains
+    >>> spin_gains(ConstantTorque((0.0, 0.0, 0.5)), 0.0, np.zeros((2, 3)), None, [[2.0, 3.0, 4.0], [1.0, 3.0, 4.0]],
+    ...            10.0).tolist()
+    [2.5, 5.0]
+    """
     w = np.asarray(omega, float)
+    I = np.asarray(moments, float)
+    if model is None:
+        return np.zeros(w.shape[:-1])
+    form = kernel_form(model)
     with np.errstate(over="ignore", invalid="ignore"):
+        if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
+            if I.ndim == 1 and w.ndim == 1:  # one body: float arithmetic (the same operations)
+                return np.float64(math.hypot(*form[1]) / min(I.tolist()) * duration)  # type: ignore[return-value]
+            return cast(FloatArray, math.hypot(*form[1]) / np.min(I, axis=-1) * duration + np.zeros(w.shape[:-1]))
+        if attitude is None:
+            raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
         if conforms(model, BoundsSpin):
             top = np.asarray(cast(BoundsSpin, model).max_spin(t, w, attitude), float)
-            return float(np.max(np.maximum(top - np.linalg.norm(w, axis=-1), 0.0)))
+            return cast(FloatArray, np.maximum(top - np.linalg.norm(w, axis=-1), 0.0))
         tau = body_torque(model, t, w, attitude)  # checks the model's answer
-        return float(np.max(np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1))) * duration
+        return cast(FloatArray, np.linalg.norm(tau, axis=-1) / np.min(I, axis=-1) * duration)

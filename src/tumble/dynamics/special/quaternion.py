@@ -9,11 +9,14 @@ tested against scipy. All broadcast over leading axes.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ...typing import ArrayLike, FloatOrArray, Quaternion, Vector3
 
-__all__ = ["quat_conjugate", "quat_multiply", "quat_zxz", "quaternion_rate", "rotate_by_quaternion"]
+__all__ = ["quat_conjugate", "quat_multiply", "quat_zxz", "quaternion_rate", "quaternion_rate_components", "rotate_by_quaternion",
+           "to_body"]
 
 
 def rotate_by_quaternion(quat: ArrayLike, v: ArrayLike) -> Vector3:
@@ -132,7 +135,44 @@ def quaternion_rate(quat: ArrayLike, omega: ArrayLike) -> Quaternion:
     """
     q = np.asarray(quat, float)
     w = np.asarray(omega, float)
-    v, s = q[..., :3], q[..., 3:]
-    dv = 0.5 * (s * w + np.cross(v, w))
-    ds = -0.5 * np.sum(v * w, axis=-1, keepdims=True)
-    return np.concatenate([dv, ds], axis=-1)
+    q, w = np.broadcast_arrays(q, w[..., [0, 1, 2, 0]])
+    return np.stack(quaternion_rate_components(q[..., 0], q[..., 1], q[..., 2], q[..., 3],
+                                               w[..., 0], w[..., 1], w[..., 2]), axis=-1)
+
+
+def quaternion_rate_components(x: Any, y: Any, z: Any, s: Any, w0: Any, w1: Any,
+                               w2: Any) -> tuple[Any, Any, Any, Any]:
+    """``q' = q (x) (omega, 0) / 2`` component by component, the one writing of the kinematics.
+
+    For ``q = (v, s)`` (scalar last) and body-frame ``omega``: ``v' = (s omega + v x omega) / 2``,
+    ``s' = -(v . omega) / 2`` (Shuster, J. Astronaut. Sci. 41 (1993) 439, eq. 305). Floats (the
+    compiled engine) or arrays of one shape (:func:`quaternion_rate` calls it on columns).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.special.quaternion import quaternion_rate_components
+    >>> quaternion_rate_components(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 2.0)
+    (0.0, 0.0, 1.0, -0.0)
+    """
+    return (0.5 * (s * w0 + (y * w2 - z * w1)), 0.5 * (s * w1 + (z * w0 - x * w2)),
+            0.5 * (s * w2 + (x * w1 - y * w0)), -0.5 * (x * w0 + y * w1 + z * w2))
+
+
+def to_body(x: Any, y: Any, z: Any, s: Any, v0: Any, v1: Any, v2: Any) -> tuple[Any, Any, Any]:
+    """``R^T v``, the world vector ``v`` in the body frame of the quaternion ``(x, y, z, s)``.
+
+    ``R`` (body to world) from the quaternion, scalar last, Shuster 1993 eq. 161, here
+    transposed; the quaternion need not be normalised (``R`` then scales by ``|q|^2``: divide
+    first where it matters). Floats (the compiled kernels) or arrays of one shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.special.quaternion import to_body
+    >>> c = float(np.sqrt(0.5))   # 90 degrees about z: world x is body -y
+    >>> [round(float(u), 12) for u in to_body(0.0, 0.0, c, c, 1.0, 0.0, 0.0)]
+    [0.0, -1.0, 0.0]
+    """
+    return ((1 - 2 * (y * y + z * z)) * v0 + 2 * (x * y + z * s) * v1 + 2 * (x * z - y * s) * v2,
+            2 * (x * y - z * s) * v0 + (1 - 2 * (x * x + z * z)) * v1 + 2 * (y * z + x * s) * v2,
+            2 * (x * z + y * s) * v0 + 2 * (y * z - x * s) * v1 + (1 - 2 * (x * x + y * y)) * v2)

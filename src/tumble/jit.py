@@ -1,0 +1,197 @@
+"""Compiling tumble's kernels with numba: one function, and an on-disk cache that tells the truth.
+
+Every compiled kernel of tumble goes through :func:`jit`. It is numba's ``njit(cache=True)``
+with two things numba does not do by itself:
+
+- **A cache keyed on every source a kernel may call.** numba keys a cached kernel on its own
+  file only: a kernel that calls a compiled function of another file keeps running the old
+  machine code after that file is edited, until the cache files are deleted (reported in
+  issue 27). Here the key (numba's "source stamp") is a SHA-256 of every ``.py`` file of
+  ``tumble.dynamics``, where all the kernels and the model functions they call live, so an edit
+  anywhere there recompiles every kernel on its next use. The hash reads ~1 MB once per process,
+  a few ms, and only when a kernel is compiled or loaded.
+- **A cache that never stops a run.** The cache goes beside the sources (``__pycache__``, as
+  numba does) where that folder is writable, else under ``$NUMBA_CACHE_DIR`` or the user's cache
+  folder (``$XDG_CACHE_HOME`` or ``~/.cache``, ``tumble/numba``), else in a temporary folder of the
+  process: an install whose package and cache folders are read-only compiles on first use and
+  runs, with no error (numba alone fails with "cannot cache function ...: no locator available").
+
+The locator is registered with numba's ``CacheImpl._locator_classes`` (numba's hook for where a
+function's cache lives; numba >= 0.59) and answers only for functions of ``tumble`` modules.
+Written by hand because no library keys numba's cache on more than one file.
+
+Examples
+--------
+>>> from tumble.jit import jit, source_stamp
+>>> def twice(x):
+...     return 2.0 * x
+>>> jit(twice)(1.5)
+3.0
+>>> len(source_stamp())   # hex SHA-256 of tumble.dynamics' sources
+64
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, TypeVar, cast, overload
+
+__all__ = ["cache_root", "jit", "source_stamp"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+#: The package folder (``tumble/``) and the sources whose hash keys every kernel.
+PACKAGE = Path(__file__).resolve().parent
+SOURCES = PACKAGE / "dynamics"
+
+
+@functools.cache
+def source_stamp() -> str:
+    """The SHA-256 (hex) of every ``.py`` file under ``tumble/dynamics``, paths and contents.
+
+    Computed once per process: a process sees the sources it imported.
+
+    Examples
+    --------
+    >>> source_stamp() == source_stamp()
+    True
+    """
+    digest = hashlib.sha256()
+    for path in sorted(SOURCES.rglob("*.py")):
+        digest.update(path.relative_to(PACKAGE).as_posix().encode())
+        digest.update(b"\0")
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def _writable(folder: Path) -> bool:
+    """Whether ``folder`` exists or can be made, and takes a file (numba's own test)."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError:
+        return False
+    return True
+
+
+@functools.cache
+def cache_root() -> Path | None:
+    """Where kernels are cached when the package's own folders are read-only: ``$NUMBA_CACHE_DIR``
+    or the user's cache folder (``tumble/numba`` under ``$XDG_CACHE_HOME`` or ``~/.cache``), else
+    a temporary folder of this process; None when not even that can be written (then no cache).
+
+    Examples
+    --------
+    >>> root = cache_root()
+    >>> root is None or root.is_dir()
+    True
+    """
+    candidates = []
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / "tumble")
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    candidates.append(Path(base) / "tumble" / "numba")
+    for folder in candidates:
+        if _writable(folder):
+            return folder
+    try:
+        return Path(tempfile.mkdtemp(prefix="tumble-numba-"))
+    except OSError:
+        return None
+
+
+def _folder_for(source: Path) -> Path | None:
+    """The cache folder of a kernel defined in ``source``: its ``__pycache__`` when writable,
+    else the same relative place under :func:`cache_root`."""
+    beside = source.parent / "__pycache__"
+    if _writable(beside):
+        return beside
+    root = cache_root()
+    if root is None:
+        return None
+    try:
+        relative = source.parent.relative_to(PACKAGE.parent)
+    except ValueError:
+        relative = Path(hashlib.sha1(str(source.parent).encode()).hexdigest())
+    folder = root / relative
+    return folder if _writable(folder) else None
+
+
+@functools.cache
+def _install_locator() -> bool:
+    """Register the locator with numba (once); False where numba's hook is missing (then the
+    kernels compile without a cache, see :func:`jit`)."""
+    from numba.core import caching
+
+    base = getattr(caching, "_CacheLocator", None)
+    impl = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    if base is None or impl is None or not hasattr(impl, "_locator_classes"):
+        return False
+
+    class SourceTreeLocator(base):  # type: ignore[misc, valid-type]
+        """Caches a tumble kernel in :func:`_folder_for`, stamped with :func:`source_stamp`."""
+
+        def __init__(self, py_func: Callable[..., Any], folder: Path) -> None:
+            self._lineno = py_func.__code__.co_firstlineno
+            self._folder = str(folder)
+
+        def ensure_cache_path(self) -> None:
+            os.makedirs(self._folder, exist_ok=True)
+
+        def get_cache_path(self) -> str:
+            return self._folder
+
+        def get_source_stamp(self) -> str:
+            return source_stamp()
+
+        def get_disambiguator(self) -> str:
+            return str(self._lineno)
+
+        @classmethod
+        def from_function(cls, py_func: Callable[..., Any], py_file: str) -> SourceTreeLocator | None:
+            module = getattr(py_func, "__module__", "") or ""
+            if not (module == "tumble" or module.startswith("tumble.")) or not os.path.exists(py_file):
+                return None
+            folder = _folder_for(Path(py_file).resolve())
+            return None if folder is None else cls(py_func, folder)
+
+    impl._locator_classes.insert(0, SourceTreeLocator)
+    return True
+
+
+@overload
+def jit(function: F, **options: Any) -> F: ...
+
+
+@overload
+def jit(function: None = None, **options: Any) -> Callable[[F], F]: ...
+
+
+def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
+    """``numba.njit(cache=True, **options)`` with tumble's cache (module docstring).
+
+    Use as ``jit(f)``, ``jit(f, parallel=True)`` or as a decorator, ``@jit`` or ``@jit(inline="always")``.
+    numba is imported on the first call, so a module that only defines kernels costs nothing
+    until one is compiled. Where no folder can hold a cache, the kernel compiles without one.
+
+    Examples
+    --------
+    >>> @jit(error_model="numpy")
+    ... def ratio(a, b):
+    ...     return a / b
+    >>> ratio(1.0, 0.0)   # numpy's error model: inf, not ZeroDivisionError
+    inf
+    """
+    if function is None:
+        return lambda f: jit(f, **options)
+    from numba import njit
+
+    source = Path(function.__code__.co_filename)
+    # a function typed at a prompt or in a doctest has no file to key a cache on
+    cache = source.is_file() and _install_locator() and _folder_for(source.resolve()) is not None
+    return cast(F, njit(cache=cache, **options)(function))

@@ -1,0 +1,125 @@
+"""tumble.jit: numba's on-disk cache keyed on every source a kernel may call, and a cache that never
+stops a run (a read-only install, no writable cache folder)."""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+import tumble
+from tumble import jit as jit_module
+
+PACKAGE = Path(tumble.__file__).resolve().parent
+
+#: A run of a compiled path whose answer depends on Euler's equations (dynamics/euler.py), which
+#: the engine's kernels (dynamics/engine/kernels.py) call from another file.
+PROBE = textwrap.dedent("""
+    import numpy as np, tumble
+    traj = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), [0.3, 1.0, 0.2], t_end=1.0,
+                           samples=2, method="rk8", step=0.1, torque=tumble.ConstantTorque((0.0, 0.0, 0.0)))
+    from tumble.dynamics.engine import kernels
+    print(repr(float(traj.omega[-1, 0])), kernels.fixed_rk.stats.cache_hits.total(), kernels.fixed_rk.stats.cache_misses.total())
+""")
+
+
+def _copy_package(tmp_path: Path) -> Path:
+    root = tmp_path / "site"
+    shutil.copytree(PACKAGE, root / "tumble", ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
+    return root
+
+
+def _run(root: Path, env_extra: dict[str, str] | None = None) -> tuple[float, int, int]:
+    env = {**os.environ, "PYTHONPATH": str(root), **(env_extra or {})}
+    out = subprocess.run([sys.executable, "-c", PROBE], env=env, capture_output=True, text=True, timeout=600,
+                         check=True, cwd=root)
+    value, hits, misses = out.stdout.split()
+    return float(value), int(hits), int(misses)
+
+
+def test_an_edited_callee_in_another_file_is_seen_by_the_next_run(tmp_path):
+    """numba alone keys a kernel's cache on its own file: after euler.py is edited, the kernel in
+    engine/kernels.py that calls it would keep the old machine code. tumble's stamp covers every
+    source of tumble.dynamics, so the next run recompiles and sees the edit."""
+    root = _copy_package(tmp_path)
+    first, _, misses = _run(root)
+    assert misses == 1  # compiled and cached
+    again, hits, misses = _run(root)
+    assert (again, hits, misses) == (first, 1, 0)  # loaded from the cache: same answer
+    euler = root / "tumble" / "dynamics" / "euler.py"
+    text = euler.read_text()
+    old = "return (a1 * w2 - a2 * w1 + t0) / I0,"
+    assert old in text
+    euler.write_text(text.replace(old, "return (a1 * w2 - a2 * w1 + t0) / I0 + 1.0,"))  # d omega_1/dt + 1 rad/s^2
+    edited, hits, misses = _run(root)
+    assert misses == 1 and hits == 0  # the stale entry was not used
+    assert abs(edited - first) > 0.5  # about one more rad/s after 1 s: the old machine code would give `first`
+
+
+def test_source_stamp_follows_the_sources(tmp_path, monkeypatch):
+    (tmp_path / "dynamics").mkdir()
+    source = tmp_path / "dynamics" / "a.py"
+    source.write_text("x = 1\n")
+    monkeypatch.setattr(jit_module, "PACKAGE", tmp_path)
+    monkeypatch.setattr(jit_module, "SOURCES", tmp_path / "dynamics")
+    jit_module.source_stamp.cache_clear()
+    try:
+        first = jit_module.source_stamp()
+        source.write_text("x = 2\n")
+        jit_module.source_stamp.cache_clear()
+        assert jit_module.source_stamp() != first
+    finally:
+        jit_module.source_stamp.cache_clear()
+
+
+def _probe_module(tmp_path: Path, name: str):
+    """A module of the tumble package (so tumble's locator answers for it) from a file in tmp_path."""
+    path = tmp_path / f"{name}.py"
+    path.write_text("def triple(x):\n    return 3.0 * x\n")
+    spec = importlib.util.spec_from_file_location(f"tumble.{name}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_no_writable_folder_compiles_without_a_cache(tmp_path, monkeypatch):
+    """The package's folders and every cache folder read-only: the kernel compiles and runs, with
+    no error (numba alone: "cannot cache function ...: no locator available")."""
+    monkeypatch.setattr(jit_module, "_writable", lambda folder: False)
+    monkeypatch.setattr(jit_module, "cache_root", lambda: None)
+    module = _probe_module(tmp_path, "_probe_readonly")
+    kernel = jit_module.jit(module.triple)
+    assert kernel(2.0) == 6.0
+    assert not kernel._cache.cache_path or not list(tmp_path.rglob("*.nbi"))
+
+
+def test_a_read_only_package_caches_under_the_users_folder(tmp_path, monkeypatch):
+    """Beside the sources is read-only: the cache goes under cache_root(), the same relative place."""
+    elsewhere = tmp_path / "cache"
+    beside = tmp_path / "pkg"
+    beside.mkdir()
+    monkeypatch.setattr(jit_module, "_writable", lambda folder: not str(folder).startswith(str(beside)))
+    monkeypatch.setattr(jit_module, "cache_root", lambda: elsewhere)
+    module = _probe_module(beside, "_probe_userdir")
+    kernel = jit_module.jit(module.triple)
+    assert kernel(2.0) == 6.0
+    assert list(elsewhere.rglob("*.nbi")) and not list(beside.rglob("*.nbi"))
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders; the tests above cover it")
+def test_a_read_only_install_runs_a_compiled_path(tmp_path):  # pragma: no cover - runs as a plain user
+    root = _copy_package(tmp_path)
+    for folder, _, files in os.walk(root):
+        for f in files:
+            os.chmod(os.path.join(folder, f), 0o444)
+        os.chmod(folder, 0o555)
+    blocked = tmp_path / "nocache"
+    blocked.mkdir(mode=0o555)
+    value, _, _ = _run(root, {"NUMBA_CACHE_DIR": str(blocked), "XDG_CACHE_HOME": str(blocked)})
+    assert value == value  # ran, a number
