@@ -6,17 +6,13 @@ the physics layers may not import matplotlib (the import-linter contract in pypr
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import Protocol
 
 import numpy as np
 
 from .._html import escape_text, fmt, html_table, short_name, vec
 from ..typing import ArrayLike, FloatArray, IntArray
-
-if TYPE_CHECKING:
-    from .batch import BatchTrajectory
-    from .trajectory import Trajectory
 
 __all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
 
@@ -26,7 +22,49 @@ SVG_POINTS = 300
 COLORS = ("#1f77b4", "#ff7f0e", "#2ca02c")
 
 
-def _extras(traj: Trajectory) -> list[str]:
+class _Batch(Protocol):
+    """What the display reads of a :class:`~tumble.dynamics.batch.BatchTrajectory`: its samples
+    ``t`` (s), its method and whether it ran torque-free.
+
+    A protocol, not the class: :mod:`tumble.dynamics.batch` and :mod:`tumble.dynamics.trajectory`
+    import this module, and the import graph has no circles.
+    """
+
+    @property
+    def t(self) -> FloatArray: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def torque_free(self) -> bool: ...
+    def __len__(self) -> int: ...
+
+
+class _Run(_Batch, Protocol):
+    """What the display reads of a :class:`~tumble.dynamics.trajectory.Trajectory` (SI units)."""
+
+    @property
+    def body_name(self) -> str: ...
+    @property
+    def omega(self) -> FloatArray: ...
+    @property
+    def energy(self) -> FloatArray: ...
+    @property
+    def angular_momentum_norm(self) -> FloatArray: ...
+    @property
+    def drift(self) -> Mapping[str, float | None]: ...
+    @property
+    def rigid(self) -> bool: ...
+    @property
+    def rotor_axial_moments(self) -> FloatArray | None: ...
+    @property
+    def damper_inertia(self) -> float | None: ...
+    @property
+    def damper_omega(self) -> FloatArray | None: ...
+    @property
+    def dissipated(self) -> FloatArray | None: ...
+
+
+def _extras(traj: _Run) -> list[str]:
     extras: list[str] = []
     if traj.rotor_axial_moments is not None:
         k = len(traj.rotor_axial_moments)
@@ -47,7 +85,7 @@ def _run_repr(
     return f"{kind}({', '.join(parts)})"
 
 
-def trajectory_repr(traj: Trajectory) -> str:
+def trajectory_repr(traj: _Run) -> str:
     """``Trajectory('T-handle', dop853, 500 samples, t = 0..20 s, torque-free)``.
 
     Examples
@@ -60,7 +98,7 @@ def trajectory_repr(traj: Trajectory) -> str:
     return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method, traj.torque_free, _extras(traj))
 
 
-def batch_repr(batch: BatchTrajectory) -> str:
+def batch_repr(batch: _Batch) -> str:
     """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``.
 
     Examples
@@ -171,7 +209,7 @@ def _drift_text(value: float | None) -> str:
     return "n/a (starts at zero)" if value is None else f"{value:.2e}"
 
 
-def trajectory_html(traj: Trajectory) -> str:
+def trajectory_html(traj: _Run) -> str:
     """A run's summary table and its omega(t) as HTML (Jupyter's ``_repr_html_``).
 
     Examples

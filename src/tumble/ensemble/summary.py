@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable, Iterable, Iterator
+from typing import Callable, Iterable, Iterator, Protocol
 
 import numpy as np
 
@@ -22,9 +22,6 @@ from .statistics import (
     success_lower_bound,
     success_statement,
 )
-
-if TYPE_CHECKING:
-    from .sweep import Criterion
 
 __all__ = ["CATEGORICAL", "QUANTILES", "SAMPLE_SIZE", "STATS_BLOCK", "SweepSummary", "base_name", "summarize"]
 
@@ -50,6 +47,25 @@ def base_name(column: str) -> str:
     ('flip_period', 'flips')
     """
     return column.split(" [", 1)[0]
+
+
+class _Criterion(Protocol):
+    """What the summary reads of a :class:`~tumble.ensemble.sweep.Criterion`: its column, bounds
+    and confidence, and which cases pass.
+
+    A protocol, not the class: :mod:`tumble.ensemble.sweep` imports this module (and re-exports
+    its names), and the import graph has no circles.
+    """
+
+    @property
+    def column(self) -> str: ...
+    @property
+    def minimum(self) -> float | None: ...
+    @property
+    def maximum(self) -> float | None: ...
+    @property
+    def confidence(self) -> float: ...
+    def passed(self, columns: dict) -> np.ndarray: ...
 
 
 def _blocks(chunks: Iterable[dict], size: int) -> Iterator[dict]:
@@ -104,7 +120,7 @@ class SweepSummary:
     redraws: int = 0
 
     @classmethod
-    def of(cls, columns: dict, seed: int, criterion: Criterion | None = None,
+    def of(cls, columns: dict, seed: int, criterion: _Criterion | None = None,
            sample_size: int = SAMPLE_SIZE) -> SweepSummary:
         """The summary of one block of cases.
 
@@ -169,7 +185,7 @@ class SweepSummary:
         """
         return {k: self.sample.values[:, j] for j, k in enumerate(self.columns)}
 
-    def as_dict(self, criterion: Criterion | None = None) -> dict:
+    def as_dict(self, criterion: _Criterion | None = None) -> dict:
         """JSON-ready: ``cases``, ``redraws``, ``statistics`` (per column without its unit:
         ``unit``, ``count``, ``mean``, ``std``, ``min``, ``max``, ``quantiles`` {q: value},
         ``quantile_rank_error``: 0 when exact, else the 95 % bound), ``counts`` and, with a
@@ -217,7 +233,7 @@ class SweepSummary:
         return out
 
 
-def summarize(chunks: Iterable[dict], seed: int, criterion: Criterion | None = None, *,
+def summarize(chunks: Iterable[dict], seed: int, criterion: _Criterion | None = None, *,
               sample_size: int = SAMPLE_SIZE,
               on_chunk: Callable[[dict[str, np.ndarray]], object] | None = None) -> SweepSummary:
     """Fold chunks (in case order) into a :class:`SweepSummary`, block by block.

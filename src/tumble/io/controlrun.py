@@ -8,23 +8,52 @@ budget, the largest commands and, for a ``detumble_point`` mission, the switch t
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from ..dynamics.controlled import ControlledRun, command_summary
 from ..dynamics.controllers import Controller
 from ..dynamics.mission import DetumbleThenPoint
-from .controlorbit import orbit_summary
+from .controlorbit import Field, Orbit, orbit_summary
 
 if TYPE_CHECKING:
-    from .controlfile import ControlScenario
+    from scipy.spatial.transform import Rotation
+
+    from ..dynamics.pointing import NadirTarget
+    from ..mass import Body
 
 __all__ = ["control_summary", "write_control_run"]
 
 
-def control_summary(scenario: ControlScenario, run: ControlledRun, controller: Controller | None = None) -> dict[str, Any]:
+class _Scenario(Protocol):
+    """What :func:`control_summary` reads of a :class:`~tumble.io.controlfile.ControlScenario`.
+
+    A protocol, not the class: :mod:`tumble.io.controlfile` imports this module, and the import
+    graph has no circles.
+    """
+
+    @property
+    def body(self) -> Body: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def controller_args(self) -> Mapping[str, Any]: ...
+    @property
+    def threshold(self) -> float: ...
+    @property
+    def target(self) -> Rotation | NadirTarget | None: ...
+    @property
+    def orbit(self) -> Orbit | None: ...
+    @property
+    def field(self) -> Field | None: ...
+    @property
+    def name(self) -> str: ...
+
+
+def control_summary(scenario: _Scenario, run: ControlledRun, controller: Controller | None = None) -> dict[str, Any]:
     """The numbers of a run: final rate, detumble time, final pointing error, budgets, commands.
 
     ``controller`` is the one the run used (``scenario.run(controller)``): a ``detumble_point``

@@ -8,13 +8,13 @@ with the display of trajectories (:mod:`tumble.dynamics._display`), the layer ab
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Protocol, cast
 
 from .._html import fmt, html_table, short_name, vec
 from .tensor import AXIS_ROLES
 
 if TYPE_CHECKING:
-    from .body import Body, MassProperties
+    from ..typing import Matrix3, Vector3
     from .parts import Part
 
 __all__ = ["body_html", "body_repr", "properties_html", "properties_repr"]
@@ -23,7 +23,43 @@ __all__ = ["body_html", "body_repr", "properties_html", "properties_repr"]
 MAX_PARTS_SHOWN = 20
 
 
-def properties_repr(p: MassProperties) -> str:
+class _Properties(Protocol):
+    """What the display reads of :class:`~tumble.mass.body.MassProperties` (kg, m, kg m^2).
+
+    A protocol, not the class: :mod:`tumble.mass.body` imports this module, and the import graph
+    has no circles.
+    """
+
+    @property
+    def mass(self) -> float: ...
+    @property
+    def com(self) -> Vector3: ...
+    @property
+    def principal_moments(self) -> Vector3: ...
+    @property
+    def principal_axes(self) -> Matrix3: ...
+    @property
+    def intermediate_axis(self) -> Vector3 | None: ...
+    @property
+    def degeneracy(self) -> str: ...
+
+
+class _Body(Protocol):
+    """What the display reads of :class:`~tumble.mass.body.Body`: its name, parts and mass properties."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def parts(self) -> Sequence[Part]: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def principal_moments(self) -> Vector3: ...
+    @property
+    def properties(self) -> _Properties: ...
+
+
+def properties_repr(p: _Properties) -> str:
     """``MassProperties(m = 3 kg, COM = (0, 0, 0.25) m, I = (0.125, 0.3125, 0.4375) kg m^2)``.
 
     Examples
@@ -36,7 +72,7 @@ def properties_repr(p: MassProperties) -> str:
     return f"MassProperties(m = {fmt(p.mass)} kg, COM = {vec(p.com)} m, I = {vec(p.principal_moments)} kg m^2)"
 
 
-def body_repr(body: Body) -> str:
+def body_repr(body: _Body) -> str:
     """``Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2)``.
 
     Examples
@@ -51,7 +87,7 @@ def body_repr(body: Body) -> str:
             f"I = {vec(body.principal_moments)} kg m^2)")
 
 
-def _properties_rows(p: MassProperties) -> list[tuple[str, str]]:
+def _properties_rows(p: _Properties) -> list[tuple[str, str]]:
     rows = [("mass", f"{fmt(p.mass, 6)} kg"), ("centre of mass (design frame)", f"{vec(p.com, 6)} m")]
     for j, role in enumerate(AXIS_ROLES):
         rows.append((f"I{j + 1} ({role}), axis in the design frame",
@@ -63,7 +99,7 @@ def _properties_rows(p: MassProperties) -> list[tuple[str, str]]:
     return rows
 
 
-def properties_html(p: MassProperties) -> str:
+def properties_html(p: _Properties) -> str:
     """The mass properties as an HTML table (kg, m, kg m^2).
 
     Examples
@@ -86,7 +122,7 @@ def _part_rows(parts: Sequence[Part]) -> list[tuple[object, ...]]:
     return rows
 
 
-def body_html(body: Body) -> str:
+def body_html(body: _Body) -> str:
     """A body's mass properties and its parts as HTML (Jupyter's ``_repr_html_``).
 
     Examples

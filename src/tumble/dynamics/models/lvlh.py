@@ -25,8 +25,9 @@ regular wherever ``|roll| < pi/2``, and a pure pitch libration is a pure pitch a
 
 from __future__ import annotations
 
+import numbers
 import warnings
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -41,14 +42,53 @@ from ...validation import (
 
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
-    from ..trajectory import Trajectory
-    from .gravity import GravityGradient
 
 __all__ = ["LVLHState", "OrbitAngles", "lvlh_state", "orbit_frame_angles", "relative_attitude", "rpy_axes"]
 
 #: The orbiting frame at t = 0: roll along +y_world (velocity), pitch along +z_world (orbit
 #: normal), yaw along +x_world (radius).
 _LVLH0 = Rotation.from_matrix([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+
+
+class _CircularOrbit(Protocol):
+    """What this module reads of a :class:`~tumble.dynamics.models.gravity.GravityGradient`: the
+    circular orbit's mean motion (rad/s) and its orbiting frame at ``t`` (s).
+
+    A protocol, not the class: :mod:`tumble.dynamics.models.gravity` imports this module (and
+    re-exports its names), and the import graph has no circles.
+    """
+
+    @property
+    def mean_motion(self) -> float: ...
+    def orbit_frame(self, t: ArrayLike) -> Rotation: ...
+
+
+class _Run(Protocol):
+    """What :func:`orbit_frame_angles` reads of a :class:`~tumble.dynamics.trajectory.Trajectory`:
+    the sample times ``t`` (s) and the ``attitude`` (principal -> world). A protocol, not the
+    class: the models lie below the trajectories (the import graph has no circles).
+    """
+
+    @property
+    def t(self) -> FloatArray: ...
+    @property
+    def attitude(self) -> Rotation: ...
+
+
+def _is_circular_orbit(gg: object) -> bool:
+    """Whether ``gg`` gives what :class:`_CircularOrbit` lists: a number ``mean_motion`` and a
+    callable ``orbit_frame`` (by duck typing; among tumble's models only a GravityGradient has both).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.gravity import GravityGradient
+    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> _is_circular_orbit(GravityGradient(orbit_period=5400.0)), _is_circular_orbit(GravityGradient)
+    (True, False)
+    >>> _is_circular_orbit(CircularOrbit(altitude=500e3)), _is_circular_orbit(None)
+    (False, False)
+    """
+    return isinstance(getattr(gg, "mean_motion", None), numbers.Real) and callable(getattr(gg, "orbit_frame", None))
 
 
 def _axis(name: str, value: int | str) -> int:
@@ -136,7 +176,7 @@ class LVLHState(NamedTuple):
 
 
 def lvlh_state(
-    gg: GravityGradient, body: Body | MassProperties, *, roll: ArrayLike = 0.0, pitch: ArrayLike = 0.0,
+    gg: _CircularOrbit, body: Body | MassProperties, *, roll: ArrayLike = 0.0, pitch: ArrayLike = 0.0,
     yaw: ArrayLike = 0.0, pitch_axis: int | str = 3, yaw_axis: int | str = 1,
 ) -> LVLHState:
     """Attitude and angular velocity of ``body`` at rest in the orbiting (LVLH) frame at t = 0.
@@ -174,11 +214,7 @@ def lvlh_state(
     >>> traj = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg.bind(body),
     ...                        t_end=5400.0, method="dop853")
     """
-    from .gravity import (
-        GravityGradient,  # here: gravity.py re-exports this module's names
-    )
-
-    if not isinstance(gg, GravityGradient):
+    if not _is_circular_orbit(gg):  # by its attributes: gravity.py imports this module, not the reverse
         raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient")
     axes = getattr(body, "principal_axes", None)
     if axes is None:
@@ -193,7 +229,7 @@ def lvlh_state(
 
 
 def relative_attitude(
-    gg: GravityGradient, t: ArrayLike, attitude: Rotation, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
+    gg: _CircularOrbit, t: ArrayLike, attitude: Rotation, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
 ) -> Rotation:
     """The body's roll-pitch-yaw frame to the orbiting frame at times ``t`` (s).
 
@@ -237,7 +273,7 @@ class OrbitAngles(NamedTuple):
 
 
 def orbit_frame_angles(
-    traj: Trajectory, gg: GravityGradient, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
+    traj: _Run, gg: _CircularOrbit, *, pitch_axis: int | str = 3, yaw_axis: int | str = 1
 ) -> OrbitAngles:
     """Roll, pitch and yaw of a run relative to the orbiting (LVLH) frame, against ``traj.t``.
 

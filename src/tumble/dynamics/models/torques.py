@@ -237,7 +237,16 @@ class KernelForm(Protocol):
     True
     """
 
-    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None: ...
+    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
+        """``(kind, parameters)`` for the compiled engine, or None (then the Python path calls the model).
+
+        Examples
+        --------
+        >>> kind, vector = ConstantTorque((0.0, 0.5, 0.0)).kernel_form()   # a constant body torque, N m
+        >>> kind == KERNEL_BODY, vector
+        (True, (0.0, 0.5, 0.0))
+        """
+        ...
 
 
 def kernel_form(model: object) -> tuple[int, tuple[float, ...]] | None:

@@ -170,7 +170,7 @@ def to_body(x: Any, y: Any, z: Any, s: Any, v0: Any, v1: Any, v2: Any) -> tuple[
     >>> import numpy as np
     >>> from tumble.dynamics.special.quaternion import to_body
     >>> c = float(np.sqrt(0.5))   # 90 degrees about z: world x is body -y
-    >>> [round(float(u), 12) for u in to_body(0.0, 0.0, c, c, 1.0, 0.0, 0.0)]
+    >>> [round(float(u), 12) + 0.0 for u in to_body(0.0, 0.0, c, c, 1.0, 0.0, 0.0)]   # + 0.0: no -0.0
     [0.0, -1.0, 0.0]
     """
     return ((1 - 2 * (y * y + z * z)) * v0 + 2 * (x * y + z * s) * v1 + 2 * (x * z - y * s) * v2,
