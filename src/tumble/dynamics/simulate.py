@@ -30,6 +30,7 @@ from .methods.integrators import (
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import (
     KERNEL_BODY,
+    KERNEL_WORLD,
     ConstantTorque,
     FunctionTorque,
     TorqueLike,
@@ -276,7 +277,8 @@ def sample_times(t_end: float | None = None, samples: int | None = None, dt: flo
         return t, slice(None)
     if t_end is None:
         raise ValueError("t_end (s) or times = [...] is needed: how long to run")
-    t_end = check_positive("t_end", t_end, "s")
+    if not (type(t_end) is float and 0.0 < t_end <= MAX_T_END):  # a plain float in range passes as it is
+        t_end = check_positive("t_end", t_end, "s")
     if t_end > MAX_T_END:
         raise ValueError(f"t_end = {t_end!r} must be at most {MAX_T_END:g} s")
     if dt is not None:
@@ -290,7 +292,8 @@ def sample_times(t_end: float | None = None, samples: int | None = None, dt: flo
         t[-1] = min(t[-1], t_end)  # a whole t_end / dt ends exactly at t_end
         return cast(FloatArray, t), slice(None)
     samples = DEFAULT_SAMPLES if samples is None else samples
-    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or not 2 <= samples <= MAX_SAMPLES:
+    if type(samples) is not int and (isinstance(samples, bool) or not isinstance(samples, numbers.Integral)) \
+            or not 2 <= samples <= MAX_SAMPLES:
         raise ValueError(f"samples = {samples!r} must be a whole number from 2 to {MAX_SAMPLES}")
     return _grid(t_end, int(samples)).copy(), slice(None)
 
@@ -473,7 +476,9 @@ def _spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion, mo
     """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
     if model is None:
         return 0.0
-    return float(spin_gain(model, 0.0, omega0, _rotation(quat0.tobytes()), moments, t_end))
+    form = kernel_form(model)
+    constant = form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD)  # reads no attitude
+    return spin_gain(model, 0.0, omega0, None if constant else _rotation(quat0.tobytes()), moments, t_end)
 
 
 @functools.lru_cache(maxsize=256)

@@ -135,10 +135,11 @@ class Trajectory:
     dissipated: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        fields = self.__dict__  # the instance's own values: float arrays already are kept as they are
         for name in ("t", "omega", "moments", "principal_axes", *_OPTIONAL_ARRAYS):
-            value = getattr(self, name)
-            if value is not None:
-                object.__setattr__(self, name, _array(value))
+            value = fields[name]
+            if value is not None and not (type(value) is np.ndarray and value.dtype == np.float64):
+                fields[name] = _array(value)
 
     @property
     def rigid(self) -> bool:

@@ -43,6 +43,8 @@ from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E
 
 __all__ = ["MAX_EVALUATIONS", "body_rhs", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk"]
 
+#: Size of the state ``(omega, q)``: a constant, so the compiler unrolls the loops over it.
+STATE = 7
 #: Right-hand sides one body may take before its run is given up (status 2), as the Python path's budget.
 MAX_EVALUATIONS = 50_000_000
 #: Status codes of the steppers: done, the step fell below 10 ulp of t, the work budget ran out.
@@ -103,7 +105,7 @@ def _store(y: np.ndarray, out: np.ndarray) -> None:
 def _combine(K: np.ndarray, a: np.ndarray, s: int, y: np.ndarray, h: float, out: np.ndarray) -> None:
     """A stage's state ``y + h sum_{r < s} a_r K_r`` into ``out`` (the sum over stages first, as
     scipy's ``np.dot(K[:s].T, a[:s]) * h``)."""
-    for i in range(y.shape[0]):
+    for i in range(STATE):
         acc = 0.0
         for r in range(s):
             acc += K[r, i] * a[r]
@@ -124,7 +126,7 @@ def _rms(x: np.ndarray, scale: np.ndarray) -> float:
 def _initial_step(t0: float, y: np.ndarray, f: np.ndarray, t_bound: float, I: np.ndarray, kind: int, p: np.ndarray,
                   rtol: float, atol: np.ndarray, work: np.ndarray) -> float:
     """scipy's ``select_initial_step`` for an error estimator of order 7 (HNW sec. II.4)."""
-    n = y.shape[0]
+    n = STATE
     interval = abs(t_bound - t0)
     scale, y1, f1 = work[0], work[1], work[2]
     for i in range(n):
@@ -147,7 +149,7 @@ def _dense(t_old: float, h: float, y_old: np.ndarray, y: np.ndarray, K: np.ndarr
            p: np.ndarray, F: np.ndarray, work: np.ndarray) -> None:
     """The 7th-order interpolant of the step from ``t_old`` (s) of length ``h`` into ``F`` (7, n):
     the three extra stages, then scipy's ``Dop853DenseOutput`` coefficients (HNW sec. II.6)."""
-    n = y.shape[0]
+    n = STATE
     ys = work[0]
     for s in range(13, 16):
         _combine(K, DOP853_A[s], s, y_old, h, ys)
@@ -181,7 +183,7 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np.n
     """DOP853 from ``t_eval[0]`` through ``t_eval[-1]`` (s), the samples into ``out`` (len(t_eval), 7),
     as scipy's ``solve_ivp`` takes it (module docstring). Returns a status: 0 done, 1 the step fell
     below 10 ulp of t, 2 :data:`MAX_EVALUATIONS` spent."""
-    n = y0.shape[0]
+    n = STATE
     K = np.empty((16, n))
     F = np.empty((7, n))
     work = np.empty((3, n))
@@ -258,7 +260,7 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np
              A: np.ndarray, B: np.ndarray, C: np.ndarray, out: np.ndarray) -> int:
     """The explicit Runge-Kutta tableau ``(A, B, C)`` at equal steps no longer than ``step`` (s) in
     each sample interval, the samples into ``out``. Returns 0 (the status of :func:`dop853`)."""
-    n, stages = y0.shape[0], B.shape[0]
+    n, stages = STATE, B.shape[0]
     K = np.empty((stages, n))
     y, ys = y0.copy(), np.empty(n)
     _store(y, out[0])

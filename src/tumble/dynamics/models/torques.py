@@ -467,11 +467,12 @@ def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotat
 
 
 def spin_gain(
-    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation, moments: ArrayLike, duration: float
+    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
+    duration: float,
 ) -> float:
     """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
     bounding a run's work and choosing default steps: the largest of :func:`spin_gains` over
-    a batch.
+    a batch. ``attitude`` may be None for a constant torque, which does not read it.
 
     Examples
     --------
@@ -486,7 +487,18 @@ def spin_gain(
     """
     if model is None:
         return 0.0
+    form = kernel_form(model)
+    if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # one body: float arithmetic, no numpy
+        return float(_constant_gain(form[1], np.asarray(moments, float), duration))
     return float(np.max(spin_gains(model, t, omega, attitude, moments, duration)))
+
+
+def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: float) -> float | FloatArray:
+    """``|tau| duration / I1`` for a constant torque ``vector`` (N m): per body for moments (N, 3),
+    the largest for one body's (3,) (Python floats: the same operations, fewer calls)."""
+    if moments.ndim == 1:
+        return math.hypot(*vector) / min(moments.tolist()) * duration
+    return math.hypot(*vector) / np.min(moments, axis=-1) * duration
 
 
 def spin_gains(
@@ -518,9 +530,7 @@ def spin_gains(
     form = kernel_form(model)
     with np.errstate(over="ignore", invalid="ignore"):
         if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
-            if I.ndim == 1 and w.ndim == 1:  # one body: float arithmetic (the same operations)
-                return np.float64(math.hypot(*form[1]) / min(I.tolist()) * duration)  # type: ignore[return-value]
-            return cast(FloatArray, math.hypot(*form[1]) / np.min(I, axis=-1) * duration + np.zeros(w.shape[:-1]))
+            return cast(FloatArray, _constant_gain(form[1], I, duration) + np.zeros(w.shape[:-1]))
         if attitude is None:
             raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
         if conforms(model, BoundsSpin):
