@@ -37,7 +37,7 @@ from numba import prange
 from ...jit import jit
 from ..euler import euler_components
 from ..models.gravity import gradient_components
-from ..models.torques import KERNEL_BODY, KERNEL_NONE, KERNEL_WORLD
+from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
@@ -62,9 +62,12 @@ _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always
 
 
 @jit(error_model="numpy", inline="always")
-def external_torque(kind: int, p: np.ndarray, t: float, I: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
-    """The built-in model's torque (N m, principal frame) at ``t`` (s) on the state ``y``:
-    ``kind`` and ``p`` from the model's :meth:`~tumble.dynamics.models.torques.KernelForm.kernel_form`.
+def external_torque(kind: int, p: np.ndarray, t: float, I0: float, I1: float, I2: float, x: float, y: float,
+                    z: float, s: float) -> tuple[float, float, float]:
+    """The built-in model's torque (N m, principal frame) at ``t`` (s) on a body of principal
+    moments ``I0, I1, I2`` (kg m^2) at the attitude quaternion ``(x, y, z, s)`` (scalar last, not
+    necessarily normalised): ``kind`` and ``p`` from the model's
+    :meth:`~tumble.dynamics.models.torques.KernelForm.kernel_form`.
 
     A constant body torque ``p``; a constant world torque ``p`` seen from the body, ``R^T p``;
     the circular orbit's gravity gradient ``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos nt,
@@ -74,21 +77,30 @@ def external_torque(kind: int, p: np.ndarray, t: float, I: np.ndarray, y: np.nda
         return 0.0, 0.0, 0.0
     if kind == KERNEL_BODY:
         return p[0], p[1], p[2]
-    scale = 1.0 / math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
-    x, yq, z, s = y[3] * scale, y[4] * scale, y[5] * scale, y[6] * scale
+    scale = 1.0 / math.sqrt(x * x + y * y + z * z + s * s)
+    x, y, z, s = x * scale, y * scale, z * scale, s * scale
     if kind == KERNEL_WORLD:
-        return _to_body(x, yq, z, s, p[0], p[1], p[2])
+        return _to_body(x, y, z, s, p[0], p[1], p[2])
     n = p[0]
-    b0, b1, b2 = _to_body(x, yq, z, s, math.cos(n * t), math.sin(n * t), 0.0)
-    return _gravity_gradient(n * n, I[0], I[1], I[2], b0, b1, b2)
+    b0, b1, b2 = _to_body(x, y, z, s, math.cos(n * t), math.sin(n * t), 0.0)
+    return _gravity_gradient(n * n, I0, I1, I2, b0, b1, b2)
+
+
+@jit(error_model="numpy", inline="always")
+def rhs_components(t: float, w0: float, w1: float, w2: float, x: float, y: float, z: float, s: float, I0: float,
+                   I1: float, I2: float, kind: int, p: np.ndarray) -> tuple[float, float, float, float, float, float, float]:
+    """``dy/dt`` of the state ``(omega, q)`` component by component (module docstring)."""
+    u0, u1, u2 = external_torque(kind, p, t, I0, I1, I2, x, y, z, s)
+    a0, a1, a2 = _euler(w0, w1, w2, I0, I1, I2, u0, u1, u2)
+    d0, d1, d2, d3 = _quaternion_rate(x, y, z, s, w0, w1, w2)
+    return a0, a1, a2, d0, d1, d2, d3
 
 
 @jit(error_model="numpy", inline="always")
 def body_rhs(t: float, y: np.ndarray, I: np.ndarray, kind: int, p: np.ndarray, out: np.ndarray) -> None:
-    """``dy/dt`` of the state ``(omega, q)`` into ``out`` (module docstring)."""
-    t0, t1, t2 = external_torque(kind, p, t, I, y)
-    out[0], out[1], out[2] = _euler(y[0], y[1], y[2], I[0], I[1], I[2], t0, t1, t2)
-    out[3], out[4], out[5], out[6] = _quaternion_rate(y[3], y[4], y[5], y[6], y[0], y[1], y[2])
+    """``dy/dt`` of the state ``(omega, q)`` into ``out`` (:func:`rhs_components`)."""
+    out[0], out[1], out[2], out[3], out[4], out[5], out[6] = rhs_components(
+        t, y[0], y[1], y[2], y[3], y[4], y[5], y[6], I[0], I[1], I[2], kind, p)
 
 
 @jit(error_model="numpy", inline="always")
@@ -105,11 +117,27 @@ def _store(y: np.ndarray, out: np.ndarray) -> None:
 def _combine(K: np.ndarray, a: np.ndarray, s: int, y: np.ndarray, h: float, out: np.ndarray) -> None:
     """A stage's state ``y + h sum_{r < s} a_r K_r`` into ``out`` (the sum over stages first, as
     scipy's ``np.dot(K[:s].T, a[:s]) * h``)."""
-    for i in range(STATE):
-        acc = 0.0
-        for r in range(s):
-            acc += K[r, i] * a[r]
-        out[i] = y[i] + acc * h
+    c0, c1, c2, c3, c4, c5, c6 = _weighted(K, a, s)
+    out[0], out[1], out[2], out[3] = y[0] + c0 * h, y[1] + c1 * h, y[2] + c2 * h, y[3] + c3 * h
+    out[4], out[5], out[6] = y[4] + c4 * h, y[5] + c5 * h, y[6] + c6 * h
+
+
+@jit(error_model="numpy", inline="always")
+def _weighted(K: np.ndarray, a: np.ndarray, s: int) -> tuple[float, float, float, float, float, float, float]:
+    """``sum_{r < s} a_r K_r``, the state's seven components written out so that the compiler
+    packs them into vector instructions (its SLP vectoriser; a loop over the components it does
+    not vectorise, not knowing that the arrays do not overlap): 1.3x the whole RK8 step."""
+    c0 = c1 = c2 = c3 = c4 = c5 = c6 = 0.0
+    for r in range(s):
+        c = a[r]
+        c0 += K[r, 0] * c
+        c1 += K[r, 1] * c
+        c2 += K[r, 2] * c
+        c3 += K[r, 3] * c
+        c4 += K[r, 4] * c
+        c5 += K[r, 5] * c
+        c6 += K[r, 6] * c
+    return c0, c1, c2, c3, c4, c5, c6
 
 
 @jit(error_model="numpy")
@@ -159,11 +187,10 @@ def _dense(t_old: float, h: float, y_old: np.ndarray, y: np.ndarray, K: np.ndarr
         F[0, i] = dy
         F[1, i] = h * K[0, i] - dy
         F[2, i] = 2.0 * dy - h * (K[12, i] + K[0, i])
-        for r in range(4):
-            acc = 0.0
-            for s in range(16):
-                acc += DOP853_D[r, s] * K[s, i]
-            F[3 + r, i] = h * acc
+    for r in range(4):
+        d = _weighted(K, DOP853_D[r], 16)
+        for i in range(n):
+            F[3 + r, i] = h * d[i]
 
 
 @jit(error_model="numpy")
@@ -187,7 +214,7 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np.n
     K = np.empty((16, n))
     F = np.empty((7, n))
     work = np.empty((3, n))
-    y, y_old, y_new, ys, scale, sample = y0.copy(), y0.copy(), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    y, y_old, y_new, ys, sample = y0.copy(), y0.copy(), np.empty(n), np.empty(n), np.empty(n)
     t, t_bound = t_eval[0], t_eval[-1]
     body_rhs(t, y, I, kind, p, K[0])
     evaluations = 2
@@ -217,14 +244,11 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np.n
             _combine(K, DOP853_B, 12, y, h, y_new)
             body_rhs(t_new, y_new, I, kind, p, K[12])
             evaluations += 12
+            err5, err3 = _weighted(K, DOP853_E5, 13), _weighted(K, DOP853_E3, 13)
             e5, e3 = 0.0, 0.0
             for i in range(n):
-                scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-                a5, a3 = 0.0, 0.0
-                for r in range(13):
-                    a5 += K[r, i] * DOP853_E5[r]
-                    a3 += K[r, i] * DOP853_E3[r]
-                a5, a3 = a5 / scale[i], a3 / scale[i]
+                scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+                a5, a3 = err5[i] / scale, err3[i] / scale
                 e5 += a5 * a5
                 e3 += a3 * a3
             error = 0.0 if (e5 == 0.0 and e3 == 0.0) else h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)

@@ -488,8 +488,9 @@ def spin_gain(
     if model is None:
         return 0.0
     form = kernel_form(model)
-    if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # one body: float arithmetic, no numpy
-        return float(_constant_gain(form[1], np.asarray(moments, float), duration))
+    if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: no attitude read
+        gain = _constant_gain(form[1], np.asarray(moments, float), duration)
+        return gain if isinstance(gain, float) else float(np.max(gain))
     return float(np.max(spin_gains(model, t, omega, attitude, moments, duration)))
 
 
@@ -497,8 +498,8 @@ def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: flo
     """``|tau| duration / I1`` for a constant torque ``vector`` (N m): per body for moments (N, 3),
     the largest for one body's (3,) (Python floats: the same operations, fewer calls)."""
     if moments.ndim == 1:
-        return math.hypot(*vector) / min(moments.tolist()) * duration
-    return math.hypot(*vector) / np.min(moments, axis=-1) * duration
+        return float(math.hypot(*vector) / min(moments.tolist()) * duration)
+    return cast(FloatArray, math.hypot(*vector) / np.min(moments, axis=-1) * duration)
 
 
 def spin_gains(
@@ -530,7 +531,7 @@ def spin_gains(
     form = kernel_form(model)
     with np.errstate(over="ignore", invalid="ignore"):
         if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
-            return cast(FloatArray, _constant_gain(form[1], I, duration) + np.zeros(w.shape[:-1]))
+            return _constant_gain(form[1], I, duration) + np.zeros(w.shape[:-1])
         if attitude is None:
             raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
         if conforms(model, BoundsSpin):
