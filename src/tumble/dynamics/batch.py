@@ -400,7 +400,7 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
         scale = np.maximum(np.maximum(spin, gains), 1e-300)  # atol relative to each body's omega, as simulate's
         tol = np.column_stack([np.outer(a * scale, np.ones(3)), np.full((len(I), 4), a)])
         omega, quat = run_bodies(spec.name, I, w0, q0, t, form, rtol=r, atol=tol)
-    return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
+    return omega, quat
 
 
 def _loop(name: str, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, torque: TorqueLike | None,

@@ -97,17 +97,17 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     k = _kernels()
     y0 = np.empty(7)
     y0[:3], y0[3:] = omega0, quat0
-    out = np.empty((len(t), 7))
+    omega, quat = np.empty((len(t), 3)), np.empty((len(t), 4))
     kind, params = form
     p = np.array(params or (0.0,))
     if method == "dop853":
-        status = k.dop853(y0, t, moments, kind, p, rtol, atol, out)
+        status = k.dop853(y0, t, moments, kind, p, rtol, atol, omega, quat)
     else:
         A, B, C = _tableau(method)
-        status = k.fixed_rk(y0, t, moments, kind, p, math.inf if step is None else step, A, B, C, out)
+        status = k.fixed_rk(y0, t, moments, kind, p, math.inf if step is None else step, A, B, C, omega, quat)
     if status:
         _raise_for(status, method, float(t[-1]))
-    return out[:, :3], out[:, 3:]
+    return omega, quat
 
 
 def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray,
@@ -115,8 +115,8 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
                step: float | FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """N bodies (rows of ``moments``, ``omega0``, ``quat0``, ``atol`` (N, 7) and ``step``, one
     or (N,)), each as :func:`run_body` runs it, on every core from :data:`PARALLEL_BODIES`
-    bodies: the same arithmetic for each body either way. Returns ``omega`` (n, N, 3) and
-    ``quat`` (n, N, 4).
+    bodies: the same arithmetic for each body either way. Returns ``omega`` (N, n, 3) and
+    ``quat`` (N, n, 4).
 
     Examples
     --------
@@ -126,7 +126,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     >>> q = np.tile([0.0, 0.0, 0.0, 1.0], (2, 1))
     >>> omega, quat = run_bodies("dop853", I, w, q, np.array([0.0, 1.0]), (1, (0.0, 0.0, 3.0)), rtol=1e-12,
     ...                          atol=np.full((2, 7), 1e-14))
-    >>> omega[-1, :, 2].round(12).tolist()   # omega_3 + tau t / I3
+    >>> omega[:, -1, 2].round(12).tolist()   # omega_3 + tau t / I3
     [1.5, 1.5]
     """
     k = _kernels()
@@ -135,22 +135,20 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     I = np.ascontiguousarray(moments, dtype=float)
     kind, params = form
     p = np.ascontiguousarray(np.broadcast_to(np.array(params if params else (0.0,), dtype=float), (N, max(len(params), 1))))
-    out = np.empty((len(t), N, 7))
+    omega, quat = np.empty((N, len(t), 3)), np.empty((N, len(t), 4))  # body-first, as BatchTrajectory keeps them
     status = np.zeros(N, dtype=np.int64)
     h = np.ascontiguousarray(np.broadcast_to(np.asarray(math.inf if step is None else step, dtype=float), (N,)))
     if N >= PARALLEL_BODIES and _cores() > 1:
         if method == "dop853":
-            k.dop853_batch(y0, t, I, kind, p, float(rtol), np.ascontiguousarray(atol), out, status)  # type: ignore[arg-type]
+            k.dop853_batch(y0, t, I, kind, p, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
         else:
-            k.fixed_batch(y0, t, I, kind, p, h, *_tableau(method), out, status)
+            k.fixed_batch(y0, t, I, kind, p, h, *_tableau(method), omega, quat, status)
     else:
-        sample = np.empty((len(t), 7))
         for b in range(N):
             if method == "dop853":
-                status[b] = k.dop853(y0[b], t, I[b], kind, p[b], float(rtol), atol[b], sample)  # type: ignore[index, arg-type]
+                status[b] = k.dop853(y0[b], t, I[b], kind, p[b], float(rtol), atol[b], omega[b], quat[b])  # type: ignore[index, arg-type]
             else:
-                status[b] = k.fixed_rk(y0[b], t, I[b], kind, p[b], h[b], *_tableau(method), sample)
-            out[:, b] = sample
+                status[b] = k.fixed_rk(y0[b], t, I[b], kind, p[b], h[b], *_tableau(method), omega[b], quat[b])
     for bad in np.flatnonzero(status).tolist():
         _raise_for(int(status[bad]), method, float(t[-1]), f" for body {bad}")
-    return out[:, :, :3], out[:, :, 3:]
+    return omega, quat

@@ -491,6 +491,10 @@ def spin_gain(
     if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: no attitude read
         gain = _constant_gain(form[1], np.asarray(moments, float), duration)
         return gain if isinstance(gain, float) else float(np.max(gain))
+    w = np.asarray(omega, float)
+    if w.shape == (3,) and attitude is not None and conforms(model, BoundsSpin):  # one body: fewer numpy calls
+        top = float(cast(BoundsSpin, model).max_spin(t, w, attitude))
+        return max(top - math.hypot(*w.tolist()), 0.0) if math.isfinite(top) else math.inf
     return float(np.max(spin_gains(model, t, omega, attitude, moments, duration)))
 
 
