@@ -36,8 +36,8 @@ def run(out: Path, quick: bool = False) -> str:
     import test_control_basilisk as s  # the scenarios, one definition
     from basilisk_control import run_detumble, run_pointing
 
-    from tumble.dynamics.controlled import simulate_controlled
-    from tumble.dynamics.controllers import BDot, MRPFeedback
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.controllers import BDot, MRPFeedback
     from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
     from tumble.dynamics.models.magnetic import IGRF13_2020, IGRF_RADIUS
 

@@ -9,7 +9,7 @@ bias per case drawn with 1e-4 rad/s per axis (1 sigma; the scenario's bias is of
 Dispersed: the initial rate uniform in 5-20 deg/s in a uniform direction, each moment +-10 %
 (uniform), the field epoch (Earth angle) uniform, the attitude uniform, the gyro bias, and each
 case's noise (its own seed). ``tumble.ensemble.detumble_monte_carlo`` (RK4 over chunks of
-cases, two substeps a period, each case compiled: ``tumble.dynamics.methods.compiled_detumble``);
+cases, two substeps a period, each case compiled: ``tumble.dynamics.control.compiled_detumble``);
 ``--quick`` runs 500 cases. Writes the table, the JSON (with the summary's worst cases) and
 ``detumble_mc.png`` (``tumble.viz.montecarlo.figure_detumble_mc``: histogram, distribution with
 the 50/95/99 % marks, |omega| envelopes).
@@ -30,7 +30,7 @@ MAGNETOMETER_NOISE = 1e-7  # T, 1 sigma
 
 def run(out: Path, quick: bool = False) -> str:
     """Run the Monte Carlo, write the JSON and the figure, return the markdown."""
-    from tumble.dynamics.controllers import bdot_gain
+    from tumble.dynamics.control.controllers import bdot_gain
     from tumble.dynamics.models.actuators import Magnetorquers
     from tumble.dynamics.models.magnetic import DipoleField
     from tumble.dynamics.models.orbit import CircularOrbit

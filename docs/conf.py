@@ -94,11 +94,13 @@ API_PAGES = [
         "tumble.dynamics.methods.exact_kernel", "tumble.dynamics.methods.exact_split",
         "tumble.dynamics.methods.geometric", "tumble.dynamics.special.elliptic",
         "tumble.dynamics.special.carlson", "tumble.dynamics.special.ddouble",
-        "tumble.dynamics.special.quaternion"],
+        "tumble.dynamics.special.quaternion", "tumble.dynamics.engine", "tumble.dynamics.engine.tableau",
+        "tumble.jit"],
      ("The numerical cores behind ``simulate(method=...)`` and ``simulate_batch``: the exact\n"
-      "solution (one body and a batch), the splitting integrators, and the elliptic functions and\n"
-      "integrals they rest on. Most scripts need only :func:`tumble.dynamics.simulate`; these are\n"
-      "for checking the formulas, each module's docstring gives them with their sources.")),
+      "solution (one body and a batch), the splitting integrators, the compiled engine's steppers,\n"
+      "the elliptic functions and integrals they rest on, and how kernels are compiled and cached.\n"
+      "Most scripts need only :func:`tumble.dynamics.simulate`; these are for checking the\n"
+      "formulas, each module's docstring gives them with their sources.")),
     ("analysis", "tumble.analysis", ["tumble.analysis"], None),
     ("ensemble", "tumble.ensemble", ["tumble.ensemble"], None),
     ("io", "tumble.io", ["tumble.io"], None),

@@ -27,7 +27,7 @@ from tumble.dynamics import (
     bdot_gain,
     simulate_controlled,
 )
-from tumble.dynamics.controllers import MomentumDumping
+from tumble.dynamics.control.controllers import MomentumDumping
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import DipoleField
 from tumble.dynamics.models.orbit import CircularOrbit

@@ -16,8 +16,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import MRPFeedback
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import MRPFeedback
 from tumble.dynamics.models.actuators import ReactionWheels
 
 moments = np.array([10.0, 12.0, 15.0])  # kg m^2

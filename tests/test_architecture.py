@@ -31,7 +31,18 @@ def test_the_rooms_named_on_the_page_hold_the_modules_it_names():
     text = PAGE.read_text(encoding="utf-8")
     for room, modules in {"special": ["elliptic", "carlson", "ddouble", "quaternion"],
                           "models": ["torques", "internal", "rotors", "damper", "gravity", "lvlh", "drag"],
-                          "methods": ["integrators", "exact", "exact_batch", "geometric"]}.items():
+                          "methods": ["integrators", "exact", "exact_batch", "geometric"],
+                          "engine": ["kernels", "front", "tableau"],
+                          "control": ["controllers", "controlled", "mission", "pointing", "detumble", "compiled_control",
+                                      "compiled_detumble"]}.items():
         assert f"`dynamics/{room}/`" in text
         for name in modules:
             importlib.import_module(f"tumble.dynamics.{room}.{name}")
+
+
+def test_the_dynamics_front_room_is_small():
+    """The front room of tumble.dynamics holds the fronts and the results (simulate, simulate_batch,
+    the trajectories, Euler's equations, their display): at most six modules; the rest has a room."""
+    folder = Path(__file__).resolve().parents[1] / "src" / "tumble" / "dynamics"
+    modules = sorted(p.stem for p in folder.glob("*.py") if p.stem != "__init__")
+    assert len(modules) <= 6, modules

@@ -140,7 +140,7 @@ def test_a_batch_on_every_core_gives_each_body_the_one_thread_arithmetic(monkeyp
     torque = MODELS["world"]
     serial = geometric.propagate(I, W, Q, T, order=4, step=0.02, torque=torque)
     monkeypatch.setattr(compiled, "PARALLEL_BODIES", 1)
-    monkeypatch.setattr(compiled, "_cores", lambda: 2)
+    monkeypatch.setattr(compiled, "cores", lambda: 2)
     parallel = geometric.propagate(I, W, Q, T, order=4, step=0.02, torque=torque)
     np.testing.assert_array_equal(parallel[0], serial[0])
     np.testing.assert_array_equal(parallel[1], serial[1])

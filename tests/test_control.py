@@ -10,8 +10,8 @@ import pytest
 from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import (
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import (
     BDot,
     Controller,
     MRPFeedback,
@@ -234,7 +234,7 @@ def test_magnetorquers_unload_the_wheels_while_the_attitude_is_held():
     """The cross-product law (Camillo & Markley 1980): in a 500 km polar orbit the wheels' momentum
     falls as the field turns, while MRP feedback keeps the attitude; the total momentum changes by
     exactly the magnetic impulse (the budget closes)."""
-    from tumble.dynamics.controllers import MomentumDumping
+    from tumble.dynamics.control.controllers import MomentumDumping
 
     I = np.array([10.0, 12.0, 15.0])
     wheels = ReactionWheels(np.eye(3), inertia=0.01)
@@ -255,7 +255,7 @@ def test_magnetorquers_unload_the_wheels_while_the_attitude_is_held():
 
 
 def test_momentum_dumping_refuses_a_bad_target_momentum_in_one_line():
-    from tumble.dynamics.controllers import MomentumDumping
+    from tumble.dynamics.control.controllers import MomentumDumping
 
     wheels = ReactionWheels(np.eye(3), inertia=0.01)
     pointing = MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=wheels)

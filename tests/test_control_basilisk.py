@@ -25,8 +25,8 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, MRPFeedback
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, MRPFeedback
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import IGRF13_2020, IGRF_RADIUS, DipoleField
 from tumble.dynamics.models.orbit import CircularOrbit

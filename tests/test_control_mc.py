@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, bdot_gain
-from tumble.dynamics.detumble import detumble_batch
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, bdot_gain
+from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.models.magnetic import DipoleField
 from tumble.dynamics.models.orbit import CircularOrbit
@@ -41,7 +41,7 @@ def test_batch_matches_simulate_controlled_case_by_case():
 
 def test_detumble_time_matches_the_run_definition():
     """``DetumbleBatch.detumble_time`` is ``ControlledRun.detumble_time`` (last crossing + one step)."""
-    from tumble.dynamics.detumble import DetumbleBatch
+    from tumble.dynamics.control.detumble import DetumbleBatch
 
     t = np.arange(5.0)
     rate = np.array([[3.0, 2.0, 0.5, 2.0, 0.5], [0.5, 0.4, 0.3, 0.2, 0.1], [3.0, 3.0, 3.0, 3.0, 3.0]])

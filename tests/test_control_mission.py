@@ -13,9 +13,9 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from tumble.cli import CONTROL_WRITES, main
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, MomentumDumping, MRPFeedback
-from tumble.dynamics.mission import DetumbleThenPoint
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback
+from tumble.dynamics.control.mission import DetumbleThenPoint
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import UniformField
 from tumble.dynamics.models.sensors import Measurement

@@ -12,7 +12,7 @@ from scipy.spatial.transform import Rotation
 from test_page import open_viewer, page_json
 
 from tumble.cli import main
-from tumble.dynamics.controlled import ControlledRun
+from tumble.dynamics.control.controlled import ControlledRun
 from tumble.io.scenario import load_scenario
 from tumble.viz.control_page import commanded_torque, control_page_data, wheel_angle
 from tumble.viz.page import CURVE_POINTS, page_html

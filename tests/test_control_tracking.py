@@ -11,13 +11,13 @@ import pytest
 from scipy.optimize import brentq
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import MomentumDumping, MRPFeedback, pd_response
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import MomentumDumping, MRPFeedback, pd_response
 from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import UniformField
 from tumble.dynamics.models.orbit import CircularOrbit
 from tumble.dynamics.models.sensors import Measurement
-from tumble.dynamics.pointing import NadirTarget
+from tumble.dynamics.control.pointing import NadirTarget
 from tumble.dynamics.special.mrp import mrp_from_quat
 
 ROOT = Path(__file__).resolve().parents[1]

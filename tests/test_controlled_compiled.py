@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics import controlled
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, MRPFeedback, bdot_dipole
-from tumble.dynamics.detumble import detumble_batch
-from tumble.dynamics.methods import compiled_control as cc
-from tumble.dynamics.methods import compiled_detumble as cd
+from tumble.dynamics.control import controlled
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, MRPFeedback, bdot_dipole
+from tumble.dynamics.control.detumble import detumble_batch
+from tumble.dynamics.control import compiled_control as cc
+from tumble.dynamics.control import compiled_detumble as cd
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.magnetic import DipoleField, UniformField
 from tumble.dynamics.models.orbit import CircularOrbit
@@ -230,6 +230,6 @@ def test_the_parallel_batch_kernel_gives_each_body_the_same_arithmetic(monkeypat
           "magnetorquers": Magnetorquers(0.2), "period": 1.0, "t_end": 20.0}
     serial = detumble_batch(*args, **kw)
     monkeypatch.setattr(cd, "PARALLEL_BODIES", 2)
-    monkeypatch.setattr(cd, "_cores", lambda: 2)
+    monkeypatch.setattr(cd, "cores", lambda: 2)
     parallel = detumble_batch(*args, **kw)
     assert np.array_equal(parallel.rate, serial.rate) and np.array_equal(parallel.quat, serial.quat)

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics import controlled
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, MRPFeedback
-from tumble.dynamics.methods import compiled_control as cc
+from tumble.dynamics.control import controlled
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, MRPFeedback
+from tumble.dynamics.control import compiled_control as cc
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
 from tumble.dynamics.models.igrf import _BLOCK, IGRFField

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics import detumble as dt
-from tumble.dynamics.controlled import simulate_controlled
-from tumble.dynamics.controllers import BDot, bdot_gain
-from tumble.dynamics.detumble import detumble_batch
+from tumble.dynamics.control import detumble as dt
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import BDot, bdot_gain
+from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.models.gravity import GravityGradient
 from tumble.dynamics.models.magnetic import DipoleField

@@ -11,7 +11,7 @@ from scipy.spatial.transform import Rotation
 import tumble
 from tumble.dynamics import simulate, simulate_batch
 from tumble.dynamics.engine import run_bodies, run_body
-from tumble.dynamics.engine.front import PARALLEL_BODIES
+from tumble.jit import PARALLEL_BODIES
 from tumble.dynamics.models.gravity import GravityGradient
 from tumble.dynamics.models.torques import ConstantTorque, FunctionTorque, kernel_form
 from tumble.dynamics.trajectory import Trajectory

@@ -41,13 +41,30 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar, cast, overload
 
-__all__ = ["cache_root", "jit", "source_stamp"]
+__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "jit", "source_stamp"]
 
 F = TypeVar("F", bound=Callable[..., Any])
+
+#: Bodies from which a batch kernel runs on every core (``numba.prange``): the parallel kernel's
+#: first call in a process starts numba's threads (about a second, measured), which only a large
+#: batch pays back. Every batch kernel of tumble reads it here.
+PARALLEL_BODIES = 256
 
 #: The package folder (``tumble/``) and the sources whose hash keys every kernel.
 PACKAGE = Path(__file__).resolve().parent
 SOURCES = PACKAGE / "dynamics"
+
+
+def cores() -> int:
+    """The cores this process may run on (its affinity where the system tells it), for choosing
+    a batch kernel's parallel form.
+
+    Examples
+    --------
+    >>> cores() >= 1
+    True
+    """
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
 @functools.cache

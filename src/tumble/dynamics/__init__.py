@@ -1,8 +1,17 @@
 """Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
 
 from .batch import BatchTrajectory, simulate_batch
-from .controlled import ControlledRun, simulate_controlled
-from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
+from .control import (
+    BDot,
+    Controller,
+    ControlledRun,
+    DetumbleThenPoint,
+    MRPFeedback,
+    NadirTarget,
+    bdot_gain,
+    pd_response,
+    simulate_controlled,
+)
 from .euler import (
     angular_momentum,
     energy_momentum_gaps,
@@ -11,7 +20,6 @@ from .euler import (
     kinetic_energy,
 )
 from .methods.integrators import METHODS, Method, get_method
-from .mission import DetumbleThenPoint
 from .models.actuators import Command, Magnetorquers, ReactionWheels
 from .models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
 from .models.gravity import (
@@ -25,7 +33,6 @@ from .models.magnetic import DipoleField, UniformField
 from .models.orbit import CircularOrbit
 from .models.sensors import Measurement, Sensors
 from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
-from .pointing import NadirTarget
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
 from .special.quaternion import quaternion_rate
 from .trajectory import Trajectory

@@ -8,7 +8,7 @@ direction uniform on the sphere; each principal moment ``I_j (1 + s z_j)``, ``z_
 [-1, 1] (``s`` = ``moment_spread``, relative); the field epoch ``gmst0`` (the Earth's sidereal
 angle at t = 0, rad) uniform on [0, 2 pi); the initial attitude uniform on SO(3); a constant
 gyro bias per case, Gaussian with ``gyro_bias_sigma`` (rad/s) on each axis; and each case's
-own noise seed. Chunks of cases run through :func:`tumble.dynamics.detumble.detumble_batch` (a
+own noise seed. Chunks of cases run through :func:`tumble.dynamics.control.detumble.detumble_batch` (a
 compiled kernel, parallel over the cases of a chunk), with the gravity gradient of the orbit and
 the sensors' noise if asked: case ``i`` reads its gyro and magnetometer with the noise levels of
 the ``sensors`` given, its own bias added to theirs and its own seed, so that it is exactly
@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..dynamics.detumble import detumble_batch
+from ..dynamics.control.detumble import detumble_batch
 from ..dynamics.models.actuators import Magnetorquers
 from ..dynamics.models.gravity import GravityGradient
 from ..dynamics.models.magnetic import DipoleField
@@ -352,13 +352,13 @@ def detumble_monte_carlo(cases: DetumbleCases, *, field: DipoleField, gain: floa
     field : DipoleField
         The orbit and the dipole (its ``gmst0`` is replaced by each case's).
     gain : float
-        ``k`` of ``m = (k / |B|^2) omega x B``, N m s (e.g. :func:`~tumble.dynamics.controllers.bdot_gain`).
+        ``k`` of ``m = (k / |B|^2) omega x B``, N m s (e.g. :func:`~tumble.dynamics.control.controllers.bdot_gain`).
     magnetorquers : Magnetorquers
         The rods and their limits.
     period, t_end, threshold : float
         Control period (s), duration (s), and the rate (rad/s) below which a case counts as detumbled.
     substeps : int
-        RK4 steps per period (:func:`~tumble.dynamics.detumble.detumble_batch`).
+        RK4 steps per period (:func:`~tumble.dynamics.control.detumble.detumble_batch`).
     chunk : int
         Cases per task.
     backend : InProcess or DaskBackend, optional

@@ -1,6 +1,6 @@
 """Control scenario files (TOML): a body, its orbit, actuators, sensors and controller.
 
-A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.dynamics.controlled.simulate_controlled`)::
+A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.dynamics.control.controlled.simulate_controlled`)::
 
     body = "../bodies/cubesat_3u.toml"   # a preset, a body file (relative to this file) or a [body] table
 
@@ -48,12 +48,12 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..dynamics import Trajectory
-from ..dynamics.controlled import ControlledRun, simulate_controlled
-from ..dynamics.controllers import BDot, Controller, MRPFeedback
-from ..dynamics.mission import DetumbleThenPoint
+from ..dynamics.control.controlled import ControlledRun, simulate_controlled
+from ..dynamics.control.controllers import BDot, Controller, MRPFeedback
+from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
-from ..dynamics.pointing import NadirTarget
+from ..dynamics.control.pointing import NadirTarget
 from ..dynamics.simulate import check_rtol
 from ..mass import Body
 from ..validation import (
@@ -164,7 +164,7 @@ class ControlScenario:
         """Simulate the scenario in closed loop, with ``controller`` (default a fresh :meth:`controller`).
 
         Pass the controller to read what it keeps after the run, such as the switch time of a
-        ``detumble_point`` mission (:class:`~tumble.dynamics.mission.DetumbleThenPoint`).
+        ``detumble_point`` mission (:class:`~tumble.dynamics.control.mission.DetumbleThenPoint`).
 
         Examples
         --------

@@ -14,15 +14,15 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
-from ..dynamics.controlled import ControlledRun, command_summary
-from ..dynamics.controllers import Controller
-from ..dynamics.mission import DetumbleThenPoint
+from ..dynamics.control.controlled import ControlledRun, command_summary
+from ..dynamics.control.controllers import Controller
+from ..dynamics.control.mission import DetumbleThenPoint
 from .controlorbit import Field, Orbit, orbit_summary
 
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
 
-    from ..dynamics.pointing import NadirTarget
+    from ..dynamics.control.pointing import NadirTarget
     from ..mass import Body
 
 __all__ = ["control_summary", "write_control_run"]

@@ -14,7 +14,7 @@ Three kinds (:mod:`tumble.io.controlfile` for the rest of the file)::
     # 1, 2, 3, minor, intermediate, major or design-frame vectors), gyroscopic,
     # Ki (1/s, integral term; default 0), integral_limit (N m)
 
-    kind = "detumble_point"     # B-dot, then MRP feedback (tumble.dynamics.mission.DetumbleThenPoint)
+    kind = "detumble_point"     # B-dot, then MRP feedback (tumble.dynamics.control.mission.DetumbleThenPoint)
     switch_rate = 0.0175        # rad/s: the gyroscope's |omega| must stay below it ...
     dwell = 60.0                # s: ... for this long, then the wheels point; never back
     # threshold (rad/s, for the detumble time of the summary)
@@ -35,12 +35,12 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..dynamics.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
-from ..dynamics.mission import DetumbleThenPoint
+from ..dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
+from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
-from ..dynamics.pointing import NadirTarget
+from ..dynamics.control.pointing import NadirTarget
 from ..mass import Body
 from ..validation import check_direction, check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination

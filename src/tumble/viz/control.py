@@ -1,4 +1,4 @@
-"""Figures of a closed-loop run (:class:`~tumble.dynamics.controlled.ControlledRun`): what the
+"""Figures of a closed-loop run (:class:`~tumble.dynamics.control.controlled.ControlledRun`): what the
 controller did and what it cost.
 
 One function per figure, each returning its Figure (:func:`tumble.viz.save_figure` writes it):
@@ -7,7 +7,7 @@ the attitude error against the target (deg, log scale), the body rates (deg/s: c
 magnetorquer dipole (A m^2) and the momentum budget (kg m^2/s: the wheels' ``|h|``, the body's
 ``|I omega|``, the external impulse, and ``|L_world - L_world(0) - impulse|``, which is zero in
 exact arithmetic). A run without wheels, dipole or target gets a panel that says so. A mission's
-switch from detumbling to pointing (:class:`~tumble.dynamics.mission.DetumbleThenPoint`) is
+switch from detumbling to pointing (:class:`~tumble.dynamics.control.mission.DetumbleThenPoint`) is
 marked by a dashed vertical line in every panel. :func:`control_figures` gives them all, by the
 file name ``tumble simulate`` writes each under.
 """
@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
-from ..dynamics.controlled import ControlledRun
+from ..dynamics.control.controlled import ControlledRun
 from ._backend import legend_outside, new_figure, note_only
 
 if TYPE_CHECKING:
@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from scipy.spatial.transform import Rotation
 
-    from ..dynamics.pointing import Reference
+    from ..dynamics.control.pointing import Reference
 
 __all__ = ["CONTROL_FIGURES", "control_figures", "figure_attitude_error", "figure_body_rates", "figure_dipole",
            "figure_momentum_budget", "figure_wheels", "wheel_momentum"]
@@ -71,8 +71,8 @@ def wheel_momentum(run: ControlledRun) -> np.ndarray:
     Examples
     --------
     >>> from scipy.spatial.transform import Rotation
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import MRPFeedback
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
     >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-4)
     >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
@@ -90,13 +90,13 @@ def figure_attitude_error(run: ControlledRun, target: Rotation | Reference | Non
     """The angle from the target to the body's principal frame (deg, log scale) against time (s).
 
     ``target`` is fixed (a scipy Rotation, target frame to world) or a moving reference
-    (:mod:`tumble.dynamics.pointing`: the error to it at each time).
+    (:mod:`tumble.dynamics.control.pointing`: the error to it at each time).
 
     Examples
     --------
     >>> from scipy.spatial.transform import Rotation
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> ax = figure_attitude_error(run, Rotation.from_rotvec([0.0, 0.0, 1.0])).axes[0]
     >>> line = ax.lines[0]
@@ -125,8 +125,8 @@ def figure_body_rates(run: ControlledRun, *, switch_time: float | None = None, t
 
     Examples
     --------
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> top, bottom = figure_body_rates(run, switch_time=4.0).axes
     >>> [line.get_label() for line in top.lines]
@@ -152,8 +152,8 @@ def figure_wheels(run: ControlledRun, *, switch_time: float | None = None, title
 
     Examples
     --------
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> figure_wheels(run).axes[0].texts[0].get_text()
     'no reaction wheels in this run'
@@ -181,8 +181,8 @@ def figure_dipole(run: ControlledRun, *, switch_time: float | None = None, title
 
     Examples
     --------
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> from tumble.dynamics.models.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=5.0, controller=BDot(gain=1e4, period=1.0),
@@ -211,14 +211,14 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
 
     Above: the wheels' ``|h|`` (``tumble.viz.control.wheel_momentum``), the body's ``|I omega|`` and the external
     angular impulse ``|int tau_world dt|``. Below (log scale): ``|L_world(t) - L_world(0) -
-    impulse(t)|`` (:meth:`~tumble.dynamics.controlled.ControlledRun.budget_error`), zero in exact
+    impulse(t)|`` (:meth:`~tumble.dynamics.control.controlled.ControlledRun.budget_error`), zero in exact
     arithmetic; samples where it is exactly zero are left out of the log axis.
 
     Examples
     --------
     >>> from scipy.spatial.transform import Rotation
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import MRPFeedback
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
     >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-4)
     >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
@@ -263,8 +263,8 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
 
     Examples
     --------
-    >>> from tumble.dynamics.controlled import simulate_controlled
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> figures = control_figures(run, title="spin")
     >>> tuple(figures) == CONTROL_FIGURES, figures["rates.png"].get_suptitle()

@@ -1,6 +1,6 @@
 """What the interactive page adds for a closed-loop (control) run: wheels, commanded torque, error.
 
-:func:`control_page_data` turns a :class:`~tumble.dynamics.controlled.ControlledRun` into the
+:func:`control_page_data` turns a :class:`~tumble.dynamics.control.controlled.ControlledRun` into the
 JSON-ready numbers that ``assets/control.js`` draws on top of the page's body
 (:mod:`tumble.viz.page`): each reaction wheel as a disc on the body along its axis, turned by its
 angle relative to the body (the trapezoid integral of its speed), with its speed in a readout;
@@ -21,8 +21,8 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.spatial.transform import Rotation
 
-from ..dynamics.controlled import ControlledRun
-from ..dynamics.pointing import Reference, is_reference
+from ..dynamics.control.controlled import ControlledRun
+from ..dynamics.control.pointing import Reference, is_reference
 from ..typing import ArrayLike
 from .page import _curve_indices, _rounded
 from .scene import frame_indices
@@ -49,8 +49,8 @@ def commanded_torque(run: ControlledRun, wheel_axes: ArrayLike | None = None) ->
 
     Examples
     --------
-    >>> from tumble.dynamics.controllers import MRPFeedback
-    >>> from tumble.dynamics.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-4, max_torque=1e-3)
     >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
@@ -93,7 +93,7 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
         has wheels. Normalised here.
     target : scipy Rotation or Reference, optional
         The pointing target (target frame to world, the run's principal frame), fixed or moving
-        (:mod:`tumble.dynamics.pointing`, the error to it at each time): the time plot shows the
+        (:mod:`tumble.dynamics.control.pointing`, the error to it at each time): the time plot shows the
         attitude error to it; without, ``|omega|``.
     threshold : float, optional
         Drawn as a line on the ``|omega|`` plot, rad/s (the detumble threshold).
@@ -111,8 +111,8 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
 
     Examples
     --------
-    >>> from tumble.dynamics.controllers import MRPFeedback
-    >>> from tumble.dynamics.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-4, max_torque=1e-3)
     >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)

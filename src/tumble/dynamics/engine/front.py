@@ -8,21 +8,18 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 from types import ModuleType
 
 import numpy as np
 
+from ...jit import PARALLEL_BODIES, cores
 from ...typing import FloatArray
 
-__all__ = ["ENGINE_METHODS", "PARALLEL_BODIES", "run_bodies", "run_body"]
+__all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
 
 #: The steppers of the engine by method name: DOP853 with error control and dense output, and
 #: fixed-step RK4 and RK8 (the 12-stage 8th-order weights of DOP853).
 ENGINE_METHODS = ("dop853", "rk4", "rk8")
-#: Bodies from which a batch runs on every core: the parallel kernel's first call in a process
-#: starts numba's threads (about a second, measured), which only a large batch pays back.
-PARALLEL_BODIES = 256
 
 
 @functools.cache
@@ -30,10 +27,6 @@ def _kernels() -> ModuleType:
     from . import kernels
 
     return kernels
-
-
-def _cores() -> int:
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
 @functools.cache
@@ -138,7 +131,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     omega, quat = np.empty((N, len(t), 3)), np.empty((N, len(t), 4))  # body-first, as BatchTrajectory keeps them
     status = np.zeros(N, dtype=np.int64)
     h = np.ascontiguousarray(np.broadcast_to(np.asarray(math.inf if step is None else step, dtype=float), (N,)))
-    if N >= PARALLEL_BODIES and _cores() > 1:
+    if N >= PARALLEL_BODIES and cores() > 1:
         if method == "dop853":
             k.dop853_batch(y0, t, I, kind, p, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
         else:

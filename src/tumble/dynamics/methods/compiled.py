@@ -34,16 +34,15 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
-from .compiled_control import (  # _body_torque calls it (the closed loop's formula); compiled in _compiled()
-    _gravity_gradient,
-)
+from ...jit import PARALLEL_BODIES, cores
+from ..models.gravity import gradient_components as _gravity_gradient  # _body_torque calls it; compiled in _compiled()
 from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _compiled()
     WORK,
     compiled_free_flow,
     free_flow_into,
 )
 
-__all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "PARALLEL_BODIES", "compiled_model", "run_split"]
+__all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
 
 #: Kinds of built-in torque the kernel evaluates itself.
 CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT = 1, 2, 3
@@ -98,7 +97,7 @@ def _body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatAr
     if kind == CONSTANT_WORLD:
         out[0], out[1], out[2] = b0, b1, b2
         return
-    out[0], out[1], out[2] = _gravity_gradient(n, I[0], I[1], I[2], b0, b1, b2)  # 3 n^2 r_b x (I r_b)
+    out[0], out[1], out[2] = _gravity_gradient(n * n, I[0], I[1], I[2], b0, b1, b2)  # 3 n^2 r_b x (I r_b)
 
 
 def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArray,
@@ -160,10 +159,6 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
                 omega_out[s, b, i] = (L[i] - hb[i]) * inv_I[i]
 
 
-#: Bodies from which a batch runs on every core (``numba.prange``): the parallel kernel's first
-#: call in a process costs ~2 s more (the threading layer's start, measured), which only a large
-#: batch pays back.
-PARALLEL_BODIES = 256
 
 prange = range  # the uncompiled kernel's loop over bodies; numba's prange once compiled
 
@@ -177,10 +172,10 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
 
     if not _compiled.__dict__.get("helpers"):
         compiled_free_flow()
-        from . import compiled_control, compiled_flow
+        from . import compiled_flow
 
         globals()["free_flow_into"] = compiled_flow.free_flow_into
-        globals()["_gravity_gradient"] = compiled_control._compiled("_gravity_gradient")
+        globals()["_gravity_gradient"] = jit(inline="always")(globals()["_gravity_gradient"])
         for name in ("_body_torque", "_rotate"):
             globals()[name] = jit(inline="always")(globals()[name])
         globals()["prange"] = numba_prange
@@ -192,12 +187,6 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
         run = types.FunctionType(_run.__code__, globals(), "_run_parallel")
         run.__qualname__ = "_run_parallel"
     return cast("Callable[..., None]", jit(parallel=parallel)(run))
-
-
-def _cores() -> int:
-    import os
-
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
 def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float, gammas: tuple[float, ...],
@@ -247,7 +236,7 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     if exact and np.any(h):
         raise ValueError("the exact free flow has no internal momentum: a body with wheels is a gyrostat")
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
-    kernel = _compiled(parallel=N >= PARALLEL_BODIES and _cores() > 1)
+    kernel = _compiled(parallel=N >= PARALLEL_BODIES and cores() > 1)
     kernel(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
                 np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(t, dtype=float), float(step),
                 np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), h, omega_out,

@@ -1,9 +1,9 @@
-"""The B-dot batch of :func:`tumble.dynamics.detumble.detumble_batch`, compiled: each body's whole run in numba.
+"""The B-dot batch of :func:`tumble.dynamics.control.detumble.detumble_batch`, compiled: each body's whole run in numba.
 
-The numpy path of :func:`~tumble.dynamics.detumble.detumble_batch` is vectorised over the
+The numpy path of :func:`~tumble.dynamics.control.detumble.detumble_batch` is vectorised over the
 bodies: one RK4 stage is some fifty numpy operations on arrays of N, bound by memory traffic.
 Here each body runs through every control step in compiled code with its state in registers,
-the bodies spread over every core from :data:`~tumble.dynamics.methods.compiled.PARALLEL_BODIES`
+the bodies spread over every core from :data:`~tumble.jit.PARALLEL_BODIES`
 (``numba.prange``; the same arithmetic for each body either way). The arithmetic is that of the
 numpy path, step by step (the numpy path is the reference: tests/test_controlled_compiled.py
 checks the two agree to round-off), with the formulas written out once more over floats:
@@ -12,11 +12,11 @@ checks the two agree to round-off), with the formulas written out once more over
   (:meth:`~tumble.dynamics.models.sensors.Sensors.sample`), the noise drawn in numpy and passed in
   a control step at a time;
 - the gyro B-dot dipole ``-k (B x omega)`` of the readings, ``k = gain / |B|^2`` normalised
-  (:func:`~tumble.dynamics.controllers.bdot_dipole`), clipped rod by rod
+  (:func:`~tumble.dynamics.control.controllers.bdot_dipole`), clipped rod by rod
   (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`), checked against them;
 - ``I omega' = m x B - omega x I omega``, ``q' = q (x) (omega, 0) / 2`` (the numpy path's ``_rhs``);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of the circular orbit and the field: the
-  functions of :mod:`~tumble.dynamics.methods.compiled_control` (one compiled formula for both
+  functions of :mod:`~tumble.dynamics.control.compiled_control` (one compiled formula for both
   kernels), with what all bodies share (the orbit's position in ECI and the
   Earth's turn since t = 0 at each RK4 node) computed once for the batch, and each body's
   sidereal angle ``gmst0 + omega_E t`` by the angle-addition formulas (a round-off apart from
@@ -35,8 +35,10 @@ import numpy as np
 
 from ...typing import FloatArray
 from ..models.magnetic import OMEGA_EARTH
-from .compiled import PARALLEL_BODIES, _cores
-from .compiled_control import _dipole, _gravity_gradient, _to_body
+from ...jit import PARALLEL_BODIES, cores
+from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
+from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
+from .compiled_control import _dipole
 
 __all__ = ["detumble_run"]
 
@@ -104,7 +106,7 @@ def _detumble(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, 
               noise: FloatArray, period: float, step0: int, steps: int, substeps: int, rates: FloatArray,
               w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover
     """Every body through ``steps`` control periods of B-dot with ``substeps`` RK4 steps each, from
-    ``t = step0 period`` (:func:`tumble.dynamics.detumble.detumble_batch`, the same arithmetic body by
+    ``t = step0 period`` (:func:`tumble.dynamics.control.detumble.detumble_batch`, the same arithmetic body by
     body), in blocks of :data:`BLOCK` bodies; the orbit's share of the field once for all
     (:func:`_orbit_table`). ``bias`` (N, 6): gyro and magnetometer biases; ``noise`` (N, steps, 6)
     their noise at each step, or (N, 0, 6) for none; ``n_gg`` 0 for no gravity gradient."""
@@ -192,7 +194,7 @@ def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: flo
     g0, g1, g2 = 0.0, 0.0, 0.0
     if n_gg > 0.0:
         r0, r1, r2 = _to_body(x, y, z, c, rc, rs, 0.0)
-        g0, g1, g2 = _gravity_gradient(n_gg, I0, I1, I2, r0, r1, r2)
+        g0, g1, g2 = _gravity_gradient(n_gg * n_gg, I0, I1, I2, r0, r1, r2)
     h0, h1, h2 = I0 * w0, I1 * w1, I2 * w2
     return (0.5 * (c * w0 + y * w2 - z * w1), 0.5 * (c * w1 + z * w0 - x * w2), 0.5 * (c * w2 + x * w1 - y * w0),
             0.5 * -(x * w0 + y * w1 + z * w2),
@@ -236,7 +238,7 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
                  normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
                  substeps: int, n_gg: float = 0.0, bias: FloatArray | None = None, noise: FloatArray | None = None,
                  step0: int = 0) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The compiled B-dot batch of :func:`tumble.dynamics.detumble.detumble_batch` (checked inputs).
+    """The compiled B-dot batch of :func:`tumble.dynamics.control.detumble.detumble_batch` (checked inputs).
 
     Parameters
     ----------
@@ -251,7 +253,7 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     axes, limit : ndarray, shapes (r, 3) and (r,)
         The rods' unit axes and dipole limits, A m^2.
     fp : ndarray, shape (16,)
-        :func:`~tumble.dynamics.methods.compiled_control.field_params` of the dipole (its ``gmst0`` unused).
+        :func:`~tumble.dynamics.control.compiled_control.field_params` of the dipole (its ``gmst0`` unused).
     period : float
         Control period, s.
     steps, substeps : int
@@ -276,7 +278,7 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
 
     >>> from tumble.dynamics.models.magnetic import DipoleField
     >>> from tumble.dynamics.models.orbit import CircularOrbit
-    >>> from tumble.dynamics.methods.compiled_control import field_params
+    >>> from tumble.dynamics.control.compiled_control import field_params
     >>> _, fp = field_params(DipoleField(CircularOrbit(altitude=500e3)))
     >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),
     ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.eye(3), limit=np.ones(3),
@@ -286,7 +288,7 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     """
     N = len(I)
     rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
-    kernel = _compiled("_detumble", parallel=N >= PARALLEL_BODIES and _cores() > 1)
+    kernel = _compiled("_detumble", parallel=N >= PARALLEL_BODIES and cores() > 1)
     c = np.ascontiguousarray
     bias = np.zeros((N, 6)) if bias is None else bias
     noise = np.zeros((N, 0, 6)) if noise is None else noise

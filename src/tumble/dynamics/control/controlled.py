@@ -17,7 +17,7 @@ read and the controller called.
 or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular, Keplerian or TLE
 orbit, ``Magnetorquers``, ``ReactionWheels``) each interval is
 integrated by a compiled copy of scipy's DOP853
-(:mod:`~tumble.dynamics.methods.compiled_control`: the same steps; a two-orbit detumble, 11,400
+(:mod:`~tumble.dynamics.control.compiled_control`: the same steps; a two-orbit detumble, 11,400
 periods, in 1 s instead of 41 s, most of it now the Python controller); with a
 model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. The controller and
 the sensors are Python either way, called once a period.
@@ -37,21 +37,21 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from ..typing import ArrayLike, FloatArray
-from ..validation import check_moments, check_positive, check_rotation, check_vector
+from ...typing import ArrayLike, FloatArray
+from ...validation import check_moments, check_positive, check_rotation, check_vector
 from .controllers import Controller
-from .models.actuators import Command, Magnetorquers, ReactionWheels
-from .models.ephemeris import OrbitGravityGradient
-from .models.gravity import GravityGradient
-from .models.magnetic import MagneticField
-from .models.sensors import Sensors
+from ..models.actuators import Command, Magnetorquers, ReactionWheels
+from ..models.ephemeris import OrbitGravityGradient
+from ..models.gravity import GravityGradient
+from ..models.magnetic import MagneticField
+from ..models.sensors import Sensors
 from .pointing import Reference, target_attitude
-from .simulate import check_rtol
-from .special.mrp import mrp_angle, mrp_from_quat
-from .special.quaternion import rotate_by_quaternion
+from ..simulate import check_rtol
+from ..special.mrp import mrp_angle, mrp_from_quat
+from ..special.quaternion import rotate_by_quaternion
 
 if TYPE_CHECKING:
-    from .methods.compiled_control import ControlKernel
+    from .compiled_control import ControlKernel
 
 __all__ = ["ControlledRun", "simulate_controlled"]
 
@@ -88,7 +88,7 @@ class ControlledRun:
     :func:`simulate_controlled` makes one. A spin about a principal axis with no actuator
     (B-dot without a field asks for nothing) keeps its rate; one sample a control step:
 
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
     ...                           controller=BDot(gain=1e-3, period=1.0))
     >>> run.t.tolist() == [float(k) for k in range(11)], run.omega.shape, run.wheel_speed.shape
@@ -118,7 +118,7 @@ class ControlledRun:
         ``-k omega`` held over each step ``dt``, so ``|omega|`` falls by ``1 - k dt / I3`` a step
         (nearly ``exp(-k t / I3)``):
 
-        >>> from tumble.dynamics.controllers import BDot
+        >>> from tumble.dynamics.control.controllers import BDot
         >>> from tumble.dynamics.models.magnetic import UniformField
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
@@ -136,7 +136,7 @@ class ControlledRun:
         Normalised B-dot (as in :attr:`rate`) takes the rate down by ``e`` in about
         ``I3 / k = 15 s``; the first sample below is at 15 s:
 
-        >>> from tumble.dynamics.controllers import BDot
+        >>> from tumble.dynamics.control.controllers import BDot
         >>> from tumble.dynamics.models.magnetic import UniformField
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
@@ -155,14 +155,14 @@ class ControlledRun:
     def pointing_error(self, target: Rotation | Reference) -> FloatArray:
         """Angle from the target frame (to world) to the body's principal frame at each sample, rad.
 
-        ``target`` is a fixed frame or a moving reference (:mod:`~tumble.dynamics.pointing`):
+        ``target`` is a fixed frame or a moving reference (:mod:`~tumble.dynamics.control.pointing`):
         then the angle is to the reference at each sample's time.
 
         Examples
         --------
         An uncontrolled spin of 0.1 rad/s about a principal axis turns ``0.1 t`` from its start:
 
-        >>> from tumble.dynamics.controllers import BDot
+        >>> from tumble.dynamics.control.controllers import BDot
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
         ...                           controller=BDot(gain=1e-3, period=1.0))
         >>> np.allclose(run.pointing_error(Rotation.identity()), 0.1 * run.t)
@@ -172,7 +172,7 @@ class ControlledRun:
 
         The same spin is on a reference turning at 0.1 rad/s about the major axis, minor axis to nadir:
 
-        >>> from tumble.dynamics.pointing import NadirTarget
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> nadir = NadirTarget(0.1)
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
         ...     controller=BDot(gain=1e-3, period=1.0), attitude0=nadir.attitude(0.0))
@@ -190,7 +190,7 @@ class ControlledRun:
         MRP feedback with wheels moves the body's momentum into the wheels; with no external
         torque the total stays put:
 
-        >>> from tumble.dynamics.controllers import MRPFeedback
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
         >>> rw = ReactionWheels(np.eye(3), inertia=1e-4, max_torque=1e-3)
         >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
         >>> run = simulate_controlled([0.03, 0.04, 0.05], [0.01, 0.0, 0.0], t_end=10.0, controller=c,
@@ -241,7 +241,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Ma
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
     if compiled is False:
         return None
-    from .methods.compiled_control import ControlKernel, compiled_control_models
+    from .compiled_control import ControlKernel, compiled_control_models
 
     other = compiled_control_models(field, gg, magnetorquers, wheels)
     if other is not None:
@@ -306,7 +306,7 @@ def simulate_controlled(
 
     Examples
     --------
-    >>> from tumble.dynamics.controllers import BDot
+    >>> from tumble.dynamics.control.controllers import BDot
     >>> from tumble.dynamics.models.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=20.0,
     ...     controller=BDot(gain=1e4, period=1.0), field=UniformField((3e-5, 0.0, 0.0)),

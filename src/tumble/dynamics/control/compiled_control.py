@@ -1,10 +1,10 @@
 """The closed-loop equations under the built-in models, compiled: one hold interval in numba.
 
 :meth:`ControlKernel.advance` integrates one zero-order-hold interval of the controlled
-equations of :mod:`tumble.dynamics.controlled` (quaternion, omega, wheel spins, external impulse)
-for :func:`~tumble.dynamics.controlled.simulate_controlled`, over plain arrays, compiled by numba
+equations of :mod:`tumble.dynamics.control.controlled` (quaternion, omega, wheel spins, external impulse)
+for :func:`~tumble.dynamics.control.controlled.simulate_controlled`, over plain arrays, compiled by numba
 on first use (``cache=True``). The B-dot batch's kernel, which shares the field with it, is
-:mod:`~tumble.dynamics.methods.compiled_detumble`.
+:mod:`~tumble.dynamics.control.compiled_detumble`.
 
 **Why compiled, and which scheme.** The Python path calls scipy's ``solve_ivp`` once per control
 period, ~1 ms of Python overhead per interval and ~0.1 ms per right-hand side: a two-orbit
@@ -46,7 +46,9 @@ import numpy as np
 
 from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
+from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
 from ..models.tabulated import horner as _horner
+from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
 
 __all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
            "field_params"]
@@ -151,16 +153,6 @@ def _field_body(kind: int, p: FloatArray, table: FloatArray, q: FloatArray, t: f
     out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
 
 
-def _gravity_gradient(n: float, I0: float, I1: float, I2: float, b0: float, b1: float,
-                      b2: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """The gravity-gradient torque ``3 n^2 r_b x (I r_b)`` (N m, body frame) of a circular orbit of
-    mean motion ``n`` (rad/s), ``r_b = (b0, b1, b2)`` the unit radius vector in the principal frame
-    and ``I = diag(I0, I1, I2)`` (kg m^2) (:func:`~tumble.dynamics.models.gravity.gradient_torque`)."""
-    g = 3.0 * n * n
-    c0, c1, c2 = I0 * b0, I1 * b1, I2 * b2
-    return g * (b1 * c2 - b2 * c1), g * (b2 * c0 - b0 * c2), g * (b0 * c1 - b1 * c0)
-
-
 def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
                   coulomb: float, limit_cycle: float) -> float:  # pragma: no cover - compiled
     """One wheel's applied torque (N m), as :meth:`ReactionWheels.applied_torque`: clipped,
@@ -174,7 +166,7 @@ def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: fl
 def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,
          command: FloatArray, field_kind: int, fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray,
          u: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
-    """The controlled equations (module docstring of :mod:`tumble.dynamics.controlled`) into ``out``.
+    """The controlled equations (module docstring of :mod:`tumble.dynamics.control.controlled`) into ``out``.
 
     ``y = (q, omega, s, impulse)``; ``wheels`` rows ``(g (3), J, u_max, s_max, c_v, c_c)``; ``ft``
     the field's table; ``gp = (n, mu, t0, h)`` the gravity gradient: a circle's mean motion
@@ -199,7 +191,7 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
         t2 += dipole[0] * b1 - dipole[1] * b0
     if gp[0] > 0.0:  # r_b = R^T (cos n t, sin n t, 0)
         v0, v1 = math.cos(gp[0] * t), math.sin(gp[0] * t)
-        g0, g1, g2 = _gravity_gradient(gp[0], I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
+        g0, g1, g2 = _gravity_gradient(gp[0] * gp[0], I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
                                        r02 * v0 + r12 * v1)
         t0 += g0
         t1 += g1
@@ -208,7 +200,8 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
         v0, v1, v2 = _table(gt, gp[2], gp[3], t)
         rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
         v0, v1, v2 = v0 / rn, v1 / rn, v2 / rn
-        g0, g1, g2 = _gravity_gradient(math.sqrt(gp[1] / rn) / rn, I[0], I[1], I[2], r00 * v0 + r10 * v1 + r20 * v2,
+        n_r = math.sqrt(gp[1] / rn) / rn  # sqrt(mu / r^3)
+        g0, g1, g2 = _gravity_gradient(n_r * n_r, I[0], I[1], I[2], r00 * v0 + r10 * v1 + r20 * v2,
                                        r01 * v0 + r11 * v1 + r21 * v2, r02 * v0 + r12 * v1 + r22 * v2)
         t0 += g0
         t1 += g1
@@ -334,15 +327,6 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
             f[i] = K[stages, i]
         if t - t_end >= 0.0:
             return 0
-
-
-def _to_body(x: float, y: float, z: float, w: float, v0: float, v1: float,
-             v2: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """``R^T v`` for the quaternion ``(x, y, z, w)`` (not normalised), R as Shuster 1993 eq. 161
-    (the numpy batch's ``detumble._to_body``)."""
-    return ((1 - 2 * (y * y + z * z)) * v0 + 2 * (x * y + z * w) * v1 + 2 * (x * z - y * w) * v2,
-            2 * (x * y - z * w) * v0 + (1 - 2 * (x * x + z * z)) * v1 + 2 * (y * z + x * w) * v2,
-            2 * (x * z + y * w) * v0 + 2 * (y * z - x * w) * v1 + (1 - 2 * (x * x + y * y)) * v2)
 
 
 _HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms", "_to_body")

@@ -2,11 +2,11 @@
 
 After separation a small satellite tumbles at a few to tens of deg/s; the first mode of its
 attitude control damps that spin with B-dot and magnetorquers (Stickler & Alfriend 1974; gain
-of Avanzini & Giulietti 2012: :class:`~tumble.dynamics.controllers.BDot`), and only when the
+of Avanzini & Giulietti 2012: :class:`~tumble.dynamics.control.controllers.BDot`), and only when the
 rate is low does a fine mode take over and point with reaction wheels (MRP feedback, Schaub &
 Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec. 8.3-8.4:
-:class:`~tumble.dynamics.controllers.MRPFeedback`), optionally with the magnetorquers unloading
-the wheels (:class:`~tumble.dynamics.controllers.MomentumDumping`). This is the usual mode
+:class:`~tumble.dynamics.control.controllers.MRPFeedback`), optionally with the magnetorquers unloading
+the wheels (:class:`~tumble.dynamics.control.controllers.MomentumDumping`). This is the usual mode
 sequence of small-satellite attitude control: a detumbling mode on magnetometer and
 magnetorquers after deployment, then pointing modes with the wheels (for example the SAGE
 CubeSat's "ADCS operational modes", https://sage-docs.pages.dev/engineering/space-segment/ADCS/ADCS-Operational-Modes,
@@ -35,10 +35,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import check_positive
+from ...validation import check_positive
 from .controllers import BDot, MomentumDumping, MRPFeedback
-from .models.actuators import Command
-from .models.sensors import Measurement
+from ..models.actuators import Command
+from ..models.sensors import Measurement
 
 __all__ = ["DetumbleThenPoint"]
 
@@ -52,7 +52,7 @@ class DetumbleThenPoint:
     detumble : BDot
         The detumbling mode (magnetorquers).
     point : MRPFeedback or MomentumDumping
-        The pointing mode (wheels; with :class:`~tumble.dynamics.controllers.MomentumDumping` the
+        The pointing mode (wheels; with :class:`~tumble.dynamics.control.controllers.MomentumDumping` the
         magnetorquers unload them).
     switch_rate : float
         Rate below which the gyroscope's ``|omega|`` must stay, rad/s (> 0).

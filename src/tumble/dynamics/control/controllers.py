@@ -27,7 +27,7 @@ the target, one principal axis obeys ``I_RW theta'' + P theta' + (K / 4) theta =
 ``zeta = P / sqrt(K I_RW)`` (:func:`pd_response`), ``I_RW`` the moment with the wheels' axial
 moments taken out (:mod:`~tumble.dynamics.models.actuators`). A moving reference (nadir:
 sec. 8.3's tracking law) and the integral term (sec. 8.4; ``Ki``, ``integral_limit``):
-:mod:`~tumble.dynamics.pointing`.
+:mod:`~tumble.dynamics.control.pointing`.
 
 **Momentum dumping** (the cross-product law: Camillo & Markley, "Orbit-averaged behavior of
 magnetic control laws for momentum unloading", J. Guid. Control 3(6), 1980; Sidi, *Spacecraft
@@ -49,18 +49,18 @@ from typing import NamedTuple, Protocol, runtime_checkable
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..typing import ArrayLike, FloatArray
-from ..validation import (
+from ...typing import ArrayLike, FloatArray
+from ...validation import (
     check_bool,
     check_moments,
     check_positive,
     check_rotation,
     check_vector,
 )
-from .models.actuators import Command, ReactionWheels
-from .models.sensors import Measurement
+from ..models.actuators import Command, ReactionWheels
+from ..models.sensors import Measurement
 from .pointing import Reference, is_reference, tracking_error
-from .special.mrp import mrp_from_quat
+from ..special.mrp import mrp_from_quat
 
 __all__ = ["BDot", "Controller", "MRPFeedback", "MomentumDumping", "PDResponse", "bdot_dipole", "bdot_gain",
            "pd_response"]
@@ -259,7 +259,7 @@ class MRPFeedback:
         The wheels that make the torque.
     target : scipy Rotation, quaternion [x, y, z, w] or Reference
         The target frame to world, fixed, or a moving reference (``attitude(t)``, ``rate(t)``:
-        :class:`~tumble.dynamics.pointing.NadirTarget`); the principal frame is driven onto it.
+        :class:`~tumble.dynamics.control.pointing.NadirTarget`); the principal frame is driven onto it.
     gyroscopic : bool
         Whether to add the feed-forward ``omega x (I omega + h)``.
     Ki : float
@@ -308,7 +308,7 @@ class MRPFeedback:
         self._I_rw = np.diag(np.asarray(self.moments, float)) - self.wheels.locked_axial()
 
     def reset(self) -> None:
-        """Clear the integral term (a new run; :func:`~tumble.dynamics.controlled.simulate_controlled` calls it).
+        """Clear the integral term (a new run; :func:`~tumble.dynamics.control.controlled.simulate_controlled` calls it).
 
         Examples
         --------

@@ -13,12 +13,12 @@ tracking law needs the reference's angular acceleration as the body sees it,
 ``B d(omega_r)/dt = omega_r' - omega x omega_r`` (all in B; ``omega_r'`` the inertial
 derivative), so that with ``L_r = -K sigma - P delta_omega + I_RW (omega_r' - omega x omega_r)
 + omega x (I omega + h)`` the wheel-driven body obeys ``I_RW B d(delta_omega)/dt = -K sigma -
-P delta_omega + tau_ext`` (:class:`~tumble.dynamics.controllers.MRPFeedback`): the Lyapunov
+P delta_omega + tau_ext`` (:class:`~tumble.dynamics.control.controllers.MRPFeedback`): the Lyapunov
 function ``V = 2 K ln(1 + |sigma|^2) + delta_omega . I_RW delta_omega / 2`` has
 ``V' = -delta_omega . P delta_omega`` without disturbance.
 
 **The integral term** (sec. 8.4's integral feedback; Basilisk's ``mrpFeedback`` with ``Ki`` and
-``integralLimit``): :class:`~tumble.dynamics.controllers.MRPFeedback` with ``Ki > 0`` (1/s) adds
+``integralLimit``): :class:`~tumble.dynamics.control.controllers.MRPFeedback` with ``Ki > 0`` (1/s) adds
 ``-z``, ``z = Ki K sum_j sigma_j dt`` over the earlier control steps (N m), each component held
 within ``integral_limit`` (anti-windup). Per axis, linearised (``sigma ~ theta / 4``),
 ``I_RW theta'' + P theta' + (K / 4) (theta + Ki int theta dt) = tau``: stable for ``Ki < P / I_RW``
@@ -46,9 +46,9 @@ from typing import Protocol, TypeGuard, runtime_checkable
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..typing import ArrayLike, FloatArray
-from ..validation import axis_index, check_positive
-from .special.mrp import mrp_from_quat
+from ...typing import ArrayLike, FloatArray
+from ...validation import axis_index, check_positive
+from ..special.mrp import mrp_from_quat
 
 __all__ = ["NadirTarget", "Reference", "TrackingError", "is_reference", "target_attitude", "tracking_error"]
 

@@ -1,8 +1,8 @@
 """B-dot detumbling of many bodies at once: the closed loop of :func:`simulate_controlled`,
 vectorised over N bodies with numpy and integrated by fixed-step RK4 between control steps.
 
-The model is the magnetorquer case of :mod:`~tumble.dynamics.controlled` with the gyro form of
-the B-dot law (:class:`~tumble.dynamics.controllers.BDot`, ``derivative="gyro"``) and no wheels:
+The model is the magnetorquer case of :mod:`~tumble.dynamics.control.controlled` with the gyro form of
+the B-dot law (:class:`~tumble.dynamics.control.controllers.BDot`, ``derivative="gyro"``) and no wheels:
 for each body ``i`` (principal moments ``I_i``)
 
 ``I_i omega' = m_i x B_i + tau_gg,i - omega x I_i omega``,  ``q' = q (x) (omega, 0) / 2``,
@@ -27,7 +27,7 @@ whatever the other bodies, the batch's size or the path (tested). The noise is d
 steps at a time (a few tens of MB), and the kernel runs segment by segment.
 
 **Two paths.** By default each body runs through a compiled kernel
-(:func:`~tumble.dynamics.methods.compiled_detumble.detumble_run`: the same arithmetic, body by
+(:func:`~tumble.dynamics.control.compiled_detumble.detumble_run`: the same arithmetic, body by
 body, on every core for a large batch); ``compiled=False`` runs the numpy path, vectorised over
 the bodies, which is the reference (the two agree to round-off, tests/test_controlled_compiled.py).
 In numpy one RK4 stage is some fifty operations on arrays of N, and the batch is bound by memory
@@ -44,13 +44,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..typing import ArrayLike, FloatArray
-from ..validation import check_positive
+from ...typing import ArrayLike, FloatArray
+from ...validation import check_positive
 from .controllers import bdot_dipole
-from .models.actuators import Magnetorquers
-from .models.gravity import GravityGradient, gradient_torque
-from .models.magnetic import OMEGA_EARTH, DipoleField
-from .models.sensors import Sensors
+from ..models.actuators import Magnetorquers
+from ..models.gravity import GravityGradient, gradient_torque
+from ..models.magnetic import OMEGA_EARTH, DipoleField
+from ..models.sensors import Sensors
 
 __all__ = ["DetumbleBatch", "detumble_batch"]
 
@@ -85,7 +85,7 @@ class DetumbleBatch:
 
     def detumble_time(self, threshold: float) -> FloatArray:
         """When each ``|omega|`` drops below ``threshold`` (rad/s) and stays there, s (NaN: never),
-        as :meth:`~tumble.dynamics.controlled.ControlledRun.detumble_time`.
+        as :meth:`~tumble.dynamics.control.controlled.ControlledRun.detumble_time`.
 
         Examples
         --------
@@ -182,12 +182,12 @@ class _SensorErrors:
             return
         from concurrent.futures import ThreadPoolExecutor
 
-        from .methods.compiled import _cores
+        from ...jit import cores
 
         rngs = {int(i): np.random.default_rng(self.seeds[i]) for i in np.flatnonzero(np.any(self.sigma > 0.0, axis=1))}
         scale = np.repeat(self.sigma, 3, axis=1)  # (N, 6): the gyro's sigma thrice, the magnetometer's thrice
         size = max(1, NOISE_VALUES // (6 * n))
-        groups = [g for g in np.array_split(np.array(sorted(rngs), dtype=int), min(_cores(), 8)) if len(g)]
+        groups = [g for g in np.array_split(np.array(sorted(rngs), dtype=int), min(cores(), 8)) if len(g)]
 
         def fill(noise: FloatArray, group: FloatArray) -> None:
             for i in group:
@@ -271,7 +271,7 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     t_end : float
         Duration, s: a whole number of periods is run (the last one may end past ``t_end``).
     form : {"normalized", "classic"}
-        The B-dot law (:class:`~tumble.dynamics.controllers.BDot`).
+        The B-dot law (:class:`~tumble.dynamics.control.controllers.BDot`).
     substeps : int
         RK4 steps per control period (>= 1).
     gravity_gradient : GravityGradient, optional
@@ -336,8 +336,8 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     errors = _sensor_errors(sensors, n)
     rates = np.empty((n, steps + 1))
     if compiled:
-        from .methods.compiled_control import field_params
-        from .methods.compiled_detumble import detumble_run
+        from .compiled_control import field_params
+        from .compiled_detumble import detumble_run
 
         fp = field_params(field)[1]
         for i0, i1, noise in errors.segments(steps):

@@ -1,0 +1,23 @@
+"""Flight software as its own room: controllers, the closed loop, the mission logic, pointing targets
+and the batched B-dot, with their compiled parts.
+
+- :mod:`~tumble.dynamics.control.controllers`: the control laws (B-dot, MRP feedback, momentum
+  dumping) behind one :class:`~tumble.dynamics.control.controllers.Controller` interface;
+- :mod:`~tumble.dynamics.control.controlled`: the closed loop, :func:`simulate_controlled`, with
+  the sensors, actuators and environment of :mod:`tumble.dynamics.models`;
+- :mod:`~tumble.dynamics.control.mission`: detumble, then point (:class:`DetumbleThenPoint`);
+- :mod:`~tumble.dynamics.control.pointing`: pointing targets (inertial, nadir) and the tracking error;
+- :mod:`~tumble.dynamics.control.detumble`: the B-dot detumble of many bodies at once;
+- :mod:`~tumble.dynamics.control.compiled_control` and
+  :mod:`~tumble.dynamics.control.compiled_detumble`: their numba kernels.
+
+The room calls the models and the integrators, never the other way (tests/test_import_graph.py).
+"""
+
+from .controlled import ControlledRun, simulate_controlled
+from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
+from .mission import DetumbleThenPoint
+from .pointing import NadirTarget
+
+__all__ = ["BDot", "ControlledRun", "Controller", "DetumbleThenPoint", "MRPFeedback", "NadirTarget", "bdot_gain",
+           "pd_response", "simulate_controlled"]
