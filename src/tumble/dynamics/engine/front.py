@@ -107,7 +107,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
                form: tuple[int, tuple[float, ...]], *, rtol: float | None = None, atol: FloatArray | None = None,
                step: float | FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """N bodies (rows of ``moments``, ``omega0``, ``quat0``, ``atol`` (N, 7) and ``step``, one
-    or (N,)), each as :func:`run_body` runs it, on every core from :data:`PARALLEL_BODIES`
+    or (N,)), each as :func:`run_body` runs it, on every core from :data:`~tumble.jit.PARALLEL_BODIES`
     bodies: the same arithmetic for each body either way. Returns ``omega`` (N, n, 3) and
     ``quat`` (N, n, 4).
 

@@ -16,7 +16,7 @@ built-in models are known in advance and evaluated here inline:
   Attitude Dynamics*, ch. 8).
 
 The compiled and numpy paths agree to round-off (tests/test_compiled.py). A batch of at least
-:data:`PARALLEL_BODIES` runs its bodies on every core (``numba.prange``); smaller ones on one
+:data:`~tumble.jit.PARALLEL_BODIES` runs its bodies on every core (``numba.prange``); smaller ones on one
 thread, since the parallel kernel made the first call of a process 2.3 s against 0.96 s (the
 threading layer's start, measured). Each body gets the same arithmetic either way. Compiled on
 first use with ``cache=True``, so once per machine: importing numba costs half a
