@@ -154,3 +154,18 @@ def test_absurd_values_in_a_recording_are_refused_in_one_line(tmp_path, capsys, 
     assert main(["fit", str(data), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and said in err and not out.exists()
+
+
+@pytest.mark.parametrize(("flag", "value"), [("--start", "nan"), ("--end", "inf"), ("--start", "-inf")])
+def test_a_window_bound_that_is_no_finite_number_is_refused_as_such(tmp_path, capsys, flag, value):
+    """Issue 27, item 8: `--start nan` said "--start nan must be before --end 5.0"; it is bad input
+    (exit 2) whose one line says the value must be finite, and nothing is written."""
+    t, w = _toss()
+    data = tmp_path / "toss.csv"
+    _write_csv(data, t, w)
+    out = tmp_path / "fit"
+    other = "--end" if flag == "--start" else "--start"
+    assert main(["fit", str(data), "--out", str(out), f"{flag}={value}", other, "1.0" if other == "--end" else "0.0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{flag} = {value}" in err and "must be a finite number (s)" in err
+    assert not out.exists()

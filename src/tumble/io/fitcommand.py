@@ -32,6 +32,7 @@ from ..analysis.fit import (
     fit_recording,
     fit_rotation,
 )
+from ..validation import check_number
 from .gyrodata import read_recording
 from .output import FIGURE_DPI, check_output_dir, output_dir
 from .provenance import file_sha256, provenance
@@ -153,8 +154,9 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", InadequateFitWarning)  # said below in one line
             if start is not None or end is not None:
-                lo = -np.inf if start is None else float(start)
-                hi = np.inf if end is None else float(end)
+                # a time that is no finite number is refused as such, before the two are compared
+                lo = -np.inf if start is None else check_number("--start", start, "s")
+                hi = np.inf if end is None else check_number("--end", end, "s")
                 if not lo < hi:
                     raise ValueError(f"--start {start} must be before --end {end} (s)")
                 sel = (t >= lo) & (t <= hi)
