@@ -79,3 +79,32 @@ def test_bad_inputs_name_the_field():
     with pytest.raises(ValueError, match="substeps"):
         detumble_batch([MOMENTS], [[0.1, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]], field=DipoleField(ORBIT), gmst0=0.0,
                        gain=GAIN, magnetorquers=Magnetorquers(0.2), period=1.0, t_end=10.0, substeps=0)
+
+
+@pytest.mark.parametrize("spread", [0.1, 0.5, 0.9])
+def test_the_monte_carlo_draws_only_bodies_that_exist(spread):
+    """Issue 27, item 4: the docs' 3U CubeSat at the default spread kept 39 bodies in 1000 with
+    I1 + I2 < I3 (173 of 200 at spread 0.9). Every case's moments now meet the triangle inequality,
+    the cases that met it are the ones drawn before, and each moment stays within the spread."""
+    from tumble.validation import breaks_triangle
+
+    nominal = np.array([0.0067, 0.0419, 0.0419])
+    cases = detumble_cases(1000, moments=nominal, rate_min=0.1, rate_max=0.3, moment_spread=spread, seed=3)
+    assert not breaks_triangle(cases.moments).any()
+    assert np.all(np.abs(cases.moments / nominal - 1.0) <= spread + 1e-12)
+    # the redraws come after every other draw: the rates, attitudes and seeds are the ones drawn without them
+    again = detumble_cases(1000, moments=nominal, rate_min=0.1, rate_max=0.3, moment_spread=spread, seed=3)
+    np.testing.assert_array_equal(again.moments, cases.moments)
+    rng = np.random.default_rng(3)
+    direction = rng.standard_normal((1000, 3))
+    direction /= np.linalg.norm(direction, axis=1)[:, None]
+    np.testing.assert_array_equal(cases.omega0, direction * rng.uniform(0.1, 0.3, 1000)[:, None])
+    first = nominal * (1.0 + spread * rng.uniform(-1.0, 1.0, (1000, 3)))
+    kept = ~breaks_triangle(first)
+    assert 0 < kept.sum() < 1000  # the spread does break some (the claim is not empty)
+    np.testing.assert_array_equal(cases.moments[kept], first[kept])
+
+
+def test_an_impossible_nominal_body_is_refused():
+    with pytest.raises(ValueError, match="triangle inequality"):
+        detumble_cases(10, moments=[0.01, 0.02, 0.05], rate_min=0.1, rate_max=0.3)

@@ -33,6 +33,7 @@ __all__ = [
     "MAX_RATE",
     "QUAT_NORM_TOL",
     "axis_index",
+    "breaks_triangle",
     "check_at_most",
     "check_bool",
     "check_direction",
@@ -271,11 +272,26 @@ def check_moments(field: str, value: ArrayLike, *, physical: bool = True) -> Vec
     refuse_first(field, I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
     refuse_first(field, I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
     if physical:
-        refuse_first(field, I, I[..., 2] - I[..., 0] - I[..., 1] > INERTIA_RTOL * np.sum(I, axis=-1),
+        refuse_first(field, I, breaks_triangle(I),
                      "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
         refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1),
                      f"is beyond {MAX_INERTIA:g} kg m^2: {BOUND_REASONS[MAX_INERTIA]}")
     return I
+
+
+def breaks_triangle(moments: ArrayLike) -> BoolArray:
+    """Whether principal moments ``(..., 3)``, in any order, break the triangle inequality: the
+    largest exceeds the sum of the other two by more than :data:`INERTIA_RTOL` of the trace
+    (Goldstein sec. 5.4: no distribution of positive mass has such moments).
+
+    Examples
+    --------
+    >>> breaks_triangle([[1.0, 2.0, 3.0], [0.1, 1.0, 0.2], [1.0, 1.0, 2.0]]).tolist()   # the last is planar
+    [False, True, False]
+    """
+    I = np.asarray(moments, dtype=float)
+    total = np.sum(I, axis=-1)
+    return cast(BoolArray, 2.0 * np.max(I, axis=-1) - total > INERTIA_RTOL * total)
 
 
 AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"

@@ -33,7 +33,7 @@ from ..dynamics.models.gravity import GravityGradient
 from ..dynamics.models.magnetic import DipoleField
 from ..dynamics.models.sensors import Sensors
 from ..typing import ArrayLike, FloatArray
-from ..validation import check_moments, check_positive
+from ..validation import breaks_triangle, check_moments, check_positive
 from .backends import InProcess
 
 __all__ = ["DetumbleCases", "DetumbleMonteCarlo", "detumble_cases", "detumble_monte_carlo"]
@@ -101,6 +101,10 @@ class DetumbleCases:
                 "noise_seed": int(self.seeds()[i])}
 
 
+#: Rounds of redrawing the moments of cases that break the triangle inequality (detumble_cases).
+MAX_REDRAWS = 200
+
+
 def detumble_cases(n: int, *, moments: ArrayLike, rate_min: float, rate_max: float, moment_spread: float = 0.1,
                    gyro_bias_sigma: float = 0.0, seed: int = 0) -> DetumbleCases:
     """Draw ``n`` dispersed cases (module docstring).
@@ -114,7 +118,8 @@ def detumble_cases(n: int, *, moments: ArrayLike, rate_min: float, rate_max: flo
     rate_min, rate_max : float
         Range of the initial rate ``|omega0|``, rad/s.
     moment_spread : float
-        Relative spread of each moment (uniform within +-, below 1).
+        Relative spread of each moment (uniform within +-, below 1). A case whose moments would
+        break the triangle inequality (a body that cannot exist) is drawn again.
     gyro_bias_sigma : float
         Standard deviation of each axis of a case's constant gyro bias, rad/s (>= 0).
     seed : int
@@ -132,7 +137,7 @@ def detumble_cases(n: int, *, moments: ArrayLike, rate_min: float, rate_max: flo
     """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n = {n!r} must be a whole number of cases >= 1")
-    I = check_moments("moments", moments, physical=False)
+    I = check_moments("moments", moments)  # a body that exists: within the triangle inequality
     lo = check_positive("rate_min", rate_min, "rad/s", allow_zero=True)
     hi = check_positive("rate_max", rate_max, "rad/s")
     if hi < lo:
@@ -150,6 +155,17 @@ def detumble_cases(n: int, *, moments: ArrayLike, rate_min: float, rate_max: flo
     sigma = check_positive("gyro_bias_sigma", gyro_bias_sigma, "rad/s", allow_zero=True)
     bias = sigma * rng.standard_normal((n, 3))  # after the draws above: the same cases as before
     noise_seed = rng.integers(0, 2**63 - 1, n, dtype=np.int64)
+    # Bodies that cannot exist (the spread can break the triangle inequality: the 3U CubeSat's
+    # I1 + I2 exceeds I3 by only 16 %) are drawn again, after every other draw, so the other cases
+    # stay as they were (at spread 0.9 most draws of that CubeSat break it; 200 rounds leave none).
+    for _ in range(MAX_REDRAWS):
+        bad = breaks_triangle(moments_n)
+        if not bad.any():
+            break
+        moments_n[bad] = I * (1.0 + s * rng.uniform(-1.0, 1.0, (int(bad.sum()), 3)))
+    else:
+        raise RuntimeError(f"moments = {I.tolist()} with moment_spread = {moment_spread!r}: {int(bad.sum())} cases still "
+                           f"break the triangle inequality after {MAX_REDRAWS} draws")
     return DetumbleCases(moments_n, omega0, np.asarray(quat0, float), gmst0, bias, noise_seed)
 
 
