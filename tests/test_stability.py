@@ -335,3 +335,16 @@ def test_the_gyrostat_exponent_is_the_linearisation_of_eulers_equations(moments,
     expected = J[b, c] * J[c, b]  # eps_b'' = s eps_b
     scale = (abs(spin) * I.max() + abs(h)) ** 2 / (I.min() ** 2)
     assert float(perturbation_exponent(I, axis, spin, h)) == pytest.approx(expected, abs=1e-8 * scale)
+
+
+def test_flip_interval_of_one_body_is_a_float_and_of_a_batch_an_array():
+    """Issue 27, item 10: one body's flip interval was a 0-d array (``round(T, 4)`` failed, JSON
+    refused it); it is a float, and a batch still gives one interval per body."""
+    from tumble.analysis.stability import flip_interval, flip_interval_asymptotic
+
+    moments = [0.125, 0.3125, 0.4375]
+    one = flip_interval([0.1, 10.0, 0.1], moments)
+    assert type(one) is float and round(one, 4) == 1.7864  # the README's value
+    assert type(flip_interval_asymptotic([0.1, 10.0, 0.1], moments)) is float
+    many = flip_interval([[0.1, 10.0, 0.1], [0.2, 10.0, 0.1]], moments)
+    assert isinstance(many, np.ndarray) and many.shape == (2,) and many[0] == one

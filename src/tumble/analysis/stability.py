@@ -29,7 +29,7 @@ import numpy as np
 from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
-from ..typing import ArrayLike
+from ..typing import ArrayLike, FloatOrArray
 from ..validation import axis_index, check_moments, check_vectors
 
 __all__ = [
@@ -233,7 +233,7 @@ def stable_spin_range(moments: ArrayLike, momentum: float) -> tuple[float, float
     return float(ends[0]) + 0.0, float(ends[1]) + 0.0
 
 
-def flip_interval(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
+def flip_interval(omega: ArrayLike, moments: ArrayLike) -> FloatOrArray:
     """Exact time between sign changes of the oscillating components of omega, s.
 
     Torque-free motion with ``I1 < I2 < I3`` (Landau & Lifshitz sec. 37): for
@@ -260,9 +260,10 @@ def flip_interval(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape (...)
+    float, or ndarray of shape (...) for a batch
         The flip interval, s; ``inf`` on the separatrix (``L^2 = 2 E I2``) and at rest. Near
-        a stable axis it tends to half the wobble period, ``pi / sqrt(-s)``.
+        a stable axis it tends to half the wobble period, ``pi / sqrt(-s)``. One body gives a
+        float.
 
     Raises
     ------
@@ -288,10 +289,15 @@ def flip_interval(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     p, kp = e.p, e.kp
     with np.errstate(divide="ignore", invalid="ignore"):
         interval = 2.0 * ellipk_kp(kp) / p
-    return np.where((kp == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval)
+    return _float_if_one(np.where((kp == 0) | ~np.isfinite(interval) | ~(p > 0), np.inf, interval))
 
 
-def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
+def _float_if_one(x: np.ndarray) -> FloatOrArray:
+    """A float for one body (a 0-d result), the array for a batch."""
+    return float(x) if np.ndim(x) == 0 else x
+
+
+def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> FloatOrArray:
     """Small-perturbation form of :func:`flip_interval`: ``2 ln(4 / k') / p = ln(16 / (1 - k^2)) / p``, s.
 
     From ``K(k) = ln(4 / k') + O(k'^2 ln k')`` (Abramowitz & Stegun ch. 17, the limit m -> 1) with
@@ -300,7 +306,7 @@ def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> np.ndarray
     nears the axis, with ``p -> lambda``, the linearised growth exponent. Relative error
     ``O(1 - k^2)``.
 
-    Parameters and errors as :func:`flip_interval`; returns an ndarray of shape (...), s.
+    Parameters, errors and the result's type as :func:`flip_interval`, s.
 
     Examples
     --------
@@ -312,7 +318,7 @@ def flip_interval_asymptotic(omega: ArrayLike, moments: ArrayLike) -> np.ndarray
     """
     e = elliptic_parameters(*_check_motion(omega, moments))
     with np.errstate(divide="ignore"):
-        return 2.0 * np.log(4.0 / e.kp) / e.p
+        return _float_if_one(2.0 * np.log(4.0 / e.kp) / e.p)
 
 
 def circulation_axis(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
