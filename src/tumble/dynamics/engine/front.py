@@ -14,6 +14,7 @@ import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores
 from ...typing import FloatArray
+from .status import BUDGET_SPENT, MAX_EVALUATIONS, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
 
@@ -39,11 +40,10 @@ def _tableau(method: str) -> tuple[FloatArray, FloatArray, FloatArray]:
 
 
 def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
-    k = _kernels()
-    if status == k.STEP_COLLAPSED:
+    if status == STEP_COLLAPSED:
         raise RuntimeError(f"{method} integration failed{body}: the step size fell below 10 ulp of t")
-    if status == k.BUDGET_SPENT:
-        raise RuntimeError(f"{method} gave up{body} after {k.MAX_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
+    if status == BUDGET_SPENT:
+        raise RuntimeError(f"{method} gave up{body} after {MAX_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
                            f"the motion is too fast to follow (a torque spinning the body up?)")
 
 

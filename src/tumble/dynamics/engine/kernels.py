@@ -7,7 +7,8 @@ Imported only when a compiled run is asked for (it compiles with numba through
 attitude quaternion (body to world, scalar last), 7 floats. Its right-hand side
 (:func:`body_rhs`) is Euler's equations (:func:`tumble.dynamics.euler.euler_components`) and the
 quaternion kinematics (:func:`tumble.dynamics.special.quaternion.quaternion_rate_components`),
-with the external torque of a built-in model (:func:`external_torque`). Each formula is the
+with the external torque of a built-in model (:func:`external_torque`), component by component
+(:func:`rhs_components`). Each formula is the
 model's own function over floats, compiled here, not a second writing.
 
 **The steppers**, one body per call (a batch runs them over bodies, :func:`dop853_batch` and
@@ -39,16 +40,13 @@ from ..euler import euler_components
 from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
+from .status import BUDGET_SPENT, MAX_EVALUATIONS, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["MAX_EVALUATIONS", "body_rhs", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk"]
+__all__ = ["body_rhs", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk", "rhs_components"]
 
 #: Size of the state ``(omega, q)``: a constant, so the compiler unrolls the loops over it.
 STATE = 7
-#: Right-hand sides one body may take before its run is given up (status 2), as the Python path's budget.
-MAX_EVALUATIONS = 50_000_000
-#: Status codes of the steppers: done, the step fell below 10 ulp of t, the work budget ran out.
-OK, STEP_COLLAPSED, BUDGET_SPENT = 0, 1, 2
 
 #: LLVM's fast-math flags the steppers take: fused multiply-adds only (round-off). Not reciprocals
 #: (``a / s`` as ``a * (1 / s)`` overflows for the tiny ``atol`` of a body at rest, 1e-312), nor

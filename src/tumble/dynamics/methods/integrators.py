@@ -53,6 +53,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
+from ..engine.status import MAX_EVALUATIONS  # the work budget of every adaptive method, compiled or not
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
 from ..models.torques import TorqueModel, body_torque, kernel_form, spin_gain
@@ -60,10 +61,6 @@ from ..special.quaternion import quaternion_rate
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 
-#: Work budget of the adaptive methods: right-hand sides evaluated before a run is given up
-#: (about 40 per radian of rotation for DOP853 at rtol 1e-12, so well above what
-#: ``simulate``'s rotation bound admits; it catches a torque that grows during the run).
-MAX_EVALUATIONS = 50_000_000
 
 
 #: ``integrate(moments, omega0, quat0, t, torque, rtol, atol, step)`` -> ``(omega, quat)`` at ``t``.
