@@ -7,6 +7,7 @@ The room of :mod:`tumble.dynamics` where runs are integrated in compiled code. I
   control and dense output, step for step scipy's; fixed-step RK4 and RK8), one body or a batch
   on every core;
 - :mod:`~tumble.dynamics.engine.tableau`: their Butcher tableaux;
+- :mod:`~tumble.dynamics.engine.status`: how a run ends and the work it may take;
 - :mod:`~tumble.dynamics.engine.front`: the Python front that :func:`tumble.simulate` and
   :func:`tumble.simulate_batch` call: it reads a model's compiled form, lays the bodies out and
   turns a kernel's status into an error.
@@ -19,9 +20,10 @@ arrays and :func:`~tumble.dynamics.engine.kernels.external_torque` compiles for 
 writing. A model without a kernel form (a user's Python function) runs on the Python path, which
 calls it.
 
-The older kernels of :mod:`tumble.dynamics.methods` (the splittings' ``compiled``, the exact flow,
-the closed loop's and the B-dot batch's) still live there; moving them onto this core is open
-work (docs/architecture.md).
+The older kernels (the splittings' and the exact flow's in :mod:`tumble.dynamics.methods`, the
+closed loop's and the B-dot batch's in :mod:`tumble.dynamics.control`) are still compiled by
+rewriting their module's globals, and the closed loop still carries its own DOP853 for one hold
+interval: moving them onto this core is open work.
 """
 
 from .front import ENGINE_METHODS, run_bodies, run_body

@@ -10,7 +10,11 @@ never a method's name.
 
 - ``"dop853"``: Euler's equations and the quaternion kinematics integrated together with
   scipy's 8th-order Dormand-Prince (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.10) at
-  tight tolerances, rtol = 1e-12 by default. The accurate default.
+  tight tolerances, rtol = 1e-12 by default. The accurate default. Under a built-in torque model
+  (:class:`~tumble.dynamics.models.torques.KernelForm`) it runs in the compiled engine
+  (:mod:`tumble.dynamics.engine`), taking scipy's steps.
+- ``"rk4"``, ``"rk8"``: the engine's fixed-step Runge-Kutta (the classical RK4; DOP853's 8th-order
+  weights without error control) at ``step``, compiled; built-in torque models only.
 - ``"rk45"``: the same state with scipy's RK45 at scipy's *default* tolerances (rtol 1e-3,
   atol 1e-6), as the seed study ran it. For comparison.
 - ``"seed"``: the seed's whole computation: RK45 at default tolerances for omega alone, then
