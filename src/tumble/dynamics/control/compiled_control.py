@@ -46,6 +46,8 @@ import numpy as np
 
 from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
+from ..engine.stepsize import error_norm as _error_norm  # the engine's step control, compiled in _compiled()
+from ..engine.stepsize import next_step as _next_step
 from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
 from ..models.tabulated import horner as _horner
 from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
@@ -312,14 +314,9 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
             for i in range(n):
                 e5 += err5[i] * err5[i]
                 e3 += err3[i] * err3[i]
-            error = 0.0 if (e5 == 0.0 and e3 == 0.0) else h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)
-            if error < 1.0:
-                factor = 10.0 if error == 0.0 else min(10.0, 0.9 * error ** -0.125)
-                if rejected:
-                    factor = min(1.0, factor)
-                h_abs *= factor
+            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, n), h_abs, rejected)
+            if accepted:
                 break
-            h_abs *= max(0.2, 0.9 * error ** -0.125)
             rejected = True
         t = t_new
         for i in range(n):
@@ -329,7 +326,8 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
             return 0
 
 
-_HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms", "_to_body")
+_HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms",
+            "_to_body", "_error_norm", "_next_step")
 
 
 @functools.cache

@@ -40,6 +40,7 @@ from ..euler import euler_components
 from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
+from .stepsize import error_norm, next_step
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
@@ -57,6 +58,8 @@ _euler = jit(euler_components, error_model="numpy", inline="always")
 _quaternion_rate = jit(quaternion_rate_components, error_model="numpy", inline="always")
 _to_body = jit(to_body, error_model="numpy", inline="always")
 _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always")
+_error_norm = jit(error_norm, error_model="numpy", inline="always")
+_next_step = jit(next_step, error_model="numpy", inline="always")
 
 
 @jit(error_model="numpy", inline="always")
@@ -252,16 +255,9 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np.n
                 a5, a3 = err5[i] / scale, err3[i] / scale
                 e5 += a5 * a5
                 e3 += a3 * a3
-            error = 0.0 if (e5 == 0.0 and e3 == 0.0) else h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)
-            if error != error:  # NaN (an overflow in the stages): a failed step, shrunk until it collapses
-                error = math.inf
-            if error < 1.0:
-                factor = 10.0 if error == 0.0 else min(10.0, 0.9 * error ** -0.125)
-                if rejected:
-                    factor = min(1.0, factor)
-                h_abs *= factor
+            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, n), h_abs, rejected)
+            if accepted:
                 break
-            h_abs *= max(0.2, 0.9 * error ** -0.125)
             rejected = True
         # samples in (t, t_new], and t itself for the first: scipy's searchsorted(t_eval, t_new, "right")
         if k < t_eval.shape[0] and t_eval[k] <= t_new:

@@ -1,0 +1,56 @@
+"""DOP853's step-size control as scipy runs it, over plain floats: written once, compiled by the
+engine's stepper (:func:`tumble.dynamics.engine.kernels.dop853`) and by the closed loop's
+(:mod:`tumble.dynamics.control.compiled_control`).
+
+Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., sec. II.4 and
+II.10, in the form of :class:`scipy.integrate.DOP853` (``_estimate_error_norm`` and
+``RungeKutta._step_impl``): the 5th- and 3rd-order error estimates combined into one norm, and
+a step accepted below 1, grown or shrunk by ``0.9 error^(-1/8)`` within [0.2, 10], never grown
+right after a rejection. Imports nothing, so numba is not loaded with it.
+
+Examples
+--------
+>>> error_norm(0.0, 0.0, 0.1, 7), next_step(0.0, 0.1, False)   # a perfect step: ten times longer
+(0.0, (True, 1.0))
+>>> accepted, h = next_step(4.0, 0.1, False)   # too large an error: rejected, shrunk
+>>> accepted, round(h, 6)
+(False, 0.075681)
+"""
+
+import math
+
+__all__ = ["error_norm", "next_step"]
+
+
+def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:
+    """The error norm of a step of length ``h_abs`` (s) from ``e5`` and ``e3``, the sums of
+    squares of the scaled 5th- and 3rd-order estimates over the ``n`` components; a NaN (an
+    overflow in the stages) counts as an infinite error, so the step is refused and shrinks.
+
+    Examples
+    --------
+    >>> round(error_norm(1.0, 1.0, 0.5, 4), 6)
+    0.248759
+    >>> error_norm(float("nan"), 1.0, 0.5, 4)
+    inf
+    """
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    error = h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)
+    return math.inf if error != error else error
+
+
+def next_step(error: float, h_abs: float, rejected: bool) -> tuple[bool, float]:
+    """Whether the step is accepted, and the next step length (s) after it or in its place.
+
+    Examples
+    --------
+    >>> next_step(0.1, 1.0, True)   # accepted after a rejection: not grown (it would be 1.2 times)
+    (True, 1.0)
+    """
+    if error < 1.0:
+        factor = 10.0 if error == 0.0 else min(10.0, 0.9 * error ** -0.125)
+        if rejected:
+            factor = min(1.0, factor)
+        return True, h_abs * factor
+    return False, h_abs * max(0.2, 0.9 * error ** -0.125)
