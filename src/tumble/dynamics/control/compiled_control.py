@@ -48,6 +48,7 @@ from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
 from ..engine.stepsize import error_norm as _error_norm  # the engine's step control, compiled in _compiled()
 from ..engine.stepsize import next_step as _next_step
+from ..models.actuators import wheel_torque as _wheel_torque  # the model's formula, compiled in _compiled()
 from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
 from ..models.tabulated import horner as _horner
 from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
@@ -153,16 +154,6 @@ def _field_body(kind: int, p: FloatArray, table: FloatArray, q: FloatArray, t: f
     """B (T) in the body frame of the unit quaternion ``q`` at ``t`` (s) into ``out``: ``R^T B_world``."""
     _field_world(kind, p, table, p[12], t, out)
     out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
-
-
-def _wheel_torque(command: float, speed: float, max_torque: float, max_speed: float, viscous: float,
-                  coulomb: float, limit_cycle: float) -> float:  # pragma: no cover - compiled
-    """One wheel's applied torque (N m), as :meth:`ReactionWheels.applied_torque`: clipped,
-    zero where it would push ``|s|`` past ``s_max``, less ``c_v s + c_c sat(s / s_lc)``."""
-    u = min(max(command, -max_torque), max_torque)
-    if abs(speed) >= max_speed and u * speed > 0.0:
-        u = 0.0
-    return u - viscous * speed - coulomb * min(max(speed / limit_cycle, -1.0), 1.0)
 
 
 def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,

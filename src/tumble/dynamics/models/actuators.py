@@ -15,8 +15,9 @@ changes its absolute axial momentum, ``d/dt [J_k (g_k . w + s_k)] = u_k``, so
 ``(I - sum_k J_k g_k g_k^T) w' = tau_ext - w x (I w + h) - sum_k u_k g_k``
 (Schaub & Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec. 4.5, the reaction
 wheel equations of motion, with ``[I_RW] = I - sum J_k g_k g_k^T``). The applied ``u_k`` is the
-command clipped to ``|u_k| <= u_max``, set to zero when it would drive ``|s_k|`` beyond ``s_max``,
-less the bearing friction ``c_v s_k + c_c sat(s_k / s_lc)`` (viscous N m s/rad, Coulomb N m; an
+command clipped to ``|u_k| <= u_max``; where it drives ``|s_k|`` outwards it falls linearly to
+zero over the last 1 % below ``s_max`` (:data:`SPEED_LIMIT_BAND`, as a motor's torque falls at its
+no-load speed; a step there made the adaptive integrator crawl), less the bearing friction ``c_v s_k + c_c sat(s_k / s_lc)`` (viscous N m s/rad, Coulomb N m; an
 internal torque, so ``L`` is untouched by it). The Coulomb part is ``c_c sign(s_k)`` above a small
 speed ``s_lc`` (``limit_cycle_speed``, default 1e-4 rad/s) and linear below it, as Basilisk's
 ``reactionWheelStateEffector`` does with its ``omegaLimitCycle`` (Schaub & Junkins, the Basilisk
@@ -29,13 +30,14 @@ stick-slip friction in mechanical dynamic systems", J. Dyn. Syst. Meas. Control 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import check_positive, check_vectors
 
-__all__ = ["Command", "Magnetorquers", "ReactionWheels"]
+__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "wheel_torque"]
 
 
 @dataclass(frozen=True)
@@ -152,6 +154,38 @@ class Magnetorquers:
         return np.asarray(np.cross(np.asarray(dipole, float), np.asarray(field_body, float)), float)
 
 
+#: The part of ``max_speed`` over which a wheel's outward motor torque falls to zero: the last
+#: 1 %. A motor's torque falls to zero at its no-load speed (back-EMF: the torque-speed line of a
+#: DC motor), not in a step; a step made the closed loop's adaptive integrator crawl (issue 27:
+#: 30 s of a wheel at its limit took 90 s), a ramp keeps the right-hand side continuous, its
+#: relaxation rate ``u_max / (J band)`` well within what an explicit step follows.
+SPEED_LIMIT_BAND = 0.01
+
+
+def wheel_torque(command: Any, speed: Any, max_torque: Any, max_speed: Any, viscous: Any, coulomb: Any,
+                 limit_cycle: Any) -> Any:
+    """One wheel's applied torque (N m): the one writing, over floats (the compiled closed loop)
+    or arrays of one shape (:meth:`ReactionWheels.applied_torque`).
+
+    The command (N m) clipped to ``max_torque``; pushing ``|speed|`` outwards it falls linearly to
+    zero over the last :data:`SPEED_LIMIT_BAND` of ``max_speed`` (rad/s), and is zero beyond;
+    less the viscous friction ``viscous speed`` and the Coulomb friction ``coulomb
+    sat(speed / limit_cycle)``, linear below ``limit_cycle`` (Basilisk's ``omegaLimitCycle``).
+    Arithmetic and ``np.minimum``/``np.maximum`` only, so numba compiles it as it is.
+
+    Examples
+    --------
+    >>> round(float(wheel_torque(1e-3, 597.0, 2e-3, 600.0, 0.0, 0.0, 1e-4)), 12)   # half-way down the ramp: half
+    0.0005
+    >>> float(wheel_torque(-1e-3, 600.0, 2e-3, 600.0, 0.0, 0.0, 1e-4))   # inwards: all of it
+    -0.001
+    """
+    u = np.minimum(np.maximum(command, -max_torque), max_torque)
+    taper = np.minimum(np.maximum((1.0 - np.abs(speed) / max_speed) / SPEED_LIMIT_BAND, 0.0), 1.0)
+    u = u * (1.0 - (1.0 - taper) * (u * speed > 0.0))
+    return u - viscous * speed - coulomb * np.minimum(np.maximum(speed / limit_cycle, -1.0), 1.0)
+
+
 @dataclass(frozen=True)
 class ReactionWheels:
     """Reaction wheels driven by a commanded motor torque, with torque and speed limits.
@@ -165,7 +199,8 @@ class ReactionWheels:
     max_torque : float or array_like, shape (k,)
         Motor torque limit ``u_max``, N m (> 0).
     max_speed : float or array_like, shape (k,)
-        Spin limit ``s_max`` relative to the body, rad/s (> 0).
+        Spin limit ``s_max`` relative to the body, rad/s (> 0): the motor's outward torque falls
+        to zero over its last 1 % (:data:`SPEED_LIMIT_BAND`).
     viscous : float or array_like, shape (k,)
         Viscous friction ``c_v``, N m s/rad (>= 0).
     coulomb : float or array_like, shape (k,)
@@ -250,7 +285,8 @@ class ReactionWheels:
 
     def applied_torque(self, command: ArrayLike, speed: ArrayLike) -> FloatArray:
         """The motor torque on each wheel (N m) for a command at spins ``speed`` (rad/s):
-        clipped to ``u_max``, zero where it would push ``|s|`` past ``s_max``, less the friction.
+        clipped to ``u_max``, falling to zero at ``s_max`` where it pushes ``|s|`` outwards, less
+        the friction (:func:`wheel_torque`).
 
         Examples
         --------
@@ -269,8 +305,6 @@ class ReactionWheels:
         >>> [round(float(rub.applied_torque([0.0], [s])[0]), 12) for s in (0.0, 5e-5, -2e-4)]   # N m
         [0.0, -5.000005e-06, 1.000002e-05]
         """
-        s = np.asarray(speed, float)
-        u = np.clip(np.asarray(command, float), -np.asarray(self.max_torque), np.asarray(self.max_torque))
-        u = np.where((np.abs(s) >= np.asarray(self.max_speed)) & (u * s > 0.0), 0.0, u)
-        coulomb = np.asarray(self.coulomb) * np.clip(s / np.asarray(self.limit_cycle_speed), -1.0, 1.0)
-        return np.asarray(u - np.asarray(self.viscous) * s - coulomb, float)
+        return np.asarray(wheel_torque(np.asarray(command, float), np.asarray(speed, float), np.asarray(self.max_torque),
+                                       np.asarray(self.max_speed), np.asarray(self.viscous), np.asarray(self.coulomb),
+                                       np.asarray(self.limit_cycle_speed)), float)
