@@ -36,6 +36,7 @@ import numpy as np
 from ...typing import FloatArray
 from ...jit import PARALLEL_BODIES, cores
 from ..models.gravity import gradient_components as _gravity_gradient  # _body_torque calls it; compiled in _compiled()
+from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD, kernel_form
 from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _compiled()
     WORK,
     compiled_free_flow,
@@ -45,7 +46,8 @@ from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _comp
 __all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
 
 #: Kinds of built-in torque the kernel evaluates itself.
-CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT = 1, 2, 3
+#: (the models' own kinds, :class:`~tumble.dynamics.models.torques.KernelForm`)
+CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT = KERNEL_BODY, KERNEL_WORLD, KERNEL_CIRCULAR_GRAVITY
 
 # The Strang step as (axis, fraction of the step), as in geometric._STRANG.
 _AXES = np.array([0, 1, 2, 1, 0], dtype=np.int64)
@@ -61,18 +63,16 @@ def compiled_model(torque: Any) -> tuple[int, FloatArray, float] | None:
     >>> from tumble.dynamics.models.torques import ConstantTorque
     >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]))[0] == CONSTANT_BODY
     True
-    >>> compiled_model(lambda t, w, R: w) is None
+    >>> compiled_model(lambda t, w, R: w) is None   # a function: the numpy path calls it
     True
     """
-    from ..models.gravity import GravityGradient
-    from ..models.torques import ConstantTorque
-
-    if type(torque) is ConstantTorque:
-        kind = CONSTANT_WORLD if torque.frame == "world" else CONSTANT_BODY
-        return kind, np.array(torque.vector, dtype=float), 0.0
-    if type(torque) is GravityGradient and torque.moments is not None:
-        return GRAVITY_GRADIENT, np.zeros(3), float(torque.mean_motion)
-    return None
+    form = kernel_form(torque)  # the model's declared compiled form: no list of classes here
+    if form is None or form[0] == KERNEL_NONE:
+        return None
+    kind, params = form
+    if kind == GRAVITY_GRADIENT:
+        return kind, np.zeros(3), float(params[0])
+    return kind, np.array(params, dtype=float), 0.0
 
 
 def _body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatArray, t: float,
