@@ -370,6 +370,35 @@ def test_phyphox_exports_are_read_with_their_pauses(tmp_path):
         read_recording(empty)
 
 
+@pytest.mark.parametrize("damage", ["crc", "deflate"])
+def test_a_damaged_phyphox_zip_is_bad_input_naming_the_file(tmp_path, capsys, damage):
+    """Issue 27, item 5: a .zip whose data were damaged (a flipped byte: a bad CRC, or deflate
+    data that do not decode) was "computation failed" (exit 1). It is bad input: one line naming
+    the file and the member, exit 2, nothing written."""
+    from tumble.cli import main
+
+    rec = synthetic_recording(21, body="phone", tosses=1)
+    folder = tmp_path / "export"
+    folder.mkdir()
+    (folder / "Raw Data.csv").write_text(rec.csv_text(), encoding="utf-8")
+    zipped = tmp_path / "export.zip"
+    method = zipfile.ZIP_STORED if damage == "crc" else zipfile.ZIP_DEFLATED
+    with zipfile.ZipFile(zipped, "w", compression=method) as z:
+        z.write(folder / "Raw Data.csv", "Raw Data.csv")
+    raw = bytearray(zipped.read_bytes())
+    start = 30 + len("Raw Data.csv")  # the local header, then the member's data
+    for k in range(start + 40, start + 48):  # flip bytes inside the data, not in the headers
+        raw[k] ^= 0x5A
+    zipped.write_bytes(bytes(raw))
+    with pytest.raises(ValueError, match=r"export\.zip: Raw Data\.csv cannot be unpacked, the archive is damaged"):
+        read_recording(zipped)
+    out = tmp_path / "fit"
+    assert main(["fit", str(zipped), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "export.zip" in err and "damaged" in err
+    assert not out.exists()
+
+
 def test_a_pause_inside_a_stretch_splits_it():
     """phyphox's time carries on across a pause: the samples after it are another moment. A
     pause event in the middle of a flight must cut it (two stretches), not be fitted across."""

@@ -261,6 +261,7 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
     ([0.0, 0.01, 0.02], (3, 3), [('START', 0.0), ('PAUSE', 0.02)])
     """
     import zipfile
+    import zlib
 
     label = os.fspath(path)
     if os.path.isdir(path):
@@ -287,7 +288,11 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
             def member(n, limit):
                 if infos[n].file_size > limit:
                     raise ValueError(f"{label}: {n} unpacks to {infos[n].file_size} bytes; at most {limit} are read")
-                return archive.read(n)
+                try:
+                    return archive.read(n)
+                except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError) as exc:
+                    # a damaged archive (bad deflate data, a bad CRC, cut short) is bad input, not a failed computation
+                    raise ValueError(f"{label}: {n} cannot be unpacked, the archive is damaged ({exc})") from None
 
             t, omega = parse_gyro_csv(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
             events = []
