@@ -57,6 +57,22 @@ def test_a_full_disk_midway_keeps_the_previous_output_and_exits_1(tmp_path, monk
     assert leftovers(tmp_path, "run") == []
 
 
+def test_a_full_disk_that_names_no_file_is_reported_with_the_output_folder(tmp_path, monkeypatch, capsys):
+    """Issue 27, item 6: a full disk fails inside write(), whose OSError names no file, so the
+    line said "No space left on device; nothing written" without a path. It names the output
+    folder that could not be written, and leaves nothing behind."""
+    out = tmp_path / "run"
+
+    def full(traj, path, provenance=None):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))  # as f.write() raises it: no filename
+
+    monkeypatch.setattr(tumble.io.export, "write_npz", full)
+    assert simulate(out) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device" in err and f"{out}: " in err
+    assert not out.exists() and leftovers(tmp_path, "run") == []
+
+
 @pytest.mark.parametrize(("signum", "code"), [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_a_signal_midway_leaves_the_previous_output_and_no_temporary_files(tmp_path, monkeypatch, capsys, signum, code):
     out = tmp_path / "run"

@@ -146,7 +146,14 @@ def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterat
     path.parent.mkdir(parents=True, exist_ok=True)
     stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=path.parent))
     try:
-        yield stage
+        try:
+            yield stage
+        except OSError as exc:
+            if exc.filename is None and not isinstance(exc, BrokenPipeError):
+                # a write that failed without naming its file (a full disk fails in write(), which
+                # names none): the message names the output folder that could not be written
+                raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
+            raise
         os.chmod(stage, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
         with _locked(path.parent):
             _swap_in(stage, path, tuple(owns))
