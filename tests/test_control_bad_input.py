@@ -169,3 +169,18 @@ def test_magnetorquers_without_an_orbit_are_refused_when_the_file_is_read():
     table["actuators"]["magnetorquers"] = {"max_dipole": 0.2}
     with pytest.raises(ValueError, match=r"^actuators\.magnetorquers need an \[orbit\] \(its magnetic field\)$"):
         control_scenario_from_table(table, body_from_table(BODY))
+
+
+def test_axes_that_are_not_square_are_echoed_as_written():
+    """Issue 27, item 7: a nadir/normal pair that is not square was reported in the principal frame
+    with numpy's repr (``normal_axis = array([0.70710678, 0., 0.70710678])``); the message echoes the
+    design-frame vectors (or labels) as the file has them."""
+    with pytest.raises(ValueError, match=(r"^control: normal_axis = \[1, 0, 1\] must be square to nadir_axis = "
+                                          r"\[1, 0, 0\] \(their angle is 45 deg\)$")):
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis=[1, 0, 0],
+               normal_axis=[1, 0, 1])
+    # a label and a vector, each as given: the box's long design axis z is its minor principal axis
+    with pytest.raises(ValueError, match=r"^control: normal_axis = \[0.0, 0.0, 1.0\] must be square to nadir_axis = "
+                                         r"'minor' \(their angle is 0 deg\)$"):
+        _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis="minor",
+               normal_axis=[0.0, 0.0, 1.0])

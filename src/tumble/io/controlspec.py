@@ -40,7 +40,7 @@ from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
-from ..dynamics.control.pointing import NadirTarget
+from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
 from ..mass import Body
 from ..validation import check_direction, check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination
@@ -115,8 +115,12 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
             found = "there is none" if orbit is None else f"a {type(orbit).__name__} is not one"
             raise ValueError(f'target = "nadir" needs a circular [orbit] (altitude, inclination, ...): {found}')  # noqa: TRY004 - one error type for bad input
         to_principal = principal_to_design.inv()  # vectors are given in the design frame
+        written = {"nadir_axis": "minor", "normal_axis": "major", **axes}  # as the file has them (or the defaults)
         axes = {k: v if np.ndim(v) == 0 else to_principal.apply(check_direction(k, v))
                 for k, v in axes.items()}
+        # squareness is checked here, on the vectors as written, so the message echoes them (design frame)
+        turned = {k: axis_direction(k, v) for k, v in {"nadir_axis": "minor", "normal_axis": "major", **axes}.items()}
+        check_square(turned["nadir_axis"], turned["normal_axis"], written["nadir_axis"], written["normal_axis"])
         return args, NadirTarget(orbit, **axes)
     if axes:
         raise ValueError(f'{min(axes)} goes with target = "nadir" only')

@@ -50,7 +50,7 @@ from ...typing import ArrayLike, FloatArray
 from ...validation import axis_index, check_positive
 from ..special.mrp import mrp_from_quat
 
-__all__ = ["NadirTarget", "Reference", "TrackingError", "is_reference", "target_attitude", "tracking_error"]
+__all__ = ["NadirTarget", "Reference", "TrackingError", "axis_direction", "check_square", "is_reference", "target_attitude", "tracking_error"]
 
 
 @runtime_checkable
@@ -177,8 +177,15 @@ def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, o
     return TrackingError(sigma, w - w_r, w_r, w_r_dot)
 
 
-def _direction(name: str, value: int | str | ArrayLike) -> FloatArray:
-    """A principal axis label (1, 2, 3, "minor", "intermediate", "major") or a unit 3-vector."""
+def axis_direction(name: str, value: int | str | ArrayLike) -> FloatArray:
+    """The unit vector of a principal axis label (1, 2, 3, "minor", "intermediate", "major") or of a
+    nonzero 3-vector (normalised).
+
+    Examples
+    --------
+    >>> axis_direction("nadir_axis", "major").tolist(), axis_direction("nadir_axis", [0.0, 3.0, 4.0]).tolist()
+    ([0.0, 0.0, 1.0], [0.0, 0.6, 0.8])
+    """
     if np.ndim(value) == 0:
         e = np.zeros(3)
         e[axis_index(name, value)] = 1.0
@@ -188,6 +195,26 @@ def _direction(name: str, value: int | str | ArrayLike) -> FloatArray:
         raise ValueError(f"{name} = {value!r} must be 1, 2, 3, minor, intermediate, major or a nonzero 3-vector "
                          "(principal frame)")
     return np.asarray(v / np.linalg.norm(v), dtype=np.float64)
+
+
+def check_square(nadir: FloatArray, normal: FloatArray, nadir_given: object, normal_given: object) -> None:
+    """Refuse a nadir and a normal axis (unit vectors, in one frame) that are not square to each
+    other, naming each as the user gave it (``nadir_given``, ``normal_given``: a label or a vector
+    in whatever frame the user wrote it).
+
+    Examples
+    --------
+    >>> check_square(np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]), "minor", "major")   # square: nothing
+    >>> check_square(np.array([1.0, 0.0, 0.0]), np.sqrt([0.5, 0.0, 0.5]), [1, 0, 0], [1, 0, 1])
+    Traceback (most recent call last):
+    ...
+    ValueError: normal_axis = [1, 0, 1] must be square to nadir_axis = [1, 0, 0] (their angle is 45 deg)
+    """
+    cosine = float(nadir @ normal)
+    if abs(cosine) > 1e-9:
+        angle = math.degrees(math.acos(max(-1.0, min(1.0, cosine))))
+        raise ValueError(f"normal_axis = {normal_given!r} must be square to nadir_axis = {nadir_given!r} "
+                         f"(their angle is {angle:.3g} deg)")
 
 
 @dataclass(frozen=True)
@@ -227,12 +254,9 @@ class NadirTarget:
     def __post_init__(self) -> None:
         n = self.orbit if isinstance(self.orbit, (int, float)) else getattr(self.orbit, "mean_motion", None)
         object.__setattr__(self, "_n", check_positive("orbit.mean_motion", n, "rad/s"))
-        a = _direction("nadir_axis", self.nadir_axis)
-        b = _direction("normal_axis", self.normal_axis)
-        if abs(float(a @ b)) > 1e-9:
-            angle = math.degrees(math.acos(max(-1.0, min(1.0, float(a @ b)))))
-            raise ValueError(f"normal_axis = {self.normal_axis!r} must be square to nadir_axis = {self.nadir_axis!r} "
-                             f"(their angle is {angle:.3g} deg)")
+        a = axis_direction("nadir_axis", self.nadir_axis)
+        b = axis_direction("normal_axis", self.normal_axis)
+        check_square(a, b, self.nadir_axis, self.normal_axis)
         # R(0) (principal to world): a -> -x (nadir at t = 0), b -> +z, a x b -> (-x) x z = +y
         body = np.column_stack([a, b, np.cross(a, b)])
         world = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]).T
