@@ -100,3 +100,18 @@ def re_search(pattern: str, text: str) -> bool:
     import re
 
     return re.search(pattern, text) is not None
+
+
+def test_a_run_that_never_detumbles_says_so(tmp_path, capsys):
+    """Issue 27, item 10: a detumble run that ended above its threshold said nothing about it; the
+    line says it did not detumble, and summary.json has "detumbled": false (true once it does)."""
+    assert main(["simulate", str(CONTROL / "detumble.toml"), "--t-end", "30", "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    assert line.count("\n") == 1 and "not below the threshold 0.0087 rad/s by the end: not detumbled" in line
+    assert json.loads((tmp_path / "run" / "summary.json").read_text())["detumbled"] is False
+    text = (CONTROL / "detumble.toml").read_text().replace("threshold = 0.0087", "threshold = 0.345")
+    path = tmp_path / "fast.toml"
+    path.write_text(text)
+    assert main(["simulate", str(path), "--t-end", "40", "--out", str(tmp_path / "fast")]) == 0
+    assert "below 0.345 rad/s from t = " in capsys.readouterr().out
+    assert json.loads((tmp_path / "fast" / "summary.json").read_text())["detumbled"] is True

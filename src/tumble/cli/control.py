@@ -51,6 +51,8 @@ def simulate_control(args, scenario, out) -> int:
             line += f", pointing error {summary['pointing_error_final']:.3g} rad"
         elif done is not None:
             line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
+        else:  # a run that ends before it detumbles says so, rather than nothing
+            line += f", not below the threshold {summary['threshold']:.3g} rad/s by the end: not detumbled"
         print(f"{line}; wrote {out}/")
     return EXIT_OK
 

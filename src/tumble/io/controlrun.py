@@ -81,6 +81,7 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
         "principal_moments": run.moments.tolist(),
         "final_rate": float(run.rate[-1]), "initial_rate": float(run.rate[0]),
         "threshold": scenario.threshold, "detumble_time": run.detumble_time(scenario.threshold),
+        "detumbled": run.detumble_time(scenario.threshold) is not None,  # whether |omega| got below the threshold and stayed
         "momentum_budget_error": float(run.budget_error().max()),
         "external_impulse": float(np.linalg.norm(run.impulse_world[-1])), **command_summary(run),
     }
