@@ -380,12 +380,9 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
             f"principal moments {moments.tolist()} kg m^2: a body with a zero moment (a thin rod, "
             f"a point) has no well-posed rotation about that axis; give it some thickness"
         )
-    w = w0.tolist()
-    try:
-        energy = 0.5 * (I[0] * w[0] * w[0] + I[1] * w[1] * w[1] + I[2] * w[2] * w[2])
-        momentum = math.hypot(I[0] * w[0], I[1] * w[1], I[2] * w[2])
-    except OverflowError:  # pragma: no cover - float arithmetic gives inf, not an error
-        energy = math.inf
+    w = w0.tolist()  # Python floats overflow to inf (no warning, no error), refused below
+    energy = 0.5 * (I[0] * w[0] * w[0] + I[1] * w[1] * w[1] + I[2] * w[2] * w[2])
+    momentum = math.hypot(I[0] * w[0], I[1] * w[1], I[2] * w[2])
     if not (math.isfinite(energy) and math.isfinite(momentum)):
         raise ValueError(f"omega0 = {w0.tolist()} rad/s is too large: the kinetic energy of this body overflows")
     A = props.principal_axes  # principal -> design
