@@ -348,3 +348,17 @@ def test_flip_interval_of_one_body_is_a_float_and_of_a_batch_an_array():
     assert type(flip_interval_asymptotic([0.1, 10.0, 0.1], moments)) is float
     many = flip_interval([[0.1, 10.0, 0.1], [0.2, 10.0, 0.1]], moments)
     assert isinstance(many, np.ndarray) and many.shape == (2,) and many[0] == one
+
+
+def test_stability_report_of_a_batch_is_one_report_per_body():
+    """Issue 27, item 10: stability_report on a BatchTrajectory raised "only 0-dimensional arrays
+    can be converted"; it gives each body's report, equal to the report of that body alone."""
+    import tumble
+
+    w = np.array([[0.01, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.02, 0.01], [0.0, 0.0, 0.0]])
+    batch = tumble.simulate_batch([1.0, 2.0, 3.0], w, t_end=30.0, samples=301)
+    reports = tumble.stability_report(batch)
+    assert [r["predicted"] for r in reports] == ["unstable", "stable", "stable", None]
+    assert reports == [tumble.stability_report(batch[i]) for i in range(len(w))]
+    alone = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), w[0], t_end=30.0, samples=301)
+    assert reports[0]["flips"] == tumble.stability_report(alone)["flips"] > 0

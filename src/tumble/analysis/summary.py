@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..dynamics import Trajectory
+from ..dynamics import BatchTrajectory, Trajectory
 from ..mass import AXIS_ROLES, moment_degeneracy
 from .stability import (
     axis_of,
@@ -23,17 +23,18 @@ if TYPE_CHECKING:
 __all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
 
 
-def stability_report(traj: Trajectory) -> dict:
+def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
     """Prediction against observation for the axis that carries most of the initial spin.
 
     Parameters
     ----------
-    traj : Trajectory
-        A run of :func:`tumble.simulate`.
+    traj : Trajectory or BatchTrajectory
+        A run of :func:`tumble.simulate`, or a batch of :func:`tumble.simulate_batch` (then one
+        report per body, a list in the batch's order).
 
     Returns
     -------
-    dict
+    dict (a list of dicts for a batch)
         Keys: ``axis`` (1, 2 or 3, principal, ascending moments; None for a body starting at
         rest, and then every prediction is None), ``role``, ``predicted``
         ("stable" or "unstable", the linearised theory), ``growth_rate`` (1/s) or
@@ -60,7 +61,12 @@ def stability_report(traj: Trajectory) -> dict:
     ('intermediate', 'unstable', True)
     >>> abs(report["flip_period"] - report["flip_period_exact"]) / report["flip_period_exact"] < 0.01
     True
+    >>> batch = tumble.simulate_batch([1.0, 2.0, 3.0], [[0.01, 1.0, 0.0], [0.0, 0.0, 1.0]], t_end=30.0, samples=301)
+    >>> [r["predicted"] for r in tumble.stability_report(batch)]   # one report per body
+    ['unstable', 'stable']
     """
+    if isinstance(traj, BatchTrajectory):  # each body as a run of its own (batch[i] is its Trajectory)
+        return [stability_report(traj[i]) for i in range(len(traj))]
     w0 = traj.omega[0]
     if not np.any(w0):
         return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
