@@ -3,6 +3,8 @@ closed forms, its orders, its budgets, and a body alone against its batch."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -190,3 +192,15 @@ def test_design_frame_constant_torque_stays_compiled():
     slow = simulate(body, [0.0, 1.0, 10.0], t_end=1.0, samples=11, frame="design",
                     torque=FunctionTorque(lambda t, w, R: np.array(TAU)), rtol=1e-12)
     np.testing.assert_allclose(fast.omega, slow.omega, rtol=0, atol=1e-11)
+
+
+@pytest.mark.parametrize(("step", "message"), [(-1.0, "step = -1.0 must be a positive finite number"),
+                                               (float("nan"), "step = nan must be a finite number"),
+                                               (0.0, "step = 0.0 must be a positive finite number"),
+                                               ("x", "step = 'x' must be a number")])
+def test_a_batchs_bad_step_is_refused_not_run(step, message):
+    """simulate_batch passed a fixed-step engine method's step on unchecked: -1 and nan ran one step
+    per sample interval (a silently coarse run), 0 divided by zero, a string gave a numpy error."""
+    with pytest.raises(ValueError, match=re.escape(message)):
+        simulate_batch([1.0, 2.0, 3.0], [[0.1, 1.0, 0.0]], t_end=1.0, samples=3, method="rk8", step=step,
+                       torque=ConstantTorque(TAU))

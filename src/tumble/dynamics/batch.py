@@ -230,6 +230,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     True
     """
     spec = get_method(method)
+    step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
     model = as_torque(torque)
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
@@ -356,17 +357,25 @@ def _splitting(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatAr
     spin = float(np.max(np.linalg.norm(w0, axis=1)))
     with np.errstate(over="ignore", invalid="ignore"):
         gain = spin_gain(model, 0.0, w0, Rotation.from_quat(q0), I, t_end)
+    # a splitting method has both default_step and propagate (integrators.py)
+    h = step if step is not None else cast(StepRule, spec.default_step)(spin, gain)  # what propagate takes by default
+    _bound_work(spec, spin, gain, t_end, h)
+    omega, quat = cast(Propagate, spec.propagate)(I, w0, q0, t, step=step, torque=model)
+    return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
+
+
+def _bound_work(spec: Method, spin: float, gain: float, t_end: float, h: float | None) -> None:
+    """Refuse a batch run that turns a body more than :data:`~tumble.dynamics.simulate.MAX_ROTATION`
+    (fastest spin ``spin`` and torque gain ``gain``, rad/s) or takes more than
+    :data:`~tumble.dynamics.simulate.MAX_STEPS` steps of ``h`` (s; None: an adaptive method)."""
+    with np.errstate(over="ignore", invalid="ignore"):
         turns = spin * t_end + 0.5 * gain * t_end
     if not turns <= MAX_ROTATION:
         raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} "
                          f"rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} follows (at "
                          f"most {MAX_ROTATION:g} rad); use method exact or a shorter run")
-    # a splitting method has both default_step and propagate (integrators.py)
-    h = step if step is not None else cast(StepRule, spec.default_step)(spin, gain)  # what propagate takes by default
-    if t_end / h > MAX_STEPS:
+    if h is not None and t_end / h > MAX_STEPS:
         raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
-    omega, quat = cast(Propagate, spec.propagate)(I, w0, q0, t, step=step, torque=model)
-    return np.ascontiguousarray(omega.transpose(1, 0, 2)), np.ascontiguousarray(quat.transpose(1, 0, 2))
 
 
 def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, model: TorqueModel | None,
@@ -378,23 +387,15 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
     t_end = float(t[-1])
     spin = np.array([math.hypot(*w) for w in w0.tolist()])  # as simulate takes it, to the last bit
     gains = np.broadcast_to(spin_gains(model, 0.0, w0, Rotation.from_quat(q0), I, t_end), spin.shape)  # per body
-    gain = float(np.max(gains))
-    with np.errstate(over="ignore", invalid="ignore"):
-        turns = float(np.max(spin)) * t_end + 0.5 * gain * t_end
-    if not turns <= MAX_ROTATION:
-        raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {float(np.max(spin)):.6g} rad/s (and a torque gain of "
-                         f"{gain:.3g} rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} "
-                         f"follows (at most {MAX_ROTATION:g} rad); use method exact or a shorter run")
     form = cast(tuple[int, tuple[float, ...]], kernel_form(model))
     if spec.fixed_step:  # each body's own default step, as a lone run takes it
         rule = cast(StepRule, spec.default_step)
         h = np.full(len(I), step) if step is not None else np.array([rule(s, g) for s, g in zip(spin.tolist(),
                                                                                                  gains.tolist())])
-        if t_end / float(np.min(h)) > MAX_STEPS:
-            raise ValueError(f"step = {float(np.min(h)):.3g} s makes {t_end / float(np.min(h)):.3g} steps of a {t_end:g} s "
-                             f"run; at most {MAX_STEPS:g}")
+        _bound_work(spec, float(np.max(spin)), float(np.max(gains)), t_end, float(np.min(h)))
         omega, quat = run_bodies(spec.name, I, w0, q0, t, form, step=h)
     else:
+        _bound_work(spec, float(np.max(spin)), float(np.max(gains)), t_end, None)
         r = spec.rtol if rtol is None else check_rtol("rtol", rtol)
         a = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
         scale = np.maximum(np.maximum(spin, gains), 1e-300)  # atol relative to each body's omega, as simulate's
