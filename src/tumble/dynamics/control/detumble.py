@@ -51,6 +51,7 @@ from ..models.actuators import Magnetorquers
 from ..models.gravity import GravityGradient, gradient_torque
 from ..models.magnetic import OMEGA_EARTH, DipoleField
 from ..models.sensors import Sensors
+from ..special.quaternion import to_body
 
 __all__ = ["DetumbleBatch", "detumble_batch"]
 
@@ -119,12 +120,8 @@ def _field_world(field: DipoleField, t: float, gmst0: FloatArray) -> Vec:
 
 
 def _to_body(q: FloatArray, b: Vec) -> Vec:
-    """``R^T b`` for the quaternions ``q`` (4, N), R from q (Shuster 1993, eq. 161)."""
-    x, y, z, w = q
-    bx, by, bz = b
-    return ((1 - 2 * (y * y + z * z)) * bx + 2 * (x * y + z * w) * by + 2 * (x * z - y * w) * bz,
-            2 * (x * y - z * w) * bx + (1 - 2 * (x * x + z * z)) * by + 2 * (y * z + x * w) * bz,
-            2 * (x * z + y * w) * bx + 2 * (y * z - x * w) * by + (1 - 2 * (x * x + y * y)) * bz)
+    """``R^T b`` for the quaternions ``q`` (4, N) (:func:`~tumble.dynamics.special.quaternion.to_body`)."""
+    return to_body(q[0], q[1], q[2], q[3], b[0], b[1], b[2])
 
 
 def _rhs(b_world: Vec, I: FloatArray, m: FloatArray, q: FloatArray, w: FloatArray,

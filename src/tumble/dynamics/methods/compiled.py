@@ -10,7 +10,8 @@ built-in models are known in advance and evaluated here inline:
 
 - ``CONSTANT_BODY``: a constant torque in the principal frame, N m;
 - ``CONSTANT_WORLD``: a constant torque in the world frame, turned into the body by ``R^T``
-  (the conjugate quaternion, written out as in :func:`tumble.dynamics.models.torques.body_torque`);
+  (the conjugate quaternion, :func:`tumble.dynamics.special.quaternion.rotate_components`, as the
+  numpy path's :func:`tumble.dynamics.models.torques.body_torque` turns it);
 - ``GRAVITY_GRADIENT``: ``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos n t, sin n t, 0)``, the
   circular orbit of :class:`tumble.dynamics.models.gravity.GravityGradient` (Hughes, *Spacecraft
   Attitude Dynamics*, ch. 8).
@@ -37,6 +38,7 @@ from ...typing import FloatArray
 from ...jit import PARALLEL_BODIES, cores
 from ..models.gravity import gradient_components as _gravity_gradient  # _body_torque calls it; compiled in _compiled()
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD, kernel_form
+from ..special.quaternion import rotate_components as _rotate_vector  # _body_torque calls it; compiled in _compiled()
 from .compiled_flow import (  # free_flow_into: _run calls it; compiled in _compiled()
     WORK,
     compiled_free_flow,
@@ -86,14 +88,8 @@ def _body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatAr
         v0, v1, v2 = tau[0], tau[1], tau[2]
     else:
         v0, v1, v2 = math.cos(n * t), math.sin(n * t), 0.0
-    # R^T v: v turned by the conjugate quaternion (-x, -y, -z, w): v + 2 w (u' x v) + 2 u' x (u' x v)
-    ux, uy, uz = -x, -y, -z
-    t0 = 2.0 * (uy * v2 - uz * v1)
-    t1 = 2.0 * (uz * v0 - ux * v2)
-    t2 = 2.0 * (ux * v1 - uy * v0)
-    b0 = v0 + w * t0 + (uy * t2 - uz * t1)
-    b1 = v1 + w * t1 + (uz * t0 - ux * t2)
-    b2 = v2 + w * t2 + (ux * t1 - uy * t0)
+    # R^T v: v turned by the conjugate quaternion, as the numpy path's body_torque turns it
+    b0, b1, b2 = _rotate_vector(-x, -y, -z, w, v0, v1, v2)
     if kind == CONSTANT_WORLD:
         out[0], out[1], out[2] = b0, b1, b2
         return
@@ -176,6 +172,7 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
 
         globals()["free_flow_into"] = compiled_flow.free_flow_into
         globals()["_gravity_gradient"] = jit(inline="always")(globals()["_gravity_gradient"])
+        globals()["_rotate_vector"] = jit(inline="always")(globals()["_rotate_vector"])
         for name in ("_body_torque", "_rotate"):
             globals()[name] = jit(inline="always")(globals()[name])
         globals()["prange"] = numba_prange
