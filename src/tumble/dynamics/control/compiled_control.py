@@ -47,7 +47,10 @@ import numpy as np
 from ...typing import FloatArray
 from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
 from ..engine.stepsize import error_norm as _error_norm  # the engine's step control, compiled in _compiled()
+from ..engine.stepsize import first_trial_step as _first_trial_step
+from ..engine.stepsize import initial_step as _initial_step
 from ..engine.stepsize import next_step as _next_step
+from ..engine.stepsize import rms as _rms
 from ..models.actuators import wheel_torque as _wheel_torque  # the model's formula, compiled in _compiled()
 from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
 from ..models.tabulated import horner as _horner
@@ -229,15 +232,6 @@ def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: F
     out[9 + k] = r20 * t0 + r21 * t1 + r22 * t2
 
 
-def _rms(x: FloatArray, scale: FloatArray) -> float:  # pragma: no cover - compiled
-    """scipy's ``norm(x / scale)``: the RMS norm."""
-    total = 0.0
-    for i in range(x.shape[0]):
-        v = x[i] / scale[i]
-        total += v * v
-    return math.sqrt(total) / math.sqrt(x.shape[0])
-
-
 def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: float, I: FloatArray,
              I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray, command: FloatArray, field_kind: int,
              fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray, A: FloatArray, B: FloatArray, C: FloatArray, E3: FloatArray,
@@ -255,17 +249,14 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
     interval = abs(t_end - t_start)
     for i in range(n):
         scale[i] = atol + abs(y[i]) * rtol
-    d0, d1 = _rms(y, scale), _rms(f, scale)
-    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-    h0 = min(h0, interval)
+    d1 = _rms(f, scale)
+    h0 = _first_trial_step(_rms(y, scale), d1, interval)
     for i in range(n):
         y1[i] = y[i] + h0 * f[i]
     _rhs(t_start + h0, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, f1)
     for i in range(n):
         f1[i] -= f[i]
-    d2 = _rms(f1, scale) / h0
-    h1 = max(1e-6, h0 * 1e-3) if (d1 <= 1e-15 and d2 <= 1e-15) else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
-    h_abs = min(100.0 * h0, h1, interval)
+    h_abs = _initial_step(h0, d1, _rms(f1, scale) / h0, interval)
     t = t_start
     while True:  # one accepted step (scipy's RungeKutta._step_impl)
         min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
@@ -318,7 +309,7 @@ def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: flo
 
 
 _HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms",
-            "_to_body", "_error_norm", "_next_step")
+            "_to_body", "_error_norm", "_next_step", "_first_trial_step", "_initial_step")
 
 
 @functools.cache

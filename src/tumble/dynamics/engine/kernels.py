@@ -40,7 +40,7 @@ from ..euler import euler_components
 from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
-from .stepsize import error_norm, next_step
+from .stepsize import error_norm, first_trial_step, initial_step, next_step, rms
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
@@ -60,6 +60,9 @@ _to_body = jit(to_body, error_model="numpy", inline="always")
 _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always")
 _error_norm = jit(error_norm, error_model="numpy", inline="always")
 _next_step = jit(next_step, error_model="numpy", inline="always")
+_rms = jit(rms, error_model="numpy")
+_first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
+_initial_step_of = jit(initial_step, error_model="numpy", inline="always")
 
 
 @jit(error_model="numpy", inline="always")
@@ -144,16 +147,6 @@ def _weighted(K: np.ndarray, a: np.ndarray, s: int) -> tuple[float, float, float
 
 
 @jit(error_model="numpy")
-def _rms(x: np.ndarray, scale: np.ndarray) -> float:
-    """scipy's ``norm(x / scale)``: the RMS norm."""
-    total = 0.0
-    for i in range(x.shape[0]):
-        v = x[i] / scale[i]
-        total += v * v
-    return math.sqrt(total / x.shape[0])
-
-
-@jit(error_model="numpy")
 def _initial_step(t0: float, y: np.ndarray, f: np.ndarray, t_bound: float, I: np.ndarray, kind: int, p: np.ndarray,
                   rtol: float, atol: np.ndarray, work: np.ndarray) -> float:
     """scipy's ``select_initial_step`` for an error estimator of order 7 (HNW sec. II.4)."""
@@ -162,17 +155,14 @@ def _initial_step(t0: float, y: np.ndarray, f: np.ndarray, t_bound: float, I: np
     scale, y1, f1 = work[0], work[1], work[2]
     for i in range(n):
         scale[i] = atol[i] + abs(y[i]) * rtol
-    d0, d1 = _rms(y, scale), _rms(f, scale)
-    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-    h0 = min(h0, interval)
+    d1 = _rms(f, scale)
+    h0 = _first_trial_step(_rms(y, scale), d1, interval)
     for i in range(n):
         y1[i] = y[i] + h0 * f[i]
     body_rhs(t0 + h0, y1, I, kind, p, f1)
     for i in range(n):
         f1[i] -= f[i]
-    d2 = _rms(f1, scale) / h0
-    h1 = max(1e-6, h0 * 1e-3) if (d1 <= 1e-15 and d2 <= 1e-15) else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
-    return min(100.0 * h0, h1, interval)
+    return _initial_step_of(h0, d1, _rms(f1, scale) / h0, interval)
 
 
 @jit(error_model="numpy")

@@ -18,8 +18,9 @@ Examples
 """
 
 import math
+from typing import Any
 
-__all__ = ["error_norm", "next_step"]
+__all__ = ["error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
 
 
 def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:
@@ -54,3 +55,46 @@ def next_step(error: float, h_abs: float, rejected: bool) -> tuple[bool, float]:
             factor = min(1.0, factor)
         return True, h_abs * factor
     return False, h_abs * max(0.2, 0.9 * error ** -0.125)
+
+
+def rms(x: Any, scale: Any) -> float:
+    """scipy's ``norm(x / scale)``: the root mean square of ``x / scale`` over a 1-D array (a loop,
+    so numba compiles it as it is).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rms(np.array([3.0, 4.0]), np.array([1.0, 1.0])) == 5.0 / 2.0 ** 0.5
+    True
+    """
+    total = 0.0
+    for i in range(x.shape[0]):
+        v = x[i] / scale[i]
+        total += v * v
+    return math.sqrt(total) / math.sqrt(x.shape[0])
+
+
+def first_trial_step(d0: float, d1: float, interval: float) -> float:
+    """scipy's ``select_initial_step``, first part (HNW sec. II.4): the trial step from the RMS
+    sizes of the state ``d0`` and of its slope ``d1``, no longer than the interval (s).
+
+    Examples
+    --------
+    >>> first_trial_step(1.0, 2.0, 10.0), first_trial_step(1e-6, 2.0, 10.0)
+    (0.005, 1e-06)
+    """
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    return min(h0, interval)
+
+
+def initial_step(h0: float, d1: float, d2: float, interval: float) -> float:
+    """scipy's ``select_initial_step``, second part: the first step (s) from the trial step ``h0``,
+    the slope's size ``d1`` and the second derivative's ``d2``, for an error estimator of order 7.
+
+    Examples
+    --------
+    >>> initial_step(0.01, 2.0, 0.0, 10.0) == (0.01 / 2.0) ** (1.0 / 8.0)   # below 100 h0 = 1 s
+    True
+    """
+    h1 = max(1e-6, h0 * 1e-3) if (d1 <= 1e-15 and d2 <= 1e-15) else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+    return min(100.0 * h0, h1, interval)
