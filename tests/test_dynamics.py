@@ -298,3 +298,11 @@ def test_the_order_table_is_read_from_the_methods():
     # simulate_batch takes each splitting's composition order from its Method, not from its name
     assert {n: m.splitting_order for n, m in METHODS.items() if m.splitting_order} == {
         "geometric": 4, "geometric2": 2, "geometric6": 6, "exact_split2": 2, "exact_split4": 4, "exact_split6": 6}
+
+
+@pytest.mark.parametrize("omega0", [[10**400, 0, 0], (0.0, 1.0, 10**400)])
+def test_an_integer_beyond_any_float_is_refused_in_one_line(omega0):
+    """A Python int too large for a float (10**400) raised OverflowError from float(); it is bad
+    input, named by its index, like any other non-finite number."""
+    with pytest.raises(ValueError, match=r"^omega0\[\d\] = 1000+ must be a finite number \(rad/s\)$"):
+        simulate(tumble.t_handle(), omega0, t_end=1.0)

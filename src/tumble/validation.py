@@ -207,7 +207,10 @@ def check_number(field: str, value: object, unit: str, at_most: float | None = N
     """
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
         raise ValueError(f"{field} = {value!r} must be a number ({unit})")
-    x = float(value)
+    try:
+        x = float(value)
+    except OverflowError:  # a Python int beyond any float, e.g. 10**400
+        x = math.inf
     if not math.isfinite(x):
         raise ValueError(f"{field} = {value!r} must be a finite number ({unit})")
     check_at_most(field, x, unit, at_most)
@@ -344,6 +347,16 @@ def check_positive(field: str, value: object, unit: str, *, allow_zero: bool = F
     return x
 
 
+def _three_floats(value: object) -> list[float] | None:
+    """The three numbers of a float64 array of shape (3,) or of a list or tuple of three Python
+    floats, else None (then the full checks decide)."""
+    if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
+        return cast("list[float]", value.tolist())
+    if type(value) in (tuple, list) and len(value) == 3 and all(type(v) is float for v in value):  # type: ignore[arg-type]
+        return list(value)  # type: ignore[call-overload]
+    return None
+
+
 def check_vector(field: str, value: object, unit: str, *, at_most: float | None = None) -> tuple[float, float, float]:
     """Three finite numbers, given as a list, a tuple (any sequence) or a numpy array of shape (3,),
     each at most ``at_most`` in magnitude if given.
@@ -360,14 +373,9 @@ def check_vector(field: str, value: object, unit: str, *, at_most: float | None 
     ...
     ValueError: offset = {1, 2, 3} must be a list of 3 numbers (m)
     """
-    if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
-        # the plain case first, in float arithmetic; anything it does not pass gets the full checks
-        x0, x1, x2 = value.tolist()
-        top = math.inf if at_most is None else at_most
-        if abs(x0) <= top and abs(x1) <= top and abs(x2) <= top and math.isfinite(x0 + x1 + x2):
-            return x0, x1, x2
-    elif type(value) in (tuple, list) and len(value) == 3 and all(type(v) in (float, int) for v in value):  # type: ignore[arg-type]
-        x0, x1, x2 = (float(v) for v in value)  # type: ignore[union-attr]
+    plain = _three_floats(value)
+    if plain is not None:  # the plain case first, in float arithmetic; anything it does not pass gets the full checks
+        x0, x1, x2 = plain
         top = math.inf if at_most is None else at_most
         if abs(x0) <= top and abs(x1) <= top and abs(x2) <= top and math.isfinite(x0 + x1 + x2):
             return x0, x1, x2
