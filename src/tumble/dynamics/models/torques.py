@@ -491,11 +491,8 @@ def spin_gain(
     if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: no attitude read
         gain = _constant_gain(form[1], np.asarray(moments, float), duration)
         return gain if isinstance(gain, float) else float(np.max(gain))
-    w = np.asarray(omega, float)
-    if w.shape == (3,) and attitude is not None and conforms(model, BoundsSpin):  # one body: fewer numpy calls
-        top = float(cast(BoundsSpin, model).max_spin(t, w, attitude))
-        return max(top - math.hypot(*w.tolist()), 0.0) if math.isfinite(top) else math.inf
-    return float(np.max(spin_gains(model, t, omega, attitude, moments, duration)))
+    gains = spin_gains(model, t, omega, attitude, moments, duration)
+    return float(gains) if np.ndim(gains) == 0 else float(np.max(gains))  # one body's needs no reduction
 
 
 def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: float) -> float | FloatArray:
@@ -529,17 +526,17 @@ def spin_gains(
     [2.5, 5.0]
     """
     w = np.asarray(omega, float)
-    I = np.asarray(moments, float)
     if model is None:
         return np.zeros(w.shape[:-1])
     form = kernel_form(model)
     with np.errstate(over="ignore", invalid="ignore"):
         if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
-            return _constant_gain(form[1], I, duration) + np.zeros(w.shape[:-1])
+            return _constant_gain(form[1], np.asarray(moments, float), duration) + np.zeros(w.shape[:-1])
         if attitude is None:
             raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
         if conforms(model, BoundsSpin):
-            top = np.asarray(cast(BoundsSpin, model).max_spin(t, w, attitude), float)
-            return cast(FloatArray, np.maximum(top - np.linalg.norm(w, axis=-1), 0.0))
+            top = cast(BoundsSpin, model).max_spin(t, w, attitude)
+            speed = math.hypot(*w.tolist()) if w.ndim == 1 else np.linalg.norm(w, axis=-1)  # |omega| of each body
+            return cast(FloatArray, np.maximum(top - speed, 0.0))
         tau = body_torque(model, t, w, attitude)  # checks the model's answer
-        return cast(FloatArray, np.linalg.norm(tau, axis=-1) / np.min(I, axis=-1) * duration)
+        return cast(FloatArray, np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1) * duration)
