@@ -91,3 +91,35 @@ def test_a_wheel_driven_into_its_speed_limit_costs_ordinary_steps():
     assert calls[0] < 10_000
     # the wheels exchange momentum with the body, no more: the budget to the integration's error (measured 1.2e-11)
     assert fast.budget_error().max() < 1e-10 * np.linalg.norm(fast.momentum_world[0])
+
+
+class Push:
+    """Commands a constant torque on the one wheel, outwards."""
+
+    period = 1.0
+
+    def __init__(self, u):
+        self.u = u
+
+    def __call__(self, t, measurement):
+        return Command(wheel_torque=np.array([self.u]))
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_the_speed_limit_ramp_follows_its_closed_form(compiled):
+    """One wheel on axis 3, body at rest, a constant outward command u, no friction, the wheel
+    inside the last SPEED_LIMIT_BAND of max_speed: ``s' = k u (1 - s / s_max) / band`` (``k`` as
+    for the spin-down above), so ``s_max - s`` decays as ``exp(-k u t / (band s_max))``: the
+    wheel approaches its limit and never passes it."""
+    from tumble.dynamics.models.actuators import SPEED_LIMIT_BAND
+
+    I, J, u, s_max = np.array([0.02, 0.03, 0.04]), 1e-3, 2e-5, 100.0
+    s0 = s_max * (1.0 - 0.5 * SPEED_LIMIT_BAND)  # half-way down the ramp: the motor gives half of u
+    wheels = ReactionWheels([[0.0, 0.0, 1.0]], inertia=J, max_torque=1e-4, max_speed=s_max)
+    run = simulate_controlled(I, [0.0, 0.0, 0.0], t_end=20.0, controller=Push(u), wheels=wheels,
+                              wheel_speed0=[s0], compiled=compiled)
+    k = I[2] / (J * (I[2] - J))
+    expected = s_max - (s_max - s0) * np.exp(-k * u * run.t / (SPEED_LIMIT_BAND * s_max))
+    np.testing.assert_allclose(run.wheel_speed[:, 0], expected, rtol=1e-10, atol=0.0)
+    assert np.all(run.wheel_speed[:, 0] < s_max)
+    assert run.budget_error().max() < 1e-15   # the motor is internal: L_world stays put

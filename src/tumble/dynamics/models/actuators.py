@@ -155,10 +155,12 @@ class Magnetorquers:
 
 
 #: The part of ``max_speed`` over which a wheel's outward motor torque falls to zero: the last
-#: 1 %. A motor's torque falls to zero at its no-load speed (back-EMF: the torque-speed line of a
-#: DC motor), not in a step; a step made the closed loop's adaptive integrator crawl (issue 27:
-#: 30 s of a wheel at its limit took 90 s), a ramp keeps the right-hand side continuous, its
-#: relaxation rate ``u_max / (J band)`` well within what an explicit step follows.
+#: 1 %. A DC motor's available torque falls linearly to zero at its no-load speed, by its back-EMF
+#: (the steady-state torque-speed line: Hughes & Drury, *Electric Motors and Drives*, 4th ed.,
+#: ch. 3), not in a step; a step made the closed loop's adaptive integrator crawl (issue 27: 30 s
+#: of a wheel at its limit took 90 s). This ramp is a regularisation in that spirit (as the linear
+#: Coulomb region is, Karnopp 1985), not a model of a particular drive: it keeps the right-hand
+#: side continuous, its relaxation rate ``u_max / (J band s_max)`` well within an explicit step.
 SPEED_LIMIT_BAND = 0.01
 
 
