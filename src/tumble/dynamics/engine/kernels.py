@@ -40,7 +40,7 @@ from ..euler import euler_components
 from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
-from .stepsize import error_norm, first_trial_step, initial_step, next_step, rms
+from .stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
@@ -61,6 +61,7 @@ _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always
 _error_norm = jit(error_norm, error_model="numpy", inline="always")
 _next_step = jit(next_step, error_model="numpy", inline="always")
 _rms = jit(rms, error_model="numpy")
+_equal_steps = jit(equal_steps, error_model="numpy", inline="always")
 _first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
 _initial_step_of = jit(initial_step, error_model="numpy", inline="always")
 
@@ -276,9 +277,7 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, kind: int, p: np
     y, ys = y0.copy(), np.empty(n)
     _store(y, omega[0], quat[0])
     for k in range(1, t_eval.shape[0]):
-        dt = t_eval[k] - t_eval[k - 1]
-        m = max(1, math.ceil(dt / step - 1e-9))
-        h = dt / m
+        m, h = _equal_steps(t_eval[k] - t_eval[k - 1], step)
         for j in range(m):
             t = t_eval[k - 1] + j * h
             for s in range(stages):

@@ -20,7 +20,7 @@ Examples
 import math
 from typing import Any
 
-__all__ = ["error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
+__all__ = ["equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
 
 
 def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:
@@ -98,3 +98,16 @@ def initial_step(h0: float, d1: float, d2: float, interval: float) -> float:
     """
     h1 = max(1e-6, h0 * 1e-3) if (d1 <= 1e-15 and d2 <= 1e-15) else (0.01 / max(d1, d2)) ** (1.0 / 8.0)
     return min(100.0 * h0, h1, interval)
+
+
+def equal_steps(interval: float, step: float) -> tuple[int, float]:
+    """The fixed-step methods' rule: the fewest equal steps no longer than ``step`` (s) that fill a
+    sample ``interval`` (s), and their length; a step within 1e-9 of dividing it is not split again.
+
+    Examples
+    --------
+    >>> equal_steps(1.0, 0.3), equal_steps(1.0, 0.25)
+    ((4, 0.25), (4, 0.25))
+    """
+    n = max(1, math.ceil(interval / step - 1e-9))
+    return n, interval / n

@@ -36,6 +36,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from ...jit import PARALLEL_BODIES, cores
+from ..engine.stepsize import equal_steps as _equal_steps  # _run calls it; compiled in _compiled()
 from ..models.gravity import gradient_components as _gravity_gradient  # _body_torque calls it; compiled in _compiled()
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD, kernel_form
 from ..special.quaternion import rotate_components as _rotate_vector  # _body_torque calls it; compiled in _compiled()
@@ -126,9 +127,7 @@ def _run(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: flo
         for i in range(4):
             quat_out[0, b, i] = q[i]
         for s in range(1, t.shape[0]):
-            dt = t[s] - t[s - 1]
-            m = max(1, math.ceil(dt / step - 1e-9))
-            h = dt / m
+            m, h = _equal_steps(t[s] - t[s - 1], step)
             for stepno in range(m):
                 tc = t[s - 1] + stepno * h
                 for g in range(gammas.shape[0]):
@@ -173,6 +172,7 @@ def _compiled(parallel: bool = False) -> Callable[..., None]:
         globals()["free_flow_into"] = compiled_flow.free_flow_into
         globals()["_gravity_gradient"] = jit(inline="always")(globals()["_gravity_gradient"])
         globals()["_rotate_vector"] = jit(inline="always")(globals()["_rotate_vector"])
+        globals()["_equal_steps"] = jit(inline="always")(globals()["_equal_steps"])
         for name in ("_body_torque", "_rotate"):
             globals()[name] = jit(inline="always")(globals()[name])
         globals()["prange"] = numba_prange

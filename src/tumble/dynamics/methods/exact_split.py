@@ -48,6 +48,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
+from ..engine.stepsize import equal_steps
 from ..models.torques import TorqueModel, body_torque, spin_gain
 from . import geometric
 from .compiled import compiled_model, run_split
@@ -146,7 +147,7 @@ def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayL
         L[:] += d * body_torque(model, time, L / I, Rotation.from_quat(q))
 
     for s in range(1, len(t)):
-        n_steps, h = geometric._steps(t[s] - t[s - 1], step)
+        n_steps, h = equal_steps(t[s] - t[s - 1], step)
         for m in range(n_steps):
             tc = t[s - 1] + m * h
             for gamma in geometric.COMPOSITIONS[order]:

@@ -51,6 +51,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, FloatOrArray
 from ...validation import check_increasing, short_repr
+from ..engine.stepsize import equal_steps
 from ..models.internal import InternalModel, InternalSamples, Rotors
 from ..models.torques import TorqueModel, body_torque, spin_gain
 from .compiled import compiled_model, run_split
@@ -359,7 +360,7 @@ def _propagate_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray,
         wd_out[0] = cast(FloatArray, wd).T
     hm = h_at(t[0])
     for s in range(1, n):
-        n_steps, h = _steps(t[s] - t[s - 1], step)
+        n_steps, h = equal_steps(t[s] - t[s - 1], step)
         for m in range(n_steps):
             tc = t[s - 1] + m * h
             for gamma in COMPOSITIONS[order]:
@@ -397,10 +398,6 @@ def _check_batch(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, ste
         raise ValueError(f"step = {step!r} must be a positive finite number (s)")
 
 
-def _steps(dt: float, step: float) -> tuple[int, float]:
-    """Equal steps no longer than ``step`` that fill a sample interval ``dt``."""
-    n = max(1, math.ceil(dt / step - 1e-9))
-    return n, dt / n
 
 
 _NEXT = {0: (1, 2), 1: (2, 0), 2: (0, 1)}
@@ -450,7 +447,7 @@ def _propagate_free(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, 
     quat_out = np.empty((len(t), N, 4))
     omega_out[0], quat_out[0] = (L - offset) * (1.0 / I), q
     for s in range(1, len(t)):
-        n, h = _steps(t[s] - t[s - 1], step)
+        n, h = equal_steps(t[s] - t[s - 1], step)
         for _ in range(n):
             for axis, frac in subflows:
                 j, k = _NEXT[axis]
