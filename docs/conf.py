@@ -104,6 +104,7 @@ API_PAGES = [
     ("analysis", "tumble.analysis", ["tumble.analysis"], None),
     ("ensemble", "tumble.ensemble", ["tumble.ensemble"], None),
     ("io", "tumble.io", ["tumble.io"], None),
+    ("commands", "tumble.commands", ["tumble.commands", "tumble.commands.sweep", "tumble.commands.fit"], None),
     ("viz", "tumble.viz", ["tumble.viz"], None),
 ]
 

@@ -12,6 +12,7 @@ from scipy.spatial.transform import Rotation
 from test_page import open_viewer, page_json
 
 from tumble.cli import main
+from tumble.commands import run_scenario
 from tumble.dynamics.control.controlled import ControlledRun
 from tumble.io.scenario import load_scenario
 from tumble.viz.control_page import commanded_torque, control_page_data, wheel_angle
@@ -94,7 +95,7 @@ def test_a_wheel_faster_than_half_a_turn_a_frame_is_marked_aliased():
 
 def test_the_error_curve_is_the_pointing_error_to_the_target():
     scenario = load_scenario(CONTROL / "point.toml").override({"t_end": 10.0})
-    run = scenario.run()
+    run = run_scenario(scenario)
     data = control_page_data(run, frames=5, wheel_axes=scenario.wheels.axes, target=scenario.target, threshold=0.01)
     assert data["curve"]["name"] == "attitude error" and data["curve"]["threshold"] is None
     np.testing.assert_allclose(data["curve"]["y"], run.pointing_error(scenario.target), rtol=1e-4)
@@ -116,7 +117,7 @@ def test_bad_arguments_get_one_line(kwargs, message):
 
 def test_the_page_refuses_control_data_of_other_frames():
     scenario = load_scenario(CONTROL / "point.toml").override({"t_end": 5.0})
-    run = scenario.run()
+    run = run_scenario(scenario)
     control = control_page_data(run, frames=5, wheel_axes=scenario.wheels.axes, target=scenario.target)
     with pytest.raises(ValueError, match="its frames' times differ from the page's"):
         page_html(scenario.body, scenario.trajectory(run), frames=6, control=control)

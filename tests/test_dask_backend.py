@@ -25,10 +25,10 @@ import pytest
 distributed = pytest.importorskip("dask.distributed")
 cloudpickle = pytest.importorskip("cloudpickle")
 
-import tumble.io.sweepfile as sweepfile  # noqa: E402
+import tumble.commands.sweep as sweep_command  # noqa: E402
 from tumble.cli import main  # noqa: E402
 from tumble.ensemble import DaskBackend  # noqa: E402
-from tumble.io.sweepfile import run_sweep  # noqa: E402
+from tumble.commands.sweep import run_sweep  # noqa: E402
 
 # the workers unpickle this module's functions by value: they need not import the tests
 cloudpickle.register_pickle_by_value(sys.modules[__name__])
@@ -93,7 +93,7 @@ def test_a_worker_killed_mid_sweep_costs_only_its_chunk_and_the_cases_are_the_sa
     marks = tmp_path / "marks"
     marks.mkdir()
     doomed = (0, 24, 42)  # chunks 0, 4 and 7 of 8: the first, one in the middle, the last
-    monkeypatch.setattr(sweepfile, "make_backend", lambda workers, scheduler: Killing(DaskBackend(workers=2),
+    monkeypatch.setattr(sweep_command, "make_backend", lambda workers, scheduler: Killing(DaskBackend(workers=2),
                                                                                       marks, doomed))
     there = run_sweep(path, tmp_path / "there", workers=2)
     killed = sorted(int(p.read_text()) for p in marks.glob("chunk-*"))

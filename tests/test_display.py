@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 import tumble
+from tumble.commands import run_scenario
 from tumble.dynamics._display import SVG_POINTS, omega_svg
 from tumble.io.scenario import resolve_run
 
@@ -233,7 +234,7 @@ def test_omega_svg_at_the_ends_of_double_range(t, w):
 
 
 def test_gyrostat_run():
-    traj = resolve_run(EXAMPLES / "wheel_t_handle.toml", t_end=2.0, samples=41).run()
+    traj = run_scenario(resolve_run(EXAMPLES / "wheel_t_handle.toml", t_end=2.0, samples=41))
     assert repr(traj) == "Trajectory('T-handle with wheel', dop853, 41 samples, t = 0..2 s, torque-free, 1 rotor)"
     cells = rows(parse(traj._repr_html_()).find("table"))
     J = traj.rotor_axial_moments
@@ -243,7 +244,7 @@ def test_gyrostat_run():
 
 
 def test_damper_run():
-    traj = resolve_run(EXAMPLES / "explorer1.toml", t_end=4.0, samples=21).run()
+    traj = run_scenario(resolve_run(EXAMPLES / "explorer1.toml", t_end=4.0, samples=21))
     assert repr(traj) == "Trajectory('Explorer 1', geometric, 21 samples, t = 0..4 s, torque-free, damper)"
     cells = rows(parse(traj._repr_html_()).find("table"))
     assert cells["damper moment J"] == "0.02 kg m^2"  # examples/explorer1.toml

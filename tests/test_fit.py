@@ -22,7 +22,7 @@ from tumble.analysis.fit import RotationFit, fit_rotation
 from tumble.analysis.period_inversion import periods_consistent
 from tumble.analysis.periods import npa_periods, npa_periods_measured
 from tumble.dynamics.methods.exact import FreeRotation
-from tumble.io.fitcommand import run_fit_command
+from tumble.commands.fit import run_fit_command
 from tumble.io.gyrodata import read_gyro_csv
 
 EXAMPLE = Path(tumble.__file__).parent / "examples" / "data" / "phone_toss.csv"

@@ -1,5 +1,5 @@
 """Whole recordings of real-looking tosses (tumble.analysis.fit: flights, recording, synthetic;
-tumble.io.fitcommand; tumble.dynamics.methods.exact_omega and drag).
+tumble.commands.fit; tumble.dynamics.methods.exact_omega and drag).
 
 The recordings come from :func:`tumble.analysis.fit.synthetic.synthetic_recording`: Euler's
 equations by DOP853 with strip-theory plate drag (not the fit's per-axis drag model), flex,

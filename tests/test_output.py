@@ -15,11 +15,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import tumble.commands.scenario
 import tumble.io.export
 from tumble import __version__
 from tumble.cli import main
+from tumble.commands import run_scenario
 from tumble.io.export import CSV_COLUMNS
-from tumble.io.scenario import Scenario
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SEED = str(EXAMPLES / "seed_flip.toml")
@@ -128,10 +129,10 @@ def test_concurrent_runs_into_one_folder_never_mix(tmp_path):
 )
 @pytest.mark.parametrize("command", ["simulate", "plot"])
 def test_a_bad_output_folder_is_refused_before_integrating(tmp_path, monkeypatch, capsys, make, pattern, command):
-    def never(self):
+    def never(*args, **kwargs):
         raise AssertionError("integrated before checking --out")
 
-    monkeypatch.setattr(Scenario, "run", never)
+    monkeypatch.setattr(tumble.commands.scenario, "simulate", never)
     out = make(tmp_path)
     before = sorted(p.name for p in tmp_path.rglob("*"))
     assert main([command, SEED, "--out", str(out)]) == 2
@@ -141,7 +142,7 @@ def test_a_bad_output_folder_is_refused_before_integrating(tmp_path, monkeypatch
 
 
 def test_a_bad_page_path_is_refused_before_integrating(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(Scenario, "run", lambda self: pytest.fail("integrated before checking --out"))
+    monkeypatch.setattr(tumble.commands.scenario, "simulate", lambda *a, **k: pytest.fail("integrated before checking --out"))
     (tmp_path / "f").write_text("x")
     assert main(["view", SEED, "--out", str(tmp_path / "f" / "page.html")]) == 2
     assert "is a file, not a folder" in capsys.readouterr().err
@@ -251,10 +252,10 @@ def test_scenario_files_take_dt_and_times(tmp_path):
 
     path = tmp_path / "s.toml"
     path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\ntimes = [0.5, 1.0, 7.25]\n')
-    traj = load_scenario(path).run()
+    traj = run_scenario(load_scenario(path))
     assert traj.t.tolist() == [0.5, 1.0, 7.25]
     path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\nt_end = 2.0\ndt = 0.5\n')
-    assert load_scenario(path).run().t.tolist() == [0.0, 0.5, 1.0, 1.5, 2.0]
+    assert run_scenario(load_scenario(path)).t.tolist() == [0.0, 0.5, 1.0, 1.5, 2.0]
     path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\ntimes = [1.0, 0.5]\n')
     with pytest.raises(ValueError, match=r"simulation.times must increase strictly"):
         load_scenario(path)

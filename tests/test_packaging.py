@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 import tumble
+from tumble.commands import run_scenario
 from tumble.io.examples import copy_examples, list_examples
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -148,7 +149,7 @@ def test_copied_examples_run_from_anywhere(tmp_path, monkeypatch):
     assert len(scenarios) >= 5
     for e in scenarios:
         scenario = tumble.load_scenario(dest / e.path)
-        traj = dataclasses.replace(scenario, t_end=0.5, samples=20).run()
+        traj = run_scenario(dataclasses.replace(scenario, t_end=0.5, samples=20))
         assert traj.omega.shape == (20, 3), e.path
     for e in list_examples():
         if e.kind == "body":

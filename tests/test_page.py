@@ -14,6 +14,7 @@ from conftest import BrowserMissingWarning, browser_or_skip, find_browser
 from scipy.spatial.transform import Rotation
 
 from tumble.cli import main
+from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
 from tumble.viz.page import page_html
 from tumble.viz.scene import frame_indices
@@ -34,7 +35,7 @@ def page_json(html: str) -> dict:
 @pytest.fixture(scope="module")
 def flip():
     scenario = load_scenario(EXAMPLES / "seed_flip.toml")
-    return scenario, scenario.run()
+    return scenario, run_scenario(scenario)
 
 
 @pytest.fixture(scope="module")

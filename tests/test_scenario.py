@@ -13,6 +13,7 @@ import pytest
 
 import tumble
 from tumble.cli import main
+from tumble.commands import run_scenario
 from tumble.io.export import CSV_BUDGET_COLUMNS, CSV_COLUMNS
 from tumble.io.scenario import load_scenario
 
@@ -46,7 +47,7 @@ def test_every_example_scenario_runs(path, tmp_path, capsys):
 
 def test_csv_round_trip_is_exact(tmp_path):
     scenario = load_scenario(EXAMPLES / "seed_flip.toml")
-    traj = scenario.run()
+    traj = run_scenario(scenario)
     from tumble.io.export import write_csv
 
     write_csv(traj, tmp_path / "t.csv")
@@ -68,7 +69,7 @@ def test_seed_flip_scenario_matches_the_numbers_the_tests_check(tmp_path, capsys
 
 def test_inline_body_and_torque():
     scenario = load_scenario(EXAMPLES / "torqued_box.toml")
-    traj = scenario.run()
+    traj = run_scenario(scenario)
     I3 = scenario.body.principal_moments[2]
     np.testing.assert_allclose(traj.omega[:, 2], 0.01 * traj.t / I3, rtol=1e-9)
 

@@ -9,6 +9,7 @@ import pytest
 
 import tumble
 from tumble.cli import main
+from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
 
 GG = '[torque]\nkind = "gravity_gradient"\norbit_period = 5400.0\n'
@@ -23,7 +24,7 @@ def scenario(tmp_path, text):
 def test_a_gravity_gradient_scenario_starting_in_the_orbit_frame_is_the_python_run(tmp_path):
     path = scenario(tmp_path, GG + "[initial.orbit_frame]\npitch = 0.05\n[simulation]\nt_end = 10800.0\n"
                     "samples = 50\nmethod = \"dop853\"\n")
-    traj = load_scenario(path).run()
+    traj = run_scenario(load_scenario(path))
     body = tumble.t_handle()
     gg = tumble.GravityGradient(orbit_period=5400.0)
     start = tumble.lvlh_state(gg, body, pitch=0.05)
@@ -39,7 +40,7 @@ def test_a_damper_scenario_ends_in_the_flat_spin(tmp_path):
     at |L| / (I3 + J) (the major-axis rule), with the energy budget closed."""
     path = scenario(tmp_path, "[initial]\nomega = [10.0, 0.3, 0.2]\n[simulation]\nt_end = 400.0\nsamples = 200\n"
                     "method = \"dop853\"\n[damper]\ninertia = 0.01\ndamping = 0.01\n")
-    traj = load_scenario(path).run()
+    traj = run_scenario(load_scenario(path))
     I3 = traj.moments[2]
     L = traj.angular_momentum_norm[0]
     assert abs(traj.omega[-1, 2]) == pytest.approx(L / (I3 + 0.01), rel=1e-6)

@@ -23,6 +23,7 @@ from matplotlib.figure import Figure
 from scipy.special import ellipk
 
 import tumble
+from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
 from tumble.viz import spacecraft
 from tumble.viz.spacecraft import spacecraft_figures
@@ -40,7 +41,7 @@ def crossings(t, x):
 def run(name: str):
     """``(scenario, trajectory)`` of an example scenario, run once per test session."""
     scenario = load_scenario(EXAMPLES / f"{name}.toml")
-    return scenario, scenario.run()
+    return scenario, run_scenario(scenario)
 
 
 # --- Explorer 1 ---------------------------------------------------------------------------------
@@ -140,7 +141,7 @@ def test_the_same_t_handle_with_the_wheel_stopped_flips():
     """Stopped, the wheel is rigid ballast: omega_2 changes sign 11 times in 20 s, every
     flip_interval (the elliptic closed form, 1.7527 s)."""
     scenario, _ = run("wheel_t_handle")
-    traj = stopped(scenario).run()
+    traj = run_scenario(stopped(scenario))
     assert traj.internal_momentum is not None and np.all(traj.internal_momentum == 0)
     t = crossings(traj.t, traj.omega[:, 1])
     assert len(t) >= 10

@@ -13,7 +13,8 @@ import pytest
 import tumble.ensemble.sweep as sweep_module
 from tumble.ensemble import success_lower_bound
 from tumble.io.resume import ResumeWarning
-from tumble.io.sweepfile import load_sweep, run_sweep, run_sweep_command
+from tumble.commands.sweep import run_sweep, run_sweep_command
+from tumble.io.sweepfile import load_sweep
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "src" / "tumble" / "examples" / "sweeps" / "t_handle_dimensions.toml"
 

@@ -12,7 +12,7 @@ import pytest
 import tumble.ensemble.sweep as sweep_module
 from tumble.io.provenance import file_sha256
 from tumble.io.resume import ResumeWarning
-from tumble.io.sweepfile import run_sweep, run_sweep_command
+from tumble.commands.sweep import run_sweep, run_sweep_command
 
 SWEEP = """\
 # A small sweep of {body_comment}

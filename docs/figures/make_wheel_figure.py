@@ -16,6 +16,7 @@ import dataclasses
 from pathlib import Path
 
 import tumble
+from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
 from tumble.viz import save_figure
 from tumble.viz.spacecraft import figure_omega_panels
@@ -34,7 +35,7 @@ def stopped(scenario):
 def make(out: Path) -> Path:
     """Write ``out/wheel_t_handle.png``; returns its path."""
     scenario = load_scenario(SCENARIO)
-    spinning, still = scenario.run(), stopped(scenario).run()
+    spinning, still = run_scenario(scenario), run_scenario(stopped(scenario))
     I, h = spinning.moments, float(spinning.internal_momentum[0, 1])
     W = float(spinning.omega[0, 1])
     rate = scenario.body.rotors[0].spin_rate

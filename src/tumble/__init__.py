@@ -54,6 +54,8 @@ _EXPORTS = {
     # files
     "load_body": "tumble.io",
     "load_scenario": "tumble.io",
+    # running what a file describes
+    "run_scenario": "tumble.commands",
 }
 
 __all__ = ["__version__", *_EXPORTS]

@@ -47,7 +47,7 @@ def _cmd_examples(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from ..io.sweepfile import run_sweep_command
+    from ..commands.sweep import run_sweep_command
     from ..viz.maps import figure_sweep
 
     if args.workers is not None and args.scheduler is not None:
@@ -103,7 +103,7 @@ class _Bar:
 
 
 def _cmd_fit(args) -> int:
-    from ..io.fitcommand import run_fit_command
+    from ..commands.fit import run_fit_command
     from ..viz import figure_fit, figure_recording
 
     if args.saturation is not None and not (args.saturation > 0 and args.saturation < float("inf")):
@@ -133,8 +133,10 @@ def _cmd_simulate(args) -> int:
     out = check_output_dir(args.out)
     if not hasattr(scenario, "method"):  # a closed-loop (control) scenario
         return simulate_control(args, scenario, out)
+    from ..commands import run_scenario
+
     with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
-        traj = scenario.run()
+        traj = run_scenario(scenario)
 
     from ..analysis import trajectory_summary
     from ..io.export import write_csv, write_json, write_npz
@@ -177,8 +179,10 @@ def _cmd_plot(args) -> int:
     out = check_output_dir(args.out)
     if scenario.times is None and scenario.dt is None:  # the phase portraits need a fine path
         scenario = dataclasses.replace(scenario, samples=max(scenario.sample_count, 5000))
+    from ..commands import run_scenario
+
     with _working(f"integrating {scenario.name}"):
-        traj = scenario.run()
+        traj = run_scenario(scenario)
 
     from .. import viz
     from ..io.output import output_dir
@@ -212,8 +216,10 @@ def _cmd_view(args) -> int:
     frame_indices(2 if control else scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
     if control:
         return view_control(args, scenario, out)
+    from ..commands import run_scenario
+
     with _working(f"integrating {scenario.name}"):
-        traj = scenario.run()
+        traj = run_scenario(scenario)
 
     from ..viz.page import write_page
 

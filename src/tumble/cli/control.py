@@ -20,6 +20,7 @@ def refuse_control(scenario, command: str) -> None:
 
 def simulate_control(args, scenario, out) -> int:
     """`tumble simulate` of a control scenario: the closed loop, its summary and trajectory."""
+    from ..commands import run_scenario
     from ..io.controlfile import control_summary, write_control_run
     from ..io.export import write_json
     from ..io.output import output_dir
@@ -28,7 +29,7 @@ def simulate_control(args, scenario, out) -> int:
 
     controller = scenario.controller()
     with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
-        run = scenario.run(controller)
+        run = run_scenario(scenario, controller)
     summary = control_summary(scenario, run, controller)
     summary["scenario"] = str(args.source)
     summary["provenance"] = provenance(args.argv, scenario.sources)
@@ -59,8 +60,10 @@ def simulate_control(args, scenario, out) -> int:
 
 def view_control(args, scenario, out) -> int:
     """`tumble view` of a control scenario: the page with the wheels, the commanded torque and the error."""
+    from ..commands import run_scenario
+
     with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
-        run = scenario.run()
+        run = run_scenario(scenario)
 
     from ..viz.control_page import control_page_data
     from ..viz.page import write_page

@@ -1,7 +1,8 @@
 """Sweeps and Monte Carlo (layer 4): dispersions, sampling, per-case results, statistics.
 
 On top of :mod:`tumble.dynamics` and :mod:`tumble.analysis`; never imports the files, figures
-or command line (:mod:`tumble.io.sweepfile` reads sweep files and writes their results).
+or command line (:mod:`tumble.io.sweepfile` reads sweep files, :mod:`tumble.commands.sweep` runs them
+and writes their results).
 
 Examples
 --------

@@ -48,7 +48,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..dynamics import Trajectory
-from ..dynamics.control.controlled import ControlledRun, simulate_controlled
+from ..dynamics.control.controlled import ControlledRun
 from ..dynamics.control.controllers import BDot, Controller, MRPFeedback
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
@@ -160,11 +160,12 @@ class ControlScenario:
         return build_controller(ControlSpec(self.kind, self.controller_args, self.target, self.threshold), self.body,
                                 self.wheels)
 
-    def run(self, controller: Controller | None = None) -> ControlledRun:
-        """Simulate the scenario in closed loop, with ``controller`` (default a fresh :meth:`controller`).
+    def arguments(self, controller: Controller | None = None) -> dict[str, Any]:
+        """The keyword arguments of :func:`~tumble.dynamics.control.controlled.simulate_controlled`
+        that run this scenario in closed loop, with ``controller`` (default a fresh :meth:`controller`).
 
-        Pass the controller to read what it keeps after the run, such as the switch time of a
-        ``detumble_point`` mission (:class:`~tumble.dynamics.control.mission.DetumbleThenPoint`).
+        Running it belongs to the command layer, :func:`tumble.commands.run_scenario`; this file
+        layer only reads and describes it.
 
         Examples
         --------
@@ -174,19 +175,12 @@ class ControlScenario:
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
         ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
         >>> scenario = control_scenario_from_table(table, body, name="point")
-        >>> run = scenario.run()
-        >>> len(run.t), float(run.t[-1]), run.wheel_speed.shape
-        (21, 10.0, (21, 3))
-
-        It starts 60 deg off the target and turns towards it; the wheels take up momentum, the
-        total stays put (no external torque):
-
-        >>> error = run.pointing_error(scenario.target)
-        >>> math.isclose(error[0], math.pi / 3), bool(error[-1] < error[0]), bool(run.budget_error().max() < 1e-15)
-        (True, True, True)
+        >>> given = scenario.arguments()
+        >>> type(given["controller"]).__name__, given["t_end"], given["gravity_gradient"] is None
+        ('MRPFeedback', 10.0, True)
         """
-        return simulate_controlled(
-            self.body.principal_moments, self.omega, t_end=self.t_end,
+        return dict(
+            moments=self.body.principal_moments, omega0=self.omega, t_end=self.t_end,
             controller=controller if controller is not None else self.controller(),
             attitude0=self.attitude0, field=self.field,
             gravity_gradient=self.orbit.gravity_gradient() if (self.gravity_gradient and self.orbit) else None,
@@ -204,7 +198,8 @@ class ControlScenario:
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
         ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
         >>> scenario = control_scenario_from_table(table, body, name="point")
-        >>> run = scenario.run()
+        >>> import tumble
+        >>> run = tumble.run_scenario(scenario)
         >>> traj = scenario.trajectory(run)
         >>> traj.method, np.array_equal(traj.t, run.t), np.array_equal(traj.omega, run.omega)
         ('dop853, mrp_pd every 0.5 s', True, True)

@@ -56,7 +56,7 @@ class _Scenario(Protocol):
 def control_summary(scenario: _Scenario, run: ControlledRun, controller: Controller | None = None) -> dict[str, Any]:
     """The numbers of a run: final rate, detumble time, final pointing error, budgets, commands.
 
-    ``controller`` is the one the run used (``scenario.run(controller)``): a ``detumble_point``
+    ``controller`` is the one the run used (``tumble.run_scenario(scenario, controller)``): a ``detumble_point``
     mission's switch time is kept by it (``switch_time``, s, None when it never switched).
 
     Examples
@@ -69,7 +69,8 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
     ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
     >>> scenario = control_scenario_from_table(table, body, name="point")
-    >>> summary = control_summary(scenario, scenario.run())
+    >>> import tumble
+    >>> summary = control_summary(scenario, tumble.run_scenario(scenario))
     >>> summary["kind"], summary["samples"], summary["initial_rate"], summary["external_impulse"]
     ('mrp_pd', 21, 0.01, 0.0)
     >>> math.isclose(summary["pointing_error_initial"], math.pi / 3), summary["max_wheel_torque"] <= 2e-3
@@ -120,7 +121,8 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
     ...          "actuators": {"wheels": {"axes": np.eye(3).tolist(), "inertia": 2e-5, "max_torque": 2e-3}}}
     >>> scenario = control_scenario_from_table(table, body, name="point")
-    >>> run = scenario.run()
+    >>> import tumble
+    >>> run = tumble.run_scenario(scenario)
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     write_control_run(run, Path(tmp))
     ...     header = (Path(tmp) / "trajectory.csv").read_text().splitlines()[0].split(",")

@@ -1,7 +1,7 @@
 """The resume store of a sweep: its finished chunks in ``DIR.resume/``, checked before reuse.
 
 ``tumble sweep SWEEP.toml --out DIR`` keeps each finished chunk in ``DIR.resume/`` so that a
-run after an interruption computes only the missing ones (:mod:`tumble.io.sweepfile`). What is
+run after an interruption computes only the missing ones (:mod:`tumble.commands.sweep`). What is
 taken back must be exactly what this sweep would compute, so the folder is guarded four ways:
 
 - **one run at a time**: a run holds an exclusive lock (``fcntl.flock``) on ``DIR.resume/lock``

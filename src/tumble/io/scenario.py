@@ -44,8 +44,9 @@ import dataclasses
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
+from ..dynamics import ConstantTorque, SphericalDamper
 from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body, MassProperties
@@ -80,7 +81,7 @@ class Scenario:
     >>> import tumble
     >>> from tumble.io.scenario import Scenario
     >>> scenario = Scenario(body=tumble.t_handle(), omega=(0.0, 0.0, 2.0), t_end=4.0, samples=5)
-    >>> traj = scenario.run()
+    >>> traj = tumble.simulate(**scenario.arguments())
     >>> traj.t.tolist(), traj.method
     ([0.0, 1.0, 2.0, 3.0, 4.0], 'exact')
     """
@@ -104,27 +105,29 @@ class Scenario:
     attitude0: object = None
     damper: SphericalDamper | None = None
 
-    def run(self) -> Trajectory:
-        """Simulate the scenario.
+    def arguments(self) -> dict[str, Any]:
+        """The keyword arguments of :func:`tumble.simulate` that run this scenario.
+
+        Running it belongs to the command layer, :func:`tumble.commands.run_scenario`; this file
+        layer only reads and describes it.
 
         Examples
         --------
         >>> import tumble
         >>> from tumble.io.scenario import Scenario
-        >>> torque = tumble.ConstantTorque((0.0, 0.0, 0.4375))   # N m about the major axis, I3 = 0.4375 kg m^2
-        >>> traj = Scenario(body=tumble.t_handle(), omega=(0.0, 0.0, 0.0), t_end=2.0, samples=3, torque=torque).run()
-        >>> traj.omega[:, 2].round(6).tolist()   # omega_3 = tau t / I3
-        [0.0, 1.0, 2.0]
+        >>> given = Scenario(body=tumble.t_handle(), omega=(0.0, 5.0, 0.0), t_end=2.0, method="rk8", step=0.01).arguments()
+        >>> given["omega0"], given["method"], given["step"], given["torque"] is None
+        ((0.0, 5.0, 0.0), 'rk8', 0.01, True)
+        >>> float(tumble.simulate(**given).t[-1])   # s
+        2.0
         """
-        return simulate(
-            self.body, self.omega, t_end=self.t_end, samples=self.samples, dt=self.dt, times=self.times,
-            method=self.method, frame=self.frame, torque=self.torque, rtol=self.rtol, atol=self.atol,
-            step=self.step, attitude0=self.attitude0, damper=self.damper,
-        )
+        return dict(body=self.body, omega0=self.omega, t_end=self.t_end, samples=self.samples, dt=self.dt,
+                    times=self.times, method=self.method, frame=self.frame, torque=self.torque, rtol=self.rtol,
+                    atol=self.atol, step=self.step, attitude0=self.attitude0, damper=self.damper)
 
     @property
     def sample_count(self) -> int:
-        """How many samples :meth:`run` returns.
+        """How many samples a run of it returns.
 
         Examples
         --------
@@ -277,8 +280,8 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario | ControlScenario:
     Returns
     -------
     Scenario or ControlScenario
-        The body, initial state, times, method and torque; ``.run()`` simulates it. A file with a
-        ``[control]`` table is a closed-loop run (:mod:`tumble.io.controlfile`).
+        The body, initial state, times, method and torque; :func:`tumble.run_scenario` runs it. A
+        file with a ``[control]`` table is a closed-loop run (:mod:`tumble.io.controlfile`).
 
     Raises
     ------
@@ -302,7 +305,7 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario | ControlScenario:
     ...     scenario = tumble.load_scenario(path)
     >>> scenario.name, scenario.body.name, scenario.omega, scenario.sample_count
     ('spin', 'T-handle', [0.0, 0.0, 2.0], 11)
-    >>> scenario.run().omega[-1].round(6).tolist()   # a steady spin about the major axis
+    >>> tumble.run_scenario(scenario).omega[-1].round(6).tolist()   # a steady spin about the major axis
     [0.0, 0.0, 2.0]
     """
     path = Path(path)

@@ -1,4 +1,4 @@
-"""Sweep files (TOML) and the run that writes their results: ``tumble sweep SWEEP.toml --out DIR``.
+"""Sweep files (TOML): ``tumble sweep SWEEP.toml --out DIR`` reads them.
 
 ::
 
@@ -42,43 +42,16 @@
     min = 1                      # and/or max (min <= max); inclusive; a NaN value fails
     confidence = 0.9             # default 0.9
 
-:func:`run_sweep` writes into ``DIR``, all at once or not at all (:func:`tumble.io.output.output_dir`):
-
-- ``cases.csv``: one row per case (:func:`tumble.ensemble.reduce_cases`): ``case``, ``I1 [kg m^2]``
-  to ``I3``, ``omega0_1 [rad/s]`` to ``omega0_3`` (principal frame), the drawn values (one column
-  per dispersed quantity, e.g. ``shaft_length [m]``), ``resampled``, then ``axis``, ``predicted``,
-  ``growth_rate [1/s]``, ``wobble_frequency [rad/s]``, ``circulation``, ``flips``,
-  ``flip_period [s]``, ``flip_period_exact [s]``, ``omega_end_1 [rad/s]`` to ``_3``, ``q_end_x``
-  to ``q_end_w``, ``max_nutation [rad]``, ``energy_change``, ``L_world_angle [rad]``. Floats are
-  written as Python's shortest round-trip repr (``nan`` where a quantity does not apply);
-- ``cases.parquet``: the same table, when pyarrow is installed (``pip install 'tumble[table]'``);
-- ``summary.json``: the sweep's settings, the streaming statistics
-  (:meth:`tumble.ensemble.SweepSummary.as_dict`), the criterion's success statement and the
-  provenance (:func:`tumble.io.provenance.provenance`);
-- a figure, ``sweep.png``, when the caller passes the function that draws it (the command line
-  passes :func:`tumble.viz.figure_sweep`; this layer draws nothing, it saves the figure).
-
-Resume: each finished chunk is kept in ``DIR.resume/`` beside the output
-(:class:`tumble.io.resume.ChunkFolder`). Run again after an interruption, the sweep computes
-only the missing chunks, and since every case's row is the same in any chunk, ``cases.csv``
-comes out byte for byte as an uninterrupted run's. A fingerprint of everything that changes a
-result (the content hashes of the sweep file, the body file and its mesh files, the run's
-settings, the chunk size, the versions of tumble, numpy and scipy) says which run the chunks
-belong to: another run's are discarded. Each chunk records its cases and a checksum, and a bad
-one (copied, cut, truncated) is named in a warning line and computed again; a run holds a lock
-on the folder, so a second run into the same ``--out`` is refused while the first runs; a
-``DIR.resume`` that is a symbolic link is refused. The folder is removed once the output is in
-place.
+Running a sweep file and writing its results is :func:`tumble.commands.sweep.run_sweep`
+(``tumble sweep``); this module reads and checks the file, and writes the case tables as the
+chunks pass (:class:`CaseTables`).
 """
 
 from __future__ import annotations
 
 import os
-import sys
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
@@ -92,20 +65,14 @@ from ..ensemble import (
     InitialRates,
     RunSettings,
     Sweep,
-    compute_chunk,
-    make_backend,
-    run_chunks,
-    summarize,
 )
 from ..mass import PRESETS, Body
 from .bodyfile import body_from_table, mesh_files, read_toml
-from .export import write_json
-from .output import FIGURE_DPI, check_output_dir, output_dir
-from .provenance import file_sha256, provenance
+from .provenance import file_sha256
 from .resume import ChunkFolder
 from .scenario import DEFAULT_T_END, _torque
 
-__all__ = ["SWEEP_WRITES", "ChunkFolder", "SweepFile", "load_sweep", "run_sweep", "run_sweep_command", "sweep_from_table"]
+__all__ = ["SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
 #: The files a sweep writes into its folder (an earlier run's are replaced as a set).
 SWEEP_WRITES = ("cases.csv", "cases.parquet", "summary.json", "sweep.png")
@@ -139,6 +106,32 @@ class SweepFile:
     sources: tuple = ()
     #: The file's tables as read (recorded in summary.json).
     settings: dict | None = None
+
+    def fingerprint(self) -> dict:
+        """Everything that changes a result: the versions, the content hashes of every file read
+        (sweep file, body file, mesh files), the run's settings as resolved and the chunk size.
+
+        A resumed sweep reuses only the chunks of a run with the same fingerprint
+        (:class:`tumble.io.resume.ChunkFolder`).
+
+        Examples
+        --------
+        >>> spin = {"body": "t-handle", "initial": {"omega": [0.1, 5.0, 0.1]}}
+        >>> parsed = sweep_from_table({**spin, "sweep": {"cases": 4}})
+        >>> other = sweep_from_table({**spin, "sweep": {"cases": 4, "chunk": 2}})
+        >>> parsed.fingerprint()["cases"], parsed.fingerprint() == other.fingerprint()
+        (4, False)
+        """
+        import scipy
+
+        from .._version import __version__
+
+        ensemble, settings = self.sweep.ensemble, self.sweep.settings
+        return {"tumble": __version__, "numpy": np.__version__, "scipy": scipy.__version__, "chunk": self.chunk,
+                "inputs": [h for _, h in self.sources], "file": self.settings,
+                "cases": ensemble.cases, "seed": ensemble.seed, "sampling": ensemble.sampling,
+                "method": settings.method, "step": settings.step, "t_end": settings.t_end, "samples": settings.samples,
+                "times": settings.times}
 
 
 def _table(data: dict, section: str) -> dict:
@@ -216,8 +209,8 @@ def _in(section: str, build):
 def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "sweep") -> SweepFile:
     """Build (and check) a sweep from parsed TOML; errors are one line naming the key.
 
-    Case 0 is made and run as a check, so that a sweep that cannot run fails here, before any
-    output.
+    The run (:func:`tumble.commands.sweep.run_sweep`) computes case 0 first, so that a sweep that
+    cannot run, or whose criterion names no column, fails before any output.
 
     Examples
     --------
@@ -258,9 +251,6 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise ValueError(f"sweep: chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
     result = Sweep(ensemble, settings, _criterion(tables["criterion"]))
-    first = compute_chunk(result, 0, 1)  # case 0 runs: the sweep can run
-    if result.criterion is not None:
-        _in("criterion", lambda: result.criterion.passed(first))
     return SweepFile(result, name, chunk, tuple((str(f), file_sha256(f)) for f in files), dict(data))
 
 
@@ -284,21 +274,6 @@ def load_sweep(path: str | os.PathLike[str]) -> SweepFile:
                      parsed.settings)
 
 
-def _fingerprint(parsed: SweepFile) -> dict:
-    """Everything that changes a result: the versions, the content hashes of every file read
-    (sweep file, body file, mesh files), the run's settings as resolved and the chunk size."""
-    import scipy
-
-    from .._version import __version__
-
-    ensemble, settings = parsed.sweep.ensemble, parsed.sweep.settings
-    return {"tumble": __version__, "numpy": np.__version__, "scipy": scipy.__version__, "chunk": parsed.chunk,
-            "inputs": [h for _, h in parsed.sources], "file": parsed.settings,
-            "cases": ensemble.cases, "seed": ensemble.seed, "sampling": ensemble.sampling,
-            "method": settings.method, "step": settings.step, "t_end": settings.t_end, "samples": settings.samples,
-            "times": settings.times}
-
-
 def _text(values: np.ndarray) -> list[str]:
     """A column as CSV fields: whole numbers as such, floats as their shortest repr."""
     kind = values.dtype.kind
@@ -307,8 +282,24 @@ def _text(values: np.ndarray) -> list[str]:
     return [str(v) for v in values.tolist()]
 
 
-class _Tables:
-    """Writes the chunks to ``cases.csv`` (and ``cases.parquet`` with pyarrow) as they pass."""
+class CaseTables:
+    """Writes the chunks of a sweep to ``cases.csv`` (and ``cases.parquet`` with pyarrow) in
+    ``folder`` as they pass: call it with each chunk's columns, then :meth:`close`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     tables = CaseTables(Path(folder))
+    ...     tables({"case": np.arange(2), "flips": np.array([1.0, 0.5])})
+    ...     tables({"case": np.arange(2, 3), "flips": np.array([np.nan])})
+    ...     tables.close()
+    ...     print(Path(folder, "cases.csv").read_text(), end="")
+    case,flips
+    0,1.0
+    1,0.5
+    2,nan
+    """
 
     def __init__(self, folder: Path) -> None:
         self.csv = open(folder / "cases.csv", "w", encoding="utf-8", newline="")
@@ -317,6 +308,18 @@ class _Tables:
         self.header = None
 
     def __call__(self, columns: dict) -> None:
+        """Append one chunk's columns (a dict of equal-length arrays; the first chunk's keys are the header).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     tables = CaseTables(Path(folder))
+        ...     tables({"case": np.arange(3), "flips": np.array([2.0, 0.0, 1.5])})
+        ...     tables.close()
+        ...     Path(folder, "cases.csv").read_text().splitlines()[1:]
+        ['0,2.0', '1,0.0', '2,1.5']
+        """
         if self.header is None:
             self.header = list(columns)
             self.csv.write(",".join(self.header) + "\n")
@@ -333,159 +336,17 @@ class _Tables:
         self.parquet.write_table(table)
 
     def close(self) -> None:
+        """Close the files (the last chunk is written).
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     tables = CaseTables(Path(folder))
+        ...     tables.close()
+        ...     tables.csv.closed, Path(folder, "cases.csv").read_text()
+        (True, '')
+        """
         self.csv.close()
         if self.parquet is not None:
             self.parquet.close()
-
-
-def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, workers: int | None = None, scheduler: str | None = None,
-              argv: Sequence[str] | None = None, figure: Callable[..., Any] | None = None,
-              warn: Callable[[str], None] | None = None) -> dict:
-    """Run a sweep file and write its results into the folder ``out`` (module docstring).
-
-    Parameters
-    ----------
-    path : str or Path
-        The sweep file.
-    out : str or Path
-        The output folder (new, or a folder of plain files; checked before anything runs).
-    workers : int, optional
-        Run the chunks on a local Dask cluster of this many processes.
-    scheduler : str, optional
-        Run them on the Dask scheduler at this address.
-    argv : list of str, optional
-        The command line, for the provenance.
-    figure : callable, optional
-        ``figure(columns, title=..., cases=...)`` returns the figure of the sample of cases
-        (a matplotlib Figure: :func:`tumble.viz.figure_sweep`), saved as ``sweep.png``.
-    warn : callable, optional
-        ``warn(message)`` for a resumed chunk that is not reused (:mod:`tumble.io.resume`);
-        default a :class:`tumble.io.resume.ResumeWarning`.
-
-    Returns
-    -------
-    dict
-        What ``summary.json`` holds.
-
-    Raises
-    ------
-    ValueError
-        For a bad file, value or output path, or when another sweep is running into ``out``
-        (its resume folder is locked): nothing is computed or written.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 8\\n[initial]\\n'
-    ...                                              'omega = [0.1, 5.0, 0.1]\\n[criterion]\\ncolumn = "flips"\\nmin = 1\\n')
-    ...     data = run_sweep(Path(folder, "spin.toml"), Path(folder, "out"))
-    ...     written = sorted(p.name for p in Path(folder, "out").iterdir())
-    >>> data["cases"], data["counts"]["predicted"], data["criterion"]["passed"]  # spun about the intermediate axis
-    (8, {'unstable': 8}, 8)
-    >>> written
-    ['cases.csv', 'cases.parquet', 'summary.json']
-    """
-    parsed = load_sweep(path)
-    out = check_output_dir(out).absolute()
-    sweep = parsed.sweep
-    store = ChunkFolder(out.parent / f"{out.name}.resume", _fingerprint(parsed), cases=sweep.ensemble.cases,
-                        chunk=parsed.chunk, warn=warn)
-    try:
-        data = _run(parsed, path, out, store, workers, scheduler, argv, figure)
-    except BaseException:
-        store.close()  # the finished chunks stay for the next run
-        raise
-    store.remove()
-    return data
-
-
-def _run(parsed: SweepFile, path, out: Path, store: ChunkFolder, workers, scheduler, argv, figure) -> dict:
-    """:func:`run_sweep` under the resume folder's lock."""
-    resumed = sum(store.has(k) for k in range(store.chunks))
-    backend = make_backend(workers, scheduler)
-    sweep = parsed.sweep
-    try:
-        with output_dir(out, SWEEP_WRITES) as stage:
-            tables = _Tables(stage)
-            try:
-                summary = summarize(run_chunks(sweep, chunk=parsed.chunk, store=store, backend=backend),
-                                    sweep.ensemble.seed, sweep.criterion, on_chunk=tables)
-            finally:
-                tables.close()
-            settings = sweep.settings
-            data = {
-                "sweep": str(path),
-                "body": sweep.ensemble.bodies.body.name,
-                "nominal_moments": sweep.ensemble.bodies.body.principal_moments.tolist(),
-                "cases": sweep.ensemble.cases, "seed": sweep.ensemble.seed, "sampling": sweep.ensemble.sampling,
-                "chunk": parsed.chunk, "method": settings.method, "step": settings.step,
-                "t_end": None if settings.times is not None else settings.t_end,
-                "settings": parsed.settings, "backend": backend.describe(), "resumed_chunks": resumed,
-                **summary.as_dict(sweep.criterion),
-                "provenance": provenance(argv, parsed.sources),
-            }
-            write_json(_plain(data), stage / "summary.json")
-            if figure is not None:  # drawn by the caller's layer, written here into the staged folder
-                drawn = figure(summary.sample_columns(), title=f"{parsed.name}: {data['body']}, {settings.method}",
-                               cases=summary.cases)
-                drawn.savefig(stage / "sweep.png", dpi=FIGURE_DPI)
-    finally:
-        backend.close()
-    return data
-
-
-def _plain(value):
-    """``value`` with numpy scalars and arrays turned into plain Python (for JSON)."""
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *, workers: int | None = None, scheduler: str | None = None,
-                      argv: Sequence[str] | None = None, figure: Callable[..., Any] | None = None) -> int:
-    """``tumble sweep PATH --out OUT``: :func:`run_sweep`, then one line for people; returns 0.
-
-    Errors propagate (``ValueError`` for bad input: the command line's exit status 2).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 4\\n[initial]\\n'
-    ...                                              'omega = [0.1, 5.0, 0.1]\\n')
-    ...     status = run_sweep_command(Path(folder, "spin.toml"), Path(folder, "out"))  # doctest: +ELLIPSIS
-    4 cases (exact): 4 predicted unstable; 4 flipped twice or more, flip period median ...; wrote .../out/
-    >>> status
-    0
-    """
-    data = run_sweep(path, out, workers=workers, scheduler=scheduler, argv=argv, figure=figure,
-                     warn=lambda message: print(f"warning: {message}", file=sys.stderr))
-    print(sweep_line(data, out))
-    return 0
-
-
-def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
-    """One line: how many cases flipped, the flip period's median and 5-95 % range, the criterion."""
-    counts, stats = data["counts"], data["statistics"]
-    unstable = counts["predicted"].get("unstable", 0)
-    flips = stats["flips"]
-    period = stats["flip_period"]
-    text = f"{data['cases']} cases ({data['method']}): {unstable} predicted unstable"
-    if period["count"]:
-        q = period["quantiles"]
-        text += (f"; {period['count']} flipped twice or more, flip period median {q['0.5']:.4g} s "
-                 f"(5-95 %: {q['0.05']:.4g} to {q['0.95']:.4g} s)")
-    else:
-        text += f"; at most {flips['max']:g} flip(s) per case"
-    if data.get("redraws"):
-        text += f"; {data['redraws']} unphysical draws redrawn"
-    if "criterion" in data:
-        text += f"; {data['criterion']['statement']}"
-    return f"{text}; wrote {out}/"

@@ -32,10 +32,11 @@ from ..analysis.fit import (
     fit_recording,
     fit_rotation,
 )
+from ..io.bodyfile import load_body
+from ..io.gyrodata import read_recording
+from ..io.output import FIGURE_DPI, check_output_dir, output_dir
+from ..io.provenance import file_sha256, provenance
 from ..validation import check_number
-from .gyrodata import read_recording
-from .output import FIGURE_DPI, check_output_dir, output_dir
-from .provenance import file_sha256, provenance
 
 __all__ = ["TOSS_COLUMNS", "run_fit_command"]
 
@@ -67,8 +68,6 @@ def _digest(path) -> str:
 
 
 def _body_comparison(body_source, ratios, std) -> dict:
-    from .bodyfile import load_body
-
     body = load_body(body_source)
     I = np.asarray(body.principal_moments, float)
     pred = I[:2] / I[2]
@@ -104,7 +103,7 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
         The command line after ``tumble``, for the provenance.
     figure : callable, optional
         ``figure(fit, omega_measured)`` -> matplotlib Figure for one flight
-        (:func:`tumble.viz.figure_fit`; io cannot import viz).
+        (:func:`tumble.viz.figure_fit`).
     recording_figure : callable, optional
         ``recording_figure(recording_fit)`` -> Figure for a whole recording
         (:func:`tumble.viz.figure_recording`).
@@ -144,8 +143,6 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
     t, omega, events = read_recording(path)
     label = os.fspath(path)
     if body is not None:
-        from .bodyfile import load_body
-
         load_body(body)  # a bad body file is bad input before anything is computed
     digest = _digest(path)
     record = {"input": label}
