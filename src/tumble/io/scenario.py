@@ -46,7 +46,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..dynamics import ConstantTorque, SphericalDamper, Trajectory, simulate
-from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
+from ..dynamics.environment.earth import MU_EARTH
+from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body, MassProperties
 from ..typing import ArrayLike
