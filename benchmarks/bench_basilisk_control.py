@@ -39,7 +39,7 @@ def run(out: Path, quick: bool = False) -> str:
     from tumble.dynamics.control.controlled import simulate_controlled
     from tumble.dynamics.control.controllers import BDot, MRPFeedback
     from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-    from tumble.dynamics.models.magnetic import IGRF13_2020, IGRF_RADIUS
+    from tumble.dynamics.environment.magnetic import IGRF13_2020, IGRF_RADIUS
 
     rows = []
     rw = ReactionWheels(np.eye(3), inertia=s.JS)

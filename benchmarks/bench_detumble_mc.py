@@ -32,8 +32,9 @@ def run(out: Path, quick: bool = False) -> str:
     """Run the Monte Carlo, write the JSON and the figure, return the markdown."""
     from tumble.dynamics.control.controllers import bdot_gain
     from tumble.dynamics.models.actuators import Magnetorquers
-    from tumble.dynamics.models.magnetic import DipoleField
-    from tumble.dynamics.models.orbit import CircularOrbit
+    from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+    from tumble.dynamics.environment.magnetic import DipoleField
+    from tumble.dynamics.environment.orbit import CircularOrbit
     from tumble.dynamics.models.sensors import Sensors
     from tumble.ensemble.detumble import detumble_cases, detumble_monte_carlo
     from tumble.viz import save_figure
@@ -48,7 +49,7 @@ def run(out: Path, quick: bool = False) -> str:
                            moment_spread=0.1, gyro_bias_sigma=GYRO_BIAS_SIGMA, seed=2024)
     mc = detumble_monte_carlo(cases, field=DipoleField(orbit), gain=gain, magnetorquers=Magnetorquers(0.2),
                               period=1.0, t_end=11400.0, threshold=threshold, substeps=2, chunk=2500,
-                              gravity_gradient=orbit.gravity_gradient(),
+                              gravity_gradient=gravity_gradient_of(orbit),
                               sensors=Sensors(gyro_noise=GYRO_NOISE, magnetometer_noise=MAGNETOMETER_NOISE),
                               history=191)
     summary = mc.summary(worst=5)

@@ -18,8 +18,9 @@ import math
 
 from tumble.dynamics.control.controllers import bdot_gain
 from tumble.dynamics.models.actuators import Magnetorquers
-from tumble.dynamics.models.magnetic import DipoleField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+from tumble.dynamics.environment.magnetic import DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
 from tumble.dynamics.models.sensors import Sensors
 from tumble.ensemble.detumble import detumble_cases, detumble_monte_carlo
 from tumble.viz.montecarlo import figure_detumble_mc
@@ -32,7 +33,7 @@ cases = detumble_cases(200, moments=moments, rate_min=math.radians(2.0), rate_ma
 sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7)  # rad/s, T (1 sigma)
 runs = {scale: detumble_monte_carlo(cases, field=DipoleField(orbit), gain=scale * gain,
                                     magnetorquers=Magnetorquers(0.2), period=3.0, t_end=7200.0,
-                                    threshold=math.radians(0.5), gravity_gradient=orbit.gravity_gradient(),
+                                    threshold=math.radians(0.5), gravity_gradient=gravity_gradient_of(orbit),
                                     sensors=sensors, history=101)
         for scale in (1.0, 2.0)}
 summary = runs[1.0].summary(worst=3)

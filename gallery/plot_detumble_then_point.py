@@ -25,12 +25,13 @@ from tumble.dynamics import (
     DetumbleThenPoint,
     MRPFeedback,
     bdot_gain,
+    gravity_gradient_of,
     simulate_controlled,
 )
 from tumble.dynamics.control.controllers import MomentumDumping
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-from tumble.dynamics.models.magnetic import DipoleField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.environment.magnetic import DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
 from tumble.viz import control_figures
 
 moments = np.array([0.0067, 0.0419, 0.0419])  # kg m^2, principal axes (axis 1 the long one)
@@ -41,7 +42,7 @@ point = MRPFeedback(K=1.1e-3, P=6e-3, period=1.0, moments=moments, wheels=wheels
 mission = DetumbleThenPoint(BDot(gain=gain, period=1.0, form="normalized"), MomentumDumping(point, gain=1e-3),
                             switch_rate=math.radians(1.0), dwell=60.0)
 run = simulate_controlled(moments, [math.radians(20.0), 0.0, 0.0], t_end=600.0, controller=mission,
-                          field=DipoleField(orbit), gravity_gradient=orbit.gravity_gradient(),
+                          field=DipoleField(orbit), gravity_gradient=gravity_gradient_of(orbit),
                           magnetorquers=Magnetorquers(1.0), wheels=wheels)
 error = np.degrees(run.pointing_error(point.target))  # deg
 budget = float(run.budget_error().max())  # kg m^2/s

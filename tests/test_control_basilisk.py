@@ -28,8 +28,8 @@ from scipy.spatial.transform import Rotation
 from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.controllers import BDot, MRPFeedback
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-from tumble.dynamics.models.magnetic import IGRF13_2020, IGRF_RADIUS, DipoleField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.environment.magnetic import IGRF13_2020, IGRF_RADIUS, DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
 
 pytest.importorskip("Basilisk", reason="Basilisk (pip install bsk) is not installed")
 

@@ -12,8 +12,8 @@ from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.controllers import BDot, bdot_gain
 from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
-from tumble.dynamics.models.magnetic import DipoleField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.environment.magnetic import DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
 from tumble.ensemble.detumble import detumble_cases, detumble_monte_carlo
 
 ORBIT = CircularOrbit(altitude=500e3, inclination=1.69995)

@@ -17,7 +17,7 @@ from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback
 from tumble.dynamics.control.mission import DetumbleThenPoint
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-from tumble.dynamics.models.magnetic import UniformField
+from tumble.dynamics.environment.magnetic import UniformField
 from tumble.dynamics.models.sensors import Measurement
 from tumble.io.examples import list_examples
 from tumble.io.scenario import load_scenario

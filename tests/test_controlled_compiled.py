@@ -18,8 +18,9 @@ from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.control import compiled_control as cc
 from tumble.dynamics.control import compiled_detumble as cd
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-from tumble.dynamics.models.magnetic import DipoleField, UniformField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+from tumble.dynamics.environment.magnetic import DipoleField, UniformField
+from tumble.dynamics.environment.orbit import CircularOrbit
 
 ORBIT = CircularOrbit(altitude=500e3, inclination=1.69995, raan=0.4, arg_latitude=1.1)
 CUBESAT = [0.0067, 0.0419, 0.0419]  # kg m^2
@@ -77,7 +78,7 @@ def test_the_kernels_wheel_torque_is_applied_torque_exactly():
 def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
     # the impulse's rate in the kernel's right-hand side is R tau, tau = m x R^T B + R^T gg(t, R)
     rng = np.random.default_rng(8)
-    field, gg = DipoleField(ORBIT, gmst0=0.2), ORBIT.gravity_gradient().bind(CUBESAT)
+    field, gg = DipoleField(ORBIT, gmst0=0.2), gravity_gradient_of(ORBIT).bind(CUBESAT)
     kind, p = cc.field_params(field)
     rhs = cc._compiled("_rhs")
     for t in (0.0, 777.0, 5000.0):
@@ -116,7 +117,7 @@ def _both(**kw):
 def test_bdot_in_the_dipole_field_with_gravity_gradient_agrees_with_scipy():
     fast, slow = _both(moments=CUBESAT, omega0=[0.2, -0.2, 0.2], t_end=60.0,
                        controller=BDot(gain=3e-5, period=1.0, form="normalized"), field=DipoleField(ORBIT, gmst0=0.3),
-                       gravity_gradient=ORBIT.gravity_gradient(), magnetorquers=Magnetorquers(0.2),
+                       gravity_gradient=gravity_gradient_of(ORBIT), magnetorquers=Magnetorquers(0.2),
                        attitude0=Rotation.from_rotvec([0.3, -0.2, 1.0]))
     _agree(fast, slow)
     _close(fast.field, slow.field, 1e-13)

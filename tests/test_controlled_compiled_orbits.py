@@ -1,5 +1,5 @@
 """The compiled closed loop with the IGRF field and along Keplerian and TLE orbits
-(methods/compiled_control.py, models/tabulated.py): the tables against the models they stand for,
+(methods/compiled_control.py, environment/tabulated.py): the tables against the models they stand for,
 the compiled evaluation against numpy's, and whole runs against scipy's solve_ivp path."""
 
 from __future__ import annotations
@@ -13,9 +13,10 @@ from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.controllers import BDot, MRPFeedback
 from tumble.dynamics.control import compiled_control as cc
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
-from tumble.dynamics.models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
-from tumble.dynamics.models.igrf import _BLOCK, IGRFField
-from tumble.dynamics.models.tabulated import CubicTable, position_table
+from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient, gravity_gradient_of
+from tumble.dynamics.environment.ephemeris import KeplerOrbit, TLEOrbit
+from tumble.dynamics.environment.igrf import _BLOCK, IGRFField
+from tumble.dynamics.environment.tabulated import CubicTable, position_table
 
 ISS_2019 = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
             "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482")
@@ -102,12 +103,12 @@ def test_compiled_control_models_accepts_igrf_and_orbit_gravity_gradients_only_o
         def position_world(self, t):
             return np.array([7e6, 0.0, 1e3 * np.sin(1e-3 * t)])
 
-    assert cc.compiled_control_models(None, MOLNIYA.gravity_gradient(), None, None) is None
+    assert cc.compiled_control_models(None, gravity_gradient_of(MOLNIYA), None, None) is None
     assert cc.compiled_control_models(None, OrbitGravityGradient(Wobble()), None, None) == \
         "gravity_gradient's orbit = Wobble (a CircularOrbit, KeplerOrbit or TLEOrbit)"
     assert cc.compiled_control_models(_igrf(MOLNIYA, "2026-01-01T00:00:00"), None, None, None) is None
     with pytest.raises(ValueError, match="t_end = None must be given"):
-        cc.ControlKernel(np.array(CUBESAT), np.eye(3), None, None, MOLNIYA.gravity_gradient().bind(CUBESAT),
+        cc.ControlKernel(np.array(CUBESAT), np.eye(3), None, None, gravity_gradient_of(MOLNIYA).bind(CUBESAT),
                          1e-10, 1e-12)
 
 
@@ -129,7 +130,7 @@ def test_bdot_in_igrf_along_a_tle_orbit_with_its_gravity_gradient_agrees_with_sc
     iss = _iss()
     field = _igrf(iss)
     kw = {"moments": CUBESAT, "omega0": [0.05, -0.05, 0.05], "t_end": 40.0, "field": field,
-          "controller": BDot(gain=3e-5, period=1.0, form="normalized"), "gravity_gradient": iss.gravity_gradient(),
+          "controller": BDot(gain=3e-5, period=1.0, form="normalized"), "gravity_gradient": gravity_gradient_of(iss),
           "magnetorquers": Magnetorquers(0.2), "attitude0": Rotation.from_rotvec([0.3, -0.2, 1.0])}
     fast, slow = _both(**kw)
     _agree(fast, slow, 1e-10)
@@ -146,7 +147,7 @@ def test_wheel_pointing_on_an_eccentric_orbit_with_its_gravity_gradient_agrees_w
     rw = ReactionWheels(np.eye(3), inertia=2e-2, max_torque=0.05)
     c = MRPFeedback(K=2.0, P=20.0, period=0.5, moments=moments, wheels=rw)
     fast, slow = _both(moments=moments, omega0=[0.001, -0.002, 0.0015], t_end=30.0, controller=c, wheels=rw,
-                       gravity_gradient=MOLNIYA.gravity_gradient(), attitude0=Rotation.from_rotvec([0.4, -0.3, 0.2]))
+                       gravity_gradient=gravity_gradient_of(MOLNIYA), attitude0=Rotation.from_rotvec([0.4, -0.3, 0.2]))
     _agree(fast, slow, 1e-10)
     assert np.abs(fast.impulse_world).max() > 1e-4  # N m s: the gravity gradient did act
     assert fast.budget_error().max() < 1e-12 * np.abs(fast.momentum_world).max()

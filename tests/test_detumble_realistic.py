@@ -18,8 +18,9 @@ from tumble.dynamics.control.controllers import BDot, bdot_gain
 from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.models.gravity import GravityGradient
-from tumble.dynamics.models.magnetic import DipoleField
-from tumble.dynamics.models.orbit import CircularOrbit
+from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+from tumble.dynamics.environment.magnetic import DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
 from tumble.dynamics.models.sensors import Sensors
 
 ORBIT = CircularOrbit(altitude=500e3, inclination=1.69995, raan=0.3)
@@ -44,7 +45,7 @@ def test_one_body_is_simulate_controlled_with_the_same_model_and_noise(sensors):
     skipped as they are taken there), so the runs agree to RK4's error, which falls
     ~16x from 4 to 8 substeps (fourth order); the noise itself moves the rate by far more."""
     w0, q0 = np.array([0.2, -0.15, 0.25]), Rotation.from_rotvec([0.3, -1.0, 0.5]).as_quat()
-    gg = ORBIT.gravity_gradient()
+    gg = gravity_gradient_of(ORBIT)
     run = simulate_controlled(MOMENTS, w0, t_end=200.0, attitude0=q0, controller=BDot(GAIN, period=1.0, form="normalized"),
                               field=DipoleField(ORBIT, gmst0=0.7), magnetorquers=Magnetorquers(0.2),
                               gravity_gradient=gg, sensors=sensors)
@@ -69,7 +70,7 @@ def test_the_gravity_gradient_torque_starts_the_closed_form_spin():
     q = Rotation.from_rotvec([0.0, 0.0, -math.pi / 4]).as_quat()
     kw = {"field": FIELD, "gmst0": 0.0, "gain": GAIN, "magnetorquers": Magnetorquers(1e-30), "period": 0.5,
           "t_end": 2.0}
-    with_gg = detumble_batch([MOMENTS], [[0.0, 0.0, 0.0]], [q], gravity_gradient=ORBIT.gravity_gradient(), **kw)
+    with_gg = detumble_batch([MOMENTS], [[0.0, 0.0, 0.0]], [q], gravity_gradient=gravity_gradient_of(ORBIT), **kw)
     without = detumble_batch([MOMENTS], [[0.0, 0.0, 0.0]], [q], **kw)
     n = ORBIT.mean_motion
     expected = 1.5 * n * n * (MOMENTS[1] - MOMENTS[0]) / MOMENTS[2] * 2.0
@@ -83,7 +84,7 @@ def test_the_compiled_and_numpy_paths_agree_with_every_term():
     sensors = [Sensors(gyro_noise=2e-4 * i, gyro_bias=(1e-4 * i, 0.0, -2e-4), magnetometer_noise=1e-7,
                        attitude="star_tracker" if i % 2 else "none", seed=100 + i) for i in range(5)]
     kw = {"field": FIELD, "gmst0": g, "gain": GAIN, "magnetorquers": Magnetorquers([0.2, 0.2, 0.1]), "period": 1.0,
-          "t_end": 150.0, "substeps": 3, "gravity_gradient": ORBIT.gravity_gradient(), "sensors": sensors}
+          "t_end": 150.0, "substeps": 3, "gravity_gradient": gravity_gradient_of(ORBIT), "sensors": sensors}
     fast, slow = detumble_batch(I, w, q, **kw), detumble_batch(I, w, q, compiled=False, **kw)
     scale = np.max(np.abs(slow.rate))
     assert np.max(np.abs(fast.rate - slow.rate)) < 1e-12 * scale
@@ -98,7 +99,7 @@ def test_a_bodys_noise_depends_only_on_its_own_sensors(compiled, monkeypatch):
     sensors = [Sensors(gyro_noise=5e-4, gyro_bias=(0.0, 1e-3, 0.0), magnetometer_noise=2e-7, seed=s)
                for s in (5, 6, 7, 8, 9, 10)]
     kw = {"field": FIELD, "gain": GAIN, "magnetorquers": Magnetorquers(0.2), "period": 2.0, "t_end": 60.0,
-          "gravity_gradient": ORBIT.gravity_gradient(), "compiled": compiled}
+          "gravity_gradient": gravity_gradient_of(ORBIT), "compiled": compiled}
     whole = detumble_batch(I, w, q, gmst0=g, sensors=sensors, **kw)
     alone = detumble_batch(I[2:3], w[2:3], q[2:3], gmst0=g[2:3], sensors=sensors[2:3], **kw)
     np.testing.assert_array_equal(whole.rate[2:3], alone.rate)
@@ -125,7 +126,7 @@ def test_bad_models_name_the_field():
 # --- the Monte Carlo --------------------------------------------------------------------------------
 
 MC = {"field": FIELD, "gain": GAIN, "magnetorquers": Magnetorquers(0.2), "period": 2.0, "t_end": 120.0,
-      "threshold": 0.05, "gravity_gradient": ORBIT.gravity_gradient(),
+      "threshold": 0.05, "gravity_gradient": gravity_gradient_of(ORBIT),
       "sensors": Sensors(gyro_noise=5e-4, magnetometer_noise=2e-7, magnetometer_bias=(0.0, 1e-7, 0.0)),
       "history": 9}
 
@@ -175,7 +176,7 @@ def test_a_monte_carlo_case_is_simulate_controlled_with_its_sensors():
     run = simulate_controlled(I, cases.omega0[i], t_end=60.0, attitude0=cases.quat0[i],
                               controller=BDot(GAIN, period=1.0, form="normalized"),
                               field=DipoleField(ORBIT, gmst0=float(cases.gmst0[i])), magnetorquers=Magnetorquers(0.2),
-                              gravity_gradient=ORBIT.gravity_gradient(), sensors=mc.case_sensors(i))
+                              gravity_gradient=gravity_gradient_of(ORBIT), sensors=mc.case_sensors(i))
     assert np.array_equal(mc.history_t, run.t)
     assert np.max(np.abs(mc.history[i] - run.rate)) < 1e-9
     assert np.any(mc.case_sensors(i).gyro_bias != mc.case_sensors(i - 1).gyro_bias)

@@ -22,9 +22,8 @@ from tumble.analysis.gravity_stability import (
     gravity_gradient_stability,
 )
 from tumble.dynamics.methods.geometric import propagate
+from tumble.dynamics.environment.earth import MU_EARTH, R_EARTH
 from tumble.dynamics.models.gravity import (
-    MU_EARTH,
-    R_EARTH,
     GravityGradient,
     lvlh_state,
     orbit_frame_angles,

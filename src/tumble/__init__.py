@@ -43,6 +43,7 @@ _EXPORTS = {
     "SphericalDamper": "tumble.dynamics",
     "METHODS": "tumble.dynamics",
     "GravityGradient": "tumble.dynamics",
+    "gravity_gradient_of": "tumble.dynamics",
     "lvlh_state": "tumble.dynamics",
     "orbit_frame_angles": "tumble.dynamics",
     "gravity_gradient_stability": "tumble.analysis",

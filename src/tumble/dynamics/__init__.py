@@ -1,4 +1,4 @@
-"""Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, integrators, trajectories."""
+"""Rotational dynamics (layer 2): Euler's equations, torques, rotors and dampers, orbits and fields, integrators, trajectories."""
 
 from .batch import BatchTrajectory, simulate_batch
 from .control import (
@@ -19,18 +19,19 @@ from .euler import (
     euler_rhs_tensor,
     kinetic_energy,
 )
+from .environment.ephemeris import KeplerOrbit, TLEOrbit
+from .environment.igrf import IGRFField
+from .environment.magnetic import DipoleField, UniformField
+from .environment.orbit import CircularOrbit
 from .methods.integrators import METHODS, Method, get_method
 from .models.actuators import Command, Magnetorquers, ReactionWheels
-from .models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
 from .models.gravity import (
     GravityGradient,
     lvlh_state,
     orbit_frame_angles,
 )
-from .models.igrf import IGRFField
 from .models.internal import SphericalDamper, gyrostat_rate
-from .models.magnetic import DipoleField, UniformField
-from .models.orbit import CircularOrbit
+from .models.orbit_gravity import OrbitGravityGradient, gravity_gradient_of
 from .models.sensors import Measurement, Sensors
 from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
 from .simulate import DEFAULT_METHOD, FRAMES, simulate
@@ -74,6 +75,7 @@ __all__ = [
     "euler_rhs",
     "euler_rhs_tensor",
     "get_method",
+    "gravity_gradient_of",
     "gyrostat_rate",
     "kinetic_energy",
     "lvlh_state",

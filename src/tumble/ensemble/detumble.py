@@ -30,7 +30,7 @@ from scipy.spatial.transform import Rotation
 from ..dynamics.control.detumble import detumble_batch
 from ..dynamics.models.actuators import Magnetorquers
 from ..dynamics.models.gravity import GravityGradient
-from ..dynamics.models.magnetic import DipoleField
+from ..dynamics.environment.magnetic import DipoleField
 from ..dynamics.models.sensors import Sensors
 from ..typing import ArrayLike, FloatArray
 from ..validation import breaks_triangle, check_moments, check_positive
@@ -380,7 +380,7 @@ def detumble_monte_carlo(cases: DetumbleCases, *, field: DipoleField, gain: floa
     backend : InProcess or DaskBackend, optional
         Where the chunks run (default in process).
     gravity_gradient : GravityGradient, optional
-        The gravity gradient of the field's orbit (``field.orbit.gravity_gradient()``); default none.
+        The gravity gradient of the field's orbit (``gravity_gradient_of(field.orbit)``); default none.
     sensors : Sensors, optional
         Gyro and magnetometer noise (rad/s, T, 1 sigma) and biases common to every case; each case
         adds its own gyro bias and uses its own noise seed (module docstring). Default: ideal sensors
@@ -395,13 +395,14 @@ def detumble_monte_carlo(cases: DetumbleCases, *, field: DipoleField, gain: floa
 
     Examples
     --------
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
     >>> cases = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.03, rate_max=0.05,
     ...                        gyro_bias_sigma=1e-4, seed=2)
     >>> mc = detumble_monte_carlo(cases, field=DipoleField(orbit), gain=3e-5, magnetorquers=Magnetorquers(0.2),
     ...                           period=5.0, t_end=6000.0, threshold=0.0087, history=11,
-    ...                           gravity_gradient=orbit.gravity_gradient(),
+    ...                           gravity_gradient=gravity_gradient_of(orbit),
     ...                           sensors=Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7))
     >>> mc.detumbled, mc.history.shape, float(mc.history_t[-1])
     (1.0, (3, 11), 6000.0)

@@ -52,6 +52,7 @@ from ..dynamics.control.controlled import ControlledRun
 from ..dynamics.control.controllers import BDot, Controller, MRPFeedback
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
+from ..dynamics.models.orbit_gravity import gravity_gradient_of
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget
 from ..dynamics.simulate import check_rtol
@@ -183,7 +184,7 @@ class ControlScenario:
             moments=self.body.principal_moments, omega0=self.omega, t_end=self.t_end,
             controller=controller if controller is not None else self.controller(),
             attitude0=self.attitude0, field=self.field,
-            gravity_gradient=self.orbit.gravity_gradient() if (self.gravity_gradient and self.orbit) else None,
+            gravity_gradient=gravity_gradient_of(self.orbit) if (self.gravity_gradient and self.orbit) else None,
             magnetorquers=self.magnetorquers, wheels=self.wheels, wheel_speed0=self.speed0, sensors=self.sensors,
             rtol=self.rtol, atol=self.atol)
 

@@ -12,7 +12,7 @@ One of three orbits::
     gravity_gradient = true        # the gravity-gradient torque along this orbit
 
 The world frame of the run is the orbit-plane frame for a circular orbit and the inertial frame
-(ECI, or TEME for a TLE) for the others (:mod:`tumble.dynamics.models.ephemeris`). The built-in
+(ECI, or TEME for a TLE) for the others (:mod:`tumble.dynamics.environment.ephemeris`). The built-in
 dipole (IGRF-13, 2020.0) needs no package and no date but only a circular orbit.
 """
 
@@ -24,10 +24,10 @@ from typing import Any
 
 import numpy as np
 
-from ..dynamics.models.ephemeris import KeplerOrbit, TLEOrbit
-from ..dynamics.models.igrf import IGRFField
-from ..dynamics.models.magnetic import DipoleField
-from ..dynamics.models.orbit import CircularOrbit
+from ..dynamics.environment.ephemeris import KeplerOrbit, TLEOrbit
+from ..dynamics.environment.igrf import IGRFField
+from ..dynamics.environment.magnetic import DipoleField
+from ..dynamics.environment.orbit import CircularOrbit
 
 __all__ = ["ORBIT_KEYS", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_summary"]
 

@@ -38,7 +38,7 @@ from scipy.spatial.transform import Rotation
 from ..dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
-from ..dynamics.models.orbit import CircularOrbit
+from ..dynamics.environment.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
 from ..mass import Body

@@ -47,7 +47,8 @@ from pathlib import Path
 from typing import Any
 
 from ..dynamics import ConstantTorque, SphericalDamper
-from ..dynamics.models.gravity import MU_EARTH, GravityGradient, LVLHState, lvlh_state
+from ..dynamics.environment.earth import MU_EARTH
+from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
 from ..dynamics.simulate import check_inputs, sample_times
 from ..mass import PRESETS, Body, MassProperties
 from ..typing import ArrayLike

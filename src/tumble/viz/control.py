@@ -184,7 +184,7 @@ def figure_dipole(run: ControlledRun, *, switch_time: float | None = None, title
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
-    >>> from tumble.dynamics.models.magnetic import UniformField
+    >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=5.0, controller=BDot(gain=1e4, period=1.0),
     ...                           field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
     >>> ax = figure_dipole(run).axes[0]

@@ -22,14 +22,14 @@ an adaptive scheme also follows the wheels' Coulomb friction through zero speed 
 **The built-in models written out** (one formula each; the numpy versions are the references,
 and tests/test_controlled_compiled.py checks each against it to round-off):
 
-- the field: :class:`~tumble.dynamics.models.magnetic.UniformField`, or the tilted dipole of
-  :class:`~tumble.dynamics.models.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
+- the field: :class:`~tumble.dynamics.environment.magnetic.UniformField`, or the tilted dipole of
+  :class:`~tumble.dynamics.environment.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
   Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`), or
-  :class:`~tumble.dynamics.models.igrf.IGRFField`'s spline blocks (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`);
+  :class:`~tumble.dynamics.environment.igrf.IGRFField`'s spline blocks (:meth:`~tumble.dynamics.environment.igrf.IGRFField.tabulate`);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of a circular orbit
   (:class:`~tumble.dynamics.models.gravity.GravityGradient`), or with ``n^2 = mu / r^3`` along a
-  Keplerian or TLE orbit (:class:`~tumble.dynamics.models.ephemeris.OrbitGravityGradient`), ``r(t)``
-  from :func:`~tumble.dynamics.models.tabulated.position_table` (~1e-12 of r: the paths agree to
+  Keplerian or TLE orbit (:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`), ``r(t)``
+  from :func:`~tumble.dynamics.environment.tabulated.position_table` (~1e-12 of r: the paths agree to
   ~1e-11 there); with the field's ``m x B`` the external torque whose world-frame value is the impulse's rate;
 - the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
   torque limit, speed limit, viscous and Coulomb friction).
@@ -45,7 +45,8 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
-from ..models.magnetic import IGRF_RADIUS, OMEGA_EARTH
+from ..environment.earth import OMEGA_EARTH
+from ..environment.magnetic import IGRF_RADIUS
 from ..engine.stepsize import error_norm as _error_norm  # the engine's step control, compiled in _compiled()
 from ..engine.stepsize import first_trial_step as _first_trial_step
 from ..engine.stepsize import initial_step as _initial_step
@@ -53,7 +54,7 @@ from ..engine.stepsize import next_step as _next_step
 from ..engine.stepsize import rms as _rms
 from ..models.actuators import wheel_torque as _wheel_torque  # the model's formula, compiled in _compiled()
 from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
-from ..models.tabulated import horner as _horner
+from ..environment.tabulated import horner as _horner
 from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
 
 __all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
@@ -71,18 +72,18 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
     The parameters (16 floats): for a uniform field ``B`` (T) in the first three; for the dipole
     the world-from-ECI matrix (9, row by row), the Gauss vector ``g`` (3, T), ``gmst0`` (rad),
     1 if the Earth turns else 0, the orbit radius (m) and mean motion (rad/s); for an
-    :class:`~tumble.dynamics.models.igrf.IGRFField` the start (0 s) and knot spacing (s) of its
-    table (:meth:`~tumble.dynamics.models.igrf.IGRFField.tabulate`, passed apart).
+    :class:`~tumble.dynamics.environment.igrf.IGRFField` the start (0 s) and knot spacing (s) of its
+    table (:meth:`~tumble.dynamics.environment.igrf.IGRFField.tabulate`, passed apart).
 
     Examples
     --------
-    >>> from tumble.dynamics.models.magnetic import UniformField
+    >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> kind, p = field_params(UniformField((0.0, 0.0, 3e-5)))
     >>> kind == FIELD_UNIFORM, p[:3].tolist()
     (True, [0.0, 0.0, 3e-05])
     """
-    from ..models.igrf import IGRFField
-    from ..models.magnetic import DipoleField, UniformField
+    from ..environment.igrf import IGRFField
+    from ..environment.magnetic import DipoleField, UniformField
 
     p = np.zeros(16)
     if field is None:
@@ -91,7 +92,7 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
         p[:3] = field.vector
         return FIELD_UNIFORM, p
     if type(field) is DipoleField:
-        p[:9] = field._world_from_eci.reshape(9)
+        p[:9] = field.world_from_eci.reshape(9)
         p[9:12] = field.gauss_vector
         p[12:16] = (field.gmst0, 1.0 if field.earth_rotation else 0.0, field.orbit.radius, field.orbit.mean_motion)
         return FIELD_DIPOLE, p
@@ -103,7 +104,7 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
 
 
 def _table(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, float, float]:  # pragma: no cover
-    """A :class:`~tumble.dynamics.models.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
+    """A :class:`~tumble.dynamics.environment.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
     spacing ``h``, s) at ``t`` (s), by its rule: interval ``floor((t - t0) / h)`` clipped, Horner."""
     i = int(min(max(math.floor((t - t0) / h), 0.0), c.shape[1] - 1.0))
     d = t - (t0 + i * h)
@@ -331,18 +332,19 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
 
     Examples
     --------
-    >>> from tumble.dynamics.models.magnetic import UniformField
+    >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> compiled_control_models(UniformField((0.0, 0.0, 3e-5)), None, None, None) is None
     True
     >>> compiled_control_models(None, lambda t, w, R: w, None, None)
     'gravity_gradient = <lambda> (a GravityGradient or OrbitGravityGradient)'
     """
+    from ..environment.ephemeris import KeplerOrbit, TLEOrbit
+    from ..environment.igrf import IGRFField
+    from ..environment.magnetic import DipoleField, UniformField
+    from ..environment.orbit import CircularOrbit
     from ..models.actuators import Magnetorquers, ReactionWheels
-    from ..models.ephemeris import KeplerOrbit, OrbitGravityGradient, TLEOrbit
     from ..models.gravity import GravityGradient
-    from ..models.igrf import IGRFField
-    from ..models.magnetic import DipoleField, UniformField
-    from ..models.orbit import CircularOrbit
+    from ..models.orbit_gravity import OrbitGravityGradient
 
     if type(gravity_gradient) is OrbitGravityGradient and \
             type(gravity_gradient.orbit) not in (CircularOrbit, KeplerOrbit, TLEOrbit):
@@ -391,8 +393,8 @@ class ControlKernel:
                  rtol: float, atol: float, t_end: float | None = None) -> None:
         from scipy.integrate import DOP853
 
-        from ..models.ephemeris import OrbitGravityGradient
-        from ..models.tabulated import position_table
+        from ..environment.tabulated import position_table
+        from ..models.orbit_gravity import OrbitGravityGradient
 
         self.I = np.ascontiguousarray(moments, dtype=float)
         self.I_rw_inv = np.ascontiguousarray(I_rw_inv, dtype=float)
@@ -425,7 +427,7 @@ class ControlKernel:
         --------
         A field along world x seen from a body turned by 90 deg about z: along body -y.
 
-        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
         >>> c = np.sqrt(0.5)
         >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
@@ -444,7 +446,7 @@ class ControlKernel:
         A dipole of 0.1 A m^2 along x in 3e-5 T along y: 3e-6 N m about z, held for 10 s on a body
         at rest with I3 = 3 kg m^2 (it barely turns): omega_3 = 1e-5 rad/s and the impulse 3e-5 N m s:
 
-        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None,
         ...                        UniformField((0.0, 3e-5, 0.0)), None, 1e-10, 1e-12)
         >>> y = kernel.advance(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.0, 10.0,

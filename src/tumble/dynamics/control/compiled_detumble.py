@@ -34,7 +34,7 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
-from ..models.magnetic import OMEGA_EARTH
+from ..environment.earth import OMEGA_EARTH
 from ...jit import PARALLEL_BODIES, cores
 from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
 from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
@@ -276,8 +276,8 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     --------
     No rate, no dipole: nothing moves.
 
-    >>> from tumble.dynamics.models.magnetic import DipoleField
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> from tumble.dynamics.control.compiled_control import field_params
     >>> _, fp = field_params(DipoleField(CircularOrbit(altitude=500e3)))
     >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),

@@ -40,10 +40,10 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector
 from .controllers import Controller
+from ..environment.magnetic import MagneticField
 from ..models.actuators import Command, Magnetorquers, ReactionWheels
-from ..models.ephemeris import OrbitGravityGradient
 from ..models.gravity import GravityGradient
-from ..models.magnetic import MagneticField
+from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.sensors import Sensors
 from .pointing import Reference, target_attitude
 from ..simulate import check_rtol
@@ -119,7 +119,7 @@ class ControlledRun:
         (nearly ``exp(-k t / I3)``):
 
         >>> from tumble.dynamics.control.controllers import BDot
-        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
         ...     field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(10.0))
@@ -137,7 +137,7 @@ class ControlledRun:
         ``I3 / k = 15 s``; the first sample below is at 15 s:
 
         >>> from tumble.dynamics.control.controllers import BDot
-        >>> from tumble.dynamics.models.magnetic import UniformField
+        >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
         ...     field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(10.0))
@@ -286,7 +286,7 @@ def simulate_controlled(
         The field for the magnetorquers and the magnetometer (world frame).
     gravity_gradient : GravityGradient or OrbitGravityGradient, optional
         The gravity-gradient torque of the same orbit (bound to ``moments`` here): a circular
-        orbit's, or one along a Keplerian or TLE orbit (``orbit.gravity_gradient()``).
+        orbit's, or one along a Keplerian or TLE orbit (``gravity_gradient_of(orbit)``).
     magnetorquers, wheels : optional
         The actuators.
     wheel_speed0 : array_like, shape (k,), optional
@@ -307,7 +307,7 @@ def simulate_controlled(
     Examples
     --------
     >>> from tumble.dynamics.control.controllers import BDot
-    >>> from tumble.dynamics.models.magnetic import UniformField
+    >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=20.0,
     ...     controller=BDot(gain=1e4, period=1.0), field=UniformField((3e-5, 0.0, 0.0)),
     ...     magnetorquers=Magnetorquers(0.2))

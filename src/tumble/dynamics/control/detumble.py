@@ -7,7 +7,7 @@ for each body ``i`` (principal moments ``I_i``)
 
 ``I_i omega' = m_i x B_i + tau_gg,i - omega x I_i omega``,  ``q' = q (x) (omega, 0) / 2``,
 
-``B_i`` the tilted dipole (:class:`~tumble.dynamics.models.magnetic.DipoleField`) along one
+``B_i`` the tilted dipole (:class:`~tumble.dynamics.environment.magnetic.DipoleField`) along one
 shared circular orbit, seen from an Earth whose sidereal angle at t = 0 is ``gmst0_i`` (the
 *field epoch*: where the dipole points when the run starts), turned into the body frame;
 ``tau_gg`` the gravity-gradient torque ``3 n^2 r_b x (I r_b)`` of the same orbit
@@ -49,7 +49,8 @@ from ...validation import check_positive
 from .controllers import bdot_dipole
 from ..models.actuators import Magnetorquers
 from ..models.gravity import GravityGradient, gradient_torque
-from ..models.magnetic import OMEGA_EARTH, DipoleField
+from ..environment.earth import OMEGA_EARTH
+from ..environment.magnetic import DipoleField
 from ..models.sensors import Sensors
 from ..special.quaternion import to_body
 
@@ -107,7 +108,7 @@ Vec = tuple[FloatArray, FloatArray, FloatArray]
 
 def _field_world(field: DipoleField, t: float, gmst0: FloatArray) -> Vec:
     """B (T) in the world frame at ``t`` for each Earth angle ``gmst0 + omega_E t``, by component."""
-    w2e = field._world_from_eci  # the orbit-plane frame of the same field
+    w2e = field.world_from_eci  # the orbit-plane frame of the same field
     r_eci = w2e.T @ field.orbit.position_world(t)
     theta = gmst0 + OMEGA_EARTH * t
     c, s = np.cos(theta), np.sin(theta)
@@ -231,13 +232,13 @@ def _gravity_gradient(gravity_gradient: GravityGradient | None, field: DipoleFie
         return 0.0
     if type(gravity_gradient) is not GravityGradient:
         raise ValueError(f"gravity_gradient = {gravity_gradient!r} must be a GravityGradient (the circular orbit's, "
-                         "orbit.gravity_gradient()) or None")
+                         "gravity_gradient_of(orbit)) or None")
     if gravity_gradient.moments is not None:
         raise ValueError("gravity_gradient holds moments; leave them out: each body's own moments are used")
     n, n_field = gravity_gradient.mean_motion, field.orbit.mean_motion
     if abs(n - n_field) > 1e-9 * n_field:
         raise ValueError(f"gravity_gradient has mean motion {n!r} rad/s, the field's orbit {n_field!r} rad/s: the "
-                         "batch has one circular orbit; pass field.orbit.gravity_gradient()")
+                         "batch has one circular orbit; pass gravity_gradient_of(field.orbit)")
     return float(n)
 
 
@@ -272,7 +273,7 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     substeps : int
         RK4 steps per control period (>= 1).
     gravity_gradient : GravityGradient, optional
-        The gravity-gradient torque of the field's circular orbit (``field.orbit.gravity_gradient()``;
+        The gravity-gradient torque of the field's circular orbit (``gravity_gradient_of(field.orbit)``;
         as in :func:`simulate_controlled`, without moments: each body's own act); default none.
     sensors : Sensors or sequence of N Sensors, optional
         Gyro and magnetometer noise (rad/s, T, 1 sigma) and biases (rad/s, T), as in
@@ -287,7 +288,8 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
 
     Examples
     --------
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
     >>> out = detumble_batch([[0.0067, 0.0419, 0.0419]] * 2, [[0.2, -0.2, 0.2], [0.1, 0.1, -0.2]],
     ...                      [[0.0, 0.0, 0.0, 1.0]] * 2, field=DipoleField(orbit), gmst0=[0.0, 1.0], gain=5e-5,
@@ -300,7 +302,7 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     >>> noisy = detumble_batch([[0.0067, 0.0419, 0.0419]] * 2, [[0.2, -0.2, 0.2], [0.1, 0.1, -0.2]],
     ...                        [[0.0, 0.0, 0.0, 1.0]] * 2, field=DipoleField(orbit), gmst0=[0.0, 1.0], gain=5e-5,
     ...                        magnetorquers=Magnetorquers(0.2), period=1.0, t_end=60.0,
-    ...                        gravity_gradient=orbit.gravity_gradient(),
+    ...                        gravity_gradient=gravity_gradient_of(orbit),
     ...                        sensors=Sensors(gyro_noise=1e-4, gyro_bias=(2e-4, 0.0, 0.0), magnetometer_noise=1e-7))
     >>> bool(0.0 < np.max(np.abs(noisy.rate - out.rate)) < 1e-3)
     True

@@ -28,7 +28,7 @@ Basilisk's) integral variable also carries an inertia-weighted rate part, so the
 this one.
 
 **Nadir** (:class:`NadirTarget`): on a circular orbit the world frame of a control run is the
-orbit-plane frame (:mod:`~tumble.dynamics.models.orbit`): the radius at ``t`` is
+orbit-plane frame (:mod:`~tumble.dynamics.environment.orbit`): the radius at ``t`` is
 ``(cos n t, sin n t, 0)``, the orbit normal +z. The target puts one body axis on nadir
 (``-radius``) and another on the orbit normal: ``R(t) = R_z(n t) R(0)``, ``omega_r = n z``
 (constant, ``omega_r' = 0``). The default, the minor axis on nadir and the major axis on the
@@ -225,7 +225,7 @@ class NadirTarget:
     ----------
     orbit : float or object with ``mean_motion``
         The orbit's mean motion ``n`` (rad/s, > 0), or a
-        :class:`~tumble.dynamics.models.orbit.CircularOrbit` or
+        :class:`~tumble.dynamics.environment.orbit.CircularOrbit` or
         :class:`~tumble.dynamics.models.gravity.GravityGradient` (its ``mean_motion``).
     nadir_axis : {1, 2, 3, "minor", "intermediate", "major"} or array_like, shape (3,)
         The body axis (principal frame) to point at nadir, ``-radius`` (default "minor").
@@ -268,7 +268,7 @@ class NadirTarget:
 
         Examples
         --------
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3)
         >>> NadirTarget(orbit).mean_motion == orbit.mean_motion
         True

@@ -16,7 +16,11 @@ torques); Kane, Likins & Levinson, *Spacecraft Dynamics* (McGraw-Hill 1983). The
 ``dV = -3 n^2 theta . (r_b x I r_b)``.
 
 **Orbiting frame (LVLH)**, roll-pitch-yaw axes and the attitude relative to it:
-:mod:`tumble.dynamics.models.lvlh` (its names are re-exported here).
+:mod:`tumble.dynamics.models.lvlh` (its names are re-exported here). The torque along an
+elliptic or TLE orbit, and the torque model of any orbit of :mod:`tumble.dynamics.environment`
+(:func:`~tumble.dynamics.models.orbit_gravity.gravity_gradient_of`), are
+:mod:`tumble.dynamics.models.orbit_gravity`; the Earth's ``mu`` and radius are
+:mod:`tumble.dynamics.environment.earth`.
 
 The linear stability of a body at rest in this frame (the Lagrange and DeBra-Delp regions) is
 :mod:`tumble.analysis.gravity_stability`.
@@ -50,6 +54,7 @@ from ...validation import (
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
 
+from ..environment.earth import MU_EARTH, R_EARTH
 from ..special.quaternion import to_body
 from .torques import KERNEL_CIRCULAR_GRAVITY
 from .lvlh import (
@@ -63,8 +68,6 @@ from .lvlh import (
 )
 
 __all__ = [
-    "MU_EARTH",
-    "R_EARTH",
     "GravityGradient",
     "LVLHState",
     "OrbitAngles",
@@ -75,12 +78,6 @@ __all__ = [
     "relative_attitude",
     "rpy_axes",
 ]
-
-#: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
-MU_EARTH = 3.986004418e14
-#: The Earth's equatorial radius, m (IERS Conventions 2010: 6378136.6 m, rounded): with
-#: ``mu = MU_EARTH`` an orbit must have a larger radius.
-R_EARTH = 6.3781e6
 
 
 def gradient_torque(r_b: ArrayLike, moments: ArrayLike, rate2: ArrayLike) -> Vector3:
@@ -147,8 +144,9 @@ class GravityGradient:
     orbit_radius : float, optional
         Orbit radius, m (from the centre of the attracting body).
     mu : float
-        Gravitational parameter, m^3/s^2; default the Earth's, :data:`MU_EARTH`, and then the
-        orbit must lie above the Earth's equatorial radius :data:`R_EARTH` = 6.3781e6 m.
+        Gravitational parameter, m^3/s^2; default the Earth's,
+        :data:`~tumble.dynamics.environment.earth.MU_EARTH`, and then the orbit must lie above the
+        Earth's equatorial radius :data:`~tumble.dynamics.environment.earth.R_EARTH` (6378.1 km).
     moments : array_like, shape (3,) or (N, 3), optional
         Principal moments ``I1 <= I2 <= I3`` of the body (kg m^2), or of N bodies (a batch).
 
@@ -214,7 +212,8 @@ class GravityGradient:
         Examples
         --------
         >>> import math
-        >>> from tumble.dynamics.models.gravity import MU_EARTH, GravityGradient
+        >>> from tumble.dynamics.environment.earth import MU_EARTH
+        >>> from tumble.dynamics.models.gravity import GravityGradient
         >>> gg = GravityGradient(orbit_radius=7.0e6)
         >>> math.isclose(gg.mean_motion, math.sqrt(MU_EARTH / 7.0e6**3)), math.isclose(gg.mean_motion * gg.period, 2 * math.pi)
         (True, True)

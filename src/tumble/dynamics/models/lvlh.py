@@ -82,7 +82,7 @@ def _is_circular_orbit(gg: object) -> bool:
     Examples
     --------
     >>> from tumble.dynamics.models.gravity import GravityGradient
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> _is_circular_orbit(GravityGradient(orbit_period=5400.0)), _is_circular_orbit(GravityGradient)
     (True, False)
     >>> _is_circular_orbit(CircularOrbit(altitude=500e3)), _is_circular_orbit(None)

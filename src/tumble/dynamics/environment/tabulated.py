@@ -151,7 +151,7 @@ def position_table(orbit: Any, t_end: float, step: float | None = None) -> Cubic
 
     Examples
     --------
-    >>> from tumble.dynamics.models.ephemeris import KeplerOrbit
+    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
     >>> orbit = KeplerOrbit(8000e3, 0.1, 1.0)
     >>> table = position_table(orbit, 6000.0)
     >>> t = np.array([0.0, 123.4, 5999.9])

@@ -5,12 +5,12 @@ Reference Field: the fourteenth generation", 2024; the model file shipped with `
 Laundal, https://github.com/klaundal/ppigrf), spherical harmonics to degree 13 with the Gauss
 coefficients interpolated linearly between the five-yearly models (as IGRF prescribes). Install
 it with ``pip install tumble[orbit]``. The built-in
-:class:`~tumble.dynamics.models.magnetic.DipoleField` is its degree-1 part at epoch 2020.0.
+:class:`~tumble.dynamics.environment.magnetic.DipoleField` is its degree-1 part at epoch 2020.0.
 
 **Along an orbit.** At time ``t`` (s from ``epoch``) the spacecraft is at ``r_eci(t)`` (the
 orbit's ``position_eci``); the Earth-fixed frame is ECI turned by the sidereal angle
 ``theta(t) = theta_GMST(epoch) + omega_E t``
-(:func:`~tumble.dynamics.models.sidereal.greenwich_sidereal_angle`; polar motion and the
+(:func:`~tumble.dynamics.environment.sidereal.greenwich_sidereal_angle`; polar motion and the
 difference between ECI and TEME are neglected, a few tenths of a degree); ``ppigrf`` gives
 ``(B_r, B_theta, B_phi)`` at the geocentric radius, colatitude and longitude, turned back into
 the run's world frame.
@@ -18,7 +18,7 @@ the run's world frame.
 **Cost and accuracy.** One call of the full model costs ~20 ms, and an integrator asks for the
 field at every stage; so the field is sampled along the orbit every ``step`` seconds (one
 vectorised call per block of an hour) and interpolated by a cubic spline in time (scipy's
-``CubicSpline``), held as a :class:`~tumble.dynamics.models.tabulated.CubicTable` per block:
+``CubicSpline``), held as a :class:`~tumble.dynamics.environment.tabulated.CubicTable` per block:
 :meth:`IGRFField.tabulate` hands the blocks covering a run to the compiled closed-loop kernel,
 which evaluates them by the same rule as :meth:`IGRFField.world`. The field along a LEO orbit changes on scales of minutes (degree 13 over
 ~7.5 km/s): measured at 600 km, the interpolation error is 5e-13 of |B| at a 1 s step, 3e-10 at
@@ -39,7 +39,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_positive
-from .magnetic import OMEGA_EARTH
+from .earth import OMEGA_EARTH
 from .sidereal import greenwich_sidereal_angle, julian_date, utc_datetime
 from .tabulated import MARGIN, CubicTable, horner, spline_table
 
@@ -73,7 +73,7 @@ class IGRFField:
     orbit : CircularOrbit, KeplerOrbit or TLEOrbit
         Where the spacecraft is (``position_eci(t)``, m, and ``eci_from_world``).
     epoch : datetime or ISO 8601 str, optional
-        UTC at t = 0; default the TLE's epoch for a :class:`~tumble.dynamics.models.ephemeris.TLEOrbit`
+        UTC at t = 0; default the TLE's epoch for a :class:`~tumble.dynamics.environment.ephemeris.TLEOrbit`
         (required otherwise). Must lie within the model's years (1900 to 2030 for IGRF-14).
     max_degree : int
         Highest degree of the expansion, 1 to 13 (1 is the tilted dipole).
@@ -86,7 +86,7 @@ class IGRFField:
     as over the equator; at 500 km it is 20-50 microtesla:
 
     >>> import math
-    >>> from tumble.dynamics.models.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
     >>> field = IGRFField(orbit, "2026-11-25T00:00:00")
     >>> B = np.linalg.norm(field.world(np.linspace(0.0, orbit.period, 60)), axis=1)
@@ -123,7 +123,7 @@ class IGRFField:
 
         Examples
         --------
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> f = IGRFField(CircularOrbit(altitude=500e3), "1992-08-20T12:14:00")
         >>> round(f.gmst0 * 180 / np.pi, 6)   # deg: Vallado's example 3-5
         152.578788
@@ -138,13 +138,13 @@ class IGRFField:
     def gauss_degree1(self) -> tuple[float, float, float]:
         """The degree-1 Gauss coefficients ``(g10, g11, h11)`` at the epoch, T (linear in time between models).
 
-        These make :class:`~tumble.dynamics.models.magnetic.DipoleField` the degree-1 part of this field.
+        These make :class:`~tumble.dynamics.environment.magnetic.DipoleField` the degree-1 part of this field.
 
         Examples
         --------
         IGRF-14's definitive 2020 model (DGRF 2020), nT:
 
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> g = IGRFField(CircularOrbit(altitude=500e3), "2020-01-01T00:00:00").gauss_degree1()
         >>> [round(x * 1e9, 1) for x in g]
         [-29403.4, -1451.4, 4653.4]
@@ -163,7 +163,7 @@ class IGRFField:
 
         Examples
         --------
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> f = IGRFField(CircularOrbit(altitude=500e3, inclination=1.0), "2026-01-01T00:00:00")
         >>> bool(np.allclose(f.world_direct([10.0, 2000.0]), f.world([10.0, 2000.0]), rtol=0, atol=1e-11))
         True
@@ -209,7 +209,7 @@ class IGRFField:
 
         Examples
         --------
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> f = IGRFField(CircularOrbit(altitude=500e3, inclination=1.0), "2026-01-01T00:00:00", step=10.0)
         >>> table = f.tabulate(9000.0)
         >>> table.t0, table.step, table.coefficients.shape   # two blocks of 720 intervals (2 h each at 10 s)
@@ -228,10 +228,10 @@ class IGRFField:
         Examples
         --------
         The degree-1 field is the tilted dipole of
-        :class:`~tumble.dynamics.models.magnetic.DipoleField` with this epoch's coefficients:
+        :class:`~tumble.dynamics.environment.magnetic.DipoleField` with this epoch's coefficients:
 
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
-        >>> from tumble.dynamics.models.magnetic import DipoleField
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.magnetic import DipoleField
         >>> orbit = CircularOrbit(altitude=600e3, inclination=1.2, raan=0.3)
         >>> f = IGRFField(orbit, "2020-01-01T00:00:00", max_degree=1)
         >>> dipole = DipoleField(orbit, gmst0=f.gmst0, coefficients=f.gauss_degree1())

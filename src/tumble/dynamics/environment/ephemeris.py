@@ -1,5 +1,6 @@
-"""Orbits beyond the circle: a Keplerian ellipse from its elements, a two-line element set
-through SGP4, and the gravity-gradient torque along any of them.
+"""Orbits beyond the circle: a Keplerian ellipse from its elements and a two-line element set
+through SGP4 (the gravity-gradient torque along either is
+:func:`~tumble.dynamics.models.orbit_gravity.gravity_gradient_of`).
 
 **Keplerian orbit** (Vallado, *Fundamentals of Astrodynamics and Applications*, 4th ed., 2013):
 the mean anomaly ``M = M0 + n t`` with ``n = sqrt(mu / a^3)``; Kepler's equation
@@ -19,27 +20,27 @@ the sidereal angle below, to polar motion).
 
 **World frame.** For these orbits the world frame of a control run is the inertial frame itself
 (ECI or TEME): ``eci_from_world`` is the identity and ``position_world`` is ``position_eci``
-(a :class:`~tumble.dynamics.models.orbit.CircularOrbit` keeps its orbit-plane frame).
+(a :class:`~tumble.dynamics.environment.orbit.CircularOrbit` keeps its orbit-plane frame).
 
-The dates and the Earth's sidereal angle are :mod:`~tumble.dynamics.models.sidereal`.
+The dates and the Earth's sidereal angle are :mod:`~tumble.dynamics.environment.sidereal`.
 """
 
 from __future__ import annotations
 
 import datetime as _dt
 import math
-from dataclasses import dataclass, field, replace
-from typing import Any, cast
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Vector3
-from ...validation import check_moments, check_number, check_positive
-from .gravity import MU_EARTH, R_EARTH, gradient_torque
+from ...validation import check_number, check_positive
+from .earth import MU_EARTH, R_EARTH
 from .sidereal import J2000
 
-__all__ = ["KeplerOrbit", "OrbitGravityGradient", "TLEOrbit"]
+__all__ = ["KeplerOrbit", "TLEOrbit"]
 
 
 def _kepler_eccentric(M: FloatArray, e: float) -> FloatArray:
@@ -160,9 +161,9 @@ class KeplerOrbit:
         Examples
         --------
         With ``e = 0`` the ellipse is the circle of
-        :class:`~tumble.dynamics.models.orbit.CircularOrbit` (argument of latitude ``argp + M0``):
+        :class:`~tumble.dynamics.environment.orbit.CircularOrbit` (argument of latitude ``argp + M0``):
 
-        >>> from tumble.dynamics.models.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> k = KeplerOrbit(7000e3, 0.0, 1.0, raan=0.5, arg_perigee=0.2, mean_anomaly=0.3)
         >>> c = CircularOrbit(7000e3 - R_EARTH, 1.0, raan=0.5, arg_latitude=0.5)
         >>> np.allclose(k.position_eci([0.0, 1234.5]), c.position_eci([0.0, 1234.5]), rtol=0, atol=1e-6)
@@ -206,15 +207,6 @@ class KeplerOrbit:
         """
         return self.velocity_eci(t)
 
-    def gravity_gradient(self) -> OrbitGravityGradient:
-        """The gravity-gradient torque along this orbit (world frame = ECI).
-
-        Examples
-        --------
-        >>> KeplerOrbit(7000e3, 0.01).gravity_gradient().orbit.eccentricity
-        0.01
-        """
-        return OrbitGravityGradient(self)
 
 
 @dataclass(frozen=True, eq=False)
@@ -390,93 +382,3 @@ class TLEOrbit:
         """
         return self.velocity_eci(t)
 
-    def gravity_gradient(self) -> OrbitGravityGradient:
-        """The gravity-gradient torque along this orbit (world frame = TEME).
-
-        Examples
-        --------
-        >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
-        ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
-        >>> iss.gravity_gradient().mu == MU_EARTH
-        True
-        """
-        return OrbitGravityGradient(self)
-
-
-@dataclass(frozen=True, eq=False)
-class OrbitGravityGradient:
-    """The gravity-gradient torque ``3 mu / r^3 R (r_b x I r_b)`` along an orbit's position (N m, world frame).
-
-    The formula of :class:`~tumble.dynamics.models.gravity.GravityGradient` (Hughes ch. 8) with
-    the radius ``r(t)`` read from ``orbit.position_world(t)``: for an ellipse or a TLE the
-    radius and the rate ``mu / r^3`` change along the orbit.
-
-    Parameters
-    ----------
-    orbit : KeplerOrbit or TLEOrbit (or any object with ``position_world(t)``, m)
-        The orbit.
-    mu : float
-        Gravitational parameter, m^3/s^2 (default the orbit's, or the Earth's).
-    moments : array_like, shape (3,), optional
-        Principal moments, kg m^2 (:meth:`bind` gives them).
-
-    Examples
-    --------
-    On a circle it is :class:`~tumble.dynamics.models.gravity.GravityGradient`:
-
-    >>> from tumble.dynamics.models.gravity import GravityGradient
-    >>> k = KeplerOrbit(7000e3)
-    >>> att = Rotation.from_rotvec([0.3, -0.2, 0.5])
-    >>> a = k.gravity_gradient().bind([1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
-    >>> b = GravityGradient(orbit_radius=7000e3, moments=[1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
-    >>> np.allclose(a, b, rtol=1e-12, atol=0.0)
-    True
-    """
-
-    orbit: Any
-    mu: float | None = None
-    moments: tuple[float, float, float] | None = None
-    frame: str = field(default="world", init=False)
-
-    def __post_init__(self) -> None:
-        if not callable(getattr(self.orbit, "position_world", None)):
-            raise ValueError(f"orbit = {self.orbit!r} must give position_world(t) (m): a KeplerOrbit or TLEOrbit")  # noqa: TRY004
-        mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
-        object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
-        if self.moments is not None:
-            I = check_moments("moments", self.moments, physical=False)
-            object.__setattr__(self, "moments", cast("tuple[float, float, float]", tuple(map(float, I))))
-
-    def bind(self, body: object) -> OrbitGravityGradient:
-        """The same orbit acting on ``body`` (a Body, MassProperties or principal moments, kg m^2).
-
-        Examples
-        --------
-        >>> KeplerOrbit(7000e3).gravity_gradient().bind([1.0, 2.0, 3.0]).moments
-        (1.0, 2.0, 3.0)
-        """
-        moments = getattr(body, "principal_moments", body)
-        I = check_moments("moments", cast(ArrayLike, moments), physical=False)
-        return replace(self, moments=(float(I[0]), float(I[1]), float(I[2])))
-
-    def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
-        """World-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world).
-
-        Examples
-        --------
-        At perigee of an ellipse the rate ``mu / r^3`` is ``(1 - e)^-3`` times that of the circle of radius ``a``:
-
-        >>> k = KeplerOrbit(8000e3, 0.2)
-        >>> att = Rotation.from_rotvec([0.0, 0.0, 0.4])
-        >>> perigee = k.gravity_gradient().bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
-        >>> circle = KeplerOrbit(8000e3).gravity_gradient().bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
-        >>> np.allclose(perigee, circle / 0.8**3)
-        True
-        """
-        if self.moments is None:
-            raise ValueError("this gravity gradient has no moments: use .bind(body)")
-        r = np.asarray(self.orbit.position_world(float(t)), float)
-        rn = float(np.linalg.norm(r))
-        mu = float(cast(float, self.mu))
-        r_b = attitude.inv().apply(r / rn)
-        return np.asarray(attitude.apply(gradient_torque(r_b, np.asarray(self.moments), mu / rn**3)), float)

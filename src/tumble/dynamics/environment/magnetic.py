@@ -12,11 +12,12 @@ is that of a dipole at the Earth's centre with moment
 (Wertz, *Spacecraft Attitude Determination and Control*, Reidel 1978, appendix H; Griffiths,
 *Introduction to Electrodynamics*, eq. 5.89). The moment points to the south (``g10 < 0``) and is
 tilted by ``acos(|g10| / |g|) = 9.4 deg`` from the spin axis. The Earth-fixed frame turns about
-ECI z at ``omega_E = 7.292115e-5 rad/s`` (IERS Conventions 2010): ECEF = ``R3(theta)`` ECI with
+ECI z at ``omega_E`` (:data:`~tumble.dynamics.environment.earth.OMEGA_EARTH`, IERS Conventions
+2010): ECEF = ``R3(theta)`` ECI with
 ``theta = gmst0 + omega_E t`` (``gmst0`` the Greenwich sidereal angle at t = 0, rad).
 
 Every field here is a callable ``field.world(t) -> B`` (T) in the world frame of the control run
-(the orbit-plane frame of :class:`~tumble.dynamics.models.orbit.CircularOrbit`).
+(the orbit-plane frame of :class:`~tumble.dynamics.environment.orbit.CircularOrbit`).
 """
 
 from __future__ import annotations
@@ -29,16 +30,15 @@ import numpy as np
 
 from ...typing import FloatArray, Vector3
 from ...validation import check_bool, check_number, check_vector
+from .earth import OMEGA_EARTH
 from .orbit import CircularOrbit
 
-__all__ = ["IGRF13_2020", "OMEGA_EARTH", "DipoleField", "MagneticField", "UniformField"]
+__all__ = ["IGRF13_2020", "IGRF_RADIUS", "DipoleField", "MagneticField", "UniformField"]
 
 #: IGRF-13 degree-1 Gauss coefficients at epoch 2020.0 (g10, g11, h11), T (Alken et al. 2021).
 IGRF13_2020 = (-29404.8e-9, -1450.9e-9, 4652.5e-9)
 #: IGRF reference radius, m.
 IGRF_RADIUS = 6371.2e3
-#: The Earth's rotation rate, rad/s (IERS Conventions 2010, sec. 1.2).
-OMEGA_EARTH = 7.292115e-5
 
 
 @runtime_checkable
@@ -136,6 +136,20 @@ class DipoleField:
         object.__setattr__(self, "earth_rotation", check_bool("earth_rotation", self.earth_rotation))
         object.__setattr__(self, "coefficients", check_vector("coefficients", self.coefficients, "T"))
         object.__setattr__(self, "_world_from_eci", self.orbit.eci_from_world.inv().as_matrix())
+
+    @property
+    def world_from_eci(self) -> FloatArray:
+        """The rotation matrix from ECI to the orbit's world (orbit-plane) frame, shape (3, 3): the
+        inverse of the orbit's ``eci_from_world``, computed once (the compiled loops read it).
+
+        Examples
+        --------
+        >>> orbit = CircularOrbit(altitude=500e3, inclination=1.0, raan=0.3)
+        >>> m = DipoleField(orbit).world_from_eci
+        >>> np.allclose(m @ orbit.position_eci(100.0), orbit.position_world(100.0))
+        True
+        """
+        return self._world_from_eci
 
     @property
     def gauss_vector(self) -> Vector3:

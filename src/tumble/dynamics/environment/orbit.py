@@ -12,7 +12,8 @@ equinox). The mean motion is ``n = sqrt(mu / r^3)`` and the argument of latitude
 **The world frame of a control run** is the *orbit-plane frame*: inertial, with x along the
 radius at t = 0, z along the orbit normal (``r x v``), so that in it the radius is
 ``(cos n t, sin n t, 0)`` exactly as :class:`~tumble.dynamics.models.gravity.GravityGradient`
-assumes; :attr:`CircularOrbit.eci_from_world` maps its vectors to ECI. The orbit is not
+assumes (:func:`~tumble.dynamics.models.orbit_gravity.gravity_gradient_of` gives the orbit's
+torque model); :attr:`CircularOrbit.eci_from_world` maps its vectors to ECI. The orbit is not
 disturbed by the attitude (the restricted problem) and keeps its plane (no J2).
 """
 
@@ -26,7 +27,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, Vector3
 from ...validation import check_number, check_positive
-from .gravity import MU_EARTH, R_EARTH, GravityGradient
+from .earth import MU_EARTH, R_EARTH
 
 __all__ = ["CircularOrbit"]
 
@@ -38,7 +39,7 @@ class CircularOrbit:
     Parameters
     ----------
     altitude : float
-        Height above the Earth's equatorial radius :data:`~tumble.dynamics.models.gravity.R_EARTH`, m (> 0);
+        Height above the Earth's equatorial radius :data:`~tumble.dynamics.environment.earth.R_EARTH`, m (> 0);
         the radius is ``R_EARTH + altitude``.
     inclination : float
         Inclination ``i`` to the equator, rad, in [0, pi].
@@ -84,7 +85,7 @@ class CircularOrbit:
 
         Examples
         --------
-        >>> from tumble.dynamics.models.gravity import R_EARTH
+        >>> from tumble.dynamics.environment.earth import R_EARTH
         >>> CircularOrbit(altitude=500e3).radius - R_EARTH   # m
         500000.0
         """
@@ -110,7 +111,7 @@ class CircularOrbit:
         --------
         A geostationary orbit (radius 42,164.137 km) goes round once a sidereal day, 86,164.1 s:
 
-        >>> from tumble.dynamics.models.gravity import R_EARTH
+        >>> from tumble.dynamics.environment.earth import R_EARTH
         >>> round(CircularOrbit(altitude=42164137.0 - R_EARTH).period)   # s
         86164
         """
@@ -195,15 +196,3 @@ class CircularOrbit:
         """
         return np.asarray(self.eci_from_world.apply(self.velocity_world(t).reshape(-1, 3)), float).reshape(
             np.shape(t) + (3,))
-
-    def gravity_gradient(self) -> GravityGradient:
-        """The gravity-gradient torque model of this orbit (the world frame is the same).
-
-        Examples
-        --------
-        >>> orbit = CircularOrbit(altitude=500e3)
-        >>> gg = orbit.gravity_gradient()
-        >>> gg.radius == orbit.radius, math.isclose(gg.period, orbit.period)
-        (True, True)
-        """
-        return GravityGradient(orbit_radius=self.radius, mu=self.mu)

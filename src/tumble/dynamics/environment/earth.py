@@ -1,0 +1,33 @@
+"""The Earth's constants, in one place: its gravitational parameter, equatorial radius and rotation rate.
+
+Every orbit, field and torque model of tumble reads them from here (``tests/test_architecture.py``
+checks that their values are written nowhere else in the package):
+
+- :data:`MU_EARTH`, the gravitational parameter ``GM`` (IERS Conventions 2010, Technical Note
+  36, table 1.1; the WGS 84 value);
+- :data:`R_EARTH`, the equatorial radius (IERS Conventions 2010, table 1.1: 6378136.6 m,
+  rounded to 0.1 km);
+- :data:`OMEGA_EARTH`, the mean angular velocity of the Earth's rotation (IERS Conventions
+  2010, sec. 1.2), the rate at which the Earth-fixed frame turns about ECI z.
+
+Examples
+--------
+A circular orbit of one sidereal day's period (2 pi / OMEGA_EARTH) lies at the geostationary
+radius, Kepler's third law ``r^3 = mu / n^2``:
+
+>>> import math
+>>> round(math.cbrt(MU_EARTH / OMEGA_EARTH**2) / 1e3)   # km
+42164
+"""
+
+from __future__ import annotations
+
+__all__ = ["MU_EARTH", "OMEGA_EARTH", "R_EARTH"]
+
+#: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
+MU_EARTH = 3.986004418e14
+#: The Earth's equatorial radius, m (IERS Conventions 2010: 6378136.6 m, rounded): with
+#: ``mu = MU_EARTH`` an orbit must have a larger radius.
+R_EARTH = 6.3781e6
+#: The Earth's rotation rate, rad/s (IERS Conventions 2010, sec. 1.2).
+OMEGA_EARTH = 7.292115e-5

@@ -1,0 +1,154 @@
+"""The gravity-gradient torque along any orbit of :mod:`tumble.dynamics.environment`, and the
+one way from an orbit to its torque model, :func:`gravity_gradient_of`.
+
+**Along an ellipse or a TLE** (:class:`OrbitGravityGradient`): the formula of
+:class:`~tumble.dynamics.models.gravity.GravityGradient`, ``tau = 3 (mu / r^3) r_b x (I r_b)``
+(Hughes, *Spacecraft Attitude Dynamics*, Wiley 1986, ch. 8; written once as
+:func:`~tumble.dynamics.models.gravity.gradient_torque`), with the radius ``r(t)`` read from the
+orbit's ``position_world(t)``, so that the radius and the rate ``mu / r^3`` change along the
+orbit (a :class:`~tumble.dynamics.environment.ephemeris.KeplerOrbit` or
+:class:`~tumble.dynamics.environment.ephemeris.TLEOrbit`; their world frame is ECI or TEME).
+
+**From an orbit to its torque** (:func:`gravity_gradient_of`): a
+:class:`~tumble.dynamics.environment.orbit.CircularOrbit` gets the closed-form circle,
+:class:`~tumble.dynamics.models.gravity.GravityGradient` (whose world frame is the circle's
+orbit-plane frame, and which the compiled engine runs), any other orbit the general model here.
+The orbits themselves exert no torque and know nothing of the models: they live below them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any, cast
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, FloatArray, Vector3
+from ...validation import check_moments, check_positive
+from ..environment.earth import MU_EARTH
+from ..environment.ephemeris import KeplerOrbit, TLEOrbit
+from ..environment.orbit import CircularOrbit
+from .gravity import GravityGradient, gradient_torque
+
+__all__ = ["OrbitGravityGradient", "gravity_gradient_of"]
+
+
+def gravity_gradient_of(orbit: CircularOrbit | KeplerOrbit | TLEOrbit) -> GravityGradient | OrbitGravityGradient:
+    """The gravity-gradient torque model of ``orbit`` (its world frame is the orbit's; unbound:
+    ``simulate_controlled`` or the model's ``bind(body)`` gives it the body's moments).
+
+    Parameters
+    ----------
+    orbit : CircularOrbit, KeplerOrbit or TLEOrbit
+        The orbit (:mod:`tumble.dynamics.environment`).
+
+    Returns
+    -------
+    GravityGradient or OrbitGravityGradient
+        ``GravityGradient(orbit_radius=orbit.radius, mu=orbit.mu)`` for a circular orbit,
+        ``OrbitGravityGradient(orbit)`` for a Keplerian or TLE orbit.
+
+    Raises
+    ------
+    TypeError
+        If ``orbit`` is none of these, naming the argument, its type and what is allowed.
+
+    Examples
+    --------
+    >>> import math
+    >>> orbit = CircularOrbit(altitude=500e3)
+    >>> gg = gravity_gradient_of(orbit)
+    >>> type(gg).__name__, gg.radius == orbit.radius, math.isclose(gg.period, orbit.period)
+    ('GravityGradient', True, True)
+    >>> gravity_gradient_of(KeplerOrbit(7000e3, 0.01)).orbit.eccentricity
+    0.01
+    >>> gravity_gradient_of(7000e3)
+    Traceback (most recent call last):
+    ...
+    TypeError: orbit = 7000000.0 is a float; allowed: a CircularOrbit, KeplerOrbit or TLEOrbit (tumble.dynamics.environment)
+    """
+    if isinstance(orbit, CircularOrbit):
+        return GravityGradient(orbit_radius=orbit.radius, mu=orbit.mu)
+    if isinstance(orbit, (KeplerOrbit, TLEOrbit)):
+        return OrbitGravityGradient(orbit)
+    raise TypeError(f"orbit = {orbit!r} is a {type(orbit).__name__}; allowed: a CircularOrbit, KeplerOrbit or TLEOrbit "
+                    "(tumble.dynamics.environment)")
+
+
+@dataclass(frozen=True, eq=False)
+class OrbitGravityGradient:
+    """The gravity-gradient torque ``3 mu / r^3 R (r_b x I r_b)`` along an orbit's position (N m, world frame).
+
+    The formula of :class:`~tumble.dynamics.models.gravity.GravityGradient` (Hughes ch. 8) with
+    the radius ``r(t)`` read from ``orbit.position_world(t)``: for an ellipse or a TLE the
+    radius and the rate ``mu / r^3`` change along the orbit.
+
+    Parameters
+    ----------
+    orbit : KeplerOrbit or TLEOrbit (or any object with ``position_world(t)``, m)
+        The orbit.
+    mu : float
+        Gravitational parameter, m^3/s^2 (default the orbit's, or the Earth's).
+    moments : array_like, shape (3,), optional
+        Principal moments, kg m^2 (:meth:`bind` gives them).
+
+    Examples
+    --------
+    On a circle it is :class:`~tumble.dynamics.models.gravity.GravityGradient`:
+
+    >>> k = KeplerOrbit(7000e3)
+    >>> att = Rotation.from_rotvec([0.3, -0.2, 0.5])
+    >>> a = OrbitGravityGradient(k).bind([1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
+    >>> b = GravityGradient(orbit_radius=7000e3, moments=[1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
+    >>> np.allclose(a, b, rtol=1e-12, atol=0.0)
+    True
+    """
+
+    orbit: Any
+    mu: float | None = None
+    moments: tuple[float, float, float] | None = None
+    frame: str = field(default="world", init=False)
+
+    def __post_init__(self) -> None:
+        if not callable(getattr(self.orbit, "position_world", None)):
+            raise ValueError(f"orbit = {self.orbit!r} must give position_world(t) (m): a KeplerOrbit or TLEOrbit")  # noqa: TRY004
+        mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
+        object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
+        if self.moments is not None:
+            I = check_moments("moments", self.moments, physical=False)
+            object.__setattr__(self, "moments", cast("tuple[float, float, float]", tuple(map(float, I))))
+
+    def bind(self, body: object) -> OrbitGravityGradient:
+        """The same orbit acting on ``body`` (a Body, MassProperties or principal moments, kg m^2).
+
+        Examples
+        --------
+        >>> OrbitGravityGradient(KeplerOrbit(7000e3)).bind([1.0, 2.0, 3.0]).moments
+        (1.0, 2.0, 3.0)
+        """
+        moments = getattr(body, "principal_moments", body)
+        I = check_moments("moments", cast(ArrayLike, moments), physical=False)
+        return replace(self, moments=(float(I[0]), float(I[1]), float(I[2])))
+
+    def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
+        """World-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world).
+
+        Examples
+        --------
+        At perigee of an ellipse the rate ``mu / r^3`` is ``(1 - e)^-3`` times that of the circle of radius ``a``:
+
+        >>> k = KeplerOrbit(8000e3, 0.2)
+        >>> att = Rotation.from_rotvec([0.0, 0.0, 0.4])
+        >>> perigee = OrbitGravityGradient(k).bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
+        >>> circle = OrbitGravityGradient(KeplerOrbit(8000e3)).bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)
+        >>> np.allclose(perigee, circle / 0.8**3)
+        True
+        """
+        if self.moments is None:
+            raise ValueError("this gravity gradient has no moments: use .bind(body)")
+        r = np.asarray(self.orbit.position_world(float(t)), float)
+        rn = float(np.linalg.norm(r))
+        mu = float(cast(float, self.mu))
+        r_b = attitude.inv().apply(r / rn)
+        return np.asarray(attitude.apply(gradient_torque(r_b, np.asarray(self.moments), mu / rn**3)), float)
