@@ -30,13 +30,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["MISFIT_LIMIT", "NOISE_FACTOR", "Adequacy", "InadequateFitWarning", "judge"]
+__all__ = ["MAX_ENERGY_RISE", "MAX_MOMENTUM_RISE", "MISFIT_LIMIT", "NOISE_FACTOR", "RIGID_SMOOTHING", "Adequacy",
+           "InadequateFitWarning", "judge", "rigid_body_check"]
 
 #: The model's error (beyond the noise) allowed in the residuals, as a fraction of the rates'
 #: RMS per axis (dimensionless). See the module docstring for the measurements behind it.
 MISFIT_LIMIT = 0.03
 #: Residuals within this factor of the noise are noise, whatever the rates.
 NOISE_FACTOR = 3.0
+#: The largest rise of ``|L|`` over a flight that a rigid body's samples show, as a fraction of
+#: its mean: drag only lowers it (see :func:`rigid_body_check` for the measurements behind it).
+MAX_MOMENTUM_RISE = 0.02
+#: The same for the rotational energy ``2E = omega . I omega``.
+MAX_ENERGY_RISE = 0.03
+#: The span over which ``|L|`` and ``2E`` are averaged before their rise is taken, s.
+RIGID_SMOOTHING = 0.05
 
 
 class InadequateFitWarning(UserWarning):
@@ -124,3 +132,72 @@ def judge(residual_rms: float, noise: float, rates_rms: float, *, sensor_rotatio
             "(give its range) and that the body is rigid")
     return Adequacy(False, misfit, f"the model does not fit: {said}, above the {100 * MISFIT_LIMIT:.0f} % a free "
                                    f"rigid body leaves; {hint}")
+
+
+def _rise(x: np.ndarray) -> float:
+    """The largest increase of ``x`` over an earlier value, as a fraction of its mean."""
+    return float(np.max(x - np.minimum.accumulate(x)) / np.mean(x))
+
+
+def rigid_body_check(t: np.ndarray, omega_principal: np.ndarray, moments: np.ndarray) -> str:
+    """Whether a flight's motion is one a rigid body can make: ``""``, or the reason it is not.
+
+    A rigid body in flight feels only the air's torque, which takes energy and angular momentum
+    away: ``d|L|/dt = L . tau / |L| <= 0`` and ``dE/dt = omega . tau <= 0`` for a dissipative
+    drag (Landau & Lifshitz, *Mechanics*, sec. 34). So ``|L| = |I omega|`` and
+    ``2E = omega . I omega``, computed from the samples with the fitted moments and sensor
+    mount, may only fall. A body with an internal torque, a rotor spinning up (the gyrostat,
+    Hughes 1986, ch. 7), a flexing or sloshing body, or two bodies mixed, moves momentum between
+    its parts, and the body's own ``|L|`` and ``E`` rise and fall: the drag terms of a fit can
+    absorb part of that in the residuals, not in these two budgets. After a moving average over
+    :data:`RIGID_SMOOTHING`, a rise of ``|L|`` beyond :data:`MAX_MOMENTUM_RISE` or of ``2E``
+    beyond :data:`MAX_ENERGY_RISE` of its mean is refused.
+
+    The limits are set from the synthetic tosses of :mod:`~tumble.analysis.fit.synthetic`
+    (racquet and phone, flex, drag, coloured noise, bias, scale errors): their largest rises
+    are 0.5 % of ``|L|`` and 0.9 % of ``2E``; a rotor reaching 5 % of ``|L|`` raises them by
+    20-40 % (median) once the fit has bent its ratios to follow it.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        Times, s.
+    omega_principal : ndarray, shape (n, 3)
+        The samples in the principal frame, the bias removed, rad/s.
+    moments : ndarray, shape (3,)
+        The fitted moments (any scale: ``I / I3``).
+
+    Returns
+    -------
+    str
+        ``""`` for a motion a rigid body can make, else the reason, one sentence.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 1.0, 201)
+    >>> I = np.array([0.2, 0.8, 1.0])
+    >>> spin = np.column_stack([0.1 * np.cos(3 * t), 10.0 * np.exp(-0.05 * t), 0.1 * np.sin(3 * t)])   # slowed by drag
+    >>> rigid_body_check(t, spin, I)
+    ''
+    >>> up = spin * (1.0 + 0.1 * np.sin(6.0 * t))[:, None]   # momentum flowing in and out
+    >>> rigid_body_check(t, up, I).split(":")[0]
+    'not a rigid body'
+    """
+    t = np.asarray(t, float)
+    w = np.asarray(omega_principal, float)
+    I = np.asarray(moments, float)
+    if len(t) < 3:
+        return ""
+    k = max(1, int(round(0.5 * RIGID_SMOOTHING / float(np.median(np.diff(t))))))
+    if len(t) <= 2 * k + 1:
+        return ""
+    box = np.ones(2 * k + 1) / (2 * k + 1)
+    momentum = np.convolve(np.linalg.norm(w * I, axis=1), box, mode="valid")
+    energy = np.convolve(np.sum(I * w * w, axis=1), box, mode="valid")
+    for name, rise, limit in (("angular momentum |L|", _rise(momentum), MAX_MOMENTUM_RISE),
+                              ("energy", _rise(energy), MAX_ENERGY_RISE)):
+        if rise > limit:
+            return (f"not a rigid body: its {name} rose by {100 * rise:.2g} % during the flight, where air drag "
+                    f"only lowers it (a rigid body's samples show at most {100 * limit:.0f} %): an internal torque "
+                    f"acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")
+    return ""

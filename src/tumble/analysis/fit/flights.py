@@ -42,7 +42,7 @@ from .solve import Solution, solve
 from .triangle import EDGES
 from .uncertainty import SCALE_UNCERTAINTY
 
-__all__ = ["Flight", "find_flights", "pause_times"]
+__all__ = ["IMPULSE_FACTOR", "IMPULSE_FLOOR", "IMPULSE_SPAN", "Flight", "find_flights", "impulses", "pause_times"]
 
 
 @dataclass(frozen=True)
@@ -124,6 +124,85 @@ def _stretches(speed, lo, hi, min_spin):
     active = speed[lo:hi] > min_spin
     d = np.diff(np.r_[0, active.astype(int), 0])
     return [(lo + a, lo + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
+
+
+#: A free flight's angular acceleration is at most ``|omega|^2 / sqrt(3)`` (torque-free, any
+#: rigid body): a sample whose rate changes faster, by this factor plus :data:`IMPULSE_FLOOR`,
+#: is under an impulse (module docstring).
+IMPULSE_FACTOR = 1.5
+#: Angular acceleration always allowed (the body's flex, the gyroscope's noise), rad/s^2.
+IMPULSE_FLOOR = 20.0
+#: The span over which the angular acceleration is taken, s (a central difference).
+IMPULSE_SPAN = 0.02
+
+
+def impulses(t: ArrayLike, omega: ArrayLike) -> np.ndarray:
+    """Which samples lie under an impulse: a throw's, a catch's or an impact's torque, or the hand's.
+
+    Torque-free, Euler's equations give ``|omega_i'| = |(I_j - I_k) / I_i| |omega_j omega_k|
+    <= |omega_j omega_k|`` (the moments obey the triangle inequality, ``|I_j - I_k| <= I_i``;
+    Landau & Lifshitz, *Mechanics*, sec. 32), so ``|omega'| <= |omega|^2 / sqrt(3)`` whatever
+    the body, its axes or the sensor's mount. A sample whose central difference over
+    :data:`IMPULSE_SPAN` exceeds :data:`IMPULSE_FACTOR` times that bound plus
+    :data:`IMPULSE_FLOOR` cannot be in free flight: the recording is cut there (a segmentation at
+    impulses; the fit then tests what lies between).
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        Times, s, increasing.
+    omega : ndarray, shape (n, 3)
+        Gyroscope samples, rad/s.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+
+    Examples
+    --------
+    A torque-free tumble is never under an impulse; an impact that turns omega in one sample is:
+
+    >>> from tumble.analysis.fit.endings import gyrostat_flight
+    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
+    >>> t = np.arange(0.0, 1.0, 0.005)
+    >>> w = gyrostat_flight(TOSS_BODIES["phone"], np.array([0.2, 15.0, 0.3]), 1.0, t, np.array([1.0, 0, 0]), 0.0, 1.0,
+    ...                     lambda x: np.zeros(3))
+    >>> bool(impulses(t, w).any())
+    False
+    >>> w[100:] = w[100:] @ np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]) * 0.7   # an impact at 0.5 s
+    >>> np.flatnonzero(impulses(t, w)).tolist()   # the samples whose difference spans it
+    [98, 99, 100, 101]
+    """
+    t = np.asarray(t, float)
+    omega = np.asarray(omega, float)
+    n = len(t)
+    if n < 3:
+        return np.zeros(n, bool)
+    k = max(1, int(round(0.5 * IMPULSE_SPAN / float(np.median(np.diff(t))))))
+    i = np.arange(n)
+    lo, hi = np.maximum(i - k, 0), np.minimum(i + k, n - 1)
+    rate = np.linalg.norm(omega[hi] - omega[lo], axis=1) / np.maximum(t[hi] - t[lo], 1e-12)
+    spin2 = np.maximum(np.sum(omega[lo] ** 2, axis=1), np.sum(omega[hi] ** 2, axis=1))
+    return rate > IMPULSE_FACTOR * spin2 / np.sqrt(3.0) + IMPULSE_FLOOR
+
+
+def _segments(a0: int, b0: int, kicked: np.ndarray, t, min_duration: float) -> list[tuple[int, int, bool]]:
+    """``[a0, b0)`` cut at the impulses: ``(a, b, free)`` pieces, in order. A piece between two
+    impulses shorter than ``min_duration`` is joined with its short neighbours and the impulses
+    between them into one piece that is not free (the throw, the catch, the hand's motion)."""
+    inside = ~kicked[a0:b0]
+    d = np.diff(np.r_[0, inside.astype(int), 0])
+    runs = [(a0 + a, a0 + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
+    long = [(a, b) for a, b in runs if t[b - 1] - t[a] >= min_duration]
+    pieces, cursor = [], a0
+    for a, b in long:
+        if a > cursor:
+            pieces.append((cursor, a, False))
+        pieces.append((a, b, True))
+        cursor = b
+    if cursor < b0:
+        pieces.append((cursor, b0, False))
+    return pieces
 
 
 def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
@@ -230,9 +309,17 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
         speed = np.median(np.stack([np.r_[speed[0], speed[:-1]], speed, np.r_[speed[1:], speed[-1]]]), axis=0)
     stretches = [(a0, b0) for lo, hi in _runs(t, pause_times(events), max_gap)
                  for a0, b0 in _stretches(speed, lo, hi, min_spin)]
+    kicked = impulses(t, omega)
     flights = []
     for k, (a0, b0) in enumerate(stretches):
-        flights.append(_one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, scale_uncertainty))
+        free = [(a, b) for a, b, ok in _segments(a0, b0, kicked, t, min_duration) if ok]
+        if not free and t[b0 - 1] - t[a0] >= min_duration:  # the whole stretch is torqued: one candidate, skipped
+            flights.append(_skip(t, a0, b0, f"no free flight: under impulses (no {min_duration} s between them in which "
+                                            f"the rate changes slower than a free rigid body's can: a throw, a catch, "
+                                            f"an impact or the hand)"))
+        else:
+            flights += [_one(t, omega, keep, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty)
+                        for a, b in free or [(a0, b0)]]
         if progress is not None:
             progress(k + 1, len(stretches))
     return flights
@@ -254,21 +341,47 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
     spread = np.sqrt(np.mean(np.sum((w - w.mean(axis=0)) ** 2, axis=1)))
     if spread < 0.05 * np.sqrt(np.mean(np.sum(w ** 2, axis=1))):
         return _skip(t, a0, b0, "steady spin (omega nearly constant: no tumble, the ratios do not enter)")
-    a = a0 + int(0.35 * (b0 - a0))
-    b = a0 + int(0.80 * (b0 - a0))
-    if b - a < MIN_SAMPLES:
-        a, b = a0, b0
+    first = None
+    for lo, hi in SEEDS:
+        a, b = a0 + int(lo * (b0 - a0)), a0 + int(hi * (b0 - a0))
+        if b - a < MIN_SAMPLES:
+            a, b = a0, b0
+        found = _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty)
+        if found.status == "ok":
+            return found
+        first = first or found
+        if not found.reason.startswith(RETRY):
+            break
+    return first
+
+
+#: Where the first fit of a candidate is made, as fractions of it: its middle (past any throw,
+#: before any catch), then its first and its second half when the middle does not follow a
+#: free motion (an impact missed by :func:`impulses` inside it, a throw that ends late).
+SEEDS = ((0.35, 0.8), (0.1, 0.5), (0.5, 0.9))
+#: The reasons for which another seed is tried.
+RETRY = ("no free flight", "the model does not fit", "fit failed", "too short (")
+
+
+def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty) -> Flight:
+    """Fit the seed window ``[a, b)``, grow it inside ``[a0, b0)``, trim, fit the flight and judge it."""
     anchor = t[a]
+    sol = None
     try:
-        # the middle, from the samples alone, then with a quadratic drag
+        # the seed, from the samples alone, then with a quadratic drag
         sol = fit_solution(t[a:b], omega[a:b], keep[a:b], rotation=rotation, bias=bias, drag="quadratic", t0=anchor,
                            covariance=False, max_nfev=40)
+        last = None
         for _ in range(6):
             rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
             level = float(np.sqrt(np.mean(np.sum(omega[a:b] ** 2, axis=1)) / 3))
             if rms > 0.1 * level:
-                return _skip(t, a0, b0, f"no free flight: the samples do not follow a torque-free motion (residual "
-                                        f"{rms:.2g} rad/s against rates of {level:.2g} rad/s)", sol)
+                if last is None:
+                    return _skip(t, a0, b0, f"no free flight: the samples do not follow a torque-free motion "
+                                            f"(residual {rms:.2g} rad/s against rates of {level:.2g} rad/s)", sol)
+                a, b, sol = last  # the growth took in the throw's or the catch's end: back to the window before
+                break
+            last = (a, b, sol)
             a2, b2 = _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
             if (a2, b2) == (a, b):
                 break

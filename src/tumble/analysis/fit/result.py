@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from .adequacy import Adequacy, judge
+from .adequacy import Adequacy, judge, rigid_body_check
 from .solve import Solution
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios
 from .uncertainty import effective_dof, interval, noise_floor
@@ -426,8 +426,19 @@ def solution_adequacy(sol: Solution, data: np.ndarray, mask: np.ndarray) -> Adeq
         noise2 += noise_floor((data[j, :n] - sol.omega_model[j, :n])[rows]) ** 2 * n
         weight += n
     rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
-    return judge(rms, float(np.sqrt(noise2 / max(weight, 1))), float(np.sqrt(np.mean(data[mask] ** 2))),
-                 sensor_rotation_fitted=sol.model.rotation)
+    verdict = judge(rms, float(np.sqrt(noise2 / max(weight, 1))), float(np.sqrt(np.mean(data[mask] ** 2))),
+                    sensor_rotation_fitted=sol.model.rotation)
+    if not verdict.adequate:
+        return verdict
+    m, P = sol.model, sol.P
+    R, b, moments = m.rotation_matrix(P), m.bias_vector(P), m.moments(P)
+    for j, n in enumerate(m.lengths):
+        n = int(n)
+        rows = np.all(mask[j, :n], axis=1)
+        why = rigid_body_check(m.tau[j, :n][rows], (data[j, :n][rows] - b) @ R.T, moments)
+        if why:
+            return Adequacy(False, verdict.misfit, why)
+    return verdict
 
 
 def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_STD) -> str:

@@ -46,6 +46,7 @@ from scipy.signal import lfilter
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
+from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight
 
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
            "synthetic_recording"]
@@ -167,6 +168,10 @@ class SyntheticRecording:
     body : TossBody
     rate : float
         Nominal sample rate, Hz.
+    endings : tuple of str
+        How each flight ended (``"catch"``, ``"hand"`` or ``"landing"``).
+    rotor : float
+        The internal rotor's final momentum over ``|L|`` (0: a rigid body).
 
     Examples
     --------
@@ -190,6 +195,8 @@ class SyntheticRecording:
     events: list = field(default_factory=list)
     body: TossBody | None = None
     rate: float = 100.0
+    endings: tuple = ()
+    rotor: float = 0.0
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines
@@ -257,7 +264,9 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
                         tilt: tuple[float, float] = (1.0, 10.0), noise: tuple[float, float] = (0.002, 0.006),
                         bias: float = 0.01, saturation: float = FULL_SCALE, pauses: int = 0,
                         stable: int = 0, flex: bool = True, drag: float = 1.0,
-                        scale_error: float = 0.005) -> SyntheticRecording:
+                        scale_error: float = 0.005, ending: str = "catch", after: tuple[float, float] = (0.3, 1.0),
+                        after_spin: tuple[float, float] = (5.0, 20.0), hand: tuple[float, float] = (0.05, 0.4),
+                        rotor: float = 0.0) -> SyntheticRecording:
     """A whole phone recording of ``tosses`` tosses of a body (module docstring).
 
     Parameters
@@ -287,6 +296,20 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         Factor on the body's drag coefficient (0: no air).
     scale_error : float
         Standard deviation of the scale factor's error per sensor axis.
+    ending : {"catch", "hand", "landing", "mixed"}
+        How each flight ends (:mod:`~tumble.analysis.fit.endings`): the spin killed in the hand
+        (the default), caught and turned on in the hand, a landing with bounces and rolling, or
+        one of these three drawn per toss.
+    after, after_spin : (float, float)
+        Ranges of the motion after a ``"hand"`` or ``"landing"`` end: its length (s) and its
+        initial spin (rad/s).
+    hand : (float, float)
+        Range of the hand's slow motion while holding (RMS per axis, rad/s); (3, 10) for a
+        phone swung about between tosses.
+    rotor : float
+        An internal rotor spinning up during each flight, its final axial momentum as a fraction
+        of the body's ``|L|`` at release (0: a rigid body): the body is a gyrostat
+        (:func:`~tumble.analysis.fit.endings.gyrostat_flight`).
 
     Returns
     -------
@@ -297,7 +320,19 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
     >>> rec = synthetic_recording(1, tosses=3)
     >>> rec.flights.shape, bool(rec.t[-1] > 3 * 0.5)
     ((3, 2), True)
+
+    A phone tossed once at 400 Hz, landing on a table, keeps turning at several rad/s after the
+    impact:
+
+    >>> rec = synthetic_recording(3, body="phone", tosses=1, rate=400.0, ending="landing")
+    >>> (release, land), = rec.flights
+    >>> after = (rec.t > land + 0.01) & (rec.t < land + 0.2)
+    >>> rec.endings, bool(np.median(np.linalg.norm(rec.omega[after], axis=1)) > 3.0)
+    (('landing',), True)
     """
+    if ending not in ENDINGS:
+        raise ValueError(f"ending = {ending!r} is not a way a toss ends; allowed: {', '.join(map(repr, ENDINGS))}")
+    extra = np.random.default_rng([seed, 29])  # the new traits' own stream (module docstring of endings)
     rng = np.random.default_rng(seed)
     body = TOSS_BODIES[body] if isinstance(body, str) else body
     if drag != 1.0:
@@ -316,7 +351,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
     segments.append(("hold", t_now, hold0, None))
     t_now += hold0
     stable_idx = set(rng.choice(tosses, size=min(stable, tosses), replace=False).tolist()) if stable else set()
-    flights, omega0s = [], []
+    flights, omega0s, ends = [], [], []
     for k in range(tosses):
         throw = rng.uniform(0.15, 0.3)
         T = rng.uniform(*flight)
@@ -330,7 +365,12 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         omega0s.append(w0)
         t_now += T
         catch = rng.uniform(0.04, 0.12)
-        segments.append(("catch", t_now, catch, None))
+        end = str(extra.choice(ENDINGS[:3])) if ending == "mixed" else ending
+        ends.append(end)
+        if end != "catch":  # caught and turned on in the hand, or landed: the spin goes on
+            catch = extra.uniform(*after)
+            spin_after = extra.uniform(*after_spin)
+        segments.append((end, t_now, catch, None if end == "catch" else spin_after))
         t_now += catch
         hold = rng.uniform(1.0, 4.0)
         segments.append(("hold", t_now, hold, None))
@@ -347,7 +387,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         keep &= ~((tt > g0) & (tt < g0 + rng.uniform(0.05, 0.2)))
     tt = tt[keep]
     w_body = np.zeros((len(tt), 3))  # principal frame
-    hand = np.stack([_smooth_noise(rng, len(tt), dt, rng.uniform(0.05, 0.4), 1.5) for _ in range(3)], axis=1)
+    held = np.stack([_smooth_noise(rng, len(tt), dt, rng.uniform(*hand), 1.5) for _ in range(3)], axis=1)
     tremor_f = rng.uniform(8, 12)
     tremor = rng.uniform(0.005, 0.03) * np.sin(2 * np.pi * tremor_f * tt[:, None] + rng.uniform(0, 2 * np.pi, 3))
     last_flight_end = None
@@ -355,14 +395,19 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         sel = (tt >= t0) & (tt < t0 + length)
         tau = tt[sel] - t0
         if kind == "hold":
-            w_body[sel] = hand[sel] + tremor[sel]
+            w_body[sel] = held[sel] + tremor[sel]
         elif kind == "throw":
             x = tau / length
             ramp = 0.7 * x * x * (3 - 2 * x) + 0.3 * x
             wob = np.sin(np.pi * x)[:, None] * rng.normal(0, 0.15 * np.linalg.norm(w0), 3)
-            w_body[sel] = ramp[:, None] * w0 + (1 - ramp)[:, None] * hand[sel] + wob
+            w_body[sel] = ramp[:, None] * w0 + (1 - ramp)[:, None] * held[sel] + wob
         elif kind == "flight":
-            w = _flight(body, w0, length, np.r_[tau, length])
+            if rotor:
+                h_final = rotor * float(np.linalg.norm(I * w0))
+                w = gyrostat_flight(body, w0, length, np.r_[tau, length], _unit(extra), h_final,
+                                    extra.uniform(0.2, 0.5) * length, lambda x: plate_drag_torque(body, x))
+            else:
+                w = _flight(body, w0, length, np.r_[tau, length])
             last_flight_end = w[-1]
             w = w[:-1]
             if flex:
@@ -373,11 +418,15 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
                 axis /= np.linalg.norm(axis)
                 w = w + (amp * np.exp(-tau / decay) * np.sin(2 * np.pi * f * tau + rng.uniform(0, 6.3)))[:, None] * axis
             w_body[sel] = w
+        elif kind == "hand":
+            w_body[sel] = after_hand(extra, tau, length, last_flight_end, w0, held[sel] + tremor[sel], dt)
+        elif kind == "landing":
+            w_body[sel] = after_landing(extra, body, tau, length, w0, held[sel] + tremor[sel])
         else:  # catch
             x = tau / length
             kill = np.exp(-5.0 * x) * (1 - x)
             jolt = np.sin(np.pi * x)[:, None] * rng.normal(0, 0.3 * np.linalg.norm(last_flight_end), 3)
-            w_body[sel] = kill[:, None] * last_flight_end + (1 - kill)[:, None] * hand[sel] + jolt
+            w_body[sel] = kill[:, None] * last_flight_end + (1 - kill)[:, None] * held[sel] + jolt
     # the sensor: mount, scale errors, bias (with a random walk), white and coloured noise
     w_s = w_body @ R  # omega_sensor = R^T omega_principal (row vectors)
     w_s = w_s * (1.0 + rng.normal(0, scale_error, 3))
@@ -410,7 +459,8 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
     t_out = (tt - shift)[keep]
     w_out = w_s[keep]
     return SyntheticRecording(t=t_out, omega=w_out, flights=flights - f_shift[:, None], omega0=np.array(omega0s),
-                              ratios=I[:2] / I[2], sensor_rotation=mount, bias=b, events=events, body=body, rate=rate)
+                              ratios=I[:2] / I[2], sensor_rotation=mount, bias=b, events=events, body=body, rate=rate,
+                              endings=tuple(ends), rotor=rotor)
 
 
 #: The shipped example (``examples/data/racquet_tosses.csv``): its generator's arguments.
