@@ -7,7 +7,7 @@ the racquet, one toss), pooled by :func:`tumble.analysis.fit.fit_recording` (det
 30 s. Baseline, measured in the same run: the 50 recordings fitted one by one (what pooling them
 by hand, an inverse-variance mean, would cost).
 
-Run: ``python benchmarks/bench_pool.py [--quick]`` (or through ``benchmarks/run.py``).
+Run: ``python benchmarks/bench_pool.py [--quick]`` or ``python benchmarks/run.py --suite bench_pool``.
 """
 
 from __future__ import annotations
@@ -87,4 +87,6 @@ def run(out, quick: bool = False) -> str:
 
 
 if __name__ == "__main__":
-    print(run(Path(__file__).resolve().parent / "results", quick="--quick" in sys.argv[1:]), end="")
+    quick = "--quick" in sys.argv[1:]  # a quick run never overwrites the full results
+    results = Path(__file__).resolve().parent / "results"
+    print(run(results / "quick" if quick else results, quick=quick), end="")
