@@ -110,7 +110,10 @@ def _cmd_fit(args) -> int:
         raise ValueError(f"--saturation = {args.saturation} must be a positive number of rad/s")
     bar = _Bar()
     try:
-        return run_fit_command(args.data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
+        if len(args.data) > 1 and (args.start is not None or args.end is not None):
+            raise ValueError(f"--start/--end select one flight of one recording; {len(args.data)} recordings given")
+        data = args.data[0] if len(args.data) == 1 else args.data
+        return run_fit_command(data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
                                start=args.start, end=args.end, body=args.body, progress=bar,
                                sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
                                saturation=args.saturation, accept_inadequate=args.accept_inadequate)

@@ -148,14 +148,17 @@ def build_parser() -> argparse.ArgumentParser:
         help="inertia ratios from a gyroscope recording (phyphox export or t,wx,wy,wz CSV)",
         description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
         "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
-        "jointly (shared ratios, sensor rotation, bias and drag) and writes DIR/fit.json (pooled values with "
+        "jointly (shared ratios, sensor rotation, bias and drag; given several recordings, all their flights, "
+        "with the sensor rotation and bias each recording's own) and writes DIR/fit.json (pooled values with "
         "standard uncertainties and 95 percent intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
         "With --start/--end the samples between are fitted as one flight.",
         epilog="Example: tumble fit examples/data/racquet_tosses.csv --out fitted", parents=[debug],
     )
-    p.add_argument("data", metavar="RECORDING",
-                   help="a CSV (phyphox's gyroscope export or t, wx, wy, wz in s, rad/s), or phyphox's export "
-                   "folder or .zip (Raw Data.csv and meta/time.csv)")
+    p.add_argument("data", metavar="RECORDING", nargs="+",
+                   help="a CSV or other delimited text (phyphox's gyroscope export; a header naming the time and "
+                   "the three rate columns, others ignored; or t, wx, wy, wz in s, rad/s), or phyphox's export "
+                   "folder or .zip (Raw Data.csv and meta/time.csv); several recordings of one body are pooled "
+                   "in one joint fit (sensor mount and bias per recording)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--sensor", choices=["fit", "identity"], default="fit",
                    help="fit the sensor's rotation to the principal axes (default) or take it as identity")
@@ -165,7 +168,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--saturation", type=float, metavar="RAD_S",
                    help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
-    p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s")
+    p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s (one recording only)")
     p.add_argument("--end", type=float, metavar="S", help="fit one flight: last time, s")
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the data (by default such a fit is written "

@@ -3,8 +3,14 @@
 - **A whole recording** (a CSV, or phyphox's export: its folder or its ``.zip``): the free
   flights are found, each fitted, and all fitted jointly (:func:`tumble.analysis.fit.fit_recording`).
   ``DIR/fit.json`` has the pooled values under the one-flight keys, plus ``"tosses"`` (one entry
-  a flight) and ``"pooled"``; ``DIR/tosses.csv`` is the table of the flights; ``DIR/fit.png``
-  the figure.
+  a flight), ``"pooled"`` and ``"read"`` (which columns of the file were taken,
+  :class:`tumble.io.gyrocolumns.ColumnsRead`); ``DIR/tosses.csv`` is the table of the flights;
+  ``DIR/fit.png`` the figure.
+- **Several recordings of one body** (files, folders and zips mixed): all their flights in one
+  joint fit, the ratios and the drag shared, the sensor's rotation and bias each recording's own
+  (fit.json's ``"pooled"`` says so under ``"shared"`` and ``"per_recording"``). ``"input"`` and
+  ``"read"`` are lists, one entry an input as given; each toss in ``"tosses"`` and in
+  ``tosses.csv`` carries its ``"input"``; the provenance hashes every input.
 - **One flight** (``--start``/``--end``): the samples between are fitted as one free flight
   (:func:`tumble.analysis.fit.fit_rotation`); ``DIR/fit.json`` and ``DIR/fit.png``.
 
@@ -33,7 +39,7 @@ from ..analysis.fit import (
     fit_rotation,
 )
 from ..io.bodyfile import load_body
-from ..io.gyrodata import read_recording
+from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
 from ..io.provenance import file_sha256, provenance
 from ..validation import check_number
@@ -77,15 +83,16 @@ def _body_comparison(body_source, ratios, std) -> dict:
 
 
 def _tosses_csv(rows) -> str:
+    columns = (("input",) if rows and "input" in rows[0] else ()) + TOSS_COLUMNS
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=TOSS_COLUMNS, lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=columns, lineterminator="\n")
     writer.writeheader()
     for row in rows:
-        writer.writerow({k: ("" if row[k] is None else row[k]) for k in TOSS_COLUMNS})
+        writer.writerow({k: ("" if row[k] is None else row[k]) for k in columns})
     return buf.getvalue()
 
 
-def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *, argv: Sequence[str] | None = None,
+def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *, argv: Sequence[str] | None = None,
                     figure: Callable[..., Any] | None = None, recording_figure: Callable[..., Any] | None = None,
                     start: float | None = None, end: float | None = None, body: str | os.PathLike[str] | None = None,
                     progress: Callable[[int, int], None] | None = None, accept_inadequate: bool = False,
@@ -94,9 +101,10 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
 
     Parameters
     ----------
-    path : str or Path
+    path : str or Path, or a list of them
         A gyroscope CSV or a phyphox export (folder or ``.zip``):
-        :func:`tumble.io.gyrodata.read_recording`.
+        :func:`tumble.io.gyrodata.load_recording`; several (a list of two or more): recordings
+        of one body, pooled (module docstring).
     out : str or Path
         The output folder (written whole or not at all).
     argv : list of str, optional
@@ -108,7 +116,7 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
         ``recording_figure(recording_fit)`` -> Figure for a whole recording
         (:func:`tumble.viz.figure_recording`).
     start, end : float, optional
-        Fit only the samples with ``start <= t <= end`` as one flight, s.
+        Fit only the samples with ``start <= t <= end`` as one flight, s (one recording only).
     body : str or Path, optional
         A body file or preset whose ratios are compared with the fit.
     progress : callable, optional
@@ -140,12 +148,21 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
     (0, 0.202, 0.202)
     """
     check_output_dir(out)
-    t, omega, events = read_recording(path)
-    label = os.fspath(path)
+    paths = list(path) if isinstance(path, (list, tuple)) else [path]
+    if not paths:
+        raise ValueError("no recording given; name one or more files, phyphox folders or .zip exports")
+    if len(paths) > 1 and (start is not None or end is not None):
+        raise ValueError(f"--start/--end select one flight of one recording; {len(paths)} recordings given")
+    recs = [load_recording(p) for p in paths]
+    labels = [os.fspath(p) for p in paths]
     if body is not None:
         load_body(body)  # a bad body file is bad input before anything is computed
-    digest = _digest(path)
-    record = {"input": label}
+    digests = [_digest(p) for p in paths]
+    several = len(paths) > 1
+    label = labels[0] if not several else f"{len(paths)} recordings"
+    t, omega, events = recs[0].t, recs[0].omega, list(recs[0].events)
+    record: dict[str, Any] = {"input": labels if several else labels[0],
+                              "read": [r.read.summary() for r in recs] if several else recs[0].read.summary()}
     files = {}
     try:
         with warnings.catch_warnings():
@@ -162,23 +179,33 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
                 pooled, line = fit, f"{fit.samples} samples"
                 draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
             else:
-                rec = fit_recording(t, omega, events=events, progress=progress, **options)
+                data = (t, omega) if not several else ([(r.t, r.omega, list(r.events)) for r in recs], None)
+                rec = fit_recording(*data, events=events if not several else None, progress=progress, **options)
                 record.update({"start": None, "end": None, **rec.summary()})
+                if several:
+                    record["tosses"] = [{"input": labels[toss.recording], **row}
+                                        for toss, row in zip(rec.tosses, record["tosses"])]
                 files["tosses.csv"] = _tosses_csv(record["tosses"])
                 pooled = rec.pooled
                 skipped = len(rec.tosses) - rec.tosses_used
                 line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
+                        + (f" in {len(paths)} recordings (sensor mount and bias per recording)" if several else "")
                         + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
                 draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
     except NoFlightError as err:  # a readable recording without a flight to fit: the fit failed
         print(f"tumble: fit failed: {label}: {err}; nothing written", file=sys.stderr)
         return 1
     except ValueError as err:
-        raise ValueError(f"{label}: {err}") from None
+        text = str(err)
+        if several and text.startswith("recording "):  # "recording 2: ..." named by its input
+            number, _, rest = text[len("recording "):].partition(": ")
+            if number.isdigit() and int(number) < len(labels):
+                raise ValueError(f"{labels[int(number)]}: {rest}") from None
+        raise ValueError(f"{label}: {text}") from None
     if body is not None:
         record["body"] = _body_comparison(body, pooled.ratios, pooled.ratios_std)
     record["method"] = _METHOD
-    record["provenance"] = provenance(argv, [(path, digest)])
+    record["provenance"] = provenance(argv, list(zip(labels, digests)))
     owns = ("fit.json", "fit.png", "tosses.csv")
     with output_dir(out, owns=owns) as stage:
         (Path(stage) / "fit.json").write_text(json.dumps(record, indent=2, allow_nan=False) + "\n", encoding="utf-8")
@@ -189,8 +216,9 @@ def run_fit_command(path: str | os.PathLike[str], out: str | os.PathLike[str], *
     written = ", ".join(["fit.json", *files, *(["fit.png"] if draw is not None else [])])
     (x, y), (sx, sy) = pooled.ratios, pooled.ratios_std
     edge = f" [{pooled.edge}]" if pooled.edge else ""
+    read = recs[0].read.brief() if not several else f"{sum(r.read.rows for r in recs)} rows from {len(recs)} files"
     print(f"fit {label}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
-          f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s; wrote {written} in {os.fspath(out)}")
+          f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s; read {read}; wrote {written} in {os.fspath(out)}")
     if pooled.caveat:
         print(f"warning: {pooled.caveat}", file=sys.stderr)
     if not pooled.adequate:

@@ -8,28 +8,37 @@ Formats read by :func:`read_gyro_csv`:
   definition, ``<set name="Gyroscope">``; quoted or not, any letter case; further columns such as
   ``"Absolute (rad/s)"`` are ignored). The three CSV flavours phyphox offers are accepted:
   comma-separated, tab-separated, and semicolon-separated with a decimal comma.
-- **plain**: four numeric columns ``t (s), wx, wy, wz (rad/s)``, with or without one header
-  line, separated by commas, semicolons, tabs or spaces. A header may name each column's unit
-  in brackets, ``t (ms)``, ``wx [deg/s]``: times in s, ms, us or ns and rates in rad/s, deg/s
-  (or dps), rpm, rev/s or Hz are converted to s and rad/s; any other unit is refused, naming
-  the column.
+- **any delimited text with a header line** (a logger's export): the time column and the three
+  rate columns found by their names, the other columns (an accelerometer's, ``|omega|``, other
+  sensors) ignored by theirs; units in brackets, ``t (ms)``, ``wx [deg/s]``: times in s, ms, us
+  or ns and rates in rad/s, deg/s (or dps), rpm, rev/s or Hz are converted to s and rad/s; any
+  other unit is refused, naming the column. The names allowed: :mod:`tumble.io.gyrocolumns`.
+- **plain, without a header**: four numeric columns ``t (s), wx, wy, wz (rad/s)``; or five,
+  when the fifth is ``|omega|`` of columns 2-4 to the precision written (it is then ignored).
 
-Lines starting with ``#`` and blank lines are skipped. Every error is one line naming the file
-and the line: a missing column, a value that is not a number, a row of the wrong length, fewer
-than two rows. The checks of the data themselves (finite, increasing times, enough samples)
-are :func:`tumble.analysis.fit.fit_rotation`'s, reported with the file's name.
+Separated by commas, semicolons, tabs or spaces; a trailing separator is allowed. Lines starting
+with ``#`` (anywhere) and blank lines are skipped. Sampling may be irregular; the times must
+increase. Every error is one line naming the file and the line: a header without a time column
+or the three rates (or with two candidates), a value that is not a number, a row of the wrong
+length, a time that repeats or goes back, fewer than two rows. :func:`load_recording` also says
+what was read (:class:`~tumble.io.gyrocolumns.ColumnsRead`: the columns taken and their units,
+those ignored, the rows and the median sample rate). The other checks of the data (finite,
+enough samples) are :func:`tumble.analysis.fit.fit_rotation`'s, reported with the file's name.
 """
 
 from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..validation import read_input_file
+from .gyrocolumns import ColumnsRead, match_header
 
-__all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "parse_gyro_csv", "parse_time_csv", "read_gyro_csv", "read_recording"]
+__all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
+           "parse_time_csv", "read_gyro_csv", "read_recording"]
 
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
 MAX_GYRO_FILE_BYTES = 64 << 20
@@ -90,10 +99,24 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     >>> t, omega = parse_gyro_csv(b"t (ms), wx [deg/s], wy [deg/s], wz [deg/s]\\n0, 180, 0, 0\\n10, 180, 0, 90\\n", "toss.csv")
     >>> t.tolist(), omega.round(6).tolist()  # converted to s and rad/s
     ([0.0, 0.01], [[3.141593, 0.0, 0.0], [3.141593, 0.0, 1.570796]])
-    >>> parse_gyro_csv(b"t, wx, wy\\n0, 1, 2\\n", "toss.csv")
+    >>> parse_gyro_csv(b"t, wx, wy\\n0, 1, 2\\n", "toss.csv")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: toss.csv, line 1: a header of 3 columns; expected 4 (t, wx, wy, wz) or a phyphox gyroscope export
+    ValueError: toss.csv, line 1: header 't, wx, wy' has no rate column for z; allowed: ...
+    """
+    t, omega, _ = parse_gyro_table(raw, label)
+    return t, omega
+
+
+def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, ColumnsRead]:
+    """:func:`parse_gyro_csv`, and what was read (:class:`~tumble.io.gyrocolumns.ColumnsRead`).
+
+    Examples
+    --------
+    >>> text = b"# exported by a logger\\ntime (s)\\tgx\\tgy\\tgz\\t|omega|\\n0.0\\t1\\t0\\t0\\t1\\n0.002\\t1\\t0\\t0\\t1\\n"
+    >>> t, omega, read = parse_gyro_table(text, "log.txt")
+    >>> read.rates, read.ignored, read.rows, read.sample_rate
+    (('gx', 'gy', 'gz'), ('|omega|',), 2, 500.0)
     """
     try:
         text = raw.decode("utf-8-sig")
@@ -107,31 +130,47 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
     sep = _separator(first)
     decimal_comma = sep == ";"
     head = _split(first, sep)
+    while len(head) > 1 and head[-1] == "":  # a trailing separator
+        head.pop()
+    if sep is None:  # space-separated: "t (ms)" is one column's name and unit
+        merged: list[str] = []
+        for cell in head:
+            if merged and cell[:1] in ("(", "[") and not _NUMBER.match(merged[-1]):
+                merged[-1] += " " + cell
+            else:
+                merged.append(cell)
+        head = merged
     columns = [0, 1, 2, 3]
-    width = 4
     scale = [1.0, 1.0, 1.0, 1.0]
+    names = {"time": "column 1", "time_unit": "s", "rates": ["column 2", "column 3", "column 4"],
+             "rate_units": ["rad/s"] * 3, "ignored": []}
+    magnitude = False
     if not all(_NUMBER.match(c) for c in head):  # a header line
-        names = [h.lower() for h in head]
-        if "time (s)" in names or any(n.startswith("gyroscope") for n in names):
-            missing = [n for n in _PHYPHOX if n not in names]
+        lower = [h.lower() for h in head]
+        if "time (s)" in lower and any(n.startswith("gyroscope") for n in lower):
+            missing = [n for n in _PHYPHOX if n not in lower]
             if missing:
                 raise ValueError(f"{label}, line {first_no}: a phyphox header without the column \"{missing[0]}\"; "
                                  f"expected \"Time (s)\", \"Gyroscope x (rad/s)\", \"Gyroscope y (rad/s)\", "
                                  f"\"Gyroscope z (rad/s)\"")
-            columns = [names.index(n) for n in _PHYPHOX]
-            width = len(head)
-        elif len(head) != 4:
-            raise ValueError(f"{label}, line {first_no}: a header of {len(head)} columns; expected 4 (t, wx, wy, wz) "
-                             "or a phyphox gyroscope export")
-        else:
-            scale = [_unit(head[0], _TIME_UNITS, label, first_no, 1)] + \
-                [_unit(h, _RATE_UNITS, label, first_no, j + 2) for j, h in enumerate(head[1:])]
+        columns, scale, names = match_header(head, label, first_no)
+        width = len(head)
         lines = lines[1:]
+    elif len(head) == 5:  # a fifth column without a header: read when it is |omega| of columns 2-4
+        width, magnitude = 5, True
+        names["ignored"] = ["column 5 (|omega|)"]
     elif len(head) != 4:
-        raise ValueError(f"{label}, line {first_no}: {len(head)} columns; expected 4 (t, wx, wy, wz)")
+        raise ValueError(f"{label}, line {first_no}: {len(head)} columns; expected 4 (t, wx, wy, wz), a fifth "
+                         "|omega|, or a header line naming the columns")
+    else:
+        width = 4
     rows = np.empty((len(lines), 4))
+    fifth = np.empty(len(lines))
+    ulp = np.zeros((len(lines), 2))
     for k, (no, line) in enumerate(lines):
         cells = _split(line, sep)
+        while len(cells) > width and cells[-1] == "":  # a trailing separator
+            cells.pop()
         if len(cells) != width:
             raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
         for j, c in enumerate(columns):
@@ -139,32 +178,56 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
             if not _NUMBER.match(cell):
                 raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
             rows[k, j] = float(cell.replace(",", ".") if decimal_comma else cell)
+        if magnitude:
+            cell = cells[4]
+            if not _NUMBER.match(cell):
+                raise ValueError(f"{label}, line {no}, column 5: {cell[:40]!r} is not a number")
+            fifth[k] = float(cell.replace(",", ".") if decimal_comma else cell)
+            ulp[k] = _last_digit(cell), max(_last_digit(c) for c in cells[1:4])
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a record needs many samples")
     rows *= np.array(scale)
-    return rows[:, 0].copy(), rows[:, 1:].copy()
+    t, omega = rows[:, 0].copy(), rows[:, 1:].copy()
+    if magnitude:
+        _check_magnitude(omega, fifth, ulp, lines, label)
+    _check_order(t, lines, label)
+    read = ColumnsRead(label, names["time"], names["time_unit"], tuple(names["rates"]), tuple(names["rate_units"]),
+                       tuple(names["ignored"]), len(t), float(1.0 / np.median(np.diff(t))))
+    return t, omega, read
 
 
-#: Units a plain header may name for the time, and their factor to s.
-_TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6, "ns": 1e-9}
-#: Units a plain header may name for a rate, and their factor to rad/s.
-_RATE_UNITS = {"rad/s": 1.0, "deg/s": np.pi / 180, "\u00b0/s": np.pi / 180, "dps": np.pi / 180,
-               "rpm": 2 * np.pi / 60, "rev/s": 2 * np.pi, "hz": 2 * np.pi}
-_UNIT = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]\s*$")
+def _last_digit(cell: str) -> float:
+    """The value of one unit in the last digit a number is written with (``"1.25"``: 0.01)."""
+    mantissa, _, exponent = cell.lower().partition("e")
+    decimals = len(mantissa.replace(",", ".").partition(".")[2])
+    return float(10.0 ** ((int(exponent) if exponent else 0) - decimals))
 
 
-def _unit(name: str, table: dict, label: str, line: int, column: int) -> float:
-    """The factor to SI of the unit a header cell names in brackets, ``"t (ms)"`` or
-    ``"wx [deg/s]"``; 1 when it names none (the documented s and rad/s). An unknown unit is
-    refused, naming the column: read as SI it would give wrong numbers with no error."""
-    match = _UNIT.search(name)
-    if match is None:
-        return 1.0
-    unit = match.group(1).strip().lower().replace(" ", "")
-    if unit not in table:
-        raise ValueError(f"{label}, line {line}, column {column}: unknown unit {match.group(1)!r} in header "
-                         f"{name!r}; use one of {', '.join(k for k in table if k.isascii())}")
-    return float(table[unit])
+def _check_magnitude(omega, fifth, ulp, lines, label) -> None:
+    """A header-less fifth column must be |omega| of columns 2-4 to the precision written."""
+    norm = np.linalg.norm(omega, axis=1)
+    tol = 0.5 * ulp[:, 0] + 0.9 * ulp[:, 1] + 1e-9 * norm
+    off = np.flatnonzero(~(np.abs(fifth - norm) <= tol))
+    if off.size:
+        k = int(off[0])
+        raise ValueError(f"{label}, line {lines[k][0]}: 5 columns without a header, and the fifth ({fifth[k]:.6g}) "
+                         f"is not |omega| of columns 2-4 ({norm[k]:.6g}); name the columns in a header line "
+                         "(t, wx, wy, wz and others)")
+
+
+def _check_order(t, lines, label) -> None:
+    """Times must increase (irregular steps are fine): name the first line that goes back or repeats.
+    Times that are no number or absurd are left to the fit's checks, which say so."""
+    from ..analysis.fit.single import MAX_TIME
+
+    if not np.all(np.abs(t) <= MAX_TIME):
+        return
+    bad = np.flatnonzero(~(np.diff(t) > 0))
+    if bad.size:
+        k = int(bad[0]) + 1
+        word = "repeats" if t[k] == t[k - 1] else "goes back before"
+        raise ValueError(f"{label}, line {lines[k][0]}: time {t[k]:.9g} s {word} the time {t[k - 1]:.9g} s of line "
+                         f"{lines[k - 1][0]}; times must increase")
 
 
 #: The phyphox export's file of START/PAUSE events, inside the folder or the zip.
@@ -222,6 +285,35 @@ def _pick_csv(names, label) -> str:
                      f"{len(top)} CSV files ({', '.join(sorted(top)[:4]) or 'none'})")
 
 
+@dataclass(frozen=True)
+class GyroRecording:
+    """A recording as read: its samples, phyphox's events and what was read (:func:`load_recording`).
+
+    Attributes
+    ----------
+    t : ndarray, shape (n,)
+        Times, s.
+    omega : ndarray, shape (n, 3)
+        rad/s, sensor axes.
+    events : tuple of (str, float)
+        START/PAUSE events (empty for a plain file).
+    read : ColumnsRead
+        Which columns were taken, in which units, how many rows (:mod:`tumble.io.gyrocolumns`).
+
+    Examples
+    --------
+    >>> from importlib import resources
+    >>> rec = load_recording(resources.files("tumble") / "examples/data/phone_toss.csv")
+    >>> rec.read.brief()   # phyphox's names; the phone's clock a little irregular
+    'Time (s), Gyroscope x, Gyroscope y, Gyroscope z (rad/s), 1500 rows at 99.9 Hz'
+    """
+
+    t: np.ndarray = field(repr=False)
+    omega: np.ndarray = field(repr=False)
+    events: tuple
+    read: ColumnsRead
+
+
 def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray, list]:
     """A whole recording: a CSV file, or a phyphox export (its folder or its ``.zip``).
 
@@ -260,6 +352,25 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
     >>> t.tolist(), omega.shape, events
     ([0.0, 0.01, 0.02], (3, 3), [('START', 0.0), ('PAUSE', 0.02)])
     """
+    rec = load_recording(path)
+    return rec.t, rec.omega, list(rec.events)
+
+
+def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
+    """:func:`read_recording`, and what was read: a :class:`GyroRecording`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     log = Path(folder) / "log.txt"   # a logger's export: comments, a header, |omega| and the accelerometer
+    ...     _ = log.write_text("# phone 1\\ntimestamp (ms) gyro_x gyro_y gyro_z acc_x acc_y acc_z |omega|\\n"
+    ...                        "0 1 0 0 0 0 9.8 1\\n2 1 0 0 0 0 9.8 1\\n4.5 1 0 0 0 0 9.8 1\\n")
+    ...     rec = load_recording(log)
+    >>> rec.t.round(6).tolist(), rec.read.time, rec.read.ignored
+    ([0.0, 0.002, 0.0045], 'timestamp (ms)', ('acc_x', 'acc_y', 'acc_z', '|omega|'))
+    """
     import zipfile
     import zlib
 
@@ -267,12 +378,14 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
     if os.path.isdir(path):
         names = [e for e in os.listdir(path) if os.path.isfile(os.path.join(path, e))]
         name = _pick_csv(names, label)
-        t, omega = read_gyro_csv(os.path.join(path, name))
+        csv_path = os.path.join(path, name)
+        raw = read_input_file(csv_path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+        t, omega, read = parse_gyro_table(raw, csv_path)
         meta = os.path.join(path, *TIME_CSV.split("/"))
         events = []
         if os.path.isfile(meta):
             events = parse_time_csv(read_input_file(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
-        return t, omega, events
+        return GyroRecording(t, omega, tuple(events), read)
     if label.lower().endswith(".zip"):
         raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a phyphox export (zip)")
         import io
@@ -294,10 +407,11 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
                     # a damaged archive (bad deflate data, a bad CRC, cut short) is bad input, not a failed computation
                     raise ValueError(f"{label}: {n} cannot be unpacked, the archive is damaged ({exc})") from None
 
-            t, omega = parse_gyro_csv(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
+            t, omega, read = parse_gyro_table(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
             events = []
             if TIME_CSV in infos:
                 events = parse_time_csv(member(TIME_CSV, 1 << 20), f"{label}/{TIME_CSV}")
-        return t, omega, events
-    t, omega = read_gyro_csv(path)
-    return t, omega, []
+        return GyroRecording(t, omega, tuple(events), read)
+    raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+    t, omega, read = parse_gyro_table(raw, label)
+    return GyroRecording(t, omega, (), read)

@@ -109,12 +109,22 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2])
     top = fig.add_subplot(grid[0, :])
     t0 = rec.t[0]
-    for k, name in enumerate("xyz"):
-        top.plot(rec.t - t0, rec.omega[:, k], lw=0.5, color=f"C{k}", label=rf"$\omega_{name}$")
+    series = rec.recordings or ((rec.t, rec.omega),)
+    shift, pos = [], 0.0  # several recordings: drawn one after another
+    for r, (t_r, w_r) in enumerate(series):
+        shift.append(pos - t_r[0])
+        for k, name in enumerate("xyz"):
+            top.plot(t_r + shift[r], w_r[:, k], lw=0.5, color=f"C{k}", label=rf"$\omega_{name}$" if r == 0 else None)
+        if len(series) > 1:
+            top.axvline(pos, color="0.3", lw=0.8)
+            top.text(pos, 1.0, f" recording {r + 1}", transform=top.get_xaxis_transform(), fontsize=7, va="bottom")
+        pos = t_r[-1] + shift[r] + 0.05 * (t_r[-1] - t_r[0])
     for toss in rec.tosses:
-        top.axvspan(toss.start - t0, toss.end - t0, color="tab:green" if toss.status == "ok" else "0.6", alpha=0.25,
+        off = shift[toss.recording]
+        top.axvspan(toss.start + off, toss.end + off, color="tab:green" if toss.status == "ok" else "0.6", alpha=0.25,
                     lw=0)
-    top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)")
+    top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)" if len(series) == 1 else
+                   "time since each recording's first sample, the recordings one after another (s)")
     top.set_ylabel("angular velocity, sensor axes (rad/s)")
     top.set_title(f"{len(rec.tosses)} flights found, {rec.tosses_used} used (green), "
                   f"{len(rec.tosses) - rec.tosses_used} skipped (grey)", fontsize=9)
@@ -123,10 +133,11 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     used = [toss for toss in rec.tosses if toss.status == "ok"]
     offset = 0.0
     for j, (toss, model) in enumerate(zip(used[:max_flights], rec.omega_models)):
-        sel = (rec.t >= toss.start) & (rec.t <= toss.end)
-        x = rec.t[sel] - toss.start + offset
+        t_r, w_r = series[toss.recording]
+        sel = (t_r >= toss.start) & (t_r <= toss.end)
+        x = t_r[sel] - toss.start + offset
         for k in range(3):
-            mid.plot(x, rec.omega[sel, k], ".", ms=1.5, color="0.45")
+            mid.plot(x, w_r[sel, k], ".", ms=1.5, color="0.45")
             mid.plot(x, model[:len(x), k], "-", lw=0.9, color=f"C{k}")
         mid.text(offset, 1.0, str(j + 1), transform=mid.get_xaxis_transform(), fontsize=7, va="bottom")
         offset = x[-1] + 0.15

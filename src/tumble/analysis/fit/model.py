@@ -13,6 +13,11 @@ coefficients divided by ``I3`` (linear: 1/s; quadratic: 1/rad) shared by every f
 flight's own
 ``omega0`` (principal frame, rad/s, at its first sample). One flight is the case ``F = 1``.
 
+Flights from several recordings (``groups``, each flight's recording): the ratios and the drag
+stay shared by all, while ``R`` and ``b`` are the recording's own (a phone strapped on again, a
+gyroscope started again): recording 0's are named ``rotvec_x`` ... ``bias_z`` as for one
+recording, recording ``r``'s ``rotvec_x[rec r]`` ... ``bias_z[rec r]``.
+
 The Jacobian is taken by forward differences, all columns in one vectorised evaluation: the
 ratios, the drag and each flight's ``omega0`` need the elliptic functions again (one body per
 perturbed parameter and flight); the rotation and the bias act on the principal-frame motion
@@ -92,6 +97,8 @@ class Model:
         each component of ``omega0`` by ``2 speed + BIAS_MAX`` and the bias by ``BIAS_MAX``
         (without, they are free: the start's search for the right basin goes through values
         beyond them).
+    groups : sequence of int, optional
+        Each flight's recording, ``0 .. G-1`` (module docstring); default all in one.
 
     Examples
     --------
@@ -103,11 +110,16 @@ class Model:
     >>> two = Model([np.linspace(0.0, 1.0, 50), np.linspace(0.0, 0.8, 40)], rotation=False, bias=False, drag="linear")
     >>> two.names[2:], two.n, two.tau.shape   # the drag shared, omega0 per flight
     (('drag_1', 'drag_2', 'drag_3', 'omega0_1[0]', 'omega0_2[0]', 'omega0_3[0]', 'omega0_1[1]', 'omega0_2[1]', 'omega0_3[1]'), 11, (2, 50))
+    >>> apart = Model([np.linspace(0.0, 1.0, 50)] * 2, rotation=False, bias=True, groups=[0, 1])
+    >>> apart.shared   # two recordings: a bias each
+    ('s', 'g', 'bias_x', 'bias_y', 'bias_z', 'bias_x[rec 1]', 'bias_y[rec 1]', 'bias_z[rec 1]')
     """
 
     def __init__(self, taus: Sequence[np.ndarray], rotation: bool, bias: bool, drag: str = "none",
-                 speeds: Sequence[float] | None = None) -> None:
+                 speeds: Sequence[float] | None = None, groups: Sequence[int] | None = None) -> None:
         self.F = len(taus)
+        self.groups = np.zeros(self.F, int) if groups is None else np.asarray(groups, int).reshape(self.F)
+        self.G = int(self.groups.max()) + 1 if self.F else 1
         self.lengths = np.array([len(t) for t in taus])
         T = int(self.lengths.max())
         self.tau = np.empty((self.F, T))
@@ -122,10 +134,9 @@ class Model:
         self.speeds = speeds
         self.hmax = _TURN_PER_STEP / speeds
         shared = ["s", "g"]
-        if rotation:
-            shared += ["rotvec_x", "rotvec_y", "rotvec_z"]
-        if bias:
-            shared += ["bias_x", "bias_y", "bias_z"]
+        for on, base in ((rotation, ("rotvec_x", "rotvec_y", "rotvec_z")), (bias, ("bias_x", "bias_y", "bias_z"))):
+            if on:
+                shared += [n if r == 0 else f"{n}[rec {r}]" for r in range(self.G) for n in base]
         shared += list(DRAG_MODELS[drag])
         self.shared = tuple(shared)
         self.ns = len(shared)
@@ -139,7 +150,7 @@ class Model:
             lo[self.index[name]] = 0.0
         if bias and bounded:
             k = self.index["bias_x"]
-            lo[k:k + 3], hi[k:k + 3] = -BIAS_MAX, BIAS_MAX
+            lo[k:k + 3 * self.G], hi[k:k + 3 * self.G] = -BIAS_MAX, BIAS_MAX
         if bounded:  # omega0 within twice the largest rate measured
             cap = np.repeat(2.0 * self.speeds + BIAS_MAX, 3)
             lo[self.ns:], hi[self.ns:] = -cap, cap
@@ -148,7 +159,8 @@ class Model:
     # -- the parameter vector ------------------------------------------------------------------
     def pack(self, s: float, g: float, rotvec: ArrayLike, bias: ArrayLike, omega0: ArrayLike,
              drag: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
-        """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers).
+        """A parameter vector from its parts (``omega0`` of shape (F, 3), ``drag`` 3 numbers;
+        ``rotvec`` and ``bias`` 3 numbers, or shape (G, 3) for several recordings).
 
         Examples
         --------
@@ -160,9 +172,9 @@ class Model:
         """
         P = [s, g]
         if self.rotation:
-            P += list(np.asarray(rotvec, float))
+            P += list(np.broadcast_to(np.asarray(rotvec, float).reshape(-1, 3), (self.G, 3)).ravel())
         if self.bias:
-            P += list(np.asarray(bias, float))
+            P += list(np.broadcast_to(np.asarray(bias, float).reshape(-1, 3), (self.G, 3)).ravel())
         if self.drag != "none":
             P += list(np.asarray(drag, float))
         return np.concatenate([np.array(P, float), np.asarray(omega0, float).reshape(-1)])
@@ -181,8 +193,9 @@ class Model:
         """
         return float(P[self.index[name]]) if name in self.index else default
 
-    def rotation_matrix(self, P: np.ndarray) -> np.ndarray:
-        """The rotation from the sensor's axes to the principal axes (the identity where it is not fitted).
+    def rotation_matrix(self, P: np.ndarray, group: int = 0) -> np.ndarray:
+        """The rotation from the sensor's axes to the principal axes (the identity where it is not
+        fitted), of recording ``group``.
 
         Examples
         --------
@@ -195,11 +208,11 @@ class Model:
         """
         if not self.rotation:
             return np.eye(3)
-        k = self.index["rotvec_x"]
+        k = self.index["rotvec_x"] + 3 * group
         return rotvec_matrix(P[k:k + 3])
 
-    def bias_vector(self, P: np.ndarray) -> np.ndarray:
-        """The sensor's bias, rad/s (zeros where it is not fitted).
+    def bias_vector(self, P: np.ndarray, group: int = 0) -> np.ndarray:
+        """The sensor's bias, rad/s (zeros where it is not fitted), of recording ``group``.
 
         Examples
         --------
@@ -211,7 +224,7 @@ class Model:
         """
         if not self.bias:
             return np.zeros(3)
-        k = self.index["bias_x"]
+        k = self.index["bias_x"] + 3 * group
         return np.asarray(P[k:k + 3], float)
 
     def drag_vector(self, P: np.ndarray) -> np.ndarray:
@@ -309,7 +322,36 @@ class Model:
         True
         """
         wp = self.principal(P) if principal is None else principal
-        return wp @ self.rotation_matrix(P) + self.bias_vector(P)
+        if self.G == 1:
+            return wp @ self.rotation_matrix(P) + self.bias_vector(P)
+        R, b = self._per_flight(P)
+        return np.einsum("ftk,fkl->ftl", wp, R) + b[:, None, :]
+
+    def _per_flight(self, P: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Each flight's rotation (F, 3, 3) and bias (F, 3), from its recording's."""
+        R = np.array([self.rotation_matrix(P, r) for r in range(self.G)])
+        b = np.array([self.bias_vector(P, r) for r in range(self.G)])
+        return R[self.groups], b[self.groups]
+
+    def flight_parameters(self, j: int) -> np.ndarray:
+        """The indices into ``P`` of flight ``j``'s parameters as a one-flight model's (its
+        recording's rotation and bias, the shared ratios and drag, its ``omega0``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> model = Model([np.linspace(0.0, 1.0, 50)] * 3, rotation=False, bias=True, groups=[0, 1, 1])
+        >>> [model.names[i] for i in model.flight_parameters(2)]
+        ['s', 'g', 'bias_x[rec 1]', 'bias_y[rec 1]', 'bias_z[rec 1]', 'omega0_1[2]', 'omega0_2[2]', 'omega0_3[2]']
+        """
+        r = int(self.groups[j])
+        idx = [0, 1]
+        for on, name in ((self.rotation, "rotvec_x"), (self.bias, "bias_x")):
+            if on:
+                idx += list(range(self.index[name] + 3 * r, self.index[name] + 3 * r + 3))
+        idx += [self.index[n] for n in DRAG_MODELS[self.drag]]
+        return np.array(idx + list(range(self.ns + 3 * j, self.ns + 3 * j + 3)))
 
     def jacobian(self, P: np.ndarray, mask: np.ndarray,
                  principal: np.ndarray | None = None) -> np.ndarray | sparse.csr_matrix:
@@ -336,7 +378,12 @@ class Model:
         _lo, hi = self.bounds
         h = 1e-7 * np.maximum(1.0, np.abs(P))
         h = np.where(P + h > hi, -h, h)  # step into the box at an upper bound
-        R = self.rotation_matrix(P)
+        one = self.G == 1
+        R = self.rotation_matrix(P) if one else self._per_flight(P)[0]
+
+        def turn(x, M):  # x (F', T, 3) into the sensor's axes by M (3, 3) or per flight (F', 3, 3)
+            return x @ M if M.ndim == 2 else np.einsum("ftk,fkl->ftl", x, M)
+
         wp = self.principal(P) if principal is None else principal
         base_phys = self._physics(P)
         w0 = self.omega0(P)
@@ -358,37 +405,44 @@ class Model:
             rows.append(np.arange(F))
         out = self._principal(np.vstack(sets_phys), np.vstack(sets_w0), np.concatenate(rows))
         out = out.reshape(len(phys_cols) + 3, F, T, 3)
-        cols = {}  # column -> derivative of the sensor samples, (F, T, 3)
+        every = np.arange(F)
+        cols = {}  # column -> (its flights, derivative of their sensor samples (F', T, 3))
         for i, col in enumerate(phys_cols):
-            cols[col] = ((out[i] - wp) @ R) / h[col]
-        if self.rotation:
-            k0 = self.index["rotvec_x"]
-            for k in range(3):
-                Pk = P.copy()
-                Pk[k0 + k] += h[k0 + k]
-                cols[k0 + k] = (wp @ (self.rotation_matrix(Pk) - R)) / h[k0 + k]
-        if self.bias:
-            k0 = self.index["bias_x"]
-            for k in range(3):
-                d = np.zeros((F, T, 3))
-                d[:, :, k] = 1.0
-                cols[k0 + k] = d
-        d_w0 = [((out[len(phys_cols) + k] - wp) @ R) / h[self.ns + 3 * np.arange(F) + k][:, None, None]
+            cols[col] = (every, turn(out[i] - wp, R) / h[col])
+        for r in range(self.G):
+            mine = every if one else np.flatnonzero(self.groups == r)
+            if self.rotation:
+                k0 = self.index["rotvec_x"] + 3 * r
+                Rr = self.rotation_matrix(P, r)
+                for k in range(3):
+                    Pk = P.copy()
+                    Pk[k0 + k] += h[k0 + k]
+                    cols[k0 + k] = (mine, (wp[mine] @ (self.rotation_matrix(Pk, r) - Rr)) / h[k0 + k])
+            if self.bias:
+                k0 = self.index["bias_x"] + 3 * r
+                for k in range(3):
+                    d = np.zeros((len(mine), T, 3))
+                    d[:, :, k] = 1.0
+                    cols[k0 + k] = (mine, d)
+        d_w0 = [turn(out[len(phys_cols) + k] - wp, R) / h[self.ns + 3 * np.arange(F) + k][:, None, None]
                 for k in range(3)]
         if F == 1:
             J = np.empty((int(mask.sum()), self.n))
-            for col, d in cols.items():
+            for col, (_, d) in cols.items():
                 J[:, col] = d[mask]
             for k in range(3):
                 J[:, self.ns + k] = d_w0[k][mask]
             return J
-        # sparse: shared columns everywhere, a flight's omega0 columns on its own rows
+        # sparse: shared columns on their flights' rows, a flight's omega0 columns on its own rows
         flight = np.broadcast_to(np.arange(F)[:, None, None], mask.shape)[mask]
         m = int(mask.sum())
+        row_of = np.full(mask.shape, -1)
+        row_of[mask] = np.arange(m)
         data, ri, ci = [], [], []
         row = np.arange(m)
-        for col, d in cols.items():
-            data.append(d[mask]), ri.append(row), ci.append(np.full(m, col))
+        for col, (fl, d) in cols.items():
+            sub = mask[fl]
+            data.append(d[sub]), ri.append(row if len(fl) == F else row_of[fl][sub]), ci.append(np.full(int(sub.sum()), col))
         for k in range(3):
             data.append(d_w0[k][mask]), ri.append(row), ci.append(self.ns + 3 * flight + k)
         return sparse.csr_matrix((np.concatenate(data), (np.concatenate(ri), np.concatenate(ci))), shape=(m, self.n))

@@ -1,10 +1,11 @@
-"""A whole recording: its free flights fitted one by one and jointly (:func:`fit_recording`).
+"""A whole recording, or several of one body: free flights fitted one by one and jointly (:func:`fit_recording`).
 
 The flights (:func:`~tumble.analysis.fit.flights.find_flights`) share the body and the sensor,
-so the joint model (:class:`~tumble.analysis.fit.model.Model` with ``F`` flights) shares the
-ratios, the sensor's rotation and bias and the drag, and gives each flight its own ``omega0``.
-It starts from the flight whose ratios are nearest the flights' medians (the others' ``omega0``
-turned into its principal frame) and keeps the drag model most flights chose.
+so the joint model (:func:`~tumble.analysis.fit.joint.joint_solution`) shares the ratios and the
+drag over every flight, the sensor's rotation and bias over the flights of one recording, and
+gives each flight its own ``omega0``. Several recordings (a list of them) are pooled in one joint
+fit: the ratios and the drag shared by all, the rotation and the bias each recording's own (a
+phone strapped on again, a gyroscope started again).
 
 The pooled uncertainty: the joint fit's covariance (each flight's residuals scaled for their own
 autocorrelation; flights independent of one another), its statistical part multiplied by the
@@ -21,13 +22,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy.optimize import least_squares
-from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
 from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights, pause_times
-from .model import Model
+from .joint import first_flight_view, joint_solution, stack_flights
 from .result import (
     RotationFit,
     public_covariance,
@@ -36,7 +35,7 @@ from .result import (
     solution_adequacy,
 )
 from .single import _check, _check_options, saturation_mask
-from .solve import Solution, solve
+from .solve import Solution
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
 
 __all__ = ["NoFlightError", "RecordingFit", "Toss", "fit_recording"]
@@ -77,6 +76,8 @@ class Toss:
     reason : str
     fit : RotationFit or None
         The flight's own fit (None when there was none).
+    recording : int
+        The recording it is in: its index in the list given to :func:`fit_recording` (0 for one).
 
     Examples
     --------
@@ -94,6 +95,7 @@ class Toss:
     status: str
     reason: str
     fit: RotationFit | None = field(default=None, repr=False)
+    recording: int = 0
 
     def summary(self) -> dict:
         """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None).
@@ -124,17 +126,26 @@ class RecordingFit:
     Attributes
     ----------
     tosses : tuple of Toss
-        Every flight found, usable or not, in time order.
+        Every flight found, usable or not, in time order (recording after recording).
     pooled : RotationFit
         The joint fit's ratios, sensor rotation, bias and drag (its ``omega0`` and
-        ``omega_model`` are those of the first flight used).
+        ``omega_model`` are those of the first flight used, its rotation and bias those of that
+        flight's recording).
     chi2_dof : float
         ``chi^2 / dof`` of the flights' ratios about the pooled ones (statistical uncertainties).
     tosses_used : int
     t, omega : ndarray
-        The whole recording (s; rad/s, sensor axes).
+        The whole recording (s; rad/s, sensor axes); of several, the first.
     omega_models : tuple of ndarray
         The joint model at each used flight's samples, sensor axes, rad/s.
+    recordings : tuple of (ndarray, ndarray)
+        Every recording's ``(t, omega)`` (one for a single recording).
+    ssr : float
+        The joint fit's sum of squared residuals over the used flights' samples, (rad/s)^2 (the
+        flights' own fits' sum where no joint fit was made); its minus log-likelihood up to the
+        noise's variance, to compare fits of the same samples.
+    residuals : int
+        The number of residuals in ``ssr`` (samples times kept axes).
 
     Examples
     --------
@@ -154,9 +165,16 @@ class RecordingFit:
     t: np.ndarray = field(repr=False)
     omega: np.ndarray = field(repr=False)
     omega_models: tuple = field(default=(), repr=False)
+    recordings: tuple = field(default=(), repr=False)
+    ssr: float = field(default=float("nan"), repr=False)
+    residuals: int = field(default=0, repr=False)
 
     def summary(self) -> dict:
         """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"`` and ``"pooled"``.
+
+        ``"pooled"`` says what the joint fit shares: ``"shared"`` by every flight,
+        ``"per_recording"`` (the sensor's rotation and bias, when several recordings are pooled)
+        and ``"per_flight"``.
 
         Examples
         --------
@@ -179,23 +197,35 @@ class RecordingFit:
                          "I2_over_I3_interval": [float(v) for v in p.ratios_interval[1]],
                          "edge": p.edge, "tosses_used": int(self.tosses_used),
                          "chi2_dof": float(self.chi2_dof) if np.isfinite(self.chi2_dof) else None}
+        mount = ["sensor_rotation"] if p.rotvec_std is not None else []
+        mount += ["bias"] if p.bias_std is not None else []
+        several = len(self.recordings) > 1
+        out["pooled"].update({"recordings": max(1, len(self.recordings)),
+                              "shared": ["I1_over_I3", "I2_over_I3", "drag", *([] if several else mount)],
+                              "per_recording": mount if several else [], "per_flight": ["omega0"]})
         return out
 
 
-def fit_recording(t: ArrayLike, omega_measured: ArrayLike, *, events: Sequence[tuple[str, float]] | None = None, sensor_rotation: str = "fit", bias: bool = True,
+def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | None = None, *,
+                  events: Sequence[tuple[str, float]] | None = None, sensor_rotation: str = "fit", bias: bool = True,
                   drag: str = "auto", saturation: float | None = None,
                   scale_uncertainty: float = SCALE_UNCERTAINTY, min_spin: float = 3.0, max_std: float = 0.1,
                   progress: Callable[[int, int], None] | None = None) -> RecordingFit:
-    """Find the free flights of a whole recording, fit each, and fit them jointly.
+    """Find the free flights of a whole recording (or of several), fit each, and fit them jointly.
 
     Parameters
     ----------
-    t : array_like, shape (n,)
-        Sample times, s, strictly increasing (phyphox's experiment time).
+    t : array_like, shape (n,), or list of recordings
+        Sample times, s, strictly increasing (phyphox's experiment time). Or, with
+        ``omega_measured`` left out, several recordings of one body: a list of ``(t, omega)`` or
+        ``(t, omega, events)``, pooled in one joint fit (module docstring): the ratios and the
+        drag shared by every flight, the sensor's rotation and bias by the flights of each
+        recording, ``omega0`` each flight's own.
     omega_measured : array_like, shape (n, 3)
         Gyroscope samples, sensor axes, rad/s.
     events : list of (str, float), optional
-        phyphox's START/PAUSE events (``meta/time.csv``), experiment time in s.
+        phyphox's START/PAUSE events (``meta/time.csv``), experiment time in s (one recording;
+        for several, each recording's third item).
     sensor_rotation, bias, drag, saturation, scale_uncertainty
         As for :func:`tumble.analysis.fit.fit_rotation`.
     min_spin : float
@@ -208,11 +238,13 @@ def fit_recording(t: ArrayLike, omega_measured: ArrayLike, *, events: Sequence[t
     Returns
     -------
     RecordingFit
+        Each :class:`Toss` names its recording (``Toss.recording``, the index in the list).
 
     Raises
     ------
     ValueError
-        Bad input (as :func:`~tumble.analysis.fit.fit_rotation`).
+        Bad input (as :func:`~tumble.analysis.fit.fit_rotation`; of several recordings, naming
+        which).
     NoFlightError
         No usable flight (a ``ValueError`` too): one line saying what was found and why each was
         skipped.
@@ -224,42 +256,97 @@ def fit_recording(t: ArrayLike, omega_measured: ArrayLike, *, events: Sequence[t
     >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)
     >>> fit.tosses_used, bool(abs(fit.pooled.ratios[1] - rec.ratios[1]) < 3 * fit.pooled.ratios_std[1])
     (3, True)
+
+    Two recordings of one body, pooled (a phone strapped on anew: its own mount and bias):
+
+    >>> a, b = synthetic_recording(11, tosses=2, flight=(0.5, 0.8)), synthetic_recording(12, tosses=1, flight=(0.5, 0.8))
+    >>> both = fit_recording([(a.t, a.omega, a.events), (b.t, b.omega, b.events)])
+    >>> both.tosses_used, [toss.recording for toss in both.tosses], both.summary()["pooled"]["per_recording"]
+    (3, [0, 0, 1], ['sensor_rotation', 'bias'])
     """
     _check_options(sensor_rotation, drag, saturation, scale_uncertainty)
-    t, omega = _check(t, omega_measured)
-    keep, rail = saturation_mask(omega, saturation)
+    recordings = _recordings(t, omega_measured, events)
     rotation = sensor_rotation == "fit"
-    flights = find_flights(t, omega, events=events, saturation=rail, min_spin=min_spin, max_std=max_std,
-                           drag=drag, rotation=rotation, bias=bool(bias), progress=progress,
-                           scale_uncertainty=scale_uncertainty)
-    tosses = tuple(_toss(f, t, omega, keep) for f in flights)
+    parts, flights, groups, offset, done = [], [], [], 0, [0]
+    for r, (t_r, w_r, ev_r) in enumerate(recordings):
+        try:
+            t_r, w_r = _check(t_r, w_r)
+        except ValueError as err:
+            raise (ValueError(f"recording {r}: {err}") if len(recordings) > 1 else err) from None
+        keep_r, rail = saturation_mask(w_r, saturation)
+        base = done[0]
+
+        def step(k, total, base=base):
+            done[0] = base + total
+            if progress is not None:
+                progress(base + k, base + total)
+
+        found = find_flights(t_r, w_r, events=ev_r, saturation=rail, min_spin=min_spin, max_std=max_std,
+                             drag=drag, rotation=rotation, bias=bool(bias), progress=step,
+                             scale_uncertainty=scale_uncertainty)
+        flights += [replace(f, first=f.first + offset, stop=f.stop + offset) for f in found]
+        groups += [r] * len(found)
+        parts.append((t_r, w_r, keep_r, ev_r))
+        offset += len(t_r)
+    t, omega, keep = (np.concatenate([p[k] for p in parts]) for k in range(3))
+    series = tuple((p[0], p[1]) for p in parts)
+    tosses = tuple(_toss(f, t, omega, keep, r) for f, r in zip(flights, groups))
     used = [f for f in flights if f.status == "ok"]
     if not used:
         if not flights:
+            where = f"{len(t)} samples over {parts[0][0][-1] - parts[0][0][0]:.3g} s" if len(parts) == 1 else \
+                f"{len(t)} samples in {len(parts)} recordings"
+            pauses = sum(len(pause_times(p[3])) for p in parts)
             raise NoFlightError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
-                             f"({len(t)} samples over {t[-1] - t[0]:.3g} s, {len(pause_times(events))} pauses)")
+                                f"({where}, {pauses} pauses)")
         why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
         raise NoFlightError(f"no usable flight among {len(flights)} found: "
-                         + ", ".join(f"{n} {r}" for r, n in why.most_common()))
+                            + ", ".join(f"{n} {r}" for r, n in why.most_common()))
+    t0, w0 = series[0]
     if len(used) == 1:
         only = next(toss for toss in tosses if toss.status == "ok")
-        return RecordingFit(tosses, only.fit, float("nan"), 1, t, omega, (only.fit.omega_model,))
-    joint, models, outliers = _joint(used, t, omega, keep, drag, scale_uncertainty)
+        sol = used[0].solution
+        return RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series, sol.ssr, sol.m)
+    used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
+    joint, models, outliers = joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
     split = _split_verdict(used, outliers)
     if outliers:
         bad = {id(used[j]) for j in outliers}
         tosses = tuple(
-            Toss(toss.start, toss.end, toss.samples, "skipped",
-                 "disagrees with the other flights: its own ratios lie more than five standard uncertainties "
-                 f"from theirs (I1/I3 = {toss.fit.ratios[0]:.4f}, I2/I3 = {toss.fit.ratios[1]:.4f})", toss.fit)
+            replace(toss, status="skipped", reason=(
+                "disagrees with the other flights: its own ratios lie more than five standard uncertainties "
+                f"from theirs (I1/I3 = {toss.fit.ratios[0]:.4f}, I2/I3 = {toss.fit.ratios[1]:.4f})"))
             if id(f) in bad else toss for toss, f in zip(tosses, flights))
         used = [f for f in used if id(f) not in bad]
     fit = _weighted(used, tosses, t, omega, keep) if joint is None else \
         _pooled(joint, used, tosses, t, omega, keep, models)
+    fit = replace(fit, t=t0, omega=w0, recordings=series)
     if split:
         warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
         fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
     return fit
+
+
+def _recordings(t, omega, events) -> list:
+    """``[(t, omega, events), ...]``: the one recording, or the list given (``omega`` None)."""
+    if omega is not None:
+        return [(t, omega, events)]
+    if events is not None:
+        raise ValueError("events go with each recording of a list, as its third item, not as events=")
+    try:
+        items = list(t)
+    except TypeError:
+        raise ValueError("omega_measured is missing: give t and omega_measured, or a list of recordings "
+                         "(t, omega) or (t, omega, events)") from None
+    if not items:
+        raise ValueError("an empty list of recordings; give at least one (t, omega) or (t, omega, events)")
+    out = []
+    for r, item in enumerate(items):
+        if not isinstance(item, (tuple, list)) or len(item) not in (2, 3):
+            raise ValueError(f"recording {r}: expected (t, omega) or (t, omega, events), got "
+                             f"{type(item).__name__}" + (f" of {len(item)} items" if isinstance(item, (tuple, list)) else ""))
+        out.append((item[0], item[1], item[2] if len(item) == 3 else None))
+    return out
 
 
 #: Share of the fitted flights that may disagree with the others before the recording counts as
@@ -279,82 +366,12 @@ def _split_verdict(used, outliers) -> str:
             "or the phone moved on it; fit each group apart (--start/--end)")
 
 
-def _toss(f: Flight, t, omega, keep) -> Toss:
+def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
     fit = None
     if f.solution is not None and f.status == "ok":
         sl = slice(f.first, f.stop)
         fit = rotation_fit(f.solution, t[sl], omega[sl], keep[sl])
-    return Toss(f.start, f.end, f.samples, f.status, f.reason, fit)
-
-
-def _joint(used, t, omega, keep, drag, scale_uncertainty):
-    """The joint solution over the used flights (module docstring), the joint model at each
-    flight, and the indices of the flights that disagree grossly with the others (their own
-    ratios more than five standard uncertainties from the reference flight's): left out.
-    The solution is None when fewer than two flights agree or the joint fit went astray."""
-    sols = [f.solution for f in used]
-    rat = np.array([ratio_summary(s)[0] for s in sols])
-    ref = int(np.argmin(np.sum((rat - np.median(rat, axis=0)) ** 2, axis=1)))
-    kinds = Counter(s.model.drag for s in sols)
-    kind = drag if drag != "auto" else kinds.most_common(1)[0][0]
-    m_ref, P_ref = sols[ref].model, sols[ref].P
-    R_ref = m_ref.rotation_matrix(P_ref)
-    taus, data, mask, speeds = [], [], [], []
-    for f in used:
-        sl = slice(f.first, f.stop)
-        taus.append(t[sl] - f.anchor)
-        speeds.append(float(np.max(np.linalg.norm(omega[sl], axis=1))))
-    model = Model(taus, m_ref.rotation, m_ref.bias, kind, speeds)
-    data, mask = _stack(used, omega, keep)
-    w0 = np.array([R_ref @ s.model.rotation_matrix(s.P).T @ s.model.omega0(s.P)[0] for s in sols])
-    same = [s.model.drag_vector(s.P) for s in sols if s.model.drag == kind]
-    drag0 = np.median(same, axis=0) if same and kind != "none" else np.zeros(3)
-    rv = Rotation.from_matrix(R_ref).as_rotvec() if m_ref.rotation else np.zeros(3)
-    P0 = model.pack(P_ref[0], P_ref[1], rv, m_ref.bias_vector(P_ref), w0, drag0)
-    # each flight's omega0 refitted under the shared parameters: near the separatrix another
-    # flight's ratios move a flight onto another mode, and its own omega0 must follow
-    agree = []
-    for j, f in enumerate(used):
-        n = f.stop - f.first
-        one = Model([model.tau[j, :n]], model.rotation, model.bias, kind, model.speeds[j:j + 1])
-        shared = P0[:model.ns]
-
-        def fun(w, one=one, j=j, n=n, shared=shared):
-            return (one.sensor(np.concatenate([shared, w]))[0] - data[j, :n])[mask[j, :n]]
-
-        with np.errstate(all="ignore"):
-            fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
-        P0[model.ns + 3 * j:model.ns + 3 * j + 3] = fitted.x
-        # a gross outlier: its own ratios five standard uncertainties (its own and the
-        # reference's, statistical) from the reference's; the Birge ratio deals with the rest
-        dv = rat[j] - rat[ref]
-        C = public_covariance(sols[j], statistical=True)[2][:2, :2] + \
-            public_covariance(sols[ref], statistical=True)[2][:2, :2]
-        agree.append(bool(dv @ np.linalg.pinv(C) @ dv <= 25.0))
-    keep_idx = [j for j, ok in enumerate(agree) if ok]
-    if len(keep_idx) < len(used):
-        if len(keep_idx) < 2:
-            return None, [], [j for j in range(len(used)) if not agree[j]]
-        sub = [used[j] for j in keep_idx]
-        sol, models, _ = _joint(sub, t, omega, keep, drag, scale_uncertainty)
-        return sol, models, [j for j in range(len(used)) if not agree[j]]
-    sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
-    own = np.sqrt(sum(s.ssr for s in sols) / sum(s.m for s in sols))
-    if np.sqrt(sol.ssr / sol.m) > 2.0 * own + 0.01 * np.sqrt(np.mean(data[mask] ** 2)):
-        return None, [], []  # the joint fit went astray: the caller pools the flights' own fits
-    return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)], []
-
-
-def _stack(used, omega, keep):
-    """The used flights' samples and kept axes laid out as a joint model's, shape ``(F, T, 3)``."""
-    T = max(f.stop - f.first for f in used)
-    data = np.zeros((len(used), T, 3))
-    mask = np.zeros((len(used), T, 3), bool)
-    for j, f in enumerate(used):
-        n = f.stop - f.first
-        data[j, :n] = omega[f.first:f.stop]
-        mask[j, :n] = keep[f.first:f.stop]
-    return data, mask
+    return Toss(f.start, f.end, f.samples, f.status, f.reason, fit, recording)
 
 
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
@@ -372,26 +389,14 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
                         sol.undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
     first = used[0]
     sl = slice(first.first, first.stop)
-    one = _first_flight_view(inflated)
+    one = first_flight_view(inflated)
     pooled = rotation_fit(one, t[sl], omega[sl], keep[sl])
     # judged on all the flights' residuals, not the first flight's view of them
-    verdict = solution_adequacy(sol, *_stack(used, omega, keep))
+    verdict = solution_adequacy(sol, *stack_flights(used, omega, keep))
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
-    return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models))
-
-
-def _first_flight_view(sol: Solution) -> Solution:
-    """The joint solution seen as a one-flight solution (its first flight's omega0 and samples),
-    so that :func:`rotation_fit` reports the shared parameters with their pooled covariance."""
-    m = sol.model
-    keep = list(range(m.ns + 3))
-    n = int(m.lengths[0])
-    one = Model([m.tau[0, :n]], m.rotation, m.bias, m.drag, m.speeds[:1])
-    undetermined = tuple(name for name in sol.undetermined if name in one.names)
-    return Solution(one, sol.P[keep], sol.cov[np.ix_(keep, keep)], sol.cov_stat[np.ix_(keep, keep)],
-                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
+    return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
 
 
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
@@ -415,4 +420,5 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
                    [max(0.5, mean[1] - 1.96 * std[1]), min(1.0, mean[1] + 1.96 * std[1])]])
     pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None)
     return RecordingFit(tosses, pooled, chi2 / dof if len(used) > 1 else float("nan"), len(used), t, omega,
-                        tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"))
+                        tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"), (),
+                        float(sum(f.solution.ssr for f in used)), int(sum(f.solution.m for f in used)))

@@ -128,8 +128,9 @@ def _undetermined(J, names) -> list[int]:
         if vals[0] >= RANK_TOL ** 2 * vals[-1]:
             break
         v = np.abs(vecs[:, 0])
-        cand = [i for i, k in enumerate(keep) if names[k] in _FIXABLE or names[k].startswith("omega0")]
-        i = max(cand, key=lambda i: (v[i], -_FIXABLE.index(names[keep[i]]) if names[keep[i]] in _FIXABLE else -99))
+        base = [names[k].split("[")[0] for k in keep]  # "bias_x[rec 1]": another recording's bias_x
+        cand = [i for i in range(len(keep)) if base[i] in _FIXABLE or base[i].startswith("omega0")]
+        i = max(cand, key=lambda i: (v[i], -_FIXABLE.index(base[i]) if base[i] in _FIXABLE else -99))
         fixed.append(keep.pop(i))
     return fixed
 

@@ -1,0 +1,192 @@
+"""Which columns of a gyroscope table are the time and the three rates: by their header names.
+
+A header cell is a name and, in brackets or parentheses at its end, a unit: ``"Time (s)"``,
+``"gyro_x [deg/s]"``. The name is compared in lower case with spaces, ``_``, ``-`` and ``.``
+alike (``gyro_x``, ``Gyro X`` and ``gyro-x`` are one name):
+
+- **time**: ``t``, ``time``, ``timestamp``, ``time stamp``, ``elapsed``, ``elapsed time``,
+  ``seconds elapsed``; its unit s (default), ms, us or ns;
+- **rate** about axis ``x`` (``y``, ``z`` alike): ``x``, ``wx``, ``gx``, ``omega x``, ``gyro x``,
+  ``gyroscope x``, ``rate x``, ``rotation rate x``, ``angular velocity x`` (a space, or none,
+  before the axis; ``x axis`` too); unit rad/s (default), deg/s, dps, rpm, rev/s or Hz;
+- **ignored**, and named as such: the other sensors' axes (``ax``, ``acc_x``, ``accel x``,
+  ``acceleration x``, ``linear acceleration x``, ``gravity x``, ``mag x``, ``magnetic field x``),
+  magnitudes (``|omega|``, ``abs``, ``absolute``, ``norm``, ``magnitude``) and any other name.
+
+A header with no time column, two, or not one rate column for each axis is refused in one line
+naming the file, the header and the names allowed.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["RATE_UNITS", "TIME_UNITS", "ColumnsRead", "match_header"]
+
+#: Units a header may name for the time, and their factor to s.
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6, "ns": 1e-9}
+#: Units a header may name for a rate, and their factor to rad/s.
+RATE_UNITS = {"rad/s": 1.0, "deg/s": np.pi / 180, "\u00b0/s": np.pi / 180, "dps": np.pi / 180,
+              "rpm": 2 * np.pi / 60, "rev/s": 2 * np.pi, "hz": 2 * np.pi}
+
+_UNIT = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]\s*$")
+_TIME = {"t", "time", "timestamp", "time stamp", "elapsed", "elapsed time", "seconds elapsed"}
+_RATE = re.compile(r"^(?:(?:w|g|omega|gyro|gyroscope|rate|rotation rate|angular velocity|angular rate) ?)?"
+                   r"([xyz])(?: axis)?$")
+_OTHER = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|linear acceleration|lin acc|gravity|m|mag|"
+                    r"magnetometer|magnetic field|b) ?[xyz](?: axis)?$")
+_MAGNITUDE = re.compile(r"^(?:\|.*\||abs|absolute|norm|magnitude|total)$")
+_ALLOWED = ("time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x "
+            "(rad/s, deg/s, rpm, rev/s, Hz), y and z alike")
+
+
+@dataclass(frozen=True)
+class ColumnsRead:
+    """What was read from a gyroscope table: which columns, in which units, how many rows.
+
+    Attributes
+    ----------
+    file : str
+        The file (a zip's member as ``archive.zip/member``).
+    time : str
+        The time column as its header names it (``"column 1"`` without a header).
+    time_unit : str
+        Its unit, converted to s.
+    rates : tuple of str
+        The x, y, z rate columns as named.
+    rate_units : tuple of str
+        Their units, converted to rad/s.
+    ignored : tuple of str
+        The columns left out (``"column 5 (|omega|)"`` without a header).
+    rows : int
+        Data rows read.
+    sample_rate : float
+        The median of ``1 / (t[k+1] - t[k])``, Hz.
+
+    Examples
+    --------
+    >>> from tumble.io.gyrocolumns import ColumnsRead
+    >>> read = ColumnsRead("toss.csv", "t", "s", ("wx", "wy", "wz"), ("rad/s",) * 3, ("|omega|",), 1500, 100.0)
+    >>> read.summary()["rates"], read.brief()
+    (['wx', 'wy', 'wz'], 't (s), wx, wy, wz (rad/s), 1 ignored, 1500 rows at 100 Hz')
+    """
+
+    file: str
+    time: str
+    time_unit: str
+    rates: tuple
+    rate_units: tuple
+    ignored: tuple
+    rows: int
+    sample_rate: float
+
+    def summary(self) -> dict:
+        """JSON-ready (fit.json's ``"read"``).
+
+        Examples
+        --------
+        >>> from tumble.io.gyrocolumns import ColumnsRead
+        >>> ColumnsRead("a.csv", "column 1", "s", ("column 2", "column 3", "column 4"), ("rad/s",) * 3, (), 2, 50.0).summary()["time"]
+        {'column': 'column 1', 'unit': 's'}
+        """
+        return {"file": self.file, "time": {"column": self.time, "unit": self.time_unit},
+                "rates": list(self.rates), "rate_units": list(self.rate_units), "ignored": list(self.ignored),
+                "rows": int(self.rows), "sample_rate_median_hz": float(self.sample_rate)
+                if np.isfinite(self.sample_rate) else None}
+
+    def brief(self) -> str:
+        """A few words for the command's one line.
+
+        Examples
+        --------
+        >>> from tumble.io.gyrocolumns import ColumnsRead
+        >>> ColumnsRead("a.csv", "Time", "ms", ("gx", "gy", "gz"), ("deg/s",) * 3, (), 900, 400.0).brief()
+        'Time (ms), gx, gy, gz (deg/s), 900 rows at 400 Hz'
+        """
+        def bare(cell):
+            match = _UNIT.search(cell)
+            return cell[:match.start()].strip() if match else cell
+
+        units = self.rate_units[0] if len(set(self.rate_units)) == 1 else "/".join(self.rate_units)
+        ignored = f", {len(self.ignored)} ignored" if self.ignored else ""
+        return (f"{bare(self.time)} ({self.time_unit}), {', '.join(bare(r) for r in self.rates)} ({units}){ignored}, "
+                f"{self.rows} rows at {self.sample_rate:.3g} Hz")
+
+
+def _name(cell: str) -> tuple[str, str | None]:
+    """A header cell's name (lower case, separators as one space) and its unit (or None)."""
+    match = _UNIT.search(cell)
+    unit = match.group(1).strip() if match else None
+    name = cell[:match.start()] if match else cell
+    return re.sub(r"[\s_\-.:]+", " ", name.strip().lower()).strip(), unit
+
+
+def _factor(cell: str, unit: str | None, table: dict, label: str, line: int, column: int) -> tuple[float, str]:
+    if unit is None:
+        return 1.0, next(iter(table))
+    key = unit.lower().replace(" ", "")
+    if key not in table:
+        raise ValueError(f"{label}, line {line}, column {column}: unknown unit {unit!r} in header "
+                         f"{cell!r}; use one of {', '.join(k for k in table if k.isascii())}")
+    return float(table[key]), unit
+
+
+def match_header(head: list[str], label: str, line: int) -> tuple[list[int], list[float], dict]:
+    """The columns of the time and the x, y, z rates in a header line, their factors to SI and
+    what they are (module docstring).
+
+    Returns
+    -------
+    columns : list of int
+        Indices of the time, x, y, z columns.
+    scale : list of float
+        Their factors to s and rad/s.
+    names : dict
+        ``time``, ``time_unit``, ``rates``, ``rate_units``, ``ignored``: as :class:`ColumnsRead`.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, the line, the header and what is allowed.
+
+    Examples
+    --------
+    >>> from tumble.io.gyrocolumns import match_header
+    >>> columns, scale, names = match_header(["time (ms)", "acc_x", "gyro_x [deg/s]", "gyro_y [deg/s]", "gyro_z [deg/s]", "|omega|"], "a.csv", 1)
+    >>> columns, names["ignored"]
+    ([0, 2, 3, 4], ['acc_x', '|omega|'])
+    >>> match_header(["t", "ax", "ay", "az"], "a.csv", 1)
+    Traceback (most recent call last):
+    ...
+    ValueError: a.csv, line 1: header 't, ax, ay, az' has no rate column for x; allowed: time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x (rad/s, deg/s, rpm, rev/s, Hz), y and z alike
+    """
+    parsed = [_name(cell) for cell in head]
+    shown = ", ".join(head)
+    if len(shown) > 160:
+        shown = shown[:157] + "..."
+    times = [j for j, (n, _) in enumerate(parsed) if n in _TIME]
+    axes: dict[str, list[int]] = {"x": [], "y": [], "z": []}
+    for j, (n, _) in enumerate(parsed):
+        m = _RATE.match(n)
+        if m and not _OTHER.match(n):
+            axes[m.group(1)].append(j)
+    if len(times) != 1:
+        what = "no time column" if not times else \
+            f"{len(times)} time columns ({', '.join(repr(head[j]) for j in times)}); keep one"
+        raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
+    for axis, found in axes.items():
+        if len(found) != 1:
+            what = f"no rate column for {axis}" if not found else \
+                f"{len(found)} rate columns for {axis} ({', '.join(repr(head[j]) for j in found)})"
+            raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
+    columns = [times[0], axes["x"][0], axes["y"][0], axes["z"][0]]
+    scale, units = [], []
+    for k, j in enumerate(columns):
+        f, u = _factor(head[j], parsed[j][1], TIME_UNITS if k == 0 else RATE_UNITS, label, line, j + 1)
+        scale.append(f), units.append(u)
+    names = {"time": head[columns[0]], "time_unit": units[0], "rates": [head[j] for j in columns[1:]],
+             "rate_units": units[1:], "ignored": [h for j, h in enumerate(head) if j not in columns]}
+    return columns, scale, names

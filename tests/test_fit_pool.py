@@ -1,0 +1,171 @@
+"""Many recordings, one body (issue #29 item 2): ``tumble fit A.csv B/ C.zip`` pools every flight
+of every recording in one joint fit, the ratios and the drag shared, the sensor's mount and bias
+each recording's own (tumble.analysis.fit.recording, joint, model; tumble.commands.fit).
+
+The recordings are :func:`tumble.analysis.fit.synthetic.synthetic_recording`'s (each seed its
+own phone mount, bias, scale errors and noise), written as a CSV, a phyphox folder and a zip.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import warnings
+import zipfile
+
+import numpy as np
+import pytest
+
+from tumble.analysis.fit import InadequateFitWarning, fit_recording
+from tumble.analysis.fit.model import Model
+from tumble.analysis.fit.synthetic import synthetic_recording
+from tumble.cli import main
+from tumble.io.gyrodata import load_recording
+
+SEEDS = (41, 42, 43)
+
+
+@pytest.fixture(scope="module")
+def three(tmp_path_factory):
+    """Three recordings of the racquet, three tosses each: a CSV, a phyphox folder, a zip."""
+    root = tmp_path_factory.mktemp("pool")
+    recs = [synthetic_recording(seed, tosses=3) for seed in SEEDS]
+    a = root / "A.csv"
+    a.write_text(recs[0].csv_text("first recording"), encoding="utf-8")
+    b = root / "B"
+    (b / "meta").mkdir(parents=True)
+    (b / "Raw Data.csv").write_text(recs[1].csv_text(), encoding="utf-8")
+    (b / "meta" / "time.csv").write_text(recs[1].time_csv_text(), encoding="utf-8")
+    c = root / "C.zip"
+    with zipfile.ZipFile(c, "w") as z:
+        z.writestr("Raw Data.csv", recs[2].csv_text())
+        z.writestr("meta/time.csv", recs[2].time_csv_text())
+    return recs, [a, b, c], root
+
+
+def test_three_recordings_pooled_by_the_command_agree_with_the_three_fitted_apart(three, capsys):
+    recs, paths, root = three
+    out = root / "fit"
+    assert main(["fit", *map(str, paths), "--out", str(out)]) == 0
+    line = capsys.readouterr().out
+    assert line.count("\n") == 1 and "in 3 recordings (sensor mount and bias per recording)" in line
+    data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
+    labels = [str(p) for p in paths]
+    assert data["input"] == labels and [r["file"] for r in data["read"]] == [
+        labels[0], str(paths[1] / "Raw Data.csv"), f"{labels[2]}/Raw Data.csv"]
+    pooled = data["pooled"]
+    assert pooled["recordings"] == 3 and pooled["shared"] == ["I1_over_I3", "I2_over_I3", "drag"]
+    assert pooled["per_recording"] == ["sensor_rotation", "bias"] and pooled["per_flight"] == ["omega0"]
+    assert [toss["input"] for toss in data["tosses"]] == [labels[0]] * 3 + [labels[1]] * 3 + [labels[2]] * 3
+    assert set(data["provenance"]["inputs"]) == set(labels) and all(len(h) == 64 for h in data["provenance"]["inputs"].values())
+    with open(out / "tosses.csv", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    assert [row["input"] for row in rows] == [toss["input"] for toss in data["tosses"]]
+    assert (out / "fit.png").stat().st_size > 10_000
+
+    # the three fitted apart: the pooled ratios are their inverse-variance mean, within its uncertainty,
+    # and more precise than any one of them
+    read = [load_recording(p) for p in paths]  # the numbers as written in the files
+    apart = [fit_recording(r.t, r.omega, events=list(r.events)) for r in read]
+    assert all(fit.tosses_used == 3 for fit in apart) and pooled["tosses_used"] == 9
+    values = np.array([fit.pooled.ratios for fit in apart])
+    var = np.array([fit.pooled.ratios_std for fit in apart]) ** 2
+    mean = np.sum(values / var, axis=0) / np.sum(1 / var, axis=0)
+    std_mean = 1 / np.sqrt(np.sum(1 / var, axis=0))
+    got = np.array([pooled["I1_over_I3"], pooled["I2_over_I3"]])
+    std = np.array([pooled["I1_over_I3_std"], pooled["I2_over_I3_std"]])
+    assert np.all(np.abs(got - mean) < 2 * std_mean), (got, mean, std_mean)
+    assert np.all(std < np.sqrt(var).min(axis=0))
+    truth = recs[0].ratios
+    assert np.all(np.abs(got - truth) < 3 * std)
+
+    # the joint likelihood: the pooled model is the three models held to one body (shared
+    # ratios and drag), so its least squares cost no less than theirs together, and sharing
+    # costs little when the body is one (a different body costs more: next test)
+    joint = fit_recording([(r.t, r.omega, list(r.events)) for r in read])
+    assert np.allclose(joint.pooled.ratios, got, rtol=0, atol=1e-12) and joint.residuals == sum(f.residuals for f in apart)
+    cost, apart_cost = joint.ssr, sum(f.ssr for f in apart)
+    assert apart_cost * (1 - 1e-6) <= cost < 1.25 * apart_cost, (cost, apart_cost)
+
+
+def test_a_recording_of_another_body_is_named_and_left_out():
+    racquets = [synthetic_recording(seed, tosses=3) for seed in SEEDS[:2]]
+    phone = synthetic_recording(44, body="phone", tosses=3)
+    with pytest.warns(InadequateFitWarning, match="more than one body"):
+        fit = fit_recording([(r.t, r.omega, r.events) for r in (*racquets, phone)])
+    left = [toss for toss in fit.tosses if toss.status != "ok"]
+    assert {toss.recording for toss in left} == {2} and all("disagrees" in toss.reason for toss in left)
+    assert fit.tosses_used == 6 and not fit.pooled.adequate
+
+
+def test_start_and_end_need_one_recording_and_a_bad_input_is_named(three, capsys, tmp_path):
+    _, paths, _ = three
+    assert main(["fit", str(paths[0]), str(paths[1]), "--start", "1", "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--start/--end select one flight of one recording; 2 recordings given" in err
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,ax,ay,az\n0,1,2,3\n0.01,1,2,3\n", encoding="utf-8")
+    assert main(["fit", str(paths[0]), str(bad), "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "bad.csv, line 1" in err and not (tmp_path / "x").exists()
+
+
+def test_the_single_input_output_is_unchanged_apart_from_the_new_keys(three, capsys):
+    recs, paths, root = three
+    out = root / "one"
+    assert main(["fit", str(paths[0]), "--out", str(out)]) == 0
+    data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
+    assert data["input"] == str(paths[0]) and data["read"]["rows"] == len(recs[0].t)
+    assert data["read"]["rates"] == ["Gyroscope x (rad/s)", "Gyroscope y (rad/s)", "Gyroscope z (rad/s)"]
+    keys = ["start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
+            "residual_rms", "status", "reason"]
+    assert all(list(toss) == keys for toss in data["tosses"])
+    assert (out / "tosses.csv").read_text(encoding="utf-8").splitlines()[0] == ",".join(keys)
+    assert data["pooled"]["per_recording"] == [] and data["pooled"]["recordings"] == 1
+    read = load_recording(paths[0])
+    fit = fit_recording(read.t, read.omega, events=list(read.events))
+    summary = json.loads(json.dumps(fit.summary()))
+    assert {k: data[k] for k in summary} == summary  # the fit's own numbers, as before
+    assert list(json.loads(json.dumps(data["provenance"]["inputs"]))) == [str(paths[0])]
+
+
+def test_one_recording_in_a_list_is_the_recording():
+    rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+    one = fit_recording(rec.t, rec.omega, events=rec.events)
+    listed = fit_recording([(rec.t, rec.omega, rec.events)])
+    assert np.array_equal(one.pooled.ratios, listed.pooled.ratios) and one.ssr == listed.ssr
+
+
+@pytest.mark.parametrize("args, kwargs, message", [
+    (([],), {}, "an empty list of recordings"),
+    (([(np.zeros(3),)],), {}, r"recording 0: expected \(t, omega\) or \(t, omega, events\), got tuple of 1 items"),
+    (([(np.zeros(3), np.zeros((3, 3)))],), {"events": []}, "events go with each recording"),
+    (([(np.arange(300) * 0.01, np.zeros((299, 3))), (np.arange(300) * 0.01, np.zeros((300, 3)))],), {},
+     r"recording 0: omega_measured must have shape \(300, 3\)"),
+])
+def test_a_bad_list_of_recordings_is_refused(args, kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        fit_recording(*args, **kwargs)
+
+
+def test_the_model_s_per_recording_mount_and_bias_and_their_jacobian():
+    taus = [np.linspace(0.0, 1.0, 40), np.linspace(0.0, 0.8, 30), np.linspace(0.0, 0.9, 35)]
+    model = Model(taus, True, True, "quadratic", [7.0, 7.0, 7.0], groups=[0, 1, 1])
+    P = model.pack(0.7, 0.4, [[0.1, 0.2, 0.3], [0.3, -0.2, 0.5]], [[0.01, 0.0, 0.0], [0.0, 0.02, -0.01]],
+                   [[3.0, 1.0, 6.0], [2.0, 5.0, 1.0], [1.0, 1.0, 6.0]], [0.01, 0.02, 0.03])
+    wp = model.principal(P)
+    w = model.sensor(P, wp)
+    for j, r in enumerate(model.groups):  # each flight: its recording's R^T omega + b
+        assert np.allclose(w[j], wp[j] @ model.rotation_matrix(P, r) + model.bias_vector(P, r))
+    mask = np.repeat(model.valid[:, :, None], 3, axis=2)
+    J = model.jacobian(P, mask).toarray()
+    central = np.empty_like(J)
+    for i in range(model.n):
+        h = np.zeros(model.n)
+        h[i] = 1e-6
+        central[:, i] = (model.sensor(P + h) - model.sensor(P - h))[mask] / 2e-6
+    assert np.max(np.abs(J - central)) < 1e-5 * np.max(np.abs(central))
+    # recording 1's mount acts on its flights only
+    k = model.names.index("rotvec_x[rec 1]")
+    assert not np.any(J[:int(mask[0].sum()), k])
+    warnings.simplefilter("default")
