@@ -117,7 +117,7 @@ def test_the_single_input_output_is_unchanged_apart_from_the_new_keys(three, cap
     data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
     assert data["input"] == str(paths[0]) and data["read"]["rows"] == len(recs[0].t)
     assert data["read"]["rates"] == ["Gyroscope x (rad/s)", "Gyroscope y (rad/s)", "Gyroscope z (rad/s)"]
-    keys = ["start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
+    keys = ["input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
             "residual_rms", "status", "reason"]
     assert all(list(toss) == keys for toss in data["tosses"])
     assert (out / "tosses.csv").read_text(encoding="utf-8").splitlines()[0] == ",".join(keys)
@@ -125,6 +125,8 @@ def test_the_single_input_output_is_unchanged_apart_from_the_new_keys(three, cap
     read = load_recording(paths[0])
     fit = fit_recording(read.t, read.omega, events=list(read.events))
     summary = json.loads(json.dumps(fit.summary()))
+    tosses = [{k: v for k, v in toss.items() if k != "input"} for toss in data.pop("tosses")]
+    assert tosses == summary.pop("tosses")  # each toss as before, and the recording it came from
     assert {k: data[k] for k in summary} == summary  # the fit's own numbers, as before
     assert list(json.loads(json.dumps(data["provenance"]["inputs"]))) == [str(paths[0])]
 

@@ -424,7 +424,7 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     assert abs(pooled["I1_over_I3"] - truth[0]) < 2 * pooled["I1_over_I3_std"]
     assert abs(pooled["I2_over_I3"] - truth[1]) < 2 * pooled["I2_over_I3_std"]
     assert data["I1_over_I3"] == pooled["I1_over_I3"]  # the one-flight keys hold the pooled values
-    keys = ["start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
+    keys = ["input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
             "residual_rms", "status", "reason"]
     assert len(data["tosses"]) == 12 and all(list(toss) == keys for toss in data["tosses"])
     assert sum(toss["status"] == "ok" for toss in data["tosses"]) == used == pooled["tosses_used"]

@@ -3,7 +3,7 @@
 - **A whole recording** (a CSV, or phyphox's export: its folder or its ``.zip``): the free
   flights are found, each fitted, and all fitted jointly (:func:`tumble.analysis.fit.fit_recording`).
   ``DIR/fit.json`` has the pooled values under the one-flight keys, plus ``"tosses"`` (one entry
-  a flight), ``"pooled"`` and ``"read"`` (which columns of the file were taken,
+  a flight, its ``"input"`` the recording as given), ``"pooled"`` and ``"read"`` (which columns of the file were taken,
   :class:`tumble.io.gyrocolumns.ColumnsRead`); ``DIR/tosses.csv`` is the table of the flights;
   ``DIR/fit.png`` the figure.
 - **Several recordings of one body** (files, folders and zips mixed): all their flights in one
@@ -47,7 +47,7 @@ from ..validation import check_number
 __all__ = ["TOSS_COLUMNS", "run_fit_command"]
 
 #: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries).
-TOSS_COLUMNS = ("start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
+TOSS_COLUMNS = ("input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
                 "residual_rms", "status", "reason")
 
 _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz sec. 37) or Euler's equations "
@@ -83,12 +83,11 @@ def _body_comparison(body_source, ratios, std) -> dict:
 
 
 def _tosses_csv(rows) -> str:
-    columns = (("input",) if rows and "input" in rows[0] else ()) + TOSS_COLUMNS
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=columns, lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=TOSS_COLUMNS, lineterminator="\n")
     writer.writeheader()
     for row in rows:
-        writer.writerow({k: ("" if row[k] is None else row[k]) for k in columns})
+        writer.writerow({k: ("" if row[k] is None else row[k]) for k in TOSS_COLUMNS})
     return buf.getvalue()
 
 
@@ -182,9 +181,8 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 data = (t, omega) if not several else ([(r.t, r.omega, list(r.events)) for r in recs], None)
                 rec = fit_recording(*data, events=events if not several else None, progress=progress, **options)
                 record.update({"start": None, "end": None, **rec.summary()})
-                if several:
-                    record["tosses"] = [{"input": labels[toss.recording], **row}
-                                        for toss, row in zip(rec.tosses, record["tosses"])]
+                record["tosses"] = [{"input": labels[toss.recording], **row}  # the recording as given
+                                    for toss, row in zip(rec.tosses, record["tosses"])]
                 files["tosses.csv"] = _tosses_csv(record["tosses"])
                 pooled = rec.pooled
                 skipped = len(rec.tosses) - rec.tosses_used

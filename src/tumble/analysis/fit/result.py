@@ -431,9 +431,10 @@ def solution_adequacy(sol: Solution, data: np.ndarray, mask: np.ndarray) -> Adeq
     if not verdict.adequate:
         return verdict
     m, P = sol.model, sol.P
-    R, b, moments = m.rotation_matrix(P), m.bias_vector(P), m.moments(P)
+    moments = m.moments(P)
     for j, n in enumerate(m.lengths):
-        n = int(n)
+        n, group = int(n), int(m.groups[j])
+        R, b = m.rotation_matrix(P, group), m.bias_vector(P, group)
         rows = np.all(mask[j, :n], axis=1)
         why = rigid_body_check(m.tau[j, :n][rows], (data[j, :n][rows] - b) @ R.T, moments)
         if why:
