@@ -13,19 +13,26 @@ frame; the drag model is the one most flights chose.
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
+from ...typing import ArrayLike
 from .model import Model
 from .result import public_covariance, ratio_summary
 from .solve import Solution, solve
 
+if TYPE_CHECKING:
+    from .flights import Flight
+
 __all__ = ["joint_solution", "stack_flights"]
 
 
-def joint_solution(used, groups, t, omega, keep, drag, scale_uncertainty):
+def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, omega: np.ndarray, keep: np.ndarray,
+                   drag: str, scale_uncertainty: float) -> tuple[Solution | None, list[np.ndarray], list[int]]:
     """The joint solution over the used flights (module docstring), the joint model at each
     flight, and the indices of the flights that disagree grossly with the others (their own
     ratios more than five standard uncertainties from the reference flight's): left out.
@@ -107,7 +114,7 @@ def joint_solution(used, groups, t, omega, keep, drag, scale_uncertainty):
     return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)], []
 
 
-def stack_flights(used, omega, keep):
+def stack_flights(used: Sequence[Flight], omega: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The used flights' samples and kept axes laid out as a joint model's, shape ``(F, T, 3)``.
 
     Examples

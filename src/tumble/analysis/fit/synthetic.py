@@ -405,7 +405,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
             if rotor:
                 h_final = rotor * float(np.linalg.norm(I * w0))
                 w = gyrostat_flight(body, w0, length, np.r_[tau, length], _unit(extra), h_final,
-                                    extra.uniform(0.2, 0.5) * length, lambda x: plate_drag_torque(body, x))
+                                    extra.uniform(0.6, 1.0) * length, lambda x: plate_drag_torque(body, x))
             else:
                 w = _flight(body, w0, length, np.r_[tau, length])
             last_flight_end = w[-1]
