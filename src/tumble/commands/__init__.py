@@ -9,8 +9,20 @@ and writes files, and :mod:`tumble.cli` only parses the command line and prints.
   (``tumble sweep``).
 - :mod:`~tumble.commands.fit`: :func:`~tumble.commands.fit.run_fit_command`, a gyroscope
   recording (``tumble fit``).
+
+``run_scenario`` is loaded on first use (PEP 562), so that ``tumble fit`` does not import the
+simulation's compiled kernels.
 """
 
-from .scenario import run_scenario
+import importlib as _importlib
+from typing import Any as _Any
 
 __all__ = ["run_scenario"]
+
+
+def __getattr__(name: str) -> _Any:
+    if name == "run_scenario":
+        value = _importlib.import_module("tumble.commands.scenario").run_scenario
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'tumble.commands' has no attribute {name!r}")

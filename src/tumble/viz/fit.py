@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 
     from ..analysis.fit import RecordingFit, RotationFit
 
-__all__ = ["figure_fit", "figure_recording"]
+__all__ = ["figure_fit", "figure_recording", "skip_label"]
 
 
 def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | None = None) -> Figure:
@@ -73,10 +73,24 @@ def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | Non
     return fig
 
 
+def skip_label(reason: str) -> str:
+    """The few words of a skipped flight's reason that the figure writes at it.
+
+    Examples
+    --------
+    >>> skip_label("too short (0.21 s, 21 samples; a flight needs 0.3 s and 30 samples)")
+    'too short'
+    >>> skip_label("not a rigid body: its angular momentum |L| rose by 12 % during the flight")
+    'not a rigid body'
+    """
+    return reason.split(":")[0].split(" (")[0].strip() or "skipped"
+
+
 def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flights: int = 12) -> Figure:
     """A whole recording fitted (:func:`tumble.analysis.fit.fit_recording`).
 
-    Top: the recording, its flights shaded (green: used; grey: skipped). Bottom left: the used
+    Top: the recording (each axis and ``|omega|``), its flights shaded (green: used; grey:
+    skipped, with the reason in a few words, :func:`skip_label`). Bottom left: the used
     flights side by side (the first ``max_flights``), samples as dots and the joint fit as lines.
     Bottom right: each flight's ratios with their standard uncertainties in the triangle of
     inertia ratios, the pooled value in black, and the triangle's planar edge.
@@ -119,10 +133,16 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
             top.axvline(pos, color="0.3", lw=0.8)
             top.text(pos, 1.0, f" recording {r + 1}", transform=top.get_xaxis_transform(), fontsize=7, va="bottom")
         pos = t_r[-1] + shift[r] + 0.05 * (t_r[-1] - t_r[0])
+    for r, (t_r, w_r) in enumerate(series):
+        top.plot(t_r + shift[r], np.linalg.norm(w_r, axis=1), lw=0.6, color="0.15",
+                 label=r"$|\omega|$" if r == 0 else None)
     for toss in rec.tosses:
         off = shift[toss.recording]
         top.axvspan(toss.start + off, toss.end + off, color="tab:green" if toss.status == "ok" else "0.6", alpha=0.25,
                     lw=0)
+        if toss.status != "ok":  # why it was left out, in a few words, at the candidate
+            top.text(0.5 * (toss.start + toss.end) + off, 0.98, skip_label(toss.reason), rotation=90, fontsize=6,
+                     ha="center", va="top", color="0.25", transform=top.get_xaxis_transform())
     top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)" if len(series) == 1 else
                    "time since each recording's first sample, the recordings one after another (s)")
     top.set_ylabel("angular velocity, sensor axes (rad/s)")
