@@ -21,6 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     Examples
     --------
+    >>> from tumble.cli.parser import build_parser
     >>> args = build_parser().parse_args(["simulate", "examples/seed_flip.toml", "--out", "runs/flip"])
     >>> args.command, args.out
     ('simulate', 'runs/flip')

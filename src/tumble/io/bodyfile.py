@@ -205,6 +205,8 @@ def mesh_files(table: dict, base_dir: Path | None = None) -> list[Path]:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> from tumble.io.bodyfile import mesh_files
     >>> table = {"parts": [{"kind": "mesh", "mesh": "m/a.stl", "mass": 1.0},
     ...                    {"kind": "sphere", "mass": 1.0, "radius": 0.1}]}
     >>> [p.as_posix() for p in mesh_files(table, Path("bodies"))]
