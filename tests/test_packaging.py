@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import dataclasses
+import email
 import os
 import re
 import shutil
 import subprocess
 import sys
+import tomllib
 import zipfile
 from pathlib import Path
 
@@ -76,6 +78,62 @@ def test_changelog_has_an_unreleased_section_and_this_version():
     text = (ROOT / "CHANGELOG.md").read_text()
     assert "## [Unreleased]" in text
     assert f"## [{tumble.__version__}]" in text
+
+
+# --- what an index shows: metadata, the long description, the citation --------------------------
+
+#: A link or image whose target has no scheme (``docs/tour.md``, ``#install``): it resolves in a
+#: checkout and breaks on an index, which shows README.md alone.
+_RELATIVE = re.compile(r"\]\((?![a-z][a-z0-9+.-]*:)([^)\s]*)[^)]*\)|(?:src|href)=[\"'](?![a-z][a-z0-9+.-]*:)([^\"']*)", re.I)
+
+
+def _relative_links(markdown: str) -> list[str]:
+    return [a or b for a, b in _RELATIVE.findall(markdown)]
+
+
+def test_the_link_check_sees_relative_links():
+    assert _relative_links("[tour](docs/tour.md), ![f](figures/a.png), <img src='x.png'>, [i](#install)") == [
+        "docs/tour.md", "figures/a.png", "x.png", "#install"]
+    assert _relative_links("[site](https://example.org/tumble) and `docs/tour.md` and [x][ref]") == []
+
+
+def test_readme_links_nothing_relative():
+    """README.md is the long description (pyproject ``readme``): an index shows it without the files."""
+    assert _relative_links((ROOT / "README.md").read_text(encoding="utf-8")) == []
+
+
+def test_pyproject_names_the_authors_the_citation_and_license_name():
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    assert project["readme"] == "README.md" and project["license"] == "MIT"
+    assert project["authors"] == [{"name": "The tumble authors"}]
+    classifiers = project["classifiers"]
+    assert classifiers == sorted(classifiers) and len(set(classifiers)) == len(classifiers)
+    assert all(re.fullmatch(r"[A-Z][^:]*( :: [^:]+)+", c) for c in classifiers), classifiers
+    assert not [c for c in classifiers if c.startswith("License ::")]  # PEP 639: the expression says it
+    floor = re.fullmatch(r">=(3\.\d+)", project["requires-python"]).group(1)
+    assert f"Programming Language :: Python :: {floor}" in classifiers
+    assert "Typing :: Typed" in classifiers and (ROOT / "src" / "tumble" / "py.typed").is_file()
+
+
+def test_citation_date_is_this_versions_release_date():
+    citation = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
+    (date,) = re.findall(r"^date-released:\s*['\"]?(\d{4}-\d{2}-\d{2})['\"]?\s*$", citation, flags=re.M)
+    changelog = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert f"## [{tumble.__version__}] - {date}" in changelog
+
+
+def test_wheel_metadata_carries_classifiers_authors_keywords_and_the_readme(wheel):
+    (metadata,) = [n for n in wheel.namelist() if n.endswith(".dist-info/METADATA")]
+    message = email.message_from_bytes(wheel.read(metadata))
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    assert message.get_all("Classifier") == project["classifiers"]
+    assert message["Author"] == "The tumble authors"
+    assert message["Keywords"].split(",") == project["keywords"]
+    assert message["Requires-Python"] == project["requires-python"]
+    assert message["Description-Content-Type"] == "text/markdown"
+    description = message.get_payload()
+    assert description.strip() == (ROOT / "README.md").read_text(encoding="utf-8").strip()
+    assert _relative_links(description) == []
 
 
 def test_dir_lists_only_public_and_dunder_names():

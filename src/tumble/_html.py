@@ -36,6 +36,7 @@ def escape_text(value: object) -> str:
 
     Examples
     --------
+    >>> from tumble._html import escape_text
     >>> escape_text('a <b> & "c"')
     'a &lt;b&gt; &amp; &quot;c&quot;'
     """
@@ -49,6 +50,7 @@ def script_json(data: Any) -> str:
 
     Examples
     --------
+    >>> from tumble._html import script_json
     >>> script_json({"name": "</script><!--<script>"})
     '{"name":"\\\\u003c/script\\\\u003e\\\\u003c!--\\\\u003cscript\\\\u003e"}'
     """
@@ -66,6 +68,7 @@ def fmt(x: float | np.floating[Any] | np.integer[Any], digits: int = 4) -> str:
 
     Examples
     --------
+    >>> from tumble._html import fmt
     >>> fmt(3.14159265), fmt(0.000123456, 2), fmt(-0.0), fmt(-1e-20), fmt(12345678)
     ('3.142', '0.00012', '0', '-1e-20', '1.235e+07')
     """
@@ -78,6 +81,8 @@ def vec(v: ArrayLike, digits: int = 4) -> str:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble._html import vec
     >>> vec([1.0, -0.0, 2 / 3]), vec(np.eye(2), digits=2)   # flattened
     ('(1, 0, 0.6667)', '(1, 0, 0, 1)')
     """
@@ -89,6 +94,7 @@ def short_name(name: object) -> str:
 
     Examples
     --------
+    >>> from tumble._html import NAME_CHARS, short_name
     >>> short_name("T-handle"), short_name(42)   # any object, as its text
     ("'T-handle'", "'42'")
     >>> long = short_name("x" * 100)
@@ -119,6 +125,7 @@ def html_table(
 
     Examples
     --------
+    >>> from tumble._html import html_table
     >>> page = html_table([["I1", 0.5], ["<b>", "a & b"]], header=["axis", "kg m^2"], caption="moments")
     >>> page.count("<tr>"), page.count("<th "), page.count("<td ")   # a header row, two rows of two cells
     (3, 2, 4)

@@ -44,6 +44,7 @@ class Case:
 
     Examples
     --------
+    >>> from tumble.demo import CASES
     >>> CASES[1].omega, CASES[1].frame  # 10 rad/s about the intermediate axis, 0.1 on the others
     ((0.1, 10.0, 0.1), 'principal')
     >>> [c.key for c in CASES if c.method == "seed"]  # the seed's own computation, to show its drift
@@ -122,6 +123,7 @@ def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
 
     Examples
     --------
+    >>> from tumble.demo import animation_suffix
     >>> animation_suffix("gif")
     ('.gif', None)
     >>> animation_suffix("avi")
@@ -169,6 +171,8 @@ def run_demo(out: str | os.PathLike[str] = "tumble-demo", *, t_end: float = T_EN
     the combined figure and the summary; its 11 figures take a few seconds, so it is not run here:
 
     >>> import contextlib, io, json, tempfile
+    >>> from pathlib import Path
+    >>> from tumble.demo import run_demo
     >>> with tempfile.TemporaryDirectory() as tmp, contextlib.redirect_stdout(io.StringIO()):  # doctest: +SKIP
     ...     out = run_demo(Path(tmp) / "demo", t_end=0.5, samples=20, animate=False)
     ...     names = sorted(p.name for p in out.iterdir())

@@ -61,6 +61,7 @@ def cores() -> int:
 
     Examples
     --------
+    >>> from tumble.jit import cores
     >>> cores() >= 1
     True
     """
@@ -75,6 +76,7 @@ def source_stamp() -> str:
 
     Examples
     --------
+    >>> from tumble.jit import source_stamp
     >>> source_stamp() == source_stamp()
     True
     """
@@ -104,6 +106,7 @@ def cache_root() -> Path | None:
 
     Examples
     --------
+    >>> from tumble.jit import cache_root
     >>> root = cache_root()
     >>> root is None or root.is_dir()
     True
@@ -198,6 +201,7 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
 
     Examples
     --------
+    >>> from tumble.jit import jit
     >>> @jit(error_model="numpy")
     ... def ratio(a, b):
     ...     return a / b

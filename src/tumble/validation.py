@@ -66,6 +66,8 @@ def short_repr(value: object, limit: int = 80) -> str:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import short_repr
     >>> short_repr(np.array([[1.0, 2.0],
     ...                      [3.0, 4.0]]))
     'array([[1.0, 2.0], [3.0, 4.0]])'
@@ -96,6 +98,7 @@ def refuse_first(field: str, values: ArrayLike, bad: ArrayLike, rule: str) -> No
 
     Examples
     --------
+    >>> from tumble.validation import refuse_first
     >>> refuse_first("moments", [[1, 2, 3], [1, 3, 2]], [False, True], "must be ascending")
     Traceback (most recent call last):
     ...
@@ -139,6 +142,7 @@ def check_vectors(field: str, value: ArrayLike, unit: str, *, size: int | None =
 
     Examples
     --------
+    >>> from tumble.validation import check_vectors
     >>> check_vectors("omega", [[0, 0, 1], [1, 2, 3]], "rad/s").shape
     (2, 3)
     >>> check_vectors("point", [0.0, float("nan"), 0.0], "m")
@@ -180,6 +184,8 @@ def check_bool(field: str, value: object) -> bool:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_bool
     >>> check_bool("gravity_gradient", True), check_bool("gravity_gradient", np.bool_(False))
     (True, False)
     >>> check_bool("gravity_gradient", "no")
@@ -198,6 +204,7 @@ def check_number(field: str, value: object, unit: str, at_most: float | None = N
 
     Examples
     --------
+    >>> from tumble.validation import check_number
     >>> check_number("mass", 2, "kg")
     2.0
     >>> check_number("mass", True, "kg")
@@ -223,6 +230,7 @@ def check_at_most(field: str, value: float, unit: str, at_most: float | None) ->
 
     Examples
     --------
+    >>> from tumble.validation import MAX_RATE, check_at_most
     >>> check_at_most("omega", 1e3, "rad/s", MAX_RATE)  # within the bound: nothing
     >>> check_at_most("omega", 1e16, "rad/s", MAX_RATE)
     Traceback (most recent call last):
@@ -239,6 +247,8 @@ def check_increasing(field: str, t: FloatArray, unit: str = "s") -> None:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_increasing
     >>> check_increasing("times", np.array([0.0, 1.0, 0.5]))
     Traceback (most recent call last):
     ...
@@ -264,6 +274,7 @@ def check_moments(field: str, value: ArrayLike, *, physical: bool = True) -> Vec
 
     Examples
     --------
+    >>> from tumble.validation import check_moments
     >>> check_moments("moments", [1, 2, 3]).tolist()
     [1.0, 2.0, 3.0]
     >>> check_moments("moments", [[1, 2, 3], [2, 1, 3]])
@@ -289,6 +300,7 @@ def breaks_triangle(moments: ArrayLike) -> BoolArray:
 
     Examples
     --------
+    >>> from tumble.validation import breaks_triangle
     >>> breaks_triangle([[1.0, 2.0, 3.0], [0.1, 1.0, 0.2], [1.0, 1.0, 2.0]]).tolist()   # the last is planar
     [False, True, False]
     """
@@ -309,6 +321,7 @@ def axis_index(field: str, value: object) -> IntArray:
 
     Examples
     --------
+    >>> from tumble.validation import axis_index
     >>> axis_index("axis", 3).tolist(), axis_index("axis", ["minor", "major"]).tolist()
     (2, [0, 2])
     """
@@ -333,6 +346,7 @@ def check_positive(field: str, value: object, unit: str, *, allow_zero: bool = F
 
     Examples
     --------
+    >>> from tumble.validation import check_positive
     >>> check_positive("radius", 0.25, "m")
     0.25
     >>> check_positive("radius", -0.1, "m")
@@ -366,6 +380,8 @@ def check_vector(field: str, value: object, unit: str, *, at_most: float | None 
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_vector
     >>> check_vector("offset", np.array([1, 2, 3]), "m")
     (1.0, 2.0, 3.0)
     >>> check_vector("offset", {1, 2, 3}, "m")
@@ -394,6 +410,7 @@ def check_direction(field: str, value: object) -> tuple[float, float, float]:
 
     Examples
     --------
+    >>> from tumble.validation import check_direction
     >>> check_direction("axis", [0, 3, 4])
     (0.0, 0.6, 0.8)
     """
@@ -428,6 +445,8 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_rotation
     >>> check_rotation("orientation", np.eye(3))
     (0.0, 0.0, 0.0, 1.0)
     >>> check_rotation("orientation", np.diag([1.0, 1.0, -1.0]))
@@ -487,6 +506,8 @@ def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vecto
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_motion
     >>> R, t = check_motion([0, 0, np.sin(np.pi / 4), np.cos(np.pi / 4)], [1, 0, 0])
     >>> np.round(R.apply([1.0, 0.0, 0.0]) + t, 12).tolist()  # x -> R x + t: a quarter turn about z
     [1.0, 1.0, 0.0]
@@ -531,6 +552,8 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
     Examples
     --------
     >>> import tempfile
+    >>> import os
+    >>> from tumble.validation import read_input_file
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     path = os.path.join(folder, "body.toml")
     ...     with open(path, "w") as f:

@@ -62,6 +62,7 @@ def gravity_gradient_ratios(moments: ArrayLike, *, pitch_axis: int | str = 3, ya
 
     Examples
     --------
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios
     >>> k_roll, k_pitch, k_yaw = gravity_gradient_ratios([1.0, 2.0, 4.0])  # roll 2, pitch 4, yaw 1
     >>> float(k_roll), float(k_pitch), float(k_yaw)
     (1.5, 0.25, 2.0)
@@ -136,6 +137,7 @@ def gravity_gradient_stability(k_roll: ArrayLike, k_pitch: ArrayLike, k_yaw: Arr
 
     Examples
     --------
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
     >>> cls = gravity_gradient_stability(*gravity_gradient_ratios([2.0, 3.0, 4.0]))  # pitch major, yaw minor
     >>> bool(cls.pitch), bool(cls.roll_yaw), str(cls.region)
     (True, True, 'lagrange')

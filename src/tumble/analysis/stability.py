@@ -180,6 +180,7 @@ def linearised_rate(moments: ArrayLike, axis: int | str, spin: ArrayLike, moment
 
     Examples
     --------
+    >>> from tumble.analysis.stability import linearised_rate
     >>> growth, wobble = linearised_rate([1.0, 2.0, 2.5], "intermediate", 3.0)
     >>> round(float(growth), 6), float(wobble)
     (1.341641, 0.0)
@@ -220,6 +221,7 @@ def stable_spin_range(moments: ArrayLike, momentum: float) -> tuple[float, float
 
     Examples
     --------
+    >>> from tumble.analysis.stability import stable_spin_range
     >>> stable_spin_range([1.0, 2.0, 4.0], 3.0)   # h / (I3 - I2) = 1.5, -h / (I2 - I1) = -3
     (-3.0, 1.5)
     """

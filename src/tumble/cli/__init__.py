@@ -37,6 +37,7 @@ def main(argv: list[str] | None = None) -> int:
 
     Examples
     --------
+    >>> from tumble.cli import EXIT_OK, main
     >>> main(["inertia", "t-handle", "--json"]) == EXIT_OK   # prints the mass properties as JSON
     {...
     True

@@ -6,6 +6,7 @@ Heavy modules are imported inside the commands so that ``tumble --help`` answers
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 
@@ -15,13 +16,44 @@ from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_con
 
 def _cmd_inertia(args) -> int:
     from ..io import load_body, mass_properties_dict, mass_properties_table
+    from ..io.bodyfile import body_from_mesh, is_mesh_file
 
-    body = load_body(args.body)
+    mesh_options = {f"--{k}": getattr(args, k) for k in ("density", "mass", "scale", "units")}
+    given = {k: v for k, v in mesh_options.items() if v is not None}
+    if is_mesh_file(args.body):
+        if "--density" in given and "--mass" in given:
+            raise ValueError(f"give --density = {args.density} (kg/m^3) or --mass = {args.mass} (kg), not both")
+        if "--density" not in given and "--mass" not in given:
+            raise ValueError(f"{args.body}: a mesh needs --density (kg/m^3) or --mass (kg): "
+                             f"it is read as one uniform solid")
+        if "--scale" in given and "--units" in given:
+            raise ValueError(f"give --scale = {args.scale} or --units = {args.units}, not both")
+        units = {"--density": "kg/m^3", "--mass": "kg", "--scale": "m per file unit"}
+        checked = {k: _positive(k, v, units[k]) for k, v in given.items() if k in units}
+        body = body_from_mesh(args.body, density=checked.get("--density"), mass=checked.get("--mass"),
+                              scale=checked.get("--scale"), units=args.units)
+    else:
+        if given:
+            option, value = next(iter(given.items()))
+            raise ValueError(f"{option} = {value} applies to a mesh file (.stl, .obj, .ply) only; "
+                             f"{args.body} is a body file or preset, whose parts carry their own")
+        body = load_body(args.body)
     if args.json:
         print(json.dumps(mass_properties_dict(body), indent=2))
     else:
         print(mass_properties_table(body))
     return EXIT_OK
+
+
+def _positive(option: str, text: str, unit: str) -> float:
+    """An option's positive finite number, the error quoting the value as written."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{option} = {text} must be a positive finite number ({unit})")
+    return value
 
 
 def _cmd_demo(args) -> int:

@@ -21,6 +21,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     Examples
     --------
+    >>> from tumble.cli.parser import build_parser
     >>> args = build_parser().parse_args(["simulate", "examples/seed_flip.toml", "--out", "runs/flip"])
     >>> args.command, args.out
     ('simulate', 'runs/flip')
@@ -39,14 +40,27 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "inertia",
-        help="mass properties of a body file or preset",
-        description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.",
+        help="mass properties of a body file, a preset or a mesh file (STL, OBJ, PLY)",
+        description="Mass, centre of mass, inertia tensor about the COM, principal moments and axes.\n\n"
+        "BODY is a body file (TOML), a preset, or a mesh file (.stl, .obj, .ply): a closed triangle mesh read\n"
+        "as one uniform solid, named after the file, which needs --density or --mass and may take --units or\n"
+        "--scale (its coordinates are metres otherwise).",
         epilog="Examples: tumble inertia t-handle | tumble inertia iss-t-handle --json | "
-        "tumble inertia examples/bodies/t_handle.toml",
+        "tumble inertia examples/bodies/t_handle.toml | "
+        "tumble inertia bracket.stl --density 2700 --units mm",
         formatter_class=argparse.RawDescriptionHelpFormatter, parents=[debug],
     )
-    p.add_argument("body", metavar="BODY", help="a body file (TOML) or a preset: t-handle, iss-t-handle")
+    p.add_argument("body", metavar="BODY",
+                   help="a body file (TOML), a preset (t-handle, iss-t-handle) or a mesh file (.stl, .obj, .ply)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    solid = p.add_argument_group("a mesh file (not a body file or preset)")
+    solid.add_argument("--density", metavar="RHO",
+                       help="uniform density, kg/m^3 (give --density or --mass)")
+    solid.add_argument("--mass", metavar="M", help="total mass, kg (give --density or --mass)")
+    solid.add_argument("--units", choices=["m", "cm", "mm", "in"],
+                       help="the length unit of the file's coordinates (default m)")
+    solid.add_argument("--scale", metavar="FACTOR",
+                       help="factor from the file's coordinates to metres, instead of --units (e.g. 0.001)")
     p.set_defaults(func=c._cmd_inertia)
 
     def scenario_command(name, func, summary, description, example, out_metavar, out_help):

@@ -138,6 +138,8 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
     --------
     >>> import json, tempfile
     >>> from importlib import resources
+    >>> from pathlib import Path
+    >>> from tumble.commands.fit import run_fit_command
     >>> record = resources.files("tumble") / "examples/data/phone_toss.csv"  # a box 15 x 7.5 x 0.8 cm
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     status = run_fit_command(record, Path(folder) / "fit", end=2.0)  # doctest: +ELLIPSIS

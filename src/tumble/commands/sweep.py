@@ -104,6 +104,8 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     Examples
     --------
     >>> import tempfile
+    >>> from pathlib import Path
+    >>> from tumble.commands.sweep import run_sweep
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 8\\n[initial]\\n'
     ...                                              'omega = [0.1, 5.0, 0.1]\\n[criterion]\\ncolumn = "flips"\\nmin = 1\\n')
@@ -186,6 +188,8 @@ def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str],
     Examples
     --------
     >>> import tempfile
+    >>> from pathlib import Path
+    >>> from tumble.commands.sweep import run_sweep_command
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 4\\n[initial]\\n'
     ...                                              'omega = [0.1, 5.0, 0.1]\\n')
@@ -205,6 +209,7 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
 
     Examples
     --------
+    >>> from tumble.commands.sweep import sweep_line
     >>> data = {"cases": 4, "method": "exact", "counts": {"predicted": {"unstable": 4}},
     ...         "statistics": {"flips": {"max": 3.0}, "flip_period": {"count": 4, "quantiles":
     ...                        {"0.05": 1.21, "0.5": 1.25, "0.95": 1.3}}}}

@@ -38,6 +38,7 @@ class InProcess:
 
     Examples
     --------
+    >>> from tumble.ensemble.backends import InProcess
     >>> list(InProcess().map(pow, [(2, 10), (3, 4)]))  # (position, result), in order
     [(0, 1024), (1, 81)]
     """
@@ -47,6 +48,7 @@ class InProcess:
 
         Examples
         --------
+        >>> from tumble.ensemble.backends import InProcess
         >>> done = InProcess().map(divmod, [(7, 2), (9, 4)])
         >>> next(done)  # lazily: one task at a time
         (0, (3, 1))
@@ -59,6 +61,7 @@ class InProcess:
 
         Examples
         --------
+        >>> from tumble.ensemble.backends import InProcess
         >>> backend = InProcess()
         >>> backend.close() is None
         True
@@ -69,6 +72,7 @@ class InProcess:
 
         Examples
         --------
+        >>> from tumble.ensemble.backends import InProcess
         >>> InProcess().describe()
         'in-process'
         """
@@ -102,6 +106,7 @@ class DaskBackend:
 
     Examples
     --------
+    >>> from tumble.ensemble.backends import DaskBackend
     >>> backend = DaskBackend(workers=2)  # doctest: +SKIP
     >>> sorted(backend.map(pow, [(2, 10), (3, 4)]))  # doctest: +SKIP
     [(0, 1024), (1, 81)]
@@ -177,6 +182,7 @@ class DaskBackend:
         one); the results come as they finish, and in order they are :class:`InProcess`'s:
 
         >>> from dask.distributed import LocalCluster
+        >>> from tumble.ensemble.backends import DaskBackend, InProcess
         >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
         ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
         >>> backend = DaskBackend(scheduler=cluster.scheduler_address)
@@ -222,6 +228,7 @@ class DaskBackend:
 
         >>> import logging
         >>> from dask.distributed import LocalCluster
+        >>> from tumble.ensemble.backends import DaskBackend
         >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
         ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
         >>> level = logging.getLogger("distributed").level
@@ -245,6 +252,7 @@ class DaskBackend:
         Examples
         --------
         >>> from dask.distributed import LocalCluster
+        >>> from tumble.ensemble.backends import DaskBackend
         >>> cluster = LocalCluster(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None,
         ...                        protocol="tcp", host="127.0.0.1")   # threads of this process: quick to start
         >>> backend = DaskBackend(scheduler=cluster.scheduler_address)
@@ -343,6 +351,7 @@ def make_backend(workers: int | None = None, scheduler: str | None = None) -> In
 
     Examples
     --------
+    >>> from tumble.ensemble.backends import make_backend
     >>> make_backend().describe()
     'in-process'
     >>> make_backend(workers=2, scheduler="tcp://10.0.0.5:8786")

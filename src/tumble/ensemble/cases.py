@@ -60,6 +60,7 @@ class InitialRates:
 
     Examples
     --------
+    >>> from tumble.ensemble.cases import InitialRates
     >>> InitialRates(omega=(0.1, 10.0, 0.1)).rate(0, [])  # the nominal rate, rad/s
     array([ 0.1, 10. ,  0.1])
     >>> InitialRates(grid=([0.0], [1.0, 2.0], [5.0, 6.0, 7.0])).points
@@ -100,6 +101,7 @@ class InitialRates:
 
         Examples
         --------
+        >>> from tumble.ensemble.cases import InitialRates
         >>> InitialRates(omega=(0, 5, 0)).dims, InitialRates(omega=(0, 5, 0), distribution="normal", spread=(0.1, 0.1, 0.1)).dims
         (0, 3)
         """
@@ -111,6 +113,7 @@ class InitialRates:
 
         Examples
         --------
+        >>> from tumble.ensemble.cases import InitialRates
         >>> InitialRates(grid=([1.0, 2.0], [0.0], [0.1, 0.2, 0.3])).points, InitialRates(omega=(0, 0, 1)).points
         (6, 1)
         """
@@ -121,6 +124,7 @@ class InitialRates:
 
         Examples
         --------
+        >>> from tumble.ensemble.cases import InitialRates
         >>> rates = InitialRates(omega=(0.0, 5.0, 0.0), distribution="uniform", spread=(0.0, 1.0, 0.0))
         >>> rates.rate(0, [0.5, 0.75, 0.5]).tolist()  # 5 + 1 * (2 * 0.75 - 1)
         [0.0, 5.5, 0.0]
@@ -141,6 +145,8 @@ class InitialRates:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.cases import InitialRates
         >>> grid = InitialRates(grid=([1.0, 2.0], [0.0], [7.0, 8.0]))
         >>> out = grid.rates(np.arange(5), np.empty((5, 0)))
         >>> out.shape, out[4].tolist() == grid.rate(4, []).tolist()  # case 4 is point 0 again
@@ -199,6 +205,7 @@ class CaseInputs:
     --------
     >>> import tumble
     >>> from tumble.ensemble import BodySampler
+    >>> from tumble.ensemble.cases import Ensemble, InitialRates
     >>> inputs = Ensemble(BodySampler(tumble.t_handle()), InitialRates(omega=(0.1, 5.0, 0.1)), cases=4).inputs()
     >>> len(inputs), inputs.moments.shape, inputs.omega0.shape, inputs.quat0.shape
     (4, (4, 3), (4, 3), (4, 4))
@@ -239,6 +246,7 @@ class Ensemble:
     --------
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Dispersion
+    >>> from tumble.ensemble.cases import Ensemble, InitialRates
     >>> bodies = BodySampler(tumble.t_handle(), (Dispersion("moments", 0.02),))
     >>> cases = Ensemble(bodies, InitialRates(omega=(0.1, 5.0, 0.1)), cases=100, seed=7, sampling="lhs")
     >>> cases.design.dims, cases.inputs(10, 20).moments.shape
@@ -285,6 +293,7 @@ class Ensemble:
         --------
         >>> import tumble
         >>> from tumble.ensemble import BodySampler, Dispersion
+        >>> from tumble.ensemble.cases import Ensemble, InitialRates
         >>> bodies = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.05, field="shaft_length"),), preset="t-handle")
         >>> Ensemble(bodies, InitialRates(omega=(0.1, 5.0, 0.1)), cases=8).names
         ('shaft_length [m]',)
@@ -304,6 +313,8 @@ class Ensemble:
         --------
         >>> import tumble
         >>> from tumble.ensemble import BodySampler, Dispersion
+        >>> import numpy as np
+        >>> from tumble.ensemble.cases import Ensemble, InitialRates
         >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
         >>> cases = Ensemble(BodySampler(box, (Dispersion("moments", 0.05),)), InitialRates(omega=(0.0, 1.0, 0.0)),
         ...                  cases=50, seed=3)

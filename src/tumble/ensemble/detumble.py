@@ -46,6 +46,8 @@ class DetumbleCases:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.detumble import detumble_cases
     >>> c = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)
     >>> c.moments.shape, c.quat0.shape, c.gmst0.shape, c.gyro_bias.shape, c.noise_seed.shape
     ((3, 3), (3, 4), (3,), (3, 3), (3,))
@@ -68,6 +70,8 @@ class DetumbleCases:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleCases
         >>> c = DetumbleCases(np.ones((2, 3)), np.zeros((2, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)), np.zeros(2))
         >>> c.biases().tolist(), c.seeds().tolist()
         ([[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]], [0, 1])
@@ -79,6 +83,8 @@ class DetumbleCases:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import detumble_cases
         >>> c = detumble_cases(2, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)
         >>> bool(np.all(c.seeds() >= 0)), c.seeds().dtype.kind
         (True, 'i')
@@ -90,6 +96,7 @@ class DetumbleCases:
 
         Examples
         --------
+        >>> from tumble.ensemble.detumble import detumble_cases
         >>> c = detumble_cases(2, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)
         >>> sorted(c.case(0))
         ['gmst0', 'gyro_bias', 'index', 'moments', 'noise_seed', 'omega0', 'quat0', 'rate0']
@@ -131,6 +138,8 @@ def detumble_cases(n: int, *, moments: ArrayLike, rate_min: float, rate_max: flo
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.detumble import detumble_cases
     >>> c = detumble_cases(4, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=1)
     >>> c.omega0.shape, bool(np.all(np.abs(np.linalg.norm(c.omega0, axis=1) - 0.2) <= 0.1))
     ((4, 3), True)
@@ -206,6 +215,8 @@ class DetumbleMonteCarlo:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
     >>> c = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)
     >>> mc = DetumbleMonteCarlo(times=np.array([100.0, 300.0, np.nan]), cases=c, threshold=0.01, t_end=600.0,
     ...                         seconds=0.1)
@@ -229,6 +240,8 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(2, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
         >>> DetumbleMonteCarlo(times=np.array([50.0, np.nan]), cases=c, threshold=0.01, t_end=60.0,
         ...                    seconds=0.0).detumbled
@@ -242,6 +255,8 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(4, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
         >>> mc = DetumbleMonteCarlo(times=np.array([10.0, 20.0, 30.0, np.nan]), cases=c, threshold=0.01,
         ...                         t_end=60.0, seconds=0.0)
@@ -258,6 +273,8 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(4, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
         >>> DetumbleMonteCarlo(times=np.array([10.0, np.nan, 30.0, 20.0]), cases=c, threshold=0.01,
         ...                    t_end=60.0, seconds=0.0).worst(3)
@@ -274,6 +291,9 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.sensors import Sensors
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(2, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3,
         ...                    gyro_bias_sigma=1e-3, seed=4)
         >>> mc = DetumbleMonteCarlo(times=np.array([10.0, 20.0]), cases=c, threshold=0.01, t_end=60.0, seconds=0.0,
@@ -291,6 +311,8 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
         >>> mc = DetumbleMonteCarlo(times=np.full(3, np.nan), cases=c, threshold=0.01, t_end=1.0, seconds=0.0,
         ...                         history_t=np.array([0.0, 1.0]), history=np.array([[3.0, 1.0], [2.0, 0.5], [1.0, 0.2]]))
@@ -310,6 +332,8 @@ class DetumbleMonteCarlo:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
         >>> c = detumble_cases(4, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
         >>> mc = DetumbleMonteCarlo(times=np.array([10.0, 20.0, 30.0, np.nan]), cases=c, threshold=0.01,
         ...                         t_end=60.0, seconds=0.5)
@@ -397,6 +421,10 @@ def detumble_monte_carlo(cases: DetumbleCases, *, field: DipoleField, gain: floa
     --------
     >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.ensemble.detumble import detumble_cases, detumble_monte_carlo
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
     >>> cases = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.03, rate_max=0.05,
     ...                        gyro_bias_sigma=1e-4, seed=2)

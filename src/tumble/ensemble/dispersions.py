@@ -84,6 +84,7 @@ class Dispersion:
 
     Examples
     --------
+    >>> from tumble.ensemble.dispersions import Dispersion
     >>> Dispersion("part", 0.02, field="length", part=1).label
     'parts[1].length'
     >>> Dispersion("moments", 0.01, relative=False)
@@ -131,6 +132,7 @@ class Dispersion:
 
         Examples
         --------
+        >>> from tumble.ensemble.dispersions import Dispersion
         >>> Dispersion("preset", 0.05, field="shaft_length").label, Dispersion("axes", 0.01, relative=False).label
         ('shaft_length', 'axes')
         """
@@ -157,6 +159,7 @@ class Sampled:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.ensemble.dispersions import BodySampler
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
     >>> drawn = BodySampler(box).sample([])
     >>> drawn.moments.round(12).tolist(), drawn.values.shape  # the nominal body, m (b^2 + c^2) / 12
@@ -213,6 +216,7 @@ class BodySampler:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
     >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.05, field="shaft_length"),
     ...                                           Dispersion("axes", 0.01, relative=False)), preset="t-handle")
     >>> sampler.dims, sampler.names
@@ -286,6 +290,7 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> body = tumble.t_handle()
         >>> BodySampler(body, (Dispersion("part", 0.1, field="center", part=0, relative=False),
         ...                    Dispersion("part", 0.1, field="mass", part=1))).widths  # a vector takes 3
@@ -300,6 +305,7 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> BodySampler(tumble.t_handle(), (Dispersion("moments", 0.02),)).dims
         3
         """
@@ -312,6 +318,7 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=0, distribution="uniform"),
         ...                                 Dispersion("moments", 0.02))).distributions
         ('uniform', 'normal', 'normal', 'normal')
@@ -325,6 +332,7 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=1),
         ...                                 Dispersion("moments", 0.02))).names
         ('parts[1].mass [kg]', 'moment_factor_1', 'moment_factor_2', 'moment_factor_3')
@@ -347,6 +355,7 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("part", 0.1, field="mass", part=0, distribution="uniform"),
         ...                                           Dispersion("part", 0.1, field="mass", part=1)))
         >>> sampler.deviates([0.75, 0.975]).round(3).tolist()  # uniform 2 u - 1, normal Phi^-1(u)
@@ -382,6 +391,8 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> import numpy as np
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
         >>> sampler = BodySampler(box, (Dispersion("moments", 0.01),))
         >>> z = np.random.default_rng(0).normal(size=(5, 3))
@@ -437,6 +448,8 @@ class BodySampler:
         Examples
         --------
         >>> import tumble
+        >>> import numpy as np
+        >>> from tumble.ensemble.dispersions import BodySampler, Dispersion
         >>> sampler = BodySampler(tumble.t_handle(), (Dispersion("preset", 0.1, field="shaft_length"),), preset="t-handle")
         >>> drawn = sampler.sample([1.0])  # z = 1: a shaft 10 % longer
         >>> drawn.values.tolist(), bool(np.allclose(drawn.moments, tumble.t_handle(shaft_length=1.1).principal_moments))

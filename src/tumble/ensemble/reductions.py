@@ -63,6 +63,7 @@ def input_columns(inputs: CaseInputs, names: Sequence[str]) -> dict[str, np.ndar
     --------
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> from tumble.ensemble.reductions import input_columns
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
     >>> inputs = Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), cases=3).inputs()
     >>> cols = input_columns(inputs, ())
@@ -100,6 +101,7 @@ def nutation_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> from tumble.ensemble.reductions import nutation_angle
     >>> omega = [[[0.0, 0.0, 2.0], [1.0, 0.0, 1.0]]]  # one case, two samples, rad/s
     >>> nutation_angle(omega, [[1.0, 2.0, 3.0]]).round(4).tolist()  # arctan(1 / 3) for L = (1, 0, 3)
     [[0.0, 0.3218]]
@@ -161,6 +163,8 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     --------
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    >>> import numpy as np
+    >>> from tumble.ensemble.reductions import reduce_cases
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))  # moments 5, 10, 13 kg m^2
     >>> inputs = Ensemble(BodySampler(box), InitialRates(omega=(0.01, 1.0, 0.01)), cases=2).inputs()
     >>> batch = tumble.simulate_batch(inputs.moments, inputs.omega0, t_end=60.0, samples=600, attitude0=inputs.quat0)
@@ -229,6 +233,8 @@ class StabilityMap:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.reductions import stability_map
     >>> m = stability_map(10.0, resolution=40)
     >>> inside = m.inside
     >>> bool(np.all((m.separatrix_gap[inside] > 0) == (m.circulation[inside] == 3)))  # major axis above the separatrix
@@ -275,6 +281,8 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.reductions import stability_map
     >>> m = stability_map(10.0, resolution=20)
     >>> m.flip_interval.shape, sorted(set(m.circulation[m.inside].tolist()))
     ((10, 20), [1, 3])

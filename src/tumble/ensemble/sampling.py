@@ -52,6 +52,8 @@ def check_seed(seed: object) -> int:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sampling import check_seed
     >>> check_seed(np.uint64(2**63))
     9223372036854775808
     >>> check_seed(-1)
@@ -69,6 +71,8 @@ def case_generator(seed: int, index: int) -> np.random.Generator:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sampling import case_generator
     >>> a = case_generator(42, 5).random(3)
     >>> b = np.random.default_rng(np.random.SeedSequence(42).spawn(6)[5]).random(3)
     >>> bool(np.array_equal(a, b))  # case 5 made again alone, the same draws
@@ -86,6 +90,8 @@ def deviates(u: ArrayLike, distribution: str) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sampling import deviates
     >>> deviates([0.5, 0.975], "normal").round(4).tolist()
     [0.0, 1.96]
     >>> deviates([0.25, 0.75], "uniform").tolist()
@@ -120,6 +126,8 @@ class Design:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sampling import Design
     >>> design = Design("lhs", seed=1, cases=10, dims=2)
     >>> points = design.rows(0, 10)
     >>> points.shape, sorted(np.floor(points[:, 0] * 10).astype(int).tolist()) == list(range(10))  # one per stratum
@@ -147,6 +155,8 @@ class Design:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.sampling import Design
         >>> design = Design("sobol", seed=3, cases=8, dims=2)
         >>> bool(np.array_equal(design.rows(4, 8), design.rows(0, 8)[4:]))  # any chunk, the same points
         True
@@ -176,6 +186,7 @@ class Design:
 
         Examples
         --------
+        >>> from tumble.ensemble.sampling import Design, case_generator
         >>> design = Design("random", seed=9, cases=4, dims=2)
         >>> rng = design.generator(1)  # after case 1's two unit numbers
         >>> bool(rng.random() == case_generator(9, 1).random(3)[2])
@@ -298,6 +309,8 @@ def case_uniforms(seed: int, index: ArrayLike, count: int) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sampling import case_generator, case_uniforms
     >>> u = case_uniforms(42, [0, 7], 3)
     >>> bool(np.array_equal(u[1], case_generator(42, 7).random(3)))  # bit for bit
     True

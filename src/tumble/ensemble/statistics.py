@@ -78,6 +78,8 @@ def case_keys(seed: int, index: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.statistics import case_keys
     >>> keys = case_keys(7, np.arange(1000))
     >>> keys.dtype, len(np.unique(keys))  # distinct indices, distinct keys
     (dtype('uint64'), 1000)
@@ -114,6 +116,8 @@ class RunningMoments:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.statistics import RunningMoments
     >>> m = RunningMoments.of([[1.0, 10.0], [2.0, np.nan], [3.0, 30.0]])
     >>> m.count.tolist(), m.mean.tolist(), m.maximum.tolist()  # NaN ignored
     ([3, 2], [2.0, 20.0], [3.0, 30.0])
@@ -131,6 +135,8 @@ class RunningMoments:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import RunningMoments
         >>> m = RunningMoments.of(np.array([[1.0], [2.0], [4.0]]))
         >>> bool(np.isclose(m.mean[0], 7 / 3)), bool(np.isclose(m.m2[0], 42 / 9)), float(m.minimum[0])
         (True, True, 1.0)
@@ -153,6 +159,8 @@ class RunningMoments:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import RunningMoments
         >>> x = np.random.default_rng(0).normal(5.0, 2.0, size=(1000, 2))
         >>> merged = RunningMoments.of(x[:300]).merge(RunningMoments.of(x[300:]))
         >>> bool(np.allclose(merged.mean, x.mean(axis=0), rtol=1e-14, atol=0)), merged.count.tolist()
@@ -175,6 +183,8 @@ class RunningMoments:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import RunningMoments
         >>> RunningMoments.of([[1.0, 5.0], [3.0, np.nan]]).variance.tolist()  # one value: no variance
         [2.0, nan]
         """
@@ -187,6 +197,7 @@ class RunningMoments:
 
         Examples
         --------
+        >>> from tumble.ensemble.statistics import RunningMoments
         >>> RunningMoments.of([[2.0], [4.0], [4.0], [4.0], [5.0], [5.0], [7.0], [9.0]]).std.round(4).tolist()  # sqrt(32 / 7)
         [2.1381]
         """
@@ -210,6 +221,8 @@ class KeyedSample:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.statistics import KeyedSample, case_keys
     >>> sample = KeyedSample.of(case_keys(1, np.arange(50)), np.arange(50.0)[:, None], size=20)
     >>> sample.values.shape, sample.seen, sample.exact
     ((20, 1), 50, False)
@@ -226,6 +239,7 @@ class KeyedSample:
 
         Examples
         --------
+        >>> from tumble.ensemble.statistics import KeyedSample
         >>> KeyedSample.of([30, 10, 20], [[3.0], [1.0], [2.0]], size=2).values.ravel().tolist()  # smallest keys
         [1.0, 2.0]
         """
@@ -241,6 +255,8 @@ class KeyedSample:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import KeyedSample, case_keys
         >>> keys, values = case_keys(3, np.arange(100)), np.arange(100.0)[:, None]
         >>> a, b = KeyedSample.of(keys[:40], values[:40], 25), KeyedSample.of(keys[40:], values[40:], 25)
         >>> bool(np.array_equal(a.merge(b).values, b.merge(a).values)), a.merge(b).seen
@@ -262,6 +278,8 @@ class KeyedSample:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import KeyedSample
         >>> sample = KeyedSample.of(np.arange(5), [[1.0], [2.0], [3.0], [4.0], [5.0]], size=10)
         >>> sample.quantiles([0.0, 0.5, 1.0]).ravel().tolist()  # all cases held: exact
         [1.0, 3.0, 5.0]
@@ -284,6 +302,8 @@ class KeyedSample:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import KeyedSample, case_keys
         >>> n = 20_000
         >>> sample = KeyedSample.of(case_keys(0, np.arange(n)), np.zeros((n, 1)), size=10_000)
         >>> sample.rank_error(0.05).round(4).tolist()  # the median lies within the 48.6 % .. 51.4 % points
@@ -300,6 +320,8 @@ class KeyedSample:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import KeyedSample
         >>> KeyedSample.of(np.arange(3), np.zeros((3, 1)), size=3).exact
         True
         >>> KeyedSample.of(np.arange(4), np.zeros((4, 1)), size=3).exact
@@ -319,6 +341,7 @@ class Counts:
 
     Examples
     --------
+    >>> from tumble.ensemble.statistics import Counts
     >>> Counts.of({"outcome": ["flip", "stable", "flip"]}).table
     (('outcome', (('flip', 2), ('stable', 1))),)
     """
@@ -331,6 +354,8 @@ class Counts:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.statistics import Counts
         >>> Counts.of({"axis": np.array([3, 1, 3, 3])}).as_dict()
         {'axis': {'1': 1, '3': 3}}
         """
@@ -345,6 +370,7 @@ class Counts:
 
         Examples
         --------
+        >>> from tumble.ensemble.statistics import Counts
         >>> a = Counts.of({"axis": [1, 3]})
         >>> a.merge(Counts.of({"axis": [3, 2]})).as_dict()
         {'axis': {'1': 1, '2': 1, '3': 2}}
@@ -364,6 +390,7 @@ class Counts:
         Examples
         --------
         >>> import json
+        >>> from tumble.ensemble.statistics import Counts
         >>> json.dumps(Counts.of({"ok": [True, True, False]}).as_dict())
         '{"ok": {"False": 1, "True": 2}}'
         """
@@ -415,6 +442,7 @@ def success_lower_bound(cases: int, failures: int, confidence: float) -> float:
 
     Examples
     --------
+    >>> from tumble.ensemble.statistics import success_lower_bound
     >>> round(success_lower_bound(852, 0, 0.9), 4)  # Hanson & Beard: 99.73 % at 90 %
     0.9973
     >>> p = success_lower_bound(100, 2, 0.95)
@@ -451,6 +479,7 @@ def runs_needed(success: float, confidence: float, failures: int = 0) -> int:
 
     Examples
     --------
+    >>> from tumble.ensemble.statistics import runs_needed, success_lower_bound
     >>> runs_needed(0.999, 0.95), runs_needed(0.9973, 0.9)
     (2995, 852)
     >>> n = runs_needed(0.99, 0.9, failures=1)
@@ -479,6 +508,7 @@ def success_statement(cases: int, failures: int, confidence: float) -> str:
 
     Examples
     --------
+    >>> from tumble.ensemble.statistics import success_statement
     >>> success_statement(852, 0, 0.9)
     '852 cases, 0 failures: success probability >= 99.73 % at 90 % confidence (Clopper-Pearson; Hanson & Beard, NASA/TP-2010-216447)'
     """

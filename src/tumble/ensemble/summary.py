@@ -43,6 +43,7 @@ def base_name(column: str) -> str:
 
     Examples
     --------
+    >>> from tumble.ensemble.summary import base_name
     >>> base_name("flip_period [s]"), base_name("flips")
     ('flip_period', 'flips')
     """
@@ -104,6 +105,8 @@ class SweepSummary:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.summary import SweepSummary
     >>> cols = {"case": np.arange(4), "axis": np.array([2, 2, 2, 3]), "predicted": np.array(["unstable"] * 3 + ["stable"]),
     ...         "circulation": np.array([1, 3, 3, 3]), "flips": np.array([2, 4, 6, 0]), "resampled": np.zeros(4, int)}
     >>> summary = SweepSummary.of(cols, seed=0)
@@ -126,6 +129,8 @@ class SweepSummary:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.summary import SweepSummary
         >>> cols = {"case": np.arange(3), "axis": np.array([2, 2, 2]), "predicted": np.array(["unstable"] * 3),
         ...         "circulation": np.array([1, 3, 3]), "flips": np.array([2, 4, 0]), "resampled": np.array([0, 1, 0])}
         >>> from tumble.ensemble.sweep import Criterion
@@ -145,6 +150,8 @@ class SweepSummary:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.summary import SweepSummary
         >>> def block(start, flips):
         ...     n = len(flips)
         ...     return {"case": np.arange(start, start + n), "axis": np.full(n, 2), "predicted": np.array(["unstable"] * n),
@@ -165,6 +172,8 @@ class SweepSummary:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.summary import SweepSummary
         >>> cols = {"case": np.arange(3), "axis": np.array([1, 2, 3]), "predicted": np.array(["stable", "unstable", "stable"]),
         ...         "circulation": np.array([1, 3, 3]), "flips": np.zeros(3), "resampled": np.zeros(3, int)}
         >>> SweepSummary.of(cols, seed=0).cases
@@ -177,6 +186,8 @@ class SweepSummary:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.summary import SweepSummary
         >>> cols = {"case": np.arange(3), "axis": np.full(3, 2), "predicted": np.array(["unstable"] * 3),
         ...         "circulation": np.full(3, 3), "flip_period [s]": np.array([20.0, 21.0, 22.0]), "resampled": np.zeros(3, int)}
         >>> sample = SweepSummary.of(cols, seed=0).sample_columns()
@@ -194,6 +205,8 @@ class SweepSummary:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.summary import SweepSummary
         >>> cols = {"case": np.arange(4), "axis": np.full(4, 2), "predicted": np.array(["unstable"] * 4),
         ...         "circulation": np.full(4, 3), "flip_period [s]": np.array([20.0, 21.0, 22.0, 23.0]),
         ...         "resampled": np.zeros(4, int)}
@@ -242,6 +255,8 @@ def summarize(chunks: Iterable[dict], seed: int, criterion: _Criterion | None = 
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.summary import summarize
     >>> chunks = [{"case": np.arange(k, k + 2), "axis": np.full(2, 2), "predicted": np.array(["unstable"] * 2),
     ...            "circulation": np.full(2, 3), "flips": np.array([k, k + 1]), "resampled": np.zeros(2, int)}
     ...           for k in (0, 2, 4)]

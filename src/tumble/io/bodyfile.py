@@ -26,10 +26,21 @@ import os
 import tomllib
 from pathlib import Path
 
-from ..mass import PART_KINDS, PRESETS, Body, Part
+from ..mass import PART_KINDS, PRESETS, Body, Mesh, Part
 from ..validation import read_input_file
 
-__all__ = ["MAX_TOML_BYTES", "body_from_table", "load_body", "mesh_files", "part_from_table", "read_toml"]
+__all__ = [
+    "MAX_TOML_BYTES",
+    "MESH_SUFFIXES",
+    "MESH_UNITS",
+    "body_from_mesh",
+    "body_from_table",
+    "is_mesh_file",
+    "load_body",
+    "mesh_files",
+    "part_from_table",
+    "read_toml",
+]
 
 
 #: The largest body or scenario file (TOML) that :func:`read_toml` reads, in bytes (1 MiB).
@@ -194,6 +205,8 @@ def mesh_files(table: dict, base_dir: Path | None = None) -> list[Path]:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> from tumble.io.bodyfile import mesh_files
     >>> table = {"parts": [{"kind": "mesh", "mesh": "m/a.stl", "mass": 1.0},
     ...                    {"kind": "sphere", "mass": 1.0, "radius": 0.1}]}
     >>> [p.as_posix() for p in mesh_files(table, Path("bodies"))]
@@ -265,3 +278,84 @@ def load_body(source: str | os.PathLike[str]) -> Body:
         return body_from_table(data["body"], base_dir=path.parent)
     except ValueError as exc:
         raise ValueError(f"{path}: {exc}") from None
+
+
+#: The mesh files that :func:`body_from_mesh` (and ``tumble inertia``) read directly, by suffix
+#: (any case): a solid whose whole surface is one closed triangle mesh.
+MESH_SUFFIXES = (".stl", ".obj", ".ply")
+
+#: The length units of a mesh file, as factors to metres (``tumble inertia part.stl --units mm``).
+MESH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
+
+
+def is_mesh_file(source: str | os.PathLike[str]) -> bool:
+    """Whether ``source`` names a mesh file (by its suffix, any case: .stl, .obj, .ply).
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import is_mesh_file
+    >>> is_mesh_file("parts/bracket.STL"), is_mesh_file("bodies/t_handle.toml"), is_mesh_file("t-handle")
+    (True, False, False)
+    """
+    return Path(source).suffix.lower() in MESH_SUFFIXES
+
+
+def body_from_mesh(
+    path: str | os.PathLike[str],
+    *,
+    density: float | None = None,
+    mass: float | None = None,
+    scale: float | None = None,
+    units: str | None = None,
+) -> Body:
+    """A one-part body from a mesh file (STL, OBJ, PLY): a uniform solid, named after the file.
+
+    The same body as a body file with one ``kind = "mesh"`` part, without writing that file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The mesh file: a closed, consistently wound triangle mesh (see :class:`tumble.Mesh`).
+    density, mass : float
+        Uniform density (kg/m^3) or total mass (kg), exactly one.
+    scale : float, optional
+        Factor from file units to metres (e.g. 0.001 for a file in mm).
+    units : {"m", "cm", "mm", "in"}, optional
+        The file's length unit, instead of ``scale``. Default: metres.
+
+    Raises
+    ------
+    ValueError
+        One line: neither or both of ``density`` and ``mass``, both ``scale`` and ``units``, an
+        unknown unit, or a mesh that cannot be read or encloses no volume (open, inconsistently
+        wound, inside out), naming the file.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, trimesh
+    >>> from tumble.io.bodyfile import body_from_mesh
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "brick.stl")
+    ...     _ = trimesh.creation.box(extents=(10.0, 20.0, 30.0)).export(path)   # in cm
+    ...     body = body_from_mesh(path, mass=12.0, units="cm")
+    >>> body.name, body.principal_moments.round(6).tolist()   # m (b^2 + c^2) / 12 and cyclic, ascending
+    ('brick', [0.05, 0.1, 0.13])
+    """
+    given = [k for k, v in (("density", density), ("mass", mass)) if v is not None]
+    if len(given) != 1:
+        raise ValueError(
+            f"{path}: a mesh needs exactly one of density (kg/m^3) or mass (kg), "
+            f"got {' and '.join(given) if given else 'neither'}"
+        )
+    if scale is not None and units is not None:
+        raise ValueError(f"{path}: give scale = {scale!r} or units = {units!r}, not both")
+    if units is not None:
+        if units not in MESH_UNITS:
+            raise ValueError(f"{path}: units = {units!r} is unknown; allowed: {', '.join(MESH_UNITS)}")
+        scale = MESH_UNITS[units]
+    try:
+        part = Mesh(mesh=os.fspath(path), scale=1.0 if scale is None else scale, density=density, mass=mass)
+    except ValueError as exc:
+        message = str(exc)
+        raise ValueError(message if os.fspath(path) in message else f"{path}: {message}") from None
+    return Body((part,), name=Path(path).stem)

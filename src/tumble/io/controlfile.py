@@ -103,6 +103,9 @@ class ControlScenario:
     wheels; the spin given about design z is about principal axis 1:
 
     >>> from tumble.io.bodyfile import body_from_table
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.io.controlfile import control_scenario_from_table
     >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
     >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -138,6 +141,9 @@ class ControlScenario:
         Examples
         --------
         >>> from tumble.io.bodyfile import body_from_table
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.io.controlfile import control_scenario_from_table
         >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
         >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -171,6 +177,9 @@ class ControlScenario:
         Examples
         --------
         >>> from tumble.io.bodyfile import body_from_table
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.io.controlfile import control_scenario_from_table
         >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
         >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -194,6 +203,9 @@ class ControlScenario:
         Examples
         --------
         >>> from tumble.io.bodyfile import body_from_table
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.io.controlfile import control_scenario_from_table
         >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
         >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -221,6 +233,9 @@ class ControlScenario:
         Examples
         --------
         >>> from tumble.io.bodyfile import body_from_table
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.io.controlfile import control_scenario_from_table
         >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
         >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
         ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -283,6 +298,9 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     axis 1 is design z, axis 3 design x):
 
     >>> from tumble.io.bodyfile import body_from_table
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.io.controlfile import control_scenario_from_table
     >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
     >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},

@@ -71,6 +71,7 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
 
     Examples
     --------
+    >>> from tumble.io.controlorbit import orbit_from_table
     >>> orbit, field = orbit_from_table({"altitude": 500e3, "inclination": 1.7})
     >>> type(orbit).__name__, type(field).__name__
     ('CircularOrbit', 'DipoleField')
@@ -112,6 +113,9 @@ def geomagnetic_inclination(orbit: Orbit, field: Field) -> float:
     --------
     An equatorial orbit under an axial dipole lies in the magnetic equator:
 
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.io.controlorbit import geomagnetic_inclination
     >>> orbit = CircularOrbit(altitude=500e3)
     >>> geomagnetic_inclination(orbit, DipoleField(orbit, coefficients=(-3e-5, 0.0, 0.0)))
     0.0
@@ -129,6 +133,7 @@ def orbit_summary(orbit: Orbit, field: Field) -> dict[str, Any]:
 
     Examples
     --------
+    >>> from tumble.io.controlorbit import orbit_from_table, orbit_summary
     >>> orbit, field = orbit_from_table({"altitude": 500e3, "inclination": 1.7})
     >>> s = orbit_summary(orbit, field)
     >>> s["kind"], s["altitude"], round(s["period"]), s["field"]

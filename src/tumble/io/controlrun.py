@@ -64,6 +64,8 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
     >>> import math
     >>> from tumble.io.bodyfile import body_from_table
     >>> from tumble.io.controlfile import control_scenario_from_table
+    >>> import numpy as np
+    >>> from tumble.io.controlrun import control_summary
     >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
     >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},
@@ -116,6 +118,9 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     >>> import math, tempfile
     >>> from tumble.io.bodyfile import body_from_table
     >>> from tumble.io.controlfile import control_scenario_from_table
+    >>> import numpy as np
+    >>> from pathlib import Path
+    >>> from tumble.io.controlrun import write_control_run
     >>> body = body_from_table({"name": "box", "parts": [{"kind": "box", "mass": 4.0, "size": [0.1, 0.2, 0.3]}]})
     >>> table = {"initial": {"omega": [0.0, 0.0, 0.01], "attitude": [0.0, 0.5, 0.0, math.sqrt(0.75)]},
     ...          "simulation": {"t_end": 10.0}, "control": {"kind": "mrp_pd", "period": 0.5, "K": 1e-3, "P": 6e-3},

@@ -67,6 +67,7 @@ class ControlSpec:
 
     Examples
     --------
+    >>> from tumble.io.controlspec import ControlSpec
     >>> ControlSpec("bdot", {"gain": 1e4, "period": 1.0}, None, 0.01).kind
     'bdot'
     """
@@ -143,6 +144,11 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     --------
     >>> from tumble.mass import MassProperties
     >>> from tumble.dynamics import CircularOrbit, DipoleField
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.io.controlspec import build_controller, parse_control
     >>> body = MassProperties.from_moments([0.0067, 0.0419, 0.0419])
     >>> wheels = ReactionWheels(np.eye(3), inertia=2e-5)
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
@@ -219,6 +225,7 @@ def build_controller(spec: ControlSpec, body: Body, wheels: ReactionWheels | Non
     Examples
     --------
     >>> from tumble.mass import MassProperties
+    >>> from tumble.io.controlspec import ControlSpec, build_controller
     >>> c = build_controller(ControlSpec("bdot", {"gain": 1e4, "period": 1.0}, None, 0.01),
     ...                      MassProperties.from_moments([1.0, 2.0, 3.0]), None)
     >>> type(c).__name__, c.gain

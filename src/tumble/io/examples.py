@@ -53,6 +53,7 @@ class Example:
 
     Examples
     --------
+    >>> from tumble.io.examples import list_examples
     >>> [(e.path, e.kind) for e in list_examples() if e.name == "t_handle"]
     [('bodies/t_handle.toml', 'body')]
     """
@@ -103,6 +104,7 @@ def list_examples() -> list[Example]:
 
     Examples
     --------
+    >>> from tumble.io.examples import list_examples
     >>> found = list_examples()
     >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
     ('scenario', ['body', 'control', 'scenario', 'sweep'])
@@ -144,6 +146,8 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     Examples
     --------
     >>> import tempfile
+    >>> from pathlib import Path
+    >>> from tumble.io.examples import copy_examples, list_examples
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     written = copy_examples(Path(folder) / "examples")
     ...     print(Path(folder, "examples", "bodies", "t_handle.toml") in written, len(written) > len(list_examples()))

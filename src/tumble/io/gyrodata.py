@@ -83,6 +83,7 @@ def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]
     Examples
     --------
     >>> from importlib import resources
+    >>> from tumble.io.gyrodata import read_gyro_csv
     >>> t, omega = read_gyro_csv(resources.files("tumble") / "examples/data/phone_toss.csv")  # 15 s at 100 Hz
     >>> t.shape, omega.shape, round(float(omega[0, 0]), 1)  # spun at 12 rad/s about the sensor's x
     ((1500,), (1500, 3), 12.0)
@@ -96,6 +97,7 @@ def parse_gyro_csv(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray]:
 
     Examples
     --------
+    >>> from tumble.io.gyrodata import parse_gyro_csv
     >>> t, omega = parse_gyro_csv(b"t (ms), wx [deg/s], wy [deg/s], wz [deg/s]\\n0, 180, 0, 0\\n10, 180, 0, 90\\n", "toss.csv")
     >>> t.tolist(), omega.round(6).tolist()  # converted to s and rad/s
     ([0.0, 0.01], [[3.141593, 0.0, 0.0], [3.141593, 0.0, 1.570796]])
@@ -113,6 +115,7 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
 
     Examples
     --------
+    >>> from tumble.io.gyrodata import parse_gyro_table
     >>> text = b"# exported by a logger\\ntime (s)\\tgx\\tgy\\tgz\\t|omega|\\n0.0\\t1\\t0\\t0\\t1\\n0.002\\t1\\t0\\t0\\t1\\n"
     >>> t, omega, read = parse_gyro_table(text, "log.txt")
     >>> read.rates, read.ignored, read.rows, read.sample_rate
@@ -242,6 +245,7 @@ def parse_time_csv(raw: bytes, label: str) -> list[tuple[str, float]]:
 
     Examples
     --------
+    >>> from tumble.io.gyrodata import parse_time_csv
     >>> raw = b'"event","experiment time","system time","system time text"\\nSTART,0.0,1.7e9,a\\nPAUSE,12.5,1.7e9,b\\n'
     >>> parse_time_csv(raw, "meta/time.csv")
     [('START', 0.0), ('PAUSE', 12.5)]
@@ -303,6 +307,7 @@ class GyroRecording:
     Examples
     --------
     >>> from importlib import resources
+    >>> from tumble.io.gyrodata import load_recording
     >>> rec = load_recording(resources.files("tumble") / "examples/data/phone_toss.csv")
     >>> rec.read.brief()   # phyphox's names; the phone's clock a little irregular
     'Time (s), Gyroscope x, Gyroscope y, Gyroscope z (rad/s), 1500 rows at 99.9 Hz'
@@ -342,6 +347,7 @@ def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray
     --------
     >>> import tempfile, zipfile
     >>> from pathlib import Path
+    >>> from tumble.io.gyrodata import read_recording
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     export = Path(folder) / "toss.zip"  # a phyphox export, as the app writes it
     ...     with zipfile.ZipFile(export, "w") as z:
@@ -363,6 +369,7 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
     --------
     >>> import tempfile
     >>> from pathlib import Path
+    >>> from tumble.io.gyrodata import load_recording
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     log = Path(folder) / "log.txt"   # a logger's export: comments, a header, |omega| and the accelerometer
     ...     _ = log.write_text("# phone 1\\ntimestamp (ms) gyro_x gyro_y gyro_z acc_x acc_y acc_z |omega|\\n"

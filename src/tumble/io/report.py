@@ -37,6 +37,7 @@ def mass_properties_dict(body: Body) -> dict:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.io.report import mass_properties_dict
     >>> d = mass_properties_dict(tumble.t_handle())
     >>> d["mass"], d["principal_moments"], d["intermediate_axis"], d["symmetry"]
     (3.0, [0.125, 0.3125, 0.4375], [1.0, 0.0, 0.0], 'asymmetric')
@@ -73,6 +74,8 @@ def rotor_stable_spin(body: Body) -> list[float] | None:
     --------
     >>> import tumble
     >>> from importlib import resources
+    >>> import numpy as np
+    >>> from tumble.io.report import rotor_stable_spin
     >>> body = tumble.load_body(resources.files("tumble") / "examples/bodies/t_handle_wheel.toml")
     >>> low, high = rotor_stable_spin(body)
     >>> I1, I2, I3 = body.principal_moments
@@ -116,6 +119,7 @@ def mass_properties_table(body: Body) -> str:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.io.report import mass_properties_table
     >>> print(mass_properties_table(tumble.t_handle()))  # doctest: +ELLIPSIS
     T-handle: 2 parts
       mass              3 kg

@@ -338,6 +338,7 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
 
     Examples
     --------
+    >>> from tumble.io.scenario import resolve_run
     >>> run = resolve_run("t-handle", omega=[0.1, 5.0, 0.1], t_end=10.0, samples=101)
     >>> run.name, run.t_end, run.samples
     ('t-handle', 10.0, 101)
@@ -411,6 +412,7 @@ def gravity_gradient_from_table(table: dict) -> GravityGradient:
     Examples
     --------
     >>> import math
+    >>> from tumble.io.scenario import gravity_gradient_from_table
     >>> gg = gravity_gradient_from_table({"kind": "gravity_gradient", "orbit_period": 5400.0})
     >>> math.isclose(gg.mean_motion, 2 * math.pi / 5400.0)  # n = 2 pi / T, rad/s
     True
@@ -441,6 +443,7 @@ def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassPro
     Examples
     --------
     >>> import tumble
+    >>> from tumble.io.scenario import gravity_gradient_from_table, lvlh_state_from_table
     >>> gg = gravity_gradient_from_table({"orbit_period": 5400.0})
     >>> state = lvlh_state_from_table({"pitch": 0.1}, gg, tumble.t_handle())
     >>> import numpy as np

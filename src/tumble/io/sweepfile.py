@@ -93,6 +93,7 @@ class SweepFile:
 
     Examples
     --------
+    >>> from tumble.io.sweepfile import sweep_from_table
     >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 5.0, 0.1]},
     ...                            "simulation": {"t_end": 5.0}}, name="spin")
     >>> parsed.name, parsed.chunk, parsed.sweep.ensemble.cases
@@ -116,6 +117,7 @@ class SweepFile:
 
         Examples
         --------
+        >>> from tumble.io.sweepfile import sweep_from_table
         >>> spin = {"body": "t-handle", "initial": {"omega": [0.1, 5.0, 0.1]}}
         >>> parsed = sweep_from_table({**spin, "sweep": {"cases": 4}})
         >>> other = sweep_from_table({**spin, "sweep": {"cases": 4, "chunk": 2}})
@@ -214,6 +216,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
 
     Examples
     --------
+    >>> from tumble.io.sweepfile import sweep_from_table
     >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 16, "seed": 1},
     ...                            "dispersion": [{"target": "moments", "relative": 0.02}],
     ...                            "initial": {"omega": [0.1, 5.0, 0.1]}, "simulation": {"t_end": 5.0}})
@@ -260,6 +263,7 @@ def load_sweep(path: str | os.PathLike[str]) -> SweepFile:
     Examples
     --------
     >>> from importlib import resources
+    >>> from tumble.io.sweepfile import load_sweep
     >>> parsed = load_sweep(resources.files("tumble") / "examples/sweeps/t_handle_dimensions.toml")
     >>> parsed.name, parsed.sweep.ensemble.cases, parsed.sweep.ensemble.sampling, parsed.chunk
     ('t_handle_dimensions', 4096, 'sobol', 1024)
@@ -289,6 +293,9 @@ class CaseTables:
     Examples
     --------
     >>> import tempfile
+    >>> import numpy as np
+    >>> from pathlib import Path
+    >>> from tumble.io.sweepfile import CaseTables
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     tables = CaseTables(Path(folder))
     ...     tables({"case": np.arange(2), "flips": np.array([1.0, 0.5])})
@@ -313,6 +320,9 @@ class CaseTables:
         Examples
         --------
         >>> import tempfile
+        >>> import numpy as np
+        >>> from pathlib import Path
+        >>> from tumble.io.sweepfile import CaseTables
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     tables = CaseTables(Path(folder))
         ...     tables({"case": np.arange(3), "flips": np.array([2.0, 0.0, 1.5])})
@@ -341,6 +351,8 @@ class CaseTables:
         Examples
         --------
         >>> import tempfile
+        >>> from pathlib import Path
+        >>> from tumble.io.sweepfile import CaseTables
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     tables = CaseTables(Path(folder))
         ...     tables.close()

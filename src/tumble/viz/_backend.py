@@ -77,6 +77,7 @@ def new_figure(figsize: tuple[float, float] = (7.5, 3.6), **kwargs: Any) -> Figu
 
     Examples
     --------
+    >>> from tumble.viz._backend import new_figure
     >>> fig = new_figure((4.0, 3.0))
     >>> fig.get_size_inches().tolist(), type(fig.get_layout_engine()).__name__, fig.axes
     ([4.0, 3.0], 'ConstrainedLayoutEngine', [])
@@ -91,6 +92,7 @@ def figure_and_axes(ax: Axes | None = None, figsize: tuple[float, float] = (7.5,
 
     Examples
     --------
+    >>> from tumble.viz._backend import figure_and_axes
     >>> fig, ax = figure_and_axes()
     >>> len(fig.axes), ax.figure is fig, fig.get_size_inches().tolist()
     (1, True, [7.5, 3.6])
@@ -112,6 +114,7 @@ def legend_outside(ax: Axes, **kwargs: Any) -> None:
 
     Examples
     --------
+    >>> from tumble.viz._backend import figure_and_axes, legend_outside
     >>> fig, ax = figure_and_axes()
     >>> legend_outside(ax)
     >>> ax.get_legend() is None
@@ -133,6 +136,7 @@ def note_only(ax: Axes, note: str, title: str | None = None) -> None:
 
     Examples
     --------
+    >>> from tumble.viz._backend import figure_and_axes, note_only
     >>> fig, ax = figure_and_axes()
     >>> note_only(ax, "no polhode for this run: a torque acts", "polhode")
     >>> ax.axison, [text.get_text() for text in ax.texts], ax.get_title()
@@ -165,6 +169,7 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], dpi: int = FIGURE_DPI
     --------
     >>> import tempfile
     >>> from pathlib import Path
+    >>> from tumble.viz._backend import figure_and_axes, save_figure
     >>> fig, ax = figure_and_axes(figsize=(4.0, 3.0))
     >>> _ = ax.plot([0.0, 1.0], [1.0, 0.0])
     >>> with tempfile.TemporaryDirectory() as folder:

@@ -40,6 +40,8 @@ def ffmpeg_path() -> str | None:
 
     Examples
     --------
+    >>> import os
+    >>> from tumble.viz.animate import ffmpeg_path
     >>> found = ffmpeg_path()
     >>> found is None or (os.path.isfile(found) and os.access(found, os.X_OK))  # an executable, if any
     True
@@ -65,6 +67,7 @@ def animation_path(path: str | os.PathLike[str]) -> tuple[Path, str | None]:
 
     Examples
     --------
+    >>> from tumble.viz.animate import animation_path, ffmpeg_path
     >>> path, note = animation_path("out/flip.gif")
     >>> path.as_posix(), note
     ('out/flip.gif', None)
@@ -92,6 +95,8 @@ def writer_for(path: Path, fps: int) -> Any:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> from tumble.viz.animate import writer_for
     >>> writer = writer_for(Path("flip.gif"), fps=20)
     >>> type(writer).__name__, writer.fps
     ('PillowWriter', 20)
@@ -122,6 +127,7 @@ def scene_axes(size: float, title: str, figsize: tuple[float, float] = (5.4, 5.4
 
     Examples
     --------
+    >>> from tumble.viz.animate import scene_axes
     >>> fig, ax = scene_axes(0.5, "T-handle")
     >>> ax.name, ax.get_title(), ax.get_xlim() == ax.get_zlim() == (-0.5, 0.5), ax.get_zlabel()
     ('3d', 'T-handle', True, 'z (m)')
@@ -161,6 +167,8 @@ def animate_ground_frame(body: Body, traj: Trajectory, path: str | os.PathLike[s
     >>> import tempfile
     >>> import tumble
     >>> from PIL import Image
+    >>> from pathlib import Path
+    >>> from tumble.viz.animate import animate_ground_frame
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> with tempfile.TemporaryDirectory() as folder:
@@ -212,6 +220,8 @@ def animate_body_frame(body: Body, traj: Trajectory, path: str | os.PathLike[str
     >>> import tempfile
     >>> import tumble
     >>> from PIL import Image
+    >>> from pathlib import Path
+    >>> from tumble.viz.animate import animate_body_frame
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> with tempfile.TemporaryDirectory() as folder:

@@ -43,6 +43,8 @@ def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | Non
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.analysis.fit import fit_rotation
     >>> from tumble.dynamics.methods.exact import FreeRotation
+    >>> import numpy as np
+    >>> from tumble.viz.fit import figure_fit
     >>> t = np.linspace(0.0, 2.0, 201)  # s
     >>> w = FreeRotation([0.3, 0.7, 1.0], [0.2, 5.0, 0.3], Rotation.identity()).omega(t)  # rad/s, exact
     >>> fit = fit_rotation(t, w, sensor_rotation="identity", bias=False, drag="none")
@@ -110,6 +112,8 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     --------
     >>> from tumble.analysis.fit import fit_recording
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> import numpy as np
+    >>> from tumble.viz.fit import figure_recording
     >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))  # a phone's recording of two tosses
     >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)
     >>> top, flights, triangle = figure_recording(fit).axes

@@ -73,6 +73,7 @@ def figure_gravity_stability(*, ax: Axes | None = None,
     Examples
     --------
     >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios
+    >>> from tumble.viz.gravity import figure_gravity_stability
     >>> k_R, _, k_Y = gravity_gradient_ratios([5.0, 10.0, 13.0])  # 12 kg box, 1 x 2 x 3 m; pitch major, yaw minor
     >>> ax = figure_gravity_stability(points={"box": (float(k_R), float(k_Y))}).axes[0]
     >>> ax.get_title(), ax.get_xlim() == ax.get_ylim() == (-1.0, 1.0)  # the square of every real body

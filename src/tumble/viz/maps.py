@@ -69,6 +69,9 @@ def figure_stability_map(spin: float = 10.0, perturbation: tuple[float, float] =
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble import stability_map
+    >>> from tumble.viz.maps import figure_stability_map
     >>> fig = figure_stability_map(10.0, (0.01, 0.01), resolution=40, points={"T-handle": (2 / 7, 5 / 7)})
     >>> ax, colorbar = fig.axes
     >>> ax.get_xlabel(), colorbar.get_xlabel(), [text.get_text() for text in ax.texts][-1]
@@ -145,6 +148,8 @@ def figure_sweep(columns: dict, *, fig: Figure | None = None, title: str | None 
     --------
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates, RunSettings, Sweep, compute_chunk
+    >>> import numpy as np
+    >>> from tumble.viz.maps import figure_sweep
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))  # kg, m
     >>> spread = Ensemble(BodySampler(box, (Dispersion("moments", 0.02),)), InitialRates(omega=(0.01, 1.0, 0.01)), 6)
     >>> columns = compute_chunk(Sweep(spread, RunSettings(t_end=80.0, samples=800)), 0, 6)  # 6 cases, 3 flips each

@@ -62,6 +62,8 @@ def figure_detumble_mc(mc: DetumbleMonteCarlo, *, title: str | None = None, fig:
     Examples
     --------
     >>> from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
+    >>> import numpy as np
+    >>> from tumble.viz.montecarlo import figure_detumble_mc
     >>> cases = detumble_cases(5, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3)
     >>> t = np.array([0.0, 60.0, 120.0])
     >>> rates = np.array([[0.2, 0.05, 0.001], [0.3, 0.1, 0.002], [0.1, 0.02, 0.001], [0.25, 0.2, 0.1],

@@ -73,6 +73,7 @@ def show(trajectory: Trajectory, body: Body, *, frames: int = 150, height: int =
     --------
     >>> import html
     >>> import tumble
+    >>> from tumble.viz.notebook import show
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> frame = show(run, body, frames=5, height=600, title="T-handle flip")  # in a notebook: the page, playing

@@ -84,6 +84,7 @@ def live_presets() -> list[dict]:
 
     Examples
     --------
+    >>> from tumble.viz.page import BRODY_RACKET_MOMENTS, live_presets
     >>> handle, plate, racket = live_presets()
     >>> handle["moments"], handle["omega0"], handle["mass"]  # the T-handle spun about its intermediate axis
     ([0.125, 0.3125, 0.4375], [0.1, 10.0, 0.1], 3.0)
@@ -132,6 +133,8 @@ def page_data(body: Body, traj: Trajectory, frames: int = 150, title: str | None
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.page import page_data
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
     >>> data = page_data(body, run, frames=5)
@@ -240,6 +243,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     --------
     >>> import json, re
     >>> import tumble
+    >>> from tumble.viz.page import page_html
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
     >>> html = page_html(body, run, frames=5, title="T-handle flip")
@@ -296,6 +300,8 @@ def write_page(body: Body, traj: Trajectory, path: str | os.PathLike[str], *, fr
     --------
     >>> import tempfile
     >>> import tumble
+    >>> from pathlib import Path
+    >>> from tumble.viz.page import page_html, write_page
     >>> body = tumble.t_handle()
     >>> run = tumble.simulate(body, [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip, 2 s
     >>> with tempfile.TemporaryDirectory() as folder:

@@ -46,6 +46,7 @@ def phase_portrait_problem(traj: Trajectory) -> str | None:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.phase import phase_portrait_problem
     >>> body = tumble.t_handle()
     >>> phase_portrait_problem(tumble.simulate(body, [0.1, 10.0, 0.1], t_end=1.0, samples=5)) is None
     True
@@ -73,6 +74,8 @@ def polhode_family(moments: ArrayLike, L_norm: float, count: int = 9, points: in
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.phase import polhode_family
     >>> I = np.array([0.125, 0.3125, 0.4375])  # the T-handle, kg m^2
     >>> curves = polhode_family(I, 2.0, count=4, points=60)  # |L| = 2 kg m^2/s
     >>> len(curves), curves[0].shape, bool(np.allclose(np.linalg.norm(curves, axis=2), 2.0))  # on the sphere
@@ -108,6 +111,8 @@ def separatrices(moments: ArrayLike, L_norm: float, points: int = 361) -> list[n
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.phase import separatrices
     >>> I = np.array([0.125, 0.3125, 0.4375])  # the T-handle, kg m^2
     >>> plus, minus = separatrices(I, 2.0, points=5)  # |L| = 2 kg m^2/s, a quarter turn apart
     >>> plus.round(4).tolist()
@@ -174,6 +179,8 @@ def figure_polhode(traj: Trajectory, *, ax: Axes | None = None, title: str | Non
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.phase import figure_polhode
     >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)  # a flip
     >>> ax = figure_polhode(run).axes[0]
     >>> ax.name, ax.get_title(), [text.get_text() for text in ax.get_legend().get_texts()]
@@ -247,6 +254,7 @@ def figure_herpolhode(traj: Trajectory, *, ax: Axes | None = None, title: str | 
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.phase import figure_herpolhode
     >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> ax = figure_herpolhode(run).axes[0]
     >>> ax.get_title().splitlines()[0], len(ax.lines[0].get_xdata())  # the tip of omega at every sample

@@ -53,6 +53,7 @@ def detail_window(traj: Trajectory) -> float | None:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.plots import detail_window
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
     >>> wobble = tumble.simulate(body, [0.1, 0.0, 10.0], t_end=25.0, samples=1001)  # near the major axis
     >>> round(detail_window(wobble), 9)  # omega_1 ~ cos(10 t) (nutation rate 10 sqrt(2 * 1 / 2)): 11th zero 1.05 pi s
@@ -77,6 +78,8 @@ def envelope(t: ArrayLike, y: ArrayLike, bins: int = ENVELOPE_BINS) -> tuple[np.
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.plots import envelope
     >>> t, y = np.arange(6.0), np.array([0.0, 3.0, 1.0, 5.0, 2.0, 4.0])
     >>> times, low, high = envelope(t, y, bins=2)  # bins: samples 0-2 and 3-5
     >>> times.tolist(), low.tolist(), high.tolist()
@@ -104,6 +107,8 @@ def plot_omega(traj: Trajectory, ax: Axes, title: str | None = None) -> str | No
     --------
     >>> import tumble
     >>> from tumble.viz._backend import figure_and_axes
+    >>> import numpy as np
+    >>> from tumble.viz.plots import plot_omega
     >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> fig, ax = figure_and_axes()
     >>> plot_omega(run, ax, "T-handle") is None  # every sample drawn: no note
@@ -163,6 +168,7 @@ def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.plots import detail_window, figure_omega
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
     >>> len(figure_omega(tumble.simulate(body, [0.1, 0.0, 10.0], t_end=2.0, samples=81)).axes)  # 3 wobbles
     1
@@ -217,6 +223,8 @@ def figure_omega_grid(cases: list[tuple[str, Trajectory]], *, fig: Figure | None
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.plots import figure_omega_grid
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
     >>> cases = [(f"omega_2 = {w:g} rad/s", tumble.simulate(body, [0.01, w, 0.0], t_end=3.0, samples=31))
     ...          for w in (1.0, 2.0, 4.0)]
@@ -280,6 +288,8 @@ def figure_drift(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.plots import figure_drift
     >>> rk45 = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101, method="rk45")
     >>> ax = figure_drift(rk45).axes[0]
     >>> ax.get_yscale(), ax.get_title(), [line.get_label().split(":")[0] for line in ax.lines]

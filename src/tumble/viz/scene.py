@@ -90,6 +90,7 @@ def part_lines(part: Part, n: int = 32) -> list[np.ndarray]:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.scene import part_lines
     >>> crossbar = tumble.t_handle().parts[1]  # a rod of 1 m along x, its centre 0.5 m up
     >>> part_lines(crossbar)[0].round(12).tolist()
     [[-0.5, 0.0, 0.5], [0.5, 0.0, 0.5]]
@@ -105,6 +106,7 @@ def body_lines(body: Body, n: int = 32) -> list[tuple[np.ndarray, bool]]:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.scene import body_lines
     >>> lines = body_lines(tumble.t_handle())  # about the COM, 0.25 m up the shaft
     >>> len(lines), lines[0][0].tolist(), lines[0][1]
     (2, [[0.0, 0.0, -0.75], [0.0, 0.0, 0.25]], False)
@@ -119,6 +121,7 @@ def body_size(body: Body) -> float:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.scene import body_size
     >>> body_size(tumble.t_handle())  # the shaft's foot, 0.75 m below the COM
     0.75
     """
@@ -131,6 +134,8 @@ def arrow_scale(vectors: ArrayLike, size: float) -> float:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.scene import arrow_scale
     >>> arrow_scale([[0.0, 3.0, 4.0], [1.0, 0.0, 0.0]], size=1.0)  # the longest (5) drawn 0.9 long
     0.18
     >>> arrow_scale(np.zeros((2, 3)), 1.0)
@@ -146,6 +151,7 @@ def frame_indices(samples: int, frames: int, name: str = "frames") -> np.ndarray
 
     Examples
     --------
+    >>> from tumble.viz.scene import frame_indices
     >>> frame_indices(101, 5).tolist()
     [0, 25, 50, 75, 100]
     >>> frame_indices(3, 10).tolist()  # never more than the samples
@@ -166,6 +172,7 @@ def check_run(traj: object, name: str = "trajectory") -> None:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.scene import check_run
     >>> check_run(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=1.0, samples=5))  # fine: nothing
     >>> check_run(tumble.t_handle())
     Traceback (most recent call last):
@@ -187,6 +194,7 @@ def check_body_and_run(body: object, traj: object) -> None:
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.scene import check_body_and_run
     >>> run = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=1.0, samples=5)
     >>> check_body_and_run(tumble.t_handle(), run)  # the body simulated: nothing
     >>> check_body_and_run(tumble.iss_t_handle(), run)  # doctest: +ELLIPSIS

@@ -65,6 +65,8 @@ def figure_energy(traj: Trajectory, *, ax: Axes | None = None, log: bool = False
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.spacecraft import figure_energy
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
     >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
     >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
@@ -129,6 +131,8 @@ def figure_nutation(traj: Trajectory, *, ax: Axes | None = None, degrees: bool =
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.spacecraft import figure_nutation
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
     >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
     >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
@@ -183,6 +187,8 @@ def figure_orbit_angles(traj: Trajectory, gravity: GravityGradient, *, ax: Axes 
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.spacecraft import figure_orbit_angles
     >>> body, gg = tumble.t_handle(), tumble.GravityGradient(orbit_period=5400.0)  # s
     >>> s = tumble.lvlh_state(gg, body, pitch=0.01)  # 0.01 rad of pitch from the orbiting frame
     >>> run = tumble.simulate(body, s.omega0, attitude0=s.attitude0, torque=gg, t_end=600.0, samples=3)
@@ -227,6 +233,7 @@ def figure_omega_panels(cases: list[tuple[str, Trajectory]], *, fig: Figure | No
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.spacecraft import figure_omega_panels
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])  # kg m^2
     >>> cases = [(f"spin {w:g} rad/s", tumble.simulate(body, [0.01, w, 0.0], t_end=3.0, samples=31)) for w in (1.0, 4.0)]
     >>> fig = figure_omega_panels(cases)
@@ -260,6 +267,7 @@ def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | 
     Examples
     --------
     >>> import tumble
+    >>> from tumble.viz.spacecraft import spacecraft_figures
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 2.5])  # kg m^2
     >>> damper = tumble.SphericalDamper(inertia=0.3, damping=0.3)
     >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin

@@ -31,6 +31,8 @@ def surface_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.surfaces import surface_volume
     >>> corner = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     >>> faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])  # outward normals
     >>> round(surface_volume(corner, faces) * 6, 12), round(surface_volume(corner, faces[:, ::-1]) * 6, 12)  # wound inward: negative
@@ -116,6 +118,7 @@ def decimate(vertices: np.ndarray, faces: np.ndarray, max_faces: int = MAX_MESH_
     Examples
     --------
     >>> from tumble.mass import Sphere
+    >>> from tumble.viz.surfaces import decimate, part_surface, surface_volume
     >>> v, f = part_surface(Sphere(mass=1.0, radius=1.0), n=64)
     >>> len(f), decimate(v, f)[1] is f  # small enough: unchanged
     (3968, True)
@@ -192,6 +195,8 @@ def part_surface(part: Part, n: int = 32, thin: float | None = None) -> tuple[np
     Examples
     --------
     >>> from tumble.mass import Box, Cylinder
+    >>> import numpy as np
+    >>> from tumble.viz.surfaces import part_surface, surface_volume
     >>> v, f = part_surface(Box(mass=1.0, size=(1.0, 2.0, 3.0), center=(1.0, 0.0, 0.0)))
     >>> v.shape, f.shape, surface_volume(v, f), v.mean(axis=0).tolist()  # 6 faces of 2 triangles, 1 x 2 x 3 m
     ((24, 3), (12, 3), 6.0, [1.0, 0.0, 0.0])
@@ -215,6 +220,8 @@ def body_surfaces(body: Body, n: int = 32) -> list[tuple[np.ndarray, np.ndarray,
     Examples
     --------
     >>> import tumble
+    >>> import numpy as np
+    >>> from tumble.viz.surfaces import body_surfaces
     >>> (shaft, _, removed), crossbar = body_surfaces(tumble.t_handle())  # two rods, about the COM
     >>> removed, shaft[:, 2].min().item(), shaft[:, 2].max().item()  # as body_lines: 0.75 m below, 0.25 m above
     (False, -0.75, 0.25)

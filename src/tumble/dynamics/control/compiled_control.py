@@ -78,6 +78,7 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
     Examples
     --------
     >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> from tumble.dynamics.control.compiled_control import FIELD_UNIFORM, field_params
     >>> kind, p = field_params(UniformField((0.0, 0.0, 3e-5)))
     >>> kind == FIELD_UNIFORM, p[:3].tolist()
     (True, [0.0, 0.0, 3e-05])
@@ -333,6 +334,7 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
     Examples
     --------
     >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> from tumble.dynamics.control.compiled_control import compiled_control_models
     >>> compiled_control_models(UniformField((0.0, 0.0, 3e-5)), None, None, None) is None
     True
     >>> compiled_control_models(None, lambda t, w, R: w, None, None)
@@ -382,6 +384,8 @@ class ControlKernel:
     --------
     A spin about a principal axis, no torque: the rate stays, the attitude turns by ``0.1 t``:
 
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_control import ControlKernel
     >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None, None, None, 1e-10, 1e-12)
     >>> y = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
     >>> y = kernel.advance(y, 0.0, 10.0, np.zeros(3), np.zeros(0))
@@ -428,6 +432,8 @@ class ControlKernel:
         A field along world x seen from a body turned by 90 deg about z: along body -y.
 
         >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.compiled_control import ControlKernel
         >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
         >>> c = np.sqrt(0.5)
         >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
@@ -447,6 +453,8 @@ class ControlKernel:
         at rest with I3 = 3 kg m^2 (it barely turns): omega_3 = 1e-5 rad/s and the impulse 3e-5 N m s:
 
         >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.compiled_control import ControlKernel
         >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None,
         ...                        UniformField((0.0, 3e-5, 0.0)), None, 1e-10, 1e-12)
         >>> y = kernel.advance(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.0, 10.0,

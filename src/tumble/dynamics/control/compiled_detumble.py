@@ -279,6 +279,8 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     >>> from tumble.dynamics.environment.magnetic import DipoleField
     >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> from tumble.dynamics.control.compiled_control import field_params
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_detumble import detumble_run
     >>> _, fp = field_params(DipoleField(CircularOrbit(altitude=500e3)))
     >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),
     ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.eye(3), limit=np.ones(3),

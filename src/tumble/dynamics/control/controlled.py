@@ -89,6 +89,8 @@ class ControlledRun:
     (B-dot without a field asks for nothing) keeps its rate; one sample a control step:
 
     >>> from tumble.dynamics.control.controllers import BDot
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
     ...                           controller=BDot(gain=1e-3, period=1.0))
     >>> run.t.tolist() == [float(k) for k in range(11)], run.omega.shape, run.wheel_speed.shape
@@ -120,6 +122,9 @@ class ControlledRun:
 
         >>> from tumble.dynamics.control.controllers import BDot
         >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controlled import simulate_controlled
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
         ...     field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(10.0))
@@ -138,6 +143,9 @@ class ControlledRun:
 
         >>> from tumble.dynamics.control.controllers import BDot
         >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> import math
+        >>> from tumble.dynamics.control.controlled import simulate_controlled
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=20.0,
         ...     controller=BDot(gain=2e-3, period=0.5, form="normalized"),
         ...     field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(10.0))
@@ -163,6 +171,9 @@ class ControlledRun:
         An uncontrolled spin of 0.1 rad/s about a principal axis turns ``0.1 t`` from its start:
 
         >>> from tumble.dynamics.control.controllers import BDot
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controlled import simulate_controlled
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
         ...                           controller=BDot(gain=1e-3, period=1.0))
         >>> np.allclose(run.pointing_error(Rotation.identity()), 0.1 * run.t)
@@ -191,6 +202,10 @@ class ControlledRun:
         torque the total stays put:
 
         >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controlled import simulate_controlled
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> rw = ReactionWheels(np.eye(3), inertia=1e-4, max_torque=1e-3)
         >>> c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
         >>> run = simulate_controlled([0.03, 0.04, 0.05], [0.01, 0.0, 0.0], t_end=10.0, controller=c,
@@ -308,6 +323,9 @@ def simulate_controlled(
     --------
     >>> from tumble.dynamics.control.controllers import BDot
     >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=20.0,
     ...     controller=BDot(gain=1e4, period=1.0), field=UniformField((3e-5, 0.0, 0.0)),
     ...     magnetorquers=Magnetorquers(0.2))

@@ -72,6 +72,8 @@ class Controller(Protocol):
 
     Examples
     --------
+    >>> from tumble.dynamics.control.controllers import Controller
+    >>> from tumble.dynamics.models.actuators import Command
     >>> class Off:
     ...     period = 1.0
     ...     def __call__(self, t, measurement):
@@ -90,6 +92,10 @@ class Controller(Protocol):
         A controller that always asks for the same dipole; :class:`BDot` and
         :class:`MRPFeedback` are controllers too:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot, Controller
+        >>> from tumble.dynamics.models.actuators import Command
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> class Hold:
         ...     period = 2.0
         ...     def __call__(self, t, measurement):
@@ -117,6 +123,8 @@ def bdot_gain(mean_motion: float, geomagnetic_inclination: float, min_moment: fl
 
     Examples
     --------
+    >>> import math
+    >>> from tumble.dynamics.control.controllers import bdot_gain
     >>> round(bdot_gain(1.1e-3, math.pi / 2, 0.01), 9)
     4.4e-05
     """
@@ -131,6 +139,7 @@ def bdot_dipole(b_dot: ArrayLike, field: ArrayLike, gain: ArrayLike, form: str =
 
     Examples
     --------
+    >>> from tumble.dynamics.control.controllers import bdot_dipole
     >>> (bdot_dipole([0.0, 0.0, -2e-6], [2e-5, 0.0, 0.0], 1e4) + 0.0).tolist()   # A m^2
     [0.0, 0.0, 0.02]
     """
@@ -159,6 +168,9 @@ class BDot:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.models.sensors import Measurement
     >>> c = BDot(gain=1e4, period=1.0)
     >>> m = Measurement(0.0, np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 0.0]), None)
     >>> (c(0.0, m).dipole + 0.0).round(12).tolist()   # k_b omega x B, A m^2
@@ -187,6 +199,9 @@ class BDot:
         With ``derivative="difference"`` the first step has no earlier reading and asks for no
         dipole; after a reset the next step is a first step again:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> c = BDot(gain=1e4, period=1.0, derivative="difference")
         >>> def reading(t, bx):
         ...     return Measurement(t, np.zeros(3), np.array([bx, 0.0, 0.0]), None)
@@ -209,6 +224,10 @@ class BDot:
         dipole opposes the field's change (``m . dB/dt < 0``), and the magnetometer difference
         over a short step agrees with the gyroscope's ``B x omega`` at the step's middle:
 
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> omega, b0, dt = np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 1e-5]), 0.01
         >>> def reading(t):   # the field in the body frame at t
         ...     return Measurement(t, omega, Rotation.from_rotvec(-omega * t).apply(b0), None)
@@ -269,6 +288,11 @@ class MRPFeedback:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
+    >>> from tumble.dynamics.models.actuators import ReactionWheels
+    >>> from tumble.dynamics.models.sensors import Measurement
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
     >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.007, 0.04, 0.04], wheels=rw)
     >>> m = Measurement(0.0, np.zeros(3), None, Rotation.from_rotvec([0.0, 0.0, 0.1]), np.zeros(3))
@@ -312,6 +336,11 @@ class MRPFeedback:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
         >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, Ki=0.1)
         >>> m = Measurement(0.0, np.zeros(3), None, Rotation.from_rotvec([0.0, 0.0, 0.4]), np.zeros(3))
@@ -332,6 +361,11 @@ class MRPFeedback:
         A turn of ``theta`` about x from the target gives ``sigma = tan(theta / 4) x``; a turn
         of 300 deg is the short way round, -60 deg (the shadow set, ``|sigma| <= 1``):
 
+        >>> import math
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
         >>> target = Rotation.from_rotvec([0.0, 0.0, 0.3])
         >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, target=target)
@@ -355,6 +389,11 @@ class MRPFeedback:
         On target and spinning, without the feed-forward: the wheels take ``u = P omega``, so
         the body feels ``-P omega`` (rate damping); with three wheels on the axes ``G = 1``:
 
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
         >>> c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw, gyroscopic=False)
         >>> m = Measurement(0.0, np.array([0.01, -0.02, 0.0]), None, Rotation.identity(), np.zeros(3))
@@ -404,6 +443,11 @@ class MomentumDumping:
     --------
     The dipole is across the field and its torque opposes the wheels' momentum across it:
 
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.controllers import MRPFeedback, MomentumDumping
+    >>> from tumble.dynamics.models.actuators import ReactionWheels
+    >>> from tumble.dynamics.models.sensors import Measurement
     >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
     >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), gain=1e-3)
     >>> m = Measurement(0.0, np.zeros(3), np.array([0.0, 0.0, 3e-5]), Rotation.identity(), np.array([50.0, 0.0, 20.0]))
@@ -429,6 +473,9 @@ class MomentumDumping:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import MRPFeedback, MomentumDumping
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
         >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3)
         >>> c.reset()
@@ -441,6 +488,9 @@ class MomentumDumping:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import MRPFeedback, MomentumDumping
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
         >>> MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=2.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3).period
         2.0
@@ -454,6 +504,11 @@ class MomentumDumping:
         --------
         Without a magnetometer reading there is no field to push against:
 
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import MRPFeedback, MomentumDumping
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=0.01)
         >>> c = MomentumDumping(MRPFeedback(K=0.5, P=1.7, period=1.0, moments=[10.0, 12.0, 15.0], wheels=rw), 1e-3)
         >>> c(0.0, Measurement(0.0, np.zeros(3), None, Rotation.identity(), np.zeros(3)))
@@ -482,6 +537,8 @@ class PDResponse(NamedTuple):
     ``zeta = 0.5``: overshoot ``exp(-pi / sqrt(3)) = 16.3 %``, settling
     ``-ln(0.02 sqrt(0.75)) / (0.5 omega_n)``:
 
+    >>> import math
+    >>> from tumble.dynamics.control.controllers import PDResponse, pd_response
     >>> r = pd_response(K=4e-4, P=1e-3, moment=0.01)
     >>> isinstance(r, PDResponse), r.damping_ratio, round(r.overshoot, 4)
     (True, 0.5, 0.163)
@@ -509,6 +566,7 @@ def pd_response(K: float, P: float, moment: float) -> PDResponse:
 
     Examples
     --------
+    >>> from tumble.dynamics.control.controllers import pd_response
     >>> r = pd_response(K=4e-4, P=2e-3, moment=0.01)
     >>> round(r.natural_frequency, 6), round(r.damping_ratio, 6), round(r.overshoot, 6)
     (0.1, 1.0, 0.0)

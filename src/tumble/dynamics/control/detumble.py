@@ -74,6 +74,8 @@ class DetumbleBatch:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.detumble import DetumbleBatch
     >>> out = DetumbleBatch(t=np.array([0.0, 1.0, 2.0]), rate=np.array([[0.3, 0.1, 0.05]]),
     ...                     omega=np.zeros((1, 3)), quat=np.array([[0.0, 0.0, 0.0, 1.0]]))
     >>> out.rate.shape
@@ -91,6 +93,8 @@ class DetumbleBatch:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.detumble import DetumbleBatch
         >>> out = DetumbleBatch(t=np.array([0.0, 1.0, 2.0]), rate=np.array([[0.3, 0.1, 0.05], [0.3, 0.05, 0.2]]),
         ...                     omega=np.zeros((2, 3)), quat=np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
         >>> out.detumble_time(0.08)  # the second body rose above the threshold again
@@ -290,6 +294,11 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     --------
     >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.detumble import detumble_batch
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
+    >>> from tumble.dynamics.models.sensors import Sensors
     >>> orbit = CircularOrbit(altitude=500e3, inclination=1.7)
     >>> out = detumble_batch([[0.0067, 0.0419, 0.0419]] * 2, [[0.2, -0.2, 0.2], [0.1, 0.1, -0.2]],
     ...                      [[0.0, 0.0, 0.0, 1.0]] * 2, field=DipoleField(orbit), gmst0=[0.0, 1.0], gain=5e-5,

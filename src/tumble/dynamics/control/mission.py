@@ -70,6 +70,10 @@ class DetumbleThenPoint:
     Examples
     --------
     >>> from tumble.dynamics.models.actuators import ReactionWheels
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+    >>> from tumble.dynamics.control.mission import DetumbleThenPoint
+    >>> from tumble.dynamics.models.sensors import Measurement
     >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
     >>> mission = DetumbleThenPoint(BDot(gain=3e-5, period=1.0, form="normalized"),
     ...     MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw),
@@ -116,6 +120,9 @@ class DetumbleThenPoint:
         Examples
         --------
         >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.mission import DetumbleThenPoint
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
         >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
         >>> DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=0.0).mode
@@ -130,6 +137,10 @@ class DetumbleThenPoint:
         --------
         >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> from scipy.spatial.transform import Rotation
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.mission import DetumbleThenPoint
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
         >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
         >>> mission = DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=0.0)
@@ -158,6 +169,10 @@ class DetumbleThenPoint:
 
         >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> from scipy.spatial.transform import Rotation
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.mission import DetumbleThenPoint
+        >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
         >>> bdot = BDot(gain=1e4, period=1.0)
         >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)

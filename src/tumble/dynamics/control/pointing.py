@@ -59,6 +59,8 @@ class Reference(Protocol):
 
     Examples
     --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.pointing import NadirTarget, Reference
     >>> isinstance(NadirTarget(1e-3), Reference), isinstance(Rotation.identity(), Reference)
     (True, False)
     """
@@ -68,6 +70,7 @@ class Reference(Protocol):
 
         Examples
         --------
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> NadirTarget(1e-3).attitude([0.0, 1.0]).single
         False
         """
@@ -78,6 +81,7 @@ class Reference(Protocol):
 
         Examples
         --------
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> NadirTarget(1e-3).rate(0.0).tolist()
         [0.0, 0.0, 0.001]
         """
@@ -89,6 +93,8 @@ def is_reference(target: object) -> TypeGuard[Reference]:
 
     Examples
     --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.pointing import NadirTarget, is_reference
     >>> is_reference(NadirTarget(1e-3)), is_reference(Rotation.identity()), is_reference([0, 0, 0, 1])
     (True, False, False)
     """
@@ -100,6 +106,8 @@ def target_attitude(target: Rotation | Reference, t: ArrayLike) -> Rotation:
 
     Examples
     --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.pointing import NadirTarget, target_attitude
     >>> fixed = Rotation.from_rotvec([0.0, 0.0, 0.3])
     >>> target_attitude(fixed, [0.0, 5.0]) is fixed
     True
@@ -127,6 +135,9 @@ class TrackingError:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.pointing import tracking_error
     >>> e = tracking_error(Rotation.identity(), 0.0, Rotation.identity(), np.array([0.0, 0.0, 0.1]))
     >>> e.sigma.tolist(), e.delta_omega.tolist(), e.omega_r.tolist()
     ([0.0, 0.0, 0.0], [0.0, 0.0, 0.1], [0.0, 0.0, 0.0])
@@ -156,6 +167,8 @@ def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, o
     --------
     On the nadir reference and turning with it, both errors are zero:
 
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.pointing import NadirTarget, tracking_error
     >>> nadir = NadirTarget(1e-3)
     >>> R = nadir.attitude(50.0)
     >>> e = tracking_error(nadir, 50.0, R, R.inv().apply(nadir.rate(50.0)))
@@ -183,6 +196,7 @@ def axis_direction(name: str, value: int | str | ArrayLike) -> FloatArray:
 
     Examples
     --------
+    >>> from tumble.dynamics.control.pointing import axis_direction
     >>> axis_direction("nadir_axis", "major").tolist(), axis_direction("nadir_axis", [0.0, 3.0, 4.0]).tolist()
     ([0.0, 0.0, 1.0], [0.0, 0.6, 0.8])
     """
@@ -204,6 +218,8 @@ def check_square(nadir: FloatArray, normal: FloatArray, nadir_given: object, nor
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.pointing import check_square
     >>> check_square(np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]), "minor", "major")   # square: nothing
     >>> check_square(np.array([1.0, 0.0, 0.0]), np.sqrt([0.5, 0.0, 0.5]), [1, 0, 0], [1, 0, 1])
     Traceback (most recent call last):
@@ -236,6 +252,9 @@ class NadirTarget:
     --------
     The minor axis (1) looks down, the major (3) along the orbit normal; a quarter orbit on, nadir is -y:
 
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.pointing import NadirTarget
     >>> nadir = NadirTarget(2 * math.pi / 5400.0)
     >>> np.round(nadir.attitude(0.0).apply([[1.0, 0, 0], [0, 0, 1.0]]), 12).tolist()
     [[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
@@ -269,6 +288,7 @@ class NadirTarget:
         Examples
         --------
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> orbit = CircularOrbit(altitude=500e3)
         >>> NadirTarget(orbit).mean_motion == orbit.mean_motion
         True
@@ -282,6 +302,8 @@ class NadirTarget:
         --------
         The nadir axis follows ``-(cos n t, sin n t, 0)``:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> nadir = NadirTarget(1e-3, nadir_axis="major", normal_axis="minor")
         >>> t = np.array([0.0, 700.0])
         >>> np.allclose(nadir.attitude(t).apply([0.0, 0.0, 1.0]), -np.stack([np.cos(1e-3 * t), np.sin(1e-3 * t), 0 * t], -1))
@@ -295,6 +317,7 @@ class NadirTarget:
 
         Examples
         --------
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> NadirTarget(1e-3).rate([0.0, 1.0]).tolist()
         [[0.0, 0.0, 0.001], [0.0, 0.0, 0.001]]
         """
@@ -306,6 +329,7 @@ class NadirTarget:
 
         Examples
         --------
+        >>> from tumble.dynamics.control.pointing import NadirTarget
         >>> NadirTarget(1e-3).rate_derivative(0.0).tolist()
         [0.0, 0.0, 0.0]
         """

@@ -82,6 +82,7 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     A steady spin about a principal axis: the attitude turns at omega.
 
     >>> import numpy as np
+    >>> from tumble.dynamics.engine.front import run_body
     >>> omega, quat = run_body("rk8", np.array([1.0, 2.0, 3.0]), np.array([0.0, 0.0, 0.5]),
     ...                        np.array([0.0, 0.0, 0.0, 1.0]), np.array([0.0, 2.0]), (0, ()), step=0.1)
     >>> np.allclose(quat[-1], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-14)
@@ -114,6 +115,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.engine.front import run_bodies
     >>> I = np.array([[1.0, 2.0, 3.0], [2.0, 2.5, 3.0]])
     >>> w = np.array([[0.0, 0.0, 0.5], [0.0, 0.0, 0.5]])
     >>> q = np.tile([0.0, 0.0, 0.0, 1.0], (2, 1))

@@ -10,6 +10,7 @@ right after a rejection. Imports nothing, so numba is not loaded with it.
 
 Examples
 --------
+>>> from tumble.dynamics.engine.stepsize import error_norm, next_step
 >>> error_norm(0.0, 0.0, 0.1, 7), next_step(0.0, 0.1, False)   # a perfect step: ten times longer
 (0.0, (True, 1.0))
 >>> accepted, h = next_step(4.0, 0.1, False)   # too large an error: rejected, shrunk
@@ -30,6 +31,7 @@ def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.engine.stepsize import error_norm
     >>> round(error_norm(1.0, 1.0, 0.5, 4), 6)
     0.248759
     >>> error_norm(float("nan"), 1.0, 0.5, 4)
@@ -46,6 +48,7 @@ def next_step(error: float, h_abs: float, rejected: bool) -> tuple[bool, float]:
 
     Examples
     --------
+    >>> from tumble.dynamics.engine.stepsize import next_step
     >>> next_step(0.1, 1.0, True)   # accepted after a rejection: not grown (it would be 1.2 times)
     (True, 1.0)
     """
@@ -64,6 +67,7 @@ def rms(x: Any, scale: Any) -> float:
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.engine.stepsize import rms
     >>> rms(np.array([3.0, 4.0]), np.array([1.0, 1.0])) == 5.0 / 2.0 ** 0.5
     True
     """
@@ -80,6 +84,7 @@ def first_trial_step(d0: float, d1: float, interval: float) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.engine.stepsize import first_trial_step
     >>> first_trial_step(1.0, 2.0, 10.0), first_trial_step(1e-6, 2.0, 10.0)
     (0.005, 1e-06)
     """
@@ -93,6 +98,7 @@ def initial_step(h0: float, d1: float, d2: float, interval: float) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.engine.stepsize import initial_step
     >>> initial_step(0.01, 2.0, 0.0, 10.0) == (0.01 / 2.0) ** (1.0 / 8.0)   # below 100 h0 = 1 s
     True
     """
@@ -106,6 +112,7 @@ def equal_steps(interval: float, step: float) -> tuple[int, float]:
 
     Examples
     --------
+    >>> from tumble.dynamics.engine.stepsize import equal_steps
     >>> equal_steps(1.0, 0.3), equal_steps(1.0, 0.25)
     ((4, 0.25), (4, 0.25))
     """

@@ -16,6 +16,7 @@ A circular orbit of one sidereal day's period (2 pi / OMEGA_EARTH) lies at the g
 radius, Kepler's third law ``r^3 = mu / n^2``:
 
 >>> import math
+>>> from tumble.dynamics.environment.earth import MU_EARTH, OMEGA_EARTH
 >>> round(math.cbrt(MU_EARTH / OMEGA_EARTH**2) / 1e3)   # km
 42164
 """

@@ -76,6 +76,10 @@ class KeplerOrbit:
     --------
     A Molniya orbit: 12 h, perigee 500 km, apogee near 39,900 km:
 
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.earth import R_EARTH
+    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
     >>> orbit = KeplerOrbit(26_600e3, 0.74, math.radians(63.4), arg_perigee=math.radians(270.0))
     >>> round(orbit.period / 3600, 2)   # h
     11.99
@@ -113,6 +117,7 @@ class KeplerOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> round(KeplerOrbit(7000e3).mean_motion, 9)
         0.001078008
         """
@@ -125,6 +130,7 @@ class KeplerOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> round(KeplerOrbit(7000e3, 0.05).period)   # s: the same for every e
         5829
         """
@@ -136,6 +142,7 @@ class KeplerOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> KeplerOrbit(7000e3).eci_from_world.as_quat().tolist()
         [0.0, 0.0, 0.0, 1.0]
         """
@@ -164,6 +171,9 @@ class KeplerOrbit:
         :class:`~tumble.dynamics.environment.orbit.CircularOrbit` (argument of latitude ``argp + M0``):
 
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.earth import R_EARTH
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> k = KeplerOrbit(7000e3, 0.0, 1.0, raan=0.5, arg_perigee=0.2, mean_anomaly=0.3)
         >>> c = CircularOrbit(7000e3 - R_EARTH, 1.0, raan=0.5, arg_latitude=0.5)
         >>> np.allclose(k.position_eci([0.0, 1234.5]), c.position_eci([0.0, 1234.5]), rtol=0, atol=1e-6)
@@ -178,6 +188,9 @@ class KeplerOrbit:
         --------
         Vis-viva, ``v^2 = mu (2 / r - 1 / a)``:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> k = KeplerOrbit(9000e3, 0.2, 0.7)
         >>> r, v = np.linalg.norm(k.position_eci(900.0)), np.linalg.norm(k.velocity_eci(900.0))
         >>> math.isclose(v**2, k.mu * (2 / r - 1 / 9000e3), rel_tol=1e-13)
@@ -190,6 +203,8 @@ class KeplerOrbit:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> k = KeplerOrbit(7000e3, 0.01)
         >>> bool(np.array_equal(k.position_world([0.0, 60.0]), k.position_eci([0.0, 60.0])))
         True
@@ -201,6 +216,8 @@ class KeplerOrbit:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
         >>> k = KeplerOrbit(7000e3, 0.01)
         >>> bool(np.array_equal(k.velocity_world(60.0), k.velocity_eci(60.0)))
         True
@@ -225,6 +242,9 @@ class TLEOrbit:
     --------
     The ISS on 2008-09-20 (Vallado et al. 2006's test set format):
 
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.earth import R_EARTH
+    >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
     >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
     ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
     >>> iss.epoch.isoformat(timespec="seconds"), round(iss.period / 60, 2)   # UTC, min
@@ -261,6 +281,7 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...          "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537").epoch.year
         2008
@@ -274,6 +295,8 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> import math
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> round(iss.mean_motion * 86400 / (2 * math.pi), 6)   # revolutions a day, as in line 2
@@ -287,6 +310,7 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> round(iss.period)
@@ -300,6 +324,8 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> import math
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> round(math.degrees(iss.inclination), 4)
@@ -313,6 +339,7 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> float(iss.eci_from_world.magnitude())
@@ -339,6 +366,7 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> iss.position_eci([0.0, 60.0, 120.0]).shape
@@ -351,6 +379,8 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> round(float(np.linalg.norm(iss.velocity_eci(0.0))))   # m/s
@@ -363,6 +393,8 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> bool(np.array_equal(iss.position_world(30.0), iss.position_eci(30.0)))
@@ -375,6 +407,8 @@ class TLEOrbit:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import TLEOrbit
         >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
         ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
         >>> bool(np.array_equal(iss.velocity_world(30.0), iss.velocity_eci(30.0)))

@@ -87,6 +87,8 @@ class IGRFField:
 
     >>> import math
     >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.igrf import IGRFField
     >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
     >>> field = IGRFField(orbit, "2026-11-25T00:00:00")
     >>> B = np.linalg.norm(field.world(np.linspace(0.0, orbit.period, 60)), axis=1)
@@ -124,6 +126,8 @@ class IGRFField:
         Examples
         --------
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.igrf import IGRFField
         >>> f = IGRFField(CircularOrbit(altitude=500e3), "1992-08-20T12:14:00")
         >>> round(f.gmst0 * 180 / np.pi, 6)   # deg: Vallado's example 3-5
         152.578788
@@ -145,6 +149,7 @@ class IGRFField:
         IGRF-14's definitive 2020 model (DGRF 2020), nT:
 
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.igrf import IGRFField
         >>> g = IGRFField(CircularOrbit(altitude=500e3), "2020-01-01T00:00:00").gauss_degree1()
         >>> [round(x * 1e9, 1) for x in g]
         [-29403.4, -1451.4, 4653.4]
@@ -164,6 +169,8 @@ class IGRFField:
         Examples
         --------
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.igrf import IGRFField
         >>> f = IGRFField(CircularOrbit(altitude=500e3, inclination=1.0), "2026-01-01T00:00:00")
         >>> bool(np.allclose(f.world_direct([10.0, 2000.0]), f.world([10.0, 2000.0]), rtol=0, atol=1e-11))
         True
@@ -210,6 +217,8 @@ class IGRFField:
         Examples
         --------
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.igrf import IGRFField
         >>> f = IGRFField(CircularOrbit(altitude=500e3, inclination=1.0), "2026-01-01T00:00:00", step=10.0)
         >>> table = f.tabulate(9000.0)
         >>> table.t0, table.step, table.coefficients.shape   # two blocks of 720 intervals (2 h each at 10 s)
@@ -232,6 +241,8 @@ class IGRFField:
 
         >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> from tumble.dynamics.environment.magnetic import DipoleField
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.igrf import IGRFField
         >>> orbit = CircularOrbit(altitude=600e3, inclination=1.2, raan=0.3)
         >>> f = IGRFField(orbit, "2020-01-01T00:00:00", max_degree=1)
         >>> dipole = DipoleField(orbit, gmst0=f.gmst0, coefficients=f.gauss_degree1())

@@ -49,6 +49,8 @@ class MagneticField(Protocol):
     --------
     Any object with a ``world(t)`` method is one (the protocol is checked at run time):
 
+    >>> from tumble.dynamics.environment.magnetic import DipoleField, MagneticField, UniformField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> isinstance(UniformField((0.0, 0.0, 3e-5)), MagneticField)
     True
     >>> isinstance(DipoleField(CircularOrbit(altitude=500e3)), MagneticField), isinstance(3e-5, MagneticField)
@@ -62,6 +64,8 @@ class MagneticField(Protocol):
         --------
         A field of one's own only needs this method; here one that grows linearly in time (T):
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import MagneticField
         >>> class Ramp:
         ...     def world(self, t):
         ...         return np.array([0.0, 0.0, 3e-5 + 1e-6 * t])
@@ -79,6 +83,7 @@ class UniformField:
 
     Examples
     --------
+    >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> UniformField((2e-5, 0.0, 0.0)).world(10.0).tolist()
     [2e-05, 0.0, 0.0]
     """
@@ -93,6 +98,8 @@ class UniformField:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> field = UniformField((0.0, -2e-5, 4e-5))
         >>> np.array_equal(field.world(0.0), field.world(5400.0)), field.world(1.0).tolist()
         (True, [0.0, -2e-05, 4e-05])
@@ -117,6 +124,8 @@ class DipoleField:
 
     Examples
     --------
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> orbit = CircularOrbit(altitude=500e3, inclination=0.0)
     >>> b = DipoleField(orbit, coefficients=(-29404.8e-9, 0.0, 0.0)).world(0.0)
     >>> round(float(b[2]) * 1e9, 1)   # nT: an axial dipole above the equator points north, (a/r)^3 |g10|
@@ -144,6 +153,9 @@ class DipoleField:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import DipoleField
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3, inclination=1.0, raan=0.3)
         >>> m = DipoleField(orbit).world_from_eci
         >>> np.allclose(m @ orbit.position_eci(100.0), orbit.position_world(100.0))
@@ -159,6 +171,9 @@ class DipoleField:
         --------
         IGRF-13's degree-1 field is about 29,806 nT at the reference radius's equator, pointing south:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import DipoleField
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> g = DipoleField(CircularOrbit(altitude=500e3)).gauss_vector
         >>> np.round(g * 1e9, 1).tolist(), round(float(np.linalg.norm(g)) * 1e9)   # nT
         ([-1450.9, 4652.5, -29404.8], 29806)
@@ -174,6 +189,9 @@ class DipoleField:
         An axial dipole ``g10`` at radius ``r``: ``B0 (a/r)^3`` north on the magnetic equator,
         twice that (pointing down) over the pole, with ``B0 = |g10|``:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import DipoleField, IGRF_RADIUS
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> field = DipoleField(CircularOrbit(altitude=500e3), coefficients=(-3e-5, 0.0, 0.0))
         >>> r = 2 * IGRF_RADIUS
         >>> b = field.ecef([[r, 0.0, 0.0], [0.0, 0.0, r]])
@@ -194,6 +212,10 @@ class DipoleField:
         An axial dipole along a polar orbit: ``B0 (a/r)^3`` over the equator (t = 0, the
         ascending node), ``2 B0 (a/r)^3`` over the north pole a quarter of a period later:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.magnetic import DipoleField, IGRF_RADIUS
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3, inclination=math.pi / 2)
         >>> field = DipoleField(orbit, coefficients=(-29404.8e-9, 0.0, 0.0))
         >>> b0 = 29404.8e-9 * (IGRF_RADIUS / orbit.radius) ** 3
@@ -214,6 +236,9 @@ class DipoleField:
 
         Examples
         --------
+        >>> import math
+        >>> from tumble.dynamics.environment.magnetic import DipoleField
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3)
         >>> round(math.degrees(DipoleField(orbit).dipole_tilt()), 1)
         9.4

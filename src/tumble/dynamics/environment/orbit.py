@@ -57,6 +57,9 @@ class CircularOrbit:
 
     Examples
     --------
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
     >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
     >>> round(orbit.period)   # s
     5677
@@ -86,6 +89,7 @@ class CircularOrbit:
         Examples
         --------
         >>> from tumble.dynamics.environment.earth import R_EARTH
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> CircularOrbit(altitude=500e3).radius - R_EARTH   # m
         500000.0
         """
@@ -97,6 +101,8 @@ class CircularOrbit:
 
         Examples
         --------
+        >>> import math
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=700e3)
         >>> math.isclose(orbit.mean_motion**2 * orbit.radius**3, orbit.mu)   # Kepler's third law
         True
@@ -112,6 +118,7 @@ class CircularOrbit:
         A geostationary orbit (radius 42,164.137 km) goes round once a sidereal day, 86,164.1 s:
 
         >>> from tumble.dynamics.environment.earth import R_EARTH
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> round(CircularOrbit(altitude=42164137.0 - R_EARTH).period)   # s
         86164
         """
@@ -126,6 +133,9 @@ class CircularOrbit:
         A polar orbit with its node on ECI x: world x (the radius at t = 0) is ECI x, the orbit
         normal ``r x v`` (world z) is ECI -y:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> frame = CircularOrbit(altitude=500e3, inclination=math.pi / 2).eci_from_world
         >>> np.round(frame.apply([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]), 12).tolist()
         [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
@@ -139,6 +149,8 @@ class CircularOrbit:
         --------
         A quarter of a period after t = 0 the spacecraft is on world y:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3)
         >>> r = orbit.position_world([0.0, orbit.period / 4])
         >>> r.shape, np.allclose(r, [[orbit.radius, 0, 0], [0, orbit.radius, 0]], atol=1e-6)
@@ -154,6 +166,9 @@ class CircularOrbit:
         --------
         The circular speed ``sqrt(mu / r)``, square to the radius:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=700e3)
         >>> v, r = orbit.velocity_world(123.0), orbit.position_world(123.0)
         >>> math.isclose(np.linalg.norm(v), math.sqrt(orbit.mu / orbit.radius)), bool(abs(v @ r) < 1e-3)
@@ -172,6 +187,9 @@ class CircularOrbit:
         At the argument of latitude 90 deg the spacecraft is highest above the equator,
         ``z = r sin i``:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3, inclination=math.radians(51.6), raan=1.0)
         >>> r = orbit.position_eci(orbit.period / 4)
         >>> math.isclose(r[2], orbit.radius * math.sin(orbit.inclination)), math.isclose(np.linalg.norm(r), orbit.radius)
@@ -187,6 +205,9 @@ class CircularOrbit:
         --------
         A polar orbit crosses its ascending node going due north (ECI +z), at ``sqrt(mu / r)``:
 
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
         >>> orbit = CircularOrbit(altitude=500e3, inclination=math.pi / 2)
         >>> v = orbit.velocity_eci(0.0)
         >>> np.allclose(v, [0.0, 0.0, math.sqrt(orbit.mu / orbit.radius)])

@@ -30,6 +30,7 @@ def julian_date(when: _dt.datetime | str) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.environment.sidereal import julian_date
     >>> julian_date("2000-01-01T12:00:00")
     2451545.0
     >>> julian_date("2026-11-25T00:00:00+00:00")
@@ -45,6 +46,7 @@ def utc_datetime(when: object, name: str) -> _dt.datetime:
 
     Examples
     --------
+    >>> from tumble.dynamics.environment.sidereal import utc_datetime
     >>> utc_datetime("2026-11-25T01:00:00+01:00", "epoch").isoformat()
     '2026-11-25T00:00:00+00:00'
     >>> utc_datetime(3, "epoch")
@@ -69,6 +71,8 @@ def greenwich_sidereal_angle(jd_ut1: ArrayLike) -> FloatArray:
     --------
     Vallado's example 3-5 (1992-08-20 12:14 UT1): 152.578787810 deg:
 
+    >>> import math
+    >>> from tumble.dynamics.environment.sidereal import greenwich_sidereal_angle, julian_date
     >>> jd = julian_date("1992-08-20T12:14:00")
     >>> round(math.degrees(float(greenwich_sidereal_angle(jd))), 6)
     152.578788

@@ -45,6 +45,7 @@ def horner(c0: Any, c1: Any, c2: Any, c3: Any, d: Any) -> Any:
 
     Examples
     --------
+    >>> from tumble.dynamics.environment.tabulated import horner
     >>> horner(1.0, -2.0, 0.5, 3.0, 2.0)   # 8 - 8 + 1 + 3
     4.0
     """
@@ -69,6 +70,8 @@ class CubicTable:
     --------
     ``f(t) = (t^3, t, 1)`` on two intervals of 1 s, the second's coefficients shifted to its knot:
 
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.tabulated import CubicTable
     >>> c = np.zeros((4, 2, 3))
     >>> c[0, :, 0], c[1, 1, 0], c[2, 1, 0], c[3, 1, 0] = 1.0, 3.0, 3.0, 1.0   # (1 + d)^3
     >>> c[2, :, 1], c[3, :, 1], c[3, :, 2] = 1.0, [0.0, 1.0], 1.0
@@ -95,6 +98,8 @@ class CubicTable:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.tabulated import CubicTable
         >>> CubicTable(10.0, 5.0, np.zeros((4, 3, 3))).t_end
         25.0
         """
@@ -105,6 +110,8 @@ class CubicTable:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.tabulated import CubicTable
         >>> table = CubicTable(0.0, 2.0, np.ones((4, 1, 3)))   # 1 + d + d^2 + d^3
         >>> table(1.0).tolist()
         [4.0, 4.0, 4.0]
@@ -126,6 +133,8 @@ def spline_table(samples: FloatArray, first: int, step: float) -> FloatArray:
     --------
     A cubic is reproduced exactly (not-a-knot ends):
 
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.tabulated import CubicTable, MARGIN, spline_table
     >>> step, first, m = 0.5, 2, 3
     >>> t = (first - MARGIN + np.arange(m + 1 + 2 * MARGIN)) * step
     >>> c = spline_table(np.stack([t**3, t, 0 * t], axis=-1), first, step)
@@ -152,6 +161,8 @@ def position_table(orbit: Any, t_end: float, step: float | None = None) -> Cubic
     Examples
     --------
     >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.tabulated import position_table
     >>> orbit = KeplerOrbit(8000e3, 0.1, 1.0)
     >>> table = position_table(orbit, 6000.0)
     >>> t = np.array([0.0, 123.4, 5999.9])

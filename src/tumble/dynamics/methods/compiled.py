@@ -64,6 +64,7 @@ def compiled_model(torque: Any) -> tuple[int, FloatArray, float] | None:
     Examples
     --------
     >>> from tumble.dynamics.models.torques import ConstantTorque
+    >>> from tumble.dynamics.methods.compiled import CONSTANT_BODY, compiled_model
     >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]))[0] == CONSTANT_BODY
     True
     >>> compiled_model(lambda t, w, R: w) is None   # a function: the numpy path calls it
@@ -221,6 +222,7 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.compiled import CONSTANT_BODY, run_split
     >>> I, L = np.array([[1.0, 2.0, 3.0]]), np.array([[0.0, 0.0, 3.0]])
     >>> omega, quat = run_split(I, L, np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([0.0, 1.0]), 0.1, (1.0,),
     ...                         (CONSTANT_BODY, np.array([0.0, 0.0, 0.3]), 0.0))

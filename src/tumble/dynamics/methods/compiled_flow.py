@@ -171,6 +171,7 @@ def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  #
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.compiled_flow import free_flow
     >>> L, q = np.array([0.0, 0.0, 3.0]), np.array([0.0, 0.0, 0.0, 1.0])
     >>> free_flow(np.array([1.0, 2.0, 3.0]), L, q, np.pi)  # a half turn about the major axis
     >>> np.round(q, 12) + 0.0
@@ -186,6 +187,7 @@ def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.compiled_flow import WORK, free_flow, free_flow_into
     >>> I, work = np.array([1.0, 2.0, 3.0]), np.empty(WORK)
     >>> L, q = I * np.array([0.1, 1.0, 0.1]), np.array([0.0, 0.0, 0.0, 1.0])
     >>> free_flow_into(I, L, q, 5.0, work)

@@ -107,6 +107,7 @@ def check_phase_limit(moments: ArrayLike, omega0: ArrayLike, t_end: float) -> No
 
     Examples
     --------
+    >>> from tumble.dynamics.methods.exact import check_phase_limit
     >>> check_phase_limit([1.0, 2.0, 3.0], [0.1, 1.0, 0.1], 100.0)  # far below: nothing to say
     """
     I, w = np.asarray(moments, float), np.asarray(omega0, float)
@@ -148,6 +149,7 @@ class FreeRotation:
     --------
     >>> import numpy as np
     >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.methods.exact import FreeRotation
     >>> motion = FreeRotation(np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1]), Rotation.identity())
     >>> w, R = motion.omega([0.0, 1.0]), motion.attitude([0.0, 1.0])
     >>> bool(np.allclose(w[0], [0.1, 1.0, 0.1])), len(R)

@@ -74,6 +74,7 @@ def free_rotation_batch(
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_batch import free_rotation_batch
     >>> I = np.array([[1.0, 2.0, 3.0], [1.0, 2.0, 3.0]])
     >>> w0 = np.array([[0.1, 1.0, 0.1], [0.0, 0.0, 2.0]])
     >>> omega, quat = free_rotation_batch(I, w0, np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)), np.linspace(0.0, 5.0, 6))

@@ -74,6 +74,7 @@ def is_steady(I: ArrayLike, w: ArrayLike) -> BoolArray:
 
     Examples
     --------
+    >>> from tumble.dynamics.methods.exact_kernel import is_steady
     >>> bool(is_steady([1.0, 2.0, 3.0], [0.0, 0.0, 5.0])), bool(is_steady([1.0, 2.0, 3.0], [0.1, 0.0, 5.0]))
     (True, False)
     """
@@ -103,6 +104,7 @@ def steady_attitude(w: Vector3, q0: Quaternion, t: FloatArray) -> Quaternion:
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_kernel import steady_attitude
     >>> q = steady_attitude(np.array([[0.0, 0.0, np.pi]]), np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([1.0]))
     >>> np.round(q[0, 0], 12) + 0.0  # half a turn about z
     array([0., 0., 1., 0.])
@@ -147,6 +149,7 @@ class EllipticMotion:
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_kernel import EllipticMotion
     >>> motion = EllipticMotion(np.array([[1.0, 2.0, 3.0]]), np.array([[0.1, 1.0, 0.1]]))
     >>> w = motion.omega(motion.reduce(np.array([0.0, 1.0])))
     >>> w.shape, bool(np.allclose(w[0, 0], [0.1, 1.0, 0.1]))

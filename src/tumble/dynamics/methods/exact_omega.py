@@ -57,6 +57,7 @@ def free_omega(moments: ArrayLike, omega0: ArrayLike, t: ArrayLike) -> Vector3:
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
     >>> w = free_omega([[1.0, 2.0, 3.0]], [[0.1, 1.0, 0.1]], np.linspace(0, 10, 5))
     >>> w.shape
     (1, 5, 3)

@@ -53,6 +53,7 @@ def run_chunks(function: Callable[[int], Any], starts: range) -> list[Any]:
 
     Examples
     --------
+    >>> from tumble.dynamics.methods.exact_parameters import run_chunks
     >>> run_chunks(lambda s: s * s, range(0, 10, 3))
     [0, 9, 36, 81]
     """

@@ -66,6 +66,7 @@ def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.methods.exact_split import default_step
     >>> default_step(10.0), default_step(10.0, gain=1.0)
     (inf, 0.004545454545454546)
     """
@@ -113,6 +114,7 @@ def propagate(moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: ArrayL
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.models.torques import ConstantTorque
+    >>> from tumble.dynamics.methods.exact_split import propagate
     >>> t = np.linspace(0.0, 2.0, 3)
     >>> omega, quat = propagate([1.0, 2.0, 3.0], [0.1, 1.0, 0.1], [0.0, 0.0, 0.0, 1.0], t,
     ...                         order=4, step=0.1, torque=ConstantTorque([0.0, 0.0, 0.01]))

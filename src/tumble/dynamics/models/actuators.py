@@ -53,6 +53,7 @@ class Command:
 
     Examples
     --------
+    >>> from tumble.dynamics.models.actuators import Command
     >>> Command(dipole=[0.0, 0.1, 0.0]).dipole.tolist()
     [0.0, 0.1, 0.0]
     """
@@ -99,6 +100,7 @@ class Magnetorquers:
 
     Examples
     --------
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> mtq = Magnetorquers(0.2)
     >>> mtq.saturate([0.5, -0.1, 0.0]).tolist()
     [0.2, -0.1, 0.0]
@@ -122,6 +124,7 @@ class Magnetorquers:
         Each rod clips on its own (the direction of the dipole may change); a batch of commands
         at once:
 
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
         >>> mtq = Magnetorquers([0.2, 0.2, 0.1])
         >>> mtq.saturate([[0.5, -0.1, 0.3], [0.05, 0.0, -0.05]]).tolist()
         [[0.2, -0.1, 0.1], [0.05, 0.0, -0.05]]
@@ -143,6 +146,8 @@ class Magnetorquers:
         The torque is square to the field (a magnetorquer cannot torque about B) and largest,
         ``|m| |B|``, for a dipole square to it:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
         >>> mtq = Magnetorquers(0.2)
         >>> b = np.array([1e-5, -2e-5, 2e-5])
         >>> tau = mtq.torque([0.0, 0.2, 0.2], b)
@@ -177,6 +182,7 @@ def wheel_torque(command: Any, speed: Any, max_torque: Any, max_speed: Any, visc
 
     Examples
     --------
+    >>> from tumble.dynamics.models.actuators import wheel_torque
     >>> round(float(wheel_torque(1e-3, 597.0, 2e-3, 600.0, 0.0, 0.0, 1e-4)), 12)   # half-way down the ramp: half
     0.0005
     >>> float(wheel_torque(-1e-3, 600.0, 2e-3, 600.0, 0.0, 0.0, 1e-4))   # inwards: all of it
@@ -213,6 +219,8 @@ class ReactionWheels:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> rw = ReactionWheels(np.eye(3), inertia=1e-5, max_torque=1e-3, max_speed=600.0)
     >>> rw.applied_torque([2e-3, -5e-4, 0.0], np.zeros(3)).tolist()
     [0.001, -0.0005, 0.0]
@@ -249,6 +257,8 @@ class ReactionWheels:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> ReactionWheels(np.eye(3)[:2], inertia=1e-5).count
         2
         """
@@ -262,6 +272,8 @@ class ReactionWheels:
         Four wheels in a pyramid: equal spins on the two wheels of one face add along their
         common component and cancel across it:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> c = 1 / np.sqrt(2)
         >>> rw = ReactionWheels([[c, 0, c], [-c, 0, c], [0, c, c], [0, -c, c]], inertia=2e-5)
         >>> h = rw.momentum([100.0, 100.0, 0.0, 0.0])
@@ -277,6 +289,8 @@ class ReactionWheels:
         --------
         Three wheels on the principal axes: ``diag(J_1, J_2, J_3)``; its trace is ``sum_k J_k`` whatever the axes:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> ReactionWheels(np.eye(3), inertia=[1e-5, 2e-5, 4e-5]).locked_axial().diagonal().tolist()
         [1e-05, 2e-05, 4e-05]
         >>> rw = ReactionWheels([[1.0, 1.0, 0.0], [0.0, 1.0, 1.0]], inertia=[1e-5, 3e-5])
@@ -294,6 +308,8 @@ class ReactionWheels:
         --------
         A wheel at its speed limit may slow down but not speed up; friction opposes the spin:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> rw = ReactionWheels(np.eye(3)[:2], inertia=1e-5, max_torque=1e-3, max_speed=600.0)
         >>> rw.applied_torque([5e-4, -5e-4], [600.0, 600.0]).tolist()
         [0.0, -0.0005]

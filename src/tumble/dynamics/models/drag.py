@@ -136,6 +136,7 @@ def drag_omega(
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.models.drag import drag_omega
     >>> w = drag_omega([[1.0, 2.0, 3.0]], [[0.0, 0.0, 2.0]], [0.0, 1.0], quadratic=[[0.0, 0.0, 1.5]])
     >>> bool(np.isclose(w[0, 1, 2], 2.0 / (1.0 + 1.5 * 2.0 / 3.0)))  # w' = -(b/I) w^2
     True

@@ -97,6 +97,9 @@ def gradient_torque(r_b: ArrayLike, moments: ArrayLike, rate2: ArrayLike) -> Vec
     Along a principal axis there is no torque; at 45 deg between axes 1 and 2 it is
     ``(3/2) n^2 (I2 - I1)`` about axis 3:
 
+    >>> import math
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.gravity import gradient_torque
     >>> gradient_torque([1.0, 0.0, 0.0], [1.0, 2.0, 3.0], 1e-6).tolist()
     [0.0, 0.0, 0.0]
     >>> s = math.sqrt(0.5)
@@ -118,6 +121,8 @@ def gradient_components(rate2: Any, I0: Any, I1: Any, I2: Any, b0: Any, b1: Any,
 
     Examples
     --------
+    >>> import math
+    >>> from tumble.dynamics.models.gravity import gradient_components
     >>> s = math.sqrt(0.5)
     >>> [round(float(x), 12) for x in gradient_components(1e-6, 1.0, 2.0, 3.0, s, s, 0.0)]
     [0.0, 0.0, 1.5e-06]
@@ -157,6 +162,7 @@ class GravityGradient:
 
     Examples
     --------
+    >>> from tumble.dynamics.models.gravity import GravityGradient
     >>> gg = GravityGradient(orbit_period=5400.0)
     >>> round(gg.radius / 1e3)   # km
     6653
@@ -436,6 +442,9 @@ class GravityGradient:
 
         Examples
         --------
+        >>> import math
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> from tumble.dynamics.models.torques import KERNEL_CIRCULAR_GRAVITY
         >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
         >>> kind, (n,) = gg.kernel_form()
         >>> kind == KERNEL_CIRCULAR_GRAVITY, round(n * 5400.0 / math.pi, 12)

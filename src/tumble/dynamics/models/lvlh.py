@@ -83,6 +83,7 @@ def _is_circular_orbit(gg: object) -> bool:
     --------
     >>> from tumble.dynamics.models.gravity import GravityGradient
     >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.models.lvlh import _is_circular_orbit
     >>> _is_circular_orbit(GravityGradient(orbit_period=5400.0)), _is_circular_orbit(GravityGradient)
     (True, False)
     >>> _is_circular_orbit(CircularOrbit(altitude=500e3)), _is_circular_orbit(None)
@@ -125,6 +126,8 @@ def rpy_axes(pitch_axis: int | str, yaw_axis: int | str) -> tuple[tuple[int, int
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.lvlh import rpy_axes
     >>> (roll, pitch, yaw), P = rpy_axes(pitch_axis="major", yaw_axis="minor")
     >>> (roll, pitch, yaw)
     (1, 2, 0)
@@ -208,6 +211,7 @@ def lvlh_state(
     --------
     >>> import tumble
     >>> from tumble.dynamics.models.gravity import GravityGradient
+    >>> from tumble.dynamics.models.lvlh import lvlh_state
     >>> body = tumble.t_handle()
     >>> gg = GravityGradient(orbit_period=5400.0)
     >>> s = lvlh_state(gg, body, pitch=0.01)

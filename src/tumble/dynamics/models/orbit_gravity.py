@@ -57,6 +57,9 @@ def gravity_gradient_of(orbit: CircularOrbit | KeplerOrbit | TLEOrbit) -> Gravit
     Examples
     --------
     >>> import math
+    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
     >>> orbit = CircularOrbit(altitude=500e3)
     >>> gg = gravity_gradient_of(orbit)
     >>> type(gg).__name__, gg.radius == orbit.radius, math.isclose(gg.period, orbit.period)
@@ -97,6 +100,11 @@ class OrbitGravityGradient:
     --------
     On a circle it is :class:`~tumble.dynamics.models.gravity.GravityGradient`:
 
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+    >>> from tumble.dynamics.models.gravity import GravityGradient
+    >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
     >>> k = KeplerOrbit(7000e3)
     >>> att = Rotation.from_rotvec([0.3, -0.2, 0.5])
     >>> a = OrbitGravityGradient(k).bind([1.0, 2.0, 3.0])(100.0, np.zeros(3), att)
@@ -124,6 +132,8 @@ class OrbitGravityGradient:
 
         Examples
         --------
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+        >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
         >>> OrbitGravityGradient(KeplerOrbit(7000e3)).bind([1.0, 2.0, 3.0]).moments
         (1.0, 2.0, 3.0)
         """
@@ -138,6 +148,10 @@ class OrbitGravityGradient:
         --------
         At perigee of an ellipse the rate ``mu / r^3`` is ``(1 - e)^-3`` times that of the circle of radius ``a``:
 
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+        >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
         >>> k = KeplerOrbit(8000e3, 0.2)
         >>> att = Rotation.from_rotvec([0.0, 0.0, 0.4])
         >>> perigee = OrbitGravityGradient(k).bind([1.0, 2.0, 3.0])(0.0, np.zeros(3), att)

@@ -162,6 +162,7 @@ class Rotors:
         Examples
         --------
         >>> import tumble
+        >>> from tumble.dynamics.models.rotors import Rotors
         >>> brake = tumble.Rotor(mass=2.0, radius=0.2, length=0.05, spin_rate=50.0, spin_acceleration=-3.0)
         >>> Rotors.of(tumble.Body([tumble.Sphere(mass=5.0, radius=0.5), brake])).spin_derivatives([0.0, 7.0]).tolist()
         [[-3.0], [-3.0]]

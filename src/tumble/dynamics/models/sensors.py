@@ -44,6 +44,9 @@ class Measurement:
     --------
     :meth:`Sensors.sample` makes them; without wheels the tachometers read nothing:
 
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.sensors import Measurement
     >>> m = Measurement(t=2.0, omega=np.array([0.0, 0.0, 0.1]), field=None, attitude=Rotation.identity())
     >>> m.omega.tolist(), m.field is None, m.wheel_speed.shape
     ([0.0, 0.0, 0.1], True, (0,))
@@ -83,6 +86,9 @@ class Sensors:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.sensors import Sensors
     >>> s = Sensors()
     >>> m = s.sample(0.0, np.array([0.1, 0.0, 0.0]), Rotation.identity(), np.array([0.0, 2e-5, 0.0]),
     ...              np.zeros(0), np.random.default_rng(0))
@@ -116,6 +122,8 @@ class Sensors:
         --------
         Each call starts the same stream again, so a run with the same seed repeats exactly:
 
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.sensors import Sensors
         >>> sensors = Sensors(gyro_noise=1e-3, seed=7)
         >>> np.array_equal(sensors.rng().standard_normal(4), sensors.rng().standard_normal(4))
         True
@@ -133,6 +141,9 @@ class Sensors:
         The bias shows in the mean of many readings, the noise in their spread (2,000 seeded
         samples: the standard error of the mean is ``1e-3 / sqrt(2000) = 2.2e-5`` rad/s):
 
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.models.sensors import Sensors
         >>> sensors = Sensors(gyro_noise=1e-3, gyro_bias=(2e-3, 0.0, -1e-3), attitude="none")
         >>> rng, omega = sensors.rng(), np.array([0.1, 0.0, 0.0])
         >>> readings = np.array([sensors.sample(0.0, omega, Rotation.identity(), None, np.zeros(0), rng).omega

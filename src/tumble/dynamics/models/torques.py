@@ -233,6 +233,7 @@ class KernelForm(Protocol):
 
     Examples
     --------
+    >>> from tumble.dynamics.models.torques import ConstantTorque, KERNEL_WORLD
     >>> ConstantTorque((0.0, 0.0, 1.0), "world").kernel_form() == (KERNEL_WORLD, (0.0, 0.0, 1.0))
     True
     """
@@ -242,6 +243,7 @@ class KernelForm(Protocol):
 
         Examples
         --------
+        >>> from tumble.dynamics.models.torques import ConstantTorque, KERNEL_BODY
         >>> kind, vector = ConstantTorque((0.0, 0.5, 0.0)).kernel_form()   # a constant body torque, N m
         >>> kind == KERNEL_BODY, vector
         (True, (0.0, 0.5, 0.0))
@@ -254,6 +256,7 @@ def kernel_form(model: object) -> tuple[int, tuple[float, ...]] | None:
 
     Examples
     --------
+    >>> from tumble.dynamics.models.torques import FunctionTorque, KERNEL_NONE, kernel_form
     >>> kernel_form(None) == (KERNEL_NONE, ())
     True
     >>> kernel_form(FunctionTorque(lambda t, omega, attitude: -omega)) is None   # Python's to call
@@ -306,6 +309,7 @@ class ConstantTorque:
 
         Examples
         --------
+        >>> from tumble.dynamics.models.torques import ConstantTorque, KERNEL_BODY
         >>> ConstantTorque((1.0, 0.0, 0.0)).kernel_form() == (KERNEL_BODY, (1.0, 0.0, 0.0))
         True
         """

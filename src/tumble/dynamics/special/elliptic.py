@@ -111,6 +111,7 @@ class Modulus:
     Examples
     --------
     >>> import numpy as np
+    >>> from tumble.dynamics.special.elliptic import Modulus
     >>> (j1, j2), odd, sn, cn, dn = Modulus.from_parameter(0.5, 0.5).reduce((np.array([0.3]), np.zeros(1)))
     >>> bool(np.isclose(sn[0] ** 2 + cn[0] ** 2, 1.0))
     True

@@ -21,6 +21,7 @@ def mrp_from_quat(quat: ArrayLike) -> Vector3:
     Examples
     --------
     >>> import math
+    >>> from tumble.dynamics.special.mrp import mrp_from_quat
     >>> mrp_from_quat([0.0, 0.0, math.sin(0.5), math.cos(0.5)]).round(6).tolist()   # 1 rad about z
     [0.0, 0.0, 0.255342]
     """

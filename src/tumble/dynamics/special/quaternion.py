@@ -59,6 +59,7 @@ def rotate_components(x: Any, y: Any, z: Any, w: Any, v0: Any, v1: Any, v2: Any)
 
     Examples
     --------
+    >>> from tumble.dynamics.special.quaternion import rotate_components
     >>> c = 0.5 ** 0.5   # 90 degrees about z
     >>> [round(u, 12) + 0.0 for u in rotate_components(0.0, 0.0, c, c, 1.0, 0.0, 0.0)]
     [0.0, 1.0, 0.0]
