@@ -22,23 +22,10 @@ import pytest
 
 import tumble
 
-#: Examples in files that are being changed elsewhere (issue 28's do-not-edit list: analysis/fit/,
-#: viz/control*, io/resume.py, io/output.py, ensemble/sweep.py, dynamics/simulate.py): fixed
+#: Examples in files that are being changed elsewhere (issue 28's do-not-edit list: viz/control*, io/resume.py, io/output.py, ensemble/sweep.py, dynamics/simulate.py): fixed
 #: separately. Each entry is a doctest name (``module.object``) and the names it lacks; an entry
 #: that no longer lacks exactly these names fails the test, so the list only shrinks.
 ALLOWED: dict[str, set[str]] = {
-    "tumble.analysis.fit.adequacy.judge": {"judge"},
-    "tumble.analysis.fit.adequacy.rigid_body_check": {"np", "rigid_body_check"},
-    "tumble.analysis.fit.endings.after_hand": {"after_hand", "np"},
-    "tumble.analysis.fit.endings.after_landing": {"after_landing", "np"},
-    "tumble.analysis.fit.endings.gyrostat_flight": {"gyrostat_flight", "np"},
-    "tumble.analysis.fit.flights.find_flights": {"find_flights"},
-    "tumble.analysis.fit.flights.impulses": {"impulses", "np"},
-    "tumble.analysis.fit.recording.fit_recording": {"fit_recording"},
-    "tumble.analysis.fit.single.fit_rotation": {"fit_rotation"},
-    "tumble.analysis.fit.synthetic.example_recording": {"example_recording"},
-    "tumble.analysis.fit.synthetic.plate_drag_torque": {"TOSS_BODIES", "np", "plate_drag_torque"},
-    "tumble.analysis.fit.synthetic.synthetic_recording": {"np", "synthetic_recording"},
     "tumble.dynamics.simulate.check_rtol": {"check_rtol"},
     "tumble.ensemble.sweep.ChunkStore": {"RunSettings", "Sweep", "run_chunks"},
     "tumble.ensemble.sweep.ChunkStore.has": {"np"},

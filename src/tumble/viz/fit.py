@@ -80,6 +80,7 @@ def skip_label(reason: str) -> str:
 
     Examples
     --------
+    >>> from tumble.viz.fit import skip_label
     >>> skip_label("too short (0.21 s, 21 samples; a flight needs 0.3 s and 30 samples)")
     'too short'
     >>> skip_label("not a rigid body: its angular momentum |L| rose by 12 % during the flight")

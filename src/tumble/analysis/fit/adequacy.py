@@ -113,6 +113,7 @@ def judge(residual_rms: float, noise: float, rates_rms: float, *, sensor_rotatio
 
     Examples
     --------
+    >>> from tumble.analysis.fit.adequacy import judge
     >>> judge(0.005, 0.005, 10.0).adequate
     True
     >>> v = judge(1.2, 0.005, 10.0)
@@ -177,6 +178,8 @@ def rigid_body_check(t: np.ndarray, omega_principal: np.ndarray, moments: np.nda
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.adequacy import rigid_body_check
     >>> t = np.linspace(0.0, 1.0, 201)
     >>> I = np.array([0.2, 0.8, 1.0])
     >>> spin = np.column_stack([0.1 * np.cos(3 * t), 10.0 * np.exp(-0.05 * t), 0.1 * np.sin(3 * t)])   # slowed by drag

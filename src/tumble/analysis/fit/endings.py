@@ -71,6 +71,8 @@ def after_hand(rng: np.random.Generator, tau: np.ndarray, length: float, w_end: 
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import after_hand
     >>> rng = np.random.default_rng(1)
     >>> tau = np.arange(0.0, 0.6, 0.01)
     >>> w = after_hand(rng, tau, 0.6, np.array([0.5, 12.0, 0.3]), 10.0, np.zeros((60, 3)), 0.01)
@@ -97,6 +99,8 @@ def after_landing(rng: np.random.Generator, body: TossBody, tau: np.ndarray, len
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import after_landing
     >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
     >>> rng = np.random.default_rng(2)
     >>> tau = np.arange(0.0, 0.8, 0.005)
@@ -135,6 +139,8 @@ def gyrostat_flight(body: TossBody, w0: np.ndarray, duration: float, times: np.n
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import gyrostat_flight
     >>> from tumble.analysis.fit.synthetic import TOSS_BODIES, plate_drag_torque
     >>> body = TOSS_BODIES["phone"]
     >>> I = np.array(body.moments)

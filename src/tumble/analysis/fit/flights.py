@@ -180,6 +180,8 @@ def impulses(t: ArrayLike, omega: ArrayLike) -> np.ndarray:
     --------
     A torque-free tumble is never under an impulse; an impact that turns omega in one sample is:
 
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.flights import impulses
     >>> from tumble.analysis.fit.endings import gyrostat_flight
     >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
     >>> t = np.arange(0.0, 1.0, 0.005)
@@ -311,6 +313,7 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
 
     Examples
     --------
+    >>> from tumble.analysis.fit.flights import find_flights
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(22, tosses=2, flight=(0.5, 0.8))
     >>> flights = find_flights(rec.t, rec.omega, events=rec.events)

@@ -251,6 +251,7 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
 
     Examples
     --------
+    >>> from tumble.analysis.fit.recording import fit_recording
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(2, tosses=3)
     >>> fit = fit_recording(rec.t, rec.omega, events=rec.events)

@@ -225,6 +225,7 @@ def fit_rotation(t: ArrayLike, omega_measured: ArrayLike, *, sensor_rotation: st
 
     Examples
     --------
+    >>> from tumble.analysis.fit.single import fit_rotation
     >>> import numpy as np
     >>> from tumble.dynamics.methods.exact import FreeRotation
     >>> from scipy.spatial.transform import Rotation

@@ -117,6 +117,9 @@ def plate_drag_torque(body: TossBody, w: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
+    >>> from tumble.analysis.fit.synthetic import plate_drag_torque
     >>> body = TOSS_BODIES["racquet"]
     >>> tau = plate_drag_torque(body, np.array([0.0, 10.0, 0.0]))
     >>> round(float(tau[1]), 3)  # the racquet's 0.05 N m at 10 rad/s about its axis 2
@@ -317,6 +320,8 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(1, tosses=3)
     >>> rec.flights.shape, bool(rec.t[-1] > 3 * 0.5)
     ((3, 2), True)
@@ -472,6 +477,7 @@ def example_recording() -> tuple[SyntheticRecording, str]:
 
     Examples
     --------
+    >>> from tumble.analysis.fit.synthetic import example_recording
     >>> rec, text = example_recording()
     >>> text.startswith("# SYNTHETIC")
     True
