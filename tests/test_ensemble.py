@@ -620,3 +620,19 @@ def test_chunks_finishing_out_of_order_are_put_back_in_order():
     plain = _frozen(run_chunks(sweep, chunk=4))
     assert shuffled["case"].tolist() == list(range(21))
     assert all(np.array_equal(shuffled[k], plain[k]) for k in plain)
+
+
+def test_chunk_ranges_of_1e8_cases_are_not_a_list_of_1e8_ranges():
+    """Issue 27 item 10(e): chunk = 1 over 1e8 cases is a lazy sequence, not 1e8 tuples in memory."""
+    import sys
+
+    from tumble.ensemble.sweep import chunk_ranges
+
+    ranges = chunk_ranges(10**8, 1)
+    assert not isinstance(ranges, list) and sys.getsizeof(ranges) < 1000
+    assert len(ranges) == 10**8 and ranges[0] == (0, 1) and ranges[12345] == (12345, 12346)
+    assert ranges[-1] == (10**8 - 1, 10**8) and next(iter(ranges)) == (0, 1)
+    with pytest.raises(IndexError):
+        ranges[10**8]
+    assert list(chunk_ranges(10, 4)) == [(0, 4), (4, 8), (8, 10)] and list(chunk_ranges(8, 4)) == [(0, 4), (4, 8)]
+    assert len(chunk_ranges(0, 4)) == 0 and list(chunk_ranges(0, 4)) == [] and chunk_ranges(10, 4)[1:] == [(4, 8), (8, 10)]
