@@ -147,3 +147,11 @@ def test_fit_command_on_the_shipped_record(tmp_path, capsys):
     np.testing.assert_allclose(fit.ratios, I[:2] / I[2], atol=1e-3)
     code, _, err = run(capsys, "fit", str(tmp_path / "missing.csv"), "--out", str(tmp_path / "f2"))
     assert code == 2 and err.count("\n") == 1
+
+
+def test_missing_trimesh_is_one_line_with_the_install_hint_and_status_2(capsys, monkeypatch):
+    """Issue 27 item 10(b): a missing extra is the user's setup: one line naming the pip install, exit 2."""
+    monkeypatch.setitem(sys.modules, "trimesh", None)
+    code, out, err = run(capsys, "inertia", str(EXAMPLES / "bodies" / "every_part.toml"))
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "pip install 'tumble[mesh]'" in err and "Traceback" not in err

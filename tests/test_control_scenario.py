@@ -115,3 +115,15 @@ def test_a_run_that_never_detumbles_says_so(tmp_path, capsys):
     assert main(["simulate", str(path), "--t-end", "40", "--out", str(tmp_path / "fast")]) == 0
     assert "below 0.345 rad/s from t = " in capsys.readouterr().out
     assert json.loads((tmp_path / "fast" / "summary.json").read_text())["detumbled"] is True
+
+
+def test_a_bdot_run_writes_no_empty_wheels_or_attitude_error_figures(tmp_path):
+    """Issue 27 item 10(a): a run without wheels or target wrote an empty wheels.png and
+    attitude_error.png. A B-dot run writes neither, and those of an earlier run (with wheels and a
+    target) into the same folder go with the rest of its files."""
+    out = tmp_path / "run"
+    assert main(["simulate", str(CONTROL / "point.toml"), "--t-end", "2", "--out", str(out)]) == 0
+    figures = {"omega.png", "rates.png", "dipole.png", "momentum.png"}
+    assert {p.name for p in out.iterdir()} >= figures | {"wheels.png", "attitude_error.png"}
+    assert main(["simulate", str(CONTROL / "detumble.toml"), "--t-end", "5", "--out", str(out)]) == 0
+    assert {p.name for p in out.iterdir()} == figures | {"trajectory.csv", "trajectory.npz", "summary.json"}

@@ -274,6 +274,7 @@ def test_a_stiff_damper_is_followed_by_radau_and_tends_to_the_locked_body(small_
     body of moments I + J (exact solution) up to O(spin / k): measured 0.017 / ratio."""
     damper = SphericalDamper(inertia=0.01, damping=c)
     traj = simulate(BODY, TUMBLE, t_end=2.0, samples=21, damper=damper)
+    assert traj.method == "radau"  # issue 27 item 10(c): Radau integrated it, and the run says so
     ratio = damper.damping / damper.inertia * (1 + damper.inertia / I[0]) / np.linalg.norm(TUMBLE)
     assert ratio > tumble.dynamics.models.internal.STIFF_RATIO
     assert np.all(np.diff(traj.energy) <= 1e-13 * traj.energy[0]) and traj.dissipated[-1] > 0
@@ -290,6 +291,10 @@ def test_a_moderately_stiff_damper_matches_an_independent_radau_reference():
     J, c = 0.01, 30.0
     t = np.linspace(0.0, 2.0, 21)
     traj = simulate(BODY, TUMBLE, times=t, damper=SphericalDamper(inertia=J, damping=c))
+    assert traj.method == "radau"
+    from tumble.analysis.summary import trajectory_summary
+
+    assert trajectory_summary(traj)["method"] == "radau" and "radau" in repr(traj)  # the summaries follow
 
     def rhs(_, y):
         w, wd = y[:3], y[3:6]

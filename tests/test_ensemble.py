@@ -287,6 +287,7 @@ from tumble.ensemble import (  # noqa: E402
     runs_needed,
     stability_map,
     success_lower_bound,
+    SweepSummary,
     summarize,
 )
 from tumble.mass import MassProperties  # noqa: E402
@@ -620,3 +621,61 @@ def test_chunks_finishing_out_of_order_are_put_back_in_order():
     plain = _frozen(run_chunks(sweep, chunk=4))
     assert shuffled["case"].tolist() == list(range(21))
     assert all(np.array_equal(shuffled[k], plain[k]) for k in plain)
+
+
+def test_chunk_ranges_of_1e8_cases_are_not_a_list_of_1e8_ranges():
+    """Issue 27 item 10(e): chunk = 1 over 1e8 cases is a lazy sequence, not 1e8 tuples in memory."""
+    import sys
+
+    from tumble.ensemble.sweep import chunk_ranges
+
+    ranges = chunk_ranges(10**8, 1)
+    assert not isinstance(ranges, list) and sys.getsizeof(ranges) < 1000
+    assert len(ranges) == 10**8 and ranges[0] == (0, 1) and ranges[12345] == (12345, 12346)
+    assert ranges[-1] == (10**8 - 1, 10**8) and next(iter(ranges)) == (0, 1)
+    with pytest.raises(IndexError):
+        ranges[10**8]
+    assert list(chunk_ranges(10, 4)) == [(0, 4), (4, 8), (8, 10)] and list(chunk_ranges(8, 4)) == [(0, 4), (4, 8)]
+    assert len(chunk_ranges(0, 4)) == 0 and list(chunk_ranges(0, 4)) == [] and chunk_ranges(10, 4)[1:] == [(4, 8), (8, 10)]
+
+
+def test_case_0_of_a_random_t_handle_sweep_is_classified_by_its_circulation():
+    """Issue 27 item 9: omega0 = (8.3, 8.2, 7.5) rad/s on the T-handle has its largest component on
+    axis 1 but circulates about the major axis (L^2 > 2 E I2). It was "axis 1, predicted stable"
+    with 45 flips (of omega_1); the columns now describe the motion and agree with each other."""
+    sweep = Sweep(Ensemble(BodySampler(tumble.t_handle()), InitialRates(omega=(8.3, 8.2, 7.5)), 1),
+                  RunSettings(t_end=20.0, samples=2000))
+    cols = compute_chunk(sweep, 0, 1)
+    I, w = cols_moments(cols), np.array([8.3, 8.2, 7.5])
+    assert np.sum((I * w) ** 2) > np.sum(I * w * w) * I[1]  # L^2 > 2 E I2: about the major axis
+    assert cols["circulation"][0] == cols["axis"][0] == 3 and cols["predicted"][0] == "stable"
+    assert cols["flips"][0] == 0 and np.isnan(cols["flip_period [s]"][0]) and np.isnan(cols["flip_period_exact [s]"][0])
+    assert cols["wobble_frequency [rad/s]"][0] > 0 and cols["growth_rate [1/s]"][0] == 0
+
+
+def cols_moments(cols):
+    return np.array([cols[f"I{j} [kg m^2]"][0] for j in (1, 2, 3)])
+
+
+def test_the_columns_of_a_random_rate_sweep_agree_with_each_other():
+    """Issue 27 item 9: rates far from any axis. Torque-free, a case flips (its spin axis, the one
+    nearest L, reverses relative to L) exactly when it is predicted unstable, i.e. when its spin axis
+    is not its circulation axis; the summary states the fraction that flips with its interval."""
+    rates = InitialRates(omega=(0.0, 0.0, 0.0), distribution="normal", spread=(5.0, 5.0, 5.0))
+    sweep = Sweep(Ensemble(BodySampler(tumble.t_handle()), rates, 200, seed=3), RunSettings(t_end=20.0, samples=4000))
+    cols = compute_chunk(sweep, 0, 200)
+    stable = cols["predicted"] == "stable"
+    assert 0 < stable.sum() < 200
+    assert np.array_equal(stable, cols["axis"] == cols["circulation"])
+    assert np.all(cols["flips"][stable] == 0) and np.all(np.isnan(cols["flip_period_exact [s]"][stable]))
+    # every unstable case whose exact interval fits the run flips, at that interval
+    seen = ~stable & (cols["flip_period_exact [s]"] < 5.0)
+    assert seen.sum() > 0.8 * (~stable).sum() and np.all(cols["flips"][seen] >= 2)
+    both = seen & np.isfinite(cols["flip_period [s]"])
+    assert np.allclose(cols["flip_period [s]"][both], cols["flip_period_exact [s]"][both], rtol=0.02)
+    assert np.all(np.isfinite(cols["growth_rate [1/s]"][cols["axis"] == 2]))
+    summary = SweepSummary.of(cols, seed=3).as_dict()
+    k = int(np.sum(cols["flips"] >= 1))
+    assert summary["flipped"]["cases"] == k and summary["flipped"]["fraction"] == k / 200
+    low, high = summary["flipped"]["interval"]
+    assert low < k / 200 < high and summary["flipped"]["confidence"] == 0.95

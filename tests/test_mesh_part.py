@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -75,3 +76,11 @@ def test_malformed_mesh_files(tmp_path, content):
 def test_missing_mesh_file():
     with pytest.raises(ValueError, match="no such file"):
         tumble.Mesh(mesh="does/not/exist.stl", mass=1.0)
+
+
+def test_missing_trimesh_is_an_import_error_with_the_install_hint(monkeypatch):
+    """Issue 27 item 10(b): an extra to install is ImportError (name "trimesh"), not ValueError."""
+    monkeypatch.setitem(sys.modules, "trimesh", None)  # `import trimesh` now raises ImportError
+    with pytest.raises(ImportError, match=r"pip install 'tumble\[mesh\]'") as info:
+        tumble.Mesh(mesh=EXAMPLES / "bodies" / "meshes" / "torus.stl", mass=1.0)
+    assert not isinstance(info.value, ValueError) and info.value.name == "trimesh"

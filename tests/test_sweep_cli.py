@@ -195,7 +195,8 @@ def test_the_command_prints_one_line(tmp_path, capsys):
     assert run_sweep_command(write(tmp_path), tmp_path / "out") == 0
     line = capsys.readouterr().out
     assert line.count("\n") == 1
-    assert line.startswith("40 cases (exact): 40 predicted unstable; 40 flipped twice or more, flip period median ")
+    assert line.startswith("40 cases (exact): 40 predicted unstable; 40 flipped (100 %, 95 % interval 91.19 to 100 %); "
+                           "flip period median ")  # the fraction that flips with its interval (issue 27 item 9)
     assert f"wrote {tmp_path / 'out'}/" in line and "success probability >= " in line
 
 

@@ -234,3 +234,43 @@ def test_an_out_that_names_no_folder_is_refused_before_the_resume_folder_is_made
     with pytest.raises(ValueError, match="does not name a folder of its own"):
         run_sweep(path, tmp_path / "x" / "..")
     assert sorted(p.name for p in tmp_path.rglob("*")) == before
+
+
+WITHOUT_FCNTL = """
+import os, subprocess, sys, types  # subprocess first: it reads a msvcrt as Windows
+sys.modules["fcntl"] = None  # as on Windows: `import fcntl` raises ImportError
+held = {}  # a stand-in for Windows's msvcrt: one lock per file, refused to a second open file
+
+def locking(fd, mode, nbytes):
+    st = os.fstat(fd)
+    key = (st.st_dev, st.st_ino)
+    if held.get(key, fd) != fd:
+        raise PermissionError(13, "Permission denied")
+    held[key] = fd
+
+sys.modules["msvcrt"] = types.SimpleNamespace(locking=locking, LK_NBLCK=2, LK_LOCK=1)
+import tumble.io.resume, tumble.io.output
+from tumble.io.resume import ChunkFolder
+folder = sys.argv[1]
+store = ChunkFolder(folder + "/out.resume", {"sweep": 1}, cases=2, chunk=2)
+try:
+    ChunkFolder(folder + "/out.resume", {"sweep": 1}, cases=2, chunk=2)
+except ValueError as exc:
+    print("refused:", exc)
+with tumble.io.output.output_dir(folder + "/out", owns=("a.txt",)) as stage:
+    (stage / "a.txt").write_text("x")
+print("fcntl" in sys.modules and sys.modules["fcntl"] is None, sorted(os.listdir(folder)))
+"""
+
+
+def test_resume_and_output_import_and_lock_without_fcntl(tmp_path):
+    """Issue 27 item 10(d): no `fcntl` (Windows) -- the modules import and lock through msvcrt."""
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-c", WITHOUT_FCNTL, str(tmp_path)], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    refused, listing = done.stdout.splitlines()
+    assert refused.startswith("refused: ") and "is locked: another sweep is running" in refused
+    assert listing == "True ['.tumble-lock', 'out', 'out.resume']"

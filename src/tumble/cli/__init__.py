@@ -30,7 +30,8 @@ def _on_sigterm(signum, frame):
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``tumble`` console command; returns the exit status.
 
-    0: success; 2: bad input (nothing written); 1: a failed computation or an I/O failure
+    0: success; 2: bad input, or a missing optional extra named with its ``pip install`` line
+    (nothing written); 1: a failed computation or an I/O failure
     (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
     by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
     (``tumble examples | head -2``) is a normal end: 0, quietly.
@@ -69,6 +70,11 @@ def main(argv: list[str] | None = None) -> int:
         print("tumble: terminated; nothing written", file=sys.stderr)
         return 143
     except ValueError as exc:
+        if args.debug:
+            raise
+        print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
+    except ImportError as exc:  # an optional extra is missing: the user's setup, with the hint to install it
         if args.debug:
             raise
         print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)

@@ -8,7 +8,9 @@ from ._common import EXIT_OK, _run_title, _working
 
 #: The files `tumble simulate` writes into its folder (every run).
 SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.png")
-#: The figures `tumble simulate` adds for a control scenario (`tumble.viz.control.CONTROL_FIGURES`).
+#: The figures `tumble simulate` adds for a control scenario (`tumble.viz.control.CONTROL_FIGURES`): all of them
+#: are the command's, so an earlier run's are replaced as a set, though a run without wheels writes no
+#: wheels.png and one without a target no attitude_error.png.
 CONTROL_WRITES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
 
 

@@ -14,8 +14,9 @@ The file's format is :mod:`tumble.io.sweepfile`'s; the cases are run by :mod:`tu
   written as Python's shortest round-trip repr (``nan`` where a quantity does not apply);
 - ``cases.parquet``: the same table, when pyarrow is installed (``pip install 'tumble[table]'``);
 - ``summary.json``: the sweep's settings, the streaming statistics
-  (:meth:`tumble.ensemble.SweepSummary.as_dict`), the criterion's success statement and the
-  provenance (:func:`tumble.io.provenance.provenance`);
+  (:meth:`tumble.ensemble.SweepSummary.as_dict`), the fraction of cases that flipped with its
+  95 % confidence interval (``"flipped"``; a flip as docs/conventions.md defines it), the
+  criterion's success statement and the provenance (:func:`tumble.io.provenance.provenance`);
 - a figure, ``sweep.png``, when the caller passes the function that draws it (the command line
   passes :func:`tumble.viz.figure_sweep`; this layer draws nothing, it saves the figure).
 
@@ -194,7 +195,7 @@ def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str],
     ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 4\\n[initial]\\n'
     ...                                              'omega = [0.1, 5.0, 0.1]\\n')
     ...     status = run_sweep_command(Path(folder, "spin.toml"), Path(folder, "out"))  # doctest: +ELLIPSIS
-    4 cases (exact): 4 predicted unstable; 4 flipped twice or more, flip period median ...; wrote .../out/
+    4 cases (exact): 4 predicted unstable; 4 flipped (100 %, 95 % interval 39.76 to 100 %); flip period median ...; wrote .../out/
     >>> status
     0
     """
@@ -205,25 +206,32 @@ def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str],
 
 
 def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
-    """One line: how many cases flipped, the flip period's median and 5-95 % range, the criterion.
+    """One line: how many cases flipped (with the fraction's confidence interval), the flip
+    period's median and 5-95 % range, the criterion.
 
     Examples
     --------
     >>> from tumble.commands.sweep import sweep_line
     >>> data = {"cases": 4, "method": "exact", "counts": {"predicted": {"unstable": 4}},
+    ...         "flipped": {"cases": 4, "fraction": 1.0, "confidence": 0.95, "interval": [0.3976, 1.0]},
     ...         "statistics": {"flips": {"max": 3.0}, "flip_period": {"count": 4, "quantiles":
     ...                        {"0.05": 1.21, "0.5": 1.25, "0.95": 1.3}}}}
     >>> sweep_line(data, "out")
-    '4 cases (exact): 4 predicted unstable; 4 flipped twice or more, flip period median 1.25 s (5-95 %: 1.21 to 1.3 s); wrote out/'
+    '4 cases (exact): 4 predicted unstable; 4 flipped (100 %, 95 % interval 39.76 to 100 %); flip period median 1.25 s over 4 flipping twice or more (5-95 %: 1.21 to 1.3 s); wrote out/'
     """
     counts, stats = data["counts"], data["statistics"]
     unstable = counts["predicted"].get("unstable", 0)
     flips = stats["flips"]
     period = stats["flip_period"]
     text = f"{data['cases']} cases ({data['method']}): {unstable} predicted unstable"
+    if "flipped" in data:
+        f = data["flipped"]
+        low, high = f["interval"]
+        text += (f"; {f['cases']} flipped ({100 * f['fraction']:.4g} %, {100 * f['confidence']:.4g} % interval "
+                 f"{100 * low:.4g} to {100 * high:.4g} %)")
     if period["count"]:
         q = period["quantiles"]
-        text += (f"; {period['count']} flipped twice or more, flip period median {q['0.5']:.4g} s "
+        text += (f"; flip period median {q['0.5']:.4g} s over {period['count']} flipping twice or more "
                  f"(5-95 %: {q['0.05']:.4g} to {q['0.95']:.4g} s)")
     else:
         text += f"; at most {flips['max']:g} flip(s) per case"

@@ -219,20 +219,21 @@ def simulate(
         scale = max(run.spin, run.gain, 1e-300)
         tol = np.array([tol * scale] * 3 + [tol] * 4) if internal is None else internal.atol(tol, scale)
     extra: dict[str, Any] = {}  # the rotors' and the damper's fields of the Trajectory
+    label = spec.name  # the integrator that ran: "radau" where "dop853" handed it a stiff damper
     if internal is None:
         omega, quat = spec.integrate(moments, run.omega0, run.quat0, run.t, model, run.rtol, tol, run.step)
     else:
         # a method that takes rotors and a damper has integrate_internal (check_inputs)
         out = cast(IntegrateInternal, spec.integrate_internal)(internal, run.omega0, run.quat0, run.t, model, run.rtol, tol, run.step)
-        omega, quat = out.omega, out.quat
+        omega, quat, label = out.omega, out.quat, out.solver or spec.name
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
     # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a sum)
     if not math.isfinite(float(omega.sum()) + float(quat.sum())):
-        raise RuntimeError(f"the {spec.name} integration produced non-finite values")
+        raise RuntimeError(f"the {label} integration produced non-finite values")
     return Trajectory(  # the quaternions: the Rotation is built when first asked for
         t=run.t[run.keep], omega=omega[run.keep], attitude=quat[run.keep], moments=moments,
-        principal_axes=run.props.principal_axes, method=spec.name, torque_free=model is None,
+        principal_axes=run.props.principal_axes, method=label, torque_free=model is None,
         body_name=body.name if isinstance(body, Body) else "body", **extra,
     )
 

@@ -85,7 +85,9 @@ class Trajectory:
     principal_axes : ndarray, shape (3, 3)
         Principal -> design rotation of the body (columns are the axes in the design frame).
     method : str
-        Name of the integration method.
+        Name of the integration method that ran: the one asked for, except ``"radau"`` where
+        ``"dop853"`` handed a stiff damper to scipy's Radau IIA
+        (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`).
     torque_free : bool
         Whether no external torque acted (then energy, |L| and L_world are conserved).
     body_name : str

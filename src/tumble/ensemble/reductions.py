@@ -4,16 +4,23 @@
 their motions (:func:`tumble.dynamics.simulate_batch`) into columns, one value per case, the
 same quantities :func:`tumble.analysis.stability_report` gives for one trajectory:
 
-- the *spin axis* (1, 2, 3: the principal axis carrying most of the initial spin,
-  :func:`tumble.analysis.axis_of`), its linearised class (``stable`` / ``unstable``,
-  :func:`tumble.analysis.linearised_rate`: growth exponent or wobble frequency; the torque-free
-  theory of the initial spin), and the axis omega circulates about (1 or 3,
-  :func:`tumble.analysis.circulation_axis`);
-- ``flips``: sign changes of the spin-axis component over the samples (so a flip faster than
-  the sampling is missed: sample a few times per flip), and the measured mean time between
-  flips (the first to the last crossing, linearly interpolated, over ``flips - 1``; as
+- the *spin axis* ``axis`` (1, 2, 3): the principal axis nearest the angular momentum at the
+  start (the largest ``|I_j omega_j|``), and the axis omega circulates about, ``circulation``
+  (1 or 3, from the energy and ``|L|``: 3 when ``L^2 >= 2 E I2``, Landau & Lifshitz sec. 37,
+  :func:`tumble.analysis.circulation_axis`). ``predicted`` follows the motion: ``stable`` when
+  the spin axis is the circulation axis (its component never changes sign: it stays on its side
+  of L), ``unstable`` when it is not (it turns over, twice a period of omega; always so for axis 2
+  of an asymmetric body); a sphere's spin is stable. ``growth_rate`` and ``wobble_frequency``
+  are the linearised theory of a spin about that axis (:func:`tumble.analysis.linearised_rate`),
+  given where it agrees with ``predicted`` (the one that does not apply is 0; both are NaN for a
+  motion far from its axis, which turns over though the axis is 1 or 3). All four are the torque-free theory of the initial state;
+- ``flips``: sign changes of the spin-axis component ``omega_axis`` over the samples, i.e.
+  reversals of the spin axis relative to L (docs/conventions.md, "Flips"): 0 for a ``stable``
+  torque-free case, 2 a period for an ``unstable`` one, whatever a torque does with one (a flip
+  faster than the sampling is missed: sample a few times per flip); the measured mean time
+  between flips (the first to the last crossing, linearly interpolated, over ``flips - 1``; as
   :func:`tumble.analysis.flip_times`); the exact interval (:func:`tumble.analysis.flip_interval`,
-  elliptic K) for a torque-free asymmetric body whose spin-axis component flips;
+  elliptic K) for a torque-free asymmetric body whose spin axis turns over;
 - the final omega (principal frame) and attitude (the *design* frame to world, a quaternion
   ``[x, y, z, w]`` with ``w >= 0``; the design frame starts aligned with the world);
 - the largest nutation angle over the samples: the angle between L and the nearest major axis,
@@ -178,13 +185,17 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     """
     I, w0 = inputs.moments, inputs.omega0
     m = len(inputs)
-    axis = axis_of(w0)
-    growth, wobble = linearised_rate(I, axis, w0[np.arange(m), axis - 1])
+    axis = axis_of(I * w0)  # nearest L: the largest |L_j| (axis 1 at rest)
     circulation = circulation_axis(w0, I)
-    spin = batch.omega[np.arange(m), :, axis - 1]
-    flips, period = _flips(batch.t, spin)
     tol = INERTIA_RTOL * np.sum(I, axis=1)
     asymmetric = (I[:, 1] - I[:, 0] > tol) & (I[:, 2] - I[:, 1] > tol)
+    sphere = I[:, 2] - I[:, 0] <= tol
+    stable = (axis == circulation) | sphere  # the spin axis keeps its side of L
+    growth, wobble = linearised_rate(I, axis, w0[np.arange(m), axis - 1])
+    agree = np.where(stable, growth == 0, growth > 0)  # the linear theory, where it says what the motion does
+    growth, wobble = np.where(agree, growth, np.nan), np.where(agree, wobble, np.nan)
+    spin = batch.omega[np.arange(m), :, axis - 1]
+    flips, period = _flips(batch.t, spin)
     exact = flip_interval(w0, I)
     exact = np.where(batch.torque_free & asymmetric & (axis != circulation) & np.isfinite(exact), exact, np.nan)
     end = Rotation.from_quat(batch.quat[:, -1]) * Rotation.from_matrix(inputs.axes).inv()
@@ -197,7 +208,7 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     turned = np.arctan2(np.linalg.norm(np.cross(L0, L1), axis=1), np.sum(L0 * L1, axis=1))
     cols = input_columns(inputs, names)
     results = [
-        axis, np.where(growth > 0, "unstable", "stable"), growth, wobble, circulation, flips, period, exact,
+        axis, np.where(stable, "stable", "unstable"), growth, wobble, circulation, flips, period, exact,
         *batch.omega[:, -1].T, *end.as_quat(canonical=True).reshape(m, 4).T,
         np.fmax.reduce(nutation_angle(batch.omega, I), axis=1), energy_change,
         np.where(np.any(L0 != 0, axis=1), turned, np.nan),

@@ -26,7 +26,8 @@ another (``merge``); a sweep folds its chunks into one summary in any order and 
 - :func:`success_lower_bound`: the order-statistics (Clopper-Pearson) confidence statement on
   a fraction of successes; :func:`runs_needed` its inverse (Hanson & Beard, "Applying Monte
   Carlo simulation to launch vehicle design and requirements verification", NASA/TP-2010-216447,
-  sec. 4).
+  sec. 4); :func:`fraction_interval` the two-sided interval on a fraction (what fraction of a
+  sweep's cases flip).
 """
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ __all__ = [
     "KeyedSample",
     "RunningMoments",
     "case_keys",
+    "fraction_interval",
     "runs_needed",
     "success_lower_bound",
     "success_statement",
@@ -464,6 +466,52 @@ def success_lower_bound(cases: int, failures: int, confidence: float) -> float:
     from scipy.stats import beta
 
     return float(beta.ppf(1.0 - c, n - k, k + 1))
+
+
+def fraction_interval(cases: int, hits: int, confidence: float = 0.95) -> tuple[float, float]:
+    """Two-sided confidence interval on a probability from ``hits`` in ``cases`` independent runs.
+
+    The exact (Clopper-Pearson) interval (Clopper & Pearson, Biometrika 26 (1934) 404): each end
+    leaves ``(1 - confidence) / 2`` on its side, ``B^-1((1 - c) / 2; k, n - k + 1)`` to
+    ``B^-1((1 + c) / 2; k + 1, n - k)`` (``scipy.stats.beta.ppf``), 0 for ``k = 0`` and 1 for
+    ``k = n``. It covers the true probability at least ``confidence`` of the time.
+
+    Parameters
+    ----------
+    cases : int
+        Number of runs n, >= 1.
+    hits : int
+        Number of runs with the property, ``0 <= k <= n``.
+    confidence : float, default 0.95
+        Confidence level, in (0, 1).
+
+    Returns
+    -------
+    (float, float)
+        The lower and upper ends, in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        For counts that are not whole numbers in range or a confidence outside (0, 1).
+
+    Examples
+    --------
+    >>> [round(x, 4) for x in fraction_interval(100, 30)]   # 30 of 100: 21.2 % to 39.9 % at 95 %
+    [0.2124, 0.3998]
+    >>> fraction_interval(10, 0)[0], round(fraction_interval(10, 0)[1], 4)   # none of 10: up to 30.8 %
+    (0.0, 0.3085)
+    """
+    n = _check_count("cases", cases, 1)
+    k = _check_count("hits", hits)
+    if k > n:
+        raise ValueError(f"hits = {k} must be at most cases = {n}")
+    c = _check_confidence(confidence)
+    from scipy.stats import beta
+
+    low = 0.0 if k == 0 else float(beta.ppf((1.0 - c) / 2, k, n - k + 1))
+    high = 1.0 if k == n else float(beta.ppf((1.0 + c) / 2, k + 1, n - k))
+    return low, high
 
 
 def runs_needed(success: float, confidence: float, failures: int = 0) -> int:

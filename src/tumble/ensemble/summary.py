@@ -19,11 +19,12 @@ from .statistics import (
     KeyedSample,
     RunningMoments,
     case_keys,
+    fraction_interval,
     success_lower_bound,
     success_statement,
 )
 
-__all__ = ["CATEGORICAL", "QUANTILES", "SAMPLE_SIZE", "STATS_BLOCK", "SweepSummary", "base_name", "summarize"]
+__all__ = ["CATEGORICAL", "FLIP_CONFIDENCE", "QUANTILES", "SAMPLE_SIZE", "STATS_BLOCK", "SweepSummary", "base_name", "summarize"]
 
 #: Cases per block of the statistics (fixed, so the chunking does not change them).
 STATS_BLOCK = 4096
@@ -34,6 +35,8 @@ SAMPLE_SIZE = 10_000
 QUANTILES = (0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99)
 #: Columns counted by value instead of averaged.
 CATEGORICAL = ("axis", "predicted", "circulation")
+#: Confidence of the interval on the fraction of cases that flip (``summary.json``'s ``"flipped"``).
+FLIP_CONFIDENCE = 0.95
 #: Columns left out of the statistics: the case number and the quaternion's components.
 _NOT_SUMMARISED = ("case", "q_end_x", "q_end_y", "q_end_z", "q_end_w")
 
@@ -102,6 +105,8 @@ class SweepSummary:
         Cases meeting the criterion and not (0 and 0 without one).
     redraws : int
         Body draws refused as unphysical and drawn again, in all.
+    flipped : int
+        Cases that flipped at least once (``flips >= 1``; 0 without a ``flips`` column).
 
     Examples
     --------
@@ -121,6 +126,7 @@ class SweepSummary:
     passed: int = 0
     failed: int = 0
     redraws: int = 0
+    flipped: int = 0
 
     @classmethod
     def of(cls, columns: dict, seed: int, criterion: _Criterion | None = None,
@@ -135,15 +141,15 @@ class SweepSummary:
         ...         "circulation": np.array([1, 3, 3]), "flips": np.array([2, 4, 0]), "resampled": np.array([0, 1, 0])}
         >>> from tumble.ensemble.sweep import Criterion
         >>> summary = SweepSummary.of(cols, seed=0, criterion=Criterion("flips", minimum=1))
-        >>> summary.passed, summary.failed, summary.redraws
-        (2, 1, 1)
+        >>> summary.passed, summary.failed, summary.redraws, summary.flipped
+        (2, 1, 1, 2)
         """
         names = tuple(k for k in columns if base_name(k) not in (*CATEGORICAL, *_NOT_SUMMARISED))
         table = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])
         ok = criterion.passed(columns) if criterion is not None else np.zeros(0, bool)
         return cls(names, RunningMoments.of(table), KeyedSample.of(case_keys(seed, columns["case"]), table, sample_size),
                    Counts.of({k: columns[k] for k in CATEGORICAL}), int(ok.sum()), int((~ok).sum()),
-                   int(np.sum(columns["resampled"])))
+                   int(np.sum(columns["resampled"])), int(np.sum(columns["flips"] >= 1)) if "flips" in columns else 0)
 
     def merge(self, other: SweepSummary) -> SweepSummary:
         """Both together (same columns).
@@ -164,7 +170,7 @@ class SweepSummary:
             raise ValueError("summaries of different columns cannot be merged")
         return SweepSummary(self.columns, self.moments.merge(other.moments), self.sample.merge(other.sample),
                             self.counts.merge(other.counts), self.passed + other.passed,
-                            self.failed + other.failed, self.redraws + other.redraws)
+                            self.failed + other.failed, self.redraws + other.redraws, self.flipped + other.flipped)
 
     @property
     def cases(self) -> int:
@@ -199,9 +205,12 @@ class SweepSummary:
     def as_dict(self, criterion: _Criterion | None = None) -> dict:
         """JSON-ready: ``cases``, ``redraws``, ``statistics`` (per column without its unit:
         ``unit``, ``count``, ``mean``, ``std``, ``min``, ``max``, ``quantiles`` {q: value},
-        ``quantile_rank_error``: 0 when exact, else the 95 % bound), ``counts`` and, with a
-        criterion, ``criterion`` (``column``, ``min``, ``max``, ``passed``, ``failed``,
-        ``confidence``, ``success_lower_bound``, ``statement``).
+        ``quantile_rank_error``: 0 when exact, else the 95 % bound), ``counts``, with a ``flips``
+        column ``flipped`` (``cases`` that flipped at least once, their ``fraction``, its
+        Clopper-Pearson ``interval`` at ``confidence`` :data:`FLIP_CONFIDENCE`, and a
+        ``statement``; a flip as docs/conventions.md defines it) and, with a criterion,
+        ``criterion`` (``column``, ``min``, ``max``, ``passed``, ``failed``, ``confidence``,
+        ``success_lower_bound``, ``statement``).
 
         Examples
         --------
@@ -218,6 +227,12 @@ class SweepSummary:
         ('s', 21.5, 21.5, 0.0)
         >>> out["criterion"]["passed"], out["criterion"]["failed"]
         (3, 1)
+        >>> cols["flips"] = np.array([2, 0, 0, 0])   # one case of four flipped
+        >>> flipped = SweepSummary.of(cols, seed=0).as_dict()["flipped"]
+        >>> flipped["cases"], flipped["fraction"], [round(x, 4) for x in flipped["interval"]]
+        (1, 0.25, [0.0063, 0.8059])
+        >>> flipped["statement"]
+        '1 of 4 cases flipped (25 %; 0.6309 % to 80.59 % at 95 % confidence, Clopper-Pearson)'
         """
         m, q, error = self.moments, self.sample.quantiles(QUANTILES), self.sample.rank_error(0.05)
 
@@ -235,6 +250,14 @@ class SweepSummary:
                 "quantile_rank_error": num(error[j]),
             }
         out = {"cases": self.cases, "redraws": self.redraws, "statistics": stats, "counts": self.counts.as_dict()}
+        if "flips" in self.columns:
+            n, k = self.cases, self.flipped
+            low, high = fraction_interval(n, k, FLIP_CONFIDENCE)
+            out["flipped"] = {
+                "cases": k, "fraction": k / n, "confidence": FLIP_CONFIDENCE, "interval": [low, high],
+                "statement": (f"{k} of {n} cases flipped ({100 * k / n:.4g} %; {100 * low:.4g} % to {100 * high:.4g} % "
+                              f"at {100 * FLIP_CONFIDENCE:.4g} % confidence, Clopper-Pearson)"),
+            }
         if criterion is not None:
             n = self.passed + self.failed
             out["criterion"] = {

@@ -19,7 +19,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterator, Protocol
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Iterator, Protocol, overload
 
 import numpy as np
 
@@ -52,6 +53,7 @@ __all__ = [
     "QUANTILES",
     "SAMPLE_SIZE",
     "STATS_BLOCK",
+    "ChunkRanges",
     "ChunkStore",
     "Criterion",
     "RunSettings",
@@ -243,17 +245,64 @@ class Sweep:
     criterion: Criterion | None = None
 
 
-def chunk_ranges(cases: int, chunk: int) -> list[tuple[int, int]]:
-    """``[(start, stop), ...]`` of consecutive chunks of ``chunk`` cases (the last one shorter).
+class ChunkRanges(Sequence[tuple[int, int]]):
+    """The chunks ``(start, stop)`` of ``cases`` cases, ``chunk`` at a time, computed when asked for.
+
+    A sequence (``len``, indexing, iteration) that holds two numbers, never the list: a sweep of
+    1e8 cases in chunks of one is 1e8 chunks, and this object is as small as for one chunk.
 
     Examples
     --------
-    >>> chunk_ranges(10, 4)
+    >>> ranges = ChunkRanges(10, 4)
+    >>> len(ranges), ranges[0], ranges[-1], list(ranges)
+    (3, (0, 4), (8, 10), [(0, 4), (4, 8), (8, 10)])
+    """
+
+    __slots__ = ("cases", "chunk")
+
+    def __init__(self, cases: int, chunk: int) -> None:
+        self.cases, self.chunk = int(cases), int(chunk)
+
+    def __len__(self) -> int:
+        return -(-max(self.cases, 0) // self.chunk)
+
+    @overload
+    def __getitem__(self, k: int) -> tuple[int, int]: ...
+
+    @overload
+    def __getitem__(self, k: slice) -> list[tuple[int, int]]: ...
+
+    def __getitem__(self, k: int | slice) -> tuple[int, int] | list[tuple[int, int]]:
+        if isinstance(k, slice):
+            return [self[j] for j in range(len(self))[k]]
+        start = range(0, max(self.cases, 0), self.chunk)[k]  # an IndexError past either end
+        return start, min(start + self.chunk, self.cases)
+
+    def __iter__(self) -> Iterator[tuple[int, int]]:
+        for start in range(0, max(self.cases, 0), self.chunk):
+            yield start, min(start + self.chunk, self.cases)
+
+    def __repr__(self) -> str:
+        return f"ChunkRanges(cases={self.cases}, chunk={self.chunk})"
+
+
+def chunk_ranges(cases: int, chunk: int) -> ChunkRanges:
+    """The ``(start, stop)`` of consecutive chunks of ``chunk`` cases (the last one shorter).
+
+    A lazy sequence (:class:`ChunkRanges`): its length and each chunk are computed when asked
+    for, so ``chunk_ranges(10**8, 1)`` costs no more memory than ``chunk_ranges(10, 4)``.
+
+    Examples
+    --------
+    >>> list(chunk_ranges(10, 4))
     [(0, 4), (4, 8), (8, 10)]
+    >>> ranges = chunk_ranges(10**8, 1)
+    >>> len(ranges), ranges[12345]
+    (100000000, (12345, 12346))
     """
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
         raise ValueError(f"chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
-    return [(s, min(s + chunk, cases)) for s in range(0, cases, chunk)]
+    return ChunkRanges(cases, chunk)
 
 
 def compute_chunk(sweep: Sweep, start: int, stop: int) -> dict[str, np.ndarray]:
@@ -364,10 +413,11 @@ def run_chunks(sweep: Sweep, *, chunk: int = DEFAULT_CHUNK, store: ChunkStore | 
     [[0, 1], [2, 3], [4]]
     """
     ranges = chunk_ranges(sweep.ensemble.cases, chunk)
-    stored = {k for k in range(len(ranges)) if store is not None and store.has(k)}
-    missing = [k for k in range(len(ranges)) if k not in stored]
+    # without a store nothing is listed per chunk: every chunk is missing, in order, lazily
+    stored = set() if store is None else {k for k in range(len(ranges)) if store.has(k)}
+    missing: Sequence[int] = range(len(ranges)) if not stored else [k for k in range(len(ranges)) if k not in stored]
     backend = InProcess() if backend is None else backend
-    done = backend.map(compute_chunk, [(sweep, *ranges[k]) for k in missing])
+    done = backend.map(compute_chunk, ((sweep, *ranges[k]) for k in missing))
     waiting: dict[int, dict] = {}
     for k in range(len(ranges)):
         if k in stored:

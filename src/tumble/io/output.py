@@ -19,14 +19,13 @@ sits beside a new ``polhode.png``). A folder holding sub-folders or links is ref
 in a project, say): only folders of plain files are replaced. A SIGKILL (which no program can
 catch) may leave a ``.NAME.tmp-*`` folder beside the output.
 
-Written by hand: the standard library has the pieces (``os.rename``, ``fcntl.flock``,
+Written by hand: the standard library has the pieces (``os.rename``, a lock (:mod:`tumble.io.lock`),
 ``tempfile``) but no "replace a folder as a whole" operation.
 """
 
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import fnmatch
 import os
 import shutil
@@ -35,6 +34,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 from .atomic import _umask
+from .lock import locked_folder
 
 __all__ = ["FIGURE_DPI", "check_output_dir", "check_output_file", "output_dir"]
 
@@ -155,21 +155,10 @@ def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterat
                 raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
             raise
         os.chmod(stage, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
-        with _locked(path.parent):
+        with locked_folder(path.parent):
             _swap_in(stage, path, tuple(owns))
     finally:
         shutil.rmtree(stage, ignore_errors=True)
-
-
-@contextlib.contextmanager
-def _locked(folder: Path):
-    """An exclusive ``flock`` on ``folder`` itself (no lock file left behind)."""
-    fd = os.open(folder, os.O_RDONLY)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
-        yield
-    finally:
-        os.close(fd)  # closing releases the lock
 
 
 def _swap_in(stage: Path, path: Path, owns: tuple[str, ...]) -> None:

@@ -4,7 +4,7 @@
 run after an interruption computes only the missing ones (:mod:`tumble.commands.sweep`). What is
 taken back must be exactly what this sweep would compute, so the folder is guarded four ways:
 
-- **one run at a time**: a run holds an exclusive lock (``fcntl.flock``) on ``DIR.resume/lock``
+- **one run at a time**: a run holds an exclusive lock (:func:`tumble.io.lock.lock_fd`: ``fcntl.flock``, or ``msvcrt.locking`` on Windows) on ``DIR.resume/lock``
   from start to end; a second run into the same ``--out`` is refused in one line while the
   first runs (it never mixes its chunks with the first's, nor deletes the folder under it);
 - **the sweep's fingerprint** (``fingerprint.json``): everything that changes a result (the
@@ -19,12 +19,11 @@ taken back must be exactly what this sweep would compute, so the folder is guard
   line, so nothing outside the output's folder is ever written or deleted.
 
 The folder is removed, under the lock, once the output is in place. Written by hand: the
-standard library has the pieces (``fcntl.flock``, ``hashlib``) but no such store.
+standard library has the pieces (``fcntl.flock``/``msvcrt.locking``, ``hashlib``) but no such store.
 """
 
 from __future__ import annotations
 
-import fcntl
 import hashlib
 import json
 import os
@@ -36,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .atomic import atomic_path, atomic_write_text
+from .lock import lock_fd
 
 __all__ = ["ChunkFolder", "ResumeWarning", "chunk_checksum"]
 
@@ -43,6 +43,9 @@ __all__ = ["ChunkFolder", "ResumeWarning", "chunk_checksum"]
 LOCK = "lock"
 #: The fingerprint of the sweep whose chunks the folder holds.
 MARK = "fingerprint.json"
+
+#: Open flags POSIX has and Windows lacks (a symbolic link is refused; the lock is not inherited).
+_NO_FOLLOW = getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
 
 
 class ResumeWarning(UserWarning):
@@ -165,14 +168,14 @@ class ChunkFolder:
             self.folder.mkdir(parents=True, exist_ok=True)
             self._check()
             try:
-                fd = os.open(self.folder / LOCK, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666)
+                fd = os.open(self.folder / LOCK, os.O_RDWR | os.O_CREAT | _NO_FOLLOW, 0o666)
             except FileNotFoundError:
                 continue  # the folder went away: make it again
             except OSError as exc:
                 raise ValueError(f"{self.folder / LOCK}: cannot open the resume folder's lock "
                                  f"({exc.strerror}); it must be a plain file") from None
             try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                lock_fd(fd, wait=False)
             except BlockingIOError:
                 os.close(fd)
                 raise ValueError(f"{self.folder} is locked: another sweep is running into the same --out; wait "

@@ -29,9 +29,10 @@ __all__ = ["MAX_MESH_BYTES", "Mesh"]
 def _trimesh() -> ModuleType:
     try:
         import trimesh
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise ValueError(
-            "mesh parts need the optional dependency trimesh: pip install 'tumble[mesh]'"
+    except ImportError:
+        # an extra to install, not a bad input: ImportError (the CLI prints it as one line)
+        raise ImportError(
+            "mesh parts need the optional dependency trimesh: pip install 'tumble[mesh]'", name="trimesh"
         ) from None
     return trimesh
 

@@ -6,10 +6,12 @@ the attitude error against the target (deg, log scale), the body rates (deg/s: c
 ``|omega|`` on a log scale), the wheels (speeds, rad/s, and applied torques, N m), the
 magnetorquer dipole (A m^2) and the momentum budget (kg m^2/s: the wheels' ``|h|``, the body's
 ``|I omega|``, the external impulse, and ``|L_world - L_world(0) - impulse|``, which is zero in
-exact arithmetic). A run without wheels, dipole or target gets a panel that says so. A mission's
-switch from detumbling to pointing (:class:`~tumble.dynamics.control.mission.DetumbleThenPoint`) is
-marked by a dashed vertical line in every panel. :func:`control_figures` gives them all, by the
-file name ``tumble simulate`` writes each under.
+exact arithmetic). Asked for directly, a figure of what the run lacks (wheels, dipole, target) is a
+panel that says so. A mission's switch from detumbling to pointing
+(:class:`~tumble.dynamics.control.mission.DetumbleThenPoint`) is marked by a dashed vertical line in
+every panel. :func:`control_figures` gives the figures the run has something to show in, by the
+file name ``tumble simulate`` writes each under: no ``wheels.png`` without wheels, no
+``attitude_error.png`` without a target.
 """
 
 from __future__ import annotations
@@ -31,7 +33,8 @@ if TYPE_CHECKING:
 __all__ = ["CONTROL_FIGURES", "control_figures", "figure_attitude_error", "figure_body_rates", "figure_dipole",
            "figure_momentum_budget", "figure_wheels", "wheel_momentum"]
 
-#: The files of :func:`control_figures`, in the order they are drawn.
+#: The files of :func:`control_figures`, in the order they are drawn (a run without wheels has no
+#: ``wheels.png``, one without a target no ``attitude_error.png``).
 CONTROL_FIGURES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
 COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 SWITCH_LABEL = "switch to pointing"
@@ -247,15 +250,19 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
 
 def control_figures(run: ControlledRun, *, target: Rotation | Reference | None = None, switch_time: float | None = None,
                     title: str | None = None) -> dict[str, Figure]:
-    """Every figure of a control run, by the file name it is written under (``tumble.viz.control.CONTROL_FIGURES``).
+    """The figures of a control run, by the file name it is written under (``tumble.viz.control.CONTROL_FIGURES``).
+
+    A figure with nothing to show is left out: ``wheels.png`` of a run without reaction wheels,
+    ``attitude_error.png`` of a run without a target (a B-dot detumbling). The others are always
+    there.
 
     Parameters
     ----------
     run : ControlledRun
         The run.
     target : scipy Rotation or Reference, optional
-        The target frame to world, fixed or moving, for the attitude error (None: the panel says
-        there is none).
+        The target frame to world, fixed or moving, for the attitude error (None: no
+        ``attitude_error.png``).
     switch_time : float, optional
         The mission's switch from detumbling to pointing, s, marked in every panel.
     title : str, optional
@@ -263,18 +270,23 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
 
     Examples
     --------
+    >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
-    >>> figures = control_figures(run, title="spin")
-    >>> tuple(figures) == CONTROL_FIGURES, figures["rates.png"].get_suptitle()
-    (True, 'spin')
+    >>> figures = control_figures(run, title="spin")   # no wheels, no target
+    >>> list(figures), figures["rates.png"].get_suptitle()
+    (['rates.png', 'dipole.png', 'momentum.png'], 'spin')
+    >>> list(control_figures(run, target=Rotation.identity()))
+    ['attitude_error.png', 'rates.png', 'dipole.png', 'momentum.png']
     """
     run = _check(run)
-    return {
-        "attitude_error.png": figure_attitude_error(run, target, switch_time=switch_time, title=title),
-        "rates.png": figure_body_rates(run, switch_time=switch_time, title=title),
-        "wheels.png": figure_wheels(run, switch_time=switch_time, title=title),
-        "dipole.png": figure_dipole(run, switch_time=switch_time, title=title),
-        "momentum.png": figure_momentum_budget(run, switch_time=switch_time, title=title),
-    }
+    figures: dict[str, Figure] = {}
+    if target is not None:
+        figures["attitude_error.png"] = figure_attitude_error(run, target, switch_time=switch_time, title=title)
+    figures["rates.png"] = figure_body_rates(run, switch_time=switch_time, title=title)
+    if run.wheel_speed.shape[1] > 0:
+        figures["wheels.png"] = figure_wheels(run, switch_time=switch_time, title=title)
+    figures["dipole.png"] = figure_dipole(run, switch_time=switch_time, title=title)
+    figures["momentum.png"] = figure_momentum_budget(run, switch_time=switch_time, title=title)
+    return figures

@@ -306,8 +306,8 @@ def propagate_internal(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike
         omega, quat = run_split(I, L, q, t, step, COMPOSITIONS[order], builtin, offset=h0)
         return InternalSamples(omega[:, 0], quat[:, 0], None, None, None)
     run = _propagate_split(I, L, q, t, order, step, torque, model, w0)
-    return InternalSamples(run.omega[:, 0], run.quat[:, 0],
-                           *(None if a is None else a[:, 0] for a in run[2:]))
+    wd, D, A = (None if a is None else a[:, 0] for a in (run.damper_omega, run.dissipated, run.work_integral))
+    return InternalSamples(run.omega[:, 0], run.quat[:, 0], wd, D, A)
 
 
 def _propagate_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, order: int, step: float,

@@ -42,7 +42,7 @@ faster than the body spins) would hold an explicit method to steps of its relaxa
 the rotation's: ``"dop853"`` then hands the run to scipy's Radau IIA (implicit, order 5,
 L-stable; Hairer & Wanner, *Solving ODEs II*, sec. IV.8) at the same tolerances, with the
 model's analytic Jacobian (:meth:`~tumble.dynamics.models.internal.InternalModel.jacobian`), and
-``simulate`` refuses such a run for ``"rk45"`` and the splitting methods, naming the ratio.
+the run's ``Trajectory.method`` says ``"radau"``; ``simulate`` refuses such a run for ``"rk45"`` and the splitting methods, naming the ratio.
 """
 
 from __future__ import annotations
@@ -268,8 +268,8 @@ def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
 
         if stiff is not None and stiffness(model, omega0, quat0, t, torque)[0] > STIFF_RATIO:
             Y = _solve(stiff, rhs, y0, t, rtol, atol, jac=model.jacobian)
-        else:
-            Y = _solve(method, rhs, y0, t, rtol, atol)
+            return model.samples(t, Y)._replace(solver=stiff.lower())  # the run says who integrated it
+        Y = _solve(method, rhs, y0, t, rtol, atol)
         return model.samples(t, Y)
 
     integrate.stiff_solver = stiff is not None  # type: ignore[attr-defined]  # read by Method.stiff_solver

@@ -45,7 +45,7 @@ class InternalSamples(NamedTuple):
     >>> model = InternalModel(np.array([1.0, 2.0, 3.0]), damper=SphericalDamper(inertia=0.1, damping=0.5))
     >>> run = propagate_internal(model, [0.1, 1.0, 0.1], [0.0, 0.0, 0.0, 1.0], np.linspace(0.0, 10.0, 6))
     >>> run._fields
-    ('omega', 'quat', 'damper_omega', 'dissipated', 'work_integral')
+    ('omega', 'quat', 'damper_omega', 'dissipated', 'work_integral', 'solver')
     >>> run.omega.shape, run.damper_omega.shape, run.work_integral is None   # no rotors: no motor work
     ((6, 3), (6, 3), True)
     >>> bool(np.all(np.diff(run.dissipated) > 0))
@@ -57,6 +57,7 @@ class InternalSamples(NamedTuple):
     damper_omega: Vector3 | None  # (n, 3) rad/s
     dissipated: FloatArray | None  # (n,) J
     work_integral: FloatArray | None  # (n,) J: integral of h'.w dt
+    solver: str | None = None  # the integrator that ran, where not the method asked for ("radau": a stiff damper)
 
 
 @dataclass(frozen=True, eq=False)
