@@ -22,47 +22,10 @@ import pytest
 
 import tumble
 
-#: Examples in files that are being changed elsewhere (issue 28's do-not-edit list: viz/control*, io/resume.py, io/output.py, ensemble/sweep.py, dynamics/simulate.py): fixed
-#: separately. Each entry is a doctest name (``module.object``) and the names it lacks; an entry
-#: that no longer lacks exactly these names fails the test, so the list only shrinks.
-ALLOWED: dict[str, set[str]] = {
-    "tumble.dynamics.simulate.check_rtol": {"check_rtol"},
-    "tumble.ensemble.sweep.ChunkStore": {"RunSettings", "Sweep", "run_chunks"},
-    "tumble.ensemble.sweep.ChunkStore.has": {"np"},
-    "tumble.ensemble.sweep.ChunkStore.load": {"np"},
-    "tumble.ensemble.sweep.ChunkStore.save": {"np"},
-    "tumble.ensemble.sweep.Criterion": {"Criterion"},
-    "tumble.ensemble.sweep.Criterion.passed": {"Criterion", "np"},
-    "tumble.ensemble.sweep.RunSettings": {"RunSettings"},
-    "tumble.ensemble.sweep.RunSettings.run": {"RunSettings", "np"},
-    "tumble.ensemble.sweep.Sweep": {"Criterion", "RunSettings", "Sweep", "run_chunks", "summarize"},
-    "tumble.ensemble.sweep.chunk_ranges": {"chunk_ranges"},
-    "tumble.ensemble.sweep.compute_chunk": {"RunSettings", "Sweep", "compute_chunk", "np"},
-    "tumble.ensemble.sweep.run_chunks": {"RunSettings", "Sweep", "run_chunks"},
-    "tumble.io.output.check_output_dir": {"Path", "check_output_dir"},
-    "tumble.io.output.check_output_file": {"check_output_file"},
-    "tumble.io.output.output_dir": {"Path", "output_dir"},
-    "tumble.io.resume.ChunkFolder": {"ChunkFolder"},
-    "tumble.io.resume.ChunkFolder.chunks": {"ChunkFolder"},
-    "tumble.io.resume.ChunkFolder.close": {"ChunkFolder", "np"},
-    "tumble.io.resume.ChunkFolder.has": {"ChunkFolder", "np"},
-    "tumble.io.resume.ChunkFolder.load": {"ChunkFolder", "np"},
-    "tumble.io.resume.ChunkFolder.range": {"ChunkFolder"},
-    "tumble.io.resume.ChunkFolder.remove": {"ChunkFolder"},
-    "tumble.io.resume.ChunkFolder.save": {"ChunkFolder", "np"},
-    "tumble.io.resume.ResumeWarning": {"ChunkFolder", "np"},
-    "tumble.io.resume.chunk_checksum": {"chunk_checksum"},
-    "tumble.viz.control.control_figures": {"CONTROL_FIGURES", "control_figures"},
-    "tumble.viz.control.figure_attitude_error": {"figure_attitude_error", "np"},
-    "tumble.viz.control.figure_body_rates": {"figure_body_rates", "np"},
-    "tumble.viz.control.figure_dipole": {"figure_dipole", "np"},
-    "tumble.viz.control.figure_momentum_budget": {"figure_momentum_budget", "np"},
-    "tumble.viz.control.figure_wheels": {"figure_wheels"},
-    "tumble.viz.control.wheel_momentum": {"np", "wheel_momentum"},
-    "tumble.viz.control_page.commanded_torque": {"Rotation", "commanded_torque", "np"},
-    "tumble.viz.control_page.control_page_data": {"Rotation", "control_page_data", "math", "np", "wheel_angle"},
-    "tumble.viz.control_page.wheel_angle": {"wheel_angle"},
-}
+#: Examples allowed to lack names: each entry a doctest name (``module.object``) and the names it
+#: lacks; an entry that no longer lacks exactly these names fails the test, so the list only
+#: shrinks. Empty: every example imports what it uses.
+ALLOWED: dict[str, set[str]] = {}
 
 BUILTINS = set(dir(builtins))
 

@@ -76,6 +76,7 @@ def check_rtol(field: str, value: object) -> float:
 
     Examples
     --------
+    >>> from tumble.dynamics.simulate import check_rtol
     >>> check_rtol("rtol", 1e-10)
     1e-10
     >>> check_rtol("simulation.rtol", 5.0)

@@ -497,6 +497,7 @@ def fraction_interval(cases: int, hits: int, confidence: float = 0.95) -> tuple[
 
     Examples
     --------
+    >>> from tumble.ensemble.statistics import fraction_interval
     >>> [round(x, 4) for x in fraction_interval(100, 30)]   # 30 of 100: 21.2 % to 39.9 % at 95 %
     [0.2124, 0.3998]
     >>> fraction_interval(10, 0)[0], round(fraction_interval(10, 0)[1], 4)   # none of 10: up to 30.8 %

@@ -105,6 +105,7 @@ class RunSettings:
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import RunSettings
     >>> import tumble
     >>> RunSettings(t_end=10.0).method, RunSettings(t_end=10.0, torque=tumble.ConstantTorque((0, 0, 0.1))).method
     ('exact', 'dop853')
@@ -141,6 +142,8 @@ class RunSettings:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.sweep import RunSettings
         >>> import tumble
         >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
         >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
@@ -177,6 +180,7 @@ class Criterion:
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import Criterion
     >>> Criterion("max_nutation", maximum=0.2, confidence=0.95).minimum is None
     True
     >>> Criterion("flips", minimum=3, maximum=1)
@@ -209,6 +213,8 @@ class Criterion:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.ensemble.sweep import Criterion
         >>> Criterion("max_nutation", maximum=0.2).passed({"max_nutation [rad]": np.array([0.1, 0.3, np.nan])}).tolist()
         [True, False, False]
         """
@@ -230,6 +236,11 @@ class Sweep:
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import Criterion
+    >>> from tumble.ensemble.sweep import RunSettings
+    >>> from tumble.ensemble.sweep import Sweep
+    >>> from tumble.ensemble.sweep import run_chunks
+    >>> from tumble.ensemble.sweep import summarize
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
@@ -253,6 +264,7 @@ class ChunkRanges(Sequence[tuple[int, int]]):
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import ChunkRanges
     >>> ranges = ChunkRanges(10, 4)
     >>> len(ranges), ranges[0], ranges[-1], list(ranges)
     (3, (0, 4), (8, 10), [(0, 4), (4, 8), (8, 10)])
@@ -294,6 +306,7 @@ def chunk_ranges(cases: int, chunk: int) -> ChunkRanges:
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import chunk_ranges
     >>> list(chunk_ranges(10, 4))
     [(0, 4), (4, 8), (8, 10)]
     >>> ranges = chunk_ranges(10**8, 1)
@@ -310,6 +323,10 @@ def compute_chunk(sweep: Sweep, start: int, stop: int) -> dict[str, np.ndarray]:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.ensemble.sweep import RunSettings
+    >>> from tumble.ensemble.sweep import Sweep
+    >>> from tumble.ensemble.sweep import compute_chunk
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Dispersion, Ensemble, InitialRates
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))
@@ -328,6 +345,9 @@ class ChunkStore(Protocol):
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import RunSettings
+    >>> from tumble.ensemble.sweep import Sweep
+    >>> from tumble.ensemble.sweep import run_chunks
     >>> class Memory(dict):  # a store in memory: these three methods are all a store needs
     ...     def has(self, number): return number in self
     ...     def load(self, number): return self[number]
@@ -347,6 +367,7 @@ class ChunkStore(Protocol):
 
         Examples
         --------
+        >>> import numpy as np
         >>> import tempfile
         >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
         >>> with tempfile.TemporaryDirectory() as folder:
@@ -362,6 +383,7 @@ class ChunkStore(Protocol):
 
         Examples
         --------
+        >>> import numpy as np
         >>> import tempfile
         >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
         >>> with tempfile.TemporaryDirectory() as folder:
@@ -377,6 +399,7 @@ class ChunkStore(Protocol):
 
         Examples
         --------
+        >>> import numpy as np
         >>> import tempfile
         >>> from tumble.io.resume import ChunkFolder  # the store on disk of tumble sweep
         >>> with tempfile.TemporaryDirectory() as folder:
@@ -405,6 +428,9 @@ def run_chunks(sweep: Sweep, *, chunk: int = DEFAULT_CHUNK, store: ChunkStore | 
 
     Examples
     --------
+    >>> from tumble.ensemble.sweep import RunSettings
+    >>> from tumble.ensemble.sweep import Sweep
+    >>> from tumble.ensemble.sweep import run_chunks
     >>> import tumble
     >>> from tumble.ensemble import BodySampler, Ensemble, InitialRates
     >>> box = tumble.Body((tumble.Box(mass=12.0, size=(1.0, 2.0, 3.0)),))

@@ -51,6 +51,7 @@ def lock_fd(fd: int, *, wait: bool = True) -> None:
 
     Examples
     --------
+    >>> from tumble.io.lock import lock_fd
     >>> import os, tempfile
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     first = os.open(os.path.join(folder, "lock"), os.O_RDWR | os.O_CREAT)
@@ -93,6 +94,7 @@ def locked_folder(folder: str | os.PathLike[str]) -> Iterator[None]:
     Examples
     --------
     >>> import tempfile
+    >>> from tumble.io.lock import locked_folder
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     with locked_folder(folder):
     ...         print("only this process writes here now")

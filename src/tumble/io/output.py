@@ -67,6 +67,8 @@ def check_output_dir(path: str | os.PathLike[str]) -> Path:
 
     Examples
     --------
+    >>> from pathlib import Path
+    >>> from tumble.io.output import check_output_dir
     >>> import tempfile
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     print(check_output_dir(Path(folder) / "run").name)  # new: fine
@@ -101,6 +103,7 @@ def check_output_file(path: str | os.PathLike[str], suffix: str) -> Path:
 
     Examples
     --------
+    >>> from tumble.io.output import check_output_file
     >>> check_output_file("run/figure.png", ".png").name
     'figure.png'
     >>> check_output_file("figure.svg", ".png")
@@ -132,6 +135,8 @@ def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterat
     Examples
     --------
     >>> import tempfile
+    >>> from pathlib import Path
+    >>> from tumble.io.output import output_dir
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     out = Path(folder) / "run"
     ...     with output_dir(out) as stage:

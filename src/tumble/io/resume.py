@@ -53,6 +53,8 @@ class ResumeWarning(UserWarning):
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.io.resume import ChunkFolder
     >>> import tempfile, warnings
     >>> with tempfile.TemporaryDirectory() as folder, warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
@@ -75,6 +77,7 @@ def chunk_checksum(columns: dict) -> str:
 
     Examples
     --------
+    >>> from tumble.io.resume import chunk_checksum
     >>> import numpy as np
     >>> a = chunk_checksum({"case": np.arange(3)})
     >>> a == chunk_checksum({"case": np.arange(3)}), a == chunk_checksum({"case": np.arange(1, 4)})
@@ -117,6 +120,7 @@ class ChunkFolder:
 
     Examples
     --------
+    >>> from tumble.io.resume import ChunkFolder
     >>> import tempfile, numpy as np
     >>> root = tempfile.mkdtemp()
     >>> store = ChunkFolder(f"{root}/out.resume", {"sweep": 1}, cases=3, chunk=2)
@@ -194,6 +198,8 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
@@ -213,6 +219,7 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
@@ -234,6 +241,7 @@ class ChunkFolder:
         Examples
         --------
         >>> import tempfile
+        >>> from tumble.io.resume import ChunkFolder
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=10, chunk=4)
         ...     store.close()
@@ -247,6 +255,7 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=10, chunk=4)
@@ -293,6 +302,8 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=4, chunk=2)
@@ -320,6 +331,8 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)
@@ -338,6 +351,8 @@ class ChunkFolder:
 
         Examples
         --------
+        >>> import numpy as np
+        >>> from tumble.io.resume import ChunkFolder
         >>> import tempfile
         >>> with tempfile.TemporaryDirectory() as folder:
         ...     store = ChunkFolder(f"{folder}/out.resume", {"sweep": 1}, cases=2, chunk=2)

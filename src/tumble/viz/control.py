@@ -73,6 +73,8 @@ def wheel_momentum(run: ControlledRun) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.control import wheel_momentum
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import MRPFeedback
@@ -97,6 +99,8 @@ def figure_attitude_error(run: ControlledRun, target: Rotation | Reference | Non
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.control import figure_attitude_error
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
@@ -128,6 +132,8 @@ def figure_body_rates(run: ControlledRun, *, switch_time: float | None = None, t
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.control import figure_body_rates
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
@@ -155,6 +161,7 @@ def figure_wheels(run: ControlledRun, *, switch_time: float | None = None, title
 
     Examples
     --------
+    >>> from tumble.viz.control import figure_wheels
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
@@ -184,6 +191,8 @@ def figure_dipole(run: ControlledRun, *, switch_time: float | None = None, title
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.control import figure_dipole
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
@@ -219,6 +228,8 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from tumble.viz.control import figure_momentum_budget
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import MRPFeedback
@@ -270,6 +281,7 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
 
     Examples
     --------
+    >>> from tumble.viz.control import control_figures
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot

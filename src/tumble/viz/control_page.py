@@ -36,6 +36,7 @@ def wheel_angle(t: ArrayLike, speed: ArrayLike) -> np.ndarray:
 
     Examples
     --------
+    >>> from tumble.viz.control_page import wheel_angle
     >>> wheel_angle([0.0, 1.0, 3.0], [[2.0, 0.0], [2.0, 1.0], [4.0, 1.0]]).tolist()
     [[0.0, 0.0], [2.0, 0.5], [8.0, 2.5]]
     """
@@ -49,6 +50,9 @@ def commanded_torque(run: ControlledRun, wheel_axes: ArrayLike | None = None) ->
 
     Examples
     --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.viz.control_page import commanded_torque
     >>> from tumble.dynamics.control.controllers import MRPFeedback
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.models.actuators import ReactionWheels
@@ -111,6 +115,11 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
 
     Examples
     --------
+    >>> import math
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.viz.control_page import control_page_data
+    >>> from tumble.viz.control_page import wheel_angle
     >>> from tumble.dynamics.control.controllers import MRPFeedback
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.models.actuators import ReactionWheels
