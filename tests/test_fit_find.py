@@ -164,3 +164,19 @@ def test_fit_recording_pools_tosses_that_end_on_a_table():
         fit = fit_recording(rec.t, rec.omega, events=rec.events)
     assert fit.tosses_used >= 2
     assert np.all(np.abs(fit.pooled.ratios - rec.ratios) <= 3 * fit.pooled.ratios_std)
+
+
+def test_a_numerical_failure_is_not_presented_as_a_verdict(monkeypatch):
+    """A solver that fails ('Residuals are not finite in the initial point') is named as a
+    numerical failure of tumble's, not as something the flight failed (issue #27 item 10)."""
+    import tumble.analysis.fit.flights as flights
+
+    def broken(*args, **kwargs):
+        raise ValueError("Residuals are not finite in the initial point.")
+
+    monkeypatch.setattr(flights, "fit_solution", broken)
+    rec = synthetic_recording(7, tosses=1, flight=(0.6, 0.8))
+    (found,) = [f for f in find_flights(rec.t, rec.omega) if f.end - f.start > 0.3]
+    assert found.status == "skipped"
+    assert found.reason.startswith("not fitted: the least-squares solver failed numerically (Residuals are not finite")
+    assert "says nothing about the flight" in found.reason and not found.reason.startswith("fit failed")

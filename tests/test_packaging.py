@@ -265,3 +265,20 @@ def test_make_demo_installs_only_what_the_demo_needs(tmp_path):
         (tmp_path / stamp).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / stamp).touch()
     assert _make_dry_run(tmp_path, "demo") == [".venv/bin/tumble demo"]
+
+
+@pytest.mark.parametrize("command", [["fit", "examples/data/racquet_tosses.csv", "--out", "fitted"],
+                                     ["simulate", "examples/seed_flip.toml", "--out", "run"],
+                                     ["inertia", "examples/bodies/wing_nut.toml"]])
+def test_an_example_path_outside_a_checkout_says_how_to_get_it(tmp_path, monkeypatch, capsys, command):
+    """From a wheel (no examples/ folder here), the commands the README and --help show stop with
+    one line that says how to get the example (issue 28 item 3); a path that is no example does not."""
+    from tumble.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no such file" in err
+    assert err.rstrip().endswith("'tumble examples --copy examples' copies them here")
+    assert main([command[0], "examples/not_an_example.toml", *command[2:]]) == 2
+    assert "tumble examples --copy" not in capsys.readouterr().err

@@ -72,7 +72,10 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         if args.debug:
             raise
-        print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
+        from ..io.examples import example_hint
+
+        message = _one_line(exc)
+        print(f"tumble: error: {message}{example_hint(message)}", file=sys.stderr)
         return EXIT_USAGE
     except ImportError as exc:  # an optional extra is missing: the user's setup, with the hint to install it
         if args.debug:

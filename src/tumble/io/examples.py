@@ -23,7 +23,7 @@ from pathlib import Path
 
 from .atomic import _umask
 
-__all__ = ["Example", "copy_examples", "list_examples"]
+__all__ = ["Example", "copy_examples", "example_hint", "list_examples"]
 
 #: The folder of the body files, relative to the examples' root; every other ``.toml`` at the
 #: root is a scenario.
@@ -185,3 +185,38 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return sorted(dest / rel for rel, _ in files)
+
+
+def example_hint(message: str) -> str:
+    """The hint for an error about a missing ``examples/...`` path that names a packaged example.
+
+    The README, ``--help`` and the guides run commands on ``examples/...`` paths, which exist in a
+    checkout; an installed wheel has them inside the package, copied out by ``tumble examples
+    --copy DIR``. Returns ``""`` when the message names no missing packaged example.
+
+    Parameters
+    ----------
+    message : str
+        An error message starting with the path it is about (``"PATH: no such file"``).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from tumble.io.examples import example_hint
+    >>> here = os.getcwd()
+    >>> with tempfile.TemporaryDirectory() as folder:   # a folder without the checkout's examples/
+    ...     os.chdir(folder)
+    ...     hint = example_hint("examples/data/racquet_tosses.csv: no such file")
+    ...     os.chdir(here)
+    >>> hint
+    "; it is one of tumble's examples: 'tumble examples --copy examples' copies them here"
+    >>> example_hint("my_tosses.csv: no such file")
+    ''
+    """
+    path = message.split(": ", 1)[0].strip("'\"")
+    parts = Path(path).parts
+    if len(parts) < 2 or parts[0] != "examples" or Path(path).exists():
+        return ""
+    if not _root().joinpath(*parts[1:]).is_file():
+        return ""
+    return "; it is one of tumble's examples: 'tumble examples --copy examples' copies them here"

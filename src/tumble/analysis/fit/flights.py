@@ -377,12 +377,15 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
     return first
 
 
+#: The reason's first words when the solver itself fails (non-finite residuals, a singular
+#: system): a numerical failure, not a verdict on the flight.
+NUMERICAL = "not fitted"
 #: Where the first fit of a candidate is made, as fractions of it: its middle (past any throw,
 #: before any catch), then its first and its second half when the middle does not follow a
 #: free motion (an impact missed by :func:`impulses` inside it, a throw that ends late).
 SEEDS = ((0.35, 0.8), (0.1, 0.5), (0.5, 0.9))
 #: The reasons for which another seed is tried.
-RETRY = ("no free flight", "the model does not fit", "fit failed", "too short (")
+RETRY = ("no free flight", "the model does not fit", NUMERICAL, "too short (")
 
 
 def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty) -> Flight:
@@ -419,7 +422,8 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
                            P0=_drag_free(sol), drag0=sol.model.drag_vector(sol.P), t0=anchor,
                            scale_uncertainty=scale_uncertainty)
     except (ValueError, np.linalg.LinAlgError) as err:
-        return _skip(t, a, b, f"fit failed: {err}", sol)
+        return _skip(t, a, b, f"{NUMERICAL}: the least-squares solver failed numerically ({err}); this says nothing "
+                              f"about the flight (please report it)", sol)
     verdict = solution_adequacy(sol, omega[None, a:b], keep[None, a:b])
     if not verdict.adequate:
         return _skip(t, a, b, verdict.reason, sol)
