@@ -274,3 +274,34 @@ def test_resume_and_output_import_and_lock_without_fcntl(tmp_path):
     refused, listing = done.stdout.splitlines()
     assert refused.startswith("refused: ") and "is locked: another sweep is running" in refused
     assert listing == "True ['.tumble-lock', 'out', 'out.resume']"
+
+
+def test_a_full_disk_says_where_the_finished_chunks_are_kept(tmp_path, monkeypatch, capsys):
+    """Issue 27, item 6: a sweep that fails writing its results keeps its finished chunks in
+    DIR.resume/ for the next run; the line said "nothing written" and no more. It says where they
+    are, and the same sweep run again resumes from them."""
+    import errno
+    import os
+
+    import tumble.commands.sweep as command
+    from tumble.cli import main
+
+    path, out = sweep_file(tmp_path), tmp_path / "out"
+    original = command.write_json
+
+    def full(data, where):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))  # as f.write() raises it: no filename
+
+    monkeypatch.setattr(command, "write_json", full)
+    assert main(["sweep", str(path), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device; nothing written" in err
+    assert err.rstrip().endswith(f"the finished chunks are kept in {tmp_path / 'out.resume'}/: the same sweep run "
+                                 "again resumes")
+    assert not out.exists() and len(list((tmp_path / "out.resume").glob("chunk-*"))) == 4
+    monkeypatch.setattr(command, "write_json", original)
+    computed = interrupt_after(monkeypatch, 0)  # any chunk computed again would be interrupted
+    assert main(["sweep", str(path), "--out", str(out)]) == 0
+    assert computed == []
+    monkeypatch.undo()
+    assert (out / "cases.csv").read_bytes() == fresh_csv(path, tmp_path)

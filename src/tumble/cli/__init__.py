@@ -63,11 +63,11 @@ def main(argv: list[str] | None = None) -> int:
             status = args.func(args)
             sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
             return status
-    except KeyboardInterrupt:
-        print("tumble: interrupted; nothing written", file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        print(f"tumble: interrupted; nothing written{_kept(exc)}", file=sys.stderr)
         return 130
-    except _Terminated:
-        print("tumble: terminated; nothing written", file=sys.stderr)
+    except _Terminated as exc:
+        print(f"tumble: terminated; nothing written{_kept(exc)}", file=sys.stderr)
         return 143
     except ValueError as exc:
         if args.debug:
@@ -88,7 +88,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         where = f"{exc.filename}: " if exc.filename else ""
-        print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written", file=sys.stderr)
+        print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written{_kept(exc)}", file=sys.stderr)
         return EXIT_FAILURE
     except Exception as exc:  # a failure of the computation, not of the input
         if args.debug:
@@ -110,6 +110,11 @@ def _reader_gone() -> int:
     os.dup2(devnull, sys.stdout.fileno())
     os.close(devnull)
     return EXIT_OK
+
+
+def _kept(exc: BaseException) -> str:
+    """What a failed command left on purpose (a sweep's finished chunks), from the exception's notes."""
+    return "".join(f"; {' '.join(note.split())}" for note in getattr(exc, "__notes__", ()))
 
 
 def _one_line(exc: BaseException) -> str:

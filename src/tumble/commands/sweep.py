@@ -125,8 +125,10 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
                         chunk=parsed.chunk, warn=warn)
     try:
         data = _run(parsed, path, out, store, workers, scheduler, argv, figure)
-    except BaseException:
-        store.close()  # the finished chunks stay for the next run
+    except BaseException as exc:
+        store.close()  # the finished chunks stay for the next run, and the message says where
+        if any(store.has(k) for k in range(store.chunks)):
+            exc.add_note(f"the finished chunks are kept in {store.folder}/: the same sweep run again resumes")
         raise
     store.remove()
     return data
