@@ -180,3 +180,19 @@ def test_a_numerical_failure_is_not_presented_as_a_verdict(monkeypatch):
     assert found.status == "skipped"
     assert found.reason.startswith("not fitted: the least-squares solver failed numerically (Residuals are not finite")
     assert "says nothing about the flight" in found.reason and not found.reason.startswith("fit failed")
+
+
+def test_the_fitting_guides_figure_has_a_command_that_makes_it(tmp_path):
+    """docs/fitting.md shows fit.png of a messy recording; the command it names writes it."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    guide = (root / "docs" / "fitting.md").read_text(encoding="utf-8")
+    assert "python docs/figures/make_fit_figure.py" in guide and "(figures/fit_recording.png)" in guide
+    proc = subprocess.run([sys.executable, str(root / "docs" / "figures" / "make_fit_figure.py"), "--out", str(tmp_path)],
+                          capture_output=True, text=True, check=False, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    png = tmp_path / "fit_recording.png"
+    assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

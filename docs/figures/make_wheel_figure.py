@@ -11,17 +11,16 @@ DIR/wheel_t_handle.png (DIR: docs/figures by default); tests/test_spacecraft_exa
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 from pathlib import Path
+
+from figure_script import ROOT, main, write
 
 import tumble
 from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
-from tumble.viz import save_figure
 from tumble.viz.spacecraft import figure_omega_panels
 
-ROOT = Path(__file__).resolve().parents[2]
 SCENARIO = ROOT / "src" / "tumble" / "examples" / "wheel_t_handle.toml"
 
 
@@ -45,13 +44,8 @@ def make(out: Path) -> Path:
          + ("no flip" if flips == 0 else f"{flips} flips"), spinning),
         ("wheel stopped (h = 0): the seed's flip", still),
     ]
-    out.mkdir(parents=True, exist_ok=True)
-    path = out / "wheel_t_handle.png"
-    save_figure(figure_omega_panels(cases), path)
-    return path
+    return write(figure_omega_panels(cases), out, "wheel_t_handle.png")
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "figures", help="folder (default docs/figures)")
-    print(f"wrote {make(parser.parse_args().out)}")
+    main(make, __doc__)
