@@ -182,7 +182,7 @@ def test_a_numerical_failure_is_not_presented_as_a_verdict(monkeypatch):
     assert "says nothing about the flight" in found.reason and not found.reason.startswith("fit failed")
 
 
-def test_the_fitting_guides_figure_has_a_command_that_makes_it(tmp_path):
+def test_the_fitting_guides_figure_has_a_command_that_makes_it(tmp_path, monkeypatch):
     """docs/fitting.md shows fit.png of a messy recording; the command it names writes it."""
     import subprocess
     import sys
@@ -196,3 +196,25 @@ def test_the_fitting_guides_figure_has_a_command_that_makes_it(tmp_path):
     assert proc.returncode == 0, proc.stderr
     png = tmp_path / "fit_recording.png"
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # what the caption says: the three ends, the phone swung about, and each flight found and used
+    monkeypatch.syspath_prepend(str(root / "docs" / "figures"))
+    import make_fit_figure
+
+    rec, fit = make_fit_figure.fitted()
+    assert sorted(rec.endings) == ["catch", "hand", "landing"]
+    assert fit.tosses_used == 3 and len(fit.tosses) > 3  # the hand's motion: candidates skipped with a reason
+    for a, b in rec.flights:
+        assert any(t.status == "ok" and _iou(a, b, t.start, t.end) >= 0.5 for t in fit.tosses)
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    (lambda t, w: (np.r_[t[:50], t[49], t[51:]], w), r"t must be strictly increasing|t\[50\]"),
+    (lambda t, w: (t, w[:, :2]), r"omega_measured must have shape \(\d+, 3\)"),
+    (lambda t, w: (t, np.where(np.arange(len(t))[:, None] == 7, np.nan, w)), r"omega_measured\[7\] = .* is not finite"),
+])
+def test_find_flights_refuses_what_the_fit_refuses(change, message):
+    """find_flights took raw arrays unchecked: a repeated time or two rate columns gave a silent
+    empty or wrong answer. It runs the fit's own checks, one line naming the field."""
+    rec = synthetic_recording(7, tosses=1, flight=(0.6, 0.8))
+    with pytest.raises(ValueError, match=message):
+        find_flights(*change(rec.t, rec.omega))

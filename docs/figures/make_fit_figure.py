@@ -23,13 +23,17 @@ from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.viz import figure_recording
 
 
-def make(out: Path) -> Path:
-    """Write ``out/fit_recording.png``; returns its path."""
+def fitted():
+    """The recording and its fit, as ``tumble fit`` makes it."""
     rec = synthetic_recording(41, body="racquet", tosses=3, ending="mixed", hand=(3.0, 10.0))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InadequateFitWarning)
-        fit = fit_recording(rec.t, rec.omega, events=rec.events)
-    return write(figure_recording(fit), out, "fit_recording.png")
+        return rec, fit_recording(rec.t, rec.omega, events=rec.events)
+
+
+def make(out: Path) -> Path:
+    """Write ``out/fit_recording.png``; returns its path."""
+    return write(figure_recording(fitted()[1]), out, "fit_recording.png")
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ class TossBody(Protocol):
     def moments(self) -> tuple:
         """Principal moments, kg m^2, ascending."""
 
-__all__ = ["ENDINGS", "after_hand", "after_landing", "gyrostat_flight"]
+__all__ = ["ENDINGS", "after_hand", "after_landing", "gyrostat_flight", "smooth_noise"]
 
 #: How a toss may end: ``"catch"`` (the spin killed in the hand), ``"hand"`` (caught and turned
 #: on in the hand), ``"landing"`` (an impact, bounces and rolling), or ``"mixed"`` (one of the
@@ -49,17 +49,26 @@ def _unit(rng: np.random.Generator) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-def _smooth(rng: np.random.Generator, n: int, dt: float, corner: float) -> np.ndarray:
-    """Unit-variance Gaussian noise low-passed below ``corner`` Hz (two first-order passes)."""
+def smooth_noise(rng: np.random.Generator, n: int, dt: float, sigma: float, corner: float) -> np.ndarray:
+    """Gaussian noise low-passed below ``corner`` Hz (a first-order filter run twice), standard
+    deviation ``sigma``: the hand's motion, the gyroscope's coloured noise, a turning direction.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import smooth_noise
+    >>> x = smooth_noise(np.random.default_rng(0), 2000, 0.01, 0.3, 1.5)
+    >>> round(float(np.std(x)), 6), bool(np.std(np.diff(x)) < 0.1 * np.std(x))   # slow: small steps
+    (0.3, True)
+    """
     from scipy.signal import lfilter
 
-    x = rng.normal(size=n + 50)
+    x = rng.normal(size=n)
     a = np.exp(-2 * np.pi * corner * dt)
     for _ in range(2):
         x = lfilter([1 - a], [1, -a], x)
-    x = x[50:]
     s = np.std(x)
-    return x / s if s > 0 else x
+    return x * (sigma / s if s > 0 else 0.0)
 
 
 def after_hand(rng: np.random.Generator, tau: np.ndarray, length: float, w_end: np.ndarray, spin: float,
@@ -81,7 +90,7 @@ def after_hand(rng: np.random.Generator, tau: np.ndarray, length: float, w_end: 
     """
     n = len(tau)
     grip = rng.uniform(0.02, 0.06)
-    direction = np.stack([_smooth(rng, n, dt, 2.0) for _ in range(3)], axis=1) + 2.0 * _unit(rng)
+    direction = np.stack([smooth_noise(rng, n, dt, 1.0, 2.0) for _ in range(3)], axis=1) + 2.0 * _unit(rng)
     direction /= np.linalg.norm(direction, axis=1, keepdims=True)
     x = np.clip(tau / length, 0.0, 1.0)
     turning = (spin * (1.0 - x * x))[:, None] * direction + level * x[:, None]

@@ -56,7 +56,7 @@ import numpy as np
 from ...typing import ArrayLike
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
-from .single import MIN_SAMPLES, fit_solution, saturation_mask
+from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
 from .solve import Solution, solve
 from .triangle import EDGES
 from .uncertainty import SCALE_UNCERTAINTY
@@ -312,6 +312,12 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     list of Flight
         In time order; ``status`` says whether each is usable.
 
+    Raises
+    ------
+    ValueError
+        For samples the fit refuses (as :func:`tumble.analysis.fit.fit_rotation`): shapes that do
+        not match, values that are not finite, times that do not increase, too few samples.
+
     Examples
     --------
     >>> from tumble.analysis.fit.flights import find_flights
@@ -323,8 +329,7 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     >>> flights[1].reason.startswith("the model does not fit")
     True
     """
-    t = np.asarray(t, float)
-    omega = np.asarray(omega, float)
+    t, omega = _check(t, omega)  # the fit's own checks: shapes, finite values, increasing times
     keep, _ = saturation_mask(omega, saturation)
     speed = np.linalg.norm(omega, axis=1)
     if len(speed) >= 3:

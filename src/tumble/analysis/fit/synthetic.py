@@ -42,11 +42,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.signal import lfilter
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
-from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight
+from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise
 
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
            "synthetic_recording"]
@@ -241,16 +240,6 @@ class SyntheticRecording:
         return "\n".join(lines) + "\n"
 
 
-def _smooth_noise(rng, n, dt, sigma, corner):
-    """Gaussian noise low-passed below ``corner`` Hz (a first-order filter run twice), std sigma."""
-    x = rng.normal(size=n)
-    a = np.exp(-2 * np.pi * corner * dt)
-    for _ in range(2):
-        x = lfilter([1 - a], [1, -a], x)
-    s = np.std(x)
-    return x * (sigma / s if s > 0 else 0.0)
-
-
 def _tilted(rng, spin, about, tilt_deg):
     """omega0 of ``spin`` rad/s about principal axis ``about`` (0-2), tilted by ``tilt_deg``."""
     tilt = np.deg2rad(tilt_deg)
@@ -392,7 +381,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         keep &= ~((tt > g0) & (tt < g0 + rng.uniform(0.05, 0.2)))
     tt = tt[keep]
     w_body = np.zeros((len(tt), 3))  # principal frame
-    held = np.stack([_smooth_noise(rng, len(tt), dt, rng.uniform(*hand), 1.5) for _ in range(3)], axis=1)
+    held = np.stack([smooth_noise(rng, len(tt), dt, rng.uniform(*hand), 1.5) for _ in range(3)], axis=1)
     tremor_f = rng.uniform(8, 12)
     tremor = rng.uniform(0.005, 0.03) * np.sin(2 * np.pi * tremor_f * tt[:, None] + rng.uniform(0, 2 * np.pi, 3))
     last_flight_end = None
@@ -438,7 +427,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
     b = rng.normal(0, bias, 3)
     walk = np.cumsum(rng.normal(0, 1e-4 * np.sqrt(dt), (len(tt), 3)), axis=0)
     sigma = rng.uniform(*noise)
-    coloured = np.stack([_smooth_noise(rng, len(tt), dt, rng.uniform(0.001, 0.003), 1 / (2 * np.pi * 0.05))
+    coloured = np.stack([smooth_noise(rng, len(tt), dt, rng.uniform(0.001, 0.003), 1 / (2 * np.pi * 0.05))
                          for _ in range(3)], axis=1)
     w_s = w_s + b + walk + coloured + rng.normal(0, sigma, w_s.shape)
     lsb = FULL_SCALE / 32768
