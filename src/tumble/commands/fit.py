@@ -14,6 +14,10 @@
 - **One flight** (``--start``/``--end``): the samples between are fitted as one free flight
   (:func:`tumble.analysis.fit.fit_rotation`); ``DIR/fit.json`` and ``DIR/fit.png``.
 
+Every fit.json holds ``"flight_models"``: one entry per used flight (its ``"input"``, its index in
+``"tosses"`` as ``"toss"``, and the fit's model of it,
+:class:`tumble.analysis.fit.flightmodel.FlightModel`), from which ``tumble view DIR`` replays it.
+
 ``--body FILE`` adds the ratios the body file predicts and how many standard uncertainties they
 lie from the fit.
 """
@@ -38,6 +42,7 @@ from ..analysis.fit import (
     fit_recording,
     fit_rotation,
 )
+from ..analysis.fit.flightmodel import FlightModel
 from ..io.bodyfile import load_body
 from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
@@ -177,6 +182,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 sel = (t >= lo) & (t <= hi)
                 fit = fit_rotation(t[sel], omega[sel], **options)
                 record.update({"start": start, "end": end, **fit.summary()})
+                record["flight_models"] = [{"input": labels[0], **FlightModel.of_fit(fit).summary()}]
                 pooled, line = fit, f"{fit.samples} samples"
                 draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
             else:
@@ -186,6 +192,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 record["tosses"] = [{"input": labels[toss.recording], **row}  # the recording as given
                                     for toss, row in zip(rec.tosses, record["tosses"])]
                 files["tosses.csv"] = _tosses_csv(record["tosses"])
+                record["flight_models"] = [{"input": labels[m["recording"]], **m} for m in record["flight_models"]]
                 pooled = rec.pooled
                 skipped = len(rec.tosses) - rec.tosses_used
                 line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")

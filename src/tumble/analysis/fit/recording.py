@@ -25,6 +25,7 @@ import numpy as np
 
 from ...typing import ArrayLike
 from .adequacy import InadequateFitWarning
+from .flightmodel import FlightModel
 from .flights import Flight, find_flights, pause_times
 from .joint import first_flight_view, joint_solution, stack_flights
 from .result import (
@@ -146,6 +147,10 @@ class RecordingFit:
         noise's variance, to compare fits of the same samples.
     residuals : int
         The number of residuals in ``ssr`` (samples times kept axes).
+    flight_models : tuple of FlightModel
+        The model of each used flight, in time order (:mod:`~tumble.analysis.fit.flightmodel`):
+        of the joint fit (shared ratios and drag, the flight's own ``omega0``, its recording's
+        rotation and bias), or each flight's own fit where no joint fit was made.
 
     Examples
     --------
@@ -168,9 +173,12 @@ class RecordingFit:
     recordings: tuple = field(default=(), repr=False)
     ssr: float = field(default=float("nan"), repr=False)
     residuals: int = field(default=0, repr=False)
+    flight_models: tuple = field(default=(), repr=False)
 
     def summary(self) -> dict:
-        """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"`` and ``"pooled"``.
+        """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"``, ``"pooled"``
+        and ``"flight_models"`` (:meth:`FlightModel.summary <tumble.analysis.fit.flightmodel.FlightModel.summary>`
+        of each used flight: what replays it).
 
         ``"pooled"`` says what the joint fit shares: ``"shared"`` by every flight,
         ``"per_recording"`` (the sensor's rotation and bias, when several recordings are pooled)
@@ -203,6 +211,7 @@ class RecordingFit:
         out["pooled"].update({"recordings": max(1, len(self.recordings)),
                               "shared": ["I1_over_I3", "I2_over_I3", "drag", *([] if several else mount)],
                               "per_recording": mount if several else [], "per_flight": ["omega0"]})
+        out["flight_models"] = [m.summary() for m in self.flight_models]
         return out
 
 
@@ -304,10 +313,13 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         raise NoFlightError(f"no usable flight among {len(flights)} found: "
                             + ", ".join(f"{n} {r}" for r, n in why.most_common()))
     t0, w0 = series[0]
+    number = {id(f): k for k, f in enumerate(flights)}  # a flight's index in the tosses
     if len(used) == 1:
-        only = next(toss for toss in tosses if toss.status == "ok")
-        sol = used[0].solution
-        return RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series, sol.ssr, sol.m)
+        k = number[id(used[0])]
+        only, sol = tosses[k], used[0].solution
+        own = _flight_models(None, used, [k], groups)
+        return RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series, sol.ssr, sol.m,
+                            own)
     used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     joint, models, outliers = joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
     split = _split_verdict(used, outliers)
@@ -321,7 +333,8 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         used = [f for f in used if id(f) not in bad]
     fit = _weighted(used, tosses, t, omega, keep) if joint is None else \
         _pooled(joint, used, tosses, t, omega, keep, models)
-    fit = replace(fit, t=t0, omega=w0, recordings=series)
+    fit = replace(fit, t=t0, omega=w0, recordings=series,
+                  flight_models=_flight_models(joint, used, [number[id(f)] for f in used], groups))
     if split:
         warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
         fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
@@ -365,6 +378,14 @@ def _split_verdict(used, outliers) -> str:
             f"uncertainties from the others (their ratios I1/I3 {np.min(own[:, 0]):.4f} to {np.max(own[:, 0]):.4f}, "
             f"I2/I3 {np.min(own[:, 1]):.4f} to {np.max(own[:, 1]):.4f}): the recording holds more than one body "
             "or the phone moved on it; fit each group apart (--start/--end)")
+
+
+def _flight_models(sol: Solution | None, used, numbers, groups) -> tuple:
+    """Each used flight's :class:`FlightModel`: of the joint solution ``sol`` (its flights are
+    ``used``, in order), or of the flight's own solution where there is none."""
+    return tuple(FlightModel.of_solution(*((sol, j) if sol is not None else (f.solution, 0)), start=f.start, end=f.end,
+                                         t0=f.anchor, recording=groups[k], toss=k)
+                 for j, (f, k) in enumerate(zip(used, numbers)))
 
 
 def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
