@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode_family",
+__all__ = ["PHASE_PORTRAITS", "figure_herpolhode", "figure_polhode", "phase_portrait_problem", "polhode", "polhode_family",
            "separatrices"]
 
 #: The figures that picture a torque-free motion (a fixed L and energy).
@@ -86,21 +86,45 @@ def polhode_family(moments: ArrayLike, L_norm: float, count: int = 9, points: in
     >>> [bool(e[0] > 2.0**2 / (2 * I[1])) for e in energy]  # above the separatrix: round the minor axis
     [True, True, True, True, False, False, False, False]
     """
-    from scipy.spatial.transform import Rotation
-
     I = np.asarray(moments, float)
     k = np.sqrt((1 / I[0] - 1 / I[1]) / (1 / I[1] - 1 / I[2]))
     b_sep = np.arctan(k)  # the start point on the separatrix
     curves = []
     betas = np.concatenate([np.linspace(0.08, b_sep - 0.06, count // 2), np.linspace(b_sep + 0.06, np.pi / 2 - 0.08, count - count // 2)])
     for b in betas:
-        L0 = L_norm * np.array([np.cos(b), 0.0, np.sin(b)])
-        w0 = L0 / I
-        period = 2.0 * float(flip_interval(w0, I))
-        t = np.linspace(0.0, period, points)
-        L = I * FreeRotation(I, w0, Rotation.identity()).omega(t)
+        L = polhode(I, L_norm * np.array([np.cos(b), 0.0, np.sin(b)]) / I, points)
         curves += [L, -L]
     return curves
+
+
+def polhode(moments: ArrayLike, omega0: ArrayLike, points: int = 240) -> np.ndarray:
+    """The polhode through ``omega0``: L = I omega in the body frame over one period of the exact
+    torque-free motion (kg m^2/s, shape (points, 3)); it lies on the momentum sphere and the
+    energy ellipsoid of ``omega0`` (module docstring).
+
+    ``moments`` in kg m^2, ascending; ``omega0`` principal frame, rad/s. The period is twice
+    :func:`tumble.analysis.flip_interval`; where it is infinite (on the separatrix, a spin about
+    the intermediate axis, a sphere) twenty turns of ``|omega0|`` are drawn instead.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.viz.phase import polhode
+    >>> I, w0 = np.array([0.3, 0.8, 1.0]), np.array([1.0, 9.0, 0.5])  # a toss about the intermediate axis
+    >>> L = polhode(I, w0, points=50)
+    >>> bool(np.allclose(np.linalg.norm(L, axis=1), np.linalg.norm(I * w0)))  # on the momentum sphere
+    True
+    >>> bool(np.allclose(np.sum(L**2 / I, axis=1), np.sum(I * w0**2))), bool(np.allclose(L[0], L[-1]))  # 2 E; closed
+    (True, True)
+    """
+    from scipy.spatial.transform import Rotation
+
+    I, w0 = np.asarray(moments, float), np.asarray(omega0, float)
+    period = 2.0 * float(flip_interval(w0, I))
+    if not np.isfinite(period) or period <= 0.0:
+        period = 40.0 * np.pi / max(float(np.linalg.norm(w0)), 1e-300)
+    t = np.linspace(0.0, period, points)
+    return np.asarray(I * FreeRotation(I, w0, Rotation.identity()).omega(t), float)
 
 
 def separatrices(moments: ArrayLike, L_norm: float, points: int = 361) -> list[np.ndarray]:

@@ -21,7 +21,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
 from ...validation import check_number, check_vector
-from .model import DRAG_MODELS
+from .model import DRAG_MODELS, principal_rates
 from .result import RotationFit
 from .solve import Solution
 
@@ -143,6 +143,24 @@ class FlightModel:
         [0.0, 1.0, 0.0]
         """
         return Rotation.from_rotvec(self.rotvec)
+
+    def omega(self, t: ArrayLike) -> np.ndarray:
+        """The model's angular velocity at the times ``t`` (s, the recording's clock; before ``t0``
+        integrated backward), principal frame, rad/s, shape (len(t), 3): the fit's own model
+        function (:func:`~tumble.analysis.fit.model.principal_rates`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.flightmodel import FlightModel
+        >>> m = FlightModel(0.0, 1.0, 0.5, [0.5, 0.5], [1.0, 0.0, 2.0], "none", [0.0] * 3, [0.0] * 3, [0.0] * 3)
+        >>> w = m.omega([0.0, 0.5, 1.0])   # a symmetric top: omega_3 constant, (omega_1, omega_2) turning at 2 rad/s
+        >>> w[:, 2].tolist(), bool(np.allclose(w[0, :2], [np.cos(1.0), -np.sin(1.0)]))
+        ([2.0, 2.0, 2.0], True)
+        """
+        tau = np.asarray(t, float).reshape(-1) - self.t0
+        with np.errstate(all="ignore"):
+            return principal_rates(self.moments[None], self.omega0[None], tau, self.drag, self.drag_coefficients[None])[0]
 
     def to_principal(self, omega_sensor: ArrayLike) -> np.ndarray:
         """Gyroscope samples (sensor axes, rad/s, shape (..., 3)) in the principal frame, bias removed.

@@ -37,7 +37,7 @@ from ...dynamics.models.drag import drag_omega
 from ...typing import ArrayLike
 from .triangle import S_MIN, ratios
 
-__all__ = ["BIAS_MAX", "DRAG_MODELS", "Model", "rotvec_matrix"]
+__all__ = ["BIAS_MAX", "DRAG_MODELS", "Model", "principal_rates", "rotvec_matrix"]
 
 #: The drag models and their parameters (per principal axis, divided by I3).
 DRAG_MODELS = {"none": (), "linear": ("drag_1", "drag_2", "drag_3"), "quadratic": ("drag_1", "drag_2", "drag_3")}
@@ -78,6 +78,30 @@ def rotvec_matrix(rv: ArrayLike) -> np.ndarray:
     x, y, z = rv
     K = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
     return np.eye(3) + s1 * K + s2 * (K @ K)
+
+
+def principal_rates(moments: ArrayLike, omega0: ArrayLike, tau: ArrayLike, drag: str = "none",
+                    coefficients: ArrayLike | None = None, *, max_step: ArrayLike | None = None) -> np.ndarray:
+    """The model's omega in the principal frame, rad/s, shape (N, T, 3): the exact torque-free
+    motion (``drag = "none"``) or Euler's equations with per-axis drag (module docstring).
+
+    ``moments`` (N, 3) in units of ``I3`` (any common unit), ``omega0`` (N, 3) rad/s at
+    ``tau = 0``, ``tau`` (T,) or (N, T) s (negative: backward), ``coefficients`` (N, 3) the drag
+    divided by ``I3`` (1/s linear, 1/rad quadratic), ``max_step`` the drag integrator's largest
+    step per body, s (:func:`~tumble.dynamics.models.drag.drag_omega`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.model import principal_rates
+    >>> w = principal_rates([[0.5, 0.5, 1.0]], [[0.0, 0.0, 2.0]], [0.0, 1.0], "quadratic", [[0.0, 0.0, 1.5]])
+    >>> bool(np.isclose(w[0, 1, 2], 2.0 / (1.0 + 1.5 * 2.0)))   # w3' = -(b3/I3) w3^2
+    True
+    """
+    if drag == "none":
+        return np.asarray(free_omega(moments, omega0, tau), float)
+    lin, quad = (coefficients, None) if drag == "linear" else (None, coefficients)
+    return np.asarray(drag_omega(moments, omega0, tau, lin, quad, max_step=max_step), float)
 
 
 class Model:
@@ -277,11 +301,7 @@ class Model:
         x, y = ratios(physics[:, 0], physics[:, 1])
         I = np.stack([x, y, np.ones_like(x)], axis=1)
         with np.errstate(all="ignore"):
-            if self.drag == "none":
-                return free_omega(I, omega0, self.tau[rows])
-            d = physics[:, 2:5]
-            lin, quad = (d, None) if self.drag == "linear" else (None, d)
-            return drag_omega(I, omega0, self.tau[rows], lin, quad, max_step=self.hmax[rows])
+            return principal_rates(I, omega0, self.tau[rows], self.drag, physics[:, 2:5], max_step=self.hmax[rows])
 
     def _physics(self, P) -> np.ndarray:
         return np.concatenate([[P[0], P[1]], self.drag_vector(P)])

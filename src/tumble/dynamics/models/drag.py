@@ -35,7 +35,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Vector3
 
-__all__ = ["drag_omega"]
+__all__ = ["drag_omega", "drag_torque"]
 
 
 def _rate(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, out: FloatArray) -> None:
@@ -155,3 +155,29 @@ def drag_omega(
     else:
         hmax = np.ascontiguousarray(np.broadcast_to(np.asarray(max_step, float), (N,)))
     return _compiled()(I, w, lin, quad, tau, hmax)
+
+
+def drag_torque(omega: ArrayLike, linear: ArrayLike | None = None, quadratic: ArrayLike | None = None) -> Vector3:
+    """The drag torque of the module docstring, ``-(a_i + b_i |w_i|) w_i`` per principal axis, N m
+    (``omega`` principal frame, rad/s, shape (..., 3); ``linear`` ``a_i`` in N m s, ``quadratic``
+    ``b_i`` in N m s^2, default 0): the torque :func:`drag_omega` integrates, as a function for
+    :func:`tumble.simulate`'s ``torque`` (which then also turns the attitude).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.drag import drag_omega, drag_torque
+    >>> drag_torque([2.0, -1.0, 0.5], linear=[0.1, 0.1, 0.1], quadratic=[1.0, 0.0, 2.0]).tolist()
+    [-4.2, 0.1, -0.55]
+    >>> I, w0, b = np.array([1.0, 2.0, 3.0]), np.array([0.3, 2.0, 0.4]), np.array([0.2, 0.1, 0.3])
+    >>> h = 1e-4   # the same law as drag_omega's: its rate at t = 0 is (Euler's term + the torque) / I
+    >>> w = drag_omega([I], [w0], [-h, 0.0, h], quadratic=[b])[0]
+    >>> rate = (w[2] - w[0]) / (2 * h)
+    >>> euler = np.array([(I[1] - I[2]) * w0[1] * w0[2], (I[2] - I[0]) * w0[2] * w0[0], (I[0] - I[1]) * w0[0] * w0[1]])
+    >>> bool(np.allclose(rate, (euler + drag_torque(w0, quadratic=b)) / I, atol=1e-7))
+    True
+    """
+    w = np.asarray(omega, float)
+    a = 0.0 if linear is None else np.asarray(linear, float)
+    b = 0.0 if quadratic is None else np.asarray(quadratic, float)
+    return np.asarray(-(a + b * np.abs(w)) * w, float)
