@@ -245,6 +245,8 @@ def _cmd_view(args) -> int:
     from ..io.output import check_output_file
     from ..viz.scene import frame_indices
 
+    if os.path.isdir(args.source):  # a tumble fit output folder
+        return _view_fit(args)
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
     control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
@@ -260,6 +262,33 @@ def _cmd_view(args) -> int:
 
     write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj))
     print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
+    return EXIT_OK
+
+
+def _view_fit(args) -> int:
+    """`tumble view DIR` of a fit's output folder: the fitted body replaying each used flight."""
+    from ..io.fitfolder import read_fit_folder
+    from ..io.output import check_output_file
+    from ..viz.scene import frame_indices
+
+    given = [f"--{k.replace('_', '-')}" for k in ("omega", "frame", "t_end", "samples", "dt", "method")
+             if getattr(args, k) is not None]
+    if given:
+        raise ValueError(f"{args.source}: a fit's output folder replays its fitted flights; {', '.join(given)} "
+                         "apply to a scenario or a body")
+    fit = read_fit_folder(args.source)  # bad input: one line naming the folder, before anything is computed
+    out = check_output_file(args.out, ".html")
+    frame_indices(2, args.frames)  # refuse a bad --frames before replaying
+    from ..commands.view_fit import replay_fit
+    from ..viz.fit_page import write_fit_page
+
+    with _working(f"replaying {len(fit.models)} flights"):
+        replays = replay_fit(fit)
+    write_fit_page(replays, out, frames=args.frames)
+    print(f"wrote {out}: {len(replays)} flight{'' if len(replays) == 1 else 's'} of {args.source} replayed by the "
+          "fitted body (self-contained: open it in any browser, no network needed)")
+    for note in dict.fromkeys(r.note for r in replays if r.note):
+        print(f"warning: {note}", file=sys.stderr)
     return EXIT_OK
 
 

@@ -103,14 +103,18 @@ def build_parser() -> argparse.ArgumentParser:
                    help="file formats (default: png svg)")
 
     p = scenario_command(
-        "view", c._cmd_view, "one self-contained interactive HTML page of a scenario",
+        "view", c._cmd_view, "one self-contained interactive HTML page of a scenario or a fit",
         "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
         "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons. A control scenario "
         "([control]) adds its reaction wheels turning on the body, the commanded torque (and dipole) arrows, a "
-        "readout and the attitude error or |omega| over time (only --t-end overrides it; no live mode).",
+        "readout and the attitude error or |omega| over time (only --t-end overrides it; no live mode). "
+        "INPUT a folder holding fit.json (tumble fit's output): the fitted body (a box of the fitted ratios) "
+        "replays the flight chosen in a selector, its model's rates next to the measured ones, and its polhode "
+        "on the momentum sphere (the recordings are read again, as given to tumble fit).",
         "tumble view examples/seed_flip.toml --out flip.html | "
         "tumble view examples/control/point.toml --out point.html | "
-        "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html", "FILE.html", "the page to write",
+        "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html | "
+        "tumble view fitted --out tosses.html", "FILE.html", "the page to write",
     )
     p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
 

@@ -46,7 +46,7 @@ from ..analysis.fit.flightmodel import FlightModel
 from ..io.bodyfile import load_body
 from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
-from ..io.provenance import file_sha256, provenance
+from ..io.provenance import input_sha256, provenance
 from ..validation import check_number
 
 __all__ = ["TOSS_COLUMNS", "run_fit_command"]
@@ -60,22 +60,6 @@ _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz s
            "autocorrelation time (Geyer's initial positive sequence), plus the gyroscope's scale-factor tolerance "
            "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1; "
            "adequacy: the model's error beyond the noise at most 3 % of the rates")
-
-
-def _digest(path) -> str:
-    if os.path.isdir(path):
-        import hashlib
-
-        h = hashlib.sha256()
-        for name in sorted(os.listdir(path)):
-            full = os.path.join(path, name)
-            if os.path.isfile(full):
-                h.update(name.encode() + b"\0" + file_sha256(full).encode())
-        meta = os.path.join(path, "meta", "time.csv")
-        if os.path.isfile(meta):
-            h.update(b"meta/time.csv\0" + file_sha256(meta).encode())
-        return h.hexdigest()
-    return file_sha256(path)
 
 
 def _body_comparison(body_source, ratios, std) -> dict:
@@ -163,7 +147,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
     labels = [os.fspath(p) for p in paths]
     if body is not None:
         load_body(body)  # a bad body file is bad input before anything is computed
-    digests = [_digest(p) for p in paths]
+    digests = [input_sha256(p) for p in paths]
     several = len(paths) > 1
     label = labels[0] if not several else f"{len(paths)} recordings"
     t, omega, events = recs[0].t, recs[0].omega, list(recs[0].events)

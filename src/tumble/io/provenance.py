@@ -14,7 +14,7 @@ import shlex
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-__all__ = ["file_sha256", "provenance"]
+__all__ = ["file_sha256", "input_sha256", "provenance"]
 
 
 def file_sha256(path: str | os.PathLike[str]) -> str:
@@ -35,6 +35,38 @@ def file_sha256(path: str | os.PathLike[str]) -> str:
         for block in iter(lambda: fh.read(1 << 20), b""):
             digest.update(block)
     return digest.hexdigest()
+
+
+def input_sha256(path: str | os.PathLike[str]) -> str:
+    """SHA-256 of an input as ``tumble fit`` records it: a file's bytes (:func:`file_sha256`), or
+    of a folder (phyphox's export) its files' names and hashes, in name order, and
+    ``meta/time.csv``'s.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.provenance import file_sha256, input_sha256
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "Raw Data.csv")
+    ...     _ = path.write_text("t,x,y,z\\n")
+    ...     same = input_sha256(path) == file_sha256(path)
+    ...     of_folder = input_sha256(folder)
+    ...     _ = path.write_text("t,x,y,z\\n0,1,2,3\\n")
+    ...     changed = input_sha256(folder) != of_folder
+    >>> same, changed
+    (True, True)
+    """
+    if not os.path.isdir(path):
+        return file_sha256(path)
+    h = hashlib.sha256()
+    for name in sorted(os.listdir(path)):
+        full = os.path.join(path, name)
+        if os.path.isfile(full):
+            h.update(name.encode() + b"\0" + file_sha256(full).encode())
+    meta = os.path.join(path, "meta", "time.csv")
+    if os.path.isfile(meta):
+        h.update(b"meta/time.csv\0" + file_sha256(meta).encode())
+    return h.hexdigest()
 
 
 def provenance(argv: Sequence[str] | None = None, inputs: Iterable[tuple[str, str]] = ()) -> dict:

@@ -15,6 +15,8 @@ interface they use (``window.tumbleViewer``, the ``tumble:ready`` event). A clos
 (``control``: :mod:`tumble.viz.control_page`) inlines ``assets/control.js`` there instead: the
 reaction wheels on the body, the commanded torque and dipole arrows, a readout and a time plot
 of the attitude error or ``|omega|`` (``window.tumbleExtra``, also described in ``viewer.js``).
+A fit's flights (``fit``: :mod:`tumble.viz.fit_page`) inline ``assets/fitview.js``: a flight
+selector that plays each with ``tumbleViewer.setRun``, the measured rates, the polhode.
 """
 
 from __future__ import annotations
@@ -209,16 +211,24 @@ h1 { font-size: 19px; margin: 4px 0 6px; }
 #tumble-note, #tumble-control-note { color: #555; font-size: 13px; margin: 2px 0; }
 #tumble-readout { font-variant-numeric: tabular-nums; margin: 4px 0; }
 #tumble-error { height: 260px; }
+#tumble-fit { margin: 4px 0; } #tumble-flight { max-width: 100%; }
+#tumble-fit-readout, #tumble-fit-note { font-size: 13px; margin: 2px 0; color: #333; }
+#tumble-polhode { height: 560px; }
 """
 
 _SPEEDS = (0.25, 0.5, 1, 2, 4)
 #: A closed-loop run's readout, time plot and notes (filled by assets/control.js).
 _CONTROL_DIVS = ('<div id="tumble-control"><p id="tumble-readout"></p><div id="tumble-error"></div>'
                  '<p id="tumble-control-note"></p></div>')
+#: A fit's flight selector and readout (above the scenes), its polhode plot and notes (below omega(t)),
+#: filled by assets/fitview.js.
+_FIT_TOP = ('<div id="tumble-fit"><label for="tumble-flight">flight </label><select id="tumble-flight"></select>'
+            '<p id="tumble-fit-readout"></p></div>')
+_FIT_BOTTOM = '<div id="tumble-polhode"></div><p id="tumble-fit-note"></p>'
 
 
 def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | None = None, live: bool = True,
-              control: dict | None = None) -> str:
+              control: dict | None = None, fit: dict | None = None) -> str:
     """The interactive page as one HTML document (str), plotly.js and the data inlined.
 
     Parameters
@@ -238,6 +248,10 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         A closed-loop run's wheels, commanded torque and error curve
         (:func:`tumble.viz.control_page.control_page_data` of the run behind ``traj``, with the same
         ``frames``), drawn by ``assets/control.js``.
+    fit : dict, optional
+        A fit's flights (:func:`tumble.viz.fit_page.fit_page_data`, ``body`` and ``traj`` its
+        first flight's), played by ``assets/fitview.js``: a flight selector, the measured rates
+        and the polhode (no live mode).
 
     Examples
     --------
@@ -265,8 +279,13 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
             raise ValueError("control = the closed-loop data of another run or frame count: its frames' times "
                              "differ from the page's (make it with control_page_data(run, frames=frames))")
         data["control"], live = control, False
+    if fit is not None:
+        if control is not None:
+            raise ValueError("control and fit: a page plays a closed-loop run or a fit's flights, not both")
+        data["fit"], live = fit, False
     title = escape_text(data["title"])
-    names = ("splitting.js", "live.js") if live else ("control.js",) if control is not None else ()
+    names = ("splitting.js", "live.js") if live else ("control.js",) if control is not None else \
+        ("fitview.js",) if fit is not None else ()
     scripts = [_asset(name) for name in names]
     speeds = "".join(f'<button class="tumble-speed" data-speed="{s:g}">x{s:g}</button>' for s in _SPEEDS)
     parts = [
@@ -278,10 +297,12 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
         '<input id="tumble-slider" type="range" min="0" max="0" step="1" value="0" aria-label="frame">'
         f'<span id="tumble-time"></span><span>speed</span>{speeds}</div>',
         '<div id="tumble-live"></div>',
+        *([_FIT_TOP] if fit is not None else []),
         '<div id="tumble-scenes"><div id="tumble-ground" class="tumble-scene"></div>'
         '<div id="tumble-body" class="tumble-scene"></div></div>',
         *([_CONTROL_DIVS] if control is not None else []),
         '<div id="tumble-omega"></div><p id="tumble-note"></p>',
+        *([_FIT_BOTTOM] if fit is not None else []),
         f'<script type="application/json" id="tumble-data">{script_json(data)}</script>',
         *(_script(text) for text in scripts),
         _script(_asset("viewer.js")),

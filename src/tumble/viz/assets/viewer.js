@@ -15,7 +15,10 @@
  * window.tumbleViewer:
  *   setRun(run)  replace the motion. run = {t: [n] s, quat: [[x, y, z, w]] principal -> world,
  *                omega: [[w1, w2, w3]] principal frame rad/s, moments: [I1, I2, I3] kg m^2,
- *                box: [a, b, c] half-sizes (m) along the principal axes, or null}. With a box the
+ *                box: [a, b, c] half-sizes (m) along the principal axes, or null; optional:
+ *                frames (most animation frames, default MAX_FRAMES; the omega(t) curves keep
+ *                every sample), torqueFree (default true), extra (a tumbleExtra, below, for this
+ *                run)}. With a box the
  *                drawn body becomes that uniform box (attitude = the principal attitude); without,
  *                the body's own geometry is kept and turned by the design attitude
  *                R_design = R_principal A^T (A = tumble-data's principal_axes, principal -> design).
@@ -25,11 +28,15 @@
  *   play(), pause(), show(frame) -> Promise, setSpeed(factor); ready (true once drawn).
  *
  * window.tumbleExtra (optional, set by a script inlined before this one: control.js on a
- * closed-loop run's page) adds traces to the page's own run (not to a setRun run):
+ * closed-loop run's page) adds traces to the page's own run (a setRun run brings its own as
+ * run.extra: fitview.js on a fit's page):
  *   traces(view, size) -> [plotly traces] appended to the "ground" or "body" plot;
+ *   omegaTraces() -> [plotly traces] appended to the omega(t) plot (optional);
  *   install(size) -> Promise    draws its own plots (once the page's run is installed);
- *   frame(k, M) -> {ground: [{x, y, z}], body: [{x, y, z}], done: Promise}: the new coordinates
- *                of its traces at frame k, M the design -> world rotation matrix (rows).
+ *   frame(k, M, t) -> {ground: [{x, y, z}], body: [{x, y, z}], done: Promise}: the new coordinates
+ *                of its traces at frame k (time t, s), M the drawn geometry's -> world rotation
+ *                matrix (rows);
+ *   translucent (optional, default true): the body drawn translucent (arrows inside it show).
  */
 (function () {
   "use strict";
@@ -184,8 +191,8 @@
     checkRun(run);
     var box = run.box != null;
     var axesQ = data.principal_axes_quat, inv = [-axesQ[0], -axesQ[1], -axesQ[2], axesQ[3]];
-    var idx = evenly(run.t.length, MAX_FRAMES);
-    var motion = {t: [], q: [], w: [], L: [], torqueFree: true};
+    var idx = evenly(run.t.length, Math.min(MAX_FRAMES, run.frames || MAX_FRAMES));
+    var motion = {t: [], q: [], w: [], L: [], torqueFree: run.torqueFree !== false};
     idx.forEach(function (k) {
       var qp = run.quat[k], M = matrix(qp), om = run.omega[k];
       var h = run.momentum || [0, 0, 0];  // a rotor's momentum (principal frame): L = I w + h
@@ -200,7 +207,7 @@
     motion.geometry = box ? {solid: boxGeometry(run.box), removed: null, size: norm(run.box)} : ORIGINAL;
     motion.frameName = box ? "principal axes" : "design axes";
     motion.title = run.title || (data.title + " (new run)");
-    motion.extra = null;
+    motion.extra = run.extra || null;
     return motion;
   }
 
@@ -269,7 +276,8 @@
     var wName = "omega, red (rad/s): 1 rad/s drawn as " + fmt(m.sw) + " m";
     var LName = "L, blue (kg m^2/s): 1 kg m^2/s drawn as " + fmt(m.sL) + " m";
     // translucent with a hole to show, or with extras (a control run's torque arrow starts inside)
-    var ground = [meshTrace(g.solid, false, !!g.removed || !!m.extra)];
+    var see = !!(m.extra && m.extra.translucent !== false);  // an extra's arrows start inside the body
+    var ground = [meshTrace(g.solid, false, !!g.removed || see)];
     index = {solid: 0};
     if (g.removed) { index.removed = ground.length; ground.push(meshTrace(g.removed, true, false)); }
     index.w = ground.length; ground.push(arrowTrace(RED, wName));
@@ -278,7 +286,7 @@
     if (m.extra) { index.xg = ground.length; ground.push.apply(ground, m.extra.traces("ground", size)); }
 
     var I = [[1, 0, 0], [0, 1, 0], [0, 0, 1]], still = turned(g.solid, I);
-    var body = [Object.assign(meshTrace(g.solid, false, !!g.removed || !!m.extra), {x: still[0], y: still[1], z: still[2]})];
+    var body = [Object.assign(meshTrace(g.solid, false, !!g.removed || see), {x: still[0], y: still[1], z: still[2]})];
     if (g.removed) {
       var hole = turned(g.removed, I);
       body.push(Object.assign(meshTrace(g.removed, true, false), {x: hole[0], y: hole[1], z: hole[2]}));
@@ -303,6 +311,7 @@
     });
     curves.push({type: "scatter", mode: "lines", x: [0, 0], y: [-lim, lim], name: "now",
                  line: {color: "black", width: 1}, hoverinfo: "skip"});
+    if (m.extra && m.extra.omegaTraces) { curves.push.apply(curves, m.extra.omegaTraces()); }  // after "now" (index 3)
     var omegaLayout = {
       margin: {l: 60, r: 10, t: 30, b: 45}, title: {text: "omega in the principal frame", font: {size: 15}},
       xaxis: {title: {text: "t (s)"}}, yaxis: {title: {text: "omega (rad/s)"}, range: [-lim, lim]},
@@ -345,7 +354,7 @@
     });
     var wb = applyT(M, w), Lb = applyT(M, L), t = m.t[k];
     var bx = [[0, wb[0]], [0, Lb[0]]], by = [[0, wb[1]], [0, Lb[1]]], bz = [[0, wb[2]], [0, Lb[2]]];
-    var bwhich = [index.bw, index.bL], extra = m.extra ? m.extra.frame(k, M) : null;
+    var bwhich = [index.bw, index.bL], extra = m.extra ? m.extra.frame(k, M, t) : null;
     if (extra) {
       extra.ground.forEach(function (p, j) { xs.push(p.x); ys.push(p.y); zs.push(p.z); which.push(index.xg + j); });
       extra.body.forEach(function (p, j) { bx.push(p.x); by.push(p.y); bz.push(p.z); bwhich.push(index.xb + j); });
