@@ -127,6 +127,8 @@ def test_the_single_input_output_is_unchanged_apart_from_the_new_keys(three, cap
     summary = json.loads(json.dumps(fit.summary()))
     tosses = [{k: v for k, v in toss.items() if k != "input"} for toss in data.pop("tosses")]
     assert tosses == summary.pop("tosses")  # each toss as before, and the recording it came from
+    models = [{k: v for k, v in m.items() if k != "input"} for m in data.pop("flight_models")]
+    assert models == summary.pop("flight_models")  # each used flight's model, and its recording
     assert {k: data[k] for k in summary} == summary  # the fit's own numbers, as before
     assert list(json.loads(json.dumps(data["provenance"]["inputs"]))) == [str(paths[0])]
 

@@ -54,6 +54,17 @@ class FlightReplay:
         The gyroscope's samples in the principal frame, bias removed, rad/s; None when the
         recording was not found (``note`` says why).
     note : str
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.flightmodel import FlightModel
+    >>> from tumble.commands.view_fit import FlightReplay, fit_box, replay_flight
+    >>> m = FlightModel(2.0, 3.0, 2.0, [0.3, 0.8], [0.5, 9.0, 0.4], "none", [0.0] * 3, [0.0] * 3, [0.0] * 3)
+    >>> t = np.linspace(2.0, 3.0, 11)
+    >>> r = FlightReplay(m, "toss.csv", fit_box(m.ratios), replay_flight(m, t), t, note="model only")
+    >>> r.input, len(r.run), r.measured is None
+    ('toss.csv', 11, True)
     """
 
     model: FlightModel

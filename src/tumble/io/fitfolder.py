@@ -18,7 +18,7 @@ from ..analysis.fit.flightmodel import FlightModel
 from ..validation import read_input_file
 from .provenance import input_sha256
 
-__all__ = ["FIT_FILE", "FitFolder", "find_recording", "is_fit_folder", "read_fit_folder"]
+__all__ = ["FIT_FILE", "FitFolder", "find_recording", "read_fit_folder"]
 
 #: The file of a fit's output folder that :func:`read_fit_folder` reads.
 FIT_FILE = "fit.json"
@@ -40,30 +40,20 @@ class FitFolder:
         Each model's recording, as given to ``tumble fit``.
     record : dict
         The whole of fit.json.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from tumble.io.fitfolder import FitFolder
+    >>> fit = FitFolder(Path("fitted"), (), (), {"I1_over_I3": 0.3})
+    >>> fit.path.name, fit.models, fit.record["I1_over_I3"]
+    ('fitted', (), 0.3)
     """
 
     path: Path
     models: tuple[FlightModel, ...]
     inputs: tuple[str, ...]
     record: dict[str, Any] = field(repr=False)
-
-
-def is_fit_folder(path: str | os.PathLike[str]) -> bool:
-    """Whether ``path`` is a folder holding fit.json (``tumble fit``'s output).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> from tumble.io.fitfolder import is_fit_folder
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     before = is_fit_folder(folder)
-    ...     _ = (Path(folder) / "fit.json").write_text("{}")
-    ...     after = is_fit_folder(folder)
-    >>> before, after
-    (False, True)
-    """
-    return os.path.isdir(path) and os.path.isfile(os.path.join(path, FIT_FILE))
 
 
 def read_fit_folder(path: str | os.PathLike[str]) -> FitFolder:

@@ -28,7 +28,7 @@ from ..mass import Body
 from .page import DIGITS, _rounded, page_html
 from .phase import polhode, separatrices
 
-__all__ = ["FlightReplayLike", "fit_page_data", "write_fit_page"]
+__all__ = ["fit_page_data", "write_fit_page"]
 
 #: Points of the drawn polhode and of each separatrix.
 POLHODE_POINTS = 240
