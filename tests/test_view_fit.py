@@ -92,6 +92,17 @@ def integrated(model, times):
     return out
 
 
+def test_fit_json_t0_is_where_omega0_holds(racquet):
+    """fit.json's top-level ``omega0`` (the pooled fit's view of its first flight) holds at its
+    ``t0``, the flight's anchor: integrated from there it meets the first flight's own model;
+    the flight's first sample lies before that anchor (it was written as ``t0`` before)."""
+    fit = racquet[0]
+    first = fit["flight_models"][0]
+    assert fit["t0"] == pytest.approx(first["t0"], abs=1e-12)
+    assert fit["omega0"] == pytest.approx(first["omega0"], rel=1e-9, abs=1e-12)
+    assert fit["tosses"][0]["start"] < first["t0"]
+
+
 def test_the_page_is_written_whole_with_one_entry_per_used_flight(racquet, tmp_path):
     fit, data, html = racquet
     flights = data["fit"]["flights"]

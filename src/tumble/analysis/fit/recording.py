@@ -392,7 +392,7 @@ def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
     fit = None
     if f.solution is not None and f.status == "ok":
         sl = slice(f.first, f.stop)
-        fit = rotation_fit(f.solution, t[sl], omega[sl], keep[sl])
+        fit = rotation_fit(f.solution, t[sl], omega[sl], keep[sl], t0=f.anchor)
     return Toss(f.start, f.end, f.samples, f.status, f.reason, fit, recording)
 
 
@@ -412,7 +412,7 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     first = used[0]
     sl = slice(first.first, first.stop)
     one = first_flight_view(inflated)
-    pooled = rotation_fit(one, t[sl], omega[sl], keep[sl])
+    pooled = rotation_fit(one, t[sl], omega[sl], keep[sl], t0=first.anchor)
     # judged on all the flights' residuals, not the first flight's view of them
     verdict = solution_adequacy(sol, *stack_flights(used, omega, keep))
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)

@@ -46,7 +46,7 @@ class RotationFit:
         Parameters the data do not determine (left at their values, uncertainty NaN), e.g.
         ``rotvec_z`` for the sensor's rotation about a symmetric body's axis.
     omega0 : ndarray, shape (3,)
-        Angular velocity at ``t[0]``, principal frame, rad/s.
+        Angular velocity at ``t0``, principal frame, rad/s.
     omega0_std : ndarray, shape (3,)
         Its standard uncertainties, rad/s.
     sensor_rotation : scipy Rotation
@@ -97,6 +97,9 @@ class RotationFit:
     caveat : str
         Empty, or why the ratios of an adequate fit are not determined by the data
         (:func:`determination`: a stable-axis toss, or too little of the tumble recorded).
+    t0 : float or None
+        The time at which ``omega0`` holds, s; None: ``t[0]``. The flight search anchors a
+        flight's ``omega0`` where it first fitted it, often after the flight's first sample.
 
     Examples
     --------
@@ -143,6 +146,7 @@ class RotationFit:
     adequacy: str = ""
     misfit: float = 0.0
     caveat: str = ""
+    t0: float | None = None
 
     @property
     def moments(self) -> np.ndarray:
@@ -207,7 +211,7 @@ class RotationFit:
             "undetermined": list(self.undetermined),
             "omega0": listed(self.omega0),
             "omega0_std": listed(self.omega0_std),
-            "t0": float(self.t[0]),
+            "t0": float(self.t[0] if self.t0 is None else self.t0),
             "sensor_rotation_rotvec": listed(self.sensor_rotation.as_rotvec()),
             "sensor_rotation_rotvec_std": listed(self.rotvec_std),
             "sensor_rotation_matrix": [listed(row) for row in self.sensor_rotation.as_matrix()],
@@ -336,8 +340,9 @@ def ratio_summary(sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray, st
     return np.array([x, y]), std, np.array([ix, iy]), edge
 
 
-def rotation_fit(sol: Solution, t: np.ndarray, omega: np.ndarray, keep: np.ndarray) -> RotationFit:
-    """The public result of a solved flight.
+def rotation_fit(sol: Solution, t: np.ndarray, omega: np.ndarray, keep: np.ndarray, t0: float | None = None) -> RotationFit:
+    """The public result of a solved flight, whose ``omega0`` holds at ``t0`` (s; default ``t[0]``:
+    the flight search anchors it where the flight was first fitted, see ``fit_solution``).
 
     Examples
     --------
@@ -390,7 +395,7 @@ def rotation_fit(sol: Solution, t: np.ndarray, omega: np.ndarray, keep: np.ndarr
         drag_coefficients=np.array(drag_c, float), drag_coefficients_std=np.array(drag_s, float),
         noise=noise, saturated=int(np.count_nonzero(~keep)), autocorrelation_time=float(sol.autocorrelation_time),
         adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit,
-        caveat=determination(sol, rstd) if verdict.adequate else "")
+        caveat=determination(sol, rstd) if verdict.adequate else "", t0=None if t0 is None else float(t0))
 
 
 def _public_name(name: str) -> str:
