@@ -227,10 +227,15 @@ def _segments(a0: int, b0: int, kicked: np.ndarray, t, min_duration: float) -> l
 
 
 def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
-    """The solved flight's model in sensor axes at times ``t`` (s), its time origin ``t0``."""
+    """The solved flight's model in sensor axes at times ``t`` (s), its time origin ``t0``; NaN
+    where it does not exist: quadratic drag run backward in time, ``omega' = +c |omega| omega``,
+    blows up in finite time (the growth takes such samples as not following the model)."""
     m = sol.model
     probe = Model([np.asarray(t, float) - t0], m.rotation, m.bias, m.drag, m.speeds)
-    return probe.sensor(sol.P)[0]
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = probe.sensor(sol.P)[0]
+    out[~np.all(np.isfinite(out), axis=1)] = np.nan
+    return out
 
 
 def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
@@ -245,7 +250,7 @@ def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
         err = np.abs(pred - omega[idx])
         tol = np.maximum(6.0 * rms, 0.03 * np.linalg.norm(pred, axis=1))[:, None]
         # the stretch's end counts as a bad sample: one bad sample just before it ends the flight
-        bad = np.append(np.any((err > tol) & keep[idx], axis=1), True)
+        bad = np.append(np.any((err > tol) & keep[idx], axis=1) | np.isnan(pred[:, 0]), True)
         pairs = np.flatnonzero(bad[:-1] & bad[1:])
         n_ok = int(pairs[0]) if pairs.size else len(idx)
         if side < 0:
