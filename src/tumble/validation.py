@@ -364,8 +364,10 @@ def _three_floats(value: object) -> list[float] | None:
     floats, else None (then the full checks decide)."""
     if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
         return cast("list[float]", value.tolist())
-    if type(value) in (tuple, list) and len(value) == 3 and all(type(v) is float for v in value):  # type: ignore[arg-type]
-        return list(value)  # type: ignore[call-overload]
+    if type(value) in (tuple, list):
+        items = cast("list[object]", value)
+        if len(items) == 3 and all(type(v) is float for v in items):
+            return cast("list[float]", list(items))
     return None
 
 
