@@ -81,13 +81,9 @@ def page_test(entry: Entry):
 
 
 def body(moments):
-    """A 1 kg body with these principal moments (kg m^2) along the design axes.
-
-    Built field by field, not by ``MassProperties.from_moments``: some pages' cases (the
-    Montgomery check's ``[2, 2.5, 7]``) lie outside the triangle inequality, which no mass
-    distribution has but Euler's equations and their closed forms take all the same."""
-    I = np.asarray(moments, float)
-    return tumble.MassProperties(1.0, np.zeros(3), np.diag(I), I.copy(), np.eye(3))
+    """A 1 kg body with these principal moments (kg m^2) along the design axes: one that exists
+    (``MassProperties.from_moments`` refuses moments beyond the triangle inequality, issue 27)."""
+    return tumble.MassProperties.from_moments(moments)
 
 
 def upward_crossings(t, y):

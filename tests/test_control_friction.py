@@ -52,6 +52,33 @@ def test_a_wheel_held_near_rest_does_not_stall_the_integrator():
     np.testing.assert_allclose(run.wheel_speed[1:, 0], 5e-8 * 1e-4 / 1e-7, rtol=0, atol=1e-12)   # DOP853 atol
 
 
+CUBESAT = np.array([0.0067, 0.0419, 0.0419])  # the issue's 3U CubeSat, kg m^2
+LIMITED = ReactionWheels(np.eye(3), inertia=2e-5, max_torque=2e-3, max_speed=630.0, viscous=1e-9, coulomb=1e-7)
+
+
+def _counted_run(t_end, controller, wheel_speed0=None, limit=60_000):
+    """The scipy path's run (its right-hand sides counted, stopped past ``limit``) and the compiled one."""
+    from tumble.dynamics.control import controlled
+
+    calls = [0]
+    original = controlled.solve_ivp
+
+    def counted(fun, *args, **kwargs):
+        def rhs(t, y, *a):
+            calls[0] += 1
+            if calls[0] > limit:  # far above what ordinary steps take: the crawl is back (stop early)
+                raise AssertionError("the integrator crawls at the wheels' speed limit")
+            return fun(t, y, *a)
+        return original(rhs, *args, **kwargs)
+
+    kw = dict(t_end=t_end, controller=controller, wheels=LIMITED, wheel_speed0=wheel_speed0)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(controlled, "solve_ivp", counted)  # the scipy path: its right-hand sides can be counted
+        slow = simulate_controlled(CUBESAT, [0.5, -0.5, 0.5], compiled=False, **kw)
+    fast = simulate_controlled(CUBESAT, [0.5, -0.5, 0.5], **kw)
+    return slow, fast, calls[0]
+
+
 def test_a_wheel_driven_into_its_speed_limit_costs_ordinary_steps():
     """Issue 27, item 1: a 3U CubeSat under MRP feedback whose wheels reach max_speed (the issue's
     numbers). The motor torque switched off and on at the limit, so DOP853 took tiny steps (30 s
@@ -59,37 +86,34 @@ def test_a_wheel_driven_into_its_speed_limit_costs_ordinary_steps():
     torque-speed line), continuous: the scipy path's right-hand sides are counted over 12 s, with
     the wheels at the limit from about 6.5 s (now 2,388; at the step it crawled past 60,000),
     and the compiled path agrees with it and holds the wheel there."""
-    import numpy as np
-
     from tumble.dynamics import MRPFeedback
-    from tumble.dynamics.control import controlled
 
-    moments = np.array([0.0067, 0.0419, 0.0419])
-    wheels = ReactionWheels(np.eye(3), inertia=2e-5, max_torque=2e-3, max_speed=630.0, viscous=1e-9, coulomb=1e-7)
-    controller = MRPFeedback(K=1.1e-3, P=6e-3, period=0.5, moments=moments, wheels=wheels)
-    calls = [0]
-    original = controlled.solve_ivp
-
-    def counted(fun, *args, **kwargs):
-        def rhs(t, y, *a):
-            calls[0] += 1
-            if calls[0] > 60_000:  # far above what ordinary steps take: the crawl is back (stop early)
-                raise AssertionError("the integrator crawls at the wheels' speed limit")
-            return fun(t, y, *a)
-        return original(rhs, *args, **kwargs)
-
-    import pytest
-
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(controlled, "solve_ivp", counted)  # the scipy path: its right-hand sides can be counted
-        slow = simulate_controlled(moments, [0.5, -0.5, 0.5], t_end=12.0, controller=controller, wheels=wheels,
-                                   compiled=False)
-    fast = simulate_controlled(moments, [0.5, -0.5, 0.5], t_end=12.0, controller=controller, wheels=wheels)
+    controller = MRPFeedback(K=1.1e-3, P=6e-3, period=0.5, moments=CUBESAT, wheels=LIMITED)
+    slow, fast, calls = _counted_run(12.0, controller)
     assert np.abs(slow.wheel_speed).max() >= 0.99 * 630.0  # the wheels did reach their limit
     assert np.abs(fast.wheel_speed[-1]).max() == pytest.approx(630.0, rel=0.01)  # and are held there
     np.testing.assert_allclose(fast.wheel_speed, slow.wheel_speed, rtol=0, atol=1e-6 * 630.0)
-    assert calls[0] < 10_000
+    assert calls < 10_000
     # the wheels exchange momentum with the body, no more: the budget to the integration's error (measured 1.2e-11)
+    assert fast.budget_error().max() < 1e-10 * np.linalg.norm(fast.momentum_world[0])
+
+
+@pytest.mark.parametrize("period, speed0, Ki", [(40.0, None, 0.0), (0.5, [700.0, -700.0, 700.0], 0.0), (0.5, None, 100.0)],
+                         ids=["period longer than t_end", "speed0 above max_speed", "Ki = 100"])
+def test_the_issues_other_saturating_runs_cost_ordinary_steps(period, speed0, Ki):
+    """Issue 27, item 1, "the same with period longer than t_end, speed0 above max_speed, or Ki =
+    100": 30 s simulated at the limit each take a few thousand right-hand sides on the scipy path
+    (measured 30 s: under 1 s of wall time on either path), the compiled path agrees, the wheels
+    end at their limit (a wheel started above it is brought down to it) and the momentum budget
+    closes."""
+    from tumble.dynamics import MRPFeedback
+
+    controller = MRPFeedback(K=1.1e-3, P=6e-3, period=period, moments=CUBESAT, wheels=LIMITED, Ki=Ki)
+    slow, fast, calls = _counted_run(30.0, controller, wheel_speed0=speed0)
+    assert calls < 10_000
+    np.testing.assert_allclose(fast.wheel_speed, slow.wheel_speed, rtol=0, atol=1e-6 * 630.0)
+    end = np.abs(fast.wheel_speed[-1])
+    assert np.any(np.abs(end - 630.0) < 0.01 * 630.0) and np.all(end < 1.01 * 630.0)  # held at the limit, none beyond
     assert fast.budget_error().max() < 1e-10 * np.linalg.norm(fast.momentum_world[0])
 
 

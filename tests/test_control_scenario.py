@@ -123,7 +123,38 @@ def test_a_bdot_run_writes_no_empty_wheels_or_attitude_error_figures(tmp_path):
     target) into the same folder go with the rest of its files."""
     out = tmp_path / "run"
     assert main(["simulate", str(CONTROL / "point.toml"), "--t-end", "2", "--out", str(out)]) == 0
-    figures = {"omega.png", "rates.png", "dipole.png", "momentum.png"}
+    figures = {"omega.png", "rates.png", "momentum.png"}
     assert {p.name for p in out.iterdir()} >= figures | {"wheels.png", "attitude_error.png"}
     assert main(["simulate", str(CONTROL / "detumble.toml"), "--t-end", "5", "--out", str(out)]) == 0
-    assert {p.name for p in out.iterdir()} == figures | {"trajectory.csv", "trajectory.npz", "summary.json"}
+    assert {p.name for p in out.iterdir()} == figures | {"dipole.png", "trajectory.csv", "trajectory.npz", "summary.json"}
+
+
+def test_a_run_without_magnetorquers_writes_no_empty_dipole_figure(tmp_path):
+    """Issue 27 item 10(a), the dipole: a wheels-only pointing run (point.toml, no magnetorquers)
+    wrote a dipole.png that said only "no magnetorquer dipole in this run". It writes none, and
+    one left by an earlier B-dot run into the same folder goes with that run's files; the B-dot
+    run's dipole.png draws its dipole, and the pointing run's momentum.png has no wheels' line
+    only where there are no wheels."""
+    import matplotlib.pyplot as plt
+
+    from tumble.commands import run_scenario
+    from tumble.io.scenario import resolve_run
+    from tumble.viz import control_figures
+
+    out = tmp_path / "run"
+    assert main(["simulate", str(CONTROL / "detumble.toml"), "--t-end", "5", "--out", str(out)]) == 0
+    assert (out / "dipole.png").is_file() and not (out / "wheels.png").exists()
+    assert main(["simulate", str(CONTROL / "point.toml"), "--t-end", "2", "--out", str(out)]) == 0
+    names = {p.name for p in out.iterdir()}
+    assert "dipole.png" not in names and {"wheels.png", "attitude_error.png", "momentum.png"} <= names
+    for name, dipole, wheels in (("detumble", True, False), ("point", False, True)):
+        run = run_scenario(resolve_run(str(CONTROL / f"{name}.toml"), t_end=2.0))
+        figures = control_figures(run)
+        assert ("dipole.png" in figures) == dipole == bool(np.any(run.dipole))
+        if dipole:
+            (ax,) = figures["dipole.png"].axes
+            assert [line.get_label() for line in ax.lines] == ["m_1", "m_2", "m_3"]
+        labels = [line.get_label() for line in figures["momentum.png"].axes[0].lines]
+        assert ("wheels |h|" in labels) == wheels and "body |I omega|" in labels
+        for fig in figures.values():
+            plt.close(fig)

@@ -653,6 +653,45 @@ def test_case_0_of_a_random_t_handle_sweep_is_classified_by_its_circulation():
     assert cols["wobble_frequency [rad/s]"][0] > 0 and cols["growth_rate [1/s]"][0] == 0
 
 
+def test_the_stability_report_classifies_case_0_as_the_sweep_does():
+    """Issue 27 (item 9, the one-run report): ``stability_report`` named the axis with the largest
+    omega component, so omega0 = (8.3, 8.2, 7.5) rad/s on the T-handle was "axis 1, predicted
+    stable" there while omega_1 flipped; it now classifies by the circulation, as the sweep."""
+    from tumble.analysis import flip_times
+
+    w0 = (8.3, 8.2, 7.5)
+    sweep = Sweep(Ensemble(BodySampler(tumble.t_handle()), InitialRates(omega=w0), 1), RunSettings(t_end=20.0, samples=2000))
+    cols = compute_chunk(sweep, 0, 1)
+    traj = tumble.simulate(tumble.t_handle(), w0, t_end=20.0, samples=2000)  # principal frame, as the sweep's rates
+    report = stability_report(traj)
+    assert report["axis"] == cols["axis"][0] == 3 and report["circulation"] == cols["circulation"][0] == 3
+    assert report["role"] == "major" and report["predicted"] == cols["predicted"][0] == "stable"
+    assert report["flips"] == cols["flips"][0] == 0 and report["flip_period"] is None and report["flip_period_exact"] is None
+    assert report["wobble_frequency"] == pytest.approx(cols["wobble_frequency [rad/s]"][0], rel=1e-15)
+    assert report["growth_rate"] is None and cols["growth_rate [1/s]"][0] == 0
+    assert np.all(traj.omega[:, 2] > 0) and len(flip_times(traj.t, traj.omega[:, 0])) >= 40  # omega_1 flips, omega_3 never
+
+
+def test_each_row_of_a_random_rate_sweep_is_what_its_run_reports():
+    """The one-run report and the sweep's columns follow one rule (spin_prediction) for rates far
+    from every axis: axis, circulation, prediction, linearised rates and flips agree case by case."""
+    rates = InitialRates(omega=(0.0, 0.0, 0.0), distribution="normal", spread=(5.0, 5.0, 5.0))
+    sweep = Sweep(Ensemble(BodySampler(tumble.t_handle()), rates, 16, seed=3), RunSettings(t_end=20.0, samples=4000))
+    cols = compute_chunk(sweep, 0, 16)
+    x = sweep.ensemble.inputs(0, 16)
+    kinds = set()
+    for i in range(16):
+        report = stability_report(tumble.simulate(props_of(x.moments[i], x.axes[i]), x.omega0[i], t_end=20.0, samples=4000))
+        for key in ("axis", "circulation", "predicted", "flips"):
+            assert report[key] == cols[key][i], (i, key)
+        for key, column in (("growth_rate", "growth_rate [1/s]"), ("wobble_frequency", "wobble_frequency [rad/s]")):
+            value = cols[column][i]
+            assert report[key] == (pytest.approx(value, rel=1e-12) if value > 0 else None), (i, key)
+        kinds.add((report["axis"], report["predicted"]))
+    assert {p for _, p in kinds} == {"stable", "unstable"} and len(kinds) >= 3
+    assert any(a != 2 and p == "unstable" for a, p in kinds)  # far from every axis: axis 1 or 3 turns over
+
+
 def cols_moments(cols):
     return np.array([cols[f"I{j} [kg m^2]"][0] for j in (1, 2, 3)])
 

@@ -372,10 +372,10 @@ def test_stability_classification_agrees_with_simulation(ratios):
 
 
 def test_gravity_gradient_ratios_by_hand():
-    k = gravity_gradient_ratios([1.0, 2.0, 4.0], pitch_axis=3, yaw_axis=1)  # roll 2, pitch 4, yaw 1
-    np.testing.assert_allclose(k, [(4 - 1) / 2, (2 - 1) / 4, (4 - 2) / 1])
-    k = gravity_gradient_ratios([[1.0, 2.0, 4.0]] * 2, pitch_axis="minor", yaw_axis="major")  # roll 2, pitch 1, yaw 4
-    np.testing.assert_allclose(np.transpose(k), [[(1 - 4) / 2, (2 - 4) / 1, (1 - 2) / 4]] * 2)
+    k = gravity_gradient_ratios([1.0, 2.0, 2.5], pitch_axis=3, yaw_axis=1)  # roll 2, pitch 2.5, yaw 1
+    np.testing.assert_allclose(k, [(2.5 - 1) / 2, (2 - 1) / 2.5, (2.5 - 2) / 1])
+    k = gravity_gradient_ratios([[1.0, 2.0, 2.5]] * 2, pitch_axis="minor", yaw_axis="major")  # roll 2, pitch 1, yaw 2.5
+    np.testing.assert_allclose(np.transpose(k), [[(1 - 2.5) / 2, (2 - 2.5) / 1, (1 - 2) / 2.5]] * 2)
 
 
 def test_ratios_of_real_bodies_fill_the_square_and_are_consistent(rng):

@@ -277,7 +277,7 @@ def test_without_dask_workers_are_refused_in_one_line(monkeypatch):
     from tumble.ensemble import make_backend
 
     monkeypatch.setitem(sys.modules, "dask.distributed", None)  # as if not installed
-    with pytest.raises(ValueError, match=r"^workers/scheduler need Dask: pip install 'tumble\[cluster\]' "):
+    with pytest.raises(ImportError, match=r"^a Dask backend \(workers/scheduler\) needs dask: pip install 'tumble\[cluster\]'$"):
         make_backend(workers=2)
     with pytest.raises(ValueError, match=r"^give workers \(a local Dask cluster\) or scheduler \(a running one\), not both$"):
         make_backend(workers=2, scheduler="tcp://127.0.0.1:8786")

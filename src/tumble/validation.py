@@ -261,13 +261,13 @@ def check_increasing(field: str, t: FloatArray, unit: str = "s") -> None:
                          f"{float(t[k - 1])!r} ({unit})")
 
 
-def check_moments(field: str, value: ArrayLike, *, physical: bool = True) -> Vector3:
+def check_moments(field: str, value: ArrayLike) -> Vector3:
     """Principal moments ``(..., 3)``, kg m^2, as floats: real and finite (no booleans, complex
-    numbers or strings), positive and ascending ``I1 <= I2 <= I3``; with ``physical`` (the
-    default) also within the triangle inequality ``I1 + I2 >= I3`` (to :data:`INERTIA_RTOL` of
-    the trace; Goldstein sec. 5.4: no distribution of positive mass breaks it) and at most
-    :data:`MAX_INERTIA`. ``physical=False`` is for formulas that hold for any positive ascending
-    moments (the stability and gravity-gradient functions).
+    numbers or strings), positive and ascending ``I1 <= I2 <= I3``, within the triangle
+    inequality ``I1 + I2 >= I3`` (to :data:`INERTIA_RTOL` of the trace; Goldstein sec. 5.4: no
+    distribution of positive mass breaks it) and at most :data:`MAX_INERTIA`. Every function of
+    moments takes only those of a body that can exist, formulas that would hold for any positive
+    ascending triple included (the stability, period and gravity-gradient functions; issue 27).
 
     Raises ``ValueError`` naming the first bad entry by index, e.g.
     ``moments[2] = [0.1, 0.2, 1.0] breaks the triangle inequality I1 + I2 >= I3 ...``.
@@ -285,11 +285,9 @@ def check_moments(field: str, value: ArrayLike, *, physical: bool = True) -> Vec
     I = check_vectors(field, value, "kg m^2")
     refuse_first(field, I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
     refuse_first(field, I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
-    if physical:
-        refuse_first(field, I, breaks_triangle(I),
-                     "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
-        refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1),
-                     f"is beyond {MAX_INERTIA:g} kg m^2: {BOUND_REASONS[MAX_INERTIA]}")
+    refuse_first(field, I, breaks_triangle(I),
+                 "breaks the triangle inequality I1 + I2 >= I3 (kg m^2): no distribution of positive mass has them")
+    refuse_first(field, I, np.any(I > MAX_INERTIA, axis=-1), f"is beyond {MAX_INERTIA:g} kg m^2: {BOUND_REASONS[MAX_INERTIA]}")
     return I
 
 
@@ -366,8 +364,10 @@ def _three_floats(value: object) -> list[float] | None:
     floats, else None (then the full checks decide)."""
     if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
         return cast("list[float]", value.tolist())
-    if type(value) in (tuple, list) and len(value) == 3 and all(type(v) is float for v in value):  # type: ignore[arg-type]
-        return list(value)  # type: ignore[call-overload]
+    if type(value) in (tuple, list):
+        items = cast("list[object]", value)
+        if len(items) == 3 and all(type(v) is float for v in items):
+            return cast("list[float]", list(items))
     return None
 
 

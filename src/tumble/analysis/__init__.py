@@ -19,6 +19,8 @@ from .stability import (
     flip_times,
     linearised_rate,
     perturbation_exponent,
+    SpinPrediction,
+    spin_prediction,
     stable_spin_range,
 )
 from .periods import (
@@ -39,6 +41,7 @@ __all__ = [
     "PeriodFamily",
     "RecordingFit",
     "RotationFit",
+    "SpinPrediction",
     "Toss",
     "axis_of",
     "axis_precession_period",
@@ -61,6 +64,7 @@ __all__ = [
     "polhode_solid_angle",
     "precession_per_period",
     "rotation_per_period",
+    "spin_prediction",
     "stability_report",
     "stable_spin_range",
     "symmetric_top_rates",

@@ -63,11 +63,11 @@ def gravity_gradient_ratios(moments: ArrayLike, *, pitch_axis: int | str = 3, ya
     Examples
     --------
     >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios
-    >>> k_roll, k_pitch, k_yaw = gravity_gradient_ratios([1.0, 2.0, 4.0])  # roll 2, pitch 4, yaw 1
-    >>> float(k_roll), float(k_pitch), float(k_yaw)
-    (1.5, 0.25, 2.0)
+    >>> k_roll, k_pitch, k_yaw = gravity_gradient_ratios([1.0, 2.0, 2.5])  # roll 2, pitch 2.5, yaw 1
+    >>> float(k_roll), float(k_pitch), float(k_yaw)   # (2.5 - 1) / 2, (2 - 1) / 2.5, (2.5 - 2) / 1
+    (0.75, 0.4, 0.5)
     """
-    I = check_moments("moments", moments, physical=False)
+    I = check_moments("moments", moments)
     (a, b, c), _ = rpy_axes(pitch_axis, yaw_axis)
     Ir, Ip, Iy = I[..., a], I[..., b], I[..., c]
     return (Ip - Iy) / Ir, (Ir - Iy) / Ip, (Ip - Ir) / Iy

@@ -80,7 +80,7 @@ def period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     omega : array_like, shape (..., 3)
         Angular velocity at any instant, principal frame (``I1 <= I2 <= I3``), rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending, kg m^2.
+        Principal moments, positive and ascending, I1 + I2 >= I3, kg m^2.
 
     Returns
     -------
@@ -166,7 +166,7 @@ def montgomery_angle(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     omega : array_like, shape (..., 3)
         Angular velocity at any instant, principal frame, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending, kg m^2.
+        Principal moments, positive and ascending, I1 + I2 >= I3, kg m^2.
 
     Returns
     -------
@@ -294,7 +294,7 @@ def symmetric_top_rates(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarra
     omega : array_like, shape (..., 3)
         Angular velocity, principal frame, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending, two of them equal, kg m^2.
+        Principal moments, positive and ascending, I1 + I2 >= I3, two of them equal, kg m^2.
 
     Returns
     -------
@@ -358,7 +358,7 @@ def npa_periods(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.nd
     omega : array_like, shape (..., 3)
         Angular velocity, principal frame, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending, kg m^2.
+        Principal moments, positive and ascending, I1 + I2 >= I3, kg m^2.
 
     Returns
     -------

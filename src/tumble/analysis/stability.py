@@ -18,11 +18,15 @@ Principal axes are numbered as everywhere a user sees them (docs/conventions.md,
 the principal axes"): 1, 2, 3 in ascending order of moment, or by name, ``"minor"``,
 ``"intermediate"``, ``"major"``. Every function here takes and returns axes that way; 0, -1,
 floats and booleans are refused, never read as Python indices. Moments are ``(..., 3)``
-arrays, positive and ascending (``I1 <= I2 <= I3``), and every array argument is checked as a
-whole by one validator, whose message names the first bad index.
+arrays, positive and ascending (``I1 <= I2 <= I3``) and those of a body that exists (the
+triangle inequality ``I1 + I2 >= I3``, Goldstein sec. 5.4: the formulas would take any positive
+triple, but no body has one beyond it), and every array argument is checked as a whole by one
+validator (:func:`tumble.validation.check_moments`), whose message names the first bad index.
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -30,7 +34,7 @@ from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
 from ..typing import ArrayLike, FloatOrArray
-from ..validation import axis_index, check_moments, check_vectors
+from ..validation import INERTIA_RTOL, axis_index, check_moments, check_vectors
 
 __all__ = [
     "axis_of",
@@ -41,6 +45,8 @@ __all__ = [
     "flip_times",
     "linearised_rate",
     "perturbation_exponent",
+    "SpinPrediction",
+    "spin_prediction",
     "stable_spin_range",
 ]
 
@@ -50,8 +56,8 @@ def _axis_index(axis) -> np.ndarray:
 
 
 def _check_moments(moments) -> np.ndarray:
-    """Principal moments as a float array (..., 3): finite, positive and ascending."""
-    return check_moments("moments", moments, physical=False)
+    """Principal moments as a float array (..., 3): finite, positive, ascending, within the triangle inequality."""
+    return check_moments("moments", moments)
 
 
 def _check_motion(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -108,7 +114,7 @@ def perturbation_exponent(moments: ArrayLike, axis: int | str, spin: ArrayLike, 
     Parameters
     ----------
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+        Principal moments, positive and ascending (I1 <= I2 <= I3), I1 + I2 >= I3, kg m^2.
     axis : {1, 2, 3, 'minor', 'intermediate', 'major'} or array_like of them, shape (...)
         Spin axis ``a``: 1 minor, 2 intermediate, 3 major.
     spin : array_like, shape (...)
@@ -125,7 +131,7 @@ def perturbation_exponent(moments: ArrayLike, axis: int | str, spin: ArrayLike, 
     Raises
     ------
     ValueError
-        For an axis other than those, moments that are not positive, finite and ascending, a
+        For an axis other than those, moments that are not positive, finite and ascending or break ``I1 + I2 >= I3``, a
         non-finite spin, or batch shapes that do not broadcast; naming the first bad index.
 
     Examples
@@ -158,7 +164,7 @@ def linearised_rate(moments: ArrayLike, axis: int | str, spin: ArrayLike, moment
     Parameters
     ----------
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+        Principal moments, positive and ascending (I1 <= I2 <= I3), I1 + I2 >= I3, kg m^2.
     axis : {1, 2, 3, 'minor', 'intermediate', 'major'} or array_like of them, shape (...)
         Spin axis: 1 minor, 2 intermediate, 3 major.
     spin : array_like, shape (...)
@@ -201,7 +207,7 @@ def stable_spin_range(moments: ArrayLike, momentum: float) -> tuple[float, float
     Parameters
     ----------
     moments : array_like, shape (3,)
-        Principal moments (locked rotors included), positive and ascending with ``I1 < I2 < I3``,
+        Principal moments (locked rotors included), positive and ascending with ``I1 < I2 < I3 <= I1 + I2``,
         kg m^2.
     momentum : float
         The rotors' momentum ``h`` along the intermediate axis (its sign along that axis's
@@ -216,14 +222,14 @@ def stable_spin_range(moments: ArrayLike, momentum: float) -> tuple[float, float
     Raises
     ------
     ValueError
-        For moments that are not positive, finite and ascending, two equal moments (no
-        intermediate axis), or a non-finite momentum.
+        For moments that are not positive, finite and ascending or break ``I1 + I2 >= I3``, two
+        equal moments (no intermediate axis), or a non-finite momentum.
 
     Examples
     --------
     >>> from tumble.analysis.stability import stable_spin_range
-    >>> stable_spin_range([1.0, 2.0, 4.0], 3.0)   # h / (I3 - I2) = 1.5, -h / (I2 - I1) = -3
-    (-3.0, 1.5)
+    >>> stable_spin_range([1.0, 2.0, 2.5], 3.0)   # h / (I3 - I2) = 6, -h / (I2 - I1) = -3
+    (-3.0, 6.0)
     """
     I = _check_moments(moments)
     if I.shape != (3,):
@@ -258,7 +264,7 @@ def flip_interval(omega: ArrayLike, moments: ArrayLike) -> FloatOrArray:
     omega : array_like, shape (..., 3)
         Angular velocity at any instant (principal frame), finite, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+        Principal moments, positive and ascending (I1 <= I2 <= I3), I1 + I2 >= I3, kg m^2.
 
     Returns
     -------
@@ -271,8 +277,8 @@ def flip_interval(omega: ArrayLike, moments: ArrayLike) -> FloatOrArray:
     ------
     ValueError
         If ``omega`` is not finite numbers of shape (..., 3), ``moments`` are not positive,
-        finite and ascending, or their batch shapes do not broadcast; the message names the
-        first bad index, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be ascending, ...``.
+        finite and ascending within ``I1 + I2 >= I3``, or their batch shapes do not broadcast;
+        the message names the first bad index, e.g. ``moments[3] = [1.0, 3.0, 2.0] must be ascending, ...``.
 
     Examples
     --------
@@ -335,7 +341,7 @@ def circulation_axis(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     omega : array_like, shape (..., 3)
         Angular velocity, principal frame, finite, rad/s.
     moments : array_like, shape (..., 3)
-        Principal moments, positive and ascending (I1 <= I2 <= I3), kg m^2.
+        Principal moments, positive and ascending (I1 <= I2 <= I3), I1 + I2 >= I3, kg m^2.
 
     Returns
     -------
@@ -354,6 +360,85 @@ def circulation_axis(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     [1, 3]
     """
     return np.where(elliptic_parameters(*_check_motion(omega, moments)).upper, 3, 1)
+
+
+class SpinPrediction(NamedTuple):
+    """What the initial state of a free rigid motion says about its spin axis (:func:`spin_prediction`).
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import spin_prediction
+    >>> p = spin_prediction([0.01, 1.0, 0.0], [1.0, 2.0, 3.0])   # near the intermediate axis
+    >>> int(p.axis), int(p.circulation), bool(p.stable), round(float(p.growth), 6)   # sqrt((2 - 1)(3 - 2) / 3)
+    (2, 1, False, 0.57735)
+    """
+
+    axis: np.ndarray
+    """Spin axis (1, 2 or 3): the principal axis nearest L, the largest ``|I_j omega_j|``."""
+    circulation: np.ndarray
+    """The axis omega circulates about (1 or 3, :func:`circulation_axis`)."""
+    stable: np.ndarray
+    """Whether the spin axis keeps its side of L: it is the circulation axis (or the body a sphere)."""
+    growth: np.ndarray
+    """The linearised growth exponent about the spin axis, 1/s, where it agrees with ``stable``, else NaN."""
+    wobble: np.ndarray
+    """The linearised wobble frequency about the spin axis, rad/s, where it agrees with ``stable``, else NaN."""
+
+
+def spin_prediction(omega: ArrayLike, moments: ArrayLike) -> SpinPrediction:
+    """Classify a free rigid motion by the motion itself: its spin axis, circulation and stability.
+
+    The spin axis is the principal axis nearest the angular momentum (the largest
+    ``|L_j| = I_j |omega_j|``); omega circulates about axis 3 when ``L^2 >= 2 E I2``, else about
+    axis 1 (Landau & Lifshitz sec. 37, :func:`circulation_axis`), and that component never
+    changes sign while the other two do, twice a period. So the spin axis is *stable* (it stays
+    on its side of L, never flips) exactly when it is the circulation axis, and for a sphere;
+    otherwise it turns over (always for axis 2 of an asymmetric body; also for a motion far from
+    every axis, e.g. omega = (8.3, 8.2, 7.5) rad/s on the T-handle, whose largest component is on
+    axis 1 but which circulates about axis 3). The linearised rates
+    (:func:`linearised_rate`) are given where they say the same, NaN where the motion is too far
+    from its axis for them (docs/conventions.md, "Spin axis, circulation and flips"). One home
+    for the rule of a sweep's columns (:func:`tumble.ensemble.reductions.reduce_cases`) and of
+    :func:`tumble.analysis.stability_report`.
+
+    Parameters
+    ----------
+    omega : array_like, shape (..., 3)
+        Angular velocity at the start, principal frame, finite, rad/s.
+    moments : array_like, shape (..., 3)
+        Principal moments, positive and ascending (I1 <= I2 <= I3), I1 + I2 >= I3, kg m^2.
+
+    Returns
+    -------
+    SpinPrediction
+        ``axis``, ``circulation`` (int), ``stable`` (bool), ``growth`` (1/s) and ``wobble``
+        (rad/s), each of the broadcast batch shape (...).
+
+    Raises
+    ------
+    ValueError
+        As :func:`flip_interval`.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import spin_prediction
+    >>> I = [0.125, 0.3125, 0.4375]   # the T-handle's moments, kg m^2
+    >>> p = spin_prediction([[8.3, 8.2, 7.5], [10.0, 0.1, 0.1]], I)
+    >>> p.axis.tolist(), p.circulation.tolist(), p.stable.tolist()   # far from every axis; near the minor axis
+    ([3, 1], [3, 1], [True, True])
+    >>> bool(p.wobble[1] > 0), float(p.growth[1])
+    (True, 0.0)
+    """
+    w, I = _check_motion(omega, moments)
+    w, I = np.broadcast_arrays(w, I)
+    axis = axis_of(I * w)
+    circulation = circulation_axis(w, I)
+    sphere = I[..., 2] - I[..., 0] <= INERTIA_RTOL * np.sum(I, axis=-1)
+    stable = (axis == circulation) | sphere
+    spin = np.take_along_axis(w, (axis - 1)[..., None], axis=-1)[..., 0]
+    growth, wobble = linearised_rate(I, axis, spin)
+    agree = np.where(stable, growth == 0, growth > 0)  # the linear theory, where it says what the motion does
+    return SpinPrediction(axis, circulation, stable, np.where(agree, growth, np.nan), np.where(agree, wobble, np.nan))
 
 
 def flip_times(t: ArrayLike, component: ArrayLike) -> np.ndarray:

@@ -8,14 +8,7 @@ import numpy as np
 
 from ..dynamics import BatchTrajectory, Trajectory
 from ..mass import AXIS_ROLES, moment_degeneracy
-from .stability import (
-    axis_of,
-    circulation_axis,
-    flip_interval,
-    flip_interval_asymptotic,
-    flip_times,
-    linearised_rate,
-)
+from .stability import SpinPrediction, flip_interval, flip_interval_asymptotic, flip_times, linearised_rate, spin_prediction
 
 if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
@@ -24,7 +17,13 @@ __all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
 
 
 def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
-    """Prediction against observation for the axis that carries most of the initial spin.
+    """Prediction against observation for the spin axis, classified by the motion itself.
+
+    The spin axis is the principal axis nearest the initial angular momentum and a rigid body's
+    prediction follows its circulation (from the energy and ``|L|``), as a sweep's columns do
+    (:func:`tumble.analysis.stability.spin_prediction`; docs/conventions.md, "Spin axis,
+    circulation and flips"): a spin axis that is not the circulation axis turns over, even when
+    it carries the largest component of omega.
 
     Parameters
     ----------
@@ -35,17 +34,21 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
     Returns
     -------
     dict (a list of dicts for a batch)
-        Keys: ``axis`` (1, 2 or 3, principal, ascending moments; None for a body starting at
-        rest, and then every prediction is None), ``role``, ``predicted``
-        ("stable" or "unstable", the linearised theory), ``growth_rate`` (1/s) or
-        ``wobble_frequency`` (rad/s) of that theory, ``flips`` (sign changes of that component in
-        the run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
-        flips), ``flip_period_exact`` (the elliptic-function interval, s, when theory says this
-        component flips; torque-free only), ``flip_period_asymptotic`` (its small-perturbation
-        logarithmic form), ``theory`` (what the prediction rests on: ``"rigid body"``,
-        ``"gyrostat"`` for rotors whose momentum lies along the spin axis, ``"energy sink"`` with a
-        damper (the major-axis rule: only spin about the major axis is stable), or None when no
-        theory applies, e.g. rotor momentum across the spin axis; then ``predicted`` is None).
+        Keys: ``axis`` (1, 2 or 3, principal, ascending moments: the largest ``|I_j omega_j|`` at
+        the start; None for a body starting at rest, and then every prediction is None),
+        ``role``, ``circulation`` (1 or 3, the axis omega circulates about, torque-free theory of
+        the initial state), ``predicted`` ("stable" or "unstable"), ``growth_rate`` (1/s) or
+        ``wobble_frequency`` (rad/s) of the linearised theory about the spin axis (None where it
+        does not say what the motion does), ``flips`` (sign changes of that component in the
+        run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
+        flips), ``flip_period_exact`` (the elliptic-function interval, s, when the spin axis is
+        not the circulation axis; torque-free only), ``flip_period_asymptotic`` (its
+        small-perturbation logarithmic form), ``theory`` (what the prediction rests on:
+        ``"rigid body"`` (the circulation; with a torque that of the initial state),
+        ``"gyrostat"`` for rotors whose momentum lies along the spin axis (the linearised
+        theory), ``"energy sink"`` with a damper (the major-axis rule: only spin about the major
+        axis is stable), or None when no theory applies, e.g. rotor momentum across the spin
+        axis; then ``predicted`` is None).
         Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
 
     Examples
@@ -64,29 +67,38 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
     >>> batch = tumble.simulate_batch([1.0, 2.0, 3.0], [[0.01, 1.0, 0.0], [0.0, 0.0, 1.0]], t_end=30.0, samples=301)
     >>> [r["predicted"] for r in tumble.stability_report(batch)]   # one report per body
     ['unstable', 'stable']
+
+    Far from every axis the largest component of omega does not say what the motion does:
+
+    >>> traj = tumble.simulate(tumble.t_handle(), [8.3, 8.2, 7.5], t_end=5.0, samples=500)   # principal frame
+    >>> report = tumble.stability_report(traj)
+    >>> report["axis"], report["circulation"], report["predicted"], report["flips"]
+    (3, 3, 'stable', 0)
     """
     if isinstance(traj, BatchTrajectory):  # each body as a run of its own (batch[i] is its Trajectory)
         return [stability_report(traj[i]) for i in range(len(traj))]
     w0 = traj.omega[0]
     if not np.any(w0):
-        return {"axis": None, "role": None, "predicted": None, "growth_rate": None,
+        return {"axis": None, "role": None, "circulation": None, "predicted": None, "growth_rate": None,
                 "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None,
                 "flip_period_asymptotic": None, "theory": None}
-    a = int(axis_of(w0))  # 1, 2 or 3
     I = traj.moments
-    theory, predicted, growth, wobble = _prediction(traj, a)
+    motion = spin_prediction(w0, I)
+    a, circulation = int(motion.axis), int(motion.circulation)  # 1, 2 or 3; 1 or 3
+    theory, predicted, growth, wobble = _prediction(traj, motion)
     distinct = moment_degeneracy(I) == "asymmetric"
     times = flip_times(traj.t, traj.omega[:, a - 1])
     exact = asymptotic = None
     if traj.torque_free and traj.rigid and distinct:
         # the component about which omega circulates never changes sign; the other two flip
         value = float(flip_interval(w0, I))
-        if a != int(circulation_axis(w0, I)) and np.isfinite(value):
+        if a != circulation and np.isfinite(value):
             exact = value
             asymptotic = float(flip_interval_asymptotic(w0, I))
     return {
         "axis": a,
         "role": AXIS_ROLES[a - 1],
+        "circulation": circulation,
         "predicted": predicted,
         "growth_rate": growth if growth > 0 else None,
         "wobble_frequency": wobble if wobble > 0 else None,
@@ -98,8 +110,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
     }
 
 
-def _prediction(traj: Trajectory, a: int) -> tuple[str | None, str | None, float, float]:
-    """``(theory, predicted, growth, wobble)`` for spin about axis ``a`` (1-based)."""
+def _prediction(traj: Trajectory, motion: SpinPrediction) -> tuple[str | None, str | None, float, float]:
+    """``(theory, predicted, growth, wobble)`` for spin about ``motion.axis`` (1-based)."""
+    a = int(motion.axis)
     W = traj.omega[0, a - 1]
     if traj.damper_omega is not None:  # energy sink: the major-axis rule (Likins 1966)
         return "energy sink", "stable" if a == 3 else "unstable", 0.0, 0.0
@@ -110,8 +123,10 @@ def _prediction(traj: Trajectory, a: int) -> tuple[str | None, str | None, float
         if np.max(np.abs(across)) > 1e-12 * max(float(np.linalg.norm(h0)), 1e-300):
             return None, None, 0.0, 0.0  # rotor momentum across the spin: no steady spin to perturb
         h = float(h0[a - 1])
+    if traj.rigid:  # the circulation says what the motion does; the linear theory where it agrees
+        return "rigid body", ("stable" if motion.stable else "unstable"), float(motion.growth), float(motion.wobble)
     growth, wobble = (float(x) for x in linearised_rate(traj.moments, a, W, h))
-    return ("rigid body" if traj.rigid else "gyrostat"), ("unstable" if growth > 0 else "stable"), growth, wobble
+    return "gyrostat", ("unstable" if growth > 0 else "stable"), growth, wobble
 
 
 def trajectory_summary(traj: Trajectory) -> dict:

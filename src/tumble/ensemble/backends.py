@@ -25,6 +25,8 @@ import contextlib
 import logging
 from typing import Callable, Iterable, Iterator
 
+from .._optional import optional_import
+
 __all__ = ["SCHEDULER_TIMEOUT", "DaskBackend", "InProcess", "make_backend"]
 
 #: Seconds given to a running scheduler (``scheduler=``) to accept the connection and answer.
@@ -120,11 +122,7 @@ class DaskBackend:
         if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not 0 < timeout < float("inf"):
             raise ValueError(f"timeout = {timeout!r} must be a number of seconds > 0")
         self.retries = retries
-        try:
-            from dask.distributed import Client
-        except ImportError:
-            raise ValueError("workers/scheduler need Dask: pip install 'tumble[cluster]' "
-                             "(dask[distributed] >= 2024.1)") from None
+        Client = optional_import("dask.distributed", "cluster", "a Dask backend (workers/scheduler)").Client
         self._quiet = contextlib.ExitStack()
         self._quiet.enter_context(_silenced(_DASK_LOGGERS))
         try:

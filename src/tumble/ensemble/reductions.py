@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..analysis import axis_of, circulation_axis, energy_momentum_gaps, flip_interval, linearised_rate
+from ..analysis import circulation_axis, energy_momentum_gaps, flip_interval, linearised_rate, spin_prediction
 from ..dynamics.special.quaternion import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
 from ..typing import ArrayLike
@@ -185,15 +185,9 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     """
     I, w0 = inputs.moments, inputs.omega0
     m = len(inputs)
-    axis = axis_of(I * w0)  # nearest L: the largest |L_j| (axis 1 at rest)
-    circulation = circulation_axis(w0, I)
+    axis, circulation, stable, growth, wobble = spin_prediction(w0, I)  # axis 1 at rest
     tol = INERTIA_RTOL * np.sum(I, axis=1)
     asymmetric = (I[:, 1] - I[:, 0] > tol) & (I[:, 2] - I[:, 1] > tol)
-    sphere = I[:, 2] - I[:, 0] <= tol
-    stable = (axis == circulation) | sphere  # the spin axis keeps its side of L
-    growth, wobble = linearised_rate(I, axis, w0[np.arange(m), axis - 1])
-    agree = np.where(stable, growth == 0, growth > 0)  # the linear theory, where it says what the motion does
-    growth, wobble = np.where(agree, growth, np.nan), np.where(agree, wobble, np.nan)
     spin = batch.omega[np.arange(m), :, axis - 1]
     flips, period = _flips(batch.t, spin)
     exact = flip_interval(w0, I)

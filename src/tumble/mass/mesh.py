@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
+from .._optional import optional_import
 from ..typing import ArrayLike, Matrix3
 from ..validation import check_motion, check_positive, check_vector, read_input_file
 from .parts import PART_KINDS, _Oriented
@@ -27,14 +28,7 @@ __all__ = ["MAX_MESH_BYTES", "Mesh"]
 
 
 def _trimesh() -> ModuleType:
-    try:
-        import trimesh
-    except ImportError:
-        # an extra to install, not a bad input: ImportError (the CLI prints it as one line)
-        raise ImportError(
-            "mesh parts need the optional dependency trimesh: pip install 'tumble[mesh]'", name="trimesh"
-        ) from None
-    return trimesh
+    return optional_import("trimesh", "mesh", "a mesh part (Mesh)")
 
 
 #: The largest mesh file a :class:`Mesh` part reads, in bytes (200 MiB): about four million

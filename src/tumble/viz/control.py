@@ -34,7 +34,8 @@ __all__ = ["CONTROL_FIGURES", "control_figures", "figure_attitude_error", "figur
            "figure_momentum_budget", "figure_wheels", "wheel_momentum"]
 
 #: The files of :func:`control_figures`, in the order they are drawn (a run without wheels has no
-#: ``wheels.png``, one without a target no ``attitude_error.png``).
+#: ``wheels.png``, one without a target no ``attitude_error.png``, one whose magnetorquers never
+#: act, or that has none, no ``dipole.png``).
 CONTROL_FIGURES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
 COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 SWITCH_LABEL = "switch to pointing"
@@ -221,7 +222,7 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
                            fig: Figure | None = None) -> Figure:
     """Where the angular momentum is (kg m^2/s) above, and how well the budget closes below.
 
-    Above: the wheels' ``|h|`` (``tumble.viz.control.wheel_momentum``), the body's ``|I omega|`` and the external
+    Above: the wheels' ``|h|`` (``tumble.viz.control.wheel_momentum``; with wheels only), the body's ``|I omega|`` and the external
     angular impulse ``|int tau_world dt|``. Below (log scale): ``|L_world(t) - L_world(0) -
     impulse(t)|`` (:meth:`~tumble.dynamics.control.controlled.ControlledRun.budget_error`), zero in exact
     arithmetic; samples where it is exactly zero are left out of the log axis.
@@ -247,7 +248,8 @@ def figure_momentum_budget(run: ControlledRun, *, switch_time: float | None = No
     run = _check(run)
     fig, axes = _figure(title, 2) if fig is None else (fig, list(np.atleast_1d(fig.subplots(2, 1, sharex=True))))
     top, bottom = axes
-    top.plot(run.t, np.linalg.norm(wheel_momentum(run), axis=1), color=COLORS[0], lw=1.0, label="wheels |h|")
+    if run.wheel_speed.shape[1] > 0:  # no line of zeros for wheels a run does not have
+        top.plot(run.t, np.linalg.norm(wheel_momentum(run), axis=1), color=COLORS[0], lw=1.0, label="wheels |h|")
     top.plot(run.t, np.linalg.norm(run.moments * run.omega, axis=1), color=COLORS[1], lw=1.0, label="body |I omega|")
     top.plot(run.t, np.linalg.norm(run.impulse_world, axis=1), color=COLORS[2], lw=1.0, label="external impulse")
     _finish(top, "momentum (kg m^2/s)", switch_time, xlabel=False)
@@ -264,8 +266,9 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
     """The figures of a control run, by the file name it is written under (``tumble.viz.control.CONTROL_FIGURES``).
 
     A figure with nothing to show is left out: ``wheels.png`` of a run without reaction wheels,
-    ``attitude_error.png`` of a run without a target (a B-dot detumbling). The others are always
-    there.
+    ``attitude_error.png`` of a run without a target (a B-dot detumbling), ``dipole.png`` of a run
+    whose magnetorquer dipole is zero throughout (none, as in a wheels-only pointing). The others
+    are always there.
 
     Parameters
     ----------
@@ -285,12 +288,18 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> from tumble.dynamics.control.controllers import BDot
-    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
+    >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0),
+    ...                           field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
     >>> figures = control_figures(run, title="spin")   # no wheels, no target
     >>> list(figures), figures["rates.png"].get_suptitle()
     (['rates.png', 'dipole.png', 'momentum.png'], 'spin')
     >>> list(control_figures(run, target=Rotation.identity()))
     ['attitude_error.png', 'rates.png', 'dipole.png', 'momentum.png']
+    >>> coasting = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
+    >>> list(control_figures(coasting))   # no magnetorquers either: no dipole.png
+    ['rates.png', 'momentum.png']
     """
     run = _check(run)
     figures: dict[str, Figure] = {}
@@ -299,6 +308,7 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
     figures["rates.png"] = figure_body_rates(run, switch_time=switch_time, title=title)
     if run.wheel_speed.shape[1] > 0:
         figures["wheels.png"] = figure_wheels(run, switch_time=switch_time, title=title)
-    figures["dipole.png"] = figure_dipole(run, switch_time=switch_time, title=title)
+    if np.any(run.dipole):
+        figures["dipole.png"] = figure_dipole(run, switch_time=switch_time, title=title)
     figures["momentum.png"] = figure_momentum_budget(run, switch_time=switch_time, title=title)
     return figures

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from .._html import escape_text
+from .._optional import optional_import
 from ..dynamics import Trajectory
 from ..mass import Body
 from .scene import check_body_and_run
@@ -26,11 +27,7 @@ DEFAULT_HEIGHT = 1060
 
 
 def _ipython_html():
-    try:
-        from IPython.display import HTML
-    except ImportError:
-        raise ImportError("tumble.viz.show displays in Jupyter and needs IPython: pip install 'tumble[notebook]'") from None
-    return HTML
+    return optional_import("IPython.display", "notebook", "tumble.viz.show (a display in Jupyter)").HTML
 
 
 def _check(trajectory, body, height) -> None:

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from .._html import escape_text, script_json
+from .._optional import optional_import
 from ..dynamics import Trajectory
 from ..io.atomic import atomic_write_text
 from ..mass import Body, Box, t_handle
@@ -269,10 +270,7 @@ def page_html(body: Body, traj: Trajectory, *, frames: int = 150, title: str | N
     >>> json.loads(data)["frames"]["t"]  # the frames the viewer plays
     [0.0, 0.5, 1.0, 1.5, 2.0]
     """
-    try:
-        from plotly.offline import get_plotlyjs
-    except ImportError:  # pragma: no cover - depends on the environment
-        raise ValueError("the interactive page needs plotly: pip install 'tumble[view]'") from None
+    get_plotlyjs = optional_import("plotly.offline", "view", "the interactive page").get_plotlyjs
     data = page_data(body, traj, frames, title)
     if control is not None:
         if control.get("frames", {}).get("t") != data["frames"]["t"]:

@@ -340,7 +340,7 @@ def simulate_controlled(
     >>> np.allclose(run.omega, slow.omega, rtol=1e-12, atol=1e-15)
     True
     """
-    I = check_moments("moments", moments, physical=False)
+    I = check_moments("moments", moments)
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
     T = check_positive("t_end", t_end, "s")
     rtol = check_rtol("rtol", rtol)

@@ -315,7 +315,7 @@ class MRPFeedback:
         check_positive("K", self.K, "N m")
         check_positive("P", self.P, "N m s")
         check_positive("period", self.period, "s")
-        self.moments = check_moments("moments", self.moments, physical=False)
+        self.moments = check_moments("moments", self.moments)
         if not isinstance(self.wheels, ReactionWheels):
             raise ValueError(f"wheels = {self.wheels!r} must be ReactionWheels")  # noqa: TRY004 - one error type for bad input
         if not is_reference(self.target):

@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._optional import optional_import
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_number, check_positive
 from .earth import MU_EARTH, R_EARTH
@@ -258,10 +259,7 @@ class TLEOrbit:
     _satrec: Any = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
-        try:
-            from sgp4.api import Satrec  # type: ignore[import-untyped]  # sgp4 ships no type hints
-        except ImportError:
-            raise ValueError("a TLE orbit needs the sgp4 package: pip install tumble[orbit]") from None
+        Satrec = optional_import("sgp4.api", "orbit", "a TLE orbit (TLEOrbit)").Satrec
         for name in ("line1", "line2"):
             value = getattr(self, name)
             if not isinstance(value, str) or len(value.strip()) < 60:

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from ..._optional import optional_import
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_positive
 from .earth import OMEGA_EARTH
@@ -50,11 +51,7 @@ _BLOCK = 720
 
 
 def _ppigrf() -> Any:
-    try:
-        from ppigrf import ppigrf  # type: ignore[import-untyped]  # ppigrf ships no type hints
-    except ImportError:
-        raise ValueError("the IGRF field needs the ppigrf package: pip install tumble[orbit]") from None
-    return ppigrf
+    return optional_import("ppigrf.ppigrf", "orbit", "the IGRF field (IGRFField)")
 
 
 @functools.lru_cache(maxsize=1)

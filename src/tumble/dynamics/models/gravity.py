@@ -205,7 +205,7 @@ class GravityGradient:
         object.__setattr__(self, "_n", n)
         object.__setattr__(self, "_r", r)
         if self.moments is not None:
-            I = check_moments("moments", self.moments, physical=False)
+            I = check_moments("moments", self.moments)
             if I.ndim > 2:
                 raise ValueError(f"moments has shape {I.shape}; allowed: (3,) or (N, 3) (kg m^2)")
             object.__setattr__(self, "moments", tuple(map(float, I)) if I.ndim == 1 else tuple(map(tuple, I.tolist())))
@@ -264,10 +264,10 @@ class GravityGradient:
         >>> gg = GravityGradient(orbit_period=5400.0).bind(body)
         >>> gg.moments, gg.bind([1.0, 2.0, 3.0]) is gg   # the same body again: unchanged
         ((1.0, 2.0, 3.0), True)
-        >>> gg.bind([1.0, 2.0, 4.0])
+        >>> gg.bind([1.0, 2.0, 2.5])
         Traceback (most recent call last):
         ...
-        ValueError: this GravityGradient holds moments [1.0, 2.0, 3.0] kg m^2, not the body's [1.0, 2.0, 4.0]: leave moments out and let simulate bind it
+        ValueError: this GravityGradient holds moments [1.0, 2.0, 3.0] kg m^2, not the body's [1.0, 2.0, 2.5]: leave moments out and let simulate bind it
         """
         moments = cast(ArrayLike, getattr(body, "principal_moments", body))
         if self._I is not None:

@@ -124,7 +124,7 @@ class OrbitGravityGradient:
         mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
         object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
         if self.moments is not None:
-            I = check_moments("moments", self.moments, physical=False)
+            I = check_moments("moments", self.moments)
             object.__setattr__(self, "moments", cast("tuple[float, float, float]", tuple(map(float, I))))
 
     def bind(self, body: object) -> OrbitGravityGradient:
@@ -138,7 +138,7 @@ class OrbitGravityGradient:
         (1.0, 2.0, 3.0)
         """
         moments = getattr(body, "principal_moments", body)
-        I = check_moments("moments", cast(ArrayLike, moments), physical=False)
+        I = check_moments("moments", cast(ArrayLike, moments))
         return replace(self, moments=(float(I[0]), float(I[1]), float(I[2])))
 
     def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
