@@ -17,6 +17,7 @@ from tumble.mass import MassProperties
 RNG = np.random.default_rng(12)
 N = 20
 I = np.sort(RNG.uniform(1.0, 3.0, (N, 3)), axis=1)
+I[:, 2] = np.minimum(I[:, 2], I[:, 0] + I[:, 1])  # bodies that exist: I3 <= I1 + I2
 W = RNG.normal(size=(N, 3))
 Q = Rotation.random(N, random_state=4).as_quat()
 T = np.linspace(0.0, 3.0, 4)

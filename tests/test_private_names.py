@@ -23,6 +23,7 @@ SRC = Path(tumble.__file__).resolve().parent
 #: Private top-level modules meant as shared infrastructure of the whole package.
 ALLOWED_MODULES = {
     "tumble._html": "escaping and the small text and table helpers shared by every repr, display and page",
+    "tumble._optional": "importing an optional extra with the install hint, for every layer that has one",
     "tumble._version": "the version string, written by the build, read by cli, io provenance and __init__",
 }
 
