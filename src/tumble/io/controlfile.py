@@ -92,7 +92,7 @@ _WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb
 
 @dataclass(frozen=True, eq=False)
 class ControlScenario:
-    """A parsed control scenario; :meth:`run` simulates it.
+    """A parsed control scenario; :func:`tumble.commands.run_scenario` runs it.
 
     Made by :func:`control_scenario_from_table` (or ``tumble.io.load_scenario`` from a file);
     vectors are in the body's principal frame.

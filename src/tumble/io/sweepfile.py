@@ -288,7 +288,7 @@ def _text(values: np.ndarray) -> list[str]:
 
 class CaseTables:
     """Writes the chunks of a sweep to ``cases.csv`` (and ``cases.parquet`` with pyarrow) in
-    ``folder`` as they pass: call it with each chunk's columns, then :meth:`close`.
+    ``folder`` as they pass: call it with each chunk's columns, then :meth:`CaseTables.close`.
 
     Examples
     --------
