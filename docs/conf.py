@@ -43,6 +43,7 @@ extensions = [
     "myst_parser",
     "sphinx_gallery.gen_gallery",
     "tumble_xref",  # docs/_ext: references to tumble's names, resolved as Python does
+    "tumble_keys",  # docs/_ext: the file formats' tables of keys, as their parsers check them
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
