@@ -75,7 +75,6 @@ myst_enable_extensions = ["colon_fence", "attrs_inline", "deflist"]
 myst_heading_anchors = 3
 
 # -- autodoc, autosummary, numpydoc ------------------------------------------------------------
-autosummary_generate = True
 autosummary_imported_members = True
 autodoc_default_options = {"member-order": "bysource"}
 autodoc_typehints = "signature"
@@ -92,7 +91,8 @@ import tumble_api
 #: The modules the API reference documents (docs/_ext/tumble_xref.py links to their names).
 tumble_api_modules = tumble_api.api_modules()
 
-tumble_api.write_api_pages(DOCS)  # before autosummary reads the sources for its directives
+# before autosummary reads the sources for its directives; it generates the stubs of these pages
+autosummary_generate = tumble_api.write_api_pages(DOCS)
 
 
 # -- sphinx-gallery -----------------------------------------------------------------------------

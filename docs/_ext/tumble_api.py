@@ -368,10 +368,13 @@ def _write(path: Path, text: str) -> None:
         path.write_text(text, encoding="utf-8")
 
 
-def write_api_pages(docs: Path) -> None:
+def write_api_pages(docs: Path) -> list[str]:
     """Write docs/api/<stem>.rst for each of :data:`API_PAGES`, docs/api/modules/<module>.rst for
     each public module not the root of its page, and remove the pages of names and modules no
-    longer listed (they would stand outside every table of contents)."""
+    longer listed (they would stand outside every table of contents). Returns the pages written
+    (relative to ``docs``): autosummary's ``autosummary_generate``, so that a new module's page
+    gets its stubs in an incremental build too (autosummary scans only the documents of the
+    previous build when given ``True``)."""
     api = docs / "api"
     for stem, *_ in API_PAGES:
         _write(api / f"{stem}.rst", render_api_page(stem))
@@ -386,6 +389,7 @@ def write_api_pages(docs: Path) -> None:
     for stale in (api / "generated").glob("*.rst") if (api / "generated").is_dir() else ():
         if stale.stem not in names:
             stale.unlink()
+    return [f"api/{stem}.rst" for stem, *_ in API_PAGES] + [f"api/modules/{m}.rst" for m in sorted(modules)]
 
 
 def api_modules() -> list[str]:

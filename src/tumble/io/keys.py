@@ -121,7 +121,14 @@ class Table:
     doc: str = ""
 
     def names(self) -> tuple[str, ...]:
-        """The keys' names, in the table's order."""
+        """The keys' names, in the table's order.
+
+        Examples
+        --------
+        >>> from tumble.io.scenario import SCENARIO_FORMAT
+        >>> SCENARIO_FORMAT.table("[initial]").names()
+        ('omega', 'frame', 'orbit_frame')
+        """
         return tuple(k.name for k in self.keys)
 
     def key(self, name: str) -> Key:

@@ -58,7 +58,7 @@ from .controlfile import ControlScenario, is_control_file, load_control_scenario
 from .keys import FileFormat, Key, Table
 from .provenance import file_sha256
 
-__all__ = ["Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
+__all__ = ["SCENARIO_FORMAT", "TORQUE_TABLE", "Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
            "scenario_from_table"]
 
 #: Duration of a run when neither the file nor the command line says, s.

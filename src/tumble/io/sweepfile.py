@@ -74,7 +74,7 @@ from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
 from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END, TORQUE_TABLE, _torque
 
-__all__ = ["SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
+__all__ = ["SWEEP_FORMAT", "SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
 #: The files a sweep writes into its folder (an earlier run's are replaced as a set).
 SWEEP_WRITES = ("cases.csv", "cases.parquet", "summary.json", "sweep.png")
