@@ -18,7 +18,8 @@ import importlib
 import re
 
 from docutils import nodes
-from docutils.statemachine import StringList
+from docutils.parsers.rst import Parser
+from docutils.utils import new_document
 from sphinx.util.docutils import SphinxDirective
 
 _LITERAL = re.compile(r"(``.*?``|:[a-z]+:`[^`]*`)")
@@ -68,9 +69,11 @@ class KeysDirective(SphinxDirective):
 
     def run(self) -> list[nodes.Node]:
         text = render_format(load_format(self.arguments[0]))
-        container = nodes.container()
-        self.state.nested_parse(StringList(text.splitlines(), source=self.arguments[0]), self.content_offset, container)
-        return container.children
+        # parsed as reStructuredText whatever the page's own markup (MyST's nested parse would read Markdown)
+        document = new_document(self.get_source_info()[0], self.state.document.settings)
+        document.reporter = self.state.document.reporter
+        Parser().parse(text, document)
+        return list(document.children)
 
 
 def setup(app):

@@ -97,7 +97,7 @@ def _number(x: float) -> str:
     return str(int(x)) if float(x).is_integer() and abs(x) < 1e15 else (repr(x) if math.isfinite(x) else str(x))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Table:
     """The keys of one table of an input file (``[simulation]``, ``[[dispersion]]``, the top level).
 
@@ -119,6 +119,9 @@ class Table:
     keys: tuple[Key, ...]
     #: What the table is for, one or two sentences (reStructuredText).
     doc: str = ""
+
+    def __repr__(self) -> str:
+        return f"Table({self.title!r}: {', '.join(self.names())})"
 
     def names(self) -> tuple[str, ...]:
         """The keys' names, in the table's order.
@@ -172,7 +175,7 @@ class Table:
         return table
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FileFormat:
     """An input file format: its tables, in the order its reference page shows them.
 
@@ -187,6 +190,9 @@ class FileFormat:
     tables: tuple[Table, ...]
     #: What files of this format are and which command reads them (reStructuredText).
     doc: str = ""
+
+    def __repr__(self) -> str:
+        return f"FileFormat({self.name!r}: {', '.join(t.title for t in self.tables)})"
 
     def table(self, title: str) -> Table:
         """The table of that title (``"[simulation]"``).
