@@ -71,7 +71,7 @@ BAD_FILES = [
     ),
     ("[body]\npreset = 'cube'\n", r"preset = 'cube' is unknown; allowed: t-handle, iss-t-handle"),
     ("[body]\npreset = 't-handle'\nshaft_lenght = 2.0\n", r"unknown key 'shaft_lenght' for preset 't-handle'"),
-    ("[body]\npreset = 't-handle'\nshaft_length = -2.0\n", r"shaft: length = -2.0 must be a positive"),
+    ("[body]\npreset = 't-handle'\nshaft_length = -2.0\n", r"shaft_length = -2.0 must be a positive"),
     ("[body]\npreset = 'iss-t-handle'\nradius = 1.0\n", r"unknown key 'radius' for preset 'iss-t-handle'"),
 ]
 

@@ -24,6 +24,11 @@ pytest.importorskip("myst_parser")
 pytest.importorskip("sphinx_gallery")
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+
+import tumble_api  # noqa: E402  (docs/_ext: the listing the site is built from)
+from test_docs_names import written_names  # noqa: E402
+
 SRC = ROOT / "src" / "tumble"
 SUBPACKAGES = ("mass", "dynamics", "analysis", "ensemble", "io", "viz")
 SCRIPTS = sorted((ROOT / "gallery").glob("plot_*.py"))
@@ -73,11 +78,50 @@ def test_every_public_name_has_its_own_page_listed_on_its_subpackage_page(site, 
     names = _literal(SRC / package / "__init__.py", "__all__")
     assert names
     for name in names:
-        full = f"tumble.{package}.{name}"
+        full = tumble_api.page_for(f"tumble.{package}.{name}").removeprefix("obj:")  # documented once
         page = site / "api" / "generated" / f"{full}.html"
         assert page.is_file(), f"no page for {full}"
         assert f'href="generated/{full}.html' in html, f"api/{package}.html does not list {full}"
         assert f'id="{full}"' in page.read_text(encoding="utf-8"), f"{page.name} has no entry {full}"
+
+
+def test_every_name_the_guides_gallery_and_readme_write_has_its_entry_on_the_site(site):
+    """tests/test_docs_names.py finds a page for each name in the listing; here the built page
+    holds the name's entry (its anchor)."""
+    missing = []
+    names = {name for _, name in written_names()}
+    for name in sorted(names):
+        page = tumble_api.page_for(name)
+        assert page is not None, name
+        path, anchor = tumble_api.html_target(page)
+        file = site / path
+        if not file.is_file():
+            missing.append(f"{name}: no {path}")
+        elif anchor and f'id="{anchor}"' not in file.read_text(encoding="utf-8"):
+            missing.append(f"{name}: {path} has no id {anchor}")
+    assert len(names) > 150 and not missing, "\n".join(missing)
+
+
+def test_every_public_module_has_its_page(site):
+    for module in tumble_api.public_modules():
+        path, anchor = tumble_api.html_target(f"mod:{module}")
+        html = (site / path).read_text(encoding="utf-8")
+        assert anchor is None or f'id="{anchor}"' in html, module
+
+
+@pytest.mark.parametrize("page", ["body", "scenario", "control", "sweep", "recording"])
+def test_each_file_format_page_has_a_table_of_every_key(site, page):
+    import tumble_keys
+
+    source = (ROOT / "docs" / "formats" / f"{page}.md").read_text(encoding="utf-8")
+    fmt = tumble_keys.load_format(re.search(r"```\{tumble-keys\} (\S+)", source).group(1))
+    html = (site / "formats" / f"{page}.html").read_text(encoding="utf-8")
+    assert html.count("<table") == len(fmt.tables)
+    for table in fmt.tables:
+        body = html.split("<table")[fmt.tables.index(table) + 1].split("</table>")[0]
+        cells = re.findall(r"<tr[^>]*>\s*<td[^>]*>(.*?)</td>", body, re.S)
+        assert [_text(c).strip().replace(" ", "") for c in cells] == [k.name.replace(" ", "") for k in table.keys], \
+            (page, table.title)
 
 
 @pytest.mark.parametrize(("name", "words"), [

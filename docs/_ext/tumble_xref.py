@@ -19,14 +19,13 @@ code too: without intersphinx (it downloads inventories) they cannot be linked o
 
 from __future__ import annotations
 
-import ast
-import functools
 import importlib
-import importlib.util
 import inspect
 import re
 import types
 from typing import Any
+
+import tumble_api
 
 _MISSING = object()
 
@@ -76,15 +75,11 @@ def _walk_from(obj: Any, parts: list[str], prefix: str) -> Any:
 
 
 class Resolver:
-    """Maps objects to the public names under which the API reference documents them."""
+    """Maps objects to the public names under which the API reference documents them
+    (:func:`tumble_api.page_for`)."""
 
     def __init__(self, modules: list[str]):
-        self.public: dict[int, str] = {}
         self.modules: set[str] = set(modules)
-        for module_name in modules:
-            module = importlib.import_module(module_name)
-            for name in module.__all__:
-                self.public.setdefault(id(getattr(module, name)), f"{module_name}.{name}")
 
     def scopes(self, node, docname: str) -> list[str]:
         """Where a name in this reference may live: the module and class the directive sets, and
@@ -109,16 +104,14 @@ class Resolver:
 
     def public_name(self, path: str) -> str | None:
         """The documented name of the object at ``path`` (or of its class's entry)."""
-        obj = _import_path(path)
-        if obj is _MISSING:
-            return None
-        if id(obj) in self.public:
-            return self.public[id(obj)]
-        parent, _, member = path.rpartition(".")
-        owner = _import_path(parent) if parent else _MISSING
-        if inspect.isclass(owner) and id(owner) in self.public:
-            return f"{self.public[id(owner)]}.{member}"
-        return None
+        page = tumble_api.page_for(path)
+        if page is None:
+            parent, _, member = path.rpartition(".")
+            owner = _import_path(parent) if parent else _MISSING
+            if inspect.isclass(owner):  # a member found through the class's defining module
+                cls = tumble_api.page_for(f"{owner.__module__}.{owner.__qualname__}")
+                page = f"{cls}.{member}" if cls and cls.startswith("obj:") else None
+        return page.removeprefix("obj:") if page and page.startswith("obj:") else None
 
     def locate(self, target: str, node, docname: str) -> str | None:
         """The full dotted path at which ``target`` exists, or None. A name a module imports only
@@ -139,41 +132,8 @@ class Resolver:
         return None
 
 
-@functools.cache
-def imported_names(module_name: str) -> dict[str, str]:
-    """``{name: "module.name"}`` for every ``from module import name`` anywhere in a module's
-    source (also those under ``if TYPE_CHECKING:``); empty if it is not a module with source."""
-    try:
-        spec = importlib.util.find_spec(module_name)
-    except (ImportError, ValueError):
-        return {}
-    if spec is None or not spec.origin or not spec.origin.endswith(".py"):
-        return {}
-    package = module_name if spec.submodule_search_locations else module_name.rpartition(".")[0]
-    names = {}
-    with open(spec.origin, encoding="utf-8") as source:
-        tree = ast.parse(source.read())
-    for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom):
-            base = node.module or ""
-            if node.level:
-                base = importlib.util.resolve_name("." * node.level + base, package)
-            for alias in node.names:
-                names.setdefault(alias.asname or alias.name, f"{base}.{alias.name}")
-    return names
-
-
-def defining_module(module_name: str, name: str) -> str:
-    """The module whose source assigns ``name``, following ``from ... import name`` from
-    ``module_name`` (a package re-exporting a constant of one of its modules)."""
-    seen = set()
-    while module_name not in seen:
-        seen.add(module_name)
-        origin = imported_names(module_name).get(name)
-        if origin is None:
-            return module_name
-        module_name = origin.rpartition(".")[0]
-    return module_name
+imported_names = tumble_api.imported_names
+defining_module = tumble_api.defining_module
 
 
 def data_docstring(app, what, name, obj, options, lines):

@@ -5,8 +5,7 @@ range of them, each from its own random numbers (:mod:`tumble.ensemble.sampling`
 comes out the same whether made alone, in a chunk of 7 or in one of 10,000.
 
 Case ``i`` takes point ``i`` of the design: the first 3 numbers (when the initial rates are
-dispersed) give the rates, the rest the body's deviates (:class:`~tumble.ensemble.dispersions.
-BodySampler`). A body draw that is not physical is drawn again from the case's own generator,
+dispersed) give the rates, the rest the body's deviates (:class:`~tumble.ensemble.dispersions.BodySampler`). A body draw that is not physical is drawn again from the case's own generator,
 up to ``max_resamples`` times (then the sweep is refused, naming the case); the rates keep
 their draw, so a Latin hypercube stays stratified in them. How many redraws each case needed
 is part of its inputs (``resampled``).

@@ -21,15 +21,16 @@ The part constructors do the physical validation, so Python and files give the s
 from __future__ import annotations
 
 import dataclasses
-import inspect
 import os
 import tomllib
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Mesh, Part
 from ..validation import read_input_file
+from .keys import FileFormat, Key, Table
 
 __all__ = [
+    "BODY_FORMAT",
     "MAX_TOML_BYTES",
     "MESH_SUFFIXES",
     "MESH_UNITS",
@@ -38,6 +39,8 @@ __all__ = [
     "is_mesh_file",
     "load_body",
     "mesh_files",
+    "PART_TABLES",
+    "PRESET_TABLES",
     "part_from_table",
     "read_toml",
 ]
@@ -108,8 +111,90 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
     return data
 
 
-def _init_fields(cls) -> dict[str, dataclasses.Field]:
-    return {f.name: f for f in dataclasses.fields(cls) if f.init}
+_VECTOR = "3 numbers"
+_K = {k.name: k for k in (
+    Key("kind", "string", required=True, choices=tuple(PART_KINDS), example='"rod"', doc="the shape"),
+    Key("mass", "number", "kg", allowed="> 0; mass or density, exactly one", example="1.5", doc="the part's mass"),
+    Key("density", "number", "kg/m^3", allowed="> 0; mass or density, exactly one", example="2700.0",
+        doc="uniform density, instead of mass"),
+    Key("center", _VECTOR, "m", "[0, 0, 0]", example="[0.0, 0.0, 0.5]", doc="the centre of mass, design frame"),
+    Key("subtract", "true or false", "", "false", example="true",
+        doc="a hole: its mass is taken from the part it lies in"),
+    Key("axis", _VECTOR, "", "[0, 0, 1]", allowed="not zero (its length does not matter)", example="[1.0, 0.0, 0.0]",
+        doc="the symmetry axis, design frame"),
+    Key("length", "number", "m", required=True, example="1.0", low=0.0, doc="along the axis"),
+    Key("radius", "number", "m", required=True, example="0.05", low=0.0, doc="the radius"),
+    Key("inner_radius", "number", "m", required=True, allowed=">= 0 and < outer_radius", example="0.04",
+        doc="the bore"),
+    Key("outer_radius", "number", "m", required=True, example="0.05", low=0.0, doc="the outside"),
+    Key("height", "number", "m", required=True, example="0.3", low=0.0, doc="from the base to the apex, along the axis"),
+    Key("size", _VECTOR, "m", required=True, allowed="> 0 each", example="[0.1, 0.2, 0.3]",
+        doc="the edges along the part's own x, y, z"),
+    Key("semi_axes", _VECTOR, "m", required=True, allowed="> 0 each", example="[0.1, 0.2, 0.3]",
+        doc="along the part's own x, y, z"),
+    Key("rotation", "4 numbers", "", "[0, 0, 0, 1]", allowed="a unit quaternion [x, y, z, w]",
+        example="[0.0, 0.0, 0.3826834, 0.9238795]", doc="the part's own frame in the design frame"),
+    Key("spin_rate", "number", "rad/s", required=True, example="100.0", doc="the spin relative to the body (at t = 0)"),
+    Key("spin_acceleration", "number", "rad/s^2", "0.0", example="0.5", doc="a constant ds/dt: a linear ramp"),
+    Key("mesh", "string", required=True, allowed="a closed triangle mesh: STL, OBJ, PLY", example='"meshes/bracket.stl"',
+        doc="the mesh file, relative to the body file"),
+    Key("scale", "number", "", "1.0", example="0.001", low=0.0, doc="factor from file units to metres"),
+    Key("origin", _VECTOR, "m", "[0, 0, 0]", example="[0.0, 0.0, 0.1]",
+        doc="where the mesh's own origin goes, design frame"),
+)}
+_MASS_ONLY = dataclasses.replace(_K["mass"], required=True, allowed="> 0")
+_SOLID = ("mass", "density", "center", "subtract")
+#: The keys of each kind of ``[[body.parts]]`` table.
+PART_TABLES = {kind: Table(f'[[body.parts]] kind = "{kind}"', (_K["kind"], *keys)) for kind, keys in {
+    "rod": (_MASS_ONLY, _K["center"], _K["axis"], _K["length"]),
+    "cylinder": (*(_K[k] for k in (*_SOLID, "axis", "radius", "length")),),
+    "tube": (*(_K[k] for k in (*_SOLID, "axis", "inner_radius", "outer_radius", "length")),),
+    "cone": (*(_K[k] for k in (*_SOLID, "axis", "radius", "height")),),
+    "box": (*(_K[k] for k in (*_SOLID, "rotation", "size")),),
+    "ellipsoid": (*(_K[k] for k in (*_SOLID, "rotation", "semi_axes")),),
+    "sphere": (*(_K[k] for k in (*_SOLID, "radius")),),
+    "shell": (_MASS_ONLY, _K["center"], _K["radius"]),
+    "point": (_MASS_ONLY, _K["center"]),
+    "rotor": (*(_K[k] for k in ("mass", "density", "center")),
+              dataclasses.replace(_K["subtract"], allowed="false (a hole cannot spin)"),
+              *(_K[k] for k in ("axis", "radius", "length", "spin_rate", "spin_acceleration"))),
+    "mesh": (*(_K[k] for k in ("mass", "density", "subtract", "rotation", "mesh", "scale", "origin")),),
+}.items()}
+_M = "kg, instead of density"
+#: The keys of a ``[body]`` table that names a preset, for each preset.
+PRESET_TABLES = {
+    "t-handle": Table('[body] preset = "t-handle"', (
+        Key("preset", "string", required=True, choices=tuple(PRESETS), example='"t-handle"', doc="the preset"),
+        Key("shaft_length", "number", "m", "1.0", example="1.2", low=0.0, doc="the handle's shaft"),
+        Key("crossbar_length", "number", "m", "1.0", example="0.8", low=0.0, doc="the crossbar"),
+        Key("shaft_mass", "number", "kg", "1.5 (with no density)", example="2.0", low=0.0, doc="the shaft's mass"),
+        Key("crossbar_mass", "number", "kg", "1.5 (with no density)", example="1.0", low=0.0, doc="the crossbar's mass"),
+        Key("shaft_radius", "number", "m", "0.0 (a thin rod)", example="0.01", low=0.0, low_included=True,
+            doc="a solid cylinder when > 0"),
+        Key("crossbar_radius", "number", "m", "0.0 (a thin rod)", example="0.01", low=0.0, low_included=True,
+            doc="a solid cylinder when > 0"),
+        Key("density", "number", "kg/m^3", example="2700.0", low=0.0, doc="instead of the masses (needs the radii)"),
+        Key("name", "string", "", '"T-handle"', example='"long handle"', doc="the body's name"),
+    ), "The seed study's T-handle and its parameters."),
+    "iss-t-handle": Table('[body] preset = "iss-t-handle"', (
+        Key("preset", "string", required=True, choices=tuple(PRESETS), example='"iss-t-handle"', doc="the preset"),
+        Key("name", "string", "", '"ISS T-handle"', example='"handle"', doc="the body's name"),
+    ), "The space station's T-handle (Dzhanibekov's wing nut)."),
+}
+#: The tables of a body file and their keys.
+BODY_FORMAT = FileFormat("body", (
+    Table("top level", (Key("body", "table", required=True, example='{name = "T-handle", preset = "t-handle"}',
+                            doc="[body]: the only table of a body file"),)),
+    Table("[body]", (
+        Key("name", "string", "", '"body"', example='"T-handle"', doc="the body's name, in reports and figures"),
+        Key("parts", "list of tables", example='[{kind = "sphere", mass = 1.0, radius = 0.1}]',
+            doc="[[body.parts]]: the parts, one table each (or preset)"),
+        Key("preset", "string", choices=tuple(PRESETS), example='"t-handle"', doc="instead of parts: a preset body"),
+    ), "``parts`` or ``preset``, one of them."),
+    *PRESET_TABLES.values(),
+    *PART_TABLES.values(),
+), "A rigid body built from parts, or a preset: ``tumble inertia``, ``tumble simulate`` and the "
+   "scenario, control and sweep files read it.")
 
 
 def part_from_table(table: object, *, base_dir: Path | None = None, where: str = "part") -> Part:
@@ -135,20 +220,14 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
         raise ValueError(f"{where}: kind = {kind!r} is unknown; allowed: {', '.join(PART_KINDS)}")
     cls = PART_KINDS[kind]
     where = f"{where} ({kind})"
-    fields = _init_fields(cls)
-    allowed = [k for k in fields if cls.solid or k not in ("density", "subtract")]
+    keys = PART_TABLES[kind]
     kwargs = {k: v for k, v in table.items() if k != "kind"}
-    unknown = sorted(set(kwargs) - set(allowed))
+    unknown = sorted(set(kwargs) - set(keys.names()))
     if unknown:
         raise ValueError(
-            f"{where}: unknown key {unknown[0]!r}; allowed: kind, {', '.join(sorted(allowed))}"
+            f"{where}: unknown key {unknown[0]!r}; allowed: kind, {', '.join(sorted(keys.names()[1:]))}"
         )
-    missing = [
-        k
-        for k, f in fields.items()
-        if f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
-        and k not in kwargs
-    ]
+    missing = [k.name for k in keys.keys[1:] if k.required and k.name not in kwargs and k.name != "mass"]
     if missing:
         raise ValueError(f"{where}: missing key {missing[0]!r}")
     if kind == "mesh":
@@ -225,7 +304,7 @@ def _preset_from_table(table: dict, where: str) -> Body:
         raise ValueError(f"{where}.preset = {preset!r} is unknown; allowed: {', '.join(PRESETS)}")
     fn = PRESETS[preset]
     kwargs = {k: v for k, v in table.items() if k != "preset"}
-    allowed = list(inspect.signature(fn).parameters)
+    allowed = list(PRESET_TABLES[preset].names()[1:])
     unknown = sorted(set(kwargs) - set(allowed))
     if unknown:
         allowed_text = ", ".join(allowed) if allowed else "no parameters besides 'preset'"
@@ -273,7 +352,7 @@ def load_body(source: str | os.PathLike[str]) -> Body:
     if "body" not in data:
         raise ValueError(f"{path}: missing table [body]")
     if unknown:
-        raise ValueError(f"{path}: unknown top-level key {unknown[0]!r}; a body file has only [body]")
+        raise ValueError(f"{path}: unknown top-level key {unknown[0]!r} (a body file has only [body]); allowed: body")
     try:
         return body_from_table(data["body"], base_dir=path.parent)
     except ValueError as exc:

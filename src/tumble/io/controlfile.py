@@ -64,10 +64,12 @@ from ..validation import (
     check_vector,
     check_vectors,
 )
-from .controlorbit import ORBIT_KEYS, Field, Orbit, orbit_from_table
+from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
+from .keys import FileFormat, Key, Table
 from .controlspec import (
     CONTROL_KEYS,
+    CONTROL_TABLES,
     DEFAULT_THRESHOLD,
     ControlSpec,
     _sub,
@@ -75,24 +77,90 @@ from .controlspec import (
     parse_control,
 )
 
-__all__ = ["CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table", "control_summary", "write_control_run"]
+__all__ = ["CONTROL_FORMAT", "CONTROL_SECTIONS", "ControlScenario", "control_scenario_from_table", "control_summary", "write_control_run"]
 
+_VECTORS = "list of 3-number lists"
+_TABLES = (
+    Table("top level", (
+        Key("body", "string or table", required=True, allowed="a preset name, a body file or a [body] table",
+            example='"../bodies/explorer1.toml"', doc="the body: a preset, a body file (relative to this file) or a [body] table"),
+        *(Key(name, "table", required=name in ("initial", "simulation"), example=example,
+              doc="[control]: what makes a scenario file a control scenario" if name == "control" else f"[{name}]")
+          for name, example in (("initial", "{omega = [0.2, -0.2, 0.2]}"), ("simulation", "{t_end = 6000.0}"),
+                                ("orbit", "{altitude = 500e3}"), ("actuators", "{wheels = {inertia = 1e-5}}"),
+                                ("sensors", "{gyro_noise = 1e-4}"), ("control", '{kind = "bdot", period = 1.0}'))),
+    ), "A scenario file with a ``[control]`` table is a closed-loop run."),
+    Table("[initial]", (
+        Key("omega", "3 numbers", "rad/s", required=True, example="[0.2, -0.2, 0.2]", doc="the initial angular velocity"),
+        Key("frame", "string", "", '"design"', choices=("design", "principal"), example='"principal"',
+            doc="the frame of omega: the body file's design frame or the principal axes"),
+        Key("attitude", "4 numbers", "", "[0, 0, 0, 1]", allowed="a unit quaternion [x, y, z, w]",
+            example="[0.0, 0.0, 0.0, 1.0]", doc="design frame to world at t = 0"),
+    )),
+    Table("[simulation]", (
+        Key("t_end", "number", "s", required=True, example="6000.0", low=0.0, doc="duration of the run"),
+        Key("rtol", "number", "", "1e-10", example="1e-9", low=2.22e-14, low_included=True, high=0.1,
+            doc="relative tolerance of DOP853 between control steps"),
+        Key("atol", "number", "", "1e-12", example="1e-11", low=0.0, doc="absolute tolerance"),
+    )),
+    ORBIT_TABLE,
+    Table("[actuators]", (
+        Key("magnetorquers", "table", example="{max_dipole = 0.2}", doc="[actuators.magnetorquers]"),
+        Key("wheels", "table", example="{inertia = 1e-5}", doc="[actuators.wheels]: reaction wheels"),
+    )),
+    Table("[actuators.magnetorquers]", (
+        Key("max_dipole", "number", "A m^2", "0.2", example="0.2", low=0.0, doc="the largest dipole of each rod"),
+        Key("axes", _VECTORS, "", "the design axes", example="[[1, 0, 0], [0, 1, 0], [0, 0, 1]]",
+            doc="the rods' axes, design frame"),
+    ), "Needs an ``[orbit]`` (its magnetic field)."),
+    Table("[actuators.wheels]", (
+        Key("axes", _VECTORS, "", "the design axes", example="[[1, 0, 0], [0, 1, 0], [0, 0, 1]]",
+            doc="one wheel along each axis, design frame"),
+        Key("inertia", "number", "kg m^2", required=True, example="1e-5", low=0.0, doc="axial moment of each wheel"),
+        Key("max_torque", "number", "N m", "inf", example="2e-3", low=0.0, doc="the largest motor torque"),
+        Key("max_speed", "number", "rad/s", "inf", example="600.0", low=0.0, doc="the wheel speed limit"),
+        Key("viscous", "number", "N m s", "0.0", example="1e-8", low=0.0, low_included=True, doc="viscous friction"),
+        Key("coulomb", "number", "N m", "0.0", example="1e-6", low=0.0, low_included=True, doc="Coulomb friction"),
+        Key("limit_cycle_speed", "number", "rad/s", "1e-4", example="1e-3", low=0.0,
+            doc="the speed over which Coulomb friction is smoothed"),
+        Key("speed0", "number, or one per wheel", "rad/s", "0.0", example="[0.0, 0.0, 100.0]",
+            doc="the wheels' speeds at t = 0"),
+    )),
+    Table("[sensors]", (
+        Key("gyro_noise", "number", "rad/s", "0.0", example="1e-4", low=0.0, low_included=True,
+            doc="standard deviation of each gyroscope axis"),
+        Key("gyro_bias", "3 numbers", "rad/s", "[0, 0, 0]", example="[1e-4, 0.0, 0.0]", doc="constant gyroscope bias"),
+        Key("magnetometer_noise", "number", "T", "0.0", example="1e-7", low=0.0, low_included=True,
+            doc="standard deviation of each magnetometer axis"),
+        Key("magnetometer_bias", "3 numbers", "T", "[0, 0, 0]", example="[0.0, 1e-7, 0.0]", doc="constant magnetometer bias"),
+        Key("attitude", "string", "", '"ideal"', choices=("ideal", "star_tracker", "none"), example='"star_tracker"',
+            doc="the attitude sensor: exact, noisy, or none fitted"),
+        Key("attitude_noise", "number", "rad", "0.0", example="1e-4", low=0.0, low_included=True,
+            doc="star tracker noise about each axis"),
+        Key("seed", "whole number", "", "0", example="7", doc="seed of the noise: a run is reproducible"),
+    ), "What the controller reads; all optional (default: exact readings)."),
+    *CONTROL_TABLES,
+)
+#: The tables of a control scenario and their keys.
+CONTROL_FORMAT = FileFormat("control scenario", _TABLES,
+                            "A body, its orbit, actuators, sensors and controller: ``tumble simulate`` runs it in "
+                            "closed loop (:func:`tumble.commands.run_scenario`).")
 #: The tables of a control scenario and their keys.
 CONTROL_SECTIONS = {
-    "initial": {"omega", "frame", "attitude"},
-    "simulation": {"t_end", "rtol", "atol"},
+    "initial": set(CONTROL_FORMAT.table("[initial]").names()),
+    "simulation": set(CONTROL_FORMAT.table("[simulation]").names()),
     "orbit": ORBIT_KEYS,
-    "actuators": {"magnetorquers", "wheels"},
-    "sensors": {f.name for f in dataclasses.fields(Sensors)},
+    "actuators": set(CONTROL_FORMAT.table("[actuators]").names()),
+    "sensors": set(CONTROL_FORMAT.table("[sensors]").names()),
     "control": CONTROL_KEYS,
 }
-_MTQ_KEYS = {"max_dipole", "axes"}
-_WHEEL_KEYS = {"axes", "inertia", "max_torque", "max_speed", "viscous", "coulomb", "limit_cycle_speed", "speed0"}
+_MTQ = CONTROL_FORMAT.table("[actuators.magnetorquers]")
+_WHEELS = CONTROL_FORMAT.table("[actuators.wheels]")
 
 
 @dataclass(frozen=True, eq=False)
 class ControlScenario:
-    """A parsed control scenario; :meth:`run` simulates it.
+    """A parsed control scenario; :func:`tumble.commands.run_scenario` runs it.
 
     Made by :func:`control_scenario_from_table` (or ``tumble.io.load_scenario`` from a file);
     vectors are in the body's principal frame.
@@ -256,13 +324,7 @@ class ControlScenario:
 
 
 def _table(data: dict[str, Any], section: str) -> dict[str, Any]:
-    table = data.get(section, {})
-    if not isinstance(table, dict):
-        raise ValueError(f"{section} must be a table [{section}]")  # noqa: TRY004
-    bad = sorted(set(table) - CONTROL_SECTIONS[section])
-    if bad:
-        raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(CONTROL_SECTIONS[section]))}")
-    return table
+    return Table(f"[{section}]", tuple(Key(k, "") for k in CONTROL_SECTIONS[section])).check(section, data.get(section, {}))
 
 
 def _design_axes(value: object, body: Body, where: str) -> np.ndarray:
@@ -350,12 +412,12 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     try:
         if "magnetorquers" in act:
             where = "actuators.magnetorquers"
-            m = _sub("actuators.magnetorquers", act["magnetorquers"], _MTQ_KEYS)
+            m = _sub("actuators.magnetorquers", act["magnetorquers"], _MTQ)
             mtq = Magnetorquers(m.get("max_dipole", 0.2),
                                 _design_axes(m.get("axes", np.eye(3)), body, "actuators.magnetorquers"))
         if "wheels" in act:
             where = "actuators.wheels"
-            w = _sub("actuators.wheels", act["wheels"], _WHEEL_KEYS)
+            w = _sub("actuators.wheels", act["wheels"], _WHEELS)
             if "inertia" not in w:
                 raise ValueError("actuators.wheels: missing key 'inertia' (kg m^2)")
             wheels = ReactionWheels(_design_axes(w.get("axes", np.eye(3)), body, "actuators.wheels"),

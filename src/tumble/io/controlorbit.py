@@ -28,17 +28,40 @@ from ..dynamics.environment.ephemeris import KeplerOrbit, TLEOrbit
 from ..dynamics.environment.igrf import IGRFField
 from ..dynamics.environment.magnetic import DipoleField
 from ..dynamics.environment.orbit import CircularOrbit
+from .keys import Key, Table
 
-__all__ = ["ORBIT_KEYS", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_summary"]
+__all__ = ["ORBIT_KEYS", "ORBIT_TABLE", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_summary"]
 
 Orbit = CircularOrbit | KeplerOrbit | TLEOrbit
 Field = DipoleField | IGRFField
 
 _CIRCULAR = ("altitude", "inclination", "raan", "arg_latitude")
 _KEPLER = ("semi_major_axis", "eccentricity", "inclination", "raan", "arg_perigee", "mean_anomaly")
+#: The ``[orbit]`` table of a control scenario.
+ORBIT_TABLE = Table("[orbit]", (
+    Key("altitude", "number", "m", example="500e3", low=0.0, doc="a circular orbit: its height above the Earth's radius"),
+    Key("semi_major_axis", "number", "m", example="7.2e6", doc="a Keplerian ellipse (needs field = \"igrf\")"),
+    Key("tle", "list of 2 strings", example='["1 25544U ...", "2 25544 ..."]',
+        doc="SGP4 from a two-line element set (pip install tumble[orbit])"),
+    Key("eccentricity", "number", "", "0.0", allowed=">= 0 and < 1", example="0.01", doc="with semi_major_axis"),
+    Key("inclination", "number", "rad", "0.0", example="1.7", doc="to the Earth's equator"),
+    Key("raan", "number", "rad", "0.0", example="0.5", doc="right ascension of the ascending node"),
+    Key("arg_latitude", "number", "rad", "0.0", example="0.0", doc="with altitude: the argument of latitude at t = 0"),
+    Key("arg_perigee", "number", "rad", "0.0", example="0.3", doc="with semi_major_axis"),
+    Key("mean_anomaly", "number", "rad", "0.0", example="0.0", doc="with semi_major_axis: at t = 0"),
+    Key("field", "string", "", '"dipole"', choices=("dipole", "igrf"), example='"igrf"',
+        doc="the IGRF-13 2020.0 tilted dipole (circular orbits), or IGRF-14 (pip install tumble[orbit])"),
+    Key("epoch", "string", "", "(a TLE's own epoch)", allowed="an ISO 8601 date and time, UTC",
+        example='"2026-11-25T00:00:00"', doc='field = "igrf": the date at t = 0'),
+    Key("igrf_degree", "whole number", "", "13", example="13", low=1, low_included=True, high=13,
+        doc='field = "igrf": the highest degree of the expansion'),
+    Key("gmst0", "number", "rad", "0.0", example="1.2", doc='field = "dipole": the Earth\'s sidereal angle at t = 0'),
+    Key("earth_rotation", "true or false", "", "true", example="false", doc='field = "dipole": the Earth turns under the orbit'),
+    Key("gravity_gradient", "true or false", "", "false", example="true", doc="the gravity-gradient torque along this orbit"),
+), "One of ``altitude`` (circular), ``semi_major_axis`` (Keplerian) or ``tle``; the magnetic field; "
+   "the gravity-gradient torque. Needed by magnetorquers and a nadir target.")
 #: The keys of ``[orbit]``.
-ORBIT_KEYS = {*_CIRCULAR, *_KEPLER, "tle", "field", "epoch", "igrf_degree", "gmst0", "earth_rotation",
-              "gravity_gradient"}
+ORBIT_KEYS = set(ORBIT_TABLE.names())
 
 
 def _orbit(table: dict[str, Any]) -> Orbit:

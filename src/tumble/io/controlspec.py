@@ -44,20 +44,69 @@ from ..dynamics.control.pointing import NadirTarget, axis_direction, check_squar
 from ..mass import Body
 from ..validation import check_direction, check_positive, check_rotation
 from .controlorbit import Field, Orbit, geomagnetic_inclination
+from .keys import Key, Table
 
-__all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
+__all__ = ["CONTROL_KEYS", "CONTROL_KINDS", "CONTROL_TABLES", "DEFAULT_THRESHOLD", "ControlSpec", "build_controller", "parse_control"]
 
-_BDOT_KEYS = {"gain", "form", "derivative"}
-_MRP_KEYS = {"K", "P", "target", "gyroscopic", "Ki", "integral_limit", "nadir_axis", "normal_axis"}
-#: The keys of each kind of ``[control]``.
-CONTROL_KINDS = {"bdot": {"kind", "period", "threshold", *_BDOT_KEYS},
-                 "mrp_pd": {"kind", "period", "threshold", *_MRP_KEYS},
-                 "detumble_point": {"kind", "period", "threshold", "switch_rate", "dwell", "detumble", "point"}}
-#: Every key ``[control]`` may hold (those of its kind are checked after).
-CONTROL_KEYS = set().union(*CONTROL_KINDS.values())
-_SUB_KEYS = {"detumble": _BDOT_KEYS, "point": _MRP_KEYS | {"dumping_gain"}}
 #: Rate under which a run counts as detumbled when the file does not say, rad/s (0.5 deg/s).
 DEFAULT_THRESHOLD = math.radians(0.5)
+
+_AXIS = 'a principal axis, 1, 2, 3, "minor", "intermediate", "major", or a design-frame vector'
+_COMMON = (
+    Key("kind", "string", required=True, choices=("bdot", "mrp_pd", "detumble_point"), example='"bdot"',
+        doc="B-dot with the magnetorquers, MRP feedback with the wheels, or B-dot then MRP feedback"),
+    Key("period", "number", "s", required=True, example="1.0", low=0.0, doc="the control period"),
+    Key("threshold", "number", "rad/s", f"{DEFAULT_THRESHOLD:.6g} (0.5 deg/s)", example="0.01", low=0.0,
+        doc="the rate under which the run counts as detumbled (the summary's detumble time)"),
+)
+_BDOT = (
+    Key("gain", "number", "A m^2 s/T (classic) or N m s (normalized)",
+        "Avanzini & Giulietti's 2 n (1 + sin xi_m) I_min, normalized", example="1e4", low=0.0, doc="the B-dot gain"),
+    Key("form", "string", "", '"classic" (or "normalized" with the default gain)', choices=("classic", "normalized"),
+        example='"normalized"', doc="m = -k dB/dt or m = -(k / |B|^2) dB/dt"),
+    Key("derivative", "string", "", '"gyro"', choices=("gyro", "difference"), example='"difference"',
+        doc="dB/dt from B x omega or from successive magnetometer readings"),
+)
+_MRP = (
+    Key("K", "number", "N m", required=True, example="1.1e-3", low=0.0, doc="the attitude gain"),
+    Key("P", "number", "N m s", required=True, example="6e-3", low=0.0, doc="the rate gain"),
+    Key("target", "4 numbers or string", "", "[0, 0, 0, 1]", allowed='a quaternion [x, y, z, w] or "nadir"',
+        example='"nadir"', doc="the target frame to world (design frame), or nadir (needs a circular [orbit])"),
+    Key("gyroscopic", "true or false", "", "true", example="false", doc="add the feed-forward omega x (I omega + h)"),
+    Key("Ki", "number", "1/s", "0.0", example="0.01", low=0.0, low_included=True, doc="the integral gain (0: the PD law)"),
+    Key("integral_limit", "number", "N m", "(no limit)", example="1e-4", low=0.0,
+        doc="the largest magnitude of each component of the integral term"),
+    Key("nadir_axis", "string or 3 numbers", "", '"minor"', allowed=_AXIS, example='"minor"',
+        doc='target = "nadir": the body axis pointed at the Earth'),
+    Key("normal_axis", "string or 3 numbers", "", '"major"', allowed=_AXIS, example='"major"',
+        doc='target = "nadir": the body axis along the orbit normal'),
+)
+_MISSION = (
+    Key("switch_rate", "number", "rad/s", required=True, example="0.0175", low=0.0,
+        doc="the gyroscope's |omega| must stay below it ..."),
+    Key("dwell", "number", "s", required=True, example="60.0", low=0.0, low_included=True,
+        doc="... for this long, then the wheels point; never back"),
+    Key("detumble", "table", example="{form = \"normalized\"}", doc="[control.detumble]: the B-dot keys"),
+    Key("point", "table", required=True, example="{K = 1.1e-3, P = 6e-3}", doc="[control.point]: the MRP keys"),
+)
+#: The tables of ``[control]``: its keys for each kind, then the sub-tables of "detumble_point".
+CONTROL_TABLES = (
+    Table('[control] kind = "bdot"', _COMMON + _BDOT,
+          "B-dot (needs ``[orbit]`` and ``[actuators.magnetorquers]``)."),
+    Table('[control] kind = "mrp_pd"', _COMMON + _MRP, "MRP feedback (needs ``[actuators.wheels]``)."),
+    Table('[control] kind = "detumble_point"', _COMMON + _MISSION,
+          "B-dot, then MRP feedback (:class:`tumble.dynamics.control.DetumbleThenPoint`)."),
+    Table("[control.detumble]", _BDOT, "The B-dot keys of the detumble mode (its period is the mission's)."),
+    Table("[control.point]", _MRP + (
+        Key("dumping_gain", "number", "1/s", example="1e-3", low=0.0,
+            doc="the magnetorquers unload the wheels while they point (MomentumDumping)"),),
+          "The MRP keys of the pointing mode; may be written inline, ``point = {K = 1.1e-3, P = 6e-3}``."),
+)
+#: The keys of each kind of ``[control]``.
+CONTROL_KINDS = {t.title.split('"')[1]: set(t.names()) for t in CONTROL_TABLES[:3]}
+#: Every key ``[control]`` may hold (those of its kind are checked after).
+CONTROL_KEYS = set().union(*CONTROL_KINDS.values())
+_SUB_TABLES = {"detumble": CONTROL_TABLES[3], "point": CONTROL_TABLES[4]}
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,13 +127,15 @@ class ControlSpec:
     threshold: float
 
 
-def _sub(where: str, table: object, keys: set[str]) -> dict[str, Any]:
-    if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table [{where}]")  # noqa: TRY004 - one error type for bad input
-    bad = sorted(set(table) - keys)
-    if bad:
-        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
-    return table
+def _sub(where: str, table: object, keys: Table) -> dict[str, Any]:
+    return keys.check(where, table)
+
+
+def _missing(keys: Table, table: dict[str, Any]) -> None:
+    """Refuse a table without one of its required keys, naming it and its unit."""
+    for key in keys.keys:
+        if key.required and key.name not in table:
+            raise ValueError(f"missing key {key.name!r}" + (f" ({key.unit})" if key.unit else f" ({key.doc})"))
 
 
 def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Field | None,
@@ -178,8 +229,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     target = None
     where = "control"
     try:
-        if "period" not in control:
-            raise ValueError("missing key 'period' (s)")
+        _missing(CONTROL_TABLES[list(CONTROL_KINDS).index(kind)], control)
         threshold = check_positive("threshold", control.get("threshold", DEFAULT_THRESHOLD), "rad/s")
         if kind != "bdot" and wheels is not None and sensors.attitude == "none":
             raise ValueError(f'kind = "{kind}" points with the wheels and needs an attitude sensor; '
@@ -191,17 +241,15 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
                                      kind, orbit)
             MRPFeedback(**args, moments=body.principal_moments, wheels=wheels, target=target)  # type: ignore[arg-type]
         else:
-            for key, unit in (("switch_rate", "rad/s"), ("dwell", "s")):
-                if key not in control:
-                    raise ValueError(f"missing key {key!r} ({unit})")
             if wheels is None:
                 raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
             period = control["period"]
             where = "control.detumble"
-            detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_KEYS["detumble"]),
+            detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_TABLES["detumble"]),
                                    "period": period}, body, orbit, field, magnetorquers, kind)
             where = "control.point"
-            point_t = _sub(where, control.get("point", {}), _SUB_KEYS["point"])
+            point_t = _sub(where, control.get("point", {}), _SUB_TABLES["point"])
+            _missing(_SUB_TABLES["point"], point_t)
             point, target = _mrp_args({**{k: v for k, v in point_t.items() if k != "dumping_gain"},
                                        "_target": point_t.get("target"), "period": period},
                                       body, wheels, principal_to_design, kind, orbit)

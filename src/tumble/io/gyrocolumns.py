@@ -24,7 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["RATE_UNITS", "TIME_UNITS", "ColumnsRead", "match_header"]
+from .keys import FileFormat, Key, Table
+
+__all__ = ["RATE_PREFIXES", "RATE_UNITS", "RECORDING_FORMAT", "TIME_NAMES", "TIME_UNITS", "ColumnsRead", "match_header"]
 
 #: Units a header may name for the time, and their factor to s.
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6, "ns": 1e-9}
@@ -32,10 +34,36 @@ TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u
 RATE_UNITS = {"rad/s": 1.0, "deg/s": np.pi / 180, "\u00b0/s": np.pi / 180, "dps": np.pi / 180,
               "rpm": 2 * np.pi / 60, "rev/s": 2 * np.pi, "hz": 2 * np.pi}
 
+#: The names a header may give the time column (compared in lower case, ``_ - .`` as spaces).
+TIME_NAMES = ("t", "time", "timestamp", "time stamp", "elapsed", "elapsed time", "seconds elapsed")
+#: The words before the axis (``x``, ``y``, ``z``) in the name of a rate column; the axis alone too.
+RATE_PREFIXES = ("w", "g", "omega", "gyro", "gyroscope", "rate", "rotation rate", "angular velocity", "angular rate")
+#: The columns of a gyroscope table, as the page on recordings lists them.
+RECORDING_FORMAT = FileFormat("recording", (
+    Table("header columns", (
+        Key("time", "numbers, increasing", ", ".join(TIME_UNITS), "s", choices=TIME_NAMES, example='"Time (s)"',
+            doc="the sample times; the unit in brackets after the name"),
+        *(Key(axis, "numbers", ", ".join(u for u in RATE_UNITS if u.isascii()), "rad/s",
+              allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally",
+              example=f'"gyro_{axis} [deg/s]"', doc=f"the angular velocity about the sensor's {axis} axis")
+          for axis in "xyz"),
+        Key("other", "anything", allowed="the other sensors' axes (ax, acc_x, mag x, ...), magnitudes (|omega|, "
+            "norm, ...), any other name", example='"Absolute (rad/s)"', doc="ignored, and reported as such"),
+    ), "A header line names the columns: a name and, in brackets or parentheses at its end, a unit. "
+       "Names are compared in lower case with spaces, ``_``, ``-`` and ``.`` alike; a header needs "
+       "one time column and one rate column for each axis."),
+    Table("without a header", (
+        Key("column 1", "numbers, increasing", "s", required=True, example="0.01", doc="the time"),
+        Key("columns 2-4", "numbers", "rad/s", required=True, example="12.0, 0.1, 0.3", doc="wx, wy, wz"),
+        Key("column 5", "numbers", "rad/s", allowed="|omega| of columns 2-4 to the precision written",
+            example="12.004", doc="ignored"),
+    ), "Four or five numeric columns, separated by commas, semicolons, tabs or spaces."),
+), "A gyroscope recording: delimited text (a phyphox export, a logger's CSV), a phyphox export's folder "
+   "or zip; ``tumble fit`` and :func:`tumble.io.gyrodata.load_recording` read it.")
+
 _UNIT = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]\s*$")
-_TIME = {"t", "time", "timestamp", "time stamp", "elapsed", "elapsed time", "seconds elapsed"}
-_RATE = re.compile(r"^(?:(?:w|g|omega|gyro|gyroscope|rate|rotation rate|angular velocity|angular rate) ?)?"
-                   r"([xyz])(?: axis)?$")
+_TIME = set(TIME_NAMES)
+_RATE = re.compile(r"^(?:(?:" + "|".join(re.escape(p) for p in RATE_PREFIXES) + r") ?)?([xyz])(?: axis)?$")
 _OTHER = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|linear acceleration|lin acc|gravity|m|mag|"
                     r"magnetometer|magnetic field|b) ?[xyz](?: axis)?$")
 _MAGNITUDE = re.compile(r"^(?:\|.*\||abs|absolute|norm|magnitude|total)$")

@@ -46,31 +46,94 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..dynamics import ConstantTorque, SphericalDamper
+from ..dynamics import METHODS, ConstantTorque, SphericalDamper
 from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
-from ..dynamics.simulate import check_inputs, sample_times
+from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body, MassProperties
 from ..typing import ArrayLike
 from ..validation import short_repr
 from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import ControlScenario, is_control_file, load_control_scenario
+from .keys import FileFormat, Key, Table
 from .provenance import file_sha256
 
-__all__ = ["Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
+__all__ = ["SCENARIO_FORMAT", "TORQUE_TABLE", "Scenario", "gravity_gradient_from_table", "load_scenario", "lvlh_state_from_table", "resolve_run",
            "scenario_from_table"]
 
 #: Duration of a run when neither the file nor the command line says, s.
 DEFAULT_T_END = 20.0
 
-_SECTIONS = {
-    "initial": {"omega", "frame", "orbit_frame"},
-    "simulation": {"t_end", "samples", "dt", "times", "method", "rtol", "atol", "step"},
-    "torque": {"kind", "vector", "frame", "orbit_period", "orbit_radius", "mu"},
-    "damper": {"inertia", "damping"},
-}
+_BODY = Key("body", "string or table", required=True, allowed="a preset name, a body file or a [body] table",
+            example='"t-handle"', doc="the body: a preset, a body file (relative to this file) or a [body] table")
+_OMEGA = Key("omega", "3 numbers", "rad/s", example="[0.1, 10.0, 0.1]", doc="the initial angular velocity")
+_T_END = Key("t_end", "number", "s", f"{DEFAULT_T_END}", example="20.0", doc="duration of the run", low=0.0)
+_SAMPLES = Key("samples", "whole number", "", f"{DEFAULT_SAMPLES}", example="400", doc="samples returned, t = 0 to t_end",
+               low=2, low_included=True, high=1_000_000)
+_TIMES = Key("times", "list of numbers", "s", allowed=">= 0, increasing", example="[0.0, 0.5, 2.0]",
+             doc="the sample times, instead of t_end, samples and dt")
+_METHOD = Key("method", "string", "", '"exact"', example='"dop853"', choices=tuple(METHODS),
+              doc="the integration method (dop853 with a torque)")
+_STEP = Key("step", "number", "s", "(the method's)", example="0.001", low=0.0,
+            doc="the largest step of a fixed-step or splitting method")
+#: The ``[torque]`` table of scenario and sweep files.
+TORQUE_TABLE = Table("[torque]", (
+    Key("kind", "string", "", '"constant"', choices=("constant", "gravity_gradient"), example='"gravity_gradient"',
+        doc="a constant torque, or the gravity gradient of a circular orbit"),
+    Key("vector", "3 numbers", "N m", example="[0.0, 0.0, 0.01]", doc='the torque (kind = "constant": required)'),
+    Key("frame", "string", "", '"body"', choices=("body", "world"), example='"world"',
+        doc="the frame the vector is fixed in"),
+    Key("orbit_period", "number", "s", example="5400.0", low=0.0,
+        doc='kind = "gravity_gradient": the orbit\'s period (or orbit_radius)'),
+    Key("orbit_radius", "number", "m", example="6.78e6", low=0.0, doc="the orbit's radius (or orbit_period)"),
+    Key("mu", "number", "m^3/s^2", "3.986004418e14 (the Earth's)", example="4.9048695e12", low=0.0,
+        doc="the central body's gravitational parameter"),
+), "Optional: a torque acting through the run.")
 #: Keys of each kind of ``[torque]`` table.
 _TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
+
+#: The tables of a scenario file (without ``[control]``; a closed-loop run's are
+#: :data:`tumble.io.controlfile.CONTROL_FORMAT`'s) and their keys.
+SCENARIO_FORMAT = FileFormat("scenario", (
+    Table("top level", (_BODY,
+                        Key("initial", "table", required=True, example="{omega = [0.1, 10.0, 0.1]}", doc="[initial]"),
+                        Key("simulation", "table", example="{t_end = 20.0}", doc="[simulation]"),
+                        Key("torque", "table", example='{vector = [0.0, 0.0, 0.01]}', doc="[torque]"),
+                        Key("damper", "table", example="{inertia = 0.01, damping = 0.05}", doc="[damper]"))),
+    Table("[initial]", (
+        _OMEGA,
+        Key("frame", "string", "", '"principal"', choices=("principal", "design"), example='"design"',
+            doc="the frame of omega: principal axes (I1 <= I2 <= I3) or the body file's design frame"),
+        Key("orbit_frame", "table", example="{pitch = 0.01}",
+            doc="instead of omega: start at rest in the orbiting frame (needs the gravity-gradient torque)"),
+    ), "The initial spin: ``omega`` (required) or ``[initial.orbit_frame]``."),
+    Table("[initial.orbit_frame]", (
+        Key("roll", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
+        Key("pitch", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
+        Key("yaw", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
+        Key("pitch_axis", "whole number or string", "", "3", allowed='1, 2, 3, "minor", "intermediate", "major"',
+            example="3", doc="the principal axis along the orbit normal"),
+        Key("yaw_axis", "whole number or string", "", "1", allowed='1, 2, 3, "minor", "intermediate", "major"',
+            example="1", doc="the principal axis along the radius (the third is the roll axis)"),
+    ), "A body at rest in the orbiting (LVLH) frame of the ``[torque]`` orbit, turned by pitch, roll, yaw."),
+    Table("[simulation]", (
+        _T_END, _SAMPLES,
+        Key("dt", "number", "s", example="0.01", low=0.0, doc="the sample interval, instead of samples"),
+        _TIMES, _METHOD,
+        Key("rtol", "number", "", "(the method's)", example="1e-12", low=2.22e-14, low_included=True, high=0.1,
+            doc="relative tolerance (dop853, rk45, seed)"),
+        Key("atol", "number", "rad/s", "(the method's)", example="1e-12", low=0.0, doc="absolute tolerance"),
+        _STEP,
+    ), "When to sample and how to integrate."),
+    TORQUE_TABLE,
+    Table("[damper]", (
+        Key("inertia", "number", "kg m^2", required=True, example="0.01", low=0.0, doc="the sphere's moment of inertia"),
+        Key("damping", "number", "N m s", required=True, example="0.05", low=0.0, low_included=True,
+            doc="the viscous coupling"),
+    ), "Optional: a spherical nutation damper (:class:`tumble.dynamics.SphericalDamper`)."),
+), "A body, an initial spin and how to integrate it: ``tumble simulate``, ``tumble plot`` and "
+   "``tumble view`` read it; a file with a ``[control]`` table is a control scenario instead.")
+_SECTIONS = {t.title.strip("[]"): t for t in SCENARIO_FORMAT.tables[1:] if t.title != "[initial.orbit_frame]"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,27 +215,19 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     >>> scenario.frame, scenario.t_end, scenario.sample_count
     ('design', 2.0, 21)
     """
-    unknown = sorted(set(data) - {"body", *_SECTIONS})
+    unknown = sorted(set(data) - set(SCENARIO_FORMAT.tables[0].names()))
     if unknown:
         raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, {', '.join(_SECTIONS)}")
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
     body = _body(data["body"], base_dir)
-    tables = {}
-    for section, keys in _SECTIONS.items():
-        table = data.get(section, {})
-        if not isinstance(table, dict):
-            raise ValueError(f"{section} must be a table [{section}]")
-        bad = sorted(set(table) - keys)
-        if bad:
-            raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(keys))}")
-        tables[section] = table
+    tables = {section: keys.check(section, data.get(section, {})) for section, keys in _SECTIONS.items()}
     initial, sim = tables["initial"], tables["simulation"]
     model = _torque(tables["torque"])
     omega, frame, attitude0 = _initial(initial, model, body)
     damper = None
     if tables["damper"]:
-        missing = sorted(_SECTIONS["damper"] - set(tables["damper"]))
+        missing = sorted(set(_SECTIONS["damper"].names()) - set(tables["damper"]))
         if missing:
             raise ValueError(f"damper: missing key {missing[0]!r}")
         try:
@@ -197,9 +252,7 @@ def _torque(table: dict):
     kind = table.get("kind", "constant")
     if not isinstance(kind, str) or kind not in _TORQUE_KINDS:
         raise ValueError(f"torque: kind = {kind!r} is unknown; allowed: {', '.join(_TORQUE_KINDS)}")
-    bad = sorted(set(table) - _TORQUE_KINDS[kind])
-    if bad:
-        raise ValueError(f"torque: key {bad[0]!r} does not go with kind = {kind!r}; allowed: {', '.join(sorted(_TORQUE_KINDS[kind]))}")
+    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in _TORQUE_KINDS[kind])).check("torque", table, kind=kind)
     if kind == "gravity_gradient":
         return gravity_gradient_from_table(table)
     if "vector" not in table:
@@ -391,7 +444,7 @@ def _override(scenario: Scenario, given: dict, where: str) -> Scenario:
 
 
 _TORQUE_KEYS = ("kind", "orbit_period", "orbit_radius", "mu")
-_LVLH_KEYS = ("roll", "pitch", "yaw", "pitch_axis", "yaw_axis")
+_LVLH_KEYS = SCENARIO_FORMAT.table("[initial.orbit_frame]").names()
 
 
 def _check_keys(where: str, table, allowed) -> None:

@@ -66,25 +66,81 @@ from ..ensemble import (
     RunSettings,
     Sweep,
 )
+from ..ensemble.sampling import MAX_CASES, SAMPLINGS
 from ..mass import PRESETS, Body
 from .bodyfile import body_from_table, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
-from .scenario import DEFAULT_T_END, _torque
+from .keys import FileFormat, Key, Table
+from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END, TORQUE_TABLE, _torque
 
-__all__ = ["SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
+__all__ = ["SWEEP_FORMAT", "SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
 #: The files a sweep writes into its folder (an earlier run's are replaced as a set).
 SWEEP_WRITES = ("cases.csv", "cases.parquet", "summary.json", "sweep.png")
 
-_SECTIONS = {
-    "sweep": {"cases", "seed", "sampling", "chunk", "max_resamples"},
-    "initial": {"omega", "frame", "distribution", "spread", "grid"},
-    "simulation": {"t_end", "samples", "times", "method", "step"},
-    "torque": {"kind", "vector", "frame", "orbit_period", "orbit_radius", "mu"},
-    "criterion": {"column", "min", "max", "confidence"},
-}
-_DISPERSION_KEYS = {"target", "field", "part", "relative", "absolute", "distribution"}
+_DISTRIBUTION = ("normal", "uniform")
+#: The tables of a sweep file and their keys.
+SWEEP_FORMAT = FileFormat("sweep", (
+    Table("top level", (
+        _BODY,
+        Key("sweep", "table", required=True, example="{cases = 4096}", doc="[sweep]"),
+        Key("dispersion", "list of tables", example='[{target = "moments", relative = 0.02}]',
+            doc="[[dispersion]], any number"),
+        Key("initial", "table", required=True, example="{omega = [10.0, 0.1, 0.1]}", doc="[initial]"),
+        Key("simulation", "table", example="{t_end = 20.0}", doc="[simulation]"),
+        Key("torque", "table", example="{vector = [0.0, 0.0, 0.01]}", doc="[torque]"),
+        Key("criterion", "table", example='{column = "flips", min = 1}', doc="[criterion]"),
+    ), "The first comment line of the file describes the sweep."),
+    Table("[sweep]", (
+        Key("cases", "whole number", required=True, example="4096", doc="how many cases",
+            low=1, low_included=True, high=MAX_CASES),
+        Key("seed", "whole number", "", "0", example="1", low=0, low_included=True, high=2**64 - 1,
+            doc="case i draws from SeedSequence(seed).spawn(...)[i]"),
+        Key("sampling", "string", "", '"random"', choices=tuple(SAMPLINGS), example='"sobol"',
+            doc="random, Latin hypercube or Sobol' points"),
+        Key("chunk", "whole number", "", f"{DEFAULT_CHUNK}", example="1024", low=1, low_included=True,
+            doc="cases per chunk: memory and resume granularity, not the results"),
+        Key("max_resamples", "whole number", "", "100", example="100", low=0, low_included=True,
+            doc="redraws of an unphysical body per case before the sweep is refused"),
+    ), "How many cases and how they are drawn."),
+    Table("[[dispersion]]", (
+        Key("target", "string", required=True, choices=("preset", "part", "moments", "axes"), example='"preset"',
+            doc="a preset parameter, a part's field, the principal moments or the principal axes"),
+        Key("field", "string", example='"shaft_length"', doc="the preset parameter or the part's field"),
+        Key("part", "whole number", example="0", low=0, low_included=True,
+            doc='target = "part": index into the body\'s parts, from 0'),
+        Key("relative", "number", "", example="0.05", low=0.0, low_included=True,
+            doc="the spread as a fraction (or absolute, one of them)"),
+        Key("absolute", "number", "(the field's; rad for axes)", example="0.002", low=0.0, low_included=True,
+            doc="the spread in the field's unit"),
+        Key("distribution", "string", "", '"normal"', choices=_DISTRIBUTION, example='"uniform"',
+            doc="normal: the spread is one standard deviation; uniform: the half-width"),
+    ), "One dispersed quantity each; any number of them."),
+    Table("[initial]", (
+        _OMEGA,
+        Key("frame", "string", "", '"principal"', choices=("principal", "design"), example='"design"',
+            doc="each case's own principal axes, or the body file's design frame"),
+        Key("distribution", "string", "", "(none: not dispersed)", choices=_DISTRIBUTION, example='"normal"',
+            doc="disperse each component of omega"),
+        Key("spread", "3 numbers", "rad/s", "[0.0, 0.0, 0.0]", allowed=">= 0 each; needs the distribution",
+            example="[0.0, 0.05, 0.05]", doc="the dispersion of each component"),
+        Key("grid", "3 lists of numbers", "rad/s", example="[[10.0], [0.05, 0.1], [0.1]]",
+            doc="instead of omega: the Cartesian product, case i at point i mod G"),
+    ), "The nominal initial angular velocity, or a grid of them; ``omega`` or ``grid`` is required."),
+    Table("[simulation]", (_T_END, _SAMPLES, _TIMES, _METHOD, _STEP), "When to sample and how to integrate each case."),
+    TORQUE_TABLE,
+    Table("[criterion]", (
+        Key("column", "string", required=True, example='"flips"', doc="a column of cases.csv, without its unit"),
+        Key("min", "number", "(the column's)", example="1", doc="the least value that succeeds (inclusive)"),
+        Key("max", "number", "(the column's)", example="10", doc="the largest value that succeeds (inclusive)"),
+        Key("confidence", "number", "", "0.9", example="0.95", low=0.0, high=1.0, high_included=False,
+            doc="of the order-statistics statement"),
+    ), "Optional: what counts as success; a NaN value fails."),
+), "A Monte Carlo sweep or a grid: ``tumble sweep SWEEP.toml --out DIR`` "
+   "(:func:`tumble.commands.sweep.run_sweep`) runs it.")
+_SECTIONS = {t.title.strip("[]"): t for t in SWEEP_FORMAT.tables[1:] if t.title != "[[dispersion]]"}
+_DISPERSION = SWEEP_FORMAT.table("[[dispersion]]")
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,13 +193,7 @@ class SweepFile:
 
 
 def _table(data: dict, section: str) -> dict:
-    table = data.get(section, {})
-    if not isinstance(table, dict):
-        raise ValueError(f"{section} must be a table [{section}]")
-    bad = sorted(set(table) - _SECTIONS[section])
-    if bad:
-        raise ValueError(f"{section}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(_SECTIONS[section]))}")
-    return table
+    return _SECTIONS[section].check(section, data.get(section, {}))
 
 
 def _nominal(spec, base_dir: Path | None) -> tuple[Body, str | None, dict, list[Path]]:
@@ -174,9 +224,7 @@ def _dispersion(table, k: int) -> Dispersion:
     where = f"dispersion[{k}]"
     if not isinstance(table, dict):
         raise ValueError(f"{where} must be a table [[dispersion]]")
-    bad = sorted(set(table) - _DISPERSION_KEYS)
-    if bad:
-        raise ValueError(f"{where}: unknown key {bad[0]!r}; allowed: {', '.join(sorted(_DISPERSION_KEYS))}")
+    _DISPERSION.check(where, table)
     if ("relative" in table) == ("absolute" in table):
         raise ValueError(f"{where}: give relative = (a fraction) or absolute = (in the field's unit), one of them")
     relative = "relative" in table
@@ -185,8 +233,11 @@ def _dispersion(table, k: int) -> Dispersion:
     try:
         return Dispersion(table["target"], table["relative" if relative else "absolute"], field=table.get("field"),
                           part=table.get("part"), relative=relative, distribution=table.get("distribution", "normal"))
-    except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+    except ValueError as exc:  # the constructor's spread is the file's relative or absolute
+        text = str(exc)
+        if text.startswith("spread = "):
+            text = ("relative" if relative else "absolute") + text.removeprefix("spread")
+        raise ValueError(f"{where}: {text}") from None
 
 
 def _criterion(table: dict) -> Criterion | None:
@@ -227,7 +278,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     ...
     ValueError: sweep: cases = 0 must be a whole number from 1 to 100000000
     """
-    unknown = sorted(set(data) - {"body", "dispersion", *_SECTIONS})
+    unknown = sorted(set(data) - set(SWEEP_FORMAT.tables[0].names()))
     if unknown:
         raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, dispersion, {', '.join(_SECTIONS)}")
     if "body" not in data:
@@ -288,7 +339,7 @@ def _text(values: np.ndarray) -> list[str]:
 
 class CaseTables:
     """Writes the chunks of a sweep to ``cases.csv`` (and ``cases.parquet`` with pyarrow) in
-    ``folder`` as they pass: call it with each chunk's columns, then :meth:`close`.
+    ``folder`` as they pass: call it with each chunk's columns, then :meth:`CaseTables.close`.
 
     Examples
     --------

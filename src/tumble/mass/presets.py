@@ -87,7 +87,10 @@ def t_handle(
                 mass=mass, density=density, radius=radius, length=length, center=center, axis=axis
             )
         except ValueError as exc:
-            raise ValueError(f"{label}: {exc}") from None
+            text = str(exc)
+            if text.startswith(("length = ", "mass = ")):  # the argument's own name: shaft_length = -2.0 ...
+                raise ValueError(f"{label}_{text}") from None
+            raise ValueError(f"{label}: {text}") from None
 
     shaft = bar("shaft", shaft_length, shaft_mass, shaft_radius, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
     top = 0.5 * shaft.length + crossbar_radius

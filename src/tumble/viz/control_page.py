@@ -89,7 +89,7 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
     Parameters
     ----------
     run : ControlledRun
-        The closed-loop run (:meth:`tumble.io.controlfile.ControlScenario.run`).
+        The closed-loop run (:func:`tumble.commands.run_scenario`).
     frames : int
         Animation frames, as the page's (2 to :data:`tumble.viz.scene.MAX_FRAMES`).
     wheel_axes : array_like, shape (k, 3), optional

@@ -41,7 +41,7 @@ NOISE_FACTOR = 3.0
 #: The largest rise of ``|L|`` over a flight that a rigid body's samples show, as a fraction of
 #: its mean: drag only lowers it (see :func:`rigid_body_check` for the measurements behind it).
 MAX_MOMENTUM_RISE = 0.06
-#: The same for the rotational energy ``2E = omega . I omega``.
+#: The same for the rotational energy ``2E = omega^T I omega``.
 MAX_ENERGY_RISE = 0.1
 #: The span over which ``|L|`` and ``2E`` are averaged before their rise is taken, s.
 RIGID_SMOOTHING = 0.05

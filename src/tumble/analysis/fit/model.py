@@ -204,7 +204,7 @@ class Model:
         return np.concatenate([np.array(P, float), np.asarray(omega0, float).reshape(-1)])
 
     def get(self, P: np.ndarray, name: str, default: float = 0.0) -> float:
-        """One named shared parameter of ``P`` (a name of :attr:`shared`), or ``default`` where it is not fitted.
+        """One named shared parameter of ``P`` (a name of ``Model.shared``), or ``default`` where it is not fitted.
 
         Examples
         --------

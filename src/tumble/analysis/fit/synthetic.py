@@ -202,7 +202,7 @@ class SyntheticRecording:
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines
-        (each prefixed with ``# ``) first, when given.
+        (each prefixed with ``#`` and a space) first, when given.
 
         Examples
         --------

@@ -15,9 +15,9 @@ The room calls the models and the integrators, never the other way (tests/test_i
 """
 
 from .controlled import ControlledRun, simulate_controlled
-from .controllers import BDot, Controller, MRPFeedback, bdot_gain, pd_response
+from .controllers import BDot, Controller, MomentumDumping, MRPFeedback, bdot_gain, pd_response
 from .mission import DetumbleThenPoint
 from .pointing import NadirTarget
 
-__all__ = ["BDot", "ControlledRun", "Controller", "DetumbleThenPoint", "MRPFeedback", "NadirTarget", "bdot_gain",
+__all__ = ["BDot", "ControlledRun", "Controller", "DetumbleThenPoint", "MRPFeedback", "MomentumDumping", "NadirTarget", "bdot_gain",
            "pd_response", "simulate_controlled"]

@@ -1,4 +1,4 @@
-"""B-dot detumbling of many bodies at once: the closed loop of :func:`simulate_controlled`,
+"""B-dot detumbling of many bodies at once: the closed loop of :func:`~tumble.dynamics.control.controlled.simulate_controlled`,
 vectorised over N bodies with numpy and integrated by fixed-step RK4 between control steps.
 
 The model is the magnetorquer case of :mod:`~tumble.dynamics.control.controlled` with the gyro form of
@@ -32,7 +32,7 @@ body, on every core for a large batch); ``compiled=False`` runs the numpy path, 
 the bodies, which is the reference (the two agree to round-off, tests/test_controlled_compiled.py).
 In numpy one RK4 stage is some fifty operations on arrays of N, and the batch is bound by memory
 traffic; compiled, a body's state stays in registers. **Accuracy.** RK4's error is ``O(h^4)``; with the default
-four substeps a step and rates up to ~0.5 rad/s it agrees with :func:`simulate_controlled`
+four substeps a step and rates up to ~0.5 rad/s it agrees with :func:`~tumble.dynamics.control.controlled.simulate_controlled`
 (DOP853, rtol 1e-10) to ~1e-9 rad/s, gravity gradient and sensor noise included (tested).
 """
 
@@ -278,10 +278,10 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
         RK4 steps per control period (>= 1).
     gravity_gradient : GravityGradient, optional
         The gravity-gradient torque of the field's circular orbit (``gravity_gradient_of(field.orbit)``;
-        as in :func:`simulate_controlled`, without moments: each body's own act); default none.
+        as in :func:`~tumble.dynamics.control.controlled.simulate_controlled`, without moments: each body's own act); default none.
     sensors : Sensors or sequence of N Sensors, optional
         Gyro and magnetometer noise (rad/s, T, 1 sigma) and biases (rad/s, T), as in
-        :func:`simulate_controlled`: one for every body (body ``i`` then draws its noise from
+        :func:`~tumble.dynamics.control.controlled.simulate_controlled`: one for every body (body ``i`` then draws its noise from
         seed ``sensors.seed + i``) or one per body (its own seed and biases). Default: ideal sensors.
     compiled : bool
         The compiled kernel (True) or the numpy reference path (False); module docstring.
