@@ -157,8 +157,11 @@ sphinx_gallery_conf = {
     "run_stale_examples": True,  # every build runs every script: a build that passes ran them
     "within_subsection_order": "FileNameSortKey",
     # tumble.viz's figures bypass pyplot: docs/_ext/tumble_scraper.py saves those; plain pyplot
-    # figures go through sphinx-gallery's own scraper
-    "image_scrapers": ("matplotlib", "tumble_scraper"),
+    # figures go through sphinx-gallery's own scraper. Ours runs first, while pyplot still holds
+    # its figures, so that it can leave them out (each figure once on its page)
+    "image_scrapers": ("tumble_scraper", "matplotlib"),
+    # the last expression of a block is shown, unless it is a matplotlib artist (ax.legend())
+    "ignore_repr_types": r"matplotlib\.(legend|text|axes|lines|patches|collections|image|figure)\b",
     "show_memory": False,
     "backreferences_dir": "api/backreferences",
     "doc_module": ("tumble",),
