@@ -43,7 +43,9 @@ extensions = [
     "numpydoc",
     "myst_parser",
     "sphinx_gallery.gen_gallery",
+    "sphinx.ext.viewcode",  # a [source] link from every API page to its highlighted module (offline)
     "tumble_xref",  # docs/_ext: references to tumble's names, resolved as Python does
+    "tumble_citing",  # docs/_ext: the citing page from CITATION.cff
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -173,7 +175,8 @@ sphinx_gallery_conf = {
 # -- HTML ----------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = "tumble"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["tumble.css"]  # code blocks wrap long lines (docs/_static/tumble.css)
 html_show_sourcelink = False
 html_copy_source = False
 html_theme_options = {
@@ -184,6 +187,7 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
     "footer_start": ["copyright"],
     "footer_end": [],
+    "logo": {"text": f"tumble {release}"},  # the version in every page's header
 }
 html_sidebars = {"**": ["sidebar-nav-bs"]}
 # The theme reads the colour mode from the page; without one it logs an error from file://.
