@@ -5,11 +5,15 @@ an empty folder, as shown or with the hint it prints (``tumble examples --copy e
 The commands are read from the pages and from the installed ``tumble``'s own ``--help``
 (:mod:`shown_commands`), so a command added to a guide is run here without a change to this file.
 
-The virtualenv holds the wheel alone (``--no-deps``); its dependencies (numpy, scipy, matplotlib,
-plotly, trimesh...) come from the test environment's site-packages through a ``.pth`` line, which
-puts that folder on ``sys.path`` without reading the ``.pth`` files inside it: the editable
-install of the checkout (``__editable__.tumble-*.pth``) stays out, and the test asserts that the
-``tumble`` imported is the wheel's. Nothing is downloaded.
+The virtualenv holds the wheel alone (``--no-deps``); its dependencies come from the test
+environment's site-packages through a ``.pth`` line, which puts that folder on ``sys.path`` without
+reading the ``.pth`` files inside it: the editable install of the checkout
+(``__editable__.tumble-*.pth``) stays out, and the test asserts that the ``tumble`` imported is the
+wheel's. Of that folder only what ``tumble[view,mesh]`` needs may be imported (the issue's fresh
+virtualenv: numpy, scipy, matplotlib, rich, numba, plotly, trimesh and what they need, found from
+the installed distributions' metadata); any other top-level module there (dask, pyarrow,
+imageio-ffmpeg, pytest...) raises ModuleNotFoundError, as it would in a virtualenv without it.
+Nothing is downloaded.
 
 Marked ``wheel`` (``-m "not wheel"`` leaves it out); skipped where pip or setuptools is missing.
 """
@@ -52,6 +56,66 @@ MESH_SUFFIXES = (".stl", ".obj", ".ply")
 TEXT_SUFFIXES = (".md", ".json", ".txt", ".toml", ".ipynb", ".csv")
 
 
+#: The extras of the issue's fresh virtualenv ("only the built wheel, plus [view,mesh]").
+EXTRAS = ("view", "mesh")
+
+
+def _top_level(dist) -> set[str]:
+    """The top-level modules a distribution installs, from its list of files."""
+    names = set()
+    for file in dist.files or ():
+        head = file.parts[0]
+        if head == ".." or head.endswith((".dist-info", ".data", ".pth")) or head == "__pycache__":
+            continue
+        names.add(head.split(".")[0])
+    return names
+
+
+def allowed_modules(project: str = "tumble", extras: tuple[str, ...] = EXTRAS) -> set[str]:
+    """The top-level modules of ``project[extras]`` and of everything it requires, transitively,
+    as installed in this environment (markers evaluated here)."""
+    from importlib import metadata
+
+    from packaging.requirements import Requirement
+    from packaging.utils import canonicalize_name
+
+    todo, seen, modules = [(project, frozenset(extras))], set(), set()
+    while todo:
+        name, wanted = todo.pop()
+        if (canonicalize_name(name), wanted) in seen:
+            continue
+        seen.add((canonicalize_name(name), wanted))
+        dist = metadata.distribution(name)
+        modules |= _top_level(dist)
+        for line in dist.requires or ():
+            req = Requirement(line)
+            if req.marker is None or any(req.marker.evaluate({"extra": e}) for e in ("", *wanted)):
+                todo.append((req.name, frozenset(req.extras)))
+    return modules
+
+
+#: Installed in the virtualenv as a module imported by a .pth line: refuses the test
+#: environment's modules that tumble[view,mesh] does not bring.
+BLOCKER = """\
+import sys
+
+BLOCKED = frozenset({blocked!r})
+
+
+class _NotInstalled:
+    \"\"\"A top-level module that the wheel's virtualenv would not have (tests/test_wheel_commands.py).\"\"\"
+
+    @staticmethod
+    def find_spec(name, path=None, target=None):
+        if path is None and name in BLOCKED:
+            raise ModuleNotFoundError(f"No module named {{name!r}}", name=name)
+        return None
+
+
+sys.meta_path.insert(0, _NotInstalled)
+"""
+
+
 @dataclass(frozen=True)
 class Venv:
     root: Path
@@ -77,7 +141,12 @@ def venv(tmp_path_factory) -> Venv:
     site = Path(subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
                                capture_output=True, text=True, check=True, env=env).stdout.strip())
     ours = dict.fromkeys(sysconfig.get_path(k) for k in ("purelib", "platlib"))  # the test environment's
-    (site / "tumble_test_dependencies.pth").write_text("".join(f"{p}\n" for p in ours), encoding="utf-8")
+    present = {entry.name.split(".")[0] for folder in ours for entry in Path(folder).iterdir()
+               if not entry.name.endswith((".dist-info", ".pth")) and entry.name != "__pycache__"}
+    blocked = sorted(present - allowed_modules() - {"tumble"})
+    (site / "_tumble_wheel_test_blocker.py").write_text(BLOCKER.format(blocked=blocked), encoding="utf-8")
+    (site / "tumble_test_dependencies.pth").write_text(
+        "".join(f"{p}\n" for p in ours) + "import _tumble_wheel_test_blocker\n", encoding="utf-8")
     env.update(PATH=f"{root / 'bin'}{os.pathsep}{env.get('PATH', '')}", COLUMNS="1000", MPLBACKEND="Agg")
     return Venv(root, python, root / "bin" / "tumble", site, env)
 
@@ -93,6 +162,22 @@ def test_the_tumble_of_the_virtualenv_is_the_wheel_and_not_the_checkout(venv, tm
     assert (ROOT / "src").resolve() not in {Path(p).resolve() for p in path if p}, path
     assert version == own
     assert venv.tumble.is_file()
+
+
+def test_the_virtualenv_has_only_what_tumble_view_mesh_brings(venv, tmp_path):
+    allowed = allowed_modules()
+    assert {"numpy", "scipy", "matplotlib", "rich", "numba", "plotly", "trimesh", "PIL"} <= allowed
+    assert not allowed & {"dask", "pyarrow", "pytest", "imageio_ffmpeg", "sphinx", "hypothesis"}
+    code = ("import importlib\n"
+            "for name in ('numpy', 'plotly', 'trimesh', 'dask', 'pyarrow', 'pytest', 'imageio_ffmpeg'):\n"
+            "    try:\n        importlib.import_module(name); print(name, 'yes')\n"
+            "    except ModuleNotFoundError:\n        print(name, 'no')\n")
+    proc = subprocess.run([str(venv.python), "-c", code], cwd=tmp_path, env=venv.env, capture_output=True,
+                          text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    found = dict(line.split() for line in proc.stdout.splitlines())
+    assert found == {"numpy": "yes", "plotly": "yes", "trimesh": "yes", "dask": "no", "pyarrow": "no",
+                     "pytest": "no", "imageio_ffmpeg": "no"}
 
 
 def _listing_paths(stdout: str) -> list[str]:
