@@ -6,7 +6,8 @@
 #               and the whole test suite (on every core: pytest-xdist, one file to a
 #               worker so module fixtures run once)
 #   make docs   creates .venv if needed, installs tumble with the docs extra only (Sphinx and its
-#               extensions, and the mesh and cluster extras the gallery's scripts run), then
+#               extensions; the mesh and cluster extras the gallery's scripts run and the
+#               notebook extra whose IPython the API pages name), then
 #               builds the site (guides, galleries, API reference) offline into site/, every
 #               warning an error (open site/index.html)
 #   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks

@@ -293,7 +293,7 @@ def test_make_docs_installs_only_the_docs_extra(tmp_path):
     assert {"sphinx", "pydata-sphinx-theme", "numpydoc", "myst-parser", "sphinx-gallery"} <= names
     assert not names & {"pytest", "hypothesis", "playwright", "mypy", "import-linter", "pytest-xdist"}
     # what the gallery's scripts import beyond tumble's own dependencies comes with it
-    assert "tumble[mesh,cluster]" in extras["docs"]
+    assert "tumble[mesh,cluster,notebook]" in extras["docs"]
     gallery = " ".join(p.read_text(encoding="utf-8") for p in (ROOT / "gallery").glob("plot_*.py"))
     assert "tumble.Mesh(" in gallery and "DaskBackend(" in gallery
     test = _make_dry_run(tmp_path, "test")
