@@ -5,18 +5,23 @@
 #               contracts, mypy --strict on mass and dynamics ([tool.mypy] in pyproject.toml)
 #               and the whole test suite (on every core: pytest-xdist, one file to a
 #               worker so module fixtures run once)
-#   make docs   the test set-up, then the site (guides, galleries, API reference) built offline
-#               into site/ by Sphinx, every warning an error (open site/index.html)
+#   make docs   creates .venv if needed, installs tumble with the docs extra only (Sphinx and its
+#               extensions; the mesh and cluster extras the gallery's scripts run and the
+#               notebook extra whose IPython the API pages name), then
+#               builds the site (guides, galleries, API reference) offline into site/, every
+#               warning an error (open site/index.html)
 #   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks
 #               (ratios against a baseline in the same run)
 # Each set-up is a stamp in .venv, remade when pyproject.toml changes; the test set-up holds the
-# demo's too (the test extra has imageio-ffmpeg), so it stamps both.
+# demo's and the docs' too (the test extra has imageio-ffmpeg; it installs the docs extra, as the
+# tests build the site), so it stamps all three.
 
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
 DEMO_STAMP := $(VENV)/.tumble-demo
 TEST_STAMP := $(VENV)/.tumble-test
+DOCS_STAMP := $(VENV)/.tumble-docs
 
 .PHONY: demo test bench docs clean
 
@@ -30,7 +35,13 @@ $(TEST_STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,cluster,docs]'
-	touch $(DEMO_STAMP) $(TEST_STAMP)
+	touch $(DEMO_STAMP) $(DOCS_STAMP) $(TEST_STAMP)
+
+$(DOCS_STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[docs]'
+	touch $(DOCS_STAMP)
 
 demo: $(DEMO_STAMP)
 	$(VENV)/bin/tumble demo
@@ -40,7 +51,7 @@ test: $(TEST_STAMP)
 	$(VENV)/bin/mypy
 	$(PY) -m pytest -n auto --dist loadfile
 
-docs: $(TEST_STAMP)
+docs: $(DOCS_STAMP)
 	$(VENV)/bin/sphinx-build -W --keep-going -j 2 -q -b html docs site
 
 bench: $(TEST_STAMP)

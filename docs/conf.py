@@ -42,8 +42,10 @@ extensions = [
     "numpydoc",
     "myst_parser",
     "sphinx_gallery.gen_gallery",
+    "sphinx.ext.viewcode",  # a [source] link from every API page to its highlighted module (offline)
     "tumble_xref",  # docs/_ext: references to tumble's names, resolved as Python does
     "tumble_keys",  # docs/_ext: the file formats' tables of keys, as their parsers check them
+    "tumble_citing",  # docs/_ext: the citing page from CITATION.cff
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -106,8 +108,11 @@ sphinx_gallery_conf = {
     "run_stale_examples": True,  # every build runs every script: a build that passes ran them
     "within_subsection_order": "FileNameSortKey",
     # tumble.viz's figures bypass pyplot: docs/_ext/tumble_scraper.py saves those; plain pyplot
-    # figures go through sphinx-gallery's own scraper
-    "image_scrapers": ("matplotlib", "tumble_scraper"),
+    # figures go through sphinx-gallery's own scraper. Ours runs first, while pyplot still holds
+    # its figures, so that it can leave them out (each figure once on its page)
+    "image_scrapers": ("tumble_scraper", "matplotlib"),
+    # the last expression of a block is shown, unless it is a matplotlib artist (ax.legend())
+    "ignore_repr_types": r"matplotlib\.(legend|text|axes|lines|patches|collections|image|figure)\b",
     "show_memory": False,
     "backreferences_dir": "api/backreferences",
     "doc_module": ("tumble",),
@@ -119,7 +124,8 @@ sphinx_gallery_conf = {
 # -- HTML ----------------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = "tumble"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["tumble.css"]  # code blocks wrap long lines (docs/_static/tumble.css)
 html_show_sourcelink = False
 html_copy_source = False
 html_theme_options = {
@@ -130,6 +136,7 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
     "footer_start": ["copyright"],
     "footer_end": [],
+    "logo": {"text": f"tumble {release}"},  # the version in every page's header
 }
 html_sidebars = {"**": ["sidebar-nav-bs"]}
 # The theme reads the colour mode from the page; without one it logs an error from file://.

@@ -43,4 +43,7 @@ print(f"k = {gain:.3g} N m s; detumble time: median {summary['median_s']:.0f} s,
       f"99 % {summary['p99_s']:.0f} s, max {summary['max_s']:.0f} s; with 2k the median is {medians[2.0]:.0f} s")
 print("slowest case:", summary["worst"][0]["index"], f"from {math.degrees(summary['worst'][0]['rate0']):.2f} deg/s")
 
+# %%
+# The runs at the nominal gain ``k``, drawn by ``figure_detumble_mc``.
+
 fig = figure_detumble_mc(runs[1.0])

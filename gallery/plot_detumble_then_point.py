@@ -49,6 +49,9 @@ budget = float(run.budget_error().max())  # kg m^2/s
 print(f"pointing from t = {mission.switch_time:g} s; error {error[-1]:.2f} deg at {run.t[-1]:g} s; "
       f"momentum budget error {budget:.1e} kg m^2/s")
 
+# %%
+# The mission's figures, from ``control_figures``: rates, attitude error, wheels, dipole, momentum.
+
 figures = control_figures(run, target=point.target, switch_time=mission.switch_time, title="detumble, then point")
 fig_rates = figures["rates.png"]
 fig_error = figures["attitude_error.png"]

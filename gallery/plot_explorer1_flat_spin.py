@@ -28,4 +28,7 @@ print(f"nutation angle {np.degrees(traj.nutation_angle[0]):.1f} deg -> {np.degre
 print(f"|omega| at the end {np.linalg.norm(traj.omega[-1]):.4f} rad/s, |L| / (I3 + J) = {flat:.4f} rad/s")
 print(f"energy {traj.energy[0]:.1f} J -> {traj.energy[-1]:.2f} J, dissipated {traj.dissipated[-1]:.1f} J")
 
+# %%
+# The nutation angle growing to the flat spin, drawn by ``figure_nutation``.
+
 fig = figure_nutation(traj)

@@ -21,4 +21,7 @@ ratios, std = fit.pooled.ratios, fit.pooled.ratios_std
 print(f"I1/I3 = {ratios[0]:.4f} +- {std[0]:.4f}, I2/I3 = {ratios[1]:.4f} +- {std[1]:.4f} "
       f"(true 0.2023, 0.8023) from {fit.tosses_used} flight(s)")
 
+# %%
+# The recording and the fitted flights, drawn by ``figure_recording``.
+
 fig = figure_recording(fit)

@@ -30,4 +30,7 @@ crossings = traj.t[1:][np.diff(np.sign(angles.pitch)) > 0]  # upward zero crossi
 print(f"pitch within {np.abs(angles.pitch).max():.3f} rad; period measured {np.mean(np.diff(crossings)):.0f} s, "
       f"predicted {predicted:.0f} s")
 
+# %%
+# Roll, pitch and yaw against the orbiting frame, drawn by ``figure_orbit_angles``.
+
 fig = figure_orbit_angles(traj, gg, pitch_axis=3, yaw_axis=1)

@@ -24,8 +24,12 @@ closed = np.array([m * (R**2 / 2 + 5 * r**2 / 8), m * (R**2 / 2 + 5 * r**2 / 8),
 print(f"mass {m:.4f} kg (solid torus {1000 * 2 * np.pi**2 * R * r**2:.4f} kg), centre of mass {np.round(torus.com, 12)} m")
 print(f"principal moments {torus.principal_moments} kg m^2, closed form with this mass {closed}")
 
-fig, ax = plt.subplots()
+# %%
+# The mesh's principal moments beside the closed form's.
+
+fig, ax = plt.subplots(layout="constrained")  # room for the labels
 ax.bar(np.arange(3) - 0.2, torus.principal_moments, width=0.4, label="mesh")
 ax.bar(np.arange(3) + 0.2, closed, width=0.4, label="solid torus, closed form (same mass)")
-ax.set(xticks=range(3), xticklabels=["I1", "I2", "I3"], ylabel="kg m^2")
 ax.legend()
+ax.set(xticks=range(3), xticklabels=["I1", "I2", "I3"], ylabel="principal moment (kg m^2)")
+plt.show()

@@ -26,8 +26,12 @@ for wobble in wobbles:
     measured.append(rotation_per_period(traj, T))
     print(f"wobble {wobble:4.2f} rad/s: closed form {closed[-1]:.6f} rad, measured {measured[-1]:.6f} rad")
 
-fig, ax = plt.subplots()
+# %%
+# The closed form and the measured rotation per period, wobble by wobble.
+
+fig, ax = plt.subplots(layout="constrained")
 ax.plot(wobbles, closed, "x", markersize=12, label="closed form (Montgomery 1991)")
 ax.plot(wobbles, measured, "o", label="measured on the run")
 ax.set(xlabel="initial rate about the minor axis, rad/s", ylabel="rotation per period, rad (mod 2 pi)")
 ax.legend()
+plt.show()

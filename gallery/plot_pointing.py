@@ -31,7 +31,10 @@ error = np.degrees(run.pointing_error(target))
 budget = float(run.budget_error().max())  # kg m^2/s
 print(f"pointing error {error[0]:.1f} deg -> {error[-1]:.2f} deg; momentum budget error {budget:.1e} kg m^2/s")
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+# %%
+# The pointing error and the wheel speeds over the minute.
+
+fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
 ax1.plot(run.t, error)
 ax1.set_xlabel("t (s)")
 ax1.set_ylabel("pointing error (deg)")

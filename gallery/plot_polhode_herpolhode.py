@@ -20,5 +20,8 @@ traj = tumble.simulate(body, [0.3, 5.0, 0.2], t_end=6.0, samples=601)  # rad/s, 
 L_norm = np.linalg.norm(traj.angular_momentum, axis=1)
 print(f"|L| varies by {np.ptp(L_norm) / L_norm[0]:.1e} (relative), E by {np.ptp(traj.energy) / traj.energy[0]:.1e}")
 
+# %%
+# The polhode on the momentum sphere and the herpolhode in the invariable plane.
+
 polhode = figure_polhode(traj, title="L on the momentum sphere: the polhode")
 herpolhode = figure_herpolhode(traj, title="omega in the invariable plane: the herpolhode")

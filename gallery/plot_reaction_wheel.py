@@ -30,4 +30,7 @@ runs = {name: tumble.simulate(body, omega0, t_end=10.0, samples=1001)
 flips = {name: len(flip_times(traj.t, traj.omega[:, 1])) for name, traj in runs.items()}
 print(flips)
 
+# %%
+# omega(t) with the wheel spinning and with it stopped.
+
 fig = figure_omega_panels([(f"{name}: {flips[name]} flips", traj) for name, traj in runs.items()])

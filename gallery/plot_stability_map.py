@@ -23,4 +23,7 @@ print(f"{grid.inside.sum()} physical bodies on the grid; flip interval {np.nanmi
 print(f"the T-handle at I1/I3 = {ratios[0]:.3f}, I2/I3 = {ratios[1]:.3f}: "
       f"{float(tumble.flip_interval([0.01, 10.0, 0.01], handle)):.3f} s")
 
+# %%
+# The map, with the T-handle marked.
+
 fig = figure_stability_map(10.0, (0.01, 0.01), resolution=120, points={"T-handle": ratios})

@@ -24,4 +24,7 @@ closed = float(tumble.flip_interval(omega0, body.principal_moments))
 print(f"{len(flips)} flips in 20 s; interval measured {measured:.5f} s, closed form {closed:.5f} s")
 print(tumble.stability_report(traj))
 
+# %%
+# omega(t): the intermediate component flips sign again and again.
+
 fig = figure_omega(traj, title="omega(t) of the T-handle: the intermediate component flips")

@@ -126,7 +126,9 @@ def test_examples_are_listed_and_copied_ready_to_run(tmp_path, capsys):
     listed = [line.split()[0] for line in out.splitlines()[:-1]]
     assert "seed_flip.toml" in listed and "bodies/t_handle.toml" in listed
     code, out, _ = run(capsys, "examples", "--copy", str(tmp_path / "ex"))
-    assert code == 0 and sorted(p.relative_to(tmp_path / "ex").as_posix() for p in (tmp_path / "ex").rglob("*.toml")) == sorted(listed)
+    copied = sorted(p.relative_to(tmp_path / "ex").as_posix() for p in (tmp_path / "ex").rglob("*") if p.is_file())
+    assert code == 0 and copied == sorted(listed)  # every file copied is listed (data, notebooks, the mesh too)
+    assert {"data/racquet_tosses.csv", "notebooks/tennis_racket.ipynb", "bodies/meshes/torus.stl"} <= set(listed)
     assert run(capsys, "simulate", str(tmp_path / "ex" / "every_part_spin.toml"), "--t-end", "1", "--out", str(tmp_path / "r"))[0] == 0
     code, _, err = run(capsys, "examples", "--copy", str(tmp_path / "ex"))  # never overwrites
     assert code == 2 and "already exists" in err

@@ -236,3 +236,129 @@ def test_the_site_works_from_file_with_no_network_search_included(site, new_page
     assert any("tumble.dynamics.methods.exact_batch.free_rotation_batch.html" in h for h in hrefs), hrefs
     assert not watched.outside, f"requests that left file://: {watched.outside}"
     assert not watched.errors, "\n".join(watched.errors)
+
+
+# --- pages that read well (issue 28 item 2) ---------------------------------------------------------
+
+class _Images(HTMLParser):
+    """The ``src`` of every ``<img>`` of a page, in order, and where the first code block starts."""
+
+    def __init__(self):
+        super().__init__()
+        self.images: list[tuple[int, str]] = []
+        self.code: list[int] = []
+        self.count = 0
+
+    def handle_starttag(self, tag, attrs):
+        self.count += 1
+        attrs = dict(attrs)
+        if tag == "img" and attrs.get("src"):
+            self.images.append((self.count, attrs["src"]))
+        if tag == "div" and "highlight-python" in (attrs.get("class") or "").lower():
+            self.code.append(self.count)
+
+
+def test_every_figure_appears_once_on_its_page(site):
+    """No page shows an image twice, by its address or by its bytes (three gallery pages drew
+    their figure twice: pyplot's scraper and tumble's both saved it)."""
+    import hashlib
+
+    twice = []
+    for page in sorted(site.rglob("*.html")):
+        parser = _Images()
+        parser.feed(page.read_text(encoding="utf-8"))
+        digests: dict[str, str] = {}
+        for _, src in parser.images:
+            path = (page.parent / src.split("#")[0].split("?")[0]).resolve()
+            if not path.is_file() or path.suffix.lower() not in (".png", ".jpg", ".jpeg", ".gif", ".webp"):
+                continue
+            digest = hashlib.sha256(path.read_bytes()).hexdigest()
+            if digest in digests:
+                twice.append(f"{page.relative_to(site)}: {src} = {digests[digest]}")
+            digests.setdefault(digest, src)
+    assert not twice, "\n".join(twice)
+
+
+def test_each_gallery_figure_follows_the_code_that_draws_it(site):
+    """On a gallery page of several code blocks, no figure comes before the first block (a page
+    of one block shows its output above the code: sphinx-gallery's layout of a simple example)."""
+    early = []
+    for script in SCRIPTS:
+        parser = _Images()
+        parser.feed((site / "examples" / f"{script.stem}.html").read_text(encoding="utf-8"))
+        figures = [at for at, src in parser.images if "sphx_glr_" in src]
+        if len(parser.code) > 1 and figures and figures[0] < parser.code[0]:
+            early.append(script.name)
+    assert not early, f"a figure above its code: {early}"
+    assert sum(1 for s in SCRIPTS if "# %%" in s.read_text(encoding="utf-8")) >= len(SCRIPTS) - 1
+
+
+def test_no_page_shows_a_raw_object_repr_or_an_escaped_pipe(site):
+    """``<matplotlib.legend.Legend object at 0x...>`` under a gallery figure on any page, or a
+    guide's table cell that shows ``\\|``: what a reader should never see. (The API pages are
+    left out of the second check: docstrings escape ``|L|`` for reStructuredText, and their
+    doctest comments still show the backslash.)"""
+    found = []
+    for page in sorted(site.rglob("*.html")):
+        text = _text(page.read_text(encoding="utf-8")).replace("&lt;", "<").replace("&gt;", ">")
+        found += [f"{page.relative_to(site)}: {m}" for m in re.findall(r"<[\w.]+ object at 0x[0-9a-f]+>", text)]
+        if page.relative_to(site).parts[0] not in ("api", "_modules"):
+            found += [f"{page.relative_to(site)}: {m}" for m in re.findall(r".{0,30}\\\|.{0,30}", text)]
+    assert not found, "\n".join(found[:20])
+
+
+def test_a_table_with_pipes_in_its_code_renders_as_a_table(site):
+    """docs/control.md's table of figures names ``|omega|`` in its cells: the row stays one row of
+    two cells, the pipes inside the code."""
+    html = (site / "control.html").read_text(encoding="utf-8")
+    rows = re.findall(r"<tr[^>]*>(.*?)</tr>", html, flags=re.S)
+    (rates,) = [r for r in rows if "rates.png" in r]
+    cells = re.findall(r"<td[^>]*>(.*?)</td>", rates, flags=re.S)
+    assert len(cells) == 2 and "|omega|" in _text(cells[1]).replace(" ", ""), rates
+
+
+# --- the changelog, the citation, the version, the sources (issue 28 item 7) -------------------------
+
+def test_the_changelog_and_citing_pages_follow_their_files(site):
+    import tumble
+
+    changelog = _text((site / "changelog.html").read_text(encoding="utf-8"))
+    assert "Unreleased" in changelog and f"{tumble.__version__}" in changelog
+    first = re.search(r"^- (.{20,80}?)[`(]", (ROOT / "CHANGELOG.md").read_text(encoding="utf-8"), flags=re.M)
+    assert " ".join(first.group(1).split()) in changelog  # the file's first entry, rendered
+    citing = _text((site / "citing.html").read_text(encoding="utf-8"))
+    cff = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
+    version = re.search(r"^version:\s*(\S+)", cff, flags=re.M).group(1)
+    date = re.search(r"^date-released:\s*(\S+)", cff, flags=re.M).group(1)
+    assert f"This is version {version}, released on {date}." in citing
+    packed = citing.replace(" ", "")  # the BibTeX block, highlighted token by token
+    assert "@software{tumble," in packed and f"version={{{version}}}" in packed
+    assert "tumble-citation" not in citing  # the marker was replaced
+    home = (site / "index.html").read_text(encoding="utf-8")
+    assert 'href="changelog.html"' in home and 'href="citing.html"' in home
+
+
+def test_every_page_shows_the_version_in_its_header(site):
+    import tumble
+
+    for name in ("index.html", "tour.html", "api/index.html", "examples/plot_t_handle_flip.html"):
+        html = (site / name).read_text(encoding="utf-8")
+        brand = re.search(r'<a class="navbar-brand logo"[^>]*>(.*?)</a>', html, flags=re.S)
+        assert brand and f"tumble {tumble.__version__}" in _text(brand.group(1)), name
+
+
+def test_api_pages_link_to_their_source(site):
+    """sphinx.ext.viewcode: a [source] link on an API page, to a highlighted copy of the module in
+    the site itself (nothing fetched)."""
+    page = site / "api" / "generated" / "tumble.analysis.fit_rotation.html"
+    html = page.read_text(encoding="utf-8")
+    links = re.findall(r'href="([^"]*_modules/[^"]*)"', html)
+    assert links, "no [source] link"
+    target = (page.parent / links[0].split("#")[0]).resolve()
+    assert target.is_file() and "def fit_rotation" in _text(target.read_text(encoding="utf-8"))
+
+
+def test_code_blocks_wrap_long_lines(site):
+    css = (site / "_static" / "tumble.css").read_text(encoding="utf-8")
+    assert re.search(r"div\.highlight pre\s*{[^}]*white-space:\s*pre-wrap", css)
+    assert 'href="../_static/tumble.css' in (site / "examples" / "plot_t_handle_flip.html").read_text(encoding="utf-8")

@@ -14,6 +14,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
+from wheelbuild import build_wheel
 
 import tumble
 from tumble.commands import run_scenario
@@ -31,17 +32,7 @@ def _tree(folder: Path) -> dict[str, bytes]:
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> zipfile.ZipFile:
     """The wheel built from a copy of the working tree (so the build leaves no trace in it)."""
-    tree = tmp_path_factory.mktemp("tree")
-    for name in ("pyproject.toml", "README.md", "LICENSE"):
-        shutil.copy2(ROOT / name, tree / name)
-    shutil.copytree(ROOT / "src", tree / "src", ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
-    out = tmp_path_factory.mktemp("wheel")
-    proc = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", str(tree), "--no-deps", "--no-build-isolation", "-q", "-w", str(out)],
-        capture_output=True, text=True, timeout=300,
-    )
-    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
-    (path,) = out.glob("tumble-*.whl")
+    path = build_wheel(tmp_path_factory.mktemp("tree"), tmp_path_factory.mktemp("wheel"))
     with zipfile.ZipFile(path) as zf:
         yield zf
 
@@ -171,15 +162,26 @@ def test_repository_examples_is_a_relative_link_to_the_packaged_ones():
         assert proc.stdout.startswith("120000 "), proc.stdout  # git keeps the link, not a copy
 
 
-def test_list_examples_names_every_scenario_and_body_with_its_first_comment_line():
+def test_list_examples_names_every_file_it_copies_with_its_description():
+    """``tumble examples`` lists everything ``--copy`` copies (issue 28 item 3): the TOML files by
+    their first comment line, the mesh by the body file that names it, the recordings by their
+    first sentence, the notebook by its title."""
     examples = list_examples()
     by_path = {e.path: e for e in examples}
-    assert set(by_path) == {p for p in _tree(PACKAGED) if p.endswith(".toml")}
+    assert set(by_path) == set(_tree(PACKAGED)) and len(by_path) == len(examples)
+    kinds = {"bodies": "body", "sweeps": "sweep", "control": "control", "bodies/meshes": "mesh", "data": "data",
+             "notebooks": "notebook"}
     for e in examples:
-        assert e.kind == {"bodies": "body", "sweeps": "sweep", "control": "control"}.get(Path(e.path).parent.as_posix(), "scenario")
+        assert e.kind == kinds.get(Path(e.path).parent.as_posix(), "scenario"), e
         assert e.name == Path(e.path).stem
-        first = (PACKAGED / e.path).read_text().splitlines()[0]
-        assert first == f"# {e.description}"
+        text = (PACKAGED / e.path).read_text(encoding="utf-8", errors="replace")
+        if e.path.endswith(".toml"):
+            assert text.splitlines()[0] == f"# {e.description}"
+    assert by_path["bodies/meshes/torus.stl"].description == "A triangle mesh (STL) that bodies/every_part.toml names"
+    assert 'mesh = "meshes/torus.stl"' in (PACKAGED / "bodies" / "every_part.toml").read_text()
+    assert by_path["data/racquet_tosses.csv"].description == (
+        "SYNTHETIC phone recording of 12 hand tosses of a tennis racquet about its intermediate axis: not a measurement.")
+    assert by_path["notebooks/tennis_racket.ipynb"].description == "The tennis-racket effect with tumble"
     assert [e.kind for e in examples][: sum(e.kind == "scenario" for e in examples)] == ["scenario"] * sum(
         e.kind == "scenario" for e in examples)  # scenarios first
     assert by_path["seed_flip.toml"].description.startswith("The seed's first run")
@@ -188,12 +190,19 @@ def test_list_examples_names_every_scenario_and_body_with_its_first_comment_line
 def test_list_examples_falls_back_to_the_name(monkeypatch, tmp_path):
     from tumble.io import examples as module
 
-    (tmp_path / "bodies").mkdir()
+    for folder in ("bodies/meshes", "data", "notebooks", "extra"):
+        (tmp_path / folder).mkdir(parents=True)
     (tmp_path / "no_comment.toml").write_text("body = 't-handle'\n# a comment further down\n")
     (tmp_path / "bodies" / "plain_box.toml").write_text("\n#\n[body]\n")
+    (tmp_path / "bodies" / "meshes" / "spare.obj").write_text("v 0 0 0\n")
+    (tmp_path / "data" / "bare_log.csv").write_text("t,wx,wy,wz\n0,1,2,3\n")
+    (tmp_path / "notebooks" / "untitled.ipynb").write_text('{"cells": [{"cell_type": "code", "source": ["1"]}]}')
+    (tmp_path / "extra" / "notes_file.txt").write_text("x")
     monkeypatch.setattr(module, "_root", lambda: tmp_path)
     assert [(e.name, e.kind, e.description) for e in list_examples()] == [
-        ("no_comment", "scenario", "no comment"), ("plain_box", "body", "plain box")]
+        ("no_comment", "scenario", "no comment"), ("spare", "mesh", "A triangle mesh (OBJ) for a body file"),
+        ("plain_box", "body", "plain box"), ("bare_log", "data", "bare log"),
+        ("notes_file", "file", "notes file"), ("untitled", "notebook", "untitled")]
 
 
 def test_copied_examples_run_from_anywhere(tmp_path, monkeypatch):
@@ -267,6 +276,33 @@ def test_make_demo_installs_only_what_the_demo_needs(tmp_path):
     assert _make_dry_run(tmp_path, "demo") == [".venv/bin/tumble demo"]
 
 
+def test_make_docs_installs_only_the_docs_extra(tmp_path):
+    """``make docs`` on a fresh clone installs tumble with the docs extra alone (issue 28 item 5):
+    Sphinx and its extensions and the extras the gallery runs, not the test tool chain; after
+    ``make test`` (whose set-up holds the docs extra) it only builds."""
+    if shutil.which("make") is None:
+        pytest.skip("make is not installed")
+    for name in ("Makefile", "pyproject.toml"):
+        shutil.copy2(ROOT / name, tmp_path / name)
+    docs = _make_dry_run(tmp_path, "docs")
+    installs = [line for line in docs if "pip install" in line and "-e" in line]
+    assert len(installs) == 1 and re.findall(r"\[([^\]]*)\]", installs[0]) == ["docs"], installs
+    assert any(line.startswith(".venv/bin/sphinx-build -W ") for line in docs)
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    names = {re.match(r"[A-Za-z0-9_.-]+", r).group(0).lower() for r in extras["docs"]}
+    assert {"sphinx", "pydata-sphinx-theme", "numpydoc", "myst-parser", "sphinx-gallery"} <= names
+    assert not names & {"pytest", "hypothesis", "playwright", "mypy", "import-linter", "pytest-xdist"}
+    # what the gallery's scripts import beyond tumble's own dependencies comes with it
+    assert "tumble[mesh,cluster,notebook]" in extras["docs"]
+    gallery = " ".join(p.read_text(encoding="utf-8") for p in (ROOT / "gallery").glob("plot_*.py"))
+    assert "tumble.Mesh(" in gallery and "DaskBackend(" in gallery
+    test = _make_dry_run(tmp_path, "test")
+    for stamp in (word for line in test if line.startswith("touch ") for word in line.split()[1:]):
+        (tmp_path / stamp).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / stamp).touch()
+    assert [line for line in _make_dry_run(tmp_path, "docs") if "pip" in line] == []
+
+
 @pytest.mark.parametrize("command", [["fit", "examples/data/racquet_tosses.csv", "--out", "fitted"],
                                      ["simulate", "examples/seed_flip.toml", "--out", "run"],
                                      ["inertia", "examples/bodies/wing_nut.toml"]])
@@ -282,3 +318,26 @@ def test_an_example_path_outside_a_checkout_says_how_to_get_it(tmp_path, monkeyp
     assert err.rstrip().endswith("'tumble examples --copy examples' copies them here")
     assert main([command[0], "examples/not_an_example.toml", *command[2:]]) == 2
     assert "tumble examples --copy" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("read, path", [
+    ("tumble.io.gyrodata.read_recording", "examples/data/racquet_tosses.csv"),
+    ("tumble.load_scenario", "examples/seed_flip.toml"),
+    ("tumble.load_body", "examples/bodies/t_handle.toml"),
+    ("tumble.io.sweepfile.load_sweep", "examples/sweeps/t_handle_dimensions.toml"),
+])
+def test_a_python_reader_on_an_example_path_outside_a_checkout_says_how_to_get_it(tmp_path, monkeypatch, read, path):
+    """The Python blocks of the guides (``read_recording("examples/data/racquet_tosses.csv")`` in
+    docs/fitting.md) say it too, not only the command line; a path that is no example does not."""
+    import importlib
+
+    module, _, name = read.rpartition(".")
+    reader = getattr(importlib.import_module(module), name)
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError) as caught:
+        reader(path)
+    assert str(caught.value) == (f"{path}: no such file; it is one of tumble's examples: "
+                                 "'tumble examples --copy examples' copies them here")
+    with pytest.raises(ValueError) as caught:
+        reader(path.replace("examples/", "examples/no_"))
+    assert str(caught.value).endswith(": no such file")

@@ -260,8 +260,8 @@ def summary_markdown(bodies: dict[str, Body], rows: list[dict]) -> str:
         f"For the seed's rods the shaft (z) is the **minor** axis and the crossbar "
         f"({describe_axis(seed.intermediate_axis)}) the **intermediate** one, so the seed's own runs "
         "[10, 0.1, 0.1] and [1, 0.1, 0.1] (x along the crossbar) spin about the intermediate axis and "
-        "**flip**; the seed's total-tensor formula hides this (docs/seed-errata.md). For the space-station "
-        "handle the shaft (z) is the intermediate axis.",
+        "**flip**; the seed's total-tensor formula hides this (\"The seed study and its errors\", a page "
+        "of tumble's documentation). For the space-station handle the shaft (z) is the intermediate axis.",
         "",
         "| case | method | axis | predicted | flips | flip period (s) | exact (s) | growth (1/s) | energy drift | abs(L) drift | L_world drift |",
         "|---|---|---|---|---|---|---|---|---|---|---|",

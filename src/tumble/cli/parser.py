@@ -120,9 +120,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "examples",
-        help="list the example scenario and body files, or copy them",
-        description="Lists the scenario and body files that ship with tumble; --copy DIR copies them, "
-        "ready to run (scenarios name their bodies and meshes by relative paths).",
+        help="list the example files (scenarios, bodies, meshes, recordings, notebooks), or copy them",
+        description="Lists every file of the examples that ship with tumble: scenario, control, body and sweep "
+        "files, meshes, gyroscope recordings and notebooks; --copy DIR copies them all, ready to run "
+        "(scenarios name their bodies and meshes by relative paths).",
         epilog="Examples: tumble examples | tumble examples --copy my-examples", parents=[debug],
     )
     p.add_argument("--copy", metavar="DIR", help="copy every example into DIR (never overwrites a file)")

@@ -26,7 +26,7 @@ import tomllib
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Mesh, Part
-from ..validation import read_input_file
+from .examples import _read_input
 from .keys import FileFormat, Key, Table
 
 __all__ = [
@@ -92,7 +92,7 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
     True
     """
     path = Path(path)
-    raw = read_input_file(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
+    raw = _read_input(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:

@@ -1,4 +1,5 @@
-"""The examples that ship inside the package: scenario files, body files and a mesh.
+"""The examples that ship inside the package: scenario, control, body and sweep files, a mesh,
+gyroscope recordings and a notebook.
 
 They live in ``tumble/examples/`` (package data, so a ``pip install`` has them too; the
 repository's ``examples/`` is a link to the same folder). Scenario files sit at the top and name
@@ -14,13 +15,16 @@ Examples
 
 from __future__ import annotations
 
+import json
 import os
+import re
 import shutil
 import tempfile
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
+from ..validation import read_input_file
 from .atomic import _umask
 
 __all__ = ["Example", "copy_examples", "example_hint", "list_examples"]
@@ -32,6 +36,16 @@ BODIES = "bodies"
 SWEEPS = "sweeps"
 #: The folder of the closed-loop control scenarios (``tumble simulate``; :mod:`tumble.io.controlfile`).
 CONTROL = "control"
+#: The folder of the meshes that body files name (``mesh = "meshes/torus.stl"``).
+MESHES = f"{BODIES}/meshes"
+#: The folder of the gyroscope recordings (``tumble fit``).
+DATA = "data"
+#: The folder of the Jupyter notebooks.
+NOTEBOOKS = "notebooks"
+#: The kind of a ``.toml`` file by its folder (every other ``.toml`` at the root is a scenario).
+_TOML_KINDS = {"": "scenario", BODIES: "body", SWEEPS: "sweep", CONTROL: "control"}
+#: The kind of any other file by its folder.
+_FILE_KINDS = {MESHES: "mesh", DATA: "data", NOTEBOOKS: "notebook"}
 
 
 @dataclass(frozen=True)
@@ -46,10 +60,13 @@ class Example:
         Its path relative to the examples' root, with ``/``, e.g. ``"bodies/t_handle.toml"``.
     kind : str
         ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"control"`` (a closed-loop
-        scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``) or ``"sweep"`` (for
-        ``tumble sweep``).
+        scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``), ``"sweep"`` (for
+        ``tumble sweep``), ``"mesh"`` (a triangle mesh that a body file names), ``"data"`` (a
+        gyroscope recording, for ``tumble fit``), ``"notebook"`` (Jupyter) or ``"file"`` (anything
+        else in the tree).
     description : str
-        One line: the file's first comment line, or its name if it has none.
+        One line: a TOML file's first comment line, a recording's first sentence of its comment
+        block, a notebook's title, the body files that use a mesh; the name if there is none.
 
     Examples
     --------
@@ -93,35 +110,81 @@ def _description(text: str, name: str) -> str:
     return name.replace("_", " ")
 
 
+def _first_sentence(text: str, name: str) -> str:
+    """The first sentence of a recording's leading ``#`` comment block."""
+    lines = []
+    for line in text.splitlines():
+        if not line.startswith("#"):
+            break
+        lines.append(line.lstrip("#").strip())
+    block = " ".join(" ".join(lines).split())
+    match = re.match(r"(.+?[.!?])(\s|$)", block)
+    return match.group(1) if match else block or name.replace("_", " ")
+
+
+def _notebook_title(text: str, name: str) -> str:
+    """A notebook's first Markdown heading."""
+    try:
+        cells = json.loads(text).get("cells", [])
+    except (ValueError, AttributeError):
+        cells = []
+    for cell in cells:
+        if cell.get("cell_type") == "markdown":
+            source = "".join(cell.get("source", []))
+            for line in source.splitlines():
+                if line.startswith("#"):
+                    return line.lstrip("#").strip()
+    return name.replace("_", " ")
+
+
+def _mesh_users(rel: str, tomls: dict[str, str]) -> str:
+    """Which body files name the mesh ``rel`` (by its path relative to theirs)."""
+    suffix = rel.rpartition(".")[2].upper()
+    users = [path for path, text in tomls.items()
+             if path.startswith(f"{BODIES}/") and f'"{rel[len(BODIES) + 1:]}"' in text]
+    return f"A triangle mesh ({suffix}) " + (f"that {', '.join(users)} names" if users else "for a body file")
+
+
 def list_examples() -> list[Example]:
-    """The scenario and body files that ship with tumble, scenarios first.
+    """Every file that ships with tumble's examples (all that :func:`copy_examples` copies), scenarios first.
 
     Returns
     -------
     list of Example
-        Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"`` or ``"sweep"``) and one-line
-        description. Meshes and other files the examples refer to are not listed.
+        Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"``,
+        ``"sweep"``, ``"mesh"``, ``"data"``, ``"notebook"`` or ``"file"``) and one-line description.
 
     Examples
     --------
     >>> from tumble.io.examples import list_examples
     >>> found = list_examples()
     >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
-    ('scenario', ['body', 'control', 'scenario', 'sweep'])
+    ('scenario', ['body', 'control', 'data', 'mesh', 'notebook', 'scenario', 'sweep'])
+    >>> [e.description for e in found if e.kind == "mesh"]
+    ['A triangle mesh (STL) that bodies/every_part.toml names']
     """
+    files = list(_walk(_root()))
+    tomls = {rel: entry.read_text(encoding="utf-8") for rel, entry in files if rel.endswith(".toml")}
     found = []
-    for rel, entry in _walk(_root()):
+    for rel, entry in files:
         folder, _, filename = rel.rpartition("/")
-        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS, CONTROL):
-            continue
-        name = filename[: -len(".toml")]
-        kind = {BODIES: "body", SWEEPS: "sweep", CONTROL: "control"}.get(folder, "scenario")
-        found.append(Example(name, rel, kind, _description(entry.read_text(encoding="utf-8"), name)))
+        name = filename.rpartition(".")[0] or filename
+        if rel in tomls and folder in _TOML_KINDS:
+            kind, description = _TOML_KINDS[folder], _description(tomls[rel], name)
+        elif folder == MESHES:
+            kind, description = "mesh", _mesh_users(rel, tomls)
+        elif folder == DATA:
+            kind, description = "data", _first_sentence(entry.read_text(encoding="utf-8", errors="replace"), name)
+        elif folder == NOTEBOOKS and filename.endswith(".ipynb"):
+            kind, description = "notebook", _notebook_title(entry.read_text(encoding="utf-8"), name)
+        else:
+            kind, description = _FILE_KINDS.get(folder, "file"), name.replace("_", " ")
+        found.append(Example(name, rel, kind, description))
     return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
 
 
 def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
-    """Copy the whole examples tree (scenarios, bodies, meshes) into ``dest``, ready to run.
+    """Copy the whole examples tree (every file :func:`list_examples` lists) into ``dest``, ready to run.
 
     A new ``dest`` is built in a temporary folder beside it and renamed into place, so it appears
     whole or not at all. An existing folder ``dest`` is filled, but no file in it is ever
@@ -150,7 +213,7 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     >>> from tumble.io.examples import copy_examples, list_examples
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     written = copy_examples(Path(folder) / "examples")
-    ...     print(Path(folder, "examples", "bodies", "t_handle.toml") in written, len(written) > len(list_examples()))
+    ...     print(Path(folder, "examples", "bodies", "t_handle.toml") in written, len(written) == len(list_examples()))
     True True
     """
     dest = Path(dest)
@@ -213,10 +276,33 @@ def example_hint(message: str) -> str:
     >>> example_hint("my_tosses.csv: no such file")
     ''
     """
+    if _HINT in message:  # said already (by the reader, :func:`_read_input`)
+        return ""
     path = message.split(": ", 1)[0].strip("'\"")
     parts = Path(path).parts
     if len(parts) < 2 or parts[0] != "examples" or Path(path).exists():
         return ""
     if not _root().joinpath(*parts[1:]).is_file():
         return ""
-    return "; it is one of tumble's examples: 'tumble examples --copy examples' copies them here"
+    return f"; it is one of tumble's examples: {_HINT}"
+
+
+#: What :func:`example_hint` says to do.
+_HINT = "'tumble examples --copy examples' copies them here"
+
+
+def _read_input(path: str | os.PathLike[str], *, limit: int, what: str, label: str | None = None) -> bytes:
+    """:func:`tumble.validation.read_input_file`, whose "no such file" says how to get an example.
+
+    The readers of the files a user names (body, scenario, sweep and control files, recordings)
+    read through this, so that ``read_recording("examples/data/racquet_tosses.csv")`` copied from a
+    guide into a folder without the examples says ``tumble examples --copy examples``.
+    """
+    try:
+        return read_input_file(path, limit=limit, what=what, label=label)
+    except ValueError as exc:
+        message = str(exc)
+        hint = example_hint(message) if message.endswith(": no such file") else ""
+        if not hint:
+            raise
+        raise ValueError(f"{message}{hint}") from None

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import read_input_file
+from .examples import _read_input
 from .gyrocolumns import ColumnsRead, match_header
 
 __all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
@@ -88,7 +88,7 @@ def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]
     >>> t.shape, omega.shape, round(float(omega[0, 0]), 1)  # spun at 12 rad/s about the sensor's x
     ((1500,), (1500, 3), 12.0)
     """
-    raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+    raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
     return parse_gyro_csv(raw, os.fspath(path))
 
 
@@ -386,15 +386,15 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
         names = [e for e in os.listdir(path) if os.path.isfile(os.path.join(path, e))]
         name = _pick_csv(names, label)
         csv_path = os.path.join(path, name)
-        raw = read_input_file(csv_path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+        raw = _read_input(csv_path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
         t, omega, read = parse_gyro_table(raw, csv_path)
         meta = os.path.join(path, *TIME_CSV.split("/"))
         events = []
         if os.path.isfile(meta):
-            events = parse_time_csv(read_input_file(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
+            events = parse_time_csv(_read_input(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
         return GyroRecording(t, omega, tuple(events), read)
     if label.lower().endswith(".zip"):
-        raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a phyphox export (zip)")
+        raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a phyphox export (zip)")
         import io
 
         try:
@@ -419,6 +419,6 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
             if TIME_CSV in infos:
                 events = parse_time_csv(member(TIME_CSV, 1 << 20), f"{label}/{TIME_CSV}")
         return GyroRecording(t, omega, tuple(events), read)
-    raw = read_input_file(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
+    raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
     t, omega, read = parse_gyro_table(raw, label)
     return GyroRecording(t, omega, (), read)
