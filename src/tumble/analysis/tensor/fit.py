@@ -1,0 +1,253 @@
+"""The object's absolute tensor from throws with the device: :func:`fit_tensor`.
+
+Each throw is fitted on its own (:mod:`~tumble.analysis.tensor.throw`): the flown body's tensor
+(object and device, about their common centre of mass) and its centre of mass, with their
+statistical covariances. The throws are pooled by their inverse-covariance weighted mean; when
+they scatter about it more than their uncertainties allow, the statistical covariance is
+multiplied by the Birge ratio ``chi^2 / dof`` (:func:`tumble.analysis.fit.uncertainty.birge_chi2`,
+as the ratio fit pools flights). Then the systematic parts common to every throw are added: the
+rotor inertia's relative uncertainty scales the whole tensor (the gyrostat's equations are
+unchanged when ``I`` and ``J_r`` are multiplied by the same factor, so ``I`` is proportional to
+``J_r``), and the device's own tensor and centre are subtracted with the parallel-axis theorem
+(:func:`~tumble.analysis.tensor.estimate.subtract_body`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ...typing import FloatArray
+from ...validation import check_positive
+from .device import Device, Throw
+from .estimate import MassEstimate, mass_estimate, subtract_body, tensor_of, vector_of
+from .pool import Pooled, pool_throws
+from .throw import FlownFit
+
+__all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate"]
+
+
+def _num(x: float) -> float | None:
+    return float(x) if np.isfinite(x) else None
+
+
+@dataclass(frozen=True)
+class ThrowFit:
+    """One throw's fit: where its flight lies, its own estimates, or why it was skipped.
+
+    Attributes
+    ----------
+    input : str
+        The throw's ``input`` (its file as given).
+    status : str
+        ``"used"`` (fitted and pooled) or ``"skipped"``.
+    reason : str
+        Why skipped, or ``""``.
+    object, flown : MassEstimate or None
+        This throw's own estimates (None when skipped); ``object`` with the device taken away.
+    t : ndarray, shape (n,)
+        The fitted samples' times, s.
+    omega_measured, omega_model : ndarray, shape (n, 3)
+        The gyroscope's samples and the fitted model's (bias included) at ``t``, rad/s.
+    t_release, t_end : float
+        The flight's start found from the data (the release) and its end (the catch), s.
+    residual_rms : float
+        RMS of the fitted residuals, rad/s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import ThrowFit
+    >>> skipped = ThrowFit("b.csv", "skipped", "no free flight found", None, None, np.zeros(0), np.zeros((0, 3)),
+    ...                    np.zeros((0, 3)), float("nan"), float("nan"), float("nan"))
+    >>> skipped.as_dict()["object"] is None, skipped.as_dict()["t_release"] is None
+    (True, True)
+    """
+
+    input: str
+    status: str
+    reason: str
+    object: MassEstimate | None
+    flown: MassEstimate | None
+    t: FloatArray = field(repr=False)
+    omega_measured: FloatArray = field(repr=False)
+    omega_model: FloatArray = field(repr=False)
+    t_release: float = float("nan")
+    t_end: float = float("nan")
+    residual_rms: float = float("nan")
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``input``, ``status``, ``reason``, ``object``, ``flown`` (dicts or None),
+        ``t_release``, ``t_end``, ``residual_rms`` (None for NaN).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor import ThrowFit
+        >>> ThrowFit("a.csv", "skipped", "why", None, None, np.zeros(0), np.zeros((0, 3)), np.zeros((0, 3))).as_dict()["reason"]
+        'why'
+        """
+        return {"input": self.input, "status": self.status, "reason": self.reason,
+                "object": None if self.object is None else self.object.as_dict(),
+                "flown": None if self.flown is None else self.flown.as_dict(),
+                "t_release": _num(self.t_release), "t_end": _num(self.t_end), "residual_rms": _num(self.residual_rms)}
+
+
+@dataclass(frozen=True)
+class TensorFit:
+    """The object's tensor pooled over the throws, and each throw's own fit.
+
+    Attributes
+    ----------
+    object : MassEstimate
+        The object alone, about its own centre of mass, sensor frame.
+    flown : MassEstimate
+        Object and device together, about their centre of mass.
+    throws : tuple of ThrowFit
+        One per throw given, in order.
+    adequate : bool
+        Whether every used throw's model fits its samples (residuals near the noise).
+    chi2_dof : float
+        The throws' scatter about the pooled values over what their uncertainties allow
+        (NaN for one throw).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor import TensorFit
+    >>> sorted(TensorFit.__dataclass_fields__)
+    ['adequate', 'chi2_dof', 'flown', 'object', 'throws']
+    """
+
+    object: MassEstimate
+    flown: MassEstimate
+    throws: tuple[ThrowFit, ...]
+    adequate: bool
+    chi2_dof: float
+
+    def as_dict(self) -> dict[str, Any]:
+        """The content of ``tensor.json``: ``object``, ``flown``, ``throws``, ``adequate``, ``chi2_dof``.
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor import TensorFit
+        >>> TensorFit.as_dict.__name__
+        'as_dict'
+        """
+        return {"object": self.object.as_dict(), "flown": self.flown.as_dict(),
+                "throws": [t.as_dict() for t in self.throws], "adequate": bool(self.adequate),
+                "chi2_dof": _num(self.chi2_dof)}
+
+
+def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturation: float | None = None) -> TensorFit:
+    """The absolute inertia tensor and centre of mass of an object thrown with the device.
+
+    Parameters
+    ----------
+    throws : sequence of Throw
+        One or more throws of the object with the device fixed to it (in the same place).
+    device : Device
+        A calibrated device (:func:`~tumble.analysis.tensor.calibrate.calibrate_device`):
+        ``rotor_inertia``, ``inertia`` and ``center_of_mass`` known.
+    mass : float
+        The object's mass, kg (weighed).
+    saturation : float, optional
+        The gyroscope's range, rad/s (else found from the data: a rail that samples repeat).
+
+    Returns
+    -------
+    TensorFit
+        ``adequate`` is False when a throw's model does not fit its samples (that throw is
+        skipped with the reason, the others pooled).
+
+    Raises
+    ------
+    ValueError
+        Bad input (not a Device, a device not calibrated, a mass not positive, no throw given).
+    NoThrowError
+        No throw could be fitted (:class:`tumble.analysis.tensor.NoThrowError`, a ValueError
+        too); each throw's reason is in the message.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import fit_tensor
+    >>> from tumble.analysis.tensor.synthetic import calibrated_device, combine, example_object, synthetic_throw, true_device
+    >>> box = example_object()
+    >>> flown = combine(true_device(), box)
+    >>> fit = fit_tensor([synthetic_throw(seed, flown) for seed in (1, 2)], calibrated_device(), box.mass)
+    >>> [t.status for t in fit.throws], fit.adequate
+    (['used', 'used'], True)
+    >>> err = fit.object.principal_moments / np.linalg.eigvalsh(box.inertia) - 1   # within 1 %
+    >>> bool(np.all(np.abs(err) < 0.01))
+    True
+    """
+    mass = check_positive("mass", mass, "kg")
+    if not isinstance(device, Device):
+        raise ValueError(f"device must be a Device, got {type(device).__name__}")
+    if not device.calibrated:
+        raise ValueError("the device is not calibrated: its rotor_inertia, inertia and center_of_mass are needed "
+                         "(tumble calibrate, or calibrate_device)")
+    J = float(device.rotor_inertia)  # type: ignore[arg-type]
+    pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=saturation)
+    rel = float(device.rotor_inertia_std or 0.0) / J
+    flown = flown_estimate(mass + device.mass, pooled, rel)
+    cov_d, cov_c = device_covariances(device)
+    obj = subtract_body(flown, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+    rows = []
+    for throw, f in zip(throws, fits):
+        if f.reason:
+            rows.append(_skipped(throw, f))
+            continue
+        one = flown_estimate(mass + device.mass, Pooled(vector_of(f.inertia), f.inertia_cov, f.center, f.center_cov,
+                                                        float("nan"), 1), rel)
+        own = subtract_body(one, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+        rows.append(ThrowFit(throw.input, "used", "", own, one, f.t, f.omega_measured, f.omega_model,
+                             f.window.t_release, f.window.t_end, f.residual_rms))
+    return TensorFit(obj, flown, tuple(rows), pooled.adequate, pooled.chi2_dof)
+
+
+def _skipped(throw: Throw, f: FlownFit) -> ThrowFit:
+    """A throw not pooled, with what is known of it."""
+    empty = np.zeros((0, 3))
+    t = f.t if f.t is not None else np.zeros(0)
+    return ThrowFit(throw.input, "skipped", f.reason, None, None, t,
+                    f.omega_measured if f.omega_measured is not None else empty,
+                    f.omega_model if f.omega_model is not None else empty, f.window.t_release, f.window.t_end,
+                    f.residual_rms)
+
+
+def device_covariances(device: Device) -> tuple[FloatArray, FloatArray]:
+    """The device's tensor entries' and centre's covariances from their std (independent entries).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.fit import device_covariances
+    >>> from tumble.analysis.tensor.synthetic import calibrated_device
+    >>> cov_I, cov_c = device_covariances(calibrated_device(0.01, 1e-3))
+    >>> cov_I.shape, float(cov_c[0, 0])
+    ((6, 6), 1e-06)
+    """
+    sI = np.zeros((3, 3)) if device.inertia_std is None else device.inertia_std
+    sc = np.zeros(3) if device.center_of_mass_std is None else device.center_of_mass_std
+    return np.diag(vector_of(sI) ** 2), np.diag(sc ** 2)
+
+
+def flown_estimate(mass: float, pooled: Pooled, rotor_relative_std: float) -> MassEstimate:
+    """The flown body's estimate: the pooled tensor with the rotor inertia's systematic part
+    ``(s_J / J)^2 v v^T`` added (``I`` is proportional to ``J_r``: module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.fit import flown_estimate
+    >>> from tumble.analysis.tensor.pool import Pooled
+    >>> p = Pooled(np.array([1e-3, 2e-3, 3e-3, 0, 0, 0]), np.zeros((6, 6)), np.zeros(3), np.zeros((3, 3)), 1.0, 1)
+    >>> flown_estimate(0.7, p, 0.01).principal_moments_std.round(9).tolist()   # 1 % of each
+    [1e-05, 2e-05, 3e-05]
+    """
+    v = pooled.inertia
+    cov = pooled.inertia_cov + rotor_relative_std ** 2 * np.outer(v, v)
+    return mass_estimate(mass, tensor_of(v), cov, pooled.center, pooled.center_cov)
