@@ -176,7 +176,8 @@ def test_list_examples_names_every_scenario_and_body_with_its_first_comment_line
     by_path = {e.path: e for e in examples}
     assert set(by_path) == {p for p in _tree(PACKAGED) if p.endswith(".toml")}
     for e in examples:
-        assert e.kind == {"bodies": "body", "sweeps": "sweep", "control": "control"}.get(Path(e.path).parent.as_posix(), "scenario")
+        assert e.kind == {"bodies": "body", "sweeps": "sweep", "control": "control", "devices": "device"}.get(
+            Path(e.path).parent.as_posix(), "scenario")
         assert e.name == Path(e.path).stem
         first = (PACKAGED / e.path).read_text().splitlines()[0]
         assert first == f"# {e.description}"

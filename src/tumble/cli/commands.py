@@ -153,6 +153,23 @@ def _cmd_fit(args) -> int:
         bar.close()
 
 
+def _cmd_calibrate(args) -> int:
+    from ..commands.tensor import run_calibrate_command
+
+    with _working("calibrating"):
+        return run_calibrate_command(args.device, args.alone, args.proof, args.out, argv=args.argv)
+
+
+def _cmd_tensor(args) -> int:
+    from ..commands.tensor import run_tensor_command
+    from ..viz.tensor import figure_tensor
+
+    mass = _positive("--mass", args.mass, "kg")
+    with _working("fitting throws"):
+        return run_tensor_command(args.throws, args.out, device=args.device, mass=mass, argv=args.argv,
+                                  figure=figure_tensor, accept_inadequate=args.accept_inadequate)
+
+
 def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from ..io.scenario import resolve_run

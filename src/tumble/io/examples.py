@@ -32,6 +32,8 @@ BODIES = "bodies"
 SWEEPS = "sweeps"
 #: The folder of the closed-loop control scenarios (``tumble simulate``; :mod:`tumble.io.controlfile`).
 CONTROL = "control"
+#: The folder of the throwing devices (``tumble calibrate``, ``tumble tensor``; :mod:`tumble.io.devicefile`).
+DEVICES = "devices"
 
 
 @dataclass(frozen=True)
@@ -46,8 +48,8 @@ class Example:
         Its path relative to the examples' root, with ``/``, e.g. ``"bodies/t_handle.toml"``.
     kind : str
         ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"control"`` (a closed-loop
-        scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``) or ``"sweep"`` (for
-        ``tumble sweep``).
+        scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``), ``"sweep"`` (for
+        ``tumble sweep``) or ``"device"`` (a throwing device, for ``tumble calibrate`` and ``tumble tensor``).
     description : str
         One line: the file's first comment line, or its name if it has none.
 
@@ -99,7 +101,7 @@ def list_examples() -> list[Example]:
     Returns
     -------
     list of Example
-        Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"`` or ``"sweep"``) and one-line
+        Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"``, ``"sweep"`` or ``"device"``) and one-line
         description. Meshes and other files the examples refer to are not listed.
 
     Examples
@@ -107,15 +109,15 @@ def list_examples() -> list[Example]:
     >>> from tumble.io.examples import list_examples
     >>> found = list_examples()
     >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
-    ('scenario', ['body', 'control', 'scenario', 'sweep'])
+    ('scenario', ['body', 'control', 'device', 'scenario', 'sweep'])
     """
     found = []
     for rel, entry in _walk(_root()):
         folder, _, filename = rel.rpartition("/")
-        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS, CONTROL):
+        if not filename.endswith(".toml") or folder not in ("", BODIES, SWEEPS, CONTROL, DEVICES):
             continue
         name = filename[: -len(".toml")]
-        kind = {BODIES: "body", SWEEPS: "sweep", CONTROL: "control"}.get(folder, "scenario")
+        kind = {BODIES: "body", SWEEPS: "sweep", CONTROL: "control", DEVICES: "device"}.get(folder, "scenario")
         found.append(Example(name, rel, kind, _description(entry.read_text(encoding="utf-8"), name)))
     return sorted(found, key=lambda e: (e.kind != "scenario", e.path))
 
