@@ -1,0 +1,221 @@
+"""``tumble calibrate`` and ``tumble tensor`` (issue #30): the files they read and write, bad input
+refused in one line with exit status 2 and nothing written, and runs on synthetic throws of
+objects whose tensors are known (the core's generator, :mod:`tumble.analysis.tensor.synthetic`).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tumble.analysis.tensor import Device, Proof, Throw
+from tumble.cli import main
+from tumble.io.devicefile import device_toml, load_device, write_device
+from tumble.io.examples import copy_examples, list_examples
+from tumble.io.throwfile import STANDARD_GRAVITY, parse_throw_csv, read_throw, throw_csv, write_throw
+
+DEVICE = "[device]\nmass = 0.10067\nrotor_axis = [0.0, 0.0, -1.0]\n"
+PROOF = "[proof]\nmass = 0.346\ninertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]\n"
+CALIBRATED = (DEVICE + "rotor_inertia = 1.7e-6\nrotor_inertia_std = 2e-8\n"
+              "inertia = [[3e-5, 0.0, 0.0], [0.0, 3.2e-5, 0.0], [0.0, 0.0, 5e-5]]\ncenter_of_mass = [0.0, 0.0, 0.01]\n")
+HEADER = "t (s),wx (rad/s),wy (rad/s),wz (rad/s),rotor (rad/s),ax (m/s^2),ay (m/s^2),az (m/s^2)\n"
+
+
+def _rows(n: int = 40) -> str:
+    return "".join(f"{k * 2.5e-4:.6f},0.1,5.0,0.2,{10.0 * k},0.0,0.0,0.0\n" for k in range(n))
+
+
+def _cli(capsys, *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _files(tmp_path: Path, device: str = CALIBRATED, throw: str = HEADER + _rows()) -> tuple[Path, Path]:
+    dev, thr = tmp_path / "device.toml", tmp_path / "o1.csv"
+    dev.write_text(device)
+    thr.write_text(throw)
+    return dev, thr
+
+
+# --- bad input: one line, exit 2, nothing written ----------------------------------------------
+
+#: (device file, throw file, --mass, the words the one line must hold after the file's name)
+TENSOR_BAD = {
+    "negative mass": (CALIBRATED.replace("mass = 0.10067", "mass = -0.1"), None, "0.5",
+                      "device.toml: [device] mass = -0.1 must be a positive finite number (kg)"),
+    "mass as text": (CALIBRATED.replace("mass = 0.10067", 'mass = "100 g"'), None, "0.5",
+                     "device.toml: [device] mass = '100 g' must be a number (kg)"),
+    "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: mass"),
+    "unknown table": (CALIBRATED + "[body]\nname = 'x'\n", None, "0.5", "device.toml: unknown table 'body'"),
+    "no [device]": (PROOF, None, "0.5", "device.toml: missing table [device]"),
+    "no rotor axis": (CALIBRATED.replace("rotor_axis = [0.0, 0.0, -1.0]\n", ""), None, "0.5",
+                      "device.toml: [device]: missing key 'rotor_axis'"),
+    "zero rotor axis": (CALIBRATED.replace("[0.0, 0.0, -1.0]", "[0, 0, 0]"), None, "0.5",
+                        "device.toml: [device] rotor_axis = [0, 0, 0] must be a non-zero vector"),
+    "std without value": (DEVICE + "inertia_std = [[1e-7, 0, 0], [0, 1e-7, 0], [0, 0, 1e-7]]\n", None, "0.5",
+                          "device.toml: [device]: inertia_std = [[1e-07, 0, 0], [0, 1e-07, 0], [0, 0, 1e-07]] given without "
+                          "inertia"),
+    "negative std": (CALIBRATED + "center_of_mass_std = [1e-4, -1e-4, 1e-4]\n", None, "0.5",
+                     "device.toml: [device] center_of_mass_std = [0.0001, -0.0001, 0.0001] must not be negative (m)"),
+    "tensor off the triangle": (CALIBRATED.replace("5e-5]]", "9e-5]]"), None, "0.5", "device.toml: [device] inertia: "
+                                "principal moments"),
+    "not calibrated": (DEVICE, None, "0.5", "device.toml: [device] has no rotor_inertia, inertia, center_of_mass; "
+                       "calibrate the device first"),
+    "not TOML": ("[device\n", None, "0.5", "device.toml: not valid TOML"),
+    "no rotor column": (None, "t,wx,wy,wz,ax,ay,az\n" + "0,1,2,3,0,0,0\n" * 3, "0.5",
+                        "o1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column; allowed: rotor:"),
+    "two rotor columns": (None, "t,wx,wy,wz,rotor,wheel\n0,1,2,3,4,5\n", "0.5", "o1.csv, line 1: header "
+                          "'t, wx, wy, wz, rotor, wheel' has 2 rotor columns ('rotor', 'wheel'); keep one"),
+    "half an accelerometer": (None, "t,wx,wy,wz,rotor,ax,ay\n0,1,2,3,4,5,6\n", "0.5",
+                              "o1.csv, line 1: header 't, wx, wy, wz, rotor, ax, ay' has no specific-force column for z"),
+    "unknown unit": (None, HEADER.replace("rotor (rad/s)", "rotor (furlong)") + _rows(), "0.5",
+                     "o1.csv, line 1, column 5: unknown unit 'furlong' in header 'rotor (furlong)'"),
+    "not a number": (None, HEADER + _rows(3) + "0.1,abc,0,0,0,0,0,0\n", "0.5", "o1.csv, line 5, column 2: 'abc' is not a number"),
+    "time goes back": (None, HEADER + _rows(3) + "0.0001,0,0,0,0,0,0,0\n", "0.5",
+                       "o1.csv, line 5: time 0.0001 s goes back before the time 0.0005 s of line 4"),
+    "short row": (None, HEADER + _rows(3) + "0.1,0,0\n", "0.5", "o1.csv, line 5: 3 columns; expected 8"),
+    "too few samples": (None, HEADER + _rows(5), "0.5", "o1.csv: t must be a list of at least"),
+    "negative object mass": (None, None, "-2", "--mass = -2 must be a positive finite number (kg)"),
+    "object mass as text": (None, None, "heavy", "--mass = heavy must be a positive finite number (kg)"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(TENSOR_BAD))
+def test_tensor_refuses_bad_input_in_one_line(tmp_path, capsys, case):
+    device, throw, mass, words = TENSOR_BAD[case]
+    dev, thr = _files(tmp_path, device if device is not None else CALIBRATED,
+                      throw if throw is not None else HEADER + _rows())
+    out = tmp_path / "out"
+    code, stdout, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", mass, "--out", str(out))
+    assert code == 2, err
+    assert err.count("\n") == 1 and err.startswith("tumble: error: "), err
+    message = err[len("tumble: error: "):]
+    assert message.startswith(words) or message.startswith(f"{tmp_path}/{words}"), message
+    assert not out.exists() and stdout == ""
+
+
+CALIBRATE_BAD = {
+    "no [proof]": (DEVICE, "device.toml: missing table [proof] (mass, inertia"),
+    "proof off the triangle": (DEVICE + PROOF.replace("2.450833e-4", "3.5e-4"),
+                               "device.toml: [proof] inertia: principal moments"),
+    "proof without inertia": (DEVICE + "[proof]\nmass = 0.346\n", "device.toml: [proof]: missing key 'inertia'"),
+    "proof mass zero": (DEVICE + PROOF.replace("0.346", "0"), "device.toml: [proof] mass = 0 must be a positive"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CALIBRATE_BAD))
+def test_calibrate_refuses_a_bad_device_file_in_one_line(tmp_path, capsys, case):
+    device, words = CALIBRATE_BAD[case]
+    dev, thr = _files(tmp_path, device)
+    out = tmp_path / "calibrated.toml"
+    code, stdout, err = _cli(capsys, "calibrate", str(dev), "--alone", str(thr), "--proof", str(thr), "--out", str(out))
+    assert code == 2, err
+    assert err.count("\n") == 1 and err[len("tumble: error: "):].startswith(f"{tmp_path}/{words}"), err
+    assert not out.exists() and stdout == ""
+
+
+def test_calibrate_output_must_be_a_toml_file(tmp_path, capsys):
+    dev, thr = _files(tmp_path, DEVICE + PROOF)
+    code, _, err = _cli(capsys, "calibrate", str(dev), "--alone", str(thr), "--proof", str(thr), "--out",
+                        str(tmp_path / "calibrated.json"))
+    assert code == 2 and "the output is written as one .toml file" in err
+    code, _, err = _cli(capsys, "calibrate", str(dev), "--alone", str(tmp_path / "missing.csv"), "--proof", str(thr),
+                        "--out", str(tmp_path / "c.toml"))
+    assert code == 2 and err == f"tumble: error: {tmp_path}/missing.csv: no such file\n"
+    assert not (tmp_path / "c.toml").exists()
+
+
+def test_tensor_output_must_be_a_folder(tmp_path, capsys):
+    dev, thr = _files(tmp_path)
+    taken = tmp_path / "taken"
+    taken.write_text("mine")
+    code, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "0.5", "--out", str(taken))
+    assert code == 2 and err == f"tumble: error: --out {taken}: exists and is not a folder\n"
+    assert taken.read_text() == "mine"
+
+
+# --- the files: read back as written -----------------------------------------------------------
+
+def test_a_calibrated_device_file_reads_back_exactly(tmp_path):
+    rng = np.random.default_rng(4)
+    A = rng.normal(size=(3, 3)) * 1e-3
+    inertia = A @ A.T + np.diag([3e-5, 3e-5, 5e-5])   # symmetric positive definite, kg m^2
+    moments = np.linalg.eigvalsh(inertia)
+    assert moments[0] + moments[1] >= moments[2]   # a physical tensor (the triangle inequality)
+    device = Device(mass=0.1234567891234, rotor_axis=[0.0, 0.6, -0.8], rotor_inertia=1.712345678e-6,
+                    rotor_inertia_std=3.3e-8, inertia=inertia, inertia_std=np.abs(inertia) * 0.013,
+                    center_of_mass=rng.normal(size=3) * 0.01, center_of_mass_std=[1e-4, 2e-4, 3e-4])
+    proof = Proof(0.346, [1.675805e-4, 1.300972e-4, 2.450833e-4])
+    path = write_device(tmp_path / "c.toml", device, proof, header="two lines\nof comment")
+    text = path.read_text()
+    assert text.startswith("# two lines\n# of comment\n[device]\n")
+    again, proof_again = load_device(path, proof=True)
+    for key in ("mass", "rotor_inertia", "rotor_inertia_std", "inertia", "inertia_std", "center_of_mass",
+                "center_of_mass_std"):
+        np.testing.assert_array_equal(getattr(again, key), getattr(device, key), err_msg=key)
+    # the axis is made a unit vector again when read: equal to the last bit or two
+    np.testing.assert_allclose(again.rotor_axis, device.rotor_axis, rtol=0, atol=4e-16)
+    np.testing.assert_array_equal(proof_again.inertia, proof.inertia)
+    assert proof_again.mass == proof.mass
+    third, _ = load_device(write_device(tmp_path / "again.toml", again, proof_again))
+    assert device_toml(third, proof_again) == device_toml(again, proof_again)
+
+
+def test_a_throw_file_in_other_units_reads_as_in_si():
+    """The same samples with the time in us, rates in deg/s, the rotor in rpm and the specific
+    force in g, columns in another order with an extra one, semicolons and decimal commas."""
+    rng = np.random.default_rng(7)
+    n = 30
+    t = 1.5 + np.cumsum(rng.uniform(2e-4, 3e-4, n))   # s, irregular
+    omega = rng.normal(scale=8.0, size=(n, 3))   # rad/s
+    rotor = np.linspace(0.0, 1500.0, n)   # rad/s
+    accel = rng.normal(scale=3.0, size=(n, 3))   # m/s^2
+    si = (HEADER + "".join(",".join(repr(float(x)) for x in (t[k], *omega[k], rotor[k], *accel[k])) + "\n"
+                           for k in range(n))).encode()
+    deg, rpm = 180.0 / np.pi, 60.0 / (2.0 * np.pi)
+    head = "temperature;accelerometer z [g];Time (us);gyro_x [deg/s];gyro_y [deg/s];gyro_z [deg/s];motor speed (rpm);" \
+           "acc_x [g];acc_y [g]\n"
+    rows = [(21.0, accel[k, 2] / STANDARD_GRAVITY, t[k] * 1e6, *(omega[k] * deg), rotor[k] * rpm,
+             accel[k, 0] / STANDARD_GRAVITY, accel[k, 1] / STANDARD_GRAVITY) for k in range(n)]
+    other = (head + "".join(";".join(repr(float(x)).replace(".", ",") for x in row) + "\n" for row in rows)).encode()
+    a, read_a = parse_throw_csv(si, "si.csv")
+    b, read_b = parse_throw_csv(other, "other.csv")
+    for key in ("t", "omega", "rotor", "accel"):
+        np.testing.assert_allclose(b[key], a[key], rtol=1e-13, atol=1e-12, err_msg=key)
+    assert read_b.ignored == ("temperature",) and read_b.units[2:5] == ("deg/s", "deg/s", "rpm")
+    assert read_a.brief() == "t (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 30 rows"
+
+
+def test_a_throw_without_an_accelerometer_has_none_and_writes_back(tmp_path):
+    t = np.arange(25) * 2.5e-4
+    throw = Throw(t=t, omega=np.tile([0.1, 7.0, -0.3], (25, 1)), rotor=60.0 * np.arange(25.0), accel=None)
+    text = throw_csv(throw)
+    assert text.splitlines()[0] == "t (s),wx (rad/s),wy (rad/s),wz (rad/s),rotor (rad/s)"
+    again = read_throw(write_throw(tmp_path / "a.csv", throw))
+    assert again.accel is None and again.input == str(tmp_path / "a.csv")
+    np.testing.assert_allclose(again.t, t, rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(again.omega, throw.omega)
+
+
+def test_the_example_device_is_listed_copied_and_reads(tmp_path):
+    listed = {e.path: e for e in list_examples()}
+    assert listed["devices/flywheel_device.toml"].kind == "device"
+    written = copy_examples(tmp_path / "ex")
+    path = tmp_path / "ex" / "devices" / "flywheel_device.toml"
+    assert path in written
+    device, proof = load_device(path, proof=True)
+    # the issue's example, as written there
+    assert device.mass == 0.10067 and device.rotor_axis.tolist() == [0.0, 0.0, -1.0] and device.rotor_inertia is None
+    assert proof is not None and proof.mass == 0.346
+    np.testing.assert_array_equal(np.diag(proof.inertia), [1.675805e-4, 1.300972e-4, 2.450833e-4])
+
+
+def test_tumble_examples_lists_the_device(capsys):
+    code, out, _ = _cli(capsys, "examples")
+    assert code == 0
+    line = next(line for line in out.splitlines() if line.startswith("devices/flywheel_device.toml"))
+    assert line.split()[1] == "device"
