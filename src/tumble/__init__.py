@@ -52,6 +52,8 @@ _EXPORTS = {
     "stability_report": "tumble.analysis",
     "fit_rotation": "tumble.analysis",
     "fit_recording": "tumble.analysis",
+    "fit_tensor": "tumble.analysis.tensor",
+    "calibrate_device": "tumble.analysis.tensor",
     # files
     "load_body": "tumble.io",
     "load_scenario": "tumble.io",

@@ -1,0 +1,214 @@
+"""The inputs of the absolute tensor fit: the device, the proof body and one throw (frozen value objects).
+
+The **device** is a flight controller logging its gyroscope and accelerometer with a motor and a
+flywheel (the rotor) fixed to it (Blaha, Kuijper, Pop & Smeur, "Rapid and Inexpensive Inertia
+Tensor Estimation from a Single Object Throw", arXiv:2503.13137). Everything is given in the
+device's **sensor frame**, whose origin is the accelerometer: the rotor's axis, the device's
+tensor about its own centre of mass, and centres of mass as positions from the accelerometer.
+
+The **proof** body has known mass properties; fixed to the device it fixes the absolute scale in
+:func:`~tumble.analysis.tensor.calibrate.calibrate_device`.
+
+A **throw** is one log (one CSV file): real sample times (irregular), the gyroscope's angular
+velocity, the rotor's speed relative to the device and the accelerometer's specific force.
+
+Validation lives in the constructors (one message whether the value came from Python, TOML or a
+CSV): the field, the value as given, and what is allowed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...mass.tensor import check_inertia
+from ...typing import FloatArray, Matrix3, Vector3
+from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
+
+__all__ = ["Device", "Proof", "Throw"]
+
+
+def _optional_positive(field_name: str, value: object, unit: str) -> float | None:
+    return None if value is None else check_positive(field_name, value, unit)
+
+
+def _tensor(field_name: str, value: object) -> Matrix3:
+    """A (3,) of principal moments along the sensor axes or a symmetric (3, 3), kg m^2, physical."""
+    a = check_vectors(field_name, value, "kg m^2", size=None)  # type: ignore[arg-type]
+    if a.shape == (3,):
+        a = np.diag(a)
+    if a.shape != (3, 3):
+        raise ValueError(f"{field_name} = {short_repr(value)} must be 3 moments or a 3x3 tensor (kg m^2), "
+                         f"not shape {a.shape}")
+    return check_inertia(a, what=field_name)
+
+
+def _optional_array(field_name: str, value: object, shape: tuple[int, ...], unit: str, *,
+                    nonnegative: bool = False) -> FloatArray | None:
+    if value is None:
+        return None
+    a = check_vectors(field_name, value, unit, size=None)  # type: ignore[arg-type]
+    if a.shape != shape:
+        raise ValueError(f"{field_name} = {short_repr(value)} must have shape {shape} ({unit}), not {a.shape}")
+    if nonnegative and np.any(a < 0):
+        raise ValueError(f"{field_name} = {short_repr(value)} must not be negative ({unit})")
+    return a
+
+
+@dataclass(frozen=True)
+class Device:
+    """The measuring device: its mass, rotor and (once calibrated) its own mass properties.
+
+    Attributes
+    ----------
+    mass : float
+        kg, the device with its rotor.
+    rotor_axis : ndarray, shape (3,)
+        Unit vector, sensor frame: the rotor's angular velocity relative to the device for a
+        positive logged speed (given any length, stored normalised).
+    rotor_inertia, rotor_inertia_std : float or None
+        ``J_r``, the rotor's axial moment of inertia and its standard uncertainty, kg m^2; None
+        when not known (then only ratios of tensors are determined: calibrate first).
+    inertia, inertia_std : ndarray, shape (3, 3), or None
+        The device's tensor about its own centre of mass, sensor frame, and the standard
+        uncertainty of each entry, kg m^2.
+    center_of_mass, center_of_mass_std : ndarray, shape (3,), or None
+        The device's centre of mass from the accelerometer, sensor frame, m, and its std.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor import Device
+    >>> device = Device(mass=0.10067, rotor_axis=[0.0, 0.0, -2.0], rotor_inertia=1.7e-6)
+    >>> device.rotor_axis.tolist(), device.calibrated
+    ([0.0, 0.0, -1.0], False)
+    >>> Device(mass=-1.0, rotor_axis=[0, 0, 1])
+    Traceback (most recent call last):
+    ...
+    ValueError: device.mass = -1.0 must be a positive finite number (kg)
+    """
+
+    mass: float
+    rotor_axis: Vector3
+    rotor_inertia: float | None = None
+    rotor_inertia_std: float | None = None
+    inertia: Matrix3 | None = field(default=None, repr=False)
+    inertia_std: Matrix3 | None = field(default=None, repr=False)
+    center_of_mass: Vector3 | None = None
+    center_of_mass_std: Vector3 | None = None
+
+    def __post_init__(self) -> None:
+        s = object.__setattr__
+        s(self, "mass", check_positive("device.mass", self.mass, "kg"))
+        s(self, "rotor_axis", np.array(check_direction("device.rotor_axis", self.rotor_axis)))
+        s(self, "rotor_inertia", _optional_positive("device.rotor_inertia", self.rotor_inertia, "kg m^2"))
+        if self.rotor_inertia_std is not None:
+            s(self, "rotor_inertia_std", check_positive("device.rotor_inertia_std", self.rotor_inertia_std, "kg m^2",
+                                                        allow_zero=True))
+        if self.inertia is not None:
+            s(self, "inertia", _tensor("device.inertia", self.inertia))
+        s(self, "inertia_std", _optional_array("device.inertia_std", self.inertia_std, (3, 3), "kg m^2",
+                                               nonnegative=True))
+        s(self, "center_of_mass", _optional_array("device.center_of_mass", self.center_of_mass, (3,), "m"))
+        s(self, "center_of_mass_std", _optional_array("device.center_of_mass_std", self.center_of_mass_std, (3,), "m",
+                                                      nonnegative=True))
+
+    @property
+    def calibrated(self) -> bool:
+        """Whether the rotor's inertia, the device's tensor and its centre of mass are all known.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor import Device
+        >>> Device(0.1, [0, 0, 1], 1.7e-6, 0.0, np.diag([3e-5, 3e-5, 5e-5]), None, [0.0, 0.0, 0.01]).calibrated
+        True
+        """
+        return self.rotor_inertia is not None and self.inertia is not None and self.center_of_mass is not None
+
+
+@dataclass(frozen=True)
+class Proof:
+    """A body of known mass properties fixed to the device for the calibration.
+
+    Attributes
+    ----------
+    mass : float
+        kg.
+    inertia : ndarray, shape (3, 3)
+        About its own centre of mass, along the sensor axes, kg m^2 (given as 3 moments along
+        the sensor axes or a 3x3 tensor).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor import Proof
+    >>> Proof(0.346, [1.675805e-4, 1.300972e-4, 2.450833e-4]).inertia.diagonal().tolist()
+    [0.0001675805, 0.0001300972, 0.0002450833]
+    """
+
+    mass: float
+    inertia: Matrix3
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg"))
+        object.__setattr__(self, "inertia", _tensor("proof.inertia", self.inertia))
+
+
+#: The fewest samples a throw may have.
+MIN_THROW_SAMPLES = 20
+
+
+@dataclass(frozen=True)
+class Throw:
+    """One throw's log, sensor frame.
+
+    Attributes
+    ----------
+    t : ndarray, shape (n,)
+        Sample times, s, strictly increasing (irregular allowed).
+    omega : ndarray, shape (n, 3)
+        Gyroscope, rad/s.
+    rotor : ndarray, shape (n,)
+        The rotor's speed relative to the device, rad/s (positive about ``Device.rotor_axis``).
+    accel : ndarray, shape (n, 3), or None
+        Accelerometer's specific force, m/s^2 (needed for the centres of mass).
+    input : str
+        Where it came from (a file's path as given), for messages and reports.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> t = np.arange(100) / 4000.0
+    >>> Throw(t, np.zeros((100, 3)), np.zeros(100), None, "a.csv").accel is None
+    True
+    >>> Throw(t, np.zeros((100, 2)), np.zeros(100))
+    Traceback (most recent call last):
+    ...
+    ValueError: throw omega must have shape (100, 3) (rad/s), not (100, 2)
+    """
+
+    t: FloatArray = field(repr=False)
+    omega: FloatArray = field(repr=False)
+    rotor: FloatArray = field(repr=False)
+    accel: FloatArray | None = field(default=None, repr=False)
+    input: str = ""
+
+    def __post_init__(self) -> None:
+        where = f"throw {self.input}" if self.input else "throw"
+        t = check_vectors(f"{where} t", self.t, "s", size=None)
+        if t.ndim != 1 or t.size < MIN_THROW_SAMPLES:
+            raise ValueError(f"{where} t must be a list of at least {MIN_THROW_SAMPLES} times (s), got shape {t.shape}")
+        check_increasing(f"{where} t", t)
+        n = t.size
+        arrays = {"omega": ((n, 3), "rad/s", self.omega), "rotor": ((n,), "rad/s", self.rotor),
+                  "accel": ((n, 3), "m/s^2", self.accel)}
+        s = object.__setattr__
+        s(self, "t", t)
+        for name, (shape, unit, value) in arrays.items():
+            if value is None and name == "accel":
+                continue
+            a = check_vectors(f"{where} {name}", value, unit, size=None)
+            if a.shape != shape:
+                raise ValueError(f"{where} {name} must have shape {shape} ({unit}), not {a.shape}")
+            s(self, name, a)
