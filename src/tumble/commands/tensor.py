@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.tensor import Device, calibrate_device, fit_tensor
+from ..analysis.tensor import Device, NoThrowError, calibrate_device, fit_tensor
 from ..io.devicefile import load_device, write_device
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
@@ -59,6 +59,10 @@ def _missing_calibration(device: Device) -> list[str]:
     return [key for key in ("rotor_inertia", "inertia", "center_of_mass") if getattr(device, key) is None]
 
 
+def _one_line(err: BaseException) -> str:
+    return " ".join(str(err).split())
+
+
 def _mm(v) -> str:
     return "[" + ", ".join(f"{1e3 * x:.3g}" for x in np.asarray(v, float)) + "] mm"
 
@@ -84,7 +88,8 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     Returns
     -------
     int
-        0 on success. Bad input raises ``ValueError`` with one line (nothing is written).
+        0 on success; 1 when none of the throws could be fitted (one line on stderr, nothing
+        written). Bad input raises ``ValueError`` with one line (nothing is written).
 
     Examples
     --------
@@ -104,7 +109,11 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     alone_throws = _throws(alone, "--alone")
     proof_throws = _throws(proof, "--proof")
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *alone, *proof)]
-    calibrated = calibrate_device(dev, alone_throws, proof_throws, body)
+    try:
+        calibrated = calibrate_device(dev, alone_throws, proof_throws, body)
+    except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
+        print(f"tumble: calibration failed: {_one_line(err)}; nothing written", file=sys.stderr)
+        return 1
     record = provenance(argv, inputs)
     lines = [f"Calibrated by tumble {record['tumble']} on {record['created']}: {len(alone)} throw(s) of the device "
              f"alone, {len(proof)} with the proof body"]
@@ -148,8 +157,9 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.P
     Returns
     -------
     int
-        0 on success; 1 for an inadequate fit unless accepted. Bad input raises ``ValueError``
-        with one line (nothing is written).
+        0 on success; 1 for an inadequate fit unless accepted (written), or when none of the
+        throws could be fitted (one line on stderr, nothing written). Bad input raises
+        ``ValueError`` with one line (nothing is written).
 
     Examples
     --------
@@ -172,7 +182,11 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.P
                          f"tumble calibrate {os.fspath(device)} --alone ... --proof ... --out CALIBRATED.toml")
     thrown = _throws(throws, "THROW")
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *throws)]
-    fit = fit_tensor(thrown, dev, mass)
+    try:
+        fit = fit_tensor(thrown, dev, mass)
+    except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
+        print(f"tumble: tensor failed: {_one_line(err)}; nothing written", file=sys.stderr)
+        return 1
     record: dict[str, Any] = fit.as_dict()
     record["input"] = [os.fspath(p) for p in throws]
     record["device"] = os.fspath(device)
