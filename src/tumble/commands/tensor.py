@@ -42,7 +42,7 @@ __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
 TENSOR_WRITES = ("tensor.json", "tensor.png")
 
 _METHOD = ("output-error least squares on the gyrostat's Euler equations (Hughes, Spacecraft Attitude Dynamics, "
-           "sec. 3.3) with the measured rotor speed as input, integrated at the real sample times; the device "
+           "1986, ch. 7) with the measured rotor speed as input, integrated at the real sample times; the device "
            "subtracted with the parallel-axis theorem (Goldstein sec. 5.3), centres of mass from the "
            "accelerometer's specific force; the rotor inertia's uncertainty a systematic part common to all "
            "throws; pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1. "
