@@ -1,0 +1,183 @@
+"""Where a throw's free flight lies in its log: :func:`find_flight`.
+
+- **Rotor start**: the device starts its rotor when it senses the release; the first sample of
+  the run that leads to 10 % of the rotor's top speed, from the last reading at the stopped
+  rotor's level (median + 5 MADs of the readings before; a stopped motor's telemetry reads 0).
+- **Release and catch** (with an accelerometer): in free fall an accelerometer at ``r`` from
+  the centre of mass reads ``f = w' x r + w x (w x r)`` plus its bias (the acceleration of a
+  point of a rigid body, Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed., sec. 4.10,
+  less gravity, which a falling accelerometer does not sense): ``r`` and the bias are fitted by
+  linear least squares on 10-150 ms after the rotor start (``w`` averaged and ``w'`` differenced
+  over :data:`SPAN`; a rough fit, for finding the flight only). In the hand the reading differs
+  from that by the hand's push, about ``g`` or more: the flight is the run of samples around
+  the rotor start whose misfit (a running median over :data:`SPAN`) stays below
+  :data:`MISFIT` (or 6 times its median in the flight, when larger).
+- **Catch** (the gyroscope): the first impulse (:func:`tumble.analysis.fit.flights.impulses`)
+  100 ms or more after the rotor start, when it comes before the accelerometer's end.
+- Without an accelerometer the flight starts at the rotor start.
+
+The fitted window leaves :data:`START_MARGIN` after the release (the fingers let go over a few
+ms) and :data:`END_MARGIN` before the catch.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import median_filter
+
+from ..fit.flights import impulses
+from .device import Throw
+
+__all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SPAN", "START_MARGIN", "Window", "find_flight", "rotor_start",
+           "skew"]
+
+#: The misfit of the free-fall accelerometer model above which a sample is held, m/s^2 (g / 2).
+MISFIT = 0.5 * 9.80665
+#: The span of the averages and differences used to find the flight, s.
+SPAN = 0.004
+#: Left out after the release and before the catch, s.
+START_MARGIN = 0.003
+END_MARGIN = 0.005
+#: The shortest flight fitted, s.
+MIN_FLIGHT = 0.15
+
+
+@dataclass(frozen=True)
+class Window:
+    """A throw's flight: the fitted samples ``[first, stop)``, the rotor's first moving sample,
+    and the release and catch times (s); ``reason`` says why there is none (then the rest is
+    meaningless).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.flight import Window
+    >>> Window(10, 2000, 30, 0.25, 0.75, "").reason
+    ''
+    """
+
+    first: int
+    stop: int
+    rotor: int
+    t_release: float
+    t_end: float
+    reason: str
+
+
+def skew(v: np.ndarray) -> np.ndarray:
+    """The cross-product matrices ``[v]x`` of vectors ``(..., 3)``: ``[v]x r = v x r``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.flight import skew
+    >>> (skew(np.array([1.0, 2.0, 3.0])) @ np.array([0.0, 0.0, 1.0])).tolist()   # (1, 2, 3) x z
+    [2.0, -1.0, 0.0]
+    """
+    v = np.asarray(v, float)
+    z = np.zeros(v.shape[:-1])
+    return np.stack([np.stack([z, -v[..., 2], v[..., 1]], -1), np.stack([v[..., 2], z, -v[..., 0]], -1),
+                     np.stack([-v[..., 1], v[..., 0], z], -1)], -2)
+
+
+def rotor_start(rotor: np.ndarray) -> int | None:
+    """The rotor's first moving sample (module docstring), or None when it never reaches 50 rad/s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.flight import rotor_start
+    >>> rotor_start(np.r_[np.zeros(10), 3.0, 40.0, 400.0, 1000.0, 1400.0])
+    10
+    >>> rotor_start(np.zeros(20)) is None
+    True
+    """
+    speed = np.abs(np.asarray(rotor, float))
+    top = float(speed.max()) if speed.size else 0.0
+    if top < 50.0:
+        return None
+    cross = int(np.argmax(speed > 0.1 * top))
+    before = speed[:cross]
+    if before.size == 0:
+        return 0
+    level = float(np.median(before) + 5 * 1.4826 * np.median(np.abs(before - np.median(before))))
+    still = np.flatnonzero(before <= level)
+    return int(still[-1]) + 1 if still.size else 0
+
+
+def _rates(t: np.ndarray, omega: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """``w`` averaged and ``w'`` differenced over ``+-k`` samples."""
+    n = t.size
+    i = np.arange(n)
+    lo, hi = np.maximum(i - k, 0), np.minimum(i + k, n - 1)
+    wdot = (omega[hi] - omega[lo]) / np.maximum(t[hi] - t[lo], 1e-12)[:, None]
+    c = np.vstack([np.zeros(3), np.cumsum(omega, axis=0)])
+    w = (c[hi + 1] - c[lo]) / (hi - lo + 1)[:, None]
+    return w, wdot
+
+
+def _run(ok: np.ndarray, inside: int) -> tuple[int, int]:
+    """The run ``[a, b)`` of True around index ``inside``."""
+    bad = np.flatnonzero(~ok)
+    a = int(bad[bad < inside].max()) + 1 if np.any(bad < inside) else 0
+    b = int(bad[bad > inside].min()) if np.any(bad > inside) else ok.size
+    return a, b
+
+
+def find_flight(throw: Throw, keep: np.ndarray) -> Window:
+    """The free flight of a throw (module docstring).
+
+    Parameters
+    ----------
+    throw : Throw
+    keep : ndarray of bool, shape (n, 3)
+        The gyroscope's samples within its range.
+
+    Returns
+    -------
+    Window
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.flight import find_flight
+    >>> from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_throw, true_device
+    >>> throw = synthetic_throw(4, combine(true_device(), example_object()))
+    >>> w = find_flight(throw, np.ones(throw.omega.shape, bool))
+    >>> w.reason, round(w.t_release, 3), round(w.t_end, 3)   # the generator released it at 0.2943 s, caught at 0.7954 s
+    ('', 0.295, 0.789)
+    """
+    t, omega = throw.t, throw.omega
+    s = rotor_start(throw.rotor)
+    if s is None:
+        return Window(0, 0, 0, np.nan, np.nan, "the rotor did not spin up (it never reached 50 rad/s): without "
+                                               "its reaction the tensor's scale is undetermined")
+    dt = float(np.median(np.diff(t[s:]))) if t.size - s > 2 else float(np.median(np.diff(t)))
+    k = max(1, int(round(0.5 * SPAN / dt)))
+    a, b = s, t.size
+    if throw.accel is not None:
+        w, wdot = _rates(t, omega, k)
+        M = skew(wdot) + skew(w) @ skew(w)
+        good = np.all(keep, axis=1)
+        fit = good & (t >= t[s] + 0.01) & (t <= t[s] + 0.15)
+        if np.count_nonzero(fit) < 20:
+            return Window(0, 0, s, np.nan, np.nan, "too few samples after the rotor start to find the flight")
+        A = np.concatenate([M[fit], np.broadcast_to(np.eye(3), (np.count_nonzero(fit), 3, 3))], axis=2).reshape(-1, 6)
+        x = np.linalg.lstsq(A, throw.accel[fit].reshape(-1), rcond=None)[0]
+        misfit = np.linalg.norm(throw.accel - (M @ x[:3] + x[3:]), axis=1)
+        misfit = median_filter(np.where(good, misfit, 0.0), size=2 * k + 1, mode="nearest")
+        limit = max(MISFIT, 6.0 * float(np.median(misfit[fit])))
+        inside = int(np.flatnonzero(fit)[0])
+        a, b = _run(misfit < limit, inside)
+        a = min(a, s)
+    late = np.flatnonzero(impulses(t, omega) & (t >= t[s] + 0.1))
+    if late.size and late[0] < b:
+        b = int(late[0])
+    t_release, t_end = float(t[a]), float(t[b - 1])
+    first = int(np.searchsorted(t, t_release + START_MARGIN))
+    stop = int(np.searchsorted(t, t_end - END_MARGIN, side="right"))
+    if t[stop - 1] - t[first] < MIN_FLIGHT:
+        return Window(first, stop, s, t_release, t_end,
+                      f"the flight found lasts {t_end - t_release:.3g} s, less than the {MIN_FLIGHT} s fitted")
+    return Window(first, stop, s, t_release, t_end, "")
