@@ -101,10 +101,11 @@ API_PAGES = [
       "the elliptic functions and integrals they rest on, and how kernels are compiled and cached.\n"
       "Most scripts need only :func:`tumble.dynamics.simulate`; these are for checking the\n"
       "formulas, each module's docstring gives them with their sources.")),
-    ("analysis", "tumble.analysis", ["tumble.analysis"], None),
+    ("analysis", "tumble.analysis", ["tumble.analysis", "tumble.analysis.tensor"], None),
     ("ensemble", "tumble.ensemble", ["tumble.ensemble"], None),
-    ("io", "tumble.io", ["tumble.io"], None),
-    ("commands", "tumble.commands", ["tumble.commands", "tumble.commands.sweep", "tumble.commands.fit"], None),
+    ("io", "tumble.io", ["tumble.io", "tumble.io.devicefile", "tumble.io.throwfile"], None),
+    ("commands", "tumble.commands", ["tumble.commands", "tumble.commands.sweep", "tumble.commands.fit",
+                                     "tumble.commands.tensor"], None),
     ("viz", "tumble.viz", ["tumble.viz"], None),
 ]
 

@@ -162,7 +162,7 @@ def _cmd_calibrate(args) -> int:
 
 def _cmd_tensor(args) -> int:
     from ..commands.tensor import run_tensor_command
-    from ..viz.tensor import figure_tensor
+    from ..viz import figure_tensor
 
     mass = _positive("--mass", args.mass, "kg")
     with _working("fitting throws"):
