@@ -41,12 +41,14 @@ __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
 #: The files ``tumble tensor`` writes into its folder.
 TENSOR_WRITES = ("tensor.json", "tensor.png")
 
-_METHOD = ("output-error least squares on the gyrostat's Euler equations (Hughes, Spacecraft Attitude Dynamics, "
-           "1986, ch. 7) with the measured rotor speed as input, integrated at the real sample times; the device "
-           "subtracted with the parallel-axis theorem (Goldstein sec. 5.3), centres of mass from the "
-           "accelerometer's specific force; the rotor inertia's uncertainty a systematic part common to all "
-           "throws; pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1. "
-           "Setting after Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137")
+_METHOD = ("output-error least squares on the gyrostat's equations in the momentum form (Hughes, Spacecraft Attitude "
+           "Dynamics, 1986, ch. 7) with the measured rotor speed as input, integrated at the real sample times, over "
+           "physical tensors only (Wensing, Kim & Slotine 2018); the flight, the gyroscope's bias and the drag from the "
+           "data; centres of mass from the accelerometer's specific force (Goldstein sec. 4.10); the device subtracted "
+           "with the parallel-axis theorem (Goldstein sec. 5.3); uncertainties: (J^T J)^-1 s^2 times the residuals' "
+           "autocorrelation time, propagated to first order (GUM 5.1), the rotor inertia's a systematic part common to "
+           "all throws; pooled: inverse-covariance mean, its statistical part scaled by the Birge ratio chi^2/dof when "
+           "above 1. The device: Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137")
 
 
 def _throws(paths: Sequence[str | os.PathLike[str]], option: str) -> list:
