@@ -124,8 +124,9 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     lines += [f"input {json.dumps(p)} sha256 {h}" for p, h in inputs]  # quoted: a name holds no line break here
     write_device(out, calibrated, body, header="\n".join(lines))
     J, Jstd = calibrated.rotor_inertia, calibrated.rotor_inertia_std
+    rotor = f"{J:.4g}" + ("" if Jstd is None else f" +- {Jstd:.2g}")
     moments = np.linalg.eigvalsh(np.asarray(calibrated.inertia, float))
-    print(f"calibrated {os.fspath(device)}: rotor inertia {J:.4g} +- {Jstd:.2g} kg m^2, device principal moments "
+    print(f"calibrated {os.fspath(device)}: rotor inertia {rotor} kg m^2, device principal moments "
           f"{', '.join(f'{x:.4g}' for x in moments)} kg m^2, centre of mass {_mm(calibrated.center_of_mass)} "
           f"from {len(alone)} + {len(proof)} throws; wrote {os.fspath(out)}")
     return 0
