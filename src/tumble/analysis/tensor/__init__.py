@@ -17,6 +17,7 @@ Pop & Smeur, arXiv:2503.13137). Rooms:
 from .calibrate import calibrate_device
 from .device import Device, Proof, Throw
 from .estimate import MassEstimate
-from .fit import NoThrowError, TensorFit, ThrowFit, fit_tensor
+from .fit import TensorFit, ThrowFit, fit_tensor
+from .pool import NoThrowError
 
 __all__ = ["Device", "MassEstimate", "NoThrowError", "Proof", "TensorFit", "Throw", "ThrowFit", "calibrate_device", "fit_tensor"]

@@ -203,7 +203,8 @@ def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t_r: float, t_s: fl
 
 
 def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INERTIA,
-                    rotor_axis: ArrayLike = ROTOR_AXIS, input: str = "", rotor_top: float | None = None) -> Throw:
+                    rotor_axis: ArrayLike = ROTOR_AXIS, input: str = "", rotor_top: float | None = None,
+                    spin: tuple[float, float] = (10.0, 18.0)) -> Throw:
     """A throw's log: hand-held swing, release, flight with the rotor spinning up, catch (module docstring).
 
     Parameters
@@ -220,6 +221,9 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
         The name the throw carries.
     rotor_top : float, optional
         The rotor's final speed, rad/s (default 1400-1600; 0 for a rotor that never starts).
+    spin : (float, float)
+        The range of the spin at release, rad/s (the device alone needs less: its rotor's
+        reaction turns it faster).
 
     Returns
     -------
@@ -260,7 +264,7 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
 
     # the flight
     direction = rng.normal(size=3)
-    w0 = rng.uniform(10.0, 18.0) * direction / np.linalg.norm(direction)
+    w0 = rng.uniform(*spin) * direction / np.linalg.norm(direction)
     drag = rng.uniform(0.5e-6, 2e-6, 3)
     w, wdot = np.zeros((n, 3)), np.zeros((n, 3))
     w[inflight], wdot[inflight] = _flight(flown, w0, t[inflight], t_r, t_s, hvec, drag)
