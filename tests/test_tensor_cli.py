@@ -281,31 +281,52 @@ def test_the_guides_example_calibrates_the_device_and_finds_the_object(tmp_path,
 
     code, out, err = _cli(capsys, *commands[1])
     assert code == 0, err
-    assert out.count("\n") == 1 and out.startswith("tensor: principal moments ")
     record = json.loads((tmp_path / "bracket" / "tensor.json").read_text())
+    true = _box_moments(BOX_MASS, BOX_SIZE)
+    moments = np.array(record["object"]["principal_moments"])
+    assert np.all(np.abs(moments / true - 1) < 0.03), (moments, true)
+
+
+def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_path, capsys):
+    """Three throws of the guide's box with the device as a calibration gives it: tensor.json has
+    every key the issue names, and the box's moments, tensor and centre of mass."""
+    from scipy.spatial.transform import Rotation
+
+    from tumble.analysis.tensor.synthetic import box, calibrated_device, combine, synthetic_throw, true_device
+
+    rotvec = (0.2, -0.1, 0.35)
+    bracket = box(BOX_MASS, BOX_SIZE, center=BOX_CENTER, rotvec=rotvec)
+    paths = [str(write_throw(tmp_path / f"o{k}.csv", synthetic_throw(30 + k, combine(true_device(), bracket))))
+             for k in (1, 2, 3)]
+    device = write_device(tmp_path / "calibrated.toml", calibrated_device())
+    out = tmp_path / "bracket"
+    code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(device), "--mass", repr(BOX_MASS), "--out", str(out))
+    assert code == 0, err
+    assert stdout.count("\n") == 1 and stdout.startswith("tensor: principal moments ") and err == ""
+    assert sorted(p.name for p in out.iterdir()) == ["tensor.json", "tensor.png"]
+    assert (out / "tensor.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    record = json.loads((out / "tensor.json").read_text())
     assert {"object", "flown", "throws", "adequate", "chi2_dof"} <= set(record)
     assert set(record["object"]) >= ESTIMATE_KEYS and set(record["flown"]) >= ESTIMATE_KEYS
-    obj = record["object"]
+    obj, flown = record["object"], record["flown"]
     assert np.shape(obj["inertia"]) == (3, 3) and np.shape(obj["inertia_cov"]) == (6, 6)
-    assert np.shape(obj["principal_axes"]) == (3, 3) and obj["mass"] == BOX_MASS
-    assert [t["input"] for t in record["throws"]] == ["o1.csv", "o2.csv", "o3.csv", "o4.csv"]
+    assert np.shape(obj["principal_axes"]) == (3, 3) and obj["mass"] == pytest.approx(BOX_MASS, rel=1e-12)
+    assert flown["mass"] == pytest.approx(BOX_MASS + 0.10067, rel=1e-12)
+    assert np.all(np.diff(obj["principal_moments"]) > 0)   # ascending
+    assert [t["input"] for t in record["throws"]] == paths   # each file as given
     for entry in record["throws"]:
         assert {"input", "status", "reason", "object"} <= set(entry)
         assert entry["status"] == "used" and set(entry["object"]) >= ESTIMATE_KEYS
     assert record["adequate"] is True
-    # the object: its moments within 3 % of the box's, its centre within 3 mm of where it was put
+    # the box's moments from the closed form, within 3 %; its centre within 3 mm of where it was put
     true = _box_moments(BOX_MASS, BOX_SIZE)
     assert np.all(np.abs(np.array(obj["principal_moments"]) / true - 1) < 0.03), (obj["principal_moments"], true)
     np.testing.assert_allclose(obj["center_of_mass"], BOX_CENTER, atol=3e-3)
-    # the tensor itself is the turned box's: I = R diag(moments) R^T (the box's own axes turned by rotvec)
-    from scipy.spatial.transform import Rotation
-
-    R = Rotation.from_rotvec([0.2, -0.1, 0.35]).as_matrix()
+    # the tensor itself is the turned box's, I = R diag(moments) R^T, R the box's axes in the sensor frame
+    R = Rotation.from_rotvec(rotvec).as_matrix()
     a, b, c = BOX_SIZE
     tensor = R @ np.diag(BOX_MASS / 12.0 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])) @ R.T
     assert np.abs(np.array(obj["inertia"]) - tensor).max() < 0.03 * true[2]
-    png = (tmp_path / "bracket" / "tensor.png").read_bytes()
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_the_guides_figure_has_a_command_that_makes_it(tmp_path):
