@@ -15,7 +15,8 @@ from tumble.analysis.tensor import Device, Proof, Throw
 from tumble.cli import main
 from tumble.io.devicefile import device_toml, load_device, write_device
 from tumble.io.examples import copy_examples, list_examples
-from tumble.io.throwfile import STANDARD_GRAVITY, parse_throw_csv, read_throw, throw_csv, write_throw
+from tumble.dynamics.environment.earth import STANDARD_GRAVITY
+from tumble.io.throwfile import parse_throw_csv, read_throw, throw_csv, write_throw
 
 DEVICE = "[device]\nmass = 0.10067\nrotor_axis = [0.0, 0.0, -1.0]\n"
 PROOF = "[proof]\nmass = 0.346\ninertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]\n"

@@ -36,20 +36,20 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.tensor import Throw
+from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..validation import read_input_file
 from .atomic import atomic_write_text
 from .gyrocolumns import _UNIT, RATE_UNITS, _factor, _name, match_header
 from .gyrodata import _NUMBER, _check_order, _separator, _split
 
-__all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "STANDARD_GRAVITY", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
+__all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
            "read_throw", "throw_csv", "write_throw"]
 
 #: The largest throw file read, bytes (a minute at 4 kHz is about 25 MB of text).
 MAX_THROW_FILE_BYTES = 64 << 20
 
-#: Standard gravity, m/s^2: the unit g of an accelerometer (3rd CGPM, 1901; ISO 80000-3).
-STANDARD_GRAVITY = 9.80665
-#: Units a header may name for the specific force, and their factor to m/s^2.
+#: Units a header may name for the specific force, and their factor to m/s^2 (g: standard gravity,
+#: :data:`tumble.dynamics.environment.earth.STANDARD_GRAVITY`).
 ACCEL_UNITS = {"m/s^2": 1.0, "m/s2": 1.0, "m/s\u00b2": 1.0, "ms^-2": 1.0, "g": STANDARD_GRAVITY,
                "mg": 1e-3 * STANDARD_GRAVITY}
 
