@@ -40,7 +40,7 @@ from ..fit.endings import smooth_noise
 from .device import Device, Proof, Throw
 
 __all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "Rigid", "box", "calibrated_device", "combine",
-           "example_object", "synthetic_throw", "true_device", "true_proof"]
+           "example_object", "release_and_catch", "synthetic_throw", "true_device", "true_proof"]
 
 #: The device of the issue: mass, kg; rotor axis, sensor frame; rotor inertia, kg m^2.
 DEVICE_MASS = 0.10067
@@ -202,6 +202,21 @@ def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t_r: float, t_s: fl
     return w, rates(w, *hvec(times))
 
 
+def release_and_catch(seed: int) -> tuple[float, float]:
+    """The true release and catch times (s) of :func:`synthetic_throw`'s throw ``seed``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.synthetic import release_and_catch
+    >>> t_r, t_c = release_and_catch(1)
+    >>> 0.2 <= t_r <= 0.3, 0.45 <= t_c - t_r <= 0.55
+    (True, True)
+    """
+    rng = np.random.default_rng(seed)
+    t_r = float(rng.uniform(0.2, 0.3))
+    return t_r, t_r + float(rng.uniform(0.45, 0.55))
+
+
 def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INERTIA,
                     rotor_axis: ArrayLike = ROTOR_AXIS, input: str = "", rotor_top: float | None = None,
                     spin: tuple[float, float] = (10.0, 18.0)) -> Throw:
@@ -241,9 +256,9 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
     rng = np.random.default_rng(seed)
     a = np.asarray(rotor_axis, float)
     a = a / np.linalg.norm(a)
-    t_r = rng.uniform(0.2, 0.3)
-    length = rng.uniform(0.45, 0.55)
-    t_c = t_r + length
+    t_r, t_c = release_and_catch(seed)
+    rng.uniform(size=2)  # the two draws of release_and_catch
+    length = t_c - t_r
     hand = np.cumsum(250e-6 + rng.uniform(-200e-6, 250e-6, 2000))
     hand = hand[hand < t_r]
     fly = t_r + np.cumsum(250e-6 * (1.0 + 0.01 * rng.normal(size=int(1.2 * (length + 0.08) / 250e-6))))

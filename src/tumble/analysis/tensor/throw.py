@@ -17,14 +17,15 @@
 4. **Covariance**: ``(J^T J)^-1 s^2 tau`` with the residuals' autocorrelation time ``tau``
    (:func:`tumble.analysis.fit.uncertainty.effective_covariance`), propagated to the tensor's
    entries through ``dI/dC`` (the law of propagation of uncertainty, JCGM 100:2008, sec. 5.1).
-5. **Centre of mass**: with ``w`` and ``w' = I^-1 (L x w + tau_drag - h')`` from the fitted
-   model (not differentiated data; ``h'`` from the smoothed rotor speed), the accelerometer's
-   free-fall reading ``f = w' x r + w x (w x r) + b_a`` (Goldstein, Poole & Safko, *Classical
-   Mechanics*, 3rd ed., sec. 4.10) is linear in ``r`` (the accelerometer from the centre of
-   mass) and its bias ``b_a``: linear least squares, the covariance as in 4. The centre of mass
+5. **Centre of mass**: with ``w`` from the fitted model (not the noisy data), the
+   accelerometer's free-fall reading ``f = w' x r + w x (w x r) + b_a`` (Goldstein, Poole &
+   Safko, *Classical Mechanics*, 3rd ed., sec. 4.10), integrated over short blocks so that
+   ``w'`` drops out (:func:`center_of_mass`), is linear in ``r`` (the accelerometer from the
+   centre of mass) and its bias ``b_a``: linear least squares, the covariance as in 4, plus
+   the part of the fitted rates' own uncertainty (their parameters' covariance through
+   ``dc/dP``, by central differences). The centre of mass
    from the accelerometer is ``-r``. The air's force on the body (~0.2 m/s^2 for a 0.7 kg box at
-   3 m/s) is left to the bias; the rates' own uncertainty is not propagated (their relative error
-   is ~1e-3, below the accelerometer's).
+   3 m/s) is left to the bias.
 """
 
 from __future__ import annotations
@@ -44,10 +45,12 @@ from .estimate import tensor_of
 from .flight import Window, find_flight, skew
 from .model import RotorInput, ThrowModel, cholesky_of, inertia_jacobian, inertia_of, rotor_input
 
-__all__ = ["BLOCK", "FlownFit", "center_of_mass", "fit_flown", "start_values"]
+__all__ = ["ACCEL_BLOCK", "BLOCK", "FlownFit", "center_of_mass", "fit_flown", "start_values"]
 
 #: Samples per block of the starting regression (10 ms at 4 kHz).
 BLOCK = 40
+#: Samples per block of the accelerometer's integrated reading (20 ms at 4 kHz).
+ACCEL_BLOCK = 80
 
 
 @dataclass(frozen=True)
@@ -114,27 +117,45 @@ def center_of_mass(model: ThrowModel, P: FloatArray, accel: FloatArray) -> tuple
     """The flown body's centre of mass from the accelerometer (module docstring, step 5): ``(c,
     cov_c, b_a)`` in m, m^2 and m/s^2.
 
+    The reading is integrated over blocks of :data:`ACCEL_BLOCK` samples,
+    ``integral f dt = (w_b - w_a) x r + integral w x (w x r) dt + b_a (t_b - t_a)``, so that
+    ``w'`` is never needed (it would need the rotor's ``h'``, poorly known at its start).
+
     Examples
     --------
     >>> from tumble.analysis.tensor.throw import center_of_mass
     >>> callable(center_of_mass)
     True
     """
-    c, L0, _, quad = model.split(P[None])
-    I = inertia_of(c[0])
     w = model.omega(P[None])[0]
-    L = w @ I + model.h
-    torque = np.cross(L, w) - quad[0] * np.abs(w) * w - model.rotor.h_rate(model.t)
-    wdot = torque @ np.linalg.inv(I)
-    M = skew(wdot) + skew(w) @ skew(w)
-    good = np.all(np.abs(accel) < 0.998 * np.abs(accel).max(), axis=1) | (np.abs(accel).max() < 15 * 9.80665)
-    n = int(np.count_nonzero(good))
-    A = np.concatenate([M[good], np.broadcast_to(np.eye(3), (n, 3, 3))], axis=2).reshape(-1, 6)
-    y = accel[good].reshape(-1)
+    t = model.t
+    good = np.all(np.abs(accel) < 15.9 * 9.80665, axis=1)
+    Q = cumulative_trapezoid(skew(w) @ skew(w), t, axis=0, initial=0.0)
+    F = cumulative_trapezoid(accel, t, axis=0, initial=0.0)
+    rows, rhs = [], []
+    for a in range(0, t.size - ACCEL_BLOCK, ACCEL_BLOCK):
+        b = a + ACCEL_BLOCK
+        if not good[a:b + 1].all():
+            continue
+        rows.append(np.hstack([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a]) * np.eye(3)]))
+        rhs.append(F[b] - F[a])
+    n = len(rows)
+    A, y = np.vstack(rows), np.concatenate(rhs)
     x = np.linalg.lstsq(A, y, rcond=None)[0]
     r = A @ x - y
     cov, _ = effective_covariance(A, r, r.reshape(-1, 3), [0, n])
     return -x[:3], cov[:3, :3], x[3:]
+
+
+def _model_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArray) -> FloatArray:
+    """The centre's covariance from the fitted rates' own: ``G cov G^T``, ``G = dc/dP`` by central differences."""
+    d = model.steps(P) * 100.0
+    G = np.empty((3, P.size))
+    for k in range(P.size):
+        e = np.zeros(P.size)
+        e[k] = d[k]
+        G[:, k] = (center_of_mass(model, P + e, accel)[0] - center_of_mass(model, P - e, accel)[0]) / (2 * d[k])
+    return G @ cov @ G.T
 
 
 def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
@@ -204,5 +225,6 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     center = center_cov = accel_bias = None
     if throw.accel is not None:
         center, center_cov, accel_bias = center_of_mass(model, P, throw.accel[sl])
+        center_cov = center_cov + _model_part(model, P, cov, throw.accel[sl])
     return FlownFit(win, "", P, cov, I, G @ cov[:6, :6] @ G.T, center, center_cov, accel_bias, t, data, pred, rms,
                     verdict)
