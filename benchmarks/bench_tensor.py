@@ -16,6 +16,7 @@ Run: ``python benchmarks/bench_tensor.py [--quick]`` or ``python benchmarks/run.
 from __future__ import annotations
 
 import json
+import os
 import platform
 import subprocess
 import sys
@@ -64,6 +65,7 @@ def _command(throws, device, folder: Path) -> float:
 def run(out, quick: bool = False) -> str:
     repeat = 1 if quick else 3
     n = 4 if quick else THROWS
+    load = os.getloadavg()[0]  # the machine is shared: say how busy it was
     obj, device, throws = _setup(n)
     fit_tensor(throws[:1], device, OBJECT["mass"])  # first call (imports, compiled kernels), not timed
     one_times, pooled_times = [], []
@@ -94,8 +96,9 @@ def run(out, quick: bool = False) -> str:
     def met(seconds, target):
         return "" if target is None else ("yes" if seconds <= target else "NO")
 
-    lines = ["# bench_tensor", "", f"Python {platform.python_version()} on {platform.machine()}; median over {repeat} "
-             "repeats, range in brackets; the throws made before the clock starts.", "",
+    lines = ["# bench_tensor", "", f"Python {platform.python_version()} on {platform.machine()}, {os.cpu_count()} cores "
+             f"(load average {load:.1f} at the start); median over {repeat} repeats, range in brackets; the throws made "
+             "before the clock starts.", "",
              "| case | time (s) | target (s) | met |", "|---|---|---|---|"]
     for row in rows:
         rng = f" [{row['range'][0]:.3g}-{row['range'][1]:.3g}]" if "range" in row else ""
