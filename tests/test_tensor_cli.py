@@ -315,6 +315,8 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     assert flown["mass"] == pytest.approx(BOX_MASS + 0.10067, rel=1e-12)
     assert np.all(np.diff(obj["principal_moments"]) > 0)   # ascending
     assert [t["input"] for t in record["throws"]] == paths   # each file as given
+    assert record["input"] == paths and [r["file"] for r in record["read"]] == paths
+    assert record["read"][0]["rotor"] == {"column": "rotor (rad/s)", "unit": "rad/s"}
     for entry in record["throws"]:
         assert {"input", "status", "reason", "object"} <= set(entry)
         assert entry["status"] == "used" and set(entry["object"]) >= ESTIMATE_KEYS

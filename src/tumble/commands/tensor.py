@@ -10,7 +10,8 @@ absolute inertia tensor, the result written whole or not at all.
 - ``tumble tensor THROW... --device CALIBRATED.toml --mass KG --out DIR``: each throw fitted and
   all of them jointly (:func:`tumble.analysis.tensor.fit_tensor`); ``DIR/tensor.json`` holds
   :meth:`~tumble.analysis.tensor.TensorFit.as_dict` (``"object"``, ``"flown"``, ``"throws"``,
-  ``"adequate"``, ``"chi2_dof"``) with the inputs and the provenance, ``DIR/tensor.png`` the
+  ``"adequate"``, ``"chi2_dof"``) with the inputs, the columns read from each
+  (:meth:`tumble.io.throwfile.ThrowRead.summary`) and the provenance, ``DIR/tensor.png`` the
   figure (:func:`tumble.viz.tensor.figure_tensor`).
 
 The throw files are :mod:`tumble.io.throwfile`'s; the method is the gyrostat's output-error fit
@@ -33,7 +34,7 @@ from ..analysis.tensor import Device, NoThrowError, calibrate_device, fit_tensor
 from ..io.devicefile import load_device, write_device
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
-from ..io.throwfile import read_throw
+from ..io.throwfile import load_throw, read_throw
 from ..validation import check_positive
 
 __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
@@ -183,7 +184,10 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.P
     if missing:
         raise ValueError(f"{os.fspath(device)}: [device] has no {', '.join(missing)}; calibrate the device first: "
                          f"tumble calibrate {os.fspath(device)} --alone ... --proof ... --out CALIBRATED.toml")
-    thrown = _throws(throws, "THROW")
+    if not throws:
+        raise ValueError("THROW: no throw given; name one or more throw files (CSV)")
+    loaded = [load_throw(p) for p in throws]
+    thrown = [throw for throw, _ in loaded]
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *throws)]
     try:
         fit = fit_tensor(thrown, dev, mass)
@@ -192,6 +196,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.P
         return 1
     record: dict[str, Any] = fit.as_dict()
     record["input"] = [os.fspath(p) for p in throws]
+    record["read"] = [read.summary() for _, read in loaded]  # the columns taken and their units, a file each
     record["device"] = os.fspath(device)
     record["method"] = _METHOD
     record["provenance"] = provenance(argv, inputs)

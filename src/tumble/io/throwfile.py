@@ -94,6 +94,23 @@ class ThrowRead:
     ignored: tuple
     rows: int
 
+    def summary(self) -> dict:
+        """JSON-ready (tensor.json's ``"read"``): which column was taken for what, in which unit.
+
+        Examples
+        --------
+        >>> from tumble.io.throwfile import ThrowRead
+        >>> read = ThrowRead("a1.csv", ("t", "gx", "gy", "gz", "rotor"), ("us", "deg/s", "deg/s", "deg/s", "rpm"), (), 9)
+        >>> read.summary()["rotor"], read.summary()["accel"]
+        ({'column': 'rotor', 'unit': 'rpm'}, None)
+        """
+        def named(k):
+            return {"column": self.columns[k], "unit": self.units[k]}
+
+        return {"file": self.file, "t": named(0), "omega": [named(k) for k in (1, 2, 3)], "rotor": named(4),
+                "accel": [named(k) for k in (5, 6, 7)] if len(self.columns) == 8 else None,
+                "ignored": list(self.ignored), "rows": int(self.rows)}
+
     def brief(self) -> str:
         """A few words for a command's line.
 
