@@ -166,8 +166,8 @@ def _cmd_tensor(args) -> int:
 
     mass = _positive("--mass", args.mass, "kg")
     with _working("fitting throws"):
-        return run_tensor_command(args.throws, args.out, device=args.device, mass=mass, argv=args.argv,
-                                  figure=figure_tensor, accept_inadequate=args.accept_inadequate)
+        return run_tensor_command(args.throws, args.device, mass, args.out, argv=args.argv, figure=figure_tensor,
+                                  accept_inadequate=args.accept_inadequate)
 
 
 def _resolve(args):

@@ -73,7 +73,7 @@ def _mm(v) -> str:
 def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | os.PathLike[str]],
                           proof: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,
                           argv: Sequence[str] | None = None) -> int:
-    """``tumble calibrate DEVICE.toml --alone ... --proof ... --out CALIBRATED.toml`` (module
+    """``tumble calibrate``: the device calibrated from its throws, written to ``out`` (module
     docstring); prints one line.
 
     Parameters
@@ -133,22 +133,22 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     return 0
 
 
-def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,
-                       device: str | os.PathLike[str], mass: float, argv: Sequence[str] | None = None,
+def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | os.PathLike[str], mass: float,
+                       out: str | os.PathLike[str], *, argv: Sequence[str] | None = None,
                        figure: Callable[[Any], Any] | None = None, accept_inadequate: bool = False) -> int:
-    """``tumble tensor THROW... --device CALIBRATED.toml --mass KG --out DIR`` (module
+    """``tumble tensor``: an object's tensor from its throws, written to the folder ``out`` (module
     docstring); prints one line.
 
     Parameters
     ----------
     throws : list of str or Path
         Throw files (CSV, :mod:`tumble.io.throwfile`) of the object with the device fixed to it.
-    out : str or Path
-        The output folder (written whole or not at all).
     device : str or Path
         A calibrated device file (``tumble calibrate``'s output).
     mass : float
         The object's mass, kg (weighed).
+    out : str or Path
+        The output folder (written whole or not at all).
     argv : list of str, optional
         The command line after ``tumble``, for the provenance.
     figure : callable, optional
@@ -172,7 +172,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], out: str | os.P
     >>> from tumble.commands.tensor import run_tensor_command
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     try:
-    ...         run_tensor_command(["o1.csv"], Path(folder) / "out", device="calibrated.toml", mass=-1.0)
+    ...         run_tensor_command(["o1.csv"], "calibrated.toml", -1.0, Path(folder) / "out")
     ...     except ValueError as exc:
     ...         print(exc)   # the options are checked before any file is read
     --mass = -1.0 must be a positive finite number (kg)

@@ -224,7 +224,7 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "")
     device : Device
     proof : Proof, optional
     header : str
-        Comment lines put first (each prefixed with ``# ``).
+        Comment lines put first (each prefixed with ``#`` and a space).
 
     Examples
     --------

@@ -324,7 +324,7 @@ def throw_csv(throw: Throw, *, header: str = "") -> str:
     ----------
     throw : Throw
     header : str
-        Comment lines put first (each prefixed with ``# ``).
+        Comment lines put first (each prefixed with ``#`` and a space).
 
     Examples
     --------
