@@ -103,7 +103,7 @@ def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario f
     except RecursionError:
         raise ValueError(
             f"{path}: nested too deeply (arrays or inline tables inside each other); "
-            f"{what} needs at most a few levels"
+            f"{what.removesuffix(' (TOML)')} needs at most a few levels"
         ) from None
     if not data:
         raise ValueError(f"{path}: the file is empty")
