@@ -260,7 +260,7 @@ def test_the_guides_example_calibrates_the_device_and_finds_the_object(tmp_path,
     monkeypatch.chdir(tmp_path)
     copy_examples(tmp_path / "examples")
     exec(compile(blocks[0], str(GUIDE), "exec"), {})  # noqa: S102 - the guide's own example
-    assert sorted(p.name for p in tmp_path.glob("*.csv")) == [*(f"a{k}.csv" for k in (1, 2, 3)),
+    assert sorted(p.name for p in (tmp_path / "throws").glob("*.csv")) == [*(f"a{k}.csv" for k in (1, 2, 3)),
                                                              *(f"o{k}.csv" for k in (1, 2, 3, 4)),
                                                              *(f"p{k}.csv" for k in (1, 2, 3))]
 
@@ -278,7 +278,7 @@ def test_the_guides_example_calibrates_the_device_and_finds_the_object(tmp_path,
     np.testing.assert_allclose(np.linalg.eigvalsh(device.inertia), np.linalg.eigvalsh(truth.inertia), rtol=0.05)
     np.testing.assert_allclose(device.center_of_mass, truth.center, atol=2e-3)   # m
     header = calibrated.read_text().splitlines()[:10]
-    assert any(line.startswith('# input "a1.csv" sha256 ') for line in header)
+    assert any(line.startswith('# input "throws/a1.csv" sha256 ') for line in header)
 
     code, out, err = _cli(capsys, *commands[1])
     assert code == 0, err
