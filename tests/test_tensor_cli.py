@@ -360,4 +360,12 @@ def test_throws_of_which_none_flies_fail_with_status_1(tmp_path, capsys):
     code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(dev), "--mass", "0.5", "--out", str(out))
     assert code == 1, err
     assert err.startswith("tumble: tensor failed: ") and err.count("\n") == 1 and err.endswith("; nothing written\n")
+    assert "h1.csv" in err and "h2.csv" in err   # each throw's reason, named by its file
     assert not out.exists() and stdout == ""
+    # the calibration alike
+    dev.write_text(DEVICE + PROOF)
+    calibrated = tmp_path / "c.toml"
+    code, stdout, err = _cli(capsys, "calibrate", str(dev), "--alone", paths[0], "--proof", paths[1], "--out",
+                             str(calibrated))
+    assert code == 1 and err.startswith("tumble: calibration failed: ") and err.count("\n") == 1, err
+    assert not calibrated.exists() and stdout == ""
