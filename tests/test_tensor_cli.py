@@ -299,6 +299,7 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     bracket = box(BOX_MASS, BOX_SIZE, center=BOX_CENTER, rotvec=rotvec)
     paths = [str(write_throw(tmp_path / f"o{k}.csv", synthetic_throw(30 + k, combine(true_device(), bracket))))
              for k in (1, 2, 3)]
+    paths.append(str(write_throw(tmp_path / "held.csv", _held())))   # a log without a throw: skipped, with its reason
     device = write_device(tmp_path / "calibrated.toml", calibrated_device())
     out = tmp_path / "bracket"
     code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(device), "--mass", repr(BOX_MASS), "--out", str(out))
@@ -317,9 +318,11 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     assert [t["input"] for t in record["throws"]] == paths   # each file as given
     assert record["input"] == paths and [r["file"] for r in record["read"]] == paths
     assert record["read"][0]["rotor"] == {"column": "rotor (rad/s)", "unit": "rad/s"}
-    for entry in record["throws"]:
+    for entry in record["throws"][:3]:
         assert {"input", "status", "reason", "object"} <= set(entry)
         assert entry["status"] == "used" and set(entry["object"]) >= ESTIMATE_KEYS
+    held = record["throws"][3]
+    assert held["status"] == "skipped" and held["reason"] and held["object"] is None
     assert record["adequate"] is True
     # the box's moments from the closed form, within 3 %; its centre within 3 mm of where it was put
     true = _box_moments(BOX_MASS, BOX_SIZE)
@@ -345,14 +348,19 @@ def test_the_guides_figure_has_a_command_that_makes_it(tmp_path):
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_throws_of_which_none_flies_fail_with_status_1(tmp_path, capsys):
-    """A device held in the hand (no release, the rotor never started): well-formed files, no
-    flight to fit; the computation fails (exit 1), one line, nothing written."""
+def _held() -> Throw:
+    """A device held in the hand for 0.5 s at ~4 kHz: no release, the rotor never started."""
     rng = np.random.default_rng(3)
-    t = np.cumsum(rng.uniform(2.2e-4, 2.8e-4, 2000))   # 0.5 s at ~4 kHz, s
+    t = np.cumsum(rng.uniform(2.2e-4, 2.8e-4, 2000))   # s
     omega = rng.normal(0.0, 0.02, (t.size, 3)) + [0.1, -0.2, 0.05]   # rad/s: the hand's slow turning
     accel = rng.normal(0.0, 0.05, (t.size, 3)) + [0.0, 0.0, 9.81]   # m/s^2: held against gravity
-    held = Throw(t=t, omega=omega, rotor=np.zeros(t.size), accel=accel)
+    return Throw(t=t, omega=omega, rotor=np.zeros(t.size), accel=accel)
+
+
+def test_throws_of_which_none_flies_fail_with_status_1(tmp_path, capsys):
+    """Logs of a device held in the hand: well-formed files, no flight to fit; the computation
+    fails (exit 1), one line, nothing written."""
+    held = _held()
     dev = tmp_path / "calibrated.toml"
     dev.write_text(CALIBRATED)
     paths = [str(write_throw(tmp_path / f"h{k}.csv", held)) for k in (1, 2)]
