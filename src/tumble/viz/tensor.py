@@ -4,7 +4,7 @@ object's principal moments throw by throw with the pooled value.
 Top: the used throws side by side from their release, the gyroscope's samples as dots and the
 fitted gyrostat model (bias included) as lines. Bottom, one panel a principal moment (ascending,
 ``I1 <= I2 <= I3``): each throw's own estimate of the object's moment with its standard
-uncertainty, and the pooled value (:attr:`tumble.analysis.tensor.TensorFit.object`) as a line
+uncertainty (a skipped throw's place marked), and the pooled value (:attr:`tumble.analysis.tensor.TensorFit.object`) as a line
 with its 95 % interval (+- 1.96 standard uncertainties, statistical and systematic parts
 together) shaded.
 """
@@ -103,6 +103,10 @@ def figure_tensor(fit: TensorFit, *, fig: Figure | None = None, max_throws: int 
         if number.size:
             ax.errorbar(number, each[:, j], yerr=each_std[:, j], fmt="o", ms=3.5, lw=0.9, color=f"C{j}",
                         label="each throw +- 1 std")
+        for k, th in enumerate(fit.throws):
+            if th.status != "used":  # a skipped throw's place, marked (its reason is in the title above)
+                ax.text(k + 1, 0.5, "skipped", rotation=90, ha="center", va="center", fontsize=7, color="0.5",
+                        transform=ax.get_xaxis_transform())
         value, std = float(obj.principal_moments[j]), float(obj.principal_moments_std[j])
         ax.axhspan(value - Z95 * std, value + Z95 * std, color="0.3", alpha=0.15, lw=0, label="pooled 95 % interval")
         ax.axhline(value, color="k", lw=1.2, label="pooled")
