@@ -29,7 +29,9 @@ from tumble.analysis.tensor.synthetic import (
     box,
     calibrated_device,
     combine,
+    drawn_device,
     example_object,
+    random_object,
     release_and_catch,
     synthetic_throw,
     true_device,
@@ -224,17 +226,9 @@ def _trial(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One seeded trial: a random box on the device (its calibration off by draws from its stated
     std), two throws pooled; returns the object's moments, their std and the truth."""
     rng = np.random.default_rng(1000 + k)
-    obj = box(rng.uniform(0.3, 1.0), rng.uniform([0.12, 0.08, 0.03], [0.25, 0.16, 0.08]),
-              rng.uniform([-0.01, -0.01, 0.03], [0.01, 0.01, 0.06]), rng.normal(0.0, 0.3, 3))
-    dev = true_device()
-    rel, c_std = 0.005, 3e-4
-    noise = np.triu(rng.normal(size=(3, 3)))
-    I_std = rel * np.abs(dev.inertia)
-    device = Device(dev.mass, ROTOR_AXIS, ROTOR_INERTIA * (1 + rel * rng.normal()), rel * ROTOR_INERTIA,
-                    dev.inertia + I_std * (noise + np.triu(noise, 1).T), I_std, dev.center + c_std * rng.normal(size=3),
-                    np.full(3, c_std))
-    flown = combine(dev, obj)
-    fit = fit_tensor([synthetic_throw(100 * k + j, flown) for j in range(2)], device, obj.mass)
+    obj = random_object(rng)
+    fit = fit_tensor([synthetic_throw(100 * k + j, combine(true_device(), obj)) for j in range(2)], drawn_device(rng),
+                     obj.mass)
     return fit.object.principal_moments, fit.object.principal_moments_std, np.linalg.eigvalsh(obj.inertia)
 
 

@@ -168,6 +168,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float) -> TensorFi
 
     Examples
     --------
+    >>> import numpy as np
     >>> from tumble.analysis.tensor import fit_tensor
     >>> from tumble.analysis.tensor.synthetic import calibrated_device, combine, example_object, synthetic_throw, true_device
     >>> box = example_object()

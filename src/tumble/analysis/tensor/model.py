@@ -204,7 +204,7 @@ class ThrowModel:
     (12, (1, 400, 3))
     """
 
-    def __init__(self, t: FloatArray, data: FloatArray, keep: np.ndarray, rotor: RotorInput, drag: bool = True):
+    def __init__(self, t: FloatArray, data: FloatArray, keep: np.ndarray, rotor: RotorInput, drag: bool = True) -> None:
         self.t, self.data, self.keep, self.rotor, self.drag = t, data, keep, rotor, drag
         self.h = rotor.h(t)
         self.h_mid = rotor.h(0.5 * (t[1:] + t[:-1]))

@@ -39,8 +39,8 @@ from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..fit.endings import smooth_noise
 from .device import Device, Proof, Throw
 
-__all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "Rigid", "box", "calibrated_device", "combine",
-           "example_object", "release_and_catch", "synthetic_throw", "true_device", "true_proof"]
+__all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "Rigid", "box", "calibrated_device", "combine", "drawn_device",
+           "example_object", "random_object", "release_and_catch", "synthetic_throw", "true_device", "true_proof"]
 
 #: The device of the issue: mass, kg; rotor axis, sensor frame; rotor inertia, kg m^2.
 DEVICE_MASS = 0.10067
@@ -164,6 +164,41 @@ def calibrated_device(relative_std: float = 0.0, center_std: float = 0.0) -> Dev
     d = true_device()
     return Device(DEVICE_MASS, ROTOR_AXIS, ROTOR_INERTIA, relative_std * ROTOR_INERTIA, d.inertia,
                   relative_std * np.abs(d.inertia), d.center, np.full(3, float(center_std)))
+
+
+def random_object(rng: np.random.Generator) -> Rigid:
+    """A box of 0.3-1 kg and 120-250 x 80-160 x 30-80 mm, turned at random (0.3 rad per axis),
+    its centre 30-60 mm above the accelerometer and up to 10 mm aside: an object to measure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.synthetic import random_object
+    >>> 0.3 <= random_object(np.random.default_rng(0)).mass <= 1.0
+    True
+    """
+    return box(rng.uniform(0.3, 1.0), rng.uniform([0.12, 0.08, 0.03], [0.25, 0.16, 0.08]),
+               rng.uniform([-0.01, -0.01, 0.03], [0.01, 0.01, 0.06]), rng.normal(0.0, 0.3, 3))
+
+
+def drawn_device(rng: np.random.Generator, relative_std: float = 0.005, center_std: float = 3e-4) -> Device:
+    """The synthetic device as one calibration gives it: its rotor inertia, tensor entries and
+    centre off the truth by draws from their stated std (``relative_std`` of each size; ``center_std``, m).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.synthetic import ROTOR_INERTIA, drawn_device
+    >>> d = drawn_device(np.random.default_rng(0))
+    >>> bool(abs(d.rotor_inertia / ROTOR_INERTIA - 1) < 0.05), d.rotor_inertia_std == 0.005 * ROTOR_INERTIA
+    (True, True)
+    """
+    dev = true_device()
+    noise = np.triu(rng.normal(size=(3, 3)))
+    I_std = relative_std * np.abs(dev.inertia)
+    return Device(dev.mass, ROTOR_AXIS, ROTOR_INERTIA * (1 + relative_std * rng.normal()), relative_std * ROTOR_INERTIA,
+                  dev.inertia + I_std * (noise + np.triu(noise, 1).T), I_std,
+                  dev.center + center_std * rng.normal(size=3), np.full(3, float(center_std)))
 
 
 def _spin_up(t: FloatArray, t_s: float, top: float, tau: float, ripple: FloatArray) -> tuple[FloatArray, FloatArray]:
