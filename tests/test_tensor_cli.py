@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tumble.analysis.tensor import Device, Proof, Throw
 from tumble.cli import main
@@ -189,6 +191,26 @@ def test_a_throw_file_in_other_units_reads_as_in_si():
         np.testing.assert_allclose(b[key], a[key], rtol=1e-13, atol=1e-12, err_msg=key)
     assert read_b.ignored == ("temperature",) and read_b.units[2:5] == ("deg/s", "deg/s", "rpm")
     assert read_a.brief() == "t (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 30 rows"
+
+
+@settings(max_examples=30, deadline=None)
+@given(n=st.integers(20, 60), start=st.floats(-10.0, 1e4), seed=st.integers(0, 2**32 - 1), accel=st.booleans())
+def test_a_written_throw_reads_back_to_the_digits_written(n, start, seed, accel):
+    """throw_csv writes times to 12 significant digits and the rest to 7: read back, every value
+    is within half a unit of its last digit, and the times still increase."""
+    rng = np.random.default_rng(seed)
+    t = start + np.cumsum(rng.uniform(1e-5, 1e-2, n))   # s, irregular
+    throw = Throw(t=t, omega=rng.uniform(-40.0, 40.0, (n, 3)), rotor=rng.uniform(-3000.0, 3000.0, n),
+                  accel=rng.uniform(-200.0, 200.0, (n, 3)) if accel else None)
+    samples, read = parse_throw_csv(throw_csv(throw).encode(), "w.csv")
+    assert read.rows == n and (samples["accel"] is None) == (not accel)
+    for key, digits in (("t", 12), ("omega", 7), ("rotor", 7), ("accel", 7)):
+        if getattr(throw, key) is None:
+            continue
+        value = np.asarray(getattr(throw, key))
+        ulp = 10.0 ** (np.floor(np.log10(np.maximum(np.abs(value), 1e-300))) - digits + 1)
+        assert np.all(np.abs(samples[key] - value) <= 0.5 * ulp * (1 + 1e-9)), key
+    assert np.all(np.diff(samples["t"]) > 0)
 
 
 def test_a_throw_without_an_accelerometer_has_none_and_writes_back(tmp_path):

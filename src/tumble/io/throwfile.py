@@ -317,8 +317,9 @@ def read_throw(path: str | os.PathLike[str]) -> Throw:
 def throw_csv(throw: Throw, *, header: str = "") -> str:
     """The text of a throw file: :data:`THROW_HEADER` and a row a sample, in SI.
 
-    Times with 10 significant digits (0.1 us at 1000 s), the rest with 7 (a logger's 16-bit
-    samples have fewer). Without an accelerometer the last three columns are left out.
+    Times with 12 significant digits (10 ns at 1000 s, 1 us after a day), the rest with 7 (a
+    logger's 16-bit samples have fewer). Without an accelerometer the last three columns are left
+    out.
 
     Parameters
     ----------
@@ -347,7 +348,7 @@ def throw_csv(throw: Throw, *, header: str = "") -> str:
         names = THROW_HEADER
     data = np.hstack([np.asarray(c, float) for c in columns])
     lines = [f"# {line}".rstrip() for line in header.splitlines()] + [",".join(names)]
-    lines += [f"{row[0]:.10g}," + ",".join(f"{x:.7g}" for x in row[1:]) for row in data]
+    lines += [f"{row[0]:.12g}," + ",".join(f"{x:.7g}" for x in row[1:]) for row in data]
     return "\n".join(lines) + "\n"
 
 
@@ -365,7 +366,7 @@ def write_throw(path: str | os.PathLike[str], throw: Throw, *, header: str = "")
     ...               accel=np.zeros((40, 3)))
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     again = read_throw(write_throw(pathlib.Path(folder, "a1.csv"), throw))
-    >>> float(np.max(np.abs(again.t - throw.t))) < 1e-15, bool(np.array_equal(again.rotor, throw.rotor))   # to 10 digits
+    >>> float(np.max(np.abs(again.t - throw.t))) < 1e-15, bool(np.array_equal(again.rotor, throw.rotor))   # to 12 digits
     (True, True)
     """
     return atomic_write_text(path, throw_csv(throw, header=header))
