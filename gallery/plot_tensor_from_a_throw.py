@@ -27,7 +27,9 @@ from tumble.viz.tensor import figure_tensor
 device_file = Device(mass=0.10067, rotor_axis=[0.0, 0.0, -1.0])
 truth = true_device()  # the synthetic device's true mass properties (rotor included)
 proof, proof_on_device = true_proof()  # the proof body (0.346 kg) and where it sits on the device
-alone = [synthetic_throw(seed, truth) for seed in (1, 2, 3)]
+# the device alone is light: thrown gently with its rotor at 300 rad/s (the full 1500 rad/s would
+# turn it past the gyroscope's range)
+alone = [synthetic_throw(seed, truth, rotor_top=300.0, spin=(3.0, 6.0)) for seed in (1, 2, 3)]
 with_proof = [synthetic_throw(seed, combine(truth, proof_on_device)) for seed in (11, 12, 13)]
 device = tumble.calibrate_device(device_file, alone, with_proof, proof)
 print(f"rotor inertia {device.rotor_inertia:.4g} +- {device.rotor_inertia_std:.2g} kg m^2 (true 1.7e-06); "
