@@ -141,7 +141,7 @@ class TensorFit:
                 "chi2_dof": _num(self.chi2_dof)}
 
 
-def fit_tensor(throws: Sequence[Throw], device: Device, mass: float) -> TensorFit:
+def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturation: float | None = None) -> TensorFit:
     """The absolute inertia tensor and centre of mass of an object thrown with the device.
 
     Parameters
@@ -153,18 +153,22 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float) -> TensorFi
         ``rotor_inertia``, ``inertia`` and ``center_of_mass`` known.
     mass : float
         The object's mass, kg (weighed).
+    saturation : float, optional
+        The gyroscope's range, rad/s (else found from the data: a rail that samples repeat).
 
     Returns
     -------
     TensorFit
+        ``adequate`` is False when a throw's model does not fit its samples (that throw is
+        skipped with the reason, the others pooled).
 
     Raises
     ------
     ValueError
-        Bad input (a device not calibrated, a mass not positive, no throw given).
+        Bad input (not a Device, a device not calibrated, a mass not positive, no throw given).
     NoThrowError
-        (:class:`tumble.analysis.tensor.NoThrowError`)
-        No throw could be fitted (a ValueError too; each throw's reason in the message).
+        No throw could be fitted (:class:`tumble.analysis.tensor.NoThrowError`, a ValueError
+        too); each throw's reason is in the message.
 
     Examples
     --------
@@ -181,11 +185,13 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float) -> TensorFi
     True
     """
     mass = check_positive("mass", mass, "kg")
+    if not isinstance(device, Device):
+        raise ValueError(f"device must be a Device, got {type(device).__name__}")
     if not device.calibrated:
         raise ValueError("the device is not calibrated: its rotor_inertia, inertia and center_of_mass are needed "
                          "(tumble calibrate, or calibrate_device)")
     J = float(device.rotor_inertia)  # type: ignore[arg-type]
-    pooled, fits = pool_throws(throws, device.rotor_axis, J)
+    pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=saturation)
     rel = float(device.rotor_inertia_std or 0.0) / J
     flown = flown_estimate(mass + device.mass, pooled, rel)
     cov_d, cov_c = device_covariances(device)

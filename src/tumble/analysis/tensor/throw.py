@@ -84,6 +84,19 @@ class FlownFit:
     adequacy: Adequacy | None = None
 
 
+def _blocks(ok: np.ndarray, size: int) -> list[tuple[int, int]]:
+    """Blocks ``[a, b]`` of at most ``size`` intervals (at least a fifth of it) inside the runs of ``ok`` samples."""
+    bad = np.flatnonzero(~ok)
+    edges = np.r_[-1, bad, ok.size]
+    out = []
+    for r0, r1 in zip(edges[:-1] + 1, edges[1:]):
+        for a in range(int(r0), int(r1) - 1, size):
+            b = min(a + size, int(r1) - 1)
+            if b - a >= max(size // 5, 2):
+                out.append((a, b))
+    return out
+
+
 def start_values(t: FloatArray, w: FloatArray, keep: np.ndarray, h: FloatArray) -> FloatArray:
     """The tensor from the integrated equation (module docstring, step 2), kg m^2.
 
@@ -102,12 +115,8 @@ def start_values(t: FloatArray, w: FloatArray, keep: np.ndarray, h: FloatArray) 
     basis = tensor_of(np.eye(6))
     Q = [cumulative_trapezoid(np.cross(w, w @ E), t, axis=0, initial=0.0) for E in basis]
     Qh = cumulative_trapezoid(np.cross(w, h), t, axis=0, initial=0.0)
-    ok = np.all(keep, axis=1)
     rows, rhs = [], []
-    for a in range(0, t.size - BLOCK, BLOCK):
-        b = a + BLOCK
-        if not ok[a:b + 1].all():
-            continue
+    for a, b in _blocks(np.all(keep, axis=1), BLOCK):
         dw = w[b] - w[a]
         rows.append(np.column_stack([basis[j] @ dw + Q[j][b] - Q[j][a] for j in range(6)]))
         rhs.append(-(Qh[b] - Qh[a] + h[b] - h[a]))
