@@ -87,6 +87,18 @@ TENSOR_BAD = {
 }
 
 
+def test_a_bad_saturation_is_refused(tmp_path, capsys):
+    dev, thr = _files(tmp_path)
+    code, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "0.5", "--saturation", "-3",
+                        "--out", str(tmp_path / "out"))
+    assert code == 2 and err == "tumble: error: --saturation = -3 must be a positive finite number (rad/s)\n"
+    dev.write_text(DEVICE + PROOF)
+    code, _, err = _cli(capsys, "calibrate", str(dev), "--alone", str(thr), "--proof", str(thr), "--saturation", "nan",
+                        "--out", str(tmp_path / "c.toml"))
+    assert code == 2 and err == "tumble: error: --saturation = nan must be a positive finite number (rad/s)\n"
+    assert not (tmp_path / "out").exists() and not (tmp_path / "c.toml").exists()
+
+
 @pytest.mark.parametrize("case", sorted(TENSOR_BAD))
 def test_tensor_refuses_bad_input_in_one_line(tmp_path, capsys, case):
     device, throw, mass, words = TENSOR_BAD[case]

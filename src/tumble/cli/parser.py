@@ -205,6 +205,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--proof", nargs="+", required=True, metavar="THROW",
                    help="throws of the device with the proof body fixed to it (CSV)")
     p.add_argument("--out", required=True, metavar="CALIBRATED.toml", help="the calibrated device file to write")
+    p.add_argument("--saturation", metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.set_defaults(func=c._cmd_calibrate)
 
     p = sub.add_parser(
@@ -222,6 +224,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--device", required=True, metavar="CALIBRATED.toml", help="the calibrated device file (tumble calibrate)")
     p.add_argument("--mass", required=True, metavar="KG", help="the object's mass, kg (without the device)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--saturation", metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the throws (by default such a fit is written "
                    "with \"adequate\": false, a warning printed and the exit status 1)")

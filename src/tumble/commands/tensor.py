@@ -72,7 +72,7 @@ def _mm(v) -> str:
 
 def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | os.PathLike[str]],
                           proof: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,
-                          argv: Sequence[str] | None = None) -> int:
+                          argv: Sequence[str] | None = None, saturation: float | None = None) -> int:
     """``tumble calibrate``: the device calibrated from its throws, written to ``out`` (module
     docstring); prints one line.
 
@@ -87,6 +87,8 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
         ``rotor_inertia``, ``inertia``, ``center_of_mass`` and their ``_std``, and its ``[proof]``.
     argv : list of str, optional
         The command line after ``tumble``, for the comment lines of the file written.
+    saturation : float, optional
+        The gyroscope's full scale, rad/s (default: found from the data).
 
     Returns
     -------
@@ -113,7 +115,7 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     proof_throws = _throws(proof, "--proof")
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *alone, *proof)]
     try:
-        calibrated = calibrate_device(dev, alone_throws, proof_throws, body)
+        calibrated = calibrate_device(dev, alone_throws, proof_throws, body, saturation=saturation)
     except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
         print(f"tumble: calibration failed: {_one_line(err)}; nothing written", file=sys.stderr)
         return 1
@@ -135,7 +137,8 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
 
 def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | os.PathLike[str], mass: float,
                        out: str | os.PathLike[str], *, argv: Sequence[str] | None = None,
-                       figure: Callable[[Any], Any] | None = None, accept_inadequate: bool = False) -> int:
+                       figure: Callable[[Any], Any] | None = None, accept_inadequate: bool = False,
+                       saturation: float | None = None) -> int:
     """``tumble tensor``: an object's tensor from its throws, written to the folder ``out`` (module
     docstring); prints one line.
 
@@ -157,6 +160,8 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     accept_inadequate : bool
         Return 0 for a fit whose model does not describe the throws; by default such a fit is
         written (``"adequate": false``), a warning printed and 1 returned.
+    saturation : float, optional
+        The gyroscope's full scale, rad/s (default: found from the data).
 
     Returns
     -------
@@ -190,7 +195,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     thrown = [throw for throw, _ in loaded]
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *throws)]
     try:
-        fit = fit_tensor(thrown, dev, mass)
+        fit = fit_tensor(thrown, dev, mass, saturation=saturation)
     except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
         print(f"tumble: tensor failed: {_one_line(err)}; nothing written", file=sys.stderr)
         return 1
