@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-SUITES = ["bench_mass", "bench_dynamics", "bench_engine", "bench_batch", "bench_torqued", "bench_exact_split", "bench_sweep", "bench_fit", "bench_pool",
+SUITES = ["bench_mass", "bench_dynamics", "bench_engine", "bench_batch", "bench_torqued", "bench_exact_split", "bench_sweep", "bench_fit", "bench_pool", "bench_tensor",
           "bench_basilisk", "bench_basilisk_control", "bench_detumble_mc"]
 
 

@@ -63,7 +63,8 @@ def test_the_dynamics_front_room_is_small():
 #: What computes a motion, a sweep or a fit: the file layer calls none of them (issue #31, item 5).
 RUNNERS = {"simulate", "simulate_batch", "simulate_controlled", "run_scenario", "detumble_batch",
            "detumble_monte_carlo", "compute_chunk",
-           "run_chunks", "summarize", "run_sweep", "fit_rotation", "fit_recording", "find_flights"}
+           "run_chunks", "summarize", "run_sweep", "fit_rotation", "fit_recording", "find_flights", "fit_tensor",
+           "calibrate_device"}
 
 
 def _calls_and_imports(path: Path) -> tuple[set[str], set[str]]:
@@ -99,6 +100,7 @@ def test_the_file_layer_only_reads_and_writes():
 def test_every_runner_named_is_a_public_function():
     """The list above names real functions (a renamed one would make the check pass vacuously)."""
     import tumble.analysis.fit
+    import tumble.analysis.tensor
     import tumble.commands
     import tumble.commands.sweep
     import tumble.dynamics
@@ -107,7 +109,7 @@ def test_every_runner_named_is_a_public_function():
     import tumble.ensemble.detumble
 
     homes = [tumble.dynamics, tumble.dynamics.control.detumble, tumble.ensemble, tumble.ensemble.detumble, tumble.analysis.fit,
-             tumble.commands, tumble.commands.sweep]
+             tumble.analysis.tensor, tumble.commands, tumble.commands.sweep]
     for name in RUNNERS:
         assert any(callable(getattr(m, name, None)) for m in homes), name
 

@@ -178,3 +178,18 @@ def test_plot_pointing(run):
     assert scope["error"][-1] < 2.0
     assert scope["budget"] < 1e-9  # kg m^2/s of ~0.5: no external torque
     assert figures == 1
+
+
+def test_plot_tensor_from_a_throw(run):
+    scope, figures = run("plot_tensor_from_a_throw.py")
+    assert figures == 1
+    # the calibration: the rotor inertia (1.7e-6 kg m^2) and the device's true centre of mass
+    device, truth = scope["device"], scope["truth"]
+    assert abs(device.rotor_inertia / 1.7e-6 - 1) < 0.03
+    np.testing.assert_allclose(device.center_of_mass, truth.center, atol=2e-3)
+    # the object: a uniform box 16 x 9 x 4 cm of 0.482 kg, its moments m (b^2 + c^2) / 12 and cyclic
+    a, b, c = 0.16, 0.09, 0.04
+    true = np.sort(0.482 / 12 * np.array([b * b + c * c, a * a + c * c, a * a + b * b]))
+    fit = scope["fit"]
+    assert np.all(np.abs(fit.object.principal_moments / true - 1) < 0.03), (fit.object.principal_moments, true)
+    assert all(t.status == "used" for t in fit.throws)

@@ -169,7 +169,7 @@ def test_list_examples_names_every_file_it_copies_with_its_description():
     examples = list_examples()
     by_path = {e.path: e for e in examples}
     assert set(by_path) == set(_tree(PACKAGED)) and len(by_path) == len(examples)
-    kinds = {"bodies": "body", "sweeps": "sweep", "control": "control", "bodies/meshes": "mesh", "data": "data",
+    kinds = {"bodies": "body", "sweeps": "sweep", "control": "control", "devices": "device", "bodies/meshes": "mesh", "data": "data",
              "notebooks": "notebook"}
     for e in examples:
         assert e.kind == kinds.get(Path(e.path).parent.as_posix(), "scenario"), e

@@ -153,6 +153,26 @@ def _cmd_fit(args) -> int:
         bar.close()
 
 
+def _cmd_calibrate(args) -> int:
+    from ..commands.tensor import run_calibrate_command
+
+    saturation = None if args.saturation is None else _positive("--saturation", args.saturation, "rad/s")
+    with _working("calibrating"):
+        return run_calibrate_command(args.device, args.alone, args.proof, args.out, argv=args.argv,
+                                     saturation=saturation)
+
+
+def _cmd_tensor(args) -> int:
+    from ..commands.tensor import run_tensor_command
+    from ..viz import figure_tensor
+
+    mass = _positive("--mass", args.mass, "kg")
+    saturation = None if args.saturation is None else _positive("--saturation", args.saturation, "rad/s")
+    with _working("fitting throws"):
+        return run_tensor_command(args.throws, args.device, mass, args.out, argv=args.argv, figure=figure_tensor,
+                                  accept_inadequate=args.accept_inadequate, saturation=saturation)
+
+
 def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from ..io.scenario import resolve_run

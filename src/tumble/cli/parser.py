@@ -195,6 +195,48 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=c._cmd_fit)
 
     p = sub.add_parser(
+        "calibrate",
+        help="calibrate a throwing device with a flywheel: its rotor's inertia, its tensor and centre of mass",
+        description="Estimates the rotor's inertia, the device's own inertia tensor (about its centre of mass, sensor "
+        "frame) and its centre of mass, each with its standard uncertainty, from throws of the device alone and "
+        "with the proof body of the device file's [proof], and writes them into [device] of CALIBRATED.toml as "
+        "rotor_inertia, inertia, center_of_mass and their _std (whole or not at all). A throw is a CSV with t (s), "
+        "wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2) in the sensor frame.",
+        epilog="Example: tumble calibrate examples/devices/flywheel_device.toml --alone a1.csv a2.csv "
+        "--proof p1.csv p2.csv --out calibrated.toml", parents=[debug],
+    )
+    p.add_argument("device", metavar="DEVICE.toml", help="the device file: [device] mass, rotor_axis; [proof] mass, inertia")
+    p.add_argument("--alone", nargs="+", required=True, metavar="THROW", help="throws of the device alone (CSV)")
+    p.add_argument("--proof", nargs="+", required=True, metavar="THROW",
+                   help="throws of the device with the proof body fixed to it (CSV)")
+    p.add_argument("--out", required=True, metavar="CALIBRATED.toml", help="the calibrated device file to write")
+    p.add_argument("--saturation", metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+    p.set_defaults(func=c._cmd_calibrate)
+
+    p = sub.add_parser(
+        "tensor",
+        help="an object's whole inertia tensor (kg m^2), axes and centre of mass from throws with the flywheel device",
+        description="Fits each throw of the object with the calibrated device strapped to it (the gyrostat's Euler "
+        "equations with the measured rotor speed, an output-error fit) and all of them jointly, and writes "
+        "DIR/tensor.json (the object's and the flown body's mass, inertia tensor and its covariance, principal "
+        "moments with standard uncertainties, principal axes, centre of mass; every throw; adequate) and "
+        "DIR/tensor.png, whole or not at all.",
+        epilog="Example: tumble tensor o1.csv o2.csv o3.csv --device calibrated.toml --mass 0.482 --out bracket",
+        parents=[debug],
+    )
+    p.add_argument("throws", nargs="+", metavar="THROW", help="throws of the object with the device (CSV)")
+    p.add_argument("--device", required=True, metavar="CALIBRATED.toml", help="the calibrated device file (tumble calibrate)")
+    p.add_argument("--mass", required=True, metavar="KG", help="the object's mass, kg (without the device)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--saturation", metavar="RAD_S",
+                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+    p.add_argument("--accept-inadequate", action="store_true",
+                   help="exit 0 even when the model does not describe the throws (by default such a fit is written "
+                   "with \"adequate\": false, a warning printed and the exit status 1)")
+    p.set_defaults(func=c._cmd_tensor)
+
+    p = sub.add_parser(
         "demo",
         help="the T-handle study on built-in defaults",
         description="Runs the T-handle study (seed T-handle and space-station handle, spin about each "

@@ -52,7 +52,7 @@ __all__ = [
 MAX_TOML_BYTES = 1 << 20
 
 
-def read_toml(path: str | os.PathLike[str]) -> dict:
+def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario file (TOML)") -> dict:
     """Read a body or scenario file (TOML), turning every way it can fail into one ``ValueError``.
 
     Parameters
@@ -61,6 +61,8 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
         The file. It must be a regular file (not a directory, FIFO, socket or device) of at most
         :data:`MAX_TOML_BYTES`; both are checked before it is opened, and it is read with a
         bounded read.
+    what : str
+        What the file is, for the messages (a device file's reader says so).
 
     Returns
     -------
@@ -92,7 +94,7 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
     True
     """
     path = Path(path)
-    raw = _read_input(path, limit=MAX_TOML_BYTES, what="a body or scenario file (TOML)")
+    raw = _read_input(path, limit=MAX_TOML_BYTES, what=what)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
@@ -104,7 +106,7 @@ def read_toml(path: str | os.PathLike[str]) -> dict:
     except RecursionError:
         raise ValueError(
             f"{path}: nested too deeply (arrays or inline tables inside each other); "
-            f"a body or scenario file needs at most a few levels"
+            f"{what.removesuffix(' (TOML)')} needs at most a few levels"
         ) from None
     if not data:
         raise ValueError(f"{path}: the file is empty")

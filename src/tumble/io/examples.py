@@ -36,6 +36,8 @@ BODIES = "bodies"
 SWEEPS = "sweeps"
 #: The folder of the closed-loop control scenarios (``tumble simulate``; :mod:`tumble.io.controlfile`).
 CONTROL = "control"
+#: The folder of the throwing devices (``tumble calibrate``, ``tumble tensor``; :mod:`tumble.io.devicefile`).
+DEVICES = "devices"
 #: The folder of the meshes that body files name (``mesh = "meshes/torus.stl"``).
 MESHES = f"{BODIES}/meshes"
 #: The folder of the gyroscope recordings (``tumble fit``).
@@ -43,7 +45,7 @@ DATA = "data"
 #: The folder of the Jupyter notebooks.
 NOTEBOOKS = "notebooks"
 #: The kind of a ``.toml`` file by its folder (every other ``.toml`` at the root is a scenario).
-_TOML_KINDS = {"": "scenario", BODIES: "body", SWEEPS: "sweep", CONTROL: "control"}
+_TOML_KINDS = {"": "scenario", BODIES: "body", SWEEPS: "sweep", CONTROL: "control", DEVICES: "device"}
 #: The kind of any other file by its folder.
 _FILE_KINDS = {MESHES: "mesh", DATA: "data", NOTEBOOKS: "notebook"}
 
@@ -61,7 +63,8 @@ class Example:
     kind : str
         ``"scenario"`` (for ``tumble simulate``, ``plot``, ``view``), ``"control"`` (a closed-loop
         scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``), ``"sweep"`` (for
-        ``tumble sweep``), ``"mesh"`` (a triangle mesh that a body file names), ``"data"`` (a
+        ``tumble sweep``), ``"device"`` (a throwing device, for ``tumble calibrate`` and
+        ``tumble tensor``), ``"mesh"`` (a triangle mesh that a body file names), ``"data"`` (a
         gyroscope recording, for ``tumble fit``), ``"notebook"`` (Jupyter) or ``"file"`` (anything
         else in the tree).
     description : str
@@ -152,14 +155,14 @@ def list_examples() -> list[Example]:
     -------
     list of Example
         Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"``,
-        ``"sweep"``, ``"mesh"``, ``"data"``, ``"notebook"`` or ``"file"``) and one-line description.
+        ``"sweep"``, ``"device"``, ``"mesh"``, ``"data"``, ``"notebook"`` or ``"file"``) and one-line description.
 
     Examples
     --------
     >>> from tumble.io.examples import list_examples
     >>> found = list_examples()
     >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
-    ('scenario', ['body', 'control', 'data', 'mesh', 'notebook', 'scenario', 'sweep'])
+    ('scenario', ['body', 'control', 'data', 'device', 'mesh', 'notebook', 'scenario', 'sweep'])
     >>> [e.description for e in found if e.kind == "mesh"]
     ['A triangle mesh (STL) that bodies/every_part.toml names']
     """

@@ -42,6 +42,7 @@ from .spacecraft import (
     figure_orbit_angles,
     spacecraft_figures,
 )
+from .tensor import figure_tensor
 
 __all__ = [
     "PHASE_PORTRAITS",
@@ -72,6 +73,7 @@ __all__ = [
     "figure_recording",
     "figure_stability_map",
     "figure_sweep",
+    "figure_tensor",
     "figure_wheels",
     "part_lines",
     "phase_portrait_problem",

@@ -1,4 +1,5 @@
-"""The Earth's constants, in one place: its gravitational parameter, equatorial radius and rotation rate.
+"""The Earth's constants, in one place: its gravitational parameter, equatorial radius, rotation rate
+and standard gravity.
 
 Every orbit, field and torque model of tumble reads them from here (``tests/test_architecture.py``
 checks that their values are written nowhere else in the package):
@@ -8,7 +9,9 @@ checks that their values are written nowhere else in the package):
 - :data:`R_EARTH`, the equatorial radius (IERS Conventions 2010, table 1.1: 6378136.6 m,
   rounded to 0.1 km);
 - :data:`OMEGA_EARTH`, the mean angular velocity of the Earth's rotation (IERS Conventions
-  2010, sec. 1.2), the rate at which the Earth-fixed frame turns about ECI z.
+  2010, sec. 1.2), the rate at which the Earth-fixed frame turns about ECI z;
+- :data:`STANDARD_GRAVITY`, the conventional ``g_n`` (3rd CGPM, 1901; ISO 80000-3), the unit
+  ``g`` of an accelerometer's readings.
 
 Examples
 --------
@@ -23,7 +26,7 @@ radius, Kepler's third law ``r^3 = mu / n^2``:
 
 from __future__ import annotations
 
-__all__ = ["MU_EARTH", "OMEGA_EARTH", "R_EARTH"]
+__all__ = ["MU_EARTH", "OMEGA_EARTH", "R_EARTH", "STANDARD_GRAVITY"]
 
 #: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
 MU_EARTH = 3.986004418e14
@@ -32,3 +35,6 @@ MU_EARTH = 3.986004418e14
 R_EARTH = 6.3781e6
 #: The Earth's rotation rate, rad/s (IERS Conventions 2010, sec. 1.2).
 OMEGA_EARTH = 7.292115e-5
+#: Standard gravity ``g_n``, m/s^2, exact by definition (3rd CGPM, 1901; ISO 80000-3): the unit
+#: ``g`` in which accelerometers report, not the local gravity.
+STANDARD_GRAVITY = 9.80665

@@ -1,0 +1,290 @@
+"""Device files (TOML): the throwing device of ``tumble calibrate`` and ``tumble tensor``.
+
+The device is a flight controller logging its gyroscope and accelerometer, with a flywheel that
+a motor spins up from the moment of release (Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137)::
+
+    [device]
+    mass = 0.10067                 # kg
+    rotor_axis = [0.0, 0.0, -1.0]  # sensor frame: the rotor's angular velocity for positive speed
+    # rotor_inertia = 1.7e-6       # kg m^2 when known; otherwise calibrated
+    [proof]                        # a body of known mass properties fixed to the device
+    mass = 0.346                   # kg
+    inertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]   # kg m^2 about its centre of mass, sensor axes
+
+``tumble calibrate`` writes the same file with ``rotor_inertia`` (kg m^2), ``inertia`` (3 x 3,
+kg m^2, about the device's centre of mass, sensor frame), ``center_of_mass`` (m, sensor frame)
+and their standard uncertainties ``rotor_inertia_std``, ``inertia_std`` (3 x 3) and
+``center_of_mass_std`` added to ``[device]`` (:func:`write_device`).
+
+Keys are checked strictly here: an unknown key or table, a missing one, an uncertainty without
+its value raise ``ValueError`` with one line naming the file and the table. The values are
+checked by the value objects themselves (:class:`tumble.analysis.tensor.Device`,
+:class:`~tumble.analysis.tensor.Proof`), so Python and files give the same message: the field,
+the value as written and what is allowed, after the file and the table.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+import numpy as np
+
+from ..analysis.tensor import Device, Proof
+from ..validation import short_repr
+from .atomic import atomic_write_text
+from .bodyfile import read_toml
+
+__all__ = ["DEVICE_KEYS", "PROOF_KEYS", "device_from_table", "device_toml", "load_device", "proof_from_table",
+           "write_device"]
+
+#: The keys of ``[device]``: the first two are required, the others written by ``tumble calibrate``.
+DEVICE_KEYS = ("mass", "rotor_axis", "rotor_inertia", "rotor_inertia_std", "inertia", "inertia_std",
+               "center_of_mass", "center_of_mass_std")
+#: The keys of ``[proof]``, both required.
+PROOF_KEYS = ("mass", "inertia")
+
+_WHAT = "a device file (TOML)"
+
+
+def _refuse_unknown(table: object, allowed: tuple[str, ...], where: str) -> dict:
+    if not isinstance(table, dict):
+        raise ValueError(f"{where} must be a table, got {short_repr(table)}")
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise ValueError(f"{where}: unknown key {unknown[0]!r}; allowed: {', '.join(allowed)}")
+    return table
+
+
+def _built(make, values: dict, where: str, prefix: str):
+    """``make(**values)``, its message put in the file's words: ``[device] mass = ...``."""
+    try:
+        return make(**values)
+    except ValueError as exc:
+        message = str(exc)
+        message = message[len(prefix):] if message.startswith(prefix) else message
+        raise ValueError(f"{where} {message}") from None
+
+
+def device_from_table(table: object, *, where: str = "[device]") -> Device:
+    """A :class:`~tumble.analysis.tensor.Device` from the contents of a ``[device]`` table.
+
+    The keys are checked here; the values by :class:`~tumble.analysis.tensor.Device` itself, so
+    Python and files give the same message.
+
+    Parameters
+    ----------
+    table : dict
+        ``mass`` (kg, > 0) and ``rotor_axis`` (3 numbers, a direction; made a unit vector), and
+        optionally ``rotor_inertia`` (kg m^2, > 0), ``inertia`` (3 rows of 3, kg m^2, a physical
+        tensor), ``center_of_mass`` (3 numbers, m), each with its ``_std`` (>= 0, the same
+        shape); a ``_std`` only with its value.
+    where : str
+        How the messages name the table.
+
+    Raises
+    ------
+    ValueError
+        One line naming the table, the field, the value as written and what is allowed.
+
+    Examples
+    --------
+    >>> from tumble.io.devicefile import device_from_table
+    >>> device = device_from_table({"mass": 0.10067, "rotor_axis": [0, 0, -2]})
+    >>> device.mass, device.rotor_axis.tolist(), device.rotor_inertia   # the axis made a unit vector
+    (0.10067, [0.0, 0.0, -1.0], None)
+    >>> device_from_table({"mass": 0.1, "rotor_axis": [0, 0, 1], "rotor_inertia_std": 1e-8})
+    Traceback (most recent call last):
+    ...
+    ValueError: [device]: rotor_inertia_std = 1e-08 given without rotor_inertia; give both or neither
+    >>> device_from_table({"mass": "100 g", "rotor_axis": [0, 0, 1]})
+    Traceback (most recent call last):
+    ...
+    ValueError: [device] mass = '100 g' must be a number (kg)
+    """
+    table = _refuse_unknown(table, DEVICE_KEYS, where)
+    for key, what in (("mass", "kg"), ("rotor_axis", "3 numbers, the rotor's axis in the sensor frame")):
+        if key not in table:
+            raise ValueError(f"{where}: missing key {key!r} ({what})")
+    for key in ("rotor_inertia", "inertia", "center_of_mass"):
+        if f"{key}_std" in table and key not in table:
+            raise ValueError(f"{where}: {key}_std = {short_repr(table[f'{key}_std'])} given without {key}; "
+                             "give both or neither")
+    return _built(Device, dict(table), where, "device.")
+
+
+def proof_from_table(table: object, *, where: str = "[proof]") -> Proof:
+    """A :class:`~tumble.analysis.tensor.Proof` (the calibration's body of known mass properties)
+    from the contents of a ``[proof]`` table; the values checked by the class itself.
+
+    Parameters
+    ----------
+    table : dict
+        ``mass`` (kg, > 0) and ``inertia`` (kg m^2 about the proof body's centre of mass, along
+        the sensor axes: 3 numbers, the moments along the sensor axes, or 3 rows of 3).
+    where : str
+        How the messages name the table.
+
+    Examples
+    --------
+    >>> from tumble.io.devicefile import proof_from_table
+    >>> proof = proof_from_table({"mass": 0.346, "inertia": [1.675805e-4, 1.300972e-4, 2.450833e-4]})
+    >>> proof.mass, proof.inertia.shape
+    (0.346, (3, 3))
+    >>> proof_from_table({"mass": 0.346, "inertia": [1e-4, 1e-4, 3e-4]})   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: [proof] inertia: principal moments (0.0001, 0.0001, 0.0003) kg m^2 violate the triangle inequality ...
+    """
+    table = _refuse_unknown(table, PROOF_KEYS, where)
+    for key, what in (("mass", "kg"), ("inertia", "kg m^2 about its centre of mass, along the sensor axes")):
+        if key not in table:
+            raise ValueError(f"{where}: missing key {key!r} ({what})")
+    return _built(Proof, dict(table), where, "proof.")
+
+
+def load_device(path: str | os.PathLike[str], *, proof: bool = False) -> tuple[Device, Proof | None]:
+    """The device (and its proof body) of a device file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A device file (TOML) with ``[device]`` and, optionally, ``[proof]`` (module docstring).
+    proof : bool
+        Require ``[proof]`` (``tumble calibrate`` does).
+
+    Returns
+    -------
+    device : Device
+    proof : Proof or None
+        None when the file has no ``[proof]``.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, the table and the field.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.devicefile import load_device
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "device.toml")
+    ...     _ = path.write_text("[device]\\nmass = 0.1\\nrotor_axis = [0, 0, -1]\\n[proof]\\nmass = 0.346\\n"
+    ...                         "inertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]\\n")
+    ...     device, proof = load_device(path, proof=True)
+    ...     _ = path.write_text("[device]\\nmass = -0.1\\nrotor_axis = [0, 0, -1]\\n")
+    ...     try:
+    ...         load_device(path)
+    ...     except ValueError as exc:
+    ...         error = str(exc)
+    >>> device.mass, proof.mass
+    (0.1, 0.346)
+    >>> error.split(": ", 1)[1]   # the file, the table, the field, the value and what is allowed
+    '[device] mass = -0.1 must be a positive finite number (kg)'
+    """
+    path = Path(path)
+    data = read_toml(path, what=_WHAT)
+    unknown = sorted(set(data) - {"device", "proof"})
+    if unknown:
+        raise ValueError(f"{path}: unknown table {unknown[0]!r}; a device file has [device] and [proof]")
+    if "device" not in data:
+        raise ValueError(f"{path}: missing table [device] (mass, rotor_axis)")
+    if proof and "proof" not in data:
+        raise ValueError(f"{path}: missing table [proof] (mass, inertia: a body of known mass properties fixed to "
+                         "the device, for the calibration)")
+    try:
+        device = device_from_table(data["device"])
+        body = proof_from_table(data["proof"]) if "proof" in data else None
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
+    return device, body
+
+
+def _number(x: float) -> str:
+    """A float as TOML that reads back as the same float (``repr`` round-trips)."""
+    return repr(float(x))
+
+
+def _row(values) -> str:
+    return "[" + ", ".join(_number(v) for v in np.asarray(values, float).ravel()) + "]"
+
+
+def _rows(matrix) -> str:
+    m = np.asarray(matrix, float).reshape(3, 3)
+    return "[\n" + "".join(f"    {_row(r)},\n" for r in m) + "]"
+
+
+def device_toml(device: Device, proof: Proof | None = None, *, header: str = "") -> str:
+    """The text of a device file: ``[device]`` with every value the device holds, and ``[proof]``.
+
+    Every number is written so that it reads back as the same float (``repr``).
+
+    Parameters
+    ----------
+    device : Device
+    proof : Proof, optional
+    header : str
+        Comment lines put first (each prefixed with ``#`` and a space).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.io.devicefile import device_toml
+    >>> print(device_toml(Device(mass=0.1, rotor_axis=np.array([0.0, 0.0, -1.0]), rotor_inertia=1.7e-6,
+    ...                          rotor_inertia_std=2e-8), header="made by hand"))
+    # made by hand
+    [device]
+    mass = 0.1                                # kg
+    rotor_axis = [0.0, 0.0, -1.0]             # sensor frame, the rotor's angular velocity for positive speed
+    rotor_inertia = 1.7e-06                   # kg m^2
+    rotor_inertia_std = 2e-08                 # kg m^2, standard uncertainty
+    <BLANKLINE>
+    """
+    lines = [f"# {line}".rstrip() for line in header.splitlines()]
+
+    def item(key: str, text: str, comment: str) -> None:
+        lines.append(f"{f'{key} = {text}':<41} # {comment}" if "\n" not in text else f"{key} = {text}  # {comment}")
+
+    lines.append("[device]")
+    item("mass", _number(device.mass), "kg")
+    item("rotor_axis", _row(device.rotor_axis), "sensor frame, the rotor's angular velocity for positive speed")
+    for key, unit, write in (("rotor_inertia", "kg m^2", _number), ("inertia", "kg m^2, about the device's centre "
+                             "of mass, sensor frame", _rows), ("center_of_mass", "m, sensor frame", _row)):
+        value = getattr(device, key, None)
+        if value is not None:
+            item(key, write(value), unit)
+        std = getattr(device, f"{key}_std", None)
+        if std is not None:
+            item(f"{key}_std", write(std), f"{unit.split(',')[0]}, standard uncertainty")
+    if proof is not None:
+        lines.append("")
+        lines.append("[proof]")
+        item("mass", _number(proof.mass), "kg")
+        item("inertia", _rows(proof.inertia), "kg m^2 about its centre of mass, sensor axes")
+    return "\n".join(lines) + "\n"
+
+
+def write_device(path: str | os.PathLike[str], device: Device, proof: Proof | None = None, *,
+                 header: str = "") -> Path:
+    """Write a device file (:func:`device_toml`) whole or not at all (:mod:`tumble.io.atomic`).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.io.devicefile import load_device, write_device
+    >>> device = Device(mass=0.1, rotor_axis=np.array([0.0, 0.0, -1.0]), center_of_mass=np.array([1e-3, 0.0, 2e-3]),
+    ...                 center_of_mass_std=np.array([1e-4, 1e-4, 1e-4]))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     again, _ = load_device(write_device(pathlib.Path(folder, "calibrated.toml"), device))
+    >>> again.center_of_mass.tolist() == device.center_of_mass.tolist()   # read back exactly
+    True
+    """
+    return atomic_write_text(path, device_toml(device, proof, header=header))

@@ -1,0 +1,372 @@
+"""Throw files (CSV): one throw of the device of ``tumble calibrate`` and ``tumble tensor``.
+
+A throw is delimited text with the columns ``t (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay,
+az (m/s^2)``, in the device's sensor frame: the gyroscope's rates, the rotor's speed relative
+to the device (positive about the device's ``rotor_axis``) and the accelerometer's specific
+force, at the logger's real timestamps (irregular before the release, ~250 us in flight).
+
+The columns are found by the names in a header line, as :mod:`tumble.io.gyrocolumns` finds a
+gyroscope's, compared in lower case with spaces, ``_``, ``-`` and ``.`` alike, each with its
+unit in brackets or parentheses at its end:
+
+- **time** and the **rates** ``wx, wy, wz``: the names and units of :mod:`tumble.io.gyrocolumns`
+  (time in s, ms, us or ns; rates in rad/s, deg/s, rpm, rev/s or Hz);
+- **rotor**: ``rotor``, ``rotor speed``, ``rotor rate``, ``flywheel``, ``wheel``, ``wheel speed``,
+  ``motor``, ``motor speed``; in rad/s (default), deg/s, rpm, rev/s or Hz;
+- **specific force** along ``x`` (``y``, ``z`` alike): ``ax``, ``acc x``, ``accel x``,
+  ``accelerometer x``, ``acceleration x``, ``specific force x``, ``f x``; in m/s^2 (default) or
+  g (standard gravity, 9.80665 m/s^2), mg. A phone's "linear acceleration" (gravity taken out
+  by a filter) is not the specific force and is not read. The three are optional together: a
+  throw without them has no accelerometer (``accel`` None);
+- other columns are ignored.
+
+A file without a header has eight numeric columns in the order above. Separated by commas,
+semicolons (with a decimal comma), tabs or spaces; lines starting with ``#`` and blank lines are
+skipped; the times must increase. Every error is one line naming the file and the line.
+:func:`write_throw` writes a throw back in this format.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.tensor import Throw
+from ..dynamics.environment.earth import STANDARD_GRAVITY
+from ..validation import read_input_file
+from .atomic import atomic_write_text
+from .gyrocolumns import _UNIT, RATE_UNITS, _factor, _name, match_header
+from .gyrodata import _NUMBER, _check_order, _separator, _split
+
+__all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
+           "read_throw", "throw_csv", "write_throw"]
+
+#: The largest throw file read, bytes (a minute at 4 kHz is about 25 MB of text).
+MAX_THROW_FILE_BYTES = 64 << 20
+
+#: Units a header may name for the specific force, and their factor to m/s^2 (g: standard gravity,
+#: :data:`tumble.dynamics.environment.earth.STANDARD_GRAVITY`).
+ACCEL_UNITS = {"m/s^2": 1.0, "m/s2": 1.0, "m/s\u00b2": 1.0, "ms^-2": 1.0, "g": STANDARD_GRAVITY,
+               "mg": 1e-3 * STANDARD_GRAVITY}
+
+#: The header :func:`write_throw` writes.
+THROW_HEADER = ("t (s)", "wx (rad/s)", "wy (rad/s)", "wz (rad/s)", "rotor (rad/s)", "ax (m/s^2)", "ay (m/s^2)",
+                "az (m/s^2)")
+
+_ROTOR = re.compile(r"^(?:rotor|flywheel|wheel|motor)(?: (?:speed|rate|omega|angular velocity))?$")
+_ACCEL = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|specific force|f) ?([xyz])(?: axis)?$")
+_ALLOWED = ("rotor: rotor, rotor speed, flywheel, wheel, motor (rad/s, deg/s, rpm, rev/s, Hz); specific force: "
+            "ax, acc_x, accel x, accelerometer x, specific force x (m/s^2, g, mg), y and z alike")
+
+
+@dataclass(frozen=True)
+class ThrowRead:
+    """Which columns of a throw file were taken, in which units, how many rows.
+
+    Attributes
+    ----------
+    file : str
+        The file as given.
+    columns : tuple of str
+        The time, wx, wy, wz, rotor, ax, ay, az columns as the header names them
+        (``"column 1"`` ... without a header; the last three absent without an accelerometer).
+    units : tuple of str
+        Their units, converted to s, rad/s and m/s^2.
+    ignored : tuple of str
+        The columns left out.
+    rows : int
+        Data rows read.
+
+    Examples
+    --------
+    >>> from tumble.io.throwfile import ThrowRead
+    >>> ThrowRead("a1.csv", ("t", "gx", "gy", "gz", "rotor"), ("us", "deg/s", "deg/s", "deg/s", "rpm"), (), 2400).brief()
+    't (us), gx, gy, gz (deg/s), rotor (rpm), no accelerometer, 2400 rows'
+    """
+
+    file: str
+    columns: tuple
+    units: tuple
+    ignored: tuple
+    rows: int
+
+    def summary(self) -> dict:
+        """JSON-ready (tensor.json's ``"read"``): which column was taken for what, in which unit.
+
+        Examples
+        --------
+        >>> from tumble.io.throwfile import ThrowRead
+        >>> read = ThrowRead("a1.csv", ("t", "gx", "gy", "gz", "rotor"), ("us", "deg/s", "deg/s", "deg/s", "rpm"), (), 9)
+        >>> read.summary()["rotor"], read.summary()["accel"]
+        ({'column': 'rotor', 'unit': 'rpm'}, None)
+        """
+        def named(k):
+            return {"column": self.columns[k], "unit": self.units[k]}
+
+        return {"file": self.file, "t": named(0), "omega": [named(k) for k in (1, 2, 3)], "rotor": named(4),
+                "accel": [named(k) for k in (5, 6, 7)] if len(self.columns) == 8 else None,
+                "ignored": list(self.ignored), "rows": int(self.rows)}
+
+    def brief(self) -> str:
+        """A few words for a command's line.
+
+        Examples
+        --------
+        >>> from tumble.io.throwfile import THROW_HEADER, ThrowRead
+        >>> ThrowRead("p1.csv", THROW_HEADER, ("s", "rad/s", "rad/s", "rad/s", "rad/s", "m/s^2", "m/s^2", "m/s^2"),
+        ...           ("temp",), 2400).brief()
+        't (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 1 ignored, 2400 rows'
+        """
+        bare = _name_only
+        c, u = self.columns, self.units
+        parts = [f"{bare(c[0])} ({u[0]})", f"{', '.join(bare(x) for x in c[1:4])} ({'/'.join(dict.fromkeys(u[1:4]))})",
+                 f"{bare(c[4])} ({u[4]})"]
+        parts.append(f"{', '.join(bare(x) for x in c[5:8])} ({'/'.join(dict.fromkeys(u[5:8]))})" if len(c) == 8
+                     else "no accelerometer")
+        if self.ignored:
+            parts.append(f"{len(self.ignored)} ignored")
+        return ", ".join([*parts, f"{self.rows} rows"])
+
+
+def _name_only(cell: str) -> str:
+    """A header cell without its unit."""
+    match = _UNIT.search(cell)
+    return cell[:match.start()].strip() if match else cell
+
+
+def _match(head: list[str], label: str, line: int) -> tuple[list[int], list[float], list[str]]:
+    """The columns of time, rates, rotor (and specific force), their factors to SI and units."""
+    columns, scale, names = match_header(head, label, line)
+    units = [names["time_unit"], *names["rate_units"]]
+    shown = ", ".join(head)
+    shown = shown if len(shown) <= 160 else shown[:157] + "..."
+    parsed = [_name(cell) for cell in head]
+    rotor = [j for j, (n, _) in enumerate(parsed) if j not in columns and _ROTOR.match(n)]
+    if len(rotor) != 1:
+        what = "no rotor column" if not rotor else \
+            f"{len(rotor)} rotor columns ({', '.join(repr(head[j]) for j in rotor)}); keep one"
+        raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
+    f, u = _factor(head[rotor[0]], parsed[rotor[0]][1], RATE_UNITS, label, line, rotor[0] + 1)
+    columns.append(rotor[0]), scale.append(f), units.append(u)
+    axes: dict[str, list[int]] = {"x": [], "y": [], "z": []}
+    for j, (n, _) in enumerate(parsed):
+        m = _ACCEL.match(n)
+        if m and j not in columns:
+            axes[m.group(1)].append(j)
+    found = [a for a, js in axes.items() if js]
+    if found:
+        for axis, js in axes.items():
+            if len(js) != 1:
+                what = f"no specific-force column for {axis} (but one for {', '.join(found)})" if not js else \
+                    f"{len(js)} specific-force columns for {axis} ({', '.join(repr(head[j]) for j in js)})"
+                raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
+            f, u = _factor(head[js[0]], parsed[js[0]][1], ACCEL_UNITS, label, line, js[0] + 1)
+            columns.append(js[0]), scale.append(f), units.append(u)
+    return columns, scale, units
+
+
+def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
+    """The samples of a throw file already read (``label`` names it), in SI, and what was read.
+
+    Returns
+    -------
+    samples : dict
+        ``t`` (n,) s, ``omega`` (n, 3) rad/s, ``rotor`` (n,) rad/s, ``accel`` (n, 3) m/s^2 or None.
+    read : ThrowRead
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the line (module docstring).
+
+    Examples
+    --------
+    >>> from tumble.io.throwfile import parse_throw_csv
+    >>> raw = b"time (ms), gyro x [deg/s], gyro y [deg/s], gyro z [deg/s], rotor (rpm), ax (g), ay (g), az (g)\\n" \\
+    ...       b"0, 180, 0, 0, 0, 0, 0, 1\\n0.25, 180, 0, 90, 60, 0, 0, 0\\n"
+    >>> samples, read = parse_throw_csv(raw, "a1.csv")
+    >>> samples["t"].tolist(), samples["omega"][1].round(6).tolist(), samples["rotor"].round(6).tolist()
+    ([0.0, 0.00025], [3.141593, 0.0, 1.570796], [0.0, 6.283185])
+    >>> samples["accel"][0].tolist()   # 1 g on z, in m/s^2
+    [0.0, 0.0, 9.80665]
+    >>> parse_throw_csv(b"t, wx, wy, wz, ax, ay, az\\n0, 1, 2, 3, 0, 0, 0\\n", "a1.csv")   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: a1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column; allowed: rotor: rotor, rotor speed, ...
+    """
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
+    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise ValueError(f"{label}: no data; expected columns t, wx, wy, wz, rotor, ax, ay, az")
+    first_no, first = lines[0]
+    sep = _separator(first)
+    decimal_comma = sep == ";"
+    head = _split(first, sep)
+    while len(head) > 1 and head[-1] == "":
+        head.pop()
+    if not all(_NUMBER.match(c) for c in head):  # a header line
+        if sep is None:  # space-separated: "t (ms)" is one column's name and unit
+            merged: list[str] = []
+            for cell in head:
+                if merged and cell[:1] in ("(", "["):
+                    merged[-1] += " " + cell
+                else:
+                    merged.append(cell)
+            head = merged
+        columns, scale, units = _match(head, label, first_no)
+        names = [head[j] for j in columns]
+        ignored = tuple(h for j, h in enumerate(head) if j not in columns)
+        width = len(head)
+        lines = lines[1:]
+    elif len(head) == 8:
+        columns, scale = list(range(8)), [1.0] * 8
+        names = [f"column {j + 1}" for j in range(8)]
+        units = ["s", "rad/s", "rad/s", "rad/s", "rad/s", "m/s^2", "m/s^2", "m/s^2"]
+        ignored, width = (), 8
+    else:
+        raise ValueError(f"{label}, line {first_no}: {len(head)} columns; expected 8 (t, wx, wy, wz, rotor, ax, ay, "
+                         "az) or a header line naming the columns")
+    rows = np.empty((len(lines), len(columns)))
+    for k, (no, line) in enumerate(lines):
+        cells = _split(line, sep)
+        while len(cells) > width and cells[-1] == "":
+            cells.pop()
+        if len(cells) != width:
+            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
+        for i, c in enumerate(columns):
+            cell = cells[c]
+            if not _NUMBER.match(cell):
+                raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
+            rows[k, i] = float(cell.replace(",", ".") if decimal_comma else cell)
+    if len(rows) < 2:
+        raise ValueError(f"{label}: {len(rows)} data rows; a throw needs many samples")
+    rows *= np.array(scale)
+    t = rows[:, 0].copy()
+    _check_order(t, lines, label)
+    samples = {"t": t, "omega": rows[:, 1:4].copy(), "rotor": rows[:, 4].copy(),
+               "accel": rows[:, 5:8].copy() if len(columns) == 8 else None}
+    return samples, ThrowRead(label, tuple(names), tuple(units), ignored, len(t))
+
+
+def load_throw(path: str | os.PathLike[str]) -> tuple[Throw, ThrowRead]:
+    """:func:`read_throw`, and what was read (:class:`ThrowRead`).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.throwfile import load_throw
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "a1.csv")
+    ...     rows = "".join(f"{k * 2.5e-4:.4f},1,2,3,{100 * k},0,0,0,21.5\\n" for k in range(50))
+    ...     _ = path.write_text("t (s),wx,wy,wz,rotor,ax,ay,az,temperature\\n" + rows)
+    ...     throw, read = load_throw(path)
+    >>> throw.omega.shape, read.brief()
+    ((50, 3), 't (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 1 ignored, 50 rows')
+    """
+    label = os.fspath(path)
+    raw = read_input_file(path, limit=MAX_THROW_FILE_BYTES, what="a throw file (CSV)")
+    samples, read = parse_throw_csv(raw, label)
+    try:
+        throw = Throw(t=samples["t"], omega=samples["omega"], rotor=samples["rotor"], accel=samples["accel"],
+                      input=label)
+    except ValueError as exc:  # "throw A1.csv omega ...": said as the file's
+        message = str(exc).removeprefix(f"throw {label} ").removeprefix("throw ")
+        raise ValueError(f"{label}: {message}") from None
+    return throw, read
+
+
+def read_throw(path: str | os.PathLike[str]) -> Throw:
+    """A throw file (module docstring) as a :class:`~tumble.analysis.tensor.Throw` whose ``input``
+    is the path as given.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and the line: not a readable regular file, larger than
+        :data:`MAX_THROW_FILE_BYTES`, not text, a header without a column needed (or with two),
+        an unknown unit, a value that is not a number, a time that repeats or goes back; or what
+        :class:`~tumble.analysis.tensor.Throw` refuses, after the file's name.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.throwfile import read_throw
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "a1.csv")   # no header: t, wx, wy, wz, rotor, ax, ay, az in SI
+    ...     _ = path.write_text("".join(f"{k * 2.5e-4:.5f} 1 2 3 {100 * k} 0 0 9.8\\n" for k in range(40)))
+    ...     throw = read_throw(path)
+    >>> float(throw.t[-1]), float(throw.rotor[-1]), throw.input.endswith("a1.csv")
+    (0.00975, 3900.0, True)
+    """
+    return load_throw(path)[0]
+
+
+def throw_csv(throw: Throw, *, header: str = "") -> str:
+    """The text of a throw file: :data:`THROW_HEADER` and a row a sample, in SI.
+
+    Times with 12 significant digits (10 ns at 1000 s, 1 us after a day), the rest with 7 (a
+    logger's 16-bit samples have fewer). Without an accelerometer the last three columns are left
+    out.
+
+    Parameters
+    ----------
+    throw : Throw
+    header : str
+        Comment lines put first (each prefixed with ``#`` and a space).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.io.throwfile import throw_csv
+    >>> t = np.arange(20) * 2.5e-4
+    >>> throw = Throw(t=t, omega=np.tile([1.0, -2.0, 3.0], (20, 1)), rotor=10 * np.arange(20.0), accel=None)
+    >>> print("\\n".join(throw_csv(throw, header="no accelerometer").splitlines()[:5]))
+    # no accelerometer
+    t (s),wx (rad/s),wy (rad/s),wz (rad/s),rotor (rad/s)
+    0,1,-2,3,0
+    0.00025,1,-2,3,10
+    0.0005,1,-2,3,20
+    """
+    columns = [throw.t[:, None], throw.omega, throw.rotor[:, None]]
+    names = THROW_HEADER[:5]
+    if throw.accel is not None:
+        columns.append(throw.accel)
+        names = THROW_HEADER
+    data = np.hstack([np.asarray(c, float) for c in columns])
+    lines = [f"# {line}".rstrip() for line in header.splitlines()] + [",".join(names)]
+    lines += [f"{row[0]:.12g}," + ",".join(f"{x:.7g}" for x in row[1:]) for row in data]
+    return "\n".join(lines) + "\n"
+
+
+def write_throw(path: str | os.PathLike[str], throw: Throw, *, header: str = "") -> Path:
+    """Write a throw file (:func:`throw_csv`) whole or not at all (:mod:`tumble.io.atomic`).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.io.throwfile import read_throw, write_throw
+    >>> t = np.arange(40) * 2.5e-4
+    >>> throw = Throw(t=t, omega=np.tile([1.0, -2.0, 3.0], (40, 1)), rotor=100 * np.arange(40.0),
+    ...               accel=np.zeros((40, 3)))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     again = read_throw(write_throw(pathlib.Path(folder, "a1.csv"), throw))
+    >>> float(np.max(np.abs(again.t - throw.t))) < 1e-15, bool(np.array_equal(again.rotor, throw.rotor))   # to 12 digits
+    (True, True)
+    """
+    return atomic_write_text(path, throw_csv(throw, header=header))
