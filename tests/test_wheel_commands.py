@@ -256,12 +256,33 @@ def _user_file(argv: tuple[str, ...]) -> str | None:
     return positional[0]
 
 
-def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown]) -> Outcome:
+def _outputs(runnable: list[Shown]) -> dict[str, tuple[str, ...]]:
+    """The folders and files the shown commands write under a name of their own (``tumble fit ...
+    --out fitted``), each with the command that writes it: a guide that then shows ``tumble view
+    fitted`` shows both, in that order."""
+    return {c.argv[i + 1]: c.argv for c in runnable for i, word in enumerate(c.argv[:-1])
+            if word in ("--out",) and not c.argv[i + 1].startswith("out-")}
+
+
+def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
+               outputs: dict[str, tuple[str, ...]] | None = None) -> Outcome:
     """Run one command from an empty ``folder`` as shown, or with the hint it prints (``copied``:
-    what the usual hint, :data:`COPY_HINT`, copies)."""
+    what the usual hint, :data:`COPY_HINT`, copies); an input that another shown command writes
+    (``outputs``) is made first by that command, as the guide shows them one after the other."""
     argv = shown[0].argv
     outcome = Outcome(shown)
     folder.mkdir()
+    for word in argv[1:]:
+        before = (outputs or {}).get(word)
+        if before is None or before == argv:
+            continue
+        if any(w.startswith("examples/") for w in before) and not (folder / "examples").exists():
+            shutil.copytree(copied, folder / "examples")
+        made = _run(venv, folder, list(before))
+        outcome.steps.append(" ".join(before))
+        if made.returncode != 0:
+            outcome.problem = f"{' '.join(before)!r}, which writes {word}, failed: {made.stderr.strip()}"
+            return outcome
     user = _user_file(argv)
     if user and user.lower().endswith(MESH_SUFFIXES):  # the user's mesh: the packaged torus stands in
         shutil.copy2(venv.site / "tumble" / "examples" / "bodies" / "meshes" / "torus.stl", folder / user)
@@ -329,7 +350,9 @@ def test_every_command_the_readme_the_guides_and_help_show_runs_from_an_empty_fo
     jobs = sorted(distinct.values(), key=lambda shown: shown[0].argv[0] != "demo")  # the longest first
     workers = max(2, min(8, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 2))
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        outcomes = list(pool.map(lambda ij: _try_shown(venv, copied_examples, tmp_path / f"cmd{ij[0]:02d}", ij[1]),
+        outputs = _outputs(runnable)
+        outcomes = list(pool.map(lambda ij: _try_shown(venv, copied_examples, tmp_path / f"cmd{ij[0]:02d}", ij[1],
+                                                       outputs),
                                  enumerate(jobs)))
 
     failures = [f"{', '.join(c.where for c in o.shown)}: {o.shown[0].shown}\n    ran: {' ; '.join(o.steps)}\n"

@@ -86,7 +86,7 @@ TORQUE_TABLE = Table("[torque]", (
     Key("orbit_period", "number", "s", example="5400.0", low=0.0,
         doc='kind = "gravity_gradient": the orbit\'s period (or orbit_radius)'),
     Key("orbit_radius", "number", "m", example="6.78e6", low=0.0, doc="the orbit's radius (or orbit_period)"),
-    Key("mu", "number", "m^3/s^2", "3.986004418e14 (the Earth's)", example="4.9048695e12", low=0.0,
+    Key("mu", "number", "m^3/s^2", f"{MU_EARTH:.10g} (the Earth's)", example="4.9048695e12", low=0.0,
         doc="the central body's gravitational parameter"),
 ), "Optional: a torque acting through the run.")
 #: Keys of each kind of ``[torque]`` table.
