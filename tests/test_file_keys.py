@@ -27,6 +27,7 @@ import pytest
 
 from tumble.io.bodyfile import BODY_FORMAT, PART_TABLES, PRESET_TABLES, load_body
 from tumble.io.controlfile import CONTROL_FORMAT
+from tumble.io.devicefile import DEVICE_FORMAT, load_device
 from tumble.io.gyrocolumns import RATE_PREFIXES, RATE_UNITS, RECORDING_FORMAT, TIME_NAMES, TIME_UNITS
 from tumble.io.gyrodata import parse_gyro_table
 from tumble.io.keys import Key, Table
@@ -79,6 +80,14 @@ _ORBITING = {"body": "t-handle", "initial": {"orbit_frame": {"pitch": 0.01}},
              "simulation": {"t_end": 1.0, "samples": 11, "method": "dop853"}}
 _SWEEP = {"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 5.0, 0.1]},
           "simulation": {"t_end": 1.0, "method": "dop853"}}
+_PROOF = {"mass": 0.346, "inertia": [1.675805e-4, 1.300972e-4, 2.450833e-4]}
+_DEVICE = {"device": {"mass": 0.10067, "rotor_axis": [0.0, 0.0, -1.0]}, "proof": _PROOF}
+#: A calibrated device (as ``tumble calibrate`` writes it): each uncertainty with its value.
+_CALIBRATED = {"device": {"mass": 0.10067, "rotor_axis": [0.0, 0.0, -1.0], "rotor_inertia": 1.7e-6,
+                          "rotor_inertia_std": 2e-8, "inertia": [[3e-5, 0.0, 0.0], [0.0, 3e-5, 0.0], [0.0, 0.0, 5e-5]],
+                          "inertia_std": [[1e-7, 0.0, 0.0], [0.0, 1e-7, 0.0], [0.0, 0.0, 1e-7]],
+                          "center_of_mass": [0.001, 0.0, 0.002], "center_of_mass_std": [1e-4, 1e-4, 1e-4]},
+               "proof": _PROOF}
 
 
 def _control(name: str) -> dict:
@@ -129,6 +138,9 @@ def cases() -> list[tuple[str, Table, list[tuple[dict, tuple]], object]]:
         ('[control] kind = "detumble_point"', [(mission, ("control",))]),
         ("[control.detumble]", [({**mission, "control": {**mission["control"], "detumble": {}}}, ("control", "detumble"))]),
         ("[control.point]", [(mission, ("control", "point"))]))]
+    found += [("device", DEVICE_FORMAT.table(t), docs, load_device) for t, docs in (
+        ("top level", [(_DEVICE, ())]), ("[device]", [(_DEVICE, ("device",)), (_CALIBRATED, ("device",))]),
+        ("[proof]", [(_DEVICE, ("proof",))]))]
     return found
 
 
@@ -312,13 +324,16 @@ def _example_keys(data: dict, fmt: str) -> list[tuple[str, str]]:
 def _kind(path: Path, data: dict) -> str:
     if path.parent.name == "sweeps":
         return "sweep"
+    if path.parent.name == "devices":
+        return "device"
     if set(data) == {"body"}:
         return "body"
     return "control" if "control" in data else "scenario"
 
 
 def test_every_key_of_every_example_file_is_in_its_table():
-    formats = {"body": BODY_FORMAT, "scenario": SCENARIO_FORMAT, "control": CONTROL_FORMAT, "sweep": SWEEP_FORMAT}
+    formats = {"body": BODY_FORMAT, "scenario": SCENARIO_FORMAT, "control": CONTROL_FORMAT, "sweep": SWEEP_FORMAT,
+               "device": DEVICE_FORMAT}
     files = sorted(EXAMPLES.rglob("*.toml"))
     assert len(files) >= 20
     seen = set()
@@ -330,6 +345,7 @@ def test_every_key_of_every_example_file_is_in_its_table():
             assert tables and key in tables[0].names(), f"{path.relative_to(EXAMPLES)}: {title} {key}"
             seen.add((fmt, title, key))
     assert len(seen) > 100
+    assert {fmt for fmt, _, _ in seen} == set(formats)   # every format has an example file
 
 
 def test_the_pages_list_every_key_of_every_table():
@@ -338,7 +354,7 @@ def test_the_pages_list_every_key_of_every_table():
     import tumble_keys
 
     for page, fmt in (("body", BODY_FORMAT), ("scenario", SCENARIO_FORMAT), ("control", CONTROL_FORMAT),
-                      ("sweep", SWEEP_FORMAT), ("recording", RECORDING_FORMAT)):
+                      ("sweep", SWEEP_FORMAT), ("recording", RECORDING_FORMAT), ("device", DEVICE_FORMAT)):
         source = (ROOT / "docs" / "formats" / f"{page}.md").read_text(encoding="utf-8")
         path = re.search(r"```\{tumble-keys\} (\S+)", source).group(1)
         assert tumble_keys.load_format(path) is fmt, page

@@ -52,7 +52,9 @@ TENSOR_BAD = {
                       "device.toml: [device] mass = -0.1 must be a positive finite number (kg)"),
     "mass as text": (CALIBRATED.replace("mass = 0.10067", 'mass = "100 g"'), None, "0.5",
                      "device.toml: [device] mass = '100 g' must be a number (kg)"),
-    "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: mass"),
+    "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: "
+                    "center_of_mass, center_of_mass_std, inertia, inertia_std, mass, rotor_axis, rotor_inertia, "
+                    "rotor_inertia_std\n"),
     "unknown table": (CALIBRATED + "[body]\nname = 'x'\n", None, "0.5", "device.toml: unknown table 'body'"),
     "no [device]": (PROOF, None, "0.5", "device.toml: missing table [device]"),
     "no rotor axis": (CALIBRATED.replace("rotor_axis = [0.0, 0.0, -1.0]\n", ""), None, "0.5",

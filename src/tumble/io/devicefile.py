@@ -16,8 +16,9 @@ kg m^2, about the device's centre of mass, sensor frame), ``center_of_mass`` (m,
 and their standard uncertainties ``rotor_inertia_std``, ``inertia_std`` (3 x 3) and
 ``center_of_mass_std`` added to ``[device]`` (:func:`write_device`).
 
-Keys are checked strictly here: an unknown key or table, a missing one, an uncertainty without
-its value raise ``ValueError`` with one line naming the file and the table. The values are
+The keys are those of :data:`DEVICE_FORMAT` (:mod:`tumble.io.keys`; docs/formats/device.md renders
+the same tables), checked strictly here: an unknown key or table, a missing one, an uncertainty
+without its value raise ``ValueError`` with one line naming the file and the table. The values are
 checked by the value objects themselves (:class:`tumble.analysis.tensor.Device`,
 :class:`~tumble.analysis.tensor.Proof`), so Python and files give the same message: the field,
 the value as written and what is allowed, after the file and the table.
@@ -33,25 +34,62 @@ from ..analysis.tensor import Device, Proof
 from ..validation import short_repr
 from .atomic import atomic_write_text
 from .bodyfile import read_toml
+from .keys import FileFormat, Key, Table
 
-__all__ = ["DEVICE_KEYS", "PROOF_KEYS", "device_from_table", "device_toml", "load_device", "proof_from_table",
-           "write_device"]
+__all__ = ["DEVICE_FORMAT", "device_from_table", "device_toml", "load_device", "proof_from_table", "write_device"]
 
-#: The keys of ``[device]``: the first two are required, the others written by ``tumble calibrate``.
-DEVICE_KEYS = ("mass", "rotor_axis", "rotor_inertia", "rotor_inertia_std", "inertia", "inertia_std",
-               "center_of_mass", "center_of_mass_std")
-#: The keys of ``[proof]``, both required.
-PROOF_KEYS = ("mass", "inertia")
+_TENSOR = "3 numbers or 3 rows of 3"
+_INERTIA_ALLOWED = "a physical tensor: symmetric, positive definite, its moments obeying the triangle inequality"
+#: The tables of a device file and their keys: what :func:`load_device` accepts and what
+#: docs/formats/device.md lists.
+DEVICE_FORMAT = FileFormat("device", (
+    Table("top level", (
+        Key("device", "table", required=True, example="{mass = 0.10067, rotor_axis = [0.0, 0.0, -1.0]}",
+            doc="[device]: the throwing device"),
+        Key("proof", "table", example="{mass = 0.346, inertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]}",
+            doc="[proof]: a body of known mass properties fixed to the device, for the calibration"),
+    )),
+    Table("[device]", (
+        Key("mass", "number", "kg", required=True, example="0.10067", low=0.0,
+            doc="the device with its rotor"),
+        Key("rotor_axis", "3 numbers", "", required=True, allowed="not zero (its length does not matter)",
+            example="[0.0, 0.0, -1.0]", doc="sensor frame: the rotor's angular velocity for a positive logged speed"),
+        Key("rotor_inertia", "number", "kg m^2", "(none: calibrate the device)", example="1.7e-6", low=0.0,
+            doc="``J_r``, the rotor's axial moment of inertia"),
+        Key("rotor_inertia_std", "number", "kg m^2", allowed=">= 0; only with rotor_inertia", example="2e-8",
+            low=0.0, low_included=True, doc="its standard uncertainty"),
+        Key("inertia", _TENSOR, "kg m^2", "(none: calibrate the device)", allowed=_INERTIA_ALLOWED,
+            example="[[3e-5, 0.0, 0.0], [0.0, 3e-5, 0.0], [0.0, 0.0, 5e-5]]",
+            doc="the device's tensor about its own centre of mass, sensor frame"),
+        Key("inertia_std", "3 rows of 3", "kg m^2", allowed=">= 0 each; only with inertia",
+            example="[[1e-7, 0.0, 0.0], [0.0, 1e-7, 0.0], [0.0, 0.0, 1e-7]]",
+            doc="the standard uncertainty of each entry"),
+        Key("center_of_mass", "3 numbers", "m", "(none: calibrate the device)", example="[0.001, 0.0, 0.002]",
+            doc="the device's centre of mass, sensor frame (from the accelerometer)"),
+        Key("center_of_mass_std", "3 numbers", "m", allowed=">= 0 each; only with center_of_mass",
+            example="[1e-4, 1e-4, 1e-4]", doc="its standard uncertainty"),
+    ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the rest."),
+    Table("[proof]", (
+        Key("mass", "number", "kg", required=True, example="0.346", low=0.0, doc="the proof body's mass"),
+        Key("inertia", _TENSOR, "kg m^2", required=True, allowed=_INERTIA_ALLOWED,
+            example="[1.675805e-4, 1.300972e-4, 2.450833e-4]",
+            doc="about its own centre of mass, along the sensor axes; 3 numbers: the moments along them"),
+    ), "A body of known mass properties fixed to the device, for ``tumble calibrate``."),
+), "A throwing device with a rotor: ``tumble calibrate`` reads it with ``[proof]`` and writes it back "
+   "calibrated; ``tumble tensor --device`` reads the calibrated one.")
+_TOP, _DEVICE, _PROOF = DEVICE_FORMAT.tables
 
 _WHAT = "a device file (TOML)"
 
 
-def _refuse_unknown(table: object, allowed: tuple[str, ...], where: str) -> dict:
+def _checked(keys: Table, table: object, where: str) -> dict:
+    """``table`` when it is a table with only ``keys``' keys and all their required ones; else one line."""
     if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table, got {short_repr(table)}")
-    unknown = sorted(set(table) - set(allowed))
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r}; allowed: {', '.join(allowed)}")
+        raise ValueError(f"{where} must be a table, got {short_repr(table)}")  # noqa: TRY004 - one error type for bad input
+    keys.check(where, table)
+    for key in keys.keys:
+        if key.required and key.name not in table:
+            raise ValueError(f"{where}: missing key {key.name!r} ({', '.join(filter(None, (key.unit, key.doc)))})")
     return table
 
 
@@ -101,10 +139,7 @@ def device_from_table(table: object, *, where: str = "[device]") -> Device:
     ...
     ValueError: [device] mass = '100 g' must be a number (kg)
     """
-    table = _refuse_unknown(table, DEVICE_KEYS, where)
-    for key, what in (("mass", "kg"), ("rotor_axis", "3 numbers, the rotor's axis in the sensor frame")):
-        if key not in table:
-            raise ValueError(f"{where}: missing key {key!r} ({what})")
+    table = _checked(_DEVICE, table, where)
     for key in ("rotor_inertia", "inertia", "center_of_mass"):
         if f"{key}_std" in table and key not in table:
             raise ValueError(f"{where}: {key}_std = {short_repr(table[f'{key}_std'])} given without {key}; "
@@ -135,10 +170,7 @@ def proof_from_table(table: object, *, where: str = "[proof]") -> Proof:
     ...
     ValueError: [proof] inertia: principal moments (0.0001, 0.0001, 0.0003) kg m^2 violate the triangle inequality ...
     """
-    table = _refuse_unknown(table, PROOF_KEYS, where)
-    for key, what in (("mass", "kg"), ("inertia", "kg m^2 about its centre of mass, along the sensor axes")):
-        if key not in table:
-            raise ValueError(f"{where}: missing key {key!r} ({what})")
+    table = _checked(_PROOF, table, where)
     return _built(Proof, dict(table), where, "proof.")
 
 
@@ -184,14 +216,16 @@ def load_device(path: str | os.PathLike[str], *, proof: bool = False) -> tuple[D
     """
     path = Path(path)
     data = read_toml(path, what=_WHAT)
-    unknown = sorted(set(data) - {"device", "proof"})
+    unknown = sorted(set(data) - set(_TOP.names()))
     if unknown:
-        raise ValueError(f"{path}: unknown table {unknown[0]!r}; a device file has [device] and [proof]")
-    if "device" not in data:
-        raise ValueError(f"{path}: missing table [device] (mass, rotor_axis)")
-    if proof and "proof" not in data:
-        raise ValueError(f"{path}: missing table [proof] (mass, inertia: a body of known mass properties fixed to "
-                         "the device, for the calibration)")
+        what = "table" if isinstance(data[unknown[0]], dict) else "key"
+        raise ValueError(f"{path}: unknown {what} {unknown[0]!r}; a device file has [device] and [proof]; "
+                         f"allowed: {', '.join(sorted(_TOP.names()))}")
+    for name, needed in (("device", True), ("proof", proof)):
+        if needed and name not in data:
+            keys = DEVICE_FORMAT.table(f"[{name}]")
+            required = ", ".join(k.name for k in keys.keys if k.required)
+            raise ValueError(f"{path}: missing table [{name}] ({required}: {_TOP.key(name).doc.split(': ', 1)[1]})")
     try:
         device = device_from_table(data["device"])
         body = proof_from_table(data["proof"]) if "proof" in data else None

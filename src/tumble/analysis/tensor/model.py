@@ -136,24 +136,40 @@ class RotorInput:
     rotor_inertia: float
     axis: FloatArray
 
-    def speed(self, t: ArrayLike, nu: int = 0) -> FloatArray:
-        """The smoothed speed (``nu = 0``, rad/s) or its rate (``nu = 1``, rad/s^2): 0 before the
-        last stopped sample, linear from it to the first moving one."""
+    def speed(self, t: ArrayLike) -> FloatArray:
+        """The smoothed speed, rad/s: 0 up to the last stopped sample, linear from it to the first
+        moving one, the spline from there on.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import rotor_input
+        >>> t = np.arange(200) / 4000.0
+        >>> r = rotor_input(t, np.r_[np.zeros(20), np.full(180, 100.0)], 20, 1e-6, [0, 0, 1])
+        >>> r.speed([t[10], 0.5 * (t[19] + t[20]), t[100]]).round(9).tolist()   # at rest, half-way up, spun up
+        [0.0, 50.0, 100.0]
+        """
         t = np.asarray(t, float)
-        x = (t - self.t_start) * self.scale
-        s = self.spline(np.maximum(x, 0.0), nu) * self.scale ** nu  # type: ignore[operator]
+        s = self.spline(np.maximum((t - self.t_start) * self.scale, 0.0))  # type: ignore[operator]
         s0 = float(self.spline(0.0))  # type: ignore[operator]
-        ramp = (t - self.t_before) / max(self.t_start - self.t_before, 1e-12)
-        early = (s0 * ramp if nu == 0 else np.full(t.shape, s0 / max(self.t_start - self.t_before, 1e-12)))
-        return np.where(t >= self.t_start, s, np.where(t > self.t_before, early, 0.0))
+        ramp = s0 * (t - self.t_before) / max(self.t_start - self.t_before, 1e-12)
+        return np.where(t >= self.t_start, s, np.where(t > self.t_before, ramp, 0.0))
 
     def h(self, t: ArrayLike) -> FloatArray:
-        """``J_r Omega_r(t) a``, kg m^2/s, shape ``t.shape + (3,)``."""
-        return self.rotor_inertia * self.speed(t)[..., None] * self.axis
+        """``J_r Omega_r(t) a``, kg m^2/s, shape ``t.shape + (3,)``.
 
-    def h_rate(self, t: ArrayLike) -> FloatArray:
-        """``J_r Omega_r'(t) a``, N m (for the accelerometer's model, not the fit's)."""
-        return self.rotor_inertia * self.speed(t, 1)[..., None] * self.axis
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import rotor_input
+        >>> t = np.arange(200) / 4000.0
+        >>> r = rotor_input(t, np.r_[np.zeros(20), np.full(180, 100.0)], 20, 1e-6, [2, 0, 0])   # any length
+        >>> r.h([0.0, 0.02]).round(12).tolist()   # at rest, then 1e-6 kg m^2 x 100 rad/s along x
+        [[0.0, 0.0, 0.0], [0.0001, 0.0, 0.0]]
+        >>> r.h(np.zeros((2, 5))).shape
+        (2, 5, 3)
+        """
+        return self.rotor_inertia * self.speed(t)[..., None] * self.axis
 
 
 def rotor_input(t: ArrayLike, rotor: ArrayLike, start: int, rotor_inertia: float, axis: ArrayLike) -> RotorInput:
@@ -212,25 +228,102 @@ class ThrowModel:
         self.names = NAMES[: self.n]
 
     def split(self, P: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        """``(C entries, L(t_0), bias, drag)`` of parameter rows ``(K, n)``."""
+        """``(C entries, L(t_0), bias, drag)`` of parameter rows ``(K, n)``; the drag 0 when not fitted.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> m = ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor_input(t, np.full(400, 1e3), 0, 1e-6,
+        ...                [0, 0, 1]), drag=False)
+        >>> c, L0, bias, drag = m.split(np.arange(12.0)[None])   # one row of the 12 parameters
+        >>> c.shape, L0.tolist(), bias.tolist(), drag.tolist()
+        ((1, 6), [[6.0, 7.0, 8.0]], [[9.0, 10.0, 11.0]], [[0.0, 0.0, 0.0]])
+        """
         quad = P[:, 12:15] if self.drag else np.zeros((P.shape[0], 3))
         return P[:, :6], P[:, 6:9], P[:, 9:12], quad
 
     def omega(self, P: FloatArray) -> FloatArray:
-        """The body's rates ``(K, T, 3)`` (no bias), rad/s."""
+        """The body's rates ``(K, T, 3)`` (no bias), rad/s, of parameter rows ``(K, n)``.
+
+        Examples
+        --------
+        A rotor spun up along a principal axis of a body spinning about it: the spin stays
+        about that axis, ``w_z = (L_z - h_z(t)) / I_zz`` (``L`` fixed); and with any tensor and
+        ``L``, ``|I w + h|`` is conserved (``L' = L x w``):
+
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> speed = np.where(t >= 0.01, 1500.0 * (1 - np.exp(-(t - 0.01) / 0.03)), 0.0)
+        >>> m = ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor_input(t, speed, 41, 1.7e-6,
+        ...                [0, 0, 1]), drag=False)
+        >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 0.0, 0.0, 4e-3, np.zeros(3)]
+        >>> w = m.omega(P[None])
+        >>> w.shape, bool(np.allclose(w[0], np.c_[0 * t, 0 * t, (4e-3 - m.h[:, 2]) / 4e-4], rtol=0, atol=1e-9))
+        ((1, 400, 3), True)
+        >>> I = np.array([[2e-4, 1e-5, 0.0], [1e-5, 3e-4, 2e-5], [0.0, 2e-5, 4e-4]])
+        >>> L = m.omega(np.r_[cholesky_of(I), 1e-3, 2e-3, 3e-3, np.zeros(3)][None])[0] @ I + m.h
+        >>> bool(np.ptp(np.linalg.norm(L, axis=1)) < 1e-12 * np.linalg.norm(L[0]))
+        True
+        """
         c, L0, _, quad = self.split(P)
         return gyrostat_omega(inertia_of(c), L0, self.t, self.h, self.h_mid, quad)
 
     def sensor(self, P: FloatArray) -> FloatArray:
-        """What the gyroscope reads ``(K, T, 3)``: the rates plus the bias, rad/s."""
+        """What the gyroscope reads ``(K, T, 3)``: the rates plus the bias, rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.linspace(0.0, 0.1, 300)
+        >>> m = ThrowModel(t, np.zeros((300, 3)), np.ones((300, 3), bool), rotor_input(t, np.linspace(0.0, 1e3, 300), 1,
+        ...                2e-6, [1, 1, 0]))   # drag fitted: 15 parameters
+        >>> c = cholesky_of([[2e-4, 1e-5, 0.0], [1e-5, 3e-4, 0.0], [0.0, 0.0, 4e-4]])
+        >>> biases = ([0.01, -0.02, 0.03], [0.0, 0.0, 0.1])   # two parameter rows at once
+        >>> P = np.array([np.r_[c, 1e-3, 0.0, 2e-3, bias, np.full(3, 1e-6)] for bias in biases])
+        >>> offset = m.sensor(P) - m.omega(P)
+        >>> offset.shape, bool(np.allclose(offset, P[:, None, 9:12], rtol=0, atol=1e-15))
+        ((2, 300, 3), True)
+        """
         return self.omega(P) + self.split(P)[2][:, None, :]
 
     def residuals(self, P: FloatArray) -> FloatArray:
-        """``model - data`` on the kept sample axes, flat."""
+        """``model - data`` on the kept sample axes, flat, rad/s, of one parameter vector ``(n,)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.full(400, 1e3), 0, 1e-6, [0, 0, 1])
+        >>> keep = np.ones((400, 3), bool)
+        >>> keep[100:150, 0] = False   # x saturated for 50 samples
+        >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 1e-3, 0.0, 2e-3, 0.01, -0.02, 0.03]
+        >>> truth = ThrowModel(t, np.zeros((400, 3)), keep, rotor, drag=False).sensor(P[None])[0]
+        >>> r = ThrowModel(t, truth + 0.005, keep, rotor, drag=False).residuals(P)
+        >>> r.shape, bool(np.allclose(r, -0.005, rtol=0, atol=1e-15))   # 1200 - 50 sample axes
+        ((1150,), True)
+        """
         return (self.sensor(P[None])[0] - self.data)[self.keep]
 
     def steps(self, P: FloatArray) -> FloatArray:
-        """Finite-difference steps: 1e-6 of each group's size."""
+        """Finite-difference steps ``(n,)``: 1e-6 of each group's size (``C``'s largest entry,
+        ``|L(t_0)|``, 0.01 rad/s for the bias, 1 % of the mean moment for the drag).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.linspace(0.0, 0.2, 500)
+        >>> rotor = rotor_input(t, np.full(500, 800.0), 0, 2e-6, [0, 1, 0])
+        >>> m = ThrowModel(t, np.zeros((500, 3)), np.ones((500, 3), bool), rotor)   # drag fitted: 15 parameters
+        >>> d = m.steps(np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 3e-3, 0.0, 4e-3, np.zeros(6)])
+        >>> d.shape, bool(np.allclose(d[6:], 1e-6 * np.repeat([5e-3, 0.01, 3e-6], 3), rtol=1e-12, atol=0))
+        ((15,), True)
+        """
         c_size = max(float(np.abs(P[:6]).max()), 1e-30)
         L_size = max(float(np.linalg.norm(P[6:9])), 1e-30)
         I_size = float(np.trace(inertia_of(P[:6]))) / 3.0
@@ -238,7 +331,25 @@ class ThrowModel:
         return 1e-6 * sizes[: self.n]
 
     def jacobian(self, P: FloatArray) -> FloatArray:
-        """``d residuals / dP`` by forward differences, all columns in one batched integration."""
+        """``d residuals / dP`` ``(kept sample axes, n)`` by forward differences, all columns in
+        one batched integration.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> m = ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor_input(t, np.full(400, 1e3), 0, 1e-6,
+        ...                [0, 0, 1]), drag=False)
+        >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 1e-3, 0.0, 2e-3, 0.01, -0.02, 0.03]
+        >>> J = m.jacobian(P)
+        >>> J.shape, bool(np.allclose(J[:3, 9:12], np.eye(3), rtol=0, atol=1e-6))   # the bias: 1 on its own axis
+        ((1200, 12), True)
+        >>> e = np.r_[1e-8, np.zeros(11)]   # the c_xx column against a central difference
+        >>> central = (m.residuals(P + e) - m.residuals(P - e)) / 2e-8
+        >>> bool(np.allclose(J[:, 0], central, rtol=0, atol=1e-5 * np.abs(central).max()))
+        True
+        """
         d = self.steps(P)
         batch = np.vstack([P, P + np.diag(d)])
         pred = self.sensor(batch)
