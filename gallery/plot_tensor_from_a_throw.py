@@ -16,6 +16,12 @@ object, a 0.482 kg box 16 x 9 x 4 cm turned against the sensor's axes and off it
 thrown four times (`tumble tensor`).
 """
 
+# %%
+# Calibrating the device
+# ----------------------
+# Throws of the device alone and with the proof body give the rotor's inertia, the device's tensor
+# and its centre of mass (``tumble calibrate DEVICE.toml --alone ... --proof ...``).
+
 import numpy as np
 
 import tumble
@@ -35,6 +41,13 @@ device = tumble.calibrate_device(device_file, alone, with_proof, proof)
 print(f"rotor inertia {device.rotor_inertia:.4g} +- {device.rotor_inertia_std:.2g} kg m^2 (true 1.7e-06); "
       f"device centre of mass {np.round(1e3 * device.center_of_mass, 2).tolist()} mm "
       f"(true {np.round(1e3 * truth.center, 2).tolist()})")
+
+# %%
+# The object
+# ----------
+# Four throws of the box with the calibrated device (``tumble tensor ... --device ... --mass``):
+# each throw's rates against the fitted model, and each principal moment per throw with the pooled
+# value and its 95 % interval.
 
 bracket = box(0.482, (0.16, 0.09, 0.04), center=(0.012, -0.008, 0.035), rotvec=(0.2, -0.1, 0.35))
 throws = [synthetic_throw(seed, combine(truth, bracket)) for seed in (21, 22, 23, 24)]

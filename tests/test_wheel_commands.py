@@ -246,14 +246,20 @@ def _run(venv: Venv, folder: Path, argv: list[str]) -> subprocess.CompletedProce
                           timeout=500)
 
 
-def _user_file(argv: tuple[str, ...]) -> str | None:
-    """The input a command names that is the user's own (not an example, not a preset), or None."""
+def _user_files(argv: tuple[str, ...]) -> set[str]:
+    """The inputs a command names that are the user's own (not an example, not a preset, not what
+    the command writes): a mesh, a recording, a device's throws."""
     from tumble.mass import PRESETS
 
-    positional = [a for i, a in enumerate(argv[1:], 1) if not a.startswith("-") and not argv[i - 1].startswith("-")]
-    if not positional or positional[0].startswith("examples/") or positional[0] in PRESETS:
-        return None
-    return positional[0]
+    return {a for i, a in enumerate(argv[1:], 1) if not a.startswith(("-", "examples/")) and a not in PRESETS
+            and argv[i - 1] not in ("--out", "--copy") and "." in a}
+
+
+def _only_missing(proc: subprocess.CompletedProcess, user: set[str]) -> bool:
+    """Whether a command stopped with one line, exit 2, naming one of the user's own files as
+    missing: what a wheel user sees before recording their own."""
+    return (proc.returncode == 2 and proc.stderr.count("\n") == 1
+            and any(proc.stderr.strip().endswith(f"{u}: no such file") for u in user))
 
 
 def _outputs(runnable: list[Shown]) -> dict[str, tuple[str, ...]]:
@@ -272,6 +278,7 @@ def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
     argv = shown[0].argv
     outcome = Outcome(shown)
     folder.mkdir()
+    unmade = set()  # inputs whose command stopped for want of the user's own files
     for word in argv[1:]:
         before = (outputs or {}).get(word)
         if before is None or before == argv:
@@ -280,14 +287,17 @@ def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
             shutil.copytree(copied, folder / "examples")
         made = _run(venv, folder, list(before))
         outcome.steps.append(" ".join(before))
-        if made.returncode != 0:
+        if _only_missing(made, _user_files(before)):  # it needs the user's own files: so does this one
+            outcome.steps.append("(the user's own files: one line, exit 2)")
+            unmade.add(word)
+        elif made.returncode != 0:
             outcome.problem = f"{' '.join(before)!r}, which writes {word}, failed: {made.stderr.strip()}"
             return outcome
-    user = _user_file(argv)
-    if user and user.lower().endswith(MESH_SUFFIXES):  # the user's mesh: the packaged torus stands in
-        shutil.copy2(venv.site / "tumble" / "examples" / "bodies" / "meshes" / "torus.stl", folder / user)
-        outcome.steps.append(f"(the packaged torus.stl as {user})")
-        user = None
+    user = _user_files(argv)
+    for mesh in [u for u in user if u.lower().endswith(MESH_SUFFIXES)]:  # the packaged torus stands in
+        shutil.copy2(venv.site / "tumble" / "examples" / "bodies" / "meshes" / "torus.stl", folder / mesh)
+        outcome.steps.append(f"(the packaged torus.stl as {mesh})")
+        user.discard(mesh)
     proc = _run(venv, folder, list(argv))
     outcome.steps.append(" ".join(argv))
     hint = HINT.search(proc.stderr)
@@ -303,8 +313,7 @@ def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
         proc = _run(venv, folder, list(argv))
         outcome.steps.append(" ".join(argv))
     outcome.output = proc.stdout + proc.stderr
-    if user is not None and proc.returncode == 2 and proc.stderr.strip().endswith(f"{user}: no such file") \
-            and proc.stderr.count("\n") == 1:
+    if _only_missing(proc, (user - set(outputs or {})) | unmade):
         outcome.steps.append("(the user's own file: one line, exit 2)")
         return outcome
     if proc.returncode != 0:
