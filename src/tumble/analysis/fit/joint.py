@@ -57,7 +57,10 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
     groups = np.unique(np.asarray(groups, int), return_inverse=True)[1].reshape(-1)
     sols = [f.solution for f in used]
     rat = np.array([ratio_summary(s)[0] for s in sols])
-    near = np.sum((rat - np.median(rat, axis=0)) ** 2, axis=1)
+    # the reference among the flights that determine the ratios (not one joined for the joint fit only)
+    own = np.array([not getattr(f, "joinable", False) for f in used])
+    own = own if own.any() else np.ones(len(used), bool)
+    near = np.sum((rat - np.median(rat[own], axis=0)) ** 2, axis=1) + np.where(own, 0.0, np.inf)
     ref = int(np.argmin(near))
     kinds = Counter(s.model.drag for s in sols)
     kind = drag if drag != "auto" else kinds.most_common(1)[0][0]
@@ -103,7 +106,9 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         # beyond five (chi^2 > 25; benchmarks/fit_coverage.py), with both 1.4 %.
         dv = rat[j] - rat[ref]
         C = public_covariance(sols[j])[2][:2, :2] + public_covariance(sols[ref])[2][:2, :2]
-        agree.append(bool(dv @ np.linalg.pinv(C) @ dv <= 25.0))
+        # a flight joined for the joint fit only states no ratios of its own to compare (its
+        # residuals under the joint fit are its test: tumble.analysis.fit.recording._joined)
+        agree.append(bool(not own[j] or dv @ np.linalg.pinv(C) @ dv <= 25.0))
     keep_idx = [j for j, ok in enumerate(agree) if ok]
     if len(keep_idx) < len(used):
         if len(keep_idx) < 2:
