@@ -42,7 +42,10 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    flight while still spinning (a rigid body flies free until it is caught or lands; on the
    synthetic tosses the fitted flight reaches the impulse within 0.04 s, or within 0.25 s
    where a hand's grip or a glancing impact is too gentle to show as an impulse, while a rotor
-   spinning up inside leaves it 0.2-0.8 s early).
+   spinning up inside leaves it 0.2-0.8 s early). A flight skipped only because its ratios are
+   not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
+   adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
+   may still use it (:func:`~tumble.analysis.fit.fit_recording`).
 """
 
 from __future__ import annotations

@@ -94,8 +94,11 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         def fun(w, one=one, j=j, n=n, shared=shared):
             return (one.sensor(np.concatenate([shared, w]))[0] - data[j, :n])[mask[j, :n]]
 
-        with np.errstate(all="ignore"):
-            fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
+        try:
+            with np.errstate(all="ignore"):
+                fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
+        except ValueError:  # not finite at the start: the shared drag, integrated back from this
+            return None, [], []  # flight's anchor to its first samples, diverges: astray (caller pools)
         P0[model.ns + 3 * j:model.ns + 3 * j + 3] = fitted.x
         # a gross outlier: its own ratios five standard uncertainties (its own and the
         # reference's) from the reference's; the Birge ratio deals with the rest. The
@@ -116,7 +119,10 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         sub = [used[j] for j in keep_idx]
         sol, models, _ = joint_solution(sub, groups[keep_idx], t, omega, keep, drag, scale_uncertainty)
         return sol, models, [j for j in range(len(used)) if not agree[j]]
-    sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
+    try:
+        sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
+    except (ValueError, np.linalg.LinAlgError):  # the solver failed numerically: astray, as below
+        return None, [], []
     own = np.sqrt(sum(s.ssr for s in sols) / sum(s.m for s in sols))
     if np.sqrt(sol.ssr / sol.m) > 2.0 * own + 0.01 * np.sqrt(np.mean(data[mask] ** 2)):
         return None, [], []  # the joint fit went astray: the caller pools the flights' own fits

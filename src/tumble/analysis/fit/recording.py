@@ -7,6 +7,13 @@ gives each flight its own ``omega0``. Several recordings (a list of them) are po
 fit: the ratios and the drag shared by all, the rotation and the bias each recording's own (a
 phone strapped on again, a gyroscope started again).
 
+A flight that follows a free motion but does not determine both ratios alone (too little of
+the tumble, a stable axis, a fit run to the rod limit:
+:attr:`~tumble.analysis.fit.flights.Flight.joinable`) still constrains the body's ratios with
+the others: the joint fit takes it when its recording has a flight that determines them and the
+joint fit describes its samples (:func:`_joined`); its toss is ``"ok"``, its reason "used in the
+joint fit only: ..." (its own ratios, stated with it, are not determined).
+
 The pooled uncertainty: the joint fit's covariance (each flight's residuals scaled for their own
 autocorrelation; flights independent of one another), its statistical part multiplied by the
 Birge ratio squared ``chi^2 / dof`` when the flights' own ratios scatter about the pooled ones
@@ -330,6 +337,13 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
                             own)
     used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     joint, models, outliers = first_joint or joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
+    if joint is None and joined:  # no joint fit to use them in: skipped after all, with their own reasons
+        for j in joined:
+            flights[j] = replace(flights[j], status="skipped", reason=flights[j].reason[len(JOINT_ONLY) + 2:])
+        tosses = tuple(replace(toss, status="skipped", reason=flights[j].reason) if j in joined else toss
+                       for j, toss in enumerate(tosses))
+        used = [f for f in flights if f.status == "ok"]
+        used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     split = _split_verdict(used, outliers)
     if outliers:
         bad = {id(used[j]) for j in outliers}
@@ -453,7 +467,8 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
         values.append(v[:2])
         covs.append(c[:2, :2])
     chi2, dof = birge_chi2(np.array(values), np.array(covs), rat_joint)
-    scale = max(1.0, chi2 / dof)
+    chi2_dof = chi2 / dof if len(values) > 1 else float("nan")  # one flight's own ratios: no scatter to measure
+    scale = max(1.0, chi2_dof) if len(values) > 1 else 1.0
     # inflate the statistical part by chi2/dof, keep the systematic part as it is
     cov = sol.cov_stat * scale + (np.nan_to_num(sol.cov) - np.nan_to_num(sol.cov_stat))
     inflated = Solution(sol.model, sol.P, cov, sol.cov_stat * scale, sol.residuals, sol.omega_model,
@@ -467,7 +482,7 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
-    return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
+    return RecordingFit(tosses, pooled, chi2_dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
 
 
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
