@@ -375,7 +375,7 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
     A flight's ratios are the body's, so a flight that follows a free motion constrains them
     jointly with the others even when it cannot fix both alone (a likelihood is a product over
     flights). It is taken when its recording has a flight that determines them, and when the
-    joint fit describes its samples by the test every fit meets
+    joint fit of that recording's flights describes its samples by the test every fit meets
     (:func:`~tumble.analysis.fit.adequacy.judge`: the residuals beyond the noise within
     :data:`~tumble.analysis.fit.adequacy.MISFIT_LIMIT` of the rates): its samples follow a free
     motion of this body, with this recording's mount, bias and drag, not only of some body."""
@@ -384,24 +384,27 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
     candidates = [j for j, f in enumerate(flights) if f.joinable and groups[j] in groups_ok]
     if not candidates:
         return [], None
-    idx = sorted(ok + candidates)
-    sol, models, outliers = joint_solution([flights[j] for j in idx], [groups[j] for j in idx], t, omega, keep, drag,
-                                           scale_uncertainty)
-    if sol is None:
-        return [], None
-    kept = [j for k, j in enumerate(idx) if k not in outliers]
-    taken = []
-    for j, model in zip(kept, models):
-        f = flights[j]
-        if j in candidates:
-            w, mask = omega[f.first:f.stop], keep[f.first:f.stop]
-            residuals = model - w
-            verdict = judge(float(np.sqrt(np.mean(residuals[mask] ** 2))),
-                            noise_floor(residuals[np.all(mask, axis=1)]), float(np.sqrt(np.mean(w[mask] ** 2))),
-                            sensor_rotation_fitted=sol.model.rotation)
-            if verdict.adequate:
-                taken.append(j)
-    return taken, ((sol, models, outliers) if len(taken) == len(candidates) else None)
+    taken, whole = [], None
+    for r in sorted({groups[j] for j in candidates}):  # judged with its own recording's flights (fast when pooling)
+        idx = sorted(j for j in ok + candidates if groups[j] == r)
+        sol, models, outliers = joint_solution([flights[j] for j in idx], [r] * len(idx), t, omega, keep, drag,
+                                               scale_uncertainty)
+        if sol is None:
+            continue
+        kept = [j for k, j in enumerate(idx) if k not in outliers]
+        for j, model in zip(kept, models):
+            f = flights[j]
+            if j in candidates:
+                w, mask = omega[f.first:f.stop], keep[f.first:f.stop]
+                residuals = model - w
+                verdict = judge(float(np.sqrt(np.mean(residuals[mask] ** 2))),
+                                noise_floor(residuals[np.all(mask, axis=1)]), float(np.sqrt(np.mean(w[mask] ** 2))),
+                                sensor_rotation_fitted=sol.model.rotation)
+                if verdict.adequate:
+                    taken.append(j)
+        if len(idx) == len(ok) + len(candidates):  # every flight in this one recording: the joint fit itself
+            whole = (sol, models, outliers)
+    return taken, (whole if len(taken) == len(candidates) else None)
 
 
 def _recordings(t, omega, events) -> list:
