@@ -173,3 +173,27 @@ def test_the_model_s_per_recording_mount_and_bias_and_their_jacobian():
     k = model.names.index("rotvec_x[rec 1]")
     assert not np.any(J[:int(mask[0].sum()), k])
     warnings.simplefilter("default")
+
+
+def test_a_flight_that_does_not_fix_the_ratios_alone_is_used_in_the_joint_fit():
+    """A short racquet toss (0.5 s, 0.7 turns) follows a free motion but leaves the ratios
+    undetermined alone; its recording's other toss determines them, and the ratios are the
+    body's: the joint fit uses both (issue #29: "found and fitted")."""
+    from tumble.analysis.fit import NoFlightError
+    from tumble.analysis.fit.recording import JOINT_ONLY
+
+    rec = synthetic_recording(1009, body="racquet", tosses=2, pauses=1)
+    (a, b), _ = rec.flights
+    alone = (rec.t >= a - 1.0) & (rec.t <= b + 0.8)  # the short toss and the holds around it
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InadequateFitWarning)
+        with pytest.raises(NoFlightError, match="too little of the tumble recorded"):
+            fit_recording(rec.t[alone], rec.omega[alone])
+        fit = fit_recording(rec.t, rec.omega, events=rec.events)
+    short, long = fit.tosses
+    assert (short.status, long.status, fit.tosses_used) == ("ok", "ok", 2)
+    assert short.reason.startswith(f"{JOINT_ONLY}: too little of the tumble recorded") and long.reason == ""
+    assert abs(short.start - a) < 0.05 and abs(short.end - b) < 0.05  # the true release and catch
+    assert np.max(short.fit.ratios_std) > 0.1  # its own fit: not determined
+    assert np.all(np.abs(fit.pooled.ratios - rec.ratios) < 3 * fit.pooled.ratios_std)  # the truth
+    assert np.isnan(fit.chi2_dof)  # one flight states its own ratios: no scatter among flights to measure

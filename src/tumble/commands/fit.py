@@ -43,7 +43,6 @@ from ..analysis.fit import (
     fit_rotation,
 )
 from ..analysis.fit.flightmodel import FlightModel
-from ..io.bodyfile import load_body
 from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
 from ..io.provenance import input_sha256, provenance
@@ -63,6 +62,8 @@ _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz s
 
 
 def _body_comparison(body_source, ratios, std) -> dict:
+    from ..io.bodyfile import load_body  # here: the body's modules load only when --body is given
+
     body = load_body(body_source)
     I = np.asarray(body.principal_moments, float)
     pred = I[:2] / I[2]
@@ -146,6 +147,8 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
     recs = [load_recording(p) for p in paths]
     labels = [os.fspath(p) for p in paths]
     if body is not None:
+        from ..io.bodyfile import load_body
+
         load_body(body)  # a bad body file is bad input before anything is computed
     digests = [input_sha256(p) for p in paths]
     several = len(paths) > 1

@@ -93,10 +93,12 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     """A whole recording fitted (:func:`tumble.analysis.fit.fit_recording`).
 
     Top: the recording (each axis and ``|omega|``), its flights shaded (green: used; grey:
-    skipped, with the reason in a few words, :func:`skip_label`). Bottom left: the used
+    skipped, with the reason in a few words, :func:`skip_label`; "used in the joint fit only"
+    written at a flight that does not determine the ratios alone). Bottom left: the used
     flights side by side (the first ``max_flights``), samples as dots and the joint fit as lines.
-    Bottom right: each flight's ratios with their standard uncertainties in the triangle of
-    inertia ratios, the pooled value in black, and the triangle's planar edge.
+    Bottom right: the ratios of each flight that determines them, with their standard
+    uncertainties, in the triangle of inertia ratios, the pooled value in black, and the
+    triangle's planar edge.
 
     Parameters
     ----------
@@ -145,7 +147,7 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
         off = shift[toss.recording]
         top.axvspan(toss.start + off, toss.end + off, color="tab:green" if toss.status == "ok" else "0.6", alpha=0.25,
                     lw=0)
-        if toss.status != "ok":  # why it was left out, in a few words, at the candidate
+        if toss.reason:  # why it was left out, or that it is used in the joint fit only, in a few words
             top.text(0.5 * (toss.start + toss.end) + off, 0.98, skip_label(toss.reason), rotation=90, fontsize=6,
                      ha="center", va="top", color="0.25", transform=top.get_xaxis_transform())
     top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)" if len(series) == 1 else
@@ -169,7 +171,7 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     mid.set_xlabel("flights side by side (s within each)")
     mid.set_ylabel("omega (rad/s): samples dots, joint fit lines")
     tri = fig.add_subplot(grid[1, 2])
-    fits = [toss.fit for toss in used if toss.fit is not None]
+    fits = [toss.fit for toss in used if toss.fit is not None and not toss.reason]  # not those of the joint fit only
     if fits:
         r = np.array([f.ratios for f in fits])
         s = np.array([f.ratios_std for f in fits])

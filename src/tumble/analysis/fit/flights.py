@@ -42,7 +42,10 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    flight while still spinning (a rigid body flies free until it is caught or lands; on the
    synthetic tosses the fitted flight reaches the impulse within 0.04 s, or within 0.25 s
    where a hand's grip or a glancing impact is too gentle to show as an impulse, while a rotor
-   spinning up inside leaves it 0.2-0.8 s early).
+   spinning up inside leaves it 0.2-0.8 s early). A flight skipped only because its ratios are
+   not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
+   adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
+   may still use it (:func:`~tumble.analysis.fit.fit_recording`).
 """
 
 from __future__ import annotations
@@ -82,6 +85,12 @@ class Flight:
         The per-flight fit (``tumble.analysis.fit.solve.Solution``) when one was made.
     anchor : float
         The time its ``omega0`` refers to (inside the flight), s.
+    joinable : bool
+        A skipped flight whose samples follow a rigid body's free motion (its fit is adequate)
+        but whose ratios it does not determine alone (too little of the tumble, a stable axis,
+        the fit run to the rod limit): the ratios are the body's, shared by every flight, so
+        it may still take part in a joint fit with flights that determine them
+        (:func:`~tumble.analysis.fit.fit_recording`).
 
     Examples
     --------
@@ -104,6 +113,7 @@ class Flight:
     reason: str = ""
     solution: Solution | None = None
     anchor: float = 0.0
+    joinable: bool = False
 
     @property
     def samples(self) -> int:
@@ -438,12 +448,15 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
     if not verdict.adequate:
         return _skip(t, a, b, verdict.reason, sol)
     _, std, _, edge = ratio_summary(sol)
+    why = determination(sol, std, max_std)
     if edge == EDGES["rod"]:
-        return _skip(t, a, b, "ratios not determined: the fit ran to the rod limit of the triangle (I1 -> 0), "
-                              "where no toss of a phone, racquet or book lies (seen on short or slow flights)", sol)
-    why = determination(sol, std, max_std) or _left_path(t, omega, b, b0)
-    if why:
-        return _skip(t, a, b, why, sol)
+        why = ("ratios not determined: the fit ran to the rod limit of the triangle (I1 -> 0), where no toss of a "
+               "phone, racquet or book lies (seen on short or slow flights)")
+    rigid = _left_path(t, omega, b, b0)
+    if why:  # a free motion up to its impulse, its ratios not determined alone: it may join a joint fit
+        return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "skipped", why, sol, float(anchor), not rigid)
+    if rigid:
+        return _skip(t, a, b, rigid, sol)
     return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "ok", "", sol, float(anchor))
 
 

@@ -57,7 +57,10 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
     groups = np.unique(np.asarray(groups, int), return_inverse=True)[1].reshape(-1)
     sols = [f.solution for f in used]
     rat = np.array([ratio_summary(s)[0] for s in sols])
-    near = np.sum((rat - np.median(rat, axis=0)) ** 2, axis=1)
+    # the reference among the flights that determine the ratios (not one joined for the joint fit only)
+    own = np.array([not getattr(f, "joinable", False) for f in used])
+    own = own if own.any() else np.ones(len(used), bool)
+    near = np.sum((rat - np.median(rat[own], axis=0)) ** 2, axis=1) + np.where(own, 0.0, np.inf)
     ref = int(np.argmin(near))
     kinds = Counter(s.model.drag for s in sols)
     kind = drag if drag != "auto" else kinds.most_common(1)[0][0]
@@ -91,8 +94,11 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         def fun(w, one=one, j=j, n=n, shared=shared):
             return (one.sensor(np.concatenate([shared, w]))[0] - data[j, :n])[mask[j, :n]]
 
-        with np.errstate(all="ignore"):
-            fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
+        try:
+            with np.errstate(all="ignore"):
+                fitted = least_squares(fun, P0[model.ns + 3 * j:model.ns + 3 * j + 3], max_nfev=50)
+        except ValueError:  # not finite at the start: the shared drag, integrated back from this
+            return None, [], []  # flight's anchor to its first samples, diverges: astray (caller pools)
         P0[model.ns + 3 * j:model.ns + 3 * j + 3] = fitted.x
         # a gross outlier: its own ratios five standard uncertainties (its own and the
         # reference's) from the reference's; the Birge ratio deals with the rest. The
@@ -103,7 +109,9 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         # beyond five (chi^2 > 25; benchmarks/fit_coverage.py), with both 1.4 %.
         dv = rat[j] - rat[ref]
         C = public_covariance(sols[j])[2][:2, :2] + public_covariance(sols[ref])[2][:2, :2]
-        agree.append(bool(dv @ np.linalg.pinv(C) @ dv <= 25.0))
+        # a flight joined for the joint fit only states no ratios of its own to compare (its
+        # residuals under the joint fit are its test: tumble.analysis.fit.recording._joined)
+        agree.append(bool(not own[j] or dv @ np.linalg.pinv(C) @ dv <= 25.0))
     keep_idx = [j for j, ok in enumerate(agree) if ok]
     if len(keep_idx) < len(used):
         if len(keep_idx) < 2:
@@ -111,7 +119,10 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         sub = [used[j] for j in keep_idx]
         sol, models, _ = joint_solution(sub, groups[keep_idx], t, omega, keep, drag, scale_uncertainty)
         return sol, models, [j for j in range(len(used)) if not agree[j]]
-    sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
+    try:
+        sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
+    except (ValueError, np.linalg.LinAlgError):  # the solver failed numerically: astray, as below
+        return None, [], []
     own = np.sqrt(sum(s.ssr for s in sols) / sum(s.m for s in sols))
     if np.sqrt(sol.ssr / sol.m) > 2.0 * own + 0.01 * np.sqrt(np.mean(data[mask] ** 2)):
         return None, [], []  # the joint fit went astray: the caller pools the flights' own fits

@@ -7,6 +7,13 @@ gives each flight its own ``omega0``. Several recordings (a list of them) are po
 fit: the ratios and the drag shared by all, the rotation and the bias each recording's own (a
 phone strapped on again, a gyroscope started again).
 
+A flight that follows a free motion but does not determine both ratios alone (too little of
+the tumble, a stable axis, a fit run to the rod limit:
+:attr:`~tumble.analysis.fit.flights.Flight.joinable`) still constrains the body's ratios with
+the others: the joint fit takes it when its recording has a flight that determines them and the
+joint fit describes its samples (:func:`_joined`); its toss is ``"ok"``, its reason "used in the
+joint fit only: ..." (its own ratios, stated with it, are not determined).
+
 The pooled uncertainty: the joint fit's covariance (each flight's residuals scaled for their own
 autocorrelation; flights independent of one another), its statistical part multiplied by the
 Birge ratio squared ``chi^2 / dof`` when the flights' own ratios scatter about the pooled ones
@@ -24,7 +31,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ...typing import ArrayLike
-from .adequacy import InadequateFitWarning
+from .adequacy import InadequateFitWarning, judge
 from .flightmodel import FlightModel
 from .flights import Flight, find_flights, pause_times
 from .joint import first_flight_view, joint_solution, stack_flights
@@ -37,7 +44,7 @@ from .result import (
 )
 from .single import _check, _check_options, saturation_mask
 from .solve import Solution
-from .uncertainty import SCALE_UNCERTAINTY, birge_chi2
+from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
 __all__ = ["NoFlightError", "RecordingFit", "Toss", "fit_recording"]
 
@@ -313,6 +320,14 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         raise NoFlightError(f"no usable flight among {len(flights)} found: "
                             + ", ".join(f"{n} {r}" for r, n in why.most_common()))
     t0, w0 = series[0]
+    joined, first_joint = _joined(flights, groups, t, omega, keep, drag, scale_uncertainty)
+    if joined:
+        tosses = list(tosses)
+        for j in joined:
+            flights[j] = replace(flights[j], status="ok", reason=f"{JOINT_ONLY}: {flights[j].reason}")
+            tosses[j] = _toss(flights[j], t, omega, keep, groups[j])
+        tosses = tuple(tosses)
+        used = [f for f in flights if f.status == "ok"]
     number = {id(f): k for k, f in enumerate(flights)}  # a flight's index in the tosses
     if len(used) == 1:
         k = number[id(used[0])]
@@ -321,7 +336,14 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         return RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series, sol.ssr, sol.m,
                             own)
     used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
-    joint, models, outliers = joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
+    joint, models, outliers = first_joint or joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
+    if joint is None and joined:  # no joint fit to use them in: skipped after all, with their own reasons
+        for j in joined:
+            flights[j] = replace(flights[j], status="skipped", reason=flights[j].reason[len(JOINT_ONLY) + 2:])
+        tosses = tuple(replace(toss, status="skipped", reason=flights[j].reason) if j in joined else toss
+                       for j, toss in enumerate(tosses))
+        used = [f for f in flights if f.status == "ok"]
+        used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     split = _split_verdict(used, outliers)
     if outliers:
         bad = {id(used[j]) for j in outliers}
@@ -339,6 +361,50 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
         fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
     return fit
+
+
+#: The reason's first words of a flight used in the joint fit only (:func:`_joined`).
+JOINT_ONLY = "used in the joint fit only"
+
+
+def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[list[int], tuple | None]:
+    """The joinable flights (:attr:`~tumble.analysis.fit.flights.Flight.joinable`: a free motion
+    whose ratios it does not determine alone) that the joint fit takes, and that joint fit's
+    result when it is the one to keep (every candidate taken).
+
+    A flight's ratios are the body's, so a flight that follows a free motion constrains them
+    jointly with the others even when it cannot fix both alone (a likelihood is a product over
+    flights). It is taken when its recording has a flight that determines them, and when the
+    joint fit of that recording's flights describes its samples by the test every fit meets
+    (:func:`~tumble.analysis.fit.adequacy.judge`: the residuals beyond the noise within
+    :data:`~tumble.analysis.fit.adequacy.MISFIT_LIMIT` of the rates): its samples follow a free
+    motion of this body, with this recording's mount, bias and drag, not only of some body."""
+    ok = [j for j, f in enumerate(flights) if f.status == "ok"]
+    groups_ok = {groups[j] for j in ok}
+    candidates = [j for j, f in enumerate(flights) if f.joinable and groups[j] in groups_ok]
+    if not candidates:
+        return [], None
+    taken, whole = [], None
+    for r in sorted({groups[j] for j in candidates}):  # judged with its own recording's flights (fast when pooling)
+        idx = sorted(j for j in ok + candidates if groups[j] == r)
+        sol, models, outliers = joint_solution([flights[j] for j in idx], [r] * len(idx), t, omega, keep, drag,
+                                               scale_uncertainty)
+        if sol is None:
+            continue
+        kept = [j for k, j in enumerate(idx) if k not in outliers]
+        for j, model in zip(kept, models):
+            f = flights[j]
+            if j in candidates:
+                w, mask = omega[f.first:f.stop], keep[f.first:f.stop]
+                residuals = model - w
+                verdict = judge(float(np.sqrt(np.mean(residuals[mask] ** 2))),
+                                noise_floor(residuals[np.all(mask, axis=1)]), float(np.sqrt(np.mean(w[mask] ** 2))),
+                                sensor_rotation_fitted=sol.model.rotation)
+                if verdict.adequate:
+                    taken.append(j)
+        if len(idx) == len(ok) + len(candidates):  # every flight in this one recording: the joint fit itself
+            whole = (sol, models, outliers)
+    return taken, (whole if len(taken) == len(candidates) else None)
 
 
 def _recordings(t, omega, events) -> list:
@@ -399,12 +465,13 @@ def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
     rat_joint = ratio_summary(sol)[0]
     values, covs = [], []
-    for f in used:
+    for f in [f for f in used if not f.joinable] or used:  # the flights used in the joint fit only state no ratios
         _, v, c = public_covariance(f.solution, statistical=True)
         values.append(v[:2])
         covs.append(c[:2, :2])
     chi2, dof = birge_chi2(np.array(values), np.array(covs), rat_joint)
-    scale = max(1.0, chi2 / dof)
+    chi2_dof = chi2 / dof if len(values) > 1 else float("nan")  # one flight's own ratios: no scatter to measure
+    scale = max(1.0, chi2_dof) if len(values) > 1 else 1.0
     # inflate the statistical part by chi2/dof, keep the systematic part as it is
     cov = sol.cov_stat * scale + (np.nan_to_num(sol.cov) - np.nan_to_num(sol.cov_stat))
     inflated = Solution(sol.model, sol.P, cov, sol.cov_stat * scale, sol.residuals, sol.omega_model,
@@ -418,7 +485,7 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
-    return RecordingFit(tosses, pooled, chi2 / dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
+    return RecordingFit(tosses, pooled, chi2_dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
 
 
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
@@ -426,6 +493,7 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     cannot be made): statistical part scaled by the Birge ratio, the systematic part the
     flights' mean (it is common to them, not averaged down)."""
     values, stats, totals = [], [], []
+    used = [f for f in used if not f.joinable] or used  # a weighted mean of the flights' own ratios
     for f in used:
         _, v, c = public_covariance(f.solution, statistical=True)
         _, _, ct = public_covariance(f.solution)
