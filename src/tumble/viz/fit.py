@@ -89,6 +89,13 @@ def skip_label(reason: str) -> str:
     return reason.split(":")[0].split(" (")[0].strip() or "skipped"
 
 
+#: The size of :func:`figure_recording`'s figure, inches.
+FIGURE_SIZE = (12.0, 8.0)
+#: Its margins, inches: left, right (the legend), top (the titles), bottom, between the rows (the
+#: top panel's axis label), between the columns (the triangle's tick labels and axis label).
+LAYOUT = (0.8, 0.9, 0.62, 0.5, 0.65, 0.9)
+
+
 def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flights: int = 12) -> Figure:
     """A whole recording fitted (:func:`tumble.analysis.fit.fit_recording`).
 
@@ -126,8 +133,18 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     >>> bool(np.allclose(pooled.lines[0].get_xydata(), [fit.pooled.ratios]))  # the pooled (I1/I3, I2/I3)
     True
     """
-    fig = fig if fig is not None else new_figure((12, 8))
-    grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2])
+    title_y = None
+    if fig is None:  # laid out by hand (constrained layout draws the figure twice when it is saved)
+        fig = new_figure(FIGURE_SIZE, layout="none")
+        width, height = FIGURE_SIZE
+        left, right, top, bottom, between_rows, between_columns = LAYOUT
+        grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2], left=left / width, right=1 - right / width,
+                                top=1 - top / height, bottom=bottom / height,
+                                hspace=between_rows / (0.5 * (height - top - bottom - between_rows)),
+                                wspace=between_columns / ((width - left - right - 2 * between_columns) / 3))
+        title_y = 1 - 0.08 / height
+    else:
+        grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.2])
     top = fig.add_subplot(grid[0, :])
     t0 = rec.t[0]
     series = rec.recordings or ((rec.t, rec.omega),)
@@ -189,5 +206,6 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
     tri.legend(fontsize=7, loc="best")
     chi = f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""
     fig.suptitle(f"pooled I1/I3 = {p.ratios[0]:.4f} \u00b1 {p.ratios_std[0]:.2g},  I2/I3 = {p.ratios[1]:.4f} "
-                 f"\u00b1 {p.ratios_std[1]:.2g}  ({rec.tosses_used} flights{chi}; drag {p.drag})", fontsize=10)
+                 f"\u00b1 {p.ratios_std[1]:.2g}  ({rec.tosses_used} flights{chi}; drag {p.drag})", fontsize=10,
+                 **({} if title_y is None else {"y": title_y, "va": "top"}))
     return fig
