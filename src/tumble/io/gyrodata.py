@@ -59,6 +59,33 @@ def _separator(line: str) -> str | None:
     return None
 
 
+def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int, str]], str | None, list[str]]:
+    """A delimited text's data lines (line number, text; blank and ``#`` lines left out), its
+    separator (None: white space) and its first line's cells: what every table reader starts with.
+    Space-separated, ``t (ms)`` is one header cell (a name and its unit)."""
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
+    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise ValueError(f"{label}: no data; expected {expected}")
+    sep = _separator(lines[0][1])
+    head = _split(lines[0][1], sep)
+    while len(head) > 1 and head[-1] == "":  # a trailing separator
+        head.pop()
+    if sep is None:
+        merged: list[str] = []
+        for cell in head:
+            if merged and cell[:1] in ("(", "[") and not _NUMBER.match(merged[-1]):
+                merged[-1] += " " + cell
+            else:
+                merged.append(cell)
+        head = merged
+    return lines, sep, head
+
+
 def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
     """Read a gyroscope record: times and angular velocity along the sensor's axes.
 
@@ -121,28 +148,9 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
     >>> read.rates, read.ignored, read.rows, read.sample_rate
     (('gx', 'gy', 'gz'), ('|omega|',), 2, 500.0)
     """
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise ValueError(f"{label}: no data; expected a phyphox gyroscope export or columns t, wx, wy, wz")
-    first_no, first = lines[0]
-    sep = _separator(first)
+    lines, sep, head = _first_lines(raw, label, "a phyphox gyroscope export or columns t, wx, wy, wz")
+    first_no = lines[0][0]
     decimal_comma = sep == ";"
-    head = _split(first, sep)
-    while len(head) > 1 and head[-1] == "":  # a trailing separator
-        head.pop()
-    if sep is None:  # space-separated: "t (ms)" is one column's name and unit
-        merged: list[str] = []
-        for cell in head:
-            if merged and cell[:1] in ("(", "[") and not _NUMBER.match(merged[-1]):
-                merged[-1] += " " + cell
-            else:
-                merged.append(cell)
-        head = merged
     columns = [0, 1, 2, 3]
     scale = [1.0, 1.0, 1.0, 1.0]
     names = {"time": "column 1", "time_unit": "s", "rates": ["column 2", "column 3", "column 4"],

@@ -40,7 +40,7 @@ from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..validation import read_input_file
 from .atomic import atomic_write_text
 from .gyrocolumns import _UNIT, RATE_UNITS, _factor, _name, match_header
-from .gyrodata import _NUMBER, _check_order, _separator, _split
+from .gyrodata import _NUMBER, _check_order, _first_lines, _split
 
 __all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
            "read_throw", "throw_csv", "write_throw"]
@@ -198,29 +198,10 @@ def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None
     ...
     ValueError: a1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column; allowed: rotor: rotor, rotor speed, ...
     """
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise ValueError(f"{label}: no data; expected columns t, wx, wy, wz, rotor, ax, ay, az")
-    first_no, first = lines[0]
-    sep = _separator(first)
+    lines, sep, head = _first_lines(raw, label, "columns t, wx, wy, wz, rotor, ax, ay, az")
+    first_no = lines[0][0]
     decimal_comma = sep == ";"
-    head = _split(first, sep)
-    while len(head) > 1 and head[-1] == "":
-        head.pop()
     if not all(_NUMBER.match(c) for c in head):  # a header line
-        if sep is None:  # space-separated: "t (ms)" is one column's name and unit
-            merged: list[str] = []
-            for cell in head:
-                if merged and cell[:1] in ("(", "["):
-                    merged[-1] += " " + cell
-                else:
-                    merged.append(cell)
-            head = merged
         columns, scale, units = _match(head, label, first_no)
         names = [head[j] for j in columns]
         ignored = tuple(h for j, h in enumerate(head) if j not in columns)
