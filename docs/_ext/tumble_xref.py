@@ -19,7 +19,6 @@ code too: without intersphinx (it downloads inventories) they cannot be linked o
 
 from __future__ import annotations
 
-import importlib
 import inspect
 import re
 import types
@@ -27,51 +26,9 @@ from typing import Any
 
 import tumble_api
 
-_MISSING = object()
-
-
-def _import_path(path: str) -> Any:
-    """The object at a dotted path, walking attributes first (a package's ``simulate`` is its
-    function, not the module of that name) and importing submodules where an attribute is
-    missing; then, where that fails, the longest importable module first (the module
-    ``tumble.dynamics.simulate`` behind the function of that name); ``_MISSING`` when none."""
-    found = _walk(path)
-    if found is _MISSING:
-        parts = path.split(".")
-        for n in range(len(parts) - 1, 1, -1):
-            try:
-                module = importlib.import_module(".".join(parts[:n]))
-            except ImportError:
-                continue
-            found = _walk_from(module, parts[n:], ".".join(parts[:n]))
-            break
-    return found
-
-
-def _walk(path: str) -> Any:
-    parts = path.split(".")
-    try:
-        obj: Any = importlib.import_module(parts[0])
-    except ImportError:
-        return _MISSING
-    return _walk_from(obj, parts[1:], parts[0])
-
-
-def _walk_from(obj: Any, parts: list[str], prefix: str) -> Any:
-    for part in parts:
-        prefix = f"{prefix}.{part}"
-        value = getattr(obj, part, _MISSING)
-        if value is _MISSING and isinstance(obj, types.ModuleType):
-            try:
-                value = importlib.import_module(prefix)
-            except ImportError:
-                value = _MISSING
-        if value is _MISSING and inspect.isclass(obj) and part in getattr(obj, "__annotations__", {}):
-            value = (obj, part)  # a dataclass field without a default: a member of its class
-        if value is _MISSING:
-            return _MISSING
-        obj = value
-    return obj
+#: The one walk from a dotted path to its object, with its "nothing there" marker (tumble_api).
+_import_path = tumble_api.lookup
+_MISSING = tumble_api._MISSING
 
 
 class Resolver:
