@@ -412,6 +412,15 @@ def _check_count(name: str, value, low: int = 0) -> int:
     return int(value)
 
 
+def _check_counts(part: str, k, n) -> tuple[int, int]:
+    """``n`` runs (``cases``, >= 1) and ``k`` of them with a property (named ``part``), ``k <= n``."""
+    n = _check_count("cases", n, 1)
+    k = _check_count(part, k)
+    if k > n:
+        raise ValueError(f"{part} = {k} must be at most cases = {n}")
+    return k, n
+
+
 def success_lower_bound(cases: int, failures: int, confidence: float) -> float:
     """Lower confidence bound on the probability of success from ``cases`` independent runs.
 
@@ -454,10 +463,7 @@ def success_lower_bound(cases: int, failures: int, confidence: float) -> float:
     >>> round(float(binom.sf(97, 100, p)), 9)  # at the bound, P(98 or more successes) = 1 - 0.95
     0.05
     """
-    n = _check_count("cases", cases, 1)
-    k = _check_count("failures", failures)
-    if k > n:
-        raise ValueError(f"failures = {k} must be at most cases = {n}")
+    k, n = _check_counts("failures", failures, cases)
     c = _check_confidence(confidence)
     if k == n:
         return 0.0
@@ -503,10 +509,7 @@ def fraction_interval(cases: int, hits: int, confidence: float = 0.95) -> tuple[
     >>> fraction_interval(10, 0)[0], round(fraction_interval(10, 0)[1], 4)   # none of 10: up to 30.8 %
     (0.0, 0.3085)
     """
-    n = _check_count("cases", cases, 1)
-    k = _check_count("hits", hits)
-    if k > n:
-        raise ValueError(f"hits = {k} must be at most cases = {n}")
+    k, n = _check_counts("hits", hits, cases)
     c = _check_confidence(confidence)
     from scipy.stats import beta
 
