@@ -29,19 +29,36 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Vector3
 
-__all__ = ["drag_omega", "drag_torque"]
+__all__ = ["drag_component", "drag_omega", "drag_torque"]
+
+
+def drag_component(linear: Any, quadratic: Any, w: Any) -> Any:
+    """The drag torque about one axis, ``-(a + b |w|) w``, N m (module docstring): the law written
+    once, over floats (or arrays, elementwise: a float in a kernel, an array in numpy), for the
+    Python path and every compiled kernel.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.drag import drag_component
+    >>> drag_component(0.1, 1.0, 2.0), drag_component(0.1, 1.0, -2.0)   # always against the rotation
+    (-4.2, 4.2)
+    """
+    return -(linear + quadratic * abs(w)) * w
+
+
+_drag = drag_component  # compiled by _compiled(), with the kernels that call it
 
 
 def _rate(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, out: FloatArray) -> None:
-    out[0] = ((I[1] - I[2]) * w[1] * w[2] - (lin[0] + quad[0] * abs(w[0])) * w[0]) / I[0]
-    out[1] = ((I[2] - I[0]) * w[2] * w[0] - (lin[1] + quad[1] * abs(w[1])) * w[1]) / I[1]
-    out[2] = ((I[0] - I[1]) * w[0] * w[1] - (lin[2] + quad[2] * abs(w[2])) * w[2]) / I[2]
+    out[0] = ((I[1] - I[2]) * w[1] * w[2] + _drag(lin[0], quad[0], w[0])) / I[0]
+    out[1] = ((I[2] - I[0]) * w[2] * w[0] + _drag(lin[1], quad[1], w[1])) / I[1]
+    out[2] = ((I[0] - I[1]) * w[0] * w[1] + _drag(lin[2], quad[2], w[2])) / I[2]
 
 
 def _advance(
@@ -102,6 +119,7 @@ def _compiled() -> Callable[..., FloatArray]:
     each is compiled against the compiled ones it calls."""
     from ...jit import jit
 
+    globals()["_drag"] = jit(inline="always")(drag_component)
     names = ("_rate", "_advance", "_integrate")
     for name in names:
         globals()[name] = jit()(globals()[name])
@@ -180,4 +198,4 @@ def drag_torque(omega: ArrayLike, linear: ArrayLike | None = None, quadratic: Ar
     w = np.asarray(omega, float)
     a = 0.0 if linear is None else np.asarray(linear, float)
     b = 0.0 if quadratic is None else np.asarray(quadratic, float)
-    return np.asarray(-(a + b * np.abs(w)) * w, float)
+    return np.asarray(drag_component(a, b, w), float)

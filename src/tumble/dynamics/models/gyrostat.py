@@ -30,16 +30,19 @@ from typing import cast
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray
+from .drag import drag_component
 
 __all__ = ["gyrostat_omega"]
+
+_drag = drag_component  # compiled by _compiled(), with the kernels that call it
 
 
 def _rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, w: FloatArray, out: FloatArray) -> None:
     for i in range(3):
         w[i] = Iinv[i, 0] * (L[0] - h[0]) + Iinv[i, 1] * (L[1] - h[1]) + Iinv[i, 2] * (L[2] - h[2])
-    out[0] = L[1] * w[2] - L[2] * w[1] - quad[0] * abs(w[0]) * w[0]
-    out[1] = L[2] * w[0] - L[0] * w[2] - quad[1] * abs(w[1]) * w[1]
-    out[2] = L[0] * w[1] - L[1] * w[0] - quad[2] * abs(w[2]) * w[2]
+    out[0] = L[1] * w[2] - L[2] * w[1] + _drag(0.0, quad[0], w[0])
+    out[1] = L[2] * w[0] - L[0] * w[2] + _drag(0.0, quad[1], w[1])
+    out[2] = L[0] * w[1] - L[1] * w[0] + _drag(0.0, quad[2], w[2])
 
 
 def _integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray, h: FloatArray,
@@ -78,6 +81,7 @@ def _compiled() -> Callable[..., FloatArray]:
     """The kernel compiled by numba (``cache=True``) on first use (as :mod:`~tumble.dynamics.models.drag`)."""
     from ...jit import jit
 
+    globals()["_drag"] = jit(inline="always")(drag_component)
     for name in ("_rate", "_integrate"):
         globals()[name] = jit()(globals()[name])
     return cast("Callable[..., FloatArray]", globals()["_integrate"])
