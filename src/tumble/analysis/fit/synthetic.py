@@ -38,13 +38,14 @@ What it reproduces, and where each trait comes from:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
+from .accelsynth import SyntheticAccel, synthetic_accel
 from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise
 
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
@@ -174,6 +175,10 @@ class SyntheticRecording:
         How each flight ended (``"catch"``, ``"hand"`` or ``"landing"``).
     rotor : float
         The internal rotor's final momentum over ``|L|`` (0: a rigid body).
+    accel : SyntheticAccel or None
+        The accelerometer (``accel=True``; :mod:`~tumble.analysis.fit.accelsynth`): its samples
+        ``accel.f`` (n, 3), m/s^2, sensor axes, at the gyroscope's times, its offset from the
+        centre of mass and its bias.
 
     Examples
     --------
@@ -199,6 +204,7 @@ class SyntheticRecording:
     rate: float = 100.0
     endings: tuple = ()
     rotor: float = 0.0
+    accel: SyntheticAccel | None = None
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines
@@ -258,7 +264,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
                         stable: int = 0, flex: bool = True, drag: float = 1.0,
                         scale_error: float = 0.005, ending: str = "catch", after: tuple[float, float] = (0.3, 1.0),
                         after_spin: tuple[float, float] = (5.0, 20.0), hand: tuple[float, float] = (0.05, 0.4),
-                        rotor: float = 0.0) -> SyntheticRecording:
+                        rotor: float = 0.0, accel: bool = False) -> SyntheticRecording:
     """A whole phone recording of ``tosses`` tosses of a body (module docstring).
 
     Parameters
@@ -302,6 +308,9 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         An internal rotor spinning up during each flight, its final axial momentum as a fraction
         of the body's ``|L|`` at release (0: a rigid body): the body is a gyrostat
         (:func:`~tumble.analysis.fit.endings.gyrostat_flight`).
+    accel : bool
+        Whether the phone's accelerometer is recorded too (:mod:`~tumble.analysis.fit.accelsynth`;
+        its own random stream: the gyroscope's samples are the same either way).
 
     Returns
     -------
@@ -381,6 +390,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         keep &= ~((tt > g0) & (tt < g0 + rng.uniform(0.05, 0.2)))
     tt = tt[keep]
     w_body = np.zeros((len(tt), 3))  # principal frame
+    wdot = np.full((len(tt), 3), np.nan)  # its exact derivative in the flights (accel)
     held = np.stack([smooth_noise(rng, len(tt), dt, rng.uniform(*hand), 1.5) for _ in range(3)], axis=1)
     tremor_f = rng.uniform(8, 12)
     tremor = rng.uniform(0.005, 0.03) * np.sin(2 * np.pi * tremor_f * tt[:, None] + rng.uniform(0, 2 * np.pi, 3))
@@ -396,14 +406,16 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
             wob = np.sin(np.pi * x)[:, None] * rng.normal(0, 0.15 * np.linalg.norm(w0), 3)
             w_body[sel] = ramp[:, None] * w0 + (1 - ramp)[:, None] * held[sel] + wob
         elif kind == "flight":
+            n = len(tau)  # with the accelerometer, also at tau +- 1e-5 s: the dense output's derivative
+            pts = np.r_[tau, length, tau + 1e-5, tau - 1e-5] if accel else np.r_[tau, length]
             if rotor:
                 h_final = rotor * float(np.linalg.norm(I * w0))
-                w = gyrostat_flight(body, w0, length, np.r_[tau, length], _unit(extra), h_final,
+                w = gyrostat_flight(body, w0, length, pts, _unit(extra), h_final,
                                     extra.uniform(0.6, 1.0) * length, lambda x: plate_drag_torque(body, x))
             else:
-                w = _flight(body, w0, length, np.r_[tau, length])
-            last_flight_end = w[-1]
-            w = w[:-1]
+                w = _flight(body, w0, length, pts)
+            last_flight_end = w[n]
+            w, tau = np.delete(w, n, axis=0), np.delete(pts, n)
             if flex:
                 f = rng.uniform(15, 35)
                 amp = rng.uniform(0.01, 0.06)
@@ -411,7 +423,9 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
                 axis = rng.normal(size=3)
                 axis /= np.linalg.norm(axis)
                 w = w + (amp * np.exp(-tau / decay) * np.sin(2 * np.pi * f * tau + rng.uniform(0, 6.3)))[:, None] * axis
-            w_body[sel] = w
+            w_body[sel] = w[:n]
+            if accel:
+                wdot[sel] = (w[n:2 * n] - w[2 * n:]) / 2e-5
         elif kind == "hand":
             w_body[sel] = after_hand(extra, tau, length, last_flight_end, w0, held[sel] + tremor[sel], dt)
         elif kind == "landing":
@@ -452,9 +466,11 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         events += [("PAUSE", te), ("START", te)]
     t_out = (tt - shift)[keep]
     w_out = w_s[keep]
+    acc = synthetic_accel(np.random.default_rng([seed, 29, 1]), tt, w_body, wdot, segments, R, drag) if accel else None
     return SyntheticRecording(t=t_out, omega=w_out, flights=flights - f_shift[:, None], omega0=np.array(omega0s),
                               ratios=I[:2] / I[2], sensor_rotation=mount, bias=b, events=events, body=body, rate=rate,
-                              endings=tuple(ends), rotor=rotor)
+                              endings=tuple(ends), rotor=rotor,
+                              accel=None if acc is None else replace(acc, f=acc.f[keep]))
 
 
 #: The shipped example (``examples/data/racquet_tosses.csv``): its generator's arguments.

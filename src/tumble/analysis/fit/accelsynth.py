@@ -1,0 +1,211 @@
+"""The accelerometer of a synthetic recording (:func:`~tumble.analysis.fit.synthetic.synthetic_recording`
+with ``accel=True``): the specific force a phone's raw accelerometer reads through the whole record.
+
+A raw accelerometer reads ``f = a - g`` in its own axes (Titterton & Weston, *Strapdown Inertial
+Navigation Technology*, 2004, sec. 3.2). At the sensor, ``r`` from the centre of mass (fixed in
+the body: 2-10 cm on a phone or a racquet held at its handle), ``a = a_cm + omega' x r + omega x
+(omega x r)`` (Goldstein, Poole & Safko 2002, eq. 4.104;
+:func:`~tumble.analysis.fit.freefall.rigid_acceleration`), so
+
+    ``f = R^T (a_cm - g) + omega' x r + omega x (omega x r)``,
+
+``R`` the attitude (body to world), integrated from the true body rates from a random attitude
+of the first hold; ``a_cm - g`` is the contact force per unit mass, drawn per phase:
+
+- **hold**: ``-g`` (the hand carries the weight) plus the hand's motion, 0.5-2 m/s^2 below ~3 Hz;
+- **throw** (0.15-0.3 s): the hand's push up and forward, 1-4 g at its peak, its contact force
+  falling to zero over the last tenth before the release;
+- **free flight**: only the air, ``-k |v| v`` with ``v`` the centre of mass's velocity (thrown up
+  for half the flight time) and ``k`` such that it is 0.02-0.15 m/s^2 (Hoerner, *Fluid-Dynamic
+  Drag*, 1965: a phone's ``C_D A / 2m`` at a few m/s), and none without air (``drag=0``);
+- **catch**: a jolt of 20-60 m/s^2 over the catch, then the hand's hold;
+- **caught and turned in the hand**: the grip's jolt, then the hand's force, 2-5 m/s^2, and ``-g``;
+- **landing**: an impact of 50-300 m/s^2 over 5-20 ms (its impulse spread over two samples at
+  least, as the accelerometer's own low-pass filter does), a smaller spike at each bounce (where
+  the true omega jumps), then the table's normal force ``-g`` and the rolling, 0.3-1 m/s^2.
+
+``omega'`` is the flight's exact derivative where the generator has it (the integrator's dense
+output) and a central difference of the true rates elsewhere (contact phases, where the contact
+force dominates). The sensor (Bosch BMI160/BMI270, ST LSM6DSO datasheets: noise density
+150-180 ug/sqrt(Hz)): white noise of 0.01-0.04 m/s^2 per sample (above the datasheet, as phones
+show), a bias of 0.05-0.2 m/s^2 per axis, scale errors of 0.5 %, quantisation of 16 g / 2^15 and
+clipping at the full scale of +-16 g. Everything is drawn from its own random stream
+(``numpy.random.default_rng([seed, 29, 1])``), so a recording made without the accelerometer is
+the same as before, sample for sample.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...dynamics.environment.earth import STANDARD_GRAVITY
+from .endings import _unit, smooth_noise
+from .freefall import rigid_acceleration
+
+__all__ = ["ACCEL_FULL_SCALE", "SyntheticAccel", "phyphox_accel_csv", "synthetic_accel"]
+
+#: The accelerometer's full scale, +-16 g, m/s^2.
+ACCEL_FULL_SCALE = 16.0 * STANDARD_GRAVITY
+_UP = np.array([0.0, 0.0, 1.0])
+
+
+@dataclass(frozen=True)
+class SyntheticAccel:
+    """A synthetic accelerometer's samples and the truth behind them.
+
+    Attributes
+    ----------
+    f : ndarray, shape (n, 3)
+        Specific force, sensor axes, m/s^2 (noise, bias, scale, quantisation, clipping).
+    offset : ndarray, shape (3,)
+        The sensor's position from the centre of mass, sensor axes, m.
+    bias : ndarray, shape (3,)
+        The accelerometer's bias, sensor axes, m/s^2.
+    noise : float
+        White noise per sample, m/s^2.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.accelsynth import SyntheticAccel
+    >>> SyntheticAccel(np.zeros((4, 3)), np.array([0.05, 0.0, 0.0]), np.zeros(3), 0.02).f.shape
+    (4, 3)
+    """
+
+    f: np.ndarray
+    offset: np.ndarray
+    bias: np.ndarray
+    noise: float
+
+
+def _attitude(rng: np.random.Generator, t: np.ndarray, w: np.ndarray) -> Rotation:
+    """Body-to-world attitude at ``t``, integrated from the body rates ``w`` (midpoint rule)."""
+    steps = Rotation.from_rotvec(0.5 * (w[1:] + w[:-1]) * np.diff(t)[:, None]).as_quat()
+    q = np.empty((len(t), 4))
+    q[0] = Rotation.random(random_state=rng).as_quat()
+    now = Rotation.from_quat(q[0])
+    for k, s in enumerate(steps):
+        now = now * Rotation.from_quat(s)
+        q[k + 1] = now.as_quat()
+    return Rotation.from_quat(q)
+
+
+def _bump(x: np.ndarray) -> np.ndarray:
+    return np.sin(np.pi * np.clip(x, 0.0, 1.0))
+
+
+def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segments, dt: float,
+             drag: float) -> np.ndarray:
+    """``a_cm - g`` (world axes, m/s^2) per phase (module docstring)."""
+    g = STANDARD_GRAVITY
+    n = len(tt)
+    hand = np.stack([smooth_noise(rng, n, dt, rng.uniform(0.5, 2.0) / np.sqrt(3), 1.5) for _ in range(3)], axis=1)
+    F = g * _UP + hand
+    v0 = None
+    for kind, t0, length, _ in segments:
+        sel = (tt >= t0) & (tt < t0 + length)
+        tau = tt[sel] - t0
+        x = tau / length
+        if kind == "throw":
+            push = rng.uniform(1.0, 4.0) * g * _unit_up(rng)
+            taper = np.clip((1.0 - x) / 0.1, 0.0, 1.0)[:, None]
+            F[sel] = (g * _UP + _bump(x)[:, None] * push + hand[sel]) * taper
+        elif kind == "flight":
+            v0 = np.r_[rng.uniform(-1.0, 1.0, 2), 0.5 * g * length]  # up for half the flight, m/s
+            v = v0 - g * _UP * tau[:, None]
+            k = rng.uniform(0.02, 0.15) / float(np.dot(v0, v0)) * drag
+            F[sel] = -k * np.linalg.norm(v, axis=1, keepdims=True) * v
+        elif kind in ("catch", "hand", "landing"):
+            grip = min(length, rng.uniform(0.04, 0.12)) if kind != "landing" else rng.uniform(0.005, 0.02)
+            grip = max(grip, 2.0 * dt)  # an impulse spread over two samples at least
+            peak = (rng.uniform(20.0, 60.0) if kind != "landing" else rng.uniform(50.0, 300.0))
+            jolt = peak * _bump(tau / grip)[:, None] * _unit_up(rng)
+            held = np.clip(tau / grip, 0.0, 1.0)[:, None] * (g * _UP)
+            extra = hand[sel] * (rng.uniform(2.0, 5.0) / 1.25 if kind == "hand" else 1.0)
+            if kind == "landing":  # the table: -g and the rolling; a spike at each bounce
+                extra = smooth_noise(rng, int(sel.sum()), dt, rng.uniform(0.3, 1.0), 3.0)[:, None] * _unit(rng)
+                jump = np.r_[0.0, np.linalg.norm(np.diff(w_body[sel], axis=0), axis=1)]
+                for kb in np.flatnonzero(jump > 5.0 * np.median(jump) + 1.0):
+                    jolt += (rng.uniform(0.2, 0.5) * peak * _bump((tau - tau[kb] + dt) / (2 * dt)))[:, None] * \
+                        _unit_up(rng)
+            F[sel] = held + jolt + extra
+    return F
+
+
+def _unit_up(rng: np.random.Generator) -> np.ndarray:
+    """A direction within about 45 deg of up (a push, a catch, a bounce)."""
+    d = _UP + 0.6 * rng.normal(size=3)
+    return d / np.linalg.norm(d)
+
+
+def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, wdot_body: np.ndarray, segments,
+                    sensor: np.ndarray, drag: float = 1.0) -> SyntheticAccel:
+    """The accelerometer of a synthetic recording (module docstring).
+
+    Parameters
+    ----------
+    rng : numpy Generator
+        The accelerometer's own random stream.
+    tt : ndarray, shape (n,)
+        Sample times, s.
+    w_body : ndarray, shape (n, 3)
+        True angular velocity, principal axes, rad/s.
+    wdot_body : ndarray, shape (n, 3)
+        Its derivative where known exactly, rad/s^2; NaN elsewhere (a central difference there).
+    segments : list of (kind, t0, length, w0)
+        The recording's timeline (``"hold"``, ``"throw"``, ``"flight"``, ``"catch"``,
+        ``"hand"``, ``"landing"``).
+    sensor : ndarray, shape (3, 3)
+        Sensor axes to principal axes (``omega_sensor = omega_principal @ sensor``).
+    drag : float
+        Factor on the air's force (0: none).
+
+    Returns
+    -------
+    SyntheticAccel
+
+    Examples
+    --------
+    A phone lying still reads ``g`` upward, whatever its attitude:
+
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.accelsynth import synthetic_accel
+    >>> t = np.arange(0.0, 1.0, 0.01)
+    >>> acc = synthetic_accel(np.random.default_rng(0), t, np.zeros((100, 3)), np.zeros((100, 3)), [], np.eye(3))
+    >>> bool(abs(np.median(np.linalg.norm(acc.f, axis=1)) - 9.81) < 0.5)
+    True
+    """
+    dt = float(np.median(np.diff(tt)))
+    wdot = np.where(np.isnan(wdot_body), np.gradient(w_body, tt, axis=0), wdot_body)
+    r = _unit(rng) * rng.uniform(0.02, 0.10)
+    attitude = _attitude(rng, tt, w_body)
+    F = _contact(rng, tt, w_body, segments, dt, drag)
+    f_body = attitude.inv().apply(F) + rigid_acceleration(w_body, wdot, r)
+    f = f_body @ sensor * (1.0 + rng.normal(0, 0.005, 3))
+    bias = rng.normal(0, rng.uniform(0.05, 0.2), 3)
+    noise = rng.uniform(0.01, 0.04)
+    f = f + bias + rng.normal(0, noise, f.shape)
+    lsb = ACCEL_FULL_SCALE / 32768
+    f = np.clip(np.round(f / lsb) * lsb, -ACCEL_FULL_SCALE, ACCEL_FULL_SCALE)
+    return SyntheticAccel(f, r @ sensor, bias, noise)
+
+
+def phyphox_accel_csv(t: np.ndarray, f: np.ndarray) -> str:
+    """phyphox's raw accelerometer export ("Accelerometer.csv" of an export with several sensors;
+    experiment "Acceleration (with g)"), comma-separated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    >>> phyphox_accel_csv(np.array([0.0, 0.01]), np.array([[0.0, 0.0, 9.81], [0.1, 0.0, 9.8]])).splitlines()[0]
+    '"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)","Absolute acceleration (m/s^2)"'
+    """
+    lines = ['"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)",'
+             '"Absolute acceleration (m/s^2)"']
+    for ti, (x, y, z), a in zip(t, f, np.linalg.norm(f, axis=1)):
+        lines.append(f"{ti:.9E},{x:.9E},{y:.9E},{z:.9E},{a:.9E}")
+    return "\n".join(lines) + "\n"
