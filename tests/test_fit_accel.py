@@ -111,3 +111,37 @@ def test_hand_held_is_not_free():
             continue
         refused.append(not free_span(rec.t, rec.accel.f, rec.omega, int(hold[0]), int(hold[-1]) + 1).free)
     assert refused and all(refused)
+
+
+@pytest.mark.parametrize("as_zip", [False, True])
+def test_phyphox_export_with_accelerometer(tmp_path, as_zip):
+    """A phyphox export with "Gyroscope.csv" and "Accelerometer.csv" (the accelerometer at its
+    own, coarser times): the specific force is read and interpolated onto the gyroscope's times,
+    matching the generator's samples there to within the interpolation's error; what was read
+    names the accelerometer's columns."""
+    import zipfile
+
+    from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    from tumble.io.gyrodata import load_recording
+
+    rec = synthetic_recording(41, tosses=1, accel=True, rate=200.0)
+    files = {"Gyroscope.csv": rec.csv_text(), "Accelerometer.csv": phyphox_accel_csv(rec.t[::2], rec.accel.f[::2]),
+             "meta/time.csv": rec.time_csv_text()}
+    if as_zip:
+        path = tmp_path / "export.zip"
+        with zipfile.ZipFile(path, "w") as z:
+            for name, text in files.items():
+                z.writestr(name, text)
+    else:
+        path = tmp_path / "export"
+        (path / "meta").mkdir(parents=True)
+        for name, text in files.items():
+            (path / name).write_text(text, encoding="utf-8")
+    got = load_recording(path)
+    assert got.read.accel[0].endswith("Accelerometer.csv: Acceleration x (m/s^2)")
+    assert "Acceleration x" in got.read.brief()
+    np.testing.assert_allclose(got.accel[::2][:-1], rec.accel.f[::2][:-1], atol=1e-6)  # the samples themselves
+    w = (rec.t[1:-1:2] - rec.t[:-2:2]) / (rec.t[2::2] - rec.t[:-2:2])
+    expected = rec.accel.f[:-2:2] + w[:, None] * (rec.accel.f[2::2] - rec.accel.f[:-2:2])
+    np.testing.assert_allclose(got.accel[1:-1:2], expected, atol=1e-6)
+    assert np.ptp(expected) > 1.0  # a signal that varies

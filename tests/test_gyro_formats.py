@@ -78,7 +78,10 @@ def test_header_names_in_many_forms(tmp_path, rec, header, sep, scale):
     assert abs(got.read.sample_rate - rec.rate) < 0.05 * rec.rate
 
 
-def test_accelerometer_and_other_sensors_columns_are_ignored_by_name(tmp_path, rec):
+def test_accelerometer_read_and_other_sensors_columns_ignored_by_name(tmp_path, rec):
+    """A raw accelerometer's columns are kept (#29: the specific force, for finding free fall); a
+    phone's linear acceleration (its gravity estimate taken out) and the other sensors are ignored,
+    and the summary of what was read says why the linear acceleration is not used."""
     header = ["time (s)", "acc_x (m/s^2)", "acc_y (m/s^2)", "acc_z (m/s^2)", "gyro_x (deg/s)", "gyro_y (deg/s)",
               "gyro_z (deg/s)", "linear acceleration x", "linear acceleration y", "linear acceleration z",
               "mag_x", "mag_y", "mag_z", "battery"]
@@ -91,7 +94,11 @@ def test_accelerometer_and_other_sensors_columns_are_ignored_by_name(tmp_path, r
     got = load_recording(path)
     assert np.allclose(got.omega, rec.omega, rtol=1e-7, atol=1e-8)
     assert got.read.rates == ("gyro_x (deg/s)", "gyro_y (deg/s)", "gyro_z (deg/s)") and got.read.rate_units == ("deg/s",) * 3
-    assert got.read.ignored == tuple(h for h in header if not h.startswith(("time", "gyro")))
+    assert got.read.ignored == tuple(h for h in header if not h.startswith(("time", "gyro", "acc_")))
+    assert got.read.accel == ("acc_x (m/s^2)", "acc_y (m/s^2)", "acc_z (m/s^2)")
+    assert np.allclose(got.accel, acc, atol=6e-6)  # written with 5 decimals
+    note = got.read.summary()["not_specific_force"]
+    assert note.startswith("linear acceleration x, linear acceleration y, linear acceleration z: ")
 
 
 @pytest.mark.parametrize("header, message", [

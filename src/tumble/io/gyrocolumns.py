@@ -9,9 +9,16 @@ alike (``gyro_x``, ``Gyro X`` and ``gyro-x`` are one name):
 - **rate** about axis ``x`` (``y``, ``z`` alike): ``x``, ``wx``, ``gx``, ``omega x``, ``gyro x``,
   ``gyroscope x``, ``rate x``, ``rotation rate x``, ``angular velocity x`` (a space, or none,
   before the axis; ``x axis`` too); unit rad/s (default), deg/s, dps, rpm, rev/s or Hz;
-- **ignored**, and named as such: the other sensors' axes (``ax``, ``acc_x``, ``accel x``,
-  ``acceleration x``, ``linear acceleration x``, ``gravity x``, ``mag x``, ``magnetic field x``),
-  magnitudes (``|omega|``, ``abs``, ``absolute``, ``norm``, ``magnitude``) and any other name.
+- **specific force** (a raw accelerometer, optional; all three axes or none) along ``x`` (``y``,
+  ``z`` alike): ``ax``, ``acc x``, ``accel x``, ``accelerometer x``, ``acceleration x``,
+  ``specific force x``, ``f x``; in m/s^2 (default), g (standard gravity, 9.80665 m/s^2) or mg
+  (:func:`match_accel`, which the throw files' reader uses too). A phone's **linear acceleration**
+  (``linear acceleration x``, phyphox's "acceleration without g") is **not** the specific force:
+  the phone's sensor fusion subtracts a gravity estimate that a tumbling phone cannot track, so it
+  is ignored, and the summary of what was read says so;
+- **ignored**, and named as such: the other sensors' axes (``linear acceleration x``,
+  ``gravity x``, ``mag x``, ``magnetic field x``), magnitudes (``|omega|``, ``abs``,
+  ``absolute``, ``norm``, ``magnitude``) and any other name.
 
 A header with no time column, two, or not one rate column for each axis is refused in one line
 naming the file, the header and the names allowed.
@@ -24,15 +31,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..dynamics.environment.earth import STANDARD_GRAVITY
 from .keys import FileFormat, Key, Table
 
-__all__ = ["RATE_PREFIXES", "RATE_UNITS", "RECORDING_FORMAT", "TIME_NAMES", "TIME_UNITS", "ColumnsRead", "match_header"]
+__all__ = ["ACCEL_UNITS", "RATE_PREFIXES", "RATE_UNITS", "RECORDING_FORMAT", "TIME_NAMES", "TIME_UNITS", "ColumnsRead", "match_accel",
+           "match_header"]
 
 #: Units a header may name for the time, and their factor to s.
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3, "us": 1e-6, "\u00b5s": 1e-6, "\u03bcs": 1e-6, "ns": 1e-9}
 #: Units a header may name for a rate, and their factor to rad/s.
 RATE_UNITS = {"rad/s": 1.0, "deg/s": np.pi / 180, "\u00b0/s": np.pi / 180, "dps": np.pi / 180,
               "rpm": 2 * np.pi / 60, "rev/s": 2 * np.pi, "hz": 2 * np.pi}
+#: Units a header may name for the specific force, and their factor to m/s^2 (g: standard gravity,
+#: :data:`tumble.dynamics.environment.earth.STANDARD_GRAVITY`).
+ACCEL_UNITS = {"m/s^2": 1.0, "m/s2": 1.0, "m/s\u00b2": 1.0, "ms^-2": 1.0, "g": STANDARD_GRAVITY,
+               "mg": 1e-3 * STANDARD_GRAVITY}
 
 #: The names a header may give the time column (compared in lower case, ``_ - .`` as spaces).
 TIME_NAMES = ("t", "time", "timestamp", "time stamp", "elapsed", "elapsed time", "seconds elapsed")
@@ -47,8 +60,15 @@ RECORDING_FORMAT = FileFormat("recording", (
               allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally",
               example=f'"gyro_{axis} [deg/s]"', doc=f"the angular velocity about the sensor's {axis} axis")
           for axis in "xyz"),
-        Key("other", "anything", allowed="the other sensors' axes (ax, acc_x, mag x, ...), magnitudes (|omega|, "
-            "norm, ...), any other name", example='"Absolute (rad/s)"', doc="ignored, and reported as such"),
+        *(Key(f"a{axis}", "numbers", ", ".join(u for u in ACCEL_UNITS if u.isascii()), "m/s^2",
+              allowed=f"a{axis}, acc {axis}, accel {axis}, accelerometer {axis}, acceleration {axis}, specific force "
+                      f"{axis}, f {axis}", example=f'"Acceleration {axis} (m/s^2)"',
+              doc=f"optional (all three or none): a raw accelerometer's specific force along the sensor's {axis} "
+                  "axis; a phone's linear acceleration (gravity removed) is not it and is ignored")
+          for axis in "xyz"),
+        Key("other", "anything", allowed="linear acceleration, the other sensors' axes (gravity x, mag x, ...), "
+            "magnitudes (|omega|, norm, ...), any other name", example='"Absolute (rad/s)"',
+            doc="ignored, and reported as such"),
     ), "A header line names the columns: a name and, in brackets or parentheses at its end, a unit. "
        "Names are compared in lower case with spaces, ``_``, ``-`` and ``.`` alike; a header needs "
        "one time column and one rate column for each axis."),
@@ -66,6 +86,8 @@ _TIME = set(TIME_NAMES)
 _RATE = re.compile(r"^(?:(?:" + "|".join(re.escape(p) for p in RATE_PREFIXES) + r") ?)?([xyz])(?: axis)?$")
 _OTHER = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|linear acceleration|lin acc|gravity|m|mag|"
                     r"magnetometer|magnetic field|b) ?[xyz](?: axis)?$")
+_ACCEL = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|specific force|f) ?([xyz])(?: axis)?$")
+_LINEAR = re.compile(r"^(?:linear acceleration|lin acc|acceleration without g|user acceleration) ?[xyz](?: axis)?$")
 _MAGNITUDE = re.compile(r"^(?:\|.*\||abs|absolute|norm|magnitude|total)$")
 _ALLOWED = ("time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x "
             "(rad/s, deg/s, rpm, rev/s, Hz), y and z alike")
@@ -93,6 +115,12 @@ class ColumnsRead:
         Data rows read.
     sample_rate : float
         The median of ``1 / (t[k+1] - t[k])``, Hz.
+    accel : tuple of str
+        The x, y, z specific-force columns as named (a phyphox export's accelerometer as
+        ``"Accelerometer.csv: Acceleration x"``, interpolated onto the gyroscope's times); empty
+        without an accelerometer.
+    accel_units : tuple of str
+        Their units, converted to m/s^2.
 
     Examples
     --------
@@ -110,6 +138,8 @@ class ColumnsRead:
     ignored: tuple
     rows: int
     sample_rate: float
+    accel: tuple = ()
+    accel_units: tuple = ()
 
     def summary(self) -> dict:
         """JSON-ready (fit.json's ``"read"``).
@@ -120,10 +150,17 @@ class ColumnsRead:
         >>> ColumnsRead("a.csv", "column 1", "s", ("column 2", "column 3", "column 4"), ("rad/s",) * 3, (), 2, 50.0).summary()["time"]
         {'column': 'column 1', 'unit': 's'}
         """
-        return {"file": self.file, "time": {"column": self.time, "unit": self.time_unit},
-                "rates": list(self.rates), "rate_units": list(self.rate_units), "ignored": list(self.ignored),
-                "rows": int(self.rows), "sample_rate_median_hz": float(self.sample_rate)
-                if np.isfinite(self.sample_rate) else None}
+        out = {"file": self.file, "time": {"column": self.time, "unit": self.time_unit},
+               "rates": list(self.rates), "rate_units": list(self.rate_units),
+               "accel": list(self.accel) or None, "accel_units": list(self.accel_units) or None,
+               "ignored": list(self.ignored), "rows": int(self.rows), "sample_rate_median_hz": float(self.sample_rate)
+               if np.isfinite(self.sample_rate) else None}
+        linear = [c for c in self.ignored if _LINEAR.match(_name(c)[0])]
+        if linear:
+            out["not_specific_force"] = (f"{', '.join(linear)}: a phone's linear acceleration (its fusion's gravity "
+                                         "estimate taken out, which a tumbling phone cannot track) is not the "
+                                         "specific force; ignored")
+        return out
 
     def brief(self) -> str:
         """A few words for the command's one line.
@@ -140,8 +177,10 @@ class ColumnsRead:
 
         units = self.rate_units[0] if len(set(self.rate_units)) == 1 else "/".join(self.rate_units)
         ignored = f", {len(self.ignored)} ignored" if self.ignored else ""
-        return (f"{bare(self.time)} ({self.time_unit}), {', '.join(bare(r) for r in self.rates)} ({units}){ignored}, "
-                f"{self.rows} rows at {self.sample_rate:.3g} Hz")
+        accel = f", {', '.join(bare(a) for a in self.accel)} ({'/'.join(dict.fromkeys(self.accel_units))})" \
+            if self.accel else ""
+        return (f"{bare(self.time)} ({self.time_unit}), {', '.join(bare(r) for r in self.rates)} ({units}){accel}"
+                f"{ignored}, {self.rows} rows at {self.sample_rate:.3g} Hz")
 
 
 def _name(cell: str) -> tuple[str, str | None]:
@@ -160,6 +199,50 @@ def _factor(cell: str, unit: str | None, table: dict, label: str, line: int, col
         raise ValueError(f"{label}, line {line}, column {column}: unknown unit {unit!r} in header "
                          f"{cell!r}; use one of {', '.join(k for k in table if k.isascii())}")
     return float(table[key]), unit
+
+
+def match_accel(head: list[str], taken: list[int], label: str, line: int,
+                allowed: str = "") -> tuple[list[int], list[float], list[str]]:
+    """The specific-force columns ``x, y, z`` of a header (module docstring), not among ``taken``:
+    their indices, factors to m/s^2 and units; three empty lists when the header has none.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file, the line and the header: one axis without the others, two
+        columns for an axis, an unknown unit.
+
+    Examples
+    --------
+    >>> from tumble.io.gyrocolumns import match_accel
+    >>> match_accel(["t", "gx", "gy", "gz", "acc_x (g)", "acc_y (g)", "acc_z (g)"], [0, 1, 2, 3], "a.csv", 1)[0]
+    [4, 5, 6]
+    >>> match_accel(["t", "gx", "gy", "gz", "linear acceleration x"], [0, 1, 2, 3], "a.csv", 1)   # not the specific force
+    ([], [], [])
+    """
+    parsed = [_name(cell) for cell in head]
+    shown = ", ".join(head)
+    shown = shown if len(shown) <= 160 else shown[:157] + "..."
+    axes: dict[str, list[int]] = {"x": [], "y": [], "z": []}
+    for j, (n, _) in enumerate(parsed):
+        m = _ACCEL.match(n)
+        if m and j not in taken:
+            axes[m.group(1)].append(j)
+    found = [a for a, js in axes.items() if js]
+    columns: list[int] = []
+    scale: list[float] = []
+    units: list[str] = []
+    if not found:
+        return columns, scale, units
+    allowed = allowed or "ax, acc_x, accel x, accelerometer x, acceleration x, specific force x (m/s^2, g, mg), y and z alike"
+    for axis, js in axes.items():
+        if len(js) != 1:
+            what = f"no specific-force column for {axis} (but one for {', '.join(found)})" if not js else \
+                f"{len(js)} specific-force columns for {axis} ({', '.join(repr(head[j]) for j in js)})"
+            raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {allowed}")
+        f, u = _factor(head[js[0]], parsed[js[0]][1], ACCEL_UNITS, label, line, js[0] + 1)
+        columns.append(js[0]), scale.append(f), units.append(u)
+    return columns, scale, units
 
 
 def match_header(head: list[str], label: str, line: int) -> tuple[list[int], list[float], dict]:

@@ -9,8 +9,9 @@ Formats read by :func:`read_gyro_csv`:
   ``"Absolute (rad/s)"`` are ignored). The three CSV flavours phyphox offers are accepted:
   comma-separated, tab-separated, and semicolon-separated with a decimal comma.
 - **any delimited text with a header line** (a logger's export): the time column and the three
-  rate columns found by their names, the other columns (an accelerometer's, ``|omega|``, other
-  sensors) ignored by theirs; units in brackets, ``t (ms)``, ``wx [deg/s]``: times in s, ms, us
+  rate columns found by their names, a raw accelerometer's three columns (the specific force,
+  m/s^2 or g) kept when the header names them, the other columns (``|omega|``, a phone's
+  linear acceleration, other sensors) ignored by theirs; units in brackets, ``t (ms)``, ``wx [deg/s]``: times in s, ms, us
   or ns and rates in rad/s, deg/s (or dps), rpm, rev/s or Hz are converted to s and rad/s; any
   other unit is refused, naming the column. The names allowed: :mod:`tumble.io.gyrocolumns`.
 - **plain, without a header**: four numeric columns ``t (s), wx, wy, wz (rad/s)``; or five,
@@ -30,15 +31,15 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .examples import _read_input
-from .gyrocolumns import ColumnsRead, match_header
+from .gyrocolumns import ColumnsRead, match_accel, match_header
 
-__all__ = ["MAX_GYRO_FILE_BYTES", "TIME_CSV", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
-           "parse_time_csv", "read_gyro_csv", "read_recording"]
+__all__ = ["ACCEL_CSV", "MAX_GYRO_FILE_BYTES", "TIME_CSV", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_accel_csv",
+           "parse_gyro_table", "parse_recording_table", "parse_time_csv", "read_gyro_csv", "read_recording"]
 
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
 MAX_GYRO_FILE_BYTES = 64 << 20
@@ -148,9 +149,26 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
     >>> read.rates, read.ignored, read.rows, read.sample_rate
     (('gx', 'gy', 'gz'), ('|omega|',), 2, 500.0)
     """
+    t, omega, _, read = parse_recording_table(raw, label)
+    return t, omega, read
+
+
+def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, ColumnsRead]:
+    """:func:`parse_gyro_table`, and the accelerometer's specific force when the header names
+    its three columns (:func:`~tumble.io.gyrocolumns.match_accel`; m/s^2, sensor axes; None
+    otherwise).
+
+    Examples
+    --------
+    >>> from tumble.io.gyrodata import parse_recording_table
+    >>> text = b"t (ms), gx, gy, gz, acc_x (g), acc_y (g), acc_z (g), linear acceleration x\\n0, 1, 0, 0, 0, 0, 1, 0\\n" \\
+    ...        b"10, 1, 0, 0, 0, 0, 0, -9.8\\n"
+    >>> t, omega, accel, read = parse_recording_table(text, "log.csv")
+    >>> accel[:, 2].tolist(), read.accel, read.ignored   # 1 g at rest, then falling
+    ([9.80665, 0.0], ('acc_x (g)', 'acc_y (g)', 'acc_z (g)'), ('linear acceleration x',))
+    """
     lines, sep, head = _first_lines(raw, label, "a phyphox gyroscope export or columns t, wx, wy, wz")
     first_no = lines[0][0]
-    decimal_comma = sep == ";"
     columns = [0, 1, 2, 3]
     scale = [1.0, 1.0, 1.0, 1.0]
     names = {"time": "column 1", "time_unit": "s", "rates": ["column 2", "column 3", "column 4"],
@@ -165,6 +183,10 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
                                  f"expected \"Time (s)\", \"Gyroscope x (rad/s)\", \"Gyroscope y (rad/s)\", "
                                  f"\"Gyroscope z (rad/s)\"")
         columns, scale, names = match_header(head, label, first_no)
+        more, factors, accel_units = match_accel(head, columns, label, first_no)
+        columns, scale = columns + more, scale + factors
+        names.update(accel=[head[j] for j in more], accel_units=accel_units,
+                     ignored=[h for j, h in enumerate(head) if j not in columns])
         width = len(head)
         lines = lines[1:]
     elif len(head) == 5:  # a fifth column without a header: read when it is |omega| of columns 2-4
@@ -175,9 +197,30 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
                          "|omega|, or a header line naming the columns")
     else:
         width = 4
-    rows = np.empty((len(lines), 4))
-    fifth = np.empty(len(lines))
-    ulp = np.zeros((len(lines), 2))
+    rows = _rows(lines, sep, columns + ([4] if magnitude else []), width, label)
+    if len(rows) < 2:
+        raise ValueError(f"{label}: {len(rows)} data rows; a record needs many samples")
+    if magnitude:
+        ulp = np.array([[_last_digit(cells[4]), max(_last_digit(c) for c in cells[1:4])]
+                        for cells in (_split(line, sep) for _, line in lines)])
+        fifth, rows = rows[:, 4], rows[:, :4]
+    rows *= np.array(scale)
+    t, omega = rows[:, 0].copy(), rows[:, 1:4].copy()
+    accel = rows[:, 4:7].copy() if len(columns) == 7 else None
+    if magnitude:
+        _check_magnitude(omega, fifth, ulp, lines, label)
+    _check_order(t, lines, label)
+    read = ColumnsRead(label, names["time"], names["time_unit"], tuple(names["rates"]), tuple(names["rate_units"]),
+                       tuple(names["ignored"]), len(t), float(1.0 / np.median(np.diff(t))),
+                       tuple(names.get("accel", ())), tuple(names.get("accel_units", ())))
+    return t, omega, accel, read
+
+
+def _rows(lines, sep, columns, width, label) -> np.ndarray:
+    """The numbers of ``columns`` in each data line (``(line number, text)``), a decimal comma
+    with ``;`` as the separator; one line naming the file and the line for a row of the wrong
+    length or a cell that is not a number."""
+    rows = np.empty((len(lines), len(columns)))
     for k, (no, line) in enumerate(lines):
         cells = _split(line, sep)
         while len(cells) > width and cells[-1] == "":  # a trailing separator
@@ -188,23 +231,42 @@ def parse_gyro_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarray, Co
             cell = cells[c]
             if not _NUMBER.match(cell):
                 raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
-            rows[k, j] = float(cell.replace(",", ".") if decimal_comma else cell)
-        if magnitude:
-            cell = cells[4]
-            if not _NUMBER.match(cell):
-                raise ValueError(f"{label}, line {no}, column 5: {cell[:40]!r} is not a number")
-            fifth[k] = float(cell.replace(",", ".") if decimal_comma else cell)
-            ulp[k] = _last_digit(cell), max(_last_digit(c) for c in cells[1:4])
+            rows[k, j] = float(cell.replace(",", ".") if sep == ";" else cell)
+    return rows
+
+
+#: phyphox's raw accelerometer in an export with several sensors, beside ``Gyroscope.csv``.
+ACCEL_CSV = "Accelerometer.csv"
+
+
+def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, tuple, tuple]:
+    """phyphox's ``Accelerometer.csv`` (experiment "Acceleration (with g)": ``"Time (s)"``,
+    ``"Acceleration x (m/s^2)"``, ...), interpolated linearly onto the gyroscope's times ``t``
+    (``numpy.interp`` per axis; held at the first and last value outside its own span): the
+    specific force, m/s^2, sensor axes; its columns' names and units.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.io.gyrodata import parse_accel_csv
+    >>> raw = b'"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"\\n0,0,0,9.8\\n0.02,0,0,0\\n'
+    >>> f, names, units = parse_accel_csv(raw, "Accelerometer.csv", np.array([0.0, 0.01, 0.02]))
+    >>> f[:, 2].round(6).tolist(), names[0], units
+    ([9.8, 4.9, 0.0], 'Accelerometer.csv: Acceleration x (m/s^2)', ('m/s^2', 'm/s^2', 'm/s^2'))
+    """
+    lines, sep, head = _first_lines(raw, label, "phyphox's accelerometer export: Time (s), Acceleration x, y, z")
+    times = [j for j, cell in enumerate(head) if cell.lower() in ("time (s)", "t (s)", "time", "t")]
+    columns, scale, units = match_accel(head, times[:1], label, lines[0][0])
+    if len(times) != 1 or not columns:
+        raise ValueError(f"{label}, line {lines[0][0]}: expected the columns \"Time (s)\", \"Acceleration x (m/s^2)\", "
+                         f"\"Acceleration y (m/s^2)\", \"Acceleration z (m/s^2)\" (phyphox's raw accelerometer)")
+    rows = _rows(lines[1:], sep, [times[0], *columns], len(head), label) * np.array([1.0, *scale])
     if len(rows) < 2:
-        raise ValueError(f"{label}: {len(rows)} data rows; a record needs many samples")
-    rows *= np.array(scale)
-    t, omega = rows[:, 0].copy(), rows[:, 1:].copy()
-    if magnitude:
-        _check_magnitude(omega, fifth, ulp, lines, label)
-    _check_order(t, lines, label)
-    read = ColumnsRead(label, names["time"], names["time_unit"], tuple(names["rates"]), tuple(names["rate_units"]),
-                       tuple(names["ignored"]), len(t), float(1.0 / np.median(np.diff(t))))
-    return t, omega, read
+        raise ValueError(f"{label}: {len(rows)} data rows; an accelerometer record needs many samples")
+    _check_order(rows[:, 0], lines[1:], label)
+    f = np.stack([np.interp(t, rows[:, 0], rows[:, k]) for k in (1, 2, 3)], axis=1)
+    base = os.path.basename(label)
+    return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units)
 
 
 def _last_digit(cell: str) -> float:
@@ -311,6 +373,10 @@ class GyroRecording:
         START/PAUSE events (empty for a plain file).
     read : ColumnsRead
         Which columns were taken, in which units, how many rows (:mod:`tumble.io.gyrocolumns`).
+    accel : ndarray, shape (n, 3), or None
+        The accelerometer's specific force at the times ``t``, m/s^2, sensor axes: the file's
+        own columns, or a phyphox export's ``Accelerometer.csv`` interpolated onto the
+        gyroscope's times (:func:`parse_accel_csv`); None without one.
 
     Examples
     --------
@@ -325,16 +391,19 @@ class GyroRecording:
     omega: np.ndarray = field(repr=False)
     events: tuple
     read: ColumnsRead
+    accel: np.ndarray | None = field(default=None, repr=False)
 
 
 def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray, list]:
-    """A whole recording: a CSV file, or a phyphox export (its folder or its ``.zip``).
+    """A whole recording: a CSV file, or a phyphox export (its folder or its ``.zip``); its
+    accelerometer, when it has one, is :func:`load_recording`'s.
 
     Parameters
     ----------
     path : str or Path
         A gyroscope CSV (:func:`read_gyro_csv`), or phyphox's export: a folder or a zip holding
-        ``Raw Data.csv`` and ``meta/time.csv`` (the START/PAUSE events; optional).
+        ``Raw Data.csv`` (or ``Gyroscope.csv``), ``meta/time.csv`` (the START/PAUSE events;
+        optional) and ``Accelerometer.csv`` (the raw accelerometer; optional).
 
     Returns
     -------
@@ -383,8 +452,10 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
     ...     _ = log.write_text("# phone 1\\ntimestamp (ms) gyro_x gyro_y gyro_z acc_x acc_y acc_z |omega|\\n"
     ...                        "0 1 0 0 0 0 9.8 1\\n2 1 0 0 0 0 9.8 1\\n4.5 1 0 0 0 0 9.8 1\\n")
     ...     rec = load_recording(log)
-    >>> rec.t.round(6).tolist(), rec.read.time, rec.read.ignored
-    ([0.0, 0.002, 0.0045], 'timestamp (ms)', ('acc_x', 'acc_y', 'acc_z', '|omega|'))
+    >>> rec.t.round(6).tolist(), rec.read.time, rec.read.ignored, rec.read.accel
+    ([0.0, 0.002, 0.0045], 'timestamp (ms)', ('|omega|',), ('acc_x', 'acc_y', 'acc_z'))
+    >>> rec.accel[0].tolist()   # the specific force, m/s^2: the phone at rest
+    [0.0, 0.0, 9.8]
     """
     import zipfile
     import zlib
@@ -395,12 +466,17 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
         name = _pick_csv(names, label)
         csv_path = os.path.join(path, name)
         raw = _read_input(csv_path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
-        t, omega, read = parse_gyro_table(raw, csv_path)
+        t, omega, accel, read = parse_recording_table(raw, csv_path)
         meta = os.path.join(path, *TIME_CSV.split("/"))
         events = []
         if os.path.isfile(meta):
             events = parse_time_csv(_read_input(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
-        return GyroRecording(t, omega, tuple(events), read)
+        acc = next((n for n in names if n.lower() == ACCEL_CSV.lower()), None)
+        if accel is None and acc is not None:
+            p = os.path.join(path, acc)
+            accel, read = _with_accel(_read_input(p, limit=MAX_GYRO_FILE_BYTES, what="an accelerometer record (CSV)"),
+                                      p, t, read)
+        return GyroRecording(t, omega, tuple(events), read, accel)
     if label.lower().endswith(".zip"):
         raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a phyphox export (zip)")
         import io
@@ -422,11 +498,20 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
                     # a damaged archive (bad deflate data, a bad CRC, cut short) is bad input, not a failed computation
                     raise ValueError(f"{label}: {n} cannot be unpacked, the archive is damaged ({exc})") from None
 
-            t, omega, read = parse_gyro_table(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
+            t, omega, accel, read = parse_recording_table(member(name, MAX_GYRO_FILE_BYTES), f"{label}/{name}")
             events = []
             if TIME_CSV in infos:
                 events = parse_time_csv(member(TIME_CSV, 1 << 20), f"{label}/{TIME_CSV}")
-        return GyroRecording(t, omega, tuple(events), read)
+            acc = next((n for n in infos if n.lower() == ACCEL_CSV.lower()), None)
+            if accel is None and acc is not None:
+                accel, read = _with_accel(member(acc, MAX_GYRO_FILE_BYTES), f"{label}/{acc}", t, read)
+        return GyroRecording(t, omega, tuple(events), read, accel)
     raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
-    t, omega, read = parse_gyro_table(raw, label)
-    return GyroRecording(t, omega, (), read)
+    t, omega, accel, read = parse_recording_table(raw, label)
+    return GyroRecording(t, omega, (), read, accel)
+
+
+def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray, ColumnsRead]:
+    """A phyphox export's accelerometer on the gyroscope's times, and what was read saying so."""
+    f, names, units = parse_accel_csv(raw, label, t)
+    return f, replace(read, accel=names, accel_units=units)

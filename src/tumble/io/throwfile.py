@@ -36,10 +36,9 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.tensor import Throw
-from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..validation import read_input_file
 from .atomic import atomic_write_text
-from .gyrocolumns import _UNIT, RATE_UNITS, _factor, _name, match_header
+from .gyrocolumns import _UNIT, ACCEL_UNITS, RATE_UNITS, _factor, _name, match_accel, match_header
 from .gyrodata import _NUMBER, _check_order, _first_lines, _split
 
 __all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
@@ -48,17 +47,12 @@ __all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "
 #: The largest throw file read, bytes (a minute at 4 kHz is about 25 MB of text).
 MAX_THROW_FILE_BYTES = 64 << 20
 
-#: Units a header may name for the specific force, and their factor to m/s^2 (g: standard gravity,
-#: :data:`tumble.dynamics.environment.earth.STANDARD_GRAVITY`).
-ACCEL_UNITS = {"m/s^2": 1.0, "m/s2": 1.0, "m/s\u00b2": 1.0, "ms^-2": 1.0, "g": STANDARD_GRAVITY,
-               "mg": 1e-3 * STANDARD_GRAVITY}
 
 #: The header :func:`write_throw` writes.
 THROW_HEADER = ("t (s)", "wx (rad/s)", "wy (rad/s)", "wz (rad/s)", "rotor (rad/s)", "ax (m/s^2)", "ay (m/s^2)",
                 "az (m/s^2)")
 
 _ROTOR = re.compile(r"^(?:rotor|flywheel|wheel|motor)(?: (?:speed|rate|omega|angular velocity))?$")
-_ACCEL = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|specific force|f) ?([xyz])(?: axis)?$")
 _ALLOWED = ("rotor: rotor, rotor speed, flywheel, wheel, motor (rad/s, deg/s, rpm, rev/s, Hz); specific force: "
             "ax, acc_x, accel x, accelerometer x, specific force x (m/s^2, g, mg), y and z alike")
 
@@ -152,21 +146,8 @@ def _match(head: list[str], label: str, line: int) -> tuple[list[int], list[floa
         raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
     f, u = _factor(head[rotor[0]], parsed[rotor[0]][1], RATE_UNITS, label, line, rotor[0] + 1)
     columns.append(rotor[0]), scale.append(f), units.append(u)
-    axes: dict[str, list[int]] = {"x": [], "y": [], "z": []}
-    for j, (n, _) in enumerate(parsed):
-        m = _ACCEL.match(n)
-        if m and j not in columns:
-            axes[m.group(1)].append(j)
-    found = [a for a, js in axes.items() if js]
-    if found:
-        for axis, js in axes.items():
-            if len(js) != 1:
-                what = f"no specific-force column for {axis} (but one for {', '.join(found)})" if not js else \
-                    f"{len(js)} specific-force columns for {axis} ({', '.join(repr(head[j]) for j in js)})"
-                raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
-            f, u = _factor(head[js[0]], parsed[js[0]][1], ACCEL_UNITS, label, line, js[0] + 1)
-            columns.append(js[0]), scale.append(f), units.append(u)
-    return columns, scale, units
+    more, factors, accel_units = match_accel(head, columns, label, line, _ALLOWED)
+    return columns + more, scale + factors, units + accel_units
 
 
 def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
