@@ -145,3 +145,103 @@ def test_phyphox_export_with_accelerometer(tmp_path, as_zip):
     expected = rec.accel.f[:-2:2] + w[:, None] * (rec.accel.f[2::2] - rec.accel.f[:-2:2])
     np.testing.assert_allclose(got.accel[1:-1:2], expected, atol=1e-6)
     assert np.ptp(expected) > 1.0  # a signal that varies
+
+
+def _iou(a, b, start, end):
+    return max(0.0, min(b, end) - max(a, start)) / (max(b, end) - min(a, start))
+
+
+def test_accelerometer_cuts_flights_closer_to_release_and_impact():
+    """Over seeded recordings, the flights found with the accelerometer begin and end closer to
+    the true release and catch than those found from the gyroscope alone (the same flights,
+    matched by intersection over union >= 0.5), and 90 % of their ends lie within 15 ms of the
+    truth (a sample and a half at 100 Hz); no fewer flights are found."""
+    from tumble.analysis.fit.flights import find_flights
+
+    errors: dict[bool, list] = {False: [], True: []}
+    found = {False: 0, True: 0}
+    for seed in range(100, 108):
+        rec = synthetic_recording(seed, tosses=2, accel=True)
+        both = {}
+        for use in (False, True):
+            ok = [f for f in find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f if use else None)
+                  if f.status == "ok"]
+            for k, (a, b) in enumerate(rec.flights):
+                match = [f for f in ok if _iou(a, b, f.start, f.end) >= 0.5]
+                if match:
+                    found[use] += 1
+                    both.setdefault(k, {})[use] = (abs(match[0].start - a), abs(match[0].end - b))
+        for pair in both.values():
+            if len(pair) == 2:
+                for use in (False, True):
+                    errors[use].append(pair[use])
+    gyro, accel = np.array(errors[False]), np.array(errors[True])
+    assert len(accel) >= 10
+    assert np.mean(accel) < np.mean(gyro)
+    assert np.mean(accel < 0.015) >= 0.9
+    assert found[True] >= found[False]
+
+
+def test_hand_held_motion_is_not_taken_for_a_flight():
+    """With the phone swung about at 3-10 rad/s between tosses and the ends drawn among catch,
+    hand and landing, every flight taken with the accelerometer lies inside a true free flight
+    (within 30 ms): none in the hand's motion, the hand's turning after a catch or the rolling
+    after a landing; and the candidates refused by the accelerometer say so."""
+    from tumble.analysis.fit.flights import find_flights
+
+    refused = 0
+    for seed in range(200, 206):
+        rec = synthetic_recording(seed, tosses=3, ending="mixed", hand=(3.0, 10.0), accel=True)
+        flights = find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f)
+        for f in flights:
+            if f.status == "ok":
+                assert any(a - 0.03 <= f.start and f.end <= b + 0.03 for a, b in rec.flights), (seed, f.start, f.end)
+            refused += f.reason.startswith("not free: the accelerometer reads")
+    assert refused > 0
+
+
+def test_fit_recording_states_the_sensor_offset():
+    """fit_recording with the accelerometer: each fitted toss states the sensor's offset from the
+    centre of mass, holding the generator's within 4 standard uncertainties plus 3 mm; several
+    recordings take it as their fourth item; without it the offset is None."""
+    from tumble.analysis.fit.recording import fit_recording
+
+    a, b = synthetic_recording(11, tosses=2, accel=True), synthetic_recording(12, tosses=1, accel=True)
+    fit = fit_recording(a.t, a.omega, events=a.events, accel=a.accel.f)
+    ok = [toss for toss in fit.tosses if toss.status == "ok"]
+    assert ok
+    for toss in ok:
+        err = np.abs(np.array(toss.sensor_offset) - a.accel.offset)
+        assert np.all(err < 4 * np.array(toss.sensor_offset_std) + 0.003)
+        assert toss.summary()["sensor_offset"] == list(toss.sensor_offset)
+    both = fit_recording([(a.t, a.omega, a.events, a.accel.f), (b.t, b.omega, b.events)])
+    assert [toss.sensor_offset is not None for toss in both.tosses if toss.status == "ok"] == \
+        [toss.recording == 0 for toss in both.tosses if toss.status == "ok"]
+    assert all(toss.sensor_offset is None for toss in fit_recording(a.t, a.omega, events=a.events).tosses)
+    with pytest.raises(ValueError, match="accel: expected"):
+        fit_recording(a.t, a.omega, accel=a.accel.f[:-1])
+
+
+def test_fit_command_uses_the_accelerometer(tmp_path, capsys):
+    """tumble fit on a phyphox export with its accelerometer says so in fit.json
+    (``"accelerometer": true``, the read columns, each toss's offset); on the gyroscope alone
+    ``"accelerometer": false``."""
+    import json
+
+    from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    from tumble.commands.fit import run_fit_command
+
+    rec = synthetic_recording(11, tosses=2, accel=True)
+    export = tmp_path / "export"
+    export.mkdir()
+    (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
+    (export / "Accelerometer.csv").write_text(phyphox_accel_csv(rec.t, rec.accel.f), encoding="utf-8")
+    plain = tmp_path / "gyro.csv"
+    plain.write_text(rec.csv_text(), encoding="utf-8")
+    for path, used in ((export, True), (plain, False)):
+        assert run_fit_command(path, tmp_path / f"out-{used}") == 0
+        fit = json.loads((tmp_path / f"out-{used}" / "fit.json").read_text())
+        assert fit["accelerometer"] is used
+        assert (fit["read"]["accel"] is not None) is used
+        assert all((toss["sensor_offset"] is not None) is used for toss in fit["tosses"] if toss["status"] == "ok")
+    capsys.readouterr()

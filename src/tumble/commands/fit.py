@@ -5,7 +5,10 @@
   ``DIR/fit.json`` has the pooled values under the one-flight keys, plus ``"tosses"`` (one entry
   a flight, its ``"input"`` the recording as given), ``"pooled"`` and ``"read"`` (which columns of the file were taken,
   :class:`tumble.io.gyrocolumns.ColumnsRead`); ``DIR/tosses.csv`` is the table of the flights;
-  ``DIR/fit.png`` the figure.
+  ``DIR/fit.png`` the figure. When the recording has a raw accelerometer (its own columns, or
+  phyphox's ``Accelerometer.csv``), the flights are cut to its free fall and fit.json says
+  ``"accelerometer": true`` (a list, one per recording, for several), each toss its
+  ``"sensor_offset"`` from the centre of mass (m, sensor axes) and ``"sensor_offset_std"``.
 - **Several recordings of one body** (files, folders and zips mixed): all their flights in one
   joint fit, the ratios and the drag shared, the sensor's rotation and bias each recording's own
   (fit.json's ``"pooled"`` says so under ``"shared"`` and ``"per_recording"``). ``"input"`` and
@@ -173,9 +176,12 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 pooled, line = fit, f"{fit.samples} samples"
                 draw = (lambda: figure(fit, omega[sel])) if figure is not None else None
             else:
-                data = (t, omega) if not several else ([(r.t, r.omega, list(r.events)) for r in recs], None)
-                rec = fit_recording(*data, events=events if not several else None, progress=progress, **options)
+                data = (t, omega) if not several else ([(r.t, r.omega, list(r.events), r.accel) for r in recs], None)
+                rec = fit_recording(*data, events=events if not several else None, progress=progress,
+                                    accel=recs[0].accel if not several else None, **options)
                 record.update({"start": None, "end": None, **rec.summary()})
+                used = [r.accel is not None for r in recs]  # the flights cut to the accelerometer's free fall
+                record["accelerometer"] = used if several else used[0]
                 record["tosses"] = [{"input": labels[toss.recording], **row}  # the recording as given
                                     for toss, row in zip(rec.tosses, record["tosses"])]
                 files["tosses.csv"] = _tosses_csv(record["tosses"])

@@ -1,4 +1,5 @@
-"""Finding the free flights in a whole gyroscope recording, from the gyroscope alone.
+"""Finding the free flights in a whole gyroscope recording, from the gyroscope (and its
+accelerometer, when the recording has one).
 
 A recording of tosses alternates holds (small, slow rates, or the phone swung about at a few
 rad/s), throws (the spin ramps up under the hand's torque), free flights and their ends: a
@@ -46,17 +47,27 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
    adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
    may still use it (:func:`~tumble.analysis.fit.fit_recording`).
+
+**With an accelerometer** (``accel``: a raw accelerometer's specific force, free fall reading
+``omega' x r + omega x (omega x r)`` plus the air's ~0.1 m/s^2, :mod:`~tumble.analysis.fit.freefall`),
+each candidate of step 3 is first cut to where it falls free
+(:func:`~tumble.analysis.fit.freefall.free_span`: the sensor's offset ``r`` fitted on its middle,
+the flight ending where the residual ``|f - A r - c|`` leaves the free fall's noise two samples
+in a row: the release and the catch or impact); a candidate whose middle is not in free fall (the
+hand's grip, a phone swung about) is skipped, saying what the accelerometer reads. Steps 4 and 5
+then run inside the free part; the flight keeps the fitted offset (:attr:`Flight.free_fall`).
 """
 
 from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...typing import ArrayLike
+from .freefall import FreeSpan, free_span
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
@@ -91,6 +102,9 @@ class Flight:
         the fit run to the rod limit): the ratios are the body's, shared by every flight, so
         it may still take part in a joint fit with flights that determine them
         (:func:`~tumble.analysis.fit.fit_recording`).
+    free_fall : FreeSpan or None
+        Where the accelerometer says the candidate fell free, and the sensor's fitted offset from
+        the centre of mass (:class:`~tumble.analysis.fit.freefall.FreeSpan`); None without one.
 
     Examples
     --------
@@ -114,6 +128,7 @@ class Flight:
     solution: Solution | None = None
     anchor: float = 0.0
     joinable: bool = False
+    free_fall: FreeSpan | None = None
 
     @property
     def samples(self) -> int:
@@ -296,7 +311,7 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
                  min_duration: float = 0.3, max_gap: float = 0.25, max_std: float = 0.1,
                  drag: str = "auto", rotation: bool = True, bias: bool = True,
                  scale_uncertainty: float = SCALE_UNCERTAINTY,
-                 progress: Callable[[int, int], None] | None = None) -> list[Flight]:
+                 progress: Callable[[int, int], None] | None = None, accel: ArrayLike | None = None) -> list[Flight]:
     """The free flights of a whole recording, each fitted or skipped with a reason.
 
     Parameters
@@ -321,6 +336,9 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
         The per-flight fit's options (:func:`tumble.analysis.fit.fit_rotation`).
     progress : callable, optional
         ``progress(done, total)`` after each active stretch.
+    accel : array_like, shape (n, 3), optional
+        The accelerometer's specific force at the times ``t``, sensor axes, m/s^2: each candidate
+        is cut to its free fall (module docstring); without it, the gyroscope alone.
 
     Returns
     -------
@@ -343,8 +361,21 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     ['ok', 'skipped']
     >>> flights[1].reason.startswith("the model does not fit")
     True
+
+    With the accelerometer, the release and the catch are where the free fall begins and ends:
+
+    >>> rec = synthetic_recording(7, tosses=2, flight=(0.5, 0.8), accel=True)
+    >>> found = find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f)
+    >>> [bool(abs(f.start - a) < 0.03 and abs(f.end - b) < 0.03) for f, (a, b) in zip(found, rec.flights)]
+    [True, True]
     """
     t, omega = _check(t, omega)  # the fit's own checks: shapes, finite values, increasing times
+    if accel is not None:
+        accel = np.asarray(accel, float)
+        if accel.shape != omega.shape or not np.all(np.isfinite(accel)):
+            raise ValueError(f"accel: expected {omega.shape[0]} finite rows of 3 (the specific force at the "
+                             f"gyroscope's times, m/s^2); got shape {accel.shape}"
+                             + ("" if accel.shape != omega.shape else " with values that are not finite"))
     keep, _ = saturation_mask(omega, saturation)
     speed = np.linalg.norm(omega, axis=1)
     if len(speed) >= 3:
@@ -360,8 +391,19 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
                                             f"the rate changes slower than a free rigid body's can: a throw, a catch, "
                                             f"an impact or the hand)"))
         else:
-            flights += [_one(t, omega, keep, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty)
-                        for a, b in free or [(a0, b0)]]
+            for a, b in free or [(a0, b0)]:
+                margin = int(np.searchsorted(t, t[a] + 0.05) - a)  # the accelerometer's cut may lie in the impulse
+                span = free_span(t, accel, omega, max(a0, a - margin), min(b0, b + margin)) \
+                    if accel is not None and b - a >= 30 else None
+                if span is not None and not span.free:
+                    flights.append(replace(_skip(t, a, b, span.reason), free_fall=span))
+                    continue
+                a, b = (a, b) if span is None else (span.first, span.stop)
+                one = _one(t, omega, keep, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
+                           span is not None)  # with the accelerometer, the whole free fall; else grown
+                if span is not None and one.status != "ok":
+                    one = _one(t, omega, keep, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty)
+                flights.append(one if span is None else replace(one, free_fall=span))
         if progress is not None:
             progress(k + 1, len(stretches))
     return flights
@@ -371,7 +413,8 @@ def _skip(t, a, b, reason, sol=None) -> Flight:
     return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "skipped", reason, sol)
 
 
-def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, scale_uncertainty) -> Flight:
+def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
+         whole=False) -> Flight:
     length = t[b0 - 1] - t[a0]
     if length < min_duration or b0 - a0 < max(30, MIN_SAMPLES):
         return _skip(t, a0, b0, f"too short ({length:.2f} s, {b0 - a0} samples; a flight needs {min_duration} s "
@@ -388,7 +431,8 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
         a, b = a0 + int(lo * (b0 - a0)), a0 + int(hi * (b0 - a0))
         if b - a < MIN_SAMPLES:
             a, b = a0, b0
-        found = _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty)
+        found = _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
+                         whole)
         if found.status == "ok":
             return found
         first = first or found
@@ -408,8 +452,11 @@ SEEDS = ((0.35, 0.8), (0.1, 0.5), (0.5, 0.9))
 RETRY = ("no free flight", "the model does not fit", NUMERICAL, "too short (")
 
 
-def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty) -> Flight:
-    """Fit the seed window ``[a, b)``, grow it inside ``[a0, b0)``, trim, fit the flight and judge it."""
+def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
+             whole=False) -> Flight:
+    """Fit the seed window ``[a, b)``, grow it inside ``[a0, b0)``, trim, fit the flight and judge it;
+    ``whole``: the seed's fit taken to all of ``[a0, b0)`` at once, untrimmed (the accelerometer's
+    free fall)."""
     anchor = t[a]
     sol = None
     try:
@@ -427,14 +474,14 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
                 a, b, sol = last  # the growth took in the throw's or the catch's end: back to the window before
                 break
             last = (a, b, sol)
-            a2, b2 = _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
+            a2, b2 = (a0, b0) if whole else _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
             if (a2, b2) == (a, b):
                 break
             a, b = a2, b2
             m = sol.model
             window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
             sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
-        a, b = _trim(omega, keep, a, b, sol)
+        a, b = (a, b) if whole else _trim(omega, keep, a, b, sol)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
             return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)

@@ -112,6 +112,22 @@ def rate_derivative(t: ArrayLike, omega: ArrayLike) -> np.ndarray:
     return np.gradient(np.asarray(omega, float), np.asarray(t, float), axis=0)
 
 
+def _one_sided(t: np.ndarray, w: np.ndarray, side: int) -> np.ndarray:
+    """``omega'`` from the quadratic through a sample and the two before it (``side = -1``) or
+    after it (``+1``), rad/s^2 (Fornberg 1988); the record's ends take the central difference."""
+    out = rate_derivative(t, w)
+    if len(t) < 3:
+        return out
+    k = np.arange(2, len(t)) if side < 0 else np.arange(0, len(t) - 2)
+    i1, i2 = k + side, k + 2 * side
+    h1, h2 = t[i1] - t[k], t[i2] - t[i1]
+    c0 = -(2 * h1 + h2) / (h1 * (h1 + h2))
+    c1 = (h1 + h2) / (h1 * h2)
+    c2 = -h1 / (h2 * (h1 + h2))
+    out[k] = c0[:, None] * w[k] + c1[:, None] * w[i1] + c2[:, None] * w[i2]
+    return out
+
+
 def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The sensor's offset ``r`` from the centre of mass and the constant ``c`` (bias plus air)
     that best give the specific force ``f = A r + c`` of free flight (module docstring), by
@@ -227,7 +243,8 @@ def free_span(t: ArrayLike, f: ArrayLike, omega: ArrayLike, a: int, b: int) -> F
     ``r`` and ``c`` are fitted on the candidate's middle (35-80 %; then its first and second
     half, :data:`MIDDLES`), refitted twice without the samples beyond the threshold; the flight then reaches, from the middle outwards, up to the first
     two samples in a row (from the centre of its free samples) whose residual exceeds :data:`FREE_FACTOR` times the middle's median
-    plus :data:`FREE_FLOOR`. A middle whose median residual exceeds :data:`MAX_CONTACT` (or
+    plus :data:`FREE_FLOOR` (the least of the residuals with ``omega'`` a central and a one-sided
+    difference: at the edge of a contact the central difference reaches across it). A middle whose median residual exceeds :data:`MAX_CONTACT` (or
     whose fitted offset exceeds :data:`MAX_OFFSET`) is not in free fall.
 
     Parameters
@@ -262,6 +279,7 @@ def free_span(t: ArrayLike, f: ArrayLike, omega: ArrayLike, a: int, b: int) -> F
     """
     t, f, omega = np.asarray(t, float), np.asarray(f, float), np.asarray(omega, float)
     wd = rate_derivative(t[a:b], omega[a:b])
+    sided = [_one_sided(t[a:b], omega[a:b], side) for side in (-1, 1)]
     w, ff = omega[a:b], f[a:b]
     n = b - a
     best = None
@@ -280,6 +298,8 @@ def free_span(t: ArrayLike, f: ArrayLike, omega: ArrayLike, a: int, b: int) -> F
         if level <= MAX_CONTACT and np.linalg.norm(r) <= MAX_OFFSET:
             break
     level, i, j, r, c, r_std, e = best
+    # at a contact's edge the central difference reaches across it: the one-sided ones do not
+    e = np.minimum(e, np.minimum(*(free_fall_residual(ff, w, d, r, c) for d in sided)))
     if level > MAX_CONTACT or np.linalg.norm(r) > MAX_OFFSET:
         what = f"{level:.2g} m/s^2 of contact force" if level > MAX_CONTACT else \
             f"a sensor {np.linalg.norm(r):.2g} m from the centre of mass (at most {MAX_OFFSET} m)"

@@ -86,6 +86,10 @@ class Toss:
         The flight's own fit (None when there was none).
     recording : int
         The recording it is in: its index in the list given to :func:`fit_recording` (0 for one).
+    sensor_offset, sensor_offset_std : tuple of float or None
+        With an accelerometer: the sensor's position from the centre of mass fitted to the free
+        fall and its standard uncertainty, sensor axes, m
+        (:func:`~tumble.analysis.fit.freefall.fit_offset`); None without one.
 
     Examples
     --------
@@ -104,6 +108,8 @@ class Toss:
     reason: str
     fit: RotationFit | None = field(default=None, repr=False)
     recording: int = 0
+    sensor_offset: tuple | None = None
+    sensor_offset_std: tuple | None = None
 
     def summary(self) -> dict:
         """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None).
@@ -124,7 +130,9 @@ class Toss:
                 "I1_over_I3": num(f.ratios[0]) if f else None, "I2_over_I3": num(f.ratios[1]) if f else None,
                 "I1_over_I3_std": num(f.ratios_std[0]) if f else None,
                 "I2_over_I3_std": num(f.ratios_std[1]) if f else None,
-                "residual_rms": num(f.residual_rms) if f else None, "status": self.status, "reason": self.reason}
+                "residual_rms": num(f.residual_rms) if f else None, "status": self.status, "reason": self.reason,
+                "sensor_offset": None if self.sensor_offset is None else list(self.sensor_offset),
+                "sensor_offset_std": None if self.sensor_offset_std is None else list(self.sensor_offset_std)}
 
 
 @dataclass(frozen=True)
@@ -226,7 +234,7 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
                   events: Sequence[tuple[str, float]] | None = None, sensor_rotation: str = "fit", bias: bool = True,
                   drag: str = "auto", saturation: float | None = None,
                   scale_uncertainty: float = SCALE_UNCERTAINTY, min_spin: float = 3.0, max_std: float = 0.1,
-                  progress: Callable[[int, int], None] | None = None) -> RecordingFit:
+                  progress: Callable[[int, int], None] | None = None, accel: ArrayLike | None = None) -> RecordingFit:
     """Find the free flights of a whole recording (or of several), fit each, and fit them jointly.
 
     Parameters
@@ -250,6 +258,12 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         Largest standard uncertainty of a ratio for a flight to be used.
     progress : callable, optional
         ``progress(done, total)`` after each stretch examined.
+    accel : array_like, shape (n, 3), optional
+        The accelerometer's specific force at the times ``t``, sensor axes, m/s^2 (one recording;
+        for several, each recording's fourth item, ``(t, omega, events, accel)``, None where a
+        recording has none): the flights are cut to their free fall
+        (:func:`~tumble.analysis.fit.flights.find_flights`) and each toss states the sensor's
+        offset from the centre of mass.
 
     Returns
     -------
@@ -282,10 +296,10 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
     (3, [0, 0, 1], ['sensor_rotation', 'bias'])
     """
     _check_options(sensor_rotation, drag, saturation, scale_uncertainty)
-    recordings = _recordings(t, omega_measured, events)
+    recordings = _recordings(t, omega_measured, events, accel)
     rotation = sensor_rotation == "fit"
     parts, flights, groups, offset, done = [], [], [], 0, [0]
-    for r, (t_r, w_r, ev_r) in enumerate(recordings):
+    for r, (t_r, w_r, ev_r, acc_r) in enumerate(recordings):
         try:
             t_r, w_r = _check(t_r, w_r)
         except ValueError as err:
@@ -298,9 +312,12 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
             if progress is not None:
                 progress(base + k, base + total)
 
-        found = find_flights(t_r, w_r, events=ev_r, saturation=rail, min_spin=min_spin, max_std=max_std,
-                             drag=drag, rotation=rotation, bias=bool(bias), progress=step,
-                             scale_uncertainty=scale_uncertainty)
+        try:
+            found = find_flights(t_r, w_r, events=ev_r, saturation=rail, min_spin=min_spin, max_std=max_std,
+                                 drag=drag, rotation=rotation, bias=bool(bias), progress=step,
+                                 scale_uncertainty=scale_uncertainty, accel=acc_r)
+        except ValueError as err:
+            raise (ValueError(f"recording {r}: {err}") if len(recordings) > 1 else err) from None
         flights += [replace(f, first=f.first + offset, stop=f.stop + offset) for f in found]
         groups += [r] * len(found)
         parts.append((t_r, w_r, keep_r, ev_r))
@@ -407,12 +424,14 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
     return taken, (whole if len(taken) == len(candidates) else None)
 
 
-def _recordings(t, omega, events) -> list:
-    """``[(t, omega, events), ...]``: the one recording, or the list given (``omega`` None)."""
+def _recordings(t, omega, events, accel=None) -> list:
+    """``[(t, omega, events, accel), ...]``: the one recording, or the list given (``omega`` None)."""
     if omega is not None:
-        return [(t, omega, events)]
-    if events is not None:
-        raise ValueError("events go with each recording of a list, as its third item, not as events=")
+        return [(t, omega, events, accel)]
+    if events is not None or accel is not None:
+        raise ValueError(f"{'events' if events is not None else 'accel'} go with each recording of a list, as its "
+                         f"{'third' if events is not None else 'fourth'} item, not as "
+                         f"{'events' if events is not None else 'accel'}=")
     try:
         items = list(t)
     except TypeError:
@@ -422,10 +441,10 @@ def _recordings(t, omega, events) -> list:
         raise ValueError("an empty list of recordings; give at least one (t, omega) or (t, omega, events)")
     out = []
     for r, item in enumerate(items):
-        if not isinstance(item, (tuple, list)) or len(item) not in (2, 3):
-            raise ValueError(f"recording {r}: expected (t, omega) or (t, omega, events), got "
+        if not isinstance(item, (tuple, list)) or len(item) not in (2, 3, 4):
+            raise ValueError(f"recording {r}: expected (t, omega), (t, omega, events) or (t, omega, events, accel), got "
                              f"{type(item).__name__}" + (f" of {len(item)} items" if isinstance(item, (tuple, list)) else ""))
-        out.append((item[0], item[1], item[2] if len(item) == 3 else None))
+        out.append((item[0], item[1], item[2] if len(item) >= 3 else None, item[3] if len(item) == 4 else None))
     return out
 
 
@@ -459,7 +478,10 @@ def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
     if f.solution is not None and f.status == "ok":
         sl = slice(f.first, f.stop)
         fit = rotation_fit(f.solution, t[sl], omega[sl], keep[sl], t0=f.anchor)
-    return Toss(f.start, f.end, f.samples, f.status, f.reason, fit, recording)
+    span = f.free_fall if f.free_fall is not None and f.free_fall.free else None
+    return Toss(f.start, f.end, f.samples, f.status, f.reason, fit, recording,
+                None if span is None else tuple(float(v) for v in span.offset),
+                None if span is None else tuple(float(v) for v in span.offset_std))
 
 
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
