@@ -142,7 +142,7 @@ def test_one_recording_in_a_list_is_the_recording():
 
 @pytest.mark.parametrize("args, kwargs, message", [
     (([],), {}, "an empty list of recordings"),
-    (([(np.zeros(3),)],), {}, r"recording 0: expected \(t, omega\) or \(t, omega, events\), got tuple of 1 items"),
+    (([(np.zeros(3),)],), {}, r"recording 0: expected \(t, omega\), \(t, omega, events\) or \(t, omega, events, accel\), got tuple of 1 items"),
     (([(np.zeros(3), np.zeros((3, 3)))],), {"events": []}, "events go with each recording"),
     (([(np.arange(300) * 0.01, np.zeros((299, 3))), (np.arange(300) * 0.01, np.zeros((300, 3)))],), {},
      r"recording 0: omega_measured must have shape \(300, 3\)"),

@@ -8,7 +8,8 @@
   ``DIR/fit.png`` the figure. When the recording has a raw accelerometer (its own columns, or
   phyphox's ``Accelerometer.csv``), the flights are cut to its free fall and fit.json says
   ``"accelerometer": true`` (a list, one per recording, for several), each toss its
-  ``"sensor_offset"`` from the centre of mass (m, sensor axes) and ``"sensor_offset_std"``.
+  ``"sensor_offset"`` from the centre of mass (m, sensor axes) and ``"sensor_offset_std"`` (keys
+  absent without an accelerometer, as before).
 - **Several recordings of one body** (files, folders and zips mixed): all their flights in one
   joint fit, the ratios and the drag shared, the sensor's rotation and bias each recording's own
   (fit.json's ``"pooled"`` says so under ``"shared"`` and ``"per_recording"``). ``"input"`` and
@@ -53,7 +54,8 @@ from ..validation import check_number
 
 __all__ = ["TOSS_COLUMNS", "run_fit_command"]
 
-#: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries).
+#: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries, which add
+#: ``"sensor_offset"`` and ``"sensor_offset_std"`` where the recording has an accelerometer).
 TOSS_COLUMNS = ("input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
                 "residual_rms", "status", "reason")
 

@@ -8,9 +8,11 @@ rotated, biased sensor, with drag), :mod:`~tumble.analysis.fit.start` (starting 
 pooling), :mod:`~tumble.analysis.fit.adequacy` (whether the model fits at all),
 :mod:`~tumble.analysis.fit.single` (one flight: :func:`fit_rotation`),
 :mod:`~tumble.analysis.fit.flights` (finding the free flights of a whole recording),
+:mod:`~tumble.analysis.fit.freefall` (an accelerometer's free fall: the flights' ends and the
+sensor's offset from the centre of mass),
 :mod:`~tumble.analysis.fit.recording` (fitting them one by one and jointly:
 :func:`fit_recording`) and :mod:`~tumble.analysis.fit.synthetic` (realistic phone recordings,
-for tests and examples).
+for tests and examples; their accelerometer: :mod:`~tumble.analysis.fit.accelsynth`).
 
 From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consistent`
 (:mod:`tumble.analysis.period_inversion`).

@@ -112,7 +112,8 @@ class Toss:
     sensor_offset_std: tuple | None = None
 
     def summary(self) -> dict:
-        """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None).
+        """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None), with
+        ``"sensor_offset"`` and ``"sensor_offset_std"`` (m) where the accelerometer gave them.
 
         Examples
         --------
@@ -131,8 +132,8 @@ class Toss:
                 "I1_over_I3_std": num(f.ratios_std[0]) if f else None,
                 "I2_over_I3_std": num(f.ratios_std[1]) if f else None,
                 "residual_rms": num(f.residual_rms) if f else None, "status": self.status, "reason": self.reason,
-                "sensor_offset": None if self.sensor_offset is None else list(self.sensor_offset),
-                "sensor_offset_std": None if self.sensor_offset_std is None else list(self.sensor_offset_std)}
+                **({} if self.sensor_offset is None else {"sensor_offset": list(self.sensor_offset),
+                                                          "sensor_offset_std": list(self.sensor_offset_std or ())})}
 
 
 @dataclass(frozen=True)
