@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["MAX_ENERGY_RISE", "MAX_MOMENTUM_RISE", "MISFIT_LIMIT", "NOISE_FACTOR", "RIGID_SMOOTHING", "Adequacy",
+__all__ = ["MAX_ENERGY_RISE", "MAX_TAIL", "MAX_MOMENTUM_RISE", "MISFIT_LIMIT", "NOISE_FACTOR", "RIGID_SMOOTHING", "Adequacy",
            "InadequateFitWarning", "judge", "rigid_body_check"]
 
 #: The model's error (beyond the noise) allowed in the residuals, as a fraction of the rates'
@@ -208,3 +208,23 @@ def rigid_body_check(t: np.ndarray, omega_principal: np.ndarray, moments: np.nda
                     f"only lowers it (a rigid body's samples show at most {100 * limit:.0f} %): an internal torque "
                     f"acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")
     return ""
+
+
+#: How long a flight's samples may go on after the fitted flight ends before the impulse that
+#: ends it, s: a rigid body's free motion lasts until the catch or the impact (:mod:`~tumble.analysis.fit.flights`).
+MAX_TAIL = 0.3
+
+
+def _left_path(t, omega, b, b0) -> str:
+    """The reason a flight is not a rigid body's when the samples leave the fitted motion well
+    before the impulse that ends the stretch, still spinning fast; ``""`` otherwise."""
+    tail = float(t[b0 - 1] - t[b - 1])
+    if tail <= MAX_TAIL:
+        return ""
+    flight = np.median(np.linalg.norm(omega[max(b - 30, 0):b], axis=1))
+    after = np.median(np.linalg.norm(omega[b:b0], axis=1))
+    if after < 0.5 * flight:
+        return ""
+    return (f"not a rigid body: the samples leave the fitted free motion {tail:.2g} s before any impulse ends the "
+            f"flight, still turning at {after:.2g} rad/s (a rigid body's free flight lasts until the catch or the "
+            f"impact): an internal torque acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")

@@ -39,7 +39,7 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    triangle, where no tossed phone, racquet or book lies), the model does not fit
    (:mod:`~tumble.analysis.fit.adequacy`), or not a rigid body: the body's ``|L|`` or energy
    rises during the flight (:func:`~tumble.analysis.fit.adequacy.rigid_body_check`), or the
-   samples leave the fitted motion more than :data:`MAX_TAIL` before the impulse that ends the
+   samples leave the fitted motion more than :data:`~tumble.analysis.fit.adequacy.MAX_TAIL` before the impulse that ends the
    flight while still spinning (a rigid body flies free until it is caught or lands; on the
    synthetic tosses the fitted flight reaches the impulse within 0.04 s, or within 0.25 s
    where a hand's grip or a glancing impact is too gentle to show as an impulse, while a rotor
@@ -48,14 +48,10 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
    may still use it (:func:`~tumble.analysis.fit.fit_recording`).
 
-**With an accelerometer** (``accel``: a raw accelerometer's specific force, free fall reading
-``omega' x r + omega x (omega x r)`` plus the air's ~0.1 m/s^2, :mod:`~tumble.analysis.fit.freefall`),
-each candidate of step 3 is first cut to where it falls free
-(:func:`~tumble.analysis.fit.freefall.free_span`: the sensor's offset ``r`` fitted on its middle,
-the flight ending where the residual ``|f - A r - c|`` leaves the free fall's noise two samples
-in a row: the release and the catch or impact); a candidate whose middle is not in free fall (the
-hand's grip, a phone swung about) is skipped, saying what the accelerometer reads. Steps 4 and 5
-then run inside the free part; the flight keeps the fitted offset (:attr:`Flight.free_fall`).
+**With an accelerometer** (``accel``), each candidate of step 3 is first cut to its free fall
+(:func:`~tumble.analysis.fit.freefall.free_span`: the release and the catch or impact), or
+skipped when its middle is not in free fall (the hand); step 4 then fits the whole free fall
+(its growth where that fails), and the flight keeps the sensor's offset (:attr:`Flight.free_fall`).
 """
 
 from __future__ import annotations
@@ -67,7 +63,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...typing import ArrayLike
-from .freefall import FreeSpan, free_span
+from .adequacy import _left_path
+from .freefall import FreeSpan, check_accel, free_span
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
@@ -370,12 +367,7 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     [True, True]
     """
     t, omega = _check(t, omega)  # the fit's own checks: shapes, finite values, increasing times
-    if accel is not None:
-        accel = np.asarray(accel, float)
-        if accel.shape != omega.shape or not np.all(np.isfinite(accel)):
-            raise ValueError(f"accel: expected {omega.shape[0]} finite rows of 3 (the specific force at the "
-                             f"gyroscope's times, m/s^2); got shape {accel.shape}"
-                             + ("" if accel.shape != omega.shape else " with values that are not finite"))
+    accel = None if accel is None else check_accel(accel, omega.shape)
     keep, _ = saturation_mask(omega, saturation)
     speed = np.linalg.norm(omega, axis=1)
     if len(speed) >= 3:
@@ -455,8 +447,8 @@ RETRY = ("no free flight", "the model does not fit", NUMERICAL, "too short (")
 def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
              whole=False) -> Flight:
     """Fit the seed window ``[a, b)``, grow it inside ``[a0, b0)``, trim, fit the flight and judge it;
-    ``whole``: the seed's fit taken to all of ``[a0, b0)`` at once, untrimmed (the accelerometer's
-    free fall)."""
+    ``whole``: the grown fit then taken to all of ``[a0, b0)``, untrimmed (the accelerometer's
+    free fall), where it still follows a free motion."""
     anchor = t[a]
     sol = None
     try:
@@ -474,14 +466,20 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
                 a, b, sol = last  # the growth took in the throw's or the catch's end: back to the window before
                 break
             last = (a, b, sol)
-            a2, b2 = (a0, b0) if whole else _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
+            a2, b2 = _grow(t, omega, keep, a, b, sol, a0, b0, anchor)
             if (a2, b2) == (a, b):
                 break
             a, b = a2, b2
             m = sol.model
             window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
             sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
-        a, b = (a, b) if whole else _trim(omega, keep, a, b, sol)
+        if whole and (a, b) != (a0, b0):  # the accelerometer's free fall, whole: from the grown fit
+            m = sol.model
+            window = Model([t[a0:b0] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a0:b0], axis=1))])
+            wide = solve(window, omega[None, a0:b0], keep[None, a0:b0], sol.P, max_nfev=40, covariance=False)
+            if np.sqrt(np.mean(wide.residuals ** 2)) <= 0.1 * np.sqrt(np.mean(np.sum(omega[a0:b0] ** 2, axis=1)) / 3):
+                a, b, sol = a0, b0, wide
+        a, b = (a, b) if whole and (a, b) == (a0, b0) else _trim(omega, keep, a, b, sol)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
             return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)
@@ -505,23 +503,3 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
     if rigid:
         return _skip(t, a, b, rigid, sol)
     return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "ok", "", sol, float(anchor))
-
-
-#: How long a flight's samples may go on after the fitted flight ends before the impulse that
-#: ends it, s: a rigid body's free motion lasts until the catch or the impact (module docstring).
-MAX_TAIL = 0.3
-
-
-def _left_path(t, omega, b, b0) -> str:
-    """The reason a flight is not a rigid body's when the samples leave the fitted motion well
-    before the impulse that ends the stretch, still spinning fast; ``""`` otherwise."""
-    tail = float(t[b0 - 1] - t[b - 1])
-    if tail <= MAX_TAIL:
-        return ""
-    flight = np.median(np.linalg.norm(omega[max(b - 30, 0):b], axis=1))
-    after = np.median(np.linalg.norm(omega[b:b0], axis=1))
-    if after < 0.5 * flight:
-        return ""
-    return (f"not a rigid body: the samples leave the fitted free motion {tail:.2g} s before any impulse ends the "
-            f"flight, still turning at {after:.2g} rad/s (a rigid body's free flight lasts until the catch or the "
-            f"impact): an internal torque acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")

@@ -29,7 +29,7 @@ import numpy as np
 
 from ...typing import ArrayLike
 
-__all__ = ["FREE_FACTOR", "FREE_FLOOR", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "fit_offset", "free_fall_residual",
+__all__ = ["FREE_FACTOR", "FREE_FLOOR", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
            "free_span", "offset_matrix", "rate_derivative", "rigid_acceleration"]
 
 #: The residual that ends a flight: this many times its median in the flight's middle ...
@@ -42,6 +42,29 @@ MAX_CONTACT = 2.0
 #: The largest sensor offset from the centre of mass taken for a body tossed by hand, m (a
 #: phone on a racquet's handle sits some 0.3 m from its centre of mass).
 MAX_OFFSET = 0.5
+
+
+def check_accel(accel: ArrayLike, shape: tuple) -> np.ndarray:
+    """The specific force as an array of ``shape`` (the gyroscope's samples), finite; else a
+    ``ValueError`` naming ``accel``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.freefall import check_accel
+    >>> check_accel([[0.0, 0.0, 9.8]], (1, 3)).tolist()
+    [[0.0, 0.0, 9.8]]
+    >>> check_accel(np.zeros((2, 3)), (3, 3))
+    Traceback (most recent call last):
+    ...
+    ValueError: accel: expected 3 finite rows of 3 (the specific force at the gyroscope's times, m/s^2); got shape (2, 3)
+    """
+    f = np.asarray(accel, float)
+    if f.shape != tuple(shape) or not np.all(np.isfinite(f)):
+        raise ValueError(f"accel: expected {shape[0]} finite rows of 3 (the specific force at the gyroscope's "
+                         f"times, m/s^2); got shape {f.shape}" + (" with values that are not finite"
+                                                                   if f.shape == tuple(shape) else ""))
+    return f
 
 
 def _cross_matrix(v: np.ndarray) -> np.ndarray:
