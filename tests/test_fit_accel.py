@@ -245,3 +245,18 @@ def test_fit_command_uses_the_accelerometer(tmp_path, capsys):
         assert (fit["read"]["accel"] is not None) is used
         assert all(("sensor_offset" in toss) is used for toss in fit["tosses"] if toss["status"] == "ok")
     capsys.readouterr()
+
+
+@pytest.mark.parametrize("header, message", [
+    ("t, gx, gy, gz, acc_x", r"log.csv, line 1: header .* has no specific-force column for y \(but one for x\)"),
+    ("t, gx, gy, gz, ax (m/s^2), ay (m/s^2), az (km/h^2)", r"log.csv, line 1, column 7: unknown unit 'km/h\^2'"),
+])
+def test_a_partial_or_unknown_accelerometer_is_refused(header, message):
+    """One axis of the accelerometer without the others, or a unit not in the table, is refused in
+    one line naming the file and what is wrong (read as SI, a wrong unit would give wrong forces)."""
+    from tumble.io.gyrodata import parse_recording_table
+
+    cells = len(header.split(","))
+    rows = [f"{0.01 * i}, " + ", ".join(["1"] * (cells - 1)) for i in range(3)]
+    with pytest.raises(ValueError, match=message):
+        parse_recording_table(("\n".join([header, *rows]) + "\n").encode(), "log.csv")
