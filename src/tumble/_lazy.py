@@ -20,10 +20,10 @@ from __future__ import annotations
 
 import ast
 import importlib
+import importlib.abc
 import sys
 import types
 from collections.abc import Mapping
-from pathlib import Path
 from typing import Any
 
 __all__ = ["lazy_package", "type_checking_imports"]
@@ -124,7 +124,11 @@ def lazy_package(package: str, exports: Mapping[str, str] | None = None) -> None
     >>> del sys.modules["demo_package"]
     """
     module = sys.modules[package]
-    if exports is None:
-        exports = type_checking_imports(Path(module.__file__ or "").read_text(encoding="utf-8"))
+    if exports is None:  # the loader's source: a file, or a zip's member (zipimport)
+        loader = module.__spec__.loader if module.__spec__ else None
+        source = loader.get_source(package) if isinstance(loader, importlib.abc.InspectLoader) else None
+        if source is None:
+            raise ImportError(f"{package}: its names load from its source, which is not shipped")
+        exports = type_checking_imports(source)
     module.__class__ = _LazyPackage
     module.__dict__["_exports"] = dict(exports)
