@@ -1,7 +1,7 @@
 """The fit's statistics on realistic synthetic recordings, as a table (a few minutes).
 
-``python benchmarks/fit_coverage.py [RECORDINGS] [KIND ...]``: for each body (racquet, phone) and
-each kind of recording (all, or those named), ``RECORDINGS`` synthetic recordings (default 40, seeds from 1000), each with its
+``python benchmarks/fit_coverage.py [RECORDINGS] [KIND ...] [--first-seed N] [--jobs N] [--json PATH]``: for each
+body (racquet, phone) and each kind of recording (all, or those named), ``RECORDINGS`` synthetic recordings (default 40, seeds from 1000), each with its
 own gyroscope, fitted whole as a user would (:func:`tumble.analysis.fit.fit_recording`):
 
 - **tidy**: 2 tosses per file at 100 Hz, each caught and held (the spin killed in the hand), a
@@ -69,69 +69,110 @@ def _fittable(rec, a, b) -> bool:
     return bool(flights) and flights[0].status == "ok"
 
 
-def campaign(body: str, kind: str, recordings: int = 40) -> dict:
+def campaign(body: str, kind: str, recordings: int = 40, first_seed: int = 1000, jobs: int = 1) -> dict:
+    """One cell (a body, a kind of recording) over ``recordings`` seeds from ``first_seed``."""
+    t0 = time.perf_counter()
+    seeds = range(first_seed, first_seed + recordings)
+    if jobs > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(jobs) as pool:
+            parts = list(pool.map(_one_recording, [body] * len(seeds), [kind] * len(seeds), seeds))
+    else:
+        parts = [_one_recording(body, kind, seed) for seed in seeds]
+    return _cell(body, kind, parts, time.perf_counter() - t0)
+
+
+def _one_recording(body: str, kind: str, seed: int) -> dict:
+    """The counts of one synthetic recording (a process pool's task)."""
     total = found = fittable = found_fittable = fitted = false = joint_only = 0
     inside, reasons, ends = [], Counter(), []
-    t0 = time.perf_counter()
-    for seed in range(1000, 1000 + recordings):
-        rec = synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
-        accel = None if rec.accel is None else rec.accel.f
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", InadequateFitWarning)
-            try:
-                flights = fit_recording(rec.t, rec.omega, events=rec.events, accel=accel).tosses
-            except ValueError:  # no usable flight
-                flights = find_flights(rec.t, rec.omega, events=rec.events, accel=accel)
-        ok = [f for f in flights if f.status == "ok"]
-        fitted += len(ok)
-        false += sum(max(_iou(a, b, f.start, f.end) for a, b in rec.flights) < 0.5 for f in ok)
-        for a, b in rec.flights:
-            total += 1
-            can = _fittable(rec, a, b)
-            fittable += can
-            match = [f for f in ok if _iou(a, b, f.start, f.end) >= 0.5]
-            if match:
-                found += 1
-                ends.append((abs(match[0].start - a), abs(match[0].end - b)))
-                found_fittable += can
-                if match[0].reason.startswith(JOINT_ONLY):  # its own ratios are not determined: no interval to test
-                    joint_only += 1
-                    continue
-                iv = match[0].fit.ratios_interval
-                inside.append([iv[0, 0] <= rec.ratios[0] <= iv[0, 1], iv[1, 0] <= rec.ratios[1] <= iv[1, 1]])
-            else:
-                best = max(flights, key=lambda f: _iou(a, b, f.start, f.end), default=None)
-                reason = "nothing found" if best is None or _iou(a, b, best.start, best.end) < 0.5 else \
-                    best.reason.split(":")[0].split(" (")[0]
-                reasons[reason + ("" if can else " [unfittable]")] += 1
-    cover = np.mean(inside, axis=0) if inside else np.full(2, np.nan)
-    return {"body": body, "kind": kind, "flights": total, "found": found / total,
-            "found_of_fittable": found_fittable / max(fittable, 1), "fittable": fittable / total,
-            "false": false / max(fitted, 1), "fitted": fitted, "joint_only": joint_only,
+    rec = synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
+    accel = None if rec.accel is None else rec.accel.f
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InadequateFitWarning)
+        try:
+            flights = fit_recording(rec.t, rec.omega, events=rec.events, accel=accel).tosses
+        except ValueError:  # no usable flight
+            flights = find_flights(rec.t, rec.omega, events=rec.events, accel=accel)
+    ok = [f for f in flights if f.status == "ok"]
+    fitted += len(ok)
+    false += sum(max(_iou(a, b, f.start, f.end) for a, b in rec.flights) < 0.5 for f in ok)
+    for a, b in rec.flights:
+        total += 1
+        can = _fittable(rec, a, b)
+        fittable += can
+        match = [f for f in ok if _iou(a, b, f.start, f.end) >= 0.5]
+        if match:
+            found += 1
+            ends.append((abs(match[0].start - a), abs(match[0].end - b)))
+            found_fittable += can
+            if match[0].reason.startswith(JOINT_ONLY):  # its own ratios are not determined: no interval to test
+                joint_only += 1
+                continue
+            iv = match[0].fit.ratios_interval
+            inside.append([iv[0, 0] <= rec.ratios[0] <= iv[0, 1], iv[1, 0] <= rec.ratios[1] <= iv[1, 1]])
+        else:
+            best = max(flights, key=lambda f: _iou(a, b, f.start, f.end), default=None)
+            reason = "nothing found" if best is None or _iou(a, b, best.start, best.end) < 0.5 else \
+                best.reason.split(":")[0].split(" (")[0]
+            reasons[reason + ("" if can else " [unfittable]")] += 1
+    return {"total": total, "found": found, "fittable": fittable, "found_fittable": found_fittable,
+            "fitted": fitted, "false": false, "joint_only": joint_only, "inside": inside, "reasons": reasons,
+            "ends": ends}
+
+
+def _cell(body: str, kind: str, parts: list[dict], seconds: float) -> dict:
+    """A cell's shares from its recordings' counts, with each coverage's 95 % Clopper-Pearson interval."""
+    from scipy.stats import binomtest
+
+    add = {k: sum(p[k] for p in parts) for k in ("total", "found", "fittable", "found_fittable", "fitted", "false",
+                                                  "joint_only")}
+    inside = np.array([row for p in parts for row in p["inside"]], bool).reshape(-1, 2)
+    reasons = sum((p["reasons"] for p in parts), Counter())
+    ends = [e for p in parts for e in p["ends"]]
+    held = inside.sum(axis=0)
+    cover = held / len(inside) if len(inside) else np.full(2, np.nan)
+    ci = [binomtest(int(k), len(inside)).proportion_ci(0.95, method="exact") if len(inside) else None for k in held]
+    return {"body": body, "kind": kind, "flights": add["total"], "found": add["found"] / add["total"],
+            "found_of_fittable": add["found_fittable"] / max(add["fittable"], 1), "fittable": add["fittable"] / add["total"],
+            "false": add["false"] / max(add["fitted"], 1), "fitted": add["fitted"], "joint_only": add["joint_only"],
             "coverage_I1_over_I3": float(cover[0]), "coverage_I2_over_I3": float(cover[1]),
-            "skipped": dict(reasons), "seconds": time.perf_counter() - t0,
-            "end_error_ms": (1e3 * np.median(ends, axis=0)).tolist() if ends else [np.nan, np.nan]}
+            "held": held.tolist(), "intervals": len(inside),
+            "coverage_ci": [[c.low, c.high] if c is not None else None for c in ci],
+            "skipped": dict(reasons), "seconds": seconds,
+            "end_error_ms": (1e3 * np.median(ends, axis=0)).tolist() if len(ends) else [np.nan, np.nan]}
 
 
 def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    recordings = int(argv[0]) if argv else 40
-    kinds = argv[1:] or list(KINDS)
-    unknown = [k for k in kinds if k not in KINDS]
+    """``fit_coverage.py [RECORDINGS] [--first-seed N] [--jobs N] [--json PATH]``."""
+    import argparse
+    import json
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("recordings", nargs="?", type=int, default=40, help="recordings per cell (default 40)")
+    parser.add_argument("kinds", nargs="*", metavar="KIND",
+                        help=f"the kinds of recording (default all): {', '.join(map(repr, KINDS))}")
+    parser.add_argument("--first-seed", type=int, default=1000, help="the first seed (default 1000)")
+    parser.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
+    parser.add_argument("--json", help="also write the rows, with their counts, to this JSON file")
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    unknown = [k for k in args.kinds if k not in KINDS]
     if unknown:
-        print(f"unknown kind {unknown[0]!r}; allowed: {', '.join(map(repr, KINDS))}", file=sys.stderr)
-        return 2
+        parser.error(f"unknown kind {unknown[0]!r}; allowed: {', '.join(map(repr, KINDS))}")
     print("| body | recordings | true flights | found and fitted | of the fittable | fittable | false | joint only | "
-          "95 % interval holds I1/I3 | holds I2/I3 | not found | time (s) | release, impact error (ms) |")
+          "95 % interval holds I1/I3 | holds I2/I3 | not found | time (s) | start, end error (ms) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for body in ("racquet", "phone"):
-        for kind in kinds:
-            r = campaign(body, kind, recordings)
+        for kind in args.kinds or KINDS:
+            r = campaign(body, kind, args.recordings, args.first_seed, args.jobs)
             rows.append(r)
+            held = [f"{c:.1%} ({k}/{r['intervals']}; {lo:.0%}-{hi:.0%})" for c, k, (lo, hi) in
+                    zip((r["coverage_I1_over_I3"], r["coverage_I2_over_I3"]), r["held"], r["coverage_ci"])]
             print(f"| {body} | {kind} | {r['flights']} | {r['found']:.1%} | {r['found_of_fittable']:.1%} | "
-                  f"{r['fittable']:.1%} | {r['false']:.1%} of {r['fitted']} | {r['joint_only']} | {r['coverage_I1_over_I3']:.1%} | "
-                  f"{r['coverage_I2_over_I3']:.1%} | {r['skipped']} | {r['seconds']:.0f} | "
+                  f"{r['fittable']:.1%} | {r['false']:.1%} of {r['fitted']} | {r['joint_only']} | {held[0]} | "
+                  f"{held[1]} | {r['skipped']} | {r['seconds']:.0f} | "
                   f"{r['end_error_ms'][0]:.1f}, {r['end_error_ms'][1]:.1f} |", flush=True)
     total = sum(r["flights"] for r in rows)
     found = sum(r["found"] * r["flights"] for r in rows) / total
@@ -139,8 +180,13 @@ def main(argv=None) -> int:
     of_fittable = sum(r["found_of_fittable"] * r["fittable"] * r["flights"] for r in rows) / fittable
     fitted = sum(r["fitted"] for r in rows)
     false = sum(r["false"] * r["fitted"] for r in rows) / fitted
+    intervals = sum(r["intervals"] for r in rows)
+    held_all = np.sum([r["held"] for r in rows], axis=0) / max(intervals, 1)
     print(f"\nall: {total} true flights, {found:.1%} found and fitted ({of_fittable:.1%} of the {fittable:.0f} fittable), "
-          f"{false:.1%} of {fitted} fitted flights false")
+          f"{false:.1%} of {fitted} fitted flights false; 95 % intervals hold I1/I3 in {held_all[0]:.1%}, I2/I3 in "
+          f"{held_all[1]:.1%} of {intervals} flights")
+    if args.json:
+        Path(args.json).write_text(json.dumps(rows, indent=1) + "\n", encoding="utf-8")
     return 0
 
 

@@ -133,7 +133,7 @@ def test_dir_lists_only_public_and_dunder_names():
     assert private == []
     assert "annotations" not in names and "importlib" not in names
     public = {n for n in names if not n.startswith("_")}
-    submodules = {n for n in public if type(getattr(tumble, n)) is type(sys)}
+    submodules = {n for n in public if isinstance(getattr(tumble, n), type(sys))}
     assert public - submodules == set(tumble.__all__) - {"__version__"}
 
 
@@ -341,3 +341,29 @@ def test_a_python_reader_on_an_example_path_outside_a_checkout_says_how_to_get_i
     with pytest.raises(ValueError) as caught:
         reader(path.replace("examples/", "examples/no_"))
     assert str(caught.value).endswith(": no such file")
+
+
+# --- packages whose names load on first use (tumble._lazy) -------------------------------------
+
+LAZY_PACKAGES = ("tumble.analysis", "tumble.dynamics", "tumble.io", "tumble.viz")
+
+
+@pytest.mark.parametrize("name", LAZY_PACKAGES)
+def test_a_lazy_package_offers_exactly_its_public_names_and_each_resolves(name):
+    import importlib
+
+    package = importlib.import_module(name)
+    exports = package.__dict__["_exports"]
+    assert set(exports) == set(package.__all__)
+    for public in package.__all__:
+        value = getattr(package, public)
+        assert value is getattr(importlib.import_module(exports[public], name), public)
+        assert not isinstance(value, type(sys)), public  # a function named as its module stays the function
+
+
+def test_the_fit_of_a_recording_loads_neither_integrators_nor_controllers_nor_plotting():
+    code = ("import sys; import tumble.analysis.fit; "
+            "print(sorted(m for m in ('tumble.dynamics.batch', 'tumble.dynamics.control', 'scipy.integrate', "
+            "'tumble.io.scenario', 'matplotlib') if m in sys.modules))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert proc.stdout.split() == ["[]"], proc.stdout + proc.stderr

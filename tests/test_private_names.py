@@ -24,6 +24,7 @@ SRC = Path(tumble.__file__).resolve().parent
 ALLOWED_MODULES = {
     "tumble._html": "escaping and the small text and table helpers shared by every repr, display and page",
     "tumble._optional": "importing an optional extra with the install hint, for every layer that has one",
+    "tumble._lazy": "a package's public names loaded on first use, for the packages whose modules are imported alone",
     "tumble._version": "the version string, written by the build, read by cli, io provenance and __init__",
 }
 

@@ -7,34 +7,41 @@ Principal axes are numbered 1, 2, 3 (ascending moments) or named ``"minor"``,
 "Numbering the principal axes").
 """
 
-from .fit import RecordingFit, RotationFit, Toss, fit_recording, fit_rotation
-from .gravity_stability import STABILITY_REGIONS, gravity_gradient_ratios, gravity_gradient_stability
-from .period_inversion import PeriodFamily, periods_consistent
-from .stability import (
-    axis_of,
-    circulation_axis,
-    energy_momentum_gaps,
-    flip_interval,
-    flip_interval_asymptotic,
-    flip_times,
-    linearised_rate,
-    perturbation_exponent,
-    SpinPrediction,
-    spin_prediction,
-    stable_spin_range,
-)
-from .periods import (
-    axis_precession_period,
-    montgomery_angle,
-    npa_periods,
-    npa_periods_measured,
-    period,
-    polhode_solid_angle,
-    precession_per_period,
-    rotation_per_period,
-    symmetric_top_rates,
-)
-from .summary import stability_report, trajectory_summary
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_package
+
+if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported on its first use
+    from .fit import RecordingFit, RotationFit, Toss, fit_recording, fit_rotation
+    from .gravity_stability import STABILITY_REGIONS, gravity_gradient_ratios, gravity_gradient_stability
+    from .period_inversion import PeriodFamily, periods_consistent
+    from .stability import (
+        axis_of,
+        circulation_axis,
+        energy_momentum_gaps,
+        flip_interval,
+        flip_interval_asymptotic,
+        flip_times,
+        linearised_rate,
+        perturbation_exponent,
+        SpinPrediction,
+        spin_prediction,
+        stable_spin_range,
+    )
+    from .periods import (
+        axis_precession_period,
+        montgomery_angle,
+        npa_periods,
+        npa_periods_measured,
+        period,
+        polhode_solid_angle,
+        precession_per_period,
+        rotation_per_period,
+        symmetric_top_rates,
+    )
+    from .summary import stability_report, trajectory_summary
+
+lazy_package(__name__)
 
 __all__ = [
     "STABILITY_REGIONS",

@@ -367,16 +367,18 @@ def _degenerate_axes(vecs: Matrix3, gaps: BoolArray) -> Matrix3:
     if gaps.all():  # three equal moments: any frame is principal; take the input frame
         return np.eye(3)
     cluster = [0, 1] if gaps[0] else [1, 2]
-    basis = vecs[:, cluster]  # orthonormal basis of the degenerate plane
-    projector = basis @ basis.T
+    normal = vecs[:, 2 if gaps[0] else 0]  # the plane's normal: the moment that is not degenerate
     chosen: list[Vector3] = []
     for e in np.eye(3):
-        v = projector @ e
+        v = e - (normal @ e) * normal  # e projected onto the degenerate plane
         for c in chosen:
             v = v - (c @ v) * c
         n = np.linalg.norm(v)
         if n > 1e-6:
-            chosen.append(v / n)
+            # The second axis is normal x first, signed as e's residual: a residual of 1e-5 divided
+            # by its norm would lose 11 digits of orthogonality (Gram-Schmidt's cancellation).
+            w = np.cross(normal, chosen[0]) if chosen else v / n
+            chosen.append(w * np.sign(w @ v) if chosen else w)
         if len(chosen) == 2:
             break
     out[:, cluster[0]], out[:, cluster[1]] = chosen

@@ -5,44 +5,51 @@ on a new Figure, and returns the Figure; nothing is written until :func:`save_fi
 animations write an MP4 (with ffmpeg) or a GIF. The physics layers never import matplotlib.
 """
 
-from ._backend import save_figure
-from .animate import (
-    animate_body_frame,
-    animate_ground_frame,
-    animation_path,
-    ffmpeg_path,
-)
-from .control import (
-    control_figures,
-    figure_attitude_error,
-    figure_body_rates,
-    figure_dipole,
-    figure_momentum_budget,
-    figure_wheels,
-)
-from .fit import figure_fit, figure_recording
-from .gravity import figure_gravity_stability
-from .maps import figure_stability_map, figure_sweep
-from .montecarlo import figure_detumble_mc
-from .notebook import show
-from .phase import (
-    PHASE_PORTRAITS,
-    figure_herpolhode,
-    figure_polhode,
-    phase_portrait_problem,
-    polhode_family,
-    separatrices,
-)
-from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
-from .scene import body_lines, body_size, part_lines
-from .spacecraft import (
-    figure_energy,
-    figure_nutation,
-    figure_omega_panels,
-    figure_orbit_angles,
-    spacecraft_figures,
-)
-from .tensor import figure_tensor
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_package
+
+if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported on its first use
+    from ._backend import save_figure
+    from .animate import (
+        animate_body_frame,
+        animate_ground_frame,
+        animation_path,
+        ffmpeg_path,
+    )
+    from .control import (
+        control_figures,
+        figure_attitude_error,
+        figure_body_rates,
+        figure_dipole,
+        figure_momentum_budget,
+        figure_wheels,
+    )
+    from .fit import figure_fit, figure_recording
+    from .gravity import figure_gravity_stability
+    from .maps import figure_stability_map, figure_sweep
+    from .montecarlo import figure_detumble_mc
+    from .notebook import show
+    from .phase import (
+        PHASE_PORTRAITS,
+        figure_herpolhode,
+        figure_polhode,
+        phase_portrait_problem,
+        polhode_family,
+        separatrices,
+    )
+    from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
+    from .scene import body_lines, body_size, part_lines
+    from .spacecraft import (
+        figure_energy,
+        figure_nutation,
+        figure_omega_panels,
+        figure_orbit_angles,
+        spacecraft_figures,
+    )
+    from .tensor import figure_tensor
+
+lazy_package(__name__)
 
 __all__ = [
     "PHASE_PORTRAITS",
