@@ -30,61 +30,23 @@ enough samples) are :func:`tumble.analysis.fit.fit_rotation`'s, reported with th
 from __future__ import annotations
 
 import os
-import re
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .examples import _read_input
+from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _split
 from .gyrocolumns import ColumnsRead, match_accel, match_header
+from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, parse_accel_csv, parse_time_csv
 
-__all__ = ["ACCEL_CSV", "MAX_GYRO_FILE_BYTES", "TIME_CSV", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_accel_csv",
-           "parse_gyro_table", "parse_recording_table", "parse_time_csv", "read_gyro_csv", "read_recording"]
+__all__ = ["MAX_GYRO_FILE_BYTES", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
+           "parse_recording_table", "read_gyro_csv", "read_recording"]
 
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
 MAX_GYRO_FILE_BYTES = 64 << 20
 
 _PHYPHOX = ("time (s)", "gyroscope x (rad/s)", "gyroscope y (rad/s)", "gyroscope z (rad/s)")
-_NUMBER = re.compile(r"^[+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][+-]?\d+)?$|^[+-]?(nan|inf|infinity)$", re.IGNORECASE)
 
-
-def _split(line: str, sep: str | None) -> list[str]:
-    cells = line.split(sep) if sep else line.split()
-    return [c.strip().strip('"').strip("'").strip() for c in cells]
-
-
-def _separator(line: str) -> str | None:
-    for sep in ("\t", ";", ","):
-        if sep in line:
-            return sep
-    return None
-
-
-def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int, str]], str | None, list[str]]:
-    """A delimited text's data lines (line number, text; blank and ``#`` lines left out), its
-    separator (None: white space) and its first line's cells: what every table reader starts with.
-    Space-separated, ``t (ms)`` is one header cell (a name and its unit)."""
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise ValueError(f"{label}: no data; expected {expected}")
-    sep = _separator(lines[0][1])
-    head = _split(lines[0][1], sep)
-    while len(head) > 1 and head[-1] == "":  # a trailing separator
-        head.pop()
-    if sep is None:
-        merged: list[str] = []
-        for cell in head:
-            if merged and cell[:1] in ("(", "[") and not _NUMBER.match(merged[-1]):
-                merged[-1] += " " + cell
-            else:
-                merged.append(cell)
-        head = merged
-    return lines, sep, head
 
 
 def read_gyro_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -216,59 +178,6 @@ def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarra
     return t, omega, accel, read
 
 
-def _rows(lines, sep, columns, width, label) -> np.ndarray:
-    """The numbers of ``columns`` in each data line (``(line number, text)``), a decimal comma
-    with ``;`` as the separator; one line naming the file and the line for a row of the wrong
-    length or a cell that is not a number."""
-    rows = np.empty((len(lines), len(columns)))
-    for k, (no, line) in enumerate(lines):
-        cells = _split(line, sep)
-        while len(cells) > width and cells[-1] == "":  # a trailing separator
-            cells.pop()
-        if len(cells) != width:
-            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
-        for j, c in enumerate(columns):
-            cell = cells[c]
-            if not _NUMBER.match(cell):
-                raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
-            rows[k, j] = float(cell.replace(",", ".") if sep == ";" else cell)
-    return rows
-
-
-#: phyphox's raw accelerometer in an export with several sensors, beside ``Gyroscope.csv``.
-ACCEL_CSV = "Accelerometer.csv"
-
-
-def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, tuple, tuple]:
-    """phyphox's ``Accelerometer.csv`` (experiment "Acceleration (with g)": ``"Time (s)"``,
-    ``"Acceleration x (m/s^2)"``, ...), interpolated linearly onto the gyroscope's times ``t``
-    (``numpy.interp`` per axis; held at the first and last value outside its own span): the
-    specific force, m/s^2, sensor axes; its columns' names and units.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.io.gyrodata import parse_accel_csv
-    >>> raw = b'"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"\\n0,0,0,9.8\\n0.02,0,0,0\\n'
-    >>> f, names, units = parse_accel_csv(raw, "Accelerometer.csv", np.array([0.0, 0.01, 0.02]))
-    >>> f[:, 2].round(6).tolist(), names[0], units
-    ([9.8, 4.9, 0.0], 'Accelerometer.csv: Acceleration x (m/s^2)', ('m/s^2', 'm/s^2', 'm/s^2'))
-    """
-    lines, sep, head = _first_lines(raw, label, "phyphox's accelerometer export: Time (s), Acceleration x, y, z")
-    times = [j for j, cell in enumerate(head) if cell.lower() in ("time (s)", "t (s)", "time", "t")]
-    columns, scale, units = match_accel(head, times[:1], label, lines[0][0])
-    if len(times) != 1 or not columns:
-        raise ValueError(f"{label}, line {lines[0][0]}: expected the columns \"Time (s)\", \"Acceleration x (m/s^2)\", "
-                         f"\"Acceleration y (m/s^2)\", \"Acceleration z (m/s^2)\" (phyphox's raw accelerometer)")
-    rows = _rows(lines[1:], sep, [times[0], *columns], len(head), label) * np.array([1.0, *scale])
-    if len(rows) < 2:
-        raise ValueError(f"{label}: {len(rows)} data rows; an accelerometer record needs many samples")
-    _check_order(rows[:, 0], lines[1:], label)
-    f = np.stack([np.interp(t, rows[:, 0], rows[:, k]) for k in (1, 2, 3)], axis=1)
-    base = os.path.basename(label)
-    return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units)
-
-
 def _last_digit(cell: str) -> float:
     """The value of one unit in the last digit a number is written with (``"1.25"``: 0.01)."""
     mantissa, _, exponent = cell.lower().partition("e")
@@ -286,77 +195,6 @@ def _check_magnitude(omega, fifth, ulp, lines, label) -> None:
         raise ValueError(f"{label}, line {lines[k][0]}: 5 columns without a header, and the fifth ({fifth[k]:.6g}) "
                          f"is not |omega| of columns 2-4 ({norm[k]:.6g}); name the columns in a header line "
                          "(t, wx, wy, wz and others)")
-
-
-def _check_order(t, lines, label) -> None:
-    """Times must increase (irregular steps are fine): name the first line that goes back or repeats.
-    Times that are no number or absurd are left to the fit's checks, which say so."""
-    from ..analysis.fit.single import MAX_TIME
-
-    if not np.all(np.abs(t) <= MAX_TIME):
-        return
-    bad = np.flatnonzero(~(np.diff(t) > 0))
-    if bad.size:
-        k = int(bad[0]) + 1
-        word = "repeats" if t[k] == t[k - 1] else "goes back before"
-        raise ValueError(f"{label}, line {lines[k][0]}: time {t[k]:.9g} s {word} the time {t[k - 1]:.9g} s of line "
-                         f"{lines[k - 1][0]}; times must increase")
-
-
-#: The phyphox export's file of START/PAUSE events, inside the folder or the zip.
-TIME_CSV = "meta/time.csv"
-
-
-def parse_time_csv(raw: bytes, label: str) -> list[tuple[str, float]]:
-    """phyphox's ``meta/time.csv``: ``[(event, experiment time in s), ...]``.
-
-    Its header is ``"event","experiment time","system time","system time text"``; the events
-    are ``START`` and ``PAUSE`` (after a pause the experiment time carries on from the pause).
-
-    Examples
-    --------
-    >>> from tumble.io.gyrodata import parse_time_csv
-    >>> raw = b'"event","experiment time","system time","system time text"\\nSTART,0.0,1.7e9,a\\nPAUSE,12.5,1.7e9,b\\n'
-    >>> parse_time_csv(raw, "meta/time.csv")
-    [('START', 0.0), ('PAUSE', 12.5)]
-    """
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines()) if line.strip()]
-    if not lines:
-        return []
-    sep = _separator(lines[0][1]) or ","
-    head = [h.lower() for h in _split(lines[0][1], sep)]
-    if "event" not in head or "experiment time" not in head:
-        raise ValueError(f"{label}, line {lines[0][0]}: expected the columns \"event\" and \"experiment time\" "
-                         "(phyphox's meta/time.csv)")
-    ie, it = head.index("event"), head.index("experiment time")
-    events = []
-    for no, line in lines[1:]:
-        cells = _split(line, sep)
-        if len(cells) <= max(ie, it):
-            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {len(head)}")
-        name, value = cells[ie].upper(), cells[it]
-        if name not in ("START", "PAUSE"):
-            raise ValueError(f"{label}, line {no}: event {cells[ie][:20]!r}; expected START or PAUSE")
-        if not _NUMBER.match(value):
-            raise ValueError(f"{label}, line {no}: experiment time {value[:40]!r} is not a number")
-        events.append((name, float(value.replace(",", ".") if sep == ";" else value)))
-    return events
-
-
-def _pick_csv(names, label) -> str:
-    """The gyroscope CSV of a phyphox export: ``Raw Data.csv``, else the only CSV at the top."""
-    top = [n for n in names if n.lower().endswith(".csv") and "/" not in n.strip("/")]
-    for n in top:
-        if n.lower() in ("raw data.csv", "gyroscope.csv"):
-            return n
-    if len(top) == 1:
-        return top[0]
-    raise ValueError(f"{label}: a phyphox export holds \"Raw Data.csv\" (the gyroscope's data) at its top; found "
-                     f"{len(top)} CSV files ({', '.join(sorted(top)[:4]) or 'none'})")
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ from ..analysis.tensor import Throw
 from ..validation import read_input_file
 from .atomic import atomic_write_text
 from .gyrocolumns import _UNIT, ACCEL_UNITS, RATE_UNITS, _factor, _name, match_accel, match_header
-from .gyrodata import _NUMBER, _check_order, _first_lines, _split
+from ._delimited import _NUMBER, _check_order, _first_lines, _split
 
 __all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
            "read_throw", "throw_csv", "write_throw"]

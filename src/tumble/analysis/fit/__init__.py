@@ -20,7 +20,8 @@ From periods instead of a gyroscope record: :func:`tumble.analysis.periods_consi
 
 from .adequacy import InadequateFitWarning
 from .flights import Flight, find_flights
-from .recording import NoFlightError, RecordingFit, Toss, fit_recording
+from .recording import NoFlightError, fit_recording
+from .tosses import RecordingFit, Toss
 from .result import RotationFit
 from .single import MIN_SAMPLES, fit_rotation, saturation_mask
 from .uncertainty import SCALE_UNCERTAINTY

@@ -1,0 +1,89 @@
+"""Delimited text, as the readers of recordings and throws start: the data lines, the separator,
+the header's cells, the rows of numbers and the order of the times.
+
+Written here rather than with :func:`numpy.loadtxt` or :mod:`csv`: the readers name the file,
+the line and the column of every error in one line, take a decimal comma where ``;`` separates,
+merge a space-separated ``t (ms)`` into one header cell and skip ``#`` comments anywhere, which
+neither does with such messages.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+_NUMBER = re.compile(r"^[+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][+-]?\d+)?$|^[+-]?(nan|inf|infinity)$", re.IGNORECASE)
+
+
+def _split(line: str, sep: str | None) -> list[str]:
+    cells = line.split(sep) if sep else line.split()
+    return [c.strip().strip('"').strip("'").strip() for c in cells]
+
+
+def _separator(line: str) -> str | None:
+    for sep in ("\t", ";", ","):
+        if sep in line:
+            return sep
+    return None
+
+
+def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int, str]], str | None, list[str]]:
+    """A delimited text's data lines (line number, text; blank and ``#`` lines left out), its
+    separator (None: white space) and its first line's cells: what every table reader starts with.
+    Space-separated, ``t (ms)`` is one header cell (a name and its unit)."""
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
+    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
+             if line.strip() and not line.lstrip().startswith("#")]
+    if not lines:
+        raise ValueError(f"{label}: no data; expected {expected}")
+    sep = _separator(lines[0][1])
+    head = _split(lines[0][1], sep)
+    while len(head) > 1 and head[-1] == "":  # a trailing separator
+        head.pop()
+    if sep is None:
+        merged: list[str] = []
+        for cell in head:
+            if merged and cell[:1] in ("(", "[") and not _NUMBER.match(merged[-1]):
+                merged[-1] += " " + cell
+            else:
+                merged.append(cell)
+        head = merged
+    return lines, sep, head
+
+
+def _rows(lines, sep, columns, width, label) -> np.ndarray:
+    """The numbers of ``columns`` in each data line (``(line number, text)``), a decimal comma
+    with ``;`` as the separator; one line naming the file and the line for a row of the wrong
+    length or a cell that is not a number."""
+    rows = np.empty((len(lines), len(columns)))
+    for k, (no, line) in enumerate(lines):
+        cells = _split(line, sep)
+        while len(cells) > width and cells[-1] == "":  # a trailing separator
+            cells.pop()
+        if len(cells) != width:
+            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
+        for j, c in enumerate(columns):
+            cell = cells[c]
+            if not _NUMBER.match(cell):
+                raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
+            rows[k, j] = float(cell.replace(",", ".") if sep == ";" else cell)
+    return rows
+
+
+def _check_order(t, lines, label) -> None:
+    """Times must increase (irregular steps are fine): name the first line that goes back or repeats.
+    Times that are no number or absurd are left to the fit's checks, which say so."""
+    from ..analysis.fit.single import MAX_TIME
+
+    if not np.all(np.abs(t) <= MAX_TIME):
+        return
+    bad = np.flatnonzero(~(np.diff(t) > 0))
+    if bad.size:
+        k = int(bad[0]) + 1
+        word = "repeats" if t[k] == t[k - 1] else "goes back before"
+        raise ValueError(f"{label}, line {lines[k][0]}: time {t[k]:.9g} s {word} the time {t[k - 1]:.9g} s of line "
+                         f"{lines[k - 1][0]}; times must increase")
