@@ -36,6 +36,7 @@ the same as before, sample for sample.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -141,7 +142,8 @@ def _unit_up(rng: np.random.Generator) -> np.ndarray:
     return d / np.linalg.norm(d)
 
 
-def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, wdot_body: np.ndarray, segments,
+def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, wdot_body: np.ndarray,
+                    segments: Sequence[tuple[str, float, float, np.ndarray | float | None]],
                     sensor: np.ndarray, drag: float = 1.0) -> SyntheticAccel:
     """The accelerometer of a synthetic recording (module docstring).
 

@@ -118,7 +118,9 @@ def rigid_acceleration(omega: ArrayLike, omega_dot: ArrayLike, r: ArrayLike) -> 
 
 def rate_derivative(t: ArrayLike, omega: ArrayLike) -> np.ndarray:
     """``omega'`` at the samples, rad/s^2: the second-order central difference on the real,
-    irregular sample times (``numpy.gradient``; Fornberg, *Math. Comp.* 51, 1988), whose error
+    irregular sample times.
+
+    ``numpy.gradient`` (Fornberg, *Math. Comp.* 51, 1988), whose error
     ``omega''' dt^2 / 6`` stays below the noise of a wider smoothing window's bias at the spin
     rates of tosses.
 
