@@ -7,6 +7,8 @@ equations (torque-free, no air) from the gyroscope's own samples, not the genera
 
 from __future__ import annotations
 
+import csv
+
 import numpy as np
 import pytest
 
@@ -244,6 +246,14 @@ def test_fit_command_uses_the_accelerometer(tmp_path, capsys):
         assert fit["accelerometer"] is used
         assert (fit["read"]["accel"] is not None) is used
         assert all(("sensor_offset" in toss) is used for toss in fit["tosses"] if toss["status"] == "ok")
+        with open(tmp_path / f"out-{used}" / "tosses.csv", encoding="utf-8") as table:
+            rows = list(csv.DictReader(table))
+        assert ("sensor_offset_x" in rows[0]) is used  # the offset's columns only where an accelerometer gave it
+        for row, toss in zip(rows, fit["tosses"]):
+            if used and "sensor_offset" in toss:  # the table says what fit.json says
+                assert [float(row[f"sensor_offset_{a}"]) for a in "xyz"] == pytest.approx(toss["sensor_offset"], rel=1e-12)
+                assert [float(row[f"sensor_offset_{a}_std"]) for a in "xyz"] == pytest.approx(toss["sensor_offset_std"],
+                                                                                             rel=1e-12)
     capsys.readouterr()
 
 

@@ -52,7 +52,7 @@ from ..io.output import FIGURE_DPI, check_output_dir, output_dir
 from ..io.provenance import input_sha256, provenance
 from ..validation import check_number
 
-__all__ = ["TOSS_COLUMNS", "run_fit_command"]
+__all__ = ["OFFSET_COLUMNS", "TOSS_COLUMNS", "run_fit_command"]
 
 #: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries, which add
 #: ``"sensor_offset"`` and ``"sensor_offset_std"`` where the recording has an accelerometer).
@@ -77,12 +77,23 @@ def _body_comparison(body_source, ratios, std) -> dict:
             "I1_over_I3_sigmas": float(z[0]), "I2_over_I3_sigmas": float(z[1])}
 
 
+#: The columns ``tosses.csv`` adds where an accelerometer gave a toss's sensor offset from the
+#: centre of mass (m, sensor axes; blank for a toss without one).
+OFFSET_COLUMNS = tuple(f"sensor_offset_{a}{std}" for std in ("", "_std") for a in "xyz")
+
+
 def _tosses_csv(rows) -> str:
+    offsets = any("sensor_offset" in row for row in rows)
+    columns = TOSS_COLUMNS + (OFFSET_COLUMNS if offsets else ())
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=TOSS_COLUMNS, lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=columns, lineterminator="\n")
     writer.writeheader()
     for row in rows:
-        writer.writerow({k: ("" if row[k] is None else row[k]) for k in TOSS_COLUMNS})
+        cells = {k: ("" if row[k] is None else row[k]) for k in TOSS_COLUMNS}
+        if offsets:
+            values = [*(row.get("sensor_offset") or [""] * 3), *(row.get("sensor_offset_std") or [""] * 3)]
+            cells.update(zip(OFFSET_COLUMNS, values))
+        writer.writerow(cells)
     return buf.getvalue()
 
 
