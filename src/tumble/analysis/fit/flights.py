@@ -282,12 +282,13 @@ def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
     return new[0], new[1]
 
 
-def _trim(omega, keep, a, b, sol: Solution, k: float = 5.0):
-    """Drop end samples of ``[a, b)`` whose residual exceeds ``k`` times the fit's RMS: the last
-    of the throw or the first of the catch that the growth's tolerance let in."""
+def _trim(omega, keep, a, b, sol: Solution, k: float = 5.0, rms: float | None = None):
+    """Drop end samples of ``[a, b)`` whose residual exceeds ``k`` times the fit's RMS (or ``rms``,
+    that of a fit without them): the last of the throw or the first of the catch that the
+    growth's tolerance, or the accelerometer's free fall, let in."""
     model = sol.omega_model[0, :b - a]
     err = np.max(np.where(keep[a:b], np.abs(model - omega[a:b]), 0.0), axis=1)
-    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+    rms = float(np.sqrt(np.mean(sol.residuals ** 2))) if rms is None else rms
     lo, hi = 0, b - a
     while hi - lo > 2 and err[lo] > k * rms:
         lo += 1
@@ -447,8 +448,9 @@ RETRY = ("no free flight", "the model does not fit", NUMERICAL, "too short (")
 def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
              whole=False) -> Flight:
     """Fit the seed window ``[a, b)``, grow it inside ``[a0, b0)``, trim, fit the flight and judge it;
-    ``whole``: the grown fit then taken to all of ``[a0, b0)``, untrimmed (the accelerometer's
-    free fall), where it still follows a free motion."""
+    ``whole``: the grown fit then taken to all of ``[a0, b0)`` (the accelerometer's free fall),
+    where it still follows a free motion, and trimmed as any (a gyroscope's sample at the catch
+    can still carry the impulse: its own low-pass filter smears it over a sample or two)."""
     anchor = t[a]
     sol = None
     try:
@@ -473,13 +475,16 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
             m = sol.model
             window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
             sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
+        grown = None
         if whole and (a, b) != (a0, b0):  # the accelerometer's free fall, whole: from the grown fit
             m = sol.model
             window = Model([t[a0:b0] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a0:b0], axis=1))])
             wide = solve(window, omega[None, a0:b0], keep[None, a0:b0], sol.P, max_nfev=40, covariance=False)
             if np.sqrt(np.mean(wide.residuals ** 2)) <= 0.1 * np.sqrt(np.mean(np.sum(omega[a0:b0] ** 2, axis=1)) / 3):
+                # a sample of the catch in the wide window swells its RMS: judge the ends by the grown fit's
+                grown = float(np.sqrt(np.mean(sol.residuals ** 2)))
                 a, b, sol = a0, b0, wide
-        a, b = (a, b) if whole and (a, b) == (a0, b0) else _trim(omega, keep, a, b, sol)
+        a, b = _trim(omega, keep, a, b, sol, rms=grown)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
             return _skip(t, a, b, f"too short ({length:.2f} s of free flight, {b - a} samples)", sol)
