@@ -1,8 +1,9 @@
 """The fit's statistics on realistic synthetic recordings, as a table (a few minutes).
 
-``python benchmarks/fit_coverage.py [RECORDINGS] [KIND ...] [--first-seed N] [--jobs N] [--json PATH]``: for each
-body (racquet, phone) and each kind of recording (all, or those named), ``RECORDINGS`` synthetic recordings (default 40, seeds from 1000), each with its
-own gyroscope, fitted whole as a user would (:func:`tumble.analysis.fit.fit_recording`):
+``python benchmarks/fit_coverage.py [RECORDINGS] [KIND ...] [--first-seed N] [--jobs N] [--json PATH]``:
+for each body (racquet, phone) and each kind of recording (all, or those named), ``RECORDINGS``
+synthetic recordings (default 40, seeds from 1000), each with its own gyroscope, fitted whole as
+a user would (:func:`tumble.analysis.fit.fit_recording`):
 
 - **tidy**: 2 tosses per file at 100 Hz, each caught and held (the spin killed in the hand), a
   phyphox pause;
