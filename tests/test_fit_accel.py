@@ -290,3 +290,19 @@ def test_a_flight_cut_at_the_free_fall_keeps_no_sample_of_the_catch():
         pair = [next(f for f in tosses if f.status == "ok" and f.start <= b and f.end >= a) for tosses in (alone, both)]
         assert pair[1].fit.residual_rms <= 2.0 * pair[0].fit.residual_rms, (a, b)
         assert pair[1].end <= b  # no sample of the catch
+
+
+def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, capsys):
+    """A logger's accelerometer cell written "nan": tumble fit stops with one line naming the sample
+    and its value (exit 2), as for the gyroscope's."""
+    from tumble.cli import main
+
+    rec = synthetic_recording(5, body="phone", tosses=2, accel=True)
+    f = rec.accel.f.copy()
+    f[100, 2] = np.nan
+    rows = "".join(f"{ti},{w[0]},{w[1]},{w[2]},{a[0]},{a[1]},{a[2]}\n" for ti, w, a in zip(rec.t, rec.omega, f))
+    (tmp_path / "log.csv").write_text("t,gx,gy,gz,ax,ay,az\n" + rows, encoding="utf-8")
+    assert main(["fit", str(tmp_path / "log.csv"), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "accel[100] = [" in err and "nan] is not finite" in err
+    assert not (tmp_path / "out").exists()

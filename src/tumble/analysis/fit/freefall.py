@@ -58,12 +58,19 @@ def check_accel(accel: ArrayLike, shape: tuple) -> np.ndarray:
     Traceback (most recent call last):
     ...
     ValueError: accel: expected 3 finite rows of 3 (the specific force at the gyroscope's times, m/s^2); got shape (2, 3)
+    >>> check_accel([[0.0, 0.0, 9.8], [0.0, float("nan"), 9.8]], (2, 3))
+    Traceback (most recent call last):
+    ...
+    ValueError: accel[1] = [0.0, nan, 9.8] is not finite (the specific force at the gyroscope's times, m/s^2)
     """
     f = np.asarray(accel, float)
-    if f.shape != tuple(shape) or not np.all(np.isfinite(f)):
+    if f.shape != tuple(shape):
         raise ValueError(f"accel: expected {shape[0]} finite rows of 3 (the specific force at the gyroscope's "
-                         f"times, m/s^2); got shape {f.shape}" + (" with values that are not finite"
-                                                                   if f.shape == tuple(shape) else ""))
+                         f"times, m/s^2); got shape {f.shape}")
+    bad = np.flatnonzero(~np.all(np.isfinite(f), axis=1))
+    if bad.size:  # named as the gyroscope's samples are (tumble.analysis.fit.single._check)
+        raise ValueError(f"accel[{bad[0]}] = {f[bad[0]].tolist()} is not finite (the specific force at the "
+                         "gyroscope's times, m/s^2)")
     return f
 
 
