@@ -64,6 +64,27 @@ def _iou(a, b, start, end):
     return max(0.0, min(b, end) - max(a, start)) / (max(b, end) - min(a, start))
 
 
+def stated_flights(seed: int, body: str, kind: str, **extra):
+    """A cell's recording for ``seed`` (``extra``: more arguments of the generator), fitted whole,
+    and for each true flight found the toss that states its own ratios (not used in the joint fit
+    only); returns ``(recording, its draw, [toss, ...])``. For the scans beside this campaign
+    (fit_zscan, fit_dragspread)."""
+    draw = dict(KINDS[kind](np.random.default_rng(seed)), **extra)
+    rec = synthetic_recording(seed, body=body, **draw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            tosses = fit_recording(rec.t, rec.omega, events=rec.events).tosses
+        except ValueError:  # no usable flight
+            return rec, draw, []
+    found = []
+    for a, b in rec.flights:
+        match = [f for f in tosses if f.status == "ok" and _iou(a, b, f.start, f.end) >= 0.5]
+        if match and not match[0].reason:
+            found.append(match[0])
+    return rec, draw, found
+
+
 def _fittable(rec, a, b) -> bool:
     """Whether the flight fits when cut exactly at its true release and impact."""
     sel = (rec.t >= a) & (rec.t <= b)

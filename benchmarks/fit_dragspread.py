@@ -18,29 +18,21 @@ import warnings
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
-from fit_coverage import KINDS, _iou
+from fit_coverage import KINDS, stated_flights
 
-from tumble.analysis.fit import fit_recording, fit_rotation
-from tumble.analysis.fit.synthetic import synthetic_recording
+from tumble.analysis.fit import fit_rotation
 
 
 def _flights(seed: int, body: str, kind: str) -> list[dict]:
     """Each found flight's ratios, standard uncertainties, the truth, and its window refitted with each drag law."""
-    rec = synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
+    rec, _, found = stated_flights(seed, body, kind)
     rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        try:
-            tosses = fit_recording(rec.t, rec.omega, events=rec.events).tosses
-        except ValueError:  # no usable flight
-            return rows
-        for a, b in rec.flights:
-            match = [f for f in tosses if f.status == "ok" and _iou(a, b, f.start, f.end) >= 0.5]
-            if not match or match[0].reason:  # not found, or used in the joint fit only
-                continue
-            sel = (rec.t >= match[0].start) & (rec.t <= match[0].end)
+        for toss in found:
+            sel = (rec.t >= toss.start) & (rec.t <= toss.end)
             laws = {law: fit_rotation(rec.t[sel], rec.omega[sel], drag=law).ratios for law in ("linear", "quadratic")}
-            rows.append({"fit": match[0].fit.ratios, "std": match[0].fit.ratios_std, "true": rec.ratios,
+            rows.append({"fit": toss.fit.ratios, "std": toss.fit.ratios_std, "true": rec.ratios,
                          "spread": np.abs(laws["linear"] - laws["quadratic"])})
     return rows
 

@@ -13,35 +13,21 @@ from __future__ import annotations
 
 import argparse
 import sys
-import warnings
 from collections import defaultdict
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
-from fit_coverage import KINDS, _iou
-
-from tumble.analysis.fit import fit_recording
-from tumble.analysis.fit.synthetic import synthetic_recording
+from fit_coverage import KINDS, stated_flights
 
 
 def _flights(seed: int, body: str, kind: str, extra: dict) -> list[dict]:
     """The found flights of one recording that state their own ratios: rate, z, held."""
-    draw = dict(KINDS[kind](np.random.default_rng(seed)), **extra)
-    rec = synthetic_recording(seed, body=body, **draw)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        try:
-            tosses = fit_recording(rec.t, rec.omega, events=rec.events).tosses
-        except ValueError:  # no usable flight
-            return []
+    rec, draw, found = stated_flights(seed, body, kind, **extra)
     rows = []
-    for a, b in rec.flights:
-        match = [f for f in tosses if f.status == "ok" and _iou(a, b, f.start, f.end) >= 0.5]
-        if match and not match[0].reason:  # used in the joint fit only: no interval of its own
-            fit = match[0].fit
-            iv = fit.ratios_interval
-            rows.append({"rate": draw.get("rate", 100.0), "z": ((fit.ratios - rec.ratios) / fit.ratios_std).tolist(),
-                         "held": [bool(iv[k, 0] <= rec.ratios[k] <= iv[k, 1]) for k in (0, 1)]})
+    for toss in found:
+        fit, iv = toss.fit, toss.fit.ratios_interval
+        rows.append({"rate": draw.get("rate", 100.0), "z": ((fit.ratios - rec.ratios) / fit.ratios_std).tolist(),
+                     "held": [bool(iv[k, 0] <= rec.ratios[k] <= iv[k, 1]) for k in (0, 1)]})
     return rows
 
 
