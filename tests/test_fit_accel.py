@@ -91,6 +91,25 @@ def test_offset_fit_recovers_the_sensor_position():
     assert np.mean(hits) >= 0.9
 
 
+def test_the_offsets_95_percent_intervals_cover_the_true_offset():
+    """Coverage over seeded flights (phone and racquet, 120 flights, each axis): the stated standard
+    uncertainty of the offset (the statistical part widened for the smooth residuals, plus the
+    two sensors' scale factors) makes 1.96-sigma intervals that hold the generator's true offset
+    about 95 % of the time (measured 90-94 % per axis; the textbook covariance alone held it in
+    about half)."""
+    held = []
+    for seed in range(10, 40):
+        for body in ("phone", "racquet"):
+            rec = synthetic_recording(seed, body=body, tosses=2, accel=True)
+            for a, b in rec.flights:
+                sel = _inside(rec, a, b, 0.05)
+                w = rec.omega[sel]
+                r, _, r_std = fit_offset(rec.accel.f[sel], w, rate_derivative(rec.t[sel], w))
+                held.append(np.abs(r - rec.accel.offset) <= 1.96 * r_std)
+    share = np.mean(held)
+    assert len(held) == 120 and 0.88 <= share <= 0.99, share
+
+
 def test_free_span_finds_release_and_catch():
     """Given the whole stretch from the hold before to the hold after, the free fall's residual
     cuts each flight within 30 ms of its true release and catch."""

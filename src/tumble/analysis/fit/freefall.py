@@ -28,8 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...typing import ArrayLike
+from .uncertainty import SCALE_UNCERTAINTY, effective_covariance
 
-__all__ = ["FREE_FACTOR", "FREE_FLOOR", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
+__all__ = ["ACCEL_SCALE_UNCERTAINTY", "FREE_FACTOR", "FREE_FLOOR", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
            "free_span", "offset_matrix", "rate_derivative", "rigid_acceleration"]
 
 #: The residual that ends a flight: this many times its median in the flight's middle ...
@@ -39,6 +40,10 @@ FREE_FLOOR = 1.0
 #: The median residual, m/s^2, above which a candidate's middle is not in free fall (a hand's
 #: grip reads ~g; the free fall's residual is the noise and the derivative's error, ~0.1-0.5).
 MAX_CONTACT = 2.0
+#: Standard uncertainty of a MEMS accelerometer's scale factor per axis (sensitivity tolerance,
+#: dimensionless; Bosch BMI160/BMI270, ST LSM6DSO datasheets give about +-1 % as limits), as the
+#: gyroscope's :data:`~tumble.analysis.fit.uncertainty.SCALE_UNCERTAINTY`.
+ACCEL_SCALE_UNCERTAINTY = 0.005
 #: The largest sensor offset from the centre of mass taken for a body tossed by hand, m (a
 #: phone on a racquet's handle sits some 0.3 m from its centre of mass).
 MAX_OFFSET = 0.5
@@ -179,8 +184,12 @@ def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np
     c : ndarray, shape (3,)
         Constant specific force, m/s^2.
     r_std : ndarray, shape (3,)
-        Standard uncertainty of ``r``, m: ``(M^T M)^-1 s^2`` with ``s^2`` the residuals'
-        variance (samples taken as independent: a lower bound when the noise is coloured).
+        Standard uncertainty of ``r``, m: the least-squares covariance widened by the residuals'
+        autocorrelation time (:func:`~tumble.analysis.fit.uncertainty.effective_covariance`),
+        plus the accelerometer's and the gyroscope's scale factors
+        (:data:`ACCEL_SCALE_UNCERTAINTY`, :data:`~tumble.analysis.fit.uncertainty.SCALE_UNCERTAINTY`)
+        propagated to first order (GUM 5.1.2). Checked by coverage over seeded synthetic flights
+        (tests/test_fit_accel.py).
 
     Examples
     --------
@@ -198,9 +207,25 @@ def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np
     A = offset_matrix(omega, omega_dot)
     M = np.concatenate([A, np.broadcast_to(np.eye(3), A.shape)], axis=2).reshape(-1, 6)
     x, *_ = np.linalg.lstsq(M, f.reshape(-1), rcond=None)
-    dof = max(M.shape[0] - 6, 1)
-    s2 = float(np.sum((M @ x - f.reshape(-1)) ** 2)) / dof
-    cov = np.linalg.pinv(M.T @ M) * s2
+    res = M @ x - f.reshape(-1)
+    # statistical: the residuals are smooth (the derivative's error, the air), so their
+    # autocorrelation time widens the textbook covariance (tumble.analysis.fit.uncertainty)
+    cov, _ = effective_covariance(M, res, res.reshape(-1, 3), [0, len(f)])
+    # systematic: each axis's scale factor, accelerometer and gyroscope, propagated to first order
+    # (GUM, JCGM 100:2008, 5.1.2): x moves by dx/dk per unit scale error k
+    omega, omega_dot = np.asarray(omega, float), np.asarray(omega_dot, float)
+    pinv = np.linalg.pinv(M)
+    sens = []
+    for k in range(3):
+        scaled = np.zeros_like(f)
+        scaled[:, k] = f[:, k]
+        sens.append(ACCEL_SCALE_UNCERTAINTY * (pinv @ scaled.reshape(-1)))
+        e = np.ones(3)
+        e[k] += 1e-6
+        A_k = offset_matrix(omega * e, omega_dot * e)
+        M_k = np.concatenate([A_k, np.broadcast_to(np.eye(3), A_k.shape)], axis=2).reshape(-1, 6)
+        sens.append(SCALE_UNCERTAINTY * (np.linalg.pinv(M_k) @ f.reshape(-1) - x) / 1e-6)
+    cov = cov + sum(np.outer(d, d) for d in sens)
     return x[:3], x[3:], np.sqrt(np.diag(cov)[:3])
 
 
