@@ -165,6 +165,12 @@ def _one_sided(t: np.ndarray, w: np.ndarray, side: int) -> np.ndarray:
     return out
 
 
+def _design(omega: ArrayLike, omega_dot: ArrayLike) -> np.ndarray:
+    """The least-squares matrix of ``f = A r + c``: rows ``[A | I]``, (3 n, 6)."""
+    A = offset_matrix(omega, omega_dot)
+    return np.concatenate([A, np.broadcast_to(np.eye(3), A.shape)], axis=2).reshape(-1, 6)
+
+
 def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The sensor's offset ``r`` from the centre of mass and the constant ``c`` (bias plus air)
     that best give the specific force ``f = A r + c`` of free flight (module docstring), by
@@ -204,8 +210,7 @@ def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np
     (True, [0.1, 0.0, -0.2])
     """
     f = np.asarray(f, float)
-    A = offset_matrix(omega, omega_dot)
-    M = np.concatenate([A, np.broadcast_to(np.eye(3), A.shape)], axis=2).reshape(-1, 6)
+    M = _design(omega, omega_dot)
     x, *_ = np.linalg.lstsq(M, f.reshape(-1), rcond=None)
     res = M @ x - f.reshape(-1)
     # statistical: the residuals are smooth (the derivative's error, the air), so their
@@ -222,9 +227,7 @@ def fit_offset(f: ArrayLike, omega: ArrayLike, omega_dot: ArrayLike) -> tuple[np
         sens.append(ACCEL_SCALE_UNCERTAINTY * (pinv @ scaled.reshape(-1)))
         e = np.ones(3)
         e[k] += 1e-6
-        A_k = offset_matrix(omega * e, omega_dot * e)
-        M_k = np.concatenate([A_k, np.broadcast_to(np.eye(3), A_k.shape)], axis=2).reshape(-1, 6)
-        sens.append(SCALE_UNCERTAINTY * (np.linalg.pinv(M_k) @ f.reshape(-1) - x) / 1e-6)
+        sens.append(SCALE_UNCERTAINTY * (np.linalg.pinv(_design(omega * e, omega_dot * e)) @ f.reshape(-1) - x) / 1e-6)
     cov = cov + sum(np.outer(d, d) for d in sens)
     return x[:3], x[3:], np.sqrt(np.diag(cov)[:3])
 
