@@ -231,7 +231,9 @@ class RotationFit:
             "caveat": self.caveat or None,
             "covariance_method": ("(J^T J)^-1 s^2 times the residuals' integrated autocorrelation time "
                                   f"({self.autocorrelation_time:.1f} samples; Geyer's initial positive sequence), "
-                                  "plus the gyroscope's scale-factor tolerance (GUM 5.1)"),
+                                  "plus the gyroscope's scale-factor tolerance (GUM 5.1)"
+                                  + ("" if self.drag == "none" else ", plus the drag law's model error (the parameters' "
+                                     "shift when the other drag law is fitted, as one standard uncertainty)")),
             "units": {"ratios": "dimensionless", "omega0": "rad/s", "rotvec": "rad", "bias": "rad/s",
                       "residual_rms": "rad/s", "noise": "rad/s", "t0": "s", "ratios_correlation": "dimensionless",
                       "misfit": "dimensionless",
