@@ -68,7 +68,7 @@ def stated_flights(seed: int, body: str, kind: str, **extra):
     """A cell's recording for ``seed`` (``extra``: more arguments of the generator), fitted whole,
     and for each true flight found the toss that states its own ratios (not used in the joint fit
     only); returns ``(recording, its draw, [toss, ...])``. For the scans beside this campaign
-    (fit_zscan, fit_dragspread)."""
+    (fit_zscan)."""
     draw = dict(KINDS[kind](np.random.default_rng(seed)), **extra)
     rec = synthetic_recording(seed, body=body, **draw)
     with warnings.catch_warnings():
