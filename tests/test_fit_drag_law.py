@@ -4,8 +4,8 @@ A tossed racquet's air drag is a plate's: strip theory couples its two in-plane 
 neither per-axis law of the fit follows, and the ratios absorb part of the difference where the
 residuals do not show it. The checks: the added part is the shift between the two laws fitted
 apart from their own starting values (an independent route), and the 95 % intervals of flights
-of the synthetic racquet sampled at 400 Hz hold the true ratios (coverage over seeded trials;
-20 seeded flights: 19 hold both ratios, 17 without the term).
+of the synthetic racquet sampled at 200 Hz hold the true ratios (coverage over seeded trials:
+all 30 hold both, against 26 of 30 for I1/I3 without the term).
 """
 
 from __future__ import annotations
@@ -13,7 +13,6 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-import pytest
 from scipy.integrate import solve_ivp
 
 import tumble.analysis.fit.solve as solve_module
@@ -57,15 +56,15 @@ def test_the_drag_laws_error_is_the_shift_between_the_two_laws_fitted_apart(monk
     assert "drag law" not in none["covariance_method"]
 
 
-def test_the_intervals_of_a_plate_tossed_and_sampled_at_400_hz_hold_its_ratios():
+def test_the_intervals_of_a_plate_tossed_and_sampled_at_200_hz_hold_its_ratios():
     held = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")   # an inadequate fit is still counted
-        for seed in range(20):
-            rec = synthetic_recording(seed, body="racquet", tosses=1, rate=400.0, flex=False)
+        for seed in range(30):
+            rec = synthetic_recording(seed, body="racquet", tosses=1, rate=200.0, flex=False)
             start, end = rec.flights[0]
             sel = (rec.t > start + 0.01) & (rec.t < end - 0.01)
             fit = fit_rotation(rec.t[sel], rec.omega[sel])
             held.append([lo <= x <= hi for x, (lo, hi) in zip(rec.ratios, fit.ratios_interval)])
     coverage = np.mean(held, axis=0)
-    assert np.all(coverage >= 0.9), coverage   # 18 of 20; calibrated intervals miss 3 or more in 7.5 % of draws
+    assert np.all(coverage >= 0.9), coverage   # 27 of 30; calibrated intervals miss 4 or more in 6 % of draws
