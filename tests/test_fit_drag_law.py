@@ -68,3 +68,27 @@ def test_the_intervals_of_a_plate_tossed_and_sampled_at_200_hz_hold_its_ratios()
             held.append([lo <= x <= hi for x, (lo, hi) in zip(rec.ratios, fit.ratios_interval)])
     coverage = np.mean(held, axis=0)
     assert np.all(coverage >= 0.9), coverage   # 27 of 30; calibrated intervals miss 4 or more in 6 % of draws
+
+
+def test_the_weighted_mean_of_flights_leaves_the_drag_law_out_as_the_joint_fit_does(monkeypatch):
+    """When the joint fit cannot be made, the pooled ratios are the flights' weighted mean; its
+    uncertainty is the same with or without the flights' drag-law parts (the pooled ratios hold
+    the model error through the flights' scatter, the Birge ratio), as the joint fit's."""
+    import tumble.analysis.fit.recording as recording_module
+    from tumble.analysis.fit import fit_recording
+
+    rec = synthetic_recording(11, body="racquet", tosses=3, rate=200.0)
+    monkeypatch.setattr(recording_module, "joint_solution", lambda *a, **k: (None, [], []))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = fit_recording(rec.t, rec.omega, events=rec.events)
+        with monkeypatch.context() as m:
+            m.setattr(solve_module, "with_drag_law_error", lambda s, *a, **k: s)
+            bare = fit_recording(rec.t, rec.omega, events=rec.events)
+    own = [toss.fit for toss in fit.tosses if toss.status == "ok" and not toss.reason]
+    assert len(own) >= 2 and any(f.drag != "none" for f in own)
+    wider = [f.ratios_std for f in own]
+    narrower = [f.ratios_std for f in (toss.fit for toss in bare.tosses if toss.status == "ok" and not toss.reason)]
+    assert np.all(np.array(wider) >= np.array(narrower)) and np.any(np.array(wider) > 1.05 * np.array(narrower))
+    np.testing.assert_allclose(fit.pooled.ratios, bare.pooled.ratios, rtol=1e-12)
+    np.testing.assert_allclose(fit.pooled.ratios_std, bare.pooled.ratios_std, rtol=1e-9)

@@ -354,12 +354,16 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     """The pooled ratios as the flights' inverse-covariance weighted mean (when the joint fit
     cannot be made): statistical part scaled by the Birge ratio, the systematic part the
-    flights' mean (it is common to them, not averaged down)."""
+    flights' mean (it is common to them, not averaged down) without the drag law's model
+    error, as the joint fit's (:mod:`~tumble.analysis.fit.joint`)."""
     values, stats, totals = [], [], []
     used = [f for f in used if not f.joinable] or used  # a weighted mean of the flights' own ratios
     for f in used:
         _, v, c = public_covariance(f.solution, statistical=True)
-        _, _, ct = public_covariance(f.solution)
+        sol = f.solution
+        if sol.cov_drag_law is not None:
+            sol = replace(sol, cov=sol.cov - sol.cov_drag_law, cov_drag_law=None)
+        _, _, ct = public_covariance(sol)
         values.append(v[:2]), stats.append(c[:2, :2]), totals.append(ct[:2, :2])
     values, stats, totals = np.array(values), np.array(stats), np.array(totals)
     W = np.array([np.linalg.pinv(c) for c in stats])

@@ -60,7 +60,8 @@ _FIXABLE = ("drag_3", "drag_1", "drag_2", "rotvec_x", "rotvec_y", "rotvec_z", "g
 @dataclass
 class Solution:
     """A solved model: parameters, their covariance (undetermined ones with NaN; ``cov_stat``
-    without the systematic part of the gyroscope's scale factor), residuals.
+    without the systematic parts: the gyroscope's scale factor and, in ``cov_drag_law``, the drag
+    law's model error), residuals.
 
     Examples
     --------
@@ -87,6 +88,7 @@ class Solution:
     autocorrelation_time: float  # of the residuals, samples
     ssr: float
     m: int
+    cov_drag_law: np.ndarray | None = None  # the part of ``cov`` that is the drag law's model error (with_drag_law_error)
 
     @property
     def bic(self) -> float:
@@ -329,7 +331,7 @@ def with_drag_law_error(sol: Solution, data: np.ndarray, mask: np.ndarray, *, ma
         return sol
     d = alt.P - sol.P
     d[[model.names.index(n) for n in DRAG_MODELS[model.drag]]] = 0.0
-    return replace(sol, cov=sol.cov + np.outer(d, d))
+    return replace(sol, cov=sol.cov + np.outer(d, d), cov_drag_law=np.outer(d, d))
 
 
 #: The box faces that are edges of the triangle: (coordinate index, bound).
