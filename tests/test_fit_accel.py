@@ -325,3 +325,34 @@ def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, caps
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "accel[100] = [" in err and "nan] is not finite" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_an_accelerometer_that_does_not_span_the_gyroscopes_record_is_left_out_and_said(tmp_path):
+    """phyphox's Accelerometer.csv that starts 2 s into the gyroscope's record: its first value
+    would stand for 2 s never measured, so it is not used; what was read says why, fit.json too,
+    and the flights are found from the gyroscope alone, as without it. Within 0.1 s it is used."""
+    import json
+
+    from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    from tumble.cli import main
+    from tumble.io.gyrodata import load_recording
+
+    rec = synthetic_recording(41, tosses=1, accel=True, rate=200.0)
+    for name, start, used in (("late", 2.0, False), ("prompt", rec.t[0] + 0.05, True)):
+        export = tmp_path / name
+        (export / "meta").mkdir(parents=True)
+        (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
+        (export / "meta" / "time.csv").write_text(rec.time_csv_text(), encoding="utf-8")
+        late = rec.t >= start
+        (export / "Accelerometer.csv").write_text(phyphox_accel_csv(rec.t[late], rec.accel.f[late]), encoding="utf-8")
+        got = load_recording(export)
+        assert (got.accel is not None) is used and bool(got.read.accel) is used
+        if not used:
+            assert got.read.accel_left_out.startswith(f"Accelerometer.csv covers {rec.t[late][0]:.6g} to ")
+            assert "not used" in got.read.accel_left_out and "the accelerometer left out" in got.read.brief()
+            out = tmp_path / "fit"
+            assert main(["fit", str(export), "--out", str(out)]) == 0
+            data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
+            assert data["accelerometer"] is False and "not used" in data["read"]["accel_left_out"]
+        else:
+            assert got.read.accel_left_out == "" and "accel_left_out" not in got.read.summary()

@@ -121,6 +121,9 @@ class ColumnsRead:
         without an accelerometer.
     accel_units : tuple of str
         Their units, converted to m/s^2.
+    accel_left_out : str
+        Why an accelerometer that was there is not used (a phyphox export's ``Accelerometer.csv``
+        that does not span the gyroscope's record); empty otherwise.
 
     Examples
     --------
@@ -140,6 +143,7 @@ class ColumnsRead:
     sample_rate: float
     accel: tuple = ()
     accel_units: tuple = ()
+    accel_left_out: str = ""
 
     def summary(self) -> dict:
         """JSON-ready (fit.json's ``"read"``).
@@ -160,6 +164,8 @@ class ColumnsRead:
             out["not_specific_force"] = (f"{', '.join(linear)}: a phone's linear acceleration (its fusion's gravity "
                                          "estimate taken out, which a tumbling phone cannot track) is not the "
                                          "specific force; ignored")
+        if self.accel_left_out:
+            out["accel_left_out"] = self.accel_left_out
         return out
 
     def brief(self) -> str:
@@ -177,6 +183,7 @@ class ColumnsRead:
 
         units = self.rate_units[0] if len(set(self.rate_units)) == 1 else "/".join(self.rate_units)
         ignored = f", {len(self.ignored)} ignored" if self.ignored else ""
+        ignored += ", the accelerometer left out" if self.accel_left_out else ""
         accel = f", {', '.join(bare(a) for a in self.accel)} ({'/'.join(dict.fromkeys(self.accel_units))})" \
             if self.accel else ""
         return (f"{bare(self.time)} ({self.time_unit}), {', '.join(bare(r) for r in self.rates)} ({units}){accel}"

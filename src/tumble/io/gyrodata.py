@@ -37,7 +37,7 @@ import numpy as np
 from .examples import _read_input
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _split
 from .gyrocolumns import ColumnsRead, match_accel, match_header
-from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, parse_accel_csv, parse_time_csv
+from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, accel_span_gap, parse_accel_csv, parse_time_csv
 
 __all__ = ["MAX_GYRO_FILE_BYTES", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
            "parse_recording_table", "read_gyro_csv", "read_recording"]
@@ -214,7 +214,8 @@ class GyroRecording:
     accel : ndarray, shape (n, 3), or None
         The accelerometer's specific force at the times ``t``, m/s^2, sensor axes: the file's
         own columns, or a phyphox export's ``Accelerometer.csv`` interpolated onto the
-        gyroscope's times (:func:`parse_accel_csv`); None without one.
+        gyroscope's times (:func:`parse_accel_csv`); None without one, or when the export's does
+        not span the gyroscope's record (``read.accel_left_out`` says so).
 
     Examples
     --------
@@ -349,7 +350,11 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
     return GyroRecording(t, omega, (), read, accel)
 
 
-def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray, ColumnsRead]:
-    """A phyphox export's accelerometer on the gyroscope's times, and what was read saying so."""
-    f, names, units = parse_accel_csv(raw, label, t)
+def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray | None, ColumnsRead]:
+    """A phyphox export's accelerometer on the gyroscope's times, and what was read saying so;
+    None, and why, when it does not span the gyroscope's record."""
+    f, names, units, span = parse_accel_csv(raw, label, t)
+    gap = accel_span_gap(span, t, label)
+    if gap:
+        return None, replace(read, accel_left_out=gap)
     return f, replace(read, accel=names, accel_units=units)
