@@ -43,7 +43,7 @@ from .result import (
     solution_adequacy,
 )
 from .single import _check, _check_options, saturation_mask
-from .solve import Solution
+from .solve import Solution, without_drag_law_error
 from .tosses import RecordingFit, Toss
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
@@ -360,10 +360,7 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     used = [f for f in used if not f.joinable] or used  # a weighted mean of the flights' own ratios
     for f in used:
         _, v, c = public_covariance(f.solution, statistical=True)
-        sol = f.solution
-        if sol.cov_drag_law is not None:
-            sol = replace(sol, cov=sol.cov - sol.cov_drag_law, cov_drag_law=None)
-        _, _, ct = public_covariance(sol)
+        _, _, ct = public_covariance(without_drag_law_error(f.solution))
         values.append(v[:2]), stats.append(c[:2, :2]), totals.append(ct[:2, :2])
     values, stats, totals = np.array(values), np.array(stats), np.array(totals)
     W = np.array([np.linalg.pinv(c) for c in stats])

@@ -42,7 +42,7 @@ from ...typing import ArrayLike
 from .model import DRAG_MODELS, Model
 from .uncertainty import effective_covariance, scale_covariance
 
-__all__ = ["RANK_TOL", "Solution", "check_drag", "solve", "solve_drag", "with_drag_law_error"]
+__all__ = ["RANK_TOL", "Solution", "check_drag", "solve", "solve_drag", "with_drag_law_error", "without_drag_law_error"]
 
 #: Scaled singular values below this fraction of the largest mark undetermined parameters.
 RANK_TOL = 1e-7
@@ -332,6 +332,29 @@ def with_drag_law_error(sol: Solution, data: np.ndarray, mask: np.ndarray, *, ma
     d = alt.P - sol.P
     d[[model.names.index(n) for n in DRAG_MODELS[model.drag]]] = 0.0
     return replace(sol, cov=sol.cov + np.outer(d, d), cov_drag_law=np.outer(d, d))
+
+
+def without_drag_law_error(sol: Solution) -> Solution:
+    """``sol`` without the drag law's model error in its covariance (:func:`with_drag_law_error`):
+    what a flight's ratios are pooled and compared with (module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.analysis.fit.solve import without_drag_law_error
+    >>> from tumble.dynamics.models.drag import drag_omega
+    >>> t = np.linspace(0.0, 1.0, 201)   # a flight slowed by a quadratic drag
+    >>> w = drag_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t, quadratic=[[0.02, 0.03, 0.04]])[0]
+    >>> w = w + np.random.default_rng(0).normal(0.0, 0.002, w.shape)
+    >>> sol = fit_solution(t, w, np.ones(w.shape, bool), rotation=False, bias=False, drag="quadratic")
+    >>> bare = without_drag_law_error(sol)
+    >>> bool(np.allclose(bare.cov + sol.cov_drag_law, sol.cov)), bare.cov_drag_law is None
+    (True, True)
+    """
+    if sol.cov_drag_law is None:
+        return sol
+    return replace(sol, cov=sol.cov - sol.cov_drag_law, cov_drag_law=None)
 
 
 #: The box faces that are edges of the triangle: (coordinate index, bound).
