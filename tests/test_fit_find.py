@@ -15,7 +15,7 @@ import pytest
 from tumble.analysis.fit import InadequateFitWarning, find_flights, fit_recording
 from tumble.analysis.fit.adequacy import MAX_ENERGY_RISE, MAX_MOMENTUM_RISE, rigid_body_check
 from tumble.analysis.fit.endings import gyrostat_flight
-from tumble.analysis.fit.flights import impulses
+from tumble.analysis.fit.segments import impulses
 from tumble.analysis.fit.synthetic import TOSS_BODIES, TossBody, plate_drag_torque, synthetic_recording
 from tumble.cli import main
 from tumble.dynamics.methods.exact_omega import free_omega

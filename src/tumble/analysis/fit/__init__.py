@@ -7,6 +7,7 @@ rotated, biased sensor, with drag), :mod:`~tumble.analysis.fit.start` (starting 
 :mod:`~tumble.analysis.fit.uncertainty` (the residuals' autocorrelation, the scale factor, intervals,
 pooling), :mod:`~tumble.analysis.fit.adequacy` (whether the model fits at all),
 :mod:`~tumble.analysis.fit.single` (one flight: :func:`fit_rotation`),
+:mod:`~tumble.analysis.fit.segments` (where a whole recording is cut: pauses, gaps, impulses),
 :mod:`~tumble.analysis.fit.flights` (finding the free flights of a whole recording),
 :mod:`~tumble.analysis.fit.freefall` (an accelerometer's free fall: the flights' ends and the
 sensor's offset from the centre of mass),

@@ -13,7 +13,7 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    in the samples longer than ``max_gap``.
 2. **Active stretches**: where ``|omega|`` (a 3-sample median) exceeds ``min_spin``; in a free
    flight ``|omega| >= |L| / I3`` never dips to zero, while a hold stays below a rad/s.
-3. **Cut at the impulses** (:func:`impulses`): a free rigid body's angular acceleration is at
+3. **Cut at the impulses** (:func:`~tumble.analysis.fit.segments.impulses`): a free rigid body's angular acceleration is at
    most ``|omega|^2 / sqrt(3)``, whatever its moments (the triangle inequality in Euler's
    equations); a sample whose rate changes faster than 1.25 times that, plus 20 rad/s^2, is under
    a torque: the throw's start, a catch, an impact, the hand. The stretch is segmented there
@@ -56,7 +56,6 @@ skipped when its middle is not in free fall (the hand); step 4 then fits the who
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
@@ -67,12 +66,13 @@ from .adequacy import _left_path
 from .freefall import FreeSpan, check_accel, free_span
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
+from .segments import _runs, _segments, _stretches, impulses, pause_times
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
 from .solve import Solution, solve
 from .triangle import EDGES
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
 
-__all__ = ["IMPULSE_FACTOR", "IMPULSE_FLOOR", "IMPULSE_SPAN", "Flight", "find_flights", "impulses", "pause_times"]
+__all__ = ["Flight", "find_flights"]
 
 
 @dataclass(frozen=True)
@@ -138,114 +138,6 @@ class Flight:
         100
         """
         return self.stop - self.first
-
-
-def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
-    """Experiment times of phyphox's PAUSE events (``[(name, time), ...]``), s.
-
-    Examples
-    --------
-    >>> from tumble.analysis.fit.flights import pause_times
-    >>> pause_times([("START", 0.0), ("PAUSE", 12.5), ("START", 12.5), ("pause", 3.0)]), pause_times(None)
-    ([3.0, 12.5], [])
-    """
-    return sorted(float(te) for name, te in (events or []) if str(name).upper() == "PAUSE")
-
-
-def _runs(t, pauses, max_gap):
-    """Index ranges ``[i, j)`` not crossing a pause or a gap."""
-    cuts = set(np.flatnonzero(np.diff(t) > max_gap) + 1)
-    for tp in pauses:
-        cuts.add(int(np.searchsorted(t, tp, side="right")))
-    edges = [0] + sorted(c for c in cuts if 0 < c < len(t)) + [len(t)]
-    return list(itertools.pairwise(edges))
-
-
-def _stretches(speed, lo, hi, min_spin):
-    active = speed[lo:hi] > min_spin
-    d = np.diff(np.r_[0, active.astype(int), 0])
-    return [(lo + a, lo + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
-
-
-#: A free flight's angular acceleration is at most ``|omega|^2 / sqrt(3)`` (torque-free, any
-#: rigid body): a sample whose rate changes faster, by this factor plus :data:`IMPULSE_FLOOR`,
-#: is under an impulse (module docstring).
-IMPULSE_FACTOR = 1.25
-#: Angular acceleration always allowed (the body's flex, the gyroscope's noise), rad/s^2.
-IMPULSE_FLOOR = 20.0
-#: The span over which the angular acceleration is taken, s (a central difference).
-IMPULSE_SPAN = 0.02
-
-
-def impulses(t: ArrayLike, omega: ArrayLike) -> np.ndarray:
-    """Which samples lie under an impulse: a throw's, a catch's or an impact's torque, or the hand's.
-
-    Torque-free, Euler's equations give ``|omega_i'| = |(I_j - I_k) / I_i| |omega_j omega_k|
-    <= |omega_j omega_k|`` (the moments obey the triangle inequality, ``|I_j - I_k| <= I_i``;
-    Landau & Lifshitz, *Mechanics*, sec. 32), so ``|omega'| <= |omega|^2 / sqrt(3)`` whatever
-    the body, its axes or the sensor's mount. A sample whose central difference over
-    :data:`IMPULSE_SPAN` exceeds :data:`IMPULSE_FACTOR` times that bound plus
-    :data:`IMPULSE_FLOOR` cannot be in free flight: the recording is cut there (a segmentation at
-    impulses; the fit then tests what lies between).
-
-    Parameters
-    ----------
-    t : ndarray, shape (n,)
-        Times, s, increasing.
-    omega : ndarray, shape (n, 3)
-        Gyroscope samples, rad/s.
-
-    Returns
-    -------
-    ndarray of bool, shape (n,)
-
-    Examples
-    --------
-    A torque-free tumble is never under an impulse; an impact that turns omega in one sample is:
-
-    >>> import numpy as np
-    >>> from tumble.analysis.fit.flights import impulses
-    >>> from tumble.analysis.fit.endings import gyrostat_flight
-    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
-    >>> t = np.arange(0.0, 1.0, 0.005)
-    >>> w = gyrostat_flight(TOSS_BODIES["phone"], np.array([0.2, 15.0, 0.3]), 1.0, t, np.array([1.0, 0, 0]), 0.0, 1.0,
-    ...                     lambda x: np.zeros(3))
-    >>> bool(impulses(t, w).any())
-    False
-    >>> w[100:] = w[100:] @ np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]) * 0.7   # an impact at 0.5 s
-    >>> np.flatnonzero(impulses(t, w)).tolist()   # the samples whose difference spans it
-    [98, 99, 100, 101]
-    """
-    t = np.asarray(t, float)
-    omega = np.asarray(omega, float)
-    n = len(t)
-    if n < 3:
-        return np.zeros(n, bool)
-    k = max(1, int(round(0.5 * IMPULSE_SPAN / float(np.median(np.diff(t))))))
-    i = np.arange(n)
-    lo, hi = np.maximum(i - k, 0), np.minimum(i + k, n - 1)
-    rate = np.linalg.norm(omega[hi] - omega[lo], axis=1) / np.maximum(t[hi] - t[lo], 1e-12)
-    spin2 = np.maximum(np.sum(omega[lo] ** 2, axis=1), np.sum(omega[hi] ** 2, axis=1))
-    return rate > IMPULSE_FACTOR * spin2 / np.sqrt(3.0) + IMPULSE_FLOOR
-
-
-def _segments(a0: int, b0: int, kicked: np.ndarray, t, min_duration: float) -> list[tuple[int, int, bool]]:
-    """``[a0, b0)`` cut at the impulses: ``(a, b, free)`` pieces, in order. A piece between two
-    impulses shorter than ``min_duration`` is joined with its short neighbours and the impulses
-    between them into one piece that is not free (the throw, the catch, the hand's motion)."""
-    inside = ~kicked[a0:b0]
-    d = np.diff(np.r_[0, inside.astype(int), 0])
-    runs = [(a0 + a, a0 + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
-    long = [(a, b) for a, b in runs if t[b - 1] - t[a] >= min_duration]
-    pieces, cursor = [], a0
-    for a, b in long:
-        if a > cursor:
-            pieces.append((cursor, a, False))
-        pieces.append((a, b, True))
-        cursor = b
-    if cursor < b0:
-        pieces.append((cursor, b0, False))
-    return pieces
 
 
 def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
@@ -447,7 +339,7 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
 NUMERICAL = "not fitted"
 #: Where the first fit of a candidate is made, as fractions of it: its middle (past any throw,
 #: before any catch), then its first and its second half when the middle does not follow a
-#: free motion (an impact missed by :func:`impulses` inside it, a throw that ends late).
+#: free motion (an impact missed by :func:`~tumble.analysis.fit.segments.impulses` inside it, a throw that ends late).
 SEEDS = ((0.35, 0.8), (0.1, 0.5), (0.5, 0.9))
 #: The reasons for which another seed is tried.
 RETRY = ("no free flight", "the model does not fit", NUMERICAL, "too short (")

@@ -33,7 +33,8 @@ import numpy as np
 from ...typing import ArrayLike
 from .adequacy import InadequateFitWarning, judge
 from .flightmodel import FlightModel
-from .flights import Flight, find_flights, pause_times
+from .flights import Flight, find_flights
+from .segments import pause_times
 from .joint import first_flight_view, joint_solution, stack_flights
 from .result import (
     RotationFit,

@@ -12,7 +12,7 @@
   from that by the hand's push, about ``g`` or more: the flight is the run of samples around
   the rotor start whose misfit (a running median over :data:`SPAN`) stays below
   :data:`MISFIT` (or 6 times its median in the flight, when larger).
-- **Catch** (the gyroscope): the first impulse (:func:`tumble.analysis.fit.flights.impulses`)
+- **Catch** (the gyroscope): the first impulse (:func:`tumble.analysis.fit.segments.impulses`)
   100 ms or more after the rotor start, when it comes before the accelerometer's end.
 - Without an accelerometer the flight starts at the rotor start.
 
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import median_filter
 
-from ..fit.flights import impulses
+from ..fit.segments import impulses
 from .device import Throw
 
 __all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SPAN", "START_MARGIN", "Window", "find_flight", "rotor_start",
