@@ -19,11 +19,14 @@ samples kept by a mask (a saturated axis is left out, not the whole sample). At 
   follow), and the parameters absorb what it misses where the residuals, from which the
   statistical part is estimated, do not show it. The solution is solved again with the other
   law (``linear`` for ``quadratic`` and back), and the parameters' shift ``d`` is taken as one
-  standard uncertainty of the model, ``d d^T`` added to the covariance as a systematic part:
-  the difference between two models that both describe the data, as in Barlow, "Systematic
-  errors: facts and fictions", arXiv:hep-ex/0207026 (2002), sec. 4.1. It does not shrink with
-  more samples, as the statistical part does (benchmarks/results/fit_coverage.md: without it,
-  the 95 % intervals of the synthetic racquet sampled at 200-500 Hz held its ratios in 81-87 %).
+  standard uncertainty of the model, ``d d^T`` added to the covariance as a systematic part
+  (on model differences as systematic errors: Barlow, "Systematic errors: facts and fictions",
+  arXiv:hep-ex/0207026, 2002). The whole difference, the conservative end of the conventions:
+  the half-difference of a two-model average (Burnham & Anderson, *Model Selection and
+  Multimodel Inference*, 2002, sec. 4.3.2) left the synthetic racquet's intervals at 89-90 %.
+  It does not shrink with more samples, as the statistical part does
+  (benchmarks/results/fit_coverage.md: without it, the 95 % intervals of the synthetic racquet
+  sampled at 200-500 Hz held its ratios in 81-87 %).
   It is a flight's own: the joint fit of many flights (:mod:`~tumble.analysis.fit.joint`) leaves
   it out, and the pooled ratios' uncertainty is widened instead by the flights' scatter about
   them (the Birge ratio, :mod:`~tumble.analysis.fit.recording`), which holds the part of the
