@@ -92,3 +92,19 @@ def test_the_weighted_mean_of_flights_leaves_the_drag_law_out_as_the_joint_fit_d
     assert np.all(np.array(wider) >= np.array(narrower)) and np.any(np.array(wider) > 1.05 * np.array(narrower))
     np.testing.assert_allclose(fit.pooled.ratios, bare.pooled.ratios, rtol=1e-12)
     np.testing.assert_allclose(fit.pooled.ratios_std, bare.pooled.ratios_std, rtol=1e-9)
+
+
+def test_a_flight_determined_but_for_the_drag_law_says_so():
+    """A flight whose ratios are determined to ``max_std`` by the data but not once the drag
+    law's model error is added is skipped naming the air's drag, not "too little of the tumble"."""
+    from tumble.analysis.fit.result import determination, ratio_summary
+    from tumble.analysis.fit.solve import without_drag_law_error
+
+    t, w, _ = _plate_flight()
+    sol = fit_solution(t, w, np.ones(w.shape, bool), rotation=False, bias=False, drag="quadratic")
+    std, bare = ratio_summary(sol)[1], ratio_summary(without_drag_law_error(sol))[1]
+    assert np.max(std) > 1.05 * np.max(bare)
+    between = 0.5 * (np.max(std) + np.max(bare))
+    assert determination(sol, std, max_std=between).startswith("ratios not determined for the air's drag")
+    assert determination(sol, std, max_std=0.5 * np.max(bare)).startswith("too little of the tumble recorded")
+    assert determination(sol, std, max_std=1.01 * np.max(std)) == ""

@@ -13,7 +13,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .adequacy import Adequacy, judge, rigid_body_check
-from .solve import Solution
+from .solve import Solution, without_drag_law_error
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios
 from .uncertainty import effective_dof, interval, noise_floor
 
@@ -453,7 +453,9 @@ def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_ST
     """Why a flight's ratios are not determined, or ``""`` when they are.
 
     Not determined: a ratio's coordinate is undetermined, or a ratio's standard uncertainty
-    ``std`` exceeds ``max_std``. The reason tells a toss about a stable axis (the intermediate
+    ``std`` exceeds ``max_std``. The reason names the air's drag when the drag law's model error
+    alone (:func:`~tumble.analysis.fit.solve.with_drag_law_error`) takes ``std`` over
+    ``max_std``, and otherwise tells a toss about a stable axis (the intermediate
     axis never carries half of ``|omega|``) from a tumble recorded too briefly, with the
     record's length in turns (``integral |omega| dt / 2 pi``).
 
@@ -475,6 +477,12 @@ def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_ST
     """
     if not ({"s", "g"} & set(sol.undetermined) or np.max(std) > max_std):
         return ""
+    if not {"s", "g"} & set(sol.undetermined) and sol.cov_drag_law is not None:
+        bare = ratio_summary(without_drag_law_error(sol))[1]
+        if np.max(bare) <= max_std:  # determined but for the drag law's part
+            return (f"ratios not determined for the air's drag: the two drag laws give ratios apart by more than "
+                    f"{max_std} (uncertainties {std[0]:.2g}, {std[1]:.2g}; {bare[0]:.2g}, {bare[1]:.2g} without the drag "
+                    "law's part); a body the air slows less over its flight (heavier for its size) fixes both")
     n = int(sol.model.lengths[0])
     wp = sol.model.principal(sol.P)[0, :n]
     speed = np.linalg.norm(wp, axis=1)
