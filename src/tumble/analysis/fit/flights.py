@@ -155,7 +155,7 @@ def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
 
 def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
     """Grow ``[a, b)`` while the extrapolated model follows the samples (module docstring)."""
-    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+    rms = sol.rms
     new = [a, b]
     for side in (-1, 1):
         idx = np.arange(a - 1, max(lo, a - 400) - 1, -1) if side < 0 else np.arange(b, min(hi, b + 400))
@@ -181,17 +181,13 @@ def _trim(omega, keep, a, b, sol: Solution, k: float = 5.0, rms: float | None = 
     growth's tolerance, or the accelerometer's free fall, let in."""
     model = sol.omega_model[0, :b - a]
     err = np.max(np.where(keep[a:b], np.abs(model - omega[a:b]), 0.0), axis=1)
-    rms = float(np.sqrt(np.mean(sol.residuals ** 2))) if rms is None else rms
+    rms = sol.rms if rms is None else rms
     lo, hi = 0, b - a
     while hi - lo > 2 and err[lo] > k * rms:
         lo += 1
     while hi - lo > 2 and err[hi - 1] > k * rms:
         hi -= 1
     return a + lo, a + hi
-
-
-def _rms(sol: Solution) -> float:
-    return float(np.sqrt(np.mean(sol.residuals ** 2)))
 
 
 def _drag_free(sol: Solution) -> np.ndarray:
@@ -324,8 +320,8 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
         found = _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation, bias, scale_uncertainty,
                          whole)
         if found.status == "ok":
-            best = found if best is None or _rms(found.solution) < _rms(best.solution) else best
-            if not whole or _rms(best.solution) <= POOR_FIT * noise_floor(omega[best.first:best.stop]):
+            best = found if best is None or found.solution.rms < best.solution.rms else best
+            if not whole or best.solution.rms <= POOR_FIT * noise_floor(omega[best.first:best.stop]):
                 return best
             continue  # a free fall's fit well above the noise: perhaps a poorer optimum, so the other seeds too
         if best is None:
@@ -368,7 +364,7 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
                            covariance=False, max_nfev=40)
         last = None
         for _ in range(6):
-            rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
+            rms = sol.rms
             level = float(np.sqrt(np.mean(np.sum(omega[a:b] ** 2, axis=1)) / 3))
             if rms > 0.1 * level:
                 if last is None:
@@ -389,9 +385,9 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
             m = sol.model
             window = Model([t[a0:b0] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a0:b0], axis=1))])
             wide = solve(window, omega[None, a0:b0], keep[None, a0:b0], sol.P, max_nfev=40, covariance=False)
-            if np.sqrt(np.mean(wide.residuals ** 2)) <= 0.1 * np.sqrt(np.mean(np.sum(omega[a0:b0] ** 2, axis=1)) / 3):
+            if wide.rms <= 0.1 * np.sqrt(np.mean(np.sum(omega[a0:b0] ** 2, axis=1)) / 3):
                 # a sample of the catch in the wide window swells its RMS: judge the ends by the grown fit's
-                grown = float(np.sqrt(np.mean(sol.residuals ** 2)))
+                grown = sol.rms
                 a, b, sol = a0, b0, wide
         a, b = _trim(omega, keep, a, b, sol, rms=grown)
         length = t[b - 1] - t[a]

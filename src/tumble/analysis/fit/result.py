@@ -432,8 +432,7 @@ def solution_adequacy(sol: Solution, data: np.ndarray, mask: np.ndarray) -> Adeq
         rows = np.all(mask[j, :n], axis=1)
         noise2 += noise_floor((data[j, :n] - sol.omega_model[j, :n])[rows]) ** 2 * n
         weight += n
-    rms = float(np.sqrt(np.mean(sol.residuals ** 2)))
-    verdict = judge(rms, float(np.sqrt(noise2 / max(weight, 1))), float(np.sqrt(np.mean(data[mask] ** 2))),
+    verdict = judge(sol.rms, float(np.sqrt(noise2 / max(weight, 1))), float(np.sqrt(np.mean(data[mask] ** 2))),
                     sensor_rotation_fitted=sol.model.rotation)
     if not verdict.adequate:
         return verdict

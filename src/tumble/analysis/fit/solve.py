@@ -94,6 +94,25 @@ class Solution:
     cov_drag_law: np.ndarray | None = None  # the part of ``cov`` that is the drag law's model error (with_drag_law_error)
 
     @property
+    def rms(self) -> float:
+        """The root mean square of the residuals, rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit.model import Model
+        >>> from tumble.analysis.fit.solve import solve
+        >>> from tumble.dynamics.methods.exact_omega import free_omega
+        >>> t = np.linspace(0.0, 2.0, 201)
+        >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t) + np.random.default_rng(0).normal(0.0, 0.01, (1, 201, 3))
+        >>> model = Model([t], rotation=False, bias=False)
+        >>> sol = solve(model, w, np.ones(w.shape, bool), model.pack(0.65, 0.45, None, None, [[2.8, 1.1, 6.2]]))
+        >>> round(sol.rms, 3), bool(np.isclose(sol.rms ** 2, sol.ssr / sol.m))   # the white noise's 0.01 rad/s
+        (0.01, True)
+        """
+        return float(np.sqrt(np.mean(self.residuals ** 2)))
+
+    @property
     def bic(self) -> float:
         """Schwarz's Bayesian information criterion ``m ln(SSR / m) + n ln m`` (``n`` the parameters determined): the smaller, the better.
 
