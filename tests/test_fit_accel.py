@@ -327,10 +327,12 @@ def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, caps
     assert not (tmp_path / "out").exists()
 
 
-def test_an_accelerometer_that_does_not_span_the_gyroscopes_record_is_left_out_and_said(tmp_path):
-    """phyphox's Accelerometer.csv that starts 2 s into the gyroscope's record: its first value
-    would stand for 2 s never measured, so it is not used; what was read says why, fit.json too,
-    and the flights are found from the gyroscope alone, as without it. Within 0.1 s it is used."""
+def test_an_accelerometer_that_does_not_cover_the_gyroscopes_record_is_left_out_and_said(tmp_path):
+    """phyphox's Accelerometer.csv that starts 2 s into the gyroscope's record, or drops 0.4 s in
+    the middle of it: an interpolated or held value would stand for samples never measured, so
+    it is not used; what was read names the gyroscope's time farthest from any accelerometer
+    sample, fit.json too, and the flights are found from the gyroscope alone. A start 0.05 s
+    late is within the slack, and used."""
     import json
 
     from tumble.analysis.fit.accelsynth import phyphox_accel_csv
@@ -338,24 +340,28 @@ def test_an_accelerometer_that_does_not_span_the_gyroscopes_record_is_left_out_a
     from tumble.io.gyrodata import load_recording
 
     rec = synthetic_recording(41, tosses=1, accel=True, rate=200.0)
-    for name, start, used in (("late", 2.0, False), ("prompt", rec.t[0] + 0.05, True)):
+    middle = 0.5 * (rec.t[0] + rec.t[-1])
+    cases = {"late": (rec.t >= 2.0, rec.t[0]), "dropped": (np.abs(rec.t - middle) > 0.2, middle),
+             "prompt": (rec.t >= rec.t[0] + 0.05, None)}
+    for name, (kept, farthest) in cases.items():
         export = tmp_path / name
         (export / "meta").mkdir(parents=True)
         (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
         (export / "meta" / "time.csv").write_text(rec.time_csv_text(), encoding="utf-8")
-        late = rec.t >= start
-        (export / "Accelerometer.csv").write_text(phyphox_accel_csv(rec.t[late], rec.accel.f[late]), encoding="utf-8")
+        (export / "Accelerometer.csv").write_text(phyphox_accel_csv(rec.t[kept], rec.accel.f[kept]), encoding="utf-8")
         got = load_recording(export)
+        used = farthest is None
         assert (got.accel is not None) is used and bool(got.read.accel) is used
-        if not used:
-            assert got.read.accel_left_out.startswith(f"Accelerometer.csv covers {rec.t[late][0]:.6g} to ")
-            assert "not used" in got.read.accel_left_out and "the accelerometer left out" in got.read.brief()
-            out = tmp_path / "fit"
-            assert main(["fit", str(export), "--out", str(out)]) == 0
-            data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
-            assert data["accelerometer"] is False and "not used" in data["read"]["accel_left_out"]
-        else:
+        if used:
             assert got.read.accel_left_out == "" and "accel_left_out" not in got.read.summary()
+            continue
+        at = float(got.read.accel_left_out.split("of the gyroscope's at ")[1].split(" s")[0])
+        assert at == pytest.approx(farthest, abs=0.01), got.read.accel_left_out
+        assert "not used" in got.read.accel_left_out and "the accelerometer left out" in got.read.brief()
+        out = tmp_path / f"fit_{name}"
+        assert main(["fit", str(export), "--out", str(out)]) == 0
+        data = json.loads((out / "fit.json").read_text(encoding="utf-8"))
+        assert data["accelerometer"] is False and "not used" in data["read"]["accel_left_out"]
 
 
 @pytest.mark.parametrize("seed", [6, 11])

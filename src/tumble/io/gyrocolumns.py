@@ -123,7 +123,8 @@ class ColumnsRead:
         Their units, converted to m/s^2.
     accel_left_out : str
         Why an accelerometer that was there is not used (a phyphox export's ``Accelerometer.csv``
-        that does not span the gyroscope's record); empty otherwise.
+        with no sample near some of the gyroscope's: a late start, an early end, a gap between);
+        empty otherwise.
 
     Examples
     --------

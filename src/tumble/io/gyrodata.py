@@ -37,7 +37,7 @@ import numpy as np
 from .examples import _read_input
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _split
 from .gyrocolumns import ColumnsRead, match_accel, match_header
-from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, accel_span_gap, parse_accel_csv, parse_time_csv
+from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, accel_gap, parse_accel_csv, parse_time_csv
 
 __all__ = ["MAX_GYRO_FILE_BYTES", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
            "parse_recording_table", "read_gyro_csv", "read_recording"]
@@ -215,7 +215,7 @@ class GyroRecording:
         The accelerometer's specific force at the times ``t``, m/s^2, sensor axes: the file's
         own columns, or a phyphox export's ``Accelerometer.csv`` interpolated onto the
         gyroscope's times (:func:`parse_accel_csv`); None without one, or when the export's does
-        not span the gyroscope's record (``read.accel_left_out`` says so).
+        not cover the gyroscope's record (``read.accel_left_out`` says so).
 
     Examples
     --------
@@ -352,9 +352,9 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
 
 def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray | None, ColumnsRead]:
     """A phyphox export's accelerometer on the gyroscope's times, and what was read saying so;
-    None, and why, when it does not span the gyroscope's record."""
-    f, names, units, span = parse_accel_csv(raw, label, t)
-    gap = accel_span_gap(span, t, label)
+    None, and why, when it does not cover the gyroscope's record."""
+    f, names, units, times = parse_accel_csv(raw, label, t)
+    gap = accel_gap(times, t, label)
     if gap:
         return None, replace(read, accel_left_out=gap)
     return f, replace(read, accel=names, accel_units=units)

@@ -15,32 +15,33 @@ import numpy as np
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _separator, _split
 from .gyrocolumns import match_accel
 
-__all__ = ["ACCEL_CSV", "ACCEL_SPAN_SLACK", "TIME_CSV", "accel_span_gap", "parse_accel_csv", "parse_time_csv"]
+__all__ = ["ACCEL_CSV", "ACCEL_SPAN_SLACK", "TIME_CSV", "accel_gap", "parse_accel_csv", "parse_time_csv"]
 
 
 #: phyphox's raw accelerometer in an export with several sensors, beside ``Gyroscope.csv``.
 ACCEL_CSV = "Accelerometer.csv"
-#: How far the accelerometer's record may start after the gyroscope's, or end before it, s: the
-#: sensors of one phyphox experiment start within tens of milliseconds of each other; over this
-#: slack the held end values would stand in for samples that were never taken.
+#: How far a gyroscope sample may lie from the nearest accelerometer sample, s: the sensors of
+#: one phyphox experiment start within tens of milliseconds of each other and sample at tens to
+#: hundreds of Hz; beyond this, an interpolated or held value would stand in for samples that
+#: were never taken (a late start, an early end, samples dropped in between).
 ACCEL_SPAN_SLACK = 0.1
 
 
-def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, tuple, tuple, tuple[float, float]]:
+def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, tuple, tuple, np.ndarray]:
     """phyphox's ``Accelerometer.csv`` (experiment "Acceleration (with g)": ``"Time (s)"``,
     ``"Acceleration x (m/s^2)"``, ...), interpolated linearly onto the gyroscope's times ``t``
-    (``numpy.interp`` per axis; held at the first and last value outside its own span): the
-    specific force, m/s^2, sensor axes; its columns' names and units; and the span of its own
-    times, s (:func:`accel_span_gap` tells whether it covers the gyroscope's).
+    (``numpy.interp`` per axis; held at its first and last value just outside its own span): the
+    specific force, m/s^2, sensor axes; its columns' names and units; and its own sample times,
+    s (:func:`accel_gap` tells whether they cover the gyroscope's).
 
     Examples
     --------
     >>> import numpy as np
     >>> from tumble.io.phyphox import parse_accel_csv
     >>> raw = b'"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"\\n0,0,0,9.8\\n0.02,0,0,0\\n'
-    >>> f, names, units, span = parse_accel_csv(raw, "Accelerometer.csv", np.array([0.0, 0.01, 0.02]))
-    >>> f[:, 2].round(6).tolist(), names[0], units, span
-    ([9.8, 4.9, 0.0], 'Accelerometer.csv: Acceleration x (m/s^2)', ('m/s^2', 'm/s^2', 'm/s^2'), (0.0, 0.02))
+    >>> f, names, units, times = parse_accel_csv(raw, "Accelerometer.csv", np.array([0.0, 0.01, 0.02]))
+    >>> f[:, 2].round(6).tolist(), names[0], units, times.tolist()
+    ([9.8, 4.9, 0.0], 'Accelerometer.csv: Acceleration x (m/s^2)', ('m/s^2', 'm/s^2', 'm/s^2'), [0.0, 0.02])
     """
     lines, sep, head = _first_lines(raw, label, "phyphox's accelerometer export: Time (s), Acceleration x, y, z")
     times = [j for j, cell in enumerate(head) if cell.lower() in ("time (s)", "t (s)", "time", "t")]
@@ -54,28 +55,35 @@ def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, 
     _check_order(rows[:, 0], lines[1:], label)
     f = np.stack([np.interp(t, rows[:, 0], rows[:, k]) for k in (1, 2, 3)], axis=1)
     base = os.path.basename(label)
-    return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units), (float(rows[0, 0]), float(rows[-1, 0]))
+    return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units), rows[:, 0].copy()
 
 
-def accel_span_gap(span: tuple[float, float], t: np.ndarray, label: str) -> str:
-    """Why an accelerometer recorded over ``span`` (s) cannot stand for the gyroscope's record at
-    the times ``t`` (it starts later or ends earlier than :data:`ACCEL_SPAN_SLACK`), or ``""``.
+def accel_gap(times: np.ndarray, t: np.ndarray, label: str) -> str:
+    """Why an accelerometer sampled at ``times`` (s, ascending) cannot stand for the gyroscope's
+    record at the times ``t``: a gyroscope sample farther than :data:`ACCEL_SPAN_SLACK` from every
+    accelerometer sample (a late start, an early end, a gap between); ``""`` when there is none.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.io.phyphox import accel_span_gap
+    >>> from tumble.io.phyphox import accel_gap
     >>> t = np.linspace(0.0, 10.0, 1001)
-    >>> accel_span_gap((0.03, 9.98), t, "Accelerometer.csv")   # within the slack: used
+    >>> accel_gap(np.arange(0.03, 9.99, 0.02), t, "Accelerometer.csv")   # within the slack: used
     ''
-    >>> accel_span_gap((2.0, 10.0), t, "Accelerometer.csv")
-    "Accelerometer.csv covers 2 to 10 s, the gyroscope 0 to 10 s: not used (it must span the gyroscope's record to within 0.1 s at each end); the flights are found from the gyroscope alone"
+    >>> accel_gap(np.arange(2.0, 10.01, 0.02), t, "Accelerometer.csv")   # starts 2 s late
+    "Accelerometer.csv has no sample within 0.1 s of the gyroscope's at 0 s (its samples: 2 to 10 s, 401 of them): not used; the flights are found from the gyroscope alone"
+    >>> dropped = np.r_[np.arange(0.0, 4.0, 0.02), np.arange(4.5, 10.01, 0.02)]   # half a second dropped
+    >>> accel_gap(dropped, t, "Accelerometer.csv")   # the gyroscope's sample farthest from any
+    "Accelerometer.csv has no sample within 0.1 s of the gyroscope's at 4.24 s (its samples: 0 to 10 s, 476 of them): not used; the flights are found from the gyroscope alone"
     """
-    if span[0] <= t[0] + ACCEL_SPAN_SLACK and span[1] >= t[-1] - ACCEL_SPAN_SLACK:
+    k = np.clip(np.searchsorted(times, t), 1, len(times) - 1)
+    distance = np.minimum(np.abs(t - times[k - 1]), np.abs(times[k] - t))
+    worst = int(np.argmax(distance))
+    if distance[worst] <= ACCEL_SPAN_SLACK:
         return ""
-    return (f"{os.path.basename(label)} covers {span[0]:.6g} to {span[1]:.6g} s, the gyroscope {t[0]:.6g} to "
-            f"{t[-1]:.6g} s: not used (it must span the gyroscope's record to within {ACCEL_SPAN_SLACK:g} s at each "
-            "end); the flights are found from the gyroscope alone")
+    return (f"{os.path.basename(label)} has no sample within {ACCEL_SPAN_SLACK:g} s of the gyroscope's at "
+            f"{t[worst]:.6g} s (its samples: {times[0]:.6g} to {times[-1]:.6g} s, {len(times)} of them): not used; "
+            "the flights are found from the gyroscope alone")
 
 
 #: The phyphox export's file of START/PAUSE events, inside the folder or the zip.
