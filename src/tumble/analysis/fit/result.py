@@ -479,9 +479,9 @@ def determination(sol: Solution, std: np.ndarray, max_std: float = DETERMINED_ST
     if not {"s", "g"} & set(sol.undetermined) and sol.cov_drag_law is not None:
         bare = ratio_summary(without_drag_law_error(sol))[1]
         if np.max(bare) <= max_std:  # determined but for the drag law's part
-            return (f"ratios not determined for the air's drag: the two drag laws give ratios apart by more than "
-                    f"{max_std} (uncertainties {std[0]:.2g}, {std[1]:.2g}; {bare[0]:.2g}, {bare[1]:.2g} without the drag "
-                    "law's part); a body the air slows less over its flight (heavier for its size) fixes both")
+            return (f"ratios not determined for the air's drag: with the shift of the ratios between the two drag "
+                    f"laws their uncertainties are {std[0]:.2g}, {std[1]:.2g} > {max_std} ({bare[0]:.2g}, {bare[1]:.2g} "
+                    "without it); a body the air slows less over its flight (heavier for its size) fixes both")
     n = int(sol.model.lengths[0])
     wp = sol.model.principal(sol.P)[0, :n]
     speed = np.linalg.norm(wp, axis=1)
