@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from tumble.analysis.tensor import Device, Proof, Throw
@@ -209,6 +209,7 @@ def test_a_throw_file_in_other_units_reads_as_in_si():
 
 @settings(max_examples=30, deadline=None)
 @given(n=st.integers(20, 60), start=st.floats(-10.0, 1e4), seed=st.integers(0, 2**32 - 1), accel=st.booleans())
+@example(n=20, start=0.0, seed=391550, accel=False)
 def test_a_written_throw_reads_back_to_the_digits_written(n, start, seed, accel):
     """throw_csv writes times to 12 significant digits and the rest to 7: read back, every value
     is within half a unit of its last digit, and the times still increase."""
@@ -223,7 +224,9 @@ def test_a_written_throw_reads_back_to_the_digits_written(n, start, seed, accel)
             continue
         value = np.asarray(getattr(throw, key))
         ulp = 10.0 ** (np.floor(np.log10(np.maximum(np.abs(value), 1e-300))) - digits + 1)
-        assert np.all(np.abs(samples[key] - value) <= 0.5 * ulp * (1 + 1e-9)), key
+        # the read value is the double nearest the decimal written: half a double's spacing from it
+        # (seed 391550: t = 0.08257501473575, a decimal tie, read back 5.0002e-14 from the truth)
+        assert np.all(np.abs(samples[key] - value) <= 0.5 * ulp + np.spacing(np.abs(value))), key
     assert np.all(np.diff(samples["t"]) > 0)
 
 
