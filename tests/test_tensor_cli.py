@@ -53,8 +53,8 @@ TENSOR_BAD = {
     "mass as text": (CALIBRATED.replace("mass = 0.10067", 'mass = "100 g"'), None, "0.5",
                      "device.toml: [device] mass = '100 g' must be a number (kg)"),
     "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: "
-                    "center_of_mass, center_of_mass_std, inertia, inertia_std, mass, rotor_axis, rotor_inertia, "
-                    "rotor_inertia_std\n"),
+                    "center_of_mass, center_of_mass_std, gyro_full_scale, gyro_resolution, inertia, inertia_std, mass, "
+                    "motor_index, motor_poles, rotor_axis, rotor_inertia, rotor_inertia_std, sensor_axes\n"),
     "unknown table": (CALIBRATED + "[body]\nname = 'x'\n", None, "0.5", "device.toml: unknown table 'body'"),
     "no [device]": (PROOF, None, "0.5", "device.toml: missing table [device]"),
     "no rotor axis": (CALIBRATED.replace("rotor_axis = [0.0, 0.0, -1.0]\n", ""), None, "0.5",

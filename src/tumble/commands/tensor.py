@@ -52,10 +52,11 @@ _METHOD = ("output-error least squares on the gyrostat's equations in the moment
            "above 1. The device: Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137")
 
 
-def _throws(paths: Sequence[str | os.PathLike[str]], option: str) -> list:
+def _throws(paths: Sequence[str | os.PathLike[str]], option: str, device: Device | None = None) -> list:
+    """The throws of ``paths``, a blackbox log read with the device's motor, gyroscope and mounting."""
     if not paths:
         raise ValueError(f"{option}: no throw given; name one or more throw files (CSV)")
-    return [read_throw(p) for p in paths]
+    return [read_throw(p, device) for p in paths]
 
 
 def _missing_calibration(device: Device) -> list[str]:
@@ -111,8 +112,8 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     out = check_output_file(out, ".toml")
     dev, body = load_device(device, proof=True)
     assert body is not None  # required above
-    alone_throws = _throws(alone, "--alone")
-    proof_throws = _throws(proof, "--proof")
+    alone_throws = _throws(alone, "--alone", dev)
+    proof_throws = _throws(proof, "--proof", dev)
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *alone, *proof)]
     try:
         calibrated = calibrate_device(dev, alone_throws, proof_throws, body, saturation=saturation)
@@ -191,7 +192,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
                          f"tumble calibrate {os.fspath(device)} --alone ... --proof ... --out CALIBRATED.toml")
     if not throws:
         raise ValueError("THROW: no throw given; name one or more throw files (CSV)")
-    loaded = [load_throw(p) for p in throws]
+    loaded = [load_throw(p, dev) for p in throws]
     thrown = [throw for throw, _ in loaded]
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *throws)]
     try:

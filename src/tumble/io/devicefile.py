@@ -16,6 +16,14 @@ kg m^2, about the device's centre of mass, sensor frame), ``center_of_mass`` (m,
 and their standard uncertainties ``rotor_inertia_std``, ``inertia_std`` (3 x 3) and
 ``center_of_mass_std`` added to ``[device]`` (:func:`write_device`).
 
+How the device's own log, a Betaflight blackbox CSV (:mod:`tumble.io.blackbox`), is read takes
+five optional keys of ``[device]``: ``motor_poles`` (the rotor's motor's magnet poles, even,
+default 14), ``motor_index`` (the rotor's motor in the log, ``eRPM[motor_index]``, default 0),
+``gyro_full_scale`` (deg/s, default 2000), ``gyro_resolution`` (deg/s per count of the log's
+gyroscope, default ``gyro_full_scale / 32768``) and ``sensor_axes`` (the sensor frame's x, y, z
+as signed axes of the log, the board's mounting, e.g. ``["x", "-y", "-z"]``; default
+``["x", "y", "z"]``). :func:`device_toml` writes them where they are not their defaults.
+
 The keys are those of :data:`DEVICE_FORMAT` (:mod:`tumble.io.keys`; docs/formats/device.md renders
 the same tables), checked strictly here: an unknown key or table, a missing one, an uncertainty
 without its value raise ``ValueError`` with one line naming the file and the table. The values are
@@ -27,7 +35,11 @@ the value as written and what is allowed, after the file and the table.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
+from dataclasses import fields
 from pathlib import Path
+from typing import Any
+
 import numpy as np
 
 from ..analysis.tensor import Device, Proof
@@ -68,7 +80,22 @@ DEVICE_FORMAT = FileFormat("device", (
             doc="the device's centre of mass, sensor frame (from the accelerometer)"),
         Key("center_of_mass_std", "3 numbers", "m", allowed=">= 0 each; only with center_of_mass",
             example="[1e-4, 1e-4, 1e-4]", doc="its standard uncertainty"),
-    ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the rest."),
+        Key("motor_poles", "whole number", "", "14", allowed=">= 2 and even", example="12", low=2, low_included=True,
+            doc="the rotor's motor's magnet poles: a blackbox log's eRPM / (poles / 2) is its speed in rev/min"),
+        Key("motor_index", "whole number", "", "0", example="1", low=0, low_included=True, high=7,
+            doc="which motor of a blackbox log drives the rotor: its column eRPM[motor_index]"),
+        Key("gyro_full_scale", "number", "deg/s", "2000.0", example="2000.0", low=0.0,
+            doc="the gyroscope's full scale (its range, +-); a blackbox log's gyroADC beyond it is refused"),
+        Key("gyro_resolution", "number", "deg/s", "gyro_full_scale / 32768 (the sensor's 16-bit LSB)",
+            allowed="> 0 and <= gyro_full_scale", example="1.0", low=0.0,
+            doc="deg/s per count of a blackbox log's gyroADC; 1.0 where the firmware logs whole deg/s"),
+        Key("sensor_axes", "3 strings", "", '["x", "y", "z"]',
+            allowed='each "x", "-x", "y", "-y", "z" or "-z", each log axis once, a proper rotation (determinant +1)',
+            example='["x", "-y", "-z"]',
+            doc="the sensor frame's x, y, z as signed axes of a blackbox log: the board's mounting"),
+    ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the inertias and the "
+       "centre of mass. The motor, gyroscope and mounting keys are how a flight controller's own log (a Betaflight "
+       "blackbox CSV: the page on blackbox logs) is read; throw files in the sensor frame do not need them."),
     Table("[proof]", (
         Key("mass", "number", "kg", required=True, example="0.346", low=0.0, doc="the proof body's mass"),
         Key("inertia", _TENSOR, "kg m^2", required=True, allowed=_INERTIA_ALLOWED,
@@ -115,7 +142,9 @@ def device_from_table(table: object, *, where: str = "[device]") -> Device:
         ``mass`` (kg, > 0) and ``rotor_axis`` (3 numbers, a direction; made a unit vector), and
         optionally ``rotor_inertia`` (kg m^2, > 0), ``inertia`` (3 rows of 3, kg m^2, a physical
         tensor), ``center_of_mass`` (3 numbers, m), each with its ``_std`` (>= 0, the same
-        shape); a ``_std`` only with its value.
+        shape); a ``_std`` only with its value; and how a blackbox log is read:
+        ``motor_poles``, ``motor_index``, ``gyro_full_scale``, ``gyro_resolution``,
+        ``sensor_axes`` (module docstring).
     where : str
         How the messages name the table.
 
@@ -138,6 +167,8 @@ def device_from_table(table: object, *, where: str = "[device]") -> Device:
     Traceback (most recent call last):
     ...
     ValueError: [device] mass = '100 g' must be a number (kg)
+    >>> device_from_table({"mass": 0.1, "rotor_axis": [0, 0, 1], "sensor_axes": ["x", "-y", "-z"]}).sensor_axes
+    ('x', '-y', '-z')
     """
     table = _checked(_DEVICE, table, where)
     for key in ("rotor_inertia", "inertia", "center_of_mass"):
@@ -248,6 +279,19 @@ def _rows(matrix) -> str:
     return "[\n" + "".join(f"    {_row(r)},\n" for r in m) + "]"
 
 
+def _axes(axes: tuple[str, ...]) -> str:
+    return "[" + ", ".join(f'"{a}"' for a in axes) + "]"
+
+
+#: The keys of how a blackbox log is read, how :func:`device_toml` writes them, their comment.
+_BLACKBOX_KEYS: tuple[tuple[str, Callable[[Any], str], str], ...] = (("motor_poles", str, "the motor's magnet poles"),
+                  ("motor_index", str, "the rotor's motor in a blackbox log: eRPM[motor_index]"),
+                  ("gyro_full_scale", _number, "deg/s, the gyroscope's range"),
+                  ("gyro_resolution", _number, "deg/s per count of a blackbox log's gyroADC"),
+                  ("sensor_axes", _axes, "the sensor frame's x, y, z as axes of a blackbox log"))
+_DEFAULTS = {f.name: f.default for f in fields(Device)}
+
+
 def device_toml(device: Device, proof: Proof | None = None, *, header: str = "") -> str:
     """The text of a device file: ``[device]`` with every value the device holds, and ``[proof]``.
 
@@ -283,6 +327,10 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "")
     lines.append("[device]")
     item("mass", _number(device.mass), "kg")
     item("rotor_axis", _row(device.rotor_axis), "sensor frame, the rotor's angular velocity for positive speed")
+    for key, write, comment in _BLACKBOX_KEYS:  # only where not the default: a blackbox log's reading
+        value = getattr(device, key)
+        if value != _DEFAULTS[key]:
+            item(key, write(value), comment)
     for key, unit, write in (("rotor_inertia", "kg m^2", _number), ("inertia", "kg m^2, about the device's centre "
                              "of mass, sensor frame", _rows), ("center_of_mass", "m, sensor frame", _row)):
         value = getattr(device, key, None)

@@ -24,6 +24,12 @@ A file without a header has eight numeric columns in the order above. Separated 
 semicolons (with a decimal comma), tabs or spaces; lines starting with ``#`` and blank lines are
 skipped; the times must increase. Every error is one line naming the file and the line.
 :func:`write_throw` writes a throw back in this format.
+
+A flight controller's own log, a Betaflight blackbox CSV (``blackbox_decode``, Blackbox
+Explorer), is recognised by its ``gyroADC[0]`` column and read by :mod:`tumble.io.blackbox` from
+the same entry points (:func:`load_throw`, :func:`read_throw`, :func:`parse_throw_csv`), in the
+log's integer units turned into SI and into the sensor frame with the device's motor, gyroscope
+and mounting keys (:class:`~tumble.analysis.tensor.Device`).
 """
 
 from __future__ import annotations
@@ -35,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.tensor import Throw
+from ..analysis.tensor import Device, Throw
 from ..validation import read_input_file
 from .atomic import atomic_write_text
 from .gyrocolumns import _UNIT, ACCEL_UNITS, RATE_UNITS, _factor, _name, match_accel, match_header
@@ -74,6 +80,9 @@ class ThrowRead:
         The columns left out.
     rows : int
         Data rows read.
+    axes : tuple of str
+        A blackbox log's: the sensor frame's x, y, z as signed axes of the log, which its vectors
+        were turned by (``Device.sensor_axes``); empty for a throw file, in the sensor frame.
 
     Examples
     --------
@@ -87,6 +96,7 @@ class ThrowRead:
     units: tuple
     ignored: tuple
     rows: int
+    axes: tuple = ()
 
     def summary(self) -> dict:
         """JSON-ready (tensor.json's ``"read"``): which column was taken for what, in which unit.
@@ -101,9 +111,12 @@ class ThrowRead:
         def named(k):
             return {"column": self.columns[k], "unit": self.units[k]}
 
-        return {"file": self.file, "t": named(0), "omega": [named(k) for k in (1, 2, 3)], "rotor": named(4),
-                "accel": [named(k) for k in (5, 6, 7)] if len(self.columns) == 8 else None,
-                "ignored": list(self.ignored), "rows": int(self.rows)}
+        out = {"file": self.file, "t": named(0), "omega": [named(k) for k in (1, 2, 3)], "rotor": named(4),
+               "accel": [named(k) for k in (5, 6, 7)] if len(self.columns) == 8 else None,
+               "ignored": list(self.ignored), "rows": int(self.rows)}
+        if self.axes:
+            out["sensor_axes"] = list(self.axes)
+        return out
 
     def brief(self) -> str:
         """A few words for a command's line.
@@ -121,15 +134,17 @@ class ThrowRead:
                  f"{bare(c[4])} ({u[4]})"]
         parts.append(f"{', '.join(bare(x) for x in c[5:8])} ({'/'.join(dict.fromkeys(u[5:8]))})" if len(c) == 8
                      else "no accelerometer")
+        if self.axes and tuple(self.axes) != ("x", "y", "z"):
+            parts.append(f"sensor axes {', '.join(self.axes)}")
         if self.ignored:
             parts.append(f"{len(self.ignored)} ignored")
         return ", ".join([*parts, f"{self.rows} rows"])
 
 
 def _name_only(cell: str) -> str:
-    """A header cell without its unit."""
+    """A header cell without its unit (a blackbox field's index, ``gyroADC[0]``, is no unit)."""
     match = _UNIT.search(cell)
-    return cell[:match.start()].strip() if match else cell
+    return cell[:match.start()].strip() if match and not match.group(1).isdigit() else cell
 
 
 def _match(head: list[str], label: str, line: int) -> tuple[list[int], list[float], list[str]]:
@@ -150,8 +165,20 @@ def _match(head: list[str], label: str, line: int) -> tuple[list[int], list[floa
     return columns + more, scale + factors, units + accel_units
 
 
-def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
+def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
+                    ) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
     """The samples of a throw file already read (``label`` names it), in SI, and what was read.
+
+    Parameters
+    ----------
+    raw : bytes
+        The file's contents.
+    label : str
+        The file, for messages.
+    device : Device, optional
+        How a blackbox CSV is read (:func:`tumble.io.blackbox.parse_blackbox_csv`, which takes
+        a file with a ``gyroADC[0]`` column): its motor, gyroscope and mounting; a throw file
+        in the sensor frame does not need it.
 
     Returns
     -------
@@ -179,6 +206,10 @@ def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None
     ...
     ValueError: a1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column; allowed: rotor: rotor, rotor speed, ...
     """
+    from .blackbox import looks_like_blackbox, parse_blackbox_csv  # it builds a ThrowRead: imported here
+
+    if looks_like_blackbox(raw):
+        return parse_blackbox_csv(raw, label, device)
     lines, sep, head = _first_lines(raw, label, "columns t, wx, wy, wz, rotor, ax, ay, az")
     first_no = lines[0][0]
     decimal_comma = sep == ";"
@@ -218,8 +249,17 @@ def parse_throw_csv(raw: bytes, label: str) -> tuple[dict[str, np.ndarray | None
     return samples, ThrowRead(label, tuple(names), tuple(units), ignored, len(t))
 
 
-def load_throw(path: str | os.PathLike[str]) -> tuple[Throw, ThrowRead]:
+def load_throw(path: str | os.PathLike[str], device: Device | None = None) -> tuple[Throw, ThrowRead]:
     """:func:`read_throw`, and what was read (:class:`ThrowRead`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A throw file, or a Betaflight blackbox CSV (:mod:`tumble.io.blackbox`).
+    device : Device, optional
+        The device whose log it is: how a blackbox CSV is read (its ``motor_poles``,
+        ``motor_index``, ``gyro_full_scale``, ``gyro_resolution``, ``sensor_axes``; their
+        defaults without it). A throw file in the sensor frame does not need it.
 
     Examples
     --------
@@ -235,7 +275,7 @@ def load_throw(path: str | os.PathLike[str]) -> tuple[Throw, ThrowRead]:
     """
     label = os.fspath(path)
     raw = read_input_file(path, limit=MAX_THROW_FILE_BYTES, what="a throw file (CSV)")
-    samples, read = parse_throw_csv(raw, label)
+    samples, read = parse_throw_csv(raw, label, device)
     try:
         throw = Throw(t=samples["t"], omega=samples["omega"], rotor=samples["rotor"], accel=samples["accel"],
                       input=label)
@@ -245,14 +285,16 @@ def load_throw(path: str | os.PathLike[str]) -> tuple[Throw, ThrowRead]:
     return throw, read
 
 
-def read_throw(path: str | os.PathLike[str]) -> Throw:
+def read_throw(path: str | os.PathLike[str], device: Device | None = None) -> Throw:
     """A throw file (module docstring) as a :class:`~tumble.analysis.tensor.Throw` whose ``input``
     is the path as given.
 
     Parameters
     ----------
     path : str or os.PathLike
-        The file.
+        The file: a throw file, or a Betaflight blackbox CSV (:mod:`tumble.io.blackbox`).
+    device : Device, optional
+        How a blackbox CSV is read (:func:`load_throw`).
 
     Raises
     ------
@@ -273,7 +315,7 @@ def read_throw(path: str | os.PathLike[str]) -> Throw:
     >>> float(throw.t[-1]), float(throw.rotor[-1]), throw.input.endswith("a1.csv")
     (0.00975, 3900.0, True)
     """
-    return load_throw(path)[0]
+    return load_throw(path, device)[0]
 
 
 def throw_csv(throw: Throw, *, header: str = "") -> str:

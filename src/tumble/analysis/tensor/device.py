@@ -5,6 +5,9 @@ flywheel (the rotor) fixed to it (Blaha, Kuijper, Pop & Smeur, "Rapid and Inexpe
 Tensor Estimation from a Single Object Throw", arXiv:2503.13137). Everything is given in the
 device's **sensor frame**, whose origin is the accelerometer: the rotor's axis, the device's
 tensor about its own centre of mass, and centres of mass as positions from the accelerometer.
+The flight controller's own log (a Betaflight blackbox, :mod:`tumble.io.blackbox`) is read with
+the device's motor (its pole count, which of the logged motors is the rotor's), its gyroscope's
+full scale and the board's mounting: the sensor frame's axes as signed axes of the log.
 
 The **proof** body has known mass properties; fixed to the device it fixes the absolute scale in
 :func:`~tumble.analysis.tensor.calibrate.calibrate_device`.
@@ -26,7 +29,12 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
 
-__all__ = ["Device", "Proof", "Throw"]
+__all__ = ["AXIS_NAMES", "Device", "Proof", "Throw", "axes_matrix"]
+
+#: The signed axes ``Device.sensor_axes`` may name: an axis of the log, ``-`` for its opposite.
+AXIS_NAMES = ("x", "-x", "y", "-y", "z", "-z")
+_AXES_ALLOWED = ('3 of "x", "-x", "y", "-y", "z", "-z", one for each of the sensor frame\'s x, y, z, '
+                 'together a proper rotation (each log axis once, determinant +1)')
 
 
 def _optional_positive(field_name: str, value: object, unit: str) -> float | None:
@@ -42,6 +50,86 @@ def _tensor(field_name: str, value: object) -> Matrix3:
         raise ValueError(f"{field_name} = {short_repr(value)} must be 3 moments or a 3x3 tensor (kg m^2), "
                          f"not shape {a.shape}")
     return check_inertia(a, what=field_name)
+
+
+def axes_matrix(axes: object, field_name: str = "sensor_axes") -> Matrix3:
+    """The rotation ``R`` that takes a vector from the log's axes to the sensor frame's,
+    ``v_frame = R v_log``, from the sensor frame's axes named as signed axes of the log.
+
+    ``axes[i]`` is the log's axis along the frame's axis ``i`` (``"-y"``: the log's ``-y``), so
+    ``R[i, j] = +-1`` where ``axes[i]`` names the log's axis ``j``: a signed permutation, which is
+    a rotation (not a reflection) only when its determinant is +1 (e.g. ``["x", "-y", "-z"]``, a
+    board mounted upside down, is the half turn about x; ``["x", "y", "-z"]`` is a mirror and is
+    refused).
+
+    Parameters
+    ----------
+    axes : sequence of 3 str
+        Each of :data:`AXIS_NAMES` (``"+x"`` is ``"x"``), the log's axes each once.
+    field_name : str
+        How a message names the value.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Entries 0 and +-1.
+
+    Raises
+    ------
+    ValueError
+        One line naming the field, the value as given and what is allowed.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.device import axes_matrix
+    >>> R = axes_matrix(["x", "-y", "-z"])   # a board mounted upside down: the half turn about x
+    >>> R.astype(int).tolist(), (R @ [1.0, 2.0, 3.0]).tolist()
+    ([[1, 0, 0], [0, -1, 0], [0, 0, -1]], [1.0, -2.0, -3.0])
+    >>> axes_matrix(["x", "y", "-z"])
+    Traceback (most recent call last):
+    ...
+    ValueError: sensor_axes = ['x', 'y', '-z'] is a mirror image (determinant -1), not a rotation; allowed: 3 of "x", "-x", "y", "-y", "z", "-z", one for each of the sensor frame's x, y, z, together a proper rotation (each log axis once, determinant +1)
+    """
+    names = _axis_names(axes, field_name)
+    R = np.zeros((3, 3))
+    for i, name in enumerate(names):
+        R[i, "xyz".index(name[-1])] = -1.0 if name.startswith("-") else 1.0
+    if sorted(name[-1] for name in names) != ["x", "y", "z"]:
+        raise ValueError(f"{field_name} = {short_repr(axes)} names a log axis twice; allowed: {_AXES_ALLOWED}")
+    if np.linalg.det(R) < 0:
+        raise ValueError(f"{field_name} = {short_repr(axes)} is a mirror image (determinant -1), not a rotation; "
+                         f"allowed: {_AXES_ALLOWED}")
+    return R
+
+
+def _axis_names(axes: object, field_name: str) -> tuple[str, str, str]:
+    """``axes`` as three of :data:`AXIS_NAMES` (a leading ``+`` dropped, spaces and case ignored)."""
+    if not isinstance(axes, (list, tuple)) or len(axes) != 3:
+        raise ValueError(f"{field_name} = {short_repr(axes)} must be a list of 3 axes; allowed: {_AXES_ALLOWED}")
+    names = []
+    for a in axes:
+        name = a.strip().lower().removeprefix("+") if isinstance(a, str) else None
+        if name not in AXIS_NAMES:
+            raise ValueError(f"{field_name} = {short_repr(axes)}: {a!r} is not an axis; allowed: {_AXES_ALLOWED}")
+        names.append(name)
+    return names[0], names[1], names[2]
+
+
+def _motor_poles(value: object) -> int:
+    """The motor's magnet poles: a whole number, even, >= 2."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 2 or value % 2:
+        raise ValueError(f"device.motor_poles = {short_repr(value)} must be an even whole number >= 2 (the motor's "
+                         "magnet poles: 14 on most small brushless motors)")
+    return int(value)
+
+
+def _motor_index(value: object) -> int:
+    """Which motor of the log is the rotor's: 0 to 7 (Betaflight logs up to 8)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value <= 7:
+        raise ValueError(f"device.motor_index = {short_repr(value)} must be a whole number from 0 to 7 (eRPM[0] to "
+                         "eRPM[7] of the log)")
+    return int(value)
 
 
 def _optional_array(field_name: str, value: object, shape: tuple[int, ...], unit: str, *,
@@ -75,6 +163,20 @@ class Device:
         uncertainty of each entry, kg m^2.
     center_of_mass, center_of_mass_std : ndarray, shape (3,), or None
         The device's centre of mass from the accelerometer, sensor frame, m, and its std.
+    motor_poles : int
+        The rotor's motor's magnet poles (even, >= 2; 14 by default, most small brushless
+        motors): its electrical speed is ``motor_poles / 2`` times the mechanical one.
+    motor_index : int
+        Which motor of a blackbox log drives the rotor: ``eRPM[motor_index]`` (0 to 7, default 0).
+    gyro_full_scale : float
+        The gyroscope's full scale, **deg/s** (as flight controllers state it; default 2000).
+    gyro_resolution : float or None
+        deg/s per count of a blackbox log's gyroscope (``gyroADC``), > 0 and at most the full
+        scale; None (default): the sensor's LSB, ``gyro_full_scale / 32768`` (16 bits).
+    sensor_axes : tuple of 3 str
+        The sensor frame's x, y, z as signed axes of a blackbox log (:func:`axes_matrix`; the
+        board's mounting), default ``("x", "y", "z")``. Throw files in the sensor frame itself
+        (:mod:`tumble.io.throwfile`) are not turned.
 
     Examples
     --------
@@ -82,6 +184,12 @@ class Device:
     >>> device = Device(mass=0.10067, rotor_axis=[0.0, 0.0, -2.0], rotor_inertia=1.7e-6)
     >>> device.rotor_axis.tolist(), device.calibrated
     ([0.0, 0.0, -1.0], False)
+    >>> device.motor_poles, device.gyro_lsb, device.sensor_axes   # the defaults: deg/s per count
+    (14, 0.06103515625, ('x', 'y', 'z'))
+    >>> Device(mass=0.1, rotor_axis=[0, 0, 1], motor_poles=13)   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: device.motor_poles = 13 must be an even whole number >= 2 (the motor's magnet poles: ...)
     >>> Device(mass=-1.0, rotor_axis=[0, 0, 1])
     Traceback (most recent call last):
     ...
@@ -96,6 +204,11 @@ class Device:
     inertia_std: Matrix3 | None = field(default=None, repr=False)
     center_of_mass: Vector3 | None = None
     center_of_mass_std: Vector3 | None = None
+    motor_poles: int = 14
+    motor_index: int = 0
+    gyro_full_scale: float = 2000.0
+    gyro_resolution: float | None = None
+    sensor_axes: tuple[str, str, str] = ("x", "y", "z")
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -112,6 +225,42 @@ class Device:
         s(self, "center_of_mass", _optional_array("device.center_of_mass", self.center_of_mass, (3,), "m"))
         s(self, "center_of_mass_std", _optional_array("device.center_of_mass_std", self.center_of_mass_std, (3,), "m",
                                                       nonnegative=True))
+        s(self, "motor_poles", _motor_poles(self.motor_poles))
+        s(self, "motor_index", _motor_index(self.motor_index))
+        s(self, "gyro_full_scale", check_positive("device.gyro_full_scale", self.gyro_full_scale, "deg/s"))
+        if self.gyro_resolution is not None:
+            lsb = check_positive("device.gyro_resolution", self.gyro_resolution, "deg/s")
+            if lsb > self.gyro_full_scale:
+                raise ValueError(f"device.gyro_resolution = {self.gyro_resolution!r} must be at most the full scale "
+                                 f"gyro_full_scale = {self.gyro_full_scale:g} (deg/s per count)")
+            s(self, "gyro_resolution", lsb)
+        axes_matrix(self.sensor_axes, "device.sensor_axes")  # the value as given in its messages
+        s(self, "sensor_axes", _axis_names(self.sensor_axes, "device.sensor_axes"))
+
+    @property
+    def gyro_lsb(self) -> float:
+        """deg/s per count of a blackbox log's gyroscope: :attr:`gyro_resolution`, else the
+        sensor's LSB ``gyro_full_scale / 32768`` (a 16-bit reading spans +-full scale).
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor import Device
+        >>> Device(0.1, [0, 0, 1], gyro_full_scale=1000).gyro_lsb, Device(0.1, [0, 0, 1], gyro_resolution=1).gyro_lsb
+        (0.030517578125, 1.0)
+        """
+        return self.gyro_resolution if self.gyro_resolution is not None else self.gyro_full_scale / 32768.0
+
+    @property
+    def sensor_rotation(self) -> Matrix3:
+        """:func:`axes_matrix` of :attr:`sensor_axes`: ``v_sensor_frame = R v_log``.
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor import Device
+        >>> Device(0.1, [0, 0, 1], sensor_axes=("y", "-x", "z")).sensor_rotation.astype(int).tolist()
+        [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]
+        """
+        return axes_matrix(self.sensor_axes, "device.sensor_axes")
 
     @property
     def calibrated(self) -> bool:
