@@ -13,11 +13,12 @@ names in the header line (``blackbox_decode`` writes it first; Blackbox Explorer
   ``time (ms)``, ``time (s)``): the sample times, increasing;
 - ``gyroADC[0]``, ``gyroADC[1]``, ``gyroADC[2]``: the gyroscope, in counts of
   :attr:`Device.gyro_lsb <tumble.analysis.tensor.Device.gyro_lsb>` deg/s: by default the sensor's
-  16-bit LSB, ``gyro_full_scale / 32768`` (2000 deg/s full scale: 0.061 deg/s). **Betaflight 3.1
-  and later log the filtered rate in whole deg/s** (``gyroADC = lrintf(gyro.gyroADCf)``, header
-  ``gyro_scale`` 1.0; x10 with ``blackbox_high_resolution``; betaflight/betaflight,
-  src/main/blackbox/blackbox.c, ``loadMainState``): give ``gyro_resolution = 1.0`` (0.1) in the
-  device file for such logs. A count beyond the full scale (``|count| * gyro_lsb >
+  16-bit LSB, ``gyro_full_scale / 32768`` (2000 deg/s full scale: 0.061 deg/s), as Cleanflight and
+  early Betaflight logged it. **Current Betaflight logs the filtered rate in whole deg/s**
+  (``gyroADC = lrintf(gyro.gyroADCf * blackboxHighResolutionScale)``, the scale 10 with
+  ``blackbox_high_resolution`` and 1 without, the header's ``gyro_scale`` 1.0;
+  betaflight/betaflight, src/main/blackbox/blackbox.c, ``loadMainState``): give
+  ``gyro_resolution = 1.0`` (0.1) in the device file for such logs. A count beyond the full scale (``|count| * gyro_lsb >
   gyro_full_scale``) is refused;
 - ``accSmooth[0]``, ``accSmooth[1]``, ``accSmooth[2]`` (optional, all three or none): the
   accelerometer's specific force, :data:`ACC_COUNTS_PER_G` counts per g (Betaflight's ``acc_1G``
