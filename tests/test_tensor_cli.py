@@ -344,7 +344,8 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(device), "--mass", repr(BOX_MASS), "--out", str(out))
     assert code == 0, err
     assert stdout.count("\n") == 1 and stdout.startswith("tensor: principal moments ") and err == ""
-    assert sorted(p.name for p in out.iterdir()) == ["tensor.json", "tensor.png"]
+    assert sorted(p.name for p in out.iterdir()) == ["inertial.urdf", "inertial.xml", "tensor.json", "tensor.png",
+                                                     "throws.npz"]
     assert (out / "tensor.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     record = json.loads((out / "tensor.json").read_text())
     assert {"object", "flown", "throws", "adequate", "chi2_dof"} <= set(record)

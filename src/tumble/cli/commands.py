@@ -265,8 +265,8 @@ def _cmd_view(args) -> int:
     from ..io.output import check_output_file
     from ..viz.scene import frame_indices
 
-    if os.path.isdir(args.source):  # a tumble fit output folder
-        return _view_fit(args)
+    if os.path.isdir(args.source):  # a tumble fit or tumble tensor output folder
+        return _view_folder(args)
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
     control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
@@ -285,17 +285,48 @@ def _cmd_view(args) -> int:
     return EXIT_OK
 
 
+def _view_folder(args) -> int:
+    """`tumble view DIR`: a fit's output folder (fit.json) or a tensor's (tensor.json), else one line."""
+    from ..io.fitfolder import FIT_FILE
+    from ..io.tensorfolder import TENSOR_FILE
+
+    fit, tensor = (os.path.isfile(os.path.join(args.source, name)) for name in (FIT_FILE, TENSOR_FILE))
+    if fit and tensor:
+        raise ValueError(f"{args.source}: holds both {FIT_FILE} and {TENSOR_FILE}; give a folder of one of tumble fit "
+                         "and tumble tensor (their --out)")
+    if not fit and not tensor:
+        raise ValueError(f"{args.source}: a folder without {FIT_FILE} or {TENSOR_FILE}; give the output folder of "
+                         "tumble fit (tumble fit REC --out DIR) or of tumble tensor (tumble tensor THROW... --out DIR)")
+    given = [f"--{k.replace('_', '-')}" for k in ("omega", "frame", "t_end", "samples", "dt", "method")
+             if getattr(args, k) is not None]
+    if given:
+        what = "a fit's output folder replays its fitted flights" if fit else "a tensor's output folder shows its throws"
+        raise ValueError(f"{args.source}: {what}; {', '.join(given)} apply to a scenario or a body")
+    return _view_fit(args) if fit else _view_tensor(args)
+
+
+def _view_tensor(args) -> int:
+    """`tumble view DIR` of a tensor's output folder: its throws, the moments and the equivalent box."""
+    from ..io.output import check_output_file
+    from ..io.tensorfolder import read_tensor_folder
+
+    folder = read_tensor_folder(args.source)  # bad input: one line naming the folder
+    out = check_output_file(args.out, ".html")
+    from ..viz.tensor_page import write_tensor_page
+
+    write_tensor_page(folder, out)
+    shown = sum(1 for s in folder.series if s.t.size)
+    print(f"wrote {out}: {shown} throw{'' if shown == 1 else 's'} of {args.source} with the fitted model, the "
+          "principal moments and the equivalent box (self-contained: open it in any browser, no network needed)")
+    return EXIT_OK
+
+
 def _view_fit(args) -> int:
     """`tumble view DIR` of a fit's output folder: the fitted body replaying each used flight."""
     from ..io.fitfolder import read_fit_folder
     from ..io.output import check_output_file
     from ..viz.scene import frame_indices
 
-    given = [f"--{k.replace('_', '-')}" for k in ("omega", "frame", "t_end", "samples", "dt", "method")
-             if getattr(args, k) is not None]
-    if given:
-        raise ValueError(f"{args.source}: a fit's output folder replays its fitted flights; {', '.join(given)} "
-                         "apply to a scenario or a body")
     fit = read_fit_folder(args.source)  # bad input: one line naming the folder, before anything is computed
     out = check_output_file(args.out, ".html")
     frame_indices(2, args.frames)  # refuse a bad --frames before replaying

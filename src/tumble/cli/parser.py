@@ -103,18 +103,21 @@ def build_parser() -> argparse.ArgumentParser:
                    help="file formats (default: png svg)")
 
     p = scenario_command(
-        "view", c._cmd_view, "one self-contained interactive HTML page of a scenario or a fit",
+        "view", c._cmd_view, "one self-contained interactive HTML page of a scenario, a fit or a tensor",
         "Writes ONE HTML file that works offline: the body tumbling in the ground frame with its omega and "
         "L arrows, the body-frame view, omega(t); play/pause, time slider, speed buttons. A control scenario "
         "([control]) adds its reaction wheels turning on the body, the commanded torque (and dipole) arrows, a "
         "readout and the attitude error or |omega| over time (only --t-end overrides it; no live mode). "
         "INPUT a folder holding fit.json (tumble fit's output): the fitted body (a box of the fitted ratios) "
         "replays the flight chosen in a selector, its model's rates next to the measured ones, and its polhode "
-        "on the momentum sphere (the recordings are read again, as given to tumble fit).",
+        "on the momentum sphere (the recordings are read again, as given to tumble fit). INPUT a folder holding "
+        "tensor.json (tumble tensor's output): each throw's gyroscope samples against the fitted model and its rotor "
+        "speed, the principal moments throw by throw with the pooled value, and the object's equivalent uniform box "
+        "in the sensor frame (no animation).",
         "tumble view examples/seed_flip.toml --out flip.html | "
         "tumble view examples/control/point.toml --out point.html | "
         "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html | "
-        "tumble view fitted --out tosses.html", "FILE.html", "the page to write",
+        "tumble view fitted --out tosses.html | tumble view bracket --out bracket.html", "FILE.html", "the page to write",
     )
     p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
 
@@ -220,8 +223,10 @@ def build_parser() -> argparse.ArgumentParser:
         description="Fits each throw of the object with the calibrated device strapped to it (the gyrostat's Euler "
         "equations with the measured rotor speed, an output-error fit) and all of them jointly, and writes "
         "DIR/tensor.json (the object's and the flown body's mass, inertia tensor and its covariance, principal "
-        "moments with standard uncertainties, principal axes, centre of mass; every throw; adequate) and "
-        "DIR/tensor.png, whole or not at all.",
+        "moments with standard uncertainties, principal axes, centre of mass; every throw; adequate), "
+        "DIR/tensor.png (the figure), DIR/throws.npz (each throw's fitted samples, the model's rates and the rotor's "
+        "speed, for tumble view DIR), DIR/inertial.urdf and DIR/inertial.xml (the object as a URDF and a MuJoCo MJCF "
+        "<inertial> element, sensor frame, its uncertainties in a comment), whole or not at all.",
         epilog="Example: tumble tensor o1.csv o2.csv o3.csv --device calibrated.toml --mass 0.482 --out bracket",
         parents=[debug],
     )

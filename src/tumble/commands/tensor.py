@@ -12,7 +12,10 @@ absolute inertia tensor, the result written whole or not at all.
   :meth:`~tumble.analysis.tensor.TensorFit.as_dict` (``"object"``, ``"flown"``, ``"throws"``,
   ``"adequate"``, ``"chi2_dof"``) with the inputs, the columns read from each
   (:meth:`tumble.io.throwfile.ThrowRead.summary`) and the provenance, ``DIR/tensor.png`` the
-  figure (:func:`tumble.viz.tensor.figure_tensor`).
+  figure (:func:`tumble.viz.tensor.figure_tensor`), ``DIR/throws.npz`` each throw's fitted
+  samples, model rates and rotor speed (:mod:`tumble.io.tensorfolder`; ``tumble view DIR`` shows
+  them), and the object as a simulator's inertial element, ``DIR/inertial.urdf`` (URDF) and
+  ``DIR/inertial.xml`` (MuJoCo's MJCF), sensor frame (:mod:`tumble.io.inertial`).
 
 The throw files are :mod:`tumble.io.throwfile`'s; the method is the gyrostat's output-error fit
 of :mod:`tumble.analysis.tensor` (Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137, with the
@@ -32,15 +35,17 @@ import numpy as np
 
 from ..analysis.tensor import Device, NoThrowError, calibrate_device, fit_tensor
 from ..io.devicefile import load_device, write_device
+from ..io.inertial import mjcf_inertial, urdf_inertial
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
+from ..io.tensorfolder import THROWS_FILE, throw_series, write_throw_series
 from ..io.throwfile import load_throw, read_throw
 from ..validation import check_positive
 
 __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
 
-#: The files ``tumble tensor`` writes into its folder.
-TENSOR_WRITES = ("tensor.json", "tensor.png")
+#: The files ``tumble tensor`` writes into its folder (tensor.png only with a figure).
+TENSOR_WRITES = ("tensor.json", "tensor.png", THROWS_FILE, "inertial.urdf", "inertial.xml")
 
 _METHOD = ("output-error least squares on the gyrostat's equations in the momentum form (Hughes, Spacecraft Attitude "
            "Dynamics, 1986, ch. 7) with the measured rotor speed as input, integrated at the real sample times, over "
@@ -207,15 +212,21 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     record["method"] = _METHOD
     record["provenance"] = provenance(argv, inputs)
     text = json.dumps(record, indent=2, allow_nan=False) + "\n"
+    used = sum(1 for t in fit.throws if t.status == "used")
+    note = f"from {used} of {len(fit.throws)} throws; tensor.json beside this file holds the covariances" + (
+        "" if fit.adequate else "; the model did NOT describe the throws (tensor.json: adequate false)")
+    series = throw_series(fit.throws, thrown)  # the fitted samples and the rotor's speed, for tumble view DIR
     with output_dir(out, owns=TENSOR_WRITES) as stage:
         (Path(stage) / "tensor.json").write_text(text, encoding="utf-8")
+        write_throw_series(Path(stage) / THROWS_FILE, series)
+        (Path(stage) / "inertial.urdf").write_text(urdf_inertial(fit.object, note=note), encoding="utf-8")
+        (Path(stage) / "inertial.xml").write_text(mjcf_inertial(fit.object, note=note), encoding="utf-8")
         if figure is not None:
             figure(fit).savefig(Path(stage) / "tensor.png", dpi=FIGURE_DPI)
     obj = fit.object
-    used = sum(1 for t in fit.throws if t.status == "used")
     moments = ", ".join(f"{x:.4g} +- {s:.2g}" for x, s in zip(obj.principal_moments, obj.principal_moments_std))
     chi2 = f", chi2/dof {fit.chi2_dof:.2g}" if np.isfinite(fit.chi2_dof) else ""
-    written = ", ".join(TENSOR_WRITES if figure is not None else TENSOR_WRITES[:1])
+    written = ", ".join(name for name in TENSOR_WRITES if figure is not None or name != "tensor.png")
     print(f"tensor: principal moments {moments} kg m^2, centre of mass {_mm(obj.center_of_mass)} from {used} of "
           f"{len(fit.throws)} throws{chi2}; wrote {written} in {os.fspath(out)}")
     if not fit.adequate:
