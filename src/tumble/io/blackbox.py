@@ -59,7 +59,7 @@ from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..typing import BoolArray, Matrix3
 from .keys import FileFormat, Key, Table
 from ._delimited import _NUMBER, _check_order, _separator, _split
-from .throwfile import ThrowRead
+from .throwread import ThrowRead
 
 __all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "looks_like_blackbox", "parse_blackbox_csv"]
 
