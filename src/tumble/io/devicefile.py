@@ -93,6 +93,12 @@ DEVICE_FORMAT = FileFormat("device", (
             allowed='each "x", "-x", "y", "-y", "z" or "-z", each log axis once, a proper rotation (determinant +1)',
             example='["x", "-y", "-z"]',
             doc="the sensor frame's x, y, z as signed axes of a blackbox log: the board's mounting"),
+        Key("gyro_scale_std", "number", "", "0.003", allowed=">= 0", example="0.002", low=0.0, low_included=True,
+            doc="the gyroscope's scale factor's standard uncertainty per axis (relative), carried into the tensors'"),
+        Key("gyro_misalignment_std", "number", "rad", "0.005", allowed=">= 0", example="0.003", low=0.0,
+            low_included=True, doc="the gyroscope's misalignment's standard uncertainty per pair of axes"),
+        Key("rotor_axis_std", "number", "rad", "0.0175", allowed=">= 0", example="0.01", low=0.0, low_included=True,
+            doc="the rotor axis's direction's standard uncertainty (about each axis normal to it)"),
     ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the inertias and the "
        "centre of mass. The motor, gyroscope and mounting keys are how a flight controller's own log (a Betaflight "
        "blackbox CSV: the page on blackbox logs) is read; throw files in the sensor frame do not need them."),
@@ -283,12 +289,15 @@ def _axes(axes: tuple[str, ...]) -> str:
     return "[" + ", ".join(f'"{a}"' for a in axes) + "]"
 
 
-#: The keys of how a blackbox log is read, how :func:`device_toml` writes them, their comment.
-_BLACKBOX_KEYS: tuple[tuple[str, Callable[[Any], str], str], ...] = (("motor_poles", str, "the motor's magnet poles"),
+#: The keys with defaults (how a blackbox log is read, the sensors' stated uncertainties): how :func:`device_toml` writes them, their comment.
+_OPTIONAL_KEYS: tuple[tuple[str, Callable[[Any], str], str], ...] = (("motor_poles", str, "the motor's magnet poles"),
                   ("motor_index", str, "the rotor's motor in a blackbox log: eRPM[motor_index]"),
                   ("gyro_full_scale", _number, "deg/s, the gyroscope's range"),
                   ("gyro_resolution", _number, "deg/s per count of a blackbox log's gyroADC"),
-                  ("sensor_axes", _axes, "the sensor frame's x, y, z as axes of a blackbox log"))
+                  ("sensor_axes", _axes, "the sensor frame's x, y, z as axes of a blackbox log"),
+                  ("gyro_scale_std", _number, "the gyroscope's scale factor's standard uncertainty"),
+                  ("gyro_misalignment_std", _number, "rad, the gyroscope's misalignment's standard uncertainty"),
+                  ("rotor_axis_std", _number, "rad, the rotor axis's standard uncertainty"))
 _DEFAULTS = {f.name: f.default for f in fields(Device)}
 
 
@@ -327,7 +336,7 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "")
     lines.append("[device]")
     item("mass", _number(device.mass), "kg")
     item("rotor_axis", _row(device.rotor_axis), "sensor frame, the rotor's angular velocity for positive speed")
-    for key, write, comment in _BLACKBOX_KEYS:  # only where not the default: a blackbox log's reading
+    for key, write, comment in _OPTIONAL_KEYS:  # only where not the default
         value = getattr(device, key)
         if value != _DEFAULTS[key]:
             item(key, write(value), comment)

@@ -22,11 +22,20 @@ passes) with ``chi^2`` on 5 degrees of freedom; a ``chi^2 / 5 > 1`` inflates ``J
 uncertainties (the pooled ``D``, ``P``, ``c_d``, ``c_dp``; the proof taken as exact) are
 propagated to ``(J_r, I_d, c_d)`` through the map's Jacobian (central differences; the law of
 propagation of uncertainty, JCGM 100:2008, sec. 5.1).
+
+**A calibration that checks itself** (:func:`calibrate`, issue #42): the equations' ``chi^2 / 5``
+(above :data:`MAX_CHI2_DOF` the proof is not what was stated or not mounted as stated, or the
+proof throws are of another object), each set's agreement about its joint fit (above
+:data:`MAX_SET_CHI2_DOF` its throws are not of one rigid body), a rotor inertia that is not
+positive (the sets swapped), and each throw's fitted gyroscope bias (a throw that needs more
+than a gyroscope has is left out: :func:`~tumble.analysis.tensor.pool.throw_verdict`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -34,9 +43,11 @@ from ...mass.tensor import point_mass_inertia
 from ...typing import FloatArray
 from .device import Device, Proof, Throw
 from .estimate import tensor_of, vector_of
-from .pool import pool_throws
+from .fit import full_scale, sensor_errors
+from .pool import duplicate_throws, pool_throws
 
-__all__ = ["calibrate_device", "rotor_inertia_from"]
+__all__ = ["MAX_CHI2_DOF", "MAX_SET_CHI2_DOF", "Calibration", "CalibrationError", "calibrate", "calibrate_device",
+           "rotor_inertia_from"]
 
 
 def _known(x: FloatArray, m_d: float, m_p: float, Ip: FloatArray) -> FloatArray:
@@ -109,15 +120,161 @@ def rotor_inertia_from(x: FloatArray, cov_x: FloatArray, device_mass: float, pro
     return y, cov * np.outer(inflate, inflate), ratio
 
 
+#: The calibration's consistency (``chi^2 / 5`` of its parallel-axis equations) above which it is
+#: refused: the equations hold to their uncertainties when the proof is what was stated, mounted as stated.
+MAX_CHI2_DOF = 3.0
+#: The throws of one set (device alone, or with the proof) whose joint fit's ``chi^2 / dof`` against
+#: their own fits (:func:`~tumble.analysis.tensor.pool.agreement`) exceeds this disagree: they are
+#: not throws of one rigid body with this device.
+MAX_SET_CHI2_DOF = 3.0
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """A calibration and how well it checks itself (issue #42 item 3).
+
+    Attributes
+    ----------
+    device : Device
+        The calibrated device.
+    chi2_dof : float
+        ``chi^2 / 5`` of the parallel-axis equations for the rotor's inertia (1 when they hold to
+        their uncertainties).
+    alone_chi2_dof, proof_chi2_dof : float
+        Each set's throws about their joint fit (NaN for one throw).
+    alone_used, proof_used : int
+        The throws fitted and used, of each set.
+    max_bias : float
+        The largest gyroscope bias any used throw's fit needed, rad/s.
+    left_out : tuple of str
+        ``"FILE: reason"`` of each throw not used.
+    problems : tuple of str
+        What makes the calibration not to be trusted, each with its likely cause; empty when it
+        checks out.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.calibrate import Calibration
+    >>> sorted(Calibration.__dataclass_fields__)[:3]
+    ['alone_chi2_dof', 'alone_used', 'chi2_dof']
+    """
+
+    device: Device
+    chi2_dof: float
+    alone_chi2_dof: float
+    proof_chi2_dof: float
+    alone_used: int
+    proof_used: int
+    max_bias: float
+    left_out: tuple[str, ...]
+    problems: tuple[str, ...]
+
+    @property
+    def adequate(self) -> bool:
+        """Whether the calibration checks out (no problem found)."""
+        return not self.problems
+
+    def as_dict(self) -> dict[str, Any]:
+        """The numbers for ``[calibration]`` of a device file (NaN left out).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor import Device
+        >>> from tumble.analysis.tensor.calibrate import Calibration
+        >>> c = Calibration(Device(0.1, [0, 0, 1]), 1.2, float("nan"), 0.8, 1, 3, 0.02, (), ())
+        >>> c.as_dict()["adequate"], "alone_chi2_dof" in c.as_dict()
+        (True, False)
+        """
+        out: dict[str, Any] = {"adequate": self.adequate}
+        for key in ("chi2_dof", "alone_chi2_dof", "proof_chi2_dof", "max_bias"):
+            value = float(getattr(self, key))
+            if np.isfinite(value):
+                out[key] = value
+        out.update(alone_used=int(self.alone_used), proof_used=int(self.proof_used), left_out=list(self.left_out),
+                   problems=list(self.problems))
+        return out
+
+
+def _problems(J: float, ratio: float, a, p) -> list[str]:
+    """What the calibration's own numbers say is wrong, with the likely cause."""
+    out = []
+    if not J > 0:
+        out.append(f"the rotor's inertia comes out {J:.3g} kg m^2, not positive: the throws with the proof turn less "
+                   "than the device's alone would, so the --alone and --proof throws are likely swapped")
+        return out
+    if ratio > MAX_CHI2_DOF:
+        out.append(f"the parallel-axis equations disagree with the proof body as stated: chi2/dof {ratio:.3g} (at most "
+                   f"{MAX_CHI2_DOF:g}); the proof may be mounted turned from the sensor axes, its mass or tensor "
+                   "mis-stated, or the --proof throws are of another object")
+    for name, pooled in (("device-alone", a), ("proof", p)):
+        if np.isfinite(pooled.chi2_dof) and pooled.chi2_dof > MAX_SET_CHI2_DOF:
+            out.append(f"the {name} throws disagree with each other: one tensor for all of them fits with chi2/dof "
+                       f"{pooled.chi2_dof:.3g} against each its own (at most {MAX_SET_CHI2_DOF:g}); they may not be "
+                       "throws of one rigid body, or the mount moved between them")
+    return out
+
+
+def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Throw], proof: Proof, *,
+              saturation: float | None = None) -> Calibration:
+    """The device calibrated (:func:`calibrate_device`) and the calibration's checks of itself
+    (:class:`Calibration`: ``problems`` says what is inconsistent and why).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.analysis.tensor.calibrate import calibrate
+    >>> from tumble.analysis.tensor.synthetic import combine, synthetic_throw, true_device, true_proof
+    >>> proof, placed = true_proof()
+    >>> alone = [synthetic_throw(s, true_device(), spin=(3.0, 6.0)) for s in (1, 2, 3)]
+    >>> with_proof = [synthetic_throw(s, combine(true_device(), placed)) for s in (4, 5, 6)]
+    >>> cal = calibrate(Device(0.10067, [0, 0, -1]), alone, with_proof, proof)
+    >>> cal.problems, cal.alone_used, cal.proof_used
+    ((), 3, 3)
+    >>> swapped = calibrate(Device(0.10067, [0, 0, -1]), with_proof, alone, proof)
+    >>> "swapped" in swapped.problems[0]
+    True
+    """
+    if not isinstance(device, Device):
+        raise ValueError(f"device must be a Device, got {type(device).__name__}")
+    if not isinstance(proof, Proof):
+        raise ValueError(f"proof must be a Proof, got {type(proof).__name__}")
+    for k, a_throw in enumerate(alone):
+        for j, p_throw in enumerate(proof_throws):
+            if isinstance(a_throw, Throw) and isinstance(p_throw, Throw) and duplicate_throws([a_throw, p_throw]):
+                raise ValueError(f"--alone throw {a_throw.input or k} and --proof throw {p_throw.input or j} are the "
+                                 "same log: a throw is of the device alone or with the proof body, not both")
+    errors, rail = sensor_errors(device), full_scale(device, saturation)
+    a, fits_a = pool_throws(alone, device.rotor_axis, 1.0, saturation=rail, errors=errors)
+    p, fits_p = pool_throws(proof_throws, device.rotor_axis, 1.0, saturation=rail, errors=errors)
+    x = np.concatenate([a.inertia, a.center, p.inertia, p.center])
+    cov = np.zeros((18, 18))
+    cov[:6, :6], cov[6:9, 6:9], cov[9:15, 9:15], cov[15:, 15:] = a.inertia_cov, a.center_cov, p.inertia_cov, p.center_cov
+    y, cov_y, ratio = rotor_inertia_from(x, cov, device.mass, proof)
+    std = np.sqrt(np.maximum(np.diag(cov_y), 0.0))
+    problems = _problems(float(y[0]), ratio, a, p)
+    if problems and not y[0] > 0:
+        dev = device
+    else:
+        dev = replace(device, rotor_inertia=float(y[0]), rotor_inertia_std=float(std[0]), inertia=tensor_of(y[1:7]),
+                      inertia_std=tensor_of(std[1:7]), center_of_mass=y[7:10], center_of_mass_std=std[7:10])
+    used = [f for f in (*fits_a, *fits_p) if not f.reason]
+    max_bias = max(float(np.max(np.abs(f.P[9:12]))) for f in used)  # type: ignore[index]
+    left = tuple(f"{t.input or f'throw {k}'}: {f.reason}" for k, (t, f) in enumerate(zip((*alone, *proof_throws),
+                                                                                          (*fits_a, *fits_p))) if f.reason)
+    return Calibration(dev, ratio, a.chi2_dof, p.chi2_dof, a.used, p.used, max_bias, left, tuple(problems))
+
+
 def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Throw], proof: Proof, *,
                      saturation: float | None = None) -> Device:
     """The device with ``rotor_inertia``, ``inertia``, ``center_of_mass`` and their ``_std`` estimated
-    (module docstring).
+    (module docstring); :func:`calibrate` also says how well the calibration checks itself.
 
     Parameters
     ----------
     device : Device
-        Its mass and rotor axis (anything else it holds is replaced).
+        Its mass and rotor axis (and how its logs are read, kept); its inertias are replaced.
     alone : sequence of Throw
         Throws of the device alone.
     proof_throws : sequence of Throw
@@ -125,7 +282,7 @@ def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Seque
     proof : Proof
         The proof body's known mass and tensor (about its centre, sensor axes).
     saturation : float, optional
-        The gyroscope's range, rad/s (else found from the data).
+        The gyroscope's range, rad/s (default the device's ``gyro_full_scale``).
 
     Returns
     -------
@@ -134,7 +291,8 @@ def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Seque
     Raises
     ------
     ValueError
-        Bad input (no throws, not throws, not a device or proof).
+        Bad input (no throws, not throws, not a device or proof, a throw in both sets), or a
+        calibration that does not check out (:attr:`Calibration.problems`).
     NoThrowError
         No throw of a set could be fitted (:class:`tumble.analysis.tensor.NoThrowError`).
 
@@ -144,22 +302,25 @@ def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Seque
     >>> from tumble.analysis.tensor import Device, calibrate_device
     >>> from tumble.analysis.tensor.synthetic import ROTOR_INERTIA, combine, synthetic_throw, true_device, true_proof
     >>> proof, placed = true_proof()
-    >>> alone = [synthetic_throw(s, true_device(), rotor_top=300.0, spin=(3.0, 6.0)) for s in (1, 2, 3)]
+    >>> alone = [synthetic_throw(s, true_device(), spin=(3.0, 6.0)) for s in (1, 2, 3)]
     >>> with_proof = [synthetic_throw(s, combine(true_device(), placed)) for s in (4, 5, 6)]
     >>> cal = calibrate_device(Device(0.10067, [0, 0, -1]), alone, with_proof, proof)
     >>> bool(abs(cal.rotor_inertia / ROTOR_INERTIA - 1) < 0.02), bool(cal.rotor_inertia_std < 0.02 * ROTOR_INERTIA)
     (True, True)
     """
-    if not isinstance(device, Device):
-        raise ValueError(f"device must be a Device, got {type(device).__name__}")
-    if not isinstance(proof, Proof):
-        raise ValueError(f"proof must be a Proof, got {type(proof).__name__}")
-    a, _ = pool_throws(alone, device.rotor_axis, 1.0, saturation=saturation)
-    p, _ = pool_throws(proof_throws, device.rotor_axis, 1.0, saturation=saturation)
-    x = np.concatenate([a.inertia, a.center, p.inertia, p.center])
-    cov = np.zeros((18, 18))
-    cov[:6, :6], cov[6:9, 6:9], cov[9:15, 9:15], cov[15:, 15:] = a.inertia_cov, a.center_cov, p.inertia_cov, p.center_cov
-    y, cov_y, _ = rotor_inertia_from(x, cov, device.mass, proof)
-    std = np.sqrt(np.maximum(np.diag(cov_y), 0.0))
-    return Device(device.mass, device.rotor_axis, float(y[0]), float(std[0]), tensor_of(y[1:7]), tensor_of(std[1:7]),
-                  y[7:10], std[7:10])
+    result = calibrate(device, alone, proof_throws, proof, saturation=saturation)
+    if result.problems:
+        raise CalibrationError("; ".join(result.problems))
+    return result.device
+
+
+class CalibrationError(ValueError):
+    """A calibration that does not check out (:attr:`Calibration.problems`): a failed computation,
+    not bad input (``tumble calibrate`` exits with status 1).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.calibrate import CalibrationError
+    >>> issubclass(CalibrationError, ValueError)
+    True
+    """

@@ -177,6 +177,12 @@ class Device:
         The sensor frame's x, y, z as signed axes of a blackbox log (:func:`axes_matrix`; the
         board's mounting), default ``("x", "y", "z")``. Throw files in the sensor frame itself
         (:mod:`tumble.io.throwfile`) are not turned.
+    gyro_scale_std, gyro_misalignment_std, rotor_axis_std : float
+        The stated standard uncertainties of the gyroscope's scale factor per axis (relative,
+        default 0.003), its misalignment per pair of axes (rad, default 0.005) and the rotor
+        axis's direction (rad, default 0.0175, 1 degree), carried into every tensor's
+        uncertainty (:class:`tumble.analysis.tensor.joint.SensorErrors`: a typical MEMS data
+        sheet's values; 0 for a device whose sensors were calibrated to better).
 
     Examples
     --------
@@ -209,6 +215,9 @@ class Device:
     gyro_full_scale: float = 2000.0
     gyro_resolution: float | None = None
     sensor_axes: tuple[str, str, str] = ("x", "y", "z")
+    gyro_scale_std: float = 0.003
+    gyro_misalignment_std: float = 0.005
+    rotor_axis_std: float = 0.0175
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -234,6 +243,8 @@ class Device:
                 raise ValueError(f"device.gyro_resolution = {self.gyro_resolution!r} must be at most the full scale "
                                  f"gyro_full_scale = {self.gyro_full_scale:g} (deg/s per count)")
             s(self, "gyro_resolution", lsb)
+        for name, unit in (("gyro_scale_std", ""), ("gyro_misalignment_std", "rad"), ("rotor_axis_std", "rad")):
+            s(self, name, check_positive(f"device.{name}", getattr(self, name), unit, allow_zero=True))
         axes_matrix(self.sensor_axes, "device.sensor_axes")  # the value as given in its messages
         s(self, "sensor_axes", _axis_names(self.sensor_axes, "device.sensor_axes"))
 

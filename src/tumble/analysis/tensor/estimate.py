@@ -28,7 +28,12 @@ import numpy as np
 from ...mass.tensor import parallel_axis
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 
-__all__ = ["ENTRIES", "MassEstimate", "mass_estimate", "principal_uncertainty", "subtract_body", "tensor_of", "vector_of"]
+__all__ = ["ENTRIES", "TRIANGLE_SIGMA", "MassEstimate", "mass_estimate", "not_physical", "principal_uncertainty",
+           "subtract_body", "tensor_of", "vector_of"]
+
+#: An estimate whose moments break the triangle inequality by more than this many standard
+#: uncertainties (of ``I1 + I2 - I3``) is no body's.
+TRIANGLE_SIGMA = 3.0
 
 #: The order of a tensor's six independent entries in every covariance.
 ENTRIES = ("xx", "yy", "zz", "xy", "xz", "yz")
@@ -184,6 +189,39 @@ def mass_estimate(mass: float, inertia: ArrayLike, inertia_cov: ArrayLike, cente
     Cc = np.asarray(center_of_mass_cov, float)
     moments, std, axes = principal_uncertainty(I, C)
     return MassEstimate(float(mass), I, C, moments, std, axes, c, np.sqrt(np.maximum(np.diag(Cc), 0.0)), Cc)
+
+
+def not_physical(estimate: MassEstimate) -> str:
+    """Why an estimated tensor is no body's, or ``""``: a principal moment not positive, or the
+    triangle inequality ``I1 + I2 >= I3`` (Goldstein sec. 5.4; :func:`tumble.mass.tensor.check_inertia`)
+    broken by more than :data:`TRIANGLE_SIGMA` of its standard uncertainty (a flat body lies on
+    its edge, and its estimate on either side of it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.estimate import mass_estimate, not_physical
+    >>> flat = mass_estimate(0.1, np.diag([1e-4, 2e-4, 3.001e-4]), np.eye(6) * 1e-14, np.zeros(3), np.eye(3))
+    >>> not_physical(flat)   # 1e-7 over the edge, its std 1.7e-7
+    ''
+    >>> print(not_physical(mass_estimate(0.1, np.diag([-1e-5, 2e-4, 2e-4]), np.eye(6) * 1e-14, np.zeros(3), np.eye(3))))
+    not a body's tensor: principal moments -1e-05, 0.0002, 0.0002 kg m^2, the smallest not positive
+    """
+    m = estimate.principal_moments
+    shown = ", ".join(f"{x:.3g}" for x in m)
+    if m[0] <= 0:
+        return f"not a body's tensor: principal moments {shown} kg m^2, the smallest not positive"
+    v = estimate.principal_axes
+    g = np.array([1.0, 1.0, -1.0])  # d(I1 + I2 - I3) / d(entries) along the principal axes
+    G = sum(gk * np.array([a[0] ** 2, a[1] ** 2, a[2] ** 2, 2 * a[0] * a[1], 2 * a[0] * a[2], 2 * a[1] * a[2]])
+            for gk, a in zip(g, v.T))
+    gap = float(m[0] + m[1] - m[2])
+    std = float(np.sqrt(max(G @ estimate.inertia_cov @ G, 0.0)))
+    if gap < -TRIANGLE_SIGMA * std:
+        return (f"not a body's tensor: principal moments {shown} kg m^2 break the triangle inequality "
+                f"(I1 + I2 - I3 = {gap:.3g}, {(-gap / std) if std > 0 else float('inf'):.3g} standard uncertainties "
+                f"below 0)")
+    return ""
 
 
 def _rest(x: FloatArray, M: float, m_p: float) -> FloatArray:

@@ -2,14 +2,17 @@
 
 Each throw is fitted on its own (:mod:`~tumble.analysis.tensor.throw`): the flown body's tensor
 (object and device, about their common centre of mass) and its centre of mass, with their
-statistical covariances. The throws are pooled by their inverse-covariance weighted mean; when
-they scatter about it more than their uncertainties allow, the statistical covariance is
-multiplied by the Birge ratio ``chi^2 / dof`` (:func:`tumble.analysis.fit.uncertainty.birge_chi2`,
-as the ratio fit pools flights). Then the systematic parts common to every throw are added: the
-rotor inertia's relative uncertainty scales the whole tensor (the gyrostat's equations are
-unchanged when ``I`` and ``J_r`` are multiplied by the same factor, so ``I`` is proportional to
-``J_r``), and the device's own tensor and centre are subtracted with the parallel-axis theorem
-(:func:`~tumble.analysis.tensor.estimate.subtract_body`).
+covariances (the sensors' stated uncertainties included: :func:`sensor_errors`). A throw whose
+object, the device taken away, is no body's (:func:`~tumble.analysis.tensor.estimate.not_physical`)
+is left out, named, with the throws that the fit cannot explain
+(:func:`~tumble.analysis.tensor.pool.throw_verdict`). The rest are fitted jointly, one tensor
+and one centre of mass for all (:mod:`~tumble.analysis.tensor.pool`). Then the systematic parts
+common to every throw are added: the rotor inertia's relative uncertainty scales the whole
+tensor (the gyrostat's equations are unchanged when ``I`` and ``J_r`` are multiplied by the same
+factor, so ``I`` is proportional to ``J_r``), and the device's own tensor and centre are
+subtracted with the parallel-axis theorem (:func:`~tumble.analysis.tensor.estimate.subtract_body`).
+An object's pooled tensor that is no body's is never written: :class:`NoThrowError` (the
+command's exit status 1) says why.
 """
 
 from __future__ import annotations
@@ -23,11 +26,13 @@ import numpy as np
 from ...typing import FloatArray
 from ...validation import check_positive
 from .device import Device, Throw
-from .estimate import MassEstimate, mass_estimate, subtract_body, tensor_of, vector_of
-from .pool import Pooled, pool_throws
+from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
+from .joint import SensorErrors
+from .pool import NoThrowError, Pooled, pool_throws
 from .throw import FlownFit
 
-__all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate"]
+__all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate", "full_scale",
+           "sensor_errors"]
 
 
 def _num(x: float) -> float | None:
@@ -154,7 +159,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
     mass : float
         The object's mass, kg (weighed).
     saturation : float, optional
-        The gyroscope's range, rad/s (else found from the data: a rail that samples repeat).
+        The gyroscope's range, rad/s (default the device's ``gyro_full_scale``).
 
     Returns
     -------
@@ -191,22 +196,61 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
         raise ValueError("the device is not calibrated: its rotor_inertia, inertia and center_of_mass are needed "
                          "(tumble calibrate, or calibrate_device)")
     J = float(device.rotor_inertia)  # type: ignore[arg-type]
-    pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=saturation)
     rel = float(device.rotor_inertia_std or 0.0) / J
-    flown = flown_estimate(mass + device.mass, pooled, rel)
     cov_d, cov_c = device_covariances(device)
+
+    def of_throw(f: FlownFit) -> tuple[MassEstimate, MassEstimate]:
+        """A throw's own flown body and object."""
+        one = flown_estimate(mass + device.mass, Pooled(vector_of(f.inertia), f.inertia_cov, f.center, f.center_cov,
+                                                        float("nan"), 1), rel)
+        return one, subtract_body(one, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+
+    def check(f: FlownFit) -> str:
+        return "" if f.center is None else not_physical(of_throw(f)[1])
+
+    pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=full_scale(device, saturation),
+                               errors=sensor_errors(device), check=check)
+    flown = flown_estimate(mass + device.mass, pooled, rel)
     obj = subtract_body(flown, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+    why = not_physical(obj)
+    if why:
+        raise NoThrowError(f"the object's tensor from {pooled.used} throw(s) is {why.split(': ', 1)[0]}: "
+                           f"{why.split(': ', 1)[1]}; the device's calibration or the mass given may be wrong")
     rows = []
     for throw, f in zip(throws, fits):
         if f.reason:
             rows.append(_skipped(throw, f))
             continue
-        one = flown_estimate(mass + device.mass, Pooled(vector_of(f.inertia), f.inertia_cov, f.center, f.center_cov,
-                                                        float("nan"), 1), rel)
-        own = subtract_body(one, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+        one, own = of_throw(f)
         rows.append(ThrowFit(throw.input, "used", "", own, one, f.t, f.omega_measured, f.omega_model,
                              f.window.t_release, f.window.t_end, f.residual_rms))
     return TensorFit(obj, flown, tuple(rows), pooled.adequate, pooled.chi2_dof)
+
+
+def full_scale(device: Device, saturation: float | None = None) -> float:
+    """The gyroscope's rail, rad/s: ``saturation`` when given, else the device's ``gyro_full_scale``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.analysis.tensor.fit import full_scale
+    >>> round(full_scale(Device(0.1, [0, 0, 1])), 4)   # 2000 deg/s
+    34.9066
+    """
+    return float(saturation) if saturation is not None else float(np.deg2rad(device.gyro_full_scale))
+
+
+def sensor_errors(device: Device) -> SensorErrors:
+    """The device's sensors' stated uncertainties (:class:`~tumble.analysis.tensor.joint.SensorErrors`).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.analysis.tensor.fit import sensor_errors
+    >>> sensor_errors(Device(0.1, [0, 0, 1], gyro_scale_std=0.001)).gyro_scale
+    0.001
+    """
+    return SensorErrors(device.gyro_scale_std, device.gyro_misalignment_std, device.rotor_axis_std)
 
 
 def _skipped(throw: Throw, f: FlownFit) -> ThrowFit:

@@ -30,16 +30,19 @@ from scipy.ndimage import median_filter
 from ..fit.segments import impulses
 from .device import Throw
 
-__all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SPAN", "START_MARGIN", "Window", "find_flight", "rotor_start",
-           "skew"]
+__all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SEARCH_BACK", "SPAN", "START_MARGIN", "Window", "catch_candidates",
+           "find_flight", "rotor_start", "skew"]
 
 #: The misfit of the free-fall accelerometer model above which a sample is held, m/s^2 (g / 2).
 MISFIT = 0.5 * 9.80665
 #: The span of the averages and differences used to find the flight, s.
 SPAN = 0.004
-#: Left out after the release and before the catch, s.
-START_MARGIN = 0.003
+#: Left out after the release that the residuals show and before a catch, s.
+START_MARGIN = 0.008
 END_MARGIN = 0.005
+#: How far before the rotor's start the release is looked for without an accelerometer, s (the
+#: firmware starts the rotor 0.06-0.12 s after it senses the release).
+SEARCH_BACK = 0.2
 #: The shortest flight fitted, s.
 MIN_FLIGHT = 0.15
 
@@ -125,8 +128,30 @@ def _run(ok: np.ndarray, inside: int) -> tuple[int, int]:
     return a, b
 
 
+def catch_candidates(t: np.ndarray, omega: np.ndarray, rotor: int) -> list[int]:
+    """Where a catch may end the flight: the first sample of each run of impulses
+    (:func:`tumble.analysis.fit.segments.impulses`) 0.1 s or more after the rotor's start, in order.
+    The rotor's own switches can show as impulses too (the reaction of a spin-up turns a light
+    body fast): the fit decides which end its free motion explains.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.flight import catch_candidates
+    >>> t = np.arange(4000) / 4000.0
+    >>> w = np.tile([3.0, 1.0, 0.5], (4000, 1))
+    >>> w[3000:] *= np.exp(-(t[3000:, None] - 0.75) / 0.01)   # caught at 0.75 s
+    >>> [round(float(t[k]), 3) for k in catch_candidates(t, w, 400)]
+    [0.748]
+    """
+    kicked = impulses(t, omega) & (t >= t[rotor] + 0.1)
+    d = np.diff(np.r_[0, kicked.astype(int)])
+    return [int(k) for k in np.flatnonzero(d == 1)]
+
+
 def find_flight(throw: Throw, keep: np.ndarray) -> Window:
-    """The free flight of a throw (module docstring).
+    """Where a throw's free flight may lie (module docstring): the search window that the fit
+    of :func:`~tumble.analysis.tensor.throw.fit_flown` narrows by what the free motion explains.
 
     Parameters
     ----------
@@ -137,16 +162,19 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
     Returns
     -------
     Window
+        ``first`` the sensed release (the accelerometer's free fall; without an accelerometer
+        :data:`SEARCH_BACK` before the rotor's start), ``stop`` the log's end.
 
     Examples
     --------
     >>> import numpy as np
     >>> from tumble.analysis.tensor.flight import find_flight
-    >>> from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_throw, true_device
+    >>> from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_throw, throw_times, true_device
     >>> throw = synthetic_throw(4, combine(true_device(), example_object()))
     >>> w = find_flight(throw, np.ones(throw.omega.shape, bool))
-    >>> w.reason, round(w.t_release, 3), round(w.t_end, 3)   # the generator released it at 0.2943 s, caught at 0.7954 s
-    ('', 0.295, 0.789)
+    >>> tt = throw_times(4)
+    >>> w.reason, round(1e3 * (w.t_release - tt.apparent)), w.stop == throw.t.size   # within ms of the sensed release
+    ('', 0, True)
     """
     t, omega = throw.t, throw.omega
     s = rotor_start(throw.rotor)
@@ -155,7 +183,7 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
                                                "its reaction the tensor's scale is undetermined")
     dt = float(np.median(np.diff(t[s:]))) if t.size - s > 2 else float(np.median(np.diff(t)))
     k = max(1, int(round(0.5 * SPAN / dt)))
-    a, b = s, t.size
+    a = int(np.searchsorted(t, t[s] - SEARCH_BACK))
     if throw.accel is not None:
         w, wdot = _rates(t, omega, k)
         M = skew(wdot) + skew(w) @ skew(w)
@@ -168,16 +196,9 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
         misfit = np.linalg.norm(throw.accel - (M @ x[:3] + x[3:]), axis=1)
         misfit = median_filter(np.where(good, misfit, 0.0), size=2 * k + 1, mode="nearest")
         limit = max(MISFIT, 6.0 * float(np.median(misfit[fit])))
-        inside = int(np.flatnonzero(fit)[0])
-        a, b = _run(misfit < limit, inside)
-        a = min(a, s)
-    late = np.flatnonzero(impulses(t, omega) & (t >= t[s] + 0.1))
-    if late.size and late[0] < b:
-        b = int(late[0])
-    t_release, t_end = float(t[a]), float(t[b - 1])
-    first = int(np.searchsorted(t, t_release + START_MARGIN))
-    stop = int(np.searchsorted(t, t_end - END_MARGIN, side="right"))
-    if t[stop - 1] - t[first] < MIN_FLIGHT:
-        return Window(first, stop, s, t_release, t_end,
-                      f"the flight found lasts {t_end - t_release:.3g} s, less than the {MIN_FLIGHT} s fitted")
-    return Window(first, stop, s, t_release, t_end, "")
+        before = max(s - 2 * k - 1, 0)  # the rotor's start shakes the accelerometer: look before it
+        a = max(_run(misfit < limit, before)[0], a)
+    if t[-1] - t[a] < MIN_FLIGHT:
+        return Window(a, t.size, s, float(t[a]), float(t[-1]),
+                      f"the flight found lasts {t[-1] - t[a]:.3g} s, less than the {MIN_FLIGHT} s fitted")
+    return Window(a, t.size, s, float(t[a]), float(t[-1]), "")

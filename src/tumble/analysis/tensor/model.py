@@ -8,10 +8,16 @@ semi-definite (Wensing, Kim & Slotine, "Linear matrix inequalities for physicall
 inertial parameter identification", IEEE RA-L 3 (2018) 60), which gives the triangle
 inequalities of the moments: every ``C`` gives a physical tensor, and the fit needs no bounds.
 
-**Dynamics.** ``L' = L x w - b_i |w_i| w_i``, ``w = I^-1 (L - h(t))``, ``h = J_r Omega_r(t) a``
+**Dynamics.** ``L' = L x w - b_i |w_i| w_i``, ``w = I^-1 (L - h(t))``, ``h = J_r Omega_r(t - lag) a``
 (the gyrostat in the momentum form: :mod:`tumble.dynamics.models.gyrostat`), from ``L(t_0)``.
-The gyroscope reads ``w + bias``. Parameters: ``C`` (6), ``L(t_0)`` (3), the bias (3) and the
-per-axis quadratic drag ``b`` (3).
+The gyroscope reads ``w + bias``. Parameters: ``C`` (6), ``L(t_0)`` (3), the bias (3), the
+per-axis quadratic drag ``b`` (3) and the rotor log's lag behind the gyroscope's time stamps
+(1, s: the motor's telemetry comes a fraction of a millisecond late, and in a spin-up ``h``
+changes by 3 % of itself in a millisecond: unmodelled, a 0.5 ms lag took the gyroscope's bias
+to 0.5 rad/s and the tensor 1 % off). The drag is never negative (the air only takes energy
+away): a drag that comes out negative is held at 0 and the rest fitted again (the active-set
+solution of the bound-constrained problem; Nocedal & Wright, *Numerical Optimization*, 2nd
+ed., sec. 16.5).
 
 **Why not the published estimator.** Blaha et al. (arXiv:2503.13137) solve Euler's equations as a
 linear regression in the tensor on the measured rates, their derivatives and the rotor speed's
@@ -44,14 +50,29 @@ from ...dynamics.models.gyrostat import gyrostat_omega
 from ...typing import ArrayLike, FloatArray, Matrix3
 from .estimate import vector_of
 
-__all__ = ["NAMES", "ROTOR_BANDWIDTH", "RotorInput", "ThrowModel", "cholesky_of", "inertia_jacobian", "inertia_of",
+__all__ = ["DYNAMIC", "NAMES", "ROTOR_BANDWIDTH", "drag_scale", "RotorInput", "ThrowModel", "cholesky_of", "inertia_jacobian", "inertia_of",
            "rotor_input"]
 
 #: The equivalent kernel bandwidth of the rotor speed's smoothing, s.
 ROTOR_BANDWIDTH = 1e-3
 #: The parameters, in order.
 NAMES = ("c_xx", "c_yy", "c_zz", "c_yx", "c_zx", "c_zy", "L_x", "L_y", "L_z", "bias_x", "bias_y", "bias_z",
-         "drag_x", "drag_y", "drag_z")
+         "drag_x", "drag_y", "drag_z", "rotor_lag")
+#: The parameters integrated for the Jacobian (the bias enters the reading linearly).
+DYNAMIC = np.r_[0:9, 12:16]
+
+
+def drag_scale(inertia_size: float) -> float:
+    """The size of the drag ``b`` for a body of mean moment ``inertia_size`` (kg m^2): 1 % of it
+    in N m s^2 (the finite differences' scale, as :meth:`ThrowModel.steps` takes it).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.model import drag_scale
+    >>> drag_scale(1e-3)
+    1e-05
+    """
+    return 1e-2 * float(inertia_size)
 
 
 def inertia_of(c: ArrayLike) -> Matrix3:
@@ -207,7 +228,7 @@ class ThrowModel:
         The sample axes fitted (within the range).
     rotor : RotorInput
     drag : bool
-        Whether the drag's three parameters are fitted (else 0).
+        Whether the drag's three parameters and the rotor's lag are fitted (else 0).
 
     Examples
     --------
@@ -224,8 +245,31 @@ class ThrowModel:
         self.t, self.data, self.keep, self.rotor, self.drag = t, data, keep, rotor, drag
         self.h = rotor.h(t)
         self.h_mid = rotor.h(0.5 * (t[1:] + t[:-1]))
-        self.n = 15 if drag else 12
+        self.n = 16 if drag else 12
         self.names = NAMES[: self.n]
+        self._lagged: dict[float, tuple[FloatArray, FloatArray]] = {}
+
+    def momentum(self, lag: float = 0.0) -> tuple[FloatArray, FloatArray]:
+        """``J_r Omega_r(t - lag)`` at the samples and the midpoints, kg m^2/s (the rotor's log
+        ``lag`` s late against the gyroscope's; the last few kept).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.model import ThrowModel, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> m = ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor_input(t, 1e4 * t, 1, 1e-6, [0, 0, 1]))
+        >>> s, _ = m.momentum(1e-3)
+        >>> round(float(s[200] / 1e-6), 6), round(float(t[200] - 1e-3) * 1e4, 6)   # the speed a millisecond before
+        (490.0, 490.0)
+        """
+        lag = float(lag)
+        if lag not in self._lagged:
+            if len(self._lagged) > 4:
+                self._lagged.pop(next(iter(self._lagged)))
+            J, speed = self.rotor.rotor_inertia, self.rotor.speed
+            self._lagged[lag] = (J * speed(self.t - lag), J * speed(0.5 * (self.t[1:] + self.t[:-1]) - lag))
+        return self._lagged[lag]
 
     def split(self, P: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """``(C entries, L(t_0), bias, drag)`` of parameter rows ``(K, n)``; the drag 0 when not fitted.
@@ -244,8 +288,9 @@ class ThrowModel:
         quad = P[:, 12:15] if self.drag else np.zeros((P.shape[0], 3))
         return P[:, :6], P[:, 6:9], P[:, 9:12], quad
 
-    def omega(self, P: FloatArray) -> FloatArray:
-        """The body's rates ``(K, T, 3)`` (no bias), rad/s, of parameter rows ``(K, n)``.
+    def omega(self, P: FloatArray, axis: FloatArray | None = None) -> FloatArray:
+        """The body's rates ``(K, T, 3)`` (no bias), rad/s, of parameter rows ``(K, n)``; the rotor
+        along ``axis`` (unit, sensor frame) instead of its own when given.
 
         Examples
         --------
@@ -269,7 +314,15 @@ class ThrowModel:
         True
         """
         c, L0, _, quad = self.split(P)
-        return gyrostat_omega(inertia_of(c), L0, self.t, self.h, self.h_mid, quad)
+        a = self.rotor.axis if axis is None else axis
+        lags = P[:, 15] if self.drag else np.zeros(P.shape[0])
+        out = np.empty((P.shape[0], self.t.size, 3))
+        I = inertia_of(c)
+        for lag in np.unique(lags):
+            rows = lags == lag
+            s, s_mid = self.momentum(lag)
+            out[rows] = gyrostat_omega(I[rows], L0[rows], self.t, np.outer(s, a), np.outer(s_mid, a), quad[rows])
+        return out
 
     def sensor(self, P: FloatArray) -> FloatArray:
         """What the gyroscope reads ``(K, T, 3)``: the rates plus the bias, rad/s.
@@ -280,10 +333,10 @@ class ThrowModel:
         >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
         >>> t = np.linspace(0.0, 0.1, 300)
         >>> m = ThrowModel(t, np.zeros((300, 3)), np.ones((300, 3), bool), rotor_input(t, np.linspace(0.0, 1e3, 300), 1,
-        ...                2e-6, [1, 1, 0]))   # drag fitted: 15 parameters
+        ...                2e-6, [1, 1, 0]))   # drag and lag fitted: 16 parameters
         >>> c = cholesky_of([[2e-4, 1e-5, 0.0], [1e-5, 3e-4, 0.0], [0.0, 0.0, 4e-4]])
         >>> biases = ([0.01, -0.02, 0.03], [0.0, 0.0, 0.1])   # two parameter rows at once
-        >>> P = np.array([np.r_[c, 1e-3, 0.0, 2e-3, bias, np.full(3, 1e-6)] for bias in biases])
+        >>> P = np.array([np.r_[c, 1e-3, 0.0, 2e-3, bias, np.full(3, 1e-6), 2e-4] for bias in biases])
         >>> offset = m.sensor(P) - m.omega(P)
         >>> offset.shape, bool(np.allclose(offset, P[:, None, 9:12], rtol=0, atol=1e-15))
         ((2, 300, 3), True)
@@ -311,7 +364,7 @@ class ThrowModel:
 
     def steps(self, P: FloatArray) -> FloatArray:
         """Finite-difference steps ``(n,)``: 1e-6 of each group's size (``C``'s largest entry,
-        ``|L(t_0)|``, 0.01 rad/s for the bias, 1 % of the mean moment for the drag).
+        ``|L(t_0)|``, 0.01 rad/s for the bias, :func:`drag_scale` for the drag, 1 s for the lag).
 
         Examples
         --------
@@ -319,15 +372,15 @@ class ThrowModel:
         >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
         >>> t = np.linspace(0.0, 0.2, 500)
         >>> rotor = rotor_input(t, np.full(500, 800.0), 0, 2e-6, [0, 1, 0])
-        >>> m = ThrowModel(t, np.zeros((500, 3)), np.ones((500, 3), bool), rotor)   # drag fitted: 15 parameters
-        >>> d = m.steps(np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 3e-3, 0.0, 4e-3, np.zeros(6)])
-        >>> d.shape, bool(np.allclose(d[6:], 1e-6 * np.repeat([5e-3, 0.01, 3e-6], 3), rtol=1e-12, atol=0))
-        ((15,), True)
+        >>> m = ThrowModel(t, np.zeros((500, 3)), np.ones((500, 3), bool), rotor)   # drag and lag fitted: 16 parameters
+        >>> d = m.steps(np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 3e-3, 0.0, 4e-3, np.zeros(7)])
+        >>> d.shape, bool(np.allclose(d[6:], 1e-6 * np.r_[np.repeat([5e-3, 0.01, 3e-6], 3), 1.0], rtol=1e-12, atol=0))
+        ((16,), True)
         """
         c_size = max(float(np.abs(P[:6]).max()), 1e-30)
         L_size = max(float(np.linalg.norm(P[6:9])), 1e-30)
         I_size = float(np.trace(inertia_of(P[:6]))) / 3.0
-        sizes = np.r_[np.full(6, c_size), np.full(3, L_size), np.full(3, 0.01), np.full(3, 1e-2 * I_size)]
+        sizes = np.r_[np.full(6, c_size), np.full(3, L_size), np.full(3, 0.01), np.full(3, drag_scale(I_size)), 1.0]
         return 1e-6 * sizes[: self.n]
 
     def jacobian(self, P: FloatArray) -> FloatArray:
@@ -351,7 +404,10 @@ class ThrowModel:
         True
         """
         d = self.steps(P)
-        batch = np.vstack([P, P + np.diag(d)])
-        pred = self.sensor(batch)
-        cols = (pred[1:] - pred[0]) / d[:, None, None]
+        dyn = DYNAMIC[DYNAMIC < self.n]
+        batch = np.vstack([P, P + np.diag(d)[dyn]])
+        pred = self.omega(batch)
+        cols = np.zeros((self.n,) + pred.shape[1:])
+        cols[dyn] = (pred[1:] - pred[0]) / d[dyn, None, None]
+        cols[9:12] = np.eye(3)[:, None, :]
         return cols[:, self.keep].T

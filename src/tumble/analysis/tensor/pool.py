@@ -1,31 +1,61 @@
-"""Several throws of one flown body pooled: :func:`pool_throws`.
+"""Several throws of one flown body: :func:`pool_throws` (issue #42 item 4).
 
-Each throw is fitted on its own (:func:`~tumble.analysis.tensor.throw.fit_flown`); the tensor's
-six entries and the centre of mass are each pooled by the inverse-covariance weighted mean
-(the maximum-likelihood estimate of a common value from independent Gaussian estimates;
-e.g. Cowan, *Statistical Data Analysis*, 1998, sec. 7.6). When the throws scatter about it
-more than their statistical uncertainties allow, ``chi^2 / dof > 1``
-(:func:`tumble.analysis.fit.uncertainty.birge_chi2`), the pooled covariance is multiplied by
-that Birge ratio, as the ratio fit pools its flights (:mod:`tumble.analysis.fit.recording`):
-something the model leaves out varies from throw to throw, and the spread shows how much.
-Systematic parts common to all the throws (the rotor's inertia, the device) are added after
-pooling by the caller: averaging does not reduce them.
+1. Each throw is fitted on its own (:func:`~tumble.analysis.tensor.throw.fit_flown`): where its
+   flight lies, its own tensor and centre of mass with their covariances (kept as diagnostics).
+2. A throw is **left out with its reason** when its fit cannot be trusted
+   (:func:`throw_verdict`): its residuals well above the gyroscope's noise (measured from the
+   throw itself), no accelerometer, or what the caller's check says (the object's tensor not
+   physical: :func:`tumble.fit_tensor`).
+3. The throws left are **fitted jointly** (:mod:`~tumble.analysis.tensor.joint`): one tensor
+   and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
+   :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too. A
+   throw whose part of it has residuals well above the noise or needs a gyroscope bias beyond
+   :data:`MAX_BIAS` is left out (:func:`joint_verdict`; a single throw's own fit may need a
+   large bias to mimic the distortion that the joint fit explains) and the rest refitted.
+4. A throw whose own estimate lies more than :data:`OUTLIER_SIGMA` standard uncertainties from
+   the joint one (in its principal moments) is left out, naming that, and the rest refitted (3
+   or more throws: with two, neither can be called the outlier).
+5. ``chi^2 / dof`` of one tensor for all the throws against each its own (:func:`agreement`,
+   the likelihood ratio of the nested fits): above 1, the throws disagree beyond their noise,
+   and the joint covariance is multiplied by it (the Birge ratio, as the ratio fit pools its
+   flights). The throws' own estimates are not compared by their covariances: each is shifted
+   by the gyroscope's distortion, differently for each spin, which the joint fit removes.
+
+Systematic parts common to all the throws beyond the sensors' (the rotor's inertia, the
+device's own tensor) are added by the caller: averaging does not reduce them.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import hashlib
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...typing import FloatArray
 from ..fit.uncertainty import birge_chi2
+from .center import center_of_mass
 from .device import Throw
-from .estimate import vector_of
-from .throw import FlownFit, fit_flown
+from .estimate import principal_uncertainty, vector_of
+from .joint import JointModel, SensorErrors, fit_joint
+from .model import cholesky_of, inertia_of
+from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
 
-__all__ = ["NoThrowError", "Pooled", "pool_throws", "weighted_mean"]
+__all__ = ["MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "NoThrowError", "Pooled", "agreement", "duplicate_throws", "joint_verdict",
+           "pool_throws", "residual_verdict", "throw_verdict", "weighted_mean"]
+
+#: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
+#: within ~0.05 rad/s (3 deg/s; e.g. TDK ICM-42688-P +-0.5 deg/s, Bosch BMI270 +-0.5 deg/s
+#: typical) and the flight controller removes it at rest; a fit that needs more is explaining
+#: something else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
+MAX_BIAS = 0.6
+#: A throw this many standard uncertainties from the joint fit is an outlier.
+OUTLIER_SIGMA = 5.0
+#: From this many throws on the joint fit determines the gyroscope's distortion and the rotor's
+#: tilt too (:class:`~tumble.analysis.tensor.joint.JointModel`); with fewer they are left to
+#: the stated uncertainties.
+SENSOR_THROWS = 2
 
 
 class NoThrowError(ValueError):
@@ -43,8 +73,9 @@ class NoThrowError(ValueError):
 @dataclass(frozen=True)
 class Pooled:
     """The pooled flown body: tensor entries ``xx, yy, zz, xy, xz, yz`` (kg m^2 or units of
-    ``J_r``) and centre (m) with their statistical covariances (inflated by the Birge ratio),
-    ``chi^2 / dof`` of the throws about them (NaN for one throw) and the throws used.
+    ``J_r``) and centre (m) with their covariances (the sensors' part included, the whole
+    inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
+    and the throws used.
 
     Examples
     --------
@@ -65,7 +96,8 @@ class Pooled:
 
 def weighted_mean(values: FloatArray, covs: FloatArray) -> tuple[FloatArray, FloatArray, float, int]:
     """Inverse-covariance weighted mean of ``values (F, k)``, its covariance inflated by
-    ``max(1, chi^2 / dof)``, and ``chi^2``, ``dof`` (module docstring).
+    ``max(1, chi^2 / dof)``, and ``chi^2``, ``dof`` (for independent estimates of one value;
+    the throws' tensors are pooled by the joint fit instead: module docstring).
 
     Examples
     --------
@@ -84,20 +116,145 @@ def weighted_mean(values: FloatArray, covs: FloatArray) -> tuple[FloatArray, Flo
     return mean, cov * max(1.0, chi2 / dof), chi2, dof
 
 
-def _usable(f: FlownFit, throw: Throw) -> FlownFit:
-    """The fit, with a reason when it cannot be pooled."""
+def throw_verdict(f: FlownFit, throw: Throw) -> str:
+    """Why a throw's own fit leaves it out, or ``""`` (module docstring, step 2; the bias is judged
+    on the joint fit, where the gyroscope's distortion is explained: :func:`joint_verdict`).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.pool import throw_verdict
+    >>> from tumble.analysis.tensor.throw import FlownFit
+    >>> from tumble.analysis.tensor.flight import Window
+    >>> throw_verdict(FlownFit(Window(0, 0, 0, 0.0, 0.0, "no rotor"), "no rotor"), None)
+    'no rotor'
+    """
     if f.reason:
-        return f
-    if f.adequacy is not None and not f.adequacy.adequate:
-        return replace(f, reason=f.adequacy.reason)
+        return f.reason
+    why = residual_verdict(f.residual_rms, f.noise)
+    if why:
+        return why
     if f.center is None or throw.accel is None:
-        return replace(f, reason="no accelerometer in the throw: its centre of mass is unknown")
-    return f
+        return "no accelerometer in the throw: its centre of mass is unknown"
+    return ""
+
+
+def residual_verdict(rms: float, noise: float) -> str:
+    """Why residuals ``rms`` (rad/s) against the gyroscope's ``noise`` say the model does not
+    explain a flight, or ``""``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.pool import residual_verdict
+    >>> residual_verdict(0.012, 0.01), residual_verdict(0.047, 0.01)[:40]
+    ('', 'the free motion does not explain the fli')
+    """
+    if rms <= RESIDUAL_LIMIT * noise:
+        return ""
+    return (f"the free motion does not explain the flight: residuals {rms:.3g} rad/s, {rms / noise:.1f} times the "
+            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; a rate logged in deg/s read as rad/s, a "
+            f"rotor axis or speed that is wrong, a mount or body that is not rigid)")
+
+
+def joint_verdict(bias: FloatArray, rms: float, noise: float) -> str:
+    """Why a throw's part of the joint fit leaves it out, or ``""``: its residuals
+    (:func:`residual_verdict`) or a gyroscope bias beyond :data:`MAX_BIAS`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.pool import joint_verdict
+    >>> joint_verdict(np.array([0.01, 0.0, -0.8]), 0.012, 0.01)[:44]
+    'the fit needs a gyroscope bias of 0.8 rad/s,'
+    """
+    why = residual_verdict(rms, noise)
+    if why:
+        return why
+    size = float(np.max(np.abs(bias)))
+    if size > MAX_BIAS:
+        return (f"the fit needs a gyroscope bias of {size:.3g} rad/s, more than a gyroscope has ({MAX_BIAS:g}): the "
+                f"model explains the flight only by distorting it (a wrong unit, rotor axis or sign)")
+    return ""
+
+
+def duplicate_throws(throws: Sequence[Throw]) -> str:
+    """``""``, or a line naming two throws whose logs are the same samples (one throw given twice
+    counts twice and halves the stated std).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.analysis.tensor.pool import duplicate_throws
+    >>> t = np.arange(100) / 4000.0
+    >>> a = Throw(t, np.ones((100, 3)), np.zeros(100), None, "a.csv")
+    >>> duplicate_throws([a, Throw(t, np.ones((100, 3)), np.zeros(100), None, "copy.csv")])
+    'throws[1] (copy.csv) is the same log as throws[0] (a.csv): give each throw once'
+    """
+    seen: dict[str, int] = {}
+    for k, th in enumerate(throws):
+        digest = hashlib.sha256(b"".join(np.ascontiguousarray(x, float).tobytes() for x in (th.t, th.omega, th.rotor)))
+        key = digest.hexdigest()
+        if key in seen:
+            j = seen[key]
+            return (f"throws[{k}] ({throws[k].input or 'unnamed'}) is the same log as throws[{j}] "
+                    f"({throws[j].input or 'unnamed'}): give each throw once")
+        seen[key] = k
+    return ""
+
+
+def _joint(fits: list[FlownFit], errors: SensorErrors | None):
+    """The joint fit of the throws ``fits`` (their models and optima as the start)."""
+    C0 = cholesky_of(np.median(np.array([f.inertia for f in fits]), axis=0))
+    I0 = inertia_of(C0)
+    rest = []
+    for f in fits:
+        assert f.model is not None and f.P is not None
+        w0 = f.model.omega(f.P[None])[0][0]
+        rest.append(np.r_[I0 @ w0 + f.model.h[0], f.P[9:]])
+    joint = JointModel([f.model for f in fits], sensor=len(fits) >= SENSOR_THROWS)  # type: ignore[misc]
+    return joint, fit_joint(joint, joint.pack(C0, rest), errors)
+
+
+def agreement(fits: Sequence[FlownFit], joint_rms: FloatArray, rows: Sequence[int]) -> float:
+    """``chi^2 / dof`` of one tensor for all the throws against each its own: the rise of the
+    residuals' sum of squares from the throws' own fits to the joint one, each throw's in units
+    of its own residual variance times its autocorrelation time (the likelihood-ratio statistic
+    of nested least-squares fits, ``chi^2`` on the ``6 (K - 1)`` tensor entries that sharing
+    saves; e.g. Seber & Wild, *Nonlinear Regression*, 1989, sec. 5.3), over those degrees of
+    freedom; NaN for one throw. About 1 (or below: the joint fit also frees the sensors) when
+    the throws are of one rigid body; well above, when they are not (the mount moved, another
+    object).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.pool import agreement
+    >>> agreement([], [], [])
+    nan
+    """
+    if len(fits) < 2:
+        return float("nan")
+    chi2 = 0.0
+    for f, rms, n in zip(fits, joint_rms, rows):
+        var = max(f.residual_rms, 1e-300) ** 2
+        chi2 += n * (float(rms) ** 2 - var) / (var * max(f.tau, 1.0))
+    return max(chi2, 0.0) / (6 * (len(fits) - 1))
+
+
+def _outlier(fits: list[FlownFit], inertia: FloatArray) -> tuple[int, float]:
+    """The throw farthest from the joint tensor in its principal moments, and how many std."""
+    moments = np.linalg.eigvalsh(inertia)
+    z = []
+    for f in fits:
+        m, s, _ = principal_uncertainty(f.inertia, f.inertia_cov)
+        z.append(float(np.max(np.abs(m - moments) / np.maximum(s, 1e-300))))
+    k = int(np.argmax(z))
+    return k, z[k]
 
 
 def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: float, *,
-                saturation: float | None = None) -> tuple[Pooled, list[FlownFit]]:
-    """Fit every throw and pool those that fit (module docstring).
+                saturation: float | None = None, errors: SensorErrors | None = None,
+                check: Callable[[FlownFit], str] | None = None) -> tuple[Pooled, list[FlownFit]]:
+    """Fit every throw and the usable ones jointly (module docstring).
 
     Parameters
     ----------
@@ -107,6 +264,10 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         ``J_r``, kg m^2 (1: the tensors in units of ``J_r``).
     saturation : float, optional
         The gyroscope's range, rad/s.
+    errors : SensorErrors, optional
+        The sensors' stated uncertainties (type B; none by default).
+    check : callable, optional
+        ``check(fit)`` -> a reason to leave a fitted throw out, or ``""``.
 
     Returns
     -------
@@ -117,7 +278,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     Raises
     ------
     ValueError
-        ``throws`` empty or not throws.
+        ``throws`` empty, not throws, or one log given twice.
     NoThrowError
         None could be pooled.
 
@@ -136,14 +297,42 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     for k, throw in enumerate(throws):
         if not isinstance(throw, Throw):
             raise ValueError(f"throws[{k}] must be a Throw, got {type(throw).__name__}")
-    fits = [_usable(fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation), throw) for throw in throws]
-    used = [f for f in fits if not f.reason]
-    if not used:
-        why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
-        raise NoThrowError(f"no throw could be fitted ({why})")
-    I, cov_I, chi2_I, dof_I = weighted_mean(np.array([vector_of(f.inertia) for f in used]),
-                                            np.array([f.inertia_cov for f in used]))
-    c, cov_c, chi2_c, dof_c = weighted_mean(np.array([f.center for f in used]), np.array([f.center_cov for f in used]))
-    chi2_dof = (chi2_I + chi2_c) / (dof_I + dof_c) if len(used) > 1 else float("nan")
-    inadequate = any(f.adequacy is not None and not f.adequacy.adequate for f in fits)
-    return Pooled(I, cov_I, c, cov_c, chi2_dof, len(used), not inadequate), fits
+    twice = duplicate_throws(throws)
+    if twice:
+        raise ValueError(twice)
+    fits = [fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation, errors=errors) for throw in throws]
+    for k, (throw, f) in enumerate(zip(throws, fits)):
+        why = throw_verdict(f, throw) or (check(f) if check is not None and not f.reason else "")
+        if why:
+            fits[k] = replace(f, reason=why)
+    while True:
+        used = [k for k, f in enumerate(fits) if not f.reason]
+        if not used:
+            why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
+            raise NoThrowError(f"no throw could be fitted ({why})")
+        joint, jf = _joint([fits[k] for k in used], errors)
+        judged = [joint_verdict(joint.throw_parameters(jf.P, j)[9:12], float(jf.rms[j]), fits[k].noise)
+                  for j, k in enumerate(used)]
+        if any(judged):
+            for k, why in zip(used, judged):
+                if why:
+                    fits[k] = replace(fits[k], reason=why)
+            continue
+        if len(used) < 3:
+            break
+        worst, z = _outlier([fits[k] for k in used], jf.inertia)
+        if z <= OUTLIER_SIGMA:
+            break
+        fits[used[worst]] = replace(fits[used[worst]], reason=f"its tensor lies {z:.3g} standard uncertainties from "
+                                                              f"the other throws' joint fit (at most {OUTLIER_SIGMA:g})")
+    chosen = [fits[k] for k in used]
+    Ps = [joint.throw_parameters(jf.P, j) for j in range(len(chosen))]
+    center, center_cov, _ = center_of_mass([f.model for f in chosen], Ps, [f.accel for f in chosen])  # type: ignore[misc]
+    # the rates' part: each throw's (from its own fit), averaged down as independent estimates
+    center_cov = center_cov + np.linalg.pinv(sum(np.linalg.pinv(f.center_cov_rates) for f in chosen))
+    I = vector_of(jf.inertia)
+    cov_I = jf.inertia_cov
+    chi2_dof = agreement(chosen, jf.rms, joint.rows)
+    if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their noise: Birge
+        cov_I, center_cov = cov_I * chi2_dof, center_cov * chi2_dof
+    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True), fits

@@ -1,34 +1,46 @@
-"""Synthetic throws of the device of issue #30, for tests, examples and the coverage benchmark.
+"""Synthetic throws of the real device (issue #42), for tests, examples and the coverage benchmark.
 
-A throw's log (:func:`synthetic_throw`), sensor frame, as a flight controller writes it:
+A throw's log (:func:`synthetic_throw`), sensor frame, as the device's flight controller writes it
+(what its real logs show; :mod:`~tumble.analysis.tensor.firmware` holds the rotor's schedule and
+the sensors' imperfections):
 
 - **hand** (0.2-0.3 s): the arm swings the body up to its spin; the accelerometer reads the
-  hand's push (1-2.5 g); samples every 250 us with up to -200/+250 us jitter (a logger busy
-  with other tasks before release); the rotor stopped (its speed reads 0);
-- **flight** (0.45-0.55 s): released with 10-18 rad/s about a random axis; the rotor starts
-  2-10 ms after release (the firmware's free-fall detection) and spins up as
-  ``Omega (1 - exp(-s / tau))``, ``Omega`` 1400-1600 rad/s, ``tau`` = 30 ms (95 % in 0.09 s),
-  with a ripple of 0.3 % (three tones of 20-80 Hz: the motor's torque ripple) in the true speed
-  and white noise of 4 rad/s in the logged one; samples at 4 kHz with 1 % jitter;
-  per-axis quadratic air drag (``b_i`` 0.5-2e-6 N m s^2, :mod:`tumble.dynamics.models.drag`);
-- **catch** (0.08 s): the hand stops the spin in ~20 ms and pushes (3-5 g).
+  hand's push (1-2.5 g); samples at irregular 190-300 us steps; the rotor stopped (it reads 0);
+- **the sensed release** (``apparent``): the accelerometer reads free fall, but the fingers still
+  touch the body for 10-20 ms: their last push turns the rates by 0.2-0.6 rad/s away from any
+  free motion (and the accelerometer reads 0.05-0.3 g of it); the free flight starts after it
+  (``release``); samples every 248 us from here;
+- **the rotor** starts 0.06-0.12 s after the sensed release and follows the firmware's schedule:
+  idle ~200 rad/s, spin-up to 1230-1360 rad/s 0.16-0.17 s later, the brake back to ~210 rad/s
+  ~0.36 s after its start; the air's drag on the flywheel, ``-k Omega^2`` along its axis (``k``
+  2-8e-11 N m s^2, an external torque on the whole); the logged speed is the motor's eRPM,
+  quantised, turned into rad/s with the pole count, its stamps up to 0.5 ms off the gyroscope's;
+- **the log stops in flight** 0.55-0.59 s after the rotor's start (no catch: ``caught=True`` adds
+  one, for loggers that run on);
+- per-axis quadratic air drag on the body (``b_i`` 0.5-2e-6 N m s^2, :mod:`tumble.dynamics.models.drag`).
 
-Sensors: gyroscope noise 0.01 rad/s, a constant bias (0.01 rad/s per axis), a vibration of
-0.01 rad/s at the rotor's frequency, saturation at 2000 deg/s and 16-bit quantisation;
-accelerometer noise 0.08 m/s^2, bias 0.05 m/s^2 per axis, range 16 g. In free fall the
-accelerometer at ``r`` from the centre of mass reads ``f = w' x r + w x (w x r)`` (the
-acceleration of a point of a rigid body, Goldstein, Poole & Safko, *Classical Mechanics*, 3rd
-ed., sec. 4.10, less gravity, which a free-falling accelerometer does not sense).
+Sensors: the gyroscope's scale factors and misalignment (:class:`~tumble.analysis.tensor.firmware.Imperfections`,
+one per device), a constant bias (0.01 rad/s per axis), white noise 0.01 rad/s, a vibration of
+0.01 rad/s at the rotor's frequency, saturation at 2000 deg/s and 16-bit quantisation. The
+accelerometer: at ``r`` from the centre of mass a free-falling accelerometer reads ``f = w' x r +
+w x (w x r)`` (the acceleration of a point of a rigid body, Goldstein, Poole & Safko, *Classical
+Mechanics*, 3rd ed., sec. 4.10, less gravity, which it does not sense), plus the air's force
+(0.05-0.2 m/s^2, slowly turning), a jolt of 5-20 m/s^2 over 2-4 ms at each of the rotor's
+switches (the motor's reaction shakes the structure), the flywheel's imbalance (``6e-7 m x
+Omega^2``, ~1 m/s^2 at the plateau, turning with it) and white noise 0.3 m/s^2, all smoothed by
+the firmware's low-pass (second-order, 100-200 Hz, causal), then a scale error of 1 %, a bias
+of up to 0.1 m/s^2, 2048 LSB per g and the 16 g range.
 
 The truth is integrated independently of the fit's model: Euler's equations of the gyrostat in
-the angular-velocity form ``I w' = -w x (I w + h) - h' + tau_drag`` (Hughes, *Spacecraft
-Attitude Dynamics*, 1986, ch. 7) with ``h'`` from the spin-up law in closed form, by scipy's
-DOP853 at ``rtol = 1e-12`` (the fit integrates the momentum form by RK4 over the samples).
+the angular-velocity form ``I w' = -w x (I w + h) - h' + tau`` (Hughes, *Spacecraft Attitude
+Dynamics*, 1986, ch. 7) with ``h`` and ``h'`` from the schedule in closed form, by scipy's DOP853
+at ``rtol = 1e-12``, in pieces between the rotor's switches (the fit integrates the momentum
+form by RK4 over the samples, with the logged speed).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -38,9 +50,11 @@ from ...mass.tensor import parallel_axis, rotate_inertia
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..fit.endings import smooth_noise
 from .device import Device, Proof, Throw
+from .firmware import Imperfections, RotorSchedule, draw_imperfections, draw_schedule, logged_speed
 
-__all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "Rigid", "box", "calibrated_device", "combine", "drawn_device",
-           "example_object", "random_object", "release_and_catch", "synthetic_throw", "true_device", "true_proof"]
+__all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "TYPICAL_SEED", "Rigid", "ThrowTimes", "box",
+           "calibrated_device", "combine", "drawn_device", "example_object", "random_object", "synthetic_throw",
+           "throw_times", "true_device", "true_proof", "typical_imperfections"]
 
 #: The device of the issue: mass, kg; rotor axis, sensor frame; rotor inertia, kg m^2.
 DEVICE_MASS = 0.10067
@@ -201,79 +215,128 @@ def drawn_device(rng: np.random.Generator, relative_std: float = 0.005, center_s
                   dev.center + center_std * rng.normal(size=3), np.full(3, float(center_std)))
 
 
-def _spin_up(t: FloatArray, t_s: float, top: float, tau: float, ripple: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """The rotor's true speed and its rate (rad/s, rad/s^2): 0 before ``t_s``, then
-    ``top (1 - e) (1 + sum a sin(2 pi f s + phi))`` with ``e = exp(-s / tau)``."""
-    s = np.maximum(t - t_s, 0.0)
-    on = t >= t_s
-    e = np.exp(-s / tau)
-    a, f, phi = ripple[:, 0, None], ripple[:, 1, None], ripple[:, 2, None]
-    wave = 1.0 + np.sum(a * np.sin(2 * np.pi * f * s + phi), axis=0) - np.sum(a * np.sin(phi), axis=0)
-    dwave = np.sum(a * 2 * np.pi * f * np.cos(2 * np.pi * f * s + phi), axis=0)
-    speed = top * (1.0 - e) * wave
-    rate = top * (e / tau * wave + (1.0 - e) * dwave)
-    return np.where(on, speed, 0.0), np.where(on, rate, 0.0)
+#: The device as the synthetic throws build it by default: its imperfections drawn once
+#: (:func:`~tumble.analysis.tensor.firmware.draw_imperfections`, seed 2025), the same in every
+#: throw, as one real device's are.
+TYPICAL_SEED = 2025
 
 
-def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t_r: float, t_s: float, hvec, drag: FloatArray):
-    """omega and omega' of the free flight at ``times`` (w-form, DOP853, rtol 1e-12), split at the rotor's start."""
-    I = flown.inertia
-    Iinv = np.linalg.inv(I)
-
-    def rates(w, h, hdot):
-        return (-np.cross(w, w @ I + h) - hdot - drag * np.abs(w) * w) @ Iinv
-
-    def rhs(t, w):
-        h, hdot = hvec(np.array([t]))
-        return rates(w, h[0], hdot[0])
-
-    w = np.empty((times.size, 3))
-    state, start = w0, t_r
-    for lo, hi in ((t_r, t_s), (t_s, times[-1] + 1e-9)):
-        sel = (times >= lo) & (times < hi)
-        sol = solve_ivp(rhs, (start, hi), state, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True)
-        w[sel] = sol.sol(times[sel]).T
-        state, start = sol.y[:, -1], hi
-    return w, rates(w, *hvec(times))
-
-
-def release_and_catch(seed: int) -> tuple[float, float]:
-    """The true release and catch times (s) of :func:`synthetic_throw`'s throw ``seed``.
+def typical_imperfections(rotor_axis: ArrayLike = ROTOR_AXIS) -> Imperfections:
+    """The default device's imperfections (:data:`TYPICAL_SEED`), about the nominal ``rotor_axis``.
 
     Examples
     --------
-    >>> from tumble.analysis.tensor.synthetic import release_and_catch
-    >>> t_r, t_c = release_and_catch(1)
-    >>> 0.2 <= t_r <= 0.3, 0.45 <= t_c - t_r <= 0.55
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.synthetic import typical_imperfections
+    >>> imp = typical_imperfections()
+    >>> bool(np.abs(np.diag(imp.gyro) - 1).max() < 0.01), imp.poles
+    (True, 14)
+    """
+    return draw_imperfections(np.random.default_rng(TYPICAL_SEED), rotor_axis)
+
+
+@dataclass(frozen=True)
+class ThrowTimes:
+    """A synthetic throw's true times, s: the firmware's sensed release (the accelerometer reads
+    free fall: ``apparent``), the fingers' last touch (``release``: the free flight's start), the
+    rotor's start and the log's end (in flight, or the catch for a throw ``caught``).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.synthetic import throw_times
+    >>> tt = throw_times(1)
+    >>> 0.01 <= tt.release - tt.apparent <= 0.02, 0.06 <= tt.rotor - tt.apparent <= 0.12
     (True, True)
     """
-    rng = np.random.default_rng(seed)
-    t_r = float(rng.uniform(0.2, 0.3))
-    return t_r, t_r + float(rng.uniform(0.45, 0.55))
+
+    apparent: float
+    release: float
+    rotor: float
+    end: float
+
+
+def _times(rng: np.random.Generator, plateau: float | None) -> tuple[ThrowTimes, RotorSchedule]:
+    t_a = float(rng.uniform(0.2, 0.3))
+    t_r = t_a + float(rng.uniform(0.010, 0.020))
+    t_s = t_a + float(rng.uniform(0.06, 0.12))
+    sched = draw_schedule(rng, plateau)
+    if plateau == 0.0:
+        sched = replace(sched, idle=0.0, idle_after=0.0)
+    return ThrowTimes(t_a, t_r, t_s, t_s + sched.log_end), sched
+
+
+def throw_times(seed: int) -> ThrowTimes:
+    """The true times of :func:`synthetic_throw`'s throw ``seed`` (:class:`ThrowTimes`).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.synthetic import throw_times
+    >>> tt = throw_times(1)
+    >>> 0.2 <= tt.apparent <= 0.3, 0.55 <= tt.end - tt.rotor <= 0.59
+    (True, True)
+    """
+    return _times(np.random.default_rng(seed), None)[0]
+
+
+def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t0: float, breaks, hvec, drag: FloatArray, rotor_drag):
+    """omega and omega' of the free flight at ``times`` (w-form, DOP853, rtol 1e-12), split where the rotor's rate jumps."""
+    I = flown.inertia
+    Iinv = np.linalg.inv(I)
+
+    def rates(t, w):
+        h, hdot, tau_r = hvec(t)
+        return (-np.cross(w, w @ I + h) - hdot - drag * np.abs(w) * w + tau_r * rotor_drag) @ Iinv
+
+    def rhs(t, w):
+        return rates(np.array([t]), w[None])[0]
+
+    w = np.empty((times.size, 3))
+    state, start = w0, t0
+    edges = [b for b in breaks if t0 < b < times[-1]] + [times[-1] + 1e-9]
+    for hi in edges:
+        sel = (times >= start) & (times < hi)
+        sol = solve_ivp(rhs, (start, hi), state, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True)
+        w[sel] = sol.sol(times[sel]).T
+        state, start = sol.y[:, -1], hi
+    return w, rates(times, w)
+
+
+def _firmware_lowpass(x: FloatArray, dt: float, cutoff: float) -> FloatArray:
+    """The firmware's smoothing of the accelerometer: a second-order Butterworth low-pass at
+    ``cutoff`` Hz (scipy.signal.butter), run forward (causal: it delays, as the firmware's does)."""
+    from scipy.signal import butter, lfilter, lfilter_zi
+
+    b, a = butter(2, cutoff, fs=1.0 / dt)
+    return lfilter(b, a, x, axis=0, zi=lfilter_zi(b, a)[:, None] * x[:1])[0]
 
 
 def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INERTIA,
                     rotor_axis: ArrayLike = ROTOR_AXIS, input: str = "", rotor_top: float | None = None,
-                    spin: tuple[float, float] = (10.0, 18.0)) -> Throw:
-    """A throw's log: hand-held swing, release, flight with the rotor spinning up, catch (module docstring).
+                    spin: tuple[float, float] = (10.0, 18.0), imperfections: Imperfections | None = None,
+                    caught: bool = False) -> Throw:
+    """A throw's log as the real device writes it (module docstring).
 
     Parameters
     ----------
     seed : int
-        Everything random (times, spin, rotor, noise, biases, drag) follows from it.
+        Everything random of the throw (times, spin, rotor schedule, noise, biases, drag) follows from it.
     flown : Rigid
         The whole that flies (object and device, rotor included), sensor frame.
     rotor_inertia : float
         ``J_r``, kg m^2.
     rotor_axis : array_like, shape (3,)
-        Unit, sensor frame.
+        The rotor's nominal axis, sensor frame (its true one is ``imperfections.rotor_axis``).
     input : str
         The name the throw carries.
     rotor_top : float, optional
-        The rotor's final speed, rad/s (default 1400-1600; 0 for a rotor that never starts).
+        The plateau's speed, rad/s (default 1230-1360; 0 for a rotor that never starts).
     spin : (float, float)
-        The range of the spin at release, rad/s (the device alone needs less: its rotor's
-        reaction turns it faster).
+        The range of the spin at release, rad/s.
+    imperfections : Imperfections, optional
+        The device's gyroscope and rotor as built (default :func:`typical_imperfections` about
+        ``rotor_axis``; ``Imperfections.none(rotor_axis)`` for a perfect one).
+    caught : bool
+        The log goes on through a catch at its end (0.08 s more: the hand stops the spin).
 
     Returns
     -------
@@ -282,66 +345,92 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_throw, true_device
+    >>> from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_throw, throw_times, true_device
     >>> throw = synthetic_throw(1, combine(true_device(), example_object()))
     >>> dt = np.diff(throw.t)
-    >>> bool(dt.max() > 1.5 * np.median(dt)), round(float(throw.rotor.max()), -2)   # irregular; ~1500 rad/s
-    (True, 1500.0)
+    >>> tt = throw_times(1)
+    >>> bool(dt[throw.t[1:] < tt.apparent].std() > 20e-6), round(float(np.median(dt[throw.t[1:] > tt.release])), 6)
+    (True, 0.000248)
+    >>> round(float(throw.rotor.max()), -2), round(float(throw.rotor[-1]), -1), round(float(throw.t[-1] - tt.end), 4)
+    (1300.0, 210.0, 0.0)
     """
     rng = np.random.default_rng(seed)
-    a = np.asarray(rotor_axis, float)
-    a = a / np.linalg.norm(a)
-    t_r, t_c = release_and_catch(seed)
-    rng.uniform(size=2)  # the two draws of release_and_catch
-    length = t_c - t_r
-    hand = np.cumsum(250e-6 + rng.uniform(-200e-6, 250e-6, 2000))
-    hand = hand[hand < t_r]
-    fly = t_r + np.cumsum(250e-6 * (1.0 + 0.01 * rng.normal(size=int(1.2 * (length + 0.08) / 250e-6))))
-    t = np.concatenate([hand, fly[fly < t_c + 0.08]])
+    tt, sched = _times(rng, rotor_top)
+    imp = typical_imperfections(rotor_axis) if imperfections is None else imperfections
+    a = np.asarray(imp.rotor_axis, float)
+    last = tt.end + (0.08 if caught else 0.0)
+    hand = np.cumsum(rng.uniform(190e-6, 300e-6, 2000))
+    hand = hand[hand < tt.apparent]
+    fly = tt.apparent + 248e-6 * np.arange(1, int((last - tt.apparent) / 248e-6) + 1)
+    fly += 1e-6 * rng.normal(size=fly.size)
+    t = np.concatenate([hand, fly[fly <= last]])
     n = t.size
-    inflight, after = (t >= t_r) & (t < t_c), t >= t_c
+    held, contact = t < tt.apparent, (t >= tt.apparent) & (t < tt.release)
+    inflight, after = t >= tt.apparent, t > tt.end if caught else np.zeros(n, bool)
+    inflight &= ~after
 
-    # the rotor
-    t_s = t_r + rng.uniform(0.002, 0.010)
-    top = rng.uniform(1400.0, 1600.0) if rotor_top is None else float(rotor_top)
-    ripple = np.column_stack([np.full(3, 0.003 / np.sqrt(3)), rng.uniform(20.0, 80.0, 3), rng.uniform(0, 2 * np.pi, 3)])
+    # the rotor: its schedule, the air's drag on it (an external torque on the whole, along its axis)
+    rotor_drag = rng.uniform(2e-11, 8e-11)  # N m s^2: -k Omega^2, 0.3-1.2 % of the spin-up's momentum over the plateau
 
     def hvec(s):
-        speed, rate = _spin_up(s, t_s, top, 0.03, ripple)
-        return rotor_inertia * speed[:, None] * a, rotor_inertia * rate[:, None] * a
+        speed, rate = sched.speed_and_rate(s - tt.rotor)
+        return (rotor_inertia * speed[:, None] * a, rotor_inertia * rate[:, None] * a,
+                -(speed * np.abs(speed))[:, None] * a)
 
-    speed, _ = _spin_up(t, t_s, top, 0.03, ripple)
+    speed, _ = sched.speed_and_rate(t - tt.rotor)
 
-    # the flight
+    # the flight from the sensed release; the fingers' touch until the release proper
     direction = rng.normal(size=3)
-    w0 = rng.uniform(*spin) * direction / np.linalg.norm(direction)
+    w_a = rng.uniform(*spin) * direction / np.linalg.norm(direction)
     drag = rng.uniform(0.5e-6, 2e-6, 3)
     w, wdot = np.zeros((n, 3)), np.zeros((n, 3))
-    w[inflight], wdot[inflight] = _flight(flown, w0, t[inflight], t_r, t_s, hvec, drag)
-    # before: the arm brings the spin up; after: the hand stops it
-    x = t[~inflight & ~after] / t_r
-    w[~inflight & ~after] = w0 * (x * x * (3 - 2 * x))[:, None]
-    w_end = w[inflight][-1]
-    w[after] = w_end * np.exp(-(t[after] - t_c) / 0.02)[:, None]
+    breaks = [tt.rotor + x for x in sched.switches]
+    w[inflight], wdot[inflight] = _flight(flown, w_a, t[inflight], tt.apparent, breaks, hvec, drag, rotor_drag)
+    kick = rng.normal(size=3)
+    kick *= rng.uniform(0.2, 0.6) / np.linalg.norm(kick)  # the fingers' last push, rad/s
+    s = (t[contact] - tt.apparent) / (tt.release - tt.apparent)
+    w[contact] += kick * ((1 - s) ** 2)[:, None]
+    wdot[contact] += -kick * (2 * (1 - s) / (tt.release - tt.apparent))[:, None]
+    x = t[held] / tt.apparent  # the arm brings the spin up
+    w[held] = (w_a + kick) * (x * x * (3 - 2 * x))[:, None]
+    wdot[held] = (w_a + kick) * (6 * x * (1 - x) / tt.apparent)[:, None]
+    if caught:
+        w_end = w[inflight][-1]
+        w[after] = w_end * np.exp(-(t[after] - tt.end) / 0.02)[:, None]
 
-    # the accelerometer
-    r = -flown.center  # the accelerometer from the centre of mass
+    # the accelerometer: free fall at r from the centre, the hand, the air, the rotor's jolts and imbalance
+    r = -flown.center
     f = np.cross(wdot, r) + np.cross(w, np.cross(w, r))
     push = smooth_noise(rng, n, 250e-6, 1.0, 3.0)
     way = np.column_stack([smooth_noise(rng, n, 250e-6, 1.0, 2.0) for _ in range(3)]) + rng.normal(size=3)
     way /= np.linalg.norm(way, axis=1, keepdims=True)
-    held = ~inflight & ~after
     f[held] += (_G * (1.75 + 0.5 * np.tanh(push[held])))[:, None] * way[held]
-    f[after] += (_G * rng.uniform(3.0, 5.0) * np.exp(-(t[after] - t_c) / 0.03) + _G)[:, None] * way[after]
-    accel = f + rng.normal(0.0, 0.05, 3) + rng.normal(0.0, 0.08, (n, 3))
-    accel = np.clip(accel, -16 * _G, 16 * _G)
-
-    # the gyroscope: bias, noise, the rotor's vibration, range, quantisation
+    f[contact] += (_G * rng.uniform(0.05, 0.3) * (1 - s))[:, None] * way[contact]
+    f[after] += (_G * rng.uniform(3.0, 5.0) * np.exp(-(t[after] - tt.end) / 0.03) + _G)[:, None] * way[after]
+    f[inflight] += np.column_stack([smooth_noise(rng, n, 250e-6, rng.uniform(0.05, 0.2), 3.0) for _ in range(3)])[inflight]
+    for t_k in breaks:
+        width = rng.uniform(0.002, 0.004)
+        pulse = np.where((t >= t_k) & (t < t_k + width), np.sin(np.pi * (t - t_k) / width), 0.0)
+        jolt = rng.normal(size=3)
+        f += np.outer(pulse, rng.uniform(6.0, 24.0) * jolt / np.linalg.norm(jolt))
     phase = np.cumsum(np.r_[0.0, np.diff(t)] * speed)
-    vib = 0.01 * np.column_stack([np.cos(phase), np.sin(phase), np.zeros(n)]) * (speed > 0)[:, None]
-    gyro = w + rng.normal(0.0, 0.01, 3) + rng.normal(0.0, 0.01, (n, 3)) + vib
+    e1 = np.cross(a, [1.0, 0.0, 0.0] if abs(a[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(a, e1)
+    f += (6e-7 * speed ** 2)[:, None] * (np.outer(np.cos(phase), e1) + np.outer(np.sin(phase), e2))
+    f = f + rng.normal(0.0, 0.3, (n, 3))
+    f = _firmware_lowpass(f, 248e-6, rng.uniform(100.0, 200.0))
+    accel = f * (1 + rng.normal(0.0, 0.01, 3)) + rng.uniform(-0.1, 0.1, 3)
+    lsb_a = _G / 2048.0
+    accel = np.clip(np.round(accel / lsb_a) * lsb_a, -16 * _G, 16 * _G)
+
+    # the gyroscope: scale and misalignment, bias, noise, the rotor's vibration, range, quantisation
+    vib = 0.01 * (np.outer(np.cos(phase), e1) + np.outer(np.sin(phase), e2)) * (speed > 0)[:, None]
+    gyro = w @ imp.gyro.T + rng.normal(0.0, 0.01, 3) + rng.normal(0.0, 0.01, (n, 3)) + vib
     lsb = GYRO_RANGE / 32768.0
     gyro = np.clip(np.round(gyro / lsb) * lsb, -GYRO_RANGE, GYRO_RANGE)
 
-    rotor = np.where(speed > 0, speed + rng.normal(0.0, 4.0, n), 0.0)
+    # the rotor's speed as logged: eRPM telemetry, its stamps a fraction of a millisecond off the gyroscope's
+    lag = rng.uniform(-5e-4, 5e-4)
+    rotor = logged_speed(sched.speed_and_rate(t - tt.rotor - lag)[0], imp.poles, rng)
     return Throw(t, gyro, rotor, accel, input)

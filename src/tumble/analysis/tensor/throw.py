@@ -30,7 +30,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
@@ -39,13 +39,15 @@ from scipy.optimize import least_squares
 from ...typing import FloatArray
 from ..fit.adequacy import Adequacy, judge
 from ..fit.single import saturation_mask
-from ..fit.uncertainty import effective_covariance, noise_floor
+from ..fit.uncertainty import autocorrelation_time, noise_floor
 from .device import Throw
 from .estimate import tensor_of
-from .flight import Window, find_flight, skew
-from .model import RotorInput, ThrowModel, cholesky_of, inertia_jacobian, inertia_of, rotor_input
+from .center import center_of_mass, rate_part
+from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
+from .joint import JointModel, SensorErrors, fit_joint
+from .model import RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input
 
-__all__ = ["ACCEL_BLOCK", "BLOCK", "FlownFit", "center_of_mass", "fit_flown", "start_values"]
+__all__ = ["BLOCK", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
 #: Samples per block of the starting regression (50 ms at 4 kHz): over 10 ms blocks the change of a weakly
 #: tumbling throw's rates is little above their noise, and the regression's tensor came out 20-70 % low
@@ -53,8 +55,15 @@ __all__ = ["ACCEL_BLOCK", "BLOCK", "FlownFit", "center_of_mass", "fit_flown", "s
 BLOCK = 200
 #: The factors tried on the starting regression's tensor (:func:`_scaled_start`).
 START_SCALES = np.geomspace(0.2, 5.0, 33)
-#: Samples per block of the accelerometer's integrated reading (20 ms at 4 kHz).
-ACCEL_BLOCK = 80
+#: The provisional fit starts this long after the sensed release, s: past the fingers' touch
+#: (10-20 ms on the real device's logs), which the residuals then locate (:func:`_release`).
+PROVISIONAL = 0.03
+#: A fit whose residuals' RMS exceeds this factor times the gyroscope's noise does not describe
+#: the flight (the free motion explains the samples to within their noise and the rotor's vibration).
+RESIDUAL_LIMIT = 3.0
+#: Going back from the provisional start, the fingers' touch begins where the residuals' running
+#: RMS exceeds this factor times the fit's (:func:`_release`).
+START_LIMIT = 2.5
 
 
 @dataclass(frozen=True)
@@ -82,6 +91,12 @@ class FlownFit:
     omega_model: FloatArray | None = None
     residual_rms: float = float("nan")
     adequacy: Adequacy | None = None
+    model: ThrowModel | None = None
+    accel: FloatArray | None = None
+    inertia_cov_sensor: FloatArray | None = None
+    noise: float = float("nan")
+    center_cov_rates: FloatArray | None = None
+    tau: float = float("nan")
 
 
 def _blocks(ok: np.ndarray, size: int) -> list[tuple[int, int]]:
@@ -126,51 +141,6 @@ def start_values(t: FloatArray, w: FloatArray, keep: np.ndarray, h: FloatArray) 
     return tensor_of(v)
 
 
-def center_of_mass(model: ThrowModel, P: FloatArray, accel: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The flown body's centre of mass from the accelerometer (module docstring, step 5): ``(c,
-    cov_c, b_a)`` in m, m^2 and m/s^2.
-
-    The reading is integrated over blocks of :data:`ACCEL_BLOCK` samples,
-    ``integral f dt = (w_b - w_a) x r + integral w x (w x r) dt + b_a (t_b - t_a)``, so that
-    ``w'`` is never needed (it would need the rotor's ``h'``, poorly known at its start).
-
-    Examples
-    --------
-    >>> from tumble.analysis.tensor.throw import center_of_mass
-    >>> callable(center_of_mass)
-    True
-    """
-    w = model.omega(P[None])[0]
-    t = model.t
-    good = np.all(np.abs(accel) < 15.9 * 9.80665, axis=1)
-    Q = cumulative_trapezoid(skew(w) @ skew(w), t, axis=0, initial=0.0)
-    F = cumulative_trapezoid(accel, t, axis=0, initial=0.0)
-    rows, rhs = [], []
-    for a in range(0, t.size - ACCEL_BLOCK, ACCEL_BLOCK):
-        b = a + ACCEL_BLOCK
-        if not good[a:b + 1].all():
-            continue
-        rows.append(np.hstack([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a]) * np.eye(3)]))
-        rhs.append(F[b] - F[a])
-    n = len(rows)
-    A, y = np.vstack(rows), np.concatenate(rhs)
-    x = np.linalg.lstsq(A, y, rcond=None)[0]
-    r = A @ x - y
-    cov, _ = effective_covariance(A, r, r.reshape(-1, 3), [0, n])
-    return -x[:3], cov[:3, :3], x[3:]
-
-
-def _model_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArray) -> FloatArray:
-    """The centre's covariance from the fitted rates' own: ``G cov G^T``, ``G = dc/dP`` by central differences."""
-    d = model.steps(P) * 100.0
-    G = np.empty((3, P.size))
-    for k in range(P.size):
-        e = np.zeros(P.size)
-        e[k] = d[k]
-        G[:, k] = (center_of_mass(model, P + e, accel)[0] - center_of_mass(model, P - e, accel)[0]) / (2 * d[k])
-    return G @ cov @ G.T
-
-
 def _scaled_start(model: ThrowModel, c0: FloatArray, w0: FloatArray, drag: bool) -> FloatArray:
     """The start with the regression's tensor scaled by the factor (of :data:`START_SCALES`) whose
     integrated model fits best, all in one batched integration: the regression's noisy rates bias
@@ -185,15 +155,84 @@ def _scaled_start(model: ThrowModel, c0: FloatArray, w0: FloatArray, drag: bool)
     return P[int(np.argmin(cost))]
 
 
-def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
+def _lm(model: ThrowModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
+    """Levenberg-Marquardt over the ``free`` parameters, the others held at ``P0``'s."""
+    P = P0.copy()
+
+    def full(x: FloatArray) -> FloatArray:
+        P[free] = x
+        return P
+
     with np.errstate(all="ignore"):
-        sol = least_squares(model.residuals, P0, jac=model.jacobian, method="lm", x_scale="jac", max_nfev=300,
-                            ftol=1e-10, xtol=1e-10, gtol=1e-10)
-    return np.asarray(sol.x)
+        sol = least_squares(lambda x: model.residuals(full(x)), P0[free], jac=lambda x: model.jacobian(full(x))[:, free],
+                            method="lm", x_scale="jac", max_nfev=300, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+    return full(np.asarray(sol.x)).copy()
+
+
+def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
+    """The least-squares optimum with the drag never negative (module docstring of :mod:`~tumble.analysis.tensor.model`)."""
+    free = np.ones(model.n, bool)
+    P = _lm(model, P0, free)
+    for _ in range(3):
+        if not (model.drag and np.any(P[12:15] < 0)):
+            break
+        free[12:15] &= P[12:15] >= 0
+        P[12:15] = np.maximum(P[12:15], 0.0)
+        P = _lm(model, P, free)
+    return P
+
+
+def _rms(model: ThrowModel, P: FloatArray) -> float:
+    return float(np.sqrt(np.mean(model.residuals(P) ** 2)))
+
+
+def _solve(throw: Throw, keep_all: np.ndarray, rotor: RotorInput, first: int, stop: int, drag: bool,
+           P0: FloatArray | None = None) -> tuple[ThrowModel, FloatArray] | str:
+    """The model of samples ``[first, stop)`` fitted, from ``P0`` (its ``L`` at ``first``) or from the starting
+    regression; a reason when it cannot start."""
+    sl = slice(first, stop)
+    t, data, keep = throw.t[sl], throw.omega[sl], keep_all[sl]
+    model = ThrowModel(t, data, keep, rotor, drag=drag)
+    if P0 is None:
+        try:
+            I0 = start_values(t, data, keep, model.h)
+        except ValueError as error:
+            return str(error)
+        P0 = _scaled_start(model, cholesky_of(I0), np.mean(data[:5], axis=0), drag)
+    return model, _fit(model, P0)
+
+
+def _momentum_at(throw: Throw, rotor: RotorInput, model: ThrowModel, P: FloatArray, first: int, to: int) -> FloatArray:
+    """The fitted model's rates at samples ``to .. first`` (``to <= first``), integrated backward in time from
+    ``first`` (the gyrostat's equations run either way), in time order, bias included."""
+    idx = np.arange(first, to - 1, -1)
+    back = ThrowModel(throw.t[idx], throw.omega[idx], np.ones((idx.size, 3), bool), rotor, drag=model.drag)
+    return back.sensor(P[None])[0][::-1]
+
+
+def _release(throw: Throw, keep_all: np.ndarray, rotor: RotorInput, model: ThrowModel, P: FloatArray,
+             search: int, first: int, limit: float) -> int:
+    """The first sample after the fingers' touch: going back from ``first`` (the fitted window's start) to
+    ``search`` (the sensed release), the model's free motion integrated backward meets the data within
+    ``limit`` (rad/s, per axis, RMS over :data:`~tumble.analysis.tensor.flight.SPAN`); the first sample after the
+    last one beyond it, plus :data:`~tumble.analysis.tensor.flight.START_MARGIN`."""
+    if first <= search:
+        return first
+    pred = _momentum_at(throw, rotor, model, P, first, search)
+    data, keep = throw.omega[search:first + 1], keep_all[search:first + 1]
+    sq = np.where(keep, pred - data, 0.0) ** 2
+    n = max(1, int(round(SPAN / float(np.median(np.diff(throw.t[search:first + 2]))))))
+    run = np.convolve(sq.sum(axis=1), np.ones(n) / n, mode="same") / np.maximum(
+        np.convolve(keep.sum(axis=1).astype(float), np.ones(n) / n, mode="same"), 1e-12)
+    bad = np.flatnonzero(np.sqrt(run) > limit)
+    if bad.size == 0:
+        return search
+    k = search + int(bad[-1]) + 1
+    return min(int(np.searchsorted(throw.t, throw.t[k] + START_MARGIN)), first)
 
 
 def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, saturation: float | None = None,
-              drag: bool = True) -> FlownFit:
+              drag: bool = True, errors: SensorErrors | None = None) -> FlownFit:
     """Fit one throw's flown body (module docstring).
 
     Parameters
@@ -206,7 +245,9 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     saturation : float, optional
         The gyroscope's range, rad/s (else found from the data).
     drag : bool
-        Fit a per-axis quadratic drag.
+        Fit a per-axis quadratic drag (the joint fits need it).
+    errors : SensorErrors, optional
+        The sensors' stated uncertainties, propagated into the covariance (type B); none by default.
 
     Returns
     -------
@@ -227,29 +268,57 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     win = find_flight(throw, keep_all)
     if win.reason:
         return FlownFit(win, win.reason)
-    sl = slice(win.first, win.stop)
-    t, data, keep = throw.t[sl], throw.omega[sl], keep_all[sl]
-    rotor: RotorInput = rotor_input(throw.t, throw.rotor, win.rotor, rotor_inertia, rotor_axis)
-    model = ThrowModel(t, data, keep, rotor, drag=drag)
-    try:
-        I0 = start_values(t, data, keep, model.h)
-    except ValueError as error:
-        return FlownFit(win, str(error))
-    P0 = _scaled_start(model, cholesky_of(I0), np.mean(data[:5], axis=0), drag)
-    P = _fit(model, P0)
-    J = model.jacobian(P)
+    t_all = throw.t
+    rotor: RotorInput = rotor_input(t_all, throw.rotor, win.rotor, rotor_inertia, rotor_axis)
+    noise = noise_floor(throw.omega[win.first:win.stop])
+    first = int(np.searchsorted(t_all, win.t_release + PROVISIONAL))
+    # the end: the log's, or the latest possible catch whose flight the free motion explains
+    candidates = [win.stop] + [int(np.searchsorted(t_all, t_all[c] - END_MARGIN)) for c in
+                               reversed(catch_candidates(t_all, throw.omega, win.rotor))]
+    found = None
+    for stop in candidates:
+        if t_all[stop - 1] - t_all[first] < MIN_FLIGHT:
+            continue
+        solved = _solve(throw, keep_all, rotor, first, stop, drag)
+        if isinstance(solved, str):
+            return FlownFit(win, solved)
+        if found is None or _rms(*solved) <= RESIDUAL_LIMIT * max(noise, 1e-12):
+            found = (stop, *solved)
+            if _rms(*solved) <= RESIDUAL_LIMIT * max(noise, 1e-12):
+                break
+    if found is None:
+        return FlownFit(win, f"the flight found lasts less than the {MIN_FLIGHT} s fitted")
+    stop, model, P = found
+    # the start: where the free motion, integrated back, meets the data (the fingers' touch left out)
+    start = _release(throw, keep_all, rotor, model, P, win.first, first, START_LIMIT * max(_rms(model, P), noise))
+    if start < first:
+        w = _momentum_at(throw, rotor, model, P, first, start)[0] - P[9:12]
+        P = P.copy()
+        P[6:9] = inertia_of(P[:6]) @ w + rotor.h(t_all[start])
+        model, P = _solve(throw, keep_all, rotor, start, stop, drag, P)  # type: ignore[misc]
+    win = replace(win, first=start, stop=stop, t_release=float(t_all[start]), t_end=float(t_all[stop - 1]))
+    return _finish(throw, win, model, P, errors)
+
+
+def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors: SensorErrors | None) -> FlownFit:
+    """The fitted throw's uncertainties (through the joint fit of one throw), verdict and centre of mass."""
+    single = fit_joint(JointModel([model]), P, errors)
+    P = single.P
+    data, keep = model.data, model.keep
     res = model.residuals(P)
+    rms = float(np.sqrt(np.mean(res ** 2)))
+    noise = noise_floor(data)
+    verdict = judge(rms, noise, float(np.sqrt(np.mean(data[keep] ** 2))))
+    center = center_cov = accel_bias = rates = None
+    accel = None if throw.accel is None else throw.accel[win.first:win.stop]
+    if accel is not None:
+        center, center_cov, accel_bias = center_of_mass([model], [P], [accel])
+        free = [k for k in range(model.n) if single.cov_P[k, k] > 0]
+        rates = rate_part(model, P, single.cov_P[np.ix_(free, free)], accel, free)
+        center_cov = center_cov + rates
     per_sample = np.zeros(data.shape)
     per_sample[keep] = res
-    cov, _ = effective_covariance(J, res, per_sample, [0, t.size])
-    G = inertia_jacobian(P[:6])
-    I = inertia_of(P[:6])
-    pred = model.sensor(P[None])[0]
-    rms = float(np.sqrt(np.mean(res ** 2)))
-    verdict = judge(rms, noise_floor(data), float(np.sqrt(np.mean(data[keep] ** 2))))
-    center = center_cov = accel_bias = None
-    if throw.accel is not None:
-        center, center_cov, accel_bias = center_of_mass(model, P, throw.accel[sl])
-        center_cov = center_cov + _model_part(model, P, cov, throw.accel[sl])
-    return FlownFit(win, "", P, cov, I, G @ cov[:6, :6] @ G.T, center, center_cov, accel_bias, t, data, pred, rms,
-                    verdict)
+    tau = autocorrelation_time(per_sample, [0, data.shape[0]])
+    return FlownFit(win, "", P, single.cov_P, single.inertia, single.inertia_cov, center, center_cov, accel_bias,
+                    model.t, data, model.sensor(P[None])[0], rms, verdict, model, accel, single.inertia_cov_sensor, noise,
+                    rates, tau)

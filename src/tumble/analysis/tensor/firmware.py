@@ -1,0 +1,208 @@
+"""What the real device does in a throw, as its logs show it (issue #42): the rotor's schedule and
+the imperfections of its sensors, for the synthetic throws of :mod:`~tumble.analysis.tensor.synthetic`.
+
+**The rotor's schedule** (the firmware of the device of Blaha, Kuijper, Pop & Smeur,
+arXiv:2503.13137, read off its real logs; times from the rotor's start ``s = t - t_s``, which
+comes 0.06-0.12 s after the firmware senses the release):
+
+1. a ramp to an **idle** of ~200 rad/s over ~0.1 s, ``idle (1 - exp(-s / tau_1))``;
+2. at ``s`` = 0.16-0.17 s the **spin-up** to a plateau of 1230-1360 rad/s, a first-order rise
+   (``tau_2`` ~ 38 ms: ~1000 rad/s 50 ms on, ~1200 after 0.1 s);
+3. at ``s`` ~ 0.36 s the **brake** back to ~210 rad/s (``tau_3`` ~ 29 ms: ~470 rad/s 40 ms on,
+   ~280 after 80 ms);
+4. the **log stops** 0.55-0.59 s after the start, still in flight.
+
+The motor's torque ripple rides on the speed (three tones of 20-80 Hz, 0.3 % in all). The
+logged speed is the motor's electrical RPM (eRPM, its telemetry) quantised to
+:data:`ERPM_STEP` and turned into the rotor's speed with the motor's pole count, its time stamps
+a fraction of a millisecond off the gyroscope's.
+
+**The imperfections** (:class:`Imperfections`, drawn once per device by :func:`draw_imperfections`):
+the gyroscope's scale factor and misalignment per axis (a small matrix ``S`` with ``omega_read =
+S omega``; MEMS sensitivity errors of a few 0.1 % and cross-axis sensitivity ~1 %, e.g.
+Bosch BMI270 and TDK ICM-42688-P data sheets), the rotor's axis a little off its nominal
+(the motor's mount) and the motor's pole count.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, FloatArray
+
+__all__ = ["ERPM_STEP", "Imperfections", "RotorSchedule", "draw_imperfections", "draw_schedule", "logged_speed"]
+
+#: The eRPM telemetry's resolution, electrical rev/min (the flight controller logs eRPM / 100).
+ERPM_STEP = 100.0
+
+
+@dataclass(frozen=True)
+class RotorSchedule:
+    """One throw's rotor speed, closed form, from its start (module docstring); times in s,
+    speeds in rad/s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import draw_schedule
+    >>> sched = draw_schedule(np.random.default_rng(0))
+    >>> speed, _ = sched.speed_and_rate(np.array([-0.01, 0.12, sched.t_up + 0.1, sched.t_brake + 0.15]))
+    >>> speed.round(-1).tolist()   # at rest, idling, spun up, braked
+    [0.0, 190.0, 1190.0, 210.0]
+    """
+
+    idle: float
+    tau_idle: float
+    t_up: float
+    plateau: float
+    tau_up: float
+    t_brake: float
+    idle_after: float
+    tau_brake: float
+    log_end: float
+    ripple: FloatArray = field(repr=False)
+
+    def speed_and_rate(self, s: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """The true speed and its rate at ``s`` s from the start, rad/s and rad/s^2 (0 before it).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.firmware import draw_schedule
+        >>> sched = draw_schedule(np.random.default_rng(3))
+        >>> s = np.linspace(0.01, 0.5, 20001)
+        >>> speed, rate = sched.speed_and_rate(s)
+        >>> num = np.gradient(speed, s)   # the rate against a numerical derivative, away from the switches
+        >>> ok = (np.abs(s - sched.t_up) > 1e-3) & (np.abs(s - sched.t_brake) > 1e-3)
+        >>> bool(np.allclose(rate[ok][1:-1], num[ok][1:-1], rtol=0, atol=5.0))
+        True
+        """
+        s = np.asarray(s, float)
+        u = np.maximum(s, 0.0)
+        e1 = np.exp(-u / self.tau_idle)
+        base, dbase = self.idle * (1 - e1), self.idle * e1 / self.tau_idle
+        w1 = self.idle * (1 - np.exp(-self.t_up / self.tau_idle))
+        e2 = np.exp(-np.maximum(u - self.t_up, 0.0) / self.tau_up)
+        up, dup = w1 + (self.plateau - w1) * (1 - e2), (self.plateau - w1) * e2 / self.tau_up
+        w2 = w1 + (self.plateau - w1) * (1 - np.exp(-(self.t_brake - self.t_up) / self.tau_up))
+        e3 = np.exp(-np.maximum(u - self.t_brake, 0.0) / self.tau_brake)
+        down, ddown = self.idle_after + (w2 - self.idle_after) * e3, -(w2 - self.idle_after) * e3 / self.tau_brake
+        speed = np.where(u < self.t_up, base, np.where(u < self.t_brake, up, down))
+        rate = np.where(u < self.t_up, dbase, np.where(u < self.t_brake, dup, ddown))
+        a, f, phi = self.ripple[:, 0, None], self.ripple[:, 1, None], self.ripple[:, 2, None]
+        arg = 2 * np.pi * f * u.ravel() + phi
+        wave = (1.0 + np.sum(a * (np.sin(arg) - np.sin(phi)), axis=0)).reshape(u.shape)
+        dwave = np.sum(a * 2 * np.pi * f * np.cos(arg), axis=0).reshape(u.shape)
+        on = s >= 0.0
+        return np.where(on, speed * wave, 0.0), np.where(on, rate * wave + speed * dwave, 0.0)
+
+    @property
+    def switches(self) -> tuple[float, float, float]:
+        """The start, spin-up and brake, s from the start: where the rate jumps.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.firmware import draw_schedule
+        >>> draw_schedule(np.random.default_rng(0)).switches[0]
+        0.0
+        """
+        return 0.0, self.t_up, self.t_brake
+
+
+def draw_schedule(rng: np.random.Generator, plateau: float | None = None) -> RotorSchedule:
+    """One throw's schedule, its variations drawn (module docstring); ``plateau`` rad/s overrides.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import draw_schedule
+    >>> s = draw_schedule(np.random.default_rng(1))
+    >>> 0.16 <= s.t_up <= 0.17, 0.35 <= s.t_brake <= 0.37, 0.55 <= s.log_end <= 0.59
+    (True, True, True)
+    """
+    t_up = rng.uniform(0.16, 0.17)
+    ripple = np.column_stack([np.full(3, 0.003 / np.sqrt(3)), rng.uniform(20.0, 80.0, 3), rng.uniform(0, 2 * np.pi, 3)])
+    return RotorSchedule(idle=rng.uniform(185.0, 215.0), tau_idle=rng.uniform(0.035, 0.05), t_up=t_up,
+                         plateau=rng.uniform(1230.0, 1360.0) if plateau is None else float(plateau),
+                         tau_up=rng.uniform(0.034, 0.042), t_brake=t_up + rng.uniform(0.19, 0.2),
+                         idle_after=rng.uniform(200.0, 220.0), tau_brake=rng.uniform(0.026, 0.032),
+                         log_end=rng.uniform(0.55, 0.59), ripple=ripple)
+
+
+def logged_speed(speed: ArrayLike, poles: int, rng: np.random.Generator) -> FloatArray:
+    """The speed as the flight controller logs it, rad/s: the motor's eRPM (``speed x poles / 2``
+    in electrical rev/min, with 0.2 % telemetry noise) quantised to :data:`ERPM_STEP`, turned back
+    with the pole count.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import logged_speed
+    >>> step = 100.0 / 7 * 2 * np.pi / 60   # 14 poles: one eRPM step is 1.5 rad/s of the rotor
+    >>> x = logged_speed(np.array([0.0, 1000.0]), 14, np.random.default_rng(0))
+    >>> x[0], bool(abs(x[1] - 1000.0) < 3 * step), bool(np.allclose(x / step, np.round(x / step)))
+    (0.0, True, True)
+    """
+    speed = np.asarray(speed, float)
+    to_erpm = 0.5 * poles * 60.0 / (2 * np.pi)
+    erpm = speed * to_erpm * (1.0 + 0.002 * rng.normal(size=speed.shape))
+    return np.round(erpm / ERPM_STEP) * ERPM_STEP / to_erpm
+
+
+@dataclass(frozen=True)
+class Imperfections:
+    """One device's sensors and rotor as built: ``gyro`` (3 x 3, ``omega_read = gyro @ omega``:
+    scale factors on the diagonal, misalignment off it), the rotor's true axis (unit, sensor
+    frame) and the motor's pole count.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import Imperfections
+    >>> Imperfections.none([0, 0, -1]).gyro.tolist() == np.eye(3).tolist()
+    True
+    """
+
+    gyro: FloatArray
+    rotor_axis: FloatArray
+    poles: int = 14
+
+    @classmethod
+    def none(cls, rotor_axis: ArrayLike, poles: int = 14) -> Imperfections:
+        """A perfect device: an ideal gyroscope and the rotor on its nominal axis.
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor.firmware import Imperfections
+        >>> Imperfections.none([0, 0, 2]).rotor_axis.tolist()
+        [0.0, 0.0, 1.0]
+        """
+        a = np.asarray(rotor_axis, float)
+        return cls(np.eye(3), a / np.linalg.norm(a), int(poles))
+
+
+def draw_imperfections(rng: np.random.Generator, rotor_axis: ArrayLike, *, scale_std: float = 0.003,
+                       misalignment_std: float = np.deg2rad(0.3), axis_std: float = np.deg2rad(1.0),
+                       poles: int = 14) -> Imperfections:
+    """A device's imperfections drawn (module docstring): scale factors ``1 + N(0, scale_std)``,
+    each axis misaligned by ``N(0, misalignment_std)`` rad toward each other axis, the rotor's
+    axis turned by ``N(0, axis_std)`` rad about each axis from its nominal ``rotor_axis``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import draw_imperfections
+    >>> imp = draw_imperfections(np.random.default_rng(0), [0, 0, -1])
+    >>> bool(np.abs(imp.gyro - np.eye(3)).max() < 0.03), bool(np.degrees(np.arccos(-imp.rotor_axis[2])) < 5)
+    (True, True)
+    """
+    gyro = np.eye(3) + np.diag(scale_std * rng.normal(size=3))
+    off = misalignment_std * rng.normal(size=(3, 3))
+    gyro += off - np.diag(np.diag(off))
+    a = np.asarray(rotor_axis, float)
+    a = Rotation.from_rotvec(axis_std * rng.normal(size=3)).apply(a / np.linalg.norm(a))
+    return Imperfections(gyro, a, int(poles))

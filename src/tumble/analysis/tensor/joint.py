@@ -1,0 +1,341 @@
+"""Throws of one rigid mount fitted together: one tensor, each throw its own motion (issue #42).
+
+The throws of one object with the device fixed to it fly one rigid body: one tensor about one
+centre of mass. :class:`JointModel` fits them together: the tensor's ``C`` (6, shared) and, per
+throw, ``L(t_0)``, the gyroscope's bias, the per-axis drag and the rotor log's lag (10 each), each throw's samples
+predicted by its own :class:`~tumble.analysis.tensor.model.ThrowModel` (the gyrostat's momentum
+form with its measured rotor). One throw is the case of a single-throw fit, so a throw's own
+estimate and the pooled one come from the same code. The centre of mass is likewise one
+accelerometer offset for all the throws, each with its own accelerometer bias
+(:func:`joint_center_of_mass`).
+
+**Why jointly, not a weighted mean of per-throw estimates.** Each throw's estimate carries a
+covariance that grows with the estimate (a throw that came out large states a large std), so an
+inverse-covariance mean is pulled low; on the real device's throws it landed below every one
+of its 12 throws on one object. The joint fit weighs the samples, not the estimates.
+
+**Uncertainty.** Statistical: ``(J^T J)^-1 s^2 tau`` with each throw's residual autocorrelation
+time (:func:`tumble.analysis.fit.uncertainty.effective_covariance`). Systematic, type B (JCGM
+100:2008, sec. 4.3): the gyroscope's scale factors and misalignment and the rotor's axis, each
+with its stated standard uncertainty (:class:`SensorErrors`), propagated through the fit's
+linear response ``dP = -(J^T J)^-1 J^T (dr/de) de`` (the first-order shift of a least-squares
+optimum under a change ``de`` of the model; the implicit function theorem at the optimum). The
+tensor's scale rests on the rotor's reaction, a 10-20 % change of a thrown object's momentum,
+so a 0.5 % error of the rates moves it by up to 4 %: this term dominates a single throw's
+uncertainty and is shared by all the throws of one device (it is added once, to the joint
+fit's covariance, not averaged down).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.spatial.transform import Rotation
+
+from ...typing import FloatArray
+from ..fit.uncertainty import effective_covariance
+from .model import DYNAMIC, ThrowModel, inertia_jacobian, inertia_of
+
+__all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
+
+
+@dataclass(frozen=True)
+class SensorErrors:
+    """The stated standard uncertainties of the device's sensors as built (type B): the
+    gyroscope's scale factor per axis (relative), its misalignment per pair of axes (rad) and
+    the rotor axis's direction (rad, about each axis normal to it). Defaults: typical MEMS
+    data-sheet values (sensitivity error ~0.3 %, cross-axis sensitivity ~0.5 %; e.g. TDK
+    ICM-42688-P, Bosch BMI270) and a motor mounted to within 1 degree.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.joint import SensorErrors
+    >>> SensorErrors().variances().round(8).tolist()[:4]
+    [9e-06, 9e-06, 9e-06, 2.5e-05]
+    """
+
+    gyro_scale: float = 0.003
+    gyro_misalignment: float = 0.005
+    rotor_axis: float = float(np.deg2rad(1.0))
+
+    def variances(self, fitted: bool = False) -> FloatArray:
+        """The variances of the 9 gyroscope entries (3 scales, 6 misalignments) and 2 rotor angles;
+        with ``fitted`` (the joint fit determined the rest) that of the rates' common scale, the
+        mean of the three scale factors.
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor.joint import SensorErrors
+        >>> SensorErrors(0.0, 0.0, 0.0).variances().tolist() == [0.0] * 11
+        True
+        >>> SensorErrors(0.003).variances(fitted=True).round(8).tolist()
+        [3e-06]
+        """
+        if fitted:
+            return np.array([self.gyro_scale ** 2 / 3.0])
+        return np.r_[np.full(3, self.gyro_scale ** 2), np.full(6, self.gyro_misalignment ** 2),
+                     np.full(2, self.rotor_axis ** 2)]
+
+
+#: The gyroscope's entries ``(i, j)`` of ``omega_read = (E + e) omega``: scales, then misalignments.
+_ENTRIES = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 0), (0, 2), (2, 0), (1, 2), (2, 1))
+
+
+def _symmetric_basis() -> FloatArray:
+    """The five trace-free symmetric unit matrices: ``xx - zz``, ``yy - zz``, ``xy``, ``xz``, ``yz``."""
+    out = []
+    for i, j in ((0, 0), (1, 1), (0, 1), (0, 2), (1, 2)):
+        E = np.zeros((3, 3))
+        E[i, j] = E[j, i] = 1.0
+        if i == j:
+            E[2, 2] = -1.0
+        out.append(E)
+    return np.array(out)
+
+
+#: The gyroscope's distortion that a joint fit determines (``omega_read = (E + sum g_k B_k) omega``).
+GYRO_BASIS = _symmetric_basis()
+#: The joint fit's shared sensor parameters: the five of :data:`GYRO_BASIS`, the rotor axis's two angles.
+SENSOR_NAMES = ("gyro_xx_zz", "gyro_yy_zz", "gyro_xy", "gyro_xz", "gyro_yz", "rotor_tilt_1", "rotor_tilt_2")
+
+
+class JointModel:
+    """Several throws' models sharing one tensor and, optionally, the sensors as built (module docstring).
+
+    Parameters: ``C`` (6); with ``sensor``, the gyroscope's trace-free symmetric distortion (5:
+    :data:`GYRO_BASIS`) and the rotor axis's tilt from its nominal (2 angles about the two
+    axes normal to it, rad); then for each throw ``L(t_0)``, bias, drag, lag (10). Residuals
+    are the throws' in order.
+
+    What the joint fit determines of the sensors: the gyroscope's misalignment has a symmetric
+    part (a distortion of the rates) and an antisymmetric one (a turn of the gyroscope's axes
+    against the rotor's, which is the rotor axis's tilt, and about it a turn of the whole frame,
+    which no fit can see); the distortion's trace, a common scale of the rates, trades with the
+    tensor's scale and is left to the stated uncertainty. One throw does not separate the
+    distortion from the tensor (its own estimate then shifts by several per cent); throws
+    spinning about different axes do, since they share one tensor.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import JointModel
+    >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+    >>> t = np.arange(400) / 4000.0
+    >>> rotor = rotor_input(t, np.full(400, 1e3), 0, 1e-6, [0, 0, 1])
+    >>> models = [ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor) for _ in range(2)]
+    >>> joint = JointModel(models, sensor=True)
+    >>> joint.n, joint.throw_parameters(np.arange(33.0), 1).tolist()[6:]
+    (33, [23.0, 24.0, 25.0, 26.0, 27.0, 28.0, 29.0, 30.0, 31.0, 32.0])
+    """
+
+    def __init__(self, models: Sequence[ThrowModel], sensor: bool = False) -> None:
+        if not models or any(not m.drag for m in models):
+            raise ValueError("a joint fit needs one or more throw models, each with its drag")
+        self.models = list(models)
+        self.sensor = bool(sensor)
+        self.base = 6 + (len(SENSOR_NAMES) if self.sensor else 0)
+        self.per = self.models[0].n - 6
+        if any(m.n - 6 != self.per for m in self.models):
+            raise ValueError("the throws' models of a joint fit must have the same parameters")
+        self.n = self.base + self.per * len(self.models)
+        self.rows = [int(np.count_nonzero(m.keep)) for m in self.models]
+        a = self.models[0].rotor.axis
+        self.axis0 = a / np.linalg.norm(a)
+        self.normals = np.linalg.svd(self.axis0[None])[2][1:]  # two unit vectors normal to the axis
+
+    def throw_parameters(self, P: FloatArray, k: int) -> FloatArray:
+        """Throw ``k``'s parameters (``C``, ``L(t_0)``, bias, drag, lag) of the joint vector ``P``."""
+        return np.r_[P[:6], P[self.base + self.per * k: self.base + self.per * (k + 1)]]
+
+    def pack(self, c: FloatArray, rest: Sequence[FloatArray], sensor: FloatArray | None = None) -> FloatArray:
+        """The joint vector of ``C``, the sensors' (zeros by default) and each throw's own (``L(t_0)``, bias, drag, lag)."""
+        shared = np.zeros(self.base - 6) if sensor is None else np.asarray(sensor, float)
+        return np.concatenate([np.asarray(c, float), shared, *[np.asarray(r, float)[:self.per] for r in rest]])
+
+    def gyro(self, P: FloatArray) -> FloatArray:
+        """``omega_read = gyro @ omega``: the identity plus the fitted distortion."""
+        return np.eye(3) + (np.tensordot(P[6:11], GYRO_BASIS, 1) if self.sensor else 0.0)
+
+    def axis(self, P: FloatArray) -> FloatArray:
+        """The rotor's axis, tilted by the fitted angles (unit, sensor frame)."""
+        if not self.sensor:
+            return self.axis0
+        return Rotation.from_rotvec(P[11:13] @ self.normals).apply(self.axis0)
+
+    def _rates(self, k: int, rows: FloatArray, axis: FloatArray) -> FloatArray:
+        m = self.models[k]
+        return m.omega(rows) if not self.sensor else m.omega(rows, axis)
+
+    def residuals(self, P: FloatArray) -> FloatArray:
+        """Every throw's ``model - data`` on its kept samples, flat, rad/s."""
+        S, a = self.gyro(P), self.axis(P)
+        out = []
+        for k, m in enumerate(self.models):
+            Pk = self.throw_parameters(P, k)
+            out.append((self._rates(k, Pk[None], a)[0] @ S.T + Pk[9:12] - m.data)[m.keep])
+        return np.concatenate(out)
+
+    def jacobian(self, P: FloatArray) -> FloatArray:
+        """``d residuals / dP`` (dense: rows of each throw, its own columns and the shared ones)."""
+        J = np.zeros((sum(self.rows), self.n))
+        S, a = self.gyro(P), self.axis(P)
+        row = 0
+        for k, m in enumerate(self.models):
+            Pk = self.throw_parameters(P, k)
+            d = m.steps(Pk)
+            batch = np.vstack([Pk, Pk + np.diag(d)[DYNAMIC]])
+            w = self._rates(k, batch, a)
+            cols = np.einsum("ij,ctj->cti", S, (w[1:] - w[0]) / d[DYNAMIC, None, None])
+            rows = slice(row, row + self.rows[k])
+            J[rows, :6] = cols[:6, m.keep].T
+            own = self.base + self.per * k
+            J[rows, own:own + 3] = cols[6:9, m.keep].T
+            J[rows, own + 3:own + 6] = np.broadcast_to(np.eye(3), w[0].shape + (3,))[m.keep]
+            J[rows, own + 6:own + self.per] = cols[9:, m.keep].T
+            if self.sensor:
+                for c, B in enumerate(GYRO_BASIS):
+                    J[rows, 6 + c] = (w[0] @ B.T)[m.keep]
+                for c in range(2):
+                    step = np.zeros(P.size)
+                    step[11 + c] = _TILT_STEP
+                    tilted = self._rates(k, Pk[None], self.axis(P + step))[0]
+                    J[rows, 11 + c] = ((tilted - w[0]) @ S.T / _TILT_STEP)[m.keep]
+            row += self.rows[k]
+        return J
+
+    def error_columns(self, P: FloatArray) -> FloatArray:
+        """``dr/de`` for what the fit leaves to the stated uncertainties (:meth:`SensorErrors.variances`):
+        without ``sensor``, the 9 gyroscope entries and the rotor axis's 2 angles; with it, the rates'
+        common scale only."""
+        S, a = self.gyro(P), self.axis(P)
+        cols = np.zeros((sum(self.rows), 1 if self.sensor else 11))
+        row = 0
+        for k, m in enumerate(self.models):
+            Pk = self.throw_parameters(P, k)
+            w = self._rates(k, Pk[None], a)[0]
+            rows = slice(row, row + self.rows[k])
+            if self.sensor:
+                cols[rows, 0] = (w @ S.T)[m.keep]
+                row += self.rows[k]
+                continue
+            for c, (i, j) in enumerate(_ENTRIES):
+                col = np.zeros_like(w)
+                col[:, i] = w[:, j]
+                cols[rows, c] = col[m.keep]
+            for c, u in enumerate(self.normals):
+                tilted = m.omega(Pk[None], Rotation.from_rotvec(_TILT_STEP * u).apply(a))[0]
+                cols[rows, 9 + c] = ((tilted - w) / _TILT_STEP)[m.keep]
+            row += self.rows[k]
+        return cols
+
+
+#: The rotor axis's tilt for finite differences, rad.
+_TILT_STEP = 1e-4
+
+
+@dataclass(frozen=True)
+class JointFit:
+    """A joint fit's optimum and uncertainties.
+
+    Attributes
+    ----------
+    P : ndarray
+        The joint parameters (``C``, the sensors' when fitted, then each throw's own).
+    cov_P : ndarray
+        Their statistical covariance (rows and columns of parameters held on a bound are 0).
+    inertia : ndarray, shape (3, 3)
+        kg m^2 (or units of ``J_r``).
+    inertia_cov, inertia_cov_stat, inertia_cov_sensor : ndarray, shape (6, 6)
+        The tensor entries' covariance, its statistical and its sensors' (type B) parts.
+    rms : ndarray
+        Each throw's residual RMS, rad/s.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.joint import JointFit
+    >>> sorted(JointFit.__dataclass_fields__)[:3]
+    ['P', 'cov_P', 'inertia']
+    """
+
+    P: FloatArray
+    cov_P: FloatArray
+    inertia: FloatArray
+    inertia_cov: FloatArray
+    inertia_cov_stat: FloatArray
+    inertia_cov_sensor: FloatArray
+    rms: FloatArray
+
+
+def _lm(joint: JointModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
+    P = P0.copy()
+
+    def full(x: FloatArray) -> FloatArray:
+        P[free] = x
+        return P
+
+    with np.errstate(all="ignore"):
+        sol = least_squares(lambda x: joint.residuals(full(x)), P0[free], jac=lambda x: joint.jacobian(full(x))[:, free],
+                            method="lm", x_scale="jac", max_nfev=200, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+    return full(np.asarray(sol.x)).copy()
+
+
+def _drag_index(joint: JointModel) -> np.ndarray:
+    return np.concatenate([joint.base + joint.per * k + np.arange(6, 9) for k in range(len(joint.models))])
+
+
+def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = None) -> JointFit:
+    """The joint optimum from ``P0``, drag never negative (held at 0 and refitted, the active set as
+    :func:`tumble.analysis.tensor.throw.fit_flown`'s), with its uncertainties (module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import JointModel, fit_joint
+    >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+    >>> t = np.arange(2000) / 4000.0
+    >>> speed = np.where(t > 0.1, 1000.0 * (1 - np.exp(-(t - 0.1) / 0.04)), 0.0)
+    >>> rotor = rotor_input(t, speed, int(np.argmax(t > 0.1)), 2e-6, [0, 0, 1])
+    >>> I = np.array([[2e-4, 1e-5, 0.0], [1e-5, 3e-4, 0.0], [0.0, 0.0, 4e-4]])
+    >>> truth = [np.r_[cholesky_of(I), L, 0.01, -0.02, 0.0, 0, 0, 0, 3e-4] for L in ([1e-3, 2e-3, 0], [0, -2e-3, 1e-3])]
+    >>> models = [ThrowModel(t, np.zeros((2000, 3)), np.ones((2000, 3), bool), rotor) for _ in truth]
+    >>> models = [ThrowModel(t, m.sensor(P[None])[0], m.keep, rotor) for m, P in zip(models, truth)]
+    >>> joint = JointModel(models)
+    >>> fit = fit_joint(joint, joint.pack(cholesky_of(1.1 * I), [P[6:] for P in truth]), None)
+    >>> bool(np.allclose(fit.inertia, I, rtol=1e-6, atol=1e-12))
+    True
+    """
+    free = np.ones(joint.n, bool)
+    drag = _drag_index(joint)
+    P = _lm(joint, P0, free)
+    for _ in range(3):
+        neg = drag[P[drag] < 0]
+        if neg.size == 0:
+            break
+        free[neg] = False
+        P[neg] = 0.0
+        P = _lm(joint, P, free)
+    J = joint.jacobian(P)[:, free]
+    r = joint.residuals(P)
+    per_sample = np.zeros((sum(m.t.size for m in joint.models), 3))
+    keep_all = np.concatenate([m.keep for m in joint.models])
+    per_sample[keep_all] = r
+    starts = np.cumsum([0] + [m.t.size for m in joint.models])
+    cov_free, _ = effective_covariance(J, r, per_sample, list(starts))
+    cov = np.zeros((joint.n, joint.n))
+    cov[np.ix_(free, free)] = cov_free
+    G = inertia_jacobian(P[:6])
+    cov_stat = G @ cov[:6, :6] @ G.T
+    cov_sensor = np.zeros((6, 6))
+    if errors is not None:
+        E = joint.error_columns(P)
+        shift = -np.linalg.lstsq(J, E, rcond=None)[0]  # dP_free / de
+        dC = np.zeros((6, E.shape[1]))
+        dC[free[:6]] = shift[: int(np.count_nonzero(free[:6]))]
+        dI = G @ dC
+        cov_sensor = (dI * errors.variances(fitted=joint.sensor)) @ dI.T
+    bounds = np.cumsum([0] + joint.rows)
+    rms = np.array([np.sqrt(np.mean(r[a:b] ** 2)) for a, b in zip(bounds[:-1], bounds[1:])])
+    return JointFit(P, cov, inertia_of(P[:6]), cov_stat + cov_sensor, cov_stat, cov_sensor, rms)
