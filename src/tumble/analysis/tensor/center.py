@@ -23,7 +23,9 @@ Regression and Outlier Detection*, 1987, ch. 4). The air's force on the body (~0
 left to the noise.
 
 The covariance: the blocks' least-squares covariance widened by their residuals'
-autocorrelation (:func:`tumble.analysis.fit.uncertainty.effective_covariance`), plus the part
+autocorrelation (:func:`tumble.analysis.fit.uncertainty.autocorrelation_time`), or the
+delete-a-group jackknife's over stretches of the flights where it is larger (slow disturbances:
+the air's force, the rotor's imbalance, the firmware's smoothing at the rotor's switches), plus the part
 of the fitted rates' own uncertainty (their parameters' covariance through ``dr/dP``, by
 central differences; the law of propagation of uncertainty, JCGM 100:2008, sec. 5.1). The
 centre of mass from the accelerometer is ``-r``.
@@ -41,10 +43,21 @@ from ..fit.uncertainty import autocorrelation_time
 from .flight import skew
 from .model import ThrowModel
 
-__all__ = ["ACCEL_BIAS_STD", "ACCEL_BLOCK", "JOLT_FACTOR", "center_of_mass", "rate_part"]
+__all__ = ["ACCEL_BIAS_STD", "ACCEL_BLOCK", "AIR_STD", "JACKKNIFE_GROUPS", "JOLT_FACTOR", "LAGS", "center_of_mass", "rate_part"]
 
 #: Samples per block of the accelerometer's integrated reading (20 ms at 4 kHz).
 ACCEL_BLOCK = 80
+#: The lags of the firmware's smoothing tried, s: its low-pass filter delays the reading by its
+#: group delay (a second-order Butterworth at 100-200 Hz: 1-2 ms), which matters where the
+#: rotor's switches change ``w'`` fast; the model's reading is delayed by the lag that fits best.
+LAGS = np.arange(0.0, 4.01e-3, 0.5e-3)
+#: The air's force on the thrown body over its mass, m/s^2, per axis: ``rho C_d A v^2 / 2m`` ~
+#: 0.1-0.3 m/s^2 for a hand-sized body of 0.3-1 kg at 3-5 m/s (air 1.2 kg/m^3, C_d ~ 1); it
+#: turns with the body and changes with the speed, slowly: each throw's reading is taken to be
+#: off by it, a standard uncertainty (type B, JCGM 100:2008, sec. 4.3) propagated to ``r``.
+AIR_STD = 0.2
+#: The stretches of each throw's blocks that the jackknife leaves out in turn (:func:`_jackknife`).
+JACKKNIFE_GROUPS = 5
 #: A block whose residual exceeds this many times the blocks' median is left out (a jolt).
 JOLT_FACTOR = 4.0
 #: The accelerometer's bias, m/s^2: a prior standard uncertainty (a flight controller's
@@ -67,6 +80,13 @@ def _blocks(w: FloatArray, t: FloatArray, accel: FloatArray) -> tuple[FloatArray
             rows.append(np.hstack([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a]) * np.eye(3)]))
             rhs.append(F[b] - F[a])
     return np.array(rows).reshape(-1, 3, 6), np.array(rhs).reshape(-1, 3)
+
+
+def _delayed(w: FloatArray, t: FloatArray, lag: float) -> FloatArray:
+    """The rates ``lag`` s earlier (linear interpolation; held at the first sample before it)."""
+    if lag == 0.0:
+        return w
+    return np.column_stack([np.interp(t - lag, t, w[:, i]) for i in range(3)])
 
 
 def _design(rows: list[FloatArray], rhs: list[FloatArray]) -> tuple[FloatArray, FloatArray]:
@@ -111,7 +131,15 @@ def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray],
     >>> (c[:2] * 1e3).round(1).tolist(), bool(np.all(np.abs(bias) < 0.01))   # c = -r; the bias held near 0
     ([-30.0, 0.0], True)
     """
-    blocks = [_blocks(m.omega(np.asarray(P, float)[None])[0], m.t, a) for m, P, a in zip(models, Ps, accels)]
+    rates = [m.omega(np.asarray(P, float)[None])[0] for m, P in zip(models, Ps)]
+
+    def cost(lag: float) -> float:
+        A, y = _design(*zip(*[_blocks(_delayed(w, m.t, lag), m.t, a) for w, m, a in zip(rates, models, accels)]))
+        x = np.linalg.lstsq(A, y, rcond=None)[0]
+        return float(np.sum((A @ x - y) ** 2))
+
+    lag = float(LAGS[int(np.argmin([cost(x) for x in LAGS]))])
+    blocks = [_blocks(_delayed(w, m.t, lag), m.t, a) for w, m, a in zip(rates, models, accels)]
     rows, rhs = [b[0] for b in blocks], [b[1] for b in blocks]
     for _ in range(2):  # the second pass without the jolts' blocks
         A, y = _design(rows, rhs)
@@ -132,7 +160,39 @@ def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray],
     normal = A.T @ A
     normal[3:, 3:] += weight ** 2 * np.eye(3)
     cov = np.linalg.pinv(normal) * s2 * autocorrelation_time(res.reshape(-1, 3), list(counts))
+    jack = _jackknife(A, y, weight, counts)
+    if np.trace(jack[:3, :3]) > np.trace(cov[:3, :3]):
+        cov = jack
+    # the air's force: a slow offset of each throw's reading, type B, through the fit's linear response
+    inverse = np.linalg.pinv(normal)
+    for a, b in zip(3 * counts[:-1], 3 * counts[1:]):
+        offset = np.zeros((A.shape[0], 3))
+        offset[a:b] = A[a:b, 3:6]
+        shift = inverse @ (A.T @ offset)
+        cov = cov + AIR_STD ** 2 * shift @ shift.T
     return -x[:3], 0.5 * (cov[:3, :3] + cov[:3, :3].T), x[3:]
+
+
+def _jackknife(A: FloatArray, y: FloatArray, weight: float, counts: FloatArray) -> FloatArray:
+    """The delete-a-group jackknife covariance (Efron & Tibshirani, *An Introduction to the
+    Bootstrap*, 1993, ch. 11) over :data:`JACKKNIFE_GROUPS` stretches of each throw's blocks:
+    it holds what varies along a flight and from throw to throw (the air's force, the rotor's
+    imbalance, the firmware's smoothing at the rotor's switches) as the residuals' formula with
+    their short autocorrelation does not."""
+    groups = []
+    for a, b in zip(counts[:-1], counts[1:]):
+        edges = np.linspace(a, b, JACKKNIFE_GROUPS + 1).round().astype(int)
+        groups += [(3 * lo, 3 * hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi > lo]
+    if len(groups) < 3:
+        return np.zeros((6, 6))
+    xs = []
+    for lo, hi in groups:
+        keep = np.r_[0:lo, hi:A.shape[0]]
+        xs.append(_solve(A[keep], y[keep], weight))
+    xs = np.array(xs)
+    g = len(xs)
+    d = xs - xs.mean(axis=0)
+    return (g - 1) / g * d.T @ d
 
 
 def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArray, free: Sequence[int]) -> FloatArray:

@@ -23,7 +23,11 @@ optimum under a change ``de`` of the model; the implicit function theorem at the
 tensor's scale rests on the rotor's reaction, a 10-20 % change of a thrown object's momentum,
 so a 0.5 % error of the rates moves it by up to 4 %: this term dominates a single throw's
 uncertainty and is shared by all the throws of one device (it is added once, to the joint
-fit's covariance, not averaged down).
+fit's covariance, not averaged down). When the joint fit determines the gyroscope's distortion
+and the rotor's tilt (:class:`JointModel` with ``sensor``), what it cannot see is left: the
+rates' common scale, and the turn of the gyroscope's axes from the sensor frame (the
+misalignment's antisymmetric part, std ``gyro_misalignment / sqrt 2`` about each axis), which
+turns the tensor with them: ``dI = [e]x I - I [e]x``.
 """
 
 from __future__ import annotations
@@ -37,6 +41,8 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
+from .estimate import vector_of
+from .flight import skew
 from .model import DYNAMIC, ThrowModel, inertia_jacobian, inertia_of
 
 __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
@@ -336,6 +342,10 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
         dC[free[:6]] = shift[: int(np.count_nonzero(free[:6]))]
         dI = G @ dC
         cov_sensor = (dI * errors.variances(fitted=joint.sensor)) @ dI.T
+        if joint.sensor:  # the gyroscope's axes turned from the sensor frame: the tensor turns with them
+            I = inertia_of(P[:6])
+            turns = np.array([vector_of(skew(e) @ I - I @ skew(e)) for e in np.eye(3)]).T
+            cov_sensor = cov_sensor + turns @ turns.T * errors.gyro_misalignment ** 2 / 2.0
     bounds = np.cumsum([0] + joint.rows)
     rms = np.array([np.sqrt(np.mean(r[a:b] ** 2)) for a, b in zip(bounds[:-1], bounds[1:])])
     return JointFit(P, cov, inertia_of(P[:6]), cov_stat + cov_sensor, cov_stat, cov_sensor, rms)
