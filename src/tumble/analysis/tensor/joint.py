@@ -2,7 +2,7 @@
 
 The throws of one object with the device fixed to it fly one rigid body: one tensor about one
 centre of mass. :class:`JointModel` fits them together: the tensor's ``C`` (6, shared) and, per
-throw, ``L(t_0)``, the gyroscope's bias, the per-axis drag and the rotor log's lag (10 each), each throw's samples
+throw, ``L(t_0)``, the gyroscope's bias, the per-axis drag, the rotor log's lag and its drag (11 each), each throw's samples
 predicted by its own :class:`~tumble.analysis.tensor.model.ThrowModel` (the gyrostat's momentum
 form with its measured rotor). One throw is the case of a single-throw fit, so a throw's own
 estimate and the pooled one come from the same code. The centre of mass is likewise one
@@ -43,7 +43,7 @@ from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
 from .estimate import vector_of
 from .flight import skew
-from .model import DYNAMIC, ThrowModel, inertia_jacobian, inertia_of
+from .model import DYNAMIC, NONNEGATIVE, ThrowModel, inertia_jacobian, inertia_of
 
 __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
 
@@ -113,8 +113,8 @@ class JointModel:
 
     Parameters: ``C`` (6); with ``sensor``, the gyroscope's trace-free symmetric distortion (5:
     :data:`GYRO_BASIS`) and the rotor axis's tilt from its nominal (2 angles about the two
-    axes normal to it, rad); then for each throw ``L(t_0)``, bias, drag, lag (10). Residuals
-    are the throws' in order.
+    axes normal to it, rad); then for each throw ``L(t_0)``, bias, drag, the rotor's lag and
+    drag (11). Residuals are the throws' in order.
 
     What the joint fit determines of the sensors: the gyroscope's misalignment has a symmetric
     part (a distortion of the rates) and an antisymmetric one (a turn of the gyroscope's axes
@@ -133,8 +133,8 @@ class JointModel:
     >>> rotor = rotor_input(t, np.full(400, 1e3), 0, 1e-6, [0, 0, 1])
     >>> models = [ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor) for _ in range(2)]
     >>> joint = JointModel(models, sensor=True)
-    >>> joint.n, joint.throw_parameters(np.arange(33.0), 1).tolist()[6:]
-    (33, [23.0, 24.0, 25.0, 26.0, 27.0, 28.0, 29.0, 30.0, 31.0, 32.0])
+    >>> joint.n, joint.throw_parameters(np.arange(35.0), 1).tolist()[6:]
+    (35, [24.0, 25.0, 26.0, 27.0, 28.0, 29.0, 30.0, 31.0, 32.0, 33.0, 34.0])
     """
 
     def __init__(self, models: Sequence[ThrowModel], sensor: bool = False) -> None:
@@ -289,12 +289,16 @@ def _lm(joint: JointModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
 
 
 def _drag_index(joint: JointModel) -> np.ndarray:
-    return np.concatenate([joint.base + joint.per * k + np.arange(6, 9) for k in range(len(joint.models))])
+    """The joint vector's drags (held non-negative: :data:`~tumble.analysis.tensor.model.NONNEGATIVE`)."""
+    own = NONNEGATIVE[NONNEGATIVE < joint.models[0].n] - 6
+    return np.concatenate([joint.base + joint.per * k + own for k in range(len(joint.models))])
 
 
-def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = None) -> JointFit:
+def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = None,
+              held: np.ndarray | None = None) -> JointFit:
     """The joint optimum from ``P0``, drag never negative (held at 0 and refitted, the active set as
-    :func:`tumble.analysis.tensor.throw.fit_flown`'s), with its uncertainties (module docstring).
+    :func:`tumble.analysis.tensor.throw.fit_flown`'s), with its uncertainties (module docstring);
+    the parameters ``held`` (a mask) stay at ``P0``'s values.
 
     Examples
     --------
@@ -305,7 +309,7 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     >>> speed = np.where(t > 0.1, 1000.0 * (1 - np.exp(-(t - 0.1) / 0.04)), 0.0)
     >>> rotor = rotor_input(t, speed, int(np.argmax(t > 0.1)), 2e-6, [0, 0, 1])
     >>> I = np.array([[2e-4, 1e-5, 0.0], [1e-5, 3e-4, 0.0], [0.0, 0.0, 4e-4]])
-    >>> truth = [np.r_[cholesky_of(I), L, 0.01, -0.02, 0.0, 0, 0, 0, 3e-4] for L in ([1e-3, 2e-3, 0], [0, -2e-3, 1e-3])]
+    >>> truth = [np.r_[cholesky_of(I), L, 0.01, -0.02, 0.0, 0, 0, 0, 3e-4, 0] for L in ([1e-3, 2e-3, 0], [0, -2e-3, 1e-3])]
     >>> models = [ThrowModel(t, np.zeros((2000, 3)), np.ones((2000, 3), bool), rotor) for _ in truth]
     >>> models = [ThrowModel(t, m.sensor(P[None])[0], m.keep, rotor) for m, P in zip(models, truth)]
     >>> joint = JointModel(models)
@@ -313,7 +317,7 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     >>> bool(np.allclose(fit.inertia, I, rtol=1e-6, atol=1e-12))
     True
     """
-    free = np.ones(joint.n, bool)
+    free = np.ones(joint.n, bool) if held is None else ~np.asarray(held, bool)
     drag = _drag_index(joint)
     P = _lm(joint, P0, free)
     for _ in range(3):

@@ -15,11 +15,10 @@
 4. A throw whose own estimate lies more than :data:`OUTLIER_SIGMA` standard uncertainties from
    the joint one (in its principal moments) is left out, naming that, and the rest refitted (3
    or more throws: with two, neither can be called the outlier).
-5. ``chi^2 / dof`` of one tensor for all the throws against each its own (:func:`agreement`,
-   the likelihood ratio of the nested fits): above 1, the throws disagree beyond their noise,
-   and the joint covariance is multiplied by it (the Birge ratio, as the ratio fit pools its
-   flights). The throws' own estimates are not compared by their covariances: each is shifted
-   by the gyroscope's distortion, differently for each spin, which the joint fit removes.
+5. ``chi^2 / dof`` of the throws' own estimates about the joint ones (:func:`agreement`, each
+   throw refitted with the sensors held at the joint fit's): above 1, the throws disagree
+   beyond their uncertainties, and the joint covariance is multiplied by it (the Birge ratio,
+   as the ratio fit pools its flights).
 
 Systematic parts common to all the throws beyond the sensors' (the rotor's inertia, the
 device's own tensor) are added by the caller: averaging does not reduce them.
@@ -38,7 +37,7 @@ from ..fit.uncertainty import birge_chi2
 from .center import center_of_mass
 from .device import Throw
 from .estimate import principal_uncertainty, vector_of
-from .joint import JointModel, SensorErrors, fit_joint
+from .joint import JointFit, JointModel, SensorErrors, fit_joint
 from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
 
@@ -215,29 +214,37 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None):
     return joint, fit_joint(joint, joint.pack(C0, rest), errors)
 
 
-def agreement(fits: Sequence[FlownFit], joint_rms: FloatArray, rows: Sequence[int]) -> float:
-    """``chi^2 / dof`` of one tensor for all the throws against each its own: the rise of the
-    residuals' sum of squares from the throws' own fits to the joint one, each throw's in units
-    of its own residual variance times its autocorrelation time (the likelihood-ratio statistic
-    of nested least-squares fits, ``chi^2`` on the ``6 (K - 1)`` tensor entries that sharing
-    saves; e.g. Seber & Wild, *Nonlinear Regression*, 1989, sec. 5.3), over those degrees of
-    freedom; NaN for one throw. About 1 (or below: the joint fit also frees the sensors) when
-    the throws are of one rigid body; well above, when they are not (the mount moved, another
-    object).
+def agreement(joint: JointModel, jf: JointFit, fits: Sequence[FlownFit], center: FloatArray) -> float:
+    """``chi^2 / dof`` of the throws' own tensors and centres of mass about the joint ones, each
+    throw refitted alone with the sensors held at the joint fit's values (so that the estimates
+    differ by what varies from throw to throw, not by the gyroscope's distortion, which shifts a
+    lone throw's tensor differently for each spin), with its statistical covariance; NaN for one
+    throw. About 1 when the throws are of one rigid body; well above, when they are not (the
+    mount moved, another object), or when something the model leaves out varies between throws.
 
     Examples
     --------
     >>> from tumble.analysis.tensor.pool import agreement
-    >>> agreement([], [], [])
+    >>> agreement(None, None, [None], None)
     nan
     """
     if len(fits) < 2:
         return float("nan")
-    chi2 = 0.0
-    for f, rms, n in zip(fits, joint_rms, rows):
-        var = max(f.residual_rms, 1e-300) ** 2
-        chi2 += n * (float(rms) ** 2 - var) / (var * max(f.tau, 1.0))
-    return max(chi2, 0.0) / (6 * (len(fits) - 1))
+    values, covs = [], []
+    target = np.r_[vector_of(jf.inertia), center]
+    for k, f in enumerate(fits):
+        one = JointModel([f.model], sensor=joint.sensor)  # type: ignore[list-item]
+        P0 = np.r_[jf.P[:joint.base], joint.throw_parameters(jf.P, k)[6:]]
+        held = np.zeros(one.n, bool)
+        held[6:one.base] = True
+        own = fit_joint(one, P0, None, held)
+        c, c_cov, _ = center_of_mass([f.model], [one.throw_parameters(own.P, 0)], [f.accel])  # type: ignore[list-item]
+        cov = np.zeros((9, 9))
+        cov[:6, :6], cov[6:, 6:] = own.inertia_cov_stat, c_cov
+        values.append(np.r_[vector_of(own.inertia), c])
+        covs.append(cov)
+    chi2 = sum(float((v - target) @ np.linalg.pinv(C) @ (v - target)) for v, C in zip(values, covs))
+    return chi2 / (9 * (len(fits) - 1))
 
 
 def _outlier(fits: list[FlownFit], inertia: FloatArray) -> tuple[int, float]:
@@ -332,7 +339,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     center_cov = center_cov + np.linalg.pinv(sum(np.linalg.pinv(f.center_cov_rates) for f in chosen))
     I = vector_of(jf.inertia)
     cov_I = jf.inertia_cov
-    chi2_dof = agreement(chosen, jf.rms, joint.rows)
-    if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their noise: Birge
+    chi2_dof = agreement(joint, jf, chosen, center)
+    if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their uncertainties: Birge
         cov_I, center_cov = cov_I * chi2_dof, center_cov * chi2_dof
     return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True), fits

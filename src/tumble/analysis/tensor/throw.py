@@ -45,7 +45,7 @@ from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
 from .joint import JointModel, SensorErrors, fit_joint
-from .model import RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input
+from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input
 
 __all__ = ["BLOCK", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
@@ -173,11 +173,12 @@ def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
     """The least-squares optimum with the drag never negative (module docstring of :mod:`~tumble.analysis.tensor.model`)."""
     free = np.ones(model.n, bool)
     P = _lm(model, P0, free)
+    held = NONNEGATIVE[NONNEGATIVE < model.n]
     for _ in range(3):
-        if not (model.drag and np.any(P[12:15] < 0)):
+        if not np.any(P[held] < 0):
             break
-        free[12:15] &= P[12:15] >= 0
-        P[12:15] = np.maximum(P[12:15], 0.0)
+        free[held] &= P[held] >= 0
+        P[held] = np.maximum(P[held], 0.0)
         P = _lm(model, P, free)
     return P
 

@@ -8,7 +8,10 @@ sec. 5.3; :mod:`tumble.dynamics.models.rotors`)::
 
     L' = L x w + tau,     w = I^-1 (L - h(t)),
 
-with a per-axis quadratic air drag ``tau_i = -b_i |w_i| w_i`` (:mod:`tumble.dynamics.models.drag`).
+with a per-axis quadratic air drag ``tau_i = -b_i |w_i| w_i`` (:mod:`tumble.dynamics.models.drag`)
+and, optionally, a torque whose profile ``g(t)`` is known and whose size ``k`` is a parameter,
+``tau = k g(t)`` (the air's drag on a spinning rotor, ``-k Omega_r |Omega_r| a``, an external
+torque on the whole: the motor holds the rotor's speed against it).
 In this momentum form the rotor enters through ``h`` alone, never its derivative ``h'``: a
 measured rotor speed need not be differentiated (its noise would be amplified by the inverse
 of the sample interval).
@@ -37,16 +40,17 @@ __all__ = ["gyrostat_omega"]
 _drag = drag_component  # compiled by _compiled(), with the kernels that call it
 
 
-def _rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, w: FloatArray, out: FloatArray) -> None:
+def _rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, g: FloatArray, k: float, w: FloatArray,
+          out: FloatArray) -> None:
     for i in range(3):
         w[i] = Iinv[i, 0] * (L[0] - h[0]) + Iinv[i, 1] * (L[1] - h[1]) + Iinv[i, 2] * (L[2] - h[2])
-    out[0] = L[1] * w[2] - L[2] * w[1] + _drag(0.0, quad[0], w[0])
-    out[1] = L[2] * w[0] - L[0] * w[2] + _drag(0.0, quad[1], w[1])
-    out[2] = L[0] * w[1] - L[1] * w[0] + _drag(0.0, quad[2], w[2])
+    out[0] = L[1] * w[2] - L[2] * w[1] + _drag(0.0, quad[0], w[0]) + k * g[0]
+    out[1] = L[2] * w[0] - L[0] * w[2] + _drag(0.0, quad[1], w[1]) + k * g[1]
+    out[2] = L[0] * w[1] - L[1] * w[0] + _drag(0.0, quad[2], w[2]) + k * g[2]
 
 
 def _integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray, h: FloatArray,
-               hmid: FloatArray) -> FloatArray:
+               hmid: FloatArray, g: FloatArray, gmid: FloatArray, scale: FloatArray) -> FloatArray:
     K = Iinv.shape[0]
     T = t.shape[0]
     out = np.empty((K, T, 3))
@@ -55,19 +59,20 @@ def _integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray
     for b in range(K):
         for c in range(3):
             L[c] = L0[b, c]
+        k = scale[b]
         for j in range(T):
             if j > 0:
                 dt = t[j] - t[j - 1]
-                _rate(Iinv[b], quad[b], L, h[j - 1], w, k1)
+                _rate(Iinv[b], quad[b], L, h[j - 1], g[j - 1], k, w, k1)
                 for c in range(3):
                     tmp[c] = L[c] + 0.5 * dt * k1[c]
-                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], w, k2)
+                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k2)
                 for c in range(3):
                     tmp[c] = L[c] + 0.5 * dt * k2[c]
-                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], w, k3)
+                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k3)
                 for c in range(3):
                     tmp[c] = L[c] + dt * k3[c]
-                _rate(Iinv[b], quad[b], tmp, h[j], w, k4)
+                _rate(Iinv[b], quad[b], tmp, h[j], g[j], k, w, k4)
                 for c in range(3):
                     L[c] += dt / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
             for i in range(3):
@@ -88,7 +93,8 @@ def _compiled() -> Callable[..., FloatArray]:
 
 
 def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: ArrayLike, h_mid: ArrayLike,
-                   quadratic: ArrayLike | None = None) -> FloatArray:
+                   quadratic: ArrayLike | None = None, torque: tuple[ArrayLike, ArrayLike] | None = None,
+                   torque_scale: ArrayLike | None = None) -> FloatArray:
     """Angular velocity of ``K`` gyrostats at the sample times (module docstring), body frame.
 
     Parameters
@@ -105,6 +111,10 @@ def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: Ar
         The same at the midpoints of the intervals.
     quadratic : array_like, shape (K, 3), optional
         Per-axis quadratic drag ``b_i``, N m s^2 (default 0).
+    torque : (array_like, array_like), shapes (T, 3) and (T - 1, 3), optional
+        A torque's profile ``g`` at the samples and the midpoints (its unit over that of ``k``).
+    torque_scale : array_like, shape (K,), optional
+        Its size ``k`` for each gyrostat: the torque is ``k g(t)``, N m (default 0).
 
     Returns
     -------
@@ -125,6 +135,14 @@ def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: Ar
     >>> w = gyrostat_omega(I[None], np.zeros((1, 3)), t, h, hm)
     >>> bool(np.allclose(w[0] @ I, -h, atol=1e-14))
     True
+
+    A steady torque ``k g`` along z on a body at rest with no rotor: ``L_z = k g t`` (RK4 is exact
+    for a linear rise):
+
+    >>> g = np.tile([0.0, 0.0, 1.0], (101, 1))
+    >>> w = gyrostat_omega(I[None], np.zeros((1, 3)), t, 0 * h, 0 * hm, torque=(g, g[:-1]), torque_scale=[0.5])
+    >>> bool(np.allclose((w[0] @ I)[:, 2], 0.5 * t, atol=1e-12))
+    True
     """
     I = np.ascontiguousarray(np.asarray(inertia, float).reshape(-1, 3, 3))
     K = I.shape[0]
@@ -137,4 +155,11 @@ def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: Ar
     if hs.shape != (times.size, 3) or hm.shape != (max(times.size - 1, 0), 3):
         raise ValueError(f"h must have shape ({times.size}, 3) and h_mid ({times.size - 1}, 3), not {hs.shape} "
                          f"and {hm.shape}")
-    return _compiled()(np.linalg.inv(I), L0, quad, times, hs, hm)
+    if torque is None:
+        g, gm, k = np.zeros_like(hs), np.zeros_like(hm), np.zeros(K)
+    else:
+        g, gm = (np.ascontiguousarray(np.asarray(x, float)) for x in torque)
+        k = np.ascontiguousarray(np.broadcast_to(np.asarray(0.0 if torque_scale is None else torque_scale, float), (K,)))
+        if g.shape != hs.shape or gm.shape != hm.shape:
+            raise ValueError(f"torque must have the shapes of h and h_mid, not {g.shape} and {gm.shape}")
+    return _compiled()(np.linalg.inv(I), L0, quad, times, hs, hm, g, gm, k)
