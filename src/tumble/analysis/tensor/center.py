@@ -9,7 +9,7 @@ blocks of :data:`ACCEL_BLOCK` samples,
     ``integral f dt = (w_b - w_a) x r + integral w x (w x r) dt + b_a (t_b - t_a)``,
 
 so that ``w'`` is never needed (it would need the rotor's ``h'``), the reading is linear in
-``r`` and the bias: linear least squares, the bias held near 0 by its prior uncertainty
+``r``, the bias and the air's drag (:data:`AIR_STD`): linear least squares, the bias held near 0 by its prior uncertainty
 :data:`ACCEL_BIAS_STD` (a Gaussian prior as extra rows: Tarantola, *Inverse Problem Theory*,
 2005, ch. 3). Several throws of one rigid mount share ``r`` and the accelerometer's bias (one
 sensor through one session).
@@ -38,24 +38,32 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
+from scipy.spatial.transform import Rotation
+
 from ...typing import FloatArray
+from ..fit.accelsynth import attitude_from_rates
 from ..fit.uncertainty import autocorrelation_time
 from .flight import skew
 from .model import ThrowModel
 
-__all__ = ["ACCEL_BIAS_STD", "ACCEL_BLOCK", "AIR_STD", "JACKKNIFE_GROUPS", "JOLT_FACTOR", "LAGS", "center_of_mass", "rate_part"]
+__all__ = ["ACCEL_BIAS_STD", "ACCEL_BLOCK", "AIR_STD", "JACKKNIFE_GROUPS", "CUTOFFS", "JOLT_FACTOR", "center_of_mass", "rate_part"]
 
 #: Samples per block of the accelerometer's integrated reading (20 ms at 4 kHz).
 ACCEL_BLOCK = 80
-#: The lags of the firmware's smoothing tried, s: its low-pass filter delays the reading by its
-#: group delay (a second-order Butterworth at 100-200 Hz: 1-2 ms), which matters where the
-#: rotor's switches change ``w'`` fast; the model's reading is delayed by the lag that fits best.
-LAGS = np.arange(0.0, 4.01e-3, 0.5e-3)
-#: The air's force on the thrown body over its mass, m/s^2, per axis: ``rho C_d A v^2 / 2m`` ~
-#: 0.1-0.3 m/s^2 for a hand-sized body of 0.3-1 kg at 3-5 m/s (air 1.2 kg/m^3, C_d ~ 1); it
-#: turns with the body and changes with the speed, slowly: each throw's reading is taken to be
-#: off by it, a standard uncertainty (type B, JCGM 100:2008, sec. 4.3) propagated to ``r``.
-AIR_STD = 0.2
+#: The cut-offs of the firmware's smoothing of the accelerometer tried, Hz (infinite: none): a flight
+#: controller logs its low-passed accelerometer, which lags and rounds the reading where the rotor's
+#: switches change ``w'`` fast; the model's reading is smoothed by the second-order low-pass
+#: (:func:`_smoothed`) whose cut-off fits best.
+CUTOFFS = (np.inf, 400.0, 300.0, 200.0, 150.0, 100.0, 70.0, 50.0)
+#: The air's drag on the thrown body over its mass, m/s^2, a prior standard uncertainty per axis:
+#: ``rho C_d A v^2 / 2m`` ~ 0.1-0.5 m/s^2 for a hand-sized body of 0.3-1 kg at 3-5 m/s (air
+#: 1.2 kg/m^3, C_d ~ 1). It is fixed in the world and turns in the body frame as the body
+#: tumbles, so it looks like a centripetal reading: fitted, a force linear in time in the
+#: frame of the flight's start (the attitude integrated from the fitted rates).
+AIR_STD = 0.3
+#: The time over which the air's drag may change by its own size, s (the speed halves and turns
+#: over a throw's apex).
+AIR_TIME = 0.3
 #: The stretches of each throw's blocks that the jackknife leaves out in turn (:func:`_jackknife`).
 JACKKNIFE_GROUPS = 5
 #: A block whose residual exceeds this many times the blocks' median is left out (a jolt).
@@ -68,42 +76,71 @@ ACCEL_BIAS_STD = 0.2
 _RANGE = 15.9 * 9.80665  # a reading this large may be clipped (the 16 g range)
 
 
-def _blocks(w: FloatArray, t: FloatArray, accel: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """One throw's block rows ``(B, 3, 6)`` (``r``'s and the bias's columns) and right-hand sides ``(B, 3)``."""
-    good = np.all(np.abs(accel) < _RANGE, axis=1)
-    Q = cumulative_trapezoid(skew(w) @ skew(w), t, axis=0, initial=0.0)
+def _blocks(w: FloatArray, t: FloatArray, accel: FloatArray, cutoff: float) -> tuple[FloatArray, FloatArray]:
+    """One throw's block rows ``(B, 3, 12)`` (the columns of ``r``, the bias, the air's force and its
+    rate) and right-hand sides ``(B, 3)``, the model's reading smoothed as the firmware's (:func:`_smoothed`)."""
+    bad = np.r_[0, np.cumsum(~np.all(np.abs(accel) < _RANGE, axis=1))]  # clipped samples up to each index
+    W = skew(w)
+    to_body = Rotation.from_quat(attitude_from_rates(t, w)).inv().as_matrix()  # world (the flight's start) to body
+    mid = 0.5 * (t[0] + t[-1])
+    air = np.concatenate([to_body, (t - mid)[:, None, None] * to_body], axis=2)
+    Q = cumulative_trapezoid(_smoothed((W @ W).reshape(-1, 9), t, cutoff).reshape(-1, 3, 3), t, axis=0, initial=0.0)
+    R = cumulative_trapezoid(air, t, axis=0, initial=0.0)
     F = cumulative_trapezoid(accel, t, axis=0, initial=0.0)
-    rows, rhs = [], []
-    for a in range(0, t.size - ACCEL_BLOCK, ACCEL_BLOCK):
-        b = a + ACCEL_BLOCK
-        if good[a:b + 1].all():
-            rows.append(np.hstack([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a]) * np.eye(3)]))
-            rhs.append(F[b] - F[a])
-    return np.array(rows).reshape(-1, 3, 6), np.array(rhs).reshape(-1, 3)
+    w = _smoothed(w, t, cutoff)
+    a = np.arange(0, t.size - ACCEL_BLOCK, ACCEL_BLOCK)
+    b = a + ACCEL_BLOCK
+    a, b = a[bad[b + 1] == bad[a]], b[bad[b + 1] == bad[a]]  # blocks with no clipped sample
+    rows = np.concatenate([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a])[:, None, None] * np.eye(3), R[b] - R[a]],
+                          axis=2)
+    return rows, F[b] - F[a]
 
 
-def _delayed(w: FloatArray, t: FloatArray, lag: float) -> FloatArray:
-    """The rates ``lag`` s earlier (linear interpolation; held at the first sample before it)."""
-    if lag == 0.0:
-        return w
-    return np.column_stack([np.interp(t - lag, t, w[:, i]) for i in range(3)])
+def _smoothed(x: FloatArray, t: FloatArray, cutoff: float) -> FloatArray:
+    """``x`` (samples in rows) through a second-order Butterworth low-pass at ``cutoff`` Hz
+    (:func:`scipy.signal.butter`, run forward from rest at the first sample, at the median sample
+    rate); unchanged for an infinite cutoff. The filter is linear and its gain 1 at 0 Hz, so
+    smoothing the model's columns smooths its reading ``M r + b`` as the firmware smooths the
+    sensor's."""
+    if not np.isfinite(cutoff):
+        return x
+    from scipy.signal import butter, lfilter, lfilter_zi
+
+    fs = 1.0 / float(np.median(np.diff(t)))
+    b, a = butter(2, min(cutoff, 0.45 * fs), fs=fs)
+    return lfilter(b, a, x, axis=0, zi=lfilter_zi(b, a)[:, None] * x[:1])[0]
 
 
-def _design(rows: list[FloatArray], rhs: list[FloatArray]) -> tuple[FloatArray, FloatArray]:
-    """The stacked blocks: columns ``r`` (3) and the shared bias (3)."""
-    return np.vstack([R.reshape(-1, 6) for R in rows]), np.concatenate([y.ravel() for y in rhs])
+def _design(rows: Sequence[FloatArray], rhs: Sequence[FloatArray]) -> tuple[FloatArray, FloatArray]:
+    """The stacked blocks: columns ``r`` (3), the shared bias (3), then each throw's air (6)."""
+    K = len(rows)
+    A = np.zeros((sum(3 * len(R) for R in rows), 6 + 6 * K))
+    at = 0
+    for k, R in enumerate(rows):
+        m = 3 * len(R)
+        A[at:at + m, :6] = R[:, :, :6].reshape(m, 6)
+        A[at:at + m, 6 + 6 * k:12 + 6 * k] = R[:, :, 6:].reshape(m, 6)
+        at += m
+    return A, np.concatenate([y.ravel() for y in rhs])
 
 
-def _solve(A: FloatArray, y: FloatArray, weight: float) -> FloatArray:
-    """Least squares with the bias's prior rows ``weight x b = 0``."""
-    prior = np.hstack([np.zeros((3, 3)), weight * np.eye(3)])
-    return np.linalg.lstsq(np.vstack([A, prior]), np.r_[y, np.zeros(3)], rcond=None)[0]
+def _priors(K: int, s: float) -> FloatArray:
+    """The prior rows' weights (module docstring) for residuals of std ``s``: none on ``r``, the
+    bias's :data:`ACCEL_BIAS_STD`, each throw's air :data:`AIR_STD` and its rate over :data:`AIR_TIME`."""
+    air = np.tile(np.r_[np.full(3, AIR_STD), np.full(3, AIR_STD / AIR_TIME)], K)
+    return np.r_[np.zeros(3), s / np.r_[np.full(3, ACCEL_BIAS_STD), air]]
 
 
-def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray],
-                   accels: Sequence[FloatArray]) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """The centre of mass shared by one or more throws (module docstring): ``(c, cov_c, b_a)`` in
-    m, m^2 and m/s^2, without the rates' part (:func:`rate_part`).
+def _solve(A: FloatArray, y: FloatArray, weights: FloatArray) -> FloatArray:
+    """Least squares with the prior rows ``weights_j x_j = 0``."""
+    return np.linalg.lstsq(np.vstack([A, np.diag(weights)]), np.r_[y, np.zeros(weights.size)], rcond=None)[0]
+
+
+def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray], accels: Sequence[FloatArray],
+                   cutoff: float | None = None) -> tuple[FloatArray, FloatArray, FloatArray, float]:
+    """The centre of mass shared by one or more throws (module docstring): ``(c, cov_c, b_a,
+    cutoff)`` in m, m^2, m/s^2 and Hz, without the rates' part (:func:`rate_part`); the
+    firmware's smoothing found (:data:`CUTOFFS`) unless given.
 
     Parameters
     ----------
@@ -123,81 +160,72 @@ def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray],
     >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
     >>> t = np.arange(2000) / 4000.0
     >>> m = ThrowModel(t, np.zeros((2000, 3)), np.ones((2000, 3), bool), rotor_input(t, np.zeros(2000), 0, 1e-6, [0, 0, 1]))
-    >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 0.0, 0.0, 4e-3, np.zeros(6)]   # 10 rad/s about z
+    >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 0.0, 0.0, 4e-3, np.zeros(8)]   # 10 rad/s about z
     >>> r = np.array([0.03, 0.0, 0.0])
     >>> w = m.omega(P[None])[0]
     >>> f = np.cross(w, np.cross(w, r)) + np.random.default_rng(0).normal(0.0, 0.1, (2000, 3))
-    >>> c, cov, bias = center_of_mass([m], [P], [f])
-    >>> (c[:2] * 1e3).round(1).tolist(), bool(np.all(np.abs(bias) < 0.01))   # c = -r; the bias held near 0
-    ([-30.0, 0.0], True)
+    >>> c, cov, bias, cutoff = center_of_mass([m], [P], [f])
+    >>> (c[:2] * 1e3).round(1).tolist()[0], bool(abs(c[1]) < 1e-4), bool(np.all(np.abs(bias) < 0.01))   # c = -r
+    (-30.0, True, True)
     """
     rates = [m.omega(np.asarray(P, float)[None])[0] for m, P in zip(models, Ps)]
+    K = len(models)
 
-    def cost(lag: float) -> float:
-        A, y = _design(*zip(*[_blocks(_delayed(w, m.t, lag), m.t, a) for w, m, a in zip(rates, models, accels)]))
-        x = np.linalg.lstsq(A, y, rcond=None)[0]
+    def cost(fc: float) -> float:
+        A, y = _design(*zip(*[_blocks(w, m.t, a, fc) for w, m, a in zip(rates, models, accels)]))
+        x = _solve(A, y, _priors(K, 0.01))
         return float(np.sum((A @ x - y) ** 2))
 
-    lag = float(LAGS[int(np.argmin([cost(x) for x in LAGS]))])
-    blocks = [_blocks(_delayed(w, m.t, lag), m.t, a) for w, m, a in zip(rates, models, accels)]
+    if cutoff is None:
+        cutoff = float(CUTOFFS[int(np.argmin([cost(fc) for fc in CUTOFFS]))])
+    blocks = [_blocks(w, m.t, a, cutoff) for w, m, a in zip(rates, models, accels)]
     rows, rhs = [b[0] for b in blocks], [b[1] for b in blocks]
     for _ in range(2):  # the second pass without the jolts' blocks
         A, y = _design(rows, rhs)
         x = np.linalg.lstsq(A, y, rcond=None)[0]
         res = A @ x - y
-        s = float(np.sqrt(res @ res / max(res.size - 6, 1)))
-        weight = s / ACCEL_BIAS_STD  # a prior row of residual std s: the bias's std ACCEL_BIAS_STD
-        x = _solve(A, y, weight)
+        s = float(np.sqrt(res @ res / max(res.size - A.shape[1], 1)))
+        weights = _priors(K, s)  # prior rows of residual std s
+        x = _solve(A, y, weights)
         norms = np.linalg.norm((A @ x - y).reshape(-1, 3), axis=1)
         kept = np.split(norms <= JOLT_FACTOR * float(np.median(norms)), np.cumsum([len(r) for r in rows])[:-1])
-        if all(k.all() for k in kept) or not all(k.sum() >= 2 for k in kept):
+        if all(k.all() for k in kept) or not all(k.sum() >= 4 for k in kept):
             break
         rows = [r[k] for r, k in zip(rows, kept)]
         rhs = [y_[k] for y_, k in zip(rhs, kept)]
     res = A @ x - y
     counts = np.r_[0, np.cumsum([len(r) for r in rows])]
     s2 = float(res @ res) / max(res.size - 6, 1)
-    normal = A.T @ A
-    normal[3:, 3:] += weight ** 2 * np.eye(3)
+    normal = A.T @ A + np.diag(weights ** 2)
     cov = np.linalg.pinv(normal) * s2 * autocorrelation_time(res.reshape(-1, 3), list(counts))
-    jack = _jackknife(A, y, weight, counts)
+    jack = _jackknife(A, y, weights, counts)
     if np.trace(jack[:3, :3]) > np.trace(cov[:3, :3]):
         cov = jack
-    # the air's force: a slow offset of each throw's reading, type B, through the fit's linear response
-    inverse = np.linalg.pinv(normal)
-    for a, b in zip(3 * counts[:-1], 3 * counts[1:]):
-        offset = np.zeros((A.shape[0], 3))
-        offset[a:b] = A[a:b, 3:6]
-        shift = inverse @ (A.T @ offset)
-        cov = cov + AIR_STD ** 2 * shift @ shift.T
-    return -x[:3], 0.5 * (cov[:3, :3] + cov[:3, :3].T), x[3:]
+    return -x[:3], 0.5 * (cov[:3, :3] + cov[:3, :3].T), x[3:6], cutoff
 
 
-def _jackknife(A: FloatArray, y: FloatArray, weight: float, counts: FloatArray) -> FloatArray:
+def _jackknife(A: FloatArray, y: FloatArray, weights: FloatArray, counts: FloatArray) -> FloatArray:
     """The delete-a-group jackknife covariance (Efron & Tibshirani, *An Introduction to the
     Bootstrap*, 1993, ch. 11) over :data:`JACKKNIFE_GROUPS` stretches of each throw's blocks:
-    it holds what varies along a flight and from throw to throw (the air's force, the rotor's
-    imbalance, the firmware's smoothing at the rotor's switches) as the residuals' formula with
-    their short autocorrelation does not."""
+    it holds what varies along a flight and from throw to throw (the rotor's imbalance, the
+    firmware's smoothing at the rotor's switches) as the residuals' formula with their short
+    autocorrelation does not."""
     groups = []
     for a, b in zip(counts[:-1], counts[1:]):
         edges = np.linspace(a, b, JACKKNIFE_GROUPS + 1).round().astype(int)
         groups += [(3 * lo, 3 * hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi > lo]
     if len(groups) < 3:
-        return np.zeros((6, 6))
-    xs = []
-    for lo, hi in groups:
-        keep = np.r_[0:lo, hi:A.shape[0]]
-        xs.append(_solve(A[keep], y[keep], weight))
-    xs = np.array(xs)
+        return np.zeros((A.shape[1], A.shape[1]))
+    xs = np.array([_solve(A[np.r_[0:lo, hi:A.shape[0]]], y[np.r_[0:lo, hi:A.shape[0]]], weights) for lo, hi in groups])
     g = len(xs)
     d = xs - xs.mean(axis=0)
     return (g - 1) / g * d.T @ d
 
 
-def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArray, free: Sequence[int]) -> FloatArray:
+def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArray, free: Sequence[int],
+              cutoff: float = np.inf) -> FloatArray:
     """The centre's covariance from one throw's fitted rates': ``G cov G^T``, ``G = dc/dP`` by central
-    differences over the parameters ``free`` (indices into ``P``; ``cov`` theirs).
+    differences over the parameters ``free`` (indices into ``P``; ``cov`` theirs), at the firmware's ``cutoff``.
 
     Examples
     --------
@@ -210,5 +238,6 @@ def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArr
     for col, k in enumerate(free):
         e = np.zeros(P.size)
         e[k] = d[k]
-        G[:, col] = (center_of_mass([model], [P + e], [accel])[0] - center_of_mass([model], [P - e], [accel])[0]) / (2 * d[k])
+        G[:, col] = (center_of_mass([model], [P + e], [accel], cutoff)[0]
+                     - center_of_mass([model], [P - e], [accel], cutoff)[0]) / (2 * d[k])
     return G @ cov @ G.T

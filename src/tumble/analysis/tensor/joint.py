@@ -295,10 +295,11 @@ def _drag_index(joint: JointModel) -> np.ndarray:
 
 
 def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = None,
-              held: np.ndarray | None = None) -> JointFit:
+              held: np.ndarray | None = None, optimize: bool = True) -> JointFit:
     """The joint optimum from ``P0``, drag never negative (held at 0 and refitted, the active set as
     :func:`tumble.analysis.tensor.throw.fit_flown`'s), with its uncertainties (module docstring);
-    the parameters ``held`` (a mask) stay at ``P0``'s values.
+    the parameters ``held`` (a mask) stay at ``P0``'s values; without ``optimize``, ``P0`` is taken
+    as the optimum (its drags at 0 held there) and only the uncertainties are found.
 
     Examples
     --------
@@ -319,8 +320,10 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     """
     free = np.ones(joint.n, bool) if held is None else ~np.asarray(held, bool)
     drag = _drag_index(joint)
-    P = _lm(joint, P0, free)
-    for _ in range(3):
+    if not optimize:
+        free[drag[P0[drag] <= 0]] = False
+    P = _lm(joint, P0, free) if optimize else np.asarray(P0, float).copy()
+    for _ in range(3 if optimize else 0):
         neg = drag[P[drag] < 0]
         if neg.size == 0:
             break

@@ -238,7 +238,7 @@ def agreement(joint: JointModel, jf: JointFit, fits: Sequence[FlownFit], center:
         held = np.zeros(one.n, bool)
         held[6:one.base] = True
         own = fit_joint(one, P0, None, held)
-        c, c_cov, _ = center_of_mass([f.model], [one.throw_parameters(own.P, 0)], [f.accel])  # type: ignore[list-item]
+        c, c_cov, _, _ = center_of_mass([f.model], [one.throw_parameters(own.P, 0)], [f.accel])  # type: ignore[list-item]
         cov = np.zeros((9, 9))
         cov[:6, :6], cov[6:, 6:] = own.inertia_cov_stat, c_cov
         values.append(np.r_[vector_of(own.inertia), c])
@@ -334,7 +334,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
                                                               f"the other throws' joint fit (at most {OUTLIER_SIGMA:g})")
     chosen = [fits[k] for k in used]
     Ps = [joint.throw_parameters(jf.P, j) for j in range(len(chosen))]
-    center, center_cov, _ = center_of_mass([f.model for f in chosen], Ps, [f.accel for f in chosen])  # type: ignore[misc]
+    center, center_cov, _, _ = center_of_mass([f.model for f in chosen], Ps, [f.accel for f in chosen])  # type: ignore[misc]
     # the rates' part: each throw's (from its own fit), averaged down as independent estimates
     center_cov = center_cov + np.linalg.pinv(sum(np.linalg.pinv(f.center_cov_rates) for f in chosen))
     I = vector_of(jf.inertia)

@@ -24,8 +24,8 @@ one per device), a constant bias (0.01 rad/s per axis), white noise 0.01 rad/s, 
 0.01 rad/s at the rotor's frequency, saturation at 2000 deg/s and 16-bit quantisation. The
 accelerometer: at ``r`` from the centre of mass a free-falling accelerometer reads ``f = w' x r +
 w x (w x r)`` (the acceleration of a point of a rigid body, Goldstein, Poole & Safko, *Classical
-Mechanics*, 3rd ed., sec. 4.10, less gravity, which it does not sense), plus the air's force
-(0.05-0.2 m/s^2, slowly turning), a jolt of 5-20 m/s^2 over 2-4 ms at each of the rotor's
+Mechanics*, 3rd ed., sec. 4.10, less gravity, which it does not sense), plus the air's drag
+(0.05-0.5 m/s^2, fixed in the world and changing with the speed, so turning in the body frame), a jolt of 5-20 m/s^2 over 2-4 ms at each of the rotor's
 switches (the motor's reaction shakes the structure), the flywheel's imbalance (``6e-7 m x
 Omega^2``, ~1 m/s^2 at the plateau, turning with it) and white noise 0.3 m/s^2, all smoothed by
 the firmware's low-pass (second-order, 100-200 Hz, causal), then a scale error of 1 %, a bias
@@ -34,7 +34,7 @@ of up to 0.1 m/s^2, 2048 LSB per g and the 16 g range.
 The truth is integrated independently of the fit's model: Euler's equations of the gyrostat in
 the angular-velocity form ``I w' = -w x (I w + h) - h' + tau`` (Hughes, *Spacecraft Attitude
 Dynamics*, 1986, ch. 7) with ``h`` and ``h'`` from the schedule in closed form, by scipy's DOP853
-at ``rtol = 1e-12``, in pieces between the rotor's switches (the fit integrates the momentum
+at ``rtol = 1e-10``, in pieces between the rotor's switches (the fit integrates the momentum
 form by RK4 over the samples, with the logged speed).
 """
 
@@ -48,6 +48,7 @@ from scipy.spatial.transform import Rotation
 
 from ...mass.tensor import parallel_axis, rotate_inertia
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
+from ..fit.accelsynth import attitude_from_rates
 from ..fit.endings import smooth_noise
 from .device import Device, Proof, Throw
 from .firmware import Imperfections, RotorSchedule, draw_imperfections, draw_schedule, logged_speed
@@ -279,7 +280,7 @@ def throw_times(seed: int) -> ThrowTimes:
 
 
 def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t0: float, breaks, hvec, drag: FloatArray, rotor_drag):
-    """omega and omega' of the free flight at ``times`` (w-form, DOP853, rtol 1e-12), split where the rotor's rate jumps."""
+    """omega and omega' of the free flight at ``times`` (w-form, DOP853, rtol 1e-10), split where the rotor's rate jumps."""
     I = flown.inertia
     Iinv = np.linalg.inv(I)
 
@@ -295,10 +296,24 @@ def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t0: float, breaks, 
     edges = [b for b in breaks if t0 < b < times[-1]] + [times[-1] + 1e-9]
     for hi in edges:
         sel = (times >= start) & (times < hi)
-        sol = solve_ivp(rhs, (start, hi), state, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True)
+        sol = solve_ivp(rhs, (start, hi), state, method="DOP853", rtol=1e-10, atol=1e-12, dense_output=True)
         w[sel] = sol.sol(times[sel]).T
         state, start = sol.y[:, -1], hi
     return w, rates(times, w)
+
+
+def _air(rng: np.random.Generator, s: FloatArray, w: FloatArray) -> FloatArray:
+    """The air's drag on the flying body over its mass, body frame, m/s^2, at ``s`` s from the
+    release: ``-c |v| v`` with ``v = v_0 + g s`` (the throw's velocity, 3-5 m/s at 45-80 degrees up;
+    ``c = rho C_d A / 2m`` 0.005-0.03 1/m: 0.05-0.5 m/s^2), a world-fixed force that turns in the
+    body frame as the body tumbles (its attitude integrated from ``w``)."""
+    up = rng.uniform(np.deg2rad(45.0), np.deg2rad(80.0))
+    heading = rng.uniform(0.0, 2 * np.pi)
+    v0 = rng.uniform(3.0, 5.0) * np.array([np.cos(up) * np.cos(heading), np.cos(up) * np.sin(heading), np.sin(up)])
+    v = v0 + np.outer(s, [0.0, 0.0, -_G])
+    force = -rng.uniform(0.005, 0.03) * np.linalg.norm(v, axis=1, keepdims=True) * v
+    attitude = Rotation.random(random_state=rng) * Rotation.from_quat(attitude_from_rates(s, w))
+    return attitude.inv().apply(force)
 
 
 def _firmware_lowpass(x: FloatArray, dt: float, cutoff: float) -> FloatArray:
@@ -407,7 +422,7 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
     f[held] += (_G * (1.75 + 0.5 * np.tanh(push[held])))[:, None] * way[held]
     f[contact] += (_G * rng.uniform(0.05, 0.3) * (1 - s))[:, None] * way[contact]
     f[after] += (_G * rng.uniform(3.0, 5.0) * np.exp(-(t[after] - tt.end) / 0.03) + _G)[:, None] * way[after]
-    f[inflight] += np.column_stack([smooth_noise(rng, n, 250e-6, rng.uniform(0.05, 0.2), 3.0) for _ in range(3)])[inflight]
+    f[inflight] += _air(rng, t[inflight] - tt.apparent, w[inflight])
     for t_k in breaks:
         width = rng.uniform(0.002, 0.004)
         pulse = np.where((t >= t_k) & (t < t_k + width), np.sin(np.pi * (t - t_k) / width), 0.0)

@@ -3,7 +3,7 @@
 1. The flight is found (:func:`~tumble.analysis.tensor.flight.find_flight`), the gyroscope's
    samples at its rail left out (:func:`tumble.analysis.fit.single.saturation_mask`).
 2. **Starting values** by an equation-error regression on the integrated gyrostat equation:
-   over blocks ``[t_a, t_b]`` of :data:`BLOCK` samples, ``I (w_b - w_a) + integral (w x I w +
+   over blocks ``[t_a, t_b]`` of :data:`BLOCK` s, ``I (w_b - w_a) + integral (w x I w +
    w x h) dt + h_b - h_a = 0`` (Euler's equation of the gyrostat integrated in time; Hughes,
    *Spacecraft Attitude Dynamics*, 1986, ch. 7) is linear in the six entries of ``I``, with the
    integrals by the trapezoidal rule on the samples. It needs no derivative, but the measured
@@ -47,12 +47,12 @@ from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_ca
 from .joint import JointModel, SensorErrors, fit_joint
 from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input
 
-__all__ = ["BLOCK", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
+__all__ = ["BLOCK", "MAX_GAP", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
-#: Samples per block of the starting regression (50 ms at 4 kHz): over 10 ms blocks the change of a weakly
-#: tumbling throw's rates is little above their noise, and the regression's tensor came out 20-70 % low
-#: (errors in variables); over 50 ms, within 8 % on the coverage trials.
-BLOCK = 200
+#: The length of a block of the starting regression, s (200 samples at 4 kHz): over 10 ms blocks the
+#: change of a weakly tumbling throw's rates is little above their noise, and the regression's tensor
+#: came out 20-70 % low (errors in variables); over 50 ms, within 8 % on the coverage trials.
+BLOCK = 0.05
 #: The factors tried on the starting regression's tensor (:func:`_scaled_start`).
 START_SCALES = np.geomspace(0.2, 5.0, 33)
 #: The provisional fit starts this long after the sensed release, s: past the fingers' touch
@@ -61,6 +61,10 @@ PROVISIONAL = 0.03
 #: A fit whose residuals' RMS exceeds this factor times the gyroscope's noise does not describe
 #: the flight (the free motion explains the samples to within their noise and the rotor's vibration).
 RESIDUAL_LIMIT = 3.0
+#: The longest gap between samples in a flight that the fit bridges, s (in steps of at most
+#: :data:`~tumble.analysis.tensor.model.MAX_STEP` sample intervals): the rotor's log has the same
+#: gap, and a spin-up changes its speed 5-fold in 40 ms.
+MAX_GAP = 0.01
 #: Going back from the provisional start, the fingers' touch begins where the residuals' running
 #: RMS exceeds this factor times the fit's (:func:`_release`).
 START_LIMIT = 2.5
@@ -131,12 +135,17 @@ def start_values(t: FloatArray, w: FloatArray, keep: np.ndarray, h: FloatArray) 
     Q = [cumulative_trapezoid(np.cross(w, w @ E), t, axis=0, initial=0.0) for E in basis]
     Qh = cumulative_trapezoid(np.cross(w, h), t, axis=0, initial=0.0)
     rows, rhs = [], []
-    for a, b in _blocks(np.all(keep, axis=1), BLOCK):
+    size = max(8, int(round(BLOCK / float(np.median(np.diff(t))))))
+    blocks = _blocks(np.all(keep, axis=1), size)
+    for a, b in blocks:
         dw = w[b] - w[a]
         rows.append(np.column_stack([basis[j] @ dw + Q[j][b] - Q[j][a] for j in range(6)]))
         rhs.append(-(Qh[b] - Qh[a] + h[b] - h[a]))
     if len(rows) < 3:
-        raise ValueError("too few unclipped blocks of samples to start the fit")
+        clipped = int(np.count_nonzero(~np.all(keep, axis=1)))
+        raise ValueError(f"the flight holds {len(rows)} stretch(es) of {1e3 * BLOCK:g} ms within the gyroscope's range, "
+                         f"too few to start the fit from (3 or more: {t[-1] - t[0]:.3g} s fitted, {clipped} of {t.size} "
+                         "samples at the gyroscope's rail)")
     v = np.linalg.lstsq(np.vstack(rows), np.concatenate(rhs), rcond=None)[0]
     return tensor_of(v)
 
@@ -270,6 +279,12 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     if win.reason:
         return FlownFit(win, win.reason)
     t_all = throw.t
+    gaps = np.flatnonzero(np.diff(t_all[win.first:win.stop]) > MAX_GAP)
+    if gaps.size:
+        k = win.first + int(gaps[0])
+        return FlownFit(win, f"a gap of {1e3 * (t_all[k + 1] - t_all[k]):.3g} ms in the log at t = {t_all[k]:.4g} s, in "
+                             f"the flight: longer than the fit bridges ({1e3 * MAX_GAP:g} ms; the rotor's speed in it is "
+                             "unknown)")
     rotor: RotorInput = rotor_input(t_all, throw.rotor, win.rotor, rotor_inertia, rotor_axis)
     noise = noise_floor(throw.omega[win.first:win.stop])
     first = int(np.searchsorted(t_all, win.t_release + PROVISIONAL))
@@ -303,7 +318,7 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
 
 def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors: SensorErrors | None) -> FlownFit:
     """The fitted throw's uncertainties (through the joint fit of one throw), verdict and centre of mass."""
-    single = fit_joint(JointModel([model]), P, errors)
+    single = fit_joint(JointModel([model]), P, errors, optimize=False)
     P = single.P
     data, keep = model.data, model.keep
     res = model.residuals(P)
@@ -313,9 +328,9 @@ def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors:
     center = center_cov = accel_bias = rates = None
     accel = None if throw.accel is None else throw.accel[win.first:win.stop]
     if accel is not None:
-        center, center_cov, accel_bias = center_of_mass([model], [P], [accel])
+        center, center_cov, accel_bias, cutoff = center_of_mass([model], [P], [accel])
         free = [k for k in range(model.n) if single.cov_P[k, k] > 0]
-        rates = rate_part(model, P, single.cov_P[np.ix_(free, free)], accel, free)
+        rates = rate_part(model, P, single.cov_P[np.ix_(free, free)], accel, free, cutoff)
         center_cov = center_cov + rates
     per_sample = np.zeros(data.shape)
     per_sample[keep] = res
