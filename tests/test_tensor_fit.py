@@ -1,10 +1,12 @@
-"""The absolute inertia tensor from throws with a rotor device (issue #30): tumble.analysis.tensor.
+"""The absolute inertia tensor from throws with a rotor device (issues #30, #42): tumble.analysis.tensor.
 
 Each claim is checked against an independent route: the compiled momentum-form kernel against
 scipy's DOP853 on the angular-velocity form; the parallel-axis subtraction against a direct sum
 over point masses; the principal moments' uncertainty against a Monte Carlo; the fits against
-the synthetic truth (integrated independently of the fit's model), and their uncertainties by
-coverage over seeded trials.
+the synthetic truth of the real device (tumble.analysis.tensor.synthetic: its firmware's rotor
+schedule, a log ending in flight, the fingers' touch, the gyroscope's scale and misalignment, the
+rotor axis off nominal, integrated independently of the fit's model), and their uncertainties
+by coverage over seeded trials.
 """
 
 from __future__ import annotations
@@ -21,9 +23,13 @@ from scipy.integrate import solve_ivp
 import tumble
 from tumble.analysis.tensor import Device, NoThrowError, Proof, Throw, calibrate_device, fit_tensor
 from tumble.analysis.tensor.estimate import mass_estimate, principal_uncertainty, subtract_body, vector_of
-from tumble.analysis.tensor.flight import find_flight
+from tumble.analysis.tensor.calibrate import calibrate
+from tumble.analysis.tensor.firmware import Imperfections
+from tumble.analysis.tensor.joint import GYRO_BASIS, SensorErrors
 from tumble.analysis.tensor.model import ThrowModel, cholesky_of, inertia_of, rotor_input
+from tumble.analysis.tensor.pool import pool_throws
 from tumble.analysis.tensor.synthetic import (
+    GYRO_RANGE,
     ROTOR_AXIS,
     ROTOR_INERTIA,
     box,
@@ -32,10 +38,11 @@ from tumble.analysis.tensor.synthetic import (
     drawn_device,
     example_object,
     random_object,
-    release_and_catch,
     synthetic_throw,
+    throw_times,
     true_device,
     true_proof,
+    typical_imperfections,
 )
 from tumble.analysis.tensor.throw import fit_flown
 from tumble.dynamics.models.gyrostat import gyrostat_omega
@@ -50,11 +57,15 @@ def throw(seed: int):
 
 @functools.cache
 def flown_fit(seed: int):
-    return fit_flown(throw(seed), np.array(ROTOR_AXIS), ROTOR_INERTIA)
+    return fit_flown(throw(seed), np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE, errors=SensorErrors())
+
+
+PERFECT = Imperfections.none(ROTOR_AXIS)
 
 
 def test_kernel_matches_dop853_on_the_angular_velocity_form():
-    """RK4 on L' = L x w - b|w|w, w = I^-1 (L - h), against DOP853 on I w' = -w x (I w + h) - h' - b|w|w."""
+    """RK4 on L' = L x w - b|w|w - k W|W| a, w = I^-1 (L - h), against DOP853 on
+    I w' = -w x (I w + h) - h' - b|w|w - k W|W| a (the rotor's air drag an external torque)."""
     I = np.array([[2.0e-3, 1.5e-4, -5e-5], [1.5e-4, 3.0e-3, 2e-4], [-5e-5, 2e-4, 3.5e-3]])
     a = np.array([0.3, -0.2, 0.9]) / np.linalg.norm([0.3, -0.2, 0.9])
     drag = np.array([1e-6, 2e-6, 5e-7])
@@ -62,9 +73,11 @@ def test_kernel_matches_dop853_on_the_angular_velocity_form():
     rate = lambda s: 1500.0 / 0.03 * np.exp(-s / 0.03)  # noqa: E731
     J = 1.7e-6
 
+    k = 5e-11
+
     def rhs(s, w):
         h, hdot = J * speed(s) * a, J * rate(s) * a
-        return np.linalg.solve(I, -np.cross(w, I @ w + h) - hdot - drag * np.abs(w) * w)
+        return np.linalg.solve(I, -np.cross(w, I @ w + h) - hdot - drag * np.abs(w) * w - k * speed(s) ** 2 * a)
 
     rng = np.random.default_rng(3)
     t = np.cumsum(250e-6 * rng.uniform(0.5, 1.5, 2000)) - 250e-6
@@ -73,7 +86,8 @@ def test_kernel_matches_dop853_on_the_angular_velocity_form():
     truth = solve_ivp(rhs, (0.0, t[-1]), w0, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True).sol(t).T
     h = J * speed(t)[:, None] * a
     mid = 0.5 * (t[1:] + t[:-1])
-    w = gyrostat_omega(I[None], (I @ w0)[None], t, h, J * speed(mid)[:, None] * a, drag[None])[0]
+    g = (-speed(t)[:, None] ** 2 * a, -speed(mid)[:, None] ** 2 * a)
+    w = gyrostat_omega(I[None], (I @ w0)[None], t, h, J * speed(mid)[:, None] * a, drag[None], g, [k])[0]
     assert np.abs(w - truth).max() < 1e-8 * np.abs(truth).max()
 
 
@@ -135,34 +149,62 @@ def test_steiner_subtraction_against_the_direct_sum():
     assert np.allclose(rest.inertia, box(m_box, size, centre).inertia, atol=1e-15)
 
 
-def test_flight_found_from_the_data():
+def test_the_window_is_the_free_flight_to_the_logs_end():
+    """The log ends in flight: the window reaches its end; it starts after the fingers' last touch
+    (0-10 ms after the true release) though the accelerometer reads free fall 10-20 ms before."""
     for seed in range(1, 7):
-        t_r, t_c = release_and_catch(seed)
-        win = find_flight(throw(seed), np.ones(throw(seed).omega.shape, bool))
-        assert win.reason == ""
-        assert abs(win.t_release - t_r) < 0.002  # the accelerometer's free fall
-        assert -0.012 < win.t_end - t_c < 0.002  # the catch, a few ms early
-        assert throw(seed).t[win.first] > t_r  # the fitted samples are all free
+        tt, f = throw_times(seed), flown_fit(seed)
+        assert f.reason == ""
+        assert abs(f.window.t_end - throw(seed).t[-1]) < 0.010
+        assert 0.0 <= f.window.t_release - tt.release < 0.010, (seed, f.window.t_release - tt.release)
 
 
-def test_one_throw_gives_the_flown_moments_within_one_percent():
+def test_a_caught_throw_ends_at_the_catch():
+    """A logger that runs on through the catch: the window ends before the hand stops the body."""
+    th = synthetic_throw(3, FLOWN, caught=True, imperfections=PERFECT)
+    f = fit_flown(th, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
+    assert f.reason == ""
+    assert -0.03 < f.window.t_end - throw_times(3).end < 0.0
+
+
+def test_a_perfect_devices_throw_gives_the_flown_moments_within_half_a_percent():
     truth = np.linalg.eigvalsh(FLOWN.inertia)
-    errors = []
+    for seed in (1, 2, 3):
+        f = fit_flown(synthetic_throw(seed, FLOWN, imperfections=PERFECT), np.array(ROTOR_AXIS), ROTOR_INERTIA,
+                      saturation=GYRO_RANGE)
+        assert np.all(np.abs(np.linalg.eigvalsh(f.inertia) / truth - 1) < 0.005)
+        assert np.all(f.P[12:15] >= 0) and f.P[16] >= 0   # the drags never negative
+
+
+def test_a_real_gyroscopes_lone_throw_is_within_its_stated_uncertainty():
+    """The gyroscope's scale and misalignment shift a lone throw's tensor by up to several per cent:
+    its stated uncertainty (the sensors' part, type B) holds it."""
+    truth = np.linalg.eigvalsh(FLOWN.inertia)
     for seed in range(1, 7):
-        f = flown_fit(seed)
-        assert f.reason == "" and f.adequacy.adequate
-        m, std, _ = principal_uncertainty(f.inertia, f.inertia_cov)
-        errors.append(m / truth - 1)
-        assert np.all(np.abs(m - truth) < 4 * std)
-    assert np.all(np.median(np.abs(errors), axis=0) < 0.01)
+        m, std, _ = principal_uncertainty(flown_fit(seed).inertia, flown_fit(seed).inertia_cov)
+        assert np.all(np.abs(m - truth) < 3 * std)
+
+
+def test_the_joint_fit_finds_the_gyroscopes_distortion_and_the_tensor():
+    """Three throws of one mount: one tensor, the gyroscope's trace-free distortion and the rotor's
+    tilt fitted with it; the tensor within 1 %, the distortion within 0.2 % of the truth."""
+    pooled, fits = pool_throws([throw(s) for s in (1, 2, 3)], np.array(ROTOR_AXIS), ROTOR_INERTIA,
+                               saturation=GYRO_RANGE, errors=SensorErrors())
+    truth = np.linalg.eigvalsh(FLOWN.inertia)
+    from tumble.analysis.tensor.estimate import tensor_of
+
+    moments = np.linalg.eigvalsh(tensor_of(pooled.inertia))
+    assert np.all(np.abs(moments / truth - 1) < 0.01), moments / truth - 1
+    assert np.abs(pooled.center - FLOWN.center).max() < 1.5e-3
 
 
 def test_centre_of_mass_from_the_accelerometer():
-    for seed in range(1, 7):
-        f = flown_fit(seed)
-        err, std = np.abs(f.center - FLOWN.center), np.sqrt(np.diag(f.center_cov))
-        assert np.all(err < 3 * std)
-        assert err.max() < (5e-3 if std.max() > 1e-3 else 1e-3)  # a mm, a few where the spin stays near an axis
+    """The joint fit's centre of mass (three throws: the air's drag and the firmware's smoothing
+    modelled, the rotor's jolts left out) within its stated uncertainty."""
+    pooled, _ = pool_throws([throw(s) for s in (4, 5, 6)], np.array(ROTOR_AXIS), ROTOR_INERTIA,
+                            saturation=GYRO_RANGE, errors=SensorErrors())
+    err, std = np.abs(pooled.center - FLOWN.center), np.sqrt(np.diag(pooled.center_cov))
+    assert np.all(err < 3 * std) and err.max() < 1.5e-3
 
 
 def test_fit_tensor_gives_the_object_and_its_json():
@@ -170,9 +212,9 @@ def test_fit_tensor_gives_the_object_and_its_json():
     fit = fit_tensor([throw(s) for s in (1, 2, 3)], calibrated_device(), obj.mass)
     truth = np.linalg.eigvalsh(obj.inertia)
     assert fit.adequate and [t.status for t in fit.throws] == ["used"] * 3
-    assert np.all(np.abs(fit.object.principal_moments / truth - 1) < 0.01)
+    assert np.all(np.abs(fit.object.principal_moments / truth - 1) < 0.02)
     assert np.all(np.abs(fit.object.principal_moments - truth) < 3 * fit.object.principal_moments_std)
-    assert np.abs(fit.object.center_of_mass - obj.center).max() < 1e-3
+    assert np.abs(fit.object.center_of_mass - obj.center).max() < 2e-3
     assert fit.flown.mass == pytest.approx(obj.mass + 0.10067)
     d = json.loads(json.dumps(fit.as_dict()))
     assert set(d) == {"object", "flown", "throws", "adequate", "chi2_dof"}
@@ -185,8 +227,9 @@ def test_fit_tensor_gives_the_object_and_its_json():
 def test_the_rotor_inertia_scales_the_whole_tensor():
     """The gyrostat's equations are unchanged when I and J_r scale together: a J_r 10 % high gives
     a tensor 10 % high (and so the rotor's uncertainty is a systematic part common to all throws)."""
-    f = flown_fit(1)
-    g = fit_flown(throw(1), np.array(ROTOR_AXIS), 1.1 * ROTOR_INERTIA)
+    th = synthetic_throw(1, FLOWN, imperfections=PERFECT)
+    f = fit_flown(th, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
+    g = fit_flown(th, np.array(ROTOR_AXIS), 1.1 * ROTOR_INERTIA, saturation=GYRO_RANGE)
     assert np.allclose(g.inertia, 1.1 * f.inertia, rtol=1e-4, atol=1e-4 * np.abs(f.inertia).max())
 
 
@@ -196,8 +239,8 @@ def test_scale_is_undetermined_without_the_rotors_reaction():
     t = np.arange(2000) / 4000.0
     data = np.zeros((2000, 3))
     keep = np.ones((2000, 3), bool)
-    P = np.r_[cholesky_of(FLOWN.inertia), FLOWN.inertia @ [3.0, -8.0, 12.0], np.zeros(6)]
-    scale = np.r_[0.5 * P[:6], P[6:9], np.zeros(6)]  # d/dk of (sqrt(k) C, k L) at k = 1
+    P = np.r_[cholesky_of(FLOWN.inertia), FLOWN.inertia @ [3.0, -8.0, 12.0], np.zeros(8)]
+    scale = np.r_[0.5 * P[:6], P[6:9], np.zeros(8)]  # d/dk of (sqrt(k) C, k L) at k = 1
     for speed, null in ((np.zeros(2000), True), (np.where(t > 0.01, 1500 * (1 - np.exp(-(t - 0.01) / 0.03)), 0.0), False)):
         model = ThrowModel(t, data, keep, rotor_input(t, speed + 1e-9 * (speed == 0), 0, ROTOR_INERTIA, ROTOR_AXIS))
         J = model.jacobian(P)
@@ -208,18 +251,25 @@ def test_scale_is_undetermined_without_the_rotors_reaction():
         fit_tensor(dead, calibrated_device(), 0.6)
 
 
-def test_calibration_recovers_the_rotor_and_the_device():
+@functools.cache
+def _calibration():
     proof, placed = true_proof()
+    alone = [synthetic_throw(s, true_device(), spin=(3.0, 8.0), input=f"a{s}.csv") for s in (11, 12, 13)]
+    with_proof = [synthetic_throw(s, combine(true_device(), placed), input=f"p{s}.csv") for s in (14, 15, 16)]
+    return calibrate(Device(0.10067, ROTOR_AXIS), alone, with_proof, proof), alone, with_proof
+
+
+def test_calibration_recovers_the_rotor_and_the_device_and_checks_out():
+    cal = _calibration()[0]
     dev = true_device()
-    alone = [synthetic_throw(s, dev, rotor_top=300.0, spin=(3.0, 6.0)) for s in (11, 12, 13)]
-    with_proof = [synthetic_throw(s, combine(dev, placed)) for s in (14, 15, 16)]
-    cal = calibrate_device(Device(0.10067, ROTOR_AXIS), alone, with_proof, proof)
-    assert cal.calibrated
-    assert abs(cal.rotor_inertia / ROTOR_INERTIA - 1) < 0.01
-    assert abs(cal.rotor_inertia - ROTOR_INERTIA) < 4 * cal.rotor_inertia_std
-    assert np.all(np.abs(np.linalg.eigvalsh(cal.inertia) / np.linalg.eigvalsh(dev.inertia) - 1) < 0.03)
-    assert np.abs(cal.center_of_mass - dev.center).max() < 1e-3
-    assert np.all(np.abs(cal.inertia - dev.inertia) < 4 * cal.inertia_std + 1e-9)
+    assert cal.problems == () and cal.alone_used == 3 and cal.proof_used == 3
+    device = cal.device
+    assert device.calibrated
+    assert abs(device.rotor_inertia / ROTOR_INERTIA - 1) < 0.01
+    assert abs(device.rotor_inertia - ROTOR_INERTIA) < 4 * device.rotor_inertia_std
+    assert np.all(np.abs(np.linalg.eigvalsh(device.inertia) / np.linalg.eigvalsh(dev.inertia) - 1) < 0.03)
+    assert np.abs(device.center_of_mass - dev.center).max() < 1e-3
+    assert cal.max_bias < 0.1   # the joint fit's biases: the gyroscope's own (0.01 rad/s), not a distortion's
 
 
 def _trial(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -233,16 +283,18 @@ def _trial(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def test_pooled_intervals_cover_the_truth():
-    """20 seeded trials: the pooled 95 % intervals of the three moments hold the truth 95 % of the time
-    (57 of 60 expected; fewer than 51 has probability < 0.5 % for a right uncertainty)."""
-    covered = 0
-    errors = []
-    for k in range(20):
+    """12 seeded trials of two throws: the pooled 95 % intervals of the three moments hold the truth
+    (34 of 36 expected; fewer than 29 has probability < 0.5 % for a right uncertainty), and they
+    are narrow enough to use (median std under 2 % of the moment)."""
+    covered, errors, rel = 0, [], []
+    for k in range(12):
         m, s, truth = _trial(k)
         covered += int(np.sum(np.abs(m - truth) <= 1.96 * s))
         errors.append(np.abs(m / truth - 1))
-    assert covered >= 51
-    assert np.all(np.median(errors, axis=0) < 0.01)
+        rel.append(s / m)
+    assert covered >= 29
+    assert np.all(np.median(errors, axis=0) < 0.015)
+    assert np.all(np.median(rel, axis=0) < 0.02)
 
 
 def test_bad_input_is_refused_with_the_field_named():

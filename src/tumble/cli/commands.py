@@ -159,7 +159,7 @@ def _cmd_calibrate(args) -> int:
     saturation = None if args.saturation is None else _positive("--saturation", args.saturation, "rad/s")
     with _working("calibrating"):
         return run_calibrate_command(args.device, args.alone, args.proof, args.out, argv=args.argv,
-                                     saturation=saturation)
+                                     saturation=saturation, accept_inadequate=args.accept_inadequate)
 
 
 def _cmd_tensor(args) -> int:

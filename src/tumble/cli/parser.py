@@ -214,7 +214,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="throws of the device with the proof body fixed to it (CSV)")
     p.add_argument("--out", required=True, metavar="CALIBRATED.toml", help="the calibrated device file to write")
     p.add_argument("--saturation", metavar="RAD_S",
-                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+                   help="the gyroscope's full scale, rad/s (default: the device's gyro_full_scale); samples at it "
+                   "are left out")
+    p.add_argument("--accept-inadequate", action="store_true",
+                   help="exit 0 for a calibration that does not check itself out (written with [calibration] "
+                   "adequate = false either way)")
     p.set_defaults(func=c._cmd_calibrate)
 
     p = sub.add_parser(
@@ -235,10 +239,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--mass", required=True, metavar="KG", help="the object's mass, kg (without the device)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--saturation", metavar="RAD_S",
-                   help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+                   help="the gyroscope's full scale, rad/s (default: the device's gyro_full_scale); samples at it "
+                   "are left out")
     p.add_argument("--accept-inadequate", action="store_true",
-                   help="exit 0 even when the model does not describe the throws (by default such a fit is written "
-                   "with \"adequate\": false, a warning printed and the exit status 1)")
+                   help="use a device whose calibration did not check out ([calibration] adequate = false), and exit "
+                   "0 even when the model does not describe the throws (by default such a fit is written with "
+                   "\"adequate\": false, a warning printed and the exit status 1)")
     p.set_defaults(func=c._cmd_tensor)
 
     p = sub.add_parser(

@@ -33,8 +33,9 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis.tensor import Device, NoThrowError, calibrate_device, fit_tensor
-from ..io.devicefile import load_device, write_device
+from ..analysis.tensor import Device, NoThrowError, fit_tensor
+from ..analysis.tensor.calibrate import calibrate
+from ..io.devicefile import load_calibration, load_device, write_device
 from ..io.inertial import mjcf_inertial, urdf_inertial
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
@@ -78,7 +79,8 @@ def _mm(v) -> str:
 
 def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | os.PathLike[str]],
                           proof: Sequence[str | os.PathLike[str]], out: str | os.PathLike[str], *,
-                          argv: Sequence[str] | None = None, saturation: float | None = None) -> int:
+                          argv: Sequence[str] | None = None, saturation: float | None = None,
+                          accept_inadequate: bool = False) -> int:
     """``tumble calibrate``: the device calibrated from its throws, written to ``out`` (module
     docstring); prints one line.
 
@@ -94,13 +96,19 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     argv : list of str, optional
         The command line after ``tumble``, for the comment lines of the file written.
     saturation : float, optional
-        The gyroscope's full scale, rad/s (default: found from the data).
+        The gyroscope's full scale, rad/s (default: the device's ``gyro_full_scale``).
+    accept_inadequate : bool
+        Return 0 for a calibration that does not check itself out
+        (:class:`tumble.analysis.tensor.calibrate.Calibration`); by default it is written with
+        ``[calibration] adequate = false``, each problem printed and 1 returned.
 
     Returns
     -------
     int
-        0 on success; 1 when none of the throws could be fitted (one line on stderr, nothing
-        written). Bad input raises ``ValueError`` with one line (nothing is written).
+        0 on success; 1 when none of the throws could be fitted or the rotor's inertia is not
+        positive (one line on stderr, nothing written), or the calibration does not check out
+        (written, unless accepted). Bad input raises ``ValueError`` with one line (nothing is
+        written).
 
     Examples
     --------
@@ -121,9 +129,13 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     proof_throws = _throws(proof, "--proof", dev)
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *alone, *proof)]
     try:
-        calibrated = calibrate_device(dev, alone_throws, proof_throws, body, saturation=saturation)
+        result = calibrate(dev, alone_throws, proof_throws, body, saturation=saturation)
     except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
         print(f"tumble: calibration failed: {_one_line(err)}; nothing written", file=sys.stderr)
+        return 1
+    calibrated = result.device
+    if calibrated.rotor_inertia is None:  # no rotor inertia to write: the sets swapped
+        print(f"tumble: calibration failed: {'; '.join(result.problems)}; nothing written", file=sys.stderr)
         return 1
     record = provenance(argv, inputs)
     lines = [f"Calibrated by tumble {record['tumble']} on {record['created']}: {len(alone)} throw(s) of the device "
@@ -131,13 +143,25 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     if record["command"]:
         lines.append(f"command: {json.dumps(record['command'])}")
     lines += [f"input {json.dumps(p)} sha256 {h}" for p, h in inputs]  # quoted: a name holds no line break here
-    write_device(out, calibrated, body, header="\n".join(lines))
+    write_device(out, calibrated, body, header="\n".join(lines), calibration=result.as_dict())
     J, Jstd = calibrated.rotor_inertia, calibrated.rotor_inertia_std
     rotor = f"{J:.4g}" + ("" if Jstd is None else f" +- {Jstd:.2g}")
     moments = np.linalg.eigvalsh(np.asarray(calibrated.inertia, float))
+    agree = ", ".join(f"{name} {x:.2g}" for name, x in (("alone", result.alone_chi2_dof), ("proof", result.proof_chi2_dof))
+                      if np.isfinite(x))
     print(f"calibrated {os.fspath(device)}: rotor inertia {rotor} kg m^2, device principal moments "
           f"{', '.join(f'{x:.4g}' for x in moments)} kg m^2, centre of mass {_mm(calibrated.center_of_mass)} "
-          f"from {len(alone)} + {len(proof)} throws; wrote {os.fspath(out)}")
+          f"from {result.alone_used} + {result.proof_used} of {len(alone)} + {len(proof)} throws; chi2/dof "
+          f"{result.chi2_dof:.2g}" + (f" (sets: {agree})" if agree else "") + f", largest gyroscope bias "
+          f"{result.max_bias:.2g} rad/s; wrote {os.fspath(out)}")
+    for why in result.left_out:
+        print(f"warning: left out {why}", file=sys.stderr)
+    if result.problems:
+        for why in result.problems:
+            print(f"warning: the calibration does not check out: {why}", file=sys.stderr)
+        print(f"warning: {os.fspath(out)} says [calibration] adequate = false; tumble tensor refuses it" +
+              ("" if accept_inadequate else "; --accept-inadequate to accept the calibration"), file=sys.stderr)
+        return 0 if accept_inadequate else 1
     return 0
 
 
@@ -197,6 +221,12 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
                          f"tumble calibrate {os.fspath(device)} --alone ... --proof ... --out CALIBRATED.toml")
     if not throws:
         raise ValueError("THROW: no throw given; name one or more throw files (CSV)")
+    checks = load_calibration(device)
+    if checks is not None and not checks.get("adequate", True) and not accept_inadequate:
+        print(f"tumble: tensor refused: the calibration of {os.fspath(device)} did not check out "
+              f"({'; '.join(checks.get('problems', [])) or 'adequate = false'}); calibrate again, or "
+              "--accept-inadequate to use it; nothing written", file=sys.stderr)
+        return 1
     loaded = [load_throw(p, dev) for p in throws]
     thrown = [throw for throw, _ in loaded]
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *throws)]
@@ -229,6 +259,9 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     written = ", ".join(name for name in TENSOR_WRITES if figure is not None or name != "tensor.png")
     print(f"tensor: principal moments {moments} kg m^2, centre of mass {_mm(obj.center_of_mass)} from {used} of "
           f"{len(fit.throws)} throws{chi2}; wrote {written} in {os.fspath(out)}")
+    for row in fit.throws:
+        if row.status != "used":
+            print(f"warning: left out {row.input}: {row.reason}", file=sys.stderr)
     if not fit.adequate:
         print("warning: the model does not describe the throws (tensor.json says \"adequate\": false; see each "
               "throw's reason)" + ("" if accept_inadequate else "; --accept-inadequate to accept the fit"),

@@ -34,6 +34,7 @@ the value as written and what is allowed, after the file and the table.
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Callable
 from dataclasses import fields
@@ -48,7 +49,6 @@ from .atomic import atomic_write_text
 from .bodyfile import read_toml
 from .keys import FileFormat, Key, Table
 
-__all__ = ["DEVICE_FORMAT", "device_from_table", "device_toml", "load_device", "proof_from_table", "write_device"]
 
 _TENSOR = "3 numbers or 3 rows of 3"
 _INERTIA_ALLOWED = "a physical tensor: symmetric, positive definite, its moments obeying the triangle inequality"
@@ -60,6 +60,8 @@ DEVICE_FORMAT = FileFormat("device", (
             doc="[device]: the throwing device"),
         Key("proof", "table", example="{mass = 0.346, inertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]}",
             doc="[proof]: a body of known mass properties fixed to the device, for the calibration"),
+        Key("calibration", "table", example="{adequate = true, chi2_dof = 1.2}",
+            doc="[calibration]: how the calibration checked itself (tumble calibrate writes it)"),
     )),
     Table("[device]", (
         Key("mass", "number", "kg", required=True, example="0.10067", low=0.0,
@@ -108,9 +110,25 @@ DEVICE_FORMAT = FileFormat("device", (
             example="[1.675805e-4, 1.300972e-4, 2.450833e-4]",
             doc="about its own centre of mass, along the sensor axes; 3 numbers: the moments along them"),
     ), "A body of known mass properties fixed to the device, for ``tumble calibrate``."),
+    Table("[calibration]", (
+        Key("adequate", "true or false", example="true",
+            doc="whether the calibration checked out; tumble tensor refuses a device whose calibration did not"),
+        Key("chi2_dof", "number", example="1.2", doc="chi^2/dof of the parallel-axis equations for the rotor's inertia"),
+        Key("alone_chi2_dof", "number", example="0.9",
+            doc="the device-alone throws' tensors about their joint fit (chi^2/dof)"),
+        Key("proof_chi2_dof", "number", example="1.1", doc="the proof throws' tensors about their joint fit (chi^2/dof)"),
+        Key("alone_used", "whole number", example="5", doc="the device-alone throws used"),
+        Key("proof_used", "whole number", example="5", doc="the throws with the proof used"),
+        Key("max_bias", "number", "rad/s", example="0.02", doc="the largest gyroscope bias a used throw needed"),
+        Key("left_out", "list of strings", example='["a3.csv: no accelerometer in the throw"]',
+            doc="each throw not used, with why"),
+        Key("problems", "list of strings", example="[]", doc="what the checks found wrong, with the likely cause"),
+    ), "Written by ``tumble calibrate``: the calibration's checks of itself (its consistency, each set's "
+       "agreement, the gyroscope's bias), for the record and for ``tumble tensor``, which refuses a device whose "
+       "calibration did not check out unless ``--accept-inadequate``."),
 ), "A throwing device with a rotor: ``tumble calibrate`` reads it with ``[proof]`` and writes it back "
    "calibrated; ``tumble tensor --device`` reads the calibrated one.")
-_TOP, _DEVICE, _PROOF = DEVICE_FORMAT.tables
+_TOP, _DEVICE, _PROOF, _CALIBRATION = DEVICE_FORMAT.tables
 
 _WHAT = "a device file (TOML)"
 
@@ -256,7 +274,7 @@ def load_device(path: str | os.PathLike[str], *, proof: bool = False) -> tuple[D
     unknown = sorted(set(data) - set(_TOP.names()))
     if unknown:
         what = "table" if isinstance(data[unknown[0]], dict) else "key"
-        raise ValueError(f"{path}: unknown {what} {unknown[0]!r}; a device file has [device] and [proof]; "
+        raise ValueError(f"{path}: unknown {what} {unknown[0]!r}; a device file has [device], [proof] and [calibration]; "
                          f"allowed: {', '.join(sorted(_TOP.names()))}")
     for name, needed in (("device", True), ("proof", proof)):
         if needed and name not in data:
@@ -285,6 +303,43 @@ def _rows(matrix) -> str:
     return "[\n" + "".join(f"    {_row(r)},\n" for r in m) + "]"
 
 
+def _toml_value(value: object) -> str:
+    """A TOML value of a [calibration] entry: a boolean, a number (``repr``) or a list of strings
+    (TOML's basic strings take JSON's escapes)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value) if isinstance(value, int) else _number(float(value))
+    return "[" + ", ".join(json.dumps(str(x)) for x in value) + "]"  # type: ignore[attr-defined]
+
+
+def load_calibration(path: str | os.PathLike[str]) -> dict | None:
+    """The ``[calibration]`` table of a device file (its checks of itself), or None when it has none.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from tumble.io.devicefile import load_calibration
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder, "cal.toml")
+    ...     _ = path.write_text('[device]\\nmass = 0.1\\nrotor_axis = [0, 0, 1]\\n[calibration]\\nadequate = false\\n'
+    ...                         'problems = ["the sets swapped"]\\n')
+    ...     load_calibration(path)
+    {'adequate': False, 'problems': ['the sets swapped']}
+    """
+    path = Path(path)
+    data = read_toml(path, what=_WHAT)
+    if "calibration" not in data:
+        return None
+    table = _checked(_CALIBRATION, data["calibration"], f"{path}: [calibration]")
+    if not isinstance(table.get("adequate", True), bool):
+        raise ValueError(f"{path}: [calibration] adequate = {short_repr(table['adequate'])} must be true or false")
+    for key in ("left_out", "problems"):
+        if not isinstance(table.get(key, []), list) or not all(isinstance(x, str) for x in table.get(key, [])):
+            raise ValueError(f"{path}: [calibration] {key} = {short_repr(table[key])} must be a list of strings")
+    return dict(table)
+
+
 def _axes(axes: tuple[str, ...]) -> str:
     return "[" + ", ".join(f'"{a}"' for a in axes) + "]"
 
@@ -301,7 +356,8 @@ _OPTIONAL_KEYS: tuple[tuple[str, Callable[[Any], str], str], ...] = (("motor_pol
 _DEFAULTS = {f.name: f.default for f in fields(Device)}
 
 
-def device_toml(device: Device, proof: Proof | None = None, *, header: str = "") -> str:
+def device_toml(device: Device, proof: Proof | None = None, *, header: str = "",
+                calibration: dict | None = None) -> str:
     """The text of a device file: ``[device]`` with every value the device holds, and ``[proof]``.
 
     Every number is written so that it reads back as the same float (``repr``).
@@ -312,6 +368,9 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "")
     proof : Proof, optional
     header : str
         Comment lines put first (each prefixed with ``#`` and a space).
+    calibration : dict, optional
+        ``[calibration]``: how the calibration checked itself
+        (:meth:`tumble.analysis.tensor.calibrate.Calibration.as_dict`).
 
     Examples
     --------
@@ -353,11 +412,16 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "")
         lines.append("[proof]")
         item("mass", _number(proof.mass), "kg")
         item("inertia", _rows(proof.inertia), "kg m^2 about its centre of mass, sensor axes")
+    if calibration is not None:
+        lines.append("")
+        lines.append("[calibration]")
+        for key, value in calibration.items():
+            lines.append(f"{key} = {_toml_value(value)}")
     return "\n".join(lines) + "\n"
 
 
 def write_device(path: str | os.PathLike[str], device: Device, proof: Proof | None = None, *,
-                 header: str = "") -> Path:
+                 header: str = "", calibration: dict | None = None) -> Path:
     """Write a device file (:func:`device_toml`) whole or not at all (:mod:`tumble.io.atomic`).
 
     Returns
@@ -378,4 +442,4 @@ def write_device(path: str | os.PathLike[str], device: Device, proof: Proof | No
     >>> again.center_of_mass.tolist() == device.center_of_mass.tolist()   # read back exactly
     True
     """
-    return atomic_write_text(path, device_toml(device, proof, header=header))
+    return atomic_write_text(path, device_toml(device, proof, header=header, calibration=calibration))

@@ -136,7 +136,7 @@ def _solve(A: FloatArray, y: FloatArray, weights: FloatArray) -> FloatArray:
     return np.linalg.lstsq(np.vstack([A, np.diag(weights)]), np.r_[y, np.zeros(weights.size)], rcond=None)[0]
 
 
-def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray], accels: Sequence[FloatArray],
+def center_of_mass(models: Sequence[ThrowModel], rates: Sequence[FloatArray], accels: Sequence[FloatArray],
                    cutoff: float | None = None) -> tuple[FloatArray, FloatArray, FloatArray, float]:
     """The centre of mass shared by one or more throws (module docstring): ``(c, cov_c, b_a,
     cutoff)`` in m, m^2, m/s^2 and Hz, without the rates' part (:func:`rate_part`); the
@@ -146,8 +146,9 @@ def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray], accel
     ----------
     models : sequence of ThrowModel
         Each throw's fitted samples.
-    Ps : sequence of ndarray
-        Each throw's parameters (:class:`~tumble.analysis.tensor.model.ThrowModel`).
+    rates : sequence of ndarray, shape (T_k, 3)
+        Each throw's fitted rates at its model's samples (the body's, rotor tilt and gyroscope
+        distortion applied), rad/s.
     accels : sequence of ndarray, shape (T_k, 3)
         Each throw's accelerometer at its model's samples, m/s^2.
 
@@ -164,11 +165,10 @@ def center_of_mass(models: Sequence[ThrowModel], Ps: Sequence[FloatArray], accel
     >>> r = np.array([0.03, 0.0, 0.0])
     >>> w = m.omega(P[None])[0]
     >>> f = np.cross(w, np.cross(w, r)) + np.random.default_rng(0).normal(0.0, 0.1, (2000, 3))
-    >>> c, cov, bias, cutoff = center_of_mass([m], [P], [f])
+    >>> c, cov, bias, cutoff = center_of_mass([m], [w], [f])
     >>> (c[:2] * 1e3).round(1).tolist()[0], bool(abs(c[1]) < 1e-4), bool(np.all(np.abs(bias) < 0.01))   # c = -r
     (-30.0, True, True)
     """
-    rates = [m.omega(np.asarray(P, float)[None])[0] for m, P in zip(models, Ps)]
     K = len(models)
 
     def cost(fc: float) -> float:
@@ -238,6 +238,7 @@ def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArr
     for col, k in enumerate(free):
         e = np.zeros(P.size)
         e[k] = d[k]
-        G[:, col] = (center_of_mass([model], [P + e], [accel], cutoff)[0]
-                     - center_of_mass([model], [P - e], [accel], cutoff)[0]) / (2 * d[k])
+        up, down = model.omega(np.array([P + e, P - e]))
+        G[:, col] = (center_of_mass([model], [up], [accel], cutoff)[0]
+                     - center_of_mass([model], [down], [accel], cutoff)[0]) / (2 * d[k])
     return G @ cov @ G.T

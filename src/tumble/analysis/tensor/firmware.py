@@ -51,7 +51,7 @@ class RotorSchedule:
     >>> sched = draw_schedule(np.random.default_rng(0))
     >>> speed, _ = sched.speed_and_rate(np.array([-0.01, 0.12, sched.t_up + 0.1, sched.t_brake + 0.15]))
     >>> speed.round(-1).tolist()   # at rest, idling, spun up, braked
-    [0.0, 190.0, 1190.0, 210.0]
+    [0.0, 200.0, 1260.0, 220.0]
     """
 
     idle: float
@@ -144,7 +144,7 @@ def logged_speed(speed: ArrayLike, poles: int, rng: np.random.Generator) -> Floa
     >>> from tumble.analysis.tensor.firmware import logged_speed
     >>> step = 100.0 / 7 * 2 * np.pi / 60   # 14 poles: one eRPM step is 1.5 rad/s of the rotor
     >>> x = logged_speed(np.array([0.0, 1000.0]), 14, np.random.default_rng(0))
-    >>> x[0], bool(abs(x[1] - 1000.0) < 3 * step), bool(np.allclose(x / step, np.round(x / step)))
+    >>> float(x[0]), bool(abs(x[1] - 1000.0) < 3 * step), bool(np.allclose(x / step, np.round(x / step)))
     (0.0, True, True)
     """
     speed = np.asarray(speed, float)

@@ -175,6 +175,24 @@ class JointModel:
         m = self.models[k]
         return m.omega(rows) if not self.sensor else m.omega(rows, axis)
 
+    def rates(self, P: FloatArray) -> list[FloatArray]:
+        """Each throw's body rates at its samples (the rotor tilted as fitted; not as read: no
+        distortion, no bias), rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> m = ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor_input(t, np.zeros(400), 0, 1e-6, [0, 0, 1]))
+        >>> P = np.r_[cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), 0.0, 0.0, 4e-3, np.zeros(8)]   # 10 rad/s about z
+        >>> JointModel([m]).rates(P)[0][-1].round(9).tolist()
+        [0.0, 0.0, 10.0]
+        """
+        a = self.axis(P)
+        return [self._rates(k, self.throw_parameters(P, k)[None], a)[0] for k in range(len(self.models))]
+
     def residuals(self, P: FloatArray) -> FloatArray:
         """Every throw's ``model - data`` on its kept samples, flat, rad/s."""
         S, a = self.gyro(P), self.axis(P)

@@ -65,6 +65,10 @@ RESIDUAL_LIMIT = 3.0
 #: :data:`~tumble.analysis.tensor.model.MAX_STEP` sample intervals): the rotor's log has the same
 #: gap, and a spin-up changes its speed 5-fold in 40 ms.
 MAX_GAP = 0.01
+#: A window grown past a possible catch whose residuals' RMS grows more than this factor (and past
+#: the noise's limit) ends at it: the hand's stop multiplies the residuals many-fold, where the
+#: model's imperfections (a gyroscope's distortion at high rates) raise them a little at a time.
+CATCH_JUMP = 4.0
 #: Going back from the provisional start, the fingers' touch begins where the residuals' running
 #: RMS exceeds this factor times the fit's (:func:`_release`).
 START_LIMIT = 2.5
@@ -78,7 +82,7 @@ class FlownFit:
     --------
     >>> from tumble.analysis.tensor.throw import FlownFit
     >>> sorted(FlownFit.__dataclass_fields__)[:4]
-    ['P', 'accel_bias', 'adequacy', 'center']
+    ['P', 'accel', 'accel_bias', 'adequacy']
     """
 
     window: Window
@@ -265,14 +269,25 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
 
     Examples
     --------
+    A perfect device's throw gives the flown body within half a per cent; a real gyroscope's scale
+    and misalignment shift a lone throw's tensor by a few per cent, within its stated uncertainty
+    (the joint fit of several throws removes them: :mod:`~tumble.analysis.tensor.pool`):
+
     >>> import numpy as np
+    >>> from tumble.analysis.tensor.firmware import Imperfections
+    >>> from tumble.analysis.tensor.joint import SensorErrors
     >>> from tumble.analysis.tensor.throw import fit_flown
     >>> from tumble.analysis.tensor.synthetic import ROTOR_AXIS, ROTOR_INERTIA, combine, example_object, synthetic_throw, true_device
     >>> flown = combine(true_device(), example_object())
-    >>> fit = fit_flown(synthetic_throw(5, flown), np.array(ROTOR_AXIS), ROTOR_INERTIA)
+    >>> perfect = synthetic_throw(5, flown, imperfections=Imperfections.none(ROTOR_AXIS))
+    >>> fit = fit_flown(perfect, np.array(ROTOR_AXIS), ROTOR_INERTIA)
     >>> err = np.linalg.eigvalsh(fit.inertia) / np.linalg.eigvalsh(flown.inertia) - 1
-    >>> bool(np.abs(err).max() < 0.01), bool(np.abs(fit.center - flown.center).max() < 0.003)
+    >>> bool(np.abs(err).max() < 0.005), bool(np.abs(fit.center - flown.center).max() < 0.002)
     (True, True)
+    >>> real = fit_flown(synthetic_throw(5, flown), np.array(ROTOR_AXIS), ROTOR_INERTIA, errors=SensorErrors())
+    >>> std = np.sqrt(np.diag(real.inertia_cov)[:3])
+    >>> bool(np.all(np.abs(real.inertia.diagonal() - flown.inertia.diagonal()) < 3 * std))
+    True
     """
     keep_all, _ = saturation_mask(throw.omega, saturation)
     win = find_flight(throw, keep_all)
@@ -288,22 +303,29 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     rotor: RotorInput = rotor_input(t_all, throw.rotor, win.rotor, rotor_inertia, rotor_axis)
     noise = noise_floor(throw.omega[win.first:win.stop])
     first = int(np.searchsorted(t_all, win.t_release + PROVISIONAL))
-    # the end: the log's, or the latest possible catch whose flight the free motion explains
-    candidates = [win.stop] + [int(np.searchsorted(t_all, t_all[c] - END_MARGIN)) for c in
-                               reversed(catch_candidates(t_all, throw.omega, win.rotor))]
-    found = None
-    for stop in candidates:
-        if t_all[stop - 1] - t_all[first] < MIN_FLIGHT:
-            continue
-        solved = _solve(throw, keep_all, rotor, first, stop, drag)
-        if isinstance(solved, str):
-            return FlownFit(win, solved)
-        if found is None or _rms(*solved) <= RESIDUAL_LIMIT * max(noise, 1e-12):
-            found = (stop, *solved)
-            if _rms(*solved) <= RESIDUAL_LIMIT * max(noise, 1e-12):
-                break
-    if found is None:
+    # the end: the log's, or a catch's: the window grown from one possible catch to the next while the free
+    # motion goes on explaining it
+    stops = sorted({int(np.searchsorted(t_all, t_all[c] - END_MARGIN))
+                    for c in catch_candidates(t_all, throw.omega, win.rotor, keep_all)} | {win.stop})
+    stops = [k for k in stops if t_all[k - 1] - t_all[first] >= MIN_FLIGHT]
+    if not stops:
         return FlownFit(win, f"the flight found lasts less than the {MIN_FLIGHT} s fitted")
+    found = None
+    for stop in stops:
+        solved = _solve(throw, keep_all, rotor, first, stop, drag, None if found is None else found[2])
+        if isinstance(solved, str):
+            if found is None:
+                return FlownFit(win, solved)
+            break
+        if found is not None:
+            limit = max(RESIDUAL_LIMIT * noise, CATCH_JUMP * _rms(found[1], found[2]))
+            if _rms(*solved) > limit:  # a catch, or an optimum the warm start missed: from the regression too
+                fresh = _solve(throw, keep_all, rotor, first, stop, drag)
+                if isinstance(fresh, str) or _rms(*fresh) > limit:
+                    break
+                solved = fresh
+        found = (stop, *solved)
+    assert found is not None
     stop, model, P = found
     # the start: where the free motion, integrated back, meets the data (the fingers' touch left out)
     start = _release(throw, keep_all, rotor, model, P, win.first, first, START_LIMIT * max(_rms(model, P), noise))
@@ -328,7 +350,7 @@ def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors:
     center = center_cov = accel_bias = rates = None
     accel = None if throw.accel is None else throw.accel[win.first:win.stop]
     if accel is not None:
-        center, center_cov, accel_bias, cutoff = center_of_mass([model], [P], [accel])
+        center, center_cov, accel_bias, cutoff = center_of_mass([model], [model.omega(P[None])[0]], [accel])
         free = [k for k in range(model.n) if single.cov_P[k, k] > 0]
         rates = rate_part(model, P, single.cov_P[np.ix_(free, free)], accel, free, cutoff)
         center_cov = center_cov + rates
