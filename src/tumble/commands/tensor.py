@@ -35,6 +35,7 @@ import numpy as np
 
 from ..analysis.tensor import Device, NoThrowError, fit_tensor
 from ..analysis.tensor.calibrate import calibrate
+from ..analysis.tensor.device import MAX_THROWN_MASS
 from ..io.devicefile import load_calibration, load_device, write_device
 from ..io.inertial import mjcf_inertial, urdf_inertial
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
@@ -213,7 +214,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     --mass = -1.0 must be a positive finite number (kg)
     """
     out = check_output_dir(out)
-    mass = check_positive("--mass", mass, "kg")
+    mass = check_positive("--mass", mass, "kg", at_most=MAX_THROWN_MASS)
     dev, _ = load_device(device)
     missing = _missing_calibration(dev)
     if missing:

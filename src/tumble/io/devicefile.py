@@ -64,7 +64,7 @@ DEVICE_FORMAT = FileFormat("device", (
             doc="[calibration]: how the calibration checked itself (tumble calibrate writes it)"),
     )),
     Table("[device]", (
-        Key("mass", "number", "kg", required=True, example="0.10067", low=0.0,
+        Key("mass", "number", "kg", required=True, example="0.10067", low=0.0, high=10.0,
             doc="the device with its rotor"),
         Key("rotor_axis", "3 numbers", "", required=True, allowed="not zero (its length does not matter)",
             example="[0.0, 0.0, -1.0]", doc="sensor frame: the rotor's angular velocity for a positive logged speed"),
@@ -105,7 +105,7 @@ DEVICE_FORMAT = FileFormat("device", (
        "centre of mass. The motor, gyroscope and mounting keys are how a flight controller's own log (a Betaflight "
        "blackbox CSV: the page on blackbox logs) is read; throw files in the sensor frame do not need them."),
     Table("[proof]", (
-        Key("mass", "number", "kg", required=True, example="0.346", low=0.0, doc="the proof body's mass"),
+        Key("mass", "number", "kg", required=True, example="0.346", low=0.0, high=100.0, doc="the proof body's mass"),
         Key("inertia", _TENSOR, "kg m^2", required=True, allowed=_INERTIA_ALLOWED,
             example="[1.675805e-4, 1.300972e-4, 2.450833e-4]",
             doc="about its own centre of mass, along the sensor axes; 3 numbers: the moments along them"),

@@ -259,8 +259,7 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
     else:
         dev = replace(device, rotor_inertia=float(y[0]), rotor_inertia_std=float(std[0]), inertia=tensor_of(y[1:7]),
                       inertia_std=tensor_of(std[1:7]), center_of_mass=y[7:10], center_of_mass_std=std[7:10])
-    used = [f for f in (*fits_a, *fits_p) if not f.reason]
-    max_bias = max(float(np.max(np.abs(f.P[9:12]))) for f in used)  # type: ignore[index]
+    max_bias = float(max(np.abs(a.biases).max(), np.abs(p.biases).max()))  # type: ignore[union-attr]
     left = tuple(f"{t.input or f'throw {k}'}: {f.reason}" for k, (t, f) in enumerate(zip((*alone, *proof_throws),
                                                                                           (*fits_a, *fits_p))) if f.reason)
     return Calibration(dev, ratio, a.chi2_dof, p.chi2_dof, a.used, p.used, max_bias, left, tuple(problems))

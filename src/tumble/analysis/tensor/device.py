@@ -29,8 +29,12 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "Device", "Proof", "Throw", "axes_matrix"]
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device", "Proof", "Throw", "axes_matrix"]
 
+#: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
+MAX_DEVICE_MASS = 10.0
+#: The heaviest proof body or object thrown with the device, kg.
+MAX_THROWN_MASS = 100.0
 #: The signed axes ``Device.sensor_axes`` may name: an axis of the log, ``-`` for its opposite.
 AXIS_NAMES = ("x", "-x", "y", "-y", "z", "-z")
 _AXES_ALLOWED = ('3 of "x", "-x", "y", "-y", "z", "-z", one for each of the sensor frame\'s x, y, z, '
@@ -221,7 +225,7 @@ class Device:
 
     def __post_init__(self) -> None:
         s = object.__setattr__
-        s(self, "mass", check_positive("device.mass", self.mass, "kg"))
+        s(self, "mass", check_positive("device.mass", self.mass, "kg", at_most=MAX_DEVICE_MASS))
         s(self, "rotor_axis", np.array(check_direction("device.rotor_axis", self.rotor_axis)))
         s(self, "rotor_inertia", _optional_positive("device.rotor_inertia", self.rotor_inertia, "kg m^2"))
         if self.rotor_inertia_std is not None:
@@ -310,10 +314,15 @@ class Proof:
     inertia: Matrix3
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg"))
+        object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg", at_most=MAX_THROWN_MASS))
         object.__setattr__(self, "inertia", _tensor("proof.inertia", self.inertia))
 
 
+#: The longest interval between a throw's samples, s: a logger writes hundreds a second.
+MAX_INTERVAL = 1.0
+#: What no throw's sensors read (far beyond a gyroscope's 2000 deg/s, a motor's 10^5 rpm, an
+#: accelerometer's 16 g): rad/s, rad/s, m/s^2.
+_PLAUSIBLE = {"omega": 1e3, "rotor": 1e5, "accel": 1e4}
 #: The fewest samples a throw may have.
 MIN_THROW_SAMPLES = 20
 
@@ -360,6 +369,11 @@ class Throw:
         if t.ndim != 1 or t.size < MIN_THROW_SAMPLES:
             raise ValueError(f"{where} t must be a list of at least {MIN_THROW_SAMPLES} times (s), got shape {t.shape}")
         check_increasing(f"{where} t", t)
+        jump = np.flatnonzero(np.diff(t) > MAX_INTERVAL)
+        if jump.size:
+            k = int(jump[0]) + 1
+            raise ValueError(f"{where} t[{k}] = {float(t[k])!r} s comes {t[k] - t[k - 1]:.3g} s after the sample before it: a "
+                             f"logger's samples are at most {MAX_INTERVAL:g} s apart (a time written wrongly)")
         n = t.size
         arrays = {"omega": ((n, 3), "rad/s", self.omega), "rotor": ((n,), "rad/s", self.rotor),
                   "accel": ((n, 3), "m/s^2", self.accel)}
@@ -371,4 +385,9 @@ class Throw:
             a = check_vectors(f"{where} {name}", value, unit, size=None)
             if a.shape != shape:
                 raise ValueError(f"{where} {name} must have shape {shape} ({unit}), not {a.shape}")
+            beyond = np.flatnonzero(np.any(np.abs(a.reshape(n, -1)) > _PLAUSIBLE[name], axis=1))
+            if beyond.size:
+                k = int(beyond[0])
+                raise ValueError(f"{where} {name}[{k}] = {short_repr(a[k].tolist())} ({unit}) is beyond any sensor's "
+                                 f"range (at most {_PLAUSIBLE[name]:g} {unit}; a value in other units or written wrongly)")
             s(self, name, a)

@@ -157,7 +157,8 @@ def logged_speed(speed: ArrayLike, poles: int, rng: np.random.Generator) -> Floa
 class Imperfections:
     """One device's sensors and rotor as built: ``gyro`` (3 x 3, ``omega_read = gyro @ omega``:
     scale factors on the diagonal, misalignment off it), the rotor's true axis (unit, sensor
-    frame) and the motor's pole count.
+    frame), the motor's pole count, and the accelerometer's scale factors and bias (m/s^2; one
+    sensor's, the same in every throw).
 
     Examples
     --------
@@ -170,10 +171,12 @@ class Imperfections:
     gyro: FloatArray
     rotor_axis: FloatArray
     poles: int = 14
+    accel_scale: FloatArray = field(default_factory=lambda: np.ones(3))
+    accel_bias: FloatArray = field(default_factory=lambda: np.zeros(3))
 
     @classmethod
     def none(cls, rotor_axis: ArrayLike, poles: int = 14) -> Imperfections:
-        """A perfect device: an ideal gyroscope and the rotor on its nominal axis.
+        """A perfect device: an ideal gyroscope and accelerometer, the rotor on its nominal axis.
 
         Examples
         --------
@@ -190,7 +193,9 @@ def draw_imperfections(rng: np.random.Generator, rotor_axis: ArrayLike, *, scale
                        poles: int = 14) -> Imperfections:
     """A device's imperfections drawn (module docstring): scale factors ``1 + N(0, scale_std)``,
     each axis misaligned by ``N(0, misalignment_std)`` rad toward each other axis, the rotor's
-    axis turned by ``N(0, axis_std)`` rad about each axis from its nominal ``rotor_axis``.
+    axis turned by ``N(0, axis_std)`` rad about each axis from its nominal ``rotor_axis``; the
+    accelerometer's scale factors ``1 + N(0, 0.01)`` and bias up to 0.1 m/s^2 per axis (a levelled
+    flight controller's).
 
     Examples
     --------
@@ -205,4 +210,4 @@ def draw_imperfections(rng: np.random.Generator, rotor_axis: ArrayLike, *, scale
     gyro += off - np.diag(np.diag(off))
     a = np.asarray(rotor_axis, float)
     a = Rotation.from_rotvec(axis_std * rng.normal(size=3)).apply(a / np.linalg.norm(a))
-    return Imperfections(gyro, a, int(poles))
+    return Imperfections(gyro, a, int(poles), 1.0 + 0.01 * rng.normal(size=3), rng.uniform(-0.1, 0.1, 3))

@@ -25,7 +25,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from ...validation import check_positive
-from .device import Device, Throw
+from .device import MAX_THROWN_MASS, Device, Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
 from .joint import SensorErrors
 from .pool import NoThrowError, Pooled, pool_throws
@@ -189,7 +189,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
     >>> bool(np.all(np.abs(err) < 0.01))
     True
     """
-    mass = check_positive("mass", mass, "kg")
+    mass = check_positive("mass", mass, "kg", at_most=MAX_THROWN_MASS)
     if not isinstance(device, Device):
         raise ValueError(f"device must be a Device, got {type(device).__name__}")
     if not device.calibrated:

@@ -42,7 +42,7 @@ from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
 
 __all__ = ["MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "NoThrowError", "Pooled", "agreement", "duplicate_throws", "joint_verdict",
-           "pool_throws", "residual_verdict", "throw_verdict", "weighted_mean"]
+           "outlier", "own_fits", "pool_throws", "residual_verdict", "throw_verdict", "weighted_mean"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: within ~0.05 rad/s (3 deg/s; e.g. TDK ICM-42688-P +-0.5 deg/s, Bosch BMI270 +-0.5 deg/s
@@ -74,7 +74,7 @@ class Pooled:
     """The pooled flown body: tensor entries ``xx, yy, zz, xy, xz, yz`` (kg m^2 or units of
     ``J_r``) and centre (m) with their covariances (the sensors' part included, the whole
     inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
-    and the throws used.
+    and the throws used; each used throw's gyroscope bias in the joint fit (rad/s).
 
     Examples
     --------
@@ -91,6 +91,7 @@ class Pooled:
     chi2_dof: float
     used: int
     adequate: bool = True
+    biases: FloatArray | None = None
 
 
 def weighted_mean(values: FloatArray, covs: FloatArray) -> tuple[FloatArray, FloatArray, float, int]:
@@ -213,42 +214,69 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None):
     return joint, fit_joint(joint, joint.pack(C0, rest), errors)
 
 
-def agreement(joint: JointModel, jf: JointFit, fits: Sequence[FlownFit]) -> float:
-    """``chi^2 / dof`` of the throws' own tensors about the joint one, each throw refitted alone
-    with the sensors held at the joint fit's values (so that the tensors differ by what varies
-    from throw to throw, not by the gyroscope's distortion, which shifts a lone throw's tensor
-    differently for each spin), with its statistical covariance; NaN for one throw. About 1 when
-    the throws are of one rigid body; well above, when they are not (the mount moved, another
-    object), or when something the model leaves out varies between throws. (The centres of mass
-    are not compared: a lone throw's centre from the accelerometer has a covariance dominated by
-    its rates' uncertainty, which its own fit does not state for a refit like this one.)
+def own_fits(joint: JointModel, jf: JointFit) -> list[JointFit]:
+    """Each throw of a joint fit refitted alone with the sensors held at the joint fit's values:
+    its own tensor, differing from the joint one by what varies from throw to throw, not by the
+    gyroscope's distortion (which shifts a lone throw's tensor differently for each spin).
 
     Examples
     --------
-    >>> from tumble.analysis.tensor.pool import agreement
-    >>> agreement(None, None, [None])
-    nan
+    >>> from tumble.analysis.tensor.pool import own_fits
+    >>> callable(own_fits)
+    True
     """
-    if len(fits) < 2:
-        return float("nan")
-    target = vector_of(jf.inertia)
-    chi2 = 0.0
-    for k, f in enumerate(fits):
-        one = JointModel([f.model], sensor=joint.sensor)  # type: ignore[list-item]
+    out = []
+    for k, model in enumerate(joint.models):
+        one = JointModel([model], sensor=joint.sensor)
         held = np.zeros(one.n, bool)
         held[6:one.base] = True
-        own = fit_joint(one, np.r_[jf.P[:joint.base], joint.throw_parameters(jf.P, k)[6:]], None, held)
-        d = vector_of(own.inertia) - target
-        chi2 += float(d @ np.linalg.pinv(own.inertia_cov_stat) @ d)
-    return chi2 / (6 * (len(fits) - 1))
+        out.append(fit_joint(one, np.r_[jf.P[:joint.base], joint.throw_parameters(jf.P, k)[6:]], None, held))
+    return out
 
 
-def _outlier(fits: list[FlownFit], inertia: FloatArray) -> tuple[int, float]:
-    """The throw farthest from the joint tensor in its principal moments, and how many std."""
+def agreement(own: Sequence[JointFit], inertia: FloatArray) -> float:
+    """``chi^2 / dof`` of the throws' own tensors (:func:`own_fits`) about the joint one
+    ``inertia``, each with its statistical covariance; NaN for one throw. About 1 when the throws
+    are of one rigid body; well above, when they are not (the mount moved, another object), or
+    when something the model leaves out varies between throws. (The centres of mass are not
+    compared: a lone throw's centre from the accelerometer has a covariance dominated by its
+    rates' uncertainty, which a refit like this one does not state.)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.pool import agreement
+    >>> agreement([], np.eye(3))
+    nan
+    """
+    if len(own) < 2:
+        return float("nan")
+    target = vector_of(inertia)
+    chi2 = 0.0
+    for f in own:
+        d = vector_of(f.inertia) - target
+        chi2 += float(d @ np.linalg.pinv(f.inertia_cov_stat) @ d)
+    return chi2 / (6 * (len(own) - 1))
+
+
+def outlier(own: Sequence[JointFit], inertia: FloatArray) -> tuple[int, float]:
+    """The throw whose own tensor (:func:`own_fits`) lies farthest from the joint one in its
+    principal moments, and how many of its standard uncertainties.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import JointFit
+    >>> from tumble.analysis.tensor.pool import outlier
+    >>> one = lambda m: JointFit(None, None, np.diag(m), np.eye(6) * 1e-4, np.eye(6) * 1e-4, np.zeros((6, 6)), None)
+    >>> k, z = outlier([one([1.0, 2.0, 3.0]), one([1.0, 2.0, 3.5])], np.diag([1.0, 2.0, 3.0]))
+    >>> k, round(z, 6)   # 0.5 off where its std is 0.01
+    (1, 50.0)
+    """
     moments = np.linalg.eigvalsh(inertia)
     z = []
-    for f in fits:
-        m, s, _ = principal_uncertainty(f.inertia, f.inertia_cov)
+    for f in own:
+        m, s, _ = principal_uncertainty(f.inertia, f.inertia_cov_stat)
         z.append(float(np.max(np.abs(m - moments) / np.maximum(s, 1e-300))))
     k = int(np.argmax(z))
     return k, z[k]
@@ -321,9 +349,10 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
                 if why:
                     fits[k] = replace(fits[k], reason=why)
             continue
+        own = own_fits(joint, jf) if len(used) > 1 else []
         if len(used) < 3:
             break
-        worst, z = _outlier([fits[k] for k in used], jf.inertia)
+        worst, z = outlier(own, jf.inertia)
         if z <= OUTLIER_SIGMA:
             break
         fits[used[worst]] = replace(fits[used[worst]], reason=f"its tensor lies {z:.3g} standard uncertainties from "
@@ -335,7 +364,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     center_cov = center_cov + np.linalg.pinv(sum(np.linalg.pinv(f.center_cov_rates) for f in chosen))
     I = vector_of(jf.inertia)
     cov_I = jf.inertia_cov
-    chi2_dof = agreement(joint, jf, chosen)
+    chi2_dof = agreement(own, jf.inertia)
     if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their uncertainties: Birge
         cov_I, center_cov = cov_I * chi2_dof, center_cov * chi2_dof
-    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True), fits
+    biases = np.array([joint.throw_parameters(jf.P, j)[9:12] for j in range(len(chosen))])
+    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases), fits

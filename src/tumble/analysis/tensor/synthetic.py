@@ -28,8 +28,9 @@ Mechanics*, 3rd ed., sec. 4.10, less gravity, which it does not sense), plus the
 (0.05-0.5 m/s^2, fixed in the world and changing with the speed, so turning in the body frame), a jolt of 5-20 m/s^2 over 2-4 ms at each of the rotor's
 switches (the motor's reaction shakes the structure), the flywheel's imbalance (``6e-7 m x
 Omega^2``, ~1 m/s^2 at the plateau, turning with it) and white noise 0.3 m/s^2, all smoothed by
-the firmware's low-pass (second-order, 100-200 Hz, causal), then a scale error of 1 %, a bias
-of up to 0.1 m/s^2, 2048 LSB per g and the 16 g range.
+the firmware's low-pass (second-order, 100-200 Hz, causal), then the sensor's scale errors and
+bias (the device's, :class:`~tumble.analysis.tensor.firmware.Imperfections`: 1 %, up to 0.1 m/s^2),
+2048 LSB per g and the 16 g range.
 
 The truth is integrated independently of the fit's model: Euler's equations of the gyrostat in
 the angular-velocity form ``I w' = -w x (I w + h) - h' + tau`` (Hughes, *Spacecraft Attitude
@@ -435,7 +436,7 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
     f += (6e-7 * speed ** 2)[:, None] * (np.outer(np.cos(phase), e1) + np.outer(np.sin(phase), e2))
     f = f + rng.normal(0.0, 0.3, (n, 3))
     f = _firmware_lowpass(f, 248e-6, rng.uniform(100.0, 200.0))
-    accel = f * (1 + rng.normal(0.0, 0.01, 3)) + rng.uniform(-0.1, 0.1, 3)
+    accel = f * imp.accel_scale + imp.accel_bias
     lsb_a = _G / 2048.0
     accel = np.clip(np.round(accel / lsb_a) * lsb_a, -16 * _G, 16 * _G)
 
