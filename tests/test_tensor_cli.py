@@ -53,8 +53,9 @@ TENSOR_BAD = {
     "mass as text": (CALIBRATED.replace("mass = 0.10067", 'mass = "100 g"'), None, "0.5",
                      "device.toml: [device] mass = '100 g' must be a number (kg)"),
     "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: "
-                    "center_of_mass, center_of_mass_std, gyro_full_scale, gyro_resolution, inertia, inertia_std, mass, "
-                    "motor_index, motor_poles, rotor_axis, rotor_inertia, rotor_inertia_std, sensor_axes\n"),
+                    "center_of_mass, center_of_mass_std, gyro_full_scale, gyro_misalignment_std, gyro_resolution, "
+                    "gyro_scale_std, inertia, inertia_std, mass, motor_index, motor_poles, rotor_axis, rotor_axis_std, "
+                    "rotor_inertia, rotor_inertia_std, sensor_axes\n"),
     "unknown table": (CALIBRATED + "[body]\nname = 'x'\n", None, "0.5", "device.toml: unknown table 'body'"),
     "no [device]": (PROOF, None, "0.5", "device.toml: missing table [device]"),
     "no rotor axis": (CALIBRATED.replace("rotor_axis = [0.0, 0.0, -1.0]\n", ""), None, "0.5",
@@ -343,7 +344,8 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     out = tmp_path / "bracket"
     code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(device), "--mass", repr(BOX_MASS), "--out", str(out))
     assert code == 0, err
-    assert stdout.count("\n") == 1 and stdout.startswith("tensor: principal moments ") and err == ""
+    assert stdout.count("\n") == 1 and stdout.startswith("tensor: principal moments ")
+    assert err.startswith(f"warning: left out {paths[3]}: ") and err.count("\n") == 1   # the held log, named
     assert sorted(p.name for p in out.iterdir()) == ["inertial.urdf", "inertial.xml", "tensor.json", "tensor.png",
                                                      "throws.npz"]
     assert (out / "tensor.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -388,9 +390,9 @@ def test_the_guides_figure_has_a_command_that_makes_it(tmp_path):
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def _held() -> Throw:
+def _held(seed: int = 3) -> Throw:
     """A device held in the hand for 0.5 s at ~4 kHz: no release, the rotor never started."""
-    rng = np.random.default_rng(3)
+    rng = np.random.default_rng(seed)
     t = np.cumsum(rng.uniform(2.2e-4, 2.8e-4, 2000))   # s
     omega = rng.normal(0.0, 0.02, (t.size, 3)) + [0.1, -0.2, 0.05]   # rad/s: the hand's slow turning
     accel = rng.normal(0.0, 0.05, (t.size, 3)) + [0.0, 0.0, 9.81]   # m/s^2: held against gravity
@@ -400,10 +402,9 @@ def _held() -> Throw:
 def test_throws_of_which_none_flies_fail_with_status_1(tmp_path, capsys):
     """Logs of a device held in the hand: well-formed files, no flight to fit; the computation
     fails (exit 1), one line, nothing written."""
-    held = _held()
     dev = tmp_path / "calibrated.toml"
     dev.write_text(CALIBRATED)
-    paths = [str(write_throw(tmp_path / f"h{k}.csv", held)) for k in (1, 2)]
+    paths = [str(write_throw(tmp_path / f"h{k}.csv", _held(k))) for k in (1, 2)]   # two logs (one twice is refused)
     out = tmp_path / "out"
     code, stdout, err = _cli(capsys, "tensor", *paths, "--device", str(dev), "--mass", "0.5", "--out", str(out))
     assert code == 1, err

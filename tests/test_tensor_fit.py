@@ -283,9 +283,11 @@ def _trial(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def test_pooled_intervals_cover_the_truth():
-    """12 seeded trials of two throws: the pooled 95 % intervals of the three moments hold the truth
-    (34 of 36 expected; fewer than 29 has probability < 0.5 % for a right uncertainty), and they
-    are narrow enough to use (median std under 2 % of the moment)."""
+    """12 seeded trials of two throws (a real gyroscope's distortion, the calibration off by draws
+    from its stated std): the pooled 95 % intervals of the three moments hold the truth (34 of 36
+    expected; fewer than 29 has probability < 0.5 % for a right uncertainty), and they are narrow
+    enough to use (median std under 3 % of the moment; benchmarks/tensor_coverage.py measures the
+    issue's targets on 3 throws and 100 objects)."""
     covered, errors, rel = 0, [], []
     for k in range(12):
         m, s, truth = _trial(k)
@@ -293,8 +295,8 @@ def test_pooled_intervals_cover_the_truth():
         errors.append(np.abs(m / truth - 1))
         rel.append(s / m)
     assert covered >= 29
-    assert np.all(np.median(errors, axis=0) < 0.015)
-    assert np.all(np.median(rel, axis=0) < 0.02)
+    assert np.all(np.median(errors, axis=0) < 0.03)
+    assert np.all(np.median(rel, axis=0) < 0.03)
 
 
 def test_bad_input_is_refused_with_the_field_named():

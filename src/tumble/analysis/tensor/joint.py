@@ -43,7 +43,7 @@ from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
 from .estimate import vector_of
 from .flight import skew
-from .model import DYNAMIC, NONNEGATIVE, ThrowModel, inertia_jacobian, inertia_of
+from .model import DYNAMIC, NONNEGATIVE, ThrowModel, finite, inertia_jacobian, inertia_of
 
 __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
 
@@ -301,8 +301,9 @@ def _lm(joint: JointModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
         return P
 
     with np.errstate(all="ignore"):
-        sol = least_squares(lambda x: joint.residuals(full(x)), P0[free], jac=lambda x: joint.jacobian(full(x))[:, free],
-                            method="lm", x_scale="jac", max_nfev=200, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+        sol = least_squares(lambda x: finite(joint.residuals(full(x))), P0[free],
+                            jac=lambda x: finite(joint.jacobian(full(x))[:, free], 0.0), method="lm", x_scale="jac",
+                            max_nfev=200, ftol=1e-10, xtol=1e-10, gtol=1e-10)
     return full(np.asarray(sol.x)).copy()
 
 

@@ -53,7 +53,7 @@ from ...dynamics.models.gyrostat import gyrostat_omega
 from ...typing import ArrayLike, FloatArray, Matrix3
 from .estimate import vector_of
 
-__all__ = ["DYNAMIC", "MAX_STEP", "NAMES", "NONNEGATIVE", "integration_grid", "ROTOR_BANDWIDTH", "drag_scale", "RotorInput", "ThrowModel", "cholesky_of", "inertia_jacobian", "inertia_of",
+__all__ = ["DYNAMIC", "MAX_STEP", "NAMES", "NONNEGATIVE", "finite", "integration_grid", "ROTOR_BANDWIDTH", "drag_scale", "RotorInput", "ThrowModel", "cholesky_of", "inertia_jacobian", "inertia_of",
            "rotor_input"]
 
 #: The equivalent kernel bandwidth of the rotor speed's smoothing, s.
@@ -99,6 +99,21 @@ def integration_grid(t: ArrayLike) -> tuple[FloatArray, np.ndarray]:
     at = np.r_[0, np.cumsum(parts)]
     grid[at] = t
     return grid, at
+
+
+def finite(x: FloatArray, fill: float = 1e3) -> FloatArray:
+    """``x`` with its non-finite entries replaced by ``fill``: a step of Levenberg-Marquardt into a
+    tensor with no motion (a rod: no inverse) gets residuals far too large (rad/s), so the
+    damping takes it back, rather than NaN, which MINPACK cannot step from.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.model import finite
+    >>> finite(np.array([0.1, np.nan, np.inf])).tolist()
+    [0.1, 1000.0, 1000.0]
+    """
+    return np.where(np.isfinite(x), x, fill)
 
 
 def drag_scale(inertia_size: float) -> float:
@@ -362,11 +377,15 @@ class ThrowModel:
         k = P[:, 16] if self.drag else np.zeros(P.shape[0])
         out = np.empty((P.shape[0], self.grid.size, 3))
         I = inertia_of(c)
+        moments = np.linalg.eigvalsh(I)
+        flat = ~(moments[:, 0] > 1e-9 * np.abs(moments[:, 2]))  # a tensor with no inverse (a rod, or NaN): no motion
+        I[flat] = np.eye(3)
         for lag in np.unique(lags):
             rows = lags == lag
             s, s_mid, g, g_mid = self.momentum(lag)
             out[rows] = gyrostat_omega(I[rows], L0[rows], self.grid, np.outer(s, a), np.outer(s_mid, a), quad[rows],
                                        torque=(np.outer(g, a), np.outer(g_mid, a)), torque_scale=k[rows])
+        out[flat] = np.nan
         return out[:, self.at]
 
     def sensor(self, P: FloatArray) -> FloatArray:

@@ -45,7 +45,7 @@ from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
 from .joint import JointModel, SensorErrors, fit_joint
-from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input
+from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, finite, inertia_of, rotor_input
 
 __all__ = ["BLOCK", "MAX_GAP", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
@@ -177,8 +177,9 @@ def _lm(model: ThrowModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
         return P
 
     with np.errstate(all="ignore"):
-        sol = least_squares(lambda x: model.residuals(full(x)), P0[free], jac=lambda x: model.jacobian(full(x))[:, free],
-                            method="lm", x_scale="jac", max_nfev=300, ftol=1e-10, xtol=1e-10, gtol=1e-10)
+        sol = least_squares(lambda x: finite(model.residuals(full(x))), P0[free],
+                            jac=lambda x: finite(model.jacobian(full(x))[:, free], 0.0), method="lm", x_scale="jac",
+                            max_nfev=300, ftol=1e-10, xtol=1e-10, gtol=1e-10)
     return full(np.asarray(sol.x)).copy()
 
 
@@ -340,6 +341,11 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
 
 def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors: SensorErrors | None) -> FlownFit:
     """The fitted throw's uncertainties (through the joint fit of one throw), verdict and centre of mass."""
+    res = model.residuals(P)
+    moments = np.linalg.eigvalsh(inertia_of(P[:6]))
+    if not (np.all(np.isfinite(res)) and moments[0] > 1e-6 * moments[2]):
+        return FlownFit(win, "the fit found no rigid body's motion that explains the flight (its tensor came out "
+                             "degenerate): the rotor's axis or the sign of its speed may be wrong")
     single = fit_joint(JointModel([model]), P, errors, optimize=False)
     P = single.P
     data, keep = model.data, model.keep
