@@ -7,9 +7,10 @@ flywheel a motor spins up from the moment of release) is strapped to an object a
 rotor's reaction torque, with its calibrated inertia, fixes the absolute scale that a free tumble
 alone cannot give: the gyrostat's Euler equations then yield all six entries of the tensor in
 kg m^2 (the setting of Blaha, Kuijper, Pop & Smeur, arXiv:2503.13137). The throws here are
-synthetic (:mod:`tumble.analysis.tensor.synthetic`: a hand-held swing, the release, a 0.5 s
-flight with the rotor spun up to ~1500 rad/s, the catch; the gyroscope's noise, bias and
-saturation, the accelerometer's, irregular timestamps before the release, air drag). First the
+synthetic, as the real device logs them (:mod:`tumble.analysis.tensor.synthetic`: a hand-held
+swing, the fingers' last touch, the firmware's rotor schedule of idle, spin-up to ~1300 rad/s and
+brake, the log ending in flight; the gyroscope's scale, misalignment, noise, bias and range, the
+rotor's axis off its nominal, the accelerometer's jolts and smoothing, the air's drag). First the
 device is calibrated (`tumble calibrate`): throws of the device alone and with a proof body of
 known tensor give the rotor's inertia, the device's tensor and its centre of mass. Then an
 object, a 0.482 kg box 16 x 9 x 4 cm turned against the sensor's axes and off its centre, is
@@ -33,9 +34,8 @@ from tumble.viz.tensor import figure_tensor
 device_file = Device(mass=0.10067, rotor_axis=[0.0, 0.0, -1.0])
 truth = true_device()  # the synthetic device's true mass properties (rotor included)
 proof, proof_on_device = true_proof()  # the proof body (0.346 kg) and where it sits on the device
-# the device alone is light: thrown gently with its rotor at 300 rad/s (the full 1500 rad/s would
-# turn it past the gyroscope's range)
-alone = [synthetic_throw(seed, truth, rotor_top=300.0, spin=(3.0, 6.0)) for seed in (1, 2, 3)]
+# the device alone is light and thrown gently: its rotor's spin-up turns it by ~30 rad/s
+alone = [synthetic_throw(seed, truth, spin=(3.0, 8.0)) for seed in (1, 2, 3)]
 with_proof = [synthetic_throw(seed, combine(truth, proof_on_device)) for seed in (11, 12, 13)]
 device = tumble.calibrate_device(device_file, alone, with_proof, proof)
 print(f"rotor inertia {device.rotor_inertia:.4g} +- {device.rotor_inertia_std:.2g} kg m^2 (true 1.7e-06); "

@@ -114,10 +114,12 @@ class TensorFit:
     throws : tuple of ThrowFit
         One per throw given, in order.
     adequate : bool
-        Whether every used throw's model fits its samples (residuals near the noise).
+        Whether the answer was made from the throws that pass (those left out say why in
+        ``throws``; an answer that is no body's tensor is never returned:
+        :class:`~tumble.analysis.tensor.pool.NoThrowError`).
     chi2_dof : float
-        The throws' scatter about the pooled values over what their uncertainties allow
-        (NaN for one throw).
+        The throws' own tensors' scatter about the joint one over what their uncertainties
+        allow (:func:`~tumble.analysis.tensor.pool.agreement`; NaN for one throw).
 
     Examples
     --------
@@ -164,8 +166,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
     Returns
     -------
     TensorFit
-        ``adequate`` is False when a throw's model does not fit its samples (that throw is
-        skipped with the reason, the others pooled).
+        A throw that cannot be trusted is skipped with its reason, the others fitted jointly.
 
     Raises
     ------
