@@ -11,7 +11,8 @@ key                           shape       what
 ============================  ==========  ===================================================
 ``count``                     ()          the number of throws (int64), = len(tensor.json's "throws")
 ``t_K``                       (n,)        the fitted samples' times on the throw file's clock, s (float64)
-``omega_measured_K``          (n, 3)      the gyroscope's samples, sensor frame, rad/s (float32)
+                                          (the means of the log's samples over 1 ms, as the fit takes them)
+``omega_measured_K``          (n, 3)      the gyroscope's samples (their means), sensor frame, rad/s (float32)
 ``omega_model_K``             (n, 3)      the fitted model's rates, bias included, rad/s (float32)
 ``rotor_K``                   (n,)        the rotor's logged speed at those times, rad/s (float32)
 ============================  ==========  ===================================================
@@ -99,8 +100,8 @@ def throw_series(fitted: Sequence[_FittedThrow], logged: Sequence[_LoggedThrow])
     fitted : sequence of ThrowFit
         ``TensorFit.throws``: each throw's fitted times, measured and model rates.
     logged : sequence of Throw
-        The throws as read, in the same order: the rotor's speed is taken at the fitted times
-        (they are the log's own sample times, so it is the logged value).
+        The throws as read, in the same order: the rotor's logged speed is interpolated at the
+        fitted times (the means of the log's samples over 1 ms).
 
     Returns
     -------

@@ -4,7 +4,7 @@ In free flight an accelerometer at ``r`` from the centre of mass reads ``f = w' 
 + b_a`` (the acceleration of a point of a rigid body, Goldstein, Poole & Safko, *Classical
 Mechanics*, 3rd ed., sec. 4.10, less gravity, which a falling accelerometer does not sense; ``b_a``
 its bias). With ``w`` from the fitted model (not the noisy data) and the reading integrated over
-blocks of :data:`ACCEL_BLOCK` samples,
+blocks of :data:`ACCEL_BLOCK` s,
 
     ``integral f dt = (w_b - w_a) x r + integral w x (w x r) dt + b_a (t_b - t_a)``,
 
@@ -48,8 +48,8 @@ from .model import ThrowModel
 
 __all__ = ["ACCEL_BIAS_STD", "ACCEL_BLOCK", "AIR_STD", "JACKKNIFE_GROUPS", "CUTOFFS", "JOLT_FACTOR", "center_of_mass", "rate_part"]
 
-#: Samples per block of the accelerometer's integrated reading (20 ms at 4 kHz).
-ACCEL_BLOCK = 80
+#: The length of a block of the accelerometer's integrated reading, s.
+ACCEL_BLOCK = 0.02
 #: The cut-offs of the firmware's smoothing of the accelerometer tried, Hz (infinite: none): a flight
 #: controller logs its low-passed accelerometer, which lags and rounds the reading where the rotor's
 #: switches change ``w'`` fast; the model's reading is smoothed by the second-order low-pass
@@ -88,8 +88,9 @@ def _blocks(w: FloatArray, t: FloatArray, accel: FloatArray, cutoff: float) -> t
     R = cumulative_trapezoid(air, t, axis=0, initial=0.0)
     F = cumulative_trapezoid(accel, t, axis=0, initial=0.0)
     w = _smoothed(w, t, cutoff)
-    a = np.arange(0, t.size - ACCEL_BLOCK, ACCEL_BLOCK)
-    b = a + ACCEL_BLOCK
+    size = max(2, int(round(ACCEL_BLOCK / float(np.median(np.diff(t))))))
+    a = np.arange(0, t.size - size, size)
+    b = a + size
     a, b = a[bad[b + 1] == bad[a]], b[bad[b + 1] == bad[a]]  # blocks with no clipped sample
     rows = np.concatenate([skew(w[b] - w[a]) + Q[b] - Q[a], (t[b] - t[a])[:, None, None] * np.eye(3), R[b] - R[a]],
                           axis=2)
@@ -137,10 +138,11 @@ def _solve(A: FloatArray, y: FloatArray, weights: FloatArray) -> FloatArray:
 
 
 def center_of_mass(models: Sequence[ThrowModel], rates: Sequence[FloatArray], accels: Sequence[FloatArray],
-                   cutoff: float | None = None) -> tuple[FloatArray, FloatArray, FloatArray, float]:
+                   cutoff: float | None = None, covariance: bool = True) -> tuple[FloatArray, FloatArray, FloatArray, float]:
     """The centre of mass shared by one or more throws (module docstring): ``(c, cov_c, b_a,
     cutoff)`` in m, m^2, m/s^2 and Hz, without the rates' part (:func:`rate_part`); the
-    firmware's smoothing found (:data:`CUTOFFS`) unless given.
+    firmware's smoothing found (:data:`CUTOFFS`) unless given; without ``covariance`` one pass
+    and no covariance (zeros), for the rates' part's differences.
 
     Parameters
     ----------
@@ -180,7 +182,7 @@ def center_of_mass(models: Sequence[ThrowModel], rates: Sequence[FloatArray], ac
         cutoff = float(CUTOFFS[int(np.argmin([cost(fc) for fc in CUTOFFS]))])
     blocks = [_blocks(w, m.t, a, cutoff) for w, m, a in zip(rates, models, accels)]
     rows, rhs = [b[0] for b in blocks], [b[1] for b in blocks]
-    for _ in range(2):  # the second pass without the jolts' blocks
+    for _ in range(2 if covariance else 1):  # the second pass without the jolts' blocks
         A, y = _design(rows, rhs)
         x = np.linalg.lstsq(A, y, rcond=None)[0]
         res = A @ x - y
@@ -193,6 +195,8 @@ def center_of_mass(models: Sequence[ThrowModel], rates: Sequence[FloatArray], ac
             break
         rows = [r[k] for r, k in zip(rows, kept)]
         rhs = [y_[k] for y_, k in zip(rhs, kept)]
+    if not covariance:
+        return -x[:3], np.zeros((3, 3)), x[3:6], cutoff
     res = A @ x - y
     counts = np.r_[0, np.cumsum([len(r) for r in rows])]
     s2 = float(res @ res) / max(res.size - 6, 1)
@@ -239,6 +243,6 @@ def rate_part(model: ThrowModel, P: FloatArray, cov: FloatArray, accel: FloatArr
         e = np.zeros(P.size)
         e[k] = d[k]
         up, down = model.omega(np.array([P + e, P - e]))
-        G[:, col] = (center_of_mass([model], [up], [accel], cutoff)[0]
-                     - center_of_mass([model], [down], [accel], cutoff)[0]) / (2 * d[k])
+        G[:, col] = (center_of_mass([model], [up], [accel], cutoff, covariance=False)[0]
+                     - center_of_mass([model], [down], [accel], cutoff, covariance=False)[0]) / (2 * d[k])
     return G @ cov @ G.T

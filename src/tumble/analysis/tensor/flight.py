@@ -38,7 +38,7 @@ MISFIT = 0.5 * 9.80665
 #: The span of the averages and differences used to find the flight, s.
 SPAN = 0.004
 #: Left out after the release that the residuals show and before a catch, s.
-START_MARGIN = 0.008
+START_MARGIN = 0.010
 END_MARGIN = 0.005
 #: How far before the rotor's start the release is looked for without an accelerometer, s (the
 #: firmware starts the rotor 0.06-0.12 s after it senses the release).
