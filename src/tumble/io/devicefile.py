@@ -49,6 +49,8 @@ from .atomic import atomic_write_text
 from .bodyfile import read_toml
 from .keys import FileFormat, Key, Table
 
+__all__ = ["DEVICE_FORMAT", "device_from_table", "device_toml", "load_calibration", "load_device", "proof_from_table",
+           "write_device"]
 
 _TENSOR = "3 numbers or 3 rows of 3"
 _INERTIA_ALLOWED = "a physical tensor: symmetric, positive definite, its moments obeying the triangle inequality"

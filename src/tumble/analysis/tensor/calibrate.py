@@ -171,7 +171,15 @@ class Calibration:
 
     @property
     def adequate(self) -> bool:
-        """Whether the calibration checks out (no problem found)."""
+        """Whether the calibration checks out (no problem found).
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor import Device
+        >>> from tumble.analysis.tensor.calibrate import Calibration
+        >>> Calibration(Device(0.1, [0, 0, 1]), 9.0, 1.0, 1.0, 3, 3, 0.01, (), ("the proof turned",)).adequate
+        False
+        """
         return not self.problems
 
     def as_dict(self) -> dict[str, Any]:

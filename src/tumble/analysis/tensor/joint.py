@@ -153,20 +153,70 @@ class JointModel:
         self.normals = np.linalg.svd(self.axis0[None])[2][1:]  # two unit vectors normal to the axis
 
     def throw_parameters(self, P: FloatArray, k: int) -> FloatArray:
-        """Throw ``k``'s parameters (``C``, ``L(t_0)``, bias, drag, lag) of the joint vector ``P``."""
+        """Throw ``k``'s parameters (``C``, ``L(t_0)``, bias, drag, lag) of the joint vector ``P``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> joint.throw_parameters(np.arange(24.0), 0)[[0, 5, 6, 16]].tolist()   # C, then the throw's own past the sensors'
+        [0.0, 5.0, 13.0, 23.0]
+        """
         return np.r_[P[:6], P[self.base + self.per * k: self.base + self.per * (k + 1)]]
 
     def pack(self, c: FloatArray, rest: Sequence[FloatArray], sensor: FloatArray | None = None) -> FloatArray:
-        """The joint vector of ``C``, the sensors' (zeros by default) and each throw's own (``L(t_0)``, bias, drag, lag)."""
+        """The joint vector of ``C``, the sensors' (zeros by default) and each throw's own (``L(t_0)``, bias, drag, lag).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> joint.pack(np.ones(6), [np.full(11, 2.0)]).tolist() == [1.0] * 6 + [0.0] * 7 + [2.0] * 11
+        True
+        """
         shared = np.zeros(self.base - 6) if sensor is None else np.asarray(sensor, float)
         return np.concatenate([np.asarray(c, float), shared, *[np.asarray(r, float)[:self.per] for r in rest]])
 
     def gyro(self, P: FloatArray) -> FloatArray:
-        """``omega_read = gyro @ omega``: the identity plus the fitted distortion."""
+        """``omega_read = gyro @ omega``: the identity plus the fitted distortion.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> P = joint.pack(np.ones(6), [np.zeros(11)], [0.01, 0.0, 0.002, 0.0, 0.0, 0.0, 0.0])
+        >>> joint.gyro(P).round(6).tolist()   # xx - zz and xy: symmetric and trace-free
+        [[1.01, 0.002, 0.0], [0.002, 1.0, 0.0], [0.0, 0.0, 0.99]]
+        """
         return np.eye(3) + (np.tensordot(P[6:11], GYRO_BASIS, 1) if self.sensor else 0.0)
 
     def axis(self, P: FloatArray) -> FloatArray:
-        """The rotor's axis, tilted by the fitted angles (unit, sensor frame)."""
+        """The rotor's axis, tilted by the fitted angles (unit, sensor frame).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> a = joint.axis(joint.pack(np.ones(6), [np.zeros(11)], [0, 0, 0, 0, 0, 0.01, 0.0]))
+        >>> round(float(np.degrees(np.arccos(a[2]))), 4)   # tilted 0.01 rad from z
+        0.573
+        """
         if not self.sensor:
             return self.axis0
         return Rotation.from_rotvec(P[11:13] @ self.normals).apply(self.axis0)
@@ -194,7 +244,21 @@ class JointModel:
         return [self._rates(k, self.throw_parameters(P, k)[None], a)[0] for k in range(len(self.models))]
 
     def residuals(self, P: FloatArray) -> FloatArray:
-        """Every throw's ``model - data`` on its kept samples, flat, rad/s."""
+        """Every throw's ``model - data`` on its kept samples, flat, rad/s.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> P = joint.pack(cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), [np.r_[0.0, 0.0, 4e-3, 0.1, 0.0, 0.0, np.zeros(5)]])
+        >>> r = joint.residuals(P)
+        >>> r.shape, bool(np.allclose(r[:3], [0.1, 0.0, 10.0]))   # 10 rad/s about z, 0.1 rad/s of bias on x
+        ((1200,), True)
+        """
         S, a = self.gyro(P), self.axis(P)
         out = []
         for k, m in enumerate(self.models):
@@ -203,7 +267,21 @@ class JointModel:
         return np.concatenate(out)
 
     def jacobian(self, P: FloatArray) -> FloatArray:
-        """``d residuals / dP`` (dense: rows of each throw, its own columns and the shared ones)."""
+        """``d residuals / dP`` (dense: rows of each throw, its own columns and the shared ones).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> P = joint.pack(cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), [np.r_[0.0, 0.0, 4e-3, np.zeros(8)]])
+        >>> J = joint.jacobian(P)
+        >>> J.shape, bool(np.allclose(J[:3, 16:19], np.eye(3)))   # the bias: 1 on its own axis
+        ((1200, 24), True)
+        """
         J = np.zeros((sum(self.rows), self.n))
         S, a = self.gyro(P), self.axis(P)
         row = 0
@@ -233,7 +311,21 @@ class JointModel:
     def error_columns(self, P: FloatArray) -> FloatArray:
         """``dr/de`` for what the fit leaves to the stated uncertainties (:meth:`SensorErrors.variances`):
         without ``sensor``, the 9 gyroscope entries and the rotor axis's 2 angles; with it, the rates'
-        common scale only."""
+        common scale only.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import JointModel
+        >>> from tumble.analysis.tensor.model import ThrowModel, cholesky_of, rotor_input
+        >>> t = np.arange(400) / 4000.0
+        >>> rotor = rotor_input(t, np.where(t > 0.02, 800.0, 0.0), 81, 1e-6, [0, 0, 1])
+        >>> joint = JointModel([ThrowModel(t, np.zeros((400, 3)), np.ones((400, 3), bool), rotor)], sensor=True)
+        >>> P = joint.pack(cholesky_of(np.diag([2e-4, 3e-4, 4e-4])), [np.r_[0.0, 0.0, 4e-3, np.zeros(8)]])
+        >>> E = joint.error_columns(P)
+        >>> E.shape, E[:3, 0].round(9).tolist()   # a common scale of the rates moves the reading by the rates
+        ((1200, 1), [0.0, 0.0, 10.0])
+        """
         S, a = self.gyro(P), self.axis(P)
         cols = np.zeros((sum(self.rows), 1 if self.sensor else 11))
         row = 0

@@ -74,7 +74,8 @@ NONNEGATIVE = np.r_[12:15, 16]
 MEAN_SPAN = 1e-3
 
 
-def sample_means(t: ArrayLike, *series: ArrayLike, keep: np.ndarray | None = None, span: float = MEAN_SPAN):
+def sample_means(t: ArrayLike, *series: ArrayLike, keep: np.ndarray | None = None,
+                 span: float = MEAN_SPAN) -> tuple[np.ndarray, ...]:
     """The means of consecutive groups of samples spanning about ``span`` s (a whole number of
     samples, at least 1; a last incomplete group dropped): their times, each series' means, and
     with ``keep`` (bool, like the series) where every sample of a group was kept.
