@@ -1,23 +1,27 @@
-"""Where a throw's free flight lies in its log: :func:`find_flight`.
+"""Where a throw's free flight may lie in its log: :func:`find_flight`, the bounds that the fit of
+:func:`tumble.analysis.tensor.throw.fit_flown` narrows by what the free motion explains.
 
-- **Rotor start**: the device starts its rotor when it senses the release; the first sample of
-  the run that leads to 10 % of the rotor's top speed, from the last reading at the stopped
-  rotor's level (median + 5 MADs of the readings before; a stopped motor's telemetry reads 0).
-- **Release and catch** (with an accelerometer): in free fall an accelerometer at ``r`` from
+- **Rotor start**: the device starts its rotor 0.06-0.12 s after it senses the release; the
+  first sample of the run that leads to 10 % of the rotor's top speed, from the last reading at
+  the stopped rotor's level (median + 5 MADs of the readings before; a stopped motor's telemetry
+  reads 0).
+- **The sensed release** (with an accelerometer): in free fall an accelerometer at ``r`` from
   the centre of mass reads ``f = w' x r + w x (w x r)`` plus its bias (the acceleration of a
   point of a rigid body, Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed., sec. 4.10,
   less gravity, which a falling accelerometer does not sense): ``r`` and the bias are fitted by
-  linear least squares on 10-150 ms after the rotor start (``w`` averaged and ``w'`` differenced
-  over :data:`SPAN`; a rough fit, for finding the flight only). In the hand the reading differs
-  from that by the hand's push, about ``g`` or more: the flight is the run of samples around
-  the rotor start whose misfit (a running median over :data:`SPAN`) stays below
-  :data:`MISFIT` (or 6 times its median in the flight, when larger).
-- **Catch** (the gyroscope): the first impulse (:func:`tumble.analysis.fit.segments.impulses`)
-  100 ms or more after the rotor start, when it comes before the accelerometer's end.
-- Without an accelerometer the flight starts at the rotor start.
+  linear least squares on 10-150 ms after the rotor start (the idle's ramp; ``w`` averaged and
+  ``w'`` differenced over :data:`SPAN`; a rough fit, for finding the release only). In the hand
+  the reading differs from that by the hand's push, about ``g`` or more: the release is where
+  the misfit (a running median over :data:`SPAN`) last rises above :data:`MISFIT` (or 6 times
+  its median in the flight, when larger) before the rotor's start. The rotor's switches after
+  it jolt the accelerometer by as much, so the accelerometer does not end the flight (it ended
+  the real device's at the first switch in 52 of 55 throws). Without an accelerometer the
+  search starts :data:`SEARCH_BACK` before the rotor's start.
+- **The end**: the log's; a catch, only where the fit finds one (:func:`catch_candidates`, the
+  gyroscope's impulses, are where it looks).
 
-The fitted window leaves :data:`START_MARGIN` after the release (the fingers let go over a few
-ms) and :data:`END_MARGIN` before the catch.
+The fitted window starts :data:`START_MARGIN` after the last sample the fingers' touch disturbs
+and ends :data:`END_MARGIN` before a catch.
 """
 
 from __future__ import annotations

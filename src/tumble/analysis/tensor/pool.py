@@ -33,7 +33,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...typing import FloatArray
-from ..fit.uncertainty import birge_chi2
 from .center import center_of_mass
 from .device import Throw
 from .estimate import principal_uncertainty, vector_of
@@ -42,7 +41,7 @@ from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
 
 __all__ = ["MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "NoThrowError", "Pooled", "agreement", "duplicate_throws", "joint_verdict",
-           "outlier", "own_fits", "pool_throws", "residual_verdict", "throw_verdict", "weighted_mean"]
+           "outlier", "own_fits", "pool_throws", "residual_verdict", "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: within ~0.05 rad/s (3 deg/s; e.g. TDK ICM-42688-P +-0.5 deg/s, Bosch BMI270 +-0.5 deg/s
@@ -92,28 +91,6 @@ class Pooled:
     used: int
     adequate: bool = True
     biases: FloatArray | None = None
-
-
-def weighted_mean(values: FloatArray, covs: FloatArray) -> tuple[FloatArray, FloatArray, float, int]:
-    """Inverse-covariance weighted mean of ``values (F, k)``, its covariance inflated by
-    ``max(1, chi^2 / dof)``, and ``chi^2``, ``dof`` (for independent estimates of one value;
-    the throws' tensors are pooled by the joint fit instead: module docstring).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.analysis.tensor.pool import weighted_mean
-    >>> mean, cov, chi2, dof = weighted_mean(np.array([[1.0], [3.0]]), np.ones((2, 1, 1)))
-    >>> mean.tolist(), cov.tolist(), chi2, dof   # 2 sigma apart: chi^2 = 2 on 1 dof, variance 1/2 doubled
-    ([2.0], [[1.0]], 2.0, 1)
-    """
-    W = np.array([np.linalg.pinv(c) for c in covs])
-    cov = np.linalg.pinv(W.sum(axis=0))
-    mean = cov @ np.einsum("fij,fj->i", W, values)
-    if len(values) < 2:
-        return mean, cov, float("nan"), 0
-    chi2, dof = birge_chi2(values, covs, mean)
-    return mean, cov * max(1.0, chi2 / dof), chi2, dof
 
 
 def throw_verdict(f: FlownFit, throw: Throw) -> str:

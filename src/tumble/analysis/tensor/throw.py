@@ -1,7 +1,8 @@
-"""One throw fitted: the flown body's tensor and centre of mass with their statistical covariances.
+"""One throw fitted: the flown body's tensor and centre of mass with their covariances.
 
-1. The flight is found (:func:`~tumble.analysis.tensor.flight.find_flight`), the gyroscope's
-   samples at its rail left out (:func:`tumble.analysis.fit.single.saturation_mask`).
+1. The flight's bounds are found (:func:`~tumble.analysis.tensor.flight.find_flight`), the
+   gyroscope's samples at its rail left out (:func:`tumble.analysis.fit.single.saturation_mask`),
+   and the samples averaged over 1 ms (:func:`~tumble.analysis.tensor.model.sample_means`).
 2. **Starting values** by an equation-error regression on the integrated gyrostat equation:
    over blocks ``[t_a, t_b]`` of :data:`BLOCK` s, ``I (w_b - w_a) + integral (w x I w +
    w x h) dt + h_b - h_a = 0`` (Euler's equation of the gyrostat integrated in time; Hughes,
@@ -11,21 +12,20 @@
    start from.
 3. The **output-error fit** of :class:`~tumble.analysis.tensor.model.ThrowModel` by
    :func:`scipy.optimize.least_squares` over the real sample times: Levenberg-Marquardt
-   (MINPACK's, ``x_scale="jac"``; the model needs no bounds). Why not the trust-region methods:
-   they take an SVD of the (samples x 15) Jacobian at every step, which LAPACK's threads made
-   0.2-0.4 s on a loaded two-core machine (MINPACK's own QR: 2 ms).
-4. **Covariance**: ``(J^T J)^-1 s^2 tau`` with the residuals' autocorrelation time ``tau``
-   (:func:`tumble.analysis.fit.uncertainty.effective_covariance`), propagated to the tensor's
-   entries through ``dI/dC`` (the law of propagation of uncertainty, JCGM 100:2008, sec. 5.1).
-5. **Centre of mass**: with ``w`` from the fitted model (not the noisy data), the
-   accelerometer's free-fall reading ``f = w' x r + w x (w x r) + b_a`` (Goldstein, Poole &
-   Safko, *Classical Mechanics*, 3rd ed., sec. 4.10), integrated over short blocks so that
-   ``w'`` drops out (:func:`center_of_mass`), is linear in ``r`` (the accelerometer from the
-   centre of mass) and its bias ``b_a``: linear least squares, the covariance as in 4, plus
-   the part of the fitted rates' own uncertainty (their parameters' covariance through
-   ``dc/dP``, by central differences). The centre of mass
-   from the accelerometer is ``-r``. The air's force on the body (~0.2 m/s^2 for a 0.7 kg box at
-   3 m/s) is left to the bias.
+   (MINPACK's, ``x_scale="jac"``; the model needs no bounds but the drags', held by an active
+   set). Why not the trust-region methods: they take an SVD of the (samples x 17) Jacobian at
+   every step, which LAPACK's threads made 0.2-0.4 s on a loaded two-core machine (MINPACK's
+   own QR: 2 ms).
+4. **The window is what the free motion explains** (:func:`fit_flown`): fitted from
+   :data:`PROVISIONAL` after the sensed release to the log's end (or grown from one possible
+   catch to the next while the residuals do not jump by :data:`CATCH_JUMP`); its start where the
+   model integrated back in time leaves the data (the fingers' touch, :func:`_release`).
+5. **Covariance** (the joint fit of one throw, :func:`~tumble.analysis.tensor.joint.fit_joint`):
+   ``(J^T J)^-1 s^2 tau`` with the residuals' autocorrelation time ``tau``, plus the sensors'
+   stated uncertainties through the fit's linear response, propagated to the tensor's entries
+   (the law of propagation of uncertainty, JCGM 100:2008, sec. 5.1).
+6. **Centre of mass** from the accelerometer (:mod:`~tumble.analysis.tensor.center`), with the
+   fitted rates' own uncertainty propagated.
 """
 
 from __future__ import annotations
