@@ -187,13 +187,16 @@ def test_a_flight_that_does_not_fix_the_ratios_alone_is_used_in_the_joint_fit():
     alone = (rec.t >= a - 1.0) & (rec.t <= b + 0.8)  # the short toss and the holds around it
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InadequateFitWarning)
-        with pytest.raises(NoFlightError, match="too little of the tumble recorded"):
+        # not determined alone: too little recorded, or (scipy >= 1.17's optimizer) run to the rod limit
+        with pytest.raises(NoFlightError, match="too little of the tumble recorded|ratios not determined"):
             fit_recording(rec.t[alone], rec.omega[alone])
         fit = fit_recording(rec.t, rec.omega, events=rec.events)
     short, long = fit.tosses
     assert (short.status, long.status, fit.tosses_used) == ("ok", "ok", 2)
-    assert short.reason.startswith(f"{JOINT_ONLY}: too little of the tumble recorded") and long.reason == ""
+    assert short.reason.startswith((f"{JOINT_ONLY}: too little of the tumble recorded",
+                                    f"{JOINT_ONLY}: ratios not determined")) and long.reason == ""
     assert abs(short.start - a) < 0.05 and abs(short.end - b) < 0.05  # the true release and catch
-    assert np.max(short.fit.ratios_std) > 0.1  # its own fit: not determined
+    # its own fit: not determined (wide, or run to the rod limit where no racquet lies)
+    assert np.max(short.fit.ratios_std) > 0.1 or "rod limit" in short.reason
     assert np.all(np.abs(fit.pooled.ratios - rec.ratios) < 3 * fit.pooled.ratios_std)  # the truth
     assert np.isnan(fit.chi2_dof)  # one flight states its own ratios: no scatter among flights to measure

@@ -407,7 +407,8 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
     else:
         path = Path(source)
         if not path.exists() and not path.is_symlink() and path.suffix == "":
-            raise ValueError(f"{source!r} is neither a scenario or body file nor a preset; presets: {', '.join(PRESETS)}")
+            raise ValueError(f"{source!r} is neither a scenario or body file nor a preset (presets: {', '.join(PRESETS)}); "
+                             f"{source}: no such file")
         data = read_toml(path)
         if set(data) != {"body"} or not isinstance(data["body"], dict):
             scenario = load_scenario(path)

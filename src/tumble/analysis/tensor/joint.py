@@ -7,7 +7,7 @@ predicted by its own :class:`~tumble.analysis.tensor.model.ThrowModel` (the gyro
 form with its measured rotor). One throw is the case of a single-throw fit, so a throw's own
 estimate and the pooled one come from the same code. The centre of mass is likewise one
 accelerometer offset for all the throws, each with its own accelerometer bias
-(:func:`joint_center_of_mass`).
+(:func:`~tumble.analysis.tensor.center.center_of_mass`).
 
 **Why jointly, not a weighted mean of per-throw estimates.** Each throw's estimate carries a
 covariance that grows with the estimate (a throw that came out large states a large std), so an
@@ -36,14 +36,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
 from .estimate import vector_of
 from .flight import skew
-from .model import DYNAMIC, NONNEGATIVE, ThrowModel, finite, inertia_jacobian, inertia_of
+from .model import DYNAMIC, NONNEGATIVE, ThrowModel, fit_held, inertia_jacobian, inertia_of
 
 __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
 
@@ -385,20 +384,6 @@ class JointFit:
     rms: FloatArray
 
 
-def _lm(joint: JointModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
-    P = P0.copy()
-
-    def full(x: FloatArray) -> FloatArray:
-        P[free] = x
-        return P
-
-    with np.errstate(all="ignore"):
-        sol = least_squares(lambda x: finite(joint.residuals(full(x))), P0[free],
-                            jac=lambda x: finite(joint.jacobian(full(x))[:, free], 0.0), method="lm", x_scale="jac",
-                            max_nfev=200, ftol=1e-10, xtol=1e-10, gtol=1e-10)
-    return full(np.asarray(sol.x)).copy()
-
-
 def _drag_index(joint: JointModel) -> np.ndarray:
     """The joint vector's drags (held non-negative: :data:`~tumble.analysis.tensor.model.NONNEGATIVE`)."""
     own = NONNEGATIVE[NONNEGATIVE < joint.models[0].n] - 6
@@ -431,16 +416,11 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     """
     free = np.ones(joint.n, bool) if held is None else ~np.asarray(held, bool)
     drag = _drag_index(joint)
-    if not optimize:
-        free[drag[P0[drag] <= 0]] = False
-    P = _lm(joint, P0, free) if optimize else np.asarray(P0, float).copy()
-    for _ in range(3 if optimize else 0):
-        neg = drag[P[drag] < 0]
-        if neg.size == 0:
-            break
-        free[neg] = False
-        P[neg] = 0.0
-        P = _lm(joint, P, free)
+    if optimize:
+        P, free = fit_held(joint, np.asarray(P0, float), free, drag, max_nfev=200)
+    else:
+        P = np.asarray(P0, float).copy()
+        free[drag[P[drag] <= 0]] = False
     J = joint.jacobian(P)[:, free]
     r = joint.residuals(P)
     per_sample = np.zeros((sum(m.t.size for m in joint.models), 3))

@@ -34,7 +34,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
-from scipy.optimize import least_squares
 
 from ...typing import FloatArray
 from ..fit.adequacy import Adequacy, judge
@@ -45,7 +44,7 @@ from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
 from .joint import JointModel, SensorErrors, fit_joint
-from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, finite, inertia_of, rotor_input, sample_means
+from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, fit_held, inertia_of, rotor_input, sample_means
 
 __all__ = ["BLOCK", "MAX_GAP", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
@@ -170,33 +169,9 @@ def _scaled_start(model: ThrowModel, c0: FloatArray, w0: FloatArray, drag: bool)
     return P[int(np.argmin(cost))]
 
 
-def _lm(model: ThrowModel, P0: FloatArray, free: np.ndarray) -> FloatArray:
-    """Levenberg-Marquardt over the ``free`` parameters, the others held at ``P0``'s."""
-    P = P0.copy()
-
-    def full(x: FloatArray) -> FloatArray:
-        P[free] = x
-        return P
-
-    with np.errstate(all="ignore"):
-        sol = least_squares(lambda x: finite(model.residuals(full(x))), P0[free],
-                            jac=lambda x: finite(model.jacobian(full(x))[:, free], 0.0), method="lm", x_scale="jac",
-                            max_nfev=300, ftol=1e-10, xtol=1e-10, gtol=1e-10)
-    return full(np.asarray(sol.x)).copy()
-
-
 def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
-    """The least-squares optimum with the drag never negative (module docstring of :mod:`~tumble.analysis.tensor.model`)."""
-    free = np.ones(model.n, bool)
-    P = _lm(model, P0, free)
-    held = NONNEGATIVE[NONNEGATIVE < model.n]
-    for _ in range(3):
-        if not np.any(P[held] < 0):
-            break
-        free[held] &= P[held] >= 0
-        P[held] = np.maximum(P[held], 0.0)
-        P = _lm(model, P, free)
-    return P
+    """The least-squares optimum with the drags never negative (:func:`~tumble.analysis.tensor.model.fit_held`)."""
+    return fit_held(model, P0, np.ones(model.n, bool), NONNEGATIVE[NONNEGATIVE < model.n])[0]
 
 
 def _rms(model: ThrowModel, P: FloatArray) -> float:
