@@ -258,3 +258,35 @@ def test_a_500_hz_throw_is_fitted():
     m, std, _ = principal_uncertainty(f.inertia, f.inertia_cov)
     truth = np.linalg.eigvalsh(FLOWN.inertia)
     assert np.all(np.abs(m - truth) < 3 * std) and np.all(np.abs(m / truth - 1) < 0.05)
+
+
+def test_the_commands_refuse_a_calibration_that_does_not_check_out(tmp_path, capsys):
+    """tumble calibrate with the proof mounted turned: the file written with [calibration]
+    adequate = false, each problem on stderr, exit 1; tumble tensor refuses that device (exit 1,
+    nothing written) unless --accept-inadequate."""
+    import json
+
+    from tumble.cli import main
+    from tumble.io.devicefile import load_calibration, write_device
+    from tumble.io.throwfile import write_throw
+
+    proof, placed, alone, _ = _calibration_throws()
+    turned = Rigid(proof.mass, rotate_inertia(proof.inertia, Rotation.from_rotvec([0.0, 0.0, np.pi / 2])), placed.center)
+    paths = {name: [str(write_throw(tmp_path / f"{name}{k}.csv", th)) for k, th in enumerate(throws)]
+             for name, throws in (("a", alone[:2]), ("p", [synthetic_throw(s, combine(true_device(), turned))
+                                                           for s in (24, 25)]), ("o", [throw(1), throw(2)]))}
+    device = write_device(tmp_path / "device.toml", DEVICE, proof)
+    calibrated = tmp_path / "calibrated.toml"
+    code = main(["calibrate", str(device), "--alone", *paths["a"], "--proof", *paths["p"], "--out", str(calibrated)])
+    out, err = capsys.readouterr()
+    assert code == 1 and out.startswith(f"calibrated {device}: rotor inertia ") and out.count("\n") == 1
+    assert "warning: the calibration does not check out: the parallel-axis equations disagree" in err
+    checks = load_calibration(calibrated)
+    assert checks["adequate"] is False and "mounted turned" in checks["problems"][0] and checks["chi2_dof"] > 100
+    bracket = tmp_path / "bracket"
+    code = main(["tensor", *paths["o"], "--device", str(calibrated), "--mass", repr(OBJECT.mass), "--out", str(bracket)])
+    out, err = capsys.readouterr()
+    assert code == 1 and err.startswith("tumble: tensor refused: the calibration of ") and not bracket.exists()
+    code = main(["tensor", *paths["o"], "--device", str(calibrated), "--mass", repr(OBJECT.mass), "--out", str(bracket),
+                 "--accept-inadequate"])
+    assert code == 0 and json.loads((bracket / "tensor.json").read_text())["object"]["mass"] == OBJECT.mass
