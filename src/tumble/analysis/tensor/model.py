@@ -45,6 +45,7 @@ parametric spin-up law would not). It is fitted from the rotor's first moving sa
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.interpolate import make_smoothing_spline
@@ -154,7 +155,7 @@ def finite(x: FloatArray, fill: float = 1e3) -> FloatArray:
     return np.where(np.isfinite(x), x, fill)
 
 
-def fit_held(problem, P0: FloatArray, free: np.ndarray, nonnegative: np.ndarray,
+def fit_held(problem: Any, P0: FloatArray, free: np.ndarray, nonnegative: np.ndarray,
              max_nfev: int = 300) -> tuple[FloatArray, np.ndarray]:
     """The least-squares optimum of ``problem`` (its ``residuals(P)`` and ``jacobian(P)``) over the
     ``free`` parameters (the others held at ``P0``'s), by Levenberg-Marquardt (MINPACK's,
