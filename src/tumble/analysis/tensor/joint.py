@@ -42,7 +42,8 @@ from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
 from .estimate import vector_of
 from .flight import skew
-from .model import DYNAMIC, NONNEGATIVE, ThrowModel, fit_held, inertia_jacobian, inertia_of
+from .model import DYNAMIC, NONNEGATIVE, ThrowModel, inertia_jacobian, inertia_of
+from .solve import fit_held
 
 __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
 

@@ -44,7 +44,8 @@ from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
 from .joint import JointModel, SensorErrors, fit_joint
-from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, fit_held, inertia_of, rotor_input, sample_means
+from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input, sample_means
+from .solve import fit_held
 
 __all__ = ["BLOCK", "MAX_GAP", "PROVISIONAL", "RESIDUAL_LIMIT", "FlownFit", "fit_flown", "start_values"]
 
@@ -170,7 +171,7 @@ def _scaled_start(model: ThrowModel, c0: FloatArray, w0: FloatArray, drag: bool)
 
 
 def _fit(model: ThrowModel, P0: FloatArray) -> FloatArray:
-    """The least-squares optimum with the drags never negative (:func:`~tumble.analysis.tensor.model.fit_held`)."""
+    """The least-squares optimum with the drags never negative (:func:`~tumble.analysis.tensor.solve.fit_held`)."""
     return fit_held(model, P0, np.ones(model.n, bool), NONNEGATIVE[NONNEGATIVE < model.n])[0]
 
 
