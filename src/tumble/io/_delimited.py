@@ -28,16 +28,21 @@ def _separator(line: str) -> str | None:
     return None
 
 
-def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int, str]], str | None, list[str]]:
-    """A delimited text's data lines (line number, text; blank and ``#`` lines left out), its
-    separator (None: white space) and its first line's cells: what every table reader starts with.
-    Space-separated, ``t (ms)`` is one header cell (a name and its unit)."""
+def _data_lines(raw: bytes, label: str) -> list[tuple[int, str]]:
+    """A text's lines as ``(line number, text)``, blank and ``#`` lines left out; one line naming
+    the file for bytes that are not UTF-8."""
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as err:
         raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
-             if line.strip() and not line.lstrip().startswith("#")]
+    return [(i + 1, line) for i, line in enumerate(text.splitlines()) if line.strip() and not line.lstrip().startswith("#")]
+
+
+def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int, str]], str | None, list[str]]:
+    """A delimited text's data lines (line number, text; blank and ``#`` lines left out), its
+    separator (None: white space) and its first line's cells: what every table reader starts with.
+    Space-separated, ``t (ms)`` is one header cell (a name and its unit)."""
+    lines = _data_lines(raw, label)
     if not lines:
         raise ValueError(f"{label}: no data; expected {expected}")
     sep = _separator(lines[0][1])
@@ -55,22 +60,25 @@ def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int,
     return lines, sep, head
 
 
-def _rows(lines, sep, columns, width, label) -> np.ndarray:
+def _rows(lines, sep, columns, width, label, head=None, decimal_comma=None, expected="") -> np.ndarray:
     """The numbers of ``columns`` in each data line (``(line number, text)``), a decimal comma
-    with ``;`` as the separator; one line naming the file and the line for a row of the wrong
-    length or a cell that is not a number."""
+    with ``;`` as the separator (unless ``decimal_comma`` says otherwise); one line naming the
+    file and the line for a row of the wrong length or a cell that is not a number (and its
+    column's name in ``head``, when given)."""
+    comma = sep == ";" if decimal_comma is None else decimal_comma
     rows = np.empty((len(lines), len(columns)))
     for k, (no, line) in enumerate(lines):
         cells = _split(line, sep)
         while len(cells) > width and cells[-1] == "":  # a trailing separator
             cells.pop()
         if len(cells) != width:
-            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
+            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}{expected}")
         for j, c in enumerate(columns):
             cell = cells[c]
-            if not _NUMBER.match(cell):
-                raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
-            rows[k, j] = float(cell.replace(",", ".") if sep == ";" else cell)
+            if not _NUMBER.match(cell) or ("," in cell and not comma):
+                name = "" if head is None else f"{head[c]} = "
+                raise ValueError(f"{label}, line {no}, column {c + 1}: {name}{cell[:40]!r} is not a number")
+            rows[k, j] = float(cell.replace(",", ".") if comma else cell)
     return rows
 
 

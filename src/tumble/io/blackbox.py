@@ -58,7 +58,7 @@ from ..analysis.tensor import Device
 from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..typing import BoolArray, Matrix3
 from .keys import FileFormat, Key, Table
-from ._delimited import _NUMBER, _check_order, _separator, _split
+from ._delimited import _check_order, _data_lines, _rows, _separator, _split
 from .throwread import ThrowRead
 
 __all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "looks_like_blackbox", "parse_blackbox_csv"]
@@ -246,12 +246,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
     from ..analysis.fit.single import MAX_TIME
 
     poles, motor, full_scale, lsb, R, axes = _reading(device)
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
-    lines = [(i + 1, line) for i, line in enumerate(text.splitlines())
-             if line.strip() and not line.lstrip().startswith("#")]
+    lines = _data_lines(raw, label)
     k0 = _header(lines, label)
     header_no, header_line = lines[k0]
     sep = _separator(header_line)
@@ -260,19 +255,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
         head.pop()
     columns, per_second, time_unit, has_acc = _columns(head, label, header_no, motor)
     lines = lines[k0 + 1:]
-    width = len(head)
-    values = np.empty((len(lines), len(columns)))
-    for k, (no, line) in enumerate(lines):
-        cells = _split(line, sep)
-        while len(cells) > width and cells[-1] == "":
-            cells.pop()
-        if len(cells) != width:
-            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width} as the header")
-        for i, c in enumerate(columns):
-            cell = cells[c]
-            if not _NUMBER.match(cell) or "," in cell:
-                raise ValueError(f"{label}, line {no}, column {c + 1}: {head[c]} = {cell[:40]!r} is not a number")
-            values[k, i] = float(cell)
+    values = _rows(lines, sep, columns, len(head), label, head=head, decimal_comma=False, expected=" as the header")
     if len(values) < 2:
         raise ValueError(f"{label}: {len(values)} data rows after the header; a throw needs many samples")
 

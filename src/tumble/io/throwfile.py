@@ -45,7 +45,7 @@ from ..analysis.tensor import Device, Throw
 from ..validation import read_input_file
 from .atomic import atomic_write_text
 from .gyrocolumns import ACCEL_UNITS, RATE_UNITS, _factor, _name, match_accel, match_header
-from ._delimited import _NUMBER, _check_order, _first_lines, _split
+from ._delimited import _NUMBER, _check_order, _first_lines, _rows
 from .throwread import ThrowRead
 
 __all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
@@ -129,7 +129,6 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
         return parse_blackbox_csv(raw, label, device)
     lines, sep, head = _first_lines(raw, label, "columns t, wx, wy, wz, rotor, ax, ay, az")
     first_no = lines[0][0]
-    decimal_comma = sep == ";"
     if not all(_NUMBER.match(c) for c in head):  # a header line
         columns, scale, units = _match(head, label, first_no)
         names = [head[j] for j in columns]
@@ -144,18 +143,7 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
     else:
         raise ValueError(f"{label}, line {first_no}: {len(head)} columns; expected 8 (t, wx, wy, wz, rotor, ax, ay, "
                          "az) or a header line naming the columns")
-    rows = np.empty((len(lines), len(columns)))
-    for k, (no, line) in enumerate(lines):
-        cells = _split(line, sep)
-        while len(cells) > width and cells[-1] == "":
-            cells.pop()
-        if len(cells) != width:
-            raise ValueError(f"{label}, line {no}: {len(cells)} columns; expected {width}")
-        for i, c in enumerate(columns):
-            cell = cells[c]
-            if not _NUMBER.match(cell):
-                raise ValueError(f"{label}, line {no}, column {c + 1}: {cell[:40]!r} is not a number")
-            rows[k, i] = float(cell.replace(",", ".") if decimal_comma else cell)
+    rows = _rows(lines, sep, columns, width, label)
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a throw needs many samples")
     rows *= np.array(scale)
