@@ -378,3 +378,31 @@ def test_a_free_fall_fits_as_well_as_the_gyroscopes_own_flight(seed):
     assert len(gyro) == len(both) == 2
     for alone, with_accel in zip(gyro, both):
         assert with_accel.residual_rms < 1.3 * alone.residual_rms, (with_accel.residual_rms, alone.residual_rms)
+
+
+@pytest.mark.parametrize("cell, said", [("inf", "Time (s) = inf is not a finite number"),
+                                         ("1e300", "Time (s) = 1e+300 is beyond a time"),
+                                         (None, "Acceleration y (m/s^2) = 1e+300 is beyond an accelerometer's reading")])
+def test_an_absurd_time_or_reading_in_phyphoxs_accelerometer_is_refused(tmp_path, capsys, cell, said):
+    from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    """One "inf" or "1e300" time in Accelerometer.csv (issue #42's attack round: it was used,
+    half the record's accelerations 41 m/s^2 off) or an absurd reading: one line naming the file,
+    the line and the column, exit 2, as the gyroscope's reader refuses the same cell."""
+    from tumble.cli import main
+
+    rec = synthetic_recording(11, tosses=2, accel=True)
+    export = tmp_path / "export"
+    export.mkdir()
+    (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
+    lines = phyphox_accel_csv(rec.t, rec.accel.f).splitlines()
+    cells = lines[500].split(",")
+    if cell is None:
+        cells[2] = "1e300"
+    else:
+        cells[0] = cell
+    lines[500] = ",".join(cells)
+    (export / "Accelerometer.csv").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert main(["fit", str(export), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Accelerometer.csv, line 501" in err and said in err, err
+    assert not (tmp_path / "out").exists()

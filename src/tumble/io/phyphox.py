@@ -52,10 +52,33 @@ def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, 
     rows = _rows(lines[1:], sep, [times[0], *columns], len(head), label) * np.array([1.0, *scale])
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; an accelerometer record needs many samples")
+    _check_values(rows, lines[1:], head, [times[0], *columns], label)
     _check_order(rows[:, 0], lines[1:], label)
     f = np.stack([np.interp(t, rows[:, 0], rows[:, k]) for k in (1, 2, 3)], axis=1)
     base = os.path.basename(label)
     return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units), rows[:, 0].copy()
+
+
+#: Beyond any accelerometer's reading, m/s^2 (a phone's range is 8-16 g): a value in other units.
+MAX_ACCEL = 1e4
+
+
+def _check_values(rows: np.ndarray, lines: list, head: list, columns: list, label: str) -> None:
+    """Refuse, in one line naming the file, the line and the column, a time or a specific force
+    that is not finite, a time beyond ``MAX_TIME`` or a force beyond :data:`MAX_ACCEL`, as the
+    gyroscope's reader refuses them (:func:`tumble.analysis.fit.single.fit_rotation`): one such cell
+    would be interpolated over half the record."""
+    from ..analysis.fit.single import MAX_TIME
+
+    limit = np.r_[MAX_TIME, np.full(rows.shape[1] - 1, MAX_ACCEL)]
+    bad = ~np.isfinite(rows) | (np.abs(rows) > limit)
+    if bad.any():
+        k, j = np.argwhere(bad)[0]
+        what = "a time" if j == 0 else "an accelerometer's reading"
+        unit = "s" if j == 0 else "m/s^2"
+        why = "not a finite number" if not np.isfinite(rows[k, j]) else f"beyond {what} (at most {limit[j]:.0e} {unit})"
+        raise ValueError(f"{label}, line {lines[k][0]}, column {columns[j] + 1}: {head[columns[j]]} = {rows[k, j]:.6g} "
+                         f"is {why}")
 
 
 def accel_gap(times: np.ndarray, t: np.ndarray, label: str) -> str:
