@@ -69,8 +69,8 @@ JACKKNIFE_GROUPS = 5
 #: A block whose residual exceeds this many times the blocks' median is left out (a jolt).
 JOLT_FACTOR = 4.0
 #: The accelerometer's bias, m/s^2: a prior standard uncertainty (a flight controller's
-#: accelerometer is levelled at rest, leaving ~0.1 m/s^2; MEMS zero-g offsets are +-0.2-0.6 m/s^2
-#: before it, e.g. Bosch BMI270, TDK ICM-42688-P data sheets). Without it a throw spinning about
+#: accelerometer is levelled at rest, leaving about 0.1 m/s^2, an assumed size; the synthetic
+#: devices' are within it). Without it a throw spinning about
 #: one axis trades its centripetal reading, constant, for a bias (they are the same column).
 ACCEL_BIAS_STD = 0.2
 _RANGE = 15.9 * 9.80665  # a reading this large may be clipped (the 16 g range)

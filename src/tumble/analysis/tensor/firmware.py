@@ -19,9 +19,9 @@ a fraction of a millisecond off the gyroscope's.
 
 **The imperfections** (:class:`Imperfections`, drawn once per device by :func:`draw_imperfections`):
 the gyroscope's scale factor and misalignment per axis (a small matrix ``S`` with ``omega_read =
-S omega``; MEMS sensitivity errors of a few 0.1 % and cross-axis sensitivity ~1 %, e.g.
-Bosch BMI270 and TDK ICM-42688-P data sheets), the rotor's axis a little off its nominal
-(the motor's mount) and the motor's pole count.
+S omega``; sensitivity errors of a few 0.1 % and misalignments of a few tenths of a degree,
+assumed, inside the +-1 % limits MEMS data sheets state), the rotor's axis a little off its
+nominal (the motor's mount), the motor's pole count and the accelerometer's scale and bias.
 """
 
 from __future__ import annotations

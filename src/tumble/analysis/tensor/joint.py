@@ -52,9 +52,11 @@ __all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors
 class SensorErrors:
     """The stated standard uncertainties of the device's sensors as built (type B): the
     gyroscope's scale factor per axis (relative), its misalignment per pair of axes (rad) and
-    the rotor axis's direction (rad, about each axis normal to it). Defaults: typical MEMS
-    data-sheet values (sensitivity error ~0.3 %, cross-axis sensitivity ~0.5 %; e.g. TDK
-    ICM-42688-P, Bosch BMI270) and a motor mounted to within 1 degree.
+    the rotor axis's direction (rad, about each axis normal to it). Defaults, assumed (not read
+    off this device's parts): a sensitivity error of 0.3 % and a cross-axis sensitivity of 0.5 %,
+    inside the +-1 % limits MEMS data sheets state
+    (:data:`tumble.analysis.fit.uncertainty.SCALE_UNCERTAINTY`), and a motor mounted to within 1
+    degree; the synthetic devices draw theirs from the same sizes.
 
     Examples
     --------

@@ -44,9 +44,10 @@ __all__ = ["MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "NoThrowError", "Pooled
            "outlier", "own_fits", "pool_throws", "residual_verdict", "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
-#: within ~0.05 rad/s (3 deg/s; e.g. TDK ICM-42688-P +-0.5 deg/s, Bosch BMI270 +-0.5 deg/s
-#: typical) and the flight controller removes it at rest; a fit that needs more is explaining
-#: something else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
+#: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
+#: bound), and a flight controller removes it at rest; on realistic throws the joint fit needs at
+#: most 0.3 rad/s (benchmarks/tensor_coverage.py). A fit that needs more is explaining something
+#: else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
 MAX_BIAS = 0.6
 #: A throw this many standard uncertainties from the joint fit is an outlier.
 OUTLIER_SIGMA = 5.0
