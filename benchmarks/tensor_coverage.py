@@ -21,6 +21,7 @@ Reported against the issue's targets:
 - the object's principal moments: median relative error of single throws (each throw's own
   estimate) and pooled; the share of 95 % intervals (``|error| <= 1.96 std``) holding the truth,
   single and pooled, with the binomial standard error; the pooled std relative to the moment;
+- the object's centre of mass: its error and its 95 % intervals' coverage;
 - the calibration: the rotor inertia's relative error, its 95 % interval's coverage, and the
   calibration's own checks (how many devices it flagged);
 - time: one throw's fit and 3 pooled (``time.perf_counter``, in a worker process).
@@ -97,7 +98,9 @@ def _device_task(args: tuple[int, int]) -> dict:
         m, sd = fit.object.principal_moments, fit.object.principal_moments_std
         out["objects"].append({"throws": rows, "err": (m / truth - 1).tolist(), "rel_std": (sd / m).tolist(),
                                "z": ((m - truth) / sd).tolist(), "chi2": fit.chi2_dof, "time": pooled_time,
-                               "com_err_mm": (1e3 * (fit.object.center_of_mass - obj.center)).tolist()})
+                               "com_err_mm": (1e3 * (fit.object.center_of_mass - obj.center)).tolist(),
+                               "com_z": ((fit.object.center_of_mass - obj.center)
+                                         / fit.object.center_of_mass_std).tolist()})
     one = [synthetic_throw(seeds + 999, combine(true_device(), random_object(rng)), imperfections=imp)]
     t0 = time.perf_counter()
     try:
@@ -162,6 +165,10 @@ def table(results: list[dict], seconds: float) -> str:
         "| pooled 95 % intervals hold | " + " | ".join(share(pooled_z[:, i] <= 1.96) for i in range(3)) + " |",
         "",
         f"All moments: single intervals hold {share(single_z.ravel() <= 1.96)}; pooled {share(pooled_z.ravel() <= 1.96)}.",
+        f"The object's centre of mass (3 throws): median |error| "
+        f"{np.median(np.abs([o['com_err_mm'] for o in objs])):.2f} mm, 90th percentile "
+        f"{np.percentile(np.abs([o['com_err_mm'] for o in objs]), 90):.2f} mm; its components' 95 % intervals hold "
+        f"{share(np.abs(np.array([o['com_z'] for o in objs])).ravel() <= 1.96)}.",
         f"Median chi2/dof of the throws about the joint fit: {np.nanmedian([o['chi2'] for o in objs]):.2f}.",
         "",
         "## Calibration",
