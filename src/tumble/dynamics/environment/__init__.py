@@ -8,6 +8,8 @@
   set through SGP4.
 - :mod:`~tumble.dynamics.environment.magnetic`: the Earth's tilted dipole and a uniform field;
   :mod:`~tumble.dynamics.environment.igrf`: the full IGRF along an orbit, through ``ppigrf``.
+- :mod:`~tumble.dynamics.environment.sun`: the Sun's low-precision ephemeris and the Earth's
+  shadow (cylindrical, and conical with the penumbra).
 - :mod:`~tumble.dynamics.environment.sidereal`: Julian dates and the Greenwich sidereal angle.
 - :mod:`~tumble.dynamics.environment.tabulated`: vectors tabulated in time as piecewise cubics,
   the form in which the compiled closed-loop kernel reads the IGRF field and an orbit's position.
