@@ -46,6 +46,8 @@ _EXPORTS = {
     "gravity_gradient_of": "tumble.dynamics",
     "lvlh_state": "tumble.dynamics",
     "orbit_frame_angles": "tumble.dynamics",
+    "triad": "tumble.dynamics.estimation",
+    "quest": "tumble.dynamics.estimation",
     "gravity_gradient_stability": "tumble.analysis",
     "linearised_rate": "tumble.analysis",
     "flip_interval": "tumble.analysis",
