@@ -24,7 +24,8 @@ import numpy as np
 
 from .typing import ArrayLike
 
-__all__ = ["NAME_CHARS", "escape_text", "fmt", "html_table", "script_json", "short_name", "vec"]
+__all__ = ["NAME_CHARS", "REPR_CHARS", "escape_text", "fmt", "html_table", "plural", "result_html", "result_repr",
+           "script_json", "short_name", "vec", "with_std"]
 
 #: Characters written as JSON escapes in :func:`script_json`: markup (``<``, ``>``, ``&``) and the
 #: two line separators that end a line in JavaScript before ES2019.
@@ -141,3 +142,78 @@ def html_table(
     out += ["<tr>" + "".join(_cell("td", c) for c in row) + "</tr>" for row in rows]
     out.append("</tbody></table>")
     return "".join(out)
+
+
+#: Most characters in a result's plain repr (:func:`result_repr`): one line a reader takes in.
+REPR_CHARS = 240
+
+
+def plural(n: int, word: str, many: str | None = None) -> str:
+    """``n`` and ``word``, in the plural unless ``n`` is 1 (``many``: an irregular plural).
+
+    Examples
+    --------
+    >>> from tumble._html import plural
+    >>> plural(1, "sample"), plural(5401, "sample"), plural(2, "body", "bodies")
+    ('1 sample', '5401 samples', '2 bodies')
+    """
+    return f"{n} {word if n == 1 else (many or word + 's')}"
+
+
+def with_std(value: float | np.floating[Any], std: float | np.floating[Any] | None, digits: int = 4) -> str:
+    """``value +- std`` (the standard uncertainty in 2 figures); ``value`` alone when it has none.
+
+    Examples
+    --------
+    >>> from tumble._html import with_std
+    >>> with_std(0.51234, 0.0123), with_std(2.0, float("nan")), with_std(2.0, None)
+    ('0.5123 +- 0.012', '2', '2')
+    """
+    if std is None or not np.isfinite(float(std)):
+        return fmt(value, digits)
+    return f"{fmt(value, digits)} +- {fmt(std, 2)}"
+
+
+def result_repr(kind: str, parts: Iterable[str]) -> str:
+    """A result's plain repr, ``Kind(part, part, ...)``: one line of at most :data:`REPR_CHARS`
+    characters (the parts that do not fit are left out and counted as ``...``).
+
+    Parameters
+    ----------
+    kind : str
+        The class's name.
+    parts : iterable of str
+        What it is, its size and its headline numbers, most important first.
+
+    Examples
+    --------
+    >>> from tumble._html import REPR_CHARS, result_repr
+    >>> result_repr("Run", ["5401 samples over 5400 s", "final rate 0.01 deg/s"])
+    'Run(5401 samples over 5400 s, final rate 0.01 deg/s)'
+    >>> long = result_repr("Run", ["x" * 100] * 5)
+    >>> len(long) <= REPR_CHARS, long.endswith(", ...)")
+    (True, True)
+    """
+    shown: list[str] = []
+    width = len(kind) + 2
+    for part in (" ".join(str(p).split()) for p in parts):  # one line: no newline of a message survives
+        if width + len(part) + 2 > REPR_CHARS - 5:
+            shown.append("...")
+            break
+        shown.append(part)
+        width += len(part) + 2
+    return f"{kind}({', '.join(shown)})"
+
+
+def result_html(caption: str, rows: Iterable[Sequence[object]], *more: str) -> str:
+    """A result's rich display for Jupyter (``_repr_html_``): a table of ``(what, value)`` rows
+    under ``caption``, then any further HTML (``more``: other tables, made by :func:`html_table`).
+
+    Examples
+    --------
+    >>> from tumble._html import result_html
+    >>> page = result_html("Run", [("samples", 11), ("final rate", "0.1 rad/s")])
+    >>> page.startswith("<div><table"), page.count("<tr>")
+    (True, 2)
+    """
+    return "<div>" + html_table(rows, caption=caption) + "".join(more) + "</div>"

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..typing import ArrayLike
+from . import _display
 from .periods import npa_periods
 
 __all__ = ["PeriodFamily", "periods_consistent"]
@@ -48,6 +49,9 @@ class PeriodFamily:
     energy: np.ndarray
     L_over_I3: np.ndarray
     mode: np.ndarray
+
+    def __repr__(self) -> str:
+        return _display.family_repr(self)
 
 
 def _periods_at(x, y, beta):

@@ -11,10 +11,10 @@ from typing import Protocol
 
 import numpy as np
 
-from .._html import escape_text, fmt, html_table, short_name, vec
+from .._html import escape_text, fmt, html_table, result_html, short_name, vec
 from ..typing import ArrayLike, FloatArray, IntArray
 
-__all__ = ["SVG_POINTS", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
+__all__ = ["SVG_POINTS", "batch_html", "batch_repr", "omega_svg", "subsample", "trajectory_html", "trajectory_repr"]
 
 #: Most points per curve in the omega(t) plot: enough for the eye, small in a notebook file.
 SVG_POINTS = 300
@@ -37,6 +37,15 @@ class _Batch(Protocol):
     @property
     def torque_free(self) -> bool: ...
     def __len__(self) -> int: ...
+
+
+class _Bodies(_Batch, Protocol):
+    """What :func:`batch_html` reads besides: each body's principal moments (kg m^2) and ``omega``."""
+
+    @property
+    def moments(self) -> FloatArray: ...
+    @property
+    def omega(self) -> FloatArray: ...
 
 
 class _Run(_Batch, Protocol):
@@ -111,6 +120,31 @@ def batch_repr(batch: _Batch) -> str:
     n = len(batch)
     return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t, batch.method,
                      batch.torque_free)
+
+
+def batch_html(batch: _Bodies) -> str:
+    """A batch's size, method and ranges as an HTML table (Jupyter's ``_repr_html_``).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics._display import batch_html
+    >>> page = batch_html(tumble.simulate_batch([1.0, 2.0, 3.0], [[1.0, 0.0, 0.0]] * 3, t_end=2.0, samples=5))
+    >>> page.startswith("<div><table"), "0 to 2 s" in page
+    (True, True)
+    """
+    n, t = len(batch), batch.t
+    rows: list[tuple[str, object]] = [("bodies", n), ("method", batch.method), ("samples", len(t))]
+    if len(t):
+        rows.append(("time span", f"{fmt(t[0])} to {fmt(t[-1])} s"))
+    rows.append(("external torque", "none (torque-free)" if batch.torque_free else "yes"))
+    if n:
+        moments = np.asarray(batch.moments, float).reshape(n, -1)
+        rows.append(("principal moments, smallest to largest", f"{fmt(moments.min())} to {fmt(moments.max())} kg m^2"))
+        if len(t):
+            rate = np.linalg.norm(np.asarray(batch.omega, float)[:, 0], axis=-1)
+            rows.append(("|omega(0)|, smallest to largest", f"{fmt(rate.min())} to {fmt(rate.max())} rad/s"))
+    return result_html("BatchTrajectory", rows)
 
 
 def subsample(n: int, points: int = SVG_POINTS) -> IntArray:

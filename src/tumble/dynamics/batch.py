@@ -108,6 +108,10 @@ class BatchTrajectory:
     def __repr__(self) -> str:
         return _display.batch_repr(self)
 
+    def _repr_html_(self) -> str:
+        """The batch's size, method and ranges as an HTML table (Jupyter's rich display)."""
+        return _display.batch_html(self)
+
     def __getitem__(self, i: int | np.integer[Any]) -> Trajectory:
         """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory`
         (its principal frame is its design frame)."""

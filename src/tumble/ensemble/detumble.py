@@ -34,6 +34,7 @@ from ..dynamics.environment.magnetic import DipoleField
 from ..dynamics.models.sensors import Sensors
 from ..typing import ArrayLike, FloatArray
 from ..validation import breaks_triangle, check_moments, check_positive
+from . import _display
 from .backends import InProcess
 
 __all__ = ["DetumbleCases", "DetumbleMonteCarlo", "detumble_cases", "detumble_monte_carlo"]
@@ -61,6 +62,9 @@ class DetumbleCases:
     gmst0: FloatArray
     gyro_bias: FloatArray | None = None
     noise_seed: np.ndarray | None = None
+
+    def __repr__(self) -> str:
+        return _display.cases_repr(self)
 
     def __len__(self) -> int:
         return len(self.moments)
@@ -233,6 +237,12 @@ class DetumbleMonteCarlo:
     history: FloatArray | None = None
     sensors: Sensors | None = None
     gravity_gradient: bool = False
+
+    def __repr__(self) -> str:
+        return _display.monte_carlo_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.monte_carlo_html(self)
 
     @property
     def detumbled(self) -> float:

@@ -46,6 +46,7 @@ from ..analysis import circulation_axis, energy_momentum_gaps, flip_interval, li
 from ..dynamics.special.quaternion import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
 from ..typing import ArrayLike
+from . import _display
 from .cases import CaseInputs
 
 if TYPE_CHECKING:
@@ -254,6 +255,12 @@ class StabilityMap:
     growth_rate: np.ndarray
     separatrix_gap: np.ndarray
     omega0: np.ndarray
+
+    def __repr__(self) -> str:
+        return _display.map_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.map_html(self)
 
 
 def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01, 0.01), *, resolution: int = 200) -> StabilityMap:

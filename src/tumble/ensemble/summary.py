@@ -14,6 +14,7 @@ from typing import Callable, Iterable, Iterator, Protocol
 
 import numpy as np
 
+from . import _display
 from .statistics import (
     Counts,
     KeyedSample,
@@ -127,6 +128,12 @@ class SweepSummary:
     failed: int = 0
     redraws: int = 0
     flipped: int = 0
+
+    def __repr__(self) -> str:
+        return _display.sweep_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.sweep_html(self)
 
     @classmethod
     def of(cls, columns: dict, seed: int, criterion: _Criterion | None = None,

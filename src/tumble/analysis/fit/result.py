@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from .. import _display
 from .adequacy import Adequacy, judge, rigid_body_check
 from .solve import Solution, without_drag_law_error
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios
@@ -147,6 +148,12 @@ class RotationFit:
     misfit: float = 0.0
     caveat: str = ""
     t0: float | None = None
+
+    def __repr__(self) -> str:
+        return _display.rotation_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.rotation_html(self)
 
     @property
     def moments(self) -> np.ndarray:

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...typing import ArrayLike
+from .. import _display
 from .flightmodel import FlightModel
 from .result import RotationFit
 
@@ -57,6 +58,9 @@ class Toss:
     recording: int = 0
     sensor_offset: tuple | None = None
     sensor_offset_std: tuple | None = None
+
+    def __repr__(self) -> str:
+        return _display.toss_repr(self)
 
     def summary(self) -> dict:
         """The row of ``tosses.csv`` and of fit.json's ``"tosses"`` (NaN written as None), with
@@ -137,6 +141,12 @@ class RecordingFit:
     ssr: float = field(default=float("nan"), repr=False)
     residuals: int = field(default=0, repr=False)
     flight_models: tuple = field(default=(), repr=False)
+
+    def __repr__(self) -> str:
+        return _display.recording_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.recording_html(self)
 
     def summary(self) -> dict:
         """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"``, ``"pooled"``

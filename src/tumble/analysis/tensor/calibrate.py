@@ -41,6 +41,7 @@ import numpy as np
 
 from ...mass.tensor import point_mass_inertia
 from ...typing import FloatArray
+from .. import _display
 from .device import Device, Proof, Throw
 from .estimate import tensor_of, vector_of
 from .fit import full_scale, sensor_errors
@@ -173,6 +174,12 @@ class Calibration:
     max_bias: float
     left_out: tuple[str, ...]
     problems: tuple[str, ...]
+
+    def __repr__(self) -> str:
+        return _display.calibration_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.calibration_html(self)
 
     @property
     def adequate(self) -> bool:

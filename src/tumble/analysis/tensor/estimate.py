@@ -27,6 +27,7 @@ import numpy as np
 
 from ...mass.tensor import parallel_axis
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
+from .. import _display
 
 __all__ = ["ENTRIES", "TRIANGLE_SIGMA", "MassEstimate", "mass_estimate", "not_physical", "principal_uncertainty",
            "subtract_body", "tensor_of", "vector_of"]
@@ -150,6 +151,12 @@ class MassEstimate:
     center_of_mass: Vector3
     center_of_mass_std: Vector3
     center_of_mass_cov: FloatArray = field(repr=False)
+
+    def __repr__(self) -> str:
+        return _display.estimate_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.estimate_html(self)
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready: the attributes (but the centre's covariance) as floats and nested lists.

@@ -25,6 +25,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from ...validation import check_positive
+from .. import _display
 from .device import MAX_THROWN_MASS, Device, Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
 from .joint import SensorErrors
@@ -84,6 +85,9 @@ class ThrowFit:
     t_end: float = float("nan")
     residual_rms: float = float("nan")
 
+    def __repr__(self) -> str:
+        return _display.throw_repr(self)
+
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready: ``input``, ``status``, ``reason``, ``object``, ``flown`` (dicts or None),
         ``t_release``, ``t_end``, ``residual_rms`` (None for NaN).
@@ -133,6 +137,12 @@ class TensorFit:
     throws: tuple[ThrowFit, ...]
     adequate: bool
     chi2_dof: float
+
+    def __repr__(self) -> str:
+        return _display.tensor_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.tensor_html(self)
 
     def as_dict(self) -> dict[str, Any]:
         """The content of ``tensor.json``: ``object``, ``flown``, ``throws``, ``adequate``, ``chi2_dof``.

@@ -39,6 +39,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector
+from . import _display
 from .controllers import Controller
 from ..environment.magnetic import MagneticField
 from ..models.actuators import Command, Magnetorquers, ReactionWheels
@@ -109,6 +110,13 @@ class ControlledRun:
     field: FloatArray
     momentum_world: FloatArray
     impulse_world: FloatArray
+
+    def __repr__(self) -> str:
+        return _display.run_repr(self)
+
+    def _repr_html_(self) -> str:
+        """The run's size and headline numbers as an HTML table (Jupyter's rich display)."""
+        return _display.run_html(self)
 
     @property
     def rate(self) -> FloatArray:

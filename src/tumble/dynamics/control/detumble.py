@@ -46,6 +46,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
+from . import _display
 from .controllers import bdot_dipole
 from ..models.actuators import Magnetorquers
 from ..models.gravity import GravityGradient, gradient_torque
@@ -86,6 +87,13 @@ class DetumbleBatch:
     rate: FloatArray
     omega: FloatArray
     quat: FloatArray
+
+    def __repr__(self) -> str:
+        return _display.batch_repr(self)
+
+    def _repr_html_(self) -> str:
+        """The batch's size and final rates as an HTML table (Jupyter's rich display)."""
+        return _display.batch_html(self)
 
     def detumble_time(self, threshold: float) -> FloatArray:
         """When each ``|omega|`` drops below ``threshold`` (rad/s) and stays there, s (NaN: never),

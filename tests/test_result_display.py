@@ -1,0 +1,219 @@
+"""Every public result reads well (issue 40, item 3): a plain repr of one short line that says
+what the result is, its size and its headline numbers (the object's own values, never its
+arrays), and a Jupyter table (``_repr_html_``) that parses and holds the same numbers."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble._html import REPR_CHARS, fmt, with_std
+
+# Results small enough to make in a fraction of a second each --------------------------------
+
+
+def controlled_run():
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.controllers import MRPFeedback
+    from tumble.dynamics.models.actuators import ReactionWheels
+    from scipy.spatial.transform import Rotation
+
+    rw = ReactionWheels(np.eye(3), inertia=1e-4, max_torque=1e-3)
+    c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
+    return simulate_controlled([0.03, 0.04, 0.05], [0.01, 0.0, 0.0], t_end=10.0, controller=c, wheels=rw,
+                               attitude0=Rotation.from_rotvec([0.2, 0.0, 0.0]))
+
+
+def detumble_batch():
+    from tumble.dynamics.control.detumble import DetumbleBatch
+
+    return DetumbleBatch(t=np.array([0.0, 1.0, 2.0]), rate=np.array([[0.3, 0.1, 0.05], [0.3, 0.05, 0.2]]),
+                         omega=np.zeros((2, 3)), quat=np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
+
+
+def rotation_fit():
+    from tumble.analysis.fit.result import rotation_fit
+    from tumble.analysis.fit.single import fit_solution
+    from tumble.dynamics.methods.exact_omega import free_omega
+
+    t = np.linspace(0.0, 2.0, 201)
+    w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    keep = np.ones(w.shape, bool)
+    return rotation_fit(fit_solution(t, w, keep, rotation=False, bias=False, drag="none"), t, w, keep)
+
+
+@pytest.fixture(scope="module")
+def recording_fit():
+    from tumble.analysis.fit.recording import fit_recording
+    from tumble.analysis.fit.synthetic import synthetic_recording
+
+    rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+    return fit_recording(rec.t, rec.omega, events=rec.events)
+
+
+def estimate():
+    from tumble.analysis.tensor.estimate import mass_estimate
+
+    return mass_estimate(0.5, np.diag([2e-4, 1e-4, 3e-4]), np.eye(6) * 1e-14, [0.01, 0.002, 0.0], np.eye(3) * 1e-8)
+
+
+def tensor_fit():
+    from tumble.analysis.tensor import TensorFit, ThrowFit
+
+    e = estimate()
+    used = ThrowFit("a.csv", "used", "", e, e, np.zeros(0), np.zeros((0, 3)), np.zeros((0, 3)), 0.1, 0.9, 0.0123)
+    skipped = ThrowFit("b.csv", "skipped", "no free flight found", None, None, np.zeros(0), np.zeros((0, 3)),
+                       np.zeros((0, 3)))
+    return TensorFit(object=e, flown=e, throws=(used, skipped), adequate=True, chi2_dof=1.37)
+
+
+def calibration():
+    from tumble.analysis.tensor import Device
+    from tumble.analysis.tensor.calibrate import Calibration
+
+    return Calibration(Device(0.1, [0, 0, 1], rotor_inertia=1.7e-6, rotor_inertia_std=2e-8), 9.25, 1.1, 0.8, 3, 4,
+                       0.0217, ("c.csv: no flight",), ("the proof turned",))
+
+
+def monte_carlo():
+    from tumble.ensemble.detumble import DetumbleMonteCarlo, detumble_cases
+
+    c = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)
+    return DetumbleMonteCarlo(times=np.array([100.0, 300.0, np.nan]), cases=c, threshold=0.01, t_end=600.0, seconds=0.1)
+
+
+def sweep_summary():
+    from tumble.ensemble.summary import SweepSummary
+
+    cols = {"case": np.arange(4), "axis": np.array([2, 2, 2, 3]), "predicted": np.array(["unstable"] * 3 + ["stable"]),
+            "circulation": np.array([1, 3, 3, 3]), "flips": np.array([2, 4, 6, 0]), "resampled": np.zeros(4, int)}
+    return SweepSummary.of(cols, seed=0)
+
+
+def stability_map():
+    from tumble.ensemble.reductions import stability_map
+
+    return stability_map(10.0, resolution=20)
+
+
+def period_family():
+    from tumble.analysis.period_inversion import PeriodFamily
+
+    return PeriodFamily(np.array([[0.2, 0.5], [0.3, 0.6], [0.25, 0.55]]), np.ones(3), np.ones(3),
+                        np.array(["SAM", "LAM", "SAM"]))
+
+
+def headline_numbers(obj) -> list[str]:
+    """The numbers a result's repr must show, as :func:`fmt` writes them, from its own attributes."""
+    name = type(obj).__name__
+    if name == "ControlledRun":
+        return [f"{len(obj.t)} samples", fmt(obj.t[-1] - obj.t[0]), fmt(math.degrees(obj.rate[-1]), 3),
+                fmt(np.abs(obj.wheel_speed).max(), 3), f"{obj.wheel_speed.shape[1]} wheels"]
+    if name == "DetumbleBatch":
+        return [f"{obj.rate.shape[0]} bodies", fmt(math.degrees(np.median(obj.rate[:, -1])), 3),
+                fmt(math.degrees(obj.rate[:, -1].max()), 3)]
+    if name == "RotationFit":
+        return [f"{obj.samples} samples", with_std(obj.ratios[0], obj.ratios_std[0]),
+                with_std(obj.ratios[1], obj.ratios_std[1]), fmt(obj.residual_rms, 3)]
+    if name == "RecordingFit":
+        return [f"{obj.tosses_used} of {len(obj.tosses)}", with_std(obj.pooled.ratios[0], obj.pooled.ratios_std[0]),
+                fmt(obj.chi2_dof, 2)]
+    if name in ("MassEstimate", "TensorFit"):
+        e = obj if name == "MassEstimate" else obj.object
+        return [with_std(m, s) for m, s in zip(e.principal_moments, e.principal_moments_std)] + [fmt(e.center_of_mass[0] * 1e3)]
+    if name == "Calibration":
+        return [fmt(obj.chi2_dof, 2), f"{obj.alone_used} + {obj.proof_used}", fmt(obj.max_bias, 3), "1 problem"]
+    if name == "DetumbleMonteCarlo":
+        return [f"{len(obj.times)} cases", fmt(100 * obj.detumbled, 3), fmt(obj.percentile(50))]
+    if name == "SweepSummary":
+        return [f"{obj.cases} cases", f"{obj.flipped} flipped"]
+    if name == "StabilityMap":
+        return [f"{len(obj.x)} x {len(obj.y)}", f"{int(obj.inside.sum())} inside", fmt(obj.omega0[1])]
+    if name == "PeriodFamily":
+        return [f"{len(obj.mode)} motions", "2 SAM", fmt(obj.ratios[:, 0].max(), 3)]
+    raise AssertionError(name)
+
+
+MAKERS = [controlled_run, detumble_batch, rotation_fit, estimate, tensor_fit, calibration, monte_carlo, sweep_summary,
+          stability_map, period_family]
+
+
+@pytest.fixture(scope="module", params=MAKERS, ids=lambda f: f.__name__)
+def result(request):
+    return request.param()
+
+
+def check_repr(obj) -> str:
+    text = repr(obj)
+    assert text.startswith(type(obj).__name__ + "("), text
+    assert len(text) <= REPR_CHARS and "\n" not in text, (len(text), text)
+    assert "array(" not in text and "[[" not in text, text  # no arrays
+    for number in headline_numbers(obj):
+        assert number in text, (number, text)
+    return text
+
+
+def test_repr_is_short_and_shows_the_objects_numbers(result):
+    check_repr(result)
+
+
+def test_recording_fit_repr(recording_fit):
+    check_repr(recording_fit)
+    assert "2 of 2 flights" in repr(recording_fit)
+    for toss in recording_fit.tosses:
+        assert repr(toss).startswith("Toss(") and len(repr(toss)) <= REPR_CHARS and fmt(toss.start) in repr(toss)
+
+
+def test_html_parses_and_holds_the_headline(result, recording_fit):
+    for obj in (result, recording_fit):
+        if not hasattr(obj, "_repr_html_"):
+            assert type(obj).__name__ == "PeriodFamily"
+            continue
+        page = obj._repr_html_()
+        root = ET.fromstring(page)  # every tag closed, every '<' and '&' escaped
+        assert root.tag == "div" and root.find("table/caption").text.startswith(type(obj).__name__)
+        text = "".join(root.itertext())
+        for headline in headline_numbers(obj):  # the repr's numbers, in the table too
+            for number in re.findall(r"\d[\d.e+-]*\d|\d", headline):
+                assert number in text, (number, headline, text)
+
+
+@pytest.mark.parametrize("maker, field, value, shown", [
+    (detumble_batch, "rate", np.array([[0.3, 0.1, math.radians(2.5)]]), "2.5 deg/s"),
+    (rotation_fit, "residual_rms", 0.0417, "residual 0.0417 rad/s"),
+    (rotation_fit, "adequate", False, "NOT adequate"),
+    (tensor_fit, "chi2_dof", 7.25, "chi2/dof 7.2"),
+    (calibration, "problems", (), "Calibration(adequate,"),
+    (calibration, "max_bias", 0.125, "max bias 0.125 rad/s"),
+])
+def test_a_changed_value_changes_the_repr(maker, field, value, shown):
+    """The numbers are read from the object, not written into the repr: change one, the repr follows."""
+    before = maker()
+    assert shown not in repr(before)
+    assert shown in repr(dataclasses.replace(before, **{field: value}))
+
+
+def test_long_messages_and_names_stay_within_the_bound():
+    from tumble.analysis.fit.tosses import Toss
+    from tumble.analysis.tensor import ThrowFit
+
+    toss = Toss(start=1.0, end=1.8, samples=81, status="skipped", reason="the model does not fit\n" * 40)
+    throw = ThrowFit("x" * 500 + ".csv", "skipped", "why " * 200, None, None, np.zeros(0), np.zeros((0, 3)),
+                     np.zeros((0, 3)))
+    for text in (repr(toss), repr(throw), repr(dataclasses.replace(calibration(), left_out=("a",) * 1000))):
+        assert len(text) <= REPR_CHARS and "\n" not in text, text
+
+
+def test_batch_trajectory_html():
+    batch = tumble.simulate_batch([[1.0, 2.0, 3.0], [1.0, 2.5, 3.0]], [[1.0, 0.1, 0.0], [0.0, 2.0, 0.1]], t_end=2.0,
+                                  samples=5)
+    root = ET.fromstring(batch._repr_html_())
+    cells = {tr[0].text: tr[1].text for tr in root.iter("tr")}
+    assert cells["bodies"] == "2" and cells["samples"] == "5"
+    assert cells["|omega(0)|, smallest to largest"] == f"{fmt(np.hypot(1.0, 0.1))} to {fmt(np.hypot(2.0, 0.1))} rad/s"
