@@ -131,6 +131,11 @@ html_copy_source = False
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
+    # The sidebar lists the current page's branch, not every page of its section: with the whole
+    # API reference (~700 pages) expandable on every page, each page carried ~170 KB of sidebar
+    # and the site was ~200 MB (issue 40). The theme's own advice for large API sections
+    # (pydata-sphinx-theme, "Navigation depth and collapsing sidebars").
+    "collapse_navigation": True,
     "header_links_before_dropdown": 6,
     "icon_links": [],
     "secondary_sidebar_items": ["page-toc"],

@@ -12,6 +12,7 @@ import pytest
 
 import tumble
 from tumble.cli import main
+from limits import HANG_S
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -88,7 +89,7 @@ def test_a_reader_that_closes_the_pipe_early_is_a_normal_end(argv):
     proc = subprocess.Popen([sys.executable, "-m", "tumble", *argv], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     proc.stdout.close()  # closed before the child writes a byte: its first write meets a broken pipe
     err = proc.stderr.read()
-    assert proc.wait(timeout=60) == 0 and err == b""
+    assert proc.wait(timeout=HANG_S) == 0 and err == b""
 
 
 def test_version(capsys):

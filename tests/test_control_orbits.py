@@ -13,6 +13,7 @@ from tumble.dynamics import CircularOrbit, DipoleField, IGRFField, KeplerOrbit, 
 from tumble.io.bodyfile import body_from_table
 from tumble.io.controlfile import control_scenario_from_table
 from tumble.io.controlorbit import geomagnetic_inclination, orbit_from_table
+from limits import HANG_S
 
 ISS = ["1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
        "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482"]
@@ -93,7 +94,7 @@ def test_cli_runs_the_shipped_tle_example_briefly(tmp_path):
     pytest.importorskip("ppigrf")
     out = tmp_path / "run"
     proc = subprocess.run([sys.executable, "-m", "tumble", "simulate", "examples/control/detumble_tle.toml",
-                           "--t-end", "30", "--out", str(out)], capture_output=True, text=True, timeout=120)
+                           "--t-end", "30", "--out", str(out)], capture_output=True, text=True, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     summary = json.loads((out / "summary.json").read_text())
     assert summary["orbit"]["kind"] == "tle" and summary["orbit"]["field"] == "igrf"

@@ -17,6 +17,7 @@ from tumble.dynamics.control.controlled import ControlledRun
 from tumble.io.scenario import load_scenario
 from tumble.viz.control_page import commanded_torque, control_page_data, wheel_angle
 from tumble.viz.page import CURVE_POINTS, page_html
+from limits import HANG_MS
 
 CONTROL = Path(__file__).resolve().parents[1] / "examples" / "control"
 
@@ -181,7 +182,7 @@ def test_control_page_turns_the_wheels_in_chromium(point_page, new_page):
     readouts, rims = [], []
     for frame in (5, 30):
         page.locator("#tumble-slider").fill(str(frame))
-        page.wait_for_function(f"tumbleViewer.state().frame === {frame}", timeout=60_000)
+        page.wait_for_function(f"tumbleViewer.state().frame === {frame}", timeout=HANG_MS)
         readouts.append(page.text_content("#tumble-readout"))
         rims.append(_wheel_rim(page, frame))
     assert readouts[0] != readouts[1] and "rpm" in readouts[0]

@@ -28,6 +28,7 @@ sys.path.insert(0, str(ROOT / "docs" / "_ext"))
 
 import tumble_api  # noqa: E402  (docs/_ext: the listing the site is built from)
 from test_docs_names import written_names  # noqa: E402
+from limits import BUILD_S, HANG_MS
 
 SRC = ROOT / "src" / "tumble"
 SUBPACKAGES = ("mass", "dynamics", "analysis", "ensemble", "io", "viz")
@@ -53,7 +54,7 @@ def build(tmp_path_factory):
     site, doctrees = out / "site", out / "doctrees"
     command = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-j", "2", "-q", "-E",
                "-d", str(doctrees), "-b", "html", "docs", str(site)]
-    proc = subprocess.run(command, check=False, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    proc = subprocess.run(command, check=False, cwd=ROOT, capture_output=True, text=True, timeout=BUILD_S)
     return proc, site
 
 
@@ -231,7 +232,7 @@ def test_the_site_works_from_file_with_no_network_search_included(site, new_page
     assert figure.evaluate("img => img.complete && img.naturalWidth > 0")  # the figure loaded
     page.goto((site / "search.html").as_uri() + "?q=free_rotation_batch")
     hits = page.locator("#search-results li")
-    hits.first.wait_for(timeout=15_000)  # the index (searchindex.js) loads and is searched
+    hits.first.wait_for(timeout=HANG_MS)  # the index (searchindex.js) loads and is searched
     hrefs = [hits.nth(i).locator("a").first.get_attribute("href") for i in range(hits.count())]
     assert any("tumble.dynamics.methods.exact_batch.free_rotation_batch.html" in h for h in hrefs), hrefs
     assert not watched.outside, f"requests that left file://: {watched.outside}"

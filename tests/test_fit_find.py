@@ -19,6 +19,7 @@ from tumble.analysis.fit.segments import impulses
 from tumble.analysis.fit.synthetic import TOSS_BODIES, TossBody, plate_drag_torque, synthetic_recording
 from tumble.cli import main
 from tumble.dynamics.methods.exact_omega import free_omega
+from limits import HANG_S
 
 
 def _iou(a, b, start, end):
@@ -192,7 +193,7 @@ def test_the_fitting_guides_figure_has_a_command_that_makes_it(tmp_path, monkeyp
     guide = (root / "docs" / "fitting.md").read_text(encoding="utf-8")
     assert "python docs/figures/make_fit_figure.py" in guide and "(figures/fit_recording.png)" in guide
     proc = subprocess.run([sys.executable, str(root / "docs" / "figures" / "make_fit_figure.py"), "--out", str(tmp_path)],
-                          capture_output=True, text=True, check=False, timeout=300)
+                          capture_output=True, text=True, check=False, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     png = tmp_path / "fit_recording.png"
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -24,7 +24,8 @@ from tumble.io import read_toml
 from tumble.io.bodyfile import MAX_TOML_BYTES
 from tumble.mass.mesh import MAX_MESH_BYTES
 
-TIMEOUT = 30  # s: generous for importing numpy and scipy on a busy machine; a hang fails here
+from limits import HANG_S  # a child blocked on a FIFO hangs: it fails here
+
 MEMORY = 3 << 30  # bytes of address space for a child process: reading /dev/zero hits it at once
 
 RULES = {
@@ -50,7 +51,7 @@ def _special(kind: str, tmp_path: Path, suffix: str, size: int) -> Path:
     return path
 
 
-def _in_thread(fn, path: Path, seconds: float = TIMEOUT):
+def _in_thread(fn, path: Path, seconds: float = HANG_S):
     """Call ``fn()`` with a deadline; if it is still blocked (a FIFO opened for reading), fail."""
     outcome = {}
 
@@ -82,10 +83,10 @@ def _child(code: str | None = None, cli: list[str] | None = None) -> subprocess.
     args = [sys.executable, "-c", code] if code is not None else [sys.executable, "-m", "tumble", *cli]
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     try:
-        return subprocess.run(args, capture_output=True, text=True, timeout=TIMEOUT,
+        return subprocess.run(args, capture_output=True, text=True, timeout=HANG_S,
                               preexec_fn=_limit_memory, env=env)
     except subprocess.TimeoutExpired:
-        pytest.fail(f"{' '.join(args[1:])} did not finish in {TIMEOUT} s (blocked on a FIFO?)")
+        pytest.fail(f"{' '.join(args[1:])} did not finish in {HANG_S} s (blocked on a FIFO?)")
 
 
 def _assert_one_line_error(proc: subprocess.CompletedProcess, path: Path, rule: str):

@@ -15,6 +15,7 @@ import pytest
 
 import tumble
 from tumble import jit as jit_module
+from limits import HANG_S
 
 PACKAGE = Path(tumble.__file__).resolve().parent
 
@@ -37,7 +38,7 @@ def _copy_package(tmp_path: Path) -> Path:
 
 def _run(root: Path, env_extra: dict[str, str] | None = None) -> tuple[float, int, int]:
     env = {**os.environ, "PYTHONPATH": str(root), **(env_extra or {})}
-    out = subprocess.run([sys.executable, "-c", PROBE], env=env, capture_output=True, text=True, timeout=600,
+    out = subprocess.run([sys.executable, "-c", PROBE], env=env, capture_output=True, text=True, timeout=HANG_S,
                          check=True, cwd=root)
     value, hits, misses = out.stdout.split()
     return float(value), int(hits), int(misses)

@@ -18,6 +18,7 @@ import pytest
 
 import tumble
 from tumble.viz.notebook import show
+from limits import HANG_MS, HANG_S
 
 NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "examples" / "notebooks").glob("*.ipynb"))
 #: A line of plotly.js's own licence header: once per copy of the bundle.
@@ -77,10 +78,10 @@ def test_show_plays_in_its_sandboxed_frame(run, tmp_path, new_page):
     page.goto(notebook_page.as_uri())
     page.wait_for_function("document.querySelector('iframe').contentWindow !== null")
     frame = page.frames[1]
-    frame.wait_for_function("window.tumbleViewer !== undefined", timeout=60_000)
+    frame.wait_for_function("window.tumbleViewer !== undefined", timeout=HANG_MS)
     assert frame.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 20}
     frame.click("#tumble-play")
-    frame.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
+    frame.wait_for_function("tumbleViewer.state().frame >= 5", timeout=HANG_MS)
     assert frame.evaluate("document.querySelectorAll('.js-plotly-plot').length") >= 2
     assert page.evaluate("typeof window.tumbleViewer") == "undefined"  # nothing leaks into the notebook
     assert watched.errors == [] and watched.outside == []
@@ -150,7 +151,7 @@ def test_notebook_runs(path, kernel_name, tmp_path):
     from nbclient import NotebookClient
 
     nb = nbformat.read(path, as_version=4)
-    NotebookClient(nb, kernel_name=kernel_name, timeout=300, resources={"metadata": {"path": str(tmp_path)}}).execute()
+    NotebookClient(nb, kernel_name=kernel_name, timeout=HANG_S, resources={"metadata": {"path": str(tmp_path)}}).execute()
     outputs = outputs_of(nb)
     assert not [o for o in outputs if o.output_type == "error"]
     rich = [o.data for o in outputs if o.output_type in ("display_data", "execute_result")]
@@ -172,5 +173,5 @@ def test_kernel_is_this_interpreter(kernel_name, tmp_path):
     from nbclient import NotebookClient
 
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("import sys; print(sys.executable)")])
-    NotebookClient(nb, kernel_name=kernel_name, timeout=120, resources={"metadata": {"path": str(tmp_path)}}).execute()
+    NotebookClient(nb, kernel_name=kernel_name, timeout=HANG_S, resources={"metadata": {"path": str(tmp_path)}}).execute()
     assert nb.cells[0].outputs[0].text.strip() == sys.executable

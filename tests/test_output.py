@@ -21,6 +21,7 @@ from tumble import __version__
 from tumble.cli import main
 from tumble.commands import run_scenario
 from tumble.io.export import CSV_COLUMNS
+from limits import HANG_S
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SEED = str(EXAMPLES / "seed_flip.toml")
@@ -104,7 +105,7 @@ def test_concurrent_runs_into_one_folder_never_mix(tmp_path):
             for w in (0.1, 0.2)
         ]
         for p in procs:
-            _, err = p.communicate(timeout=120)
+            _, err = p.communicate(timeout=HANG_S)
             assert p.returncode == 0, err
         summary = json.loads((out / "summary.json").read_text())
         csv_row = np.loadtxt(out / "trajectory.csv", delimiter=",", skiprows=1, max_rows=1)

@@ -19,6 +19,7 @@ from wheelbuild import build_wheel
 import tumble
 from tumble.commands import run_scenario
 from tumble.io.examples import copy_examples, list_examples
+from limits import HANG_S
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGED = ROOT / "src" / "tumble" / "examples"
@@ -140,7 +141,7 @@ def test_dir_lists_only_public_and_dunder_names():
 def test_dir_and_import_stay_lazy():
     code = ("import sys, tumble; names = dir(tumble); "
             "print(sorted(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules), 'Body' in names)")
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=HANG_S)
     assert proc.stdout.split() == ["[]", "True"], proc.stderr
 
 
@@ -365,5 +366,5 @@ def test_the_fit_of_a_recording_loads_neither_integrators_nor_controllers_nor_pl
     code = ("import sys; import tumble.analysis.fit; "
             "print(sorted(m for m in ('tumble.dynamics.batch', 'tumble.dynamics.control', 'scipy.integrate', "
             "'tumble.io.scenario', 'matplotlib') if m in sys.modules))")
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=HANG_S)
     assert proc.stdout.split() == ["[]"], proc.stdout + proc.stderr

@@ -19,6 +19,7 @@ from tumble.io.scenario import load_scenario
 from tumble.viz.page import page_html
 from tumble.viz.scene import frame_indices
 from tumble.viz.surfaces import body_surfaces
+from limits import HANG_MS
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: The page's size limit, plotly.js (about 4.8 MB) included.
@@ -174,7 +175,7 @@ def open_viewer(new_page, url):
     page = watched.page
     page.add_init_script("document.addEventListener('tumble:ready', () => { window.readyEvents = (window.readyEvents || 0) + 1; })")
     page.goto(url)
-    page.wait_for_function("window.readyEvents === 1 && window.tumbleViewer.ready", timeout=60_000)
+    page.wait_for_function("window.readyEvents === 1 && window.tumbleViewer.ready", timeout=HANG_MS)
     return watched
 
 
@@ -189,15 +190,15 @@ def test_page_plays_offline_in_chromium_with_a_shaded_body(page_file, new_page):
     page = watched.page
     assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
     page.click("#tumble-play")
-    page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=60_000)
+    page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=HANG_MS)
     first = page.locator("#tumble-ground").screenshot()
-    page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=60_000)
+    page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=HANG_MS)
     later = page.locator("#tumble-ground").screenshot()
     assert page.evaluate("tumbleViewer.state().playing")
     page.click("#tumble-play")
     assert not page.evaluate("tumbleViewer.state().playing")
     page.locator("#tumble-slider").fill("59")  # the slider moves to the last frame
-    page.wait_for_function("tumbleViewer.state().frame === 59", timeout=60_000)
+    page.wait_for_function("tumbleViewer.state().frame === 59", timeout=HANG_MS)
     assert "t = 20.00 s" in page.text_content("#tumble-time")
     assert watched.errors == [] and watched.outside == []
 

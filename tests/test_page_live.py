@@ -25,6 +25,7 @@ from tumble.dynamics.methods.exact import FreeRotation
 from tumble.dynamics.methods.geometric import MAX_STEP_ANGLE, default_step, propagate
 from tumble.io.scenario import load_scenario
 from tumble.mass.presets import t_handle
+from limits import HANG_MS
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SPLITTING = Path(tumble.viz.__file__).parent / "assets" / "splitting.js"
@@ -182,7 +183,7 @@ def page_file(tmp_path_factory):
 def live(new_page, page_file):
     w = new_page(viewport=VIEWPORT)
     w.page.goto(page_file.as_uri())
-    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=HANG_MS)
     return w
 
 
@@ -201,7 +202,7 @@ def run_form(page, moments=None, omega0=None, t_end=None, preset=None):
     if t_end is not None:
         page.fill("#tumble-live-tend", repr(t_end))
     page.click("#tumble-live-run")
-    page.wait_for_function(f"window.tumbleLive.drawn > {drawn}", timeout=60_000)
+    page.wait_for_function(f"window.tumbleLive.drawn > {drawn}", timeout=HANG_MS)
     assert page.inner_text("#tumble-live-error") == ""
     return page.evaluate("window.tumbleLive.lastRun")
 
@@ -285,11 +286,11 @@ def test_live_bad_input_is_shown_in_the_form(live):
     for field, value, message in BAD_FORM:
         page.fill(field, value)
         page.click("#tumble-live-run")
-        page.wait_for_function("window.tumbleLive.error !== ''", timeout=10_000)
+        page.wait_for_function("window.tumbleLive.error !== ''", timeout=HANG_MS)
         assert message in page.inner_text("#tumble-live-error"), (field, value)
         assert page.evaluate("window.tumbleLive.lastRun") is None
         page.click("#tumble-live-reset")  # back to the page's body and run, error cleared
-        page.wait_for_function("window.tumbleLive.error === ''", timeout=10_000)
+        page.wait_for_function("window.tumbleLive.error === ''", timeout=HANG_MS)
         assert page.input_value("#tumble-live-I3") == repr(SEED[2])
     assert live.clean(), (live.errors, live.outside)
 
@@ -299,7 +300,7 @@ def test_live_mode_on_a_page_with_a_torque_runs_the_free_body(new_page, tmp_path
     assert main(["view", str(EXAMPLES / "gravity_boom.toml"), "--out", str(out), "--frames", "20"]) == 0
     w = new_page(viewport=VIEWPORT)
     w.page.goto(out.as_uri())
-    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=HANG_MS)
     run = run_form(w.page, preset="this body")
     assert_as_tumble(run, run["moments"], run["omega0"], run["quat0"], run["t"], run["order"])
     assert "the live run is the free rigid body" in w.page.inner_text("#tumble-live-status")
@@ -316,7 +317,7 @@ def test_live_mode_on_a_page_with_a_wheel_integrates_the_gyrostat(new_page, tmp_
     assert main(["view", str(EXAMPLES / "wheel_t_handle.toml"), "--out", str(out), "--frames", "20"]) == 0
     w = new_page(viewport=VIEWPORT)
     w.page.goto(out.as_uri())
-    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=60_000)
+    w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=HANG_MS)
     run = run_form(w.page, preset="this body")
     scenario = load_scenario(EXAMPLES / "wheel_t_handle.toml")
     h = scenario.body.internal_momentum(0.0)

@@ -27,6 +27,7 @@ from tumble.commands import run_scenario
 from tumble.io.scenario import load_scenario
 from tumble.viz import spacecraft
 from tumble.viz.spacecraft import spacecraft_figures
+from limits import HANG_S
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -305,7 +306,7 @@ def test_the_readme_wheel_figure_has_a_command_that_makes_it(tmp_path):
     assert command in (root / "README.md").read_text(encoding="utf-8")
     assert command in (root / "docs" / "tour.md").read_text(encoding="utf-8")
     proc = subprocess.run([sys.executable, str(root / "docs" / "figures" / "make_wheel_figure.py"), "--out",
-                           str(tmp_path)], capture_output=True, text=True, check=False, timeout=300)
+                           str(tmp_path)], capture_output=True, text=True, check=False, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     png = tmp_path / "wheel_t_handle.png"
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

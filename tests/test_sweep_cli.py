@@ -242,15 +242,10 @@ def test_an_impossible_dispersion_is_refused_naming_the_case(tmp_path):
         run_sweep(write(tmp_path, text=text), tmp_path / "out")
 
 
-def test_the_example_sweep_runs_in_seconds_and_every_flip_matches_the_elliptic_period(tmp_path):
-    import time
-
+def test_the_example_sweep_runs_and_every_flip_matches_the_elliptic_period(tmp_path):
     parsed = load_sweep(EXAMPLE)
     assert parsed.sweep.ensemble.cases == 4096 and parsed.sweep.ensemble.sampling == "sobol"
-    start = time.perf_counter()
-    data = run_sweep(EXAMPLE, tmp_path / "out")
-    elapsed = time.perf_counter() - start
-    assert elapsed < 60, elapsed  # ~4 s on one core
+    data = run_sweep(EXAMPLE, tmp_path / "out")   # ~4 s on one core (benchmarks/, not a test, times it)
     _, cols = read_cases(tmp_path / "out" / "cases.csv")
     assert len(cols["case"]) == 4096 and data["redraws"] == 0
     # every dimension within +-5 % of the nominal (uniform), the masses following (density)

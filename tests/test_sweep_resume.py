@@ -13,6 +13,7 @@ import tumble.ensemble.sweep as sweep_module
 from tumble.io.provenance import file_sha256
 from tumble.io.resume import ResumeWarning
 from tumble.commands.sweep import run_sweep, run_sweep_command
+from limits import HANG_S
 
 SWEEP = """\
 # A small sweep of {body_comment}
@@ -269,7 +270,7 @@ def test_resume_and_output_import_and_lock_without_fcntl(tmp_path):
     import sys
 
     done = subprocess.run([sys.executable, "-c", WITHOUT_FCNTL, str(tmp_path)], capture_output=True, text=True,
-                          timeout=120)
+                          timeout=HANG_S)
     assert done.returncode == 0, done.stderr
     refused, listing = done.stdout.splitlines()
     assert refused.startswith("refused: ") and "is locked: another sweep is running" in refused

@@ -19,6 +19,7 @@ from tumble.io.devicefile import device_toml, load_device, write_device
 from tumble.io.examples import copy_examples, list_examples
 from tumble.dynamics.environment.earth import STANDARD_GRAVITY
 from tumble.io.throwfile import parse_throw_csv, read_throw, throw_csv, write_throw
+from limits import HANG_S
 
 DEVICE = "[device]\nmass = 0.10067\nrotor_axis = [0.0, 0.0, -1.0]\n"
 PROOF = "[proof]\nmass = 0.346\ninertia = [1.675805e-4, 1.300972e-4, 2.450833e-4]\n"
@@ -384,7 +385,7 @@ def test_the_guides_figure_has_a_command_that_makes_it(tmp_path):
     guide = GUIDE.read_text(encoding="utf-8")
     assert "python docs/figures/make_tensor_figure.py" in guide and "(figures/tensor.png)" in guide
     proc = subprocess.run([sys.executable, str(ROOT / "docs" / "figures" / "make_tensor_figure.py"), "--out",
-                           str(tmp_path)], capture_output=True, text=True, check=False, timeout=300)
+                           str(tmp_path)], capture_output=True, text=True, check=False, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     png = tmp_path / "tensor.png"
     assert proc.stdout.strip() == f"wrote {png}" and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -29,6 +29,7 @@ from tumble.io.devicefile import write_device
 from tumble.io.inertial import mjcf_inertial, urdf_inertial
 from tumble.io.throwfile import write_throw
 from tumble.mass import Body, Box
+from limits import HANG_MS
 
 #: tumble.io.inertial writes 15 significant digits.
 DIGITS = 1e-14
@@ -238,7 +239,7 @@ def test_the_page_draws_the_throws_in_chromium(made, tmp_path, new_page):
     watched = new_page(viewport={"width": 1300, "height": 1000})
     page = watched.page
     page.goto(page_file.as_uri())
-    page.wait_for_function("window.tumbleTensor && window.tumbleTensor.ready", timeout=60_000)
+    page.wait_for_function("window.tumbleTensor && window.tumbleTensor.ready", timeout=HANG_MS)
     rates = "document.getElementById('tumble-rates')"
     shown = [k for k, th in enumerate(data["throws"]) if th["samples"]]
     assert page.evaluate("document.getElementById('tumble-throw').options.length") == len(shown) == 2
@@ -249,7 +250,7 @@ def test_the_page_draws_the_throws_in_chromium(made, tmp_path, new_page):
     assert page.evaluate(f"{rates}.querySelectorAll('.scatterlayer .trace').length") == 6  # drawn, not only data
     assert page.evaluate("document.getElementById('tumble-rotor').data[0].y.length") == n
     page.select_option("#tumble-throw", "1")
-    page.wait_for_function("window.tumbleTensor.shown === 1", timeout=30_000)
+    page.wait_for_function("window.tumbleTensor.shown === 1", timeout=HANG_MS)
     assert page.evaluate(f"{rates}.data[0].x.length") == len(data["throws"][1]["t"])
     assert page.evaluate(f"{rates}.layout.title.text").startswith("throw 2: ")
     moments = page.evaluate("document.getElementById('tumble-moments').data.map(d => d.name)")

@@ -23,6 +23,7 @@ from test_page import MAX_PAGE_BYTES, open_viewer, page_json
 
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.cli import main
+from limits import HANG_MS
 
 RACQUET_EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "data" / "racquet_tosses.csv"
 
@@ -253,15 +254,15 @@ def test_the_page_plays_the_chosen_flight_in_chromium(racquet, tmp_path, new_pag
     watched = open_viewer(new_page, page_file.as_uri())
     page = watched.page
     flights = data["fit"]["flights"]
-    page.wait_for_function("document.getElementById('tumble-polhode').data !== undefined", timeout=60_000)
+    page.wait_for_function("document.getElementById('tumble-polhode').data !== undefined", timeout=HANG_MS)
     assert page.evaluate("document.getElementById('tumble-flight').options.length") == len(flights)
     assert page.evaluate("tumbleViewer.state().frames") == min(40, len(flights[0]["t"]))
     assert page.evaluate("document.getElementById('tumble-omega').data.length") == 4 + 3  # model, now, measured
     page.select_option("#tumble-flight", "2")
     page.wait_for_function(f"document.getElementById('tumble-title').textContent.endsWith({json.dumps(flights[2]['label'])})",
-                           timeout=60_000)
+                           timeout=HANG_MS)
     page.click("#tumble-play")
-    page.wait_for_function("tumbleViewer.state().frame >= 10", timeout=60_000)
+    page.wait_for_function("tumbleViewer.state().frame >= 10", timeout=HANG_MS)
     page.click("#tumble-play")
     readout = page.evaluate("document.getElementById('tumble-fit-readout').textContent")
     assert readout.startswith("I1/I3 = ") and "measured (" in readout

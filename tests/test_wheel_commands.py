@@ -36,6 +36,7 @@ from pathlib import Path
 import pytest
 from shown_commands import ROOT, Shown, help_commands, page_commands, PAGES
 from wheelbuild import build_wheel
+from limits import HANG_S
 
 #: What the build and the install need (the build backend without build isolation), looked up
 #: without importing it (setuptools' import replaces distutils in the test process).
@@ -133,10 +134,10 @@ def venv(tmp_path_factory) -> Venv:
     # no PYTHONPATH (a checkout's src/ on it would be the tumble pip and the commands see)
     env = {k: v for k, v in os.environ.items()
            if k not in ("PYTHONPATH", "PYTHONHOME", "PYTHONSTARTUP", "VIRTUAL_ENV", "PYTHONSAFEPATH")}
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(root)], check=True, timeout=120, env=env)
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(root)], check=True, timeout=HANG_S, env=env)
     python = root / "bin" / "python"
     proc = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "--no-deps", "--no-index",
-                           "-q", str(wheel)], capture_output=True, text=True, timeout=300, env=env)
+                           "-q", str(wheel)], capture_output=True, text=True, timeout=HANG_S, env=env)
     assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
     site = Path(subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
                                capture_output=True, text=True, check=True, env=env).stdout.strip())
@@ -155,7 +156,7 @@ def test_the_tumble_of_the_virtualenv_is_the_wheel_and_not_the_checkout(venv, tm
     code = ("import json, sys, importlib.metadata as m, tumble; "
             "print(json.dumps([tumble.__file__, sys.path, m.version('tumble'), tumble.__version__]))")
     proc = subprocess.run([str(venv.python), "-c", code], cwd=tmp_path, env=venv.env, capture_output=True,
-                          text=True, timeout=120)
+                          text=True, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     where, path, version, own = json.loads(proc.stdout)
     assert Path(where).resolve().is_relative_to(venv.site.resolve()), where
@@ -173,7 +174,7 @@ def test_the_virtualenv_has_only_what_tumble_view_mesh_brings(venv, tmp_path):
             "    try:\n        importlib.import_module(name); print(name, 'yes')\n"
             "    except ModuleNotFoundError:\n        print(name, 'no')\n")
     proc = subprocess.run([str(venv.python), "-c", code], cwd=tmp_path, env=venv.env, capture_output=True,
-                          text=True, timeout=120)
+                          text=True, timeout=HANG_S)
     assert proc.returncode == 0, proc.stderr
     found = dict(line.split() for line in proc.stdout.splitlines())
     assert found == {"numpy": "yes", "plotly": "yes", "trimesh": "yes", "dask": "no", "pyarrow": "no",
@@ -186,10 +187,10 @@ def _listing_paths(stdout: str) -> list[str]:
 
 def test_tumble_examples_lists_every_file_it_copies(venv, tmp_path):
     listed = subprocess.run([str(venv.tumble), "examples"], cwd=tmp_path, env=venv.env, capture_output=True,
-                            text=True, timeout=120)
+                            text=True, timeout=HANG_S)
     assert listed.returncode == 0, listed.stderr
     copied = subprocess.run([str(venv.tumble), "examples", "--copy", "mine"], cwd=tmp_path, env=venv.env,
-                            capture_output=True, text=True, timeout=120)
+                            capture_output=True, text=True, timeout=HANG_S)
     assert copied.returncode == 0, copied.stderr
     files = sorted(p.relative_to(tmp_path / "mine").as_posix() for p in (tmp_path / "mine").rglob("*") if p.is_file())
     assert sorted(_listing_paths(listed.stdout)) == files
@@ -208,7 +209,7 @@ def _installed_help(venv: Venv) -> dict[str, str]:
     texts = {}
     for args in ([], *([name] for name in names)):
         proc = subprocess.run([str(venv.tumble), *args, "--help"], env=venv.env, capture_output=True, text=True,
-                              timeout=120)
+                              timeout=HANG_S)
         assert proc.returncode == 0, proc.stderr
         texts[" ".join(["tumble", *args, "--help"])] = proc.stdout
     return texts
@@ -243,7 +244,7 @@ class Outcome:
 
 def _run(venv: Venv, folder: Path, argv: list[str]) -> subprocess.CompletedProcess:
     return subprocess.run([str(venv.tumble), *argv], cwd=folder, env=venv.env, capture_output=True, text=True,
-                          timeout=500)
+                          timeout=HANG_S)
 
 
 def _user_files(argv: tuple[str, ...]) -> set[str]:
