@@ -15,6 +15,10 @@ time and checks the trailing comment of each statement:
   of 10 (``~0`` below 1e-3), anything else for equality. A tuple value whose comment has as many
   ``;``-separated parts is checked part by part.
 
+A comment on a bare expression or a ``print`` that starts with the value's class name and ``(``
+shows its repr (``# RecordingFit(12 of 12 flights, I1/I3 = ...)``): the repr must be that text, or
+start with it up to the ``...)`` that ends a shortened one.
+
 Comments that state no such claim (``# totals, J``) are prose and are left alone.
 """
 
@@ -111,6 +115,16 @@ def _check_run(value, comment: str, where: str) -> list[str]:
     return checked
 
 
+def _check_repr(value, comment: str, where: str) -> list[str]:
+    """A comment that shows a result's repr (``# RecordingFit(12 of 12 flights, ...)``): the repr
+    itself, or up to the ``...)`` that ends a shortened one; returns the claim checked."""
+    shown, claim = repr(value), comment.strip()
+    head = claim[:-4].rstrip(", ") if claim.endswith("...)") else claim
+    assert shown.startswith(head) if claim.endswith("...)") else shown == claim, (
+        f"{where}: the comment says {claim!r}, the repr is {shown!r}")
+    return [claim]
+
+
 def _check_value(value, comment: str, where: str) -> list[str]:
     """A literal claim about a bare expression's value; returns those checked."""
     if isinstance(value, tuple) and comment.count(";") == len(value) - 1 and len(value) > 1:
@@ -156,6 +170,8 @@ def run_checked(code: str, filename: str) -> list[str]:
             continue
         if isinstance(value, tumble.Trajectory) or (isinstance(value, dict) and "flips" in value):
             checked += _check_run(value, comment, where)
+        elif isinstance(stmt, ast.Expr) and value is not None and comment.startswith(type(value).__name__ + "("):
+            checked += _check_repr(value, comment, where)
         elif isinstance(stmt, ast.Expr):
             checked += _check_value(value, comment, where)
     return checked

@@ -19,7 +19,12 @@ TOUR = ROOT / "docs" / "tour.md"
 #: pages are written by their tests).
 GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md", "docs/control.md")
 #: Claims a guide's comments make that must have been checked.
-GUIDE_CLAIMS = {"docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1", "~1e-15")}
+GUIDE_CLAIMS = {"docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1", "~1e-15",
+                                    "['attitude_error.png', 'rates.png', 'wheels.png', 'dipole.png', 'momentum.png']",
+                                    "ControlledRun(601 samples over 600 s, rate 20 -> 0.000163 deg/s, 3 wheels up to 213 rad/s, ...)"),
+                "docs/fitting.md": ("'12 flights found, 12 used (green), 0 skipped (grey)'",
+                                    "RecordingFit(12 of 12 flights, I1/I3 = 0.06495 +- 0.0045, I2/I3 = 0.9419 +- 0.0042, "
+                                    "chi2/dof 6.5, ...)")}
 
 
 def test_readme_python_blocks_run_and_hold_their_comments(monkeypatch):
@@ -70,6 +75,8 @@ traj = tumble.simulate(body, [0.1, 10, 0.1], t_end=20.0)          # dop853; no f
     (("import tumble\ntumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10, 0.1], t_end=20.0))"
       "   # -> 3 flips\n"), "says '3 flips'"),
     ("x = 2e-15\nx   # ~1e-16\n", "the value is"),
+    ("import tumble\nprint(tumble.t_handle())   # Body('T-handle', 3 parts, ...)\n", "the repr is"),
+    ("import tumble\ntumble.t_handle().properties   # MassProperties(m = 3 kg)\n", "the repr is"),
 ])
 def test_a_comment_that_does_not_hold_fails(code, message):
     with pytest.raises(AssertionError, match=message):
