@@ -85,7 +85,10 @@ def figure_stability_map(spin: float = 10.0, perturbation: tuple[float, float] =
     from matplotlib.colors import LogNorm
 
     m = stability_map(spin, perturbation, resolution=resolution)
-    fig, ax = figure_and_axes(ax, figsize=(8.8, 4.6))
+    if ax is None:  # "compressed": constrained layout that sizes the margins after the equal aspect (no label cut)
+        fig = new_figure((8.8, 4.6), layout="compressed")
+        ax = fig.add_subplot()
+    fig = ax.figure
     values = np.ma.masked_invalid(m.flip_interval)
     mesh = ax.pcolormesh(m.x, m.y, values, shading="nearest", cmap="viridis", rasterized=True,
                          norm=LogNorm(vmin=float(values.min()), vmax=float(values.max())))
