@@ -50,3 +50,34 @@ def test_demo_summary_agrees_with_theory(demo):
     assert data["provenance"]["tumble"] == __version__
     seed_body = data["bodies"]["seed"]
     np.testing.assert_allclose(seed_body["principal_moments"], [0.125, 0.3125, 0.4375])
+
+
+@pytest.mark.parametrize("ffmpeg, says", [
+    (None, "animations: 4 GIF files instead of MP4: no ffmpeg found (install tumble[video] or put ffmpeg on PATH)"),
+    ("/opt/ffmpeg", "animations: 4 MP4 files (ffmpeg found)"),
+])
+def test_demo_says_first_what_its_animations_will_be(tmp_path, monkeypatch, capsys, ffmpeg, says):
+    """Issue 40: without ffmpeg the study wrote GIFs and said so only at its end; now its first line
+    says what it will write and why (the animations themselves are stubbed here: they are slow)."""
+    import tumble.viz
+    import tumble.viz.animate
+
+    monkeypatch.setattr(tumble.viz.animate, "ffmpeg_path", lambda: ffmpeg)
+    written = []
+
+    def animate(body, traj, path, title=None):
+        written.append(path.suffix)
+        path.write_bytes(b"")
+
+    monkeypatch.setattr(tumble.viz, "animate_ground_frame", animate)
+    monkeypatch.setattr(tumble.viz, "animate_body_frame", animate)
+    run_demo(tmp_path / "demo", t_end=0.5, samples=20)
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == says and lines[1].startswith("[1/")
+    assert written == [".gif" if ffmpeg is None else ".mp4"] * 4
+    assert (lines[-2] == says) == (ffmpeg is None)  # and again beside the summary where MP4 could not be
+
+
+def test_demo_without_animations_says_nothing_of_them(tmp_path, capsys):
+    run_demo(tmp_path / "demo", t_end=0.5, samples=20, animate=False)
+    assert not any(line.startswith("animations") for line in capsys.readouterr().out.splitlines())

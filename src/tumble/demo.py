@@ -142,6 +142,25 @@ def animation_suffix(animation_format: str = "auto") -> tuple[str, str | None]:
     return path.suffix, note
 
 
+def animation_plan(suffix: str, note: str | None, count: int = 2 * len(ANIMATED)) -> str:
+    """The line the study prints before it starts: what its animations will be written as, and why.
+
+    Examples
+    --------
+    >>> from tumble.demo import animation_plan
+    >>> animation_plan(".mp4", None)
+    'animations: 4 MP4 files (ffmpeg found)'
+    >>> animation_plan(".gif", "no ffmpeg found (install tumble[video] or put ffmpeg on PATH): GIF written instead of MP4")
+    'animations: 4 GIF files instead of MP4: no ffmpeg found (install tumble[video] or put ffmpeg on PATH)'
+    >>> animation_plan(".gif", None)   # asked for
+    'animations: 4 GIF files (as asked)'
+    """
+    kind = suffix.lstrip(".").upper()
+    if note:
+        return f"animations: {count} {kind} files instead of MP4: {note.split(':')[0]}"
+    return f"animations: {count} {kind} files ({'ffmpeg found' if kind == 'MP4' else 'as asked'})"
+
+
 def run_demo(out: str | os.PathLike[str] = "tumble-demo", *, t_end: float = T_END, samples: int = SAMPLES, animate: bool = True,
              animation_format: str = "auto", argv: Sequence[str] | None = None) -> Path:
     """Run the whole study and write its figures and data to ``out``; return the folder.
@@ -198,6 +217,8 @@ def run_demo(out: str | os.PathLike[str] = "tumble-demo", *, t_end: float = T_EN
         "seed": t_handle(name="seed T-handle"),
         "iss": iss_t_handle(),
     }
+    if animate:  # said first: the animations are the slow part, and a GIF is not what the README promised
+        print(animation_plan(suffix, note), flush=True)
     start = time.perf_counter()
     progress = _Progress(len(CASES) + 2 * len(ANIMATED) * animate + 2)
     runs: dict[str, Trajectory] = {}
@@ -237,7 +258,7 @@ def run_demo(out: str | os.PathLike[str] = "tumble-demo", *, t_end: float = T_EN
         progress.close()
     print(summary_markdown(bodies, rows))
     if animate and note:
-        print(f"animations: {note}")
+        print(animation_plan(suffix, note))
     print(f"wrote {out}/ in {time.perf_counter() - start:.1f} s")
     return out
 
