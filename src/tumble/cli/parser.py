@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from .._version import __version__
+from ..dynamics.methods.names import method_list
 from . import commands as c
 from ._common import EXIT_USAGE
 
@@ -76,8 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
         run.add_argument("--t-end", type=float, metavar="S", help="duration, s (default 20)")
         run.add_argument("--samples", type=int, metavar="N", help="number of samples (default 500)")
         run.add_argument("--dt", type=float, metavar="S", help="sample every S seconds instead of --samples")
-        run.add_argument("--method", metavar="NAME",
-                         help="exact (default), dop853, rk45, seed, geometric, geometric2, geometric6")
+        run.add_argument("--method", metavar="NAME", help=method_list())  # every method of the registry
         cmd.set_defaults(func=func)
         return cmd
 

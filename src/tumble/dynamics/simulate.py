@@ -27,6 +27,7 @@ from .methods.integrators import (
     StepRule,
     get_method,
 )
+from .methods.names import method_list
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import (
     KERNEL_BODY,
@@ -157,10 +158,10 @@ def simulate(
         The sample times themselves, s: finite, strictly increasing, ``times[0] >= 0``
         (instead of ``t_end``). The motion starts at t = 0 in every case.
     method : str, optional
-        A name from :data:`tumble.dynamics.METHODS`: ``"exact"``, ``"dop853"``, ``"rk45"``,
-        ``"seed"``, ``"geometric"`` (``2``, ``6``). Default ``"exact"`` without torque,
-        ``"dop853"`` with one, or with rotors or a damper (which ``"exact"`` and ``"seed"``
-        refuse).
+        A name from :data:`tumble.dynamics.METHODS` (docs/methods.md compares them):
+        {methods}.
+        Default ``exact`` without torque, ``dop853`` with one, or with rotors or a damper (which
+        ``exact`` and ``seed`` refuse).
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
@@ -237,6 +238,10 @@ def simulate(
         principal_axes=run.props.principal_axes, method=label, torque_free=model is None,
         body_name=body.name if isinstance(body, Body) else "body", **extra,
     )
+
+
+if simulate.__doc__:  # every method of the registry, as help(tumble.simulate) and the API page list them
+    simulate.__doc__ = simulate.__doc__.replace("{methods}", method_list("``", width=88, indent=" " * 8))
 
 
 def sample_times(t_end: float | None = None, samples: int | None = None, dt: float | None = None,

@@ -62,6 +62,7 @@ from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
 from ..models.torques import TorqueModel, body_torque, kernel_form, spin_gain
 from ..special.quaternion import quaternion_rate
+from .names import METHOD_NAMES
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
 
@@ -421,6 +422,10 @@ METHODS: dict[str, Method] = {
                   "DOP853's 8th-order weights at a fixed step, compiled (built-in torques only)",
                   fixed_step=True, default_step=_rk_step("rk8"), engine=True, compiled_only=True),
 }
+
+
+if tuple(METHODS) != METHOD_NAMES:  # the one list the help texts read (names.py): never out of step
+    raise ImportError(f"the method registry {tuple(METHODS)} and tumble.dynamics.methods.names.METHOD_NAMES differ")
 
 
 def get_method(name: str) -> Method:
