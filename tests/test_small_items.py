@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import io
 import pydoc
+from pathlib import Path
 
 import pytest
 
@@ -29,3 +30,24 @@ def test_the_help_lists_every_method_of_the_registry():
     for text in (doc, _help("view"), _help("simulate"), _help("plot")):
         listed = {word.strip("`,.()") for word in text.split()}
         assert set(METHODS) <= listed, set(METHODS) - listed
+
+
+def test_control_figures_do_not_repeat_the_name(tmp_path, monkeypatch, capsys):
+    """A scenario named after its controller (detumble_point.toml, kind "detumble_point") titled its
+    figures "detumble_point (detumble_point)"."""
+    import tumble.viz
+
+    source = (Path(tumble.__file__).parent / "examples" / "control" / "detumble.toml").read_text(encoding="utf-8")
+    scenario = tmp_path / "bdot.toml"
+    scenario.write_text(source.replace('name = "3U CubeSat"', "").replace("t_end = 11400.0", "t_end = 5.0"),
+                        encoding="utf-8")
+    titles = []
+    real = tumble.viz.control_figures
+
+    def spy(run, **kw):
+        titles.append(kw["title"])
+        return real(run, **kw)
+
+    monkeypatch.setattr(tumble.viz, "control_figures", spy)
+    assert main(["simulate", str(scenario), "--out", str(tmp_path / "run")]) == 0
+    assert titles == ["bdot"], titles  # the body's name is the file's, the controller's kind the same

@@ -14,6 +14,18 @@ SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.pn
 CONTROL_WRITES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
 
 
+def figure_title(name: str, kind: str) -> str:
+    """The control figures' title: the scenario's name, and its controller's kind when that says more.
+
+    Examples
+    --------
+    >>> from tumble.cli.control import figure_title
+    >>> figure_title("3U CubeSat", "bdot"), figure_title("detumble_point", "detumble_point")
+    ('3U CubeSat (bdot)', 'detumble_point')
+    """
+    return name if name == kind else f"{name} ({kind})"
+
+
 def refuse_control(scenario, command: str) -> None:
     if not hasattr(scenario, "method"):
         raise ValueError(f"{scenario.name} is a control scenario ([control]); 'tumble {command}' does not take it yet: "
@@ -36,7 +48,7 @@ def simulate_control(args, scenario, out) -> int:
     summary["scenario"] = str(args.source)
     summary["provenance"] = provenance(args.argv, scenario.sources)
     figures = control_figures(run, target=scenario.target, switch_time=summary.get("switch_time"),
-                              title=f"{scenario.name} ({scenario.kind})")
+                              title=figure_title(scenario.name, scenario.kind))
     with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES)) as stage:
         write_control_run(run, stage)
         save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
