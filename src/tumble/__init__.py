@@ -48,6 +48,7 @@ _EXPORTS = {
     "orbit_frame_angles": "tumble.dynamics",
     "triad": "tumble.dynamics.estimation",
     "quest": "tumble.dynamics.estimation",
+    "MEKF": "tumble.dynamics.estimation",
     "gravity_gradient_stability": "tumble.analysis",
     "linearised_rate": "tumble.analysis",
     "flip_interval": "tumble.analysis",

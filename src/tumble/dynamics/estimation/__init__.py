@@ -11,6 +11,7 @@ The room reads the sensor models of :mod:`tumble.dynamics.models` and the formul
 never the reverse (an import-linter contract in ``pyproject.toml``).
 """
 
+from .mekf import MEKF
 from .static import quest, triad
 
-__all__ = ["quest", "triad"]
+__all__ = ["MEKF", "quest", "triad"]
