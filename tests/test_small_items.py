@@ -51,3 +51,32 @@ def test_control_figures_do_not_repeat_the_name(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(tumble.viz, "control_figures", spy)
     assert main(["simulate", str(scenario), "--out", str(tmp_path / "run")]) == 0
     assert titles == ["bdot"], titles  # the body's name is the file's, the controller's kind the same
+
+
+SWEEP = """\
+body = "t-handle"
+
+[sweep]
+cases = 8
+seed = 5
+
+[initial]
+omega = [0.1, 5.0, 0.1]
+
+[simulation]
+t_end = 10.0
+samples = 200
+
+[criterion]
+column = "flips"
+max = 0
+"""
+
+
+def test_sweep_names_the_criterion_its_failures_failed(tmp_path, capsys):
+    """tumble sweep said '319 failures' and not of what."""
+    path = tmp_path / "sweep.toml"
+    path.write_text(SWEEP, encoding="utf-8")
+    assert main(["sweep", str(path), "--out", str(tmp_path / "out")]) == 0
+    line = capsys.readouterr().out
+    assert "8 cases, 8 failures of the criterion flips <= 0: success probability" in line, line

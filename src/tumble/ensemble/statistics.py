@@ -555,16 +555,22 @@ def runs_needed(success: float, confidence: float, failures: int = 0) -> int:
     return n
 
 
-def success_statement(cases: int, failures: int, confidence: float) -> str:
+def success_statement(cases: int, failures: int, confidence: float, criterion: str | None = None) -> str:
     """One line: ``"852 cases, 0 failures: success probability >= 99.73 % at 90 % confidence"``.
+
+    ``criterion``, when given, says what a success is (``"flips >= 1"``), so that the failures
+    are not a bare count.
 
     Examples
     --------
     >>> from tumble.ensemble.statistics import success_statement
     >>> success_statement(852, 0, 0.9)
     '852 cases, 0 failures: success probability >= 99.73 % at 90 % confidence (Clopper-Pearson; Hanson & Beard, NASA/TP-2010-216447)'
+    >>> success_statement(1000, 319, 0.9, "flips >= 1")[:60]
+    '1000 cases, 319 failures of the criterion flips >= 1: succes'
     """
     bound = success_lower_bound(cases, failures, confidence)
-    return (f"{cases} cases, {failures} failure{'s' if failures != 1 else ''}: success probability >= "
+    of = f" of the criterion {criterion}" if criterion else ""
+    return (f"{cases} cases, {failures} failure{'s' if failures != 1 else ''}{of}: success probability >= "
             f"{100 * bound:.4g} % at {100 * confidence:.4g} % confidence (Clopper-Pearson; Hanson & Beard, "
             f"NASA/TP-2010-216447)")

@@ -73,6 +73,24 @@ class _Criterion(Protocol):
     def passed(self, columns: dict) -> np.ndarray: ...
 
 
+def criterion_text(criterion: _Criterion) -> str:
+    """What a success is: ``flips >= 1``, ``max_nutation <= 0.2``, ``1 <= flips <= 3``.
+
+    Examples
+    --------
+    >>> from tumble.ensemble.sweep import Criterion
+    >>> from tumble.ensemble.summary import criterion_text
+    >>> criterion_text(Criterion("flips", minimum=1)), criterion_text(Criterion("flips", minimum=1, maximum=3))
+    ('flips >= 1', '1 <= flips <= 3')
+    >>> criterion_text(Criterion("max_nutation", maximum=0.2))
+    'max_nutation <= 0.2'
+    """
+    lo, hi = criterion.minimum, criterion.maximum
+    if lo is not None and hi is not None:
+        return f"{lo:g} <= {criterion.column} <= {hi:g}"
+    return f"{criterion.column} >= {lo:g}" if lo is not None else f"{criterion.column} <= {hi:g}"
+
+
 def _blocks(chunks: Iterable[dict], size: int) -> Iterator[dict]:
     """The columns re-cut into blocks of ``size`` consecutive cases (the last one shorter)."""
     pending: list[dict] = []
@@ -271,7 +289,7 @@ class SweepSummary:
                 "column": criterion.column, "min": criterion.minimum, "max": criterion.maximum,
                 "passed": self.passed, "failed": self.failed, "confidence": criterion.confidence,
                 "success_lower_bound": success_lower_bound(n, self.failed, criterion.confidence),
-                "statement": success_statement(n, self.failed, criterion.confidence),
+                "statement": success_statement(n, self.failed, criterion.confidence, criterion_text(criterion)),
             }
         return out
 
