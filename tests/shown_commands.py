@@ -14,13 +14,16 @@ or a help text is run by ``tests/test_wheel_commands.py`` without anyone adding 
   (``tumble simulate SCENARIO --out DIR``), which is not run (:attr:`Shown.synopsis`). So does
   ``...`` and a shell variable (``$f``).
 - An absolute output path (``--out /tmp/x``) becomes a relative one: the test writes only in its folder.
+- The lines right after a command (not a synopsis) in its code block, up to the next command, a blank line or a
+  comment line, are what it prints, as shown (:attr:`Shown.output`; wrapped to the page's width):
+  ``tests/test_shown_outputs.py`` runs it and compares.
 """
 
 from __future__ import annotations
 
 import re
 import shlex
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -41,13 +44,15 @@ class Shown:
     ``where`` is ``"docs/tour.md:601"`` or ``"tumble sweep --help"``; ``shown`` the text as
     written; ``argv`` the arguments after ``tumble`` as run (placeholders filled), or ``None`` for
     a synopsis (an input placeholder, ``...`` or a shell variable); ``inline`` whether it was an
-    inline code span (run only if it parses).
+    inline code span (run only if it parses); ``output`` what the page shows it printing (the lines
+    after it in its code block, joined by newlines; ``""`` for none).
     """
 
     where: str
     shown: str
     argv: tuple[str, ...] | None
     inline: bool = False
+    output: str = ""
 
     @property
     def synopsis(self) -> bool:
@@ -92,18 +97,32 @@ def _fenced_lines(text: str):
 def page_commands(page: Path) -> list[Shown]:
     """Every command a page shows, in the page's order."""
     text = page.read_text(encoding="utf-8")
-    name = page.relative_to(ROOT).as_posix()
+    name = page.relative_to(ROOT).as_posix() if page.is_relative_to(ROOT) else page.name
     found = []
     fenced = dict(_fenced_lines(text))
+    printed: dict[int, list[str]] = {}  # index in found -> the lines shown after the command
+    last = None  # (index of the last fenced command, the number of the line its output has reached)
     for number, line in enumerate(text.splitlines(), 1):
         if number in fenced:
             stripped = line.strip().removeprefix("$ ").removeprefix(".venv/bin/")
             if stripped.startswith("tumble "):
                 found.append(Shown(f"{name}:{number}", stripped, _argv(stripped)))
+                last = (len(found) - 1, number)
+            elif last and last[1] == number - 1 and stripped and not stripped.startswith("#"):
+                printed.setdefault(last[0], []).append(line.rstrip())
+                last = (last[0], number)
             continue
         for span in _INLINE.findall(line):
             found.append(Shown(f"{name}:{number}", span, _argv(span), inline=True))
-    return found
+    # a synopsis is not run: what follows it in a shell block (``printf ...``) is more script
+    return [replace(c, output="\n".join(printed[i])) if i in printed and not c.synopsis else c
+            for i, c in enumerate(found)]
+
+
+def same_output(shown: str, printed: str) -> bool:
+    """Whether a command printed what a page shows it printing: the same words, whatever the
+    wrapping (the page wraps long lines to its width)."""
+    return shown.split() == printed.split()
 
 
 def _parser_epilogs() -> dict[str, str]:
@@ -137,3 +156,29 @@ def help_commands(texts: dict[str, str] | None = None) -> list[Shown]:
 def shown_commands() -> list[Shown]:
     """Every command of the README, the guides and the help texts (pages first, in order)."""
     return [c for page in PAGES for c in page_commands(page)] + help_commands()
+
+
+def run_here(folder: Path, argv: tuple[str, ...]) -> tuple[int, str]:
+    """Run ``tumble ARGV`` in this process from ``folder``: its exit status and what it printed
+    (its standard output, then its standard error)."""
+    import contextlib
+    import io
+    import os
+
+    from tumble.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(list(argv))
+    finally:
+        os.chdir(here)
+    return code, out.getvalue() + err.getvalue()
+
+
+def run_shown_outputs(page: Path, folder: Path) -> list[tuple[Shown, int, str]]:
+    """Run, in page order from ``folder`` (where ``examples/`` has been copied), every command of
+    ``page`` that the page shows printing something: each with its exit status and what it printed."""
+    return [(c, *run_here(folder, c.argv)) for c in page_commands(page) if c.output and c.argv is not None]

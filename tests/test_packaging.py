@@ -171,7 +171,7 @@ def test_list_examples_names_every_file_it_copies_with_its_description():
     by_path = {e.path: e for e in examples}
     assert set(by_path) == set(_tree(PACKAGED)) and len(by_path) == len(examples)
     kinds = {"bodies": "body", "sweeps": "sweep", "control": "control", "devices": "device", "bodies/meshes": "mesh", "data": "data",
-             "notebooks": "notebook"}
+             "throws": "throw", "notebooks": "notebook"}
     for e in examples:
         assert e.kind == kinds.get(Path(e.path).parent.as_posix(), "scenario"), e
         assert e.name == Path(e.path).stem
@@ -183,6 +183,8 @@ def test_list_examples_names_every_file_it_copies_with_its_description():
     assert by_path["data/racquet_tosses.csv"].description == (
         "SYNTHETIC phone recording of 12 hand tosses of a tennis racquet about its intermediate axis: not a measurement.")
     assert by_path["notebooks/tennis_racket.ipynb"].description == "The tennis-racket effect with tumble"
+    assert by_path["throws/a1.csv"].description == (
+        "SYNTHETIC throw of the example device alone, thrown gently (3-8 rad/s): not a measurement.")
     assert [e.kind for e in examples][: sum(e.kind == "scenario" for e in examples)] == ["scenario"] * sum(
         e.kind == "scenario" for e in examples)  # scenarios first
     assert by_path["seed_flip.toml"].description.startswith("The seed's first run")

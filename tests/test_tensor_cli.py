@@ -280,35 +280,41 @@ def _box_moments(mass, size) -> np.ndarray:
     return np.sort(mass / 12.0 * np.array([b * b + c * c, a * a + c * c, a * a + b * b]))
 
 
-def _guide_commands() -> list[list[str]]:
-    import shlex
+@pytest.fixture(scope="module")
+def guide_run(tmp_path_factory) -> tuple[Path, list]:
+    """docs/tensor.md's two commands as shown, from an empty folder after ``tumble examples --copy
+    examples``: the folder, and each command with its exit status and what it printed."""
+    from shown_commands import run_shown_outputs
 
-    block = GUIDE.read_text(encoding="utf-8").split("```\n", 2)[1]   # the first plain block: the two commands
-    return [shlex.split(line)[1:] for line in block.splitlines() if line.startswith("tumble ")]
+    folder = tmp_path_factory.mktemp("guide")
+    copy_examples(folder / "examples")
+    return folder, run_shown_outputs(GUIDE, folder)
 
 
-def test_the_guides_example_calibrates_the_device_and_finds_the_object(tmp_path, capsys, monkeypatch):
-    """docs/tensor.md's worked example as written: its Python block makes the throw files, its two
-    commands calibrate the device (from the packaged example device file) and fit the object."""
-    from snippets import python_blocks
+def test_the_guides_commands_print_what_the_guide_shows(guide_run):
+    from shown_commands import same_output
 
+    _, ran = guide_run
+    assert [shown.argv[0] for shown, _, _ in ran] == ["calibrate", "tensor"]
+    assert [shown.where for shown, _, _ in ran] == ["docs/tensor.md:10", "docs/tensor.md:14"]   # the page's top
+    for shown, code, printed in ran:
+        assert code == 0, printed
+        assert same_output(shown.output, printed), f"{shown.where}\nshown:\n{shown.output}\nprinted:\n{printed}"
+    # the object the guide describes is the one the shipped throws say they are, and the box's
+    guide = GUIDE.read_text(encoding="utf-8")
+    true = _box_moments(BOX_MASS, BOX_SIZE)
+    assert "principal moments are {:.7f}, {:.7f} and {:.7f} kg m^2".format(*true) in " ".join(guide.split())
+    o1 = (ROOT / "examples" / "throws" / "o1.csv").read_text(encoding="utf-8")
+    assert "principal moments: {:.6g}, {:.6g}, {:.6g} kg m^2".format(*true) in o1
+
+
+def test_the_guides_example_calibrates_the_device_and_finds_the_object(guide_run):
+    """docs/tensor.md's worked example as written, on the shipped throws: the commands calibrate
+    the device (from the packaged example device file) and fit the object."""
     from tumble.analysis.tensor.synthetic import ROTOR_INERTIA, true_device
 
-    commands = _guide_commands()
-    assert [c[0] for c in commands] == ["calibrate", "tensor"]
-    blocks = python_blocks(GUIDE.read_text(encoding="utf-8"))
-    assert len(blocks) == 1
-    monkeypatch.chdir(tmp_path)
-    copy_examples(tmp_path / "examples")
-    exec(compile(blocks[0], str(GUIDE), "exec"), {})  # noqa: S102 - the guide's own example
-    assert sorted(p.name for p in (tmp_path / "throws").glob("*.csv")) == [*(f"a{k}.csv" for k in (1, 2, 3)),
-                                                             *(f"o{k}.csv" for k in (1, 2, 3, 4)),
-                                                             *(f"p{k}.csv" for k in (1, 2, 3))]
-
-    code, out, err = _cli(capsys, *commands[0])
-    assert code == 0, err
-    assert out.count("\n") == 1 and out.startswith("calibrated examples/devices/flywheel_device.toml: rotor inertia ")
-    calibrated = tmp_path / "calibrated.toml"
+    folder, _ = guide_run
+    calibrated = folder / "calibrated.toml"
     device, proof = load_device(calibrated, proof=True)
     assert proof is not None and proof.mass == 0.346   # [proof] carried over
     truth = true_device()
@@ -319,14 +325,32 @@ def test_the_guides_example_calibrates_the_device_and_finds_the_object(tmp_path,
     np.testing.assert_allclose(np.linalg.eigvalsh(device.inertia), np.linalg.eigvalsh(truth.inertia), rtol=0.05)
     np.testing.assert_allclose(device.center_of_mass, truth.center, atol=2e-3)   # m
     header = calibrated.read_text().splitlines()[:10]
-    assert any(line.startswith('# input "throws/a1.csv" sha256 ') for line in header)
+    assert any(line.startswith('# input "examples/throws/a1.csv" sha256 ') for line in header)
 
-    code, out, err = _cli(capsys, *commands[1])
-    assert code == 0, err
-    record = json.loads((tmp_path / "bracket" / "tensor.json").read_text())
+    record = json.loads((folder / "bracket" / "tensor.json").read_text())
     true = _box_moments(BOX_MASS, BOX_SIZE)
     moments = np.array(record["object"]["principal_moments"])
     assert np.all(np.abs(moments / true - 1) < 0.03), (moments, true)
+    np.testing.assert_allclose(record["object"]["center_of_mass"], BOX_CENTER, atol=3e-3)
+
+
+def test_the_guides_python_block_writes_throws_of_ones_own_object(tmp_path, monkeypatch):
+    """The guide's block that makes synthetic throws of an object of one's own writes throw files,
+    in the compact form, that read back as the generator's throws."""
+    from snippets import python_blocks
+
+    from tumble.analysis.tensor.synthetic import box, combine, synthetic_throw, true_device
+
+    blocks = python_blocks(GUIDE.read_text(encoding="utf-8"))
+    assert len(blocks) == 1
+    monkeypatch.chdir(tmp_path)
+    exec(compile(blocks[0], str(GUIDE), "exec"), {})  # noqa: S102 - the guide's own example
+    assert sorted(p.name for p in (tmp_path / "throws").glob("*.csv")) == [f"plate{k}.csv" for k in (1, 2, 3, 4)]
+    throw = read_throw(tmp_path / "throws" / "plate2.csv")
+    plate = box(0.3, (0.2, 0.12, 0.01), center=(0.0, 0.0, 0.02), rotvec=(0.0, 0.0, 0.3))
+    made = synthetic_throw(32, combine(true_device(), plate))
+    assert throw.t.shape == made.t.shape and np.abs(throw.omega - made.omega).max() <= 0.5e-4 + 1e-12
+    assert (tmp_path / "throws" / "plate2.csv").read_text().startswith("# synthetic throw 2 of a plate\nt (us),")
 
 
 def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_path, capsys):

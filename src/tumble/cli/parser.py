@@ -123,9 +123,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "examples",
-        help="list the example files (scenarios, bodies, meshes, recordings, notebooks), or copy them",
+        help="list the example files (scenarios, bodies, meshes, recordings, throws, notebooks), or copy them",
         description="Lists every file of the examples that ship with tumble: scenario, control, body and sweep "
-        "files, meshes, gyroscope recordings and notebooks; --copy DIR copies them all, ready to run "
+        "files, meshes, gyroscope recordings, a throwing device and its throws, and notebooks; --copy DIR copies "
+        "them all, ready to run "
         "(scenarios name their bodies and meshes by relative paths).",
         epilog="Examples: tumble examples | tumble examples --copy my-examples", parents=[debug],
     )

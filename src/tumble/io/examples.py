@@ -1,5 +1,5 @@
 """The examples that ship inside the package: scenario, control, body and sweep files, a mesh,
-gyroscope recordings and a notebook.
+gyroscope recordings, a throwing device and its throws, and a notebook.
 
 They live in ``tumble/examples/`` (package data, so a ``pip install`` has them too; the
 repository's ``examples/`` is a link to the same folder). Scenario files sit at the top and name
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from ..validation import read_input_file
+from ..validation import NoSuchFileError, read_input_file
 from .atomic import _umask
 
 __all__ = ["Example", "copy_examples", "example_hint", "list_examples"]
@@ -42,12 +42,15 @@ DEVICES = "devices"
 MESHES = f"{BODIES}/meshes"
 #: The folder of the gyroscope recordings (``tumble fit``).
 DATA = "data"
+#: The folder of the throws of the device of :data:`DEVICES` (``tumble calibrate``, ``tumble tensor``;
+#: :mod:`tumble.io.throwfile`), made by the repository's ``tools/make_example_throws.py``.
+THROWS = "throws"
 #: The folder of the Jupyter notebooks.
 NOTEBOOKS = "notebooks"
 #: The kind of a ``.toml`` file by its folder (every other ``.toml`` at the root is a scenario).
 _TOML_KINDS = {"": "scenario", BODIES: "body", SWEEPS: "sweep", CONTROL: "control", DEVICES: "device"}
 #: The kind of any other file by its folder.
-_FILE_KINDS = {MESHES: "mesh", DATA: "data", NOTEBOOKS: "notebook"}
+_FILE_KINDS = {MESHES: "mesh", DATA: "data", THROWS: "throw", NOTEBOOKS: "notebook"}
 
 
 @dataclass(frozen=True)
@@ -65,8 +68,9 @@ class Example:
         scenario, for ``tumble simulate``), ``"body"`` (for ``tumble inertia``), ``"sweep"`` (for
         ``tumble sweep``), ``"device"`` (a throwing device, for ``tumble calibrate`` and
         ``tumble tensor``), ``"mesh"`` (a triangle mesh that a body file names), ``"data"`` (a
-        gyroscope recording, for ``tumble fit``), ``"notebook"`` (Jupyter) or ``"file"`` (anything
-        else in the tree).
+        gyroscope recording, for ``tumble fit``), ``"throw"`` (a throw of the device, for ``tumble
+        calibrate`` and ``tumble tensor``), ``"notebook"`` (Jupyter) or ``"file"`` (anything else in
+        the tree).
     description : str
         One line: a TOML file's first comment line, a recording's first sentence of its comment
         block, a notebook's title, the body files that use a mesh; the name if there is none.
@@ -155,14 +159,15 @@ def list_examples() -> list[Example]:
     -------
     list of Example
         Each with its name, relative path, kind (``"scenario"``, ``"control"``, ``"body"``,
-        ``"sweep"``, ``"device"``, ``"mesh"``, ``"data"``, ``"notebook"`` or ``"file"``) and one-line description.
+        ``"sweep"``, ``"device"``, ``"mesh"``, ``"data"``, ``"throw"``, ``"notebook"`` or ``"file"``) and one-line
+        description.
 
     Examples
     --------
     >>> from tumble.io.examples import list_examples
     >>> found = list_examples()
     >>> found[0].kind, sorted({e.kind for e in found})  # scenarios first
-    ('scenario', ['body', 'control', 'data', 'device', 'mesh', 'notebook', 'scenario', 'sweep'])
+    ('scenario', ['body', 'control', 'data', 'device', 'mesh', 'notebook', 'scenario', 'sweep', 'throw'])
     >>> [e.description for e in found if e.kind == "mesh"]
     ['A triangle mesh (STL) that bodies/every_part.toml names']
     """
@@ -176,8 +181,9 @@ def list_examples() -> list[Example]:
             kind, description = _TOML_KINDS[folder], _description(tomls[rel], name)
         elif folder == MESHES:
             kind, description = "mesh", _mesh_users(rel, tomls)
-        elif folder == DATA:
-            kind, description = "data", _first_sentence(entry.read_text(encoding="utf-8", errors="replace"), name)
+        elif folder in (DATA, THROWS):
+            text = entry.read_text(encoding="utf-8", errors="replace")
+            kind, description = _FILE_KINDS[folder], _first_sentence(text, name)
         elif folder == NOTEBOOKS and filename.endswith(".ipynb"):
             kind, description = "notebook", _notebook_title(entry.read_text(encoding="utf-8"), name)
         else:
@@ -308,4 +314,5 @@ def _read_input(path: str | os.PathLike[str], *, limit: int, what: str, label: s
         hint = example_hint(message) if message.endswith(": no such file") else ""
         if not hint:
             raise
-        raise ValueError(f"{message}{hint}") from None
+        # a missing file stays a FileNotFoundError
+        raise (NoSuchFileError if isinstance(exc, FileNotFoundError) else ValueError)(f"{message}{hint}") from None

@@ -44,12 +44,14 @@ import numpy as np
 from ..analysis.tensor import Device, Throw
 from ..validation import read_input_file
 from .atomic import atomic_write_text
-from .gyrocolumns import ACCEL_UNITS, RATE_UNITS, _factor, _name, match_accel, match_header
+from .gyrocolumns import (ACCEL_UNITS, RATE_PREFIXES, RATE_UNITS, TIME_NAMES, TIME_UNITS, _factor, _name, match_accel,
+                          match_header)
+from .keys import FileFormat, Key, Table
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows
 from .throwread import ThrowRead
 
-__all__ = ["ACCEL_UNITS", "MAX_THROW_FILE_BYTES", "THROW_HEADER", "ThrowRead", "load_throw", "parse_throw_csv",
-           "read_throw", "throw_csv", "write_throw"]
+__all__ = ["ACCEL_UNITS", "COMPACT_HEADER", "COMPACT_PLACES", "MAX_THROW_FILE_BYTES", "THROW_FORMAT", "THROW_HEADER",
+           "ThrowRead", "load_throw", "parse_throw_csv", "read_throw", "throw_csv", "write_throw"]
 
 #: The largest throw file read, bytes (a minute at 4 kHz is about 25 MB of text).
 MAX_THROW_FILE_BYTES = 64 << 20
@@ -58,6 +60,48 @@ MAX_THROW_FILE_BYTES = 64 << 20
 #: The header :func:`write_throw` writes.
 THROW_HEADER = ("t (s)", "wx (rad/s)", "wy (rad/s)", "wz (rad/s)", "rotor (rad/s)", "ax (m/s^2)", "ay (m/s^2)",
                 "az (m/s^2)")
+
+#: The header of the compact form (:func:`throw_csv` with ``compact=True``): the time in whole microseconds.
+COMPACT_HEADER = ("t (us)", *THROW_HEADER[1:])
+#: The compact form's decimal places of the rates and the rotor (rad/s) and of the specific force
+#: (m/s^2): finer than a 16-bit logger's steps (1.1e-3 rad/s at 2000 deg/s full scale, 4.8e-3
+#: m/s^2 at 16 g), so that rounding to them changes a logged sample by less than a tenth of a step.
+COMPACT_PLACES = {"rate": 4, "rotor": 2, "accel": 3}
+
+_ACCEL_NAMES = "a{0}, acc {0}, accel {0}, accelerometer {0}, acceleration {0}, specific force {0}, f {0}"
+#: The columns of a throw file, as the page docs/formats/throw.md lists them.
+THROW_FORMAT = FileFormat("throw", (
+    Table("header columns", (
+        Key("t", "numbers, increasing", ", ".join(TIME_UNITS), "s", required=True, choices=TIME_NAMES,
+            example='"t (s)"', doc="the logger's sample times; the unit in brackets after the name"),
+        *(Key(f"w{axis}", "numbers", ", ".join(u for u in RATE_UNITS if u.isascii()), "rad/s", required=True,
+              allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally",
+              example=f'"w{axis} (rad/s)"',
+              doc=f"the gyroscope's angular velocity about the sensor frame's {axis} axis")
+          for axis in "xyz"),
+        Key("rotor", "numbers", ", ".join(u for u in RATE_UNITS if u.isascii()), "rad/s", required=True,
+            allowed="rotor, flywheel, wheel or motor; then speed, rate, omega or angular velocity optionally",
+            example='"rotor (rpm)"',
+            doc="the rotor's speed relative to the device, positive about the device file's rotor_axis"),
+        *(Key(f"a{axis}", "numbers", ", ".join(u for u in ACCEL_UNITS if u.isascii()), "m/s^2",
+              allowed=_ACCEL_NAMES.format(axis) + "; all three or none", example=f'"a{axis} (m/s^2)"',
+              doc=f"the accelerometer's specific force along the sensor frame's {axis} axis (gravity included); "
+                  "without the three, no centre of mass")
+          for axis in "xyz"),
+        Key("other", "anything", allowed="any other name (a phone's linear acceleration, a temperature, ...)",
+            example='"temperature (C)"', doc="ignored, and listed in tensor.json's \"read\""),
+    ), "A header line names the columns: a name and, in brackets or parentheses at its end, a unit. "
+       "Names are compared in lower case with spaces, ``_``, ``-`` and ``.`` alike; the columns may come "
+       "in any order."),
+    Table("without a header", (
+        Key("column 1", "numbers, increasing", "s", required=True, example="0.000212", doc="the time"),
+        Key("columns 2-4", "numbers", "rad/s", required=True, example="0.0053, -0.0085, 0.0032", doc="wx, wy, wz"),
+        Key("column 5", "numbers", "rad/s", required=True, example="1301.25", doc="the rotor's speed"),
+        Key("columns 6-8", "numbers", "m/s^2", required=True, example="-8.61, -9.96, 11.305", doc="ax, ay, az"),
+    ), "Eight numeric columns in this order, in SI, separated by commas, semicolons, tabs or spaces."),
+), "A throw of the device of ``tumble calibrate`` and ``tumble tensor``: delimited text, one row a sample, "
+   "in the device's sensor frame; :func:`tumble.io.throwfile.read_throw` reads it and "
+   ":func:`tumble.io.throwfile.write_throw` writes it.")
 
 _ROTOR = re.compile(r"^(?:rotor|flywheel|wheel|motor)(?: (?:speed|rate|omega|angular velocity))?$")
 _ALLOWED = ("rotor: rotor, rotor speed, flywheel, wheel, motor (rad/s, deg/s, rpm, rev/s, Hz); specific force: "
@@ -223,18 +267,32 @@ def read_throw(path: str | os.PathLike[str], device: Device | None = None) -> Th
     return load_throw(path, device)[0]
 
 
-def throw_csv(throw: Throw, *, header: str = "") -> str:
+def _fixed(x: float, places: int) -> str:
+    """``x`` with ``places`` decimals, trailing zeros dropped (``"-0"`` written ``"0"``)."""
+    text = f"{x:.{places}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def throw_csv(throw: Throw, *, header: str = "", compact: bool = False) -> str:
     """The text of a throw file: :data:`THROW_HEADER` and a row a sample, in SI.
 
     Times with 12 significant digits (10 ns at 1000 s, 1 us after a day), the rest with 7 (a
     logger's 16-bit samples have fewer). Without an accelerometer the last three columns are left
     out.
 
+    The **compact** form (``compact=True``, about a third smaller) writes what a logger records
+    and no more: the time in whole microseconds (:data:`COMPACT_HEADER`, as a flight controller
+    stamps its samples) and the values to fixed decimals (:data:`COMPACT_PLACES`: 1e-4 rad/s,
+    0.01 rad/s for the rotor, 1e-3 m/s^2), trailing zeros dropped. Every reader of a throw file
+    reads it, by its header.
+
     Parameters
     ----------
     throw : Throw
     header : str
         Comment lines put first (each prefixed with ``#`` and a space).
+    compact : bool
+        Write the compact form.
 
     Examples
     --------
@@ -249,20 +307,51 @@ def throw_csv(throw: Throw, *, header: str = "") -> str:
     0,1,-2,3,0
     0.00025,1,-2,3,10
     0.0005,1,-2,3,20
+
+    The compact form of a sample of a tumbling device:
+
+    >>> throw = Throw(t=0.5 + t, omega=np.tile([0.00532632, -12.3456789, 3.0], (20, 1)), rotor=np.full(20, 1301.25731),
+    ...               accel=np.tile([-8.6095493, 0.0, 9.80665], (20, 1)))
+    >>> throw_csv(throw, compact=True).splitlines()[:3]
+    ['t (us),wx (rad/s),wy (rad/s),wz (rad/s),rotor (rad/s),ax (m/s^2),ay (m/s^2),az (m/s^2)', '500000,0.0053,-12.3457,3,1301.26,-8.61,0,9.807', '500250,0.0053,-12.3457,3,1301.26,-8.61,0,9.807']
     """
     columns = [throw.t[:, None], throw.omega, throw.rotor[:, None]]
-    names = THROW_HEADER[:5]
+    names = COMPACT_HEADER if compact else THROW_HEADER
     if throw.accel is not None:
         columns.append(throw.accel)
-        names = THROW_HEADER
+    else:
+        names = names[:5]
     data = np.hstack([np.asarray(c, float) for c in columns])
     lines = [f"# {line}".rstrip() for line in header.splitlines()] + [",".join(names)]
-    lines += [f"{row[0]:.12g}," + ",".join(f"{x:.7g}" for x in row[1:]) for row in data]
+    if compact:
+        places = [COMPACT_PLACES["rate"]] * 3 + [COMPACT_PLACES["rotor"]] + [COMPACT_PLACES["accel"]] * 3
+        micro = np.rint(data[:, 0] * 1e6)
+        lines += [f"{us:.0f}," + ",".join(_fixed(x, k) for x, k in zip(row[1:], places))
+                  for us, row in zip(micro, data)]
+    else:
+        lines += [f"{row[0]:.12g}," + ",".join(f"{x:.7g}" for x in row[1:]) for row in data]
     return "\n".join(lines) + "\n"
 
 
-def write_throw(path: str | os.PathLike[str], throw: Throw, *, header: str = "") -> Path:
+def write_throw(path: str | os.PathLike[str], throw: Throw, *, header: str = "", compact: bool = False) -> Path:
     """Write a throw file (:func:`throw_csv`) whole or not at all (:mod:`tumble.io.atomic`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write (its folder is created).
+    throw : Throw
+        The samples: a logger's, or a synthetic throw's
+        (:func:`tumble.analysis.tensor.synthetic.synthetic_throw`).
+    header : str
+        Comment lines put first (each prefixed with ``#`` and a space): what the throw is.
+    compact : bool
+        The compact form (:func:`throw_csv`): whole microseconds and fixed decimals.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
 
     Examples
     --------
@@ -277,5 +366,17 @@ def write_throw(path: str | os.PathLike[str], throw: Throw, *, header: str = "")
     ...     again = read_throw(write_throw(pathlib.Path(folder, "a1.csv"), throw))
     >>> float(np.max(np.abs(again.t - throw.t))) < 1e-15, bool(np.array_equal(again.rotor, throw.rotor))   # to 12 digits
     (True, True)
+
+    A synthetic throw of the example device with a box strapped to it, made to try ``tumble
+    tensor`` (docs/tensor.md), in the compact form:
+
+    >>> from tumble.analysis.tensor.synthetic import box, combine, synthetic_throw, true_device
+    >>> bracket = box(0.482, (0.16, 0.09, 0.04), center=(0.012, -0.008, 0.035), rotvec=(0.2, -0.1, 0.35))
+    >>> throw = synthetic_throw(21, combine(true_device(), bracket))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = write_throw(pathlib.Path(folder, "o1.csv"), throw, header="synthetic", compact=True)
+    ...     again = read_throw(path)
+    >>> bool(np.abs(again.t - throw.t).max() <= 0.5e-6), bool(np.abs(again.omega - throw.omega).max() <= 0.5e-4)
+    (True, True)
     """
-    return atomic_write_text(path, throw_csv(throw, header=header))
+    return atomic_write_text(path, throw_csv(throw, header=header, compact=compact))
