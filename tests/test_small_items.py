@@ -80,3 +80,34 @@ def test_sweep_names_the_criterion_its_failures_failed(tmp_path, capsys):
     assert main(["sweep", str(path), "--out", str(tmp_path / "out")]) == 0
     line = capsys.readouterr().out
     assert "8 cases, 8 failures of the criterion flips <= 0: success probability" in line, line
+
+
+def _readers():
+    from tumble.io.devicefile import load_device
+    from tumble.io.fitfolder import read_fit_folder
+    from tumble.io.gyrodata import read_recording
+    from tumble.io.scenario import resolve_run
+    from tumble.io.sweepfile import load_sweep
+    from tumble.io.throwfile import read_throw
+
+    return {"load_body": lambda p: tumble.load_body(p / "b.toml"), "load_scenario": lambda p: tumble.load_scenario(p / "s.toml"),
+            "read_recording": lambda p: read_recording(p / "r.csv"), "Mesh": lambda p: tumble.Mesh(mesh=p / "m.stl", mass=1.0),
+            "load_sweep": lambda p: load_sweep(p / "w.toml"), "read_throw": lambda p: read_throw(p / "t.csv"),
+            "load_device": lambda p: load_device(p / "d.toml"), "read_fit_folder": lambda p: read_fit_folder(p / "fit"),
+            "resolve_run": lambda p: resolve_run(str(p / "nothing"), omega=[0.1, 5.0, 0.1])}
+
+
+@pytest.mark.parametrize("reader", sorted(_readers()))
+def test_a_missing_file_is_a_file_not_found_error(reader, tmp_path):
+    """A missing file raised ValueError, not the FileNotFoundError users catch; it is both now."""
+    with pytest.raises(FileNotFoundError, match="no such f") as info:
+        _readers()[reader](tmp_path)
+    assert isinstance(info.value, ValueError) and str(tmp_path) in str(info.value) and "Errno" not in str(info.value)
+
+
+@pytest.mark.parametrize("argv", [["inertia", "{tmp}/m.stl", "--mass", "1"], ["simulate", "{tmp}/s.toml", "--out", "{tmp}/o"],
+                                  ["fit", "{tmp}/r.csv", "--out", "{tmp}/o"], ["view", "{tmp}/fit", "--out", "{tmp}/v.html"]])
+def test_the_command_line_says_a_missing_file_in_one_line_and_exits_2(argv, tmp_path, capsys):
+    assert main([a.format(tmp=tmp_path) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("tumble: error: ") and "no such f" in err, err

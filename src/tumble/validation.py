@@ -32,6 +32,7 @@ __all__ = [
     "MAX_INERTIA",
     "MAX_RATE",
     "QUAT_NORM_TOL",
+    "NoSuchFileError",
     "axis_index",
     "breaks_triangle",
     "check_at_most",
@@ -518,6 +519,24 @@ def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vecto
     return R, np.array(check_vector("translation", translation, "m"))
 
 
+class NoSuchFileError(FileNotFoundError, ValueError):
+    """A file the user named does not exist: ``PATH: no such file``.
+
+    A :class:`FileNotFoundError`, what a program catches for a missing file, and a
+    :class:`ValueError`, as every other refusal of a file tumble reads (the command line says it
+    in one line and exits with 2). Its text is the message alone (no ``[Errno 2]``).
+
+    Examples
+    --------
+    >>> from tumble.validation import NoSuchFileError, read_input_file
+    >>> try:
+    ...     read_input_file("no-such.toml", limit=1024, what="a body file")
+    ... except FileNotFoundError as exc:
+    ...     print(exc, "/", isinstance(exc, ValueError))
+    no-such.toml: no such file / True
+    """
+
+
 def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, label: str | None = None) -> bytes:
     """The bytes of an input file, refusing anything but a regular file of at most ``limit`` bytes.
 
@@ -545,9 +564,11 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
 
     Raises
     ------
+    NoSuchFileError
+        A :class:`FileNotFoundError` (and :class:`ValueError`): ``PATH: no such file``.
     ValueError
-        One line naming the file and the rule: missing, not a regular file (directory, FIFO,
-        socket, device), unreadable, or larger than ``limit``.
+        One line naming the file and the rule: not a regular file (directory, FIFO, socket,
+        device), unreadable, or larger than ``limit``.
 
     Examples
     --------
@@ -588,7 +609,7 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
     try:
         info = os.stat(path)
     except FileNotFoundError:
-        raise ValueError(f"{label}: no such file") from None
+        raise NoSuchFileError(f"{label}: no such file") from None
     except OSError as exc:
         raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
     _refuse(info.st_mode)

@@ -26,6 +26,7 @@ import tomllib
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Mesh, Part
+from ..validation import NoSuchFileError
 from .examples import _read_input
 from .keys import FileFormat, Key, Table
 
@@ -438,5 +439,5 @@ def body_from_mesh(
         part = Mesh(mesh=os.fspath(path), scale=1.0 if scale is None else scale, density=density, mass=mass)
     except ValueError as exc:
         message = str(exc)
-        raise ValueError(message if os.fspath(path) in message else f"{path}: {message}") from None
+        raise (NoSuchFileError if isinstance(exc, FileNotFoundError) else ValueError)(message if os.fspath(path) in message else f"{path}: {message}") from None
     return Body((part,), name=Path(path).stem)

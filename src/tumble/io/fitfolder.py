@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from ..analysis.fit.flightmodel import FlightModel
-from ..validation import read_input_file
+from ..validation import NoSuchFileError, read_input_file
 from .provenance import input_sha256
 
 __all__ = ["FIT_FILE", "FitFolder", "find_recording", "read_fit_folder"]
@@ -78,7 +78,9 @@ def read_fit_folder(path: str | os.PathLike[str]) -> FitFolder:
     """
     folder = Path(path)
     if not folder.is_dir():
-        raise ValueError(f"{os.fspath(path)}: not a folder; give the output folder of tumble fit (tumble fit REC --out DIR)")
+        why = "not a folder" if folder.exists() else "no such folder"
+        raise (ValueError if folder.exists() else NoSuchFileError)(
+            f"{os.fspath(path)}: {why}; give the output folder of tumble fit (tumble fit REC --out DIR)")
     file = folder / FIT_FILE
     if not file.is_file():
         raise ValueError(f"{os.fspath(path)}: a folder without {FIT_FILE}; give the output folder of tumble fit "

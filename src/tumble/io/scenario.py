@@ -52,7 +52,7 @@ from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body, MassProperties
 from ..typing import ArrayLike
-from ..validation import short_repr
+from ..validation import NoSuchFileError, short_repr
 from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import ControlScenario, is_control_file, load_control_scenario
 from .keys import FileFormat, Key, Table
@@ -407,8 +407,8 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
     else:
         path = Path(source)
         if not path.exists() and not path.is_symlink() and path.suffix == "":
-            raise ValueError(f"{source!r} is neither a scenario or body file nor a preset (presets: {', '.join(PRESETS)}); "
-                             f"{source}: no such file")
+            raise NoSuchFileError(f"{source!r} is neither a scenario or body file nor a preset (presets: "
+                                  f"{', '.join(PRESETS)}); {source}: no such file")
         data = read_toml(path)
         if set(data) != {"body"} or not isinstance(data["body"], dict):
             scenario = load_scenario(path)
