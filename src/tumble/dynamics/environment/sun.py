@@ -41,14 +41,18 @@ At J2000.0 the Sun is near ecliptic longitude 280.4 deg, below the equator (decl
 
 from __future__ import annotations
 
+import datetime as _dt
 import math
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 from .earth import R_EARTH
+from .sidereal import julian_date
 
-__all__ = ["AU", "R_SUN", "shadow_fraction", "sun_direction_eci", "sun_position_eci"]
+__all__ = ["AU", "R_SUN", "Sunlight", "shadow_fraction", "sun_direction_eci", "sun_position_eci"]
 
 #: The astronomical unit, m (IAU 2012 resolution B2, exact).
 AU = 149597870700.0
@@ -158,3 +162,59 @@ def shadow_fraction(r_sat: ArrayLike, r_sun: ArrayLike, model: str = "conical") 
     partial = 1.0 - hidden / (math.pi * a * a)
     out = np.where(c >= a + b, 1.0, np.where(c < b - a, 0.0, np.where(c < a - b, 1.0 - (b / a) ** 2, partial)))
     return np.asarray(np.clip(out, 0.0, 1.0), float)
+
+
+@dataclass(frozen=True)
+class Sunlight:
+    """The Sun seen along an orbit: its direction in the run's world frame and the light that reaches the body.
+
+    Parameters
+    ----------
+    orbit : CircularOrbit, KeplerOrbit or TLEOrbit
+        Anything with ``position_eci(t)`` (m) and ``eci_from_world`` (a scipy Rotation).
+    epoch : datetime or str
+        The UTC instant of t = 0 (ISO 8601 string or datetime).
+    shadow : {"conical", "cylindrical", "none"}
+        The Earth's shadow (:func:`shadow_fraction`), or none.
+
+    Examples
+    --------
+    A 500 km equatorial orbit at the March equinox: the Sun lies along ECI x, and the body is in
+    the Earth's shadow half an orbit after it starts on the sunward side:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.sun import Sunlight
+    >>> orbit = CircularOrbit(altitude=500e3)
+    >>> light = Sunlight(orbit, "2026-03-20T14:46:00")
+    >>> (np.round(light.world(0.0), 2) + 0.0).tolist(), light.fraction([0.0, orbit.period / 2]).tolist()
+    ([1.0, 0.0, 0.0], [1.0, 0.0])
+    """
+
+    orbit: Any
+    epoch: _dt.datetime | str
+    shadow: str = "conical"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_jd0", julian_date(self.epoch))
+        if self.shadow not in ("conical", "cylindrical", "none"):
+            raise ValueError(f"shadow = {self.shadow!r} is unknown; allowed: conical, cylindrical, none")
+        for name in ("position_eci", "eci_from_world"):
+            if not hasattr(self.orbit, name):
+                raise ValueError(f"orbit = {self.orbit!r} has no {name}: give a CircularOrbit, KeplerOrbit or TLEOrbit")
+
+    def _sun_eci(self, t: ArrayLike) -> FloatArray:
+        return sun_position_eci(getattr(self, "_jd0") + np.asarray(t, float) / 86400.0)
+
+    def world(self, t: ArrayLike) -> FloatArray:
+        """The unit vector to the Sun in the world frame at ``t`` (s), shape ``t.shape + (3,)``
+        (from the body's place: the parallax of the orbit, 5e-5 rad in LEO, neglected)."""
+        s = self._sun_eci(t)
+        return np.asarray(self.orbit.eci_from_world.inv().apply(s.reshape(-1, 3)).reshape(s.shape)
+                          / np.linalg.norm(s, axis=-1, keepdims=True), float)
+
+    def fraction(self, t: ArrayLike) -> FloatArray:
+        """The fraction of the Sun's light reaching the body at ``t`` (s): 0 in the umbra, 1 in full Sun."""
+        if self.shadow == "none":
+            return np.ones(np.shape(t))
+        return shadow_fraction(self.orbit.position_eci(t), self._sun_eci(t), self.shadow)

@@ -1,5 +1,7 @@
 """Sensors with noise and bias, sampled at the controller's period: gyroscope, magnetometer,
-attitude (ideal or a star tracker).
+attitude (ideal or a star tracker), and the vector sensors of
+:mod:`~tumble.dynamics.models.vector_sensors` (sun sensors and a star tracker with its own
+frame and rate).
 
 Each reading is the true value plus a constant bias plus white Gaussian noise drawn anew at
 every sample (the discrete form of the usual rate-gyro model without the bias random walk;
@@ -7,6 +9,8 @@ Crassidis & Junkins, *Optimal Estimation of Dynamic Systems*, 2nd ed., sec. 7.2.
 tracker's attitude is the true one turned by a small random rotation whose rotation vector has
 independent components of standard deviation ``attitude_noise`` (rad) about each body axis.
 Readings are in the body's principal frame; the controller holds them until its next step.
+A sun sensor reads the Sun's direction from :class:`~tumble.dynamics.environment.sun.Sunlight`
+(the Sun along the orbit and the Earth's shadow) and gives nothing in the umbra.
 """
 
 from __future__ import annotations
@@ -19,6 +23,8 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vector
+from ..environment.sun import Sunlight
+from .vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker, on_period
 
 __all__ = ["Measurement", "Sensors"]
 
@@ -39,6 +45,13 @@ class Measurement:
         Body (principal) to world, measured (None when no attitude sensor is fitted).
     wheel_speed : ndarray, shape (k,)
         Wheel spins relative to the body, rad/s (the tachometers; exact).
+    sun : ndarray, shape (3,) or None
+        The sun sensor's measured direction of the Sun, principal frame, unit (None without a
+        sun sensor, between its readings, in the umbra or out of its field of view).
+    sun_sigma : float
+        That direction's angular noise, rad.
+    star_tracker : scipy Rotation or None
+        The star tracker's attitude, body to world (None without one or between its readings).
 
     Examples
     --------
@@ -57,6 +70,9 @@ class Measurement:
     field: FloatArray | None
     attitude: Rotation | None
     wheel_speed: FloatArray = dataclasses.field(default_factory=lambda: np.zeros(0))
+    sun: FloatArray | None = None
+    sun_sigma: float = 0.0
+    star_tracker: Rotation | None = None
 
 
 def _vec(name: str, value: ArrayLike, unit: str) -> FloatArray:
@@ -83,6 +99,12 @@ class Sensors:
         Star tracker noise about each axis, rad (>= 0).
     seed : int
         Seed of the noise (numpy's default generator): a run is reproducible.
+    sun_sensor : CoarseSunSensor or FineSunSensor, optional
+        A sun sensor (:mod:`~tumble.dynamics.models.vector_sensors`); needs ``sunlight``.
+    star_tracker : StarTracker, optional
+        A star tracker with its own frame, rate and noise.
+    sunlight : Sunlight, optional
+        The Sun's direction and the Earth's shadow along the orbit, for the sun sensor.
 
     Examples
     --------
@@ -103,6 +125,9 @@ class Sensors:
     attitude: str = "ideal"
     attitude_noise: float = 0.0
     seed: int = 0
+    sun_sensor: CoarseSunSensor | FineSunSensor | None = None
+    star_tracker: StarTracker | None = None
+    sunlight: Sunlight | None = None
 
     def __post_init__(self) -> None:
         check_positive("gyro_noise", self.gyro_noise, "rad/s", allow_zero=True)
@@ -114,6 +139,13 @@ class Sensors:
             raise ValueError(f"attitude = {self.attitude!r} is unknown; allowed: ideal, star_tracker, none")
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or self.seed < 0:
             raise ValueError(f"seed = {self.seed!r} must be a non-negative integer")
+        if self.sun_sensor is not None and not isinstance(self.sun_sensor, (CoarseSunSensor, FineSunSensor)):
+            raise ValueError(f"sun_sensor = {self.sun_sensor!r} must be a CoarseSunSensor or a FineSunSensor")
+        if self.star_tracker is not None and not isinstance(self.star_tracker, StarTracker):
+            raise ValueError(f"star_tracker = {self.star_tracker!r} must be a StarTracker")
+        if self.sun_sensor is not None and not isinstance(self.sunlight, Sunlight):
+            raise ValueError("a sun_sensor needs sunlight = Sunlight(orbit, epoch): the Sun's direction and the "
+                             "Earth's shadow along the orbit")
 
     def rng(self) -> np.random.Generator:
         """A fresh noise generator from :attr:`seed`.
@@ -162,6 +194,20 @@ class Sensors:
         True
         >>> sensors.sample(0.0, omega, Rotation.identity(), None, np.zeros(0), rng).attitude is None
         True
+
+        Six coarse sun cells on a 500 km equatorial orbit at the equinox read the Sun (along world x
+        at t = 0) and nothing half an orbit later, in the Earth's shadow:
+
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.sun import Sunlight
+        >>> from tumble.dynamics.models.vector_sensors import CoarseSunSensor
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> suite = Sensors(sun_sensor=CoarseSunSensor(noise=1e-3), sunlight=Sunlight(orbit, "2026-03-20T14:46:00"))
+        >>> lit = suite.sample(0.0, omega, Rotation.identity(), None, np.zeros(0), suite.rng())
+        >>> (np.round(lit.sun, 2) + 0.0).tolist(), round(lit.sun_sigma, 4)
+        ([1.0, 0.0, 0.0], 0.0014)
+        >>> suite.sample(orbit.period / 2, omega, Rotation.identity(), None, np.zeros(0), suite.rng()).sun is None
+        True
         """
         w = omega + np.asarray(self.gyro_bias) + self.gyro_noise * rng.standard_normal(3)
         b = None
@@ -172,4 +218,13 @@ class Sensors:
             att = attitude
         elif self.attitude == "star_tracker":
             att = attitude * Rotation.from_rotvec(self.attitude_noise * rng.standard_normal(3))
-        return Measurement(float(t), np.asarray(w, float), b, att, np.array(wheel_speed, float))
+        sun, sun_sigma = None, 0.0
+        if self.sun_sensor is not None and self.sunlight is not None and on_period(t, self.sun_sensor.period):
+            light = float(self.sunlight.fraction(t))
+            seen = self.sun_sensor.measure(attitude.inv().apply(self.sunlight.world(t)), light, rng) if light > 0.0 else None
+            if seen is not None:
+                sun, sun_sigma = seen
+        tracker = None
+        if self.star_tracker is not None and on_period(t, self.star_tracker.period):
+            tracker = self.star_tracker.measure(attitude, rng)
+        return Measurement(float(t), np.asarray(w, float), b, att, np.array(wheel_speed, float), sun, sun_sigma, tracker)
