@@ -111,3 +111,33 @@ def test_the_command_line_says_a_missing_file_in_one_line_and_exits_2(argv, tmp_
     assert main([a.format(tmp=tmp_path) for a in argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("tumble: error: ") and "no such f" in err, err
+
+
+@pytest.fixture(scope="module")
+def boxes(tmp_path_factory):
+    """A 5 cm box exported in metres and the same box in millimetres (STL)."""
+    trimesh = pytest.importorskip("trimesh")
+    folder = tmp_path_factory.mktemp("meshes")
+    trimesh.creation.box(extents=(0.05, 0.05, 0.05)).export(folder / "in_metres.stl")
+    trimesh.creation.box(extents=(50.0, 50.0, 50.0)).export(folder / "in_mm.stl")
+    return folder
+
+
+def test_a_mesh_read_in_the_wrong_unit_is_named(boxes, capsys):
+    """A mesh whose mass came out 2e-10 kg with --units mm passed without a word."""
+    assert main(["inertia", str(boxes / "in_metres.stl"), "--units", "mm", "--density", "1600"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("warning: ") and "0.05 mm across (2e-10 kg)" in err, err
+    assert 'read it in metres (units = "m", or no --units)' in err
+    assert main(["inertia", str(boxes / "in_mm.stl"), "--mass", "0.2"]) == 0  # 50 m across: millimetres?
+    assert 'give units = "mm"' in capsys.readouterr().err
+    for argv in (["in_mm.stl", "--units", "mm"], ["in_metres.stl"]):  # the right unit: no warning
+        assert main(["inertia", str(boxes / argv[0]), *argv[1:], "--mass", "0.2"]) == 0
+        assert capsys.readouterr().err == ""
+
+
+def test_a_mesh_read_in_the_wrong_unit_warns_in_python(boxes):
+    from tumble.io.bodyfile import MeshScaleWarning, body_from_mesh
+
+    with pytest.warns(MeshScaleWarning, match="0.05 mm across"):
+        body_from_mesh(boxes / "in_metres.stl", density=1600.0, units="mm")

@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import tomllib
+import warnings
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Mesh, Part
@@ -35,10 +36,12 @@ __all__ = [
     "MAX_TOML_BYTES",
     "MESH_SUFFIXES",
     "MESH_UNITS",
+    "MeshScaleWarning",
     "body_from_mesh",
     "body_from_table",
     "is_mesh_file",
     "load_body",
+    "mesh_scale_note",
     "mesh_files",
     "PART_TABLES",
     "PRESET_TABLES",
@@ -370,6 +373,44 @@ MESH_SUFFIXES = (".stl", ".obj", ".ply")
 MESH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 
 
+#: A mesh solid smaller or larger than this, across (m), is most likely read in the wrong unit.
+PLAUSIBLE_SIZE = (1e-3, 20.0)
+
+
+class MeshScaleWarning(UserWarning):
+    """A mesh read at a size no hand-made solid has: most likely its file's unit was given wrongly."""
+
+
+def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float) -> str | None:
+    """One line when a mesh read at ``scale`` (m per file unit) is implausibly small or large.
+
+    Its size is the cube root of its volume; below 1 mm or above 20 m across (:data:`PLAUSIBLE_SIZE`)
+    the likely slip is named: a file already in metres read with ``units = "mm"`` weighs
+    2e-10 kg at a plastic's density, a millimetre file read in metres is a building.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> from tumble import Mesh
+    >>> from tumble.io.bodyfile import mesh_scale_note
+    >>> part = Mesh(mesh=trimesh.creation.box(extents=(0.05, 0.05, 0.05)), scale=0.001, density=1600.0)
+    >>> print(mesh_scale_note("case.stl", part, 0.001))   # a 5 cm box exported in metres, read as mm
+    case.stl: the solid is 0.05 mm across (2e-10 kg), read at 0.001 m per file unit: if the file's coordinates are metres, read it in metres (units = "m", or no --units)
+    >>> mesh_scale_note("case.stl", Mesh(mesh=trimesh.creation.box(extents=(50.0, 50.0, 50.0)), scale=0.001, density=1600.0), 0.001) is None
+    True
+    """
+    size = part.volume ** (1.0 / 3.0)
+    read = f"read at {scale:g} m per file unit"
+    if size < PLAUSIBLE_SIZE[0]:
+        fix = ('metres, read it in metres (units = "m", or no --units)' if scale < 1.0
+               else "not metres, give their unit (units)")
+        return f"{path}: the solid is {size * 1e3:.3g} mm across ({part.mass:.3g} kg), {read}: if the file's coordinates are {fix}"
+    if size > PLAUSIBLE_SIZE[1]:
+        return (f"{path}: the solid is {size:.3g} m across ({part.mass:.3g} kg), {read}: if the file's coordinates are "
+                'millimetres, give units = "mm" (--units mm)')
+    return None
+
+
 def is_mesh_file(source: str | os.PathLike[str]) -> bool:
     """Whether ``source`` names a mesh file (by its suffix, any case: .stl, .obj, .ply).
 
@@ -440,4 +481,7 @@ def body_from_mesh(
     except ValueError as exc:
         message = str(exc)
         raise (NoSuchFileError if isinstance(exc, FileNotFoundError) else ValueError)(message if os.fspath(path) in message else f"{path}: {message}") from None
+    note = mesh_scale_note(path, part, part.scale)
+    if note:
+        warnings.warn(note, MeshScaleWarning, stacklevel=2)
     return Body((part,), name=Path(path).stem)
