@@ -113,6 +113,7 @@ def test_the_files_are_phyphoxs_layout():
     gyro = files["Gyroscope.csv"].decode().splitlines()
     assert gyro[1] == "0.000000000E+00,0.000000000E+00,3.000000000E+00,4.000000000E+00,5.000000000E+00"
     assert files["Accelerometer.csv"].decode().splitlines()[0] == (
-        '"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"')
+        '"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)",'
+        '"Absolute acceleration (m/s^2)"')
     assert [line.split(",")[0] for line in files["meta/time.csv"].decode().splitlines()] == [
         '"event"', '"START"', '"PAUSE"']

@@ -5,7 +5,7 @@ export writes it, a folder or a ``.zip``, which ``tumble fit`` and
 The export of phyphox's "Gyroscope (rotation rate)" experiment holds ``Raw Data.csv`` (the time
 and the three rates, and their magnitude) and ``meta/time.csv`` (the START/PAUSE events); an
 export with the accelerometer too holds ``Gyroscope.csv`` and ``Accelerometer.csv`` ("Acceleration
-(with g)": the specific force) instead of ``Raw Data.csv``, as phyphox names them in an experiment
+(with g)": the specific force and its magnitude) instead of ``Raw Data.csv``, as phyphox names them in an experiment
 of several sensors (:mod:`tumble.io.phyphox` reads these). The numbers are written as phyphox
 writes them, ``1.234567890E-03``: ten significant digits.
 
@@ -38,7 +38,8 @@ GYRO_CSV = "Raw Data.csv"
 #: The gyroscope's CSV in the export of an experiment of several sensors, beside ``Accelerometer.csv``.
 MULTI_GYRO_CSV = "Gyroscope.csv"
 _GYRO_HEADER = '"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)","Gyroscope z (rad/s)","Absolute (rad/s)"'
-_ACCEL_HEADER = '"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)"'
+_ACCEL_HEADER = ('"Time (s)","Acceleration x (m/s^2)","Acceleration y (m/s^2)","Acceleration z (m/s^2)",'
+                 '"Absolute acceleration (m/s^2)"')
 _TIME_HEADER = '"event","experiment time","system time","system time text"'
 
 
@@ -122,7 +123,7 @@ def phyphox_files(t: ArrayLike, omega: ArrayLike, *, accel: ArrayLike | None = N
     else:
         files[MULTI_GYRO_CSV] = _table(_GYRO_HEADER, [t, omega, magnitude])
         ta, f = _samples(t if accel_t is None else accel_t, accel, "the accelerometer's record")
-        files[ACCEL_CSV] = _table(_ACCEL_HEADER, [ta, f])
+        files[ACCEL_CSV] = _table(_ACCEL_HEADER, [ta, f, np.linalg.norm(f, axis=1)])
     lines = [_TIME_HEADER]
     for name, te in events:
         stamp = datetime.fromtimestamp(started + te, tz=timezone.utc)
