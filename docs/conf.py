@@ -46,6 +46,7 @@ extensions = [
     "tumble_xref",  # docs/_ext: references to tumble's names, resolved as Python does
     "tumble_keys",  # docs/_ext: the file formats' tables of keys, as their parsers check them
     "tumble_citing",  # docs/_ext: the citing page from CITATION.cff
+    "tumble_code",  # docs/_ext: each highlighted line in a span, so a wrapped line hangs under itself
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
