@@ -6,6 +6,8 @@ and the batched B-dot, with their compiled parts.
 - :mod:`~tumble.dynamics.control.controlled`: the closed loop, :func:`simulate_controlled`, with
   the sensors, actuators and environment of :mod:`tumble.dynamics.models`;
 - :mod:`~tumble.dynamics.control.mission`: detumble, then point (:class:`DetumbleThenPoint`);
+- :mod:`~tumble.dynamics.control.estimated`: a controller fed the MEKF's estimate instead of the
+  truth (:class:`Estimated`);
 - :mod:`~tumble.dynamics.control.pointing`: pointing targets (inertial, nadir) and the tracking error;
 - :mod:`~tumble.dynamics.control.detumble`: the B-dot detumble of many bodies at once;
 - :mod:`~tumble.dynamics.control.compiled_control` and
@@ -16,8 +18,9 @@ The room calls the models and the integrators, never the other way (tests/test_i
 
 from .controlled import ControlledRun, simulate_controlled
 from .controllers import BDot, Controller, MomentumDumping, MRPFeedback, bdot_gain, pd_response
+from .estimated import Estimated, Knowledge
 from .mission import DetumbleThenPoint
 from .pointing import NadirTarget
 
-__all__ = ["BDot", "ControlledRun", "Controller", "DetumbleThenPoint", "MRPFeedback", "MomentumDumping", "NadirTarget", "bdot_gain",
+__all__ = ["BDot", "ControlledRun", "Controller", "DetumbleThenPoint", "Estimated", "Knowledge", "MRPFeedback", "MomentumDumping", "NadirTarget", "bdot_gain",
            "pd_response", "simulate_controlled"]

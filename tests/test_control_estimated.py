@@ -1,0 +1,98 @@
+"""A controller fed the MEKF's estimate (tumble.dynamics.control.estimated) in the closed loop: the
+estimate's error stays inside the filter's own 3-sigma bounds, the true pointing error is the
+knowledge error, the sun sensor drops out in the Earth's shadow and the filter says so."""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from tumble.dynamics.control.controlled import simulate_controlled
+from tumble.dynamics.control.controllers import MRPFeedback
+from tumble.dynamics.control.estimated import Estimated
+from tumble.dynamics.environment.magnetic import DipoleField
+from tumble.dynamics.environment.orbit import CircularOrbit
+from tumble.dynamics.environment.sun import Sunlight
+from tumble.dynamics.models.actuators import ReactionWheels
+from tumble.dynamics.models.sensors import Sensors
+from tumble.dynamics.models.vector_sensors import CoarseSunSensor, StarTracker
+
+MOMENTS = [0.02, 0.03, 0.04]
+RW = ReactionWheels(np.eye(3), inertia=1e-5, max_torque=2e-3)
+TARGET = Rotation.from_rotvec([0.0, 0.4, 0.2])
+
+
+@functools.lru_cache(maxsize=None)
+def _run(estimate: bool, arg_latitude_deg: float = 0.0, tracker: bool = False, t_end: float = 300.0):
+    """Point at TARGET from a 0.5 rad error; an equatorial orbit at the equinox, whose shadow
+    begins about 68 deg of argument of latitude before the anti-Sun point (u = 180 deg)."""
+    orbit = CircularOrbit(altitude=500e3, arg_latitude=math.radians(arg_latitude_deg), inclination=0.3)
+    noise = {"gyro_noise": 1e-4, "gyro_bias": (3e-4, -2e-4, 1e-4), "magnetometer_noise": 2e-7} if estimate else {}
+    sensors = Sensors(**noise, attitude="none" if estimate else "ideal",  # type: ignore[arg-type]
+                      sun_sensor=CoarseSunSensor(noise=2e-3), sunlight=Sunlight(orbit, "2026-03-20T14:46:00"),
+                      star_tracker=StarTracker(cross=2e-5, roll=2e-4, period=10.0) if tracker else None, seed=3)
+    law = MRPFeedback(K=4e-3, P=1.2e-2, period=0.5, moments=MOMENTS, wheels=RW, target=TARGET)
+    c = Estimated(law, sensors, DipoleField(orbit)) if estimate else law
+    run = simulate_controlled(MOMENTS, [0.0, 0.0, 0.0], t_end=t_end, controller=c, field=DipoleField(orbit), wheels=RW,
+                              sensors=sensors, attitude0=TARGET * Rotation.from_rotvec([0.5, 0.0, 0.0]))
+    return run, (c.knowledge() if estimate else None)
+
+
+@pytest.mark.parametrize(("u0", "tracker"), [(0.0, False), (100.0, False), (100.0, True)])
+def test_knowledge_inside_its_own_bounds(u0, tracker):
+    """Sunlit, through the eclipse's start, and with a star tracker: each axis's error inside 3
+    sigma at (nearly) every step after the first minute, and the bias found."""
+    run, k = _run(True, u0, tracker)
+    e = k.error(run)
+    late = k.t >= 60.0
+    inside = np.all(np.abs(e[late]) < 3.0 * k.sigma[late, :3], axis=1)
+    assert inside.mean() > 0.97
+    assert np.allclose(k.bias[-1], [3e-4, -2e-4, 1e-4], atol=5e-5)
+
+
+def test_the_eclipse_is_seen():
+    """From u = 100 deg the body enters the umbra a few minutes in: the sun sensor stops exactly
+    where the shadow's model says no light arrives, and the filter's uncertainty grows."""
+    run, k = _run(True, 100.0)
+    orbit = CircularOrbit(altitude=500e3, arg_latitude=math.radians(100.0), inclination=0.3)
+    umbra = Sunlight(orbit, "2026-03-20T14:46:00").fraction(k.t) == 0.0
+    assert 100.0 < k.t[umbra][0] < 250.0 and umbra[-1]
+    assert np.array_equal(k.used[:, 1], ~umbra)
+    lit_run, lit = _run(True, 0.0)
+    assert lit.used[:, 1].all()
+    s_dark, s_lit = k.sigma[:, :3].max(axis=1), lit.sigma[:, :3].max(axis=1)
+    assert s_dark[-1] > 1.2 * s_lit[-1]   # 1.1 mrad against 0.76 (the largest axis)
+
+
+def test_pointing_error_is_the_knowledge_error():
+    """Fed the true attitude and rate the law settles on the target; fed the estimate (and the
+    gyroscope less its estimated bias) it settles on the estimate, so the true pointing error ends
+    at the knowledge error (to the law's own residual)."""
+    truth_run, _ = _run(False)
+    run, k = _run(True)
+    late = run.t[:-1] >= 150.0     # settled (the law's time constant is about 6 s)
+
+    def rms(x):
+        return float(np.sqrt(np.mean(x**2)))
+
+    with_truth = rms(truth_run.pointing_error(TARGET)[:-1][late])
+    with_estimate = rms(run.pointing_error(TARGET)[:-1][late])
+    knowledge = rms(np.linalg.norm(k.error(run), axis=1)[late])
+    view = rms((TARGET.inv() * k.attitude).magnitude()[late])   # what the law sees of its own error
+    assert with_truth < 1e-4 * with_estimate        # 4e-8 rad against 1.3 mrad
+    assert with_estimate == pytest.approx(knowledge, rel=0.5)   # 1.3 mrad against 1.06
+    assert with_estimate <= knowledge + view        # the triangle inequality of the two turns
+
+
+def test_bad_input_and_no_start():
+    law = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=MOMENTS, wheels=RW)
+    with pytest.raises(ValueError, match=r"^sensors = 'x' must be the run's Sensors$"):
+        Estimated(law, "x")
+    with pytest.raises(ValueError, match=r"^magnetometer_period = -1.0 must be"):
+        Estimated(law, Sensors(), magnetometer_period=-1.0)
+    with pytest.raises(ValueError, match=r"^the filter never started"):
+        Estimated(law, Sensors()).knowledge()
