@@ -109,6 +109,18 @@ def period_family():
                         np.array(["SAM", "LAM", "SAM"]))
 
 
+def synthetic():
+    from tumble.analysis.fit.synthetic import synthetic_recording
+
+    return synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+
+
+def flight():
+    from tumble.analysis.fit.flights import Flight
+
+    return Flight(start=1.25, end=1.75, first=125, stop=175, status="skipped", reason="too short")
+
+
 def headline_numbers(obj) -> list[str]:
     """The numbers a result's repr must show, as :func:`fmt` writes them, from its own attributes."""
     name = type(obj).__name__
@@ -135,13 +147,17 @@ def headline_numbers(obj) -> list[str]:
         return [f"{obj.cases} cases", f"{obj.flipped} flipped"]
     if name == "StabilityMap":
         return [f"{len(obj.x)} x {len(obj.y)}", f"{int(obj.inside.sum())} inside", fmt(obj.omega0[1])]
+    if name == "SyntheticRecording":
+        return [f"{len(obj.t)} samples", f"{len(obj.flights)} flights", fmt(obj.ratios[0]), fmt(obj.ratios[1])]
+    if name == "Flight":
+        return [fmt(obj.start), fmt(obj.end), f"{obj.first}..{obj.stop}", obj.reason]
     if name == "PeriodFamily":
         return [f"{len(obj.mode)} motions", "2 SAM", fmt(obj.ratios[:, 0].max(), 3)]
     raise AssertionError(name)
 
 
 MAKERS = [controlled_run, detumble_batch, rotation_fit, estimate, tensor_fit, calibration, monte_carlo, sweep_summary,
-          stability_map, period_family]
+          stability_map, period_family, synthetic, flight]
 
 
 @pytest.fixture(scope="module", params=MAKERS, ids=lambda f: f.__name__)
@@ -168,12 +184,16 @@ def test_recording_fit_repr(recording_fit):
     assert "2 of 2 flights" in repr(recording_fit)
     for toss in recording_fit.tosses:
         assert repr(toss).startswith("Toss(") and len(repr(toss)) <= REPR_CHARS and fmt(toss.start) in repr(toss)
+    for model in recording_fit.flight_models:
+        text = repr(model)
+        assert text.startswith("FlightModel(") and len(text) <= REPR_CHARS and "array" not in text
+        assert fmt(model.ratios[0]) in text and fmt(model.start) in text and f"recording {model.recording}" in text
 
 
 def test_html_parses_and_holds_the_headline(result, recording_fit):
     for obj in (result, recording_fit):
         if not hasattr(obj, "_repr_html_"):
-            assert type(obj).__name__ == "PeriodFamily"
+            assert type(obj).__name__ in ("PeriodFamily", "SyntheticRecording", "Flight")
             continue
         page = obj._repr_html_()
         root = ET.fromstring(page)  # every tag closed, every '<' and '&' escaped

@@ -19,8 +19,9 @@ import numpy as np
 
 from .._html import fmt, html_table, plural, result_html, result_repr, short_name, vec, with_std
 
-__all__ = ["calibration_html", "calibration_repr", "estimate_html", "estimate_repr", "family_repr", "recording_html",
-           "recording_repr", "rotation_html", "rotation_repr", "tensor_html", "tensor_repr", "throw_repr", "toss_repr"]
+__all__ = ["calibration_html", "calibration_repr", "estimate_html", "estimate_repr", "family_repr", "flight_repr",
+           "model_repr", "recording_html", "recording_repr", "rotation_html", "rotation_repr", "synthetic_repr",
+           "tensor_html", "tensor_repr", "throw_repr", "toss_repr"]
 
 
 def _ratios(fit: Any) -> list[str]:
@@ -319,3 +320,50 @@ def family_repr(family: Any) -> str:
         r = np.asarray(family.ratios, float)
         parts += [f"I1/I3 {fmt(r[:, 0].min(), 3)}..{fmt(r[:, 0].max(), 3)}", f"I2/I3 {fmt(r[:, 1].min(), 3)}..{fmt(r[:, 1].max(), 3)}"]
     return result_repr("PeriodFamily", parts)
+
+
+def flight_repr(flight: Any) -> str:
+    """``Flight(1.28..2.05 s, samples 126..204, ok)``: a flight found in a recording.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.flights import Flight
+    >>> Flight(start=1.0, end=1.5, first=100, stop=150, status="skipped", reason="too short")
+    Flight(1..1.5 s, samples 100..150, skipped: too short)
+    """
+    status = f"{flight.status}: {flight.reason}" if flight.reason else flight.status
+    return result_repr("Flight", [f"{fmt(flight.start)}..{fmt(flight.end)} s", f"samples {flight.first}..{flight.stop}",
+                                  status])
+
+
+def model_repr(model: Any) -> str:
+    """``FlightModel(1.28..2.05 s, I1/I3 = 0.07333, I2/I3 = 0.9334, quadratic drag, recording 0)``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.recording import fit_recording
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
+    >>> repr(fit_recording(rec.t, rec.omega, events=rec.events).flight_models[0]).startswith("FlightModel(1.277..2.049 s, I1/I3")
+    True
+    """
+    parts = [f"{fmt(model.start)}..{fmt(model.end)} s", f"I1/I3 = {fmt(model.ratios[0])}", f"I2/I3 = {fmt(model.ratios[1])}"]
+    if model.drag != "none":
+        parts.append(f"{model.drag} drag")
+    parts.append(f"recording {model.recording}")
+    return result_repr("FlightModel", parts)
+
+
+def synthetic_repr(rec: Any) -> str:
+    """``SyntheticRecording(1234 samples over 12.3 s at 100 Hz, 2 flights, I1/I3 = 0.07, I2/I3 = 0.93)``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.synthetic import synthetic_recording
+    >>> repr(synthetic_recording(11, tosses=2, flight=(0.5, 0.8)))  # doctest: +ELLIPSIS
+    'SyntheticRecording(... samples over ... s at 100 Hz, 2 flights, I1/I3 = ..., I2/I3 = ...)'
+    """
+    t = rec.t
+    span = f"{plural(len(t), 'sample')} over {fmt(t[-1] - t[0], 3)} s at {fmt(rec.rate)} Hz" if len(t) else "no samples"
+    return result_repr("SyntheticRecording", [span, plural(len(rec.flights), "flight"), f"I1/I3 = {fmt(rec.ratios[0])}",
+                                              f"I2/I3 = {fmt(rec.ratios[1])}"])

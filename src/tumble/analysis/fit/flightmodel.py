@@ -21,6 +21,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
 from ...validation import check_number, check_vector
+from .. import _display
 from .model import DRAG_MODELS, principal_rates
 from .result import RotationFit
 from .solve import Solution
@@ -83,6 +84,9 @@ class FlightModel:
     bias: np.ndarray
     recording: int = 0
     toss: int | None = None
+
+    def __repr__(self) -> str:
+        return _display.model_repr(self)
 
     def __post_init__(self) -> None:
         self._check("")

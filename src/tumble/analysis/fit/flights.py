@@ -63,6 +63,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...typing import ArrayLike
+from .. import _display
 from .adequacy import _left_path
 from .freefall import FreeSpan, check_accel, free_span
 from .model import Model
@@ -127,6 +128,9 @@ class Flight:
     anchor: float = 0.0
     joinable: bool = False
     free_fall: FreeSpan | None = None
+
+    def __repr__(self) -> str:
+        return _display.flight_repr(self)
 
     @property
     def samples(self) -> int:

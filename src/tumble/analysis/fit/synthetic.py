@@ -45,6 +45,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
+from .. import _display
 from .accelsynth import SyntheticAccel, synthetic_accel
 from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise
 
@@ -205,6 +206,9 @@ class SyntheticRecording:
     endings: tuple = ()
     rotor: float = 0.0
     accel: SyntheticAccel | None = None
+
+    def __repr__(self) -> str:
+        return _display.synthetic_repr(self)
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines
