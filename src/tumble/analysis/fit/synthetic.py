@@ -44,97 +44,16 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from ...typing import ArrayLike
 from .. import _display
 from .accelsynth import SyntheticAccel, synthetic_accel
+from .tossbody import RHO_AIR, TOSS_BODIES, TossBody, plate_drag_torque  # noqa: F401 - re-exported
 from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise
 
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
            "synthetic_recording"]
 
-#: Density of air at 20 C and sea level, kg/m^3.
-RHO_AIR = 1.204
 #: 2000 deg/s, the common smartphone gyroscope full scale, rad/s.
 FULL_SCALE = np.deg2rad(2000.0)
-
-
-@dataclass(frozen=True)
-class TossBody:
-    """A body to toss: principal moments (kg m^2, ascending) and its drag plate.
-
-    The plate lies in the principal 1-2 plane, ``length`` along axis 1 and ``width`` along
-    axis 2 (m), with a normal-force coefficient ``drag_coefficient`` (dimensionless).
-
-    Examples
-    --------
-    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES, TossBody, plate_drag_torque
-    >>> racquet = TOSS_BODIES["racquet"]
-    >>> I1, I2, I3 = racquet.moments
-    >>> round((I1 + I2) / I3, 3)   # near-planar: I1 + I2 = I3 within 0.6 %
-    1.006
-    >>> card = TossBody("card", (1e-5, 2e-5, 3e-5), 0.09, 0.06, 1.17)   # a 9 x 6 cm plate
-    >>> round(float(plate_drag_torque(card, [0.0, 10.0, 0.0])[1] / plate_drag_torque(card, [0.0, 5.0, 0.0])[1]), 6)   # quadratic
-    4.0
-    """
-
-    name: str
-    moments: tuple
-    length: float
-    width: float
-    drag_coefficient: float
-
-
-def _box(m, a, b, c):
-    """Moments of a solid box (kg, m), ascending (a >= b >= c along axes 1, 2, 3)."""
-    return tuple(sorted((m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12)))
-
-
-#: Brody's racquet (Ashbaugh, Chicone & Cushman 1991, footnote 4; I1 + I2 = I3 within 0.6 %),
-#: drag tuned to 0.05 N m at 10 rad/s about axis 2; a 0.19 kg phone of 158 x 77 x 8 mm.
-TOSS_BODIES = {
-    "racquet": TossBody("racquet", (0.00121, 0.01638, 0.01748), 0.68, 0.26, 0.48),
-    "phone": TossBody("phone", _box(0.19, 0.158, 0.077, 0.008), 0.158, 0.077, 1.17),
-}
-
-_GAUSS = np.polynomial.legendre.leggauss(8)
-
-
-def plate_drag_torque(body: TossBody, w: ArrayLike) -> np.ndarray:
-    """Strip-theory drag on the body's plate (module docstring), principal frame, N m.
-
-    Each element of the plate (``length`` along axis 1, ``width`` along axis 2, Gauss-Legendre
-    points) is pushed back along the normal by ``0.5 rho C_D |v_n| v_n`` per unit area, ``v_n``
-    its normal speed ``w1 y - w2 x``; about the normal itself only a small skin friction acts.
-
-    Parameters
-    ----------
-    body : TossBody
-    w : ndarray, shape (3,)
-        Angular velocity, principal frame, rad/s.
-
-    Returns
-    -------
-    ndarray, shape (3,)
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
-    >>> from tumble.analysis.fit.synthetic import plate_drag_torque
-    >>> body = TOSS_BODIES["racquet"]
-    >>> tau = plate_drag_torque(body, np.array([0.0, 10.0, 0.0]))
-    >>> round(float(tau[1]), 3)  # the racquet's 0.05 N m at 10 rad/s about its axis 2
-    -0.05
-    """
-    x, wt = _GAUSS
-    u = 0.5 * body.length * x
-    v = 0.5 * body.width * x
-    U, V = np.meshgrid(u, v, indexing="ij")
-    W = np.outer(wt, wt) * 0.25 * body.length * body.width
-    vn = w[0] * V - w[1] * U
-    f = -0.5 * RHO_AIR * body.drag_coefficient * np.abs(vn) * vn * W
-    skin = -0.02 * RHO_AIR * body.drag_coefficient * body.width * body.length ** 4 / 64 * abs(w[2]) * w[2]
-    return np.array([np.sum(V * f), -np.sum(U * f), skin])
 
 
 def _flight(body: TossBody, w0, duration, times):
