@@ -2,8 +2,8 @@
 draws lies outside its canvas, where a saved file would cut it ("...planar bodies (triangle
 inequalit").
 
-Every figure function of :mod:`tumble.viz` (and the figure the demo adds, a grid of runs) is
-drawn from a small input, rendered by Agg at the size it is saved, and every text drawn (tick
+Every figure function of :mod:`tumble.viz` (the demo's grid of runs and the animations' frames
+among them) is drawn from a small input, rendered by Agg at the size it is saved, and every text drawn (tick
 labels out of view are not drawn, so not counted) must lie inside the canvas to a pixel.
 """
 
@@ -151,6 +151,38 @@ def _grid():
             viz.figure_omega_panels(cases[:2])]
 
 
+def _animation_frames():
+    """Each animation's figure (ground and body frame) as its writer saw it, after its last frame."""
+    import contextlib
+    import tempfile
+    from pathlib import Path
+
+    import tumble.viz.animate as animate
+
+    grabbed = []
+
+    class Grab:  # a writer that keeps the figure instead of encoding its frames
+        @contextlib.contextmanager
+        def saving(self, fig, outfile, dpi):
+            grabbed.append(fig)
+            yield self
+
+        def grab_frame(self):
+            pass
+
+    original = animate.writer_for
+    animate.writer_for = lambda path, fps: Grab()
+    try:
+        run = _run(t_end=2.0, samples=20)
+        with tempfile.TemporaryDirectory() as folder:
+            for make in (viz.animate_ground_frame, viz.animate_body_frame):
+                make(tumble.t_handle(), run, Path(folder) / "a.gif", max_frames=2, title="T-handle, spin about axis 2")
+    finally:
+        animate.writer_for = original
+    assert len(grabbed) == 2
+    return grabbed
+
+
 FIGURES = {
     "omega": lambda: viz.figure_omega(_run(), title="T-handle, exact"),
     "omega (detail)": lambda: viz.figure_omega(
@@ -169,6 +201,7 @@ FIGURES = {
     "control": _control_figures,
     "fits": _fits,
     "tensor": _tensor,
+    "animation frames": _animation_frames,
 }
 
 
