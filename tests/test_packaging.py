@@ -328,6 +328,7 @@ def test_an_example_path_outside_a_checkout_says_how_to_get_it(tmp_path, monkeyp
     ("tumble.load_scenario", "examples/seed_flip.toml"),
     ("tumble.load_body", "examples/bodies/t_handle.toml"),
     ("tumble.io.sweepfile.load_sweep", "examples/sweeps/t_handle_dimensions.toml"),
+    ("tumble.io.throwfile.read_throw", "examples/throws/a1.csv"),
 ])
 def test_a_python_reader_on_an_example_path_outside_a_checkout_says_how_to_get_it(tmp_path, monkeypatch, read, path):
     """The Python blocks of the guides (``read_recording("examples/data/racquet_tosses.csv")`` in

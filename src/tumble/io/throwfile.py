@@ -42,8 +42,8 @@ from pathlib import Path
 import numpy as np
 
 from ..analysis.tensor import Device, Throw
-from ..validation import read_input_file
 from .atomic import atomic_write_text
+from .examples import _read_input
 from .gyrocolumns import (ACCEL_UNITS, RATE_PREFIXES, RATE_UNITS, TIME_NAMES, TIME_UNITS, _factor, _name, match_accel,
                           match_header)
 from .keys import FileFormat, Key, Table
@@ -223,7 +223,7 @@ def load_throw(path: str | os.PathLike[str], device: Device | None = None) -> tu
     ((50, 3), 't (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 1 ignored, 50 rows')
     """
     label = os.fspath(path)
-    raw = read_input_file(path, limit=MAX_THROW_FILE_BYTES, what="a throw file (CSV)")
+    raw = _read_input(path, limit=MAX_THROW_FILE_BYTES, what="a throw file (CSV)")  # "no such file" hints at examples/
     samples, read = parse_throw_csv(raw, label, device)
     try:
         throw = Throw(t=samples["t"], omega=samples["omega"], rotor=samples["rotor"], accel=samples["accel"],
