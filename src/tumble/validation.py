@@ -522,8 +522,8 @@ def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vecto
 class NoSuchFileError(FileNotFoundError, ValueError):
     """A file the user named does not exist: ``PATH: no such file``.
 
-    A :class:`FileNotFoundError`, what a program catches for a missing file, and a
-    :class:`ValueError`, as every other refusal of a file tumble reads (the command line says it
+    A ``FileNotFoundError``, what a program catches for a missing file, and a
+    ``ValueError``, as every other refusal of a file tumble reads (the command line says it
     in one line and exits with 2). Its text is the message alone (no ``[Errno 2]``).
 
     Examples
@@ -565,7 +565,7 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
     Raises
     ------
     NoSuchFileError
-        A :class:`FileNotFoundError` (and :class:`ValueError`): ``PATH: no such file``.
+        A ``FileNotFoundError`` (and ``ValueError``): ``PATH: no such file``.
     ValueError
         One line naming the file and the rule: not a regular file (directory, FIFO, socket,
         device), unreadable, or larger than ``limit``.
