@@ -57,3 +57,16 @@ def test_the_lines_after_a_command_in_its_block_are_its_output(tmp_path):
                     "  tumble view $f --out $f.html\n  echo done; done\n```\n", encoding="utf-8")
     found = page_commands(page)
     assert [c.output for c in found] == ["  one line\ntwo", "", "three", ""]   # a synopsis ($f) is not run
+
+
+def test_a_command_that_needs_anothers_output_runs_after_it_and_after_what_that_one_needs():
+    """tests/test_wheel_commands.py runs ``tumble view bracket`` after ``tumble tensor ... --out
+    bracket``, and that after ``tumble calibrate ... --out calibrated.toml``, as docs/tensor.md shows."""
+    from test_wheel_commands import _producers
+
+    calibrate = ("calibrate", "d.toml", "--alone", "a1.csv", "--proof", "p1.csv", "--out", "calibrated.toml")
+    tensor = ("tensor", "o1.csv", "--device", "calibrated.toml", "--mass", "0.4", "--out", "bracket")
+    view = ("view", "bracket", "--out", "bracket.html")
+    outputs = {"calibrated.toml": calibrate, "bracket": tensor, "bracket.html": view}
+    assert _producers(view, outputs) == [("calibrated.toml", calibrate), ("bracket", tensor)]
+    assert _producers(tensor, outputs) == [("calibrated.toml", calibrate)] and _producers(calibrate, outputs) == []

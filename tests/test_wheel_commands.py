@@ -272,19 +272,34 @@ def _outputs(runnable: list[Shown]) -> dict[str, tuple[str, ...]]:
             if word in ("--out",) and not c.argv[i + 1].startswith("out-")}
 
 
+def _producers(argv: tuple[str, ...], outputs: dict[str, tuple[str, ...]],
+               seen: set | None = None) -> list[tuple[str, tuple[str, ...]]]:
+    """The shown commands that write ``argv``'s inputs, each after those that write its own
+    (``tumble view bracket`` needs ``tumble tensor ... --out bracket``, which needs ``tumble
+    calibrate ... --out calibrated.toml``), each once: (the input, the command)."""
+    seen = set() if seen is None else seen
+    found: list[tuple[str, tuple[str, ...]]] = []
+    for word in argv[1:]:
+        before = outputs.get(word)
+        if before is None or before == argv or before in seen:
+            continue
+        seen.add(before)
+        found += _producers(before, outputs, seen)
+        found.append((word, before))
+    return found
+
+
 def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
                outputs: dict[str, tuple[str, ...]] | None = None) -> Outcome:
     """Run one command from an empty ``folder`` as shown, or with the hint it prints (``copied``:
     what the usual hint, :data:`COPY_HINT`, copies); an input that another shown command writes
-    (``outputs``) is made first by that command, as the guide shows them one after the other."""
+    (``outputs``) is made first by that command (and its inputs by theirs, :func:`_producers`), as
+    the guide shows them one after the other."""
     argv = shown[0].argv
     outcome = Outcome(shown)
     folder.mkdir()
     unmade = set()  # inputs whose command stopped for want of the user's own files
-    for word in argv[1:]:
-        before = (outputs or {}).get(word)
-        if before is None or before == argv:
-            continue
+    for word, before in _producers(argv, outputs or {}):
         if any(w.startswith("examples/") for w in before) and not (folder / "examples").exists():
             shutil.copytree(copied, folder / "examples")
         made = _run(venv, folder, list(before))
