@@ -138,6 +138,12 @@ def cases() -> list[tuple[str, Table, list[tuple[dict, tuple]], object]]:
         ('[control] kind = "detumble_point"', [(mission, ("control",))]),
         ("[control.detumble]", [({**mission, "control": {**mission["control"], "detumble": {}}}, ("control", "detumble"))]),
         ("[control.point]", [(mission, ("control", "point"))]))]
+    est = _control("estimate_point")
+    fine = {**est, "sensors": {**est["sensors"], "sun": {"kind": "fine", "epoch": "2026-03-20T14:46:00"}}}
+    tracked = {**est, "sensors": {**est["sensors"], "star_tracker": {"cross": 2e-5}}}
+    found += [("control", CONTROL_FORMAT.table(t), docs, load_scenario) for t, docs in (
+        ("[sensors.sun]", [(est, ("sensors", "sun")), (fine, ("sensors", "sun"))]),
+        ("[sensors.star_tracker]", [(tracked, ("sensors", "star_tracker"))]), ("[estimator]", [(est, ("estimator",))]))]
     found += [("device", DEVICE_FORMAT.table(t), docs, load_device) for t, docs in (
         ("top level", [(_DEVICE, ())]), ("[device]", [(_DEVICE, ("device",)), (_CALIBRATED, ("device",))]),
         ("[proof]", [(_DEVICE, ("proof",))]))]

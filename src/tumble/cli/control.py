@@ -12,6 +12,8 @@ SIMULATE_WRITES = ("trajectory.csv", "trajectory.npz", "summary.json", "omega.pn
 #: are the command's, so an earlier run's are replaced as a set, though a run without wheels writes no
 #: wheels.png and one without a target no attitude_error.png.
 CONTROL_WRITES = ("attitude_error.png", "rates.png", "wheels.png", "dipole.png", "momentum.png")
+#: The figure `tumble simulate` adds when the controller sees an [estimator]'s estimate (tumble.viz.knowledge).
+ESTIMATOR_WRITES = ("knowledge.png",)
 
 
 def figure_title(name: str, kind: str) -> str:
@@ -49,7 +51,13 @@ def simulate_control(args, scenario, out) -> int:
     summary["provenance"] = provenance(args.argv, scenario.sources)
     figures = control_figures(run, target=scenario.target, switch_time=summary.get("switch_time"),
                               title=figure_title(scenario.name, scenario.kind))
-    with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES)) as stage:
+    if "knowledge_error_rms_deg" in summary:
+        from ..viz import figure_knowledge
+
+        figures["knowledge.png"] = figure_knowledge(run, controller.knowledge(), switch_time=summary.get("switch_time"),
+                                                    title=figure_title(scenario.name, scenario.kind),
+                                                    bias=scenario.sensors.gyro_bias)
+    with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES, *ESTIMATOR_WRITES)) as stage:
         write_control_run(run, stage)
         save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
         for name, fig in figures.items():
@@ -68,6 +76,9 @@ def simulate_control(args, scenario, out) -> int:
             line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
         else:  # a run that ends before it detumbles says so, rather than nothing
             line += f", not below the threshold {summary['threshold']:.3g} rad/s by the end: not detumbled"
+        if "knowledge_error_rms_deg" in summary:
+            line += (f", knowledge error {summary['knowledge_error_rms_deg']:.3g} deg RMS, "
+                     f"{summary['knowledge_error_final_deg']:.3g} deg at the end")
         print(f"{line}; wrote {out}/")
     return EXIT_OK
 

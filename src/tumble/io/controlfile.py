@@ -27,6 +27,8 @@ A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.d
     inertia = 1e-5              # kg m^2 (axial); max_torque (N m), max_speed (rad/s), viscous, coulomb, speed0
 
     [sensors]                   # gyro_noise, gyro_bias, magnetometer_noise, magnetometer_bias, attitude, attitude_noise, seed
+    # [sensors.sun], [sensors.star_tracker] and [estimator] (the controller fed the MEKF's estimate):
+    # tumble.io.controlestimator
 
     [control]
     kind = "bdot"               # or "mrp_pd", or "detumble_point" (B-dot, then MRP feedback)
@@ -50,6 +52,7 @@ from scipy.spatial.transform import Rotation
 from ..dynamics import Trajectory
 from ..dynamics.control.controlled import ControlledRun
 from ..dynamics.control.controllers import BDot, Controller, MRPFeedback
+from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit_gravity import gravity_gradient_of
@@ -64,6 +67,7 @@ from ..validation import (
     check_vector,
     check_vectors,
 )
+from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
 from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
 from .keys import FileFormat, Key, Table
@@ -88,7 +92,8 @@ _TABLES = (
               doc="[control]: what makes a scenario file a control scenario" if name == "control" else f"[{name}]")
           for name, example in (("initial", "{omega = [0.2, -0.2, 0.2]}"), ("simulation", "{t_end = 6000.0}"),
                                 ("orbit", "{altitude = 500e3}"), ("actuators", "{wheels = {inertia = 1e-5}}"),
-                                ("sensors", "{gyro_noise = 1e-4}"), ("control", '{kind = "bdot", period = 1.0}'))),
+                                ("sensors", "{gyro_noise = 1e-4}"), ("control", '{kind = "bdot", period = 1.0}'),
+                                ("estimator", '{kind = "mekf"}'))),
     ), "A scenario file with a ``[control]`` table is a closed-loop run."),
     Table("[initial]", (
         Key("omega", "3 numbers", "rad/s", required=True, example="[0.2, -0.2, 0.2]", doc="the initial angular velocity"),
@@ -138,8 +143,13 @@ _TABLES = (
         Key("attitude_noise", "number", "rad", "0.0", example="1e-4", low=0.0, low_included=True,
             doc="star tracker noise about each axis"),
         Key("seed", "whole number", "", "0", example="7", doc="seed of the noise: a run is reproducible"),
+        Key("sun", "table", example='{noise = 2e-3, epoch = "2026-06-01T00:00:00"}', doc="[sensors.sun]: a sun sensor"),
+        Key("star_tracker", "table", example="{cross = 2e-5, roll = 2e-4}", doc="[sensors.star_tracker]"),
     ), "What the controller reads; all optional (default: exact readings)."),
+    SUN_TABLE,
+    STAR_TRACKER_TABLE,
     *CONTROL_TABLES,
+    ESTIMATOR_TABLE,
 )
 #: The tables of a control scenario and their keys.
 CONTROL_FORMAT = FileFormat("control scenario", _TABLES,
@@ -153,6 +163,7 @@ CONTROL_SECTIONS = {
     "actuators": set(CONTROL_FORMAT.table("[actuators]").names()),
     "sensors": set(CONTROL_FORMAT.table("[sensors]").names()),
     "control": CONTROL_KEYS,
+    "estimator": set(ESTIMATOR_TABLE.names()),
 }
 _MTQ = CONTROL_FORMAT.table("[actuators.magnetorquers]")
 _WHEELS = CONTROL_FORMAT.table("[actuators.wheels]")
@@ -202,8 +213,9 @@ class ControlScenario:
     atol: float = 1e-12
     name: str = "scenario"
     sources: tuple[tuple[str, str], ...] = ()
+    estimator: dict[str, Any] | None = None
 
-    def controller(self) -> BDot | MRPFeedback | DetumbleThenPoint:
+    def controller(self) -> BDot | MRPFeedback | DetumbleThenPoint | Estimated:
         """A fresh controller of this scenario.
 
         Examples
@@ -232,8 +244,9 @@ class ControlScenario:
         >>> c.form, bool(low < c.gain < 2 * low)
         ('normalized', True)
         """
-        return build_controller(ControlSpec(self.kind, self.controller_args, self.target, self.threshold), self.body,
-                                self.wheels)
+        law = build_controller(ControlSpec(self.kind, self.controller_args, self.target, self.threshold), self.body,
+                               self.wheels)
+        return law if self.estimator is None else Estimated(law, self.sensors, self.field, **self.estimator)
 
     def arguments(self, controller: Controller | None = None) -> dict[str, Any]:
         """The keyword arguments of :func:`~tumble.dynamics.control.controlled.simulate_controlled`
@@ -433,12 +446,16 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
     if mtq is not None and field is None:
         raise ValueError("actuators.magnetorquers need an [orbit] (its magnetic field)")
+    heads = sensor_heads(t["sensors"], orbit=orbit, field=field, principal_to_design=principal_to_design)
     try:
-        sensors = Sensors(**t["sensors"])
+        sensors = Sensors(**{k: v for k, v in t["sensors"].items() if k not in ("sun", "star_tracker")}, **heads)
     except (ValueError, TypeError) as exc:
         raise ValueError(f"sensors: {exc}") from None
+    estimator = estimator_from_table(t["estimator"], heads=heads, field=field) if "estimator" in data else None
     spec = parse_control(control, body=body, orbit=orbit, field=field, magnetorquers=mtq, wheels=wheels,
-                         sensors=sensors, principal_to_design=principal_to_design)
+                         # with an estimator the law has an attitude whatever sensors.attitude says
+                         sensors=sensors if estimator is None else dataclasses.replace(sensors, attitude="ideal"),
+                         principal_to_design=principal_to_design)
     try:
         t_end = check_positive("t_end", sim.get("t_end", 0.0) if "t_end" in sim else None, "s")
     except ValueError:
@@ -448,7 +465,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
         rtol=check_rtol("simulation.rtol", sim.get("rtol", 1e-10)),
-        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name)
+        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name, estimator=estimator)
 
 
 def is_control_file(data: dict[str, Any]) -> bool:

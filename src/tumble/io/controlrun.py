@@ -2,7 +2,8 @@
 
 :func:`control_summary` gives the final rate, the detumble time (when ``|omega|`` drops below the
 scenario's threshold and stays there), the pointing error against the target, the momentum
-budget, the largest commands and, for a ``detumble_point`` mission, the switch time;
+budget, the largest commands, for a ``detumble_point`` mission the switch time and, with an
+``[estimator]``, the knowledge error (:func:`knowledge_summary`);
 :func:`write_control_run` writes ``trajectory.csv`` and ``trajectory.npz``.
 """
 
@@ -16,6 +17,7 @@ import numpy as np
 
 from ..dynamics.control.controlled import ControlledRun, command_summary
 from ..dynamics.control.controllers import Controller
+from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
 from .controlorbit import Field, Orbit, orbit_summary
 
@@ -25,7 +27,7 @@ if TYPE_CHECKING:
     from ..dynamics.control.pointing import NadirTarget
     from ..mass import Body
 
-__all__ = ["control_summary", "write_control_run"]
+__all__ = ["control_summary", "knowledge_summary", "write_control_run"]
 
 
 class _Scenario(Protocol):
@@ -91,6 +93,9 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
     if scenario.kind == "bdot":
         summary["gain"] = float(scenario.controller_args["gain"])
         summary["form"] = scenario.controller_args.get("form", "classic")
+    if isinstance(controller, Estimated):
+        summary.update(knowledge_summary(controller, run))
+        controller = controller.controller
     if scenario.kind == "detumble_point":
         if not isinstance(controller, DetumbleThenPoint):
             raise ValueError(f"{scenario.name}: the switch time of a detumble_point run is its controller's: "
@@ -107,6 +112,36 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
     if scenario.orbit is not None and scenario.field is not None:
         summary["orbit"] = orbit_summary(scenario.orbit, scenario.field)
     return summary
+
+
+def knowledge_summary(estimated: Estimated, run: ControlledRun) -> dict[str, Any]:
+    """The estimate's error against the truth over a run: RMS and final angle (deg), the final 3-sigma
+    (deg, the largest axis's), the final bias estimate (rad/s), when the filter started (s) and the
+    share of the steps at which each sensor updated it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.estimated import Estimated
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.dynamics.models.vector_sensors import StarTracker
+    >>> from tumble.io.controlrun import knowledge_summary
+    >>> sensors = Sensors(gyro_noise=1e-4, star_tracker=StarTracker(cross=1e-5, roll=1e-4, period=2.0))
+    >>> c = Estimated(BDot(gain=1e-3, period=0.5), sensors)
+    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.05], t_end=20.0, controller=c, sensors=sensors)
+    >>> k = knowledge_summary(c, run)
+    >>> bool(k["knowledge_error_rms_deg"] < 0.05), k["knowledge_start"], k["sensors_used"]
+    (True, 0.0, {'magnetometer': 0.0, 'sun': 0.0, 'star_tracker': 0.25})
+    """
+    k = estimated.knowledge()
+    angle = np.degrees(np.linalg.norm(k.error(run), axis=1))
+    return {"knowledge_error_rms_deg": float(np.sqrt(np.mean(angle**2))), "knowledge_error_final_deg": float(angle[-1]),
+            "knowledge_3sigma_final_deg": float(3.0 * np.degrees(k.sigma[-1, :3].max())),
+            "bias_estimate_final": k.bias[-1].tolist(), "knowledge_start": float(k.t[0]),
+            "sensors_used": {name: float(k.used[:, i].mean()) for i, name in enumerate(("magnetometer", "sun", "star_tracker"))}}
 
 
 def write_control_run(run: ControlledRun, folder: Path) -> None:

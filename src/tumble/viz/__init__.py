@@ -27,6 +27,7 @@ if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported 
     )
     from .fit import figure_fit, figure_recording
     from .gravity import figure_gravity_stability
+    from .knowledge import figure_knowledge
     from .maps import figure_stability_map, figure_sweep
     from .montecarlo import figure_detumble_mc
     from .notebook import show
@@ -70,6 +71,7 @@ __all__ = [
     "figure_fit",
     "figure_gravity_stability",
     "figure_herpolhode",
+    "figure_knowledge",
     "figure_momentum_budget",
     "figure_nutation",
     "figure_omega",

@@ -208,13 +208,42 @@ class Sunlight:
 
     def world(self, t: ArrayLike) -> FloatArray:
         """The unit vector to the Sun in the world frame at ``t`` (s), shape ``t.shape + (3,)``
-        (from the body's place: the parallax of the orbit, 5e-5 rad in LEO, neglected)."""
+        (from the body's place: the parallax of the orbit, 5e-5 rad in LEO, neglected).
+
+        Examples
+        --------
+        A circular orbit's world frame is its orbit plane; turned back into ECI the direction is
+        :func:`sun_direction_eci`'s ten minutes after the epoch:
+
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.sun import Sunlight, sun_direction_eci
+        >>> from tumble.dynamics.environment.sidereal import julian_date
+        >>> orbit = CircularOrbit(altitude=500e3, raan=np.pi / 2)
+        >>> light = Sunlight(orbit, "2026-03-20T14:46:00")
+        >>> s = sun_direction_eci(julian_date("2026-03-20T14:46:00") + 600.0 / 86400.0)
+        >>> bool(np.allclose(orbit.eci_from_world.apply(light.world(600.0)), s))
+        True
+        """
         s = self._sun_eci(t)
         return np.asarray(self.orbit.eci_from_world.inv().apply(s.reshape(-1, 3)).reshape(s.shape)
                           / np.linalg.norm(s, axis=-1, keepdims=True), float)
 
     def fraction(self, t: ArrayLike) -> FloatArray:
-        """The fraction of the Sun's light reaching the body at ``t`` (s): 0 in the umbra, 1 in full Sun."""
+        """The fraction of the Sun's light reaching the body at ``t`` (s): 0 in the umbra, 1 in full Sun.
+
+        Examples
+        --------
+        Over one orbit with the Sun in its plane, the body is in the umbra for about 36 minutes:
+
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.sun import Sunlight
+        >>> orbit = CircularOrbit(altitude=500e3)
+        >>> f = Sunlight(orbit, "2026-03-20T14:46:00").fraction(np.arange(0.0, orbit.period, 1.0))
+        >>> round(float(np.sum(f == 0.0)) / 60)   # min
+        36
+        """
         if self.shadow == "none":
             return np.ones(np.shape(t))
         return shadow_fraction(self.orbit.position_eci(t), self._sun_eci(t), self.shadow)

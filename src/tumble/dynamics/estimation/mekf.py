@@ -182,12 +182,29 @@ class MEKF:
 
     @property
     def attitude(self) -> Rotation:
-        """The estimated attitude, body to world (scipy Rotation)."""
+        """The estimated attitude, body to world (scipy Rotation).
+
+        Examples
+        --------
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.estimation.mekf import MEKF
+        >>> f = MEKF.start(Rotation.from_rotvec([0.0, 0.0, 0.5]), attitude_sigma=0.1, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0)
+        >>> round(float(f.attitude.magnitude()), 12)
+        0.5
+        """
         return Rotation.from_quat(self.quaternion)
 
     @property
     def sigma(self) -> FloatArray:
-        """Standard deviations of the attitude error (rad, 3) and the bias error (rad/s, 3), shape (..., 6)."""
+        """Standard deviations of the attitude error (rad, 3) and the bias error (rad/s, 3), shape (..., 6).
+
+        Examples
+        --------
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.estimation.mekf import MEKF
+        >>> MEKF.start(Rotation.identity(), attitude_sigma=0.1, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0).sigma.tolist()
+        [0.1, 0.1, 0.1, 0.001, 0.001, 0.001]
+        """
         return np.asarray(np.sqrt(np.diagonal(self.covariance, axis1=-2, axis2=-1)), float)
 
     def _new(self, q: FloatArray, b: FloatArray, P: FloatArray) -> MEKF:

@@ -1,0 +1,76 @@
+"""The ``[estimator]``, ``[sensors.sun]`` and ``[sensors.star_tracker]`` tables of a control file
+through ``tumble simulate``: the controller fed the estimate, summary.json's knowledge keys and
+the knowledge figure; bad keys and values refused in one line naming the key, the value as
+written and what is allowed."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from tumble.cli import main
+from tumble.dynamics.control.estimated import Estimated
+from tumble.dynamics.control.mission import DetumbleThenPoint
+from tumble.dynamics.models.vector_sensors import CoarseSunSensor
+from tumble.io import load_scenario
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "src" / "tumble" / "examples" / "control" / "estimate_point.toml"
+
+
+def test_the_example_loads_with_its_estimator():
+    scenario = load_scenario(EXAMPLE)
+    c = scenario.controller()
+    assert isinstance(c, Estimated) and isinstance(c.controller, DetumbleThenPoint)
+    assert isinstance(scenario.sensors.sun_sensor, CoarseSunSensor) and scenario.sensors.attitude == "none"
+    assert c.field is scenario.field and c.sensors is scenario.sensors
+
+
+def test_simulate_writes_the_knowledge(tmp_path, capsys):
+    """Five minutes of the example (detumbling, sunlit): the summary's knowledge error is the
+    figure's, and the filter found the gyroscope's bias to a tenth of it."""
+    assert main(["simulate", str(EXAMPLE), "--t-end", "300", "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    assert "knowledge error" in line and "deg RMS" in line
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert 0.0 < summary["knowledge_error_rms_deg"] < 1.0 and summary["knowledge_error_final_deg"] < 1.0
+    assert summary["knowledge_start"] == 0.0 and summary["sensors_used"]["sun"] == 1.0
+    assert summary["sensors_used"]["magnetometer"] == 1.0 and summary["sensors_used"]["star_tracker"] == 0.0
+    assert summary["bias_estimate_final"] == pytest.approx([2e-4, -1e-4, 1.5e-4], abs=3e-5)
+    assert (tmp_path / "run" / "knowledge.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(("old", "new", "message"), [
+    ('kind = "mekf"', 'kind = "ukf"', r"estimator: kind = 'ukf' is unknown; allowed: mekf"),
+    ("bias_sigma = 1e-3", "bias_sigm = 1e-3",
+     r"estimator: unknown key 'bias_sigm'; allowed: attitude_sigma, bias_sigma, bias_walk, kind, magnetometer_period"),
+    ("bias_sigma = 1e-3", "bias_sigma = -1e-3", r"estimator: bias_sigma = -0.001 must be a positive"),
+    ("bias_sigma = 1e-3", "bias_walk = -1.0", r"estimator: bias_walk = -1.0 must be"),
+    ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }', 'sun = { kind = "coarse", noise = 2e-3 }',
+     r"sensors.sun: missing key 'epoch' \(UTC at t = 0"),
+    ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }',
+     'sun = { kind = "fine", axes = [[1, 0, 0]], epoch = "2026-03-20T14:46:00" }',
+     r"sensors.sun: key 'axes' does not go with kind = 'fine'; allowed: epoch, fov, frame, kind, noise, period, shadow"),
+    ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }', 'sun = { kind = "half", epoch = "2026-03-20T14:46:00" }',
+     r"sensors.sun: kind = 'half' is unknown; allowed: coarse, fine"),
+    ('noise = 2e-3, epoch = "2026-03-20T14:46:00"', 'noise = -2e-3, epoch = "2026-03-20T14:46:00"', r"sensors.sun: noise = -0.002 must be"),
+    ('epoch = "2026-03-20T14:46:00"', 'epoch = "spring"', r"sensors.sun: epoch = 'spring' is not an ISO 8601"),
+    ('noise = 2e-3, epoch', 'shadow = "cone", noise = 2e-3, epoch',
+     r"sensors.sun: shadow = 'cone' is unknown; allowed: conical, cylindrical, none"),
+    ("seed = 1", "seed = 1\nstar_tracker = { cross = -1.0 }", r"sensors.star_tracker: cross = -1.0 must be"),
+    ("seed = 1", "seed = 1\nstar_tracker = { frame = [0, 0, 0, 0] }", r"sensors.star_tracker: frame = \[0, 0, 0, 0\]"),
+    ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }', "",
+     r"estimator: the filter needs \[sensors.star_tracker\], or \[sensors.sun\] and an \[orbit\]"),
+])
+def test_bad_input_one_line(tmp_path, capsys, old, new, message):
+    text = EXAMPLE.read_text()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    code = main(["simulate", str(path), "--out", str(tmp_path / "run")])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1, err
+    assert re.search(message, err) and "bad.toml" in err, err
+    assert not (tmp_path / "run").exists()
