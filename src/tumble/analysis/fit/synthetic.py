@@ -131,7 +131,9 @@ class SyntheticRecording:
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines
-        (each prefixed with ``#`` and a space) first, when given.
+        (each prefixed with ``#`` and a space) first, when given. The whole export, a folder or a
+        zip with the events and the accelerometer, is :func:`tumble.io.phyphoxwrite.write_phyphox`'s
+        (``write_phyphox("toss.zip", rec.t, rec.omega, accel=rec.accel.f, events=rec.events)``).
 
         Examples
         --------
