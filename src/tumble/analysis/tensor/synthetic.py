@@ -332,6 +332,10 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
                     caught: bool = False) -> Throw:
     """A throw's log as the real device writes it (module docstring).
 
+    :func:`tumble.io.throwfile.write_throw` writes it as a throw file for ``tumble calibrate``
+    and ``tumble tensor`` (``compact=True``: a third smaller); the examples' throws
+    (``examples/throws/``) are such throws (docs/tensor.md, "Try it on synthetic throws").
+
     Parameters
     ----------
     seed : int
