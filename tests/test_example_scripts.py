@@ -171,6 +171,23 @@ def test_plot_detumble_then_point(run):
     assert figures == 5
 
 
+def test_plot_estimate_then_point(run):
+    scope, figures = run("plot_estimate_then_point.py")
+    k, run_, switch, shadow = scope["knowledge"], scope["run"], scope["switch"], scope["shadow"]
+    # the eclipse comes while it points, where the shadow model says the light ends
+    assert switch + 200.0 < shadow < run_.t[-1] - 600.0
+    assert shadow == k.t[scope["light"].fraction(k.t) == 0.0][0]
+    # the filter's error inside its own 3-sigma bounds, the bias found
+    inside = np.all(np.abs(k.error(run_)) < 3.0 * k.sigma[:, :3], axis=1)
+    assert inside.mean() > 0.97
+    assert np.allclose(k.bias[-1], scope["sensors"].gyro_bias, atol=3e-5)
+    # fed the truth it converges; fed the estimate it points to its knowledge, worse in the shadow
+    lit, dark = scope["lit"], scope["dark"]
+    assert scope["error_truth"][-1] < 1e-6
+    assert scope["error_estimate"][lit].max() < 0.2 < scope["error_estimate"][dark].max() < 1.0
+    assert figures == 2
+
+
 def test_plot_pointing(run):
     scope, figures = run("plot_pointing.py")
     start, target = scope["start"], scope["target"]
