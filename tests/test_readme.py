@@ -17,7 +17,7 @@ README = ROOT / "README.md"
 TOUR = ROOT / "docs" / "tour.md"
 #: Guides whose examples are run here (docs/architecture.md's has its own test; the gallery's
 #: pages are written by their tests).
-GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md", "docs/control.md")
+GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md", "docs/control.md", "docs/estimation.md")
 #: Claims a guide's comments make that must have been checked.
 GUIDE_CLAIMS = {"docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1", "~1e-15",
                                     "['attitude_error.png', 'rates.png', 'wheels.png', 'dipole.png', 'momentum.png']",
