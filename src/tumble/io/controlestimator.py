@@ -17,7 +17,9 @@
 
 The estimator is :class:`~tumble.dynamics.control.estimated.Estimated` around the file's
 controller; its references are the run's field (``[orbit]``) and the Sun along the orbit
-(:class:`~tumble.dynamics.environment.sun.Sunlight`). Every value is checked by the constructor it
+(:class:`~tumble.dynamics.environment.sun.Sunlight`). It reads the gyroscope, the magnetometer,
+``[sensors.sun]`` and ``[sensors.star_tracker]``; the ``[sensors]`` ``attitude`` reading (ideal or
+``"star_tracker"`` with ``attitude_noise``) is not used by it (write ``attitude = "none"``). Every value is checked by the constructor it
 feeds; a bad one is refused in one line naming the table, the key, the value and what is allowed.
 """
 
