@@ -87,15 +87,17 @@ def view_control(args, scenario, out) -> int:
     """`tumble view` of a control scenario: the page with the wheels, the commanded torque and the error."""
     from ..commands import run_scenario
 
+    controller = scenario.controller()
     with _working(f"running {scenario.name} in closed loop ({scenario.kind})"):
-        run = run_scenario(scenario)
+        run = run_scenario(scenario, controller)
 
     from ..viz.control_page import control_page_data
     from ..viz.page import write_page
 
     traj = scenario.trajectory(run)
     control = control_page_data(run, frames=args.frames, wheel_axes=None if scenario.wheels is None else
-                                scenario.wheels.axes, target=scenario.target, threshold=scenario.threshold)
+                                scenario.wheels.axes, target=scenario.target, threshold=scenario.threshold,
+                                knowledge=controller.knowledge() if hasattr(controller, "knowledge") else None)
     write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj), live=False,
                control=control)
     print(f"wrote {out} (self-contained: open it in any browser, no network needed; closed loop: "

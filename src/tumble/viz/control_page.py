@@ -6,7 +6,9 @@ JSON-ready numbers that ``assets/control.js`` draws on top of the page's body
 angle relative to the body (the trapezoid integral of its speed), with its speed in a readout;
 the commanded body torque as an arrow (the wheels' reaction ``-sum u_k g_k`` plus the
 magnetorquers' ``m x B``); the magnetorquer dipole where there is one; and a small time plot of
-the attitude error to the target (pointing runs) or of ``|omega|`` (detumbling runs).
+the attitude error to the target (pointing runs) or of ``|omega|`` (detumbling runs). With the
+attitude filter in the loop (:class:`~tumble.dynamics.control.estimated.Estimated`) the page also
+draws the estimated body axes beside the body, and the knowledge error on the time plot.
 
 The frames are the page's own (:func:`tumble.viz.scene.frame_indices`: evenly spread samples,
 first and last included), so the page plays the body, the wheels and the arrows together.
@@ -22,12 +24,13 @@ from scipy.integrate import cumulative_trapezoid
 from scipy.spatial.transform import Rotation
 
 from ..dynamics.control.controlled import ControlledRun
+from ..dynamics.control.estimated import Knowledge
 from ..dynamics.control.pointing import Reference, is_reference
 from ..typing import ArrayLike
 from .page import _curve_indices, _rounded
 from .scene import frame_indices
 
-__all__ = ["commanded_torque", "control_page_data", "wheel_angle"]
+__all__ = ["commanded_torque", "control_page_data", "estimate_page_data", "wheel_angle"]
 
 
 def wheel_angle(t: ArrayLike, speed: ArrayLike) -> np.ndarray:
@@ -83,7 +86,8 @@ def _axes(wheel_axes: ArrayLike | None, k: int) -> np.ndarray:
 
 
 def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: ArrayLike | None = None,
-                      target: Rotation | Reference | None = None, threshold: float | None = None) -> dict[str, Any]:
+                      target: Rotation | Reference | None = None, threshold: float | None = None,
+                      knowledge: Knowledge | None = None) -> dict[str, Any]:
     """What the page draws of a closed-loop run, as JSON-ready data (SI units).
 
     Parameters
@@ -101,6 +105,9 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
         attitude error to it; without, ``|omega|``.
     threshold : float, optional
         Drawn as a line on the ``|omega|`` plot, rad/s (the detumble threshold).
+    knowledge : Knowledge, optional
+        What the attitude filter knew (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`):
+        adds ``estimate`` (:func:`estimate_page_data`).
 
     Returns
     -------
@@ -153,7 +160,7 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
     else:
         name, unit, y = "|omega|", "rad/s", run.rate
     stride, keep = _curve_indices(n)
-    return {
+    out = {
         "wheel_axes": _rounded(axes, 12),
         "dipole": has_dipole,
         "aliased": bool(turns.size and turns.max() > math.pi),
@@ -168,4 +175,41 @@ def control_page_data(run: ControlledRun, *, frames: int = 150, wheel_axes: Arra
                   "threshold": None if threshold is None or target is not None else float(threshold),
                   "stride": stride, "samples": n},
     }
+    if knowledge is not None:
+        out["estimate"] = estimate_page_data(run, knowledge, idx)
+    return out
+
+
+def estimate_page_data(run: ControlledRun, knowledge: Knowledge, idx: ArrayLike) -> dict[str, Any]:
+    """The estimate on the page: at each page frame ``idx`` (sample indices of ``run``), ``turn``,
+    the estimated principal axes as the columns of a matrix in the true principal frame (``A_true^T
+    A_est``; null before the filter starts), and ``curve``, the knowledge error (rad) against time (s).
+
+    The filter's last estimate before a frame's time is drawn (it runs at the control steps; the
+    run's last sample, at ``t_end``, has none of its own).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.estimated import Estimated
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.dynamics.models.vector_sensors import StarTracker
+    >>> from tumble.viz.control_page import estimate_page_data
+    >>> sensors = Sensors(gyro_noise=1e-4, star_tracker=StarTracker(cross=1e-5, roll=1e-4, period=1.0))
+    >>> c = Estimated(BDot(gain=1e-3, period=0.5), sensors)
+    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.05], t_end=5.0, controller=c, sensors=sensors)
+    >>> e = estimate_page_data(run, c.knowledge(), [0, 5, 10])
+    >>> turn = np.array(e["turn"][2])
+    >>> bool(np.allclose(turn @ turn.T, np.eye(3), atol=1e-6)), e["curve"]["name"], len(e["curve"]["t"])
+    (True, 'knowledge error', 10)
+    """
+    rows = np.searchsorted(knowledge.t, run.t[np.asarray(idx)] + 1e-9, side="right") - 1
+    turns = (run.attitude[np.asarray(idx)].inv() * knowledge.attitude[np.maximum(rows, 0)]).as_matrix()
+    error = np.linalg.norm(knowledge.error(run), axis=1)
+    stride, keep = _curve_indices(len(knowledge.t))
+    return {"turn": [_rounded(m, 9) if r >= 0 else None for m, r in zip(turns, rows)],
+            "curve": {"name": "knowledge error", "unit": "rad", "t": _rounded(knowledge.t[keep], 8),
+                      "y": _rounded(error[keep])}}
 

@@ -14,7 +14,7 @@
 (function () {
   "use strict";
 
-  var GREEN = "#2ca02c", PURPLE = "#9467bd", WHEEL_LIGHT = "#f2c14e", WHEEL_DARK = "#3a3a3a", WHEEL_RIM = "#8c8c8c";
+  var GREEN = "#2ca02c", PURPLE = "#9467bd", RED = "#d62728", WHEEL_LIGHT = "#f2c14e", WHEEL_DARK = "#3a3a3a", WHEEL_RIM = "#8c8c8c";
   var SEGMENTS = 24;  // facets round a wheel; its faces alternate light and dark by quarter turns
   var LIGHT = {ambient: 0.55, diffuse: 0.7, specular: 0.2, roughness: 0.5, fresnel: 0.1};
   var CONFIG = {displaylogo: false, responsive: true, topojsonURL: ""};
@@ -121,7 +121,24 @@
         ? "magnetorquer dipole, purple (A m^2): 1 A m^2 drawn as " + fmt(sM) + " m"
         : "magnetorquer dipole (A m^2), same scale"));
     }
+    if (c.estimate) {
+      out.push({type: "scatter3d", mode: "lines", x: [], y: [], z: [], hoverinfo: "skip",
+                name: "estimated principal axes (the filter's attitude), red dashed",
+                line: {color: RED, width: 4, dash: "dash"}});
+    }
     return out;
+  }
+
+  // ---- the filter's estimate: its principal axes, turned from the body's by turn[k] -----------
+  var reach = 1.3 * size;
+  function estimateAxes(k, M) {
+    var x = [], y = [], z = [], turn = c.estimate.turn[k];
+    if (!turn) { return {x: x, y: y, z: z}; }  // the filter has not started
+    for (var i = 0; i < 3; i++) {
+      var q = apply(M, apply(AXES, [turn[0][i], turn[1][i], turn[2][i]]));
+      x.push(0, q[0] * reach, null); y.push(0, q[1] * reach, null); z.push(0, q[2] * reach, null);
+    }
+    return {x: x, y: y, z: z};
   }
 
   // ---- the readout and the time plot ------------------------------------------------------------
@@ -133,6 +150,12 @@
     if (!(hi > 0)) { lo = 1e-3; hi = 1; }
     var lines = [{type: "scatter", mode: "lines", x: curve.t, y: curve.y, line: {color: "#1f77b4", width: 1.5},
                   name: curve.name + " (" + curve.unit + ")"}];
+    if (c.estimate) {
+      var known = c.estimate.curve;
+      lines.push({type: "scatter", mode: "lines", x: known.t, y: known.y, line: {color: RED, width: 1.2},
+                  name: known.name + " (" + known.unit + ")"});
+      known.y.forEach(function (y) { if (y > 0) { lo = Math.min(lo, y); hi = Math.max(hi, y); } });
+    }
     if (curve.threshold != null) {
       lines.push({type: "scatter", mode: "lines", x: [curve.t[0], curve.t[curve.t.length - 1]],
                   y: [curve.threshold, curve.threshold], name: "detumble threshold",
@@ -176,6 +199,7 @@
     }
     ground.push(segment(torques[k], sT, M)); body.push(segment(torques[k], sT, one));
     if (dipoles) { ground.push(segment(dipoles[k], sM, M)); body.push(segment(dipoles[k], sM, one)); }
+    if (c.estimate) { ground.push(estimateAxes(k, M)); body.push(estimateAxes(k, one)); }
     readout.textContent = describe(k);
     var t = c.frames.t[k];
     return {ground: ground, body: body, done: Plotly.restyle(plot, {x: [[t, t]]}, [marker])};
