@@ -107,7 +107,8 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
     (0, 7) they are taken as given.
     """
     n, m = y.shape
-    eye6 = np.eye(6)
+    PHt, K, S, Sinv = np.empty((6, m)), np.empty((6, m)), np.empty((m, m)), np.empty((m, m))
+    IKH, tmp, x = np.empty((6, 6)), np.empty((6, 6)), np.empty(6)
     for i in range(n):
         if not valid[i]:
             nis[i] = np.nan
@@ -138,21 +139,69 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
                 H[i, 1, c] = 0.0
             s2 = vectors[i, 6] * vectors[i, 6]
             R[i, 0, 0], R[i, 0, 1], R[i, 1, 0], R[i, 1, 1] = s2, 0.0, 0.0, s2
-        Pi = P[i].copy()
-        Hi = H[i].copy()
-        Ri = R[i].copy()
-        PHt = Pi @ Hi.T
-        S = Hi @ PHt + Ri
-        Sinv = np.linalg.inv(S)
-        K = PHt @ Sinv
-        yi = y[i].copy()
-        x = K @ yi
-        nis[i] = yi @ (Sinv @ yi)
-        IKH = eye6 - K @ Hi
-        Pn = IKH @ Pi @ IKH.T + K @ Ri @ K.T
+        # S = H P H^T + R, K = P H^T S^-1, by loops (m <= 3; numba compiles them in a fraction
+        # of the time its linear algebra takes)
+        for r in range(6):
+            for j in range(m):
+                acc = 0.0
+                for c in range(6):
+                    acc += P[i, r, c] * H[i, j, c]
+                PHt[r, j] = acc
+        for a in range(m):
+            for j in range(m):
+                acc = R[i, a, j]
+                for r in range(6):
+                    acc += H[i, a, r] * PHt[r, j]
+                S[a, j] = acc
+        if m == 2:
+            det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
+            Sinv[0, 0], Sinv[0, 1], Sinv[1, 0], Sinv[1, 1] = S[1, 1] / det, -S[0, 1] / det, -S[1, 0] / det, S[0, 0] / det
+        else:  # the adjugate of a 3 x 3
+            for a in range(3):
+                for j in range(3):
+                    a1, a2, j1, j2 = (j + 1) % 3, (j + 2) % 3, (a + 1) % 3, (a + 2) % 3
+                    Sinv[a, j] = S[a1, j1] * S[a2, j2] - S[a1, j2] * S[a2, j1]
+            det = S[0, 0] * Sinv[0, 0] + S[0, 1] * Sinv[1, 0] + S[0, 2] * Sinv[2, 0]
+            for a in range(3):
+                for j in range(3):
+                    Sinv[a, j] /= det
+        nis[i] = 0.0
+        for a in range(m):
+            for j in range(m):
+                nis[i] += y[i, a] * Sinv[a, j] * y[i, j]
+        for r in range(6):
+            for a in range(m):
+                acc = 0.0
+                for j in range(m):
+                    acc += PHt[r, j] * Sinv[j, a]
+                K[r, a] = acc
+            acc = 0.0
+            for a in range(m):
+                acc += K[r, a] * y[i, a]
+            x[r] = acc
+        # Joseph's form: P <- (I - K H) P (I - K H)^T + K R K^T
         for r in range(6):
             for c in range(6):
-                P[i, r, c] = 0.5 * (Pn[r, c] + Pn[c, r])
+                acc = 1.0 if r == c else 0.0
+                for a in range(m):
+                    acc -= K[r, a] * H[i, a, c]
+                IKH[r, c] = acc
+        for r in range(6):
+            for c in range(6):
+                acc = 0.0
+                for j in range(6):
+                    acc += IKH[r, j] * P[i, j, c]
+                tmp[r, c] = acc
+        for r in range(6):
+            for c in range(r, 6):
+                acc = 0.0
+                for j in range(6):
+                    acc += tmp[r, j] * IKH[c, j]
+                for a in range(m):
+                    for j in range(m):
+                        acc += K[r, a] * R[i, a, j] * K[c, j]
+                P[i, r, c] = acc
+                P[i, c, r] = acc
         # reset (Markley 2003): q <- (q + Xi(q) dtheta / 2) / |...|, dtheta read as twice the Gibbs vector
         hx, hy, hz = 0.5 * x[0], 0.5 * x[1], 0.5 * x[2]
         qx, qy, qz, qs = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
