@@ -96,3 +96,14 @@ def test_bad_input_and_no_start():
         Estimated(law, Sensors(), magnetometer_period=-1.0)
     with pytest.raises(ValueError, match=r"^the filter never started"):
         Estimated(law, Sensors()).knowledge()
+
+
+def test_a_pointing_law_before_the_filter_starts_says_why():
+    """In the umbra at t = 0, with no star tracker, the filter cannot start and MRP feedback has
+    no attitude: one line saying so."""
+    orbit = CircularOrbit(altitude=500e3, arg_latitude=math.pi)   # the anti-Sun point at the equinox
+    sensors = Sensors(attitude="none", sun_sensor=CoarseSunSensor(), sunlight=Sunlight(orbit, "2026-03-20T14:46:00"))
+    law = MRPFeedback(K=4e-3, P=1.2e-2, period=0.5, moments=MOMENTS, wheels=RW)
+    with pytest.raises(ValueError, match=r"^t = 0 s: the attitude filter has not started .* MRP feedback needs an attitude"):
+        simulate_controlled(MOMENTS, [0.0, 0.0, 0.0], t_end=1.0, controller=Estimated(law, sensors, DipoleField(orbit)),
+                            field=DipoleField(orbit), wheels=RW, sensors=sensors)

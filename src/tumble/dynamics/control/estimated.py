@@ -319,7 +319,12 @@ class Estimated:
             used = (mag, sun, tracker)
         self._filter, self._last = f, (float(t), np.asarray(m.omega, float))
         if f is None:
-            return self.controller(t, dataclasses.replace(m, attitude=None))
+            try:
+                return self.controller(t, dataclasses.replace(m, attitude=None))
+            except ValueError as exc:  # a law that needs an attitude: say why there is none
+                raise ValueError(f"t = {t:g} s: the attitude filter has not started (it needs a star tracker reading, "
+                                 f"or the Sun and the field read together), and the controller needs an attitude: "
+                                 f"{exc}") from None
         self._rows.append((float(t), f.quaternion.copy(), f.bias.copy(), f.sigma, used))
         seen = dataclasses.replace(m, attitude=f.attitude, omega=np.asarray(m.omega - f.bias, float))
         return self.controller(t, seen)
