@@ -47,6 +47,7 @@ from ..analysis.fit import (
     fit_rotation,
 )
 from ..analysis.fit.flightmodel import FlightModel
+from ..analysis.fit.recording import samples_sha256
 from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
 from ..io.provenance import input_sha256, provenance
@@ -167,6 +168,13 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
 
         load_body(body)  # a bad body file is bad input before anything is computed
     digests = [input_sha256(p) for p in paths]
+    first: dict[str, int] = {}
+    for k, r in enumerate(recs):  # by content, not name: a copy, a symlink, a zip and its folder
+        j = first.setdefault(samples_sha256(r.t, r.omega), k)
+        if j != k:
+            same = "given twice" if labels[k] == labels[j] else f"the same recording as {labels[j]} (identical samples)"
+            raise ValueError(f"{labels[k]}: {same}; a recording given twice counts its flights twice: give each "
+                             "recording once")
     several = len(paths) > 1
     label = labels[0] if not several else f"{len(paths)} recordings"
     t, omega, events = recs[0].t, recs[0].omega, list(recs[0].events)

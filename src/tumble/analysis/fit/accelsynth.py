@@ -145,7 +145,8 @@ def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segme
             v = v0 - g * _UP * tau[:, None]
             k = rng.uniform(0.02, 0.15) / float(np.dot(v0, v0)) * drag
             F[sel] = -k * np.linalg.norm(v, axis=1, keepdims=True) * v
-        elif kind in ("catch", "hand", "landing"):
+        elif kind in ("catch", "hand", "landing", "turn", "table"):
+            kind = {"turn": "hand", "table": "landing"}.get(kind, kind)  # in the fingers; on the table
             grip = min(length, rng.uniform(0.04, 0.12)) if kind != "landing" else rng.uniform(0.005, 0.02)
             grip = max(grip, 2.0 * dt)  # an impulse spread over two samples at least
             peak = (rng.uniform(20.0, 60.0) if kind != "landing" else rng.uniform(50.0, 300.0))
@@ -185,7 +186,7 @@ def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray
         Its derivative where known exactly, rad/s^2; NaN elsewhere (a central difference there).
     segments : list of (kind, t0, length, w0)
         The recording's timeline (``"hold"``, ``"throw"``, ``"flight"``, ``"catch"``,
-        ``"hand"``, ``"landing"``).
+        ``"hand"``, ``"landing"``, ``"turn"``, ``"table"``).
     sensor : ndarray, shape (3, 3)
         Sensor axes to principal axes (``omega_sensor = omega_principal @ sensor``).
     drag : float

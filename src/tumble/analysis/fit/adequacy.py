@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["MAX_ENERGY_RISE", "MAX_TAIL", "MAX_MOMENTUM_RISE", "MISFIT_LIMIT", "NOISE_FACTOR", "RIGID_SMOOTHING", "Adequacy",
-           "InadequateFitWarning", "judge", "rigid_body_check"]
+           "InadequateFitWarning", "judge", "judge_flights", "rigid_body_check"]
 
 #: The model's error (beyond the noise) allowed in the residuals, as a fraction of the rates'
 #: RMS per axis (dimensionless). See the module docstring for the measurements behind it.
@@ -228,3 +228,63 @@ def _left_path(t, omega, b, b0) -> str:
     return (f"not a rigid body: the samples leave the fitted free motion {tail:.2g} s before any impulse ends the "
             f"flight, still turning at {after:.2g} rad/s (a rigid body's free flight lasts until the catch or the "
             f"impact): an internal torque acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")
+
+
+def judge_flights(data: np.ndarray, model: np.ndarray, mask: np.ndarray, lengths: np.ndarray,
+                  starts: list[float]) -> tuple[Adequacy, list[int]]:
+    """A joint fit judged flight by flight: each flight's residuals under the shared model by
+    :func:`judge` (its own noise, its own rates), and the flights it does not describe.
+
+    A joint fit's residuals pooled over its flights mix a short, fast flight with a long, slow
+    one, and one number says nothing about which fails; its rigidity is not judged again here:
+    ``|L|`` and ``E`` of a flight taken with moments its own samples were not fitted with rise by
+    the misfit of the moments, not by an internal torque (each flight's own fit has been judged
+    rigid or not: :func:`rigid_body_check`).
+
+    Parameters
+    ----------
+    data, model : ndarray, shape (F, T, 3)
+        The flights' samples and the joint model at them, rad/s (padded to ``T``).
+    mask : ndarray of bool, shape (F, T, 3)
+        The kept sample axes.
+    lengths : ndarray of int, shape (F,)
+        Each flight's number of samples.
+    starts : list of float
+        Each flight's first sample's time, s (to name it).
+
+    Returns
+    -------
+    (Adequacy, list of int)
+        The verdict (adequate when every flight is described; its misfit the largest flight's)
+        and the indices of the flights not described.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.adequacy import judge_flights
+    >>> rng = np.random.default_rng(0)
+    >>> data = np.ones((2, 100, 3)) * 5.0 + rng.normal(0.0, 0.01, (2, 100, 3))
+    >>> model = np.ones((2, 100, 3)) * 5.0
+    >>> model[1] += 0.5 * np.sin(np.arange(100) / 10.0)[:, None]   # the second flight's samples not followed
+    >>> verdict, bad = judge_flights(data, model, np.ones(data.shape, bool), np.array([100, 100]), [1.0, 4.0])
+    >>> verdict.adequate, bad, verdict.reason.split(":")[0]
+    (False, [1], 'the joint fit does not describe 1 of its 2 flights (at 4.00 s)')
+    """
+    from .uncertainty import noise_floor
+
+    verdicts, bad = [], []
+    for j, n in enumerate(np.asarray(lengths, int)):
+        d, r, k = data[j, :n], data[j, :n] - model[j, :n], mask[j, :n]
+        rows = np.all(k, axis=1)
+        v = judge(float(np.sqrt(np.mean(r[k] ** 2))), noise_floor(r[rows]), float(np.sqrt(np.mean(d[k] ** 2))))
+        verdicts.append(v)
+        if not v.adequate:
+            bad.append(j)
+    worst = max(range(len(verdicts)), key=lambda j: verdicts[j].misfit)
+    if not bad:
+        return Adequacy(True, verdicts[worst].misfit, f"each of its {len(verdicts)} flights described; the largest "
+                                                       f"misfit: {verdicts[worst].reason}"), []
+    where = ", ".join(f"{starts[j]:.2f} s" for j in bad)
+    return Adequacy(False, verdicts[bad[0]].misfit, (
+        f"the joint fit does not describe {len(bad)} of its {len(verdicts)} flights (at {where}): "
+        f"{verdicts[bad[0]].reason.removeprefix('the model does not fit: ')}")), bad

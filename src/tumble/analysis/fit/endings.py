@@ -11,6 +11,13 @@ Recordings of phones tossed by hand (issue #29) show what a tidy catch hides:
   bounce another impulse, with short torque-free hops between them, until it lies still;
 - **hand-held motion between tosses** of 3-10 rad/s when the phone is swung about, not only
   the slow drift and tremor of a steady hold (the ``hand`` range of ``synthetic_recording``);
+- **a phone turned on in the fingers after the catch** (``"turn"``): the hand closes and then
+  rolls the phone about one of its axes, the axis coning at a few hertz and the spin slowing,
+  for 0.3-1 s: a smooth motion that a torque-free model with drag follows, of some symmetric
+  body (:func:`turned_in_hand`), not a free flight;
+- **a phone spinning on a table** (``"table"``): it lands flat, spins about its normal slowed
+  by the table's Coulomb friction (a constant torque: the spin falls linearly) and rocks a few
+  degrees (:func:`spun_on_table`), until it stops and is picked up;
 - **an internal rotor spinning up** during the flight (a flywheel device, a vibration motor, a
   phone in a case with something loose): the body is a gyrostat, ``I w' = (I w + h) x w - h' +
   tau_drag`` (Hughes, *Spacecraft Attitude Dynamics*, 1986, ch. 7, eq. 7.1 with the rotor's
@@ -36,12 +43,21 @@ class TossBody(Protocol):
     def moments(self) -> tuple:
         """Principal moments, kg m^2, ascending."""
 
-__all__ = ["ENDINGS", "after_hand", "after_landing", "gyrostat_flight", "smooth_noise"]
+    @property
+    def length(self) -> float:
+        """The plate's length along principal axis 1, m."""
+
+    @property
+    def width(self) -> float:
+        """The plate's width along principal axis 2, m."""
+
+__all__ = ["ENDINGS", "after_hand", "after_landing", "gyrostat_flight", "smooth_noise", "spun_on_table", "turned_in_hand"]
 
 #: How a toss may end: ``"catch"`` (the spin killed in the hand), ``"hand"`` (caught and turned
 #: on in the hand), ``"landing"`` (an impact, bounces and rolling), or ``"mixed"`` (one of the
-#: three drawn for each toss).
-ENDINGS = ("catch", "hand", "landing", "mixed")
+#: three drawn for each toss), ``"turn"`` (caught and turned smoothly in the fingers) or
+#: ``"table"`` (landed flat and spun on a table).
+ENDINGS = ("catch", "hand", "landing", "mixed", "turn", "table")
 
 
 def _unit(rng: np.random.Generator) -> np.ndarray:
@@ -174,3 +190,84 @@ def gyrostat_flight(body: TossBody, w0: np.ndarray, duration: float, times: np.n
     sol = solve_ivp(rhs, (0.0, duration), w0, method="DOP853", rtol=1e-9, atol=1e-10, dense_output=True,
                     max_step=ramp / 4)
     return sol.sol(times).T
+
+
+def turned_in_hand(rng: np.random.Generator, tau: np.ndarray, length: float, w_end: np.ndarray, spin: float,
+                   level: np.ndarray) -> np.ndarray:
+    """omega (principal frame, rad/s) of a phone caught and then turned smoothly in the fingers,
+    at times ``tau`` (s from the catch) over ``length`` s: a grip of 20-60 ms takes omega from the
+    flight's last ``w_end`` to a turning about a random body axis ``a`` at ``spin`` rad/s whose
+    direction cones about ``a`` (half-angle 5-25 deg) at ``k`` times the axial rate (``k``
+    -0.9 to 0.9: the body-frame precession ``(I_a - I_t) / I_t`` of a free symmetric body,
+    Landau & Lifshitz, *Mechanics*, sec. 33), slowed as by a quadratic drag
+    (``s / (1 + c s t)``, ``c s`` 0.5-3 /s) and blended into the hold's ``level`` over its last
+    15 %. Such a stretch follows a torque-free motion with drag, of another body: only where it
+    lies (right after an impact, no throw before it) says it is no flight.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import turned_in_hand
+    >>> tau = np.arange(0.0, 0.6, 0.01)
+    >>> w = turned_in_hand(np.random.default_rng(1), tau, 0.6, np.array([0.5, 12.0, 0.3]), 10.0, np.zeros((60, 3)))
+    >>> bool(np.linalg.norm(w[0] - [0.5, 12.0, 0.3]) < 1e-9), bool(4.0 < np.linalg.norm(w[10:30], axis=1).mean() < 10.0)
+    (True, True)
+    """
+    grip = rng.uniform(0.02, 0.06)
+    a = _unit(rng)
+    b = np.cross(a, _unit(rng))
+    b /= np.linalg.norm(b)
+    c = np.cross(a, b)
+    cone, slow = np.deg2rad(rng.uniform(5.0, 25.0)), rng.uniform(0.5, 3.0) / spin
+    # the cone turns at k times the axial rate, k = (I_a - I_t) / I_t of the symmetric body it
+    # mimics (-0.7 .. 0.9: prolate to oblate); the angle is k times the axial turn so far
+    k = rng.choice([-1.0, 1.0]) * rng.uniform(0.3, 0.9) if rng.random() < 0.5 else -rng.uniform(0.3, 0.7)
+    phase = k * np.cos(cone) * np.log1p(slow * spin * tau) / slow + rng.uniform(0.0, 2 * np.pi)
+    direction = np.cos(cone) * a + np.sin(cone) * (np.cos(phase)[:, None] * b + np.sin(phase)[:, None] * c)
+    turning = (spin / (1.0 + slow * spin * tau))[:, None] * direction
+    x = np.clip((tau / length - 0.85) / 0.15, 0.0, 1.0)[:, None]  # the hold takes over in the last 15 %
+    turning = (1.0 - x) * turning + x * level
+    g = np.clip(tau / grip, 0.0, 1.0)[:, None]
+    return (1.0 - g) * w_end + g * turning
+
+
+def spun_on_table(rng: np.random.Generator, body: TossBody, tau: np.ndarray, length: float, spin: float,
+                  level: np.ndarray) -> np.ndarray:
+    """omega (principal frame, rad/s) of a phone that lands flat on a table and spins there, at
+    times ``tau`` (s from the impact) over ``length`` s: the impact leaves it spinning at ``spin``
+    rad/s about its normal (principal axis 3); the table's Coulomb friction, a torque of constant
+    size ``mu m g r`` (``mu`` 0.2-0.4, ``r`` a third of the diagonal; Goyal, Ruina & Papadopoulos,
+    *Wear* 143, 1991), slows it linearly to rest within 80 % of ``length`` (sooner if friction
+    wins), while it rocks about its two other axes (1-3 deg at 8-15 Hz, decaying in 0.1 s); then
+    it lies still and is picked up (``level``, the hold's motion).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.endings import spun_on_table
+    >>> from tumble.analysis.fit.synthetic import TOSS_BODIES
+    >>> tau = np.arange(0.0, 0.8, 0.005)
+    >>> w = spun_on_table(np.random.default_rng(2), TOSS_BODIES["phone"], tau, 0.8, 12.0, np.zeros((len(tau), 3)))
+    >>> bool(abs(w[0, 2]) > 10.0), bool(np.all(np.diff(np.abs(w[:40, 2])) <= 0.0)), bool(np.linalg.norm(w[-1]) < 1e-9)
+    (True, True, True)
+    """
+    mu, g = rng.uniform(0.2, 0.4), 9.81
+    # Coulomb friction on a plate of mass m: a torque mu m g r, r about a third of its diagonal d;
+    # with I3 = m d^2 / 12 (a thin plate's) the deceleration is 4 mu g / d, rad/s^2
+    diagonal = float(np.hypot(body.length, body.width))
+    decel = 4.0 * mu * g / diagonal
+    stop = min(0.8 * length, spin / decel)
+    sign = rng.choice([-1.0, 1.0])
+    w = np.zeros((len(tau), 3))
+    w[:, 2] = sign * np.clip(spin - decel * tau, 0.0, None)
+    rock = np.deg2rad(rng.uniform(1.0, 3.0)) * 2 * np.pi * rng.uniform(8.0, 15.0)
+    fr, ph = rng.uniform(8.0, 15.0, 2), rng.uniform(0.0, 2 * np.pi, 2)
+    for k in range(2):
+        w[:, k] = rock * np.exp(-tau / 0.1) * np.sin(2 * np.pi * fr[k] * tau + ph[k])
+    rest = tau >= stop
+    w[rest] = 0.0
+    late = tau >= 0.8 * length
+    if np.any(late):
+        x = (tau[late] - 0.8 * length) / max(0.2 * length, 1e-9)
+        w[late] = x[:, None] * level[late]
+    return w

@@ -48,6 +48,10 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
    adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
    may still use it (:func:`~tumble.analysis.fit.fit_recording`).
+6. **After an impact**: a stretch that starts within :data:`AFTER_IMPACT` of the end of a
+   flight, with no throw between, is the body in the hand or on the table after the catch or
+   the landing, not a flight, whatever motion it follows (:func:`_after_impacts`): a free
+   flight is released from a hand and ended by an impact.
 
 **With an accelerometer** (``accel``), each candidate of step 3 is first cut to its free fall
 (:func:`~tumble.analysis.fit.freefall.free_span`: the release and the catch or impact), or
@@ -296,7 +300,40 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
                 flights.append(one if span is None else replace(one, free_fall=span))
         if progress is not None:
             progress(k + 1, len(stretches))
-    return flights
+    return _after_impacts(flights)
+
+
+#: The longest time from the end of a flight to the start of the next stretch that follows a
+#: free motion for that stretch to be the body's motion after the impact that ended the flight
+#: (turned in the hand, spun on a table), s. A catch or an impact lasts 20-120 ms (the grip and
+#: the kill of :mod:`~tumble.analysis.fit.endings`; on the synthetic recordings the stretch
+#: after it starts 0.05-0.07 s after the flight ends), while a new flight needs a throw first:
+#: the hand grips, swings and releases the body, 0.15-0.3 s after it has held it (the tosses of
+#: :mod:`~tumble.analysis.fit.synthetic`; successive flights there lie 1.5 s and more apart).
+AFTER_IMPACT = 0.2
+#: The reasons of a skipped stretch whose samples the fit did not follow as a body's motion (it
+#: does not end a flight: a stretch after it may be a flight).
+_NOT_FOLLOWED = ("no free flight", "too short", "saturated", "steady spin")
+
+
+def _after_impacts(flights: list[Flight]) -> list[Flight]:
+    """The flights with every stretch that starts within :data:`AFTER_IMPACT` of the end of a
+    flight before it (a motion the fit followed: usable, joinable, or refused for its fit)
+    skipped: a free flight starts with a release from a hand or a throw, and what follows an
+    impact at once is the body in contact (in the hand, on a table), whatever motion it follows
+    (a phone turned in the fingers cones like a free symmetric body). Chained: a stretch after
+    such a stretch is after the impact too."""
+    out, last = [], None
+    for f in flights:
+        followed = f.solution is not None and not f.reason.startswith(_NOT_FOLLOWED + (NUMERICAL,))
+        if followed and last is not None and 0.0 <= f.start - last < AFTER_IMPACT and (f.status == "ok" or f.joinable):
+            f = replace(f, status="skipped", joinable=False, reason=(
+                f"after an impact, not a free flight: it starts {f.start - last:.2f} s after the flight before it ends, "
+                f"with no throw between (the body turned in the hand or on a table after the catch or the landing)"))
+        out.append(f)
+        if followed:
+            last = f.end
+    return out
 
 
 def _skip(t, a, b, reason, sol=None) -> Flight:

@@ -30,7 +30,7 @@ import numpy as np
 from ...typing import ArrayLike
 from .uncertainty import SCALE_UNCERTAINTY, effective_covariance
 
-__all__ = ["ACCEL_SCALE_UNCERTAINTY", "FREE_FACTOR", "FREE_FLOOR", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
+__all__ = ["ACCEL_SCALE_UNCERTAINTY", "FREE_FACTOR", "FREE_FLOOR", "MAX_ACCEL", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
            "free_span", "offset_matrix", "rate_derivative", "rigid_acceleration"]
 
 #: The residual that ends a flight: this many times its median in the flight's middle ...
@@ -50,8 +50,8 @@ MAX_OFFSET = 0.5
 
 
 def check_accel(accel: ArrayLike, shape: tuple) -> np.ndarray:
-    """The specific force as an array of ``shape`` (the gyroscope's samples), finite; else a
-    ``ValueError`` naming ``accel``.
+    """The specific force as an array of ``shape`` (the gyroscope's samples), finite and within
+    :data:`MAX_ACCEL`; else a ``ValueError`` naming ``accel``.
 
     Examples
     --------
@@ -67,6 +67,10 @@ def check_accel(accel: ArrayLike, shape: tuple) -> np.ndarray:
     Traceback (most recent call last):
     ...
     ValueError: accel[1] = [0.0, nan, 9.8] is not finite (the specific force at the gyroscope's times, m/s^2)
+    >>> check_accel([[0.0, 0.0, 9.8], [1e300, 0.0, 9.8]], (2, 3))
+    Traceback (most recent call last):
+    ...
+    ValueError: accel[1] = [1e+300, 0.0, 9.8] is beyond an accelerometer's reading (at most 1e+04 m/s^2 per axis; a phone's range is 8-16 g)
     """
     f = np.asarray(accel, float)
     if f.shape != tuple(shape):
@@ -76,7 +80,16 @@ def check_accel(accel: ArrayLike, shape: tuple) -> np.ndarray:
     if bad.size:  # named as the gyroscope's samples are (tumble.analysis.fit.single._check)
         raise ValueError(f"accel[{bad[0]}] = {f[bad[0]].tolist()} is not finite (the specific force at the "
                          "gyroscope's times, m/s^2)")
+    bad = np.flatnonzero(np.any(np.abs(f) > MAX_ACCEL, axis=1))
+    if bad.size:  # a value in other units or a corrupt cell: refused as phyphox's Accelerometer.csv's reader does
+        raise ValueError(f"accel[{bad[0]}] = {f[bad[0]].tolist()} is beyond an accelerometer's reading (at most "
+                         f"{MAX_ACCEL:.0e} m/s^2 per axis; a phone's range is 8-16 g)")
     return f
+
+
+#: Beyond any accelerometer's reading, m/s^2 per axis (a phone's range is 8-16 g, 78-157 m/s^2):
+#: a value in other units or a corrupt cell.
+MAX_ACCEL = 1e4
 
 
 def _cross_matrix(v: np.ndarray) -> np.ndarray:

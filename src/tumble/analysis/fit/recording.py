@@ -19,6 +19,14 @@ autocorrelation; flights independent of one another), its statistical part multi
 Birge ratio squared ``chi^2 / dof`` when the flights' own ratios scatter about the pooled ones
 more than their statistical uncertainties allow (:func:`~tumble.analysis.fit.uncertainty.birge_chi2`),
 plus the gyroscope's scale-factor part, which no number of flights averages away.
+
+The verdicts are the flights': each flight's rigidity and adequacy by its own fit
+(:func:`~tumble.analysis.fit.find_flights`), the joint fit's residuals judged flight by flight
+(:func:`~tumble.analysis.fit.adequacy.judge_flights`), so that a file whose flights pass gives an
+answer. A joint fit whose ratios lie outside its flights' own values (every flight's more than
+:data:`OUTSIDE_SIGMAS` of its standard uncertainties away, on one side) says so in its caveat and
+names the flight that pulls it (:func:`_outside`). The same recording given twice (the same
+samples, :func:`samples_sha256`) is refused.
 """
 
 from __future__ import annotations
@@ -31,7 +39,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...typing import ArrayLike
-from .adequacy import InadequateFitWarning, judge
+from .adequacy import InadequateFitWarning, judge, judge_flights
 from .flightmodel import FlightModel
 from .flights import Flight, find_flights
 from .segments import pause_times
@@ -41,7 +49,6 @@ from .result import (
     public_covariance,
     ratio_summary,
     rotation_fit,
-    solution_adequacy,
 )
 from .single import _check, _check_options, saturation_mask
 from .solve import Solution, without_drag_law_error
@@ -116,7 +123,7 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
     ------
     ValueError
         Bad input (as :func:`~tumble.analysis.fit.fit_rotation`; of several recordings, naming
-        which).
+        which), or one recording given twice (the same samples: :func:`samples_sha256`).
     NoFlightError
         No usable flight (a ``ValueError`` too): one line saying what was found and why each was
         skipped.
@@ -141,11 +148,17 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
     recordings = _recordings(t, omega_measured, events, accel)
     rotation = sensor_rotation == "fit"
     parts, flights, groups, offset, done = [], [], [], 0, [0]
+    seen: dict[str, int] = {}
     for r, (t_r, w_r, ev_r, acc_r) in enumerate(recordings):
         try:
             t_r, w_r = _check(t_r, w_r)
         except ValueError as err:
             raise (ValueError(f"recording {r}: {err}") if len(recordings) > 1 else err) from None
+        digest = samples_sha256(t_r, w_r)
+        if digest in seen:  # its flights counted twice: the pooled std too small by sqrt(2)
+            raise ValueError(f"recording {r}: the same samples as recording {seen[digest]} (SHA-256 {digest[:12]}); "
+                             "a recording given twice counts its flights twice: give each recording once")
+        seen[digest] = r
         keep_r, rail = saturation_mask(w_r, saturation)
         base = done[0]
 
@@ -216,6 +229,9 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         _pooled(joint, used, tosses, t, omega, keep, models)
     fit = replace(fit, t=t0, omega=w0, recordings=series,
                   flight_models=_flight_models(joint, used, [number[id(f)] for f in used], groups))
+    outside = _outside(fit, used, [number[id(f)] for f in used], omega, keep, joint is not None)
+    if outside:
+        fit = replace(fit, pooled=replace(fit.pooled, caveat="; ".join(filter(None, (fit.pooled.caveat, outside)))))
     if split:
         warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
         fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
@@ -290,6 +306,25 @@ def _recordings(t, omega, events, accel=None) -> list:
     return out
 
 
+def samples_sha256(t: np.ndarray, omega: np.ndarray) -> str:
+    """SHA-256 of a recording's samples (times and rates as float64): the same recording, however
+    it was given (a copy, a symlink, its zip and its folder), hashes the same.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.recording import samples_sha256
+    >>> t, w = np.arange(3.0), np.ones((3, 3))
+    >>> samples_sha256(t, w) == samples_sha256(t.copy(), w.copy()), samples_sha256(t, w) == samples_sha256(t, 2 * w)
+    (True, False)
+    """
+    import hashlib
+
+    h = hashlib.sha256(np.ascontiguousarray(t, dtype=np.float64).tobytes())
+    h.update(np.ascontiguousarray(omega, dtype=np.float64).tobytes())
+    return h.hexdigest()
+
+
 #: Share of the fitted flights that may disagree with the others before the recording counts as
 #: holding more than one body: a third (one stray flight in twelve is a toss gone wrong; a third
 #: that agree among themselves is another body, a loose phone or a changed mount).
@@ -305,6 +340,56 @@ def _split_verdict(used, outliers) -> str:
             f"uncertainties from the others (their ratios I1/I3 {np.min(own[:, 0]):.4f} to {np.max(own[:, 0]):.4f}, "
             f"I2/I3 {np.min(own[:, 1]):.4f} to {np.max(own[:, 1]):.4f}): the recording holds more than one body "
             "or the phone moved on it; fit each group apart (--start/--end)")
+
+
+def _outside(fit: RecordingFit, used, numbers, omega, keep, joint: bool) -> str:
+    """What to say when the pooled ratios lie outside the range of the flights' own values, on
+    one side of them all, each more than :data:`OUTSIDE_SIGMAS` of its own standard uncertainties
+    away (a joint fit may fall a little outside the range by right, the shared mount and bias
+    pinning it better than any flight alone; not this far): some flight bends the shared mount,
+    bias or drag. It names the flight that pulls it: the one whose samples the joint model follows
+    worst against its own fit, ``(SSR_joint - SSR_own) / (SSR_own / m)`` largest (the rise of its
+    chi^2, its own residual variance taken as its noise), or, where the flights' weighted mean
+    stands in for a joint fit (``joint`` false), the flight whose leaving out moves it the most;
+    ``""`` otherwise."""
+    own = [(k, f) for k, f in zip(numbers, used) if not f.joinable]
+    if len(own) < 2 or len(fit.omega_models) != len(used):
+        return ""
+    summaries = [ratio_summary(f.solution) for _, f in own]
+    values, stds = np.array([r[0] for r in summaries]), np.array([r[1] for r in summaries])
+    p = fit.pooled.ratios
+    z = (p - values) / np.maximum(stds, 1e-300)
+    out = np.all(z > OUTSIDE_SIGMAS, axis=0) | np.all(z < -OUTSIDE_SIGMAS, axis=0)
+    if not out.any():
+        return ""
+    axis = int(np.flatnonzero(out)[0])
+    if joint:
+        rise = []
+        for f, model in zip(used, fit.omega_models):
+            sl = slice(f.first, f.first + len(model))
+            r2 = np.where(keep[sl], model - omega[sl], 0.0) ** 2
+            rise.append((float(np.sum(r2)) - f.solution.ssr) / max(f.solution.ssr / max(f.solution.m, 1), 1e-300))
+        j, why = int(np.argmax(rise)), f"its samples followed worst by the shared parameters (chi^2 up by {max(rise):.3g})"
+    else:  # the flights' weighted mean: the flight whose leaving out moves it back the most
+        W = np.array([np.linalg.pinv(public_covariance(f.solution, statistical=True)[2][:2, :2]) for _, f in own])
+        shift = []
+        for i in range(len(own)):
+            rest = np.arange(len(own)) != i
+            mean = np.linalg.pinv(W[rest].sum(axis=0)) @ np.einsum("fij,fj->i", W[rest], values[rest])
+            shift.append(abs(float(p[axis] - mean[axis])))
+        i = int(np.argmax(shift))
+        j = used.index(own[i][1])
+        why = f"the weighted mean without it moves by {shift[i]:.3g}"
+    lo, hi = values[:, axis].min(), values[:, axis].max()
+    return (f"the joint fit's {('I1/I3', 'I2/I3')[axis]} = {p[axis]:.4f} lies outside its flights' own values "
+            f"({lo:.4f} to {hi:.4f}; each more than {OUTSIDE_SIGMAS:g} of its standard uncertainties away): the flight "
+            f"at {used[j].start:.2f}-{used[j].end:.2f} s (tosses[{numbers[j]}]) pulls it ({why}); check that it is a free flight of this body, or "
+            f"fit the flights apart (--start/--end)")
+
+
+#: How many of its own standard uncertainties every flight's ratio must lie from the joint fit's,
+#: all on one side, for the joint fit to be said to lie outside its flights' values (:func:`_outside`).
+OUTSIDE_SIGMAS = 2.0
 
 
 def _flight_models(sol: Solution | None, used, numbers, groups) -> tuple:
@@ -344,8 +429,9 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     sl = slice(first.first, first.stop)
     one = first_flight_view(inflated)
     pooled = rotation_fit(one, t[sl], omega[sl], keep[sl], t0=first.anchor)
-    # judged on all the flights' residuals, not the first flight's view of them
-    verdict = solution_adequacy(sol, *stack_flights(used, omega, keep))
+    # judged flight by flight on the joint fit's residuals, not the first flight's view of them
+    data, mask = stack_flights(used, omega, keep)
+    verdict = judge_flights(data, sol.omega_model, mask, sol.model.lengths, [f.start for f in used])[0]
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)

@@ -47,7 +47,7 @@ from scipy.spatial.transform import Rotation
 from .. import _display
 from .accelsynth import SyntheticAccel, synthetic_accel
 from .tossbody import RHO_AIR, TOSS_BODIES, TossBody, plate_drag_torque  # noqa: F401 - re-exported
-from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise
+from .endings import ENDINGS, _unit, after_hand, after_landing, gyrostat_flight, smooth_noise, spun_on_table, turned_in_hand
 
 __all__ = ["EXAMPLE_RECORDING", "TOSS_BODIES", "SyntheticRecording", "TossBody", "example_recording", "plate_drag_torque",
            "synthetic_recording"]
@@ -219,12 +219,13 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         Factor on the body's drag coefficient (0: no air).
     scale_error : float
         Standard deviation of the scale factor's error per sensor axis.
-    ending : {"catch", "hand", "landing", "mixed"}
+    ending : {"catch", "hand", "landing", "mixed", "turn", "table"}
         How each flight ends (:mod:`~tumble.analysis.fit.endings`): the spin killed in the hand
-        (the default), caught and turned on in the hand, a landing with bounces and rolling, or
-        one of these three drawn per toss.
+        (the default), caught and turned on in the hand, a landing with bounces and rolling, one
+        of these three drawn per toss, caught and turned smoothly in the fingers (a motion a
+        torque-free model follows), or landed flat and spun on a table.
     after, after_spin : (float, float)
-        Ranges of the motion after a ``"hand"`` or ``"landing"`` end: its length (s) and its
+        Ranges of the motion after a ``"hand"``, ``"landing"``, ``"turn"`` or ``"table"`` end: its length (s) and its
         initial spin (rad/s).
     hand : (float, float)
         Range of the hand's slow motion while holding (RMS per axis, rad/s); (3, 10) for a
@@ -355,6 +356,10 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
             w_body[sel] = after_hand(extra, tau, length, last_flight_end, w0, held[sel] + tremor[sel], dt)
         elif kind == "landing":
             w_body[sel] = after_landing(extra, body, tau, length, w0, held[sel] + tremor[sel])
+        elif kind == "turn":
+            w_body[sel] = turned_in_hand(extra, tau, length, last_flight_end, w0, held[sel] + tremor[sel])
+        elif kind == "table":
+            w_body[sel] = spun_on_table(extra, body, tau, length, w0, held[sel] + tremor[sel])
         else:  # catch
             x = tau / length
             kill = np.exp(-5.0 * x) * (1 - x)

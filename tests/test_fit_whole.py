@@ -1,0 +1,178 @@
+"""Whole recordings II (issue #39): the toss and nothing else, a verdict per flight, the same
+recording given twice and absurd accelerometer values refused.
+
+The recordings are :func:`~tumble.analysis.fit.synthetic.synthetic_recording`'s; the endings
+``"turn"`` (the phone turned in the fingers after the catch, a motion a torque-free model with
+drag follows) and ``"table"`` (landed flat and spun on a table) are
+:mod:`tumble.analysis.fit.endings`'s. The seeds of the post-catch tests are those on which the
+finder before issue #39 fitted the stretch after the catch as a flight (``AFTER_IMPACT = 0``
+restores that finder).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import warnings
+
+import numpy as np
+import pytest
+
+import tumble.analysis.fit.flights as flights_module
+from tumble.analysis.fit import InadequateFitWarning, fit_recording
+from tumble.analysis.fit.endings import spun_on_table, turned_in_hand
+from tumble.analysis.fit.synthetic import TOSS_BODIES, synthetic_recording
+from tumble.cli import main
+
+
+def _iou(a, b, start, end):
+    return max(0.0, min(b, end) - max(a, start)) / (max(b, end) - min(a, start))
+
+
+def _fit(rec):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InadequateFitWarning)
+        return fit_recording(rec.t, rec.omega, events=rec.events)
+
+
+@pytest.mark.parametrize(("seed", "body"), [(3000, "racquet"), (3005, "racquet"), (3005, "phone"), (3021, "racquet")])
+def test_one_toss_a_file_its_answer_is_the_tosss_own(seed, body):
+    """A phone or racquet caught and turned on in the fingers: the stretch after the catch
+    follows a free motion (of another, symmetric body) and the finder before #39 pooled it with
+    the toss (or kept it alone); now it is skipped as after an impact, and the file's answer is
+    the toss's own fit, equal to it exactly."""
+    rate = float(np.random.default_rng(seed).choice([100, 200, 400]))
+    rec = synthetic_recording(seed, body=body, tosses=1, ending="turn", rate=rate)
+    fit = _fit(rec)
+    (release, impact), = rec.flights
+    used = [toss for toss in fit.tosses if toss.status == "ok"]
+    assert len(used) == 1 and _iou(release, impact, used[0].start, used[0].end) >= 0.5
+    np.testing.assert_array_equal(fit.pooled.ratios, used[0].fit.ratios)
+    after = [toss for toss in fit.tosses if toss.start > used[0].end]
+    assert after and after[0].reason.startswith("after an impact, not a free flight")
+    assert after[0].start - used[0].end < flights_module.AFTER_IMPACT
+
+
+def test_the_stretch_after_the_catch_was_taken_for_a_flight_before(monkeypatch):
+    """The same file with the rule turned off (the finder of #29): the stretch after the catch is
+    fitted "ok" with ratios far from the toss's, and the pooled answer, outside both flights'
+    own values, says so and names a flight."""
+    monkeypatch.setattr(flights_module, "AFTER_IMPACT", 0.0)
+    rec = synthetic_recording(28, body="racquet", tosses=2, ending="turn")
+    fit = _fit(rec)
+    used = [toss for toss in fit.tosses if toss.status == "ok"]
+    assert any(max(_iou(a, b, toss.start, toss.end) for a, b in rec.flights) < 0.5 for toss in used)
+    caveat = fit.pooled.caveat
+    assert "lies outside its flights' own values" in caveat
+    named = [toss for toss in used if f"the flight at {toss.start:.2f}-" in caveat]
+    assert len(named) == 1
+    own = np.array([toss.fit.ratios for toss in used])
+    std = np.array([toss.fit.ratios_std for toss in used])
+    z = (fit.pooled.ratios - own) / std
+    assert np.any(np.all(z > 2.0, axis=0) | np.all(z < -2.0, axis=0))  # what the caveat claims
+
+
+def test_a_joint_fit_inside_its_flights_values_says_nothing():
+    rec = synthetic_recording(11, tosses=3, flight=(0.6, 1.0))
+    fit = _fit(rec)
+    assert fit.tosses_used == 3 and "outside its flights" not in fit.pooled.caveat
+
+
+def test_a_phone_spun_on_a_table_slows_at_the_tables_coulomb_friction():
+    """Coulomb friction: a constant torque mu m g r, so the spin falls linearly, at 4 mu g / d
+    for a plate (I3 = m d^2 / 12, r = d / 3), mu in 0.2-0.4; the rocking decays."""
+    body = TOSS_BODIES["phone"]
+    d = np.hypot(body.length, body.width)
+    tau = np.arange(0.0, 1.0, 0.0025)
+    for seed in range(8):
+        w = spun_on_table(np.random.default_rng(seed), body, tau, 1.0, 14.0, np.zeros((len(tau), 3)))
+        spinning = np.abs(w[:, 2]) > 0.5
+        slope = np.polyfit(tau[spinning], np.abs(w[spinning, 2]), 1)[0]
+        assert 4 * 0.2 * 9.81 / d - 1e-6 <= -slope <= 4 * 0.4 * 9.81 / d + 1e-6
+        assert np.max(np.abs(w[tau > 0.5, :2])) < 0.01 * np.max(np.abs(w[tau < 0.05, :2]))
+
+
+def test_a_phone_turned_in_the_fingers_cones_at_its_axial_rate_times_k():
+    """The coning of a free symmetric body (Landau & Lifshitz sec. 33): once gripped, omega's
+    direction keeps a constant angle to the axis (the directions lie on one circle: its plane's
+    normal is the axis), and the spin only slows."""
+    tau = np.arange(0.0, 0.8, 0.005)
+    for seed in range(6):
+        w = turned_in_hand(np.random.default_rng(seed), tau, 0.8, np.array([0.3, 12.0, 0.2]), 9.0, np.zeros((len(tau), 3)))
+        held = (tau > 0.07) & (tau < 0.8 * 0.85)
+        speed = np.linalg.norm(w[held], axis=1)
+        u = w[held] / speed[:, None]
+        axis = np.linalg.svd(u - u.mean(axis=0), full_matrices=False)[2][2]  # the circle's plane's normal
+        cosines = np.abs(u @ axis)
+        assert np.ptp(cosines) < 1e-6 and np.all(np.diff(speed) < 0)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_a_table_after_the_landing_is_not_a_flight(seed):
+    rec = synthetic_recording(seed, body="racquet", tosses=1, ending="table")
+    fit = _fit(rec)
+    for toss in fit.tosses:
+        if toss.status == "ok":
+            assert max(_iou(a, b, toss.start, toss.end) for a, b in rec.flights) >= 0.5
+
+
+def test_a_flexing_racquets_file_of_25_tosses_exits_0(tmp_path, capsys):
+    """Each flight judged on its own (its rigidity and adequacy by its own fit, the joint fit's
+    residuals flight by flight): a file whose flights pass gives an answer, exit 0."""
+    rec = synthetic_recording(101, body="racquet", tosses=25)
+    path = tmp_path / "racquet.csv"
+    path.write_text(rec.csv_text(), encoding="utf-8")
+    assert main(["fit", str(path), "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert " of 25 flights" in out or " of 26 flights" in out
+    fit = _fit(rec)
+    assert fit.pooled.adequate and fit.pooled.adequacy.startswith(f"each of its {fit.tosses_used} flights described")
+    assert np.all(np.abs(fit.pooled.ratios - rec.ratios) < 4 * fit.pooled.ratios_std)
+
+
+def _copies(tmp_path):
+    rec = synthetic_recording(7, tosses=1, flight=(0.6, 0.8))
+    a = tmp_path / "a.csv"
+    a.write_text(rec.csv_text(), encoding="utf-8")
+    b = tmp_path / "b.csv"
+    shutil.copy(a, b)
+    c = tmp_path / "c.csv"
+    os.symlink(a, c)
+    d = tmp_path / "d.csv"
+    d.write_text(rec.csv_text("the same samples under another comment"), encoding="utf-8")
+    return a, b, c, d
+
+
+@pytest.mark.parametrize("other", ["a.csv", "b.csv", "c.csv", "d.csv"])
+def test_the_same_recording_twice_is_refused_in_one_line(tmp_path, capsys, other):
+    """By content, not name: the file again, a copy, a symlink, the samples under another header."""
+    a = _copies(tmp_path)[0]
+    assert main(["fit", str(a), str(tmp_path / other), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert err.startswith(f"tumble: error: {tmp_path / other}: ") and "give each recording once" in err
+    assert ("given twice" if other == "a.csv" else f"the same recording as {a}") in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_fit_recording_refuses_the_same_samples_twice():
+    rec = synthetic_recording(7, tosses=1, flight=(0.6, 0.8))
+    with pytest.raises(ValueError, match=r"^recording 1: the same samples as recording 0 \(SHA-256 [0-9a-f]{12}\); "):
+        fit_recording([(rec.t, rec.omega), (rec.t.copy(), rec.omega.copy())])
+
+
+@pytest.mark.parametrize("cell", ["1e300", "-2e4"])
+def test_an_absurd_reading_in_a_recordings_own_accelerometer_columns_is_refused(tmp_path, capsys, cell):
+    """The gyroscope CSV's own accelerometer columns, as phyphox's Accelerometer.csv (commit
+    8e6545d): a reading beyond 1e4 m/s^2 is refused in one line, exit 2 (it was used)."""
+    rec = synthetic_recording(7, tosses=1, flight=(0.6, 0.8), accel=True)
+    lines = ["t,gx,gy,gz,ax,ay,az"]
+    for i, (ti, w, f) in enumerate(zip(rec.t, rec.omega, rec.accel.f)):
+        ax = cell if i == 50 else f"{f[0]:.6g}"
+        lines.append(f"{ti:.6f},{w[0]:.6g},{w[1]:.6g},{w[2]:.6g},{ax},{f[1]:.6g},{f[2]:.6g}")
+    path = tmp_path / "log.csv"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert main(["fit", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert f"accel[50] = [{float(cell)!r}" in err and "beyond an accelerometer's reading (at most 1e+04 m/s^2" in err
