@@ -14,7 +14,9 @@ a motor spins up from the moment of release (Blaha, Kuijper, Pop & Smeur, arXiv:
 ``tumble calibrate`` writes the same file with ``rotor_inertia`` (kg m^2), ``inertia`` (3 x 3,
 kg m^2, about the device's centre of mass, sensor frame), ``center_of_mass`` (m, sensor frame)
 and their standard uncertainties ``rotor_inertia_std``, ``inertia_std`` (3 x 3) and
-``center_of_mass_std`` added to ``[device]`` (:func:`write_device`).
+``center_of_mass_std`` added to ``[device]`` (:func:`write_device`), with the gyroscope's
+distortion ``gyro_distortion`` and ``gyro_distortion_std`` (3 x 3) and the rotor's axis as
+calibrated (``rotor_axis``, ``rotor_axis_std``).
 
 How the device's own log, a Betaflight blackbox CSV (:mod:`tumble.io.blackbox`), is read takes
 five optional keys of ``[device]``: ``motor_poles`` (the rotor's motor's magnet poles, even,
@@ -103,6 +105,14 @@ DEVICE_FORMAT = FileFormat("device", (
             low_included=True, doc="the gyroscope's misalignment's standard uncertainty per pair of axes"),
         Key("rotor_axis_std", "number", "rad", "0.0175", allowed=">= 0", example="0.01", low=0.0, low_included=True,
             doc="the rotor axis's direction's standard uncertainty (about each axis normal to it)"),
+        Key("gyro_distortion", "3 rows of 3", "", "(none: calibrate the device)",
+            allowed="symmetric, trace-free, entries within +-0.1; only with gyro_distortion_std",
+            example="[[0.002, 0.001, 0.0], [0.001, -0.001, 0.0], [0.0, 0.0, -0.001]]",
+            doc="the gyroscope's distortion as calibrated, omega_read = (E + D) omega; the readings are corrected "
+                "by it before every fit, and rotor_axis is then the calibrated axis"),
+        Key("gyro_distortion_std", "3 rows of 3", "", allowed=">= 0 each; only with gyro_distortion",
+            example="[[2e-4, 1e-4, 1e-4], [1e-4, 2e-4, 1e-4], [1e-4, 1e-4, 3e-4]]",
+            doc="the standard uncertainty of each entry"),
     ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the inertias and the "
        "centre of mass. The motor, gyroscope and mounting keys are how a flight controller's own log (a Betaflight "
        "blackbox CSV: the page on blackbox logs) is read; throw files in the sensor frame do not need them."),
@@ -167,8 +177,9 @@ def device_from_table(table: object, *, where: str = "[device]") -> Device:
     table : dict
         ``mass`` (kg, > 0) and ``rotor_axis`` (3 numbers, a direction; made a unit vector), and
         optionally ``rotor_inertia`` (kg m^2, > 0), ``inertia`` (3 rows of 3, kg m^2, a physical
-        tensor), ``center_of_mass`` (3 numbers, m), each with its ``_std`` (>= 0, the same
-        shape); a ``_std`` only with its value; and how a blackbox log is read:
+        tensor), ``center_of_mass`` (3 numbers, m), ``gyro_distortion`` (3 rows of 3, symmetric and
+        trace-free), each with its ``_std`` (>= 0, the same shape); a ``_std`` only with its
+        value; and how a blackbox log is read:
         ``motor_poles``, ``motor_index``, ``gyro_full_scale``, ``gyro_resolution``,
         ``sensor_axes`` (module docstring).
     where : str
@@ -197,7 +208,7 @@ def device_from_table(table: object, *, where: str = "[device]") -> Device:
     ('x', '-y', '-z')
     """
     table = _checked(_DEVICE, table, where)
-    for key in ("rotor_inertia", "inertia", "center_of_mass"):
+    for key in ("rotor_inertia", "inertia", "center_of_mass", "gyro_distortion"):
         if f"{key}_std" in table and key not in table:
             raise ValueError(f"{where}: {key}_std = {short_repr(table[f'{key}_std'])} given without {key}; "
                              "give both or neither")
@@ -402,7 +413,8 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "",
         if value != _DEFAULTS[key]:
             item(key, write(value), comment)
     for key, unit, write in (("rotor_inertia", "kg m^2", _number), ("inertia", "kg m^2, about the device's centre "
-                             "of mass, sensor frame", _rows), ("center_of_mass", "m, sensor frame", _row)):
+                             "of mass, sensor frame", _rows), ("center_of_mass", "m, sensor frame", _row),
+                             ("gyro_distortion", "1, omega_read = (E + D) omega", _rows)):
         value = getattr(device, key, None)
         if value is not None:
             item(key, write(value), unit)

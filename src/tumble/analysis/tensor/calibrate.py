@@ -44,11 +44,12 @@ from ...typing import FloatArray
 from .. import _display
 from .device import Device, Proof, Throw
 from .estimate import tensor_of, vector_of
+from .joint import gyro_matrix, tilted_axis
 from .fit import full_scale, sensor_errors
-from .pool import duplicate_throws, pool_throws
+from .pool import Pooled, duplicate_throws, pool_throws
 
 __all__ = ["MAX_CHI2_DOF", "MAX_SET_CHI2_DOF", "Calibration", "CalibrationError", "calibrate", "calibrate_device",
-           "rotor_inertia_from"]
+           "calibrated_sensors", "rotor_inertia_from", "shared_sensor_covariance"]
 
 
 def _known(x: FloatArray, m_d: float, m_p: float, Ip: FloatArray) -> FloatArray:
@@ -265,12 +266,16 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
             if isinstance(a_throw, Throw) and isinstance(p_throw, Throw) and duplicate_throws([a_throw, p_throw]):
                 raise ValueError(f"--alone throw {a_throw.input or k} and --proof throw {p_throw.input or j} are the "
                                  "same log: a throw is of the device alone or with the proof body, not both")
-    errors, rail = sensor_errors(device), full_scale(device, saturation)
+    # the sets fit the gyroscope's distortion and the rotor's tilt themselves: a calibration before this one is not used
+    errors = sensor_errors(replace(device, gyro_distortion=None, gyro_distortion_std=None))
+    rail = full_scale(device, saturation)
     a, fits_a = pool_throws(alone, device.rotor_axis, 1.0, saturation=rail, errors=errors)
     p, fits_p = pool_throws(proof_throws, device.rotor_axis, 1.0, saturation=rail, errors=errors)
     x = np.concatenate([a.inertia, a.center, p.inertia, p.center])
     cov = np.zeros((18, 18))
     cov[:6, :6], cov[6:9, 6:9], cov[9:15, 9:15], cov[15:, 15:] = a.inertia_cov, a.center_cov, p.inertia_cov, p.center_cov
+    cov[:6, 9:15] = shared_sensor_covariance(a, p)
+    cov[9:15, :6] = cov[:6, 9:15].T
     y, cov_y, ratio = rotor_inertia_from(x, cov, device.mass, proof)
     std = np.sqrt(np.maximum(np.diag(cov_y), 0.0))
     problems = _problems(float(y[0]), ratio, a, p)
@@ -278,11 +283,87 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
         dev = device
     else:
         dev = replace(device, rotor_inertia=float(y[0]), rotor_inertia_std=float(std[0]), inertia=tensor_of(y[1:7]),
-                      inertia_std=tensor_of(std[1:7]), center_of_mass=y[7:10], center_of_mass_std=std[7:10])
+                      inertia_std=tensor_of(std[1:7]), center_of_mass=y[7:10], center_of_mass_std=std[7:10],
+                      **calibrated_sensors([a, p], device.rotor_axis, device.gyro_scale_std))
     max_bias = float(max(np.abs(a.biases).max(), np.abs(p.biases).max()))  # type: ignore[union-attr]
     left = tuple(f"{t.input or f'throw {k}'}: {f.reason}" for k, (t, f) in enumerate(zip((*alone, *proof_throws),
                                                                                           (*fits_a, *fits_p))) if f.reason)
     return Calibration(dev, ratio, a.chi2_dof, p.chi2_dof, a.used, p.used, max_bias, left, tuple(problems))
+
+
+def shared_sensor_covariance(a: Pooled, b: Pooled) -> FloatArray:
+    """The cross-covariance of two pooled tensors from throws of one device: the sensors' errors
+    (the gyroscope's scale and axes, the rotor's axis) are this device's in both, so their parts
+    move both tensors together, ``S_a S_b^T``
+    (:attr:`~tumble.analysis.tensor.joint.JointFit.sensor_columns`; JCGM 100:2008, sec. 5.2,
+    correlated input quantities). Taken independent, they counted twice in ``P - D``: the
+    rotor inertia's stated std came out 2.5 times its error's median (25 realistic devices).
+    Zero when either has no columns or they are of other error sources (one set fitted the
+    gyroscope's distortion, the other could not).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.calibrate import shared_sensor_covariance
+    >>> from tumble.analysis.tensor.pool import Pooled
+    >>> S = np.array([[1e-3], [2e-3], [0], [0], [0], [0]])
+    >>> p = Pooled(np.ones(6), np.eye(6), np.zeros(3), np.eye(3), 1.0, 2, sensor_columns=S)
+    >>> float(shared_sensor_covariance(p, p)[1, 0] * 1e6)
+    2.0
+    """
+    Sa, Sb = a.sensor_columns, b.sensor_columns
+    if Sa is None or Sb is None or Sa.shape != Sb.shape:
+        return np.zeros((6, 6))
+    return Sa @ Sb.T
+
+
+def calibrated_sensors(sets: Sequence[Pooled], rotor_axis: FloatArray, scale_std: float) -> dict[str, Any]:
+    """The gyroscope's cross-axis distortion and the rotor's axis from the calibration's joint
+    fits: each set's seven :data:`~tumble.analysis.tensor.joint.SENSOR_NAMES`, combined by their
+    inverse covariances (the two sets are throws of one device; a ``chi^2 / 7`` of their
+    difference above 1 inflates the result's covariance, Birge), as
+    :class:`~tumble.analysis.tensor.device.Device` fields: ``gyro_distortion`` and
+    ``gyro_distortion_std`` (3 x 3), ``rotor_axis`` (the nominal tilted as fitted) and
+    ``rotor_axis_std`` (the larger of the two angles' std, rad). Empty when no set fitted them.
+
+    Only the distortion's **off-diagonal** part (the axes' cross-sensitivity) is kept: its
+    diagonal (the axes' scale factors' differences) trades with the tensor along the rotor's
+    axis: on the realistic synthetic devices of benchmarks/tensor_coverage.py the calibration's
+    diagonal came out up to 15 of its std from the truth (device 5: a lone throw corrected by it
+    then 5 % off) while the cross terms held to theirs. The diagonal is written as 0 with the stated scale's std (``scale_std``, per axis:
+    ``scale_std * sqrt(2/3)`` for the trace-free part).
+
+    Why: a lone throw cannot tell the gyroscope's distortion from the tensor (its estimate shifts
+    by several per cent); the calibration's ten throws of two bodies can, and every later throw
+    of the device is then corrected (:func:`~tumble.analysis.tensor.throw.fit_flown`'s ``gyro``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.calibrate import calibrated_sensors
+    >>> from tumble.analysis.tensor.pool import Pooled
+    >>> g = np.array([0.004, -0.002, 0.001, 0.0, 0.0, 0.01, 0.0])
+    >>> one = Pooled(np.ones(6), np.eye(6), np.zeros(3), np.eye(3), 1.0, 5, sensor=g, sensor_cov=np.eye(7) * 1e-8)
+    >>> out = calibrated_sensors([one, one], np.array([0.0, 0.0, 1.0]), 0.003)
+    >>> out["gyro_distortion"][0].round(6).tolist(), round(float(out["rotor_axis_std"]), 6)   # the diagonal left out
+    ([0.0, 0.001, 0.0], 7.1e-05)
+    """
+    have = [q for q in sets if q.sensor is not None and q.sensor_cov is not None]
+    if not have:
+        return {}
+    infos = [np.linalg.pinv(q.sensor_cov) for q in have]  # type: ignore[arg-type]
+    cov = np.linalg.pinv(sum(infos))
+    x = cov @ sum(w @ q.sensor for w, q in zip(infos, have))  # type: ignore[operator]
+    if len(have) > 1:
+        chi2 = sum(float((q.sensor - x) @ w @ (q.sensor - x)) for w, q in zip(infos, have))  # type: ignore[operator]
+        cov = cov * max(1.0, chi2 / (x.size * (len(have) - 1)))
+    var = np.diag(cov)
+    _, _, s2, s3, s4 = np.sqrt(np.maximum(var[:5], 0.0))
+    sd = float(scale_std) * np.sqrt(2.0 / 3.0)
+    D_std = np.array([[sd, s2, s3], [s2, sd, s4], [s3, s4, sd]])
+    D = gyro_matrix(np.r_[0.0, 0.0, x[2:5]]) - np.eye(3)
+    return {"gyro_distortion": D, "gyro_distortion_std": D_std,
+            "rotor_axis": tilted_axis(rotor_axis, x[5:7]), "rotor_axis_std": float(np.sqrt(max(var[5], var[6], 0.0)))}
 
 
 def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Throw], proof: Proof, *,

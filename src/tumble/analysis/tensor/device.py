@@ -29,7 +29,7 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device", "Proof", "Throw", "axes_matrix"]
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DISTORTION", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device", "Proof", "Throw", "axes_matrix"]
 
 #: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
 MAX_DEVICE_MASS = 10.0
@@ -148,6 +148,27 @@ def _optional_array(field_name: str, value: object, shape: tuple[int, ...], unit
     return a
 
 
+#: The largest entry of a gyroscope's distortion: a MEMS gyroscope's sensitivity and cross-axis
+#: errors are within +-1 % and 2 % on their data sheets; beyond 10 % the readings are not a
+#: gyroscope's rates (a unit, an axis or a sign wrong).
+MAX_DISTORTION = 0.1
+
+
+def _distortion(value: object) -> FloatArray | None:
+    """A gyroscope's distortion: 3 x 3, symmetric, trace-free, entries within :data:`MAX_DISTORTION`."""
+    D = _optional_array("device.gyro_distortion", value, (3, 3), "")
+    if D is None:
+        return None
+    scale = max(float(np.abs(D).max()), 1e-12)
+    if np.abs(D - D.T).max() > 1e-9 * scale or abs(float(np.trace(D))) > 1e-9 * scale:
+        raise ValueError(f"device.gyro_distortion = {short_repr(value)} must be symmetric and trace-free (the part "
+                         "of a gyroscope's distortion that throws determine: tumble calibrate writes it)")
+    if np.abs(D).max() > MAX_DISTORTION:
+        raise ValueError(f"device.gyro_distortion = {short_repr(value)} must have entries within +-{MAX_DISTORTION:g} "
+                         "(a gyroscope's sensitivity and cross-axis errors are of 1-2 %)")
+    return D
+
+
 @dataclass(frozen=True)
 class Device:
     """The measuring device: its mass, rotor and (once calibrated) its own mass properties.
@@ -187,6 +208,14 @@ class Device:
         axis's direction (rad, default 0.0175, 1 degree), carried into every tensor's
         uncertainty (:class:`tumble.analysis.tensor.joint.SensorErrors`: a typical MEMS data
         sheet's values; 0 for a device whose sensors were calibrated to better).
+    gyro_distortion, gyro_distortion_std : ndarray, shape (3, 3), or None
+        The gyroscope's distortion as calibrated (``tumble calibrate``), ``omega_read = (E +
+        gyro_distortion) omega``, symmetric and trace-free (the part throws can see; the common
+        scale and the axes' turn stay with ``gyro_scale_std`` and ``gyro_misalignment_std``;
+        the calibration writes its cross-axis terms, the diagonal 0 with the stated scale's
+        std: :func:`~tumble.analysis.tensor.calibrate.calibrated_sensors`), and each entry's
+        standard uncertainty. With it, the readings are corrected before every fit and
+        ``rotor_axis`` is the calibrated axis, whose uncertainty is ``rotor_axis_std``.
 
     Examples
     --------
@@ -222,6 +251,8 @@ class Device:
     gyro_scale_std: float = 0.003
     gyro_misalignment_std: float = 0.005
     rotor_axis_std: float = 0.0175
+    gyro_distortion: Matrix3 | None = field(default=None, repr=False)
+    gyro_distortion_std: Matrix3 | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -249,6 +280,13 @@ class Device:
             s(self, "gyro_resolution", lsb)
         for name, unit in (("gyro_scale_std", ""), ("gyro_misalignment_std", "rad"), ("rotor_axis_std", "rad")):
             s(self, name, check_positive(f"device.{name}", getattr(self, name), unit, allow_zero=True))
+        s(self, "gyro_distortion", _distortion(self.gyro_distortion))
+        s(self, "gyro_distortion_std", _optional_array("device.gyro_distortion_std", self.gyro_distortion_std, (3, 3),
+                                                       "", nonnegative=True))
+        if (self.gyro_distortion is None) != (self.gyro_distortion_std is None):
+            given = "gyro_distortion" if self.gyro_distortion is not None else "gyro_distortion_std"
+            raise ValueError(f"device.{given} given without the other: gyro_distortion and gyro_distortion_std come "
+                             "together (tumble calibrate writes both)")
         axes_matrix(self.sensor_axes, "device.sensor_axes")  # the value as given in its messages
         s(self, "sensor_axes", _axis_names(self.sensor_axes, "device.sensor_axes"))
 

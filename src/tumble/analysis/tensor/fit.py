@@ -28,11 +28,11 @@ from ...validation import check_positive
 from .. import _display
 from .device import MAX_THROWN_MASS, Device, Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
-from .joint import SensorErrors
+from .joint import SensorErrors, distortion_coefficients
 from .pool import NoThrowError, Pooled, pool_throws
 from .throw import FlownFit
 
-__all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate", "full_scale",
+__all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate", "full_scale", "gyro_response",
            "sensor_errors"]
 
 
@@ -220,7 +220,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
         return "" if f.center is None else not_physical(of_throw(f)[1])
 
     pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=full_scale(device, saturation),
-                               errors=sensor_errors(device), check=check)
+                               errors=sensor_errors(device), check=check, gyro=gyro_response(device))
     flown = flown_estimate(mass + device.mass, pooled, rel)
     obj = subtract_body(flown, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
     why = not_physical(obj)
@@ -252,16 +252,40 @@ def full_scale(device: Device, saturation: float | None = None) -> float:
 
 
 def sensor_errors(device: Device) -> SensorErrors:
-    """The device's sensors' stated uncertainties (:class:`~tumble.analysis.tensor.joint.SensorErrors`).
+    """The device's sensors' stated uncertainties (:class:`~tumble.analysis.tensor.joint.SensorErrors`),
+    with the calibrated distortion's where the device has one.
 
     Examples
     --------
+    >>> import numpy as np
     >>> from tumble.analysis.tensor import Device
     >>> from tumble.analysis.tensor.fit import sensor_errors
     >>> sensor_errors(Device(0.1, [0, 0, 1], gyro_scale_std=0.001)).gyro_scale
     0.001
+    >>> D = np.diag([0.01, 0.0, -0.01])
+    >>> sensor_errors(Device(0.1, [0, 0, 1], gyro_distortion=D, gyro_distortion_std=np.full((3, 3), 1e-4))).distortion
+    array([0.0001, 0.0001, 0.0001, 0.0001, 0.0001])
     """
-    return SensorErrors(device.gyro_scale_std, device.gyro_misalignment_std, device.rotor_axis_std)
+    std = None if device.gyro_distortion_std is None else distortion_coefficients(device.gyro_distortion_std)
+    return SensorErrors(device.gyro_scale_std, device.gyro_misalignment_std, device.rotor_axis_std, std)
+
+
+def gyro_response(device: Device) -> FloatArray | None:
+    """The device's calibrated gyroscope response ``E + gyro_distortion`` (``omega_read = M omega``),
+    or None where it has none.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Device
+    >>> from tumble.analysis.tensor.fit import gyro_response
+    >>> D = np.diag([0.01, 0.0, -0.01])
+    >>> gyro_response(Device(0.1, [0, 0, 1], gyro_distortion=D, gyro_distortion_std=np.zeros((3, 3)))).diagonal().tolist()
+    [1.01, 1.0, 0.99]
+    >>> gyro_response(Device(0.1, [0, 0, 1])) is None
+    True
+    """
+    return None if device.gyro_distortion is None else np.eye(3) + device.gyro_distortion
 
 
 def _skipped(throw: Throw, f: FlownFit) -> ThrowFit:

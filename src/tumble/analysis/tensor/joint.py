@@ -45,7 +45,8 @@ from .flight import skew
 from .model import DYNAMIC, NONNEGATIVE, ThrowModel, inertia_jacobian, inertia_of
 from .solve import fit_held
 
-__all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "fit_joint"]
+__all__ = ["GYRO_BASIS", "SENSOR_NAMES", "JointFit", "JointModel", "SensorErrors", "axis_normals", "distortion_coefficients",
+           "fit_joint", "gyro_matrix", "tilted_axis"]
 
 
 @dataclass(frozen=True)
@@ -68,6 +69,38 @@ class SensorErrors:
     gyro_scale: float = 0.003
     gyro_misalignment: float = 0.005
     rotor_axis: float = float(np.deg2rad(1.0))
+    #: The standard uncertainties of a calibrated distortion's five coefficients (:data:`GYRO_BASIS`),
+    #: or None where the device's gyroscope is not calibrated (then ``gyro_misalignment`` stands for
+    #: its whole misalignment); with it, ``rotor_axis`` is the calibrated axis's.
+    distortion: FloatArray | None = None
+
+    @property
+    def calibrated(self) -> bool:
+        """Whether the gyroscope's distortion and the rotor's axis come from a calibration
+        (:func:`~tumble.analysis.tensor.calibrate.calibrate`): the fits hold them there and
+        carry their calibrated uncertainties, :meth:`held_std`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import SensorErrors
+        >>> SensorErrors().calibrated, SensorErrors(distortion=np.full(5, 1e-4)).calibrated
+        (False, True)
+        """
+        return self.distortion is not None
+
+    def held_std(self) -> FloatArray:
+        """The standard uncertainties of the seven :data:`SENSOR_NAMES` held at a calibration's values.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor.joint import SensorErrors
+        >>> SensorErrors(rotor_axis=0.002, distortion=np.full(5, 1e-4)).held_std().tolist()
+        [0.0001, 0.0001, 0.0001, 0.0001, 0.0001, 0.002, 0.002]
+        """
+        d = np.zeros(5) if self.distortion is None else np.asarray(self.distortion, float)
+        return np.r_[d, self.rotor_axis, self.rotor_axis]
 
     def variances(self, fitted: bool = False) -> FloatArray:
         """The variances of the 9 gyroscope entries (3 scales, 6 misalignments) and 2 rotor angles;
@@ -108,6 +141,66 @@ def _symmetric_basis() -> FloatArray:
 GYRO_BASIS = _symmetric_basis()
 #: The joint fit's shared sensor parameters: the five of :data:`GYRO_BASIS`, the rotor axis's two angles.
 SENSOR_NAMES = ("gyro_xx_zz", "gyro_yy_zz", "gyro_xy", "gyro_xz", "gyro_yz", "rotor_tilt_1", "rotor_tilt_2")
+
+
+def axis_normals(axis: FloatArray) -> FloatArray:
+    """Two unit vectors normal to ``axis`` (rows): the directions about which the rotor's axis
+    tilts (:data:`SENSOR_NAMES`' ``rotor_tilt_1``, ``rotor_tilt_2``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import axis_normals
+    >>> n = axis_normals(np.array([0.0, 0.0, -1.0]))
+    >>> bool(np.allclose(n @ [0, 0, 1], 0)), bool(np.allclose(n @ n.T, np.eye(2)))
+    (True, True)
+    """
+    a = np.asarray(axis, float)
+    return np.linalg.svd((a / np.linalg.norm(a))[None])[2][1:]
+
+
+def tilted_axis(axis: FloatArray, tilt: FloatArray) -> FloatArray:
+    """``axis`` (unit) turned by the two angles ``tilt`` (rad) about :func:`axis_normals`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import tilted_axis
+    >>> a = tilted_axis(np.array([0.0, 0.0, 1.0]), [0.01, 0.0])
+    >>> round(float(np.degrees(np.arccos(a[2]))), 4)
+    0.573
+    """
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    return Rotation.from_rotvec(np.asarray(tilt, float) @ axis_normals(a)).apply(a)
+
+
+def gyro_matrix(distortion: FloatArray) -> FloatArray:
+    """``omega_read = gyro_matrix @ omega``: the identity plus the distortion's five coefficients
+    (:data:`GYRO_BASIS`).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.joint import gyro_matrix
+    >>> gyro_matrix([0.01, 0.0, 0.002, 0.0, 0.0]).round(6).tolist()
+    [[1.01, 0.002, 0.0], [0.002, 1.0, 0.0], [0.0, 0.0, 0.99]]
+    """
+    return np.eye(3) + np.tensordot(np.asarray(distortion, float), GYRO_BASIS, 1)
+
+
+def distortion_coefficients(D: FloatArray) -> FloatArray:
+    """The five :data:`GYRO_BASIS` coefficients of a symmetric trace-free distortion ``D`` (its
+    ``xx``, ``yy``, ``xy``, ``xz``, ``yz``): the inverse of :func:`gyro_matrix` less the identity.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.joint import distortion_coefficients, gyro_matrix
+    >>> g = np.array([0.01, -0.002, 0.003, 0.0, 0.001])
+    >>> bool(np.allclose(distortion_coefficients(gyro_matrix(g) - np.eye(3)), g))
+    True
+    """
+    D = np.asarray(D, float)
+    return np.array([D[0, 0], D[1, 1], D[0, 1], D[0, 2], D[1, 2]])
 
 
 class JointModel:
@@ -152,7 +245,7 @@ class JointModel:
         self.rows = [int(np.count_nonzero(m.keep)) for m in self.models]
         a = self.models[0].rotor.axis
         self.axis0 = a / np.linalg.norm(a)
-        self.normals = np.linalg.svd(self.axis0[None])[2][1:]  # two unit vectors normal to the axis
+        self.normals = axis_normals(self.axis0)
 
     def throw_parameters(self, P: FloatArray, k: int) -> FloatArray:
         """Throw ``k``'s parameters (``C``, ``L(t_0)``, bias, drag, lag) of the joint vector ``P``.
@@ -202,7 +295,7 @@ class JointModel:
         >>> joint.gyro(P).round(6).tolist()   # xx - zz and xy: symmetric and trace-free
         [[1.01, 0.002, 0.0], [0.002, 1.0, 0.0], [0.0, 0.0, 0.99]]
         """
-        return np.eye(3) + (np.tensordot(P[6:11], GYRO_BASIS, 1) if self.sensor else 0.0)
+        return gyro_matrix(P[6:11]) if self.sensor else np.eye(3)
 
     def axis(self, P: FloatArray) -> FloatArray:
         """The rotor's axis, tilted by the fitted angles (unit, sensor frame).
@@ -221,7 +314,7 @@ class JointModel:
         """
         if not self.sensor:
             return self.axis0
-        return Rotation.from_rotvec(P[11:13] @ self.normals).apply(self.axis0)
+        return tilted_axis(self.axis0, P[11:13])
 
     def _rates(self, k: int, rows: FloatArray, axis: FloatArray) -> FloatArray:
         m = self.models[k]
@@ -370,6 +463,11 @@ class JointFit:
         The tensor entries' covariance, its statistical and its sensors' (type B) parts.
     rms : ndarray
         Each throw's residual RMS, rad/s.
+    sensor_columns : ndarray, shape (6, k), optional
+        The sensors' part as columns, one per error source of the device (each the tensor's
+        shift for one standard uncertainty of it): ``inertia_cov_sensor = S S^T``. Two fits on
+        throws of one device share these errors, so their tensors' cross-covariance is
+        ``S_1 S_2^T`` (:func:`~tumble.analysis.tensor.calibrate.calibrate`).
 
     Examples
     --------
@@ -385,6 +483,7 @@ class JointFit:
     inertia_cov_stat: FloatArray
     inertia_cov_sensor: FloatArray
     rms: FloatArray
+    sensor_columns: FloatArray | None = None
 
 
 def _drag_index(joint: JointModel) -> np.ndarray:
@@ -424,7 +523,8 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     else:
         P = np.asarray(P0, float).copy()
         free[drag[P[drag] <= 0]] = False
-    J = joint.jacobian(P)[:, free]
+    J_all = joint.jacobian(P)
+    J = J_all[:, free]
     r = joint.residuals(P)
     per_sample = np.zeros((sum(m.t.size for m in joint.models), 3))
     keep_all = np.concatenate([m.keep for m in joint.models])
@@ -435,18 +535,24 @@ def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = N
     cov[np.ix_(free, free)] = cov_free
     G = inertia_jacobian(P[:6])
     cov_stat = G @ cov[:6, :6] @ G.T
-    cov_sensor = np.zeros((6, 6))
+    S = np.zeros((6, 0))
     if errors is not None:
         E = joint.error_columns(P)
         shift = -np.linalg.lstsq(J, E, rcond=None)[0]  # dP_free / de
         dC = np.zeros((6, E.shape[1]))
         dC[free[:6]] = shift[: int(np.count_nonzero(free[:6]))]
-        dI = G @ dC
-        cov_sensor = (dI * errors.variances(fitted=joint.sensor)) @ dI.T
+        S = G @ dC * np.sqrt(errors.variances(fitted=joint.sensor))
+        held_sensor = joint.sensor and not free[6:joint.base].any()
+        if held_sensor and errors.calibrated:  # held at a calibration's values: their uncertainty moves the tensor
+            Jh = J_all[:, 6:joint.base]
+            dh = np.zeros((6, Jh.shape[1]))
+            dh[free[:6]] = -np.linalg.lstsq(J, Jh, rcond=None)[0][: int(np.count_nonzero(free[:6]))]
+            S = np.hstack([S, G @ dh * errors.held_std()])
         if joint.sensor:  # the gyroscope's axes turned from the sensor frame: the tensor turns with them
             I = inertia_of(P[:6])
             turns = np.array([vector_of(skew(e) @ I - I @ skew(e)) for e in np.eye(3)]).T
-            cov_sensor = cov_sensor + turns @ turns.T * errors.gyro_misalignment ** 2 / 2.0
+            S = np.hstack([S, turns * errors.gyro_misalignment / np.sqrt(2.0)])
+    cov_sensor = S @ S.T
     bounds = np.cumsum([0] + joint.rows)
     rms = np.array([np.sqrt(np.mean(r[a:b] ** 2)) for a, b in zip(bounds[:-1], bounds[1:])])
-    return JointFit(P, cov, inertia_of(P[:6]), cov_stat + cov_sensor, cov_stat, cov_sensor, rms)
+    return JointFit(P, cov, inertia_of(P[:6]), cov_stat + cov_sensor, cov_stat, cov_sensor, rms, S)

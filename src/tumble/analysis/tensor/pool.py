@@ -7,7 +7,9 @@
    (the object's tensor not physical: :func:`tumble.fit_tensor`).
 3. The throws left are **fitted jointly** (:mod:`~tumble.analysis.tensor.joint`): one tensor
    and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
-   :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too. A
+   :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too (a
+   single throw of a calibrated device, :attr:`~tumble.analysis.tensor.joint.SensorErrors.calibrated`,
+   holds them at the calibration's values, their uncertainties carried). A
    throw whose part of it has residuals well above the gyroscope's noise (measured from the
    throw itself) or needs a gyroscope bias beyond
    :data:`MAX_BIAS` is left out (:func:`joint_verdict`; a single throw's own fit may need a
@@ -74,7 +76,10 @@ class Pooled:
     """The pooled flown body: tensor entries ``xx, yy, zz, xy, xz, yz`` (kg m^2 or units of
     ``J_r``) and centre (m) with their covariances (the sensors' part included, the whole
     inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
-    and the throws used; each used throw's gyroscope bias in the joint fit (rad/s).
+    and the throws used; each used throw's gyroscope bias in the joint fit (rad/s); the sensors'
+    part as columns (:attr:`~tumble.analysis.tensor.joint.JointFit.sensor_columns`, Birge-inflated
+    with the rest); the sensors' seven :data:`~tumble.analysis.tensor.joint.SENSOR_NAMES` as the
+    joint fit found them with their covariance (None where it did not fit them).
 
     Examples
     --------
@@ -92,6 +97,9 @@ class Pooled:
     used: int
     adequate: bool = True
     biases: FloatArray | None = None
+    sensor_columns: FloatArray | None = None
+    sensor: FloatArray | None = None
+    sensor_cov: FloatArray | None = None
 
 
 def throw_verdict(f: FlownFit, throw: Throw) -> str:
@@ -180,7 +188,9 @@ def duplicate_throws(throws: Sequence[Throw]) -> str:
 
 
 def _joint(fits: list[FlownFit], errors: SensorErrors | None):
-    """The joint fit of the throws ``fits`` (their models and optima as the start)."""
+    """The joint fit of the throws ``fits`` (their models and optima as the start); the sensors
+    fitted from :data:`SENSOR_THROWS` throws on (on readings a calibrated device has corrected:
+    what is left of its distortion), one throw's held at the calibration's."""
     C0 = cholesky_of(np.median(np.array([f.inertia for f in fits]), axis=0))
     I0 = inertia_of(C0)
     rest = []
@@ -188,8 +198,13 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None):
         assert f.model is not None and f.P is not None
         w0 = f.model.omega(f.P[None])[0][0]
         rest.append(np.r_[I0 @ w0 + f.model.h[0], f.P[9:]])
-    joint = JointModel([f.model for f in fits], sensor=len(fits) >= SENSOR_THROWS)  # type: ignore[misc]
-    return joint, fit_joint(joint, joint.pack(C0, rest), errors)
+    fitted = len(fits) >= SENSOR_THROWS
+    joint = JointModel([f.model for f in fits], sensor=fitted or (errors is not None and errors.calibrated))  # type: ignore[misc]
+    held = None
+    if joint.sensor and not fitted:  # one throw of a calibrated device: the calibration's, held
+        held = np.zeros(joint.n, bool)
+        held[6:joint.base] = True
+    return joint, fit_joint(joint, joint.pack(C0, rest), errors, held)
 
 
 def own_fits(joint: JointModel, jf: JointFit) -> list[JointFit]:
@@ -262,7 +277,8 @@ def outlier(own: Sequence[JointFit], inertia: FloatArray) -> tuple[int, float]:
 
 def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: float, *,
                 saturation: float | None = None, errors: SensorErrors | None = None,
-                check: Callable[[FlownFit], str] | None = None) -> tuple[Pooled, list[FlownFit]]:
+                check: Callable[[FlownFit], str] | None = None,
+                gyro: FloatArray | None = None) -> tuple[Pooled, list[FlownFit]]:
     """Fit every throw and the usable ones jointly (module docstring).
 
     Parameters
@@ -277,6 +293,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         The sensors' stated uncertainties (type B; none by default).
     check : callable, optional
         ``check(fit)`` -> a reason to leave a fitted throw out, or ``""``.
+    gyro : ndarray, shape (3, 3), optional
+        The gyroscope's calibrated response (:func:`~tumble.analysis.tensor.throw.fit_flown`).
 
     Returns
     -------
@@ -309,7 +327,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     twice = duplicate_throws(throws)
     if twice:
         raise ValueError(twice)
-    fits = [fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation, errors=errors) for throw in throws]
+    fits = [fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation, errors=errors, gyro=gyro)
+            for throw in throws]
     for k, (throw, f) in enumerate(zip(throws, fits)):
         why = throw_verdict(f, throw) or (check(f) if check is not None and not f.reason else "")
         if why:
@@ -343,7 +362,14 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     I = vector_of(jf.inertia)
     cov_I = jf.inertia_cov
     chi2_dof = agreement(own, jf.inertia)
+    S = jf.sensor_columns
     if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their uncertainties: Birge
         cov_I, center_cov = cov_I * chi2_dof, center_cov * chi2_dof
+        S = None if S is None else S * np.sqrt(chi2_dof)
     biases = np.array([joint.throw_parameters(jf.P, j)[9:12] for j in range(len(chosen))])
-    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases), fits
+    sensor = sensor_cov = None
+    if joint.sensor and len(chosen) >= SENSOR_THROWS:
+        sensor, sensor_cov = jf.P[6:joint.base], jf.cov_P[6:joint.base, 6:joint.base]
+        if np.isfinite(chi2_dof) and chi2_dof > 1.0:
+            sensor_cov = sensor_cov * chi2_dof
+    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases, S, sensor, sensor_cov), fits

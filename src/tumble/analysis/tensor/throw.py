@@ -228,7 +228,7 @@ def _release(throw: Throw, keep_all: np.ndarray, rotor: RotorInput, model: Throw
 
 
 def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, saturation: float | None = None,
-              drag: bool = True, errors: SensorErrors | None = None) -> FlownFit:
+              drag: bool = True, errors: SensorErrors | None = None, gyro: FloatArray | None = None) -> FlownFit:
     """Fit one throw's flown body (module docstring).
 
     Parameters
@@ -244,6 +244,11 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
         Fit a per-axis quadratic drag (the joint fits need it).
     errors : SensorErrors, optional
         The sensors' stated uncertainties, propagated into the covariance (type B); none by default.
+    gyro : ndarray, shape (3, 3), optional
+        The gyroscope's calibrated response, ``omega_read = gyro @ omega``
+        (:func:`~tumble.analysis.tensor.joint.gyro_matrix` of the device's ``gyro_distortion``):
+        the readings are corrected by its inverse once the samples at the rail are known, and
+        the fit holds the distortion there with the calibration's uncertainty (``errors.distortion``).
 
     Returns
     -------
@@ -271,7 +276,9 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     >>> bool(np.all(np.abs(real.inertia.diagonal() - flown.inertia.diagonal()) < 3 * std))
     True
     """
-    keep_all, _ = saturation_mask(throw.omega, saturation)
+    keep_all, _ = saturation_mask(throw.omega, saturation)  # the rail: on the readings as logged
+    if gyro is not None:
+        throw = replace(throw, omega=throw.omega @ np.linalg.inv(np.asarray(gyro, float)).T)
     win = find_flight(throw, keep_all)
     if win.reason:
         return FlownFit(win, win.reason)
@@ -329,7 +336,15 @@ def _finish(throw: Throw, win: Window, model: ThrowModel, P: FloatArray, errors:
     if not (np.all(np.isfinite(res)) and moments[0] > 1e-6 * moments[2]):
         return FlownFit(win, "the fit found no rigid body's motion that explains the flight (its tensor came out "
                              "degenerate): the rotor's axis or the sign of its speed may be wrong")
-    single = fit_joint(JointModel([model]), P, errors, optimize=False)
+    if errors is not None and errors.calibrated:  # the readings corrected: the distortion held at 0, its std carried
+        one = JointModel([model], sensor=True)
+        held = np.zeros(one.n, bool)
+        held[6:one.base] = True
+        single = fit_joint(one, np.r_[P[:6], np.zeros(one.base - 6), P[6:]], errors, held, optimize=False)
+        own = np.r_[np.arange(6), np.arange(one.base, one.n)]
+        single = replace(single, P=single.P[own], cov_P=single.cov_P[np.ix_(own, own)])
+    else:
+        single = fit_joint(JointModel([model]), P, errors, optimize=False)
     P = single.P
     data, keep = model.data, model.keep
     res = model.residuals(P)
