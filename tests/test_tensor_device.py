@@ -251,7 +251,7 @@ def test_a_500_hz_throw_is_fitted():
     from tumble.analysis.tensor.throw import fit_flown
 
     from tumble.analysis.tensor.estimate import principal_uncertainty
-    from tumble.analysis.tensor.joint import SensorErrors
+    from tumble.analysis.tensor.sensors import SensorErrors
 
     f = fit_flown(slow, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE, errors=SensorErrors())
     assert f.reason == ""

@@ -27,7 +27,7 @@ from tumble.analysis.tensor.estimate import mass_estimate, principal_uncertainty
 from tumble.analysis.tensor.calibrate import calibrate
 from tumble.analysis.tensor.fit import gyro_response, sensor_errors
 from tumble.analysis.tensor.firmware import Imperfections
-from tumble.analysis.tensor.joint import GYRO_BASIS, SensorErrors
+from tumble.analysis.tensor.sensors import GYRO_BASIS, SensorErrors
 from tumble.analysis.tensor.model import ThrowModel, cholesky_of, inertia_of, rotor_input
 from tumble.analysis.tensor.pool import pool_throws
 from tumble.analysis.tensor.synthetic import (

@@ -44,7 +44,7 @@ from ...typing import FloatArray
 from .. import _display
 from .device import Device, Proof, Throw
 from .estimate import tensor_of, vector_of
-from .joint import gyro_matrix, tilted_axis
+from .sensors import gyro_matrix, tilted_axis
 from .fit import full_scale, sensor_errors
 from .pool import Pooled, duplicate_throws, pool_throws
 
@@ -319,7 +319,7 @@ def shared_sensor_covariance(a: Pooled, b: Pooled) -> FloatArray:
 
 def calibrated_sensors(sets: Sequence[Pooled], rotor_axis: FloatArray, scale_std: float) -> dict[str, Any]:
     """The gyroscope's cross-axis distortion and the rotor's axis from the calibration's joint
-    fits: each set's seven :data:`~tumble.analysis.tensor.joint.SENSOR_NAMES`, combined by their
+    fits: each set's seven :data:`~tumble.analysis.tensor.sensors.SENSOR_NAMES`, combined by their
     inverse covariances (the two sets are throws of one device; a ``chi^2 / 7`` of their
     difference above 1 inflates the result's covariance, Birge), as
     :class:`~tumble.analysis.tensor.device.Device` fields: ``gyro_distortion`` and

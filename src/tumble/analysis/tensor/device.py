@@ -206,7 +206,7 @@ class Device:
         The stated standard uncertainties of the gyroscope's scale factor per axis (relative,
         default 0.003), its misalignment per pair of axes (rad, default 0.005) and the rotor
         axis's direction (rad, default 0.0175, 1 degree), carried into every tensor's
-        uncertainty (:class:`tumble.analysis.tensor.joint.SensorErrors`: a typical MEMS data
+        uncertainty (:class:`tumble.analysis.tensor.sensors.SensorErrors`: a typical MEMS data
         sheet's values; 0 for a device whose sensors were calibrated to better).
     gyro_distortion, gyro_distortion_std : ndarray, shape (3, 3), or None
         The gyroscope's distortion as calibrated (``tumble calibrate``), ``omega_read = (E +

@@ -28,7 +28,7 @@ from ...validation import check_positive
 from .. import _display
 from .device import MAX_THROWN_MASS, Device, Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
-from .joint import SensorErrors, distortion_coefficients
+from .sensors import SensorErrors, distortion_coefficients
 from .pool import NoThrowError, Pooled, pool_throws
 from .throw import FlownFit
 
@@ -252,7 +252,7 @@ def full_scale(device: Device, saturation: float | None = None) -> float:
 
 
 def sensor_errors(device: Device) -> SensorErrors:
-    """The device's sensors' stated uncertainties (:class:`~tumble.analysis.tensor.joint.SensorErrors`),
+    """The device's sensors' stated uncertainties (:class:`~tumble.analysis.tensor.sensors.SensorErrors`),
     with the calibrated distortion's where the device has one.
 
     Examples

@@ -8,7 +8,7 @@
 3. The throws left are **fitted jointly** (:mod:`~tumble.analysis.tensor.joint`): one tensor
    and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
    :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too (a
-   single throw of a calibrated device, :attr:`~tumble.analysis.tensor.joint.SensorErrors.calibrated`,
+   single throw of a calibrated device, :attr:`~tumble.analysis.tensor.sensors.SensorErrors.calibrated`,
    holds them at the calibration's values, their uncertainties carried). A
    throw whose part of it has residuals well above the gyroscope's noise (measured from the
    throw itself) or needs a gyroscope bias beyond
@@ -38,7 +38,8 @@ from ...typing import FloatArray
 from .center import center_of_mass
 from .device import Throw
 from .estimate import principal_uncertainty, vector_of
-from .joint import JointFit, JointModel, SensorErrors, fit_joint
+from .joint import JointFit, JointModel, fit_joint
+from .sensors import SensorErrors
 from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
 
@@ -78,7 +79,7 @@ class Pooled:
     inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
     and the throws used; each used throw's gyroscope bias in the joint fit (rad/s); the sensors'
     part as columns (:attr:`~tumble.analysis.tensor.joint.JointFit.sensor_columns`, Birge-inflated
-    with the rest); the sensors' seven :data:`~tumble.analysis.tensor.joint.SENSOR_NAMES` as the
+    with the rest); the sensors' seven :data:`~tumble.analysis.tensor.sensors.SENSOR_NAMES` as the
     joint fit found them with their covariance (None where it did not fit them).
 
     Examples

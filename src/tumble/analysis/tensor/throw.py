@@ -43,7 +43,8 @@ from .device import Throw
 from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
-from .joint import JointModel, SensorErrors, fit_joint
+from .joint import JointModel, fit_joint
+from .sensors import SensorErrors
 from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input, sample_means
 from .solve import fit_held
 
@@ -246,7 +247,7 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
         The sensors' stated uncertainties, propagated into the covariance (type B); none by default.
     gyro : ndarray, shape (3, 3), optional
         The gyroscope's calibrated response, ``omega_read = gyro @ omega``
-        (:func:`~tumble.analysis.tensor.joint.gyro_matrix` of the device's ``gyro_distortion``):
+        (:func:`~tumble.analysis.tensor.sensors.gyro_matrix` of the device's ``gyro_distortion``):
         the readings are corrected by its inverse once the samples at the rail are known, and
         the fit holds the distortion there with the calibration's uncertainty (``errors.distortion``).
 
@@ -262,7 +263,7 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
 
     >>> import numpy as np
     >>> from tumble.analysis.tensor.firmware import Imperfections
-    >>> from tumble.analysis.tensor.joint import SensorErrors
+    >>> from tumble.analysis.tensor.sensors import SensorErrors
     >>> from tumble.analysis.tensor.throw import fit_flown
     >>> from tumble.analysis.tensor.synthetic import ROTOR_AXIS, ROTOR_INERTIA, combine, example_object, synthetic_throw, true_device
     >>> flown = combine(true_device(), example_object())
