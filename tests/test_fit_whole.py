@@ -49,7 +49,7 @@ def test_one_toss_a_file_its_answer_is_the_tosss_own(seed, body):
     assert len(used) == 1 and _iou(release, impact, used[0].start, used[0].end) >= 0.5
     np.testing.assert_array_equal(fit.pooled.ratios, used[0].fit.ratios)
     after = [toss for toss in fit.tosses if toss.start > used[0].end]
-    assert after and after[0].reason.startswith("after an impact, not a free flight")
+    assert after and after[0].reason.startswith(flights_module.AFTER_IMPACT_REASON)
     assert after[0].start - used[0].end < flights_module.AFTER_IMPACT
 
 

@@ -311,25 +311,26 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
 #: the hand grips, swings and releases the body, 0.15-0.3 s after it has held it (the tosses of
 #: :mod:`~tumble.analysis.fit.synthetic`; successive flights there lie 1.5 s and more apart).
 AFTER_IMPACT = 0.2
-#: The reasons of a skipped stretch whose samples the fit did not follow as a body's motion (it
-#: does not end a flight: a stretch after it may be a flight).
-_NOT_FOLLOWED = ("no free flight", "too short", "saturated", "steady spin")
+#: The reason's first words of a stretch skipped as the body's motion after an impact.
+AFTER_IMPACT_REASON = "after an impact, not a free flight"
 
 
 def _after_impacts(flights: list[Flight]) -> list[Flight]:
     """The flights with every stretch that starts within :data:`AFTER_IMPACT` of the end of a
-    flight before it (a motion the fit followed: usable, joinable, or refused for its fit)
-    skipped: a free flight starts with a release from a hand or a throw, and what follows an
-    impact at once is the body in contact (in the hand, on a table), whatever motion it follows
-    (a phone turned in the fingers cones like a free symmetric body). Chained: a stretch after
-    such a stretch is after the impact too."""
+    flight before it (a free motion: usable or joinable) skipped: a free flight starts with a
+    release from a hand or a throw, and what follows an impact at once is the body in contact (in
+    the hand, on a table), whatever motion it follows (a phone turned in the fingers cones like a
+    free symmetric body). Chained: a stretch after such a stretch is after the impact too. A
+    stretch the fit did not follow as a free motion (the model does not fit, under impulses: the
+    hand's swing and the throw) ends no flight: a throw's last 0.15 s may lie just before the
+    release."""
     out, last = [], None
     for f in flights:
-        followed = f.solution is not None and not f.reason.startswith(_NOT_FOLLOWED + (NUMERICAL,))
-        if followed and last is not None and 0.0 <= f.start - last < AFTER_IMPACT and (f.status == "ok" or f.joinable):
+        followed = f.status == "ok" or f.joinable
+        if followed and last is not None and 0.0 <= f.start - last < AFTER_IMPACT:
             f = replace(f, status="skipped", joinable=False, reason=(
-                f"after an impact, not a free flight: it starts {f.start - last:.2f} s after the flight before it ends, "
-                f"with no throw between (the body turned in the hand or on a table after the catch or the landing)"))
+                f"{AFTER_IMPACT_REASON}: it starts {f.start - last:.2f} s after the flight before it ends, with no throw "
+                f"between (the body turned in the hand or on a table after the catch or the landing)"))
         out.append(f)
         if followed:
             last = f.end
