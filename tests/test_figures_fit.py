@@ -183,6 +183,21 @@ def _animation_frames():
     return grabbed
 
 
+def _knowledge():
+    """The estimation figure of a short B-dot run fed the MEKF's estimate (star tracker and gyroscope)."""
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.controllers import BDot
+    from tumble.dynamics.control.estimated import Estimated
+    from tumble.dynamics.models.sensors import Sensors
+    from tumble.dynamics.models.vector_sensors import StarTracker
+
+    sensors = Sensors(gyro_noise=1e-4, gyro_bias=(1e-4, 0.0, 0.0),
+                      star_tracker=StarTracker(cross=1e-5, roll=1e-4, period=2.0))
+    c = Estimated(BDot(gain=1e-3, period=0.5), sensors)
+    run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.05], t_end=20.0, controller=c, sensors=sensors)
+    return viz.figure_knowledge(run, c.knowledge(), bias=sensors.gyro_bias, title="attitude knowledge")
+
+
 FIGURES = {
     "omega": lambda: viz.figure_omega(_run(), title="T-handle, exact"),
     "omega (detail)": lambda: viz.figure_omega(
@@ -202,6 +217,7 @@ FIGURES = {
     "fits": _fits,
     "tensor": _tensor,
     "animation frames": _animation_frames,
+    "knowledge": _knowledge,
 }
 
 
@@ -211,7 +227,7 @@ def test_every_figure_function_is_drawn_here():
              "figure_omega_panels", "figure_energy", "figure_nutation", "figure_orbit_angles", "spacecraft_figures",
              "figure_stability_map", "figure_gravity_stability", "figure_sweep", "figure_detumble_mc", "control_figures",
              "figure_attitude_error", "figure_body_rates", "figure_wheels", "figure_dipole", "figure_momentum_budget",
-             "figure_recording", "figure_fit", "figure_tensor"}
+             "figure_recording", "figure_fit", "figure_tensor", "figure_knowledge"}
     makers = {n for n in viz.__all__ if n.startswith("figure_") or n.endswith("_figures")}
     assert makers <= drawn, f"{sorted(makers - drawn)}: draw it in FIGURES (tests/test_figures_fit.py) and name it here"
     assert drawn <= makers, f"{sorted(drawn - makers)}: no longer in tumble.viz"
