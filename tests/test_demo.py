@@ -14,8 +14,17 @@ from tumble.io.export import CSV_COLUMNS
 
 @pytest.fixture(scope="module")
 def demo(tmp_path_factory):
+    """The whole study, its four animations drawn through the real writers with 8 frames each (the
+    demo's 100 frames are most of its time; tests/test_viz.py and test_figures_fit.py check the frames)."""
+    import functools
+
+    import tumble.viz
+
     out = tmp_path_factory.mktemp("demo")
-    run_demo(out, animate=True, t_end=20.0, samples=500)
+    with pytest.MonkeyPatch.context() as mp:
+        for name in ("animate_ground_frame", "animate_body_frame"):
+            mp.setattr(tumble.viz, name, functools.partial(getattr(tumble.viz, name), max_frames=8))
+        run_demo(out, animate=True, t_end=20.0, samples=500)
     return out
 
 
