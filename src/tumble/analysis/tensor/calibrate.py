@@ -402,9 +402,9 @@ def calibrate_device(device: Device, alone: Sequence[Throw], proof_throws: Seque
     >>> from tumble.analysis.tensor import Device, calibrate_device
     >>> from tumble.analysis.tensor.synthetic import ROTOR_INERTIA, combine, synthetic_throw, true_device, true_proof
     >>> proof, placed = true_proof()
-    >>> alone = [synthetic_throw(s, true_device(), spin=(3.0, 6.0)) for s in (1, 2, 3)]
-    >>> with_proof = [synthetic_throw(s, combine(true_device(), placed)) for s in (4, 5, 6)]
-    >>> cal = calibrate_device(Device(0.10067, [0, 0, -1]), alone, with_proof, proof)
+    >>> alone = [synthetic_throw(s, true_device(), spin=(3.0, 6.0)) for s in (1, 2)]
+    >>> with_proof = [synthetic_throw(s, combine(true_device(), placed)) for s in (4, 5)]
+    >>> cal = calibrate_device(Device(0.10067, [0, 0, -1]), alone, with_proof, proof)   # two throws of each
     >>> bool(abs(cal.rotor_inertia / ROTOR_INERTIA - 1) < 0.02), bool(cal.rotor_inertia_std < 0.02 * ROTOR_INERTIA)
     (True, True)
     """
