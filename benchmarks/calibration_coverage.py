@@ -36,7 +36,10 @@ def _device(index: int) -> tuple[float, float, float, list[str]]:
     alone = [synthetic_throw(seeds + k, true_device(), spin=(3.0, 8.0), imperfections=imp) for k in range(CAL_THROWS)]
     with_proof = [synthetic_throw(seeds + 100 + k, combine(true_device(), placed), imperfections=imp)
                   for k in range(CAL_THROWS)]
-    cal = calibrate(Device(DEVICE_MASS, ROTOR_AXIS), alone, with_proof, proof)
+    try:
+        cal = calibrate(Device(DEVICE_MASS, ROTOR_AXIS), alone, with_proof, proof)
+    except ValueError as err:  # no throw of a set could be fitted: a failed calibration, counted and named
+        return float("nan"), float("nan"), float("nan"), [f"device {index}: {err}"]
     J, s = cal.device.rotor_inertia, cal.device.rotor_inertia_std
     if J is None or s is None:
         return float("nan"), float("nan"), cal.chi2_dof, list(cal.problems)
@@ -70,7 +73,10 @@ def main() -> None:
         f"- 95 % intervals hold {100 * held:.1f} % +- {100 * se:.1f} (of {z.size}); within 1 %: "
         f"{100 * np.mean(np.abs(err[ok]) <= 0.01):.1f} %",
         f"- flagged by the calibration's own checks: {sum(bool(r[3]) for r in rows)} of {len(rows)}; "
-        f"chi2/dof median {np.median([r[2] for r in rows]):.2f}",
+        f"chi2/dof median {np.nanmedian([r[2] for r in rows]):.2f}",
+        f"- failed (no rotor inertia): {int(np.sum(~ok))} of {len(rows)}",
+        "",
+        *[f"  - {'; '.join(r[3])[:400]}" for r in rows if r[3]],
         "",
     ])
     print(text)
