@@ -268,8 +268,14 @@ def _outputs(runnable: list[Shown]) -> dict[str, tuple[str, ...]]:
     """The folders and files the shown commands write under a name of their own (``tumble fit ...
     --out fitted``), each with the command that writes it: a guide that then shows ``tumble view
     fitted`` shows both, in that order."""
-    return {c.argv[i + 1]: c.argv for c in runnable for i, word in enumerate(c.argv[:-1])
-            if word in ("--out",) and not c.argv[i + 1].startswith("out-")}
+    writers: dict[str, list[tuple[str, ...]]] = {}
+    for c in runnable:
+        for i, word in enumerate(c.argv[:-1]):
+            if word == "--out" and not c.argv[i + 1].startswith("out-"):
+                writers.setdefault(c.argv[i + 1], []).append(c.argv)
+    # where several write one name (the guide's run on the shipped throws, a help text's on the user's
+    # own), the first that runs on what tumble ships
+    return {name: next((a for a in argvs if not _user_files(a)), argvs[0]) for name, argvs in writers.items()}
 
 
 def _producers(argv: tuple[str, ...], outputs: dict[str, tuple[str, ...]],

@@ -131,7 +131,14 @@ class PointingMonteCarlo:
 
     Examples
     --------
-    See :func:`pointing_monte_carlo`.
+    :func:`pointing_monte_carlo` makes one from its runs; by hand, from drawn cases:
+
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.ensemble.knowledge import PointingMonteCarlo, knowledge_cases
+    >>> cases = knowledge_cases(2, gyro_bias_sigma=1e-4, noise_spread=0.5, seed=3)
+    >>> mc = PointingMonteCarlo(cases, *([cases.noise_scale] * 4), Sensors(gyro_noise=1e-4), 0.0)
+    >>> mc.pointing_rms.shape
+    (2,)
     """
 
     cases: KnowledgeCases

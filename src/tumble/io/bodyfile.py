@@ -378,7 +378,23 @@ PLAUSIBLE_SIZE = (1e-3, 20.0)
 
 
 class MeshScaleWarning(UserWarning):
-    """A mesh read at a size no hand-made solid has: most likely its file's unit was given wrongly."""
+    """A mesh read at a size no hand-made solid has: most likely its file's unit was given wrongly
+    (:func:`mesh_scale_note` says which).
+
+    Examples
+    --------
+    A script that must not go on with a slipped unit makes the warning an error:
+
+    >>> import warnings
+    >>> from tumble.io.bodyfile import MeshScaleWarning
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("error", MeshScaleWarning)
+    ...     try:
+    ...         warnings.warn("case.stl: the solid is 0.05 mm across", MeshScaleWarning)
+    ...     except MeshScaleWarning as slip:
+    ...         print(f"refused: {slip}")
+    refused: case.stl: the solid is 0.05 mm across
+    """
 
 
 def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float) -> str | None:
