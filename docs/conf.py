@@ -144,7 +144,12 @@ html_theme_options = {
     "footer_end": [],
     "logo": {"text": f"tumble {release}"},  # the version in every page's header
 }
-html_sidebars = {"**": ["sidebar-nav-bs"]}
+# The guides keep the theme's section navigation; the ~1000 API pages (a name's, a module's) do without a left
+# sidebar: each carried its subpackage's list of names, 20 KB a page, a third of the site (issue 40: the
+# site was 196 MB, then 61 MB with the navigation collapsed). Their page header, the breadcrumbs and the
+# subpackage's page lead to the rest. (Both patterns may not hold wildcards, or Sphinx warns of a page
+# that matches two: the guides get the theme's own default sidebar.)
+html_sidebars = {"api/generated/*": [], "api/modules/*": []}
 # The theme reads the colour mode from the page; without one it logs an error from file://.
 html_context = {"default_mode": "light"}
 # The search's summaries fetch() each hit's page, which a browser refuses from file://.
