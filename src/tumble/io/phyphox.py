@@ -12,6 +12,7 @@ import os
 
 import numpy as np
 
+from ..analysis.fit.freefall import MAX_ACCEL
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _separator, _split
 from .gyrocolumns import match_accel
 
@@ -57,10 +58,6 @@ def parse_accel_csv(raw: bytes, label: str, t: np.ndarray) -> tuple[np.ndarray, 
     f = np.stack([np.interp(t, rows[:, 0], rows[:, k]) for k in (1, 2, 3)], axis=1)
     base = os.path.basename(label)
     return f, tuple(f"{base}: {head[j]}" for j in columns), tuple(units), rows[:, 0].copy()
-
-
-#: Beyond any accelerometer's reading, m/s^2 (a phone's range is 8-16 g): a value in other units.
-MAX_ACCEL = 1e4
 
 
 def _check_values(rows: np.ndarray, lines: list, head: list, columns: list, label: str) -> None:
