@@ -1,38 +1,29 @@
-"""The checks of input every layer of tumble uses: one place, one wording per rule.
+"""The checks of numbers, vectors, principal moments and axes: the cleaned value, or one message.
 
-Moments, axes, vectors, numbers, orientations and input files. Each checker returns the
-cleaned value or raises ``ValueError`` whose message names the field, the value and what is
-allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``; Python constructors, the
-TOML loader and the CLI all surface these same messages. This module is the lowest layer of the
-package: it imports nothing of tumble (an import-linter contract keeps it so). Units are SI.
+Each checker returns the cleaned value or raises ``ValueError`` whose message names the field,
+the value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``. The
+triangle inequality on principal moments is written here once (:func:`breaks_triangle`); every
+other check of it calls that. Units are SI. Re-exported by :mod:`tumble.validation`.
 """
 
 from __future__ import annotations
 
-import functools
 import math
-import os
 from collections.abc import Sequence
 from numbers import Real
-from typing import TYPE_CHECKING, cast
+from typing import cast
 
 import numpy as np
 
-from .typing import ArrayLike, BoolArray, FloatArray, IntArray, Vector3
-
-if TYPE_CHECKING:
-    from scipy.spatial.transform import Rotation
+from ..typing import ArrayLike, BoolArray, FloatArray, IntArray, Vector3
 
 __all__ = [
     "AXES_ALLOWED",
     "AXIS_ROLES",
     "BOUND_REASONS",
     "INERTIA_RTOL",
-    "MATRIX_ORTHO_TOL",
     "MAX_INERTIA",
     "MAX_RATE",
-    "QUAT_NORM_TOL",
-    "NoSuchFileError",
     "axis_index",
     "breaks_triangle",
     "check_at_most",
@@ -40,13 +31,10 @@ __all__ = [
     "check_direction",
     "check_increasing",
     "check_moments",
-    "check_motion",
     "check_number",
     "check_positive",
-    "check_rotation",
     "check_vector",
     "check_vectors",
-    "read_input_file",
     "refuse_first",
     "short_repr",
 ]
@@ -421,208 +409,3 @@ def check_direction(field: str, value: object) -> tuple[float, float, float]:
         raise ValueError(f"{field} = {value!r} must be a non-zero vector (a direction)")
     v = v / big  # scale first, so that the norm of [1e308, 1e308, 0] does not overflow
     return tuple(float(x) for x in v / np.linalg.norm(v))  # type: ignore[return-value]
-
-
-#: A quaternion given by hand, e.g. [0, 0, 0.7071, 0.7071], is accepted and renormalised if its
-#: norm is within this of 1; anything further off is almost surely a mistake and is refused.
-QUAT_NORM_TOL = 1e-3
-#: A matrix given by hand must be orthonormal to this tolerance (|R^T R - E|).
-MATRIX_ORTHO_TOL = 1e-6
-
-
-@functools.lru_cache(maxsize=256)
-def _unit_quaternion(raw: bytes) -> tuple[float, float, float, float]:
-    """scipy's unit quaternion (its normalisation, its sign) for the float64 bytes of a quaternion,
-    kept for the next call with the same one (``Rotation.from_quat`` costs ~10 us)."""
-    from scipy.spatial.transform import Rotation
-
-    return tuple(float(x) for x in Rotation.from_quat(np.frombuffer(raw)).as_quat())  # type: ignore[return-value]
-
-
-def check_rotation(field: str, value: object) -> tuple[float, float, float, float]:
-    """An orientation: a scipy Rotation, a quaternion [x, y, z, w] or a 3x3 rotation matrix.
-
-    Returns the unit quaternion, scalar last (scipy's convention).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.validation import check_rotation
-    >>> check_rotation("orientation", np.eye(3))
-    (0.0, 0.0, 0.0, 1.0)
-    >>> check_rotation("orientation", np.diag([1.0, 1.0, -1.0]))
-    Traceback (most recent call last):
-    ...
-    ValueError: orientation has determinant -1, which should be +1; it is a rotoreflection (it mirrors the part), not a rotation
-    """
-    from scipy.spatial.transform import Rotation
-
-    if isinstance(value, Rotation):
-        if not value.single:
-            raise ValueError(f"{field} must be a single rotation, got a stack of {len(value)}")
-        return tuple(float(x) for x in value.as_quat())  # type: ignore[return-value]
-    if type(value) is np.ndarray and value.shape == (4,) and value.dtype == np.float64:
-        # the plain case first: a quaternion near unit norm, in float arithmetic
-        x, y, z, w = value.tolist()
-        if abs(math.sqrt(x * x + y * y + z * z + w * w) - 1.0) <= QUAT_NORM_TOL:
-            return _unit_quaternion(value.tobytes())
-    try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{field} = {value!r} must be a quaternion [x, y, z, w] or a 3x3 rotation matrix"
-        ) from None
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{field} = {value!r} must contain only finite numbers")
-    if arr.shape == (4,):
-        n = float(np.linalg.norm(arr))
-        if abs(n - 1.0) > QUAT_NORM_TOL:
-            raise ValueError(
-                f"{field} = {value!r} is a quaternion of norm {n:.6g}; a rotation needs a unit "
-                f"quaternion [x, y, z, w] (scalar last)"
-            )
-        return _unit_quaternion(arr.tobytes())
-    if arr.shape == (3, 3):
-        err = float(np.max(np.abs(arr.T @ arr - np.eye(3))))
-        if err > MATRIX_ORTHO_TOL:
-            raise ValueError(
-                f"{field} is not an orthonormal matrix (max |R^T R - E| = {err:.3g}); "
-                f"a rotation matrix has orthonormal columns"
-            )
-        det = float(np.linalg.det(arr))
-        if det < 0:
-            raise ValueError(
-                f"{field} has determinant {det:.6g}, which should be +1; it is a rotoreflection "
-                f"(it mirrors the part), not a rotation"
-            )
-        return tuple(float(x) for x in Rotation.from_matrix(arr).as_quat())  # type: ignore[return-value]
-    raise ValueError(
-        f"{field} must be a quaternion [x, y, z, w] or a 3x3 rotation matrix, got shape {arr.shape}"
-    )
-
-
-def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vector3]:
-    """A rigid motion ``x -> R x + t``: ``(scipy Rotation, ndarray (3,))`` from anything
-    :func:`check_rotation` and :func:`check_vector` accept.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.validation import check_motion
-    >>> R, t = check_motion([0, 0, np.sin(np.pi / 4), np.cos(np.pi / 4)], [1, 0, 0])
-    >>> np.round(R.apply([1.0, 0.0, 0.0]) + t, 12).tolist()  # x -> R x + t: a quarter turn about z
-    [1.0, 1.0, 0.0]
-    """
-    from scipy.spatial.transform import Rotation
-
-    R = Rotation.from_quat(check_rotation("rotation", rotation))
-    return R, np.array(check_vector("translation", translation, "m"))
-
-
-class NoSuchFileError(FileNotFoundError, ValueError):
-    """A file the user named does not exist: ``PATH: no such file``.
-
-    A ``FileNotFoundError``, what a program catches for a missing file, and a
-    ``ValueError``, as every other refusal of a file tumble reads (the command line says it
-    in one line and exits with 2). Its text is the message alone (no ``[Errno 2]``).
-
-    Examples
-    --------
-    >>> from tumble.validation import NoSuchFileError, read_input_file
-    >>> try:
-    ...     read_input_file("no-such.toml", limit=1024, what="a body file")
-    ... except FileNotFoundError as exc:
-    ...     print(exc, "/", isinstance(exc, ValueError))
-    no-such.toml: no such file / True
-    """
-
-
-def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, label: str | None = None) -> bytes:
-    """The bytes of an input file, refusing anything but a regular file of at most ``limit`` bytes.
-
-    The file is checked with :func:`os.stat` before it is opened, so a FIFO is never opened
-    (opening one for reading would wait forever for a writer) and ``/dev/zero`` is never read.
-    It is then opened without blocking, checked again on the open descriptor (the path may have
-    been replaced meanwhile), and read up to ``limit + 1`` bytes, so a file that grows while it is
-    read cannot exhaust memory.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The file.
-    limit : int
-        The largest size allowed, bytes.
-    what : str
-        What the file is, for the messages, e.g. ``"a body or scenario file (TOML)"``.
-    label : str, optional
-        How the messages name the file; default the path itself.
-
-    Returns
-    -------
-    bytes
-        The whole content of the file.
-
-    Raises
-    ------
-    NoSuchFileError
-        A ``FileNotFoundError`` (and ``ValueError``): ``PATH: no such file``.
-    ValueError
-        One line naming the file and the rule: not a regular file (directory, FIFO, socket,
-        device), unreadable, or larger than ``limit``.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> import os
-    >>> from tumble.validation import read_input_file
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     path = os.path.join(folder, "body.toml")
-    ...     with open(path, "w") as f:
-    ...         _ = f.write("mass = 1.0")
-    ...     read_input_file(path, limit=1024, what="a body file")
-    b'mass = 1.0'
-    >>> with tempfile.TemporaryDirectory() as folder:
-    ...     read_input_file(folder, limit=1024, what="a body file", label="bodies/")
-    Traceback (most recent call last):
-    ...
-    ValueError: bodies/: is a directory; a body file must be a regular file
-    """
-    import stat
-
-    label = os.fspath(path) if label is None else label
-
-    def _refuse(mode: int) -> None:
-        if stat.S_ISREG(mode):
-            return
-        kinds = [(stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
-                 (stat.S_ISSOCK, "a socket"), (stat.S_ISCHR, "a character device"),
-                 (stat.S_ISBLK, "a block device")]
-        kind = next((name for test, name in kinds if test(mode)), "not a regular file")
-        raise ValueError(f"{label}: is {kind}; {what} must be a regular file")
-
-    def _size(size: int, how: str) -> None:
-        if size > limit:
-            raise ValueError(
-                f"{label}: {how}; {what} may be at most {limit:,} bytes ({limit / 2**20:g} MiB)"
-            )
-
-    try:
-        info = os.stat(path)
-    except FileNotFoundError:
-        raise NoSuchFileError(f"{label}: no such file") from None
-    except OSError as exc:
-        raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
-    _refuse(info.st_mode)
-    _size(info.st_size, f"is {info.st_size:,} bytes")
-    try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
-    except OSError as exc:
-        raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
-    with os.fdopen(fd, "rb") as file:
-        _refuse(os.fstat(fd).st_mode)  # the path may have been swapped since the stat
-        try:
-            data = file.read(limit + 1)
-        except OSError as exc:
-            raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
-    _size(len(data), f"grew past {limit:,} bytes while being read")
-    return data

@@ -1,0 +1,64 @@
+"""The checks of input every layer of tumble uses: one place, one wording per rule.
+
+Moments, axes, vectors, numbers (:mod:`~tumble.validation.values`), orientations
+(:mod:`~tumble.validation.rotations`) and input files (:mod:`~tumble.validation.files`). Each
+checker returns the cleaned value or raises ``ValueError`` whose message names the field, the
+value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``; Python
+constructors, the TOML loader and the CLI all surface these same messages. This package is the
+lowest layer of tumble: it imports nothing of tumble but the array aliases (an import-linter
+contract keeps it so). Units are SI.
+"""
+
+from __future__ import annotations
+
+from .files import NoSuchFileError, read_input_file
+from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
+from .values import (
+    AXES_ALLOWED,
+    AXIS_ROLES,
+    BOUND_REASONS,
+    INERTIA_RTOL,
+    MAX_INERTIA,
+    MAX_RATE,
+    axis_index,
+    breaks_triangle,
+    check_at_most,
+    check_bool,
+    check_direction,
+    check_increasing,
+    check_moments,
+    check_number,
+    check_positive,
+    check_vector,
+    check_vectors,
+    refuse_first,
+    short_repr,
+)
+
+__all__ = [
+    "AXES_ALLOWED",
+    "AXIS_ROLES",
+    "BOUND_REASONS",
+    "INERTIA_RTOL",
+    "MATRIX_ORTHO_TOL",
+    "MAX_INERTIA",
+    "MAX_RATE",
+    "QUAT_NORM_TOL",
+    "NoSuchFileError",
+    "axis_index",
+    "breaks_triangle",
+    "check_at_most",
+    "check_bool",
+    "check_direction",
+    "check_increasing",
+    "check_moments",
+    "check_motion",
+    "check_number",
+    "check_positive",
+    "check_rotation",
+    "check_vector",
+    "check_vectors",
+    "read_input_file",
+    "refuse_first",
+    "short_repr",
+]
