@@ -28,16 +28,14 @@ accuracy as in any double-precision evaluation.
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Callable
-from typing import cast
 
 import numpy as np
 
+from ...jit import jit
 from ...typing import FloatArray
 
-__all__ = ["WORK", "compiled_free_flow", "free_flow", "free_flow_into"]
+__all__ = ["WORK", "free_flow", "free_flow_into"]
 
 _EPS = 2.0 ** -52
 #: Doubles of scratch space :func:`free_flow_into` needs: the Landen sequence (2 x 40), omega (3),
@@ -46,7 +44,8 @@ _EPS = 2.0 ** -52
 WORK = 91
 
 
-def _rc1(e: float) -> float:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _rc1(e: float) -> float:
     """``R_C(1, 1 + e)`` (DLMF 19.2.18-19.2.19): atan or atanh of ``sqrt(|e|)`` over it."""
     if abs(e) < 1e-8:
         return 1.0 - e / 3.0 + e * e / 5.0
@@ -57,7 +56,8 @@ def _rc1(e: float) -> float:  # pragma: no cover - compiled
     return math.atanh(r) / r
 
 
-def _rf(x: float, y: float, z: float) -> float:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _rf(x: float, y: float, z: float) -> float:
     """Carlson's ``R_F(x, y, z)``, at most one argument zero (Carlson 1995, algorithm 1)."""
     a0 = (x + y + z) / 3.0
     q = (3.0 * _EPS) ** (-1.0 / 6.0) * max(abs(a0 - x), abs(a0 - y), abs(a0 - z)) + 1e-300
@@ -73,7 +73,8 @@ def _rf(x: float, y: float, z: float) -> float:  # pragma: no cover - compiled
     return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / math.sqrt(a)
 
 
-def _rj(x: float, y: float, z: float, p: float) -> float:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _rj(x: float, y: float, z: float, p: float) -> float:
     """Carlson's ``R_J(x, y, z, p)``, ``p > 0`` (Carlson 1995, algorithm 3)."""
     a0 = (x + y + z + 2.0 * p) / 5.0
     delta = (p - x) * (p - y) * (p - z)
@@ -97,7 +98,8 @@ def _rj(x: float, y: float, z: float, p: float) -> float:  # pragma: no cover - 
     return fac * series / (a * math.sqrt(a)) + 6.0 * total
 
 
-def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, float, float]:  # pragma: no cover
+@jit(error_model="numpy")
+def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, float, float]:
     """``sn, cn, dn`` of ``|v| <= K`` for ``m = k2``, ``k' = kp`` (A&S 16.4, the AGM of
     ``(1, k')`` and the descending Landen transformation); ``work[:80]`` holds the sequence."""
     a, b, c = 1.0, kp, math.sqrt(k2)
@@ -114,14 +116,16 @@ def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, fl
     return sn, cn, math.sqrt(cn * cn + kp * kp * sn * sn)
 
 
-def _excess(n: float, s: float, c: float, d: float) -> float:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _excess(n: float, s: float, c: float, d: float) -> float:
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` from ``s, c >= 0, d`` (DLMF 19.25.14)."""
     if n == 0.0 or s == 0.0:
         return 0.0
     return n / 3.0 * s * s * s * _rj(c * c, d * d, 1.0, 1.0 - n * s * s)
 
 
-def _zxz(phi: float, theta: float, psi: float, out: FloatArray) -> None:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _zxz(phi: float, theta: float, psi: float, out: FloatArray) -> None:
     """``Rz(phi) Rx(theta) Rz(psi)`` as a quaternion, scalar last (special.quaternion.quat_zxz)."""
     sa, ca = math.sin(0.5 * phi), math.cos(0.5 * phi)
     sb, cb = math.sin(0.5 * theta), math.cos(0.5 * theta)
@@ -130,7 +134,8 @@ def _zxz(phi: float, theta: float, psi: float, out: FloatArray) -> None:  # prag
     out[2], out[3] = cb * (sa * cc + ca * sc), cb * (ca * cc - sa * sc)
 
 
-def _multiply(a: FloatArray, b: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _multiply(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
     """Hamilton product ``a (x) b``, scalar last (special.quaternion.quat_multiply); ``out`` may be ``a``."""
     x = a[3] * b[0] + b[3] * a[0] + a[1] * b[2] - a[2] * b[1]
     y = a[3] * b[1] + b[3] * a[1] + a[2] * b[0] - a[0] * b[2]
@@ -139,7 +144,8 @@ def _multiply(a: FloatArray, b: FloatArray, out: FloatArray) -> None:  # pragma:
     out[0], out[1], out[2], out[3] = x, y, z, w
 
 
-def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:
     """``theta, psi`` that take the relabelled L (reference axis last) to ``|L| e_z``."""
     if upper:
         li, lj, lr = L[0], L[1], L[2]
@@ -148,7 +154,8 @@ def _tilt(L: FloatArray, upper: bool) -> tuple[float, float]:  # pragma: no cove
     return math.atan2(math.hypot(li, lj), lr), math.atan2(li, lj)
 
 
-def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float, turn: FloatArray) -> None:  # pragma: no cover
+@jit(error_model="numpy")
+def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float, turn: FloatArray) -> None:
     """``q <- q (x) exp(w h / 2)``: the turn about a fixed omega, in place (``turn``: 4 doubles of scratch)."""
     spin = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
     if spin == 0.0:
@@ -159,29 +166,15 @@ def _steady(q: FloatArray, w0: float, w1: float, w2: float, h: float, turn: Floa
     _multiply(q, turn, q)
 
 
-def _gap(I: FloatArray, w0: float, w1: float, w2: float, j: int) -> float:  # pragma: no cover - compiled
+@jit(error_model="numpy")
+def _gap(I: FloatArray, w0: float, w1: float, w2: float, j: int) -> float:
     """``L^2 - 2 E I_j = sum_i I_i (I_i - I_j) w_i^2``, kg^2 m^4/s^2."""
     return float(I[0] * (I[0] - I[j]) * w0 * w0 + I[1] * (I[1] - I[j]) * w1 * w1 + I[2] * (I[2] - I[j]) * w2 * w2)
 
 
-def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:  # pragma: no cover - compiled
-    """Advance one body's ``L`` (principal frame, kg m^2/s) and ``q`` (body to world, scalar
-    last) by the exact torque-free motion over ``h`` (s, any sign), in place.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.dynamics.methods.compiled_flow import free_flow
-    >>> L, q = np.array([0.0, 0.0, 3.0]), np.array([0.0, 0.0, 0.0, 1.0])
-    >>> free_flow(np.array([1.0, 2.0, 3.0]), L, q, np.pi)  # a half turn about the major axis
-    >>> np.round(q, 12) + 0.0
-    array([0., 0., 1., 0.])
-    """
-    free_flow_into(I, L, q, h, np.empty(WORK))
-
-
+@jit(error_model="numpy")
 def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
-                   work: FloatArray) -> None:  # pragma: no cover - compiled
+                   work: FloatArray) -> None:
     """:func:`free_flow` with its scratch space given: ``work``, :data:`WORK` doubles (any values).
 
     Examples
@@ -269,12 +262,19 @@ def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
     _multiply(q, e, q)
 
 
-@functools.cache
-def compiled_free_flow() -> Callable[[FloatArray, FloatArray, FloatArray, float], None]:
-    """:func:`free_flow` compiled by numba (``cache=True``), each helper before its callers."""
-    from ...jit import jit
 
-    for name in ("_rc1", "_rf", "_rj", "_jacobi", "_excess", "_zxz", "_multiply", "_tilt", "_steady", "_gap", "free_flow_into",
-                 "free_flow"):
-        globals()[name] = jit()(globals()[name])
-    return cast("Callable[[FloatArray, FloatArray, FloatArray, float], None]", globals()["free_flow"])
+@jit(error_model="numpy")
+def free_flow(I: FloatArray, L: FloatArray, q: FloatArray, h: float) -> None:
+    """Advance one body's ``L`` (principal frame, kg m^2/s) and ``q`` (body to world, scalar
+    last) by the exact torque-free motion over ``h`` (s, any sign), in place.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.compiled_flow import free_flow
+    >>> L, q = np.array([0.0, 0.0, 3.0]), np.array([0.0, 0.0, 0.0, 1.0])
+    >>> free_flow(np.array([1.0, 2.0, 3.0]), L, q, np.pi)  # a half turn about the major axis
+    >>> np.round(q, 12) + 0.0
+    array([0., 0., 1., 0.])
+    """
+    free_flow_into(I, L, q, h, np.empty(WORK))
