@@ -40,25 +40,13 @@ from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties, principal_frame
 from ..typing import ArrayLike
+from ._part_fields import _NOT_NUMBERS, _is_number, _perturb, _replace, _unit, _width
 from .sampling import DISTRIBUTIONS, deviates
 
 __all__ = ["TARGETS", "BodySampler", "Dispersion", "Sampled"]
 
 #: What a dispersion can act on.
 TARGETS = ("preset", "part", "moments", "axes")
-#: Part fields that are orientations, not numbers: not dispersed (use target "axes").
-_NOT_NUMBERS = ("axis", "rotation", "subtract", "spin_acceleration")
-
-
-def _unit(field: str) -> str:
-    """The SI unit of a part field or preset parameter, from its name."""
-    if "density" in field:
-        return "kg/m^3"
-    if "mass" in field:
-        return "kg"
-    if "spin" in field:
-        return "rad/s"
-    return "m"
 
 
 @dataclass(frozen=True)
@@ -169,25 +157,6 @@ class Sampled:
     moments: np.ndarray
     axes: np.ndarray
     values: np.ndarray
-
-
-def _is_number(v) -> bool:
-    return not isinstance(v, (bool, np.bool_)) and isinstance(v, (int, float, np.integer, np.floating))
-
-
-def _width(value) -> int:
-    """1 for a number, 3 for a vector of 3 numbers, 0 for anything else."""
-    if _is_number(value):
-        return 1
-    if isinstance(value, tuple) and len(value) == 3 and all(_is_number(v) for v in value):
-        return 3
-    return 0
-
-
-def _perturb(value, d: Dispersion, z: np.ndarray):
-    v = np.asarray(value, dtype=float)
-    out = v * (1.0 + d.spread * z) if d.relative else v + d.spread * z
-    return float(out[0]) if out.shape == (1,) and np.ndim(value) == 0 else tuple(float(x) for x in out)
 
 
 @dataclass(frozen=True, eq=False)
@@ -466,14 +435,14 @@ class BodySampler:
             nominal = self._nominal_parameters()
             for k in by_target["preset"]:
                 d = self.dispersions[k]
-                kwargs[d.field] = _perturb(nominal[d.field], d, drawn[k])
+                kwargs[d.field] = _perturb(nominal[d.field], d.spread, d.relative, drawn[k])
                 values[k] = np.atleast_1d(kwargs[d.field])
             body = PRESETS[self.preset](**kwargs)
         if by_target["part"]:
             parts = list(body.parts)
             for k in by_target["part"]:
                 d = self.dispersions[k]
-                new = _perturb(getattr(parts[d.part], d.field), d, drawn[k])
+                new = _perturb(getattr(parts[d.part], d.field), d.spread, d.relative, drawn[k])
                 parts[d.part] = _replace(parts[d.part], d.field, new)
                 values[k] = np.atleast_1d(new)
             body = Body(tuple(parts), body.name)
@@ -494,14 +463,3 @@ class BodySampler:
             raise ValueError(f"principal moments {moments.tolist()} kg m^2 include a zero moment")
         flat = [values[k] for k in range(len(self.dispersions))]
         return Sampled(np.array(moments), np.array(axes), np.concatenate(flat) if flat else np.empty(0))
-
-
-def _replace(part, field: str, value):
-    """``part`` with ``field = value``: by density its mass follows, by mass its mass stays."""
-    if field == "mass":
-        return dataclasses.replace(part, mass=value, density=None)
-    if field == "density":
-        return dataclasses.replace(part, density=value, mass=None)
-    if part.density is not None:
-        return dataclasses.replace(part, **{field: value, "mass": None})
-    return dataclasses.replace(part, **{field: value})
