@@ -48,13 +48,14 @@ from typing import Any
 
 from ..dynamics import METHODS, ConstantTorque, SphericalDamper
 from ..dynamics.environment.earth import MU_EARTH
-from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
+from ..dynamics.models.gravity import GravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
-from ..mass import PRESETS, Body, MassProperties
+from ..mass import PRESETS, Body
 from ..typing import ArrayLike
-from ..validation import NoSuchFileError, short_repr
+from ..validation import NoSuchFileError
 from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import ControlScenario, is_control_file, load_control_scenario
+from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .keys import FileFormat, Key, Table
 from .provenance import file_sha256
 
@@ -107,15 +108,7 @@ SCENARIO_FORMAT = FileFormat("scenario", (
         Key("orbit_frame", "table", example="{pitch = 0.01}",
             doc="instead of omega: start at rest in the orbiting frame (needs the gravity-gradient torque)"),
     ), "The initial spin: ``omega`` (required) or ``[initial.orbit_frame]``."),
-    Table("[initial.orbit_frame]", (
-        Key("roll", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
-        Key("pitch", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
-        Key("yaw", "number", "rad", "0.0", example="0.01", doc="offset from the orbiting frame"),
-        Key("pitch_axis", "whole number or string", "", "3", allowed='1, 2, 3, "minor", "intermediate", "major"',
-            example="3", doc="the principal axis along the orbit normal"),
-        Key("yaw_axis", "whole number or string", "", "1", allowed='1, 2, 3, "minor", "intermediate", "major"',
-            example="1", doc="the principal axis along the radius (the third is the roll axis)"),
-    ), "A body at rest in the orbiting (LVLH) frame of the ``[torque]`` orbit, turned by pitch, roll, yaw."),
+    ORBIT_FRAME_TABLE,
     Table("[simulation]", (
         _T_END, _SAMPLES,
         Key("dt", "number", "s", example="0.01", low=0.0, doc="the sample interval, instead of samples"),
@@ -442,75 +435,3 @@ def _override(scenario: Scenario, given: dict, where: str) -> Scenario:
     except ValueError as exc:
         raise ValueError(f"{where}{exc}") from None
     return updated
-
-
-_TORQUE_KEYS = ("kind", "orbit_period", "orbit_radius", "mu")
-_LVLH_KEYS = SCENARIO_FORMAT.table("[initial.orbit_frame]").names()
-
-
-def _check_keys(where: str, table, allowed) -> None:
-    if not isinstance(table, dict):
-        raise ValueError(f"{where} must be a table, not {short_repr(table)}")
-    for key in table:
-        if key not in allowed:
-            raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
-
-
-def gravity_gradient_from_table(table: dict) -> GravityGradient:
-    """A :class:`GravityGradient` from a scenario file's ``[torque]`` table.
-
-    Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
-    ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
-    missing key, or a bad value, raises ``ValueError`` with one line starting ``torque:``.
-
-    Examples
-    --------
-    >>> import math
-    >>> from tumble.io.scenario import gravity_gradient_from_table
-    >>> gg = gravity_gradient_from_table({"kind": "gravity_gradient", "orbit_period": 5400.0})
-    >>> math.isclose(gg.mean_motion, 2 * math.pi / 5400.0)  # n = 2 pi / T, rad/s
-    True
-    >>> gravity_gradient_from_table({"orbit_period": 5400.0, "altitude": 4e5})
-    Traceback (most recent call last):
-    ...
-    ValueError: torque: unknown key 'altitude'; allowed: kind, orbit_period, orbit_radius, mu
-    """
-    _check_keys("torque", table, _TORQUE_KEYS)
-    if "kind" in table and table["kind"] != "gravity_gradient":
-        raise ValueError(f"torque: kind = {table['kind']!r} is not 'gravity_gradient'")
-    if "orbit_period" not in table and "orbit_radius" not in table:
-        raise ValueError("torque: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
-    try:
-        return GravityGradient(orbit_period=table.get("orbit_period"), orbit_radius=table.get("orbit_radius"),
-                               mu=table.get("mu", MU_EARTH))
-    except ValueError as exc:
-        raise ValueError(f"torque: {exc}") from None
-
-
-def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassProperties) -> LVLHState:
-    """:func:`lvlh_state` from a scenario file's ``[initial.orbit_frame]`` table.
-
-    Keys, all optional: ``roll``, ``pitch``, ``yaw`` (rad, default 0), ``pitch_axis`` (default 3)
-    and ``yaw_axis`` (default 1). An unknown key or a bad value raises ``ValueError`` with one
-    line starting ``initial.orbit_frame:``.
-
-    Examples
-    --------
-    >>> import tumble
-    >>> from tumble.io.scenario import gravity_gradient_from_table, lvlh_state_from_table
-    >>> gg = gravity_gradient_from_table({"orbit_period": 5400.0})
-    >>> state = lvlh_state_from_table({"pitch": 0.1}, gg, tumble.t_handle())
-    >>> import numpy as np
-    >>> bool(np.allclose(state.omega0, [0.0, 0.0, 2 * np.pi / 5400.0]))  # once per orbit about pitch axis 3, rad/s
-    True
-    >>> round(float(state.attitude.magnitude()), 12)  # pitched by 0.1 rad from the orbit frame
-    0.1
-    """
-    _check_keys("initial.orbit_frame", table, _LVLH_KEYS)
-    for key in ("roll", "pitch", "yaw"):
-        if key in table and (isinstance(table[key], bool) or not isinstance(table[key], (int, float))):
-            raise ValueError(f"initial.orbit_frame: {key} = {table[key]!r} must be a number (rad)")
-    try:
-        return lvlh_state(gg, body, **table)
-    except ValueError as exc:
-        raise ValueError(f"initial.orbit_frame: {exc}") from None
