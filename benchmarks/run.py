@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-SUITES = ["bench_mass", "bench_dynamics", "bench_engine", "bench_batch", "bench_torqued", "bench_exact_split", "bench_sweep", "bench_fit", "bench_pool", "bench_tensor",
+SUITES = ["bench_mass", "bench_dynamics", "bench_engine", "bench_models", "bench_closed_loop", "bench_call",
+          "bench_work_precision", "bench_batch", "bench_torqued", "bench_exact_split", "bench_sweep", "bench_fit", "bench_pool", "bench_tensor",
           "bench_basilisk", "bench_basilisk_control", "bench_detumble_mc"]
 
 
@@ -91,6 +92,9 @@ def main(argv=None) -> int:
     out = HERE / "results" / "quick" if args.quick else HERE / "results"
     out.mkdir(parents=True, exist_ok=True)
     sys.path.insert(0, str(HERE))
+    from _harness import peers
+
+    peers()  # the shared reference peers, unchanged: a clear error here if they are missing
     for name in args.suite or SUITES:
         module = importlib.import_module(name)
         if hasattr(module, "run"):  # a suite that measures and tabulates itself
