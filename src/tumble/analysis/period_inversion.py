@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..typing import ArrayLike
+from ..validation import triangle_excess
 from . import _display
 from .periods import npa_periods
 
@@ -134,7 +135,8 @@ def periods_consistent(P_phi: float, P_psi: float, *, ratios: ArrayLike | None =
         xy = np.stack([(1.0 - Y + (2 * Y - 1) * F).ravel(), Y.ravel()], axis=1)
     else:
         xy = np.asarray(ratios, float).reshape(-1, 2)
-        bad = np.flatnonzero(~((xy[:, 0] > 0) & (xy[:, 0] < xy[:, 1]) & (xy[:, 1] < 1.0) & (xy[:, 0] + xy[:, 1] >= 1.0)))
+        bad = np.flatnonzero(~((xy[:, 0] > 0) & (xy[:, 0] < xy[:, 1]) & (xy[:, 1] < 1.0)
+                               & (triangle_excess(np.column_stack([xy, np.ones(len(xy))])) <= 0.0)))
         if bad.size:
             raise ValueError(f"ratios[{bad[0]}] = {xy[bad[0]].tolist()} must satisfy 0 < I1/I3 < I2/I3 < 1 and "
                              "I1/I3 + I2/I3 >= 1")

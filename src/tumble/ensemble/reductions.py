@@ -46,6 +46,7 @@ from ..analysis import circulation_axis, energy_momentum_gaps, flip_interval, li
 from ..dynamics.special.quaternion import rotate_by_quaternion
 from ..mass import INERTIA_RTOL
 from ..typing import ArrayLike
+from ..validation import triangle_excess
 from . import _display
 from .cases import CaseInputs
 
@@ -315,7 +316,7 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     ny = resolution // 2
     y = 0.5 + 0.5 * (np.arange(ny) + 0.5) / ny
     X, Y = np.meshgrid(x, y)
-    inside = (X < Y) & (Y < 1.0) & (X + Y > 1.0)
+    inside = (X < Y) & (Y < 1.0) & (triangle_excess(np.stack([X, Y, np.ones_like(X)], axis=-1)) < 0.0)
     moments = np.stack([X[inside], Y[inside], np.ones(inside.sum())], axis=-1)
     w0 = float(spin) * np.array([p[0], 1.0, p[1]])
     interval, growth, gap = (np.full(X.shape, np.nan) for _ in range(3))

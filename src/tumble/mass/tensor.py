@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, SupportsFloat, SupportsInt, cast
 import numpy as np
 
 from ..typing import ArrayLike, BoolArray, FloatArray, Matrix3, Vector3
-from ..validation import AXIS_ROLES, INERTIA_RTOL, check_vectors, refuse_first
+from ..validation import AXIS_ROLES, INERTIA_RTOL, check_vectors, refuse_first, triangle_excess
 
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
@@ -246,7 +246,7 @@ def check_inertia(inertia: ArrayLike, *, rtol: float = INERTIA_RTOL, what: str =
             f"{_fmt(moments[idx])} kg m^2; a moment of inertia is an integral of "
             f"mass x distance^2 and cannot be negative"
         )
-    excess = moments[..., 2] - moments[..., 0] - moments[..., 1]
+    excess = triangle_excess(moments)
     bad = excess > tol
     if np.any(bad):
         idx = tuple(np.argwhere(bad)[0]) if batch else ()

@@ -33,6 +33,7 @@ from .values import (
     check_vectors,
     refuse_first,
     short_repr,
+    triangle_excess,
 )
 
 __all__ = [
@@ -61,4 +62,5 @@ __all__ = [
     "read_input_file",
     "refuse_first",
     "short_repr",
+    "triangle_excess",
 ]

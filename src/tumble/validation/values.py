@@ -2,7 +2,7 @@
 
 Each checker returns the cleaned value or raises ``ValueError`` whose message names the field,
 the value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``. The
-triangle inequality on principal moments is written here once (:func:`breaks_triangle`); every
+triangle inequality on principal moments is written here once (:func:`triangle_excess`); every
 other check of it calls that. Units are SI. Re-exported by :mod:`tumble.validation`.
 """
 
@@ -37,6 +37,7 @@ __all__ = [
     "check_vectors",
     "refuse_first",
     "short_repr",
+    "triangle_excess",
 ]
 
 #: Names of the principal axes in ascending order of moment.
@@ -280,10 +281,31 @@ def check_moments(field: str, value: ArrayLike) -> Vector3:
     return I
 
 
+def triangle_excess(moments: ArrayLike) -> FloatArray:
+    """How far principal moments ``(..., 3)``, in any order, exceed the triangle inequality: the
+    largest minus the sum of the other two, ``2 max(I) - trace`` (kg m^2, or the moments' unit).
+
+    The one writing of the triangle inequality ``I1 + I2 >= I3`` (Goldstein sec. 5.4: it follows
+    from ``I_a + I_b - I_c = 2 integral rho r_c^2 dV >= 0``): zero for a planar body, negative
+    inside, positive for moments no distribution of positive mass has. Every check of it calls
+    this (:func:`breaks_triangle`, :func:`tumble.mass.check_inertia`, the fits' and the maps'
+    triangles of ratios ``(I1/I3, I2/I3, 1)``).
+
+    Examples
+    --------
+    >>> from tumble.validation import triangle_excess
+    >>> triangle_excess([[1.0, 2.0, 3.0], [0.1, 1.0, 0.2], [3.0, 4.0, 5.0]]).tolist()   # planar, broken, inside
+    [0.0, 0.7, -2.0]
+    """
+    I = np.asarray(moments, dtype=float)
+    return cast(FloatArray, 2.0 * np.max(I, axis=-1) - np.sum(I, axis=-1))
+
+
 def breaks_triangle(moments: ArrayLike) -> BoolArray:
     """Whether principal moments ``(..., 3)``, in any order, break the triangle inequality: the
-    largest exceeds the sum of the other two by more than :data:`INERTIA_RTOL` of the trace
-    (Goldstein sec. 5.4: no distribution of positive mass has such moments).
+    largest exceeds the sum of the other two (:func:`triangle_excess`) by more than
+    :data:`INERTIA_RTOL` of the trace (Goldstein sec. 5.4: no distribution of positive mass has
+    such moments).
 
     Examples
     --------
@@ -292,8 +314,7 @@ def breaks_triangle(moments: ArrayLike) -> BoolArray:
     [False, True, False]
     """
     I = np.asarray(moments, dtype=float)
-    total = np.sum(I, axis=-1)
-    return cast(BoolArray, 2.0 * np.max(I, axis=-1) - total > INERTIA_RTOL * total)
+    return cast(BoolArray, triangle_excess(I) > INERTIA_RTOL * np.sum(I, axis=-1))
 
 
 AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"

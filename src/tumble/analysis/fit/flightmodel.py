@@ -20,7 +20,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike
-from ...validation import check_number, check_vector
+from ...validation import check_number, check_vector, triangle_excess
 from .. import _display
 from .model import DRAG_MODELS, principal_rates
 from .result import RotationFit
@@ -103,7 +103,7 @@ class FlightModel:
         x, y = (check_number(f"{name}{k}", v, "dimensionless") for k, v in
                 zip(("I1_over_I3", "I2_over_I3"), _pair(self.ratios, name)))
         # the closed triangle of a rigid body (tumble.analysis.fit.triangle), with room for round-off
-        if not (0.0 < x <= y + 1e-12 and y <= 1.0 + 1e-12 and x + y >= 1.0 - 1e-9):
+        if not (0.0 < x <= y + 1e-12 and y <= 1.0 + 1e-12 and triangle_excess((x, y, 1.0)) <= 1e-9):
             raise ValueError(f"{name}I1_over_I3, I2_over_I3 = {x}, {y} must lie in the triangle of a rigid body: "
                              "0 < I1/I3 <= I2/I3 <= 1 and I1/I3 + I2/I3 >= 1")
         object.__setattr__(self, "ratios", np.array([x, y]))
