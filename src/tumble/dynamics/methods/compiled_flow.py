@@ -35,7 +35,7 @@ import numpy as np
 from ...jit import jit
 from ...typing import FloatArray
 
-__all__ = ["WORK", "free_flow", "free_flow_into"]
+__all__ = ["WORK", "free_flow", "free_flow_into", "start_phase"]
 
 _EPS = 2.0 ** -52
 #: Doubles of scratch space :func:`free_flow_into` needs: the Landen sequence (2 x 40), omega (3),
@@ -99,9 +99,9 @@ def _rj(x: float, y: float, z: float, p: float) -> float:
 
 
 @jit(error_model="numpy")
-def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, float, float]:
-    """``sn, cn, dn`` of ``|v| <= K`` for ``m = k2``, ``k' = kp`` (A&S 16.4, the AGM of
-    ``(1, k')`` and the descending Landen transformation); ``work[:80]`` holds the sequence."""
+def _agm(k2: float, kp: float, work: FloatArray) -> int:
+    """The AGM of ``(1, k')`` with ``c_i`` (A&S 16.4, 17.6) into ``work[:40]`` and ``work[40:80]``;
+    returns its length ``n``: ``K = pi / (2 work[n])``."""
     a, b, c = 1.0, kp, math.sqrt(k2)
     work[0], work[40] = a, c
     n = 0
@@ -109,6 +109,13 @@ def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, fl
         a, b, c = 0.5 * (a + b), math.sqrt(a * b), 0.5 * (a - b)
         n += 1
         work[n], work[40 + n] = a, c
+    return n
+
+
+@jit(error_model="numpy")
+def _landen(v: float, n: int, kp: float, work: FloatArray) -> tuple[float, float, float]:
+    """``sn, cn, dn`` of ``|v| <= K`` by the descending Landen transformation (A&S 16.4) over
+    the sequence :func:`_agm` left in ``work``."""
     phi = (2.0 ** n) * work[n] * v
     for i in range(n, 0, -1):
         phi = 0.5 * (phi + math.asin(max(-1.0, min(1.0, work[40 + i] / work[i] * math.sin(phi)))))
@@ -117,11 +124,39 @@ def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, fl
 
 
 @jit(error_model="numpy")
+def _jacobi(v: float, k2: float, kp: float, work: FloatArray) -> tuple[float, float, float]:
+    """``sn, cn, dn`` of ``|v| <= K`` for ``m = k2``, ``k' = kp`` (A&S 16.4, the AGM of
+    ``(1, k')`` and the descending Landen transformation); ``work[:80]`` holds the sequence."""
+    return _landen(v, _agm(k2, kp, work), kp, work)
+
+
+@jit(error_model="numpy")
 def _excess(n: float, s: float, c: float, d: float) -> float:
     """``Pi(n; phi | m) - F(phi | m)`` for ``|phi| <= pi/2`` from ``s, c >= 0, d`` (DLMF 19.25.14)."""
     if n == 0.0 or s == 0.0:
         return 0.0
     return n / 3.0 * s * s * s * _rj(c * c, d * d, 1.0, 1.0 - n * s * s)
+
+
+@jit(error_model="numpy")
+def start_phase(s0: float, c0: float, kp2: float) -> tuple[float, float, float, float]:
+    """``sn, cn, dn`` of the reduced phase ``u_r`` (``|u_r| <= K``, so ``cn >= 0``) of a motion
+    whose ``sn`` and ``cn`` are proportional to ``s0`` and ``c0``, and the half periods ``j0``
+    (-1, 0 or 1) from ``u_r`` to its phase ``u = 2 K j0 + u_r``; ``kp2 = 1 - m``.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.compiled_flow import start_phase
+    >>> start_phase(0.0, -2.0, 0.5)   # cn = -1: one half period from u_r = 0
+    (-0.0, 1.0, 1.0, 1.0)
+    """
+    hyp = math.hypot(s0, c0)
+    s0, c0 = s0 / hyp, c0 / hyp
+    j0 = 0.0
+    if c0 < 0.0:
+        j0 = 1.0 if s0 >= 0.0 else -1.0
+        s0, c0 = -s0, -c0
+    return s0, c0, math.sqrt(c0 * c0 + kp2 * s0 * s0), j0
 
 
 @jit(error_model="numpy")
@@ -220,14 +255,7 @@ def free_flow_into(I: FloatArray, L: FloatArray, q: FloatArray, h: float,
     K = 0.5 * math.pi / a
     n = -Ir * (I2 - Ic) / (Ic * (Ir - I2))
     # the phase at the start: sn = w2 / a2, cn = w_c / (s a_c), reduced to cn >= 0
-    s0, c0 = w[1] / a_2, w[c] / (sign * a_c)
-    hyp = math.hypot(s0, c0)
-    s0, c0 = s0 / hyp, c0 / hyp
-    j0 = 0.0
-    if c0 < 0.0:
-        j0 = 1.0 if s0 >= 0.0 else -1.0
-        s0, c0 = -s0, -c0
-    d0 = math.sqrt(c0 * c0 + kp2 * s0 * s0)
+    s0, c0, d0, j0 = start_phase(w[1] / a_2, w[c] / (sign * a_c), kp2)
     u0 = 2.0 * K * j0 + s0 * _rf(c0 * c0, d0 * d0, 1.0)
     x0 = _excess(n, s0, c0, d0)
     # the phase at h, reduced by half periods

@@ -17,10 +17,11 @@ from typing import Literal, cast, overload
 
 import numpy as np
 
-from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
+from ...jit import PARALLEL_BODIES, cores
+from ...typing import ArrayLike, FloatArray, IntArray, Quaternion, Vector3
 from .exact import MAX_PHASE, check_phase_limit
 from .exact_kernel import EllipticMotion, is_steady, steady_attitude
-from .exact_parameters import run_chunks
+from .exact_parameters import COMPILED_BODIES, compiled_kernels, run_chunks
 
 __all__ = ["free_rotation_batch"]
 
@@ -86,6 +87,34 @@ def free_rotation_batch(
     I, w, q0 = (np.asarray(a, float) for a in (moments, omega0, quat0))
     t = np.asarray(t, float)
     _check_phases(I, w, t)
+    if len(I) < COMPILED_BODIES:
+        return _double_double(I, w, q0, t, attitude)
+    omega = np.empty((len(I), len(t), 3))
+    quat = np.empty((len(I), len(t), 4))
+    left = _compiled(I, w, q0, t, attitude, omega, quat)
+    if left.size:  # the bodies double precision cannot take (compiled_exact's docstring)
+        omega[left], rest = _double_double(I[left], w[left], q0[left], t, attitude)
+        if attitude:
+            quat[left] = rest
+    return omega, (quat if attitude else None)
+
+
+def _compiled(I: Vector3, w: Vector3, q0: Quaternion, t: FloatArray, attitude: bool, omega: Vector3,
+              quat: Quaternion) -> IntArray:
+    """The compiled kernel over every body, on every core for a large batch, into ``omega`` and
+    ``quat``; the indices of the bodies it left to the double-double path."""
+    kernels = compiled_kernels()
+    kernel = kernels.motion_parallel if len(I) >= PARALLEL_BODIES and cores() > 1 else kernels.motion_serial
+    done = np.empty(len(I), dtype=np.bool_)
+    kernel(np.ascontiguousarray(I), np.ascontiguousarray(w), np.ascontiguousarray(q0), np.ascontiguousarray(t),
+           attitude, omega, quat, done)
+    return np.flatnonzero(~done)
+
+
+def _double_double(I: Vector3, w: Vector3, q0: Quaternion, t: FloatArray,
+                   attitude: bool) -> tuple[Vector3, Quaternion | None]:
+    """The double-double path (:class:`~tumble.dynamics.methods.exact_kernel.EllipticMotion`)
+    for every body, in chunks on every core."""
     N, T = len(I), len(t)
     omega = np.empty((N, T, 3))
     quat = np.empty((N, T, 4)) if attitude else None

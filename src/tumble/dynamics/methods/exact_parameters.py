@@ -22,19 +22,45 @@ added here is only how they are evaluated:
 from __future__ import annotations
 
 import contextvars
+import functools
 import math
 import os
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
+from types import ModuleType
 from typing import Any, NamedTuple, TypeAlias, TypedDict, cast
 
 import numpy as np
 
+from ...jit import PARALLEL_BODIES, cores
 from ...typing import ArrayLike, BoolArray, FloatArray, FloatOrArray, IntArray
 from ..special import ddouble as dd
 from ..special.ddouble import DoubleDouble
 
-__all__ = ["EllipticParameters", "elliptic_parameters"]
+__all__ = ["COMPILED_BODIES", "EllipticParameters", "compiled_kernels", "elliptic_parameters"]
+
+#: Motions from which the batches run compiled (:mod:`tumble.dynamics.methods.compiled_exact`:
+#: :func:`elliptic_parameters` here, :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch`),
+#: in double precision with the double-double path taking the motions the kernel marks; below,
+#: the first call's import of numba and load of the cached kernels (~0.3 s) is not paid back.
+COMPILED_BODIES = 4096
+
+
+@functools.cache
+def compiled_kernels() -> ModuleType:
+    """The compiled kernels of the exact motion (:mod:`tumble.dynamics.methods.compiled_exact`),
+    imported on first use: that import imports numba and compiles (or loads from numba's cache)
+    every kernel, which ``import tumble`` never does.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.exact_parameters import compiled_kernels
+    >>> compiled_kernels().__name__
+    'tumble.dynamics.methods.compiled_exact'
+    """
+    from . import compiled_exact
+
+    return compiled_exact
 
 
 #: Motions that :func:`elliptic_parameters` takes at once: its double-double temporaries stay in
@@ -224,12 +250,19 @@ def elliptic_parameters(omega: ArrayLike, moments: ArrayLike) -> EllipticParamet
     w, I = np.asarray(omega, float), np.asarray(moments, float)
     if w.ndim > 1 or I.ndim > 1:
         w, I = np.broadcast_arrays(w, I)
-        if w[..., 0].size > _CHUNK:  # many motions: in chunks that stay in cache, each as alone
-            flat_w, flat_I = w.reshape(-1, 3), I.reshape(-1, 3)
-            parts = run_chunks(lambda s: elliptic_parameters(flat_w[s:s + _CHUNK], flat_I[s:s + _CHUNK]),
-                               range(0, len(flat_w), _CHUNK))
-            return EllipticParameters(*(np.concatenate(x).reshape(w.shape[:-1] + np.shape(x[0])[1:])
-                                        for x in zip(*parts)))
+        if w[..., 0].size >= COMPILED_BODIES:
+            return _compiled_parameters(w, I)
+    return _parameters(w, I)
+
+
+def _parameters(w: FloatArray, I: FloatArray) -> EllipticParameters:
+    """:func:`elliptic_parameters` in double-double (moments and omega broadcast already)."""
+    if w.ndim > 1 and w[..., 0].size > _CHUNK:  # many motions: in chunks that stay in cache, each as alone
+        flat_w, flat_I = w.reshape(-1, 3), I.reshape(-1, 3)
+        parts = run_chunks(lambda s: _parameters(flat_w[s:s + _CHUNK], flat_I[s:s + _CHUNK]),
+                           range(0, len(flat_w), _CHUNK))
+        return EllipticParameters(*(np.concatenate(x).reshape(w.shape[:-1] + np.shape(x[0])[1:])
+                                    for x in zip(*parts)))
     c = scaled_core(w, I)
 
     def value(x: Scaled, power: int = 1) -> FloatOrArray:
@@ -239,3 +272,22 @@ def elliptic_parameters(omega: ArrayLike, moments: ArrayLike) -> EllipticParamet
 
     fields = (c["upper"], c["p"][0], value(c["k"], 2), value(c["kp"], 2), c["amplitudes"], value(c["k"]), value(c["kp"]))
     return EllipticParameters(*(np.asarray(x)[()] for x in fields))  # numpy types, as numpy math gives
+
+
+def _compiled_parameters(w: FloatArray, I: FloatArray) -> EllipticParameters:
+    """:func:`elliptic_parameters` of many motions by the compiled kernel
+    (:func:`tumble.dynamics.methods.compiled_exact.parameters_body`, double precision, every
+    core), the motions it marks (next to the separatrix, steady, out of range) in double-double."""
+    shape = w.shape[:-1]
+    flat_w, flat_I = (np.ascontiguousarray(a.reshape(-1, 3)) for a in (w, I))
+    N = len(flat_w)
+    out, done = np.empty((N, 9)), np.empty(N, dtype=np.bool_)
+    kernels = compiled_kernels()
+    kernel = kernels.parameters_parallel if N >= PARALLEL_BODIES and cores() > 1 else kernels.parameters_serial
+    kernel(flat_I, flat_w, out, done)
+    fields = [out[:, 0] != 0.0, out[:, 1], out[:, 2], out[:, 3], out[:, 4:7], out[:, 7], out[:, 8]]
+    left = np.flatnonzero(~done)
+    if left.size:
+        for field, rest in zip(fields, _parameters(flat_w[left], flat_I[left])):
+            field[left] = rest
+    return EllipticParameters(*(np.ascontiguousarray(f).reshape(shape + f.shape[1:]) for f in fields))
