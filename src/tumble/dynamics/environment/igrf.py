@@ -40,7 +40,7 @@ import numpy as np
 from ..._optional import optional_import
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_positive
-from .earth import OMEGA_EARTH
+from .earth import earth_angle
 from .sidereal import greenwich_sidereal_angle, julian_date, utc_datetime
 from .tabulated import MARGIN, CubicTable, horner, spline_table
 
@@ -177,7 +177,7 @@ class IGRFField:
 
     def _evaluate(self, t: FloatArray) -> FloatArray:
         r_eci = np.asarray(self.orbit.position_eci(t), float).reshape(-1, 3)
-        theta = self.gmst0 + OMEGA_EARTH * t
+        theta = earth_angle(self.gmst0, t)
         c, s = np.cos(theta), np.sin(theta)
         x, y = c * r_eci[:, 0] + s * r_eci[:, 1], -s * r_eci[:, 0] + c * r_eci[:, 1]  # ECEF = R3(theta) ECI
         z = r_eci[:, 2]

@@ -24,21 +24,44 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
 from ...typing import FloatArray, Vector3
 from ...validation import check_bool, check_number, check_vector
-from .earth import OMEGA_EARTH
+from .earth import earth_angle
 from .orbit import CircularOrbit
 
-__all__ = ["IGRF13_2020", "IGRF_RADIUS", "DipoleField", "MagneticField", "UniformField"]
+__all__ = ["IGRF13_2020", "IGRF_RADIUS", "DipoleField", "MagneticField", "UniformField", "dipole_components"]
 
 #: IGRF-13 degree-1 Gauss coefficients at epoch 2020.0 (g10, g11, h11), T (Alken et al. 2021).
 IGRF13_2020 = (-29404.8e-9, -1450.9e-9, 4652.5e-9)
 #: IGRF reference radius, m.
 IGRF_RADIUS = 6371.2e3
+
+
+def dipole_components(g0: Any, g1: Any, g2: Any, x0: Any, x1: Any, x2: Any) -> tuple[Any, Any, Any]:
+    """The dipole's field ``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r = (x0, x1, x2)`` (m), T.
+
+    ``g = (g0, g1, g2)`` the Gauss vector ``(g11, h11, g10)`` (T) in the frame of ``r`` (the
+    Earth-fixed frame), ``a`` :data:`IGRF_RADIUS` (module docstring). The one writing of the
+    dipole, component by component: floats (a compiled kernel) or arrays of one shape
+    (:meth:`DipoleField.ecef` calls it on columns).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.environment.magnetic import IGRF_RADIUS, dipole_components
+    >>> r = 2 * IGRF_RADIUS   # an axial dipole over its pole: 2 |g| (a/r)^3, along the axis
+    >>> [round(float(b) * 8 / 3e-5, 12) + 0.0 for b in dipole_components(0.0, 0.0, -3e-5, 0.0, 0.0, r)]   # + 0.0: no -0.0
+    [0.0, 0.0, -2.0]
+    """
+    rn = np.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
+    u0, u1, u2 = x0 / rn, x1 / rn, x2 / rn
+    f = IGRF_RADIUS / rn
+    f = f * f * f
+    gu = 3.0 * (u0 * g0 + u1 * g1 + u2 * g2)
+    return f * (gu * u0 - g0), f * (gu * u1 - g1), f * (gu * u2 - g2)
 
 
 @runtime_checkable
@@ -199,10 +222,8 @@ class DipoleField:
         True
         """
         r = np.asarray(r_ecef, float)
-        rn = np.linalg.norm(r, axis=-1, keepdims=True)
-        u = r / rn
-        g = self.gauss_vector
-        return np.asarray((IGRF_RADIUS / rn) ** 3 * (3.0 * (u @ g)[..., None] * u - g), float)
+        g10, g11, h11 = self.coefficients
+        return np.stack(dipole_components(g11, h11, g10, r[..., 0], r[..., 1], r[..., 2]), axis=-1)
 
     def world(self, t: float) -> Vector3:
         """B at ``t`` (s) in the world (orbit-plane) frame, T.
@@ -224,7 +245,7 @@ class DipoleField:
         >>> math.isclose(equator, b0), math.isclose(pole, 2 * b0)
         (True, True)
         """
-        theta = self.gmst0 + (OMEGA_EARTH * float(t) if self.earth_rotation else 0.0)
+        theta = earth_angle(self.gmst0, float(t)) if self.earth_rotation else self.gmst0
         c, s = math.cos(theta), math.sin(theta)
         eci_from_ecef = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
         world_from_ecef = self._world_from_eci @ eci_from_ecef
