@@ -35,6 +35,8 @@ from typing import Protocol
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from ...dynamics.euler import euler_rhs
+
 
 class TossBody(Protocol):
     """What these functions read of a :class:`~tumble.analysis.fit.synthetic.TossBody`."""
@@ -142,7 +144,7 @@ def after_landing(rng: np.random.Generator, body: TossBody, tau: np.ndarray, len
         w0 = size * _unit(rng)
         sel = (tau >= t0) & (tau < t0 + hop)
         if np.any(sel):
-            sol = solve_ivp(lambda _, x: np.cross(I * x, x) / I, (0.0, hop), w0, method="DOP853", rtol=1e-9,
+            sol = solve_ivp(lambda _, x: euler_rhs(x, I), (0.0, hop), w0, method="DOP853", rtol=1e-9,
                             atol=1e-10, dense_output=True)
             w[sel] = sol.sol(tau[sel] - t0).T
         t0 += hop
@@ -185,7 +187,7 @@ def gyrostat_flight(body: TossBody, w0: np.ndarray, duration: float, times: np.n
         on = s < ramp
         h = h_final * (s / ramp if on else 1.0) * a
         hdot = (h_final / ramp if on else 0.0) * a
-        return (np.cross(I * w + h, w) - hdot + drag(w)) / I
+        return euler_rhs(w, I, np.cross(h, w) - hdot + drag(w))  # the rotor on the body: h x w - h'
 
     sol = solve_ivp(rhs, (0.0, duration), w0, method="DOP853", rtol=1e-9, atol=1e-10, dense_output=True,
                     max_step=ramp / 4)

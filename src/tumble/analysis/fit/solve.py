@@ -321,9 +321,10 @@ def with_drag_law_error(sol: Solution, data: np.ndarray, mask: np.ndarray, *, ma
     >>> from tumble.analysis.fit.solve import solve, with_drag_law_error
     >>> from tumble.analysis.fit.synthetic import TOSS_BODIES, plate_drag_torque
     >>> from scipy.integrate import solve_ivp
+    >>> from tumble.dynamics.euler import euler_rhs
     >>> body = TOSS_BODIES["racquet"]; I = np.array(body.moments)
     >>> def rate(t, w):   # Euler's equations with the racquet's plate drag, a drag neither law describes
-    ...     return (np.cross(I * w, w) + plate_drag_torque(body, w)) / I
+    ...     return euler_rhs(w, I, plate_drag_torque(body, w))
     >>> t = np.linspace(0.0, 1.0, 401)
     >>> w = solve_ivp(rate, (0.0, 1.0), [0.3, 12.0, 0.4], t_eval=t, method="DOP853", rtol=1e-10, atol=1e-10).y.T
     >>> w = w + np.random.default_rng(1).normal(0.0, 0.005, w.shape)

@@ -44,6 +44,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
+from ...dynamics.euler import euler_rhs
 from .. import _display
 from .accelsynth import SyntheticAccel, synthetic_accel
 from .tossbody import RHO_AIR, TOSS_BODIES, TossBody, plate_drag_torque  # noqa: F401 - re-exported
@@ -60,7 +61,7 @@ def _flight(body: TossBody, w0, duration, times):
     I = np.asarray(body.moments, float)
 
     def rhs(_, w):
-        return (np.cross(I * w, w) + plate_drag_torque(body, w)) / I
+        return euler_rhs(w, I, plate_drag_torque(body, w))
 
     sol = solve_ivp(rhs, (0.0, duration), w0, method="DOP853", rtol=1e-9, atol=1e-10, dense_output=True)
     return sol.sol(times).T
