@@ -5,7 +5,7 @@
   nothing else (its default method, tolerances and 500 samples), on ``bench_engine``'s four
   one-body cases. Its errors against the reference are the accuracy asked of the peer (RK4 and
   RK8 at the smallest ``k`` steps per sample interval that meet both, at the same 500 samples),
-  no finer than the reference can tell (its difference from the solve at rtol 1e-12).
+  no finer than the reference can tell (twice its difference from the solve at rtol 1e-12).
   Target: within 1.5x of the peer, ratio = the peer's best / tumble's >= 0.667.
 - **The fixed cost**: a 2-sample run of one step (``method="rk8"``, ``step = t_end = 0.01`` s, a
   constant body torque; and the gravity gradient), the whole call, less the kernel's time, taken
@@ -58,8 +58,9 @@ def default_calls(repeat: int) -> list[dict]:
             e = errors(traj.omega, traj.quat, *ref)
             bound = errors(*rigid_reference(I, w0, QUAT0, gravity, times=times, rtol=1e-12), *ref)
             # the peer must match the default call's accuracy (a hair looser: round-off in the last digit),
-            # but no finer than the reference can tell (its difference from rtol 1e-12)
-            target = {"omega": max(e[0] * 1.01, bound[0]), "attitude": max(e[1] * 1.01, bound[1])}
+            # but no finer than the reference can tell: below twice its difference from rtol 1e-12 the
+            # peer's errors are noise, not monotone in k (the T-handle in the gravity gradient: ~1e-10)
+            target = {"omega": max(e[0] * 1.01, 2 * bound[0]), "attitude": max(e[1] * 1.01, 2 * bound[1])}
             contest = Contest(target, body=body_name, method=traj.method, reference_bound=bound,
                               torque="gravity gradient, 5400 s orbit" if gravity else "constant body torque")
             for m in ("rk4", "rk8"):

@@ -100,7 +100,12 @@ def run(out, quick: bool = False) -> str:
                           "| problem | figure | methods (points) |", "|---|---|---|"]
     for key, p in problems(quick).items():
         print(f"bench_work_precision: {p.name}", file=sys.stderr, flush=True)
-        series = measure(p, budget)
+        try:
+            series = measure(p, budget)
+        except Exception as exc:  # noqa: BLE001 - one problem's failure is reported, the others still drawn
+            lines.append(f"| {p.name} | **failed**: {type(exc).__name__}: {exc} | - |")
+            print(f"bench_work_precision: {p.name} FAILED: {exc!r}", file=sys.stderr, flush=True)
+            continue
         results[key] = {"name": p.name, "target": p.target, "series": series}
         png = out / f"work_precision_{key}.png"
         figure(png, p.name, p.target, series)
