@@ -191,3 +191,32 @@ def test_the_compiled_free_flow_takes_components_whose_squares_underflow_as_stea
     omega, quat = free_rotation_batch(I[None], w[None], q[None] * 0 + [0.0, 0.0, 0.0, 1.0], np.array([0.7]))
     assert np.max(np.abs(L / I - omega[0, 0])) <= 1e-15 * 5.0
     assert (Rotation.from_quat(q).inv() * Rotation.from_quat(quat[0, 0])).magnitude() <= 1e-15
+
+
+def test_the_kernels_compile_at_import_of_modules_imported_on_first_use():
+    """One compile mechanism (issue 38 item 3): the kernels modules decorate their functions
+    with tumble.jit.jit at import; no module of methods/ rebinds its globals to compile, copies
+    a function's code for a parallel twin or dispatches on ``type(x) is``; and ``import tumble``
+    with the methods' fronts imports no numba (a fresh interpreter)."""
+    import ast
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[1] / "src" / "tumble" / "dynamics" / "methods"
+    for path in sorted(folder.glob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        assert "globals()" not in text and "FunctionType" not in text, path.name
+        tree = ast.parse(text)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Compare) and isinstance(node.ops[0], ast.Is):
+                left = node.left
+                assert not (isinstance(left, ast.Call) and getattr(left.func, "id", "") == "type"), path.name
+    for name in ("compiled_flow", "compiled_split", "compiled_exact"):
+        tree = ast.parse((folder / f"{name}.py").read_text(encoding="utf-8"))
+        functions = [n for n in tree.body if isinstance(n, ast.FunctionDef)]
+        assert functions and all(any("jit" in ast.unparse(d) for d in f.decorator_list) for f in functions), name
+    code = ("import sys, tumble, tumble.dynamics.methods.compiled, tumble.dynamics.methods.exact_batch, "
+            "tumble.dynamics.methods.exact_split; print('numba' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False"]

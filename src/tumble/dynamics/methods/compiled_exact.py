@@ -119,8 +119,9 @@ def _parameters(I: FloatArray, w: FloatArray) -> tuple[bool, float, float, float
 
 @jit(error_model="numpy")
 def _in_range(I: FloatArray, w: FloatArray) -> bool:
-    size = max(abs(w[0]), abs(w[1]), abs(w[2]))
-    return _TINY <= I[0] and I[2] <= _HUGE and _TINY <= size <= _HUGE
+    """Whether the moments and ``|omega|`` lie within ``[_TINY, _HUGE]`` (no square under- or overflows)."""
+    size = float(max(abs(w[0]), abs(w[1]), abs(w[2])))
+    return bool(_TINY <= I[0] and I[2] <= _HUGE and _TINY <= size <= _HUGE)
 
 
 @jit(error_model="numpy")

@@ -1,5 +1,10 @@
 """The exact torque-free flow of one body over a step, in double precision, compiled by numba.
 
+A kernels module: imported only on first compiled use (by the splittings' kernels,
+:mod:`tumble.dynamics.methods.compiled_split`, and the batch's,
+:mod:`tumble.dynamics.methods.compiled_exact`), every function compiled at import by
+:func:`tumble.jit.jit` (``cache=True``), so that ``import tumble`` never imports numba.
+
 The formulas are those of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*,
 sec. 37 for omega, sec. 35 and 37 for the attitude ``R = G Rz(phi) Rx(theta) Rz(psi) P`` and the
 precession ``phi``; read its module docstring), evaluated for one step ``h`` from the state

@@ -127,7 +127,7 @@ class FreeRotation:
 
     The one-body front of the exact solution's kernel
     (:class:`tumble.dynamics.methods.exact_kernel.EllipticMotion` at N = 1, the same code as
-    :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch`); its parameters are built
+    :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch` below its compiled size); its parameters are built
     once, and the reduced phase of the last times asked for is kept, as ``omega(t)`` and
     ``attitude(t)`` are usually asked for the same times.
 

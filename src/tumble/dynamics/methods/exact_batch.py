@@ -1,14 +1,20 @@
 """The exact torque-free motion of N rigid bodies at common times: the batch front.
 
 The mathematics is that of :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz, *Mechanics*,
-sec. 37; read its module docstring), evaluated by the one kernel both fronts share,
-:class:`tumble.dynamics.methods.exact_kernel.EllipticMotion`, over chunks of bodies: a body here
-gets what :class:`tumble.dynamics.methods.exact.FreeRotation` gives it, to a few ulps (the
-kernel picks its parameter path, floats or arrays, by the chunk's size). Steady rotations
-(spheres, spins about a principal axis, a symmetric top in its degenerate plane) are turns about
-the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi). The chunks run on every core
-(:func:`tumble.dynamics.methods.exact_parameters.run_chunks`: threads, since numpy releases the
-GIL within each operation; each chunk's arithmetic is the same on any thread).
+sec. 37; read its module docstring). Two evaluations, picked by the batch's size:
+
+- below :data:`~tumble.dynamics.methods.exact_parameters.COMPILED_BODIES` bodies, the kernel
+  :class:`tumble.dynamics.methods.exact_kernel.EllipticMotion` over chunks of bodies, phases in
+  double-double: a body here gets what :class:`tumble.dynamics.methods.exact.FreeRotation` gives
+  it, to a few ulps (the kernel picks its parameter path, floats or arrays, by the chunk's size).
+  Steady rotations (spheres, spins about a principal axis, a symmetric top in its degenerate
+  plane) are turns about the fixed omega by ``|omega| t`` (double-double, reduced mod 2 pi). The
+  chunks run on every core (:func:`tumble.dynamics.methods.exact_parameters.run_chunks`: threads,
+  since numpy releases the GIL within each operation);
+- from that many, the compiled kernel (:mod:`tumble.dynamics.methods.compiled_exact`: numba,
+  double precision, every core, ~0.8 CPU-us a body with its attitude), which leaves the bodies
+  double precision cannot take (next to the separatrix, phases beyond 1000 rad) to the
+  double-double path: within ~6e-13 of it in omega (relative) and the attitude (rad).
 """
 
 from __future__ import annotations

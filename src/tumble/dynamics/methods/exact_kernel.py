@@ -3,7 +3,9 @@
 The mathematics is stated in :mod:`tumble.dynamics.methods.exact` (Landau & Lifshitz,
 *Mechanics*, sec. 37, 35; read its module docstring); here it is evaluated on arrays of bodies,
 once, for both fronts: :class:`tumble.dynamics.methods.exact.FreeRotation` (one body, any times)
-and :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch` (N bodies). The front picks
+and :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch` (N bodies; from
+:data:`~tumble.dynamics.methods.exact_parameters.COMPILED_BODIES` only for the bodies its
+compiled double-precision kernel, :mod:`tumble.dynamics.methods.compiled_exact`, leaves). The front picks
 the path by N, as scipy's ``Rotation`` picks its backend: for one body the parameters go
 through Python floats (:func:`~tumble.dynamics.methods.exact_parameters.scaled_core` and
 :func:`~tumble.dynamics.special.carlson.complete_integrals` take floats as floats, several times
