@@ -28,25 +28,47 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import cast
+from typing import Any, cast
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 from .drag import drag_component
 
-__all__ = ["gyrostat_omega"]
+__all__ = ["gyrostat_omega", "momentum_rate_components"]
+
+
+def momentum_rate_components(L0: Any, L1: Any, L2: Any, w0: Any, w1: Any, w2: Any, t0: Any, t1: Any,
+                             t2: Any) -> tuple[Any, Any, Any]:
+    """Euler's equation in momentum form, ``L' = L x w + tau``, component by component.
+
+    ``L`` the angular momentum of the whole (body and rotors, kg m^2/s) and ``w`` the body's
+    angular velocity (rad/s), both in a frame fixed to the body, ``tau`` the external torque
+    (N m): the gyrostat's equation (Hughes 1986, ch. 7; module docstring), and the rigid body's
+    when ``L = I w``. The one writing of this form, over floats (the compiled kernel here) or
+    arrays of one shape (:mod:`tumble.dynamics.models.internal`); the angular-velocity form is
+    :func:`tumble.dynamics.euler.euler_components`.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.gyrostat import momentum_rate_components
+    >>> momentum_rate_components(1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.5)   # L x w + tau
+    (-1.0, 2.0, -0.5)
+    """
+    return L1 * w2 - L2 * w1 + t0, L2 * w0 - L0 * w2 + t1, L0 * w1 - L1 * w0 + t2
+
 
 _drag = drag_component  # compiled by _compiled(), with the kernels that call it
+_momentum_rate = momentum_rate_components  # compiled by _compiled(), with the kernels that call it
 
 
 def _rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, g: FloatArray, k: float, w: FloatArray,
           out: FloatArray) -> None:
     for i in range(3):
         w[i] = Iinv[i, 0] * (L[0] - h[0]) + Iinv[i, 1] * (L[1] - h[1]) + Iinv[i, 2] * (L[2] - h[2])
-    out[0] = L[1] * w[2] - L[2] * w[1] + _drag(0.0, quad[0], w[0]) + k * g[0]
-    out[1] = L[2] * w[0] - L[0] * w[2] + _drag(0.0, quad[1], w[1]) + k * g[1]
-    out[2] = L[0] * w[1] - L[1] * w[0] + _drag(0.0, quad[2], w[2]) + k * g[2]
+    d0, d1, d2 = _momentum_rate(L[0], L[1], L[2], w[0], w[1], w[2], _drag(0.0, quad[0], w[0]),
+                                _drag(0.0, quad[1], w[1]), _drag(0.0, quad[2], w[2]))
+    out[0], out[1], out[2] = d0 + k * g[0], d1 + k * g[1], d2 + k * g[2]
 
 
 def _integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray, h: FloatArray,
@@ -87,6 +109,7 @@ def _compiled() -> Callable[..., FloatArray]:
     from ...jit import jit
 
     globals()["_drag"] = jit(inline="always")(drag_component)
+    globals()["_momentum_rate"] = jit(inline="always")(momentum_rate_components)
     for name in ("_rate", "_integrate"):
         globals()[name] = jit()(globals()[name])
     return cast("Callable[..., FloatArray]", globals()["_integrate"])

@@ -22,6 +22,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ..special.quaternion import quaternion_rate
 from .damper import MAX_DAMPER_RATIO, SphericalDamper
+from .gyrostat import momentum_rate_components
 from .rotors import Rotors, gyrostat_rate
 
 __all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
@@ -278,9 +279,8 @@ class InternalModel:
         wd = y[7:10] if self.damper is not None else None
         free = L - h
         w = (free if wd is None else free - damper.inertia * wd) / self.moments
-        dL = _cross(L, w)
-        if torque is not None:
-            dL = dL + torque(t, w, q)
+        tau = torque(t, w, q) if torque is not None else (0.0, 0.0, 0.0)
+        dL = np.array(momentum_rate_components(L[0], L[1], L[2], w[0], w[1], w[2], tau[0], tau[1], tau[2]))
         out: list[ArrayLike] = [dL, quaternion_rate(q, w)]
         if wd is not None:
             slip = wd - w
