@@ -51,9 +51,11 @@ WORK = 91
 
 @jit(error_model="numpy")
 def _rc1(e: float) -> float:
-    """``R_C(1, 1 + e)`` (DLMF 19.2.18-19.2.19): atan or atanh of ``sqrt(|e|)`` over it."""
-    if abs(e) < 1e-8:
-        return 1.0 - e / 3.0 + e * e / 5.0
+    """``R_C(1, 1 + e)`` (DLMF 19.2.18-19.2.19): atan or atanh of ``sqrt(|e|)`` over it; for
+    ``|e| < 1e-3`` their series ``sum (-e)^k / (2k + 1)`` to ``e^5`` (the rest below 1e-19), as
+    the later duplication steps of :func:`_rj` mostly ask."""
+    if abs(e) < 1e-3:
+        return 1.0 + e * (-1.0 / 3.0 + e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 - e / 11.0))))
     if e > 0.0:
         r = math.sqrt(e)
         return math.atan(r) / r
