@@ -41,9 +41,12 @@ __all__ = ["COMPILED_BODIES", "EllipticParameters", "compiled_kernels", "ellipti
 
 #: Motions from which the batches run compiled (:mod:`tumble.dynamics.methods.compiled_exact`:
 #: :func:`elliptic_parameters` here, :func:`tumble.dynamics.methods.exact_batch.free_rotation_batch`),
-#: in double precision with the double-double path taking the motions the kernel marks; below,
-#: the first call's import of numba and load of the cached kernels (~0.3 s) is not paid back.
-COMPILED_BODIES = 4096
+#: in double precision with the double-double path taking the motions the kernel marks. The
+#: first compiled call of a process costs ~0.6 s (numba's import, the cached kernels' load, the
+#: threads' start; measured), the compiled path saves ~2 us a body with its attitude: from
+#: 65,536 bodies a batch pays it back within a few calls (the first compile after an edit of the
+#: sources, ~8 s, once per machine).
+COMPILED_BODIES = 1 << 16
 
 
 @functools.cache
