@@ -68,10 +68,12 @@ def free_rotation_batch(
     -------
     omega : ndarray, shape (N, T, 3)
         rad/s, equal to :meth:`~tumble.dynamics.methods.exact.FreeRotation.omega` to a few ulps
-        of each body's amplitudes.
+        of each body's amplitudes (from ``COMPILED_BODIES`` bodies, to ~6e-13 of ``|omega|``:
+        the module docstring).
     quat : ndarray, shape (N, T, 4) or None
         Principal frame to world, equal to
-        :meth:`~tumble.dynamics.methods.exact.FreeRotation.attitude` to ~1e-15 rad.
+        :meth:`~tumble.dynamics.methods.exact.FreeRotation.attitude` to ~1e-15 rad (from
+        ``COMPILED_BODIES`` bodies, to ~6e-13 rad).
 
     Raises
     ------
