@@ -55,9 +55,9 @@ def test_an_edited_callee_in_another_file_is_seen_by_the_next_run(tmp_path):
     assert (again, hits, misses) == (first, 1, 0)  # loaded from the cache: same answer
     euler = root / "tumble" / "dynamics" / "euler.py"
     text = euler.read_text()
-    old = "return (a1 * w2 - a2 * w1 + t0) / I0,"
+    old = "return ((I1 - I2) * w1 * w2 + t0) * r0,"
     assert old in text
-    euler.write_text(text.replace(old, "return (a1 * w2 - a2 * w1 + t0) / I0 + 1.0,"))  # d omega_1/dt + 1 rad/s^2
+    euler.write_text(text.replace(old, "return ((I1 - I2) * w1 * w2 + t0) * r0 + 1.0,"))  # d omega_1/dt + 1 rad/s^2
     edited, hits, misses = _run(root)
     assert misses == 1 and hits == 0  # the stale entry was not used
     assert abs(edited - first) > 0.5  # about one more rad/s after 1 s: the old machine code would give `first`

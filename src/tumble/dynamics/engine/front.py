@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from types import ModuleType
 
 import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores
 from ...typing import FloatArray
+from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
@@ -30,13 +32,46 @@ def _kernels() -> ModuleType:
     return kernels
 
 
-@functools.cache
-def _tableau(method: str) -> tuple[FloatArray, FloatArray, FloatArray]:
-    from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
+#: The fixed-step methods' numbers in the kernels (:data:`~tumble.dynamics.engine.kernels.RK4`, ``RK8``).
+_FIXED = {"rk4": 0, "rk8": 1}
 
-    if method == "rk4":
-        return RK4_A, RK4_B, RK4_C
-    return np.ascontiguousarray(DOP853_A[:12, :12]), DOP853_B, np.ascontiguousarray(DOP853_C[:12])
+Form = tuple[int, tuple[float, ...]]
+
+
+@functools.lru_cache(maxsize=256)
+def _terms_of(forms: tuple[Form, ...]) -> tuple[tuple[float, ...], float]:
+    """The kernels' torque terms of the models' forms (:func:`terms`)."""
+    P = [0.0] * 7
+    n = 0.0
+    for kind, params in forms:
+        if kind == KERNEL_BODY:
+            P[0], P[1], P[2] = P[0] + params[0], P[1] + params[1], P[2] + params[2]
+        elif kind == KERNEL_WORLD:
+            P[3], P[4], P[5] = P[3] + params[0], P[4] + params[1], P[5] + params[2]
+        elif kind == KERNEL_CIRCULAR_GRAVITY:
+            if n and n != params[0]:
+                raise ValueError(f"two circular orbits of mean motions {n!r} and {params[0]!r} rad/s in one run")
+            n = params[0]
+            P[6] += n * n
+        elif kind != KERNEL_NONE:
+            raise ValueError(f"the engine has no torque of kind {kind!r}")
+    return tuple(P), n
+
+
+def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
+    """The kernels' torque terms ``(P, n)`` (:mod:`~tumble.dynamics.engine.kernels`) of one model's
+    form ``(kind, parameters)`` or of a sequence of them, a sum of models: each kind's terms added
+    in its slot of ``P``; ``n`` the circular orbit's mean motion (rad/s), 0 without one.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.front import terms
+    >>> from tumble.dynamics.models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY
+    >>> terms([(KERNEL_BODY, (0.0, 0.0, 1.0)), (KERNEL_BODY, (1.0, 0.0, 0.0)), (KERNEL_CIRCULAR_GRAVITY, (0.5,))])
+    ((1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.25), 0.5)
+    """
+    forms = (form,) if isinstance(form[0], int) else tuple(form)
+    return _terms_of(forms)  # type: ignore[arg-type]
 
 
 def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
@@ -45,6 +80,7 @@ def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
     if status == BUDGET_SPENT:
         raise RuntimeError(f"{method} gave up{body} after {MAX_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
                            f"the motion is too fast to follow (a torque spinning the body up?)")
+
 
 
 def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray,
@@ -92,13 +128,11 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     y0 = np.empty(7)
     y0[:3], y0[3:] = omega0, quat0
     omega, quat = np.empty((len(t), 3)), np.empty((len(t), 4))
-    kind, params = form
-    p = np.array(params or (0.0,))
+    P, n = terms(form)
     if method == "dop853":
-        status = k.dop853(y0, t, moments, kind, p, rtol, atol, omega, quat)
+        status = k.dop853(y0, t, moments, P, n, rtol, atol, omega, quat)
     else:
-        A, B, C = _tableau(method)
-        status = k.fixed_rk(y0, t, moments, kind, p, math.inf if step is None else step, A, B, C, omega, quat)
+        status = k.fixed_rk(y0, t, moments, P, n, math.inf if step is None else step, _FIXED[method], omega, quat)
     if status:
         _raise_for(status, method, float(t[-1]))
     return omega, quat
@@ -128,22 +162,21 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     N = len(moments)
     y0 = np.ascontiguousarray(np.concatenate([omega0, quat0], axis=1), dtype=float)
     I = np.ascontiguousarray(moments, dtype=float)
-    kind, params = form
-    p = np.ascontiguousarray(np.broadcast_to(np.array(params if params else (0.0,), dtype=float), (N, max(len(params), 1))))
+    P, n = terms(form)
     omega, quat = np.empty((N, len(t), 3)), np.empty((N, len(t), 4))  # body-first, as BatchTrajectory keeps them
     status = np.zeros(N, dtype=np.int64)
     h = np.ascontiguousarray(np.broadcast_to(np.asarray(math.inf if step is None else step, dtype=float), (N,)))
     if N >= PARALLEL_BODIES and cores() > 1:
         if method == "dop853":
-            k.dop853_batch(y0, t, I, kind, p, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
+            k.dop853_batch(y0, t, I, P, n, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
         else:
-            k.fixed_batch(y0, t, I, kind, p, h, *_tableau(method), omega, quat, status)
+            k.fixed_batch(y0, t, I, P, n, h, _FIXED[method], omega, quat, status)
     else:
         for b in range(N):
             if method == "dop853":
-                status[b] = k.dop853(y0[b], t, I[b], kind, p[b], float(rtol), atol[b], omega[b], quat[b])  # type: ignore[index, arg-type]
+                status[b] = k.dop853(y0[b], t, I[b], P, n, float(rtol), atol[b], omega[b], quat[b])  # type: ignore[index, arg-type]
             else:
-                status[b] = k.fixed_rk(y0[b], t, I[b], kind, p[b], h[b], *_tableau(method), omega[b], quat[b])
+                status[b] = k.fixed_rk(y0[b], t, I[b], P, n, h[b], _FIXED[method], omega[b], quat[b])
     for bad in np.flatnonzero(status).tolist():
         _raise_for(int(status[bad]), method, float(t[-1]), f" for body {bad}")
     return omega, quat
