@@ -19,7 +19,8 @@ import numpy as np
 from .._optional import optional_import
 from ..typing import ArrayLike, Matrix3
 from ..validation import check_motion, check_positive, check_vector, read_input_file
-from .parts import PART_KINDS, _Oriented
+from .part_base import _Oriented
+from .parts import PART_KINDS
 
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
