@@ -85,6 +85,22 @@ def test_tops_and_steady_spins(kind):
     assert np.max(err_w) <= 1e-13 and np.max(err_q) <= 1e-12
 
 
+def test_components_whose_squares_underflow_are_left_to_double_double():
+    kernels = ep.compiled_kernels()
+    I = np.array([[1.0, 2.0, 3.0]] * 3)
+    w = np.array([[1e-200, 1e-200, 1.0], [1e-170, 0.5, 1.0], [1e-60, 1e-60, 1e-60]])
+    q = np.tile([0.0, 0.0, 0.0, 1.0], (3, 1))
+    t = np.array([0.0, 3.0])
+    omega, quat, done = np.zeros((3, 2, 3)), np.zeros((3, 2, 4)), np.empty(3, dtype=np.bool_)
+    kernels.motion_serial(I, w, q, t, True, omega, quat, done)
+    assert done.tolist() == [False, True, False]
+    ref_w, ref_q = exact_batch._double_double(I, w, q, t, True)
+    np.testing.assert_allclose(omega[1], ref_w[1], rtol=0, atol=1e-15)
+    # cn(0) ~ 1e-170: u0 on a half period's edge, where q and -q (one rotation) both come out
+    sign = np.sign(np.sum(quat[1] * ref_q[1], axis=-1))[:, None]
+    np.testing.assert_allclose(sign * quat[1], ref_q[1], rtol=0, atol=1e-14)
+
+
 def test_a_phase_beyond_the_limit_is_left_to_double_double():
     kernels = ep.compiled_kernels()
     I, w = np.array([[1.0, 2.0, 3.0]] * 2), np.array([[0.3, 1.0, 0.2]] * 2)

@@ -127,6 +127,13 @@ def _in_range(I: FloatArray, w: FloatArray) -> bool:
 
 
 @jit(error_model="numpy")
+def _live(p: float, a1: float, a2: float, a3: float) -> bool:
+    """Whether the rate and the amplitudes are positive and finite: a component so small that
+    its square underflowed (omega = (1e-200, 1e-200, 1)) leaves the body to double-double."""
+    return bool(p > 0.0 and a1 > 0.0 and a2 > 0.0 and a3 > 0.0 and math.isfinite(p * a1 * a2 * a3))
+
+
+@jit(error_model="numpy")
 def _turn(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_max: float, omega: FloatArray,
           quat: FloatArray, work: FloatArray) -> bool:
     """A steady spin: ``q0 (x) exp(|w| t / 2 e_w)``, omega constant; False beyond PHASE_MAX."""
@@ -166,7 +173,7 @@ def motion_body(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_m
     if not _in_range(I, w):
         return False
     upper, p, k2, kp2, a1, a2, a3, _ = _parameters(I, w)
-    if not (kp2 >= KP2_MIN and p > 0.0 and math.isfinite(p * a1 * a2 * a3)):
+    if not (kp2 >= KP2_MIN and _live(p, a1, a2, a3)):
         return False
     r, c = (2, 0) if upper else (0, 2)  # the dn axis, the cn axis
     Ir, Ic, Im = I[r], I[c], I[1]
@@ -303,7 +310,7 @@ def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray) -> bool:
     if _steady(I, w) or not _in_range(I, w):
         return False
     upper, p, k2, kp2, a1, a2, a3, _ = _parameters(I, w)
-    if not (kp2 >= KP2_MIN and math.isfinite(p * a1 * a2 * a3)):
+    if not (kp2 >= KP2_MIN and _live(p, a1, a2, a3)):
         return False
     k2, kp2 = min(k2, 1.0), min(kp2, 1.0)
     out[0], out[1], out[2], out[3] = 1.0 if upper else 0.0, p, k2, kp2
