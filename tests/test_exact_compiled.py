@@ -159,3 +159,13 @@ def test_elliptic_parameters_and_the_flip_interval_of_many_motions(monkeypatch):
     T = flip_interval(w, I)
     one = np.array([flip_interval(w[i], I[i]) for i in range(0, len(w), 7)])
     np.testing.assert_allclose(T[::7], one, rtol=1e-14)
+
+
+def test_a_large_batch_refuses_a_phase_beyond_max_phase_naming_the_body(monkeypatch):
+    """The compiled kernel takes no phase beyond PHASE_MAX; the bodies it leaves are checked
+    against MAX_PHASE (1e24 rad) as a small batch checks every body, named by their place."""
+    monkeypatch.setattr(exact_batch, "COMPILED_BODIES", 10)
+    I, w, q = _bodies(np.random.default_rng(8), 40)
+    w[27] *= 1e13  # |omega| ~ 1e13 rad/s for 1e12 s: beyond 1e24 rad
+    with pytest.raises(ValueError, match=r"omega0\[27\]"):
+        exact_batch.free_rotation_batch(I, w, q, np.array([0.0, 1e12]))

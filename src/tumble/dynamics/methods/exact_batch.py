@@ -94,13 +94,14 @@ def free_rotation_batch(
     """
     I, w, q0 = (np.asarray(a, float) for a in (moments, omega0, quat0))
     t = np.asarray(t, float)
-    _check_phases(I, w, t)
     if len(I) < COMPILED_BODIES:
+        _check_phases(I, w, t, np.arange(len(I)))
         return _double_double(I, w, q0, t, attitude)
     omega = np.empty((len(I), len(t), 3))
     quat = np.empty((len(I), len(t), 4))
     left = _compiled(I, w, q0, t, attitude, omega, quat)
     if left.size:  # the bodies double precision cannot take (compiled_exact's docstring)
+        _check_phases(I[left], w[left], t, left)  # the kernel takes no phase beyond 1000 rad
         omega[left], rest = _double_double(I[left], w[left], q0[left], t, attitude)
         if attitude:
             quat[left] = rest
@@ -147,8 +148,9 @@ def _double_double(I: Vector3, w: Vector3, q0: Quaternion, t: FloatArray,
     return omega, quat
 
 
-def _check_phases(I: Vector3, w: Vector3, t: FloatArray) -> None:
-    """:func:`check_phase_limit` for the bodies that could come near it (a cheap bound first)."""
+def _check_phases(I: Vector3, w: Vector3, t: FloatArray, index: IntArray) -> None:
+    """:func:`check_phase_limit` for the bodies that could come near it (a cheap bound first);
+    ``index`` the bodies' places in the batch, for the message."""
     if not t.size:
         return
     t_max = float(np.max(np.abs(t)))
@@ -158,4 +160,4 @@ def _check_phases(I: Vector3, w: Vector3, t: FloatArray) -> None:
         try:
             check_phase_limit(I[i], w[i], t_max)
         except ValueError as err:
-            raise ValueError(f"omega0[{i}]: {err}") from None
+            raise ValueError(f"omega0[{index[i]}]: {err}") from None
