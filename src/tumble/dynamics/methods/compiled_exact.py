@@ -11,8 +11,9 @@ evaluated as :class:`tumble.dynamics.methods.exact_kernel.EllipticMotion` evalua
 phase ``u = u0 + p t`` reduced by half periods, the precession as a secular part
 ``A t + B j`` plus a bounded one ``b(u_r) - b(u0_r)``, Legendre's ``Pi`` itself where
 ``|n| > 1``), but per body in double precision, with the elliptic pieces of
-:mod:`tumble.dynamics.methods.compiled_flow` (Carlson's ``R_F`` and ``R_J``, Jacobi's functions
-by the descending Landen transformation; the complete ``Pi - K`` by Bulirsch's ``cel``). Each
+:mod:`tumble.dynamics.methods.compiled_flow` (Carlson's ``R_F`` and ``R_J``); Jacobi's functions by
+Bulirsch's descending Gauss transformation (:func:`_sncndn`), the complete ``Pi - K`` by his
+``cel``. Each
 body costs ~0.8 us of CPU time with its attitude, ~0.4 us without (one sample; measured).
 
 **Where double precision is not enough.** Every angle of the motion carries a relative error of
@@ -43,7 +44,7 @@ from numba import prange
 
 from ...jit import jit
 from ...typing import FloatArray
-from .compiled_flow import _agm, _excess, _landen, _multiply, _rf, _tilt, _zxz, start_phase
+from .compiled_flow import _excess, _multiply, _rf, _tilt, _zxz, start_phase
 
 __all__ = ["KP2_MIN", "PHASE_MAX", "motion_parallel", "motion_serial", "parameters_parallel", "parameters_serial"]
 
@@ -54,7 +55,7 @@ KP2_MIN = 1e-3
 #: Magnitudes of the moments and of ``|omega|`` evaluated here (no square under- or overflows).
 _TINY, _HUGE = 1e-50, 1e50
 _TWO_PI = (6.283185307179586, 2.4492935982947064e-16)  # 2 pi as a double-double
-#: Doubles of scratch space per body: the Landen sequence (80), four quaternions (16).
+#: Doubles of scratch space per body: the AGM's table (80), four quaternions (16).
 WORK = 96
 
 
@@ -91,6 +92,46 @@ def _complete_excess(kp: float, n: float) -> float:
         qc = 2.0 * math.sqrt(e)
         e = qc * em
     return 0.5 * math.pi * (b + a * em) / (em * (em + p))
+
+
+@jit(error_model="numpy")
+def _gauss(kp2: float, work: FloatArray) -> tuple[int, float]:
+    """The AGM of ``(1, k')`` for :func:`_sncndn`: its means into ``work[:40]``, its geometric
+    means into ``work[40:80]``; returns the levels and the final mean (``K = pi / 2 mean``)."""
+    a, emc, c, levels = 1.0, kp2, 1.0, 0
+    for i in range(39):
+        levels = i + 1
+        work[i] = a
+        emc = math.sqrt(emc)
+        work[40 + i] = emc
+        c = 0.5 * (a + emc)
+        if abs(a - emc) <= 1e-8 * a:  # quadratic convergence: the next step is below eps
+            break
+        emc *= a
+        a = c
+    return levels, c
+
+
+@jit(error_model="numpy")
+def _sncndn(u: float, levels: int, mean: float, work: FloatArray) -> tuple[float, float, float]:
+    """``sn, cn, dn`` of ``|u| <= K`` by Bulirsch's descending Gauss transformation over the AGM
+    of :func:`_gauss` (Bulirsch, Numer. Math. 7 (1965) 78; Press et al., *Numerical Recipes*,
+    2nd ed., sec. 6.11, ``sncndn``): one sine and cosine and a division a level, no arcsine."""
+    v = u * mean
+    sn, cn, dn = math.sin(v), math.cos(v), 1.0
+    if sn == 0.0:
+        return sn, cn, dn
+    a = cn / sn
+    c = mean * a
+    for i in range(levels - 1, -1, -1):
+        b = work[i]
+        a *= c
+        c *= dn
+        dn = (work[40 + i] + a) / (b + a)
+        a = c / b
+    a = 1.0 / math.sqrt(c * c + 1.0)
+    sn = a if sn >= 0.0 else -a
+    return sn, c * sn, dn
 
 
 @jit(error_model="numpy")
@@ -179,8 +220,8 @@ def motion_body(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_m
     Ir, Ic, Im = I[r], I[c], I[1]
     a_r, a_c = (a3, a1) if upper else (a1, a3)
     kp = math.sqrt(kp2)
-    levels = _agm(k2, kp, work)  # the AGM of (1, k'), once: K, and sn, cn, dn at every sample
-    K = 0.5 * math.pi / work[levels]
+    levels, mean = _gauss(kp2, work)  # the AGM of (1, k'), once: K, and sn, cn, dn at every sample
+    K = 0.5 * math.pi / mean
     sign = 1.0 if w[r] >= 0.0 else -1.0
     n = -Ir * (Im - Ic) / (Ic * (Ir - Im))
     # the phase at t = 0: sn = w2 / a2, cn = w_c / (s a_c), beyond +-pi/2 one half period on
@@ -217,7 +258,7 @@ def motion_body(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_m
         u = u0 + p * t[k]
         j = math.floor(u / (2.0 * K) + 0.5)
         ur = u - 2.0 * K * j
-        sn, cn, dn = _landen(ur, levels, kp, work)
+        sn, cn, dn = _sncndn(ur, levels, mean, work)
         odd = j % 2.0 != 0.0
         omega[k, c] = sign * a_c * (-cn if odd else cn)
         omega[k, 1], omega[k, r] = a2 * (-sn if odd else sn), sign * a_r * dn
