@@ -14,7 +14,7 @@ phase ``u = u0 + p t`` reduced by half periods, the precession as a secular part
 :mod:`tumble.dynamics.methods.compiled_flow` (Carlson's ``R_F`` and ``R_J``); Jacobi's functions by
 Bulirsch's descending Gauss transformation (:func:`_sncndn`), the complete ``Pi - K`` by his
 ``cel``. Each
-body costs ~0.8 us of CPU time with its attitude, ~0.4 us without (one sample; measured).
+body costs ~0.7 us of CPU time with its attitude, ~0.3 us without (one sample; measured).
 
 **Where double precision is not enough.** Every angle of the motion carries a relative error of
 a few ulps of the phase it reached (the rates ``p``, ``A`` and the half period ``K`` are good

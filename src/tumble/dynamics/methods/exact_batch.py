@@ -12,7 +12,7 @@ sec. 37; read its module docstring). Two evaluations, picked by the batch's size
   chunks run on every core (:func:`tumble.dynamics.methods.exact_parameters.run_chunks`: threads,
   since numpy releases the GIL within each operation);
 - from that many, the compiled kernel (:mod:`tumble.dynamics.methods.compiled_exact`: numba,
-  double precision, every core, ~0.8 CPU-us a body with its attitude), which leaves the bodies
+  double precision, every core, ~0.7 CPU-us a body with its attitude), which leaves the bodies
   double precision cannot take (next to the separatrix, phases beyond 1000 rad) to the
   double-double path: within ~6e-13 of it in omega (relative) and the attitude (rad).
 """
