@@ -27,6 +27,7 @@ from .methods.integrators import (
     StepRule,
     get_method,
 )
+from .engine.front import ENGINE_METHODS
 from .methods.names import method_list
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import (
@@ -230,13 +231,16 @@ def simulate(
         omega, quat, label = out.omega, out.quat, out.solver or spec.name
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
-    # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a sum)
-    if not math.isfinite(float(omega.sum()) + float(quat.sum())):
+    # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a
+    # sum); the engine's kernels check their states themselves (status NON_FINITE)
+    if not (internal is None and spec.name in ENGINE_METHODS and kernel_form(model) is not None) \
+            and not math.isfinite(float(omega.sum()) + float(quat.sum())):
         raise RuntimeError(f"the {label} integration produced non-finite values")
-    return Trajectory(  # the quaternions: the Rotation is built when first asked for
-        t=run.t[run.keep], omega=omega[run.keep], attitude=quat[run.keep], moments=moments,
-        principal_axes=run.props.principal_axes, method=label, torque_free=model is None,
-        body_name=body.name if isinstance(body, Body) else "body", **extra,
+    keep = run.keep
+    return Trajectory.of_samples(  # the quaternions: the Rotation is built when first asked for
+        run.t[keep] if keep.start else run.t, omega[keep] if keep.start else omega, quat[keep] if keep.start else quat,
+        moments, run.props.principal_axes, label, model is None, body.name if isinstance(body, Body) else "body",
+        **extra,
     )
 
 

@@ -143,6 +143,32 @@ class Trajectory:
             if value is not None and not (type(value) is np.ndarray and value.dtype == np.float64):
                 fields[name] = _array(value)
 
+    @classmethod
+    def of_samples(cls, t: FloatArray, omega: FloatArray, quat: FloatArray, moments: FloatArray,
+                   principal_axes: FloatArray, method: str, torque_free: bool = True, body_name: str = "body",
+                   **internal: Any) -> Trajectory:
+        """A trajectory of float64 arrays as an integrator returns them (the quaternions ``quat``, (n, 4),
+        scalar last, made a Rotation when first asked for), without the checks of ``__init__``:
+        the fields set directly, ~1.5 us less a run (issue 38). ``internal``: the optional fields.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.trajectory import Trajectory
+        >>> traj = Trajectory.of_samples(np.array([0.0, 1.0]), np.zeros((2, 3)), np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)),
+        ...                              np.array([1.0, 2.0, 3.0]), np.eye(3), "rk8")
+        >>> traj.attitude.as_rotvec().tolist()
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+        """
+        if internal:  # rotors or a damper: the checked path
+            return cls(t=t, omega=omega, attitude=quat, moments=moments, principal_axes=principal_axes,
+                       method=method, torque_free=torque_free, body_name=body_name, **internal)
+        traj = object.__new__(cls)
+        traj.__dict__.update(_FIELD_DEFAULTS)
+        traj.__dict__.update(t=t, omega=omega, _attitude_value=quat, moments=moments, principal_axes=principal_axes,
+                             method=method, torque_free=torque_free, body_name=body_name)
+        return traj
+
     @property
     def rigid(self) -> bool:
         """Whether this is one rigid body: no rotors and no damper.
@@ -377,3 +403,5 @@ class Trajectory:
 _ATTITUDE = _LazyRotation()
 _ATTITUDE.__set_name__(Trajectory, "attitude")
 setattr(Trajectory, "attitude", _ATTITUDE)  # noqa: B010 - the field, stored lazily (_LazyRotation)
+#: The optional fields' defaults, for :meth:`Trajectory.of_samples`.
+_FIELD_DEFAULTS = {name: None for name in (*_OPTIONAL_ARRAYS, "damper_inertia")}

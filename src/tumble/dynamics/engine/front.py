@@ -16,7 +16,7 @@ import numpy as np
 from ...jit import PARALLEL_BODIES, cores
 from ...typing import FloatArray
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
-from .status import BUDGET_SPENT, MAX_EVALUATIONS, STEP_COLLAPSED
+from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
 
@@ -77,6 +77,8 @@ def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
 def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
     if status == STEP_COLLAPSED:
         raise RuntimeError(f"{method} integration failed{body}: the step size fell below 10 ulp of t")
+    if status == NON_FINITE:
+        raise RuntimeError(f"the {method} integration produced non-finite values{body}")
     if status == BUDGET_SPENT:
         raise RuntimeError(f"{method} gave up{body} after {MAX_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
                            f"the motion is too fast to follow (a torque spinning the body up?)")

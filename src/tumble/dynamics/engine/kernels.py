@@ -51,7 +51,7 @@ from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
 from .stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step
-from .status import BUDGET_SPENT, MAX_EVALUATIONS, OK, STEP_COLLAPSED
+from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from .unrolled import STATE, dop853_sources, fixed_step_source, rotations_source
 
@@ -236,7 +236,7 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, 
              step: float, method: int, omega: np.ndarray, quat: np.ndarray) -> int:
     """:data:`RK4` or :data:`RK8` at equal steps no longer than ``step`` (s) in each sample interval,
     the samples into ``omega`` and ``quat``; the torque terms ``P`` on an orbit of mean
-    motion ``n`` (rad/s). Returns 0 (the status of :func:`dop853`)."""
+    motion ``n`` (rad/s). Returns a status: 0 done, 3 the state overflowed (a NaN or inf)."""
     body = (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
     y = _state(y0)
     _store(y, omega[0], quat[0])
@@ -256,6 +256,8 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, 
                 y = _rk4_step(y, h, body, P, cs, ss, rot4)
             else:
                 y = _rk8_step(y, h, body, P, cs, ss, rot8)
+        if not math.isfinite(y[0] + y[1] + y[2] + y[3] + y[4] + y[5] + y[6]):
+            return NON_FINITE
         _store(y, omega[k], quat[k])
     return OK
 

@@ -8,7 +8,7 @@ Examples
 (0, 2, 50000000)
 """
 
-__all__ = ["BUDGET_SPENT", "MAX_EVALUATIONS", "OK", "STEP_COLLAPSED"]
+__all__ = ["BUDGET_SPENT", "MAX_EVALUATIONS", "NON_FINITE", "OK", "STEP_COLLAPSED"]
 
 #: Right-hand sides a run may take before it is given up (about 40 per radian of rotation for
 #: DOP853 at rtol 1e-12, so well above what ``simulate``'s rotation bound admits; it catches a
@@ -20,3 +20,5 @@ OK = 0
 STEP_COLLAPSED = 1
 #: A run's status: :data:`MAX_EVALUATIONS` spent.
 BUDGET_SPENT = 2
+#: A run's status: the state overflowed (a NaN or inf at a sample) under a fixed step.
+NON_FINITE = 3

@@ -57,6 +57,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
+from ..engine.front import run_body  # imports no numba: the kernels load on a run's first call
 from ..engine.status import MAX_EVALUATIONS  # the work budget of every adaptive method, compiled or not
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
@@ -222,8 +223,6 @@ def _solve_full(method: str) -> Integrate:
     ) -> tuple[Vector3, Quaternion]:
         form = kernel_form(torque) if method == "DOP853" else None
         if form is not None:  # a built-in model (or none): the compiled engine takes scipy's steps
-            from ..engine import run_body
-
             tol = atol if isinstance(atol, np.ndarray) and atol.shape == (7,) else np.full(7, atol, dtype=float)
             return run_body("dop853", np.asarray(moments, float), np.asarray(omega0, float), np.asarray(quat0, float),
                             t, form, rtol=rtol, atol=tol)
@@ -330,8 +329,6 @@ def _engine_rk(name: str) -> Integrate:
         moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
         rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> tuple[Vector3, Quaternion]:
-        from ..engine import run_body
-
         form = kernel_form(torque)
         if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
             raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "

@@ -291,6 +291,9 @@ class ConstantTorque:
     def __post_init__(self) -> None:
         object.__setattr__(self, "vector", check_vector("torque vector", self.vector, "N m"))
         _check_frame(self.frame)
+        # the compiled form, made once: simulate reads it on every run
+        object.__setattr__(self, "_form", (KERNEL_WORLD if self.frame == "world" else KERNEL_BODY,
+                                           tuple(float(v) for v in self.vector)))
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
         """The torque, N m, in ``frame``: ``vector`` at every time ``t`` (s) and state.
@@ -313,7 +316,7 @@ class ConstantTorque:
         >>> ConstantTorque((1.0, 0.0, 0.0)).kernel_form() == (KERNEL_BODY, (1.0, 0.0, 0.0))
         True
         """
-        return (KERNEL_WORLD if self.frame == "world" else KERNEL_BODY), tuple(float(v) for v in self.vector)
+        return self._form  # type: ignore[attr-defined, no-any-return]
 
 
 @dataclass(frozen=True)
