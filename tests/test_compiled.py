@@ -77,6 +77,8 @@ def test_carlson_and_jacobi_functions_match_scipy():
     for x, y, z, p in rng.uniform(0.0, 3.0, (50, 4)):
         assert abs(cf._rf(x, y, z) / elliprf(x, y, z) - 1.0) < 1e-15
         assert abs(cf._rj(x, y, z, p + 0.01) / elliprj(x, y, z, p + 0.01) - 1.0) < 2e-15
+        rf, rj = cf._rf_rj(x, y, z, p + 0.01)  # both from one duplication
+        assert abs(rf / elliprf(x, y, z) - 1.0) < 1e-15 and abs(rj / elliprj(x, y, z, p + 0.01) - 1.0) < 2e-15
     for m in (0.0, 0.3, 0.9, 0.999999):
         K = ellipk(m)
         for v in np.linspace(-K, K, 9):

@@ -44,7 +44,7 @@ from numba import prange
 
 from ...jit import jit
 from ...typing import FloatArray
-from .compiled_flow import _excess, _multiply, _rf, _tilt, _zxz, start_phase
+from .compiled_flow import _excess, _multiply, _rf, _rf_rj, _tilt, _zxz, start_phase
 
 __all__ = ["KP2_MIN", "PHASE_MAX", "motion_parallel", "motion_serial", "parameters_parallel", "parameters_serial"]
 
@@ -224,16 +224,23 @@ def motion_body(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_m
     K = 0.5 * math.pi / mean
     sign = 1.0 if w[r] >= 0.0 else -1.0
     n = -Ir * (Im - Ic) / (Ic * (Ir - Im))
-    # the phase at t = 0: sn = w2 / a2, cn = w_c / (s a_c), beyond +-pi/2 one half period on
-    s0, c0, d0, j0 = start_phase(w[1] / a2, w[c] / (sign * a_c), kp2)
-    f0 = s0 * _rf(c0 * c0, d0 * d0, 1.0)
-    u0 = 2.0 * K * j0 + f0
     # the precession's rate lies between rate0 and rate0 + rate1 (n <= 0: 1 / (1 - n sn^2) in (0, 1])
     Ln = math.sqrt((I[0] * w[0]) ** 2 + (I[1] * w[1]) ** 2 + (I[2] * w[2]) ** 2)
     rate0 = Ln / Ir
     rate1 = Ln * (Ir - Ic) / (I[0] * I[2])
     if max(p, abs(rate0) + abs(rate1)) * t_max > PHASE_MAX:
         return False
+    # the phase at t = 0: sn = w2 / a2, cn = w_c / (s a_c), beyond +-pi/2 one half period on;
+    # u0_r = F and the excess Pi - F there from one duplication (omega alone takes the same F)
+    s0, c0, d0, j0 = start_phase(w[1] / a2, w[c] / (sign * a_c), kp2)
+    x0 = 0.0
+    if n != 0.0 and s0 != 0.0:
+        rf, rj = _rf_rj(c0 * c0, d0 * d0, 1.0, 1.0 - n * s0 * s0)
+        x0 = n / 3.0 * s0 * s0 * s0 * rj  # as _excess(n, s0, c0, d0)
+    else:
+        rf = _rf(c0 * c0, d0 * d0, 1.0)
+    f0 = s0 * rf
+    u0 = 2.0 * K * j0 + f0
     # phi = A t + B (j - j0) + b(u_r) - b(u0_r) (exact_kernel's secular and bounded parts)
     A, B, b0, scale, pi_mode = 0.0, 0.0, 0.0, 0.0, False
     if attitude and n != 0.0:
@@ -241,10 +248,9 @@ def motion_body(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray, t_m
         excess_c = _complete_excess(kp, n)
         pi_mode = abs(n) > 1.0  # Pi itself, F + (Pi - F), so that rate1 t and the excess do not cancel
         if pi_mode:
-            A, B, b0 = rate0, 2.0 * scale * (K + excess_c), scale * (f0 + _excess(n, s0, c0, d0))
+            A, B, b0 = rate0, 2.0 * scale * (K + excess_c), scale * (f0 + x0)
         else:
-            A, B = rate0 + rate1, 2.0 * scale * excess_c
-            b0 = scale * _excess(n, s0, c0, d0)
+            A, B, b0 = rate0 + rate1, 2.0 * scale * excess_c, scale * x0
     elif attitude:
         A = rate0 + rate1
     L, back, e = work[84:87], work[88:92], work[92:96]

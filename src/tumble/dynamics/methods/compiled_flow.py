@@ -81,6 +81,20 @@ def _rf(x: float, y: float, z: float) -> float:
 
 
 @jit(error_model="numpy")
+def _rj_series(X: float, Y: float, Z: float) -> float:
+    """The series of Carlson's R_J in the last step's relative deviations (Carlson 1995, algorithm 3;
+    ``P = -(X + Y + Z) / 2``), to the fifth order."""
+    P = -0.5 * (X + Y + Z)
+    e2 = X * Y + X * Z + Y * Z - 3.0 * P * P
+    e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P
+    e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P
+    e5 = X * Y * Z * P * P
+    series = (1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0
+              + 3.0 * e5 / 26.0)
+    return float(series)
+
+
+@jit(error_model="numpy")
 def _rj(x: float, y: float, z: float, p: float) -> float:
     """Carlson's ``R_J(x, y, z, p)``, ``p > 0`` (Carlson 1995, algorithm 3)."""
     a0 = (x + y + z + 2.0 * p) / 5.0
@@ -94,15 +108,32 @@ def _rj(x: float, y: float, z: float, p: float) -> float:
         total += fac / d * _rc1(fac * fac * fac * delta / (d * d))
         x, y, z, p, a = 0.25 * (x + lam), 0.25 * (y + lam), 0.25 * (z + lam), 0.25 * (p + lam), 0.25 * (a + lam)
         fac *= 0.25
-    X, Y, Z = (a - x) / a, (a - y) / a, (a - z) / a
-    P = -0.5 * (X + Y + Z)
-    e2 = X * Y + X * Z + Y * Z - 3.0 * P * P
-    e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P
-    e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P
-    e5 = X * Y * Z * P * P
-    series = (1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0
-              + 3.0 * e5 / 26.0)
-    return fac * series / (a * math.sqrt(a)) + 6.0 * total
+    return fac * _rj_series((a - x) / a, (a - y) / a, (a - z) / a) / (a * math.sqrt(a)) + 6.0 * total
+
+
+@jit(error_model="numpy")
+def _rf_rj(x: float, y: float, z: float, p: float) -> tuple[float, float]:
+    """``R_F(x, y, z)`` and ``R_J(x, y, z, p)`` by one duplication: Carlson's algorithms 1 and 3
+    step ``x, y, z`` alike, so both are taken from the same steps, as many as the stricter of
+    their two stopping rules asks (:func:`_rf`, :func:`_rj`)."""
+    af, aj = (x + y + z) / 3.0, (x + y + z + 2.0 * p) / 5.0
+    delta = (p - x) * (p - y) * (p - z)
+    qf = (3.0 * _EPS) ** (-1.0 / 6.0) * max(abs(af - x), abs(af - y), abs(af - z)) + 1e-300
+    qj = (0.25 * _EPS) ** (-1.0 / 6.0) * max(abs(aj - x), abs(aj - y), abs(aj - z), abs(aj - p)) + 1e-300
+    fac, total = 1.0, 0.0
+    while fac * qj > abs(aj) or fac * qf > abs(af):
+        sx, sy, sz, sp = math.sqrt(x), math.sqrt(y), math.sqrt(z), math.sqrt(p)
+        lam = sx * sy + sx * sz + sy * sz
+        d = (sp + sx) * (sp + sy) * (sp + sz)
+        total += fac / d * _rc1(fac * fac * fac * delta / (d * d))
+        x, y, z, p = 0.25 * (x + lam), 0.25 * (y + lam), 0.25 * (z + lam), 0.25 * (p + lam)
+        af, aj = 0.25 * (af + lam), 0.25 * (aj + lam)
+        fac *= 0.25
+    X, Y = (af - x) / af, (af - y) / af
+    Z = -X - Y
+    e2, e3 = X * Y - Z * Z, X * Y * Z
+    rf = (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / math.sqrt(af)
+    return rf, fac * _rj_series((aj - x) / aj, (aj - y) / aj, (aj - z) / aj) / (aj * math.sqrt(aj)) + 6.0 * total
 
 
 @jit(error_model="numpy")
