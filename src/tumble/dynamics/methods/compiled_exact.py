@@ -341,17 +341,18 @@ def motion_parallel(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray,
 
 
 @jit(error_model="numpy")
-def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray) -> bool:
+def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray, b: int) -> bool:
     """``upper, p, m, 1 - m, a1, a2, a3, k, k'`` (:class:`~tumble.dynamics.methods.exact_parameters.EllipticParameters`'s
-    fields) of one motion into ``out`` (9,); False where the double-double path must take it
-    (``k'^2 < KP2_MIN``, a steady spin, magnitudes out of range).
+    fields) of one motion into the column ``out[:, b]`` (out of shape (9, N): each field a
+    contiguous row); False where the double-double path must take it (``k'^2 < KP2_MIN``, a
+    steady spin, magnitudes out of range).
 
     Examples
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.methods.compiled_exact import parameters_body
-    >>> out = np.empty(9)
-    >>> parameters_body(np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1]), out), round(float(out[2] + out[3]), 15)
+    >>> out = np.empty((9, 1))
+    >>> parameters_body(np.array([1.0, 2.0, 3.0]), np.array([0.1, 1.0, 0.1]), out, 0), round(float(out[2, 0] + out[3, 0]), 15)
     (True, 1.0)
     """
     if _steady(I, w) or not _in_range(I, w):
@@ -360,26 +361,26 @@ def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray) -> bool:
     if not (kp2 >= KP2_MIN and _live(p, a1, a2, a3)):
         return False
     k2, kp2 = min(k2, 1.0), min(kp2, 1.0)
-    out[0], out[1], out[2], out[3] = 1.0 if upper else 0.0, p, k2, kp2
-    out[4], out[5], out[6], out[7], out[8] = a1, a2, a3, math.sqrt(k2), math.sqrt(kp2)
+    out[0, b], out[1, b], out[2, b], out[3, b] = 1.0 if upper else 0.0, p, k2, kp2
+    out[4, b], out[5, b], out[6, b], out[7, b], out[8, b] = a1, a2, a3, math.sqrt(k2), math.sqrt(kp2)
     return True
 
 
 @jit(error_model="numpy")
 def parameters_serial(I: FloatArray, w: FloatArray, out: FloatArray, done: np.ndarray) -> None:
-    """:func:`parameters_body` for N motions, ``I`` and ``w`` (N, 3), into ``out`` (N, 9) and ``done`` (N,).
+    """:func:`parameters_body` for N motions, ``I`` and ``w`` (N, 3), into ``out`` (9, N) and ``done`` (N,).
 
     Examples
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.methods.compiled_exact import parameters_serial
-    >>> out, done = np.empty((1, 9)), np.empty(1, dtype=np.bool_)
+    >>> out, done = np.empty((9, 1)), np.empty(1, dtype=np.bool_)
     >>> parameters_serial(np.array([[1.0, 2.0, 3.0]]), np.array([[0.0, 0.0, 1.0]]), out, done)
     >>> done.tolist()   # a steady spin: the double-double path says what it has
     [False]
     """
     for b in range(I.shape[0]):
-        done[b] = parameters_body(I[b], w[b], out[b])
+        done[b] = parameters_body(I[b], w[b], out, b)
 
 
 @jit(error_model="numpy", parallel=True)
@@ -390,10 +391,10 @@ def parameters_parallel(I: FloatArray, w: FloatArray, out: FloatArray, done: np.
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.methods.compiled_exact import parameters_parallel
-    >>> out, done = np.empty((2, 9)), np.empty(2, dtype=np.bool_)
+    >>> out, done = np.empty((9, 2)), np.empty(2, dtype=np.bool_)
     >>> parameters_parallel(np.array([[1.0, 2.0, 3.0]] * 2), np.array([[0.1, 1.0, 0.1], [1.0, 0.1, 0.1]]), out, done)
-    >>> done.tolist(), out[:, 0].tolist()   # about the major axis, then about the minor one
+    >>> done.tolist(), out[0].tolist()   # about the major axis, then about the minor one
     ([True, True], [1.0, 0.0])
     """
     for b in prange(I.shape[0]):
-        done[b] = parameters_body(I[b], w[b], out[b])
+        done[b] = parameters_body(I[b], w[b], out, b)

@@ -284,11 +284,11 @@ def _compiled_parameters(w: FloatArray, I: FloatArray) -> EllipticParameters:
     shape = w.shape[:-1]
     flat_w, flat_I = (np.ascontiguousarray(a.reshape(-1, 3)) for a in (w, I))
     N = len(flat_w)
-    out, done = np.empty((N, 9)), np.empty(N, dtype=np.bool_)
+    out, done = np.empty((9, N)), np.empty(N, dtype=np.bool_)  # a row a field: no copies
     kernels = compiled_kernels()
     kernel = kernels.parameters_parallel if N >= PARALLEL_BODIES and cores() > 1 else kernels.parameters_serial
     kernel(flat_I, flat_w, out, done)
-    fields = [out[:, 0] != 0.0, out[:, 1], out[:, 2], out[:, 3], out[:, 4:7], out[:, 7], out[:, 8]]
+    fields = [out[0] != 0.0, out[1], out[2], out[3], out[4:7].T, out[7], out[8]]
     left = np.flatnonzero(~done)
     if left.size:
         for field, rest in zip(fields, _parameters(flat_w[left], flat_I[left])):
