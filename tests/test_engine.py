@@ -152,7 +152,7 @@ def test_status_becomes_a_clear_error():
     from tumble.dynamics.engine import kernels
 
     y0 = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0])
-    torque = (0.0, 0.0, np.inf, 0.0, 0.0, 0.0, 0.0)  # the kernels' terms: an infinite body torque
+    torque = (0.0, 0.0, np.inf) + (0.0,) * 7  # the kernels' terms: an infinite body torque
     status = kernels.dop853(y0, np.array([0.0, 1.0]), np.ones(3), torque, 0.0, 1e-10, np.full(7, 1e-12),
                             np.empty((2, 3)), np.empty((2, 4)))
     assert status == STEP_COLLAPSED

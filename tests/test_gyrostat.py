@@ -364,9 +364,11 @@ def test_rotors_default_to_dop853_and_exact_and_seed_refuse_them():
     body = wheel_body(spin_rate=100.0)
     assert simulate(body, [0.1, 1.0, 0.1], t_end=1.0, samples=3).method == "dop853"
     assert set(NO_INTERNAL) >= {"exact", "seed"}
-    for method in NO_INTERNAL:
+    steady = [name for name, m in METHODS.items() if m.supports_internal or m.constant_rotors_only]
+    assert set(steady) - set(INTERNAL) == {"rk4", "rk8"}  # the engine's: rotors at constant spin, as a term
+    for method in set(NO_INTERNAL) - set(steady):
         with pytest.raises(ValueError, match=rf"^method = '{method}' cannot take rotors \(1 in this body\); "
-                                             rf"use one of: {', '.join(INTERNAL)}$"):
+                                             rf"use one of: {', '.join(steady)}$"):
             simulate(body, [0.1, 1.0, 0.1], t_end=1.0, method=method)
 
 
@@ -445,3 +447,45 @@ def test_tumble_inertia_reports_what_the_wheel_does_to_the_intermediate_axis(cap
         assert "spin about it is unstable" in mass_properties_table(plain)
     assert mass_properties_dict(stopped)["intermediate_stable_spin"] is None
     assert "intermediate_stable_spin" not in mass_properties_dict(tumble.t_handle())
+
+
+# -- rotors at constant spin on the compiled engine ------------------------------------------------
+
+@pytest.mark.parametrize(("method", "kw"), [("dop853", {"rtol": 1e-12}), ("rk8", {"step": 0.01}),
+                                            ("rk4", {"step": 0.0005})])
+def test_constant_rotors_run_on_the_engine_against_an_independent_route(method, kw):
+    """A rotor at constant spin is the term ``h x omega`` of the engine's Euler's equations
+    (KERNEL_ROTOR_MOMENTUM): dop853, rk8 and rk4 under a constant body torque against scipy's
+    DOP853 on the rotation-matrix right-hand side written in this file, near the intermediate axis."""
+    body = wheel_body((1.0, 1.0, 0.0), spin_rate=300.0)
+    w0 = np.array([0.1, 5.0, 0.1])
+    traj = simulate(body, w0, t_end=5.0, samples=51, method=method, torque=tumble.ConstantTorque((0.01, -0.02, 0.015)),
+                    **kw)
+    tau = np.array([0.01, -0.02, 0.015])
+    I = body.principal_moments
+    rotor = body.rotors[0]
+    h = 0.5 * rotor.mass * rotor.radius**2 * 300.0 * (body.principal_axes.T @ np.array(rotor.axis))
+
+    def rhs(t, y):
+        w, R = y[:3], y[3:].reshape(3, 3)
+        wx = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+        return np.concatenate([(tau - np.cross(w, I * w + h)) / I, (R @ wx).ravel()])
+
+    R0 = traj.attitude[0].as_matrix()
+    sol = solve_ivp(rhs, (0.0, 5.0), np.concatenate([traj.omega[0], R0.ravel()]), method="DOP853", t_eval=traj.t,
+                    rtol=1e-13, atol=1e-14)
+    assert np.max(np.abs(traj.omega - sol.y[:3].T)) / 5.0 < 1e-9
+    angle = (traj.attitude * Rotation.from_matrix(sol.y[3:].T.reshape(-1, 3, 3)).inv()).magnitude()
+    assert np.max(angle) < 1e-8
+    np.testing.assert_allclose(traj.internal_momentum, np.tile(h, (51, 1)), rtol=0, atol=1e-15)
+
+
+def test_the_fixed_steppers_name_what_they_cannot_take():
+    """rk4 and rk8 take rotors at constant spin only: a changing spin or a damper is refused,
+    naming it and the methods that take it."""
+    with pytest.raises(ValueError, match=r"^method = 'rk8' cannot take rotors whose spin changes \(1 in this body\); "
+                                         r"use one of: dop853, rk45, geometric"):
+        simulate(commanded(), [0.1, 1.0, 0.1], t_end=1.0, method="rk8")
+    with pytest.raises(ValueError, match=r"^method = 'rk4' cannot take a damper; use one of: dop853"):
+        simulate(tumble.Body([BOX]), [0.1, 1.0, 0.1], t_end=1.0, method="rk4",
+                 damper=tumble.SphericalDamper(inertia=0.01, damping=0.1))

@@ -365,9 +365,11 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
         raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
                          f"(ConstantTorque, GravityGradient); for torque = {torque!r} use one of: {allowed}")
-    if internal is not None and not spec.supports_internal:
+    if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
-        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_internal)
+        if spec.constant_rotors_only:  # it takes rotors at constant spin: say what else it is given
+            what = "a damper" if damper is not None else f"rotors whose spin changes ({len(rotors.parts)} in this body)"
+        allowed = ", ".join(m for m, s in METHODS.items() if s.takes(internal))
         raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:
         raise ValueError(f"frame = {frame!r} is not allowed; allowed: {', '.join(FRAMES)}")

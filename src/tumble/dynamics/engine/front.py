@@ -15,7 +15,7 @@ import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores
 from ...typing import FloatArray
-from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD
+from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_ROTOR_MOMENTUM, KERNEL_WORLD
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
@@ -41,7 +41,7 @@ Form = tuple[int, tuple[float, ...]]
 @functools.lru_cache(maxsize=256)
 def _terms_of(forms: tuple[Form, ...]) -> tuple[tuple[float, ...], float]:
     """The kernels' torque terms of the models' forms (:func:`terms`)."""
-    P = [0.0] * 7
+    P = [0.0] * 10
     n = 0.0
     for kind, params in forms:
         if kind == KERNEL_BODY:
@@ -53,6 +53,8 @@ def _terms_of(forms: tuple[Form, ...]) -> tuple[tuple[float, ...], float]:
                 raise ValueError(f"two circular orbits of mean motions {n!r} and {params[0]!r} rad/s in one run")
             n = params[0]
             P[6] += n * n
+        elif kind == KERNEL_ROTOR_MOMENTUM:
+            P[7], P[8], P[9] = P[7] + params[0], P[8] + params[1], P[9] + params[2]
         elif kind != KERNEL_NONE:
             raise ValueError(f"the engine has no torque of kind {kind!r}")
     return tuple(P), n
@@ -68,7 +70,7 @@ def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
     >>> from tumble.dynamics.engine.front import terms
     >>> from tumble.dynamics.models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY
     >>> terms([(KERNEL_BODY, (0.0, 0.0, 1.0)), (KERNEL_BODY, (1.0, 0.0, 0.0)), (KERNEL_CIRCULAR_GRAVITY, (0.5,))])
-    ((1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.25), 0.5)
+    ((1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0), 0.5)
     """
     forms = (form,) if isinstance(form[0], int) else tuple(form)
     return _terms_of(forms)  # type: ignore[arg-type]

@@ -10,15 +10,17 @@ quaternion kinematics (:func:`tumble.dynamics.special.quaternion.quaternion_rate
 with the sum of the built-in torque terms (:func:`external_torque`). Each formula is the
 model's own function over floats, compiled here, not a second writing.
 
-**The torque terms** are one tuple ``P`` of 7 floats, every built-in model's term in its own
+**The torque terms** are one tuple ``P`` of 10 floats, every built-in model's term in its own
 slot, so that a sum of any number of models is one tuple (:func:`~tumble.dynamics.engine.front.terms`
 adds them up from the models' :meth:`~tumble.dynamics.models.torques.KernelForm.kernel_form`):
 ``P[0:3]`` the constant body torque (N m); ``P[3:6]`` the constant world torque (N m), seen from
 the body as ``R^T P[3:6]``; ``P[6]`` the ``n^2`` (1/s^2) of the circular orbit's gravity gradient
-``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos nt, sin nt, 0)``. The orbit's mean motion ``n``
-(rad/s, 0 without an orbit) is the run's, so its direction is turned from a step's start to its
-stages without trigonometry (:mod:`~tumble.dynamics.engine.unrolled`). A tuple, not arrays: its
-values stay in registers through a run (a loop over term arrays cost 1.5x the whole RK8 step).
+``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos nt, sin nt, 0)``; ``P[7:10]`` the constant internal
+momentum ``h`` (kg m^2/s) of rotors at constant spin, whose term is ``h x omega`` (the gyrostat,
+Hughes, *Spacecraft Attitude Dynamics*, sec. 3.4). The orbit's mean motion ``n`` (rad/s, 0
+without an orbit) is the run's, so its direction is turned from a step's start to its stages
+without trigonometry (:mod:`~tumble.dynamics.engine.unrolled`). A tuple, not arrays: its values
+stay in registers through a run (a loop over term arrays cost 1.5x the whole RK8 step).
 
 **The steppers**, one body per call (a batch runs them over bodies, :func:`dop853_batch` and
 :func:`fixed_batch`, on every core with ``prange``), their steps written out from the tableaux
@@ -77,12 +79,14 @@ _initial_step_of = jit(initial_step, error_model="numpy", inline="always")
 
 
 @jit(error_model="numpy", inline="always")
-def external_torque(I: tuple[float, ...], x: float, y: float, z: float, s: float, u0: float, u1: float,
-                    P: tuple[float, ...]) -> tuple[float, float, float]:
+def external_torque(I: tuple[float, ...], w0: float, w1: float, w2: float, x: float, y: float, z: float, s: float,
+                    u0: float, u1: float, P: tuple[float, ...]) -> tuple[float, float, float]:
     """The sum of the torque terms ``P`` (N m, principal frame; module docstring) on a body of
-    principal moments ``I`` (kg m^2) at the attitude quaternion ``(x, y, z, s)`` (scalar last, not
+    principal moments ``I`` (kg m^2) turning at ``w`` (rad/s) at the attitude quaternion ``(x, y, z, s)`` (scalar last, not
     necessarily normalised: it is, for ``R``), the orbit's direction in the world being ``(u0, u1, 0)``."""
     a0, a1, a2 = P[0], P[1], P[2]
+    if P[7] != 0.0 or P[8] != 0.0 or P[9] != 0.0:  # h x omega
+        a0, a1, a2 = a0 + (P[8] * w2 - P[9] * w1), a1 + (P[9] * w0 - P[7] * w2), a2 + (P[7] * w1 - P[8] * w0)
     if P[3] != 0.0 or P[4] != 0.0 or P[5] != 0.0 or P[6] != 0.0:
         scale = 1.0 / math.sqrt(x * x + y * y + z * z + s * s)
         x, y, z, s = x * scale, y * scale, z * scale, s * scale
@@ -101,7 +105,7 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
         u1: float) -> tuple[float, float, float, float, float, float, float]:
     """``dy/dt`` of the state ``(omega, q)`` (module docstring), the orbit's direction ``(u0, u1, 0)``."""
     w0, w1, w2, x, yq, z, s = y
-    t0, t1, t2 = external_torque(I, x, yq, z, s, u0, u1, P)
+    t0, t1, t2 = external_torque(I, w0, w1, w2, x, yq, z, s, u0, u1, P)
     a0, a1, a2 = _euler(w0, w1, w2, I[0], I[1], I[2], t0, t1, t2, I[3], I[4], I[5])
     d0, d1, d2, d3 = _quaternion_rate(x, yq, z, s, w0, w1, w2)
     return a0, a1, a2, d0, d1, d2, d3

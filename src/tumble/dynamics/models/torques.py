@@ -56,6 +56,7 @@ __all__ = [
     "KERNEL_BODY",
     "KERNEL_CIRCULAR_GRAVITY",
     "KERNEL_NONE",
+    "KERNEL_ROTOR_MOMENTUM",
     "KERNEL_WORLD",
     "KernelForm",
     "NeedsBody",
@@ -220,6 +221,10 @@ def _check_frame(frame: str) -> str:
 #: named by a model's :meth:`KernelForm.kernel_form`: none, a constant body-frame torque, a
 #: constant world-frame torque, the gravity gradient of a circular orbit.
 KERNEL_NONE, KERNEL_BODY, KERNEL_WORLD, KERNEL_CIRCULAR_GRAVITY = 0, 1, 2, 3
+#: The constant internal momentum ``h`` (kg m^2/s, principal frame) of rotors spinning at constant
+#: rates: its term of Euler's equations, ``h x omega`` (a gyrostat, Hughes, *Spacecraft Attitude
+#: Dynamics*, sec. 3.4: ``I omega' + omega x (I omega + h) = tau``), for the engine.
+KERNEL_ROTOR_MOMENTUM = 4
 
 
 @runtime_checkable
