@@ -179,7 +179,8 @@ class Contest:
         """Record ``found = (value, {value: errors})``; ``make(value)`` gives the call to time."""
         value, seen = found
         self.info[name] = {"knob": knob, knob: value, "errors": seen.get(value),
-                           "tried": {f"{k:g}": e for k, e in seen.items()}}
+                           "tried": {f"{k:g}": e for k, e in seen.items()},
+                           "refused": bool(seen) and all(e is None for e in seen.values())}
         if value is not None:
             self.calls[name] = make(value)
 
@@ -237,12 +238,13 @@ class Problem:
 
 def methods_for(kind: str) -> dict:
     """tumble's methods with their knob: ``"torque"`` (one body or a batch with a torque) or
-    ``"internal"`` (rotors, a damper); ``auto`` where the registry has it."""
+    ``"internal"`` (rotors, a damper: every method that steps, for some take constant rotors only
+    and refuse the rest, which the searches report); ``auto`` where the registry has it."""
     import tumble
 
     out = {}
     for name, m in tumble.METHODS.items():
-        ok = m.supports_torque if kind == "torque" else getattr(m, "supports_internal", False)
+        ok = m.supports_torque or (kind == "internal" and getattr(m, "supports_internal", False))
         if ok or name == "auto":
             out[name] = "step" if m.fixed_step else "rtol"
     return out
@@ -275,7 +277,7 @@ def cell(c: dict | None) -> str:
         return "-"
     knob = c["knob"]
     if c.get(knob) is None:
-        return "none meets it"
+        return "refused" if c.get("refused") else "none meets it"
     value = f"{knob} {c[knob]:g}" if isinstance(c[knob], (int, float)) else knob
     e = c["errors"]
     if "seconds" not in c:
