@@ -368,7 +368,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
         if spec.constant_rotors_only:  # it takes rotors at constant spin: say what else it is given
-            what = "a damper" if damper is not None else f"rotors whose spin changes ({len(rotors.parts)} in this body)"
+            what = "a damper" if damper is not None else f"rotors whose spin changes ({len(cast(Rotors, rotors).parts)} in this body)"
         allowed = ", ".join(m for m, s in METHODS.items() if s.takes(internal))
         raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:

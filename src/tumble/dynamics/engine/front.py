@@ -73,7 +73,7 @@ def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
     ((1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0), 0.5)
     """
     forms = (form,) if isinstance(form[0], int) else tuple(form)
-    return _terms_of(forms)  # type: ignore[arg-type]
+    return _terms_of(forms)
 
 
 def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
@@ -88,7 +88,7 @@ def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
 
 
 def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray,
-             form: tuple[int, tuple[float, ...]], *, rtol: float | None = None, atol: FloatArray | None = None,
+             form: Form | Sequence[Form], *, rtol: float | None = None, atol: FloatArray | None = None,
              step: float | None = None) -> tuple[FloatArray, FloatArray]:
     """One body through the samples ``t`` (s, from t[0]) with a stepper of :data:`ENGINE_METHODS`.
 
@@ -143,7 +143,7 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
 
 
 def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray,
-               form: tuple[int, tuple[float, ...]], *, rtol: float | None = None, atol: FloatArray | None = None,
+               form: Form | Sequence[Form], *, rtol: float | None = None, atol: FloatArray | None = None,
                step: float | FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """N bodies (rows of ``moments``, ``omega0``, ``quat0``, ``atol`` (N, 7) and ``step``, one
     or (N,)), each as :func:`run_body` runs it, on every core from :data:`~tumble.jit.PARALLEL_BODIES`

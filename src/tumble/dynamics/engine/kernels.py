@@ -43,6 +43,8 @@ round-off, and the torques read it normalised.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numba import prange
@@ -111,11 +113,11 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
     return a0, a1, a2, d0, d1, d2, d3
 
 
-def _generated(source: str) -> dict[str, object]:
+def _generated(source: str) -> dict[str, Callable[..., Any]]:
     """The generated steps (:mod:`~tumble.dynamics.engine.unrolled`) compiled, by name, each inlined
     where it is called. The code object is named after this file, so numba's cache keys the
     kernels that inline them on the sources (:func:`tumble.jit.jit`)."""
-    namespace: dict[str, object] = {"rhs": rhs, "math": math, "__name__": __name__}
+    namespace: dict[str, Any] = {"rhs": rhs, "math": math, "__name__": __name__}
     exec(compile(source, __file__, "exec"), namespace)  # noqa: S102 - our own generated source
     return {name: jit(f, error_model="numpy", inline="always") for name, f in namespace.items()
             if name.endswith(("_step", "_turns", "_errors", "_dense", "_interpolate"))}

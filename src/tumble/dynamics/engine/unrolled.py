@@ -27,8 +27,11 @@ def rk4_step(y, h, I, P, cs, ss, rot):
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Union
 
 import numpy as np
+
+Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
@@ -38,14 +41,14 @@ __all__ = ["STATE", "dop853_sources", "fixed_step_source", "rotations_source"]
 STATE = 7
 
 
-def _weighted(weights: Sequence[float], stages: Sequence[str], i: int) -> str:
+def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
     """``w_0 k0[i] + w_1 k1[i] + ...`` over the nonzero weights, summed in stage order (as
     scipy's ``np.dot(K.T, w)``); ``0.0`` when all are zero."""
     terms = [f"{float(w)!r} * {k}[{i}]" for w, k in zip(weights, stages) if w != 0.0]
     return " + ".join(terms) if terms else "0.0"
 
 
-def _advanced(weights: Sequence[float], stages: Sequence[str], y: str = "y") -> str:
+def _advanced(weights: Coefficients, stages: Sequence[str], y: str = "y") -> str:
     """The state ``y + h sum_r w_r k_r`` as a tuple literal."""
     return "(" + ", ".join(f"{y}[{i}] + h * ({_weighted(weights, stages, i)})" for i in range(STATE)) + ")"
 
@@ -83,7 +86,7 @@ def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray) ->
     return "\n".join(lines) + "\n"
 
 
-def rotations_source(name: str, C: Sequence[float]) -> str:
+def rotations_source(name: str, C: Coefficients) -> str:
     """The source of ``name(n, h)``: the tuple ``(cos n c_0 h, sin n c_0 h, cos n c_1 h, ...)`` over
     the nodes ``C``, the turns of the orbit's direction from a step's start to its stages (all
     ``(1, 0)`` without an orbit, ``n = 0``, with no trigonometric call).
