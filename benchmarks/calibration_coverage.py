@@ -22,8 +22,9 @@ import numpy as np
 CAL_THROWS = 5
 
 
-def _device(index: int) -> tuple[float, float, float, list[str]]:
-    """``(J_r error, its stated relative std, chi2/dof, problems)`` of device ``index``."""
+def _device(index: int) -> tuple[float, float, float, list[str], float, float]:
+    """``(J_r error, its stated relative std, chi2/dof, problems, the alone set's agreement, the proof set's)`` of
+    device ``index``."""
     from tumble.analysis.tensor import Device
     from tumble.analysis.tensor.calibrate import calibrate
     from tumble.analysis.tensor.firmware import draw_imperfections
@@ -39,11 +40,12 @@ def _device(index: int) -> tuple[float, float, float, list[str]]:
     try:
         cal = calibrate(Device(DEVICE_MASS, ROTOR_AXIS), alone, with_proof, proof)
     except ValueError as err:  # no throw of a set could be fitted: a failed calibration, counted and named
-        return float("nan"), float("nan"), float("nan"), [f"device {index}: {err}"]
+        return float("nan"), float("nan"), float("nan"), [f"device {index}: {err}"], float("nan"), float("nan")
     J, s = cal.device.rotor_inertia, cal.device.rotor_inertia_std
+    problems = [f"device {index}: {p}" for p in cal.problems]
     if J is None or s is None:
-        return float("nan"), float("nan"), cal.chi2_dof, list(cal.problems)
-    return J / ROTOR_INERTIA - 1, s / J, cal.chi2_dof, list(cal.problems)
+        return float("nan"), float("nan"), cal.chi2_dof, problems, cal.alone_chi2_dof, cal.proof_chi2_dof
+    return J / ROTOR_INERTIA - 1, s / J, cal.chi2_dof, problems, cal.alone_chi2_dof, cal.proof_chi2_dof
 
 
 def main() -> None:
@@ -73,7 +75,10 @@ def main() -> None:
         f"- 95 % intervals hold {100 * held:.1f} % +- {100 * se:.1f} (of {z.size}); within 1 %: "
         f"{100 * np.mean(np.abs(err[ok]) <= 0.01):.1f} %",
         f"- flagged by the calibration's own checks: {sum(bool(r[3]) for r in rows)} of {len(rows)}; "
-        f"chi2/dof median {np.nanmedian([r[2] for r in rows]):.2f}",
+        f"chi2/dof median {np.nanmedian([r[2] for r in rows]):.2f} (largest {np.nanmax([r[2] for r in rows]):.2f}); "
+        f"the sets' agreement median {np.nanmedian([r[4] for r in rows]):.2f} alone (largest "
+        f"{np.nanmax([r[4] for r in rows]):.2f}), {np.nanmedian([r[5] for r in rows]):.2f} with the proof (largest "
+        f"{np.nanmax([r[5] for r in rows]):.2f}; about 1 when each throw's stated covariance is right)",
         f"- failed (no rotor inertia): {int(np.sum(~ok))} of {len(rows)}",
         "",
         *[f"  - {'; '.join(r[3])[:400]}" for r in rows if r[3]],

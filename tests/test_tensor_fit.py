@@ -368,3 +368,27 @@ def test_bad_input_is_refused_with_the_field_named():
         fit_tensor([throw(1)], calibrated_device(), -1.0)
     with pytest.raises(ValueError, match="non-empty list of Throw"):
         fit_tensor([], calibrated_device(), 0.6)
+
+
+def test_the_centres_sensor_columns_are_what_an_accelerometer_scale_does():
+    """The pooled centre's accelerometer column (one ACCEL_SCALE_STD of the x axis's scale factor)
+    against the centre's shift when the same throws are logged by an accelerometer whose x axis
+    reads 1 % high (an independent simulation: the synthetic device's own scale factor)."""
+    from dataclasses import replace
+
+    from tumble.analysis.tensor.center import ACCEL_SCALE_STD
+
+    flown = combine(true_device(), example_object())
+    imp = Imperfections.none(ROTOR_AXIS)
+    errors = SensorErrors()
+    centres = []
+    for scale in (1.0, 1.0 + ACCEL_SCALE_STD):
+        logs = [synthetic_throw(s, flown, imperfections=replace(imp, accel_scale=np.array([scale, 1.0, 1.0])))
+                for s in (1, 2)]
+        pooled, _ = pool_throws(logs, np.array(ROTOR_AXIS), ROTOR_INERTIA, errors=errors)
+        centres.append(pooled.center)
+        if scale == 1.0:
+            column = pooled.center_columns[:, 0]
+    shift = centres[1] - centres[0]
+    assert np.linalg.norm(shift) > 1e-4   # 1 % of the flown centre's ~40 mm moves it by a few 0.1 mm
+    assert np.linalg.norm(shift - column) < 0.2 * np.linalg.norm(shift)

@@ -19,7 +19,8 @@ Mechanics*, 3rd ed., sec. 5.3; ``S(d) = |d|^2 E - d d^T``),
 solved by weighted least squares (weights the inverse covariance of ``J_r (P - D) - B``, two
 passes) with ``chi^2`` on 5 degrees of freedom; a ``chi^2 / 5 > 1`` inflates ``J_r``'s variance
 (Birge, as in :mod:`~tumble.analysis.tensor.pool`). Then ``I_d = J_r D``. All the
-uncertainties (the pooled ``D``, ``P``, ``c_d``, ``c_dp``; the proof taken as exact) are
+uncertainties (the pooled ``D``, ``P``, ``c_d``, ``c_dp``, the tensors' sensors' parts shared by
+the two sets: :func:`shared_sensor_covariance`; the proof taken as exact) are
 propagated to ``(J_r, I_d, c_d)`` through the map's Jacobian (central differences; the law of
 propagation of uncertainty, JCGM 100:2008, sec. 5.1).
 

@@ -316,7 +316,8 @@ def device_covariances(device: Device) -> tuple[FloatArray, FloatArray]:
 
 def flown_estimate(mass: float, pooled: Pooled, rotor_relative_std: float) -> MassEstimate:
     """The flown body's estimate: the pooled tensor with the rotor inertia's systematic part
-    ``(s_J / J)^2 v v^T`` added (``I`` is proportional to ``J_r``: module docstring).
+    ``(s_J / J)^2 v v^T`` added (``I`` is proportional to ``J_r``: module docstring), its centre
+    with the sensors' part (:attr:`~tumble.analysis.tensor.pool.Pooled.center_columns`) added.
 
     Examples
     --------
@@ -329,4 +330,7 @@ def flown_estimate(mass: float, pooled: Pooled, rotor_relative_std: float) -> Ma
     """
     v = pooled.inertia
     cov = pooled.inertia_cov + rotor_relative_std ** 2 * np.outer(v, v)
-    return mass_estimate(mass, tensor_of(v), cov, pooled.center, pooled.center_cov)
+    center_cov = pooled.center_cov
+    if pooled.center_columns is not None:  # the accelerometer's scale factors, the gyroscope's turn: the device's
+        center_cov = center_cov + pooled.center_columns @ pooled.center_columns.T
+    return mass_estimate(mass, tensor_of(v), cov, pooled.center, center_cov)

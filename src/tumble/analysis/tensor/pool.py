@@ -20,8 +20,9 @@
    or more throws: with two, neither can be called the outlier).
 5. ``chi^2 / dof`` of the throws' own tensors about the joint one (:func:`agreement`, each
    throw refitted with the sensors held at the joint fit's): above 1, the throws disagree
-   beyond their uncertainties, and the joint covariance is multiplied by it (the Birge ratio,
-   as the ratio fit pools its flights).
+   beyond their uncertainties, and the joint covariance's statistical part is multiplied by it
+   (the Birge ratio, as the ratio fit pools its flights; the sensors' parts, the same in every
+   throw of the device, are not: the throws' scatter says nothing of them).
 
 Systematic parts common to all the throws beyond the sensors' (the rotor's inertia, the
 device's own tensor) are added by the caller: averaging does not reduce them.
@@ -36,7 +37,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...typing import FloatArray
-from .center import center_of_mass
+from .center import center_of_mass, sensor_columns
 from .device import Throw
 from .estimate import principal_uncertainty, vector_of
 from .joint import JointFit, JointModel, fit_joint
@@ -76,11 +77,12 @@ class NoThrowError(ValueError):
 @dataclass(frozen=True)
 class Pooled:
     """The pooled flown body: tensor entries ``xx, yy, zz, xy, xz, yz`` (kg m^2 or units of
-    ``J_r``) and centre (m) with their covariances (the sensors' part included, the whole
-    inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
+    ``J_r``) and centre (m) with their covariances (the tensor's sensors' part included; the statistical
+    part inflated by the Birge ratio), ``chi^2 / dof`` of the throws about them (NaN for one throw)
     and the throws used; each used throw's gyroscope bias in the joint fit (rad/s); the sensors'
-    part as columns (:attr:`~tumble.analysis.tensor.joint.JointFit.sensor_columns`, Birge-inflated
-    with the rest); the sensors' seven :data:`~tumble.analysis.tensor.sensors.SENSOR_NAMES` as the
+    part as columns (:attr:`~tumble.analysis.tensor.joint.JointFit.sensor_columns`), and the
+    centre's, not in ``center_cov`` (:func:`~tumble.analysis.tensor.center.sensor_columns`: the
+    accelerometer's scale factors, the gyroscope's turn; None without the sensors' errors); the sensors' seven :data:`~tumble.analysis.tensor.sensors.SENSOR_NAMES` as the
     joint fit found them with their covariance (None where it did not fit them).
 
     Examples
@@ -102,6 +104,7 @@ class Pooled:
     sensor_columns: FloatArray | None = None
     sensor: FloatArray | None = None
     sensor_cov: FloatArray | None = None
+    center_columns: FloatArray | None = None
 
 
 def throw_verdict(f: FlownFit, throw: Throw) -> str:
@@ -369,20 +372,26 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
                                                               f"the other throws' joint fit (at most {OUTLIER_SIGMA:g})")
     chosen = [fits[k] for k in used]
     rates = joint.rates(jf.P)
-    center, center_cov, _, _ = center_of_mass([f.model for f in chosen], rates, [f.accel for f in chosen])  # type: ignore[misc]
+    models, accels = [f.model for f in chosen], [f.accel for f in chosen]
+    center, center_cov, _, cutoff = center_of_mass(models, rates, accels)  # type: ignore[arg-type]
     # the rates' part: each throw's (from its own fit), averaged down as independent estimates
     center_cov = center_cov + np.linalg.pinv(sum(np.linalg.pinv(f.center_cov_rates) for f in chosen))
     I = vector_of(jf.inertia)
-    cov_I = jf.inertia_cov
+    cov_I = jf.inertia_cov_stat
     chi2_dof = agreement(own, jf.inertia)
-    S = jf.sensor_columns
     if np.isfinite(chi2_dof) and chi2_dof > 1.0:  # the throws disagree beyond their uncertainties: Birge
+        # (the statistical parts only: the sensors' errors are the device's, the same in every throw, and
+        # the throws' scatter says nothing of them)
         cov_I, center_cov = cov_I * chi2_dof, center_cov * chi2_dof
-        S = None if S is None else S * np.sqrt(chi2_dof)
+    S = jf.sensor_columns
+    cov_I = cov_I + jf.inertia_cov_sensor
+    Sc = None  # the centre's sensors' part, for the caller to add (fit_tensor does; the calibration not yet)
+    if errors is not None:
+        Sc = sensor_columns(models, rates, accels, cutoff, errors.gyro_misalignment / np.sqrt(2.0))  # type: ignore[arg-type]
     biases = np.array([joint.throw_parameters(jf.P, j)[9:12] for j in range(len(chosen))])
     sensor = sensor_cov = None
     if joint.sensor and len(chosen) >= SENSOR_THROWS:
         sensor, sensor_cov = jf.P[6:joint.base], jf.cov_P[6:joint.base, 6:joint.base]
         if np.isfinite(chi2_dof) and chi2_dof > 1.0:
             sensor_cov = sensor_cov * chi2_dof
-    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases, S, sensor, sensor_cov), fits
+    return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases, S, sensor, sensor_cov, Sc), fits
