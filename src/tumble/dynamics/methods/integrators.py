@@ -61,8 +61,9 @@ from ..engine.front import run_body  # imports no numba: the kernels load on a r
 from ..engine.status import MAX_EVALUATIONS  # the work budget of every adaptive method, compiled or not
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
-from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, body_torque, kernel_form, spin_gain
+from ..models.torques import TorqueModel, body_torque, kernel_form, spin_gain
 from ..special.quaternion import quaternion_rate
+from .engine_rk import engine_rk, engine_rk_internal, gyrostat_on_engine, rk_step
 from .names import METHOD_NAMES
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
@@ -278,24 +279,6 @@ def stiffness(
     return model.stiffness(model.spin_bound(omega0, t) + gain, t_end)
 
 
-def _gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]], omega0: ArrayLike, quat0: ArrayLike,
-                        t: FloatArray, rtol: float | None, atol: float | FloatArray | None) -> InternalSamples:
-    """A body whose rotors spin at constant rates under a built-in torque, on the compiled engine:
-    their constant momentum ``h`` is one more term of its Euler's equations, ``h x omega``
-    (:data:`~tumble.dynamics.models.torques.KERNEL_ROTOR_MOMENTUM`), and the state stays
-    ``(omega, q)``. ``atol`` is the internal model's, momentum first (:meth:`InternalModel.atol`):
-    its momentum components are read back as rates over the largest moment."""
-    h = model.momentum(0.0)
-    tol = np.asarray(atol, dtype=float)
-    if tol.shape == (7,):
-        tol = np.concatenate([tol[:3] / float(np.max(model.moments)), tol[3:]])
-    else:
-        tol = np.full(7, float(tol))
-    omega, quat = run_body("dop853", model.moments, np.asarray(omega0, float), np.asarray(quat0, float), t,
-                           (form, (KERNEL_ROTOR_MOMENTUM, tuple(float(v) for v in h))), rtol=rtol, atol=tol)
-    return InternalSamples(omega, quat, None, None, None)
-
-
 def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
     """The internal-model integrator with scipy's ``method``; ``stiff``: the implicit method a
     stiff damper's run is handed to (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`),
@@ -307,7 +290,7 @@ def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
     ) -> InternalSamples:
         form = kernel_form(torque) if method == "DOP853" else None
         if form is not None and model.damper is None and model.rotors is not None and model.rotors.constant:
-            return _gyrostat_on_engine(model, form, omega0, quat0, t, rtol, atol)
+            return gyrostat_on_engine(model, form, omega0, quat0, t, rtol, atol)
         tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
         y0 = model.initial_state(omega0, quat0)
 
@@ -362,65 +345,6 @@ def _integrate_exact(
 
     motion = FreeRotation(moments, omega0, Rotation.from_quat(quat0))
     return motion.omega(t), motion.attitude(t).as_quat()
-
-
-#: Default largest step of the fixed-step Runge-Kutta methods, as rotation per step (rad) at
-#: the fastest spin the run can reach: ~1e-13 of omega per step for RK8 and ~1e-10 for RK4
-#: (local errors (omega h)^(p+1), measured on the bench cases); ``step`` overrides it.
-RK_STEP_ANGLE = {"rk4": 0.01, "rk8": 0.2}
-
-
-def _engine_rk(name: str) -> Integrate:
-    """The compiled engine's fixed-step Runge-Kutta ``name`` (``"rk4"``, ``"rk8"``)."""
-
-    def integrate(
-        moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
-    ) -> tuple[Vector3, Quaternion]:
-        form = kernel_form(torque)
-        if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
-            raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "
-                             f"(ConstantTorque, GravityGradient) or none; use dop853 for {torque!r}")
-        w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
-        if step is None:
-            with np.errstate(over="ignore", invalid="ignore"):
-                gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), I, float(t[-1] - t[0]))
-            step = _rk_step(name)(float(np.linalg.norm(w0)), gain)
-        return run_body(name, I, w0, q0, t, form, step=step)
-
-    return integrate
-
-
-def _engine_rk_internal(name: str) -> IntegrateInternal:
-    """The compiled engine's fixed-step ``name`` for a body whose rotors spin at constant rates (their
-    momentum one more term, :func:`_gyrostat_on_engine`); other internal models are refused."""
-
-    def integrate(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
-                  rtol: float | None, atol: float | FloatArray | None, step: float | None = None) -> InternalSamples:
-        form = kernel_form(torque)
-        if model.damper is not None or model.rotors is None or not model.rotors.constant or form is None:
-            what = "a damper" if model.damper is not None else (
-                "rotors whose spin changes" if form is not None else f"torque = {torque!r}")
-            raise ValueError(f"method = {name!r} runs compiled and takes rotors spinning at constant rates under the "
-                             f"built-in torques; for {what} use dop853")
-        w0, q0 = np.asarray(omega0, float), np.asarray(quat0, float)
-        if step is None:
-            with np.errstate(over="ignore", invalid="ignore"):
-                gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), model.moments, float(t[-1] - t[0]))
-            step = _rk_step(name)(float(model.spin_bound(w0, t)), gain)
-        h = tuple(float(v) for v in model.momentum(0.0))
-        omega, quat = run_body(name, model.moments, w0, q0, t, (form, (KERNEL_ROTOR_MOMENTUM, h)), step=step)
-        return InternalSamples(omega, quat, None, None, None)
-
-    return integrate
-
-
-def _rk_step(name: str) -> StepRule:
-    def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
-        top = max(spin + gain, rate)
-        return RK_STEP_ANGLE[name] / top if top > 0 else float(np.inf)
-
-    return default_step
 
 
 def _geometric_internal(order: int) -> IntegrateInternal:
@@ -484,14 +408,14 @@ METHODS: dict[str, Method] = {
                                "fixed step", "exact_split"),
     "exact_split6": _splitting("exact_split6", 6, "exact free flow and torque kicks, 6th-order Yoshida composition, "
                                "fixed step", "exact_split"),
-    "rk4": Method("rk4", _engine_rk("rk4"), True, None, None,
+    "rk4": Method("rk4", engine_rk("rk4"), True, None, None,
                   "classical RK4 at a fixed step, compiled (built-in torques, rotors at constant spin)",
-                  fixed_step=True, default_step=_rk_step("rk4"), engine=True, compiled_only=True,
-                  integrate_internal=_engine_rk_internal("rk4"), constant_rotors_only=True),
-    "rk8": Method("rk8", _engine_rk("rk8"), True, None, None,
+                  fixed_step=True, default_step=rk_step("rk4"), engine=True, compiled_only=True,
+                  integrate_internal=engine_rk_internal("rk4"), constant_rotors_only=True),
+    "rk8": Method("rk8", engine_rk("rk8"), True, None, None,
                   "DOP853's 8th-order weights at a fixed step, compiled (built-in torques, rotors at constant spin)",
-                  fixed_step=True, default_step=_rk_step("rk8"), engine=True, compiled_only=True,
-                  integrate_internal=_engine_rk_internal("rk8"), constant_rotors_only=True),
+                  fixed_step=True, default_step=rk_step("rk8"), engine=True, compiled_only=True,
+                  integrate_internal=engine_rk_internal("rk8"), constant_rotors_only=True),
 }
 
 

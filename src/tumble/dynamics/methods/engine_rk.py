@@ -1,0 +1,109 @@
+"""The methods that run on the compiled engine's fixed steps, and the gyrostat's way onto it.
+
+:func:`engine_rk` and :func:`engine_rk_internal` are the ``integrate`` and ``integrate_internal``
+of the ``"rk4"`` and ``"rk8"`` entries of :data:`~tumble.dynamics.methods.integrators.METHODS`;
+:func:`gyrostat_on_engine` runs a body whose rotors spin at constant rates under a built-in torque
+on the engine's DOP853 (their momentum one more term of Euler's equations,
+:data:`~tumble.dynamics.models.torques.KERNEL_ROTOR_MOMENTUM`). Apart from the registry so that
+each module stays short; imports no numba (the engine's front loads its kernels on a first run).
+
+Examples
+--------
+>>> import numpy as np
+>>> from tumble.dynamics.methods.engine_rk import engine_rk
+>>> omega, quat = engine_rk("rk8")(np.array([1.0, 2.0, 3.0]), np.array([0.0, 0.0, 1.0]),
+...                                np.array([0.0, 0.0, 0.0, 1.0]), np.array([0.0, 1.0]), None, None, None)
+>>> omega[-1].tolist()   # a steady spin about a principal axis
+[0.0, 0.0, 1.0]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
+from ..engine.front import run_body
+from ..models.internal import InternalModel, InternalSamples
+from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, kernel_form, spin_gain
+
+__all__ = ["RK_STEP_ANGLE", "engine_rk", "engine_rk_internal", "gyrostat_on_engine", "rk_step"]
+
+
+def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]], omega0: ArrayLike, quat0: ArrayLike,
+                        t: FloatArray, rtol: float | None, atol: float | FloatArray | None) -> InternalSamples:
+    """A body whose rotors spin at constant rates under a built-in torque, on the compiled engine:
+    their constant momentum ``h`` is one more term of its Euler's equations, ``h x omega``
+    (:data:`~tumble.dynamics.models.torques.KERNEL_ROTOR_MOMENTUM`), and the state stays
+    ``(omega, q)``. ``atol`` is the internal model's, momentum first (:meth:`InternalModel.atol`):
+    its momentum components are read back as rates over the largest moment."""
+    h = model.momentum(0.0)
+    tol = np.asarray(atol, dtype=float)
+    if tol.shape == (7,):
+        tol = np.concatenate([tol[:3] / float(np.max(model.moments)), tol[3:]])
+    else:
+        tol = np.full(7, float(tol))
+    omega, quat = run_body("dop853", model.moments, np.asarray(omega0, float), np.asarray(quat0, float), t,
+                           (form, (KERNEL_ROTOR_MOMENTUM, tuple(float(v) for v in h))), rtol=rtol, atol=tol)
+    return InternalSamples(omega, quat, None, None, None)
+
+
+#: Default largest step of the fixed-step Runge-Kutta methods, as rotation per step (rad) at
+#: the fastest spin the run can reach: ~1e-13 of omega per step for RK8 and ~1e-10 for RK4
+#: (local errors (omega h)^(p+1), measured on the bench cases); ``step`` overrides it.
+RK_STEP_ANGLE = {"rk4": 0.01, "rk8": 0.2}
+
+
+def engine_rk(name: str) -> Callable[..., tuple[Vector3, Quaternion]]:
+    """The compiled engine's fixed-step Runge-Kutta ``name`` (``"rk4"``, ``"rk8"``)."""
+
+    def integrate(
+        moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+        rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
+    ) -> tuple[Vector3, Quaternion]:
+        form = kernel_form(torque)
+        if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
+            raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "
+                             f"(ConstantTorque, GravityGradient) or none; use dop853 for {torque!r}")
+        w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
+        if step is None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), I, float(t[-1] - t[0]))
+            step = rk_step(name)(float(np.linalg.norm(w0)), gain)
+        return run_body(name, I, w0, q0, t, form, step=step)
+
+    return integrate
+
+
+def engine_rk_internal(name: str) -> Callable[..., InternalSamples]:
+    """The compiled engine's fixed-step ``name`` for a body whose rotors spin at constant rates (their
+    momentum one more term, :func:`gyrostat_on_engine`); other internal models are refused."""
+
+    def integrate(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
+                  rtol: float | None, atol: float | FloatArray | None, step: float | None = None) -> InternalSamples:
+        form = kernel_form(torque)
+        if model.damper is not None or model.rotors is None or not model.rotors.constant or form is None:
+            what = "a damper" if model.damper is not None else (
+                "rotors whose spin changes" if form is not None else f"torque = {torque!r}")
+            raise ValueError(f"method = {name!r} runs compiled and takes rotors spinning at constant rates under the "
+                             f"built-in torques; for {what} use dop853")
+        w0, q0 = np.asarray(omega0, float), np.asarray(quat0, float)
+        if step is None:
+            with np.errstate(over="ignore", invalid="ignore"):
+                gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), model.moments, float(t[-1] - t[0]))
+            step = rk_step(name)(float(model.spin_bound(w0, t)), gain)
+        h = tuple(float(v) for v in model.momentum(0.0))
+        omega, quat = run_body(name, model.moments, w0, q0, t, (form, (KERNEL_ROTOR_MOMENTUM, h)), step=step)
+        return InternalSamples(omega, quat, None, None, None)
+
+    return integrate
+
+
+def rk_step(name: str) -> Callable[..., float]:
+    def default_step(spin: float, gain: float = 0.0, rate: float = 0.0) -> float:
+        top = max(spin + gain, rate)
+        return RK_STEP_ANGLE[name] / top if top > 0 else float(np.inf)
+
+    return default_step
