@@ -4,7 +4,7 @@
 ``(I1/I3, I2/I3)`` by the chain rule (:func:`tumble.analysis.fit.triangle.ratio_jacobian`);
 :func:`ratio_summary` gives the ratios with their 95 % intervals; :func:`solution_adequacy`
 says whether the model describes the data and :func:`determination` whether the data determine
-the ratios. :mod:`tumble.analysis.fit.result` builds the :class:`RotationFit` from them.
+the ratios. :mod:`tumble.analysis.fit.result` builds the :class:`~tumble.analysis.fit.result.RotationFit` from them.
 """
 
 from __future__ import annotations

@@ -42,7 +42,7 @@ IGRF_RADIUS = 6371.2e3
 
 
 def dipole_components(g0: Any, g1: Any, g2: Any, x0: Any, x1: Any, x2: Any) -> tuple[Any, Any, Any]:
-    """The dipole's field ``B = (a/r)^3 (3 (g . r^) r^ - g)`` at ``r = (x0, x1, x2)`` (m), T.
+    """The dipole's field ``B = (a/r)^3 (3 (g·r^) r^ - g)`` at ``r = (x0, x1, x2)`` (m), T.
 
     ``g = (g0, g1, g2)`` the Gauss vector ``(g11, h11, g10)`` (T) in the frame of ``r`` (the
     Earth-fixed frame), ``a`` :data:`IGRF_RADIUS` (module docstring). The one writing of the
