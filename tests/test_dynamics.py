@@ -306,3 +306,17 @@ def test_an_integer_beyond_any_float_is_refused_in_one_line(omega0):
     input, named by its index, like any other non-finite number."""
     with pytest.raises(ValueError, match=r"^omega0\[\d\] = 1000+ must be a finite number \(rad/s\)$"):
         simulate(tumble.t_handle(), omega0, t_end=1.0)
+
+
+def test_rk45_honours_an_rtol_given_alone_on_a_slow_body():
+    """scipy's default atol (1e-6 rad/s) would cap rk45's accuracy on a body turning at 1e-3 rad/s
+    (issue 38: rtol 1e-10 gave 1.2e-5 relative); an rtol given alone brings atol down with it,
+    relative to the spin. Against the closed form (elliptic functions), omega and attitude."""
+    body = MassProperties.from_moments([1.0, 2.0, 3.0])
+    w0 = [1e-4, 1e-3, 1e-4]
+    exact = simulate(body, w0, t_end=2000.0, samples=11)
+    run = simulate(body, w0, t_end=2000.0, samples=11, method="rk45", rtol=1e-10)
+    assert np.max(np.abs(run.omega - exact.omega)) / 1e-3 < 1e-9
+    assert np.max((run.attitude * exact.attitude.inv()).magnitude()) < 1e-8
+    given = simulate(body, w0, t_end=2000.0, samples=11, method="rk45", rtol=1e-10, atol=1e-6)  # as asked
+    assert np.max(np.abs(given.omega - exact.omega)) / 1e-3 > 1e-8

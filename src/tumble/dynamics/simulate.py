@@ -117,6 +117,7 @@ class RunInputs(NamedTuple):
     internal: InternalModel | None = None  # rotors and/or a damper, or None
     spin: float = 0.0  # the spin the run starts from, rad/s (_spin_bound; 0 for the closed form)
     gain: float = 0.0  # bound on the spin the torque adds over the run, rad/s (_spin_gain; 0 for the closed form)
+    atol_scaled: bool = False  # atol relative to the spin: the method's (dop853), or an rtol given alone
 
 
 def simulate(
@@ -170,7 +171,9 @@ def simulate(
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
         Tolerances; the method's defaults if not given. ``rtol`` from 100 eps to 0.1. For
-        ``"dop853"`` ``atol`` is relative to the size of omega.
+        ``"dop853"`` ``atol`` is relative to the size of omega; an ``rtol`` given alone to
+        ``"rk45"`` brings its ``atol`` down with it, relative to the size of omega too (scipy's
+        default ``atol`` 1e-6 rad/s would cap a slow body's accuracy).
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
@@ -218,7 +221,7 @@ def simulate(
     tol: float | FloatArray | None  # atol; per component where the method scales it
     spec, model, tol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
-    if spec.atol_scaled and tol is not None:
+    if run.atol_scaled and tol is not None:
         scale = max(run.spin, run.gain, 1e-300)
         tol = np.array([tol * scale] * 3 + [tol] * 4) if internal is None else internal.atol(tol, scale)
     extra: dict[str, Any] = {}  # the rotors' and the damper's fields of the Trajectory
@@ -378,8 +381,12 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     t_end = float(t[-1])
     if rtol is not None and not (type(rtol) is float and RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]):  # else checked here
         rtol = check_rtol("rtol", rtol)
+    # an rtol given alone is honoured by every adaptive method: its atol follows it, relative to the
+    # spin (rk45's scipy default, atol 1e-6 rad/s, would cap the accuracy of a slow body's run)
+    atol_scaled = spec.atol_scaled or (rtol is not None and atol is None and spec.rtol is not None)
+    atol = (rtol if not spec.atol_scaled and atol_scaled else spec.atol) if atol is None else \
+        check_positive("atol", atol, "rad/s")
     rtol = spec.rtol if rtol is None else rtol
-    atol = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments
     I = moments.tolist()  # float arithmetic: these checks cost nothing for plain inputs
@@ -409,7 +416,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if not spec.closed_form:  # a stepping method: its work is bounded by the spin it follows
         spin = _spin_bound(internal, w0, t)
         gain = _spin_gain(model, w0, q0, moments, t_end)
-    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal, spin, gain)
+    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal, spin, gain, atol_scaled)
     _check_work(run)
     return run
 
