@@ -81,6 +81,18 @@ _initial_step_of = jit(initial_step, error_model="numpy", inline="always")
 
 
 @jit(error_model="numpy", inline="always")
+def _inverse_norm(squared: float) -> float:
+    """``1 / sqrt(squared)`` for the squared norm of a quaternion: by its series about 1,
+    ``1 - e/2 + 3 e^2/8`` with ``e = squared - 1``, where ``|e| < 1e-6`` (the quaternion of a step
+    is a unit one to round-off: the series is then exact to 3e-19), else by the square root. A
+    square root and a division on every stage were a fifth of the gravity gradient's RK8 step."""
+    e = squared - 1.0
+    if abs(e) < 1e-6:
+        return 1.0 - e * (0.5 - 0.375 * e)
+    return 1.0 / math.sqrt(squared)
+
+
+@jit(error_model="numpy", inline="always")
 def external_torque(I: tuple[float, ...], w0: float, w1: float, w2: float, x: float, y: float, z: float, s: float,
                     u0: float, u1: float, P: tuple[float, ...]) -> tuple[float, float, float]:
     """The sum of the torque terms ``P`` (N m, principal frame; module docstring) on a body of
@@ -90,7 +102,7 @@ def external_torque(I: tuple[float, ...], w0: float, w1: float, w2: float, x: fl
     if P[7] != 0.0 or P[8] != 0.0 or P[9] != 0.0:  # h x omega
         a0, a1, a2 = a0 + (P[8] * w2 - P[9] * w1), a1 + (P[9] * w0 - P[7] * w2), a2 + (P[7] * w1 - P[8] * w0)
     if P[3] != 0.0 or P[4] != 0.0 or P[5] != 0.0 or P[6] != 0.0:
-        scale = 1.0 / math.sqrt(x * x + y * y + z * z + s * s)
+        scale = _inverse_norm(x * x + y * y + z * z + s * s)
         x, y, z, s = x * scale, y * scale, z * scale, s * scale
         if P[3] != 0.0 or P[4] != 0.0 or P[5] != 0.0:
             b0, b1, b2 = _to_body(x, y, z, s, P[3], P[4], P[5])
