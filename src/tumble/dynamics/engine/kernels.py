@@ -130,8 +130,9 @@ def _generated(source: str) -> dict[str, Callable[..., Any]]:
     :func:`rhs` at its stages (numba's inlining: LLVM alone left the calls, 1.5x the step), but is
     not itself inlined into the kernels that call it once a step: that made the first compile of
     the two kernels 58 s instead of 25 s (measured, loaded machine; 7.6 s before the steps were
-    written out), for 10-40 % more speed under the gravity gradient (none under a constant torque). The code object is named after this file, so numba's cache keys the kernels
-    on the sources (:func:`tumble.jit.jit`)."""
+    written out), for no speed (a whole run written out with its steps in its loop ran the same).
+    The code object is named after this file, so numba's cache keys the kernels on the sources
+    (:func:`tumble.jit.jit`)."""
     namespace: dict[str, Any] = {"rhs": rhs, "math": math, "__name__": __name__}
     exec(compile(source, __file__, "exec"), namespace)  # noqa: S102 - our own generated source
     return {name: jit(f, error_model="numpy", fastmath=_FAST) for name, f in namespace.items()
