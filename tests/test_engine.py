@@ -205,3 +205,15 @@ def test_a_batchs_bad_step_is_refused_not_run(step, message):
     with pytest.raises(ValueError, match=re.escape(message)):
         simulate_batch([1.0, 2.0, 3.0], [[0.1, 1.0, 0.0]], t_end=1.0, samples=3, method="rk8", step=step,
                        torque=ConstantTorque(TAU))
+
+
+def test_the_quaternions_inverse_norm_is_its_square_roots_to_round_off():
+    """The torques normalise a step's quaternion by the series of 1/sqrt about 1 where it is a unit
+    one to round-off: against math.sqrt over |q|^2 - 1 from 0 to the series' edge and beyond."""
+    import math
+
+    from tumble.dynamics.engine import kernels
+
+    inverse_norm = kernels._inverse_norm.py_func
+    for e in (0.0, 1e-16, -3e-12, 2e-9, -5e-7, 9.99e-7, -9.99e-7, 1.01e-6, 1e-3, -0.5, 3.0):
+        assert inverse_norm(1.0 + e) == pytest.approx(1.0 / math.sqrt(1.0 + e), rel=2e-16, abs=0.0)
