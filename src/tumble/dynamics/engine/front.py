@@ -105,7 +105,8 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     t : ndarray, shape (n,)
         Sample times, s, increasing.
     form : tuple
-        The torque's ``(kind, parameters)`` (:func:`~tumble.dynamics.models.torques.kernel_form`).
+        The torque's ``(kind, parameters)`` (:func:`~tumble.dynamics.models.torques.kernel_form`), or a
+        sequence of them, a sum of models (:func:`terms`).
     rtol : float, optional
         DOP853's relative tolerance.
     atol : ndarray, shape (7,), optional

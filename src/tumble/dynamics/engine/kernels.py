@@ -163,6 +163,12 @@ def _store(y: tuple[float, ...], omega: np.ndarray, quat: np.ndarray) -> None:
 
 
 @jit(error_model="numpy", inline="always")
+def _finite(y: tuple[float, ...]) -> bool:
+    """Whether every component of the state is finite (one sum: a NaN or inf anywhere makes it not)."""
+    return math.isfinite(y[0] + y[1] + y[2] + y[3] + y[4] + y[5] + y[6])
+
+
+@jit(error_model="numpy", inline="always")
 def _direction(n: float, t: float) -> tuple[float, float]:
     """The circular orbit's direction ``(cos nt, sin nt)`` at ``t`` (s); ``(1, 0)`` without an orbit."""
     if n == 0.0:
@@ -203,7 +209,7 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
     """DOP853 from ``t_eval[0]`` through ``t_eval[-1]`` (s), the samples into ``omega`` and ``quat``
     (len(t_eval) rows each), as scipy's ``solve_ivp`` takes it (module docstring); the torque
     terms ``P`` on an orbit of mean motion ``n`` (rad/s). Returns a status: 0 done, 1 the
-    step fell below 10 ulp of t, 2 :data:`MAX_EVALUATIONS` spent."""
+    step fell below 10 ulp of t, 2 :data:`MAX_EVALUATIONS` spent, 3 a sample not finite."""
     body = (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
     y = _state(y0)
     t, t_bound = t_eval[0], t_eval[-1]
@@ -245,7 +251,10 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
             F = _dop853_dense(y, y_new, K, h, body, P, cs, ss, rot)
             evaluations += 3
             while k < samples and t_eval[k] <= t_new:
-                _store(_dop853_interpolate(F, y, (t_eval[k] - t) / h), omega[k], quat[k])
+                sample = _dop853_interpolate(F, y, (t_eval[k] - t) / h)
+                if not _finite(sample):
+                    return NON_FINITE
+                _store(sample, omega[k], quat[k])
                 k += 1
         t = t_new
         y = y_new
@@ -278,7 +287,7 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, 
                 y = _rk4_step(y, h, body, P, cs, ss, rot4)
             else:
                 y = _rk8_step(y, h, body, P, cs, ss, rot8)
-        if not math.isfinite(y[0] + y[1] + y[2] + y[3] + y[4] + y[5] + y[6]):
+        if not _finite(y):
             return NON_FINITE
         _store(y, omega[k], quat[k])
     return OK

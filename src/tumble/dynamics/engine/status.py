@@ -20,5 +20,5 @@ OK = 0
 STEP_COLLAPSED = 1
 #: A run's status: :data:`MAX_EVALUATIONS` spent.
 BUDGET_SPENT = 2
-#: A run's status: the state overflowed (a NaN or inf at a sample) under a fixed step.
+#: A run's status: the state overflowed (a NaN or inf at a sample).
 NON_FINITE = 3

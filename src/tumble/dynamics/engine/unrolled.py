@@ -149,8 +149,7 @@ def dop853_sources() -> str:
     dense = ["def dop853_dense(y, y_new, K, h, I, P, cs, ss, rot):", unpack]
     extra = [f"k{r}" for r in range(16)]
     for s in range(13, 16):
-        dense += [f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]", f"    u1 = ss * rot[{2 * s}] + cs * rot[{2 * s + 1}]",
-                  f"    k{s} = rhs({_advanced(A[s, :s], extra[:s])}, I, P, u0, u1)"]
+        dense += _stage(s, A)
     rows = [f"    f0 = ({', '.join(f'y_new[{i}] - y[{i}]' for i in range(STATE))})",
             f"    f1 = ({', '.join(f'h * k0[{i}] - f0[{i}]' for i in range(STATE))})",
             f"    f2 = ({', '.join(f'2.0 * f0[{i}] - h * (k12[{i}] + k0[{i}])' for i in range(STATE))})"]
