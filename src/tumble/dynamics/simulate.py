@@ -383,9 +383,11 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         rtol = check_rtol("rtol", rtol)
     # an rtol given alone is honoured by every adaptive method: its atol follows it, relative to the
     # spin (rk45's scipy default, atol 1e-6 rad/s, would cap the accuracy of a slow body's run)
-    atol_scaled = spec.atol_scaled or (rtol is not None and atol is None and spec.rtol is not None)
-    atol = (rtol if not spec.atol_scaled and atol_scaled else spec.atol) if atol is None else \
-        check_positive("atol", atol, "rad/s")
+    follows = atol is None and rtol is not None and spec.rtol is not None and not spec.atol_scaled
+    atol_scaled = spec.atol_scaled or follows
+    if atol is not None:
+        atol = check_positive("atol", atol, "rad/s")
+    atol = rtol if follows else spec.atol if atol is None else atol
     rtol = spec.rtol if rtol is None else rtol
     step = None if step is None else check_positive("step", step, "s")
     moments = props.principal_moments

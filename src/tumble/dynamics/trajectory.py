@@ -8,7 +8,8 @@ the totals of body, rotors and damper.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import MISSING, dataclass
+from dataclasses import fields as dataclass_fields
 from typing import Any, cast
 
 import numpy as np
@@ -403,5 +404,5 @@ class Trajectory:
 _ATTITUDE = _LazyRotation()
 _ATTITUDE.__set_name__(Trajectory, "attitude")
 setattr(Trajectory, "attitude", _ATTITUDE)  # noqa: B010 - the field, stored lazily (_LazyRotation)
-#: The optional fields' defaults, for :meth:`Trajectory.of_samples`.
-_FIELD_DEFAULTS = {name: None for name in (*_OPTIONAL_ARRAYS, "damper_inertia")}
+#: The fields' defaults, for :meth:`Trajectory.of_samples`.
+_FIELD_DEFAULTS = {f.name: f.default for f in dataclass_fields(Trajectory) if f.default is not MISSING}
