@@ -19,7 +19,7 @@ import numpy as np
 
 from .._html import fmt, html_table, plural, result_html, result_repr, short_name, vec, with_std
 
-__all__ = ["calibration_html", "calibration_repr", "estimate_html", "estimate_repr", "family_repr", "flight_repr",
+__all__ = ["calibration_html", "calibration_repr", "estimate_html", "estimate_repr", "family_html", "family_repr", "flight_repr",
            "model_repr", "recording_html", "recording_repr", "rotation_html", "rotation_repr", "synthetic_repr",
            "tensor_html", "tensor_repr", "throw_repr", "toss_repr"]
 
@@ -320,6 +320,34 @@ def family_repr(family: Any) -> str:
         r = np.asarray(family.ratios, float)
         parts += [f"I1/I3 {fmt(r[:, 0].min(), 3)}..{fmt(r[:, 0].max(), 3)}", f"I2/I3 {fmt(r[:, 1].min(), 3)}..{fmt(r[:, 1].max(), 3)}"]
     return result_repr("PeriodFamily", parts)
+
+
+def _span(x: Any) -> str:
+    x = np.asarray(x, float)
+    return f"{fmt(x.min())} to {fmt(x.max())}"
+
+
+def family_html(family: Any) -> str:
+    """The motions' count by mode and the range of each of their numbers, as an HTML table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.period_inversion import PeriodFamily
+    >>> page = PeriodFamily(np.array([[0.2, 0.5], [0.3, 0.6]]), np.array([1.2, 1.5]), np.ones(2),
+    ...                     np.array(["SAM", "LAM"]))._repr_html_()
+    >>> "short-axis modes (SAM)" in page, "1.2 to 1.5" in page
+    (True, True)
+    """
+    modes = Counter(map(str, family.mode))
+    rows: list[tuple[str, str]] = [("motions", str(len(family.mode))),
+                                   ("long-axis modes (LAM)", str(modes.get("LAM", 0))),
+                                   ("short-axis modes (SAM)", str(modes.get("SAM", 0)))]
+    if len(family.mode):
+        r = np.asarray(family.ratios, float)
+        rows += [("I1/I3", _span(r[:, 0])), ("I2/I3", _span(r[:, 1])), ("energy 2 E I3 / |L|^2", _span(family.energy)),
+                 ("|L| / I3", f"{_span(family.L_over_I3)} rad/s")]
+    return result_html("PeriodFamily", rows)
 
 
 def flight_repr(flight: Any) -> str:

@@ -54,6 +54,9 @@ class PeriodFamily:
     def __repr__(self) -> str:
         return _display.family_repr(self)
 
+    def _repr_html_(self) -> str:
+        return _display.family_html(self)
+
 
 def _periods_at(x, y, beta):
     """``(P_phi, P_psi, mode)`` at ``|L| = I3 = 1`` for the motion whose L crosses the body's

@@ -1,6 +1,8 @@
 """Short plain reprs and Jupyter's HTML tables of the ensembles' results: a detumbling Monte
 Carlo (:class:`~tumble.ensemble.detumble.DetumbleMonteCarlo` and its
-:class:`~tumble.ensemble.detumble.DetumbleCases`), a sweep's streaming summary
+:class:`~tumble.ensemble.detumble.DetumbleCases`), a Monte Carlo of pointing on an estimate
+(:class:`~tumble.ensemble.knowledge.PointingMonteCarlo` and its
+:class:`~tumble.ensemble.knowledge.KnowledgeCases`), a sweep's streaming summary
 (:class:`~tumble.ensemble.summary.SweepSummary`) and the stability map
 (:class:`~tumble.ensemble.reductions.StabilityMap`).
 
@@ -16,9 +18,10 @@ from typing import Any
 
 import numpy as np
 
-from .._html import fmt, plural, result_html, result_repr, vec
+from .._html import fmt, html_table, plural, result_html, result_repr, vec
 
-__all__ = ["cases_repr", "map_html", "map_repr", "monte_carlo_html", "monte_carlo_repr", "sweep_html", "sweep_repr"]
+__all__ = ["cases_html", "cases_repr", "knowledge_html", "knowledge_repr", "map_html", "map_repr", "monte_carlo_html",
+           "monte_carlo_repr", "pointing_html", "pointing_repr", "sweep_html", "sweep_repr"]
 
 
 def cases_repr(cases: Any) -> str:
@@ -37,6 +40,118 @@ def cases_repr(cases: Any) -> str:
     if cases.gyro_bias is not None:
         parts.append("gyro biases")
     return result_repr("DetumbleCases", parts)
+
+
+def _range(x: Any, digits: int = 3) -> str:
+    x = np.asarray(x, float)
+    lo, hi = fmt(x.min(), digits), fmt(x.max(), digits)
+    return lo if lo == hi else f"{lo}..{hi}"
+
+
+def cases_html(cases: Any) -> str:
+    """The detumbling cases' spread (moments, starting rates, biases) as an HTML table.
+
+    Examples
+    --------
+    >>> from tumble.ensemble.detumble import detumble_cases
+    >>> page = detumble_cases(3, moments=[0.0067, 0.0419, 0.0419], rate_min=0.1, rate_max=0.3, seed=2)._repr_html_()
+    >>> "|omega0|, smallest to largest" in page, "gyro bias" in page
+    (True, True)
+    """
+    rows: list[tuple[str, str]] = [("cases", str(len(cases)))]
+    if len(cases):
+        m = np.asarray(cases.moments, float)
+        rows += [(f"I{j + 1}", f"{_range(m[:, j], 4)} kg m^2") for j in range(3)]
+        rate = np.degrees(np.linalg.norm(cases.omega0, axis=1))
+        rows.append(("|omega0|, smallest to largest", f"{_range(rate)} deg/s"))
+        rows.append(("GMST at the start", f"{_range(np.degrees(cases.gmst0))} deg"))
+        if cases.gyro_bias is not None:
+            bias = np.degrees(np.linalg.norm(cases.gyro_bias, axis=1))
+            rows.append(("|gyro bias|, smallest to largest", f"{_range(bias)} deg/s"))
+    return result_html("DetumbleCases", rows)
+
+
+def _knowledge_parts(cases: Any) -> list[tuple[str, str]]:
+    """(what, value) of the pointing cases' spread: biases, noise scales and seeds."""
+    n = len(cases)
+    if not n:
+        return []
+    bias = np.degrees(np.linalg.norm(cases.gyro_bias, axis=1))
+    seeds = np.asarray(cases.noise_seed)
+    return [("|gyro bias|", f"{_range(bias)} deg/s"), ("noise scale", _range(cases.noise_scale)),
+            ("noise seeds", f"{seeds.min()}..{seeds.max()}" if n > 1 else str(seeds[0]))]
+
+
+def knowledge_repr(cases: Any) -> str:
+    """``KnowledgeCases(4 cases, |gyro bias| 0.00216..0.0182 deg/s, noise scale 0.846..1.19, ...)``.
+
+    Examples
+    --------
+    >>> from tumble.ensemble.knowledge import knowledge_cases
+    >>> knowledge_cases(4, gyro_bias_sigma=1e-4, noise_spread=0.2, seed=1)
+    KnowledgeCases(4 cases, |gyro bias| 0.00216..0.0182 deg/s, noise scale 0.846..1.19, noise seeds 2000..2003)
+    """
+    return result_repr("KnowledgeCases", [plural(len(cases), "case")] + [f"{k} {v}" for k, v in _knowledge_parts(cases)])
+
+
+def knowledge_html(cases: Any) -> str:
+    """The pointing cases' spread as an HTML table.
+
+    Examples
+    --------
+    >>> from tumble.ensemble.knowledge import knowledge_cases
+    >>> "noise scale" in knowledge_cases(4, noise_spread=0.2, seed=1)._repr_html_()
+    True
+    """
+    return result_html("KnowledgeCases", [("cases", str(len(cases))), *_knowledge_parts(cases)])
+
+
+_ERRORS = (("pointing_rms", "pointing RMS"), ("pointing_final", "final pointing"),
+           ("knowledge_rms", "knowledge RMS"), ("knowledge_final", "final knowledge"))
+
+
+def pointing_repr(mc: Any) -> str:
+    """``PointingMonteCarlo(4 cases, pointing RMS median 0.25 deg, 95 % 0.385 deg, ...)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.ensemble.knowledge import PointingMonteCarlo, knowledge_cases
+    >>> e = np.radians([0.1, 0.2, 0.3, 0.4])
+    >>> PointingMonteCarlo(knowledge_cases(4), e, e / 2, e, e / 2, Sensors(), 60.0)
+    PointingMonteCarlo(4 cases, after 60 s: pointing RMS median 0.25 deg, 95 % 0.385 deg; knowledge RMS median 0.25 deg, 95 % 0.385 deg)
+    """
+    parts = [plural(len(mc.cases), "case")]
+    if len(mc.cases):
+        s = mc.summary()
+        point, know = s["pointing_rms_deg"], s["knowledge_rms_deg"]
+        parts.append(f"after {fmt(mc.settle)} s: pointing RMS median {fmt(point['median'], 3)} deg, "
+                     f"95 % {fmt(point['p95'], 3)} deg; knowledge RMS median {fmt(know['median'], 3)} deg, "
+                     f"95 % {fmt(know['p95'], 3)} deg")
+    return result_repr("PointingMonteCarlo", parts)
+
+
+def pointing_html(mc: Any) -> str:
+    """Each error's median, 95th percentile and largest (deg), and the cases' spread, as HTML tables.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.ensemble.knowledge import PointingMonteCarlo, knowledge_cases
+    >>> page = PointingMonteCarlo(knowledge_cases(4), *[np.radians([0.1, 0.2, 0.3, 0.4])] * 4, Sensors(), 60.0)._repr_html_()
+    >>> page.count("<table"), "final pointing" in page
+    (2, True)
+    """
+    rows: list[tuple[str, str]] = [("cases", str(len(mc.cases))), ("errors from", f"{fmt(mc.settle)} s")]
+    rows += _knowledge_parts(mc.cases)
+    more = []
+    if len(mc.cases):
+        s = mc.summary()
+        more.append(html_table([(label, *(fmt(s[f"{name}_deg"][k], 3) for k in ("median", "p95", "max")))
+                                for name, label in _ERRORS], header=["error, deg", "median", "95 %", "largest"]))
+    return result_html("PointingMonteCarlo", rows, *more)
 
 
 def _time(x: float) -> str:

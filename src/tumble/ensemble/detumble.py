@@ -66,6 +66,9 @@ class DetumbleCases:
     def __repr__(self) -> str:
         return _display.cases_repr(self)
 
+    def _repr_html_(self) -> str:
+        return _display.cases_html(self)
+
     def __len__(self) -> int:
         return len(self.moments)
 

@@ -29,6 +29,7 @@ from ..dynamics.control.estimated import Estimated
 from ..dynamics.models.sensors import Sensors
 from ..typing import ArrayLike, FloatArray
 from ..validation import check_moments, check_positive
+from . import _display
 from .backends import InProcess
 
 __all__ = ["KnowledgeCases", "PointingMonteCarlo", "knowledge_cases", "pointing_monte_carlo"]
@@ -54,6 +55,12 @@ class KnowledgeCases:
 
     def __len__(self) -> int:
         return len(self.noise_seed)
+
+    def __repr__(self) -> str:
+        return _display.knowledge_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.knowledge_html(self)
 
 
 def knowledge_cases(n: int, *, gyro_bias_sigma: float = 0.0, noise_spread: float = 0.0, seed: int = 0) -> KnowledgeCases:
@@ -148,6 +155,12 @@ class PointingMonteCarlo:
     pointing_final: FloatArray
     sensors: Sensors
     settle: float
+
+    def __repr__(self) -> str:
+        return _display.pointing_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.pointing_html(self)
 
     def case_sensors(self, i: int) -> Sensors:
         """The sensors case ``i`` flew with (its noise scale, bias and seed).

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .._html import fmt, plural, result_html, result_repr, short_name
 from .examples import _read_input
 from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _split
 from .gyrocolumns import ColumnsRead, match_accel, match_header
@@ -231,6 +232,47 @@ class GyroRecording:
     events: tuple
     read: ColumnsRead
     accel: np.ndarray | None = field(default=None, repr=False)
+
+    def _rows(self) -> list[tuple[str, str]]:
+        """(what, value): the recording's size, speed, events and accelerometer."""
+        n = len(self.t)
+        rows = [("samples", plural(n, "sample") + (f" over {fmt(self.t[-1] - self.t[0], 3)} s" if n > 1 else "")),
+                ("sample rate", f"{fmt(self.read.sample_rate, 3)} Hz")]
+        if n:
+            rows.append(("largest |omega|", f"{fmt(np.linalg.norm(self.omega, axis=1).max(), 3)} rad/s"))
+        rows.append(("events", plural(len(self.events), "event")))
+        accel = "with the accelerometer" if self.accel is not None else "no accelerometer"
+        rows.append(("accelerometer", f"{accel}: {self.read.accel_left_out}" if self.read.accel_left_out else accel))
+        return rows
+
+    def __repr__(self) -> str:
+        """``GyroRecording('phone_toss.csv', 1500 samples over 15 s, 99.9 Hz, ...)``: one short line.
+
+        Examples
+        --------
+        >>> from importlib import resources
+        >>> from tumble.io.gyrodata import load_recording
+        >>> load_recording(resources.files("tumble") / "examples/data/phone_toss.csv")
+        GyroRecording('phone_toss.csv', 1500 samples over 15 s, 99.9 Hz, largest |omega| 15.1 rad/s, 0 events, no accelerometer)
+        """
+        rows = dict(self._rows())
+        parts = [short_name(os.path.basename(self.read.file)), rows["samples"], rows["sample rate"]]
+        if "largest |omega|" in rows:
+            parts.append(f"largest |omega| {rows['largest |omega|']}")
+        return result_repr("GyroRecording", [*parts, rows["events"], rows["accelerometer"]])
+
+    def _repr_html_(self) -> str:
+        """The recording's file, columns, size and speed as an HTML table (Jupyter).
+
+        Examples
+        --------
+        >>> from importlib import resources
+        >>> from tumble.io.gyrodata import load_recording
+        >>> page = load_recording(resources.files("tumble") / "examples/data/phone_toss.csv")._repr_html_()
+        >>> "Gyroscope x" in page, "1500 samples" in page
+        (True, True)
+        """
+        return result_html("GyroRecording", [("file", str(self.read.file)), ("columns", self.read.brief()), *self._rows()])
 
 
 def read_recording(path: str | os.PathLike[str]) -> tuple[np.ndarray, np.ndarray, list]:

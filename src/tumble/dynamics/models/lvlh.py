@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, NamedTuple, Protocol
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import fmt, plural, result_html, result_repr
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import (
     AXES_ALLOWED,
@@ -274,6 +275,41 @@ class OrbitAngles(NamedTuple):
     roll: FloatArray
     pitch: FloatArray
     yaw: FloatArray
+
+    def _ranges(self) -> list[tuple[str, str]]:
+        """(angle, its smallest to largest in deg) of each angle that has samples."""
+        out: list[tuple[str, str]] = []
+        for name in self._fields:
+            x = np.degrees(np.asarray(getattr(self, name), float))
+            if x.size:
+                out.append((name, f"{fmt(np.min(x), 3)}..{fmt(np.max(x), 3)} deg"))
+        return out
+
+    def __repr__(self) -> str:
+        """``OrbitAngles(3 samples, roll 0..0 deg, pitch -0.573..0.573 deg, yaw 0..0 deg)``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.lvlh import OrbitAngles
+        >>> OrbitAngles(roll=np.zeros(3), pitch=np.array([0.01, 0.0, -0.01]), yaw=np.full(3, 0.5))
+        OrbitAngles(3 samples, roll 0..0 deg, pitch -0.573..0.573 deg, yaw 28.6..28.6 deg)
+        """
+        return result_repr("OrbitAngles", [plural(np.size(self.pitch), "sample")]
+                           + [f"{name} {span}" for name, span in self._ranges()])
+
+    def _repr_html_(self) -> str:
+        """Each angle's range as an HTML table (Jupyter).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.lvlh import OrbitAngles
+        >>> "-0.573..0.573 deg" in OrbitAngles(np.zeros(2), np.array([0.01, -0.01]), np.zeros(2))._repr_html_()
+        True
+        """
+        return result_html("OrbitAngles", [("samples", str(np.size(self.pitch))),
+                                           *((f"{name}, smallest to largest", span) for name, span in self._ranges())])
 
 
 def orbit_frame_angles(
