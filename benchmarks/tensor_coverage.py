@@ -206,6 +206,7 @@ def main() -> None:
     args = parser.parse_args()
     devices = -(-args.objects // args.per_device)
     t0 = time.perf_counter()
+    out = Path(__file__).parent / "results" / "tensor_coverage.md"
     with ProcessPoolExecutor(args.jobs) as pool:
         results = []
         for r in pool.map(_device_task, [(k, args.per_device) for k in range(devices)]):
@@ -213,9 +214,14 @@ def main() -> None:
             print(f"device {r['device']}: J_r {100 * (r['J_err'] or 0):+.2f} %, objects "
                   + ", ".join(f"{np.round(100 * np.array(o['err']), 2).tolist()}" if 'err' in o else "failed"
                               for o in r["objects"]), flush=True)
+            if len(results) < devices and any(o.get("err") for o in r["objects"]):  # a slow run leaves what it has
+                out.write_text(f"**Partial: {len(results)} of {devices} devices so far.**\n\n"
+                               + table(results, time.perf_counter() - t0))
+                if args.json:
+                    args.json.write_text(json.dumps(results, indent=1))
     text = table(results, time.perf_counter() - t0)
     print(text)
-    (Path(__file__).parent / "results" / "tensor_coverage.md").write_text(text)
+    out.write_text(text)
     if args.json:
         args.json.write_text(json.dumps(results, indent=1))
 
