@@ -47,6 +47,7 @@ extensions = [
     "tumble_keys",  # docs/_ext: the file formats' tables of keys, as their parsers check them
     "tumble_citing",  # docs/_ext: the citing page from CITATION.cff
     "tumble_code",  # docs/_ext: each highlighted line in a span, so a wrapped line hangs under itself
+    "tumble_lean",  # docs/_ext: the built pages without their indentation, plain code spans and source maps
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -139,6 +140,11 @@ html_theme_options = {
     "collapse_navigation": True,
     "header_links_before_dropdown": 6,
     "icon_links": [],
+    # The colour-mode switch once a page, beside the breadcrumbs: in the header's end it was
+    # written twice (the header and the narrow screen's menu), 1.2 KB a page each (issue 40).
+    "navbar_end": [],
+    "article_header_end": ["theme-switcher"],
+    "primary_sidebar_end": [],  # no Read the Docs ads offline: their empty placeholder left out
     "secondary_sidebar_items": ["page-toc"],
     "footer_start": ["copyright"],
     "footer_end": [],
