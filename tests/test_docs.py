@@ -239,6 +239,25 @@ def test_the_site_works_from_file_with_no_network_search_included(site, new_page
     assert not watched.errors, "\n".join(watched.errors)
 
 
+def test_code_keeps_its_colours_in_a_browser(site, new_page):
+    """A long line of code (its span.l, docs/_ext/tumble_code.py) shows its names and punctuation in
+    the Pygments style's text colour (the .highlight block's), as a short line does, in the light
+    and the dark mode; keywords keep theirs. (Pygments' stylesheet colours .l as a literal: with
+    the names' own spans taken off, docs/_ext/tumble_lean.py, they turned brown.)"""
+    watched = new_page()
+    page = watched.page
+    page.goto((site / "estimation.html").as_uri())
+    for mode in ("light", "dark"):
+        page.evaluate(f"document.documentElement.dataset.theme = '{mode}'")
+        colours = page.evaluate("""() => {
+            const line = document.querySelector('div.highlight pre span.l');
+            const block = line.closest('div.highlight'), keyword = block.querySelector('span.k, span.kn');
+            return [line, block.querySelector('pre'), block, keyword].map(e => getComputedStyle(e).color);
+        }""")
+        assert colours[0] == colours[1] == colours[2] != colours[3], (mode, colours)
+    assert not watched.errors, "\n".join(watched.errors)
+
+
 # --- pages that read well (issue 28 item 2) ---------------------------------------------------------
 
 class _Images(HTMLParser):
