@@ -44,7 +44,9 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    flight while still spinning (a rigid body flies free until it is caught or lands; on the
    synthetic tosses the fitted flight reaches the impulse within 0.04 s, or within 0.25 s
    where a hand's grip or a glancing impact is too gentle to show as an impulse, while a rotor
-   spinning up inside leaves it 0.2-0.8 s early). A flight skipped only because its ratios are
+   spinning up inside leaves it 0.2-0.8 s early), or a gyrostat whose rotor spins up explains the
+   samples far better than a rigid body's drag and flex can (:func:`~tumble.analysis.fit.rotor.rotor_check`).
+   A flight skipped only because its ratios are
    not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
    adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording
    may still use it (:func:`~tumble.analysis.fit.fit_recording`).
@@ -72,6 +74,7 @@ from .adequacy import _left_path
 from .freefall import FreeSpan, check_accel, free_span
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
+from .rotor import rotor_check
 from .segments import _runs, _segments, _stretches, impulses, pause_times
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
 from .solve import Solution, solve
@@ -452,6 +455,7 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
     rigid = _left_path(t, omega, b, b0)
     if why:  # a free motion up to its impulse, its ratios not determined alone: it may join a joint fit
         return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "skipped", why, sol, float(anchor), not rigid)
+    rigid = rigid or rotor_check(t[a:b], omega[a:b], keep[a:b], sol)
     if rigid:
         return _skip(t, a, b, rigid, sol)
     return Flight(float(t[a]), float(t[b - 1]), int(a), int(b), "ok", "", sol, float(anchor))
