@@ -156,6 +156,31 @@ def orbit_angles():
     return OrbitAngles(roll=np.radians([0.0, 1.0, -2.0]), pitch=np.radians([5.0, 0.0, -5.5]), yaw=np.radians([10.0, 11.0, 12.0]))
 
 
+def spin():
+    from tumble.analysis.stability import spin_prediction
+
+    return spin_prediction([0.01, 1.0, 0.0], [1.0, 2.0, 3.0])
+
+
+def spins():
+    from tumble.analysis.stability import spin_prediction
+
+    return spin_prediction([[0.01, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 2.0]], [1.0, 2.0, 3.0])
+
+
+def regions():
+    from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+
+    moments = np.array([[1.0, 2.0, 3.0], [1.0, 2.9, 3.0], [2.0, 2.5, 3.0]])
+    return gravity_gradient_stability(*gravity_gradient_ratios(moments, pitch_axis=2, yaw_axis=1))
+
+
+def region():
+    from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+
+    return gravity_gradient_stability(*gravity_gradient_ratios([1.0, 2.0, 3.0]))
+
+
 def _spread(x) -> list[str]:
     return [fmt(np.min(x), 3), fmt(np.max(x), 3)]
 
@@ -204,6 +229,14 @@ def headline_numbers(obj) -> list[str]:
     if name == "GyroRecording":
         return ["phone_toss.csv", f"{len(obj.t)} samples", fmt(obj.t[-1] - obj.t[0], 3), fmt(obj.read.sample_rate, 3),
                 fmt(np.linalg.norm(obj.omega, axis=1).max(), 3), f"{len(obj.events)} events"]
+    if name == "SpinPrediction" and np.ndim(obj.axis) == 0:
+        return [f"spin axis {obj.axis}", f"about axis {obj.circulation}", "unstable", fmt(obj.growth)]
+    if name == "SpinPrediction":
+        return [f"{len(obj.axis)} motions", f"{int(np.sum(obj.stable))} stable", f"{int(np.sum(~obj.stable))} unstable"]
+    if name == "StabilityClass" and np.ndim(obj.region) == 0:
+        return [str(obj.region), "pitch stable", "roll-yaw stable"]
+    if name == "StabilityClass":
+        return [f"{len(obj.region)} bodies", f"{len(obj.region)} {obj.region[0]}"]
     if name == "OrbitAngles":
         return ["3 samples", *(number for angle in obj for number in _spread(np.degrees(angle)))]
     raise AssertionError(name)
@@ -211,7 +244,7 @@ def headline_numbers(obj) -> list[str]:
 
 MAKERS = [controlled_run, detumble_batch, rotation_fit, estimate, tensor_fit, calibration, monte_carlo, sweep_summary,
           stability_map, period_family, synthetic, flight, detumble_cases, knowledge_cases, pointing, gyro_recording,
-          orbit_angles]
+          orbit_angles, spin, spins, region, regions]
 
 
 @pytest.fixture(scope="module", params=MAKERS, ids=lambda f: f.__name__)
@@ -271,6 +304,9 @@ def test_html_parses_and_holds_the_headline(result, recording_fit):
     (detumble_cases, "omega0", np.radians([[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 30.0]]), "|omega0| 1..30 deg/s"),
     (gyro_recording, "events", (("START", 0.0), ("PAUSE", 5.0)), "2 events"),
     (orbit_angles, "yaw", np.radians([-40.0, 0.0, 40.0]), "yaw -40..40 deg"),
+    (spin, "growth", np.float64(2.5), "growth exponent 2.5 1/s"),
+    (region, "pitch", np.False_, "pitch unstable"),
+    (regions, "region", np.array(["lagrange", "unstable", "unstable"]), "2 unstable, 1 lagrange"),
 ])
 def test_a_changed_value_changes_the_repr(maker, field, value, shown):
     """The numbers are read from the object, not written into the repr: change one, the repr follows."""
@@ -327,7 +363,6 @@ NOT_RESULTS = {
     "ControlScenario", "ControlSpec", "Scenario", "SweepFile", "Example", "Part",  # files a user writes
     "ColumnsRead", "ThrowRead",  # what a reader took from a file: brief() and summary() say it
     "FitFolder", "TensorFolder", "FlightReplay",  # a command's output read back, for its page
-    "SpinPrediction", "StabilityClass",  # one prediction per row of the input, read by their fields
 }
 
 #: Results in folders that other work is changing (src/tumble/analysis/fit, analysis/tensor,

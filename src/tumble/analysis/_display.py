@@ -2,8 +2,10 @@
 recording (:class:`~tumble.analysis.fit.RotationFit`, :class:`~tumble.analysis.fit.RecordingFit`,
 :class:`~tumble.analysis.fit.Toss`), the tensor's (:class:`~tumble.analysis.tensor.TensorFit`,
 :class:`~tumble.analysis.tensor.ThrowFit`, :class:`~tumble.analysis.tensor.MassEstimate`), a
-device's calibration (:class:`~tumble.analysis.tensor.calibrate.Calibration`) and the motions
-of two periods (:class:`~tumble.analysis.period_inversion.PeriodFamily`).
+device's calibration (:class:`~tumble.analysis.tensor.calibrate.Calibration`), the motions
+of two periods (:class:`~tumble.analysis.period_inversion.PeriodFamily`) and the predictions
+of a spin's stability (:class:`~tumble.analysis.stability.SpinPrediction`) and of the
+gravity gradient's (:class:`~tumble.analysis.gravity_stability.StabilityClass`).
 
 Each repr says what the result is, its size and its headline numbers on one line (never its
 arrays); each HTML table says more. The results are read by their attributes (duck typing): the
@@ -20,8 +22,8 @@ import numpy as np
 from .._html import fmt, html_table, plural, result_html, result_repr, short_name, vec, with_std
 
 __all__ = ["calibration_html", "calibration_repr", "estimate_html", "estimate_repr", "family_html", "family_repr", "flight_repr",
-           "model_repr", "recording_html", "recording_repr", "rotation_html", "rotation_repr", "synthetic_repr",
-           "tensor_html", "tensor_repr", "throw_repr", "toss_repr"]
+           "model_repr", "recording_html", "recording_repr", "regions_html", "regions_repr", "rotation_html", "rotation_repr",
+           "spin_html", "spin_repr", "synthetic_repr", "tensor_html", "tensor_repr", "throw_repr", "toss_repr"]
 
 
 def _ratios(fit: Any) -> list[str]:
@@ -395,3 +397,96 @@ def synthetic_repr(rec: Any) -> str:
     span = f"{plural(len(t), 'sample')} over {fmt(t[-1] - t[0], 3)} s at {fmt(rec.rate)} Hz" if len(t) else "no samples"
     return result_repr("SyntheticRecording", [span, plural(len(rec.flights), "flight"), f"I1/I3 = {fmt(rec.ratios[0])}",
                                               f"I2/I3 = {fmt(rec.ratios[1])}"])
+
+
+def _counts(values: Any) -> str:
+    """``3 stable, 1 unstable``: how many of each value, most first."""
+    return ", ".join(f"{k} {v}" for v, k in Counter(map(str, np.ravel(values))).most_common())
+
+
+def _axis_counts(axes: Any) -> str:
+    """``axis 2: 3, axis 3: 1``: how many motions on each axis, in the axes' order."""
+    return ", ".join(f"axis {a}: {n}" for a, n in sorted(Counter(np.ravel(axes).tolist()).items()))
+
+
+def _verdict_word(stable: Any) -> Any:
+    return np.where(np.asarray(stable, bool), "stable", "unstable")
+
+
+def _spin_rows(p: Any) -> list[tuple[str, str]]:
+    """(what, value) of one motion's prediction."""
+    rows = [("spin axis", str(int(p.axis))), ("circulates about axis", str(int(p.circulation))),
+            ("verdict", str(_verdict_word(p.stable)))]
+    if np.isfinite(p.growth) and p.growth > 0:
+        rows.append(("growth exponent", f"{fmt(p.growth)} 1/s"))
+    if np.isfinite(p.wobble) and p.wobble > 0:
+        rows.append(("wobble frequency", f"{fmt(p.wobble)} rad/s"))
+    return rows
+
+
+def spin_repr(p: Any) -> str:
+    """``SpinPrediction(spin axis 2, circulates about axis 1, unstable, ...)``; for many motions,
+    how many of each verdict.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import spin_prediction
+    >>> spin_prediction([0.01, 1.0, 0.0], [1.0, 2.0, 3.0])
+    SpinPrediction(spin axis 2, circulates about axis 1, unstable, growth exponent 0.5774 1/s)
+    >>> spin_prediction([[0.01, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]], [1.0, 2.0, 3.0])
+    SpinPrediction(3 motions: 2 stable, 1 unstable)
+    """
+    if np.ndim(p.axis) == 0:
+        return result_repr("SpinPrediction", [v if k == "verdict" else f"{k} {v}" for k, v in _spin_rows(p)])
+    return result_repr("SpinPrediction", [f"{plural(np.size(p.axis), 'motion')}: {_counts(_verdict_word(p.stable))}"])
+
+
+def spin_html(p: Any) -> str:
+    """The prediction as an HTML table: one motion's numbers, or the counts of many.
+
+    Examples
+    --------
+    >>> from tumble.analysis.stability import spin_prediction
+    >>> "growth exponent" in spin_prediction([0.01, 1.0, 0.0], [1.0, 2.0, 3.0])._repr_html_()
+    True
+    """
+    if np.ndim(p.axis) == 0:
+        return result_html("SpinPrediction", _spin_rows(p))
+    return result_html("SpinPrediction", [("motions", str(np.size(p.axis))), ("verdicts", _counts(_verdict_word(p.stable))),
+                                          ("spin axes", _axis_counts(p.axis)),
+                                          ("circulation axes", _axis_counts(p.circulation))])
+
+
+def regions_repr(c: Any) -> str:
+    """``StabilityClass(lagrange: pitch stable, roll-yaw stable)``; for many bodies, how many in
+    each region.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+    >>> gravity_gradient_stability(*gravity_gradient_ratios(tumble.t_handle().principal_moments))
+    StabilityClass(lagrange: pitch stable, roll-yaw stable)
+    """
+    if np.ndim(c.region) == 0:
+        return result_repr("StabilityClass", [f"{c.region}: pitch {_verdict_word(c.pitch)}",
+                                              f"roll-yaw {_verdict_word(c.roll_yaw)}"])
+    return result_repr("StabilityClass", [f"{plural(np.size(c.region), 'body', 'bodies')}: {_counts(c.region)}"])
+
+
+def regions_html(c: Any) -> str:
+    """The region and both verdicts as an HTML table, or how many bodies of each.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+    >>> "lagrange" in gravity_gradient_stability(*gravity_gradient_ratios(tumble.t_handle().principal_moments))._repr_html_()
+    True
+    """
+    if np.ndim(c.region) == 0:
+        return result_html("StabilityClass", [("region", str(c.region)), ("pitch", str(_verdict_word(c.pitch))),
+                                              ("roll-yaw", str(_verdict_word(c.roll_yaw)))])
+    return result_html("StabilityClass", [("bodies", str(np.size(c.region))), ("regions", _counts(c.region)),
+                                          ("pitch", _counts(_verdict_word(c.pitch))),
+                                          ("roll-yaw", _counts(_verdict_word(c.roll_yaw)))])

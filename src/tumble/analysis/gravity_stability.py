@@ -31,6 +31,7 @@ import numpy as np
 from ..dynamics.models.gravity import rpy_axes
 from ..typing import ArrayLike
 from ..validation import check_moments, check_vectors, refuse_first
+from . import _display
 
 __all__ = [
     "RATIO_ATOL",
@@ -95,6 +96,12 @@ class StabilityClass(NamedTuple):
     roll_yaw: np.ndarray
     #: One of :data:`STABILITY_REGIONS`.
     region: np.ndarray
+
+    def __repr__(self) -> str:
+        return _display.regions_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.regions_html(self)
 
 
 #: The names :func:`gravity_gradient_stability` gives a region: both stable with ``k_R > 0``,

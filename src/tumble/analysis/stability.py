@@ -35,6 +35,7 @@ from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
 from ..typing import ArrayLike, FloatOrArray
 from ..validation import INERTIA_RTOL, axis_index, check_moments, check_vectors
+from . import _display
 
 __all__ = [
     "axis_of",
@@ -383,6 +384,12 @@ class SpinPrediction(NamedTuple):
     """The linearised growth exponent about the spin axis, 1/s, where it agrees with ``stable``, else NaN."""
     wobble: np.ndarray
     """The linearised wobble frequency about the spin axis, rad/s, where it agrees with ``stable``, else NaN."""
+
+    def __repr__(self) -> str:
+        return _display.spin_repr(self)
+
+    def _repr_html_(self) -> str:
+        return _display.spin_html(self)
 
 
 def spin_prediction(omega: ArrayLike, moments: ArrayLike) -> SpinPrediction:
