@@ -321,7 +321,7 @@ def birge_factor(chi2_dof: float, throws: int) -> float:
     columns in frequency). The calibration's proof throws scattered about their joint fit by a
     fifth of the variance the fits state (benchmarks/calibration_coverage.py, 40 devices), and
     the rotor inertia's 95 % intervals held in 40 of 40 devices with a median error of 0.39 std.
-    Replayed on the pooled sets of devices 0-21 (with the centres' shared parts of
+    Replayed on the pooled sets of devices 0-19, 40 and 41 (with the centres' shared parts of
     :func:`~tumble.analysis.tensor.calibrate.rotor_inertia_from`): shrinking by the ratio itself
     went too far (13 of the first 17 intervals held; the joint fit's statistical part holds the
     sensors' fitted errors too, which the throws' own refits, the sensors held, do not scatter
