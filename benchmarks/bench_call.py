@@ -2,8 +2,8 @@
 ``tumble.simulate`` with a torque, and the fixed cost of a call (issue 38 item 8, cases 6 and 7).
 
 - **The default call**: ``tumble.simulate(body, omega0, t_end=20.0, torque=model, attitude0=q0)``,
-  nothing else (its default method, tolerances and 500 samples), on ``bench_engine``'s four
-  one-body cases. Its errors against the reference are the accuracy asked of the peer (RK4 and
+  nothing else (its default method, ``"auto"`` at rtol 1e-10, which names what it chose, and 500
+  samples), on ``bench_engine``'s four one-body cases. Its errors against the reference are the accuracy asked of the peer (RK4 and
   RK8 at the smallest ``k`` steps per sample interval that meet both, at the same 500 samples),
   no finer than the reference can tell (twice its difference from the solve at rtol 1e-12).
   Target: within 1.5x of the peer, ratio = the peer's best / tumble's >= 0.667.
@@ -61,14 +61,14 @@ def default_calls(repeat: int) -> list[dict]:
             # but no finer than the reference can tell: below twice its difference from rtol 1e-12 the
             # peer's errors are noise, not monotone in k (the T-handle in the gravity gradient: ~1e-10)
             target = {"omega": max(e[0] * 1.01, 2 * bound[0]), "attitude": max(e[1] * 1.01, 2 * bound[1])}
-            contest = Contest(target, body=body_name, method=traj.method, reference_bound=bound,
+            contest = Contest(target, body=body_name, method=traj.method_label, reference_bound=bound,
                               torque="gravity gradient, 5400 s orbit" if gravity else "constant body torque")
             for m in ("rk4", "rk8"):
                 contest.add_k(f"peer {m}", lambda k, m=m, I=I, w0=w0, gravity=gravity, ref=ref: errors(
                     *_peer(I, w0, gravity, T_END, DEFAULT_SAMPLES, method=m, k=k), *ref),
                     lambda k, m=m, I=I, w0=w0, gravity=gravity: (
                         lambda: _peer(I, w0, gravity, T_END, DEFAULT_SAMPLES, method=m, k=k)))
-            contest.add_fixed("tumble default", e, mine, knob=f"default ({traj.method})")
+            contest.add_fixed("tumble default", e, mine, knob=f"default ({traj.method_label})")
             rows.append(contest.run(repeat, 1 / 1.5))
             print(f"bench_call: default call, {body_name}, {contest.info['torque']}: ratio {rows[-1]['ratio']}",
                   file=sys.stderr, flush=True)

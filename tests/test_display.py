@@ -128,7 +128,7 @@ def test_every_shipped_body_displays():
 # Trajectories -----------------------------------------------------------------------------
 
 def test_trajectory_repr(flip):
-    assert repr(flip) == "Trajectory('T-handle', exact, 500 samples, t = 0..20 s, torque-free)"
+    assert repr(flip) == "Trajectory('T-handle', exact (auto), 500 samples, t = 0..20 s, torque-free)"
     assert "array(" not in repr(flip)
 
 
@@ -145,7 +145,7 @@ def test_trajectory_html_summary(flip):
     root = parse(flip._repr_html_())
     cells = rows(root.find("table"))
     assert cells["samples"] == "500"
-    assert cells["method"] == "exact"
+    assert cells["method"] == "exact (auto)"
     assert cells["time span"] == "0 to 20 s"
     assert cells["omega(0), principal frame"] == "(0.1, 10, 0.1) rad/s"
     # E = sum I w^2 / 2 and |L| = |I w| for the moments (0.125, 0.3125, 0.4375) kg m^2

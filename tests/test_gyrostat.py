@@ -360,9 +360,10 @@ def test_a_wheel_in_the_t_handle_stops_the_flip(method):
 
 # -- methods, defaults, refusals -------------------------------------------------------------
 
-def test_rotors_default_to_dop853_and_exact_and_seed_refuse_them():
+def test_rotors_default_to_the_engine_and_exact_and_seed_refuse_them():
     body = wheel_body(spin_rate=100.0)
-    assert simulate(body, [0.1, 1.0, 0.1], t_end=1.0, samples=3).method == "dop853"
+    run = simulate(body, [0.1, 1.0, 0.1], t_end=1.0, samples=3)  # "auto": rotors at constant spin, on the engine
+    assert run.auto and run.method in ("dop853", "rk8")
     assert set(NO_INTERNAL) >= {"exact", "seed"}
     steady = [name for name, m in METHODS.items() if m.supports_internal or m.constant_rotors_only]
     assert set(steady) - set(INTERNAL) == {"rk4", "rk8"}  # the engine's: rotors at constant spin, as a term

@@ -17,8 +17,6 @@ EXCEPTIONS = {
     "dynamics/models/torques.py": 546,
     # issue 38: being split
     "dynamics/control/controllers.py": 580,
-    # issue 38: being split
-    "dynamics/simulate.py": 502,
     # issue 38: being split (analysis/tensor/ is worked on by its owner)
     "analysis/tensor/model.py": 501,
 }

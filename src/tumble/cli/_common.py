@@ -21,4 +21,5 @@ def _working(message: str):
 def _run_title(scenario, traj) -> str:
     """``scenario: body, method``, without the body when the scenario is named after it."""
     name = scenario.name if scenario.name != traj.body_name else None
-    return ", ".join(filter(None, (f"{name}: {traj.body_name}" if name else traj.body_name, traj.method)))
+    return ", ".join(filter(None, (f"{name}: {traj.body_name}" if name else traj.body_name,
+                                getattr(traj, "method_label", traj.method))))

@@ -198,7 +198,7 @@ def _cmd_simulate(args) -> int:
         return simulate_control(args, scenario, out)
     from ..commands import run_scenario
 
-    with _working(f"integrating {scenario.name} ({scenario.method or 'default method'})"):
+    with _working(f"integrating {scenario.name} ({scenario.method or 'method auto'})"):
         traj = run_scenario(scenario)
 
     from ..analysis import trajectory_summary
@@ -208,6 +208,7 @@ def _cmd_simulate(args) -> int:
     from ..viz import figure_omega, save_figure
 
     summary = trajectory_summary(traj)
+    summary["method"] = getattr(traj, "method_label", traj.method)  # "dop853 (auto)": the method auto chose
     if hasattr(scenario.torque, "jacobi_integral"):  # the gravity gradient: its own error measure
         from ..analysis.summary import gravity_gradient_summary
 

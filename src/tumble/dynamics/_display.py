@@ -64,6 +64,8 @@ class _Run(_Batch, Protocol):
     @property
     def rigid(self) -> bool: ...
     @property
+    def method_label(self) -> str: ...
+    @property
     def rotor_axial_moments(self) -> FloatArray | None: ...
     @property
     def damper_inertia(self) -> float | None: ...
@@ -102,9 +104,10 @@ def trajectory_repr(traj: _Run) -> str:
     >>> import tumble
     >>> from tumble.dynamics._display import trajectory_repr
     >>> trajectory_repr(tumble.simulate(tumble.t_handle(), [0.0, 0.0, 1.0], t_end=20.0, samples=500))
-    "Trajectory('T-handle', exact, 500 samples, t = 0..20 s, torque-free)"
+    "Trajectory('T-handle', exact (auto), 500 samples, t = 0..20 s, torque-free)"
     """
-    return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method, traj.torque_free, _extras(traj))
+    return _run_repr("Trajectory", short_name(traj.body_name), traj.t, traj.method_label,
+                     traj.torque_free, _extras(traj))
 
 
 def batch_repr(batch: _Batch) -> str:
@@ -255,7 +258,7 @@ def trajectory_html(traj: _Run) -> str:
     (True, True)
     """
     n = len(traj)
-    rows = [("body", traj.body_name), ("method", traj.method), ("samples", n)]
+    rows = [("body", traj.body_name), ("method", traj.method_label), ("samples", n)]
     if n:
         rows += [
             ("time span", f"{fmt(traj.t[0])} to {fmt(traj.t[-1])} s"),

@@ -11,45 +11,23 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
-from ..typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
-from ..validation import (
-    MAX_INERTIA,
-    MAX_RATE,
-    check_increasing,
-    check_positive,
-    check_rotation,
-    check_vector,
-)
-from .methods.integrators import (
-    METHODS,
-    IntegrateInternal,
-    Method,
-    StepRule,
-    get_method,
-)
+from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
+from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
-from .methods.names import method_list
+from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice
+from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
+from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method
+from .methods.names import ALLOWED, AUTO, method_list
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
-from .models.torques import (
-    KERNEL_BODY,
-    KERNEL_WORLD,
-    ConstantTorque,
-    FunctionTorque,
-    TorqueLike,
-    TorqueModel,
-    as_torque,
-    bind_to_body,
-    kernel_form,
-    spin_gain,
-)
+from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, kernel_form
 from .trajectory import Trajectory
 
 __all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "check_rtol", "sample_times", "simulate"]
 
-#: The method used when none is named: chosen for accuracy, not faithfulness to the seed.
-#: Without torque the exact solution; with a torque, rotors or a damper, DOP853 at tight tolerances.
-DEFAULT_METHOD = "exact"
-DEFAULT_TORQUE_METHOD = "dop853"
+#: The method used when none is named: ``"auto"``, chosen from what the run has
+#: (:mod:`tumble.dynamics.methods.auto`): the exact solution without torque, else the fastest of
+#: the methods that take the run at ``rtol`` (default 1e-10).
+DEFAULT_METHOD = AUTO
 #: Default number of samples when neither ``samples``, ``dt`` nor ``times`` is given (the seed's).
 DEFAULT_SAMPLES = 500
 #: Frames in which ``omega0`` (and a body-frame torque) may be given.
@@ -115,9 +93,11 @@ class RunInputs(NamedTuple):
     step: float | None
     torque: TorqueModel | None  # a torque model in the principal frame, or None
     internal: InternalModel | None = None  # rotors and/or a damper, or None
-    spin: float = 0.0  # the spin the run starts from, rad/s (_spin_bound; 0 for the closed form)
-    gain: float = 0.0  # bound on the spin the torque adds over the run, rad/s (_spin_gain; 0 for the closed form)
+    spin: float = 0.0  # the spin the run starts from, rad/s (spin_bound; 0 for the closed form)
+    gain: float = 0.0  # bound on the spin the torque adds over the run, rad/s (run_spin_gain; 0 for the closed form)
     atol_scaled: bool = False  # atol relative to the spin: the method's (dop853), or an rtol given alone
+    auto: bool = False  # the method was chosen ("auto")
+    form: tuple[int, tuple[float, ...]] | None = None  # the torque's compiled form (kernel_form), None: Python's
 
 
 def simulate(
@@ -160,17 +140,20 @@ def simulate(
         The sample times themselves, s: finite, strictly increasing, ``times[0] >= 0``
         (instead of ``t_end``). The motion starts at t = 0 in every case.
     method : str, optional
-        A name from :data:`tumble.dynamics.METHODS` (docs/methods.md compares them):
+        ``"auto"`` or a name from :data:`tumble.dynamics.METHODS` (docs/methods.md compares them):
         {methods}.
-        Default ``exact`` without torque, ``dop853`` with one, or with rotors or a damper (which
-        ``exact`` and ``seed`` refuse).
+        ``"auto"`` (the default) chooses: ``exact`` without torque, rotors or damper; the compiled
+        engine's ``dop853`` or ``rk8``, whichever is faster at ``rtol``, for the built-in torque
+        models and rotors at constant spin; ``dop853`` for a Python torque, a damper or rotors
+        whose spin changes (:mod:`tumble.dynamics.methods.auto`). The run's ``method`` says which.
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
-        Tolerances; the method's defaults if not given. ``rtol`` from 100 eps to 0.1. For
+        Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and
+        attitude, atol = rtol relative to the size of omega). ``rtol`` from 100 eps to 0.1. For
         ``"dop853"`` ``atol`` is relative to the size of omega; an ``rtol`` given alone to
         ``"rk45"`` brings its ``atol`` down with it, relative to the size of omega too (scipy's
         default ``atol`` 1e-6 rad/s would cap a slow body's accuracy).
@@ -203,16 +186,16 @@ def simulate(
     >>> import tumble
     >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
     >>> traj = tumble.simulate(body, [0.01, 1.0, 0.0], t_end=20.0, samples=201)   # near the intermediate axis
-    >>> traj.method, traj.omega.shape
-    ('exact', (201, 3))
+    >>> traj.method, traj.auto, traj.omega.shape   # the method "auto" chose
+    ('exact', True, (201, 3))
     >>> bool(traj.omega[:, 1].min() < -0.9)   # the tennis-racket flip: omega_2 turns round
     True
     >>> traj.drift["energy"] < 1e-12, traj.drift["L_world"] < 1e-12   # conserved, torque-free
     (True, True)
     >>> spun = tumble.simulate(body, [0.0, 0.0, 0.0], t_end=2.0, samples=3,
     ...                        torque=tumble.ConstantTorque((0.0, 0.0, 3.0), "body"))
-    >>> spun.method, spun.omega[-1].round(6).tolist()   # omega_3 = tau t / I3
-    ('dop853', [0.0, 0.0, 2.0])
+    >>> spun, spun.omega[-1].round(6).tolist()   # omega_3 = tau t / I3
+    (Trajectory('body', dop853 (auto), 3 samples, t = 0..2 s, torqued), [0.0, 0.0, 2.0])
     """
     run = check_inputs(
         body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
@@ -236,14 +219,14 @@ def simulate(
                  for k, v in internal.trajectory_fields(run.t, out).items()}
     # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a
     # sum); the engine's kernels check their states themselves (status NON_FINITE)
-    if not (internal is None and spec.name in ENGINE_METHODS and kernel_form(model) is not None) \
+    if not (internal is None and spec.name in ENGINE_METHODS and run.form is not None) \
             and not math.isfinite(float(omega.sum()) + float(quat.sum())):
         raise RuntimeError(f"the {label} integration produced non-finite values")
     keep = run.keep
     return Trajectory.of_samples(  # the quaternions: the Rotation is built when first asked for
         run.t[keep] if keep.start else run.t, omega[keep] if keep.start else omega, quat[keep] if keep.start else quat,
         moments, run.props.principal_axes, label, model is None, body.name if isinstance(body, Body) else "body",
-        **extra,
+        auto=run.auto, **extra,
     )
 
 
@@ -326,8 +309,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
                  attitude0: Rotation | ArrayLike | None = None, damper: SphericalDamper | None = None) -> RunInputs:
     """Validate :func:`simulate`'s arguments (scenario files use it too, before anything runs).
 
-    Fills in the defaults (the method is ``"exact"`` without a torque, rotors or damper,
-    ``"dop853"`` with any of them),
+    Fills in the defaults (``"auto"`` resolved to a method, :mod:`~tumble.dynamics.methods.auto`),
     converts ``omega0`` and a body-frame torque to the principal frame, and bounds the work:
     a run that would turn the body more than :data:`MAX_ROTATION` rad under a stepping method,
     counting the spin the torque builds up (``|omega| <= |omega0| + |tau| t / I1``), is refused
@@ -358,8 +340,14 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     internal = None
     if rotors is not None or damper is not None:
         internal = InternalModel(props.principal_moments, rotors, damper)
-    if method is None:
-        method = DEFAULT_METHOD if model is None and internal is None else DEFAULT_TORQUE_METHOD
+    auto = method is None or isinstance(method, str) and method == AUTO
+    if auto and model is None and internal is None:
+        method = "exact"
+    elif auto:  # refined between the engine's dop853 and rk8 once the spin is known
+        method, rtol = "dop853", AUTO_RTOL if rtol is None else rtol
+        atol = rtol if atol is None else atol
+    elif not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
     spec = get_method(method)
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
@@ -389,7 +377,8 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         atol = check_positive("atol", atol, "rad/s")
     atol = rtol if follows else spec.atol if atol is None else atol
     rtol = spec.rtol if rtol is None else rtol
-    step = None if step is None else check_positive("step", step, "s")
+    if step is not None and not (type(step) is float and 0.0 < step < math.inf):  # a plain float passes as it is
+        step = check_positive("step", step, "s")
     moments = props.principal_moments
     I = moments.tolist()  # float arithmetic: these checks cost nothing for plain inputs
     if not max(I) <= MAX_INERTIA:
@@ -411,16 +400,40 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if frame == "design":
         w0 = A.T @ w0
         if model is not None and model.frame == "body":
-            model = _design_torque(model, A)
-    design_to_world = None if attitude0 is None else np.array(check_rotation("attitude0", attitude0)).tobytes()
-    q0 = np.array(_initial_quat(design_to_world, np.asarray(A, float).tobytes()))
+            model = design_torque(model, A)
+    axes = A.tobytes() if A.dtype == np.float64 and A.flags.c_contiguous else np.asarray(A, float).tobytes()
+    if type(attitude0) is np.ndarray and attitude0.shape == (4,) and attitude0.dtype == np.float64:
+        q0 = np.array(_initial_quat_of(attitude0.tobytes(), axes))  # the check once for the same bytes
+    else:
+        design_to_world = None if attitude0 is None else np.array(check_rotation("attitude0", attitude0)).tobytes()
+        q0 = np.array(_initial_quat(design_to_world, axes))
+    form = kernel_form(model)
     spin = gain = 0.0
     if not spec.closed_form:  # a stepping method: its work is bounded by the spin it follows
-        spin = _spin_bound(internal, w0, t)
-        gain = _spin_gain(model, w0, q0, moments, t_end)
-    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal, spin, gain, atol_scaled)
+        spin = spin_bound(internal, w0, t)
+        # with its step given, a fixed-step method reads the gain only to bound its work: a bound
+        # linear in time (no attitude read) does where it passes that check
+        quick = linear_gain(form, moments, t_end) if spec.fixed_step and step is not None and not auto else None
+        fits = quick is not None and (spin + 0.5 * quick) * t_end <= MAX_ROTATION
+        gain = cast(float, quick) if fits else run_spin_gain(model, w0, q0, moments, t_end)
+    if auto and not spec.closed_form:
+        engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes
+        h = engine_choice(t, spin, gain, cast(float, rtol)) if engine.takes(internal) and form else None
+        if h is not None:
+            spec, step = engine, h
+        else:  # dop853's local error control, tighter than the accuracy asked for (methods.auto)
+            rtol, atol = dop853_tolerances(cast(float, rtol), cast(float, atol))
+    run = RunInputs(props, spec, w0, q0, t, keep, rtol, atol, step, model, internal, spin, gain, atol_scaled, auto, form)
     _check_work(run)
     return run
+
+
+@functools.lru_cache(maxsize=256)
+def _initial_quat_of(attitude0: bytes, axes: bytes) -> tuple[float, ...]:
+    """:func:`_initial_quat` of ``attitude0`` given as a float64 quaternion's raw bytes, checked
+    (:func:`~tumble.validation.check_rotation`) the first time these bytes are seen."""
+    design_to_world = np.array(check_rotation("attitude0", np.frombuffer(attitude0).copy())).tobytes()
+    return _initial_quat(design_to_world, axes)
 
 
 @functools.lru_cache(maxsize=256)
@@ -481,37 +494,3 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
     if turns > MAX_STIFF_ROTATION:
         raise ValueError(f"{stiff}: t_end = {t_end:g} s is up to {turns:.3g} rad of rotation, more than the implicit "
                          f"Radau that {spec.name} hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")
-
-
-def _spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -> float:
-    """The spin (rad/s) a run starts from, with what rotors can hand the body
-    (:meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`)."""
-    if internal is None:
-        return math.hypot(*omega0.tolist())
-    return float(internal.spin_bound(omega0, t))
-
-
-def _spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion, moments: Vector3, t_end: float) -> float:
-    """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
-    if model is None:
-        return 0.0
-    form = kernel_form(model)
-    constant = form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD)  # reads no attitude
-    return spin_gain(model, 0.0, omega0, None if constant else _rotation(quat0.tobytes()), moments, t_end)
-
-
-@functools.lru_cache(maxsize=256)
-def _rotation(quat: bytes) -> Rotation:
-    """The scipy Rotation of a quaternion's float64 bytes, kept for repeated runs (~10 us each);
-    Rotation objects are not changed in place, so one can be shared."""
-    return Rotation.from_quat(np.frombuffer(quat))
-
-
-def _design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
-    """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``w`` is
-    one angular velocity (3,) or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T``
-    is ``A w`` for each row)."""
-    form = kernel_form(model)
-    if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
-        return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
-    return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att), float) @ A, "body")

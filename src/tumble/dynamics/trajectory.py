@@ -86,9 +86,9 @@ class Trajectory:
     principal_axes : ndarray, shape (3, 3)
         Principal -> design rotation of the body (columns are the axes in the design frame).
     method : str
-        Name of the integration method that ran: the one asked for, except ``"radau"`` where
-        ``"dop853"`` handed a stiff damper to scipy's Radau IIA
-        (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`).
+        Name of the integration method that ran: the one asked for, or the one ``"auto"`` chose
+        (then :attr:`auto` is True), except ``"radau"`` where ``"dop853"`` handed a stiff damper
+        to scipy's Radau IIA (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`).
     torque_free : bool
         Whether no external torque acted (then energy, |L| and L_world are conserved).
     body_name : str
@@ -108,13 +108,16 @@ class Trajectory:
         The damper sphere's inertial angular velocity in principal-frame components, rad/s.
     dissipated : ndarray, shape (n,), optional
         Energy dissipated by the damper since t = 0, J.
+    auto : bool
+        Whether ``method`` was chosen by ``simulate(method="auto")``, the default; the repr and
+        the summary then say ``"dop853 (auto)"`` (:attr:`method_label`).
 
     Examples
     --------
     >>> import tumble
     >>> traj = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 2.0], t_end=3.0, samples=4)   # about the major axis
     >>> traj
-    Trajectory('T-handle', exact, 4 samples, t = 0..3 s, torque-free)
+    Trajectory('T-handle', exact (auto), 4 samples, t = 0..3 s, torque-free)
     >>> len(traj), traj.moments.round(6).tolist()
     (4, [0.125, 0.3125, 0.4375])
     >>> traj.omega[-1].round(6).tolist()   # a steady spin
@@ -136,6 +139,7 @@ class Trajectory:
     damper_inertia: float | None = None
     damper_omega: np.ndarray | None = None
     dissipated: np.ndarray | None = None
+    auto: bool = False
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # the instance's own values: float arrays already are kept as they are
@@ -147,7 +151,7 @@ class Trajectory:
     @classmethod
     def of_samples(cls, t: FloatArray, omega: FloatArray, quat: FloatArray, moments: FloatArray,
                    principal_axes: FloatArray, method: str, torque_free: bool = True, body_name: str = "body",
-                   **internal: Any) -> Trajectory:
+                   auto: bool = False, **internal: Any) -> Trajectory:
         """A trajectory of float64 arrays as an integrator returns them (the quaternions ``quat``, (n, 4),
         scalar last, made a Rotation when first asked for), without the checks of ``__init__``:
         the fields set directly, ~1.5 us less a run (issue 38). ``internal``: the optional fields.
@@ -163,12 +167,28 @@ class Trajectory:
         """
         if internal:  # rotors or a damper: the checked path
             return cls(t=t, omega=omega, attitude=quat, moments=moments, principal_axes=principal_axes,
-                       method=method, torque_free=torque_free, body_name=body_name, **internal)
+                       method=method, torque_free=torque_free, body_name=body_name, auto=auto, **internal)
         traj = object.__new__(cls)
         traj.__dict__.update(_FIELD_DEFAULTS)
         traj.__dict__.update(t=t, omega=omega, _attitude_value=quat, moments=moments, principal_axes=principal_axes,
-                             method=method, torque_free=torque_free, body_name=body_name)
+                             method=method, torque_free=torque_free, body_name=body_name, auto=auto)
         return traj
+
+    @property
+    def method_label(self) -> str:
+        """The method as the repr, the summary and the command line name it: ``"rk8 (auto)"`` where
+        ``"auto"`` chose it, else :attr:`method`.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+        >>> tumble.simulate(body, [0.0, 0.0, 2.0], t_end=1.0, samples=2).method_label
+        'exact (auto)'
+        >>> tumble.simulate(body, [0.0, 0.0, 2.0], t_end=1.0, samples=2, method="exact").method_label
+        'exact'
+        """
+        return f"{self.method} (auto)" if self.auto else self.method
 
     @property
     def rigid(self) -> bool:

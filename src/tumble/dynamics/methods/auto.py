@@ -1,0 +1,128 @@
+"""``method="auto"``, the default of :func:`tumble.simulate`: the method chosen from what a run has.
+
+- A rigid body without torque: ``"exact"``, the closed form (no steps, round-off accuracy).
+- A damper, rotors whose spin changes, or a torque that is a Python function: ``"dop853"``,
+  the one method that takes them all (scipy's DOP853, Radau for a stiff damper).
+- The built-in torque models that have a compiled form
+  (:class:`~tumble.dynamics.models.torques.KernelForm`), with or without rotors at constant spin:
+  the compiled engine, either its adaptive ``"dop853"`` or its fixed-step ``"rk8"``
+  (:func:`engine_choice`).
+
+Both engine methods take the same 12-stage 8th-order steps (DOP853's weights); ``dop853`` chooses
+each step by its error estimate and writes the samples from its dense output, ``rk8`` takes equal
+steps and must land on every sample. ``dop853``'s steps are longer at the same accuracy but cost
+twice as much; so ``rk8`` is the cheaper where the samples are far apart next to the step the
+tolerance allows (a fast spin), ``dop853`` where they are close (a slow one) or where the spin
+changes over the run. The rule and its constants come from the measurements
+in docs/methods.md ("The default: auto"): errors against scipy's DOP853 at rtol 1e-13 and times
+of both on the four one-body cases of ``benchmarks/bench_engine.py`` (20 s and 200 s, 101 to 2,000
+samples).
+
+Accuracy asked: ``rtol`` (default :data:`AUTO_RTOL`) in omega, relative to the largest |omega|,
+and in attitude, relative to the angle turned (rad per rad, absolute for a run that turns less
+than a radian). A motion that amplifies errors (near the separatrix of the tennis-racket flip,
+over many flips) can lose more than any method's tolerance says; no method promises it there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...typing import FloatArray
+
+__all__ = ["AUTO", "AUTO_RTOL", "DOP853_SAFETY", "dop853_tolerances", "engine_choice", "rk8_angle"]
+
+#: The name that asks for the choice (and the default of ``simulate``).
+AUTO = "auto"
+#: The relative tolerance of an ``"auto"`` run when none is given.
+AUTO_RTOL = 1e-10
+#: ``dop853``'s tolerances under ``"auto"`` are the ones asked for over this factor at rtol 1e-10,
+#: times ``(rtol / 1e-10) ** (1/4)`` (its global error grows faster than its tolerance), and its
+#: ``atol`` 10 times tighter again: its local error control at rtol 1e-10 left 2.5e-9 in omega on
+#: the T-handle at 10 rad/s (20 s, 214 rad turned), at rtol 3.3e-12 and atol 3.3e-13 9.7e-12; at
+#: rtol 3.3e-8 2.3e-6, at 3.3e-10 1.0e-8 (measured against scipy's DOP853 at rtol 1e-13).
+DOP853_SAFETY = 30.0
+#: ``rk8``'s rotation per step (rad) at rtol 1e-10, at the fastest spin the run can reach: on the
+#: T-handle at 10 rad/s 0.3 rad left 2.4e-9 in omega, 0.2 rad 4.4e-11, 0.15 rad 4.5e-12 (measured;
+#: errors go as the step to the 8th power and more near the flip). Scaled as ``rtol ** (1/8)``.
+RK8_ANGLE = 0.15
+#: ``dop853``'s rotation per step (rad) at rtol 1e-10 / :data:`DOP853_SAFETY` (scaled as ``rtol **
+#: (1/8)``): scipy's DOP853
+#: took 733 steps over the T-handle's 214 rad (measured; the engine takes scipy's steps).
+DOP853_ANGLE = 0.29
+#: A ``dop853`` step of the engine costs this many ``rk8`` steps (its error estimate and step
+#: control): the T-handle's 733 steps took 178 us, ``rk8``'s 733 steps 85 us (measured, 2 samples).
+DOP853_STEP_COST = 2.1
+#: What writing the samples costs ``dop853``, in ``rk8`` steps: the dense output's 3 more stages of
+#: 12 in each step that holds a sample, and ~0.2 of a step for each sample (measured: 500 samples
+#: instead of 2 added 72 us to the T-handle's run, 12 us to the spacecraft's 42 steps).
+DENSE_STAGES, SAMPLE_COST = 0.25, 0.2
+
+
+def rk8_angle(rtol: float) -> float:
+    """``rk8``'s rotation per step (rad) meeting ``rtol``: :data:`RK8_ANGLE` at :data:`AUTO_RTOL`,
+    as ``rtol ** (1/8)`` elsewhere, within 0.02 to 0.5 rad.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.auto import rk8_angle
+    >>> rk8_angle(1e-10), round(rk8_angle(1e-6), 3)
+    (0.15, 0.474)
+    """
+    return min(0.5, max(0.02, RK8_ANGLE * math.pow(rtol / AUTO_RTOL, 0.125)))
+
+
+def dop853_tolerances(rtol: float, atol: float) -> tuple[float, float]:
+    """The tolerances ``"auto"`` runs ``dop853`` at to meet ``rtol`` (:data:`DOP853_SAFETY`); ``atol``
+    relative to the spin, as ``dop853``'s own.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.auto import dop853_tolerances
+    >>> [f"{x:.2g}" for x in dop853_tolerances(1e-10, 1e-10)], [f"{x:.2g}" for x in dop853_tolerances(1e-6, 1e-6)]
+    (['3.3e-12', '3.3e-13'], ['3.3e-09', '3.3e-10'])
+    """
+    factor = DOP853_SAFETY * math.pow(rtol / AUTO_RTOL, 0.25)
+    return max(rtol / factor, 100 * 2.220446049250313e-16), atol / factor / 10.0
+
+
+def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float | None:
+    """The engine's method for a run: ``rk8``'s step (s), or None for ``dop853``.
+
+    The cost of each in ``rk8`` steps, the cheaper chosen: ``rk8`` steps at :func:`rk8_angle` of
+    rotation at the fastest spin the run can reach, ``spin + gain`` (rad/s), in equal steps within
+    each sample interval (at least one); ``dop853`` takes :data:`DOP853_ANGLE` steps over the
+    rotation, ``(spin + gain / 2) t_end`` (the bound ``simulate`` refuses long runs by), each
+    :data:`DOP853_STEP_COST`, and writes the samples (:data:`DENSE_STAGES`, :data:`SAMPLE_COST`).
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        The sample times, s, from 0.
+    spin, gain : float
+        The spin the run starts from and the bound on what its torque adds, rad/s.
+    rtol : float
+        The accuracy asked for.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.auto import engine_choice
+    >>> engine_choice(np.linspace(0.0, 20.0, 101), 10.0, 0.0, 1e-10)   # 10 rad/s, samples 0.2 s apart: rk8
+    0.015
+    >>> engine_choice(np.linspace(0.0, 20.0, 500), 1.0, 0.0, 1e-10) is None   # 1 rad/s, 0.04 s apart: dop853
+    True
+    """
+    top = spin + gain
+    t_end = float(t[-1])
+    if not (top > 0.0 and t_end > 0.0 and math.isfinite(top)):
+        return None
+    scale = math.pow(dop853_tolerances(rtol, rtol)[0] * DOP853_SAFETY / AUTO_RTOL, 0.125)  # its step, as its rtol
+    h = rk8_angle(rtol) / top
+    rk8 = float(np.maximum(1.0, np.ceil(np.diff(t) / h * (1.0 - 1e-12))).sum())  # equal steps in each interval
+    steps = max(1.0, (spin + 0.5 * gain) * t_end / (DOP853_ANGLE * scale))
+    samples = len(t) - 1
+    dop853 = DOP853_STEP_COST * steps * (1.0 + DENSE_STAGES * min(1.0, samples / steps)) + SAMPLE_COST * samples
+    return h if rk8 <= dop853 else None

@@ -1,0 +1,155 @@
+"""``simulate(method="auto")``, the default (issue 38 item 6): it names the method it chose, and
+that method meets ``rtol`` in omega and attitude against a reference written here (scipy's DOP853
+at rtol 1e-13 on Euler's equations and the quaternion kinematics, none of tumble's code)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.spatial.transform import Rotation
+
+import tumble
+from tumble.dynamics import METHODS
+
+Q0 = Rotation.from_euler("xyz", [0.3, -0.2, 0.5])  # design (= principal here) to world
+ORBIT = 5400.0  # s
+
+
+def reference(moments, omega0, t, torque=None, h=(0.0, 0.0, 0.0), q0=Q0):
+    """omega (principal frame) and quaternions (body to world, scalar last) at ``t``.
+
+    ``I w' = (I w + h) x w + tau`` (Euler's equations of a gyrostat whose rotors hold the constant
+    momentum ``h``; Hughes, *Spacecraft Attitude Dynamics*, ch. 7), ``q' = q (x) (w, 0) / 2``;
+    ``torque(t, w, R)`` in the body frame, N m."""
+    I, h = np.asarray(moments, float), np.asarray(h, float)
+
+    def rhs(time, y):
+        w, q = y[:3], y[3:]
+        tau = np.zeros(3) if torque is None else torque(time, w, Rotation.from_quat(q))
+        dw = (np.cross(I * w + h, w) + tau) / I
+        v, s = q[:3], q[3]
+        return np.concatenate([dw, 0.5 * (s * w + np.cross(v, w)), [-0.5 * v @ w]])
+
+    y0 = np.concatenate([omega0, q0.as_quat()])
+    sol = solve_ivp(rhs, (0.0, t[-1]), y0, method="DOP853", t_eval=t, rtol=1e-13, atol=1e-16)
+    assert sol.success
+    q = sol.y[3:].T
+    return sol.y[:3].T, q / np.linalg.norm(q, axis=1, keepdims=True)
+
+
+def gravity(n, moments):
+    """3 n^2 r x (I r), r the unit radius turning at n in the world's x-y plane (Hughes, ch. 8)."""
+    I = np.asarray(moments, float)
+
+    def tau(t, w, R):
+        r = R.inv().apply([np.cos(n * t), np.sin(n * t), 0.0])
+        return 3.0 * n * n * np.cross(r, I * r)
+
+    return tau
+
+
+def errors(traj, omega, quat):
+    """omega: largest |error| over the largest |omega|; attitude: largest angle (rad) over the
+    angle turned (at least 1 rad)."""
+    e_omega = np.max(np.linalg.norm(traj.omega - omega, axis=1)) / np.max(np.linalg.norm(omega, axis=1))
+    angle = np.max((Rotation.from_quat(traj.quat) * Rotation.from_quat(quat).inv()).magnitude())
+    turned = float(np.sum(np.linalg.norm(omega[:-1], axis=1) * np.diff(traj.t)))
+    return float(e_omega), float(angle / max(1.0, turned))
+
+
+SPACECRAFT = (10.0, 12.0, 15.0)
+T_HANDLE = (0.125, 0.3125, 0.4375)
+TAU = (0.01, -0.02, 0.015)
+CASES = {  # name: moments, omega0, t_end, samples, tumble's torque, the reference's
+    "torque-free": (T_HANDLE, (0.1, 10.0, 0.1), 20.0, 201, None, None),
+    "constant torque, fast spin": (T_HANDLE, (0.1, 10.0, 0.1), 20.0, 101, tumble.ConstantTorque(TAU),
+                                   lambda t, w, R: np.array(TAU)),
+    "constant torque, slow spin": (SPACECRAFT, (0.05, 1.0, 0.05), 20.0, 500, tumble.ConstantTorque(TAU),
+                                   lambda t, w, R: np.array(TAU)),
+    "gravity gradient, fast spin": (SPACECRAFT, (0.5, 10.0, 0.5), 20.0, 101, tumble.GravityGradient(orbit_period=ORBIT),
+                                    gravity(2 * np.pi / ORBIT, SPACECRAFT)),
+    "gravity gradient, slow spin": (SPACECRAFT, (0.05, 1.0, 0.05), 60.0, 2000,
+                                    tumble.GravityGradient(orbit_period=ORBIT), gravity(2 * np.pi / ORBIT, SPACECRAFT)),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_auto_meets_rtol_in_omega_and_attitude(name):
+    moments, w0, t_end, samples, model, tau = CASES[name]
+    body = tumble.MassProperties.from_moments(moments)
+    traj = tumble.simulate(body, w0, t_end=t_end, samples=samples, torque=model, attitude0=Q0)
+    omega, quat = reference(moments, np.array(w0), traj.t, tau)
+    e = errors(traj, omega, quat)
+    assert max(e) <= 1e-10, (traj.method, e)
+    assert traj.auto and traj.method in METHODS and repr(traj).count(f"{traj.method} (auto)") == 1
+    assert traj.method == ("exact" if model is None else traj.method)
+
+
+def test_auto_chooses_both_engine_methods_and_says_which():
+    """A fast spin with samples far apart goes to the fixed-step rk8, a slow one with samples close
+    together to the adaptive dop853 (methods.auto.engine_choice)."""
+    chosen = {}
+    for name, (moments, w0, t_end, samples, model, _) in CASES.items():
+        traj = tumble.simulate(tumble.MassProperties.from_moments(moments), w0, t_end=t_end, samples=samples,
+                               torque=model, attitude0=Q0)
+        chosen[name] = traj.method
+    assert chosen["torque-free"] == "exact" and chosen["gravity gradient, fast spin"] == "rk8"
+    assert chosen["constant torque, slow spin"] == "dop853" and chosen["gravity gradient, slow spin"] == "dop853"
+
+
+@pytest.mark.parametrize("samples", [21, 400])
+def test_auto_with_rotors_at_constant_spin(samples):
+    """A wheel spinning at a constant rate: its momentum ``h = J s`` one more term of Euler's equations."""
+    wheel = tumble.Rotor(mass=0.5, radius=0.1, length=0.02, axis=(0.0, 0.0, 1.0), spin_rate=200.0)
+    body = tumble.Body([tumble.Box(mass=10.0, size=(0.4, 0.6, 0.8)), wheel], name="wheel")
+    A = body.principal_axes  # principal -> design (columns: the principal axes in design coordinates)
+    h = 0.5 * 0.5 * 0.1**2 * 200.0 * (A.T @ np.array([0.0, 0.0, 1.0]))  # J s along the axis, principal frame
+    w_design = np.array([0.3, 2.0, -0.4])
+    traj = tumble.simulate(body, w_design, t_end=10.0, samples=samples, torque=tumble.ConstantTorque(TAU),
+                           attitude0=Q0, frame="design")
+    tau_principal = A.T @ np.array(TAU)  # a body torque given in design coordinates, as omega0 is
+    omega, quat = reference(body.principal_moments, A.T @ w_design, traj.t, lambda t, w, R: tau_principal, h,
+                            Q0 * Rotation.from_matrix(A))
+    e = errors(traj, omega, quat)
+    assert max(e) <= 1e-10, (traj.method, e)
+    assert traj.auto and traj.method in ("dop853", "rk8") and repr(traj).count(f"{traj.method} (auto)") == 1
+
+
+def test_auto_for_what_only_dop853_takes():
+    """A Python torque and a damper: dop853, and the run says it was chosen."""
+    body = tumble.MassProperties.from_moments(SPACECRAFT)
+    traj = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=5.0, samples=11, torque=lambda t, w, R: -0.01 * w)
+    assert (traj.method, traj.auto) == ("dop853", True)
+    damped = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=5.0, samples=11,
+                             damper=tumble.SphericalDamper(inertia=0.1, damping=0.05))
+    assert damped.method_label == "dop853 (auto)"
+
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-12])
+@pytest.mark.parametrize("name", ["constant torque, fast spin", "gravity gradient, fast spin"])
+def test_auto_honours_other_tolerances(name, rtol):
+    moments, w0, t_end, samples, model, tau = CASES[name]
+    body = tumble.MassProperties.from_moments(moments)
+    traj = tumble.simulate(body, w0, t_end=t_end, samples=samples, torque=model, attitude0=Q0, rtol=rtol)
+    e = errors(traj, *reference(moments, np.array(w0), traj.t, tau))
+    assert max(e) <= max(rtol, 1e-11), (traj.method, e)  # 1e-11: about the reference's own error here
+
+
+def test_a_named_method_runs_as_before_and_is_not_marked():
+    body = tumble.MassProperties.from_moments(SPACECRAFT)
+    for method in ("dop853", "rk8", "exact"):
+        torque = None if method == "exact" else tumble.ConstantTorque(TAU)
+        traj = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=2.0, samples=5, torque=torque, method=method)
+        assert (traj.method, traj.auto, traj.method_label) == (method, False, method)
+        assert "(auto)" not in repr(traj)
+    same = [tumble.simulate(body, [0.05, 1.0, 0.05], t_end=2.0, samples=5, torque=tumble.ConstantTorque(TAU),
+                            method=m) for m in ("auto", None)]
+    assert np.array_equal(same[0].omega, same[1].omega) and same[0].method_label == same[1].method_label
+
+
+@pytest.mark.parametrize("method", ["euler", "", "AUTO", 3, ["dop853"]])
+def test_an_unknown_method_is_refused_naming_auto(method):
+    body = tumble.MassProperties.from_moments(SPACECRAFT)
+    with pytest.raises(ValueError, match=r"^method = .* is unknown; allowed: auto, exact, dop853, rk45"):
+        tumble.simulate(body, [0.0, 1.0, 0.0], t_end=1.0, method=method)
