@@ -12,9 +12,13 @@ gradient of a 5400 s circular orbit, from 60 degrees off the target and tumbling
 rad/s (the motors saturate at first; the wheels reach ~300 rad/s); 60 s, 121 control instants.
 Target: omega <= 2e-9 (relative to max |omega|) and attitude <= 2e-8 rad; ratio >= 1.
 
-The peer: RK4 and RK8 at the smallest ``k`` steps per control period; tumble:
-``simulate_controlled`` (compiled path) at the largest DOP853 rtol of a ladder. The reference:
-scipy DOP853 at rtol 1e-13 over each period, the command computed here (numpy, not tumble's).
+The peer: RK4 and RK8 at the smallest ``k`` steps per control period; tumble: the whole
+``simulate_controlled`` call (the loop in one compiled call: the law, the held command and the
+integration) with DOP853 at the largest rtol of a ladder (from scipy's starting step each
+period, or carrying the step over, ``carry_step=True``), and with fixed-step RK8 and RK4 at the
+smallest ``k`` (``step = period / k``). The controller and the models are built once, outside
+the timed call, as the peer's arrays are. The reference: scipy DOP853 at rtol 1e-13 over each
+period, the command computed here (numpy, not tumble's).
 """
 
 from __future__ import annotations
@@ -41,7 +45,7 @@ UMAX, SMAX, VISC, COUL, LC = 1.0, 600.0, 1e-5, 0.0, 1e-4  # Coulomb friction off
 ORBIT_PERIOD = 5400.0
 N_ORBIT = 2 * np.pi / ORBIT_PERIOD
 TARGET = {"omega": 2e-9, "attitude": 2e-8}
-NAMES = ["peer rk4", "peer rk8", "tumble dop853"]
+NAMES = ["peer rk4", "peer rk8", "tumble dop853", "tumble dop853 carry", "tumble rk8", "tumble rk4"]
 
 
 def wheel(u, s):
@@ -106,21 +110,25 @@ def problem() -> Problem:
         return peer_control.run(MOMENTS, JS, N_ORBIT, UMAX, SMAX, VISC, COUL, LC, K, P, PERIOD, T_END,
                                 QUAT0, OMEGA0, SPEED0, k, method=m)
 
-    def mine(method="dop853", rtol=1e-10):  # one integrator, DOP853: compiled, or scipy's ("dop853 scipy")
-        ctrl = MRPFeedback(K=K, P=P, period=PERIOD, moments=MOMENTS, wheels=rw, gyroscopic=True)
+    ctrl = MRPFeedback(K=K, P=P, period=PERIOD, moments=MOMENTS, wheels=rw, gyroscopic=True)  # reset by each run
+
+    def mine(method="dop853", rtol=1e-10, step=None):  # compiled; "dop853 scipy": scipy's path
+        fixed = method in ("rk8", "rk4")
         return simulate_controlled(MOMENTS, OMEGA0, t_end=T_END, controller=ctrl, attitude0=QUAT0, wheels=rw,
                                    wheel_speed0=SPEED0, gravity_gradient=gg, rtol=rtol, atol=min(1e-12, rtol * 1e-3),
-                                   compiled=method == "dop853")
+                                   compiled=method != "dop853 scipy", method=method if fixed else "dop853", step=step,
+                                   carry_step=method == "dop853 carry")
 
     return Problem("MRP feedback + 3 wheels, gravity gradient, 60 s", TARGET, peer,
                    lambda Y: errors(Y[:, 4:7], Y[:, :4], *ref), mine,
-                   lambda run: errors(run.omega, run.attitude.as_quat(), *ref), PERIOD, {"dop853": "rtol", "dop853 scipy": "rtol"},
+                   lambda run: errors(run.omega, run.attitude.as_quat(), *ref), PERIOD,
+                   {"dop853": "rtol", "dop853 carry": "rtol", "rk8": "step", "rk4": "step", "dop853 scipy": "rtol"},
                    {"reference_bound": bound})
 
 
 def to_markdown(r: dict) -> str:
     lines = preamble("bench_closed_loop", r["repeats"], "Peer: peer_control.run (k fixed steps per 0.5 s control "
-                     "period); tumble: the whole simulate_controlled call (its compiled path).")
+                     "period); tumble: the whole simulate_controlled call (the loop in one compiled call).")
     lines += table([r["case"]], NAMES, lambda c: f"{c['case']} (omega <= 2e-9, attitude <= 2e-8 rad)")
     lines += ["", f"Reference: its difference from rtol 1e-12 is at most {max(r['case']['reference_bound']):.1e}."]
     return "\n".join(lines) + "\n"
@@ -129,7 +137,7 @@ def to_markdown(r: dict) -> str:
 def run(out, quick: bool = False) -> str:
     """Measure, write ``bench_closed_loop.json`` into ``out``, return the markdown."""
     repeat = 3 if quick else 11
-    info = contest(problem()).run(repeat, 1.0)
+    info = contest(problem(), timed=("dop853", "dop853 carry", "rk8", "rk4")).run(repeat, 1.0)
     print(f"bench_closed_loop: ratio {info['ratio']}", file=sys.stderr, flush=True)
     r = {"repeats": repeat, "case": info}
     (out / "bench_closed_loop.json").write_text(json.dumps(r, indent=2) + "\n")

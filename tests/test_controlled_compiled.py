@@ -53,9 +53,8 @@ def _agree(fast, slow, rel=1e-11):
 def test_the_kernels_field_is_the_models_field(field):
     kind, p = cc.field_params(field)
     f = cc._compiled("_field_world")
-    out = np.empty(3)
     for t in (0.0, 1.0, 1234.5, 11399.0):
-        f(kind, p, cc._NO_TABLE, p[12], t, out)
+        out = np.array(f(kind, p, cc._NO_TABLE, t))
         np.testing.assert_allclose(out, field.world(t), rtol=1e-13, atol=1e-13 * np.linalg.norm(field.world(t)))
 
 
@@ -79,15 +78,15 @@ def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
     # the impulse's rate in the kernel's right-hand side is R tau, tau = m x R^T B + R^T gg(t, R)
     rng = np.random.default_rng(8)
     field, gg = DipoleField(ORBIT, gmst0=0.2), gravity_gradient_of(ORBIT).bind(CUBESAT)
-    kind, p = cc.field_params(field)
-    rhs = cc._compiled("_rhs")
+    kernel = cc.ControlKernel(np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)), None, field, gg, 1e-10, 1e-12)
+    rhs = kernel.kernels["rhs"]
     for t in (0.0, 777.0, 5000.0):
         att = Rotation.from_rotvec(rng.normal(size=3))
         dipole, w = rng.normal(size=3) * 0.1, rng.normal(size=3) * 0.2
         y = np.concatenate([att.as_quat(), w, np.zeros(3)])
-        out = np.empty(10)
-        rhs(t, y, np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)), np.zeros((0, 8)), dipole, np.zeros(0), kind, p,
-            cc._NO_TABLE, np.array([gg.mean_motion, 0.0, 0.0, 0.0]), cc._NO_TABLE, np.zeros(0), out)
+        P = kernel.P[:12] + tuple(dipole) + kernel.P[15:]
+        n_t = gg.mean_motion * t
+        out = np.array(rhs(t, tuple(y), P, kernel.X, np.cos(n_t), np.sin(n_t)))
         tau_world = att.apply(np.cross(dipole, att.inv().apply(field.world(t)))) + gg(t, w, att)
         np.testing.assert_allclose(out[7:], tau_world, rtol=1e-12, atol=1e-12 * np.abs(tau_world).max())
         w_dot = (np.cross(dipole, att.inv().apply(field.world(t))) + att.inv().apply(gg(t, w, att))

@@ -82,17 +82,13 @@ def test_cubic_table_rejects_a_bad_shape():
 
 def test_the_kernels_orbit_gravity_gradient_is_the_models():
     gg = OrbitGravityGradient(MOLNIYA).bind(CUBESAT)
-    table = position_table(MOLNIYA, 8000.0)
-    gp = np.array([0.0, gg.mu, table.t0, table.step])
-    rhs = cc._compiled("_rhs")
+    kernel = cc.ControlKernel(np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)), None, None, gg, 1e-10, 1e-12, 8000.0)
+    rhs = kernel.kernels["rhs"]
     rng = np.random.default_rng(6)
     for t in (0.0, 600.0, 7777.7):  # near perigee (M0 = -0.05) and far from it
         att = Rotation.from_rotvec(rng.normal(size=3))
         w = rng.normal(size=3) * 0.1
-        out = np.empty(10)
-        rhs(t, np.concatenate([att.as_quat(), w, np.zeros(3)]), np.array(CUBESAT), np.diag(1 / np.array(CUBESAT)),
-            np.zeros((0, 8)), np.zeros(3), np.zeros(0), cc.FIELD_NONE, np.zeros(16), cc._NO_TABLE, gp,
-            table.coefficients, np.zeros(0), out)
+        out = np.array(rhs(t, tuple(np.concatenate([att.as_quat(), w, np.zeros(3)])), kernel.P, kernel.X, 1.0, 0.0))
         _close(out[7:], gg(t, w, att), 1e-10)  # the table's position error, ~1e-12 of r, times 3
 
 

@@ -74,11 +74,7 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
 #: The copies still written beside their homes: (formula, module) -> why.
 EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/compiled_control.py"): "the closed loop's compiled right-hand side",
-    # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "dynamics/control/controlled.py"): "the closed loop's Python right-hand side",
-    # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/controllers.py"): "MRP feedback's feed-forward w x (I w + h)",
     # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "dynamics/control/detumble.py"): "the batched B-dot's right-hand side",
     # issue 38: moving onto the engine
@@ -92,25 +88,17 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # onto the engine.
     ("Euler's equations, angular-velocity form", "dynamics/models/drag.py"): "the fits' compiled drag kernel",
     # issue 38: moving onto the engine
-    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/compiled_control.py"): "the closed loop's compiled kinematics",
-    # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's kinematics",
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/detumble.py"): "the batched B-dot's kinematics",
     # issue 38: moving onto the engine
-    ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/compiled_control.py"): "the compiled loop's R",
-    # issue 38: moving onto the engine
     ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/controlled.py"): "the Python loop's R",
-    # issue 38: moving onto the engine
-    ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/compiled_control.py"): "the compiled loop's field",
     # issue 38: moving onto the engine
     ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's field table",
     # issue 38: moving onto the engine
     ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/detumble.py"): "the batched B-dot's field",
-    # issue 38: moving onto the engine
-    ("the dipole field ((a/r)^3 (3 (g . r^) r^ - g))", "dynamics/control/compiled_control.py"): "the compiled loop's _dipole",
     # issue 38: moving onto the engine
     ("the triangle inequality on principal moments", "analysis/tensor/estimate.py"): "the tensor's planar gap",
 }

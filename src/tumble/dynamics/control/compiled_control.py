@@ -1,43 +1,32 @@
-"""The closed-loop equations under the built-in models, compiled: one hold interval in numba.
+"""The closed loop under the built-in models, compiled: the run's parameters, one hold interval, the whole loop.
 
-:meth:`ControlKernel.advance` integrates one zero-order-hold interval of the controlled
-equations of :mod:`tumble.dynamics.control.controlled` (quaternion, omega, wheel spins, external impulse)
-for :func:`~tumble.dynamics.control.controlled.simulate_controlled`, over plain arrays, compiled by numba
-on first use (``cache=True``). The B-dot batch's kernel, which shares the field with it, is
-:mod:`~tumble.dynamics.control.compiled_detumble`.
+:class:`ControlKernel` binds a run's fixed parameters (the body, the wheels, the field, the
+gravity gradient, the tolerances) for :func:`~tumble.dynamics.control.controlled.simulate_controlled`
+and runs the compiled kernels of :mod:`~tumble.dynamics.control.compiled_loop` (the equations of
+:mod:`~tumble.dynamics.control.loop_terms`): :meth:`ControlKernel.advance` integrates one
+zero-order-hold interval for a controller of one's own, called in Python; :meth:`ControlKernel.run`
+runs the whole loop in one compiled call for the built-in controllers that :func:`compiled_law`
+recognises, with ideal sensors. Both take the same steps: the same kernel integrates each
+interval, and the laws are :mod:`~tumble.dynamics.control.laws`' functions, which the Python
+controllers call too, so the two paths agree to round-off (tests/test_control_loop.py).
 
 **Why compiled, and which scheme.** The Python path calls scipy's ``solve_ivp`` once per control
 period, ~1 ms of Python overhead per interval and ~0.1 ms per right-hand side: a two-orbit
-detumble (11,400 one-second periods) took 41 s. No library offers an ODE solver callable from
-numba's compiled code, so :meth:`ControlKernel.advance` is scipy's DOP853 written out: the Dormand-Prince 8(5,3)
-pair of Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., sec. II.10
-(coefficients taken from :class:`scipy.integrate.DOP853`, which copies them from Hairer's
-Fortran code), with scipy's error norm (the 5th- and 3rd-order estimates combined, RMS norm with
-``scale = atol + rtol max(|y|, |y_new|)``), its step control (safety 0.9, factors in [0.2, 10],
-no growth after a rejection) and its starting step (``select_initial_step``, HNW sec. II.4).
-So both paths take the same steps and agree to round-off, not only to the tolerance (tested);
-an adaptive scheme also follows the wheels' Coulomb friction through zero speed (linear below
-``limit_cycle_speed``, as in the Python path).
-
-**The built-in models written out** (one formula each; the numpy versions are the references,
-and tests/test_controlled_compiled.py checks each against it to round-off):
-
-- the field: :class:`~tumble.dynamics.environment.magnetic.UniformField`, or the tilted dipole of
-  :class:`~tumble.dynamics.environment.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
-  Earth-fixed frame at the orbit's position, turned to the world frame (:func:`field_params`), or
-  :class:`~tumble.dynamics.environment.igrf.IGRFField`'s spline blocks (:meth:`~tumble.dynamics.environment.igrf.IGRFField.tabulate`);
-- the gravity gradient ``3 n^2 r_b x (I r_b)`` of a circular orbit
-  (:class:`~tumble.dynamics.models.gravity.GravityGradient`), or with ``n^2 = mu / r^3`` along a
-  Keplerian or TLE orbit (:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`), ``r(t)``
-  from :func:`~tumble.dynamics.environment.tabulated.position_table` (~1e-12 of r: the paths agree to
-  ~1e-11 there); with the field's ``m x B`` the external torque whose world-frame value is the impulse's rate;
-- the wheels' applied torque (:meth:`~tumble.dynamics.models.actuators.ReactionWheels.applied_torque`:
-  torque limit, speed limit, viscous and Coulomb friction).
+detumble (11,400 one-second periods) took 41 s; with each interval compiled but the controller in
+Python, the Python call (~100 us with scipy's ``Rotation``) was most of the rest. No library offers
+an ODE solver callable from numba's compiled code, so the interval is scipy's DOP853 written out
+from the engine's tableau (the Dormand-Prince 8(5,3) pair of Hairer, Norsett & Wanner, *Solving
+Ordinary Differential Equations I*, 2nd ed., sec. II.10; coefficients from
+:class:`scipy.integrate.DOP853`) with scipy's error norm, step control and starting step
+(:mod:`~tumble.dynamics.engine.stepsize`). So the compiled and the scipy paths take the same steps
+and agree to round-off, not only to the tolerance (tested); an adaptive scheme also follows the
+wheels' Coulomb friction through zero speed (linear below ``limit_cycle_speed``, as in the Python path).
+Fixed-step RK4 and RK8, and DOP853 continuing its step from one interval to the next
+(``carry``), are the compiled path's alone.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable
 from typing import Any, cast
@@ -45,25 +34,33 @@ from typing import Any, cast
 import numpy as np
 
 from ...typing import FloatArray
-from ..environment.earth import OMEGA_EARTH
-from ..environment.magnetic import IGRF_RADIUS
-from ..engine.stepsize import error_norm as _error_norm  # the engine's step control, compiled in _compiled()
-from ..engine.stepsize import first_trial_step as _first_trial_step
-from ..engine.stepsize import initial_step as _initial_step
-from ..engine.stepsize import next_step as _next_step
-from ..engine.stepsize import rms as _rms
-from ..models.actuators import wheel_torque as _wheel_torque  # the model's formula, compiled in _compiled()
-from ..models.gravity import gradient_components as _gravity_gradient  # the model's formula, compiled in _compiled()
-from ..environment.tabulated import horner as _horner
-from ..special.quaternion import to_body as _to_body  # compiled in _compiled()
+from . import compiled_loop as _loop
+from .loop_terms import FIELD_DIPOLE, FIELD_NONE, FIELD_TABLE, FIELD_UNIFORM, WHEEL
+from .loop_terms import _gravity_gradient, _to_body, _wheel_torque, dipole, field_world, table_value
 
 __all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
-           "field_params"]
+           "compiled_law", "field_params"]
 
-#: Kinds of field the kernels evaluate: none, uniform, the tilted dipole, a CubicTable (IGRF).
-FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
 #: An empty table (the kernels' argument where there is none).
 _NO_TABLE = np.zeros((4, 1, 3))
+#: The dipole field's formula, compiled (the B-dot batch's kernel calls it too).
+_dipole = dipole
+#: The methods of a hold interval, by name.
+METHODS = {"dop853": _loop.DOP853, "rk4": _loop.RK4, "rk8": _loop.RK8}
+
+
+def _compiled(name: str) -> Callable[..., Any]:
+    """A compiled helper by its name, for the B-dot batch's kernel and the tests.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.compiled_control import _compiled
+    >>> _compiled("_wheel_torque")(1e-3, 0.0, 2e-3, 600.0, 0.0, 0.0, 1e-4)
+    0.001
+    """
+    return cast("Callable[..., Any]", {"_dipole": dipole, "_gravity_gradient": _gravity_gradient, "_to_body": _to_body,
+                                       "_wheel_torque": _wheel_torque, "_table": table_value,
+                                       "_field_world": field_world}[name])
 
 
 def field_params(field: Any) -> tuple[int, FloatArray]:
@@ -104,230 +101,6 @@ def field_params(field: Any) -> tuple[int, FloatArray]:
                      "cannot evaluate it; use compiled=False")
 
 
-def _table(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, float, float]:  # pragma: no cover
-    """A :class:`~tumble.dynamics.environment.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
-    spacing ``h``, s) at ``t`` (s), by its rule: interval ``floor((t - t0) / h)`` clipped, Horner."""
-    i = int(min(max(math.floor((t - t0) / h), 0.0), c.shape[1] - 1.0))
-    d = t - (t0 + i * h)
-    return (_horner(c[0, i, 0], c[1, i, 0], c[2, i, 0], c[3, i, 0], d),
-            _horner(c[0, i, 1], c[1, i, 1], c[2, i, 1], c[3, i, 1], d),
-            _horner(c[0, i, 2], c[1, i, 2], c[2, i, 2], c[3, i, 2], d))
-
-
-def _field_world(kind: int, p: FloatArray, table: FloatArray, gmst0: float, t: float,
-                 out: FloatArray) -> None:  # pragma: no cover
-    """B (T) in the world frame at ``t`` (s) into ``out``; ``gmst0`` the Earth's angle at t = 0 (rad),
-    ``table`` the coefficients of a tabulated field (start ``p[0]``, spacing ``p[1]``).
-
-    The dipole: ``r_eci = W^T r_world``, ``r_ecef = R3(theta)^T r_eci``, B in ECEF, then back
-    (:meth:`DipoleField.world`, with ``world_from_ecef = W R3(theta)`` applied in two factors)."""
-    if kind == FIELD_NONE:
-        out[0], out[1], out[2] = 0.0, 0.0, 0.0
-        return
-    if kind == FIELD_UNIFORM:
-        out[0], out[1], out[2] = p[0], p[1], p[2]
-        return
-    if kind == FIELD_TABLE:
-        out[0], out[1], out[2] = _table(table, p[0], p[1], t)
-        return
-    nt = p[15] * t
-    r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
-    theta = gmst0 + OMEGA_EARTH * t * p[13]
-    out[0], out[1], out[2] = _dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1,
-                                     math.cos(theta), math.sin(theta))
-
-
-def _dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
-            s: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """The dipole's B (T, world frame) at ``r_eci = (e0, e1, e2)`` (m) with ``(c, s)`` the cosine
-    and sine of the Earth's angle: ``r_ecef = R3(theta)^T r_eci``,
-    ``B = (a/r)^3 (3 (g . r^) r^ - g)`` there (:meth:`DipoleField.ecef`), turned back to ECI and world."""
-    x0, x1, x2 = c * e0 + s * e1, -s * e0 + c * e1, e2
-    rn = math.sqrt(x0 * x0 + x1 * x1 + x2 * x2)
-    u0, u1, u2 = x0 / rn, x1 / rn, x2 / rn
-    g0, g1, g2 = p[9], p[10], p[11]
-    f = IGRF_RADIUS / rn
-    f = f * f * f
-    gu = 3.0 * (u0 * g0 + u1 * g1 + u2 * g2)
-    b0, b1, b2 = f * (gu * u0 - g0), f * (gu * u1 - g1), f * (gu * u2 - g2)
-    e0, e1, e2 = c * b0 - s * b1, s * b0 + c * b1, b2
-    return p[0] * e0 + p[1] * e1 + p[2] * e2, p[3] * e0 + p[4] * e1 + p[5] * e2, p[6] * e0 + p[7] * e1 + p[8] * e2
-
-
-def _field_body(kind: int, p: FloatArray, table: FloatArray, q: FloatArray, t: float,
-                out: FloatArray) -> None:  # pragma: no cover
-    """B (T) in the body frame of the unit quaternion ``q`` at ``t`` (s) into ``out``: ``R^T B_world``."""
-    _field_world(kind, p, table, p[12], t, out)
-    out[0], out[1], out[2] = _to_body(q[0], q[1], q[2], q[3], out[0], out[1], out[2])
-
-
-def _rhs(t: float, y: FloatArray, I: FloatArray, I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray,
-         command: FloatArray, field_kind: int, fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray,
-         u: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
-    """The controlled equations (module docstring of :mod:`tumble.dynamics.control.controlled`) into ``out``.
-
-    ``y = (q, omega, s, impulse)``; ``wheels`` rows ``(g (3), J, u_max, s_max, c_v, c_c)``; ``ft``
-    the field's table; ``gp = (n, mu, t0, h)`` the gravity gradient: a circle's mean motion
-    (rad/s, > 0) or ``mu`` (m^3/s^2, > 0) with the position table ``gt`` (m; start, spacing, s)."""
-    k = wheels.shape[0]
-    nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
-    x, yq, z, c = y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq
-    # R (body to world), Shuster 1993 eq. 161, as controlled._matrix
-    r00, r01, r02 = 1.0 - 2.0 * (yq * yq + z * z), 2.0 * (x * yq - z * c), 2.0 * (x * z + yq * c)
-    r10, r11, r12 = 2.0 * (x * yq + z * c), 1.0 - 2.0 * (x * x + z * z), 2.0 * (yq * z - x * c)
-    r20, r21, r22 = 2.0 * (x * z - yq * c), 2.0 * (yq * z + x * c), 1.0 - 2.0 * (x * x + yq * yq)
-    w0, w1, w2 = y[4], y[5], y[6]
-    t0, t1, t2 = 0.0, 0.0, 0.0  # external torque, body frame
-    if field_kind != FIELD_NONE:
-        _field_world(field_kind, fp, ft, fp[12], t, out)  # out as scratch
-        v0, v1, v2 = out[0], out[1], out[2]
-        b0 = r00 * v0 + r10 * v1 + r20 * v2
-        b1 = r01 * v0 + r11 * v1 + r21 * v2
-        b2 = r02 * v0 + r12 * v1 + r22 * v2
-        t0 += dipole[1] * b2 - dipole[2] * b1
-        t1 += dipole[2] * b0 - dipole[0] * b2
-        t2 += dipole[0] * b1 - dipole[1] * b0
-    if gp[0] > 0.0:  # r_b = R^T (cos n t, sin n t, 0)
-        v0, v1 = math.cos(gp[0] * t), math.sin(gp[0] * t)
-        g0, g1, g2 = _gravity_gradient(gp[0] * gp[0], I[0], I[1], I[2], r00 * v0 + r10 * v1, r01 * v0 + r11 * v1,
-                                       r02 * v0 + r12 * v1)
-        t0 += g0
-        t1 += g1
-        t2 += g2
-    elif gp[1] > 0.0:  # r_b = R^T r / |r|, rate sqrt(mu / r^3)
-        v0, v1, v2 = _table(gt, gp[2], gp[3], t)
-        rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
-        v0, v1, v2 = v0 / rn, v1 / rn, v2 / rn
-        n_r = math.sqrt(gp[1] / rn) / rn  # sqrt(mu / r^3)
-        g0, g1, g2 = _gravity_gradient(n_r * n_r, I[0], I[1], I[2], r00 * v0 + r10 * v1 + r20 * v2,
-                                       r01 * v0 + r11 * v1 + r21 * v2, r02 * v0 + r12 * v1 + r22 * v2)
-        t0 += g0
-        t1 += g1
-        t2 += g2
-    h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2
-    a0, a1, a2 = t0, t1, t2
-    for j in range(k):
-        s = y[7 + j]
-        u[j] = _wheel_torque(command[j], s, wheels[j, 4], wheels[j, 5], wheels[j, 6], wheels[j, 7], wheels[j, 8])
-        js = wheels[j, 3] * s
-        h0 += js * wheels[j, 0]
-        h1 += js * wheels[j, 1]
-        h2 += js * wheels[j, 2]
-        a0 -= u[j] * wheels[j, 0]
-        a1 -= u[j] * wheels[j, 1]
-        a2 -= u[j] * wheels[j, 2]
-    a0 -= w1 * h2 - w2 * h1
-    a1 -= w2 * h0 - w0 * h2
-    a2 -= w0 * h1 - w1 * h0
-    d0 = I_rw_inv[0, 0] * a0 + I_rw_inv[0, 1] * a1 + I_rw_inv[0, 2] * a2
-    d1 = I_rw_inv[1, 0] * a0 + I_rw_inv[1, 1] * a1 + I_rw_inv[1, 2] * a2
-    d2 = I_rw_inv[2, 0] * a0 + I_rw_inv[2, 1] * a1 + I_rw_inv[2, 2] * a2
-    out[0] = 0.5 * (c * w0 + yq * w2 - z * w1)
-    out[1] = 0.5 * (c * w1 + z * w0 - x * w2)
-    out[2] = 0.5 * (c * w2 + x * w1 - yq * w0)
-    out[3] = 0.5 * -(x * w0 + yq * w1 + z * w2)
-    out[4], out[5], out[6] = d0, d1, d2
-    for j in range(k):
-        out[7 + j] = u[j] / wheels[j, 3] - (wheels[j, 0] * d0 + wheels[j, 1] * d1 + wheels[j, 2] * d2)
-    out[7 + k] = r00 * t0 + r01 * t1 + r02 * t2
-    out[8 + k] = r10 * t0 + r11 * t1 + r12 * t2
-    out[9 + k] = r20 * t0 + r21 * t1 + r22 * t2
-
-
-def _advance(y: FloatArray, t_start: float, t_end: float, rtol: float, atol: float, I: FloatArray,
-             I_rw_inv: FloatArray, wheels: FloatArray, dipole: FloatArray, command: FloatArray, field_kind: int,
-             fp: FloatArray, ft: FloatArray, gp: FloatArray, gt: FloatArray, A: FloatArray, B: FloatArray, C: FloatArray, E3: FloatArray,
-             E5: FloatArray) -> int:  # pragma: no cover - compiled
-    """DOP853 from ``t_start`` to ``t_end`` (s) as scipy's ``solve_ivp`` runs it, ``y`` in place;
-    0 on success, 1 if the step fell below scipy's smallest (10 ulp of t)."""
-    n = y.shape[0]
-    stages = B.shape[0]
-    u = np.empty(wheels.shape[0])
-    K = np.empty((stages + 1, n))
-    f, f1, y1, scale = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    err5, err3 = np.empty(n), np.empty(n)
-    _rhs(t_start, y, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, f)
-    # the starting step (scipy's select_initial_step, HNW sec. II.4; order 7 of the error estimate)
-    interval = abs(t_end - t_start)
-    for i in range(n):
-        scale[i] = atol + abs(y[i]) * rtol
-    d1 = _rms(f, scale)
-    h0 = _first_trial_step(_rms(y, scale), d1, interval)
-    for i in range(n):
-        y1[i] = y[i] + h0 * f[i]
-    _rhs(t_start + h0, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, f1)
-    for i in range(n):
-        f1[i] -= f[i]
-    h_abs = _initial_step(h0, d1, _rms(f1, scale) / h0, interval)
-    t = t_start
-    while True:  # one accepted step (scipy's RungeKutta._step_impl)
-        min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
-        h_abs = max(h_abs, min_step)
-        rejected = False
-        while True:
-            if h_abs < min_step:
-                return 1
-            t_new = t + h_abs
-            if t_new - t_end > 0.0:
-                t_new = t_end
-            h = t_new - t
-            h_abs = abs(h)
-            for i in range(n):
-                K[0, i] = f[i]
-            for s in range(1, stages):
-                for i in range(n):
-                    acc = 0.0
-                    for r in range(s):
-                        acc += K[r, i] * A[s, r]
-                    y1[i] = y[i] + acc * h
-                _rhs(t + C[s] * h, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, K[s])
-            for i in range(n):
-                acc = 0.0
-                for r in range(stages):
-                    acc += K[r, i] * B[r]
-                y1[i] = y[i] + h * acc
-            _rhs(t_new, y1, I, I_rw_inv, wheels, dipole, command, field_kind, fp, ft, gp, gt, u, K[stages])
-            for i in range(n):
-                scale[i] = atol + max(abs(y[i]), abs(y1[i])) * rtol
-                a5, a3 = 0.0, 0.0
-                for r in range(stages + 1):
-                    a5 += K[r, i] * E5[r]
-                    a3 += K[r, i] * E3[r]
-                err5[i], err3[i] = a5 / scale[i], a3 / scale[i]
-            e5, e3 = 0.0, 0.0
-            for i in range(n):
-                e5 += err5[i] * err5[i]
-                e3 += err3[i] * err3[i]
-            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, n), h_abs, rejected)
-            if accepted:
-                break
-            rejected = True
-        t = t_new
-        for i in range(n):
-            y[i] = y1[i]
-            f[i] = K[stages, i]
-        if t - t_end >= 0.0:
-            return 0
-
-
-_HELPERS = ("_horner", "_table", "_dipole", "_field_world", "_field_body", "_gravity_gradient", "_wheel_torque", "_rhs", "_rms",
-            "_to_body", "_error_norm", "_next_step", "_first_trial_step", "_initial_step")
-
-
-@functools.cache
-def _compiled(name: str) -> Callable[..., Any]:
-    """The function ``name`` compiled by numba on first use, with every helper (the helpers are
-    compiled first so that the kernels call compiled code)."""
-    from ...jit import jit
-
-    if not _compiled.__dict__.get("helpers"):
-        for helper in _HELPERS:
-            globals()[helper] = jit(error_model="numpy")(globals()[helper])
-        _compiled.__dict__["helpers"] = True
-    function = globals()[name]
-    return cast("Callable[..., Any]", function if name in _HELPERS else jit(error_model="numpy")(function))
-
-
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:
     """None if every model is a built-in one the kernel evaluates, else the first other one's description.
 
@@ -351,6 +124,8 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
     if type(gravity_gradient) is OrbitGravityGradient and \
             type(gravity_gradient.orbit) not in (CircularOrbit, KeplerOrbit, TLEOrbit):
         return f"gravity_gradient's orbit = {type(gravity_gradient.orbit).__name__} (a CircularOrbit, KeplerOrbit or TLEOrbit)"
+    if isinstance(wheels, ReactionWheels) and wheels.count > _loop.MAX_WHEELS:
+        return f"wheels = {wheels.count} wheels (at most {_loop.MAX_WHEELS} compiled)"
     for name, model, kinds in (("field", field, (DipoleField, UniformField, IGRFField)),
                                ("gravity_gradient", gravity_gradient, (GravityGradient, OrbitGravityGradient)),
                                ("magnetorquers", magnetorquers, (Magnetorquers,)),
@@ -362,8 +137,59 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
     return None
 
 
+def _plain(controller: Any, cls: type) -> bool:
+    """Whether ``controller`` is a ``cls`` whose law is ``cls``'s own (a subclass may change it)."""
+    return isinstance(controller, cls) and type(controller).__call__ is cls.__call__
+
+
+def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
+    """``(law, parameters, allocation)`` of a built-in controller that the compiled loop runs
+    (:mod:`~tumble.dynamics.control.compiled_loop`), or None for the Python path: B-dot; MRP
+    feedback to a fixed target and momentum dumping with it, on the run's own wheels and moments;
+    all with ideal sensors (None, or with no noise, bias, star tracker or sun sensor).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_control import compiled_law
+    >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
+    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> law, L, pinv = compiled_law(BDot(gain=1e4, period=1.0), Sensors(), np.ones(3), None, None)
+    >>> law == LAW_BDOT, L.tolist(), pinv.shape
+    (True, [10000.0, 0.0, 0.0], (0, 3))
+    >>> compiled_law(BDot(gain=1e4, period=1.0), Sensors(gyro_noise=1e-4), np.ones(3), None, None) is None
+    True
+    """
+    from .controllers import BDot, MomentumDumping, MRPFeedback
+    from .pointing import is_reference
+
+    if sensors is not None and (sensors.gyro_noise or sensors.magnetometer_noise or sensors.attitude != "ideal"
+                                or any(sensors.gyro_bias) or any(sensors.magnetometer_bias) or sensors.attitude_noise
+                                or sensors.sun_sensor is not None or sensors.star_tracker is not None
+                                or sensors.sunlight is not None):
+        return None
+    k = 0 if wheels is None else wheels.count
+    if _plain(controller, BDot):
+        L = [controller.gain, controller.form == "normalized", controller.derivative == "difference"]
+        return _loop.LAW_BDOT, np.array(L, dtype=float), np.zeros((k, 3))
+    dumping = _plain(controller, MomentumDumping)
+    pointing = controller.pointing if dumping else controller
+    if not _plain(pointing, MRPFeedback) or is_reference(pointing.target) or wheels is None or (dumping and field is None):
+        return None
+    own = pointing.wheels
+    if not (np.array_equal(pointing.moments, moments) and np.array_equal(own.axes, wheels.axes)
+            and np.array_equal(np.broadcast_to(own.inertia, (k,)), np.broadcast_to(wheels.inertia, (k,)))):
+        return None
+    L = [pointing.K, pointing.P, pointing.Ki, pointing.integral_limit, pointing.gyroscopic, pointing.period,
+         *pointing.target.as_quat()]
+    if dumping:
+        L += [controller.gain, *controller.h_target]
+    return _loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float), np.ascontiguousarray(pointing._pinv)
+
+
 class ControlKernel:
-    """The compiled hold-interval integrator with the run's fixed parameters bound.
+    """The compiled closed loop with the run's fixed parameters bound.
 
     Parameters
     ----------
@@ -379,6 +205,10 @@ class ControlKernel:
     t_end : float, optional
         End of the run, s: the span of the tables of an IGRF field and of an orbit's position
         (needed with those models).
+    method : {"dop853", "rk4", "rk8"}
+        The hold interval's method.
+    step : float, optional
+        The fixed-step methods' largest step, s (> 0; needed with them).
 
     Examples
     --------
@@ -394,35 +224,55 @@ class ControlKernel:
     """
 
     def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, gravity_gradient: Any,
-                 rtol: float, atol: float, t_end: float | None = None) -> None:
-        from scipy.integrate import DOP853
-
+                 rtol: float, atol: float, t_end: float | None = None, method: str = "dop853",
+                 step: float | None = None) -> None:
         from ..environment.tabulated import position_table
         from ..models.orbit_gravity import OrbitGravityGradient
 
-        self.I = np.ascontiguousarray(moments, dtype=float)
-        self.I_rw_inv = np.ascontiguousarray(I_rw_inv, dtype=float)
-        self.wheels = np.zeros((0, 9)) if wheels is None else np.ascontiguousarray(np.column_stack([
-            wheels.axes, wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous, wheels.coulomb,
-            wheels.limit_cycle_speed]),
-            dtype=float)
-        self.field_kind, self.fp = field_params(field)
-        tables = self.field_kind == FIELD_TABLE or isinstance(gravity_gradient, OrbitGravityGradient)
+        if method not in METHODS:
+            raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(METHODS)}")
+        if method != "dop853" and not (step is not None and step > 0.0 and math.isfinite(step)):
+            raise ValueError(f"step = {step!r} must be given (s, > 0) with method = {method!r}")
+        self.method, self.step = METHODS[method], float(step or 0.0)
+        self.k = 0 if wheels is None else wheels.count
+        field_kind, fp = field_params(field)
+        tables = field_kind == FIELD_TABLE or isinstance(gravity_gradient, OrbitGravityGradient)
         if tables and (t_end is None or not t_end > 0.0):
             raise ValueError(f"t_end = {t_end!r} must be given (s, > 0) with an IGRF field or an orbit's gravity gradient")
-        self.ft = field.tabulate(cast(float, t_end)).coefficients if self.field_kind == FIELD_TABLE else _NO_TABLE
-        self.gp, self.gt = np.zeros(4), _NO_TABLE
+        ft = field.tabulate(cast(float, t_end)).coefficients if field_kind == FIELD_TABLE else _NO_TABLE
+        gp, gt = np.zeros(4), _NO_TABLE
         if isinstance(gravity_gradient, OrbitGravityGradient):
             table = position_table(gravity_gradient.orbit, cast(float, t_end))
-            self.gp[1:], self.gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
+            gp[1:], gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
         elif gravity_gradient is not None:
-            self.gp[0] = gravity_gradient.mean_motion
+            gp[0] = gravity_gradient.mean_motion
+        P = [*np.asarray(moments, float), *np.asarray(I_rw_inv, float).reshape(9), 0.0, 0.0, 0.0, field_kind, *gp]
+        if wheels is not None:
+            k = self.k
+            columns = [wheels.axes] + [np.broadcast_to(np.asarray(v, float), (k,))[:, None] for v in
+                                       (wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous,
+                                        wheels.coulomb, wheels.limit_cycle_speed, np.zeros(k))]
+            P += list(np.hstack(columns).reshape(k * WHEEL))
+        self.P = tuple(float(v) for v in P)
+        self.X = tuple(np.ascontiguousarray(a, dtype=float) for a in (fp, ft, gt))
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
-        self.tableau = tuple(np.ascontiguousarray(a, dtype=float) for a in
-                             (DOP853.A, DOP853.B, DOP853.C, DOP853.E3, DOP853.E5))
-        self.kernel = _compiled("_advance")
-        self.field_kernel = _compiled("_field_body")
+        self.kernels = _loop.kernels(self.k)
+
+    def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
+        """:func:`compiled_law` for this run's moments.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.models.sensors import Sensors
+        >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, None, None, 1e-10, 1e-12)
+        >>> kernel.law(BDot(gain=1e4, period=1.0), Sensors(), None, None)[0]
+        0
+        """
+        return compiled_law(controller, sensors, np.array(self.P[:3]), wheels, field)
 
     def field_body(self, q: FloatArray, t: float) -> FloatArray:
         """B (T) in the body frame of the unit quaternion ``q`` (body to world, scalar last) at ``t`` (s).
@@ -439,9 +289,10 @@ class ControlKernel:
         >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
         True
         """
-        out = np.empty(3)
-        self.field_kernel(self.field_kind, self.fp, self.ft, np.ascontiguousarray(q, dtype=float), float(t), out)
-        return out
+        from .loop_terms import field_body
+
+        x, y, z, s = (float(v) for v in q)
+        return np.array(field_body(int(self.P[15]), self.X[0], self.X[1], x, y, z, s, float(t)))
 
     def advance(self, y: FloatArray, t_start: float, t_end: float, dipole: FloatArray, command: FloatArray) -> FloatArray:
         """The state ``(q, omega, s, impulse)`` at ``t_end`` (s) from ``y`` at ``t_start``, the dipole
@@ -462,12 +313,46 @@ class ControlKernel:
         >>> np.allclose(y[4:7], [0.0, 0.0, 1e-5], rtol=1e-6, atol=1e-15), np.allclose(y[7:], [0.0, 0.0, 3e-5], rtol=1e-6)
         (True, True)
         """
-        out = np.array(y, dtype=float)
-        status = self.kernel(out, float(t_start), float(t_end), self.rtol, self.atol, self.I, self.I_rw_inv,
-                             self.wheels, np.ascontiguousarray(dipole, dtype=float),
-                             np.ascontiguousarray(command, dtype=float), self.field_kind, self.fp, self.ft,
-                             self.gp, self.gt,
-                             *self.tableau)
+        out = np.empty(10 + self.k)
+        status = self.kernels["_interval"](np.ascontiguousarray(y, dtype=float), float(t_start), float(t_end), self.P,
+                                           self.X, np.ascontiguousarray(dipole, dtype=float),
+                                           np.ascontiguousarray(command, dtype=float), self.rtol, self.atol,
+                                           self.method, self.step, out)
         if status != 0:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
         return out
+
+    def run(self, y0: FloatArray, grid: FloatArray, law: tuple[int, FloatArray, FloatArray], rods: FloatArray,
+            limits: FloatArray, carry: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The whole loop in one compiled call: the states at the control instants ``grid`` (s) from
+        ``y0``, the dipoles held (A m^2), the wheels' applied torques (N m) and the fields (T, body
+        frame); ``law`` from :func:`compiled_law`, ``rods`` the magnetorquers' axes and ``limits``
+        their largest dipoles (A m^2); ``carry``: each DOP853 interval starts from the step the
+        last proposed (:mod:`~tumble.dynamics.control.compiled_loop`).
+
+        Examples
+        --------
+        B-dot on a spin about axis 3, square to a uniform field, normalised: ``|omega|`` falls by
+        nearly ``1 - k dt / I3`` a step of ``dt``:
+
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
+        >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> I = np.array([0.01, 0.02, 0.03])
+        >>> kernel = ControlKernel(I, np.diag(1 / I), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
+        >>> law = (LAW_BDOT, np.array([2e-3, 1.0, 0.0]), np.zeros((0, 3)))
+        >>> y0 = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
+        >>> Y, D, U, F = kernel.run(y0, np.arange(3) * 0.5, law, np.eye(3), np.full(3, 10.0))
+        >>> np.allclose(np.linalg.norm(Y[:, 4:7], axis=1), 0.1 * (1 - 2e-3 * 0.5 / 0.03) ** np.arange(3), rtol=1e-3)
+        True
+        """
+        steps = len(grid)
+        Y, D, U, F = np.empty((steps, 10 + self.k)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
+        status = self.kernels["_loop"](np.ascontiguousarray(y0, dtype=float), np.ascontiguousarray(grid, dtype=float),
+                                       self.P, self.X, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
+                                       np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol, self.method,
+                                       self.step, bool(carry), Y, D, U, F)
+        if status != 0:
+            raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
+        return Y, D, U, F

@@ -13,14 +13,17 @@ command held, ``u`` the wheels' applied torque and ``tau`` the body
 torques: the magnetorquers' ``m x B`` and the gravity gradient. At each ``t_k`` the sensors are
 read and the controller called.
 
-**Two paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
+**Three paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
 or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular, Keplerian or TLE
-orbit, ``Magnetorquers``, ``ReactionWheels``) each interval is
-integrated by a compiled copy of scipy's DOP853
-(:mod:`~tumble.dynamics.control.compiled_control`: the same steps; a two-orbit detumble, 11,400
-periods, in 1 s instead of 41 s, most of it now the Python controller); with a
-model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. The controller and
-the sensors are Python either way, called once a period.
+orbit, ``Magnetorquers``, at most six ``ReactionWheels``) each interval is integrated by scipy's
+DOP853 written out and compiled (:mod:`~tumble.dynamics.control.compiled_control`: the same
+steps); with a model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. With
+a built-in controller as well (``BDot``, ``MRPFeedback`` to a fixed target, ``MomentumDumping``
+with it; :func:`~tumble.dynamics.control.compiled_control.compiled_law`) and ideal sensors, the
+whole loop runs in one compiled call, the laws being the functions the Python controllers call
+(:mod:`~tumble.dynamics.control.laws`): the same results to round-off. Otherwise the controller
+and the sensors are Python, called once a period (a controller of one's own, a moving target,
+noisy sensors, a filter: :class:`~tumble.dynamics.control.estimated.Estimated`).
 
 **Budget.** ``L_world = R (I omega + h)`` of body and wheels changes only by the external
 impulse: ``L_world(t) - L_world(0) - int_0^t tau_world dt = 0`` to the integrator's accuracy;
@@ -258,7 +261,7 @@ def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
 
 def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: MagneticField | None,
             gg: GravityGradient | OrbitGravityGradient | None, magnetorquers: Magnetorquers | None, wheels: ReactionWheels | None,
-            rtol: float, atol: float, t_end: float) -> ControlKernel | None:
+            rtol: float, atol: float, t_end: float, method: str = "dop853", step: float | None = None) -> ControlKernel | None:
     """The compiled interval integrator for these models, or None for scipy's path."""
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
@@ -271,7 +274,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Ma
         if compiled:
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
-    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, gg, rtol, atol, t_end)
+    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, gg, rtol, atol, t_end, method, step)
 
 
 def simulate_controlled(
@@ -290,6 +293,9 @@ def simulate_controlled(
     rtol: float = 1e-10,
     atol: float = 1e-12,
     compiled: bool | None = None,
+    method: str = "dop853",
+    step: float | None = None,
+    carry_step: bool = False,
 ) -> ControlledRun:
     """Run a controller in closed loop; see the module docstring for the equations.
 
@@ -322,6 +328,15 @@ def simulate_controlled(
         Integrate each interval in compiled code (True), by scipy's ``solve_ivp`` (False), or
         compiled when every model is a built-in one (None, the default; module docstring).
         True with a model of one's own is a ValueError naming it.
+    method : {"dop853", "rk4", "rk8"}
+        The hold interval's method: DOP853 with ``rtol`` and ``atol``, or fixed-step RK4 or RK8
+        (DOP853's 8th-order weights) at equal steps no longer than ``step`` (s) in each
+        interval; the fixed steps on the compiled path only.
+    carry_step : bool
+        Start each DOP853 interval from the step the last one's error control proposed (clipped
+        to the interval) instead of scipy's starting step: half the evaluations where a step spans
+        an interval, results within the tolerance rather than step for step scipy's (compiled
+        path only; :mod:`~tumble.dynamics.control.compiled_loop`).
 
     Returns
     -------
@@ -362,15 +377,28 @@ def simulate_controlled(
     if s0.shape != (k,) or not np.all(np.isfinite(s0)):
         raise ValueError(f"wheel_speed0 = {wheel_speed0!r} must be {k} finite numbers (rad/s), one per wheel")
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
-    sensors = sensors if sensors is not None else Sensors()
-    rng = sensors.rng()
     if hasattr(controller, "reset"):
         controller.reset()
     I_rw = np.diag(I) - (wheels.locked_axial() if wheels is not None else 0.0)
     I_rw_inv = np.linalg.inv(I_rw)
     axes = wheels.axes if wheels is not None else np.zeros((0, 3))
     J = np.asarray(wheels.inertia) if wheels is not None else np.zeros(0)
-    kernel = _kernel(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol, T)
+    if compiled is False and (method != "dop853" or carry_step):
+        raise ValueError(f"method = {method!r} and carry_step = {carry_step!r} need the compiled path; "
+                         "scipy's is dop853 from scipy's starting step")
+    kernel = _kernel(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol, T, method, step)
+    if kernel is None and (method != "dop853" or carry_step):
+        raise ValueError(f"method = {method!r} and carry_step = {carry_step!r} need the built-in models (compiled path)")
+    steps = max(1, math.ceil(T / period - 1e-9))
+    grid = np.minimum(np.arange(steps + 1) * period, T)
+    law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
+    if kernel is not None and law is not None:  # the whole loop in one compiled call
+        rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
+        limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
+        Y, D, U, F = kernel.run(np.concatenate([q0, w0, s0, np.zeros(3)]), grid, law, rods, limits, carry_step)
+        return _run(grid, Y, I, J, axes, k, U, D, F)
+    sensors = sensors if sensors is not None else Sensors()
+    rng = sensors.rng()
 
     def rhs(t: float, y: FloatArray, dipole: FloatArray, u_cmd: FloatArray) -> FloatArray:
         q, w, s = y[:4] / math.sqrt(float(y[:4] @ y[:4])), y[4:7], y[7:7 + k]
@@ -390,8 +418,6 @@ def simulate_controlled(
                              -(x * w0_ + y_ * w1 + z * w2)])
         return np.concatenate([dq, dw, ds, R @ tau])
 
-    steps = max(1, math.ceil(T / period - 1e-9))
-    grid = np.minimum(np.arange(steps + 1) * period, T)
     y = np.concatenate([q0, w0, s0, np.zeros(3)])
     rows: list[FloatArray] = []
     dipoles, torques, fields = [], [], []
@@ -423,15 +449,19 @@ def simulate_controlled(
         if not sol.success:
             raise RuntimeError(f"the integration failed at t = {t} s: {sol.message}")
         y = np.asarray(sol.y[:, -1], float)
-    Y = np.array(rows)
-    quats = Y[:, :4]
-    omega = Y[:, 4:7]
-    speeds = Y[:, 7:7 + k]
+    return _run(grid, np.array(rows), I, J, axes, k, np.array(torques).reshape(len(grid), k), np.array(dipoles),
+                np.array(fields))
+
+
+def _run(grid: FloatArray, Y: FloatArray, I: FloatArray, J: FloatArray, axes: FloatArray, k: int, torques: FloatArray,
+         dipoles: FloatArray, fields: FloatArray) -> ControlledRun:
+    """The run from the states ``Y`` at the control instants and what was held from each."""
+    quats, omega, speeds = Y[:, :4], Y[:, 4:7], Y[:, 7:7 + k]
     momentum = rotate_by_quaternion(quats, I * omega + (J * speeds) @ axes)
     return ControlledRun(
         t=np.asarray(grid, float), omega=omega, attitude=Rotation.from_quat(quats), moments=I,
-        wheel_speed=speeds, wheel_torque=np.array(torques).reshape(len(grid), k), dipole=np.array(dipoles),
-        field=np.array(fields), momentum_world=np.asarray(momentum, float), impulse_world=Y[:, 7 + k:],
+        wheel_speed=speeds, wheel_torque=torques, dipole=dipoles,
+        field=fields, momentum_world=np.asarray(momentum, float), impulse_world=Y[:, 7 + k:],
     )
 
 

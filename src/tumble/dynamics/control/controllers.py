@@ -59,11 +59,18 @@ from ...validation import (
 )
 from ..models.actuators import Command, ReactionWheels
 from ..models.sensors import Measurement
+from .laws import bdot_components, dumping_dipole_components, feedback_torque_components, gyro_field_rate_components
 from .pointing import Reference, is_reference, tracking_error
 from ..special.mrp import mrp_from_quat
 
 __all__ = ["BDot", "Controller", "MRPFeedback", "MomentumDumping", "PDResponse", "bdot_dipole", "bdot_gain",
            "pd_response"]
+
+
+def _three(v: ArrayLike) -> tuple[float, float, float]:
+    """A 3-vector's components as floats, for the laws' functions (:mod:`~tumble.dynamics.control.laws`)."""
+    a = np.asarray(v, float)
+    return float(a[0]), float(a[1]), float(a[2])
 
 
 @runtime_checkable
@@ -143,12 +150,9 @@ def bdot_dipole(b_dot: ArrayLike, field: ArrayLike, gain: ArrayLike, form: str =
     >>> (bdot_dipole([0.0, 0.0, -2e-6], [2e-5, 0.0, 0.0], 1e4) + 0.0).tolist()   # A m^2
     [0.0, 0.0, 0.02]
     """
-    b_dot_ = np.asarray(b_dot, float)
-    k = np.asarray(gain, float)[..., None]
-    if form == "normalized":
-        b = np.asarray(field, float)
-        k = k / np.sum(b * b, axis=-1, keepdims=True)
-    return np.asarray(-k * b_dot_, float)
+    d, b = np.asarray(b_dot, float), np.asarray(field, float)
+    return np.stack(np.broadcast_arrays(*bdot_components(d[..., 0], d[..., 1], d[..., 2], b[..., 0], b[..., 1], b[..., 2],
+                                                         np.asarray(gain, float), form == "normalized")), axis=-1)
 
 
 @dataclass
@@ -253,10 +257,11 @@ class BDot:
         if b is None:
             return Command(dipole=np.zeros(3))
         if self.derivative == "gyro":
-            b_dot = np.cross(b, measurement.omega)
-        else:
-            b_dot = np.zeros(3) if self._last is None else (b - self._last[1]) / (t - self._last[0])
-            self._last = (float(t), b)
+            b_ = _three(b)
+            return Command(dipole=np.array(bdot_components(*gyro_field_rate_components(*b_, *_three(measurement.omega)), *b_,
+                                                           self.gain, self.form == "normalized")))
+        b_dot = np.zeros(3) if self._last is None else (b - self._last[1]) / (t - self._last[0])
+        self._last = (float(t), b)
         return Command(dipole=bdot_dipole(b_dot, b, self.gain, self.form))
 
 
@@ -410,19 +415,22 @@ class MRPFeedback:
         if measurement.attitude is None:
             raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
         w = measurement.omega
+        z = self._integral if self.Ki > 0.0 else np.zeros(3)  # z of the earlier steps
+        # I_RW w + G h_s = I w + h: the total momentum, body frame, for the feed-forward
+        L = self.moments * w + self.wheels.momentum(measurement.wheel_speed) if self.gyroscopic else np.zeros(3)
         if is_reference(self.target):  # the tracking law (module docstring)
             e = tracking_error(self.target, t, measurement.attitude, w)
             sigma = e.sigma
-            L_r = -self.K * sigma - self.P * e.delta_omega + self._I_rw @ (e.omega_r_dot - np.cross(w, e.omega_r))
+            L_r = np.array(feedback_torque_components(*_three(sigma), *_three(e.delta_omega), *_three(w), self.K, self.P,
+                                                      *_three(z), *_three(L))) \
+                + self._I_rw @ (e.omega_r_dot - np.cross(w, e.omega_r))
         else:
             sigma = self.error(measurement.attitude)
-            L_r = -self.K * sigma - self.P * w
-        if self.Ki > 0.0:  # z of the earlier steps, then advanced by this one's sigma
-            L_r = L_r - self._integral
+            L_r = np.array(feedback_torque_components(*_three(sigma), *_three(w), *_three(w), self.K, self.P, *_three(z),
+                                                      *_three(L)))
+        if self.Ki > 0.0:  # then advanced by this one's sigma
             lim = self.integral_limit
             self._integral = np.clip(self._integral + self.Ki * self.K * self.period * sigma, -lim, lim)
-        if self.gyroscopic:  # I_RW w + G h_s = I w + h: the total momentum, body frame
-            L_r = L_r + np.cross(w, np.asarray(self.moments) * w + self.wheels.momentum(measurement.wheel_speed))
         return Command(wheel_torque=-self._pinv @ L_r)
 
 
@@ -521,9 +529,8 @@ class MomentumDumping:
         if B is None:
             raise ValueError("momentum dumping needs a magnetometer reading (an [orbit] with its field)")
         h = self.pointing.wheels.momentum(measurement.wheel_speed)
-        tau_d = -self.gain * (np.asarray(h, float) - self.h_target)
-        B = np.asarray(B, float)
-        return Command(dipole=np.cross(B, tau_d) / float(B @ B), wheel_torque=wheels.wheel_torque)
+        dipole = dumping_dipole_components(*_three(B), *_three(h), self.gain, *_three(self.h_target))
+        return Command(dipole=np.array(dipole), wheel_torque=wheels.wheel_torque)
 
 
 class PDResponse(NamedTuple):

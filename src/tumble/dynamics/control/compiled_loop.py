@@ -1,0 +1,313 @@
+"""The whole closed loop in one compiled call: the control law at each control instant, the command
+held, the dynamics integrated by the engine's steps.
+
+Imported only when a compiled closed loop is asked for (by
+:mod:`~tumble.dynamics.control.compiled_control` and :func:`~tumble.dynamics.control.controlled.simulate_controlled`);
+compiled at import by :func:`tumble.jit.jit` (``cache=True``), once per wheel count ``k`` (the
+state is a tuple of ``10 + k`` floats, :mod:`~tumble.dynamics.control.loop_terms`): the right-hand
+side and the steps are written out for that size (:mod:`~tumble.dynamics.engine.unrolled_state`,
+from the engine's tableaux), and the drivers below, written once, are compiled for each size with
+them (:func:`kernels`).
+
+**One hold interval** (:func:`_advance`): DOP853 with scipy's error norm, step control and
+starting step (:mod:`~tumble.dynamics.engine.stepsize`; Hairer, Norsett & Wanner, *Solving
+ODEs I*, 2nd ed., sec. II.4 and II.10), step for step scipy's ``solve_ivp`` over the interval;
+or, with ``carry``, starting from the step the last interval's error control proposed
+(clipped to the interval) instead of a new starting-step estimate: where a step spans an
+interval that is one step of 13 evaluations instead of two of 26 (a variable-step solver
+that continues over a sample hit, as Simulink's do). Or fixed-step RK4 or RK8 (DOP853's 8th-order
+weights) at equal steps no longer than ``step`` in each interval.
+
+**The laws** (:data:`LAW_BDOT`, :data:`LAW_MRP`, :data:`LAW_DUMPING`) are
+:mod:`~tumble.dynamics.control.laws`' functions, the ones the Python controllers call, with the
+ideal sensors' measurement (the true omega, attitude, field and wheel spins) and the controllers'
+memory (B-dot's last reading, MRP feedback's integral) carried in the loop.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ...jit import jit
+from ...typing import FloatArray
+from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
+from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
+from ..engine.unrolled import rotations_source
+from ..engine.unrolled_state import dop853_sources, fixed_step_source
+from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
+                   gyro_field_rate_components)
+from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, rhs_namespace, rhs_source
+
+__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "MAX_WHEELS", "RK4", "RK8", "kernels"]
+
+#: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
+DOP853, RK4, RK8 = 0, 1, 2
+#: The compiled laws: B-dot (``L = (gain, normalized, difference)``), MRP feedback to a fixed
+#: target (``L = (K, P, Ki, integral_limit, gyroscopic, period, target quaternion (4))``), and
+#: MRP feedback with momentum dumping (the same, then ``(k_d, h_target (3))``).
+LAW_BDOT, LAW_MRP, LAW_DUMPING = 0, 1, 2
+#: Wheel counts compiled (the sizes for which a kernel is written out).
+MAX_WHEELS = 6
+#: Statuses: done; the step fell below 10 ulp of t.
+OK, STEP_COLLAPSED = 0, 1
+
+_rms = jit(rms, error_model="numpy")
+_error_norm = jit(error_norm, error_model="numpy", inline="always")
+_next_step = jit(next_step, error_model="numpy", inline="always")
+_equal_steps = jit(equal_steps, error_model="numpy", inline="always")
+_first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
+_initial_step = jit(initial_step, error_model="numpy", inline="always")
+_attitude_error = jit(attitude_error_components, error_model="numpy")
+_bdot = jit(bdot_components, error_model="numpy")
+_gyro_rate = jit(gyro_field_rate_components, error_model="numpy")
+_dumping = jit(dumping_dipole_components, error_model="numpy")
+_feedback = jit(feedback_torque_components, error_model="numpy")
+
+
+def _sized(*args: Any) -> Any:
+    """The functions written out for each size (:func:`_sized_source`), which the drivers call:
+    bound in each size's namespace by :func:`_compile`, never called from here."""
+    raise NotImplementedError("written out and compiled for each wheel count by _compile")
+
+
+rhs = axpy = tuple_of = store = with_quaternion = with_command = dop853_step = dop853_errors = rk4_step = rk8_step = _sized
+rk4_turns = rk8_turns = dop853_turns = _sized
+
+
+@jit(error_model="numpy", inline="always")
+def _direction(n: float, t: float) -> tuple[float, float]:  # pragma: no cover - compiled
+    """A circular orbit's direction ``(cos n t, sin n t)`` at ``t`` (s); ``(1, 0)`` without one (``n = 0``)."""
+    if n == 0.0:
+        return 1.0, 0.0
+    return math.cos(n * t), math.sin(n * t)
+
+
+def _sized_source(k: int) -> str:
+    """The sources of size ``n = 10 + k``: the state from an array and with a new quaternion, the
+    parameters with a new command, the right-hand side and the steps."""
+    n, last = 10 + k, BODY + WHEEL * k
+    command = [f"u[{(i - BODY) // WHEEL}]" if i >= BODY and (i - BODY) % WHEEL == 9 else f"P[{i}]" for i in range(last)]
+    command[12:15] = ["d0", "d1", "d2"]
+    return "\n".join([
+        f"def tuple_of(a):\n    return ({''.join(f'a[{i}], ' for i in range(n))})\n",
+        f"def store(y, out):\n{''.join(f'    out[{i}] = y[{i}]' + chr(10) for i in range(n))}",
+        f"def with_quaternion(y, x, yq, z, c):\n    return (x, yq, z, c, {''.join(f'y[{i}], ' for i in range(4, n))})\n",
+        f"def axpy(y, a, f):\n    return ({''.join(f'y[{i}] + a * f[{i}], ' for i in range(n))})\n",
+        f"def with_command(P, d0, d1, d2, u):\n    return ({''.join(c + ', ' for c in command)})\n",
+        rhs_source("rhs", k),
+        dop853_sources("dop853_step", "dop853_errors", n),
+        fixed_step_source("rk4_step", n, RK4_A, RK4_B, RK4_C),
+        fixed_step_source("rk8_step", n, DOP853_A[:12, :12], DOP853_B, DOP853_C[:12]),
+        rotations_source("rk4_turns", RK4_C), rotations_source("rk8_turns", DOP853_C[:12]),
+        rotations_source("dop853_turns", DOP853_C[:13])])
+
+
+def _start(y: Any, f: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: float) -> float:  # pragma: no cover
+    """scipy's ``select_initial_step`` for an error estimator of order 7 (HNW sec. II.4)."""
+    n = len(y)
+    ya, fa, scale = np.empty(n), np.empty(n), np.empty(n)
+    for i in range(n):
+        ya[i], fa[i] = y[i], f[i]
+        scale[i] = atol + abs(y[i]) * rtol
+    interval = abs(t1 - t0)
+    d1 = _rms(fa, scale)
+    h0 = _first_trial_step(_rms(ya, scale), d1, interval)
+    u0, u1 = _direction(P[16], t0 + h0)
+    f1 = rhs(t0 + h0, axpy(y, h0, f), P, X, u0, u1)
+    for i in range(n):
+        fa[i] = f1[i] - f[i]
+    return _initial_step(h0, d1, _rms(fa, scale) / h0, interval)
+
+
+def _turns(n: float) -> Any:  # pragma: no cover - compiled
+    """The turns of a circular orbit's direction (mean motion ``n``, rad/s) to the stage nodes of each
+    method, for no step yet: ``(h, turns)`` of RK8, RK4 and DOP853, kept from step to step
+    while the step ``h`` (s) stays the same (the fixed steps of equal intervals)."""
+    return (-1.0, rk8_turns(n, 0.0), -1.0, rk4_turns(n, 0.0), -1.0, dop853_turns(n, 0.0))
+
+
+def _advance(y: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: float, method: int, step: float,
+             h_abs: float, turns: Any) -> Any:  # pragma: no cover - compiled
+    """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs, turns)``
+    with the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as
+    scipy) and the turns to the stage nodes (:func:`_turns`)."""
+    n = P[16]
+    h8, rot8, h4, rot4, h_rot, rot = turns
+    if method != DOP853:
+        m, h = _equal_steps(t1 - t0, step)
+        if method == RK8 and h != h8:
+            h8, rot8 = h, rk8_turns(n, h)
+        if method == RK4 and h != h4:
+            h4, rot4 = h, rk4_turns(n, h)
+        for j in range(m):
+            cs, ss = _direction(n, t0 + j * h)
+            if method == RK8:
+                y = rk8_step(t0 + j * h, y, h, P, X, cs, ss, rot8)
+            else:
+                y = rk4_step(t0 + j * h, y, h, P, X, cs, ss, rot4)
+        return OK, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+    cs, ss = _direction(n, t0)
+    f = rhs(t0, y, P, X, cs, ss)
+    if h_abs <= 0.0:
+        h_abs = _start(y, f, t0, t1, P, X, rtol, atol)
+    t = t0
+    while True:  # one accepted step (scipy's RungeKutta._step_impl)
+        min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
+        h_abs = max(h_abs, min_step)
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                return STEP_COLLAPSED, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+            t_new = t + h_abs
+            if t_new - t1 > 0.0:
+                t_new = t1
+            h = t_new - t
+            h_abs = abs(h)
+            if h != h_rot:  # the turns to the stage nodes, once per step length
+                h_rot = h
+                rot = dop853_turns(n, h)
+            y_new, K = dop853_step(t, y, f, h, P, X, cs, ss, rot)
+            e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
+            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, len(y)), h_abs, rejected)
+            if accepted:
+                break
+            rejected = True
+        t, y, f = t_new, y_new, K[12]
+        cs, ss = _direction(n, t)
+        if t - t1 >= 0.0:
+            return OK, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+
+
+def _interval(y0: FloatArray, t0: float, t1: float, P0: Any, X: Any, dipole: FloatArray, command: FloatArray, rtol: float,
+              atol: float, method: int, step: float, out: FloatArray) -> int:  # pragma: no cover - compiled
+    """One hold interval of ``y0`` (an array) with the dipole and the wheels' commands held, into ``out``."""
+    P = with_command(P0, dipole[0], dipole[1], dipole[2], command)
+    status, y, _, _ = _advance(tuple_of(y0), t0, t1, P, X, rtol, atol, method, step, 0.0, _turns(P[16]))
+    store(y, out)
+    return int(status)
+
+
+def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
+          limits: FloatArray, rtol: float, atol: float, method: int, step: float, carry: bool, Y: FloatArray,
+          D: FloatArray, U: FloatArray, F: FloatArray) -> int:  # pragma: no cover - compiled
+    """The closed loop over the control instants ``grid`` (s) from ``y0``: at each, the state (its
+    quaternion normalised) into ``Y``, the ideal measurement, the law's command (``L`` its
+    parameters, ``pinv`` the wheels' allocation ``G^+``), the dipole the rods (``rods`` their axes,
+    ``limits`` theirs, A m^2) make into ``D``, the wheels' applied torque into ``U``, the field
+    (T, body frame) into ``F``; then the hold interval. Returns a status."""
+    k = pinv.shape[0]
+    steps = grid.shape[0] - 1
+    y = tuple_of(y0)
+    u = np.zeros(k)
+    h_abs = 0.0
+    turns = _turns(P0[16])
+    z0, z1, z2 = 0.0, 0.0, 0.0  # MRP feedback's integral term, N m
+    last0, last1, last2, last_t, has_last = 0.0, 0.0, 0.0, 0.0, False  # B-dot's last reading
+    for i in range(steps + 1):
+        t = grid[i]
+        nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
+        y = with_quaternion(y, y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq)
+        store(y, Y[i])
+        x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+        kind = int(P0[15])
+        b0, b1, b2 = field_body(kind, X[0], X[1], x, yq, z, c, t) if kind != FIELD_NONE else (0.0, 0.0, 0.0)
+        F[i, 0], F[i, 1], F[i, 2] = b0, b1, b2
+        m0, m1, m2 = 0.0, 0.0, 0.0
+        for j in range(k):
+            u[j] = 0.0
+        if i < steps and law == LAW_BDOT and kind != FIELD_NONE:
+            d0, d1, d2 = 0.0, 0.0, 0.0
+            if L[2] == 0.0:
+                d0, d1, d2 = _gyro_rate(b0, b1, b2, w0, w1, w2)
+                m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
+            else:
+                if has_last:
+                    d0, d1, d2 = (b0 - last0) / (t - last_t), (b1 - last1) / (t - last_t), (b2 - last2) / (t - last_t)
+                m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
+                last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
+        elif i < steps and law != LAW_BDOT:
+            s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
+            h0, h1, h2 = 0.0, 0.0, 0.0
+            for j in range(k):
+                js = P0[BODY + WHEEL * j + 3] * y[7 + j]
+                h0, h1, h2 = (h0 + js * P0[BODY + WHEEL * j], h1 + js * P0[BODY + WHEEL * j + 1],
+                              h2 + js * P0[BODY + WHEEL * j + 2])
+            e0, e1, e2 = 0.0, 0.0, 0.0
+            if L[4] != 0.0:
+                e0, e1, e2 = P0[0] * w0 + h0, P0[1] * w1 + h1, P0[2] * w2 + h2
+            r0, r1, r2 = _feedback(s0, s1, s2, w0, w1, w2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
+            if L[2] > 0.0:
+                g = L[2] * L[0] * L[5]
+                z0 = min(max(z0 + g * s0, -L[3]), L[3])
+                z1 = min(max(z1 + g * s1, -L[3]), L[3])
+                z2 = min(max(z2 + g * s2, -L[3]), L[3])
+            for j in range(k):
+                u[j] = -(pinv[j, 0] * r0 + pinv[j, 1] * r1 + pinv[j, 2] * r2)
+            if law == LAW_DUMPING:
+                m0, m1, m2 = _dumping(b0, b1, b2, h0, h1, h2, L[10], L[11], L[12], L[13])
+        d0, d1, d2 = 0.0, 0.0, 0.0  # the rods' dipole: the command on each rod, clipped
+        for r in range(rods.shape[0]):
+            p = min(max(m0 * rods[r, 0] + m1 * rods[r, 1] + m2 * rods[r, 2], -limits[r]), limits[r])
+            d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
+        D[i, 0], D[i, 1], D[i, 2] = d0, d1, d2
+        for j in range(k):
+            b = BODY + WHEEL * j
+            U[i, j] = _wheel_torque(u[j], y[7 + j], P0[b + 4], P0[b + 5], P0[b + 6], P0[b + 7], P0[b + 8])
+        if i == steps:
+            break
+        status, y, h_abs, turns = _advance(y, t, grid[i + 1], with_command(P0, d0, d1, d2, u), X, rtol, atol, method,
+                                           step, h_abs if carry else 0.0, turns)
+        if status != OK:
+            return int(status)
+    return OK
+
+
+def _compile(k: int) -> dict[str, Callable[..., Any]]:
+    """The kernels for ``k`` wheels: the sized sources compiled, and the drivers compiled with them
+    (each under a name of its own, so that numba's cache keeps the sizes apart; the code objects
+    are named after this file, so the cache is keyed on the sources, :func:`tumble.jit.jit`)."""
+    namespace: dict[str, Any] = dict(globals(), **rhs_namespace())
+    namespace["__name__"] = __name__
+    exec(compile(_sized_source(k), __file__, "exec"), namespace)  # noqa: S102 - our own generated source
+    for name in ("tuple_of", "store", "with_quaternion", "axpy", "with_command", "rhs", "rk4_turns", "rk8_turns", "dop853_turns"):
+        namespace[name] = jit(namespace[name], error_model="numpy", inline="always")
+    for name in ("dop853_step", "dop853_errors", "rk4_step", "rk8_step"):
+        namespace[name] = jit(namespace[name], error_model="numpy")
+    out: dict[str, Callable[..., Any]] = {}
+    for name in ("_start", "_turns", "_advance", "_interval", "_loop"):
+        f = globals()[name]
+        copy = types.FunctionType(f.__code__, namespace, f"{name}_{k}")
+        copy.__qualname__ = f"{name}_{k}"
+        namespace[name] = out[name] = jit(copy, error_model="numpy")
+    out["rhs"] = namespace["rhs"]
+    return out
+
+
+_KERNELS = {k: _compile(k) for k in range(MAX_WHEELS + 1)}
+
+
+def kernels(k: int) -> dict[str, Callable[..., Any]]:
+    """The compiled kernels for ``k`` wheels (``0 <= k <=`` :data:`MAX_WHEELS`): ``"rhs"``,
+    ``"_interval"`` (one hold interval) and ``"_loop"`` (the whole loop).
+
+    Examples
+    --------
+    A spin about a principal axis, no wheels, no torque: one interval of 10 s turns the body by
+    ``0.1 t`` about z:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_loop import DOP853, kernels
+    >>> P = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3) + (0.0,) * 8
+    >>> X = (np.zeros(16), np.zeros((4, 1, 3)), np.zeros((4, 1, 3)))
+    >>> y, out = np.array([0, 0, 0, 1.0, 0, 0, 0.1, 0, 0, 0]), np.empty(10)
+    >>> kernels(0)["_interval"](y, 0.0, 10.0, P, X, np.zeros(3), np.zeros(0), 1e-10, 1e-12, DOP853, 0.0, out)
+    0
+    >>> np.allclose(out[:4], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-10)
+    True
+    """
+    return _KERNELS[k]

@@ -1,0 +1,204 @@
+"""The closed loop's right-hand side under the built-in models, compiled: its terms and its source.
+
+Imported only when a compiled closed loop is asked for (by
+:mod:`~tumble.dynamics.control.compiled_control` and :mod:`~tumble.dynamics.control.compiled_loop`);
+every function is compiled at import by :func:`tumble.jit.jit` (``cache=True``).
+
+**The state** ``y = (q, omega, s, impulse)`` of :mod:`~tumble.dynamics.control.controlled`, a tuple
+of ``10 + k`` floats for ``k`` wheels: the attitude quaternion (body to world, scalar last), the
+angular velocity (rad/s, principal frame), the wheels' spins relative to the body (rad/s) and the
+external angular impulse (N m s, world frame). Its equations
+
+``(I - sum J_j g_j g_j^T) omega' = tau + L x omega - G u``,  ``L = I omega + h``,
+``J_j s_j' = u_j - J_j g_j . omega'``,  ``q' = q (x) (omega, 0) / 2``,  ``impulse' = R tau``
+
+are each model's own formula, compiled: the momentum form of Euler's equations
+(:func:`~tumble.dynamics.models.gyrostat.momentum_rate_components`), the kinematics
+(:func:`~tumble.dynamics.special.quaternion.quaternion_rate_components`), the rotations
+(:func:`~tumble.dynamics.special.quaternion.to_body`, :func:`~tumble.dynamics.special.quaternion.rotate_components`),
+the gravity gradient (:func:`~tumble.dynamics.models.gravity.gradient_components`), the wheels'
+applied torque (:func:`~tumble.dynamics.models.actuators.wheel_torque`: limits and friction) and
+the fields below.
+
+**The parameters** ``P``, one tuple of floats held through a hold interval: ``P[0:3]`` the
+principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by row (1/(kg m^2));
+``P[12:15]`` the magnetorquers' dipole held (A m^2); ``P[15]`` the field's kind (:data:`FIELD_NONE`
+...); ``P[16:20]`` the gravity gradient ``(n, mu, t0, h)``: a circle's mean motion (rad/s) or
+``mu`` (m^3/s^2) with the start and spacing (s) of the orbit's position table; then ten a wheel
+(:data:`WHEEL`): its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
+viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
+commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
+(:func:`~tumble.dynamics.control.compiled_control.field_params`), the IGRF table's and the orbit
+position table's coefficients.
+
+**The fields** (one formula each; tests/test_controlled_compiled.py checks each against the
+model): :class:`~tumble.dynamics.environment.magnetic.UniformField`; the tilted dipole of
+:class:`~tumble.dynamics.environment.magnetic.DipoleField`, ``B = (a/r)^3 (3 (g . r^) r^ - g)`` in the
+Earth-fixed frame at the orbit's position, turned to the world frame; and
+:class:`~tumble.dynamics.environment.igrf.IGRFField`'s spline blocks
+(:meth:`~tumble.dynamics.environment.igrf.IGRFField.tabulate`).
+
+Examples
+--------
+>>> from tumble.dynamics.control.loop_terms import rhs_source
+>>> print(rhs_source("rhs_0", 0).splitlines()[0])
+def rhs_0(t, y, P, X, u0, u1):
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...jit import jit
+from ...typing import FloatArray
+from ..environment.earth import earth_angle
+from ..environment.magnetic import dipole_components
+from ..environment.tabulated import horner
+from ..models.actuators import wheel_torque
+from ..models.gravity import gradient_components
+from ..models.gyrostat import momentum_rate_components
+from ..special.quaternion import quaternion_rate_components, rotate_components, to_body
+
+__all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "WHEEL", "external_torque",
+           "field_body", "field_world", "rhs_source"]
+
+#: Kinds of field the kernels evaluate: none, uniform, the tilted dipole, a CubicTable (IGRF).
+FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
+#: Floats of ``P`` before the wheels', and a wheel's (module docstring).
+BODY, WHEEL = 20, 10
+
+_horner = jit(horner, error_model="numpy", inline="always")
+_earth_angle = jit(earth_angle, error_model="numpy", inline="always")
+_dipole_field = jit(dipole_components, error_model="numpy", inline="always")
+_to_body = jit(to_body, error_model="numpy", inline="always")
+_rotate = jit(rotate_components, error_model="numpy", inline="always")
+_gravity_gradient = jit(gradient_components, error_model="numpy", inline="always")
+_wheel_torque = jit(wheel_torque, error_model="numpy", inline="always")
+_momentum_rate = jit(momentum_rate_components, error_model="numpy", inline="always")
+_quaternion_rate = jit(quaternion_rate_components, error_model="numpy", inline="always")
+
+
+@jit(error_model="numpy")
+def table_value(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, float, float]:  # pragma: no cover
+    """A :class:`~tumble.dynamics.environment.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
+    spacing ``h``, s) at ``t`` (s), by its rule: interval ``floor((t - t0) / h)`` clipped, Horner."""
+    i = int(min(max(math.floor((t - t0) / h), 0.0), c.shape[1] - 1.0))
+    d = t - (t0 + i * h)
+    return (_horner(c[0, i, 0], c[1, i, 0], c[2, i, 0], c[3, i, 0], d),
+            _horner(c[0, i, 1], c[1, i, 1], c[2, i, 1], c[3, i, 1], d),
+            _horner(c[0, i, 2], c[1, i, 2], c[2, i, 2], c[3, i, 2], d))
+
+
+@jit(error_model="numpy")
+def dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
+           s: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """The dipole's B (T, world frame) at ``r_eci = (e0, e1, e2)`` (m) with ``(c, s)`` the cosine
+    and sine of the Earth's angle: ``r_ecef = R3(theta)^T r_eci``,
+    ``B = (a/r)^3 (3 (g . r^) r^ - g)`` there (:func:`~tumble.dynamics.environment.magnetic.dipole_components`),
+    turned back to ECI and world."""
+    b0, b1, b2 = _dipole_field(p[9], p[10], p[11], c * e0 + s * e1, -s * e0 + c * e1, e2)
+    e0, e1, e2 = c * b0 - s * b1, s * b0 + c * b1, b2
+    return p[0] * e0 + p[1] * e1 + p[2] * e2, p[3] * e0 + p[4] * e1 + p[5] * e2, p[6] * e0 + p[7] * e1 + p[8] * e2
+
+
+@jit(error_model="numpy")
+def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[float, float, float]:  # pragma: no cover
+    """B (T) in the world frame at ``t`` (s): ``p`` the field's parameters (the Earth's angle at t = 0
+    in ``p[12]``), ``table`` the coefficients of a tabulated field (start ``p[0]``, spacing ``p[1]``).
+
+    The dipole: ``r_eci = W^T r_world``, ``r_ecef = R3(theta)^T r_eci``, B in ECEF, then back
+    (:meth:`DipoleField.world`, with ``world_from_ecef = W R3(theta)`` applied in two factors)."""
+    if kind == FIELD_NONE:
+        return 0.0, 0.0, 0.0
+    if kind == FIELD_UNIFORM:
+        return p[0], p[1], p[2]
+    if kind == FIELD_TABLE:
+        return table_value(table, p[0], p[1], t)
+    nt = p[15] * t
+    r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
+    theta = _earth_angle(p[12], t * p[13])  # p[13]: 1 if the Earth turns, else 0
+    return dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1, math.cos(theta), math.sin(theta))
+
+
+@jit(error_model="numpy")
+def field_body(kind: int, p: FloatArray, table: FloatArray, x: float, y: float, z: float, s: float,
+               t: float) -> tuple[float, float, float]:  # pragma: no cover
+    """B (T) in the body frame of the unit quaternion ``(x, y, z, s)`` at ``t`` (s): ``R^T B_world``."""
+    b0, b1, b2 = field_world(kind, p, table, t)
+    return _to_body(x, y, z, s, b0, b1, b2)
+
+
+@jit(error_model="numpy", inline="always")
+def external_torque(t: float, x: float, y: float, z: float, s: float, P: tuple[float, ...],
+                    X: tuple[FloatArray, FloatArray, FloatArray], u0: float,
+                    u1: float) -> tuple[float, float, float]:  # pragma: no cover
+    """The external torque (N m, body frame) at ``t`` (s) on the unit quaternion ``(x, y, z, s)``:
+    the held dipole's ``m x B`` and the gravity gradient ``3 n^2 r_b x (I r_b)`` (module
+    docstring), a circular orbit's direction being ``(u0, u1, 0) = (cos n t, sin n t, 0)``."""
+    a0, a1, a2 = 0.0, 0.0, 0.0
+    if P[15] != FIELD_NONE:
+        b0, b1, b2 = field_body(int(P[15]), X[0], X[1], x, y, z, s, t)
+        a0, a1, a2 = P[13] * b2 - P[14] * b1, P[14] * b0 - P[12] * b2, P[12] * b1 - P[13] * b0
+    if P[16] > 0.0:  # a circle: r_b = R^T (cos n t, sin n t, 0)
+        v0, v1, v2 = _to_body(x, y, z, s, u0, u1, 0.0)
+        g0, g1, g2 = _gravity_gradient(P[16] * P[16], P[0], P[1], P[2], v0, v1, v2)
+        a0, a1, a2 = a0 + g0, a1 + g1, a2 + g2
+    elif P[17] > 0.0:  # along a table of positions: r_b = R^T r / |r|, rate sqrt(mu / r^3)
+        v0, v1, v2 = table_value(X[2], P[18], P[19], t)
+        rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+        v0, v1, v2 = _to_body(x, y, z, s, v0 / rn, v1 / rn, v2 / rn)
+        n_r = math.sqrt(P[17] / rn) / rn
+        g0, g1, g2 = _gravity_gradient(n_r * n_r, P[0], P[1], P[2], v0, v1, v2)
+        a0, a1, a2 = a0 + g0, a1 + g1, a2 + g2
+    return a0, a1, a2
+
+
+def rhs_source(name: str, k: int) -> str:
+    """The source of ``name(t, y, P, X, u0, u1)``: the closed loop's right-hand side (module
+    docstring) with ``k`` wheels, written out wheel by wheel, ``(u0, u1)`` a circular orbit's
+    direction ``(cos n t, sin n t)``; it returns ``dy/dt`` as a tuple of ``10 + k`` floats.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.loop_terms import rhs_source
+    >>> rhs_source("rhs_3", 3).count("_wheel_torque(")
+    3
+    """
+    lines = [f"def {name}(t, y, P, X, u0, u1):",
+             "    r = 1.0 / math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])",
+             "    x, yq, z, c = y[0] * r, y[1] * r, y[2] * r, y[3] * r",
+             "    w0, w1, w2 = y[4], y[5], y[6]",
+             "    t0, t1, t2 = external_torque(t, x, yq, z, c, P, X, u0, u1)",
+             "    a0, a1, a2 = t0, t1, t2",
+             "    L0, L1, L2 = P[0] * w0, P[1] * w1, P[2] * w2"]
+    for j in range(k):
+        b = BODY + WHEEL * j
+        lines += [f"    u{j} = _wheel_torque(P[{b + 9}], y[{7 + j}], P[{b + 4}], P[{b + 5}], P[{b + 6}], P[{b + 7}], P[{b + 8}])",
+                  f"    js = P[{b + 3}] * y[{7 + j}]",
+                  f"    L0, L1, L2 = L0 + js * P[{b}], L1 + js * P[{b + 1}], L2 + js * P[{b + 2}]",
+                  f"    a0, a1, a2 = a0 - u{j} * P[{b}], a1 - u{j} * P[{b + 1}], a2 - u{j} * P[{b + 2}]"]
+    lines += ["    a0, a1, a2 = _momentum_rate(L0, L1, L2, w0, w1, w2, a0, a1, a2)",
+              "    d0 = P[3] * a0 + P[4] * a1 + P[5] * a2",
+              "    d1 = P[6] * a0 + P[7] * a1 + P[8] * a2",
+              "    d2 = P[9] * a0 + P[10] * a1 + P[11] * a2",
+              "    q0, q1, q2, q3 = _quaternion_rate(x, yq, z, c, w0, w1, w2)",
+              "    i0, i1, i2 = _rotate(x, yq, z, c, t0, t1, t2)"]
+    spins = [f"u{j} / P[{BODY + WHEEL * j + 3}] - (P[{BODY + WHEEL * j}] * d0 + P[{BODY + WHEEL * j + 1}] * d1 "
+             f"+ P[{BODY + WHEEL * j + 2}] * d2)" for j in range(k)]
+    lines.append(f"    return (q0, q1, q2, q3, d0, d1, d2, {''.join(s + ', ' for s in spins)}i0, i1, i2)")
+    return "\n".join(lines) + "\n"
+
+
+def rhs_namespace() -> dict[str, object]:
+    """What a generated right-hand side calls, by name (its globals once compiled).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.loop_terms import rhs_namespace
+    >>> sorted(rhs_namespace())[:3]
+    ['__name__', '_momentum_rate', '_quaternion_rate']
+    """
+    return {"__name__": __name__, "math": math, "np": np, "external_torque": external_torque, "_wheel_torque": _wheel_torque,
+            "_momentum_rate": _momentum_rate, "_quaternion_rate": _quaternion_rate, "_rotate": _rotate}
