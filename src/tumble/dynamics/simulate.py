@@ -411,11 +411,15 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     spin = gain = 0.0
     if not spec.closed_form:  # a stepping method: its work is bounded by the spin it follows
         spin = spin_bound(internal, w0, t)
-        # with its step given, a fixed-step method reads the gain only to bound its work: a bound
-        # linear in time (no attitude read) does where it passes that check
-        quick = linear_gain(form, moments, t_end) if spec.fixed_step and step is not None and not auto else None
-        fits = quick is not None and (spin + 0.5 * quick) * t_end <= MAX_ROTATION
-        gain = cast(float, quick) if fits else run_spin_gain(model, w0, q0, moments, t_end)
+        # a bound linear in time (no attitude read) where it passes the work check: alone for a given
+        # step of a fixed-step method (which reads it only there) and for "auto" where it is small
+        # beside the spin; else the model's own, and for "auto" the smaller of the two
+        quick = linear_gain(form, moments, t_end) if auto or spec.fixed_step and step is not None else None
+        if quick is not None and (not auto or quick <= 0.01 * spin) and (spin + 0.5 * quick) * t_end <= MAX_ROTATION:
+            gain = quick
+        else:
+            gain = run_spin_gain(model, w0, q0, moments, t_end)
+            gain = min(gain, quick) if auto and quick is not None else gain
     if auto and not spec.closed_form:
         engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes
         h = engine_choice(t, spin, gain, cast(float, rtol)) if engine.takes(internal) and form else None

@@ -121,7 +121,12 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float
         return None
     scale = math.pow(dop853_tolerances(rtol, rtol)[0] * DOP853_SAFETY / AUTO_RTOL, 0.125)  # its step, as its rtol
     h = rk8_angle(rtol) / top
-    rk8 = float(np.maximum(1.0, np.ceil(np.diff(t) / h * (1.0 - 1e-12))).sum())  # equal steps in each interval
+    shrink = (1.0 - 1e-12) / h  # equal steps in each interval, at least one: Python's floats for a few
+    if len(t) <= 32:
+        times = t.tolist()
+        rk8 = float(sum(max(1, math.ceil((b - a) * shrink)) for a, b in zip(times, times[1:])))
+    else:
+        rk8 = float(np.maximum(1.0, np.ceil(np.diff(t) * shrink)).sum())
     steps = max(1.0, (spin + 0.5 * gain) * t_end / (DOP853_ANGLE * scale))
     samples = len(t) - 1
     dop853 = DOP853_STEP_COST * steps * (1.0 + DENSE_STAGES * min(1.0, samples / steps)) + SAMPLE_COST * samples
