@@ -48,7 +48,18 @@ def spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -
 
 
 def run_spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion, moments: Vector3, t_end: float) -> float:
-    """Bound on the spin (rad/s) the torque adds over the run (:func:`.torques.spin_gain`)."""
+    """Bound on the spin (rad/s) the torque adds over the run
+    (:func:`~tumble.dynamics.models.torques.spin_gain`); ``quat0`` the initial attitude (body to
+    world, scalar last), read only by a model that needs it.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.dynamics.methods.bounds import run_spin_gain
+    >>> run_spin_gain(tumble.ConstantTorque((0.0, 0.0, 0.5)), np.zeros(3), np.array([0.0, 0.0, 0.0, 1.0]),
+    ...               np.array([2.0, 3.0, 4.0]), 10.0)   # |tau| t / I1
+    2.5
+    """
     if model is None:
         return 0.0
     form = kernel_form(model)
@@ -98,9 +109,19 @@ def _rotation(quat: bytes) -> Rotation:
 
 
 def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
-    """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``w`` is
-    one angular velocity (3,) or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T``
-    is ``A w`` for each row)."""
+    """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``A`` the
+    principal -> design rotation (columns: the principal axes); ``w`` is one angular velocity (3,)
+    or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T`` is ``A w`` for each row).
+    A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.dynamics.methods.bounds import design_torque
+    >>> A = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])   # principal x is design y, ...
+    >>> design_torque(tumble.ConstantTorque((0.0, 2.0, 0.0)), A).kernel_form()   # design y: principal x
+    (1, (2.0, 0.0, 0.0))
+    """
     form = kernel_form(model)
     if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
         return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
