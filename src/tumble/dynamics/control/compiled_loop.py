@@ -57,11 +57,11 @@ MAX_WHEELS = 6
 OK, STEP_COLLAPSED = 0, 1
 
 _rms = jit(rms, error_model="numpy")
-_error_norm = jit(error_norm, error_model="numpy", inline="always")
-_next_step = jit(next_step, error_model="numpy", inline="always")
-_equal_steps = jit(equal_steps, error_model="numpy", inline="always")
-_first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
-_initial_step = jit(initial_step, error_model="numpy", inline="always")
+_error_norm = jit(error_norm, error_model="numpy")
+_next_step = jit(next_step, error_model="numpy")
+_equal_steps = jit(equal_steps, error_model="numpy")
+_first_trial_step = jit(first_trial_step, error_model="numpy")
+_initial_step = jit(initial_step, error_model="numpy")
 _attitude_error = jit(attitude_error_components, error_model="numpy")
 _bdot = jit(bdot_components, error_model="numpy")
 _gyro_rate = jit(gyro_field_rate_components, error_model="numpy")
@@ -79,7 +79,7 @@ rhs = axpy = tuple_of = store = with_quaternion = with_command = dop853_step = d
 rk4_turns = rk8_turns = dop853_turns = _sized
 
 
-@jit(error_model="numpy", inline="always")
+@jit(error_model="numpy")
 def _direction(n: float, t: float) -> tuple[float, float]:  # pragma: no cover - compiled
     """A circular orbit's direction ``(cos n t, sin n t)`` at ``t`` (s); ``(1, 0)`` without one (``n = 0``)."""
     if n == 0.0:
