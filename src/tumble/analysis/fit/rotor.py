@@ -77,7 +77,7 @@ __all__ = ["K_SIGMA", "MIN_ALONG", "MIN_GAIN", "MIN_MISFIT", "RotorFit", "fit_ro
 MIN_GAIN = 0.015
 #: Standard uncertainties taken off the gain before it is compared with :data:`MIN_GAIN`.
 K_SIGMA = 2.0
-#: The share of ``|L|`` along the rotor's axis (``max |L . a| / |L|`` over the flight) below
+#: The share of ``|L|`` along the rotor's axis (``max |dot(L, a)| / |L|`` over the flight) below
 #: which the rotor stands across ``L``, where a plate's drag fakes one: its uncertainty is then
 #: widened by the gyrostat's misfit over the noise (module docstring).
 MIN_ALONG = 0.5
@@ -246,7 +246,7 @@ def fit_rotor(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solution)
 
 
 def rotor_check(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solution) -> str:
-    """``""``, or the reason a flight is not a rigid body's: a rotor spinning up inside explains
+    """The reason a flight is not a rigid body's, or an empty string: a rotor spinning up inside explains
     its samples (:func:`fit_rotor`, refused by :data:`MIN_GAIN` and :data:`K_SIGMA`: module docstring).
 
     Examples

@@ -112,7 +112,7 @@ def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[
     in ``p[12]``), ``table`` the coefficients of a tabulated field (start ``p[0]``, spacing ``p[1]``).
 
     The dipole: ``r_eci = W^T r_world``, ``r_ecef = R3(theta)^T r_eci``, B in ECEF, then back
-    (:meth:`DipoleField.world`, with ``world_from_ecef = W R3(theta)`` applied in two factors)."""
+    (:meth:`~tumble.dynamics.environment.magnetic.DipoleField.world`, with ``world_from_ecef = W R3(theta)`` applied in two factors)."""
     if kind == FIELD_NONE:
         return 0.0, 0.0, 0.0
     if kind == FIELD_UNIFORM:
