@@ -165,3 +165,18 @@ def test_an_rtol_is_honoured_on_a_slow_body(method):
     traj = tumble.simulate(body, w0, t_end=2000.0, samples=50, torque=torque, attitude0=Q0, method=method, rtol=1e-10)
     e = errors(traj, *reference(SPACECRAFT, w0, traj.t, lambda t, w, R: np.array([1e-6, 0.0, 0.0])))
     assert max(e) <= 1e-10, (traj.method_label, e)
+
+
+def test_a_scenario_file_takes_auto_and_names_what_ran(tmp_path):
+    """``method = "auto"`` in a scenario file, as in simulate(): the run names the method it chose;
+    a method the registry lacks is refused with the allowed names, auto among them."""
+    from tumble.io.scenario import load_scenario
+
+    path = tmp_path / "auto.toml"
+    path.write_text('body = "t-handle"\ninitial = { omega = [0.1, 5.0, 0.1] }\n'
+                    'simulation = { t_end = 1.0, method = "auto" }\n[torque]\nkind = "constant"\nvector = [0.0, 0.0, 0.01]\n')
+    traj = tumble.run_scenario(load_scenario(path))
+    assert traj.auto and traj.method in ("rk8", "dop853") and traj.method_label == f"{traj.method} (auto)"
+    path.write_text('body = "t-handle"\ninitial = { omega = [0.1, 5.0, 0.1] }\nsimulation = { t_end = 1.0, method = "autox" }\n')
+    with pytest.raises(ValueError, match=r"simulation\.method = 'autox' is unknown; allowed: auto, exact"):
+        load_scenario(path)

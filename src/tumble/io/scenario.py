@@ -11,7 +11,7 @@
     [simulation]
     t_end = 20.0               # s
     samples = 500              # or dt = 0.01 (s), or times = [0.0, 0.5, 2.0] instead of t_end
-    method = "exact"           # "exact", "dop853", "rk45", "seed", "geometric", "geometric2", "geometric6"
+    method = "auto"            # "auto" (the default), "exact", "dop853", "rk8", "rk4", "rk45", "geometric", ...
     # rtol = 1e-12             # optional tolerances (dop853, rk45, seed)
     # atol = 1e-12
     # step = 1e-3              # optional largest step of the geometric methods, s
@@ -46,7 +46,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..dynamics import METHODS, ConstantTorque, SphericalDamper
+from ..dynamics import ConstantTorque, SphericalDamper
+from ..dynamics.methods.names import ALLOWED
 from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
@@ -73,8 +74,8 @@ _SAMPLES = Key("samples", "whole number", "", f"{DEFAULT_SAMPLES}", example="400
                low=2, low_included=True, high=1_000_000)
 _TIMES = Key("times", "list of numbers", "s", allowed=">= 0, increasing", example="[0.0, 0.5, 2.0]",
              doc="the sample times, instead of t_end, samples and dt")
-_METHOD = Key("method", "string", "", '"exact"', example='"dop853"', choices=tuple(METHODS),
-              doc="the integration method (dop853 with a torque)")
+_METHOD = Key("method", "string", "", '"auto"', example='"dop853"', choices=ALLOWED,
+              doc="the integration method (auto: chosen from what the run has, and named in the output)")
 _STEP = Key("step", "number", "s", "(the method's)", example="0.001", low=0.0,
             doc="the largest step of a fixed-step or splitting method")
 #: The ``[torque]`` table of scenario and sweep files.
