@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import sparse
+from scipy.linalg import cho_factor, cho_solve
 from scipy.spatial.transform import Rotation
 
 from ...typing import FloatArray
@@ -347,8 +348,13 @@ def _normal_solver(J: sparse.csr_matrix):
     JtJ = (J.T @ J).toarray()
     d = np.sqrt(np.diag(JtJ))
     d = np.where(d > 0, d, 1.0)
-    inverse = np.linalg.pinv(JtJ / np.outer(d, d)) / np.outer(d, d)
-    return lambda B: inverse @ np.asarray(J.T @ B)
+    scaled = JtJ / np.outer(d, d)
+    try:  # a Cholesky factor (a few blocked steps: no threaded level-2 sweeps as an SVD's), else the pseudo-inverse
+        factor = cho_factor(scaled)
+        return lambda B: cho_solve(factor, np.asarray(J.T @ B) / d[:, None]) / d[:, None]
+    except np.linalg.LinAlgError:
+        inverse = np.linalg.pinv(scaled) / np.outer(d, d)
+        return lambda B: inverse @ np.asarray(J.T @ B)
 
 
 def fit_joint(joint: JointModel, P0: FloatArray, errors: SensorErrors | None = None,
