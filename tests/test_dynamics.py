@@ -168,7 +168,7 @@ def test_energy_matches_definition():
         (dict(t_end=-1.0), r"t_end = -1.0 must be a positive"),
         (dict(samples=1), r"samples = 1 must be a whole number from 2"),
         (dict(samples=2.5), r"samples = 2.5 must be a whole number"),
-        (dict(method="euler"), r"method = 'euler' is unknown; allowed: exact, dop853, rk45, seed, geometric"),
+        (dict(method="euler"), r"method = 'euler' is unknown; allowed: auto, exact, dop853, rk45, seed, geometric"),
         (dict(frame="world"), r"frame = 'world' is not allowed; allowed: principal, design"),
         (dict(rtol=0.0), r"rtol = 0.0 must be a positive"),
         (dict(method="seed", torque=ConstantTorque((0, 0, 1.0))), r"method = 'seed' cannot take a torque"),

@@ -87,7 +87,13 @@ def test_a_signal_midway_leaves_the_previous_output_and_no_temporary_files(tmp_p
         os.kill(os.getpid(), signum)
 
     monkeypatch.setattr(tumble.io.export, "write_csv", interrupted)
-    assert simulate(out, "--omega", "1", "2", "3") == code
+    # Ctrl-C as a shell delivers it: Python's own handler, which a test run beside (a Dask cluster,
+    # a worker of pytest-xdist) may have replaced in this process; the CLI sets SIGTERM's itself.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        assert simulate(out, "--omega", "1", "2", "3") == code
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert "nothing written" in capsys.readouterr().err
     assert snapshot(out) == before
     assert leftovers(tmp_path, "run") == []

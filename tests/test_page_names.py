@@ -50,7 +50,8 @@ def hostile_page(tmp_path_factory):
 
 
 def title_of(method: str) -> str:
-    return f"{HOSTILE_FILE}: {HOSTILE}, {method}"
+    """The page's title: the scenario names no method, so ``auto`` chose it and the title says so."""
+    return f"{HOSTILE_FILE}: {HOSTILE}, {method} (auto)"
 
 
 @pytest.mark.parametrize("text", [HOSTILE, HOSTILE_FILE, "<!--", "-->", "]]>", "a & b < c > d", "\u2028\u2029", ""])

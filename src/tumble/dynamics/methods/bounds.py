@@ -41,7 +41,15 @@ __all__ = ["design_torque", "linear_gain", "run_spin_gain", "spin_bound"]
 
 def spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -> float:
     """The spin (rad/s) a run starts from, with what rotors can hand the body
-    (:meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`)."""
+    (:meth:`~tumble.dynamics.models.internal.InternalModel.spin_bound`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.methods.bounds import spin_bound
+    >>> spin_bound(None, np.array([3.0, 0.0, 4.0]), np.linspace(0.0, 1.0, 5))   # no rotors: |omega0|
+    5.0
+    """
     if internal is None:
         return math.hypot(*omega0.tolist())
     return float(internal.spin_bound(omega0, t))
