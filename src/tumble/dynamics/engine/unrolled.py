@@ -35,7 +35,7 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["STATE", "dop853_sources", "fixed_step_source", "rotations_source"]
+__all__ = ["STATE", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source"]
 
 #: Size of the rigid body's state ``(omega, q)``.
 STATE = 7
@@ -107,6 +107,29 @@ def rotations_source(name: str, C: Coefficients) -> str:
     return f"def {name}(n, h):\n    if n == 0.0:\n        return ({idle})\n    return ({turns})\n"
 
 
+def dop853_errors_lines(name: str, n: int, atol: str) -> list[str]:
+    """The lines of ``name(K, y, y_new, rtol, atol)``: DOP853's 5th- and 3rd-order error sums
+    (``sum (e_i / scale_i)^2``, ``scale_i = atol_i + rtol max(|y_i|, |y_new_i|)``, HNW sec. II.10,
+    as scipy's ``DOP853._estimate_error_norm``) over a state of ``n`` floats; ``atol`` the
+    expression of ``atol_i`` with ``{i}`` for the index (``"atol[{i}]"`` or ``"atol"``).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import dop853_errors_lines
+    >>> lines = dop853_errors_lines("errors", 2, "atol")
+    >>> lines[0], lines[-1], sum("scale = atol +" in line for line in lines)
+    ('def errors(K, y, y_new, rtol, atol):', '    return e5, e3', 2)
+    """
+    slopes = [f"k{r}" for r in range(13)]
+    lines = [f"def {name}(K, y, y_new, rtol, atol):", f"    {', '.join(slopes)} = K", "    e5 = 0.0", "    e3 = 0.0"]
+    for i in range(n):
+        lines += [f"    scale = {atol.format(i=i)} + max(abs(y[{i}]), abs(y_new[{i}])) * rtol",
+                  f"    a = ({_weighted(DOP853_E5, slopes, i)}) / scale",
+                  f"    b = ({_weighted(DOP853_E3, slopes, i)}) / scale",
+                  "    e5 += a * a", "    e3 += b * b"]
+    return [*lines, "    return e5, e3"]
+
+
 def dop853_sources() -> str:
     """The sources of DOP853's pieces (Hairer, Norsett & Wanner, *Solving ODEs I*, 2nd ed.,
     sec. II.10, in scipy's arrangement, :class:`scipy.integrate.DOP853`):
@@ -138,13 +161,7 @@ def dop853_sources() -> str:
              f"    return y_new, ({', '.join(slopes)})"]
 
     unpack = f"    {', '.join(slopes)} = K"
-    errors = ["def dop853_errors(K, y, y_new, rtol, atol):", unpack, "    e5 = 0.0", "    e3 = 0.0"]
-    for i in range(STATE):
-        errors += [f"    scale = atol[{i}] + max(abs(y[{i}]), abs(y_new[{i}])) * rtol",
-                   f"    a = ({_weighted(DOP853_E5, slopes, i)}) / scale",
-                   f"    b = ({_weighted(DOP853_E3, slopes, i)}) / scale",
-                   "    e5 += a * a", "    e3 += b * b"]
-    errors.append("    return e5, e3")
+    errors = dop853_errors_lines("dop853_errors", STATE, "atol[{i}]")
 
     dense = ["def dop853_dense(y, y_new, K, h, I, P, cs, ss, rot):", unpack]
     extra = [f"k{r}" for r in range(16)]

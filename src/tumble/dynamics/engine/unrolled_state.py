@@ -30,8 +30,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_E3, DOP853_E5
-from .unrolled import Coefficients, _weighted
+from .tableau import DOP853_A, DOP853_B, DOP853_C
+from .unrolled import Coefficients, _weighted, dop853_errors_lines
 
 __all__ = ["dop853_sources", "fixed_step_source"]
 
@@ -87,12 +87,5 @@ def dop853_sources(step: str, errors: str, n: int) -> str:
     slopes = [f"k{r}" for r in range(13)]
     lines = [f"def {step}(t, y, k0, h, P, X, cs, ss, rot):"] + [_stage(n, s, DOP853_A, DOP853_C) for s in range(1, 12)]
     lines += [f"    y_new = {_advanced(n, DOP853_B, slopes[:12])}", _stage(n, 12, DOP853_A, DOP853_C, "y_new"),
-              f"    return y_new, ({', '.join(slopes)})", "",
-              f"def {errors}(K, y, y_new, rtol, atol):", f"    {', '.join(slopes)} = K", "    e5 = 0.0", "    e3 = 0.0"]
-    for i in range(n):
-        lines += [f"    scale = atol + max(abs(y[{i}]), abs(y_new[{i}])) * rtol",
-                  f"    a = ({_weighted(DOP853_E5, slopes, i)}) / scale",
-                  f"    b = ({_weighted(DOP853_E3, slopes, i)}) / scale",
-                  "    e5 += a * a", "    e3 += b * b"]
-    lines.append("    return e5, e3")
+              f"    return y_new, ({', '.join(slopes)})", "", *dop853_errors_lines(errors, n, "atol")]
     return "\n".join(lines) + "\n"
