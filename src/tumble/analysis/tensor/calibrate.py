@@ -16,9 +16,13 @@ Mechanics*, 3rd ed., sec. 5.3; ``S(d) = |d|^2 E - d d^T``),
 
     ``J_r (P - D) = B``,  ``B = I_p + m_p S(c_p) + m_d S(c_d) - M S(c_dp)``,
 
-solved by weighted least squares (weights the inverse covariance of ``J_r (P - D) - B``, two
-passes) with ``chi^2`` on 5 degrees of freedom; a ``chi^2 / 5 > 1`` inflates ``J_r``'s variance
-(Birge, as in :mod:`~tumble.analysis.tensor.pool`). Then ``I_d = J_r D``. All the
+solved with ``J_r`` by weighted least squares (weights the inverse covariance of
+``J_r (P - D) - B``, two passes) with ``chi^2`` on 5 degrees of freedom, and ``D`` and ``c_d``
+**adjusted** to them (a Gauss-Helmert adjustment: :mod:`~tumble.analysis.tensor.equations`); a
+``chi^2 / 5 > 1`` inflates the results' variance (Birge, as in :mod:`~tumble.analysis.tensor.pool`).
+Then ``I_d = J_r D``. The equations fix the device's centre along the rotor's axis, which its
+own throws, spinning about that axis, hardly show the accelerometer: the proof's known tensor
+fixes the offset between the two sets' centres, and the proof set's centre is well seen. All the
 uncertainties (the pooled ``D``, ``P``, ``c_d``, ``c_dp``, the tensors' sensors' parts shared by
 the two sets: :func:`shared_sensor_covariance`; the centres' sensors' parts, the accelerometer's
 scale factors and the gyroscope's turn, likewise shared: :func:`shared_center_covariance`; the
@@ -51,102 +55,17 @@ from typing import Any
 
 import numpy as np
 
-from ...mass.tensor import point_mass_inertia
 from ...typing import FloatArray
 from .. import _display
 from .device import Device, Proof, Throw
-from .estimate import tensor_of, vector_of
+from .equations import rotor_inertia_from
+from .estimate import tensor_of
 from .sensors import gyro_matrix, tilted_axis
 from .fit import full_scale, sensor_errors
 from .pool import Pooled, duplicate_throws, pool_throws
 
 __all__ = ["MAX_CHI2_DOF", "MAX_SET_CHI2_DOF", "Calibration", "CalibrationError", "calibrate", "calibrate_device",
-           "calibrated_sensors", "rotor_inertia_from", "shared_center_covariance", "shared_sensor_covariance"]
-
-
-def _known(x: FloatArray, m_d: float, m_p: float, Ip: FloatArray) -> FloatArray:
-    """``B`` of the module docstring from ``x = (D, c_d, P, c_dp)``."""
-    c_d, c_dp = x[6:9], x[15:18]
-    M = m_d + m_p
-    c_p = (M * c_dp - m_d * c_d) / m_p
-    return vector_of(Ip + point_mass_inertia(m_p, c_p) + point_mass_inertia(m_d, c_d) - point_mass_inertia(M, c_dp))
-
-
-def _solve(x: FloatArray, m_d: float, m_p: float, Ip: FloatArray, W: FloatArray) -> tuple[FloatArray, float]:
-    """``(J_r, I_d entries, c_d)`` and ``chi^2`` from ``x = (D, c_d, P, c_dp)`` (module docstring)."""
-    B = _known(x, m_d, m_p, Ip)
-    A = x[9:15] - x[:6]
-    J = float(A @ W @ B) / float(A @ W @ A)
-    r = J * A - B
-    return np.concatenate([[J], J * x[:6], x[6:9]]), float(r @ W @ r)
-
-
-def _jacobian(f, x: FloatArray) -> FloatArray:
-    """Central differences of ``f`` at ``x = (D, c_d, P, c_dp)``: steps 1e-6 of the entries' size, 1 nm for the centres."""
-    size = np.r_[np.full(6, np.abs(x[:6]).max()), np.full(3, 1e-3), np.full(6, np.abs(x[9:15]).max()), np.full(3, 1e-3)]
-    cols = []
-    for k in range(18):
-        d = np.zeros(18)
-        d[k] = 1e-6 * size[k]
-        cols.append((f(x + d) - f(x - d)) / (2 * d[k]))
-    return np.array(cols).T
-
-
-def _weighted(x: FloatArray, cov_x: FloatArray, m_d: float, m_p: float, Ip: FloatArray) -> tuple[FloatArray, float, FloatArray]:
-    """``(J_r, I_d entries, c_d)``, ``chi^2`` and the weights, from ``x`` with covariance ``cov_x`` (two passes)."""
-    B = _known(x, m_d, m_p, Ip)
-    W = np.eye(6) / max(float(B @ B), 1e-300)
-    for _ in range(2):
-        J = _solve(x, m_d, m_p, Ip, W)[0][0]
-        G = _jacobian(lambda z: J * (z[9:15] - z[:6]) - _known(z, m_d, m_p, Ip), x)
-        W = np.linalg.pinv(G @ cov_x @ G.T)
-    y, chi2 = _solve(x, m_d, m_p, Ip, W)
-    return y, chi2, W
-
-
-def rotor_inertia_from(x: FloatArray, cov_x: FloatArray, device_mass: float, proof: Proof,
-                       center_cov: FloatArray | None = None) -> tuple[FloatArray, FloatArray, float]:
-    """``(J_r, I_d entries, c_d)``, their covariance and ``chi^2 / 5`` of the consistency check
-    from the pooled fits (module docstring).
-
-    Parameters
-    ----------
-    x : ndarray, shape (18,)
-        ``D`` (6, units of ``J_r``), ``c_d`` (3, m), ``P`` (6), ``c_dp`` (3).
-    cov_x : ndarray, shape (18, 18)
-    device_mass : float
-        kg.
-    proof : Proof
-    center_cov : ndarray, shape (6, 6), optional
-        The centres' ``(c_d, c_dp)`` sensors' part (:func:`shared_center_covariance`): in the
-        weights, the covariance and ``J_r``'s Birge ratio, not in the check's ``chi^2``.
-
-    Examples
-    --------
-    A device of ``J_r = 2e-6`` that is a point at the origin, and a proof of 1e-4 kg m^2 at its centre:
-
-    >>> import numpy as np
-    >>> from tumble.analysis.tensor import Proof
-    >>> from tumble.analysis.tensor.calibrate import rotor_inertia_from
-    >>> proof = Proof(0.3, [1e-4, 1e-4, 1e-4])
-    >>> D = np.array([10.0, 10.0, 10.0, 0, 0, 0])   # the device alone, units of J_r
-    >>> P = D + np.array([50.0, 50.0, 50.0, 0, 0, 0])   # with the proof: + 1e-4 / 2e-6
-    >>> y, cov, ratio = rotor_inertia_from(np.r_[D, 0, 0, 0, P, 0, 0, 0], np.eye(18) * 1e-6, 0.1, proof)
-    >>> float(y[0].round(15)), y[1:4].round(12).tolist()
-    (2e-06, [2e-05, 2e-05, 2e-05])
-    """
-    m_d, m_p, Ip = float(device_mass), float(proof.mass), proof.inertia
-    check = _weighted(x, cov_x, m_d, m_p, Ip)[1] / 5.0
-    full = np.array(cov_x, float, copy=True)
-    if center_cov is not None:
-        idx = np.r_[6:9, 15:18]
-        full[np.ix_(idx, idx)] += center_cov
-    y, chi2, W = _weighted(x, full, m_d, m_p, Ip)
-    Jy = _jacobian(lambda z: _solve(z, m_d, m_p, Ip, W)[0], x)
-    cov = Jy @ full @ Jy.T
-    inflate = np.ones(10)
-    inflate[0] = np.sqrt(max(1.0, chi2 / 5.0))
-    return y, cov * np.outer(inflate, inflate), check
+           "calibrated_sensors", "shared_center_covariance", "shared_sensor_covariance"]
 
 
 #: The calibration's consistency (``chi^2 / 5`` of its parallel-axis equations) above which it is
@@ -244,6 +163,12 @@ class Calibration:
         return out
 
 
+def _physical(inertia: FloatArray) -> bool:
+    """Whether a tensor's principal moments are positive and keep the triangle inequality."""
+    m = np.linalg.eigvalsh(inertia)
+    return bool(m[0] > 0 and m[0] + m[1] >= m[2])
+
+
 def _problems(J: float, ratio: float, a, p) -> list[str]:
     """What the calibration's own numbers say is wrong, with the likely cause."""
     out = []
@@ -303,11 +228,14 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
     cov[:6, :6], cov[6:9, 6:9], cov[9:15, 9:15], cov[15:, 15:] = a.inertia_cov, a.center_cov, p.inertia_cov, p.center_cov
     cov[:6, 9:15] = shared_sensor_covariance(a, p)
     cov[9:15, :6] = cov[:6, 9:15].T
-    y, cov_y, ratio = rotor_inertia_from(x, cov, device.mass, proof, shared_center_covariance(a, p))
+    shared = shared_center_covariance(a, p)
+    y, cov_y, ratio, cov_c = rotor_inertia_from(x, cov, device.mass, proof, shared)
+    if ratio > MAX_CHI2_DOF or not _physical(tensor_of(y[1:7])):  # equations that do not hold adjust nothing
+        y, cov_y, ratio, cov_c = rotor_inertia_from(x, cov, device.mass, proof, shared, adjust=False)
     std = np.sqrt(np.maximum(np.diag(cov_y), 0.0))
     # c_d's std its statistical one: an object's centre carries the accelerometer's and gyroscope's parts through
     # its flown centre's own columns (Pooled.center_columns), the same device's
-    std[7:10] = np.sqrt(np.maximum(np.diag(a.center_cov), 0.0))
+    std[7:10] = np.sqrt(np.maximum(np.diag(cov_c), 0.0))
     problems = _problems(float(y[0]), ratio, a, p)
     if problems and not y[0] > 0:
         dev = device
