@@ -16,6 +16,7 @@ from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.controllers import BDot, MRPFeedback, bdot_dipole
 from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.control import compiled_control as cc
+from tumble.dynamics.control.compiled_loop import padded, unpadded
 from tumble.dynamics.control import compiled_detumble as cd
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
@@ -86,7 +87,7 @@ def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
         y = np.concatenate([att.as_quat(), w, np.zeros(3)])
         P = kernel.P[:12] + tuple(dipole) + kernel.P[15:]
         n_t = gg.mean_motion * t
-        out = np.array(rhs(t, tuple(y), P, kernel.X, np.cos(n_t), np.sin(n_t)))
+        out = unpadded(np.array(rhs(t, tuple(padded(y)), P, kernel.X, np.cos(n_t), np.sin(n_t))), 0)
         tau_world = att.apply(np.cross(dipole, att.inv().apply(field.world(t)))) + gg(t, w, att)
         np.testing.assert_allclose(out[7:], tau_world, rtol=1e-12, atol=1e-12 * np.abs(tau_world).max())
         w_dot = (np.cross(dipole, att.inv().apply(field.world(t))) + att.inv().apply(gg(t, w, att))

@@ -246,18 +246,19 @@ class ControlKernel:
             gp[1:], gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
         elif gravity_gradient is not None:
             gp[0] = gravity_gradient.mean_motion
-        P = [*np.asarray(moments, float), *np.asarray(I_rw_inv, float).reshape(9), 0.0, 0.0, 0.0, field_kind, *gp]
+        P = [*np.asarray(moments, float), *np.asarray(I_rw_inv, float).reshape(9), 0.0, 0.0, 0.0, field_kind, *gp, self.k]
         if wheels is not None:
             k = self.k
             columns = [wheels.axes] + [np.broadcast_to(np.asarray(v, float), (k,))[:, None] for v in
                                        (wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous,
                                         wheels.coulomb, wheels.limit_cycle_speed, np.zeros(k))]
             P += list(np.hstack(columns).reshape(k * WHEEL))
+        P += [0.0] * (WHEEL * (_loop.MAX_WHEELS - self.k))  # the empty slots (the kernels skip them)
         self.P = tuple(float(v) for v in P)
         self.X = tuple(np.ascontiguousarray(a, dtype=float) for a in (fp, ft, gt))
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
-        self.kernels = _loop.kernels(self.k)
+        self.kernels = _loop.kernels()
 
     def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
         """:func:`compiled_law` for this run's moments.
@@ -313,14 +314,14 @@ class ControlKernel:
         >>> np.allclose(y[4:7], [0.0, 0.0, 1e-5], rtol=1e-6, atol=1e-15), np.allclose(y[7:], [0.0, 0.0, 3e-5], rtol=1e-6)
         (True, True)
         """
-        out = np.empty(10 + self.k)
-        status = self.kernels["_interval"](np.ascontiguousarray(y, dtype=float), float(t_start), float(t_end), self.P,
-                                           self.X, np.ascontiguousarray(dipole, dtype=float),
-                                           np.ascontiguousarray(command, dtype=float), self.rtol, self.atol,
+        out, held = np.empty(_loop.N), np.zeros(_loop.MAX_WHEELS)
+        held[:self.k] = command
+        status = self.kernels["_interval"](_loop.padded(y), float(t_start), float(t_end), self.P, self.X,
+                                           np.ascontiguousarray(dipole, dtype=float), held, self.rtol, self.atol,
                                            self.method, self.step, out)
         if status != 0:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
-        return out
+        return _loop.unpadded(out, self.k)
 
     def run(self, y0: FloatArray, grid: FloatArray, law: tuple[int, FloatArray, FloatArray], rods: FloatArray,
             limits: FloatArray, carry: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -348,11 +349,11 @@ class ControlKernel:
         True
         """
         steps = len(grid)
-        Y, D, U, F = np.empty((steps, 10 + self.k)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
-        status = self.kernels["_loop"](np.ascontiguousarray(y0, dtype=float), np.ascontiguousarray(grid, dtype=float),
+        Y, D, U, F = np.empty((steps, _loop.N)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
+        status = self.kernels["_loop"](_loop.padded(y0), np.ascontiguousarray(grid, dtype=float),
                                        self.P, self.X, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
                                        np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol, self.method,
                                        self.step, bool(carry), Y, D, U, F)
         if status != 0:
             raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
-        return Y, D, U, F
+        return _loop.unpadded(Y, self.k), D, U, F

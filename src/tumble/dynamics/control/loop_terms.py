@@ -5,9 +5,10 @@ Imported only when a compiled closed loop is asked for (by
 every function is compiled at import by :func:`tumble.jit.jit` (``cache=True``).
 
 **The state** ``y = (q, omega, s, impulse)`` of :mod:`~tumble.dynamics.control.controlled`, a tuple
-of ``10 + k`` floats for ``k`` wheels: the attitude quaternion (body to world, scalar last), the
-angular velocity (rad/s, principal frame), the wheels' spins relative to the body (rad/s) and the
-external angular impulse (N m s, world frame). Its equations
+of ``10 + k`` floats for ``k`` wheel slots (the run's wheels, then the slots it leaves empty): the
+attitude quaternion (body to world, scalar last), the angular velocity (rad/s, principal frame),
+the wheels' spins relative to the body (rad/s) and the external angular impulse (N m s, world
+frame). Its equations
 
 ``(I - sum J_j g_j g_j^T) omega' = tau + L x omega - G u``,  ``L = I omega + h``,
 ``J_j s_j' = u_j - J_j g_j . omega'``,  ``q' = q (x) (omega, 0) / 2``,  ``impulse' = R tau``
@@ -24,8 +25,8 @@ the fields below.
 principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by row (1/(kg m^2));
 ``P[12:15]`` the magnetorquers' dipole held (A m^2); ``P[15]`` the field's kind (:data:`FIELD_NONE`
 ...); ``P[16:20]`` the gravity gradient ``(n, mu, t0, h)``: a circle's mean motion (rad/s) or
-``mu`` (m^3/s^2) with the start and spacing (s) of the orbit's position table; then ten a wheel
-(:data:`WHEEL`): its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
+``mu`` (m^3/s^2) with the start and spacing (s) of the orbit's position table; ``P[20]`` the
+number of wheels; then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
 (:func:`~tumble.dynamics.control.compiled_control.field_params`), the IGRF table's and the orbit
@@ -67,7 +68,7 @@ __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM",
 #: Kinds of field the kernels evaluate: none, uniform, the tilted dipole, a CubicTable (IGRF).
 FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
-BODY, WHEEL = 20, 10
+BODY, WHEEL = 21, 10
 
 # The models' formulas compiled as ordinary functions, which LLVM inlines where they are called (as
 # the engine's kernels do, tumble.dynamics.engine.kernels): the loop ran as fast, and its first
@@ -160,8 +161,10 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, P: tuple[f
 
 def rhs_source(name: str, k: int) -> str:
     """The source of ``name(t, y, P, X, u0, u1)``: the closed loop's right-hand side (module
-    docstring) with ``k`` wheels, written out wheel by wheel, ``(u0, u1)`` a circular orbit's
-    direction ``(cos n t, sin n t)``; it returns ``dy/dt`` as a tuple of ``10 + k`` floats.
+    docstring) with ``k`` wheel slots, written out wheel by wheel, ``(u0, u1)`` a circular orbit's
+    direction ``(cos n t, sin n t)``; it returns ``dy/dt`` as a tuple of ``10 + k`` floats. The
+    slots past the run's wheel count ``P[20]`` are skipped (their spins' rates are 0), so one
+    source serves every count up to ``k``.
 
     Examples
     --------
@@ -175,22 +178,29 @@ def rhs_source(name: str, k: int) -> str:
              "    w0, w1, w2 = y[4], y[5], y[6]",
              "    t0, t1, t2 = external_torque(t, x, yq, z, c, P, X, u0, u1)",
              "    a0, a1, a2 = t0, t1, t2",
-             "    L0, L1, L2 = P[0] * w0, P[1] * w1, P[2] * w2"]
+             "    L0, L1, L2 = P[0] * w0, P[1] * w1, P[2] * w2",
+             "    count = P[20]"]
     for j in range(k):
         b = BODY + WHEEL * j
-        lines += [f"    u{j} = _wheel_torque(P[{b + 9}], y[{7 + j}], P[{b + 4}], P[{b + 5}], P[{b + 6}], P[{b + 7}], P[{b + 8}])",
-                  f"    js = P[{b + 3}] * y[{7 + j}]",
-                  f"    L0, L1, L2 = L0 + js * P[{b}], L1 + js * P[{b + 1}], L2 + js * P[{b + 2}]",
-                  f"    a0, a1, a2 = a0 - u{j} * P[{b}], a1 - u{j} * P[{b + 1}], a2 - u{j} * P[{b + 2}]"]
+        lines += [f"    u{j} = 0.0",
+                  f"    if count > {j}:",
+                  f"        u{j} = _wheel_torque(P[{b + 9}], y[{7 + j}], P[{b + 4}], P[{b + 5}], P[{b + 6}], P[{b + 7}], "
+                  f"P[{b + 8}])",
+                  f"        js = P[{b + 3}] * y[{7 + j}]",
+                  f"        L0, L1, L2 = L0 + js * P[{b}], L1 + js * P[{b + 1}], L2 + js * P[{b + 2}]",
+                  f"        a0, a1, a2 = a0 - u{j} * P[{b}], a1 - u{j} * P[{b + 1}], a2 - u{j} * P[{b + 2}]"]
     lines += ["    a0, a1, a2 = _momentum_rate(L0, L1, L2, w0, w1, w2, a0, a1, a2)",
               "    d0 = P[3] * a0 + P[4] * a1 + P[5] * a2",
               "    d1 = P[6] * a0 + P[7] * a1 + P[8] * a2",
               "    d2 = P[9] * a0 + P[10] * a1 + P[11] * a2",
               "    q0, q1, q2, q3 = _quaternion_rate(x, yq, z, c, w0, w1, w2)",
               "    i0, i1, i2 = _rotate(x, yq, z, c, t0, t1, t2)"]
-    spins = [f"u{j} / P[{BODY + WHEEL * j + 3}] - (P[{BODY + WHEEL * j}] * d0 + P[{BODY + WHEEL * j + 1}] * d1 "
-             f"+ P[{BODY + WHEEL * j + 2}] * d2)" for j in range(k)]
-    lines.append(f"    return (q0, q1, q2, q3, d0, d1, d2, {''.join(s + ', ' for s in spins)}i0, i1, i2)")
+    for j in range(k):
+        b = BODY + WHEEL * j
+        lines += [f"    s{j} = 0.0",
+                  f"    if count > {j}:",
+                  f"        s{j} = u{j} / P[{b + 3}] - (P[{b}] * d0 + P[{b + 1}] * d1 + P[{b + 2}] * d2)"]
+    lines.append(f"    return (q0, q1, q2, q3, d0, d1, d2, {''.join(f's{j}, ' for j in range(k))}i0, i1, i2)")
     return "\n".join(lines) + "\n"
 
 
