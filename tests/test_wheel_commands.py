@@ -30,6 +30,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -323,20 +324,53 @@ def _producers(argv: tuple[str, ...], outputs: dict[str, tuple[str, ...]],
     return found
 
 
+class MadeOnce:
+    """The commands that write another's inputs (:func:`_producers`), each run once, in a folder of
+    its own, with what it needs made before it; its output copied into each folder that needs it
+    (``tumble calibrate ... --out calibrated.toml`` ran seven times, once for each command after it)."""
+
+    def __init__(self, venv: Venv, copied: Path, root: Path) -> None:
+        self.venv, self.copied, self.root = venv, copied, root
+        self.lock = threading.Lock()
+        self.locks: dict[tuple[str, ...], threading.Lock] = {}
+        self.runs: dict[tuple[str, ...], tuple[subprocess.CompletedProcess, Path]] = {}
+
+    def into(self, folder: Path, word: str, before: tuple[str, ...],
+             earlier: list[tuple[str, tuple[str, ...]]]) -> subprocess.CompletedProcess:
+        """Run ``before`` (once) after the ``earlier`` of its chain, and copy what it writes as ``word``
+        into ``folder``; returns its run."""
+        with self.lock:
+            lock = self.locks.setdefault(before, threading.Lock())
+            where = self.root / f"made{len(self.locks):02d}"
+        with lock:
+            if before not in self.runs:
+                where.mkdir(parents=True)
+                if any(w.startswith("examples/") for w in before):
+                    shutil.copytree(self.copied, where / "examples")
+                for j, (w, b) in enumerate(earlier):
+                    self.into(where, w, b, earlier[:j])
+                self.runs[before] = (_run(self.venv, where, list(before)), where)
+        made, there = self.runs[before]
+        if made.returncode == 0 and (there / word).exists() and not (folder / word).exists():
+            (shutil.copytree if (there / word).is_dir() else shutil.copy2)(there / word, folder / word)
+        return made
+
+
 def _try_shown(venv: Venv, copied: Path, folder: Path, shown: list[Shown],
-               outputs: dict[str, tuple[str, ...]] | None = None) -> Outcome:
+               outputs: dict[str, tuple[str, ...]] | None = None, made_once: MadeOnce | None = None) -> Outcome:
     """Run one command from an empty ``folder`` as shown, or with the hint it prints (``copied``:
     what the usual hint, :data:`COPY_HINT`, copies); an input that another shown command writes
     (``outputs``) is made first by that command (and its inputs by theirs, :func:`_producers`), as
-    the guide shows them one after the other."""
+    the guide shows them one after the other (``made_once``: each such command run once)."""
     argv = shown[0].argv
     outcome = Outcome(shown)
     folder.mkdir()
     unmade = set()  # inputs whose command stopped for want of the user's own files
-    for word, before in _producers(argv, outputs or {}):
+    chain = _producers(argv, outputs or {})
+    for i, (word, before) in enumerate(chain):
         if any(w.startswith("examples/") for w in before) and not (folder / "examples").exists():
             shutil.copytree(copied, folder / "examples")
-        made = _run(venv, folder, list(before))
+        made = made_once.into(folder, word, before, chain[:i]) if made_once else _run(venv, folder, list(before))
         outcome.steps.append(" ".join(before))
         if _only_missing(made, _user_files(before)):  # it needs the user's own files: so does this one
             outcome.steps.append("(the user's own files: one line, exit 2)")
@@ -409,10 +443,11 @@ def test_every_command_the_readme_the_guides_and_help_show_runs_from_an_empty_fo
 
     jobs = sorted(distinct.values(), key=lambda shown: shown[0].argv[0] != "demo")  # the longest first
     workers = max(2, min(8, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 2))
+    made_once = MadeOnce(venv, copied_examples, tmp_path / "made")
     with ThreadPoolExecutor(max_workers=workers) as pool:
         outputs = _outputs(runnable)
         outcomes = list(pool.map(lambda ij: _try_shown(venv, copied_examples, tmp_path / f"cmd{ij[0]:02d}", ij[1],
-                                                       outputs),
+                                                       outputs, made_once),
                                  enumerate(jobs)))
 
     failures = [f"{', '.join(c.where for c in o.shown)}: {o.shown[0].shown}\n    ran: {' ; '.join(o.steps)}\n"
