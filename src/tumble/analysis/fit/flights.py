@@ -45,7 +45,9 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    synthetic tosses the fitted flight reaches the impulse within 0.04 s, or within 0.25 s
    where a hand's grip or a glancing impact is too gentle to show as an impulse, while a rotor
    spinning up inside leaves it 0.2-0.8 s early), or a gyrostat whose rotor spins up explains the
-   samples far better than a rigid body's drag and flex can (:func:`~tumble.analysis.fit.rotor.rotor_check`).
+   samples far better than a rigid body's drag and flex can, or the world-frame momentum budget
+   holds an internal momentum that steps up and down (a rotor spun up and braked within the
+   flight: :func:`~tumble.analysis.fit.rotor.rotor_check`).
    A flight skipped only because its ratios are
    not determined alone (a stable axis, too little of the tumble, the rod limit) while its fit is
    adequate and it flies free up to its impulse is ``joinable``: the joint fit of its recording

@@ -49,6 +49,11 @@ residuals is not refitted: a rotor it hid leaves the rigid fit that close only w
 is within the noise (every refused rotor toss's rigid fit was 7.7 times its noise floor or
 more), and the gyrostat's fit is most of the check's cost.
 
+A rotor that spins up and brakes again within the flight (a flywheel device's firmware: idle,
+spin-up in a tenth of a second, hold, brake) nets out to no gain, and a steady spin-up does not
+describe it: :func:`rotor_check` first asks :func:`~tumble.analysis.fit.budget.step_check`, the
+world-frame momentum budget with an internal momentum that steps, which needs no refit.
+
 This is a likelihood-ratio comparison of nested models made with a physical threshold rather
 than the bare F-test: with hundreds of samples and a right model's smooth error the F-test
 prefers the larger model for rigid flights too (F up to 450 on the rigid flights above), so
@@ -64,6 +69,7 @@ import numpy as np
 from ...dynamics.models.gyrostat import gyrostat_omega
 from scipy.optimize import least_squares
 
+from .budget import step_check
 from .model import rotvec_matrix
 from .solve import Solution
 from .triangle import S_MIN, ratios
@@ -280,8 +286,10 @@ def fit_rotor(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solution)
 
 
 def rotor_check(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solution) -> str:
-    """The reason a flight is not a rigid body's, or an empty string: a rotor spinning up inside explains
-    its samples (:func:`fit_rotor`, refused by :data:`MIN_GAIN` and :data:`K_SIGMA`: module docstring).
+    """The reason a flight is not a rigid body's, or an empty string: an internal momentum that steps
+    explains its world-frame budget (:func:`~tumble.analysis.fit.budget.step_check`), or a rotor
+    spinning up inside explains its samples (:func:`fit_rotor`, refused by :data:`MIN_GAIN` and
+    :data:`K_SIGMA`: module docstring).
 
     Examples
     --------
@@ -309,6 +317,9 @@ def rotor_check(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solutio
     0.05 not a rigid body: a rotor spinning up inside expla
     """
     keep = np.asarray(keep, bool)
+    stepped = step_check(t, omega, keep, sol)  # a rotor spun up and braked within the flight
+    if stepped:
+        return stepped
     rows = np.all(keep, axis=1)
     if sol.rms <= MIN_MISFIT * noise_floor((np.asarray(omega, float) - sol.omega_model[0, :len(omega)])[rows]):
         return ""
