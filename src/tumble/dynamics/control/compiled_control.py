@@ -246,15 +246,15 @@ class ControlKernel:
             gp[1:], gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
         elif gravity_gradient is not None:
             gp[0] = gravity_gradient.mean_motion
-        P = [*np.asarray(moments, float), *np.asarray(I_rw_inv, float).reshape(9), 0.0, 0.0, 0.0, field_kind, *gp, self.k]
+        slots = np.zeros((_loop.MAX_WHEELS, WHEEL))  # the wheels, then the empty slots (the kernels skip them)
         if wheels is not None:
-            k = self.k
-            columns = [wheels.axes] + [np.broadcast_to(np.asarray(v, float), (k,))[:, None] for v in
-                                       (wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous,
-                                        wheels.coulomb, wheels.limit_cycle_speed, np.zeros(k))]
-            P += list(np.hstack(columns).reshape(k * WHEEL))
-        P += [0.0] * (WHEEL * (_loop.MAX_WHEELS - self.k))  # the empty slots (the kernels skip them)
-        self.P = tuple(float(v) for v in P)
+            slots[:self.k, :3] = wheels.axes
+            for column, value in enumerate((wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous,
+                                            wheels.coulomb, wheels.limit_cycle_speed), start=3):
+                slots[:self.k, column] = value
+        P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
+                            gp, (self.k,), slots.reshape(-1)])
+        self.P = tuple(P.tolist())
         self.X = tuple(np.ascontiguousarray(a, dtype=float) for a in (fp, ft, gt))
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
