@@ -32,10 +32,8 @@ import numpy as np
 
 from ...typing import FloatArray
 
-__all__ = ["AUTO", "AUTO_RTOL", "DOP853_SAFETY", "dop853_tolerances", "engine_choice", "rk8_angle"]
+__all__ = ["AUTO_RTOL", "DOP853_SAFETY", "dop853_tolerances", "engine_choice", "rk8_angle"]
 
-#: The name that asks for the choice (and the default of ``simulate``).
-AUTO = "auto"
 #: The relative tolerance of an ``"auto"`` run when none is given.
 AUTO_RTOL = 1e-10
 #: ``dop853``'s tolerances under ``"auto"`` are the ones asked for over this factor at rtol 1e-10,
