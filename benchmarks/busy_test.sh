@@ -19,7 +19,7 @@ for _ in $(seq "$BURNERS"); do
 done
 trap 'kill "${pids[@]}" 2>/dev/null' EXIT
 start=$(date +%s)
-"$PY" -m pytest -n auto --dist loadfile -q -p no:cacheprovider "$@"
+"$PY" -m pytest -n auto --dist loadfile --no-loadscope-reorder -q -p no:cacheprovider "$@"
 status=$?
 end=$(date +%s)
 echo "busy_test: pytest exit $status in $((end - start)) s with $BURNERS CPU-bound processes beside it on $(nproc) cores"
