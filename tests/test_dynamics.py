@@ -17,12 +17,12 @@ from tumble.dynamics import (
     kinetic_energy,
     simulate,
 )
+from tumble.dynamics.methods.bounds import spin_gain
 from tumble.dynamics.models.torques import (
     BoundsSpin,
     NeedsBody,
     as_torque,
     bind_to_body,
-    spin_gain,
 )
 from tumble.mass import MassProperties
 

@@ -40,6 +40,7 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
+from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
 from .models.torques import (
     TorqueLike,
@@ -47,8 +48,6 @@ from .models.torques import (
     as_torque,
     bind_to_body,
     kernel_form,
-    spin_gain,
-    spin_gains,
 )
 from .simulate import MAX_ROTATION, MAX_STEPS, check_rtol, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion

@@ -19,24 +19,26 @@ from typing import cast
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ...typing import FloatArray, Matrix3, Quaternion, Vector3
+from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ..models.internal import InternalModel
 from ..models.torques import (
     KERNEL_BODY,
     KERNEL_CIRCULAR_GRAVITY,
     KERNEL_NONE,
     KERNEL_WORLD,
+    BoundsSpin,
     ConstantTorque,
     FunctionTorque,
     TorqueModel,
+    body_torque,
+    conforms,
     kernel_form,
-    spin_gain,
 )
 
 #: A torque's compiled form, ``(kind, parameters)``.
 Form = tuple[int, tuple[float, ...]]
 
-__all__ = ["design_torque", "linear_gain", "run_spin_gain", "spin_bound"]
+__all__ = ["design_torque", "linear_gain", "run_spin_gain", "spin_bound", "spin_gain", "spin_gains"]
 
 
 def spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -> float:
@@ -57,7 +59,7 @@ def spin_bound(internal: InternalModel | None, omega0: Vector3, t: FloatArray) -
 
 def run_spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion, moments: Vector3, t_end: float) -> float:
     """Bound on the spin (rad/s) the torque adds over the run
-    (:func:`~tumble.dynamics.models.torques.spin_gain`); ``quat0`` the initial attitude (body to
+    (:func:`spin_gain`); ``quat0`` the initial attitude (body to
     world, scalar last), read only by a model that needs it.
 
     Examples
@@ -80,7 +82,7 @@ def linear_gain(form: Form | None, moments: Vector3, t_end: float) -> float | No
     from its compiled form ``form`` (:func:`~tumble.dynamics.models.torques.kernel_form`; None: a
     Python torque),
     ``|tau|max t_end / I1`` (``|L(t) - L(0)| <= |tau|max t`` and ``|omega| <= |L| / I1``, as
-    :func:`~tumble.dynamics.models.torques.spin_gain` bounds a constant torque), or None where
+    :func:`spin_gain` bounds a constant torque), or None where
     there is none to hand: a constant torque's ``|tau|``; the gravity gradient of a circular orbit,
     ``3 n^2 |r x I r| <= 3 n^2 (I3 - I1) / 2`` (Hughes, *Spacecraft Attitude Dynamics*, ch. 8:
     ``r x I r`` is largest, ``(I3 - I1) / 2``, for ``r`` halfway between the axes of I1 and I3).
@@ -134,3 +136,81 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
         return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
     return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att), float) @ A, "body")
+
+
+def spin_gain(
+    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
+    duration: float,
+) -> float:
+    """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
+    bounding a run's work and choosing default steps: the largest of :func:`spin_gains` over
+    a batch. ``attitude`` may be None for a constant torque, which does not read it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.dynamics.models.torques import ConstantTorque
+    >>> from tumble.dynamics.methods.bounds import spin_gain
+    >>> torque = ConstantTorque((0.0, 0.0, 0.5))   # |tau| t / I1: 0.5 N m for 10 s on I1 = 2 kg m^2
+    >>> spin_gain(torque, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
+    2.5
+    >>> spin_gain(None, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
+    0.0
+    """
+    if model is None:
+        return 0.0
+    form = kernel_form(model)
+    if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: no attitude read
+        gain = _constant_gain(form[1], np.asarray(moments, float), duration)
+        return gain if isinstance(gain, float) else float(np.max(gain))
+    gains = spin_gains(model, t, omega, attitude, moments, duration)
+    return float(gains) if np.ndim(gains) == 0 else float(np.max(gains))  # one body's needs no reduction
+
+
+def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: float) -> float | FloatArray:
+    """``|tau| duration / I1`` for a constant torque ``vector`` (N m): per body for moments (N, 3),
+    the largest for one body's (3,) (Python floats: the same operations, fewer calls)."""
+    if moments.ndim == 1:
+        return float(math.hypot(*vector) / min(moments.tolist()) * duration)
+    return cast(FloatArray, math.hypot(*vector) / np.min(moments, axis=-1) * duration)
+
+
+def spin_gains(
+    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
+    duration: float,
+) -> FloatArray:
+    """Per body, a bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s).
+
+    A model that knows a bound on ``|omega|`` for the whole motion says so through a method
+    ``max_spin(t, omega, attitude)`` (:class:`~tumble.dynamics.models.torques.BoundsSpin`; the gravity gradient does, from its
+    Jacobi integral);
+    otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
+    |tau| t`` and ``|omega| <= |L| / I1``; no attitude needed) and an estimate from the start
+    for any other. 0 without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for
+    :func:`~tumble.dynamics.models.torques.body_torque`; ``moments`` (3,) or (N, 3), kg m^2. Shape () or (N,).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.torques import ConstantTorque
+    >>> from tumble.dynamics.methods.bounds import spin_gains
+    >>> spin_gains(ConstantTorque((0.0, 0.0, 0.5)), 0.0, np.zeros((2, 3)), None, [[2.0, 3.0, 4.0], [1.0, 3.0, 4.0]],
+    ...            10.0).tolist()
+    [2.5, 5.0]
+    """
+    w = np.asarray(omega, float)
+    if model is None:
+        return np.zeros(w.shape[:-1])
+    form = kernel_form(model)
+    with np.errstate(over="ignore", invalid="ignore"):
+        if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
+            return _constant_gain(form[1], np.asarray(moments, float), duration) + np.zeros(w.shape[:-1])
+        if attitude is None:
+            raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
+        if conforms(model, BoundsSpin):
+            top = cast(BoundsSpin, model).max_spin(t, w, attitude)
+            speed = math.hypot(*w.tolist()) if w.ndim == 1 else np.linalg.norm(w, axis=-1)  # |omega| of each body
+            return cast(FloatArray, np.maximum(top - speed, 0.0))
+        tau = body_torque(model, t, w, attitude)  # checks the model's answer
+        return cast(FloatArray, np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1) * duration)

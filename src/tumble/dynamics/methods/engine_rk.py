@@ -27,7 +27,8 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..engine.front import run_body
 from ..models.internal import InternalModel, InternalSamples
-from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, kernel_form, spin_gain
+from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, kernel_form
+from .bounds import spin_gain
 
 __all__ = ["RK_STEP_ANGLE", "engine_rk", "engine_rk_internal", "gyrostat_on_engine", "rk_step"]
 

@@ -49,7 +49,8 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ..engine.stepsize import equal_steps
-from ..models.torques import TorqueModel, body_torque, spin_gain
+from ..models.torques import TorqueModel, body_torque
+from .bounds import spin_gain
 from . import geometric
 from .compiled import compiled_model, run_split
 from .exact_batch import free_rotation_batch

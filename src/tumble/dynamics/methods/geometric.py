@@ -53,7 +53,8 @@ from ...typing import ArrayLike, FloatArray, FloatOrArray
 from ...validation import check_increasing, short_repr
 from ..engine.stepsize import equal_steps
 from ..models.internal import InternalModel, InternalSamples, Rotors
-from ..models.torques import TorqueModel, body_torque, spin_gain
+from ..models.torques import TorqueModel, body_torque
+from .bounds import spin_gain
 from .compiled import compiled_model, run_split
 
 __all__ = ["COMPOSITIONS", "MAX_STEP_ANGLE", "default_step", "free_flow_substeps", "propagate", "propagate_internal"]

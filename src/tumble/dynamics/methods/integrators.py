@@ -61,7 +61,8 @@ from ..engine.front import run_body  # imports no numba: the kernels load on a r
 from ..engine.status import MAX_EVALUATIONS  # the work budget of every adaptive method, compiled or not
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
-from ..models.torques import TorqueModel, body_torque, kernel_form, spin_gain
+from ..models.torques import TorqueModel, body_torque, kernel_form
+from .bounds import spin_gain
 from ..special.quaternion import quaternion_rate
 from .engine_rk import engine_rk, engine_rk_internal, gyrostat_on_engine, rk_step
 from .names import METHOD_NAMES
@@ -272,7 +273,7 @@ def stiffness(
 ) -> tuple[float, float]:
     """A run's damper stiffness ratio and the spin it is measured against (rad/s):
     :meth:`~tumble.dynamics.models.internal.InternalModel.stiffness` at the run's fastest spin, its
-    spin bound plus what the torque can add (:func:`~tumble.dynamics.models.torques.spin_gain`)."""
+    spin bound plus what the torque can add (:func:`~tumble.dynamics.methods.bounds.spin_gain`)."""
     t_end = float(t[-1] - t[0])
     with np.errstate(over="ignore", invalid="ignore"):
         gain = spin_gain(torque, float(t[0]), omega0, Rotation.from_quat(quat0), model.moments, t_end)

@@ -18,7 +18,7 @@ looked for by the runs through ``isinstance``, never by name:
   (:func:`bind_to_body`, used by ``simulate`` and ``simulate_batch`` alike);
 - ``max_spin(t, omega, attitude) -> ndarray`` (:class:`BoundsSpin`): an upper bound on
   ``|omega|`` (rad/s) over the whole motion from this state, shape () or (N,); the runs then
-  bound their work and choose default steps from it (:func:`spin_gain`) instead of from
+  bound their work and choose default steps from it (:func:`~tumble.dynamics.methods.bounds.spin_gain`) instead of from
   ``|tau| t / I1``.
 
 Examples
@@ -34,7 +34,6 @@ True
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol, TypeAlias, cast, runtime_checkable
@@ -66,8 +65,6 @@ __all__ = [
     "body_torque",
     "conforms",
     "kernel_form",
-    "spin_gain",
-    "spin_gains",
 ]
 
 TORQUE_FRAMES = ("body", "world")
@@ -476,79 +473,3 @@ def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotat
     # Rotation.apply takes other arithmetic for one rotation than for a stack, so a body's run
     # would depend on its batch (a sweep's rows on its chunk size) by ~1e-15 a step
     return rotate_by_quaternion(quat_conjugate(attitude.as_quat()), tau)
-
-
-def spin_gain(
-    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
-    duration: float,
-) -> float:
-    """Bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s), for
-    bounding a run's work and choosing default steps: the largest of :func:`spin_gains` over
-    a batch. ``attitude`` may be None for a constant torque, which does not read it.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from scipy.spatial.transform import Rotation
-    >>> from tumble.dynamics.models.torques import ConstantTorque, spin_gain
-    >>> torque = ConstantTorque((0.0, 0.0, 0.5))   # |tau| t / I1: 0.5 N m for 10 s on I1 = 2 kg m^2
-    >>> spin_gain(torque, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
-    2.5
-    >>> spin_gain(None, 0.0, np.zeros(3), Rotation.identity(), [2.0, 3.0, 4.0], 10.0)
-    0.0
-    """
-    if model is None:
-        return 0.0
-    form = kernel_form(model)
-    if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: no attitude read
-        gain = _constant_gain(form[1], np.asarray(moments, float), duration)
-        return gain if isinstance(gain, float) else float(np.max(gain))
-    gains = spin_gains(model, t, omega, attitude, moments, duration)
-    return float(gains) if np.ndim(gains) == 0 else float(np.max(gains))  # one body's needs no reduction
-
-
-def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: float) -> float | FloatArray:
-    """``|tau| duration / I1`` for a constant torque ``vector`` (N m): per body for moments (N, 3),
-    the largest for one body's (3,) (Python floats: the same operations, fewer calls)."""
-    if moments.ndim == 1:
-        return float(math.hypot(*vector) / min(moments.tolist()) * duration)
-    return cast(FloatArray, math.hypot(*vector) / np.min(moments, axis=-1) * duration)
-
-
-def spin_gains(
-    model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
-    duration: float,
-) -> FloatArray:
-    """Per body, a bound on the spin (rad/s) a torque can add to ``|omega|`` over ``duration`` (s).
-
-    A model that knows a bound on ``|omega|`` for the whole motion says so through a method
-    ``max_spin(t, omega, attitude)`` (:class:`BoundsSpin`; the gravity gradient does, from its
-    Jacobi integral);
-    otherwise ``|tau(t)| duration / I1``, exact for a constant torque (``|L(t) - L(0)| <=
-    |tau| t`` and ``|omega| <= |L| / I1``; no attitude needed) and an estimate from the start
-    for any other. 0 without a torque. ``omega`` (3,) or (N, 3) and ``attitude`` as for
-    :func:`body_torque`; ``moments`` (3,) or (N, 3), kg m^2. Shape () or (N,).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.dynamics.models.torques import ConstantTorque, spin_gains
-    >>> spin_gains(ConstantTorque((0.0, 0.0, 0.5)), 0.0, np.zeros((2, 3)), None, [[2.0, 3.0, 4.0], [1.0, 3.0, 4.0]],
-    ...            10.0).tolist()
-    [2.5, 5.0]
-    """
-    w = np.asarray(omega, float)
-    if model is None:
-        return np.zeros(w.shape[:-1])
-    form = kernel_form(model)
-    with np.errstate(over="ignore", invalid="ignore"):
-        if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
-            return _constant_gain(form[1], np.asarray(moments, float), duration) + np.zeros(w.shape[:-1])
-        if attitude is None:
-            raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
-        if conforms(model, BoundsSpin):
-            top = cast(BoundsSpin, model).max_spin(t, w, attitude)
-            speed = math.hypot(*w.tolist()) if w.ndim == 1 else np.linalg.norm(w, axis=-1)  # |omega| of each body
-            return cast(FloatArray, np.maximum(top - speed, 0.0))
-        tau = body_torque(model, t, w, attitude)  # checks the model's answer
-        return cast(FloatArray, np.linalg.norm(tau, axis=-1) / np.min(np.asarray(moments, float), axis=-1) * duration)
