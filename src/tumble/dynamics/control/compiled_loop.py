@@ -46,7 +46,7 @@ from .laws import (attitude_error_components, bdot_components, dumping_dipole_co
                    gyro_field_rate_components)
 from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, rhs_namespace, rhs_source
 
-__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "MAX_WHEELS", "N", "RK4", "RK8", "kernels", "padded", "unpadded"]
+__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "MAX_WHEELS", "N", "NO_MEMORY", "held", "law_command", "RK4", "RK8", "kernels", "padded", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
 DOP853, RK4, RK8 = 0, 1, 2
@@ -230,6 +230,78 @@ def _interval(y0: FloatArray, t0: float, t1: float, P0: Any, X: Any, dipole: Flo
     return int(status)
 
 
+#: The laws' memory at the start: MRP feedback's integral term (N m, 3), B-dot's last reading
+#: (T, 3), its time (s) and whether there is one.
+NO_MEMORY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, False)
+
+
+@jit(error_model="numpy")
+def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: float, x: float, yq: float, z: float,
+                c: float, w0: float, w1: float, w2: float, b0: float, b1: float, b2: float, has_field: bool, memory: Any,
+                u: FloatArray) -> Any:  # pragma: no cover - compiled
+    """The law's command at ``t`` (s) from a measurement: the attitude ``(x, yq, z, c)`` (unit
+    quaternion, body to world), the rate ``w`` (rad/s), the field ``b`` (T, body frame; used when
+    ``has_field``) and the wheels' spins ``y[7:]`` (rad/s, exact): ``(m0, m1, m2, memory)`` the
+    dipole asked for (A m^2) and the laws' memory (:data:`NO_MEMORY`), the wheels' torques
+    (N m) into ``u``. ``L`` the law's parameters, ``pinv`` the wheels' allocation (:func:`_loop`).
+    The ideal sensors' loop (:func:`_loop`) and the estimator's
+    (:mod:`~tumble.dynamics.control.estimated_loop`) call it."""
+    k = pinv.shape[0]
+    z0, z1, z2, last0, last1, last2, last_t, has_last = memory
+    m0, m1, m2 = 0.0, 0.0, 0.0
+    for j in range(k):
+        u[j] = 0.0
+    if law == LAW_BDOT and has_field:
+        d0, d1, d2 = 0.0, 0.0, 0.0
+        if L[2] == 0.0:
+            d0, d1, d2 = _gyro_rate(b0, b1, b2, w0, w1, w2)
+            m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
+        else:
+            if has_last:
+                d0, d1, d2 = (b0 - last0) / (t - last_t), (b1 - last1) / (t - last_t), (b2 - last2) / (t - last_t)
+            m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
+            last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
+    elif law != LAW_BDOT:
+        s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
+        h0, h1, h2 = 0.0, 0.0, 0.0
+        for j in range(k):
+            js = P0[BODY + WHEEL * j + 3] * y[7 + j]
+            h0, h1, h2 = (h0 + js * P0[BODY + WHEEL * j], h1 + js * P0[BODY + WHEEL * j + 1],
+                          h2 + js * P0[BODY + WHEEL * j + 2])
+        e0, e1, e2 = 0.0, 0.0, 0.0
+        if L[4] != 0.0:
+            e0, e1, e2 = P0[0] * w0 + h0, P0[1] * w1 + h1, P0[2] * w2 + h2
+        r0, r1, r2 = _feedback(s0, s1, s2, w0, w1, w2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
+        if L[2] > 0.0:
+            g = L[2] * L[0] * L[5]
+            z0 = min(max(z0 + g * s0, -L[3]), L[3])
+            z1 = min(max(z1 + g * s1, -L[3]), L[3])
+            z2 = min(max(z2 + g * s2, -L[3]), L[3])
+        for j in range(k):
+            u[j] = -(pinv[j, 0] * r0 + pinv[j, 1] * r1 + pinv[j, 2] * r2)
+        if law == LAW_DUMPING:
+            m0, m1, m2 = _dumping(b0, b1, b2, h0, h1, h2, L[10], L[11], L[12], L[13])
+    return m0, m1, m2, (z0, z1, z2, last0, last1, last2, last_t, has_last)
+
+
+@jit(error_model="numpy")
+def held(rods: FloatArray, limits: FloatArray, m0: float, m1: float, m2: float, u: FloatArray, y: Any, P0: Any,
+         D: FloatArray, U: FloatArray) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """What a command holds: the rods' dipole (A m^2), the dipole ``m`` asked for put on each rod
+    (``rods`` their axes) and clipped to its limit, into ``D`` (3,) and returned; the wheels'
+    applied torques (N m) of the commands ``u`` at the spins ``y[7:]`` into ``U`` (limits and
+    friction, :func:`~tumble.dynamics.models.actuators.wheel_torque`)."""
+    d0, d1, d2 = 0.0, 0.0, 0.0
+    for r in range(rods.shape[0]):
+        p = min(max(m0 * rods[r, 0] + m1 * rods[r, 1] + m2 * rods[r, 2], -limits[r]), limits[r])
+        d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
+    D[0], D[1], D[2] = d0, d1, d2
+    for j in range(U.shape[0]):
+        b = BODY + WHEEL * j
+        U[j] = _wheel_torque(u[j], y[7 + j], P0[b + 4], P0[b + 5], P0[b + 6], P0[b + 7], P0[b + 8])
+    return d0, d1, d2
+
+
 @jit(error_model="numpy")
 def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
           limits: FloatArray, rtol: float, atol: float, method: int, step: float, carry: bool, Y: FloatArray,
@@ -246,8 +318,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatA
     u = np.zeros(MAX_WHEELS)
     h_abs = 0.0
     turns = _turns(P0[16])
-    z0, z1, z2 = 0.0, 0.0, 0.0  # MRP feedback's integral term, N m
-    last0, last1, last2, last_t, has_last = 0.0, 0.0, 0.0, 0.0, False  # B-dot's last reading
+    memory = NO_MEMORY
     for i in range(steps + 1):
         t = grid[i]
         nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
@@ -260,44 +331,10 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatA
         m0, m1, m2 = 0.0, 0.0, 0.0
         for j in range(k):
             u[j] = 0.0
-        if i < steps and law == LAW_BDOT and kind != FIELD_NONE:
-            d0, d1, d2 = 0.0, 0.0, 0.0
-            if L[2] == 0.0:
-                d0, d1, d2 = _gyro_rate(b0, b1, b2, w0, w1, w2)
-                m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
-            else:
-                if has_last:
-                    d0, d1, d2 = (b0 - last0) / (t - last_t), (b1 - last1) / (t - last_t), (b2 - last2) / (t - last_t)
-                m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
-                last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
-        elif i < steps and law != LAW_BDOT:
-            s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
-            h0, h1, h2 = 0.0, 0.0, 0.0
-            for j in range(k):
-                js = P0[BODY + WHEEL * j + 3] * y[7 + j]
-                h0, h1, h2 = (h0 + js * P0[BODY + WHEEL * j], h1 + js * P0[BODY + WHEEL * j + 1],
-                              h2 + js * P0[BODY + WHEEL * j + 2])
-            e0, e1, e2 = 0.0, 0.0, 0.0
-            if L[4] != 0.0:
-                e0, e1, e2 = P0[0] * w0 + h0, P0[1] * w1 + h1, P0[2] * w2 + h2
-            r0, r1, r2 = _feedback(s0, s1, s2, w0, w1, w2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
-            if L[2] > 0.0:
-                g = L[2] * L[0] * L[5]
-                z0 = min(max(z0 + g * s0, -L[3]), L[3])
-                z1 = min(max(z1 + g * s1, -L[3]), L[3])
-                z2 = min(max(z2 + g * s2, -L[3]), L[3])
-            for j in range(k):
-                u[j] = -(pinv[j, 0] * r0 + pinv[j, 1] * r1 + pinv[j, 2] * r2)
-            if law == LAW_DUMPING:
-                m0, m1, m2 = _dumping(b0, b1, b2, h0, h1, h2, L[10], L[11], L[12], L[13])
-        d0, d1, d2 = 0.0, 0.0, 0.0  # the rods' dipole: the command on each rod, clipped
-        for r in range(rods.shape[0]):
-            p = min(max(m0 * rods[r, 0] + m1 * rods[r, 1] + m2 * rods[r, 2], -limits[r]), limits[r])
-            d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
-        D[i, 0], D[i, 1], D[i, 2] = d0, d1, d2
-        for j in range(k):
-            b = BODY + WHEEL * j
-            U[i, j] = _wheel_torque(u[j], y[7 + j], P0[b + 4], P0[b + 5], P0[b + 6], P0[b + 7], P0[b + 8])
+        if i < steps:
+            m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, x, yq, z, c, w0, w1, w2, b0, b1, b2,
+                                             kind != FIELD_NONE, memory, u)
+        d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
             break
         status, y, h_abs, turns = _advance(y, t, grid[i + 1], with_command(P0, d0, d1, d2, u), X, rtol, atol, method,

@@ -44,6 +44,7 @@ from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector
 from . import _display
 from .controllers import Controller
+from .estimated import Estimated
 from ..environment.magnetic import MagneticField
 from ..models.actuators import Command, Magnetorquers, ReactionWheels
 from ..models.gravity import GravityGradient
@@ -397,6 +398,16 @@ def simulate_controlled(
         limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
         Y, D, U, F = kernel.run(np.concatenate([q0, w0, s0, np.zeros(3)]), grid, law, rods, limits, carry_step)
         return _run(grid, Y, I, J, axes, k, U, D, F)
+    if kernel is not None and isinstance(controller, Estimated):  # the sensors, the filter and the law compiled too
+        from . import estimated_loop
+
+        law = estimated_loop.plan(controller, sensors, I, wheels, field)
+        if law is not None:
+            rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
+            limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
+            Y, D, U, F = estimated_loop.run(controller, kernel, law, grid, np.concatenate([q0, w0, s0, np.zeros(3)]), rods,
+                                            limits, carry_step)
+            return _run(grid, Y, I, J, axes, k, U, D, F)
     sensors = sensors if sensors is not None else Sensors()
     rng = sensors.rng()
 

@@ -11,6 +11,13 @@ tracker at its period), and hands the controller a measurement whose attitude is
 and whose rate is the gyroscope's less the estimated bias. The true attitude the sensors were
 given is never read.
 
+**Compiled.** With built-in parts (a law the compiled loop knows, coarse sun cells, a
+:class:`~tumble.dynamics.models.vector_sensors.StarTracker`, the run's own field model and
+sensors), :func:`~tumble.dynamics.control.controlled.simulate_controlled` runs this wrapper's
+whole loop in one compiled call (:mod:`~tumble.dynamics.control.estimated_loop`), the same
+formulas and the same noise: the Python path's run to round-off; :meth:`Estimated.knowledge`
+gives its rows alike.
+
 **Start.** The filter starts at the first step with a star tracker reading, or with the Sun and
 the field both read (TRIAD, :func:`~tumble.dynamics.estimation.static.triad`, with its
 covariance); until then the controller sees no attitude (B-dot needs none, so a detumbling
@@ -202,6 +209,7 @@ class Estimated:
     _last: tuple[float, FloatArray] | None = dataclasses.field(default=None, init=False, repr=False)
     _rows: list[tuple[float, FloatArray, FloatArray, FloatArray, tuple[bool, bool, bool]]] = \
         dataclasses.field(default_factory=list, init=False, repr=False)
+    _table: Knowledge | None = dataclasses.field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.sensors, Sensors):
@@ -247,11 +255,29 @@ class Estimated:
         ...
         ValueError: the filter never started: no star tracker reading, nor the Sun and the field together
         """
-        self._filter, self._last, self._rows = None, None, []
+        self._filter, self._last, self._rows, self._table = None, None, [], None
         if hasattr(self.controller, "reset"):
             self.controller.reset()
 
-    def _start(self, t: float, m: Measurement) -> MEKF | None:
+    def start(self, t: float, m: Measurement) -> MEKF | None:
+        """The filter started from the readings ``m`` at ``t`` (s), or None when they cannot start it
+        (module docstring: a star tracker's reading, else TRIAD on the Sun and the field).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.estimated import Estimated
+        >>> from tumble.dynamics.models.sensors import Measurement, Sensors
+        >>> from tumble.dynamics.models.vector_sensors import StarTracker
+        >>> c = Estimated(BDot(gain=1e-3, period=0.5), Sensors(star_tracker=StarTracker(cross=1e-5, roll=1e-4)))
+        >>> f = c.start(0.0, Measurement(0.0, np.zeros(3), None, None, star_tracker=Rotation.identity()))
+        >>> f.sigma.round(6).tolist()
+        [1.4e-05, 1.4e-05, 0.0001, 0.001, 0.001, 0.001]
+        >>> c.start(0.0, Measurement(0.0, np.zeros(3), None, None)) is None
+        True
+        """
         gyro_noise = self.sensors.gyro_noise * math.sqrt(self.period)
         if m.star_tracker is not None and self.sensors.star_tracker is not None:
             P = self.sensors.star_tracker.covariance + self.min_sigma**2 * np.eye(3)
@@ -298,7 +324,7 @@ class Estimated:
         f = self._filter
         used = (False, False, False)
         if f is None:
-            f = self._start(t, m)
+            f = self.start(t, m)
             if f is not None:
                 used = (m.star_tracker is None, m.star_tracker is None, m.star_tracker is not None)
         else:
@@ -319,15 +345,50 @@ class Estimated:
             used = (mag, sun, tracker)
         self._filter, self._last = f, (float(t), np.asarray(m.omega, float))
         if f is None:
-            try:
-                return self.controller(t, dataclasses.replace(m, attitude=None))
-            except ValueError as exc:  # a law that needs an attitude: say why there is none
-                raise ValueError(f"t = {t:g} s: the attitude filter has not started (it needs a star tracker reading, "
-                                 f"or the Sun and the field read together), and the controller needs an attitude: "
-                                 f"{exc}") from None
+            return self.no_attitude(t, m)
         self._rows.append((float(t), f.quaternion.copy(), f.bias.copy(), f.sigma, used))
         seen = dataclasses.replace(m, attitude=f.attitude, omega=np.asarray(m.omega - f.bias, float))
         return self.controller(t, seen)
+
+    def no_attitude(self, t: float, m: Measurement) -> Command:
+        """The controller's command before the filter starts: fed the readings ``m`` with no
+        attitude (B-dot needs none); a law that needs one raises, saying why there is none.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.estimated import Estimated
+        >>> from tumble.dynamics.models.sensors import Measurement, Sensors
+        >>> c = Estimated(BDot(gain=1e4, period=0.5), Sensors())
+        >>> (c.no_attitude(0.0, Measurement(0.0, np.array([0.0, 0.0, 0.1]), np.array([2e-5, 0.0, 0.0]), None)).dipole.round(12) + 0.0).tolist()
+        [0.0, 0.02, 0.0]
+        """
+        try:
+            return self.controller(t, dataclasses.replace(m, attitude=None))
+        except ValueError as exc:  # a law that needs an attitude: say why there is none
+            raise ValueError(f"t = {t:g} s: the attitude filter has not started (it needs a star tracker reading, "
+                             f"or the Sun and the field read together), and the controller needs an attitude: "
+                             f"{exc}") from None
+
+    def record(self, t: FloatArray, q: FloatArray, bias: FloatArray, sigma: FloatArray, used: np.ndarray) -> None:
+        """Keep the filter's rows of a run made elsewhere (the compiled loop,
+        :mod:`~tumble.dynamics.control.estimated_loop`): :meth:`knowledge` returns them.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.estimated import Estimated
+        >>> from tumble.dynamics.models.sensors import Sensors
+        >>> c = Estimated(BDot(gain=1e4, period=0.5), Sensors())
+        >>> c.record(np.zeros(1), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.ones((1, 6)), np.ones((1, 3), bool))
+        >>> c.knowledge().t.tolist()
+        [0.0]
+        """
+        self._rows = []
+        self._table = Knowledge(np.asarray(t, float), Rotation.from_quat(q), np.asarray(bias, float),
+                                np.asarray(sigma, float), np.asarray(used, bool)) if len(t) else None
 
     def knowledge(self) -> Knowledge:
         """The filter's estimates from its start to the last step (:class:`Knowledge`).
@@ -347,6 +408,8 @@ class Estimated:
         >>> k.t[:3].tolist(), k.sigma.shape, k.bias.shape
         ([0.0, 0.5, 1.0], (10, 6), (10, 3))
         """
+        if self._table is not None:
+            return self._table
         if not self._rows:
             raise ValueError("the filter never started: no star tracker reading, nor the Sun and the field together")
         t, q, b, s, u = zip(*self._rows)

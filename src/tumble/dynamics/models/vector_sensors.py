@@ -55,11 +55,29 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_rotation, check_vectors
 
-__all__ = ["CoarseSunSensor", "FineSunSensor", "StarTracker", "on_period"]
+__all__ = ["CoarseSunSensor", "FineSunSensor", "StarTracker", "cell_currents", "coarse_reading", "on_period", "on_periods",
+           "tracker_reading"]
+
+
+def on_periods(t: ArrayLike, period: float) -> np.ndarray:
+    """Whether a sensor of ``period`` (s; 0 reads at every step) reads at each ``t`` (s): ``t`` a
+    multiple of it (within 1e-6 of a period); an array of bool of ``t``'s shape.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.vector_sensors import on_periods
+    >>> on_periods([0.0, 0.1, 0.5, 1.0000000001], 0.5).tolist()
+    [True, False, True, True]
+    """
+    k = np.asarray(t, float)
+    if period == 0.0:
+        return np.ones(k.shape, bool)
+    k = k / period
+    return np.asarray(np.abs(k - np.round(k)) < 1e-6)
 
 
 def on_period(t: float, period: float) -> bool:
-    """Whether a sensor of ``period`` (s; 0 reads at every step) reads at ``t`` (s): ``t`` a multiple of it.
+    """:func:`on_periods` at one ``t`` (s).
 
     Examples
     --------
@@ -67,10 +85,102 @@ def on_period(t: float, period: float) -> bool:
     >>> [on_period(t, 0.5) for t in (0.0, 0.1, 0.5, 1.0000000001)]
     [True, False, True, True]
     """
-    if period == 0.0:
-        return True
-    k = t / period
-    return abs(k - round(k)) < 1e-6
+    return bool(on_periods(t, period))
+
+
+def cell_currents(A: FloatArray, light: float, s0: float, s1: float, s2: float, noise: float, z: FloatArray,
+                  out: FloatArray) -> None:
+    """The coarse cells' readings into ``out`` (k, 2): the cosine law (module docstring) of the pairs
+    ``A`` (k, 3) for the Sun along ``(s0, s1, s2)`` (body, unit) at the light fraction ``light``,
+    plus ``noise`` times the standard normals ``z`` (2 k of them, row by row). Plain loops: the
+    Python sensor and the compiled loop (:mod:`~tumble.dynamics.control.estimated_loop`) call it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.vector_sensors import cell_currents
+    >>> out = np.empty((3, 2))
+    >>> cell_currents(np.eye(3), 0.5, 0.6, 0.0, -0.8, 0.0, np.zeros(6), out)
+    >>> out.tolist()
+    [[0.3, 0.0], [0.0, 0.0], [0.0, 0.4]]
+    """
+    for j in range(A.shape[0]):
+        c = A[j, 0] * s0 + A[j, 1] * s1 + A[j, 2] * s2
+        out[j, 0] = light * max(c, 0.0) + noise * z[2 * j]
+        out[j, 1] = light * max(-c, 0.0) + noise * z[2 * j + 1]
+
+
+def coarse_reading(pinv: FloatArray, gram_inv: FloatArray, noise: float,
+                   currents: FloatArray) -> tuple[float, float, float, float]:
+    """The coarse sensor's direction (body, unit) and its angular noise (rad) from the cells'
+    ``currents`` (k, 2) (:func:`cell_currents`): ``v = A^+ d`` of the pairs' differences ``d`` (``pinv``
+    = ``A^+ = (A^T A)^-1 A^T``, ``gram_inv`` = ``(A^T A)^-1``) and the largest variance across
+    ``u = v / |v|`` of ``2 noise^2 (A^T A)^-1``, over ``|v|`` (module docstring). The projection
+    ``Q`` across ``u`` has ``u`` as a null vector, so its other two eigenvalues are the roots of
+    ``x^2 - tr(Q) x + e2`` with ``e2 = (tr(Q)^2 - tr(Q^2)) / 2`` (the characteristic polynomial's
+    coefficients; Horn & Johnson, *Matrix Analysis*, 2nd ed., sec. 1.2). A noise below zero
+    (``-1``) when ``v`` is zero.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.vector_sensors import coarse_reading
+    >>> from tumble.dynamics.models.vector_sensors import cell_currents
+    >>> A, currents = np.eye(3), np.empty((3, 2))
+    >>> cell_currents(A, 1.0, 0.6, 0.0, 0.8, 1e-3, np.zeros(6), currents)
+    >>> u0, u1, u2, sigma = coarse_reading(A, A, 1e-3, currents)
+    >>> round(float(u0), 12), round(float(u2), 12), round(float(sigma), 6)
+    (0.6, 0.8, 0.001414)
+    """
+    v0, v1, v2 = 0.0, 0.0, 0.0
+    for j in range(currents.shape[0]):
+        d = currents[j, 0] - currents[j, 1]
+        v0, v1, v2 = v0 + pinv[0, j] * d, v1 + pinv[1, j] * d, v2 + pinv[2, j] * d
+    n = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    if n == 0.0:
+        return 0.0, 0.0, 0.0, -1.0
+    u = (v0 / n, v1 / n, v2 / n)
+    k2 = 2.0 * noise * noise
+    cu = (k2 * (gram_inv[0, 0] * u[0] + gram_inv[0, 1] * u[1] + gram_inv[0, 2] * u[2]),
+          k2 * (gram_inv[1, 0] * u[0] + gram_inv[1, 1] * u[1] + gram_inv[1, 2] * u[2]),
+          k2 * (gram_inv[2, 0] * u[0] + gram_inv[2, 1] * u[1] + gram_inv[2, 2] * u[2]))
+    a = u[0] * cu[0] + u[1] * cu[1] + u[2] * cu[2]
+    tr, sq = 0.0, 0.0
+    for r in range(3):
+        for c in range(3):
+            q = k2 * gram_inv[r, c] - u[r] * cu[c] - cu[r] * u[c] + a * u[r] * u[c]
+            sq += q * q
+            if r == c:
+                tr += q
+    e2 = 0.5 * (tr * tr - sq)
+    top = 0.5 * tr + math.sqrt(max(0.25 * tr * tr - e2, 0.0))
+    return u[0], u[1], u[2], math.sqrt(max(top, 0.0)) / n
+
+
+def tracker_reading(C: FloatArray, cross: float, roll: float, z0: float, z1: float, z2: float, x: float, y: float,
+                    z: float, s: float) -> tuple[float, float, float, float]:
+    """A star tracker's attitude ``q (x) exp(C v / 2)`` (scalar last, body to world) of the true
+    unit quaternion ``(x, y, z, s)``: ``v = (cross z0, cross z1, roll z2)`` about the sensor's axes,
+    ``C`` (3, 3) sensor to body (module docstring); the rotation vector's quaternion
+    ``(sin(a/2) r / a, cos(a/2))`` (its series below 1e-4 rad) and the Hamilton product (Markley &
+    Crassidis 2014, eqs. 2.82 and 2.126). Plain floats: the Python sensor and the compiled loop call it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.vector_sensors import tracker_reading
+    >>> [round(float(v), 12) for v in tracker_reading(np.eye(3), 0.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)]
+    [0.0, 0.0, 0.049979169271, 0.998750260395]
+    """
+    v0, v1, v2 = cross * z0, cross * z1, roll * z2
+    r0 = C[0, 0] * v0 + C[0, 1] * v1 + C[0, 2] * v2
+    r1 = C[1, 0] * v0 + C[1, 1] * v1 + C[1, 2] * v2
+    r2 = C[2, 0] * v0 + C[2, 1] * v1 + C[2, 2] * v2
+    a = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+    k = math.sin(0.5 * a) / a if a > 1e-4 else 0.5 - a * a / 48.0
+    dx, dy, dz, dw = k * r0, k * r1, k * r2, math.cos(0.5 * a)
+    return (s * dx + dw * x + y * dz - z * dy, s * dy + dw * y + z * dx - x * dz, s * dz + dw * z + x * dy - y * dx,
+            s * dw - x * dx - y * dy - z * dz)
 
 
 def _period(value: object) -> float:
@@ -124,6 +234,19 @@ class CoarseSunSensor:
         check_positive("noise", self.noise, "fraction of a full-Sun current", allow_zero=True)
         _period(self.period)
 
+    def tables(self) -> tuple[FloatArray, FloatArray]:
+        """The least squares' ``A^+ = (A^T A)^-1 A^T`` (3, k) and ``(A^T A)^-1`` (3, 3) of the axes ``A``.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.vector_sensors import CoarseSunSensor
+        >>> [t.shape for t in CoarseSunSensor().tables()]
+        [(3, 3), (3, 3)]
+        """
+        A = np.asarray(self.axes, float)
+        gram_inv = np.linalg.inv(A.T @ A)
+        return np.ascontiguousarray(gram_inv @ A.T), np.ascontiguousarray(gram_inv)
+
     def currents(self, sun_body: FloatArray, light: float, rng: np.random.Generator) -> FloatArray:
         """The cells' readings, shape (k, 2) (facing ``+a``, ``-a``), in full-Sun currents.
 
@@ -136,9 +259,11 @@ class CoarseSunSensor:
         >>> CoarseSunSensor().currents(np.array([0.6, 0.0, -0.8]), 0.5, np.random.default_rng(0)).tolist()
         [[0.3, 0.0], [0.0, 0.0], [0.0, 0.4]]
         """
-        c = np.asarray(self.axes) @ sun_body
-        clean = light * np.stack([np.maximum(c, 0.0), np.maximum(-c, 0.0)], axis=1)
-        return np.asarray(clean + self.noise * rng.standard_normal(clean.shape), float)
+        A = np.asarray(self.axes, float)
+        out = np.empty((A.shape[0], 2))
+        s0, s1, s2 = (float(v) for v in sun_body)
+        cell_currents(A, light, s0, s1, s2, self.noise, rng.standard_normal(2 * A.shape[0]), out)
+        return out
 
     def measure(self, sun_body: FloatArray, light: float, rng: np.random.Generator) -> tuple[FloatArray, float] | None:
         """The Sun's measured direction (body, unit) and its angular noise (rad), or None in the umbra.
@@ -158,16 +283,13 @@ class CoarseSunSensor:
         """
         if light <= 0.0:
             return None
-        i = self.currents(sun_body, light, rng)
-        A = np.asarray(self.axes)
-        v, *_ = np.linalg.lstsq(A, i[:, 0] - i[:, 1], rcond=None)
-        n = float(np.linalg.norm(v))
-        if n == 0.0:
+        A = np.asarray(self.axes, float)
+        pinv, gram_inv = self.tables()
+        currents = self.currents(sun_body, light, rng)
+        u0, u1, u2, sigma = coarse_reading(pinv, gram_inv, self.noise, currents)
+        if sigma < 0.0:
             return None
-        u = v / n
-        cov = 2.0 * self.noise**2 * np.linalg.inv(A.T @ A)
-        across = np.eye(3) - np.outer(u, u)
-        return u, math.sqrt(max(float(np.linalg.eigvalsh(across @ cov @ across)[-1]), 0.0)) / n
+        return np.array([u0, u1, u2], float), float(sigma)
 
 
 @dataclass(frozen=True)
@@ -300,5 +422,7 @@ class StarTracker:
         >>> float((StarTracker().measure(truth, np.random.default_rng(0)) * truth.inv()).magnitude())
         0.0
         """
-        v = np.array([self.cross, self.cross, self.roll]) * rng.standard_normal(3)
-        return attitude * Rotation.from_rotvec(self.frame.apply(v))  # type: ignore[union-attr]
+        z0, z1, z2 = (float(v) for v in rng.standard_normal(3))
+        x, y, z, s = (float(v) for v in attitude.as_quat())
+        C = self.frame.as_matrix()  # type: ignore[union-attr]
+        return Rotation.from_quat(tracker_reading(C, self.cross, self.roll, z0, z1, z2, x, y, z, s))

@@ -1,0 +1,315 @@
+"""The closed loop with attitude knowledge in one compiled call: the sensors, the MEKF and the law.
+
+:class:`~tumble.dynamics.control.estimated.Estimated` runs in Python once per control period
+(readings, filter, law, then a compiled hold interval). When everything it wraps is built in
+(:func:`plan`: a law the compiled loop knows, :func:`~tumble.dynamics.control.compiled_control.compiled_law`;
+a magnetometer, coarse sun cells, a star tracker and a gyroscope; the flight software's field
+model the run's own), the whole loop runs here instead, in one call, with the same formulas:
+
+- **the noise** is drawn up front by numpy from the sensors' seeded generator in the order the
+  Python path draws it at each step (gyroscope 3, magnetometer 3, the ``"star_tracker"``
+  attitude 3, the coarse cells 2 k when they read and are lit, the star tracker 3 when it
+  reads): the same numbers, so both paths agree to round-off;
+- **what does not depend on the state** is tabulated per control instant in numpy: the Sun's
+  direction (world), the light fraction, which sensor reads when;
+- **the readings** are the sensors' own plain functions
+  (:func:`~tumble.dynamics.models.vector_sensors.cell_currents`,
+  :func:`~tumble.dynamics.models.vector_sensors.coarse_reading`,
+  :func:`~tumble.dynamics.models.vector_sensors.tracker_reading`);
+- **the filter** is the compiled MEKF's (:mod:`~tumble.dynamics.estimation.mekf_kernels`:
+  propagation with the mean of two gyroscope readings, the vector and attitude updates);
+- **the law** is :func:`~tumble.dynamics.control.compiled_loop.law_command`, fed the estimate;
+- **the start** (a star tracker reading, or TRIAD on the Sun and the field) stays Python's
+  (:meth:`~tumble.dynamics.control.estimated.Estimated.start`): the loop pauses at the step
+  whose readings can start the filter, Python starts it, the loop goes on from that step.
+
+Examples
+--------
+A pointing run from a magnetometer, coarse sun cells and a gyroscope takes this path (the
+docstring of :mod:`~tumble.dynamics.control.estimated` has the run):
+
+>>> import numpy as np
+>>> from tumble.dynamics.control.controllers import MRPFeedback
+>>> from tumble.dynamics.control.estimated import Estimated
+>>> from tumble.dynamics.control.estimated_loop import plan
+>>> from tumble.dynamics.models.actuators import ReactionWheels
+>>> from tumble.dynamics.models.sensors import Sensors
+>>> rw = ReactionWheels(np.eye(3), inertia=1e-5, max_torque=2e-3)
+>>> sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=2e-7, attitude="none")
+>>> c = Estimated(MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.02, 0.03, 0.04], wheels=rw), sensors)
+>>> plan(c, sensors, np.array([0.02, 0.03, 0.04]), rw, None) is not None
+True
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ...jit import jit
+from ...typing import FloatArray
+from ..estimation.mekf_kernels import compiled as mekf_kernel
+from ..models.sensors import Measurement, Sensors
+from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_reading
+from ..special.quaternion import to_body
+from . import compiled_loop as _cl
+from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world
+
+__all__ = ["NEEDS_START", "NO_ATTITUDE", "plan", "run"]
+
+#: Statuses beyond the compiled loop's: the filter can start at the step ``mem[15]``; the law
+#: needs an attitude and the filter has not started.
+NEEDS_START, NO_ATTITUDE = 2, 3
+
+_cells = jit(cell_currents, error_model="numpy")
+_coarse = jit(coarse_reading, error_model="numpy")
+_tracker = jit(tracker_reading, error_model="numpy")
+_to_body = jit(to_body, error_model="numpy")
+_propagate = mekf_kernel("propagate")
+_update = mekf_kernel("update")
+
+
+@jit(error_model="numpy")
+def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatArray,
+                    pinv: FloatArray, rods: FloatArray, limits: FloatArray, rtol: float, atol: float, method: int,
+                    step: float, carry: bool, S: FloatArray, A: FloatArray, Apinv: FloatArray, Agram: FloatArray,
+                    C: FloatArray, Rt: FloatArray, noise: FloatArray, offs: np.ndarray, flags: np.ndarray,
+                    sun_world: FloatArray, light: FloatArray, fq: FloatArray, fb: FloatArray, fP: FloatArray,
+                    mem: FloatArray, used0: np.ndarray, Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray,
+                    KQ: FloatArray, KB: FloatArray, KS: FloatArray, KU: np.ndarray, KV: np.ndarray,
+                    RD: FloatArray) -> int:  # pragma: no cover - compiled
+    """The loop from step ``i0`` of ``grid`` (s) (module docstring; :func:`run` says what each
+    argument holds); ``fresh``: the filter started at ``i0`` (its updates skipped there, ``used0``
+    its row's sensors). Returns a status; on a pause, what was read into ``RD`` and the memory
+    into ``mem``."""
+    steps = grid.shape[0] - 1
+    y = _cl.tuple_of(y0)
+    u = np.zeros(_cl.MAX_WHEELS)
+    h_abs = mem[8]
+    turns = _cl._turns(P0[16])
+    memory = (mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6], mem[7] != 0.0)
+    kind = int(P0[15])
+    has_field = kind != FIELD_NONE
+    kc = A.shape[0]
+    cur = np.empty((kc, 2))
+    yv, Hv, Rv, vec = np.empty((1, 2)), np.empty((1, 2, 6)), np.empty((1, 2, 2)), np.empty((1, 7))
+    ya, Ha, Ra, qm = np.empty((1, 3)), np.empty((1, 3, 6)), np.empty((1, 3, 3)), np.empty((1, 4))
+    ok, nis, gyro = np.ones(1, np.bool_), np.empty(1), np.empty((1, 3))
+    for i in range(i0, steps + 1):
+        t = grid[i]
+        nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
+        y = _cl.with_quaternion(y, y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq)
+        _cl.store(y, Y[i])
+        x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+        b0, b1, b2 = field_body(kind, X[0], X[1], x, yq, z, c, t) if has_field else (0.0, 0.0, 0.0)
+        F[i, 0], F[i, 1], F[i, 2] = b0, b1, b2
+        m0, m1, m2 = 0.0, 0.0, 0.0
+        for j in range(_cl.MAX_WHEELS):
+            u[j] = 0.0
+        if i < steps:
+            o = offs[i]  # the readings (Sensors.sample, in its order of draws)
+            g0, g1, g2 = w0 + S[0] + S[6] * noise[o], w1 + S[1] + S[6] * noise[o + 1], w2 + S[2] + S[6] * noise[o + 2]
+            o += 3
+            n0, n1, n2 = 0.0, 0.0, 0.0
+            if has_field:
+                n0, n1, n2 = b0 + S[3] + S[7] * noise[o], b1 + S[4] + S[7] * noise[o + 1], b2 + S[5] + S[7] * noise[o + 2]
+                o += 3
+            if S[8] != 0.0:
+                o += 3
+            has_sun, v0, v1, v2, sg = False, 0.0, 0.0, 0.0, 0.0
+            if flags[i] & 2:
+                s0, s1, s2 = _to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
+                _cells(A, light[i], s0, s1, s2, S[9], noise[o:o + 2 * kc], cur)
+                v0, v1, v2, sg = _coarse(Apinv, Agram, S[9], cur)
+                o += 2 * kc
+                has_sun = sg >= 0.0
+            has_trk, t0, t1, t2, t3 = False, 0.0, 0.0, 0.0, 0.0
+            if flags[i] & 4:
+                t0, t1, t2, t3 = _tracker(C, S[10], S[11], noise[o], noise[o + 1], noise[o + 2], x, yq, z, c)
+                has_trk = True
+            if mem[9] == 0.0 and (has_trk or (has_sun and has_field and S[15] != 0.0) or law != _cl.LAW_BDOT):
+                RD[0], RD[1], RD[2], RD[3], RD[4], RD[5], RD[6], RD[7] = t, g0, g1, g2, n0, n1, n2, (1.0 if has_field else 0.0)
+                RD[8], RD[9], RD[10], RD[11], RD[12] = v0, v1, v2, sg, (1.0 if has_sun else 0.0)
+                RD[13], RD[14], RD[15], RD[16], RD[17] = t0, t1, t2, t3, (1.0 if has_trk else 0.0)
+                mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6] = memory[0], memory[1], memory[2], memory[3], \
+                    memory[4], memory[5], memory[6]
+                mem[7], mem[8], mem[15] = (1.0 if memory[7] else 0.0), h_abs, float(i)
+                return NEEDS_START if has_trk or (has_sun and has_field and S[15] != 0.0) else NO_ATTITUDE
+            if mem[9] == 0.0:  # B-dot before the start: the readings themselves
+                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, x, yq, z, c, g0, g1, g2, n0, n1, n2,
+                                                     has_field, memory, u)
+            else:
+                used_mag, used_sun, used_trk = used0[0], used0[1], used0[2]
+                if not (fresh and i == i0):
+                    if t > mem[10]:  # the rate over the step: the mean of its two readings
+                        gyro[0, 0], gyro[0, 1], gyro[0, 2] = 0.5 * (mem[11] + g0), 0.5 * (mem[12] + g1), 0.5 * (mem[13] + g2)
+                        _propagate(fq, fb, fP, gyro, t - mem[10], S[13], S[14])
+                    used_mag = has_field and S[15] != 0.0 and (flags[i] & 1) != 0
+                    if used_mag:
+                        bn = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+                        r0, r1, r2 = field_world(kind, X[0], X[1], t)
+                        vec[0, 0], vec[0, 1], vec[0, 2], vec[0, 3], vec[0, 4], vec[0, 5] = n0, n1, n2, r0, r1, r2
+                        vec[0, 6] = max(S[7] / bn if bn > 0.0 else math.inf, S[12])
+                        _update(fq, fb, fP, yv, Hv, Rv, ok, nis, vec)
+                    used_sun = has_sun
+                    if has_sun:
+                        vec[0, 0], vec[0, 1], vec[0, 2] = v0, v1, v2
+                        vec[0, 3], vec[0, 4], vec[0, 5] = sun_world[i, 0], sun_world[i, 1], sun_world[i, 2]
+                        vec[0, 6] = max(sg, S[12])
+                        _update(fq, fb, fP, yv, Hv, Rv, ok, nis, vec)
+                    used_trk = has_trk
+                    if has_trk:
+                        qm[0, 0], qm[0, 1], qm[0, 2], qm[0, 3] = t0, t1, t2, t3
+                        Ra[0, :, :] = Rt
+                        _update(fq, fb, fP, ya, Ha, Ra, ok, nis, qm)
+                for j in range(4):
+                    KQ[i, j] = fq[0, j]
+                for j in range(3):
+                    KB[i, j] = fb[0, j]
+                for j in range(6):
+                    KS[i, j] = math.sqrt(fP[0, j, j])
+                KU[i, 0], KU[i, 1], KU[i, 2], KV[i] = used_mag, used_sun, used_trk, True
+                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
+                                                     g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
+                                                     has_field, memory, u)
+            mem[10], mem[11], mem[12], mem[13] = t, g0, g1, g2
+        d0, d1, d2 = _cl.held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
+        if i == steps:
+            break
+        status, y, h_abs, turns = _cl._advance(y, t, grid[i + 1], _cl.with_command(P0, d0, d1, d2, u), X, rtol, atol,
+                                               method, step, h_abs if carry else 0.0, turns)
+        if status != _cl.OK:
+            return int(status)
+    return _cl.OK
+
+
+def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
+    """The wrapped law of an :class:`~tumble.dynamics.control.estimated.Estimated` that this loop
+    runs (``(law, parameters, allocation)`` of :func:`~tumble.dynamics.control.compiled_control.compiled_law`),
+    or None for the Python path: the run's ``sensors`` those the filter is told of, a coarse sun
+    sensor or none, a :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the
+    flight software's field the run's (or none), and the wrapped law a built-in one.
+
+    Examples
+    --------
+    A fine sun sensor keeps the Python path:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.estimated import Estimated
+    >>> from tumble.dynamics.control.estimated_loop import plan
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.sun import Sunlight
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> from tumble.dynamics.models.vector_sensors import FineSunSensor
+    >>> s = Sensors(sun_sensor=FineSunSensor(), sunlight=Sunlight(CircularOrbit(altitude=5e5), "2026-03-20T14:46:00"))
+    >>> plan(Estimated(BDot(gain=1.0, period=1.0), s), s, np.ones(3), None, None) is None
+    True
+    """
+    from .compiled_control import compiled_law, field_params
+    from .estimated import Estimated
+
+    if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
+        return None
+    s = controller.sensors
+    if sensors is not s or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
+            or not (s.star_tracker is None or isinstance(s.star_tracker, StarTracker)):
+        return None
+    own = controller.field
+    if own is not None and own is not field:
+        if field is None:
+            return None
+        (kind, p), (own_kind, own_p) = field_params(field), field_params(own)
+        if kind == FIELD_TABLE or kind != own_kind or not np.array_equal(p, own_p):
+            return None
+    return compiled_law(controller.controller, None, moments, wheels, field)
+
+
+def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], grid: FloatArray, y0: FloatArray,
+        rods: FloatArray, limits: FloatArray, carry: bool) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The whole loop of the :class:`~tumble.dynamics.control.estimated.Estimated` ``controller``
+    (:func:`plan` said yes) on the :class:`~tumble.dynamics.control.compiled_control.ControlKernel`
+    ``kernel``: as :meth:`~tumble.dynamics.control.compiled_control.ControlKernel.run`, the states,
+    dipoles, wheel torques and fields at ``grid`` (s); the filter's rows left in the controller
+    (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`).
+
+    Examples
+    --------
+    :func:`~tumble.dynamics.control.controlled.simulate_controlled` calls it; the module
+    docstring of :mod:`~tumble.dynamics.control.estimated` has a run.
+
+    >>> from tumble.dynamics.control.estimated_loop import run
+    >>> run.__name__
+    'run'
+    """
+    sensors: Sensors = controller.sensors
+    steps = len(grid) - 1
+    t = np.asarray(grid[:-1], float)
+    has_field = int(kernel.P[15]) != FIELD_NONE
+    css = sensors.sun_sensor if isinstance(sensors.sun_sensor, CoarseSunSensor) else None   # plan: coarse or none
+    trk = sensors.star_tracker
+    kc = 0 if css is None else len(np.asarray(css.axes))
+    lit, light, sun_world = np.zeros(steps, bool), np.zeros(steps), np.zeros((steps, 3))
+    A, Apinv, Agram = np.zeros((0, 3)), np.zeros((3, 0)), np.zeros((3, 3))
+    if css is not None and sensors.sunlight is not None:
+        on = on_periods(t, css.period)
+        light[on] = sensors.sunlight.fraction(t[on])
+        sun_world[on] = sensors.sunlight.world(t[on])
+        lit = on & (light > 0.0)
+        A = np.ascontiguousarray(css.axes, dtype=float)
+        Apinv, Agram = css.tables()
+    tracked = on_periods(t, trk.period) if trk is not None else np.zeros(steps, bool)
+    counts = 3 + 3 * has_field + 3 * (sensors.attitude == "star_tracker") + 2 * kc * lit + 3 * tracked
+    offs = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    noise = sensors.rng().standard_normal(int(offs[-1]))
+    flags = (on_periods(t, controller.magnetometer_period) * 1 + lit * 2 + tracked * 4).astype(np.int64)
+    min_sigma = controller.min_sigma
+    S = np.array([*sensors.gyro_bias, *sensors.magnetometer_bias, sensors.gyro_noise, sensors.magnetometer_noise,
+                  sensors.attitude == "star_tracker", css.noise if css is not None else 0.0,
+                  trk.cross if trk is not None else 0.0, trk.roll if trk is not None else 0.0, min_sigma,
+                  sensors.gyro_noise * math.sqrt(controller.period), controller.bias_walk, controller.field is not None],
+                 dtype=float)
+    C = trk.frame.as_matrix() if trk is not None else np.eye(3)  # type: ignore[union-attr]
+    Rt = trk.covariance + min_sigma**2 * np.eye(3) if trk is not None else np.eye(3)
+    fq, fb, fP = np.zeros((1, 4)), np.zeros((1, 3)), np.zeros((1, 6, 6))
+    mem, used0, RD = np.zeros(16), np.zeros(3, bool), np.zeros(18)
+    n = steps + 1
+    Y, D, U, F = np.empty((n, _cl.N)), np.zeros((n, 3)), np.zeros((n, kernel.k)), np.zeros((n, 3))
+    KQ, KB, KS, KU, KV = np.zeros((n, 4)), np.zeros((n, 3)), np.zeros((n, 6)), np.zeros((n, 3), bool), np.zeros(n, bool)
+    y, i0, fresh = _cl.padded(y0), 0, False
+    loop = _kernels()["_knowledge_loop"]
+    while True:
+        status = loop(y, i0, fresh, np.ascontiguousarray(grid, dtype=float), kernel.P, kernel.X, law[0], law[1], law[2],
+                      np.ascontiguousarray(rods, dtype=float), np.ascontiguousarray(limits, dtype=float), kernel.rtol,
+                      kernel.atol, kernel.method, kernel.step, bool(carry), S, A, Apinv, Agram,
+                      np.ascontiguousarray(C), np.ascontiguousarray(Rt), noise, offs, flags, sun_world, light, fq, fb, fP,
+                      mem, used0, Y, D, U, F, KQ, KB, KS, KU, KV, RD)
+        if status in (NEEDS_START, NO_ATTITUDE):
+            i = int(mem[15])
+            m = Measurement(float(RD[0]), RD[1:4].copy(), RD[4:7].copy() if RD[7] else None, None,
+                            _cl.unpadded(Y[i], kernel.k)[7:7 + kernel.k], RD[8:11].copy() if RD[12] else None,
+                            float(RD[11]) if RD[12] else 0.0, Rotation.from_quat(RD[13:17]) if RD[17] else None)
+            if status == NO_ATTITUDE:
+                controller.no_attitude(float(grid[i]), m)   # raises the Python path's error
+            f = controller.start(float(grid[i]), m)
+            fq[0], fb[0], fP[0] = f.quaternion, f.bias, f.covariance
+            used0[:] = (m.star_tracker is None, m.star_tracker is None, m.star_tracker is not None)
+            mem[9] = 1.0
+            y, i0, fresh = Y[i].copy(), i, True
+            continue
+        if status != _cl.OK:
+            raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
+        break
+    controller.record(grid[KV], KQ[KV], KB[KV], KS[KV], KU[KV])
+    return _cl.unpadded(Y, kernel.k), D, U, F
+
+
+_KERNELS: dict[str, Any] = {"_knowledge_loop": _knowledge_loop}
+
+
+def _kernels() -> dict[str, Any]:
+    """The compiled kernel, by name (looked up at call time)."""
+    return _KERNELS
