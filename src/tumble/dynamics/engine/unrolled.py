@@ -14,7 +14,10 @@ the step ``h`` (s), the body ``I`` (a 3-tuple of principal moments, kg m^2), the
 turned to each stage by ``rot`` (cos and sin of ``n c_s h`` for the stage nodes ``c_s``,
 :func:`rotations_source`): the circular orbit's direction at every stage with two trigonometric
 calls per step, not two per stage. It calls ``rhs(y, I, P, u0, u1)``, the kernels' one
-right-hand side.
+right-hand side. A state that carries more than the body (the closed loop's wheel spins and
+external impulse, :mod:`~tumble.dynamics.control.compiled_loop`) gets the same steps from the
+same lines over its own size, with a right-hand side that takes the time, ``rhs(t, y, P, X, u0,
+u1)`` (:class:`Layout`, :func:`state_layout`).
 
 Examples
 --------
@@ -27,6 +30,7 @@ def rk4_step(y, h, I, P, cs, ss, rot):
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Union
 
 import numpy as np
@@ -35,10 +39,54 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["STATE", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source"]
+__all__ = ["BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source",
+           "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
 STATE = 7
+
+
+@dataclass(frozen=True)
+class Layout:
+    """How a state's steps are written: its ``size`` (floats), the right-hand side's arguments
+    after the state (``params``), and whether it takes the stage's time first (``timed``).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import BODY, state_layout
+    >>> BODY.header("step", "h"), state_layout(10).header("step", "h")
+    ('def step(y, h, I, P, cs, ss, rot):', 'def step(t, y, h, P, X, cs, ss, rot):')
+    """
+
+    size: int
+    params: str
+    timed: bool
+
+    def header(self, name: str, middle: str) -> str:
+        """A step's first line: ``name`` taking the (time and) state, ``middle``, the parameters and the turns."""
+        return f"def {name}({'t, ' if self.timed else ''}y, {middle}, {self.params}, cs, ss, rot):"
+
+    def call(self, node: str, state: str) -> str:
+        """The right-hand side at ``state`` and the stage's time ``node``."""
+        return f"rhs({node + ', ' if self.timed else ''}{state}, {self.params}, u0, u1)"
+
+
+#: The rigid body's layout: ``rhs(y, I, P, u0, u1)`` over ``(omega, q)``.
+BODY = Layout(STATE, "I, P", False)
+
+
+def state_layout(n: int) -> Layout:
+    """The layout of a state of ``n`` floats whose right-hand side is ``rhs(t, y, P, X, u0, u1)``:
+    the time (s), the state, the run's parameters ``P`` (a tuple of floats) and tables ``X`` (a
+    tuple of arrays), and a circular orbit's direction at the stage.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import state_layout
+    >>> state_layout(13).call("t", "y")
+    'rhs(t, y, P, X, u0, u1)'
+    """
+    return Layout(n, "P, X", True)
 
 
 def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
@@ -48,25 +96,22 @@ def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
     return " + ".join(terms) if terms else "0.0"
 
 
-def _advanced(weights: Coefficients, stages: Sequence[str], y: str = "y") -> str:
+def _advanced(layout: Layout, weights: Coefficients, stages: Sequence[str], y: str = "y") -> str:
     """The state ``y + h sum_r w_r k_r`` as a tuple literal."""
-    return "(" + ", ".join(f"{y}[{i}] + h * ({_weighted(weights, stages, i)})" for i in range(STATE)) + ")"
+    return "(" + ", ".join(f"{y}[{i}] + h * ({_weighted(weights, stages, i)})" for i in range(layout.size)) + ")"
 
 
-def _stage(s: int, A: np.ndarray, y: str = "y") -> list[str]:
-    """Lines computing stage ``s``: its state from the slopes before it, the orbit's direction at
-    its node, and its slope ``k{s}``."""
-    lines = [f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]",
-             f"    u1 = ss * rot[{2 * s}] + cs * rot[{2 * s + 1}]"]
-    if s == 0:
-        lines.append(f"    k0 = rhs({y}, I, P, u0, u1)")
-    else:
-        previous = [f"k{r}" for r in range(s)]
-        lines.append(f"    k{s} = rhs({_advanced(A[s, :s], previous, y)}, I, P, u0, u1)")
-    return lines
+def _stage(layout: Layout, s: int, A: np.ndarray, C: Coefficients, state: str = "") -> list[str]:
+    """Lines computing stage ``s``: the orbit's direction at its node, and its slope ``k{s}`` at
+    ``state`` (by default, from the slopes before it)."""
+    node = "t" if C[s] == 0.0 else f"t + {float(C[s])!r} * h"
+    state = state or ("y" if s == 0 else _advanced(layout, A[s, :s], [f"k{r}" for r in range(s)]))
+    return [f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]",
+            f"    u1 = ss * rot[{2 * s}] + cs * rot[{2 * s + 1}]",
+            f"    k{s} = {layout.call(node, state)}"]
 
 
-def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray) -> str:
+def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, layout: Layout = BODY) -> str:
     """The source of one step of the explicit tableau ``(A, B, C)`` (module docstring): returns the
     new state.
 
@@ -79,10 +124,10 @@ def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray) ->
     4
     """
     stages = len(B)
-    lines = [f"def {name}(y, h, I, P, cs, ss, rot):"]
+    lines = [layout.header(name, "h")]
     for s in range(stages):
-        lines += _stage(s, A)
-    lines.append(f"    return {_advanced(B, [f'k{r}' for r in range(stages)])}")
+        lines += _stage(layout, s, A, C)
+    lines.append(f"    return {_advanced(layout, B, [f'k{r}' for r in range(stages)])}")
     return "\n".join(lines) + "\n"
 
 
@@ -130,7 +175,8 @@ def dop853_errors_lines(name: str, n: int, atol: str) -> list[str]:
     return [*lines, "    return e5, e3"]
 
 
-def dop853_sources() -> str:
+def dop853_sources(layout: Layout = BODY, step: str = "dop853_step", errors: str = "dop853_errors",
+                   atol: str = "atol[{i}]", dense: bool = True) -> str:
     """The sources of DOP853's pieces (Hairer, Norsett & Wanner, *Solving ODEs I*, 2nd ed.,
     sec. II.10, in scipy's arrangement, :class:`scipy.integrate.DOP853`):
 
@@ -143,6 +189,10 @@ def dop853_sources() -> str:
       7th-order interpolant's seven coefficient rows (scipy's ``Dop853DenseOutput``);
     - ``dop853_interpolate(F, y, x)``: the interpolant at the fraction ``x`` of the step.
 
+    Over another ``layout``, the step under the name ``step`` (its arguments those of the layout)
+    and the errors under ``errors``, ``atol`` the expression of each component's absolute
+    tolerance (``"atol"``: one float), and the dense output only with ``dense``.
+
     Examples
     --------
     >>> from tumble.dynamics.engine.unrolled import dop853_sources
@@ -152,35 +202,35 @@ def dop853_sources() -> str:
     """
     A, B, C = DOP853_A, DOP853_B, DOP853_C
     slopes = [f"k{r}" for r in range(13)]
-    step = ["def dop853_step(y, k0, h, I, P, cs, ss, rot):"]
+    lines = [layout.header(step, "k0, h")]
     for s in range(1, 12):
-        step += _stage(s, A)
-    step.append(f"    y_new = {_advanced(B, slopes[:12])}")
-    step += ["    u0 = cs * rot[24] - ss * rot[25]", "    u1 = ss * rot[24] + cs * rot[25]",
-             "    k12 = rhs(y_new, I, P, u0, u1)",
-             f"    return y_new, ({', '.join(slopes)})"]
+        lines += _stage(layout, s, A, C)
+    lines.append(f"    y_new = {_advanced(layout, B, slopes[:12])}")
+    lines += _stage(layout, 12, A, C, "y_new")
+    lines.append(f"    return y_new, ({', '.join(slopes)})")
+    error_lines = dop853_errors_lines(errors, layout.size, atol)
+    if not dense:
+        return "\n".join([*lines, "", *error_lines]) + "\n"
 
-    unpack = f"    {', '.join(slopes)} = K"
-    errors = dop853_errors_lines("dop853_errors", STATE, "atol[{i}]")
-
-    dense = ["def dop853_dense(y, y_new, K, h, I, P, cs, ss, rot):", unpack]
+    n = layout.size
+    dense_lines = [layout.header("dop853_dense", "y_new, K, h"), f"    {', '.join(slopes)} = K"]
     extra = [f"k{r}" for r in range(16)]
     for s in range(13, 16):
-        dense += _stage(s, A)
-    rows = [f"    f0 = ({', '.join(f'y_new[{i}] - y[{i}]' for i in range(STATE))})",
-            f"    f1 = ({', '.join(f'h * k0[{i}] - f0[{i}]' for i in range(STATE))})",
-            f"    f2 = ({', '.join(f'2.0 * f0[{i}] - h * (k12[{i}] + k0[{i}])' for i in range(STATE))})"]
+        dense_lines += _stage(layout, s, A, C)
+    rows = [f"    f0 = ({', '.join(f'y_new[{i}] - y[{i}]' for i in range(n))})",
+            f"    f1 = ({', '.join(f'h * k0[{i}] - f0[{i}]' for i in range(n))})",
+            f"    f2 = ({', '.join(f'2.0 * f0[{i}] - h * (k12[{i}] + k0[{i}])' for i in range(n))})"]
     for r in range(4):
-        rows.append(f"    f{3 + r} = ({', '.join(f'h * ({_weighted(DOP853_D[r], extra, i)})' for i in range(STATE))})")
-    dense += rows + ["    return (f0, f1, f2, f3, f4, f5, f6)"]
+        rows.append(f"    f{3 + r} = ({', '.join(f'h * ({_weighted(DOP853_D[r], extra, i)})' for i in range(n))})")
+    dense_lines += rows + ["    return (f0, f1, f2, f3, f4, f5, f6)"]
 
     # scipy's Dop853DenseOutput._call_impl: y = 0; for j, f in enumerate(reversed(F)): y += f;
     # y *= x if j even else 1 - x; y += y_old
     interpolate = ["def dop853_interpolate(F, y, x):", "    f0, f1, f2, f3, f4, f5, f6 = F", "    u = 1.0 - x"]
-    for i in range(STATE):
+    for i in range(n):
         v = "0.0"
         for j, f in enumerate(["f6", "f5", "f4", "f3", "f2", "f1", "f0"]):
             v = f"({v} + {f}[{i}]) * {'x' if j % 2 == 0 else 'u'}"
         interpolate.append(f"    v{i} = {v} + y[{i}]")
-    interpolate.append(f"    return ({', '.join(f'v{i}' for i in range(STATE))})")
-    return "\n".join(["\n".join(step), "\n".join(errors), "\n".join(dense), "\n".join(interpolate)]) + "\n"
+    interpolate.append(f"    return ({', '.join(f'v{i}' for i in range(n))})")
+    return "\n".join(["\n".join(lines), "\n".join(error_lines), "\n".join(dense_lines), "\n".join(interpolate)]) + "\n"

@@ -4,10 +4,9 @@
 state with the orbit's direction turned from stage to stage; a state that carries more than the
 body (the closed loop's wheel spins and external impulse,
 :mod:`~tumble.dynamics.control.compiled_loop`) needs the same steps over ``n`` floats and a
-right-hand side that takes the time. This module writes them, with the same pieces (the
-weighted sums of :func:`~tumble.dynamics.engine.unrolled._weighted`, in scipy's stage order)
-from the same tableaux (:mod:`~tumble.dynamics.engine.tableau`): straight-line code over
-tuples, every coefficient a literal, which numba keeps in registers. Imports no numba.
+right-hand side that takes the time: the same generator writes them, over the state's layout
+(:func:`~tumble.dynamics.engine.unrolled.state_layout`); these two functions name it for such a
+state. Imports no numba.
 
 Every generated function calls ``rhs(t, y, P, X, u0, u1)``: the time (s), the state (an
 ``n``-tuple), the run's parameters ``P`` (a tuple of floats), its tables ``X`` (a tuple of
@@ -26,28 +25,12 @@ def rk4_step(t, y, h, P, X, cs, ss, rot):
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 
-from .tableau import DOP853_A, DOP853_B, DOP853_C
-from .unrolled import Coefficients, _weighted, dop853_errors_lines
+from . import unrolled
+from .unrolled import Coefficients, state_layout
 
 __all__ = ["dop853_sources", "fixed_step_source"]
-
-
-def _advanced(n: int, weights: Coefficients, stages: Sequence[str], y: str = "y") -> str:
-    """The state ``y + h sum_r w_r k_r`` over ``n`` components, as a tuple literal."""
-    return "(" + ", ".join(f"{y}[{i}] + h * ({_weighted(weights, stages, i)})" for i in range(n)) + ",)"
-
-
-def _stage(n: int, s: int, A: np.ndarray, C: Coefficients, state: str = "") -> str:
-    """The lines of stage ``s``: the orbit's direction at its node, and its slope ``k{s}`` there from
-    the slopes before it (or at ``state``)."""
-    node = "t" if C[s] == 0.0 else f"t + {float(C[s])!r} * h"
-    state = state or ("y" if s == 0 else _advanced(n, A[s, :s], [f"k{r}" for r in range(s)]))
-    return (f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]\n    u1 = ss * rot[{2 * s}] + cs * rot[{2 * s + 1}]\n"
-            f"    k{s} = rhs({node}, {state}, P, X, u0, u1)")
 
 
 def fixed_step_source(name: str, n: int, A: np.ndarray, B: np.ndarray, C: Coefficients) -> str:
@@ -61,9 +44,7 @@ def fixed_step_source(name: str, n: int, A: np.ndarray, B: np.ndarray, C: Coeffi
     >>> fixed_step_source("rk8_step", 13, DOP853_A[:12, :12], DOP853_B, DOP853_C[:12]).count("rhs(")   # 12 stages
     12
     """
-    lines = [f"def {name}(t, y, h, P, X, cs, ss, rot):"] + [_stage(n, s, A, C) for s in range(len(B))]
-    lines.append(f"    return {_advanced(n, B, [f'k{r}' for r in range(len(B))])}")
-    return "\n".join(lines) + "\n"
+    return unrolled.fixed_step_source(name, A, B, np.asarray(C), state_layout(n))
 
 
 def dop853_sources(step: str, errors: str, n: int) -> str:
@@ -84,8 +65,4 @@ def dop853_sources(step: str, errors: str, n: int) -> str:
     >>> source.count("rhs(")   # 11 stages (the first is the last step's), the new state's slope
     12
     """
-    slopes = [f"k{r}" for r in range(13)]
-    lines = [f"def {step}(t, y, k0, h, P, X, cs, ss, rot):"] + [_stage(n, s, DOP853_A, DOP853_C) for s in range(1, 12)]
-    lines += [f"    y_new = {_advanced(n, DOP853_B, slopes[:12])}", _stage(n, 12, DOP853_A, DOP853_C, "y_new"),
-              f"    return y_new, ({', '.join(slopes)})", "", *dop853_errors_lines(errors, n, "atol")]
-    return "\n".join(lines) + "\n"
+    return unrolled.dop853_sources(state_layout(n), step=step, errors=errors, atol="atol", dense=False)
