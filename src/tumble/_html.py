@@ -24,8 +24,12 @@ import numpy as np
 
 from .typing import ArrayLike
 
-__all__ = ["NAME_CHARS", "REPR_CHARS", "escape_text", "fmt", "html_table", "plural", "result_html", "result_repr",
-           "script_json", "short_name", "vec", "with_std"]
+__all__ = ["NAME_CHARS", "REPR_CHARS", "Headline", "escape_text", "fmt", "headline_html", "headline_repr", "html_table",
+           "plural", "result_html", "result_repr", "script_json", "short_name", "vec", "with_std"]
+
+#: A result's headline: ``(attribute, label, unit)`` for each value its repr and table show, most
+#: important first (:func:`headline_repr`).
+Headline = tuple[tuple[str, str, str], ...]
 
 #: Characters written as JSON escapes in :func:`script_json`: markup (``<``, ``>``, ``&``) and the
 #: two line separators that end a line in JavaScript before ES2019.
@@ -217,3 +221,64 @@ def result_html(caption: str, rows: Iterable[Sequence[object]], *more: str) -> s
     (True, 2)
     """
     return "<div>" + html_table(rows, caption=caption) + "".join(more) + "</div>"
+
+
+def _shown(value: Any) -> str:
+    """A headline value as text: a number by :func:`fmt`, a vector of up to three by :func:`vec`,
+    a longer array by its size (never its values), a flag as yes/no, a text as it is."""
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        return fmt(value)
+    if isinstance(value, np.ndarray) or isinstance(value, (tuple, list)) and value and not isinstance(value[0], str):
+        a = np.asarray(value)
+        if a.ndim == 1 and a.size <= 3 and np.issubdtype(a.dtype, np.number):
+            return vec(a)
+        return f"{' x '.join(str(n) for n in a.shape)} values"
+    if isinstance(value, (tuple, list)):
+        return ", ".join(str(v) for v in value) or "none"
+    return str(value) if value not in (None, "") else "none"
+
+
+def _headline(obj: Any) -> list[tuple[str, str]]:
+    """``(label, value with its unit)`` for each entry of ``obj.HEADLINE`` (:data:`Headline`)."""
+    rows = []
+    for name, label, unit in obj.HEADLINE:
+        text = _shown(getattr(obj, name))
+        rows.append((label, text + (f" {unit}" if unit and not text.endswith(" values") else "")))  # a size has no unit
+    return rows
+
+
+def headline_repr(obj: Any) -> str:
+    """A result's plain repr from its headline (``obj.HEADLINE``, :data:`Headline`): one line,
+    ``Kind(label value unit, ...)``, arrays by their size. For a class, ``__repr__ = headline_repr``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble._html import headline_repr
+    >>> class Span:
+    ...     HEADLINE = (("stop", "stop", ""), ("offset", "offset", "m"), ("t", "times", "s"))
+    ...     stop, offset, t = 90, np.array([0.03, 0.0, 0.05]), np.zeros(400)
+    >>> headline_repr(Span())
+    'Span(stop 90, offset (0.03, 0, 0.05) m, times 400 values)'
+    """
+    return result_repr(type(obj).__name__, [f"{label} {value}" for label, value in _headline(obj)])
+
+
+def headline_html(obj: Any) -> str:
+    """A result's Jupyter table (``_repr_html_``) from its headline (:func:`headline_repr`): a row
+    for each value, under the class's name.
+
+    Examples
+    --------
+    >>> from tumble._html import headline_html
+    >>> class Verdict:
+    ...     HEADLINE = (("adequate", "adequate", ""), ("misfit", "misfit", ""))
+    ...     adequate, misfit = True, 0.0098
+    >>> headline_html(Verdict()).count("<tr>")
+    2
+    """
+    return result_html(type(obj).__name__, _headline(obj))

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import headline_html, headline_repr
 from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...dynamics.special.quaternion import quat_multiply
 from .endings import _unit, smooth_noise
@@ -76,6 +77,11 @@ class SyntheticAccel:
     >>> SyntheticAccel(np.zeros((4, 3)), np.array([0.05, 0.0, 0.0]), np.zeros(3), 0.02).f.shape
     (4, 3)
     """
+
+    HEADLINE = (("f", "specific force", ""), ("offset", "sensor offset", "m"), ("bias", "bias", "m/s^2"),
+                ("noise", "noise", "m/s^2"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     f: np.ndarray
     offset: np.ndarray

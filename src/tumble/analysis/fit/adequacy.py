@@ -30,6 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._html import headline_html, headline_repr
+
 __all__ = ["MAX_ENERGY_RISE", "MAX_TAIL", "MAX_MOMENTUM_RISE", "MISFIT_LIMIT", "NOISE_FACTOR", "RIGID_SMOOTHING", "Adequacy",
            "InadequateFitWarning", "judge", "judge_flights", "rigid_body_check"]
 
@@ -87,6 +89,10 @@ class Adequacy:
     >>> judge(0.5, 0.01, 5.0).reason.startswith("the model does not fit")
     True
     """
+
+    HEADLINE = (("adequate", "adequate", ""), ("misfit", "misfit", ""), ("reason", "reason", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     adequate: bool
     misfit: float

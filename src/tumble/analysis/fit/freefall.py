@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._html import headline_html, headline_repr
 from ...typing import ArrayLike
 from .uncertainty import SCALE_UNCERTAINTY, effective_covariance
 
@@ -284,6 +285,11 @@ class FreeSpan:
     >>> span.summary()["sensor_offset"], span.stop - span.first
     ([0.03, 0.0, 0.05], 80)
     """
+
+    HEADLINE = (("free", "free", ""), ("first", "first sample", ""), ("stop", "stop", ""), ("offset", "sensor offset", "m"),
+                ("contact", "contact residual", "m/s^2"), ("reason", "reason", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     first: int
     stop: int

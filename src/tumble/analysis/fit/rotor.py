@@ -66,6 +66,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._html import headline_html, headline_repr
 from ...dynamics.models.gyrostat import gyrostat_omega
 from scipy.optimize import least_squares
 
@@ -139,6 +140,11 @@ class RotorFit:
     >>> round(fit.gain - 2 * fit.gain_std, 3)   # its gain less two standard uncertainties
     0.024
     """
+
+    HEADLINE = (("gain", "momentum gain over |L|", ""), ("gain_std", "its std", ""), ("rms", "RMS residual", "rad/s"),
+                ("rms_rigid", "rigid fit's", "rad/s"), ("along", "along L", ""), ("noise", "noise floor", "rad/s"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     gain: float
     gain_std: float

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import least_squares
 
+from ..._html import headline_html, headline_repr
 from ...typing import ArrayLike
 from .model import DRAG_MODELS, Model
 from .uncertainty import effective_covariance, scale_covariance
@@ -79,6 +80,11 @@ class Solution:
     >>> sol.m, bool(np.isclose(sol.ssr, sol.residuals @ sol.residuals)), sol.cov.shape, sol.undetermined
     (603, True, (5, 5), ())
     """
+
+    HEADLINE = (("m", "residuals", ""), ("rms", "RMS residual", "rad/s"), ("nfev", "model evaluations", ""),
+                ("autocorrelation_time", "autocorrelation", "samples"), ("undetermined", "undetermined", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     model: Model
     P: np.ndarray

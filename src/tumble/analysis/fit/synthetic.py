@@ -44,6 +44,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
+from ..._html import fmt, result_html
 from ...dynamics.euler import euler_rhs
 from .. import _display
 from .accelsynth import SyntheticAccel, synthetic_accel
@@ -129,6 +130,13 @@ class SyntheticRecording:
 
     def __repr__(self) -> str:
         return _display.synthetic_repr(self)
+
+    def _repr_html_(self) -> str:
+        t = self.t
+        return result_html("SyntheticRecording", [
+            ("samples", len(t)), ("span", f"{fmt(t[-1] - t[0], 3)} s" if len(t) else "none"), ("rate", f"{fmt(self.rate)} Hz"),
+            ("flights", len(self.flights)), ("I1/I3", fmt(self.ratios[0])), ("I2/I3", fmt(self.ratios[1])),
+            ("endings", ", ".join(self.endings) or "none"), ("rotor's momentum over |L|", fmt(self.rotor))])
 
     def csv_text(self, comment: str = "") -> str:
         """phyphox's gyroscope export ("Raw Data.csv"), comma-separated; ``comment`` lines

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..._html import headline_html, headline_repr
 from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
@@ -394,6 +395,10 @@ class Throw:
     ...
     ValueError: throw omega must have shape (100, 3) (rad/s), not (100, 2)
     """
+
+    HEADLINE = (("input", "file", ""), ("t", "times", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     t: FloatArray = field(repr=False)
     omega: FloatArray = field(repr=False)

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import median_filter
 
+from ..._html import headline_html, headline_repr
 from ..fit.segments import IMPULSE_SPAN, impulses
 from .device import Throw
 
@@ -63,6 +64,11 @@ class Window:
     >>> Window(10, 2000, 30, 0.25, 0.75, "").reason
     ''
     """
+
+    HEADLINE = (("t_release", "release", "s"), ("t_end", "end", "s"), ("first", "first sample", ""), ("stop", "stop", ""),
+                ("rotor", "rotor start", ""), ("reason", "reason", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     first: int
     stop: int

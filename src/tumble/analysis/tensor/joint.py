@@ -40,6 +40,7 @@ from scipy import sparse
 from scipy.linalg import cho_factor, cho_solve
 from scipy.spatial.transform import Rotation
 
+from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from ..fit.uncertainty import effective_covariance
 from .estimate import vector_of
@@ -323,6 +324,10 @@ class JointFit:
     >>> sorted(JointFit.__dataclass_fields__)[:3]
     ['P', 'cov_P', 'inertia']
     """
+
+    HEADLINE = (("rms", "RMS residuals", "rad/s"), ("inertia", "tensor", "kg m^2"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     P: FloatArray
     cov_P: FloatArray

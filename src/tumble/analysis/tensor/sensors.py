@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 
 __all__ = ["GYRO_BASIS", "GYRO_ENTRIES", "SENSOR_NAMES", "SensorErrors", "axis_normals", "distortion_coefficients", "gyro_matrix",
@@ -35,6 +36,11 @@ class SensorErrors:
     >>> SensorErrors().variances().round(8).tolist()[:4]
     [9e-06, 9e-06, 9e-06, 2.5e-05]
     """
+
+    HEADLINE = (("gyro_scale", "gyroscope scale", ""), ("gyro_misalignment", "misalignment", "rad"),
+                ("rotor_axis", "rotor axis", "rad"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     gyro_scale: float = 0.003
     gyro_misalignment: float = 0.005

@@ -35,6 +35,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
+from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from ..fit.adequacy import Adequacy, judge
 from ..fit.single import saturation_mask
@@ -87,6 +88,11 @@ class FlownFit:
     >>> sorted(FlownFit.__dataclass_fields__)[:4]
     ['P', 'accel', 'accel_bias', 'adequacy']
     """
+
+    HEADLINE = (("reason", "verdict", ""), ("residual_rms", "residual RMS", "rad/s"), ("noise", "noise", "rad/s"),
+                ("center", "centre of mass", "m"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     window: Window
     reason: str

@@ -41,11 +41,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol, TypeGuard, runtime_checkable
+from typing import ClassVar, Protocol, TypeGuard, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import Headline, headline_html, headline_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import axis_index, check_positive
 from ..special.mrp import mrp_from_quat
@@ -142,6 +143,11 @@ class TrackingError:
     >>> e.sigma.tolist(), e.delta_omega.tolist(), e.omega_r.tolist()
     ([0.0, 0.0, 0.0], [0.0, 0.0, 0.1], [0.0, 0.0, 0.0])
     """
+
+    HEADLINE: ClassVar[Headline] = (("sigma", "sigma", ""), ("delta_omega", "delta omega", "rad/s"),
+                                    ("omega_r", "omega_r", "rad/s"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     sigma: FloatArray
     delta_omega: FloatArray
