@@ -256,8 +256,9 @@ def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], g
     A, Apinv, Agram = np.zeros((0, 3)), np.zeros((3, 0)), np.zeros((3, 3))
     if css is not None and sensors.sunlight is not None:
         on = on_periods(t, css.period)
-        light[on] = sensors.sunlight.fraction(t[on])
-        sun_world[on] = sensors.sunlight.world(t[on])
+        if on.any():
+            light[on] = sensors.sunlight.fraction(t[on])
+            sun_world[on] = sensors.sunlight.world(t[on])
         lit = on & (light > 0.0)
         A = np.ascontiguousarray(css.axes, dtype=float)
         Apinv, Agram = css.tables()

@@ -76,19 +76,9 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vectors, refuse_first
-from ..special.quaternion import quat_multiply
 from .mekf_kernels import compiled
 
 __all__ = ["MEKF"]
-
-
-def _rotvec_from_quat(q: FloatArray) -> FloatArray:
-    """The rotation vector of unit quaternions (the short way round), shape (..., 3)."""
-    q = np.where(q[..., 3:] < 0.0, -q, q)
-    s = np.linalg.norm(q[..., :3], axis=-1, keepdims=True)
-    angle = 2.0 * np.arctan2(s, q[..., 3:])
-    k = np.where(s > 1e-8, angle / np.where(s > 1e-8, s, 1.0), 2.0 / q[..., 3:])
-    return np.asarray(k * q[..., :3], float)
 
 
 def _rows(a: FloatArray, shape: tuple[int, ...], tail: tuple[int, ...]) -> FloatArray:
@@ -356,7 +346,11 @@ class MEKF:
         [0.0, 0.02, 0.0]
         """
         qt = truth.as_quat() if isinstance(truth, Rotation) else np.asarray(truth, float)
-        return _rotvec_from_quat(quat_multiply(self.quaternion * np.array([-1.0, -1.0, -1.0, 1.0]), qt))
+        shape = np.broadcast_shapes(self.quaternion.shape[:-1], qt.shape[:-1])
+        n = int(np.prod(shape, dtype=int))
+        y = np.empty((n, 3))   # the attitude update's innovation rotvec(q* (x) q_true), formed by the kernel, no update
+        self._update(y, np.empty((n, 3, 6)), np.zeros((n, 3, 3)), np.zeros(shape, bool), _rows(qt, shape, (4,)), shape)
+        return y.reshape(shape + (3,))
 
     def nees(self, truth: Rotation | ArrayLike, bias: ArrayLike | None = None) -> FloatArray:
         """The normalised estimation error squared: of the attitude (chi-square 3) or, given the

@@ -106,15 +106,13 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
     (a measured direction in the body, its world direction, both of any length, and its noise in rad) they are
     first formed here for the vector update (m = 2; module docstring of ``mekf``); with shape
     (n, 4) (a measured attitude's quaternion, body to world) ``y`` and ``H`` of the attitude
-    update (m = 3; ``R`` given); with shape (0, 7) they are taken as given.
+    update (m = 3; ``R`` given; ``y`` formed for every row, valid or not: the attitude error
+    :meth:`~tumble.dynamics.estimation.mekf.MEKF.error` reads); with shape (0, 7) they are taken as given.
     """
     n, m = y.shape
     PHt, K, S, Sinv = np.empty((6, m)), np.empty((6, m)), np.empty((m, m)), np.empty((m, m))
     IKH, tmp, x = np.empty((6, 6)), np.empty((6, 6)), np.empty(6)
     for i in range(n):
-        if not valid[i]:
-            nis[i] = np.nan
-            continue
         if vectors.shape[0] > 0 and vectors.shape[1] == 4:
             # y = rotvec(q* (x) q_m), the short way round, H = [I, 0] (an attitude measurement; mekf)
             ux, uy, uz, w = -q[i, 0], -q[i, 1], -q[i, 2], q[i, 3]
@@ -129,7 +127,10 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
             for r in range(3):
                 for c in range(6):
                     H[i, r, c] = 1.0 if r == c else 0.0
-        elif vectors.shape[0] > 0:
+        if not valid[i]:
+            nis[i] = np.nan
+            continue
+        if vectors.shape[0] > 0 and vectors.shape[1] == 7:
             # y = E^T (b_m - b), H = [E^T [b x], 0], R = sigma^2 I for b = A(q)^T r, E across b
             ux, uy, uz, w = -q[i, 0], -q[i, 1], -q[i, 2], q[i, 3]   # the conjugate turns world into body
             nr = math.sqrt(vectors[i, 3] ** 2 + vectors[i, 4] ** 2 + vectors[i, 5] ** 2)
