@@ -31,9 +31,9 @@
    inflated by it, never shrunk; the accelerometer's part is its own residuals' and a jackknife's
    over the flights (:func:`~tumble.analysis.tensor.center.center_of_mass`), of which the
    tensors' scatter says nothing. Inflated whole, the device-alone centre's std along the
-   rotor's axis came out 0.7-2.1 mm where its errors were 0.05-0.74 mm (0.61 std rms over 25
-   realistic devices, 6 with an agreement of 2.5-9.5); with the rates' part alone inflated,
-   0.74 std rms, all within 1.96 std.
+   rotor's axis came out 0.15-2.1 mm over 25 realistic devices (8 sets with an agreement of
+   1.8-9.5) where its errors were 0.004-0.74 mm, 0.61 std rms; with the rates' part alone
+   inflated, 0.15-0.75 mm, 0.74 std rms, all within 1.96 std.
 
 Systematic parts common to all the throws beyond the sensors' (the rotor's inertia, the
 device's own tensor) are added by the caller: averaging does not reduce them.
