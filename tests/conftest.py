@@ -129,26 +129,33 @@ def new_page(chromium):
     assert not outside, f"requests that left the machine: {outside}"
 
 
-# -- the longest files first --------------------------------------------------------------------
+# -- the order of the files ----------------------------------------------------------------------
 # make test runs the files on every core, a file to a worker (``--dist loadfile``), in collection
-# order (``--no-loadscope-reorder``; xdist's own order, most tests first, started the wheel's
-# commands, 4 tests and ~3 minutes, near the end, where one worker ran them alone). So the files
-# that take longest are collected first, and the rest by their number of tests, as xdist would.
+# order (``--no-loadscope-reorder``). xdist's own order (most tests first) started the wheel's
+# commands (4 tests, ~3 minutes) near the end, where one worker ran them alone. Started first,
+# the docs build and the wheel's commands compiled every kernel themselves (their subprocesses
+# find numba's cache cold in a clean clone): a loaded run took twice as long. So the files whose
+# tests compile the kernels come first, then the two long files of subprocesses, which find the
+# kernels compiled, then the other long ones, then the rest by their number of tests, as xdist
+# would.
 
-#: The files that take longest (wall time of a clean clone's run, a kernel's first compile
-#: included), longest first.
-LONGEST = ("tests/test_wheel_commands.py", "tests/test_docs.py", "tests/test_tensor_fit.py", "tests/test_fit_recording.py",
-           "tests/test_page_live.py", "tests/test_result_display.py", "tests/test_page.py", "tests/test_tensor_device.py",
-           "tests/test_fit_find.py", "tests/test_fit_drag_law.py", "tests/test_fit_accel.py", "tests/test_calibration_stats.py")
+#: The files first, in this order: those that compile the kernels (engine, closed loop, exact and
+#: split flows, detumble batch, filter, sampled models), then the longest (wall time of a clean
+#: clone's run, longest first).
+FIRST = ("tests/test_fit_recording.py", "tests/test_tensor_fit.py", "tests/test_control_loop.py", "tests/test_engine.py",
+         "tests/test_compiled.py", "tests/test_controlled_compiled.py", "tests/test_mekf.py", "tests/test_gyrostat.py",
+         "tests/test_docs.py", "tests/test_wheel_commands.py",
+         "tests/test_page_live.py", "tests/test_result_display.py", "tests/test_page.py", "tests/test_tensor_device.py",
+         "tests/test_fit_find.py", "tests/test_fit_drag_law.py", "tests/test_fit_accel.py", "tests/test_calibration_stats.py")
 
 
 def pytest_collection_modifyitems(session, config, items):
-    """Order the items file by file: :data:`LONGEST` first, then by falling number of tests, each
+    """Order the items file by file: :data:`FIRST` first, then by falling number of tests, each
     file's items in their own order (the same order in every worker)."""
     counts: dict[str, int] = {}
     for item in items:
         counts[item.nodeid.split("::")[0]] = counts.get(item.nodeid.split("::")[0], 0) + 1
-    first = {name: rank for rank, name in enumerate(LONGEST)}
+    first = {name: rank for rank, name in enumerate(FIRST)}
     position = {name: i for i, name in enumerate(counts)}
 
     def key(item) -> tuple[int, int, int]:
