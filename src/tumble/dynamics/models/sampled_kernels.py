@@ -7,10 +7,12 @@ which every ``tumble`` command would pay at start otherwise); every function is 
 import by :func:`tumble.jit.jit` (``cache=True``: once per machine and per version of the
 sources), as the engine's kernels are (:mod:`tumble.dynamics.engine.kernels`).
 
-The equations are the models' own formulas, compiled here, not second writings: Euler's
-equations (:func:`~tumble.dynamics.euler.euler_components`), the momentum form of the gyrostat's
-(:func:`~tumble.dynamics.models.gyrostat.momentum_rate_components`) and the drag law
-(:func:`~tumble.dynamics.models.drag.drag_component`). Each integration is the classical
+The equations are the models' own formulas, compiled here: the momentum form of the gyrostat's
+Euler equation (:func:`~tumble.dynamics.models.gyrostat.momentum_rate_components`) and the drag law
+(:func:`~tumble.dynamics.models.drag.drag_component`). The drag body's rate keeps its own writing of
+Euler's equations, ``((I2 - I3) w2 w3 + tau1) / I1``, until the fits run on the engine: with
+:func:`~tumble.dynamics.euler.euler_components` (a reciprocal, an ulp apart) a fit that hangs on
+round-off changes (tests/test_formulas_once.py says which). Each integration is the classical
 fourth-order Runge-Kutta method (Hairer, Norsett & Wanner, *Solving ODEs I*, 2nd ed., sec. II.1)
 on a step count that depends only on the times, so that the result is a smooth function of the
 parameters (finite differences of it are clean, as a least-squares fit needs); the models'
@@ -33,23 +35,23 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
-from ..euler import euler_components
 from .drag import drag_component
 from .gyrostat import momentum_rate_components
 
 __all__ = ["drag_integrate", "gyrostat_integrate"]
 
 _drag = jit(drag_component, inline="always")
-_euler = jit(euler_components, inline="always")
 _momentum_rate = jit(momentum_rate_components, inline="always")
 
 
 @jit
 def _drag_rate(I: FloatArray, r: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray,
                out: FloatArray) -> None:  # pragma: no cover - compiled
-    """``omega'`` (rad/s^2) of a body of moments ``I`` (reciprocals ``r``) under per-axis drag."""
-    out[0], out[1], out[2] = _euler(w[0], w[1], w[2], I[0], I[1], I[2], _drag(lin[0], quad[0], w[0]),
-                                    _drag(lin[1], quad[1], w[1]), _drag(lin[2], quad[2], w[2]), r[0], r[1], r[2])
+    """``omega'`` (rad/s^2) of a body of moments ``I`` under per-axis drag (Euler's equations,
+    Goldstein eq. 5.39'; ``r`` the reciprocal moments, unused: see the module docstring)."""
+    out[0] = ((I[1] - I[2]) * w[1] * w[2] + _drag(lin[0], quad[0], w[0])) / I[0]
+    out[1] = ((I[2] - I[0]) * w[2] * w[0] + _drag(lin[1], quad[1], w[1])) / I[1]
+    out[2] = ((I[0] - I[1]) * w[0] * w[1] + _drag(lin[2], quad[2], w[2])) / I[2]
 
 
 @jit
