@@ -118,6 +118,16 @@ class Adjusted(NamedTuple):
     center_cov : ndarray, shape (3, 3)
         ``c_d``'s covariance from the statistical parts only: an object's centre carries the
         sensors' parts through its own columns, the same device's.
+
+    Examples
+    --------
+    A tuple, unpacked where it is made:
+
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.equations import Adjusted
+    >>> value, cov, check, center_cov = Adjusted(np.zeros(10), np.eye(10), 1.2, np.eye(3))
+    >>> check, value.shape, center_cov.shape
+    (1.2, (10,), (3, 3))
     """
 
     value: FloatArray

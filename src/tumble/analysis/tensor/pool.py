@@ -48,6 +48,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import stats
 
+from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from .center import center_of_mass, sensor_columns
 from .device import Throw
@@ -111,6 +112,11 @@ class Pooled:
     >>> Pooled(np.ones(6), np.eye(6), np.zeros(3), np.eye(3), float("nan"), 1).adequate
     True
     """
+
+    HEADLINE = (("used", "throws", ""), ("chi2_dof", "chi2/dof", ""), ("adequate", "adequate", ""),
+                ("inertia", "tensor xx, yy, zz, xy, xz, yz", ""), ("center", "centre", "m"))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     inertia: FloatArray
     inertia_cov: FloatArray

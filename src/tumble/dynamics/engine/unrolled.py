@@ -63,11 +63,25 @@ class Layout:
     timed: bool
 
     def header(self, name: str, middle: str) -> str:
-        """A step's first line: ``name`` taking the (time and) state, ``middle``, the parameters and the turns."""
+        """A step's first line: ``name`` taking the (time and) state, ``middle``, the parameters and the turns.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.engine.unrolled import BODY
+        >>> BODY.header("rk4_step", "h")
+        'def rk4_step(y, h, I, P, cs, ss, rot):'
+        """
         return f"def {name}({'t, ' if self.timed else ''}y, {middle}, {self.params}, cs, ss, rot):"
 
     def call(self, node: str, state: str) -> str:
-        """The right-hand side at ``state`` and the stage's time ``node``."""
+        """The right-hand side at ``state`` and the stage's time ``node``.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.engine.unrolled import BODY, state_layout
+        >>> BODY.call("t + 0.5 * h", "y"), state_layout(10).call("t + 0.5 * h", "y")
+        ('rhs(y, I, P, u0, u1)', 'rhs(t + 0.5 * h, y, P, X, u0, u1)')
+        """
         return f"rhs({node + ', ' if self.timed else ''}{state}, {self.params}, u0, u1)"
 
 
