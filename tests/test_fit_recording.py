@@ -200,10 +200,12 @@ def test_saturated_samples_are_left_out_and_counted():
 
 # --- whole recordings: detection, coverage, pooling ------------------------------------------------
 
-#: 60 recordings of each body with 2 tosses: 240 flights. Each recording has its own gyroscope,
-#: whose bias and scale errors its flights share: coverage needs many recordings, not many
-#: flights of a few (38 recordings of 3 measured 89 % to 97 % by the luck of 38 scale draws).
-CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1060)]
+#: Four recordings of each body with 2 tosses and a pause (16 flights), each with its own
+#: gyroscope. The statistics over many such recordings (found and fitted, the 95 % intervals'
+#: coverage) are benchmarks/fit_coverage.py's "tidy" cell (100 recordings of each body; in
+#: benchmarks/results/fit_coverage.md: 96.0 % and 97.5 % found and fitted, coverage 94-98 %);
+#: here, seeded checks of what each fitted flight and each recording must show.
+CAMPAIGN = [(body, seed) for body in ("racquet", "phone") for seed in range(1000, 1004)]
 
 
 def _iou(a, b, start, end):
@@ -229,14 +231,14 @@ def campaign():
         if fit is not None:
             p = fit.pooled
             assert p.adequate, p.adequacy
-            pooled.append(np.all(np.abs(p.ratios - rec.ratios) <= 2 * p.ratios_std))
+            pooled.append(np.abs(p.ratios - rec.ratios) / p.ratios_std)
     return rows, pooled
 
 
 def test_flights_are_found(campaign):
     rows, _ = campaign
-    found = np.mean([iou >= 0.5 for _, iou, _, _ in rows])
-    assert found >= 0.95, found
+    missed = [(body, iou) for body, iou, _, _ in rows if iou < 0.5]
+    assert not missed, missed
 
 
 def test_no_flight_fails_or_reports_an_uncertainty_above_a_tenth(campaign):
@@ -260,26 +262,19 @@ def test_no_flight_fails_or_reports_an_uncertainty_above_a_tenth(campaign):
     assert used >= 0.85, used
 
 
-def test_the_95_percent_intervals_cover_the_truth_in_90_to_98_percent_of_tosses(campaign):
-    """Coverage of each ratio's reported 95 % interval over at least 200 fitted tosses of both
-    bodies. With 200 trials a correct 95 % interval is inside [0.90, 0.98] with probability
-    above 0.99 (binomial sd 1.5 %); one off by a factor 1.5 in width (coverage 80 % or 99.7 %)
-    fails."""
+def test_each_fitted_flights_ratios_lie_within_three_of_its_uncertainties(campaign):
+    """Each flight's own ratios against the truth, in its standard uncertainties: a right
+    interval misses by three in 0.3 % of flights; one too narrow by half misses in 13 %, so over
+    the 16 flights it fails nearly always (the coverage itself: fit_coverage's "tidy" cell)."""
     rows, _ = campaign
-    inside = []
-    for _, iou, toss, truth in rows:
-        if iou >= 0.5 and toss is not None and toss.status == "ok":
-            iv = toss.fit.ratios_interval
-            inside.append([iv[0, 0] <= truth[0] <= iv[0, 1], iv[1, 0] <= truth[1] <= iv[1, 1]])
-    inside = np.array(inside)
-    assert len(inside) >= 200
-    coverage = inside.mean(axis=0)
-    assert np.all((0.90 <= coverage) & (coverage <= 0.98)), coverage
+    z = [np.abs(toss.fit.ratios - truth) / toss.fit.ratios_std for _, iou, toss, truth in rows
+         if iou >= 0.5 and toss is not None and toss.status == "ok" and not toss.reason]
+    assert len(z) >= 12 and np.max(z) <= 3.0, np.round(z, 2)
 
 
-def test_pooled_ratios_lie_within_two_pooled_uncertainties_in_nine_recordings_of_ten(campaign):
+def test_pooled_ratios_lie_within_three_pooled_uncertainties(campaign):
     _, pooled = campaign
-    assert np.mean(pooled) >= 0.90, np.mean(pooled)
+    assert len(pooled) == len(CAMPAIGN) and np.max(pooled) <= 3.0, np.round(pooled, 2)
 
 
 def test_a_gyroscope_that_saturates_loses_axes_not_flights():
@@ -321,7 +316,8 @@ def test_flights_that_scatter_inflate_the_pooled_uncertainty():
     rec = synthetic_recording(8, body="phone", tosses=4, rate=200.0)
     fit = fit_recording(rec.t, rec.omega, events=rec.events)
     assert fit.chi2_dof > 10
-    own = np.array([toss.fit.ratios for toss in fit.tosses if toss.status == "ok"])
+    # the flights that state their own ratios (one used in the joint fit only has none to trust)
+    own = np.array([toss.fit.ratios for toss in fit.tosses if toss.status == "ok" and not toss.reason])
     scatter = np.std(own, axis=0, ddof=1) / np.sqrt(len(own))  # what the flights' spread says
     assert np.all(fit.pooled.ratios_std >= 0.5 * scatter), (fit.pooled.ratios_std, scatter)
 

@@ -348,7 +348,7 @@ def momentum_steps(t: np.ndarray, omega: np.ndarray, keep: np.ndarray, sol: Solu
                    float(np.sqrt(np.mean(r0 ** 2))) / L0, float(np.sqrt(np.mean(r ** 2))) / L)
 
 
-def _directions(count: int = 2000) -> np.ndarray:
+def _directions(count: int = 600) -> np.ndarray:
     """Unit vectors spread evenly over a hemisphere (a Fibonacci lattice: Gonzalez, Math. Geosci. 42
     (2010) 49), shape (count, 3)."""
     i = np.arange(count) + 0.5
