@@ -197,7 +197,7 @@ def test_the_compiled_free_flow_takes_components_whose_squares_underflow_as_stea
 
 def test_the_kernels_compile_at_import_of_modules_imported_on_first_use():
     """One compile mechanism (issue 38 item 3): the kernels modules decorate their functions
-    with tumble.jit.jit at import; no module of methods/, models/ or engine/ rebinds its globals to compile, copies
+    with tumble.jit.jit at import; no module of methods/ or engine/ rebinds its globals to compile, copies
     a function's code for a parallel twin or dispatches on ``type(x) is``; and ``import tumble``
     with the methods' fronts imports no numba (a fresh interpreter)."""
     import ast
@@ -207,7 +207,7 @@ def test_the_kernels_compile_at_import_of_modules_imported_on_first_use():
 
     dynamics = Path(__file__).resolve().parents[1] / "src" / "tumble" / "dynamics"
     folder = dynamics / "methods"
-    for path in sorted([*folder.glob("*.py"), *(dynamics / "models").glob("*.py"), *(dynamics / "engine").glob("*.py")]):
+    for path in sorted([*folder.glob("*.py"), *(dynamics / "engine").glob("*.py")]):
         text = path.read_text(encoding="utf-8")
         assert "globals()" not in text and "FunctionType" not in text, path.name
         tree = ast.parse(text)
@@ -215,8 +215,7 @@ def test_the_kernels_compile_at_import_of_modules_imported_on_first_use():
             if isinstance(node, ast.Compare) and isinstance(node.ops[0], ast.Is):
                 left = node.left
                 assert not (isinstance(left, ast.Call) and getattr(left.func, "id", "") == "type"), path.name
-    for path in [folder / f"{name}.py" for name in ("compiled_flow", "compiled_split", "compiled_exact")] + [
-            dynamics / "models" / "sampled_kernels.py"]:
+    for path in [folder / f"{name}.py" for name in ("compiled_flow", "compiled_split", "compiled_exact")]:
         name = path.stem
         tree = ast.parse(path.read_text(encoding="utf-8"))
         functions = [n for n in tree.body if isinstance(n, ast.FunctionDef)]

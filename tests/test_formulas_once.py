@@ -86,7 +86,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # tests/test_fit_recording.py::test_flights_that_scatter_inflate_the_pooled_uncertainty
     # (pooled std 0.011 instead of >= 0.02): the fit there hangs on round-off; it goes with the fits
     # onto the engine.
-    ("Euler's equations, angular-velocity form", "dynamics/models/sampled_kernels.py"): "the fits' compiled drag kernel",
+    ("Euler's equations, angular-velocity form", "dynamics/models/drag.py"): "the fits' compiled drag kernel",
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's kinematics",
     # issue 38: moving onto the engine
