@@ -37,7 +37,8 @@ def run(out: Path, quick: bool = False) -> str:
     from basilisk_control import run_detumble, run_pointing
 
     from tumble.dynamics.control.controlled import simulate_controlled
-    from tumble.dynamics.control.controllers import BDot, MRPFeedback
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controllers import MRPFeedback
     from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
     from tumble.dynamics.environment.magnetic import IGRF13_2020, IGRF_RADIUS
 

@@ -30,7 +30,7 @@ MAGNETOMETER_NOISE = 1e-7  # T, 1 sigma
 
 def run(out: Path, quick: bool = False) -> str:
     """Run the Monte Carlo, write the JSON and the figure, return the markdown."""
-    from tumble.dynamics.control.controllers import bdot_gain
+    from tumble.dynamics.control.bdot import bdot_gain
     from tumble.dynamics.models.actuators import Magnetorquers
     from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
     from tumble.dynamics.environment.magnetic import DipoleField

@@ -16,7 +16,7 @@ All the bodies of a run go at once (``detumble_monte_carlo``: a compiled kernel 
 
 import math
 
-from tumble.dynamics.control.controllers import bdot_gain
+from tumble.dynamics.control.bdot import bdot_gain
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
 from tumble.dynamics.environment.magnetic import DipoleField

@@ -11,13 +11,8 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import (
-    BDot,
-    Controller,
-    MRPFeedback,
-    bdot_gain,
-    pd_response,
-)
+from tumble.dynamics.control.bdot import BDot, bdot_gain
+from tumble.dynamics.control.controllers import Controller, MRPFeedback, pd_response
 from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
 from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
 from tumble.dynamics.environment.magnetic import IGRF13_2020, DipoleField, UniformField

@@ -146,7 +146,7 @@ def test_an_actuator_error_names_its_table(speed):
 @pytest.mark.parametrize("rtol", [1e-20, 5.0])
 def test_a_relative_tolerance_out_of_range_is_refused_by_the_file_and_by_simulate_controlled(rtol):
     from tumble.dynamics.control.controlled import simulate_controlled
-    from tumble.dynamics.control.controllers import BDot
+    from tumble.dynamics.control.bdot import BDot
 
     with pytest.raises(ValueError, match=rf"^simulation\.rtol = {rtol!r} must be from 2\.22e-14 to 0\.1 \(relative\)$"):
         _build(POINT, "simulation", rtol=rtol)

@@ -26,7 +26,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, MRPFeedback
+from tumble.dynamics.control.bdot import BDot
+from tumble.dynamics.control.controllers import MRPFeedback
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.environment.magnetic import IGRF13_2020, IGRF_RADIUS, DipoleField
 from tumble.dynamics.environment.orbit import CircularOrbit

@@ -131,7 +131,8 @@ def test_the_compiled_loop_is_the_python_path(monkeypatch, law):
     round-off (the same noise, drawn up front in the same order): through the eclipse's start
     (from u = 100 deg), with a star tracker every 10 s starting the filter; B-dot before a TRIAD
     start on a magnetometer and sun cells."""
-    from tumble.dynamics.control.controllers import BDot, MomentumDumping
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controllers import MomentumDumping
     from tumble.dynamics.models.actuators import Magnetorquers
 
     orbit = CircularOrbit(altitude=500e3, arg_latitude=math.radians(100.0), inclination=0.3)
@@ -162,7 +163,7 @@ def test_the_compiled_loop_is_the_python_path(monkeypatch, law):
 def test_what_the_compiled_loop_cannot_run_stays_python():
     """A fine sun sensor (it draws its noise only in view), a law of the user's own, or sensors
     other than the filter's keep the Python path (estimated_loop.plan says None)."""
-    from tumble.dynamics.control.controllers import BDot
+    from tumble.dynamics.control.bdot import BDot
     from tumble.dynamics.control.estimated_loop import plan
     from tumble.dynamics.models.vector_sensors import FineSunSensor
 

@@ -11,7 +11,8 @@ from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.control import compiled_control as cc
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback
+from tumble.dynamics.control.bdot import BDot
+from tumble.dynamics.control.controllers import MomentumDumping, MRPFeedback
 from tumble.dynamics.environment.magnetic import DipoleField, UniformField
 from tumble.dynamics.environment.orbit import CircularOrbit
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels

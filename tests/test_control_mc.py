@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, bdot_gain
+from tumble.dynamics.control.bdot import BDot, bdot_gain
 from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.environment.magnetic import DipoleField

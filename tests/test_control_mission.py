@@ -14,7 +14,8 @@ from scipy.spatial.transform import Rotation
 
 from tumble.cli import CONTROL_WRITES, main
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback
+from tumble.dynamics.control.bdot import BDot
+from tumble.dynamics.control.controllers import MomentumDumping, MRPFeedback
 from tumble.dynamics.control.mission import DetumbleThenPoint
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.environment.magnetic import UniformField

@@ -10,7 +10,8 @@ from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.control import controlled
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, MRPFeedback
+from tumble.dynamics.control.bdot import BDot
+from tumble.dynamics.control.controllers import MRPFeedback
 from tumble.dynamics.control import compiled_control as cc
 from tumble.dynamics.control.compiled_loop import padded, unpadded
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels

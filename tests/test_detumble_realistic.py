@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 
 from tumble.dynamics.control import detumble as dt
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, bdot_gain
+from tumble.dynamics.control.bdot import BDot, bdot_gain
 from tumble.dynamics.control.detumble import detumble_batch
 from tumble.dynamics.models.actuators import Magnetorquers
 from tumble.dynamics.models.gravity import GravityGradient

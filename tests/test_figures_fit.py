@@ -64,7 +64,8 @@ def _control_figures():
     from scipy.spatial.transform import Rotation
 
     from tumble.dynamics.control.controlled import simulate_controlled
-    from tumble.dynamics.control.controllers import BDot, MRPFeedback
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controllers import MRPFeedback
     from tumble.dynamics.environment.magnetic import UniformField
     from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 
@@ -186,7 +187,7 @@ def _animation_frames():
 def _knowledge():
     """The estimation figure of a short B-dot run fed the MEKF's estimate (star tracker and gyroscope)."""
     from tumble.dynamics.control.controlled import simulate_controlled
-    from tumble.dynamics.control.controllers import BDot
+    from tumble.dynamics.control.bdot import BDot
     from tumble.dynamics.control.estimated import Estimated
     from tumble.dynamics.models.sensors import Sensors
     from tumble.dynamics.models.vector_sensors import StarTracker

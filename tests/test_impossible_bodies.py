@@ -13,7 +13,8 @@ from tumble.analysis import periods, stability
 from tumble.analysis.gravity_stability import gravity_gradient_ratios
 from tumble.dynamics import CircularOrbit, KeplerOrbit, OrbitGravityGradient, gravity_gradient_of
 from tumble.dynamics.control.controlled import simulate_controlled
-from tumble.dynamics.control.controllers import BDot, MRPFeedback
+from tumble.dynamics.control.bdot import BDot
+from tumble.dynamics.control.controllers import MRPFeedback
 from tumble.dynamics.models.actuators import ReactionWheels
 from tumble.dynamics.models.gravity import GravityGradient
 from tumble.validation import breaks_triangle

@@ -405,7 +405,7 @@ def detumble_monte_carlo(cases: DetumbleCases, *, field: DipoleField, gain: floa
     field : DipoleField
         The orbit and the dipole (its ``gmst0`` is replaced by each case's).
     gain : float
-        ``k`` of ``m = (k / |B|^2) omega x B``, N m s (e.g. :func:`~tumble.dynamics.control.controllers.bdot_gain`).
+        ``k`` of ``m = (k / |B|^2) omega x B``, N m s (e.g. :func:`~tumble.dynamics.control.bdot.bdot_gain`).
     magnetorquers : Magnetorquers
         The rods and their limits.
     period, t_end, threshold : float

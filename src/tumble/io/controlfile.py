@@ -51,7 +51,8 @@ from scipy.spatial.transform import Rotation
 
 from ..dynamics import Trajectory
 from ..dynamics.control.controlled import ControlledRun
-from ..dynamics.control.controllers import BDot, Controller, MRPFeedback
+from ..dynamics.control.bdot import BDot
+from ..dynamics.control.controllers import Controller, MRPFeedback
 from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels

@@ -124,7 +124,7 @@ def knowledge_summary(estimated: Estimated, run: ControlledRun) -> dict[str, Any
     >>> import numpy as np
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.estimated import Estimated
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> from tumble.dynamics.models.vector_sensors import StarTracker

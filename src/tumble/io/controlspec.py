@@ -35,7 +35,8 @@ from typing import Any
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..dynamics.control.controllers import BDot, MomentumDumping, MRPFeedback, bdot_gain
+from ..dynamics.control.bdot import BDot, bdot_gain
+from ..dynamics.control.controllers import MomentumDumping, MRPFeedback
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.environment.orbit import CircularOrbit

@@ -104,7 +104,7 @@ def figure_attitude_error(run: ControlledRun, target: Rotation | Reference | Non
     >>> from tumble.viz.control import figure_attitude_error
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> ax = figure_attitude_error(run, Rotation.from_rotvec([0.0, 0.0, 1.0])).axes[0]
     >>> line = ax.lines[0]
@@ -136,7 +136,7 @@ def figure_body_rates(run: ControlledRun, *, switch_time: float | None = None, t
     >>> import numpy as np
     >>> from tumble.viz.control import figure_body_rates
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> top, bottom = figure_body_rates(run, switch_time=4.0).axes
     >>> [line.get_label() for line in top.lines]
@@ -164,7 +164,7 @@ def figure_wheels(run: ControlledRun, *, switch_time: float | None = None, title
     --------
     >>> from tumble.viz.control import figure_wheels
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> figure_wheels(run).axes[0].texts[0].get_text()
     'no reaction wheels in this run'
@@ -195,7 +195,7 @@ def figure_dipole(run: ControlledRun, *, switch_time: float | None = None, title
     >>> import numpy as np
     >>> from tumble.viz.control import figure_dipole
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=5.0, controller=BDot(gain=1e4, period=1.0),
@@ -287,7 +287,7 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
     >>> from tumble.viz.control import control_figures
     >>> from scipy.spatial.transform import Rotation
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0),

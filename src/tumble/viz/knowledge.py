@@ -36,7 +36,7 @@ def figure_knowledge(run: ControlledRun, knowledge: Knowledge, *, switch_time: f
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.estimated import Estimated
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> from tumble.dynamics.models.vector_sensors import StarTracker

@@ -20,8 +20,9 @@ and the batched B-dot, with their compiled parts.
 The room calls the models and the integrators, never the other way (tests/test_import_graph.py).
 """
 
+from .bdot import BDot, bdot_gain
 from .controlled import ControlledRun, simulate_controlled
-from .controllers import BDot, Controller, MomentumDumping, MRPFeedback, bdot_gain, pd_response
+from .controllers import Controller, MomentumDumping, MRPFeedback, pd_response
 from .estimated import Estimated, Knowledge
 from .mission import DetumbleThenPoint
 from .pointing import NadirTarget

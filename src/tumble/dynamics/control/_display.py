@@ -72,7 +72,7 @@ def run_repr(run: _Run) -> str:
 
     Examples
     --------
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> repr(run)
@@ -91,7 +91,7 @@ def run_html(run: _Run) -> str:
 
     Examples
     --------
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0))
     >>> page = run._repr_html_()

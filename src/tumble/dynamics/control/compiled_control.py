@@ -153,7 +153,7 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     >>> import numpy as np
     >>> from tumble.dynamics.control.compiled_control import compiled_law
     >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> law, L, pinv = compiled_law(BDot(gain=1e4, period=1.0), Sensors(), np.ones(3), None, None)
     >>> law == LAW_BDOT, L.tolist(), pinv.shape
@@ -161,7 +161,8 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     >>> compiled_law(BDot(gain=1e4, period=1.0), Sensors(gyro_noise=1e-4), np.ones(3), None, None) is None
     True
     """
-    from .controllers import BDot, MomentumDumping, MRPFeedback
+    from .bdot import BDot
+    from .controllers import MomentumDumping, MRPFeedback
     from .pointing import is_reference
 
     if sensors is not None and (sensors.gyro_noise or sensors.magnetometer_noise or sensors.attitude != "ideal"
@@ -267,7 +268,7 @@ class ControlKernel:
         --------
         >>> import numpy as np
         >>> from tumble.dynamics.control.compiled_control import ControlKernel
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, None, None, 1e-10, 1e-12)
         >>> kernel.law(BDot(gain=1e4, period=1.0), Sensors(), None, None)[0]

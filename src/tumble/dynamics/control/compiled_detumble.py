@@ -12,7 +12,7 @@ checks the two agree to round-off), with the formulas written out once more over
   (:meth:`~tumble.dynamics.models.sensors.Sensors.sample`), the noise drawn in numpy and passed in
   a control step at a time;
 - the gyro B-dot dipole ``-k (B x omega)`` of the readings, ``k = gain / |B|^2`` normalised
-  (:func:`~tumble.dynamics.control.controllers.bdot_dipole`), clipped rod by rod
+  (:func:`~tumble.dynamics.control.bdot.bdot_dipole`), clipped rod by rod
   (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`), checked against them;
 - ``I omega' = m x B - omega x I omega``, ``q' = q (x) (omega, 0) / 2`` (the numpy path's ``_rhs``);
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of the circular orbit and the field: the

@@ -93,7 +93,7 @@ class ControlledRun:
     :func:`simulate_controlled` makes one. A spin about a principal axis with no actuator
     (B-dot without a field asks for nothing) keeps its rate; one sample a control step:
 
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> import numpy as np
     >>> from tumble.dynamics.control.controlled import simulate_controlled
     >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
@@ -132,7 +132,7 @@ class ControlledRun:
         ``-k omega`` held over each step ``dt``, so ``|omega|`` falls by ``1 - k dt / I3`` a step
         (nearly ``exp(-k t / I3)``):
 
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> import numpy as np
         >>> from tumble.dynamics.control.controlled import simulate_controlled
@@ -153,7 +153,7 @@ class ControlledRun:
         Normalised B-dot (as in :attr:`rate`) takes the rate down by ``e`` in about
         ``I3 / k = 15 s``; the first sample below is at 15 s:
 
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> import math
         >>> from tumble.dynamics.control.controlled import simulate_controlled
@@ -182,7 +182,7 @@ class ControlledRun:
         --------
         An uncontrolled spin of 0.1 rad/s about a principal axis turns ``0.1 t`` from its start:
 
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> import numpy as np
         >>> from scipy.spatial.transform import Rotation
         >>> from tumble.dynamics.control.controlled import simulate_controlled
@@ -345,7 +345,7 @@ def simulate_controlled(
 
     Examples
     --------
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.environment.magnetic import UniformField
     >>> import numpy as np
     >>> from tumble.dynamics.control.controlled import simulate_controlled

@@ -2,7 +2,7 @@
 vectorised over N bodies with numpy and integrated by fixed-step RK4 between control steps.
 
 The model is the magnetorquer case of :mod:`~tumble.dynamics.control.controlled` with the gyro form of
-the B-dot law (:class:`~tumble.dynamics.control.controllers.BDot`, ``derivative="gyro"``) and no wheels:
+the B-dot law (:class:`~tumble.dynamics.control.bdot.BDot`, ``derivative="gyro"``) and no wheels:
 for each body ``i`` (principal moments ``I_i``)
 
 ``I_i omega' = m_i x B_i + tau_gg,i - omega x I_i omega``,  ``q' = q (x) (omega, 0) / 2``,
@@ -47,7 +47,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
 from . import _display
-from .controllers import bdot_dipole
+from .bdot import bdot_dipole
 from ..models.actuators import Magnetorquers
 from ..models.gravity import GravityGradient, gradient_torque
 from ..environment.earth import OMEGA_EARTH
@@ -281,7 +281,7 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     t_end : float
         Duration, s: a whole number of periods is run (the last one may end past ``t_end``).
     form : {"normalized", "classic"}
-        The B-dot law (:class:`~tumble.dynamics.control.controllers.BDot`).
+        The B-dot law (:class:`~tumble.dynamics.control.bdot.BDot`).
     substeps : int
         RK4 steps per control period (>= 1).
     gravity_gradient : GravityGradient, optional

@@ -109,7 +109,7 @@ class Knowledge:
 
     >>> import numpy as np
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.estimated import Estimated
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> from tumble.dynamics.models.vector_sensors import StarTracker
@@ -137,7 +137,7 @@ class Knowledge:
         --------
         >>> import numpy as np
         >>> from tumble.dynamics.control.controlled import simulate_controlled
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> from tumble.dynamics.models.vector_sensors import StarTracker
@@ -186,7 +186,7 @@ class Estimated:
 
     >>> import numpy as np
     >>> from tumble.dynamics.control.controlled import simulate_controlled
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.estimated import Estimated
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> from tumble.dynamics.models.vector_sensors import StarTracker
@@ -227,7 +227,7 @@ class Estimated:
 
         Examples
         --------
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> Estimated(BDot(gain=1e-3, period=0.25), Sensors()).period
@@ -242,7 +242,7 @@ class Estimated:
         --------
         >>> import numpy as np
         >>> from tumble.dynamics.control.controlled import simulate_controlled
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> from tumble.dynamics.models.vector_sensors import StarTracker
@@ -267,7 +267,7 @@ class Estimated:
         --------
         >>> import numpy as np
         >>> from scipy.spatial.transform import Rotation
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Measurement, Sensors
         >>> from tumble.dynamics.models.vector_sensors import StarTracker
@@ -357,7 +357,7 @@ class Estimated:
         Examples
         --------
         >>> import numpy as np
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Measurement, Sensors
         >>> c = Estimated(BDot(gain=1e4, period=0.5), Sensors())
@@ -378,7 +378,7 @@ class Estimated:
         Examples
         --------
         >>> import numpy as np
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> c = Estimated(BDot(gain=1e4, period=0.5), Sensors())
@@ -397,7 +397,7 @@ class Estimated:
         --------
         >>> import numpy as np
         >>> from tumble.dynamics.control.controlled import simulate_controlled
-        >>> from tumble.dynamics.control.controllers import BDot
+        >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.control.estimated import Estimated
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> from tumble.dynamics.models.vector_sensors import StarTracker

@@ -198,7 +198,7 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     A fine sun sensor keeps the Python path:
 
     >>> import numpy as np
-    >>> from tumble.dynamics.control.controllers import BDot
+    >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.control.estimated import Estimated
     >>> from tumble.dynamics.control.estimated_loop import plan
     >>> from tumble.dynamics.environment.orbit import CircularOrbit

@@ -1,7 +1,7 @@
 """The control laws of :mod:`~tumble.dynamics.control.controllers` over plain floats: written once.
 
 Each law is a function of scalar components (arithmetic only), which the Python controllers
-call (:class:`~tumble.dynamics.control.controllers.BDot`,
+call (:class:`~tumble.dynamics.control.bdot.BDot`,
 :class:`~tumble.dynamics.control.controllers.MRPFeedback`,
 :class:`~tumble.dynamics.control.controllers.MomentumDumping`; some on arrays of one shape) and
 the compiled closed loop compiles (:mod:`~tumble.dynamics.control.compiled_loop`), so that the

@@ -2,7 +2,7 @@
 
 After separation a small satellite tumbles at a few to tens of deg/s; the first mode of its
 attitude control damps that spin with B-dot and magnetorquers (Stickler & Alfriend 1974; gain
-of Avanzini & Giulietti 2012: :class:`~tumble.dynamics.control.controllers.BDot`), and only when the
+of Avanzini & Giulietti 2012: :class:`~tumble.dynamics.control.bdot.BDot`), and only when the
 rate is low does a fine mode take over and point with reaction wheels (MRP feedback, Schaub &
 Junkins, *Analytical Mechanics of Space Systems*, 4th ed., sec. 8.3-8.4:
 :class:`~tumble.dynamics.control.controllers.MRPFeedback`), optionally with the magnetorquers unloading
@@ -36,7 +36,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...validation import check_positive
-from .controllers import BDot, MomentumDumping, MRPFeedback
+from .bdot import BDot
+from .controllers import MomentumDumping, MRPFeedback
 from ..models.actuators import Command
 from ..models.sensors import Measurement
 
@@ -71,7 +72,8 @@ class DetumbleThenPoint:
     --------
     >>> from tumble.dynamics.models.actuators import ReactionWheels
     >>> import numpy as np
-    >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+    >>> from tumble.dynamics.control.bdot import BDot
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
     >>> from tumble.dynamics.control.mission import DetumbleThenPoint
     >>> from tumble.dynamics.models.sensors import Measurement
     >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
@@ -121,7 +123,8 @@ class DetumbleThenPoint:
         --------
         >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> import numpy as np
-        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.bdot import BDot
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
         >>> from tumble.dynamics.control.mission import DetumbleThenPoint
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
         >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419], wheels=rw)
@@ -138,7 +141,8 @@ class DetumbleThenPoint:
         >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> from scipy.spatial.transform import Rotation
         >>> import numpy as np
-        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.bdot import BDot
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
         >>> from tumble.dynamics.control.mission import DetumbleThenPoint
         >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
@@ -170,7 +174,8 @@ class DetumbleThenPoint:
         >>> from tumble.dynamics.models.actuators import ReactionWheels
         >>> from scipy.spatial.transform import Rotation
         >>> import numpy as np
-        >>> from tumble.dynamics.control.controllers import BDot, MRPFeedback
+        >>> from tumble.dynamics.control.bdot import BDot
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
         >>> from tumble.dynamics.control.mission import DetumbleThenPoint
         >>> from tumble.dynamics.models.sensors import Measurement
         >>> rw = ReactionWheels(np.eye(3), inertia=2e-5)
