@@ -39,7 +39,7 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source",
+__all__ = ["RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source",
            "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
@@ -53,8 +53,8 @@ class Layout:
 
     Examples
     --------
-    >>> from tumble.dynamics.engine.unrolled import BODY, state_layout
-    >>> BODY.header("step", "h"), state_layout(10).header("step", "h")
+    >>> from tumble.dynamics.engine.unrolled import RIGID_BODY, state_layout
+    >>> RIGID_BODY.header("step", "h"), state_layout(10).header("step", "h")
     ('def step(y, h, I, P, cs, ss, rot):', 'def step(t, y, h, P, X, cs, ss, rot):')
     """
 
@@ -67,8 +67,8 @@ class Layout:
 
         Examples
         --------
-        >>> from tumble.dynamics.engine.unrolled import BODY
-        >>> BODY.header("rk4_step", "h")
+        >>> from tumble.dynamics.engine.unrolled import RIGID_BODY
+        >>> RIGID_BODY.header("rk4_step", "h")
         'def rk4_step(y, h, I, P, cs, ss, rot):'
         """
         return f"def {name}({'t, ' if self.timed else ''}y, {middle}, {self.params}, cs, ss, rot):"
@@ -78,15 +78,15 @@ class Layout:
 
         Examples
         --------
-        >>> from tumble.dynamics.engine.unrolled import BODY, state_layout
-        >>> BODY.call("t + 0.5 * h", "y"), state_layout(10).call("t + 0.5 * h", "y")
+        >>> from tumble.dynamics.engine.unrolled import RIGID_BODY, state_layout
+        >>> RIGID_BODY.call("t + 0.5 * h", "y"), state_layout(10).call("t + 0.5 * h", "y")
         ('rhs(y, I, P, u0, u1)', 'rhs(t + 0.5 * h, y, P, X, u0, u1)')
         """
         return f"rhs({node + ', ' if self.timed else ''}{state}, {self.params}, u0, u1)"
 
 
 #: The rigid body's layout: ``rhs(y, I, P, u0, u1)`` over ``(omega, q)``.
-BODY = Layout(STATE, "I, P", False)
+RIGID_BODY = Layout(STATE, "I, P", False)
 
 
 def state_layout(n: int) -> Layout:
@@ -125,7 +125,7 @@ def _stage(layout: Layout, s: int, A: np.ndarray, C: Coefficients, state: str = 
             f"    k{s} = {layout.call(node, state)}"]
 
 
-def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, layout: Layout = BODY) -> str:
+def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, layout: Layout = RIGID_BODY) -> str:
     """The source of one step of the explicit tableau ``(A, B, C)`` (module docstring): returns the
     new state.
 
@@ -189,7 +189,7 @@ def dop853_errors_lines(name: str, n: int, atol: str) -> list[str]:
     return [*lines, "    return e5, e3"]
 
 
-def dop853_sources(layout: Layout = BODY, step: str = "dop853_step", errors: str = "dop853_errors",
+def dop853_sources(layout: Layout = RIGID_BODY, step: str = "dop853_step", errors: str = "dop853_errors",
                    atol: str = "atol[{i}]", dense: bool = True) -> str:
     """The sources of DOP853's pieces (Hairer, Norsett & Wanner, *Solving ODEs I*, 2nd ed.,
     sec. II.10, in scipy's arrangement, :class:`scipy.integrate.DOP853`):
