@@ -32,8 +32,7 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    no longer follows a free motion is taken back); end samples whose residual exceeds five
    times the fit's RMS are then trimmed. When the middle does not follow a free motion, or its
    fit settles where the ratios are not determined, the first and the second half are tried
-   (:data:`SEEDS`), then windows near the candidate's end (:data:`LATE_SEEDS`: the impact that
-   ends a flight is an impulse, its start may be hidden in a smooth swing of the hand).
+   (:data:`SEEDS`; :data:`LATE_SEEDS` says why no window near the candidate's end is).
 5. **Usable or not**, with a reason: too short (under ``min_duration`` or 30 samples),
    saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
@@ -362,7 +361,7 @@ def _one(t, omega, keep, a0, b0, min_duration, max_std, drag, rotation, bias, sc
     if spread < 0.05 * np.sqrt(np.mean(np.sum(w ** 2, axis=1))):
         return _skip(t, a0, b0, "steady spin (omega nearly constant: no tumble, the ratios do not enter)")
     first, best = None, None
-    for lo, hi in SEEDS + LATE_SEEDS[:1 + (t[b0 - 1] - t[a0] > LONG_CANDIDATE)]:
+    for lo, hi in SEEDS + LATE_SEEDS:
         a, b = a0 + int(lo * (b0 - a0)), a0 + int(hi * (b0 - a0))
         if b - a < MIN_SAMPLES:
             a, b = a0, b0
@@ -387,17 +386,14 @@ NUMERICAL = "not fitted"
 #: before any catch), then its first and its second half when the middle does not follow a
 #: free motion (an impact missed by :func:`~tumble.analysis.fit.segments.impulses` inside it, a throw that ends late).
 SEEDS = ((0.35, 0.8), (0.1, 0.5), (0.5, 0.9))
-#: More seeds, near the candidate's end, tried when those above all failed: the phone swung about
-#: before the throw, smoothly enough to show no impulse, joins the flight's candidate, so that its
-#: middle and its halves hold the hand; and on a slow tumble a start from the middle can settle in
-#: a poorer basin. The impact that ends the flight is an impulse, so the flight lies at the
-#: candidate's end (fit_coverage's racquet "one toss", seeds 1000-1099, with :data:`RETRY`'s
-#: undetermined fits: 91 of 100 flights found and fitted before, 94 after, none false).
-LATE_SEEDS = ((0.6, 0.95), (0.75, 0.97))
-#: A candidate longer than this, s, has both :data:`LATE_SEEDS` tried, a shorter one the first
-#: (each seed tried costs a fit: on the 45-toss recording of benchmarks/bench_fit.py the first
-#: costs 0.05 s of CPU per toss, the second 0.02 s more on every candidate).
-LONG_CANDIDATE = 1.0
+#: Seeds near the candidate's end, tried when those above all failed (none): a window at 0.6-0.95
+#: of the candidate finds flights whose candidate the hand's smooth swing before the throw joined,
+#: or whose middle seed settles in a poorer basin (fit_coverage's racquet "one toss", seeds 1015 and
+#: 1076: 93 of 100 found and fitted with it, 91 without), but it cost 0.04 s of CPU per toss on
+#: the 45-toss recording of benchmarks/bench_fit.py (0.275 -> 0.315 s, target 0.3: every swing of
+#: the racquet between its tosses tries it); a second at 0.75-0.97 found one flight more for
+#: 0.08 s more. Left empty until the seeds' fits cost less.
+LATE_SEEDS: tuple[tuple[float, float], ...] = ()
 #: The reasons for which another seed is tried: the seed's fit did not follow a free motion, or
 #: it settled where the ratios come out undetermined by too little of the tumble for the whole
 #: flight (on the synthetic racquet tossed one a file, a window of the same flight from another
