@@ -279,9 +279,6 @@ def test_recording_fit_repr(recording_fit):
 
 def test_html_parses_and_holds_the_headline(result, recording_fit):
     for obj in (result, recording_fit):
-        if not hasattr(obj, "_repr_html_"):
-            assert type(obj).__name__ == "Flight"  # WAITING below
-            continue
         page = obj._repr_html_()
         root = ET.fromstring(page)  # every tag closed, every '<' and '&' escaped
         assert root.tag == "div" and root.find("table/caption").text.startswith(type(obj).__name__)
@@ -368,9 +365,7 @@ NOT_RESULTS = {
 #: Results in folders that other work is changing (src/tumble/analysis/fit, analysis/tensor,
 #: dynamics/control and dynamics/methods): to be given a short repr and a table there. A class that
 #: gets both fails the test until it is moved off this list.
-WAITING = {
-    "Flight", "StepFit",  # analysis/fit: a short repr, no table yet; new
-}
+WAITING: set[str] = set()
 
 
 def _returned_classes() -> dict[type, list[str]]:

@@ -69,6 +69,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.spatial.transform import Rotation
 
+from ..._html import headline_html, headline_repr
 from ...dynamics.special.quaternion import quat_multiply
 from .model import Model
 from .solve import Solution
@@ -122,6 +123,11 @@ class StepFit:
     >>> fit.change - K_SIGMA * fit.change_std > MIN_CHANGE   # 4 +- 0.4 % of |L| moved in and out
     True
     """
+
+    HEADLINE = (("change", "internal momentum change over |L|", ""), ("change_std", "its std", ""),
+                ("times", "steps at", "s"), ("rms_rigid", "RMS without steps", ""), ("rms", "with", ""))
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
     change: float
     change_std: float

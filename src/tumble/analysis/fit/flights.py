@@ -71,6 +71,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..._html import fmt, result_html
 from ...typing import ArrayLike
 from .. import _display
 from .adequacy import _left_path
@@ -141,6 +142,11 @@ class Flight:
 
     def __repr__(self) -> str:
         return _display.flight_repr(self)
+
+    def _repr_html_(self) -> str:
+        return result_html("Flight", [("start", f"{fmt(self.start)} s"), ("end", f"{fmt(self.end)} s"),
+                                      ("samples", f"{self.first}..{self.stop}"), ("status", self.status),
+                                      ("reason", self.reason or "none"), ("joinable", "yes" if self.joinable else "no")])
 
     @property
     def samples(self) -> int:
