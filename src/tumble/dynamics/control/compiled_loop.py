@@ -8,7 +8,7 @@ state is a tuple of ``N = 10 +`` :data:`MAX_WHEELS` floats (:mod:`~tumble.dynami
 a run's wheels in the first slots and the slots past its count ``P[20]`` left at zero (the
 right-hand side skips them; scipy's error norm and starting step are taken over the run's own
 ``10 + k`` components, so the steps are those of the unpadded state). The right-hand side and the
-steps are written out for that size (:mod:`~tumble.dynamics.engine.unrolled_state`, from the
+steps are written out for that size (:func:`~tumble.dynamics.engine.unrolled.state_layout`, from the
 engine's tableaux). One size, not one per count: each size compiled for 27-39 CPU-s (measured,
 loaded machine); the padded size with its right-hand side called, not inlined, compiles in 17
 CPU-s (:func:`_generated`).
@@ -40,8 +40,7 @@ from ...jit import jit
 from ...typing import FloatArray
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
-from ..engine.unrolled import rotations_source
-from ..engine.unrolled_state import dop853_sources, fixed_step_source
+from ..engine.unrolled import dop853_sources, fixed_step_source, rotations_source, state_layout
 from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
                    gyro_field_rate_components)
 from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, rhs_namespace, rhs_source
@@ -94,9 +93,9 @@ def _sized_source() -> str:
         f"def axpy(y, a, f):\n    return ({''.join(f'y[{i}] + a * f[{i}], ' for i in range(N))})\n",
         f"def with_command(P, d0, d1, d2, u):\n    return ({''.join(c + ', ' for c in command)})\n",
         rhs_source("rhs", MAX_WHEELS),
-        dop853_sources("dop853_step", "dop853_errors", N),
-        fixed_step_source("rk4_step", N, RK4_A, RK4_B, RK4_C),
-        fixed_step_source("rk8_step", N, DOP853_A[:12, :12], DOP853_B, DOP853_C[:12]),
+        dop853_sources(state_layout(N), step="dop853_step", errors="dop853_errors", atol="atol", dense=False),
+        fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, state_layout(N)),
+        fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], state_layout(N)),
         rotations_source("rk4_turns", RK4_C), rotations_source("rk8_turns", DOP853_C[:12]),
         rotations_source("dop853_turns", DOP853_C[:13])])
 
