@@ -38,7 +38,7 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
          "return (-np.cross(w, w @ I + h)) @ Iinv", "h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2"),
     ),
     "Euler's equation, momentum form (L' = L x w)": (
-        "dynamics/models/gyrostat.py",
+        "dynamics/euler.py",
         (r"\bL\w*(\[1\]|1)\*w\w*(\[2\]|2)-L\w*(\[2\]|2)\*w\w*(\[1\]|1)", r"cross\(L\w*,w\w*\)"),
         ("out[0] = L[1] * w[2] - L[2] * w[1] + tau", "dL = _cross(L, w)"),
     ),
@@ -86,7 +86,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # tests/test_fit_recording.py::test_flights_that_scatter_inflate_the_pooled_uncertainty
     # (pooled std 0.011 instead of >= 0.02): the fit there hangs on round-off; it goes with the fits
     # onto the engine.
-    ("Euler's equations, angular-velocity form", "dynamics/models/drag.py"): "the fits' compiled drag kernel",
+    ("Euler's equations, angular-velocity form", "dynamics/models/fit_kernels.py"): "the fits' compiled drag kernel",
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's kinematics",
     # issue 38: moving onto the engine

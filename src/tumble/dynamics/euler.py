@@ -10,6 +10,8 @@ References
 - Landau & Lifshitz, *Mechanics*, 3rd ed., sec. 36, eq. (36.5); Goldstein, Poole & Safko,
   *Classical Mechanics*, 3rd ed., eq. (5.39').
 - Quaternion kinematics (``quaternion_rate``): :mod:`tumble.dynamics.special.quaternion`.
+- The momentum form ``L' = L x w + tau`` (:func:`momentum_rate_components`, the gyrostat's):
+  Hughes, *Spacecraft Attitude Dynamics*, Wiley 1986, ch. 7.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ __all__ = [
     "euler_rhs",
     "euler_rhs_tensor",
     "kinetic_energy",
+    "momentum_rate_components",
 ]
 
 
@@ -212,3 +215,25 @@ def energy_momentum_gaps(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     w2 = np.asarray(omega, float)[..., None, :] ** 2
     I = np.asarray(moments, float)
     return cast(Vector3, np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1))
+
+
+def momentum_rate_components(L0: Any, L1: Any, L2: Any, w0: Any, w1: Any, w2: Any, t0: Any, t1: Any,
+                             t2: Any) -> tuple[Any, Any, Any]:
+    """Euler's equation in momentum form, ``L' = L x w + tau``, component by component.
+
+    ``L`` the angular momentum of the whole (body and rotors, kg m^2/s) and ``w`` the body's
+    angular velocity (rad/s), both in a frame fixed to the body, ``tau`` the external torque
+    (N m): the gyrostat's equation (Hughes, *Spacecraft Attitude Dynamics*, 1986, ch. 7;
+    :mod:`tumble.dynamics.models.gyrostat`), and the rigid body's when ``L = I w``. The one
+    writing of this form, over floats (the compiled kernels of
+    :mod:`tumble.dynamics.models.fit_kernels` and :mod:`tumble.dynamics.control.loop_terms`) or
+    arrays of one shape (:mod:`tumble.dynamics.models.internal`); the angular-velocity form is
+    :func:`euler_components`.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import momentum_rate_components
+    >>> momentum_rate_components(1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.5)   # L x w + tau
+    (-1.0, 2.0, -0.5)
+    """
+    return L1 * w2 - L2 * w1 + t0, L2 * w0 - L0 * w2 + t1, L0 * w1 - L1 * w0 + t2

@@ -14,7 +14,7 @@ frame). Its equations
 ``J_j s_j' = u_j - J_j g_j . omega'``,  ``q' = q (x) (omega, 0) / 2``,  ``impulse' = R tau``
 
 are each model's own formula, compiled: the momentum form of Euler's equations
-(:func:`~tumble.dynamics.models.gyrostat.momentum_rate_components`), the kinematics
+(:func:`~tumble.dynamics.euler.momentum_rate_components`), the kinematics
 (:func:`~tumble.dynamics.special.quaternion.quaternion_rate_components`), the rotations
 (:func:`~tumble.dynamics.special.quaternion.to_body`, :func:`~tumble.dynamics.special.quaternion.rotate_components`),
 the gravity gradient (:func:`~tumble.dynamics.models.gravity.gradient_components`), the wheels'
@@ -59,7 +59,7 @@ from ..environment.magnetic import dipole_components
 from ..environment.tabulated import horner
 from ..models.actuators import wheel_torque
 from ..models.gravity import gradient_components
-from ..models.gyrostat import momentum_rate_components
+from ..euler import momentum_rate_components
 from ..special.quaternion import quaternion_rate_components, rotate_components, to_body
 
 __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "WHEEL", "external_torque",

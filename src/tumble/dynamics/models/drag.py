@@ -11,10 +11,12 @@ in a viscous fluid feels ``8 pi mu R^3 w``, Lamb, *Hydrodynamics*, 6th ed., sec.
 ``b = rho C_D W L^4 / 64`` for a plate ``L x W`` turning about its width's axis, each strip at
 radius ``r`` feeling ``0.5 rho C_D W (w r)^2``: Hoerner, *Fluid-Dynamic Drag*, 1965, ch. 3, and
 e.g. Knight, *Physics for Scientists and Engineers*, ch. 12). Each axis's torque opposes its
-own component: the usual per-axis approximation of a tumbling body's aerodynamic damping.
+own component: the usual per-axis approximation of a tumbling body's aerodynamic damping
+(:func:`~tumble.dynamics.models.aero.drag_component`, the law written once, re-exported here).
 
 :func:`drag_omega` integrates it for many bodies at once with the classical fourth-order
-Runge-Kutta method (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.1) in a numba kernel,
+Runge-Kutta method (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.1) in a numba kernel
+(:func:`tumble.dynamics.models.fit_kernels.drag_integrate`, compiled when first imported),
 each body on its own times, forward for ``t >= 0`` and backward for ``t < 0``, with a fixed
 number of equal steps between consecutive times that depends only on the times and the
 given step bound: so the result is a smooth function of the moments, ``omega0`` and the drag
@@ -27,103 +29,12 @@ error ``~(|w| h)^4`` (tests/test_exact_omega.py).
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable
-from typing import Any, cast
-
 import numpy as np
 
-from ...typing import ArrayLike, FloatArray, Vector3
+from ...typing import ArrayLike, Vector3
+from .aero import drag_component
 
 __all__ = ["drag_component", "drag_omega", "drag_torque"]
-
-
-def drag_component(linear: Any, quadratic: Any, w: Any) -> Any:
-    """The drag torque about one axis, ``-(a + b |w|) w``, N m (module docstring): the law written
-    once, over floats (or arrays, elementwise: a float in a kernel, an array in numpy), for the
-    Python path and every compiled kernel.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.drag import drag_component
-    >>> drag_component(0.1, 1.0, 2.0), drag_component(0.1, 1.0, -2.0)   # always against the rotation
-    (-4.2, 4.2)
-    """
-    return -(linear + quadratic * abs(w)) * w
-
-
-_drag = drag_component  # compiled by _compiled(), with the kernels that call it
-
-
-def _rate(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, out: FloatArray) -> None:
-    out[0] = ((I[1] - I[2]) * w[1] * w[2] + _drag(lin[0], quad[0], w[0])) / I[0]
-    out[1] = ((I[2] - I[0]) * w[2] * w[0] + _drag(lin[1], quad[1], w[1])) / I[1]
-    out[2] = ((I[0] - I[1]) * w[0] * w[1] + _drag(lin[2], quad[2], w[2])) / I[2]
-
-
-def _advance(
-    I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, dt: float, n: int,
-    k1: FloatArray, k2: FloatArray, k3: FloatArray, k4: FloatArray, tmp: FloatArray,
-) -> None:
-    h = dt / n
-    for _ in range(n):
-        _rate(I, lin, quad, w, k1)
-        for c in range(3):
-            tmp[c] = w[c] + 0.5 * h * k1[c]
-        _rate(I, lin, quad, tmp, k2)
-        for c in range(3):
-            tmp[c] = w[c] + 0.5 * h * k2[c]
-        _rate(I, lin, quad, tmp, k3)
-        for c in range(3):
-            tmp[c] = w[c] + h * k3[c]
-        _rate(I, lin, quad, tmp, k4)
-        for c in range(3):
-            w[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
-
-
-def _integrate(
-    I: FloatArray, w0: FloatArray, lin: FloatArray, quad: FloatArray, tau: FloatArray, hmax: FloatArray
-) -> FloatArray:
-    K, T = tau.shape
-    out = np.empty((K, T, 3))
-    k1, k2, k3, k4, tmp = np.empty(3), np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    w = np.empty(3)
-    for b in range(K):
-        j0 = 0
-        while j0 < T and tau[b, j0] < 0.0:
-            j0 += 1
-        for side in range(2):
-            for c in range(3):
-                w[c] = w0[b, c]
-            t = 0.0
-            if side == 0:
-                js = range(j0, T)
-            else:
-                js = range(j0 - 1, -1, -1)
-            for j in js:
-                dt = tau[b, j] - t
-                if dt != 0.0:
-                    n = max(1, int(np.ceil(abs(dt) / hmax[b] - 1e-9)))
-                    _advance(I[b], lin[b], quad[b], w, dt, n, k1, k2, k3, k4, tmp)
-                    t = tau[b, j]
-                for c in range(3):
-                    out[b, j, c] = w[c]
-    return out
-
-
-@functools.cache
-def _compiled() -> Callable[..., FloatArray]:
-    """The kernel compiled by numba (``cache=True``: once per machine), on first use: importing
-    numba costs half a second, which every ``tumble`` command would pay at start otherwise.
-    The module's functions are replaced by their compiled versions in calling order, so that
-    each is compiled against the compiled ones it calls."""
-    from ...jit import jit
-
-    globals()["_drag"] = jit(inline="always")(drag_component)
-    names = ("_rate", "_advance", "_integrate")
-    for name in names:
-        globals()[name] = jit()(globals()[name])
-    return cast("Callable[..., FloatArray]", globals()["_integrate"])
 
 
 def drag_omega(
@@ -172,7 +83,9 @@ def drag_omega(
         hmax = 0.04 / np.where(speed > 0, speed, 1.0)
     else:
         hmax = np.ascontiguousarray(np.broadcast_to(np.asarray(max_step, float), (N,)))
-    return _compiled()(I, w, lin, quad, tau, hmax)
+    from .fit_kernels import drag_integrate  # compiled at import: numba only when a fit needs it
+
+    return drag_integrate(I, w, lin, quad, tau, hmax)
 
 
 def drag_torque(omega: ArrayLike, linear: ArrayLike | None = None, quadratic: ArrayLike | None = None) -> Vector3:

@@ -21,98 +21,19 @@ finite differences is one call) over the same sample times, one classical Runge-
 (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.1) per sample interval, with ``h`` given at
 the samples and at the midpoints of the intervals (RK4's stages need it there). The step count
 depends only on the times, so the result is a smooth function of the parameters. Local error
-``~(|w| dt)^5``: 5e-11 at 35 rad/s and 4 kHz.
+``~(|w| dt)^5``: 5e-11 at 35 rad/s and 4 kHz. The kernel is
+:func:`tumble.dynamics.models.fit_kernels.gyrostat_integrate` (compiled when first imported); the
+momentum form is :func:`tumble.dynamics.euler.momentum_rate_components`, re-exported here.
 """
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable
-from typing import Any, cast
-
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray
-from .drag import drag_component
+from ..euler import momentum_rate_components
 
 __all__ = ["gyrostat_omega", "momentum_rate_components"]
-
-
-def momentum_rate_components(L0: Any, L1: Any, L2: Any, w0: Any, w1: Any, w2: Any, t0: Any, t1: Any,
-                             t2: Any) -> tuple[Any, Any, Any]:
-    """Euler's equation in momentum form, ``L' = L x w + tau``, component by component.
-
-    ``L`` the angular momentum of the whole (body and rotors, kg m^2/s) and ``w`` the body's
-    angular velocity (rad/s), both in a frame fixed to the body, ``tau`` the external torque
-    (N m): the gyrostat's equation (Hughes 1986, ch. 7; module docstring), and the rigid body's
-    when ``L = I w``. The one writing of this form, over floats (the compiled kernel here) or
-    arrays of one shape (:mod:`tumble.dynamics.models.internal`); the angular-velocity form is
-    :func:`tumble.dynamics.euler.euler_components`.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.gyrostat import momentum_rate_components
-    >>> momentum_rate_components(1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.5)   # L x w + tau
-    (-1.0, 2.0, -0.5)
-    """
-    return L1 * w2 - L2 * w1 + t0, L2 * w0 - L0 * w2 + t1, L0 * w1 - L1 * w0 + t2
-
-
-_drag = drag_component  # compiled by _compiled(), with the kernels that call it
-_momentum_rate = momentum_rate_components  # compiled by _compiled(), with the kernels that call it
-
-
-def _rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, g: FloatArray, k: float, w: FloatArray,
-          out: FloatArray) -> None:
-    for i in range(3):
-        w[i] = Iinv[i, 0] * (L[0] - h[0]) + Iinv[i, 1] * (L[1] - h[1]) + Iinv[i, 2] * (L[2] - h[2])
-    d0, d1, d2 = _momentum_rate(L[0], L[1], L[2], w[0], w[1], w[2], _drag(0.0, quad[0], w[0]),
-                                _drag(0.0, quad[1], w[1]), _drag(0.0, quad[2], w[2]))
-    out[0], out[1], out[2] = d0 + k * g[0], d1 + k * g[1], d2 + k * g[2]
-
-
-def _integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray, h: FloatArray,
-               hmid: FloatArray, g: FloatArray, gmid: FloatArray, scale: FloatArray) -> FloatArray:
-    K = Iinv.shape[0]
-    T = t.shape[0]
-    out = np.empty((K, T, 3))
-    k1, k2, k3, k4 = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    L, tmp, w = np.empty(3), np.empty(3), np.empty(3)
-    for b in range(K):
-        for c in range(3):
-            L[c] = L0[b, c]
-        k = scale[b]
-        for j in range(T):
-            if j > 0:
-                dt = t[j] - t[j - 1]
-                _rate(Iinv[b], quad[b], L, h[j - 1], g[j - 1], k, w, k1)
-                for c in range(3):
-                    tmp[c] = L[c] + 0.5 * dt * k1[c]
-                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k2)
-                for c in range(3):
-                    tmp[c] = L[c] + 0.5 * dt * k2[c]
-                _rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k3)
-                for c in range(3):
-                    tmp[c] = L[c] + dt * k3[c]
-                _rate(Iinv[b], quad[b], tmp, h[j], g[j], k, w, k4)
-                for c in range(3):
-                    L[c] += dt / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
-            for i in range(3):
-                out[b, j, i] = (Iinv[b, i, 0] * (L[0] - h[j, 0]) + Iinv[b, i, 1] * (L[1] - h[j, 1])
-                                + Iinv[b, i, 2] * (L[2] - h[j, 2]))
-    return out
-
-
-@functools.cache
-def _compiled() -> Callable[..., FloatArray]:
-    """The kernel compiled by numba (``cache=True``) on first use (as :mod:`~tumble.dynamics.models.drag`)."""
-    from ...jit import jit
-
-    globals()["_drag"] = jit(inline="always")(drag_component)
-    globals()["_momentum_rate"] = jit(inline="always")(momentum_rate_components)
-    for name in ("_rate", "_integrate"):
-        globals()[name] = jit()(globals()[name])
-    return cast("Callable[..., FloatArray]", globals()["_integrate"])
 
 
 def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: ArrayLike, h_mid: ArrayLike,
@@ -185,4 +106,6 @@ def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: Ar
         k = np.ascontiguousarray(np.broadcast_to(np.asarray(0.0 if torque_scale is None else torque_scale, float), (K,)))
         if g.shape != hs.shape or gm.shape != hm.shape:
             raise ValueError(f"torque must have the shapes of h and h_mid, not {g.shape} and {gm.shape}")
-    return _compiled()(np.linalg.inv(I), L0, quad, times, hs, hm, g, gm, k)
+    from .fit_kernels import gyrostat_integrate  # compiled at import: numba only when a fit needs it
+
+    return gyrostat_integrate(np.linalg.inv(I), L0, quad, times, hs, hm, g, gm, k)

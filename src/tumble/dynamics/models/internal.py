@@ -22,7 +22,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
 from ..special.quaternion import quaternion_rate
 from .damper import MAX_DAMPER_RATIO, SphericalDamper
-from .gyrostat import momentum_rate_components
+from ..euler import momentum_rate_components
 from .rotors import Rotors, gyrostat_rate
 
 __all__ = ["MAX_DAMPER_RATIO", "STIFF_RATIO", "InternalModel", "InternalSamples", "Rotors", "SphericalDamper", "gyrostat_rate"]
