@@ -9,7 +9,7 @@ bias per case drawn with 1e-4 rad/s per axis (1 sigma; the scenario's bias is of
 Dispersed: the initial rate uniform in 5-20 deg/s in a uniform direction, each moment +-10 %
 (uniform), the field epoch (Earth angle) uniform, the attitude uniform, the gyro bias, and each
 case's noise (its own seed). ``tumble.ensemble.detumble_monte_carlo`` (RK4 over chunks of
-cases, two substeps a period, each case compiled: ``tumble.dynamics.control.compiled_detumble``);
+cases, two substeps a period, each case compiled: ``tumble.dynamics.control.detumble_kernels``);
 ``--quick`` runs 500 cases. Writes the table, the JSON (with the summary's worst cases) and
 ``detumble_mc.png`` (``tumble.viz.montecarlo.figure_detumble_mc``: histogram, distribution with
 the 50/95/99 % marks, |omega| envelopes).

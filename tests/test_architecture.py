@@ -45,8 +45,8 @@ def test_the_rooms_named_on_the_page_hold_the_modules_it_names():
                           "environment": ["earth", "orbit", "ephemeris", "magnetic", "igrf", "sidereal", "tabulated"],
                           "methods": ["integrators", "exact", "exact_batch", "geometric"],
                           "engine": ["kernels", "front", "tableau"],
-                          "control": ["controllers", "controlled", "mission", "pointing", "detumble", "compiled_control",
-                                      "compiled_detumble"]}.items():
+                          "control": ["controllers", "controlled", "mission", "pointing", "detumble", "control_kernel",
+                                      "detumble_kernels", "compiled_loop"]}.items():
         assert f"`dynamics/{room}/`" in text
         for name in modules:
             importlib.import_module(f"tumble.dynamics.{room}.{name}")

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.control import compiled_control as cc
+from tumble.dynamics.control import control_kernel as cc
 from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.bdot import BDot
 from tumble.dynamics.control.controllers import MomentumDumping, MRPFeedback

@@ -1,4 +1,4 @@
-"""The compiled closed-loop paths (methods/compiled_control.py): each built-in model written out
+"""The compiled closed-loop paths (control/control_kernel.py, compiled_loop.py, loop_terms.py): each built-in model written out
 in numba against its numpy reference, the compiled DOP853 against scipy's (the same steps, so
 round-off apart), the momentum budget, an exact relation of B-dot, and the compiled B-dot batch
 against the numpy batch."""
@@ -16,9 +16,10 @@ from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.bdot import BDot, bdot_dipole
 from tumble.dynamics.control.controllers import MRPFeedback
 from tumble.dynamics.control.detumble import detumble_batch
-from tumble.dynamics.control import compiled_control as cc
+from tumble.dynamics.control import control_kernel as cc
+from tumble.dynamics.control import loop_terms
 from tumble.dynamics.control.compiled_loop import padded, unpadded
-from tumble.dynamics.control import compiled_detumble as cd
+from tumble.dynamics.control import detumble_kernels as cd
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
 from tumble.dynamics.environment.magnetic import DipoleField, UniformField
@@ -53,8 +54,8 @@ def _agree(fast, slow, rel=1e-11):
                                    DipoleField(CircularOrbit(altitude=800e3, inclination=0.3)),
                                    UniformField((1e-5, -2e-5, 3e-5))])
 def test_the_kernels_field_is_the_models_field(field):
-    kind, p = cc.field_params(field)
-    f = cc._compiled("_field_world")
+    kind, p = field.loop_form()
+    f = loop_terms.field_world
     for t in (0.0, 1.0, 1234.5, 11399.0):
         out = np.array(f(kind, p, cc._NO_TABLE, t))
         np.testing.assert_allclose(out, field.world(t), rtol=1e-13, atol=1e-13 * np.linalg.norm(field.world(t)))
@@ -65,7 +66,7 @@ def test_the_kernels_wheel_torque_is_applied_torque_exactly():
                         max_torque=[1e-3, 2e-3, 1e-3, 5e-4], max_speed=[600.0, 500.0, np.inf, 600.0],
                         viscous=1e-7, coulomb=[1e-5, 0.0, 2e-5, 1e-5], limit_cycle_speed=[1e-4, 1e-4, 1e-3, 2e-4])
     rng = np.random.default_rng(3)
-    f = cc._compiled("_wheel_torque")
+    f = loop_terms._wheel_torque
     for command, speed in [(rng.normal(size=4) * 2e-3, rng.normal(size=4) * 700.0),
                            ([5e-4, -5e-4, 1e-4, 2e-3], [600.0, -500.0, 0.0, -600.0]),
                            ([0.0, 0.0, 0.0, 0.0], [0.0, -0.0, 1e-300, -1e-300]),
@@ -100,7 +101,7 @@ def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
 def test_the_kernels_bdot_dipole_is_the_controllers_clipped_by_the_rods(form):
     rods = Magnetorquers([0.2, 0.1], axes=[[1.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
     rng = np.random.default_rng(5)
-    f = cd._compiled("_bdot")
+    f = cd._bdot
     gain = 3e-5 if form == "normalized" else 2e4
     for _ in range(20):
         b, w = rng.normal(size=3) * 3e-5, rng.normal(size=3) * 0.3

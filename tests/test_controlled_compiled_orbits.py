@@ -1,5 +1,5 @@
 """The compiled closed loop with the IGRF field and along Keplerian and TLE orbits
-(methods/compiled_control.py, environment/tabulated.py): the tables against the models they stand for,
+(control/control_kernel.py, environment/tabulated.py): the tables against the models they stand for,
 the compiled evaluation against numpy's, and whole runs against scipy's solve_ivp path."""
 
 from __future__ import annotations
@@ -12,7 +12,8 @@ from tumble.dynamics.control import controlled
 from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.bdot import BDot
 from tumble.dynamics.control.controllers import MRPFeedback
-from tumble.dynamics.control import compiled_control as cc
+from tumble.dynamics.control import control_kernel as cc
+from tumble.dynamics.control import loop_terms
 from tumble.dynamics.control.compiled_loop import padded, unpadded
 from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
 from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient, gravity_gradient_of
@@ -37,7 +38,7 @@ def _igrf(orbit, epoch=None, step=5.0):
 
 
 def _compiled_table(table, t):
-    f = cc._compiled("_table")
+    f = loop_terms.table_value
     return np.array([f(table.coefficients, table.t0, table.step, float(x)) for x in t])
 
 

@@ -78,7 +78,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "dynamics/control/detumble.py"): "the batched B-dot's right-hand side",
     # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/compiled_detumble.py"): "the compiled B-dot",
+    ("Euler's equations, angular-velocity form", "dynamics/control/detumble_kernels.py"): "the compiled B-dot",
     # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "analysis/tensor/synthetic.py"): "the synthetic throws' gyrostat",
     # issue 38: moving onto the engine. Calling euler_components here changes the kernel by an ulp
@@ -88,7 +88,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # onto the engine.
     ("Euler's equations, angular-velocity form", "dynamics/models/fit_kernels.py"): "the fits' compiled drag kernel",
     # issue 38: moving onto the engine
-    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's kinematics",
+    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/detumble_kernels.py"): "the compiled B-dot's kinematics",
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
     # issue 38: moving onto the engine
@@ -96,7 +96,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
     ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/controlled.py"): "the Python loop's R",
     # issue 38: moving onto the engine
-    ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/compiled_detumble.py"): "the compiled B-dot's field table",
+    ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/detumble_kernels.py"): "the compiled B-dot's field table",
     # issue 38: moving onto the engine
     ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/detumble.py"): "the batched B-dot's field",
     # issue 38: moving onto the engine

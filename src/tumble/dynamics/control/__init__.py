@@ -12,10 +12,11 @@ and the batched B-dot, with their compiled parts.
 - :mod:`~tumble.dynamics.control.detumble`: the B-dot detumble of many bodies at once;
 - :mod:`~tumble.dynamics.control.laws`: the control laws over floats, written once for the Python
   controllers and the compiled loop;
-- :mod:`~tumble.dynamics.control.compiled_control` (the run's parameters bound),
-  :mod:`~tumble.dynamics.control.compiled_loop` (the whole loop, or one hold interval, in one
-  compiled call), :mod:`~tumble.dynamics.control.loop_terms` (its right-hand side) and
-  :mod:`~tumble.dynamics.control.compiled_detumble` (the B-dot batch): their numba kernels.
+- :mod:`~tumble.dynamics.control.compiled_loop` (the whole loop, or one hold interval, in one
+  compiled call), :mod:`~tumble.dynamics.control.loop_terms` (its right-hand side),
+  :mod:`~tumble.dynamics.control.control_kernel` (the loop bound to a run's parameters, which each
+  model gives through its ``loop_form()``) and :mod:`~tumble.dynamics.control.detumble_kernels`
+  (the B-dot batch): their numba kernels, compiled at import and imported only when asked for.
 
 The room calls the models and the integrators, never the other way (tests/test_import_graph.py).
 """

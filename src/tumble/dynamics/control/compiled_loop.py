@@ -2,7 +2,7 @@
 held, the dynamics integrated by the engine's steps.
 
 Imported only when a compiled closed loop is asked for (by
-:mod:`~tumble.dynamics.control.compiled_control` and :func:`~tumble.dynamics.control.controlled.simulate_controlled`);
+:mod:`~tumble.dynamics.control.control_kernel` and :func:`~tumble.dynamics.control.controlled.simulate_controlled`);
 compiled at import by :func:`tumble.jit.jit` (``cache=True``), once for every wheel count: the
 state is a tuple of ``N = 10 +`` :data:`MAX_WHEELS` floats (:mod:`~tumble.dynamics.control.loop_terms`),
 a run's wheels in the first slots and the slots past its count ``P[20]`` left at zero (the

@@ -16,10 +16,10 @@ read and the controller called.
 **Three paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
 or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular, Keplerian or TLE
 orbit, ``Magnetorquers``, at most six ``ReactionWheels``) each interval is integrated by scipy's
-DOP853 written out and compiled (:mod:`~tumble.dynamics.control.compiled_control`: the same
+DOP853 written out and compiled (:mod:`~tumble.dynamics.control.compiled_loop`: the same
 steps); with a model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. With
 a built-in controller as well (``BDot``, ``MRPFeedback`` to a fixed target, ``MomentumDumping``
-with it; :func:`~tumble.dynamics.control.compiled_control.compiled_law`) and ideal sensors, the
+with it; :func:`~tumble.dynamics.control.control_kernel.compiled_law`) and ideal sensors, the
 whole loop runs in one compiled call, the laws being the functions the Python controllers call
 (:mod:`~tumble.dynamics.control.laws`): the same results to round-off. Otherwise the controller
 and the sensors are Python, called once a period (a controller of one's own, a moving target,
@@ -56,7 +56,7 @@ from ..special.mrp import mrp_angle, mrp_from_quat
 from ..special.quaternion import rotate_by_quaternion
 
 if TYPE_CHECKING:
-    from .compiled_control import ControlKernel
+    from .control_kernel import ControlKernel
 
 __all__ = ["ControlledRun", "simulate_controlled"]
 
@@ -268,7 +268,7 @@ def _kernel(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Ma
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
     if compiled is False:
         return None
-    from .compiled_control import ControlKernel, compiled_control_models
+    from .control_kernel import ControlKernel, compiled_control_models
 
     other = compiled_control_models(field, gg, magnetorquers, wheels)
     if other is not None:

@@ -27,7 +27,7 @@ whatever the other bodies, the batch's size or the path (tested). The noise is d
 steps at a time (a few tens of MB), and the kernel runs segment by segment.
 
 **Two paths.** By default each body runs through a compiled kernel
-(:func:`~tumble.dynamics.control.compiled_detumble.detumble_run`: the same arithmetic, body by
+(:func:`~tumble.dynamics.control.detumble_kernels.detumble_run`: the same arithmetic, body by
 body, on every core for a large batch); ``compiled=False`` runs the numpy path, vectorised over
 the bodies, which is the reference (the two agree to round-off, tests/test_controlled_compiled.py).
 In numpy one RK4 stage is some fifty operations on arrays of N, and the batch is bound by memory
@@ -242,7 +242,7 @@ def _gravity_gradient(gravity_gradient: GravityGradient | None, field: DipoleFie
     """The mean motion of the gravity gradient's orbit, rad/s (0: none), checked to be the field's orbit."""
     if gravity_gradient is None:
         return 0.0
-    if type(gravity_gradient) is not GravityGradient:
+    if not isinstance(gravity_gradient, GravityGradient) or gravity_gradient.loop_form() is None:
         raise ValueError(f"gravity_gradient = {gravity_gradient!r} must be a GravityGradient (the circular orbit's, "
                          "gravity_gradient_of(orbit)) or None")
     if gravity_gradient.moments is not None:
@@ -352,10 +352,12 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     errors = _sensor_errors(sensors, n)
     rates = np.empty((n, steps + 1))
     if compiled:
-        from .compiled_control import field_params
-        from .compiled_detumble import detumble_run
+        from .detumble_kernels import detumble_run
 
-        fp = field_params(field)[1]
+        field_form = field.loop_form()
+        if field_form is None:
+            raise ValueError(f"field = {field!r} has a law of its own: the compiled batch cannot evaluate it; use compiled=False")
+        fp = field_form[1]
         for i0, i1, noise in errors.segments(steps):
             part, w, q = detumble_run(
                 I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.axes,

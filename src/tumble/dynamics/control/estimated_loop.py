@@ -2,7 +2,7 @@
 
 :class:`~tumble.dynamics.control.estimated.Estimated` runs in Python once per control period
 (readings, filter, law, then a compiled hold interval). When everything it wraps is built in
-(:func:`plan`: a law the compiled loop knows, :func:`~tumble.dynamics.control.compiled_control.compiled_law`;
+(:func:`plan`: a law the compiled loop knows, :func:`~tumble.dynamics.control.control_kernel.compiled_law`;
 a magnetometer, coarse sun cells, a star tracker and a gyroscope; the flight software's field
 model the run's own), the whole loop runs here instead, in one call, with the same formulas:
 
@@ -188,7 +188,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
 
 def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
     """The wrapped law of an :class:`~tumble.dynamics.control.estimated.Estimated` that this loop
-    runs (``(law, parameters, allocation)`` of :func:`~tumble.dynamics.control.compiled_control.compiled_law`),
+    runs (``(law, parameters, allocation)`` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`),
     or None for the Python path: the run's ``sensors`` those the filter is told of, a coarse sun
     sensor or none, a :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the
     flight software's field the run's (or none), and the wrapped law a built-in one.
@@ -209,7 +209,8 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     >>> plan(Estimated(BDot(gain=1.0, period=1.0), s), s, np.ones(3), None, None) is None
     True
     """
-    from .compiled_control import compiled_law, field_params
+    from ..environment.magnetic import field_form
+    from .control_kernel import compiled_law
     from .estimated import Estimated
 
     if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
@@ -222,7 +223,10 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     if own is not None and own is not field:
         if field is None:
             return None
-        (kind, p), (own_kind, own_p) = field_params(field), field_params(own)
+        form, own_form = field_form(field), field_form(own)
+        if form is None or own_form is None:
+            return None
+        (kind, p), (own_kind, own_p) = form, own_form
         if kind == FIELD_TABLE or kind != own_kind or not np.array_equal(p, own_p):
             return None
     return compiled_law(controller.controller, None, moments, wheels, field)
@@ -231,8 +235,8 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
 def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], grid: FloatArray, y0: FloatArray,
         rods: FloatArray, limits: FloatArray, carry: bool) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The whole loop of the :class:`~tumble.dynamics.control.estimated.Estimated` ``controller``
-    (:func:`plan` said yes) on the :class:`~tumble.dynamics.control.compiled_control.ControlKernel`
-    ``kernel``: as :meth:`~tumble.dynamics.control.compiled_control.ControlKernel.run`, the states,
+    (:func:`plan` said yes) on the :class:`~tumble.dynamics.control.control_kernel.ControlKernel`
+    ``kernel``: as :meth:`~tumble.dynamics.control.control_kernel.ControlKernel.run`, the states,
     dipoles, wheel torques and fields at ``grid`` (s); the filter's rows left in the controller
     (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`).
 

@@ -1,7 +1,7 @@
 """The closed loop's right-hand side under the built-in models, compiled: its terms and its source.
 
 Imported only when a compiled closed loop is asked for (by
-:mod:`~tumble.dynamics.control.compiled_control` and :mod:`~tumble.dynamics.control.compiled_loop`);
+:mod:`~tumble.dynamics.control.control_kernel` and :mod:`~tumble.dynamics.control.compiled_loop`);
 every function is compiled at import by :func:`tumble.jit.jit` (``cache=True``).
 
 **The state** ``y = (q, omega, s, impulse)`` of :mod:`~tumble.dynamics.control.controlled`, a tuple
@@ -29,7 +29,7 @@ principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by ro
 number of wheels; then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
-(:func:`~tumble.dynamics.control.compiled_control.field_params`), the IGRF table's and the orbit
+(the field's own ``loop_form()``, :func:`~tumble.dynamics.environment.magnetic.field_form`), the IGRF table's and the orbit
 position table's coefficients.
 
 **The fields** (one formula each; tests/test_controlled_compiled.py checks each against the
@@ -55,7 +55,7 @@ import numpy as np
 from ...jit import jit
 from ...typing import FloatArray
 from ..environment.earth import earth_angle
-from ..environment.magnetic import dipole_components
+from ..environment.magnetic import FIELD_DIPOLE, FIELD_NONE, FIELD_TABLE, FIELD_UNIFORM, dipole_components
 from ..environment.tabulated import horner
 from ..models.actuators import wheel_torque
 from ..models.gravity import gradient_components
@@ -65,8 +65,6 @@ from ..special.quaternion import quaternion_rate_components, rotate_components, 
 __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "WHEEL", "external_torque",
            "field_body", "field_world", "rhs_source"]
 
-#: Kinds of field the kernels evaluate: none, uniform, the tilted dipole, a CubicTable (IGRF).
-FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
 BODY, WHEEL = 21, 10
 

@@ -41,6 +41,7 @@ from ..._optional import optional_import
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_positive
 from .earth import earth_angle
+from .magnetic import FIELD_PARAMETERS, FIELD_TABLE
 from .sidereal import greenwich_sidereal_angle, julian_date, utc_datetime
 from .tabulated import MARGIN, CubicTable, horner, spline_table
 
@@ -227,6 +228,26 @@ class IGRFField:
         T = check_positive("t_end", t_end, "s")
         last = math.floor(T / (_BLOCK * float(self.step)))
         return CubicTable(0.0, float(self.step), np.concatenate([self._block(b) for b in range(last + 1)], axis=1))
+
+    def loop_form(self) -> tuple[int, FloatArray] | None:
+        """The compiled loop's form (:func:`~tumble.dynamics.environment.magnetic.field_form`):
+        ``FIELD_TABLE`` and the start (0 s) and knot spacing (s) of the table the loop reads
+        (:meth:`tabulate`, passed apart); None for a subclass with a ``world`` of its own.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> from tumble.dynamics.environment.igrf import IGRFField
+        >>> from tumble.dynamics.environment.magnetic import FIELD_TABLE
+        >>> kind, p = IGRFField(CircularOrbit(altitude=500e3), "2026-01-01T00:00:00").loop_form()
+        >>> kind == FIELD_TABLE, p[:2].tolist()
+        (True, [0.0, 5.0])
+        """
+        if type(self).world is not IGRFField.world:
+            return None
+        p = np.zeros(FIELD_PARAMETERS)
+        p[:2] = (0.0, self.step)
+        return FIELD_TABLE, p
 
     def world(self, t: ArrayLike) -> Vector3:
         """B at ``t`` (s from the epoch) in the world frame, T; shape ``t.shape + (3,)``.

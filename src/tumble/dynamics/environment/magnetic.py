@@ -17,7 +17,9 @@ ECI z at ``omega_E`` (:data:`~tumble.dynamics.environment.earth.OMEGA_EARTH`, IE
 ``theta = gmst0 + omega_E t`` (``gmst0`` the Greenwich sidereal angle at t = 0, rad).
 
 Every field here is a callable ``field.world(t) -> B`` (T) in the world frame of the control run
-(the orbit-plane frame of :class:`~tumble.dynamics.environment.orbit.CircularOrbit`).
+(the orbit-plane frame of :class:`~tumble.dynamics.environment.orbit.CircularOrbit`). A field the
+compiled closed loop evaluates itself declares its form, ``loop_form()``: a kind from ``FIELD_*``
+and the parameters that kind's formula reads (:func:`field_form`); any other field is called in Python.
 """
 
 from __future__ import annotations
@@ -33,7 +35,14 @@ from ...validation import check_bool, check_number, check_vector
 from .earth import earth_angle
 from .orbit import CircularOrbit
 
-__all__ = ["IGRF13_2020", "IGRF_RADIUS", "DipoleField", "MagneticField", "UniformField", "dipole_components"]
+__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "IGRF13_2020", "IGRF_RADIUS", "DipoleField",
+           "MagneticField", "UniformField", "dipole_components", "field_form"]
+
+#: Kinds of field the compiled closed loop evaluates (``loop_form()``): none, uniform, the tilted
+#: dipole, a tabulated field (:class:`~tumble.dynamics.environment.igrf.IGRFField`'s cubic table).
+FIELD_NONE, FIELD_UNIFORM, FIELD_DIPOLE, FIELD_TABLE = 0, 1, 2, 3
+#: Floats of a field's compiled parameters.
+FIELD_PARAMETERS = 16
 
 #: IGRF-13 degree-1 Gauss coefficients at epoch 2020.0 (g10, g11, h11), T (Alken et al. 2021).
 IGRF13_2020 = (-29404.8e-9, -1450.9e-9, 4652.5e-9)
@@ -128,6 +137,23 @@ class UniformField:
         (True, [0.0, -2e-05, 4e-05])
         """
         return np.array(self.vector, dtype=float)
+
+    def loop_form(self) -> tuple[int, FloatArray] | None:
+        """The compiled loop's form (:func:`field_form`): :data:`FIELD_UNIFORM` and ``B`` (T) in the
+        first three of the parameters; None for a subclass with a ``world`` of its own.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.environment.magnetic import FIELD_UNIFORM, UniformField
+        >>> kind, p = UniformField((0.0, 0.0, 3e-5)).loop_form()
+        >>> kind == FIELD_UNIFORM, p[:3].tolist()
+        (True, [0.0, 0.0, 3e-05])
+        """
+        if type(self).world is not UniformField.world:
+            return None
+        p = np.zeros(FIELD_PARAMETERS)
+        p[:3] = self.vector
+        return FIELD_UNIFORM, p
 
 
 @dataclass(frozen=True)
@@ -252,6 +278,28 @@ class DipoleField:
         r_ecef = world_from_ecef.T @ self.orbit.position_world(float(t))
         return np.asarray(world_from_ecef @ self.ecef(r_ecef), float)
 
+    def loop_form(self) -> tuple[int, FloatArray] | None:
+        """The compiled loop's form (:func:`field_form`): :data:`FIELD_DIPOLE` and the world-from-ECI
+        matrix (9, row by row), the Gauss vector ``g`` (3, T), ``gmst0`` (rad), 1 if the Earth turns
+        else 0, the orbit's radius (m) and mean motion (rad/s); None for a subclass with a ``world``
+        of its own.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.environment.magnetic import FIELD_DIPOLE, DipoleField
+        >>> from tumble.dynamics.environment.orbit import CircularOrbit
+        >>> kind, p = DipoleField(CircularOrbit(altitude=500e3), gmst0=0.5).loop_form()
+        >>> kind == FIELD_DIPOLE, p[12:14].tolist()
+        (True, [0.5, 1.0])
+        """
+        if type(self).world is not DipoleField.world:
+            return None
+        p = np.zeros(FIELD_PARAMETERS)
+        p[:9] = self.world_from_eci.reshape(9)
+        p[9:12] = self.gauss_vector
+        p[12:16] = (self.gmst0, 1.0 if self.earth_rotation else 0.0, self.orbit.radius, self.orbit.mean_motion)
+        return FIELD_DIPOLE, p
+
     def dipole_tilt(self) -> float:
         """Angle between the dipole and the Earth's spin axis, rad (9.4 deg for IGRF-13 2020).
 
@@ -268,3 +316,27 @@ class DipoleField:
         """
         g = self.gauss_vector
         return math.acos(abs(g[2]) / float(np.linalg.norm(g)))
+
+
+def field_form(field: Any) -> tuple[int, FloatArray] | None:
+    """``(kind, parameters)`` of a field for the compiled closed loop: the field's own
+    ``loop_form()`` (:meth:`UniformField.loop_form`, :meth:`DipoleField.loop_form`,
+    :meth:`~tumble.dynamics.environment.igrf.IGRFField.loop_form`), :data:`FIELD_NONE` for no field,
+    None for a field that declares none (then the loop calls it in Python).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.environment.magnetic import FIELD_NONE, UniformField, field_form
+    >>> field_form(None)[0] == FIELD_NONE, float(field_form(UniformField((0.0, 3e-5, 0.0)))[1][1])
+    (True, 3e-05)
+    >>> class Ramp:
+    ...     def world(self, t):
+    ...         return np.array([0.0, 0.0, 3e-5 + 1e-6 * t])
+    >>> field_form(Ramp()) is None
+    True
+    """
+    if field is None:
+        return FIELD_NONE, np.zeros(FIELD_PARAMETERS)
+    form = getattr(field, "loop_form", None)
+    return form() if callable(form) else None

@@ -1,5 +1,5 @@
 """Vectors tabulated in time as piecewise cubics on uniform knots: the form in which the compiled
-closed-loop kernel (:mod:`~tumble.dynamics.control.compiled_control`) reads the IGRF field and an
+closed-loop kernel (:mod:`~tumble.dynamics.control.control_kernel`) reads the IGRF field and an
 orbit's position.
 
 A :class:`CubicTable` holds, for each interval ``[t0 + i h, t0 + (i + 1) h)``, the four

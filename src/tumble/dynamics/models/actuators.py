@@ -158,6 +158,21 @@ class Magnetorquers:
         """
         return np.asarray(np.cross(np.asarray(dipole, float), np.asarray(field_body, float)), float)
 
+    def loop_form(self) -> tuple[FloatArray, FloatArray] | None:
+        """The compiled closed loop's form: the rods' axes (k, 3) and dipole limits (k,), A m^2,
+        which the loop clips by :meth:`saturate`'s rule; None for a subclass with rules of its own.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
+        >>> axes, limits = Magnetorquers(0.2).loop_form()
+        >>> axes.shape, limits.tolist()
+        ((3, 3), [0.2, 0.2, 0.2])
+        """
+        if type(self).saturate is not Magnetorquers.saturate or type(self).torque is not Magnetorquers.torque:
+            return None
+        return np.ascontiguousarray(self.axes, dtype=float), np.asarray(self.max_dipole, dtype=float).copy()
+
 
 #: The part of ``max_speed`` over which a wheel's outward motor torque falls to zero: the last
 #: 1 %. A DC motor's available torque falls linearly to zero at its no-load speed, by its back-EMF
@@ -326,3 +341,26 @@ class ReactionWheels:
         return np.asarray(wheel_torque(np.asarray(command, float), np.asarray(speed, float), np.asarray(self.max_torque),
                                        np.asarray(self.max_speed), np.asarray(self.viscous), np.asarray(self.coulomb),
                                        np.asarray(self.limit_cycle_speed)), float)
+
+    def loop_form(self) -> FloatArray | None:
+        """The compiled closed loop's form, a row of 9 floats per wheel: the axis (3), ``J``
+        (kg m^2), ``u_max`` (N m), ``s_max`` (rad/s), ``c_v`` (N m s/rad), ``c_c`` (N m) and
+        ``s_lc`` (rad/s), which the loop applies by :func:`wheel_torque`; None for a subclass with
+        a law of its own.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> ReactionWheels(np.eye(3)[:1], inertia=2e-5, max_torque=1e-3).loop_form().tolist()
+        [[1.0, 0.0, 0.0, 2e-05, 0.001, inf, 0.0, 0.0, 0.0001]]
+        """
+        if type(self).applied_torque is not ReactionWheels.applied_torque or \
+                type(self).momentum is not ReactionWheels.momentum:
+            return None
+        form = np.empty((self.count, 9))
+        form[:, :3] = self.axes
+        for column, value in enumerate((self.inertia, self.max_torque, self.max_speed, self.viscous, self.coulomb,
+                                        self.limit_cycle_speed), start=3):
+            form[:, column] = value
+        return form

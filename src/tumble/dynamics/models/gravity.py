@@ -454,6 +454,23 @@ class GravityGradient:
             return None
         return KERNEL_CIRCULAR_GRAVITY, (float(self._n),)
 
+    def loop_form(self) -> tuple[float, float, Any] | None:
+        """The compiled closed loop's form, ``(n, mu, orbit)``: the circle's mean motion ``n``
+        (rad/s), no orbit to tabulate (``mu`` 0, ``orbit`` None; the loop reads the run's moments);
+        None for a subclass with a law of its own.
+
+        Examples
+        --------
+        >>> import math
+        >>> from tumble.dynamics.models.gravity import GravityGradient
+        >>> n, mu, orbit = GravityGradient(orbit_period=5400.0).loop_form()
+        >>> round(n * 5400.0 / math.pi, 12), mu, orbit
+        (2.0, 0.0, None)
+        """
+        if type(self).__call__ is not GravityGradient.__call__:
+            return None
+        return float(self.mean_motion), 0.0, None
+
     def _moments(self) -> Vector3:
         if self._I is None:
             raise ValueError("this GravityGradient has no moments: use gg.bind(body) or give moments=[I1, I2, I3] (kg m^2)")

@@ -166,3 +166,23 @@ class OrbitGravityGradient:
         mu = float(cast(float, self.mu))
         r_b = attitude.inv().apply(r / rn)
         return np.asarray(attitude.apply(gradient_torque(r_b, np.asarray(self.moments), mu / rn**3)), float)
+
+    def loop_form(self) -> tuple[float, float, Any] | None:
+        """The compiled closed loop's form, ``(n, mu, orbit)``: no circle (``n`` 0), the
+        gravitational parameter ``mu`` (m^3/s^2) and the orbit whose position the loop tabulates
+        (:func:`~tumble.dynamics.environment.tabulated.position_table`); None for an orbit of one's
+        own (not a CircularOrbit, KeplerOrbit or TLEOrbit) or a subclass with a law of its own.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+        >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
+        >>> orbit = KeplerOrbit(8000e3, 0.1)
+        >>> n, mu, tabulated = OrbitGravityGradient(orbit).loop_form()
+        >>> n, mu == orbit.mu, tabulated is orbit
+        (0.0, True, True)
+        """
+        if type(self).__call__ is not OrbitGravityGradient.__call__ or \
+                not isinstance(self.orbit, (CircularOrbit, KeplerOrbit, TLEOrbit)):
+            return None
+        return 0.0, float(cast(float, self.mu)), self.orbit

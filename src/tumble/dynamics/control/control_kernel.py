@@ -1,4 +1,11 @@
-"""The closed loop under the built-in models, compiled: the run's parameters, one hold interval, the whole loop.
+"""The compiled closed loop bound to a run: its parameters, one hold interval, the whole loop.
+
+Beside the kernels it runs (:mod:`~tumble.dynamics.control.compiled_loop`, compiled at import),
+imported with them only when a compiled run is asked for. Each model gives its parameters
+itself through one method, ``loop_form()`` (the fields of
+:mod:`~tumble.dynamics.environment.magnetic` and :mod:`~tumble.dynamics.environment.igrf`, the
+gravity gradients, the magnetorquers and the wheels): a model that declares none, or a subclass
+that changes a law, keeps the Python path (:func:`compiled_control_models`).
 
 :class:`ControlKernel` binds a run's fixed parameters (the body, the wheels, the field, the
 gravity gradient, the tolerances) for :func:`~tumble.dynamics.control.controlled.simulate_controlled`
@@ -35,105 +42,43 @@ import numpy as np
 
 from ...typing import FloatArray
 from . import compiled_loop as _loop
-from .loop_terms import FIELD_DIPOLE, FIELD_NONE, FIELD_TABLE, FIELD_UNIFORM, WHEEL
-from .loop_terms import _gravity_gradient, _to_body, _wheel_torque, dipole, field_world, table_value
+from ..environment.magnetic import FIELD_TABLE, field_form
+from .loop_terms import WHEEL
 
-__all__ = ["FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "ControlKernel", "compiled_control_models",
-           "compiled_law", "field_params"]
+__all__ = ["ControlKernel", "compiled_control_models", "compiled_law"]
 
 #: An empty table (the kernels' argument where there is none).
 _NO_TABLE = np.zeros((4, 1, 3))
-#: The dipole field's formula, compiled (the B-dot batch's kernel calls it too).
-_dipole = dipole
 #: The methods of a hold interval, by name.
 METHODS = {"dop853": _loop.DOP853, "rk4": _loop.RK4, "rk8": _loop.RK8}
 
 
-def _compiled(name: str) -> Callable[..., Any]:
-    """A compiled helper by its name, for the B-dot batch's kernel and the tests.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.control.compiled_control import _compiled
-    >>> _compiled("_wheel_torque")(1e-3, 0.0, 2e-3, 600.0, 0.0, 0.0, 1e-4)
-    0.001
-    """
-    return cast("Callable[..., Any]", {"_dipole": dipole, "_gravity_gradient": _gravity_gradient, "_to_body": _to_body,
-                                       "_wheel_torque": _wheel_torque, "_table": table_value,
-                                       "_field_world": field_world}[name])
-
-
-def field_params(field: Any) -> tuple[int, FloatArray]:
-    """``(kind, parameters)`` of a built-in field for the kernels (ValueError for any other).
-
-    The parameters (16 floats): for a uniform field ``B`` (T) in the first three; for the dipole
-    the world-from-ECI matrix (9, row by row), the Gauss vector ``g`` (3, T), ``gmst0`` (rad),
-    1 if the Earth turns else 0, the orbit radius (m) and mean motion (rad/s); for an
-    :class:`~tumble.dynamics.environment.igrf.IGRFField` the start (0 s) and knot spacing (s) of its
-    table (:meth:`~tumble.dynamics.environment.igrf.IGRFField.tabulate`, passed apart).
-
-    Examples
-    --------
-    >>> from tumble.dynamics.environment.magnetic import UniformField
-    >>> from tumble.dynamics.control.compiled_control import FIELD_UNIFORM, field_params
-    >>> kind, p = field_params(UniformField((0.0, 0.0, 3e-5)))
-    >>> kind == FIELD_UNIFORM, p[:3].tolist()
-    (True, [0.0, 0.0, 3e-05])
-    """
-    from ..environment.igrf import IGRFField
-    from ..environment.magnetic import DipoleField, UniformField
-
-    p = np.zeros(16)
-    if field is None:
-        return FIELD_NONE, p
-    if type(field) is UniformField:
-        p[:3] = field.vector
-        return FIELD_UNIFORM, p
-    if type(field) is DipoleField:
-        p[:9] = field.world_from_eci.reshape(9)
-        p[9:12] = field.gauss_vector
-        p[12:16] = (field.gmst0, 1.0 if field.earth_rotation else 0.0, field.orbit.radius, field.orbit.mean_motion)
-        return FIELD_DIPOLE, p
-    if type(field) is IGRFField:
-        p[:2] = (0.0, field.step)
-        return FIELD_TABLE, p
-    raise ValueError(f"field = {field!r} is not a built-in field (DipoleField, UniformField, IGRFField): the compiled path "
-                     "cannot evaluate it; use compiled=False")
-
-
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:
-    """None if every model is a built-in one the kernel evaluates, else the first other one's description.
+    """None if every model declares the compiled loop's form (its ``loop_form()``: the built-in
+    fields, gravity gradients, magnetorquers and wheels), else the first other one's description.
 
     Examples
     --------
     >>> from tumble.dynamics.environment.magnetic import UniformField
-    >>> from tumble.dynamics.control.compiled_control import compiled_control_models
+    >>> from tumble.dynamics.control.control_kernel import compiled_control_models
     >>> compiled_control_models(UniformField((0.0, 0.0, 3e-5)), None, None, None) is None
     True
     >>> compiled_control_models(None, lambda t, w, R: w, None, None)
     'gravity_gradient = <lambda> (a GravityGradient or OrbitGravityGradient)'
     """
-    from ..environment.ephemeris import KeplerOrbit, TLEOrbit
-    from ..environment.igrf import IGRFField
-    from ..environment.magnetic import DipoleField, UniformField
-    from ..environment.orbit import CircularOrbit
-    from ..models.actuators import Magnetorquers, ReactionWheels
-    from ..models.gravity import GravityGradient
-    from ..models.orbit_gravity import OrbitGravityGradient
-
-    if type(gravity_gradient) is OrbitGravityGradient and \
-            type(gravity_gradient.orbit) not in (CircularOrbit, KeplerOrbit, TLEOrbit):
-        return f"gravity_gradient's orbit = {type(gravity_gradient.orbit).__name__} (a CircularOrbit, KeplerOrbit or TLEOrbit)"
-    if isinstance(wheels, ReactionWheels) and wheels.count > _loop.MAX_WHEELS:
+    if wheels is not None and getattr(wheels, "count", 0) > _loop.MAX_WHEELS:
         return f"wheels = {wheels.count} wheels (at most {_loop.MAX_WHEELS} compiled)"
-    for name, model, kinds in (("field", field, (DipoleField, UniformField, IGRFField)),
-                               ("gravity_gradient", gravity_gradient, (GravityGradient, OrbitGravityGradient)),
-                               ("magnetorquers", magnetorquers, (Magnetorquers,)),
-                               ("wheels", wheels, (ReactionWheels,))):
-        if model is not None and type(model) not in kinds:
+    orbit = getattr(gravity_gradient, "orbit", None)
+    if orbit is not None and callable(getattr(gravity_gradient, "loop_form", None)) and gravity_gradient.loop_form() is None:
+        return f"gravity_gradient's orbit = {type(orbit).__name__} (a CircularOrbit, KeplerOrbit or TLEOrbit)"
+    for name, model, kinds in (("field", field, "DipoleField, UniformField or IGRFField"),
+                               ("gravity_gradient", gravity_gradient, "GravityGradient or OrbitGravityGradient"),
+                               ("magnetorquers", magnetorquers, "Magnetorquers"),
+                               ("wheels", wheels, "ReactionWheels")):
+        form = getattr(model, "loop_form", None)
+        if model is not None and (not callable(form) or form() is None):
             label = getattr(model, "__name__", None) or type(model).__name__
-            names = [k.__name__ for k in kinds]
-            return f"{name} = {label} (a {' or '.join([', '.join(names[:-1]), names[-1]] if names[:-1] else names)})"
+            return f"{name} = {label} (a {kinds})"
     return None
 
 
@@ -151,7 +96,7 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.dynamics.control.compiled_control import compiled_law
+    >>> from tumble.dynamics.control.control_kernel import compiled_law
     >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
     >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.sensors import Sensors
@@ -216,7 +161,7 @@ class ControlKernel:
     A spin about a principal axis, no torque: the rate stays, the attitude turns by ``0.1 t``:
 
     >>> import numpy as np
-    >>> from tumble.dynamics.control.compiled_control import ControlKernel
+    >>> from tumble.dynamics.control.control_kernel import ControlKernel
     >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None, None, None, 1e-10, 1e-12)
     >>> y = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
     >>> y = kernel.advance(y, 0.0, 10.0, np.zeros(3), np.zeros(0))
@@ -228,7 +173,6 @@ class ControlKernel:
                  rtol: float, atol: float, t_end: float | None = None, method: str = "dop853",
                  step: float | None = None) -> None:
         from ..environment.tabulated import position_table
-        from ..models.orbit_gravity import OrbitGravityGradient
 
         if method not in METHODS:
             raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(METHODS)}")
@@ -236,23 +180,21 @@ class ControlKernel:
             raise ValueError(f"step = {step!r} must be given (s, > 0) with method = {method!r}")
         self.method, self.step = METHODS[method], float(step or 0.0)
         self.k = 0 if wheels is None else wheels.count
-        field_kind, fp = field_params(field)
-        tables = field_kind == FIELD_TABLE or isinstance(gravity_gradient, OrbitGravityGradient)
-        if tables and (t_end is None or not t_end > 0.0):
+        other = compiled_control_models(field, gravity_gradient, None, wheels)
+        if other is not None:
+            raise ValueError(f"{other}: the compiled path cannot evaluate it; use compiled=False")
+        field_kind, fp = cast("tuple[int, FloatArray]", field_form(field))
+        n, mu, orbit = (0.0, 0.0, None) if gravity_gradient is None else gravity_gradient.loop_form()
+        if (field_kind == FIELD_TABLE or orbit is not None) and (t_end is None or not t_end > 0.0):
             raise ValueError(f"t_end = {t_end!r} must be given (s, > 0) with an IGRF field or an orbit's gravity gradient")
         ft = field.tabulate(cast(float, t_end)).coefficients if field_kind == FIELD_TABLE else _NO_TABLE
-        gp, gt = np.zeros(4), _NO_TABLE
-        if isinstance(gravity_gradient, OrbitGravityGradient):
-            table = position_table(gravity_gradient.orbit, cast(float, t_end))
-            gp[1:], gt = (gravity_gradient.mu, table.t0, table.step), table.coefficients
-        elif gravity_gradient is not None:
-            gp[0] = gravity_gradient.mean_motion
+        gp, gt = np.array([n, 0.0, 0.0, 0.0]), _NO_TABLE
+        if orbit is not None:
+            table = position_table(orbit, cast(float, t_end))
+            gp[1:], gt = (mu, table.t0, table.step), table.coefficients
         slots = np.zeros((_loop.MAX_WHEELS, WHEEL))  # the wheels, then the empty slots (the kernels skip them)
         if wheels is not None:
-            slots[:self.k, :3] = wheels.axes
-            for column, value in enumerate((wheels.inertia, wheels.max_torque, wheels.max_speed, wheels.viscous,
-                                            wheels.coulomb, wheels.limit_cycle_speed), start=3):
-                slots[:self.k, column] = value
+            slots[:self.k, :9] = wheels.loop_form()
         P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
                             gp, (self.k,), slots.reshape(-1)])
         self.P = tuple(P.tolist())
@@ -267,7 +209,7 @@ class ControlKernel:
         Examples
         --------
         >>> import numpy as np
-        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.control_kernel import ControlKernel
         >>> from tumble.dynamics.control.bdot import BDot
         >>> from tumble.dynamics.models.sensors import Sensors
         >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, None, None, 1e-10, 1e-12)
@@ -285,7 +227,7 @@ class ControlKernel:
 
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> import numpy as np
-        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.control_kernel import ControlKernel
         >>> kernel = ControlKernel(np.ones(3), np.eye(3), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
         >>> c = np.sqrt(0.5)
         >>> np.allclose(kernel.field_body(np.array([0.0, 0.0, c, c]), 0.0), [0.0, -3e-5, 0.0], rtol=0, atol=1e-20)
@@ -307,7 +249,7 @@ class ControlKernel:
 
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> import numpy as np
-        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.control_kernel import ControlKernel
         >>> kernel = ControlKernel(np.array([1.0, 2.0, 3.0]), np.diag([1.0, 0.5, 1 / 3]), None,
         ...                        UniformField((0.0, 3e-5, 0.0)), None, 1e-10, 1e-12)
         >>> y = kernel.advance(np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]), 0.0, 10.0,
@@ -338,7 +280,7 @@ class ControlKernel:
         nearly ``1 - k dt / I3`` a step of ``dt``:
 
         >>> import numpy as np
-        >>> from tumble.dynamics.control.compiled_control import ControlKernel
+        >>> from tumble.dynamics.control.control_kernel import ControlKernel
         >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> I = np.array([0.01, 0.02, 0.03])

@@ -1,0 +1,344 @@
+"""The B-dot batch of :func:`tumble.dynamics.control.detumble.detumble_batch`, compiled: each body's whole run in numba.
+
+Imported only when the compiled batch is asked for; compiled at import by :func:`tumble.jit.jit`
+(``cache=True``), as the engine's kernels are: one block of bodies (:func:`_block`), run over the
+blocks on one thread (:func:`detumble_serial`) or on every core (:func:`detumble_parallel`).
+Still a loop of its own beside the engine and the closed loop's steps (issue 38): a fixed-step
+RK4 over the bodies of a block side by side, with the orbit's share of the field computed once.
+
+The numpy path of :func:`~tumble.dynamics.control.detumble.detumble_batch` is vectorised over the
+bodies: one RK4 stage is some fifty numpy operations on arrays of N, bound by memory traffic.
+Here each body runs through every control step in compiled code with its state in registers,
+the bodies spread over every core from :data:`~tumble.jit.PARALLEL_BODIES`
+(``numba.prange``; the same arithmetic for each body either way). The arithmetic is that of the
+numpy path, step by step (the numpy path is the reference: tests/test_controlled_compiled.py
+checks the two agree to round-off), with the formulas written out once more over floats:
+
+- the sensors: the gyro reads ``(omega + bias) + noise``, the magnetometer ``(B + bias) + noise``
+  (:meth:`~tumble.dynamics.models.sensors.Sensors.sample`), the noise drawn in numpy and passed in
+  a control step at a time;
+- the gyro B-dot dipole ``-k (B x omega)`` of the readings, ``k = gain / |B|^2`` normalised
+  (:func:`~tumble.dynamics.control.bdot.bdot_dipole`), clipped rod by rod
+  (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`), checked against them;
+- ``I omega' = m x B - omega x I omega``, ``q' = q (x) (omega, 0) / 2`` (the numpy path's ``_rhs``);
+- the gravity gradient ``3 n^2 r_b x (I r_b)`` of the circular orbit and the field: the
+  functions of :mod:`~tumble.dynamics.control.loop_terms` (one compiled formula for the batch and
+  the closed loop), with what all bodies share (the orbit's position in ECI and the
+  Earth's turn since t = 0 at each RK4 node) computed once for the batch, and each body's
+  sidereal angle ``gmst0 + omega_E t`` by the angle-addition formulas (a round-off apart from
+  the numpy path's ``cos(gmst0 + omega_E t)``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numba import prange
+
+from ...jit import PARALLEL_BODIES, cores, jit
+from ...typing import FloatArray
+from ..environment.earth import OMEGA_EARTH
+from .loop_terms import _gravity_gradient, _to_body, dipole as _dipole
+
+__all__ = ["detumble_parallel", "detumble_run", "detumble_serial"]
+
+
+@jit(error_model="numpy")
+def _bdot(b0: float, b1: float, b2: float, w0: float, w1: float, w2: float, gain: float, normalized: bool,
+          axes: FloatArray, limit: FloatArray) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """The gyro B-dot dipole ``-k (B x omega)`` (``k = gain / |B|^2`` normalised), clipped rod by
+    rod (:func:`bdot_dipole`, :meth:`Magnetorquers.saturate`), A m^2."""
+    k = gain / (b0 * b0 + b1 * b1 + b2 * b2) if normalized else gain
+    m0 = -k * (b1 * w2 - b2 * w1)
+    m1 = -k * (b2 * w0 - b0 * w2)
+    m2 = -k * (b0 * w1 - b1 * w0)
+    out0, out1, out2 = 0.0, 0.0, 0.0
+    for j in range(axes.shape[0]):
+        rod = min(max(m0 * axes[j, 0] + m1 * axes[j, 1] + m2 * axes[j, 2], -limit[j]), limit[j])
+        out0 += rod * axes[j, 0]
+        out1 += rod * axes[j, 1]
+        out2 += rod * axes[j, 2]
+    return out0, out1, out2
+
+
+@jit(error_model="numpy")
+def _orbit_table(fp: FloatArray, n_gg: float, period: float, step0: int, steps: int,
+                 substeps: int) -> FloatArray:  # pragma: no cover
+    """What every body of a batch shares at each RK4 node: ``r_eci`` (m), ``cos, sin(omega_E t)``
+    (the Earth always turns in the batch, whatever the field's ``earth_rotation``, as in the numpy path)
+    and the gravity gradient's radius direction ``cos, sin(n_gg t)`` (world frame); node ``(i, 0)`` at
+    ``t = (step0 + i) period``, ``(i, 2 j + 1)`` and ``(i, 2 j + 2)`` the middle and end of substep j."""
+    h = period / substeps
+    table = np.empty((steps, 2 * substeps + 1, 7))
+    for i in range(steps):
+        t = (step0 + i) * period
+        for m in range(2 * substeps + 1):
+            s = t + ((m - 1) // 2) * h
+            tm = t if m == 0 else (s + h / 2 if m % 2 == 1 else s + h)
+            nt = fp[15] * tm
+            r0, r1 = fp[14] * math.cos(nt), fp[14] * math.sin(nt)
+            table[i, m, 0] = fp[0] * r0 + fp[3] * r1
+            table[i, m, 1] = fp[1] * r0 + fp[4] * r1
+            table[i, m, 2] = fp[2] * r0 + fp[5] * r1
+            table[i, m, 3] = math.cos(OMEGA_EARTH * tm)
+            table[i, m, 4] = math.sin(OMEGA_EARTH * tm)
+            table[i, m, 5] = math.cos(n_gg * tm)
+            table[i, m, 6] = math.sin(n_gg * tm)
+    return table
+
+
+@jit(error_model="numpy")
+def _batch_field(fp: Any, node: tuple[float, float, float, float, float, float, float], cg: float,
+                 sg: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """The dipole (T, world) at a table node (its seven numbers) for a body whose Earth angle at
+    t = 0 has cosine ``cg`` and sine ``sg`` (``theta = gmst0 + omega_E t`` by the angle-addition
+    formulas); ``fp`` the field's parameters (a tuple: the compiler then knows they stay put)."""
+    c = cg * node[3] - sg * node[4]
+    s = sg * node[3] + cg * node[4]
+    return _dipole(fp, node[0], node[1], node[2], c, s)
+
+
+#: Bodies advanced side by side in the kernel's inner loops: one body's RK4 stages depend on each
+#: other (a chain of divisions and products), the bodies of a block do not, so the processor
+#: overlaps them.
+BLOCK = 32
+
+
+@jit(error_model="numpy", nogil=True)
+def _block(block: int, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
+           normalized: bool, axes: FloatArray, limit: FloatArray, fpt: Any, n_gg: float, bias: FloatArray,
+           noise: FloatArray, table: FloatArray, period: float, steps: int, substeps: int, rates: FloatArray,
+           w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
+    """The bodies of block ``block`` (:data:`BLOCK` of them, the last one partial) through ``steps``
+    control periods of B-dot with ``substeps`` RK4 steps each (:func:`detumble_serial`): the same
+    arithmetic body by body as :func:`tumble.dynamics.control.detumble.detumble_batch`'s numpy path;
+    ``table`` the orbit's share (:func:`_orbit_table`), ``fpt`` the field's parameters as a tuple."""
+    N = I.shape[0]
+    noisy = noise.shape[1] > 0
+    h = period / substeps
+    a, e = h / 2, h / 6
+    lo = block * BLOCK
+    nb = min(BLOCK, N - lo)
+    S = np.empty((7, nb))  # x, y, z, w of q, then omega
+    for r in range(nb):
+        for k in range(4):
+            S[k, r] = q0[lo + r, k]
+        for k in range(3):
+            S[4 + k, r] = w0[lo + r, k]
+    cg, sg = np.cos(gmst0[lo:lo + nb]), np.sin(gmst0[lo:lo + nb])
+    M, B0, B1, B2 = np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb))
+    K = np.zeros((4, 7, nb))  # zeros: stage 1 adds 0 * K[0]
+    for i in range(steps + 1):
+        for r in range(nb):
+            rates[lo + r, i] = math.sqrt(S[4, r] ** 2 + S[5, r] ** 2 + S[6, r] ** 2)
+        if i == steps:
+            break
+        node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4], table[i, 0, 5],
+                table[i, 0, 6])
+        for r in range(nb):
+            e0, e1, e2 = _batch_field(fpt, node, cg[r], sg[r])
+            B2[0, r], B2[1, r], B2[2, r] = e0, e1, e2
+            bx, by, bz = _to_body(S[0, r], S[1, r], S[2, r], S[3, r], e0, e1, e2)
+            b = bias[lo + r]
+            gx, gy, gz = S[4, r] + b[0], S[5, r] + b[1], S[6, r] + b[2]  # the readings (Sensors.sample)
+            bx, by, bz = bx + b[3], by + b[4], bz + b[5]
+            if noisy:
+                z = noise[lo + r, i]
+                gx, gy, gz, bx, by, bz = gx + z[0], gy + z[1], gz + z[2], bx + z[3], by + z[4], bz + z[5]
+            M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, gx, gy, gz, gain[lo + r], normalized, axes, limit)
+        for j in range(substeps):
+            m1, m2 = 2 * j + 1, 2 * j + 2
+            mid = (table[i, m1, 0], table[i, m1, 1], table[i, m1, 2], table[i, m1, 3], table[i, m1, 4],
+                   table[i, m1, 5], table[i, m1, 6])
+            end = (table[i, m2, 0], table[i, m2, 1], table[i, m2, 2], table[i, m2, 3], table[i, m2, 4],
+                   table[i, m2, 5], table[i, m2, 6])
+            for r in range(nb):
+                B0[0, r], B0[1, r], B0[2, r] = B2[0, r], B2[1, r], B2[2, r]
+                B1[0, r], B1[1, r], B1[2, r] = _batch_field(fpt, mid, cg[r], sg[r])
+                B2[0, r], B2[1, r], B2[2, r] = _batch_field(fpt, end, cg[r], sg[r])
+            for stage in range(4):
+                Bs = B0 if stage == 0 else (B2 if stage == 3 else B1)
+                f = 0.0 if stage == 0 else (h if stage == 3 else a)
+                prev = max(stage - 1, 0)
+                node_s = 2 * j + (stage + 1) // 2  # the stage's table node: start, middle, middle, end
+                rc, rs = table[i, node_s, 5], table[i, node_s, 6]
+                for r in range(nb):
+                    d = _detumble_rhs(Bs[0, r], Bs[1, r], Bs[2, r], I[lo + r, 0], I[lo + r, 1], I[lo + r, 2],
+                                      M[0, r], M[1, r], M[2, r], n_gg, rc, rs,
+                                      S[0, r] + f * K[prev, 0, r], S[1, r] + f * K[prev, 1, r],
+                                      S[2, r] + f * K[prev, 2, r], S[3, r] + f * K[prev, 3, r],
+                                      S[4, r] + f * K[prev, 4, r], S[5, r] + f * K[prev, 5, r],
+                                      S[6, r] + f * K[prev, 6, r])
+                    for c in range(7):
+                        K[stage, c, r] = d[c]
+            for r in range(nb):
+                for c in range(7):
+                    S[c, r] = S[c, r] + e * (K[0, c, r] + 2 * K[1, c, r] + 2 * K[2, c, r] + K[3, c, r])
+                nq = math.sqrt(S[0, r] * S[0, r] + S[1, r] * S[1, r] + S[2, r] * S[2, r] + S[3, r] * S[3, r])
+                for c in range(4):
+                    S[c, r] = S[c, r] / nq
+    for r in range(nb):
+        for k in range(3):
+            w_out[lo + r, k] = S[4 + k, r]
+        for k in range(4):
+            q_out[lo + r, k] = S[k, r]
+
+
+@jit(error_model="numpy")
+def _shared(fp: FloatArray, n_gg: float, period: float, step0: int, steps: int,
+            substeps: int) -> tuple[FloatArray, Any]:  # pragma: no cover - compiled
+    """What every block reads: the orbit's table (:func:`_orbit_table`) and the field's first 12
+    parameters as a tuple (the compiler then knows they stay put)."""
+    fpt = (fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10], fp[11])
+    return _orbit_table(fp, n_gg, period, step0, steps, substeps), fpt
+
+
+@jit(error_model="numpy", nogil=True)
+def detumble_serial(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
+                    normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, n_gg: float, bias: FloatArray,
+                    noise: FloatArray, period: float, step0: int, steps: int, substeps: int, rates: FloatArray,
+                    w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
+    """Every body through ``steps`` control periods of B-dot from ``t = step0 period``, block by
+    block on one thread (:func:`_block`); the arguments as :func:`detumble_run`'s, ``bias`` (N, 6),
+    ``noise`` (N, steps, 6) or (N, 0, 6) for none, the rates (N, steps + 1), final omega and
+    quaternions into ``rates``, ``w_out`` and ``q_out``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.detumble_kernels import detumble_parallel, detumble_serial
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> fp = DipoleField(CircularOrbit(altitude=500e3)).loop_form()[1]
+    >>> n = 40
+    >>> I, w = np.tile([0.01, 0.02, 0.03], (n, 1)), np.tile([0.1, -0.1, 0.1], (n, 1))
+    >>> q, one = np.tile([0.0, 0.0, 0.0, 1.0], (n, 1)), np.ones(n)
+    >>> args = (I, q, w, 0.0 * one, 1e-4 * one, True, np.eye(3), np.ones(3), fp, 0.0, np.zeros((n, 6)),
+    ...         np.zeros((n, 0, 6)), 1.0, 0, 5, 2)
+    >>> a, b = [(np.empty((n, 6)), np.empty((n, 3)), np.empty((n, 4))) for _ in range(2)]
+    >>> detumble_serial(*args, *a)
+    >>> detumble_parallel(*args, *b)   # the same arithmetic for each body
+    >>> all(bool(np.array_equal(x, y)) for x, y in zip(a, b))
+    True
+    """
+    table, fpt = _shared(fp, n_gg, period, step0, steps, substeps)
+    for block in range((I.shape[0] + BLOCK - 1) // BLOCK):
+        _block(block, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
+               substeps, rates, w_out, q_out)
+
+
+@jit(error_model="numpy", nogil=True, parallel=True)
+def detumble_parallel(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
+                      normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, n_gg: float,
+                      bias: FloatArray, noise: FloatArray, period: float, step0: int, steps: int, substeps: int,
+                      rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
+    """:func:`detumble_serial` with the blocks spread over every core (``numba.prange``): the same
+    arithmetic for each body.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.detumble_kernels import detumble_parallel
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> fp = DipoleField(CircularOrbit(altitude=500e3)).loop_form()[1]
+    >>> rates, w, q = np.empty((1, 2)), np.empty((1, 3)), np.empty((1, 4))
+    >>> detumble_parallel(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.zeros(1), np.ones(1),
+    ...                   True, np.eye(3), np.ones(3), fp, 0.0, np.zeros((1, 6)), np.zeros((1, 0, 6)), 1.0, 0, 1, 1,
+    ...                   rates, w, q)
+    >>> rates.tolist(), q.tolist()   # at rest: nothing moves
+    ([[0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
+    """
+    table, fpt = _shared(fp, n_gg, period, step0, steps, substeps)
+    for block in prange((I.shape[0] + BLOCK - 1) // BLOCK):
+        _block(block, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
+               substeps, rates, w_out, q_out)
+
+
+@jit(error_model="numpy")
+def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: float, m0: float, m1: float, m2: float,
+                  n_gg: float, rc: float, rs: float, x: float, y: float, z: float, c: float, w0: float, w1: float,
+                  w2: float) -> tuple[float, float, float, float, float, float, float]:  # pragma: no cover
+    """``(q', omega')`` of ``I omega' = m x B + tau_gg - omega x I omega`` for one body, B and the
+    radius direction ``(rc, rs, 0)`` in the world frame turned to the body by the (unnormalised)
+    quaternion, as the numpy path's ``_rhs``; ``n_gg`` 0: no gravity gradient."""
+    bx, by, bz = _to_body(x, y, z, c, b0, b1, b2)
+    g0, g1, g2 = 0.0, 0.0, 0.0
+    if n_gg > 0.0:
+        r0, r1, r2 = _to_body(x, y, z, c, rc, rs, 0.0)
+        g0, g1, g2 = _gravity_gradient(n_gg * n_gg, I0, I1, I2, r0, r1, r2)
+    h0, h1, h2 = I0 * w0, I1 * w1, I2 * w2
+    return (0.5 * (c * w0 + y * w2 - z * w1), 0.5 * (c * w1 + z * w0 - x * w2), 0.5 * (c * w2 + x * w1 - y * w0),
+            0.5 * -(x * w0 + y * w1 + z * w2),
+            (m1 * bz - m2 * by + g0 - (w1 * h2 - w2 * h1)) / I0,
+            (m2 * bx - m0 * bz + g1 - (w2 * h0 - w0 * h2)) / I1,
+            (m0 * by - m1 * bx + g2 - (w0 * h1 - w1 * h0)) / I2)
+
+
+def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
+                 normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, period: float, steps: int,
+                 substeps: int, n_gg: float = 0.0, bias: FloatArray | None = None, noise: FloatArray | None = None,
+                 step0: int = 0) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The compiled B-dot batch of :func:`tumble.dynamics.control.detumble.detumble_batch` (checked inputs).
+
+    Parameters
+    ----------
+    I, w0 : ndarray, shape (N, 3)
+        Principal moments (kg m^2) and initial rates (rad/s).
+    q0 : ndarray, shape (N, 4)
+        Unit quaternions, principal frame to world, scalar last.
+    gmst0, gain : ndarray, shape (N,)
+        Each body's Earth angle at t = 0 (rad) and B-dot gain.
+    normalized : bool
+        The normalised law (gain in N m s) or the classic one (A m^2 s/T).
+    axes, limit : ndarray, shapes (r, 3) and (r,)
+        The rods' unit axes and dipole limits, A m^2.
+    fp : ndarray, shape (16,)
+        The dipole's :meth:`~tumble.dynamics.environment.magnetic.DipoleField.loop_form` (its ``gmst0`` unused).
+    period : float
+        Control period, s.
+    steps, substeps : int
+        Control periods, RK4 steps per period.
+    n_gg : float
+        Mean motion of the gravity gradient's circular orbit, rad/s (0: no gravity gradient).
+    bias : ndarray, shape (N, 6), optional
+        Each body's gyro bias (rad/s) and magnetometer bias (T); default none.
+    noise : ndarray, shape (N, steps, 6), optional
+        The gyro (rad/s) and magnetometer (T) noise added to the readings at each step; default none.
+    step0 : int
+        The first step's index: the run starts at ``t = step0 period`` (a run in segments).
+
+    Returns
+    -------
+    rates : ndarray, shape (N, steps + 1)
+    omega, quat : ndarray, shapes (N, 3) and (N, 4)
+
+    Examples
+    --------
+    No rate, no dipole: nothing moves.
+
+    >>> from tumble.dynamics.environment.magnetic import DipoleField
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.detumble_kernels import detumble_run
+    >>> _, fp = DipoleField(CircularOrbit(altitude=500e3)).loop_form()
+    >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),
+    ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.eye(3), limit=np.ones(3),
+    ...                            fp=fp, period=1.0, steps=3, substeps=2)
+    >>> rates.tolist(), q.tolist()
+    ([[0.0, 0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
+    """
+    N = len(I)
+    rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
+    kernel: Callable[..., None] = detumble_parallel if N >= PARALLEL_BODIES and cores() > 1 else detumble_serial
+    c = np.ascontiguousarray
+    bias = np.zeros((N, 6)) if bias is None else bias
+    noise = np.zeros((N, 0, 6)) if noise is None else noise
+    kernel(c(I, dtype=float), c(q0, dtype=float), c(w0, dtype=float), c(gmst0, dtype=float), c(gain, dtype=float),
+           bool(normalized), c(axes, dtype=float), c(limit, dtype=float), c(fp, dtype=float), float(n_gg),
+           c(bias, dtype=float), c(noise, dtype=float), float(period), int(step0), int(steps), int(substeps), rates,
+           w_out, q_out)
+    return rates, w_out, q_out
