@@ -51,7 +51,8 @@ from scipy.spatial.transform import Rotation
 
 from ...jit import jit
 from ...typing import FloatArray
-from ..estimation.mekf_kernels import compiled as mekf_kernel
+from ..estimation.mekf_kernels import propagate as _propagate
+from ..estimation.mekf_kernels import update as _update
 from ..models.sensors import Measurement, Sensors
 from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_reading
 from ..special.quaternion import to_body
@@ -68,8 +69,6 @@ _cells = jit(cell_currents, error_model="numpy")
 _coarse = jit(coarse_reading, error_model="numpy")
 _tracker = jit(tracker_reading, error_model="numpy")
 _to_body = jit(to_body, error_model="numpy")
-_propagate = mekf_kernel("propagate")
-_update = mekf_kernel("update")
 
 
 @jit(error_model="numpy")

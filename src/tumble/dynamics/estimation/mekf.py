@@ -76,7 +76,6 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vectors, refuse_first
-from .mekf_kernels import compiled
 
 __all__ = ["MEKF"]
 
@@ -229,8 +228,9 @@ class MEKF:
             shape = np.broadcast_shapes(shape, w.shape[:-1])
         q, b, P = self._flat(shape)
         w = w.reshape(-1, 3) if w.shape[:-1] == shape else np.broadcast_to(w, shape + (3,)).reshape(-1, 3)
-        compiled("propagate")(q, b, P, np.ascontiguousarray(w), h,
-                              float(self.gyro_noise), float(self.bias_walk))
+        from .mekf_kernels import propagate  # compiled at import: numba only when a filter steps
+
+        propagate(q, b, P, np.ascontiguousarray(w), h, float(self.gyro_noise), float(self.bias_walk))
         return self._new(q.reshape(shape + (4,)), b.reshape(shape + (3,)), P.reshape(shape + (6, 6)))
 
     def _flat(self, shape: tuple[int, ...]) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -253,8 +253,9 @@ class MEKF:
         nis = np.empty(int(np.prod(shape, dtype=int)))
         if vectors.shape[0] == 0:
             y, H, R = _rows(y, shape, (m,)), _rows(H, shape, (m, 6)), _rows(R, shape, (m, m))
-        compiled("update")(q, b, P, y, H, R,
-                           np.ascontiguousarray(ok.reshape(-1)), nis, vectors)
+        from .mekf_kernels import update  # compiled at import: numba only when a filter steps
+
+        update(q, b, P, y, H, R, np.ascontiguousarray(ok.reshape(-1)), nis, vectors)
         return (self._new(q.reshape(shape + (4,)), b.reshape(shape + (3,)), P.reshape(shape + (6, 6))),
                 nis.reshape(shape))
 

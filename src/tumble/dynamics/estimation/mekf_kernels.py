@@ -2,7 +2,8 @@
 
 The equations are :mod:`~tumble.dynamics.estimation.mekf`'s (Markley & Crassidis 2014, sec. 6.2),
 written once here over plain arrays, ``n`` filters flattened on the first axis, and compiled with
-numba through :func:`tumble.jit.jit` on first use: a filter step is then a few microseconds, not
+numba through :func:`tumble.jit.jit` at import (this module is imported only when a filter steps,
+as the engine's kernels are): a filter step is then a few microseconds, not
 the ~0.3 ms of numpy's calls on 6 x 6 arrays. The update kernel forms the innovation ``y`` and
 its Jacobian ``H`` itself for a vector (and its noise ``R``) or a measured attitude, else takes
 them as given. :class:`~tumble.dynamics.estimation.mekf.MEKF` and the compiled closed loop
@@ -12,27 +13,26 @@ them as given. :class:`~tumble.dynamics.estimation.mekf.MEKF` and the compiled c
 Examples
 --------
 >>> import numpy as np
->>> from tumble.dynamics.estimation.mekf_kernels import compiled
+>>> from tumble.dynamics.estimation.mekf_kernels import propagate
 >>> q, b, P = np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)), np.eye(6)[None] * 1e-4
->>> compiled("propagate")(q, b, P, np.array([[0.0, 0.0, 0.1]]), 1.0, 0.0, 0.0)
+>>> propagate(q, b, P, np.array([[0.0, 0.0, 0.1]]), 1.0, 0.0, 0.0)
 >>> np.round(q, 6).tolist()
 [[0.0, 0.0, 0.049979, 0.99875]]
 """
 
 from __future__ import annotations
 
-import functools
 import math
-from typing import Any
-from collections.abc import Callable
 
 import numpy as np
 
+from ...jit import jit
 from ...typing import FloatArray
 
-__all__ = ["compiled"]
+__all__: list[str] = []  # the kernels are the MEKF's (mekf.py) and the compiled loop's, not an API
 
 
+@jit(error_model="numpy")
 def propagate(q: FloatArray, b: FloatArray, P: FloatArray, gyro: FloatArray, dt: float, sv: float, su: float) -> None:
     """Propagate ``n`` filters in place over ``dt`` with the gyroscope readings ``gyro`` (n, 3).
 
@@ -98,6 +98,7 @@ def propagate(q: FloatArray, b: FloatArray, P: FloatArray, gyro: FloatArray, dt:
             P[i, 3 + r, 3 + r] += qb
 
 
+@jit(error_model="numpy")
 def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatArray, R: FloatArray,
            valid: np.ndarray, nis: FloatArray, vectors: FloatArray) -> None:
     """The Kalman update and reset of ``n`` filters in place (Joseph's form); ``nis`` (n,) written, NaN where not ``valid``.
@@ -228,12 +229,3 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
         q[i, 0], q[i, 1], q[i, 2], q[i, 3] = gx / norm, gy / norm, gz / norm, gs / norm
         for r in range(3):
             b[i, r] += x[3 + r]
-
-
-@functools.cache
-def compiled(name: str) -> Callable[..., Any]:
-    """The kernel ``name`` (``"propagate"`` or ``"update"``) compiled by numba on first use."""
-    from ...jit import jit
-
-    kernels: dict[str, Callable[..., Any]] = {"propagate": propagate, "update": update}
-    return jit(kernels[name], error_model="numpy")
