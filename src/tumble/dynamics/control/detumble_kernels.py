@@ -1,10 +1,12 @@
 """The B-dot batch of :func:`tumble.dynamics.control.detumble.detumble_batch`, compiled: each body's whole run in numba.
 
 Imported only when the compiled batch is asked for; compiled at import by :func:`tumble.jit.jit`
-(``cache=True``), as the engine's kernels are: one block of bodies (:func:`_block`), run over the
-blocks on one thread (:func:`detumble_serial`) or on every core (:func:`detumble_parallel`).
-Still a loop of its own beside the engine and the closed loop's steps (issue 38): a fixed-step
-RK4 over the bodies of a block side by side, with the orbit's share of the field computed once.
+(``cache=True``), as the engine's kernels are: one body's run (:func:`_body`), over the bodies on
+one thread (:func:`detumble_serial`) or on every core (:func:`detumble_parallel`). Each step is
+the engine's RK4 step, written out by its generator from the tableau
+(:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`, as the closed loop's steps are), not
+a loop of its own; the control loop around it (readings, law, held dipole, the orbit's share of
+the field computed once for the batch) is the batch's.
 
 The numpy path of :func:`~tumble.dynamics.control.detumble.detumble_batch` is vectorised over the
 bodies: one RK4 stage is some fifty numpy operations on arrays of N, bound by memory traffic.
@@ -33,7 +35,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numba import prange
@@ -41,6 +43,8 @@ from numba import prange
 from ...jit import PARALLEL_BODIES, cores, jit
 from ...typing import FloatArray
 from ..environment.earth import OMEGA_EARTH
+from ..engine.tableau import RK4_A, RK4_B, RK4_C
+from ..engine.unrolled import fixed_step_source, state_layout
 from .loop_terms import _gravity_gradient, _to_body, dipole as _dipole
 
 __all__ = ["detumble_parallel", "detumble_run", "detumble_serial"]
@@ -101,96 +105,89 @@ def _batch_field(fp: Any, node: tuple[float, float, float, float, float, float, 
     return _dipole(fp, node[0], node[1], node[2], c, s)
 
 
-#: Bodies advanced side by side in the kernel's inner loops: one body's RK4 stages depend on each
-#: other (a chain of divisions and products), the bodies of a block do not, so the processor
-#: overlaps them.
-BLOCK = 32
+def _batch_rhs(t: float, y: Any, P: Any, X: Any, u0: float, u1: float) -> Any:  # pragma: no cover - compiled
+    """The right-hand side the engine's generated RK4 step calls (:func:`_rk4_step`): ``(q', omega')``
+    of one body (:func:`_detumble_rhs`), with the field and the orbit's direction at the step's
+    start, middle or end, told apart by the stage's time ``t`` (the step's start ``P[7]`` and end
+    ``P[8]`` computed as the step computes its nodes); ``P`` the body's moments (3), dipole held
+    (3), ``n_gg`` (rad/s), those two times (s), the fields at the three nodes (9, T, world) and the
+    orbit's directions there (6). ``X``, ``u0`` and ``u1`` unused (the directions come from the
+    batch's table, the same for every body)."""
+    if t == P[7]:
+        b0, b1, b2, rc, rs = P[9], P[10], P[11], P[18], P[19]
+    elif t == P[8]:
+        b0, b1, b2, rc, rs = P[15], P[16], P[17], P[22], P[23]
+    else:
+        b0, b1, b2, rc, rs = P[12], P[13], P[14], P[20], P[21]
+    return _detumble_rhs(b0, b1, b2, P[0], P[1], P[2], P[3], P[4], P[5], P[6], rc, rs, y[0], y[1], y[2], y[3], y[4], y[5],
+                         y[6])
+
+
+def _step_source() -> str:
+    """The classical RK4 step over the body's seven floats ``(q, omega)``, written out by the
+    engine's generator from its tableau (:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`)."""
+    return fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, state_layout(7))
+
+
+#: The step's turns of the orbit's direction: unused (:func:`_batch_rhs` reads the batch's table).
+_NO_TURNS = (1.0, 0.0) * 4
 
 
 @jit(error_model="numpy", nogil=True)
-def _block(block: int, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
-           normalized: bool, axes: FloatArray, limit: FloatArray, fpt: Any, n_gg: float, bias: FloatArray,
-           noise: FloatArray, table: FloatArray, period: float, steps: int, substeps: int, rates: FloatArray,
-           w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
-    """The bodies of block ``block`` (:data:`BLOCK` of them, the last one partial) through ``steps``
-    control periods of B-dot with ``substeps`` RK4 steps each (:func:`detumble_serial`): the same
-    arithmetic body by body as :func:`tumble.dynamics.control.detumble.detumble_batch`'s numpy path;
-    ``table`` the orbit's share (:func:`_orbit_table`), ``fpt`` the field's parameters as a tuple."""
-    N = I.shape[0]
+def _body(b: int, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
+          normalized: bool, axes: FloatArray, limit: FloatArray, fpt: Any, n_gg: float, bias: FloatArray,
+          noise: FloatArray, table: FloatArray, period: float, steps: int, substeps: int, rates: FloatArray,
+          w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
+    """Body ``b`` through ``steps`` control periods of B-dot with ``substeps`` steps of the engine's
+    RK4 each (:func:`detumble_serial`): the arithmetic of
+    :func:`tumble.dynamics.control.detumble.detumble_batch`'s numpy path but for the steps' weights
+    (``h (k0 / 6 + k1 / 3 + ...)``, a round-off apart); ``table`` the orbit's share
+    (:func:`_orbit_table`), ``fpt`` the field's parameters as a tuple."""
     noisy = noise.shape[1] > 0
     h = period / substeps
-    a, e = h / 2, h / 6
-    lo = block * BLOCK
-    nb = min(BLOCK, N - lo)
-    S = np.empty((7, nb))  # x, y, z, w of q, then omega
-    for r in range(nb):
-        for k in range(4):
-            S[k, r] = q0[lo + r, k]
-        for k in range(3):
-            S[4 + k, r] = w0[lo + r, k]
-    cg, sg = np.cos(gmst0[lo:lo + nb]), np.sin(gmst0[lo:lo + nb])
-    M, B0, B1, B2 = np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb)), np.empty((3, nb))
-    K = np.zeros((4, 7, nb))  # zeros: stage 1 adds 0 * K[0]
+    cg, sg = math.cos(gmst0[b]), math.sin(gmst0[b])
+    I0, I1, I2 = I[b, 0], I[b, 1], I[b, 2]
+    y = (q0[b, 0], q0[b, 1], q0[b, 2], q0[b, 3], w0[b, 0], w0[b, 1], w0[b, 2])  # x, y, z, w of q, then omega
+    X = (0.0,)
     for i in range(steps + 1):
-        for r in range(nb):
-            rates[lo + r, i] = math.sqrt(S[4, r] ** 2 + S[5, r] ** 2 + S[6, r] ** 2)
+        rates[b, i] = math.sqrt(y[4] ** 2 + y[5] ** 2 + y[6] ** 2)
         if i == steps:
             break
         node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4], table[i, 0, 5],
                 table[i, 0, 6])
-        for r in range(nb):
-            e0, e1, e2 = _batch_field(fpt, node, cg[r], sg[r])
-            B2[0, r], B2[1, r], B2[2, r] = e0, e1, e2
-            bx, by, bz = _to_body(S[0, r], S[1, r], S[2, r], S[3, r], e0, e1, e2)
-            b = bias[lo + r]
-            gx, gy, gz = S[4, r] + b[0], S[5, r] + b[1], S[6, r] + b[2]  # the readings (Sensors.sample)
-            bx, by, bz = bx + b[3], by + b[4], bz + b[5]
-            if noisy:
-                z = noise[lo + r, i]
-                gx, gy, gz, bx, by, bz = gx + z[0], gy + z[1], gz + z[2], bx + z[3], by + z[4], bz + z[5]
-            M[0, r], M[1, r], M[2, r] = _bdot(bx, by, bz, gx, gy, gz, gain[lo + r], normalized, axes, limit)
+        e0, e1, e2 = _batch_field(fpt, node, cg, sg)
+        bx, by, bz = _to_body(y[0], y[1], y[2], y[3], e0, e1, e2)
+        z = bias[b]
+        gx, gy, gz = y[4] + z[0], y[5] + z[1], y[6] + z[2]  # the readings (Sensors.sample)
+        bx, by, bz = bx + z[3], by + z[4], bz + z[5]
+        if noisy:
+            z = noise[b, i]
+            gx, gy, gz, bx, by, bz = gx + z[0], gy + z[1], gz + z[2], bx + z[3], by + z[4], bz + z[5]
+        m0, m1, m2 = _bdot(bx, by, bz, gx, gy, gz, gain[b], normalized, axes, limit)
         for j in range(substeps):
-            m1, m2 = 2 * j + 1, 2 * j + 2
-            mid = (table[i, m1, 0], table[i, m1, 1], table[i, m1, 2], table[i, m1, 3], table[i, m1, 4],
-                   table[i, m1, 5], table[i, m1, 6])
-            end = (table[i, m2, 0], table[i, m2, 1], table[i, m2, 2], table[i, m2, 3], table[i, m2, 4],
-                   table[i, m2, 5], table[i, m2, 6])
-            for r in range(nb):
-                B0[0, r], B0[1, r], B0[2, r] = B2[0, r], B2[1, r], B2[2, r]
-                B1[0, r], B1[1, r], B1[2, r] = _batch_field(fpt, mid, cg[r], sg[r])
-                B2[0, r], B2[1, r], B2[2, r] = _batch_field(fpt, end, cg[r], sg[r])
-            for stage in range(4):
-                Bs = B0 if stage == 0 else (B2 if stage == 3 else B1)
-                f = 0.0 if stage == 0 else (h if stage == 3 else a)
-                prev = max(stage - 1, 0)
-                node_s = 2 * j + (stage + 1) // 2  # the stage's table node: start, middle, middle, end
-                rc, rs = table[i, node_s, 5], table[i, node_s, 6]
-                for r in range(nb):
-                    d = _detumble_rhs(Bs[0, r], Bs[1, r], Bs[2, r], I[lo + r, 0], I[lo + r, 1], I[lo + r, 2],
-                                      M[0, r], M[1, r], M[2, r], n_gg, rc, rs,
-                                      S[0, r] + f * K[prev, 0, r], S[1, r] + f * K[prev, 1, r],
-                                      S[2, r] + f * K[prev, 2, r], S[3, r] + f * K[prev, 3, r],
-                                      S[4, r] + f * K[prev, 4, r], S[5, r] + f * K[prev, 5, r],
-                                      S[6, r] + f * K[prev, 6, r])
-                    for c in range(7):
-                        K[stage, c, r] = d[c]
-            for r in range(nb):
-                for c in range(7):
-                    S[c, r] = S[c, r] + e * (K[0, c, r] + 2 * K[1, c, r] + 2 * K[2, c, r] + K[3, c, r])
-                nq = math.sqrt(S[0, r] * S[0, r] + S[1, r] * S[1, r] + S[2, r] * S[2, r] + S[3, r] * S[3, r])
-                for c in range(4):
-                    S[c, r] = S[c, r] / nq
-    for r in range(nb):
-        for k in range(3):
-            w_out[lo + r, k] = S[4 + k, r]
-        for k in range(4):
-            q_out[lo + r, k] = S[k, r]
+            t = i * period + j * h  # the step's start in this segment: tells its stages apart (_batch_rhs)
+            s0, s1, s2 = e0, e1, e2  # the last step's end is this one's start
+            mid = (table[i, 2 * j + 1, 0], table[i, 2 * j + 1, 1], table[i, 2 * j + 1, 2], table[i, 2 * j + 1, 3],
+                   table[i, 2 * j + 1, 4], table[i, 2 * j + 1, 5], table[i, 2 * j + 1, 6])
+            end = (table[i, 2 * j + 2, 0], table[i, 2 * j + 2, 1], table[i, 2 * j + 2, 2], table[i, 2 * j + 2, 3],
+                   table[i, 2 * j + 2, 4], table[i, 2 * j + 2, 5], table[i, 2 * j + 2, 6])
+            c0, c1, c2 = _batch_field(fpt, mid, cg, sg)
+            e0, e1, e2 = _batch_field(fpt, end, cg, sg)
+            P = (I0, I1, I2, m0, m1, m2, n_gg, t, t + 1.0 * h, s0, s1, s2, c0, c1, c2, e0, e1, e2,
+                 table[i, 2 * j, 5], table[i, 2 * j, 6], mid[5], mid[6], end[5], end[6])
+            y = _rk4_step(t, y, h, P, X, 1.0, 0.0, _NO_TURNS)
+            nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
+            y = (y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq, y[4], y[5], y[6])
+    for k in range(3):
+        w_out[b, k] = y[4 + k]
+    for k in range(4):
+        q_out[b, k] = y[k]
 
 
 @jit(error_model="numpy")
 def _shared(fp: FloatArray, n_gg: float, period: float, step0: int, steps: int,
             substeps: int) -> tuple[FloatArray, Any]:  # pragma: no cover - compiled
-    """What every block reads: the orbit's table (:func:`_orbit_table`) and the field's first 12
+    """What every body reads: the orbit's table (:func:`_orbit_table`) and the field's first 12
     parameters as a tuple (the compiler then knows they stay put)."""
     fpt = (fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10], fp[11])
     return _orbit_table(fp, n_gg, period, step0, steps, substeps), fpt
@@ -201,8 +198,8 @@ def detumble_serial(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatA
                     normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, n_gg: float, bias: FloatArray,
                     noise: FloatArray, period: float, step0: int, steps: int, substeps: int, rates: FloatArray,
                     w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
-    """Every body through ``steps`` control periods of B-dot from ``t = step0 period``, block by
-    block on one thread (:func:`_block`); the arguments as :func:`detumble_run`'s, ``bias`` (N, 6),
+    """Every body through ``steps`` control periods of B-dot from ``t = step0 period``, body by
+    body on one thread (:func:`_body`); the arguments as :func:`detumble_run`'s, ``bias`` (N, 6),
     ``noise`` (N, steps, 6) or (N, 0, 6) for none, the rates (N, steps + 1), final omega and
     quaternions into ``rates``, ``w_out`` and ``q_out``.
 
@@ -225,8 +222,8 @@ def detumble_serial(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatA
     True
     """
     table, fpt = _shared(fp, n_gg, period, step0, steps, substeps)
-    for block in range((I.shape[0] + BLOCK - 1) // BLOCK):
-        _block(block, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
+    for b in range(I.shape[0]):
+        _body(b, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
                substeps, rates, w_out, q_out)
 
 
@@ -235,7 +232,7 @@ def detumble_parallel(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: Floa
                       normalized: bool, axes: FloatArray, limit: FloatArray, fp: FloatArray, n_gg: float,
                       bias: FloatArray, noise: FloatArray, period: float, step0: int, steps: int, substeps: int,
                       rates: FloatArray, w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
-    """:func:`detumble_serial` with the blocks spread over every core (``numba.prange``): the same
+    """:func:`detumble_serial` with the bodies spread over every core (``numba.prange``): the same
     arithmetic for each body.
 
     Examples
@@ -253,8 +250,8 @@ def detumble_parallel(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: Floa
     ([[0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
     """
     table, fpt = _shared(fp, n_gg, period, step0, steps, substeps)
-    for block in prange((I.shape[0] + BLOCK - 1) // BLOCK):
-        _block(block, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
+    for b in prange(I.shape[0]):
+        _body(b, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
                substeps, rates, w_out, q_out)
 
 
@@ -276,6 +273,18 @@ def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: flo
             (m1 * bz - m2 * by + g0 - (w1 * h2 - w2 * h1)) / I0,
             (m2 * bx - m0 * bz + g1 - (w2 * h0 - w0 * h2)) / I1,
             (m0 * by - m1 * bx + g2 - (w0 * h1 - w1 * h0)) / I2)
+
+
+def _compiled_step() -> Callable[..., Any]:
+    """The generated step compiled, calling :func:`_batch_rhs` (compiled, called at its stages:
+    inlined, it ran no faster). The code object is named after this file, so numba's cache keys
+    it on the sources."""
+    namespace: dict[str, Any] = {"rhs": jit(_batch_rhs, error_model="numpy"), "__name__": __name__}
+    exec(compile(_step_source(), __file__, "exec"), namespace)  # noqa: S102 - our own generated source
+    return cast("Callable[..., Any]", jit(namespace["rk4_step"], error_model="numpy"))
+
+
+_rk4_step = _compiled_step()
 
 
 def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray, *,
