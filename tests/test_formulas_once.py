@@ -76,10 +76,6 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "dynamics/control/controlled.py"): "the closed loop's Python right-hand side",
     # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/detumble.py"): "the batched B-dot's right-hand side",
-    # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/detumble_kernels.py"): "the compiled B-dot",
-    # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "analysis/tensor/synthetic.py"): "the synthetic throws' gyrostat",
     # issue 38: moving onto the engine. Calling euler_components here changes the kernel by an ulp
     # (I w products or a reciprocal instead of (I2 - I3) w2 w3 / I1), and that alone turns
@@ -88,17 +84,9 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # onto the engine.
     ("Euler's equations, angular-velocity form", "dynamics/models/fit_kernels.py"): "the fits' compiled drag kernel",
     # issue 38: moving onto the engine
-    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/detumble_kernels.py"): "the compiled B-dot's kinematics",
-    # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
     # issue 38: moving onto the engine
-    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/detumble.py"): "the batched B-dot's kinematics",
-    # issue 38: moving onto the engine
     ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/controlled.py"): "the Python loop's R",
-    # issue 38: moving onto the engine
-    ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/detumble_kernels.py"): "the compiled B-dot's field table",
-    # issue 38: moving onto the engine
-    ("the Earth's turn (theta0 + OMEGA_EARTH t)", "dynamics/control/detumble.py"): "the batched B-dot's field",
     # issue 38: moving onto the engine
     ("the triangle inequality on principal moments", "analysis/tensor/estimate.py"): "the tensor's planar gap",
 }

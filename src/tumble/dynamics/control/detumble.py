@@ -50,10 +50,11 @@ from . import _display
 from .bdot import bdot_dipole
 from ..models.actuators import Magnetorquers
 from ..models.gravity import GravityGradient, gradient_torque
-from ..environment.earth import OMEGA_EARTH
+from ..environment.earth import earth_angle
+from ..euler import euler_components
 from ..environment.magnetic import DipoleField
 from ..models.sensors import Sensors
-from ..special.quaternion import to_body
+from ..special.quaternion import quaternion_rate_components, to_body
 
 __all__ = ["DetumbleBatch", "detumble_batch"]
 
@@ -122,7 +123,7 @@ def _field_world(field: DipoleField, t: float, gmst0: FloatArray) -> Vec:
     """B (T) in the world frame at ``t`` for each Earth angle ``gmst0 + omega_E t``, by component."""
     w2e = field.world_from_eci  # the orbit-plane frame of the same field
     r_eci = w2e.T @ field.orbit.position_world(t)
-    theta = gmst0 + OMEGA_EARTH * t
+    theta = earth_angle(gmst0, t)
     c, s = np.cos(theta), np.sin(theta)
     r_ecef = np.stack([c * r_eci[0] + s * r_eci[1], -s * r_eci[0] + c * r_eci[1], np.full_like(c, r_eci[2])], axis=-1)
     b = field.ecef(r_ecef)
@@ -149,14 +150,9 @@ def _rhs(b_world: Vec, I: FloatArray, m: FloatArray, q: FloatArray, w: FloatArra
         g = gradient_torque(r_b, I.T, n * n).T
     g = np.broadcast_to(g, (3, len(bx)))
     w0, w1, w2 = w
-    h0, h1, h2 = I[0] * w0, I[1] * w1, I[2] * w2
-    dw = np.array([(m[1] * bz - m[2] * by + g[0] - (w1 * h2 - w2 * h1)) / I[0],
-                   (m[2] * bx - m[0] * bz + g[1] - (w2 * h0 - w0 * h2)) / I[1],
-                   (m[0] * by - m[1] * bx + g[2] - (w0 * h1 - w1 * h0)) / I[2]])
-    x, y, z, c = q
-    dq = 0.5 * np.array([c * w0 + y * w2 - z * w1, c * w1 + z * w0 - x * w2, c * w2 + x * w1 - y * w0,
-                         -(x * w0 + y * w1 + z * w2)])
-    return dq, dw
+    t0, t1, t2 = m[1] * bz - m[2] * by + g[0], m[2] * bx - m[0] * bz + g[1], m[0] * by - m[1] * bx + g[2]  # m x B + gg
+    dw = np.array(euler_components(w0, w1, w2, I[0], I[1], I[2], t0, t1, t2, 1.0 / I[0], 1.0 / I[1], 1.0 / I[2]))
+    return np.array(quaternion_rate_components(q[0], q[1], q[2], q[3], w0, w1, w2)), dw
 
 
 #: Sensor-noise numbers held at once (8 bytes each): the noise is drawn and the kernel run a

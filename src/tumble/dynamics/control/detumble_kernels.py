@@ -14,7 +14,7 @@ Here each body runs through every control step in compiled code with its state i
 the bodies spread over every core from :data:`~tumble.jit.PARALLEL_BODIES`
 (``numba.prange``; the same arithmetic for each body either way). The arithmetic is that of the
 numpy path, step by step (the numpy path is the reference: tests/test_controlled_compiled.py
-checks the two agree to round-off), with the formulas written out once more over floats:
+checks the two agree to round-off), with these formulas:
 
 - the sensors: the gyro reads ``(omega + bias) + noise``, the magnetometer ``(B + bias) + noise``
   (:meth:`~tumble.dynamics.models.sensors.Sensors.sample`), the noise drawn in numpy and passed in
@@ -22,7 +22,11 @@ checks the two agree to round-off), with the formulas written out once more over
 - the gyro B-dot dipole ``-k (B x omega)`` of the readings, ``k = gain / |B|^2`` normalised
   (:func:`~tumble.dynamics.control.bdot.bdot_dipole`), clipped rod by rod
   (:meth:`~tumble.dynamics.models.actuators.Magnetorquers.saturate`), checked against them;
-- ``I omega' = m x B - omega x I omega``, ``q' = q (x) (omega, 0) / 2`` (the numpy path's ``_rhs``);
+- ``I omega' = m x B + tau_gg - omega x I omega`` and ``q' = q (x) (omega, 0) / 2``: the one writing
+  of each (:func:`~tumble.dynamics.euler.euler_components`,
+  :func:`~tumble.dynamics.special.quaternion.quaternion_rate_components`), compiled here and
+  called on arrays by the numpy path's ``_rhs``; the Earth's turn
+  (:func:`~tumble.dynamics.environment.earth.earth_angle`) likewise;
 - the gravity gradient ``3 n^2 r_b x (I r_b)`` of the circular orbit and the field: the
   functions of :mod:`~tumble.dynamics.control.loop_terms` (one compiled formula for the batch and
   the closed loop), with what all bodies share (the orbit's position in ECI and the
@@ -42,12 +46,19 @@ from numba import prange
 
 from ...jit import PARALLEL_BODIES, cores, jit
 from ...typing import FloatArray
-from ..environment.earth import OMEGA_EARTH
+from ..environment.earth import earth_angle
+from ..euler import euler_components
+from ..special.quaternion import quaternion_rate_components
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import fixed_step_source, state_layout
 from .loop_terms import _gravity_gradient, _to_body, dipole as _dipole
 
 __all__ = ["detumble_parallel", "detumble_run", "detumble_serial"]
+
+# the formulas, each the one writing its model's module holds, compiled
+_euler = jit(euler_components, error_model="numpy")
+_quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
+_earth_angle = jit(earth_angle, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -87,8 +98,8 @@ def _orbit_table(fp: FloatArray, n_gg: float, period: float, step0: int, steps: 
             table[i, m, 0] = fp[0] * r0 + fp[3] * r1
             table[i, m, 1] = fp[1] * r0 + fp[4] * r1
             table[i, m, 2] = fp[2] * r0 + fp[5] * r1
-            table[i, m, 3] = math.cos(OMEGA_EARTH * tm)
-            table[i, m, 4] = math.sin(OMEGA_EARTH * tm)
+            table[i, m, 3] = math.cos(_earth_angle(0.0, tm))
+            table[i, m, 4] = math.sin(_earth_angle(0.0, tm))
             table[i, m, 5] = math.cos(n_gg * tm)
             table[i, m, 6] = math.sin(n_gg * tm)
     return table
@@ -267,12 +278,10 @@ def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: flo
     if n_gg > 0.0:
         r0, r1, r2 = _to_body(x, y, z, c, rc, rs, 0.0)
         g0, g1, g2 = _gravity_gradient(n_gg * n_gg, I0, I1, I2, r0, r1, r2)
-    h0, h1, h2 = I0 * w0, I1 * w1, I2 * w2
-    return (0.5 * (c * w0 + y * w2 - z * w1), 0.5 * (c * w1 + z * w0 - x * w2), 0.5 * (c * w2 + x * w1 - y * w0),
-            0.5 * -(x * w0 + y * w1 + z * w2),
-            (m1 * bz - m2 * by + g0 - (w1 * h2 - w2 * h1)) / I0,
-            (m2 * bx - m0 * bz + g1 - (w2 * h0 - w0 * h2)) / I1,
-            (m0 * by - m1 * bx + g2 - (w0 * h1 - w1 * h0)) / I2)
+    a0, a1, a2 = _euler(w0, w1, w2, I0, I1, I2, m1 * bz - m2 * by + g0, m2 * bx - m0 * bz + g1, m0 * by - m1 * bx + g2,
+                        1.0 / I0, 1.0 / I1, 1.0 / I2)
+    d0, d1, d2, d3 = _quaternion_rate(x, y, z, c, w0, w1, w2)
+    return d0, d1, d2, d3, a0, a1, a2
 
 
 def _compiled_step() -> Callable[..., Any]:
