@@ -27,7 +27,7 @@ J_D, C_D = 0.5, 0.5
 DAMPER = SphericalDamper(inertia=J_D, damping=C_D)
 TUMBLE = np.array([0.4, 1.5, -0.6])  # rad/s, an asymmetric tumble
 #: The methods that take a damper, and those that refuse it.
-INTERNAL = [name for name, m in METHODS.items() if m.supports_internal]
+INTERNAL = [name for name, m in METHODS.items() if m.takes(InternalModel(I, damper=DAMPER))]
 NO_INTERNAL = [name for name in METHODS if name not in INTERNAL]
 
 
@@ -90,10 +90,13 @@ def test_relaxation_piece_is_exact():
 
 # -- the budget ----------------------------------------------------------------------------------
 
-def test_energy_budget_and_momentum_with_dop853():
-    """``E(t) + dissipated(t) = E(0)`` to 1e-10 relative (measured 6.3e-12), L_world constant,
-    the energy never rises, and the dissipation is ``integral c |w_d - w|^2``."""
-    traj = simulate(BODY, TUMBLE, t_end=60.0, samples=6001, damper=DAMPER)
+@pytest.mark.parametrize("method", ["dop853", "auto"])
+def test_energy_budget_and_momentum(method):
+    """``E(t) + dissipated(t) = E(0)`` to 1e-10 relative (measured 6.3e-12 with dop853), L_world constant,
+    the energy never rises, and the dissipation is ``integral c |w_d - w|^2``; with scipy's DOP853
+    and with the compiled engine's rk8 that ``auto`` chooses."""
+    traj = simulate(BODY, TUMBLE, t_end=60.0, samples=6001, damper=DAMPER, method=method)
+    assert traj.method == ("rk8" if method == "auto" else method)
     E, D = traj.energy, traj.dissipated
     w, wd = traj.omega, traj.damper_omega
     np.testing.assert_allclose(E, 0.5 * np.sum(I * w * w, axis=1) + 0.5 * J_D * np.sum(wd * wd, axis=1), rtol=1e-15)
@@ -107,8 +110,10 @@ def test_energy_budget_and_momentum_with_dop853():
     np.testing.assert_allclose(D[1:], cumulative_simpson(rate, x=traj.t), rtol=0, atol=1e-9 * E[0])
 
 
-def test_dop853_matches_an_independently_written_damper():
-    traj = simulate(BODY, TUMBLE, t_end=20.0, samples=201, damper=DAMPER, rtol=1e-13)
+@pytest.mark.parametrize("method", ["dop853", "auto"])
+def test_dop853_and_the_engine_match_an_independently_written_damper(method):
+    traj = simulate(BODY, TUMBLE, t_end=20.0, samples=201, damper=DAMPER, rtol=1e-13, method=method)
+    assert traj.method == ("rk8" if method == "auto" else method)
     w, wd, R, D = independent(I, J_D, C_D, TUMBLE, np.eye(3), traj.t)
     np.testing.assert_allclose(traj.omega, w, rtol=0, atol=1e-10)
     np.testing.assert_allclose(traj.damper_omega, wd, rtol=0, atol=1e-10)
@@ -211,8 +216,13 @@ def test_rk45_takes_a_damper_at_its_tolerances():
     np.testing.assert_allclose(traj.dissipated[-1], ref.dissipated[-1], rtol=5e-2)
 
 
-def test_damper_defaults_to_dop853_and_exact_and_seed_refuse_it():
-    assert simulate(BODY, TUMBLE, t_end=1.0, samples=3, damper=DAMPER).method == "dop853"
+def test_damper_defaults_to_the_engines_rk8_and_exact_and_seed_refuse_it():
+    """auto runs a damper that is not stiff on the compiled engine's rk8 (scipy's DOP853 calls Python at
+    every stage), a stiff one on dop853, which hands it to Radau."""
+    traj = simulate(BODY, TUMBLE, t_end=1.0, samples=3, damper=DAMPER)
+    assert (traj.method, traj.auto) == ("rk8", True)
+    stiff = simulate(BODY, TUMBLE, t_end=1.0, samples=3, damper=SphericalDamper(inertia=0.01, damping=1e3))
+    assert (stiff.method, stiff.auto) == ("radau", True)
     assert set(NO_INTERNAL) >= {"exact", "seed"}
     for method in NO_INTERNAL:
         with pytest.raises(ValueError, match=rf"^method = '{method}' cannot take a damper; use one of: "
@@ -310,6 +320,7 @@ def test_a_moderately_stiff_damper_matches_an_independent_radau_reference():
 
 @pytest.mark.parametrize(("method", "why"), [
     ("rk45", "an explicit method's steps would be held to the relaxation time"),
+    ("rk8", "its fixed steps would have to resolve the relaxation"),
     ("geometric", "the splitting's step would have to resolve the relaxation"),
     ("geometric2", "the splitting's step would have to resolve the relaxation"),
 ])

@@ -117,13 +117,53 @@ def test_auto_with_rotors_at_constant_spin(samples):
 
 
 def test_auto_for_what_only_dop853_takes():
-    """A Python torque and a damper: dop853, and the run says it was chosen."""
+    """A Python torque, or a stiff damper: dop853 (which hands the damper to Radau), and the run says
+    it was chosen; a damper that is not stiff runs on the engine's rk8."""
     body = tumble.MassProperties.from_moments(SPACECRAFT)
     traj = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=5.0, samples=11, torque=lambda t, w, R: -0.01 * w)
     assert (traj.method, traj.auto) == ("dop853", True)
     damped = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=5.0, samples=11,
                              damper=tumble.SphericalDamper(inertia=0.1, damping=0.05))
-    assert damped.method_label == "dop853 (auto)"
+    assert damped.method_label == "rk8 (auto)"
+    stiff = tumble.simulate(body, [0.05, 1.0, 0.05], t_end=5.0, samples=11,
+                            damper=tumble.SphericalDamper(inertia=0.1, damping=500.0))
+    assert stiff.method_label == "radau (auto)"
+
+
+def damped_reference(moments, J, c, omega0, t):
+    """omega, the sphere's rate and quaternions at ``t``: Euler's law for the body and for the
+    sphere in omega form, ``I w' = (I w) x w + c (w_d - w)``, ``J w_d' = J w_d x w - c (w_d - w)``
+    (L&L *Mechanics* sec. 36), ``q' = q (x) (w, 0) / 2``, by scipy's DOP853 at rtol 1e-13."""
+    I = np.asarray(moments, float)
+
+    def rhs(_, y):
+        w, wd, q = y[:3], y[3:6], y[6:]
+        slip = wd - w
+        v, s = q[:3], q[3]
+        return np.concatenate([(np.cross(I * w, w) + c * slip) / I, np.cross(wd, w) - c / J * slip,
+                               0.5 * (s * w + np.cross(v, w)), [-0.5 * v @ w]])
+
+    sol = solve_ivp(rhs, (0.0, t[-1]), np.concatenate([omega0, omega0, Q0.as_quat()]), method="DOP853", t_eval=t,
+                    rtol=1e-13, atol=1e-16)
+    assert sol.success
+    q = sol.y[6:].T
+    return sol.y[:3].T, sol.y[3:6].T, q / np.linalg.norm(q, axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize(("moments", "omega0", "J", "c", "t_end"), [
+    (T_HANDLE, (0.1, 10.0, 0.1), 0.05, 0.05, 20.0),   # a tumble near the intermediate axis, damped
+    ((0.0652, 4.86, 4.87), (78.54, 0.05, 0.0), 0.02, 0.02, 10.0),   # Explorer 1's spin about its long axis
+])
+def test_auto_meets_rtol_with_a_damper(moments, omega0, J, c, t_end):
+    """The engine's rk8 that auto runs a damper on meets rtol 1e-10 in omega and attitude, and in the
+    sphere's rate, against the reference written above."""
+    body = tumble.MassProperties.from_moments(moments)
+    traj = tumble.simulate(body, omega0, t_end=t_end, samples=101, attitude0=Q0,
+                           damper=tumble.SphericalDamper(inertia=J, damping=c))
+    assert traj.method_label == "rk8 (auto)"
+    omega, wd, quat = damped_reference(moments, J, c, np.array(omega0), traj.t)
+    assert max(errors(traj, omega, quat)) <= 1e-10
+    assert np.max(np.abs(traj.damper_omega - wd)) <= 1e-10 * np.max(np.abs(wd))
 
 
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-12])

@@ -142,10 +142,10 @@ def simulate(
     method : str, optional
         ``"auto"`` or a name from :data:`tumble.dynamics.METHODS` (docs/methods.md compares them):
         {methods}.
-        ``"auto"`` (the default) chooses: ``exact`` without torque, rotors or damper; the compiled
-        engine's ``dop853`` or ``rk8``, whichever is faster at ``rtol``, for the built-in torque
-        models and rotors at constant spin; ``dop853`` for a Python torque, a damper or rotors
-        whose spin changes (:mod:`tumble.dynamics.methods.auto`). The run's ``method`` says which.
+        ``"auto"`` (the default) chooses: ``exact`` without torque, rotors or damper; the engine's
+        ``dop853`` or ``rk8``, the faster at ``rtol``, for the built-in torques, rotors at constant spin and
+        a damper (``rk8``); ``dop853`` for a Python torque, a stiff damper or rotors whose spin
+        changes (:mod:`~tumble.dynamics.methods.auto`). The run's ``method`` says which.
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
         design frame. A body-frame torque is read in the same frame.
@@ -154,9 +154,8 @@ def simulate(
     rtol, atol : float, optional
         Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and
         attitude, atol = rtol relative to the size of omega). ``rtol`` from 100 eps to 0.1. For
-        ``"dop853"`` ``atol`` is relative to the size of omega; an ``rtol`` given alone to
-        ``"rk45"`` brings its ``atol`` down with it, relative to the size of omega too (scipy's
-        default ``atol`` 1e-6 rad/s would cap a slow body's accuracy).
+        ``"dop853"`` ``atol`` is relative to the size of omega; an ``rtol`` given alone to ``"rk45"``
+        brings its ``atol`` down with it (scipy's default 1e-6 rad/s would cap a slow body's accuracy).
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
@@ -358,8 +357,8 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
                          f"(ConstantTorque, GravityGradient); for torque = {torque!r} use one of: {allowed}")
     if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
-        if spec.constant_rotors_only:  # it takes rotors at constant spin: say what else it is given
-            what = "a damper" if damper is not None else f"rotors whose spin changes ({len(cast(Rotors, rotors).parts)} in this body)"
+        if spec.constant_rotors_only:  # it takes rotors at constant spin and a damper: say what else it is given
+            what = f"rotors whose spin changes ({len(cast(Rotors, rotors).parts)} in this body)"
         allowed = ", ".join(m for m, s in METHODS.items() if s.takes(internal))
         raise ValueError(f"method = {spec.name!r} cannot take {what}; use one of: {allowed}")
     if not isinstance(frame, str) or frame not in FRAMES:
@@ -421,8 +420,8 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
             gain = run_spin_gain(model, w0, q0, moments, t_end)
             gain = min(gain, quick) if auto and quick is not None else gain
     if auto and not spec.closed_form:
-        engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes
-        h = engine_choice(t, spin, gain, cast(float, rtol)) if engine.takes(internal) and form else None
+        engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes, and a damper
+        h = engine_choice(t, spin, gain, cast(float, rtol), internal) if engine.takes(internal) and form else None
         if h is not None:
             spec, step = engine, h
         else:  # dop853's local error control, tighter than the accuracy asked for (methods.auto)
@@ -490,8 +489,9 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
     stiff = (f"damper: its relaxation rate (c / J)(1 + J / I1) = {internal.relaxation_rate:.3g} 1/s is "
              f"{ratio:.3g} times the spin rate {slow:.3g} rad/s (stiff above {STIFF_RATIO:g})")
     if not spec.stiff_solver:
-        why = "an explicit method's steps would be held to the relaxation time" if not spec.fixed_step else (
-            "the splitting's step would have to resolve the relaxation")
+        why = ("an explicit method's steps would be held to the relaxation time" if not spec.fixed_step else
+               "its fixed steps would have to resolve the relaxation" if spec.engine else
+               "the splitting's step would have to resolve the relaxation")
         able = ", ".join(m for m, s in METHODS.items() if s.stiff_solver)
         raise ValueError(f"{stiff}: method {spec.name!r} cannot follow it ({why}); use method {able}, which "
                          f"integrates a stiff damper with the implicit Radau")

@@ -18,7 +18,7 @@ from ...typing import FloatArray
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_ROTOR_MOMENTUM, KERNEL_WORLD
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
-__all__ = ["ENGINE_METHODS", "run_bodies", "run_body"]
+__all__ = ["ENGINE_METHODS", "run_bodies", "run_body", "run_damped"]
 
 #: The steppers of the engine by method name: DOP853 with error control and dense output, and
 #: fixed-step RK4 and RK8 (the 12-stage 8th-order weights of DOP853).
@@ -30,6 +30,13 @@ def _kernels() -> ModuleType:
     from . import kernels
 
     return kernels
+
+
+@functools.cache
+def _damped() -> ModuleType:
+    from . import damped
+
+    return damped
 
 
 #: The fixed-step methods' numbers in the kernels (:data:`~tumble.dynamics.engine.kernels.RK4`, ``RK8``).
@@ -137,7 +144,8 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     if method == "dop853":
         status = k.dop853(y0, t, moments, P, n, rtol, atol, omega, quat)
     else:
-        status = k.fixed_rk(y0, t, moments, P, n, math.inf if step is None else step, _FIXED[method], omega, quat)
+        run = k.fixed_rk4 if method == "rk4" else k.fixed_rk8
+        status = run(y0, t, moments, P, n, math.inf if step is None else step, omega, quat)
     if status:
         _raise_for(status, method, float(t[-1]))
     return omega, quat
@@ -177,11 +185,61 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
         else:
             k.fixed_batch(y0, t, I, P, n, h, _FIXED[method], omega, quat, status)
     else:
+        fixed = k.fixed_rk4 if method == "rk4" else k.fixed_rk8
         for b in range(N):
             if method == "dop853":
                 status[b] = k.dop853(y0[b], t, I[b], P, n, float(rtol), atol[b], omega[b], quat[b])  # type: ignore[index, arg-type]
             else:
-                status[b] = k.fixed_rk(y0[b], t, I[b], P, n, h[b], _FIXED[method], omega[b], quat[b])
+                status[b] = fixed(y0[b], t, I[b], P, n, h[b], omega[b], quat[b])
     for bad in np.flatnonzero(status).tolist():
         _raise_for(int(status[bad]), method, float(t[-1]), f" for body {bad}")
     return omega, quat
+
+
+def run_damped(method: str, body: FloatArray, y0: FloatArray, t: FloatArray, form: Form | Sequence[Form], *,
+               step: float | None = None) -> FloatArray:
+    """A body with a spherical damper (and rotors at constant spin) through the samples ``t`` (s, from
+    t[0]) with the fixed steps of ``"rk4"`` or ``"rk8"`` (:mod:`~tumble.dynamics.engine.damped`).
+
+    Parameters
+    ----------
+    method : str
+        ``"rk4"`` or ``"rk8"``.
+    body : ndarray, shape (8,)
+        The principal moments (kg m^2), the damper's moment ``J`` (kg m^2) and damping ``c`` (N m s),
+        the rotors' constant momentum ``h`` (kg m^2/s, principal frame).
+    y0 : ndarray, shape (11,)
+        The initial state ``(L, q, w_d, D)`` (:meth:`~tumble.dynamics.models.internal.InternalModel.initial_state`).
+    t : ndarray, shape (n,)
+        Sample times, s, increasing.
+    form : tuple
+        The torque's ``(kind, parameters)``, or a sequence of them (:func:`terms`).
+    step : float, optional
+        The largest step, s.
+
+    Returns
+    -------
+    ndarray, shape (n, 11)
+        The states at the samples.
+
+    Examples
+    --------
+    A damper turning with a body in a steady spin about a principal axis: nothing changes but the attitude.
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.engine.front import run_damped
+    >>> Y = run_damped("rk8", np.array([1.0, 2.0, 3.0, 0.1, 0.5, 0.0, 0.0, 0.0]),
+    ...                np.array([0.0, 0.0, 3.1, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0]), np.array([0.0, 2.0]), (0, ()),
+    ...                step=0.1)
+    >>> Y[-1, [2, 9, 10]].round(12).tolist(), bool(np.isclose(Y[-1, 5], np.sin(1.0)))
+    ([3.1, 1.0, 0.0], True)
+    """
+    k = _damped()
+    Y = np.empty((len(t), 11))
+    P, n = terms(form)
+    run = k.fixed_damped_rk4 if method == "rk4" else k.fixed_damped_rk8
+    status = run(np.ascontiguousarray(y0, dtype=float), t, np.ascontiguousarray(body, dtype=float), P, n,
+                 math.inf if step is None else step, Y)
+    if status:
+        _raise_for(status, method, float(t[-1]))
+    return Y

@@ -57,9 +57,10 @@ from ..special.quaternion import quaternion_rate_components, to_body
 from .stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
-from .unrolled import STATE, dop853_sources, fixed_step_source, rotations_source
+from .unrolled import STATE, dop853_sources, fixed_loop_source, fixed_step_source, rotations_source
 
-__all__ = ["RK4", "RK8", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk", "rhs"]
+__all__ = ["RK4", "RK8", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk", "fixed_rk4", "fixed_rk8",
+           "generated", "rhs"]
 
 #: The fixed-step methods by number: the classical RK4, and the 12-stage 8th-order weights of DOP853.
 RK4, RK8 = 0, 1
@@ -130,24 +131,36 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
     return a0, a1, a2, d0, d1, d2, d3
 
 
-def _generated(source: str) -> dict[str, Callable[..., Any]]:
-    """The generated steps (:mod:`~tumble.dynamics.engine.unrolled`) compiled, by name. Each inlines
-    :func:`rhs` at its stages (numba's inlining: LLVM alone left the calls, 1.5x the step), but is
-    not itself inlined into the kernels that call it once a step: that made the first compile of
-    the two kernels 58 s instead of 25 s (measured, loaded machine; 7.6 s before the steps were
-    written out), for no speed (a whole run written out with its steps in its loop ran the same).
-    The code object is named after this file, so numba's cache keys the kernels on the sources
-    (:func:`tumble.jit.jit`)."""
-    namespace: dict[str, Any] = {"rhs": rhs, "math": math, "__name__": __name__}
-    exec(compile(source, __file__, "exec"), namespace)  # noqa: S102 - our own generated source
+def generated(source: str, filename: str, module: str, **names: Any) -> dict[str, Callable[..., Any]]:
+    """The functions the generated ``source`` (:mod:`~tumble.dynamics.engine.unrolled`) defines,
+    compiled, by name; ``names`` what they call (``rhs``, helpers), ``math`` always. The code object
+    is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
+    keys the kernels on the sources (:func:`tumble.jit.jit`).
+
+    Each step inlines its right-hand side at its stages (numba's inlining: LLVM alone left the
+    calls, 1.5x the step), but is not itself inlined into the kernels that call it once a step:
+    that made the first compile of the two kernels 58 s instead of 25 s (measured, loaded machine;
+    7.6 s before the steps were written out), for no speed (a whole run written out with its steps
+    in its loop ran the same).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.kernels import generated
+    >>> twice = generated("def twice(x): return 2.0 * x", "example.py", "example")["twice"]
+    >>> twice(1.5)
+    3.0
+    """
+    namespace: dict[str, Any] = {"math": math, "__name__": module, **names}
+    given = set(namespace)
+    exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
     return {name: jit(f, error_model="numpy", fastmath=_FAST) for name, f in namespace.items()
-            if name.endswith(("_step", "_turns", "_errors", "_dense", "_interpolate"))}
+            if name not in given and name != "__builtins__"}
 
 
-_STEPS = _generated(fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C) + rotations_source("rk4_turns", RK4_C)
-                    + fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12])
-                    + rotations_source("rk8_turns", DOP853_C[:12])
-                    + dop853_sources() + rotations_source("dop853_turns", DOP853_C))
+_STEPS = generated(fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C) + rotations_source("rk4_turns", RK4_C)
+                   + fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12])
+                   + rotations_source("rk8_turns", DOP853_C[:12])
+                   + dop853_sources() + rotations_source("dop853_turns", DOP853_C), __file__, __name__, rhs=rhs)
 _rk4_step, _rk4_turns = _STEPS["rk4_step"], _STEPS["rk4_turns"]
 _rk8_step, _rk8_turns = _STEPS["rk8_step"], _STEPS["rk8_turns"]
 _dop853_step, _dop853_errors, _dop853_turns = _STEPS["dop853_step"], _STEPS["dop853_errors"], _STEPS["dop853_turns"]
@@ -170,7 +183,10 @@ def _store(y: tuple[float, ...], omega: np.ndarray, quat: np.ndarray) -> None:
 @jit(error_model="numpy")
 def _finite(y: tuple[float, ...]) -> bool:
     """Whether every component of the state is finite (one sum: a NaN or inf anywhere makes it not)."""
-    return math.isfinite(y[0] + y[1] + y[2] + y[3] + y[4] + y[5] + y[6])
+    total = 0.0
+    for v in y:
+        total += v
+    return math.isfinite(total)
 
 
 @jit(error_model="numpy")
@@ -267,35 +283,38 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
     return OK
 
 
-@jit(error_model="numpy", fastmath=_FAST)
+@jit(error_model="numpy")
+def _rigid(y0: np.ndarray, I: np.ndarray) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """The state tuple of ``y0`` and the body's tuple the steps take: the moments and their inverses."""
+    return _state(y0), (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
+
+
+@jit(error_model="numpy")
+def _sample(y: tuple[float, ...], I: np.ndarray, omega: np.ndarray, quat: np.ndarray, k: int) -> None:
+    _store(y, omega[k], quat[k])
+
+
+# The fixed-step runs, :data:`RK4` and :data:`RK8` at equal steps no longer than ``step`` (s) in each
+# sample interval, the samples into ``omega`` and ``quat``; the torque terms ``P`` on an orbit of mean
+# motion ``n`` (rad/s); a status: 0 done, 3 the state overflowed (a NaN or inf). One kernel a method,
+# so that a run compiles only its own step.
+_FIXED = generated(fixed_loop_source("fixed_rk4", "rk4_step", "rk4_turns", "_rigid", "_sample", "omega, quat")
+                   + fixed_loop_source("fixed_rk8", "rk8_step", "rk8_turns", "_rigid", "_sample", "omega, quat"),
+                   __file__, __name__, rk4_step=_rk4_step, rk4_turns=_rk4_turns, rk8_step=_rk8_step,
+                   rk8_turns=_rk8_turns, _rigid=_rigid, _sample=_sample, _equal_steps=_equal_steps,
+                   _direction=_direction, _finite=_finite, OK=OK, NON_FINITE=NON_FINITE)
+#: The fixed-step runs by method number.
+fixed_rk4, fixed_rk8 = _FIXED["fixed_rk4"], _FIXED["fixed_rk8"]
+
+
+@jit(error_model="numpy")
 def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ...], n: float,
              step: float, method: int, omega: np.ndarray, quat: np.ndarray) -> int:
-    """:data:`RK4` or :data:`RK8` at equal steps no longer than ``step`` (s) in each sample interval,
-    the samples into ``omega`` and ``quat``; the torque terms ``P`` on an orbit of mean
-    motion ``n`` (rad/s). Returns a status: 0 done, 3 the state overflowed (a NaN or inf)."""
-    body = (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
-    y = _state(y0)
-    _store(y, omega[0], quat[0])
-    h_turns = -1.0
-    rot4, rot8 = _rk4_turns(0.0, 0.0), _rk8_turns(0.0, 0.0)
-    for k in range(1, t_eval.shape[0]):
-        m, h = _equal_steps(t_eval[k] - t_eval[k - 1], step)
-        if h != h_turns:  # the turns from a step's start to its stages, once per step length
-            h_turns = h
-            if method == RK4:
-                rot4 = _rk4_turns(n, h)
-            else:
-                rot8 = _rk8_turns(n, h)
-        for j in range(m):
-            cs, ss = _direction(n, t_eval[k - 1] + j * h)
-            if method == RK4:
-                y = _rk4_step(y, h, body, P, cs, ss, rot4)
-            else:
-                y = _rk8_step(y, h, body, P, cs, ss, rot8)
-        if not _finite(y):
-            return NON_FINITE
-        _store(y, omega[k], quat[k])
-    return OK
+    """:data:`RK4` or :data:`RK8` (``method``) at equal steps no longer than ``step`` (s): :func:`fixed_rk4` or
+    :func:`fixed_rk8`, for the batch, which takes the method as a number."""
+    if method == RK4:
+        return fixed_rk4(y0, t_eval, I, P, n, step, omega, quat)
+    return fixed_rk8(y0, t_eval, I, P, n, step, omega, quat)
 
 
 @jit(parallel=True, error_model="numpy")

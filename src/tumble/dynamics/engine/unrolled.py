@@ -39,8 +39,8 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_step_source", "rotations_source",
-           "state_layout"]
+__all__ = ["RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source", "fixed_step_source",
+           "rotations_source", "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
 STATE = 7
@@ -248,3 +248,38 @@ def dop853_sources(layout: Layout = RIGID_BODY, step: str = "dop853_step", error
         interpolate.append(f"    v{i} = {v} + y[{i}]")
     interpolate.append(f"    return ({', '.join(f'v{i}' for i in range(n))})")
     return "\n".join(["\n".join(lines), "\n".join(error_lines), "\n".join(dense_lines), "\n".join(interpolate)]) + "\n"
+
+
+def fixed_loop_source(name: str, step: str, turns: str, load: str, store: str, outputs: str) -> str:
+    """The source of a fixed-step run ``name(y0, t_eval, I, P, n, step, <outputs>)``: from the state
+    array ``y0`` at ``t_eval[0]`` through each sample interval in equal steps of the step function
+    ``step`` no longer than ``step`` (s), the orbit's turns ``turns`` (:func:`rotations_source`) once
+    per step length; ``load(y0, I)`` gives the state tuple and the body's tuple the step takes,
+    ``store(y, I, <outputs>, k)`` writes sample ``k``. Returns a status (``OK``, ``NON_FINITE``). The one
+    writing of the fixed-step loop, for every state the engine steps (the rigid body's, the damped body's).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import fixed_loop_source
+    >>> source = fixed_loop_source("run", "rk4_step", "rk4_turns", "_load", "_store", "omega, quat")
+    >>> print(source.splitlines()[0])
+    def run(y0, t_eval, I, P, n, step, omega, quat):
+    """
+    return f"""def {name}(y0, t_eval, I, P, n, step, {outputs}):
+    y, body = {load}(y0, I)
+    {store}(y, I, {outputs}, 0)
+    h_turns = -1.0
+    rot = {turns}(0.0, 0.0)
+    for k in range(1, t_eval.shape[0]):
+        m, h = _equal_steps(t_eval[k] - t_eval[k - 1], step)
+        if h != h_turns:  # the turns from a step's start to its stages, once per step length
+            h_turns = h
+            rot = {turns}(n, h)
+        for j in range(m):
+            cs, ss = _direction(n, t_eval[k - 1] + j * h)
+            y = {step}(y, h, body, P, cs, ss, rot)
+        if not _finite(y):
+            return NON_FINITE
+        {store}(y, I, {outputs}, k)
+    return OK
+"""

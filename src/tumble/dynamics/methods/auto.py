@@ -1,8 +1,10 @@
 """``method="auto"``, the default of :func:`tumble.simulate`: the method chosen from what a run has.
 
 - A rigid body without torque: ``"exact"``, the closed form (no steps, round-off accuracy).
-- A damper, rotors whose spin changes, or a torque that is a Python function: ``"dop853"``,
+- Rotors whose spin changes, a stiff damper, or a torque that is a Python function: ``"dop853"``,
   the one method that takes them all (scipy's DOP853, Radau for a stiff damper).
+- A damper that is not stiff, under the built-in torque models: the engine's ``"rk8"``
+  (:func:`damped_step`; the engine's ``dop853`` has no damper, scipy's costs a Python call a stage).
 - The built-in torque models that have a compiled form
   (:class:`~tumble.dynamics.models.torques.KernelForm`), with or without rotors at constant spin:
   the compiled engine, either its adaptive ``"dop853"`` or its fixed-step ``"rk8"``
@@ -31,8 +33,9 @@ import math
 import numpy as np
 
 from ...typing import FloatArray
+from ..models.internal import STIFF_RATIO, InternalModel
 
-__all__ = ["AUTO_RTOL", "DOP853_SAFETY", "dop853_tolerances", "engine_choice", "rk8_angle"]
+__all__ = ["AUTO_RTOL", "DOP853_SAFETY", "damped_step", "dop853_tolerances", "engine_choice", "rk8_angle"]
 
 #: The relative tolerance of an ``"auto"`` run when none is given.
 AUTO_RTOL = 1e-10
@@ -86,8 +89,11 @@ def dop853_tolerances(rtol: float, atol: float) -> tuple[float, float]:
     return max(rtol / factor, 100 * 2.220446049250313e-16), atol / factor / 10.0
 
 
-def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float | None:
+def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float,
+                  internal: InternalModel | None = None) -> float | None:
     """The engine's method for a run: ``rk8``'s step (s), or None for ``dop853``.
+
+    With a damper (``internal``), :func:`damped_step`: ``dop853`` would run it in scipy.
 
     The cost of each in ``rk8`` steps, the cheaper chosen: ``rk8`` steps at :func:`rk8_angle` of
     rotation at the fastest spin the run can reach, ``spin + gain`` (rad/s), in equal steps within
@@ -103,6 +109,8 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float
         The spin the run starts from and the bound on what its torque adds, rad/s.
     rtol : float
         The accuracy asked for.
+    internal : InternalModel, optional
+        The body's rotors (at constant spin) and damper.
 
     Examples
     --------
@@ -115,6 +123,8 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float
     """
     top = spin + gain
     t_end = float(t[-1])
+    if internal is not None and internal.damper is not None:
+        return damped_step(internal, spin, gain, t_end, rtol)
     if not (top > 0.0 and t_end > 0.0 and math.isfinite(top)):
         return None
     scale = math.pow(dop853_tolerances(rtol, rtol)[0] * DOP853_SAFETY / AUTO_RTOL, 0.125)  # its step, as its rtol
@@ -129,3 +139,28 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float) -> float
     samples = len(t) - 1
     dop853 = DOP853_STEP_COST * steps * (1.0 + DENSE_STAGES * min(1.0, samples / steps)) + SAMPLE_COST * samples
     return h if rk8 <= dop853 else None
+
+
+def damped_step(internal: InternalModel, spin: float, gain: float, t_end: float, rtol: float) -> float | None:
+    """``rk8``'s step (s) for a body with a damper, or None where the damper is stiff
+    (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`: ``dop853`` hands it to Radau): :func:`rk8_angle`
+    of rotation at the fastest spin the run can reach, ``spin + gain`` (rad/s), or of relaxation at the
+    damper's fastest rate (1/s), whichever is the shorter step.
+
+    Examples
+    --------
+    >>> import numpy as np, tumble
+    >>> from tumble.dynamics.methods.auto import damped_step
+    >>> from tumble.dynamics.models.internal import InternalModel
+    >>> slow = InternalModel(np.array([1.0, 2.0, 3.0]), damper=tumble.SphericalDamper(inertia=0.1, damping=0.05))
+    >>> damped_step(slow, 10.0, 0.0, 20.0, 1e-10)   # relaxing at ~0.55 1/s: the spin sets the step
+    0.015
+    >>> stiff = InternalModel(np.array([1.0, 2.0, 3.0]), damper=tumble.SphericalDamper(inertia=0.1, damping=1e3))
+    >>> damped_step(stiff, 10.0, 0.0, 20.0, 1e-10) is None
+    True
+    """
+    ratio, _ = internal.stiffness(spin + gain, t_end)
+    if ratio > STIFF_RATIO:
+        return None
+    top = max(spin + gain, internal.relaxation_rate)
+    return rk8_angle(rtol) / top if top > 0.0 and math.isfinite(top) else None

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
-from ..engine.front import run_body
+from ..engine.front import run_body, run_damped
 from ..models.internal import InternalModel, InternalSamples
 from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, kernel_form
 from .bounds import spin_gain
@@ -109,35 +109,49 @@ def engine_rk(name: str) -> Callable[..., tuple[Vector3, Quaternion]]:
 
 def engine_rk_internal(name: str) -> Callable[..., InternalSamples]:
     """The compiled engine's fixed-step ``name`` for a body whose rotors spin at constant rates (their
-    momentum one more term, :func:`gyrostat_on_engine`); other internal models are refused.
+    momentum one more term, :func:`gyrostat_on_engine`) and for a body with a spherical damper (its
+    state ``(L, q, w_d, D)`` stepped by :mod:`~tumble.dynamics.engine.damped`); rotors whose spin
+    changes are refused. ``simulate`` refuses it a stiff damper first.
 
     Examples
     --------
+    A damper takes out the energy of a spin about the minor axis, and the momentum stays:
+
     >>> import numpy as np, tumble
     >>> from tumble.dynamics.methods.engine_rk import engine_rk_internal
     >>> from tumble.dynamics.models.internal import InternalModel
     >>> damped = InternalModel(np.array([1.0, 2.0, 3.0]), damper=tumble.SphericalDamper(inertia=0.1, damping=0.5))
-    >>> engine_rk_internal("rk8")(damped, [0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 1.0], np.array([0.0, 1.0]), None, None,
-    ...                           None)   # doctest: +ELLIPSIS
+    >>> run = engine_rk_internal("rk8")(damped, [1.0, 0.1, 0.0], [0.0, 0.0, 0.0, 1.0], np.linspace(0.0, 20.0, 3), None,
+    ...                                 None, None)
+    >>> bool(np.all(np.diff(run.dissipated) > 0)), run.damper_omega.shape
+    (True, (3, 3))
+    >>> ramp = tumble.Body([tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2)),
+    ...                     tumble.Rotor(mass=0.2, radius=0.05, length=0.01, spin_rate=0.0, spin_acceleration=5.0)])
+    >>> from tumble.dynamics.models.internal import Rotors
+    >>> engine_rk_internal("rk8")(InternalModel(ramp.principal_moments, Rotors.of(ramp)), [0.0, 0.0, 1.0],
+    ...                           [0.0, 0.0, 0.0, 1.0], np.array([0.0, 1.0]), None, None, None)
     Traceback (most recent call last):
     ...
-    ValueError: method = 'rk8' runs compiled and takes rotors spinning at constant rates under the built-in torques; for a damper use dop853
+    ValueError: method = 'rk8' runs compiled and takes rotors spinning at constant rates, a damper and the built-in torques; for rotors whose spin changes use dop853
     """
 
     def integrate(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
                   rtol: float | None, atol: float | FloatArray | None, step: float | None = None) -> InternalSamples:
         form = kernel_form(torque)
-        if model.damper is not None or model.rotors is None or not model.rotors.constant or form is None:
-            what = "a damper" if model.damper is not None else (
-                "rotors whose spin changes" if form is not None else f"torque = {torque!r}")
-            raise ValueError(f"method = {name!r} runs compiled and takes rotors spinning at constant rates under the "
-                             f"built-in torques; for {what} use dop853")
+        if (model.rotors is not None and not model.rotors.constant) or form is None:
+            what = "rotors whose spin changes" if form is not None else f"torque = {torque!r}"
+            raise ValueError(f"method = {name!r} runs compiled and takes rotors spinning at constant rates, a damper and "
+                             f"the built-in torques; for {what} use dop853")
         w0, q0 = np.asarray(omega0, float), np.asarray(quat0, float)
         if step is None:
             with np.errstate(over="ignore", invalid="ignore"):
                 gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), model.moments, float(t[-1] - t[0]))
-            step = rk_step(name)(float(model.spin_bound(w0, t)), gain)
+            step = rk_step(name)(float(model.spin_bound(w0, t)), gain, model.relaxation_rate)
         h = tuple(float(v) for v in model.momentum(0.0))
+        if model.damper is not None:
+            body = np.array([*model.moments, model.damper.inertia, model.damper.damping, *h])
+            Y = run_damped(name, body, model.initial_state(w0, q0), t, form, step=step)
+            return model.samples(t, Y)
         omega, quat = run_body(name, model.moments, w0, q0, t, (form, (KERNEL_ROTOR_MOMENTUM, h)), step=step)
         return InternalSamples(omega, quat, None, None, None)
 

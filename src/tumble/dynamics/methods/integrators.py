@@ -14,7 +14,8 @@ never a method's name.
   (:class:`~tumble.dynamics.models.torques.KernelForm`) it runs in the compiled engine
   (:mod:`tumble.dynamics.engine`), taking scipy's steps.
 - ``"rk4"``, ``"rk8"``: the engine's fixed-step Runge-Kutta (the classical RK4; DOP853's 8th-order
-  weights without error control) at ``step``, compiled; built-in torque models only.
+  weights without error control) at ``step``, compiled; built-in torque models only, rotors at
+  constant spin and a (not stiff) damper.
 - ``"rk45"``: the same state with scipy's RK45 at scipy's *default* tolerances (rtol 1e-3,
   atol 1e-6), as the seed study ran it. For comparison.
 - ``"seed"``: the seed's whole computation: RK45 at default tolerances for omega alone, then
@@ -34,15 +35,18 @@ never a method's name.
 Rotors and dampers (:mod:`tumble.dynamics.models.internal`) go through ``Method.integrate_internal``,
 which takes the :class:`~tumble.dynamics.models.internal.InternalModel` and returns its samples:
 ``"dop853"`` and ``"rk45"`` integrate the model's ODE (total momentum, attitude, the damper's
-state and energy budgets), the ``"geometric"`` methods split it into exact rotations and the
-damper's exact relaxation. ``"exact"`` and ``"seed"`` have none and refuse such runs.
+state and energy budgets), ``"rk4"`` and ``"rk8"`` step the same state compiled
+(:mod:`tumble.dynamics.engine.damped`; rotors at constant spin), the ``"geometric"`` methods split
+it into exact rotations and the damper's exact relaxation. ``"exact"`` and ``"seed"`` have none
+and refuse such runs.
 
 A stiff damper (:data:`~tumble.dynamics.models.internal.STIFF_RATIO`: relaxing more than 500 times
 faster than the body spins) would hold an explicit method to steps of its relaxation time, not
 the rotation's: ``"dop853"`` then hands the run to scipy's Radau IIA (implicit, order 5,
 L-stable; Hairer & Wanner, *Solving ODEs II*, sec. IV.8) at the same tolerances, with the
 model's analytic Jacobian (:meth:`~tumble.dynamics.models.internal.InternalModel.jacobian`), and
-the run's ``Trajectory.method`` says ``"radau"``; ``simulate`` refuses such a run for ``"rk45"`` and the splitting methods, naming the ratio.
+the run's ``Trajectory.method`` says ``"radau"``; ``simulate`` refuses such a run for ``"rk45"``, ``"rk4"``,
+``"rk8"`` and the splitting methods, naming the ratio.
 """
 
 from __future__ import annotations
@@ -158,7 +162,7 @@ class Method:
     #: Whether it runs only there: a torque that is a Python function is refused.
     compiled_only: bool = False
     #: Whether ``integrate_internal`` takes only rotors spinning at constant rates (their momentum
-    #: one more term of the engine's equations), no damper and no changing spin.
+    #: one more term of the engine's equations) and a damper, no changing spin.
     constant_rotors_only: bool = False
 
     def takes(self, internal: InternalModel | None) -> bool:
@@ -175,15 +179,14 @@ class Method:
         >>> METHODS["rk8"].takes(steady), METHODS["exact"].takes(steady)   # constant spin: a term of the engine
         (True, False)
         >>> damped = InternalModel(body.principal_moments, damper=tumble.SphericalDamper(inertia=0.01, damping=0.1))
-        >>> METHODS["rk8"].takes(damped), METHODS["dop853"].takes(damped)
-        (False, True)
+        >>> METHODS["rk8"].takes(damped), METHODS["exact"].takes(damped)
+        (True, False)
         """
         if internal is None:
             return True
         if self.integrate_internal is None:
             return False
-        return not self.constant_rotors_only or (
-            internal.damper is None and internal.rotors is not None and internal.rotors.constant)
+        return not self.constant_rotors_only or internal.rotors is None or internal.rotors.constant
 
     @property
     def stiff_solver(self) -> bool:

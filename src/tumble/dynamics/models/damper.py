@@ -22,13 +22,14 @@ sphere's mass (its centre's parallel-axis term) but not its own ``J``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import MAX_INERTIA, MAX_RATE, check_at_most, check_positive
 
-__all__ = ["MAX_DAMPER_RATIO", "SphericalDamper"]
+__all__ = ["MAX_DAMPER_RATIO", "SphericalDamper", "damper_rate_components"]
 
 #: Largest damper inertia relative to the body's smallest moment: the body's rate
 #: ``w = (L - h - J w_d) / I`` loses ``log10(J / I1)`` digits to cancellation (6 here).
@@ -130,3 +131,26 @@ class SphericalDamper:
         e1 = -np.expm1(-2.0 * k * dt)  # 1 - exp(-2 k dt), accurate for small k dt
         lost = 0.5 * J * np.sum((1.0 + J / moments) * delta * delta * e1, axis=0)
         return w_inf + delta * np.exp(-k * dt), lost
+
+
+def damper_rate_components(d0: Any, d1: Any, d2: Any, w0: Any, w1: Any, w2: Any, damping: Any,
+                           inertia: Any) -> tuple[Any, Any, Any, Any]:
+    """The sphere's equation ``w_d' = w_d x w - (c / J)(w_d - w)`` and the dissipation rate
+    ``c |w_d - w|^2`` (W), component by component (module docstring: Euler's law for the sphere,
+    L&L *Mechanics* sec. 36, in the body's frame; Likins 1966 for the energy sink).
+
+    ``w_d`` the sphere's inertial rate and ``w`` the body's (rad/s, body frame), ``c`` the damping
+    (N m s), ``J`` the sphere's moment (kg m^2). The one writing of the damper's equations, over
+    floats (the compiled engine, :mod:`tumble.dynamics.engine.damped`) or arrays of one shape
+    (:meth:`tumble.dynamics.models.internal.InternalModel.rhs`).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.damper import damper_rate_components
+    >>> damper_rate_components(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.5)   # w_d x w = (0, -1, 0), slip (1, 0, -1), c / J = 4
+    (-4.0, -1.0, 4.0, 4.0)
+    """
+    k = damping / inertia
+    s0, s1, s2 = d0 - w0, d1 - w1, d2 - w2
+    return (d1 * w2 - d2 * w1 - k * s0, d2 * w0 - d0 * w2 - k * s1, d0 * w1 - d1 * w0 - k * s2,
+            damping * (s0 * s0 + s1 * s1 + s2 * s2))
