@@ -13,8 +13,8 @@ Targets: omega <= 2e-9 (relative) and attitude <= 2e-8 rad for the gyrostat (the
 case's), omega <= 1e-8 and attitude <= 1e-7 rad for the damper (785 rad of spin in 10 s);
 target ratio >= 1. The peer: RK4 and RK8 at the smallest ``k`` steps per 0.2 s / 0.1 s sample
 interval; tumble: ``dop853`` at the largest rtol of a ladder, ``geometric`` and ``geometric6`` (the
-splitting methods, compiled), ``rk8`` and ``rk4`` (which take constant rotors, not a damper) at the
-smallest ``k``, and ``auto`` where it exists. The reference: scipy DOP853 at
+splitting methods, compiled), ``rk8`` and ``rk4`` (which take constant rotors and a damper that is
+not stiff) at the smallest ``k``, and ``auto``. The reference: scipy DOP853 at
 rtol 1e-13 on the numpy right-hand sides below, in omega form (the peer is in momentum form).
 """
 
@@ -40,7 +40,7 @@ DAMPER = {"omega": 1e-8, "attitude": 1e-7}
 ROTOR = dict(mass=0.2, radius=0.05, length=0.01, axis=(0.0, 1.0, 0.0), spin_rate=300.0)
 EXPLORER = Path(__file__).resolve().parents[1] / "examples" / "bodies" / "explorer1.toml"
 #: tumble's methods searched (geometric2, second order, never wins here); rk8 and rk4 take constant
-#: rotors and refuse a damper
+#: rotors and a damper
 TIMED = ("dop853", "rk8", "rk4", "geometric", "geometric6", "auto")
 NAMES = ["peer rk4", "peer rk8", *(f"tumble {m}" for m in TIMED)]
 
