@@ -17,10 +17,15 @@ fits hang on its round-off (tests/test_formulas_once.py says why).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any, cast
+
 import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..engine.tableau import RK4_A, RK4_B, RK4_C
+from ..engine.unrolled import fixed_step_source, state_layout
 from ..euler import momentum_rate_components
 from .aero import drag_component
 
@@ -101,22 +106,49 @@ def drag_integrate(I: FloatArray, w0: FloatArray, lin: FloatArray, quad: FloatAr
     return out
 
 
-@jit()
-def _gyrostat_rate(Iinv: FloatArray, quad: FloatArray, L: FloatArray, h: FloatArray, g: FloatArray, k: float,
-                   w: FloatArray, out: FloatArray) -> None:  # pragma: no cover - compiled
-    """``L' = L x w + tau`` with ``w = I^-1 (L - h)``, the quadratic drag and ``k g``, into ``out``."""
-    for i in range(3):
-        w[i] = Iinv[i, 0] * (L[0] - h[0]) + Iinv[i, 1] * (L[1] - h[1]) + Iinv[i, 2] * (L[2] - h[2])
-    d0, d1, d2 = _momentum_rate(L[0], L[1], L[2], w[0], w[1], w[2], _drag(0.0, quad[0], w[0]),
-                                _drag(0.0, quad[1], w[1]), _drag(0.0, quad[2], w[2]))
-    out[0], out[1], out[2] = d0 + k * g[0], d1 + k * g[1], d2 + k * g[2]
+def _gyrostat_rhs(t: float, L: Any, P: Any, X: Any, u0: float, u1: float) -> Any:  # pragma: no cover - compiled
+    """``L' = L x w + tau`` with ``w = I^-1 (L - h)``, the quadratic drag and ``k g``: the right-hand
+    side the engine's generated RK4 step calls (:func:`gyrostat_integrate`). ``P``, 33 floats: the
+    interval's ends (s, computed as the step computes its nodes: they tell the stages apart),
+    ``k``, ``I^-1`` (9, row by row), ``b`` (3), then ``h`` and ``g`` at the start, the middle and
+    the end of the interval (3 each). ``X``, ``u0`` and ``u1`` unused."""
+    if t == P[0]:
+        h0, h1, h2, g0, g1, g2 = P[15], P[16], P[17], P[24], P[25], P[26]
+    elif t == P[1]:
+        h0, h1, h2, g0, g1, g2 = P[21], P[22], P[23], P[30], P[31], P[32]
+    else:
+        h0, h1, h2, g0, g1, g2 = P[18], P[19], P[20], P[27], P[28], P[29]
+    a0, a1, a2 = L[0] - h0, L[1] - h1, L[2] - h2
+    w0 = P[3] * a0 + P[4] * a1 + P[5] * a2
+    w1 = P[6] * a0 + P[7] * a1 + P[8] * a2
+    w2 = P[9] * a0 + P[10] * a1 + P[11] * a2
+    d0, d1, d2 = _momentum_rate(L[0], L[1], L[2], w0, w1, w2, _drag(0.0, P[12], w0), _drag(0.0, P[13], w1),
+                                _drag(0.0, P[14], w2))
+    return d0 + P[2] * g0, d1 + P[2] * g1, d2 + P[2] * g2
+
+
+def _gyrostat_step() -> Callable[..., Any]:
+    """The classical RK4 step over the momentum's three floats, written out by the engine's generator
+    from its tableau (:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`), compiled with
+    :func:`_gyrostat_rhs` inlined at its stages. The code object is named after this file, so numba's
+    cache keys it on the sources."""
+    namespace: dict[str, Any] = {"rhs": jit(_gyrostat_rhs, inline="always"), "__name__": __name__}
+    exec(compile(fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, state_layout(3)), __file__, "exec"),  # noqa: S102
+         namespace)
+    return cast("Callable[..., Any]", jit(namespace["rk4_step"]))
+
+
+_rk4_gyrostat = _gyrostat_step()
+#: The step's turns of an orbit's direction: none here.
+_NO_TURNS = (1.0, 0.0) * 4
 
 
 @jit()
 def gyrostat_integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: FloatArray, h: FloatArray,
                        hmid: FloatArray, g: FloatArray, gmid: FloatArray, scale: FloatArray) -> FloatArray:  # pragma: no cover
     """The angular velocity (K, T, 3) of :func:`~tumble.dynamics.models.gyrostat.gyrostat_omega`
-    (checked, contiguous inputs; ``Iinv`` the inverse tensors): one RK4 step per sample interval.
+    (checked, contiguous inputs; ``Iinv`` the inverse tensors): one step of the engine's RK4 per
+    sample interval (:func:`_gyrostat_rhs`).
 
     Examples
     --------
@@ -134,27 +166,18 @@ def gyrostat_integrate(Iinv: FloatArray, L0: FloatArray, quad: FloatArray, t: Fl
     K = Iinv.shape[0]
     T = t.shape[0]
     out = np.empty((K, T, 3))
-    k1, k2, k3, k4 = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    L, tmp, w = np.empty(3), np.empty(3), np.empty(3)
     for b in range(K):
-        for c in range(3):
-            L[c] = L0[b, c]
-        k = scale[b]
+        L = (L0[b, 0], L0[b, 1], L0[b, 2])
+        A, q = Iinv[b], quad[b]
         for j in range(T):
             if j > 0:
                 dt = t[j] - t[j - 1]
-                _gyrostat_rate(Iinv[b], quad[b], L, h[j - 1], g[j - 1], k, w, k1)
-                for c in range(3):
-                    tmp[c] = L[c] + 0.5 * dt * k1[c]
-                _gyrostat_rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k2)
-                for c in range(3):
-                    tmp[c] = L[c] + 0.5 * dt * k2[c]
-                _gyrostat_rate(Iinv[b], quad[b], tmp, hmid[j - 1], gmid[j - 1], k, w, k3)
-                for c in range(3):
-                    tmp[c] = L[c] + dt * k3[c]
-                _gyrostat_rate(Iinv[b], quad[b], tmp, h[j], g[j], k, w, k4)
-                for c in range(3):
-                    L[c] += dt / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
+                s, m, e = j - 1, j - 1, j  # h and g at the interval's start, middle and end
+                P = (t[j - 1], t[j - 1] + 1.0 * dt, scale[b], A[0, 0], A[0, 1], A[0, 2], A[1, 0], A[1, 1], A[1, 2],
+                     A[2, 0], A[2, 1], A[2, 2], q[0], q[1], q[2], h[s, 0], h[s, 1], h[s, 2], hmid[m, 0], hmid[m, 1],
+                     hmid[m, 2], h[e, 0], h[e, 1], h[e, 2], g[s, 0], g[s, 1], g[s, 2], gmid[m, 0], gmid[m, 1],
+                     gmid[m, 2], g[e, 0], g[e, 1], g[e, 2])
+                L = _rk4_gyrostat(t[j - 1], L, dt, P, (0.0,), 1.0, 0.0, _NO_TURNS)
             for i in range(3):
                 out[b, j, i] = (Iinv[b, i, 0] * (L[0] - h[j, 0]) + Iinv[b, i, 1] * (L[1] - h[j, 1])
                                 + Iinv[b, i, 2] * (L[2] - h[j, 2]))
