@@ -14,7 +14,10 @@ batch's). So the sources hold:
   itself (``kernel_form()`` for the engine, ``loop_form()`` for the closed loop). The fast paths'
   input checks, ``type(x) is float``, ``int``, ``tuple``, ``list`` or ``np.ndarray``, stay:
   they test a plain value, not choose a model;
-- no module ``compiled_control`` or ``compiled_detumble``.
+- no module ``compiled_control`` or ``compiled_detumble``;
+- no Runge-Kutta step written by hand (``k1 + 2 k2 + 2 k3 + k4``): the steps are the engine's,
+  written out from the tableaux by :mod:`tumble.dynamics.engine.unrolled`, but for the copies of
+  :data:`HAND_WRITTEN_RK`.
 
 Each check is run on samples of what it must find, so it can fail.
 """
@@ -37,7 +40,16 @@ LAZY = {"__init__.py", "commands/__init__.py", "viz/_backend.py"}
 #: The plain types a fast path may test with ``type(x) is``.
 PLAIN = r"(float|int|bool|str|tuple|list|dict|complex|np\.ndarray|np\.float64)"
 
+#: The Runge-Kutta steps still written by hand: module -> why.
+HAND_WRITTEN_RK = {
+    # issue 38: the numpy reference of the compiled B-dot batch (vectorised over the bodies)
+    "dynamics/control/detumble.py": "the B-dot batch's numpy reference path",
+    # issue 38: the fits hang on the drag kernel's round-off (tests/test_formulas_once.py says why)
+    "dynamics/models/fit_kernels.py": "the fits' drag kernel",
+}
+
 GLOBALS = re.compile(r"\bglobals\(\)\[")
+RK_BY_HAND = re.compile(r"2(\.0)?\*\w*[kK]\w*(\[[^\]]*\])?\+2(\.0)?\*\w*[kK]")
 FUNCTION_COPY = re.compile(r"\bFunctionType\b")
 #: ``type(x) is C``, ``is not C``, ``in (C, ...)``, ``not in (C, ...)`` with any C not a plain type.
 DISPATCH = re.compile(r"(?:(?<![\w.])|(?<=if)|(?<=or)|(?<=and)|(?<=not)|(?<=return))type\([^()]*(\([^()]*\))?[^()]*\)"
@@ -63,6 +75,10 @@ def _squeeze(code: str) -> str:
 @pytest.mark.parametrize(("pattern", "finds", "passes"), [
     (GLOBALS, ['globals()["_drag"] = jit(inline="always")(drag_component)', "function = globals()[name]"],
      ["names = {n for n in globals() if n}"]),
+    (RK_BY_HAND, ["q = q + h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q)",
+                  "w[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])",
+                  "S[c, r] = S[c, r] + e * (K[0, c, r] + 2 * K[1, c, r] + 2 * K[2, c, r] + K[3, c, r])"],
+     ["twoK = (2.0 * K[0], 2.0 * K[1])", "y[0] + h * (0.16666666666666666 * k0[0] + 0.3333333333333333 * k1[0])"]),
     (FUNCTION_COPY, ['function = types.FunctionType(function.__code__, globals(), name + "_parallel")'], ["f = jit(g)"]),
     (DISPATCH, ["if type(field) is UniformField:", "if type(gravity_gradient) is not GravityGradient:",
                 "if model is not None and type(model) not in kinds:",
@@ -89,6 +105,11 @@ def test_no_kernel_is_copied_to_compile_it_twice():
 
 def test_no_model_is_chosen_by_its_exact_type():
     assert _found(DISPATCH) == []
+
+
+def test_no_runge_kutta_step_is_written_by_hand_but_the_listed_ones():
+    found = {hit.split(":")[0] for hit in _found(RK_BY_HAND)}
+    assert found == set(HAND_WRITTEN_RK), found
 
 
 def test_the_old_compile_rooms_are_gone():

@@ -10,9 +10,11 @@ equation :func:`~tumble.dynamics.euler.momentum_rate_components`.
 
 Both integrate with the classical fourth-order Runge-Kutta method (Hairer, Norsett & Wanner,
 *Solving ODEs I*, sec. II.1), the step count depending only on the times, so the result is a
-smooth function of the parameters (a fit's finite differences are clean). The drag kernel's
-Euler right-hand side keeps its own order of operations, ``((I2 - I3) w2 w3 + tau) / I1``: the
-fits hang on its round-off (tests/test_formulas_once.py says why).
+smooth function of the parameters (a fit's finite differences are clean). The gyrostat's step is
+the engine's, written out by its generator from the tableau
+(:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`). The drag kernel keeps a loop of its
+own, and its Euler right-hand side its own order of operations, ``((I2 - I3) w2 w3 + tau) / I1``:
+the fits hang on its round-off (tests/test_formulas_once.py says why).
 """
 
 from __future__ import annotations
