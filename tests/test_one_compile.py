@@ -25,6 +25,8 @@ Each check is run on samples of what it must find, so it can fail.
 from __future__ import annotations
 
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -116,3 +118,17 @@ def test_the_old_compile_rooms_are_gone():
     control = SRC / "dynamics" / "control"
     assert not (control / "compiled_control.py").exists()
     assert not (control / "compiled_detumble.py").exists()
+
+
+def test_the_fronts_import_no_numba_their_kernels_do():
+    """The fronts import their kernels modules only when a compiled path runs: importing them
+    costs no numba (the kernels modules compile at import)."""
+    fronts = ("tumble.dynamics.models.drag", "tumble.dynamics.models.gyrostat", "tumble.dynamics.control",
+              "tumble.dynamics.control.detumble", "tumble.dynamics.control.controlled", "tumble.dynamics.estimation.mekf",
+              "tumble.dynamics.environment.magnetic", "tumble.dynamics.environment.igrf", "tumble.analysis.fit")
+    code = f"import sys, {', '.join(fronts)}; print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False"]
+    code = "import sys, tumble.dynamics.models.fit_kernels; print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["True"]  # the check can fail: a kernels module does import numba
