@@ -82,6 +82,21 @@ def test_each_mode_is_the_controller_run_alone(mission_run):
     assert run.budget_error().max() < 1e-15  # the field's torque is on the body: the impulse closes it
 
 
+@pytest.mark.parametrize("dumping", [False, True])
+def test_the_compiled_mission_is_the_python_one(dumping):
+    """The mission on the compiled loop (each mode's law compiled, the switch found between:
+    DetumbleThenPoint.compiled_run) switches at the same step as the controller called in Python
+    (scipy's path, compiled=False), and the two runs agree to round-off."""
+    compiled, python = _mission(dumping), _mission(dumping)
+    fast, slow = _run(compiled, t_end=40.0), _run(python, t_end=40.0, compiled=False)
+    assert compiled.switch_time is not None and compiled.switch_time == python.switch_time
+    np.testing.assert_allclose(fast.omega, slow.omega, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(fast.wheel_speed, slow.wheel_speed, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(fast.dipole, slow.dipole, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(fast.wheel_torque, slow.wheel_torque, rtol=0, atol=1e-12)
+    assert np.max((fast.attitude * slow.attitude.inv()).magnitude()) < 1e-10
+
+
 def test_it_never_switches_back_and_a_new_run_starts_over(mission_run):
     mission, run = mission_run
     k = round(mission.switch_time / DT)

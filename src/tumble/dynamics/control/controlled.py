@@ -45,6 +45,7 @@ from ...validation import check_moments, check_positive, check_rotation, check_v
 from . import _display
 from .controllers import Controller
 from .estimated import Estimated
+from .mission import DetumbleThenPoint
 from ..environment.magnetic import MagneticField
 from ..models.actuators import Command, Magnetorquers, ReactionWheels
 from ..models.gravity import GravityGradient
@@ -393,20 +394,22 @@ def simulate_controlled(
     steps = max(1, math.ceil(T / period - 1e-9))
     grid = np.minimum(np.arange(steps + 1) * period, T)
     law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
+    rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
+    limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
+    y0 = np.concatenate([q0, w0, s0, np.zeros(3)])
     if kernel is not None and law is not None:  # the whole loop in one compiled call
-        rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
-        limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
-        Y, D, U, F = kernel.run(np.concatenate([q0, w0, s0, np.zeros(3)]), grid, law, rods, limits, carry_step)
+        Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step)
         return _run(grid, Y, I, J, axes, k, U, D, F)
+    if kernel is not None and isinstance(controller, DetumbleThenPoint):  # each mode's law compiled, the switch between
+        parts = controller.compiled_run(kernel, sensors, wheels, field, y0, grid, rods, limits, carry_step)
+        if parts is not None:
+            return _run(grid, parts[0], I, J, axes, k, parts[2], parts[1], parts[3])
     if kernel is not None and isinstance(controller, Estimated):  # the sensors, the filter and the law compiled too
         from . import estimated_loop
 
         law = estimated_loop.plan(controller, sensors, I, wheels, field)
         if law is not None:
-            rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
-            limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
-            Y, D, U, F = estimated_loop.run(controller, kernel, law, grid, np.concatenate([q0, w0, s0, np.zeros(3)]), rods,
-                                            limits, carry_step)
+            Y, D, U, F = estimated_loop.run(controller, kernel, law, grid, y0, rods, limits, carry_step)
             return _run(grid, Y, I, J, axes, k, U, D, F)
     sensors = sensors if sensors is not None else Sensors()
     rng = sensors.rng()

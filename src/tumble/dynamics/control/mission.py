@@ -32,9 +32,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
+from ...typing import FloatArray
 from ...validation import check_positive
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
@@ -190,14 +192,75 @@ class DetumbleThenPoint:
         >>> np.array_equal(mission(1.0, slow).wheel_torque, point(1.0, slow).wheel_torque), mission.switch_time
         (True, 1.0)
         """
-        if self.switch_time is None:
-            if float(np.linalg.norm(measurement.omega)) < self.switch_rate:
-                if self._below_since is None:
-                    self._below_since = float(t)
-                if float(t) - self._below_since >= self.dwell - 1e-9 * self.period:
-                    self.switch_time = float(t)
-            else:
-                self._below_since = None
-        if self.switch_time is None:
+        if not self.observe(float(t), float(np.linalg.norm(measurement.omega))):
             return self.detumble(t, measurement)
         return self.point(t, measurement)
+
+    def observe(self, t: float, rate: float) -> bool:
+        """The switch (module docstring): whether the mission points from the step at ``t`` (s) on,
+        given the gyroscope's ``|omega|`` there (rad/s); before the switch it updates the dwell window
+        and, at the switch, :attr:`switch_time`.
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.bdot import BDot
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> from tumble.dynamics.control.mission import DetumbleThenPoint
+        >>> point = MRPFeedback(K=1e-3, P=6e-3, period=1.0, moments=[0.0067, 0.0419, 0.0419],
+        ...                     wheels=ReactionWheels(np.eye(3), inertia=2e-5))
+        >>> mission = DetumbleThenPoint(BDot(gain=1e4, period=1.0), point, switch_rate=0.01, dwell=1.0)
+        >>> [mission.observe(float(t), rate) for t, rate in enumerate([0.005, 0.02, 0.005, 0.005, 0.1])], mission.switch_time
+        ([False, False, False, True, True], 3.0)
+        """
+        if self.switch_time is None:
+            if rate < self.switch_rate:
+                if self._below_since is None:
+                    self._below_since = t
+                if t - self._below_since >= self.dwell - 1e-9 * self.period:
+                    self.switch_time = t
+            else:
+                self._below_since = None
+        return self.switch_time is not None
+
+    def compiled_run(self, kernel: Any, sensors: Any, wheels: Any, field: Any, y0: FloatArray, grid: FloatArray,
+                     rods: FloatArray, limits: FloatArray, carry: bool = False) -> tuple[FloatArray, ...] | None:
+        """The mission on the compiled closed loop (:meth:`~tumble.dynamics.control.control_kernel.ControlKernel.run`,
+        ``kernel``), or None where a mode has no compiled law (:func:`~tumble.dynamics.control.control_kernel.compiled_law`):
+        the whole run detumbling, the switch found from its rates at the control instants (:meth:`observe`; the
+        sensors are ideal there), then the run from the switch pointing. The detumbling run up to the switch is the
+        mission's own, step for step, and the pointing mode starts at the switch with nothing in its memory, as the
+        Python path's; :attr:`switch_time` is set as a run in Python sets it. Returns the states, the dipoles, the
+        wheels' torques and the fields at the instants ``grid`` (s).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.dynamics.control.control_kernel import ControlKernel
+        >>> from tumble.dynamics.control.bdot import BDot
+        >>> from tumble.dynamics.control.controllers import MRPFeedback
+        >>> from tumble.dynamics.control.mission import DetumbleThenPoint
+        >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> I, rw, field = np.array([0.01, 0.02, 0.03]), ReactionWheels(np.eye(3), inertia=2e-5), UniformField((3e-5, 0.0, 0.0))
+        >>> mission = DetumbleThenPoint(BDot(gain=2e-3, period=0.5, form="normalized"),
+        ...                             MRPFeedback(K=1e-4, P=6e-4, period=0.5, moments=I, wheels=rw), switch_rate=0.05, dwell=1.0)
+        >>> kernel = ControlKernel(I, np.linalg.inv(np.diag(I) - rw.locked_axial()), rw, field, None, 1e-10, 1e-12)
+        >>> y0 = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])   # 0.01 rad/s about z
+        >>> Y, D, U, F = mission.compiled_run(kernel, None, rw, field, y0, np.arange(21) * 0.5, np.eye(3), np.full(3, 0.1))
+        >>> mission.switch_time   # below 0.05 rad/s from t = 0: pointing after 1 s of dwell
+        1.0
+        >>> bool(np.all(D[:2, 1] != 0.0) and np.all(D[2:] == 0.0)), bool(np.any(U[2:] != 0.0))   # B-dot, then the wheels
+        (True, True)
+        """
+        detumble, point = (kernel.law(mode, sensors, wheels, field) for mode in (self.detumble, self.point))
+        if detumble is None or point is None:
+            return None
+        self.reset()
+        Y, D, U, F = kernel.run(y0, grid, detumble, rods, limits, carry)
+        for i in range(len(grid) - 1):
+            if self.observe(float(grid[i]), float(np.linalg.norm(Y[i, 4:7]))):
+                after = kernel.run(Y[i], grid[i:], point, rods, limits, carry)
+                return tuple(np.concatenate([a[:i], b]) for a, b in zip((Y, D, U, F), after))
+        return Y, D, U, F
