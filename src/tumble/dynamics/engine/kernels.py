@@ -313,8 +313,8 @@ def fixed_rk(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, 
     """:data:`RK4` or :data:`RK8` (``method``) at equal steps no longer than ``step`` (s): :func:`fixed_rk4` or
     :func:`fixed_rk8`, for the batch, which takes the method as a number."""
     if method == RK4:
-        return fixed_rk4(y0, t_eval, I, P, n, step, omega, quat)
-    return fixed_rk8(y0, t_eval, I, P, n, step, omega, quat)
+        return int(fixed_rk4(y0, t_eval, I, P, n, step, omega, quat))
+    return int(fixed_rk8(y0, t_eval, I, P, n, step, omega, quat))
 
 
 @jit(parallel=True, error_model="numpy")
