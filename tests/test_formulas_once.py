@@ -75,8 +75,6 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
 EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
     ("Euler's equations, angular-velocity form", "dynamics/control/controlled.py"): "the closed loop's Python right-hand side",
-    # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "analysis/tensor/synthetic.py"): "the synthetic throws' gyrostat",
     # issue 38: moving onto the engine. Calling euler_components here changes the kernel by an ulp
     # (I w products or a reciprocal instead of (I2 - I3) w2 w3 / I1), and that alone turns
     # tests/test_fit_recording.py::test_flights_that_scatter_inflate_the_pooled_uncertainty

@@ -47,6 +47,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
+from ...dynamics.euler import momentum_rate_components
+from ...dynamics.models.aero import drag_component
 from ...mass.tensor import parallel_axis, rotate_inertia
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..fit.accelsynth import attitude_from_rates
@@ -285,9 +287,13 @@ def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t0: float, breaks, 
     I = flown.inertia
     Iinv = np.linalg.inv(I)
 
-    def rates(t, w):
+    def rates(t, w):  # I w' = L x w + tau - h', L = I w + h: the momentum form (Hughes 1986, ch. 7)
         h, hdot, tau_r = hvec(t)
-        return (-np.cross(w, w @ I + h) - hdot - drag * np.abs(w) * w + tau_r * rotor_drag) @ Iinv
+        L = w @ I + h
+        tau = drag_component(0.0, drag, w) + tau_r * rotor_drag
+        dL = momentum_rate_components(L[..., 0], L[..., 1], L[..., 2], w[..., 0], w[..., 1], w[..., 2], tau[..., 0],
+                                      tau[..., 1], tau[..., 2])
+        return (np.stack(dL, axis=-1) - hdot) @ Iinv
 
     def rhs(t, w):
         return rates(np.array([t]), w[None])[0]
