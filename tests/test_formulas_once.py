@@ -85,8 +85,6 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
     # issue 38: moving onto the engine
     ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/controlled.py"): "the Python loop's R",
-    # issue 38: moving onto the engine
-    ("the triangle inequality on principal moments", "analysis/tensor/estimate.py"): "the tensor's planar gap",
 }
 
 

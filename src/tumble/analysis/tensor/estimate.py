@@ -27,6 +27,7 @@ import numpy as np
 
 from ...mass.tensor import parallel_axis
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
+from ...validation import triangle_excess
 from .. import _display
 
 __all__ = ["ENTRIES", "TRIANGLE_SIGMA", "MassEstimate", "mass_estimate", "not_physical", "principal_uncertainty",
@@ -222,7 +223,7 @@ def not_physical(estimate: MassEstimate) -> str:
     g = np.array([1.0, 1.0, -1.0])  # d(I1 + I2 - I3) / d(entries) along the principal axes
     G = sum(gk * np.array([a[0] ** 2, a[1] ** 2, a[2] ** 2, 2 * a[0] * a[1], 2 * a[0] * a[2], 2 * a[1] * a[2]])
             for gk, a in zip(g, v.T))
-    gap = float(m[0] + m[1] - m[2])
+    gap = -float(triangle_excess(m))  # I1 + I2 - I3
     std = float(np.sqrt(max(G @ estimate.inertia_cov @ G, 0.0)))
     if gap < -TRIANGLE_SIGMA * std:
         return (f"not a body's tensor: principal moments {shown} kg m^2 break the triangle inequality "
