@@ -87,7 +87,7 @@ def test_the_kernels_external_torque_is_the_models_m_x_b_and_gravity_gradient():
         att = Rotation.from_rotvec(rng.normal(size=3))
         dipole, w = rng.normal(size=3) * 0.1, rng.normal(size=3) * 0.2
         y = np.concatenate([att.as_quat(), w, np.zeros(3)])
-        P = kernel.P[:12] + tuple(dipole) + kernel.P[15:]
+        P = tuple(kernel.P[:12]) + tuple(dipole) + tuple(kernel.P[15:])
         n_t = gg.mean_motion * t
         out = unpadded(np.array(rhs(t, tuple(padded(y)), P, kernel.X, np.cos(n_t), np.sin(n_t))), 0)
         tau_world = att.apply(np.cross(dipole, att.inv().apply(field.world(t)))) + gg(t, w, att)
