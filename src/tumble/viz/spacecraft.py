@@ -72,7 +72,7 @@ def figure_energy(traj: Trajectory, *, ax: Axes | None = None, log: bool = False
     >>> run = tumble.simulate(body, [1.0, 0.05, 0.0], t_end=300.0, samples=5, damper=damper)  # minor-axis spin
     >>> ax = figure_energy(run).axes[0]
     >>> [line.get_label() for line in ax.lines], ax.get_title().split(";")[0]
-    (['kinetic energy T (J)', '$E_0$ - dissipated (J)'], 'body: energy, dop853')
+    (['kinetic energy T (J)', '$E_0$ - dissipated (J)'], 'body: energy, rk8')
     >>> T, budget = (line.get_ydata() for line in ax.lines)
     >>> bool(np.array_equal(T, run.energy)), bool(np.array_equal(budget, run.energy[0] - run.dissipated))
     (True, True)
