@@ -33,8 +33,9 @@ by :mod:`~tumble.dynamics.engine.unrolled`:
   combined, RMS with ``scale = atol + rtol max(|y|, |y_new|)``), step control (safety 0.9,
   factors in [0.2, 10], no growth after a rejection) and dense output. So the compiled and the
   Python paths agree to round-off, not only to the tolerance (tests/test_engine.py).
-- :func:`fixed_rk`: RK4 or the 8th-order weights of DOP853 (:data:`RK4`, :data:`RK8`) at equal
-  steps no longer than ``step`` in each sample interval.
+- :data:`fixed_rk4`, :data:`fixed_rk8` (and :func:`fixed_rk`, either by number): RK4 or the 8th-order
+  weights of DOP853 (:data:`RK4`, :data:`RK8`) at equal steps no longer than ``step`` in each sample
+  interval, the one fixed-step loop of :func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`.
 
 Quaternions are normalised at the samples only: inside a step the kinematics carry the norm to
 round-off, and the torques read it normalised.
@@ -303,7 +304,7 @@ _FIXED = generated(fixed_loop_source("fixed_rk4", "rk4_step", "rk4_turns", "_rig
                    __file__, __name__, rk4_step=_rk4_step, rk4_turns=_rk4_turns, rk8_step=_rk8_step,
                    rk8_turns=_rk8_turns, _rigid=_rigid, _sample=_sample, _equal_steps=_equal_steps,
                    _direction=_direction, _finite=_finite, OK=OK, NON_FINITE=NON_FINITE)
-#: The fixed-step runs by method number.
+#: The fixed-step runs of RK4 and RK8 (``run(y0, t_eval, I, P, n, step, omega, quat)``).
 fixed_rk4, fixed_rk8 = _FIXED["fixed_rk4"], _FIXED["fixed_rk8"]
 
 
