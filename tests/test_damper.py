@@ -230,6 +230,25 @@ def test_damper_defaults_to_the_engines_rk8_and_exact_and_seed_refuse_it():
             simulate(BODY, TUMBLE, t_end=1.0, method=method, damper=DAMPER)
 
 
+def test_a_damper_with_a_constant_rotor_on_the_engine_is_scipys_run():
+    """Damper and a rotor at constant spin together on the compiled engine's rk8
+    (engine/damped.py: ``w = (L - h - J w_d) / I``) against scipy's DOP853 on the numpy right-hand
+    side (InternalModel.rhs) at rtol 1e-13: the same motion, L_world kept, and the energy that
+    leaves the body is the damper's (``E + dissipated`` constant: a constant spin does no work)."""
+    box = tumble.Box(mass=3.0, size=(0.6, 0.4, 0.2))
+    body = tumble.Body([box, tumble.Rotor(mass=0.2, radius=0.05, length=0.01, axis=(0.0, 1.0, 0.0), spin_rate=300.0)])
+    damper = SphericalDamper(inertia=0.01, damping=0.05)
+    w0 = [0.3, 2.0, -0.4]
+    fast = simulate(body, w0, t_end=20.0, samples=101, damper=damper, method="rk8", step=2e-3)
+    ref = simulate(body, w0, t_end=20.0, samples=101, damper=damper, method="dop853", rtol=1e-13)
+    assert fast.dissipated[-1] > 1e-3  # J: the damper works (the energy is mostly the rotor's 11 J)
+    scale = np.max(np.abs(ref.omega))
+    np.testing.assert_allclose(fast.omega, ref.omega, rtol=0, atol=1e-10 * scale)
+    np.testing.assert_allclose(fast.damper_omega, ref.damper_omega, rtol=0, atol=1e-10 * scale)
+    assert np.max((fast.attitude * ref.attitude.inv()).magnitude()) < 1e-9
+    assert fast.drift["L_world"] < 1e-10 and fast.drift["energy"] < 1e-10
+
+
 # the most accurate adaptive and splitting methods only: the bounds below are theirs (not rk45's,
 # nor those of the 2nd- and 4th-order splittings at this step)
 @pytest.mark.parametrize("method", ["dop853", "geometric6"])

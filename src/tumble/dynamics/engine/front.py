@@ -83,6 +83,13 @@ def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
     return _terms_of(forms)
 
 
+def _check_method(method: str, allowed: Sequence[str] = ENGINE_METHODS) -> None:
+    """A ValueError naming ``method`` unless it is one of ``allowed`` (a misspelt name would
+    otherwise run another method)."""
+    if method not in allowed:
+        raise ValueError(f"method = {method!r} is not one of the engine's: {', '.join(allowed)}")
+
+
 def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
     if status == STEP_COLLAPSED:
         raise RuntimeError(f"{method} integration failed{body}: the step size fell below 10 ulp of t")
@@ -136,6 +143,7 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     >>> np.allclose(quat[-1], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-14)
     True
     """
+    _check_method(method)
     k = _kernels()
     y0 = np.empty(7)
     y0[:3], y0[3:] = omega0, quat0
@@ -171,6 +179,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     >>> omega[:, -1, 2].round(12).tolist()   # omega_3 + tau t / I3
     [1.5, 1.5]
     """
+    _check_method(method)
     k = _kernels()
     N = len(moments)
     y0 = np.ascontiguousarray(np.concatenate([omega0, quat0], axis=1), dtype=float)
@@ -233,7 +242,12 @@ def run_damped(method: str, body: FloatArray, y0: FloatArray, t: FloatArray, for
     ...                step=0.1)
     >>> Y[-1, [2, 9, 10]].round(12).tolist(), bool(np.isclose(Y[-1, 5], np.sin(1.0)))
     ([3.1, 1.0, 0.0], True)
+    >>> run_damped("dop853", np.ones(8), np.zeros(11), np.array([0.0, 1.0]), (0, ()))
+    Traceback (most recent call last):
+    ...
+    ValueError: method = 'dop853' is not one of the engine's: rk4, rk8
     """
+    _check_method(method, ("rk4", "rk8"))
     k = _damped()
     Y = np.empty((len(t), 11))
     P, n = terms(form)
