@@ -125,7 +125,9 @@ def test_gravity_gradient_keeps_its_jacobi_integral():
 
 
 def test_a_body_alone_equals_its_row_in_a_batch_on_every_core():
-    """The batch from PARALLEL_BODIES bodies runs the same arithmetic per body on every core."""
+    """The batch from PARALLEL_BODIES bodies runs the same arithmetic per body on every core: DOP853
+    to the last bit; RK8 in vector lanes (tumble.dynamics.engine.lanes), the same steps and sums, to
+    round-off (the multiply-adds fused differently in a vector: tests/test_engine_lanes.py)."""
     rng = np.random.default_rng(5)
     n = PARALLEL_BODIES + 4
     I = np.sort(rng.uniform(0.5, 1.0, (n, 3)), axis=1)
@@ -137,8 +139,12 @@ def test_a_body_alone_equals_its_row_in_a_batch_on_every_core():
         for b in (0, 17, n - 1):
             alone = simulate(MassProperties.from_moments(I[b]), w[b], t_end=5.0, samples=11, attitude0=q[b],
                              method=method, torque=ConstantTorque(TAU), **kw)
-            np.testing.assert_array_equal(batch.omega[b], alone.omega)
-            np.testing.assert_array_equal(batch.quat[b], alone.quat)
+            if method == "dop853":
+                np.testing.assert_array_equal(batch.omega[b], alone.omega)
+                np.testing.assert_array_equal(batch.quat[b], alone.quat)
+            else:
+                np.testing.assert_allclose(batch.omega[b], alone.omega, rtol=0, atol=1e-13 * np.abs(alone.omega).max())
+                np.testing.assert_allclose(batch.quat[b], alone.quat, rtol=0, atol=1e-13)
 
 
 def test_fixed_steppers_refuse_a_python_torque_naming_the_alternatives():

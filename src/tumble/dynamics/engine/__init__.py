@@ -6,6 +6,8 @@ The room of :mod:`tumble.dynamics` where runs are integrated in compiled code. I
   built-in models (each model's own formula, compiled), and the steppers (DOP853 with error
   control and dense output, step for step scipy's; fixed-step RK4 and RK8), one body or a batch
   on every core;
+- :mod:`~tumble.dynamics.engine.lanes`: the fixed-step batch in vector lanes, a block of bodies
+  stepped together, one in each lane of a vector register, the blocks on every core;
 - :mod:`~tumble.dynamics.engine.tableau`: their Butcher tableaux;
 - :mod:`~tumble.dynamics.engine.status`: how a run ends and the work it may take;
 - :mod:`~tumble.dynamics.engine.front`: the Python front that :func:`tumble.simulate` and

@@ -14,7 +14,7 @@ from types import ModuleType
 import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores
-from ...typing import FloatArray
+from ...typing import FloatArray, IntArray
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_ROTOR_MOMENTUM, KERNEL_WORLD
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
@@ -33,14 +33,18 @@ def _kernels() -> ModuleType:
 
 
 @functools.cache
+def _lanes() -> ModuleType:
+    from . import lanes
+
+    return lanes
+
+
+@functools.cache
 def _damped() -> ModuleType:
     from . import damped
 
     return damped
 
-
-#: The fixed-step methods' numbers in the kernels (:data:`~tumble.dynamics.engine.kernels.RK4`, ``RK8``).
-_FIXED = {"rk4": 0, "rk8": 1}
 
 Form = tuple[int, tuple[float, ...]]
 
@@ -164,8 +168,9 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
                step: float | FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """N bodies (rows of ``moments``, ``omega0``, ``quat0``, ``atol`` (N, 7) and ``step``, one
     or (N,)), each as :func:`run_body` runs it, on every core from :data:`~tumble.jit.PARALLEL_BODIES`
-    bodies: the same arithmetic for each body either way. Returns ``omega`` (N, n, 3) and
-    ``quat`` (N, n, 4).
+    bodies: DOP853 with the same arithmetic for each body either way; RK4 and RK8 there in vector
+    lanes (:mod:`~tumble.dynamics.engine.lanes`), each body with the same steps as alone and the same
+    sums, equal to round-off. Returns ``omega`` (N, n, 3) and ``quat`` (N, n, 4).
 
     Examples
     --------
@@ -192,7 +197,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
         if method == "dop853":
             k.dop853_batch(y0, t, I, P, n, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
         else:
-            k.fixed_batch(y0, t, I, P, n, h, _FIXED[method], omega, quat, status)
+            _in_lanes(method, y0, t, I, P, n, h, omega, quat, status)
     else:
         fixed = k.fixed_rk4 if method == "rk4" else k.fixed_rk8
         for b in range(N):
@@ -203,6 +208,22 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     for bad in np.flatnonzero(status).tolist():
         _raise_for(int(status[bad]), method, float(t[-1]), f" for body {bad}")
     return omega, quat
+
+
+def _in_lanes(method: str, y0: FloatArray, t: FloatArray, I: FloatArray, P: tuple[float, ...], n: float, h: FloatArray,
+              omega: FloatArray, quat: FloatArray, status: IntArray) -> None:
+    """RK4 or RK8 over the bodies in blocks of vector lanes, sorted by their steps (a block takes one
+    step for all its bodies); a block whose bodies split an interval differently, or that overflowed,
+    again body by body (its bodies' statuses into ``status``)."""
+    k, lanes = _kernels(), _lanes()
+    order = np.argsort(h, kind="stable")
+    blocks = np.zeros(-(-len(order) // lanes.LANES), dtype=np.int64)
+    run = lanes.lanes_rk4 if method == "rk4" else lanes.lanes_rk8
+    run(y0[order], t, I[order], P, n, h[order], order, omega, quat, blocks)
+    fixed = k.fixed_rk4 if method == "rk4" else k.fixed_rk8
+    for block in np.flatnonzero(blocks).tolist():
+        for b in order[block * lanes.LANES:(block + 1) * lanes.LANES].tolist():
+            status[b] = fixed(y0[b], t, I[b], P, n, h[b], omega[b], quat[b])
 
 
 def run_damped(method: str, body: FloatArray, y0: FloatArray, t: FloatArray, form: Form | Sequence[Form], *,

@@ -39,8 +39,8 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source", "fixed_step_source",
-           "rotations_source", "state_layout"]
+__all__ = ["LANE_ROWS", "RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source",
+           "fixed_step_source", "lane_rows", "lane_step_source", "rotations_source", "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
 STATE = 7
@@ -283,3 +283,73 @@ def fixed_loop_source(name: str, step: str, turns: str, load: str, store: str, o
         {store}(y, I, {outputs}, k)
     return OK
 """
+
+
+#: The rows of a lane step's work array (:func:`lane_step_source`), each ``lanes`` floats long: the
+#: state ``(omega, q)``, the body ``(I, 1 / I)``, a stage's state, its slope, then the stages' slopes.
+LANE_ROWS = {"state": 0, "body": STATE, "stage": STATE + 6, "slope": 2 * STATE + 6, "slopes": 3 * STATE + 6}
+
+
+def lane_rows(stages: int) -> int:
+    """The rows of a lane step's work array over ``stages`` stages (:data:`LANE_ROWS`).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import lane_rows
+    >>> lane_rows(4)
+    48
+    """
+    return LANE_ROWS["slopes"] + STATE * (stages - 1)
+
+
+def lane_step_source(name: str, A: np.ndarray, B: Coefficients, C: Coefficients, lanes: int) -> str:
+    """The source of one step of the explicit tableau ``(A, B, C)`` over ``lanes`` rigid bodies at
+    once, ``name(W, h, body, P, cs, ss, rot)``: the bodies' states in the flat work array ``W``
+    (:data:`LANE_ROWS`, ``lanes`` floats a row: structure of arrays), stepped in place (``W`` is
+    returned; ``body`` unused, the bodies are in ``W``). Each stage is two loops over the lanes
+    with no branch and constant offsets into ``W``, which the compiler turns into vector
+    instructions (a lane each): the stage's state from the slopes before it, as
+    :func:`fixed_step_source` writes it (the same sums in the same order), and the right-hand side
+    ``rhs(y, I, P, u0, u1)`` there, written once for all stages (a loop over the stages), so the
+    step compiles one right-hand side, not one a stage.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import lane_step_source
+    >>> from tumble.dynamics.engine.tableau import RK4_A, RK4_B, RK4_C
+    >>> source = lane_step_source("rk4_lanes", RK4_A, RK4_B, RK4_C, 8)
+    >>> source.splitlines()[0], source.count("rhs(")
+    ('def rk4_lanes(W, h, body, P, cs, ss, rot):', 1)
+    """
+    stages = len(B)
+
+    def rows(first: int, n: int = STATE) -> str:
+        return "(" + ", ".join(f"W[{(first + i) * lanes} + j]" for i in range(n)) + ")"
+
+    def put(first: int, value: str, indent: str) -> list[str]:
+        return [f"{indent}W[{(first + i) * lanes} + j] = {value}[{i}]" for i in range(STATE)]
+
+    def slopes(s: int, weights: Coefficients, indent: str) -> list[str]:
+        """Load the slopes ``k_r`` (r < s) that ``weights`` take, the last, ``k_{s-1}``, from the slope
+        row, keeping it among the stages' slopes for the stages after ``s``."""
+        lines = [f"{indent}k{s - 1} = {rows(LANE_ROWS['slope'])}"]
+        if s < stages:
+            lines += put(LANE_ROWS["slopes"] + STATE * (s - 1), f"k{s - 1}", indent)
+        return lines + [f"{indent}k{r} = {rows(LANE_ROWS['slopes'] + STATE * r)}" for r in range(s - 1) if weights[r] != 0.0]
+
+    lines = [f"def {name}(W, h, body, P, cs, ss, rot):", f"    for s in range({stages}):"]
+    for s in range(stages):
+        lines += [f"        {'if' if s == 0 else 'elif'} s == {s}:", f"            for j in range({lanes}):",
+                  f"                y = {rows(LANE_ROWS['state'])}"]
+        if s:
+            lines += slopes(s, A[s, :s], " " * 16)
+        state = "y" if s == 0 else _advanced(RIGID_BODY, A[s, :s], [f"k{r}" for r in range(s)])
+        lines += [f"                z = {state}", *put(LANE_ROWS["stage"], "z", " " * 16)]
+    lines += ["        u0 = cs * rot[2 * s] - ss * rot[2 * s + 1]", "        u1 = ss * rot[2 * s] + cs * rot[2 * s + 1]",
+              f"        for j in range({lanes}):",
+              f"            d = rhs({rows(LANE_ROWS['stage'])}, {rows(LANE_ROWS['body'], 6)}, P, u0, u1)",
+              *put(LANE_ROWS["slope"], "d", " " * 12),
+              f"    for j in range({lanes}):", f"        y = {rows(LANE_ROWS['state'])}", *slopes(stages, B, " " * 8),
+              f"        y = {_advanced(RIGID_BODY, B, [f'k{r}' for r in range(stages)])}",
+              *put(LANE_ROWS["state"], "y", " " * 8), "    return W"]
+    return "\n".join(lines) + "\n"
