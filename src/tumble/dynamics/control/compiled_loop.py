@@ -8,8 +8,10 @@ state is a tuple of ``N = 10 +`` :data:`MAX_WHEELS` floats (:mod:`~tumble.dynami
 a run's wheels in the first slots and the slots past its count ``P[20]`` left at zero (the
 right-hand side skips them; scipy's error norm and starting step are taken over the run's own
 ``10 + k`` components, so the steps are those of the unpadded state). The right-hand side and the
-steps are written out for that size (:func:`~tumble.dynamics.engine.unrolled.state_layout`, from the
-engine's tableaux). One size, not one per count: each size compiled for 27-39 CPU-s (measured,
+steps are written out for that size (:data:`LAYOUT`, from the engine's tableaux), the right-hand
+side taking the run's parameters and tables in one array (``P``,
+:func:`~tumble.dynamics.control.loop_terms.packed`), into which the loop writes the command it
+holds (:func:`set_command`). One size, not one per count: each size compiled for 27-39 CPU-s (measured,
 loaded machine); the padded size with its right-hand side called, not inlined, compiles in 17
 CPU-s (:func:`_generated`).
 
@@ -40,12 +42,13 @@ from ...jit import jit
 from ...typing import FloatArray
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
-from ..engine.unrolled import dop853_sources, fixed_step_source, rotations_source, state_layout
+from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
 from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
                    gyro_field_rate_components)
-from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, rhs_namespace, rhs_source
+from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, packed, rhs_namespace, rhs_source, tables
 
-__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "MAX_WHEELS", "N", "NO_MEMORY", "held", "law_command", "RK4", "RK8", "kernels", "padded", "unpadded"]
+__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
+           "kernels", "law_command", "padded", "rhs_of", "set_command", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
 DOP853, RK4, RK8 = 0, 1, 2
@@ -56,6 +59,10 @@ LAW_BDOT, LAW_MRP, LAW_DUMPING = 0, 1, 2
 #: The most wheels the kernels take (their wheel slots), and the size of their state.
 MAX_WHEELS = 6
 N = 10 + MAX_WHEELS
+#: Where the tables start in the kernels' parameter array (after the wheel slots; :func:`~tumble.dynamics.control.loop_terms.packed`).
+TABLES = BODY + WHEEL * MAX_WHEELS
+#: The steps' layout: a state of :data:`N` floats, the right-hand side ``rhs(t, y, P, u0, u1)``.
+LAYOUT = Layout(N, "P", True)
 #: Statuses: done; the step fell below 10 ulp of t.
 OK, STEP_COLLAPSED = 0, 1
 
@@ -83,19 +90,15 @@ def _direction(n: float, t: float) -> tuple[float, float]:  # pragma: no cover -
 def _sized_source() -> str:
     """The sources of size :data:`N`: the state from an array and with a new quaternion, the
     parameters with a new command, the right-hand side and the steps."""
-    last = BODY + WHEEL * MAX_WHEELS
-    command = [f"u[{(i - BODY) // WHEEL}]" if i >= BODY and (i - BODY) % WHEEL == 9 else f"P[{i}]" for i in range(last)]
-    command[12:15] = ["d0", "d1", "d2"]
     return "\n".join([
         f"def tuple_of(a):\n    return ({''.join(f'a[{i}], ' for i in range(N))})\n",
         f"def store(y, out):\n{''.join(f'    out[{i}] = y[{i}]' + chr(10) for i in range(N))}",
         f"def with_quaternion(y, x, yq, z, c):\n    return (x, yq, z, c, {''.join(f'y[{i}], ' for i in range(4, N))})\n",
         f"def axpy(y, a, f):\n    return ({''.join(f'y[{i}] + a * f[{i}], ' for i in range(N))})\n",
-        f"def with_command(P, d0, d1, d2, u):\n    return ({''.join(c + ', ' for c in command)})\n",
         rhs_source("rhs", MAX_WHEELS),
-        dop853_sources(state_layout(N), step="dop853_step", errors="dop853_errors", atol="atol", dense=False),
-        fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, state_layout(N)),
-        fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], state_layout(N)),
+        dop853_sources(LAYOUT, step="dop853_step", errors="dop853_errors", atol="atol", dense=False),
+        fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, LAYOUT),
+        fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], LAYOUT),
         rotations_source("rk4_turns", RK4_C), rotations_source("rk8_turns", DOP853_C[:12]),
         rotations_source("dop853_turns", DOP853_C[:13])])
 
@@ -106,22 +109,46 @@ def _generated() -> dict[str, Callable[..., Any]]:
     Unlike the engine's (:func:`tumble.dynamics.engine.kernels._generated`), this right-hand side
     is not inlined at the stages: inlined, the loop compiled in 78 CPU-s and ran ~15 % faster;
     called, 17 CPU-s (MRP feedback with three wheels, 60 s: DOP853 783 -> 915 us, RK8 452 -> 504 us;
-    measured on a loaded machine). The code object is named after this file, so numba's cache keys
+    measured on a loaded machine). What a call costs is its arguments: with the tables passed as a
+    tuple of three arrays beside ``P`` the RK8 loop took 204 us, with one array 117 us, as fast as
+    inlined (loop_terms' docstring). The right-hand side and the steps are compiled without numba's
+    reference counting (``_nrt=False``): they make no array and return none, and each counted
+    array argument cost two atomic operations a call. The code object is named after this file, so numba's cache keys
     them on the sources (:func:`tumble.jit.jit`)."""
     namespace: dict[str, Any] = dict(rhs_namespace())
     exec(compile(_sized_source(), __file__, "exec"), namespace)  # noqa: S102 - our own generated source
-    inlined = ("tuple_of", "store", "with_quaternion", "axpy", "with_command", "rk4_turns", "rk8_turns", "dop853_turns")
+    inlined = ("tuple_of", "store", "with_quaternion", "axpy", "rk4_turns", "rk8_turns", "dop853_turns")
     for name in (*inlined, "rhs", "dop853_step", "dop853_errors", "rk4_step", "rk8_step"):  # the steps call them by name
-        namespace[name] = jit(namespace[name], error_model="numpy", inline="always" if name in inlined else "never")
+        namespace[name] = jit(namespace[name], error_model="numpy", inline="always" if name in inlined else "never",
+                              _nrt=False)
     return namespace
 
 
 _SIZED = _generated()
 rhs, tuple_of, store, axpy = _SIZED["rhs"], _SIZED["tuple_of"], _SIZED["store"], _SIZED["axpy"]
-with_quaternion, with_command = _SIZED["with_quaternion"], _SIZED["with_command"]
+with_quaternion = _SIZED["with_quaternion"]
 dop853_step, dop853_errors, rk4_step, rk8_step = (_SIZED["dop853_step"], _SIZED["dop853_errors"], _SIZED["rk4_step"],
                                                   _SIZED["rk8_step"])
 rk4_turns, rk8_turns, dop853_turns = _SIZED["rk4_turns"], _SIZED["rk8_turns"], _SIZED["dop853_turns"]
+
+
+@jit(error_model="numpy")
+def set_command(P: FloatArray, d0: float, d1: float, d2: float, u: FloatArray) -> None:  # pragma: no cover - compiled
+    """Hold the dipole ``d`` (A m^2) and the wheels' commands ``u`` (N m, :data:`MAX_WHEELS`) in the
+    kernels' parameter array ``P`` (:mod:`~tumble.dynamics.control.loop_terms`), in place.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_loop import MAX_WHEELS, TABLES, set_command
+    >>> P = np.zeros(TABLES)
+    >>> set_command(P, 0.1, 0.2, 0.3, np.arange(1.0, MAX_WHEELS + 1))
+    >>> P[12:15].tolist(), P[[30, 40]].tolist()   # the first two wheels' slots end at 30 and 40
+    ([0.1, 0.2, 0.3], [1.0, 2.0])
+    """
+    P[12], P[13], P[14] = d0, d1, d2
+    for j in range(MAX_WHEELS):
+        P[BODY + WHEEL * j + 9] = u[j]
 
 
 @jit(error_model="numpy")
@@ -137,7 +164,7 @@ def _slot(i: int, k: int) -> int:  # pragma: no cover - compiled
 
 
 @jit(error_model="numpy")
-def _start(y: Any, f: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: float) -> float:  # pragma: no cover
+def _start(y: Any, f: Any, t0: float, t1: float, P: Any, rtol: float, atol: float) -> float:  # pragma: no cover
     """scipy's ``select_initial_step`` for an error estimator of order 7 (HNW sec. II.4), over the
     run's own ``10 + k`` components."""
     k = int(P[20])
@@ -151,7 +178,7 @@ def _start(y: Any, f: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, at
     d1 = _rms(fa, scale)
     h0 = _first_trial_step(_rms(ya, scale), d1, interval)
     u0, u1 = _direction(P[16], t0 + h0)
-    f1 = rhs(t0 + h0, axpy(y, h0, f), P, X, u0, u1)
+    f1 = rhs(t0 + h0, axpy(y, h0, f), P, u0, u1)
     for i in range(n):
         fa[i] = f1[_slot(i, k)] - fa[i]
     return _initial_step(h0, d1, _rms(fa, scale) / h0, interval)
@@ -166,7 +193,7 @@ def _turns(n: float) -> Any:  # pragma: no cover - compiled
 
 
 @jit(error_model="numpy")
-def _advance(y: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: float, method: int, step: float,
+def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, method: int, step: float,
              h_abs: float, turns: Any) -> Any:  # pragma: no cover - compiled
     """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs, turns)``
     with the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as
@@ -182,14 +209,14 @@ def _advance(y: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: fl
         for j in range(m):
             cs, ss = _direction(n, t0 + j * h)
             if method == RK8:
-                y = rk8_step(t0 + j * h, y, h, P, X, cs, ss, rot8)
+                y = rk8_step(t0 + j * h, y, h, P, cs, ss, rot8)
             else:
-                y = rk4_step(t0 + j * h, y, h, P, X, cs, ss, rot4)
+                y = rk4_step(t0 + j * h, y, h, P, cs, ss, rot4)
         return OK, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
     cs, ss = _direction(n, t0)
-    f = rhs(t0, y, P, X, cs, ss)
+    f = rhs(t0, y, P, cs, ss)
     if h_abs <= 0.0:
-        h_abs = _start(y, f, t0, t1, P, X, rtol, atol)
+        h_abs = _start(y, f, t0, t1, P, rtol, atol)
     t = t0
     while True:  # one accepted step (scipy's RungeKutta._step_impl)
         min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
@@ -206,7 +233,7 @@ def _advance(y: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: fl
             if h != h_rot:  # the turns to the stage nodes, once per step length
                 h_rot = h
                 rot = dop853_turns(n, h)
-            y_new, K = dop853_step(t, y, f, h, P, X, cs, ss, rot)
+            y_new, K = dop853_step(t, y, f, h, P, cs, ss, rot)
             e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
             accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, _size(P)), h_abs, rejected)
             if accepted:
@@ -219,12 +246,13 @@ def _advance(y: Any, t0: float, t1: float, P: Any, X: Any, rtol: float, atol: fl
 
 
 @jit(error_model="numpy")
-def _interval(y0: FloatArray, t0: float, t1: float, P0: Any, X: Any, dipole: FloatArray, command: FloatArray, rtol: float,
+def _interval(y0: FloatArray, t0: float, t1: float, P0: FloatArray, dipole: FloatArray, command: FloatArray, rtol: float,
               atol: float, method: int, step: float, out: FloatArray) -> int:  # pragma: no cover - compiled
     """One hold interval of ``y0`` (an array of :data:`N`, :func:`padded`) with the dipole and the
     wheels' commands held (:data:`MAX_WHEELS` of them, the run's first), into ``out``."""
-    P = with_command(P0, dipole[0], dipole[1], dipole[2], command)
-    status, y, _, _ = _advance(tuple_of(y0), t0, t1, P, X, rtol, atol, method, step, 0.0, _turns(P[16]))
+    P = P0.copy()
+    set_command(P, dipole[0], dipole[1], dipole[2], command)
+    status, y, _, _ = _advance(tuple_of(y0), t0, t1, P, rtol, atol, method, step, 0.0, _turns(P[16]))
     store(y, out)
     return int(status)
 
@@ -302,7 +330,7 @@ def held(rods: FloatArray, limits: FloatArray, m0: float, m1: float, m2: float, 
 
 
 @jit(error_model="numpy")
-def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
+def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
           limits: FloatArray, rtol: float, atol: float, method: int, step: float, carry: bool, Y: FloatArray,
           D: FloatArray, U: FloatArray, F: FloatArray) -> int:  # pragma: no cover - compiled
     """The closed loop over the control instants ``grid`` (s) from ``y0``: at each, the state (its
@@ -318,6 +346,8 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatA
     h_abs = 0.0
     turns = _turns(P0[16])
     memory = NO_MEMORY
+    P = P0.copy()  # the parameters with the command held (set_command)
+    fp, ft, _ = tables(P0, TABLES)
     for i in range(steps + 1):
         t = grid[i]
         nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
@@ -325,7 +355,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatA
         store(y, Y[i])
         x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
         kind = int(P0[15])
-        b0, b1, b2 = field_body(kind, X[0], X[1], x, yq, z, c, t) if kind != FIELD_NONE else (0.0, 0.0, 0.0)
+        b0, b1, b2 = field_body(kind, fp, ft, x, yq, z, c, t) if kind != FIELD_NONE else (0.0, 0.0, 0.0)
         F[i, 0], F[i, 1], F[i, 2] = b0, b1, b2
         m0, m1, m2 = 0.0, 0.0, 0.0
         for j in range(k):
@@ -336,8 +366,9 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatA
         d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
             break
-        status, y, h_abs, turns = _advance(y, t, grid[i + 1], with_command(P0, d0, d1, d2, u), X, rtol, atol, method,
-                                           step, h_abs if carry else 0.0, turns)
+        set_command(P, d0, d1, d2, u)
+        status, y, h_abs, turns = _advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0,
+                                           turns)
         if status != OK:
             return int(status)
     return OK
@@ -377,12 +408,36 @@ def unpadded(y: FloatArray, k: int) -> FloatArray:
     return np.concatenate([y[..., :7 + k], y[..., N - 3:]], axis=-1)
 
 
-_KERNELS: dict[str, Callable[..., Any]] = {"rhs": rhs, "_interval": _interval, "_loop": _loop}
+def rhs_of(t: float, y: tuple[float, ...], P: Any, X: tuple[FloatArray, ...], u0: float,
+           u1: float) -> tuple[float, ...]:
+    """The compiled right-hand side at ``t`` (s) of the padded state ``y`` (a tuple of :data:`N`),
+    the parameters ``P`` (:data:`TABLES` floats, :mod:`~tumble.dynamics.control.loop_terms`) and the
+    tables ``X`` given apart, ``(u0, u1)`` a circular orbit's direction: ``dy/dt`` as a tuple.
+
+    Examples
+    --------
+    A spin of 0.1 rad/s about z, no torque: ``q' = (0, 0, 0.05, 0)`` at the identity:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.compiled_loop import TABLES, padded, rhs_of, unpadded
+    >>> P = np.zeros(TABLES)
+    >>> P[:12] = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3)
+    >>> X = (np.zeros(16), np.zeros((4, 1, 3)), np.zeros((4, 1, 3)))
+    >>> y = tuple(padded([0, 0, 0, 1.0, 0, 0, 0.1, 0, 0, 0]))
+    >>> unpadded(np.array(rhs_of(0.0, y, P, X, 1.0, 0.0)), 0)[:4].tolist()
+    [0.0, 0.0, 0.05, -0.0]
+    """
+    return rhs(float(t), y, packed(P, X), float(u0), float(u1))  # type: ignore[no-any-return]
+
+
+_KERNELS: dict[str, Callable[..., Any]] = {"rhs": rhs_of, "_interval": _interval, "_loop": _loop}
 
 
 def kernels() -> dict[str, Callable[..., Any]]:
-    """The compiled kernels, for every wheel count up to :data:`MAX_WHEELS`: ``"rhs"``,
-    ``"_interval"`` (one hold interval) and ``"_loop"`` (the whole loop), on padded states (:func:`padded`).
+    """The compiled kernels, for every wheel count up to :data:`MAX_WHEELS`: ``"rhs"``
+    (:func:`rhs_of`), ``"_interval"`` (one hold interval) and ``"_loop"`` (the whole loop), on
+    padded states (:func:`padded`) and the parameters and tables in one array
+    (:func:`~tumble.dynamics.control.loop_terms.packed`).
 
     Examples
     --------
@@ -390,11 +445,13 @@ def kernels() -> dict[str, Callable[..., Any]]:
     ``0.1 t`` about z:
 
     >>> import numpy as np
-    >>> from tumble.dynamics.control.compiled_loop import DOP853, N, kernels, padded, unpadded
-    >>> P = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3) + (0.0,) * 69
-    >>> X = (np.zeros(16), np.zeros((4, 1, 3)), np.zeros((4, 1, 3)))
+    >>> from tumble.dynamics.control.compiled_loop import DOP853, N, TABLES, kernels, padded, unpadded
+    >>> from tumble.dynamics.control.loop_terms import packed
+    >>> P = np.zeros(TABLES)
+    >>> P[:12] = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3)
+    >>> P = packed(P, (np.zeros(16), np.zeros((4, 1, 3)), np.zeros((4, 1, 3))))
     >>> y, out = padded([0, 0, 0, 1.0, 0, 0, 0.1, 0, 0, 0]), np.empty(N)
-    >>> kernels()["_interval"](y, 0.0, 10.0, P, X, np.zeros(3), np.zeros(6), 1e-10, 1e-12, DOP853, 0.0, out)
+    >>> kernels()["_interval"](y, 0.0, 10.0, P, np.zeros(3), np.zeros(6), 1e-10, 1e-12, DOP853, 0.0, out)
     0
     >>> np.allclose(unpadded(out, 0)[:4], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-10)
     True

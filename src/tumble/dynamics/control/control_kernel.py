@@ -43,7 +43,7 @@ import numpy as np
 from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ..environment.magnetic import FIELD_TABLE, field_form
-from .loop_terms import WHEEL
+from .loop_terms import WHEEL, packed
 
 __all__ = ["ControlKernel", "compiled_control_models", "compiled_law"]
 
@@ -199,6 +199,7 @@ class ControlKernel:
                             gp, (self.k,), slots.reshape(-1)])
         self.P = np.ascontiguousarray(P, dtype=float)  # an array, not a tuple passed by value at every stage: 4 % faster
         self.X = tuple(np.ascontiguousarray(a, dtype=float) for a in (fp, ft, gt))
+        self.packed = packed(self.P, self.X)  # what the kernels take: P and X in one array
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
         self.kernels = _loop.kernels()
@@ -259,7 +260,7 @@ class ControlKernel:
         """
         out, held = np.empty(_loop.N), np.zeros(_loop.MAX_WHEELS)
         held[:self.k] = command
-        status = self.kernels["_interval"](_loop.padded(y), float(t_start), float(t_end), self.P, self.X,
+        status = self.kernels["_interval"](_loop.padded(y), float(t_start), float(t_end), self.packed,
                                            np.ascontiguousarray(dipole, dtype=float), held, self.rtol, self.atol,
                                            self.method, self.step, out)
         if status != 0:
@@ -294,7 +295,7 @@ class ControlKernel:
         steps = len(grid)
         Y, D, U, F = np.empty((steps, _loop.N)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
         status = self.kernels["_loop"](_loop.padded(y0), np.ascontiguousarray(grid, dtype=float),
-                                       self.P, self.X, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
+                                       self.packed, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
                                        np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol, self.method,
                                        self.step, bool(carry), Y, D, U, F)
         if status != 0:

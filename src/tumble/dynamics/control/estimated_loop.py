@@ -57,7 +57,7 @@ from ..models.sensors import Measurement, Sensors
 from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_reading
 from ..special.quaternion import to_body
 from . import compiled_loop as _cl
-from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world
+from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
 
 __all__ = ["NEEDS_START", "NO_ATTITUDE", "plan", "run"]
 
@@ -72,7 +72,7 @@ _to_body = jit(to_body, error_model="numpy")
 
 
 @jit(error_model="numpy")
-def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: Any, X: Any, law: int, L: FloatArray,
+def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray,
                     pinv: FloatArray, rods: FloatArray, limits: FloatArray, rtol: float, atol: float, method: int,
                     step: float, carry: bool, S: FloatArray, A: FloatArray, Apinv: FloatArray, Agram: FloatArray,
                     C: FloatArray, Rt: FloatArray, noise: FloatArray, offs: np.ndarray, flags: np.ndarray,
@@ -91,6 +91,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
     turns = _cl._turns(P0[16])
     memory = (mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6], mem[7] != 0.0)
     kind = int(P0[15])
+    P = P0.copy()  # the parameters with the command held (set_command)
+    fp, ft, _ = tables(P0, _cl.TABLES)
     has_field = kind != FIELD_NONE
     kc = A.shape[0]
     cur = np.empty((kc, 2))
@@ -103,7 +105,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         y = _cl.with_quaternion(y, y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq)
         _cl.store(y, Y[i])
         x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
-        b0, b1, b2 = field_body(kind, X[0], X[1], x, yq, z, c, t) if has_field else (0.0, 0.0, 0.0)
+        b0, b1, b2 = field_body(kind, fp, ft, x, yq, z, c, t) if has_field else (0.0, 0.0, 0.0)
         F[i, 0], F[i, 1], F[i, 2] = b0, b1, b2
         m0, m1, m2 = 0.0, 0.0, 0.0
         for j in range(_cl.MAX_WHEELS):
@@ -149,7 +151,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     used_mag = has_field and S[15] != 0.0 and (flags[i] & 1) != 0
                     if used_mag:
                         bn = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
-                        r0, r1, r2 = field_world(kind, X[0], X[1], t)
+                        r0, r1, r2 = field_world(kind, fp, ft, t)
                         vec[0, 0], vec[0, 1], vec[0, 2], vec[0, 3], vec[0, 4], vec[0, 5] = n0, n1, n2, r0, r1, r2
                         vec[0, 6] = max(S[7] / bn if bn > 0.0 else math.inf, S[12])
                         _update(fq, fb, fP, yv, Hv, Rv, ok, nis, vec)
@@ -178,7 +180,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         d0, d1, d2 = _cl.held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
             break
-        status, y, h_abs, turns = _cl._advance(y, t, grid[i + 1], _cl.with_command(P0, d0, d1, d2, u), X, rtol, atol,
+        _cl.set_command(P, d0, d1, d2, u)
+        status, y, h_abs, turns = _cl._advance(y, t, grid[i + 1], P, rtol, atol,
                                                method, step, h_abs if carry else 0.0, turns)
         if status != _cl.OK:
             return int(status)
@@ -286,7 +289,7 @@ def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], g
     y, i0, fresh = _cl.padded(y0), 0, False
     loop = _kernels()["_knowledge_loop"]
     while True:
-        status = loop(y, i0, fresh, np.ascontiguousarray(grid, dtype=float), kernel.P, kernel.X, law[0], law[1], law[2],
+        status = loop(y, i0, fresh, np.ascontiguousarray(grid, dtype=float), kernel.packed, law[0], law[1], law[2],
                       np.ascontiguousarray(rods, dtype=float), np.ascontiguousarray(limits, dtype=float), kernel.rtol,
                       kernel.atol, kernel.method, kernel.step, bool(carry), S, A, Apinv, Agram,
                       np.ascontiguousarray(C), np.ascontiguousarray(Rt), noise, offs, flags, sun_world, light, fq, fb, fP,

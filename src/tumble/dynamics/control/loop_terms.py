@@ -21,7 +21,7 @@ the gravity gradient (:func:`~tumble.dynamics.models.gravity.gradient_components
 applied torque (:func:`~tumble.dynamics.models.actuators.wheel_torque`: limits and friction) and
 the fields below.
 
-**The parameters** ``P``, one tuple of floats held through a hold interval: ``P[0:3]`` the
+**The parameters** ``P``, one array of floats held through a hold interval: ``P[0:3]`` the
 principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by row (1/(kg m^2));
 ``P[12:15]`` the magnetorquers' dipole held (A m^2); ``P[15]`` the field's kind (:data:`FIELD_NONE`
 ...); ``P[16:20]`` the gravity gradient ``(n, mu, t0, h)``: a circle's mean motion (rad/s) or
@@ -30,7 +30,11 @@ number of wheels; then ten a wheel (:data:`WHEEL`), in as many slots as the kern
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
 (the field's own ``loop_form()``, :func:`~tumble.dynamics.environment.magnetic.field_form`), the IGRF table's and the orbit
-position table's coefficients.
+position table's coefficients, ``(4, m, 3)`` each; they follow the wheel slots in the same array
+(:func:`packed`, :func:`tables`), so that a right-hand side takes one array, not four: a tuple
+of three arrays passed to each of a step's stages cost more than the right-hand side itself
+(the closed loop's kernel ran in 204 us with ``(P, X)``, 123 us with ``P`` alone; MRP feedback
+with three wheels, 60 s, RK8).
 
 **The fields** (one formula each; tests/test_controlled_compiled.py checks each against the
 model): :class:`~tumble.dynamics.environment.magnetic.UniformField`; the tilted dipole of
@@ -43,7 +47,7 @@ Examples
 --------
 >>> from tumble.dynamics.control.loop_terms import rhs_source
 >>> print(rhs_source("rhs_0", 0).splitlines()[0])
-def rhs_0(t, y, P, X, u0, u1):
+def rhs_0(t, y, P, u0, u1):
 """
 
 from __future__ import annotations
@@ -63,7 +67,7 @@ from ..euler import momentum_rate_components
 from ..special.quaternion import quaternion_rate_components, rotate_components, to_body
 
 __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM", "WHEEL", "external_torque",
-           "field_body", "field_world", "rhs_source"]
+           "field_body", "field_world", "packed", "rhs_source", "tables"]
 
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
 BODY, WHEEL = 21, 10
@@ -71,6 +75,9 @@ BODY, WHEEL = 21, 10
 # The models' formulas compiled as ordinary functions, which LLVM inlines where they are called (as
 # the engine's kernels do, tumble.dynamics.engine.kernels): the loop ran as fast, and its first
 # compile for 3 wheels took 39 CPU-s instead of 59 (measured, loaded machine).
+# The functions below that take arrays are compiled without numba's reference counting
+# (``_nrt=False``): they read their arrays and make none, and the caller holds them; counted, each
+# call to them from a right-hand side stage paid two atomic operations an array.
 _horner = jit(horner, error_model="numpy")
 _earth_angle = jit(earth_angle, error_model="numpy")
 _dipole_field = jit(dipole_components, error_model="numpy")
@@ -82,7 +89,7 @@ _momentum_rate = jit(momentum_rate_components, error_model="numpy")
 _quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 
 
-@jit(error_model="numpy")
+@jit(error_model="numpy", _nrt=False)
 def table_value(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, float, float]:  # pragma: no cover
     """A :class:`~tumble.dynamics.environment.tabulated.CubicTable` (coefficients ``c``, start ``t0``,
     spacing ``h``, s) at ``t`` (s), by its rule: interval ``floor((t - t0) / h)`` clipped, Horner."""
@@ -93,7 +100,7 @@ def table_value(c: FloatArray, t0: float, h: float, t: float) -> tuple[float, fl
             _horner(c[0, i, 2], c[1, i, 2], c[2, i, 2], c[3, i, 2], d))
 
 
-@jit(error_model="numpy")
+@jit(error_model="numpy", _nrt=False)
 def dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
            s: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
     """The dipole's B (T, world frame) at ``r_eci = (e0, e1, e2)`` (m) with ``(c, s)`` the cosine
@@ -105,7 +112,7 @@ def dipole(p: FloatArray, e0: float, e1: float, e2: float, c: float,
     return p[0] * e0 + p[1] * e1 + p[2] * e2, p[3] * e0 + p[4] * e1 + p[5] * e2, p[6] * e0 + p[7] * e1 + p[8] * e2
 
 
-@jit(error_model="numpy")
+@jit(error_model="numpy", _nrt=False)
 def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[float, float, float]:  # pragma: no cover
     """B (T) in the world frame at ``t`` (s): ``p`` the field's parameters (the Earth's angle at t = 0
     in ``p[12]``), ``table`` the coefficients of a tabulated field (start ``p[0]``, spacing ``p[1]``).
@@ -124,7 +131,7 @@ def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[
     return dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1, math.cos(theta), math.sin(theta))
 
 
-@jit(error_model="numpy")
+@jit(error_model="numpy", _nrt=False)
 def field_body(kind: int, p: FloatArray, table: FloatArray, x: float, y: float, z: float, s: float,
                t: float) -> tuple[float, float, float]:  # pragma: no cover
     """B (T) in the body frame of the unit quaternion ``(x, y, z, s)`` at ``t`` (s): ``R^T B_world``."""
@@ -132,23 +139,55 @@ def field_body(kind: int, p: FloatArray, table: FloatArray, x: float, y: float, 
     return _to_body(x, y, z, s, b0, b1, b2)
 
 
+def packed(P: FloatArray, X: tuple[FloatArray, ...]) -> FloatArray:
+    """The parameters ``P`` and the tables ``X = (fp, ft, gt)`` in one array (module docstring):
+    ``P``, then the sizes ``(len(fp), m_ft, m_gt)``, then ``fp``, ``ft`` and ``gt`` flattened
+    (:func:`tables` takes them back).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.loop_terms import packed, tables
+    >>> X = (np.arange(16.0), np.ones((4, 2, 3)), np.zeros((4, 1, 3)))
+    >>> flat = packed(np.zeros(21), X)
+    >>> flat.shape, [a.shape for a in tables(flat, 21)]
+    ((76,), [(16,), (4, 2, 3), (4, 1, 3)])
+    """
+    fp, ft, gt = (np.asarray(a, dtype=float) for a in X)
+    sizes = (len(fp), ft.shape[1], gt.shape[1])
+    return np.concatenate([np.asarray(P, dtype=float).ravel(), sizes, fp, ft.ravel(), gt.ravel()])
+
+
 @jit(error_model="numpy", inline="always")
-def external_torque(t: float, x: float, y: float, z: float, s: float, P: tuple[float, ...],
-                    X: tuple[FloatArray, FloatArray, FloatArray], u0: float,
+def tables(P: FloatArray, at: int) -> tuple[FloatArray, FloatArray, FloatArray]:  # pragma: no cover - compiled
+    """The tables ``(fp, ft, gt)`` of a parameter array :func:`packed` made, whose tables start at
+    ``at`` (after ``P``): views, not copies. Inlined where it is called, so that its views are
+    counted as the caller counts (not at all in a right-hand side)."""
+    nf, m1, m2 = int(P[at]), int(P[at + 1]), int(P[at + 2])
+    a = at + 3
+    b = a + nf
+    c = b + 12 * m1
+    return P[a:b], P[b:c].reshape((4, m1, 3)), P[c:c + 12 * m2].reshape((4, m2, 3))
+
+
+@jit(error_model="numpy", inline="always", _nrt=False)
+def external_torque(t: float, x: float, y: float, z: float, s: float, P: FloatArray, at: int, u0: float,
                     u1: float) -> tuple[float, float, float]:  # pragma: no cover
     """The external torque (N m, body frame) at ``t`` (s) on the unit quaternion ``(x, y, z, s)``:
     the held dipole's ``m x B`` and the gravity gradient ``3 n^2 r_b x (I r_b)`` (module
-    docstring), a circular orbit's direction being ``(u0, u1, 0) = (cos n t, sin n t, 0)``."""
+    docstring), a circular orbit's direction being ``(u0, u1, 0) = (cos n t, sin n t, 0)``; the
+    tables from ``P[at]`` on (:func:`tables`)."""
     a0, a1, a2 = 0.0, 0.0, 0.0
     if P[15] != FIELD_NONE:
-        b0, b1, b2 = field_body(int(P[15]), X[0], X[1], x, y, z, s, t)
+        fp, ft, _ = tables(P, at)
+        b0, b1, b2 = field_body(int(P[15]), fp, ft, x, y, z, s, t)
         a0, a1, a2 = P[13] * b2 - P[14] * b1, P[14] * b0 - P[12] * b2, P[12] * b1 - P[13] * b0
     if P[16] > 0.0:  # a circle: r_b = R^T (cos n t, sin n t, 0)
         v0, v1, v2 = _to_body(x, y, z, s, u0, u1, 0.0)
         g0, g1, g2 = _gravity_gradient(P[16] * P[16], P[0], P[1], P[2], v0, v1, v2)
         a0, a1, a2 = a0 + g0, a1 + g1, a2 + g2
     elif P[17] > 0.0:  # along a table of positions: r_b = R^T r / |r|, rate sqrt(mu / r^3)
-        v0, v1, v2 = table_value(X[2], P[18], P[19], t)
+        v0, v1, v2 = table_value(tables(P, at)[2], P[18], P[19], t)
         rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
         v0, v1, v2 = _to_body(x, y, z, s, v0 / rn, v1 / rn, v2 / rn)
         n_r = math.sqrt(P[17] / rn) / rn
@@ -158,8 +197,8 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, P: tuple[f
 
 
 def rhs_source(name: str, k: int) -> str:
-    """The source of ``name(t, y, P, X, u0, u1)``: the closed loop's right-hand side (module
-    docstring) with ``k`` wheel slots, written out wheel by wheel, ``(u0, u1)`` a circular orbit's
+    """The source of ``name(t, y, P, u0, u1)``: the closed loop's right-hand side (module
+    docstring) with ``k`` wheel slots, its tables after them in ``P`` (:func:`packed`), written out wheel by wheel, ``(u0, u1)`` a circular orbit's
     direction ``(cos n t, sin n t)``; it returns ``dy/dt`` as a tuple of ``10 + k`` floats. The
     slots past the run's wheel count ``P[20]`` are skipped (their spins' rates are 0), so one
     source serves every count up to ``k``.
@@ -170,11 +209,11 @@ def rhs_source(name: str, k: int) -> str:
     >>> rhs_source("rhs_3", 3).count("_wheel_torque(")
     3
     """
-    lines = [f"def {name}(t, y, P, X, u0, u1):",
+    lines = [f"def {name}(t, y, P, u0, u1):",
              "    r = 1.0 / math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])",
              "    x, yq, z, c = y[0] * r, y[1] * r, y[2] * r, y[3] * r",
              "    w0, w1, w2 = y[4], y[5], y[6]",
-             "    t0, t1, t2 = external_torque(t, x, yq, z, c, P, X, u0, u1)",
+             f"    t0, t1, t2 = external_torque(t, x, yq, z, c, P, {BODY + WHEEL * k}, u0, u1)",
              "    a0, a1, a2 = t0, t1, t2",
              "    L0, L1, L2 = P[0] * w0, P[1] * w1, P[2] * w2",
              "    count = P[20]"]
