@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from tumble.dynamics.engine import front, kernels
+from tumble.dynamics.engine import front, kernels, lanes
 from tumble.dynamics.engine.status import NON_FINITE, OK
 from tumble.dynamics.engine.tableau import DOP853_A, DOP853_B, DOP853_C
 from tumble.dynamics.engine.unrolled import fixed_step_source, lane_step_source
@@ -48,12 +48,17 @@ def _lanes(method: str, y0, t, I, P, n, h):
 @pytest.mark.parametrize("method", ["rk4", "rk8"])
 @pytest.mark.parametrize(("terms", "steps"), [(BODY_TORQUE, "one"), (ALL_TERMS, "one"), (ALL_TERMS, "each its own")])
 def test_lanes_agree_with_each_body_alone_to_round_off(method, terms, steps):
-    """21 bodies (two full blocks and a part, whose last lanes repeat its last body), one step for
+    """37 bodies (two full blocks and a part, whose last lanes repeat its last body), one step for
     all or each body its own (sorted into blocks; a block whose bodies split an interval differently
     runs again body by body): every torque term of the kernels in lanes."""
-    I, y0 = _bodies(21)
+    assert lanes.LANES == 16  # the blocks below
+    I, y0 = _bodies(37)
     t = np.linspace(0.0, 2.0, 11)
-    h = np.full(21, 0.05) if steps == "one" else np.random.default_rng(4).uniform(0.02, 0.06, 21)
+    rng = np.random.default_rng(4)
+    # each its own: 17 bodies at 6 steps an interval, 20 at 4 (the steps a little over 0.2 s / m, each body's
+    # own): sorted, a block of 16 at 6, a block that mixes them (body by body), 5 at 4
+    h = np.full(37, 0.05) if steps == "one" else 0.2 / np.repeat([6, 4], [17, 20]) * (1.0 + rng.uniform(0, 0.01, 37))
+    rng.shuffle(h)
     omega, quat = _lanes(method, y0, t, I, *terms, h)
     omega_alone, quat_alone = _alone(method, y0, t, I, *terms, h)
     np.testing.assert_allclose(omega, omega_alone, rtol=0, atol=1e-13 * np.abs(omega_alone).max())
@@ -63,8 +68,6 @@ def test_lanes_agree_with_each_body_alone_to_round_off(method, terms, steps):
 def test_a_block_whose_bodies_split_an_interval_differently_ends_non_finite():
     """Steps of 0.1 s and 0.06 s split a 0.2 s interval into 2 and 4: the block cannot step them
     together and says so (the front then runs its bodies one by one)."""
-    from tumble.dynamics.engine import lanes
-
     I, y0 = _bodies(lanes.LANES)
     t = np.array([0.0, 0.2])
     h = np.full(lanes.LANES, 0.1)
