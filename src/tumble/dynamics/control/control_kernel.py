@@ -40,7 +40,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from ...typing import FloatArray
+from ...typing import ArrayLike, FloatArray
 from . import compiled_loop as _loop
 from ..environment.magnetic import FIELD_TABLE, field_form
 from .loop_terms import WHEEL, packed
@@ -123,15 +123,42 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     pointing = controller.pointing if dumping else controller
     if not _plain(pointing, MRPFeedback) or is_reference(pointing.target) or wheels is None or (dumping and field is None):
         return None
-    own = pointing.wheels
-    if not (np.array_equal(pointing.moments, moments) and np.array_equal(own.axes, wheels.axes)
-            and np.array_equal(np.broadcast_to(own.inertia, (k,)), np.broadcast_to(wheels.inertia, (k,)))):
+    own = pointing.wheels  # the run's own wheels (most often the same object: no comparison, ~7 us)
+    if not (np.array_equal(pointing.moments, moments) and (own is wheels or (
+            np.array_equal(own.axes, wheels.axes)
+            and np.array_equal(np.broadcast_to(own.inertia, (k,)), np.broadcast_to(wheels.inertia, (k,)))))):
         return None
     L = [pointing.K, pointing.P, pointing.Ki, pointing.integral_limit, pointing.gyroscopic, pointing.period,
          *pointing.target.as_quat()]
     if dumping:
         L += [controller.gain, *controller.h_target]
     return _loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float), np.ascontiguousarray(pointing._pinv)
+
+
+def _kernel_for(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Any, gravity_gradient: Any,
+               magnetorquers: Any, wheels: Any, rtol: float, atol: float, t_end: float, method: str = "dop853",
+               step: float | None = None) -> ControlKernel | None:
+    """The run's :class:`ControlKernel` for these models (its arguments), or None for scipy's path
+    where one is not a built-in model and ``compiled`` is None (a ValueError naming it if True).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.control_kernel import _kernel_for
+    >>> _kernel_for(None, np.ones(3), np.eye(3), None, lambda t, w, R: w, None, None, 1e-10, 1e-12, 1.0) is None
+    True
+    >>> _kernel_for(None, np.ones(3), np.eye(3), None, None, None, None, 1e-10, 1e-12, 1.0).k
+    0
+    """
+    if compiled is not None and not isinstance(compiled, bool):
+        raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
+    other = compiled_control_models(field, gravity_gradient, magnetorquers, wheels)
+    if other is not None:
+        if compiled:
+            raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
+        return None
+    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, gravity_gradient, rtol, atol, t_end, method, step,
+                         checked=True)
 
 
 class ControlKernel:
@@ -155,6 +182,9 @@ class ControlKernel:
         The hold interval's method.
     step : float, optional
         The fixed-step methods' largest step, s (> 0; needed with them).
+    checked : bool
+        The models already found compiled by :func:`compiled_control_models` (the caller asked
+        it): not asked again.
 
     Examples
     --------
@@ -171,7 +201,7 @@ class ControlKernel:
 
     def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, gravity_gradient: Any,
                  rtol: float, atol: float, t_end: float | None = None, method: str = "dop853",
-                 step: float | None = None) -> None:
+                 step: float | None = None, *, checked: bool = False) -> None:
         from ..environment.tabulated import position_table
 
         if method not in METHODS:
@@ -180,7 +210,7 @@ class ControlKernel:
             raise ValueError(f"step = {step!r} must be given (s, > 0) with method = {method!r}")
         self.method, self.step = METHODS[method], float(step or 0.0)
         self.k = 0 if wheels is None else wheels.count
-        other = compiled_control_models(field, gravity_gradient, None, wheels)
+        other = None if checked else compiled_control_models(field, gravity_gradient, None, wheels)
         if other is not None:
             raise ValueError(f"{other}: the compiled path cannot evaluate it; use compiled=False")
         field_kind, fp = cast("tuple[int, FloatArray]", field_form(field))
