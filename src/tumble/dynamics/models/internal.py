@@ -189,7 +189,8 @@ class InternalModel:
         spin = float(np.linalg.norm(omega0))
         if self.rotors is None:
             return spin
-        h = np.linalg.norm(self.rotors.momentum(np.asarray(t, float)), axis=-1)
+        constant = self.rotors.constant_rates is not None  # then h is h(0) at every sample
+        h = np.linalg.norm(self.rotors.momentum(0.0 if constant else np.asarray(t, float)), axis=-1)
         return spin + 2.0 * float(np.max(h)) / float(np.min(self.moments))
 
     def momentum(self, t: ArrayLike) -> Vector3:

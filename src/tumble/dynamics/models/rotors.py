@@ -132,6 +132,25 @@ class Rotors:
         return all(p.constant_spin or not callable(p.spin_rate) or p.spin_acceleration is not None
                    for p in self.parts)
 
+    @functools.cached_property
+    def constant_rates(self) -> FloatArray | None:
+        """The spins ``s_k`` (rad/s) where every one is constant (:attr:`constant`), else None:
+        :meth:`spins`, :meth:`momentum` and :meth:`spin_energy` of a run's samples are then these
+        numbers repeated, not evaluated sample by sample (a short run's fixed cost).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=100.0)
+        >>> rotors = Rotors.of(tumble.Body([tumble.Sphere(mass=5.0, radius=0.5), wheel]))
+        >>> rotors.constant_rates.tolist(), rotors.spins([0.0, 5.0]).tolist()
+        ([100.0], [[100.0], [100.0]])
+        """
+        if not self.constant:
+            return None
+        return np.array([p.spin(0.0) for p in self.parts], dtype=float)  # the part's own check of the rate
+
     def spins(self, t: ArrayLike) -> FloatArray:
         """Relative spins ``s_k(t)``, rad/s; shape ``np.shape(t) + (k,)``.
 
@@ -145,6 +164,9 @@ class Rotors:
         [[100.0], [102.0], [105.0]]
         """
         times = np.asarray(t, dtype=float)
+        rates = self.constant_rates
+        if rates is not None:  # constant spins: the rates themselves (``s + 0 t`` is ``s`` exactly)
+            return _repeated(rates, times.shape)
         if times.size > _KEPT_SAMPLES or any(callable(p.spin_rate) for p in self.parts):  # a function: every call
             return np.stack([p.spin(t) for p in self.parts], axis=-1)
         key = (times.shape, times.tobytes())
@@ -181,7 +203,14 @@ class Rotors:
         >>> rotors.momentum(1.0).round(12).tolist()   # J s n = 0.005 kg m^2 x 102 rad/s along principal axis 1
         [0.51, 0.0, 0.0]
         """
+        if self.constant_rates is not None:
+            return _repeated(self._constant_momentum, np.shape(t))
         return self.spins(t) @ (self.axial_moments[:, None] * self.axes)
+
+    @functools.cached_property
+    def _constant_momentum(self) -> Vector3:
+        """``h`` of constant spins (:attr:`constant_rates`), kg m^2/s."""
+        return cast(FloatArray, self.constant_rates) @ (self.axial_moments[:, None] * self.axes)
 
     def momentum_rate(self, t: ArrayLike) -> Vector3:
         """``h'(t)``, N m; shape ``np.shape(t) + (3,)``.
@@ -211,8 +240,23 @@ class Rotors:
         >>> round(float(rotors.spin_energy(0.0)), 12)   # J s^2 / 2 = 0.005 x 100^2 / 2
         25.0
         """
+        if self.constant_rates is not None:
+            return np.full(np.shape(t), self._constant_energy)
         s = self.spins(t)
         return cast(FloatArray, 0.5 * np.sum(self.axial_moments * s * s, axis=-1))
+
+    @functools.cached_property
+    def _constant_energy(self) -> float:
+        """``sum_k J_k s_k^2 / 2`` of constant spins (:attr:`constant_rates`), J."""
+        s = cast(FloatArray, self.constant_rates)
+        return float(0.5 * np.sum(self.axial_moments * s * s))
+
+
+def _repeated(row: FloatArray, shape: tuple[int, ...]) -> FloatArray:
+    """``row`` repeated over ``shape``: an array of shape ``shape + row.shape``."""
+    out = np.empty(shape + row.shape)
+    out[...] = row
+    return out
 
 
 #: How many :meth:`Rotors.spins` a body's rotors keep (a run asks for three: the samples, t = 0
