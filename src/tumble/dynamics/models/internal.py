@@ -13,6 +13,7 @@ are re-exported here.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, NamedTuple, cast
@@ -89,8 +90,10 @@ class InternalModel:
     damper: SphericalDamper | None = None
 
     def __post_init__(self) -> None:
+        if self.damper is None:
+            return
         I1 = float(np.min(self.moments))
-        if self.damper is not None and not self.damper.inertia <= MAX_DAMPER_RATIO * I1:
+        if not self.damper.inertia <= MAX_DAMPER_RATIO * I1:
             raise ValueError(f"damper: inertia = {self.damper.inertia!r} kg m^2 is more than {MAX_DAMPER_RATIO:g} times "
                              f"the body's smallest moment {I1:.6g} kg m^2; the body's rate would lose "
                              f"{np.log10(self.damper.inertia / I1):.0f} digits")
@@ -186,12 +189,12 @@ class InternalModel:
         >>> bool(np.isclose(model.spin_bound([0.0, 0.0, 1.0], [0.0, 1.0]), 1.0 + 2 * 0.5 / I1))   # |w0| + 2 |h| / I1
         True
         """
-        spin = float(np.linalg.norm(omega0))
+        spin = math.hypot(*np.asarray(omega0, dtype=float).ravel())
         if self.rotors is None:
             return spin
         constant = self.rotors.constant_rates is not None  # then h is h(0) at every sample
         h = np.linalg.norm(self.rotors.momentum(0.0 if constant else np.asarray(t, float)), axis=-1)
-        return spin + 2.0 * float(np.max(h)) / float(np.min(self.moments))
+        return spin + 2.0 * float(np.max(h)) / min(float(i) for i in self.moments)
 
     def momentum(self, t: ArrayLike) -> Vector3:
         """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors).
