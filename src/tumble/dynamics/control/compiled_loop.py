@@ -184,35 +184,51 @@ def _start(y: Any, f: Any, t0: float, t1: float, P: Any, rtol: float, atol: floa
     return _initial_step(h0, d1, _rms(fa, scale) / h0, interval)
 
 
+@jit(error_model="numpy", inline="always")
+def _put(R: FloatArray, at: int, values: Any) -> None:  # pragma: no cover - compiled
+    """``R[at:at + len(values)] = values`` for a tuple of floats."""
+    for j in range(len(values)):
+        R[at + j] = values[j]
+
+
 @jit(error_model="numpy")
-def _turns(n: float) -> Any:  # pragma: no cover - compiled
+def _turns(n: float) -> FloatArray:  # pragma: no cover - compiled
     """The turns of a circular orbit's direction (mean motion ``n``, rad/s) to the stage nodes of each
-    method, for no step yet: ``(h, turns)`` of RK8, RK4 and DOP853, kept from step to step
-    while the step ``h`` (s) stays the same (the fixed steps of equal intervals)."""
-    return (-1.0, rk8_turns(n, 0.0), -1.0, rk4_turns(n, 0.0), -1.0, dop853_turns(n, 0.0))
+    method, kept from step to step while the step ``h`` (s) stays the same (the fixed steps of equal
+    intervals): an array of the steps ``h`` of RK8, RK4 and DOP853 they were made for (-1: none
+    yet), then their turns (24, 8 and 26 floats). An array the steps read in place, not tuples
+    passed to and returned from each interval (a third of an interval's call cost)."""
+    R = np.empty(61)
+    R[0], R[1], R[2] = -1.0, -1.0, -1.0
+    _put(R, 3, rk8_turns(n, 0.0))
+    _put(R, 27, rk4_turns(n, 0.0))
+    _put(R, 35, dop853_turns(n, 0.0))
+    return R
 
 
 @jit(error_model="numpy")
 def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, method: int, step: float,
-             h_abs: float, turns: Any) -> Any:  # pragma: no cover - compiled
-    """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs, turns)``
-    with the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as
-    scipy) and the turns to the stage nodes (:func:`_turns`)."""
+             h_abs: float, R: FloatArray) -> Any:  # pragma: no cover - compiled
+    """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs)`` with
+    the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as scipy);
+    ``R`` the turns to the stage nodes (:func:`_turns`), updated in place."""
     n = P[16]
-    h8, rot8, h4, rot4, h_rot, rot = turns
     if method != DOP853:
         m, h = _equal_steps(t1 - t0, step)
-        if method == RK8 and h != h8:
-            h8, rot8 = h, rk8_turns(n, h)
-        if method == RK4 and h != h4:
-            h4, rot4 = h, rk4_turns(n, h)
+        if method == RK8 and h != R[0]:
+            R[0] = h
+            _put(R, 3, rk8_turns(n, h))
+        if method == RK4 and h != R[1]:
+            R[1] = h
+            _put(R, 27, rk4_turns(n, h))
+        rot = R[3:27] if method == RK8 else R[27:35]
         for j in range(m):
             cs, ss = _direction(n, t0 + j * h)
             if method == RK8:
-                y = rk8_step(t0 + j * h, y, h, P, cs, ss, rot8)
+                y = rk8_step(t0 + j * h, y, h, P, cs, ss, rot)
             else:
-                y = rk4_step(t0 + j * h, y, h, P, cs, ss, rot4)
-        return OK, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+                y = rk4_step(t0 + j * h, y, h, P, cs, ss, rot)
+        return OK, y, h_abs
     cs, ss = _direction(n, t0)
     f = rhs(t0, y, P, cs, ss)
     if h_abs <= 0.0:
@@ -224,16 +240,16 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
         rejected = False
         while True:
             if h_abs < min_step:
-                return STEP_COLLAPSED, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+                return STEP_COLLAPSED, y, h_abs
             t_new = t + h_abs
             if t_new - t1 > 0.0:
                 t_new = t1
             h = t_new - t
             h_abs = abs(h)
-            if h != h_rot:  # the turns to the stage nodes, once per step length
-                h_rot = h
-                rot = dop853_turns(n, h)
-            y_new, K = dop853_step(t, y, f, h, P, cs, ss, rot)
+            if h != R[2]:  # the turns to the stage nodes, once per step length
+                R[2] = h
+                _put(R, 35, dop853_turns(n, h))
+            y_new, K = dop853_step(t, y, f, h, P, cs, ss, R[35:61])
             e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
             accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, _size(P)), h_abs, rejected)
             if accepted:
@@ -242,7 +258,7 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
         t, y, f = t_new, y_new, K[12]
         cs, ss = _direction(n, t)
         if t - t1 >= 0.0:
-            return OK, y, h_abs, (h8, rot8, h4, rot4, h_rot, rot)
+            return OK, y, h_abs
 
 
 @jit(error_model="numpy")
@@ -252,7 +268,7 @@ def _interval(y0: FloatArray, t0: float, t1: float, P0: FloatArray, dipole: Floa
     wheels' commands held (:data:`MAX_WHEELS` of them, the run's first), into ``out``."""
     P = P0.copy()
     set_command(P, dipole[0], dipole[1], dipole[2], command)
-    status, y, _, _ = _advance(tuple_of(y0), t0, t1, P, rtol, atol, method, step, 0.0, _turns(P[16]))
+    status, y, _ = _advance(tuple_of(y0), t0, t1, P, rtol, atol, method, step, 0.0, _turns(P[16]))
     store(y, out)
     return int(status)
 
@@ -367,8 +383,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatAr
         if i == steps:
             break
         set_command(P, d0, d1, d2, u)
-        status, y, h_abs, turns = _advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0,
-                                           turns)
+        status, y, h_abs = _advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0, turns)
         if status != OK:
             return int(status)
     return OK

@@ -387,7 +387,7 @@ def simulate_controlled(
         raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
     k = 0 if wheels is None else wheels.count
     s0 = np.zeros(k) if wheel_speed0 is None else np.atleast_1d(np.asarray(wheel_speed0, float))
-    if s0.shape != (k,) or not np.all(np.isfinite(s0)):
+    if s0.shape != (k,) or not all(map(math.isfinite, s0.tolist())):  # floats: ~0.3 us, not 3
         raise ValueError(f"wheel_speed0 = {wheel_speed0!r} must be {k} finite numbers (rad/s), one per wheel")
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
     if hasattr(controller, "reset"):

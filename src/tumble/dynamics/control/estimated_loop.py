@@ -181,8 +181,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         if i == steps:
             break
         _cl.set_command(P, d0, d1, d2, u)
-        status, y, h_abs, turns = _cl._advance(y, t, grid[i + 1], P, rtol, atol,
-                                               method, step, h_abs if carry else 0.0, turns)
+        status, y, h_abs = _cl._advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0, turns)
         if status != _cl.OK:
             return int(status)
     return _cl.OK
