@@ -60,8 +60,9 @@ __all__ = ["ControlledRun", "simulate_controlled"]
 
 
 class ControlledRun:
-    """A closed-loop run sampled at every control step (and at the end); read-only, its
-    :attr:`attitude` and :attr:`momentum_world` built on first reading (~30 us, a tenth of a 60 s loop).
+    """A closed-loop run sampled at every control step (and at the end); read-only.
+
+    Its ``attitude`` and ``momentum_world`` are built on first reading (~30 us, a tenth of a 60 s loop).
 
     Attributes
     ----------
