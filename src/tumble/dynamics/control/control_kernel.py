@@ -43,7 +43,10 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray
 from . import compiled_loop as _loop
 from ..environment.magnetic import FIELD_TABLE, field_form
+from .bdot import BDot
+from .controllers import MomentumDumping, MRPFeedback
 from .loop_terms import WHEEL, packed
+from .pointing import is_reference
 
 __all__ = ["ControlKernel", "compiled_control_models", "compiled_law"]
 
@@ -106,10 +109,6 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     >>> compiled_law(BDot(gain=1e4, period=1.0), Sensors(gyro_noise=1e-4), np.ones(3), None, None) is None
     True
     """
-    from .bdot import BDot
-    from .controllers import MomentumDumping, MRPFeedback
-    from .pointing import is_reference
-
     if sensors is not None and (sensors.gyro_noise or sensors.magnetometer_noise or sensors.attitude != "ideal"
                                 or any(sensors.gyro_bias) or any(sensors.magnetometer_bias) or sensors.attitude_noise
                                 or sensors.sun_sensor is not None or sensors.star_tracker is not None
