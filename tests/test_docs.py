@@ -376,6 +376,10 @@ def test_api_pages_link_to_their_source(site):
     assert links, "no [source] link"
     target = (page.parent / links[0].split("#")[0]).resolve()
     assert target.is_file() and "def fit_rotation" in _text(target.read_text(encoding="utf-8"))
+    # tumble's sources only: no copy of typing's, functools', types' or numpy's (docs/_ext/tumble_lean.py)
+    others = [p.relative_to(site).as_posix() for p in (site / "_modules").rglob("*.html")
+              if p.name != "index.html" and "tumble" not in p.relative_to(site / "_modules").parts[:1]]
+    assert not others, others
 
 
 def test_code_blocks_wrap_long_lines(site):

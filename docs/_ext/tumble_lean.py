@@ -17,7 +17,12 @@ sphinx-gallery has linked the names in its examples' code), every page is rewrit
 - **source maps**: the theme ships a ``.map`` beside its scripts and stylesheet (1.9 MB) that only
   a browser's developer tools read. They are left out, with the comments that name them;
 - **the gallery's stylesheets**: sphinx-gallery links its four on every page; a page gets them
-  only where it shows the gallery's markup (its examples, an API page's "Examples using").
+  only where it shows the gallery's markup (its examples, an API page's "Examples using");
+- **other packages' sources**: sphinx.ext.viewcode follows a documented name to the module that
+  defines it and writes that module's highlighted source. A type alias, a ``functools`` wrapper
+  or a ``types`` object led it to ``typing``, ``functools``, ``types`` and ``numpy`` (0.54 MB of
+  Python's and numpy's code, which the reader has). Only tumble's modules get a source page
+  (:func:`tumble_source_only`).
 
 What a page shows, what a reader copies from a code block and every link are unchanged.
 """
@@ -117,6 +122,31 @@ def lighten(site: Path) -> None:
             asset.write_text(_MAP.sub("\n", text), encoding="utf-8")
 
 
+def tumble_source_only(app: Sphinx, modname: str, fullname: str) -> str | None:
+    """sphinx.ext.viewcode's ``viewcode-follow-imported`` event: the module that defines
+    ``modname.fullname`` where it is tumble's (None: viewcode looks it up as usual), else
+    ``modname`` itself, whose source has no definition of the name, so no page of another package
+    is written (module docstring).
+
+    Examples
+    --------
+    >>> tumble_source_only(None, "tumble.typing", "FloatArray")
+    'tumble.typing'
+    >>> tumble_source_only(None, "tumble", "simulate") is None
+    True
+    """
+    import importlib
+
+    try:
+        value = importlib.import_module(modname)
+        for attribute in fullname.split("."):
+            value = getattr(value, attribute)
+    except Exception:  # noqa: BLE001 - what viewcode cannot import it leaves alone too
+        return None
+    defining = getattr(value, "__module__", None)
+    return None if not isinstance(defining, str) or defining.split(".")[0] == "tumble" else modname
+
+
 def _gallery_css_where_used(app: Sphinx, pagename: str, templatename: str, context: dict, doctree: object) -> None:
     if "sphx-glr" not in context.get("body", ""):
         context["css_files"] = [c for c in context.get("css_files", [])
@@ -132,5 +162,6 @@ def setup(app: Sphinx) -> dict:
     # after sphinx-gallery's own build-finished handler (priority 500), which links the names in
     # its examples' code by their spans
     app.connect("html-page-context", _gallery_css_where_used)
+    app.connect("viewcode-follow-imported", tumble_source_only)
     app.connect("build-finished", _finished, priority=900)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
