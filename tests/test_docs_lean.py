@@ -14,7 +14,7 @@ import pytest
 pytest.importorskip("sphinx")
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "docs" / "_ext"))
 
-from tumble_lean import collapse_whitespace, lighten, plain_classes, unwrap_plain  # noqa: E402
+from tumble_lean import collapse_whitespace, drop_comments, lighten, plain_classes, unwrap_plain  # noqa: E402
 
 CODE = '''\
 def flip(body, omega=(0.1, 10.0, 0.1)):
@@ -71,6 +71,17 @@ def test_whitespace_collapses_outside_preformatted_text(highlighted):
     assert "<p>one\ntwo</p>" in lean and "\n  <" not in lean.replace("\n    </script>", "")
     pre = re.search(r"<pre>.*?</pre>", lean, flags=re.S).group(0)
     assert pre == re.search(r"<pre>.*?</pre>", highlighted, flags=re.S).group(0)  # untouched
+
+
+def test_comments_go_outside_preformatted_text_and_scripts(highlighted):
+    """The theme's template comments leave; a comment a reader can see (in code) or a script reads stays."""
+    code = "<pre>x = 1  <!-- shown in the code --></pre>"
+    page = (f"<head><!-- Loaded before other Sphinx assets -->\n<script>var s = '<!-- kept -->';</script></head>"
+            f"<body><!--\nthis give us a css class\n-->{code}{highlighted}<textarea><!-- typed --></textarea></body>")
+    lean = drop_comments(page)
+    assert "Loaded before" not in lean and "css class" not in lean
+    assert code in lean and "var s = '<!-- kept -->';" in lean and "<textarea><!-- typed --></textarea>" in lean
+    assert lean.count("<!--") == 3  # the code's, the script's, the text area's
 
 
 def test_lighten_rewrites_a_site_and_drops_source_maps(tmp_path, highlighted):
