@@ -84,7 +84,11 @@ _dipole_field = jit(dipole_components, error_model="numpy")
 _to_body = jit(to_body, error_model="numpy")
 _rotate = jit(rotate_components, error_model="numpy")
 _gravity_gradient = jit(gradient_components, error_model="numpy")
-_wheel_torque = jit(wheel_torque, error_model="numpy")
+# The wheel law's np.minimum and np.maximum compiled as plain compares (fastmath "nnan", which
+# allows nothing else: no reassociation, no contraction, so the same results for every input but
+# a NaN): numba's NaN-keeping min and max cost 11 % of the right-hand side (63 -> 56 us for the
+# 1452 calls of a 60 s loop with three wheels, measured alternating in one process).
+_wheel_torque = jit(wheel_torque, error_model="numpy", fastmath={"nnan"})
 _momentum_rate = jit(momentum_rate_components, error_model="numpy")
 _quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 
