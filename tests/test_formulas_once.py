@@ -84,7 +84,7 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
     # issue 38: moving onto the engine
     ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
     # issue 38: moving onto the engine
-    ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/controlled.py"): "the Python loop's R",
+    ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/_rotations.py"): "the Python loop's R",
 }
 
 
