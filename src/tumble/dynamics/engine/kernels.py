@@ -132,9 +132,11 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
     return a0, a1, a2, d0, d1, d2, d3
 
 
-def generated(source: str, filename: str, module: str, **names: Any) -> dict[str, Callable[..., Any]]:
+def generated(source: str, filename: str, module: str, *, parallel: bool = False,
+              **names: Any) -> dict[str, Any]:
     """The functions the generated ``source`` (:mod:`~tumble.dynamics.engine.unrolled`) defines,
-    compiled, by name; ``names`` what they call (``rhs``, helpers), ``math`` always. The code object
+    compiled, by name (``parallel``: with numba's ``prange`` over every core); ``names`` what they
+    call (``rhs``, helpers), ``math`` always. The code object
     is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
     keys the kernels on the sources (:func:`tumble.jit.jit`).
 
@@ -154,7 +156,7 @@ def generated(source: str, filename: str, module: str, **names: Any) -> dict[str
     namespace: dict[str, Any] = {"math": math, "__name__": module, **names}
     given = set(namespace)
     exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return {name: jit(f, error_model="numpy", fastmath=_FAST) for name, f in namespace.items()
+    return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel) for name, f in namespace.items()
             if name not in given and name != "__builtins__"}
 
 

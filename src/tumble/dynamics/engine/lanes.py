@@ -33,7 +33,6 @@ Imported only when a compiled batch runs (it compiles with numba, :func:`tumble.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 from numba import prange
@@ -120,9 +119,7 @@ _BATCH = """def {name}(y0, t_eval, I, P, n, step, index, omega, quat, status):
         hi = min(lo + LANES, y0.shape[0])
         status[block] = {run}(y0[lo:hi], t_eval, I[lo:hi], P, n, step[lo:hi], omega, quat, index[lo:hi])
 """
-_BATCHES: dict[str, Any] = {"__name__": __name__, "prange": prange, "LANES": LANES, "run_rk4": _run_rk4, "run_rk8": _run_rk8}
-exec(compile(_BATCH.format(name="lanes_rk4", run="run_rk4") + _BATCH.format(name="lanes_rk8", run="run_rk8"),  # noqa: S102
-             __file__, "exec"), _BATCHES)  # named after this module, so numba's cache keys them on the sources
+_BATCHES = generated(_BATCH.format(name="lanes_rk4", run="run_rk4") + _BATCH.format(name="lanes_rk8", run="run_rk8"),
+                     __file__, __name__, parallel=True, prange=prange, LANES=LANES, run_rk4=_run_rk4, run_rk8=_run_rk8)
 #: The batches of RK4 and RK8 in lanes (on every core).
-lanes_rk4 = jit(_BATCHES["lanes_rk4"], parallel=True, error_model="numpy")
-lanes_rk8 = jit(_BATCHES["lanes_rk8"], parallel=True, error_model="numpy")
+lanes_rk4, lanes_rk8 = _BATCHES["lanes_rk4"], _BATCHES["lanes_rk8"]
