@@ -191,18 +191,26 @@ def _put(R: FloatArray, at: int, values: Any) -> None:  # pragma: no cover - com
         R[at + j] = values[j]
 
 
+#: Where each method's turns start in the array of :func:`_turns` (after the three steps they were
+#: made for), two floats a stage node: RK8's 12, RK4's 4, DOP853's 13; and the array's length.
+_RK8_AT = 3
+_RK4_AT = _RK8_AT + 2 * len(DOP853_C[:12])
+_DOP853_AT = _RK4_AT + 2 * len(RK4_C)
+_TURNS = _DOP853_AT + 2 * len(DOP853_C[:13])
+
+
 @jit(error_model="numpy")
 def _turns(n: float) -> FloatArray:  # pragma: no cover - compiled
     """The turns of a circular orbit's direction (mean motion ``n``, rad/s) to the stage nodes of each
     method, kept from step to step while the step ``h`` (s) stays the same (the fixed steps of equal
     intervals): an array of the steps ``h`` of RK8, RK4 and DOP853 they were made for (-1: none
-    yet), then their turns (24, 8 and 26 floats). An array the steps read in place, not tuples
+    yet), then their turns (from ``_RK8_AT``, ``_RK4_AT``, ``_DOP853_AT``). An array the steps read in place, not tuples
     passed to and returned from each interval (a third of an interval's call cost)."""
-    R = np.empty(61)
+    R = np.empty(_TURNS)
     R[0], R[1], R[2] = -1.0, -1.0, -1.0
-    _put(R, 3, rk8_turns(n, 0.0))
-    _put(R, 27, rk4_turns(n, 0.0))
-    _put(R, 35, dop853_turns(n, 0.0))
+    _put(R, _RK8_AT, rk8_turns(n, 0.0))
+    _put(R, _RK4_AT, rk4_turns(n, 0.0))
+    _put(R, _DOP853_AT, dop853_turns(n, 0.0))
     return R
 
 
@@ -217,11 +225,11 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
         m, h = _equal_steps(t1 - t0, step)
         if method == RK8 and h != R[0]:
             R[0] = h
-            _put(R, 3, rk8_turns(n, h))
+            _put(R, _RK8_AT, rk8_turns(n, h))
         if method == RK4 and h != R[1]:
             R[1] = h
-            _put(R, 27, rk4_turns(n, h))
-        rot = R[3:27] if method == RK8 else R[27:35]
+            _put(R, _RK4_AT, rk4_turns(n, h))
+        rot = R[_RK8_AT:_RK4_AT] if method == RK8 else R[_RK4_AT:_DOP853_AT]
         for j in range(m):
             cs, ss = _direction(n, t0 + j * h)
             if method == RK8:
@@ -248,8 +256,8 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
             h_abs = abs(h)
             if h != R[2]:  # the turns to the stage nodes, once per step length
                 R[2] = h
-                _put(R, 35, dop853_turns(n, h))
-            y_new, K = dop853_step(t, y, f, h, P, cs, ss, R[35:61])
+                _put(R, _DOP853_AT, dop853_turns(n, h))
+            y_new, K = dop853_step(t, y, f, h, P, cs, ss, R[_DOP853_AT:_TURNS])
             e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
             accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, _size(P)), h_abs, rejected)
             if accepted:
