@@ -32,6 +32,7 @@ What a page shows, what a reader copies from a code block and every link are unc
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 from sphinx.application import Sphinx
@@ -44,6 +45,13 @@ _COMMENT = re.compile(r"<!--.*?-->", re.S)
 _MAP = re.compile(r"\n?(?://# sourceMappingURL=\S+|/\*# sourceMappingURL=[^*\s]+\s*\*/)\s*$")
 
 
+def _outside_kept(html: str, change: Callable[[str], str]) -> str:
+    """``html`` with ``change`` applied to its text outside ``pre``, ``textarea``, ``script`` and ``style``."""
+    parts = _KEEP.split(html)
+    # split gives text, a kept element, its tag name, text, ...: only the text between is changed
+    return "".join(change(part) if i % 3 == 0 else part if i % 3 == 1 else "" for i, part in enumerate(parts))
+
+
 def collapse_whitespace(html: str) -> str:
     """Each run of whitespace holding a line break, outside ``pre``, ``textarea``, ``script`` and
     ``style``, as one line break.
@@ -54,10 +62,7 @@ def collapse_whitespace(html: str) -> str:
     >>> collapse_whitespace("<div>\\n    <p>a\\n\\n   b</p>\\n</div><pre>x\\n    y</pre>")
     '<div>\\n<p>a\\nb</p>\\n</div><pre>x\\n    y</pre>'
     """
-    parts = _KEEP.split(html)
-    # split gives text, a kept element, its tag name, text, ...: only the text between is changed
-    return "".join(_BREAK.sub("\n", part) if i % 3 == 0 else part if i % 3 == 1 else ""
-                   for i, part in enumerate(parts))
+    return _outside_kept(html, lambda text: _BREAK.sub("\n", text))
 
 
 def drop_comments(html: str) -> str:
@@ -69,9 +74,7 @@ def drop_comments(html: str) -> str:
     >>> drop_comments("<p>a<!-- a note\\n on two lines -->b</p><script>/*<!-- kept -->*/</script>")
     '<p>ab</p><script>/*<!-- kept -->*/</script>'
     """
-    parts = _KEEP.split(html)
-    return "".join(_COMMENT.sub("", part) if i % 3 == 0 else part if i % 3 == 1 else ""
-                   for i, part in enumerate(parts))
+    return _outside_kept(html, lambda text: _COMMENT.sub("", text))
 
 
 def plain_classes(css: str) -> frozenset[str]:
