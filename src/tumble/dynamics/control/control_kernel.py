@@ -40,7 +40,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from ...typing import ArrayLike, FloatArray
+from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ..environment.magnetic import FIELD_TABLE, field_form
 from .bdot import BDot
@@ -134,30 +134,84 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     return _loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float), np.ascontiguousarray(pointing._pinv)
 
 
-def _kernel_for(compiled: bool | None, I: FloatArray, I_rw_inv: ArrayLike, field: Any, gravity_gradient: Any,
-               magnetorquers: Any, wheels: Any, rtol: float, atol: float, t_end: float, method: str = "dop853",
-               step: float | None = None) -> ControlKernel | None:
+def _kernel_for(compiled: bool | None, I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers: Any,
+                wheels: Any, rtol: float, atol: float, t_end: float, method: str = "dop853",
+                step: float | None = None) -> ControlKernel | None:
     """The run's :class:`ControlKernel` for these models (its arguments), or None for scipy's path
     where one is not a built-in model and ``compiled`` is None (a ValueError naming it if True).
+    Kept for repeated runs by the values it is built from (:func:`_kernel_key`).
 
     Examples
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.control.control_kernel import _kernel_for
-    >>> _kernel_for(None, np.ones(3), np.eye(3), None, lambda t, w, R: w, None, None, 1e-10, 1e-12, 1.0) is None
+    >>> _kernel_for(None, np.ones(3), None, lambda t, w, R: w, None, None, 1e-10, 1e-12, 1.0) is None
     True
-    >>> _kernel_for(None, np.ones(3), np.eye(3), None, None, None, None, 1e-10, 1e-12, 1.0).k
-    0
+    >>> kernel = _kernel_for(None, np.ones(3), None, None, None, None, 1e-10, 1e-12, 1.0)
+    >>> kernel.k, _kernel_for(None, np.ones(3), None, None, None, None, 1e-10, 1e-12, 1.0) is kernel
+    (0, True)
     """
+    from ._front import locked_inverse
+
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
+    key = _kernel_key(I, field, gravity_gradient, magnetorquers, wheels, rtol, atol, method, step)
+    kernel = _KEPT.get(key) if key is not None else None
+    if kernel is not None:
+        return kernel
     other = compiled_control_models(field, gravity_gradient, magnetorquers, wheels)
     if other is not None:
         if compiled:
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
-    return ControlKernel(I, np.asarray(I_rw_inv, float), wheels, field, gravity_gradient, rtol, atol, t_end, method, step,
-                         checked=True)
+    kernel = ControlKernel(I, locked_inverse(I, wheels), wheels, field, gravity_gradient, rtol, atol, t_end, method,
+                           step, checked=True)
+    if key is not None:
+        if len(_KEPT) >= _KEEP:
+            del _KEPT[next(iter(_KEPT))]  # the oldest
+        _KEPT[key] = kernel
+    return kernel
+
+
+#: The kernels of recent runs (:func:`_kernel_for`), by :func:`_kernel_key`; at most :data:`_KEEP`.
+_KEPT: dict[tuple[Any, ...], ControlKernel] = {}
+_KEEP = 32
+
+
+def _kernel_key(I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any, rtol: float,
+                atol: float, method: str, step: float | None) -> tuple[Any, ...] | None:
+    """The values a run's :class:`ControlKernel` is built from: the moments, the models' loop forms
+    (which are those :func:`compiled_control_models` asks for), the tolerances and the method; None
+    where the kernel is not kept: a model that declares no loop form, too many wheels, or tables
+    (an IGRF field, an orbit's gravity gradient: their span depends on ``t_end``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.control_kernel import _kernel_key
+    >>> _kernel_key(np.ones(3), None, None, None, None, 1e-10, 1e-12, "dop853", None) is not None
+    True
+    >>> _kernel_key(np.ones(3), None, lambda t, w, R: w, None, None, 1e-10, 1e-12, "dop853", None) is None
+    True
+    """
+    if type(method) is not str or not (step is None or isinstance(step, (int, float))):
+        return None  # ControlKernel says what is wrong
+    key: list[Any] = [I.tobytes(), rtol, atol, method, step]
+    field_kind = field_form(field)
+    if field_kind is None or field_kind[0] == FIELD_TABLE:
+        return None
+    key += [field_kind[0], np.asarray(field_kind[1], float).tobytes()]
+    for model in (gravity_gradient, magnetorquers, wheels):
+        loop_form = getattr(model, "loop_form", None)
+        form = None if model is None else loop_form() if callable(loop_form) else False
+        if form is False or (model is not None and form is None):
+            return None
+        key.append(form)
+    gg, rods, slots = key[-3:]
+    if (gg is not None and gg[2] is not None) or (slots is not None and len(slots) > _loop.MAX_WHEELS):
+        return None
+    key[-3:] = [gg, rods is not None, None if slots is None else slots.tobytes()]
+    return tuple(key)
 
 
 class ControlKernel:

@@ -41,8 +41,9 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_moments, check_positive, check_rotation, check_vector
+from ...validation import check_positive, check_rotation, check_vector
 from . import _display
+from ._front import control_instants, locked_inverse, moments_checked, positive
 from ._rotations import Matrix, cross, matrix
 from .controllers import Controller
 from .estimated import Estimated
@@ -58,6 +59,9 @@ from ..special.mrp import mrp_angle, mrp_from_quat
 from ..special.quaternion import rotate_by_quaternion
 
 __all__ = ["ControlledRun", "simulate_controlled"]
+
+#: No rows of three (no wheel or rod axes) and no values (no inertias, no dipole limits): empty, so shared.
+_NO_ROWS, _NO_VALUES = np.zeros((0, 3)), np.zeros(0)
 
 
 class ControlledRun:
@@ -366,12 +370,12 @@ def simulate_controlled(
     >>> np.allclose(run.omega, slow.omega, rtol=1e-12, atol=1e-15)
     True
     """
-    I = check_moments("moments", moments)
+    I = moments_checked(moments)
     w0 = np.array(check_vector("omega0", omega0, "rad/s"))
-    T = check_positive("t_end", t_end, "s")
+    T = positive("t_end", t_end, "s")
     rtol = check_rtol("rtol", rtol)
-    atol = check_positive("atol", atol, "absolute")
-    period = check_positive("controller.period", getattr(controller, "period", None), "s")
+    atol = positive("atol", atol, "absolute")
+    period = positive("controller.period", getattr(controller, "period", None), "s")
     q0 = np.array(check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0))
     if magnetorquers is not None and field is None:
         raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
@@ -382,9 +386,8 @@ def simulate_controlled(
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
     if hasattr(controller, "reset"):
         controller.reset()
-    I_rw_inv = np.linalg.inv(np.diag(I) - (wheels.locked_axial() if wheels is not None else 0.0))
-    axes = wheels.axes if wheels is not None else np.zeros((0, 3))
-    J = np.asarray(wheels.inertia) if wheels is not None else np.zeros(0)
+    axes = wheels.axes if wheels is not None else _NO_ROWS
+    J = np.asarray(wheels.inertia) if wheels is not None else _NO_VALUES
     if compiled is False and (method != "dop853" or carry_step):
         raise ValueError(f"method = {method!r} and carry_step = {carry_step!r} need the compiled path; "
                          "scipy's is dop853 from scipy's starting step")
@@ -392,14 +395,14 @@ def simulate_controlled(
     if compiled is not False:  # the compiled kernels imported only then
         from .control_kernel import _kernel_for
 
-        kernel = _kernel_for(compiled, I, I_rw_inv, field, gg, magnetorquers, wheels, rtol, atol, T, method, step)
+        kernel = _kernel_for(compiled, I, field, gg, magnetorquers, wheels, rtol, atol, T, method, step)
     if kernel is None and (method != "dop853" or carry_step):
         raise ValueError(f"method = {method!r} and carry_step = {carry_step!r} need the built-in models (compiled path)")
-    steps = max(1, math.ceil(T / period - 1e-9))
-    grid = np.minimum(np.arange(steps + 1) * period, T)
+    grid = control_instants(T, period)
+    steps = len(grid) - 1
     law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
-    rods = magnetorquers.axes if magnetorquers is not None else np.zeros((0, 3))
-    limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else np.zeros(0)
+    rods = magnetorquers.axes if magnetorquers is not None else _NO_ROWS
+    limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else _NO_VALUES
     y0 = np.concatenate([q0, w0, s0, np.zeros(3)])
     if kernel is not None and law is not None:  # the whole loop in one compiled call
         Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step)
@@ -417,6 +420,7 @@ def simulate_controlled(
             return _run(grid, Y, I, J, axes, k, U, D, F)
     sensors = sensors if sensors is not None else Sensors()
     rng = sensors.rng()
+    I_rw_inv = locked_inverse(I, wheels)
 
     def rhs(t: float, y: FloatArray, dipole: FloatArray, u_cmd: FloatArray) -> FloatArray:
         q, w, s = y[:4] / math.sqrt(float(y[:4] @ y[:4])), y[4:7], y[7:7 + k]
