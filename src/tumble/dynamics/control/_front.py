@@ -18,10 +18,51 @@ from typing import Any
 
 import numpy as np
 
-from ...typing import ArrayLike, FloatArray
-from ...validation import check_moments, check_positive
+from scipy.spatial.transform import Rotation
 
-__all__ = ["control_instants", "locked_inverse", "moments_checked", "positive"]
+from ...typing import ArrayLike, FloatArray
+from ...validation import check_moments, check_positive, check_rotation, check_vector
+from ..simulate import check_rtol
+
+__all__ = ["checked", "control_instants", "locked_inverse", "moments_checked", "positive"]
+
+
+def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, atol: float, controller: Any,
+            attitude0: Rotation | ArrayLike | None, field: Any, magnetorquers: Any, wheels: Any,
+            wheel_speed0: ArrayLike | None) -> tuple[FloatArray, float, float, float, float, FloatArray]:
+    """:func:`~tumble.dynamics.control.controlled.simulate_controlled`'s inputs checked, in its
+    order: ``(moments, t_end, rtol, atol, period, y0)``, ``y0`` the initial state
+    ``(q, omega, s, impulse = 0)``; a ValueError naming the first bad one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.control._front import checked
+    >>> from tumble.dynamics.control.bdot import BDot
+    >>> I, T, rtol, atol, period, y0 = checked([1.0, 2.0, 3.0], [0.0, 0.0, 0.1], 10.0, 1e-10, 1e-12,
+    ...                                        BDot(gain=1.0, period=0.5), None, None, None, None, None)
+    >>> T, period, y0.tolist()
+    (10.0, 0.5, [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
+    >>> checked([1.0, 2.0, 3.0], [0.0, 0.0, 0.1], -1.0, 1e-10, 1e-12, BDot(gain=1.0, period=0.5), None, None, None,
+    ...         None, None)
+    Traceback (most recent call last):
+    ...
+    ValueError: t_end = -1.0 must be a positive finite number (s)
+    """
+    I = moments_checked(moments)
+    w0 = check_vector("omega0", omega0, "rad/s")
+    T = positive("t_end", t_end, "s")
+    rtol = check_rtol("rtol", rtol)
+    atol = positive("atol", atol, "absolute")
+    period = positive("controller.period", getattr(controller, "period", None), "s")
+    q0 = check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0)
+    if magnetorquers is not None and field is None:
+        raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
+    k = 0 if wheels is None else wheels.count
+    s0 = np.zeros(k) if wheel_speed0 is None else np.atleast_1d(np.asarray(wheel_speed0, float))
+    if s0.shape != (k,) or not all(map(math.isfinite, s0.tolist())):  # floats: ~0.3 us, not 3
+        raise ValueError(f"wheel_speed0 = {wheel_speed0!r} must be {k} finite numbers (rad/s), one per wheel")
+    return I, T, rtol, atol, period, np.concatenate([q0, w0, s0, np.zeros(3)])
 
 
 def moments_checked(value: ArrayLike) -> FloatArray:

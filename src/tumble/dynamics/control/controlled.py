@@ -41,9 +41,9 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_positive, check_rotation, check_vector
+from ...validation import check_positive
 from . import _display
-from ._front import control_instants, locked_inverse, moments_checked, positive
+from ._front import checked, control_instants, locked_inverse
 from ._rotations import Matrix, cross, matrix
 from .controllers import Controller
 from .estimated import Estimated
@@ -54,7 +54,6 @@ from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.sensors import Sensors
 from .pointing import Reference, target_attitude
-from ..simulate import check_rtol
 from ..special.mrp import mrp_angle, mrp_from_quat
 from ..special.quaternion import rotate_by_quaternion
 
@@ -119,19 +118,21 @@ class ControlledRun:
     _attitude: Rotation | None
     _momentum: FloatArray | None
     _quaternions: FloatArray
-    _wheel_momentum: FloatArray
+    _wheel_momentum: FloatArray | None
+    _wheel_inertia_axes: tuple[FloatArray, FloatArray] | None
 
     def __init__(self, t: FloatArray, omega: FloatArray, attitude: Rotation | None, moments: FloatArray,
                  wheel_speed: FloatArray, wheel_torque: FloatArray, dipole: FloatArray, field: FloatArray,
                  momentum_world: FloatArray | None, impulse_world: FloatArray, *,
-                 quaternions: FloatArray | None = None, wheel_momentum: FloatArray | None = None) -> None:
+                 quaternions: FloatArray | None = None, wheel_momentum: FloatArray | None = None,
+                 wheel_inertia_axes: tuple[FloatArray, FloatArray] | None = None) -> None:
         """The attributes; ``attitude`` and ``momentum_world`` None: built from ``quaternions``
-        (n, 4) and ``wheel_momentum`` (``sum_k J_k s_k g_k``, n x 3, body frame) on first reading."""
-        for name, value in (("t", t), ("omega", omega), ("moments", moments), ("wheel_speed", wheel_speed),
-                            ("wheel_torque", wheel_torque), ("dipole", dipole), ("field", field),
-                            ("impulse_world", impulse_world), ("_attitude", attitude), ("_momentum", momentum_world),
-                            ("_quaternions", quaternions), ("_wheel_momentum", wheel_momentum)):
-            object.__setattr__(self, name, value)
+        (n, 4) and ``wheel_momentum`` (``sum_k J_k s_k g_k``, n x 3, body frame; or from
+        ``wheel_inertia_axes``, the wheels' ``J`` (k) and axes (k x 3)) on first reading."""
+        vars(self).update(t=t, omega=omega, moments=moments, wheel_speed=wheel_speed, wheel_torque=wheel_torque,
+                          dipole=dipole, field=field, impulse_world=impulse_world, _attitude=attitude,
+                          _momentum=momentum_world, _quaternions=quaternions, _wheel_momentum=wheel_momentum,
+                          _wheel_inertia_axes=wheel_inertia_axes)
 
     def __setattr__(self, name: str, value: Any) -> None:
         raise FrozenInstanceError(f"cannot assign to field {name!r}")
@@ -166,7 +167,11 @@ class ControlledRun:
         ((11, 3), True, True)
         """
         if self._momentum is None:
-            body = self.moments * self.omega + self._wheel_momentum
+            h = self._wheel_momentum
+            if h is None:
+                J, axes = cast("tuple[FloatArray, FloatArray]", self._wheel_inertia_axes)
+                h = (J * self.wheel_speed) @ axes
+            body = self.moments * self.omega + h
             object.__setattr__(self, "_momentum", np.asarray(rotate_by_quaternion(self._quaternions, body), float))
         return cast(FloatArray, self._momentum)
 
@@ -370,19 +375,9 @@ def simulate_controlled(
     >>> np.allclose(run.omega, slow.omega, rtol=1e-12, atol=1e-15)
     True
     """
-    I = moments_checked(moments)
-    w0 = np.array(check_vector("omega0", omega0, "rad/s"))
-    T = positive("t_end", t_end, "s")
-    rtol = check_rtol("rtol", rtol)
-    atol = positive("atol", atol, "absolute")
-    period = positive("controller.period", getattr(controller, "period", None), "s")
-    q0 = np.array(check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0))
-    if magnetorquers is not None and field is None:
-        raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
+    I, T, rtol, atol, period, y0 = checked(moments, omega0, t_end, rtol, atol, controller, attitude0, field,
+                                           magnetorquers, wheels, wheel_speed0)
     k = 0 if wheels is None else wheels.count
-    s0 = np.zeros(k) if wheel_speed0 is None else np.atleast_1d(np.asarray(wheel_speed0, float))
-    if s0.shape != (k,) or not all(map(math.isfinite, s0.tolist())):  # floats: ~0.3 us, not 3
-        raise ValueError(f"wheel_speed0 = {wheel_speed0!r} must be {k} finite numbers (rad/s), one per wheel")
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
     if hasattr(controller, "reset"):
         controller.reset()
@@ -403,9 +398,8 @@ def simulate_controlled(
     law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
     rods = magnetorquers.axes if magnetorquers is not None else _NO_ROWS
     limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else _NO_VALUES
-    y0 = np.concatenate([q0, w0, s0, np.zeros(3)])
     if kernel is not None and law is not None:  # the whole loop in one compiled call
-        Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step)
+        Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step, padded=True)
         return _run(grid, Y, I, J, axes, k, U, D, F)
     if kernel is not None and isinstance(controller, DetumbleThenPoint):  # each mode's law compiled, the switch between
         parts = controller.compiled_run(kernel, sensors, wheels, field, y0, grid, rods, limits, carry_step)
@@ -440,7 +434,7 @@ def simulate_controlled(
                              -(x * w0_ + y_ * w1 + z * w2)])
         return np.concatenate([dq, dw, ds, R @ tau])
 
-    y = np.concatenate([q0, w0, s0, np.zeros(3)])
+    y = y0.copy()
     rows: list[FloatArray] = []
     dipoles, torques, fields = [], [], []
     for i in range(steps + 1):
@@ -477,11 +471,10 @@ def simulate_controlled(
 
 def _run(grid: FloatArray, Y: FloatArray, I: FloatArray, J: FloatArray, axes: FloatArray, k: int, torques: FloatArray,
          dipoles: FloatArray, fields: FloatArray) -> ControlledRun:
-    """The run from the states ``Y`` at the control instants and what was held from each (its
-    attitude and momentum built on first reading)."""
-    speeds = Y[:, 7:7 + k]
-    return ControlledRun(np.asarray(grid, float), Y[:, 4:7], None, I, speeds, torques, dipoles, fields, None,
-                         Y[:, 7 + k:], quaternions=Y[:, :4], wheel_momentum=(J * speeds) @ axes)
+    """The run from the states ``Y`` at the control instants (or the kernels' padded states: the
+    impulse last) and what was held from each (its attitude and momentum built on first reading)."""
+    return ControlledRun(np.asarray(grid, float), Y[:, 4:7], None, I, Y[:, 7:7 + k], torques, dipoles, fields, None,
+                         Y[:, -3:], quaternions=Y[:, :4], wheel_inertia_axes=(J, axes))
 
 
 def command_summary(run: ControlledRun) -> dict[str, Any]:
