@@ -175,8 +175,8 @@ def _kernel_for(compiled: bool | None, I: FloatArray, field: Any, gravity_gradie
     kernel = ControlKernel(I, locked_inverse(I, wheels), wheels, field, gravity_gradient, rtol, atol, t_end, method,
                            step, checked=True)
     if key is not None:
-        if len(_KEPT) >= _KEEP:
-            del _KEPT[next(iter(_KEPT))]  # the oldest
+        for old in list(_KEPT)[:max(0, len(_KEPT) + 1 - _KEEP)]:  # the oldest
+            _KEPT.pop(old, None)
         _KEPT[key] = kernel
     return kernel
 
@@ -308,7 +308,7 @@ class ControlKernel:
         >>> kernel.law(BDot(gain=1e4, period=1.0), Sensors(), None, None)[0]
         0
         """
-        return compiled_law(controller, sensors, np.array(self.P[:3]), wheels, field)
+        return compiled_law(controller, sensors, self.P[:3], wheels, field)  # read, not kept: a view
 
     def field_body(self, q: FloatArray, t: float) -> FloatArray:
         """B (T) in the body frame of the unit quaternion ``q`` (body to world, scalar last) at ``t`` (s).
