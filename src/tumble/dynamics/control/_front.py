@@ -32,7 +32,8 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
             wheel_speed0: ArrayLike | None) -> tuple[FloatArray, float, float, float, float, FloatArray]:
     """:func:`~tumble.dynamics.control.controlled.simulate_controlled`'s inputs checked, in its
     order: ``(moments, t_end, rtol, atol, period, y0)``, ``y0`` the initial state
-    ``(q, omega, s, impulse = 0)``; a ValueError naming the first bad one.
+    ``(q, omega, s, impulse = 0)``; a ValueError naming the first bad one. Float64 arrays and
+    Python floats are checked once for their values (kept; copies returned).
 
     Examples
     --------
@@ -43,22 +44,55 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     ...                                        BDot(gain=1.0, period=0.5), None, None, None, None, None)
     >>> T, period, y0.tolist()
     (10.0, 0.5, [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
-    >>> checked([1.0, 2.0, 3.0], [0.0, 0.0, 0.1], -1.0, 1e-10, 1e-12, BDot(gain=1.0, period=0.5), None, None, None,
-    ...         None, None)
+    >>> checked(np.ones(3), np.zeros(3), -1.0, 1e-10, 1e-12, BDot(gain=1.0, period=0.5), None, None, None, None, None)
     Traceback (most recent call last):
     ...
     ValueError: t_end = -1.0 must be a positive finite number (s)
     """
+    period = getattr(controller, "period", None)
+    lone_rods = magnetorquers is not None and field is None
+    k = 0 if wheels is None else wheels.count
+    raw = (_raw(moments), _raw(omega0), _raw(attitude0), _raw(wheel_speed0))
+    if None in raw or not type(t_end) is type(rtol) is type(atol) is type(period) is float:
+        return _checked(moments, omega0, t_end, rtol, atol, period, attitude0, lone_rods, k, wheel_speed0)
+    I, T, rtol, atol, period, y0 = _checked_raw(raw, t_end, rtol, atol, period, lone_rods, k)
+    return I.copy(), T, rtol, atol, period, y0.copy()
+
+
+def _raw(value: object) -> tuple[tuple[int, ...], bytes] | tuple[()] | None:
+    """A float64 array's shape and bytes, ``()`` for None, else None (not kept)."""
+    if value is None:
+        return ()
+    if type(value) is np.ndarray and value.dtype == np.float64:
+        return value.shape, value.tobytes()
+    return None
+
+
+def _array(raw: tuple[tuple[int, ...], bytes] | tuple[()]) -> FloatArray | None:
+    """The array of :func:`_raw`'s ``raw`` (None for ``()``)."""
+    return np.frombuffer(raw[1]).reshape(raw[0]).copy() if raw else None
+
+
+@functools.lru_cache(maxsize=64)
+def _checked_raw(raw: tuple[Any, ...], t_end: float, rtol: float, atol: float, period: float, lone_rods: bool,
+                 k: int) -> tuple[FloatArray, float, float, float, float, FloatArray]:
+    """:func:`_checked` of the arrays of :func:`_raw`'s bytes, kept (a bad input is not)."""
+    moments, omega0, attitude0, wheel_speed0 = (_array(r) for r in raw)
+    return _checked(moments, omega0, t_end, rtol, atol, period, attitude0, lone_rods, k, wheel_speed0)
+
+
+def _checked(moments: Any, omega0: Any, t_end: float, rtol: float, atol: float, period: Any, attitude0: Any,
+             lone_rods: bool, k: int, wheel_speed0: Any) -> tuple[FloatArray, float, float, float, float, FloatArray]:
+    """:func:`checked`'s checks, ``lone_rods`` magnetorquers without a field, ``k`` wheels."""
     I = moments_checked(moments)
     w0 = check_vector("omega0", omega0, "rad/s")
     T = positive("t_end", t_end, "s")
     rtol = check_rtol("rtol", rtol)
     atol = positive("atol", atol, "absolute")
-    period = positive("controller.period", getattr(controller, "period", None), "s")
+    period = positive("controller.period", period, "s")
     q0 = check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0)
-    if magnetorquers is not None and field is None:
+    if lone_rods:
         raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
-    k = 0 if wheels is None else wheels.count
     s0 = np.zeros(k) if wheel_speed0 is None else np.atleast_1d(np.asarray(wheel_speed0, float))
     if s0.shape != (k,) or not all(map(math.isfinite, s0.tolist())):  # floats: ~0.3 us, not 3
         raise ValueError(f"wheel_speed0 = {wheel_speed0!r} must be {k} finite numbers (rad/s), one per wheel")
