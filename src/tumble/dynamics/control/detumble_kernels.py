@@ -145,7 +145,7 @@ _NO_TURNS = (1.0, 0.0) * 4
 
 
 @jit(error_model="numpy", nogil=True)
-def _body(b: int, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
+def _body(b: int | np.int64, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArray, gain: FloatArray,
           normalized: bool, axes: FloatArray, limit: FloatArray, fpt: Any, n_gg: float, bias: FloatArray,
           noise: FloatArray, table: FloatArray, period: float, steps: int, substeps: int, rates: FloatArray,
           w_out: FloatArray, q_out: FloatArray) -> None:  # pragma: no cover - compiled
@@ -261,8 +261,8 @@ def detumble_parallel(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: Floa
     ([[0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
     """
     table, fpt = _shared(fp, n_gg, period, step0, steps, substeps)
-    for b in prange(I.shape[0]):
-        _body(b, I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
+    for b in prange(I.shape[0]):  # prange's index is unsigned: as int64, _body compiles once
+        _body(np.int64(b), I, q0, w0, gmst0, gain, normalized, axes, limit, fpt, n_gg, bias, noise, table, period, steps,
                substeps, rates, w_out, q_out)
 
 

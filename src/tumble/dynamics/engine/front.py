@@ -13,7 +13,7 @@ from types import ModuleType
 
 import numpy as np
 
-from ...jit import PARALLEL_BODIES, cores
+from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray, IntArray
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_ROTOR_MOMENTUM, KERNEL_WORLD
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
@@ -153,6 +153,7 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     y0[:3], y0[3:] = omega0, quat0
     omega, quat = np.empty((len(t), 3)), np.empty((len(t), 4))
     P, n = terms(form)
+    moments, t = kernel_array(moments), kernel_array(t)  # a read-only array would compile every kernel again
     if method == "dop853":
         status = k.dop853(y0, t, moments, P, n, rtol, atol, omega, quat)
     else:
@@ -188,7 +189,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     k = _kernels()
     N = len(moments)
     y0 = np.ascontiguousarray(np.concatenate([omega0, quat0], axis=1), dtype=float)
-    I = np.ascontiguousarray(moments, dtype=float)
+    I, t = kernel_array(moments), kernel_array(t)
     P, n = terms(form)
     omega, quat = np.empty((N, len(t), 3)), np.empty((N, len(t), 4))  # body-first, as BatchTrajectory keeps them
     status = np.zeros(N, dtype=np.int64)
@@ -273,8 +274,7 @@ def run_damped(method: str, body: FloatArray, y0: FloatArray, t: FloatArray, for
     Y = np.empty((len(t), 11))
     P, n = terms(form)
     run = k.fixed_damped_rk4 if method == "rk4" else k.fixed_damped_rk8
-    status = run(np.ascontiguousarray(y0, dtype=float), t, np.ascontiguousarray(body, dtype=float), P, n,
-                 math.inf if step is None else step, Y)
+    status = run(kernel_array(y0), kernel_array(t), kernel_array(body), P, n, math.inf if step is None else step, Y)
     if status:
         _raise_for(status, method, float(t[-1]))
     return Y

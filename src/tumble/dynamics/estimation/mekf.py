@@ -74,6 +74,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vectors, refuse_first
 
@@ -255,7 +256,7 @@ class MEKF:
             y, H, R = _rows(y, shape, (m,)), _rows(H, shape, (m, 6)), _rows(R, shape, (m, m))
         from .mekf_kernels import update  # compiled at import: numba only when a filter steps
 
-        update(q, b, P, y, H, R, np.ascontiguousarray(ok.reshape(-1)), nis, vectors)
+        update(q, b, P, y, H, R, kernel_array(ok.reshape(-1), dtype=bool), nis, vectors)
         return (self._new(q.reshape(shape + (4,)), b.reshape(shape + (3,)), P.reshape(shape + (6, 6))),
                 nis.reshape(shape))
 

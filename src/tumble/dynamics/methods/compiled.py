@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ...jit import PARALLEL_BODIES, cores
+from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD, kernel_form
 
@@ -114,14 +114,12 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     """
     kind, tau, n = model if model is not None else (0, np.zeros(3), 0.0)
     N = len(I)
-    h = np.zeros((N, 3)) if offset is None else np.ascontiguousarray(np.broadcast_to(offset, (N, 3)), dtype=float)
+    h = np.zeros((N, 3)) if offset is None else kernel_array(offset, (N, 3))
     if exact and np.any(h):
         raise ValueError("the exact free flow has no internal momentum: a body with wheels is a gyrostat")
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
     kernels = _kernels()
     kernel = kernels.run_parallel if N >= PARALLEL_BODIES and cores() > 1 else kernels.run_serial
-    kernel(np.ascontiguousarray(I, dtype=float), np.ascontiguousarray(L, dtype=float),
-                np.ascontiguousarray(q, dtype=float), np.ascontiguousarray(t, dtype=float), float(step),
-                np.asarray(gammas, dtype=float), kind, np.asarray(tau, dtype=float), float(n), bool(exact), h, omega_out,
-                quat_out)
+    kernel(kernel_array(I), kernel_array(L), kernel_array(q), kernel_array(t), float(step), kernel_array(gammas), kind,
+           kernel_array(tau), float(n), bool(exact), h, omega_out, quat_out)
     return omega_out, quat_out

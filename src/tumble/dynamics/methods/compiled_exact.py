@@ -341,7 +341,7 @@ def motion_parallel(I: FloatArray, w: FloatArray, q0: FloatArray, t: FloatArray,
 
 
 @jit(error_model="numpy")
-def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray, b: int) -> bool:
+def parameters_body(I: FloatArray, w: FloatArray, out: FloatArray, b: int | np.int64) -> bool:
     """``upper, p, m, 1 - m, a1, a2, a3, k, k'`` (:class:`~tumble.dynamics.methods.exact_parameters.EllipticParameters`'s
     fields) of one motion into the column ``out[:, b]`` (out of shape (9, N): each field a
     contiguous row); False where the double-double path must take it (``k'^2 < KP2_MIN``, a
@@ -396,5 +396,5 @@ def parameters_parallel(I: FloatArray, w: FloatArray, out: FloatArray, done: np.
     >>> done.tolist(), out[0].tolist()   # about the major axis, then about the minor one
     ([True, True], [1.0, 0.0])
     """
-    for b in prange(I.shape[0]):
-        done[b] = parameters_body(I[b], w[b], out, b)
+    for b in prange(I.shape[0]):  # prange's index is unsigned: as int64, parameters_body compiles once
+        done[b] = parameters_body(I[b], w[b], out, np.int64(b))

@@ -90,7 +90,7 @@ def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArr
 
 
 @jit
-def run_body(b: int, I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray,
+def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray,
              kind: int, tau: FloatArray, n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
              quat_out: FloatArray) -> None:
     """Body ``b`` through every sample interval: equal steps no longer than ``step``, each the
@@ -184,5 +184,5 @@ def run_parallel(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, s
     >>> bool(np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]))   # the same arithmetic per body
     True
     """
-    for b in prange(I.shape[0]):
-        run_body(b, I, L0, q0, t, step, gammas, kind, tau, n, exact, offset, omega_out, quat_out)
+    for b in prange(I.shape[0]):  # prange's index is unsigned: as int64, run_body compiles once
+        run_body(np.int64(b), I, L0, q0, t, step, gammas, kind, tau, n, exact, offset, omega_out, quat_out)

@@ -23,7 +23,7 @@ from typing import Literal, cast, overload
 
 import numpy as np
 
-from ...jit import PARALLEL_BODIES, cores
+from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import ArrayLike, FloatArray, IntArray, Quaternion, Vector3
 from .exact import MAX_PHASE, check_phase_limit
 from .exact_kernel import EllipticMotion, is_steady, steady_attitude
@@ -115,8 +115,7 @@ def _compiled(I: Vector3, w: Vector3, q0: Quaternion, t: FloatArray, attitude: b
     kernels = compiled_kernels()
     kernel = kernels.motion_parallel if len(I) >= PARALLEL_BODIES and cores() > 1 else kernels.motion_serial
     done = np.empty(len(I), dtype=np.bool_)
-    kernel(np.ascontiguousarray(I), np.ascontiguousarray(w), np.ascontiguousarray(q0), np.ascontiguousarray(t),
-           attitude, omega, quat, done)
+    kernel(kernel_array(I), kernel_array(w), kernel_array(q0), kernel_array(t), attitude, omega, quat, done)
     return np.flatnonzero(~done)
 
 

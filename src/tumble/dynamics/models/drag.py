@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...jit import kernel_array
 from ...typing import ArrayLike, Vector3
 from .aero import drag_component
 
@@ -70,19 +71,18 @@ def drag_omega(
     >>> bool(np.isclose(w[0, 1, 2], 2.0 / (1.0 + 1.5 * 2.0 / 3.0)))  # w' = -(b/I) w^2
     True
     """
-    I = np.ascontiguousarray(np.atleast_2d(np.asarray(moments, float)))
-    w = np.ascontiguousarray(np.atleast_2d(np.asarray(omega0, float)))
+    I = kernel_array(np.atleast_2d(np.asarray(moments, float)))  # kernel_array: the one array type compiled
+    w = kernel_array(np.atleast_2d(np.asarray(omega0, float)))
     N = len(I)
     times = np.asarray(t, float)
-    tau = np.ascontiguousarray(np.broadcast_to(times, (N, times.shape[-1])))
-    lin = np.zeros((N, 3)) if linear is None else np.ascontiguousarray(np.broadcast_to(np.asarray(linear, float), (N, 3)))
-    quad = np.zeros((N, 3)) if quadratic is None else np.ascontiguousarray(
-        np.broadcast_to(np.asarray(quadratic, float), (N, 3)))
+    tau = kernel_array(times, (N, times.shape[-1]))
+    lin = np.zeros((N, 3)) if linear is None else kernel_array(linear, (N, 3))
+    quad = np.zeros((N, 3)) if quadratic is None else kernel_array(quadratic, (N, 3))
     if max_step is None:
         speed = np.linalg.norm(w, axis=1)
         hmax = 0.04 / np.where(speed > 0, speed, 1.0)
     else:
-        hmax = np.ascontiguousarray(np.broadcast_to(np.asarray(max_step, float), (N,)))
+        hmax = kernel_array(max_step, (N,))
     from .fit_kernels import drag_integrate  # compiled at import: numba only when a fit needs it
 
     return drag_integrate(I, w, lin, quad, tau, hmax)

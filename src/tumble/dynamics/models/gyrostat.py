@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ..euler import momentum_rate_components
 
@@ -90,20 +91,18 @@ def gyrostat_omega(inertia: ArrayLike, momentum0: ArrayLike, t: ArrayLike, h: Ar
     """
     I = np.ascontiguousarray(np.asarray(inertia, float).reshape(-1, 3, 3))
     K = I.shape[0]
-    L0 = np.ascontiguousarray(np.broadcast_to(np.asarray(momentum0, float), (K, 3)))
+    L0 = kernel_array(momentum0, (K, 3))  # the one array type compiled (tumble.jit.kernel_array)
     quad = (np.zeros((K, 3)) if quadratic is None
-            else np.ascontiguousarray(np.broadcast_to(np.asarray(quadratic, float), (K, 3))))
-    times = np.ascontiguousarray(np.asarray(t, float))
-    hs = np.ascontiguousarray(np.asarray(h, float))
-    hm = np.ascontiguousarray(np.asarray(h_mid, float))
+            else kernel_array(quadratic, (K, 3)))
+    times, hs, hm = kernel_array(t), kernel_array(h), kernel_array(h_mid)
     if hs.shape != (times.size, 3) or hm.shape != (max(times.size - 1, 0), 3):
         raise ValueError(f"h must have shape ({times.size}, 3) and h_mid ({times.size - 1}, 3), not {hs.shape} "
                          f"and {hm.shape}")
     if torque is None:
         g, gm, k = np.zeros_like(hs), np.zeros_like(hm), np.zeros(K)
     else:
-        g, gm = (np.ascontiguousarray(np.asarray(x, float)) for x in torque)
-        k = np.ascontiguousarray(np.broadcast_to(np.asarray(0.0 if torque_scale is None else torque_scale, float), (K,)))
+        g, gm = (kernel_array(x) for x in torque)
+        k = kernel_array(0.0 if torque_scale is None else torque_scale, (K,))
         if g.shape != hs.shape or gm.shape != hm.shape:
             raise ValueError(f"torque must have the shapes of h and h_mid, not {g.shape} and {gm.shape}")
     from .fit_kernels import gyrostat_integrate  # compiled at import: numba only when a fit needs it
