@@ -472,9 +472,10 @@ def simulate_controlled(
 def _run(grid: FloatArray, Y: FloatArray, I: FloatArray, J: FloatArray, axes: FloatArray, k: int, torques: FloatArray,
          dipoles: FloatArray, fields: FloatArray) -> ControlledRun:
     """The run from the states ``Y`` at the control instants (or the kernels' padded states: the
-    impulse last) and what was held from each (its attitude and momentum built on first reading)."""
+    impulse last) and what was held from each (its attitude and momentum built on first reading,
+    from the wheels' ``J`` and axes as they are now: copies)."""
     return ControlledRun(np.asarray(grid, float), Y[:, 4:7], None, I, Y[:, 7:7 + k], torques, dipoles, fields, None,
-                         Y[:, -3:], quaternions=Y[:, :4], wheel_inertia_axes=(J, axes))
+                         Y[:, -3:], quaternions=Y[:, :4], wheel_inertia_axes=(J.copy(), axes.copy()))
 
 
 def command_summary(run: ControlledRun) -> dict[str, Any]:
