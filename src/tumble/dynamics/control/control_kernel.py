@@ -42,6 +42,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from . import compiled_loop as _loop
+from ._front import locked_inverse
 from ..environment.magnetic import FIELD_NONE, FIELD_TABLE, field_form
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
@@ -159,8 +160,6 @@ def _kernel_for(compiled: bool | None, I: FloatArray, field: Any, gravity_gradie
     >>> kernel.k, _kernel_for(None, np.ones(3), None, None, None, None, 1e-10, 1e-12, 1.0) is kernel
     (0, True)
     """
-    from ._front import locked_inverse
-
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
     key = _kernel_key(I, field, gravity_gradient, magnetorquers, wheels, rtol, atol, method, step)
