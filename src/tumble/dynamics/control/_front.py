@@ -53,7 +53,8 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     lone_rods = magnetorquers is not None and field is None
     k = 0 if wheels is None else wheels.count
     raw = (_raw(moments), _raw(omega0), _raw(attitude0), _raw(wheel_speed0))
-    if None in raw or not type(t_end) is type(rtol) is type(atol) is type(period) is float:
+    floats = type(t_end) is float and type(rtol) is float and type(atol) is float and type(period) is float
+    if None in raw or not floats:
         return _checked(moments, omega0, t_end, rtol, atol, period, attitude0, lone_rods, k, wheel_speed0)
     I, T, rtol, atol, period, y0 = _checked_raw(raw, t_end, rtol, atol, period, lone_rods, k)
     return I.copy(), T, rtol, atol, period, y0.copy()
