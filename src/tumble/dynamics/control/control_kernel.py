@@ -40,6 +40,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from ...jit import kernel_array
 from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ._front import locked_inverse
@@ -288,7 +289,7 @@ class ControlKernel:
         P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
                             gp, (self.k,), slots.reshape(-1)])
         self.P = np.ascontiguousarray(P, dtype=float)  # an array, not a tuple passed by value at every stage: 4 % faster
-        self.X = tuple(np.ascontiguousarray(a, dtype=float) for a in (fp, ft, gt))
+        self.X = tuple(kernel_array(a) for a in (fp, ft, gt))  # a read-only table would compile the loop again
         self.packed = packed(self.P, self.X)  # what the kernels take: P and X in one array
         # scipy raises rtol below 100 eps to that (with a warning): the same tolerance here
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)

@@ -40,6 +40,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
+from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
 from . import _display
@@ -397,7 +398,7 @@ def simulate_controlled(
     steps = len(grid) - 1
     law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
     rods = magnetorquers.axes if magnetorquers is not None else _NO_ROWS
-    limits = np.broadcast_to(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else _NO_VALUES
+    limits = kernel_array(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else _NO_VALUES
     if kernel is not None and law is not None:  # the whole loop in one compiled call
         Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step, padded=True)
         return _run(grid, Y, I, J, axes, k, U, D, F)
