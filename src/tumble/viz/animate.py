@@ -277,13 +277,22 @@ def _prepare(body: Body, traj: Trajectory, path, max_frames: int, fps: int, dpi:
 
 
 def _save(fig, draw, frames, path: Path, fps: int, dpi: int) -> None:
-    """Render every frame into a temporary file, then rename it into place."""
+    """Render every frame into a temporary file, then rename it into place.
+
+    The constrained layout is worked out for the first frame and then kept (the layout engine
+    set to none): only the lines and the time stamp change from frame to frame, inside the axes,
+    and laying out the 3D axes again for every frame was 40 % of the demo's time (cProfile of
+    ``tumble demo``: 14.8 of 36 s in ``do_constrained_layout`` for 400 frames). The frames
+    also cannot shift by a pixel from one to the next.
+    """
     import matplotlib
 
     writer = writer_for(path, fps)
     settings = {"animation.ffmpeg_path": ffmpeg_path()} if path.suffix == ".mp4" else {}
     with matplotlib.rc_context(settings), atomic_path(path) as tmp:
         with writer.saving(fig, str(tmp), dpi):
-            for k in frames:
+            for i, k in enumerate(frames):
                 draw(int(k))
                 writer.grab_frame()
+                if i == 0:
+                    fig.set_layout_engine("none")  # the first frame's layout, kept
