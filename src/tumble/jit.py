@@ -39,7 +39,10 @@ import os
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar, cast, overload
+from typing import TYPE_CHECKING, Any, TypeVar, cast, overload
+
+if TYPE_CHECKING:
+    import numpy as np
 
 __all__ = ["PARALLEL_BODIES", "cache_root", "cores", "jit", "kernel_array", "source_stamp"]
 
@@ -218,7 +221,7 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
     return cast(F, njit(cache=cache, **options)(function))
 
 
-def kernel_array(a: Any, shape: tuple[int, ...] | None = None, dtype: Any = float) -> Any:
+def kernel_array(a: Any, shape: tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray[Any, Any]:
     """``a`` as the one kind of array tumble's kernels are compiled for: ``dtype``, C-contiguous
     and writable, broadcast to ``shape`` where given; ``a`` itself where it is that already, else a copy.
 
@@ -246,7 +249,7 @@ def kernel_array(a: Any, shape: tuple[int, ...] | None = None, dtype: Any = floa
     flags = getattr(a, "flags", None)
     if (flags is not None and flags.writeable and flags.c_contiguous and a.dtype == dtype
             and (shape is None or a.shape == shape)):
-        return a
+        return cast("np.ndarray[Any, Any]", a)
     b = np.asarray(a, dtype=dtype)
     if shape is not None and b.shape != shape:
         b = np.broadcast_to(b, shape)

@@ -82,10 +82,10 @@ __all__ = ["MEKF"]
 
 
 def _rows(a: FloatArray, shape: tuple[int, ...], tail: tuple[int, ...]) -> FloatArray:
-    """``a`` broadcast to ``shape + tail`` with the batch flattened, as a writable contiguous array."""
-    if a.shape == shape + tail and a.flags.c_contiguous and a.flags.writeable:
-        return a.reshape((-1, *tail))
-    return np.array(np.broadcast_to(a, shape + tail).reshape((-1, *tail)))
+    """``a`` broadcast to ``shape + tail`` with the batch flattened, as the kernels take it
+    (:func:`~tumble.jit.kernel_array`: float, C-contiguous, writable; ``a`` itself where it is that)."""
+    whole = a.shape == shape + tail
+    return kernel_array(a.reshape((-1, *tail)) if whole else np.broadcast_to(a, shape + tail).reshape((-1, *tail)))
 
 
 @dataclass(frozen=True)
