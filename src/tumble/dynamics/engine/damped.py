@@ -53,7 +53,7 @@ _quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 _damper_rate = jit(damper_rate_components, error_model="numpy")
 
 
-@jit(error_model="numpy", inline="always")
+@jit(error_model="numpy", forceinline=True)  # inlined by LLVM at the stages, as kernels.rhs
 def damped_rhs(y: tuple[float, ...], B: tuple[float, ...], P: tuple[float, ...], u0: float,
                u1: float) -> tuple[float, ...]:
     """``dy/dt`` of the state ``(L, q, w_d, D)`` (module docstring) of a body ``B = (I1, I2, I3, J, c,

@@ -74,8 +74,13 @@ _FAST = {"contract"}
 # The formulas and the step's helpers compiled as ordinary functions, which LLVM inlines where they
 # are called (they are small): the kernels ran as fast as with numba's own inlining, and compiled in
 # about half the time (dop853 + fixed_rk 39 -> 20 CPU-s, measured on a loaded machine), as numba
-# copies an inlined function's IR, with everything it inlines, at every call site. Only rhs and
-# external_torque, too large for LLVM's inliner, are inlined by numba (``inline="always"``).
+# copies an inlined function's IR, with everything it inlines, at every call site. rhs and
+# external_torque, too large for LLVM's own choice, carry LLVM's ``alwaysinline`` (numba's
+# ``forceinline``): compiled once each, inlined by LLVM at every stage. With numba's inlining
+# (``inline="always"``) their IR was copied into each of the 12 stages of a step, and numba's own
+# passes on that IR were most of a first compile: the first torque ``simulate`` (``fixed_rk8``) took
+# 6.8 CPU-s, 3.2 with ``forceinline``, the step as fast (measured alternating, 20 s T-handle runs:
+# rk8 85.0 / 82.9 us, dop853 175.5 / 173.7 us, gravity gradient 182.5 / 177.8 us).
 _euler = jit(euler_components, error_model="numpy")
 _quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 _to_body = jit(to_body, error_model="numpy")
@@ -99,7 +104,7 @@ def _inverse_norm(squared: float) -> float:
     return 1.0 / math.sqrt(squared)
 
 
-@jit(error_model="numpy", inline="always")
+@jit(error_model="numpy", forceinline=True)
 def external_torque(I: tuple[float, ...], w0: float, w1: float, w2: float, x: float, y: float, z: float, s: float,
                     u0: float, u1: float, P: tuple[float, ...]) -> tuple[float, float, float]:
     """The sum of the torque terms ``P`` (N m, principal frame; module docstring) on a body of
@@ -121,7 +126,7 @@ def external_torque(I: tuple[float, ...], w0: float, w1: float, w2: float, x: fl
     return a0, a1, a2
 
 
-@jit(error_model="numpy", inline="always")
+@jit(error_model="numpy", forceinline=True)
 def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: float,
         u1: float) -> tuple[float, float, float, float, float, float, float]:
     """``dy/dt`` of the state ``(omega, q)`` (module docstring), the orbit's direction ``(u0, u1, 0)``."""
@@ -140,8 +145,8 @@ def generated(source: str, filename: str, module: str, *, parallel: bool = False
     is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
     keys the kernels on the sources (:func:`tumble.jit.jit`).
 
-    Each step inlines its right-hand side at its stages (numba's inlining: LLVM alone left the
-    calls, 1.5x the step), but is not itself inlined into the kernels that call it once a step:
+    Each step inlines its right-hand side at its stages (LLVM's ``alwaysinline``, above; without it
+    LLVM left the calls, 1.5x the step), but is not itself inlined into the kernels that call it once a step:
     that made the first compile of the two kernels 58 s instead of 25 s (measured, loaded machine;
     7.6 s before the steps were written out), for no speed (a whole run written out with its steps
     in its loop ran the same).
