@@ -5,6 +5,8 @@ angle with mpmath's own Jacobi functions (no tumble code)."""
 
 from __future__ import annotations
 
+import functools
+
 import mpmath as mp
 import numpy as np
 import pytest
@@ -97,7 +99,14 @@ def test_rotation_per_period_of_the_exact_solution(moments, omega, mode):
 def _solid_angle_mpmath(moments, omega, dps=30):
     """``oint (1 - cos theta) d alpha`` of the polhode, by mpmath quadrature over one period of
     the elliptic argument with mpmath's sn, cn, dn (Landau & Lifshitz sec. 37 amplitudes),
-    oriented as :func:`tumble.analysis.periods.polhode_solid_angle`."""
+    oriented as :func:`tumble.analysis.periods.polhode_solid_angle`. Each case's quadrature once
+    a run (a float, cached): test_montgomery_formula_holds_by_its_terms and
+    test_solid_angle_against_mpmath_quadrature read the same six (~0.4 s each)."""
+    return _solid_angle_quadrature(tuple(map(float, moments)), tuple(map(float, omega)), dps)
+
+
+@functools.cache
+def _solid_angle_quadrature(moments, omega, dps):
     with mp.workdps(dps):
         I1, I2, I3 = (mp.mpf(x) for x in moments)
         w = [abs(mp.mpf(x)) for x in omega]  # the signs do not change the oriented area
