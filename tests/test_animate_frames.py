@@ -2,8 +2,10 @@
 
 After the first frame the still part of the 3D axes (panes, ticks, labels) is drawn once and
 restored; only the front (the moving lines, the time stamp, the titles and the legend over them)
-is drawn again. Both ways go through the same Agg drawing of the same artists in the same order
-onto the same pixels, so the frames are equal exactly (tolerance 0), not only up to anti-aliasing.
+is drawn again (only the moving artists, over a background with the legend and titles, where no
+moving artist reaches those). Both ways go through the same Agg drawing of the same artists onto
+the same pixels, in the same order where they touch the same pixels, so the frames are equal
+exactly (tolerance 0), not only up to anti-aliasing.
 """
 
 from __future__ import annotations
@@ -67,16 +69,17 @@ def _rgba(fig, dpi: int) -> np.ndarray:
 
 
 def test_the_legend_stays_over_a_line_that_crosses_it():
-    """z-order: a moving line under the legend (and the time stamp over it), blitted as drawn in full."""
+    """z-order: a moving line under the legend, blitted as drawn in full; and away from it, too."""
     fig, ax = animate.scene_axes(1.0, "spin")
     ax.plot([-1.0, 1.0], [-1.0, -1.0], [0.0, 0.0], color="0.5")  # still, under the moving line
     line, = ax.plot([], [], [], color="tab:red", lw=3.0, label="omega")
-    stamp = ax.text2D(0.3, 0.45, "", transform=ax.transAxes, fontsize=20)
-    ax.legend(loc="center", fontsize=20)
+    stamp = ax.text2D(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
+    legend = ax.legend(loc="center", fontsize=20)
     fig.set_layout_engine(None)
+    ends = [(1.0, 1.0), (1.0, 0.8), (-0.6, -0.9)]  # through the middle (under the legend) twice; then not
 
     def frame(k: int) -> None:
-        line.set_data_3d([-1.0, 1.0], [1.0, -1.0 + 0.1 * k], [-1.0, 1.0])  # through the middle
+        line.set_data_3d([-1.0, ends[k][0]], [-1.0, ends[k][1]], [-1.0, ends[k][0]])
         stamp.set_text(f"t = {k}")
 
     full = []
@@ -84,10 +87,13 @@ def test_the_legend_stays_over_a_line_that_crosses_it():
         frame(k)
         full.append(_rgba(fig, 30))
     layer = animate._blit_layer([line, stamp], dpi=30)
+    legend_draws = []
+    legend.draw = lambda renderer, draw=legend.draw: legend_draws.append(draw(renderer))
     for k in range(3):
         frame(k)
         assert np.array_equal(_rgba(fig, 30), full[k]), k
-    layer.front.reverse()  # the legend and the stamp under the line: the test sees the order
+    assert len(legend_draws) == 2  # drawn again where the line reaches it, not where it does not
+    layer.front.reverse()  # the legend under the line: the test sees the order
     frame(0)
     assert not np.array_equal(_rgba(fig, 30), full[0])
     assert not ax.get_visible()

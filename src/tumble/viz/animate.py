@@ -330,11 +330,16 @@ def _blit_layer(moving: Sequence[Artist], dpi: float) -> Artist:
     every artist the axes draws after the first of them, as ``Axes.draw`` sorts them by z-order:
     the time stamp, the titles, the legend over the lines) is marked animated, which a draw
     outside ``savefig`` leaves out (a hidden title would be misplaced); the figure is drawn so
-    once, at ``dpi`` on an Agg canvas, and that background kept (``copy_from_bbox``). The layer,
-    added to the figure in place of the axes (hidden), restores it and draws the front alone, in
-    the same order: the pixels of a full draw, exactly (tests/test_animate_frames.py). The
-    writers' ``savefig`` is unchanged; only the figure's draw is cheaper. A renderer that cannot
-    restore (not Agg) or of another size gets the axes drawn in full.
+    once, at ``dpi`` on an Agg canvas, and kept (``copy_from_bbox``): ``under``; then the still
+    part of the front (titles, legend) drawn over it and kept too: ``over``. The layer, added to
+    the figure in place of the axes (hidden), restores ``over`` and draws the moving artists;
+    where one of them reaches a still front artist (their boxes, padded by the line width and
+    3 pixels of anti-aliasing, overlap: a line under the legend), it restores ``under`` instead
+    and draws the whole front, in the axes' order. Either way the pixels of a full draw, exactly
+    (tests/test_animate_frames.py): the drawing that is left out or reordered touches pixels
+    nothing else drawn after ``under`` touches. The writers' ``savefig`` is unchanged; only the
+    figure's draw is cheaper. A renderer that cannot restore (not Agg) or of another size gets
+    the axes drawn in full.
 
     Examples
     --------
@@ -345,13 +350,16 @@ def _blit_layer(moving: Sequence[Artist], dpi: float) -> Artist:
     >>> layer = _blit_layer([line], dpi=20)
     >>> ax.get_visible(), layer in fig.get_children(), layer.front[0] is line, legend in layer.front
     (False, True, True, True)
-    >>> layer.background.get_extents()  # 5.4 in at 20 dpi
-    (0, 0, 108, 108)
+    >>> layer.under.get_extents(), layer.size  # 5.4 in at 20 dpi
+    ((0, 0, 108, 108), (108.0, 108.0))
     """
     from matplotlib.artist import Artist
     from matplotlib.axis import Axis
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.legend import Legend
+    from matplotlib.lines import Line2D
     from matplotlib.spines import Spine
+    from matplotlib.text import Text
 
     ax: Any = moving[0].axes  # Any: matplotlib's hints leave the axes and figure optional
     fig: Any = ax.get_figure(root=True)
@@ -360,6 +368,7 @@ def _blit_layer(moving: Sequence[Artist], dpi: float) -> Artist:
     order = sorted((a for a in ax.get_children() if a is not ax.patch and not isinstance(a, (Axis, Spine))),
                    key=lambda a: a.get_zorder())
     front = order[min(order.index(a) for a in moving):]
+    still = [a for a in front if a not in moving]
     for a in front:
         a.set_animated(True)
     canvas: Any = FigureCanvasAgg(fig)  # the figure's canvas from now on (savefig would make one a frame)
@@ -367,18 +376,41 @@ def _blit_layer(moving: Sequence[Artist], dpi: float) -> Artist:
     fig.set_dpi(dpi)
     try:
         canvas.draw()  # not saving: without the animated front
-        background = canvas.copy_from_bbox(fig.bbox)
+        under = canvas.copy_from_bbox(fig.bbox)
+        renderer = canvas.get_renderer()
+        for a in still:
+            a.draw(renderer)
+        over = canvas.copy_from_bbox(fig.bbox)
+        boxes: list[Any] | None = [a.get_window_extent(renderer).padded(3.0) for a in still  # an empty title draws nothing
+                                    if a.get_visible() and not (isinstance(a, Text) and not a.get_text())]
     finally:
         fig.set_dpi(own_dpi)
+    # boxes only where they bound what is drawn: lines (but for their width) and texts, a legend
+    if not (all(isinstance(a, (Line2D, Text)) for a in moving) and all(isinstance(a, (Text, Legend)) for a in still)):
+        boxes = None
+
+    def reaches(artist: Any, renderer: Any) -> bool:
+        """Whether ``artist``, as just drawn, may touch a pixel of a still front artist."""
+        box = artist.get_window_extent(renderer)
+        pad = 3.0 + (renderer.points_to_pixels(artist.get_linewidth()) if isinstance(artist, Line2D) else 0.0)
+        return not np.isfinite(box.extents).all() or box.padded(pad).count_overlaps(boxes) > 0
 
     class BlitLayer(Artist):
-        front: list[Artist]
-        background: Any  # the Agg renderer's BufferRegion
-        size: tuple[float, float]  # of the renderer it fits
+        front: list[Artist]  # the axes' front, in its order
+        under: Any  # the Agg renderer's BufferRegion: the figure without the front
+        over: Any  # with the still front
+        size: tuple[float, float]  # of the renderer they fit
 
         def draw(self, renderer: Any) -> None:
             if (renderer.get_canvas_width_height() == self.size and hasattr(renderer, "restore_region")):
-                renderer.restore_region(self.background)
+                if boxes is not None:
+                    renderer.restore_region(self.over)
+                    drawn = [a for a in self.front if a in moving]
+                    for a in drawn:
+                        a.draw(renderer)
+                    if not any(a.get_visible() and reaches(a, renderer) for a in drawn):
+                        return
+                renderer.restore_region(self.under)
             else:  # the full draw, for another renderer
                 ax.set_visible(True)
                 try:
@@ -391,8 +423,8 @@ def _blit_layer(moving: Sequence[Artist], dpi: float) -> Artist:
                 a.draw(renderer)
 
     layer = BlitLayer()
-    layer.front, layer.background = front, background
-    x0, y0, x1, y1 = background.get_extents()
+    layer.front, layer.under, layer.over = front, under, over
+    x0, y0, x1, y1 = under.get_extents()
     layer.size = float(x1 - x0), float(y1 - y0)
     layer.set_zorder(ax.get_zorder())
     ax.set_visible(False)
