@@ -289,7 +289,8 @@ def _save(fig: Figure, draw: Callable[[int], None], frames: np.ndarray, path: Pa
     also cannot shift by a pixel from one to the next. No engine at all, not the placeholder
     ``"none"`` leaves: with any engine ``savefig`` draws the figure twice, once without output.
     After the first frame, the axes is drawn by a :func:`_blit_layer`: its still part once,
-    then only the artists of ``moving`` and those over them, 3.5 times faster a frame.
+    then mostly only the artists of ``moving``: ~4 ms a frame instead of ~36 (CPU time, 100
+    frames of 486 x 486 pixels; an MP4's encoding by ffmpeg adds ~3.5 ms, a GIF's by Pillow ~16).
     """
     import matplotlib
 
