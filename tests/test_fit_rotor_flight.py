@@ -30,7 +30,7 @@ from tumble.analysis.tensor.synthetic import combine, example_object, synthetic_
 @functools.cache
 def _throw(seed: int, **kwargs):
     """The throw at 500 Hz, made once a run for each seed and options (read-only: seeds 0 and 2
-    serve three and two tests, ~0.3 s each)."""
+    serve two tests each, ~0.3 s a throw)."""
     throw = synthetic_throw(seed, combine(true_device(), example_object()), **kwargs)
     t, w = throw.t[::8].copy(), throw.omega[::8].copy()
     t.flags.writeable = w.flags.writeable = False
