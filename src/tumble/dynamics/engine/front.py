@@ -153,7 +153,8 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
     y0[:3], y0[3:] = omega0, quat0
     omega, quat = np.empty((len(t), 3)), np.empty((len(t), 4))
     P, n = terms(form)
-    moments, t = kernel_array(moments), kernel_array(t)  # a read-only array would compile every kernel again
+    if not (moments.flags.writeable and t.flags.writeable):  # read-only: every kernel compiled again (kernel_array)
+        moments, t = kernel_array(moments), kernel_array(t)
     if method == "dop853":
         status = k.dop853(y0, t, moments, P, n, rtol, atol, omega, quat)
     else:
