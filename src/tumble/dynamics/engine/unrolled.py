@@ -265,21 +265,23 @@ def fixed_loop_source(name: str, step: str, turns: str, load: str, store: str, o
     >>> print(source.splitlines()[0])
     def run(y0, t_eval, I, P, n, step, omega, quat):
     """
+    # one call of store, its index a loop variable: with a literal 0 for the first sample numba compiled
+    # it twice (for Literal[int](0) and for int64)
     return f"""def {name}(y0, t_eval, I, P, n, step, {outputs}):
     y, body = {load}(y0, I)
-    {store}(y, I, {outputs}, 0)
     h_turns = -1.0
     rot = {turns}(0.0, 0.0)
-    for k in range(1, t_eval.shape[0]):
-        m, h = _equal_steps(t_eval[k] - t_eval[k - 1], step)
-        if h != h_turns:  # the turns from a step's start to its stages, once per step length
-            h_turns = h
-            rot = {turns}(n, h)
-        for j in range(m):
-            cs, ss = _direction(n, t_eval[k - 1] + j * h)
-            y = {step}(y, h, body, P, cs, ss, rot)
-        if not _finite(y):
-            return NON_FINITE
+    for k in range(t_eval.shape[0]):
+        if k > 0:
+            m, h = _equal_steps(t_eval[k] - t_eval[k - 1], step)
+            if h != h_turns:  # the turns from a step's start to its stages, once per step length
+                h_turns = h
+                rot = {turns}(n, h)
+            for j in range(m):
+                cs, ss = _direction(n, t_eval[k - 1] + j * h)
+                y = {step}(y, h, body, P, cs, ss, rot)
+            if not _finite(y):
+                return NON_FINITE
         {store}(y, I, {outputs}, k)
     return OK
 """
