@@ -20,6 +20,7 @@ from scipy.spatial.transform import Rotation
 
 import tumble
 import tumble.viz
+from test_page import painted
 from tumble.cli import main
 from tumble.dynamics.methods.exact import FreeRotation
 from tumble.dynamics.methods.geometric import MAX_STEP_ANGLE, default_step, propagate
@@ -229,8 +230,10 @@ def test_live_run_of_a_flip_is_tumbles_and_plays(live):
 
     frames = page.evaluate("window.tumbleViewer.state().frames")
     page.evaluate("window.tumbleViewer.show(0)")
+    painted(page)
     first = page.screenshot()
     page.evaluate(f"window.tumbleViewer.show({frames // 4})")  # 5 s on: the handle has turned
+    painted(page)
     later = page.screenshot()
     a, b = ground(first), ground(later)
     grey_blue = (a[..., 2] - a[..., 0] > 12) & (a[..., 2] - a[..., 0] < 90) & (a[..., 0] > 40)  # the body, lit
