@@ -49,6 +49,7 @@ def test_a_frozen_body_and_frozen_times_run_on_the_kernels_of_plain_arrays():
     frozen = run_body("rk8", I, w, q, t, form, step=0.05)
     plain = run_body("rk8", I.copy(), w.copy(), q.copy(), t.copy(), form, step=0.05)
     assert np.array_equal(frozen[0], plain[0]) and np.array_equal(frozen[1], plain[1])
+    run_body("rk8", I, w, q, t, form, step=1)  # a whole number of seconds: the step goes in as a float
     k = _kernels()
     assert _kinds(k.fixed_rk8) == []
     assert len(k.fixed_rk8.signatures) == 1

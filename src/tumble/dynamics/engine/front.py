@@ -159,7 +159,7 @@ def run_body(method: str, moments: FloatArray, omega0: FloatArray, quat0: FloatA
         status = k.dop853(y0, t, moments, P, n, rtol, atol, omega, quat)
     else:
         run = k.fixed_rk4 if method == "rk4" else k.fixed_rk8
-        status = run(y0, t, moments, P, n, math.inf if step is None else step, omega, quat)
+        status = run(y0, t, moments, P, n, math.inf if step is None else float(step), omega, quat)
     if status:
         _raise_for(status, method, float(t[-1]))
     return omega, quat
@@ -194,7 +194,7 @@ def run_bodies(method: str, moments: FloatArray, omega0: FloatArray, quat0: Floa
     P, n = terms(form)
     omega, quat = np.empty((N, len(t), 3)), np.empty((N, len(t), 4))  # body-first, as BatchTrajectory keeps them
     status = np.zeros(N, dtype=np.int64)
-    h = np.ascontiguousarray(np.broadcast_to(np.asarray(math.inf if step is None else step, dtype=float), (N,)))
+    h = kernel_array(math.inf if step is None else step, (N,))
     if N >= PARALLEL_BODIES and cores() > 1:
         if method == "dop853":
             k.dop853_batch(y0, t, I, P, n, float(rtol), np.ascontiguousarray(atol), omega, quat, status)  # type: ignore[arg-type]
@@ -275,7 +275,7 @@ def run_damped(method: str, body: FloatArray, y0: FloatArray, t: FloatArray, for
     Y = np.empty((len(t), 11))
     P, n = terms(form)
     run = k.fixed_damped_rk4 if method == "rk4" else k.fixed_damped_rk8
-    status = run(kernel_array(y0), kernel_array(t), kernel_array(body), P, n, math.inf if step is None else step, Y)
+    status = run(kernel_array(y0), kernel_array(t), kernel_array(body), P, n, math.inf if step is None else float(step), Y)
     if status:
         _raise_for(status, method, float(t[-1]))
     return Y
