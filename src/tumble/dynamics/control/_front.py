@@ -24,7 +24,7 @@ from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector
 from ..simulate import check_rtol
 
-__all__ = ["checked", "control_instants", "locked_inverse", "moments_checked", "positive"]
+__all__ = ["checked", "control_instants", "locked_inverse", "moments_checked"]
 
 
 def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, atol: float, controller: Any,
@@ -87,10 +87,10 @@ def _checked(moments: Any, omega0: Any, t_end: float, rtol: float, atol: float, 
     """:func:`checked`'s checks, ``lone_rods`` magnetorquers without a field, ``k`` wheels."""
     I = moments_checked(moments)
     w0 = check_vector("omega0", omega0, "rad/s")
-    T = positive("t_end", t_end, "s")
+    T = check_positive("t_end", t_end, "s")
     rtol = check_rtol("rtol", rtol)
-    atol = positive("atol", atol, "absolute")
-    period = positive("controller.period", period, "s")
+    atol = check_positive("atol", atol, "absolute")
+    period = check_positive("controller.period", period, "s")
     q0 = check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0)
     if lone_rods:
         raise ValueError("magnetorquers need a magnetic field: give field=DipoleField(orbit) or UniformField(B)")
@@ -125,25 +125,6 @@ def moments_checked(value: ArrayLike) -> FloatArray:
 def _moments_of(raw: bytes) -> None:
     """Check the moments of these float64 bytes (raises; a bad value is not kept)."""
     check_moments("moments", np.frombuffer(raw).copy())
-
-
-def positive(field: str, value: object, unit: str) -> float:
-    """:func:`~tumble.validation.check_positive` of ``value``, a positive finite Python float
-    passed straight through.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.control._front import positive
-    >>> positive("t_end", 60.0, "s"), positive("t_end", 60, "s")
-    (60.0, 60.0)
-    >>> positive("t_end", -1.0, "s")
-    Traceback (most recent call last):
-    ...
-    ValueError: t_end = -1.0 must be a positive finite number (s)
-    """
-    if type(value) is float and 0.0 < value < math.inf:
-        return value
-    return check_positive(field, value, unit)
 
 
 def control_instants(t_end: float, period: float) -> FloatArray:
