@@ -1,13 +1,16 @@
 # tumble: two commands do everything on a fresh machine (see README.md).
 #   make demo   creates .venv if needed, installs tumble with what the demo needs (the video
 #               extra: an ffmpeg for the MP4s), runs the T-handle study
-#   make test   same set-up plus the test, cluster and docs tool chains, then the import-layer
-#               contracts, mypy --strict on mass and dynamics ([tool.mypy] in pyproject.toml)
-#               and the whole test suite (on every core: pytest-xdist, one file to a
-#               worker so module fixtures run once), writing Python's bytecode caches even where
-#               PYTHONDONTWRITEBYTECODE is set: without them each of the suite's subprocesses
+#   make test   same set-up plus the test, cluster and docs tool chains, then the whole test
+#               suite (on every core: pytest-xdist, one file to a worker so module fixtures run
+#               once) with, beside it, the import-layer contracts and mypy --strict on mass and
+#               dynamics ([tool.mypy] in pyproject.toml; ~10 CPU-s, printed after the suite, and
+#               either failing fails make test). The suite writes Python's bytecode caches even
+#               where PYTHONDONTWRITEBYTECODE is set: without them each of the suite's subprocesses
 #               compiled tumble's modules again, and each run rewrote every test module's asserts
-#               (collection 8.6 CPU-s a worker, 4.2 with the caches of an earlier run)
+#               (collection 8.6 CPU-s a worker, 4.2 with the caches of an earlier run). So pip
+#               does not byte-compile what it installs (--no-compile: 40 -> 28 s): the suite
+#               compiles, once, only the modules it imports
 #   make docs   creates .venv if needed, installs tumble with the docs extra only (Sphinx and its
 #               extensions; the mesh and cluster extras the gallery's scripts run and the
 #               notebook extra whose IPython the API pages name), then
@@ -37,7 +40,7 @@ $(DEMO_STAMP): pyproject.toml
 $(TEST_STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,cluster,docs]'
+	$(PY) -m pip install --quiet --no-compile -e '.[test,cluster,docs]'
 	touch $(DEMO_STAMP) $(DOCS_STAMP) $(TEST_STAMP)
 
 $(DOCS_STAMP): pyproject.toml
@@ -50,9 +53,11 @@ demo: $(DEMO_STAMP)
 	$(VENV)/bin/tumble demo
 
 test: $(TEST_STAMP)
-	$(VENV)/bin/lint-imports --no-cache
-	$(VENV)/bin/mypy
-	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -n auto --dist loadfile --no-loadscope-reorder
+	( $(VENV)/bin/lint-imports --no-cache && $(VENV)/bin/mypy ) > $(VENV)/static-checks.log 2>&1 & checks=$$!; \
+	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -n auto --dist loadfile --no-loadscope-reorder; suite=$$?; \
+	wait $$checks; static=$$?; cat $(VENV)/static-checks.log; \
+	if [ $$static -ne 0 ]; then echo "make test: the import contracts or mypy failed (above)" >&2; fi; \
+	[ $$suite -eq 0 ] && [ $$static -eq 0 ]
 
 docs: $(DOCS_STAMP)
 	$(VENV)/bin/sphinx-build -W --keep-going -j 2 -q -b html docs site

@@ -279,6 +279,31 @@ def test_make_demo_installs_only_what_the_demo_needs(tmp_path):
     assert _make_dry_run(tmp_path, "demo") == [".venv/bin/tumble demo"]
 
 
+@pytest.mark.parametrize("failing", [None, "lint-imports", "mypy", "pytest"])
+def test_make_test_fails_when_the_suite_or_a_static_check_fails(tmp_path, failing):
+    """``make test`` runs the import contracts and mypy beside the suite: it exits 0 only where
+    all three pass, prints the checks' output after the suite's, and names the checks where they
+    failed (the tools stood in for by scripts that pass or fail, the set-up up to date)."""
+    if shutil.which("make") is None:
+        pytest.skip("make is not installed")
+    for name in ("Makefile", "pyproject.toml"):
+        shutil.copy2(ROOT / name, tmp_path / name)
+    bin_ = tmp_path / ".venv" / "bin"
+    bin_.mkdir(parents=True)
+    for tool in ("lint-imports", "mypy", "python"):
+        name = "pytest" if tool == "python" else tool
+        (bin_ / tool).write_text(f"#!/bin/sh\necho {name} ran\nexit {int(name == failing)}\n", encoding="utf-8")
+        (bin_ / tool).chmod(0o755)
+    for stamp in (".tumble-demo", ".tumble-docs", ".tumble-test"):
+        (tmp_path / ".venv" / stamp).touch()
+    proc = subprocess.run(["make", "-s", "-C", str(tmp_path), "test"], capture_output=True, text=True, timeout=HANG_S)
+    assert (proc.returncode == 0) == (failing is None), proc.stdout + proc.stderr
+    ran = [line for line in proc.stdout.splitlines() if line.endswith(" ran")]
+    assert ran[0] == "pytest ran" and set(ran) == {"pytest ran", "lint-imports ran"} | (
+        set() if failing == "lint-imports" else {"mypy ran"})
+    assert ("the import contracts or mypy failed" in proc.stderr) == (failing in ("lint-imports", "mypy"))
+
+
 def test_make_docs_installs_only_the_docs_extra(tmp_path):
     """``make docs`` on a fresh clone installs tumble with the docs extra alone (issue 28 item 5):
     Sphinx and its extensions and the extras the gallery runs, not the test tool chain; after
