@@ -130,3 +130,22 @@ def test_a_read_only_install_runs_a_compiled_path(tmp_path):  # pragma: no cover
     blocked.mkdir(mode=0o555)
     value, _, _ = _run(root, {"NUMBA_CACHE_DIR": str(blocked), "XDG_CACHE_HOME": str(blocked)})
     assert value == value  # ran, a number
+
+
+def test_a_numba_without_the_undocumented_options_still_compiles(monkeypatch):
+    """``forceinline`` and ``_nrt`` are numba target options that it does not document: where a
+    release drops them (stood in for by deleting them from numba's options), numba refuses them
+    and tumble's :func:`~tumble.jit.jit` compiles the kernel without them, with the same answer."""
+    from numba import njit
+    from numba.core.cpu import CPUTargetOptions
+
+    for name in jit_module.SPEED_ONLY:
+        owner = next(c for c in CPUTargetOptions.__mro__ if name in vars(c))  # this numba knows it
+        monkeypatch.delattr(owner, name)
+    scope: dict = {}
+    exec("def f(x):\n    return x / 0.0", scope)  # no file: compiled without a cache
+    with pytest.raises(KeyError, match="forceinline"):
+        njit(forceinline=True)(scope["f"])(1.0)
+    assert jit_module.known_options({"error_model": "numpy", "forceinline": True, "_nrt": False}) == {
+        "error_model": "numpy"}
+    assert jit_module.jit(scope["f"], error_model="numpy", forceinline=True, _nrt=False)(1.0) == float("inf")
