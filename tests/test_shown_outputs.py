@@ -70,3 +70,8 @@ def test_a_command_that_needs_anothers_output_runs_after_it_and_after_what_that_
     outputs = {"calibrated.toml": calibrate, "bracket": tensor, "bracket.html": view}
     assert _producers(view, outputs) == [("calibrated.toml", calibrate), ("bracket", tensor)]
     assert _producers(tensor, outputs) == [("calibrated.toml", calibrate)] and _producers(calibrate, outputs) == []
+    # a second command writing the same name reads nothing of the first's: it is not run before it
+    # (``tumble plot examples/seed_flip.toml --out figures`` ran ``tumble plot examples/explorer1.toml
+    # --out figures`` first)
+    again = ("calibrate", "d.toml", "--alone", "a2.csv", "--out", "calibrated.toml")
+    assert _producers(again, outputs) == [] and _producers(("plot", "x.toml", "--out", "bracket"), outputs) == []

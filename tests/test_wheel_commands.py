@@ -314,7 +314,9 @@ def _producers(argv: tuple[str, ...], outputs: dict[str, tuple[str, ...]],
     calibrate ... --out calibrated.toml``), each once: (the input, the command)."""
     seen = set() if seen is None else seen
     found: list[tuple[str, tuple[str, ...]]] = []
-    for word in argv[1:]:
+    for i, word in enumerate(argv[1:], 1):
+        if argv[i - 1] in ("--out", "--copy"):  # what the command writes, not what it reads
+            continue
         before = outputs.get(word)
         if before is None or before == argv or before in seen:
             continue
