@@ -40,6 +40,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "numpydoc",
+    "tumble_numpydoc",  # docs/_ext: numpydoc's docstring template compiled once, not per docstring
     "myst_parser",
     "sphinx_gallery.gen_gallery",
     "sphinx.ext.viewcode",  # a [source] link from every API page to its highlighted module (offline)
