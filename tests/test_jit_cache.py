@@ -139,13 +139,13 @@ def test_a_numba_without_the_undocumented_options_still_compiles(monkeypatch):
     from numba import njit
     from numba.core.cpu import CPUTargetOptions
 
-    for name in jit_module.SPEED_ONLY:
+    for name in jit_module._SPEED_ONLY:
         owner = next(c for c in CPUTargetOptions.__mro__ if name in vars(c))  # this numba knows it
         monkeypatch.delattr(owner, name)
     scope: dict = {}
     exec("def f(x):\n    return x / 0.0", scope)  # no file: compiled without a cache
     with pytest.raises(KeyError, match="forceinline"):
         njit(forceinline=True)(scope["f"])(1.0)
-    assert jit_module.known_options({"error_model": "numpy", "forceinline": True, "_nrt": False}) == {
+    assert jit_module._known_options({"error_model": "numpy", "forceinline": True, "_nrt": False}) == {
         "error_model": "numpy"}
     assert jit_module.jit(scope["f"], error_model="numpy", forceinline=True, _nrt=False)(1.0) == float("inf")

@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING, Any, TypeVar, cast, overload
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["PARALLEL_BODIES", "SPEED_ONLY", "cache_root", "cores", "jit", "kernel_array", "known_options", "source_stamp"]
+__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "jit", "kernel_array", "source_stamp"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -218,31 +218,31 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
     source = Path(function.__code__.co_filename)
     # a function typed at a prompt or in a doctest has no file to key a cache on
     cache = source.is_file() and _install_locator() and _folder_for(source.resolve()) is not None
-    return cast(F, njit(cache=cache, **known_options(options))(function))
+    return cast(F, njit(cache=cache, **_known_options(options))(function))
 
 
 #: numba options that only make a kernel faster and that numba keeps among its target options
 #: without documenting them: ``forceinline`` (LLVM's ``alwaysinline``) and ``_nrt=False`` (no
 #: reference counting). numba refuses an option it does not know (KeyError), so a release without
-#: one of these would stop tumble importing; :func:`known_options` leaves them out there instead.
-SPEED_ONLY = ("forceinline", "_nrt")
+#: one of these would stop tumble importing; :func:`_known_options` leaves them out there instead.
+_SPEED_ONLY = ("forceinline", "_nrt")
 
 
-def known_options(options: dict[str, Any]) -> dict[str, Any]:
-    """``options`` less those of :data:`SPEED_ONLY` that the installed numba does not know (its
+def _known_options(options: dict[str, Any]) -> dict[str, Any]:
+    """``options`` less those of :data:`_SPEED_ONLY` that the installed numba does not know (its
     ``CPUTargetOptions``): the kernel compiles as before, only without that speed-up.
 
     Examples
     --------
-    >>> from tumble.jit import known_options
-    >>> known_options({"error_model": "numpy", "forceinline": True})   # numba 0.59-0.68 know both
+    >>> from tumble.jit import _known_options
+    >>> _known_options({"error_model": "numpy", "forceinline": True})   # numba 0.59-0.68 know both
     {'error_model': 'numpy', 'forceinline': True}
     """
     try:
         from numba.core.cpu import CPUTargetOptions
     except ImportError:  # numba moved its options: none of the undocumented ones is assumed
-        return {k: v for k, v in options.items() if k not in SPEED_ONLY}
-    return {k: v for k, v in options.items() if k not in SPEED_ONLY or hasattr(CPUTargetOptions, k)}
+        return {k: v for k, v in options.items() if k not in _SPEED_ONLY}
+    return {k: v for k, v in options.items() if k not in _SPEED_ONLY or hasattr(CPUTargetOptions, k)}
 
 
 #: The numpy dtype of each ``dtype`` :func:`kernel_array` was given (its fast path compares them by identity).
