@@ -7,7 +7,10 @@ equations (torque-free, no air) from the gyroscope's own samples, not the genera
 
 from __future__ import annotations
 
+import copy
 import csv
+import functools
+import inspect
 import warnings
 
 import numpy as np
@@ -17,6 +20,23 @@ from tumble.analysis.fit import fit_recording
 from tumble.analysis.fit.freefall import fit_offset, free_span, rate_derivative, rigid_acceleration
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.dynamics.environment.earth import STANDARD_GRAVITY
+
+
+_SIGNATURE = inspect.signature(synthetic_recording)
+
+
+@functools.cache
+def _made(arguments: tuple):
+    return synthetic_recording(**dict(arguments))
+
+
+def _recording(*args, **kwargs):
+    """synthetic_recording's recording, made once per module for each seed and options (the
+    defaults filled in: seed 11's racquet serves seven tests, seeds 10-14 both offset tests, seed
+    41 three, seed 5's phone two); each call gets a deep copy."""
+    bound = _SIGNATURE.bind(*args, **kwargs)
+    bound.apply_defaults()
+    return copy.deepcopy(_made(tuple(bound.arguments.items())))
 
 
 def _inside(rec, a, b, margin=0.02):
@@ -29,7 +49,7 @@ def test_free_flight_reads_rigid_body_kinematics(seed):
     its bias), with omega' from Euler's equations of the body's true moments and omega the
     gyroscope's samples turned to the principal axes: the residual is the two sensors' noise and
     scale errors, a few per cent of a signal of several m/s^2."""
-    rec = synthetic_recording(seed, tosses=3, accel=True, drag=0.0, flex=False)
+    rec = _recording(seed, tosses=3, accel=True, drag=0.0, flex=False)
     R = rec.sensor_rotation.as_matrix()
     I = np.array(rec.body.moments)
     w = (rec.omega - rec.bias) @ R.T  # principal axes
@@ -47,14 +67,14 @@ def test_free_flight_reads_rigid_body_kinematics(seed):
 def test_held_reads_g_and_contact_spikes(seed):
     """Held, the accelerometer reads about g (the hand carries the weight); a catch is a jolt of
     tens of m/s^2; a landing an impact above 2 g (in flight: the test above)."""
-    rec = synthetic_recording(seed, tosses=2, accel=True)
+    rec = _recording(seed, tosses=2, accel=True)
     a = np.linalg.norm(rec.accel.f, axis=1)
     first_hold = rec.t < rec.flights[0, 0] - 0.35
     assert abs(np.median(a[first_hold]) - STANDARD_GRAVITY) < 1.0
     for _, end in rec.flights:
         catch = (rec.t >= end) & (rec.t < end + 0.15)
         assert a[catch].max() > 15.0
-    land = synthetic_recording(seed, tosses=1, accel=True, ending="landing", body="phone")
+    land = _recording(seed, tosses=1, accel=True, ending="landing", body="phone")
     a = np.linalg.norm(land.accel.f, axis=1)
     impact = (land.t >= land.flights[0, 1]) & (land.t < land.flights[0, 1] + 0.05)
     assert a[impact].max() > 2 * STANDARD_GRAVITY
@@ -81,7 +101,7 @@ def test_offset_fit_recovers_the_sensor_position():
     over seeded recordings; and the coverage is not bought with huge uncertainties."""
     hits = []
     for seed in range(10, 20):
-        rec = synthetic_recording(seed, tosses=2, accel=True)
+        rec = _recording(seed, tosses=2, accel=True)
         for a, b in rec.flights:
             sel = _inside(rec, a, b, 0.05)
             w = rec.omega[sel]
@@ -101,7 +121,7 @@ def test_the_offsets_uncertainty_holds_the_true_offset():
     z = []
     for seed in range(10, 15):
         for body in ("phone", "racquet"):
-            rec = synthetic_recording(seed, body=body, tosses=2, accel=True)
+            rec = _recording(seed, body=body, tosses=2, accel=True)
             for a, b in rec.flights:
                 sel = _inside(rec, a, b, 0.05)
                 w = rec.omega[sel]
@@ -114,7 +134,7 @@ def test_free_span_finds_release_and_catch():
     """Given the whole stretch from the hold before to the hold after, the free fall's residual
     cuts each flight within 30 ms of its true release and catch."""
     for seed in (21, 22, 23):
-        rec = synthetic_recording(seed, tosses=2, accel=True)
+        rec = _recording(seed, tosses=2, accel=True)
         for start, end in rec.flights:
             a = int(np.searchsorted(rec.t, start - 0.3))
             b = int(np.searchsorted(rec.t, end + 0.3))
@@ -128,7 +148,7 @@ def test_hand_held_is_not_free():
     """A phone swung about in the hand at several rad/s is not in free fall."""
     refused = []
     for seed in range(30, 36):
-        rec = synthetic_recording(seed, tosses=1, accel=True, hand=(3.0, 10.0))
+        rec = _recording(seed, tosses=1, accel=True, hand=(3.0, 10.0))
         hold = np.flatnonzero(rec.t < rec.flights[0, 0] - 0.3)
         if len(hold) < 60:
             continue
@@ -147,7 +167,7 @@ def test_phyphox_export_with_accelerometer(tmp_path, as_zip):
     from tumble.analysis.fit.accelsynth import phyphox_accel_csv
     from tumble.io.gyrodata import load_recording
 
-    rec = synthetic_recording(41, tosses=1, accel=True, rate=200.0)
+    rec = _recording(41, tosses=1, accel=True, rate=200.0)
     files = {"Gyroscope.csv": rec.csv_text(), "Accelerometer.csv": phyphox_accel_csv(rec.t[::2], rec.accel.f[::2]),
              "meta/time.csv": rec.time_csv_text()}
     if as_zip:
@@ -184,7 +204,7 @@ def test_accelerometer_cuts_flights_closer_to_release_and_impact():
     errors: dict[bool, list] = {False: [], True: []}
     found = {False: 0, True: 0}
     for seed in range(100, 104):
-        rec = synthetic_recording(seed, tosses=2, accel=True)
+        rec = _recording(seed, tosses=2, accel=True)
         both = {}
         for use in (False, True):
             ok = [f for f in find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f if use else None)
@@ -214,7 +234,7 @@ def test_hand_held_motion_is_not_taken_for_a_flight():
 
     refused = 0
     for seed in range(200, 203):
-        rec = synthetic_recording(seed, tosses=3, ending="mixed", hand=(3.0, 10.0), accel=True)
+        rec = _recording(seed, tosses=3, ending="mixed", hand=(3.0, 10.0), accel=True)
         flights = find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f)
         for f in flights:
             if f.status == "ok":
@@ -229,7 +249,7 @@ def test_fit_recording_states_the_sensor_offset():
     recordings take it as their fourth item; without it the offset is None."""
     from tumble.analysis.fit.recording import fit_recording
 
-    a, b = synthetic_recording(11, tosses=2, accel=True), synthetic_recording(12, tosses=1, accel=True)
+    a, b = _recording(11, tosses=2, accel=True), _recording(12, tosses=1, accel=True)
     fit = fit_recording(a.t, a.omega, events=a.events, accel=a.accel.f)
     ok = [toss for toss in fit.tosses if toss.status == "ok"]
     assert ok
@@ -254,7 +274,7 @@ def test_fit_command_uses_the_accelerometer(tmp_path, capsys):
     from tumble.analysis.fit.accelsynth import phyphox_accel_csv
     from tumble.commands.fit import run_fit_command
 
-    rec = synthetic_recording(11, tosses=2, accel=True)
+    rec = _recording(11, tosses=2, accel=True)
     export = tmp_path / "export"
     export.mkdir()
     (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
@@ -300,7 +320,7 @@ def test_a_flight_cut_at_the_free_fall_keeps_no_sample_of_the_catch():
     flight's residual was 0.107 rad/s against 0.012 from the gyroscope alone. (Of 76 flights of
     seeds 0-19, phone and racquet, two still fit worse with the accelerometer, phone seeds 6 and
     11, 0.10 against 0.02 rad/s: the longer window's fit ends in a poorer optimum; not fixed.)"""
-    rec = synthetic_recording(5, body="phone", tosses=2, accel=True)
+    rec = _recording(5, body="phone", tosses=2, accel=True)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         alone = fit_recording(rec.t, rec.omega, events=rec.events).tosses
@@ -316,7 +336,7 @@ def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, caps
     and its value (exit 2), as for the gyroscope's."""
     from tumble.cli import main
 
-    rec = synthetic_recording(5, body="phone", tosses=2, accel=True)
+    rec = _recording(5, body="phone", tosses=2, accel=True)
     f = rec.accel.f.copy()
     f[100, 2] = np.nan
     rows = "".join(f"{ti},{w[0]},{w[1]},{w[2]},{a[0]},{a[1]},{a[2]}\n" for ti, w, a in zip(rec.t, rec.omega, f))
@@ -339,7 +359,7 @@ def test_an_accelerometer_that_does_not_cover_the_gyroscopes_record_is_left_out_
     from tumble.cli import main
     from tumble.io.gyrodata import load_recording
 
-    rec = synthetic_recording(41, tosses=1, accel=True, rate=200.0)
+    rec = _recording(41, tosses=1, accel=True, rate=200.0)
     middle = 0.5 * (rec.t[0] + rec.t[-1])
     cases = {"late": (rec.t >= 2.0, rec.t[0]), "dropped": (np.abs(rec.t - middle) > 0.2, middle),
              "prompt": (rec.t >= rec.t[0] + 0.05, None)}
@@ -370,7 +390,7 @@ def test_a_free_fall_fits_as_well_as_the_gyroscopes_own_flight(seed):
     optimum (0.10 and 0.12 rad/s RMS against 0.02 from the gyroscope alone): the other seeds are
     tried when a fit lies 1.5 times above its noise floor (flights.POOR_FIT), and every flight
     fits about as well as without the accelerometer."""
-    rec = synthetic_recording(seed, body="phone", tosses=2, accel=True)
+    rec = _recording(seed, body="phone", tosses=2, accel=True)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fits = [fit_recording(rec.t, rec.omega, events=rec.events, accel=a) for a in (None, rec.accel.f)]
@@ -390,7 +410,7 @@ def test_an_absurd_time_or_reading_in_phyphoxs_accelerometer_is_refused(tmp_path
     the line and the column, exit 2, as the gyroscope's reader refuses the same cell."""
     from tumble.cli import main
 
-    rec = synthetic_recording(11, tosses=2, accel=True)
+    rec = _recording(11, tosses=2, accel=True)
     export = tmp_path / "export"
     export.mkdir()
     (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")

@@ -138,12 +138,45 @@ def _calibration_throws():
     return proof, placed, alone, with_proof
 
 
+@functools.cache
+def _turned_throws() -> tuple[Throw, ...]:
+    """The device with the proof mounted turned (seeds 24 and 25): made once, for the library's
+    calibration and the commands' below."""
+    proof, placed, _, _ = _calibration_throws()
+    turned = Rigid(proof.mass, rotate_inertia(proof.inertia, Rotation.from_rotvec([0.0, 0.0, np.pi / 2])), placed.center)
+    return tuple(synthetic_throw(s, combine(true_device(), turned)) for s in (24, 25))
+
+
 DEVICE = Device(0.10067, ROTOR_AXIS)
 _POOLS: dict[tuple, tuple] = {}
+_FLOWN: dict[bytes, object] = {}
 
 
 @pytest.fixture
-def pooled_once(monkeypatch):
+def flown_once(monkeypatch):
+    """pool_throws's fit of each throw made once: the tests below give the same throws (the
+    alone and proof sets, throws 1 and 2) to several calibrations and tensors, and a throw's fit
+    is deterministic in the throw and the arguments (the key: their pickled bytes). Each test
+    gets its own deep copy."""
+    import copy
+    import hashlib
+    import pickle
+
+    import tumble.analysis.tensor.pool as module
+
+    real = module.fit_flown
+
+    def once(throw, *args, **kwargs):
+        key = hashlib.sha256(pickle.dumps((throw, args, sorted(kwargs.items())))).digest()
+        if key not in _FLOWN:
+            _FLOWN[key] = real(throw, *args, **kwargs)
+        return copy.deepcopy(_FLOWN[key])
+
+    monkeypatch.setattr(module, "fit_flown", once)
+
+
+@pytest.fixture
+def pooled_once(monkeypatch, flown_once):
     """calibrate's fits of a set of throws made once for the tests below, which give it the same
     throws (of DEVICE) with different proofs or partners: a pool of given throws is deterministic,
     and what each test checks is the calibration's verdict on them."""
@@ -161,9 +194,8 @@ def pooled_once(monkeypatch):
 
 
 def test_a_proof_mounted_turned_is_named(pooled_once):
-    proof, placed, alone, _ = _calibration_throws()
-    turned = Rigid(proof.mass, rotate_inertia(proof.inertia, Rotation.from_rotvec([0.0, 0.0, np.pi / 2])), placed.center)
-    with_turned = [synthetic_throw(s, combine(true_device(), turned)) for s in (24, 25)]
+    proof, _, alone, _ = _calibration_throws()
+    with_turned = list(_turned_throws())
     cal = calibrate(DEVICE, alone[:2], with_turned, proof)
     assert cal.problems and "mounted turned" in cal.problems[0] and cal.chi2_dof > 100
 
@@ -195,7 +227,7 @@ def test_the_same_throw_twice_is_refused():
         fit_tensor([throw(1), throw(2), _with(throw(1), input="copy.csv")], calibrated_device(), OBJECT.mass)
 
 
-def test_a_rate_logged_in_degrees_read_as_radians_is_left_out_and_the_others_answer():
+def test_a_rate_logged_in_degrees_read_as_radians_is_left_out_and_the_others_answer(flown_once):
     """One throw's rates 57 times too small (deg/s read as rad/s): the free motion does not explain
     it; the other throws give the answer, naming the one left out."""
     slipped = _with(throw(3), omega=np.deg2rad(throw(3).omega), input="slip.csv")
@@ -206,7 +238,7 @@ def test_a_rate_logged_in_degrees_read_as_radians_is_left_out_and_the_others_ans
     assert np.all(np.abs(fit.object.principal_moments / truth - 1) < 0.03)
 
 
-def test_a_gyroscope_bias_beyond_a_gyroscopes_is_left_out():
+def test_a_gyroscope_bias_beyond_a_gyroscopes_is_left_out(flown_once):
     biased = _with(throw(3), omega=throw(3).omega + [0.0, -0.81, 0.0], input="biased.csv")
     fit = fit_tensor([throw(1), throw(2), biased], calibrated_device(), OBJECT.mass)
     assert fit.throws[2].status == "skipped" and "bias of 0.8" in fit.throws[2].reason
@@ -289,11 +321,9 @@ def test_the_commands_refuse_a_calibration_that_does_not_check_out(tmp_path, cap
     from tumble.io.devicefile import load_calibration, write_device
     from tumble.io.throwfile import write_throw
 
-    proof, placed, alone, _ = _calibration_throws()
-    turned = Rigid(proof.mass, rotate_inertia(proof.inertia, Rotation.from_rotvec([0.0, 0.0, np.pi / 2])), placed.center)
+    proof, _, alone, _ = _calibration_throws()
     paths = {name: [str(write_throw(tmp_path / f"{name}{k}.csv", th)) for k, th in enumerate(throws)]
-             for name, throws in (("a", alone[:2]), ("p", [synthetic_throw(s, combine(true_device(), turned))
-                                                           for s in (24, 25)]), ("o", [throw(1), throw(2)]))}
+             for name, throws in (("a", alone[:2]), ("p", list(_turned_throws())), ("o", [throw(1), throw(2)]))}
     device = write_device(tmp_path / "device.toml", DEVICE, proof)
     calibrated = tmp_path / "calibrated.toml"
     code = main(["calibrate", str(device), "--alone", *paths["a"], "--proof", *paths["p"], "--out", str(calibrated)])

@@ -11,8 +11,12 @@ on a few seeded trials each (the coverage campaigns are benchmarks/tensor_covera
 
 from __future__ import annotations
 
+import copy
 import functools
+import hashlib
+import inspect
 import json
+import pickle
 
 import numpy as np
 import pytest
@@ -57,12 +61,42 @@ def throw(seed: int):
     return synthetic_throw(seed, FLOWN, input=f"throw{seed}.csv")
 
 
-@functools.cache
+_FITS: dict[bytes, object] = {}
+_FIT_SIGNATURE = inspect.signature(fit_flown)
+
+
+def fitted(th, *args, **kwargs):
+    """fit_flown's fit, made once for a throw and arguments (the key: their pickled bytes, the
+    defaults filled in): the throws below are fitted alike by several tests, and by pool_throws
+    (the ``flown_once`` fixture); the fit is deterministic in them."""
+    bound = _FIT_SIGNATURE.bind(th, *args, **kwargs)
+    bound.apply_defaults()
+    key = hashlib.sha256(pickle.dumps(tuple(bound.arguments.items()))).digest()
+    if key not in _FITS:
+        _FITS[key] = fit_flown(th, *args, **kwargs)
+    return _FITS[key]
+
+
+@pytest.fixture
+def flown_once(monkeypatch):
+    """pool_throws fits each throw through :func:`fitted`, a deep copy each time."""
+    import tumble.analysis.tensor.pool as module
+
+    monkeypatch.setattr(module, "fit_flown", lambda *args, **kwargs: copy.deepcopy(fitted(*args, **kwargs)))
+
+
 def flown_fit(seed: int):
-    return fit_flown(throw(seed), np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE, errors=SensorErrors())
+    return fitted(throw(seed), np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE, errors=SensorErrors())
 
 
 PERFECT = Imperfections.none(ROTOR_AXIS)
+
+
+@functools.cache
+def perfect_throw(seed: int):
+    """A throw of a perfect device, made once: two tests fit seed 1's alike, and the centre's
+    test logs seeds 1 and 2 with an accelerometer of scale 1 (the same draws)."""
+    return synthetic_throw(seed, FLOWN, imperfections=PERFECT)
 
 
 def test_kernel_matches_dop853_on_the_angular_velocity_form():
@@ -172,8 +206,7 @@ def test_a_caught_throw_ends_at_the_catch():
 def test_a_perfect_devices_throw_gives_the_flown_moments_within_half_a_percent():
     truth = np.linalg.eigvalsh(FLOWN.inertia)
     for seed in (1, 2, 3):
-        f = fit_flown(synthetic_throw(seed, FLOWN, imperfections=PERFECT), np.array(ROTOR_AXIS), ROTOR_INERTIA,
-                      saturation=GYRO_RANGE)
+        f = fitted(perfect_throw(seed), np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
         assert np.all(np.abs(np.linalg.eigvalsh(f.inertia) / truth - 1) < 0.005)
         assert np.all(f.P[12:15] >= 0) and f.P[16] >= 0   # the drags never negative
 
@@ -187,7 +220,7 @@ def test_a_real_gyroscopes_lone_throw_is_within_its_stated_uncertainty():
         assert np.all(np.abs(m - truth) < 3 * std)
 
 
-def test_the_joint_fit_finds_the_gyroscopes_distortion_and_the_tensor():
+def test_the_joint_fit_finds_the_gyroscopes_distortion_and_the_tensor(flown_once):
     """Three throws of one mount: one tensor, the gyroscope's trace-free distortion and the rotor's
     tilt fitted with it; the tensor within 1 %, the distortion within 0.2 % of the truth."""
     pooled, fits = pool_throws([throw(s) for s in (1, 2, 3)], np.array(ROTOR_AXIS), ROTOR_INERTIA,
@@ -200,7 +233,7 @@ def test_the_joint_fit_finds_the_gyroscopes_distortion_and_the_tensor():
     assert np.abs(pooled.center - FLOWN.center).max() < 1.5e-3
 
 
-def test_centre_of_mass_from_the_accelerometer():
+def test_centre_of_mass_from_the_accelerometer(flown_once):
     """The joint fit's centre of mass (three throws: the air's drag and the firmware's smoothing
     modelled, the rotor's jolts left out) within its stated uncertainty."""
     pooled, _ = pool_throws([throw(s) for s in (4, 5, 6)], np.array(ROTOR_AXIS), ROTOR_INERTIA,
@@ -229,8 +262,8 @@ def test_fit_tensor_gives_the_object_and_its_json():
 def test_the_rotor_inertia_scales_the_whole_tensor():
     """The gyrostat's equations are unchanged when I and J_r scale together: a J_r 10 % high gives
     a tensor 10 % high (and so the rotor's uncertainty is a systematic part common to all throws)."""
-    th = synthetic_throw(1, FLOWN, imperfections=PERFECT)
-    f = fit_flown(th, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
+    th = perfect_throw(1)
+    f = fitted(th, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
     g = fit_flown(th, np.array(ROTOR_AXIS), 1.1 * ROTOR_INERTIA, saturation=GYRO_RANGE)
     assert np.allclose(g.inertia, 1.1 * f.inertia, rtol=1e-4, atol=1e-4 * np.abs(f.inertia).max())
 
@@ -378,7 +411,9 @@ def test_the_centres_sensor_columns_are_what_an_accelerometer_scale_does():
     errors = SensorErrors()
     centres = []
     for scale in (1.0, 1.0 + ACCEL_SCALE_STD):
-        logs = [synthetic_throw(s, flown, imperfections=replace(imp, accel_scale=np.array([scale, 1.0, 1.0])))
+        # at scale 1 the perfect device's throws (the same draws, made once above)
+        logs = [perfect_throw(s) if scale == 1.0 else
+                synthetic_throw(s, flown, imperfections=replace(imp, accel_scale=np.array([scale, 1.0, 1.0])))
                 for s in (1, 2)]
         pooled, _ = pool_throws(logs, np.array(ROTOR_AXIS), ROTOR_INERTIA, errors=errors)
         centres.append(pooled.center)
