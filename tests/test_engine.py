@@ -213,13 +213,24 @@ def test_a_batchs_bad_step_is_refused_not_run(step, message):
                        torque=ConstantTorque(TAU))
 
 
-def test_the_quaternions_inverse_norm_is_its_square_roots_to_round_off():
-    """The torques normalise a step's quaternion by the series of 1/sqrt about 1 where it is a unit
-    one to round-off: against math.sqrt over |q|^2 - 1 from 0 to the series' edge and beyond."""
-    import math
-
+@pytest.mark.parametrize("scale", [1.0 + 3e-9, 1.0 - 2e-6, 0.7, 2.5])
+def test_the_torques_of_a_quaternion_not_normalised_are_the_unit_quaternions(scale):
+    """A step's quaternion is a unit one only to the integration's accuracy: the world torque and
+    the gravity gradient read it through to_body's homogeneous form (|q|^2 times the rotation)
+    divided by |q|^2 and |q|^4, so they equal the normalised quaternion's to round-off, and the
+    direction in the body is scipy's."""
     from tumble.dynamics.engine import kernels
+    from tumble.dynamics.special.quaternion import to_body
 
-    inverse_norm = kernels._inverse_norm.py_func
-    for e in (0.0, 1e-16, -3e-12, 2e-9, -5e-7, 9.99e-7, -9.99e-7, 1.01e-6, 1e-3, -0.5, 3.0):
-        assert inverse_norm(1.0 + e) == pytest.approx(1.0 / math.sqrt(1.0 + e), rel=2e-16, abs=0.0)
+    q = Rotation.from_euler("xyz", [0.3, -0.2, 0.5]).as_quat()
+    I = (10.0, 12.0, 15.0, 0.1, 1.0 / 12.0, 1.0 / 15.0)
+    u0, u1 = np.cos(0.4), np.sin(0.4)
+    for P in ((0.0, 0.0, 0.0, 0.01, -0.02, 0.015, 0.0, 0.0, 0.0, 0.0),      # a constant world torque
+              (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.5e-3, 0.0, 0.0, 0.0)):       # the gravity gradient, n^2
+        unit = kernels.external_torque.py_func(I, 0.1, 1.0, 0.1, *q, u0, u1, P)
+        scaled = kernels.external_torque.py_func(I, 0.1, 1.0, 0.1, *(scale * q), u0, u1, P)
+        # round-off: a few units in the last place of the largest component (the sums cancel)
+        np.testing.assert_allclose(scaled, unit, rtol=0.0, atol=2e-15 * np.max(np.abs(unit)))
+    b = to_body(*(scale * q), u0, u1, 0.0)
+    np.testing.assert_allclose(np.array(b) / scale**2, Rotation.from_quat(q).inv().apply([u0, u1, 0.0]),
+                               rtol=0, atol=1e-15)

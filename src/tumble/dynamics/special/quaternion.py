@@ -180,8 +180,10 @@ def to_body(x: Any, y: Any, z: Any, s: Any, v0: Any, v1: Any, v2: Any) -> tuple[
     """``R^T v``, the world vector ``v`` in the body frame of the quaternion ``(x, y, z, s)``.
 
     ``R`` (body to world) from the quaternion, scalar last, Shuster 1993 eq. 161, here
-    transposed; the quaternion need not be normalised (``R`` then scales by ``|q|^2``: divide
-    first where it matters). Floats (the compiled kernels) or arrays of one shape.
+    transposed, in its homogeneous form (the diagonal ``s^2 + x^2 - y^2 - z^2``, ..., not
+    ``1 - 2 (y^2 + z^2)``): for a quaternion that is not normalised it is exactly ``|q|^2`` times
+    the rotation of ``q / |q|``, so a caller divides by ``|q|^2`` (or ``|q|^4`` for a product of
+    two) instead of normalising ``q`` first. Floats (the compiled kernels) or arrays of one shape.
 
     Examples
     --------
@@ -191,6 +193,7 @@ def to_body(x: Any, y: Any, z: Any, s: Any, v0: Any, v1: Any, v2: Any) -> tuple[
     >>> [round(float(u), 12) + 0.0 for u in to_body(0.0, 0.0, c, c, 1.0, 0.0, 0.0)]   # + 0.0: no -0.0
     [0.0, -1.0, 0.0]
     """
-    return ((1 - 2 * (y * y + z * z)) * v0 + 2 * (x * y + z * s) * v1 + 2 * (x * z - y * s) * v2,
-            2 * (x * y - z * s) * v0 + (1 - 2 * (x * x + z * z)) * v1 + 2 * (y * z + x * s) * v2,
-            2 * (x * z + y * s) * v0 + 2 * (y * z - x * s) * v1 + (1 - 2 * (x * x + y * y)) * v2)
+    ss, xx, yy, zz = s * s, x * x, y * y, z * z
+    return ((ss + xx - yy - zz) * v0 + 2 * (x * y + z * s) * v1 + 2 * (x * z - y * s) * v2,
+            2 * (x * y - z * s) * v0 + (ss - xx + yy - zz) * v1 + 2 * (y * z + x * s) * v2,
+            2 * (x * z + y * s) * v0 + 2 * (y * z - x * s) * v1 + (ss - xx - yy + zz) * v2)
