@@ -350,7 +350,8 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
-    if spec.compiled_only and kernel_form(model) is None:
+    form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
+    if spec.compiled_only and form is None:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
         raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
                          f"(ConstantTorque, GravityGradient); for torque = {torque!r} use one of: {allowed}")
@@ -399,13 +400,13 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         w0 = A.T @ w0
         if model is not None and model.frame == "body":
             model = design_torque(model, A)
+            form = kernel_form(model)
     axes = A.tobytes() if A.dtype == np.float64 and A.flags.c_contiguous else np.asarray(A, float).tobytes()
     if type(attitude0) is np.ndarray and attitude0.shape == (4,) and attitude0.dtype == np.float64:
         q0 = np.array(_initial_quat_of(attitude0.tobytes(), axes))  # the check once for the same bytes
     else:
         design_to_world = None if attitude0 is None else np.array(check_rotation("attitude0", attitude0)).tobytes()
         q0 = np.array(_initial_quat(design_to_world, axes))
-    form = kernel_form(model)
     spin = gain = 0.0
     if not spec.closed_form:  # a stepping method: its work is bounded by the spin it follows
         spin = spin_bound(internal, w0, t)
