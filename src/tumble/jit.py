@@ -235,7 +235,7 @@ def _known_options(options: dict[str, Any]) -> dict[str, Any]:
     Examples
     --------
     >>> from tumble.jit import _known_options
-    >>> _known_options({"error_model": "numpy", "forceinline": True})   # numba 0.59-0.68 know both
+    >>> _known_options({"error_model": "numpy", "forceinline": True})   # numba 0.68 knows both
     {'error_model': 'numpy', 'forceinline': True}
     """
     try:
