@@ -427,3 +427,23 @@ def test_the_lighter_pages_read_the_same(site):
     assert "sg_gallery.css" in example and "sg_gallery.css" not in (site / "tour.html").read_text(encoding="utf-8")
     # sphinx-gallery links the names in its examples' code by their spans before they are taken off
     assert example.count('<a class="sphx-glr-backref-module-tumble') >= 5
+
+
+def test_numpydoc_with_its_template_kept_renders_what_numpydoc_renders():
+    """docs/_ext/tumble_numpydoc.py compiles numpydoc's docstring template once: the text it
+    renders is numpydoc's own, for a function, a class and a module's kernel wrapper."""
+    import numpydoc.numpydoc as numpydoc_module
+    import tumble_numpydoc
+    from numpydoc.docscrape_sphinx import get_doc_object as numpydocs
+
+    import tumble.jit
+
+    before = numpydoc_module.get_doc_object
+    try:
+        tumble_numpydoc.setup(None)  # it only sets numpydoc's global; Sphinx's app is not read
+        kept = numpydoc_module.get_doc_object
+        assert kept is not numpydocs
+        for obj, what in ((tumble.simulate, "function"), (tumble.MassProperties, "class"), (tumble.jit.jit, "function")):
+            assert str(kept(obj, what, config={})) == str(numpydocs(obj, what, config={})), obj
+    finally:
+        numpydoc_module.get_doc_object = before
