@@ -49,8 +49,10 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
     ),
     "the rotation of a vector by a quaternion (its matrix)": (
         "dynamics/special/quaternion.py",
-        (r"1(\.0)?-2(\.0)?\*\((\w+)\*\3\+(\w+)\*\4\)",),
-        ("r00 = 1.0 - 2.0 * (yq * yq + z * z)", "return (1 - 2 * (y * y + z * z)) * v0"),
+        (r"1(\.0)?-2(\.0)?\*\((\w+)\*\3\+(\w+)\*\4\)",  # 1 - 2 (y^2 + z^2): the unit quaternion's diagonal
+         r"\b(\w+)\*\1\+(\w+)\*\2-(\w+)\*\3-(\w+)\*\4\b"),  # s^2 + x^2 - y^2 - z^2: the homogeneous form's
+        ("r00 = 1.0 - 2.0 * (yq * yq + z * z)", "return (1 - 2 * (y * y + z * z)) * v0",
+         "r00 = s * s + x * x - y * y - z * z"),
     ),
     "the Earth's turn (theta0 + OMEGA_EARTH t)": (
         "dynamics/environment/earth.py",
@@ -73,18 +75,12 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
 
 #: The copies still written beside their homes: (formula, module) -> why.
 EXCEPTIONS: dict[tuple[str, str], str] = {
-    # issue 38: moving onto the engine
-    ("Euler's equations, angular-velocity form", "dynamics/control/controlled.py"): "the closed loop's Python right-hand side",
     # issue 38: moving onto the engine. Calling euler_components here changes the kernel by an ulp
     # (I w products or a reciprocal instead of (I2 - I3) w2 w3 / I1), and that alone turns
     # tests/test_fit_recording.py::test_flights_that_scatter_inflate_the_pooled_uncertainty
     # (pooled std 0.011 instead of >= 0.02): the fit there hangs on round-off; it goes with the fits
     # onto the engine.
     ("Euler's equations, angular-velocity form", "dynamics/models/fit_kernels.py"): "the fits' compiled drag kernel",
-    # issue 38: moving onto the engine
-    ("quaternion kinematics (q' = q (x) (w, 0) / 2)", "dynamics/control/controlled.py"): "the closed loop's Python kinematics",
-    # issue 38: moving onto the engine
-    ("the rotation of a vector by a quaternion (its matrix)", "dynamics/control/_rotations.py"): "the Python loop's R",
 }
 
 

@@ -1,4 +1,4 @@
-"""The Python path's rotations and cross product on 3-vectors, written out: what the closed loop's
+"""The Python path's rotation matrix (from the one writing, ``to_body``) and cross product on 3-vectors: what the closed loop's
 right-hand side (:func:`~tumble.dynamics.control.controlled.simulate_controlled` with a model of
 one's own) calls at every evaluation, where numpy's and scipy's general routines cost tens of
 microseconds a call.
@@ -9,13 +9,16 @@ from __future__ import annotations
 import numpy as np
 
 from ...typing import ArrayLike, FloatArray
+from ..special.quaternion import to_body
 
 __all__ = ["Matrix", "cross", "matrix"]
 
 
 def matrix(q: FloatArray) -> FloatArray:
-    """Rotation matrix (body to world) of a unit quaternion ``(x, y, z, w)``, written out
-    (Shuster 1993, eq. 161): scipy's ``Rotation`` costs tens of microseconds a call.
+    """Rotation matrix (body to world) of a unit quaternion ``(x, y, z, w)``: its rows are the
+    world axes in the body frame, :func:`~tumble.dynamics.special.quaternion.to_body` (the one
+    writing of Shuster 1993, eq. 161, which the compiled loop calls too); scipy's ``Rotation``
+    costs tens of microseconds a call.
 
     Examples
     --------
@@ -27,9 +30,8 @@ def matrix(q: FloatArray) -> FloatArray:
     True
     """
     x, y, z, w = (float(c) for c in q)
-    return np.array([[1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
-                     [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
-                     [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)]])
+    return np.array([to_body(x, y, z, w, 1.0, 0.0, 0.0), to_body(x, y, z, w, 0.0, 1.0, 0.0),
+                     to_body(x, y, z, w, 0.0, 0.0, 1.0)])
 
 
 class Matrix:

@@ -56,7 +56,8 @@ from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.sensors import Sensors
 from .pointing import Reference, target_attitude
 from ..special.mrp import mrp_angle, mrp_from_quat
-from ..special.quaternion import rotate_by_quaternion
+from ..euler import momentum_rate_components
+from ..special.quaternion import quaternion_rate_components, rotate_by_quaternion
 
 __all__ = ["ControlledRun", "simulate_controlled"]
 
@@ -427,12 +428,13 @@ def simulate_controlled(
             tau = tau + R.T @ gg(t, w, cast(Rotation, Matrix(R)))
         u = wheels.applied_torque(u_cmd, s) if wheels is not None else np.zeros(0)
         h = (J * s) @ axes
-        dw = I_rw_inv @ (tau - cross(w, I * w + h) - u @ axes)
-        ds = u / J - axes @ dw if k else np.zeros(0)
-        x, y_, z, c = (float(v) for v in q)  # q' = q (x) (w, 0) / 2 (quaternion_rate, written out)
+        x, y_, z, c = (float(v) for v in q)
         w0_, w1, w2 = (float(v) for v in w)
-        dq = 0.5 * np.array([c * w0_ + y_ * w2 - z * w1, c * w1 + z * w0_ - x * w2, c * w2 + x * w1 - y_ * w0_,
-                             -(x * w0_ + y_ * w1 + z * w2)])
+        L0, L1, L2 = (I * w + h).tolist()  # the whole's momentum; L' = L x w + tau - u (the loop's kernel's formulas)
+        a0, a1, a2 = (tau - u @ axes).tolist()
+        dw = I_rw_inv @ np.array(momentum_rate_components(L0, L1, L2, w0_, w1, w2, a0, a1, a2))
+        ds = u / J - axes @ dw if k else np.zeros(0)
+        dq = np.array(quaternion_rate_components(x, y_, z, c, w0_, w1, w2))
         return np.concatenate([dq, dw, ds, R @ tau])
 
     y = y0.copy()
