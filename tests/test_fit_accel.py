@@ -7,10 +7,7 @@ equations (torque-free, no air) from the gyroscope's own samples, not the genera
 
 from __future__ import annotations
 
-import copy
 import csv
-import functools
-import inspect
 import warnings
 
 import numpy as np
@@ -20,23 +17,12 @@ from tumble.analysis.fit import fit_recording
 from tumble.analysis.fit.freefall import fit_offset, free_span, rate_derivative, rigid_acceleration
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.dynamics.environment.earth import STANDARD_GRAVITY
+from made_once import made_once
 
 
-_SIGNATURE = inspect.signature(synthetic_recording)
-
-
-@functools.cache
-def _made(arguments: tuple):
-    return synthetic_recording(**dict(arguments))
-
-
-def _recording(*args, **kwargs):
-    """synthetic_recording's recording, made once per module for each seed and options (the
-    defaults filled in: seed 11's racquet serves seven tests, seeds 10-14 both offset tests, seed
-    41 three, seed 5's phone two); each call gets a deep copy."""
-    bound = _SIGNATURE.bind(*args, **kwargs)
-    bound.apply_defaults()
-    return copy.deepcopy(_made(tuple(bound.arguments.items())))
+#: synthetic_recording's recordings, made once (seed 11's racquet serves seven tests, seeds 10-14 both
+#: offset tests, seed 41 three, seed 5's phone two); each call gets a deep copy.
+_recording = made_once(synthetic_recording)
 
 
 def _inside(rec, a, b, margin=0.02):

@@ -32,7 +32,9 @@ from tumble.analysis.tensor.synthetic import (
     true_device,
     true_proof,
 )
+from tumble.analysis.tensor.throw import fit_flown
 from tumble.mass.tensor import rotate_inertia
+from made_once import made_once
 
 OBJECT = example_object()
 FLOWN = combine(true_device(), OBJECT)
@@ -101,7 +103,6 @@ def test_the_fingers_touch_after_the_sensed_release():
     tt = throw_times(4)
     assert 0.010 <= tt.release - tt.apparent <= 0.020
     th = synthetic_throw(4, FLOWN, imperfections=Imperfections.none(ROTOR_AXIS))
-    from tumble.analysis.tensor.throw import fit_flown
 
     f = fit_flown(th, np.array(ROTOR_AXIS), ROTOR_INERTIA, saturation=GYRO_RANGE)
     assert f.window.t_release >= tt.release   # left out
@@ -115,7 +116,6 @@ def test_a_gap_in_the_log_is_bridged_in_steps_or_refused():
     perfect = synthetic_throw(5, FLOWN, imperfections=Imperfections.none(ROTOR_AXIS), input="gap.csv")
     tt = throw_times(5)
     k = int(np.searchsorted(perfect.t, tt.rotor + 0.25))
-    from tumble.analysis.tensor.throw import fit_flown
 
     def cut(n: int) -> Throw:
         keep = np.r_[0:k, k + n:perfect.t.size]
@@ -149,30 +149,17 @@ def _turned_throws() -> tuple[Throw, ...]:
 
 DEVICE = Device(0.10067, ROTOR_AXIS)
 _POOLS: dict[tuple, tuple] = {}
-_FLOWN: dict[bytes, object] = {}
+#: fit_flown's fits, made once for a throw and arguments (deterministic in them), a deep copy each call.
+_FIT_ONCE = made_once(fit_flown)
 
 
 @pytest.fixture
 def flown_once(monkeypatch):
-    """pool_throws's fit of each throw made once: the tests below give the same throws (the
-    alone and proof sets, throws 1 and 2) to several calibrations and tensors, and a throw's fit
-    is deterministic in the throw and the arguments (the key: their pickled bytes). Each test
-    gets its own deep copy."""
-    import copy
-    import hashlib
-    import pickle
-
+    """pool_throws's fit of each throw made once (:data:`_FIT_ONCE`): the tests below give the same
+    throws (the alone and proof sets, throws 1 and 2) to several calibrations and tensors."""
     import tumble.analysis.tensor.pool as module
 
-    real = module.fit_flown
-
-    def once(throw, *args, **kwargs):
-        key = hashlib.sha256(pickle.dumps((throw, args, sorted(kwargs.items())))).digest()
-        if key not in _FLOWN:
-            _FLOWN[key] = real(throw, *args, **kwargs)
-        return copy.deepcopy(_FLOWN[key])
-
-    monkeypatch.setattr(module, "fit_flown", once)
+    monkeypatch.setattr(module, "fit_flown", _FIT_ONCE)
 
 
 @pytest.fixture
@@ -299,7 +286,6 @@ def test_a_500_hz_throw_is_fitted():
     th = synthetic_throw(6, FLOWN, imperfections=Imperfections.none(ROTOR_AXIS))
     keep = np.r_[0:th.t.size:8]
     slow = _with(th, t=th.t[keep], omega=th.omega[keep], rotor=th.rotor[keep], accel=th.accel[keep])
-    from tumble.analysis.tensor.throw import fit_flown
 
     from tumble.analysis.tensor.estimate import principal_uncertainty
     from tumble.analysis.tensor.sensors import SensorErrors

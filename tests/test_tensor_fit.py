@@ -11,12 +11,8 @@ on a few seeded trials each (the coverage campaigns are benchmarks/tensor_covera
 
 from __future__ import annotations
 
-import copy
 import functools
-import hashlib
-import inspect
 import json
-import pickle
 
 import numpy as np
 import pytest
@@ -52,6 +48,7 @@ from tumble.analysis.tensor.synthetic import (
 )
 from tumble.analysis.tensor.throw import fit_flown
 from tumble.dynamics.models.gyrostat import gyrostat_omega
+from made_once import made_once
 
 FLOWN = combine(true_device(), example_object())
 
@@ -61,28 +58,17 @@ def throw(seed: int):
     return synthetic_throw(seed, FLOWN, input=f"throw{seed}.csv")
 
 
-_FITS: dict[bytes, object] = {}
-_FIT_SIGNATURE = inspect.signature(fit_flown)
-
-
-def fitted(th, *args, **kwargs):
-    """fit_flown's fit, made once for a throw and arguments (the key: their pickled bytes, the
-    defaults filled in): the throws below are fitted alike by several tests, and by pool_throws
-    (the ``flown_once`` fixture); the fit is deterministic in them."""
-    bound = _FIT_SIGNATURE.bind(th, *args, **kwargs)
-    bound.apply_defaults()
-    key = hashlib.sha256(pickle.dumps(tuple(bound.arguments.items()))).digest()
-    if key not in _FITS:
-        _FITS[key] = fit_flown(th, *args, **kwargs)
-    return _FITS[key]
+#: fit_flown's fits, made once for a throw and arguments (deterministic in them): several tests
+#: and pool_throws (the ``flown_once`` fixture) fit the same throws alike.
+fitted = made_once(fit_flown)
 
 
 @pytest.fixture
 def flown_once(monkeypatch):
-    """pool_throws fits each throw through :func:`fitted`, a deep copy each time."""
+    """pool_throws fits each throw through :data:`fitted`."""
     import tumble.analysis.tensor.pool as module
 
-    monkeypatch.setattr(module, "fit_flown", lambda *args, **kwargs: copy.deepcopy(fitted(*args, **kwargs)))
+    monkeypatch.setattr(module, "fit_flown", fitted)
 
 
 def flown_fit(seed: int):
@@ -94,8 +80,7 @@ PERFECT = Imperfections.none(ROTOR_AXIS)
 
 @functools.cache
 def perfect_throw(seed: int):
-    """A throw of a perfect device, made once: two tests fit seed 1's alike, and the centre's
-    test logs seeds 1 and 2 with an accelerometer of scale 1 (the same draws)."""
+    """A throw of a perfect device, made once: two tests fit seed 1's alike."""
     return synthetic_throw(seed, FLOWN, imperfections=PERFECT)
 
 
@@ -411,9 +396,7 @@ def test_the_centres_sensor_columns_are_what_an_accelerometer_scale_does():
     errors = SensorErrors()
     centres = []
     for scale in (1.0, 1.0 + ACCEL_SCALE_STD):
-        # at scale 1 the perfect device's throws (the same draws, made once above)
-        logs = [perfect_throw(s) if scale == 1.0 else
-                synthetic_throw(s, flown, imperfections=replace(imp, accel_scale=np.array([scale, 1.0, 1.0])))
+        logs = [synthetic_throw(s, flown, imperfections=replace(imp, accel_scale=np.array([scale, 1.0, 1.0])))
                 for s in (1, 2)]
         pooled, _ = pool_throws(logs, np.array(ROTOR_AXIS), ROTOR_INERTIA, errors=errors)
         centres.append(pooled.center)
