@@ -112,10 +112,9 @@ def chromium():
             browser.close()
 
 
-@pytest.fixture
-def new_page(chromium):
-    """Opens :class:`Watched` pages (``new_page(viewport={...})``); they are closed after the
-    test, which fails if any of them asked the network for anything."""
+def _opened_pages(chromium):
+    """Opens :class:`Watched` pages and, once done with, closes them and fails if any of them asked
+    the network for anything."""
     opened: list[Watched] = []
 
     def open_page(**options) -> Watched:
@@ -127,6 +126,21 @@ def new_page(chromium):
         watched.close()
     outside = [url for watched in opened for url in watched.outside]
     assert not outside, f"requests that left the machine: {outside}"
+
+
+@pytest.fixture
+def new_page(chromium):
+    """Opens :class:`Watched` pages (``new_page(viewport={...})``); they are closed after the
+    test, which fails if any of them asked the network for anything."""
+    yield from _opened_pages(chromium)
+
+
+@pytest.fixture(scope="module")
+def module_page(chromium):
+    """:func:`new_page` for pages that a module's tests share, closed after its last test: a page
+    loaded once for several tests (each load of the viewer costs Chromium ~4 CPU-s, its software
+    WebGL included; 2026-11-30), each test leaving it as the next one expects."""
+    yield from _opened_pages(chromium)
 
 
 # -- the order of the files ----------------------------------------------------------------------

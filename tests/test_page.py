@@ -192,8 +192,21 @@ def pixels(png) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
 
 
-def test_page_plays_offline_in_chromium_with_a_shaded_body(page_file, new_page):
-    watched = open_viewer(new_page, page_file.as_uri())
+@pytest.fixture(scope="module")
+def flip_page(module_page, page_file):
+    """The seed flip's page, loaded once for this file's tests of it (:func:`flip_viewer`)."""
+    return open_viewer(module_page, page_file.as_uri())
+
+
+@pytest.fixture
+def flip_viewer(flip_page):
+    """The seed flip's page showing its own run, paused at frame 0, as loaded."""
+    flip_page.page.evaluate("Promise.resolve(tumbleViewer.reset()).then(() => tumbleViewer.show(0))")
+    return flip_page
+
+
+def test_page_plays_offline_in_chromium_with_a_shaded_body(flip_viewer):
+    watched = flip_viewer
     page = watched.page
     assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
     page.click("#tumble-play")
@@ -232,14 +245,14 @@ def _ground_vertices(page, frame):
                                   " return [Array.from(d.x), Array.from(d.y), Array.from(d.z)]; })()")).T
 
 
-def test_set_run_turns_the_body_or_a_box_as_python_does(page_file, flip, new_page):
+def test_set_run_turns_the_body_or_a_box_as_python_does(flip, flip_viewer):
     """setRun's principal -> design conversion gives the vertices the page's own frames give;
     a box run draws the box turned by the principal attitude; reset restores the run."""
     _, traj = flip
     idx = frame_indices(len(traj), 60)
     run = {"t": traj.t[idx].tolist(), "quat": traj.quat[idx].tolist(), "omega": traj.omega[idx].tolist(),
            "moments": traj.moments.tolist(), "box": None}
-    watched = open_viewer(new_page, page_file.as_uri())
+    watched = flip_viewer
     page = watched.page
     own = _ground_vertices(page, 37)
     page.evaluate(f"tumbleViewer.setRun({json.dumps(run)})")

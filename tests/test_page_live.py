@@ -43,13 +43,19 @@ TWENTY = np.linspace(0.0, 20.0, 401)
 VIEWPORT = {"width": 1300, "height": 1000}
 
 
-@pytest.fixture
-def js(new_page):
-    """A blank page holding splitting.js alone (no viewer needed)."""
-    w = new_page(viewport=VIEWPORT)
+@pytest.fixture(scope="module")
+def splitting_page(module_page):
+    """A blank page holding splitting.js alone (no viewer needed), shared: its functions keep no state."""
+    w = module_page(viewport=VIEWPORT)
     w.page.set_content(f"<!DOCTYPE html><html><body><script>{SPLITTING.read_text()}</script></body></html>")
-    yield w
-    assert w.clean(), (w.errors, w.outside)
+    return w
+
+
+@pytest.fixture
+def js(splitting_page):
+    """The splitting page, with no console error or outside request after the test."""
+    yield splitting_page
+    assert splitting_page.clean(), (splitting_page.errors, splitting_page.outside)
 
 
 def js_propagate(page, moments, omega0, quat0, t, order, step=None):
@@ -180,12 +186,27 @@ def page_file(tmp_path_factory):
     return out
 
 
-@pytest.fixture
-def live(new_page, page_file):
-    w = new_page(viewport=VIEWPORT)
+@pytest.fixture(scope="module")
+def live_page(module_page, page_file):
+    """The seed flip's page, loaded once for the tests of its form."""
+    w = module_page(viewport=VIEWPORT)
     w.page.goto(page_file.as_uri())
     w.page.wait_for_function("window.tumbleViewer && window.tumbleViewer.ready === true", timeout=HANG_MS)
     return w
+
+
+@pytest.fixture
+def live(live_page):
+    """The seed flip's page as loaded: after an earlier test the form's Reset puts back the page's
+    own body and run (:func:`test_live_bad_input_is_shown_in_the_form` checks that it restores the
+    fields), and the record of the last run is cleared."""
+    page = live_page.page
+    drawn = page.evaluate("window.tumbleLive.drawn")
+    if drawn:  # an earlier test ran the form
+        page.click("#tumble-live-reset")
+        page.wait_for_function(f"window.tumbleLive.drawn > {drawn} && window.tumbleLive.error === ''", timeout=HANG_MS)
+        page.evaluate("window.tumbleLive.lastRun = null; window.tumbleViewer.show(0)")  # the record of its last run
+    return live_page
 
 
 def run_form(page, moments=None, omega0=None, t_end=None, preset=None):
