@@ -26,6 +26,7 @@ nominal (the motor's mount), the motor's pole count and the accelerometer's scal
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -82,22 +83,32 @@ class RotorSchedule:
         """
         s = np.asarray(s, float)
         u = np.maximum(s, 0.0)
+        w1, w2, rise, fall, (a, freq, phi, sin_phi, dfreq) = self._constants
         e1 = np.exp(-u / self.tau_idle)
         base, dbase = self.idle * (1 - e1), self.idle * e1 / self.tau_idle
-        w1 = self.idle * (1 - np.exp(-self.t_up / self.tau_idle))
         e2 = np.exp(-np.maximum(u - self.t_up, 0.0) / self.tau_up)
-        up, dup = w1 + (self.plateau - w1) * (1 - e2), (self.plateau - w1) * e2 / self.tau_up
-        w2 = w1 + (self.plateau - w1) * (1 - np.exp(-(self.t_brake - self.t_up) / self.tau_up))
+        up, dup = w1 + rise * (1 - e2), rise * e2 / self.tau_up
         e3 = np.exp(-np.maximum(u - self.t_brake, 0.0) / self.tau_brake)
-        down, ddown = self.idle_after + (w2 - self.idle_after) * e3, -(w2 - self.idle_after) * e3 / self.tau_brake
+        down, ddown = self.idle_after + fall * e3, -fall * e3 / self.tau_brake
         speed = np.where(u < self.t_up, base, np.where(u < self.t_brake, up, down))
         rate = np.where(u < self.t_up, dbase, np.where(u < self.t_brake, dup, ddown))
-        a, f, phi = self.ripple[:, 0, None], self.ripple[:, 1, None], self.ripple[:, 2, None]
-        arg = 2 * np.pi * f * u.ravel() + phi
-        wave = (1.0 + np.sum(a * (np.sin(arg) - np.sin(phi)), axis=0)).reshape(u.shape)
-        dwave = np.sum(a * 2 * np.pi * f * np.cos(arg), axis=0).reshape(u.shape)
+        arg = freq * u.ravel() + phi
+        wave = (1.0 + np.sum(a * (np.sin(arg) - sin_phi), axis=0)).reshape(u.shape)
+        dwave = np.sum(dfreq * np.cos(arg), axis=0).reshape(u.shape)
         on = s >= 0.0
         return np.where(on, speed * wave, 0.0), np.where(on, rate * wave + speed * dwave, 0.0)
+
+    @functools.cached_property
+    def _constants(self) -> tuple:
+        """What :meth:`speed_and_rate` needs that does not depend on the time, worked out once (it
+        runs at every stage of the flight's integration): the speeds at the spin-up and the brake,
+        rad/s, the rise to the plateau and the fall to the idle after the brake, rad/s, and the
+        ripple's amplitudes, angular frequencies (rad/s), phases, their sines and the amplitudes
+        times the angular frequencies (rad/s)."""
+        w1 = self.idle * (1 - np.exp(-self.t_up / self.tau_idle))
+        w2 = w1 + (self.plateau - w1) * (1 - np.exp(-(self.t_brake - self.t_up) / self.tau_up))
+        a, f, phi = self.ripple[:, 0, None], self.ripple[:, 1, None], self.ripple[:, 2, None]
+        return w1, w2, self.plateau - w1, w2 - self.idle_after, (a, 2 * np.pi * f, phi, np.sin(phi), a * 2 * np.pi * f)
 
     @property
     def switches(self) -> tuple[float, float, float]:
