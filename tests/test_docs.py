@@ -329,6 +329,22 @@ def test_no_page_shows_a_raw_object_repr_or_an_escaped_pipe(site):
     assert not found, "\n".join(found[:20])
 
 
+def test_signatures_name_tumbles_array_aliases(site):
+    """A signature says ``omega: tumble.typing.ArrayLike`` (``autodoc_type_aliases``), also inside a
+    union (``tumble.typing.Vector3 | None``, docs/_ext/tumble_xref.py), linked to the alias's entry:
+    not numpy's expansion (``_Buffer | _SupportsArray[dtype[Any]] | ...``) nor Sphinx's placeholder."""
+    generated = site / "api" / "generated"
+    axis_of = re.sub(r"\s+", "", _text((generated / "tumble.analysis.axis_of.html").read_text(encoding="utf-8")))
+    assert "axis_of(omega:tumble.typing.ArrayLike)" in axis_of
+    props = (generated / "tumble.mass.MassProperties.html").read_text(encoding="utf-8")
+    assert re.search(r'href="[^"]*tumble\.typing\.html#tumble\.typing\.Vector3"[^>]*><span class="pre">'
+                     r'tumble\.typing\.Vector3</span></a><span class="w"> </span><span class="p"><span class="pre">\|'
+                     r'</span></span><span class="w"> </span><span class="pre">None', props), "intermediate_axis's type"
+    shown = [page.name for page in sorted(generated.glob("*.html"))
+             if re.search(r"_SupportsArray|TypeAliasForwardRef", page.read_text(encoding="utf-8"))]
+    assert not shown, shown[:10]
+
+
 def test_a_table_with_pipes_in_its_code_renders_as_a_table(site):
     """docs/control.md's table of figures names ``|omega|`` in its cells: the row stays one row of
     two cells, the pipes inside the code."""

@@ -177,6 +177,18 @@ def norm_bars(app, what, name, obj, options, lines):
             block_indent, after_colons = indent, True
 
 
+def _plain_alias_names() -> None:
+    """An alias of ``autodoc_type_aliases`` inside a union (``FloatArray | None``) written as its name,
+    ``tumble.typing.FloatArray | None``: Sphinx 9.0 writes the repr of its placeholder there,
+    ``TypeAliasForwardRef('tumble.typing.FloatArray') | None`` (in signatures and properties' types),
+    where alone it writes the name."""
+    from sphinx.util import inspect
+
+    placeholder = getattr(inspect, "TypeAliasForwardRef", None)
+    if placeholder is not None:
+        placeholder.__repr__ = lambda self: self.name
+
+
 def _make_resolver(app):
     _RESOLVER[:] = [Resolver(app.config.tumble_api_modules)]
 
@@ -229,6 +241,7 @@ def _finished(app, exception):
 
 
 def setup(app):
+    _plain_alias_names()
     app.add_config_value("tumble_api_modules", [], "env")
     app.connect("builder-inited", _make_resolver)
     app.connect("missing-reference", missing_reference)
