@@ -83,13 +83,14 @@ myst_heading_anchors = 3
 autosummary_imported_members = True
 autodoc_default_options = {"member-order": "bysource"}
 autodoc_typehints = "signature"
-# the signatures name tumble's array aliases (``omega: ArrayLike``), not what they expand to (numpy's
+# the signatures name tumble's array aliases (``omega: tumble.typing.ArrayLike``), not what they expand to (numpy's
 # ArrayLike is a union of nine private types: ``_Buffer | _SupportsArray[dtype[Any]] | ...``, on 171
 # pages, ~26,000 cross-references that Sphinx searched for and dropped)
 autodoc_type_aliases = {name: f"tumble.typing.{name}" for name in (
     "ArrayLike", "BoolArray", "FloatArray", "FloatOrArray", "IntArray", "Matrix3", "Quaternion", "Vector3")} | {
     name: f"tumble.dynamics.methods.integrators.{name}" for name in ("Integrate", "IntegrateInternal")}
 autodoc_preserve_defaults = True
+autodoc_use_type_comments = False  # tumble annotates; no "# type:" comments to parse from each function's source
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
