@@ -34,7 +34,7 @@ from tumble.analysis.tensor.synthetic import (
 )
 from tumble.analysis.tensor.throw import fit_flown
 from tumble.mass.tensor import rotate_inertia
-from made_once import made_once
+from test_tensor_fit import flown_once  # noqa: F401  (the fixture: pool_throws's fit of a throw made once)
 
 OBJECT = example_object()
 FLOWN = combine(true_device(), OBJECT)
@@ -149,17 +149,6 @@ def _turned_throws() -> tuple[Throw, ...]:
 
 DEVICE = Device(0.10067, ROTOR_AXIS)
 _POOLS: dict[tuple, tuple] = {}
-#: fit_flown's fits, made once for a throw and arguments (deterministic in them), a deep copy each call.
-_FIT_ONCE = made_once(fit_flown)
-
-
-@pytest.fixture
-def flown_once(monkeypatch):
-    """pool_throws's fit of each throw made once (:data:`_FIT_ONCE`): the tests below give the same
-    throws (the alone and proof sets, throws 1 and 2) to several calibrations and tensors."""
-    import tumble.analysis.tensor.pool as module
-
-    monkeypatch.setattr(module, "fit_flown", _FIT_ONCE)
 
 
 @pytest.fixture
