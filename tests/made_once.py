@@ -1,8 +1,9 @@
 """A deterministic computation the tests repeat, made once a run: :func:`made_once`.
 
-Used by tests/test_fit_accel.py (the synthetic recordings), tests/test_tensor_fit.py and
-tests/test_tensor_device.py (a throw's fit, also where ``pool_throws`` makes it), whose tests ask
-for the same results with the same arguments.
+Used by tests/test_fit_accel.py (the synthetic recordings), tests/test_tensor_fit.py (a throw's
+fit, also where ``pool_throws`` makes it: its ``flown_once`` fixture, which tests/test_tensor_device.py
+uses too) and tests/test_fit_pool.py (a recording's search for flights), whose tests ask for the
+same results with the same arguments.
 """
 
 from __future__ import annotations

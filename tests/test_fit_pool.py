@@ -17,51 +17,44 @@ import numpy as np
 import pytest
 
 from tumble.analysis.fit import InadequateFitWarning, fit_recording
+from tumble.analysis.fit.flights import find_flights
 from tumble.analysis.fit.model import Model
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.cli import main
 from tumble.io.gyrodata import load_recording
+from made_once import made_once
 
 SEEDS = (41, 42, 43)
-_FOUND: dict[bytes, tuple] = {}
+
+
+def _recorded_search(t, omega, **kwargs):
+    """The real fit_recording's search of a recording, with the progress calls it made and the
+    warnings it gave (message, category, file, line), for :func:`found_once` to replay."""
+    calls = []
+    with warnings.catch_warnings(record=True) as caught:
+        found = find_flights(t, omega, progress=lambda *args: calls.append(args), **kwargs)
+    return found, calls, [(w.message, w.category, w.filename, w.lineno) for w in caught]
+
+
+_search_once = made_once(_recorded_search)
 
 
 @pytest.fixture
 def found_once(monkeypatch):
     """fit_recording's search of a recording made once: the tests below fit the same numbers
     (read back from the three files) by the command, apart and jointly, and find_flights is
-    deterministic in the samples and options (the key: their pickled bytes). A hit replays the
-    progress calls and returns a deep copy; a search that warned is not kept."""
-    import copy
-    import hashlib
-    import pickle
-
+    deterministic in the samples and options (:func:`made_once`). Each call replays the search's
+    progress calls and its warnings, as the search itself would make them."""
     import tumble.analysis.fit.recording as module
 
-    real = module.find_flights
-
     def once(t, omega, *, progress=None, **kwargs):
-        key = hashlib.sha256(pickle.dumps((np.asarray(t), np.asarray(omega), sorted(kwargs.items())))).digest()
-        if key not in _FOUND:
-            calls = []
-
-            def step(*args):
-                calls.append(args)
-                if progress is not None:
-                    progress(*args)
-
-            with warnings.catch_warnings(record=True) as caught:
-                found = real(t, omega, progress=step, **kwargs)
-            for w in caught:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-            if not caught:
-                _FOUND[key] = (copy.deepcopy(found), calls)
-            return found
-        found, calls = _FOUND[key]
+        found, calls, caught = _search_once(np.asarray(t), np.asarray(omega), **kwargs)
         for args in calls:
             if progress is not None:
                 progress(*args)
-        return copy.deepcopy(found)
+        for message, category, filename, lineno in caught:
+            warnings.warn_explicit(message, category, filename, lineno)
+        return found
 
     monkeypatch.setattr(module, "find_flights", once)
 
