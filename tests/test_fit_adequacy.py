@@ -103,7 +103,11 @@ def test_a_record_shorter_than_the_tumble_says_so():
 
 
 def test_inadequate_flights_of_a_recording_are_skipped_with_the_reason():
-    rec = synthetic_recording(3, tosses=3)
+    """Seed 4: its outcome held in 10 of 10 runs whose drag model was perturbed by 1e-13 (relative,
+    random), with the fits' old drag kernel and with the engine's. Seed 3, used before, held in 4
+    of 5 and 3 of 5: the finder cut a 0.22 s "too short" piece out of the replaced stretch where the
+    model's last digits fell one way (the perturbation runs of issue 38's note)."""
+    rec = synthetic_recording(4, tosses=3)
     w = rec.omega.copy()
     a, b = rec.flights[1]
     inside = (rec.t >= a) & (rec.t <= b)

@@ -251,13 +251,43 @@ def test_growing_a_flight_backward_past_where_its_drag_model_exists_is_no_failur
     the growth's extrapolation of seed 71's first flight overflowed and ``tumble fit`` failed with
     "invalid value encountered in matmul"; such samples are now only samples the model does not
     follow: the run ends, each true flight has its candidate (on the first one's stretch no seed's
-    fit passes: the model does not follow it closely enough, or the refused fit of least residual
-    runs to the rod limit, and it says so) and the second is found and fitted."""
+    fit passes, and it says why) and the second is found and fitted.
+
+    Which of the refusals the first stretch gets (the model does not follow it, the refused fit
+    runs to the rod limit, too little of the tumble, its energy rises past the limit) turns on the
+    last digits of the drag model: under random 1e-13 (relative) perturbations of it the reason
+    changed from run to run (issue 38's note), the statuses and the second flight did not. The
+    overflow itself is checked on a model built for it, below."""
     rec = synthetic_recording(71, tosses=2)
     path = tmp_path / "r71.csv"
     path.write_text(rec.csv_text("seed 71"), encoding="utf-8")
     assert main(["fit", str(path), "--out", str(tmp_path / "out")]) == 0
     found = find_flights(rec.t, rec.omega)
     assert [f.status for f in found] == ["skipped", "ok"]
-    assert found[0].reason.startswith(("the model does not fit", "ratios not determined: the fit ran to the rod limit"))
+    assert found[0].reason
     assert abs(found[1].start - rec.flights[1][0]) < 0.05 and abs(found[1].end - rec.flights[1][1]) < 0.05
+
+
+def test_a_flights_model_extrapolated_back_past_its_drags_blow_up_is_nan_without_a_warning():
+    """A flight fitted with quadratic drag, extrapolated backward as the finder's growth does
+    (:func:`~tumble.analysis.fit.flights._extrapolate`): about the spin axis
+    ``omega(t) = omega0 / (1 + (b / I) omega0 t)``, which leaves every bound at
+    ``t = -I / (b omega0)`` (here about -2.2 s). Before it the model is
+    finite; well past it, NaN, with no numpy warning (the fit took "invalid value encountered
+    in matmul" for an error)."""
+    from tumble.analysis.fit.flights import _extrapolate
+    from tumble.dynamics.models.drag import drag_omega
+
+    t = np.linspace(0.0, 1.5, 301)
+    w = drag_omega([[0.5, 0.8, 1.0]], [[0.3, 0.2, 9.0]], t, quadratic=[[0.0, 0.0, 0.05]])[0]
+    w = w + np.random.default_rng(5).normal(0.0, 0.005, w.shape)
+    sol = fit_solution(t, w, np.ones(w.shape, bool), rotation=False, bias=False, drag="quadratic")
+    c, w0 = sol.model.drag_vector(sol.P), sol.model.omega0(sol.P)[0]   # b / I3 (1/rad), omega at t[0]
+    blow_up = -1.0 / (c[2] * abs(w0[2]))   # the spin axis's, z (I3)
+    assert -3.0 < blow_up < -1.5, blow_up    # the drag was fitted: the check below is the one meant
+    back = np.linspace(2.0 * blow_up, 0.0, 201)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        model = _extrapolate(sol, back, t[0])
+    before, past = back > 0.7 * blow_up, back < 1.3 * blow_up
+    assert np.all(np.isfinite(model[before])) and np.all(np.isnan(model[past]))

@@ -55,21 +55,59 @@ def test_one_toss_a_file_its_answer_is_the_tosss_own(seed, body):
 
 def test_the_stretch_after_the_catch_was_taken_for_a_flight_before(monkeypatch):
     """The same file with the rule turned off (the finder of #29): the stretch after the catch is
-    fitted "ok" with ratios far from the toss's, and the pooled answer, outside both flights'
-    own values, says so and names a flight."""
+    fitted "ok" beside the tosses or instead of one, and the pooled answer's caveat says that it lies outside its
+    flights' own values exactly when it does (each flight that states its own ratios more than
+    2 of its standard uncertainties away, all on one side), naming one flight.
+
+    Where the pooled answer lands turns on the last digits of the drag model: under random 1e-13
+    (relative) perturbations of it, seed 28's pooled answer lay outside in 1 of 6 runs, with the
+    fits' old drag kernel as with the engine's (issue 38's note); so the caveat is checked
+    against the flights' values whichever way it lands, and on values set outside in
+    :func:`test_a_pooled_answer_outside_its_flights_values_names_the_flight_that_pulls_it`."""
     monkeypatch.setattr(flights_module, "AFTER_IMPACT", 0.0)
     rec = synthetic_recording(28, body="racquet", tosses=2, ending="turn")
     fit = _fit(rec)
     used = [toss for toss in fit.tosses if toss.status == "ok"]
-    assert any(max(_iou(a, b, toss.start, toss.end) for a, b in rec.flights) < 0.5 for toss in used)
+    own = [toss for toss in used if not toss.reason]  # stating their own ratios
     caveat = fit.pooled.caveat
-    assert "lies outside its flights' own values" in caveat
-    named = [toss for toss in used if f"the flight at {toss.start:.2f}-" in caveat]
-    assert len(named) == 1
-    own = np.array([toss.fit.ratios for toss in used])
-    std = np.array([toss.fit.ratios_std for toss in used])
-    z = (fit.pooled.ratios - own) / std
-    assert np.any(np.all(z > 2.0, axis=0) | np.all(z < -2.0, axis=0))  # what the caveat claims
+    values = np.array([toss.fit.ratios for toss in own]).reshape(-1, 2)
+    std = np.array([toss.fit.ratios_std for toss in own]).reshape(-1, 2)
+    z = (fit.pooled.ratios - values) / std
+    outside = len(own) >= 2 and bool(np.any(np.all(z > 2.0, axis=0) | np.all(z < -2.0, axis=0)))
+    assert ("lies outside its flights' own values" in caveat) == outside, (caveat, z)
+    if outside:
+        assert len([toss for toss in used if f"the flight at {toss.start:.2f}-" in caveat]) == 1
+
+
+def test_a_pooled_answer_outside_its_flights_values_names_the_flight_that_pulls_it():
+    """The caveat on its own (:func:`~tumble.analysis.fit.recording._outside`, the flights'
+    weighted mean standing in for a joint fit): three fitted flights of one body, a pooled I1/I3
+    set 3 of the flights' largest standard uncertainties beyond their largest value is said to lie
+    outside and names one of them; 1.5 of them beyond, or the flights' mean, is not."""
+    from types import SimpleNamespace
+
+    from tumble.analysis.fit.recording import OUTSIDE_SIGMAS, _outside
+    from tumble.analysis.fit.summary import ratio_summary
+
+    rec = synthetic_recording(4, tosses=3)
+    used = [f for f in flights_module.find_flights(rec.t, rec.omega, events=rec.events) if f.status == "ok"]
+    assert len(used) == 3 and not any(f.joinable for f in used)
+    values = np.array([ratio_summary(f.solution)[0] for f in used])
+    stds = np.array([ratio_summary(f.solution)[1] for f in used])
+
+    def said(x: float) -> str:
+        fit = SimpleNamespace(pooled=SimpleNamespace(ratios=np.array([x, values[:, 1].mean()])),
+                              omega_models=[None] * len(used))
+        return _outside(fit, used, [0, 1, 2], None, None, joint=False)
+
+    far = values[:, 0].max() + 3.0 * stds[:, 0].max()
+    caveat = said(far)
+    assert caveat.startswith(f"the joint fit's I1/I3 = {far:.4f} lies outside its flights' own values "
+                             f"({values[:, 0].min():.4f} to {values[:, 0].max():.4f}; each more than "
+                             f"{OUTSIDE_SIGMAS:g} of its standard uncertainties away)"), caveat
+    assert len([f for f in used if f"the flight at {f.start:.2f}-{f.end:.2f} s" in caveat]) == 1
+    assert said(values[:, 0].max() + 1.5 * stds[:, 0].min()) == ""
+    assert said(values[:, 0].mean()) == ""
 
 
 def test_a_joint_fit_inside_its_flights_values_says_nothing():

@@ -74,14 +74,7 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
 }
 
 #: The copies still written beside their homes: (formula, module) -> why.
-EXCEPTIONS: dict[tuple[str, str], str] = {
-    # issue 38: moving onto the engine. Calling euler_components here changes the kernel by an ulp
-    # (I w products or a reciprocal instead of (I2 - I3) w2 w3 / I1), and that alone turns
-    # tests/test_fit_recording.py::test_flights_that_scatter_inflate_the_pooled_uncertainty
-    # (pooled std 0.011 instead of >= 0.02): the fit there hangs on round-off; it goes with the fits
-    # onto the engine.
-    ("Euler's equations, angular-velocity form", "dynamics/models/fit_kernels.py"): "the fits' compiled drag kernel",
-}
+EXCEPTIONS: dict[tuple[str, str], str] = {}
 
 
 def code_lines(path: Path) -> dict[int, str]:

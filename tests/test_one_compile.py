@@ -46,8 +46,6 @@ PLAIN = r"(float|int|bool|str|tuple|list|dict|complex|np\.ndarray|np\.float64)"
 HAND_WRITTEN_RK = {
     # issue 38: the numpy reference of the compiled B-dot batch (vectorised over the bodies)
     "dynamics/control/detumble.py": "the B-dot batch's numpy reference path",
-    # issue 38: the fits hang on the drag kernel's round-off (tests/test_formulas_once.py says why)
-    "dynamics/models/fit_kernels.py": "the fits' drag kernel",
 }
 
 GLOBALS = re.compile(r"\bglobals\(\)\[")

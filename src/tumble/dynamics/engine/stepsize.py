@@ -108,13 +108,14 @@ def initial_step(h0: float, d1: float, d2: float, interval: float) -> float:
 
 def equal_steps(interval: float, step: float) -> tuple[int, float]:
     """The fixed-step methods' rule: the fewest equal steps no longer than ``step`` (s) that fill a
-    sample ``interval`` (s), and their length; a step within 1e-9 of dividing it is not split again.
+    sample ``interval`` (s; negative backward in time, the steps then negative), and their length; a
+    step within 1e-9 of dividing it is not split again.
 
     Examples
     --------
     >>> from tumble.dynamics.engine.stepsize import equal_steps
-    >>> equal_steps(1.0, 0.3), equal_steps(1.0, 0.25)
-    ((4, 0.25), (4, 0.25))
+    >>> equal_steps(1.0, 0.3), equal_steps(1.0, 0.25), equal_steps(-1.0, 0.3)
+    ((4, 0.25), (4, 0.25), (4, -0.25))
     """
-    n = max(1, math.ceil(interval / step - 1e-9))
+    n = max(1, math.ceil(abs(interval) / step - 1e-9))
     return n, interval / n

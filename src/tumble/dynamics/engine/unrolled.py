@@ -256,7 +256,8 @@ def fixed_loop_source(name: str, step: str, turns: str, load: str, store: str, o
     ``step`` no longer than ``step`` (s), the orbit's turns ``turns`` (:func:`rotations_source`) once
     per step length; ``load(y0, I)`` gives the state tuple and the body's tuple the step takes,
     ``store(y, I, <outputs>, k)`` writes sample ``k``. Returns a status (``OK``, ``NON_FINITE``). The one
-    writing of the fixed-step loop, for every state the engine steps (the rigid body's, the damped body's).
+    writing of the fixed-step loop, for every state the engine steps (the rigid body's, the damped body's, the
+    dragged body's of the fits).
 
     Examples
     --------

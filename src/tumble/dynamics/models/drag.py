@@ -20,10 +20,11 @@ Runge-Kutta method (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.1) in a 
 each body on its own times, forward for ``t >= 0`` and backward for ``t < 0``, with a fixed
 number of equal steps between consecutive times that depends only on the times and the
 given step bound: so the result is a smooth function of the moments, ``omega0`` and the drag
-(finite differences of it are clean, as a least-squares fit needs). Why a hand-written
-integrator: scipy's ``solve_ivp`` runs one body at a time in Python (about 1 ms a flight for
-the few hundred steps needed), and a fit evaluates some ten bodies per Jacobian hundreds of
-times; the compiled loop does the same in microseconds. It agrees with DOP853 to the RK4
+(finite differences of it are clean, as a least-squares fit needs). Why the engine's fixed-step
+RK4 and not an adaptive solver: scipy's ``solve_ivp`` runs one body at a time in Python (about 1
+ms a flight for the few hundred steps needed) and chooses its steps by the parameters, and a fit
+evaluates some ten bodies per Jacobian hundreds of times; the compiled loop does the same in
+microseconds. It agrees with DOP853 to the RK4
 error ``~(|w| h)^4`` (tests/test_exact_omega.py).
 """
 

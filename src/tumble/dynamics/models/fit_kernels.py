@@ -5,16 +5,17 @@ Imported only when one is asked for (by :func:`tumble.dynamics.models.drag.drag_
 hand); compiled at import by :func:`tumble.jit.jit` (``cache=True``: once per machine and
 version of the sources), as the engine's kernels are: nothing is compiled, and numba not even
 imported, until a fit needs it. The formulas are the models' own functions compiled here: the
-drag law :func:`~tumble.dynamics.models.aero.drag_component` and the momentum form of Euler's
-equation :func:`~tumble.dynamics.euler.momentum_rate_components`.
+drag law :func:`~tumble.dynamics.models.aero.drag_component`, Euler's equations
+:func:`~tumble.dynamics.euler.euler_components` and their momentum form
+:func:`~tumble.dynamics.euler.momentum_rate_components`.
 
 Both integrate with the classical fourth-order Runge-Kutta method (Hairer, Norsett & Wanner,
 *Solving ODEs I*, sec. II.1), the step count depending only on the times, so the result is a
-smooth function of the parameters (a fit's finite differences are clean). The gyrostat's step is
-the engine's, written out by its generator from the tableau
-(:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`). The drag kernel keeps a loop of its
-own, and its Euler right-hand side its own order of operations, ``((I2 - I3) w2 w3 + tau) / I1``:
-the fits hang on its round-off (tests/test_formulas_once.py says why).
+smooth function of the parameters (a fit's finite differences are clean). The steps are the
+engine's, written out by its generator from the tableau
+(:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`), and the dragged body's run is the
+engine's fixed-step loop (:func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`), as the
+damped body's is (:mod:`tumble.dynamics.engine.damped`).
 """
 
 from __future__ import annotations
@@ -26,43 +27,55 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..engine.kernels import _direction, _equal_steps, _finite, generated
+from ..engine.status import NON_FINITE, OK
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
-from ..engine.unrolled import fixed_step_source, state_layout
-from ..euler import momentum_rate_components
+from ..engine.unrolled import Layout, fixed_loop_source, fixed_step_source, rotations_source, state_layout
+from ..euler import euler_components, momentum_rate_components
 from .aero import drag_component
 
 __all__ = ["drag_integrate", "gyrostat_integrate"]
 
-_drag = jit(inline="always")(drag_component)
+_drag = jit(error_model="numpy")(drag_component)
+_euler = jit(error_model="numpy")(euler_components)
 _momentum_rate = jit(inline="always")(momentum_rate_components)
 
-
-@jit()
-def _drag_rate(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, out: FloatArray) -> None:  # pragma: no cover
-    """Euler's equations with the drag torque, ``w'`` into ``out``."""
-    out[0] = ((I[1] - I[2]) * w[1] * w[2] + _drag(lin[0], quad[0], w[0])) / I[0]
-    out[1] = ((I[2] - I[0]) * w[2] * w[0] + _drag(lin[1], quad[1], w[1])) / I[1]
-    out[2] = ((I[0] - I[1]) * w[0] * w[1] + _drag(lin[2], quad[2], w[2])) / I[2]
+#: The dragged body's layout: ``rhs(w, B, D, u0, u1)`` over omega's three floats, ``B`` the body's
+#: tuple ``(I, 1 / I)``, ``D`` the drag's ``(a, b)`` (:func:`drag_rhs`).
+DRAG = Layout(3, "I, P", False)
 
 
-@jit()
-def _drag_advance(I: FloatArray, lin: FloatArray, quad: FloatArray, w: FloatArray, dt: float, n: int, k1: FloatArray,
-                  k2: FloatArray, k3: FloatArray, k4: FloatArray, tmp: FloatArray) -> None:  # pragma: no cover
-    """``n`` equal RK4 steps over ``dt`` (s), ``w`` advanced in place."""
-    h = dt / n
-    for _ in range(n):
-        _drag_rate(I, lin, quad, w, k1)
-        for c in range(3):
-            tmp[c] = w[c] + 0.5 * h * k1[c]
-        _drag_rate(I, lin, quad, tmp, k2)
-        for c in range(3):
-            tmp[c] = w[c] + 0.5 * h * k2[c]
-        _drag_rate(I, lin, quad, tmp, k3)
-        for c in range(3):
-            tmp[c] = w[c] + h * k3[c]
-        _drag_rate(I, lin, quad, tmp, k4)
-        for c in range(3):
-            w[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
+@jit(error_model="numpy", forceinline=True)  # inlined by LLVM at the stages, as the engine's rhs
+def drag_rhs(w: tuple[float, ...], B: tuple[float, ...], D: tuple[float, ...], u0: float,
+             u1: float) -> tuple[float, float, float]:  # pragma: no cover - compiled
+    """``w'`` (rad/s^2) of a body ``B = (I1, I2, I3, 1/I1, 1/I2, 1/I3)`` (kg m^2, 1/(kg m^2)) under the
+    drag ``D = (a1, a2, a3, b1, b2, b3)`` (N m s, N m s^2): Euler's equations
+    (:func:`~tumble.dynamics.euler.euler_components`) with the drag law
+    (:func:`~tumble.dynamics.models.aero.drag_component`) as the torque. ``u0``, ``u1`` unused (no orbit)."""
+    return _euler(w[0], w[1], w[2], B[0], B[1], B[2], _drag(D[0], D[3], w[0]), _drag(D[1], D[4], w[1]),
+                  _drag(D[2], D[5], w[2]), B[3], B[4], B[5])
+
+
+@jit(error_model="numpy")
+def _load(w0: FloatArray, I: FloatArray) -> tuple[tuple[float, ...], tuple[float, ...]]:  # pragma: no cover
+    """The state tuple of ``w0`` and the body's tuple of ``I`` (:func:`drag_rhs`)."""
+    return (w0[0], w0[1], w0[2]), (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
+
+
+@jit(error_model="numpy")
+def _sample(w: tuple[float, ...], I: FloatArray, W: FloatArray, k: int) -> None:  # pragma: no cover
+    """omega at sample ``k`` into ``W`` (len(t_eval), 3)."""
+    W[k, 0], W[k, 1], W[k, 2] = w[0], w[1], w[2]
+
+
+_DRAG_STEPS = generated(fixed_step_source("drag_rk4_step", RK4_A, RK4_B, RK4_C, DRAG)
+                        + rotations_source("drag_rk4_turns", RK4_C), __file__, __name__, rhs=drag_rhs)
+#: The dragged body's fixed-step RK4 run (:func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`):
+#: ``run(w0, t_eval, I, D, n, step, W)``, omega at the samples into ``W`` (len(t_eval), 3).
+fixed_drag_rk4 = generated(fixed_loop_source("fixed_drag_rk4", "drag_rk4_step", "drag_rk4_turns", "_load", "_sample", "W"),
+                           __file__, __name__, _load=_load, _sample=_sample, _equal_steps=_equal_steps,
+                           _direction=_direction, _finite=_finite, OK=OK, NON_FINITE=NON_FINITE,
+                           **_DRAG_STEPS)["fixed_drag_rk4"]
 
 
 @jit()
@@ -70,7 +83,8 @@ def drag_integrate(I: FloatArray, w0: FloatArray, lin: FloatArray, quad: FloatAr
                    hmax: FloatArray) -> FloatArray:  # pragma: no cover - compiled
     """The angular velocity (K, T, 3) of :func:`~tumble.dynamics.models.drag.drag_omega` (checked,
     contiguous inputs): each body ``b`` from ``w0[b]`` at t = 0 to its times ``tau[b]``, forward
-    and backward, ``ceil(|dt| / hmax[b])`` equal steps between consecutive times.
+    and backward, by the engine's fixed-step RK4 run (:data:`fixed_drag_rk4`):
+    ``ceil(|dt| / hmax[b])`` equal steps between consecutive times.
 
     Examples
     --------
@@ -83,28 +97,29 @@ def drag_integrate(I: FloatArray, w0: FloatArray, lin: FloatArray, quad: FloatAr
     """
     K, T = tau.shape
     out = np.empty((K, T, 3))
-    k1, k2, k3, k4, tmp = np.empty(3), np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-    w = np.empty(3)
+    times = np.empty(T + 1)
+    W = np.empty((T + 1, 3))
     for b in range(K):
+        D = (lin[b, 0], lin[b, 1], lin[b, 2], quad[b, 0], quad[b, 1], quad[b, 2])
         j0 = 0
         while j0 < T and tau[b, j0] < 0.0:
             j0 += 1
-        for side in range(2):
-            for c in range(3):
-                w[c] = w0[b, c]
-            t = 0.0
-            if side == 0:
-                js = range(j0, T)
-            else:
-                js = range(j0 - 1, -1, -1)
-            for j in js:
-                dt = tau[b, j] - t
-                if dt != 0.0:
-                    n = max(1, int(np.ceil(abs(dt) / hmax[b] - 1e-9)))
-                    _drag_advance(I[b], lin[b], quad[b], w, dt, n, k1, k2, k3, k4, tmp)
-                    t = tau[b, j]
-                for c in range(3):
-                    out[b, j, c] = w[c]
+        # forward from t = 0 through tau[b, j0:], then backward through tau[b, j0 - 1::-1]
+        # (a run that overflows stops, its later samples left NaN: backward in time, quadratic drag
+        # grows the spin without bound in a finite time)
+        times[0] = 0.0
+        for j in range(j0, T):
+            times[1 + j - j0] = tau[b, j]
+        W[:] = np.nan
+        fixed_drag_rk4(w0[b], times[:1 + T - j0], I[b], D, 0.0, hmax[b], W)
+        for j in range(j0, T):
+            out[b, j] = W[1 + j - j0]
+        for j in range(j0):
+            times[1 + j] = tau[b, j0 - 1 - j]
+        W[:] = np.nan
+        fixed_drag_rk4(w0[b], times[:1 + j0], I[b], D, 0.0, hmax[b], W)
+        for j in range(j0):
+            out[b, j0 - 1 - j] = W[1 + j]
     return out
 
 
