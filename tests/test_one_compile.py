@@ -43,10 +43,7 @@ LAZY = {"__init__.py", "commands/__init__.py", "viz/_backend.py"}
 PLAIN = r"(float|int|bool|str|tuple|list|dict|complex|np\.ndarray|np\.float64)"
 
 #: The Runge-Kutta steps still written by hand: module -> why.
-HAND_WRITTEN_RK = {
-    # issue 38: the numpy reference of the compiled B-dot batch (vectorised over the bodies)
-    "dynamics/control/detumble.py": "the B-dot batch's numpy reference path",
-}
+HAND_WRITTEN_RK: dict[str, str] = {}
 
 GLOBALS = re.compile(r"\bglobals\(\)\[")
 RK_BY_HAND = re.compile(r"2(\.0)?\*\w*[kK]\w*(\[[^\]]*\])?\+2(\.0)?\*\w*[kK]")

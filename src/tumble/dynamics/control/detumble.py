@@ -17,7 +17,9 @@ reads them (gyro ``omega + bias + noise``, magnetometer ``B + bias + noise``, th
 Gaussian, drawn anew each step from the body's own seed), the dipole ``m_i = -k dB/dt`` with
 ``dB/dt = B x omega`` of the readings is computed, clipped rod by rod, and held. Between steps,
 ``substeps`` classical RK4 steps of ``h = period / substeps`` (the field and the orbit's radius
-direction are evaluated at every stage).
+direction are evaluated at every stage): the engine's step, written out from the tableau
+(:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`) and run on both paths, compiled on
+one, by Python over arrays of the bodies on the other.
 
 **The noise is the single-body loop's.** Body ``i`` with sensors ``S_i`` draws from
 ``numpy.random.default_rng(S_i.seed)`` in the order ``Sensors.sample`` does (three gyro numbers,
@@ -38,9 +40,11 @@ four substeps a step and rates up to ~0.5 rad/s it agrees with :func:`~tumble.dy
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any, cast
 
 import numpy as np
 
@@ -53,6 +57,8 @@ from ..models.gravity import GravityGradient, gradient_torque
 from ..environment.earth import earth_angle
 from ..euler import euler_components
 from ..environment.magnetic import DipoleField
+from ..engine.tableau import RK4_A, RK4_B, RK4_C
+from ..engine.unrolled import fixed_step_source, state_layout
 from ..models.sensors import Sensors
 from ..special.quaternion import quaternion_rate_components, to_body
 
@@ -366,6 +372,37 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
     return DetumbleBatch(np.arange(steps + 1, dtype=float) * float(D), rates, w, q)
 
 
+@functools.cache
+def _numpy_rk4() -> Callable[..., tuple[FloatArray, ...]]:
+    """The engine's RK4 step, written out by its generator from the tableau
+    (:func:`~tumble.dynamics.engine.unrolled.fixed_step_source`, the compiled batch's step too:
+    :mod:`~tumble.dynamics.control.detumble_kernels`), run by Python on a state whose components
+    are arrays over the bodies, its right-hand side :func:`_numpy_rhs`."""
+    namespace: dict[str, Any] = {"rhs": _numpy_rhs, "__name__": __name__}
+    exec(compile(fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, state_layout(7)), __file__, "exec"),  # noqa: S102
+         namespace)
+    return cast("Callable[..., tuple[FloatArray, ...]]", namespace["rk4_step"])
+
+
+#: The step's turns of an orbit's direction: none here (:func:`_numpy_rhs` computes the gravity gradient's).
+_NO_TURNS = (1.0, 0.0) * 4
+
+
+def _numpy_rhs(t: float, y: tuple[FloatArray, ...], P: tuple[()], X: tuple[Any, ...], u0: float,
+               u1: float) -> tuple[FloatArray, ...]:
+    """``(q', omega')`` of every body by component (arrays of N) at the stage time ``t`` (s), the
+    state ``y = (q, omega)`` by component (:func:`_rhs`), for the generated step (:func:`_numpy_rk4`);
+    ``X = (field, I, m, gmst0, n_gg, node)``: the field, the moments (3, N), the held dipoles (3, N),
+    the Earth angles, the gravity gradient's mean motion (0: none) and the last node's field and
+    radius direction (the two middle stages share their node). ``P``, ``u0``, ``u1`` unused."""
+    field, I, m, theta0, n_gg, node = X
+    if node[0] != t:
+        node[:] = [t, _field_world(field, t, theta0),
+                   (n_gg, math.cos(n_gg * t), math.sin(n_gg * t)) if n_gg > 0.0 else None]
+    kq, kw = _rhs(node[1], I, m, np.array(y[:4]), np.array(y[4:]), node[2])
+    return (*kq, *kw)
+
+
 def _detumble_numpy(I: FloatArray, q: FloatArray, w: FloatArray, field: DipoleField, theta0: FloatArray,
                     k: FloatArray, magnetorquers: Magnetorquers, D: float, steps: int, substeps: int,
                     form: str, n_gg: float, errors: _SensorErrors, rates: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -374,10 +411,7 @@ def _detumble_numpy(I: FloatArray, q: FloatArray, w: FloatArray, field: DipoleFi
     h = D / substeps
     I, q, w = I.T.copy(), q.T.copy(), w.T.copy()  # by component: (3, N), (4, N), (3, N)
     bias = errors.bias.T
-
-    def gg(t: float) -> tuple[float, float, float] | None:
-        return (n_gg, math.cos(n_gg * t), math.sin(n_gg * t)) if n_gg > 0.0 else None
-
+    step = _numpy_rk4()
     for i0, i1, noise in errors.segments(steps):
         for i in range(i0, i1 + 1):
             t = i * D
@@ -389,16 +423,9 @@ def _detumble_numpy(I: FloatArray, q: FloatArray, w: FloatArray, field: DipoleFi
             if noise is not None:
                 w_read, b = w_read + noise[:, i - i0, :3].T, b + noise[:, i - i0, 3:].T
             m = magnetorquers.saturate(bdot_dipole(np.cross(b.T, w_read.T), b.T, k, form)).T.copy()
-            b_end, r_end = _field_world(field, t, theta0), gg(t)
+            X = (field, I, m, theta0, n_gg, [None, None, None])
             for j in range(substeps):
-                s = t + j * h
-                b_start, b_mid, b_end = b_end, _field_world(field, s + h / 2, theta0), _field_world(field, s + h, theta0)
-                r_start, r_mid, r_end = r_end, gg(s + h / 2), gg(s + h)  # as the field: the last end is the start
-                k1q, k1w = _rhs(b_start, I, m, q, w, r_start)
-                k2q, k2w = _rhs(b_mid, I, m, q + h / 2 * k1q, w + h / 2 * k1w, r_mid)
-                k3q, k3w = _rhs(b_mid, I, m, q + h / 2 * k2q, w + h / 2 * k2w, r_mid)
-                k4q, k4w = _rhs(b_end, I, m, q + h * k3q, w + h * k3w, r_end)
-                q = q + h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q)
-                w = w + h / 6 * (k1w + 2 * k2w + 2 * k3w + k4w)
+                y = step(t + j * h, (*q, *w), h, (), X, 1.0, 0.0, _NO_TURNS)
+                q, w = np.array(y[:4]), np.array(y[4:])
                 q /= np.sqrt(np.sum(q * q, axis=0))
     return w.T.copy(), q.T.copy()
