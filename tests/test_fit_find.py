@@ -291,3 +291,22 @@ def test_a_flights_model_extrapolated_back_past_its_drags_blow_up_is_nan_without
         model = _extrapolate(sol, back, t[0])
     before, past = back > 0.7 * blow_up, back < 1.3 * blow_up
     assert np.all(np.isfinite(model[before])) and np.all(np.isnan(model[past]))
+
+
+def test_a_fit_stopped_within_its_uncertainty_of_the_rod_limit_is_at_the_rod_limit():
+    """A short racquet toss's fit stopped at I1/I3 = 0.006 +- 0.05 (s = 0.01 + 1e-5, just short of
+    the floor S_MIN = 0.01) where, with the model's last digits otherwise, it ran onto the floor
+    and was refused: the data cannot tell it from the rod, and it is not taken as determined
+    (tests/test_fit_pool.py's short toss). A fit whose s lies clear of the floor, or whose s is
+    undetermined (NaN variance: another reason says so), is not at the rod limit."""
+    from types import SimpleNamespace
+
+    from tumble.analysis.fit.flights import _at_rod_limit
+    from tumble.analysis.fit.triangle import S_MIN
+
+    def fit(s: float, sd: float) -> SimpleNamespace:
+        return SimpleNamespace(P=np.array([s, 0.9]), cov_stat=np.diag([sd * sd, 1e-4]))
+
+    assert _at_rod_limit(fit(S_MIN + 1e-5, 0.05)) and _at_rod_limit(fit(S_MIN + 0.04, 0.05))
+    assert not _at_rod_limit(fit(S_MIN + 0.06, 0.05)) and not _at_rod_limit(fit(0.13, 0.01))
+    assert not _at_rod_limit(fit(S_MIN + 1e-5, float("nan")))
