@@ -299,14 +299,8 @@ def test_a_fit_stopped_within_its_uncertainty_of_the_rod_limit_is_at_the_rod_lim
     and was refused: the data cannot tell it from the rod, and it is not taken as determined
     (tests/test_fit_pool.py's short toss). A fit whose s lies clear of the floor, or whose s is
     undetermined (NaN variance: another reason says so), is not at the rod limit."""
-    from types import SimpleNamespace
+    from tumble.analysis.fit.triangle import S_MIN, at_rod_limit
 
-    from tumble.analysis.fit.flights import _at_rod_limit
-    from tumble.analysis.fit.triangle import S_MIN
-
-    def fit(s: float, sd: float) -> SimpleNamespace:
-        return SimpleNamespace(P=np.array([s, 0.9]), cov_stat=np.diag([sd * sd, 1e-4]))
-
-    assert _at_rod_limit(fit(S_MIN + 1e-5, 0.05)) and _at_rod_limit(fit(S_MIN + 0.04, 0.05))
-    assert not _at_rod_limit(fit(S_MIN + 0.06, 0.05)) and not _at_rod_limit(fit(0.13, 0.01))
-    assert not _at_rod_limit(fit(S_MIN + 1e-5, float("nan")))
+    assert at_rod_limit(S_MIN + 1e-5, 0.05**2) and at_rod_limit(S_MIN + 0.04, 0.05**2)
+    assert not at_rod_limit(S_MIN + 0.06, 0.05**2) and not at_rod_limit(0.13, 0.01**2)
+    assert not at_rod_limit(S_MIN + 1e-5, float("nan"))

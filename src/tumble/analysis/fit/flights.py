@@ -38,7 +38,7 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
    undetermined or uncertain by more than ``max_std``, or runs to the rod limit of the
-   triangle or stops within its standard uncertainty of it, where no tossed phone, racquet or book lies; named the air's drag when the drag
+   triangle (:func:`~tumble.analysis.fit.triangle.at_rod_limit`), where no tossed phone, racquet or book lies; named the air's drag when the drag
    law's model error alone takes it over ``max_std``), the model does not fit
    (:mod:`~tumble.analysis.fit.adequacy`), or not a rigid body: the body's ``|L|`` or energy
    rises during the flight (:func:`~tumble.analysis.fit.adequacy.rigid_body_check`), or the
@@ -83,7 +83,7 @@ from .rotor import rotor_check
 from .segments import _runs, _segments, _stretches, impulses, pause_times
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
 from .solve import Solution, solve
-from .triangle import EDGES, S_MIN
+from .triangle import EDGES, at_rod_limit
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
 
 __all__ = ["Flight", "find_flights"]
@@ -328,17 +328,6 @@ AFTER_IMPACT = 0.2
 AFTER_IMPACT_REASON = "after an impact, not a free flight"
 
 
-def _at_rod_limit(sol: Solution) -> bool:
-    """Whether the fit's ``s = (I1 + I3 - I2) / I3`` lies within one of its standard uncertainties
-    of the rod limit's floor :data:`~tumble.analysis.fit.triangle.S_MIN` (the data cannot tell it
-    from the rod), as the solver's other edges are judged (:func:`~tumble.analysis.fit.solve.snap_to_edges`).
-    Held exactly on the floor it is the rod edge itself; a fit stopped just short of it (a short
-    racquet toss: I1/I3 = 0.006 +- 0.05, where the same flight's fit reached the floor when the
-    model's last digits fell otherwise) is no more determined."""
-    var = float(sol.cov_stat[0, 0])
-    return bool(np.isfinite(var) and sol.P[0] - S_MIN <= np.sqrt(var))
-
-
 def _after_impacts(flights: list[Flight]) -> list[Flight]:
     """The flights with every stretch that starts within :data:`AFTER_IMPACT` of the end of a
     flight before it (a free motion: usable or joinable) skipped: a free flight starts with a
@@ -498,7 +487,7 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
         return _skip(t, a, b, verdict.reason, sol)
     _, std, _, edge = ratio_summary(sol)
     why = determination(sol, std, max_std)
-    if edge == EDGES["rod"] or not why and _at_rod_limit(sol):
+    if edge == EDGES["rod"] or not why and at_rod_limit(float(sol.P[0]), float(sol.cov_stat[0, 0])):
         why = ("ratios not determined: the fit ran to the rod limit of the triangle (I1 -> 0), where no toss of a "
                "phone, racquet or book lies (seen on short or slow flights)")
     rigid = _left_path(t, omega, b, b0)

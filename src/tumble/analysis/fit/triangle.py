@@ -28,7 +28,7 @@ import numpy as np
 
 from ...typing import ArrayLike
 
-__all__ = ["EDGES", "S_MIN", "edge_of", "ratio_jacobian", "ratios", "square"]
+__all__ = ["EDGES", "S_MIN", "at_rod_limit", "edge_of", "ratio_jacobian", "ratios", "square"]
 
 #: Names of the triangle's edges, in the terms a user knows.
 EDGES = {"planar": "planar (I1 + I2 = I3)", "I1=I2": "symmetric (I1 = I2)", "I2=I3": "symmetric (I2 = I3)",
@@ -110,3 +110,20 @@ def edge_of(s: float, g: float) -> str | None:
     if s <= S_MIN * (1 + 1e-6):
         return EDGES["rod"]
     return None
+
+
+def at_rod_limit(s: float, variance: float) -> bool:
+    """Whether a fit's ``s = (I1 + I3 - I2) / I3`` (its statistical ``variance``) lies within one
+    standard uncertainty of the rod limit's floor :data:`S_MIN`: the data cannot tell it from the
+    rod, as the solver judges its other edges (:func:`~tumble.analysis.fit.solve.snap_to_edges`).
+    A fit stopped just short of the floor (a short racquet toss: I1/I3 = 0.006 +- 0.05, where the
+    same flight's solve reached the floor when the model's last digits fell otherwise) is no more
+    determined than one held on it. An undetermined ``s`` (NaN variance) is not judged here.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.triangle import S_MIN, at_rod_limit
+    >>> at_rod_limit(S_MIN + 1e-5, 0.05 ** 2), at_rod_limit(0.13, 0.01 ** 2), at_rod_limit(S_MIN, float("nan"))
+    (True, False, False)
+    """
+    return bool(variance == variance and s - S_MIN <= variance ** 0.5)
