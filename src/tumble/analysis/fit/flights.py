@@ -38,8 +38,9 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    saturated (more than 60 % of its samples with an axis at the rail), a steady spin (no tumble: the
    ratios do not enter), a stable-axis toss or too little of a tumble (the fit leaves a ratio
    undetermined or uncertain by more than ``max_std``, or runs to the rod limit of the
-   triangle (:func:`~tumble.analysis.fit.triangle.at_rod_limit`), where no tossed phone, racquet or book lies; named the air's drag when the drag
-   law's model error alone takes it over ``max_std``), the model does not fit
+   triangle (:func:`~tumble.analysis.fit.triangle.at_rod_limit`), where no tossed phone, racquet
+   or book lies; named the air's drag when the drag law's model error alone takes it over
+   ``max_std``), the model does not fit
    (:mod:`~tumble.analysis.fit.adequacy`), or not a rigid body: the body's ``|L|`` or energy
    rises during the flight (:func:`~tumble.analysis.fit.adequacy.rigid_body_check`), or the
    samples leave the fitted motion more than :data:`~tumble.analysis.fit.adequacy.MAX_TAIL` before the impulse that ends the
