@@ -83,7 +83,7 @@ class RotorSchedule:
         """
         s = np.asarray(s, float)
         u = np.maximum(s, 0.0)
-        w1, w2, rise, fall, (a, freq, phi, sin_phi, dfreq) = self._constants
+        w1, rise, fall, (a, freq, phi, sin_phi, dfreq) = self._constants
         e1 = np.exp(-u / self.tau_idle)
         base, dbase = self.idle * (1 - e1), self.idle * e1 / self.tau_idle
         e2 = np.exp(-np.maximum(u - self.t_up, 0.0) / self.tau_up)
@@ -101,14 +101,14 @@ class RotorSchedule:
     @functools.cached_property
     def _constants(self) -> tuple:
         """What :meth:`speed_and_rate` needs that does not depend on the time, worked out once (it
-        runs at every stage of the flight's integration): the speeds at the spin-up and the brake,
-        rad/s, the rise to the plateau and the fall to the idle after the brake, rad/s, and the
+        runs at every stage of the flight's integration): the speed at the spin-up, the rise to
+        the plateau and the fall from the brake's speed to the idle after it, rad/s, and the
         ripple's amplitudes, angular frequencies (rad/s), phases, their sines and the amplitudes
         times the angular frequencies (rad/s)."""
         w1 = self.idle * (1 - np.exp(-self.t_up / self.tau_idle))
         w2 = w1 + (self.plateau - w1) * (1 - np.exp(-(self.t_brake - self.t_up) / self.tau_up))
         a, f, phi = self.ripple[:, 0, None], self.ripple[:, 1, None], self.ripple[:, 2, None]
-        return w1, w2, self.plateau - w1, w2 - self.idle_after, (a, 2 * np.pi * f, phi, np.sin(phi), a * 2 * np.pi * f)
+        return w1, self.plateau - w1, w2 - self.idle_after, (a, 2 * np.pi * f, phi, np.sin(phi), a * 2 * np.pi * f)
 
     @property
     def switches(self) -> tuple[float, float, float]:
