@@ -24,6 +24,8 @@ rule (:func:`ratio_jacobian`).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ...typing import ArrayLike
@@ -126,4 +128,4 @@ def at_rod_limit(s: float, variance: float) -> bool:
     >>> at_rod_limit(S_MIN + 1e-5, 0.05 ** 2), at_rod_limit(0.13, 0.01 ** 2), at_rod_limit(S_MIN, float("nan"))
     (True, False, False)
     """
-    return bool(variance == variance and s - S_MIN <= variance ** 0.5)
+    return not math.isnan(variance) and s - S_MIN <= math.sqrt(variance)
