@@ -75,11 +75,31 @@ def pytest_configure(config) -> None:
     fit_kernels.gyrostat_integrate = perturbed(fit_kernels.gyrostat_integrate, k)
 
 
+def selected(tests: list[str]) -> list[str]:
+    """The pytest arguments of ``tests``: each a glob of test files from the repository root, with
+    or without a test's node id after it (``tests/test_fit.py::test_x``). A pattern that names no
+    file is an error (pytest given nothing would run the whole suite).
+
+    Examples
+    --------
+    >>> selected(["tests/test_fit_whole.py::test_a", "tests/test_fit_whol?.py"])
+    ['tests/test_fit_whole.py', 'tests/test_fit_whole.py::test_a']
+    """
+    chosen = set()
+    for pattern in tests:
+        files, _, node = pattern.partition("::")
+        found = [str(p.relative_to(ROOT)) for p in ROOT.glob(files)]
+        if not found:
+            raise SystemExit(f"roundoff_audit: no test file matches {files!r}")
+        chosen |= {f"{f}::{node}" if node else f for f in found}
+    return sorted(chosen)
+
+
 def failures(k: int, tests: list[str]) -> list[str]:
     """The node ids of the tests that fail in run ``k`` (0: the models as they are)."""
     env = {**os.environ, "ROUNDOFF_RUN": str(k), "PYTHONPATH": os.pathsep.join(
         filter(None, [str(ROOT / "benchmarks"), os.environ.get("PYTHONPATH", "")]))}
-    files = sorted({str(p.relative_to(ROOT)) for pattern in tests for p in ROOT.glob(pattern)})
+    files = selected(tests)
     proc = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "roundoff_audit", "-p", "no:cacheprovider",
                            "-n", "auto", "--dist", "loadfile", "-rf", *files], cwd=ROOT, env=env, capture_output=True,
                           text=True, check=False)

@@ -262,14 +262,22 @@ def test_no_flight_fails_or_reports_an_uncertainty_above_a_tenth(campaign):
     assert used >= 0.85, used
 
 
-def test_each_fitted_flights_ratios_lie_within_three_of_its_uncertainties(campaign):
-    """Each flight's own ratios against the truth, in its standard uncertainties: a right
-    interval misses by three in 0.3 % of flights; one too narrow by half misses in 13 %, so over
-    the 16 flights it fails nearly always (the coverage itself: fit_coverage's "tidy" cell)."""
+def test_each_fitted_flights_ratios_lie_within_their_uncertainties(campaign):
+    """Each flight's own ratios against the truth, in its standard uncertainties, judged by
+    counts so that a right interval fails the test rarely whichever way the round-off falls:
+    at most one flight beyond three (a right interval misses by three in ~0.4 % of flights, two
+    of 16 in ~0.2 % of runs), none beyond five, and the mean square of the deviations at most 2.5
+    (a right interval: about 1, or less where it is conservative; above 2.5 by chance in ~0.2 %
+    of runs, the two ratios of a flight counted as one). An interval too narrow by half misses
+    by three in ~15 % of flights and has a mean square near 4: it fails both nearly always (the
+    coverage itself: fit_coverage's "tidy" cell). It asked none beyond three, which a right
+    interval fails by chance in ~5 % of runs (benchmarks/roundoff_audit.py found one at 3.29)."""
     rows, _ = campaign
-    z = [np.abs(toss.fit.ratios - truth) / toss.fit.ratios_std for _, iou, toss, truth in rows
-         if iou >= 0.5 and toss is not None and toss.status == "ok" and not toss.reason]
-    assert len(z) >= 12 and np.max(z) <= 3.0, np.round(z, 2)
+    z = np.array([np.abs(toss.fit.ratios - truth) / toss.fit.ratios_std for _, iou, toss, truth in rows
+                  if iou >= 0.5 and toss is not None and toss.status == "ok" and not toss.reason])
+    worst = z.max(axis=1)
+    assert len(z) >= 12, len(z)
+    assert np.sum(worst > 3.0) <= 1 and worst.max() <= 5.0 and np.mean(z**2) <= 2.5, np.round(z, 2)
 
 
 def test_pooled_ratios_lie_within_three_pooled_uncertainties(campaign):
