@@ -221,11 +221,17 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
     return cast(F, njit(cache=cache, **_known_options(options))(function))
 
 
-#: numba options that only make a kernel faster and that numba keeps among its target options
-#: without documenting them: ``forceinline`` (LLVM's ``alwaysinline``) and ``_nrt=False`` (no
-#: reference counting). numba refuses an option it does not know (KeyError), so a release without
-#: one of these would stop tumble importing; :func:`_known_options` leaves them out there instead.
-_SPEED_ONLY = ("forceinline", "_nrt")
+#: numba options that only make a kernel faster, or its first compile shorter, and that numba keeps
+#: among its target options without documenting them: ``forceinline`` (LLVM's ``alwaysinline``),
+#: ``_nrt=False`` (no reference counting) and ``no_cpython_wrapper=True`` (for a function that only
+#: compiled code calls: numba builds, for every compile, a wrapper that lets Python call it, whose
+#: boxing and unboxing of tuples was ~11 % of the first torque ``simulate``'s compile where ``auto``
+#: takes ``dop853``, 5.59 -> 4.95 CPU-s measured; numba's own sorts use it; Python calling such a
+#: function crashes the interpreter, so only the generated steps take it,
+#: :func:`tumble.dynamics.engine.kernels.generated`). numba refuses an option it does not know (KeyError),
+#: so a release without one of these would stop tumble importing; :func:`_known_options` leaves them
+#: out there instead.
+_SPEED_ONLY = ("forceinline", "_nrt", "no_cpython_wrapper")
 
 
 def _known_options(options: dict[str, Any]) -> dict[str, Any]:

@@ -88,7 +88,8 @@ def _sample(y: tuple[float, ...], B: np.ndarray, Y: np.ndarray, k: int) -> None:
 _STEPS = generated(fixed_step_source("damped_rk4_step", RK4_A, RK4_B, RK4_C, DAMPED)
                    + rotations_source("damped_rk4_turns", RK4_C)
                    + fixed_step_source("damped_rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], DAMPED)
-                   + rotations_source("damped_rk8_turns", DOP853_C[:12]), __file__, __name__, rhs=damped_rhs)
+                   + rotations_source("damped_rk8_turns", DOP853_C[:12]), __file__, __name__, inner=True,
+                   rhs=damped_rhs)
 _RUNS = generated(fixed_loop_source("fixed_damped_rk4", "damped_rk4_step", "damped_rk4_turns", "_load", "_sample", "Y")
                   + fixed_loop_source("fixed_damped_rk8", "damped_rk8_step", "damped_rk8_turns", "_load", "_sample", "Y"),
                   __file__, __name__, _load=_load, _sample=_sample, _equal_steps=_equal_steps, _direction=_direction,

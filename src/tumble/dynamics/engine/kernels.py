@@ -134,11 +134,16 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
     return a0, a1, a2, d0, d1, d2, d3
 
 
-def generated(source: str, filename: str, module: str, *, parallel: bool = False,
+def generated(source: str, filename: str, module: str, *, parallel: bool = False, inner: bool = False,
               **names: Any) -> dict[str, Any]:
     """The functions the generated ``source`` (:mod:`~tumble.dynamics.engine.unrolled`) defines,
     compiled, by name (``parallel``: with numba's ``prange`` over every core); ``names`` what they
-    call (``rhs``, helpers), ``math`` always. The code object
+    call (``rhs``, helpers), ``math`` always. ``inner``: functions that only compiled code calls (the
+    steps), compiled without the wrapper through which Python calls a kernel (numba's
+    ``no_cpython_wrapper``; :data:`tumble.jit._SPEED_ONLY`): a tenth of the first torque
+    ``simulate``'s compile. Python must not call them: numba has no entry for it and the
+    interpreter crashes. The helpers of the steps (``rhs``, the formulas) keep theirs, as a
+    function's ``py_func`` run in Python calls them. The code object
     is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
     keys the kernels on the sources (:func:`tumble.jit.jit`).
 
@@ -158,14 +163,16 @@ def generated(source: str, filename: str, module: str, *, parallel: bool = False
     namespace: dict[str, Any] = {"math": math, "__name__": module, **names}
     given = set(namespace)
     exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel) for name, f in namespace.items()
+    return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel, no_cpython_wrapper=inner)
+            for name, f in namespace.items()
             if name not in given and name != "__builtins__"}
 
 
 _STEPS = generated(fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C) + rotations_source("rk4_turns", RK4_C)
                    + fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12])
                    + rotations_source("rk8_turns", DOP853_C[:12])
-                   + dop853_sources() + rotations_source("dop853_turns", DOP853_C), __file__, __name__, rhs=rhs)
+                   + dop853_sources() + rotations_source("dop853_turns", DOP853_C), __file__, __name__, inner=True,
+                   rhs=rhs)
 _rk4_step, _rk4_turns = _STEPS["rk4_step"], _STEPS["rk4_turns"]
 _rk8_step, _rk8_turns = _STEPS["rk8_step"], _STEPS["rk8_turns"]
 _dop853_step, _dop853_errors, _dop853_turns = _STEPS["dop853_step"], _STEPS["dop853_errors"], _STEPS["dop853_turns"]

@@ -106,7 +106,7 @@ _IN_LANES = jit(cast(Any, rhs).py_func, error_model="numpy", inline="always")
 
 _STEPS = generated(lane_step_source("rk4_lanes", RK4_A, RK4_B, RK4_C, LANES)
                    + lane_step_source("rk8_lanes", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], LANES),
-                   __file__, __name__, rhs=_IN_LANES)
+                   __file__, __name__, inner=True, rhs=_IN_LANES)
 _RUNS = generated(fixed_loop_source("run_rk4", "rk4_lanes", "rk4_turns", "_load", "_sample", "omega, quat, index")
                   + fixed_loop_source("run_rk8", "rk8_lanes", "rk8_turns", "_load", "_sample", "omega, quat, index"),
                   __file__, __name__, rk4_lanes=_STEPS["rk4_lanes"], rk8_lanes=_STEPS["rk8_lanes"], rk4_turns=_rk4_turns,

@@ -69,7 +69,8 @@ def _sample(w: tuple[float, ...], I: FloatArray, W: FloatArray, k: int) -> None:
 
 
 _DRAG_STEPS = generated(fixed_step_source("drag_rk4_step", RK4_A, RK4_B, RK4_C, DRAG)
-                        + rotations_source("drag_rk4_turns", RK4_C), __file__, __name__, rhs=drag_rhs)
+                        + rotations_source("drag_rk4_turns", RK4_C), __file__, __name__, inner=True,
+                        rhs=drag_rhs)
 #: The dragged body's fixed-step RK4 run (:func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`):
 #: ``run(w0, t_eval, I, D, n, step, W)``, omega at the samples into ``W`` (len(t_eval), 3).
 fixed_drag_rk4 = generated(fixed_loop_source("fixed_drag_rk4", "drag_rk4_step", "drag_rk4_turns", "_load", "_sample", "W"),
