@@ -140,7 +140,9 @@ def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[
 @jit(error_model="numpy", _nrt=False)
 def field_body(kind: int, p: FloatArray, table: FloatArray, x: float, y: float, z: float, s: float,
                t: float) -> tuple[float, float, float]:  # pragma: no cover
-    """B (T) in the body frame of the unit quaternion ``(x, y, z, s)`` at ``t`` (s): ``R^T B_world``."""
+    """B (T) in the body frame of the quaternion ``(x, y, z, s)`` at ``t`` (s): ``R^T B_world``, times
+    ``|q|^2`` where the quaternion is not normalised (:func:`~tumble.dynamics.special.quaternion.to_body`'s
+    homogeneous form)."""
     b0, b1, b2 = field_world(kind, p, table, t)
     return _to_body(x, y, z, s, b0, b1, b2)
 
