@@ -6,7 +6,10 @@ registers, drops the zero coefficients and fuses the rest (measured 1.3-1.5x the
 loops over a stage array; the reference peer of ``../shared/peers`` is written so). Writing the
 12-stage DOP853 step out by hand would be ~300 lines to keep right; instead this module writes
 its source from the tableau (:mod:`~tumble.dynamics.engine.tableau`), the one place the
-coefficients live, and :mod:`~tumble.dynamics.engine.kernels` compiles it. Imports no numba.
+coefficients live, and :mod:`~tumble.dynamics.engine.kernels` compiles it. A sum of three slopes or
+more is written as a short loop over a tuple of the slopes and one of their literal weights
+(:data:`LOOPED_TERMS`), which LLVM unrolls into the same straight-line code: numba types its one
+line instead of every term, the larger part of a kernel's first compile. Imports no numba.
 
 Every generated function takes the state ``y`` (a 7-tuple: omega in rad/s, then the quaternion),
 the step ``h`` (s), the body ``I`` (a 3-tuple of principal moments, kg m^2), the torque terms
@@ -39,7 +42,7 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["LANE_ROWS", "RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source",
+__all__ = ["LANE_ROWS", "LOOPED_TERMS", "RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source",
            "fixed_step_source", "lane_rows", "lane_step_source", "rotations_source", "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
@@ -103,6 +106,19 @@ def state_layout(n: int) -> Layout:
     return Layout(n, "P, X", True)
 
 
+#: Sums over slopes of this many nonzero weights or more are written as a loop over the slopes
+#: (:func:`_sums`), fewer as expressions. The loop is over a tuple of the slopes and one of the
+#: weights, its body one multiply-add a component: numba types it once instead of once a term, and
+#: LLVM unrolls it back to the written-out sums with the weights as literals, the same operations
+#: in the same order. Where a kernel fuses multiply-adds (``fastmath`` contract) the written-out
+#: sum fused its first two terms the other way round, so results move by round-off (1e-13 of
+#: |omega| on the T-handle's runs); without it they are the same bits (the closed loop's). The
+#: first ``dop853`` call compiled in ~4.5 CPU-s instead of ~4.9 (its dense output 0.72 instead of
+#: 1.27), the first closed loop ~13.1 instead of ~14.3, the runs as fast (the T-handle, 20 s: 167
+#: against 167 us with 101 samples, 253 against 253 us with 2,000, alternating; 2026-11-30).
+LOOPED_TERMS = 3
+
+
 def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
     """``w_0 k0[i] + w_1 k1[i] + ...`` over the nonzero weights, summed in stage order (as
     scipy's ``np.dot(K.T, w)``); ``0.0`` when all are zero."""
@@ -110,17 +126,55 @@ def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
     return " + ".join(terms) if terms else "0.0"
 
 
-def _advanced(layout: Layout, weights: Coefficients, stages: Sequence[str], y: str = "y") -> str:
-    """The state ``y + h sum_r w_r k_r`` as a tuple literal."""
-    return "(" + ", ".join(f"{y}[{i}] + h * ({_weighted(weights, stages, i)})" for i in range(layout.size)) + ")"
+def _sums(n: int, weights: Coefficients, stages: Sequence[str], name: str,
+          indent: str = "    ") -> tuple[list[str], list[str]]:
+    """The weighted sums ``w_0 k0[i] + w_1 k1[i] + ...`` of each component ``i < n`` (nonzero
+    weights, stage order, as :func:`_weighted`): the lines that compute them, and an expression of
+    each. With :data:`LOOPED_TERMS` terms or more, a loop over the slopes into the locals
+    ``{name}0``, ``{name}1``, ...; else no line and the written-out sums.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import _sums
+    >>> _sums(2, [0.5, 0.0], ["k0", "k1"], "a")
+    ([], ['0.5 * k0[0]', '0.5 * k0[1]'])
+    >>> lines, sums = _sums(2, [0.5, 0.25, 0.125], ["k0", "k1", "k2"], "a")
+    >>> [line.strip() for line in lines][:4], sums
+    (['a_slopes, a_weights = (k0, k1, k2), (0.5, 0.25, 0.125)', 'a0, a1 = 0.0, 0.0', 'for a_j in range(3):', 'a_k, a_w = a_slopes[a_j], a_weights[a_j]'], ['a0', 'a1'])
+    >>> lines[-1]
+    '        a1 += a_w * a_k[1]'
+    """
+    used = [(float(w), k) for w, k in zip(weights, stages) if w != 0.0]
+    if len(used) < LOOPED_TERMS:
+        return [], [_weighted(weights, stages, i) for i in range(n)]
+    lines = [f"{indent}{name}_slopes, {name}_weights = ({', '.join(k for _, k in used)}), "
+             f"({', '.join(repr(w) for w, _ in used)})",
+             f"{indent}{', '.join(f'{name}{i}' for i in range(n))} = {', '.join('0.0' for _ in range(n))}",
+             f"{indent}for {name}_j in range({len(used)}):",
+             f"{indent}    {name}_k, {name}_w = {name}_slopes[{name}_j], {name}_weights[{name}_j]",
+             *[f"{indent}    {name}{i} += {name}_w * {name}_k[{i}]" for i in range(n)]]
+    return lines, [f"{name}{i}" for i in range(n)]
+
+
+def _advanced(layout: Layout, weights: Coefficients, stages: Sequence[str], y: str = "y",
+              looped: bool = True) -> tuple[list[str], str]:
+    """The state ``y + h sum_r w_r k_r``: the lines computing its sums (:func:`_sums`; none
+    without ``looped``) and the state as a tuple literal."""
+    if looped:
+        lines, sums = _sums(layout.size, weights, stages, "z")
+    else:
+        lines, sums = [], [_weighted(weights, stages, i) for i in range(layout.size)]
+    return lines, "(" + ", ".join(f"{y}[{i}] + h * ({v})" for i, v in enumerate(sums)) + ")"
 
 
 def _stage(layout: Layout, s: int, A: np.ndarray, C: Coefficients, state: str = "") -> list[str]:
     """Lines computing stage ``s``: the orbit's direction at its node, and its slope ``k{s}`` at
     ``state`` (by default, from the slopes before it)."""
     node = "t" if C[s] == 0.0 else f"t + {float(C[s])!r} * h"
-    state = state or ("y" if s == 0 else _advanced(layout, A[s, :s], [f"k{r}" for r in range(s)]))
-    return [f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]",
+    lines: list[str] = []
+    if not state:
+        lines, state = ([], "y") if s == 0 else _advanced(layout, A[s, :s], [f"k{r}" for r in range(s)])
+    return [*lines, f"    u0 = cs * rot[{2 * s}] - ss * rot[{2 * s + 1}]",
             f"    u1 = ss * rot[{2 * s}] + cs * rot[{2 * s + 1}]",
             f"    k{s} = {layout.call(node, state)}"]
 
@@ -141,7 +195,8 @@ def fixed_step_source(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, la
     lines = [layout.header(name, "h")]
     for s in range(stages):
         lines += _stage(layout, s, A, C)
-    lines.append(f"    return {_advanced(layout, B, [f'k{r}' for r in range(stages)])}")
+    final, state = _advanced(layout, B, [f"k{r}" for r in range(stages)])
+    lines += [*final, f"    return {state}"]
     return "\n".join(lines) + "\n"
 
 
@@ -180,11 +235,14 @@ def dop853_errors_lines(name: str, n: int, atol: str) -> list[str]:
     ('def errors(K, y, y_new, rtol, atol):', '    return e5, e3', 2)
     """
     slopes = [f"k{r}" for r in range(13)]
-    lines = [f"def {name}(K, y, y_new, rtol, atol):", f"    {', '.join(slopes)} = K", "    e5 = 0.0", "    e3 = 0.0"]
+    fifth, fifths = _sums(n, DOP853_E5, slopes, "p")
+    third, thirds = _sums(n, DOP853_E3, slopes, "q")
+    lines = [f"def {name}(K, y, y_new, rtol, atol):", f"    {', '.join(slopes)} = K", *fifth, *third,
+             "    e5 = 0.0", "    e3 = 0.0"]
     for i in range(n):
         lines += [f"    scale = {atol.format(i=i)} + max(abs(y[{i}]), abs(y_new[{i}])) * rtol",
-                  f"    a = ({_weighted(DOP853_E5, slopes, i)}) / scale",
-                  f"    b = ({_weighted(DOP853_E3, slopes, i)}) / scale",
+                  f"    a = ({fifths[i]}) / scale",
+                  f"    b = ({thirds[i]}) / scale",
                   "    e5 += a * a", "    e3 += b * b"]
     return [*lines, "    return e5, e3"]
 
@@ -219,7 +277,8 @@ def dop853_sources(layout: Layout = RIGID_BODY, step: str = "dop853_step", error
     lines = [layout.header(step, "k0, h")]
     for s in range(1, 12):
         lines += _stage(layout, s, A, C)
-    lines.append(f"    y_new = {_advanced(layout, B, slopes[:12])}")
+    final, state = _advanced(layout, B, slopes[:12])
+    lines += [*final, f"    y_new = {state}"]
     lines += _stage(layout, 12, A, C, "y_new")
     lines.append(f"    return y_new, ({', '.join(slopes)})")
     error_lines = dop853_errors_lines(errors, layout.size, atol)
@@ -235,7 +294,8 @@ def dop853_sources(layout: Layout = RIGID_BODY, step: str = "dop853_step", error
             f"    f1 = ({', '.join(f'h * k0[{i}] - f0[{i}]' for i in range(n))})",
             f"    f2 = ({', '.join(f'2.0 * f0[{i}] - h * (k12[{i}] + k0[{i}])' for i in range(n))})"]
     for r in range(4):
-        rows.append(f"    f{3 + r} = ({', '.join(f'h * ({_weighted(DOP853_D[r], extra, i)})' for i in range(n))})")
+        row, sums = _sums(n, DOP853_D[r], extra, "d")
+        rows += [*row, f"    f{3 + r} = ({', '.join(f'h * ({v})' for v in sums)})"]
     dense_lines += rows + ["    return (f0, f1, f2, f3, f4, f5, f6)"]
 
     # scipy's Dop853DenseOutput._call_impl: y = 0; for j, f in enumerate(reversed(F)): y += f;
@@ -346,13 +406,13 @@ def lane_step_source(name: str, A: np.ndarray, B: Coefficients, C: Coefficients,
                   f"                y = {rows(LANE_ROWS['state'])}"]
         if s:
             lines += slopes(s, A[s, :s], " " * 16)
-        state = "y" if s == 0 else _advanced(RIGID_BODY, A[s, :s], [f"k{r}" for r in range(s)])
+        state = "y" if s == 0 else _advanced(RIGID_BODY, A[s, :s], [f"k{r}" for r in range(s)], looped=False)[1]
         lines += [f"                z = {state}", *put(LANE_ROWS["stage"], "z", " " * 16)]
     lines += ["        u0 = cs * rot[2 * s] - ss * rot[2 * s + 1]", "        u1 = ss * rot[2 * s] + cs * rot[2 * s + 1]",
               f"        for j in range({lanes}):",
               f"            d = rhs({rows(LANE_ROWS['stage'])}, {rows(LANE_ROWS['body'], 6)}, P, u0, u1)",
               *put(LANE_ROWS["slope"], "d", " " * 12),
               f"    for j in range({lanes}):", f"        y = {rows(LANE_ROWS['state'])}", *slopes(stages, B, " " * 8),
-              f"        y = {_advanced(RIGID_BODY, B, [f'k{r}' for r in range(stages)])}",
+              f"        y = {_advanced(RIGID_BODY, B, [f'k{r}' for r in range(stages)], looped=False)[1]}",
               *put(LANE_ROWS["state"], "y", " " * 8), "    return W"]
     return "\n".join(lines) + "\n"
