@@ -18,7 +18,7 @@ def compute_t_handle():
     flips = flip_times(traj.t, traj.omega[:, 1])
     measured = float(np.mean(np.diff(flips)))
     return {"moments": handle.principal_moments.tolist(), "closed": closed, "measured": measured,
-            "flips": len(flips), "tolerance": 1e-11}  # measured: 1.8e-12
+            "flips": len(flips), "tolerance": 1e-11}  # measured: 3e-13 to 2e-12 (round-off, below)
 
 
 def _t_handle_page(r: dict) -> str:
@@ -35,13 +35,16 @@ each of the others: `omega0 = [0.1, 10, 0.1]` rad/s (principal frame). Closed fo
 
 **Conditions.** DOP853 (rtol 1e-12) over 10.5 closed-form intervals, 100001 samples; measured:
 the mean interval between the sign changes of `omega_2` ({r['flips']} flips, linearly
-interpolated). Tolerance {r['tolerance']:g} relative.
+interpolated). Tolerance {r['tolerance']:g} relative. The difference itself, ~1e-12, is the
+integration's and moves with its round-off: a change in how the compiled steps fuse their
+multiply-adds moved it between 2.7e-13 and 1.8e-12 (2026-11-30), so the table gives the bound it
+is tested against, not its decade.
 
 | | s |
 |---|---|
 | closed form, `flip_interval` | {sig(r['closed'])} |
 | measured, DOP853 | {sig(r['measured'])} |
-| relative difference | {magnitude(r['measured'] / r['closed'] - 1)} |
+| relative difference | {"< " + format(r['tolerance'], 'g') if abs(r['measured'] / r['closed'] - 1) < r['tolerance'] else magnitude(r['measured'] / r['closed'] - 1)} |
 
 {code(compute_t_handle)}"""
 
