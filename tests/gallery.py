@@ -114,9 +114,17 @@ def within(rel: float, unit: str = "relative") -> str:
 
 
 def magnitude(d: float) -> str:
-    """A difference as the power of ten just above it (stable across platforms)."""
+    """A difference as the power of ten just above it: stable across platforms and versions only
+    where the difference does not sit at the round-off of a computation (which moves by factors of
+    a few when the compiled code rounds otherwise) near a power of ten; there, :func:`bound`."""
     d = abs(d)
     return "0" if d == 0 else f"< 1e{math.floor(math.log10(d)) + 1}"
+
+
+def bound(d: float, limit: float) -> str:
+    """A difference given as the bound ``limit`` its test holds it to, ``< limit`` (its own
+    decade where it is beyond: the test then fails and says so)."""
+    return f"< {limit:g}" if abs(d) < limit else magnitude(d)
 
 
 def code(*functions) -> str:

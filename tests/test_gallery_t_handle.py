@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import tumble
-from gallery import Entry, code, magnitude, page_test, sig
+from gallery import Entry, bound, code, page_test, sig
 from tumble.analysis import flip_interval, flip_times
 
 
@@ -44,7 +44,7 @@ is tested against, not its decade.
 |---|---|
 | closed form, `flip_interval` | {sig(r['closed'])} |
 | measured, DOP853 | {sig(r['measured'])} |
-| relative difference | {"< " + format(r['tolerance'], 'g') if abs(r['measured'] / r['closed'] - 1) < r['tolerance'] else magnitude(r['measured'] / r['closed'] - 1)} |
+| relative difference | {bound(r['measured'] / r['closed'] - 1, r['tolerance'])} |
 
 {code(compute_t_handle)}"""
 
