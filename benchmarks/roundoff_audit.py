@@ -77,13 +77,14 @@ def pytest_configure(config) -> None:
 
 def selected(tests: list[str]) -> list[str]:
     """The pytest arguments of ``tests``: each a glob of test files from the repository root, with
-    or without a test's node id after it (``tests/test_fit.py::test_x``). A pattern that names no
-    file is an error (pytest given nothing would run the whole suite).
+    or without a test's node id after it (``tests/test_fit.py::test_x``); a node id of a file given
+    whole is left out (pytest would run that test twice). A pattern that names no file is an error
+    (pytest given nothing would run the whole suite).
 
     Examples
     --------
-    >>> selected(["tests/test_fit_whole.py::test_a", "tests/test_fit_whol?.py"])
-    ['tests/test_fit_whole.py', 'tests/test_fit_whole.py::test_a']
+    >>> selected(["tests/test_fit_whole.py::test_a", "tests/test_fit_whol?.py", "tests/test_fit.py::test_b"])
+    ['tests/test_fit.py::test_b', 'tests/test_fit_whole.py']
     """
     chosen = set()
     for pattern in tests:
@@ -92,7 +93,7 @@ def selected(tests: list[str]) -> list[str]:
         if not found:
             raise SystemExit(f"roundoff_audit: no test file matches {files!r}")
         chosen |= {f"{f}::{node}" if node else f for f in found}
-    return sorted(chosen)
+    return sorted(c for c in chosen if c.partition("::")[0] not in chosen or "::" not in c)
 
 
 def failures(k: int, tests: list[str]) -> list[str]:

@@ -127,11 +127,11 @@ def _weighted(weights: Coefficients, stages: Sequence[str], i: int) -> str:
 
 
 def _sums(n: int, weights: Coefficients, stages: Sequence[str], name: str,
-          indent: str = "    ") -> tuple[list[str], list[str]]:
+          looped: bool = True) -> tuple[list[str], list[str]]:
     """The weighted sums ``w_0 k0[i] + w_1 k1[i] + ...`` of each component ``i < n`` (nonzero
     weights, stage order, as :func:`_weighted`): the lines that compute them, and an expression of
-    each. With :data:`LOOPED_TERMS` terms or more, a loop over the slopes into the locals
-    ``{name}0``, ``{name}1``, ...; else no line and the written-out sums.
+    each. With :data:`LOOPED_TERMS` terms or more (and ``looped``), a loop over the slopes into the
+    locals ``{name}0``, ``{name}1``, ...; else no line and the written-out sums.
 
     Examples
     --------
@@ -145,14 +145,14 @@ def _sums(n: int, weights: Coefficients, stages: Sequence[str], name: str,
     '        a1 += a_w * a_k[1]'
     """
     used = [(float(w), k) for w, k in zip(weights, stages) if w != 0.0]
-    if len(used) < LOOPED_TERMS:
+    if not looped or len(used) < LOOPED_TERMS:
         return [], [_weighted(weights, stages, i) for i in range(n)]
-    lines = [f"{indent}{name}_slopes, {name}_weights = ({', '.join(k for _, k in used)}), "
+    lines = [f"    {name}_slopes, {name}_weights = ({', '.join(k for _, k in used)}), "
              f"({', '.join(repr(w) for w, _ in used)})",
-             f"{indent}{', '.join(f'{name}{i}' for i in range(n))} = {', '.join('0.0' for _ in range(n))}",
-             f"{indent}for {name}_j in range({len(used)}):",
-             f"{indent}    {name}_k, {name}_w = {name}_slopes[{name}_j], {name}_weights[{name}_j]",
-             *[f"{indent}    {name}{i} += {name}_w * {name}_k[{i}]" for i in range(n)]]
+             f"    {', '.join(f'{name}{i}' for i in range(n))} = {', '.join('0.0' for _ in range(n))}",
+             f"    for {name}_j in range({len(used)}):",
+             f"        {name}_k, {name}_w = {name}_slopes[{name}_j], {name}_weights[{name}_j]",
+             *[f"        {name}{i} += {name}_w * {name}_k[{i}]" for i in range(n)]]
     return lines, [f"{name}{i}" for i in range(n)]
 
 
@@ -160,10 +160,7 @@ def _advanced(layout: Layout, weights: Coefficients, stages: Sequence[str], y: s
               looped: bool = True) -> tuple[list[str], str]:
     """The state ``y + h sum_r w_r k_r``: the lines computing its sums (:func:`_sums`; none
     without ``looped``) and the state as a tuple literal."""
-    if looped:
-        lines, sums = _sums(layout.size, weights, stages, "z")
-    else:
-        lines, sums = [], [_weighted(weights, stages, i) for i in range(layout.size)]
+    lines, sums = _sums(layout.size, weights, stages, "z", looped)
     return lines, "(" + ", ".join(f"{y}[{i}] + h * ({v})" for i, v in enumerate(sums)) + ")"
 
 
