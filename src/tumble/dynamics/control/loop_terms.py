@@ -18,8 +18,8 @@ are each model's own formula, compiled: the momentum form of Euler's equations
 (:func:`~tumble.dynamics.special.quaternion.quaternion_rate_components`), the rotations
 (:func:`~tumble.dynamics.special.quaternion.to_body` in its homogeneous form, ``R^T v`` and, as the
 conjugate's, ``R v``: the quaternion is not normalised at the stages, the results divided by
-``|q|^2``, which runs beside the rotation instead of before it, 115 -> ~106 us for MRP feedback
-with three wheels, 60 s, RK8),
+``|q|^2``, which runs beside the rotation instead of before it: ``bench_closed_loop``'s MRP feedback with
+three wheels, 60 s, RK8, 112 -> 104 us),
 the gravity gradient (:func:`~tumble.dynamics.models.gravity.gradient_components`), the wheels'
 applied torque (:func:`~tumble.dynamics.models.actuators.wheel_torque`: limits and friction) and
 the fields below.
