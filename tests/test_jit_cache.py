@@ -119,6 +119,33 @@ def test_a_read_only_package_caches_under_the_users_folder(tmp_path, monkeypatch
     assert list(elsewhere.rglob("*.nbi")) and not list(beside.rglob("*.nbi"))
 
 
+def test_a_kernel_numba_cannot_cache_compiles_with_numbas_warning(tmp_path):
+    """A kernel that holds a ctypes function pointer (numba's "dynamic globals") cannot be cached:
+    numba warns, naming the kernel's file, and compiles it uncached. tumble's locator lacked the
+    file numba names there, and the compile failed with an AttributeError instead (seen with
+    NUMBA_OPT=0, where the engine's first kernel met the same check)."""
+    import ctypes
+    import ctypes.util
+    import warnings
+
+    from numba.core.errors import NumbaWarning
+
+    libc = ctypes.CDLL(ctypes.util.find_library("c"))
+    path = tmp_path / "_probe_pointer.py"
+    path.write_text("def absolute(x):\n    return labs(x)\n")
+    spec = importlib.util.spec_from_file_location("tumble._probe_pointer", path)
+    module = importlib.util.module_from_spec(spec)
+    module.labs = libc.labs
+    module.labs.argtypes, module.labs.restype = [ctypes.c_long], ctypes.c_long
+    spec.loader.exec_module(module)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert jit_module.jit(module.absolute)(-3) == 3
+    said = [w for w in caught if issubclass(w.category, NumbaWarning) and "Cannot cache" in str(w.message)]
+    assert said and said[0].filename == str(path), [str(w.message) for w in caught]
+    assert not list(tmp_path.rglob("*.nbc"))  # nothing half-written
+
+
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders; the tests above cover it")
 def test_a_read_only_install_runs_a_compiled_path(tmp_path):  # pragma: no cover - runs as a plain user
     root = _copy_package(tmp_path)

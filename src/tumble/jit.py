@@ -159,8 +159,9 @@ def _install_locator() -> bool:
     class SourceTreeLocator(base):  # type: ignore[misc, valid-type]
         """Caches a tumble kernel in :func:`_folder_for`, stamped with :func:`source_stamp`."""
 
-        def __init__(self, py_func: Callable[..., Any], folder: Path) -> None:
+        def __init__(self, py_func: Callable[..., Any], py_file: str, folder: Path) -> None:
             self._lineno = py_func.__code__.co_firstlineno
+            self._py_file = py_file  # numba names it in its warning about a kernel it cannot cache
             self._folder = str(folder)
 
         def ensure_cache_path(self) -> None:
@@ -181,7 +182,7 @@ def _install_locator() -> bool:
             if not (module == "tumble" or module.startswith("tumble.")) or not os.path.exists(py_file):
                 return None
             folder = _folder_for(Path(py_file).resolve())
-            return None if folder is None else cls(py_func, folder)
+            return None if folder is None else cls(py_func, py_file, folder)
 
     impl._locator_classes.insert(0, SourceTreeLocator)
     return True
