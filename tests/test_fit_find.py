@@ -7,6 +7,7 @@ of :mod:`tumble.analysis.fit.endings`; ``benchmarks/fit_coverage.py`` runs the f
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import numpy as np
@@ -304,3 +305,21 @@ def test_a_fit_stopped_within_its_uncertainty_of_the_rod_limit_is_at_the_rod_lim
     assert at_rod_limit(S_MIN + 1e-5, 0.05**2) and at_rod_limit(S_MIN + 0.04, 0.05**2)
     assert not at_rod_limit(S_MIN + 0.06, 0.05**2) and not at_rod_limit(0.13, 0.01**2)
     assert not at_rod_limit(S_MIN + 1e-5, float("nan"))
+
+
+@pytest.mark.parametrize("budget", ["momentum", "energy"])
+def test_a_rise_just_past_its_limit_reads_past_it(budget):
+    """Seed 71's first flight was refused with "its energy rose by 10 % ... at most 10 %": the
+    rise (10.4 %) was written to two digits. A rise 0.4 % past either limit reads past it."""
+    limit = MAX_MOMENTUM_RISE if budget == "momentum" else MAX_ENERGY_RISE
+    t = np.arange(0.0, 1.0, 0.002)
+    I = np.array([0.3, 0.8, 1.0])
+    # a spin about axis 2 that steps up halfway: |L| (or 2E) from 1 to 1 + a, whose rise over
+    # its mean is a / (1 + a / 2): the wanted rise r for a = r / (1 - r / 2)
+    r = limit + 0.004
+    a = r / (1.0 - r / 2.0)
+    s = np.where(t < 0.5, 1.0, (1.0 + a) ** (1.0 if budget == "momentum" else 0.5))
+    why = rigid_body_check(t, np.column_stack([0 * t, 5.0 * s, 0 * t]), I)
+    said = re.search(r"its (\S+).* rose by ([0-9.]+) % .* at most ([0-9.]+) %", why)
+    assert said and said[1] == ("angular" if budget == "momentum" else "energy"), why
+    assert float(said[3]) < float(said[2]) <= 100 * r + 0.05, why

@@ -210,7 +210,8 @@ def rigid_body_check(t: np.ndarray, omega_principal: np.ndarray, moments: np.nda
     for name, rise, limit in (("angular momentum |L|", _rise(momentum), MAX_MOMENTUM_RISE),
                               ("energy", _rise(energy), MAX_ENERGY_RISE)):
         if rise > limit:
-            return (f"not a rigid body: its {name} rose by {100 * rise:.2g} % during the flight, where air drag "
+            # one decimal: a rise just past the limit reads past it (".2g" wrote 10.4 % as "10 %")
+            return (f"not a rigid body: its {name} rose by {100 * rise:.1f} % during the flight, where air drag "
                     f"only lowers it (a rigid body's samples show at most {100 * limit:.0f} %): an internal torque "
                     f"acts (a rotor spinning up, a flexing or sloshing body, or two bodies)")
     return ""
