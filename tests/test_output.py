@@ -10,6 +10,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -54,7 +55,8 @@ def test_a_full_disk_midway_keeps_the_previous_output_and_exits_1(tmp_path, monk
     capsys.readouterr()
     assert simulate(out, "--omega", "1", "2", "3") == 1
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "No space left on device" in err and "trajectory.npz" in err
+    # the file as the user will find it, not in the staging folder (.run.tmp-*/trajectory.npz)
+    assert err.count("\n") == 1 and "No space left on device" in err and f"{out / 'trajectory.npz'}: " in err, err
     assert snapshot(out) == before  # the previous run, whole: not a mix of two runs
     assert leftovers(tmp_path, "run") == []
 
@@ -73,6 +75,30 @@ def test_a_full_disk_that_names_no_file_is_reported_with_the_output_folder(tmp_p
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "No space left on device" in err and f"{out}: " in err
     assert not out.exists() and leftovers(tmp_path, "run") == []
+
+
+def _refused(*_, dir=None, prefix="", suffix="", **__):
+    """tempfile's mkdtemp and mkstemp where the folder takes no new entry: the error names the
+    temporary file it tried, as the standard library's does."""
+    raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), os.path.join(dir or ".", f"{prefix}x1y2{suffix}"))
+
+
+@pytest.mark.parametrize("argv", [["simulate", SEED, "--samples", "50", "--out", "{out}"],
+                                  ["map", "--out", "{out}.png"],
+                                  ["examples", "--copy", "{out}"]], ids=["folder", "file", "copy"])
+def test_a_folder_that_takes_no_new_file_is_named_as_the_user_wrote_it(tmp_path, monkeypatch, capsys, argv):
+    """Seen as a user: ``--out /proc/r`` said "failed: /proc/.r.tmp-paxxzs8o: No such file or
+    directory", the name of a staging folder the user never asked for. The line names the output
+    the command was given (exit 1, nothing left behind)."""
+    out = tmp_path / "run"
+    argv = [a.format(out=out) for a in argv]
+    monkeypatch.setattr(tempfile, "mkdtemp", _refused)
+    monkeypatch.setattr(tempfile, "mkstemp", _refused)
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    asked = argv[-1]
+    assert err == f"tumble: failed: {asked}: Permission denied; nothing written\n"
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize(("signum", "code"), [(signal.SIGTERM, 143), (signal.SIGINT, 130)])

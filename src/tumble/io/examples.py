@@ -18,14 +18,12 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
-import tempfile
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from ..validation import NoSuchFileError, read_input_file
-from .atomic import _umask
+from .atomic import atomic_folder
 
 __all__ = ["Example", "copy_examples", "example_hint", "list_examples"]
 
@@ -242,20 +240,11 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
                 out.write(entry.read_bytes())
             written.append(target)
         return sorted(written)
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
-    try:
+    with atomic_folder(dest, "nothing was copied") as stage:
         for rel, entry in files:
-            target = tmp / rel
+            target = stage / rel
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_bytes(entry.read_bytes())
-        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
-        try:
-            os.rename(tmp, dest)  # atomic; fails if dest appeared meanwhile and is not empty
-        except OSError as exc:
-            raise ValueError(f"{dest}: could not be created ({exc.strerror}); nothing was copied") from None
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
     return sorted(dest / rel for rel, _ in files)
 
 

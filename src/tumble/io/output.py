@@ -33,7 +33,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from .atomic import _umask
+from .atomic import _umask, staging_folder
 from .lock import locked_folder
 
 __all__ = ["FIGURE_DPI", "check_output_dir", "check_output_file", "output_dir"]
@@ -149,21 +149,11 @@ def output_dir(path: str | os.PathLike[str], owns: Iterable[str] = ()) -> Iterat
     path = Path(path).absolute()
     check_output_dir(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=f".{path.name}.tmp-", dir=path.parent))
-    try:
-        try:
-            yield stage
-        except OSError as exc:
-            if exc.filename is None and not isinstance(exc, BrokenPipeError):
-                # a write that failed without naming its file (a full disk fails in write(), which
-                # names none): the message names the output folder that could not be written
-                raise OSError(exc.errno, exc.strerror or str(exc), str(path)) from exc
-            raise
+    with staging_folder(path, f".{path.name}.tmp-") as stage:
+        yield stage
         os.chmod(stage, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
         with locked_folder(path.parent):
             _swap_in(stage, path, tuple(owns))
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
 
 
 def _swap_in(stage: Path, path: Path, owns: tuple[str, ...]) -> None:

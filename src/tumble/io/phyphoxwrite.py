@@ -18,8 +18,6 @@ from __future__ import annotations
 
 import io
 import os
-import shutil
-import tempfile
 import zipfile
 from collections.abc import Sequence
 from datetime import datetime, timezone
@@ -28,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ..typing import ArrayLike
-from .atomic import _umask, atomic_write_bytes
+from .atomic import atomic_folder, atomic_write_bytes
 from .phyphox import ACCEL_CSV, TIME_CSV
 
 __all__ = ["GYRO_CSV", "MULTI_GYRO_CSV", "phyphox_files", "write_phyphox"]
@@ -191,18 +189,8 @@ def write_phyphox(path: str | os.PathLike[str], t: ArrayLike, omega: ArrayLike, 
         return atomic_write_bytes(path, buffer.getvalue())
     if path.exists() and not (path.is_dir() and not any(path.iterdir())):
         raise ValueError(f"{path}: exists and is not an empty folder; write_phyphox never overwrites a folder")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
-    try:
+    with atomic_folder(path) as stage:
         for name, data in files.items():
-            (tmp / name).parent.mkdir(parents=True, exist_ok=True)
-            (tmp / name).write_bytes(data)
-        for folder in (tmp, tmp / "meta"):
-            os.chmod(folder, 0o777 & ~_umask())  # mkdtemp makes 0700; give the usual permissions
-        try:
-            os.rename(tmp, path)  # atomic; onto an empty folder too
-        except OSError as exc:
-            raise ValueError(f"{path}: could not be created ({exc.strerror}); nothing was written") from None
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+            (stage / name).parent.mkdir(parents=True, exist_ok=True)
+            (stage / name).write_bytes(data)
     return path
