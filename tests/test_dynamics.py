@@ -172,6 +172,14 @@ def test_energy_matches_definition():
         (dict(frame="world"), r"frame = 'world' is not allowed; allowed: principal, design"),
         (dict(rtol=0.0), r"rtol = 0.0 must be a positive"),
         (dict(method="seed", torque=ConstantTorque((0, 0, 1.0))), r"method = 'seed' cannot take a torque"),
+        # what a new user tries first (seen 2026-11-30): a vector for a constant torque, a function
+        # of (t, omega), three moments for a body; each message says what to give instead
+        (dict(torque=(0, 0, 1)), r"^torque = \(0, 0, 1\) is a vector, not a torque model: for a constant torque "
+                                 r"give tumble.ConstantTorque\(\(0.0, 0.0, 1.0\)\) \(N m, body frame"),
+        (dict(torque=lambda t, w: w), r"^torque = <lambda>\(t, w\) cannot be called as tau\(t, omega, attitude\)"),
+        (dict(torque="gravity"), r"^torque = 'gravity' must be a function called as tau\(t, omega, attitude\)$"),
+        (dict(body=[1.0, 2.0, 3.0]), r"^body = \[1.0, 2.0, 3.0\] must be a tumble Body or MassProperties; for principal "
+                                     r"moments alone: tumble.MassProperties.from_moments\(\[1.0, 2.0, 3.0\]\)$"),
     ],
 )
 def test_bad_simulate_input(kwargs, pattern):

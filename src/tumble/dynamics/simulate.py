@@ -11,6 +11,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL, Body, MassProperties
+from ..mass.body import properties_of
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
@@ -327,9 +328,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     ...
     ValueError: t_end = -1.0 ...
     """
-    props = body.properties if isinstance(body, Body) else body
-    if not isinstance(props, MassProperties):
-        raise ValueError(f"body = {body!r} must be a tumble Body or MassProperties")
+    props = properties_of(body)
     model = as_torque(torque)
     model = bind_to_body(model, props)  # a torque that needs the body's moments (NeedsBody)
     if damper is not None and not isinstance(damper, SphericalDamper):

@@ -34,7 +34,7 @@ from .tensor import (
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
 
-__all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties"]
+__all__ = ["AXIS_ROLES", "Body", "MassProperties", "mass_properties", "properties_of"]
 
 def _array(a: ArrayLike) -> FloatArray:
     # Arrays are left writeable: scipy's Rotation.apply refuses read-only input, and users
@@ -435,3 +435,24 @@ class Body:
     def _repr_html_(self) -> str:
         """The mass properties and the parts as HTML tables (Jupyter's rich display)."""
         return _display.body_html(self)
+
+
+def properties_of(body: object, name: str = "body") -> MassProperties:
+    """The mass properties of a :class:`Body` (its :attr:`~Body.properties`) or of
+    :class:`MassProperties` (themselves); a ValueError naming ``name`` for anything else, with the
+    way to make them where it is three numbers.
+
+    Examples
+    --------
+    >>> from tumble.mass.body import properties_of
+    >>> properties_of([1.0, 2.0, 3.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: body = [1.0, 2.0, 3.0] must be a tumble Body or MassProperties; for principal moments alone: tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+    """
+    props = body.properties if isinstance(body, Body) else body
+    if isinstance(props, MassProperties):
+        return props
+    three = isinstance(body, (list, tuple, np.ndarray)) and len(body) == 3
+    hint = f"; for principal moments alone: tumble.MassProperties.from_moments({body!r})" if three else ""
+    raise ValueError(f"{name} = {short_repr(body)} must be a tumble Body or MassProperties{hint}")

@@ -33,6 +33,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..._html import fmt, plural, result_html, result_repr
+from ...mass.body import properties_of
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import (
     AXES_ALLOWED,
@@ -221,9 +222,7 @@ def lvlh_state(
     """
     if not _is_circular_orbit(gg):  # by its attributes: gravity.py imports this module, not the reverse
         raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient")
-    axes = getattr(body, "principal_axes", None)
-    if axes is None:
-        raise ValueError(f"body = {short_repr(body)} must be a tumble Body or MassProperties")
+    axes = properties_of(body).principal_axes
     _, P = rpy_axes(pitch_axis, yaw_axis)
     r, p, y = np.broadcast_arrays(_angles("roll", roll), _angles("pitch", pitch), _angles("yaw", yaw))
     rel = Rotation.from_euler("YXZ", np.stack([p, r, y], axis=-1))

@@ -42,7 +42,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Vector3
-from ...validation import check_vector
+from ...validation import check_callable, check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 
 if TYPE_CHECKING:
@@ -333,18 +333,21 @@ class FunctionTorque:
     >>> damping = FunctionTorque(lambda t, omega, attitude: -0.1 * omega)   # body frame by default
     >>> damping.frame, damping(0.0, np.array([1.0, 2.0, 0.0]), Rotation.identity()).tolist()
     ('body', [-0.1, -0.2, -0.0])
-    >>> FunctionTorque(3.0)
+    >>> FunctionTorque((0.0, 0.0, 0.01))   # a vector is no torque model: the message says which one
     Traceback (most recent call last):
     ...
-    ValueError: torque = 3.0 is not callable
+    ValueError: torque = (0.0, 0.0, 0.01) is a vector, not a torque model: for a constant torque give tumble.ConstantTorque((0.0, 0.0, 0.01)) (N m, body frame; frame="world" for a world-fixed one)
     """
 
     fn: Callable[[float, np.ndarray, Rotation], ArrayLike]
     frame: str = "body"
 
     def __post_init__(self) -> None:
-        if not callable(self.fn):
-            raise ValueError(f"torque = {self.fn!r} is not callable")
+        if not callable(self.fn) and np.shape(self.fn) == (3,):
+            raise ValueError(f"torque = {self.fn!r} is a vector, not a torque model: for a constant torque give "
+                             f"tumble.ConstantTorque({tuple(float(v) for v in np.asarray(self.fn, float))}) (N m, body "
+                             'frame; frame="world" for a world-fixed one)')
+        check_callable("torque", self.fn, "tau(t, omega, attitude)")
         _check_frame(self.frame)
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
