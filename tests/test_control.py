@@ -10,6 +10,7 @@ import pytest
 from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
+import tumble
 from tumble.dynamics.control.controlled import simulate_controlled
 from tumble.dynamics.control.bdot import BDot, bdot_gain
 from tumble.dynamics.control.controllers import Controller, MRPFeedback, pd_response
@@ -220,6 +221,23 @@ def test_a_user_controller_implements_the_interface():
      r"span fewer than 3 directions"),
     (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=BDot(1.0, 1.0), magnetorquers=Magnetorquers()),
      r"magnetorquers need a magnetic field"),
+    # what a new user tries (seen 2026-11-30): the controller's actuator left out of the run (the
+    # wheels failed in numpy's broadcasting; B-dot's dipoles were dropped without a word), a
+    # function for a controller, a body for the moments
+    (lambda: simulate_controlled(I_PD, [0, 0, 0.1], t_end=1.0, controller=MRPFeedback(
+        K=1.0, P=1.0, period=0.5, moments=I_PD, wheels=ReactionWheels(np.eye(3), inertia=1e-4))),
+     r"^controller = MRPFeedback drives 3 reaction wheels \(its wheels=\); the run is given none: give "
+     r"simulate_controlled\(..., wheels=\) the controller's ReactionWheels$"),
+    (lambda: simulate_controlled(I_PD, [0, 0, 0.1], t_end=1.0, controller=MRPFeedback(
+        K=1.0, P=1.0, period=0.5, moments=I_PD, wheels=ReactionWheels(np.eye(3), inertia=1e-4)),
+        wheels=ReactionWheels(np.eye(3)[:2], inertia=1e-4)), r"drives 3 reaction wheels .* the run is given 2"),
+    (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=BDot(1.0, 1.0),
+                                 field=UniformField((3e-5, 0.0, 0.0))),
+     r"^controller = BDot commands magnetic dipoles in the field: give magnetorquers=Magnetorquers\(...\)"),
+    (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=lambda t, m: Command()),
+     r"^controller = <lambda> is not a controller: one has a period \(s\) and is called as controller\(t, measurement\)"),
+    (lambda: simulate_controlled(tumble.t_handle(), [0, 0, 1], t_end=1.0, controller=BDot(1.0, 1.0)),
+     r"^moments = Body\(.*\) is a body: give its principal moments, body.properties.principal_moments"),
 ])
 def test_bad_input_is_refused_with_one_clear_message(make, message):
     with pytest.raises(ValueError, match=message):

@@ -21,10 +21,10 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_moments, check_positive, check_rotation, check_vector
+from ...validation import check_moments, check_positive, check_rotation, check_vector, short_repr
 from ..simulate import check_rtol
 
-__all__ = ["checked", "control_instants", "locked_inverse", "moments_checked"]
+__all__ = ["check_actuators", "checked", "control_instants", "locked_inverse", "moments_checked"]
 
 
 def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, atol: float, controller: Any,
@@ -50,6 +50,10 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     ValueError: t_end = -1.0 must be a positive finite number (s)
     """
     period = getattr(controller, "period", None)
+    if period is None and not hasattr(controller, "period"):
+        raise ValueError(f"controller = {getattr(controller, '__name__', None) or short_repr(controller)} is not a "
+                         "controller: one has a period (s) and is called as controller(t, measurement) -> Command "
+                         "(tumble.dynamics.control: BDot, MRPFeedback, MomentumDumping, DetumbleThenPoint, Estimated)")
     lone_rods = magnetorquers is not None and field is None
     k = 0 if wheels is None else wheels.count
     raw = (_raw(moments), _raw(omega0), _raw(attitude0), _raw(wheel_speed0))
@@ -118,6 +122,9 @@ def moments_checked(value: ArrayLike) -> FloatArray:
     if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
         _moments_of(value.tobytes())
         return value.copy()
+    if hasattr(value, "principal_moments") or hasattr(value, "properties"):  # a Body or MassProperties
+        raise ValueError(f"moments = {short_repr(value)} is a body: give its principal moments, "
+                         "body.properties.principal_moments (kg m^2; the loop runs in the principal frame)")
     return check_moments("moments", value)
 
 
@@ -161,3 +168,41 @@ def locked_inverse(moments: FloatArray, wheels: Any) -> FloatArray:
     [1.0, 0.5, 0.4]
     """
     return np.asarray(np.linalg.inv(np.diag(moments) - (wheels.locked_axial() if wheels is not None else 0.0)), float)
+
+
+def check_actuators(controller: Any, field: Any, magnetorquers: Any, wheels: Any) -> None:
+    """Refuse a run whose built-in controller commands an actuator the run lacks: B-dot and momentum
+    dumping in a field without ``magnetorquers`` (their dipoles were dropped without a word: the
+    "detumbling" did nothing), MRP feedback without its ``wheels``, or with another number of
+    them (a failure in numpy's broadcasting). A ValueError naming the missing argument. B-dot with
+    neither field nor magnetorquers asks for nothing (a free body's run, as the examples use
+    it); controllers of the user's own pass.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control._front import check_actuators
+    >>> from tumble.dynamics.control.bdot import BDot
+    >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> check_actuators(BDot(gain=1e4, period=1.0), UniformField((3e-5, 0.0, 0.0)), None, None)
+    Traceback (most recent call last):
+    ...
+    ValueError: controller = BDot commands magnetic dipoles in the field: give magnetorquers=Magnetorquers(...) to make them
+    """
+    from .bdot import BDot
+    from .controllers import MomentumDumping, MRPFeedback
+    from .estimated import Estimated
+    from .mission import DetumbleThenPoint
+
+    inner = controller.controller if isinstance(controller, Estimated) else controller
+    parts = (inner.detumble, inner.point) if isinstance(inner, DetumbleThenPoint) else (inner,)
+    for part in parts:
+        name = type(part).__name__
+        if isinstance(part, (BDot, MomentumDumping)) and magnetorquers is None and field is not None:
+            raise ValueError(f"controller = {name} commands magnetic dipoles in the field: give "
+                             "magnetorquers=Magnetorquers(...) to make them")
+        own = part.pointing.wheels if isinstance(part, MomentumDumping) else part.wheels \
+            if isinstance(part, MRPFeedback) else None
+        if own is not None and (wheels is None or wheels.count != own.count):
+            given = "none" if wheels is None else f"{wheels.count}"
+            raise ValueError(f"controller = {name} drives {own.count} reaction wheels (its wheels=); the run is given "
+                             f"{given}: give simulate_controlled(..., wheels=) the controller's ReactionWheels")

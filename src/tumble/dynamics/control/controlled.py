@@ -44,7 +44,7 @@ from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
 from . import _display
-from ._front import checked, control_instants, locked_inverse
+from ._front import check_actuators, checked, control_instants, locked_inverse
 from ._rotations import Matrix, cross, matrix
 from .controllers import Controller
 from .estimated import Estimated
@@ -379,6 +379,7 @@ def simulate_controlled(
     """
     I, T, rtol, atol, period, y0 = checked(moments, omega0, t_end, rtol, atol, controller, attitude0, field,
                                            magnetorquers, wheels, wheel_speed0)
+    check_actuators(controller, field, magnetorquers, wheels)
     k = 0 if wheels is None else wheels.count
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
     if hasattr(controller, "reset"):
