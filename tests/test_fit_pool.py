@@ -180,6 +180,9 @@ def test_one_recording_in_a_list_is_the_recording():
     (([(np.zeros(3), np.zeros((3, 3)))],), {"events": []}, "events go with each recording"),
     (([(np.arange(300) * 0.01, np.zeros((299, 3))), (np.arange(300) * 0.01, np.zeros((300, 3)))],), {},
      r"recording 0: omega_measured must have shape \(300, 3\)"),
+    # a file's name, as a new user tries first (was "recording 0: expected (t, omega) ..., got str")
+    (("tosses.csv",), {}, r"^t = 'tosses.csv' is a file's name: read it first, t, omega, events = "
+                          r"tumble.io.gyrodata.read_recording\(path\)"),
 ])
 def test_a_bad_list_of_recordings_is_refused(args, kwargs, message):
     with pytest.raises(ValueError, match=message):

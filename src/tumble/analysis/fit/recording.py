@@ -31,6 +31,7 @@ samples, :func:`samples_sha256`) is refused.
 
 from __future__ import annotations
 
+import os
 import warnings
 from collections import Counter
 from collections.abc import Callable, Sequence
@@ -290,6 +291,9 @@ def _recordings(t, omega, events, accel=None) -> list:
         raise ValueError(f"{'events' if events is not None else 'accel'} go with each recording of a list, as its "
                          f"{'third' if events is not None else 'fourth'} item, not as "
                          f"{'events' if events is not None else 'accel'}=")
+    if isinstance(t, (str, os.PathLike)):
+        raise ValueError(f"t = {os.fspath(t)!r} is a file's name: read it first, t, omega, events = "
+                         "tumble.io.gyrodata.read_recording(path) (a phyphox export or a CSV of t, wx, wy, wz)")
     try:
         items = list(t)
     except TypeError:
