@@ -101,6 +101,28 @@ def test_accelerometer_read_and_other_sensors_columns_ignored_by_name(tmp_path, 
     assert note.startswith("linear acceleration x, linear acceleration y, linear acceleration z: ")
 
 
+def test_sensor_loggers_gyroscope_file_is_read_by_its_seconds_elapsed(tmp_path, rec, capsys):
+    """Sensor Logger (iOS and Android) writes ``Gyroscope.csv`` as ``time,seconds_elapsed,z,y,x``:
+    the clock in ns since 1970, the seconds since the start, the rates in rad/s, z first. It was
+    refused ("2 time columns; keep one"); the seconds elapsed are taken, the clock ignored, and
+    ``tumble fit`` answers as for the same samples in the plain layout."""
+    clock = 1_767_620_467_350_470_700 + np.round(rec.t * 1e9).astype(np.int64)  # what the app writes: int ns
+    rows = [f"{clock[k]},{rec.t[k]:.6f},{rec.omega[k, 2]:.9g},{rec.omega[k, 1]:.9g},{rec.omega[k, 0]:.9g}"
+            for k in range(len(rec.t))]
+    logger = tmp_path / "Gyroscope.csv"
+    logger.write_text("time,seconds_elapsed,z,y,x\n" + "\n".join(rows) + "\n", encoding="utf-8")
+    got = load_recording(logger)
+    assert got.read.time == "seconds_elapsed" and got.read.rates == ("x", "y", "z") and got.read.ignored == ("time",)
+    assert np.allclose(got.t, rec.t, rtol=0, atol=5e-7) and np.allclose(got.omega, rec.omega, rtol=1e-8, atol=1e-9)
+    plain = tmp_path / "plain.csv"
+    plain.write_text("t,wx,wy,wz\n" + "\n".join(_table(np.round(rec.t, 6), rec.omega)) + "\n", encoding="utf-8")
+    assert main(["fit", str(logger), "--out", str(tmp_path / "a")]) == 0
+    assert main(["fit", str(plain), "--out", str(tmp_path / "b")]) == 0
+    a, b = (json.loads((tmp_path / d / "fit.json").read_text()) for d in "ab")
+    key = ("I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std")
+    assert [a["pooled"][k] for k in key] == [b["pooled"][k] for k in key]  # the same samples, the same answer
+
+
 @pytest.mark.parametrize("header, message", [
     ("t,time,wx,wy,wz", r"has 2 time columns \('t', 'time'\); keep one; allowed: time: t, time, timestamp"),
     ("t,ax,ay,az", r"has no rate column for x; allowed:"),

@@ -5,7 +5,9 @@ A header cell is a name and, in brackets or parentheses at its end, a unit: ``"T
 alike (``gyro_x``, ``Gyro X`` and ``gyro-x`` are one name):
 
 - **time**: ``t``, ``time``, ``timestamp``, ``time stamp``, ``elapsed``, ``elapsed time``,
-  ``seconds elapsed``; its unit s (default), ms, us or ns;
+  ``seconds elapsed``; its unit s (default), ms, us or ns. Beside a clock's column the elapsed
+  one is taken, the clock ignored: Sensor Logger's ``Gyroscope.csv`` (iOS and Android) is
+  ``time,seconds_elapsed,z,y,x``, the time in ns since 1970 and the rates in rad/s;
 - **rate** about axis ``x`` (``y``, ``z`` alike): ``x``, ``wx``, ``gx``, ``omega x``, ``gyro x``,
   ``gyroscope x``, ``rate x``, ``rotation rate x``, ``angular velocity x`` (a space, or none,
   before the axis; ``x axis`` too); unit rad/s (default), deg/s, dps, rpm, rev/s or Hz;
@@ -55,7 +57,8 @@ RATE_PREFIXES = ("w", "g", "omega", "gyro", "gyroscope", "rate", "rotation rate"
 RECORDING_FORMAT = FileFormat("recording", (
     Table("header columns", (
         Key("time", "numbers, increasing", ", ".join(TIME_UNITS), "s", choices=TIME_NAMES, example='"Time (s)"',
-            doc="the sample times; the unit in brackets after the name"),
+            doc="the sample times; the unit in brackets after the name; beside a clock's column (time, timestamp) "
+                "an elapsed one is taken and the clock ignored (Sensor Logger's time,seconds_elapsed)"),
         *(Key(axis, "numbers", ", ".join(u for u in RATE_UNITS if u.isascii()), "rad/s",
               allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally",
               example=f'"gyro_{axis} [deg/s]"', doc=f"the angular velocity about the sensor's {axis} axis")
@@ -83,6 +86,8 @@ RECORDING_FORMAT = FileFormat("recording", (
 
 _UNIT = re.compile(r"[(\[]\s*([^()\[\]]+?)\s*[)\]]\s*$")
 _TIME = set(TIME_NAMES)
+#: The time names that count from the recording's start (taken beside a clock's column).
+_ELAPSED = {"elapsed", "elapsed time", "seconds elapsed"}
 _RATE = re.compile(r"^(?:(?:" + "|".join(re.escape(p) for p in RATE_PREFIXES) + r") ?)?([xyz])(?: axis)?$")
 _OTHER = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|linear acceleration|lin acc|gravity|m|mag|"
                     r"magnetometer|magnetic field|b) ?[xyz](?: axis)?$")
@@ -277,6 +282,9 @@ def match_header(head: list[str], label: str, line: int) -> tuple[list[int], lis
     >>> columns, scale, names = match_header(["time (ms)", "acc_x", "gyro_x [deg/s]", "gyro_y [deg/s]", "gyro_z [deg/s]", "|omega|"], "a.csv", 1)
     >>> columns, names["ignored"]
     ([0, 2, 3, 4], ['acc_x', '|omega|'])
+    >>> columns, scale, names = match_header(["time", "seconds_elapsed", "z", "y", "x"], "Gyroscope.csv", 1)
+    >>> columns, names["time"], names["ignored"]   # Sensor Logger's: the seconds elapsed, not the clock
+    ([1, 4, 3, 2], 'seconds_elapsed', ['time'])
     >>> match_header(["t", "ax", "ay", "az"], "a.csv", 1)
     Traceback (most recent call last):
     ...
@@ -287,6 +295,9 @@ def match_header(head: list[str], label: str, line: int) -> tuple[list[int], lis
     if len(shown) > 160:
         shown = shown[:157] + "..."
     times = [j for j, (n, _) in enumerate(parsed) if n in _TIME]
+    elapsed = [j for j in times if parsed[j][0] in _ELAPSED]
+    if len(times) == 2 and len(elapsed) == 1:  # a clock and the seconds since the start (Sensor Logger): the latter
+        times = elapsed
     axes: dict[str, list[int]] = {"x": [], "y": [], "z": []}
     for j, (n, _) in enumerate(parsed):
         m = _RATE.match(n)
