@@ -123,6 +123,37 @@ def test_sensor_loggers_gyroscope_file_is_read_by_its_seconds_elapsed(tmp_path, 
     assert [a["pooled"][k] for k in key] == [b["pooled"][k] for k in key]  # the same samples, the same answer
 
 
+@pytest.mark.parametrize("packed", ["folder", "zip"])
+def test_sensor_loggers_export_is_read_without_its_gravity_free_accelerometer(tmp_path, rec, packed):
+    """Sensor Logger's export (a folder or a .zip): ``Gyroscope.csv`` beside ``Accelerometer.csv``,
+    which has the phone's gravity estimate taken out (0 m/s^2 at rest, not 9.8), and
+    ``TotalAcceleration.csv`` and ``Metadata.csv``. The gyroscope is read; the accelerometer is
+    not taken for the specific force (it would read 9.8 m/s^2 in free fall, the flights cut
+    wrong), and what was read says so."""
+    import zipfile
+
+    clock = 1_767_620_467_350_470_700 + np.round(rec.t * 1e9).astype(np.int64)
+    axes = lambda v: [f"{clock[k]},{rec.t[k]:.6f},{v[k, 2]:.9g},{v[k, 1]:.9g},{v[k, 0]:.9g}" for k in range(len(rec.t))]  # noqa: E731
+    files = {"Gyroscope.csv": axes(rec.omega), "Accelerometer.csv": axes(np.zeros_like(rec.omega)),
+             "TotalAcceleration.csv": axes(np.tile([0.0, 0.0, 9.81], (len(rec.t), 1)))}
+    texts = {n: "time,seconds_elapsed,z,y,x\n" + "\n".join(rows) + "\n" for n, rows in files.items()}
+    texts["Metadata.csv"] = "version,device name,platform,sampleRateMs\n3,phone,android,10\n"
+    where = tmp_path / "export"
+    if packed == "folder":
+        where.mkdir()
+        for n, text in texts.items():
+            (where / n).write_text(text, encoding="utf-8")
+    else:
+        where = tmp_path / "export.zip"
+        with zipfile.ZipFile(where, "w") as archive:
+            for n, text in texts.items():
+                archive.writestr(n, text)
+    got = load_recording(where)
+    assert got.accel is None and got.read.accel == ()
+    assert got.read.accel_left_out.startswith("Sensor Logger's Accelerometer.csv has gravity taken out")
+    assert np.allclose(got.omega, rec.omega, rtol=1e-8, atol=1e-9) and got.read.time == "seconds_elapsed"
+
+
 @pytest.mark.parametrize("header, message", [
     ("t,time,wx,wy,wz", r"has 2 time columns \('t', 'time'\); keep one; allowed: time: t, time, timestamp"),
     ("t,ax,ay,az", r"has no rate column for x; allowed:"),

@@ -352,7 +352,7 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
         events = []
         if os.path.isfile(meta):
             events = parse_time_csv(_read_input(meta, limit=1 << 20, what="phyphox's meta/time.csv"), meta)
-        acc = next((n for n in names if n.lower() == ACCEL_CSV.lower()), None)
+        acc, read = _accel_csv(names, read)
         if accel is None and acc is not None:
             p = os.path.join(path, acc)
             accel, read = _with_accel(_read_input(p, limit=MAX_GYRO_FILE_BYTES, what="an accelerometer record (CSV)"),
@@ -383,13 +383,33 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
             events = []
             if TIME_CSV in infos:
                 events = parse_time_csv(member(TIME_CSV, 1 << 20), f"{label}/{TIME_CSV}")
-            acc = next((n for n in infos if n.lower() == ACCEL_CSV.lower()), None)
+            acc, read = _accel_csv(list(infos), read)
             if accel is None and acc is not None:
                 accel, read = _with_accel(member(acc, MAX_GYRO_FILE_BYTES), f"{label}/{acc}", t, read)
         return GyroRecording(t, omega, tuple(events), read, accel)
     raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
     t, omega, accel, read = parse_recording_table(raw, label)
     return GyroRecording(t, omega, (), read, accel)
+
+
+#: Sensor Logger's accelerometer files (iOS and Android), beside ``Gyroscope.csv`` and ``Metadata.csv``.
+SENSOR_LOGGER_ACCEL = ("totalacceleration.csv", "metadata.csv")
+
+
+def _accel_csv(names: list[str], read: ColumnsRead) -> tuple[str | None, ColumnsRead]:
+    """The accelerometer file of an export with several sensors (phyphox's ``Accelerometer.csv``),
+    or None. Sensor Logger's export (its ``TotalAcceleration.csv`` and ``Metadata.csv``) has an
+    ``Accelerometer.csv`` too, with the phone's estimate of gravity taken out: not the specific
+    force, which a tumbling phone's estimate cannot give. It is left out, and what was read says
+    why (its ``TotalAcceleration.csv`` is not read either: its units and signs differ between the
+    app's iOS and Android builds, which the export does not say in a way read here)."""
+    lower = {n.lower().rsplit("/", 1)[-1] for n in names}
+    acc = next((n for n in names if n.lower() == ACCEL_CSV.lower()), None)
+    if acc is not None and any(k in lower for k in SENSOR_LOGGER_ACCEL):
+        return None, replace(read, accel_left_out="Sensor Logger's Accelerometer.csv has gravity taken out (not the "
+                                                  "specific force): not used; the flights are found from the "
+                                                  "gyroscope alone")
+    return acc, read
 
 
 def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray | None, ColumnsRead]:
