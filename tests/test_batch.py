@@ -219,6 +219,8 @@ def test_broadcasting_and_defaults():
                                                           r"real numbers")),
     ({"moments": [["1", "2", "3"], [1, 2, 3]]}, r"^moments\[0\] = \['1', '2', '3'\] must be 3 real numbers"),
     ({"moments": np.zeros((0, 3))}, r"^moments has no rows \(shape \(0, 3\)\): a batch needs at least one body$"),
+    ({"moments": tumble.t_handle()}, r"^moments = Body\('T-handle'.* is a body: give its principal moments, "
+                                     r"body.principal_moments \(kg m\^2\)$"),  # was "moments has shape ()"
     ({"omega0": [[0, 1, 0], [True, 1, 0]]}, r"^omega0\[1\] = \[True, 1, 0\] must be 3 real numbers \(rad/s\)"),
     ({"omega0": [[0, 1, 0], [0, "1", 0]]}, r"^omega0\[1\] = \[0, '1', 0\] must be 3 real numbers"),
     ({"omega0": [[0, 1, 0], [0, 1j, 0]]}, r"^omega0\[1\] = \[0, 1j, 0\] must be 3 real numbers"),

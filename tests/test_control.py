@@ -237,7 +237,7 @@ def test_a_user_controller_implements_the_interface():
     (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=lambda t, m: Command()),
      r"^controller = <lambda> is not a controller: one has a period \(s\) and is called as controller\(t, measurement\)"),
     (lambda: simulate_controlled(tumble.t_handle(), [0, 0, 1], t_end=1.0, controller=BDot(1.0, 1.0)),
-     r"^moments = Body\(.*\) is a body: give its principal moments, body.properties.principal_moments"),
+     r"^moments = Body\(.*\) is a body: give its principal moments, body.principal_moments \(kg m\^2\)$"),
 ])
 def test_bad_input_is_refused_with_one_clear_message(make, message):
     with pytest.raises(ValueError, match=message):

@@ -35,6 +35,7 @@ from ..validation import (
     QUAT_NORM_TOL,
     check_moments,
     check_positive,
+    refuse_body,
     refuse_first,
     short_repr,
 )
@@ -319,6 +320,7 @@ def check_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike | No
     ValueError
         One line naming the argument and the first bad index.
     """
+    refuse_body("moments", moments)
     I = _rows("moments", moments, 3, "kg m^2")
     w = _rows("omega0", omega0, 3, "rad/s")
     q = _rows("attitude0", [0.0, 0.0, 0.0, 1.0] if attitude0 is None else attitude0, 4, "unit quaternions [x, y, z, w]")

@@ -37,6 +37,7 @@ __all__ = [
     "check_positive",
     "check_vector",
     "check_vectors",
+    "refuse_body",
     "refuse_first",
     "short_repr",
     "triangle_excess",
@@ -278,6 +279,7 @@ def check_moments(field: str, value: ArrayLike) -> Vector3:
         a, b, c = value.tolist()  # the checks below in float arithmetic (a NaN fails them): ~8 us, not ~25
         if 0.0 < a <= b <= c <= MAX_INERTIA and not breaks_triangle(value):
             return value.copy()
+    refuse_body(field, value)
     I = check_vectors(field, value, "kg m^2")
     refuse_first(field, I, ~np.all(I > 0, axis=-1), "must be positive (kg m^2)")
     refuse_first(field, I, np.any(np.diff(I, axis=-1) < 0, axis=-1), "must be ascending, I1 <= I2 <= I3 (kg m^2)")
@@ -468,3 +470,21 @@ def check_callable(name: str, value: object, call: str) -> None:
         label = getattr(value, "__name__", type(value).__name__)
         raise ValueError(f"{name} = {label}{signature} cannot be called as {call}: it must take those {count} "
                          "arguments") from None
+
+
+def refuse_body(field: str, value: object) -> None:
+    """Refuse a body (a ``Body`` or ``MassProperties``: anything with ``principal_moments``) where
+    principal moments are asked for, saying which of its attributes to give.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.validation import refuse_body
+    >>> refuse_body("moments", tumble.t_handle())
+    Traceback (most recent call last):
+    ...
+    ValueError: moments = Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2) is a body: give its principal moments, body.principal_moments (kg m^2)
+    """
+    if hasattr(value, "principal_moments"):
+        raise ValueError(f"{field} = {short_repr(value)} is a body: give its principal moments, "
+                         "body.principal_moments (kg m^2)")

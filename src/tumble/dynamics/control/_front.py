@@ -122,9 +122,6 @@ def moments_checked(value: ArrayLike) -> FloatArray:
     if type(value) is np.ndarray and value.shape == (3,) and value.dtype == np.float64:
         _moments_of(value.tobytes())
         return value.copy()
-    if hasattr(value, "principal_moments") or hasattr(value, "properties"):  # a Body or MassProperties
-        raise ValueError(f"moments = {short_repr(value)} is a body: give its principal moments, "
-                         "body.properties.principal_moments (kg m^2; the loop runs in the principal frame)")
     return check_moments("moments", value)
 
 
