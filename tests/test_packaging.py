@@ -138,6 +138,17 @@ def test_dir_lists_only_public_and_dunder_names():
     assert public - submodules == set(tumble.__all__) - {"__version__"}
 
 
+def test_the_subpackages_are_attributes_after_import_tumble():
+    """``import tumble`` then ``tumble.viz.figure_omega(run)``, as numpy's and scipy's subpackages
+    are used: it said "module 'tumble' has no attribute 'viz'" (and 'io', which an error message
+    names); each is imported on first use, and only then."""
+    code = ("import sys, tumble; before = 'tumble.viz' in sys.modules; f = tumble.viz.figure_omega; "
+            "r = tumble.io.gyrodata.read_recording; print(before, f.__module__, r.__name__, "
+            "all(n in dir(tumble) for n in ('mass', 'dynamics', 'analysis', 'ensemble', 'io', 'viz')))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=HANG_S)
+    assert proc.stdout.split() == ["False", "tumble.viz.plots", "read_recording", "True"], proc.stderr
+
+
 def test_dir_and_import_stay_lazy():
     code = ("import sys, tumble; names = dir(tumble); "
             "print(sorted(m for m in ('numpy', 'scipy', 'matplotlib') if m in sys.modules), 'Body' in names)")

@@ -67,7 +67,14 @@ _EXPORTS = {
 __all__ = ["__version__", *_EXPORTS]
 
 
+#: The subpackages, imported on first use as attributes (``tumble.viz.figure_omega(run)`` after
+#: ``import tumble``), as numpy's and scipy's are.
+_SUBPACKAGES = ("mass", "dynamics", "analysis", "ensemble", "io", "viz", "commands", "validation")
+
+
 def __getattr__(name: str) -> _Any:
+    if name in _SUBPACKAGES:
+        return _importlib.import_module(f"tumble.{name}")  # binds it on the package as well
     try:
         module = _EXPORTS[name]
     except KeyError:
@@ -78,6 +85,6 @@ def __getattr__(name: str) -> _Any:
 
 
 def __dir__() -> list[str]:
-    """The public names (loaded or not), the subpackages imported so far, and the dunders."""
+    """The public names and the subpackages (loaded or not), and the dunders."""
     names = {n for n in globals() if not n.startswith("_") or (n.startswith("__") and n.endswith("__"))}
-    return sorted(names | set(_EXPORTS))
+    return sorted(names | set(_EXPORTS) | set(_SUBPACKAGES))
