@@ -451,4 +451,23 @@ def test_throws_of_which_none_flies_fail_with_status_1(tmp_path, capsys):
     code, stdout, err = _cli(capsys, "calibrate", str(dev), "--alone", paths[0], "--proof", paths[1], "--out",
                              str(calibrated))
     assert code == 1 and err.startswith("tumble: calibration failed: ") and err.count("\n") == 1, err
+    assert "no throw of the device alone could be fitted (" in err, err   # which set: the other may have fitted
+    assert "give more throws" not in err   # no flight: the lone throw's hint is not for this
     assert not calibrated.exists() and stdout == ""
+
+
+def test_a_calibration_from_one_proof_throw_says_which_set_failed_and_why(capsys, tmp_path):
+    """The guide's device with one throw with the proof body (p1): that set's lone fit needs a
+    gyroscope bias of 0.88 rad/s (with p2 and p3 beside it, p1's is within the limit). It said
+    "no throw could be fitted" though the throws of the device alone had; it names the set, and
+    that one throw cannot fit the rotor's tilt and the gyroscope's distortion."""
+    ex = Path(__file__).resolve().parents[1] / "examples"
+    out = tmp_path / "c.toml"
+    code, stdout, err = _cli(capsys, "calibrate", str(ex / "devices" / "flywheel_device.toml"), "--alone",
+                             *(str(ex / "throws" / f"a{k}.csv") for k in (1, 2, 3)), "--proof", str(ex / "throws" / "p1.csv"),
+                             "--out", str(out))
+    assert code == 1 and err.count("\n") == 1, err
+    assert err.startswith("tumble: calibration failed: no throw with the proof body could be fitted (")
+    assert "p1.csv: the fit needs a gyroscope bias of" in err
+    assert "fewer than 2 throws do not fit the rotor's tilt and the gyroscope's distortion" in err
+    assert not out.exists() and stdout == ""

@@ -444,7 +444,11 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         used = [k for k, f in enumerate(fits) if not f.reason]
         if not used:
             why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
-            raise NoThrowError(f"no throw could be fitted ({why})")
+            alone = (len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)
+                     and any("gyroscope bias" in f.reason for f in fits))
+            hint = (f"; fewer than {SENSOR_THROWS} throws do not fit the rotor's tilt and the gyroscope's distortion, "
+                    "which a lone throw's bias then stands in for: give more throws") if alone else ""
+            raise NoThrowError(f"no throw could be fitted ({why}){hint}")
         joint, jf = _joint([fits[k] for k in used], errors, start)
         noises = [fits[k].noise for k in used]
         judged = [joint_verdict(joint.throw_parameters(jf.P, j)[9:12], float(jf.rms[j]), noises[j]) for j in range(len(used))]
