@@ -381,6 +381,10 @@ def test_bad_input_is_refused_with_the_field_named():
         fit_tensor([throw(1)], calibrated_device(), -1.0)
     with pytest.raises(ValueError, match="non-empty list of Throw"):
         fit_tensor([], calibrated_device(), 0.6)
+    for names in ("o1.csv", ["o1.csv", "o2.csv"]):  # what a new user tries first: the files
+        with pytest.raises(ValueError, match=r"^throws are Throw objects, not files' names: read each log with "
+                                             r"tumble.io.throwfile.read_throw\(path, device\)$"):
+            fit_tensor(names, calibrated_device(), 0.6)
 
 
 def test_the_centres_sensor_columns_are_what_an_accelerometer_scale_does():

@@ -17,6 +17,7 @@ command's exit status 1) says why.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -200,6 +201,10 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
     >>> bool(np.all(np.abs(err) < 0.01))
     True
     """
+    if isinstance(throws, (str, os.PathLike)) or isinstance(throws, (list, tuple)) and any(
+            isinstance(x, (str, os.PathLike)) for x in throws):
+        raise ValueError("throws are Throw objects, not files' names: read each log with "
+                         "tumble.io.throwfile.read_throw(path, device)")
     mass = check_positive("mass", mass, "kg", at_most=MAX_THROWN_MASS)
     if not isinstance(device, Device):
         raise ValueError(f"device must be a Device, got {type(device).__name__}")
