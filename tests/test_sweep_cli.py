@@ -224,6 +224,10 @@ def test_the_command_prints_one_line(tmp_path, capsys):
     (("cases = {cases}", "cases = 1000000000000000000"),
      r"small\.toml: sweep: cases = 1000000000000000000 must be a whole number from 1 to 100000000$"),
     (("cases = {cases}", "cases = 1e3"), r"small\.toml: sweep: cases = 1000\.0 must be a whole number from 1 to 100000000$"),
+    # 5 for 5 %: it ran, redrawing tens of thousands of lengths drawn negative (seen 2026-11-30)
+    (("relative = 0.05", "relative = 5"), r"small\.toml: dispersion\[0\]: relative = 5 is a relative spread of 500 %, "
+                                          r"which draws the quantity at zero or with the other sign: give a fraction "
+                                          r"\(0\.05 for 5 %\), below 1$"),
 ])
 def test_bad_sweep_files_are_refused_in_one_line_before_anything_is_written(tmp_path, change, message):
     old, new = change

@@ -100,6 +100,9 @@ class Dispersion:
         object.__setattr__(self, "spread", float(s))
         if not isinstance(self.relative, bool):
             raise ValueError(f"relative = {self.relative!r} must be true or false")
+        if self.relative and s >= 1.0:  # 5 for 5 %: a length drawn negative in a third of the cases or more
+            raise ValueError(f"spread = {s!r} is a relative spread of {100 * s:g} %, which draws the quantity at zero or "
+                             f"with the other sign: give a fraction (0.05 for 5 %), below 1")
         named = self.target in ("preset", "part")
         if named != isinstance(self.field, str):
             raise ValueError(f"field = {self.field!r}: target {self.target!r} "
