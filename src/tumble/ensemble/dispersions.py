@@ -58,7 +58,7 @@ class Dispersion:
     target : {"preset", "part", "moments", "axes"}
         What is perturbed.
     spread : float
-        ``s`` >= 0: a fraction with ``relative``, else in the quantity's unit (rad for axes).
+        ``s`` >= 0: a fraction below 1 with ``relative`` (0.05 for 5 %), else in the quantity's unit (rad for axes).
         One standard deviation (normal) or the half-width (uniform).
     field : str, optional
         The preset parameter or part field (targets "preset" and "part" only).
