@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import tumble
+from tumble.cli import main
 from tumble.mass import PART_KINDS
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -98,3 +100,41 @@ def test_missing_file_and_unknown_preset(tmp_path):
         tumble.load_body(tmp_path / "none.toml")
     with pytest.raises(ValueError, match="neither a body file nor a preset"):
         tumble.load_body("cube")
+
+
+MM_AS_METRES = '[body]\nname = "handle"\n[[body.parts]]\nkind = "cylinder"\nmass = 0.2\nradius = 6.0\nlength = 120.0\n'
+
+
+def test_a_part_sized_in_mm_warns_naming_the_file_and_the_part(tmp_path):
+    """A cylinder of 0.2 kg written 120 m long and 6 m thick (mm typed as metres: 1.7e-5 kg/m^3, a
+    hundred-thousandth of air) loaded without a word; it warns, naming the file and the part."""
+    path = tmp_path / "handle.toml"
+    path.write_text(MM_AS_METRES)
+    with pytest.warns(tumble.mass.UnitSlipWarning) as caught:
+        tumble.load_body(path)
+    assert len(caught) == 1
+    assert str(caught[0].message) == (f"{path}: body.parts[0] (cylinder): a cylinder of 0.2 kg in 1.36e+04 m^3 is "
+                                      "1.47e-05 kg/m^3, less than a thousandth of air's: are its sizes in mm? Write "
+                                      "them in metres (SI units)")
+    written = MM_AS_METRES.replace("6.0", "0.006").replace("120.0", "0.12")  # the same in metres: no word
+    path.write_text(written)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", tumble.mass.UnitSlipWarning)
+        assert tumble.load_body(path).mass == pytest.approx(0.2)
+
+
+def test_the_command_says_a_unit_slip_in_one_line_and_goes_on(tmp_path, capsys):
+    path = tmp_path / "handle.toml"
+    path.write_text(MM_AS_METRES)
+    assert main(["inertia", str(path)]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith(f"warning: {path}: body.parts[0] (cylinder): a cylinder of 0.2 kg") and err.count("\n") == 1
+
+
+def test_no_example_body_or_preset_warns_of_a_unit_slip():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", tumble.mass.UnitSlipWarning)
+        for path in sorted(EXAMPLES.glob("bodies/*.toml")):
+            tumble.load_body(path)
+        for name in tumble.mass.PRESETS:
+            tumble.load_body(name)

@@ -7,6 +7,7 @@ imported inside the commands so that ``tumble --help`` answers at once.
 
 from __future__ import annotations
 
+import functools
 import os
 import signal
 import sys
@@ -25,6 +26,18 @@ class _Terminated(BaseException):
 
 def _on_sigterm(signum, frame):
     raise _Terminated
+
+
+def _show_warning(fallback, message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
+    """``warnings.showwarning`` for the commands: a likely slip of units (:class:`tumble.mass.UnitSlipWarning`:
+    a part's or a mesh's density or size no solid has) as one line, ``warning: ...``; any other
+    warning as ``fallback`` (the one in effect before) shows it."""
+    from ..mass import UnitSlipWarning
+
+    if issubclass(category, UnitSlipWarning):
+        print(f"warning: {message}", file=sys.stderr)
+    else:
+        fallback(message, category, filename, lineno, file, line)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -60,6 +73,7 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
+            warnings.showwarning = functools.partial(_show_warning, warnings.showwarning)  # restored on exit
             status = args.func(args)
             sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
             return status

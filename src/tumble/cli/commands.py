@@ -9,7 +9,6 @@ import json
 import math
 import os
 import sys
-import warnings
 
 from ._common import EXIT_OK, _run_title, _working
 from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_control
@@ -17,7 +16,7 @@ from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_con
 
 def _cmd_inertia(args) -> int:
     from ..io import load_body, mass_properties_dict, mass_properties_table
-    from ..io.bodyfile import MeshScaleWarning, body_from_mesh, is_mesh_file
+    from ..io.bodyfile import body_from_mesh, is_mesh_file
 
     mesh_options = {f"--{k}": getattr(args, k) for k in ("density", "mass", "scale", "units")}
     given = {k: v for k, v in mesh_options.items() if v is not None}
@@ -31,15 +30,9 @@ def _cmd_inertia(args) -> int:
             raise ValueError(f"give --scale = {args.scale} or --units = {args.units}, not both")
         units = {"--density": "kg/m^3", "--mass": "kg", "--scale": "m per file unit"}
         checked = {k: _positive(k, v, units[k]) for k, v in given.items() if k in units}
-        with warnings.catch_warnings(record=True) as caught:  # a likely unit slip, said in one line
-            warnings.simplefilter("always", MeshScaleWarning)
-            body = body_from_mesh(args.body, density=checked.get("--density"), mass=checked.get("--mass"),
-                                  scale=checked.get("--scale"), units=args.units)
-        for w in caught:
-            if issubclass(w.category, MeshScaleWarning):
-                print(f"warning: {w.message}", file=sys.stderr)
-            else:  # not ours: as Python would have shown it
-                warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+        # a likely unit slip warns (MeshScaleWarning), in one line (cli.main's _show_warning)
+        body = body_from_mesh(args.body, density=checked.get("--density"), mass=checked.get("--mass"),
+                              scale=checked.get("--scale"), units=args.units)
     else:
         if given:
             option, value = next(iter(given.items()))

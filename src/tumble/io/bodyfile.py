@@ -23,9 +23,10 @@ from __future__ import annotations
 import dataclasses
 import os
 import tomllib
+import warnings
 from pathlib import Path
 
-from ..mass import PART_KINDS, PRESETS, Body, Part
+from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
 from .examples import _read_input
 from .keys import FileFormat, Key, Table
 from .meshfile import MESH_SUFFIXES, MESH_UNITS, MeshScaleWarning, body_from_mesh, is_mesh_file, mesh_scale_note
@@ -240,10 +241,16 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
         if not isinstance(mesh, str):
             raise ValueError(f"{where}: mesh = {mesh!r} must be a file path (a string)")
         kwargs["mesh"] = os.path.join(base_dir or ".", mesh)
-    try:
-        return cls(**kwargs)
-    except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+    with warnings.catch_warnings(record=True) as slips:  # a likely unit slip, named where it is written
+        warnings.simplefilter("always", UnitSlipWarning)
+        try:
+            part = cls(**kwargs)
+        except ValueError as exc:
+            raise ValueError(f"{where}: {exc}") from None
+    for slip in slips:  # the others as they came
+        where_ = f"{where}: " if issubclass(slip.category, UnitSlipWarning) else ""
+        warnings.warn(f"{where_}{slip.message}", slip.category, stacklevel=2)
+    return part
 
 
 def body_from_table(table: object, *, base_dir: Path | None = None, where: str = "body") -> Body:
@@ -358,7 +365,13 @@ def load_body(source: str | os.PathLike[str]) -> Body:
         raise ValueError(f"{path}: missing table [body]")
     if unknown:
         raise ValueError(f"{path}: unknown top-level key {unknown[0]!r} (a body file has only [body]); allowed: body")
-    try:
-        return body_from_table(data["body"], base_dir=path.parent)
-    except ValueError as exc:
-        raise ValueError(f"{path}: {exc}") from None
+    with warnings.catch_warnings(record=True) as slips:
+        warnings.simplefilter("always", UnitSlipWarning)
+        try:
+            body = body_from_table(data["body"], base_dir=path.parent)
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
+    for slip in slips:  # the others as they came
+        where = f"{path}: " if issubclass(slip.category, UnitSlipWarning) else ""
+        warnings.warn(f"{where}{slip.message}", slip.category, stacklevel=2)
+    return body

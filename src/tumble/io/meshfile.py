@@ -12,7 +12,7 @@ import os
 import warnings
 from pathlib import Path
 
-from ..mass import Body, Mesh
+from ..mass import Body, Mesh, UnitSlipWarning
 from ..validation import NoSuchFileError
 
 __all__ = ["MESH_SUFFIXES", "MESH_UNITS", "MeshScaleWarning", "body_from_mesh", "is_mesh_file",
@@ -31,7 +31,7 @@ MESH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 PLAUSIBLE_SIZE = (1e-3, 20.0)
 
 
-class MeshScaleWarning(UserWarning):
+class MeshScaleWarning(UnitSlipWarning):
     """A mesh read at a size no hand-made solid has: most likely its file's unit was given wrongly
     (:func:`mesh_scale_note` says which).
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, cast
 
@@ -31,9 +32,33 @@ from ..validation import check_direction, check_motion, check_positive, check_ro
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
 
-__all__ = ["Part"]
+__all__ = ["MIN_DENSITY", "Part", "UnitSlipWarning"]
 
 _Z = np.array([0.0, 0.0, 1.0])
+
+
+#: A solid part given by its mass whose density comes out below this (kg/m^3), a thousandth of
+#: air's, is most likely sized in mm (or cm) and written as metres: that makes a part 1e9 (1e6)
+#: times lighter than it is, 2.7e-6 kg/m^3 for aluminium. A textbook's unit example (1 kg, 1 m)
+#: stays far above it.
+MIN_DENSITY = 1e-3
+
+
+class UnitSlipWarning(UserWarning):
+    """A part or mesh whose size no hand-made solid has: most likely its sizes were written in mm
+    (or a mesh file read in the wrong unit); the message says how to write them.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import tumble
+    >>> from tumble.mass import UnitSlipWarning
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always", UnitSlipWarning)
+    ...     _ = tumble.Cylinder(mass=0.2, radius=12.0, length=80.0)   # mm written as m
+    >>> print(caught[0].message)
+    a cylinder of 0.2 kg in 3.62e+04 m^3 is 5.53e-06 kg/m^3, less than a thousandth of air's: are its sizes in mm? Write them in metres (SI units)
+    """
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -95,6 +120,12 @@ class Part:
         else:
             self._set("mass", check_positive("mass", self.mass, "kg"))
         self._check_representable()
+        if self.solid and self.kind != "mesh" and self.density is None:  # a mesh: io.meshfile checks its size
+            volume = self.volume
+            if volume > 0.0 and cast(float, self.mass) / volume < MIN_DENSITY:
+                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is "
+                              f"{cast(float, self.mass) / volume:.3g} kg/m^3, less than a thousandth of air's: are its "
+                              "sizes in mm? Write them in metres (SI units)", UnitSlipWarning, stacklevel=3)
 
     def _check_representable(self) -> None:
         """Sizes and masses so large that volume or inertia overflow double precision."""
