@@ -20,10 +20,12 @@ The part constructors do the physical validation, so Python and files give the s
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import os
 import tomllib
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
@@ -241,16 +243,23 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
         if not isinstance(mesh, str):
             raise ValueError(f"{where}: mesh = {mesh!r} must be a file path (a string)")
         kwargs["mesh"] = os.path.join(base_dir or ".", mesh)
-    with warnings.catch_warnings(record=True) as slips:  # a likely unit slip, named where it is written
-        warnings.simplefilter("always", UnitSlipWarning)
+    with _slips_named(where):  # a likely unit slip, named where it is written
         try:
-            part = cls(**kwargs)
+            return cls(**kwargs)
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
-    for slip in slips:  # the others as they came
-        where_ = f"{where}: " if issubclass(slip.category, UnitSlipWarning) else ""
-        warnings.warn(f"{where_}{slip.message}", slip.category, stacklevel=2)
-    return part
+
+
+@contextlib.contextmanager
+def _slips_named(where: object) -> Iterator[None]:
+    """The block's :class:`~tumble.mass.UnitSlipWarning` warnings again, ``where: `` before each
+    (the file, the part); other warnings as they came."""
+    with warnings.catch_warnings(record=True) as slips:
+        warnings.simplefilter("always", UnitSlipWarning)
+        yield
+    for slip in slips:
+        named = f"{where}: " if issubclass(slip.category, UnitSlipWarning) else ""
+        warnings.warn(f"{named}{slip.message}", slip.category, stacklevel=3)
 
 
 def body_from_table(table: object, *, base_dir: Path | None = None, where: str = "body") -> Body:
@@ -365,13 +374,8 @@ def load_body(source: str | os.PathLike[str]) -> Body:
         raise ValueError(f"{path}: missing table [body]")
     if unknown:
         raise ValueError(f"{path}: unknown top-level key {unknown[0]!r} (a body file has only [body]); allowed: body")
-    with warnings.catch_warnings(record=True) as slips:
-        warnings.simplefilter("always", UnitSlipWarning)
+    with _slips_named(path):
         try:
-            body = body_from_table(data["body"], base_dir=path.parent)
+            return body_from_table(data["body"], base_dir=path.parent)
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
-    for slip in slips:  # the others as they came
-        where = f"{path}: " if issubclass(slip.category, UnitSlipWarning) else ""
-        warnings.warn(f"{where}{slip.message}", slip.category, stacklevel=2)
-    return body
