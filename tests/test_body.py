@@ -7,7 +7,7 @@ import pytest
 import trimesh
 from hypothesis import given
 from scipy.spatial.transform import Rotation
-from strategies import bodies, rotations, vectors
+from strategies import ANY_SIZE, bodies, rotations, vectors
 
 import tumble
 
@@ -65,6 +65,7 @@ def test_t_handle_with_radii_accepts_density_or_masses_not_both():
         tumble.t_handle(density=1000.0)
 
 
+@ANY_SIZE
 @given(bodies(), rotations(), vectors)
 def test_moving_a_body_rotates_its_tensor(body, rot, shift):
     """Independent route: move every part, recompute; equals R I R^T and R com + t."""
@@ -83,6 +84,7 @@ def test_perpendicular_axis_theorem_for_planar_bodies(body):
     assert I[2, 2] == pytest.approx(I[0, 0] + I[1, 1], rel=1e-9, abs=1e-12)
 
 
+@ANY_SIZE
 @given(bodies())
 def test_every_constructed_body_satisfies_the_triangle_inequality(body):
     I1, I2, I3 = body.principal_moments

@@ -14,6 +14,7 @@ from scipy.spatial.transform import Rotation
 from tumble.io.bodyfile import load_body
 from tumble.mass import Body
 from tumble.mass.parts import Box, Cone, Cylinder, Ellipsoid, PointMass, Rod, Shell, Sphere, Tube
+from strategies import ANY_SIZE
 from tumble.viz.surfaces import MAX_MESH_FACES, body_surfaces, decimate, part_surface, surface_volume
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -157,6 +158,7 @@ def test_a_point_mass_body_is_drawn_with_a_size():
 lengths = st.floats(0.01, 10.0)
 
 
+@ANY_SIZE
 @settings(max_examples=40, deadline=None)
 @given(kind=st.sampled_from(["cylinder", "tube", "cone", "box"]), a=lengths, b=lengths, c=lengths,
        n=st.integers(3, 64), rotvec=st.tuples(*[st.floats(-3.0, 3.0)] * 3))

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
-from strategies import bodies, rotations, vectors
+from strategies import ANY_SIZE, bodies, rotations, vectors
 
 from tumble.mass import (
     Body,
@@ -36,6 +36,7 @@ def test_parallel_axis_textbook_rod_about_its_end():
     np.testing.assert_allclose(np.diag(I_end), [m * L**2 / 3, m * L**2 / 3, 0.0])
 
 
+@ANY_SIZE
 @given(bodies(), vectors)
 def test_shift_to_a_point_and_back_is_identity(body, point):
     I_p = body.inertia_about(point)
@@ -43,6 +44,7 @@ def test_shift_to_a_point_and_back_is_identity(body, point):
     np.testing.assert_allclose(back, body.inertia, atol=1e-9 * np.trace(I_p))
 
 
+@ANY_SIZE
 @given(bodies(), rotations())
 def test_rotation_preserves_invariants(body, rot):
     I = body.inertia
@@ -52,6 +54,7 @@ def test_rotation_preserves_invariants(body, rot):
     np.testing.assert_allclose(rotate_inertia(J, rot.inv()), I, atol=1e-10 * np.trace(I))
 
 
+@ANY_SIZE
 @given(bodies())
 # A symmetric top whose plane of equal moments is 4e-5 rad off holding the frame's z axis: the
 # projection of y onto it is 1e-5 long, and Gram-Schmidt on it left the axes 3e-12 off orthogonal.
@@ -65,6 +68,7 @@ def test_principal_frame_rebuilds_tensor_and_is_right_handed(body):
     np.testing.assert_allclose(axes @ np.diag(moments) @ axes.T, body.inertia, atol=1e-10 * moments.sum())
 
 
+@ANY_SIZE
 @given(st.lists(bodies(max_parts=3), min_size=2, max_size=4))
 def test_functions_broadcast_over_a_batch(batch):
     I = np.stack([b.inertia for b in batch])
