@@ -69,6 +69,22 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv):
     assert err.count("\n") == 1 and "Traceback" not in err
 
 
+@pytest.mark.parametrize(("argv", "said"), [
+    (["view", str(EXAMPLES / "data" / "racquet_tosses.csv"), "--out", "{tmp}/v.html"],
+     "racquet_tosses.csv: a table of samples, not a body or scenario file (TOML): a gyroscope recording is fitted "
+     "with 'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'"),
+    (["simulate", str(EXAMPLES / "sweeps" / "t_handle_dimensions.toml"), "--out", "{tmp}/run"],
+     "t_handle_dimensions.toml: a sweep file ([sweep]): run it with 'tumble sweep FILE --out DIR'"),
+])
+def test_a_file_given_to_the_wrong_command_names_the_right_one(tmp_path, capsys, argv, said):
+    """A recording given to 'tumble view' said "not valid TOML: Expected '=' after a key ... (at line 7,
+    column 11)", a sweep file given to 'tumble simulate' "unknown key 'criterion'" (seen 2026-11-30)."""
+    assert main([a.format(tmp=tmp_path) for a in argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.rstrip("\n").endswith(said), err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_bad_file_through_the_installed_command(tmp_path):
     path = tmp_path / "bad.toml"
     path.write_text("[[body.parts]]\nkind = 'rod'\nmass = -1\nlength = 1\n")

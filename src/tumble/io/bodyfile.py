@@ -108,6 +108,10 @@ def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario f
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
+        if path.suffix.lower() in (".csv", ".txt", ".tsv"):  # a recording or a log given where a TOML file is read
+            raise ValueError(f"{path}: a table of samples, not {what}: a gyroscope recording is fitted with "
+                             "'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'") \
+                from None
         raise ValueError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:
         raise ValueError(

@@ -359,6 +359,8 @@ def load_scenario(path: str | os.PathLike[str]) -> Scenario | ControlScenario:
     path = Path(path)
     data = read_toml(path)
     try:
+        if "sweep" in data:  # a sweep file given to simulate, view or plot
+            raise ValueError("a sweep file ([sweep]): run it with 'tumble sweep FILE --out DIR'")
         if is_control_file(data):  # a closed-loop run: tumble.io.controlfile
             if "body" not in data:
                 raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
