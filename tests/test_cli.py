@@ -75,10 +75,18 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv):
      "with 'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'"),
     (["simulate", str(EXAMPLES / "sweeps" / "t_handle_dimensions.toml"), "--out", "{tmp}/run"],
      "t_handle_dimensions.toml: a sweep file ([sweep]): run it with 'tumble sweep FILE --out DIR'"),
+    (["sweep", str(EXAMPLES / "seed_flip.toml"), "--out", "{tmp}/run"],
+     "seed_flip.toml: no [sweep] table: a scenario is run with 'tumble simulate FILE --out DIR'; a sweep file adds "
+     "[sweep] (cases = ...) and [[dispersion]] tables (see 'tumble examples')"),
+    (["fit", str(EXAMPLES / "seed_flip.toml"), "--out", "{tmp}/run"],
+     "seed_flip.toml: a TOML file (a scenario, body or device file), not a gyroscope recording: 'tumble simulate' "
+     "runs a scenario; 'tumble fit' reads a CSV of the rates, or a phyphox or Sensor Logger export"),
 ])
 def test_a_file_given_to_the_wrong_command_names_the_right_one(tmp_path, capsys, argv, said):
     """A recording given to 'tumble view' said "not valid TOML: Expected '=' after a key ... (at line 7,
-    column 11)", a sweep file given to 'tumble simulate' "unknown key 'criterion'" (seen 2026-11-30)."""
+    column 11)", a sweep file given to 'tumble simulate' "unknown key 'criterion'", a scenario given to
+    'tumble sweep' "sweep: missing key 'cases'", to 'tumble fit' "header 'body, =, t-handle' has no
+    time column" (seen 2026-11-30)."""
     assert main([a.format(tmp=tmp_path) for a in argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.rstrip("\n").endswith(said), err

@@ -471,3 +471,18 @@ def test_a_calibration_from_one_proof_throw_says_which_set_failed_and_why(capsys
     assert "p1.csv: the fit needs a gyroscope bias of" in err
     assert "fewer than 2 throws do not fit the rotor's tilt and the gyroscope's distortion" in err
     assert not out.exists() and stdout == ""
+
+
+def test_a_phones_recording_and_a_throws_log_each_name_the_command_that_reads_them(tmp_path, capsys):
+    """A phone's gyroscope recording given to 'tumble tensor' ("has no rotor column") and a throw's
+    log given to 'tumble fit' ("1 no free flight") say which command reads them."""
+    ex = Path(__file__).resolve().parents[1] / "examples"
+    dev = tmp_path / "calibrated.toml"
+    dev.write_text(CALIBRATED)
+    code, _, err = _cli(capsys, "tensor", str(ex / "data" / "racquet_tosses.csv"), "--device", str(dev), "--mass", "0.5",
+                        "--out", str(tmp_path / "t"))
+    assert code == 2 and "has no rotor column (a gyroscope recording without a flywheel is fitted with 'tumble fit')" in err
+    code, _, err = _cli(capsys, "fit", str(ex / "throws" / "a1.csv"), "--out", str(tmp_path / "f"))
+    assert code == 1 and err.count("\n") == 1, err
+    assert "(its rotor column says it is a throw of the flywheel device: 'tumble tensor' fits those); nothing written" in err
+    assert not (tmp_path / "t").exists() and not (tmp_path / "f").exists()

@@ -387,6 +387,10 @@ def load_recording(path: str | os.PathLike[str]) -> GyroRecording:
             if accel is None and acc is not None:
                 accel, read = _with_accel(member(acc, MAX_GYRO_FILE_BYTES), f"{label}/{acc}", t, read)
         return GyroRecording(t, omega, tuple(events), read, accel)
+    if label.lower().endswith(".toml"):  # a scenario, body or device file given to 'tumble fit'
+        raise ValueError(f"{label}: a TOML file (a scenario, body or device file), not a gyroscope recording: "
+                         "'tumble simulate' runs a scenario; 'tumble fit' reads a CSV of the rates, or a phyphox or "
+                         "Sensor Logger export")
     raw = _read_input(path, limit=MAX_GYRO_FILE_BYTES, what="a gyroscope record (CSV)")
     t, omega, accel, read = parse_recording_table(raw, label)
     return GyroRecording(t, omega, (), read, accel)

@@ -285,6 +285,9 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
     tables = {section: _table(data, section) for section in _SECTIONS}
     sweep, initial, sim = tables["sweep"], tables["initial"], tables["simulation"]
+    if "sweep" not in data:  # a scenario given to 'tumble sweep'
+        raise ValueError("no [sweep] table: a scenario is run with 'tumble simulate FILE --out DIR'; a sweep file adds "
+                         "[sweep] (cases = ...) and [[dispersion]] tables (see 'tumble examples')")
     if "cases" not in sweep:
         raise ValueError("sweep: missing key 'cases' (how many cases)")
     body, preset, parameters, files = _nominal(data["body"], base_dir)

@@ -119,7 +119,8 @@ def _match(head: list[str], label: str, line: int) -> tuple[list[int], list[floa
     if len(rotor) != 1:
         what = "no rotor column" if not rotor else \
             f"{len(rotor)} rotor columns ({', '.join(repr(head[j]) for j in rotor)}); keep one"
-        raise ValueError(f"{label}, line {line}: header {shown!r} has {what}; allowed: {_ALLOWED}")
+        hint = " (a gyroscope recording without a flywheel is fitted with 'tumble fit')" if not rotor else ""
+        raise ValueError(f"{label}, line {line}: header {shown!r} has {what}{hint}; allowed: {_ALLOWED}")
     f, u = _factor(head[rotor[0]], parsed[rotor[0]][1], RATE_UNITS, label, line, rotor[0] + 1)
     columns.append(rotor[0]), scale.append(f), units.append(u)
     more, factors, accel_units = match_accel(head, columns, label, line, _ALLOWED)
