@@ -75,7 +75,8 @@ TENSOR_BAD = {
                        "calibrate the device first"),
     "not TOML": ("[device\n", None, "0.5", "device.toml: not valid TOML"),
     "no rotor column": (None, "t,wx,wy,wz,ax,ay,az\n" + "0,1,2,3,0,0,0\n" * 3, "0.5",
-                        "o1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column; allowed: rotor:"),
+                        "o1.csv, line 1: header 't, wx, wy, wz, ax, ay, az' has no rotor column (a gyroscope recording "
+                        "without a flywheel is fitted with 'tumble fit'); allowed: rotor:"),
     "two rotor columns": (None, "t,wx,wy,wz,rotor,wheel\n0,1,2,3,4,5\n", "0.5", "o1.csv, line 1: header "
                           "'t, wx, wy, wz, rotor, wheel' has 2 rotor columns ('rotor', 'wheel'); keep one"),
     "half an accelerometer": (None, "t,wx,wy,wz,rotor,ax,ay\n0,1,2,3,4,5,6\n", "0.5",
