@@ -247,7 +247,7 @@ def test_copy_fills_an_existing_folder_without_overwriting(tmp_path):
     (other / "bodies").mkdir(parents=True)
     (other / "bodies" / "t_handle.toml").write_text("mine")
     (other / "notes.txt").write_text("keep")
-    with pytest.raises(ValueError, match=r"other/bodies/t_handle\.toml: already exists; copy_examples never overwrites"):
+    with pytest.raises(ValueError, match=r"other/bodies/t_handle\.toml: already exists; the examples are never copied over a file: give a new folder"):
         copy_examples(other)
     assert _tree(other) == {"bodies/t_handle.toml": b"mine", "notes.txt": b"keep"}  # nothing written
 

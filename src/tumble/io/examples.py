@@ -231,7 +231,7 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
         for rel, _ in files:
             target = dest / rel
             if target.exists() or target.is_symlink():
-                raise ValueError(f"{target}: already exists; copy_examples never overwrites a file")
+                raise ValueError(f"{target}: already exists; the examples are never copied over a file: give a new folder")
         written = []
         for rel, entry in files:
             target = dest / rel
