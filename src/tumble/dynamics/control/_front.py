@@ -23,6 +23,10 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector, short_repr
 from ..simulate import check_rtol
+from .bdot import BDot
+from .controllers import MomentumDumping, MRPFeedback
+from .estimated import Estimated
+from .mission import DetumbleThenPoint
 
 __all__ = ["check_actuators", "checked", "control_instants", "locked_inverse", "moments_checked"]
 
@@ -185,11 +189,6 @@ def check_actuators(controller: Any, field: Any, magnetorquers: Any, wheels: Any
     ...
     ValueError: controller = BDot commands magnetic dipoles in the field: give magnetorquers=Magnetorquers(...) to make them
     """
-    from .bdot import BDot
-    from .controllers import MomentumDumping, MRPFeedback
-    from .estimated import Estimated
-    from .mission import DetumbleThenPoint
-
     inner = controller.controller if isinstance(controller, Estimated) else controller
     parts = (inner.detumble, inner.point) if isinstance(inner, DetumbleThenPoint) else (inner,)
     for part in parts:
