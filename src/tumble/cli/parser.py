@@ -168,7 +168,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "fit",
-        help="inertia ratios from a gyroscope recording (phyphox export or t,wx,wy,wz CSV)",
+        help="inertia ratios from a gyroscope recording (phyphox or Sensor Logger export, or t,wx,wy,wz CSV)",
         description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
         "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
         "jointly (shared ratios, sensor rotation, bias and drag; given several recordings, all their flights, "
@@ -178,10 +178,10 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Example: tumble fit examples/data/racquet_tosses.csv --out fitted", parents=[debug],
     )
     p.add_argument("data", metavar="RECORDING", nargs="+",
-                   help="a CSV or other delimited text (phyphox's gyroscope export; a header naming the time and "
-                   "the three rate columns, others ignored; or t, wx, wy, wz in s, rad/s), or phyphox's export "
-                   "folder or .zip (Raw Data.csv and meta/time.csv); several recordings of one body are pooled "
-                   "in one joint fit (sensor mount and bias per recording)")
+                   help="a CSV or other delimited text (phyphox's gyroscope export, Sensor Logger's Gyroscope.csv; "
+                   "a header naming the time and the three rate columns, others ignored; or t, wx, wy, wz in s, "
+                   "rad/s), or phyphox's or Sensor Logger's export folder or .zip; several recordings of one body "
+                   "are pooled in one joint fit (sensor mount and bias per recording)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.add_argument("--sensor", choices=["fit", "identity"], default="fit",
                    help="fit the sensor's rotation to the principal axes (default) or take it as identity")
