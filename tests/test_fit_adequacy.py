@@ -173,3 +173,17 @@ def test_a_window_bound_that_is_no_finite_number_is_refused_as_such(tmp_path, ca
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and f"{flag} = {value}" in err and "must be a finite number (s)" in err
     assert not out.exists()
+
+
+def test_a_window_outside_the_recording_says_where_the_recording_runs(tmp_path, capsys):
+    """`--start 1000 --end 1001` on a recording of a few seconds said "0 samples are too few to fit a
+    tumble"; it says which span the recording has (bad input, exit 2, nothing written)."""
+    t, w = _toss()
+    data = tmp_path / "toss.csv"
+    _write_csv(data, t, w)
+    out = tmp_path / "fit"
+    assert main(["fit", str(data), "--out", str(out), "--start", "1000", "--end", "1001"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--start 1000.0 to --end 1001.0 holds 0 samples (at least 20 fit a flight); " \
+        f"the recording runs from {t[0]:.6g} to {t[-1]:.6g} s" in err, err
+    assert not out.exists()

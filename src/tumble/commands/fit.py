@@ -48,6 +48,7 @@ from ..analysis.fit import (
     fit_rotation,
 )
 from ..analysis.fit.flightmodel import FlightModel
+from ..analysis.fit.single import MIN_SAMPLES
 from ..analysis.fit.recording import samples_sha256
 from ..io.gyrodata import load_recording
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
@@ -196,6 +197,9 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 if not lo < hi:
                     raise ValueError(f"--start {start} must be before --end {end} (s)")
                 sel = (t >= lo) & (t <= hi)
+                if np.count_nonzero(sel) < MIN_SAMPLES:  # a window outside the recording: say where it is
+                    raise ValueError(f"--start {start} to --end {end} holds {np.count_nonzero(sel)} samples (at least "
+                                     f"{MIN_SAMPLES} fit a flight); the recording runs from {t[0]:.6g} to {t[-1]:.6g} s")
                 fit = fit_rotation(t[sel], omega[sel], **options)
                 record.update({"start": start, "end": end, **fit.summary()})
                 record["flight_models"] = [{"input": labels[0], **FlightModel.of_fit(fit).summary()}]
