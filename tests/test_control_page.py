@@ -154,7 +154,7 @@ def test_view_of_the_detumble_example_draws_the_dipole(tmp_path):
 @pytest.mark.parametrize(("args", "message"), [
     (["--samples", "10"], "--samples does not apply to a control scenario; allowed: --t-end"),
     (["--t-end", "-1"], "--t-end"),
-    (["--frames", "1"], "frames = 1 must be a whole number from 2 to 2000"),
+    (["--frames", "1"], "error: --frames = 1 must be a whole number from 2 to 2000"),  # the option as written
 ])
 def test_view_of_a_control_scenario_with_bad_input_says_one_line(tmp_path, capsys, args, message):
     out = tmp_path / "page.html"

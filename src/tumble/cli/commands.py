@@ -272,7 +272,7 @@ def _cmd_view(args) -> int:
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
     control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
-    frame_indices(2 if control else scenario.sample_count, args.frames)  # refuse a bad --frames before integrating
+    frame_indices(2 if control else scenario.sample_count, args.frames, "--frames")  # refuse a bad --frames before integrating
     if control:
         return view_control(args, scenario, out)
     from ..commands import run_scenario
@@ -331,7 +331,7 @@ def _view_fit(args) -> int:
 
     fit = read_fit_folder(args.source)  # bad input: one line naming the folder, before anything is computed
     out = check_output_file(args.out, ".html")
-    frame_indices(2, args.frames)  # refuse a bad --frames before replaying
+    frame_indices(2, args.frames, "--frames")  # refuse a bad --frames before replaying
     from ..commands.view_fit import replay_fit
     from ..viz.fit_page import write_fit_page
 
