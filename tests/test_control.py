@@ -216,6 +216,9 @@ def test_a_user_controller_implements_the_interface():
     (lambda: ReactionWheels([[0.0, 0.0, 0.0]], inertia=1e-4), r"axes\[0\] = \[0, 0, 0\] must be a non-zero"),
     (lambda: BDot(gain=1.0, period=1.0, form="fast"), r"form = 'fast' is unknown; allowed: classic, normalized"),
     (lambda: CircularOrbit(500e3, inclination=4.0), r"inclination = 4.0 must lie in \[0, pi\]"),
+    # 500 for 500 km (seen 2026-11-30): it ran an "orbit" 500 m up
+    (lambda: CircularOrbit(500.0), r"^altitude = 500.0 m is below 100 km, where no orbit lasts \(the air brings it down "
+                                   r"within hours\): give metres, 500000 for 500 km$"),
     (lambda: Sensors(attitude="sun"), r"attitude = 'sun' is unknown; allowed: ideal, star_tracker, none"),
     (lambda: MRPFeedback(K=1.0, P=1.0, period=1.0, moments=[1, 2, 3], wheels=ReactionWheels([[1, 0, 0]], inertia=1.0)),
      r"span fewer than 3 directions"),

@@ -29,7 +29,12 @@ from ...typing import ArrayLike, Vector3
 from ...validation import check_number, check_positive
 from .earth import MU_EARTH, R_EARTH
 
-__all__ = ["CircularOrbit"]
+__all__ = ["MIN_ALTITUDE", "CircularOrbit"]
+
+
+#: The lowest altitude of an orbit around the Earth, m: the Karman line. Below it the air brings a
+#: satellite down within hours (the lowest held, SLATS's 167 km in 2019, took thrust against the drag).
+MIN_ALTITUDE = 100e3
 
 
 @dataclass(frozen=True)
@@ -74,7 +79,10 @@ class CircularOrbit:
     mu: float = MU_EARTH
 
     def __post_init__(self) -> None:
-        check_positive("altitude", self.altitude, "m")
+        altitude = check_positive("altitude", self.altitude, "m")
+        if altitude < MIN_ALTITUDE and self.mu == MU_EARTH:  # 500 for 500 km: an "orbit" in the air
+            raise ValueError(f"altitude = {self.altitude!r} m is below {MIN_ALTITUDE / 1e3:g} km, where no orbit lasts "
+                             f"(the air brings it down within hours): give metres, {altitude * 1e3:g} for {altitude:g} km")
         check_positive("mu", self.mu, "m^3/s^2")
         inc = check_number("inclination", self.inclination, "rad")
         if not 0.0 <= inc <= math.pi:
