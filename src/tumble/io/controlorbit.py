@@ -39,7 +39,8 @@ _CIRCULAR = ("altitude", "inclination", "raan", "arg_latitude")
 _KEPLER = ("semi_major_axis", "eccentricity", "inclination", "raan", "arg_perigee", "mean_anomaly")
 #: The ``[orbit]`` table of a control scenario.
 ORBIT_TABLE = Table("[orbit]", (
-    Key("altitude", "number", "m", example="500e3", low=0.0, doc="a circular orbit: its height above the Earth's radius"),
+    Key("altitude", "number", "m", example="500e3", low=100e3, low_included=True,
+        doc="a circular orbit: its height above the Earth's radius, in metres (100 km at least)"),
     Key("semi_major_axis", "number", "m", example="7.2e6", doc="a Keplerian ellipse (needs field = \"igrf\")"),
     Key("tle", "list of 2 strings", example='["1 25544U ...", "2 25544 ..."]',
         doc="SGP4 from a two-line element set (pip install tumble[orbit])"),
