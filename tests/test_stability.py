@@ -236,6 +236,9 @@ def test_bad_moments_are_refused(name, moments, message):
     ({0: 1.0, 1: 2.0, 2: 3.0}, r"^omega = \{0: 1.0, 1: 2.0, 2: 3.0\} must be real numbers"),
     ({1.0, 2.0, 3.0}, r"^omega = \{1.0, 2.0, 3.0\} must be real numbers"),
     ([True, False, True], r"^omega = \[True, False, True\] must be real numbers"),
+    # simulate's order (body, omega), seen 2026-11-30: it said "omega = Body(...) must be real numbers"
+    (tumble.t_handle(), r"^omega = Body\('T-handle'.*\) is a body: these functions take \(omega, moments\), omega "
+                        r"\(rad/s\) first, then body.principal_moments \(kg m\^2\)$"),
 ])
 def test_bad_omega_is_refused(name, omega, message):
     with pytest.raises(ValueError, match=message):
