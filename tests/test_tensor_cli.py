@@ -461,7 +461,7 @@ def test_a_calibration_from_one_proof_throw_says_which_set_failed_and_why(capsys
     """The guide's device with one throw with the proof body (p1): that set's lone fit needs a
     gyroscope bias of 0.88 rad/s (with p2 and p3 beside it, p1's is within the limit). It said
     "no throw could be fitted" though the throws of the device alone had; it names the set, and
-    that one throw cannot fit the rotor's tilt and the gyroscope's distortion."""
+    that one throw cannot fit the rotor's tilt (the joint fit finds it from two throws on)."""
     ex = Path(__file__).resolve().parents[1] / "examples"
     out = tmp_path / "c.toml"
     code, stdout, err = _cli(capsys, "calibrate", str(ex / "devices" / "flywheel_device.toml"), "--alone",
@@ -470,7 +470,7 @@ def test_a_calibration_from_one_proof_throw_says_which_set_failed_and_why(capsys
     assert code == 1 and err.count("\n") == 1, err
     assert err.startswith("tumble: calibration failed: no throw with the proof body could be fitted (")
     assert "p1.csv: the fit needs a gyroscope bias of" in err
-    assert "fewer than 2 throws do not fit the rotor's tilt and the gyroscope's distortion" in err
+    assert "; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" in err
     assert not out.exists() and stdout == ""
 
 

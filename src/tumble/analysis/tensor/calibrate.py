@@ -62,7 +62,7 @@ from .equations import rotor_inertia_from
 from .estimate import tensor_of
 from .sensors import gyro_matrix, tilted_axis
 from .fit import full_scale, sensor_errors
-from .pool import NoThrowError, Pooled, duplicate_throws, pool_throws
+from .pool import Pooled, duplicate_throws, pool_throws
 
 __all__ = ["MAX_CHI2_DOF", "MAX_SET_CHI2_DOF", "Calibration", "CalibrationError", "calibrate", "calibrate_device",
            "calibrated_sensors", "shared_center_covariance", "shared_sensor_covariance"]
@@ -225,13 +225,10 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
     # the sets fit the gyroscope's distortion and the rotor's tilt themselves: a calibration before this one is not used
     errors = sensor_errors(replace(device, gyro_distortion=None, gyro_distortion_std=None))
     rail = full_scale(device, saturation)
-    sets = []
-    for what, throws in (("of the device alone", alone), ("with the proof body", proof_throws)):
-        try:
-            sets.append(pool_throws(throws, device.rotor_axis, 1.0, saturation=rail, errors=errors))
-        except NoThrowError as err:  # say which set: the other's throws may all have fitted
-            raise NoThrowError(str(err).replace("no throw", f"no throw {what}", 1)) from None
-    (a, fits_a), (p, fits_p) = sets
+    # each set named in NoThrowError's message: the other's throws may all have fitted
+    a, fits_a = pool_throws(alone, device.rotor_axis, 1.0, saturation=rail, errors=errors, which="of the device alone")
+    p, fits_p = pool_throws(proof_throws, device.rotor_axis, 1.0, saturation=rail, errors=errors,
+                            which="with the proof body")
     x = np.concatenate([a.inertia, a.center, p.inertia, p.center])
     cov = np.zeros((18, 18))
     cov[:6, :6], cov[6:9, 6:9], cov[9:15, 9:15], cov[15:, 15:] = a.inertia_cov, a.center_cov, p.inertia_cov, p.center_cov

@@ -67,6 +67,7 @@ __all__ = ["BIAS_FREE_RMS", "MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "SHRIN
 #: most 0.3 rad/s (benchmarks/tensor_coverage.py). A fit that needs more is explaining something
 #: else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
 MAX_BIAS = 0.6
+_BIAS_REASON = "the fit needs a gyroscope bias of"  # how joint_verdict begins that refusal (pool_throws reads it)
 #: A throw this many standard uncertainties from the joint fit is an outlier.
 OUTLIER_SIGMA = 5.0
 #: From this many throws on the joint fit determines the gyroscope's distortion and the rotor's
@@ -186,7 +187,7 @@ def joint_verdict(bias: FloatArray, rms: float, noise: float) -> str:
         return why
     size = float(np.max(np.abs(bias)))
     if size > MAX_BIAS:
-        return (f"the fit needs a gyroscope bias of {size:.3g} rad/s, more than a gyroscope has ({MAX_BIAS:g}): the "
+        return (f"{_BIAS_REASON} {size:.3g} rad/s, more than a gyroscope has ({MAX_BIAS:g}): the "
                 f"model explains the flight only by distorting it (a wrong unit, rotor axis or sign)")
     return ""
 
@@ -383,8 +384,8 @@ def outlier(own: Sequence[JointFit], inertia: FloatArray) -> tuple[int, float]:
 
 def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: float, *,
                 saturation: float | None = None, errors: SensorErrors | None = None,
-                check: Callable[[FlownFit], str] | None = None,
-                gyro: FloatArray | None = None) -> tuple[Pooled, list[FlownFit]]:
+                check: Callable[[FlownFit], str] | None = None, gyro: FloatArray | None = None,
+                which: str = "") -> tuple[Pooled, list[FlownFit]]:
     """Fit every throw and the usable ones jointly (module docstring).
 
     Parameters
@@ -401,6 +402,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         ``check(fit)`` -> a reason to leave a fitted throw out, or ``""``.
     gyro : ndarray, shape (3, 3), optional
         The gyroscope's calibrated response (:func:`~tumble.analysis.tensor.throw.fit_flown`).
+    which : str
+        What the throws are, in :class:`NoThrowError`'s message (``"with the proof body"``).
 
     Returns
     -------
@@ -430,8 +433,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     for k, throw in enumerate(throws):
         if not isinstance(throw, Throw):
             raise ValueError(f"throws[{k}] must be a Throw, got {type(throw).__name__}")
-    twice = duplicate_throws(throws)
-    if twice:
+    if twice := duplicate_throws(throws):
         raise ValueError(twice)
     fits = [fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation, errors=errors, gyro=gyro)
             for throw in throws]
@@ -444,11 +446,10 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         used = [k for k, f in enumerate(fits) if not f.reason]
         if not used:
             why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
-            alone = (len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)
-                     and any("gyroscope bias" in f.reason for f in fits))
-            hint = (f"; fewer than {SENSOR_THROWS} throws do not fit the rotor's tilt and the gyroscope's distortion, "
-                    "which a lone throw's bias then stands in for: give more throws") if alone else ""
-            raise NoThrowError(f"no throw could be fitted ({why}){hint}")
+            lone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
+            hint = "; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" \
+                if lone and any(f.reason.startswith(_BIAS_REASON) for f in fits) else ""
+            raise NoThrowError(f"no throw{' ' + which if which else ''} could be fitted ({why}){hint}")
         joint, jf = _joint([fits[k] for k in used], errors, start)
         noises = [fits[k].noise for k in used]
         judged = [joint_verdict(joint.throw_parameters(jf.P, j)[9:12], float(jf.rms[j]), noises[j]) for j in range(len(used))]
