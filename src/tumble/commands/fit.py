@@ -32,7 +32,6 @@ import csv
 import io
 import json
 import os
-import re
 import sys
 import warnings
 from collections.abc import Callable, Sequence
@@ -51,6 +50,7 @@ from ..analysis.fit.flightmodel import FlightModel
 from ..analysis.fit.single import MIN_SAMPLES
 from ..analysis.fit.recording import samples_sha256
 from ..io.gyrodata import load_recording
+from ..io.throwfile import is_rotor_column
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
 from ..io.provenance import input_sha256, provenance
 from ..validation import check_number
@@ -68,10 +68,6 @@ _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz s
            "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1; "
            "adequacy: the model's error beyond the noise at most 3 % of the rates")
 
-
-
-#: A column a throw log of the flywheel device has and a phone's recording has not (io.throwfile's rotor names).
-_ROTOR_WORD = re.compile(r"\b(rotor|flywheel|wheel|motor)\b")
 
 def _body_comparison(body_source, ratios, std) -> dict:
     from ..io.bodyfile import load_body  # here: the body's modules load only when --body is given
@@ -223,7 +219,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                         + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
                 draw = (lambda: recording_figure(rec)) if recording_figure is not None else None
     except NoFlightError as err:  # a readable recording without a flight to fit: the fit failed
-        rotor = any(_ROTOR_WORD.search(name.lower()) for r in recs for name in r.read.ignored)
+        rotor = any(is_rotor_column(name) for r in recs for name in r.read.ignored)
         hint = " (its rotor column says it is a throw of the flywheel device: 'tumble tensor' fits those)" if rotor else ""
         print(f"tumble: fit failed: {label}: {err}{hint}; nothing written", file=sys.stderr)
         return 1

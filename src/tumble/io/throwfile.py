@@ -51,7 +51,7 @@ from ._delimited import _NUMBER, _check_order, _first_lines, _rows
 from .throwread import ThrowRead
 
 __all__ = ["ACCEL_UNITS", "COMPACT_HEADER", "COMPACT_PLACES", "MAX_THROW_FILE_BYTES", "THROW_FORMAT", "THROW_HEADER",
-           "ThrowRead", "load_throw", "parse_throw_csv", "read_throw", "throw_csv", "write_throw"]
+           "ThrowRead", "is_rotor_column", "load_throw", "parse_throw_csv", "read_throw", "throw_csv", "write_throw"]
 
 #: The largest throw file read, bytes (a minute at 4 kHz is about 25 MB of text).
 MAX_THROW_FILE_BYTES = 64 << 20
@@ -104,6 +104,21 @@ THROW_FORMAT = FileFormat("throw", (
    ":func:`tumble.io.throwfile.write_throw` writes it.")
 
 _ROTOR = re.compile(r"^(?:rotor|flywheel|wheel|motor)(?: (?:speed|rate|omega|angular velocity))?$")
+
+
+def is_rotor_column(cell: str) -> bool:
+    """Whether a header cell names a throw's rotor column (its unit aside): what a throw of the
+    flywheel device has and a phone's gyroscope recording has not.
+
+    Examples
+    --------
+    >>> from tumble.io.throwfile import is_rotor_column
+    >>> is_rotor_column("Rotor speed (rpm)"), is_rotor_column("flywheel"), is_rotor_column("wx (rad/s)")
+    (True, True, False)
+    """
+    return bool(_ROTOR.match(_name(cell)[0]))
+
+
 _ALLOWED = ("rotor: rotor, rotor speed, flywheel, wheel, motor (rad/s, deg/s, rpm, rev/s, Hz); specific force: "
             "ax, acc_x, accel x, accelerometer x, specific force x (m/s^2, g, mg), y and z alike")
 
