@@ -180,6 +180,8 @@ def test_energy_matches_definition():
         (dict(torque="gravity"), r"^torque = 'gravity' must be a function called as tau\(t, omega, attitude\)$"),
         (dict(body=[1.0, 2.0, 3.0]), r"^body = \[1.0, 2.0, 3.0\] must be a tumble Body or MassProperties; for principal "
                                      r"moments alone: tumble.MassProperties.from_moments\(\[1.0, 2.0, 3.0\]\)$"),
+        (dict(body=np.array([1.0, 2.0, 3.0])), r"from_moments\(\[1.0, 2.0, 3.0\]\)$"),
+        (dict(body=np.array(5.0)), r"^body = .*5.0.* must be a tumble Body or MassProperties$"),  # was len()'s TypeError
     ],
 )
 def test_bad_simulate_input(kwargs, pattern):

@@ -34,7 +34,7 @@ from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.methods.exact import elliptic_parameters
 from ..dynamics.special.elliptic import ellipk_kp
 from ..typing import ArrayLike, FloatOrArray
-from ..validation import INERTIA_RTOL, axis_index, check_moments, check_vectors, short_repr
+from ..validation import INERTIA_RTOL, axis_index, check_moments, check_vectors, is_body, short_repr
 from . import _display
 
 __all__ = [
@@ -64,7 +64,7 @@ def _check_moments(moments) -> np.ndarray:
 def _check_motion(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The shared validator of ``(omega, moments)``: finite omega (..., 3), moments as
     :func:`_check_moments`, batch shapes that broadcast together."""
-    if hasattr(omega, "principal_moments"):  # simulate's order, (body, omega), given to an (omega, moments) function
+    if is_body(omega):  # simulate's order, (body, omega), given to an (omega, moments) function
         raise ValueError(f"omega = {short_repr(omega)} is a body: these functions take (omega, moments), omega (rad/s) "
                          "first, then body.principal_moments (kg m^2)")
     w = check_vectors("omega", omega, "rad/s")

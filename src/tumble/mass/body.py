@@ -453,6 +453,7 @@ def properties_of(body: object, name: str = "body") -> MassProperties:
     props = body.properties if isinstance(body, Body) else body
     if isinstance(props, MassProperties):
         return props
-    three = isinstance(body, (list, tuple, np.ndarray)) and len(body) == 3
-    hint = f"; for principal moments alone: tumble.MassProperties.from_moments({body!r})" if three else ""
+    three = np.shape(body) == (3,) if isinstance(body, np.ndarray) else isinstance(body, (list, tuple)) and len(body) == 3
+    shown = short_repr(body.tolist() if isinstance(body, np.ndarray) else body)
+    hint = f"; for principal moments alone: tumble.MassProperties.from_moments({shown})" if three else ""
     raise ValueError(f"{name} = {short_repr(body)} must be a tumble Body or MassProperties{hint}")

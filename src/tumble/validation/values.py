@@ -37,6 +37,7 @@ __all__ = [
     "check_positive",
     "check_vector",
     "check_vectors",
+    "is_body",
     "refuse_body",
     "refuse_first",
     "short_repr",
@@ -485,6 +486,20 @@ def refuse_body(field: str, value: object) -> None:
     ...
     ValueError: moments = Body('T-handle', 2 parts, m = 3 kg, I = (0.125, 0.3125, 0.4375) kg m^2) is a body: give its principal moments, body.principal_moments (kg m^2)
     """
-    if hasattr(value, "principal_moments"):
+    if is_body(value):
         raise ValueError(f"{field} = {short_repr(value)} is a body: give its principal moments, "
                          "body.principal_moments (kg m^2)")
+
+
+def is_body(value: object) -> bool:
+    """Whether ``value`` is a body (a ``Body`` or ``MassProperties``: it has ``principal_moments``),
+    told without importing :mod:`tumble.mass`, which sits above this layer.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.validation import is_body
+    >>> is_body(tumble.t_handle()), is_body(tumble.t_handle().properties), is_body([1.0, 2.0, 3.0])
+    (True, True, False)
+    """
+    return hasattr(value, "principal_moments")
