@@ -1,7 +1,8 @@
 """The checks of input every layer of tumble uses: one place, one wording per rule.
 
 Moments, axes, vectors, numbers (:mod:`~tumble.validation.values`), orientations
-(:mod:`~tumble.validation.rotations`) and input files (:mod:`~tumble.validation.files`). Each
+(:mod:`~tumble.validation.rotations`), input files (:mod:`~tumble.validation.files`) and functions
+(:mod:`~tumble.validation.callables`). Each
 checker returns the cleaned value or raises ``ValueError`` whose message names the field, the
 value and what is allowed, e.g. ``radius = -0.1 must be a positive finite number (m)``; Python
 constructors, the TOML loader and the CLI all surface these same messages. This package is the
@@ -11,6 +12,7 @@ contract keeps it so). Units are SI.
 
 from __future__ import annotations
 
+from .callables import check_callable
 from .files import NoSuchFileError, read_input_file
 from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
 from .values import (
@@ -24,7 +26,6 @@ from .values import (
     breaks_triangle,
     check_at_most,
     check_bool,
-    check_callable,
     check_direction,
     check_increasing,
     check_moments,

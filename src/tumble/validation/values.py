@@ -8,7 +8,6 @@ other check of it calls that. Units are SI. Re-exported by :mod:`tumble.validati
 
 from __future__ import annotations
 
-import inspect
 import math
 from collections.abc import Sequence
 from numbers import Real
@@ -29,7 +28,6 @@ __all__ = [
     "breaks_triangle",
     "check_at_most",
     "check_bool",
-    "check_callable",
     "check_direction",
     "check_increasing",
     "check_moments",
@@ -441,36 +439,6 @@ def check_direction(field: str, value: object) -> tuple[float, float, float]:
         raise ValueError(f"{field} = {value!r} must be a non-zero vector (a direction)")
     v = v / big  # scale first, so that the norm of [1e308, 1e308, 0] does not overflow
     return tuple(float(x) for x in v / np.linalg.norm(v))  # type: ignore[return-value]
-
-
-def check_callable(name: str, value: object, call: str) -> None:
-    """Check that ``value`` can be called as ``call`` (``"tau(t, omega, attitude)"``: its
-    arguments, positional, counted from the parentheses); a ValueError naming the field and the
-    call otherwise. A callable whose signature Python cannot read (a builtin, a compiled
-    function) is taken as it is.
-
-    Examples
-    --------
-    >>> from tumble.validation import check_callable
-    >>> check_callable("torque", lambda t, omega, attitude: omega, "tau(t, omega, attitude)")
-    >>> check_callable("torque", lambda t, omega: omega, "tau(t, omega, attitude)")
-    Traceback (most recent call last):
-    ...
-    ValueError: torque = <lambda>(t, omega) cannot be called as tau(t, omega, attitude): it must take those 3 arguments
-    """
-    if not callable(value):
-        raise ValueError(f"{name} = {short_repr(value)} must be a function called as {call}")
-    count = len([a for a in call[call.index("(") + 1:call.rindex(")")].split(",") if a.strip()])
-    try:
-        signature = inspect.signature(value)
-    except (TypeError, ValueError):  # no signature to read: the call will tell
-        return
-    try:
-        signature.bind(*range(count))
-    except TypeError:
-        label = getattr(value, "__name__", type(value).__name__)
-        raise ValueError(f"{name} = {label}{signature} cannot be called as {call}: it must take those {count} "
-                         "arguments") from None
 
 
 def refuse_body(field: str, value: object) -> None:
