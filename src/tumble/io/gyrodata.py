@@ -405,8 +405,9 @@ def _accel_csv(names: list[str], read: ColumnsRead) -> tuple[str | None, Columns
     or None. Sensor Logger's export (its ``TotalAcceleration.csv`` and ``Metadata.csv``) has an
     ``Accelerometer.csv`` too, with the phone's estimate of gravity taken out: not the specific
     force, which a tumbling phone's estimate cannot give. It is left out, and what was read says
-    why (its ``TotalAcceleration.csv`` is not read either: its units and signs differ between the
-    app's iOS and Android builds, which the export does not say in a way read here)."""
+    why. Its ``TotalAcceleration.csv`` (gravity included) is not read either: no export of the
+    app's was at hand to check its units and signs on both platforms against, so the flights are
+    found from the gyroscope alone rather than from a reading taken on trust."""
     lower = {n.lower().rsplit("/", 1)[-1] for n in names}
     acc = next((n for n in names if n.lower() == ACCEL_CSV.lower()), None)
     if acc is not None and any(k in lower for k in SENSOR_LOGGER_ACCEL):
