@@ -178,6 +178,10 @@ def test_energy_matches_definition():
                                  r"give tumble.ConstantTorque\(\(0.0, 0.0, 1.0\)\) \(N m, body frame"),
         (dict(torque=lambda t, w: w), r"^torque = <lambda>\(t, w\) cannot be called as tau\(t, omega, attitude\)"),
         (dict(torque="gravity"), r"^torque = 'gravity' must be a function called as tau\(t, omega, attitude\)$"),
+        # not three numbers: one line of tumble's, not numpy's ("inhomogeneous shape", "could not convert", len())
+        (dict(torque=[1, [2, 3], 4]), r"^torque = \[1, \[2, 3\], 4\] must be a function called as tau"),
+        (dict(torque=("a", "b", "c")), r"^torque = \('a', 'b', 'c'\) must be a function called as tau"),
+        (dict(torque=np.array(2.0)), r"^torque = array\(2.0\) must be a function called as tau"),
         (dict(body=[1.0, 2.0, 3.0]), r"^body = \[1.0, 2.0, 3.0\] must be a tumble Body or MassProperties; for principal "
                                      r"moments alone: tumble.MassProperties.from_moments\(\[1.0, 2.0, 3.0\]\)$"),
         (dict(body=np.array([1.0, 2.0, 3.0])), r"from_moments\(\[1.0, 2.0, 3.0\]\)$"),

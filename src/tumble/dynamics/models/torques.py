@@ -36,7 +36,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Protocol, TypeAlias, cast, runtime_checkable
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, cast, runtime_checkable
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -343,10 +343,12 @@ class FunctionTorque:
     frame: str = "body"
 
     def __post_init__(self) -> None:
-        if not callable(self.fn) and np.shape(self.fn) == (3,):
-            raise ValueError(f"torque = {self.fn!r} is a vector, not a torque model: for a constant torque give "
-                             f"tumble.ConstantTorque({tuple(float(v) for v in np.asarray(self.fn, float))}) (N m, body "
-                             'frame; frame="world" for a world-fixed one)')
+        given: Any = self.fn  # what the user passed, which may be no function at all
+        if (isinstance(given, (list, tuple)) or getattr(given, "ndim", None) == 1) and len(given) == 3 and all(
+                isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in given):
+            raise ValueError(f"torque = {given!r} is a vector, not a torque model: for a constant torque give "
+                             f"tumble.ConstantTorque({tuple(float(v) for v in given)}) (N m, body frame; "
+                             'frame="world" for a world-fixed one)')  # three numbers: the constant torque meant
         check_callable("torque", self.fn, "tau(t, omega, attitude)")
         _check_frame(self.frame)
 
