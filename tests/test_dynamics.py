@@ -179,8 +179,14 @@ def test_energy_matches_definition():
         (dict(torque=lambda t, w: w), r"^torque = <lambda>\(t, w\) cannot be called as tau\(t, omega, attitude\)"),
         (dict(torque="gravity"), r"^torque = 'gravity' must be a function called as tau\(t, omega, attitude\)$"),
         # not three numbers: one line of tumble's, not numpy's ("inhomogeneous shape", "could not convert", len())
-        (dict(torque=[1, [2, 3], 4]), r"^torque = \[1, \[2, 3\], 4\] must be a function called as tau"),
-        (dict(torque=("a", "b", "c")), r"^torque = \('a', 'b', 'c'\) must be a function called as tau"),
+        # a list is a sum of torque models: its first item that is none is named
+        (dict(torque=[1, [2, 3], 4]), r"^torque\[0\] = 1 must be a function called as tau\(t, omega, attitude\) "
+                                      r"\(a list is the sum of its torque models\)$"),
+        (dict(torque=("a", "b", "c")), r"^torque\[0\] = 'a' must be a function called as tau"),
+        (dict(torque=[tumble.ConstantTorque((0.0, 0.0, 1.0)), (0.0, 1.0, 0.0)]),
+         r"^torque\[1\] = \(0.0, 1.0, 0.0\) is a vector, not a torque model: for a constant torque give "
+         r"tumble.ConstantTorque\(\(0.0, 1.0, 0.0\)\)"),
+        (dict(torque=[]), r"^torque = \[\] is an empty sum: give a torque model, a list of them, or None$"),
         (dict(torque=np.array(2.0)), r"^torque = array\(2.0\) must be a function called as tau"),
         (dict(body=[1.0, 2.0, 3.0]), r"^body = \[1.0, 2.0, 3.0\] must be a tumble Body or MassProperties; for principal "
                                      r"moments alone: tumble.MassProperties.from_moments\(\[1.0, 2.0, 3.0\]\)$"),

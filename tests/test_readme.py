@@ -44,7 +44,7 @@ def test_tour_python_blocks_run_and_hold_their_comments(monkeypatch):
     # the checker is not vacuous: the tour's claims about values and runs were all seen
     for claim in ("3.0", "[0, 0, 0.25]", "diag(0.3125, 0.4375, 0.125)", "[0.125, 0.3125, 0.4375]", "[1, 0, 0]",
                   "(500, 3)", "~1e-16", "11 flips", "period 1.7863 s", "1.7864", "no flip", "~0",
-                  "['every_part_spin', 'explorer1']"):
+                  "['every_part_spin', 'explorer1']", "'dop853'"):
         assert claim in checked, (claim, checked)
 
 

@@ -35,6 +35,25 @@ def test_a_gravity_gradient_scenario_starting_in_the_orbit_frame_is_the_python_r
     assert abs(pitch[0] - 0.05) < 1e-12 and np.max(np.abs(pitch)) < 0.06  # librates, Lagrange region
 
 
+def test_several_torque_tables_act_together(tmp_path):
+    """[[torque]] tables: their sum, the Python API's run with the same models in a list (the sum's
+    own checks: tests/test_torque_sum.py); the orbiting frame found among them."""
+    text = ('[[torque]]\nkind = "gravity_gradient"\norbit_period = 5400.0\n'
+            '[[torque]]\nvector = [0.0, 0.0, 1e-6]\nframe = "world"\n'
+            "[initial.orbit_frame]\npitch = 0.05\n[simulation]\nt_end = 5400.0\nsamples = 20\nmethod = \"dop853\"\n")
+    traj = run_scenario(load_scenario(scenario(tmp_path, text)))
+    body = tumble.t_handle()
+    gg = tumble.GravityGradient(orbit_period=5400.0)
+    start = tumble.lvlh_state(gg, body, pitch=0.05)
+    torque = [gg, tumble.ConstantTorque((0.0, 0.0, 1e-6), "world")]
+    ref = tumble.simulate(body, start.omega0, t_end=5400.0, samples=20, torque=torque, attitude0=start.attitude0,
+                          method="dop853")
+    np.testing.assert_array_equal(traj.omega, ref.omega)
+    alone = tumble.simulate(body, start.omega0, t_end=5400.0, samples=20, torque=gg, attitude0=start.attitude0,
+                            method="dop853")
+    assert np.max(np.abs(traj.omega - alone.omega)) > 1e-8  # the second torque acted
+
+
 def test_a_damper_scenario_ends_in_the_flat_spin(tmp_path):
     """From spin about the minor axis, the damped T-handle ends spinning about its major axis
     at |L| / (I3 + J) (the major-axis rule), with the energy budget closed."""
@@ -58,6 +77,11 @@ def test_a_damper_scenario_ends_in_the_flat_spin(tmp_path):
         (GG + "[initial]\nomega = [1, 0, 0]\n[initial.orbit_frame]\n", "give omega \\(and frame\\) or \\[initial.orbit_frame\\], not both"),
         (GG + "[initial.orbit_frame]\nspin = 1\n", "initial.orbit_frame: unknown key 'spin'"),
         ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 0.01\n", "damper: missing key 'damping'"),
+        ('[[torque]]\nvector = [0, 0, 1]\n[[torque]]\nkind = "gravity_gradient"\n[initial]\nomega = [1, 0, 0]\n',
+         "torque\\[1\\]: missing key 'orbit_period'"),
+        ('[[torque]]\nvector = [0, 0, 1]\n[[torque]]\nvector = [0, 1]\n[initial]\nomega = [1, 0, 0]\n',
+         "torque\\[1\\]: torque vector = \\[0, 1\\] must be a list of 3 numbers"),
+        ('torque = 5\n[initial]\nomega = [1, 0, 0]\n', "torque must be a table \\[torque\\], not 5"),
         ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = -1.0\ndamping = 0.1\n", "damper: inertia = -1.0 must be a positive"),
         ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 0.1\ndamping = 0.1\nmass = 2\n", "damper: unknown key 'mass'"),
     ],

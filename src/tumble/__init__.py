@@ -40,6 +40,7 @@ _EXPORTS = {
     "BatchTrajectory": "tumble.dynamics",
     "Trajectory": "tumble.dynamics",
     "ConstantTorque": "tumble.dynamics",
+    "TorqueSum": "tumble.dynamics",
     "SphericalDamper": "tumble.dynamics",
     "METHODS": "tumble.dynamics",
     "GravityGradient": "tumble.dynamics",

@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported 
     from .models.internal import SphericalDamper, gyrostat_rate
     from .models.orbit_gravity import OrbitGravityGradient, gravity_gradient_of
     from .models.sensors import Measurement, Sensors
-    from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, as_torque
+    from .models.torques import ConstantTorque, FunctionTorque, TorqueModel, TorqueSum, as_torque
     from .simulate import DEFAULT_METHOD, FRAMES, simulate
     from .special.quaternion import quaternion_rate
     from .trajectory import Trajectory
@@ -73,6 +73,7 @@ __all__ = [
     "SphericalDamper",
     "TLEOrbit",
     "TorqueModel",
+    "TorqueSum",
     "Trajectory",
     "UniformField",
     "angular_momentum",

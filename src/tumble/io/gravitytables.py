@@ -41,12 +41,13 @@ def _check_keys(where: str, table, allowed) -> None:
             raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
 
 
-def gravity_gradient_from_table(table: dict) -> GravityGradient:
+def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGradient:
     """A :class:`GravityGradient` from a scenario file's ``[torque]`` table.
 
     Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
     ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
-    missing key, or a bad value, raises ``ValueError`` with one line starting ``torque:``.
+    missing key, or a bad value, raises ``ValueError`` with one line starting ``where`` (``torque:``,
+    or ``torque[1]:`` for a file's second ``[[torque]]``).
 
     Examples
     --------
@@ -60,16 +61,16 @@ def gravity_gradient_from_table(table: dict) -> GravityGradient:
     ...
     ValueError: torque: unknown key 'altitude'; allowed: kind, orbit_period, orbit_radius, mu
     """
-    _check_keys("torque", table, _TORQUE_KEYS)
+    _check_keys(where, table, _TORQUE_KEYS)
     if "kind" in table and table["kind"] != "gravity_gradient":
-        raise ValueError(f"torque: kind = {table['kind']!r} is not 'gravity_gradient'")
+        raise ValueError(f"{where}: kind = {table['kind']!r} is not 'gravity_gradient'")
     if "orbit_period" not in table and "orbit_radius" not in table:
-        raise ValueError("torque: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
+        raise ValueError(f"{where}: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
     try:
         return GravityGradient(orbit_period=table.get("orbit_period"), orbit_radius=table.get("orbit_radius"),
                                mu=table.get("mu", MU_EARTH))
     except ValueError as exc:
-        raise ValueError(f"torque: {exc}") from None
+        raise ValueError(f"{where}: {exc}") from None
 
 
 def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassProperties) -> LVLHState:

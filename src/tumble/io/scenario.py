@@ -23,6 +23,7 @@
     # or the gravity gradient of a circular orbit (tumble.GravityGradient):
     # [torque]
     # kind = "gravity_gradient"
+    # (several torques acting together, their sum: a [[torque]] table for each)
     # orbit_period = 5400.0    # s (or orbit_radius, m; mu, m^3/s^2, default the Earth's)
     # [initial.orbit_frame]    # instead of omega: start at rest in the orbiting frame
     # pitch = 0.01             # rad (roll, pitch, yaw; pitch_axis = 3, yaw_axis = 1)
@@ -46,7 +47,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..dynamics import ConstantTorque, SphericalDamper
+from ..dynamics import ConstantTorque, SphericalDamper, TorqueModel, TorqueSum
 from ..dynamics.methods.names import ALLOWED
 from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient
@@ -90,7 +91,8 @@ TORQUE_TABLE = Table("[torque]", (
     Key("orbit_radius", "number", "m", example="6.78e6", low=0.0, doc="the orbit's radius (or orbit_period)"),
     Key("mu", "number", "m^3/s^2", f"{MU_EARTH:.10g} (the Earth's)", example="4.9048695e12", low=0.0,
         doc="the central body's gravitational parameter"),
-), "Optional: a torque acting through the run.")
+), "Optional: a torque acting through the run; several act together (their sum, "
+   ":class:`tumble.dynamics.TorqueSum`) as a ``[[torque]]`` table each.")
 #: Keys of each kind of ``[torque]`` table.
 _TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
 
@@ -100,7 +102,8 @@ SCENARIO_FORMAT = FileFormat("scenario", (
     Table("top level", (_BODY,
                         Key("initial", "table", required=True, example="{omega = [0.1, 10.0, 0.1]}", doc="[initial]"),
                         Key("simulation", "table", example="{t_end = 20.0}", doc="[simulation]"),
-                        Key("torque", "table", example='{vector = [0.0, 0.0, 0.01]}', doc="[torque]"),
+                        Key("torque", "table", example='{vector = [0.0, 0.0, 0.01]}',
+                            doc="[torque], or a [[torque]] table for each of several torques"),
                         Key("damper", "table", example="{inertia = 0.01, damping = 0.05}", doc="[damper]"))),
     Table("[initial]", (
         _OMEGA,
@@ -153,7 +156,7 @@ class Scenario:
     rtol: float | None = None
     atol: float | None = None
     step: float | None = None
-    torque: ConstantTorque | GravityGradient | None = None
+    torque: TorqueModel | None = None
     name: str = "scenario"
     dt: float | None = None
     times: tuple[float, ...] | None = None
@@ -215,9 +218,10 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
     body = _body(data["body"], base_dir)
-    tables = {section: keys.check(section, data.get(section, {})) for section, keys in _SECTIONS.items()}
+    tables = {section: keys.check(section, data.get(section, {})) for section, keys in _SECTIONS.items()
+              if section != "torque"}  # one [torque] table or several [[torque]]: torque_of checks them
     initial, sim = tables["initial"], tables["simulation"]
-    model = _torque(tables["torque"])
+    model = torque_of(data.get("torque"))
     omega, frame, attitude0 = _initial(initial, model, body)
     damper = None
     if tables["damper"]:
@@ -239,22 +243,46 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     return scenario
 
 
-def _torque(table: dict):
-    """The model of a ``[torque]`` table: ``kind = "constant"`` (the default) or ``"gravity_gradient"``."""
-    if not table:
+def torque_of(value: object) -> TorqueModel | None:
+    """The model of a file's ``torque``: one ``[torque]`` table, or a list of them (``[[torque]]``),
+    their :class:`~tumble.dynamics.TorqueSum`; None for none.
+
+    Examples
+    --------
+    >>> from tumble.io.scenario import torque_of
+    >>> both = torque_of([{"vector": [0.0, 0.0, 0.01]}, {"kind": "gravity_gradient", "orbit_period": 5400.0}])
+    >>> [type(term).__name__ for term in both.terms]
+    ['ConstantTorque', 'GravityGradient']
+    >>> torque_of([{"vector": [0.0, 0.0, 0.01]}, {"vector": [1.0, 0.0]}])
+    Traceback (most recent call last):
+    ...
+    ValueError: torque[1]: torque vector = [1.0, 0.0] must be a list of 3 numbers (N m)
+    """
+    if value is None or value == {}:
         return None
+    if not isinstance(value, list):
+        return _torque(TORQUE_TABLE.check("torque", value), "torque")
+    if not value:
+        raise ValueError("torque = [] has no [[torque]] table; leave it out for a torque-free run")
+    return TorqueSum(*(_torque(TORQUE_TABLE.check(f"torque[{i}]", table), f"torque[{i}]")
+                       for i, table in enumerate(value)))
+
+
+def _torque(table: dict, where: str) -> TorqueModel:
+    """The model of one ``[torque]`` table (``where`` names it in errors): ``kind = "constant"``
+    (the default) or ``"gravity_gradient"``."""
     kind = table.get("kind", "constant")
     if not isinstance(kind, str) or kind not in _TORQUE_KINDS:
-        raise ValueError(f"torque: kind = {kind!r} is unknown; allowed: {', '.join(_TORQUE_KINDS)}")
-    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in _TORQUE_KINDS[kind])).check("torque", table, kind=kind)
+        raise ValueError(f"{where}: kind = {kind!r} is unknown; allowed: {', '.join(_TORQUE_KINDS)}")
+    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in _TORQUE_KINDS[kind])).check(where, table, kind=kind)
     if kind == "gravity_gradient":
-        return gravity_gradient_from_table(table)
+        return gravity_gradient_from_table(table, where)
     if "vector" not in table:
-        raise ValueError("torque: missing key 'vector' (N m)")
+        raise ValueError(f"{where}: missing key 'vector' (N m)")
     try:
         return ConstantTorque(table["vector"], table.get("frame", "body"))
     except ValueError as exc:
-        raise ValueError(f"torque: {exc}") from None
+        raise ValueError(f"{where}: {exc}") from None
 
 
 def _initial(table: dict, model, body: Body):
@@ -265,8 +293,11 @@ def _initial(table: dict, model, body: Body):
         return table["omega"], table.get("frame", "principal"), None
     if "omega" in table or "frame" in table:
         raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
-    if not isinstance(model, GravityGradient):
+    orbits = [term for term in (model.terms if isinstance(model, TorqueSum) else (model,))
+              if isinstance(term, GravityGradient)]
+    if not orbits:
         raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
+    model = orbits[0]
     sub = table["orbit_frame"]
     if not isinstance(sub, dict):
         raise ValueError("initial.orbit_frame must be a table [initial.orbit_frame]")

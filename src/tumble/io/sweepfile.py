@@ -72,7 +72,7 @@ from .bodyfile import body_from_table, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
-from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END, TORQUE_TABLE, _torque
+from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END, TORQUE_TABLE, torque_of
 
 __all__ = ["SWEEP_FORMAT", "SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
@@ -89,7 +89,8 @@ SWEEP_FORMAT = FileFormat("sweep", (
             doc="[[dispersion]], any number"),
         Key("initial", "table", required=True, example="{omega = [10.0, 0.1, 0.1]}", doc="[initial]"),
         Key("simulation", "table", example="{t_end = 20.0}", doc="[simulation]"),
-        Key("torque", "table", example="{vector = [0.0, 0.0, 0.01]}", doc="[torque]"),
+        Key("torque", "table", example="{vector = [0.0, 0.0, 0.01]}",
+            doc="[torque], or a [[torque]] table for each of several torques"),
         Key("criterion", "table", example='{column = "flips", min = 1}', doc="[criterion]"),
     ), "The first comment line of the file describes the sweep."),
     Table("[sweep]", (
@@ -283,7 +284,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
         raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, dispersion, {', '.join(_SECTIONS)}")
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
-    tables = {section: _table(data, section) for section in _SECTIONS}
+    tables = {section: _table(data, section) for section in _SECTIONS if section != "torque"}  # torque_of checks it
     sweep, initial, sim = tables["sweep"], tables["initial"], tables["simulation"]
     if "sweep" not in data:  # a scenario given to 'tumble sweep'
         raise ValueError("no [sweep] table: a scenario is run with 'tumble simulate FILE --out DIR'; a sweep file adds "
@@ -302,7 +303,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     t_end = sim.get("t_end", None if times is not None else DEFAULT_T_END)
     _in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))
     settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
-                                                      method=sim.get("method"), torque=_torque(tables["torque"]),
+                                                      method=sim.get("method"), torque=torque_of(data.get("torque")),
                                                       step=sim.get("step")))
     chunk = sweep.get("chunk", DEFAULT_CHUNK)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:

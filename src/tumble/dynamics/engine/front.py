@@ -15,7 +15,7 @@ import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray, IntArray
-from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_ROTOR_MOMENTUM, KERNEL_WORLD
+from ..models.torque_protocols import Form, kernel_terms
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body", "run_damped"]
@@ -46,35 +46,11 @@ def _damped() -> ModuleType:
     return damped
 
 
-Form = tuple[int, tuple[float, ...]]
-
-
-@functools.lru_cache(maxsize=256)
-def _terms_of(forms: tuple[Form, ...]) -> tuple[tuple[float, ...], float]:
-    """The kernels' torque terms of the models' forms (:func:`terms`)."""
-    P = [0.0] * 10
-    n = 0.0
-    for kind, params in forms:
-        if kind == KERNEL_BODY:
-            P[0], P[1], P[2] = P[0] + params[0], P[1] + params[1], P[2] + params[2]
-        elif kind == KERNEL_WORLD:
-            P[3], P[4], P[5] = P[3] + params[0], P[4] + params[1], P[5] + params[2]
-        elif kind == KERNEL_CIRCULAR_GRAVITY:
-            if n and n != params[0]:
-                raise ValueError(f"two circular orbits of mean motions {n!r} and {params[0]!r} rad/s in one run")
-            n = params[0]
-            P[6] += n * n
-        elif kind == KERNEL_ROTOR_MOMENTUM:
-            P[7], P[8], P[9] = P[7] + params[0], P[8] + params[1], P[9] + params[2]
-        elif kind != KERNEL_NONE:
-            raise ValueError(f"the engine has no torque of kind {kind!r}")
-    return tuple(P), n
-
-
 def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
     """The kernels' torque terms ``(P, n)`` (:mod:`~tumble.dynamics.engine.kernels`) of one model's
-    form ``(kind, parameters)`` or of a sequence of them, a sum of models: each kind's terms added
-    in its slot of ``P``; ``n`` the circular orbit's mean motion (rad/s), 0 without one.
+    form ``(kind, parameters)`` or of a sequence of them, a sum of models
+    (:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`): each kind's terms added in its
+    slot of ``P``; ``n`` the circular orbit's mean motion (rad/s), 0 without one.
 
     Examples
     --------
@@ -84,7 +60,7 @@ def terms(form: Form | Sequence[Form]) -> tuple[tuple[float, ...], float]:
     ((1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0), 0.5)
     """
     forms = (form,) if isinstance(form[0], int) else tuple(form)
-    return _terms_of(forms)
+    return kernel_terms(forms)
 
 
 def _check_method(method: str, allowed: Sequence[str] = ENGINE_METHODS) -> None:

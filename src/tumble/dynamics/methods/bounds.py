@@ -25,11 +25,13 @@ from ..models.torques import (
     KERNEL_BODY,
     KERNEL_CIRCULAR_GRAVITY,
     KERNEL_NONE,
+    KERNEL_SUM,
     KERNEL_WORLD,
     BoundsSpin,
     ConstantTorque,
     FunctionTorque,
     TorqueModel,
+    TorqueSum,
     body_torque,
     conforms,
     kernel_form,
@@ -87,6 +89,8 @@ def linear_gain(form: Form | None, moments: Vector3, t_end: float) -> float | No
     ``3 n^2 |r x I r| <= 3 n^2 (I3 - I1) / 2`` (Hughes, *Spacecraft Attitude Dynamics*, ch. 8:
     ``r x I r`` is largest, ``(I3 - I1) / 2``, for ``r`` halfway between the axes of I1 and I3).
     It grows with the run; the gravity gradient's own bound (its Jacobi integral) does not.
+    A sum of models (``KERNEL_SUM``) adds its terms' bounds (``|a + b| <= |a| + |b|``), the
+    gravity gradient's ``n^2`` summed in its slot.
 
     Examples
     --------
@@ -99,6 +103,9 @@ def linear_gain(form: Form | None, moments: Vector3, t_end: float) -> float | No
     >>> n = gg.mean_motion
     >>> bool(np.isclose(linear_gain(gg.kernel_form(), I, 10.0), 1.5 * n * n * (4.0 - 2.0) * 10.0 / 2.0))
     True
+    >>> both = (gg + tumble.ConstantTorque((0.0, 0.0, 0.5), "world")).kernel_form()   # the two bounds, added
+    >>> bool(np.isclose(linear_gain(both, I, 10.0), 2.5 + 1.5 * n * n * (4.0 - 2.0) * 10.0 / 2.0))
+    True
     """
     if form is None:
         return None
@@ -108,6 +115,9 @@ def linear_gain(form: Form | None, moments: Vector3, t_end: float) -> float | No
     if form[0] == KERNEL_CIRCULAR_GRAVITY:
         n = form[1][0]
         return 1.5 * n * n * (I3 - I1) * t_end / I1
+    if form[0] == KERNEL_SUM:
+        P = form[1]
+        return (math.hypot(P[0], P[1], P[2]) + math.hypot(P[3], P[4], P[5]) + 1.5 * P[6] * (I3 - I1)) / I1 * t_end
     return 0.0 if form[0] == KERNEL_NONE else None
 
 
@@ -122,7 +132,9 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``A`` the
     principal -> design rotation (columns: the principal axes); ``w`` is one angular velocity (3,)
     or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T`` is ``A w`` for each row).
-    A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled.
+    A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled; of a
+    :class:`~tumble.dynamics.models.torques.TorqueSum`, the body-frame terms are turned and the
+    world-frame ones kept.
 
     Examples
     --------
@@ -131,7 +143,12 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     >>> A = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])   # principal x is design y, ...
     >>> design_torque(tumble.ConstantTorque((0.0, 2.0, 0.0)), A).kernel_form()   # design y: principal x
     (1, (2.0, 0.0, 0.0))
+    >>> design_torque(tumble.ConstantTorque((0.0, 2.0, 0.0)) + tumble.ConstantTorque((0.0, 2.0, 0.0), "world"),
+    ...               A).kernel_form()   # the body term turned, the world term kept: P and n of the sum
+    (5, (2.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
     """
+    if isinstance(model, TorqueSum):
+        return TorqueSum(*(design_torque(term, A) if term.frame == "body" else term for term in model.terms))
     form = kernel_form(model)
     if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
         return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
@@ -176,6 +193,20 @@ def _constant_gain(vector: tuple[float, ...], moments: FloatArray, duration: flo
     return cast(FloatArray, math.hypot(*vector) / np.min(moments, axis=-1) * duration)
 
 
+def _term_gains(model: TorqueModel, t: float, omega: FloatArray, attitude: Rotation | None, moments: ArrayLike,
+                duration: float) -> FloatArray:
+    """One term's share of a sum's :func:`spin_gains`: a bound that holds beside other torques. A
+    model's own bound on the whole motion (:class:`~tumble.dynamics.models.torques.BoundsSpin`, the
+    gravity gradient's Jacobi integral) does not, so a compiled term takes its torque's largest
+    size (:func:`linear_gain`, per body); any other its own gains."""
+    form = kernel_form(model)
+    if form is None or not conforms(model, BoundsSpin):
+        return spin_gains(model, t, omega, attitude, moments, duration)
+    I = np.atleast_2d(np.asarray(moments, float))
+    gains = np.array([linear_gain(form, row, duration) for row in I])
+    return cast(FloatArray, gains[0] if np.ndim(moments) == 1 else gains)
+
+
 def spin_gains(
     model: TorqueModel | None, t: float, omega: ArrayLike, attitude: Rotation | None, moments: ArrayLike,
     duration: float,
@@ -206,6 +237,8 @@ def spin_gains(
     with np.errstate(over="ignore", invalid="ignore"):
         if form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD):  # a constant vector: |tau| in any frame
             return _constant_gain(form[1], np.asarray(moments, float), duration) + np.zeros(w.shape[:-1])
+        if isinstance(model, TorqueSum):  # |a + b| <= |a| + |b|: each term's gain as if it acted alone
+            return cast(FloatArray, sum(_term_gains(term, t, w, attitude, moments, duration) for term in model.terms))
         if attitude is None:
             raise ValueError(f"spin_gains needs the attitude for torque model {model!r}")
         if conforms(model, BoundsSpin):

@@ -30,7 +30,7 @@ import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray
-from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_NONE, KERNEL_WORLD, kernel_form
+from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD, kernel_form
 
 __all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
 
@@ -51,10 +51,12 @@ def compiled_model(torque: Any) -> tuple[int, FloatArray, float] | None:
     True
     >>> compiled_model(lambda t, w, R: w) is None   # a function: the numpy path calls it
     True
+    >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]) + ConstantTorque([1.0, 0.0, 0.0], "world")) is None   # a mix
+    True
     """
     form = kernel_form(torque)  # the model's declared compiled form: no list of classes here
-    if form is None or form[0] == KERNEL_NONE:
-        return None
+    if form is None or form[0] not in (CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT):
+        return None  # none, or a sum of kinds (KERNEL_SUM): the splittings' kernels take one kind
     kind, params = form
     if kind == GRAVITY_GRADIENT:
         return kind, np.zeros(3), float(params[0])

@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 
 from ..environment.earth import MU_EARTH, R_EARTH
 from ..special.quaternion import to_body
-from .torques import KERNEL_CIRCULAR_GRAVITY
+from .torques import KERNEL_CIRCULAR_GRAVITY, AddsTorques
 from .lvlh import (
     _LVLH0,
     LVLHState,
@@ -134,7 +134,7 @@ def gradient_components(rate2: Any, I0: Any, I1: Any, I2: Any, b0: Any, b1: Any,
 
 
 @dataclass(frozen=True)
-class GravityGradient:
+class GravityGradient(AddsTorques):
     """The gravity-gradient torque of a circular orbit (a torque model, world frame).
 
     A *description* of the orbit; :meth:`bind` gives it the principal moments of the body it

@@ -30,6 +30,7 @@ from ..environment.earth import MU_EARTH
 from ..environment.ephemeris import KeplerOrbit, TLEOrbit
 from ..environment.orbit import CircularOrbit
 from .gravity import GravityGradient, gradient_torque
+from .torques import AddsTorques
 
 __all__ = ["OrbitGravityGradient", "gravity_gradient_of"]
 
@@ -80,7 +81,7 @@ def gravity_gradient_of(orbit: CircularOrbit | KeplerOrbit | TLEOrbit) -> Gravit
 
 
 @dataclass(frozen=True, eq=False)
-class OrbitGravityGradient:
+class OrbitGravityGradient(AddsTorques):
     """The gravity-gradient torque ``3 mu / r^3 R (r_b x I r_b)`` along an orbit's position (N m, world frame).
 
     The formula of :class:`~tumble.dynamics.models.gravity.GravityGradient` (Hughes ch. 8) with

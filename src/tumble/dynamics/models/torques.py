@@ -21,6 +21,10 @@ looked for by the runs through ``isinstance``, never by name:
   bound their work and choose default steps from it (:func:`~tumble.dynamics.methods.bounds.spin_gain`) instead of from
   ``|tau| t / I1``.
 
+The protocols and the engine's kinds live in :mod:`~tumble.dynamics.models.torque_protocols`
+and are re-exported here. Models add: ``a + b`` (or ``torque=[a, b]``) is their
+:class:`TorqueSum`, compiled when every term is.
+
 Examples
 --------
 >>> import numpy as np
@@ -33,22 +37,41 @@ True
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, cast, runtime_checkable
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ...typing import ArrayLike, FloatArray, Vector3
-from ...validation import check_callable, check_vector
+from ...typing import ArrayLike, Vector3
+from ...validation import check_callable, check_vector, short_repr
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
+from .torque_protocols import (
+    KERNEL_BODY,
+    KERNEL_CIRCULAR_GRAVITY,
+    KERNEL_NONE,
+    KERNEL_ROTOR_MOMENTUM,
+    KERNEL_SUM,
+    KERNEL_WORLD,
+    TORQUE_FRAMES,
+    BoundsSpin,
+    Form,
+    KernelForm,
+    NeedsBody,
+    TorqueModel,
+    check_frame,
+    conforms,
+    kernel_form,
+    kernel_terms,
+)
 
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
 
 __all__ = [
+    "TORQUE_FRAMES",
+    "AddsTorques",
     "BoundsSpin",
     "ConstantTorque",
     "FunctionTorque",
@@ -56,10 +79,12 @@ __all__ = [
     "KERNEL_CIRCULAR_GRAVITY",
     "KERNEL_NONE",
     "KERNEL_ROTOR_MOMENTUM",
+    "KERNEL_SUM",
     "KERNEL_WORLD",
     "KernelForm",
     "NeedsBody",
     "TorqueModel",
+    "TorqueSum",
     "as_torque",
     "bind_to_body",
     "body_torque",
@@ -67,211 +92,38 @@ __all__ = [
     "kernel_form",
 ]
 
-TORQUE_FRAMES = ("body", "world")
 
+class AddsTorques:
+    """What makes ``a + b`` of torque models their :class:`TorqueSum` (the built-in models have it).
 
-@runtime_checkable
-class TorqueModel(Protocol):
-    """What every torque model is: called as ``model(t, omega, attitude)``, with a ``frame``.
-
-    Attributes
-    ----------
-    frame : str
-        ``"body"`` (the principal frame) or ``"world"``: the frame of the returned torque.
+    ``sum([a, b, c])`` works too (it starts from 0, which a model's ``+`` takes as nothing), and
+    a plain function ``tau(t, omega, attitude)`` (N m, body frame) may be one of the terms.
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from tumble.dynamics import ConstantTorque, TorqueModel
-    >>> isinstance(ConstantTorque((0.0, 0.0, 1.0)), TorqueModel)
-    True
-    >>> isinstance(lambda t, omega, attitude: np.zeros(3), TorqueModel)  # no frame: as_torque wraps it
-    False
-    """
-
-    @property
-    def frame(self) -> str:
-        """``"body"`` or ``"world"`` (read-only: models are frozen dataclasses).
-
-        Examples
-        --------
-        >>> from tumble.dynamics.models.torques import ConstantTorque, as_torque
-        >>> ConstantTorque((0.0, 0.0, 1.0), "world").frame, as_torque(lambda t, omega, attitude: (0.0, 0.0, 1.0)).frame
-        ('world', 'body')
-        """
-
-    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
-        """The torque at time ``t`` (s) for ``omega`` (rad/s, principal frame, (3,) or (N, 3)) and
-        ``attitude`` (principal frame to world), N m, in :attr:`frame`; shape (3,) or omega's.
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from scipy.spatial.transform import Rotation
-        >>> from tumble.dynamics.models.torques import ConstantTorque
-        >>> torque = ConstantTorque((0.0, 0.0, 2.0))
-        >>> torque(0.0, np.zeros(3), Rotation.identity()).tolist()   # N m, in torque.frame
-        [0.0, 0.0, 2.0]
-        >>> torque(0.0, np.zeros((2, 3)), Rotation.identity(2)).shape   # (3,) serves every body of a batch
-        (3,)
-        """
-
-
-@runtime_checkable
-class NeedsBody(Protocol):
-    """An optional part of :class:`TorqueModel`: a model whose torque depends on the body's moments.
-
-    Examples
-    --------
-    >>> from tumble.dynamics import ConstantTorque, GravityGradient
-    >>> from tumble.dynamics.models.torques import NeedsBody
-    >>> isinstance(GravityGradient(orbit_period=5400.0), NeedsBody), isinstance(ConstantTorque((0, 0, 1)), NeedsBody)
-    (True, False)
-    """
-
-    def bind(self, body: Body | MassProperties | ArrayLike) -> TorqueModel:
-        """The model acting on ``body`` (a Body, MassProperties or principal moments, kg m^2,
-        shape (3,) or (N, 3)); raises ``ValueError`` if it already holds other moments.
-
-        Examples
-        --------
-        >>> import tumble
-        >>> from tumble.dynamics.models.gravity import GravityGradient
-        >>> from tumble.dynamics.models.torques import NeedsBody
-        >>> gg = GravityGradient(orbit_period=5400.0)
-        >>> isinstance(gg, NeedsBody), gg.bind(tumble.MassProperties.from_moments([1.0, 2.0, 3.0])).moments
-        (True, (1.0, 2.0, 3.0))
-        """
-
-
-@runtime_checkable
-class BoundsSpin(Protocol):
-    """An optional part of :class:`TorqueModel`: a model that bounds the spin of the whole motion.
-
-    Examples
-    --------
-    >>> from tumble.dynamics import ConstantTorque, GravityGradient
-    >>> from tumble.dynamics.models.torques import BoundsSpin
-    >>> isinstance(GravityGradient(orbit_period=5400.0), BoundsSpin), isinstance(ConstantTorque((0, 0, 1)), BoundsSpin)
-    (True, False)
-    """
-
-    def max_spin(self, t: float, omega: np.ndarray, attitude: Rotation) -> np.ndarray:
-        """An upper bound on ``|omega|`` (rad/s) over the whole motion from this state (``omega``
-        (3,) or (N, 3), principal frame, rad/s); shape () or (N,).
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from scipy.spatial.transform import Rotation
-        >>> from tumble.dynamics.models.gravity import GravityGradient
-        >>> from tumble.dynamics.models.torques import BoundsSpin
-        >>> gg = GravityGradient(orbit_period=5400.0, moments=[1.0, 2.0, 3.0])
-        >>> omega = np.array([0.01, 0.0, 0.0])
-        >>> isinstance(gg, BoundsSpin), bool(gg.max_spin(0.0, omega, Rotation.identity()) >= np.linalg.norm(omega))
-        (True, True)
-        """
-
-
-#: The members of each protocol, for :func:`conforms`.
-_MEMBERS: dict[type, tuple[str, ...]] = {TorqueModel: ("frame", "__call__"), NeedsBody: ("bind",), BoundsSpin: ("max_spin",)}
-#: ``(class, protocol) -> answer`` for the classes whose every instance gives the same answer.
-_CONFORMS: dict[tuple[type, type], bool] = {}
-
-
-def conforms(obj: object, protocol: type) -> bool:
-    """``isinstance(obj, protocol)`` for :class:`TorqueModel`, :class:`NeedsBody` or
-    :class:`BoundsSpin`, remembered per class where that class decides it.
-
-    typing's runtime protocol check looks up every member at each call (~25 us, a tenth of a
-    short compiled run). Its answer depends on the class alone when the class itself has every
-    member (an instance cannot lose a class attribute), or when it lacks one and is a frozen
-    dataclass (whose instances take no new attributes): those answers are kept.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.torques import BoundsSpin, ConstantTorque, TorqueModel, conforms
-    >>> conforms(ConstantTorque((0.0, 0.0, 1.0)), TorqueModel), conforms(ConstantTorque((0.0, 0.0, 1.0)), BoundsSpin)
-    (True, False)
-    >>> conforms(lambda t, omega, attitude: omega, TorqueModel)   # no frame
-    False
-    """
-    key = (type(obj), protocol)
-    known = _CONFORMS.get(key)
-    if known is not None:
-        return known
-    answer = isinstance(obj, protocol)
-    cls = type(obj)
-    if all(hasattr(cls, name) for name in _MEMBERS[protocol]) or (
-            dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen):  # type: ignore[attr-defined]
-        _CONFORMS[key] = answer
-    return answer
-
-
-def _check_frame(frame: str) -> str:
-    if not isinstance(frame, str) or frame not in TORQUE_FRAMES:
-        raise ValueError(f"torque frame = {frame!r} is not allowed; allowed: body, world")
-    return frame
-
-
-#: The kinds of torque the compiled engine evaluates itself (:mod:`tumble.dynamics.engine`),
-#: named by a model's :meth:`KernelForm.kernel_form`: none, a constant body-frame torque, a
-#: constant world-frame torque, the gravity gradient of a circular orbit.
-KERNEL_NONE, KERNEL_BODY, KERNEL_WORLD, KERNEL_CIRCULAR_GRAVITY = 0, 1, 2, 3
-#: The constant internal momentum ``h`` (kg m^2/s, principal frame) of rotors spinning at constant
-#: rates: its term of Euler's equations, ``h x omega`` (a gyrostat, Hughes, *Spacecraft Attitude
-#: Dynamics*, sec. 3.4: ``I omega' + omega x (I omega + h) = tau``), for the engine.
-KERNEL_ROTOR_MOMENTUM = 4
-
-
-@runtime_checkable
-class KernelForm(Protocol):
-    """A torque model the compiled engine evaluates itself: the one declared interface.
-
-    ``kernel_form()`` returns ``(kind, parameters)``: a kind from ``KERNEL_*`` and the floats the
-    engine's formula for that kind reads (:func:`tumble.dynamics.engine.kernels.external_torque`),
-    or None when this instance cannot be compiled (then the run keeps the Python path, which
-    calls the model). A subclass that changes ``__call__`` must change or drop ``kernel_form``.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.torques import ConstantTorque, KERNEL_WORLD
-    >>> ConstantTorque((0.0, 0.0, 1.0), "world").kernel_form() == (KERNEL_WORLD, (0.0, 0.0, 1.0))
+    >>> import tumble
+    >>> thrust = tumble.ConstantTorque((0.0, 0.0, 0.01))
+    >>> gravity = tumble.GravityGradient(orbit_period=5400.0)
+    >>> both = thrust + gravity
+    >>> both.terms == (thrust, gravity), both.frame   # the sum returns the body-frame total
+    (True, 'body')
+    >>> sum([thrust, gravity]) == thrust + gravity
     True
     """
 
-    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
-        """``(kind, parameters)`` for the compiled engine, or None (then the Python path calls the model).
+    __slots__ = ()
 
-        Examples
-        --------
-        >>> from tumble.dynamics.models.torques import ConstantTorque, KERNEL_BODY
-        >>> kind, vector = ConstantTorque((0.0, 0.5, 0.0)).kernel_form()   # a constant body torque, N m
-        >>> kind == KERNEL_BODY, vector
-        (True, (0.0, 0.5, 0.0))
-        """
-        ...
+    def __add__(self, other: object) -> TorqueSum:
+        return TorqueSum(self, other)
 
-
-def kernel_form(model: object) -> tuple[int, tuple[float, ...]] | None:
-    """``model.kernel_form()`` for a model that declares one (:class:`KernelForm`), else None.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.torques import FunctionTorque, KERNEL_NONE, kernel_form
-    >>> kernel_form(None) == (KERNEL_NONE, ())
-    True
-    >>> kernel_form(FunctionTorque(lambda t, omega, attitude: -omega)) is None   # Python's to call
-    True
-    """
-    if model is None:
-        return KERNEL_NONE, ()
-    form = getattr(model, "kernel_form", None)
-    return form() if callable(form) else None
+    def __radd__(self, other: object) -> TorqueModel:
+        if type(other) is int and other == 0:  # sum() starts from 0
+            return cast(TorqueModel, self)
+        return TorqueSum(other, self)
 
 
 @dataclass(frozen=True)
-class ConstantTorque:
+class ConstantTorque(AddsTorques):
     """A constant torque vector (N m), fixed in the body or in the world frame.
 
     A constant *body-frame* torque models a thruster fixed to the body; a constant
@@ -292,7 +144,7 @@ class ConstantTorque:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "vector", check_vector("torque vector", self.vector, "N m"))
-        _check_frame(self.frame)
+        check_frame(self.frame)
         # the compiled form, made once: simulate reads it on every run
         object.__setattr__(self, "_form", (KERNEL_WORLD if self.frame == "world" else KERNEL_BODY,
                                            tuple(float(v) for v in self.vector)))
@@ -322,7 +174,7 @@ class ConstantTorque:
 
 
 @dataclass(frozen=True)
-class FunctionTorque:
+class FunctionTorque(AddsTorques):
     """Wraps ``fn(t, omega, attitude) -> tau`` with the frame its result is expressed in.
 
     Examples
@@ -343,14 +195,8 @@ class FunctionTorque:
     frame: str = "body"
 
     def __post_init__(self) -> None:
-        given: Any = self.fn  # what the user passed, which may be no function at all
-        if (isinstance(given, (list, tuple)) or getattr(given, "ndim", None) == 1) and len(given) == 3 and all(
-                isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in given):
-            raise ValueError(f"torque = {given!r} is a vector, not a torque model: for a constant torque give "
-                             f"tumble.ConstantTorque({tuple(float(v) for v in given)}) (N m, body frame; "
-                             'frame="world" for a world-fixed one)')  # three numbers: the constant torque meant
-        check_callable("torque", self.fn, "tau(t, omega, attitude)")
-        _check_frame(self.frame)
+        check_torque_function("torque", self.fn)
+        check_frame(self.frame)
 
     def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
         """``fn(t, omega, attitude)`` as a float array, N m, in :attr:`frame`.
@@ -367,20 +213,166 @@ class FunctionTorque:
         return np.asarray(self.fn(t, omega, attitude), dtype=float)
 
 
-#: What ``torque=`` accepts: a torque model, or a plain callable ``tau(t, omega, attitude)`` (N m,
-#: body frame).
-TorqueLike: TypeAlias = "TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike]"
+@dataclass(frozen=True, init=False, repr=False)
+class TorqueSum(AddsTorques):
+    """The sum of torque models, itself a torque model: ``a + b``, ``sum([a, b])``, ``TorqueSum(a, b)``
+    or ``torque=[a, b]`` in a run.
 
-
-def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
-    """The torque model for ``torque``: models pass through, a plain callable acts in the body frame.
+    Each term keeps its own frame: the sum returns the body-frame torque (N m), each world-frame
+    term turned into the body by ``R^T`` (:func:`body_torque`). A term that needs the body's moments
+    is bound with the sum (:class:`NeedsBody`). When every term has a compiled form, so has the sum
+    (:data:`KERNEL_SUM`: the engine's terms added, :func:`kernel_terms`) and it runs compiled; with
+    a plain Python term it runs on the Python path, which calls every term. Euler's equations are
+    linear in the torque, so the motion under a sum is the motion under the total torque.
 
     Parameters
     ----------
-    torque : None, torque model or callable
+    *terms : torque model or callable
+        The models (a sum among them adds its own terms), or functions ``tau(t, omega,
+        attitude)`` returning N m in the body frame.
+
+    Examples
+    --------
+    A world-fixed push beside a thruster fixed in the body; the sum runs on the compiled engine:
+
+    >>> import numpy as np, tumble
+    >>> from scipy.spatial.transform import Rotation
+    >>> push, thruster = tumble.ConstantTorque((0.0, 0.0, 0.5), "world"), tumble.ConstantTorque((0.2, 0.0, 0.0))
+    >>> both = push + thruster
+    >>> both.frame, both.terms == (push, thruster), both.kernel_form()[0] == tumble.dynamics.models.torques.KERNEL_SUM
+    ('body', True, True)
+    >>> both(0.0, np.zeros(3), Rotation.from_euler("x", 90, degrees=True)).round(12).tolist()   # R^T (0, 0, 0.5) + (0.2, 0, 0)
+    [0.2, 0.5, 0.0]
+    >>> twice = tumble.ConstantTorque((0.0, 0.0, 1.0)) + tumble.ConstantTorque((1.0, 0.0, 0.0))
+    >>> twice
+    ConstantTorque(vector=(0.0, 0.0, 1.0), frame='body') + ConstantTorque(vector=(1.0, 0.0, 0.0), frame='body')
+    >>> twice.kernel_form()   # body + body: one vector, as one ConstantTorque's form
+    (1, (1.0, 0.0, 1.0))
+    """
+
+    terms: tuple[TorqueModel, ...]
+    frame: str
+
+    def __init__(self, *terms: object) -> None:
+        models: list[TorqueModel] = []
+        for i, term in enumerate(terms):
+            if isinstance(term, TorqueSum):
+                models.extend(term.terms)
+                continue
+            if not (conforms(term, TorqueModel) and callable(term)):
+                try:
+                    check_torque_function(f"torque[{i}]", term)
+                except ValueError as err:
+                    raise ValueError(f"{err} (a list is the sum of its torque models)") from None
+            models.append(cast(TorqueModel, as_torque(cast(TorqueLike, term))))
+        if not models:
+            raise ValueError("torque = [] is an empty sum: give a torque model, a list of them, or None")
+        object.__setattr__(self, "terms", tuple(models))
+        object.__setattr__(self, "frame", "body")
+        object.__setattr__(self, "_form", _sum_form(self.terms))  # made once: simulate reads it on every run
+
+    def __repr__(self) -> str:
+        return " + ".join(repr(term) for term in self.terms)
+
+    def __call__(self, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
+        """The total torque, N m, principal (body) frame: every term's :func:`body_torque`, added.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from tumble.dynamics.models.torques import TorqueSum
+        >>> drag = TorqueSum(lambda t, omega, attitude: -0.1 * omega, lambda t, omega, attitude: [0.0, 0.0, t])
+        >>> drag(2.0, np.array([1.0, 0.0, 0.0]), Rotation.identity()).tolist()
+        [-0.1, 0.0, 2.0]
+        """
+        total = body_torque(self.terms[0], t, omega, attitude)
+        for term in self.terms[1:]:
+            total = total + body_torque(term, t, omega, attitude)
+        return total
+
+    def bind(self, body: Body | MassProperties | ArrayLike) -> TorqueSum:
+        """The sum with each term that needs the body's moments bound to ``body`` (:class:`NeedsBody`).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> bound = (tumble.GravityGradient(orbit_period=5400.0) + tumble.ConstantTorque((0.0, 0.0, 1e-6))).bind(
+        ...     [1.0, 2.0, 3.0])
+        >>> bound.terms[0].moments, bound.kernel_form() is not None   # bound: the engine runs it
+        ((1.0, 2.0, 3.0), True)
+        """
+        bound = tuple(bind_to_body(term, body) for term in self.terms)
+        return self if all(a is b for a, b in zip(bound, self.terms)) else TorqueSum(*bound)
+
+    def kernel_form(self) -> Form | None:
+        """The compiled engine's form (:class:`KernelForm`) of the sum, or None where a term has none
+        (then the Python path calls every term): a sum of constant body torques, or of constant world
+        torques, is one :class:`ConstantTorque`'s form, the vectors added; any other,
+        ``(KERNEL_SUM, P + (n,))``, the engine's terms added (:func:`kernel_terms`).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> (tumble.ConstantTorque((0.0, 0.0, 1.0), "world") + tumble.ConstantTorque((0.0, 2.0, 0.0), "world")).kernel_form()
+        (2, (0.0, 2.0, 1.0))
+        >>> (tumble.ConstantTorque((0.0, 0.0, 1.0)) + (lambda t, omega, attitude: -omega)).kernel_form() is None
+        True
+        """
+        return self._form  # type: ignore[attr-defined, no-any-return]
+
+
+def _sum_form(terms: tuple[TorqueModel, ...]) -> Form | None:
+    """:meth:`TorqueSum.kernel_form` of ``terms``: None where one has no compiled form (or is not
+    bound to a body yet); a ValueError for two circular orbits of different mean motions."""
+    forms = [kernel_form(term) for term in terms]
+    if any(form is None for form in forms):
+        return None
+    P, n = kernel_terms(tuple(cast(list[Form], forms)))
+    kinds = {form[0] for form in cast(list[Form], forms)} - {KERNEL_NONE}
+    if kinds == {KERNEL_BODY}:
+        return KERNEL_BODY, P[0:3]
+    if kinds == {KERNEL_WORLD}:
+        return KERNEL_WORLD, P[3:6]
+    return (KERNEL_SUM, P + (n,)) if kinds else (KERNEL_NONE, ())
+
+
+def check_torque_function(field: str, given: Any) -> None:
+    """A ValueError naming ``field`` unless ``given`` can be called as ``tau(t, omega, attitude)``;
+    three numbers are named as the :class:`ConstantTorque` meant.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.torques import check_torque_function
+    >>> check_torque_function("torque[1]", [0.0, 0.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: torque[1] = [0.0, 0.0, 1.0] is a vector, not a torque model: for a constant torque give tumble.ConstantTorque((0.0, 0.0, 1.0)) (N m, body frame; frame="world" for a world-fixed one)
+    """
+    if (isinstance(given, (list, tuple)) or getattr(given, "ndim", None) == 1) and len(given) == 3 and all(
+            isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in given):
+        raise ValueError(f"{field} = {given!r} is a vector, not a torque model: for a constant torque give "
+                         f"tumble.ConstantTorque({tuple(float(v) for v in given)}) (N m, body frame; "
+                         'frame="world" for a world-fixed one)')  # three numbers: the constant torque meant
+    check_callable(field, given, "tau(t, omega, attitude)")
+
+
+#: What ``torque=`` accepts: a torque model, or a plain callable ``tau(t, omega, attitude)`` (N m,
+#: body frame), or a list of them (their :class:`TorqueSum`).
+TorqueLike: TypeAlias = ("TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike] "
+                         "| Sequence[TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike]]")
+
+
+def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
+    """The torque model for ``torque``: models pass through, a plain callable acts in the body frame,
+    a list is the sum of its terms.
+
+    Parameters
+    ----------
+    torque : None, torque model, callable or list of them
         A model (an object with a ``frame`` that is called as ``tau(t, omega, attitude)``, such as
         :class:`ConstantTorque`), a plain callable ``tau(t, omega, attitude)`` returning N m in
-        the body (principal) frame, or None.
+        the body (principal) frame, a list (or tuple) of them, their :class:`TorqueSum`, or None.
 
     Returns
     -------
@@ -396,14 +388,19 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     >>> wrapped = as_torque(lambda t, omega, attitude: np.zeros(3))
     >>> isinstance(wrapped, FunctionTorque), wrapped.frame
     (True, 'body')
+    >>> as_torque([model, ConstantTorque((1.0, 0.0, 0.0), "world")])   # a list: the sum of its models
+    ConstantTorque(vector=(0.0, 0.0, 1.0), frame='body') + ConstantTorque(vector=(1.0, 0.0, 0.0), frame='world')
     """
     if torque is None:
         return None
+    if isinstance(torque, (list, tuple)) and not (len(torque) == 3 and all(
+            isinstance(v, (int, float, np.integer, np.floating)) for v in torque)):  # three numbers: a vector, below
+        return TorqueSum(*torque)
     if conforms(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
         model = cast(TorqueModel, torque)
-        _check_frame(model.frame)
+        check_frame(model.frame)
         return model
-    return FunctionTorque(torque, "body")
+    return FunctionTorque(cast(Callable[[float, np.ndarray, Rotation], ArrayLike], torque), "body")
 
 
 def bind_to_body(model: TorqueModel | None, body: Body | MassProperties | ArrayLike) -> TorqueModel | None:
