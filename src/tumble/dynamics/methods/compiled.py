@@ -5,11 +5,12 @@ Yoshida 1990; the torque as two half kicks around the Strang step, Celledoni et 
 sec. 5) runs in numba, every step of every body, with no Python call per step: the numpy path
 calls the torque model once per kick from Python (a user's function must be called so), ~10 us
 per kick for one body, 1000 times the kick itself. The built-in models declare their compiled
-form (:func:`~tumble.dynamics.models.torques.kernel_form`), which the kernels evaluate inline:
-
-- ``CONSTANT_BODY``: a constant torque in the principal frame, N m;
-- ``CONSTANT_WORLD``: a constant torque in the world frame, turned into the body by ``R^T``;
-- ``GRAVITY_GRADIENT``: the circular orbit of :class:`tumble.dynamics.models.gravity.GravityGradient`.
+form (:func:`~tumble.dynamics.models.torques.kernel_form`); the kernels take it, or a sum of them,
+as the engine's torque terms ``P`` and the orbit's mean motion ``n``
+(:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`) and evaluate them with the engine's
+own right-hand side of the torque (:func:`~tumble.dynamics.engine.kernels.external_torque`): a
+constant torque in the principal or the world frame, the gravity gradient of a circular orbit,
+any sum of them.
 
 The kernels live in :mod:`tumble.dynamics.methods.compiled_split`, imported on first use
 (:func:`_kernels`; it imports numba, which ``import tumble`` does not) and compiled at import
@@ -30,37 +31,30 @@ import numpy as np
 
 from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray
-from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD, kernel_form
+from ..models.torques import KERNEL_ROTOR_MOMENTUM, kernel_form
+from ..models.torque_protocols import TERMS, kernel_terms
 
-__all__ = ["CONSTANT_BODY", "CONSTANT_WORLD", "GRAVITY_GRADIENT", "compiled_model", "run_split"]
-
-#: Kinds of built-in torque the kernel evaluates itself.
-#: (the models' own kinds, :class:`~tumble.dynamics.models.torques.KernelForm`)
-CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT = KERNEL_BODY, KERNEL_WORLD, KERNEL_CIRCULAR_GRAVITY
+__all__ = ["compiled_model", "run_split"]
 
 
-def compiled_model(torque: Any) -> tuple[int, FloatArray, float] | None:
-    """``(kind, vector, mean motion)`` of a torque model the kernel evaluates itself, or None
-    for any other (a user's function, a torque depending on omega): those keep the numpy path.
+def compiled_model(torque: Any) -> tuple[tuple[float, ...], float] | None:
+    """The engine's torque terms ``(P, n)`` (:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`)
+    of a torque model the kernels evaluate themselves, or None for any other (a user's function, a
+    torque depending on omega, a gravity gradient not bound to a body): those keep the numpy path.
 
     Examples
     --------
     >>> from tumble.dynamics.models.torques import ConstantTorque
-    >>> from tumble.dynamics.methods.compiled import CONSTANT_BODY, compiled_model
-    >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]))[0] == CONSTANT_BODY
-    True
+    >>> from tumble.dynamics.methods.compiled import compiled_model
+    >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]) + ConstantTorque([1.0, 0.0, 0.0], "world"))   # body, world slots
+    ((0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), 0.0)
     >>> compiled_model(lambda t, w, R: w) is None   # a function: the numpy path calls it
-    True
-    >>> compiled_model(ConstantTorque([0.0, 0.0, 1.0]) + ConstantTorque([1.0, 0.0, 0.0], "world")) is None   # a mix
     True
     """
     form = kernel_form(torque)  # the model's declared compiled form: no list of classes here
-    if form is None or form[0] not in (CONSTANT_BODY, CONSTANT_WORLD, GRAVITY_GRADIENT):
-        return None  # none, or a sum of kinds (KERNEL_SUM): the splittings' kernels take one kind
-    kind, params = form
-    if kind == GRAVITY_GRADIENT:
-        return kind, np.zeros(3), float(params[0])
-    return kind, np.array(params, dtype=float), 0.0
+    if form is None or form[0] == KERNEL_ROTOR_MOMENTUM:  # wheels are the splitting's offset, not a torque
+        return None
+    return kernel_terms((form,))
 
 
 @functools.cache
@@ -73,7 +67,7 @@ def _kernels() -> ModuleType:
 
 
 def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: float, gammas: tuple[float, ...],
-              model: tuple[int, FloatArray, float] | None, *, exact: bool = False,
+              model: tuple[tuple[float, ...], float] | None, *, exact: bool = False,
               offset: FloatArray | None = None) -> tuple[FloatArray, FloatArray]:
     """The composed splitting of N bodies under a built-in torque (or none), compiled.
 
@@ -90,7 +84,7 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     gammas : tuple of float
         The composition's coefficients (:data:`tumble.dynamics.methods.geometric.COMPOSITIONS`).
     model : tuple or None
-        :func:`compiled_model`'s answer; None for no torque.
+        :func:`compiled_model`'s answer, the torque terms ``(P, n)``; None for no torque.
     offset : ndarray, shape (N, 3) or (1, 3), optional
         Constant internal momentum ``h`` of wheels spinning at constant rates (kg m^2/s, body
         frame), with ``L = I omega + h``: the Strang step's rates are ``(L_i - h_i) / I_i``
@@ -107,14 +101,15 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.dynamics.methods.compiled import CONSTANT_BODY, run_split
+    >>> from tumble.dynamics.methods.compiled import compiled_model, run_split
+    >>> from tumble.dynamics.models.torques import ConstantTorque
     >>> I, L = np.array([[1.0, 2.0, 3.0]]), np.array([[0.0, 0.0, 3.0]])
     >>> omega, quat = run_split(I, L, np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([0.0, 1.0]), 0.1, (1.0,),
-    ...                         (CONSTANT_BODY, np.array([0.0, 0.0, 0.3]), 0.0))
+    ...                         compiled_model(ConstantTorque((0.0, 0.0, 0.3))))
     >>> round(float(omega[-1, 0, 2]), 12)  # d omega3 / dt = 0.3 / 3 about a principal axis
     1.1
     """
-    kind, tau, n = model if model is not None else (0, np.zeros(3), 0.0)
+    P, n = model if model is not None else ((0.0,) * TERMS, 0.0)
     N = len(I)
     h = np.zeros((N, 3)) if offset is None else kernel_array(offset, (N, 3))
     if exact and np.any(h):
@@ -122,6 +117,6 @@ def run_split(I: FloatArray, L: FloatArray, q: FloatArray, t: FloatArray, step: 
     omega_out, quat_out = np.empty((len(t), N, 3)), np.empty((len(t), N, 4))
     kernels = _kernels()
     kernel = kernels.run_parallel if N >= PARALLEL_BODIES and cores() > 1 else kernels.run_serial
-    kernel(kernel_array(I), kernel_array(L), kernel_array(q), kernel_array(t), float(step), kernel_array(gammas), kind,
-           kernel_array(tau), float(n), bool(exact), h, omega_out, quat_out)
+    kernel(kernel_array(I), kernel_array(L), kernel_array(q), kernel_array(t), float(step), kernel_array(gammas), P,
+           float(n), bool(exact), h, omega_out, quat_out)
     return omega_out, quat_out

@@ -9,10 +9,11 @@ The composed splitting is that of :func:`tumble.dynamics.methods.geometric.propa
 (McLachlan 1993; Yoshida 1990; the torque as two half kicks around the Strang step, Celledoni
 et al. 2008, sec. 5), over plain floats; the free part is the Strang step of exact rotations or
 the exact free flow (:func:`tumble.dynamics.methods.compiled_flow.free_flow_into`). The built-in
-torques are evaluated inline (:func:`body_torque`): a constant torque in the principal frame or
-in the world frame (turned into the body by ``R^T``), and the gravity gradient of a circular
-orbit ``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos n t, sin n t, 0)`` (Hughes, *Spacecraft
-Attitude Dynamics*, ch. 8), each the model's own formula compiled here.
+torques, and any sum of them, are the engine's torque terms ``P`` on an orbit of mean motion
+``n`` (:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`), evaluated by the engine's own
+:func:`~tumble.dynamics.engine.kernels.external_torque` (the constant body and world torques, the
+gravity gradient of a circular orbit ``3 n^2 r_b x (I r_b)`` with ``r_b = R^T (cos n t, sin n t,
+0)``, Hughes, *Spacecraft Attitude Dynamics*, ch. 8): one writing of each, here and in the engine.
 
 One body's run is :func:`run_body`; :func:`run_serial` and :func:`run_parallel` run it over
 the bodies, on one thread or on every core (``numba.prange``): the same arithmetic per body.
@@ -27,17 +28,13 @@ from numba import prange
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..engine.kernels import external_torque
 from ..engine.stepsize import equal_steps
-from ..models.gravity import gradient_components
-from ..models.torques import KERNEL_BODY, KERNEL_WORLD
-from ..special.quaternion import rotate_components
 from .compiled_flow import WORK, free_flow_into
 
-__all__ = ["body_torque", "run_body", "run_parallel", "run_serial"]
+__all__ = ["kick_torque", "run_body", "run_parallel", "run_serial"]
 
 _equal_steps = jit(equal_steps, inline="always")
-_gravity_gradient = jit(gradient_components, inline="always")
-_rotate_vector = jit(rotate_components, inline="always")
 
 # The Strang step as (axis, fraction of the step), as in geometric._STRANG.
 _AXES = np.array([0, 1, 2, 1, 0], dtype=np.int64)
@@ -45,34 +42,25 @@ _FRACTIONS = np.array([0.5, 0.5, 1.0, 0.5, 0.5])
 
 
 @jit(inline="always")
-def body_torque(kind: int, tau: FloatArray, n: float, I: FloatArray, q: FloatArray, t: float,
-                out: FloatArray) -> None:
-    """The built-in torque of ``kind`` on one body in its principal frame (N m), into ``out``.
+def kick_torque(body: tuple[float, ...], q: FloatArray, t: float, P: tuple[float, ...], n: float, out: FloatArray) -> None:
+    """The torque terms ``P`` on an orbit of mean motion ``n`` (rad/s) at time ``t`` (s), on a body
+    ``(I1, I2, I3, 1/I1, 1/I2, 1/I3)`` (kg m^2) at attitude ``q`` (body to world, scalar last): N m,
+    principal frame, into ``out`` (:func:`~tumble.dynamics.engine.kernels.external_torque`, the
+    engine's). The rotors' slots of ``P`` are 0 here: a splitting carries wheels in its free flow.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.dynamics.methods.compiled_split import body_torque
-    >>> from tumble.dynamics.models.torques import KERNEL_WORLD
+    >>> from tumble.dynamics.methods.compiled_split import kick_torque
     >>> out, q = np.empty(3), np.array([0.0, 0.0, np.sqrt(0.5), np.sqrt(0.5)])   # 90 degrees about z
-    >>> body_torque(KERNEL_WORLD, np.array([1.0, 0.0, 0.0]), 0.0, np.ones(3), q, 0.0, out)
+    >>> P = (0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)   # a world torque along x, N m
+    >>> kick_torque((1.0, 1.0, 1.0, 1.0, 1.0, 1.0), q, 0.0, P, 0.0, out)
     >>> np.round(out, 12) + 0.0   # the world's x is the body's -y
     array([ 0., -1.,  0.])
     """
-    x, y, z, w = q[0], q[1], q[2], q[3]
-    if kind == KERNEL_BODY:
-        out[0], out[1], out[2] = tau[0], tau[1], tau[2]
-        return
-    if kind == KERNEL_WORLD:
-        v0, v1, v2 = tau[0], tau[1], tau[2]
-    else:
-        v0, v1, v2 = math.cos(n * t), math.sin(n * t), 0.0
-    # R^T v: v turned by the conjugate quaternion, as the numpy path's body_torque turns it
-    b0, b1, b2 = _rotate_vector(-x, -y, -z, w, v0, v1, v2)
-    if kind == KERNEL_WORLD:
-        out[0], out[1], out[2] = b0, b1, b2
-        return
-    out[0], out[1], out[2] = _gravity_gradient(n * n, I[0], I[1], I[2], b0, b1, b2)  # 3 n^2 r_b x (I r_b)
+    u0, u1 = (math.cos(n * t), math.sin(n * t)) if n != 0.0 else (1.0, 0.0)
+    a0, a1, a2 = external_torque(body, 0.0, 0.0, 0.0, q[0], q[1], q[2], q[3], u0, u1, P)
+    out[0], out[1], out[2] = a0, a1, a2
 
 
 @jit(inline="always")
@@ -91,11 +79,11 @@ def _rotate(L: FloatArray, q: FloatArray, axis: int, tau: float, inv_I: FloatArr
 
 @jit
 def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray,
-             kind: int, tau: FloatArray, n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
+             P: tuple[float, ...], n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
              quat_out: FloatArray) -> None:
     """Body ``b`` through every sample interval: equal steps no longer than ``step``, each the
     Yoshida composition ``gammas`` of the Strang step (or of the exact free flow, ``exact``)
-    with half kicks of the torque ``kind`` (0: none). Arguments as :func:`run_serial`.
+    with half kicks of the torque terms ``P`` (all 0: none). Arguments as :func:`run_serial`.
 
     Examples
     --------
@@ -103,12 +91,16 @@ def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t
     >>> from tumble.dynamics.methods.compiled_split import run_body
     >>> omega, quat = np.empty((2, 1, 3)), np.empty((2, 1, 4))
     >>> run_body(0, np.array([[1.0, 2.0, 3.0]]), np.array([[0.0, 0.0, 3.0]]), np.array([[0.0, 0.0, 0.0, 1.0]]),
-    ...          np.array([0.0, 1.0]), 0.1, np.array([1.0]), 0, np.zeros(3), 0.0, False, np.zeros((1, 3)), omega, quat)
+    ...          np.array([0.0, 1.0]), 0.1, np.array([1.0]), (0.0,) * 10, 0.0, False, np.zeros((1, 3)), omega, quat)
     >>> omega[1, 0].tolist()   # a spin about a principal axis stays
     [0.0, 0.0, 1.0]
     """
     Ib, L, q, hb = I[b].copy(), L0[b].copy(), q0[b].copy(), offset[b].copy()
     inv_I = 1.0 / Ib
+    body = (Ib[0], Ib[1], Ib[2], inv_I[0], inv_I[1], inv_I[2])
+    torqued = False
+    for i in range(len(P)):
+        torqued = torqued or P[i] != 0.0
     kick = np.empty(3)
     work = np.empty(WORK)  # the exact flow's scratch space, once per body
     for i in range(3):
@@ -121,8 +113,8 @@ def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t
             tc = t[s - 1] + stepno * h
             for g in range(gammas.shape[0]):
                 hg = gammas[g] * h
-                if kind != 0:
-                    body_torque(kind, tau, n, Ib, q, tc, kick)
+                if torqued:
+                    kick_torque(body, q, tc, P, n, kick)
                     for i in range(3):
                         L[i] += 0.5 * hg * kick[i]
                 if exact:  # the exact free flow (exact-flow splitting)
@@ -131,8 +123,8 @@ def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t
                     for r in range(_AXES.shape[0]):
                         _rotate(L, q, _AXES[r], _FRACTIONS[r] * hg, inv_I, hb)
                 tc += hg
-                if kind != 0:
-                    body_torque(kind, tau, n, Ib, q, tc, kick)
+                if torqued:
+                    kick_torque(body, q, tc, P, n, kick)
                     for i in range(3):
                         L[i] += 0.5 * hg * kick[i]
         norm = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
@@ -145,11 +137,12 @@ def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t
 
 @jit
 def run_serial(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray,
-               kind: int, tau: FloatArray, n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
+               P: tuple[float, ...], n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
                quat_out: FloatArray) -> None:
     """Every body (:func:`run_body`) on one thread: moments ``I`` and momenta ``L0`` (N, 3),
     attitudes ``q0`` (N, 4), samples ``t`` (n,), into ``omega_out`` (n, N, 3) and ``quat_out``
-    (n, N, 4); the torque's ``kind`` with its vector ``tau`` and mean motion ``n``; the wheels'
+    (n, N, 4); the torque terms ``P`` (10 floats, :mod:`~tumble.dynamics.engine.kernels`) on an orbit of
+    mean motion ``n`` (rad/s); the wheels'
     momentum ``offset`` (N, 3).
 
     Examples
@@ -158,17 +151,17 @@ def run_serial(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, ste
     >>> from tumble.dynamics.methods.compiled_split import run_serial
     >>> omega, quat = np.empty((2, 1, 3)), np.empty((2, 1, 4))
     >>> run_serial(np.array([[1.0, 2.0, 3.0]]), np.array([[0.0, 0.0, 3.0]]), np.array([[0.0, 0.0, 0.0, 1.0]]),
-    ...            np.array([0.0, np.pi]), 0.1, np.array([1.0]), 0, np.zeros(3), 0.0, True, np.zeros((1, 3)), omega, quat)
+    ...            np.array([0.0, np.pi]), 0.1, np.array([1.0]), (0.0,) * 10, 0.0, True, np.zeros((1, 3)), omega, quat)
     >>> np.round(quat[1, 0], 12) + 0.0   # half a turn about the major axis
     array([0., 0., 1., 0.])
     """
     for b in range(I.shape[0]):
-        run_body(b, I, L0, q0, t, step, gammas, kind, tau, n, exact, offset, omega_out, quat_out)
+        run_body(b, I, L0, q0, t, step, gammas, P, n, exact, offset, omega_out, quat_out)
 
 
 @jit(parallel=True)
 def run_parallel(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, step: float, gammas: FloatArray,
-                 kind: int, tau: FloatArray, n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
+                 P: tuple[float, ...], n: float, exact: bool, offset: FloatArray, omega_out: FloatArray,
                  quat_out: FloatArray) -> None:
     """:func:`run_serial` with the bodies spread over every core (``numba.prange``).
 
@@ -177,12 +170,12 @@ def run_parallel(I: FloatArray, L0: FloatArray, q0: FloatArray, t: FloatArray, s
     >>> import numpy as np
     >>> from tumble.dynamics.methods.compiled_split import run_parallel, run_serial
     >>> I, L = np.array([[1.0, 2.0, 3.0]] * 4), np.array([[0.1, 2.0, 0.3]] * 4)
-    >>> q, t, args = np.tile([0.0, 0.0, 0.0, 1.0], (4, 1)), np.linspace(0.0, 1.0, 3), (np.array([1.0]), 0, np.zeros(3))
+    >>> q, t, args = np.tile([0.0, 0.0, 0.0, 1.0], (4, 1)), np.linspace(0.0, 1.0, 3), (np.array([1.0]), (0.0,) * 10, 0.0)
     >>> a, b = (np.empty((3, 4, 3)), np.empty((3, 4, 4))), (np.empty((3, 4, 3)), np.empty((3, 4, 4)))
-    >>> run_serial(I, L, q, t, 0.1, *args, 0.0, False, np.zeros((4, 3)), *a)
-    >>> run_parallel(I, L, q, t, 0.1, *args, 0.0, False, np.zeros((4, 3)), *b)
+    >>> run_serial(I, L, q, t, 0.1, *args, False, np.zeros((4, 3)), *a)
+    >>> run_parallel(I, L, q, t, 0.1, *args, False, np.zeros((4, 3)), *b)
     >>> bool(np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]))   # the same arithmetic per body
     True
     """
     for b in prange(I.shape[0]):  # prange's index is unsigned: as int64, run_body compiles once
-        run_body(np.int64(b), I, L0, q0, t, step, gammas, kind, tau, n, exact, offset, omega_out, quat_out)
+        run_body(np.int64(b), I, L0, q0, t, step, gammas, P, n, exact, offset, omega_out, quat_out)

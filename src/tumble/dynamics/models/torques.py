@@ -460,14 +460,19 @@ def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotat
     Traceback (most recent call last):
     ...
     ValueError: the torque model returned [nan, 0.0, 0.0] at t = 0 s; expected finite numbers of shape (3,) (N m)
+    >>> body_torque(lambda t, omega, attitude: np.ones((300, 3)), 0.0, np.zeros((2, 3)), quarter)   # not 2 bodies'
+    Traceback (most recent call last):
+    ...
+    ValueError: the torque model returned an array of shape (300, 3) at t = 0 s; expected finite numbers of shape (3,) or (2, 3) (N m)
     """
     raw = np.asarray(model(t, omega, attitude), dtype=float)
     shape = np.shape(omega)
     if raw.shape not in ((3,), shape) or not np.all(np.isfinite(raw)):
-        raise ValueError(
-            f"the torque model returned {raw.tolist()!r} at t = {t:.6g} s; expected finite numbers "
-            f"of shape (3,){'' if shape == (3,) else f' or {shape}'} (N m)"
-        )
+        bad = np.flatnonzero(~np.isfinite(raw).all(axis=-1)) if raw.ndim == 2 and raw.shape == shape else np.zeros(0, int)
+        got = (f"{raw[bad[0]].tolist()!r} for body {bad[0]}" if len(bad) else  # one row of a batch
+               repr(raw.tolist()) if raw.size <= 6 else f"an array of shape {raw.shape}")
+        raise ValueError(f"the torque model returned {got} at t = {t:.6g} s; expected finite numbers "
+                         f"of shape (3,){'' if shape == (3,) else f' or {shape}'} (N m)")
     tau = np.array(np.broadcast_to(raw, shape))
     if model.frame != "world":
         return tau
