@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
-from ..dynamics.control.controlled import ControlledRun, command_summary
+from ..dynamics.control.controlled import ControlledRun
 from ..dynamics.control.controllers import Controller
 from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
@@ -186,3 +186,21 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
 
 
+def command_summary(run: ControlledRun) -> dict[str, Any]:
+    """Largest dipole (A m^2), wheel torque (N m) and wheel speed (rad/s) of a run, for reports.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import BDot, Magnetorquers, UniformField, simulate_controlled
+    >>> from tumble.io.controlrun import command_summary
+    >>> run = simulate_controlled([0.01, 0.02, 0.02], [0.0, 0.0, 0.1], t_end=4.0, controller=BDot(gain=1e4, period=1.0),
+    ...                           field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
+    >>> summary = command_summary(run)
+    >>> summary["max_wheel_speed"], 0.0 < summary["max_dipole"] <= 0.2   # no wheels; dipoles within the rods' limit
+    (0.0, True)
+    """
+    return {
+        "max_dipole": float(np.max(np.abs(run.dipole))) if run.dipole.size else 0.0,
+        "max_wheel_torque": float(np.max(np.abs(run.wheel_torque))) if run.wheel_torque.size else 0.0,
+        "max_wheel_speed": float(np.max(np.abs(run.wheel_speed))) if run.wheel_speed.size else 0.0,
+    }

@@ -144,7 +144,7 @@ def set_command(P: FloatArray, d0: float, d1: float, d2: float, u: FloatArray) -
     >>> from tumble.dynamics.control.compiled_loop import MAX_WHEELS, TABLES, set_command
     >>> P = np.zeros(TABLES)
     >>> set_command(P, 0.1, 0.2, 0.3, np.arange(1.0, MAX_WHEELS + 1))
-    >>> P[12:15].tolist(), P[[30, 40]].tolist()   # the first two wheels' slots end at 30 and 40
+    >>> P[12:15].tolist(), P[[36, 46]].tolist()   # the first two wheels' slots end at 36 and 46
     ([0.1, 0.2, 0.3], [1.0, 2.0])
     """
     P[12], P[13], P[14] = d0, d1, d2

@@ -45,12 +45,13 @@ from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ._front import locked_inverse
 from ..environment.magnetic import FIELD_NONE, FIELD_TABLE, field_form
+from ..models.torque_protocols import kernel_form, kernel_terms
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .loop_terms import WHEEL, packed
 from .pointing import is_reference
 
-__all__ = ["ControlKernel", "compiled_control_models", "compiled_law"]
+__all__ = ["ControlKernel", "compiled_control_models", "compiled_law", "disturbance_form"]
 
 #: An empty table (the kernels' argument where there is none), and no field's parameters (in a key).
 _NO_TABLE, _NO_FIELD = np.zeros((4, 1, 3)), np.zeros(0)
@@ -58,9 +59,33 @@ _NO_TABLE, _NO_FIELD = np.zeros((4, 1, 3)), np.zeros(0)
 METHODS = {"dop853": _loop.DOP853, "rk4": _loop.RK4, "rk8": _loop.RK8}
 
 
-def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any) -> str | None:
+def disturbance_form(torque: Any) -> tuple[float, ...] | None:
+    """The loop's terms ``P[21:27]`` (:mod:`~tumble.dynamics.control.loop_terms`) of a disturbance
+    torque: its constant body and world torques (N m), from the engine's terms of its compiled form
+    (:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); zeros for None; None where it has
+    other terms (a gravity gradient, which the loop takes as ``gravity_gradient``) or no compiled form.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ConstantTorque
+    >>> from tumble.dynamics.control.control_kernel import disturbance_form
+    >>> disturbance_form(ConstantTorque((0.0, 0.0, 1e-6)) + ConstantTorque((2e-6, 0.0, 0.0), "world"))
+    (0.0, 0.0, 1e-06, 2e-06, 0.0, 0.0)
+    >>> disturbance_form(lambda t, omega, attitude: -1e-3 * omega) is None   # Python's to call
+    True
+    """
+    form = kernel_form(torque)
+    if form is None:
+        return None
+    P, _ = kernel_terms((form,))
+    return None if any(P[6:]) else P[:6]
+
+
+def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any, *,
+                            torque: Any = None) -> str | None:
     """None if every model declares the compiled loop's form (its ``loop_form()``: the built-in
-    fields, gravity gradients, magnetorquers and wheels), else the first other one's description.
+    fields, gravity gradients, magnetorquers and wheels; a disturbance ``torque`` of constant body or
+    world torques, :func:`disturbance_form`), else the first other one's description.
 
     Examples
     --------
@@ -84,6 +109,9 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
         if model is not None and (not callable(form) or form() is None):
             label = getattr(model, "__name__", None) or type(model).__name__
             return f"{name} = {label} (a {kinds})"
+    if disturbance_form(torque) is None:
+        label = getattr(torque, "__name__", None) or type(torque).__name__
+        return f"torque = {label} (ConstantTorque in the body or the world frame, or their sum)"
     return None
 
 
@@ -146,7 +174,7 @@ def _same(a: Any, b: FloatArray) -> bool:
 
 def _kernel_for(compiled: bool | None, I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers: Any,
                 wheels: Any, rtol: float, atol: float, t_end: float, method: str = "dop853",
-                step: float | None = None) -> ControlKernel | None:
+                step: float | None = None, torque: Any = None) -> ControlKernel | None:
     """The run's :class:`ControlKernel` for these models (its arguments), or None for scipy's path
     where one is not a built-in model and ``compiled`` is None (a ValueError naming it if True).
     Kept for repeated runs by the values it is built from (:func:`_kernel_key`).
@@ -163,17 +191,17 @@ def _kernel_for(compiled: bool | None, I: FloatArray, field: Any, gravity_gradie
     """
     if compiled is not None and not isinstance(compiled, bool):
         raise ValueError(f"compiled = {compiled!r} must be True, False or None (compiled when the models allow)")
-    key = _kernel_key(I, field, gravity_gradient, magnetorquers, wheels, rtol, atol, method, step)
+    key = _kernel_key(I, field, gravity_gradient, magnetorquers, wheels, rtol, atol, method, step, torque)
     kernel = _KEPT.get(key) if key is not None else None
     if kernel is not None:
         return kernel
-    other = compiled_control_models(field, gravity_gradient, magnetorquers, wheels)
+    other = compiled_control_models(field, gravity_gradient, magnetorquers, wheels, torque=torque)
     if other is not None:
         if compiled:
             raise ValueError(f"compiled=True needs built-in models; {other} is not one: use compiled=False or None")
         return None
     kernel = ControlKernel(I, locked_inverse(I, wheels), wheels, field, gravity_gradient, rtol, atol, t_end, method,
-                           step, checked=True)
+                           step, checked=True, torque=torque)
     if key is not None:
         for old in list(_KEPT)[:max(0, len(_KEPT) + 1 - _KEEP)]:  # the oldest
             _KEPT.pop(old, None)
@@ -187,7 +215,7 @@ _KEEP = 32
 
 
 def _kernel_key(I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any, rtol: float,
-                atol: float, method: str, step: float | None) -> tuple[Any, ...] | None:
+                atol: float, method: str, step: float | None, torque: Any = None) -> tuple[Any, ...] | None:
     """The values a run's :class:`ControlKernel` is built from: the moments, the models' loop forms
     (which are those :func:`compiled_control_models` asks for), the tolerances and the method; None
     where the kernel is not kept: a model that declares no loop form, too many wheels, or tables
@@ -204,7 +232,10 @@ def _kernel_key(I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers:
     """
     if type(method) is not str or not (step is None or isinstance(step, (int, float))):
         return None  # ControlKernel says what is wrong
-    key: list[Any] = [I.tobytes(), rtol, atol, method, step]
+    disturbance = disturbance_form(torque) if torque is not None else ()
+    if disturbance is None:
+        return None
+    key: list[Any] = [I.tobytes(), rtol, atol, method, step, disturbance]
     field_kind = (FIELD_NONE, _NO_FIELD) if field is None else field_form(field)
     if field_kind is None or field_kind[0] == FIELD_TABLE:
         return None
@@ -246,6 +277,8 @@ class ControlKernel:
     checked : bool
         The models already found compiled by :func:`compiled_control_models` (the caller asked
         it): not asked again.
+    torque : torque model, optional
+        A disturbance of constant body and world torques (:func:`disturbance_form`).
 
     Examples
     --------
@@ -262,7 +295,7 @@ class ControlKernel:
 
     def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, gravity_gradient: Any,
                  rtol: float, atol: float, t_end: float | None = None, method: str = "dop853",
-                 step: float | None = None, *, checked: bool = False) -> None:
+                 step: float | None = None, *, checked: bool = False, torque: Any = None) -> None:
         from ..environment.tabulated import position_table
 
         if method not in METHODS:
@@ -271,7 +304,7 @@ class ControlKernel:
             raise ValueError(f"step = {step!r} must be given (s, > 0) with method = {method!r}")
         self.method, self.step = METHODS[method], float(step or 0.0)
         self.k = 0 if wheels is None else wheels.count
-        other = None if checked else compiled_control_models(field, gravity_gradient, None, wheels)
+        other = None if checked else compiled_control_models(field, gravity_gradient, None, wheels, torque=torque)
         if other is not None:
             raise ValueError(f"{other}: the compiled path cannot evaluate it; use compiled=False")
         field_kind, fp = cast("tuple[int, FloatArray]", field_form(field))
@@ -286,8 +319,9 @@ class ControlKernel:
         slots = np.zeros((_loop.MAX_WHEELS, WHEEL))  # the wheels, then the empty slots (the kernels skip them)
         if wheels is not None:
             slots[:self.k, :9] = wheels.loop_form()
+        disturbance = cast("tuple[float, ...]", disturbance_form(torque))
         P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
-                            gp, (self.k,), slots.reshape(-1)])
+                            gp, (self.k,), disturbance, slots.reshape(-1)])
         self.P = np.ascontiguousarray(P, dtype=float)  # an array, not a tuple passed by value at every stage: 4 % faster
         self.X = tuple(kernel_array(a) for a in (fp, ft, gt))  # a read-only table would compile the loop again
         self.packed = packed(self.P, self.X)  # what the kernels take: P and X in one array

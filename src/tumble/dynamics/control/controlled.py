@@ -10,7 +10,7 @@ the momentum budget can be checked. Between steps ``t_k = k period`` the equatio
 
 (:mod:`~tumble.dynamics.models.actuators` for their source) are integrated by DOP853 with the
 command held, ``u`` the wheels' applied torque and ``tau`` the body
-torques: the magnetorquers' ``m x B`` and the gravity gradient. At each ``t_k`` the sensors are
+torques: the magnetorquers' ``m x B``, the gravity gradient and a disturbance (``torque``). At each ``t_k`` the sensors are
 read and the controller called.
 
 **Three paths, the same steps.** With the built-in models only (``DipoleField``, ``UniformField``
@@ -54,6 +54,7 @@ from ..models.actuators import Command, Magnetorquers, ReactionWheels
 from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.sensors import Sensors
+from ..models.torques import TorqueLike, as_torque, bind_to_body, body_torque
 from .pointing import Reference, target_attitude
 from ..special.mrp import mrp_angle, mrp_from_quat
 from ..euler import momentum_rate_components
@@ -300,6 +301,7 @@ def simulate_controlled(
     attitude0: Rotation | ArrayLike | None = None,
     field: MagneticField | None = None,
     gravity_gradient: GravityGradient | OrbitGravityGradient | None = None,
+    torque: TorqueLike | None = None,
     magnetorquers: Magnetorquers | None = None,
     wheels: ReactionWheels | None = None,
     wheel_speed0: ArrayLike | None = None,
@@ -330,6 +332,10 @@ def simulate_controlled(
     gravity_gradient : GravityGradient or OrbitGravityGradient, optional
         The gravity-gradient torque of the same orbit (bound to ``moments`` here): a circular
         orbit's, or one along a Keplerian or TLE orbit (``gravity_gradient_of(orbit)``).
+    torque : torque model, callable or list of them, optional
+        A disturbance torque beside the others, N m (:func:`~tumble.dynamics.models.torques.as_torque`):
+        constant ones (``ConstantTorque`` in the body or the world frame, or their sum) run
+        compiled; any other on scipy's path. In the external impulse and the budget like the rest.
     magnetorquers, wheels : optional
         The actuators.
     wheel_speed0 : array_like, shape (k,), optional
@@ -382,6 +388,7 @@ def simulate_controlled(
     check_actuators(controller, field, magnetorquers, wheels)
     k = 0 if wheels is None else wheels.count
     gg = gravity_gradient.bind(I) if gravity_gradient is not None else None
+    disturbance = bind_to_body(as_torque(torque), I)
     if hasattr(controller, "reset"):
         controller.reset()
     axes = wheels.axes if wheels is not None else _NO_ROWS
@@ -393,7 +400,7 @@ def simulate_controlled(
     if compiled is not False:  # the compiled kernels imported only then
         from .control_kernel import _kernel_for
 
-        kernel = _kernel_for(compiled, I, field, gg, magnetorquers, wheels, rtol, atol, T, method, step)
+        kernel = _kernel_for(compiled, I, field, gg, magnetorquers, wheels, rtol, atol, T, method, step, disturbance)
     if kernel is None and (method != "dop853" or carry_step):
         raise ValueError(f"method = {method!r} and carry_step = {carry_step!r} need the built-in models (compiled path)")
     grid = control_instants(T, period)
@@ -427,6 +434,8 @@ def simulate_controlled(
             tau = tau + cross(dipole, R.T @ field.world(t))
         if gg is not None:
             tau = tau + R.T @ gg(t, w, cast(Rotation, Matrix(R)))
+        if disturbance is not None:
+            tau = tau + body_torque(disturbance, t, w, Rotation.from_quat(q))
         u = wheels.applied_torque(u_cmd, s) if wheels is not None else np.zeros(0)
         h = (J * s) @ axes
         x, y_, z, c = (float(v) for v in q)
@@ -481,11 +490,3 @@ def _run(grid: FloatArray, Y: FloatArray, I: FloatArray, J: FloatArray, axes: Fl
     return ControlledRun(np.asarray(grid, float), Y[:, 4:7], None, I, Y[:, 7:7 + k], torques, dipoles, fields, None,
                          Y[:, -3:], quaternions=Y[:, :4], wheel_inertia_axes=(J.copy(), axes.copy()))
 
-
-def command_summary(run: ControlledRun) -> dict[str, Any]:
-    """Largest dipole (A m^2), wheel torque (N m) and wheel speed (rad/s) of a run, for reports."""
-    return cast(dict[str, Any], {
-        "max_dipole": float(np.max(np.abs(run.dipole))) if run.dipole.size else 0.0,
-        "max_wheel_torque": float(np.max(np.abs(run.wheel_torque))) if run.wheel_torque.size else 0.0,
-        "max_wheel_speed": float(np.max(np.abs(run.wheel_speed))) if run.wheel_speed.size else 0.0,
-    })

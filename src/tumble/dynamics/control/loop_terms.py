@@ -29,7 +29,9 @@ principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by ro
 ``P[12:15]`` the magnetorquers' dipole held (A m^2); ``P[15]`` the field's kind (:data:`FIELD_NONE`
 ...); ``P[16:20]`` the gravity gradient ``(n, mu, t0, h)``: a circle's mean motion (rad/s) or
 ``mu`` (m^3/s^2) with the start and spacing (s) of the orbit's position table; ``P[20]`` the
-number of wheels; then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
+number of wheels; ``P[21:24]`` a constant disturbance torque in the body frame and ``P[24:27]`` one
+fixed in the world (N m; the engine's terms of the run's ``torque``,
+:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
 (the field's own ``loop_form()``, :func:`~tumble.dynamics.environment.magnetic.field_form`), the IGRF table's and the orbit
@@ -73,7 +75,7 @@ __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM",
            "field_body", "field_world", "packed", "rhs_source", "tables"]
 
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
-BODY, WHEEL = 21, 10
+BODY, WHEEL = 27, 10
 
 # The models' formulas compiled as ordinary functions, which LLVM inlines where they are called (as
 # the engine's kernels do, tumble.dynamics.engine.kernels): the loop ran as fast, and its first
@@ -157,9 +159,9 @@ def packed(P: FloatArray, X: tuple[FloatArray, ...]) -> FloatArray:
     >>> import numpy as np
     >>> from tumble.dynamics.control.loop_terms import packed, tables
     >>> X = (np.arange(16.0), np.ones((4, 2, 3)), np.zeros((4, 1, 3)))
-    >>> flat = packed(np.zeros(21), X)
-    >>> flat.shape, [a.shape for a in tables(flat, 21)]
-    ((76,), [(16,), (4, 2, 3), (4, 1, 3)])
+    >>> flat = packed(np.zeros(27), X)
+    >>> flat.shape, [a.shape for a in tables(flat, 27)]
+    ((82,), [(16,), (4, 2, 3), (4, 1, 3)])
     """
     fp, ft, gt = (np.asarray(a, dtype=float) for a in X)
     sizes = (len(fp), ft.shape[1], gt.shape[1])
@@ -188,8 +190,12 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
     (:func:`tables`). ``R^T v`` is read through :func:`~tumble.dynamics.special.quaternion.to_body`'s
     homogeneous form, ``|q|^2`` times the unit quaternion's, so the dipole's torque is multiplied
     by ``inverse`` and the gradient, quadratic in ``r_b``, by its square (as the engine's,
-    :func:`tumble.dynamics.engine.kernels.external_torque`)."""
-    a0, a1, a2 = 0.0, 0.0, 0.0
+    :func:`tumble.dynamics.engine.kernels.external_torque`); and the constant disturbances of
+    ``P[21:27]``, in the body and turned from the world as the engine turns them."""
+    a0, a1, a2 = P[21], P[22], P[23]
+    if P[24] != 0.0 or P[25] != 0.0 or P[26] != 0.0:
+        v0, v1, v2 = _to_body(x, y, z, s, P[24], P[25], P[26])
+        a0, a1, a2 = a0 + v0 * inverse, a1 + v1 * inverse, a2 + v2 * inverse
     if P[15] != FIELD_NONE:
         fp, ft, _ = tables(P, at)
         b0, b1, b2 = field_body(int(P[15]), fp, ft, x, y, z, s, t)
