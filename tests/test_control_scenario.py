@@ -158,3 +158,51 @@ def test_a_run_without_magnetorquers_writes_no_empty_dipole_figure(tmp_path):
         assert ("wheels |h|" in labels) == wheels and "body |I omega|" in labels
         for fig in figures.values():
             plt.close(fig)
+
+
+def test_torque_tables_are_the_disturbance_of_the_python_run(tmp_path):
+    """[[torque]] tables in a control file: their sum, a body-frame vector read in the design frame
+    (principal axis 1 is design z for this box), a world one as it is; the run is simulate_controlled's
+    with the same models, and its budget closes with their impulse."""
+    import tumble
+    from tumble.commands import run_scenario
+    from tumble.dynamics import ConstantTorque
+    from tumble.dynamics.control.controlled import simulate_controlled
+
+    text = ('body = { name = "box", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+            "[initial]\nomega = [0.0, 0.0, 0.01]\n[simulation]\nt_end = 60.0\n"
+            "[[torque]]\nvector = [0.0, 0.0, 1e-6]\n[[torque]]\nvector = [1e-6, 0.0, 0.0]\nframe = \"world\"\n"
+            "[actuators.wheels]\ninertia = 1e-5\n"
+            '[control]\nkind = "mrp_pd"\nperiod = 0.5\nK = 1e-3\nP = 6e-3\n')
+    path = tmp_path / "leak.toml"
+    path.write_text(text)
+    scenario = load_scenario(path)
+    body = scenario.body
+    P = body.principal_axes  # principal -> design
+    body_term, world_term = scenario.torque.terms
+    np.testing.assert_allclose(body_term.vector, P.T @ [0.0, 0.0, 1e-6], rtol=0, atol=1e-22)
+    assert world_term == ConstantTorque((1e-6, 0.0, 0.0), "world")
+    run = run_scenario(scenario)
+    args = scenario.arguments()
+    args["torque"] = [ConstantTorque(tuple(P.T @ [0.0, 0.0, 1e-6])), ConstantTorque((1e-6, 0.0, 0.0), "world")]
+    ref = simulate_controlled(**args)
+    np.testing.assert_array_equal(run.omega, ref.omega)
+    assert np.linalg.norm(run.impulse_world[-1]) > 5e-5  # the torques acted
+    L = run.momentum_world - run.impulse_world
+    np.testing.assert_allclose(L, L[[0] * len(L)], rtol=0, atol=1e-9 * np.abs(run.impulse_world).max())
+    assert isinstance(tumble.io.load_scenario(path).torque, tumble.TorqueSum)
+
+
+@pytest.mark.parametrize(("table", "message"), [
+    ('[torque]\nkind = "gravity_gradient"\norbit_period = 5400.0\n',
+     r"torque: kind = 'gravity_gradient' is not taken here; allowed: constant"),
+    ("[[torque]]\nvector = [0.0, 0.0, 1e-6]\n[[torque]]\nvector = [1e-6]\n",
+     r"torque\[1\]: torque vector = \[1e-06\] must be a list of 3 numbers \(N m\)"),
+])
+def test_bad_torque_tables_in_a_control_file(tmp_path, capsys, table, message):
+    text = (CONTROL / "point.toml").read_text()
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace("[actuators.wheels]", table + "[actuators.wheels]", 1))
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and re_search(message, err), err

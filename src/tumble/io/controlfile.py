@@ -26,6 +26,9 @@ A scenario file with a ``[control]`` table is a closed-loop run (:func:`tumble.d
     axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]   # design frame (default: one wheel on each design axis)
     inertia = 1e-5              # kg m^2 (axial); max_torque (N m), max_speed (rad/s), viscous, coulomb, speed0
 
+    # [torque]                  # a disturbance: vector = [0, 0, 1e-6] (N m), frame = "body" (initial.frame's) or "world";
+                                # several act together as a [[torque]] table each
+
     [sensors]                   # gyro_noise, gyro_bias, magnetometer_noise, magnetometer_bias, attitude, attitude_noise, seed
     # [sensors.sun], [sensors.star_tracker] and [estimator] (the controller fed the MEKF's estimate):
     # tumble.io.controlestimator
@@ -55,6 +58,8 @@ from ..dynamics.control.bdot import BDot
 from ..dynamics.control.controllers import Controller, MRPFeedback
 from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
+from ..dynamics import TorqueModel
+from ..dynamics.methods.bounds import design_torque
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit_gravity import gravity_gradient_of
 from ..dynamics.models.sensors import Sensors
@@ -71,6 +76,7 @@ from ..validation import (
 from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
 from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
+from .torquetables import TORQUE_KINDS, TORQUE_TABLE, torque_of
 from .keys import FileFormat, Key, Table
 from .controlspec import (
     CONTROL_KEYS,
@@ -95,6 +101,8 @@ _TABLES = (
                                 ("orbit", "{altitude = 500e3}"), ("actuators", "{wheels = {inertia = 1e-5}}"),
                                 ("sensors", "{gyro_noise = 1e-4}"), ("control", '{kind = "bdot", period = 1.0}'),
                                 ("estimator", '{kind = "mekf"}'))),
+        Key("torque", "table", example="{vector = [0.0, 0.0, 1e-6]}",
+            doc="[torque]: a constant disturbance, or a [[torque]] table for each of several"),
     ), "A scenario file with a ``[control]`` table is a closed-loop run."),
     Table("[initial]", (
         Key("omega", "3 numbers", "rad/s", required=True, example="[0.2, -0.2, 0.2]", doc="the initial angular velocity"),
@@ -110,6 +118,10 @@ _TABLES = (
         Key("atol", "number", "", "1e-12", example="1e-11", low=0.0, doc="absolute tolerance"),
     )),
     ORBIT_TABLE,
+    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in TORQUE_KINDS["constant"]),
+          "Optional: a constant disturbance torque (:class:`tumble.dynamics.ConstantTorque`); several act together "
+          "as a ``[[torque]]`` table each. A body-frame vector is in ``initial.frame``; the orbit's gravity gradient "
+          "is ``[orbit] gravity_gradient = true``."),
     Table("[actuators]", (
         Key("magnetorquers", "table", example="{max_dipole = 0.2}", doc="[actuators.magnetorquers]"),
         Key("wheels", "table", example="{inertia = 1e-5}", doc="[actuators.wheels]: reaction wheels"),
@@ -215,6 +227,7 @@ class ControlScenario:
     name: str = "scenario"
     sources: tuple[tuple[str, str], ...] = ()
     estimator: dict[str, Any] | None = None
+    torque: TorqueModel | None = None  # a disturbance, principal frame
 
     def controller(self) -> BDot | MRPFeedback | DetumbleThenPoint | Estimated:
         """A fresh controller of this scenario.
@@ -277,7 +290,7 @@ class ControlScenario:
             attitude0=self.attitude0, field=self.field,
             gravity_gradient=gravity_gradient_of(self.orbit) if (self.gravity_gradient and self.orbit) else None,
             magnetorquers=self.magnetorquers, wheels=self.wheels, wheel_speed0=self.speed0, sensors=self.sensors,
-            rtol=self.rtol, atol=self.atol)
+            rtol=self.rtol, atol=self.atol, torque=self.torque)
 
     def trajectory(self, run: ControlledRun) -> Trajectory:
         """The run as a :class:`~tumble.dynamics.Trajectory` (wheels as rotors), for the figures.
@@ -391,9 +404,9 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     ...
     ValueError: control: missing key 'period' (s)
     """
-    unknown = sorted(set(data) - {"body", *CONTROL_SECTIONS})
+    unknown = sorted(set(data) - {"body", "torque", *CONTROL_SECTIONS})
     if unknown:
-        raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}")
+        raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}, torque")
     t = {s: _table(data, s) for s in CONTROL_SECTIONS}
     P = np.asarray(body.principal_axes)
     initial, sim, orbit_t, act, control = t["initial"], t["simulation"], t["orbit"], t["actuators"], t["control"]
@@ -407,8 +420,11 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         design_to_world = Rotation.from_quat(check_rotation("attitude", initial.get("attitude", [0, 0, 0, 1])))
     except ValueError as exc:
         raise ValueError(f"initial: {exc}") from None
+    torque = torque_of(data.get("torque"), kinds=("constant",))
     if frame == "design":
         omega = P.T @ omega
+        if torque is not None and torque.frame == "body":  # a sum's frame is "body": it turns its body terms only
+            torque = design_torque(torque, P)
     principal_to_design = Rotation.from_matrix(P)
     attitude0 = design_to_world * principal_to_design
     orbit: Orbit | None = None
@@ -466,7 +482,8 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
         rtol=check_rtol("simulation.rtol", sim.get("rtol", 1e-10)),
-        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name, estimator=estimator)
+        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name, estimator=estimator,
+        torque=torque)
 
 
 def is_control_file(data: dict[str, Any]) -> bool:

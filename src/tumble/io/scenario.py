@@ -47,9 +47,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..dynamics import ConstantTorque, SphericalDamper, TorqueModel, TorqueSum
+from ..dynamics import SphericalDamper, TorqueModel, TorqueSum
 from ..dynamics.methods.names import ALLOWED
-from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
@@ -58,6 +57,7 @@ from ..validation import NoSuchFileError
 from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
+from .torquetables import TORQUE_TABLE, torque_of
 from .keys import FileFormat, Key, Table
 from .provenance import file_sha256
 
@@ -79,23 +79,6 @@ _METHOD = Key("method", "string", "", '"auto"', example='"dop853"', choices=ALLO
               doc="the integration method (auto: chosen from what the run has, and named in the output)")
 _STEP = Key("step", "number", "s", "(the method's)", example="0.001", low=0.0,
             doc="the largest step of a fixed-step or splitting method")
-#: The ``[torque]`` table of scenario and sweep files.
-TORQUE_TABLE = Table("[torque]", (
-    Key("kind", "string", "", '"constant"', choices=("constant", "gravity_gradient"), example='"gravity_gradient"',
-        doc="a constant torque, or the gravity gradient of a circular orbit"),
-    Key("vector", "3 numbers", "N m", example="[0.0, 0.0, 0.01]", doc='the torque (kind = "constant": required)'),
-    Key("frame", "string", "", '"body"', choices=("body", "world"), example='"world"',
-        doc="the frame the vector is fixed in"),
-    Key("orbit_period", "number", "s", example="5400.0", low=0.0,
-        doc='kind = "gravity_gradient": the orbit\'s period (or orbit_radius)'),
-    Key("orbit_radius", "number", "m", example="6.78e6", low=0.0, doc="the orbit's radius (or orbit_period)"),
-    Key("mu", "number", "m^3/s^2", f"{MU_EARTH:.10g} (the Earth's)", example="4.9048695e12", low=0.0,
-        doc="the central body's gravitational parameter"),
-), "Optional: a torque acting through the run; several act together (their sum, "
-   ":class:`tumble.dynamics.TorqueSum`) as a ``[[torque]]`` table each.")
-#: Keys of each kind of ``[torque]`` table.
-_TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
-
 #: The tables of a scenario file (without ``[control]``; a closed-loop run's are
 #: :data:`tumble.io.controlfile.CONTROL_FORMAT`'s) and their keys.
 SCENARIO_FORMAT = FileFormat("scenario", (
@@ -241,48 +224,6 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     )
     _validate(scenario)
     return scenario
-
-
-def torque_of(value: object) -> TorqueModel | None:
-    """The model of a file's ``torque``: one ``[torque]`` table, or a list of them (``[[torque]]``),
-    their :class:`~tumble.dynamics.TorqueSum`; None for none.
-
-    Examples
-    --------
-    >>> from tumble.io.scenario import torque_of
-    >>> both = torque_of([{"vector": [0.0, 0.0, 0.01]}, {"kind": "gravity_gradient", "orbit_period": 5400.0}])
-    >>> [type(term).__name__ for term in both.terms]
-    ['ConstantTorque', 'GravityGradient']
-    >>> torque_of([{"vector": [0.0, 0.0, 0.01]}, {"vector": [1.0, 0.0]}])
-    Traceback (most recent call last):
-    ...
-    ValueError: torque[1]: torque vector = [1.0, 0.0] must be a list of 3 numbers (N m)
-    """
-    if value is None or value == {}:
-        return None
-    if not isinstance(value, list):
-        return _torque(TORQUE_TABLE.check("torque", value), "torque")
-    if not value:
-        raise ValueError("torque = [] has no [[torque]] table; leave it out for a torque-free run")
-    return TorqueSum(*(_torque(TORQUE_TABLE.check(f"torque[{i}]", table), f"torque[{i}]")
-                       for i, table in enumerate(value)))
-
-
-def _torque(table: dict, where: str) -> TorqueModel:
-    """The model of one ``[torque]`` table (``where`` names it in errors): ``kind = "constant"``
-    (the default) or ``"gravity_gradient"``."""
-    kind = table.get("kind", "constant")
-    if not isinstance(kind, str) or kind not in _TORQUE_KINDS:
-        raise ValueError(f"{where}: kind = {kind!r} is unknown; allowed: {', '.join(_TORQUE_KINDS)}")
-    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in _TORQUE_KINDS[kind])).check(where, table, kind=kind)
-    if kind == "gravity_gradient":
-        return gravity_gradient_from_table(table, where)
-    if "vector" not in table:
-        raise ValueError(f"{where}: missing key 'vector' (N m)")
-    try:
-        return ConstantTorque(table["vector"], table.get("frame", "body"))
-    except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
 
 
 def _initial(table: dict, model, body: Body):

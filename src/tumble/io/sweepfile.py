@@ -72,7 +72,8 @@ from .bodyfile import body_from_table, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
-from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END, TORQUE_TABLE, torque_of
+from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END
+from .torquetables import TORQUE_TABLE, torque_of
 
 __all__ = ["SWEEP_FORMAT", "SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
