@@ -353,7 +353,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if spec.compiled_only and form is None:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
         raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
-                         f"(ConstantTorque, GravityGradient); for torque = {torque!r} use one of: {allowed}")
+                         f"(ConstantTorque, GravityGradient, their sums); for torque = {torque!r} use one of: {allowed}")
     if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
         if spec.constant_rotors_only:  # it takes rotors at constant spin and a damper: say what else it is given

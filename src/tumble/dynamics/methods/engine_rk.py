@@ -96,7 +96,7 @@ def engine_rk(name: str) -> Callable[..., tuple[Vector3, Quaternion]]:
         form = kernel_form(torque)
         if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
             raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "
-                             f"(ConstantTorque, GravityGradient) or none; use dop853 for {torque!r}")
+                             f"(ConstantTorque, GravityGradient, their sums) or none; use dop853 for {torque!r}")
         w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
         if step is None:
             with np.errstate(over="ignore", invalid="ignore"):
