@@ -45,7 +45,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, Vector3
-from ...validation import check_callable, check_vector, short_repr
+from ...validation import check_callable, check_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 from .torque_protocols import (
     KERNEL_BODY,
