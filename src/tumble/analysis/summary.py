@@ -12,8 +12,17 @@ from .stability import SpinPrediction, flip_interval, flip_interval_asymptotic, 
 
 if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
+    from ..dynamics.models.torques import TorqueModel
 
-__all__ = ["gravity_gradient_summary", "stability_report", "trajectory_summary"]
+__all__ = ["gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
+
+#: Most samples :func:`torque_budget` calls a torque that varies in time at, one call each (~10 us).
+BUDGET_SAMPLES = 100_000
+#: Most rotation between samples (rad, ``max |omega| max dt``) at which :func:`torque_budget`'s
+#: quadrature resolves a torque that turns with the body: a T-handle spun up by a world torque in the
+#: gravity gradient gave a gap of 2e-9 of the impulse against an estimate of 3e-9 at 0.33 rad per
+#: sample, and 1.1e-4 against 1e-5 at 3.3 rad (the estimate no longer holds; measured).
+BUDGET_TURN = 0.5
 
 
 def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
@@ -233,3 +242,69 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
         "jacobi_drift": float(np.max(np.abs(h - h[0])) / scale),
         "max_angle": {name: float(np.max(np.abs(getattr(angles, name)))) for name in ("roll", "pitch", "yaw")},
     }
+
+
+def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | None:
+    """The momentum and energy budgets of a torqued run, against the torque along its own samples.
+
+    Euler's equations give ``dL_world/dt = R tau`` and, for a rigid body, ``dT/dt = omega . tau``
+    (Goldstein, *Classical Mechanics*, 3rd ed., sec. 5.5): the changes of ``L_world`` (body, rotors
+    and damper together) and of the kinetic energy over the run must equal the torque's impulse and
+    its work. Both integrals are taken over the samples by Simpson's rule
+    (:func:`scipy.integrate.cumulative_simpson`), whose own error is estimated by Richardson's rule
+    from every other sample (``|S_2h - S_h| / 15``): a ``gap`` within a few times ``quadrature``
+    is a budget that closes as far as the samples can tell.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        A run of :func:`tumble.simulate` under ``torque``.
+    torque : torque model
+        The run's torque, bound to the body (:func:`~tumble.dynamics.models.torques.bind_to_body`).
+
+    Returns
+    -------
+    dict or None
+        ``momentum`` and, for a rigid body, ``energy``: each ``gap`` (the largest difference of
+        change and integral over the run; kg m^2/s or J), ``change`` (the largest integral, the
+        scale), ``quadrature`` (the estimate of Simpson's error; None below 5 samples);
+        ``turn_per_sample`` (rad, ``max |omega| max dt``) and ``resolved``, whether it is at most
+        :data:`BUDGET_TURN` (else the quadrature, and its estimate, do not hold: more samples
+        would). None for a torque that varies in time over more than :data:`BUDGET_SAMPLES` samples.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.summary import torque_budget
+    >>> push = tumble.ConstantTorque((0.0, 0.0, 0.5), "world")
+    >>> run = tumble.simulate(tumble.t_handle(), [0.1, 3.0, 0.1], t_end=10.0, torque=push)
+    >>> budget = torque_budget(run, push)
+    >>> momentum = budget["momentum"]
+    >>> round(momentum["change"], 12), momentum["gap"] < 1e-9 * momentum["change"], budget["resolved"]   # |tau| t
+    (5.0, True, True)
+    """
+    from scipy.integrate import cumulative_simpson
+
+    from ..dynamics.models.torques import KERNEL_BODY, KERNEL_SUM, KERNEL_WORLD, body_torque, kernel_form
+
+    t, omega, attitude = traj.t, traj.omega, traj.attitude
+    form = kernel_form(torque)
+    if form is not None and (form[0] in (KERNEL_BODY, KERNEL_WORLD) or form[0] == KERNEL_SUM and form[1][6] == 0.0):
+        tau = np.array(np.broadcast_to(body_torque(torque, 0.0, omega, attitude), omega.shape))  # constant: one call
+    elif len(t) <= BUDGET_SAMPLES:
+        tau = np.array([body_torque(torque, float(ti), omega[i], attitude[i]) for i, ti in enumerate(t.tolist())])
+    else:
+        return None
+
+    def budget(change: np.ndarray, rate: np.ndarray) -> dict[str, float | None]:
+        integral = cumulative_simpson(rate, x=t, axis=0, initial=0.0)
+        coarse = cumulative_simpson(rate[::2], x=t[::2], axis=0, initial=0.0) if len(t) >= 5 else None
+        return {"gap": float(np.max(np.abs(change - integral))), "change": float(np.max(np.abs(integral))),
+                "quadrature": None if coarse is None else float(np.max(np.abs(integral[::2] - coarse)) / 15.0)}
+
+    L = traj.angular_momentum_world
+    out: dict[str, Any] = {"momentum": budget(L - L[0], attitude.apply(tau))}
+    if traj.rigid:
+        out["energy"] = budget(traj.energy - traj.energy[0], np.sum(omega * tau, axis=1))
+    turn = float(np.max(np.linalg.norm(omega, axis=1)) * np.max(np.diff(t))) if len(t) > 1 else 0.0
+    return {**out, "turn_per_sample": turn, "resolved": turn <= BUDGET_TURN}

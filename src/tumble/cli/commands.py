@@ -206,6 +206,11 @@ def _cmd_simulate(args) -> int:
         from ..analysis.summary import gravity_gradient_summary
 
         summary["gravity_gradient"] = gravity_gradient_summary(traj, scenario.torque)
+    if scenario.torque is not None:  # the torque the run took, principal frame and bound (check_inputs')
+        from ..analysis.summary import torque_budget
+        from ..dynamics.simulate import check_inputs
+
+        summary["torque_budget"] = torque_budget(traj, check_inputs(**scenario.arguments()).torque)
     summary["scenario"] = str(args.source)
     summary["provenance"] = provenance(args.argv, scenario.sources)
     with output_dir(out, SIMULATE_WRITES) as stage:
@@ -345,6 +350,17 @@ def _view_fit(args) -> int:
     return EXIT_OK
 
 
+def _budget_words(name: str, budget: dict) -> str:
+    """``L_world`` or the energy against the torque's impulse or work, as a fraction of it, and the
+    quadrature's own error (:func:`~tumble.analysis.summary.torque_budget`)."""
+    what = {"momentum": "L_world followed the impulse", "energy": "the energy followed the work"}[name]
+    scale = budget["change"]
+    if not scale:
+        return f"{what} (both 0)"
+    quadrature = "" if budget["quadrature"] is None else f" (the samples' quadrature: {budget['quadrature'] / scale:.0e})"
+    return f"{what} to {budget['gap'] / scale:.1e} of it{quadrature}"
+
+
 def _simulate_line(summary: dict, out) -> str:
     """One line for people: what the spin did and how well the invariants held."""
     s, d = summary["stability"], summary["drift"]
@@ -366,6 +382,12 @@ def _simulate_line(summary: dict, out) -> str:
     elif summary["torque_free"]:
         drift = ", ".join(f"{k} {'n/a' if v is None else format(v, '.1e')}" for k, v in d.items())
         tail = f"relative drift: {drift}"
+    elif summary.get("torque_budget") and not summary["torque_budget"]["resolved"]:
+        tail = (f"torque acted (the samples, up to {summary['torque_budget']['turn_per_sample']:.2g} rad apart, are too "
+                "coarse to check its budget; more samples would)")
+    elif summary.get("torque_budget"):
+        b = summary["torque_budget"]
+        tail = "torque acted: " + "; ".join(_budget_words(name, b[name]) for name in ("momentum", "energy") if name in b)
     else:
-        tail = "torque acted, so energy and L change (no budget to check)"
+        tail = "torque acted, so energy and L change (no budget to check over so many samples)"
     return f"{head}: {spin}; {tail}; wrote {out}/"
