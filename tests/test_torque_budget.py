@@ -79,3 +79,14 @@ def test_the_simulate_line_and_summary_say_it(tmp_path, capsys, samples, words):
     assert budget["resolved"] == (samples == 3001)
     if budget["resolved"]:
         assert budget["momentum"]["gap"] < 1e-8 * budget["momentum"]["change"]
+    # the gravity gradient among other torques: its orbit's angles, but no Jacobi integral (not conserved here)
+    assert summary["gravity_gradient"]["jacobi_drift"] is None and summary["gravity_gradient"]["orbits"] == 0.5
+    assert "0.5 orbits, largest angle from the orbiting frame" in line and "Jacobi" not in line
+
+
+def test_a_sum_with_the_gravity_gradient_draws_the_orbits_angles():
+    from tumble.viz.spacecraft import spacecraft_figures
+
+    run = _run(31)
+    assert [name for name, _ in spacecraft_figures(run, SUM)] == ["orbit_angles"]
+    assert [name for name, _ in spacecraft_figures(run, SUM[1:])] == []

@@ -207,7 +207,7 @@ def _budgets(traj: Trajectory) -> dict:
 
 
 def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axis: int | str = 3,
-                             yaw_axis: int | str = 1) -> dict[str, Any]:
+                             yaw_axis: int | str = 1, alone: bool = True) -> dict[str, Any]:
     """What a run under the gravity gradient did, relative to the orbiting frame.
 
     Energy and L are not conserved under this torque; the orbiting-frame energy (the Jacobi
@@ -215,7 +215,9 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     run's error measure. Keys: ``orbit_period`` (s), ``orbits`` (run length in orbits),
     ``jacobi_drift`` (max |h - h0| over ``n^2 (I1 + I2 + I3)``, the scale of the potential),
     ``max_angle`` (rad: the largest |roll|, |pitch|, |yaw| from the orbiting frame, with
-    ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`).
+    ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`). With other torques beside it
+    (``alone=False``, a :class:`~tumble.dynamics.TorqueSum`) the Jacobi integral is not conserved and
+    ``jacobi_drift`` is None; the run's budgets are :func:`torque_budget`'s.
 
     Examples
     --------
@@ -239,7 +241,7 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     return {
         "orbit_period": gg.period,
         "orbits": float(traj.t[-1] / gg.period),
-        "jacobi_drift": float(np.max(np.abs(h - h[0])) / scale),
+        "jacobi_drift": float(np.max(np.abs(h - h[0])) / scale) if alone else None,
         "max_angle": {name: float(np.max(np.abs(getattr(angles, name)))) for name in ("roll", "pitch", "yaw")},
     }
 

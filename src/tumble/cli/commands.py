@@ -195,6 +195,8 @@ def _cmd_simulate(args) -> int:
         traj = run_scenario(scenario)
 
     from ..analysis import trajectory_summary
+    from ..dynamics.models.gravity import GravityGradient
+    from ..dynamics.models.torques import terms_of
     from ..io.export import write_csv, write_json, write_npz
     from ..io.output import output_dir
     from ..io.provenance import provenance
@@ -202,10 +204,11 @@ def _cmd_simulate(args) -> int:
 
     summary = trajectory_summary(traj)
     summary["method"] = getattr(traj, "method_label", traj.method)  # "dop853 (auto)": the method auto chose
-    if hasattr(scenario.torque, "jacobi_integral"):  # the gravity gradient: its own error measure
+    orbit = next((term for term in terms_of(scenario.torque) if isinstance(term, GravityGradient)), None)
+    if orbit is not None:  # the gravity gradient, alone (its Jacobi integral the error measure) or in a sum
         from ..analysis.summary import gravity_gradient_summary
 
-        summary["gravity_gradient"] = gravity_gradient_summary(traj, scenario.torque)
+        summary["gravity_gradient"] = gravity_gradient_summary(traj, orbit, alone=orbit is scenario.torque)
     if scenario.torque is not None:  # the torque the run took, principal frame and bound (check_inputs')
         from ..analysis.summary import torque_budget
         from ..dynamics.simulate import check_inputs
@@ -370,7 +373,7 @@ def _simulate_line(summary: dict, out) -> str:
     period = s["flip_period_exact"] if s["flip_period_exact"] is not None else s["flip_period"]
     if summary["torque_free"] and s["flips"] and period is not None:
         spin += f" every {period:.4g} s"
-    if "gravity_gradient" in summary:
+    if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is not None:
         g = summary["gravity_gradient"]
         tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
                 f"orbiting frame {max(g['max_angle'].values()):.3g} rad")
@@ -390,4 +393,7 @@ def _simulate_line(summary: dict, out) -> str:
         tail = "torque acted: " + "; ".join(_budget_words(name, b[name]) for name in ("momentum", "energy") if name in b)
     else:
         tail = "torque acted, so energy and L change (no budget to check over so many samples)"
+    if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is None:  # a sum: the orbit's angles too
+        g = summary["gravity_gradient"]
+        tail += f"; {g['orbits']:.3g} orbits, largest angle from the orbiting frame {max(g['max_angle'].values()):.3g} rad"
     return f"{head}: {spin}; {tail}; wrote {out}/"

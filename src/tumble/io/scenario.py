@@ -47,9 +47,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..dynamics import SphericalDamper, TorqueModel, TorqueSum
+from ..dynamics import SphericalDamper, TorqueModel
 from ..dynamics.methods.names import ALLOWED
 from ..dynamics.models.gravity import GravityGradient
+from ..dynamics.models.torques import terms_of
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
@@ -234,8 +235,7 @@ def _initial(table: dict, model, body: Body):
         return table["omega"], table.get("frame", "principal"), None
     if "omega" in table or "frame" in table:
         raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
-    orbits = [term for term in (model.terms if isinstance(model, TorqueSum) else (model,))
-              if isinstance(term, GravityGradient)]
+    orbits = [term for term in terms_of(model) if isinstance(term, GravityGradient)]
     if not orbits:
         raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
     model = orbits[0]

@@ -20,13 +20,13 @@ cover the data.
 from __future__ import annotations
 
 import functools
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ..dynamics import Trajectory
 from ..dynamics.models.gravity import GravityGradient, orbit_frame_angles
-from ..dynamics.models.torques import TorqueLike
+from ..dynamics.models.torques import TorqueLike, as_torque, terms_of
 from .plots import COLORS, figure_omega_grid
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 from .scene import check_run
@@ -259,8 +259,8 @@ def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | 
     - ``"nutation"`` (:func:`figure_nutation`): the same, and L is not 0 (to round-off,
       :data:`~tumble.dynamics.trajectory.ZERO_MOMENTUM_RTOL`) at every sample: a slew from rest has no nutation;
     - ``"orbit_angles"`` (:func:`figure_orbit_angles`): ``torque`` is a
-      :class:`~tumble.dynamics.models.gravity.GravityGradient`; ``axes`` (``pitch_axis``, ``yaw_axis``)
-      go to it.
+      :class:`~tumble.dynamics.models.gravity.GravityGradient`, or a sum with one among its terms;
+      ``axes`` (``pitch_axis``, ``yaw_axis``) go to it.
 
     An empty list for a rigid body under no torque or a constant one.
 
@@ -285,6 +285,7 @@ def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | 
         makers.append(("energy", functools.partial(figure_energy, traj)))
         if not np.all(traj.momentum_is_zero):
             makers.append(("nutation", functools.partial(figure_nutation, traj)))
-    if isinstance(torque, GravityGradient):
-        makers.append(("orbit_angles", functools.partial(figure_orbit_angles, traj, torque, **axes)))
+    orbit = next((term for term in terms_of(as_torque(cast(Any, torque))) if isinstance(term, GravityGradient)), None)
+    if orbit is not None:  # alone, or among the terms of a sum
+        makers.append(("orbit_angles", functools.partial(figure_orbit_angles, traj, orbit, **axes)))
     return makers

@@ -90,6 +90,7 @@ __all__ = [
     "body_torque",
     "conforms",
     "kernel_form",
+    "terms_of",
 ]
 
 
@@ -335,6 +336,22 @@ def _sum_form(terms: tuple[TorqueModel, ...]) -> Form | None:
     if kinds == {KERNEL_WORLD}:
         return KERNEL_WORLD, P[3:6]
     return (KERNEL_SUM, P + (n,)) if kinds else (KERNEL_NONE, ())
+
+
+def terms_of(model: TorqueModel | None) -> tuple[TorqueModel, ...]:
+    """The models acting in ``model``: a sum's terms, a single model alone, none for None.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics.models.torques import terms_of
+    >>> gg, push = tumble.GravityGradient(orbit_period=5400.0), tumble.ConstantTorque((0.0, 0.0, 1e-6))
+    >>> [type(term).__name__ for term in terms_of(gg + push)], terms_of(push) == (push,), terms_of(None)
+    (['GravityGradient', 'ConstantTorque'], True, ())
+    """
+    if model is None:
+        return ()
+    return model.terms if isinstance(model, TorqueSum) else (model,)
 
 
 def check_torque_function(field: str, given: Any) -> None:
