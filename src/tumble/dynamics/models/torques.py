@@ -410,13 +410,13 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
     """
     if torque is None:
         return None
-    if isinstance(torque, (list, tuple)) and not (len(torque) == 3 and all(
-            isinstance(v, (int, float, np.integer, np.floating)) for v in torque)):  # three numbers: a vector, below
-        return TorqueSum(*torque)
     if conforms(torque, TorqueModel) and callable(torque):  # callable: a __call__ of the type, not the instance
         model = cast(TorqueModel, torque)
         check_frame(model.frame)
         return model
+    if isinstance(torque, (list, tuple)) and not (len(torque) == 3 and all(
+            isinstance(v, (int, float, np.integer, np.floating)) for v in torque)):  # three numbers: a vector, below
+        return TorqueSum(*torque)
     return FunctionTorque(cast(Callable[[float, np.ndarray, Rotation], ArrayLike], torque), "body")
 
 
