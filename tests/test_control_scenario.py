@@ -195,7 +195,8 @@ def test_torque_tables_are_the_disturbance_of_the_python_run(tmp_path):
 
 @pytest.mark.parametrize(("table", "message"), [
     ('[torque]\nkind = "gravity_gradient"\norbit_period = 5400.0\n',
-     r"torque: kind = 'gravity_gradient' is not taken here; allowed: constant"),
+     r"torque: kind = 'gravity_gradient' is not taken here; allowed: constant \(the orbit's gravity gradient: "
+     r"\[orbit\] gravity_gradient = true\)$"),
     ("[[torque]]\nvector = [0.0, 0.0, 1e-6]\n[[torque]]\nvector = [1e-6]\n",
      r"torque\[1\]: torque vector = \[1e-06\] must be a list of 3 numbers \(N m\)"),
 ])

@@ -420,7 +420,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         design_to_world = Rotation.from_quat(check_rotation("attitude", initial.get("attitude", [0, 0, 0, 1])))
     except ValueError as exc:
         raise ValueError(f"initial: {exc}") from None
-    torque = torque_of(data.get("torque"), kinds=("constant",))
+    torque = torque_of(data.get("torque"), ("constant",), "the orbit's gravity gradient: [orbit] gravity_gradient = true")
     if frame == "design":
         omega = P.T @ omega
         if torque is not None and torque.frame == "body":  # a sum's frame is "body": it turns its body terms only

@@ -36,9 +36,10 @@ TORQUE_TABLE = Table("[torque]", (
 TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
 
 
-def torque_of(value: object, kinds: tuple[str, ...] = tuple(TORQUE_KINDS)) -> TorqueModel | None:
+def torque_of(value: object, kinds: tuple[str, ...] = tuple(TORQUE_KINDS), elsewhere: str = "") -> TorqueModel | None:
     """The model of a file's ``torque``: one ``[torque]`` table, or a list of them (``[[torque]]``),
-    their :class:`~tumble.dynamics.TorqueSum`; None for none. ``kinds``: the kinds the file takes.
+    their :class:`~tumble.dynamics.TorqueSum`; None for none. ``kinds``: the kinds the file takes;
+    ``elsewhere``: where the file takes the others (said when one is given).
 
     Examples
     --------
@@ -54,20 +55,21 @@ def torque_of(value: object, kinds: tuple[str, ...] = tuple(TORQUE_KINDS)) -> To
     if value is None or value == {}:
         return None
     if not isinstance(value, list):
-        return _torque(TORQUE_TABLE.check("torque", value), "torque", kinds)
+        return _torque(TORQUE_TABLE.check("torque", value), "torque", kinds, elsewhere)
     if not value:
         raise ValueError("torque = [] has no [[torque]] table; leave it out for a torque-free run")
-    return TorqueSum(*(_torque(TORQUE_TABLE.check(f"torque[{i}]", table), f"torque[{i}]", kinds)
+    return TorqueSum(*(_torque(TORQUE_TABLE.check(f"torque[{i}]", table), f"torque[{i}]", kinds, elsewhere)
                        for i, table in enumerate(value)))
 
 
-def _torque(table: dict, where: str, kinds: tuple[str, ...]) -> TorqueModel:
+def _torque(table: dict, where: str, kinds: tuple[str, ...], elsewhere: str = "") -> TorqueModel:
     """The model of one ``[torque]`` table (``where`` names it in errors): ``kind = "constant"``
     (the default) or ``"gravity_gradient"``, one of ``kinds``."""
     kind = table.get("kind", "constant")
     if not isinstance(kind, str) or kind not in kinds:
-        raise ValueError(f"{where}: kind = {kind!r} is {'unknown' if kind not in TORQUE_KINDS else 'not taken here'}; "
-                         f"allowed: {', '.join(kinds)}")
+        known = kind in TORQUE_KINDS
+        raise ValueError(f"{where}: kind = {kind!r} is {'not taken here' if known else 'unknown'}; "
+                         f"allowed: {', '.join(kinds)}{f' ({elsewhere})' if known and elsewhere else ''}")
     Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in TORQUE_KINDS[kind])).check(where, table, kind=kind)
     if kind == "gravity_gradient":
         return gravity_gradient_from_table(table, where)
