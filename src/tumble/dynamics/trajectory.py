@@ -205,6 +205,46 @@ class Trajectory:
     def __len__(self) -> int:
         return len(self.t)
 
+    def __getitem__(self, index: slice | ArrayLike) -> Trajectory:
+        """The trajectory at some of its samples: a slice (``traj[::10]``, ``traj[-1:]``), a boolean
+        mask (``traj[traj.t >= 5.0]``) or sample numbers, in a new Trajectory with every per-sample
+        array taken the same way. A single number is refused: ``traj.omega[-1]`` is one sample's value.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> traj = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0, samples=201)
+        >>> late = traj[traj.t >= 10.0]
+        >>> len(late), float(late.t[0]), bool((late.omega == traj.omega[100:]).all())
+        (101, 10.0, True)
+        >>> traj[::50].t.tolist()
+        [0.0, 5.0, 10.0, 15.0, 20.0]
+        >>> traj[-1]
+        Traceback (most recent call last):
+        ...
+        TypeError: traj[-1]: a Trajectory is indexed by a slice, a boolean mask or a list of samples (traj[-1:] keeps the sample; traj.omega[-1] is its omega)
+        """
+        if not isinstance(index, slice):
+            if isinstance(index, (int, np.integer)) or np.ndim(index) != 1:
+                raise TypeError(f"traj[{index!r}]: a Trajectory is indexed by a slice, a boolean mask or a list of "
+                                f"samples (traj[{index!r}:] keeps the sample; traj.omega[{index!r}] is its omega)")
+            index = np.asarray(index)
+            if index.dtype == bool and len(index) != len(self.t):
+                raise IndexError(f"the mask has {len(index)} entries; the trajectory has {len(self.t)} samples")
+        t = self.t[index]
+        if len(t) == 0:
+            raise IndexError(f"traj[{index!r}] selects no sample of {len(self.t)}")
+        per_sample = {name: None if getattr(self, name) is None else getattr(self, name)[index]
+                      for name in ("internal_momentum", "rotor_spin", "motor_work", "damper_omega", "dissipated")}
+        return Trajectory(t=t, omega=self.omega[index], attitude=self.quat[index], moments=self.moments,
+                          principal_axes=self.principal_axes, method=self.method, torque_free=self.torque_free,
+                          body_name=self.body_name, rotor_axial_moments=self.rotor_axial_moments,
+                          damper_inertia=self.damper_inertia, auto=self.auto, **per_sample)
+
+    def __iter__(self) -> Any:
+        raise TypeError("a Trajectory is not iterable: its arrays are (traj.t, traj.omega, traj.quat, ...); "
+                        "traj[::k] takes every k-th sample")
+
     def __repr__(self) -> str:
         return _display.trajectory_repr(self)
 
