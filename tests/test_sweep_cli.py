@@ -333,3 +333,22 @@ def test_a_geometric_sweep_is_byte_for_byte_the_same_whatever_the_chunk_size(tmp
                   folder / "out")
         texts.append((folder / "out" / "cases.csv").read_bytes())
     assert texts[0] == texts[1]
+
+
+def test_torque_tables_in_a_sweep_act_as_their_sum(tmp_path):
+    """Two [[torque]] tables run the cases as the one [torque] of their sum does (byte for byte: a sum of
+    constant body torques is one vector for the engine), and not as the torque-free sweep."""
+    from tumble.dynamics import TorqueSum
+
+    method = 't_end = 15.0\nmethod = "dop853"'
+    base = SMALL.replace("t_end = 15.0", method)
+    two = base + '[[torque]]\nvector = [0.0, 0.0, 0.25]\n[[torque]]\nvector = [0.5, 0.0, 0.0]\n'
+    one = base + "[torque]\nvector = [0.5, 0.0, 0.25]\n"
+    paths = [write(tmp_path, cases=8, name=f"{name}.toml", text=text)
+             for name, text in (("two", two), ("one", one), ("free", base))]
+    assert isinstance(load_sweep(paths[0]).sweep.settings.torque, TorqueSum)
+    tables = []
+    for path in paths:
+        run_sweep(path, tmp_path / path.stem, argv=["sweep", path.name, "--out", path.stem])
+        tables.append((tmp_path / path.stem / "cases.csv").read_bytes())
+    assert tables[0] == tables[1] and tables[0] != tables[2]
