@@ -12,7 +12,7 @@ contract keeps it so). Units are SI.
 
 from __future__ import annotations
 
-from .callables import check_callable
+from .callables import check_callable, check_torque_function, is_vector
 from .files import NoSuchFileError, read_input_file
 from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
 from .values import (
@@ -62,9 +62,11 @@ __all__ = [
     "check_number",
     "check_positive",
     "check_rotation",
+    "check_torque_function",
     "check_vector",
     "check_vectors",
     "is_body",
+    "is_vector",
     "read_input_file",
     "refuse_body",
     "refuse_first",

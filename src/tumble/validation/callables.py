@@ -5,10 +5,13 @@ whose message names the field, the value and the call. Re-exported by :mod:`tumb
 from __future__ import annotations
 
 import inspect
+from typing import Any
+
+import numpy as np
 
 from .values import short_repr
 
-__all__ = ["check_callable"]
+__all__ = ["check_callable", "check_torque_function", "is_vector"]
 
 
 def check_callable(name: str, value: object, call: str) -> None:
@@ -40,3 +43,35 @@ def check_callable(name: str, value: object, call: str) -> None:
         raise ValueError(f"{name} = {label}{signature} cannot be called as {call}: it must take those {count} "
                          "arguments") from None
 
+
+def is_vector(given: Any) -> bool:
+    """Whether ``given`` is three real numbers (a list, tuple or 1-d array), not booleans: a vector.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.validation import is_vector
+    >>> is_vector((0, 0, 1)), is_vector(np.array([0.0, 1.0, 0.0])), is_vector([True, 0, 0]), is_vector([1, [2, 3], 4])
+    (True, True, False, False)
+    """
+    return (isinstance(given, (list, tuple)) or getattr(given, "ndim", None) == 1) and len(given) == 3 and all(
+        isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in given)
+
+
+def check_torque_function(field: str, given: Any) -> None:
+    """A ValueError naming ``field`` unless ``given`` can be called as ``tau(t, omega, attitude)``;
+    three numbers are named as the :class:`ConstantTorque` meant.
+
+    Examples
+    --------
+    >>> from tumble.validation import check_torque_function
+    >>> check_torque_function("torque[1]", [0.0, 0.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: torque[1] = [0.0, 0.0, 1.0] is a vector, not a torque model: for a constant torque give tumble.ConstantTorque((0.0, 0.0, 1.0)) (N m, body frame; frame="world" for a world-fixed one)
+    """
+    if is_vector(given):
+        raise ValueError(f"{field} = {given!r} is a vector, not a torque model: for a constant torque give "
+                         f"tumble.ConstantTorque({tuple(float(v) for v in given)}) (N m, body frame; "
+                         'frame="world" for a world-fixed one)')  # three numbers: the constant torque meant
+    check_callable(field, given, "tau(t, omega, attitude)")

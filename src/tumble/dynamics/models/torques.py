@@ -45,7 +45,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, Vector3
-from ...validation import check_callable, check_vector
+from ...validation import check_torque_function, check_vector, is_vector
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 from .torque_protocols import (
     KERNEL_BODY,
@@ -354,26 +354,6 @@ def terms_of(model: TorqueModel | None) -> tuple[TorqueModel, ...]:
     return model.terms if isinstance(model, TorqueSum) else (model,)
 
 
-def check_torque_function(field: str, given: Any) -> None:
-    """A ValueError naming ``field`` unless ``given`` can be called as ``tau(t, omega, attitude)``;
-    three numbers are named as the :class:`ConstantTorque` meant.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.models.torques import check_torque_function
-    >>> check_torque_function("torque[1]", [0.0, 0.0, 1.0])
-    Traceback (most recent call last):
-    ...
-    ValueError: torque[1] = [0.0, 0.0, 1.0] is a vector, not a torque model: for a constant torque give tumble.ConstantTorque((0.0, 0.0, 1.0)) (N m, body frame; frame="world" for a world-fixed one)
-    """
-    if (isinstance(given, (list, tuple)) or getattr(given, "ndim", None) == 1) and len(given) == 3 and all(
-            isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in given):
-        raise ValueError(f"{field} = {given!r} is a vector, not a torque model: for a constant torque give "
-                         f"tumble.ConstantTorque({tuple(float(v) for v in given)}) (N m, body frame; "
-                         'frame="world" for a world-fixed one)')  # three numbers: the constant torque meant
-    check_callable(field, given, "tau(t, omega, attitude)")
-
-
 #: What ``torque=`` accepts: a torque model, or a plain callable ``tau(t, omega, attitude)`` (N m,
 #: body frame), or a list of them (their :class:`TorqueSum`).
 TorqueLike: TypeAlias = ("TorqueModel | Callable[[float, np.ndarray, Rotation], ArrayLike] "
@@ -414,8 +394,7 @@ def as_torque(torque: TorqueLike | None) -> TorqueModel | None:
         model = cast(TorqueModel, torque)
         check_frame(model.frame)
         return model
-    if isinstance(torque, (list, tuple)) and not (len(torque) == 3 and all(
-            isinstance(v, (int, float, np.integer, np.floating)) for v in torque)):  # three numbers: a vector, below
+    if isinstance(torque, (list, tuple)) and not is_vector(torque):  # three numbers: a vector, refused below
         return TorqueSum(*torque)
     return FunctionTorque(cast(Callable[[float, np.ndarray, Rotation], ArrayLike], torque), "body")
 
