@@ -90,3 +90,10 @@ def test_a_sum_with_the_gravity_gradient_draws_the_orbits_angles():
     run = _run(31)
     assert [name for name, _ in spacecraft_figures(run, SUM)] == ["orbit_angles"]
     assert [name for name, _ in spacecraft_figures(run, SUM[1:])] == []
+
+
+def test_fewer_than_three_samples_have_no_budget_not_an_empty_one():
+    """One sample (times = [5.0]) has no change to check: None, and the line does not say it closed."""
+    push = tumble.ConstantTorque((0.0, 0.0, 0.01))
+    run = tumble.simulate(BODY, [0.1, 2.0, 0.1], times=[5.0], torque=push)
+    assert len(run) == 1 and torque_budget(run, push) is None

@@ -272,7 +272,8 @@ def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | Non
         scale), ``quadrature`` (the estimate of Simpson's error; None below 5 samples);
         ``turn_per_sample`` (rad, ``max |omega| max dt``) and ``resolved``, whether it is at most
         :data:`BUDGET_TURN` (else the quadrature, and its estimate, do not hold: more samples
-        would). None for a torque that varies in time over more than :data:`BUDGET_SAMPLES` samples.
+        would). None below 3 samples, and for a torque that varies in time over more than
+        :data:`BUDGET_SAMPLES` samples.
 
     Examples
     --------
@@ -287,11 +288,13 @@ def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | Non
     """
     from scipy.integrate import cumulative_simpson
 
-    from ..dynamics.models.torques import KERNEL_BODY, KERNEL_SUM, KERNEL_WORLD, body_torque, kernel_form
+    from ..dynamics.models.torque_protocols import constant_terms
+    from ..dynamics.models.torques import body_torque, kernel_form
 
     t, omega, attitude = traj.t, traj.omega, traj.attitude
-    form = kernel_form(torque)
-    if form is not None and (form[0] in (KERNEL_BODY, KERNEL_WORLD) or form[0] == KERNEL_SUM and form[1][6] == 0.0):
+    if len(t) < 3:  # Simpson's rule needs three samples; one sample has no change to check
+        return None
+    if constant_terms(kernel_form(torque)) is not None:
         tau = np.array(np.broadcast_to(body_torque(torque, 0.0, omega, attitude), omega.shape))  # constant: one call
     elif len(t) <= BUDGET_SAMPLES:
         tau = np.array([body_torque(torque, float(ti), omega[i], attitude[i]) for i, ti in enumerate(t.tolist())])
@@ -308,5 +311,5 @@ def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | Non
     out: dict[str, Any] = {"momentum": budget(L - L[0], attitude.apply(tau))}
     if traj.rigid:
         out["energy"] = budget(traj.energy - traj.energy[0], np.sum(omega * tau, axis=1))
-    turn = float(np.max(np.linalg.norm(omega, axis=1)) * np.max(np.diff(t))) if len(t) > 1 else 0.0
+    turn = float(np.max(np.linalg.norm(omega, axis=1)) * np.max(np.diff(t)))
     return {**out, "turn_per_sample": turn, "resolved": turn <= BUDGET_TURN}

@@ -195,8 +195,7 @@ def _cmd_simulate(args) -> int:
         traj = run_scenario(scenario)
 
     from ..analysis import trajectory_summary
-    from ..dynamics.models.gravity import GravityGradient
-    from ..dynamics.models.torques import terms_of
+    from ..dynamics.models.gravity import gravity_gradient_in
     from ..io.export import write_csv, write_json, write_npz
     from ..io.output import output_dir
     from ..io.provenance import provenance
@@ -204,7 +203,7 @@ def _cmd_simulate(args) -> int:
 
     summary = trajectory_summary(traj)
     summary["method"] = getattr(traj, "method_label", traj.method)  # "dop853 (auto)": the method auto chose
-    orbit = next((term for term in terms_of(scenario.torque) if isinstance(term, GravityGradient)), None)
+    orbit = gravity_gradient_in(scenario.torque)
     if orbit is not None:  # the gravity gradient, alone (its Jacobi integral the error measure) or in a sum
         from ..analysis.summary import gravity_gradient_summary
 
@@ -392,7 +391,8 @@ def _simulate_line(summary: dict, out) -> str:
         b = summary["torque_budget"]
         tail = "torque acted: " + "; ".join(_budget_words(name, b[name]) for name in ("momentum", "energy") if name in b)
     else:
-        tail = "torque acted, so energy and L change (no budget to check over so many samples)"
+        tail = ("torque acted, so energy and L change (its budget is checked over 3 to 100,000 samples of a torque "
+                "that varies, any number of a constant one)")
     if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is None:  # a sum: the orbit's angles too
         g = summary["gravity_gradient"]
         tail += f"; {g['orbits']:.3g} orbits, largest angle from the orbiting frame {max(g['max_angle'].values()):.3g} rad"

@@ -49,8 +49,7 @@ from typing import Any
 
 from ..dynamics import SphericalDamper, TorqueModel
 from ..dynamics.methods.names import ALLOWED
-from ..dynamics.models.gravity import GravityGradient
-from ..dynamics.models.torques import terms_of
+from ..dynamics.models.gravity import gravity_gradient_in
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
@@ -235,10 +234,9 @@ def _initial(table: dict, model, body: Body):
         return table["omega"], table.get("frame", "principal"), None
     if "omega" in table or "frame" in table:
         raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
-    orbits = [term for term in terms_of(model) if isinstance(term, GravityGradient)]
-    if not orbits:
+    model = gravity_gradient_in(model)
+    if model is None:
         raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
-    model = orbits[0]
     sub = table["orbit_frame"]
     if not isinstance(sub, dict):
         raise ValueError("initial.orbit_frame must be a table [initial.orbit_frame]")

@@ -20,13 +20,13 @@ cover the data.
 from __future__ import annotations
 
 import functools
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..dynamics.models.gravity import GravityGradient, orbit_frame_angles
-from ..dynamics.models.torques import TorqueLike, as_torque, terms_of
+from ..dynamics.models.gravity import GravityGradient, gravity_gradient_in, orbit_frame_angles
+from ..dynamics.models.torques import TorqueLike
 from .plots import COLORS, figure_omega_grid
 from ._backend import figure_and_axes, legend_outside, new_figure, note_only
 from .scene import check_run
@@ -285,7 +285,7 @@ def spacecraft_figures(traj: Trajectory, torque: TorqueLike | GravityGradient | 
         makers.append(("energy", functools.partial(figure_energy, traj)))
         if not np.all(traj.momentum_is_zero):
             makers.append(("nutation", functools.partial(figure_nutation, traj)))
-    orbit = next((term for term in terms_of(as_torque(cast(Any, torque))) if isinstance(term, GravityGradient)), None)
+    orbit = gravity_gradient_in(torque)
     if orbit is not None:  # alone, or among the terms of a sum
         makers.append(("orbit_angles", functools.partial(figure_orbit_angles, traj, orbit, **axes)))
     return makers

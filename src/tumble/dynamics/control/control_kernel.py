@@ -45,7 +45,7 @@ from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ._front import locked_inverse
 from ..environment.magnetic import FIELD_NONE, FIELD_TABLE, field_form
-from ..models.torque_protocols import kernel_form, kernel_terms
+from ..models.torque_protocols import constant_terms, kernel_form
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .loop_terms import WHEEL, packed
@@ -61,9 +61,9 @@ METHODS = {"dop853": _loop.DOP853, "rk4": _loop.RK4, "rk8": _loop.RK8}
 
 def disturbance_form(torque: Any) -> tuple[float, ...] | None:
     """The loop's terms ``P[21:27]`` (:mod:`~tumble.dynamics.control.loop_terms`) of a disturbance
-    torque: its constant body and world torques (N m), from the engine's terms of its compiled form
-    (:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); zeros for None; None where it has
-    other terms (a gravity gradient, which the loop takes as ``gravity_gradient``) or no compiled form.
+    torque: its constant body and world torques (N m,
+    :func:`~tumble.dynamics.models.torque_protocols.constant_terms`); zeros for None; None where it
+    has other terms (a gravity gradient, which the loop takes as ``gravity_gradient``) or no compiled form.
 
     Examples
     --------
@@ -74,11 +74,7 @@ def disturbance_form(torque: Any) -> tuple[float, ...] | None:
     >>> disturbance_form(lambda t, omega, attitude: -1e-3 * omega) is None   # Python's to call
     True
     """
-    form = kernel_form(torque)
-    if form is None:
-        return None
-    P, _ = kernel_terms((form,))
-    return None if any(P[6:]) else P[:6]
+    return constant_terms(kernel_form(torque))
 
 
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any, *,

@@ -36,6 +36,7 @@ from ..models.torques import (
     conforms,
     kernel_form,
 )
+from ..models.torque_protocols import constant_terms
 
 #: A torque's compiled form, ``(kind, parameters)``.
 Form = tuple[int, tuple[float, ...]]
@@ -74,8 +75,7 @@ def run_spin_gain(model: TorqueModel | None, omega0: Vector3, quat0: Quaternion,
     """
     if model is None:
         return 0.0
-    form = kernel_form(model)
-    constant = form is not None and form[0] in (KERNEL_BODY, KERNEL_WORLD)  # reads no attitude
+    constant = constant_terms(kernel_form(model)) is not None  # reads no attitude
     return spin_gain(model, 0.0, omega0, None if constant else _rotation(quat0.tobytes()), moments, t_end)
 
 

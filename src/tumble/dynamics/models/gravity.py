@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 
 from ..environment.earth import MU_EARTH, R_EARTH
 from ..special.quaternion import to_body
-from .torques import KERNEL_CIRCULAR_GRAVITY, AddsTorques
+from .torques import KERNEL_CIRCULAR_GRAVITY, AddsTorques, as_torque, terms_of
 from .lvlh import (
     _LVLH0,
     LVLHState,
@@ -73,6 +73,7 @@ __all__ = [
     "OrbitAngles",
     "gradient_components",
     "gradient_torque",
+    "gravity_gradient_in",
     "lvlh_state",
     "orbit_frame_angles",
     "relative_attitude",
@@ -483,3 +484,17 @@ def _bound(model: GravityGradient, moments: bytes, shape: tuple[int, ...]) -> Gr
     (the constructor's checks cost ~60 us); the models are frozen, so one can be shared."""
     I = np.frombuffer(moments).reshape(shape).copy()
     return replace(model, moments=cast("tuple[float, ...]", I.tolist() if I.ndim == 1 else I))
+
+
+def gravity_gradient_in(torque: Any) -> GravityGradient | None:
+    """The :class:`GravityGradient` acting in ``torque`` (itself, or a term of a sum or a list), or None.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.dynamics.models.gravity import gravity_gradient_in
+    >>> gg = tumble.GravityGradient(orbit_period=5400.0)
+    >>> gravity_gradient_in([tumble.ConstantTorque((0.0, 0.0, 1e-6)), gg]) is gg, gravity_gradient_in(None)
+    (True, None)
+    """
+    return next((term for term in terms_of(as_torque(torque)) if isinstance(term, GravityGradient)), None)

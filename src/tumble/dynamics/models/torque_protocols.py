@@ -38,6 +38,7 @@ __all__ = [
     "TorqueModel",
     "check_frame",
     "conforms",
+    "constant_terms",
     "kernel_form",
     "kernel_terms",
 ]
@@ -310,3 +311,22 @@ def kernel_terms(forms: tuple[Form, ...]) -> tuple[tuple[float, ...], float]:
         elif kind != KERNEL_NONE:
             raise ValueError(f"the engine has no torque of kind {kind!r}")
     return tuple(P), n
+
+
+def constant_terms(form: Form | None) -> tuple[float, ...] | None:
+    """The constant body and world torques ``P[0:6]`` (N m, :func:`kernel_terms`) of a compiled form
+    that holds nothing else: a torque fixed in its frames, which reads neither the time nor omega
+    (zeros for no torque); None for any other form (a gravity gradient's, a rotor's) or for None.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.models.torque_protocols import KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD, constant_terms
+    >>> constant_terms((KERNEL_WORLD, (0.0, 0.0, 1.0)))
+    (0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    >>> constant_terms((KERNEL_CIRCULAR_GRAVITY, (0.001,))) is None
+    True
+    """
+    if form is None:
+        return None
+    P, _ = kernel_terms((form,))
+    return None if any(P[6:]) else P[:6]
