@@ -60,7 +60,7 @@ def is_vector(given: Any) -> bool:
 
 def check_torque_function(field: str, given: Any) -> None:
     """A ValueError naming ``field`` unless ``given`` can be called as ``tau(t, omega, attitude)``;
-    three numbers are named as the :class:`ConstantTorque` meant.
+    three numbers are named as the :class:`~tumble.dynamics.ConstantTorque` meant.
 
     Examples
     --------
