@@ -41,6 +41,7 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
+from .methods.auto import check_rtol
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
 from .models.torques import (
@@ -50,7 +51,7 @@ from .models.torques import (
     bind_to_body,
     kernel_form,
 )
-from .simulate import MAX_ROTATION, MAX_STEPS, check_rtol, sample_times, simulate
+from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion
 from .trajectory import Trajectory
 

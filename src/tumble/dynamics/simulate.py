@@ -15,7 +15,7 @@ from ..mass.body import properties_of
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
-from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice
+from .methods.auto import AUTO_RTOL, RTOL_RANGE, check_rtol, dop853_tolerances, engine_choice
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
 from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method
 from .methods.names import ALLOWED, AUTO, method_list
@@ -23,7 +23,7 @@ from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, kernel_form
 from .trajectory import Trajectory
 
-__all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "check_rtol", "sample_times", "simulate"]
+__all__ = ["DEFAULT_METHOD", "FRAMES", "RunInputs", "check_inputs", "sample_times", "simulate"]
 
 #: The method used when none is named: ``"auto"``, chosen from what the run has
 #: (:mod:`tumble.dynamics.methods.auto`): the exact solution without torque, else the fastest of
@@ -47,30 +47,6 @@ MAX_ROTATION = 1e6
 MAX_STIFF_ROTATION = 1e4
 #: Most steps a fixed-step method is asked to take.
 MAX_STEPS = 2e7
-#: Ranges of the relative tolerance: scipy clips rtol below 100 eps (with a warning), and above
-#: 0.1 an adaptive step control no longer controls anything.
-RTOL_RANGE = (100 * np.finfo(float).eps, 0.1)
-
-
-def check_rtol(field: str, value: object) -> float:
-    """A relative tolerance in :data:`RTOL_RANGE`, as a float; else one ValueError naming ``field``.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.simulate import check_rtol
-    >>> check_rtol("rtol", 1e-10)
-    1e-10
-    >>> check_rtol("simulation.rtol", 5.0)
-    Traceback (most recent call last):
-    ...
-    ValueError: simulation.rtol = 5.0 must be from 2.22e-14 to 0.1 (relative)
-    """
-    rtol = check_positive(field, value, "relative")
-    if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
-        raise ValueError(f"{field} = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
-    return rtol
-
-
 class RunInputs(NamedTuple):
     """The checked inputs of one run, defaults filled in (see :func:`check_inputs`).
 
