@@ -232,7 +232,7 @@ def test_broadcasting_and_defaults():
     ({"attitude0": [[0, 0, 0, 1], [0, 0, 0, 2]]}, r"^attitude0\[1\] = \[0.0, 0.0, 0.0, 2.0\] is a quaternion of norm 2"),
     ({"attitude0": [[0, 0, 0, 1], [0, 0, 0, np.nan]]}, r"^attitude0\[1\] = .* must be 4 finite numbers"),
     ({"method": "euler"}, r"^method = 'euler' is unknown"),
-    ({"torque": tumble.ConstantTorque((0, 0, 1))}, r"^method = 'exact' cannot take a torque"),
+    ({"torque": tumble.ConstantTorque((0, 0, 1)), "method": "exact"}, r"^method = 'exact' cannot take a torque"),
     ({"t_end": None}, r"^t_end \(s\) or times"),
     ({"t_end": 1.0, "times": [1.0]}, r"^times = \[\.\.\.\] replaces t_end"),
     ({"t_end": 1e30}, r"^t_end = 1e\+30 must be at most"),
@@ -372,3 +372,21 @@ def test_engine_methods_equal_a_loop_of_simulate(bodies, method):
     batch = simulate_batch(I, w, times=T, attitude0=q, method=method)
     omega, quat, _ = loop(I, w, q, T, method=method)
     assert_same_motion(batch, omega, quat, 1e-12, 1e-12)
+
+
+def test_the_default_chooses_as_simulate_does():
+    """``method="auto"``, the default: the exact motion without torque; with one, ``dop853`` at the
+    tolerances that meet ``rtol`` (a new user's ``simulate_batch(..., torque=...)`` was refused with
+    "method = 'exact' cannot take a torque"). Each body within rtol of a lone ``simulate``'s default run,
+    compiled or with a torque of one's own."""
+    I = np.array([[1.0, 2.0, 3.0], [2.0, 2.5, 4.0]])
+    w = np.array([[0.1, 2.0, 0.1], [1.0, -0.5, 0.3]])
+    assert simulate_batch(I, w, t_end=2.0).method == "exact"
+    for torque in (tumble.ConstantTorque((0.0, 0.3, 0.1)), lambda t, omega, attitude: -0.1 * omega):
+        batch = simulate_batch(I, w, t_end=5.0, samples=51, torque=torque)
+        assert batch.method == "dop853"
+        for i in range(2):
+            lone = tumble.simulate(tumble.MassProperties.from_moments(I[i]), w[i], t_end=5.0, samples=51, torque=torque)
+            assert np.abs(batch.omega[i] - lone.omega).max() < 1e-9 * np.abs(lone.omega).max()
+    with pytest.raises(ValueError, match=r"^rtol = 1.0 must be from"):
+        simulate_batch(I, w, t_end=1.0, torque=tumble.ConstantTorque((0.0, 0.3, 0.1)), rtol=1.0)

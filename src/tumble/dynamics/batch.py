@@ -11,7 +11,9 @@ at the same times. The methods are those of :func:`tumble.simulate` (:data:`METH
 - ``"dop853"``, ``"rk4"``, ``"rk8"`` under a built-in torque model (or none): the compiled engine
   (:mod:`tumble.dynamics.engine`), every body on every core, each as a lone run would go;
 - ``"dop853"`` with a Python torque, ``"rk45"``, ``"seed"``: a loop of :func:`tumble.simulate`, one
-  body at a time.
+  body at a time;
+- ``"auto"``, the default: ``"exact"`` without torque, else ``"dop853"`` at the tolerances that
+  meet ``rtol`` (:mod:`tumble.dynamics.methods.auto`).
 
 Each body's moments, omega and attitude are checked before anything runs; a bad one is named
 by its index (``omega0[3] = [nan, 1.0, 0.0] must be three finite numbers (rad/s)``).
@@ -41,9 +43,10 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .methods.auto import check_rtol
+from .methods.auto import AUTO_RTOL, check_rtol, dop853_tolerances
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
+from .methods.names import AUTO
 from .models.torques import (
     TorqueLike,
     TorqueModel,
@@ -170,7 +173,7 @@ class BatchTrajectory:
 
 
 def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None = None, times: ArrayLike | None = None,
-                   samples: int | None = None, attitude0: ArrayLike | None = None, method: str = "exact",
+                   samples: int | None = None, attitude0: ArrayLike | None = None, method: str = AUTO,
                    torque: TorqueLike | None = None, step: float | None = None, rtol: float | None = None,
                    atol: float | None = None) -> BatchTrajectory:
     """Integrate the rotation of N rigid bodies, sampled at the same times.
@@ -196,7 +199,11 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         Initial attitudes, unit quaternions ``[x, y, z, w]`` (scalar last), principal frame to
         world; default identity. Norms within 1e-3 of 1 are accepted and renormalised.
     method : str
-        A name from :data:`tumble.dynamics.METHODS`; default ``"exact"``.
+        ``"auto"`` (the default) or a name from :data:`tumble.dynamics.METHODS`. ``"auto"`` runs
+        ``"exact"`` without torque, else ``"dop853"`` at the tolerances that meet ``rtol`` in omega
+        and attitude (default 1e-10, :func:`~tumble.dynamics.methods.auto.dop853_tolerances`, as
+        :func:`tumble.simulate`'s ``"auto"`` takes them): compiled on every core for the built-in
+        models, and for a torque of one's own each body as :func:`tumble.simulate` runs it.
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)``, N m, in the principal frame or the world frame as the model
         says (:mod:`tumble.dynamics.models.torques`). The geometric methods call it once per kick with
@@ -234,9 +241,14 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     >>> bool(np.allclose(batch.energy, batch.energy[:, :1]))
     True
     """
-    spec = get_method(method)
-    step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
     model = as_torque(torque)
+    auto = isinstance(method, str) and method == AUTO
+    spec = get_method(("exact" if model is None else "dop853") if auto else method)
+    step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
+    asked = rtol, atol  # what a lone simulate(method="auto") takes, for a torque of one's own
+    if auto and model is not None:  # the engine's dop853, its local error control tighter than the accuracy asked for
+        r = AUTO_RTOL if rtol is None else check_rtol("rtol", rtol)
+        rtol, atol = dop853_tolerances(r, r if atol is None else check_positive("atol", atol, "rad/s"))
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
@@ -255,7 +267,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     elif spec.engine and kernel_form(bind_to_body(model, I)) is not None:  # compiled, every body on every core
         omega, quat = _engine(spec, I, w0, q0, t, bind_to_body(model, I), step, rtol, atol)
     else:
-        omega, quat = _loop(spec.name, I, w0, q0, t, torque, step, rtol, atol)
+        omega, quat = _loop(AUTO if auto else spec.name, I, w0, q0, t, torque, step, *(asked if auto else (rtol, atol)))
     return BatchTrajectory(t=t[keep], omega=omega[:, keep], quat=quat[:, keep], moments=I, method=spec.name,
                            torque_free=model is None)
 
@@ -412,7 +424,8 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
 
 def _loop(name: str, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, torque: TorqueLike | None,
           step: float | None, rtol: float | None = None, atol: float | None = None) -> tuple[Vector3, Quaternion]:
-    """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's)."""
+    """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's, and
+    ``"auto"`` with a torque of one's own)."""
     omega, quat = np.empty((len(I), len(t), 3)), np.empty((len(I), len(t), 4))
     for i in range(len(I)):
         props = MassProperties(1.0, np.zeros(3), np.diag(I[i]), I[i].copy(), np.eye(3))

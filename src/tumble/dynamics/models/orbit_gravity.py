@@ -35,6 +35,11 @@ from .torques import AddsTorques
 __all__ = ["OrbitGravityGradient", "gravity_gradient_of"]
 
 
+def _as_tuples(I: FloatArray) -> tuple[float, ...] | tuple[tuple[float, ...], ...]:
+    """Checked moments (3,) or (N, 3) as a tuple of floats or of rows (a frozen model's field)."""
+    return tuple(map(float, I)) if I.ndim == 1 else tuple(tuple(map(float, row)) for row in I)
+
+
 def gravity_gradient_of(orbit: CircularOrbit | KeplerOrbit | TLEOrbit) -> GravityGradient | OrbitGravityGradient:
     """The gravity-gradient torque model of ``orbit`` (its world frame is the orbit's; unbound:
     ``simulate_controlled`` or the model's ``bind(body)`` gives it the body's moments).
@@ -94,8 +99,9 @@ class OrbitGravityGradient(AddsTorques):
         The orbit.
     mu : float
         Gravitational parameter, m^3/s^2 (default the orbit's, or the Earth's).
-    moments : array_like, shape (3,), optional
-        Principal moments, kg m^2 (:meth:`bind` gives them).
+    moments : array_like, shape (3,) or (N, 3), optional
+        Principal moments, kg m^2 (:meth:`bind` gives them); N rows for a batch of N bodies, whose
+        torques are then (N, 3).
 
     Examples
     --------
@@ -116,7 +122,7 @@ class OrbitGravityGradient(AddsTorques):
 
     orbit: Any
     mu: float | None = None
-    moments: tuple[float, float, float] | None = None
+    moments: tuple[float, ...] | tuple[tuple[float, ...], ...] | None = None
     frame: str = field(default="world", init=False)
 
     def __post_init__(self) -> None:
@@ -125,11 +131,11 @@ class OrbitGravityGradient(AddsTorques):
         mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
         object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
         if self.moments is not None:
-            I = check_moments("moments", self.moments)
-            object.__setattr__(self, "moments", cast("tuple[float, float, float]", tuple(map(float, I))))
+            object.__setattr__(self, "moments", _as_tuples(check_moments("moments", self.moments)))
 
     def bind(self, body: object) -> OrbitGravityGradient:
-        """The same orbit acting on ``body`` (a Body, MassProperties or principal moments, kg m^2).
+        """The same orbit acting on ``body`` (a Body, MassProperties or principal moments, kg m^2,
+        shape (3,) or (N, 3) for a batch).
 
         Examples
         --------
@@ -137,13 +143,15 @@ class OrbitGravityGradient(AddsTorques):
         >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
         >>> OrbitGravityGradient(KeplerOrbit(7000e3)).bind([1.0, 2.0, 3.0]).moments
         (1.0, 2.0, 3.0)
+        >>> OrbitGravityGradient(KeplerOrbit(7000e3)).bind([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]]).moments
+        ((1.0, 2.0, 3.0), (2.0, 2.0, 3.0))
         """
         moments = getattr(body, "principal_moments", body)
-        I = check_moments("moments", cast(ArrayLike, moments))
-        return replace(self, moments=(float(I[0]), float(I[1]), float(I[2])))
+        return replace(self, moments=_as_tuples(check_moments("moments", cast(ArrayLike, moments))))
 
     def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
-        """World-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world).
+        """World-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world); shape
+        (3,), or (N, 3) for a batch's moments or N attitudes.
 
         Examples
         --------
