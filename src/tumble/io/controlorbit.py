@@ -30,7 +30,8 @@ from ..dynamics.environment.magnetic import DipoleField
 from ..dynamics.environment.orbit import CircularOrbit
 from .keys import Key, Table
 
-__all__ = ["ORBIT_KEYS", "ORBIT_TABLE", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_summary"]
+__all__ = ["ORBIT_KEYS", "ORBIT_TABLE", "Field", "Orbit", "geomagnetic_inclination", "orbit_from_table", "orbit_of",
+           "orbit_summary"]
 
 Orbit = CircularOrbit | KeplerOrbit | TLEOrbit
 Field = DipoleField | IGRFField
@@ -65,7 +66,22 @@ ORBIT_TABLE = Table("[orbit]", (
 ORBIT_KEYS = set(ORBIT_TABLE.names())
 
 
-def _orbit(table: dict[str, Any]) -> Orbit:
+def orbit_of(table: dict[str, Any]) -> Orbit:
+    """The orbit of a table's keys: ``altitude`` (a circle), ``semi_major_axis`` (a Keplerian
+    ellipse) or ``tle`` (two lines), each with its own elements (module docstring); other keys are
+    not read. The one reading of an orbit's keys, for ``[orbit]`` and for a scenario's ``[torque]``.
+
+    Examples
+    --------
+    >>> from tumble.io.controlorbit import orbit_of
+    >>> orbit = orbit_of({"semi_major_axis": 12e6, "eccentricity": 0.4})
+    >>> type(orbit).__name__, round(orbit.period)
+    ('KeplerOrbit', 13082)
+    >>> orbit_of({"semi_major_axis": 12e6, "arg_latitude": 0.3})
+    Traceback (most recent call last):
+    ...
+    ValueError: arg_latitude does not go with semi_major_axis; allowed with semi_major_axis: semi_major_axis, eccentricity, inclination, raan, arg_perigee, mean_anomaly
+    """
     given = [key for key in ("altitude", "semi_major_axis", "tle") if key in table]
     if len(given) != 1:
         raise ValueError("give exactly one of altitude (m, a circular orbit), semi_major_axis (m, a Keplerian "
@@ -104,7 +120,7 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
     ...
     ValueError: field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis or tle use field = "igrf" and an epoch
     """
-    orbit = _orbit(table)
+    orbit = orbit_of(table)
     kind = table.get("field", "dipole")
     if kind == "dipole":
         extra = sorted(k for k in ("epoch", "igrf_degree") if k in table)

@@ -1,7 +1,8 @@
 """The gravity gradient in a scenario file: its ``[torque]`` table and ``[initial.orbit_frame]``.
 
 ``kind = "gravity_gradient"`` in ``[torque]`` gives the circular orbit (its period or radius, and
-``mu``), :class:`~tumble.dynamics.models.gravity.GravityGradient`; ``[initial.orbit_frame]``
+``mu``), :class:`~tumble.dynamics.models.gravity.GravityGradient`, or an ellipse's or a TLE's
+(:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`); ``[initial.orbit_frame]``
 starts the body at rest in the orbiting (LVLH) frame, turned by roll, pitch and yaw
 (:func:`~tumble.dynamics.models.gravity.lvlh_state`). Each bad key or value is refused in one
 line that names the table. :mod:`tumble.io.scenario` reads the rest of the file.
@@ -11,8 +12,10 @@ from __future__ import annotations
 
 from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
+from ..dynamics.models.orbit_gravity import OrbitGravityGradient
 from ..mass import Body, MassProperties
 from ..validation import short_repr
+from .controlorbit import orbit_of
 from .keys import Key, Table
 
 __all__ = ["ORBIT_FRAME_TABLE", "gravity_gradient_from_table", "lvlh_state_from_table"]
@@ -29,7 +32,9 @@ ORBIT_FRAME_TABLE = Table("[initial.orbit_frame]", (
 ), "A body at rest in the orbiting (LVLH) frame of the ``[torque]`` orbit, turned by pitch, roll, yaw.")
 
 
-_TORQUE_KEYS = ("kind", "orbit_period", "orbit_radius", "mu")
+_CIRCLE_KEYS = ("orbit_period", "orbit_radius", "mu")
+_TORQUE_KEYS = ("kind", *_CIRCLE_KEYS, "semi_major_axis", "eccentricity", "inclination", "raan", "arg_perigee",
+                "mean_anomaly", "tle")
 _LVLH_KEYS = ORBIT_FRAME_TABLE.names()
 
 
@@ -41,13 +46,18 @@ def _check_keys(where: str, table, allowed) -> None:
             raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
 
 
-def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGradient:
-    """A :class:`GravityGradient` from a scenario file's ``[torque]`` table.
+def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGradient | OrbitGravityGradient:
+    """The gravity gradient of a scenario file's ``[torque]`` table: a circle's
+    (:class:`GravityGradient`), or an ellipse's or a TLE's
+    (:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`, world frame ECI or TEME).
 
-    Keys: ``kind = "gravity_gradient"`` (optional here), exactly one of ``orbit_period`` (s) and
-    ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the Earth's). An unknown or
-    missing key, or a bad value, raises ``ValueError`` with one line starting ``where`` (``torque:``,
-    or ``torque[1]:`` for a file's second ``[[torque]]``).
+    Keys: ``kind = "gravity_gradient"`` (optional here); for a circle exactly one of
+    ``orbit_period`` (s) and ``orbit_radius`` (m), and optionally ``mu`` (m^3/s^2, default the
+    Earth's); for an ellipse about the Earth ``semi_major_axis`` (m) with ``eccentricity``,
+    ``inclination``, ``raan``, ``arg_perigee`` and ``mean_anomaly`` (rad), or ``tle`` (two lines),
+    read as a control file's ``[orbit]`` reads them (:func:`~tumble.io.controlorbit.orbit_of`). An
+    unknown or missing key, or a bad value, raises ``ValueError`` with one line starting ``where``
+    (``torque:``, or ``torque[1]:`` for a file's second ``[[torque]]``).
 
     Examples
     --------
@@ -59,11 +69,23 @@ def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGr
     >>> gravity_gradient_from_table({"orbit_period": 5400.0, "altitude": 4e5})
     Traceback (most recent call last):
     ...
-    ValueError: torque: unknown key 'altitude'; allowed: kind, orbit_period, orbit_radius, mu
+    ValueError: torque: unknown key 'altitude'; allowed: kind, orbit_period, orbit_radius, mu, semi_major_axis, eccentricity, inclination, raan, arg_perigee, mean_anomaly, tle
+    >>> type(gravity_gradient_from_table({"semi_major_axis": 12e6, "eccentricity": 0.4})).__name__
+    'OrbitGravityGradient'
     """
     _check_keys(where, table, _TORQUE_KEYS)
     if "kind" in table and table["kind"] != "gravity_gradient":
         raise ValueError(f"{where}: kind = {table['kind']!r} is not 'gravity_gradient'")
+    other = [key for key in ("semi_major_axis", "tle") if key in table]
+    if other:
+        circle = [key for key in _CIRCLE_KEYS if key in table]
+        if circle:
+            raise ValueError(f"{where}: {circle[0]} goes with a circle, not with {other[0]}: give orbit_period or "
+                             "orbit_radius (a circle), semi_major_axis (an ellipse about the Earth) or tle")
+        try:
+            return OrbitGravityGradient(orbit_of({key: value for key, value in table.items() if key != "kind"}))
+        except ValueError as exc:
+            raise ValueError(f"{where}: {exc}") from None
     if "orbit_period" not in table and "orbit_radius" not in table:
         raise ValueError(f"{where}: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
     try:

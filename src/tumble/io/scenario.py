@@ -27,6 +27,8 @@
     # orbit_period = 5400.0    # s (or orbit_radius, m; mu, m^3/s^2, default the Earth's)
     # [initial.orbit_frame]    # instead of omega: start at rest in the orbiting frame
     # pitch = 0.01             # rad (roll, pitch, yaw; pitch_axis = 3, yaw_axis = 1)
+    # or along an ellipse about the Earth (world frame ECI), or a TLE's orbit (tle = [line1, line2]):
+    # semi_major_axis = 12e6   # m (eccentricity; inclination, raan, arg_perigee, mean_anomaly, rad)
 
     [damper]                   # optional: a spherical nutation damper (tumble.SphericalDamper)
     inertia = 0.01             # kg m^2, the sphere's moment of inertia
@@ -50,6 +52,7 @@ from typing import Any
 from ..dynamics import SphericalDamper, TorqueModel
 from ..dynamics.methods.names import ALLOWED
 from ..dynamics.models.gravity import gravity_gradient_in
+from ..dynamics.models.orbit_gravity import OrbitGravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
@@ -234,9 +237,13 @@ def _initial(table: dict, model, body: Body):
         return table["omega"], table.get("frame", "principal"), None
     if "omega" in table or "frame" in table:
         raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
-    model = gravity_gradient_in(model)
-    if model is None:
+    circle = gravity_gradient_in(model)
+    if circle is None:
+        if any(isinstance(term, OrbitGravityGradient) for term in getattr(model, "terms", (model,))):
+            raise ValueError("initial.orbit_frame needs a circular orbit (orbit_period or orbit_radius); along an "
+                             "ellipse or a TLE give omega (the principal axes start along the inertial frame's)")
         raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
+    model = circle
     sub = table["orbit_frame"]
     if not isinstance(sub, dict):
         raise ValueError("initial.orbit_frame must be a table [initial.orbit_frame]")

@@ -21,7 +21,7 @@ __all__ = ["TORQUE_KINDS", "TORQUE_TABLE", "torque_of"]
 #: The ``[torque]`` table of scenario, sweep and control files.
 TORQUE_TABLE = Table("[torque]", (
     Key("kind", "string", "", '"constant"', choices=("constant", "gravity_gradient"), example='"gravity_gradient"',
-        doc="a constant torque, or the gravity gradient of a circular orbit"),
+        doc="a constant torque, or the gravity gradient along an orbit: a circle, an ellipse or a TLE's"),
     Key("vector", "3 numbers", "N m", example="[0.0, 0.0, 0.01]", doc='the torque (kind = "constant": required)'),
     Key("frame", "string", "", '"body"', choices=("body", "world"), example='"world"',
         doc="the frame the vector is fixed in"),
@@ -29,11 +29,22 @@ TORQUE_TABLE = Table("[torque]", (
         doc='kind = "gravity_gradient": the orbit\'s period (or orbit_radius)'),
     Key("orbit_radius", "number", "m", example="6.78e6", low=0.0, doc="the orbit's radius (or orbit_period)"),
     Key("mu", "number", "m^3/s^2", f"{MU_EARTH:.10g} (the Earth's)", example="4.9048695e12", low=0.0,
-        doc="the central body's gravitational parameter"),
+        doc="the central body's gravitational parameter (a circle's)"),
+    Key("semi_major_axis", "number", "m", example="12e6",
+        doc='kind = "gravity_gradient": a Keplerian ellipse about the Earth instead of a circle (world frame: ECI)'),
+    Key("eccentricity", "number", "", "0.0", allowed=">= 0 and < 1", example="0.4", doc="with semi_major_axis"),
+    Key("inclination", "number", "rad", "0.0", example="0.9", doc="with semi_major_axis: to the Earth's equator"),
+    Key("raan", "number", "rad", "0.0", example="0.4", doc="with semi_major_axis: right ascension of the ascending node"),
+    Key("arg_perigee", "number", "rad", "0.0", example="1.1", doc="with semi_major_axis"),
+    Key("mean_anomaly", "number", "rad", "0.0", example="0.2", doc="with semi_major_axis: at t = 0"),
+    Key("tle", "list of 2 strings", example='["1 25544U ...", "2 25544 ..."]',
+        doc="kind = \"gravity_gradient\": along a two-line element set's orbit, SGP4 (pip install tumble[orbit]; world frame: TEME)"),
 ), "Optional: a torque acting through the run; several act together (their sum, "
    ":class:`tumble.dynamics.TorqueSum`) as a ``[[torque]]`` table each.")
 #: Keys of each kind of ``[torque]`` table.
-TORQUE_KINDS = {"constant": {"kind", "vector", "frame"}, "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu"}}
+TORQUE_KINDS = {"constant": {"kind", "vector", "frame"},
+                "gravity_gradient": {"kind", "orbit_period", "orbit_radius", "mu", "semi_major_axis", "eccentricity",
+                                     "inclination", "raan", "arg_perigee", "mean_anomaly", "tle"}}
 
 
 def torque_of(value: object, kinds: tuple[str, ...] = tuple(TORQUE_KINDS), elsewhere: str = "") -> TorqueModel | None:
