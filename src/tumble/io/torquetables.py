@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from ..dynamics import ConstantTorque, TorqueModel, TorqueSum
 from ..dynamics.environment.earth import MU_EARTH
+from .controlorbit import ORBIT_TABLE
 from .gravitytables import gravity_gradient_from_table
 from .keys import Key, Table
 
@@ -32,11 +33,7 @@ TORQUE_TABLE = Table("[torque]", (
         doc="the central body's gravitational parameter (a circle's)"),
     Key("semi_major_axis", "number", "m", example="12e6",
         doc='kind = "gravity_gradient": a Keplerian ellipse about the Earth instead of a circle (world frame: ECI)'),
-    Key("eccentricity", "number", "", "0.0", allowed=">= 0 and < 1", example="0.4", doc="with semi_major_axis"),
-    Key("inclination", "number", "rad", "0.0", example="0.9", doc="with semi_major_axis: to the Earth's equator"),
-    Key("raan", "number", "rad", "0.0", example="0.4", doc="with semi_major_axis: right ascension of the ascending node"),
-    Key("arg_perigee", "number", "rad", "0.0", example="1.1", doc="with semi_major_axis"),
-    Key("mean_anomaly", "number", "rad", "0.0", example="0.2", doc="with semi_major_axis: at t = 0"),
+    *(ORBIT_TABLE.key(name) for name in ("eccentricity", "inclination", "raan", "arg_perigee", "mean_anomaly")),
     Key("tle", "list of 2 strings", example='["1 25544U ...", "2 25544 ..."]',
         doc="kind = \"gravity_gradient\": along a two-line element set's orbit, SGP4 (pip install tumble[orbit]; world frame: TEME)"),
 ), "Optional: a torque acting through the run; several act together (their sum, "
