@@ -200,7 +200,7 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
         fp, ft, _ = tables(P, at)
         b0, b1, b2 = field_body(int(P[15]), fp, ft, x, y, z, s, t)
         m0, m1, m2 = P[12] * inverse, P[13] * inverse, P[14] * inverse
-        a0, a1, a2 = m1 * b2 - m2 * b1, m2 * b0 - m0 * b2, m0 * b1 - m1 * b0
+        a0, a1, a2 = a0 + (m1 * b2 - m2 * b1), a1 + (m2 * b0 - m0 * b2), a2 + (m0 * b1 - m1 * b0)
     if P[16] > 0.0:  # a circle: r_b = R^T (cos n t, sin n t, 0)
         v0, v1, v2 = _to_body(x, y, z, s, u0, u1, 0.0)
         g0, g1, g2 = _gravity_gradient(P[16] * P[16] * (inverse * inverse), P[0], P[1], P[2], v0, v1, v2)
