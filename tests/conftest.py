@@ -181,3 +181,20 @@ def pytest_collection_modifyitems(session, config, items):
         return first.get(path, len(first)), -counts[path], position[path]
 
     items.sort(key=key)  # stable: a file's items keep their order
+
+
+@pytest.fixture
+def loop_runs(monkeypatch):
+    """A list that gets an entry each time the compiled closed loop runs (``ControlKernel.run``):
+    which path a run took."""
+    from tumble.dynamics.control import control_kernel
+
+    calls = []
+    original = control_kernel.ControlKernel.run
+
+    def spy(self, *args, **kwargs):
+        calls.append(1)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(control_kernel.ControlKernel, "run", spy)
+    return calls

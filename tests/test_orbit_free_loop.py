@@ -10,12 +10,12 @@ import re
 
 import numpy as np
 import pytest
-from scipy.integrate import cumulative_simpson, solve_ivp
+from scipy.integrate import cumulative_simpson
 from scipy.spatial.transform import Rotation
 
 import tumble
+from rigid_reference import errors, reference_run
 from tumble.dynamics import ConstantTorque
-from tumble.dynamics.control import control_kernel as cc
 from tumble.dynamics.environment.earth import MU_EARTH
 from tumble.dynamics.environment.ephemeris import KeplerOrbit, TLEOrbit
 from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
@@ -32,71 +32,43 @@ BODY_PUSH, WORLD_PUSH = np.array([0.0, 2e-6, 0.0]), np.array([1e-6, 0.0, -1e-6])
 
 
 def _reference(orbit, t, body_push=np.zeros(3), world_push=np.zeros(3), extra=None):
-    """scipy's DOP853 at rtol 1e-13 on the rigid body under the gravity gradient written out
-    (Hughes, Spacecraft Attitude Dynamics, ch. 8), the pushes and ``extra(t, omega, R)`` (body frame)."""
+    """The reference (tests/rigid_reference.py) under the gravity gradient written out (Hughes,
+    Spacecraft Attitude Dynamics, ch. 8: ``3 mu / r^5 r_b x (I r_b)``, ``r`` the orbit's own
+    position), the pushes and ``extra(t, omega, R)`` (body frame)."""
     mu = getattr(orbit, "mu", MU_EARTH)  # a TLE's is the Earth's
 
-    def rhs(time, y):
-        w, q = y[:3], y[3:]
-        R = Rotation.from_quat(q).as_matrix()
+    def torque(time, w, R):
         r = R.T @ orbit.position_world(time)
         rn = np.linalg.norm(r)
         tau = 3.0 * mu / rn**5 * np.cross(r, I * r) + body_push + R.T @ world_push
-        if extra is not None:
-            tau = tau + extra(time, w, R)
-        x, yq, z, s = q
-        dq = 0.5 * np.array([s * w[0] + yq * w[2] - z * w[1], s * w[1] + z * w[0] - x * w[2],
-                             s * w[2] + x * w[1] - yq * w[0], -(x * w[0] + yq * w[1] + z * w[2])])
-        return np.concatenate([(tau - np.cross(w, I * w)) / I, dq])
+        return tau if extra is None else tau + extra(time, w, R)
 
-    sol = solve_ivp(rhs, (t[0], t[-1]), np.concatenate([W0, Q0]), method="DOP853", t_eval=t, rtol=1e-13, atol=1e-16)
-    assert sol.success
-    return sol.y[:3].T, sol.y[3:].T / np.linalg.norm(sol.y[3:], axis=0)[:, None]
+    return reference_run(I, W0, Q0, t, torque)
 
 
-def _errors(run, omega, quat):
-    """omega's error relative to its largest value, and the largest attitude angle apart (rad)."""
-    angle = (run.attitude * Rotation.from_quat(quat).inv()).magnitude().max()
-    return np.abs(run.omega - omega).max() / np.abs(omega).max(), angle
-
-
-@pytest.fixture
-def compiled_runs(monkeypatch):
-    """How many times the compiled closed loop ran."""
-    calls = []
-    original = cc.ControlKernel.run
-
-    def spy(self, *args, **kwargs):
-        calls.append(1)
-        return original(self, *args, **kwargs)
-
-    monkeypatch.setattr(cc.ControlKernel, "run", spy)
-    return calls
-
-
-def test_an_ellipses_gravity_gradient_runs_compiled_to_the_tolerance_asked(compiled_runs):
+def test_an_ellipses_gravity_gradient_runs_compiled_to_the_tolerance_asked(loop_runs):
     t = np.linspace(0.0, ELLIPSE.period, 201)  # one orbit, 13,082 s: perigee and apogee
     omega, quat = _reference(ELLIPSE, t)
     run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=OrbitGravityGradient(ELLIPSE))
-    assert compiled_runs == [1] and run.method == "dop853" and run.auto
-    e_omega, e_angle = _errors(run, omega, quat)
+    assert loop_runs == [1] and run.method == "dop853" and run.auto
+    e_omega, e_angle = errors(run, omega, quat)
     assert e_omega < 1e-10 and e_angle < 1e-9, (e_omega, e_angle)  # auto's rtol 1e-10 (measured: 1e-12, 3e-12)
     # the torque changed the spin: a run without it is far off
     free = tumble.simulate(BODY, W0, times=t, attitude0=Q0)
     assert np.abs(free.omega - omega).max() > 1e3 * np.abs(run.omega - omega).max()
 
 
-def test_a_sum_with_constant_torques_runs_compiled_too(compiled_runs):
+def test_a_sum_with_constant_torques_runs_compiled_too(loop_runs):
     t = np.linspace(0.0, 3000.0, 151)
     omega, quat = _reference(ELLIPSE, t, BODY_PUSH, WORLD_PUSH)
     torque = OrbitGravityGradient(ELLIPSE) + ConstantTorque(BODY_PUSH) + ConstantTorque(WORLD_PUSH, "world")
     run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=torque, method="dop853", rtol=1e-11)
-    assert compiled_runs == [1]
-    e_omega, e_angle = _errors(run, omega, quat)
+    assert loop_runs == [1]
+    e_omega, e_angle = errors(run, omega, quat)
     assert e_omega < 1e-10 and e_angle < 1e-9, (e_omega, e_angle)
 
 
-def test_a_python_term_beside_it_keeps_the_python_path(compiled_runs):
+def test_a_python_term_beside_it_keeps_the_python_path(loop_runs):
     t = np.linspace(0.0, 600.0, 31)
 
     def damping(time, w, R):
@@ -104,12 +76,12 @@ def test_a_python_term_beside_it_keeps_the_python_path(compiled_runs):
 
     omega, quat = _reference(ELLIPSE, t, extra=damping)
     run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=[OrbitGravityGradient(ELLIPSE), damping])
-    assert compiled_runs == []
-    e_omega, e_angle = _errors(run, omega, quat)
+    assert loop_runs == []
+    e_omega, e_angle = errors(run, omega, quat)
     assert e_omega < 1e-9 and e_angle < 1e-9, (e_omega, e_angle)
 
 
-def test_a_subclass_with_its_own_law_is_called_from_python(compiled_runs):
+def test_a_subclass_with_its_own_law_is_called_from_python(loop_runs):
     class Halved(OrbitGravityGradient):
         def __call__(self, t, omega, attitude):
             return 0.5 * super().__call__(t, omega, attitude)
@@ -117,7 +89,7 @@ def test_a_subclass_with_its_own_law_is_called_from_python(compiled_runs):
     t = np.linspace(0.0, 600.0, 31)
     run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=Halved(ELLIPSE))
     whole = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=OrbitGravityGradient(ELLIPSE))
-    assert compiled_runs == [1]  # the plain model's run only
+    assert loop_runs == [1]  # the plain model's run only
     assert np.abs(run.omega - whole.omega).max() > 1e-9  # its own law ran, not the plain one's
 
 
@@ -127,7 +99,7 @@ def test_along_a_tle_orbit():
     t = np.linspace(0.0, 2000.0, 101)
     omega, quat = _reference(iss, t)
     run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=OrbitGravityGradient(iss))
-    e_omega, e_angle = _errors(run, omega, quat)
+    e_omega, e_angle = errors(run, omega, quat)
     assert e_omega < 1e-9 and e_angle < 1e-9, (e_omega, e_angle)  # the position's table: 1e-11 of r
 
 
@@ -147,7 +119,7 @@ def test_the_momentum_budget_closes():
     assert np.abs(change - impulse).max() < 1e-8 * np.abs(change).max()
 
 
-def test_a_batch_takes_it_body_by_body_and_a_splitting_with_the_bodies_together(compiled_runs):
+def test_a_batch_takes_it_body_by_body_and_a_splitting_with_the_bodies_together(loop_runs):
     """The gravity gradient bound to a batch's moments (N, 3): ``simulate_batch``'s default runs
     each body as ``simulate`` does (compiled); ``geometric6`` calls the model with all the bodies."""
     moments = np.array([[10.0, 12.0, 15.0], [5.0, 9.0, 11.0], [1.0, 1.0, 1.5]])
@@ -155,7 +127,7 @@ def test_a_batch_takes_it_body_by_body_and_a_splitting_with_the_bodies_together(
     t = np.linspace(0.0, 600.0, 31)
     gg = OrbitGravityGradient(ELLIPSE)
     batch = tumble.simulate_batch(moments, w, times=t, torque=gg)
-    assert compiled_runs == [1, 1, 1] and batch.method == "dop853"
+    assert loop_runs == [1, 1, 1] and batch.method == "dop853"
     split = tumble.simulate_batch(moments, w, times=t, torque=gg, method="geometric6", step=1.0)
     for i in range(3):
         lone = tumble.simulate(tumble.MassProperties.from_moments(moments[i]), w[i], times=t, torque=gg)
@@ -182,7 +154,7 @@ mean_anomaly = 0.2
 """
 
 
-def test_a_scenario_files_ellipse_runs_as_the_python_call_does(tmp_path, capsys, compiled_runs):
+def test_a_scenario_files_ellipse_runs_as_the_python_call_does(tmp_path, capsys, loop_runs):
     """``tumble simulate`` with the ellipse in ``[torque]``: the Python call's samples, the budget closed."""
     import json
 
@@ -195,7 +167,7 @@ def test_a_scenario_files_ellipse_runs_as_the_python_call_does(tmp_path, capsys,
     npz = np.load(tmp_path / "run" / "trajectory.npz")
     run = tumble.simulate(tumble.t_handle(), [0.02, -0.03, 0.015], t_end=3000.0, samples=601,
                           torque=OrbitGravityGradient(ELLIPSE))
-    assert np.array_equal(npz["omega"], run.omega) and compiled_runs == [1, 1]
+    assert np.array_equal(npz["omega"], run.omega) and loop_runs == [1, 1]
     budget = summary["torque_budget"]
     momentum = budget["momentum"]
     # closed to what the samples' quadrature can tell (2.6e-9 against its 2.8e-9), 4e-5 of the change

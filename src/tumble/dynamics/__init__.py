@@ -30,6 +30,7 @@ if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported 
     from .environment.orbit import CircularOrbit
     from .methods.integrators import METHODS, Method, get_method
     from .models.actuators import Command, Magnetorquers, ReactionWheels
+    from .models.dipole import ResidualDipole
     from .models.gravity import (
         GravityGradient,
         lvlh_state,
@@ -69,6 +70,7 @@ __all__ = [
     "NadirTarget",
     "OrbitGravityGradient",
     "ReactionWheels",
+    "ResidualDipole",
     "Sensors",
     "SphericalDamper",
     "TLEOrbit",

@@ -1,84 +1,116 @@
-"""A rigid body along an ellipse or a TLE's orbit, compiled: the closed loop's kernel with nothing to control.
+"""Torques the engine's terms do not hold, compiled: the closed loop's kernel with nothing to control.
 
 :func:`tumble.simulate` runs a torque on the compiled engine when the model has a form among the
 engine's torque terms (:mod:`tumble.dynamics.engine.kernels`): constant torques and the gravity
-gradient of a circular orbit, whose direction the engine turns from stage to stage. The gravity
-gradient along a Keplerian or TLE orbit
-(:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`) has none there: its
-radius changes along the orbit. The compiled closed loop has it
-(:mod:`~tumble.dynamics.control.compiled_loop`): the orbit's position tabulated as cubics
-(:func:`~tumble.dynamics.environment.tabulated.position_table`, relative error below 1e-11) and
-the gravity gradient ``3 mu / r^3 r_b x (I r_b)`` read from it
-(:func:`~tumble.dynamics.control.loop_terms.external_torque`), beside the constant body and world
-torques of its disturbance slots. With no wheels, no magnetorquers, no field and B-dot's law
-(which commands nothing where there is no field) that loop is the rigid body alone: DOP853 with
-scipy's error norm and step control (Hairer, Norsett & Wanner, *Solving ODEs I*, sec. II.10),
-each step continuing from the one the last proposed (``carry``) and ending on every sample time.
+gradient of a circular orbit, whose direction the engine turns from stage to stage. Two models
+have none there, and the compiled closed loop (:mod:`~tumble.dynamics.control.compiled_loop`)
+evaluates both:
 
-Before, such a run called the model from Python at every stage: 28 s for ten orbits of an
-ellipse (e = 0.1) at 0.1 rad/s, against 11 ms for the circle on the engine (measured 2026-11-30).
+- the gravity gradient along a Keplerian or TLE orbit
+  (:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`), whose radius changes
+  along the orbit: the loop reads the orbit's position from a table of cubics
+  (:func:`~tumble.dynamics.environment.tabulated.position_table`, relative error below 1e-11) and
+  takes ``3 mu / r^3 r_b x (I r_b)`` there;
+- a dipole fixed in the body in a magnetic field
+  (:class:`~tumble.dynamics.models.dipole.ResidualDipole`): the loop's held dipole (its law
+  :data:`~tumble.dynamics.control.compiled_loop.LAW_HOLD`, three rods along the principal axes
+  without limit) in the field's own compiled form, ``m x B_b``
+  (:func:`~tumble.dynamics.control.loop_terms.external_torque`).
+
+Beside them the loop takes a circular orbit's gravity gradient and constant body and world
+torques (its disturbance slots). With no wheels and nothing else to command, that loop is the
+rigid body alone: DOP853 with scipy's error norm and step control (Hairer, Norsett & Wanner,
+*Solving ODEs I*, sec. II.10), each step continuing from the one the last proposed (``carry``)
+and ending on every sample time.
+
+Before, such a run called the model from Python at every stage: ten orbits of an ellipse
+(e = 0.1) at 0.1 rad/s took 28 s, against 11 ms for the circle on the engine, and take 27 ms here
+(measured 2026-11-30, the kernel cached).
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from ...typing import FloatArray
+from ..environment.magnetic import field_form
+from ..models.dipole import ResidualDipole
+from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.torques import ConstantTorque
 from ._front import locked_inverse
-from .compiled_loop import LAW_BDOT
+from .compiled_loop import LAW_HOLD
 from .control_kernel import ControlKernel, disturbance_form
 
-__all__ = ["orbit_terms", "run_in_orbit"]
+__all__ = ["FreeTerms", "free_terms", "run_free"]
 
-#: B-dot's law with no gain, no field and no rods: it commands nothing.
-_NO_LAW = (LAW_BDOT, np.zeros(3), np.zeros((0, 3)))
-_NO_RODS, _NO_LIMITS = np.zeros((0, 3)), np.zeros(0)
+#: Three rods along the principal axes, without limit: they hold any dipole as it is.
+_RODS, _LIMITS = np.eye(3), np.full(3, np.inf)
 
 
-def orbit_terms(torque: Any) -> tuple[OrbitGravityGradient, tuple[float, ...]] | None:
-    """``(gravity_gradient, disturbance)`` of a torque that is the gravity gradient along a
-    Keplerian or TLE orbit (:class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`,
-    its law not changed by a subclass), alone or summed with constant body and world torques
-    (their terms, N m, :func:`~tumble.dynamics.control.control_kernel.disturbance_form`); None for
-    any other torque.
+class FreeTerms(NamedTuple):
+    """A torque's terms for the loop (:func:`free_terms`)."""
+
+    gravity_gradient: GravityGradient | OrbitGravityGradient | None
+    field: Any
+    dipole: tuple[float, float, float]
+    disturbance: tuple[float, ...]
+
+
+def free_terms(torque: Any) -> FreeTerms | None:
+    """The loop's terms of a torque that holds the gravity gradient along a Keplerian or TLE orbit
+    or a :class:`~tumble.dynamics.models.dipole.ResidualDipole` (module docstring): at most one
+    gravity gradient (a circle's or an orbit's), the dipoles in one field (their sum, A m^2), and
+    constant body and world torques (their terms, N m,
+    :func:`~tumble.dynamics.control.control_kernel.disturbance_form`); None for a torque with
+    anything else, a model whose law a subclass changed, or neither of the two (the engine's).
 
     Examples
     --------
-    >>> from tumble.dynamics import ConstantTorque
-    >>> from tumble.dynamics.control.free_loop import orbit_terms
-    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
-    >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
+    >>> from tumble.dynamics import ConstantTorque, KeplerOrbit, OrbitGravityGradient, ResidualDipole, UniformField
+    >>> from tumble.dynamics.control.free_loop import free_terms
     >>> gg = OrbitGravityGradient(KeplerOrbit(8000e3, 0.1))
-    >>> found, disturbance = orbit_terms(gg + ConstantTorque((0.0, 0.0, 1e-6)))
-    >>> found is gg, disturbance
+    >>> terms = free_terms(gg + ConstantTorque((0.0, 0.0, 1e-6)))
+    >>> terms.gravity_gradient is gg, terms.disturbance
     (True, (0.0, 0.0, 1e-06, 0.0, 0.0, 0.0))
-    >>> orbit_terms(ConstantTorque((0.0, 0.0, 1e-6))) is None   # the engine's own
+    >>> free_terms(ResidualDipole((0.2, 0.0, 0.0), UniformField((0.0, 3e-5, 0.0)))).dipole
+    (0.2, 0.0, 0.0)
+    >>> free_terms(ConstantTorque((0.0, 0.0, 1e-6))) is None   # the engine's own
     True
     """
-    terms = getattr(torque, "terms", (torque,))
-    orbits = [term for term in terms if isinstance(term, OrbitGravityGradient)]
-    if len(orbits) != 1 or orbits[0].loop_form() is None:
-        return None
+    gravity: list[Any] = []
+    dipoles: list[ResidualDipole] = []
     disturbance: tuple[float, ...] = (0.0,) * 6
-    for term in terms:
-        if term is not orbits[0]:
+    for term in getattr(torque, "terms", (torque,)):
+        if isinstance(term, (GravityGradient, OrbitGravityGradient)):
+            if term.loop_form() is None:
+                return None
+            gravity.append(term)
+        elif isinstance(term, ResidualDipole):
+            if type(term).__call__ is not ResidualDipole.__call__ or field_form(term.field) is None:
+                return None
+            dipoles.append(term)
+        else:
             form = disturbance_form(term)
             if form is None:
                 return None
             disturbance = tuple(a + b for a, b in zip(disturbance, form))
-    return orbits[0], disturbance
+    fields = {id(d.field) for d in dipoles}
+    if len(gravity) > 1 or len(fields) > 1 or not (dipoles or any(isinstance(g, OrbitGravityGradient) for g in gravity)):
+        return None
+    m = np.sum([d.dipole for d in dipoles], axis=0) if dipoles else np.zeros(3)
+    return FreeTerms(gravity[0] if gravity else None, dipoles[0].field if dipoles else None,
+                     (float(m[0]), float(m[1]), float(m[2])), disturbance)
 
 
-def run_in_orbit(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray, torque: Any,
-                 rtol: float, atol: float | FloatArray) -> tuple[FloatArray, FloatArray]:
+def run_free(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray, torque: Any,
+             rtol: float, atol: float | FloatArray) -> tuple[FloatArray, FloatArray]:
     """The body of principal ``moments`` (kg m^2) from ``omega0`` (rad/s, principal frame) and
-    ``quat0`` (body to the orbit's world frame, ECI or TEME; scalar last) through the samples ``t``
-    (s, increasing, from ``t[0] >= 0``) under ``torque`` (:func:`orbit_terms`), DOP853 at ``rtol``
-    and ``atol`` (the smallest of an array's), on the compiled closed loop (module docstring).
+    ``quat0`` (body to the run's world frame, scalar last) through the samples ``t`` (s,
+    increasing, from ``t[0] >= 0``) under ``torque`` (:func:`free_terms`), DOP853 at ``rtol`` and
+    ``atol`` (the smallest of an array's), on the compiled closed loop (module docstring).
 
     Returns
     -------
@@ -91,24 +123,23 @@ def run_in_orbit(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: 
     normal: the gradient's torque ``r_b x (I r_b)`` is zero there, so the spin and the axis stay:
 
     >>> import numpy as np
-    >>> from tumble.dynamics.control.free_loop import run_in_orbit
-    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
-    >>> from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
+    >>> from tumble.dynamics import KeplerOrbit, OrbitGravityGradient
+    >>> from tumble.dynamics.control.free_loop import run_free
     >>> gg = OrbitGravityGradient(KeplerOrbit(8000e3, 0.2)).bind([1.0, 1.0, 2.0])
-    >>> omega, quat = run_in_orbit(np.array([1.0, 1.0, 2.0]), np.array([0.0, 0.0, 0.1]),
-    ...                            np.array([0.0, 0.0, 0.0, 1.0]), np.linspace(0.0, 600.0, 4), gg, 1e-10, 1e-12)
+    >>> omega, quat = run_free(np.array([1.0, 1.0, 2.0]), np.array([0.0, 0.0, 0.1]),
+    ...                        np.array([0.0, 0.0, 0.0, 1.0]), np.linspace(0.0, 600.0, 4), gg, 1e-10, 1e-12)
     >>> bool(np.abs(omega - [0.0, 0.0, 0.1]).max() < 1e-14), bool(np.abs(quat[:, :2]).max() < 1e-14)
     (True, True)
     """
-    terms = orbit_terms(torque)
+    terms = free_terms(torque)
     if terms is None:
-        raise ValueError(f"torque = {torque!r} is not the gravity gradient along a Keplerian or TLE orbit "
-                         "(with constant torques)")
-    gravity_gradient, (b0, b1, b2, w0, w1, w2) = terms
+        raise ValueError(f"torque = {torque!r} holds neither the gravity gradient along a Keplerian or TLE orbit nor "
+                         "a ResidualDipole, or something besides them and constant torques")
+    b0, b1, b2, w0, w1, w2 = terms.disturbance
     pushes = ConstantTorque((b0, b1, b2)) + ConstantTorque((w0, w1, w2), "world")
     I = np.asarray(moments, float)
-    kernel = ControlKernel(I, locked_inverse(I, None), None, None, gravity_gradient, float(rtol),
+    kernel = ControlKernel(I, locked_inverse(I, None), None, terms.field, terms.gravity_gradient, float(rtol),
                            float(np.min(atol)), float(t[-1]), checked=True, torque=pushes)
     y0 = np.concatenate([quat0, omega0, np.zeros(3)])  # (q, omega, the external impulse)
-    Y = kernel.run(y0, t, _NO_LAW, _NO_RODS, _NO_LIMITS, carry=True)[0]
+    Y = kernel.run(y0, t, (LAW_HOLD, np.array(terms.dipole), np.zeros((0, 3))), _RODS, _LIMITS, carry=True)[0]
     return Y[:, 4:7], Y[:, :4]
