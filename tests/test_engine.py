@@ -7,10 +7,10 @@ import re
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 import tumble
+from rigid_reference import reference_run
 from tumble.dynamics import simulate, simulate_batch
 from tumble.dynamics.engine import run_bodies, run_body
 from tumble.dynamics.engine.status import STEP_COLLAPSED
@@ -50,20 +50,6 @@ def test_compiled_dop853_takes_scipys_steps(name):
     assert np.max(np.abs(fast.quat - slow.quat)) < 1e-13
 
 
-def _reference(I, w0, q0, t, tau_body):
-    """scipy DOP853 at rtol 1e-13 on a right-hand side written here, with a constant body torque."""
-    I = np.asarray(I, float)
-
-    def rhs(_, y):
-        w, (x, yq, z, s) = y[:3], y[3:]
-        dq = 0.5 * np.array([s * w[0] + yq * w[2] - z * w[1], s * w[1] + z * w[0] - x * w[2],
-                             s * w[2] + x * w[1] - yq * w[0], -(x * w[0] + yq * w[1] + z * w[2])])
-        return np.concatenate([(np.asarray(tau_body) + np.cross(I * w, w)) / I, dq])
-
-    sol = solve_ivp(rhs, (0.0, t[-1]), np.concatenate([w0, q0]), method="DOP853", t_eval=t, rtol=1e-13, atol=1e-16)
-    return sol.y[:3].T, sol.y[3:].T / np.linalg.norm(sol.y[3:].T, axis=1, keepdims=True)
-
-
 @pytest.mark.parametrize(("method", "order", "steps"), [("rk4", 4, (0.02, 0.01)), ("rk8", 8, (0.1, 0.05))])
 def test_fixed_step_orders(method, order, steps):
     """Halving the step divides the global error by at least 2^p: a torque-free spacecraft at
@@ -86,7 +72,8 @@ def test_against_an_independent_reference(method):
     kw = {"rtol": 1e-12} if method == "dop853" else {"step": 0.2 / 16}
     traj = simulate(props, [0.1, 10.0, 0.1], t_end=20.0, samples=101, attitude0=Q0, method=method,
                     torque=ConstantTorque(TAU), **kw)
-    w_ref, q_ref = _reference(props.principal_moments, traj.omega[0], traj.quat[0], traj.t, TAU)
+    w_ref, q_ref = reference_run(props.principal_moments, traj.omega[0], traj.quat[0], traj.t,
+                                 lambda time, w, R: np.asarray(TAU))  # tests/rigid_reference.py
     assert np.max(np.linalg.norm(traj.omega - w_ref, axis=1)) / np.max(np.linalg.norm(w_ref, axis=1)) < 1e-9
     assert np.max((traj.attitude * Rotation.from_quat(q_ref).inv()).magnitude()) < 1e-8
 

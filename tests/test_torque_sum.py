@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.integrate import simpson, solve_ivp
+from scipy.integrate import simpson
 from scipy.spatial.transform import Rotation
 
 import tumble
+from rigid_reference import reference_run
 from tumble.dynamics import simulate, simulate_batch
 from tumble.dynamics.models.torques import (
     KERNEL_BODY,
@@ -39,28 +40,19 @@ def _models(python: bool = False):
     return terms
 
 
-def _total_torque_body(t, w, q, I, python):
+def _total_torque_body(t, w, R, I, python):
     """The total torque (N m, principal frame) written here from each model's formula: the body
     torque; R^T of the world torque; 3 n^2 r_b x (I r_b) with r_b = R^T (cos nt, sin nt, 0)
     (Hughes, Spacecraft Attitude Dynamics, ch. 8); -c omega."""
-    R = Rotation.from_quat(q)
-    r_b = R.inv().apply([np.cos(N_ORBIT * t), np.sin(N_ORBIT * t), 0.0])
-    tau = BODY_TAU + R.inv().apply(WORLD_TAU) + 3 * N_ORBIT**2 * np.cross(r_b, I * r_b)
+    r_b = R.T @ [np.cos(N_ORBIT * t), np.sin(N_ORBIT * t), 0.0]
+    tau = BODY_TAU + R.T @ WORLD_TAU + 3 * N_ORBIT**2 * np.cross(r_b, I * r_b)
     return tau - DAMPING * w if python else tau
 
 
 def _reference(I, w0, q0, t, python):
-    """Euler's equations and the quaternion kinematics under the total torque, scipy DOP853 at rtol 1e-13."""
-
-    def rhs(time, y):
-        w, (x, yq, z, s) = y[:3], y[3:]
-        dq = 0.5 * np.array([s * w[0] + yq * w[2] - z * w[1], s * w[1] + z * w[0] - x * w[2],
-                             s * w[2] + x * w[1] - yq * w[0], -(x * w[0] + yq * w[1] + z * w[2])])
-        tau = _total_torque_body(time, w, y[3:] / np.linalg.norm(y[3:]), I, python)
-        return np.concatenate([(tau + np.cross(I * w, w)) / I, dq])
-
-    sol = solve_ivp(rhs, (0.0, t[-1]), np.concatenate([w0, q0]), method="DOP853", t_eval=t, rtol=1e-13, atol=1e-16)
-    return sol.y[:3].T, Rotation.from_quat(sol.y[3:].T)
+    """The reference rigid body (tests/rigid_reference.py) under the total torque."""
+    omega, quat = reference_run(I, w0, q0, t, lambda time, w, R: _total_torque_body(time, w, R, I, python))
+    return omega, Rotation.from_quat(quat)
 
 
 @pytest.mark.parametrize("python", [False, True], ids=["compiled", "with a Python term"])
@@ -86,7 +78,8 @@ def test_sum_budgets():
     I = SPACECRAFT.principal_moments
     w0 = np.array([0.05, 1.0, 0.05])
     run = simulate(SPACECRAFT, w0, t_end=20.0, samples=4001, attitude0=Q0, torque=_models(), rtol=1e-12)
-    tau = np.array([_total_torque_body(t, w, q, I, False) for t, w, q in zip(run.t, run.omega, run.quat)])
+    tau = np.array([_total_torque_body(t, w, Rotation.from_quat(q).as_matrix(), I, False)
+                    for t, w, q in zip(run.t, run.omega, run.quat)])
     L_world = run.attitude.apply(I * run.omega)
     change = L_world[-1] - L_world[0]
     impulse = simpson(run.attitude.apply(tau), x=run.t, axis=0)
