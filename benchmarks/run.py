@@ -21,7 +21,8 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 SUITES = ["bench_mass", "bench_dynamics", "bench_engine", "bench_models", "bench_closed_loop", "bench_call",
           "bench_work_precision", "bench_batch", "bench_torqued", "bench_exact_split", "bench_sweep", "bench_fit", "bench_pool", "bench_tensor",
-          "bench_basilisk", "bench_basilisk_control", "bench_detumble_mc", "bench_knowledge", "bench_first_call"]
+          "bench_basilisk", "bench_basilisk_control", "bench_detumble_mc", "bench_knowledge", "bench_first_call",
+          "bench_free_loop"]
 
 
 def _per_call(timer: timeit.Timer, number: int) -> float:

@@ -356,7 +356,7 @@ NOT_RESULTS = {
     "BDot", "MRPFeedback", "DetumbleThenPoint", "Reference", "PDResponse",  # controllers and their gains
     "CubicTable", "Method", "GravityGradient", "OrbitGravityGradient", "TorqueModel", "RunInputs",  # models, settings
     "LVLHState", "EllipticParameters", "InternalSamples", "Adjusted",  # tuples unpacked where they are made
-    "DaskBackend", "InProcess", "ChunkRanges", "Layout",  # machinery
+    "DaskBackend", "InProcess", "ChunkRanges", "Layout", "FreeTerms",  # machinery
     "ControlScenario", "ControlSpec", "Scenario", "SweepFile", "Example", "Part",  # files a user writes
     "ColumnsRead", "ThrowRead",  # what a reader took from a file: brief() and summary() say it
     "FitFolder", "TensorFolder", "FlightReplay",  # a command's output read back, for its page

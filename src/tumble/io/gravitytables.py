@@ -87,7 +87,8 @@ def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGr
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
     if "orbit_period" not in table and "orbit_radius" not in table:
-        raise ValueError(f"{where}: missing key 'orbit_period' (s) or 'orbit_radius' (m); give exactly one")
+        raise ValueError(f"{where}: missing key 'orbit_period' (s) or 'orbit_radius' (m), a circle's (give exactly one); "
+                         "or semi_major_axis (m) or tle for an ellipse or a TLE's orbit")
     try:
         return GravityGradient(orbit_period=table.get("orbit_period"), orbit_radius=table.get("orbit_radius"),
                                mu=table.get("mu", MU_EARTH))

@@ -51,7 +51,19 @@ _RODS, _LIMITS = np.eye(3), np.full(3, np.inf)
 
 
 class FreeTerms(NamedTuple):
-    """A torque's terms for the loop (:func:`free_terms`)."""
+    """A torque's terms for the loop (:func:`free_terms`): its gravity gradient (or None), the
+    field of its dipoles (or None), their sum (A m^2, principal frame), and its constant body and
+    world torques (N m).
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ResidualDipole, UniformField
+    >>> from tumble.dynamics.control.free_loop import free_terms
+    >>> field = UniformField((0.0, 3e-5, 0.0))
+    >>> terms = free_terms(ResidualDipole((0.2, 0.0, 0.0), field) + ResidualDipole((0.1, 0.0, 0.0), field))
+    >>> terms.gravity_gradient is None, terms.field is field, terms.dipole
+    (True, True, (0.30000000000000004, 0.0, 0.0))
+    """
 
     gravity_gradient: GravityGradient | OrbitGravityGradient | None
     field: Any
