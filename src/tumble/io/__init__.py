@@ -6,6 +6,7 @@ from .._lazy import lazy_package
 
 if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported on its first use
     from .bodyfile import body_from_table, load_body, part_from_table, read_toml
+    from .export import read_npz, write_npz
     from .scenario import Scenario, load_scenario
     from .report import mass_properties_dict, mass_properties_table
 
@@ -17,7 +18,9 @@ __all__ = [
     "mass_properties_dict",
     "mass_properties_table",
     "part_from_table",
+    "read_npz",
     "read_toml",
+    "write_npz",
     "Scenario",
     "load_scenario",
 ]
