@@ -88,7 +88,8 @@ def test_a_python_disturbance_runs_on_scipys_path():
     assert np.max(np.abs(run.impulse_world[-1])) > 1e-7
     assert np.max(np.abs(budget)) < 1e-8 * np.max(np.abs(run.impulse_world))
     with pytest.raises(ValueError, match=r"^compiled=True needs built-in models; torque = FunctionTorque "
-                                         r"\(ConstantTorque in the body or the world frame, or their sum\)"):
+                                         r"\(ConstantTorque in the body or the world frame, a ResidualDipole in the run's "
+                                         r"field, or their sum\)"):
         simulate_controlled(I, [0.01, -0.02, 0.03], t_end=1.0, controller=_pointing(), wheels=RW, torque=drag,
                             compiled=True)
 
@@ -113,3 +114,30 @@ def test_a_disturbance_acts_beside_the_magnetorquers_dipole():
     assert np.max(np.abs(fast.omega - free.omega)) > 1e-2
     budget = fast.momentum_world - fast.momentum_world[0] - fast.impulse_world
     assert np.max(np.abs(budget)) < 1e-9 * np.max(np.abs(fast.impulse_world))
+
+
+def test_a_residual_dipole_in_the_runs_field_runs_compiled_beside_b_dot():
+    """A ResidualDipole in the run's own field is a disturbance of the compiled loop (its
+    ``P[27:30]``, beside the rods' dipole in ``m x B``): step for step scipy's path, and it acts
+    (B-dot's detumble ends elsewhere without it). In another field it runs on scipy's path, and
+    ``compiled=True`` names it."""
+    from tumble.dynamics import ResidualDipole
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.environment.magnetic import UniformField
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    moments, w0 = [0.0067, 0.0419, 0.0419], [0.05, -0.02, 0.03]
+    field = UniformField((2e-5, 1e-5, -3e-5))
+    kw = dict(t_end=60.0, controller=BDot(gain=3e-5, period=1.0), field=field, magnetorquers=Magnetorquers(0.2))
+    residual = ResidualDipole((0.05, -0.02, 0.01), field)
+    fast = simulate_controlled(moments, w0, compiled=True, torque=residual, **kw)
+    slow = simulate_controlled(moments, w0, compiled=False, torque=residual, **kw)
+    free = simulate_controlled(moments, w0, compiled=True, **kw)
+    np.testing.assert_allclose(fast.omega, slow.omega, rtol=0, atol=1e-12 * np.max(np.abs(slow.omega)))
+    assert np.max(np.abs(fast.omega - free.omega)) > 1e-3
+    budget = fast.momentum_world - fast.momentum_world[0] - fast.impulse_world
+    assert np.max(np.abs(budget)) < 1e-9 * np.max(np.abs(fast.impulse_world))
+    elsewhere = ResidualDipole((0.05, -0.02, 0.01), UniformField((0.0, 3e-5, 0.0)))
+    with pytest.raises(ValueError, match=r"^compiled=True needs built-in models; torque = ResidualDipole \(.*a ResidualDipole "
+                                         r"in the run's field"):
+        simulate_controlled(moments, w0, compiled=True, torque=elsewhere, **kw)

@@ -47,16 +47,15 @@ from .laws import (attitude_error_components, bdot_components, dumping_dipole_co
                    gyro_field_rate_components)
 from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, packed, rhs_namespace, rhs_source, tables
 
-__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_HOLD", "LAW_MRP", "LAYOUT", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
+__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
            "kernels", "law_command", "padded", "rhs_of", "set_command", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
 DOP853, RK4, RK8 = 0, 1, 2
 #: The compiled laws: B-dot (``L = (gain, normalized, difference)``), MRP feedback to a fixed
-#: target (``L = (K, P, Ki, integral_limit, gyroscopic, period, target quaternion (4))``), MRP
-#: feedback with momentum dumping (the same, then ``(k_d, h_target (3))``), and a dipole held as
-#: it is (``L = m``, A m^2, body frame: a residual moment, :mod:`~tumble.dynamics.control.free_loop`).
-LAW_BDOT, LAW_MRP, LAW_DUMPING, LAW_HOLD = 0, 1, 2, 3
+#: target (``L = (K, P, Ki, integral_limit, gyroscopic, period, target quaternion (4))``), and
+#: MRP feedback with momentum dumping (the same, then ``(k_d, h_target (3))``).
+LAW_BDOT, LAW_MRP, LAW_DUMPING = 0, 1, 2
 #: The most wheels the kernels take (their wheel slots), and the size of their state.
 MAX_WHEELS = 6
 N = 10 + MAX_WHEELS
@@ -145,7 +144,7 @@ def set_command(P: FloatArray, d0: float, d1: float, d2: float, u: FloatArray) -
     >>> from tumble.dynamics.control.compiled_loop import MAX_WHEELS, TABLES, set_command
     >>> P = np.zeros(TABLES)
     >>> set_command(P, 0.1, 0.2, 0.3, np.arange(1.0, MAX_WHEELS + 1))
-    >>> P[12:15].tolist(), P[[36, 46]].tolist()   # the first two wheels' slots end at 36 and 46
+    >>> P[12:15].tolist(), P[[39, 49]].tolist()   # the first two wheels' slots end at 39 and 49
     ([0.1, 0.2, 0.3], [1.0, 2.0])
     """
     P[12], P[13], P[14] = d0, d1, d2
@@ -314,8 +313,6 @@ def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: f
                 d0, d1, d2 = (b0 - last0) / (t - last_t), (b1 - last1) / (t - last_t), (b2 - last2) / (t - last_t)
             m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
             last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
-    elif law == LAW_HOLD:
-        m0, m1, m2 = L[0], L[1], L[2]
     elif law != LAW_BDOT:
         s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
         h0, h1, h2 = 0.0, 0.0, 0.0

@@ -45,7 +45,9 @@ from ...typing import FloatArray
 from . import compiled_loop as _loop
 from ._front import locked_inverse
 from ..environment.magnetic import FIELD_NONE, FIELD_TABLE, field_form
+from ..models.dipole import ResidualDipole
 from ..models.torque_protocols import constant_terms, kernel_form
+from ..models.torques import TorqueSum
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .loop_terms import WHEEL, packed
@@ -59,29 +61,58 @@ _NO_TABLE, _NO_FIELD = np.zeros((4, 1, 3)), np.zeros(0)
 METHODS = {"dop853": _loop.DOP853, "rk4": _loop.RK4, "rk8": _loop.RK8}
 
 
-def disturbance_form(torque: Any) -> tuple[float, ...] | None:
-    """The loop's terms ``P[21:27]`` (:mod:`~tumble.dynamics.control.loop_terms`) of a disturbance
+def disturbance_form(torque: Any, field: Any = None) -> tuple[float, ...] | None:
+    """The loop's terms ``P[21:30]`` (:mod:`~tumble.dynamics.control.loop_terms`) of a disturbance
     torque: its constant body and world torques (N m,
-    :func:`~tumble.dynamics.models.torque_protocols.constant_terms`); zeros for None; None where it
-    has other terms (a gravity gradient, which the loop takes as ``gravity_gradient``) or no compiled form.
+    :func:`~tumble.dynamics.models.torque_protocols.constant_terms`) and its residual dipoles
+    (:class:`~tumble.dynamics.models.dipole.ResidualDipole`, A m^2, body frame; their sum) in the
+    run's ``field``; zeros for None; None where it has other terms (a gravity gradient, which the
+    loop takes as ``gravity_gradient``), no compiled form, or a dipole in another field than the run's.
 
     Examples
     --------
-    >>> from tumble.dynamics import ConstantTorque
+    >>> from tumble.dynamics import ConstantTorque, ResidualDipole, UniformField
     >>> from tumble.dynamics.control.control_kernel import disturbance_form
     >>> disturbance_form(ConstantTorque((0.0, 0.0, 1e-6)) + ConstantTorque((2e-6, 0.0, 0.0), "world"))
-    (0.0, 0.0, 1e-06, 2e-06, 0.0, 0.0)
+    (0.0, 0.0, 1e-06, 2e-06, 0.0, 0.0, 0.0, 0.0, 0.0)
+    >>> field = UniformField((0.0, 3e-5, 0.0))
+    >>> disturbance_form(ResidualDipole((0.2, 0.0, 0.0), field), field)[6:]
+    (0.2, 0.0, 0.0)
+    >>> disturbance_form(ResidualDipole((0.2, 0.0, 0.0), field)) is None   # not the run's field (it has none)
+    True
     >>> disturbance_form(lambda t, omega, attitude: -1e-3 * omega) is None   # Python's to call
     True
     """
-    return constant_terms(kernel_form(torque))
+    terms = () if torque is None else getattr(torque, "terms", (torque,))
+    dipoles = [term for term in terms if isinstance(term, ResidualDipole)]
+    if dipoles:  # the rest as one torque
+        others = [term for term in terms if not isinstance(term, ResidualDipole)]
+        torque = TorqueSum(*others) if len(others) > 1 else others[0] if others else None
+    constant = constant_terms(kernel_form(torque))
+    if constant is None:
+        return None
+    m = [0.0, 0.0, 0.0]
+    for dipole in dipoles:
+        if type(dipole).__call__ is not ResidualDipole.__call__ or not _same_field(dipole.field, field):
+            return None
+        m = [a + b for a, b in zip(m, dipole.dipole)]
+    return (*constant, *m)
+
+
+def _same_field(a: Any, b: Any) -> bool:
+    """Whether two fields are one: the same object, or the same compiled form (kind and parameters)."""
+    if a is b:
+        return a is not None
+    one, other = field_form(a), field_form(b)
+    return one is not None and other is not None and one[0] == other[0] and np.array_equal(one[1], other[1])
 
 
 def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: Any, wheels: Any, *,
                             torque: Any = None) -> str | None:
     """None if every model declares the compiled loop's form (its ``loop_form()``: the built-in
     fields, gravity gradients, magnetorquers and wheels; a disturbance ``torque`` of constant body or
-    world torques, :func:`disturbance_form`), else the first other one's description.
+    world torques or residual dipoles in the run's field, :func:`disturbance_form`), else the first
+    other one's description.
 
     Examples
     --------
@@ -105,9 +136,10 @@ def compiled_control_models(field: Any, gravity_gradient: Any, magnetorquers: An
         if model is not None and (not callable(form) or form() is None):
             label = getattr(model, "__name__", None) or type(model).__name__
             return f"{name} = {label} (a {kinds})"
-    if disturbance_form(torque) is None:
+    if disturbance_form(torque, field) is None:
         label = getattr(torque, "__name__", None) or type(torque).__name__
-        return f"torque = {label} (ConstantTorque in the body or the world frame, or their sum)"
+        return (f"torque = {label} (ConstantTorque in the body or the world frame, a ResidualDipole in the run's field, "
+                "or their sum)")
     return None
 
 
@@ -228,7 +260,7 @@ def _kernel_key(I: FloatArray, field: Any, gravity_gradient: Any, magnetorquers:
     """
     if type(method) is not str or not (step is None or isinstance(step, (int, float))):
         return None  # ControlKernel says what is wrong
-    disturbance = disturbance_form(torque) if torque is not None else ()
+    disturbance = disturbance_form(torque, field) if torque is not None else ()
     if disturbance is None:
         return None
     key: list[Any] = [I.tobytes(), rtol, atol, method, step, disturbance]
@@ -274,7 +306,8 @@ class ControlKernel:
         The models already found compiled by :func:`compiled_control_models` (the caller asked
         it): not asked again.
     torque : torque model, optional
-        A disturbance of constant body and world torques (:func:`disturbance_form`).
+        A disturbance of constant body and world torques and residual dipoles in ``field``
+        (:func:`disturbance_form`).
 
     Examples
     --------
@@ -315,7 +348,7 @@ class ControlKernel:
         slots = np.zeros((_loop.MAX_WHEELS, WHEEL))  # the wheels, then the empty slots (the kernels skip them)
         if wheels is not None:
             slots[:self.k, :9] = wheels.loop_form()
-        disturbance = cast("tuple[float, ...]", disturbance_form(torque))
+        disturbance = cast("tuple[float, ...]", disturbance_form(torque, field))
         P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
                             gp, (self.k,), disturbance, slots.reshape(-1)])
         self.P = np.ascontiguousarray(P, dtype=float)  # an array, not a tuple passed by value at every stage: 4 % faster

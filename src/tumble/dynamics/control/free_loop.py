@@ -12,14 +12,13 @@ evaluates both:
   (:func:`~tumble.dynamics.environment.tabulated.position_table`, relative error below 1e-11) and
   takes ``3 mu / r^3 r_b x (I r_b)`` there;
 - a dipole fixed in the body in a magnetic field
-  (:class:`~tumble.dynamics.models.dipole.ResidualDipole`): the loop's held dipole (its law
-  :data:`~tumble.dynamics.control.compiled_loop.LAW_HOLD`, three rods along the principal axes
-  without limit) in the field's own compiled form, ``m x B_b``
+  (:class:`~tumble.dynamics.models.dipole.ResidualDipole`): the loop's residual dipole, beside
+  the magnetorquers' (none here), in the field's own compiled form, ``m x B_b``
   (:func:`~tumble.dynamics.control.loop_terms.external_torque`).
 
 Beside them the loop takes a circular orbit's gravity gradient and constant body and world
-torques (its disturbance slots). With no wheels and nothing else to command, that loop is the
-rigid body alone: DOP853 with scipy's error norm and step control (Hairer, Norsett & Wanner,
+torques (its disturbance slots). With no wheels, no magnetorquers and B-dot's law at zero gain,
+which commands nothing, that loop is the rigid body alone: DOP853 with scipy's error norm and step control (Hairer, Norsett & Wanner,
 *Solving ODEs I*, sec. II.10), each step continuing from the one the last proposed (``carry``)
 and ending on every sample time.
 
@@ -41,13 +40,13 @@ from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.torques import ConstantTorque
 from ._front import locked_inverse
-from .compiled_loop import LAW_HOLD
+from .compiled_loop import LAW_BDOT
 from .control_kernel import ControlKernel, disturbance_form
 
 __all__ = ["FreeTerms", "free_terms", "run_free"]
 
-#: Three rods along the principal axes, without limit: they hold any dipole as it is.
-_RODS, _LIMITS = np.eye(3), np.full(3, np.inf)
+#: B-dot's law at zero gain, with no rods: it commands nothing.
+_NO_LAW, _NO_RODS, _NO_LIMITS = (LAW_BDOT, np.zeros(3), np.zeros((0, 3))), np.zeros((0, 3)), np.zeros(0)
 
 
 class FreeTerms(NamedTuple):
@@ -149,9 +148,11 @@ def run_free(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: Floa
                          "a ResidualDipole, or something besides them and constant torques")
     b0, b1, b2, w0, w1, w2 = terms.disturbance
     pushes = ConstantTorque((b0, b1, b2)) + ConstantTorque((w0, w1, w2), "world")
+    if terms.field is not None:
+        pushes = pushes + ResidualDipole(terms.dipole, terms.field)
     I = np.asarray(moments, float)
     kernel = ControlKernel(I, locked_inverse(I, None), None, terms.field, terms.gravity_gradient, float(rtol),
                            float(np.min(atol)), float(t[-1]), checked=True, torque=pushes)
     y0 = np.concatenate([quat0, omega0, np.zeros(3)])  # (q, omega, the external impulse)
-    Y = kernel.run(y0, t, (LAW_HOLD, np.array(terms.dipole), np.zeros((0, 3))), _RODS, _LIMITS, carry=True)[0]
+    Y = kernel.run(y0, t, _NO_LAW, _NO_RODS, _NO_LIMITS, carry=True)[0]
     return Y[:, 4:7], Y[:, :4]

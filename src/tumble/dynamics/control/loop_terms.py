@@ -31,7 +31,9 @@ principal moments ``I`` (kg m^2); ``P[3:12]`` ``(I - sum J g g^T)^-1`` row by ro
 ``mu`` (m^3/s^2) with the start and spacing (s) of the orbit's position table; ``P[20]`` the
 number of wheels; ``P[21:24]`` a constant disturbance torque in the body frame and ``P[24:27]`` one
 fixed in the world (N m; the engine's terms of the run's ``torque``,
-:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
+:func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); ``P[27:30]`` a residual dipole
+fixed in the body (A m^2, :class:`~tumble.dynamics.models.dipole.ResidualDipole`), in the
+field beside the held one; then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
 (the field's own ``loop_form()``, :func:`~tumble.dynamics.environment.magnetic.field_form`), the IGRF table's and the orbit
@@ -75,7 +77,7 @@ __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM",
            "field_body", "field_world", "packed", "rhs_source", "tables"]
 
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
-BODY, WHEEL = 27, 10
+BODY, WHEEL = 30, 10
 
 # The models' formulas compiled as ordinary functions, which LLVM inlines where they are called (as
 # the engine's kernels do, tumble.dynamics.engine.kernels): the loop ran as fast, and its first
@@ -191,7 +193,8 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
     homogeneous form, ``|q|^2`` times the unit quaternion's, so the dipole's torque is multiplied
     by ``inverse`` and the gradient, quadratic in ``r_b``, by its square (as the engine's,
     :func:`tumble.dynamics.engine.kernels.external_torque`); and the constant disturbances of
-    ``P[21:27]``, in the body and turned from the world as the engine turns them."""
+    ``P[21:27]``, in the body and turned from the world as the engine turns them, and the
+    residual dipole ``P[27:30]`` beside the held one."""
     a0, a1, a2 = P[21], P[22], P[23]
     if P[24] != 0.0 or P[25] != 0.0 or P[26] != 0.0:
         v0, v1, v2 = _to_body(x, y, z, s, P[24], P[25], P[26])
@@ -199,7 +202,7 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
     if P[15] != FIELD_NONE:
         fp, ft, _ = tables(P, at)
         b0, b1, b2 = field_body(int(P[15]), fp, ft, x, y, z, s, t)
-        m0, m1, m2 = P[12] * inverse, P[13] * inverse, P[14] * inverse
+        m0, m1, m2 = (P[12] + P[27]) * inverse, (P[13] + P[28]) * inverse, (P[14] + P[29]) * inverse
         a0, a1, a2 = a0 + (m1 * b2 - m2 * b1), a1 + (m2 * b0 - m0 * b2), a2 + (m0 * b1 - m1 * b0)
     if P[16] > 0.0:  # a circle: r_b = R^T (cos n t, sin n t, 0)
         v0, v1, v2 = _to_body(x, y, z, s, u0, u1, 0.0)
