@@ -6,7 +6,8 @@ Each repeat copies the installed package's sources (no numba cache beside them: 
 pointed at an empty folder of its own, ``import tumble`` and then one first call with a torque,
 ``method`` left to ``"auto"``: each of :data:`CASES` (a 20 s run of a spinning body, where ``auto``
 takes ``rk8``; the tour's first torque call, a T-handle spun up from rest for 5 s, where it takes
-``dop853``, whose kernel compiles longer). The wall and CPU seconds of the import and of the call
+``dop853``, whose kernel compiles longer; one orbit of an ellipse's gravity gradient, which compiles
+the closed loop's kernel, the longest). The wall and CPU seconds of the import and of the call
 are taken inside that process (``time.perf_counter``, ``time.process_time``), so the interpreter's
 own start is not counted. Then the same call again, warm.
 """
@@ -35,6 +36,11 @@ CASES = {
     "the tour's: a T-handle spun up from rest, 5 s (docs/tour.md)": (
         "body = tumble.t_handle()\n"
         "call = lambda: tumble.simulate(body, [0, 0, 0], t_end=5.0, torque=tumble.ConstantTorque((0.0, 0.0, 0.01)))"),
+    "the gravity gradient along an ellipse, one orbit (the closed loop's kernel, dynamics/control/free_loop.py)": (
+        "from tumble.dynamics import KeplerOrbit, OrbitGravityGradient\n"
+        "body = tumble.MassProperties.from_moments([10.0, 12.0, 15.0])\n"
+        "orbit = KeplerOrbit(8000e3, 0.1)\n"
+        "call = lambda: tumble.simulate(body, [0.05, 0.1, 0.02], t_end=orbit.period, torque=OrbitGravityGradient(orbit))"),
 }
 
 #: What the fresh process runs (CASE: one of :data:`CASES`): the numbers it prints are JSON.
