@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 import tumble
+from rigid_reference import reference_run
 from tumble.dynamics.batch import BatchTrajectory, rotate_by_quaternion, simulate_batch
 from tumble.dynamics.methods.exact import FreeRotation
 from tumble.dynamics.methods.integrators import METHODS
@@ -378,15 +379,21 @@ def test_the_default_chooses_as_simulate_does():
     """``method="auto"``, the default: the exact motion without torque; with one, ``dop853`` at the
     tolerances that meet ``rtol`` (a new user's ``simulate_batch(..., torque=...)`` was refused with
     "method = 'exact' cannot take a torque"). Each body within rtol of a lone ``simulate``'s default run,
-    compiled or with a torque of one's own."""
+    compiled or with a torque of one's own, and of the reference rigid body (tests/rigid_reference.py:
+    scipy's DOP853 at rtol 1e-13 on Euler's equations written out)."""
     I = np.array([[1.0, 2.0, 3.0], [2.0, 2.5, 4.0]])
     w = np.array([[0.1, 2.0, 0.1], [1.0, -0.5, 0.3]])
     assert simulate_batch(I, w, t_end=2.0).method == "exact"
-    for torque in (tumble.ConstantTorque((0.0, 0.3, 0.1)), lambda t, omega, attitude: -0.1 * omega):
+    written = (lambda t, omega, R: np.array([0.0, 0.3, 0.1]), lambda t, omega, R: -0.1 * omega)  # N m, body frame
+    for torque, tau in zip((tumble.ConstantTorque((0.0, 0.3, 0.1)), lambda t, omega, attitude: -0.1 * omega), written):
         batch = simulate_batch(I, w, t_end=5.0, samples=51, torque=torque)
         assert batch.method == "dop853"
         for i in range(2):
             lone = tumble.simulate(tumble.MassProperties.from_moments(I[i]), w[i], t_end=5.0, samples=51, torque=torque)
             assert np.abs(batch.omega[i] - lone.omega).max() < 1e-9 * np.abs(lone.omega).max()
+            omega, _ = reference_run(I[i], w[i], [0.0, 0.0, 0.0, 1.0], batch.t, tau)
+            assert np.abs(batch.omega[i] - omega).max() < 1e-9 * np.abs(omega).max()
+    with pytest.raises(ValueError, match=r"^method = 'euler' is unknown; allowed: auto, exact, "):
+        simulate_batch(I, w, t_end=1.0, method="euler")
     with pytest.raises(ValueError, match=r"^rtol = 1.0 must be from"):
         simulate_batch(I, w, t_end=1.0, torque=tumble.ConstantTorque((0.0, 0.3, 0.1)), rtol=1.0)

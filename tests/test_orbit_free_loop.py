@@ -133,6 +133,8 @@ def test_a_batch_takes_it_body_by_body_and_a_splitting_with_the_bodies_together(
         lone = tumble.simulate(tumble.MassProperties.from_moments(moments[i]), w[i], times=t, torque=gg)
         assert np.array_equal(batch.omega[i], lone.omega)
         assert np.abs(split.omega[i] - lone.omega).max() < 1e-10 * np.abs(lone.omega).max()
+    with pytest.raises(ValueError, match=r"^moments has shape \(1, 3, 3\); it must be \(3,\) or \(N, 3\)"):
+        gg.bind(moments[None])
     torques = gg.bind(moments)(0.0, w, Rotation.identity(3))
     assert torques.shape == (3, 3) and np.allclose(torques[2], gg.bind(moments[2])(0.0, w[2], Rotation.identity()))
 

@@ -110,6 +110,8 @@ def test_a_field_of_ones_own_keeps_the_python_path(loop_runs):
 @pytest.mark.parametrize(("args", "message"), [
     (((1.0, 0.0), UniformField((0.0, 3e-5, 0.0))), r"^dipole = \(1.0, 0.0\)"),
     (((1.0, 0.0, 0.0), (0.0, 3e-5, 0.0)), r"^field = \(0.0, 3e-05, 0.0\) must give world\(t\)"),
+    (((1.0, 0.0, 0.0), type("Flat", (), {"world": lambda self, t: [1e-5, 2e-5]})()),
+     r"^field.world\(0.0\) = \[1e-05, 2e-05\] must be 3 finite numbers \(T, world frame\)$"),
 ])
 def test_bad_input_is_named(args, message):
     with pytest.raises(ValueError, match=message):

@@ -58,6 +58,8 @@ def test_the_file_of_tumble_simulate_reads_back_as_the_python_run(tmp_path):
 def test_bad_files_are_refused_by_name(tmp_path):
     with pytest.raises(FileNotFoundError, match=r"nope.npz: no such file$"):
         read_npz(tmp_path / "nope.npz")
+    with pytest.raises(ValueError, match=r" is a folder, not a trajectory's NPZ file"):
+        read_npz(tmp_path)
     text = tmp_path / "notes.npz"
     text.write_text("not a zip", encoding="utf-8")
     with pytest.raises(ValueError, match=r"notes.npz: not a trajectory's NPZ file"):

@@ -46,7 +46,7 @@ from .euler import angular_momentum, kinetic_energy
 from .methods.auto import AUTO_RTOL, check_rtol, dop853_tolerances
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
-from .methods.names import AUTO
+from .methods.names import ALLOWED, AUTO
 from .models.torques import (
     TorqueLike,
     TorqueModel,
@@ -243,6 +243,8 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     """
     model = as_torque(torque)
     auto = isinstance(method, str) and method == AUTO
+    if not auto and not (isinstance(method, str) and method in METHODS):
+        raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
     spec = get_method(("exact" if model is None else "dop853") if auto else method)
     step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
     asked = rtol, atol  # what a lone simulate(method="auto") takes, for a torque of one's own

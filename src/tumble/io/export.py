@@ -142,6 +142,8 @@ def read_npz(path: str | os.PathLike[str]) -> Trajectory:
     ('exact (auto)', True, True)
     """
     where = os.fspath(path)
+    if os.path.isdir(where):
+        raise ValueError(f"{where} is a folder, not a trajectory's NPZ file (tumble simulate writes DIR/trajectory.npz)")
     if not os.path.isfile(where):
         raise NoSuchFileError(f"{where}: no such file")
     try:

@@ -67,6 +67,9 @@ class ResidualDipole(AddsTorques):
         if not callable(getattr(self.field, "world", None)):
             raise ValueError(f"field = {self.field!r} must give world(t), the field (T) in the world frame: a "
                              "UniformField, DipoleField or IGRFField")
+        B = np.asarray(self.field.world(0.0))  # a field of one's own asked once, so a wrong one is named here
+        if B.shape != (3,) or B.dtype.kind not in "iuf" or not np.all(np.isfinite(B)):
+            raise ValueError(f"field.world(0.0) = {B.tolist()!r} must be 3 finite numbers (T, world frame)")
 
     def __call__(self, t: float, omega: FloatArray, attitude: Rotation) -> Vector3:
         """Body-frame torque at ``t`` (s), N m (``omega`` unused; ``attitude`` body to world); shape

@@ -36,7 +36,10 @@ __all__ = ["OrbitGravityGradient", "gravity_gradient_of"]
 
 
 def _as_tuples(I: FloatArray) -> tuple[float, ...] | tuple[tuple[float, ...], ...]:
-    """Checked moments (3,) or (N, 3) as a tuple of floats or of rows (a frozen model's field)."""
+    """Checked moments (3,) or (N, 3) as a tuple of floats or of rows (a frozen model's field); a
+    ValueError for any other shape."""
+    if I.ndim > 2:
+        raise ValueError(f"moments has shape {I.shape}; it must be (3,) or (N, 3) (kg m^2)")
     return tuple(map(float, I)) if I.ndim == 1 else tuple(tuple(map(float, row)) for row in I)
 
 
