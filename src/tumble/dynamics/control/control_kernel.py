@@ -100,10 +100,9 @@ def disturbance_form(torque: Any, field: Any = None) -> tuple[float, ...] | None
 
 
 def _same_field(a: Any, b: Any) -> bool:
-    """Whether two fields are one: the same object, or the same compiled form (kind and parameters)."""
-    if a is b:
-        return a is not None
-    one, other = field_form(a), field_form(b)
+    """Whether two fields are one the loop evaluates: the same compiled form (kind and parameters;
+    None for a field that has none)."""
+    one, other = (None, None) if a is None else (field_form(a), field_form(b))
     return one is not None and other is not None and one[0] == other[0] and np.array_equal(one[1], other[1])
 
 

@@ -34,11 +34,10 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ...typing import FloatArray
-from ..environment.magnetic import field_form
 from ..models.dipole import ResidualDipole
 from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
-from ..models.torques import ConstantTorque
+from ..models.torques import TorqueSum
 from ._front import locked_inverse
 from .compiled_loop import LAW_BDOT
 from .control_kernel import ControlKernel, disturbance_form
@@ -51,69 +50,61 @@ _NO_LAW, _NO_RODS, _NO_LIMITS = (LAW_BDOT, np.zeros(3), np.zeros((0, 3))), np.ze
 
 class FreeTerms(NamedTuple):
     """A torque's terms for the loop (:func:`free_terms`): its gravity gradient (or None), the
-    field of its dipoles (or None), their sum (A m^2, principal frame), and its constant body and
-    world torques (N m).
+    field of its residual dipoles (or None), and the rest of it (constant torques and those
+    dipoles, one torque model or None), which the loop takes as its disturbance
+    (:func:`~tumble.dynamics.control.control_kernel.disturbance_form`).
 
     Examples
     --------
-    >>> from tumble.dynamics import ResidualDipole, UniformField
+    >>> from tumble.dynamics import ConstantTorque, ResidualDipole, UniformField
     >>> from tumble.dynamics.control.free_loop import free_terms
     >>> field = UniformField((0.0, 3e-5, 0.0))
-    >>> terms = free_terms(ResidualDipole((0.2, 0.0, 0.0), field) + ResidualDipole((0.1, 0.0, 0.0), field))
-    >>> terms.gravity_gradient is None, terms.field is field, terms.dipole
-    (True, True, (0.30000000000000004, 0.0, 0.0))
+    >>> dipole, push = ResidualDipole((0.2, 0.0, 0.0), field), ConstantTorque((0.0, 0.0, 1e-6))
+    >>> terms = free_terms(dipole + push)
+    >>> terms.gravity_gradient is None, terms.field is field, terms.rest.terms == (dipole, push)
+    (True, True, True)
     """
 
     gravity_gradient: GravityGradient | OrbitGravityGradient | None
     field: Any
-    dipole: tuple[float, float, float]
-    disturbance: tuple[float, ...]
+    rest: Any
 
 
 def free_terms(torque: Any) -> FreeTerms | None:
     """The loop's terms of a torque that holds the gravity gradient along a Keplerian or TLE orbit
     or a :class:`~tumble.dynamics.models.dipole.ResidualDipole` (module docstring): at most one
-    gravity gradient (a circle's or an orbit's), the dipoles in one field (their sum, A m^2), and
-    constant body and world torques (their terms, N m,
-    :func:`~tumble.dynamics.control.control_kernel.disturbance_form`); None for a torque with
-    anything else, a model whose law a subclass changed, or neither of the two (the engine's).
+    gravity gradient (a circle's or an orbit's), and the rest, constant body and world torques and
+    residual dipoles in one field, as the loop's disturbance takes them
+    (:func:`~tumble.dynamics.control.control_kernel.disturbance_form`, the one test of what it
+    takes); None for a torque with anything else, a model whose law a subclass changed, or
+    neither of the two (the engine's).
 
     Examples
     --------
     >>> from tumble.dynamics import ConstantTorque, KeplerOrbit, OrbitGravityGradient, ResidualDipole, UniformField
     >>> from tumble.dynamics.control.free_loop import free_terms
     >>> gg = OrbitGravityGradient(KeplerOrbit(8000e3, 0.1))
-    >>> terms = free_terms(gg + ConstantTorque((0.0, 0.0, 1e-6)))
-    >>> terms.gravity_gradient is gg, terms.disturbance
-    (True, (0.0, 0.0, 1e-06, 0.0, 0.0, 0.0))
-    >>> free_terms(ResidualDipole((0.2, 0.0, 0.0), UniformField((0.0, 3e-5, 0.0)))).dipole
-    (0.2, 0.0, 0.0)
-    >>> free_terms(ConstantTorque((0.0, 0.0, 1e-6))) is None   # the engine's own
+    >>> push = ConstantTorque((0.0, 0.0, 1e-6))
+    >>> terms = free_terms(gg + push)
+    >>> terms.gravity_gradient is gg, terms.field, terms.rest is push
+    (True, None, True)
+    >>> free_terms(ResidualDipole((0.2, 0.0, 0.0), UniformField((0.0, 3e-5, 0.0))) + gg).field
+    UniformField(vector=(0.0, 3e-05, 0.0))
+    >>> free_terms(push) is None   # the engine's own
     True
     """
-    gravity: list[Any] = []
-    dipoles: list[ResidualDipole] = []
-    disturbance: tuple[float, ...] = (0.0,) * 6
-    for term in getattr(torque, "terms", (torque,)):
-        if isinstance(term, (GravityGradient, OrbitGravityGradient)):
-            if term.loop_form() is None:
-                return None
-            gravity.append(term)
-        elif isinstance(term, ResidualDipole):
-            if type(term).__call__ is not ResidualDipole.__call__ or field_form(term.field) is None:
-                return None
-            dipoles.append(term)
-        else:
-            form = disturbance_form(term)
-            if form is None:
-                return None
-            disturbance = tuple(a + b for a, b in zip(disturbance, form))
-    fields = {id(d.field) for d in dipoles}
-    if len(gravity) > 1 or len(fields) > 1 or not (dipoles or any(isinstance(g, OrbitGravityGradient) for g in gravity)):
+    terms = getattr(torque, "terms", (torque,))
+    gravity = [term for term in terms if isinstance(term, (GravityGradient, OrbitGravityGradient))]
+    dipoles = [term for term in terms if isinstance(term, ResidualDipole)]
+    rest = [term for term in terms if not isinstance(term, (GravityGradient, OrbitGravityGradient))]
+    if len(gravity) > 1 or any(g.loop_form() is None for g in gravity) or not (
+            dipoles or any(isinstance(g, OrbitGravityGradient) for g in gravity)):
         return None
-    m = np.sum([d.dipole for d in dipoles], axis=0) if dipoles else np.zeros(3)
-    return FreeTerms(gravity[0] if gravity else None, dipoles[0].field if dipoles else None,
-                     (float(m[0]), float(m[1]), float(m[2])), disturbance)
+    field = dipoles[0].field if dipoles else None
+    others = TorqueSum(*rest) if len(rest) > 1 else rest[0] if rest else None
+    if disturbance_form(others, field) is None:
+        return None
+    return FreeTerms(gravity[0] if gravity else None, field, others)
 
 
 def run_free(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: FloatArray, torque: Any,
@@ -146,13 +137,9 @@ def run_free(moments: FloatArray, omega0: FloatArray, quat0: FloatArray, t: Floa
     if terms is None:
         raise ValueError(f"torque = {torque!r} holds neither the gravity gradient along a Keplerian or TLE orbit nor "
                          "a ResidualDipole, or something besides them and constant torques")
-    b0, b1, b2, w0, w1, w2 = terms.disturbance
-    pushes = ConstantTorque((b0, b1, b2)) + ConstantTorque((w0, w1, w2), "world")
-    if terms.field is not None:
-        pushes = pushes + ResidualDipole(terms.dipole, terms.field)
     I = np.asarray(moments, float)
     kernel = ControlKernel(I, locked_inverse(I, None), None, terms.field, terms.gravity_gradient, float(rtol),
-                           float(np.min(atol)), float(t[-1]), checked=True, torque=pushes)
+                           float(np.min(atol)), float(t[-1]), checked=True, torque=terms.rest)
     y0 = np.concatenate([quat0, omega0, np.zeros(3)])  # (q, omega, the external impulse)
     Y = kernel.run(y0, t, _NO_LAW, _NO_RODS, _NO_LIMITS, carry=True)[0]
     return Y[:, 4:7], Y[:, :4]
