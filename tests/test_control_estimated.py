@@ -109,9 +109,10 @@ def test_a_pointing_law_before_the_filter_starts_says_why():
                             field=DipoleField(orbit), wheels=RW, sensors=sensors)
 
 
-def _both(monkeypatch, controller_of, **kwargs):
+def _both(monkeypatch, controller_of, omega0=(0.0, 0.0, 0.0), **kwargs):
     """One run on the compiled loop with the estimator (control/estimated_loop.py) and the same on
-    the Python path (Estimated called each step, the same compiled hold intervals)."""
+    the Python path (Estimated called each step, the same compiled hold intervals): each run, its
+    filter's rows and its controller."""
     from tumble.dynamics.control import estimated_loop
 
     runs = []
@@ -120,8 +121,8 @@ def _both(monkeypatch, controller_of, **kwargs):
             if not compiled:
                 m.setattr(estimated_loop, "plan", lambda *a: None)
             c = controller_of()
-            run = simulate_controlled(MOMENTS, [0.0, 0.0, 0.0], controller=c, wheels=RW, **kwargs)
-            runs.append((run, c.knowledge()))
+            run = simulate_controlled(MOMENTS, omega0, controller=c, wheels=RW, **kwargs)
+            runs.append((run, c.knowledge(), c))
     return runs
 
 
@@ -146,7 +147,7 @@ def test_the_compiled_loop_is_the_python_path(monkeypatch, law):
     else:
         def controller_of():
             return Estimated(BDot(gain=1e-3, period=0.5, form="normalized"), sensors, DipoleField(orbit))
-    (fast, kf), (slow, ks) = _both(monkeypatch, controller_of, t_end=240.0, field=DipoleField(orbit),
+    (fast, kf, _), (slow, ks, _) = _both(monkeypatch, controller_of, t_end=240.0, field=DipoleField(orbit),
                                    magnetorquers=Magnetorquers(0.2), sensors=sensors,
                                    attitude0=TARGET * Rotation.from_rotvec([0.5, 0.0, 0.0]))
     assert np.array_equal(kf.t, ks.t) and np.array_equal(kf.used, ks.used)
@@ -160,11 +161,76 @@ def test_the_compiled_loop_is_the_python_path(monkeypatch, law):
     assert np.allclose(kf.sigma, ks.sigma, rtol=1e-7, atol=0)
 
 
+def test_a_mission_fed_the_estimate_is_the_python_paths_run(monkeypatch):
+    """B-dot on the readings until the rate the law is handed (the gyroscope's, less the filter's
+    bias once it has started) has stayed below 0.01 rad/s for 10 s, then MRP feedback with
+    momentum dumping on the estimate: the compiled loop switches at the Python path's step, sets
+    the mission's switch time, and gives its run to round-off; the mission's rule is its own
+    ``observe`` on the rates the loop gives."""
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controllers import MomentumDumping
+    from tumble.dynamics.control.estimated_loop import plan
+    from tumble.dynamics.control.mission import DetumbleThenPoint
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    orbit = CircularOrbit(altitude=500e3, arg_latitude=math.radians(100.0), inclination=0.3)
+    sensors = Sensors(gyro_noise=1e-4, gyro_bias=(3e-4, -2e-4, 1e-4), magnetometer_noise=2e-7, attitude="none",
+                      sun_sensor=CoarseSunSensor(noise=2e-3), sunlight=Sunlight(orbit, "2026-03-20T14:46:00"), seed=5)
+
+    def controller_of():
+        point = MRPFeedback(K=4e-3, P=1.2e-2, period=0.5, moments=MOMENTS, wheels=RW, target=TARGET)
+        mission = DetumbleThenPoint(BDot(gain=3e-3, period=0.5, form="normalized"), MomentumDumping(point, gain=1e-3),
+                                    switch_rate=0.01, dwell=10.0)
+        return Estimated(mission, sensors, DipoleField(orbit))
+
+    (fast, kf, cf), (slow, ks, cs) = _both(monkeypatch, controller_of, omega0=(0.012, -0.01, 0.008), t_end=200.0,
+                                           field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2), sensors=sensors,
+                                           attitude0=TARGET * Rotation.from_rotvec([0.5, 0.0, 0.0]))
+    assert len(plan(cf, sensors, np.array(MOMENTS), RW, DipoleField(orbit))) == 2   # both modes compiled
+    switch = cf.controller.switch_time
+    assert switch is not None and 10.0 < switch < 150.0 and switch == cs.controller.switch_time
+    i = int(round(switch / 0.5))
+    assert np.all(fast.wheel_torque[:i] == 0.0) and np.abs(fast.wheel_torque[i:]).max() > 0.0   # B-dot, then the wheels
+    assert np.linalg.norm(fast.omega[i - 20:i + 1], axis=1).max() < 0.011 < np.linalg.norm(fast.omega[0])
+    assert np.array_equal(kf.t, ks.t) and np.array_equal(kf.used, ks.used)
+    assert np.abs(fast.attitude.as_quat() - slow.attitude.as_quat()).max() < 1e-9
+    assert np.abs(fast.omega - slow.omega).max() < 1e-11
+    assert np.abs(fast.dipole - slow.dipole).max() < 1e-9
+    assert np.abs(fast.wheel_torque - slow.wheel_torque).max() < 1e-9
+    assert np.abs(kf.bias - ks.bias).max() < 1e-10
+    assert np.allclose(kf.sigma, ks.sigma, rtol=1e-7, atol=0)
+
+
+def test_a_mission_that_never_switches_detumbles_throughout(monkeypatch):
+    """A switch rate the run never gets below: B-dot the whole run, no switch time, the Python
+    path's run."""
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.mission import DetumbleThenPoint
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    orbit = CircularOrbit(altitude=500e3, inclination=0.3)
+    sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=2e-7, attitude="none", sun_sensor=CoarseSunSensor(noise=2e-3),
+                      sunlight=Sunlight(orbit, "2026-03-20T14:46:00"), seed=2)
+
+    def controller_of():
+        point = MRPFeedback(K=4e-3, P=1.2e-2, period=1.0, moments=MOMENTS, wheels=RW)
+        return Estimated(DetumbleThenPoint(BDot(gain=3e-3, period=1.0, form="normalized"), point, switch_rate=1e-4,
+                                           dwell=5.0), sensors, DipoleField(orbit))
+
+    (fast, kf, cf), (slow, _, cs) = _both(monkeypatch, controller_of, omega0=(0.05, 0.0, 0.0), t_end=60.0,
+                                          field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2), sensors=sensors)
+    assert cf.controller.switch_time is None and cs.controller.switch_time is None
+    assert np.all(fast.wheel_torque == 0.0) and np.abs(fast.dipole).max() > 0.0
+    assert np.abs(fast.omega - slow.omega).max() < 1e-11
+    assert np.abs(fast.attitude.as_quat() - slow.attitude.as_quat()).max() < 1e-9
+
+
 def test_what_the_compiled_loop_cannot_run_stays_python():
     """A fine sun sensor (it draws its noise only in view), a law of the user's own, or sensors
     other than the filter's keep the Python path (estimated_loop.plan says None)."""
     from tumble.dynamics.control.bdot import BDot
     from tumble.dynamics.control.estimated_loop import plan
+    from tumble.dynamics.control.mission import DetumbleThenPoint
     from tumble.dynamics.models.vector_sensors import FineSunSensor
 
     orbit = CircularOrbit(altitude=500e3)
@@ -177,7 +243,20 @@ def test_what_the_compiled_loop_cannot_run_stays_python():
         def __call__(self, t, m):
             return super().__call__(t, m)
 
-    assert plan(Estimated(BDot(gain=1.0, period=1.0), coarse), coarse, moments, None, None) is not None
+    assert len(plan(Estimated(BDot(gain=1.0, period=1.0), coarse), coarse, moments, None, None)) == 1
     assert plan(Estimated(BDot(gain=1.0, period=1.0), fine), fine, moments, None, None) is None
     assert plan(Estimated(Mine(gain=1.0, period=1.0), coarse), coarse, moments, None, None) is None
     assert plan(Estimated(BDot(gain=1.0, period=1.0), coarse), Sensors(), moments, None, None) is None
+
+    class MyMission(DetumbleThenPoint):
+        def __call__(self, t, m):
+            return super().__call__(t, m)
+
+    point = MRPFeedback(K=1e-3, P=1e-2, period=1.0, moments=MOMENTS, wheels=RW)
+    for cls, laws in ((DetumbleThenPoint, 2), (MyMission, None)):
+        mission = cls(BDot(gain=1.0, period=1.0), point, switch_rate=0.01, dwell=1.0)
+        found = plan(Estimated(mission, coarse), coarse, moments, RW, None)
+        assert (found if laws is None else len(found)) == laws
+    fine_point = DetumbleThenPoint(BDot(gain=1.0, period=1.0), MRPFeedback(K=1e-3, P=1e-2, period=1.0, moments=[1.0, 2.0, 3.0],
+                                                                          wheels=RW), switch_rate=0.01, dwell=1.0)
+    assert plan(Estimated(fine_point, coarse), coarse, moments, RW, None) is None   # a mode not on the run's moments

@@ -418,9 +418,9 @@ def simulate_controlled(
     if kernel is not None and isinstance(controller, Estimated):  # the sensors, the filter and the law compiled too
         from . import estimated_loop
 
-        law = estimated_loop.plan(controller, sensors, I, wheels, field)
-        if law is not None:
-            Y, D, U, F = estimated_loop.run(controller, kernel, law, grid, y0, rods, limits, carry_step)
+        laws = estimated_loop.plan(controller, sensors, I, wheels, field)
+        if laws is not None:
+            Y, D, U, F = estimated_loop.run(controller, kernel, laws, grid, y0, rods, limits, carry_step)
             return _run(grid, Y, I, J, axes, k, U, D, F)
     sensors = sensors if sensors is not None else Sensors()
     rng = sensors.rng()

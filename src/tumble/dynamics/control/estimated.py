@@ -11,7 +11,8 @@ tracker at its period), and hands the controller a measurement whose attitude is
 and whose rate is the gyroscope's less the estimated bias. The true attitude the sensors were
 given is never read.
 
-**Compiled.** With built-in parts (a law the compiled loop knows, coarse sun cells, a
+**Compiled.** With built-in parts (a law the compiled loop knows, or a
+:class:`~tumble.dynamics.control.mission.DetumbleThenPoint` of two, coarse sun cells, a
 :class:`~tumble.dynamics.models.vector_sensors.StarTracker`, the run's own field model and
 sensors), :func:`~tumble.dynamics.control.controlled.simulate_controlled` runs this wrapper's
 whole loop in one compiled call (:mod:`~tumble.dynamics.control.estimated_loop`), the same

@@ -44,7 +44,7 @@ True
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -59,11 +59,15 @@ from ..special.quaternion import to_body
 from . import compiled_loop as _cl
 from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
 
-__all__ = ["NEEDS_START", "NO_ATTITUDE", "plan", "run"]
+__all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "Law", "plan", "run"]
 
 #: Statuses beyond the compiled loop's: the filter can start at the step ``mem[15]``; the law
 #: needs an attitude and the filter has not started.
 NEEDS_START, NO_ATTITUDE = 2, 3
+#: A law of the compiled loop: ``(law, parameters, allocation)`` (:func:`~tumble.dynamics.control.control_kernel.compiled_law`).
+Law = tuple[int, FloatArray, FloatArray]
+#: The loop paused where it was asked to (``stop``): a mission's switch to its pointing law.
+SWITCH = 4
 
 _cells = jit(cell_currents, error_model="numpy")
 _coarse = jit(coarse_reading, error_model="numpy")
@@ -79,11 +83,14 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     sun_world: FloatArray, light: FloatArray, fq: FloatArray, fb: FloatArray, fP: FloatArray,
                     mem: FloatArray, used0: np.ndarray, Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray,
                     KQ: FloatArray, KB: FloatArray, KS: FloatArray, KU: np.ndarray, KV: np.ndarray,
-                    RD: FloatArray) -> int:  # pragma: no cover - compiled
+                    RD: FloatArray, stop: int, KW: FloatArray) -> int:  # pragma: no cover - compiled
     """The loop from step ``i0`` of ``grid`` (s) (module docstring; :func:`run` says what each
     argument holds); ``fresh``: the filter started at ``i0`` (its updates skipped there, ``used0``
     its row's sensors). Returns a status; on a pause, what was read into ``RD`` and the memory
-    into ``mem``."""
+    into ``mem``. It pauses (:data:`SWITCH`) at the start of the step ``stop`` (none if negative),
+    before anything of that step but the state in ``Y`` is done, and writes into ``KW`` the rate
+    (rad/s, body) the law is given at each step: the gyroscope's reading, less the filter's bias
+    once it has started."""
     steps = grid.shape[0] - 1
     y = _cl.tuple_of(y0)
     u = np.zeros(_cl.MAX_WHEELS)
@@ -104,6 +111,9 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
         y = _cl.with_quaternion(y, y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq)
         _cl.store(y, Y[i])
+        if i == stop:
+            mem[8] = h_abs
+            return SWITCH
         x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
         b0, b1, b2 = field_body(kind, fp, ft, x, yq, z, c, t) if has_field else (0.0, 0.0, 0.0)
         F[i, 0], F[i, 1], F[i, 2] = b0, b1, b2
@@ -140,6 +150,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 mem[7], mem[8], mem[15] = (1.0 if memory[7] else 0.0), h_abs, float(i)
                 return NEEDS_START if has_trk or (has_sun and has_field and S[15] != 0.0) else NO_ATTITUDE
             if mem[9] == 0.0:  # B-dot before the start: the readings themselves
+                KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
                 m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, x, yq, z, c, g0, g1, g2, n0, n1, n2,
                                                      has_field, memory, u)
             else:
@@ -173,6 +184,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 for j in range(6):
                     KS[i, j] = math.sqrt(fP[0, j, j])
                 KU[i, 0], KU[i, 1], KU[i, 2], KV[i] = used_mag, used_sun, used_trk, True
+                KW[i, 0], KW[i, 1], KW[i, 2] = g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2]
                 m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
                                                      g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
                                                      has_field, memory, u)
@@ -187,12 +199,13 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
     return _cl.OK
 
 
-def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
-    """The wrapped law of an :class:`~tumble.dynamics.control.estimated.Estimated` that this loop
-    runs (``(law, parameters, allocation)`` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`),
-    or None for the Python path: the run's ``sensors`` those the filter is told of, a coarse sun
-    sensor or none, a :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the
-    flight software's field the run's (or none), and the wrapped law a built-in one.
+def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[Law, ...] | None:
+    """The laws of an :class:`~tumble.dynamics.control.estimated.Estimated` that this loop runs
+    (each :data:`Law` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`: the wrapped
+    law's, or a :class:`~tumble.dynamics.control.mission.DetumbleThenPoint`'s two modes'), or None
+    for the Python path: the run's ``sensors`` those the filter is told of, a coarse sun sensor or
+    none, a :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the flight
+    software's field the run's (or none), and the wrapped law (each mode's) a built-in one.
 
     Examples
     --------
@@ -211,8 +224,9 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     True
     """
     from ..environment.magnetic import field_form
-    from .control_kernel import compiled_law
+    from .control_kernel import _plain, compiled_law
     from .estimated import Estimated
+    from .mission import DetumbleThenPoint
 
     if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
         return None
@@ -230,16 +244,26 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
         (kind, p), (own_kind, own_p) = form, own_form
         if kind == FIELD_TABLE or kind != own_kind or not np.array_equal(p, own_p):
             return None
-    return compiled_law(controller.controller, None, moments, wheels, field)
+    inner: Any = controller.controller
+    modes = (inner.detumble, inner.point) if _plain(inner, DetumbleThenPoint) else (inner,)
+    laws = tuple(compiled_law(mode, None, moments, wheels, field) for mode in modes)
+    return None if any(law is None for law in laws) else cast("tuple[Law, ...]", laws)
 
 
-def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], grid: FloatArray, y0: FloatArray,
+def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y0: FloatArray,
         rods: FloatArray, limits: FloatArray, carry: bool) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The whole loop of the :class:`~tumble.dynamics.control.estimated.Estimated` ``controller``
-    (:func:`plan` said yes) on the :class:`~tumble.dynamics.control.control_kernel.ControlKernel`
+    (``laws``: what :func:`plan` said) on the :class:`~tumble.dynamics.control.control_kernel.ControlKernel`
     ``kernel``: as :meth:`~tumble.dynamics.control.control_kernel.ControlKernel.run`, the states,
     dipoles, wheel torques and fields at ``grid`` (s); the filter's rows left in the controller
     (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`).
+
+    A :class:`~tumble.dynamics.control.mission.DetumbleThenPoint` runs as its Python path does with
+    the same rule: the loop runs the whole time detumbling and gives the rates the law was handed
+    at each step (the gyroscope's, less the filter's bias once it has started); the mission's own
+    :meth:`~tumble.dynamics.control.mission.DetumbleThenPoint.observe` finds the switch in them (and
+    sets its ``switch_time``); where it switches, the loop runs again, the same to that step (the
+    noise is drawn up front), and from it on with the pointing law, nothing in its memory.
 
     Examples
     --------
@@ -280,35 +304,55 @@ def run(controller: Any, kernel: Any, law: tuple[int, FloatArray, FloatArray], g
                  dtype=float)
     C = trk.frame.as_matrix() if trk is not None else np.eye(3)  # type: ignore[union-attr]
     Rt = trk.covariance + min_sigma**2 * np.eye(3) if trk is not None else np.eye(3)
-    fq, fb, fP = np.zeros((1, 4)), np.zeros((1, 3)), np.zeros((1, 6, 6))
-    mem, used0, RD = np.zeros(16), np.zeros(3, bool), np.zeros(18)
     n = steps + 1
     Y, D, U, F = np.empty((n, _cl.N)), np.zeros((n, 3)), np.zeros((n, kernel.k)), np.zeros((n, 3))
-    KQ, KB, KS, KU, KV = np.zeros((n, 4)), np.zeros((n, 3)), np.zeros((n, 6)), np.zeros((n, 3), bool), np.zeros(n, bool)
-    y, i0, fresh = _cl.padded(y0), 0, False
+    KW = np.zeros((n, 3))
     loop = _kernels()["_knowledge_loop"]
-    while True:
-        status = loop(y, i0, fresh, np.ascontiguousarray(grid, dtype=float), kernel.packed, law[0], law[1], law[2],
-                      np.ascontiguousarray(rods, dtype=float), np.ascontiguousarray(limits, dtype=float), kernel.rtol,
-                      kernel.atol, kernel.method, kernel.step, bool(carry), S, A, Apinv, Agram,
-                      np.ascontiguousarray(C), np.ascontiguousarray(Rt), noise, offs, flags, sun_world, light, fq, fb, fP,
-                      mem, used0, Y, D, U, F, KQ, KB, KS, KU, KV, RD)
-        if status in (NEEDS_START, NO_ATTITUDE):
-            i = int(mem[15])
-            m = Measurement(float(RD[0]), RD[1:4].copy(), RD[4:7].copy() if RD[7] else None, None,
-                            _cl.unpadded(Y[i], kernel.k)[7:7 + kernel.k], RD[8:11].copy() if RD[12] else None,
-                            float(RD[11]) if RD[12] else 0.0, Rotation.from_quat(RD[13:17]) if RD[17] else None)
-            if status == NO_ATTITUDE:
-                controller.no_attitude(float(grid[i]), m)   # raises the Python path's error
-            f = controller.start(float(grid[i]), m)
-            fq[0], fb[0], fP[0] = f.quaternion, f.bias, f.covariance
-            used0[:] = (m.star_tracker is None, m.star_tracker is None, m.star_tracker is not None)
-            mem[9] = 1.0
-            y, i0, fresh = Y[i].copy(), i, True
-            continue
-        if status != _cl.OK:
-            raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
-        break
+    head = (np.ascontiguousarray(grid, dtype=float), kernel.packed)
+    tail = (np.ascontiguousarray(rods, dtype=float), np.ascontiguousarray(limits, dtype=float), kernel.rtol,
+             kernel.atol, kernel.method, kernel.step, bool(carry), S, A, Apinv, Agram, np.ascontiguousarray(C),
+             np.ascontiguousarray(Rt), noise, offs, flags, sun_world, light)
+
+    def through(law: Law, stop: int, after: Law | None) -> tuple[FloatArray, ...]:
+        """The loop from the start with ``law``, and from the step ``stop`` on with ``after``: the
+        filter's rows (quaternion, bias, sigmas, sensors used, whether the filter ran)."""
+        fq, fb, fP = np.zeros((1, 4)), np.zeros((1, 3)), np.zeros((1, 6, 6))
+        mem, used0, RD = np.zeros(16), np.zeros(3, bool), np.zeros(18)
+        KQ, KB, KS, KU, KV = np.zeros((n, 4)), np.zeros((n, 3)), np.zeros((n, 6)), np.zeros((n, 3), bool), np.zeros(n, bool)
+        y, i0, fresh = _cl.padded(y0), 0, False
+        while True:
+            status = loop(y, i0, fresh, *head, law[0], law[1], law[2], *tail, fq, fb, fP, mem, used0, Y, D, U, F,
+                          KQ, KB, KS, KU, KV, RD, stop, KW)
+            if status in (NEEDS_START, NO_ATTITUDE):
+                i = int(mem[15])
+                m = Measurement(float(RD[0]), RD[1:4].copy(), RD[4:7].copy() if RD[7] else None, None,
+                                _cl.unpadded(Y[i], kernel.k)[7:7 + kernel.k], RD[8:11].copy() if RD[12] else None,
+                                float(RD[11]) if RD[12] else 0.0, Rotation.from_quat(RD[13:17]) if RD[17] else None)
+                if status == NO_ATTITUDE:
+                    controller.no_attitude(float(grid[i]), m)   # raises the Python path's error
+                f = controller.start(float(grid[i]), m)
+                fq[0], fb[0], fP[0] = f.quaternion, f.bias, f.covariance
+                used0[:] = (m.star_tracker is None, m.star_tracker is None, m.star_tracker is not None)
+                mem[9] = 1.0
+                y, i0, fresh = Y[i].copy(), i, True
+                continue
+            if status == SWITCH and after is not None:  # the pointing law from here, nothing in its memory
+                mem[:8] = 0.0
+                y, i0, fresh = Y[stop].copy(), stop, False
+                law, after, stop = after, None, -1
+                continue
+            if status != _cl.OK:
+                raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
+            return KQ, KB, KS, KU, KV
+
+    rows = through(laws[0], -1, None)
+    if len(laws) == 2:  # a mission: the switch found from the rates its law was given, then the run again to it
+        mission = controller.controller
+        mission.reset()
+        switch = next((i for i in range(steps) if mission.observe(float(grid[i]), float(np.linalg.norm(KW[i])))), -1)
+        if switch >= 0:
+            rows = through(laws[0], switch, laws[1])
+    KQ, KB, KS, KU, KV = rows
     controller.record(grid[KV], KQ[KV], KB[KV], KS[KV], KU[KV])
     return _cl.unpadded(Y, kernel.k), D, U, F
 
