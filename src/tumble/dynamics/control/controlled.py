@@ -422,6 +422,13 @@ def simulate_controlled(
         if laws is not None:
             Y, D, U, F = estimated_loop.run(controller, kernel, laws, grid, y0, rods, limits, carry_step)
             return _run(grid, Y, I, J, axes, k, U, D, F)
+    elif kernel is not None and sensors is not None:  # the law fed the sensors' readings, noise and all, compiled
+        from . import estimated_loop
+
+        laws = estimated_loop.plan_readings(controller, sensors, I, wheels, field)
+        if laws is not None:
+            Y, D, U, F = estimated_loop.run(controller, kernel, laws, grid, y0, rods, limits, carry_step, sensors)
+            return _run(grid, Y, I, J, axes, k, U, D, F)
     sensors = sensors if sensors is not None else Sensors()
     rng = sensors.rng()
     I_rw_inv = locked_inverse(I, wheels)

@@ -1,4 +1,5 @@
-"""The closed loop with attitude knowledge in one compiled call: the sensors, the MEKF and the law.
+"""The closed loop with attitude knowledge in one compiled call: the sensors, the MEKF and the law;
+or the sensors' readings fed to the law as they are, the filter left out (:func:`plan_readings`).
 
 :class:`~tumble.dynamics.control.estimated.Estimated` runs in Python once per control period
 (readings, filter, law, then a compiled hold interval). When everything it wraps is built in
@@ -15,7 +16,8 @@ model the run's own), the whole loop runs here instead, in one call, with the sa
 - **the readings** are the sensors' own plain functions
   (:func:`~tumble.dynamics.models.vector_sensors.cell_currents`,
   :func:`~tumble.dynamics.models.vector_sensors.coarse_reading`,
-  :func:`~tumble.dynamics.models.vector_sensors.tracker_reading`);
+  :func:`~tumble.dynamics.models.vector_sensors.tracker_noise` and
+  :func:`~tumble.dynamics.special.quaternion.turned_by`);
 - **the filter** is the compiled MEKF's (:mod:`~tumble.dynamics.estimation.mekf_kernels`:
   propagation with the mean of two gyroscope readings, the vector and attitude updates);
 - **the law** is :func:`~tumble.dynamics.control.compiled_loop.law_command`, fed the estimate;
@@ -54,12 +56,12 @@ from ...typing import FloatArray
 from ..estimation.mekf_kernels import propagate as _propagate
 from ..estimation.mekf_kernels import update as _update
 from ..models.sensors import Measurement, Sensors
-from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_reading
-from ..special.quaternion import to_body
+from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_noise
+from ..special.quaternion import to_body, turned_by
 from . import compiled_loop as _cl
 from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
 
-__all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "Law", "plan", "run"]
+__all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "Law", "plan", "plan_readings", "run"]
 
 #: Statuses beyond the compiled loop's: the filter can start at the step ``mem[15]``; the law
 #: needs an attitude and the filter has not started.
@@ -71,8 +73,9 @@ SWITCH = 4
 
 _cells = jit(cell_currents, error_model="numpy")
 _coarse = jit(coarse_reading, error_model="numpy")
-_tracker = jit(tracker_reading, error_model="numpy")
+_tracker = jit(tracker_noise, error_model="numpy")
 _to_body = jit(to_body, error_model="numpy")
+_turned = jit(turned_by, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -128,7 +131,10 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
             if has_field:
                 n0, n1, n2 = b0 + S[3] + S[7] * noise[o], b1 + S[4] + S[7] * noise[o + 1], b2 + S[5] + S[7] * noise[o + 2]
                 o += 3
+            ax, ay, az, aw = x, yq, z, c  # the attitude the law is given without a filter
             if S[8] != 0.0:
+                if S[16] != 0.0:  # the attitude sensor's reading: the truth turned by its noise
+                    ax, ay, az, aw = _turned(x, yq, z, c, S[17] * noise[o], S[17] * noise[o + 1], S[17] * noise[o + 2])
                 o += 3
             has_sun, v0, v1, v2, sg = False, 0.0, 0.0, 0.0, 0.0
             if flags[i] & 2:
@@ -139,9 +145,10 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 has_sun = sg >= 0.0
             has_trk, t0, t1, t2, t3 = False, 0.0, 0.0, 0.0, 0.0
             if flags[i] & 4:
-                t0, t1, t2, t3 = _tracker(C, S[10], S[11], noise[o], noise[o + 1], noise[o + 2], x, yq, z, c)
+                r0, r1, r2 = _tracker(C, S[10], S[11], noise[o], noise[o + 1], noise[o + 2])
+                t0, t1, t2, t3 = _turned(x, yq, z, c, r0, r1, r2)
                 has_trk = True
-            if mem[9] == 0.0 and (has_trk or (has_sun and has_field and S[15] != 0.0) or law != _cl.LAW_BDOT):
+            if mem[9] == 0.0 and S[16] == 0.0 and (has_trk or (has_sun and has_field and S[15] != 0.0) or law != _cl.LAW_BDOT):
                 RD[0], RD[1], RD[2], RD[3], RD[4], RD[5], RD[6], RD[7] = t, g0, g1, g2, n0, n1, n2, (1.0 if has_field else 0.0)
                 RD[8], RD[9], RD[10], RD[11], RD[12] = v0, v1, v2, sg, (1.0 if has_sun else 0.0)
                 RD[13], RD[14], RD[15], RD[16], RD[17] = t0, t1, t2, t3, (1.0 if has_trk else 0.0)
@@ -149,9 +156,9 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     memory[4], memory[5], memory[6]
                 mem[7], mem[8], mem[15] = (1.0 if memory[7] else 0.0), h_abs, float(i)
                 return NEEDS_START if has_trk or (has_sun and has_field and S[15] != 0.0) else NO_ATTITUDE
-            if mem[9] == 0.0:  # B-dot before the start: the readings themselves
+            if mem[9] == 0.0:  # the readings themselves: no filter, or B-dot before its start
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
-                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, x, yq, z, c, g0, g1, g2, n0, n1, n2,
+                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, ax, ay, az, aw, g0, g1, g2, n0, n1, n2,
                                                      has_field, memory, u)
             else:
                 used_mag, used_sun, used_trk = used0[0], used0[1], used0[2]
@@ -250,13 +257,57 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     return None if any(law is None for law in laws) else cast("tuple[Law, ...]", laws)
 
 
+def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[Law, ...] | None:
+    """The laws that this loop runs fed the readings of ``sensors`` as they are, with no filter (each
+    :data:`Law` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`: the controller's, or
+    a :class:`~tumble.dynamics.control.mission.DetumbleThenPoint`'s two modes'), or None for the
+    Python path: a built-in law (each mode's), a coarse sun sensor or none, a
+    :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, and an attitude sensor
+    where a law points (without one the Python path says why it cannot).
+
+    Examples
+    --------
+    B-dot on a noisy gyroscope and magnetometer runs here; MRP feedback with no attitude sensor
+    does not:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.bdot import BDot
+    >>> from tumble.dynamics.control.controllers import MRPFeedback
+    >>> from tumble.dynamics.control.estimated_loop import plan_readings
+    >>> from tumble.dynamics.models.actuators import ReactionWheels
+    >>> from tumble.dynamics.models.sensors import Sensors
+    >>> noisy = Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7, attitude="none")
+    >>> len(plan_readings(BDot(gain=1.0, period=1.0), noisy, np.ones(3), None, None))
+    1
+    >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+    >>> plan_readings(MRPFeedback(K=1e-3, P=1e-2, period=1.0, moments=np.ones(3), wheels=rw), noisy, np.ones(3), rw, None) is None
+    True
+    """
+    from .control_kernel import _plain, compiled_law
+    from .mission import DetumbleThenPoint
+
+    if sensors is None or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, CoarseSunSensor)) \
+            or not (sensors.star_tracker is None or isinstance(sensors.star_tracker, StarTracker)):
+        return None
+    modes = (controller.detumble, controller.point) if _plain(controller, DetumbleThenPoint) else (controller,)
+    laws = tuple(compiled_law(mode, None, moments, wheels, field) for mode in modes)
+    if any(law is None for law in laws):
+        return None
+    if sensors.attitude == "none" and any(law[0] != _cl.LAW_BDOT for law in laws):  # type: ignore[index]
+        return None
+    return cast("tuple[Law, ...]", laws)
+
+
 def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y0: FloatArray,
-        rods: FloatArray, limits: FloatArray, carry: bool) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        rods: FloatArray, limits: FloatArray, carry: bool,
+        sensors: Sensors | None = None) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """The whole loop of the :class:`~tumble.dynamics.control.estimated.Estimated` ``controller``
     (``laws``: what :func:`plan` said) on the :class:`~tumble.dynamics.control.control_kernel.ControlKernel`
     ``kernel``: as :meth:`~tumble.dynamics.control.control_kernel.ControlKernel.run`, the states,
     dipoles, wheel torques and fields at ``grid`` (s); the filter's rows left in the controller
-    (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`).
+    (:meth:`~tumble.dynamics.control.estimated.Estimated.knowledge`). With ``sensors`` (and ``laws``
+    what :func:`plan_readings` said), ``controller`` is the law itself, fed these sensors' readings
+    as they are, with no filter.
 
     A :class:`~tumble.dynamics.control.mission.DetumbleThenPoint` runs as its Python path does with
     the same rule: the loop runs the whole time detumbling and gives the rates the law was handed
@@ -274,7 +325,9 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
     >>> run.__name__
     'run'
     """
-    sensors: Sensors = controller.sensors
+    filtered = sensors is None
+    if sensors is None:
+        sensors = controller.sensors
     steps = len(grid) - 1
     t = np.asarray(grid[:-1], float)
     has_field = int(kernel.P[15]) != FIELD_NONE
@@ -295,13 +348,15 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
     counts = 3 + 3 * has_field + 3 * (sensors.attitude == "star_tracker") + 2 * kc * lit + 3 * tracked
     offs = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     noise = sensors.rng().standard_normal(int(offs[-1]))
-    flags = (on_periods(t, controller.magnetometer_period) * 1 + lit * 2 + tracked * 4).astype(np.int64)
-    min_sigma = controller.min_sigma
+    updates = on_periods(t, controller.magnetometer_period) if filtered else np.zeros(steps, bool)
+    flags = (updates * 1 + lit * 2 + tracked * 4).astype(np.int64)
+    min_sigma = controller.min_sigma if filtered else 0.0
     S = np.array([*sensors.gyro_bias, *sensors.magnetometer_bias, sensors.gyro_noise, sensors.magnetometer_noise,
                   sensors.attitude == "star_tracker", css.noise if css is not None else 0.0,
                   trk.cross if trk is not None else 0.0, trk.roll if trk is not None else 0.0, min_sigma,
-                  sensors.gyro_noise * math.sqrt(controller.period), controller.bias_walk, controller.field is not None],
-                 dtype=float)
+                  sensors.gyro_noise * math.sqrt(controller.period) if filtered else 0.0,
+                  controller.bias_walk if filtered else 0.0, filtered and controller.field is not None,
+                  not filtered, sensors.attitude_noise], dtype=float)
     C = trk.frame.as_matrix() if trk is not None else np.eye(3)  # type: ignore[union-attr]
     Rt = trk.covariance + min_sigma**2 * np.eye(3) if trk is not None else np.eye(3)
     n = steps + 1
@@ -347,13 +402,14 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
 
     rows = through(laws[0], -1, None)
     if len(laws) == 2:  # a mission: the switch found from the rates its law was given, then the run again to it
-        mission = controller.controller
+        mission = controller.controller if filtered else controller
         mission.reset()
         switch = next((i for i in range(steps) if mission.observe(float(grid[i]), float(np.linalg.norm(KW[i])))), -1)
         if switch >= 0:
             rows = through(laws[0], switch, laws[1])
     KQ, KB, KS, KU, KV = rows
-    controller.record(grid[KV], KQ[KV], KB[KV], KS[KV], KU[KV])
+    if filtered:
+        controller.record(grid[KV], KQ[KV], KB[KV], KS[KV], KU[KV])
     return _cl.unpadded(Y, kernel.k), D, U, F
 
 

@@ -24,6 +24,7 @@ from scipy.spatial.transform import Rotation
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vector
 from ..environment.sun import Sunlight
+from ..special.quaternion import turned_by
 from .vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker, on_period
 
 __all__ = ["Measurement", "Sensors"]
@@ -217,7 +218,9 @@ class Sensors:
         if self.attitude == "ideal":
             att = attitude
         elif self.attitude == "star_tracker":
-            att = attitude * Rotation.from_rotvec(self.attitude_noise * rng.standard_normal(3))
+            n0, n1, n2 = (float(v) for v in self.attitude_noise * rng.standard_normal(3))
+            x, y, z, s = (float(v) for v in attitude.as_quat())
+            att = Rotation.from_quat(turned_by(x, y, z, s, n0, n1, n2))   # attitude * Rotation.from_rotvec(n)
         sun, sun_sigma = None, 0.0
         if self.sun_sensor is not None and self.sunlight is not None and on_period(t, self.sun_sensor.period):
             light = float(self.sunlight.fraction(t))

@@ -54,9 +54,10 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_rotation, check_vectors
+from ..special.quaternion import turned_by
 
 __all__ = ["CoarseSunSensor", "FineSunSensor", "StarTracker", "cell_currents", "coarse_reading", "on_period", "on_periods",
-           "tracker_reading"]
+           "tracker_noise"]
 
 
 def on_periods(t: ArrayLike, period: float) -> np.ndarray:
@@ -157,30 +158,25 @@ def coarse_reading(pinv: FloatArray, gram_inv: FloatArray, noise: float,
     return u[0], u[1], u[2], math.sqrt(max(top, 0.0)) / n
 
 
-def tracker_reading(C: FloatArray, cross: float, roll: float, z0: float, z1: float, z2: float, x: float, y: float,
-                    z: float, s: float) -> tuple[float, float, float, float]:
-    """A star tracker's attitude ``q (x) exp(C v / 2)`` (scalar last, body to world) of the true
-    unit quaternion ``(x, y, z, s)``: ``v = (cross z0, cross z1, roll z2)`` about the sensor's axes,
-    ``C`` (3, 3) sensor to body (module docstring); the rotation vector's quaternion
-    ``(sin(a/2) r / a, cos(a/2))`` (its series below 1e-4 rad) and the Hamilton product (Markley &
-    Crassidis 2014, eqs. 2.82 and 2.126). Plain floats: the Python sensor and the compiled loop call it.
+def tracker_noise(C: FloatArray, cross: float, roll: float, z0: float, z1: float, z2: float) -> tuple[float, float, float]:
+    """A star tracker's error as a rotation vector in the body frame, ``C v`` (rad): ``v = (cross z0,
+    cross z1, roll z2)`` about the sensor's axes for unit normal draws ``z``, ``C`` (3, 3) sensor to
+    body (module docstring). The reading is the true attitude turned by it
+    (:func:`~tumble.dynamics.special.quaternion.turned_by`, ``q (x) exp(C v / 2)``). Plain floats:
+    the Python sensor and the compiled loop call it.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.dynamics.models.vector_sensors import tracker_reading
-    >>> [round(float(v), 12) for v in tracker_reading(np.eye(3), 0.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)]
+    >>> from tumble.dynamics.models.vector_sensors import tracker_noise
+    >>> from tumble.dynamics.special.quaternion import turned_by
+    >>> r = tracker_noise(np.eye(3), 0.0, 0.1, 0.0, 0.0, 1.0)   # 0.1 rad of roll, the sensor's z the body's
+    >>> [round(float(v), 12) for v in turned_by(0.0, 0.0, 0.0, 1.0, *r)]
     [0.0, 0.0, 0.049979169271, 0.998750260395]
     """
     v0, v1, v2 = cross * z0, cross * z1, roll * z2
-    r0 = C[0, 0] * v0 + C[0, 1] * v1 + C[0, 2] * v2
-    r1 = C[1, 0] * v0 + C[1, 1] * v1 + C[1, 2] * v2
-    r2 = C[2, 0] * v0 + C[2, 1] * v1 + C[2, 2] * v2
-    a = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
-    k = math.sin(0.5 * a) / a if a > 1e-4 else 0.5 - a * a / 48.0
-    dx, dy, dz, dw = k * r0, k * r1, k * r2, math.cos(0.5 * a)
-    return (s * dx + dw * x + y * dz - z * dy, s * dy + dw * y + z * dx - x * dz, s * dz + dw * z + x * dy - y * dx,
-            s * dw - x * dx - y * dy - z * dz)
+    return (C[0, 0] * v0 + C[0, 1] * v1 + C[0, 2] * v2, C[1, 0] * v0 + C[1, 1] * v1 + C[1, 2] * v2,
+            C[2, 0] * v0 + C[2, 1] * v1 + C[2, 2] * v2)
 
 
 def _period(value: object) -> float:
@@ -425,4 +421,4 @@ class StarTracker:
         z0, z1, z2 = (float(v) for v in rng.standard_normal(3))
         x, y, z, s = (float(v) for v in attitude.as_quat())
         C = self.frame.as_matrix()  # type: ignore[union-attr]
-        return Rotation.from_quat(tracker_reading(C, self.cross, self.roll, z0, z1, z2, x, y, z, s))
+        return Rotation.from_quat(turned_by(x, y, z, s, *tracker_noise(C, self.cross, self.roll, z0, z1, z2)))
