@@ -43,11 +43,12 @@ from ...typing import FloatArray
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
+from ..special.quaternion import to_body
 from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
-                   gyro_field_rate_components)
+                   gyro_field_rate_components, tracking_feedforward_components)
 from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, packed, rhs_namespace, rhs_source, tables
 
-__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
+__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "Law", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
            "kernels", "law_command", "padded", "rhs_of", "set_command", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
@@ -77,6 +78,8 @@ _bdot = jit(bdot_components, error_model="numpy")
 _gyro_rate = jit(gyro_field_rate_components, error_model="numpy")
 _dumping = jit(dumping_dipole_components, error_model="numpy")
 _feedback = jit(feedback_torque_components, error_model="numpy")
+_feedforward = jit(tracking_feedforward_components, error_model="numpy")
+_to_body = jit(to_body, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -285,17 +288,22 @@ def _interval(y0: FloatArray, t0: float, t1: float, P0: FloatArray, dipole: Floa
 #: The laws' memory at the start: MRP feedback's integral term (N m, 3), B-dot's last reading
 #: (T, 3), its time (s) and whether there is one.
 NO_MEMORY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, False)
+#: A law of the loop: ``(law, parameters, allocation, reference)``
+#: (:func:`~tumble.dynamics.control.control_kernel.compiled_law`).
+Law = tuple[int, FloatArray, FloatArray, Any]
 
 
 @jit(error_model="numpy")
 def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: float, x: float, yq: float, z: float,
                 c: float, w0: float, w1: float, w2: float, b0: float, b1: float, b2: float, has_field: bool, memory: Any,
-                u: FloatArray) -> Any:  # pragma: no cover - compiled
+                u: FloatArray, REF: FloatArray, i: int) -> Any:  # pragma: no cover - compiled
     """The law's command at ``t`` (s) from a measurement: the attitude ``(x, yq, z, c)`` (unit
     quaternion, body to world), the rate ``w`` (rad/s), the field ``b`` (T, body frame; used when
     ``has_field``) and the wheels' spins ``y[7:]`` (rad/s, exact): ``(m0, m1, m2, memory)`` the
     dipole asked for (A m^2) and the laws' memory (:data:`NO_MEMORY`), the wheels' torques
-    (N m) into ``u``. ``L`` the law's parameters, ``pinv`` the wheels' allocation (:func:`_loop`).
+    (N m) into ``u``. ``L`` the law's parameters, ``pinv`` the wheels' allocation (:func:`_loop`);
+    ``REF[i]`` the moving reference at this instant
+    (:func:`~tumble.dynamics.control.pointing.reference_table`; no rows for a fixed target).
     The ideal sensors' loop (:func:`_loop`) and the estimator's
     (:mod:`~tumble.dynamics.control.estimated_loop`) call it."""
     k = pinv.shape[0]
@@ -315,6 +323,11 @@ def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: f
             last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
     elif law != LAW_BDOT:
         s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
+        r0, r1, r2, a0, a1, a2 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # the reference's rate and its derivative, body
+        if REF.shape[0] > 0:
+            s0, s1, s2 = _attitude_error(REF[i, 0], REF[i, 1], REF[i, 2], REF[i, 3], x, yq, z, c)
+            r0, r1, r2 = _to_body(x, yq, z, c, REF[i, 4], REF[i, 5], REF[i, 6])
+            a0, a1, a2 = _to_body(x, yq, z, c, REF[i, 7], REF[i, 8], REF[i, 9])
         h0, h1, h2 = 0.0, 0.0, 0.0
         for j in range(k):
             js = P0[BODY + WHEEL * j + 3] * y[7 + j]
@@ -323,14 +336,17 @@ def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: f
         e0, e1, e2 = 0.0, 0.0, 0.0
         if L[4] != 0.0:
             e0, e1, e2 = P0[0] * w0 + h0, P0[1] * w1 + h1, P0[2] * w2 + h2
-        r0, r1, r2 = _feedback(s0, s1, s2, w0, w1, w2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
+        f0, f1, f2 = _feedback(s0, s1, s2, w0 - r0, w1 - r1, w2 - r2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
+        if REF.shape[0] > 0:
+            g0, g1, g2 = _feedforward(L[14:23].reshape((3, 3)), r0, r1, r2, a0, a1, a2, w0, w1, w2)
+            f0, f1, f2 = f0 + g0, f1 + g1, f2 + g2
         if L[2] > 0.0:
             g = L[2] * L[0] * L[5]
             z0 = min(max(z0 + g * s0, -L[3]), L[3])
             z1 = min(max(z1 + g * s1, -L[3]), L[3])
             z2 = min(max(z2 + g * s2, -L[3]), L[3])
         for j in range(k):
-            u[j] = -(pinv[j, 0] * r0 + pinv[j, 1] * r1 + pinv[j, 2] * r2)
+            u[j] = -(pinv[j, 0] * f0 + pinv[j, 1] * f1 + pinv[j, 2] * f2)
         if law == LAW_DUMPING:
             m0, m1, m2 = _dumping(b0, b1, b2, h0, h1, h2, L[10], L[11], L[12], L[13])
     return m0, m1, m2, (z0, z1, z2, last0, last1, last2, last_t, has_last)
@@ -357,13 +373,13 @@ def held(rods: FloatArray, limits: FloatArray, m0: float, m1: float, m2: float, 
 @jit(error_model="numpy")
 def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
           limits: FloatArray, rtol: float, atol: float, method: int, step: float, carry: bool, Y: FloatArray,
-          D: FloatArray, U: FloatArray, F: FloatArray) -> int:  # pragma: no cover - compiled
+          D: FloatArray, U: FloatArray, F: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
     """The closed loop over the control instants ``grid`` (s) from ``y0``: at each, the state (its
     quaternion normalised) into ``Y``, the ideal measurement, the law's command (``L`` its
     parameters, ``pinv`` the wheels' allocation ``G^+``), the dipole the rods (``rods`` their axes,
     ``limits`` theirs, A m^2) make into ``D``, the wheels' applied torque into ``U``, the field
     (T, body frame) into ``F``; then the hold interval. ``y0`` and ``Y``'s rows are padded states
-    (:func:`padded`). Returns a status."""
+    (:func:`padded`); ``REF`` a moving reference's rows at ``grid`` (:func:`law_command`). Returns a status."""
     k = pinv.shape[0]
     steps = grid.shape[0] - 1
     y = tuple_of(y0)
@@ -387,7 +403,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatAr
             u[j] = 0.0
         if i < steps:
             m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, x, yq, z, c, w0, w1, w2, b0, b1, b2,
-                                             kind != FIELD_NONE, memory, u)
+                                             kind != FIELD_NONE, memory, u, REF, i)
         d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
             break

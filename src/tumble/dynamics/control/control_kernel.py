@@ -51,7 +51,7 @@ from ..models.torques import TorqueSum
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .loop_terms import WHEEL, packed
-from .pointing import is_reference
+from .pointing import is_reference, reference_table
 
 __all__ = ["ControlKernel", "compiled_control_models", "compiled_law", "disturbance_form"]
 
@@ -147,11 +147,13 @@ def _plain(controller: Any, cls: type) -> bool:
     return isinstance(controller, cls) and type(controller).__call__ is cls.__call__
 
 
-def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
-    """``(law, parameters, allocation)`` of a built-in controller that the compiled loop runs
-    (:mod:`~tumble.dynamics.control.compiled_loop`), or None for the Python path: B-dot; MRP
-    feedback to a fixed target and momentum dumping with it, on the run's own wheels and moments;
-    all with ideal sensors (None, or with no noise, bias, star tracker or sun sensor).
+def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> _loop.Law | None:
+    """``(law, parameters, allocation, reference)`` of a built-in controller that the compiled loop
+    runs (:mod:`~tumble.dynamics.control.compiled_loop`), or None for the Python path: B-dot; MRP
+    feedback to a fixed target or tracking a moving reference (``reference``, tabulated at the
+    control instants by :func:`~tumble.dynamics.control.pointing.reference_table`; None for a fixed
+    target) and momentum dumping with it, on the run's own wheels and moments; all with ideal
+    sensors (None, or with no noise, bias, star tracker or sun sensor).
 
     Examples
     --------
@@ -160,9 +162,9 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
     >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.sensors import Sensors
-    >>> law, L, pinv = compiled_law(BDot(gain=1e4, period=1.0), Sensors(), np.ones(3), None, None)
-    >>> law == LAW_BDOT, L.tolist(), pinv.shape
-    (True, [10000.0, 0.0, 0.0], (0, 3))
+    >>> law, L, pinv, reference = compiled_law(BDot(gain=1e4, period=1.0), Sensors(), np.ones(3), None, None)
+    >>> law == LAW_BDOT, L.tolist(), pinv.shape, reference
+    (True, [10000.0, 0.0, 0.0], (0, 3), None)
     >>> compiled_law(BDot(gain=1e4, period=1.0), Sensors(gyro_noise=1e-4), np.ones(3), None, None) is None
     True
     """
@@ -174,21 +176,22 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     k = 0 if wheels is None else wheels.count
     if _plain(controller, BDot):
         L = [controller.gain, controller.form == "normalized", controller.derivative == "difference"]
-        return _loop.LAW_BDOT, np.array(L, dtype=float), np.zeros((k, 3))
+        return _loop.LAW_BDOT, np.array(L, dtype=float), np.zeros((k, 3)), None
     dumping = _plain(controller, MomentumDumping)
     pointing = controller.pointing if dumping else controller
-    if not _plain(pointing, MRPFeedback) or is_reference(pointing.target) or wheels is None or (dumping and field is None):
+    if not _plain(pointing, MRPFeedback) or wheels is None or (dumping and field is None):
         return None
     own = pointing.wheels  # the run's own wheels (most often the same object: no comparison, ~7 us)
     if not (_same(pointing.moments, moments) and (own is wheels or (
             np.array_equal(own.axes, wheels.axes)
             and np.array_equal(np.broadcast_to(own.inertia, (k,)), np.broadcast_to(wheels.inertia, (k,)))))):
         return None
+    moving = is_reference(pointing.target)
     L = [pointing.K, pointing.P, pointing.Ki, pointing.integral_limit, pointing.gyroscopic, pointing.period,
-         *pointing.target.as_quat()]
-    if dumping:
-        L += [controller.gain, *controller.h_target]
-    return _loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float), np.ascontiguousarray(pointing._pinv)
+         *((0.0, 0.0, 0.0, 1.0) if moving else pointing.target.as_quat()),
+         *((controller.gain, *controller.h_target) if dumping else (0.0, 0.0, 0.0, 0.0)), *pointing._I_rw.ravel()]
+    return (_loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float),
+            np.ascontiguousarray(pointing._pinv), pointing.target if moving else None)
 
 
 def _same(a: Any, b: FloatArray) -> bool:
@@ -357,7 +360,7 @@ class ControlKernel:
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
         self.kernels = _loop.kernels()
 
-    def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> tuple[int, FloatArray, FloatArray] | None:
+    def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> _loop.Law | None:
         """:func:`compiled_law` for this run's moments.
 
         Examples
@@ -420,7 +423,7 @@ class ControlKernel:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
         return _loop.unpadded(out, self.k)
 
-    def run(self, y0: FloatArray, grid: FloatArray, law: tuple[int, FloatArray, FloatArray], rods: FloatArray,
+    def run(self, y0: FloatArray, grid: FloatArray, law: _loop.Law, rods: FloatArray,
             limits: FloatArray, carry: bool = False, *,
             padded: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """The whole loop in one compiled call: the states at the control instants ``grid`` (s) from
@@ -441,7 +444,7 @@ class ControlKernel:
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> I = np.array([0.01, 0.02, 0.03])
         >>> kernel = ControlKernel(I, np.diag(1 / I), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
-        >>> law = (LAW_BDOT, np.array([2e-3, 1.0, 0.0]), np.zeros((0, 3)))
+        >>> law = (LAW_BDOT, np.array([2e-3, 1.0, 0.0]), np.zeros((0, 3)), None)
         >>> y0 = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
         >>> Y, D, U, F = kernel.run(y0, np.arange(3) * 0.5, law, np.eye(3), np.full(3, 10.0))
         >>> np.allclose(np.linalg.norm(Y[:, 4:7], axis=1), 0.1 * (1 - 2e-3 * 0.5 / 0.03) ** np.arange(3), rtol=1e-3)
@@ -452,7 +455,7 @@ class ControlKernel:
         status = self.kernels["_loop"](_loop.padded(y0), np.ascontiguousarray(grid, dtype=float),
                                        self.packed, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
                                        np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol, self.method,
-                                       self.step, bool(carry), Y, D, U, F)
+                                       self.step, bool(carry), Y, D, U, F, reference_table(law[3], grid))
         if status != 0:
             raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
         return (Y if padded else _loop.unpadded(Y, self.k)), D, U, F

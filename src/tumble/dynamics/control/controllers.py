@@ -51,7 +51,7 @@ from ...validation import (
 from ..models.actuators import Command, ReactionWheels
 from ..models.sensors import Measurement
 from .bdot import _three
-from .laws import dumping_dipole_components, feedback_torque_components
+from .laws import dumping_dipole_components, feedback_torque_components, tracking_feedforward_components
 from .pointing import Reference, is_reference, tracking_error
 from ..special.mrp import mrp_from_quat
 
@@ -260,7 +260,7 @@ class MRPFeedback:
             sigma = e.sigma
             L_r = np.array(feedback_torque_components(*_three(sigma), *_three(e.delta_omega), *_three(w), self.K, self.P,
                                                       *_three(z), *_three(L))) \
-                + self._I_rw @ (e.omega_r_dot - np.cross(w, e.omega_r))
+                + np.array(tracking_feedforward_components(self._I_rw, *_three(e.omega_r), *_three(e.omega_r_dot), *_three(w)))
         else:
             sigma = self.error(measurement.attitude)
             L_r = np.array(feedback_torque_components(*_three(sigma), *_three(w), *_three(w), self.K, self.P, *_three(z),

@@ -60,14 +60,15 @@ from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents,
 from ..special.quaternion import to_body, turned_by
 from . import compiled_loop as _cl
 from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
+from .pointing import reference_table
 
 __all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "Law", "plan", "plan_readings", "run"]
 
 #: Statuses beyond the compiled loop's: the filter can start at the step ``mem[15]``; the law
 #: needs an attitude and the filter has not started.
 NEEDS_START, NO_ATTITUDE = 2, 3
-#: A law of the compiled loop: ``(law, parameters, allocation)`` (:func:`~tumble.dynamics.control.control_kernel.compiled_law`).
-Law = tuple[int, FloatArray, FloatArray]
+#: A law of the compiled loop (:data:`~tumble.dynamics.control.compiled_loop.Law`).
+Law = _cl.Law
 #: The loop paused where it was asked to (``stop``): a mission's switch to its pointing law.
 SWITCH = 4
 
@@ -86,14 +87,15 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     sun_world: FloatArray, light: FloatArray, fq: FloatArray, fb: FloatArray, fP: FloatArray,
                     mem: FloatArray, used0: np.ndarray, Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray,
                     KQ: FloatArray, KB: FloatArray, KS: FloatArray, KU: np.ndarray, KV: np.ndarray,
-                    RD: FloatArray, stop: int, KW: FloatArray) -> int:  # pragma: no cover - compiled
+                    RD: FloatArray, stop: int, KW: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
     """The loop from step ``i0`` of ``grid`` (s) (module docstring; :func:`run` says what each
     argument holds); ``fresh``: the filter started at ``i0`` (its updates skipped there, ``used0``
     its row's sensors). Returns a status; on a pause, what was read into ``RD`` and the memory
     into ``mem``. It pauses (:data:`SWITCH`) at the start of the step ``stop`` (none if negative),
     before anything of that step but the state in ``Y`` is done, and writes into ``KW`` the rate
     (rad/s, body) the law is given at each step: the gyroscope's reading, less the filter's bias
-    once it has started."""
+    once it has started; ``REF`` a moving reference's rows at ``grid``
+    (:func:`~tumble.dynamics.control.compiled_loop.law_command`)."""
     steps = grid.shape[0] - 1
     y = _cl.tuple_of(y0)
     u = np.zeros(_cl.MAX_WHEELS)
@@ -159,7 +161,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
             if mem[9] == 0.0:  # the readings themselves: no filter, or B-dot before its start
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
                 m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, ax, ay, az, aw, g0, g1, g2, n0, n1, n2,
-                                                     has_field, memory, u)
+                                                     has_field, memory, u, REF, i)
             else:
                 used_mag, used_sun, used_trk = used0[0], used0[1], used0[2]
                 if not (fresh and i == i0):
@@ -194,7 +196,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2]
                 m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
                                                      g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
-                                                     has_field, memory, u)
+                                                     has_field, memory, u, REF, i)
             mem[10], mem[11], mem[12], mem[13] = t, g0, g1, g2
         d0, d1, d2 = _cl.held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
@@ -377,7 +379,7 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
         y, i0, fresh = _cl.padded(y0), 0, False
         while True:
             status = loop(y, i0, fresh, *head, law[0], law[1], law[2], *tail, fq, fb, fP, mem, used0, Y, D, U, F,
-                          KQ, KB, KS, KU, KV, RD, stop, KW)
+                          KQ, KB, KS, KU, KV, RD, stop, KW, reference_table(law[3], grid))
             if status in (NEEDS_START, NO_ATTITUDE):
                 i = int(mem[15])
                 m = Measurement(float(RD[0]), RD[1:4].copy(), RD[4:7].copy() if RD[7] else None, None,

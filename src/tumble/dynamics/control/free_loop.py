@@ -45,7 +45,7 @@ from .control_kernel import ControlKernel, disturbance_form
 __all__ = ["FreeTerms", "free_terms", "run_free"]
 
 #: B-dot's law at zero gain, with no rods: it commands nothing.
-_NO_LAW, _NO_RODS, _NO_LIMITS = (LAW_BDOT, np.zeros(3), np.zeros((0, 3))), np.zeros((0, 3)), np.zeros(0)
+_NO_LAW, _NO_RODS, _NO_LIMITS = (LAW_BDOT, np.zeros(3), np.zeros((0, 3)), None), np.zeros((0, 3)), np.zeros(0)
 
 
 class FreeTerms(NamedTuple):

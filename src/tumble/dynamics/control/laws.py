@@ -15,7 +15,9 @@ two paths evaluate the same formula in the same order. Imports nothing of tumble
   (:func:`attitude_error_components`) and the required torque
   ``L_r = -K sigma - P delta_omega - z + omega x L`` with ``L = I omega + h`` the total momentum
   (:func:`feedback_torque_components`; ``z`` the integral term, ``L`` omitted without the
-  feed-forward).
+  feed-forward); tracking a moving reference, ``delta_omega = omega - omega_r`` and the
+  feed-forward ``I_RW (omega_r' - omega x omega_r)`` added (sec. 8.3;
+  :func:`tracking_feedforward_components`).
 - Momentum dumping (Camillo & Markley, J. Guid. Control 3(6), 1980): ``m = B x tau_d / |B|^2``
   with ``tau_d = -k_d (h - h_target)`` (:func:`dumping_dipole_components`).
 
@@ -34,7 +36,7 @@ from __future__ import annotations
 from typing import Any
 
 __all__ = ["attitude_error_components", "bdot_components", "gyro_field_rate_components", "dumping_dipole_components",
-           "feedback_torque_components"]
+           "feedback_torque_components", "tracking_feedforward_components"]
 
 
 def bdot_components(d0: Any, d1: Any, d2: Any, b0: Any, b1: Any, b2: Any, gain: Any,
@@ -116,6 +118,29 @@ def feedback_torque_components(s0: float, s1: float, s2: float, d0: float, d1: f
     """
     return (-K * s0 - P * d0 - z0 + (w1 * L2 - w2 * L1), -K * s1 - P * d1 - z1 + (w2 * L0 - w0 * L2),
             -K * s2 - P * d2 - z2 + (w0 * L1 - w1 * L0))
+
+
+def tracking_feedforward_components(J: Any, r0: float, r1: float, r2: float, a0: float, a1: float, a2: float,
+                                    w0: float, w1: float, w2: float) -> tuple[float, float, float]:
+    """The tracking law's feed-forward ``I_RW (omega_r' - omega x omega_r)`` (N m, body frame),
+    added to :func:`feedback_torque_components`'s ``L_r`` when the target moves (Schaub & Junkins,
+    sec. 8.3): ``J`` the body's inertia with the wheels' axial inertia taken out, ``I_RW`` (kg m^2,
+    indexed ``J[i, j]``), ``omega_r`` the reference's rate and ``omega_r'`` its inertial derivative
+    (rad/s, rad/s^2, both in the body frame), ``omega`` the body's rate (rad/s).
+
+    Examples
+    --------
+    A body at rest under a reference turning at 0.01 rad/s about z that speeds up at 1e-4 rad/s^2:
+    ``I_RW omega_r'``:
+
+    >>> import numpy as np
+    >>> from tumble.dynamics.control.laws import tracking_feedforward_components
+    >>> [round(float(v), 12) + 0.0 for v in tracking_feedforward_components(np.diag([1.0, 2.0, 3.0]), 0, 0, 0.01, 0, 0, 1e-4, 0, 0, 0)]
+    [0.0, 0.0, 0.0003]
+    """
+    v0, v1, v2 = a0 - (w1 * r2 - w2 * r1), a1 - (w2 * r0 - w0 * r2), a2 - (w0 * r1 - w1 * r0)
+    return (J[0, 0] * v0 + J[0, 1] * v1 + J[0, 2] * v2, J[1, 0] * v0 + J[1, 1] * v1 + J[1, 2] * v2,
+            J[2, 0] * v0 + J[2, 1] * v1 + J[2, 2] * v2)
 
 
 def dumping_dipole_components(b0: float, b1: float, b2: float, h0: float, h1: float, h2: float, gain: float,

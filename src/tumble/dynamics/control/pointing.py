@@ -51,7 +51,8 @@ from ...typing import ArrayLike, FloatArray
 from ...validation import axis_index, check_positive
 from ..special.mrp import mrp_from_quat
 
-__all__ = ["NadirTarget", "Reference", "TrackingError", "axis_direction", "check_square", "is_reference", "target_attitude", "tracking_error"]
+__all__ = ["NadirTarget", "Reference", "TrackingError", "axis_direction", "check_square", "is_reference", "reference_table",
+           "target_attitude", "tracking_error"]
 
 
 @runtime_checkable
@@ -194,6 +195,34 @@ def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, o
     derivative = getattr(ref, "rate_derivative", None)
     w_r_dot = np.zeros(3) if derivative is None else np.asarray(to_body.apply(derivative(t)), dtype=np.float64)
     return TrackingError(sigma, w - w_r, w_r, w_r_dot)
+
+
+def reference_table(target: Reference | None, t: ArrayLike) -> FloatArray:
+    """A moving reference at the instants ``t`` (s), a row each (the compiled loop's tracking law
+    reads them): its frame to world as a unit quaternion (scalar last), its rate ``omega_r`` and its
+    rate's derivative ``omega_r'`` (world frame, rad/s and rad/s^2; zero without
+    ``rate_derivative``), shape ``(len(t), 10)``; no rows for None (a fixed target).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.pointing import NadirTarget, reference_table
+    >>> table = reference_table(NadirTarget(1e-3), [0.0, 10.0, 20.0])
+    >>> table.shape, table[:, 6].tolist()   # omega_r = n z
+    ((3, 10), [0.001, 0.001, 0.001])
+    >>> reference_table(None, [0.0, 1.0]).shape
+    (0, 10)
+    """
+    times = np.atleast_1d(np.asarray(t, dtype=np.float64))
+    n = len(times)
+    if target is None:
+        return np.zeros((0, 10))
+    derivative = getattr(target, "rate_derivative", None)
+    rows = np.zeros((n, 10))
+    rows[:, :4] = np.asarray(target.attitude(times).as_quat(), dtype=np.float64).reshape(n, 4)
+    rows[:, 4:7] = np.broadcast_to(np.asarray(target.rate(times), dtype=np.float64), (n, 3))
+    if derivative is not None:
+        rows[:, 7:10] = np.broadcast_to(np.asarray(derivative(times), dtype=np.float64), (n, 3))
+    return rows
 
 
 def axis_direction(name: str, value: int | str | ArrayLike) -> FloatArray:
