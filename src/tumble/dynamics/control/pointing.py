@@ -197,6 +197,11 @@ def tracking_error(target: Rotation | Reference, t: float, attitude: Rotation, o
     return TrackingError(sigma, w - w_r, w_r, w_r_dot)
 
 
+#: A fixed target's table: no rows (shared; writable, as a reference's own table is, so that the
+#: kernels are compiled for one type of table).
+_NO_REFERENCE = np.zeros((0, 10))
+
+
 def reference_table(target: Reference | None, t: ArrayLike) -> FloatArray:
     """A moving reference at the instants ``t`` (s), a row each (the compiled loop's tracking law
     reads them): its frame to world as a unit quaternion (scalar last), its rate ``omega_r`` and its
@@ -212,10 +217,10 @@ def reference_table(target: Reference | None, t: ArrayLike) -> FloatArray:
     >>> reference_table(None, [0.0, 1.0]).shape
     (0, 10)
     """
+    if target is None:
+        return _NO_REFERENCE
     times = np.atleast_1d(np.asarray(t, dtype=np.float64))
     n = len(times)
-    if target is None:
-        return np.zeros((0, 10))
     derivative = getattr(target, "rate_derivative", None)
     rows = np.zeros((n, 10))
     rows[:, :4] = np.asarray(target.attitude(times).as_quat(), dtype=np.float64).reshape(n, 4)
