@@ -233,9 +233,7 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     True
     """
     from ..environment.magnetic import field_form
-    from .control_kernel import _plain, compiled_law
     from .estimated import Estimated
-    from .mission import DetumbleThenPoint
 
     if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
         return None
@@ -253,8 +251,16 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
         (kind, p), (own_kind, own_p) = form, own_form
         if kind == FIELD_TABLE or kind != own_kind or not np.array_equal(p, own_p):
             return None
-    inner: Any = controller.controller
-    modes = (inner.detumble, inner.point) if _plain(inner, DetumbleThenPoint) else (inner,)
+    return _laws(controller.controller, moments, wheels, field)
+
+
+def _laws(controller: Any, moments: FloatArray, wheels: Any, field: Any) -> tuple[Law, ...] | None:
+    """:func:`~tumble.dynamics.control.control_kernel.compiled_law` of ``controller``, or of each
+    mode of a :class:`~tumble.dynamics.control.mission.DetumbleThenPoint`; None where one has none."""
+    from .control_kernel import _plain, compiled_law
+    from .mission import DetumbleThenPoint
+
+    modes = (controller.detumble, controller.point) if _plain(controller, DetumbleThenPoint) else (controller,)
     laws = tuple(compiled_law(mode, None, moments, wheels, field) for mode in modes)
     return None if any(law is None for law in laws) else cast("tuple[Law, ...]", laws)
 
@@ -285,19 +291,13 @@ def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: An
     >>> plan_readings(MRPFeedback(K=1e-3, P=1e-2, period=1.0, moments=np.ones(3), wheels=rw), noisy, np.ones(3), rw, None) is None
     True
     """
-    from .control_kernel import _plain, compiled_law
-    from .mission import DetumbleThenPoint
-
     if sensors is None or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, CoarseSunSensor)) \
             or not (sensors.star_tracker is None or isinstance(sensors.star_tracker, StarTracker)):
         return None
-    modes = (controller.detumble, controller.point) if _plain(controller, DetumbleThenPoint) else (controller,)
-    laws = tuple(compiled_law(mode, None, moments, wheels, field) for mode in modes)
-    if any(law is None for law in laws):
+    laws = _laws(controller, moments, wheels, field)
+    if laws is None or (sensors.attitude == "none" and any(law[0] != _cl.LAW_BDOT for law in laws)):
         return None
-    if sensors.attitude == "none" and any(law[0] != _cl.LAW_BDOT for law in laws):  # type: ignore[index]
-        return None
-    return cast("tuple[Law, ...]", laws)
+    return laws
 
 
 def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y0: FloatArray,
