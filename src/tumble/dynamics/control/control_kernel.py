@@ -13,7 +13,8 @@ and runs the compiled kernels of :mod:`~tumble.dynamics.control.compiled_loop` (
 :mod:`~tumble.dynamics.control.loop_terms`): :meth:`ControlKernel.advance` integrates one
 zero-order-hold interval for a controller of one's own, called in Python; :meth:`ControlKernel.run`
 runs the whole loop in one compiled call for the built-in controllers that :func:`compiled_law`
-recognises, with ideal sensors. Both take the same steps: the same kernel integrates each
+recognises, with ideal sensors (noisy ones and the filter:
+:mod:`~tumble.dynamics.control.estimated_loop`). Both take the same steps: the same kernel integrates each
 interval, and the laws are :mod:`~tumble.dynamics.control.laws`' functions, which the Python
 controllers call too, so the two paths agree to round-off (tests/test_control_loop.py).
 

@@ -18,12 +18,12 @@ or ``IGRFField``, ``GravityGradient`` or ``OrbitGravityGradient`` on a circular,
 orbit, ``Magnetorquers``, at most six ``ReactionWheels``) each interval is integrated by scipy's
 DOP853 written out and compiled (:mod:`~tumble.dynamics.control.compiled_loop`: the same
 steps); with a model of one's own by scipy's ``solve_ivp`` with a Python right-hand side. With
-a built-in controller as well (``BDot``, ``MRPFeedback`` to a fixed target, ``MomentumDumping``
-with it; :func:`~tumble.dynamics.control.control_kernel.compiled_law`) and ideal sensors, the
-whole loop runs in one compiled call, the laws being the functions the Python controllers call
-(:mod:`~tumble.dynamics.control.laws`): the same results to round-off. Otherwise the controller
-and the sensors are Python, called once a period (a controller of one's own, a moving target,
-noisy sensors, a filter: :class:`~tumble.dynamics.control.estimated.Estimated`).
+built-in controllers (``BDot``, ``MRPFeedback`` to a fixed or moving target, ``MomentumDumping``,
+a ``DetumbleThenPoint`` of them) the whole loop runs in one compiled call, the laws the Python
+controllers' functions (:mod:`~tumble.dynamics.control.laws`), the same results to round-off:
+ideal sensors in :mod:`~tumble.dynamics.control.compiled_loop`, noisy ones or the MEKF in
+:mod:`~tumble.dynamics.control.estimated_loop`. Otherwise (a controller of one's own, a fine
+sun sensor) the controller and the sensors are Python, called once a period.
 
 **Budget.** ``L_world = R (I omega + h)`` of body and wheels changes only by the external
 impulse: ``L_world(t) - L_world(0) - int_0^t tau_world dt = 0`` to the integrator's accuracy;
