@@ -97,7 +97,20 @@ class SpinUp:
         return np.multiply.outer(np.full(np.shape(t), self.alpha), [0.0, 0.0, 1.0])
 
 
-@pytest.mark.parametrize("reference", ["nadir", "spin-up"])
+class OneAtATime(SpinUp):
+    """The same reference, its methods taking one time only (a float), as a user's own may."""
+
+    def attitude(self, t):
+        return Rotation.from_rotvec([0.0, 0.0, self.w0 * float(t) + 0.5 * self.alpha * float(t) ** 2])
+
+    def rate(self, t):
+        return np.array([0.0, 0.0, self.w0 + self.alpha * float(t)])
+
+    def rate_derivative(self, t):
+        return np.array([0.0, 0.0, self.alpha + 0.0 * float(t)])
+
+
+@pytest.mark.parametrize("reference", ["nadir", "spin-up", "one time at a time"])
 def test_mrp_feedback_tracking_a_moving_reference_is_the_python_controllers_run(reference):
     """The tracking law (Schaub & Junkins sec. 8.3: the rate error against the reference's rate in
     the body, the feed-forward ``I_RW (omega_r' - omega x omega_r)``) on the compiled loop, the
@@ -107,7 +120,7 @@ def test_mrp_feedback_tracking_a_moving_reference_is_the_python_controllers_run(
     from tumble.dynamics.control.pointing import NadirTarget, tracking_error
 
     rw = ReactionWheels(np.eye(3), inertia=2e-5, max_torque=5e-3)
-    target = NadirTarget(ORBIT) if reference == "nadir" else SpinUp(0.002, 2e-5)
+    target = {"nadir": NadirTarget(ORBIT), "spin-up": SpinUp(0.002, 2e-5), "one time at a time": OneAtATime(0.002, 2e-5)}[reference]
     c = MRPFeedback(K=2e-3, P=2e-2, period=0.5, moments=CUBESAT, wheels=rw, target=target)
     whole, python = _paths(c, moments=CUBESAT, omega0=[0.01, -0.02, 0.015], t_end=300.0, wheels=rw,
                            gravity_gradient=gravity_gradient_of(ORBIT), attitude0=Rotation.from_rotvec([1.0, 0.5, -0.5]))

@@ -220,10 +220,18 @@ def reference_table(target: Reference | None, t: ArrayLike) -> FloatArray:
     if target is None:
         return _NO_REFERENCE
     times = np.atleast_1d(np.asarray(t, dtype=np.float64))
-    n = len(times)
+    try:  # the protocol's stacks for an array of times
+        return _rows(target, times)
+    except (ValueError, TypeError, IndexError):  # a reference of one's own that takes one time at a time
+        return np.concatenate([_rows(target, float(ti)) for ti in times]) if len(times) else np.zeros((0, 10))
+
+
+def _rows(target: Reference, times: ArrayLike) -> FloatArray:
+    """:func:`reference_table`'s rows at ``times`` (an array, or one float)."""
+    n = np.size(times)
     derivative = getattr(target, "rate_derivative", None)
     rows = np.zeros((n, 10))
-    rows[:, :4] = np.asarray(target.attitude(times).as_quat(), dtype=np.float64).reshape(n, 4)
+    rows[:, :4] = np.reshape(np.asarray(target.attitude(times).as_quat(), dtype=np.float64), (n, 4))
     rows[:, 4:7] = np.broadcast_to(np.asarray(target.rate(times), dtype=np.float64), (n, 3))
     if derivative is not None:
         rows[:, 7:10] = np.broadcast_to(np.asarray(derivative(times), dtype=np.float64), (n, 3))
