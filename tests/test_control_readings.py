@@ -152,6 +152,12 @@ def test_what_the_readings_loop_cannot_run_stays_python():
             return super().__call__(t, m)
 
     assert plan_readings(Mine(gain=1.0, period=1.0), noisy, MOMENTS, None, None) is None
+
+    class Sampled(Sensors):   # sensors that sample in their own way
+        def sample(self, *args, **kwargs):
+            return super().sample(*args, **kwargs)
+
+    assert plan_readings(BDot(gain=1.0, period=1.0), Sampled(gyro_noise=1e-4), MOMENTS, None, None) is None
     mission = DetumbleThenPoint(BDot(gain=1.0, period=1.0), point, switch_rate=0.01, dwell=1.0)
     assert len(plan_readings(mission, noisy, MOMENTS, RW, None)) == 2
     assert plan_readings(mission, blind, MOMENTS, RW, None) is None

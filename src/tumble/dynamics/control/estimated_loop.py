@@ -238,7 +238,7 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
         return None
     s = controller.sensors
-    if sensors is not s or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
+    if sensors is not s or type(s).sample is not Sensors.sample or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
             or not (s.star_tracker is None or isinstance(s.star_tracker, StarTracker)):
         return None
     own = controller.field
@@ -291,9 +291,10 @@ def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: An
     >>> plan_readings(MRPFeedback(K=1e-3, P=1e-2, period=1.0, moments=np.ones(3), wheels=rw), noisy, np.ones(3), rw, None) is None
     True
     """
-    if sensors is None or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, CoarseSunSensor)) \
+    if not isinstance(sensors, Sensors) or type(sensors).sample is not Sensors.sample \
+            or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, CoarseSunSensor)) \
             or not (sensors.star_tracker is None or isinstance(sensors.star_tracker, StarTracker)):
-        return None
+        return None  # the sensors' own sampling, or a sensor the loop does not draw for
     laws = _laws(controller, moments, wheels, field)
     if laws is None or (sensors.attitude == "none" and any(law[0] != _cl.LAW_BDOT for law in laws)):
         return None
