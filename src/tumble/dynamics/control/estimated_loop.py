@@ -238,7 +238,8 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     if not isinstance(controller, Estimated) or type(controller).__call__ is not Estimated.__call__:
         return None
     s = controller.sensors
-    if sensors is not s or type(s).sample is not Sensors.sample or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
+    if sensors is not s or type(s).sample is not Sensors.sample \
+            or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
             or not (s.star_tracker is None or isinstance(s.star_tracker, StarTracker)):
         return None
     own = controller.field
