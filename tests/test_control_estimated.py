@@ -161,6 +161,32 @@ def test_the_compiled_loop_is_the_python_path(monkeypatch, law):
     assert np.allclose(kf.sigma, ks.sigma, rtol=1e-7, atol=0)
 
 
+def test_a_fine_sun_sensor_starts_and_updates_the_filter_as_the_python_path_does(monkeypatch):
+    """A fine sun sensor (35 deg field of view) on a slowly tumbling body: TRIAD starts the filter at
+    the first step it sees the Sun with the magnetometer, its readings update the filter when it
+    does, and its two draws only then; the compiled run and filter are the Python path's."""
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.models.actuators import Magnetorquers
+    from tumble.dynamics.models.vector_sensors import FineSunSensor
+
+    orbit = CircularOrbit(altitude=500e3, arg_latitude=math.radians(40.0), inclination=0.3)
+    fine = FineSunSensor(frame=Rotation.from_rotvec([0.3, 0.0, 0.0]), fov=math.radians(35.0), noise=5e-4)
+    sensors = Sensors(gyro_noise=1e-4, gyro_bias=(3e-4, -2e-4, 1e-4), magnetometer_noise=2e-7, attitude="none",
+                      sun_sensor=fine, sunlight=Sunlight(orbit, "2026-03-20T14:46:00"), seed=4)
+
+    def controller_of():
+        return Estimated(BDot(gain=1e-3, period=0.5, form="normalized"), sensors, DipoleField(orbit))
+
+    (fast, kf, _), (slow, ks, _) = _both(monkeypatch, controller_of, omega0=(0.03, -0.04, 0.05), t_end=200.0,
+                                         field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2), sensors=sensors)
+    assert np.array_equal(kf.t, ks.t) and np.array_equal(kf.used, ks.used)
+    assert 5 < kf.used[:, 1].sum() < len(kf.t) - 5   # the sensor sees the Sun at some steps, not all
+    assert np.abs(fast.omega - slow.omega).max() < 1e-11
+    assert np.abs(fast.attitude.as_quat() - slow.attitude.as_quat()).max() < 1e-9
+    assert np.abs(kf.attitude.as_quat() - ks.attitude.as_quat()).max() < 1e-9
+    assert np.abs(kf.bias - ks.bias).max() < 1e-10
+
+
 def test_a_mission_fed_the_estimate_is_the_python_paths_run(monkeypatch):
     """B-dot on the readings until the rate the law is handed (the gyroscope's, less the filter's
     bias once it has started) has stayed below 0.01 rad/s for 10 s, then MRP feedback with
@@ -226,8 +252,8 @@ def test_a_mission_that_never_switches_detumbles_throughout(monkeypatch):
 
 
 def test_what_the_compiled_loop_cannot_run_stays_python():
-    """A fine sun sensor (it draws its noise only in view), a law of the user's own, or sensors
-    other than the filter's keep the Python path (estimated_loop.plan says None)."""
+    """A law of the user's own, or sensors other than the filter's keep the Python path
+    (estimated_loop.plan says None); a fine sun sensor does not."""
     from tumble.dynamics.control.bdot import BDot
     from tumble.dynamics.control.estimated_loop import plan
     from tumble.dynamics.control.mission import DetumbleThenPoint
@@ -244,7 +270,7 @@ def test_what_the_compiled_loop_cannot_run_stays_python():
             return super().__call__(t, m)
 
     assert len(plan(Estimated(BDot(gain=1.0, period=1.0), coarse), coarse, moments, None, None)) == 1
-    assert plan(Estimated(BDot(gain=1.0, period=1.0), fine), fine, moments, None, None) is None
+    assert len(plan(Estimated(BDot(gain=1.0, period=1.0), fine), fine, moments, None, None)) == 1
     assert plan(Estimated(Mine(gain=1.0, period=1.0), coarse), coarse, moments, None, None) is None
     assert plan(Estimated(BDot(gain=1.0, period=1.0), coarse), Sensors(), moments, None, None) is None
 

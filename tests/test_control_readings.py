@@ -114,10 +114,33 @@ def test_pointing_on_a_noisy_attitude_with_sun_cells_and_a_star_tracker_drawing_
     assert error[-1] < 0.05 * error[0]
 
 
+def test_a_fine_sun_sensor_that_draws_only_when_it_sees_the_sun_keeps_the_draws_in_step(monkeypatch):
+    """A fine sun sensor with a 35 deg field of view on a tumbling body: it reads (two noise draws)
+    only at the steps the Sun is in its view, which the state decides, so the draws after it (the
+    star tracker's) move with them. B-dot on the readings; the Python path's run bit for bit."""
+    fine = FineSunSensor(frame=Rotation.from_rotvec([0.0, 0.4, 0.0]), fov=math.radians(35.0), noise=1e-3)
+    sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7, attitude="none", sun_sensor=fine,
+                      sunlight=Sunlight(ORBIT, EPOCH), star_tracker=StarTracker(cross=2e-5, roll=2e-4, period=2.0), seed=7)
+
+    def controller_of():
+        return BDot(gain=3e-3, period=0.5, form="normalized")
+
+    (fast, _), (slow, _) = _both(monkeypatch, controller_of, omega0=(0.2, -0.15, 0.1), t_end=120.0, field=FIELD,
+                                 magnetorquers=Magnetorquers(0.2), sensors=sensors)
+    _same(fast, slow)
+    seen = [fine.measure(R.inv().apply(sensors.sunlight.world(t)), float(sensors.sunlight.fraction(t)),
+                         np.random.default_rng(0)) is not None for t, R in zip(fast.t, fast.attitude)]
+    assert 10 < sum(seen) < len(seen) - 10   # in and out of view many times
+
+
 def test_a_mission_on_noisy_sensors_switches_where_the_python_path_does(monkeypatch):
     """The shipped ``detumble_point`` pattern, shortened: B-dot on noisy readings until the
-    gyroscope has read below 1 deg/s for 20 s, then pointing on a noisy attitude."""
-    sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7, attitude="star_tracker", attitude_noise=2e-5, seed=1)
+    gyroscope has read below 1 deg/s for 20 s, then pointing on a noisy attitude; a fine sun sensor
+    beside them draws at the steps it sees the Sun, before the switch and after it (the loop's
+    pause at the switch keeps the count of those draws)."""
+    fine = FineSunSensor(frame=Rotation.from_rotvec([0.0, 0.4, 0.0]), fov=math.radians(85.0), noise=1e-3)
+    sensors = Sensors(gyro_noise=1e-4, magnetometer_noise=1e-7, attitude="star_tracker", attitude_noise=2e-5,
+                      sun_sensor=fine, sunlight=Sunlight(ORBIT, EPOCH), seed=1)
 
     def controller_of():
         point = MomentumDumping(MRPFeedback(K=1.1e-3, P=6e-3, period=1.0, moments=MOMENTS, wheels=RW), gain=1e-3)
@@ -129,12 +152,14 @@ def test_a_mission_on_noisy_sensors_switches_where_the_python_path_does(monkeypa
     i = int(round(cf.switch_time))
     assert np.all(fast.wheel_torque[:i] == 0.0) and np.abs(fast.wheel_torque[i:]).max() > 0.0
     _same(fast, slow)
+    seen = [fine.measure(R.inv().apply(sensors.sunlight.world(t)), 1.0, np.random.default_rng(0)) is not None
+            for t, R in zip(fast.t[:i], fast.attitude[:i])]
+    assert any(seen)   # draws before the switch: the pause kept them
 
 
 def test_what_the_readings_loop_cannot_run_stays_python():
-    """No attitude sensor under a pointing law (the Python path says why), a fine sun sensor (it
-    draws only in view), a law of one's own, and ideal sensors' runs (the plain compiled loop's)
-    are not its."""
+    """No attitude sensor under a pointing law (the Python path says why), a law of one's own and
+    sensors that sample in their own way are not its; a fine sun sensor is."""
     from tumble.dynamics.control.estimated_loop import plan_readings
 
     noisy = Sensors(gyro_noise=1e-4, attitude="star_tracker", attitude_noise=1e-4)
@@ -145,7 +170,7 @@ def test_what_the_readings_loop_cannot_run_stays_python():
     with pytest.raises(ValueError, match="MRP feedback needs an attitude sensor"):
         simulate_controlled(MOMENTS, (0.0, 0.0, 0.01), t_end=2.0, controller=point, wheels=RW, sensors=blind)
     fine = Sensors(gyro_noise=1e-4, sun_sensor=FineSunSensor(), sunlight=Sunlight(ORBIT, EPOCH))
-    assert plan_readings(BDot(gain=1.0, period=1.0), fine, MOMENTS, None, None) is None
+    assert len(plan_readings(BDot(gain=1.0, period=1.0), fine, MOMENTS, None, None)) == 1
 
     class Mine(BDot):
         def __call__(self, t, m):

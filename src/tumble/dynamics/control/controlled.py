@@ -22,8 +22,8 @@ built-in controllers (``BDot``, ``MRPFeedback`` to a fixed or moving target, ``M
 a ``DetumbleThenPoint`` of them) the whole loop runs in one compiled call, the laws the Python
 controllers' functions (:mod:`~tumble.dynamics.control.laws`), the same results to round-off:
 ideal sensors in :mod:`~tumble.dynamics.control.compiled_loop`, noisy ones or the MEKF in
-:mod:`~tumble.dynamics.control.estimated_loop`. Otherwise (a controller of one's own, a fine
-sun sensor) the controller and the sensors are Python, called once a period.
+:mod:`~tumble.dynamics.control.estimated_loop`. Otherwise (a controller of one's own, sensors
+that sample in their own way) the controller and the sensors are Python, called once a period.
 
 **Budget.** ``L_world = R (I omega + h)`` of body and wheels changes only by the external
 impulse: ``L_world(t) - L_world(0) - int_0^t tau_world dt = 0`` to the integrator's accuracy;

@@ -56,7 +56,8 @@ from ...typing import FloatArray
 from ..estimation.mekf_kernels import propagate as _propagate
 from ..estimation.mekf_kernels import update as _update
 from ..models.sensors import Measurement, Sensors
-from ..models.vector_sensors import CoarseSunSensor, StarTracker, cell_currents, coarse_reading, on_periods, tracker_noise
+from ..models.vector_sensors import (CoarseSunSensor, FineSunSensor, StarTracker, cell_currents, coarse_reading, fine_reading,
+                                     fine_view, on_periods, tracker_noise)
 from ..special.quaternion import to_body, turned_by
 from . import compiled_loop as _cl
 from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
@@ -74,6 +75,8 @@ SWITCH = 4
 
 _cells = jit(cell_currents, error_model="numpy")
 _coarse = jit(coarse_reading, error_model="numpy")
+_fine_view = jit(fine_view, error_model="numpy")
+_fine = jit(fine_reading, error_model="numpy")
 _tracker = jit(tracker_noise, error_model="numpy")
 _to_body = jit(to_body, error_model="numpy")
 _turned = jit(turned_by, error_model="numpy")
@@ -87,7 +90,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     sun_world: FloatArray, light: FloatArray, fq: FloatArray, fb: FloatArray, fP: FloatArray,
                     mem: FloatArray, used0: np.ndarray, Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray,
                     KQ: FloatArray, KB: FloatArray, KS: FloatArray, KU: np.ndarray, KV: np.ndarray,
-                    RD: FloatArray, stop: int, KW: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
+                    RD: FloatArray, stop: int, KW: FloatArray, REF: FloatArray,
+                    Cf: FloatArray) -> int:  # pragma: no cover - compiled
     """The loop from step ``i0`` of ``grid`` (s) (module docstring; :func:`run` says what each
     argument holds); ``fresh``: the filter started at ``i0`` (its updates skipped there, ``used0``
     its row's sensors). Returns a status; on a pause, what was read into ``RD`` and the memory
@@ -95,11 +99,14 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
     before anything of that step but the state in ``Y`` is done, and writes into ``KW`` the rate
     (rad/s, body) the law is given at each step: the gyroscope's reading, less the filter's bias
     once it has started; ``REF`` a moving reference's rows at ``grid``
-    (:func:`~tumble.dynamics.control.compiled_loop.law_command`)."""
+    (:func:`~tumble.dynamics.control.compiled_loop.law_command`); ``Cf`` a fine sun sensor's frame
+    (sensor to body), which draws its noise only at the steps that it sees the Sun: the draws after
+    are ``extra`` further on than ``offs`` says (kept in ``mem[16]`` over a pause)."""
     steps = grid.shape[0] - 1
     y = _cl.tuple_of(y0)
     u = np.zeros(_cl.MAX_WHEELS)
     h_abs = mem[8]
+    extra = int(mem[16])  # the fine sun sensor's draws so far
     turns = _cl._turns(P0[16])
     memory = (mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6], mem[7] != 0.0)
     kind = int(P0[15])
@@ -117,7 +124,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         y = _cl.with_quaternion(y, y[0] / nq, y[1] / nq, y[2] / nq, y[3] / nq)
         _cl.store(y, Y[i])
         if i == stop:
-            mem[8] = h_abs
+            mem[8], mem[16] = h_abs, float(extra)
             return SWITCH
         x, yq, z, c, w0, w1, w2 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
         b0, b1, b2 = field_body(kind, fp, ft, x, yq, z, c, t) if has_field else (0.0, 0.0, 0.0)
@@ -126,7 +133,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         for j in range(_cl.MAX_WHEELS):
             u[j] = 0.0
         if i < steps:
-            o = offs[i]  # the readings (Sensors.sample, in its order of draws)
+            o = offs[i] + extra  # the readings (Sensors.sample, in its order of draws)
+            extra_before = extra
             g0, g1, g2 = w0 + S[0] + S[6] * noise[o], w1 + S[1] + S[6] * noise[o + 1], w2 + S[2] + S[6] * noise[o + 2]
             o += 3
             n0, n1, n2 = 0.0, 0.0, 0.0
@@ -145,6 +153,12 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 v0, v1, v2, sg = _coarse(Apinv, Agram, S[9], cur)
                 o += 2 * kc
                 has_sun = sg >= 0.0
+            if flags[i] & 8:  # a fine sun sensor, lit on its period: it draws only when it sees the Sun
+                s0, s1, s2 = _to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
+                a0, a1, a2, seen = _fine_view(Cf, S[18], s0, s1, s2, light[i])
+                if seen:
+                    v0, v1, v2 = _fine(Cf, S[9], a0, a1, a2, noise[o], noise[o + 1])
+                    has_sun, sg, o, extra = True, S[9], o + 2, extra + 2
             has_trk, t0, t1, t2, t3 = False, 0.0, 0.0, 0.0, 0.0
             if flags[i] & 4:
                 r0, r1, r2 = _tracker(C, S[10], S[11], noise[o], noise[o + 1], noise[o + 2])
@@ -156,7 +170,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 RD[13], RD[14], RD[15], RD[16], RD[17] = t0, t1, t2, t3, (1.0 if has_trk else 0.0)
                 mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6] = memory[0], memory[1], memory[2], memory[3], \
                     memory[4], memory[5], memory[6]
-                mem[7], mem[8], mem[15] = (1.0 if memory[7] else 0.0), h_abs, float(i)
+                mem[7], mem[8], mem[15], mem[16] = (1.0 if memory[7] else 0.0), h_abs, float(i), float(extra_before)
                 return NEEDS_START if has_trk or (has_sun and has_field and S[15] != 0.0) else NO_ATTITUDE
             if mem[9] == 0.0:  # the readings themselves: no filter, or B-dot before its start
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
@@ -212,13 +226,14 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     """The laws of an :class:`~tumble.dynamics.control.estimated.Estimated` that this loop runs
     (each :data:`Law` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`: the wrapped
     law's, or a :class:`~tumble.dynamics.control.mission.DetumbleThenPoint`'s two modes'), or None
-    for the Python path: the run's ``sensors`` those the filter is told of, a coarse sun sensor or
-    none, a :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the flight
-    software's field the run's (or none), and the wrapped law (each mode's) a built-in one.
+    for the Python path: the run's ``sensors`` those the filter is told of and sampled as
+    ``Sensors.sample`` samples them, coarse cells, a fine sun sensor or none, a
+    :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, the flight software's field
+    the run's (or none), and the wrapped law (each mode's) a built-in one.
 
     Examples
     --------
-    A fine sun sensor keeps the Python path:
+    A fine sun sensor runs here; sensors other than the filter's keep the Python path:
 
     >>> import numpy as np
     >>> from tumble.dynamics.control.bdot import BDot
@@ -229,7 +244,9 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> from tumble.dynamics.models.vector_sensors import FineSunSensor
     >>> s = Sensors(sun_sensor=FineSunSensor(), sunlight=Sunlight(CircularOrbit(altitude=5e5), "2026-03-20T14:46:00"))
-    >>> plan(Estimated(BDot(gain=1.0, period=1.0), s), s, np.ones(3), None, None) is None
+    >>> len(plan(Estimated(BDot(gain=1.0, period=1.0), s), s, np.ones(3), None, None))
+    1
+    >>> plan(Estimated(BDot(gain=1.0, period=1.0), s), Sensors(), np.ones(3), None, None) is None
     True
     """
     from ..environment.magnetic import field_form
@@ -239,7 +256,7 @@ def plan(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field:
         return None
     s = controller.sensors
     if sensors is not s or type(s).sample is not Sensors.sample \
-            or not (s.sun_sensor is None or isinstance(s.sun_sensor, CoarseSunSensor)) \
+            or not (s.sun_sensor is None or isinstance(s.sun_sensor, (CoarseSunSensor, FineSunSensor))) \
             or not (s.star_tracker is None or isinstance(s.star_tracker, StarTracker)):
         return None
     own = controller.field
@@ -270,7 +287,8 @@ def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: An
     """The laws that this loop runs fed the readings of ``sensors`` as they are, with no filter (each
     :data:`Law` of :func:`~tumble.dynamics.control.control_kernel.compiled_law`: the controller's, or
     a :class:`~tumble.dynamics.control.mission.DetumbleThenPoint`'s two modes'), or None for the
-    Python path: a built-in law (each mode's), a coarse sun sensor or none, a
+    Python path: a built-in law (each mode's), sensors sampled as ``Sensors.sample`` samples them,
+    coarse cells, a fine sun sensor or none, a
     :class:`~tumble.dynamics.models.vector_sensors.StarTracker` or none, and an attitude sensor
     where a law points (without one the Python path says why it cannot).
 
@@ -293,7 +311,7 @@ def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: An
     True
     """
     if not isinstance(sensors, Sensors) or type(sensors).sample is not Sensors.sample \
-            or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, CoarseSunSensor)) \
+            or not (sensors.sun_sensor is None or isinstance(sensors.sun_sensor, (CoarseSunSensor, FineSunSensor))) \
             or not (sensors.star_tracker is None or isinstance(sensors.star_tracker, StarTracker)):
         return None  # the sensors' own sampling, or a sensor the loop does not draw for
     laws = _laws(controller, moments, wheels, field)
@@ -335,32 +353,38 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
     steps = len(grid) - 1
     t = np.asarray(grid[:-1], float)
     has_field = int(kernel.P[15]) != FIELD_NONE
-    css = sensors.sun_sensor if isinstance(sensors.sun_sensor, CoarseSunSensor) else None   # plan: coarse or none
+    sun = sensors.sun_sensor   # plan: coarse cells, a fine sensor or none
+    css = sun if isinstance(sun, CoarseSunSensor) else None
+    fss = sun if isinstance(sun, FineSunSensor) else None
     trk = sensors.star_tracker
     kc = 0 if css is None else len(np.asarray(css.axes))
     lit, light, sun_world = np.zeros(steps, bool), np.zeros(steps), np.zeros((steps, 3))
-    A, Apinv, Agram = np.zeros((0, 3)), np.zeros((3, 0)), np.zeros((3, 3))
-    if css is not None and sensors.sunlight is not None:
-        on = on_periods(t, css.period)
+    A, Apinv, Agram, Cf = np.zeros((0, 3)), np.zeros((3, 0)), np.zeros((3, 3)), np.eye(3)
+    if sun is not None and sensors.sunlight is not None:
+        on = on_periods(t, sun.period)
         if on.any():
             light[on] = sensors.sunlight.fraction(t[on])
             sun_world[on] = sensors.sunlight.world(t[on])
         lit = on & (light > 0.0)
-        A = np.ascontiguousarray(css.axes, dtype=float)
-        Apinv, Agram = css.tables()
+        if css is not None:
+            A = np.ascontiguousarray(css.axes, dtype=float)
+            Apinv, Agram = css.tables()
+        else:
+            Cf = np.ascontiguousarray(fss.frame.as_matrix())  # type: ignore[union-attr]
     tracked = on_periods(t, trk.period) if trk is not None else np.zeros(steps, bool)
     counts = 3 + 3 * has_field + 3 * (sensors.attitude == "star_tracker") + 2 * kc * lit + 3 * tracked
     offs = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    noise = sensors.rng().standard_normal(int(offs[-1]))
+    seeing = int(lit.sum()) if fss is not None else 0  # the most steps the fine sensor may draw at (2 each)
+    noise = sensors.rng().standard_normal(int(offs[-1]) + 2 * seeing)
     updates = on_periods(t, controller.magnetometer_period) if filtered else np.zeros(steps, bool)
-    flags = (updates * 1 + lit * 2 + tracked * 4).astype(np.int64)
+    flags = (updates * 1 + lit * (2 if css is not None else 8) + tracked * 4).astype(np.int64)
     min_sigma = controller.min_sigma if filtered else 0.0
     S = np.array([*sensors.gyro_bias, *sensors.magnetometer_bias, sensors.gyro_noise, sensors.magnetometer_noise,
-                  sensors.attitude == "star_tracker", css.noise if css is not None else 0.0,
+                  sensors.attitude == "star_tracker", sun.noise if sun is not None else 0.0,
                   trk.cross if trk is not None else 0.0, trk.roll if trk is not None else 0.0, min_sigma,
                   sensors.gyro_noise * math.sqrt(controller.period) if filtered else 0.0,
                   controller.bias_walk if filtered else 0.0, filtered and controller.field is not None,
-                  not filtered, sensors.attitude_noise], dtype=float)
+                  not filtered, sensors.attitude_noise, math.cos(fss.fov) if fss is not None else 0.0], dtype=float)
     C = trk.frame.as_matrix() if trk is not None else np.eye(3)  # type: ignore[union-attr]
     Rt = trk.covariance + min_sigma**2 * np.eye(3) if trk is not None else np.eye(3)
     n = steps + 1
@@ -376,12 +400,12 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
         """The loop from the start with ``law``, and from the step ``stop`` on with ``after``: the
         filter's rows (quaternion, bias, sigmas, sensors used, whether the filter ran)."""
         fq, fb, fP = np.zeros((1, 4)), np.zeros((1, 3)), np.zeros((1, 6, 6))
-        mem, used0, RD = np.zeros(16), np.zeros(3, bool), np.zeros(18)
+        mem, used0, RD = np.zeros(17), np.zeros(3, bool), np.zeros(18)
         KQ, KB, KS, KU, KV = np.zeros((n, 4)), np.zeros((n, 3)), np.zeros((n, 6)), np.zeros((n, 3), bool), np.zeros(n, bool)
         y, i0, fresh = _cl.padded(y0), 0, False
         while True:
             status = loop(y, i0, fresh, *head, law[0], law[1], law[2], *tail, fq, fb, fP, mem, used0, Y, D, U, F,
-                          KQ, KB, KS, KU, KV, RD, stop, KW, reference_table(law[3], grid))
+                          KQ, KB, KS, KU, KV, RD, stop, KW, reference_table(law[3], grid), Cf)
             if status in (NEEDS_START, NO_ATTITUDE):
                 i = int(mem[15])
                 m = Measurement(float(RD[0]), RD[1:4].copy(), RD[4:7].copy() if RD[7] else None, None,

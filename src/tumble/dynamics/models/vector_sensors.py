@@ -57,7 +57,7 @@ from ...validation import check_positive, check_rotation, check_vectors
 from ..special.quaternion import turned_by
 
 __all__ = ["CoarseSunSensor", "FineSunSensor", "StarTracker", "cell_currents", "coarse_reading", "on_period", "on_periods",
-           "tracker_noise"]
+           "fine_reading", "fine_view", "tracker_noise"]
 
 
 def on_periods(t: ArrayLike, period: float) -> np.ndarray:
@@ -177,6 +177,51 @@ def tracker_noise(C: FloatArray, cross: float, roll: float, z0: float, z1: float
     v0, v1, v2 = cross * z0, cross * z1, roll * z2
     return (C[0, 0] * v0 + C[0, 1] * v1 + C[0, 2] * v2, C[1, 0] * v0 + C[1, 1] * v1 + C[1, 2] * v2,
             C[2, 0] * v0 + C[2, 1] * v1 + C[2, 2] * v2)
+
+
+def fine_view(C: FloatArray, cos_fov: float, s0: float, s1: float, s2: float,
+              light: float) -> tuple[float, float, float, bool]:
+    """The Sun's direction ``C^T s`` in a fine sun sensor's frame (``C`` (3, 3) sensor to body, ``s``
+    the body-frame direction) and whether the sensor sees it: lit (``light > 0``) and inside the
+    field of view, ``a_z > cos(fov) |a|``. Plain floats: the Python sensor and the compiled loop call
+    it (:class:`FineSunSensor`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.vector_sensors import fine_view
+    >>> a0, a1, a2, seen = fine_view(np.eye(3), np.cos(np.radians(60)), 0.0, 0.0, 1.0, 1.0)
+    >>> [float(a0), float(a1), float(a2)], bool(seen)
+    ([0.0, 0.0, 1.0], True)
+    >>> bool(fine_view(np.eye(3), np.cos(np.radians(60)), 1.0, 0.0, 0.0, 1.0)[3])   # 90 deg off the boresight
+    False
+    """
+    a0 = C[0, 0] * s0 + C[1, 0] * s1 + C[2, 0] * s2
+    a1 = C[0, 1] * s0 + C[1, 1] * s1 + C[2, 1] * s2
+    a2 = C[0, 2] * s0 + C[1, 2] * s1 + C[2, 2] * s2
+    return a0, a1, a2, light > 0.0 and a2 > cos_fov * math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+
+
+def fine_reading(C: FloatArray, noise: float, a0: float, a1: float, a2: float, z0: float,
+                 z1: float) -> tuple[float, float, float]:
+    """A fine sun sensor's measured direction (body frame, unit) of the Sun at ``a`` in its frame
+    (:func:`fine_view`): the two angles ``atan2(a_x, a_z)`` and ``atan2(a_y, a_z)`` each read with
+    white noise ``noise z`` (rad; ``z`` unit normal draws), the unit vector ``(tan alpha, tan beta,
+    1)`` they give turned back by ``C`` (module docstring). Plain floats, as :func:`fine_view`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.vector_sensors import fine_reading
+    >>> [round(float(v), 12) for v in fine_reading(np.eye(3), 0.0, 0.6, 0.0, 0.8, 0.0, 0.0)]   # no noise: the direction
+    [0.6, 0.0, 0.8]
+    """
+    d0 = math.tan(math.atan2(a0, a2) + noise * z0)
+    d1 = math.tan(math.atan2(a1, a2) + noise * z1)
+    n = math.sqrt(d0 * d0 + d1 * d1 + 1.0)
+    e0, e1, e2 = d0 / n, d1 / n, 1.0 / n
+    return (C[0, 0] * e0 + C[0, 1] * e1 + C[0, 2] * e2, C[1, 0] * e0 + C[1, 1] * e1 + C[1, 2] * e2,
+            C[2, 0] * e0 + C[2, 1] * e1 + C[2, 2] * e2)
 
 
 def _period(value: object) -> float:
@@ -340,14 +385,14 @@ class FineSunSensor:
         >>> bool(np.arccos(v[2]) < 5e-3), sigma
         (True, 0.001)
         """
-        C: Rotation = self.frame
-        s = C.inv().apply(sun_body)
-        if light <= 0.0 or s[2] <= math.cos(self.fov) * float(np.linalg.norm(s)):
+        C = self.frame.as_matrix()  # type: ignore[union-attr]
+        s0, s1, s2 = (float(v) for v in sun_body)
+        a0, a1, a2, seen = fine_view(C, math.cos(self.fov), s0, s1, s2, float(light))
+        if not seen:
             return None
-        alpha = math.atan2(s[0], s[2]) + self.noise * rng.standard_normal()
-        beta = math.atan2(s[1], s[2]) + self.noise * rng.standard_normal()
-        d = np.array([math.tan(alpha), math.tan(beta), 1.0])
-        return np.asarray(C.apply(d / np.linalg.norm(d)), float), float(self.noise)
+        z0 = float(rng.standard_normal())
+        z1 = float(rng.standard_normal())
+        return np.array(fine_reading(C, self.noise, a0, a1, a2, z0, z1), float), float(self.noise)
 
 
 @dataclass(frozen=True)
