@@ -193,9 +193,67 @@ def test_torque_tables_are_the_disturbance_of_the_python_run(tmp_path):
     assert isinstance(tumble.io.load_scenario(path).torque, tumble.TorqueSum)
 
 
+def test_a_residual_dipole_table_is_the_disturbance_in_the_orbits_field(tmp_path, loop_runs):
+    """[torque] kind = "residual_dipole" in a control file: the dipole read in the design frame (the
+    box's principal axis 1 is design z), in the [orbit]'s own field; the run is compiled and is
+    simulate_controlled's with the same ResidualDipole, and its budget closes with the impulse."""
+    from tumble.commands import run_scenario
+    from tumble.dynamics import ResidualDipole
+    from tumble.dynamics.control.controlled import simulate_controlled
+
+    text = ('body = { name = "box", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+            "[initial]\nomega = [0.0, 0.0, 0.05]\n[simulation]\nt_end = 300.0\n"
+            "[orbit]\naltitude = 500e3\ninclination = 1.2\n"
+            '[torque]\nkind = "residual_dipole"\ndipole = [0.0, 0.02, 0.05]\n'
+            "[actuators.magnetorquers]\nmax_dipole = 0.2\n"
+            '[control]\nkind = "bdot"\nperiod = 1.0\ngain = 3e-3\nform = "normalized"\n')
+    path = tmp_path / "magnetic.toml"
+    path.write_text(text)
+    scenario = load_scenario(path)
+    P = scenario.body.principal_axes  # principal -> design
+    assert isinstance(scenario.torque, ResidualDipole) and scenario.torque.field is scenario.field
+    np.testing.assert_allclose(scenario.torque.dipole, P.T @ [0.0, 0.02, 0.05], rtol=0, atol=1e-18)
+    run = run_scenario(scenario)
+    assert len(loop_runs) == 1   # compiled: a disturbance in the run's own field
+    args = scenario.arguments()
+    args["torque"] = ResidualDipole(tuple(P.T @ [0.0, 0.02, 0.05]), scenario.field)
+    ref = simulate_controlled(**args)
+    np.testing.assert_array_equal(run.omega, ref.omega)
+    assert np.linalg.norm(run.impulse_world[-1]) > 1e-4 * np.linalg.norm(run.momentum_world[0])   # it acted
+    L = run.momentum_world - run.impulse_world
+    np.testing.assert_allclose(L, L[[0] * len(L)], rtol=0, atol=1e-9 * np.abs(run.momentum_world).max())
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ('[torque]\nkind = "residual_dipole"\ndipole = [0.0, 0.0, 0.05]\n',
+     r'bad.toml: torque: kind = "residual_dipole" needs an \[orbit\] \(its magnetic field\)$'),
+    ('[orbit]\naltitude = 500e3\n[torque]\nkind = "residual_dipole"\n', r"bad.toml: torque: missing key 'dipole' \(A m\^2\)$"),
+    ('[orbit]\naltitude = 500e3\n[torque]\nkind = "residual_dipole"\ndipole = [0.0, 0.05]\n',
+     r"bad.toml: torque: dipole = \[0.0, 0.05\] must be"),
+    ('[orbit]\naltitude = 500e3\n[torque]\nkind = "residual_dipole"\ndipole = [0.0, 0.0, 0.05]\nvector = [0.0, 0.0, 1e-6]\n',
+     r"bad.toml: torque: key 'vector' does not go with kind = 'residual_dipole'"),
+])
+def test_a_residual_dipole_table_that_cannot_be_run_is_refused_in_one_line(tmp_path, text, message):
+    body = 'body = { name = "box", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+    path = tmp_path / "bad.toml"
+    path.write_text(body + "[initial]\nomega = [0.0, 0.0, 0.05]\n[simulation]\nt_end = 10.0\n" + text
+                    + "[actuators.wheels]\ninertia = 1e-5\n" + '[control]\nkind = "mrp_pd"\nperiod = 0.5\nK = 1e-3\nP = 6e-3\n')
+    with pytest.raises(ValueError, match=message):
+        load_scenario(path)
+
+
+def test_a_scenario_file_says_where_a_residual_dipole_is_taken(tmp_path):
+    path = tmp_path / "spin.toml"
+    path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\nt_end = 1.0\n'
+                    '[torque]\nkind = "residual_dipole"\n')
+    with pytest.raises(ValueError, match=r"kind = 'residual_dipole' is not taken here; allowed: constant, gravity_gradient "
+                                         r"\(control files take a residual_dipole, in their \[orbit\]'s magnetic field\)"):
+        load_scenario(path)
+
+
 @pytest.mark.parametrize(("table", "message"), [
     ('[torque]\nkind = "gravity_gradient"\norbit_period = 5400.0\n',
-     r"torque: kind = 'gravity_gradient' is not taken here; allowed: constant \(the orbit's gravity gradient: "
+     r"torque: kind = 'gravity_gradient' is not taken here; allowed: constant, residual_dipole \(the orbit's gravity gradient: "
      r"\[orbit\] gravity_gradient = true\)$"),
     ("[[torque]]\nvector = [0.0, 0.0, 1e-6]\n[[torque]]\nvector = [1e-6]\n",
      r"torque\[1\]: torque vector = \[1e-06\] must be a list of 3 numbers \(N m\)"),

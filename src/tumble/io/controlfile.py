@@ -76,7 +76,7 @@ from ..validation import (
 from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
 from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
-from .torquetables import TORQUE_KINDS, TORQUE_TABLE, torque_of
+from .torquetables import CONTROL_TORQUE_TABLE, torque_of
 from .keys import FileFormat, Key, Table
 from .controlspec import (
     CONTROL_KEYS,
@@ -118,10 +118,7 @@ _TABLES = (
         Key("atol", "number", "", "1e-12", example="1e-11", low=0.0, doc="absolute tolerance"),
     )),
     ORBIT_TABLE,
-    Table("[torque]", tuple(k for k in TORQUE_TABLE.keys if k.name in TORQUE_KINDS["constant"]),
-          "Optional: a constant disturbance torque (:class:`tumble.dynamics.ConstantTorque`); several act together "
-          "as a ``[[torque]]`` table each. A body-frame vector is in ``initial.frame``; the orbit's gravity gradient "
-          "is ``[orbit] gravity_gradient = true``."),
+    CONTROL_TORQUE_TABLE,
     Table("[actuators]", (
         Key("magnetorquers", "table", example="{max_dipole = 0.2}", doc="[actuators.magnetorquers]"),
         Key("wheels", "table", example="{inertia = 1e-5}", doc="[actuators.wheels]: reaction wheels"),
@@ -420,13 +417,6 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         design_to_world = Rotation.from_quat(check_rotation("attitude", initial.get("attitude", [0, 0, 0, 1])))
     except ValueError as exc:
         raise ValueError(f"initial: {exc}") from None
-    torque = torque_of(data.get("torque"), ("constant",), "the orbit's gravity gradient: [orbit] gravity_gradient = true")
-    if frame == "design":
-        omega = P.T @ omega
-        if torque is not None and torque.frame == "body":  # a sum's frame is "body": it turns its body terms only
-            torque = design_torque(torque, P)
-    principal_to_design = Rotation.from_matrix(P)
-    attitude0 = design_to_world * principal_to_design
     orbit: Orbit | None = None
     field: Field | None = None
     gravity_gradient = False
@@ -436,6 +426,14 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
             orbit, field = orbit_from_table(orbit_t)
         except ValueError as exc:
             raise ValueError(f"orbit: {exc}") from None
+    torque = torque_of(data.get("torque"), ("constant", "residual_dipole"),
+                       "the orbit's gravity gradient: [orbit] gravity_gradient = true", field=field)
+    if frame == "design":
+        omega = P.T @ omega
+        if torque is not None and torque.frame == "body":  # a sum's frame is "body": it turns its body terms only
+            torque = design_torque(torque, P)
+    principal_to_design = Rotation.from_matrix(P)
+    attitude0 = design_to_world * principal_to_design
     mtq = wheels = None
     speed0 = None
     where = "actuators"

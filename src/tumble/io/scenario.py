@@ -61,6 +61,9 @@ from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .torquetables import TORQUE_TABLE, torque_of
+
+#: Where a residual dipole is taken: a file with a magnetic field.
+_DIPOLE_ELSEWHERE = "control files take a residual_dipole, in their [orbit]'s magnetic field"
 from .keys import FileFormat, Key, Table
 from .provenance import file_sha256
 
@@ -207,7 +210,7 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     tables = {section: keys.check(section, data.get(section, {})) for section, keys in _SECTIONS.items()
               if section != "torque"}  # one [torque] table or several [[torque]]: torque_of checks them
     initial, sim = tables["initial"], tables["simulation"]
-    model = torque_of(data.get("torque"))
+    model = torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE)
     omega, frame, attitude0 = _initial(initial, model, body)
     damper = None
     if tables["damper"]:

@@ -75,6 +75,9 @@ from .keys import FileFormat, Key, Table
 from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END
 from .torquetables import TORQUE_TABLE, torque_of
 
+#: Where a residual dipole is taken: a file with a magnetic field.
+_DIPOLE_ELSEWHERE = "control files take a residual_dipole, in their [orbit]'s magnetic field"
+
 __all__ = ["SWEEP_FORMAT", "SWEEP_WRITES", "CaseTables", "ChunkFolder", "SweepFile", "load_sweep", "sweep_from_table"]
 
 #: The files a sweep writes into its folder (an earlier run's are replaced as a set).
@@ -304,7 +307,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     t_end = sim.get("t_end", None if times is not None else DEFAULT_T_END)
     _in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))
     settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
-                                                      method=sim.get("method"), torque=torque_of(data.get("torque")),
+                                                      method=sim.get("method"), torque=torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE),
                                                       step=sim.get("step")))
     chunk = sweep.get("chunk", DEFAULT_CHUNK)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:

@@ -20,6 +20,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Matrix3, Quaternion, Vector3
+from ..models.dipole import ResidualDipole
 from ..models.internal import InternalModel
 from ..models.torques import (
     KERNEL_BODY,
@@ -132,9 +133,10 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``A`` the
     principal -> design rotation (columns: the principal axes); ``w`` is one angular velocity (3,)
     or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T`` is ``A w`` for each row).
-    A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled; of a
-    :class:`~tumble.dynamics.models.torques.TorqueSum`, the body-frame terms are turned and the
-    world-frame ones kept.
+    A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled, and a
+    :class:`~tumble.dynamics.models.dipole.ResidualDipole` one with its dipole turned (its field is the
+    world's); of a :class:`~tumble.dynamics.models.torques.TorqueSum`, the body-frame terms are turned
+    and the world-frame ones kept.
 
     Examples
     --------
@@ -149,6 +151,8 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     """
     if isinstance(model, TorqueSum):
         return TorqueSum(*(design_torque(term, A) if term.frame == "body" else term for term in model.terms))
+    if isinstance(model, ResidualDipole) and type(model).__call__ is ResidualDipole.__call__:  # its dipole turned once
+        return ResidualDipole(tuple((np.asarray(model.dipole, float) @ A).tolist()), model.field)
     form = kernel_form(model)
     if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
         return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
