@@ -62,6 +62,43 @@ def test_on_the_reference_it_stays_there():
     assert np.abs(run.wheel_speed).max() < 1e-8   # the wheels did nothing
 
 
+def test_on_a_reference_that_speeds_up_the_wheels_give_its_angular_acceleration():
+    """(a'') On a reference whose rate grows (omega_r' != 0), turning with it, the errors are zero
+    and the required torque is the feed-forward alone, ``L_r = I_RW omega_r' + omega x (I omega +
+    h)`` with ``I_RW`` the body's inertia less the wheels' axial one (Schaub & Junkins sec. 8.3):
+    the wheels' command ``-L_r``, written out here with numpy. On the compiled loop, started on the
+    reference, the body keeps to it to the zero-order hold's error."""
+    class SpinUp:   # R_z(w0 t + alpha t^2 / 2) R0, its rate and rate derivative about world z
+        w0, alpha, R0 = 0.003, 4e-5, Rotation.from_rotvec([0.2, -0.1, 0.3])
+
+        def attitude(self, t):
+            t = np.asarray(t, float)
+            return Rotation.from_rotvec(np.multiply.outer(self.w0 * t + 0.5 * self.alpha * t * t, [0.0, 0.0, 1.0])) * self.R0
+
+        def rate(self, t):
+            return np.multiply.outer(self.w0 + self.alpha * np.asarray(t, float), [0.0, 0.0, 1.0])
+
+        def rate_derivative(self, t):
+            return np.multiply.outer(np.full(np.shape(t), self.alpha), [0.0, 0.0, 1.0])
+
+    ref, t = SpinUp(), 50.0
+    R = ref.attitude(t)
+    w = R.inv().apply(ref.rate(t))
+    spin = np.array([3.0, -2.0, 1.0])   # rad/s: the wheels' momentum h = J spin
+    c = MRPFeedback(K=1e-3, P=2e-2, period=0.5, moments=I, wheels=RW, target=ref)
+    u = c(t, Measurement(t, w, None, R, spin)).wheel_torque
+    I_rw = np.diag(I) - RW.locked_axial()
+    h = RW.momentum(spin)
+    expected = -(I_rw @ R.inv().apply(ref.rate_derivative(t)) + np.cross(w, I * w + h))
+    np.testing.assert_allclose(u, expected, rtol=1e-12, atol=1e-18)
+    assert np.linalg.norm(I_rw @ R.inv().apply(ref.rate_derivative(t))) > 10 * np.linalg.norm(np.cross(w, I * w + h))
+
+    run = simulate_controlled(I, ref.attitude(0.0).inv().apply(ref.rate(0.0)), t_end=120.0, controller=c, wheels=RW,
+                              attitude0=ref.attitude(0.0))
+    lag = 4 * np.max(I) * ref.alpha / 1e-3   # rad: the steady error I alpha = K sigma, sigma ~ theta / 4, without omega_r'
+    assert run.pointing_error(ref).max() < 1e-3 * lag
+
+
 def test_feed_forward_off_the_principal_axes():
     """(a') Axes that are not principal: omega_r is not a principal axis and the wheels must make
     omega x I omega. With the feed-forward the error is the zero-order hold's alone (the wheels'
