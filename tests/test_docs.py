@@ -77,15 +77,25 @@ def test_the_strict_build_passes_without_a_warning(build):
 
 @pytest.mark.parametrize("package", SUBPACKAGES)
 def test_every_public_name_has_its_own_page_listed_on_its_subpackage_page(site, package):
+    """A function or class: a page of its own, linked from the subpackage's page. A constant: an
+    entry of the page of the module that documents it."""
     html = (site / "api" / f"{package}.html").read_text(encoding="utf-8")
     names = _literal(SRC / package / "__init__.py", "__all__")
     assert names
+    kinds = set()
     for name in names:
         full = tumble_api.page_for(f"tumble.{package}.{name}").removeprefix("obj:")  # documented once
-        page = site / "api" / "generated" / f"{full}.html"
-        assert page.is_file(), f"no page for {full}"
-        assert f'href="generated/{full}.html' in html, f"api/{package}.html does not list {full}"
+        if full in tumble_api.documented_names():
+            page = site / "api" / "generated" / f"{full}.html"
+            assert page.is_file(), f"no page for {full}"
+            assert f'href="generated/{full}.html' in html, f"api/{package}.html does not list {full}"
+            kinds.add("page")
+        else:
+            page = site / tumble_api.html_page(full).partition("#")[0]
+            assert not (site / "api" / "generated" / f"{full}.html").exists(), f"{full} has a page of its own"
+            kinds.add("entry")
         assert f'id="{full}"' in page.read_text(encoding="utf-8"), f"{page.name} has no entry {full}"
+    assert "page" in kinds
 
 
 def test_every_name_the_guides_gallery_and_readme_write_has_its_entry_on_the_site(site):
@@ -145,15 +155,17 @@ def test_key_pages_carry_signature_parameters_units_and_examples(site, name, wor
 def test_the_api_index_links_every_top_level_name_to_its_page(site):
     html = (site / "api" / "index.html").read_text(encoding="utf-8")
     exports = _literal(SRC / "__init__.py", "_EXPORTS")
+    # a function or class: generated/<name>.html; a constant: its module's page (api/dynamics.html#...)
     unlinked = [name for name, module in exports.items()
-                if f'href="generated/{module}.{name}.html#{module}.{name}"' not in html]
+                if f'href="{tumble_api.html_page(f"{module}.{name}").removeprefix("api/")}"' not in html]
     assert not unlinked, f"api/index.html does not link {unlinked}"
 
 
 def test_sphinx_markup_is_read_not_printed(site):
     pages = {p.name: p.read_text(encoding="utf-8") for p in (site / "api" / "generated").glob("*.html")}
+    modules = {p.name: p.read_text(encoding="utf-8") for p in [*(site / "api").glob("*.html"), *(site / "api" / "modules").glob("*.html")]}
     roles = re.compile(r":(?:func|class|mod|data|meth|attr|obj):`")
-    assert not [name for name, html in pages.items() if roles.search(html)]
+    assert not [name for name, html in {**pages, **modules}.items() if roles.search(html)]
     # a role naming an object where it is defined links to its page under the public name
     # (periods.py cites :func:`tumble.analysis.flip_interval`)
     assert re.search(r'href="tumble\.analysis\.flip_interval\.html#tumble\.analysis\.flip_interval"',
@@ -161,8 +173,10 @@ def test_sphinx_markup_is_read_not_printed(site):
     # a role through a private module (simulate.py cites dynamics.models.internal.SphericalDamper)
     assert 'href="tumble.dynamics.SphericalDamper.html#tumble.dynamics.SphericalDamper"' in \
         pages["tumble.dynamics.simulate.html"]
-    # a re-exported constant shows its `#:` comment, not the docstring of float
-    rtol = _text(pages["tumble.mass.INERTIA_RTOL.html"])
+    # a re-exported constant shows its `#:` comment, not the docstring of float, on its module's page
+    html = modules["mass.html"]
+    entry = html[html.index('id="tumble.mass.INERTIA_RTOL"'):]
+    rtol = _text(entry[:entry.index("</dd>")])
     assert "round-off" in rtol and "Convert a string or number" not in rtol
 
 

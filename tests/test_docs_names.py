@@ -50,7 +50,7 @@ def test_the_texts_are_found_and_name_many_things():
 
 
 def test_every_name_the_guides_gallery_and_readme_write_has_a_page():
-    documented = tumble_api.documented_names() | {e.full for e in tumble_api.listing() if e.alias}
+    documented = tumble_api.documented_names() | {e.full for e in tumble_api.listing() if e.inline}
     missing = []
     for where, name in written_names():
         page = tumble_api.page_for(name)
@@ -92,8 +92,8 @@ def test_every_name_of_every_public_all_has_a_page():
         for name in importlib.import_module(module_name).__all__:
             page = tumble_api.page_for(f"{module_name}.{name}")
             target = page.removeprefix("obj:") if page and page.startswith("obj:") else None
-            alias = any(e.alias and e.full == target for e in tumble_api.listing())
-            if page is None or (page.startswith("obj:") and target not in documented and not alias):
+            inline = any(e.inline and e.full == target for e in tumble_api.listing())
+            if page is None or (page.startswith("obj:") and target not in documented and not inline):
                 homeless.append(f"{module_name}.{name}")
     assert not homeless, homeless
 
@@ -121,7 +121,9 @@ def test_the_written_pages_list_every_name_they_document():
             assert f"   modules/{module_name}\n" in group, f"api/{stem}.rst does not list {module_name}"
             text = tumble_api.render_module_page(module_name)
         for e in entries:
-            if e.alias:
+            if e.is_home and e.data:  # a constant: an entry of its module's page
+                assert f".. autodata:: {e.name}\n" in text and f"\n   {e.name}\n" not in text, e
+            elif e.alias:
                 assert f".. py:data:: {e.name}\n" in text, e
             elif e.is_home:
                 assert f"\n   {e.name}\n" in text, e
@@ -139,3 +141,16 @@ def test_the_scanner_reads_names_not_files_and_follows_imports():
         (3, "tumble.io.gyrodata.read_recording"), (3, "tumble.io.gyrodata.load_recording"),
         (4, "tumble.analysis"), (4, "tumble.analysis.fit_recording"), (4, "tumble.analysis.fit_rotation"),
     ])
+
+
+def test_every_public_constant_says_what_it_is():
+    """A constant is an entry of its module's page, shown with its ``#:`` comment; one without
+    showed the docstring of its value's type (``int([x]) -> integer``), now its value alone. A
+    comment above ``A, B = 1, 2`` or above the first of two lines belongs to the first name only."""
+    from sphinx.pycode import ModuleAnalyzer
+
+    constants = [e for e in tumble_api.listing() if e.is_home and e.data]
+    assert len(constants) > 200
+    silent = [e.full for e in constants if not ModuleAnalyzer.for_module(
+        tumble_api.defining_module(e.module, e.name)).find_attr_docs().get(("", e.name))]
+    assert not silent, f"public constants with no #: comment: {silent}"

@@ -12,7 +12,8 @@ module or a new name in an ``__all__`` gets its page with no list to keep by han
   order: the shallowest first, then by API page) whose ``__all__`` holds it; a function or class
   is recognised by identity wherever it is re-exported, a constant by the module that assigns it.
 - Every module gets a page with its docstring, the names it documents and links to the names it
-  re-exports from elsewhere.
+  re-exports from elsewhere. A function or class it documents gets a page of its own; a constant
+  or a type alias is an entry of the module's page (:attr:`Entry.inline`).
 """
 
 from __future__ import annotations
@@ -66,10 +67,19 @@ class Entry:
     name: str  #: the name there
     documented: str  #: the full public name of the page it is documented on
     alias: bool = False  #: a type alias: documented on its module's page, not a page of its own
+    data: bool = False  #: a constant: documented on its module's page too (``autodata``)
 
     @property
     def full(self) -> str:
         return f"{self.module}.{self.name}"
+
+    @property
+    def inline(self) -> bool:
+        """Whether the object is an entry of its module's page, not a page of its own: a type
+        alias (autodoc cannot give one a page) or a constant (a page of its own, some 270 of them
+        at 13 KB each, held one line and its comment; on its module's page it sits beside the
+        functions that use it)."""
+        return self.alias or self.data
 
     @property
     def is_home(self) -> bool:
@@ -172,22 +182,33 @@ def listing() -> tuple[Entry, ...]:
                 continue  # a module in an __all__ is documented as a module
             key = identity(module_name, name, obj)
             documented = home.setdefault(key, f"{module_name}.{name}")
-            entries.append(Entry(module_name, name, documented, is_alias(obj)))
+            alias = is_alias(obj)
+            entries.append(Entry(module_name, name, documented, alias, not alias and not is_code(obj)))
     return tuple(entries)
 
 
 def documented_names() -> set[str]:
-    """The full names that have a page of their own (``api/generated/<name>.html``)."""
-    return {e.documented for e in listing() if not e.alias}
+    """The full names that have a page of their own (``api/generated/<name>.html``): the functions
+    and classes (:attr:`Entry.inline`)."""
+    return {e.documented for e in listing() if not e.inline}
 
 
 def html_page(name: str) -> str:
     """The built page (relative to the site) that documents a public name, with its anchor:
-    ``api/generated/<name>.html`` or, for a type alias, its module's page."""
+    ``api/generated/<name>.html`` or, for a constant or a type alias, its module's page."""
     entry = next(e for e in listing() if e.is_home and e.full == name)
-    if entry.alias:
-        return f"api/modules/{entry.module}.html#{name}"
+    if entry.inline:
+        return f"{module_html(entry.module)}#{name}"
     return f"api/generated/{name}.html#{name}"
+
+
+def module_html(module_name: str) -> str:
+    """The built page (relative to the site) of a public module: its API page for the root of one
+    (``api/analysis.html``), else ``api/modules/<module>.html``."""
+    roots = {p for _, _, prefixes, _ in API_PAGES for p in prefixes}
+    if module_name in roots and _is_package(module_name):
+        return f"api/{page_of(module_name)}.html"
+    return f"api/modules/{module_name}.html"
 
 
 _MISSING = object()
@@ -287,16 +308,18 @@ def _summary(module_name: str) -> str:
 
 
 def _names_table(entries: list[Entry], toctree: str) -> list[str]:
-    """An autosummary table of the names a page documents (bare: the current module is set),
-    type aliases as plain entries after it."""
+    """An autosummary table of the functions and classes a page documents (bare: the current module
+    is set), its constants and type aliases as entries after it."""
     lines = []
-    own = [e for e in entries if e.is_home and not e.alias]
+    own = [e for e in entries if e.is_home and not e.inline]
     if own:
         lines += [".. autosummary::", f"   :toctree: {toctree}", "   :nosignatures:", ""]
         lines += [f"   {e.name}" for e in own]
         lines.append("")
     for e in entries:
-        if e.is_home and e.alias:
+        if e.is_home and e.data:
+            lines += [f".. autodata:: {e.name}", ""]
+        elif e.is_home and e.alias:
             lines += [f".. py:data:: {e.name}", f"   :value: {_alias_text(e)}", ""]
             comment = _comment(e.module, e.name)
             if comment:
@@ -436,13 +459,13 @@ def html_target(page: str) -> tuple[str, str | None]:
     if kind == "mod":
         if name == "tumble":
             return "api/index.html", "module-tumble"
-        roots = {p for _, _, prefixes, _ in API_PAGES for p in prefixes}
-        if name in roots and _is_package(name):
-            return f"api/{page_of(name)}.html", f"module-{name}"
-        return f"api/modules/{name}.html", None if name in documented_names() else f"module-{name}"
+        page = module_html(name)
+        if page.startswith("api/modules/") and name in documented_names():
+            return page, None
+        return page, f"module-{name}"
     documented = documented_names()
     owner = name
-    while owner not in documented and "." in owner and not any(e.alias and e.full == owner for e in listing()):
+    while owner not in documented and "." in owner and not any(e.inline and e.full == owner for e in listing()):
         owner = owner.rpartition(".")[0]
     if owner not in documented:
         return html_page(owner).partition("#")[0], name

@@ -107,11 +107,9 @@ def data_docstring(app, what, name, obj, options, lines):
 
     origin = defining_module(module_name, attr)
     comment = ModuleAnalyzer.for_module(origin).find_attr_docs().get(("", attr))
-    type_doc = inspect.getdoc(type(obj)) or ""
-    if comment:
-        lines[:] = [*comment]
-    elif type_doc and "\n".join(lines).strip() == type_doc.strip():
-        lines[:] = []
+    # with no comment, what autodoc finds is the docstring of the value's type (int's, dict's, a
+    # dataclass's), which says nothing of the constant: the entry shows its value alone
+    lines[:] = [*comment] if comment else []
 
 
 def _documented_module(path: str, modules: set[str]) -> str | None:

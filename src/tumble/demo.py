@@ -69,6 +69,8 @@ def _principal_cases(body: str, name: str) -> list[Case]:
     return cases
 
 
+#: The demo's runs (the module's docstring says which): the seed's T-handle about each principal
+#: axis, the seed's own vectors read in the design frame, and the space-station handle.
 CASES: list[Case] = [
     *_principal_cases("seed", "seed T-handle"),
     Case("seed_literal_10", "seed", (10.0, 0.1, 0.1), "design", None, "seed T-handle: seed's [10, 0.1, 0.1], design frame"),

@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import sys
 
-EXIT_OK, EXIT_FAILURE, EXIT_USAGE = 0, 1, 2
+#: The command line's exit status when the command did what it was asked.
+EXIT_OK = 0
+#: The exit status of a computation that failed (the input was valid).
+EXIT_FAILURE = 1
+#: The exit status of bad input: one line naming the field, the value and what is allowed.
+EXIT_USAGE = 2
 
 
 def _working(message: str):

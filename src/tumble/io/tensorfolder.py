@@ -43,6 +43,7 @@ __all__ = ["TENSOR_FILE", "THROWS_FILE", "TensorFolder", "ThrowSeries", "read_te
 
 #: The files of a tensor output folder that :func:`read_tensor_folder` reads.
 TENSOR_FILE = "tensor.json"
+#: The throws' time series in a tensor output folder (NumPy's ``.npz``; the module's table).
 THROWS_FILE = "throws.npz"
 #: Largest tensor.json and throws.npz read, bytes.
 MAX_TENSOR_BYTES = 64 << 20

@@ -324,6 +324,7 @@ def breaks_triangle(moments: ArrayLike) -> BoolArray:
     return cast(BoolArray, triangle_excess(I) > INERTIA_RTOL * np.sum(I, axis=-1))
 
 
+#: What an axis may be, as the error messages say it.
 AXES_ALLOWED = "1, 2 or 3 (principal axes, ascending moments) or 'minor', 'intermediate' or 'major'"
 
 

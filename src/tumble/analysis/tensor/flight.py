@@ -44,6 +44,7 @@ MISFIT = 0.5 * 9.80665
 SPAN = 0.004
 #: Left out after the release that the residuals show and before a catch, s.
 START_MARGIN = 0.010
+#: Left out before a catch, s.
 END_MARGIN = 0.005
 #: How far before the rotor's start the release is looked for without an accelerometer, s (the
 #: firmware starts the rotor 0.06-0.12 s after it senses the release).

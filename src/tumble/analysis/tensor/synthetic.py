@@ -62,7 +62,9 @@ __all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "TYPICAL_
 
 #: The device of the issue: mass, kg; rotor axis, sensor frame; rotor inertia, kg m^2.
 DEVICE_MASS = 0.10067
+#: The device's rotor axis, sensor frame (unit vector).
 ROTOR_AXIS = (0.0, 0.0, -1.0)
+#: The device's rotor inertia about its axis, kg m^2.
 ROTOR_INERTIA = 1.7e-6
 #: The gyroscope's range, rad/s (2000 deg/s).
 GYRO_RANGE = np.deg2rad(2000.0)

@@ -57,8 +57,9 @@ DOP853, RK4, RK8 = 0, 1, 2
 #: target (``L = (K, P, Ki, integral_limit, gyroscopic, period, target quaternion (4))``), and
 #: MRP feedback with momentum dumping (the same, then ``(k_d, h_target (3))``).
 LAW_BDOT, LAW_MRP, LAW_DUMPING = 0, 1, 2
-#: The most wheels the kernels take (their wheel slots), and the size of their state.
+#: The most wheels the kernels take (their wheel slots).
 MAX_WHEELS = 6
+#: The padded state's size (:func:`padded`): quaternion (4), omega (3), wheel slots, impulse (3).
 N = 10 + MAX_WHEELS
 #: Where the tables start in the kernels' parameter array (after the wheel slots; :func:`~tumble.dynamics.control.loop_terms.packed`).
 TABLES = BODY + WHEEL * MAX_WHEELS

@@ -43,6 +43,7 @@ __all__ = [
     "kernel_terms",
 ]
 
+#: The frames a torque may be given in: the body's principal frame or the world (inertial) frame.
 TORQUE_FRAMES = ("body", "world")
 
 

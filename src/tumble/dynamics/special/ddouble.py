@@ -50,6 +50,7 @@ DoubleDouble: TypeAlias = tuple[FloatOrArray, FloatOrArray]
 
 #: pi / 2 and ln 2 as double-doubles; 2 pi as a triple (for reductions of angles up to ~1e30).
 PI_2 = (1.5707963267948966, 6.123233995736766e-17)
+#: ln 2 as a double-double (head, tail).
 LN2 = (0.6931471805599453, 2.3190468138462996e-17)
 _TWO_PI = (6.283185307179586, 2.4492935982947064e-16, -5.989539619436679e-33)
 _SPLITTER = 134217729.0  # 2^27 + 1 (Dekker 1971)
