@@ -194,3 +194,63 @@ def test_a_bad_ellipse_is_refused_in_one_line(tmp_path, capsys, extra, message):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and re.match(message, err), err
     assert not (tmp_path / "run").exists()
+
+
+@pytest.mark.parametrize(("method", "order", "step"), [("rk8", 8, 20.0), ("rk4", 4, 10.0)])
+def test_rk8_and_rk4_take_the_ellipse_on_the_loop_at_their_order(loop_runs, method, order, step):
+    """The engine's fixed steps on the loop's kernel: against the reference, the error falls as
+    the step's ``order``-th power (halved step, ratio 2^order within a factor 2), and the run's
+    default step (``engine_rk.RK_STEP_ANGLE``) is as accurate as dop853's default."""
+    t = np.linspace(0.0, 3000.0, 11)
+    omega, quat = _reference(ELLIPSE, t)
+    gg = OrbitGravityGradient(ELLIPSE)
+    coarse, fine = (tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=gg, method=method, step=h)
+                    for h in (step, step / 2))
+    assert loop_runs == [1, 1] and coarse.method == method
+    (e1, a1), (e2, a2) = errors(coarse, omega, quat), errors(fine, omega, quat)
+    assert 1e-14 < e2 < e1 < 1e-4 and 2.0 ** order / 2 < e1 / e2 < 2.0 ** order * 2, (e1, e2)  # rk8: 218, rk4: 18
+    assert 2.0 ** order / 2 < a1 / a2 < 2.0 ** order * 2, (a1, a2)
+    default = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=gg, method=method)
+    e_omega, e_angle = errors(default, omega, quat)
+    assert e_omega < 1e-10 and e_angle < 1e-9, (e_omega, e_angle)
+
+
+def test_a_dipole_in_a_field_takes_rk4_on_the_loop(loop_runs):
+    """A residual dipole in a uniform field at RK4's fixed steps: ``m x R^T B`` written out here."""
+    from tumble.dynamics import ResidualDipole, UniformField
+
+    m, B = np.array([0.3, -0.1, 0.2]), np.array([2e-5, -1e-5, 3e-5])  # A m^2, T
+    t = np.linspace(0.0, 600.0, 13)
+    omega, quat = reference_run(I, W0, Q0, t, lambda time, w, R: np.cross(m, R.T @ B))
+    run = tumble.simulate(BODY, W0, times=t, attitude0=Q0, torque=ResidualDipole(m, UniformField(B)), method="rk4",
+                          step=0.25)
+    assert loop_runs == [1] and run.method == "rk4"
+    e_omega, e_angle = errors(run, omega, quat)
+    assert e_omega < 1e-10 and e_angle < 1e-9, (e_omega, e_angle)  # RK4 at 0.01 rad a step (measured 3e-13, 1e-10)
+    free = tumble.simulate(BODY, W0, times=t, attitude0=Q0)  # the torque moved it
+    assert np.abs(free.omega - omega).max() > 1e4 * np.abs(run.omega - omega).max()
+
+
+def test_the_fixed_steps_refuse_a_python_term_or_rotors_beside_the_ellipse():
+    gg = OrbitGravityGradient(ELLIPSE)
+    with pytest.raises(ValueError, match=r"^method = 'rk8' runs compiled and takes only the built-in torque models "
+                                         r"\(ConstantTorque, GravityGradient, OrbitGravityGradient, ResidualDipole"):
+        tumble.simulate(BODY, W0, t_end=10.0, torque=[gg, lambda t, w, R: -1e-4 * w], method="rk8")
+    wheel = tumble.Body([tumble.Box(mass=30.0, size=(1.0, 0.8, 0.6)),
+                         tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0.0, 0.0, 1.0), spin_rate=100.0)])
+    with pytest.raises(ValueError, match=r"^method = 'rk4' takes OrbitGravityGradient on a rigid body only, not with "
+                                         r"rotors or a damper; use method dop853$"):
+        tumble.simulate(wheel, W0, t_end=10.0, torque=gg, method="rk4", step=0.1)
+
+
+def test_a_batch_at_fixed_steps_is_each_body_alone(loop_runs):
+    moments = np.array([[10.0, 12.0, 15.0], [5.0, 9.0, 11.0]])
+    w = np.array([W0, [0.0, 0.01, 0.03]])
+    t = np.linspace(0.0, 600.0, 31)
+    gg = OrbitGravityGradient(ELLIPSE)
+    batch = tumble.simulate_batch(moments, w, times=t, torque=gg, method="rk8", step=2.0)
+    assert batch.method == "rk8" and loop_runs == [1, 1]
+    for i in range(2):
+        lone = tumble.simulate(tumble.MassProperties.from_moments(moments[i]), w[i], times=t, torque=gg, method="rk8",
+                               step=2.0)
+        assert np.array_equal(batch.omega[i], lone.omega)

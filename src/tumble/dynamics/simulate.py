@@ -17,6 +17,7 @@ from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive
 from .engine.front import ENGINE_METHODS
 from .methods.auto import AUTO_RTOL, RTOL_RANGE, check_rtol, dop853_tolerances, engine_choice
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
+from .methods.engine_rk import COMPILED_MODELS, on_the_loop
 from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method
 from .methods.names import ALLOWED, AUTO, method_list
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
@@ -326,10 +327,13 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
     form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
-    if spec.compiled_only and form is None:
+    if spec.compiled_only and form is None and on_the_loop(model) and internal is not None:
+        raise ValueError(f"method = {spec.name!r} takes {type(model).__name__} on a rigid body only, not with rotors or "
+                         f"a damper; use method dop853")
+    if spec.compiled_only and form is None and not on_the_loop(model):
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
         raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
-                         f"(ConstantTorque, GravityGradient, their sums); for torque = {torque!r} use one of: {allowed}")
+                         f"({COMPILED_MODELS}); for torque = {torque!r} use one of: {allowed}")
     if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
         if spec.constant_rotors_only:  # it takes rotors at constant spin and a damper: say what else it is given

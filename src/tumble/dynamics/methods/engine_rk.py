@@ -26,11 +26,37 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..engine.front import run_body, run_damped
+from ..models.dipole import ResidualDipole
 from ..models.internal import InternalModel, InternalSamples
+from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.torques import KERNEL_ROTOR_MOMENTUM, TorqueModel, kernel_form
 from .bounds import spin_gain
 
-__all__ = ["RK_STEP_ANGLE", "engine_rk", "engine_rk_internal", "gyrostat_on_engine", "rk_step"]
+__all__ = ["COMPILED_MODELS", "RK_STEP_ANGLE", "engine_rk", "engine_rk_internal", "gyrostat_on_engine", "on_the_loop", "rk_step"]
+
+
+def on_the_loop(torque: object) -> bool:
+    """Whether ``torque`` runs on the compiled closed loop's kernel
+    (:mod:`~tumble.dynamics.control.free_loop`): it holds the gravity gradient along a Keplerian or
+    TLE orbit or a dipole in a field, which the engine's terms do not, and the rest of it is
+    compiled there too (:func:`~tumble.dynamics.control.free_loop.free_terms`). A torque with
+    neither is told without importing the loop.
+
+    Examples
+    --------
+    >>> from tumble.dynamics import ConstantTorque, KeplerOrbit, OrbitGravityGradient
+    >>> from tumble.dynamics.methods.engine_rk import on_the_loop
+    >>> ellipse = OrbitGravityGradient(KeplerOrbit(8000e3, 0.1))
+    >>> on_the_loop(ellipse + ConstantTorque((0.0, 0.0, 1e-6))), on_the_loop(ConstantTorque((0.0, 0.0, 1e-6)))
+    (True, False)
+    >>> on_the_loop(ellipse + (lambda t, w, R: [0.0, 0.0, 0.0]))   # a Python term: scipy's path
+    False
+    """
+    if not any(isinstance(term, (OrbitGravityGradient, ResidualDipole)) for term in getattr(torque, "terms", (torque,))):
+        return False
+    from ..control.free_loop import free_terms  # the compiled loop, loaded when needed
+
+    return free_terms(torque) is not None
 
 
 def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]], omega0: ArrayLike, quat0: ArrayLike,
@@ -68,6 +94,9 @@ def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]]
     return InternalSamples(omega, quat, None, None, None)
 
 
+#: The built-in torque models the compiled methods take, as their refusals name them.
+COMPILED_MODELS = "ConstantTorque, GravityGradient, OrbitGravityGradient, ResidualDipole, their sums"
+
 #: Default largest step of the fixed-step Runge-Kutta methods, as rotation per step (rad) at
 #: the fastest spin the run can reach: ~1e-13 of omega per step for RK8 and ~1e-10 for RK4
 #: (local errors (omega h)^(p+1), measured on the bench cases); ``step`` overrides it.
@@ -94,14 +123,19 @@ def engine_rk(name: str) -> Callable[..., tuple[Vector3, Quaternion]]:
         rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> tuple[Vector3, Quaternion]:
         form = kernel_form(torque)
-        if form is None:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
-            raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model "
-                             f"(ConstantTorque, GravityGradient, their sums) or none; use dop853 for {torque!r}")
+        loop = form is None and on_the_loop(torque)  # an ellipse's gravity gradient, a dipole in a field
+        if form is None and not loop:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
+            raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model ({COMPILED_MODELS}) "
+                             f"or none; use dop853 for {torque!r}")
         w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
         if step is None:
             with np.errstate(over="ignore", invalid="ignore"):
                 gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), I, float(t[-1] - t[0]))
             step = rk_step(name)(float(np.linalg.norm(w0)), gain)
+        if form is None:  # on the loop: its kernel at the same fixed steps (tumble.dynamics.control.free_loop)
+            from ..control.free_loop import run_free
+
+            return run_free(I, w0, q0, t, torque, 0.0, 0.0, method=name, step=step)
         return run_body(name, I, w0, q0, t, form, step=step)
 
     return integrate

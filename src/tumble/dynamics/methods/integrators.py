@@ -65,12 +65,10 @@ from ..engine.front import run_body  # imports no numba: the kernels load on a r
 from ..engine.status import MAX_EVALUATIONS  # the work budget of every adaptive method, compiled or not
 from ..euler import euler_rhs
 from ..models.internal import STIFF_RATIO, InternalModel, InternalSamples
-from ..models.dipole import ResidualDipole
-from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.torques import TorqueModel, body_torque, kernel_form
 from .bounds import spin_gain
 from ..special.quaternion import quaternion_rate
-from .engine_rk import engine_rk, engine_rk_internal, gyrostat_on_engine, rk_step
+from .engine_rk import engine_rk, engine_rk_internal, gyrostat_on_engine, on_the_loop, rk_step
 from .names import METHOD_NAMES
 
 __all__ = ["MAX_EVALUATIONS", "METHODS", "Method", "get_method"]
@@ -250,13 +248,6 @@ def _solve(
     return cast(FloatArray, sol.y.T)
 
 
-def _on_the_loop(torque: object) -> bool:
-    """Whether ``torque`` holds the gravity gradient along a Keplerian or TLE orbit or a dipole in a
-    field, which the compiled closed loop evaluates (:func:`tumble.dynamics.control.free_loop.free_terms`
-    says whether the rest of it is compiled there too); told without importing the loop's kernels."""
-    return any(isinstance(term, (OrbitGravityGradient, ResidualDipole)) for term in getattr(torque, "terms", (torque,)))
-
-
 def _solve_full(method: str) -> Integrate:
     def integrate(
         moments: ArrayLike, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
@@ -267,12 +258,11 @@ def _solve_full(method: str) -> Integrate:
             tol = atol if isinstance(atol, np.ndarray) and atol.shape == (7,) else np.full(7, atol, dtype=float)
             return run_body("dop853", np.asarray(moments, float), np.asarray(omega0, float), np.asarray(quat0, float),
                             t, form, rtol=rtol, atol=tol)
-        if method == "DOP853" and _on_the_loop(torque):  # an ellipse's gravity gradient, a dipole in a field
-            from ..control.free_loop import free_terms, run_free  # the compiled loop, loaded when needed
+        if method == "DOP853" and on_the_loop(torque):  # an ellipse's gravity gradient, a dipole in a field
+            from ..control.free_loop import run_free  # the compiled loop, loaded when needed
 
-            if free_terms(torque) is not None:
-                return run_free(np.asarray(moments, float), np.asarray(omega0, float), np.asarray(quat0, float), t,
-                                torque, cast(float, rtol), cast(float, atol))
+            return run_free(np.asarray(moments, float), np.asarray(omega0, float), np.asarray(quat0, float), t,
+                            torque, cast(float, rtol), cast(float, atol))
         moments = np.asarray(moments, float)
 
         def rhs(time: float, y: FloatArray) -> FloatArray:
