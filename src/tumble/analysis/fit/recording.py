@@ -53,6 +53,7 @@ from .result import (
 )
 from .single import _check, _check_options, saturation_mask
 from .solve import Solution, without_drag_law_error
+from .summary import flight_budgets
 from .tosses import RecordingFit, Toss
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
@@ -254,7 +255,10 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
     joint fit of that recording's flights describes its samples by the test every fit meets
     (:func:`~tumble.analysis.fit.adequacy.judge`: the residuals beyond the noise within
     :data:`~tumble.analysis.fit.adequacy.MISFIT_LIMIT` of the rates): its samples follow a free
-    motion of this body, with this recording's mount, bias and drag, not only of some body."""
+    motion of this body, with this recording's mount, bias and drag, not only of some body; and
+    when its energy and momentum budgets, with the joint fit's moments, are a rigid body's
+    (:func:`~tumble.analysis.fit.summary.flight_budgets`: its own fit could not tell, its
+    moments not determined)."""
     ok = [j for j, f in enumerate(flights) if f.status == "ok"]
     groups_ok = {groups[j] for j in ok}
     candidates = [j for j, f in enumerate(flights) if f.joinable and groups[j] in groups_ok]
@@ -268,7 +272,7 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
         if sol is None:
             continue
         kept = [j for k, j in enumerate(idx) if k not in outliers]
-        for j, model in zip(kept, models):
+        for p, (j, model) in enumerate(zip(kept, models)):
             f = flights[j]
             if j in candidates:
                 w, mask = omega[f.first:f.stop], keep[f.first:f.stop]
@@ -276,7 +280,8 @@ def _joined(flights, groups, t, omega, keep, drag, scale_uncertainty) -> tuple[l
                 verdict = judge(float(np.sqrt(np.mean(residuals[mask] ** 2))),
                                 noise_floor(residuals[np.all(mask, axis=1)]), float(np.sqrt(np.mean(w[mask] ** 2))),
                                 sensor_rotation_fitted=sol.model.rotation)
-                if verdict.adequate:
+                # and its budgets with the joint fit's moments, which are determined where its own were not
+                if verdict.adequate and not flight_budgets(sol, p, w, mask):
                     taken.append(j)
         if len(idx) == len(ok) + len(candidates):  # every flight in this one recording: the joint fit itself
             whole = (sol, models, outliers)
