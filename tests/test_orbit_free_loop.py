@@ -241,8 +241,9 @@ def test_the_fixed_steps_refuse_a_python_term_or_rotors_beside_the_ellipse():
         tumble.simulate(BODY, W0, t_end=10.0, torque=[gg, lambda t, w, R: -1e-4 * w], method="rk8")
     wheel = tumble.Body([tumble.Box(mass=30.0, size=(1.0, 0.8, 0.6)),
                          tumble.Rotor(mass=1.0, radius=0.1, length=0.02, axis=(0.0, 0.0, 1.0), spin_rate=100.0)])
-    with pytest.raises(ValueError, match=r"^method = 'rk4' takes OrbitGravityGradient on a rigid body only, not with "
-                                         r"rotors or a damper; use method dop853$"):
+    with pytest.raises(ValueError, match=r"^method = 'rk4' takes an ellipse's or a TLE's gravity gradient and a "
+                                         r"ResidualDipole on a rigid body only, not with rotors or a damper; use method "
+                                         r"dop853$"):
         tumble.simulate(wheel, W0, t_end=10.0, torque=gg, method="rk4", step=0.1)
 
 

@@ -327,13 +327,15 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
     form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
-    if spec.compiled_only and form is None and on_the_loop(model) and internal is not None:
-        raise ValueError(f"method = {spec.name!r} takes {type(model).__name__} on a rigid body only, not with rotors or "
-                         f"a damper; use method dop853")
-    if spec.compiled_only and form is None and not on_the_loop(model):
-        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
-        raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
-                         f"({COMPILED_MODELS}); for torque = {torque!r} use one of: {allowed}")
+    if spec.compiled_only and form is None:
+        loop = on_the_loop(model)  # an ellipse's or a TLE's gravity gradient, a dipole in a field
+        if loop and internal is not None:
+            raise ValueError(f"method = {spec.name!r} takes an ellipse's or a TLE's gravity gradient and a ResidualDipole "
+                             f"on a rigid body only, not with rotors or a damper; use method dop853")
+        if not loop:
+            allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
+            raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "
+                             f"({COMPILED_MODELS}); for torque = {torque!r} use one of: {allowed}")
     if not spec.takes(internal):
         what = f"rotors ({len(rotors.parts)} in this body)" if rotors is not None else "a damper"
         if spec.constant_rotors_only:  # it takes rotors at constant spin and a damper: say what else it is given

@@ -123,8 +123,9 @@ def engine_rk(name: str) -> Callable[..., tuple[Vector3, Quaternion]]:
         rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> tuple[Vector3, Quaternion]:
         form = kernel_form(torque)
-        loop = form is None and on_the_loop(torque)  # an ellipse's gravity gradient, a dipole in a field
-        if form is None and not loop:  # simulate refuses it first (Method.compiled_only); a direct call gets the same words
+        # none: an ellipse's gravity gradient or a dipole in a field runs on the loop; simulate refuses
+        # anything else first (Method.compiled_only), a direct call gets the same words
+        if form is None and not on_the_loop(torque):
             raise ValueError(f"method = {name!r} runs compiled: it takes a built-in torque model ({COMPILED_MODELS}) "
                              f"or none; use dop853 for {torque!r}")
         w0, q0, I = np.asarray(omega0, float), np.asarray(quat0, float), np.asarray(moments, float)
