@@ -329,9 +329,10 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
     if spec.compiled_only and form is None:
         loop = on_the_loop(model)  # an ellipse's or a TLE's gravity gradient, a dipole in a field
-        if loop and internal is not None:
+        if loop and internal is not None and (internal.damper is not None or not cast(Rotors, rotors).constant):
             raise ValueError(f"method = {spec.name!r} takes an ellipse's or a TLE's gravity gradient and a ResidualDipole "
-                             f"on a rigid body only, not with rotors or a damper; use method dop853")
+                             f"with rotors at constant spin, not with a damper or rotors whose spin changes; use method "
+                             f"dop853")
         if not loop:
             allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and not s.compiled_only)
             raise ValueError(f"method = {spec.name!r} runs compiled and takes only the built-in torque models "

@@ -148,7 +148,7 @@ def set_command(P: FloatArray, d0: float, d1: float, d2: float, u: FloatArray) -
     >>> from tumble.dynamics.control.compiled_loop import MAX_WHEELS, TABLES, set_command
     >>> P = np.zeros(TABLES)
     >>> set_command(P, 0.1, 0.2, 0.3, np.arange(1.0, MAX_WHEELS + 1))
-    >>> P[12:15].tolist(), P[[39, 49]].tolist()   # the first two wheels' slots end at 39 and 49
+    >>> P[12:15].tolist(), P[[42, 52]].tolist()   # the first two wheels' slots end at 42 and 52
     ([0.1, 0.2, 0.3], [1.0, 2.0])
     """
     P[12], P[13], P[14] = d0, d1, d2

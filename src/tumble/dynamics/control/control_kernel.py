@@ -311,6 +311,9 @@ class ControlKernel:
     torque : torque model, optional
         A disturbance of constant body and world torques and residual dipoles in ``field``
         (:func:`disturbance_form`).
+    rotor_momentum : array_like, shape (3,), optional
+        The constant momentum of rotors spinning at constant rates relative to the body, kg m^2/s,
+        principal frame (``moments`` then hold their mass): a gyrostat's (:mod:`~tumble.dynamics.control.free_loop`).
 
     Examples
     --------
@@ -327,7 +330,8 @@ class ControlKernel:
 
     def __init__(self, moments: FloatArray, I_rw_inv: FloatArray, wheels: Any, field: Any, gravity_gradient: Any,
                  rtol: float, atol: float, t_end: float | None = None, method: str = "dop853",
-                 step: float | None = None, *, checked: bool = False, torque: Any = None) -> None:
+                 step: float | None = None, *, checked: bool = False, torque: Any = None,
+                 rotor_momentum: Any = None) -> None:
         from ..environment.tabulated import position_table
 
         if method not in METHODS:
@@ -352,8 +356,9 @@ class ControlKernel:
         if wheels is not None:
             slots[:self.k, :9] = wheels.loop_form()
         disturbance = cast("tuple[float, ...]", disturbance_form(torque, field))
+        rotor_momentum = np.zeros(3) if rotor_momentum is None else np.asarray(rotor_momentum, float).reshape(3)
         P = np.concatenate([np.asarray(moments, float), np.asarray(I_rw_inv, float).reshape(9), (0.0, 0.0, 0.0, field_kind),
-                            gp, (self.k,), disturbance, slots.reshape(-1)])
+                            gp, (self.k,), disturbance, rotor_momentum, slots.reshape(-1)])
         self.P = np.ascontiguousarray(P, dtype=float)  # an array, not a tuple passed by value at every stage: 4 % faster
         self.X = tuple(kernel_array(a) for a in (fp, ft, gt))  # a read-only table would compile the loop again
         self.packed = packed(self.P, self.X)  # what the kernels take: P and X in one array

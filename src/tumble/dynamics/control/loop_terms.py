@@ -33,7 +33,9 @@ number of wheels; ``P[21:24]`` a constant disturbance torque in the body frame a
 fixed in the world (N m; the engine's terms of the run's ``torque``,
 :func:`~tumble.dynamics.models.torque_protocols.kernel_terms`); ``P[27:30]`` a residual dipole
 fixed in the body (A m^2, :class:`~tumble.dynamics.models.dipole.ResidualDipole`), in the
-field beside the held one; then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
+field beside the held one; ``P[30:33]`` the constant momentum ``h_r`` (kg m^2/s, principal frame) of
+rotors spinning at constant rates relative to the body, ``L = I omega + h + h_r`` (the gyrostat,
+Hughes, *Spacecraft Attitude Dynamics*, sec. 3.4; zero in a controlled run); then ten a wheel (:data:`WHEEL`), in as many slots as the kernel has: its axis (3), inertia ``J`` (kg m^2), torque and speed limits (N m, rad/s),
 viscous (N m s) and Coulomb (N m) friction, the Coulomb law's linear band (rad/s) and the
 commanded torque held (N m). **The tables** ``X = (fp, ft, gt)``: the field's 16 parameters
 (the field's own ``loop_form()``, :func:`~tumble.dynamics.environment.magnetic.field_form`), the IGRF table's and the orbit
@@ -77,7 +79,7 @@ __all__ = ["BODY", "FIELD_DIPOLE", "FIELD_NONE", "FIELD_TABLE", "FIELD_UNIFORM",
            "field_body", "field_world", "packed", "rhs_source", "tables"]
 
 #: Floats of ``P`` before the wheels', and a wheel's (module docstring).
-BODY, WHEEL = 30, 10
+BODY, WHEEL = 33, 10
 
 # The models' formulas compiled as ordinary functions, which LLVM inlines where they are called (as
 # the engine's kernels do, tumble.dynamics.engine.kernels): the loop ran as fast, and its first
@@ -237,7 +239,7 @@ def rhs_source(name: str, k: int) -> str:
              "    w0, w1, w2 = y[4], y[5], y[6]",
              f"    t0, t1, t2 = external_torque(t, x, yq, z, c, inverse, P, {BODY + WHEEL * k}, u0, u1)",
              "    a0, a1, a2 = t0, t1, t2",
-             "    L0, L1, L2 = P[0] * w0, P[1] * w1, P[2] * w2",
+             "    L0, L1, L2 = P[0] * w0 + P[30], P[1] * w1 + P[31], P[2] * w2 + P[32]",
              "    count = P[20]"]
     for j in range(k):
         b = BODY + WHEEL * j

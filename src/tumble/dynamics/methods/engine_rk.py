@@ -20,6 +20,7 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -59,13 +60,15 @@ def on_the_loop(torque: object) -> bool:
     return free_terms(torque) is not None
 
 
-def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]], omega0: ArrayLike, quat0: ArrayLike,
-                        t: FloatArray, rtol: float | None, atol: float | FloatArray | None) -> InternalSamples:
+def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]] | None, omega0: ArrayLike,
+                       quat0: ArrayLike, t: FloatArray, rtol: float | None, atol: float | FloatArray | None,
+                       torque: TorqueModel | None = None) -> InternalSamples:
     """A body whose rotors spin at constant rates under a built-in torque, on the compiled engine:
     their constant momentum ``h`` is one more term of its Euler's equations, ``h x omega``
     (:data:`~tumble.dynamics.models.torques.KERNEL_ROTOR_MOMENTUM`), and the state stays
     ``(omega, q)``. ``atol`` is the internal model's, momentum first (:meth:`InternalModel.atol`):
-    its momentum components are read back as rates over the largest moment.
+    its momentum components are read back as rates over the largest moment. ``form`` None: the
+    ``torque`` runs on the closed loop's kernel (:func:`on_the_loop`), ``h`` its rotor momentum.
 
     Examples
     --------
@@ -89,6 +92,12 @@ def gyrostat_on_engine(model: InternalModel, form: tuple[int, tuple[float, ...]]
         tol = np.concatenate([tol[:3] / float(np.max(model.moments)), tol[3:]])
     else:
         tol = np.full(7, float(tol))
+    if form is None:  # an ellipse's or a TLE's gravity gradient, a dipole in a field
+        from ..control.free_loop import run_free
+
+        omega, quat = run_free(model.moments, np.asarray(omega0, float), np.asarray(quat0, float), t, torque,
+                               cast(float, rtol), tol, rotor_momentum=h)
+        return InternalSamples(omega, quat, None, None, None)
     omega, quat = run_body("dop853", model.moments, np.asarray(omega0, float), np.asarray(quat0, float), t,
                            (form, (KERNEL_ROTOR_MOMENTUM, tuple(float(v) for v in h))), rtol=rtol, atol=tol)
     return InternalSamples(omega, quat, None, None, None)
@@ -173,8 +182,9 @@ def engine_rk_internal(name: str) -> Callable[..., InternalSamples]:
     def integrate(model: InternalModel, omega0: ArrayLike, quat0: ArrayLike, t: FloatArray, torque: TorqueModel | None,
                   rtol: float | None, atol: float | FloatArray | None, step: float | None = None) -> InternalSamples:
         form = kernel_form(torque)
-        if (model.rotors is not None and not model.rotors.constant) or form is None:
-            what = "rotors whose spin changes" if form is not None else f"torque = {torque!r}"
+        loop = form is None and model.damper is None and on_the_loop(torque)  # the loop takes a gyrostat, no damper
+        if (model.rotors is not None and not model.rotors.constant) or (form is None and not loop):
+            what = "rotors whose spin changes" if form is not None or loop else f"torque = {torque!r}"
             raise ValueError(f"method = {name!r} runs compiled and takes rotors spinning at constant rates, a damper and "
                              f"the built-in torques; for {what} use dop853")
         w0, q0 = np.asarray(omega0, float), np.asarray(quat0, float)
@@ -183,6 +193,12 @@ def engine_rk_internal(name: str) -> Callable[..., InternalSamples]:
                 gain = spin_gain(torque, float(t[0]), w0, Rotation.from_quat(q0), model.moments, float(t[-1] - t[0]))
             step = rk_step(name)(float(model.spin_bound(w0, t)), gain, model.relaxation_rate)
         h = tuple(float(v) for v in model.momentum(0.0))
+        if form is None:  # on the loop (checked above): its kernel at the same fixed steps
+            from ..control.free_loop import run_free
+
+            omega, quat = run_free(model.moments, w0, q0, t, torque, 0.0, 0.0, method=name, step=step,
+                                   rotor_momentum=np.array(h))
+            return InternalSamples(omega, quat, None, None, None)
         if model.damper is not None:
             body = np.array([*model.moments, model.damper.inertia, model.damper.damping, *h])
             Y = run_damped(name, body, model.initial_state(w0, q0), t, form, step=step)

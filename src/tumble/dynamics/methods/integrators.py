@@ -298,8 +298,9 @@ def _solve_internal(method: str, stiff: str | None = None) -> IntegrateInternal:
         rtol: float | None, atol: float | FloatArray | None, step: float | None = None,
     ) -> InternalSamples:
         form = kernel_form(torque) if method == "DOP853" else None
-        if form is not None and model.damper is None and model.rotors is not None and model.rotors.constant:
-            return gyrostat_on_engine(model, form, omega0, quat0, t, rtol, atol)
+        steady = model.damper is None and model.rotors is not None and model.rotors.constant
+        if steady and (form is not None or method == "DOP853" and on_the_loop(torque)):  # compiled: engine or loop
+            return gyrostat_on_engine(model, form, omega0, quat0, t, rtol, atol, torque)
         tau = None if torque is None else (lambda time, w, q: body_torque(torque, time, w, Rotation.from_quat(q)))
         y0 = model.initial_state(omega0, quat0)
 
