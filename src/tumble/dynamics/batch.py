@@ -43,7 +43,8 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy
-from .methods.auto import AUTO_RTOL, check_rtol, dop853_tolerances
+from .engine.stepsize import check_rtol
+from .methods.auto import AUTO_RTOL, dop853_tolerances
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
 from .methods.names import ALLOWED, AUTO

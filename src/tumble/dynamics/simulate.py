@@ -15,7 +15,8 @@ from ..mass.body import properties_of
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
-from .methods.auto import AUTO_RTOL, RTOL_RANGE, check_rtol, dop853_tolerances, engine_choice
+from .engine.stepsize import RTOL_RANGE, check_rtol
+from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
 from .methods.engine_rk import COMPILED_MODELS, on_the_loop
 from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method

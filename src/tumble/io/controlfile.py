@@ -64,7 +64,7 @@ from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit_gravity import gravity_gradient_of
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget
-from ..dynamics.methods.auto import check_rtol
+from ..dynamics.engine.stepsize import check_rtol
 from ..mass import Body
 from ..validation import (
     check_bool,

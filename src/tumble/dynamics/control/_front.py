@@ -22,7 +22,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector, short_repr
-from ..methods.auto import check_rtol
+from ..engine.stepsize import check_rtol
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .estimated import Estimated

@@ -6,7 +6,9 @@ Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., 
 II.10, in the form of :class:`scipy.integrate.DOP853` (``_estimate_error_norm`` and
 ``RungeKutta._step_impl``): the 5th- and 3rd-order error estimates combined into one norm, and
 a step accepted below 1, grown or shrunk by ``0.9 error^(-1/8)`` within [0.2, 10], never grown
-right after a rejection. Imports nothing, so numba is not loaded with it.
+right after a rejection. With it, the range a relative tolerance may take (:data:`RTOL_RANGE`,
+:func:`check_rtol`), which every stepping method, the batch and the closed loop check against.
+Imports no numba, so numba is not loaded with it.
 
 Examples
 --------
@@ -19,9 +21,36 @@ Examples
 """
 
 import math
+import sys
 from typing import Any
 
-__all__ = ["equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
+from ...validation import check_positive
+
+__all__ = ["RTOL_RANGE", "check_rtol", "equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
+
+#: The range of a relative tolerance (every stepping method's, and the closed loop's): scipy clips
+#: rtol below 100 eps (with a warning), and above 0.1 an adaptive step control no longer controls
+#: anything.
+RTOL_RANGE = (100 * sys.float_info.epsilon, 0.1)
+
+
+def check_rtol(field: str, value: object) -> float:
+    """A relative tolerance in :data:`RTOL_RANGE`, as a float; else one ValueError naming ``field``.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.stepsize import check_rtol
+    >>> check_rtol("rtol", 1e-10)
+    1e-10
+    >>> check_rtol("simulation.rtol", 5.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: simulation.rtol = 5.0 must be from 2.22e-14 to 0.1 (relative)
+    """
+    rtol = check_positive(field, value, "relative")
+    if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
+        raise ValueError(f"{field} = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
+    return rtol
 
 
 def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:

@@ -33,36 +33,11 @@ import math
 import numpy as np
 
 from ...typing import FloatArray
-from ...validation import check_positive
+from ..engine.stepsize import RTOL_RANGE
 from ..models.internal import STIFF_RATIO, InternalModel
 
-__all__ = ["AUTO_RTOL", "DOP853_SAFETY", "RTOL_RANGE", "check_rtol", "damped_step", "dop853_tolerances", "engine_choice",
+__all__ = ["AUTO_RTOL", "DOP853_SAFETY", "damped_step", "dop853_tolerances", "engine_choice",
            "rk8_angle"]
-
-#: The range of a relative tolerance (every stepping method's, and the closed loop's): scipy clips
-#: rtol below 100 eps (with a warning), and above 0.1 an adaptive step control no longer controls
-#: anything.
-RTOL_RANGE = (100 * np.finfo(float).eps, 0.1)
-
-
-def check_rtol(field: str, value: object) -> float:
-    """A relative tolerance in :data:`RTOL_RANGE`, as a float; else one ValueError naming ``field``.
-
-    Examples
-    --------
-    >>> from tumble.dynamics.methods.auto import check_rtol
-    >>> check_rtol("rtol", 1e-10)
-    1e-10
-    >>> check_rtol("simulation.rtol", 5.0)
-    Traceback (most recent call last):
-    ...
-    ValueError: simulation.rtol = 5.0 must be from 2.22e-14 to 0.1 (relative)
-    """
-    rtol = check_positive(field, value, "relative")
-    if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
-        raise ValueError(f"{field} = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
-    return rtol
-
 
 #: The relative tolerance of an ``"auto"`` run when none is given.
 AUTO_RTOL = 1e-10
@@ -113,7 +88,7 @@ def dop853_tolerances(rtol: float, atol: float) -> tuple[float, float]:
     (['3.3e-12', '3.3e-13'], ['3.3e-09', '3.3e-10'])
     """
     factor = DOP853_SAFETY * math.pow(rtol / AUTO_RTOL, 0.25)
-    return max(rtol / factor, 100 * 2.220446049250313e-16), atol / factor / 10.0
+    return max(rtol / factor, RTOL_RANGE[0]), atol / factor / 10.0
 
 
 def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float,
