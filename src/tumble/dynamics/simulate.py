@@ -183,7 +183,9 @@ def simulate(
     spec, model, tol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
     if run.atol_scaled and tol is not None:
-        scale = max(run.spin, run.gain, 1e-300)
+        # relative to the body's own spin: a gyrostat's nutation (run.spin) can be far faster
+        spin = run.spin if internal is None else internal.tolerance_spin(run.omega0, run.t)
+        scale = max(spin, run.gain, 1e-300)
         tol = np.array([tol * scale] * 3 + [tol] * 4) if internal is None else internal.atol(tol, scale)
     extra: dict[str, Any] = {}  # the rotors' and the damper's fields of the Trajectory
     label = spec.name  # the integrator that ran: "radau" where "dop853" handed it a stiff damper
@@ -404,7 +406,9 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
             gain = min(gain, quick) if auto and quick is not None else gain
     if auto and not spec.closed_form:
         engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes, and a damper
-        h = engine_choice(t, spin, gain, cast(float, rtol), internal) if engine.takes(internal) and form else None
+        # and the closed loop's kernel (an ellipse, a TLE, a dipole) takes both at the same steps
+        compiled = form is not None or (internal is None or internal.damper is None) and on_the_loop(model)
+        h = engine_choice(t, spin, gain, cast(float, rtol), internal) if engine.takes(internal) and compiled else None
         if h is not None:
             spec, step = engine, h
         else:  # dop853's local error control, tighter than the accuracy asked for (methods.auto)

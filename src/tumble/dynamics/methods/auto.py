@@ -8,7 +8,8 @@
 - The built-in torque models that have a compiled form
   (:class:`~tumble.dynamics.models.torques.KernelForm`), with or without rotors at constant spin:
   the compiled engine, either its adaptive ``"dop853"`` or its fixed-step ``"rk8"``
-  (:func:`engine_choice`).
+  (:func:`engine_choice`). The gravity gradient along an ellipse or a TLE's orbit and a residual
+  dipole: the same choice on the closed loop's kernel (:mod:`~tumble.dynamics.control.free_loop`).
 
 Both engine methods take the same 12-stage 8th-order steps (DOP853's weights); ``dop853`` chooses
 each step by its error estimate and writes the samples from its dense output, ``rk8`` takes equal

@@ -196,6 +196,38 @@ class InternalModel:
         h = np.linalg.norm(self.rotors.momentum(0.0 if constant else np.asarray(t, float)), axis=-1)
         return spin + 2.0 * float(np.max(h)) / min(float(i) for i in self.moments)
 
+    def tolerance_spin(self, omega0: ArrayLike, t: ArrayLike) -> float:
+        """The scale of the body's own spin, rad/s, that a run's ``atol`` is relative to.
+
+        With rotors at constant spin and no damper, the body's kinetic energy ``omega . I omega / 2``
+        is an integral of the torque-free gyrostat (Hughes, *Spacecraft Attitude Dynamics*, sec.
+        3.4: ``I omega' = (I omega + h) x omega`` is perpendicular to ``omega``), so ``|omega| <=
+        sqrt(omega0 . I omega0 / I1)``: a slow body carrying a large wheel keeps a slow spin, where
+        :meth:`spin_bound`, ``|w0| + 2 |h| / I1``, the rate of its nutation, is a thousand times more
+        (the T-handle with its wheel at 0.02 rad/s: 0.04 against 39 rad/s). An ``atol`` relative to
+        that bound let ``dop853`` leave 5e-7 in omega at rtol 1e-12. Otherwise (rotors whose spin
+        changes hand the body their momentum; a damper) :meth:`spin_bound`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import tumble
+        >>> from tumble.dynamics.models.internal import InternalModel, Rotors
+        >>> wheel = tumble.Rotor(mass=1.0, radius=0.1, length=0.02, spin_rate=500.0)
+        >>> body = tumble.Body([tumble.Box(mass=10.0, size=(1.0, 2.0, 3.0)), wheel])
+        >>> model = InternalModel(body.principal_moments, Rotors.of(body))
+        >>> w0 = np.array([0.0, 0.0, 0.02])   # rad/s, about the major axis; |h| = J s = 2.5 kg m^2/s
+        >>> I = body.principal_moments
+        >>> bool(np.isclose(model.tolerance_spin(w0, [0.0, 1.0]), np.sqrt(w0 @ (I * w0) / I[0])))
+        True
+        >>> round(model.tolerance_spin(w0, [0.0, 1.0]), 3), round(model.spin_bound(w0, [0.0, 1.0]), 3)   # |w0| + 2 |h| / I1
+        (0.032, 1.219)
+        """
+        if self.damper is not None or self.rotors is None or not self.rotors.constant:
+            return self.spin_bound(omega0, t)
+        w = np.asarray(omega0, dtype=float).ravel()
+        return math.sqrt(float(w @ (self.moments * w)) / float(np.min(self.moments)))
+
     def momentum(self, t: ArrayLike) -> Vector3:
         """``h(t)``, kg m^2/s, shape ``np.shape(t) + (3,)`` (zeros without rotors).
 
