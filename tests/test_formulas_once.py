@@ -47,6 +47,13 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
         (r"0\.5\*(np\.array\(\[|\()\w+\*w\w*\+\(?\w+\*w\w*-\w+\*w\w*",),
         ("out[0] = 0.5 * (c * w0 + yq * w2 - z * w1)", "dq = 0.5 * np.array([c * w0_ + y_ * w2 - z * w1, c * w1])"),
     ),
+    "the Hamilton product of two quaternions": (
+        "dynamics/special/quaternion.py",
+        (r"(\w+" + _IX + r"\*\w+" + _IX + r"-){3}\w+" + _IX + r"\*\w+",  # s1 s2 - x1 x2 - y1 y2 - z1 z2
+         r"\*\w+\+\w+\*\w+\+np\.cross\("),  # w v + s u + u x v
+        ("w = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]", "ns = s * dw - x * dx - y * dy - z * dz",
+         "out[..., :3] = w * v + s * u + np.cross(u, v)"),
+    ),
     "the rotation of a vector by a quaternion (its matrix)": (
         "dynamics/special/quaternion.py",
         (r"1(\.0)?-2(\.0)?\*\((\w+)\*\3\+(\w+)\*\4\)",  # 1 - 2 (y^2 + z^2): the unit quaternion's diagonal

@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING, Any, TypeVar, cast, overload
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "jit", "kernel_array", "source_stamp"]
+__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "formula", "jit", "kernel_array", "source_stamp"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -216,10 +216,51 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
         return lambda f: jit(f, **options)
     from numba import njit
 
+    _register_formulas()
+
     source = Path(function.__code__.co_filename)
     # a function typed at a prompt or in a doctest has no file to key a cache on
     cache = source.is_file() and _install_locator() and _folder_for(source.resolve()) is not None
     return cast(F, njit(cache=cache, **_known_options(options))(function))
+
+
+#: The plain functions over floats marked :func:`formula`, and how many numba knows yet.
+_FORMULAS: list[Callable[..., Any]] = []
+_REGISTERED = [0]
+
+
+def formula(function: F) -> F:
+    """Mark a formula written as a plain function over floats (or arrays, element by element) as one
+    that compiled code may call by its name: a kernel, or another formula that a kernel compiles,
+    calls it as it is, and numba compiles it inline there (``numba.extending.register_jitable``,
+    numba's hook for a Python function that jitted code may call). So a formula that uses another
+    (``turned_by`` uses the Hamilton product) is written once for Python and compiled code alike.
+    Registered when :func:`jit` first imports numba: a module of formulas does not import it.
+
+    Examples
+    --------
+    >>> from tumble.jit import formula, jit
+    >>> @formula
+    ... def half(x):
+    ...     return 0.5 * x
+    >>> def quarter(x):
+    ...     return half(half(x))
+    >>> half(3.0), jit(quarter)(3.0)   # called from Python, and from a kernel
+    (1.5, 0.75)
+    """
+    _FORMULAS.append(function)
+    return function
+
+
+def _register_formulas() -> None:
+    """Tell numba of the formulas marked since the last call (:func:`formula`)."""
+    if _REGISTERED[0] == len(_FORMULAS):
+        return
+    from numba.extending import register_jitable
+
+    for function in _FORMULAS[_REGISTERED[0]:]:
+        register_jitable(function)
+    _REGISTERED[0] = len(_FORMULAS)
 
 
 #: numba options that only make a kernel faster, or its first compile shorter, and that numba keeps

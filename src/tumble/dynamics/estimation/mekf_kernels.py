@@ -28,6 +28,7 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..special.quaternion import hamilton_components
 
 __all__: list[str] = []  # the kernels are the MEKF's (mekf.py) and the compiled loop's, not an API
 
@@ -56,12 +57,7 @@ def propagate(q: FloatArray, b: FloatArray, P: FloatArray, gyro: FloatArray, dt:
             c1 = dt * dt * (0.5 - th * th / 24.0)
             c2 = dt * dt * dt * (1.0 / 6.0 - th * th / 120.0)
         # q <- q (x) (k w, cos(th / 2))  (Hamilton product, scalar last)
-        dx, dy, dz, dw = k * w0, k * w1, k * w2, math.cos(0.5 * th)
-        x, y, z, s = q[i, 0], q[i, 1], q[i, 2], q[i, 3]
-        nx = s * dx + dw * x + y * dz - z * dy
-        ny = s * dy + dw * y + z * dx - x * dz
-        nz = s * dz + dw * z + x * dy - y * dx
-        ns = s * dw - x * dx - y * dy - z * dz
+        nx, ny, nz, ns = hamilton_components(q[i, 0], q[i, 1], q[i, 2], q[i, 3], k * w0, k * w1, k * w2, math.cos(0.5 * th))
         norm = math.sqrt(nx * nx + ny * ny + nz * nz + ns * ns)
         q[i, 0], q[i, 1], q[i, 2], q[i, 3] = nx / norm, ny / norm, nz / norm, ns / norm
         # W = [w x], W2 = W W
@@ -116,10 +112,8 @@ def update(q: FloatArray, b: FloatArray, P: FloatArray, y: FloatArray, H: FloatA
     for i in range(n):
         if vectors.shape[0] > 0 and vectors.shape[1] == 4:
             # y = rotvec(q* (x) q_m), the short way round, H = [I, 0] (an attitude measurement; mekf)
-            ux, uy, uz, w = -q[i, 0], -q[i, 1], -q[i, 2], q[i, 3]
-            vx, vy, vz, v = vectors[i, 0], vectors[i, 1], vectors[i, 2], vectors[i, 3]
-            ex, ey, ez = w * vx + v * ux + uy * vz - uz * vy, w * vy + v * uy + uz * vx - ux * vz, w * vz + v * uz + ux * vy - uy * vx
-            es = w * v - ux * vx - uy * vy - uz * vz
+            ex, ey, ez, es = hamilton_components(-q[i, 0], -q[i, 1], -q[i, 2], q[i, 3], vectors[i, 0], vectors[i, 1],
+                                                 vectors[i, 2], vectors[i, 3])
             if es < 0.0:
                 ex, ey, ez, es = -ex, -ey, -ez, -es
             sn = math.sqrt(ex * ex + ey * ey + ez * ez)

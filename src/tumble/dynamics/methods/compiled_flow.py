@@ -39,6 +39,7 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..special.quaternion import hamilton_components
 
 __all__ = ["WORK", "free_flow", "free_flow_into", "start_phase"]
 
@@ -210,11 +211,7 @@ def _zxz(phi: float, theta: float, psi: float, out: FloatArray) -> None:
 @jit(error_model="numpy")
 def _multiply(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
     """Hamilton product ``a (x) b``, scalar last (special.quaternion.quat_multiply); ``out`` may be ``a``."""
-    x = a[3] * b[0] + b[3] * a[0] + a[1] * b[2] - a[2] * b[1]
-    y = a[3] * b[1] + b[3] * a[1] + a[2] * b[0] - a[0] * b[2]
-    z = a[3] * b[2] + b[3] * a[2] + a[0] * b[1] - a[1] * b[0]
-    w = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]
-    out[0], out[1], out[2], out[3] = x, y, z, w
+    out[0], out[1], out[2], out[3] = hamilton_components(a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3])
 
 
 @jit(error_model="numpy")

@@ -14,9 +14,10 @@ from typing import Any
 
 import numpy as np
 
+from ...jit import formula
 from ...typing import ArrayLike, FloatOrArray, Quaternion, Vector3
 
-__all__ = ["quat_conjugate", "quat_multiply", "quat_zxz", "quaternion_rate", "quaternion_rate_components", "rotate_by_quaternion",
+__all__ = ["hamilton_components", "quat_conjugate", "quat_multiply", "quat_zxz", "quaternion_rate", "quaternion_rate_components", "rotate_by_quaternion",
            "rotate_components", "to_body", "turned_by"]
 
 
@@ -86,11 +87,28 @@ def quat_multiply(a: ArrayLike, b: ArrayLike) -> Quaternion:
     True
     """
     qa, qb = np.asarray(a, float), np.asarray(b, float)
-    u, w, v, s = qa[..., :3], qa[..., 3:], qb[..., :3], qb[..., 3:]
     out = np.empty(np.broadcast_shapes(qa.shape, qb.shape))
-    out[..., :3] = w * v + s * u + np.cross(u, v)
-    out[..., 3] = (w * s)[..., 0] - np.sum(u * v, axis=-1)
+    out[..., 0], out[..., 1], out[..., 2], out[..., 3] = hamilton_components(*np.moveaxis(qa, -1, 0), *np.moveaxis(qb, -1, 0))
     return out
+
+
+@formula
+def hamilton_components(x1: FloatOrArray, y1: FloatOrArray, z1: FloatOrArray, s1: FloatOrArray, x2: FloatOrArray,
+                        y2: FloatOrArray, z2: FloatOrArray, s2: FloatOrArray) -> tuple[Any, Any, Any, Any]:
+    """The Hamilton product of two quaternions by components, scalar last.
+
+    ``(x1, y1, z1, s1) (x2, y2, z2, s2)``, as ``(u, w)(v, s) = (w v + s u + u x v, w s - u.v)``
+    (Shuster, J. Astronaut. Sci. 41 (1993) 439). Plain floats or arrays (element by element); compiled code calls it by name (:func:`tumble.jit.formula`):
+    :func:`quat_multiply`, :func:`turned_by` and the kernels' products are this one writing.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.special.quaternion import hamilton_components
+    >>> hamilton_components(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0)   # i j = k
+    (0.0, 0.0, 1.0, 0.0)
+    """
+    return (s1 * x2 + s2 * x1 + y1 * z2 - z1 * y2, s1 * y2 + s2 * y1 + z1 * x2 - x1 * z2,
+            s1 * z2 + s2 * z1 + x1 * y2 - y1 * x2, s1 * s2 - x1 * x2 - y1 * y2 - z1 * z2)
 
 
 def quat_conjugate(q: ArrayLike) -> Quaternion:
@@ -216,6 +234,4 @@ def turned_by(x: float, y: float, z: float, s: float, r0: float, r1: float, r2: 
     """
     a = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
     k = math.sin(0.5 * a) / a if a > 1e-4 else 0.5 - a * a / 48.0
-    dx, dy, dz, dw = k * r0, k * r1, k * r2, math.cos(0.5 * a)
-    return (s * dx + dw * x + y * dz - z * dy, s * dy + dw * y + z * dx - x * dz, s * dz + dw * z + x * dy - y * dx,
-            s * dw - x * dx - y * dy - z * dz)
+    return hamilton_components(x, y, z, s, k * r0, k * r1, k * r2, math.cos(0.5 * a))
