@@ -66,6 +66,39 @@ def test_an_edited_callee_in_another_file_is_seen_by_the_next_run(tmp_path):
     assert edited == first + 1.0  # d omega_1/dt one rad/s^2 more: the old machine code would give `first`
 
 
+#: Euler's equations compiled standalone by the B-dot batch's module (one of the modules that jit the formula).
+OTHER_MODULE_FIRST = "from tumble.dynamics.control import detumble_kernels\n" \
+    "detumble_kernels._euler(0.1, 0.2, 0.3, 1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0, 0.5, 1.0 / 3.0)\n"
+#: A dragged body's rates through the fits' compiled drag step; prints their bytes' hash.
+DRAG_PROBE = textwrap.dedent("""
+    import hashlib
+    import numpy as np
+    from tumble.dynamics.models.drag import drag_omega
+    w = drag_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], np.linspace(0.0, 2.0, 401), quadratic=[[0.02, 0.03, 0.04]])
+    print(hashlib.sha256(np.ascontiguousarray(w).tobytes()).hexdigest())
+""")
+
+
+def _python(root: Path, code: str) -> str:
+    out = subprocess.run([sys.executable, "-c", code], env={**os.environ, "PYTHONPATH": str(root)},
+                         capture_output=True, text=True, timeout=HANG_S, check=True, cwd=root)
+    return out.stdout.strip()
+
+
+def test_a_kernels_bits_do_not_hang_on_which_module_compiled_a_formula_first(tmp_path):
+    """numba keeps one cache index per Python function: Euler's equations, compiled standalone by
+    another module first, were loaded from that entry when the fits' drag step compiled, and the step
+    came out with other fused multiply-adds (``objdump``: ``vmulsd``/``vsubsd`` for ``vfmsub231sd``).
+    The rates differed in their last bits, and the flight finder, which turns on them, took seed 71's
+    first flight as samples 195-284 instead of 194-302, by the history of a checkout's cache. The fits'
+    module inlines the formula (numba's ``inline="always"``): its code is its own."""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    after, alone = _copy_package(tmp_path / "a"), _copy_package(tmp_path / "b")
+    _python(after, OTHER_MODULE_FIRST)
+    assert _python(after, DRAG_PROBE) == _python(alone, DRAG_PROBE)
+
+
 def test_source_stamp_follows_the_sources(tmp_path, monkeypatch):
     (tmp_path / "dynamics").mkdir()
     source = tmp_path / "dynamics" / "a.py"

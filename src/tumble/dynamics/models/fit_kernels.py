@@ -37,7 +37,12 @@ from .aero import drag_component
 __all__ = ["drag_integrate", "gyrostat_integrate"]
 
 _drag = jit(error_model="numpy")(drag_component)
-_euler = jit(error_model="numpy")(euler_components)
+# inlined by numba, not compiled standalone: numba keeps one cache index per Python function, and
+# the B-dot batch's module compiles Euler's equations standalone too; where its entry was written
+# first, the drag step loaded it and compiled with other fused multiply-adds, and the fits' rates
+# (and the flights the finder takes) differed in their last bits by the cache's history
+# (tests/test_jit_cache.py)
+_euler = jit(error_model="numpy", inline="always")(euler_components)
 _momentum_rate = jit(inline="always")(momentum_rate_components)
 
 #: The dragged body's layout: ``rhs(w, B, D, u0, u1)`` over omega's three floats, ``B`` the body's
