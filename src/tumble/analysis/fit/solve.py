@@ -294,7 +294,7 @@ def solve_drag(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray,
     if drag not in ("auto", "none") and drag0 is None and covariance:
         # a named law's final fit starts from the drag-free optimum too, as "auto"'s does: from the
         # given start alone the linear law settled in another basin on a racquet's plate drag (SSR
-        # 31 against 4.3, tests/test_fit_drag_law.py). Not for the finder's seed fits (covariance
+        # 36 against 4.3, tests/test_fit_drag_law.py). Not for the finder's seed fits (covariance
         # False), which are grown and fitted again from where they end
         free = solve(model, data, mask, P0, max_nfev=max_nfev, scale_uncertainty=scale_uncertainty, covariance=False)
     for name in (AUTO_DRAG if drag == "auto" else (drag,)):
