@@ -209,3 +209,38 @@ def test_a_numba_without_the_undocumented_options_still_compiles(monkeypatch):
     assert jit_module._known_options({"error_model": "numpy", "forceinline": True, "_nrt": False}) == {
         "error_model": "numpy"}
     assert jit_module.jit(scope["f"], error_model="numpy", forceinline=True, _nrt=False)(1.0) == float("inf")
+
+
+#: Formulas that more than one kernels module still compiles standalone (one shared cache index each),
+#: by name -> the modules: where one module's entry is written first, the others' kernels compiled
+#: after it may come out with other fused multiply-adds (the test above; issue 38's note). Each to be
+#: inlined where it is called; none may be added.
+SHARED_STANDALONE = {
+    "to_body": {"control/compiled_loop.py", "control/estimated_loop.py", "control/loop_terms.py"},
+    "earth_angle": {"control/detumble_kernels.py", "control/loop_terms.py"},
+    "quaternion_rate_components": {"control/detumble_kernels.py", "control/loop_terms.py", "engine/damped.py"},
+    "momentum_rate_components": {"control/loop_terms.py", "engine/damped.py"},
+    "equal_steps": {"control/compiled_loop.py", "engine/kernels.py"},
+}
+
+
+def _standalone_formulas() -> dict[str, set[str]]:
+    """Each function a kernels module of tumble.dynamics compiles standalone from another module
+    (``_f = jit(formula, ...)`` or ``jit(...)(formula)`` without ``inline="always"``) -> those modules."""
+    import re
+
+    found: dict[str, set[str]] = {}
+    for path in sorted((PACKAGE / "dynamics").rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        own = set(re.findall(r"^def (\w+)", text, re.M))
+        for line in text.splitlines():
+            match = re.match(r"^_\w+ = jit\((\w+)[,)]", line) or re.match(r"^_\w+ = jit\([^()]*\)\((\w+)\)", line)
+            if match and 'inline="always"' not in line and match[1] not in own:
+                found.setdefault(match[1], set()).add(path.relative_to(PACKAGE / "dynamics").as_posix())
+    return found
+
+
+def test_no_more_formulas_are_compiled_standalone_by_two_modules():
+    shared = {name: modules for name, modules in _standalone_formulas().items() if len(modules) > 1}
+    assert shared == SHARED_STANDALONE, "formulas compiled standalone by several kernels modules (inline them)"
+    assert "euler_components" not in shared  # the one that changed the fits' bits, inlined
