@@ -407,7 +407,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if auto and not spec.closed_form:
         engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes, and a damper
         # and the closed loop's kernel (an ellipse, a TLE, a dipole) takes both at the same steps
-        compiled = form is not None or (internal is None or internal.damper is None) and on_the_loop(model)
+        compiled = form is not None or ((internal is None or internal.damper is None) and on_the_loop(model))
         h = engine_choice(t, spin, gain, cast(float, rtol), internal) if engine.takes(internal) and compiled else None
         if h is not None:
             spec, step = engine, h
