@@ -211,17 +211,12 @@ def test_a_numba_without_the_undocumented_options_still_compiles(monkeypatch):
     assert jit_module.jit(scope["f"], error_model="numpy", forceinline=True, _nrt=False)(1.0) == float("inf")
 
 
-#: Formulas that more than one kernels module still compiles standalone (one shared cache index each),
-#: by name -> the modules: where one module's entry is written first, the others' kernels compiled
-#: after it may come out with other fused multiply-adds (the test above; issue 38's note). Each to be
-#: inlined where it is called; none may be added.
-SHARED_STANDALONE = {
-    "to_body": {"control/compiled_loop.py", "control/estimated_loop.py", "control/loop_terms.py"},
-    "earth_angle": {"control/detumble_kernels.py", "control/loop_terms.py"},
-    "quaternion_rate_components": {"control/detumble_kernels.py", "control/loop_terms.py", "engine/damped.py"},
-    "momentum_rate_components": {"control/loop_terms.py", "engine/damped.py"},
-    "equal_steps": {"control/compiled_loop.py", "engine/kernels.py"},
-}
+#: Formulas that more than one kernels module compiles standalone (one shared cache index each), by
+#: name -> the modules: where one module's entry is written first, the others' kernels compiled
+#: after it may come out with other fused multiply-adds (the test above; issue 38's note). None: a
+#: formula that kernels of several modules call is a :func:`tumble.jit.formula`, compiled into
+#: each kernel that calls it, with no cache entry of its own.
+SHARED_STANDALONE: dict[str, set[str]] = {}
 
 
 def _standalone_formulas() -> dict[str, set[str]]:
@@ -244,3 +239,37 @@ def test_no_more_formulas_are_compiled_standalone_by_two_modules():
     shared = {name: modules for name, modules in _standalone_formulas().items() if len(modules) > 1}
     assert shared == SHARED_STANDALONE, "formulas compiled standalone by several kernels modules (inline them)"
     assert "euler_components" not in shared  # the one that changed the fits' bits, inlined
+
+
+def test_each_python_function_is_compiled_with_one_set_of_options():
+    """numba's cache index is one per Python function, keyed on the argument types and the machine,
+    not on the compile options: two ``jit`` of one function with other options (an error model, a
+    fastmath flag, LLVM's ``alwaysinline``) share entries, and which was compiled first decides the
+    code the other loads. Every kernel and formula of tumble.dynamics, found among the live numba
+    dispatchers once every module is imported: one set of options per function (``inline``, which
+    tells the caller to inline the function's IR and does not change its own compile, apart)."""
+    import gc
+    import importlib
+    import pkgutil
+    import weakref
+
+    import tumble.dynamics
+    from numba.core.caching import FunctionCache
+    from numba.core.registry import CPUDispatcher
+
+    for info in pkgutil.walk_packages(tumble.dynamics.__path__, "tumble.dynamics."):
+        importlib.import_module(info.name)
+    options: dict[tuple[str, str], set[tuple]] = {}
+    for obj in gc.get_objects():
+        if isinstance(obj, weakref.ProxyTypes):  # a dead proxy cannot be asked its class
+            continue
+        # cached ones: numba's own uncached dispatchers of a formula (tumble.jit.formula) share no index
+        if isinstance(obj, CPUDispatcher) and isinstance(obj._cache, FunctionCache) \
+                and (obj.py_func.__module__ or "").startswith("tumble."):
+            code = obj.py_func.__code__
+            key = (f"{code.co_filename}:{code.co_firstlineno}", obj.py_func.__qualname__)
+            options.setdefault(key, set()).add(tuple(sorted(
+                (k, repr(v)) for k, v in obj.targetoptions.items() if k not in ("inline", "cache"))))
+    assert len(options) > 100  # the kernels were found
+    mixed = {name: sets for (_, name), sets in options.items() if len(sets) > 1}
+    assert not mixed, mixed

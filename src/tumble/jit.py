@@ -237,6 +237,11 @@ def formula(function: F) -> F:
     (``turned_by`` uses the Hamilton product) is written once for Python and compiled code alike.
     Registered when :func:`jit` first imports numba: a module of formulas does not import it.
 
+    A formula has no compiled form and no cache entry of its own: numba compiles it in the process
+    (numpy's error model) and links it into each kernel that calls it, whose cache holds it. A function that
+    several kernels modules compiled standalone (``jit(f)``) had one cache entry, and which module
+    wrote it first changed the machine code of the others' kernels (their bits: issue 38's fits).
+
     Examples
     --------
     >>> from tumble.jit import formula, jit
@@ -259,7 +264,7 @@ def _register_formulas() -> None:
     from numba.extending import register_jitable
 
     for function in _FORMULAS[_REGISTERED[0]:]:
-        register_jitable(function)
+        register_jitable(error_model="numpy")(function)  # as tumble's kernels: a float division by 0 is inf
     _REGISTERED[0] = len(_FORMULAS)
 
 

@@ -20,6 +20,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from ..jit import formula
 from ..typing import ArrayLike, FloatArray, Vector3
 
 __all__ = [
@@ -217,6 +218,7 @@ def energy_momentum_gaps(omega: ArrayLike, moments: ArrayLike) -> Vector3:
     return cast(Vector3, np.sum(I[..., None, :] * (I[..., None, :] - I[..., :, None]) * w2, axis=-1))
 
 
+@formula
 def momentum_rate_components(L0: Any, L1: Any, L2: Any, w0: Any, w1: Any, w2: Any, t0: Any, t1: Any,
                              t2: Any) -> tuple[Any, Any, Any]:
     """Euler's equation in momentum form, ``L' = L x w + tau``, component by component.

@@ -71,7 +71,6 @@ OK, STEP_COLLAPSED = 0, 1
 _rms = jit(rms, error_model="numpy")
 _error_norm = jit(error_norm, error_model="numpy")
 _next_step = jit(next_step, error_model="numpy")
-_equal_steps = jit(equal_steps, error_model="numpy")
 _first_trial_step = jit(first_trial_step, error_model="numpy")
 _initial_step = jit(initial_step, error_model="numpy")
 _attitude_error = jit(attitude_error_components, error_model="numpy")
@@ -80,7 +79,6 @@ _gyro_rate = jit(gyro_field_rate_components, error_model="numpy")
 _dumping = jit(dumping_dipole_components, error_model="numpy")
 _feedback = jit(feedback_torque_components, error_model="numpy")
 _feedforward = jit(tracking_feedforward_components, error_model="numpy")
-_to_body = jit(to_body, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -227,7 +225,7 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
     ``R`` the turns to the stage nodes (:func:`_turns`), updated in place."""
     n = P[16]
     if method != DOP853:
-        m, h = _equal_steps(t1 - t0, step)
+        m, h = equal_steps(t1 - t0, step)
         if method == RK8 and h != R[0]:
             R[0] = h
             _put(R, _RK8_AT, rk8_turns(n, h))
@@ -327,8 +325,8 @@ def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: f
         r0, r1, r2, a0, a1, a2 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # the reference's rate and its derivative, body
         if REF.shape[0] > 0:
             s0, s1, s2 = _attitude_error(REF[i, 0], REF[i, 1], REF[i, 2], REF[i, 3], x, yq, z, c)
-            r0, r1, r2 = _to_body(x, yq, z, c, REF[i, 4], REF[i, 5], REF[i, 6])
-            a0, a1, a2 = _to_body(x, yq, z, c, REF[i, 7], REF[i, 8], REF[i, 9])
+            r0, r1, r2 = to_body(x, yq, z, c, REF[i, 4], REF[i, 5], REF[i, 6])
+            a0, a1, a2 = to_body(x, yq, z, c, REF[i, 7], REF[i, 8], REF[i, 9])
         h0, h1, h2 = 0.0, 0.0, 0.0
         for j in range(k):
             js = P0[BODY + WHEEL * j + 3] * y[7 + j]

@@ -48,17 +48,15 @@ from ...jit import PARALLEL_BODIES, cores, jit
 from ...typing import FloatArray
 from ..environment.earth import earth_angle
 from ..euler import euler_components
-from ..special.quaternion import quaternion_rate_components
+from ..special.quaternion import quaternion_rate_components, to_body
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import fixed_step_source, state_layout
-from .loop_terms import _gravity_gradient, _to_body, dipole as _dipole
+from .loop_terms import _gravity_gradient, dipole as _dipole
 
 __all__ = ["detumble_parallel", "detumble_run", "detumble_serial"]
 
 # the formulas, each the one writing its model's module holds, compiled
 _euler = jit(euler_components, error_model="numpy")
-_quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
-_earth_angle = jit(earth_angle, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -98,8 +96,8 @@ def _orbit_table(fp: FloatArray, n_gg: float, period: float, step0: int, steps: 
             table[i, m, 0] = fp[0] * r0 + fp[3] * r1
             table[i, m, 1] = fp[1] * r0 + fp[4] * r1
             table[i, m, 2] = fp[2] * r0 + fp[5] * r1
-            table[i, m, 3] = math.cos(_earth_angle(0.0, tm))
-            table[i, m, 4] = math.sin(_earth_angle(0.0, tm))
+            table[i, m, 3] = math.cos(earth_angle(0.0, tm))
+            table[i, m, 4] = math.sin(earth_angle(0.0, tm))
             table[i, m, 5] = math.cos(n_gg * tm)
             table[i, m, 6] = math.sin(n_gg * tm)
     return table
@@ -167,7 +165,7 @@ def _body(b: int | np.int64, I: FloatArray, q0: FloatArray, w0: FloatArray, gmst
         node = (table[i, 0, 0], table[i, 0, 1], table[i, 0, 2], table[i, 0, 3], table[i, 0, 4], table[i, 0, 5],
                 table[i, 0, 6])
         e0, e1, e2 = _batch_field(fpt, node, cg, sg)
-        bx, by, bz = _to_body(y[0], y[1], y[2], y[3], e0, e1, e2)
+        bx, by, bz = to_body(y[0], y[1], y[2], y[3], e0, e1, e2)
         z = bias[b]
         gx, gy, gz = y[4] + z[0], y[5] + z[1], y[6] + z[2]  # the readings (Sensors.sample)
         bx, by, bz = bx + z[3], by + z[4], bz + z[5]
@@ -273,14 +271,14 @@ def _detumble_rhs(b0: float, b1: float, b2: float, I0: float, I1: float, I2: flo
     """``(q', omega')`` of ``I omega' = m x B + tau_gg - omega x I omega`` for one body, B and the
     radius direction ``(rc, rs, 0)`` in the world frame turned to the body by the (unnormalised)
     quaternion, as the numpy path's ``_rhs``; ``n_gg`` 0: no gravity gradient."""
-    bx, by, bz = _to_body(x, y, z, c, b0, b1, b2)
+    bx, by, bz = to_body(x, y, z, c, b0, b1, b2)
     g0, g1, g2 = 0.0, 0.0, 0.0
     if n_gg > 0.0:
-        r0, r1, r2 = _to_body(x, y, z, c, rc, rs, 0.0)
+        r0, r1, r2 = to_body(x, y, z, c, rc, rs, 0.0)
         g0, g1, g2 = _gravity_gradient(n_gg * n_gg, I0, I1, I2, r0, r1, r2)
     a0, a1, a2 = _euler(w0, w1, w2, I0, I1, I2, m1 * bz - m2 * by + g0, m2 * bx - m0 * bz + g1, m0 * by - m1 * bx + g2,
                         1.0 / I0, 1.0 / I1, 1.0 / I2)
-    d0, d1, d2, d3 = _quaternion_rate(x, y, z, c, w0, w1, w2)
+    d0, d1, d2, d3 = quaternion_rate_components(x, y, z, c, w0, w1, w2)
     return d0, d1, d2, d3, a0, a1, a2
 
 

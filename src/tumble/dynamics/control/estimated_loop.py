@@ -78,7 +78,6 @@ _coarse = jit(coarse_reading, error_model="numpy")
 _fine_view = jit(fine_view, error_model="numpy")
 _fine = jit(fine_reading, error_model="numpy")
 _tracker = jit(tracker_noise, error_model="numpy")
-_to_body = jit(to_body, error_model="numpy")
 _turned = jit(turned_by, error_model="numpy")
 
 
@@ -148,13 +147,13 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 o += 3
             has_sun, v0, v1, v2, sg = False, 0.0, 0.0, 0.0, 0.0
             if flags[i] & 2:
-                s0, s1, s2 = _to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
+                s0, s1, s2 = to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
                 _cells(A, light[i], s0, s1, s2, S[9], noise[o:o + 2 * kc], cur)
                 v0, v1, v2, sg = _coarse(Apinv, Agram, S[9], cur)
                 o += 2 * kc
                 has_sun = sg >= 0.0
             if flags[i] & 8:  # a fine sun sensor, lit on its period: it draws only when it sees the Sun
-                s0, s1, s2 = _to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
+                s0, s1, s2 = to_body(x, yq, z, c, sun_world[i, 0], sun_world[i, 1], sun_world[i, 2])
                 a0, a1, a2, seen = _fine_view(Cf, S[18], s0, s1, s2, light[i])
                 if seen:
                     v0, v1, v2 = _fine(Cf, S[9], a0, a1, a2, noise[o], noise[o + 1])

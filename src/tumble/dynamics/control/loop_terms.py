@@ -88,17 +88,13 @@ BODY, WHEEL = 33, 10
 # (``_nrt=False``): they read their arrays and make none, and the caller holds them; counted, each
 # call to them from a right-hand side stage paid two atomic operations an array.
 _horner = jit(horner, error_model="numpy")
-_earth_angle = jit(earth_angle, error_model="numpy")
 _dipole_field = jit(dipole_components, error_model="numpy")
-_to_body = jit(to_body, error_model="numpy")
 _gravity_gradient = jit(gradient_components, error_model="numpy")
 # The wheel law's np.minimum and np.maximum compiled as plain compares (fastmath "nnan", which
 # allows nothing else: no reassociation, no contraction, so the same results for every input but
 # a NaN): numba's NaN-keeping min and max cost 11 % of the right-hand side (63 -> 56 us for the
 # 1452 calls of a 60 s loop with three wheels, measured alternating in one process).
 _wheel_torque = jit(wheel_torque, error_model="numpy", fastmath={"nnan"})
-_momentum_rate = jit(momentum_rate_components, error_model="numpy")
-_quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 
 
 @jit(error_model="numpy", _nrt=False)
@@ -139,7 +135,7 @@ def field_world(kind: int, p: FloatArray, table: FloatArray, t: float) -> tuple[
         return table_value(table, p[0], p[1], t)
     nt = p[15] * t
     r0, r1 = p[14] * math.cos(nt), p[14] * math.sin(nt)  # the orbit's position, world frame (z = 0)
-    theta = _earth_angle(p[12], t * p[13])  # p[13]: 1 if the Earth turns, else 0
+    theta = earth_angle(p[12], t * p[13])  # p[13]: 1 if the Earth turns, else 0
     return dipole(p, p[0] * r0 + p[3] * r1, p[1] * r0 + p[4] * r1, p[2] * r0 + p[5] * r1, math.cos(theta), math.sin(theta))
 
 
@@ -150,7 +146,7 @@ def field_body(kind: int, p: FloatArray, table: FloatArray, x: float, y: float, 
     ``|q|^2`` where the quaternion is not normalised (:func:`~tumble.dynamics.special.quaternion.to_body`'s
     homogeneous form)."""
     b0, b1, b2 = field_world(kind, p, table, t)
-    return _to_body(x, y, z, s, b0, b1, b2)
+    return to_body(x, y, z, s, b0, b1, b2)
 
 
 def packed(P: FloatArray, X: tuple[FloatArray, ...]) -> FloatArray:
@@ -199,7 +195,7 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
     residual dipole ``P[27:30]`` beside the held one."""
     a0, a1, a2 = P[21], P[22], P[23]
     if P[24] != 0.0 or P[25] != 0.0 or P[26] != 0.0:
-        v0, v1, v2 = _to_body(x, y, z, s, P[24], P[25], P[26])
+        v0, v1, v2 = to_body(x, y, z, s, P[24], P[25], P[26])
         a0, a1, a2 = a0 + v0 * inverse, a1 + v1 * inverse, a2 + v2 * inverse
     if P[15] != FIELD_NONE:
         fp, ft, _ = tables(P, at)
@@ -207,13 +203,13 @@ def external_torque(t: float, x: float, y: float, z: float, s: float, inverse: f
         m0, m1, m2 = (P[12] + P[27]) * inverse, (P[13] + P[28]) * inverse, (P[14] + P[29]) * inverse
         a0, a1, a2 = a0 + (m1 * b2 - m2 * b1), a1 + (m2 * b0 - m0 * b2), a2 + (m0 * b1 - m1 * b0)
     if P[16] > 0.0:  # a circle: r_b = R^T (cos n t, sin n t, 0)
-        v0, v1, v2 = _to_body(x, y, z, s, u0, u1, 0.0)
+        v0, v1, v2 = to_body(x, y, z, s, u0, u1, 0.0)
         g0, g1, g2 = _gravity_gradient(P[16] * P[16] * (inverse * inverse), P[0], P[1], P[2], v0, v1, v2)
         a0, a1, a2 = a0 + g0, a1 + g1, a2 + g2
     elif P[17] > 0.0:  # along a table of positions: r_b = R^T r / |r|, rate sqrt(mu / r^3)
         v0, v1, v2 = table_value(tables(P, at)[2], P[18], P[19], t)
         rn = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
-        v0, v1, v2 = _to_body(x, y, z, s, v0 / rn, v1 / rn, v2 / rn)
+        v0, v1, v2 = to_body(x, y, z, s, v0 / rn, v1 / rn, v2 / rn)
         n_r = math.sqrt(P[17] / rn) / rn
         g0, g1, g2 = _gravity_gradient(n_r * n_r * (inverse * inverse), P[0], P[1], P[2], v0, v1, v2)
         a0, a1, a2 = a0 + g0, a1 + g1, a2 + g2
@@ -250,12 +246,12 @@ def rhs_source(name: str, k: int) -> str:
                   f"        js = P[{b + 3}] * y[{7 + j}]",
                   f"        L0, L1, L2 = L0 + js * P[{b}], L1 + js * P[{b + 1}], L2 + js * P[{b + 2}]",
                   f"        a0, a1, a2 = a0 - u{j} * P[{b}], a1 - u{j} * P[{b + 1}], a2 - u{j} * P[{b + 2}]"]
-    lines += ["    a0, a1, a2 = _momentum_rate(L0, L1, L2, w0, w1, w2, a0, a1, a2)",
+    lines += ["    a0, a1, a2 = momentum_rate_components(L0, L1, L2, w0, w1, w2, a0, a1, a2)",
               "    d0 = P[3] * a0 + P[4] * a1 + P[5] * a2",
               "    d1 = P[6] * a0 + P[7] * a1 + P[8] * a2",
               "    d2 = P[9] * a0 + P[10] * a1 + P[11] * a2",
-              "    q0, q1, q2, q3 = _quaternion_rate(x, yq, z, c, w0, w1, w2)",
-              "    i0, i1, i2 = _to_body(-x, -yq, -z, c, t0, t1, t2)",  # R t: the conjugate's R^T, times |q|^2
+              "    q0, q1, q2, q3 = quaternion_rate_components(x, yq, z, c, w0, w1, w2)",
+              "    i0, i1, i2 = to_body(-x, -yq, -z, c, t0, t1, t2)",  # R t: the conjugate's R^T, times |q|^2
               "    i0, i1, i2 = i0 * inverse, i1 * inverse, i2 * inverse"]
     for j in range(k):
         b = BODY + WHEEL * j
@@ -273,7 +269,8 @@ def rhs_namespace() -> dict[str, object]:
     --------
     >>> from tumble.dynamics.control.loop_terms import rhs_namespace
     >>> sorted(rhs_namespace())[:3]
-    ['__name__', '_momentum_rate', '_quaternion_rate']
+    ['__name__', '_wheel_torque', 'external_torque']
     """
     return {"__name__": __name__, "math": math, "np": np, "external_torque": external_torque, "_wheel_torque": _wheel_torque,
-            "_momentum_rate": _momentum_rate, "_quaternion_rate": _quaternion_rate, "_to_body": _to_body}
+            "momentum_rate_components": momentum_rate_components,
+            "quaternion_rate_components": quaternion_rate_components, "to_body": to_body}

@@ -38,8 +38,9 @@ from ...jit import jit
 from ..euler import momentum_rate_components
 from ..models.damper import damper_rate_components
 from ..special.quaternion import quaternion_rate_components
-from .kernels import _direction, _equal_steps, _finite, external_torque, generated
+from .kernels import _direction, _finite, external_torque, generated
 from .status import NON_FINITE, OK
+from .stepsize import equal_steps
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from .unrolled import Layout, fixed_loop_source, fixed_step_source, rotations_source
 
@@ -48,8 +49,6 @@ __all__ = ["DAMPED", "damped_rhs", "fixed_damped_rk4", "fixed_damped_rk8"]
 #: The damped body's layout: ``rhs(y, B, P, u0, u1)`` over ``(L, q, w_d, D)``, ``B`` the body's tuple.
 DAMPED = Layout(11, "I, P", False)
 
-_momentum_rate = jit(momentum_rate_components, error_model="numpy")
-_quaternion_rate = jit(quaternion_rate_components, error_model="numpy")
 _damper_rate = jit(damper_rate_components, error_model="numpy")
 
 
@@ -65,8 +64,8 @@ def damped_rhs(y: tuple[float, ...], B: tuple[float, ...], P: tuple[float, ...],
     w1 = (L1 - B[6] - J * d1) / B[1]
     w2 = (L2 - B[7] - J * d2) / B[2]
     t0, t1, t2 = external_torque(B, w0, w1, w2, x, yq, z, s, u0, u1, P)
-    a0, a1, a2 = _momentum_rate(L0, L1, L2, w0, w1, w2, t0, t1, t2)
-    q0, q1, q2, q3 = _quaternion_rate(x, yq, z, s, w0, w1, w2)
+    a0, a1, a2 = momentum_rate_components(L0, L1, L2, w0, w1, w2, t0, t1, t2)
+    q0, q1, q2, q3 = quaternion_rate_components(x, yq, z, s, w0, w1, w2)
     e0, e1, e2, e3 = _damper_rate(d0, d1, d2, w0, w1, w2, B[4], J)
     return a0, a1, a2, q0, q1, q2, q3, e0, e1, e2, e3
 
@@ -92,7 +91,7 @@ _STEPS = generated(fixed_step_source("damped_rk4_step", RK4_A, RK4_B, RK4_C, DAM
                    rhs=damped_rhs)
 _RUNS = generated(fixed_loop_source("fixed_damped_rk4", "damped_rk4_step", "damped_rk4_turns", "_load", "_sample", "Y")
                   + fixed_loop_source("fixed_damped_rk8", "damped_rk8_step", "damped_rk8_turns", "_load", "_sample", "Y"),
-                  __file__, __name__, _load=_load, _sample=_sample, _equal_steps=_equal_steps, _direction=_direction,
+                  __file__, __name__, _load=_load, _sample=_sample, _equal_steps=equal_steps, _direction=_direction,
                   _finite=_finite, OK=OK, NON_FINITE=NON_FINITE, **_STEPS)
 #: The damped body's fixed-step runs (:func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`):
 #: ``run(y0, t_eval, B, P, n, step, Y)``, the states at the samples into ``Y`` (len(t_eval), 11).

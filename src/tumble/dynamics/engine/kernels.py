@@ -93,7 +93,6 @@ _to_body = jit(to_body, error_model="numpy", inline="always")
 _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always")
 _error_norm = jit(error_norm, error_model="numpy", inline="always")
 _next_step = jit(next_step, error_model="numpy", inline="always")
-_equal_steps = jit(equal_steps, error_model="numpy")
 _first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
 _initial_step_of = jit(initial_step, error_model="numpy", inline="always")
 
@@ -316,7 +315,7 @@ def _sample(y: tuple[float, ...], I: np.ndarray, omega: np.ndarray, quat: np.nda
 _FIXED = generated(fixed_loop_source("fixed_rk4", "rk4_step", "rk4_turns", "_rigid", "_sample", "omega, quat")
                    + fixed_loop_source("fixed_rk8", "rk8_step", "rk8_turns", "_rigid", "_sample", "omega, quat"),
                    __file__, __name__, rk4_step=_rk4_step, rk4_turns=_rk4_turns, rk8_step=_rk8_step,
-                   rk8_turns=_rk8_turns, _rigid=_rigid, _sample=_sample, _equal_steps=_equal_steps,
+                   rk8_turns=_rk8_turns, _rigid=_rigid, _sample=_sample, _equal_steps=equal_steps,
                    _direction=_direction, _finite=_finite, OK=OK, NON_FINITE=NON_FINITE)
 #: The fixed-step runs of RK4 and RK8 (``run(y0, t_eval, I, P, n, step, omega, quat)``).
 fixed_rk4, fixed_rk8 = _FIXED["fixed_rk4"], _FIXED["fixed_rk8"]

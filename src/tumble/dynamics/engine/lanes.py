@@ -39,8 +39,9 @@ import numpy as np
 from numba import prange
 
 from ...jit import jit
-from .kernels import _direction, _equal_steps, _rk4_turns, _rk8_turns, _store, generated, rhs
+from .kernels import _direction, _rk4_turns, _rk8_turns, _store, generated, rhs
 from .status import NON_FINITE, OK
+from .stepsize import equal_steps
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from .unrolled import LANE_ROWS, STATE, fixed_loop_source, lane_rows, lane_step_source
 
@@ -92,17 +93,18 @@ def _finite(W: np.ndarray) -> bool:
 def _block_steps(interval: float, step: np.ndarray) -> tuple[int, float]:
     """The block's equal steps through a sample ``interval`` (s), each body's largest step in ``step``:
     :func:`~tumble.dynamics.engine.stepsize.equal_steps` where all bodies agree, else a NaN step."""
-    m, h = _equal_steps(interval, step[0])
+    m, h = equal_steps(interval, step[0])
     for j in range(1, step.shape[0]):
-        if _equal_steps(interval, step[j])[0] != m:
+        if equal_steps(interval, step[j])[0] != m:
             return m, math.nan
     return m, h
 
 
 #: The kernels' rhs inlined by numba in the loop over the lanes, where LLVM vectorises it: called
 #: there and inlined by LLVM (its ``alwaysinline``), the batch ran 15-20 % slower (2,000 bodies, one
-#: thread, measured alternating). The same function, another compiled form.
-_IN_LANES = jit(cast(Any, rhs).py_func, error_model="numpy", inline="always")
+#: thread, measured alternating). The same function with rhs's own options (numba keys its cache on
+#: the function, not the options: ``tests/test_jit_cache.py``), inlined by numba instead.
+_IN_LANES = jit(cast(Any, rhs).py_func, error_model="numpy", inline="always", forceinline=True)
 
 _STEPS = generated(lane_step_source("rk4_lanes", RK4_A, RK4_B, RK4_C, LANES)
                    + lane_step_source("rk8_lanes", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], LANES),

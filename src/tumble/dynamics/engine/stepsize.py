@@ -24,6 +24,7 @@ import math
 import sys
 from typing import Any
 
+from ...jit import formula
 from ...validation import check_positive
 
 __all__ = ["RTOL_RANGE", "check_rtol", "equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
@@ -135,6 +136,7 @@ def initial_step(h0: float, d1: float, d2: float, interval: float) -> float:
     return min(100.0 * h0, h1, interval)
 
 
+@formula
 def equal_steps(interval: float, step: float) -> tuple[int, float]:
     """The fixed-step methods' rule: the fewest equal steps no longer than ``step`` (s) that fill a
     sample ``interval`` (s; negative backward in time, the steps then negative), and their length; a

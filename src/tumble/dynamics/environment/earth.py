@@ -32,6 +32,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...jit import formula
+
 __all__ = ["MU_EARTH", "OMEGA_EARTH", "R_EARTH", "STANDARD_GRAVITY", "earth_angle"]
 
 #: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
@@ -46,6 +48,7 @@ OMEGA_EARTH = 7.292115e-5
 STANDARD_GRAVITY = 9.80665
 
 
+@formula
 def earth_angle(theta0: Any, t: Any) -> Any:
     """The Earth's angle about ECI z at ``t`` (s), rad: ``theta0 + OMEGA_EARTH t``.
 

@@ -34,7 +34,6 @@ from .compiled_flow import WORK, free_flow_into
 
 __all__ = ["kick_torque", "run_body", "run_parallel", "run_serial"]
 
-_equal_steps = jit(equal_steps, inline="always")
 
 # The Strang step as (axis, fraction of the step), as in geometric._STRANG.
 _AXES = np.array([0, 1, 2, 1, 0], dtype=np.int64)
@@ -108,7 +107,7 @@ def run_body(b: int | np.int64, I: FloatArray, L0: FloatArray, q0: FloatArray, t
     for i in range(4):
         quat_out[0, b, i] = q[i]
     for s in range(1, t.shape[0]):
-        m, h = _equal_steps(t[s] - t[s - 1], step)
+        m, h = equal_steps(t[s] - t[s - 1], step)
         for stepno in range(m):
             tc = t[s - 1] + stepno * h
             for g in range(gammas.shape[0]):

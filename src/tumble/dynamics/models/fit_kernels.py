@@ -27,8 +27,9 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
-from ..engine.kernels import _direction, _equal_steps, _finite, generated
+from ..engine.kernels import _direction, _finite, generated
 from ..engine.status import NON_FINITE, OK
+from ..engine.stepsize import equal_steps
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import Layout, fixed_loop_source, fixed_step_source, rotations_source, state_layout
 from ..euler import euler_components, momentum_rate_components
@@ -43,7 +44,6 @@ _drag = jit(error_model="numpy")(drag_component)
 # (and the flights the finder takes) differed in their last bits by the cache's history
 # (tests/test_jit_cache.py)
 _euler = jit(error_model="numpy", inline="always")(euler_components)
-_momentum_rate = jit(inline="always")(momentum_rate_components)
 
 #: The dragged body's layout: ``rhs(w, B, D, u0, u1)`` over omega's three floats, ``B`` the body's
 #: tuple ``(I, 1 / I)``, ``D`` the drag's ``(a, b)`` (:func:`drag_rhs`).
@@ -79,7 +79,7 @@ _DRAG_STEPS = generated(fixed_step_source("drag_rk4_step", RK4_A, RK4_B, RK4_C, 
 #: The dragged body's fixed-step RK4 run (:func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`):
 #: ``run(w0, t_eval, I, D, n, step, W)``, omega at the samples into ``W`` (len(t_eval), 3).
 fixed_drag_rk4 = generated(fixed_loop_source("fixed_drag_rk4", "drag_rk4_step", "drag_rk4_turns", "_load", "_sample", "W"),
-                           __file__, __name__, _load=_load, _sample=_sample, _equal_steps=_equal_steps,
+                           __file__, __name__, _load=_load, _sample=_sample, _equal_steps=equal_steps,
                            _direction=_direction, _finite=_finite, OK=OK, NON_FINITE=NON_FINITE,
                            **_DRAG_STEPS)["fixed_drag_rk4"]
 
@@ -145,7 +145,7 @@ def _gyrostat_rhs(t: float, L: Any, P: Any, X: Any, u0: float, u1: float) -> Any
     w0 = P[3] * a0 + P[4] * a1 + P[5] * a2
     w1 = P[6] * a0 + P[7] * a1 + P[8] * a2
     w2 = P[9] * a0 + P[10] * a1 + P[11] * a2
-    d0, d1, d2 = _momentum_rate(L[0], L[1], L[2], w0, w1, w2, _drag(0.0, P[12], w0), _drag(0.0, P[13], w1),
+    d0, d1, d2 = momentum_rate_components(L[0], L[1], L[2], w0, w1, w2, _drag(0.0, P[12], w0), _drag(0.0, P[13], w1),
                                 _drag(0.0, P[14], w2))
     return d0 + P[2] * g0, d1 + P[2] * g1, d2 + P[2] * g2
 

@@ -177,6 +177,7 @@ def quaternion_rate(quat: ArrayLike, omega: ArrayLike) -> Quaternion:
                                                w[..., 0], w[..., 1], w[..., 2]), axis=-1)
 
 
+@formula
 def quaternion_rate_components(x: Any, y: Any, z: Any, s: Any, w0: Any, w1: Any,
                                w2: Any) -> tuple[Any, Any, Any, Any]:
     """``q' = q (x) (omega, 0) / 2`` component by component, the one writing of the kinematics.
@@ -195,6 +196,7 @@ def quaternion_rate_components(x: Any, y: Any, z: Any, s: Any, w0: Any, w1: Any,
             0.5 * (s * w2 + (x * w1 - y * w0)), -0.5 * (x * w0 + y * w1 + z * w2))
 
 
+@formula
 def to_body(x: Any, y: Any, z: Any, s: Any, v0: Any, v1: Any, v2: Any) -> tuple[Any, Any, Any]:
     """``R^T v``, the world vector ``v`` in the body frame of the quaternion ``(x, y, z, s)``.
 
