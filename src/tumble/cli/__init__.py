@@ -40,6 +40,21 @@ def _show_warning(fallback, message, category, filename, lineno, file=None, line
         fallback(message, category, filename, lineno, file, line)
 
 
+def _named_files_exist(args) -> None:  # noqa: ANN001
+    """Refuse an input file the command line names that does not exist, before the command imports
+    what it computes with (numpy, scipy, numba: 0.3-0.6 s), so that a mistyped path is said at once
+    (~0.05 s). The inputs are the command's ``inputs`` (its parser's defaults); only a name with a
+    suffix is checked here, a file's: a preset (``t-handle``) or a folder is the command's to judge.
+    The message is the one reading the file gives (:class:`tumble.validation.NoSuchFileError`)."""
+    for dest in getattr(args, "inputs", ()):
+        value = getattr(args, dest, None)
+        for path in value if isinstance(value, list) else [value]:
+            if isinstance(path, str) and os.path.splitext(path)[1] and not os.path.lexists(path):
+                from ..validation import NoSuchFileError
+
+                raise NoSuchFileError(f"{path}: no such file")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``tumble`` console command; returns the exit status.
 
@@ -74,6 +89,7 @@ def main(argv: list[str] | None = None) -> int:
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
             warnings.showwarning = functools.partial(_show_warning, warnings.showwarning)  # restored on exit
+            _named_files_exist(args)
             status = args.func(args)
             sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
             return status

@@ -62,7 +62,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="the length unit of the file's coordinates (default m)")
     solid.add_argument("--scale", metavar="FACTOR",
                        help="factor from the file's coordinates to metres, instead of --units (e.g. 0.001)")
-    p.set_defaults(func=c._cmd_inertia)
+    p.set_defaults(func=c._cmd_inertia, inputs=("body",))
 
     def scenario_command(name, func, summary, description, example, out_metavar, out_help):
         cmd = sub.add_parser(name, help=summary, description=description, epilog=f"Examples: {example}",
@@ -78,7 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
         run.add_argument("--samples", type=int, metavar="N", help="number of samples (default 500)")
         run.add_argument("--dt", type=float, metavar="S", help="sample every S seconds instead of --samples")
         run.add_argument("--method", metavar="NAME", help=method_list())  # every method of the registry
-        cmd.set_defaults(func=func)
+        cmd.set_defaults(func=func, inputs=("source",))
         return cmd
 
     p = scenario_command(
@@ -150,7 +150,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run on an existing Dask cluster: its scheduler's address, e.g. tcp://10.0.0.5:8786 "
                         "(tumble[cluster]); refused in seconds when no scheduler answers there")
-    p.set_defaults(func=c._cmd_sweep)
+    p.set_defaults(func=c._cmd_sweep, inputs=("sweep",))
 
     p = sub.add_parser(
         "map",
@@ -196,7 +196,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the data (by default such a fit is written "
                    "with \"adequate\": false, a warning printed and the exit status 1)")
-    p.set_defaults(func=c._cmd_fit)
+    p.set_defaults(func=c._cmd_fit, inputs=("data", "body"))
 
     p = sub.add_parser(
         "calibrate",
@@ -220,7 +220,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 for a calibration that does not check itself out (written with [calibration] "
                    "adequate = false either way)")
-    p.set_defaults(func=c._cmd_calibrate)
+    p.set_defaults(func=c._cmd_calibrate, inputs=("device", "alone", "proof"))
 
     p = sub.add_parser(
         "tensor",
@@ -246,7 +246,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="use a device whose calibration did not check out ([calibration] adequate = false), and exit "
                    "0 even when the model does not describe the throws (by default such a fit is written with "
                    "\"adequate\": false, a warning printed and the exit status 1)")
-    p.set_defaults(func=c._cmd_tensor)
+    p.set_defaults(func=c._cmd_tensor, inputs=("throws", "device"))
 
     p = sub.add_parser(
         "demo",
