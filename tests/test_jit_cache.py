@@ -251,7 +251,6 @@ def test_each_python_function_is_compiled_with_one_set_of_options():
     import gc
     import importlib
     import pkgutil
-    import weakref
 
     import tumble.dynamics
     from numba.core.caching import FunctionCache
@@ -261,10 +260,9 @@ def test_each_python_function_is_compiled_with_one_set_of_options():
         importlib.import_module(info.name)
     options: dict[tuple[str, str], set[tuple]] = {}
     for obj in gc.get_objects():
-        if isinstance(obj, weakref.ProxyTypes):  # a dead proxy cannot be asked its class
-            continue
-        # cached ones: numba's own uncached dispatchers of a formula (tumble.jit.formula) share no index
-        if isinstance(obj, CPUDispatcher) and isinstance(obj._cache, FunctionCache) \
+        # type(), not isinstance: some objects (weak proxies, numpy's lazy loaders) fail when asked
+        # their __class__; cached ones: numba's own uncached dispatchers of a formula share no index
+        if issubclass(type(obj), CPUDispatcher) and isinstance(obj._cache, FunctionCache) \
                 and (obj.py_func.__module__ or "").startswith("tumble."):
             code = obj.py_func.__code__
             key = (f"{code.co_filename}:{code.co_firstlineno}", obj.py_func.__qualname__)

@@ -24,7 +24,7 @@ interval that is one step of 13 evaluations instead of two of 26 (a variable-ste
 that continues over a sample hit, as Simulink's do). Or fixed-step RK4 or RK8 (DOP853's 8th-order
 weights) at equal steps no longer than ``step`` in each interval.
 
-**The laws** (:data:`LAW_BDOT`, :data:`LAW_MRP`, :data:`LAW_DUMPING`) are
+**The laws** (:data:`LAW_BDOT`, :data:`LAW_MRP`, :data:`LAW_DUMPING`; :mod:`~tumble.dynamics.control.loop_laws`) are
 :mod:`~tumble.dynamics.control.laws`' functions, the ones the Python controllers call, with the
 ideal sensors' measurement (the true omega, attitude, field and wheel spins) and the controllers'
 memory (B-dot's last reading, MRP feedback's integral) carried in the loop.
@@ -43,20 +43,14 @@ from ...typing import FloatArray
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
-from ..special.quaternion import to_body
-from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
-                   gyro_field_rate_components, tracking_feedforward_components)
-from .loop_terms import BODY, FIELD_NONE, WHEEL, _wheel_torque, field_body, packed, rhs_namespace, rhs_source, tables
+from .loop_laws import LAW_BDOT, LAW_DUMPING, LAW_MRP, NO_MEMORY, Law, held, law_command
+from .loop_terms import BODY, FIELD_NONE, WHEEL, field_body, packed, rhs_namespace, rhs_source, tables
 
 __all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "Law", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
-           "kernels", "law_command", "padded", "rhs_of", "set_command", "unpadded"]
+           "kernels", "law_command", "method_flags", "padded", "rhs_of", "set_command", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
 DOP853, RK4, RK8 = 0, 1, 2
-#: The compiled laws: B-dot (``L = (gain, normalized, difference)``), MRP feedback to a fixed
-#: target (``L = (K, P, Ki, integral_limit, gyroscopic, period, target quaternion (4))``), and
-#: MRP feedback with momentum dumping (the same, then ``(k_d, h_target (3))``).
-LAW_BDOT, LAW_MRP, LAW_DUMPING = 0, 1, 2
 #: The most wheels the kernels take (their wheel slots).
 MAX_WHEELS = 6
 #: The padded state's size (:func:`padded`): quaternion (4), omega (3), wheel slots, impulse (3).
@@ -73,12 +67,6 @@ _error_norm = jit(error_norm, error_model="numpy")
 _next_step = jit(next_step, error_model="numpy")
 _first_trial_step = jit(first_trial_step, error_model="numpy")
 _initial_step = jit(initial_step, error_model="numpy")
-_attitude_error = jit(attitude_error_components, error_model="numpy")
-_bdot = jit(bdot_components, error_model="numpy")
-_gyro_rate = jit(gyro_field_rate_components, error_model="numpy")
-_dumping = jit(dumping_dipole_components, error_model="numpy")
-_feedback = jit(feedback_torque_components, error_model="numpy")
-_feedforward = jit(tracking_feedforward_components, error_model="numpy")
 
 
 @jit(error_model="numpy")
@@ -203,43 +191,74 @@ _TURNS = _DOP853_AT + 2 * len(DOP853_C[:13])
 
 
 @jit(error_model="numpy")
-def _turns(n: float) -> FloatArray:  # pragma: no cover - compiled
-    """The turns of a circular orbit's direction (mean motion ``n``, rad/s) to the stage nodes of each
-    method, kept from step to step while the step ``h`` (s) stays the same (the fixed steps of equal
-    intervals): an array of the steps ``h`` of RK8, RK4 and DOP853 they were made for (-1: none
-    yet), then their turns (from ``_RK8_AT``, ``_RK4_AT``, ``_DOP853_AT``). An array the steps read in place, not tuples
-    passed to and returned from each interval (a third of an interval's call cost)."""
+def _turns() -> FloatArray:  # pragma: no cover - compiled
+    """Room for the turns of a circular orbit's direction to the stage nodes of each method, kept
+    from step to step while the step ``h`` (s) stays the same (the fixed steps of equal intervals):
+    the steps ``h`` of RK8, RK4 and DOP853 they were made for (NaN: none yet, so the first step
+    makes them), then their turns (from ``_RK8_AT``, ``_RK4_AT``, ``_DOP853_AT``). An array the steps read
+    in place, not tuples passed to and returned from each interval (a third of an interval's call cost)."""
     R = np.empty(_TURNS)
-    R[0], R[1], R[2] = -1.0, -1.0, -1.0
-    _put(R, _RK8_AT, rk8_turns(n, 0.0))
-    _put(R, _RK4_AT, rk4_turns(n, 0.0))
-    _put(R, _DOP853_AT, dop853_turns(n, 0.0))
+    R[0], R[1], R[2] = math.nan, math.nan, math.nan
     return R
 
 
+def method_flags(method: int) -> tuple[int | None, int | None, int | None]:
+    """The hold interval's ``method`` (:data:`DOP853`, :data:`RK8`, :data:`RK4`) as the kernels take
+    it: ``(dop853, rk8, rk4)``, 1 for the method that runs and None for the other two. numba compiles
+    a kernel once for each kind of these arguments and drops, before it types them, the branches
+    that ask ``x is not None`` of an ``x`` given as None: a run compiles its own method's steps, not
+    the others' (measured in a fresh process with no cache: a first run along an ellipse with
+    ``rk8`` 16.0 -> 8.0 s, a first closed loop with ``dop853``, MRP feedback and three wheels,
+    12.1 -> 9.0 s). numba decides ``x is not None`` only for an ``x`` typed None, so each method's
+    branch asks it of its own argument.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.compiled_loop import DOP853, RK4, RK8, method_flags
+    >>> method_flags(DOP853), method_flags(RK8), method_flags(RK4)
+    ((1, None, None), (None, 1, None), (None, None, 1))
+    """
+    return (1 if method == DOP853 else None), (1 if method == RK8 else None), (1 if method == RK4 else None)
+
+
 @jit(error_model="numpy")
-def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, method: int, step: float,
-             h_abs: float, R: FloatArray) -> Any:  # pragma: no cover - compiled
-    """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs)`` with
-    the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as scipy);
-    ``R`` the turns to the stage nodes (:func:`_turns`), updated in place."""
+def _fixed_steps(y: Any, t0: float, t1: float, P: Any, step: float, R: FloatArray, rk8: Any,
+                 rk4: Any) -> Any:  # pragma: no cover - compiled
+    """RK8 (``rk8`` given, ``rk4`` None) or RK4 (the other way) from ``t0`` to ``t1`` (s) at equal steps
+    no longer than ``step``: the state at ``t1``; ``R`` the turns to the stage nodes (:func:`_turns`)."""
     n = P[16]
-    if method != DOP853:
-        m, h = equal_steps(t1 - t0, step)
-        if method == RK8 and h != R[0]:
+    m, h = equal_steps(t1 - t0, step)
+    if rk8 is not None:
+        if h != R[0]:
             R[0] = h
             _put(R, _RK8_AT, rk8_turns(n, h))
-        if method == RK4 and h != R[1]:
-            R[1] = h
-            _put(R, _RK4_AT, rk4_turns(n, h))
-        rot = R[_RK8_AT:_RK4_AT] if method == RK8 else R[_RK4_AT:_DOP853_AT]
         for j in range(m):
             cs, ss = _direction(n, t0 + j * h)
-            if method == RK8:
-                y = rk8_step(t0 + j * h, y, h, P, cs, ss, rot)
-            else:
-                y = rk4_step(t0 + j * h, y, h, P, cs, ss, rot)
-        return OK, y, h_abs
+            y = rk8_step(t0 + j * h, y, h, P, cs, ss, R[_RK8_AT:_RK4_AT])
+    if rk4 is not None:
+        if h != R[1]:
+            R[1] = h
+            _put(R, _RK4_AT, rk4_turns(n, h))
+        for j in range(m):
+            cs, ss = _direction(n, t0 + j * h)
+            y = rk4_step(t0 + j * h, y, h, P, cs, ss, R[_RK4_AT:_DOP853_AT])
+    return y
+
+
+@jit(error_model="numpy")
+def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, dop853: Any, rk8: Any, rk4: Any,
+             step: float, h_abs: float, R: FloatArray) -> Any:  # pragma: no cover - compiled
+    """One hold interval from ``t0`` to ``t1`` (s) (module docstring): ``(status, y, h_abs)`` with
+    the step DOP853's error control proposes next (``h_abs <= 0``: choose the first, as scipy);
+    ``(dop853, rk8, rk4)`` the method (:func:`method_flags`); ``R`` the turns to the stage nodes
+    (:func:`_turns`), updated in place."""
+    if rk8 is not None:
+        return OK, _fixed_steps(y, t0, t1, P, step, R, rk8, None), h_abs
+    if rk4 is not None:
+        return OK, _fixed_steps(y, t0, t1, P, step, R, None, rk4), h_abs
+    if dop853 is None:  # not reached: one method is given
+        return STEP_COLLAPSED, y, h_abs
+    n = P[16]
     cs, ss = _direction(n, t0)
     f = rhs(t0, y, P, cs, ss)
     if h_abs <= 0.0:
@@ -274,117 +293,35 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, met
 
 @jit(error_model="numpy")
 def _interval(y0: FloatArray, t0: float, t1: float, P0: FloatArray, dipole: FloatArray, command: FloatArray, rtol: float,
-              atol: float, method: int, step: float, out: FloatArray) -> int:  # pragma: no cover - compiled
+              atol: float, dop853: Any, rk8: Any, rk4: Any, step: float, out: FloatArray) -> int:  # pragma: no cover - compiled
     """One hold interval of ``y0`` (an array of :data:`N`, :func:`padded`) with the dipole and the
-    wheels' commands held (:data:`MAX_WHEELS` of them, the run's first), into ``out``."""
+    wheels' commands held (:data:`MAX_WHEELS` of them, the run's first), into ``out``; ``(dop853,
+    rk8, rk4)`` the method (:func:`method_flags`)."""
     P = P0.copy()
     set_command(P, dipole[0], dipole[1], dipole[2], command)
-    status, y, _ = _advance(tuple_of(y0), t0, t1, P, rtol, atol, method, step, 0.0, _turns(P[16]))
+    status, y, _ = _advance(tuple_of(y0), t0, t1, P, rtol, atol, dop853, rk8, rk4, step, 0.0, _turns())
     store(y, out)
     return int(status)
 
 
-#: The laws' memory at the start: MRP feedback's integral term (N m, 3), B-dot's last reading
-#: (T, 3), its time (s) and whether there is one.
-NO_MEMORY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, False)
-#: A law of the loop: ``(law, parameters, allocation, reference)``
-#: (:func:`~tumble.dynamics.control.control_kernel.compiled_law`).
-Law = tuple[int, FloatArray, FloatArray, Any]
-
-
-@jit(error_model="numpy")
-def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: float, x: float, yq: float, z: float,
-                c: float, w0: float, w1: float, w2: float, b0: float, b1: float, b2: float, has_field: bool, memory: Any,
-                u: FloatArray, REF: FloatArray, i: int) -> Any:  # pragma: no cover - compiled
-    """The law's command at ``t`` (s) from a measurement: the attitude ``(x, yq, z, c)`` (unit
-    quaternion, body to world), the rate ``w`` (rad/s), the field ``b`` (T, body frame; used when
-    ``has_field``) and the wheels' spins ``y[7:]`` (rad/s, exact): ``(m0, m1, m2, memory)`` the
-    dipole asked for (A m^2) and the laws' memory (:data:`NO_MEMORY`), the wheels' torques
-    (N m) into ``u``. ``L`` the law's parameters, ``pinv`` the wheels' allocation (:func:`_loop`);
-    ``REF[i]`` the moving reference at this instant
-    (:func:`~tumble.dynamics.control.pointing.reference_table`; no rows for a fixed target).
-    The ideal sensors' loop (:func:`_loop`) and the estimator's
-    (:mod:`~tumble.dynamics.control.estimated_loop`) call it."""
-    k = pinv.shape[0]
-    z0, z1, z2, last0, last1, last2, last_t, has_last = memory
-    m0, m1, m2 = 0.0, 0.0, 0.0
-    for j in range(k):
-        u[j] = 0.0
-    if law == LAW_BDOT and has_field:
-        d0, d1, d2 = 0.0, 0.0, 0.0
-        if L[2] == 0.0:
-            d0, d1, d2 = _gyro_rate(b0, b1, b2, w0, w1, w2)
-            m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
-        else:
-            if has_last:
-                d0, d1, d2 = (b0 - last0) / (t - last_t), (b1 - last1) / (t - last_t), (b2 - last2) / (t - last_t)
-            m0, m1, m2 = _bdot(d0, d1, d2, b0, b1, b2, L[0], L[1] != 0.0)
-            last0, last1, last2, last_t, has_last = b0, b1, b2, t, True
-    elif law != LAW_BDOT:
-        s0, s1, s2 = _attitude_error(L[6], L[7], L[8], L[9], x, yq, z, c)
-        r0, r1, r2, a0, a1, a2 = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0  # the reference's rate and its derivative, body
-        if REF.shape[0] > 0:
-            s0, s1, s2 = _attitude_error(REF[i, 0], REF[i, 1], REF[i, 2], REF[i, 3], x, yq, z, c)
-            r0, r1, r2 = to_body(x, yq, z, c, REF[i, 4], REF[i, 5], REF[i, 6])
-            a0, a1, a2 = to_body(x, yq, z, c, REF[i, 7], REF[i, 8], REF[i, 9])
-        h0, h1, h2 = 0.0, 0.0, 0.0
-        for j in range(k):
-            js = P0[BODY + WHEEL * j + 3] * y[7 + j]
-            h0, h1, h2 = (h0 + js * P0[BODY + WHEEL * j], h1 + js * P0[BODY + WHEEL * j + 1],
-                          h2 + js * P0[BODY + WHEEL * j + 2])
-        e0, e1, e2 = 0.0, 0.0, 0.0
-        if L[4] != 0.0:
-            e0, e1, e2 = P0[0] * w0 + h0, P0[1] * w1 + h1, P0[2] * w2 + h2
-        f0, f1, f2 = _feedback(s0, s1, s2, w0 - r0, w1 - r1, w2 - r2, w0, w1, w2, L[0], L[1], z0, z1, z2, e0, e1, e2)
-        if REF.shape[0] > 0:
-            g0, g1, g2 = _feedforward(L[14:23].reshape((3, 3)), r0, r1, r2, a0, a1, a2, w0, w1, w2)
-            f0, f1, f2 = f0 + g0, f1 + g1, f2 + g2
-        if L[2] > 0.0:
-            g = L[2] * L[0] * L[5]
-            z0 = min(max(z0 + g * s0, -L[3]), L[3])
-            z1 = min(max(z1 + g * s1, -L[3]), L[3])
-            z2 = min(max(z2 + g * s2, -L[3]), L[3])
-        for j in range(k):
-            u[j] = -(pinv[j, 0] * f0 + pinv[j, 1] * f1 + pinv[j, 2] * f2)
-        if law == LAW_DUMPING:
-            m0, m1, m2 = _dumping(b0, b1, b2, h0, h1, h2, L[10], L[11], L[12], L[13])
-    return m0, m1, m2, (z0, z1, z2, last0, last1, last2, last_t, has_last)
-
-
-@jit(error_model="numpy")
-def held(rods: FloatArray, limits: FloatArray, m0: float, m1: float, m2: float, u: FloatArray, y: Any, P0: Any,
-         D: FloatArray, U: FloatArray) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """What a command holds: the rods' dipole (A m^2), the dipole ``m`` asked for put on each rod
-    (``rods`` their axes) and clipped to its limit, into ``D`` (3,) and returned; the wheels'
-    applied torques (N m) of the commands ``u`` at the spins ``y[7:]`` into ``U`` (limits and
-    friction, :func:`~tumble.dynamics.models.actuators.wheel_torque`)."""
-    d0, d1, d2 = 0.0, 0.0, 0.0
-    for r in range(rods.shape[0]):
-        p = min(max(m0 * rods[r, 0] + m1 * rods[r, 1] + m2 * rods[r, 2], -limits[r]), limits[r])
-        d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
-    D[0], D[1], D[2] = d0, d1, d2
-    for j in range(U.shape[0]):
-        b = BODY + WHEEL * j
-        U[j] = _wheel_torque(u[j], y[7 + j], P0[b + 4], P0[b + 5], P0[b + 6], P0[b + 7], P0[b + 8])
-    return d0, d1, d2
-
-
 @jit(error_model="numpy")
 def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
-          limits: FloatArray, rtol: float, atol: float, method: int, step: float, carry: bool, Y: FloatArray,
+          limits: FloatArray, rtol: float, atol: float, dop853: Any, rk8: Any, rk4: Any, step: float, carry: bool,
+          Y: FloatArray,
           D: FloatArray, U: FloatArray, F: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
     """The closed loop over the control instants ``grid`` (s) from ``y0``: at each, the state (its
     quaternion normalised) into ``Y``, the ideal measurement, the law's command (``L`` its
     parameters, ``pinv`` the wheels' allocation ``G^+``), the dipole the rods (``rods`` their axes,
     ``limits`` theirs, A m^2) make into ``D``, the wheels' applied torque into ``U``, the field
     (T, body frame) into ``F``; then the hold interval. ``y0`` and ``Y``'s rows are padded states
-    (:func:`padded`); ``REF`` a moving reference's rows at ``grid`` (:func:`law_command`). Returns a status."""
+    (:func:`padded`); ``REF`` a moving reference's rows at ``grid`` (:func:`law_command`); ``(dop853, rk8,
+    rk4)`` the method (:func:`method_flags`). Returns a status."""
     k = pinv.shape[0]
     steps = grid.shape[0] - 1
     y = tuple_of(y0)
     u = np.zeros(MAX_WHEELS)
     h_abs = 0.0
-    turns = _turns(P0[16])
+    turns = _turns()
     memory = NO_MEMORY
     P = P0.copy()  # the parameters with the command held (set_command)
     fp, ft, _ = tables(P0, TABLES)
@@ -407,7 +344,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatAr
         if i == steps:
             break
         set_command(P, d0, d1, d2, u)
-        status, y, h_abs = _advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0, turns)
+        status, y, h_abs = _advance(y, t, grid[i + 1], P, rtol, atol, dop853, rk8, rk4, step, h_abs if carry else 0.0, turns)
         if status != OK:
             return int(status)
     return OK
@@ -484,13 +421,13 @@ def kernels() -> dict[str, Callable[..., Any]]:
     ``0.1 t`` about z:
 
     >>> import numpy as np
-    >>> from tumble.dynamics.control.compiled_loop import DOP853, N, TABLES, kernels, padded, unpadded
+    >>> from tumble.dynamics.control.compiled_loop import DOP853, N, TABLES, kernels, method_flags, padded, unpadded
     >>> from tumble.dynamics.control.loop_terms import packed
     >>> P = np.zeros(TABLES)
     >>> P[:12] = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3)
     >>> P = packed(P, (np.zeros(16), np.zeros((4, 1, 3)), np.zeros((4, 1, 3))))
     >>> y, out = padded([0, 0, 0, 1.0, 0, 0, 0.1, 0, 0, 0]), np.empty(N)
-    >>> kernels()["_interval"](y, 0.0, 10.0, P, np.zeros(3), np.zeros(6), 1e-10, 1e-12, DOP853, 0.0, out)
+    >>> kernels()["_interval"](y, 0.0, 10.0, P, np.zeros(3), np.zeros(6), 1e-10, 1e-12, *method_flags(DOP853), 0.0, out)
     0
     >>> np.allclose(unpadded(out, 0)[:4], [0.0, 0.0, np.sin(0.5), np.cos(0.5)], rtol=0, atol=1e-10)
     True

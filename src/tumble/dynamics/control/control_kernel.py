@@ -424,7 +424,7 @@ class ControlKernel:
         held[:self.k] = command
         status = self.kernels["_interval"](_loop.padded(y), float(t_start), float(t_end), self.packed,
                                            np.ascontiguousarray(dipole, dtype=float), held, self.rtol, self.atol,
-                                           self.method, self.step, out)
+                                           *_loop.method_flags(self.method), self.step, out)
         if status != 0:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
         return _loop.unpadded(out, self.k)
@@ -460,8 +460,8 @@ class ControlKernel:
         Y, D, U, F = np.empty((steps, _loop.N)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
         status = self.kernels["_loop"](_loop.padded(y0), np.ascontiguousarray(grid, dtype=float),
                                        self.packed, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
-                                       np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol, self.method,
-                                       self.step, bool(carry), Y, D, U, F, reference_table(law[3], grid))
+                                       np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol,
+                                       *_loop.method_flags(self.method), self.step, bool(carry), Y, D, U, F, reference_table(law[3], grid))
         if status != 0:
             raise RuntimeError("the integration failed: the step size fell below 10 ulp of t")
         return (Y if padded else _loop.unpadded(Y, self.k)), D, U, F

@@ -83,8 +83,8 @@ _turned = jit(turned_by, error_model="numpy")
 
 @jit(error_model="numpy")
 def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray,
-                    pinv: FloatArray, rods: FloatArray, limits: FloatArray, rtol: float, atol: float, method: int,
-                    step: float, carry: bool, S: FloatArray, A: FloatArray, Apinv: FloatArray, Agram: FloatArray,
+                    pinv: FloatArray, rods: FloatArray, limits: FloatArray, rtol: float, atol: float, dop853: Any,
+                    rk8: Any, rk4: Any, step: float, carry: bool, S: FloatArray, A: FloatArray, Apinv: FloatArray, Agram: FloatArray,
                     C: FloatArray, Rt: FloatArray, noise: FloatArray, offs: np.ndarray, flags: np.ndarray,
                     sun_world: FloatArray, light: FloatArray, fq: FloatArray, fb: FloatArray, fP: FloatArray,
                     mem: FloatArray, used0: np.ndarray, Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray,
@@ -93,7 +93,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     Cf: FloatArray) -> int:  # pragma: no cover - compiled
     """The loop from step ``i0`` of ``grid`` (s) (module docstring; :func:`run` says what each
     argument holds); ``fresh``: the filter started at ``i0`` (its updates skipped there, ``used0``
-    its row's sensors). Returns a status; on a pause, what was read into ``RD`` and the memory
+    its row's sensors); ``(dop853, rk8, rk4)`` the hold interval's method
+    (:func:`~tumble.dynamics.control.compiled_loop.method_flags`). Returns a status; on a pause, what was read into ``RD`` and the memory
     into ``mem``. It pauses (:data:`SWITCH`) at the start of the step ``stop`` (none if negative),
     before anything of that step but the state in ``Y`` is done, and writes into ``KW`` the rate
     (rad/s, body) the law is given at each step: the gyroscope's reading, less the filter's bias
@@ -106,7 +107,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
     u = np.zeros(_cl.MAX_WHEELS)
     h_abs = mem[8]
     extra = int(mem[16])  # the fine sun sensor's draws so far
-    turns = _cl._turns(P0[16])
+    turns = _cl._turns()
     memory = (mem[0], mem[1], mem[2], mem[3], mem[4], mem[5], mem[6], mem[7] != 0.0)
     kind = int(P0[15])
     P = P0.copy()  # the parameters with the command held (set_command)
@@ -215,7 +216,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
         if i == steps:
             break
         _cl.set_command(P, d0, d1, d2, u)
-        status, y, h_abs = _cl._advance(y, t, grid[i + 1], P, rtol, atol, method, step, h_abs if carry else 0.0, turns)
+        status, y, h_abs = _cl._advance(y, t, grid[i + 1], P, rtol, atol, dop853, rk8, rk4, step, h_abs if carry else 0.0,
+                                        turns)
         if status != _cl.OK:
             return int(status)
     return _cl.OK
@@ -392,7 +394,7 @@ def run(controller: Any, kernel: Any, laws: tuple[Law, ...], grid: FloatArray, y
     loop = _kernels()["_knowledge_loop"]
     head = (np.ascontiguousarray(grid, dtype=float), kernel.packed)
     tail = (np.ascontiguousarray(rods, dtype=float), np.ascontiguousarray(limits, dtype=float), kernel.rtol,
-             kernel.atol, kernel.method, kernel.step, bool(carry), S, A, Apinv, Agram, np.ascontiguousarray(C),
+             kernel.atol, *_cl.method_flags(kernel.method), kernel.step, bool(carry), S, A, Apinv, Agram, np.ascontiguousarray(C),
              np.ascontiguousarray(Rt), noise, offs, flags, sun_world, light)
 
     def through(law: Law, stop: int, after: Law | None) -> tuple[FloatArray, ...]:
