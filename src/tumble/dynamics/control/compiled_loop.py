@@ -24,7 +24,7 @@ interval that is one step of 13 evaluations instead of two of 26 (a variable-ste
 that continues over a sample hit, as Simulink's do). Or fixed-step RK4 or RK8 (DOP853's 8th-order
 weights) at equal steps no longer than ``step`` in each interval.
 
-**The laws** (:data:`LAW_BDOT`, :data:`LAW_MRP`, :data:`LAW_DUMPING`; :mod:`~tumble.dynamics.control.loop_laws`) are
+**The laws** (:mod:`~tumble.dynamics.control.loop_laws`) are
 :mod:`~tumble.dynamics.control.laws`' functions, the ones the Python controllers call, with the
 ideal sensors' measurement (the true omega, attitude, field and wheel spins) and the controllers'
 memory (B-dot's last reading, MRP feedback's integral) carried in the loop.
@@ -43,11 +43,11 @@ from ...typing import FloatArray
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
-from .loop_laws import LAW_BDOT, LAW_DUMPING, LAW_MRP, NO_MEMORY, Law, held, law_command
+from .loop_laws import NO_MEMORY, held, law_command
 from .loop_terms import BODY, FIELD_NONE, WHEEL, field_body, packed, rhs_namespace, rhs_source, tables
 
-__all__ = ["DOP853", "LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "LAYOUT", "Law", "MAX_WHEELS", "N", "NO_MEMORY", "RK4", "RK8", "TABLES", "held",
-           "kernels", "law_command", "method_flags", "padded", "rhs_of", "set_command", "unpadded"]
+__all__ = ["DOP853", "LAYOUT", "MAX_WHEELS", "N", "RK4", "RK8", "TABLES", "kernels", "method_flags", "padded", "rhs_of",
+           "set_command", "unpadded"]
 
 #: The methods of a hold interval: DOP853 (error control), fixed-step RK4 and RK8.
 DOP853, RK4, RK8 = 0, 1, 2
@@ -305,17 +305,17 @@ def _interval(y0: FloatArray, t0: float, t1: float, P0: FloatArray, dipole: Floa
 
 
 @jit(error_model="numpy")
-def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatArray, pinv: FloatArray, rods: FloatArray,
+def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: Any, L: FloatArray, pinv: FloatArray, rods: FloatArray,
           limits: FloatArray, rtol: float, atol: float, dop853: Any, rk8: Any, rk4: Any, step: float, carry: bool,
-          Y: FloatArray,
-          D: FloatArray, U: FloatArray, F: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
+          Y: FloatArray, D: FloatArray, U: FloatArray, F: FloatArray, REF: FloatArray) -> int:  # pragma: no cover - compiled
     """The closed loop over the control instants ``grid`` (s) from ``y0``: at each, the state (its
     quaternion normalised) into ``Y``, the ideal measurement, the law's command (``L`` its
     parameters, ``pinv`` the wheels' allocation ``G^+``), the dipole the rods (``rods`` their axes,
     ``limits`` theirs, A m^2) make into ``D``, the wheels' applied torque into ``U``, the field
     (T, body frame) into ``F``; then the hold interval. ``y0`` and ``Y``'s rows are padded states
-    (:func:`padded`); ``REF`` a moving reference's rows at ``grid`` (:func:`law_command`); ``(dop853, rk8,
-    rk4)`` the method (:func:`method_flags`). Returns a status."""
+    (:func:`padded`); ``REF`` a moving reference's rows at ``grid`` (:func:`~tumble.dynamics.control.loop_laws.law_command`); ``(dop853, rk8,
+    rk4)`` the method (:func:`method_flags`); ``law`` None: no law (a free run, whose kernel then
+    compiles none, as :func:`method_flags` says). Returns a status."""
     k = pinv.shape[0]
     steps = grid.shape[0] - 1
     y = tuple_of(y0)
@@ -337,7 +337,7 @@ def _loop(y0: FloatArray, grid: FloatArray, P0: FloatArray, law: int, L: FloatAr
         m0, m1, m2 = 0.0, 0.0, 0.0
         for j in range(k):
             u[j] = 0.0
-        if i < steps:
+        if law is not None and i < steps:
             m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, x, yq, z, c, w0, w1, w2, b0, b1, b2,
                                              kind != FIELD_NONE, memory, u, REF, i)
         d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])

@@ -44,6 +44,7 @@ import numpy as np
 from ...jit import kernel_array
 from ...typing import FloatArray
 from . import compiled_loop as _loop
+from . import loop_laws as _laws
 from ._front import locked_inverse
 from ..environment.magnetic import FIELD_NONE, FIELD_TABLE, field_form
 from ..models.dipole import ResidualDipole
@@ -148,7 +149,7 @@ def _plain(controller: Any, cls: type) -> bool:
     return isinstance(controller, cls) and type(controller).__call__ is cls.__call__
 
 
-def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> _loop.Law | None:
+def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any, field: Any) -> _laws.Law | None:
     """``(law, parameters, allocation, reference)`` of a built-in controller that the compiled loop
     runs (:mod:`~tumble.dynamics.control.compiled_loop`), or None for the Python path: B-dot; MRP
     feedback to a fixed target or tracking a moving reference (``reference``, tabulated at the
@@ -160,7 +161,7 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     --------
     >>> import numpy as np
     >>> from tumble.dynamics.control.control_kernel import compiled_law
-    >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
+    >>> from tumble.dynamics.control.loop_laws import LAW_BDOT
     >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.sensors import Sensors
     >>> law, L, pinv, reference = compiled_law(BDot(gain=1e4, period=1.0), Sensors(), np.ones(3), None, None)
@@ -177,7 +178,7 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     k = 0 if wheels is None else wheels.count
     if _plain(controller, BDot):
         L = [controller.gain, controller.form == "normalized", controller.derivative == "difference"]
-        return _loop.LAW_BDOT, np.array(L, dtype=float), np.zeros((k, 3)), None
+        return _laws.LAW_BDOT, np.array(L, dtype=float), np.zeros((k, 3)), None
     dumping = _plain(controller, MomentumDumping)
     pointing = controller.pointing if dumping else controller
     if not _plain(pointing, MRPFeedback) or wheels is None or (dumping and field is None):
@@ -191,7 +192,7 @@ def compiled_law(controller: Any, sensors: Any, moments: FloatArray, wheels: Any
     L = [pointing.K, pointing.P, pointing.Ki, pointing.integral_limit, pointing.gyroscopic, pointing.period,
          *((0.0, 0.0, 0.0, 1.0) if moving else pointing.target.as_quat()),
          *((controller.gain, *controller.h_target) if dumping else (0.0, 0.0, 0.0, 0.0)), *pointing._I_rw.ravel()]
-    return (_loop.LAW_DUMPING if dumping else _loop.LAW_MRP, np.array(L, dtype=float),
+    return (_laws.LAW_DUMPING if dumping else _laws.LAW_MRP, np.array(L, dtype=float),
             np.ascontiguousarray(pointing._pinv), pointing.target if moving else None)
 
 
@@ -366,7 +367,7 @@ class ControlKernel:
         self.rtol, self.atol = max(float(rtol), 100 * np.finfo(float).eps), float(atol)
         self.kernels = _loop.kernels()
 
-    def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> _loop.Law | None:
+    def law(self, controller: Any, sensors: Any, wheels: Any, field: Any) -> _laws.Law | None:
         """:func:`compiled_law` for this run's moments.
 
         Examples
@@ -429,7 +430,7 @@ class ControlKernel:
             raise RuntimeError(f"the integration failed at t = {t_start} s: the step size fell below 10 ulp of t")
         return _loop.unpadded(out, self.k)
 
-    def run(self, y0: FloatArray, grid: FloatArray, law: _loop.Law, rods: FloatArray,
+    def run(self, y0: FloatArray, grid: FloatArray, law: _laws.Law, rods: FloatArray,
             limits: FloatArray, carry: bool = False, *,
             padded: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """The whole loop in one compiled call: the states at the control instants ``grid`` (s) from
@@ -446,7 +447,7 @@ class ControlKernel:
 
         >>> import numpy as np
         >>> from tumble.dynamics.control.control_kernel import ControlKernel
-        >>> from tumble.dynamics.control.compiled_loop import LAW_BDOT
+        >>> from tumble.dynamics.control.loop_laws import LAW_BDOT
         >>> from tumble.dynamics.environment.magnetic import UniformField
         >>> I = np.array([0.01, 0.02, 0.03])
         >>> kernel = ControlKernel(I, np.diag(1 / I), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)

@@ -20,7 +20,7 @@ model the run's own), the whole loop runs here instead, in one call, with the sa
   :func:`~tumble.dynamics.special.quaternion.turned_by`);
 - **the filter** is the compiled MEKF's (:mod:`~tumble.dynamics.estimation.mekf_kernels`:
   propagation with the mean of two gyroscope readings, the vector and attitude updates);
-- **the law** is :func:`~tumble.dynamics.control.compiled_loop.law_command`, fed the estimate;
+- **the law** is :func:`~tumble.dynamics.control.loop_laws.law_command`, fed the estimate;
 - **the start** (a star tracker reading, or TRIAD on the Sun and the field) stays Python's
   (:meth:`~tumble.dynamics.control.estimated.Estimated.start`): the loop pauses at the step
   whose readings can start the filter, Python starts it, the loop goes on from that step.
@@ -60,16 +60,15 @@ from ..models.vector_sensors import (CoarseSunSensor, FineSunSensor, StarTracker
                                      fine_view, on_periods, tracker_noise)
 from ..special.quaternion import to_body, turned_by
 from . import compiled_loop as _cl
+from .loop_laws import LAW_BDOT, Law, held, law_command
 from .loop_terms import FIELD_NONE, FIELD_TABLE, field_body, field_world, tables
 from .pointing import reference_table
 
-__all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "Law", "plan", "plan_readings", "run"]
+__all__ = ["NEEDS_START", "NO_ATTITUDE", "SWITCH", "plan", "plan_readings", "run"]
 
 #: Statuses beyond the compiled loop's: the filter can start at the step ``mem[15]``; the law
 #: needs an attitude and the filter has not started.
 NEEDS_START, NO_ATTITUDE = 2, 3
-#: A law of the compiled loop (:data:`~tumble.dynamics.control.compiled_loop.Law`).
-Law = _cl.Law
 #: The loop paused where it was asked to (``stop``): a mission's switch to its pointing law.
 SWITCH = 4
 
@@ -99,7 +98,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
     before anything of that step but the state in ``Y`` is done, and writes into ``KW`` the rate
     (rad/s, body) the law is given at each step: the gyroscope's reading, less the filter's bias
     once it has started; ``REF`` a moving reference's rows at ``grid``
-    (:func:`~tumble.dynamics.control.compiled_loop.law_command`); ``Cf`` a fine sun sensor's frame
+    (:func:`~tumble.dynamics.control.loop_laws.law_command`); ``Cf`` a fine sun sensor's frame
     (sensor to body), which draws its noise only at the steps that it sees the Sun: the draws after
     are ``extra`` further on than ``offs`` says (kept in ``mem[16]`` over a pause)."""
     steps = grid.shape[0] - 1
@@ -164,7 +163,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 r0, r1, r2 = _tracker(C, S[10], S[11], noise[o], noise[o + 1], noise[o + 2])
                 t0, t1, t2, t3 = _turned(x, yq, z, c, r0, r1, r2)
                 has_trk = True
-            if mem[9] == 0.0 and S[16] == 0.0 and (has_trk or (has_sun and has_field and S[15] != 0.0) or law != _cl.LAW_BDOT):
+            if mem[9] == 0.0 and S[16] == 0.0 and (has_trk or (has_sun and has_field and S[15] != 0.0) or law != LAW_BDOT):
                 RD[0], RD[1], RD[2], RD[3], RD[4], RD[5], RD[6], RD[7] = t, g0, g1, g2, n0, n1, n2, (1.0 if has_field else 0.0)
                 RD[8], RD[9], RD[10], RD[11], RD[12] = v0, v1, v2, sg, (1.0 if has_sun else 0.0)
                 RD[13], RD[14], RD[15], RD[16], RD[17] = t0, t1, t2, t3, (1.0 if has_trk else 0.0)
@@ -174,7 +173,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 return NEEDS_START if has_trk or (has_sun and has_field and S[15] != 0.0) else NO_ATTITUDE
             if mem[9] == 0.0:  # the readings themselves: no filter, or B-dot before its start
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
-                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, ax, ay, az, aw, g0, g1, g2, n0, n1, n2,
+                m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, ax, ay, az, aw, g0, g1, g2, n0, n1, n2,
                                                      has_field, memory, u, REF, i)
             else:
                 used_mag, used_sun, used_trk = used0[0], used0[1], used0[2]
@@ -208,11 +207,11 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     KS[i, j] = math.sqrt(fP[0, j, j])
                 KU[i, 0], KU[i, 1], KU[i, 2], KV[i] = used_mag, used_sun, used_trk, True
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2]
-                m0, m1, m2, memory = _cl.law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
+                m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
                                                      g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
                                                      has_field, memory, u, REF, i)
             mem[10], mem[11], mem[12], mem[13] = t, g0, g1, g2
-        d0, d1, d2 = _cl.held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
+        d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
             break
         _cl.set_command(P, d0, d1, d2, u)
@@ -316,7 +315,7 @@ def plan_readings(controller: Any, sensors: Any, moments: FloatArray, wheels: An
             or not (sensors.star_tracker is None or isinstance(sensors.star_tracker, StarTracker)):
         return None  # the sensors' own sampling, or a sensor the loop does not draw for
     laws = _laws(controller, moments, wheels, field)
-    if laws is None or (sensors.attitude == "none" and any(law[0] != _cl.LAW_BDOT for law in laws)):
+    if laws is None or (sensors.attitude == "none" and any(law[0] != LAW_BDOT for law in laws)):
         return None
     return laws
 

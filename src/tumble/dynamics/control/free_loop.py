@@ -41,13 +41,12 @@ from ..models.gravity import GravityGradient
 from ..models.orbit_gravity import OrbitGravityGradient
 from ..models.torques import TorqueSum
 from ._front import locked_inverse
-from .compiled_loop import LAW_BDOT
 from .control_kernel import ControlKernel, disturbance_form
 
 __all__ = ["FreeTerms", "free_terms", "run_free"]
 
-#: B-dot's law at zero gain, with no rods: it commands nothing.
-_NO_LAW, _NO_RODS, _NO_LIMITS = (LAW_BDOT, np.zeros(3), np.zeros((0, 3)), None), np.zeros((0, 3)), np.zeros(0)
+#: No law (None: the loop's kernel then compiles none, ``compiled_loop._loop``) and no rods: nothing commanded.
+_NO_LAW, _NO_RODS, _NO_LIMITS = (None, np.zeros(3), np.zeros((0, 3)), None), np.zeros((0, 3)), np.zeros(0)
 
 
 class FreeTerms(NamedTuple):

@@ -34,8 +34,8 @@ _feedforward = jit(tracking_feedforward_components, error_model="numpy")
 #: (T, 3), its time (s) and whether there is one.
 NO_MEMORY = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, False)
 #: A law of the loop: ``(law, parameters, allocation, reference)``
-#: (:func:`~tumble.dynamics.control.control_kernel.compiled_law`).
-Law = tuple[int, FloatArray, FloatArray, Any]
+#: (:func:`~tumble.dynamics.control.control_kernel.compiled_law`); ``law`` None: none (a free run).
+Law = tuple[int | None, FloatArray, FloatArray, Any]
 
 
 @jit(error_model="numpy")
