@@ -197,7 +197,9 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                     used_trk = has_trk
                     if has_trk:
                         qm[0, 0], qm[0, 1], qm[0, 2], qm[0, 3] = t0, t1, t2, t3
-                        Ra[0, :, :] = Rt
+                        for r in range(3):  # element by element: a slice's assignment compiles numba's
+                            for j in range(3):  # broadcast checks and their messages (~0.5 s of a first run)
+                                Ra[0, r, j] = Rt[r, j]
                         _update(fq, fb, fP, ya, Ha, Ra, ok, nis, qm)
                 for j in range(4):
                     KQ[i, j] = fq[0, j]
