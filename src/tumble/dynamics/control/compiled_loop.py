@@ -217,7 +217,14 @@ def method_flags(method: int) -> tuple[int | None, int | None, int | None]:
     >>> from tumble.dynamics.control.compiled_loop import DOP853, RK4, RK8, method_flags
     >>> method_flags(DOP853), method_flags(RK8), method_flags(RK4)
     ((1, None, None), (None, 1, None), (None, None, 1))
+    >>> method_flags(3)
+    Traceback (most recent call last):
+    ...
+    ValueError: method = 3 is not a hold interval's method; allowed: DOP853 (0), RK4 (1), RK8 (2)
     """
+    if method not in (DOP853, RK4, RK8):  # all None would run no method and report a collapsed step
+        raise ValueError(f"method = {method!r} is not a hold interval's method; allowed: DOP853 ({DOP853}), "
+                         f"RK4 ({RK4}), RK8 ({RK8})")
     return (1 if method == DOP853 else None), (1 if method == RK8 else None), (1 if method == RK4 else None)
 
 
@@ -256,8 +263,8 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, dop
         return OK, _fixed_steps(y, t0, t1, P, step, R, rk8, None), h_abs
     if rk4 is not None:
         return OK, _fixed_steps(y, t0, t1, P, step, R, None, rk4), h_abs
-    if dop853 is None:  # not reached: one method is given
-        return STEP_COLLAPSED, y, h_abs
+    if dop853 is None:  # not reached (method_flags gives one method); the guard that keeps the
+        return STEP_COLLAPSED, y, h_abs  # DOP853 steps below out of a fixed-step run's compile
     n = P[16]
     cs, ss = _direction(n, t0)
     f = rhs(t0, y, P, cs, ss)
