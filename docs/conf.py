@@ -20,6 +20,7 @@ The pages:
 
 from __future__ import annotations
 
+import gc
 import os
 import sys
 from pathlib import Path
@@ -31,6 +32,15 @@ sys.path.insert(0, str(DOCS / "_ext"))
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import tumble
+
+# -- the cyclic garbage collector ----------------------------------------------------------------
+# A build makes millions of docutils nodes, each tied to its parent in a reference cycle, and
+# keeps most of them. At Python's default thresholds (700, 10, 10) the collector ran ~11,500
+# times, ~250 of them over the whole growing heap: 10.9 of the build's 54 CPU-s. Collecting the
+# young objects 14 times less often and the whole heap 50 times less often: 2.3 s, the build 45
+# CPU-s, its peak memory 612 -> 639 MB (one process, -j 1, 2026-12-01; `setup` below freezes
+# what is alive once the extensions are set up).
+gc.set_threshold(10_000, 50, 50)
 
 project = "tumble"
 author = "the tumble authors"
@@ -169,3 +179,16 @@ html_sidebars = {"api/generated/*": [], "api/modules/*": []}
 html_context = {"default_mode": "light"}
 # The search's summaries fetch() each hit's page, which a browser refuses from file://.
 html_show_search_summary = False
+
+
+def _freeze_the_set_up(app) -> None:
+    """Move what is alive after set-up (Sphinx, its extensions, tumble, numpy, matplotlib: none of
+    it garbage) out of the collector's reach: sphinx-gallery calls ``gc.collect()`` before each
+    gallery script, which otherwise walked all of it each time (0.17 s a script)."""
+    gc.collect()
+    gc.freeze()
+
+
+def setup(app) -> None:
+    # before sphinx-gallery's own builder-inited handler (priority 500), which runs the scripts
+    app.connect("builder-inited", _freeze_the_set_up, priority=1)
