@@ -5,6 +5,9 @@ printing what the page shows it printing where it shows that.
 
 The commands are read from the pages and from the installed ``tumble``'s own ``--help``
 (:mod:`shown_commands`), so a command added to a guide is run here without a change to this file.
+Each runs in a process of its own, forked from one that imported the installed tumble and its
+libraries once (:mod:`forkrun`: the wheel's commands 66 -> 43 CPU-s, 2026-12-01); the console
+script itself runs as a real process for ``--help`` and ``tumble examples``.
 
 The virtualenv holds the wheel alone (``--no-deps``); its dependencies come from the test
 environment's site-packages through a ``.pth`` line, which puts that folder on ``sys.path`` without
@@ -32,10 +35,12 @@ import sys
 import sysconfig
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from forkrun import Forks
 from shown_commands import ROOT, Shown, help_commands, page_commands, PAGES, same_output
 from wheelbuild import build_wheel
 from limits import HANG_S
@@ -126,10 +131,11 @@ class Venv:
     tumble: Path
     site: Path
     env: dict = field(hash=False)
+    forks: Forks = field(hash=False)
 
 
 @pytest.fixture(scope="module")
-def venv(tmp_path_factory) -> Venv:
+def venv(tmp_path_factory) -> Iterator[Venv]:
     """A fresh virtualenv with the wheel built from this tree and nothing else of tumble."""
     wheel = build_wheel(tmp_path_factory.mktemp("tree"), tmp_path_factory.mktemp("wheel"))
     root = tmp_path_factory.mktemp("venv") / "venv"
@@ -151,9 +157,11 @@ def venv(tmp_path_factory) -> Venv:
     (site / "tumble_test_dependencies.pth").write_text(
         "".join(f"{p}\n" for p in ours) + "import _tumble_wheel_test_blocker\n", encoding="utf-8")
     env.update(PATH=f"{root / 'bin'}{os.pathsep}{env.get('PATH', '')}", COLUMNS="1000", MPLBACKEND="Agg")
-    made = Venv(root, python, root / "bin" / "tumble", site, env)
+    made = Venv(root, python, root / "bin" / "tumble", site, env,
+                Forks(python, root / "bin" / "tumble", env, tmp_path_factory.mktemp("forks"), HANG_S))
     _share_compiled_kernels(made)
-    return made
+    yield made
+    made.forks.close()
 
 
 def _share_compiled_kernels(venv: Venv) -> int:
@@ -273,8 +281,9 @@ class Outcome:
 
 
 def _run(venv: Venv, folder: Path, argv: list[str]) -> subprocess.CompletedProcess:
-    return subprocess.run([str(venv.tumble), *argv], cwd=folder, env=venv.env, capture_output=True, text=True,
-                          timeout=HANG_S)
+    """``tumble ARGV`` in ``folder``, in a process of its own forked from one that has imported the
+    installed tumble and its libraries (:mod:`forkrun`: the imports once, not once a command)."""
+    return venv.forks.run(argv, folder)
 
 
 def _user_files(argv: tuple[str, ...]) -> set[str]:
