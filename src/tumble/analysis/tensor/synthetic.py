@@ -297,8 +297,8 @@ def _flight(flown: Rigid, w0: FloatArray, times: FloatArray, t0: float, breaks, 
                                       tau[..., 1], tau[..., 2])
         return (np.stack(dL, axis=-1) - hdot) @ Iinv
 
-    def rhs(t, w):
-        return rates(np.array([t]), w[None])[0]
+    def rhs(t, w):  # one time (a float) and one omega (3,): no arrays of one sample to build
+        return rates(t, w)
 
     w = np.empty((times.size, 3))
     state, start = w0, t0
@@ -400,10 +400,10 @@ def synthetic_throw(seed: int, flown: Rigid, *, rotor_inertia: float = ROTOR_INE
     # the rotor: its schedule, the air's drag on it (an external torque on the whole, along its axis)
     rotor_drag = rng.uniform(2e-11, 8e-11)  # N m s^2: -k Omega^2, 0.3-1.2 % of the spin-up's momentum over the plateau
 
-    def hvec(s):
+    def hvec(s):  # at one time (float) or many (array)
         speed, rate = sched.speed_and_rate(s - tt.rotor)
-        return (rotor_inertia * speed[:, None] * a, rotor_inertia * rate[:, None] * a,
-                -(speed * np.abs(speed))[:, None] * a)
+        return (np.multiply.outer(rotor_inertia * speed, a), np.multiply.outer(rotor_inertia * rate, a),
+                np.multiply.outer(-(speed * np.abs(speed)), a))
 
     speed, _ = sched.speed_and_rate(t - tt.rotor)
 
