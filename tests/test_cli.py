@@ -130,6 +130,21 @@ def test_help_imports_no_heavy_module():
     assert proc.stdout.strip() == "[]"
 
 
+def test_the_commands_machinery_imports_no_scipy_stats():
+    """scipy.stats costs ~0.2 s to import (its distributions build their docstrings): the fit, the
+    throw files and the tensor's pooling, which a throw file's reader imports, take the one
+    quantile they need from scipy.special. The check can fail: the ensemble's confidence bounds
+    do import it."""
+    modules = ("tumble.commands.fit", "tumble.commands.tensor", "tumble.commands.scenario", "tumble.io.throwfile",
+               "tumble.analysis.tensor")
+    code = f"import sys, {', '.join(modules)}; print('scipy.stats' in sys.modules)"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=HANG_S)
+    assert proc.stdout.split() == ["False"]
+    code = "import sys, tumble.ensemble.confidence as c; c.fraction_interval(10, 3); print('scipy.stats' in sys.modules)"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=HANG_S)
+    assert proc.stdout.split() == ["True"]
+
+
 @pytest.mark.parametrize("argv", [
     ["simulate", "examples/seed_flip.toml", "--out", "run"],
     ["fit", "tosses.csv", "--body", "t-handle", "--out", "fitted"],
