@@ -356,9 +356,7 @@ def birge_factor(chi2_dof: float, throws: int) -> float:
     dof = 6 * (int(throws) - 1)
     if dof < SHRINK_DOF:
         return 1.0
-    # chi2's 5 % quantile, 2 P^-1(dof / 2, 0.05), as scipy.stats.chi2.ppf computes it (its _ppf), from
-    # scipy.special: scipy.stats costs ~0.2 s to import, in every command that reads a throw file
-    return float(min(1.0, chi2_dof * dof / (2.0 * gammaincinv(dof / 2, 0.05))))
+    return float(min(1.0, chi2_dof * dof / (2.0 * gammaincinv(dof / 2, 0.05))))  # scipy.stats' chi2.ppf(0.05, dof)
 
 
 def outlier(own: Sequence[JointFit], inertia: FloatArray) -> tuple[int, float]:
