@@ -65,6 +65,15 @@ def test_euler_rhs_of_one_sample_is_the_batchs_row_bit_for_bit(rng, torque):
         assert euler_rhs([1.0, 1.0, 1.0], [0.0, 1.0, 2.0])[0] == -np.inf
 
 
+def test_quaternion_rate_of_one_instant_is_the_batchs_row_bit_for_bit(rng):
+    from tumble.dynamics.special.quaternion import quaternion_rate
+
+    q, w = rng.normal(size=(200, 4)), rng.normal(size=(200, 3)) * 10.0
+    batch = quaternion_rate(q, w)
+    assert all(np.array_equal(quaternion_rate(q[k], w[k]), batch[k]) for k in range(200))
+    assert quaternion_rate(q[0], w[0]).shape == (4,)
+
+
 # -- conservation ------------------------------------------------------------------------
 
 @pytest.mark.parametrize("preset", ["t-handle", "iss-t-handle"])

@@ -172,6 +172,9 @@ def quaternion_rate(quat: ArrayLike, omega: ArrayLike) -> Quaternion:
     """
     q = np.asarray(quat, float)
     w = np.asarray(omega, float)
+    if q.shape == (4,) and w.shape == (3,):  # one instant (a Python right-hand side's every call): the
+        # same formula over plain floats, bit for bit, numpy's broadcasting left out
+        return np.array(quaternion_rate_components(*q.tolist(), *w.tolist()))
     q, w = np.broadcast_arrays(q, w[..., [0, 1, 2, 0]])
     return np.stack(quaternion_rate_components(q[..., 0], q[..., 1], q[..., 2], q[..., 3],
                                                w[..., 0], w[..., 1], w[..., 2]), axis=-1)
