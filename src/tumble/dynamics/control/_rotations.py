@@ -1,7 +1,7 @@
 """The Python path's rotation matrix (from the one writing, ``to_body``) and cross product on 3-vectors: what the closed loop's
 right-hand side (:func:`~tumble.dynamics.control.controlled.simulate_controlled` with a model of
-one's own) and the fits' synthetic gyrostat flights (:func:`~tumble.analysis.fit.endings.gyrostat_flight`)
-call at every evaluation, where numpy's and scipy's general routines cost tens of microseconds a call.
+one's own) calls at every evaluation, where numpy's and scipy's general routines cost tens of
+microseconds a call.
 """
 
 from __future__ import annotations
