@@ -105,7 +105,7 @@ class ForkRunner:
         ready = self._answer(timeout)
         if "ready" not in ready:
             raise RuntimeError(f"the fork server did not start: {ready}")
-        self.imported = ready["ready"]
+        self.imported = ready["ready"]  # the tumble/__init__.py the server imported: the test checks whose
 
     def _line(self, timeout: float) -> bytes | None:
         """The server's next line, None if none came in ``timeout`` s (read from the pipe's file

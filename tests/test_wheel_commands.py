@@ -470,6 +470,9 @@ def test_every_command_the_readme_the_guides_and_help_show_runs_from_an_empty_fo
         outcomes = list(pool.map(lambda ij: _try_shown(venv, copied_examples, tmp_path / f"cmd{ij[0]:02d}", ij[1],
                                                        outputs, made_once),
                                  enumerate(jobs)))
+    # the forked commands ran the wheel's tumble (each server's import), not the checkout's
+    assert venv.forks.runners and all(Path(r.imported).resolve().is_relative_to(venv.site.resolve())
+                                      for r in venv.forks.runners), [r.imported for r in venv.forks.runners]
 
     failures = [f"{', '.join(c.where for c in o.shown)}: {o.shown[0].shown}\n    ran: {' ; '.join(o.steps)}\n"
                 f"    {o.problem}" for o in outcomes if o.problem]
