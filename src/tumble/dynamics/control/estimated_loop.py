@@ -174,7 +174,7 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
             if mem[9] == 0.0:  # the readings themselves: no filter, or B-dot before its start
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0, g1, g2
                 m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, ax, ay, az, aw, g0, g1, g2, n0, n1, n2,
-                                                     has_field, memory, u, REF, i)
+                                                 has_field, memory, u, REF, i)
             else:
                 used_mag, used_sun, used_trk = used0[0], used0[1], used0[2]
                 if not (fresh and i == i0):
@@ -210,8 +210,8 @@ def _knowledge_loop(y0: FloatArray, i0: int, fresh: bool, grid: FloatArray, P0: 
                 KU[i, 0], KU[i, 1], KU[i, 2], KV[i] = used_mag, used_sun, used_trk, True
                 KW[i, 0], KW[i, 1], KW[i, 2] = g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2]
                 m0, m1, m2, memory = law_command(law, L, pinv, P0, y, t, fq[0, 0], fq[0, 1], fq[0, 2], fq[0, 3],
-                                                     g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
-                                                     has_field, memory, u, REF, i)
+                                                 g0 - fb[0, 0], g1 - fb[0, 1], g2 - fb[0, 2], n0, n1, n2,
+                                                 has_field, memory, u, REF, i)
             mem[10], mem[11], mem[12], mem[13] = t, g0, g1, g2
         d0, d1, d2 = held(rods, limits, m0, m1, m2, u, y, P0, D[i], U[i])
         if i == steps:
