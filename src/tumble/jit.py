@@ -44,7 +44,7 @@ from typing import TYPE_CHECKING, Any, TypeVar, cast, overload
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "formula", "jit", "kernel_array", "source_stamp"]
+__all__ = ["PARALLEL_BODIES", "cache_root", "cores", "formula", "jit", "kernel_array", "kernel_cache_folder", "source_stamp"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -143,6 +143,22 @@ def _folder_for(source: Path) -> Path | None:
         relative = Path(hashlib.sha1(str(source.parent).encode()).hexdigest())
     folder = root / relative
     return folder if _writable(folder) else None
+
+
+def kernel_cache_folder() -> Path | None:
+    """The folder that holds the engine's compiled kernels (``tumble/dynamics/engine``'s, and each
+    kernels module's likewise beside its own source): its ``__pycache__`` where writable, else the
+    same place under :func:`cache_root`; None where no folder can hold a cache (then every
+    process compiles its kernels).
+
+    Examples
+    --------
+    >>> from tumble.jit import kernel_cache_folder
+    >>> folder = kernel_cache_folder()
+    >>> folder is None or folder.is_dir()
+    True
+    """
+    return _folder_for((SOURCES / "engine" / "kernels.py").resolve())
 
 
 @functools.cache

@@ -249,6 +249,23 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=c._cmd_tensor, inputs=("throws", "device"))
 
     p = sub.add_parser(
+        "compile",
+        help="compile tumble's kernels ahead into numba's cache, so that first runs start at once (once per install)",
+        description="numba compiles each kernel at its first use and keeps it in its cache, so the first "
+        "run with a torque, a damper, a batch or a controller pays seconds of compiling (the first closed loop "
+        "~20 s). This compiles them ahead in as many processes at a time as there are "
+        "cores (all five: ~30 s on 2 cores), through small real runs; later runs load them. Run it once after "
+        "installing or upgrading tumble; a change to tumble's sources compiles again at first use.",
+        epilog="Examples: tumble compile --list | tumble compile damper",
+        parents=[debug],
+    )
+    p.add_argument("groups", nargs="*", metavar="GROUP",
+                   help="control, simulate, orbit, batch or damper (default: all; tumble compile --list describes them)")
+    p.add_argument("--jobs", metavar="N", help="processes at a time (default: the cores this process may use)")
+    p.add_argument("--list", action="store_true", help="list the groups and what each compiles, and compile nothing")
+    p.set_defaults(func=c._cmd_compile)
+
+    p = sub.add_parser(
         "demo",
         help="the T-handle study on built-in defaults",
         description="Runs the T-handle study (seed T-handle and space-station handle, spin about each "

@@ -9,6 +9,8 @@ and writes files, and :mod:`tumble.cli` only parses the command line and prints.
   (``tumble sweep``).
 - :mod:`~tumble.commands.fit`: :func:`~tumble.commands.fit.run_fit_command`, a gyroscope
   recording (``tumble fit``).
+- :mod:`~tumble.commands.compile_ahead`: :func:`~tumble.commands.compile_ahead.compile_ahead`, the
+  kernels compiled ahead into numba's cache (``tumble compile``).
 
 ``run_scenario`` is loaded on first use (PEP 562), so that ``tumble fit`` does not import the
 simulation's compiled kernels.
