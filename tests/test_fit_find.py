@@ -325,19 +325,25 @@ def test_a_rise_just_past_its_limit_reads_past_it(budget):
     assert float(said[3]) < float(said[2]) <= 100 * r + 0.05, why
 
 
-def test_a_flight_whose_ratios_are_not_determined_is_not_judged_by_its_budgets():
-    """Seed 71's first flight (a flexing racquet, 1.1 s, 0.82 turns): its own fit leaves the
-    ratios undetermined (uncertainties 0.5 and 0.25, capped), so the energy and momentum budgets
-    computed with its moments say nothing, and it was refused as "not a rigid body: its energy
-    rose by 10.3 %", a rigid synthetic flight accused of an internal torque. Its budgets still
-    read that rise with those moments; they are no longer asked where the ratios are not known.
-    (Which refusal it gets instead turns on the drag model's last digits: the test above.)"""
-    from tumble.analysis.fit.summary import DETERMINED_STD, flight_budgets, ratio_summary
+def test_a_flight_whose_ratios_are_not_determined_is_not_judged_by_its_budgets(monkeypatch):
+    """A flight whose own fit leaves the ratios undetermined is not refused by its energy and
+    momentum budgets, which computed with its moments say nothing. Seed 71's first flight (a
+    flexing racquet, 1.1 s, 0.82 turns) was refused as "not a rigid body: its energy rose by 10.3
+    %", a rigid synthetic flight accused of an internal torque; but whether its fit comes out
+    adequate and its budgets read a rise turns on the fit's last digits (it did on 2026-11-30's
+    machine; on 2026-12-01's, another CPU, the fit is refused as a misfit first). So here: a
+    clean 0.3 s flight spinning about the major axis, whose fit is adequate (residuals at the
+    noise) and whose ratios it cannot tell (their uncertainties capped), judged with budgets made
+    to refuse every flight: the verdict stays adequate."""
+    from tumble.analysis.fit import summary
+    from tumble.analysis.fit.summary import DETERMINED_STD, ratio_summary, solution_adequacy
 
-    rec = synthetic_recording(71, tosses=2)
-    first = find_flights(rec.t, rec.omega)[0]
-    sol = first.solution
-    assert np.max(ratio_summary(sol)[1]) > DETERMINED_STD  # the moments are not known
-    a, b = first.first, first.stop
-    assert flight_budgets(sol, 0, rec.omega[a:b], np.ones((b - a, 3), bool)).startswith("not a rigid body")
-    assert first.status == "skipped" and not first.reason.startswith("not a rigid body"), first.reason
+    t = np.linspace(0.0, 0.3, 31)
+    w = free_omega([[0.5, 0.8, 1.0]], [[0.01, 0.01, 3.0]], t)[0] + np.random.default_rng(1).normal(0.0, 0.01, (31, 3))
+    keep = np.ones(w.shape, bool)
+    sol = fit_solution(t, w, keep, rotation=False, bias=False, drag="none")
+    assert np.min(ratio_summary(sol)[1]) > DETERMINED_STD  # neither ratio is known
+    assert solution_adequacy(sol, w[None], keep[None]).adequate
+    monkeypatch.setattr(summary, "flight_budgets", lambda *flight: "not a rigid body: its energy rose (a stand-in)")
+    verdict = solution_adequacy(sol, w[None], keep[None])
+    assert verdict.adequate and not verdict.reason.startswith("not a rigid body"), verdict.reason

@@ -39,7 +39,9 @@ import multiprocessing
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, ClassVar
+
+from .._html import Headline, headline_html, headline_repr
 
 __all__ = ["GROUPS", "Compiled", "Group", "compile_ahead", "compile_group", "group_names"]
 
@@ -114,7 +116,15 @@ def _control() -> None:
 @dataclass(frozen=True)
 class Group:
     """A group of kernels compiled together: its ``name``, a one-line ``description`` and the
-    small runs that compile them (``run``, called with no arguments)."""
+    small runs that compile them (``run``, called with no arguments).
+
+    Examples
+    --------
+    >>> from tumble.commands.compile_ahead import GROUPS
+    >>> damper = GROUPS[-1]
+    >>> damper.name, damper.description
+    ('damper', 'a body with a nutation damper: rk8, dop853')
+    """
 
     name: str
     description: str
@@ -148,13 +158,26 @@ def group_names() -> list[str]:
 @dataclass(frozen=True)
 class Compiled:
     """What compiling one group did: the group's ``name``, the ``kernels`` numba compiled (0 where
-    the cache held them all), the CPU time spent compiling them (``compile_s``, s) and the group's
-    runs took in all (``seconds``, s, wall clock)."""
+    the cache held them all), the time spent compiling them (``compile_s``, s) and the time the
+    group's runs took in all (``seconds``, s; both wall clock, in the process that ran them).
+
+    Examples
+    --------
+    >>> from tumble.commands.compile_ahead import Compiled
+    >>> Compiled("damper", 10, 3.04, 4.5)
+    Compiled(group damper, kernels compiled 10, compiling 3.04 s, in all 4.5 s)
+    """
+
+    HEADLINE: ClassVar[Headline] = (("name", "group", ""), ("kernels", "kernels compiled", ""),
+                                    ("compile_s", "compiling", "s"), ("seconds", "in all", "s"))
 
     name: str
     kernels: int
     compile_s: float
     seconds: float
+
+    __repr__ = headline_repr
+    _repr_html_ = headline_html
 
 
 def compile_group(name: str) -> Compiled:
