@@ -247,7 +247,8 @@ def _compile_counter(listener: type) -> Any:
 def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None,
                   done: Callable[[Compiled], None] | None = None) -> list[Compiled]:
     """Compile the named groups (default all of :data:`GROUPS`) in ``jobs`` processes at a time
-    (default: the cores this process may use), each group in one of them.
+    (default: the cores this process may use), each group in one of them; with one at a time,
+    in this process.
 
     Parameters
     ----------
@@ -285,9 +286,13 @@ def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None
             raise ValueError(f"group = {name!r} is not a group of kernels; choose from {', '.join(known)}")
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise ValueError(f"jobs = {jobs!r} must be a whole number >= 1")
-    order = sorted(chosen, key=known.index)  # the longest first
+    order = sorted(chosen, key=known.index)  # the order of GROUPS
     workers = min(jobs or cores(), len(order)) or 1
     results: dict[str, Compiled] = {}
+    if workers == 1:  # one at a time: here, without a process's start (~1.5 CPU-s of imports)
+        for name in order:
+            results[name] = _reported(name, compile_group, done)
+        return [results[name] for name in chosen]
     # Fresh interpreters ("spawn", not a fork of this one, whose numba may be running threads), each
     # compiling one group after another: a kernel that two groups share is compiled or loaded once
     # per process, and a process's start (its imports, ~1.5 CPU-s) is paid once per core.
@@ -295,11 +300,18 @@ def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None
     with concurrent.futures.ProcessPoolExecutor(workers, mp_context=context) as pool:
         futures = {pool.submit(compile_group, name): name for name in order}
         for future in concurrent.futures.as_completed(futures):
-            try:
-                compiled = future.result()
-            except Exception as exc:  # a group's own runs failed: tumble's defect, not the caller's input
-                raise RuntimeError(f"compiling the group {futures[future]!r} failed: {type(exc).__name__}: {exc}") from exc
-            results[compiled.name] = compiled
-            if done is not None:
-                done(compiled)
+            name = futures[future]
+            results[name] = _reported(name, lambda _: future.result(), done)
     return [results[name] for name in chosen]
+
+
+def _reported(name: str, compile_one: Callable[[str], Compiled], done: Callable[[Compiled], None] | None) -> Compiled:
+    """``compile_one(name)``, told to ``done``; a failure of the group's own runs (tumble's defect,
+    not the caller's input) as a RuntimeError naming the group."""
+    try:
+        compiled = compile_one(name)
+    except Exception as exc:
+        raise RuntimeError(f"compiling the group {name!r} failed: {type(exc).__name__}: {exc}") from exc
+    if done is not None:
+        done(compiled)
+    return compiled
