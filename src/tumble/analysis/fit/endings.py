@@ -35,7 +35,7 @@ from typing import Protocol
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ...dynamics.euler import euler_rhs
+from ...dynamics.euler import cross, euler_rhs
 
 
 class TossBody(Protocol):
@@ -187,7 +187,7 @@ def gyrostat_flight(body: TossBody, w0: np.ndarray, duration: float, times: np.n
         on = s < ramp
         h = h_final * (s / ramp if on else 1.0) * a
         hdot = (h_final / ramp if on else 0.0) * a
-        return euler_rhs(w, I, np.cross(h, w) - hdot + drag(w))  # the rotor on the body: h x w - h'
+        return euler_rhs(w, I, cross(h, w) - hdot + drag(w))  # the rotor on the body: h x w - h'
 
     sol = solve_ivp(rhs, (0.0, duration), w0, method="DOP853", rtol=1e-9, atol=1e-10, dense_output=True,
                     max_step=ramp / 4)

@@ -1,4 +1,4 @@
-"""The Python path's rotation matrix (from the one writing, ``to_body``) and cross product on 3-vectors: what the closed loop's
+"""The Python path's rotation matrix (from the one writing, ``to_body``) on 3-vectors: what the closed loop's
 right-hand side (:func:`~tumble.dynamics.control.controlled.simulate_controlled` with a model of
 one's own) calls at every evaluation, where numpy's and scipy's general routines cost tens of
 microseconds a call.
@@ -11,7 +11,7 @@ import numpy as np
 from ...typing import ArrayLike, FloatArray
 from ..special.quaternion import to_body
 
-__all__ = ["Matrix", "cross", "matrix"]
+__all__ = ["Matrix", "matrix"]
 
 
 def matrix(q: FloatArray) -> FloatArray:
@@ -75,17 +75,3 @@ class Matrix:
         """
         return Matrix(self.matrix.T)
 
-
-def cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    """``a x b`` of two 3-vectors, written out (numpy's ``cross`` costs ~30 us a call).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.dynamics.control._rotations import cross
-    >>> cross(np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])).tolist()
-    [0.0, 0.0, 1.0]
-    """
-    a0, a1, a2 = float(a[0]), float(a[1]), float(a[2])
-    b0, b1, b2 = float(b[0]), float(b[1]), float(b[2])
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])

@@ -45,7 +45,8 @@ from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
 from . import _display
 from ._front import check_actuators, checked, control_instants, locked_inverse
-from ._rotations import Matrix, cross, matrix
+from ..euler import cross
+from ._rotations import Matrix, matrix
 from .controllers import Controller
 from .estimated import Estimated
 from .mission import DetumbleThenPoint
