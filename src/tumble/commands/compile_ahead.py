@@ -264,18 +264,18 @@ def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None
     list of Compiled
         One per group, in the order given.
 
-    Notes
-    -----
-    The processes are started by ``multiprocessing``'s "spawn", which imports the calling
-    script again in each: called from a script of one's own (not from ``tumble compile``, a
-    notebook or a prompt), call it under ``if __name__ == "__main__":``.
-
     Raises
     ------
     ValueError
         For a name that is not a group's, or ``jobs`` below 1.
     RuntimeError
         Where a group's runs fail (naming the group and the error).
+
+    Notes
+    -----
+    The processes are started by ``multiprocessing``'s "spawn", which imports the calling
+    script again in each: called from a script of one's own (not from ``tumble compile``, a
+    notebook or a prompt), call it under ``if __name__ == "__main__":``.
 
     Examples
     --------
