@@ -82,8 +82,8 @@ def _cmd_examples(args) -> int:
 def _cmd_compile(args) -> int:
     import time
 
-    from ..commands.compile_ahead import GROUPS, compile_ahead
-    from ..jit import cores, kernel_cache_folder
+    from ..commands.compile_ahead import GROUPS, check_groups, compile_ahead, processes
+    from ..jit import kernel_cache_folder
 
     described = {group.name: group.description for group in GROUPS}
     width = max(len(name) for name in described)
@@ -91,19 +91,14 @@ def _cmd_compile(args) -> int:
         for name, description in described.items():
             print(f"{name:<{width}}  {description}")
         return EXIT_OK
-    jobs = None if args.jobs is None else _whole("--jobs", args.jobs, low=1)
+    names = check_groups(args.groups, "GROUP")
+    at_once = processes(len(names), args.jobs, "--jobs")
     folder = kernel_cache_folder()
     if folder is None:
         print("tumble: failed: no folder here can hold numba's cache (the package's, $NUMBA_CACHE_DIR, "
               "~/.cache and the temporary folder are read-only), so each run compiles its own kernels; "
               "nothing compiled ahead", file=sys.stderr)
         return EXIT_FAILURE
-    names = args.groups or list(described)
-    for name in names:
-        if name not in described:
-            raise ValueError(f"GROUP = {name} is not a group of kernels; choose from {', '.join(described)} "
-                             f"(tumble compile --list)")
-    at_once = min(jobs or cores(), len(names))
     print(f"compiling {len(names)} group{'s' if len(names) > 1 else ''} of kernels into numba's cache ({folder}, "
           f"and likewise for each module of kernels), {at_once} at a time", flush=True)
     start = time.perf_counter()
@@ -113,21 +108,10 @@ def _cmd_compile(args) -> int:
                 else f"{'in the cache already':<32}")
         print(f"  {compiled.name:<{width}}  {what}  {described[compiled.name]}", flush=True)
 
-    compile_ahead(names, jobs=jobs, done=done)
+    compile_ahead(names, jobs=args.jobs, done=done)
     print(f"done in {time.perf_counter() - start:.1f} s: a first run of these loads its kernels from the cache "
           f"instead of compiling them (until tumble's sources change)")
     return EXIT_OK
-
-
-def _whole(option: str, text: str, *, low: int) -> int:
-    """An option's whole number >= ``low``, the error quoting the value as written."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = low - 1
-    if value < low:
-        raise ValueError(f"{option} = {text} must be a whole number >= {low}")
-    return value
 
 
 def _cmd_sweep(args) -> int:

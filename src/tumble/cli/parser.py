@@ -261,7 +261,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("groups", nargs="*", metavar="GROUP",
                    help="control, simulate, orbit, batch or damper (default: all; tumble compile --list describes them)")
-    p.add_argument("--jobs", metavar="N", help="processes at a time (default: the cores this process may use)")
+    p.add_argument("--jobs", type=int, metavar="N", help="processes at a time (default: the cores this process may use)")
     p.add_argument("--list", action="store_true", help="list the groups and what each compiles, and compile nothing")
     p.set_defaults(func=c._cmd_compile)
 

@@ -43,7 +43,7 @@ from typing import Any, ClassVar
 
 from .._html import Headline, headline_html, headline_repr
 
-__all__ = ["GROUPS", "Compiled", "Group", "compile_ahead", "compile_group", "group_names"]
+__all__ = ["GROUPS", "Compiled", "Group", "check_groups", "compile_ahead", "compile_group", "group_names", "processes"]
 
 
 def _simulate() -> None:
@@ -155,6 +155,62 @@ def group_names() -> list[str]:
     return [group.name for group in GROUPS]
 
 
+def check_groups(names: Sequence[str] | str | None, field: str = "group") -> list[str]:
+    """The groups ``names`` asks for, each once, in the order given: every group for None (or an
+    empty sequence), one for a string.
+
+    Parameters
+    ----------
+    names : sequence of str, str or None
+        Groups' names (:func:`group_names`).
+    field : str
+        What the caller calls them, for the error (``"GROUP"`` on the command line).
+
+    Raises
+    ------
+    ValueError
+        For a name that is not a group's, naming it and the groups.
+
+    Examples
+    --------
+    >>> from tumble.commands.compile_ahead import check_groups
+    >>> check_groups(["damper", "simulate", "damper"]), check_groups("batch"), len(check_groups(None))
+    (['damper', 'simulate'], ['batch'], 5)
+    >>> check_groups(["simulation"])
+    Traceback (most recent call last):
+    ...
+    ValueError: group = 'simulation' is not a group of kernels; choose from control, simulate, batch, orbit, damper
+    """
+    known = group_names()
+    chosen = [names] if isinstance(names, str) else list(dict.fromkeys(names or known))
+    for name in chosen:
+        if name not in known:
+            raise ValueError(f"{field} = {name!r} is not a group of kernels; choose from {', '.join(known)}")
+    return chosen
+
+
+def processes(groups: int, jobs: int | None = None, field: str = "jobs") -> int:
+    """How many processes :func:`compile_ahead` runs at a time for ``groups`` groups: ``jobs``
+    (default the cores this process may use, :func:`tumble.jit.cores`), at most one a group.
+
+    Raises
+    ------
+    ValueError
+        For ``jobs`` not a whole number >= 1 (named ``field``).
+
+    Examples
+    --------
+    >>> from tumble.commands.compile_ahead import processes
+    >>> processes(5, 2), processes(1, 4)
+    (2, 1)
+    """
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise ValueError(f"{field} = {jobs!r} must be a whole number >= 1")
+    from ..jit import cores
+
+    return max(1, min(jobs or cores(), groups))
+
+
 @dataclass(frozen=True)
 class Compiled:
     """What compiling one group did: the group's ``name``, the ``kernels`` numba compiled (0 where
@@ -206,15 +262,14 @@ def compile_group(name: str) -> Compiled:
     >>> compile_group("simulate").kernels
     0
     """
-    groups = {group.name: group for group in GROUPS}
-    if name not in groups:
-        raise ValueError(f"group = {name!r} is not a group of kernels; choose from {', '.join(groups)}")
+    check_groups([name])
+    group = next(group for group in GROUPS if group.name == name)
     from numba.core import event
 
     counter = _compile_counter(event.Listener)
     start = time.perf_counter()
     with event.install_listener("numba:compile", counter):
-        groups[name].run()
+        group.run()
     return Compiled(name, counter.kernels, counter.seconds, time.perf_counter() - start)
 
 
@@ -252,10 +307,10 @@ def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None
 
     Parameters
     ----------
-    names : sequence of str, optional
-        Groups' names (:func:`group_names`); default every group.
+    names : sequence of str, str, optional
+        Groups' names (:func:`group_names`), or one; default every group (:func:`check_groups`).
     jobs : int, optional
-        Processes at a time (>= 1); default :func:`tumble.jit.cores`.
+        Processes at a time (>= 1); default :func:`tumble.jit.cores` (:func:`processes`).
     done : callable, optional
         Called with each group's :class:`Compiled` as it ends (to report progress).
 
@@ -283,17 +338,9 @@ def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None
     >>> [c.name for c in compile_ahead(["damper"], jobs=1)]
     ['damper']
     """
-    from ..jit import cores
-
-    known = group_names()
-    chosen = known if names is None else list(dict.fromkeys(names))
-    for name in chosen:
-        if name not in known:
-            raise ValueError(f"group = {name!r} is not a group of kernels; choose from {', '.join(known)}")
-    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
-        raise ValueError(f"jobs = {jobs!r} must be a whole number >= 1")
-    order = sorted(chosen, key=known.index)  # the order of GROUPS
-    workers = min(jobs or cores(), len(order)) or 1
+    chosen = check_groups(names)
+    workers = processes(len(chosen), jobs)
+    order = sorted(chosen, key=group_names().index)  # the order of GROUPS
     results: dict[str, Compiled] = {}
     if workers == 1:  # one at a time: here, without a process's start (~1.5 CPU-s of imports)
         for name in order:
