@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 
 from .._version import __version__
 from ..dynamics.methods.names import method_list
@@ -11,10 +12,48 @@ from ._common import EXIT_USAGE
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with tumble's one-line error format and exit status 2."""
+    """argparse with tumble's one-line error format and exit status 2, and an option it does not
+    know answered by its command's nearest option (``--t_end``: did you mean ``--t-end``?)."""
 
     def error(self, message: str):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+    def parse_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201 - argparse's signature
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = self._command(getattr(parsed, "command", None))
+            (command or self).error(unrecognized(extras, command or self))
+        return parsed
+
+    def _command(self, name: str | None) -> argparse.ArgumentParser | None:
+        """The parser of the subcommand ``name``, or None."""
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction) and name in action.choices:
+                return action.choices[name]
+        return None
+
+
+def unrecognized(extras: list[str], parser: argparse.ArgumentParser) -> str:
+    """The error for arguments ``parser`` does not take, with the nearest of its options for each
+    one that looks like an option (argparse's own message names no alternative; Python 3.11).
+
+    Examples
+    --------
+    >>> from tumble.cli.parser import build_parser, unrecognized
+    >>> simulate = build_parser()._command("simulate")
+    >>> unrecognized(["--t_end", "30"], simulate)
+    'unrecognized arguments: --t_end 30 (--t_end: did you mean --t-end?)'
+    >>> unrecognized(["extra"], simulate)
+    'unrecognized arguments: extra'
+    """
+    options = [o for action in parser._actions for o in action.option_strings if o.startswith("--")]
+    hints = []
+    for word in extras:
+        if word.startswith("--"):
+            name = word.split("=", 1)[0]
+            near = difflib.get_close_matches(name.replace("_", "-").lower(), options, n=1, cutoff=0.8)
+            hints += [f"{name}: did you mean {near[0]}?"] if near and near[0] != name else []
+    return f"unrecognized arguments: {' '.join(extras)}" + (f" ({'; '.join(hints)})" if hints else "")
 
 
 def build_parser() -> argparse.ArgumentParser:
