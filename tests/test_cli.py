@@ -70,6 +70,22 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv):
 
 
 @pytest.mark.parametrize(("argv", "said"), [
+    # a scenario file's key spelt as an option (t_end = ... in TOML, --t-end on the line), a typo
+    (["simulate", "seed_flip.toml", "--out", "r", "--t_end", "30"],
+     "tumble simulate: error: unrecognized arguments: --t_end 30 (--t_end: did you mean --t-end?)"),
+    (["simulate", "seed_flip.toml", "--out", "r", "--samplse=3", "--bogus"],
+     "tumble simulate: error: unrecognized arguments: --samplse=3 --bogus (--samplse: did you mean --samples?)"),
+    (["inertia", "t-handle", "--jsn"], "tumble inertia: error: unrecognized arguments: --jsn (--jsn: did you mean --json?)"),
+    (["--jsn"], "tumble: error: unrecognized arguments: --jsn"),
+])
+def test_an_unknown_option_is_answered_by_the_commands_nearest(capsys, argv, said):
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    assert capsys.readouterr().err == said + "\n"
+
+
+@pytest.mark.parametrize(("argv", "said"), [
     (["view", str(EXAMPLES / "data" / "racquet_tosses.csv"), "--out", "{tmp}/v.html"],
      "racquet_tosses.csv: a table of samples, not a body or scenario file (TOML): a gyroscope recording is fitted "
      "with 'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'"),
@@ -221,3 +237,33 @@ def test_missing_trimesh_is_one_line_with_the_install_hint_and_status_2(capsys, 
     code, out, err = run(capsys, "inertia", str(EXAMPLES / "bodies" / "every_part.toml"))
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and "pip install 'tumble[mesh]'" in err and "Traceback" not in err
+
+
+def test_a_run_that_waited_for_numba_says_so_at_a_terminal(monkeypatch, capsys):
+    """A first run compiles its kernels (5-25 s in a fresh install): at a terminal the command says
+    so and names ``tumble compile``; in a pipe or a script, below the threshold, or for ``tumble compile``
+    itself, it says nothing."""
+    import tumble.cli as cli
+
+    def run(argv, waited, tty=True):
+        clock = iter([10.0, 10.0 + waited])
+        monkeypatch.setattr(cli, "_compile_seconds", lambda: next(clock))
+        monkeypatch.setattr(sys.stderr, "isatty", lambda: tty)
+        assert main(argv) == 0
+        return capsys.readouterr().err
+
+    said = run(["inertia", "t-handle", "--json"], 7.4)
+    assert said == ("tumble: this run waited 7 s for numba to compile its kernels, once per install: "
+                    "'tumble compile' compiles them all ahead\n")
+    assert run(["inertia", "t-handle", "--json"], 7.4, tty=False) == ""
+    assert run(["inertia", "t-handle", "--json"], 0.5 * cli.COMPILE_NOTE_S) == ""
+    assert run(["compile", "--list"], 30.0) == ""
+
+
+def test_the_process_clock_counts_what_numba_compiles():
+    from tumble.jit import compile_seconds, jit
+
+    jit(lambda x: x + 2.0)(1.0)  # the clock starts with tumble's first kernel
+    before = compile_seconds()
+    assert jit(lambda x: x * 3.0)(1.0) == 3.0  # a new function: compiled now
+    assert compile_seconds() > before

@@ -204,6 +204,83 @@ def _install_locator() -> bool:
     return True
 
 
+@functools.cache
+def _counter_class() -> type:
+    """The class of :func:`compile_counter`, made once: a subclass of numba's ``event.Listener``
+    (numba asks for one), which exists only once numba is imported."""
+    import time
+
+    from numba.core import event
+
+    class CompileCounter(event.Listener):  # type: ignore[misc]
+        """Counts the kernels numba compiles and sums the time of the outermost compiles (a
+        kernel's callees compile inside it), s."""
+
+        def __init__(self) -> None:
+            self.kernels = 0
+            self.seconds = 0.0
+            self._depth = 0
+            self._start = 0.0
+
+        def on_start(self, event: Any) -> None:
+            if self._depth == 0:
+                self._start = time.perf_counter()
+            self._depth += 1
+            self.kernels += 1
+
+        def on_end(self, event: Any) -> None:
+            self._depth -= 1
+            if self._depth == 0:
+                self.seconds += time.perf_counter() - self._start
+
+    return CompileCounter
+
+
+def compile_counter() -> Any:
+    """A new listener for numba's ``"numba:compile"`` events (``numba.core.event``) with
+    ``kernels``, the kernels compiled, and ``seconds``, the wall time of the outermost compiles,
+    while it is installed (``event.install_listener``) or registered.
+
+    Examples
+    --------
+    >>> from numba.core import event
+    >>> from tumble.jit import compile_counter
+    >>> counter = compile_counter()
+    >>> with event.install_listener("numba:compile", counter):
+    ...     jit(lambda x: x + 1.0)(1.0)   # a lambda typed here: compiled, not cached
+    2.0
+    >>> counter.kernels, counter.seconds > 0.0
+    (1, True)
+    """
+    return _counter_class()()
+
+
+#: The process's own counter (:func:`compile_seconds`), registered when tumble first compiles.
+_CLOCK: list[Any] = []
+
+
+def _start_clock() -> None:
+    if not _CLOCK:
+        from numba.core import event
+
+        _CLOCK.append(compile_counter())
+        event.register("numba:compile", _CLOCK[0])
+
+
+def compile_seconds() -> float:
+    """The seconds this process has waited for numba to compile (the outermost compiles since
+    tumble's first kernel was made, :func:`jit`); 0 where none was. The command line names it
+    where a run waited long (:func:`tumble.cli.main`: ``tumble compile`` does it ahead).
+
+    Examples
+    --------
+    >>> from tumble.jit import compile_seconds
+    >>> compile_seconds() >= 0.0
+    True
+    """
+    return float(_CLOCK[0].seconds) if _CLOCK else 0.0
+
+
 @overload
 def jit(function: F, **options: Any) -> F: ...
 
@@ -233,6 +310,7 @@ def jit(function: F | None = None, **options: Any) -> F | Callable[[F], F]:
     from numba import njit
 
     _register_formulas()
+    _start_clock()
 
     source = Path(function.__code__.co_filename)
     # a function typed at a prompt or in a doctest has no file to key a cache on

@@ -90,8 +90,10 @@ def main(argv: list[str] | None = None) -> int:
             warnings.simplefilter("error", RuntimeWarning)
             warnings.showwarning = functools.partial(_show_warning, warnings.showwarning)  # restored on exit
             _named_files_exist(args)
+            compiled = _compile_seconds()
             status = args.func(args)
             sys.stdout.flush()  # a closed pipe shows here, inside the handlers below, not at exit
+            _compile_note(args.command, _compile_seconds() - compiled)
             return status
     except KeyboardInterrupt as exc:
         print(f"tumble: interrupted; nothing written{_kept(exc)}", file=sys.stderr)
@@ -128,6 +130,25 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+#: A run that waited this long (s) for numba to compile its kernels says so, with the cure.
+COMPILE_NOTE_S = 2.0
+
+
+def _compile_seconds() -> float:
+    """:func:`tumble.jit.compile_seconds`, without importing anything where no kernel was made."""
+    jit = sys.modules.get("tumble.jit")
+    return jit.compile_seconds() if jit is not None else 0.0
+
+
+def _compile_note(command: str, seconds: float) -> None:
+    """At a terminal, say that a command waited ``seconds`` for numba's first compile of its
+    kernels and that ``tumble compile`` does it once, ahead (a new user otherwise meets 5-25 s of
+    silence and cannot tell it from a slow tool). Not in a pipe or a script: its stderr is theirs."""
+    if command != "compile" and seconds >= COMPILE_NOTE_S and sys.stderr.isatty():
+        print(f"tumble: this run waited {seconds:.0f} s for numba to compile its kernels, once per install: "
+              f"'tumble compile' compiles them all ahead", file=sys.stderr)
 
 
 def _reader_gone() -> int:

@@ -266,37 +266,13 @@ def compile_group(name: str) -> Compiled:
     group = next(group for group in GROUPS if group.name == name)
     from numba.core import event
 
-    counter = _compile_counter(event.Listener)
+    from ..jit import compile_counter
+
+    counter = compile_counter()
     start = time.perf_counter()
     with event.install_listener("numba:compile", counter):
         group.run()
     return Compiled(name, counter.kernels, counter.seconds, time.perf_counter() - start)
-
-
-def _compile_counter(listener: type) -> Any:
-    """A numba event listener (a subclass of ``listener``, numba's ``event.Listener``, which numba
-    asks for) that counts the kernels compiled and sums the time of the outermost compiles (a
-    kernel's callees compile inside it)."""
-
-    class CompileCounter(listener):  # type: ignore[misc, valid-type]
-        def __init__(self) -> None:
-            self.kernels = 0
-            self.seconds = 0.0
-            self._depth = 0
-            self._start = 0.0
-
-        def on_start(self, event: Any) -> None:
-            if self._depth == 0:
-                self._start = time.perf_counter()
-            self._depth += 1
-            self.kernels += 1
-
-        def on_end(self, event: Any) -> None:
-            self._depth -= 1
-            if self._depth == 0:
-                self.seconds += time.perf_counter() - self._start
-
-    return CompileCounter()
 
 
 def compile_ahead(names: Sequence[str] | None = None, *, jobs: int | None = None,
