@@ -7,7 +7,8 @@ time and checks the trailing comment of each statement:
 
 - a comment on a run (a :class:`tumble.Trajectory`) or on a stability report (a dict with
   ``"flips"``) that says ``no flip`` or ``N flips`` (``-> 3 flips`` too), ``period X s``,
-  ``stable`` / ``unstable`` or ``axis N`` is compared with :func:`tumble.stability_report`;
+  ``stable`` / ``unstable`` or ``axis N`` is compared with :func:`tumble.stability_report`, and
+  one that starts with a method's name (``# rk8 (auto); no flip``) with the method that ran;
 - a comment on a bare expression (or a ``print``) that starts with a Python literal, or has one
   after its last ``": "`` (``# [0, 0, 0.25] m``, ``# (500, 3) rad/s``, ``# diag(1, 2, 3)``,
   ``# exact: 1.7864 s``, ``# True``), is compared with the value: a tuple of integers with an
@@ -39,6 +40,10 @@ _PREDICTED = re.compile(r"\b(unstable|stable)\b")
 _AXIS = re.compile(r"\baxis (\d)\b")
 _DIAG = re.compile(r"diag\(([^()]*)\)")
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+#: A comment that starts with a method's name (``# dop853; ...``, ``# rk8 (auto); ...``) names the
+#: method that ran (``radau``: where dop853 hands a stiff damper to scipy's Radau).
+_METHOD = re.compile(rf"({'|'.join(re.escape(m) for m in sorted([*tumble.METHODS, 'radau'], key=len, reverse=True))})"
+                     r"( \(auto\))?(?=[;,:]|$)")
 
 
 def _comments(code: str) -> dict[int, str]:
@@ -112,6 +117,11 @@ def _check_run(value, comment: str, where: str) -> list[str]:
     if match and checked:
         assert report["axis"] == int(match.group(1)), f"{where}: the comment says {match.group(0)!r}, the axis is {report['axis']}"
         checked.append(match.group(0))
+    match = _METHOD.match(comment)
+    if match and isinstance(value, tumble.Trajectory):  # "# rk8 (auto); no flip": the method that ran
+        assert match.group(1) == value.method and (match.group(2) is None or value.auto), (
+            f"{where}: the comment says {match.group(0)!r}, the run's method is {value.method_label!r}")
+        checked.append(match.group(0))
     return checked
 
 
@@ -170,6 +180,8 @@ def run_checked(code: str, filename: str) -> list[str]:
             continue
         if isinstance(value, tumble.Trajectory) or (isinstance(value, dict) and "flips" in value):
             checked += _check_run(value, comment, where)
+            if isinstance(stmt, ast.Expr) and comment.startswith(type(value).__name__ + "("):  # a report's repr
+                checked += _check_repr(value, comment, where)
         elif isinstance(stmt, ast.Expr) and value is not None and comment.startswith(type(value).__name__ + "("):
             checked += _check_repr(value, comment, where)
         elif isinstance(stmt, ast.Expr):

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._html import fmt, plural, result_html, result_repr
 from ..dynamics import BatchTrajectory, Trajectory
 from ..mass import AXIS_ROLES, moment_degeneracy
 from .stability import SpinPrediction, flip_interval, flip_interval_asymptotic, flip_times, linearised_rate, spin_prediction
@@ -14,7 +15,7 @@ if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
     from ..dynamics.models.torques import TorqueModel
 
-__all__ = ["gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
+__all__ = ["StabilityReport", "gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
 
 #: Most samples :func:`torque_budget` calls a torque that varies in time at, one call each (~10 us).
 BUDGET_SAMPLES = 100_000
@@ -25,7 +26,42 @@ BUDGET_SAMPLES = 100_000
 BUDGET_TURN = 0.5
 
 
-def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
+class StabilityReport(dict):  # type: ignore[type-arg]
+    """What :func:`stability_report` returns: a dict of its keys (written to JSON as it is), shown
+    as one line, ``StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)``,
+    and as a table in a notebook.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> report = tumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0))
+    >>> report
+    StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)
+    >>> report["flips"], isinstance(report, dict)
+    (11, True)
+    """
+
+    __slots__ = ()
+
+    def _parts(self) -> list[str]:
+        if self.get("axis") is None:
+            return ["at rest: no spin axis", plural(int(self.get("flips", 0)), "flip")]
+        why = "" if self.get("theory") in ("rigid body", None) else f" ({self['theory']})"
+        parts = [f"axis {self['axis']} ({self['role']}): {self.get('predicted') or 'no prediction'}{why}",
+                 plural(int(self["flips"]), "flip")]
+        if self.get("flip_period") is not None:
+            parts.append(f"period {fmt(self['flip_period'])} s")
+        return parts
+
+    def __repr__(self) -> str:
+        return result_repr("StabilityReport", self._parts())
+
+    def _repr_html_(self) -> str:
+        return result_html("StabilityReport", [(key, "none" if value is None else fmt(value) if isinstance(value, float)
+                                                 else value) for key, value in self.items()])
+
+
+def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | list[StabilityReport]:
     """Prediction against observation for the spin axis, classified by the motion itself.
 
     The spin axis is the principal axis nearest the initial angular momentum and a rigid body's
@@ -42,7 +78,8 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
 
     Returns
     -------
-    dict (a list of dicts for a batch)
+    StabilityReport (a list of them for a batch)
+        A dict, shown on one line (:class:`StabilityReport`).
         Keys: ``axis`` (1, 2 or 3, principal, ascending moments: the largest ``|I_j omega_j|`` at
         the start; None for a body starting at rest, and then every prediction is None),
         ``role``, ``circulation`` (1 or 3, the axis omega circulates about, torque-free theory of
@@ -88,9 +125,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
         return [stability_report(traj[i]) for i in range(len(traj))]
     w0 = traj.omega[0]
     if not np.any(w0):
-        return {"axis": None, "role": None, "circulation": None, "predicted": None, "growth_rate": None,
-                "wobble_frequency": None, "flips": 0, "flip_period": None, "flip_period_exact": None,
-                "flip_period_asymptotic": None, "theory": None}
+        return StabilityReport(axis=None, role=None, circulation=None, predicted=None, growth_rate=None,
+                               wobble_frequency=None, flips=0, flip_period=None, flip_period_exact=None,
+                               flip_period_asymptotic=None, theory=None)
     I = traj.moments
     motion = spin_prediction(w0, I)
     a, circulation = int(motion.axis), int(motion.circulation)  # 1, 2 or 3; 1 or 3
@@ -104,7 +141,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
         if a != circulation and np.isfinite(value):
             exact = value
             asymptotic = float(flip_interval_asymptotic(w0, I))
-    return {
+    return StabilityReport({
         "axis": a,
         "role": AXIS_ROLES[a - 1],
         "circulation": circulation,
@@ -116,7 +153,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> Any:
         "flip_period_exact": exact,
         "flip_period_asymptotic": asymptotic,
         "theory": theory,
-    }
+    })
 
 
 def _prediction(traj: Trajectory, motion: SpinPrediction) -> tuple[str | None, str | None, float, float]:
