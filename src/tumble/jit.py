@@ -244,7 +244,7 @@ def compile_counter() -> Any:
     Examples
     --------
     >>> from numba.core import event
-    >>> from tumble.jit import compile_counter
+    >>> from tumble.jit import compile_counter, jit
     >>> counter = compile_counter()
     >>> with event.install_listener("numba:compile", counter):
     ...     jit(lambda x: x + 1.0)(1.0)   # a lambda typed here: compiled, not cached

@@ -27,7 +27,6 @@ shared columns and its own three), and returned as such.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -70,17 +69,15 @@ def rotvec_matrix(rv: ArrayLike) -> np.ndarray:
     >>> rotvec_matrix([0.0, 0.0, np.pi / 2]).round(12).tolist()   # a quarter turn about z
     [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
     """
-    x, y, z = np.asarray(rv, float).tolist()  # floats: a 3-vector's numpy arithmetic costs ~8 us a call
-    a2 = x * x + y * y + z * z
-    a = math.sqrt(a2)
+    rv = np.asarray(rv, float)
+    a = float(np.sqrt(rv @ rv))
     if a < 1e-8:  # second order: sin(a)/a = 1, (1 - cos a)/a^2 = 1/2 to ~1e-17
         s1, s2 = 1.0, 0.5
     else:
-        s1, s2 = math.sin(a) / a, (1.0 - math.cos(a)) / a2
-    # K^2 = v v^T - |v|^2 I for the cross-product matrix K of v = (x, y, z)
-    xx, yy, zz, xy, xz, yz = s2 * x * x, s2 * y * y, s2 * z * z, s2 * x * y, s2 * x * z, s2 * y * z
-    sx, sy, sz = s1 * x, s1 * y, s1 * z
-    return np.array([[1.0 - yy - zz, xy - sz, xz + sy], [xy + sz, 1.0 - xx - zz, yz - sx], [xz - sy, yz + sx, 1.0 - xx - yy]])
+        s1, s2 = np.sin(a) / a, (1.0 - np.cos(a)) / (a * a)
+    x, y, z = rv
+    K = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + s1 * K + s2 * (K @ K)
 
 
 def principal_rates(moments: ArrayLike, omega0: ArrayLike, tau: ArrayLike, drag: str = "none",
