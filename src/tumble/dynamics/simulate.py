@@ -127,7 +127,8 @@ def simulate(
         changes (:mod:`~tumble.dynamics.methods.auto`). The run's ``method`` says which.
     frame : {"principal", "design"}
         Frame of ``omega0``: the principal frame (axes ordered I1 <= I2 <= I3) or the body's
-        design frame. A body-frame torque is read in the same frame.
+        design frame. A body-frame torque is read in the same frame: a function is called with
+        omega in that frame and that frame's attitude (design to world for ``"design"``).
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional

@@ -133,6 +133,8 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     """Wrap a body-frame torque given in design coordinates so it returns principal ones; ``A`` the
     principal -> design rotation (columns: the principal axes); ``w`` is one angular velocity (3,)
     or the (n, 3) stack the splitting methods pass (row vectors: ``w A^T`` is ``A w`` for each row).
+    A function is called as it would be on the body's design frame: ``omega`` in design coordinates
+    and ``attitude`` the design frame's rotation to the world.
     A constant torque stays a :class:`~tumble.dynamics.models.torques.ConstantTorque`, compiled, and a
     :class:`~tumble.dynamics.models.dipole.ResidualDipole` one with its dipole turned (its field is the
     world's); of a :class:`~tumble.dynamics.models.torques.TorqueSum`, the body-frame terms are turned
@@ -156,7 +158,11 @@ def design_torque(model: TorqueModel, A: Matrix3) -> TorqueModel:
     form = kernel_form(model)
     if form is not None and form[0] == KERNEL_BODY:  # a constant vector: turned once, and it stays compiled
         return ConstantTorque(tuple((np.asarray(form[1], float) @ A).tolist()))
-    return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att), float) @ A, "body")
+    # the function reads omega and the attitude in design coordinates, as it returns its torque:
+    # design -> world is (principal -> world)(design -> principal), A^T the second
+    to_principal = Rotation.from_matrix(np.asarray(A, float).T)
+    return FunctionTorque(lambda t, w, att: np.asarray(model(t, np.asarray(w) @ A.T, att * to_principal), float) @ A,
+                          "body")
 
 
 def spin_gain(
