@@ -141,3 +141,17 @@ def test_a_mesh_read_in_the_wrong_unit_warns_in_python(boxes):
 
     with pytest.warns(MeshScaleWarning, match="0.05 mm across"):
         body_from_mesh(boxes / "in_metres.stl", density=1600.0, units="mm")
+
+
+@pytest.mark.parametrize("torque", [lambda t, omega, attitude: (0.0, 0.0, 0.01), tumble.ConstantTorque((0.0, 0.0, 0.01))],
+                         ids=["python", "built-in"])
+def test_the_methods_a_refusal_names_take_that_torque(torque):
+    """A method that takes no torque names the ones that do take *this* torque: a Python function is
+    not one for the compiled-only rk4 and rk8, which it used to name."""
+    body = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="cannot take a torque; use one of: ") as info:
+        tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method="exact", torque=torque)
+    named = str(info.value).split("use one of: ")[1].split(", ")
+    assert ("rk8" in named) == isinstance(torque, tumble.ConstantTorque)
+    for method in named:  # each one runs it
+        assert tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method=method, torque=torque).method == method

@@ -9,6 +9,7 @@ import numpy as np
 from .._html import fmt, plural, result_html, result_repr
 from ..dynamics import BatchTrajectory, Trajectory
 from ..mass import AXIS_ROLES, moment_degeneracy
+from ..validation import short_repr
 from .stability import SpinPrediction, flip_interval, flip_interval_asymptotic, flip_times, linearised_rate, spin_prediction
 
 if TYPE_CHECKING:
@@ -120,9 +121,16 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     >>> report = tumble.stability_report(traj)
     >>> report["axis"], report["circulation"], report["predicted"], report["flips"]
     (3, 3, 'stable', 0)
+    >>> tumble.stability_report(tumble.t_handle())   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    TypeError: traj = Body('T-handle', ...) is not a run: give what tumble.simulate or tumble.simulate_batch returns (a Trajectory or a BatchTrajectory)
     """
     if isinstance(traj, BatchTrajectory):  # each body as a run of its own (batch[i] is its Trajectory)
         return [stability_report(traj[i]) for i in range(len(traj))]
+    if not isinstance(traj, Trajectory):
+        raise TypeError(f"traj = {short_repr(traj)} is not a run: give what tumble.simulate or tumble.simulate_batch "
+                        f"returns (a Trajectory or a BatchTrajectory)")
     w0 = traj.omega[0]
     if not np.any(w0):
         return StabilityReport(axis=None, role=None, circulation=None, predicted=None, growth_rate=None,

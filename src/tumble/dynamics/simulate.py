@@ -327,10 +327,11 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     elif not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
     spec = get_method(method)
-    if model is not None and not spec.supports_torque:
-        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
-        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
     form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
+    if model is not None and not spec.supports_torque:  # those that take this torque: a Python one, not compiled only
+        allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and (
+            not s.compiled_only or form is not None or on_the_loop(model)))
+        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
     if spec.compiled_only and form is None:
         loop = on_the_loop(model)  # an ellipse's or a TLE's gravity gradient, a dipole in a field
         if loop and internal is not None and (internal.damper is not None or not cast(Rotors, rotors).constant):

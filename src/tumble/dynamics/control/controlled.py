@@ -236,11 +236,12 @@ class ControlledRun:
         last = int(above[-1])
         return None if last == len(self.t) - 1 else float(self.t[last + 1])
 
-    def pointing_error(self, target: Rotation | Reference) -> FloatArray:
+    def pointing_error(self, target: Rotation | Reference | ArrayLike) -> FloatArray:
         """Angle from the target frame (to world) to the body's principal frame at each sample, rad.
 
-        ``target`` is a fixed frame or a moving reference (:mod:`~tumble.dynamics.control.pointing`):
-        then the angle is to the reference at each sample's time.
+        ``target`` is a fixed frame (a scipy Rotation, a quaternion [x, y, z, w] or a rotation
+        matrix) or a moving reference (:mod:`~tumble.dynamics.control.pointing`): then the angle is
+        to the reference at each sample's time.
 
         Examples
         --------
@@ -253,6 +254,8 @@ class ControlledRun:
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
         ...                           controller=BDot(gain=1e-3, period=1.0))
         >>> np.allclose(run.pointing_error(Rotation.identity()), 0.1 * run.t)
+        True
+        >>> np.allclose(run.pointing_error([0.0, 0.0, 0.0, 1.0]), run.pointing_error(np.eye(3)))   # the same, as numbers
         True
         >>> np.allclose(run.pointing_error(Rotation.from_rotvec([0.0, 0.0, 1.0]))[-1], 0.0)
         True

@@ -48,7 +48,7 @@ from scipy.spatial.transform import Rotation
 
 from ..._html import Headline, headline_html, headline_repr
 from ...typing import ArrayLike, FloatArray
-from ...validation import axis_index, check_positive
+from ...validation import axis_index, check_positive, check_rotation
 from ..special.mrp import mrp_from_quat
 
 __all__ = ["NadirTarget", "Reference", "TrackingError", "axis_direction", "check_square", "is_reference", "reference_table",
@@ -103,8 +103,9 @@ def is_reference(target: object) -> TypeGuard[Reference]:
     return not isinstance(target, Rotation) and isinstance(target, Reference)
 
 
-def target_attitude(target: Rotation | Reference, t: ArrayLike) -> Rotation:
-    """The target frame to world at ``t`` (s): a fixed ``Rotation`` itself, or ``target.attitude(t)``.
+def target_attitude(target: Rotation | Reference | ArrayLike, t: ArrayLike) -> Rotation:
+    """The target frame to world at ``t`` (s): a fixed ``Rotation`` itself (a quaternion, scalar last,
+    or a rotation matrix is made one, :func:`~tumble.validation.check_rotation`), or ``target.attitude(t)``.
 
     Examples
     --------
@@ -116,8 +117,14 @@ def target_attitude(target: Rotation | Reference, t: ArrayLike) -> Rotation:
     >>> nadir = NadirTarget(0.01)   # turns n t = 1 rad in 100 s
     >>> round(float((target_attitude(nadir, 100.0) * target_attitude(nadir, 0.0).inv()).magnitude()), 12)
     1.0
+    >>> target_attitude([0.0, 0.0, 1.0, 0.0], 0.0).as_rotvec().round(6).tolist()   # half a turn about z
+    [0.0, 0.0, 3.141593]
     """
-    return target.attitude(t) if is_reference(target) else target
+    if is_reference(target):  # a TypeGuard: target is a Reference here
+        return target.attitude(t)
+    if isinstance(target, Rotation):
+        return target
+    return Rotation.from_quat(check_rotation("target", target))
 
 
 @dataclass(frozen=True)
