@@ -60,9 +60,16 @@ def test_drift_is_that_of_the_kept_samples():
 @pytest.mark.parametrize(("index", "error", "pattern"), [
     (-1, TypeError, r"^traj\[-1\]: a Trajectory is indexed by a slice.*traj\[-1:\] keeps the sample"),
     (np.int64(3), TypeError, r"^traj\[np.int64\(3\)\]"),
-    (slice(60, None), IndexError, r"selects no sample of 51$"),
+    (slice(60, None), IndexError, r"^traj\[60:\] selects no sample of 51 \(t = 0\.\.\d+ s\)$"),
     (np.zeros(3, bool), IndexError, r"^the mask has 3 entries; the trajectory has 51 samples$"),
     (np.zeros((2, 2), int), TypeError, r"a Trajectory is indexed by"),
+    # a mask that selects nothing is named, not printed (500 samples printed 3,900 characters)
+    (np.zeros(51, bool), IndexError, r"^the mask selects no sample of 51 \(t = 0\.\.\d+ s\)$"),
+    ([], IndexError, r"^traj\[\[\]\] selects no sample of 51"),
+    (0.5, TypeError, r"^traj\[0\.5\]: .* sample numbers \(whole numbers from 0 to 50; .*traj\[traj\.t >= t0\]\)$"),
+    ([0.5, 1.0], TypeError, r"^traj\[\[0\.5, 1\.0\]\]: .* sample numbers"),
+    (60, TypeError, r"^traj\[60\]: .*whole numbers from 0 to 50"),  # not "traj[60:] keeps the sample": it has none
+    (slice(None, None, -1), IndexError, r"^traj\[::-1\]: a Trajectory keeps its samples in time order"),
 ])
 def test_indices_that_make_no_trajectory_are_refused(index, error, pattern):
     with pytest.raises(error, match=pattern):

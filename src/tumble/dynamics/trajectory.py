@@ -17,6 +17,7 @@ from scipy.spatial.transform import Rotation
 
 from ..mass import INERTIA_RTOL
 from ..typing import ArrayLike, FloatArray
+from ..validation import short_repr
 from . import _display
 from .euler import angular_momentum, kinetic_energy
 
@@ -223,17 +224,41 @@ class Trajectory:
         Traceback (most recent call last):
         ...
         TypeError: traj[-1]: a Trajectory is indexed by a slice, a boolean mask or a list of samples (traj[-1:] keeps the sample; traj.omega[-1] is its omega)
+        >>> traj[traj.t > 100.0]
+        Traceback (most recent call last):
+        ...
+        IndexError: the mask selects no sample of 201 (t = 0..20 s)
+        >>> traj[0.5]
+        Traceback (most recent call last):
+        ...
+        TypeError: traj[0.5]: a Trajectory is indexed by a slice, a boolean mask or a list of sample numbers (whole numbers from 0 to 200; the samples after a time t0: traj[traj.t >= t0])
         """
-        if not isinstance(index, slice):
-            if isinstance(index, (int, np.integer)) or np.ndim(index) != 1:
+        n = len(self.t)
+        if isinstance(index, slice):
+            what = f"traj[{'' if index.start is None else index.start}:{'' if index.stop is None else index.stop}" \
+                   f"{'' if index.step is None else f':{index.step}'}]"
+            if index.step is not None and index.step < 0:
+                raise IndexError(f"{what}: a Trajectory keeps its samples in time order; the arrays reverse "
+                                 f"(traj.omega[::-1])")
+        else:
+            if isinstance(index, (int, np.integer)) and -n <= index < n:
                 raise TypeError(f"traj[{index!r}]: a Trajectory is indexed by a slice, a boolean mask or a list of "
                                 f"samples (traj[{index!r}:] keeps the sample; traj.omega[{index!r}] is its omega)")
+            if np.ndim(index) != 1:
+                raise TypeError(f"traj[{short_repr(index)}]: a Trajectory is indexed by a slice, a boolean mask or a list "
+                                f"of sample numbers (whole numbers from 0 to {n - 1}; the samples after a time t0: "
+                                f"traj[traj.t >= t0])")
             index = np.asarray(index)
-            if index.dtype == bool and len(index) != len(self.t):
-                raise IndexError(f"the mask has {len(index)} entries; the trajectory has {len(self.t)} samples")
+            if index.size and index.dtype.kind not in "biu":
+                raise TypeError(f"traj[{short_repr(index.tolist())}]: a Trajectory is indexed by a slice, a boolean mask "
+                                f"or a list of sample numbers (whole numbers from 0 to {n - 1})")
+            index = index if index.size else index.astype(int)
+            if index.dtype == bool and len(index) != n:
+                raise IndexError(f"the mask has {len(index)} entries; the trajectory has {n} samples")
+            what = "the mask" if index.dtype == bool else f"traj[{short_repr(index.tolist())}]"
         t = self.t[index]
         if len(t) == 0:
-            raise IndexError(f"traj[{index!r}] selects no sample of {len(self.t)}")
+            raise IndexError(f"{what} selects no sample of {n} (t = {self.t[0]:g}..{self.t[-1]:g} s)")
         per_sample = {name: None if getattr(self, name) is None else getattr(self, name)[index]
                       for name in ("internal_momentum", "rotor_spin", "motor_work", "damper_omega", "dissipated")}
         return Trajectory(t=t, omega=self.omega[index], attitude=self.quat[index], moments=self.moments,

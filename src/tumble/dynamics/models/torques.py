@@ -39,13 +39,13 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, TypeAlias, cast
+from typing import TYPE_CHECKING, Any, NoReturn, TypeAlias, cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, Vector3
-from ...validation import check_torque_function, check_vector, is_vector
+from ...validation import check_torque_function, check_vector, is_vector, short_repr
 from ..special.quaternion import quat_conjugate, rotate_by_quaternion
 from .torque_protocols import (
     KERNEL_BODY,
@@ -211,7 +211,7 @@ class FunctionTorque(AddsTorques):
         >>> spin_up(2.0, np.zeros(3), Rotation.identity()).tolist()
         [0.0, 0.0, 2.0]
         """
-        return np.asarray(self.fn(t, omega, attitude), dtype=float)
+        return _torque_array(self.fn(t, omega, attitude), t, np.shape(omega))
 
 
 @dataclass(frozen=True, init=False, repr=False)
@@ -425,6 +425,23 @@ def bind_to_body(model: TorqueModel | None, body: Body | MassProperties | ArrayL
     """
     return cast(NeedsBody, model).bind(body) if model is not None and conforms(model, NeedsBody) else model
 
+def _refuse(got: str, t: float, shape: tuple[int, ...]) -> NoReturn:
+    raise ValueError(f"the torque model returned {got} at t = {t:.6g} s; expected finite numbers "
+                     f"of shape (3,){'' if shape == (3,) else f' or {shape}'} (N m)")
+
+
+def _torque_array(value: object, t: float, shape: tuple[int, ...]) -> np.ndarray:
+    """A torque function's result as floats, or the one-line refusal naming it as it came (None, text,
+    a ragged list: numpy would make None a nan and say nothing of the torque for the others)."""
+    try:
+        raw = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raw = None
+    if raw is None or raw.ndim == 0:
+        _refuse(short_repr(value), t, shape)
+    return raw
+
+
 def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotation) -> Vector3:
     """Evaluate a torque model and return the torque in the principal (body) frame, N m.
 
@@ -460,15 +477,23 @@ def body_torque(model: TorqueModel, t: float, omega: np.ndarray, attitude: Rotat
     Traceback (most recent call last):
     ...
     ValueError: the torque model returned an array of shape (300, 3) at t = 0 s; expected finite numbers of shape (3,) or (2, 3) (N m)
+    >>> body_torque(lambda t, omega, attitude: None, 0.0, np.zeros(3), quarter)   # a function that forgot to return
+    Traceback (most recent call last):
+    ...
+    ValueError: the torque model returned None at t = 0 s; expected finite numbers of shape (3,) (N m)
+    >>> body_torque(lambda t, omega, attitude: "x", 0.0, np.zeros(3), quarter)
+    Traceback (most recent call last):
+    ...
+    ValueError: the torque model returned 'x' at t = 0 s; expected finite numbers of shape (3,) (N m)
     """
-    raw = np.asarray(model(t, omega, attitude), dtype=float)
+    value = model(t, omega, attitude)
     shape = np.shape(omega)
+    raw = _torque_array(value, t, shape)
     if raw.shape not in ((3,), shape) or not np.all(np.isfinite(raw)):
         bad = np.flatnonzero(~np.isfinite(raw).all(axis=-1)) if raw.ndim == 2 and raw.shape == shape else np.zeros(0, int)
         got = (f"{raw[bad[0]].tolist()!r} for body {bad[0]}" if len(bad) else  # one row of a batch
                repr(raw.tolist()) if raw.size <= 6 else f"an array of shape {raw.shape}")
-        raise ValueError(f"the torque model returned {got} at t = {t:.6g} s; expected finite numbers "
-                         f"of shape (3,){'' if shape == (3,) else f' or {shape}'} (N m)")
+        _refuse(got, t, shape)
     tau = np.array(np.broadcast_to(raw, shape))
     if model.frame != "world":
         return tau
