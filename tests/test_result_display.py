@@ -413,3 +413,37 @@ def test_every_result_of_a_public_function_reads_well():
             missing.append(f"{cls.__module__}.{cls.__name__} (from {functions[0]})")
     assert not missing, "results without their own repr and _repr_html_:\n" + "\n".join(missing)
     assert not done, f"move off WAITING: {done}"
+
+
+def _settings():
+    """The models and settings a user makes and prints: actuators, controllers, a mission, a filter."""
+    from scipy.spatial.transform import Rotation
+
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controllers import MomentumDumping, MRPFeedback
+    from tumble.dynamics.control.mission import DetumbleThenPoint
+    from tumble.dynamics.estimation.mekf import MEKF
+    from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
+
+    wheels = ReactionWheels(np.eye(4, 3) + 0.1, inertia=1e-4, max_torque=1e-3, max_speed=600.0)
+    point = MRPFeedback(K=0.01, P=0.1, period=1.0, moments=[1.0, 2.0, 3.0], wheels=wheels,
+                        target=Rotation.from_rotvec([0.0, 0.0, 0.5]))
+    return [wheels, Magnetorquers(1.0), point, MomentumDumping(point, gain=0.01), BDot(gain=1e-3, period=1.0),
+            DetumbleThenPoint(BDot(gain=1e-3, period=1.0), point, switch_rate=0.01, dwell=60.0),
+            MEKF.start([0.0, 0.0, 0.0, 1.0], attitude_sigma=0.1, bias_sigma=0.01, gyro_noise=1e-4, bias_walk=1e-6),
+            Command(wheel_torque=np.zeros(4))]
+
+
+@pytest.mark.parametrize("setting", _settings(), ids=lambda s: type(s).__name__)
+def test_a_settings_repr_is_one_line_of_its_values(setting):
+    """A walkthrough printed ReactionWheels, MRPFeedback, DetumbleThenPoint and MEKF as pages of numpy
+    arrays (dataclass reprs): each is now one line, short vectors by value and matrices by shape."""
+    shown = repr(setting)
+    assert "\n" not in shown and "array(" not in shown and len(shown) <= REPR_CHARS, shown
+    assert shown.startswith(type(setting).__name__ + "(")
+    for name in ("inertia", "K", "gain", "covariance", "wheel_torque"):  # a field shown by its value or its shape
+        if hasattr(setting, name) and f"{name}=" in shown:
+            value = getattr(setting, name)
+            expected = f"<{' x '.join(map(str, np.shape(value)))} array>" if np.ndim(value) > 1 or np.size(value) > 6 \
+                else fmt(value) if np.ndim(value) == 0 else "(" + ", ".join(fmt(v) for v in np.ravel(value)) + ")"
+            assert f"{name}={expected}" in shown, (name, shown)

@@ -15,6 +15,7 @@ A user's strings (a body's name, a scenario file's name, a title) reach HTML in 
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import json
 from collections.abc import Iterable, Sequence
@@ -24,8 +25,8 @@ import numpy as np
 
 from .typing import ArrayLike
 
-__all__ = ["NAME_CHARS", "REPR_CHARS", "Headline", "escape_text", "fmt", "headline_html", "headline_repr", "html_table",
-           "plural", "result_html", "result_repr", "script_json", "short_name", "vec", "with_std"]
+__all__ = ["NAME_CHARS", "REPR_CHARS", "Headline", "escape_text", "field_repr", "fmt", "headline_html", "headline_repr",
+           "html_table", "plural", "result_html", "result_repr", "script_json", "short_name", "vec", "with_std"]
 
 #: A result's headline: ``(attribute, label, unit)`` for each value its repr and table show, most
 #: important first (:func:`headline_repr`).
@@ -282,3 +283,47 @@ def headline_html(obj: Any) -> str:
     2
     """
     return result_html(type(obj).__name__, _headline(obj))
+
+
+def _field_value(value: Any) -> str:
+    """A setting as :func:`field_repr` shows it: numbers and short vectors by value (six at most),
+    a longer or 2-D array by its shape, a rotation by its rotation vector, anything else by its repr."""
+    if isinstance(value, (bool, np.bool_, str)) or value is None:
+        return repr(value)
+    if isinstance(value, (int, np.integer, float, np.floating)):
+        return fmt(value)
+    if isinstance(value, np.ndarray):
+        if value.ndim == 1 and value.size <= 6 and np.issubdtype(value.dtype, np.number):
+            return vec(value)
+        return f"<{' x '.join(str(n) for n in value.shape)} array>"
+    if type(value).__name__ == "Rotation" and hasattr(value, "as_rotvec"):  # scipy's, one or a stack
+        return f"Rotation(rotvec={vec(value.as_rotvec())})" if getattr(value, "single", False) else \
+            f"<{len(value)} rotations>"
+    if type(value).__repr__ is field_repr:  # a setting inside a setting: named, its own repr is a line of its own
+        return f"{type(value).__name__}(...)"
+    return " ".join(repr(value).split())
+
+
+def field_repr(obj: Any) -> str:
+    """A model's or a setting's repr on one line: its class and its fields (a dataclass's shown ones,
+    or a named tuple's) as ``name=value``, arrays by value when short and by shape otherwise, and
+    never more than :data:`REPR_CHARS` characters. For a class, ``__repr__ = field_repr``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dataclasses import dataclass
+    >>> from tumble._html import field_repr
+    >>> @dataclass(frozen=True, repr=False)
+    ... class Wheels:
+    ...     axes: np.ndarray
+    ...     inertia: np.ndarray
+    ...     __repr__ = field_repr
+    >>> Wheels(np.eye(3), np.full(3, 1e-4))
+    Wheels(axes=<3 x 3 array>, inertia=(0.0001, 0.0001, 0.0001))
+    """
+    if dataclasses.is_dataclass(obj):
+        names = [f.name for f in dataclasses.fields(obj) if f.repr]
+    else:
+        names = list(getattr(obj, "_fields", ()))
+    return result_repr(type(obj).__name__, [f"{name}={_field_value(getattr(obj, name))}" for name in names])

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -40,6 +40,8 @@ class StabilityReport(dict):  # type: ignore[type-arg]
     StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)
     >>> report["flips"], isinstance(report, dict)
     (11, True)
+    >>> "1.786 s" in report._repr_html_()   # the notebook's table: the numbers with their units
+    True
     """
 
     __slots__ = ()
@@ -57,9 +59,14 @@ class StabilityReport(dict):  # type: ignore[type-arg]
     def __repr__(self) -> str:
         return result_repr("StabilityReport", self._parts())
 
+    #: The unit of each key that has one.
+    UNITS: ClassVar[dict[str, str]] = {"growth_rate": "1/s", "wobble_frequency": "rad/s", "flip_period": "s",
+                                       "flip_period_exact": "s", "flip_period_asymptotic": "s"}
+
     def _repr_html_(self) -> str:
-        return result_html("StabilityReport", [(key, "none" if value is None else fmt(value) if isinstance(value, float)
-                                                 else value) for key, value in self.items()])
+        return result_html("StabilityReport", [
+            (key, "none" if value is None else f"{fmt(value)} {self.UNITS[key]}" if key in self.UNITS else value)
+            for key, value in self.items()])
 
 
 def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | list[StabilityReport]:

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive
 from ..models.actuators import Command
@@ -99,6 +100,8 @@ class BDot:
     >>> (c(0.0, m).dipole + 0.0).round(12).tolist()   # k_b omega x B, A m^2
     [0.0, 0.02, 0.0]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     gain: float
     period: float

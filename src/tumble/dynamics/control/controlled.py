@@ -239,24 +239,21 @@ class ControlledRun:
     def pointing_error(self, target: Rotation | Reference | ArrayLike) -> FloatArray:
         """Angle from the target frame (to world) to the body's principal frame at each sample, rad.
 
-        ``target`` is a fixed frame (a scipy Rotation, a quaternion [x, y, z, w] or a rotation
-        matrix) or a moving reference (:mod:`~tumble.dynamics.control.pointing`): then the angle is
-        to the reference at each sample's time.
+        ``target``: a fixed frame (a Rotation, quaternion or matrix) or a moving reference
+        (:mod:`~tumble.dynamics.control.pointing`), then the angle to it at each sample's time.
 
         Examples
         --------
         An uncontrolled spin of 0.1 rad/s about a principal axis turns ``0.1 t`` from its start:
 
         >>> from tumble.dynamics.control.bdot import BDot
-        >>> import numpy as np
-        >>> from scipy.spatial.transform import Rotation
+        >>> import numpy as np; from scipy.spatial.transform import Rotation
         >>> from tumble.dynamics.control.controlled import simulate_controlled
         >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0,
         ...                           controller=BDot(gain=1e-3, period=1.0))
-        >>> np.allclose(run.pointing_error(Rotation.identity()), 0.1 * run.t)
-        True
-        >>> np.allclose(run.pointing_error([0.0, 0.0, 0.0, 1.0]), run.pointing_error(np.eye(3)))   # the same, as numbers
-        True
+        >>> np.allclose(run.pointing_error(Rotation.identity()), 0.1 * run.t), np.allclose(
+        ...     run.pointing_error([0.0, 0.0, 0.0, 1.0]), run.pointing_error(np.eye(3)))   # the same, as numbers
+        (True, True)
         >>> np.allclose(run.pointing_error(Rotation.from_rotvec([0.0, 0.0, 1.0]))[-1], 0.0)
         True
 

@@ -40,6 +40,7 @@ from typing import NamedTuple, Protocol, runtime_checkable
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import (
     check_bool,
@@ -141,6 +142,8 @@ class MRPFeedback:
     >>> (c(0.0, m).wheel_torque * 1e6).round(3).tolist()   # -L_r = K sigma, sigma_3 = tan(0.1 / 4)
     [0.0, 0.0, 25.005]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     K: float
     P: float
@@ -302,6 +305,8 @@ class MomentumDumping:
     >>> np.round(np.cross(cmd.dipole, m.field), 12).tolist()   # tau = -k_d h_perp: h = (0.5, 0, 0.2)
     [-0.0005, 0.0, 0.0]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     pointing: MRPFeedback
     gain: float

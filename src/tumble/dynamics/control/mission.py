@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from ..._html import field_repr
 from ...typing import FloatArray
 from ...validation import check_positive
 from .bdot import BDot
@@ -94,6 +95,8 @@ class DetumbleThenPoint:
     ...
     ValueError: detumble.period = 0.5 s and point.period = 1 s differ; the mission calls both at one period: give them the same
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     detumble: BDot
     point: MRPFeedback | MomentumDumping

@@ -74,6 +74,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import field_repr
 from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vectors, refuse_first
@@ -118,6 +119,8 @@ class MEKF:
     >>> round(float(g.attitude.magnitude()), 12), bool(g.sigma[0] > f.sigma[0])
     (0.1, True)
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     quaternion: FloatArray
     bias: FloatArray

@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import check_positive, check_vectors
 
@@ -57,6 +58,8 @@ class Command:
     >>> Command(dipole=[0.0, 0.1, 0.0]).dipole.tolist()
     [0.0, 0.1, 0.0]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     dipole: FloatArray | None = None
     wheel_torque: FloatArray | None = None
@@ -107,6 +110,8 @@ class Magnetorquers:
     >>> mtq.torque([0.2, 0.0, 0.0], [0.0, 3e-5, 0.0]).tolist()   # m x B, N m
     [0.0, 0.0, 6e-06]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     max_dipole: FloatArray | float = 0.2
     axes: FloatArray = field(default_factory=lambda: np.eye(3))
@@ -242,6 +247,8 @@ class ReactionWheels:
     >>> rw.momentum([100.0, 0.0, 0.0]).tolist()   # h = sum J s g, kg m^2/s
     [0.001, 0.0, 0.0]
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     axes: FloatArray
     inertia: FloatArray | float

@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, NamedTuple, Protocol
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..._html import fmt, plural, result_html, result_repr
+from ..._html import field_repr, fmt, plural, result_html, result_repr
 from ...mass.body import properties_of
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import (
@@ -178,6 +178,9 @@ class LVLHState(NamedTuple):
     attitude0: Rotation
     #: Principal body frame to world (a Trajectory's ``attitude`` convention).
     attitude: Rotation
+
+    def __repr__(self) -> str:  # one line: arrays by value when short, by shape otherwise
+        return field_repr(self)
 
 
 def lvlh_state(
