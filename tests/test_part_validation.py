@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -45,3 +46,15 @@ def test_bad_part_input(make, pattern):
 def test_unit_quaternion_within_tolerance_is_accepted():
     box = tumble.Box(mass=1.0, size=(1, 1, 1), rotation=(0, 0, 0.7071, 0.7071))
     assert np.linalg.norm(box.rotation) == pytest.approx(1.0, abs=1e-15)
+
+
+@pytest.mark.parametrize(("spin", "said"), [
+    ({"spin_rate": lambda: 5.0}, "spin_rate = <lambda>() cannot be called as s(t): it must take that argument"),
+    ({"spin_rate": lambda t: 5.0 * t, "spin_acceleration": lambda t, u: 5.0},
+     "spin_acceleration = <lambda>(t, u) cannot be called as a(t): it must take that argument"),
+])
+def test_a_rotors_spin_function_is_checked_where_it_is_given(spin, said):
+    """A spin function that cannot take the time was accepted by Rotor and Body and failed only in
+    simulate, with Python's own TypeError naming neither spin_rate nor the rotor."""
+    with pytest.raises(ValueError, match=f"^{re.escape(said)}$"):
+        tumble.Rotor(mass=1.0, radius=0.1, length=0.03, **spin)

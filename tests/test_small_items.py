@@ -155,3 +155,29 @@ def test_the_methods_a_refusal_names_take_that_torque(torque):
     assert ("rk8" in named) == isinstance(torque, tumble.ConstantTorque)
     for method in named:  # each one runs it
         assert tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method=method, torque=torque).method == method
+
+
+def _walkthrough_mistakes():
+    """Slips a Python user made in a walkthrough (issue 40), each of which raised from deep inside."""
+    import numpy as np
+
+    from tumble.analysis.fit import fit_recording
+    from tumble.dynamics.estimation.mekf import MEKF
+    from tumble.io.export import write_npz
+
+    run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1.0, samples=5)
+    mekf = MEKF.start([0.0, 0.0, 0.0, 1.0], attitude_sigma=0.1, bias_sigma=0.01, gyro_noise=1e-4, bias_walk=1e-6)
+    return [
+        (lambda: write_npz("run.npz", run), TypeError, r"^traj = 'run.npz' is not a Trajectory: write_npz\(traj, path\)"),
+        (lambda: mekf.propagate([0.0, 0.1], 1.0), ValueError, r"^gyro = \[0.0, 0.1\] must be the gyroscope's rates"),
+        (lambda: tumble.Body(tumble.t_handle().parts[0]), ValueError, r"^parts = Rod\(.*must be a list of parts"),
+        (lambda: fit_recording(np.arange(100) * 0.01, np.zeros((100, 3)), events=[1, 2, 3]), ValueError,
+         r"^events\[0\] = 1: each event is a \(name, time\) pair"),
+    ]
+
+
+@pytest.mark.parametrize("case", range(4))
+def test_a_python_slip_is_named_where_it_was_made(case):
+    call, error, said = _walkthrough_mistakes()[case]
+    with pytest.raises(error, match=said):
+        call()

@@ -14,7 +14,7 @@ import zipfile
 import numpy as np
 
 from ..dynamics import Trajectory
-from ..validation import NoSuchFileError
+from ..validation import NoSuchFileError, short_repr
 from .atomic import atomic_write_bytes, atomic_write_text
 
 __all__ = ["CSV_COLUMNS", "read_npz", "trajectory_csv", "write_csv", "write_json", "write_npz"]
@@ -33,6 +33,12 @@ CSV_COLUMNS = (
 CSV_BUDGET_COLUMNS = {"dissipated": "dissipated [J]", "motor_work": "motor_work [J]"}
 
 
+def _check_run(traj: object, call: str) -> None:
+    """A TypeError naming ``traj`` unless it is a Trajectory (the run comes first: ``call``)."""
+    if not isinstance(traj, Trajectory):
+        raise TypeError(f"traj = {short_repr(traj)} is not a Trajectory: {call} takes the run first")
+
+
 def trajectory_csv(traj: Trajectory) -> str:
     """The CSV text of a trajectory (header + one row per sample, full double precision).
 
@@ -44,6 +50,7 @@ def trajectory_csv(traj: Trajectory) -> str:
     >>> len(lines), lines[0].split(",")[:4]   # a header and one row per sample
     (4, ['t [s]', 'omega_1 [rad/s]', 'omega_2 [rad/s]', 'omega_3 [rad/s]'])
     """
+    _check_run(traj, "trajectory_csv(traj)")
     extra = {k: getattr(traj, k) for k in CSV_BUDGET_COLUMNS if getattr(traj, k) is not None}
     table = np.column_stack([traj.t, traj.omega, traj.quat, traj.angular_momentum_world, traj.energy, *extra.values()])
     header = [*CSV_COLUMNS, *(CSV_BUDGET_COLUMNS[k] for k in extra)]
@@ -66,6 +73,7 @@ def write_csv(traj: Trajectory, path: str | os.PathLike[str]) -> None:
     >>> bool(np.array_equal(table[:, 1:4], traj.omega))   # full double precision
     True
     """
+    _check_run(traj, "write_csv(traj, path)")
     atomic_write_text(path, trajectory_csv(traj))
 
 
@@ -92,6 +100,7 @@ def write_npz(traj: Trajectory, path: str | os.PathLike[str], provenance: dict |
     ...         print(str(data["method"]), bool(np.array_equal(data["quat"], traj.quat)))
     exact True
     """
+    _check_run(traj, "write_npz(traj, path)")
     buf = io.BytesIO()
     extra = {} if provenance is None else {"provenance": np.array(json.dumps(provenance))}
     for name in _INTERNAL:

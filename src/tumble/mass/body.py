@@ -284,6 +284,9 @@ class Body:
     properties: MassProperties = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
+        if isinstance(self.parts, Part) or not isinstance(self.parts, Iterable):
+            raise ValueError(f"parts = {self.parts!r} must be a list of parts: Body([part, ...]), one part "
+                             f"Body([part])")
         parts = tuple(self.parts)
         for i, p in enumerate(parts):
             if not isinstance(p, Part):

@@ -16,7 +16,7 @@ from typing import ClassVar, cast
 import numpy as np
 
 from ..typing import ArrayLike, FloatArray, Vector3
-from ..validation import MAX_RATE, check_at_most, check_number
+from ..validation import MAX_RATE, check_at_most, check_callable, check_number
 from .parts import PART_KINDS, Cylinder
 
 __all__ = ["Rotor"]
@@ -79,6 +79,9 @@ class Rotor(Cylinder):
                     f"spin_acceleration = {accel!r} must be a function of time (rad/s^2) when "
                     f"spin_rate is one, or be left out"
                 )
+            check_callable("spin_rate", rate, "s(t)")  # said here, not at the run that first calls it
+            if accel is not None:
+                check_callable("spin_acceleration", accel, "a(t)")
             return
         if isinstance(rate, (str, bytes)) or not _is_number(rate):
             raise ValueError(

@@ -40,8 +40,8 @@ def check_callable(name: str, value: object, call: str) -> None:
         signature.bind(*range(count))
     except TypeError:
         label = getattr(value, "__name__", type(value).__name__)
-        raise ValueError(f"{name} = {label}{signature} cannot be called as {call}: it must take those {count} "
-                         "arguments") from None
+        raise ValueError(f"{name} = {label}{signature} cannot be called as {call}: it must take "
+                         f"{'that argument' if count == 1 else f'those {count} arguments'}") from None
 
 
 def is_vector(given: Any) -> bool:

@@ -24,8 +24,19 @@ def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
     >>> from tumble.analysis.fit.segments import pause_times
     >>> pause_times([("START", 0.0), ("PAUSE", 12.5), ("START", 12.5), ("pause", 3.0)]), pause_times(None)
     ([3.0, 12.5], [])
+    >>> pause_times([1, 2, 3])
+    Traceback (most recent call last):
+    ...
+    ValueError: events[0] = 1: each event is a (name, time) pair, ('PAUSE', 12.5) (phyphox's meta/time.csv: name, experiment time in s)
     """
-    return sorted(float(te) for name, te in (events or []) if str(name).upper() == "PAUSE")
+    pauses = []
+    for i, event in enumerate(events or []):
+        if not (isinstance(event, (tuple, list)) and len(event) == 2 and isinstance(event[0], str)):
+            raise ValueError(f"events[{i}] = {event!r}: each event is a (name, time) pair, ('PAUSE', 12.5) "
+                             f"(phyphox's meta/time.csv: name, experiment time in s)")
+        if event[0].upper() == "PAUSE":
+            pauses.append(float(event[1]))
+    return sorted(pauses)
 
 
 def _runs(t, pauses, max_gap):

@@ -77,7 +77,7 @@ from scipy.spatial.transform import Rotation
 from ..._html import field_repr
 from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_positive, check_vectors, refuse_first
+from ...validation import check_positive, check_vectors, refuse_first, short_repr
 
 __all__ = ["MEKF"]
 
@@ -227,6 +227,9 @@ class MEKF:
         """
         h = check_positive("dt", dt, "s")
         w = np.asarray(gyro, float)
+        if w.ndim == 0 or w.shape[-1] != 3:
+            raise ValueError(f"gyro = {short_repr(gyro)} must be the gyroscope's rates about the 3 body axes, "
+                             f"shape (3,) or (..., 3) (rad/s)")
         shape = self.quaternion.shape[:-1]
         if w.shape[:-1] != shape:
             shape = np.broadcast_shapes(shape, w.shape[:-1])
