@@ -447,3 +447,13 @@ def test_a_settings_repr_is_one_line_of_its_values(setting):
             expected = f"<{' x '.join(map(str, np.shape(value)))} array>" if np.ndim(value) > 1 or np.size(value) > 6 \
                 else fmt(value) if np.ndim(value) == 0 else "(" + ", ".join(fmt(v) for v in np.ravel(value)) + ")"
             assert f"{name}={expected}" in shown, (name, shown)
+
+
+def test_a_pooled_fit_counts_every_flights_samples(recording_fit):
+    """The pooled RotationFit said "56 samples" for a joint fit of 12 flights: the first flight's count
+    (its times and model are that flight's view). It counts the samples of every flight used."""
+    fit = recording_fit
+    used = [toss for toss in fit.tosses if toss.status == "ok"]
+    assert len(used) == fit.tosses_used == 2
+    assert fit.pooled.samples == sum(toss.samples for toss in used) > len(fit.pooled.t)
+    assert f"{fit.pooled.samples} samples" in repr(fit.pooled) and fit.pooled.summary()["samples"] == fit.pooled.samples

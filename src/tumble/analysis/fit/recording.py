@@ -441,7 +441,9 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     # judged flight by flight on the joint fit's residuals, not the first flight's view of them
     data, mask = stack_flights(used, omega, keep)
     verdict = judge_flights(data, sol.omega_model, mask, sol.model.lengths, [f.start for f in used])[0]
-    pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit)
+    # the joint fit's sample count (its times, model and residuals shown are the first flight's view)
+    pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit,
+                     samples=int(sum(f.samples for f in used)))
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
     return RecordingFit(tosses, pooled, chi2_dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
@@ -468,7 +470,8 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     std = np.minimum(np.sqrt(np.diag(cov)), (0.5, 0.25))
     iv = np.array([[max(0.0, mean[0] - 1.96 * std[0]), min(1.0, mean[0] + 1.96 * std[0])],
                    [max(0.5, mean[1] - 1.96 * std[1]), min(1.0, mean[1] + 1.96 * std[1])]])
-    pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None)
+    pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None,
+                     samples=int(sum(f.samples for f in used)))
     return RecordingFit(tosses, pooled, chi2 / dof if len(used) > 1 else float("nan"), len(used), t, omega,
                         tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"), (),
                         float(sum(f.solution.ssr for f in used)), int(sum(f.solution.m for f in used)))

@@ -65,7 +65,7 @@ class RotationFit:
         motion removed first: at 100 Hz a fast spin's own second differences would swamp the
         noise's), robust (median absolute deviation).
     samples : int
-        Number of time samples.
+        Number of time samples (of every flight used, for a recording's pooled fit).
     saturated : int
         Sample axes left out because they lie at the sensor's rail.
     t : ndarray, shape (n,)
