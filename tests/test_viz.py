@@ -416,3 +416,20 @@ def test_the_simulate_line_gives_the_flip_period_and_no_dashes(tmp_path, capsys)
     assert main(["simulate", str(examples / "reaction_wheel_slew.toml"), "--out", str(tmp_path / "b")]) == 0
     line = capsys.readouterr().out
     assert " -," not in line and "no relative drift" in line and "the motors did 56.2 J of work" in line
+
+
+def test_a_figure_drawn_on_the_users_own_axes_keeps_its_legend_on_the_canvas():
+    """``figure_omega(traj, ax=ax)`` on a plain figure of the user's (no layout engine) put the legend
+    outside the axes, where nothing made room for it, and the saved PNG cut it ("ω1 (m..."): on such
+    axes it goes inside; on tumble's own figures (constrained layout) it stays outside."""
+    traj = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=5.0, samples=200)
+    fig = Figure(figsize=(6.0, 4.0))
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    tumble.viz.figure_omega(traj, ax=ax)
+    fig.savefig(BytesIO(), format="png")
+    box, canvas = ax.get_legend().get_window_extent(), fig.bbox
+    assert canvas.x0 <= box.x0 and box.x1 <= canvas.x1 and canvas.y0 <= box.y0 and box.y1 <= canvas.y1
+    own = tumble.viz.figure_omega(traj)
+    own.savefig(BytesIO(), format="png")
+    assert own.axes[0].get_legend().get_window_extent().x0 > own.axes[0].bbox.x1  # right of the axes

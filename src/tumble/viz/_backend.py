@@ -108,7 +108,9 @@ def figure_and_axes(ax: Axes | None = None, figsize: tuple[float, float] = (7.5,
 
 
 def legend_outside(ax: Axes, **kwargs: Any) -> None:
-    """The legend to the right of the axes, outside them: it never covers the data.
+    """The legend to the right of the axes, outside them: it never covers the data. On axes of a
+    figure with no layout engine (``plt.subplots()``'s, given as ``ax=``) nothing makes room for it
+    there, and a saved figure cut it off: it goes inside, where it covers least.
 
     Nothing labelled, no legend. ``kwargs`` go to ``ax.legend`` (over the defaults).
 
@@ -126,9 +128,13 @@ def legend_outside(ax: Axes, **kwargs: Any) -> None:
     (['omega_1'], True)
     """
     handles, _ = ax.get_legend_handles_labels()
-    if handles:
-        ax.legend(**{"fontsize": 7, "loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "borderaxespad": 0.0,
-                     "framealpha": 0.9, **kwargs})
+    if not handles:
+        return
+    if ax.figure.get_layout_engine() is None:  # the user's own figure, with no layout to make room: inside
+        ax.legend(**{"fontsize": 7, "loc": "best", "framealpha": 0.9, **kwargs})
+        return
+    ax.legend(**{"fontsize": 7, "loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "borderaxespad": 0.0,
+                 "framealpha": 0.9, **kwargs})
 
 
 def note_only(ax: Axes, note: str, title: str | None = None) -> None:
