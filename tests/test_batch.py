@@ -397,3 +397,19 @@ def test_the_default_chooses_as_simulate_does():
         simulate_batch(I, w, t_end=1.0, method="euler")
     with pytest.raises(ValueError, match=r"^rtol = 1.0 must be from"):
         simulate_batch(I, w, t_end=1.0, torque=tumble.ConstantTorque((0.0, 0.3, 0.1)), rtol=1.0)
+
+
+def test_a_batch_takes_its_attitudes_as_simulate_takes_one():
+    """attitude0 as a scipy Rotation (one or a stack) or a rotation matrix, as simulate takes it (a
+    walkthrough's Rotation was refused: "attitude0 has shape ()"), the same run as its quaternions."""
+    from scipy.spatial.transform import Rotation
+
+    turn = Rotation.from_rotvec([0.3, 0.1, -0.2])
+    run = lambda attitude0: tumble.simulate_batch([1.0, 2.0, 3.0], [[0.1, 1.0, 0.0], [0.0, 0.0, 1.0]], t_end=2.0,  # noqa: E731
+                                                  samples=3, attitude0=attitude0).quat
+    quaternion = run(turn.as_quat())
+    assert np.array_equal(run(turn), quaternion)
+    np.testing.assert_allclose(run(turn.as_matrix()), quaternion, rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(run(Rotation.concatenate([turn, Rotation.identity()]))[0], quaternion[0])
+    with pytest.raises(ValueError, match="attitude0"):
+        run(np.diag([1.0, 1.0, -1.0]))  # a reflection is no attitude

@@ -136,7 +136,10 @@ def test_batch_trajectory_repr_is_one_line():
     """A batch of bodies prints as one line, not its arrays (28 kB for 4 bodies x 50 samples)."""
     moments = [[1.0, 2.0, 3.0], [0.125, 0.3125, 0.4375], [1.0, 1.5, 2.0], [2.0, 2.5, 4.0]]
     batch = tumble.simulate_batch(moments, [[0.1, 1.0, 0.1]] * 4, t_end=5.0, samples=50)
-    assert repr(batch) == f"BatchTrajectory(4 bodies, {batch.method}, 50 samples, t = 0..5 s, torque-free)"
+    assert repr(batch) == "BatchTrajectory(4 bodies, exact (auto), 50 samples, t = 0..5 s, torque-free)"  # as simulate's
+    assert batch[0].method_label == "exact (auto)" and batch.auto
+    named = tumble.simulate_batch(moments, [[0.1, 1.0, 0.1]] * 4, t_end=5.0, samples=50, method="exact")
+    assert repr(named).startswith("BatchTrajectory(4 bodies, exact, ") and not named[0].auto
     one = tumble.simulate_batch(moments[:1], [[0.1, 1.0, 0.1]], times=[2.0])
     assert repr(one).startswith("BatchTrajectory(1 body, ") and "1 sample, t = 2..2 s" in repr(one)
 

@@ -36,6 +36,8 @@ class _Batch(Protocol):
     def method(self) -> str: ...
     @property
     def torque_free(self) -> bool: ...
+    @property
+    def auto(self) -> bool: ...
     def __len__(self) -> int: ...
 
 
@@ -111,18 +113,18 @@ def trajectory_repr(traj: _Run) -> str:
 
 
 def batch_repr(batch: _Batch) -> str:
-    """``BatchTrajectory(1000 bodies, exact, 500 samples, t = 0..20 s, torque-free)``.
+    """``BatchTrajectory(1000 bodies, exact (auto), 500 samples, t = 0..20 s, torque-free)``.
 
     Examples
     --------
     >>> import tumble
     >>> from tumble.dynamics._display import batch_repr
     >>> batch_repr(tumble.simulate_batch([1.0, 2.0, 3.0], [[1.0, 0.0, 0.0]] * 3, t_end=2.0, samples=5))
-    'BatchTrajectory(3 bodies, exact, 5 samples, t = 0..2 s, torque-free)'
+    'BatchTrajectory(3 bodies, exact (auto), 5 samples, t = 0..2 s, torque-free)'
     """
     n = len(batch)
-    return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t, batch.method,
-                     batch.torque_free)
+    return _run_repr("BatchTrajectory", f"{n} bod{'y' if n == 1 else 'ies'}", batch.t,
+                     f"{batch.method} (auto)" if batch.auto else batch.method, batch.torque_free)
 
 
 def batch_html(batch: _Bodies) -> str:

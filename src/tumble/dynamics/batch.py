@@ -37,6 +37,7 @@ from ..validation import (
     QUAT_NORM_TOL,
     check_moments,
     check_positive,
+    check_rotation,
     refuse_body,
     refuse_first,
     short_repr,
@@ -91,7 +92,7 @@ class BatchTrajectory:
     >>> import numpy as np, tumble
     >>> batch = tumble.simulate_batch([[1.0, 2.0, 3.0], [2.0, 2.0, 3.0]], [1.0, 0.1, 0.1], t_end=2.0, samples=5)
     >>> batch
-    BatchTrajectory(2 bodies, exact, 5 samples, t = 0..2 s, torque-free)
+    BatchTrajectory(2 bodies, exact (auto), 5 samples, t = 0..2 s, torque-free)
     >>> batch.omega.shape, batch.quat.shape
     ((2, 5, 3), (2, 5, 4))
     >>> bool(np.allclose(batch[1].omega, tumble.simulate(tumble.MassProperties.from_moments([2.0, 2.0, 3.0]),
@@ -105,6 +106,7 @@ class BatchTrajectory:
     moments: Vector3
     method: str
     torque_free: bool = True
+    auto: bool = False  # the method was chosen ("auto"), as a Trajectory's
 
     def __len__(self) -> int:
         """The number of bodies, N."""
@@ -128,6 +130,7 @@ class BatchTrajectory:
         return Trajectory(
             t=self.t, omega=self.omega[i], attitude=Rotation.from_quat(self.quat[i]), moments=self.moments[i],
             principal_axes=np.eye(3), method=self.method, torque_free=self.torque_free, body_name=f"body {int(i) % n}",
+            auto=self.auto,
         )
 
     @functools.cached_property
@@ -196,9 +199,11 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         ``times[0] >= 0``; the motion starts at t = 0.
     samples : int, optional
         Number of samples with ``t_end`` (default 500).
-    attitude0 : array_like, shape (N, 4) or (4,), optional
-        Initial attitudes, unit quaternions ``[x, y, z, w]`` (scalar last), principal frame to
-        world; default identity. Norms within 1e-3 of 1 are accepted and renormalised.
+    attitude0 : scipy Rotation (one or N), array_like, shape (N, 4), (4,) or (3, 3), optional
+        Initial attitudes, principal frame to world (the bodies are their moments: their principal
+        frame is their body frame, where :func:`simulate` turns a Body's design frame): unit quaternions
+        ``[x, y, z, w]`` (scalar last), a rotation matrix, or scipy Rotations; default identity. Norms
+        within 1e-3 of 1 are accepted and renormalised.
     method : str
         ``"auto"`` (the default) or a name from :data:`tumble.dynamics.METHODS`. ``"auto"`` runs
         ``"exact"`` without torque, else ``"dop853"`` at the tolerances that meet ``rtol`` in omega
@@ -272,7 +277,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     else:
         omega, quat = _loop(AUTO if auto else spec.name, I, w0, q0, t, torque, step, *(asked if auto else (rtol, atol)))
     return BatchTrajectory(t=t[keep], omega=omega[:, keep], quat=quat[:, keep], moments=I, method=spec.name,
-                           torque_free=model is None)
+                           torque_free=model is None, auto=auto)
 
 
 def _first(bad: np.ndarray) -> int:
@@ -339,6 +344,10 @@ def check_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike | No
     refuse_body("moments", moments)
     I = _rows("moments", moments, 3, "kg m^2")
     w = _rows("omega0", omega0, 3, "rad/s")
+    if isinstance(attitude0, Rotation):  # one rotation or a stack, as simulate takes one
+        attitude0 = attitude0.as_quat()
+    elif attitude0 is not None and np.shape(cast(Any, attitude0)) == (3, 3):  # one matrix, checked as simulate does
+        attitude0 = check_rotation("attitude0", attitude0)
     q = _rows("attitude0", [0.0, 0.0, 0.0, 1.0] if attitude0 is None else attitude0, 4, "unit quaternions [x, y, z, w]")
     sizes = {len(a) for a in (I, w, q) if len(a) > 1}
     if len(sizes) > 1:
