@@ -314,3 +314,27 @@ def test_the_commands_refuse_a_calibration_that_does_not_check_out(tmp_path, cap
     code = main(["tensor", *paths["o"], "--device", str(calibrated), "--mass", repr(OBJECT.mass), "--out", str(bracket),
                  "--accept-inadequate"])
     assert code == 0 and json.loads((bracket / "tensor.json").read_text())["object"]["mass"] == OBJECT.mass
+
+
+def test_a_device_no_hand_throws_is_refused_where_it_is_given():
+    """A walkthrough dropped the exponent of the calibrated rotor_inertia (1.7 for 1.7e-6 kg m^2) and
+    `tumble tensor` wrote an object of 592-1433 kg m^2 (0.482 kg: a 35 m radius of gyration) with exit
+    0; a centre of mass in mm failed later as "no throw could be fitted". Each is refused where the
+    device is made, naming the key; a rotor larger than the device about its own axis too."""
+    dev = calibrated_device()
+    with pytest.raises(ValueError, match=r"^device.rotor_inertia: a moment of 1.7 kg m\^2 is a radius of gyration of "
+                                         r"4.11 m on a 0.10067 kg device, beyond any thrown by hand \(0.5 m\)"):
+        replace(dev, rotor_inertia=1.7)
+    with pytest.raises(ValueError, match=r"^device.center_of_mass = .* lies 11.6 m from the sensor"):
+        replace(dev, center_of_mass=np.array([4.0, -2.0, -10.7]))
+    own = float(dev.rotor_axis @ dev.inertia @ dev.rotor_axis)
+    with pytest.raises(ValueError, match=r"^device.rotor_inertia = .* exceeds the device's own moment about the rotor's axis"):
+        replace(dev, rotor_inertia=1.5 * own)
+    assert replace(dev, rotor_inertia=0.9 * own).rotor_inertia == 0.9 * own  # a large rotor, but a possible one
+
+
+def test_a_device_mass_that_makes_every_tensor_no_bodys_is_pointed_at():
+    """The device's mass doubled (0.2 kg for 0.10067): every throw's tensor breaks the triangle
+    inequality, and the refusal says what they share, the device."""
+    with pytest.raises(NoThrowError, match="every throw's tensor is no body's: check the device's mass, center_of_mass"):
+        fit_tensor([throw(1), throw(2)], replace(calibrated_device(), mass=0.2), OBJECT.mass)

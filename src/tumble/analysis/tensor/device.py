@@ -21,6 +21,7 @@ CSV): the field, the value as given, and what is allowed.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,10 +31,15 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DISTORTION", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device", "Proof", "Throw", "axes_matrix"]
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device",
+           "Proof", "Throw", "axes_matrix"]
 
 #: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
 MAX_DEVICE_MASS = 10.0
+#: The largest radius of gyration of a device (``sqrt(J / m)``, its rotor's and its own) and the farthest
+#: its centre of mass lies from its sensor, m: it is held and thrown in one hand (a value beyond it is a
+#: unit slip: a moment in g cm^2 or with its exponent lost, a centre in mm).
+MAX_DEVICE_SIZE = 0.5
 #: The heaviest proof body or object thrown with the device, kg.
 MAX_THROWN_MASS = 100.0
 #: The signed axes ``Device.sensor_axes`` may name: an axis of the log, ``-`` for its opposite.
@@ -290,6 +296,30 @@ class Device:
                              "together (tumble calibrate writes both)")
         axes_matrix(self.sensor_axes, "device.sensor_axes")  # the value as given in its messages
         s(self, "sensor_axes", _axis_names(self.sensor_axes, "device.sensor_axes"))
+        self._check_sizes()
+
+    def _check_sizes(self) -> None:
+        """Refuse a rotor, a tensor or a centre of mass no hand-thrown device of this mass has
+        (:data:`MAX_DEVICE_SIZE`), and a rotor whose axial moment exceeds the device's own about
+        its axis: the rotor is part of the device (parallel axes: ``J_r <= a . I a``)."""
+        slip = "(a unit slip: a moment in g cm^2 or with its exponent lost?)"
+        moments = {"rotor_inertia": self.rotor_inertia}
+        if self.inertia is not None:
+            moments["inertia"] = float(np.max(np.linalg.eigvalsh(self.inertia)))
+        for name, J in moments.items():
+            if J is not None and math.sqrt(J / self.mass) > MAX_DEVICE_SIZE:
+                raise ValueError(f"device.{name}: a moment of {J:.6g} kg m^2 is a radius of gyration of "
+                                 f"{math.sqrt(J / self.mass):.3g} m on a {self.mass:g} kg device, beyond any thrown by "
+                                 f"hand ({MAX_DEVICE_SIZE:g} m) {slip}")
+        if self.rotor_inertia is not None and self.inertia is not None:
+            own = float(self.rotor_axis @ self.inertia @ self.rotor_axis)
+            if self.rotor_inertia > own:
+                raise ValueError(f"device.rotor_inertia = {self.rotor_inertia:.6g} kg m^2 exceeds the device's own moment "
+                                 f"about the rotor's axis, {own:.6g} kg m^2, of which the rotor is a part {slip}")
+        if self.center_of_mass is not None and float(np.linalg.norm(self.center_of_mass)) > MAX_DEVICE_SIZE:
+            raise ValueError(f"device.center_of_mass = {np.round(self.center_of_mass, 6).tolist()} m lies "
+                             f"{float(np.linalg.norm(self.center_of_mass)):.3g} m from the sensor, beyond any device "
+                             f"thrown by hand ({MAX_DEVICE_SIZE:g} m): a centre in mm?")
 
     @property
     def gyro_lsb(self) -> float:

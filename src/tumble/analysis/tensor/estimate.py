@@ -30,7 +30,7 @@ from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import triangle_excess
 from .. import _display
 
-__all__ = ["ENTRIES", "TRIANGLE_SIGMA", "MassEstimate", "mass_estimate", "not_physical", "principal_uncertainty",
+__all__ = ["ENTRIES", "NOT_A_BODY", "TRIANGLE_SIGMA", "MassEstimate", "mass_estimate", "not_physical", "principal_uncertainty",
            "subtract_body", "tensor_of", "vector_of"]
 
 #: An estimate whose moments break the triangle inequality by more than this many standard
@@ -199,6 +199,10 @@ def mass_estimate(mass: float, inertia: ArrayLike, inertia_cov: ArrayLike, cente
     return MassEstimate(float(mass), I, C, moments, std, axes, c, np.sqrt(np.maximum(np.diag(Cc), 0.0)), Cc)
 
 
+#: How :func:`not_physical`'s refusals begin (the pooled fit reads it: every throw refused so points at the device).
+NOT_A_BODY = "not a body's tensor"
+
+
 def not_physical(estimate: MassEstimate) -> str:
     """Why an estimated tensor is no body's, or ``""``: a principal moment not positive, or the
     triangle inequality ``I1 + I2 >= I3`` (Goldstein sec. 5.4; :func:`tumble.mass.tensor.check_inertia`)
@@ -218,7 +222,7 @@ def not_physical(estimate: MassEstimate) -> str:
     m = estimate.principal_moments
     shown = ", ".join(f"{x:.3g}" for x in m)
     if m[0] <= 0:
-        return f"not a body's tensor: principal moments {shown} kg m^2, the smallest not positive"
+        return f"{NOT_A_BODY}: principal moments {shown} kg m^2, the smallest not positive"
     v = estimate.principal_axes
     g = np.array([1.0, 1.0, -1.0])  # d(I1 + I2 - I3) / d(entries) along the principal axes
     G = sum(gk * np.array([a[0] ** 2, a[1] ** 2, a[2] ** 2, 2 * a[0] * a[1], 2 * a[0] * a[2], 2 * a[1] * a[2]])
@@ -226,7 +230,7 @@ def not_physical(estimate: MassEstimate) -> str:
     gap = -float(triangle_excess(m))  # I1 + I2 - I3
     std = float(np.sqrt(max(G @ estimate.inertia_cov @ G, 0.0)))
     if gap < -TRIANGLE_SIGMA * std:
-        return (f"not a body's tensor: principal moments {shown} kg m^2 break the triangle inequality "
+        return (f"{NOT_A_BODY}: principal moments {shown} kg m^2 break the triangle inequality "
                 f"(I1 + I2 - I3 = {gap:.3g}, {(-gap / std) if std > 0 else float('inf'):.3g} standard uncertainties "
                 f"below 0)")
     return ""

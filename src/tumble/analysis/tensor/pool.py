@@ -52,7 +52,7 @@ from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from .center import center_of_mass, sensor_columns
 from .device import Throw
-from .estimate import principal_uncertainty, vector_of
+from .estimate import NOT_A_BODY, principal_uncertainty, vector_of
 from .joint import JointFit, JointModel, fit_joint
 from .sensors import SensorErrors
 from .model import cholesky_of, inertia_of
@@ -449,6 +449,9 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
             lone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
             hint = "; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" \
                 if lone and any(f.reason.startswith(_BIAS_REASON) for f in fits) else ""
+            if all(f.reason.startswith(NOT_A_BODY) for f in fits):  # what every throw's tensor shares: the device's
+                hint += ("; every throw's tensor is no body's: check the device's mass, center_of_mass and "
+                         "rotor_inertia, which enter each of them")
             raise NoThrowError(f"no throw{' ' + which if which else ''} could be fitted ({why}){hint}")
         joint, jf = _joint([fits[k] for k in used], errors, start)
         noises = [fits[k].noise for k in used]
