@@ -128,3 +128,18 @@ def test_a_shown_repr_of_a_report_is_its_repr():
                                             "StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)"]
     with pytest.raises(AssertionError, match="the repr is"):
         run_checked(code.replace("(intermediate)", "(minor)"), "snippet")
+
+
+def test_every_scenario_a_guide_shows_runs_as_copied(tmp_path, capsys):
+    """A ```toml block with an [initial] table is a scenario file a reader saves and runs: the tour's
+    paired method = "exact" with a [torque], and `tumble simulate` refused it (a walkthrough, issue 40)."""
+    from tumble.cli import main
+
+    shown = [(page.name, block) for page in sorted((ROOT / "docs").glob("*.md"))
+             for block in re.findall(r"```toml\n(.*?)```", page.read_text(encoding="utf-8"), flags=re.DOTALL)
+             if "[initial]" in block]
+    assert shown
+    for k, (page, block) in enumerate(shown):
+        path = tmp_path / f"scenario_{k}.toml"
+        path.write_text(block, encoding="utf-8")
+        assert main(["simulate", str(path), "--out", str(tmp_path / f"run_{k}")]) == 0, (page, capsys.readouterr().err)

@@ -206,12 +206,13 @@ def test_the_command_prints_one_line(tmp_path, capsys):
     (("target = \"axes\"", "target = \"tilt\""), r"small\.toml: dispersion\[1\]: target = 'tilt' is unknown; allowed: "),
     (("absolute = 0.01", "absolute = 0.01\nrelative = 0.1"), r"small\.toml: dispersion\[1\]: give relative = "),
     (("field = \"crossbar_length\"", "field = \"bar_length\""),
-     r"small\.toml: dispersions\[0\] \(bar_length\): preset 't-handle' has no parameter 'bar_length'; allowed: "),
+     r"small\.toml: dispersion\[0\] \(bar_length\): preset 't-handle' has no parameter 'bar_length'; allowed: "),
     (("sampling = \"{sampling}\"", "sampling = \"grid\""),
      r"small\.toml: sweep: sampling = 'grid' is unknown; allowed: random, lhs, sobol$"),
     (("samples = 300", "samples = 1"), r"small\.toml: simulation: samples = 1 must be a whole number from 2 to "),
     (("[criterion]\ncolumn = \"flips\"", "[criterion]\ncolumn = \"flops\""),
      r"small\.toml: criterion: column = 'flops' is not a column of the cases; allowed: case, "),
+    (("t_end = 15.0", "t_end = 15.0\nmethod = \"autoo\""), r"small\.toml: simulation: method = 'autoo' is unknown; "),
     (("t_end = 15.0", "t_end = 15.0\nmethod = \"geometric\""), r"small\.toml: simulation: method = 'geometric' needs a "
                                                                r"step \(s\) in a sweep"),
     (("chunk = {chunk}", "chunk = 0"), r"small\.toml: sweep: chunk = 0 must be a whole number >= 1 \(cases per chunk\)$"),
@@ -352,3 +353,9 @@ def test_torque_tables_in_a_sweep_act_as_their_sum(tmp_path):
         run_sweep(path, tmp_path / path.stem, argv=["sweep", path.name, "--out", path.stem])
         tables.append((tmp_path / path.stem / "cases.csv").read_bytes())
     assert tables[0] == tables[1] and tables[0] != tables[2]
+
+
+def test_a_sweep_file_takes_method_auto_its_default(tmp_path):
+    """method = "auto", the key reference's default, was refused as unknown in a sweep file."""
+    auto = load_sweep(write(tmp_path, text=SMALL.replace("t_end = 15.0", "t_end = 15.0\nmethod = \"auto\"")))
+    assert auto.sweep.settings.method == load_sweep(write(tmp_path, name="default.toml")).sweep.settings.method == "exact"

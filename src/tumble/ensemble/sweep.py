@@ -27,6 +27,7 @@ import numpy as np
 from ..dynamics import simulate_batch
 from ..dynamics.batch import BatchTrajectory
 from ..dynamics.methods.integrators import get_method
+from ..dynamics.methods.names import AUTO
 from ..dynamics.models.torques import as_torque
 from .backends import InProcess
 from .cases import Ensemble
@@ -89,7 +90,7 @@ class RunSettings:
     times : sequence of float, optional
         The sample times, s, instead of ``t_end``.
     method : str, optional
-        Default ``"exact"`` without a torque, ``"dop853"`` with one.
+        ``"auto"`` (the default): ``"exact"`` without a torque, ``"dop853"`` with one.
     torque : torque model, optional
         :class:`tumble.ConstantTorque`, :class:`tumble.GravityGradient` or any
         ``tau(t, omega, attitude)``.
@@ -109,6 +110,8 @@ class RunSettings:
     >>> import tumble
     >>> RunSettings(t_end=10.0).method, RunSettings(t_end=10.0, torque=tumble.ConstantTorque((0, 0, 0.1))).method
     ('exact', 'dop853')
+    >>> RunSettings(t_end=10.0, method="auto").method   # as a sweep file's method = "auto" says it
+    'exact'
     >>> RunSettings(t_end=10.0, method="geometric")
     Traceback (most recent call last):
     ...
@@ -125,7 +128,7 @@ class RunSettings:
     def __post_init__(self) -> None:
         if self.times is not None:
             object.__setattr__(self, "times", tuple(self.times))
-        if self.method is None:
+        if self.method is None or self.method == AUTO:  # "auto", the default: what a sweep's every case can take
             object.__setattr__(self, "method", "exact" if self.torque is None else "dop853")
         spec = get_method(self.method)
         if self.step is not None and (isinstance(self.step, bool) or not isinstance(self.step, (int, float))

@@ -300,7 +300,10 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     if not isinstance(items, list):
         raise ValueError("dispersion must be a list of [[dispersion]] tables")
     dispersions = tuple(_dispersion(t, k) for k, t in enumerate(items))
-    bodies = BodySampler(body, dispersions, preset, parameters)
+    try:
+        bodies = BodySampler(body, dispersions, preset, parameters)
+    except ValueError as exc:  # named as the file names them: its [[dispersion]] tables, not the Python argument
+        raise ValueError(str(exc).replace("dispersions[", "dispersion[", 1)) from None
     rates = _in("initial", lambda: InitialRates(**initial))
     ensemble = _in("sweep", lambda: Ensemble(bodies, rates, **{k: v for k, v in sweep.items() if k != "chunk"}))
     times = sim.get("times")
