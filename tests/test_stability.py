@@ -374,3 +374,20 @@ def test_stability_report_of_a_batch_is_one_report_per_body():
     assert reports == [tumble.stability_report(batch[i]) for i in range(len(w))]
     alone = tumble.simulate(tumble.MassProperties.from_moments([1.0, 2.0, 3.0]), w[0], t_end=30.0, samples=301)
     assert reports[0]["flips"] == tumble.stability_report(alone)["flips"] > 0
+
+
+def test_flips_counted_on_too_few_samples_are_said_to_be():
+    """omega in deg/s numbers in a rad/s field ([573, 5.7, 5.7]) on the seed's 500 samples over 20 s: the
+    flips come every 0.031 s, the samples every 0.04 s, and the count (357 of ~640) and the measured
+    period (80 % off) were reported as they came. The report says how many samples a flip had, and
+    below SAMPLES_PER_FLIP its repr says the count cannot be trusted; densely sampled, the same motion
+    is counted right, as the closed form's interval says."""
+    from tumble.analysis.summary import SAMPLES_PER_FLIP
+
+    body, w0 = tumble.t_handle(), [573.0, 5.7, 5.7]
+    sparse = tumble.stability_report(tumble.simulate(body, w0, frame="design", t_end=2.0, samples=50))
+    dense = tumble.stability_report(tumble.simulate(body, w0, frame="design", t_end=2.0, samples=4001))
+    assert sparse.aliased and sparse["samples_per_flip"] < 1 and "too few samples to count flips" in repr(sparse)
+    assert not dense.aliased and dense["samples_per_flip"] > SAMPLES_PER_FLIP and "too few" not in repr(dense)
+    assert abs(dense["flips"] - 2.0 / dense["flip_period_exact"]) <= 1  # right: one flip per closed-form interval
+    assert sparse["flips"] < 0.75 * dense["flips"]  # wrong, as the report now says

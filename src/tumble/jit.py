@@ -229,6 +229,8 @@ def _counter_class() -> type:
             self.kernels += 1
 
         def on_end(self, event: Any) -> None:
+            if self._depth == 0:  # the end of a compile that began before this listener was installed
+                return
             self._depth -= 1
             if self._depth == 0:
                 self.seconds += time.perf_counter() - self._start

@@ -16,8 +16,12 @@ if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
     from ..dynamics.models.torques import TorqueModel
 
-__all__ = ["StabilityReport", "gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
+__all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
 
+#: Fewest samples per flip interval at which flips are counted (a sign change of a component between
+#: samples): below it the count and the measured period are aliased (:func:`stability_report`'s
+#: ``samples_per_flip``; 0.04 s samples on 0.031 s flips counted 357 of ~640, the period 80 % off).
+SAMPLES_PER_FLIP = 4.0
 #: Most samples :func:`torque_budget` calls a torque that varies in time at, one call each (~10 us).
 BUDGET_SAMPLES = 100_000
 #: Most rotation between samples (rad, ``max |omega| max dt``) at which :func:`torque_budget`'s
@@ -54,18 +58,35 @@ class StabilityReport(dict):  # type: ignore[type-arg]
                  plural(int(self["flips"]), "flip")]
         if self.get("flip_period") is not None:
             parts.append(f"period {fmt(self['flip_period'])} s")
+        if self.aliased:
+            parts.append(f"too few samples to count flips ({fmt(self['samples_per_flip'], 2)} per flip)")
         return parts
+
+    @property
+    def aliased(self) -> bool:
+        """Whether the samples are too sparse to count the flips (:data:`SAMPLES_PER_FLIP`).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> run = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0, samples=11)   # flips every 1.8 s
+        >>> report = tumble.stability_report(run)
+        >>> report.aliased, round(report["samples_per_flip"], 2)
+        (True, 0.89)
+        """
+        n = self.get("samples_per_flip")
+        return n is not None and n < SAMPLES_PER_FLIP
 
     def __repr__(self) -> str:
         return result_repr("StabilityReport", self._parts())
 
     #: The unit of each key that has one.
     UNITS: ClassVar[dict[str, str]] = {"growth_rate": "1/s", "wobble_frequency": "rad/s", "flip_period": "s",
-                                       "flip_period_exact": "s", "flip_period_asymptotic": "s"}
+                                       "flip_period_exact": "s", "flip_period_asymptotic": "s", "samples_per_flip": ""}
 
     def _repr_html_(self) -> str:
         return result_html("StabilityReport", [
-            (key, "none" if value is None else f"{fmt(value)} {self.UNITS[key]}" if key in self.UNITS else value)
+            (key, "none" if value is None else f"{fmt(value)} {self.UNITS[key]}".rstrip() if key in self.UNITS else value)
             for key, value in self.items()])
 
 
@@ -97,7 +118,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
         flips), ``flip_period_exact`` (the elliptic-function interval, s, when the spin axis is
         not the circulation axis; torque-free only), ``flip_period_asymptotic`` (its
-        small-perturbation logarithmic form), ``theory`` (what the prediction rests on:
+        small-perturbation logarithmic form), ``samples_per_flip`` (the flip interval, exact or
+        measured, over the widest sample spacing; below :data:`SAMPLES_PER_FLIP` the flips counted
+        are aliased and the repr says so), ``theory`` (what the prediction rests on:
         ``"rigid body"`` (the circulation; with a torque that of the initial state),
         ``"gyrostat"`` for rotors whose momentum lies along the spin axis (the linearised
         theory), ``"energy sink"`` with a damper (the major-axis rule: only spin about the major
@@ -142,7 +165,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     if not np.any(w0):
         return StabilityReport(axis=None, role=None, circulation=None, predicted=None, growth_rate=None,
                                wobble_frequency=None, flips=0, flip_period=None, flip_period_exact=None,
-                               flip_period_asymptotic=None, theory=None)
+                               flip_period_asymptotic=None, theory=None, samples_per_flip=None)
     I = traj.moments
     motion = spin_prediction(w0, I)
     a, circulation = int(motion.axis), int(motion.circulation)  # 1, 2 or 3; 1 or 3
@@ -156,6 +179,8 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         if a != circulation and np.isfinite(value):
             exact = value
             asymptotic = float(flip_interval_asymptotic(w0, I))
+    interval = exact if exact is not None else float(np.mean(np.diff(times))) if len(times) >= 2 else None
+    spacing = float(np.max(np.diff(traj.t))) if len(traj.t) >= 2 else None
     return StabilityReport({
         "axis": a,
         "role": AXIS_ROLES[a - 1],
@@ -168,6 +193,8 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         "flip_period_exact": exact,
         "flip_period_asymptotic": asymptotic,
         "theory": theory,
+        # the flip interval over the widest sample spacing: below SAMPLES_PER_FLIP the flips counted are aliased
+        "samples_per_flip": interval / spacing if interval is not None and spacing else None,
     })
 
 

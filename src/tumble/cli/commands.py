@@ -400,6 +400,8 @@ def _budget_words(name: str, budget: dict) -> str:
 
 def _simulate_line(summary: dict, out) -> str:
     """One line for people: what the spin did and how well the invariants held."""
+    from ..analysis.summary import SAMPLES_PER_FLIP
+
     s, d = summary["stability"], summary["drift"]
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
     spin = "started at rest" if s["axis"] is None else (
@@ -407,6 +409,9 @@ def _simulate_line(summary: dict, out) -> str:
     period = s["flip_period_exact"] if s["flip_period_exact"] is not None else s["flip_period"]
     if summary["torque_free"] and s["flips"] and period is not None:
         spin += f" every {period:.4g} s"
+    if s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP:  # the count is aliased
+        spin += (f" (counted with {s['samples_per_flip']:.2g} samples a flip, too few to count them: give more "
+                 f"samples)")
     if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is not None:
         g = summary["gravity_gradient"]
         tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "

@@ -9,30 +9,27 @@
    and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
    :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too (a
    single throw of a calibrated device, :attr:`~tumble.analysis.tensor.sensors.SensorErrors.calibrated`,
-   holds them at the calibration's values, their uncertainties carried). A
-   throw whose part of it has residuals well above the gyroscope's noise (measured from the
-   throw itself) or needs a gyroscope bias beyond
-   :data:`MAX_BIAS` is left out (:func:`joint_verdict`; a single throw's own fit may need a
-   large bias to mimic the distortion that the joint fit explains), the one furthest beyond its
-   limits first, and the rest refitted from the joint fit before; where only biases are beyond
-   it and the fit with every bias held at 0 explains the throws as well, that fit is taken
-   instead (:func:`_without_biases`: the rotor's tilt trades with the biases).
-4. A throw whose own estimate lies more than :data:`OUTLIER_SIGMA` standard uncertainties from
-   the joint one (in its principal moments) is left out, naming that, and the rest refitted (3
-   or more throws: with two, neither can be called the outlier).
-5. ``chi^2 / dof`` of the throws' own tensors about the joint one (:func:`agreement`, each
-   throw refitted with the sensors held at the joint fit's): above 1, the throws disagree
-   beyond their uncertainties, and the joint covariance's statistical part is multiplied by it
-   (the Birge ratio, as the ratio fit pools its flights; the sensors' parts, the same in every
-   throw of the device, are not: the throws' scatter says nothing of them). Below 1, from
-   :data:`SHRINK_DOF` degrees of freedom on, that part shrinks, but no further than the ratio's
-   95 % upper confidence bound (:func:`birge_factor`). Of the centre's covariance only the part
-   from the fitted rates (their parameters' covariance, which the throws' scatter measures) is
-   inflated by it, never shrunk; the accelerometer's part is its own residuals' and a jackknife's
-   over the flights (:func:`~tumble.analysis.tensor.center.center_of_mass`), of which the
-   tensors' scatter says nothing. Inflated whole, the device-alone centre's std along the
-   rotor's axis came out 0.15-2.1 mm over 25 realistic devices (8 sets with an agreement of
-   1.8-9.5) where its errors were 0.004-0.74 mm, 0.61 std rms; with the rates' part alone
+   holds them at the calibration's values, their uncertainties carried). A throw whose part of it has
+   residuals well above the gyroscope's noise (measured from the throw itself) or needs a gyroscope
+   bias beyond :data:`MAX_BIAS` is left out (:func:`joint_verdict`; a single throw's own fit may need a
+   large bias to mimic the distortion that the joint fit explains), the one furthest beyond its limits
+   first, and the rest refitted from the joint fit before; where only biases are beyond it and the fit
+   with every bias held at 0 explains the throws as well, that fit is taken instead (:func:`_without_biases`:
+   the rotor's tilt trades with the biases).
+4. A throw whose own estimate lies more than :data:`OUTLIER_SIGMA` standard uncertainties from the joint one (in
+   its principal moments) is left out, naming that, and the rest refitted (3 or more throws: with two, neither
+   can be called the outlier).
+5. ``chi^2 / dof`` of the throws' own tensors about the joint one (:func:`agreement`, each throw refitted with the
+   sensors held at the joint fit's): above 1, the throws disagree beyond their uncertainties, and the joint
+   covariance's statistical part is multiplied by it (the Birge ratio, as the ratio fit pools its flights; the
+   sensors' parts, the same in every throw of the device, are not: the throws' scatter says nothing of them). Below
+   1, from :data:`SHRINK_DOF` degrees of freedom on, that part shrinks, but no further than the ratio's 95 % upper
+   confidence bound (:func:`birge_factor`). Of the centre's covariance only the part from the fitted rates (their
+   parameters' covariance, which the throws' scatter measures) is inflated by it, never shrunk; the accelerometer's
+   part is its own residuals' and a jackknife's over the flights
+   (:func:`~tumble.analysis.tensor.center.center_of_mass`), of which the tensors' scatter says nothing. Inflated
+   whole, the device-alone centre's std along the rotor's axis came out 0.15-2.1 mm over 25 realistic devices (8
+   sets with an agreement of 1.8-9.5) where its errors were 0.004-0.74 mm, 0.61 std rms; with the rates' part alone
    inflated, 0.15-0.75 mm, 0.74 std rms, all within 1.96 std.
 
 Systematic parts common to all the throws beyond the sensors' (the rotor's inertia, the
@@ -447,11 +444,10 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         if not used:
             why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
             lone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
-            hint = "; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" \
-                if lone and any(f.reason.startswith(_BIAS_REASON) for f in fits) else ""
-            if all(f.reason.startswith(NOT_A_BODY) for f in fits):  # what every throw's tensor shares: the device's
-                hint += ("; every throw's tensor is no body's: check the device's mass, center_of_mass and "
-                         "rotor_inertia, which enter each of them")
+            hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if lone
+                    and any(f.reason.startswith(_BIAS_REASON) for f in fits) else "") + ("; every throw's tensor is no "
+                    "body's: check the device's mass, center_of_mass and rotor_inertia, which enter each of them" if all(
+                        f.reason.startswith(NOT_A_BODY) for f in fits) else "")
             raise NoThrowError(f"no throw{' ' + which if which else ''} could be fitted ({why}){hint}")
         joint, jf = _joint([fits[k] for k in used], errors, start)
         noises = [fits[k].noise for k in used]
