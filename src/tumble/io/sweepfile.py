@@ -50,7 +50,7 @@ chunks pass (:class:`CaseTables`).
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -133,7 +133,8 @@ SWEEP_FORMAT = FileFormat("sweep", (
         Key("grid", "3 lists of numbers", "rad/s", example="[[10.0], [0.05, 0.1], [0.1]]",
             doc="instead of omega: the Cartesian product, case i at point i mod G"),
     ), "The nominal initial angular velocity, or a grid of them; ``omega`` or ``grid`` is required."),
-    Table("[simulation]", (_T_END, _SAMPLES, _TIMES, _METHOD, _STEP), "When to sample and how to integrate each case."),
+    Table("[simulation]", (_T_END, _SAMPLES, replace(_TIMES, doc="the sample times, instead of t_end and samples"), _METHOD,
+                           _STEP), "When to sample and how to integrate each case (no dt: every case shares its times)."),
     TORQUE_TABLE,
     Table("[criterion]", (
         Key("column", "string", required=True, example='"flips"', doc="a column of cases.csv, without its unit"),

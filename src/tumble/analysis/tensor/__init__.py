@@ -15,7 +15,8 @@ Pop & Smeur, arXiv:2503.13137). Rooms:
 """
 
 from .calibrate import calibrate_device
-from .device import Device, Proof, Throw
+from .device import Device, Proof
+from .throwlog import Throw
 from .estimate import MassEstimate
 from .fit import TensorFit, ThrowFit, fit_tensor
 from .pool import NoThrowError

@@ -57,7 +57,8 @@ import numpy as np
 
 from ...typing import FloatArray
 from .. import _display
-from .device import Device, Proof, Throw
+from .device import Device, Proof
+from .throwlog import Throw
 from .equations import rotor_inertia_from
 from .estimate import tensor_of
 from .sensors import gyro_matrix, tilted_axis
@@ -176,12 +177,12 @@ def _problems(J: float, ratio: float, a, p) -> list[str]:
     out = []
     if not J > 0:
         out.append(f"the rotor's inertia comes out {J:.3g} kg m^2, not positive: the throws with the proof turn less "
-                   "than the device's alone would, so the --alone and --proof throws are likely swapped")
+                   "than the device's alone would, so the device-alone and proof throws (--alone, --proof) are likely swapped")
         return out
     if ratio > MAX_CHI2_DOF:
         out.append(f"the parallel-axis equations disagree with the proof body as stated: chi2/dof {ratio:.3g} (at most "
                    f"{MAX_CHI2_DOF:g}); the proof may be mounted turned from the sensor axes, its mass or tensor "
-                   "mis-stated, or the --proof throws are of another object")
+                   "mis-stated, or the proof throws (--proof) are of another object")
     for name, pooled in (("device-alone", a), ("proof", p)):
         if np.isfinite(pooled.chi2_dof) and pooled.chi2_dof > MAX_SET_CHI2_DOF:
             out.append(f"the {name} throws disagree with each other: one tensor for all of them fits with chi2/dof "
@@ -220,8 +221,8 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
     for k, a_throw in enumerate(alone):
         for j, p_throw in enumerate(proof_throws):
             if isinstance(a_throw, Throw) and isinstance(p_throw, Throw) and duplicate_throws([a_throw, p_throw]):
-                raise ValueError(f"--alone throw {a_throw.input or k} and --proof throw {p_throw.input or j} are the "
-                                 "same log: a throw is of the device alone or with the proof body, not both")
+                raise ValueError(f"device-alone throw {a_throw.input or k} (--alone) and proof throw {p_throw.input or j} "
+                                 "(--proof) are the same log: a throw is of the device alone or with the proof body, not both")
     # the sets fit the gyroscope's distortion and the rotor's tilt themselves: a calibration before this one is not used
     errors = sensor_errors(replace(device, gyro_distortion=None, gyro_distortion_std=None))
     rail = full_scale(device, saturation)

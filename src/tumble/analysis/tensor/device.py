@@ -1,4 +1,5 @@
-"""The inputs of the absolute tensor fit: the device, the proof body and one throw (frozen value objects).
+"""The inputs of the absolute tensor fit: the device and the proof body (frozen value objects; one throw's log
+is :mod:`~tumble.analysis.tensor.throwlog`'s :class:`~tumble.analysis.tensor.throwlog.Throw`).
 
 The **device** is a flight controller logging its gyroscope and accelerometer with a motor and a
 flywheel (the rotor) fixed to it (Blaha, Kuijper, Pop & Smeur, "Rapid and Inexpensive Inertia
@@ -26,13 +27,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..._html import headline_html, headline_repr
+from ..._html import fmt, headline_html, headline_repr, result_html, result_repr, vec, with_std
 from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
-from ...validation import check_direction, check_increasing, check_positive, check_vectors, short_repr
+from ...validation import check_direction, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_INTERVAL", "MAX_THROWN_MASS", "Device",
-           "Proof", "Throw", "axes_matrix"]
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_THROWN_MASS", "Device", "Proof",
+           "axes_matrix"]
 
 #: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
 MAX_DEVICE_MASS = 10.0
@@ -321,6 +322,34 @@ class Device:
                              f"{float(np.linalg.norm(self.center_of_mass)):.3g} m from the sensor, beyond any device "
                              f"thrown by hand ({MAX_DEVICE_SIZE:g} m): a centre in mm?")
 
+    def _parts(self) -> list[tuple[str, str]]:
+        """What the device's repr and table show: its mass, its rotor and, once calibrated, its tensor
+        (principal moments) and centre of mass."""
+        rows = [("mass", f"{fmt(self.mass)} kg"), ("rotor axis", vec(self.rotor_axis))]
+        if self.rotor_inertia is not None:
+            rows.append(("rotor inertia", f"{with_std(self.rotor_inertia, self.rotor_inertia_std)} kg m^2"))
+        if self.inertia is not None:
+            rows.append(("principal moments", f"{vec(np.linalg.eigvalsh(self.inertia))} kg m^2"))
+        if self.center_of_mass is not None:
+            rows.append(("centre of mass", f"{vec(1e3 * self.center_of_mass)} mm"))
+        rows.append(("calibrated", ("yes" + (", its gyroscope's distortion too" if self.gyro_distortion is not None else ""))
+                     if self.calibrated else "no"))
+        return rows
+
+    def __repr__(self) -> str:
+        """``Device(mass 0.1007 kg, rotor axis (0, 0, -1), rotor inertia 1.699e-06 +- 2.4e-09 kg m^2, ...)``.
+
+        Examples
+        --------
+        >>> from tumble.analysis.tensor import Device
+        >>> Device(mass=0.10067, rotor_axis=[0.0, 0.0, -2.0], rotor_inertia=1.7e-6)
+        Device(mass 0.1007 kg, rotor axis (0, 0, -1), rotor inertia 1.7e-06 kg m^2, calibrated no)
+        """
+        return result_repr("Device", [f"{label} {value}" for label, value in self._parts()])
+
+    def _repr_html_(self) -> str:
+        return result_html("Device", self._parts())
+
     @property
     def gyro_lsb(self) -> float:
         """deg/s per count of a blackbox log's gyroscope: :attr:`gyro_resolution`, else the
@@ -385,82 +414,3 @@ class Proof:
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg", at_most=MAX_THROWN_MASS))
         object.__setattr__(self, "inertia", _tensor("proof.inertia", self.inertia))
-
-
-#: The longest interval between a throw's samples, s: a logger writes hundreds a second.
-MAX_INTERVAL = 1.0
-#: What no throw's sensors read (far beyond a gyroscope's 2000 deg/s, a motor's 10^5 rpm, an
-#: accelerometer's 16 g): rad/s, rad/s, m/s^2.
-_PLAUSIBLE = {"omega": 1e3, "rotor": 1e5, "accel": 1e4}
-#: The fewest samples a throw may have.
-MIN_THROW_SAMPLES = 20
-
-
-@dataclass(frozen=True)
-class Throw:
-    """One throw's log, sensor frame.
-
-    Attributes
-    ----------
-    t : ndarray, shape (n,)
-        Sample times, s, strictly increasing (irregular allowed).
-    omega : ndarray, shape (n, 3)
-        Gyroscope, rad/s.
-    rotor : ndarray, shape (n,)
-        The rotor's speed relative to the device, rad/s (positive about ``Device.rotor_axis``).
-    accel : ndarray, shape (n, 3), or None
-        Accelerometer's specific force, m/s^2 (needed for the centres of mass).
-    input : str
-        Where it came from (a file's path as given), for messages and reports.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.analysis.tensor import Throw
-    >>> t = np.arange(100) / 4000.0
-    >>> Throw(t, np.zeros((100, 3)), np.zeros(100), None, "a.csv").accel is None
-    True
-    >>> Throw(t, np.zeros((100, 2)), np.zeros(100))
-    Traceback (most recent call last):
-    ...
-    ValueError: throw omega must have shape (100, 3) (rad/s), not (100, 2)
-    """
-
-    HEADLINE = (("input", "file", ""), ("t", "times", ""))
-    __repr__ = headline_repr
-    _repr_html_ = headline_html
-
-    t: FloatArray = field(repr=False)
-    omega: FloatArray = field(repr=False)
-    rotor: FloatArray = field(repr=False)
-    accel: FloatArray | None = field(default=None, repr=False)
-    input: str = ""
-
-    def __post_init__(self) -> None:
-        where = f"throw {self.input}" if self.input else "throw"
-        t = check_vectors(f"{where} t", self.t, "s", size=None)
-        if t.ndim != 1 or t.size < MIN_THROW_SAMPLES:
-            raise ValueError(f"{where} t must be a list of at least {MIN_THROW_SAMPLES} times (s), got shape {t.shape}")
-        check_increasing(f"{where} t", t)
-        jump = np.flatnonzero(np.diff(t) > MAX_INTERVAL)
-        if jump.size:
-            k = int(jump[0]) + 1
-            raise ValueError(f"{where} t[{k}] = {float(t[k])!r} s comes {t[k] - t[k - 1]:.3g} s after the sample before it: a "
-                             f"logger's samples are at most {MAX_INTERVAL:g} s apart (a time written wrongly)")
-        n = t.size
-        arrays = {"omega": ((n, 3), "rad/s", self.omega), "rotor": ((n,), "rad/s", self.rotor),
-                  "accel": ((n, 3), "m/s^2", self.accel)}
-        s = object.__setattr__
-        s(self, "t", t)
-        for name, (shape, unit, value) in arrays.items():
-            if value is None and name == "accel":
-                continue
-            a = check_vectors(f"{where} {name}", value, unit, size=None)
-            if a.shape != shape:
-                raise ValueError(f"{where} {name} must have shape {shape} ({unit}), not {a.shape}")
-            beyond = np.flatnonzero(np.any(np.abs(a.reshape(n, -1)) > _PLAUSIBLE[name], axis=1))
-            if beyond.size:
-                k = int(beyond[0])
-                raise ValueError(f"{where} {name}[{k}] = {short_repr(a[k].tolist())} ({unit}) is beyond any sensor's "
-                                 f"range (at most {_PLAUSIBLE[name]:g} {unit}; a value in other units or written wrongly)")
-            s(self, name, a)

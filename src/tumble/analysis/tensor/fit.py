@@ -27,7 +27,8 @@ import numpy as np
 from ...typing import FloatArray
 from ...validation import check_positive
 from .. import _display
-from .device import MAX_THROWN_MASS, Device, Throw
+from .device import MAX_THROWN_MASS, Device
+from .throwlog import Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
 from .sensors import SensorErrors, distortion_coefficients
 from .pool import NoThrowError, Pooled, pool_throws

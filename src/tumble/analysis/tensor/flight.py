@@ -33,7 +33,7 @@ from scipy.ndimage import median_filter
 
 from ..._html import headline_html, headline_repr
 from ..fit.segments import IMPULSE_SPAN, impulses
-from .device import Throw
+from .throwlog import Throw
 
 __all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SEARCH_BACK", "SPAN", "START_MARGIN", "Window", "catch_candidates",
            "find_flight", "rotor_start", "skew"]

@@ -48,7 +48,7 @@ from scipy.special import gammaincinv
 from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from .center import center_of_mass, sensor_columns
-from .device import Throw
+from .throwlog import Throw
 from .estimate import NOT_A_BODY, principal_uncertainty, vector_of
 from .joint import JointFit, JointModel, fit_joint
 from .sensors import SensorErrors

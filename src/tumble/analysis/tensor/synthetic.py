@@ -53,7 +53,8 @@ from ...mass.tensor import parallel_axis, rotate_inertia
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..fit.accelsynth import attitude_from_rates
 from ..fit.endings import smooth_noise
-from .device import Device, Proof, Throw
+from .device import Device, Proof
+from .throwlog import Throw
 from .firmware import Imperfections, RotorSchedule, draw_imperfections, draw_schedule, logged_speed
 
 __all__ = ["DEVICE_MASS", "GYRO_RANGE", "ROTOR_AXIS", "ROTOR_INERTIA", "TYPICAL_SEED", "Rigid", "ThrowTimes", "box",

@@ -40,7 +40,7 @@ from ...typing import FloatArray
 from ..fit.adequacy import Adequacy, judge
 from ..fit.single import saturation_mask
 from ..fit.uncertainty import autocorrelation_time, noise_floor
-from .device import Throw
+from .throwlog import Throw
 from .estimate import tensor_of
 from .center import center_of_mass, rate_part
 from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
