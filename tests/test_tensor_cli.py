@@ -87,6 +87,13 @@ TENSOR_BAD = {
     "time goes back": (None, HEADER + _rows(3) + "0.0001,0,0,0,0,0,0,0\n", "0.5",
                        "o1.csv, line 5: time 0.0001 s goes back before the time 0.0005 s of line 4"),
     "short row": (None, HEADER + _rows(3) + "0.1,0,0\n", "0.5", "o1.csv, line 5: 3 columns; expected 8"),
+    # a logger's nan or inf named where the file has it (it was "omega[300, 0] = nan", a sample's index)
+    "a rate logged nan": (None, HEADER + _rows(3) + "0.1,nan,0,0,0,0,0,0\n", "0.5",
+                          "o1.csv, line 5, column 2: wx (rad/s) = nan is not a finite number\n"),
+    "a force logged inf": (None, HEADER + _rows(3) + "0.1,0,0,0,0,0,-inf,0\n", "0.5",
+                           "o1.csv, line 5, column 7: ay (m/s^2) = -inf is not a finite number\n"),
+    "headerless nan": (None, _rows(3) + "0.1,0,0,0,nan,0,0,0\n", "0.5",
+                       "o1.csv, line 4, column 5: column 5 = nan is not a finite number (rad/s)\n"),
     "too few samples": (None, HEADER + _rows(5), "0.5", "o1.csv: t must be a list of at least"),
     "negative object mass": (None, None, "-2", "--mass = -2 must be a positive finite number (kg)"),
     "object mass as text": (None, None, "heavy", "--mass = heavy must be a positive finite number (kg)"),

@@ -206,6 +206,11 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
     rows = _rows(lines, sep, columns, width, label)
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a throw needs many samples")
+    if not np.all(np.isfinite(rows)):  # a logger's nan or inf, said where the file has it (not as a sample index)
+        k, j = np.argwhere(~np.isfinite(rows))[0]
+        unit = "" if units[j] in names[j] else f" ({units[j]})"  # a header's cell names its unit itself
+        raise ValueError(f"{label}, line {lines[k][0]}, column {columns[j] + 1}: {names[j]} = {rows[k, j]:g} is not a "
+                         f"finite number{unit}")
     rows *= np.array(scale)
     t = rows[:, 0].copy()
     _check_order(t, lines, label)
