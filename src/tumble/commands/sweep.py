@@ -220,6 +220,8 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
     ...                        {"0.05": 1.21, "0.5": 1.25, "0.95": 1.3}}}}
     >>> sweep_line(data, "out")
     '4 cases (exact): 4 predicted unstable; 4 flipped (100 %, 95 % interval 39.76 to 100 %); flip period median 1.25 s over 4 flipping twice or more (5-95 %: 1.21 to 1.3 s); wrote out/'
+    >>> sweep_line({**data, "resumed_chunks": 3}, "out").split("; ")[-2]   # an interrupted run's chunks taken over
+    '3 chunks resumed'
     """
     counts, stats = data["counts"], data["statistics"]
     unstable = counts["predicted"].get("unstable", 0)
@@ -241,4 +243,6 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
         text += f"; {data['redraws']} unphysical draws redrawn"
     if "criterion" in data:
         text += f"; {data['criterion']['statement']}"
+    if data.get("resumed_chunks"):  # an interrupted run's finished chunks, checked and taken over
+        text += f"; {data['resumed_chunks']} chunk{'' if data['resumed_chunks'] == 1 else 's'} resumed"
     return f"{text}; wrote {out}/"
