@@ -416,7 +416,7 @@ def test_every_result_of_a_public_function_reads_well():
 
 
 def _settings():
-    """The models and settings a user makes and prints: actuators, controllers, a mission, a filter."""
+    """The models and settings a user makes and prints: actuators, controllers, a mission, a filter, sensors."""
     from scipy.spatial.transform import Rotation
 
     from tumble.dynamics.control.bdot import BDot
@@ -425,13 +425,19 @@ def _settings():
     from tumble.dynamics.estimation.mekf import MEKF
     from tumble.dynamics.models.actuators import Command, Magnetorquers, ReactionWheels
 
+    from tumble.dynamics.control.estimated import Estimated
+    from tumble.dynamics.models.sensors import Sensors
+    from tumble.dynamics.models.vector_sensors import StarTracker
+
+    tracker = StarTracker(cross=1e-5, roll=1e-4, period=1.0, frame=Rotation.from_rotvec([0.0, 0.1, 0.0]))
+    sensors = Sensors(gyro_noise=1e-4, star_tracker=tracker)
     wheels = ReactionWheels(np.eye(4, 3) + 0.1, inertia=1e-4, max_torque=1e-3, max_speed=600.0)
     point = MRPFeedback(K=0.01, P=0.1, period=1.0, moments=[1.0, 2.0, 3.0], wheels=wheels,
                         target=Rotation.from_rotvec([0.0, 0.0, 0.5]))
     return [wheels, Magnetorquers(1.0), point, MomentumDumping(point, gain=0.01), BDot(gain=1e-3, period=1.0),
             DetumbleThenPoint(BDot(gain=1e-3, period=1.0), point, switch_rate=0.01, dwell=60.0),
             MEKF.start([0.0, 0.0, 0.0, 1.0], attitude_sigma=0.1, bias_sigma=0.01, gyro_noise=1e-4, bias_walk=1e-6),
-            Command(wheel_torque=np.zeros(4))]
+            Command(wheel_torque=np.zeros(4)), tracker, sensors, Estimated(BDot(gain=1e-3, period=0.5), sensors)]
 
 
 @pytest.mark.parametrize("setting", _settings(), ids=lambda s: type(s).__name__)

@@ -74,6 +74,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import field_repr, fmt, result_html, result_repr, vec
 from ...typing import FloatArray
 from ...validation import check_positive
 from ..environment.magnetic import MagneticField
@@ -120,6 +121,8 @@ class Knowledge:
     >>> k = c.knowledge()
     >>> len(k.t), k.used[:3].tolist()
     (10, [[False, False, True], [False, False, False], [False, False, True]])
+    >>> repr(k).startswith("Knowledge(steps 10 over 4.5 s, attitude sigma at the end ("), repr(k).endswith("star tracker 5)")
+    (True, True)
     """
 
     t: FloatArray
@@ -127,6 +130,23 @@ class Knowledge:
     bias: FloatArray
     sigma: FloatArray
     used: np.ndarray
+
+    def _rows(self) -> list[tuple[str, str]]:
+        n = len(self.t)
+        rows = [("steps", f"{n} over {fmt(self.t[-1] - self.t[0]) if n else 0} s")]
+        if n:
+            rows += [("attitude sigma at the end", f"{vec(self.sigma[-1, :3])} rad"),
+                     ("bias sigma at the end", f"{vec(self.sigma[-1, 3:])} rad/s")]
+        counts = np.sum(self.used, axis=0).tolist() if n else [0, 0, 0]
+        rows.append(("updates", ", ".join(f"{name} {c}" for name, c in zip(("magnetometer", "sun sensor", "star tracker"),
+                                                                               counts))))
+        return rows
+
+    def __repr__(self) -> str:
+        return result_repr("Knowledge", [f"{label} {value}" for label, value in self._rows()])
+
+    def _repr_html_(self) -> str:
+        return result_html("Knowledge", self._rows())
 
     def error(self, run: object) -> FloatArray:
         """The estimate's error about the body axes at each step, ``A_true = A_est exp([e x])``, rad, shape (n, 3).
@@ -197,6 +217,8 @@ class Estimated:
     >>> c.period, len(c.knowledge().t)
     (0.5, 10)
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     controller: Controller
     sensors: Sensors

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_vector
 from ..environment.sun import Sunlight
@@ -65,6 +66,8 @@ class Measurement:
     >>> m.omega.tolist(), m.field is None, m.wheel_speed.shape
     ([0.0, 0.0, 0.1], True, (0,))
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     t: float
     omega: FloatArray
@@ -118,6 +121,8 @@ class Sensors:
     >>> m.omega.tolist(), m.field.tolist()
     ([0.1, 0.0, 0.0], [0.0, 2e-05, 0.0])
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     gyro_noise: float = 0.0
     gyro_bias: tuple[float, float, float] = (0.0, 0.0, 0.0)

@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_positive, check_rotation, check_vectors
 from ..special.quaternion import turned_by
@@ -263,6 +264,8 @@ class CoarseSunSensor:
     (0.014, 0.014)
     """
 
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
+
     axes: ArrayLike = field(default_factory=lambda: np.eye(3))
     noise: float = 0.0
     period: float = 0.0
@@ -362,6 +365,8 @@ class FineSunSensor:
     (True, None)
     """
 
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
+
     frame: Rotation | ArrayLike = field(default_factory=Rotation.identity)
     fov: float = math.radians(60.0)
     noise: float = 0.0
@@ -423,6 +428,8 @@ class StarTracker:
     >>> bool(st.measure(Rotation.identity(), np.random.default_rng(0)).magnitude() < 1e-3)
     True
     """
+
+    __repr__ = field_repr  # one line: arrays by value when short, by shape otherwise
 
     frame: Rotation | ArrayLike = field(default_factory=Rotation.identity)
     cross: float = 0.0
