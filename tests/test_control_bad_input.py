@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import re
 
 import pytest
 
@@ -184,3 +185,32 @@ def test_axes_that_are_not_square_are_echoed_as_written():
                                          r"'minor' \(their angle is 0 deg\)$"):
         _build({**POINT, "orbit": {"altitude": 500e3}}, "control", target="nadir", nadir_axis="minor",
                normal_axis=[0.0, 0.0, 1.0])
+
+
+def test_a_misspelt_control_key_lists_its_kinds_keys_and_its_nearest():
+    """A typo in [control] listed every kind's keys (switch_rate, dwell, gain, ... for an mrp_pd run); it
+    lists the kind's own, with the nearest; a key of another kind still says it does not go with this one."""
+    with pytest.raises(ValueError, match=r"^control: unknown key 'perido' \(did you mean 'period'\?\); allowed with "
+                                         r"kind = 'mrp_pd': K, Ki, P, gyroscopic, integral_limit, kind, nadir_axis, "
+                                         r"normal_axis, period, target, threshold$"):
+        _build(POINT, "control", perido=0.5)
+    with pytest.raises(ValueError, match=r"^control: key 'dwell' does not go with kind = 'mrp_pd'; allowed: K, "):
+        _build(POINT, "control", dwell=60.0)
+
+
+@pytest.mark.parametrize(("rename", "said"), [
+    ("controll", r"unknown table 'controll': did you mean \[control\]"),
+    (None, r"\[actuators\] belongs to a control scenario, which needs a \[control\] table"),
+])
+def test_a_control_scenario_without_its_control_table_is_told_so(tmp_path, capsys, rename, said):
+    """Without [control] (left out, or misspelt) a control scenario was read as a plain one and refused
+    as "unknown key 'actuators'", naming neither the table nor its misspelling."""
+    text = ('body = { name = "b", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+            "initial = { omega = [0.0, 0.0, 0.01] }\nsimulation = { t_end = 1.0 }\n[actuators.wheels]\ninertia = 2e-5\n")
+    if rename is not None:
+        text += f"[{rename}]\nkind = \"mrp_pd\"\nperiod = 0.5\nK = 1e-3\nP = 6e-3\n"
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and re.search(said, err), err

@@ -75,7 +75,8 @@ def test_point_example_drives_the_pointing_error_down_with_the_wheels(tmp_path, 
 @pytest.mark.parametrize(("old", "new", "message"), [
     ('kind = "bdot"', 'kind = "pid"', r"control: kind = 'pid' is unknown; allowed: bdot, mrp_pd"),
     ("max_dipole = 0.2 ", "max_dipole = -1.0 ", r"actuators.magnetorquers: max_dipole\[0\] = -1.0 must be a positive"),
-    ("period = 1.0 ", "perio = 1.0 ", r"control: unknown key 'perio'; allowed: K, Ki, P, derivative"),
+    ("period = 1.0 ", "perio = 1.0 ", r"control: unknown key 'perio' \(did you mean 'period'\?\); allowed with kind = "
+                                      r"'bdot': derivative, form, gain, kind, period, threshold$"),
     ("period = 1.0 ", "K = 1.0\nperiod = 1.0 ", r"control: key 'K' does not go with kind = 'bdot'; allowed: derivative, form"),
     ("altitude = 500e3", "altitude = -5.0", r"orbit: altitude = -5.0 must be a positive"),
 ])

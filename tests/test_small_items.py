@@ -181,3 +181,14 @@ def test_a_python_slip_is_named_where_it_was_made(case):
     call, error, said = _walkthrough_mistakes()[case]
     with pytest.raises(error, match=said):
         call()
+
+
+def test_a_control_page_says_what_it_shows(tmp_path, capsys):
+    """`tumble view` of the magnetorquer-only detumble said "closed loop: wheels, commanded torque": it
+    names what the run has."""
+    from importlib import resources
+
+    scenario = resources.files("tumble") / "examples" / "control" / "detumble.toml"
+    assert main(["view", str(scenario), "--out", str(tmp_path / "d.html")]) == 0
+    line = capsys.readouterr().out
+    assert "closed loop: dipole, live mode off" in line and "wheels" not in line

@@ -100,6 +100,8 @@ def view_control(args, scenario, out) -> int:
                                 knowledge=controller.knowledge() if hasattr(controller, "knowledge") else None)
     write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj), live=False,
                control=control)
+    shown = ", ".join(what for what, has in (("wheels", scenario.wheels is not None), ("commanded torque", scenario.wheels
+                                              is not None), ("dipole", scenario.magnetorquers is not None)) if has)
     print(f"wrote {out} (self-contained: open it in any browser, no network needed; closed loop: "
-          "wheels, commanded torque, live mode off)")
+          f"{shown or 'no actuator'}, live mode off)")
     return EXIT_OK

@@ -80,6 +80,7 @@ from .torquetables import CONTROL_TORQUE_TABLE, torque_of
 from .keys import FileFormat, Key, Table
 from .controlspec import (
     CONTROL_KEYS,
+    CONTROL_KINDS,
     CONTROL_TABLES,
     DEFAULT_THRESHOLD,
     ControlSpec,
@@ -404,7 +405,9 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     unknown = sorted(set(data) - {"body", "torque", *CONTROL_SECTIONS})
     if unknown:
         raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}, torque")
-    t = {s: _table(data, s) for s in CONTROL_SECTIONS}
+    kind = data["control"].get("kind") if isinstance(data.get("control"), dict) else None  # a known kind's keys: parse_control
+    t = {s: dict(data[s]) if s == "control" and isinstance(kind, str) and kind in CONTROL_KINDS else _table(data, s)
+         for s in CONTROL_SECTIONS}
     P = np.asarray(body.principal_axes)
     initial, sim, orbit_t, act, control = t["initial"], t["simulation"], t["orbit"], t["actuators"], t["control"]
     try:

@@ -28,6 +28,7 @@ by the constructor it feeds; errors are one line naming the table and the key.
 
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -224,8 +225,12 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
         raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(CONTROL_KINDS)}")
     bad = sorted(set(control) - CONTROL_KINDS[kind])
     if bad:
-        raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: "
-                         f"{', '.join(sorted(CONTROL_KINDS[kind]))}")
+        mine = sorted(CONTROL_KINDS[kind])
+        if not any(bad[0] in keys for keys in CONTROL_KINDS.values()):  # no kind's key: a typo, named with its nearest
+            near = difflib.get_close_matches(bad[0], mine, n=1, cutoff=0.6)
+            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            raise ValueError(f"control: unknown key {bad[0]!r}{hint}; allowed with kind = {kind!r}: {', '.join(mine)}")
+        raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: {', '.join(mine)}")
     args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}
     target = None
     where = "control"

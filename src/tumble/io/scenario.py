@@ -44,6 +44,7 @@ an initial spin, with command-line values overriding the file's.
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,7 +59,7 @@ from ..mass import PRESETS, Body
 from ..typing import ArrayLike
 from ..validation import NoSuchFileError
 from .bodyfile import body_from_table, load_body, read_toml
-from .controlfile import ControlScenario, is_control_file, load_control_scenario
+from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .torquetables import TORQUE_TABLE, torque_of
 
@@ -203,6 +204,13 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     """
     unknown = sorted(set(data) - set(SCENARIO_FORMAT.tables[0].names()))
     if unknown:
+        near = difflib.get_close_matches("control", unknown, n=1, cutoff=0.75)
+        if near:  # a control scenario's [control] table misspelt: its other tables would be named instead
+            raise ValueError(f"unknown table {near[0]!r}: did you mean [control] (a control scenario's controller)?")
+        loop = [k for k in unknown if k in CONTROL_SECTIONS]
+        if loop:
+            raise ValueError(f"[{loop[0]}] belongs to a control scenario, which needs a [control] table (kind = ...; "
+                             f"see 'tumble examples', control/); a scenario without one allows: body, {', '.join(_SECTIONS)}")
         raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, {', '.join(_SECTIONS)}")
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
