@@ -192,3 +192,12 @@ def test_a_control_page_says_what_it_shows(tmp_path, capsys):
     assert main(["view", str(scenario), "--out", str(tmp_path / "d.html")]) == 0
     line = capsys.readouterr().out
     assert "closed loop: dipole, live mode off" in line and "wheels" not in line
+
+
+def test_tumble_plot_names_the_control_scenario_it_refuses_by_its_path(tmp_path, capsys):
+    from importlib import resources
+
+    scenario = str(resources.files("tumble") / "examples" / "control" / "point.toml")
+    assert main(["plot", scenario, "--out", str(tmp_path / "p")]) == 2
+    assert capsys.readouterr().err == (f"tumble: error: {scenario} is a control scenario ([control]); 'tumble plot' does "
+                                       f"not take it yet: use 'tumble simulate {scenario} --out DIR'\n")

@@ -274,7 +274,7 @@ def _cmd_plot(args) -> int:
     from ..io.output import check_output_dir
 
     scenario = _resolve(args)
-    refuse_control(scenario, "plot")
+    refuse_control(scenario, "plot", args.source)
     out = check_output_dir(args.out)
     if scenario.times is None and scenario.dt is None:  # the phase portraits need a fine path
         scenario = dataclasses.replace(scenario, samples=max(scenario.sample_count, 5000))

@@ -28,10 +28,11 @@ def figure_title(name: str, kind: str) -> str:
     return name if name == kind else f"{name} ({kind})"
 
 
-def refuse_control(scenario, command: str) -> None:
+def refuse_control(scenario, command: str, source: str | None = None) -> None:
+    """Refuse a control scenario to a command that does not run one, naming the file as given (``source``)."""
     if not hasattr(scenario, "method"):
-        raise ValueError(f"{scenario.name} is a control scenario ([control]); 'tumble {command}' does not take it yet: "
-                         "use 'tumble simulate FILE --out DIR'")
+        raise ValueError(f"{source or scenario.name} is a control scenario ([control]); 'tumble {command}' does not "
+                         f"take it yet: use 'tumble simulate {source or 'FILE'} --out DIR'")
 
 
 def simulate_control(args, scenario, out) -> int:
