@@ -201,3 +201,15 @@ def test_tumble_plot_names_the_control_scenario_it_refuses_by_its_path(tmp_path,
     assert main(["plot", scenario, "--out", str(tmp_path / "p")]) == 2
     assert capsys.readouterr().err == (f"tumble: error: {scenario} is a control scenario ([control]); 'tumble plot' does "
                                        f"not take it yet: use 'tumble simulate {scenario} --out DIR'\n")
+
+
+def test_a_detumble_that_starts_below_its_threshold_says_so(tmp_path, capsys):
+    """A threshold of 0.5 (deg/s meant, read as rad/s) "detumbled" a 0.17 rad/s tumble at t = 0 s without
+    a word: the line says the run started below it."""
+    path = tmp_path / "d.toml"
+    path.write_text('body = { name = "b", parts = [{ kind = "box", mass = 4.0, size = [0.1, 0.2, 0.3] }] }\n'
+                    "initial = { omega = [0.1, 0.1, 0.1] }\nsimulation = { t_end = 2.0 }\n"
+                    "orbit = { altitude = 500e3, inclination = 1.7 }\nactuators = { magnetorquers = { max_dipole = 0.2 } }\n"
+                    "[control]\nkind = \"bdot\"\nperiod = 1.0\nthreshold = 0.5\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert "below 0.5 rad/s from t = 0 s (it started below the threshold: nothing was detumbled)" in capsys.readouterr().out

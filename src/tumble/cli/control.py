@@ -75,6 +75,8 @@ def simulate_control(args, scenario, out) -> int:
             line += f", pointing error {summary['pointing_error_final']:.3g} rad"
         elif done is not None:
             line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
+            if done == 0:  # already below at the start: a threshold in deg/s read as rad/s, or nothing to detumble
+                line += " (it started below the threshold: nothing was detumbled)"
         else:  # a run that ends before it detumbles says so, rather than nothing
             line += f", not below the threshold {summary['threshold']:.3g} rad/s by the end: not detumbled"
         if "knowledge_error_rms_deg" in summary:
