@@ -214,3 +214,14 @@ def test_a_control_scenario_without_its_control_table_is_told_so(tmp_path, capsy
     assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
     assert len(err.splitlines()) == 1 and re.search(said, err), err
+
+
+def test_a_missions_period_is_named_as_its_key():
+    """detumble_point's period = 0 was said as "control.detumble: period = 0.0 ...", a table the file has not."""
+    mission = {"initial": {"omega": [0.1, 0.1, 0.1]}, "simulation": {"t_end": 1.0},
+               "orbit": {"altitude": 500e3, "inclination": 1.7},
+               "actuators": {"magnetorquers": {"max_dipole": 0.2}, "wheels": {"inertia": 2e-5, "max_torque": 2e-3}},
+               "control": {"kind": "detumble_point", "period": 0.0, "switch_rate": 0.0175, "dwell": 60.0,
+                           "point": {"K": 1e-3, "P": 6e-3}}}
+    with pytest.raises(ValueError, match=r"^control: period = 0\.0 must be a positive finite number \(s\)$"):
+        control_scenario_from_table(mission, body_from_table(BODY))

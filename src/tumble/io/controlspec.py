@@ -249,7 +249,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
         else:
             if wheels is None:
                 raise ValueError(f'kind = "{kind}" needs [actuators.wheels]')
-            period = control["period"]
+            period = check_positive("period", control["period"], "s")  # the mission's own key, checked as such
             where = "control.detumble"
             detumble = _bdot_args({**_sub(where, control.get("detumble", {}), _SUB_TABLES["detumble"]),
                                    "period": period}, body, orbit, field, magnetorquers, kind)
