@@ -213,3 +213,21 @@ def test_a_detumble_that_starts_below_its_threshold_says_so(tmp_path, capsys):
                     "[control]\nkind = \"bdot\"\nperiod = 1.0\nthreshold = 0.5\n")
     assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 0
     assert "below 0.5 rad/s from t = 0 s (it started below the threshold: nothing was detumbled)" in capsys.readouterr().out
+
+
+def test_wheels_turned_past_their_limit_by_the_body_are_said_to_be(tmp_path, capsys):
+    """A tumble of 20 rad/s (deg/s meant) turned the wheels of examples/control/point.toml to 632-686 rad/s
+    against max_speed = 630, with no word (the speeds are relative to the tumbling body; the motors give no
+    outward torque past the limit). The line says so, naming the speed and the limit."""
+    import json
+    from importlib import resources
+
+    text = (resources.files("tumble") / "examples" / "control" / "point.toml").read_text()
+    assert "omega = [0.01, -0.01, 0.01]" in text and "t_end = 300.0" in text
+    path = tmp_path / "fast.toml"
+    path.write_text(text.replace("omega = [0.01, -0.01, 0.01]", "omega = [20.0, -20.0, 20.0]")
+                    .replace("t_end = 300.0", "t_end = 30.0"))
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 0
+    top = json.loads((tmp_path / "out" / "summary.json").read_text())["max_wheel_speed"]
+    assert top > 630.0
+    assert f"wheels up to {top:.4g} rad/s, past their 630 rad/s limit" in capsys.readouterr().out

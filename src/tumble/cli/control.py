@@ -79,6 +79,10 @@ def simulate_control(args, scenario, out) -> int:
                 line += " (it started below the threshold: nothing was detumbled)"
         else:  # a run that ends before it detumbles says so, rather than nothing
             line += f", not below the threshold {summary['threshold']:.3g} rad/s by the end: not detumbled"
+        limit = None if scenario.wheels is None else float(max(scenario.wheels.max_speed))
+        if limit is not None and summary["max_wheel_speed"] > limit:  # speeds relative to a tumbling body
+            line += (f", wheels up to {summary['max_wheel_speed']:.4g} rad/s, past their {limit:.4g} rad/s limit (the "
+                     f"body's own turning carries them there; beyond it a motor gives no outward torque)")
         if "knowledge_error_rms_deg" in summary:
             line += (f", knowledge error {summary['knowledge_error_rms_deg']:.3g} deg RMS, "
                      f"{summary['knowledge_error_final_deg']:.3g} deg at the end")
