@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -88,8 +89,9 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
         ``figure(columns, title=..., cases=...)`` returns the figure of the sample of cases
         (a matplotlib Figure: :func:`tumble.viz.figure_sweep`), saved as ``sweep.png``.
     warn : callable, optional
-        ``warn(message)`` for a resumed chunk that is not reused (:mod:`tumble.io.resume`);
-        default a :class:`tumble.io.resume.ResumeWarning`.
+        ``warn(message)`` for a resumed chunk that is not reused (:mod:`tumble.io.resume`;
+        default a :class:`tumble.io.resume.ResumeWarning`) and for a Sobol' set of other than 2^k
+        cases (default a UserWarning).
 
     Returns
     -------
@@ -121,6 +123,11 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     _check_first_case(parsed, path)
     out = check_output_dir(out).absolute()
     sweep = parsed.sweep
+    n = sweep.ensemble.cases
+    if sweep.ensemble.sampling == "sobol" and n & (n - 1):  # scipy's own warning is silenced: chunks draw parts of it
+        (warn or (lambda message: warnings.warn(message, stacklevel=3)))(
+            f"cases = {n} is not a power of 2: a Sobol' set is balanced at {1 << (n.bit_length() - 1)} or "
+            f"{1 << n.bit_length()} cases, and {n} cover the space less evenly")
     store = ChunkFolder(out.parent / f"{out.name}.resume", parsed.fingerprint(), cases=sweep.ensemble.cases,
                         chunk=parsed.chunk, warn=warn)
     try:
