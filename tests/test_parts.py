@@ -9,6 +9,8 @@ Route 2: direct numerical quadrature of the seed study's definition (sec. 2.1, d
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import trimesh
@@ -169,3 +171,15 @@ def test_subtracted_sphere_gives_the_thick_shell():
     M = rho * 4 / 3 * np.pi * (R**3 - r**3)
     assert body.mass == pytest.approx(M, rel=1e-14)
     np.testing.assert_allclose(np.diag(body.inertia), 0.4 * M * (R**5 - r**5) / (R**3 - r**3), rtol=1e-13)
+
+
+@pytest.mark.parametrize("hole", [dict(density=7850.0), dict(mass=0.5)], ids=["steel", "by mass"])
+def test_a_hole_denser_than_the_solid_it_is_cut_from_is_refused(hole):
+    """A box of water's density less a sphere of steel's (or of 0.5 kg in 34 cm^3, 14,900 kg/m^3) weighed
+    0.74 or 0.5 kg: more was removed than was there. A hole of the box's own density is what subtract means."""
+    box = tumble.Box(density=1000.0, size=(0.1, 0.1, 0.1))
+    with pytest.raises(ValueError, match=r"^parts\[1\] \(a sphere, subtract = true\) is .* kg/m\^3, denser than every "
+                                         r"solid part it could be cut from \(the densest is 1000 kg/m\^3\)"):
+        tumble.Body([box, tumble.Sphere(radius=0.02, subtract=True, **hole)])
+    cut = tumble.Body([box, tumble.Sphere(radius=0.02, density=1000.0, subtract=True)])
+    assert cut.mass == pytest.approx(1.0 - 1000.0 * 4.0 / 3.0 * math.pi * 0.02**3, rel=1e-12)

@@ -37,7 +37,8 @@ def _cmd_inertia(args) -> int:
         if given:
             option, value = next(iter(given.items()))
             raise ValueError(f"{option} = {value} applies to a mesh file (.stl, .obj, .ply) only; "
-                             f"{args.body} is a body file or preset, whose parts carry their own")
+                             f"{args.body} is a body file or preset, whose parts carry their own (mass or density; "
+                             f"a mesh part its scale, metres per file unit)")
         body = load_body(args.body)
     if args.json:
         print(json.dumps(mass_properties_dict(body), indent=2))
