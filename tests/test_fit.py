@@ -257,7 +257,8 @@ def test_read_phyphox_and_plain(tmp_path):
 
 
 @pytest.mark.parametrize("text, message", [
-    ('"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)"\n0,1,2\n', r'line 1: a phyphox header without the column "gyroscope z'),
+    ('"Time (s)","Gyroscope x (rad/s)","Gyroscope y (rad/s)"\n0,1,2\n',
+     r"line 1: header 'Time \(s\), Gyroscope x \(rad/s\), Gyroscope y \(rad/s\)' has no rate column for z; allowed: time: "),
     ("0,1,2,3\n0.1,1,2,x\n", r"line 2, column 4: 'x' is not a number"),
     ("0,1,2,3\n0.1,1,2\n", r"line 2: 3 columns; expected 4"),
     ("0,1,2\n", r"line 1: 3 columns; expected 4"),
@@ -365,3 +366,14 @@ def test_units_named_in_a_plain_header_are_converted_or_refused(tmp_path):
     path.write_text("t,wx (furlong/s),wy,wz\n0,1,2,3\n1,1,2,3\n", encoding="utf-8")
     with pytest.raises(ValueError, match=r"column 2: unknown unit 'furlong/s'"):
         read_gyro_csv(path)
+
+
+def test_a_phyphox_header_in_deg_per_s_or_with_an_alias_reads_as_any_header():
+    """fitting.md's table lets "gyroscope x" be in deg/s and a rate column take any of its names, but a
+    phyphox-looking header was held to phyphox's exact rad/s names and refused."""
+    from tumble.io.gyrodata import parse_recording_table
+
+    deg = b"Time (s),Gyroscope x (deg/s),Gyroscope y (deg/s),Gyroscope z (deg/s)\n0,180,90,0\n0.01,180,90,0\n"
+    alias = b"Time (s),Gyroscope x (rad/s),Gyro Y (rad/s),Gyroscope z (rad/s)\n0,1,2,3\n0.01,1,2,3\n"
+    np.testing.assert_allclose(parse_recording_table(deg, "deg.csv")[1][0], [np.pi, np.pi / 2, 0.0], rtol=1e-15)
+    assert parse_recording_table(alias, "alias.csv")[1][0].tolist() == [1.0, 2.0, 3.0]

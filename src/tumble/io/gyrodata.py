@@ -46,7 +46,6 @@ __all__ = ["MAX_GYRO_FILE_BYTES", "GyroRecording", "load_recording", "parse_gyro
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
 MAX_GYRO_FILE_BYTES = 64 << 20
 
-_PHYPHOX = ("time (s)", "gyroscope x (rad/s)", "gyroscope y (rad/s)", "gyroscope z (rad/s)")
 
 
 
@@ -138,13 +137,8 @@ def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarra
              "rate_units": ["rad/s"] * 3, "ignored": []}
     magnitude = False
     if not all(_NUMBER.match(c) for c in head):  # a header line
-        lower = [h.lower() for h in head]
-        if "time (s)" in lower and any(n.startswith("gyroscope") for n in lower):
-            missing = [n for n in _PHYPHOX if n not in lower]
-            if missing:
-                raise ValueError(f"{label}, line {first_no}: a phyphox header without the column \"{missing[0]}\"; "
-                                 f"expected \"Time (s)\", \"Gyroscope x (rad/s)\", \"Gyroscope y (rad/s)\", "
-                                 f"\"Gyroscope z (rad/s)\"")
+        # phyphox's "Time (s)", "Gyroscope x (rad/s)" ... are names of the table like any (its deg/s too; a
+        # column missing is refused naming the names allowed)
         columns, scale, names = match_header(head, label, first_no)
         more, factors, accel_units = match_accel(head, columns, label, first_no)
         columns, scale = columns + more, scale + factors
