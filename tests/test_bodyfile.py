@@ -138,3 +138,24 @@ def test_no_example_body_or_preset_warns_of_a_unit_slip():
             tumble.load_body(path)
         for name in tumble.mass.PRESETS:
             tumble.load_body(name)
+
+
+def test_a_mesh_part_in_mm_in_a_body_file_is_named_with_the_key_that_fixes_it(tmp_path):
+    """A 300 x 200 x 100 mm STL as a body file's mesh part at water's density weighed 6e9 kg without a word
+    (the same file given to tumble inertia warned, naming --units, which a body file refuses): the part
+    warns where it is written, naming scale."""
+    import trimesh
+
+    from tumble.io.bodyfile import load_body
+    from tumble.io.meshfile import MeshScaleWarning
+
+    trimesh.creation.box(extents=(300.0, 200.0, 100.0)).export(tmp_path / "box_mm.stl")
+    path = tmp_path / "b.toml"
+    path.write_text('[body]\nname = "bracket"\n[[body.parts]]\nkind = "mesh"\nmesh = "box_mm.stl"\ndensity = 1000.0\n')
+    with pytest.warns(MeshScaleWarning, match=r"body\.parts\[0\] \(mesh\): .*box_mm\.stl: the solid is 182 m across .*"
+                                              r"millimetres, give scale = 0\.001$"):
+        assert load_body(path).mass == pytest.approx(6e9)
+    path.write_text(path.read_text() + "scale = 0.001\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", MeshScaleWarning)  # in metres now: no warning
+        assert load_body(path).mass == pytest.approx(6.0)

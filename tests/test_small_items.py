@@ -127,7 +127,7 @@ def test_a_mesh_read_in_the_wrong_unit_is_named(boxes, capsys):
     """A mesh whose mass came out 2e-10 kg with --units mm passed without a word."""
     assert main(["inertia", str(boxes / "in_metres.stl"), "--units", "mm", "--density", "1600"]) == 0
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("warning: ") and "0.05 mm across (2e-10 kg)" in err, err
+    assert err.count("\n") == 1 and err.startswith("warning: ") and "0.05 mm across (the cube root of its volume; 2e-10 kg)" in err, err
     assert 'read it in metres (units = "m", or no --units)' in err
     assert main(["inertia", str(boxes / "in_mm.stl"), "--mass", "0.2"]) == 0  # 50 m across: millimetres?
     assert 'give units = "mm"' in capsys.readouterr().err

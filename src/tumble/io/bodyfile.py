@@ -249,9 +249,14 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
         kwargs["mesh"] = os.path.join(base_dir or ".", mesh)
     with _slips_named(where):  # a likely unit slip, named where it is written
         try:
-            return cls(**kwargs)
+            part = cls(**kwargs)
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
+        if kind == "mesh":  # a mesh's size, as tumble inertia checks a mesh file's (a part in mm weighed 6e9 kg)
+            note = mesh_scale_note(kwargs["mesh"], part, part.scale, key="scale")
+            if note:
+                warnings.warn(note, MeshScaleWarning, stacklevel=2)
+        return part
 
 
 @contextlib.contextmanager

@@ -51,12 +51,14 @@ class MeshScaleWarning(UnitSlipWarning):
     """
 
 
-def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float) -> str | None:
+def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float, *, key: str = "units") -> str | None:
     """One line when a mesh read at ``scale`` (m per file unit) is implausibly small or large.
 
     Its size is the cube root of its volume; below 1 mm or above 20 m across (:data:`PLAUSIBLE_SIZE`)
     the likely slip is named: a file already in metres read with ``units = "mm"`` weighs
-    2e-10 kg at a plastic's density, a millimetre file read in metres is a building.
+    2e-10 kg at a plastic's density, a millimetre file read in metres is a building. ``key``: what
+    the fix names, ``"units"`` (the command line's ``--units``) or ``"scale"`` (a body file's mesh
+    part, which takes ``scale``, metres per file unit).
 
     Examples
     --------
@@ -65,19 +67,23 @@ def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float) -> s
     >>> from tumble.io.meshfile import mesh_scale_note
     >>> part = Mesh(mesh=trimesh.creation.box(extents=(0.05, 0.05, 0.05)), scale=0.001, density=1600.0)
     >>> print(mesh_scale_note("case.stl", part, 0.001))   # a 5 cm box exported in metres, read as mm
-    case.stl: the solid is 0.05 mm across (2e-10 kg), read at 0.001 m per file unit: if the file's coordinates are metres, read it in metres (units = "m", or no --units)
+    case.stl: the solid is 0.05 mm across (the cube root of its volume; 2e-10 kg), read at 0.001 m per file unit: if the file's coordinates are metres, read it in metres (units = "m", or no --units)
     >>> mesh_scale_note("case.stl", Mesh(mesh=trimesh.creation.box(extents=(50.0, 50.0, 50.0)), scale=0.001, density=1600.0), 0.001) is None
     True
     """
     size = part.volume ** (1.0 / 3.0)
     read = f"read at {scale:g} m per file unit"
+    body = key == "scale"
     if size < PLAUSIBLE_SIZE[0]:
-        fix = ('metres, read it in metres (units = "m", or no --units)' if scale < 1.0
-               else "not metres, give their unit (units)")
-        return f"{path}: the solid is {size * 1e3:.3g} mm across ({part.mass:.3g} kg), {read}: if the file's coordinates are {fix}"
+        fix = (("metres, read it in metres (scale = 1)" if body else 'metres, read it in metres (units = "m", or no --units)')
+               if scale < 1.0 else ("not metres, give scale = metres per file unit" if body
+                                    else "not metres, give their unit (units)"))
+        return (f"{path}: the solid is {size * 1e3:.3g} mm across (the cube root of its volume; {part.mass:.3g} kg), "
+                f"{read}: if the file's coordinates are {fix}")
     if size > PLAUSIBLE_SIZE[1]:
-        return (f"{path}: the solid is {size:.3g} m across ({part.mass:.3g} kg), {read}: if the file's coordinates are "
-                'millimetres, give units = "mm" (--units mm)')
+        give = "scale = 0.001" if body else 'units = "mm" (--units mm)'
+        return (f"{path}: the solid is {size:.3g} m across (the cube root of its volume; {part.mass:.3g} kg), {read}: if "
+                f"the file's coordinates are millimetres, give {give}")
     return None
 
 
