@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import difflib
 
 from .._version import __version__
 from ..dynamics.methods.names import method_list
@@ -46,13 +45,15 @@ def unrecognized(extras: list[str], parser: argparse.ArgumentParser) -> str:
     >>> unrecognized(["extra"], simulate)
     'unrecognized arguments: extra'
     """
+    from ..validation import nearest  # here: the parser's module imports no numpy (tumble --help answers at once)
+
     options = [o for action in parser._actions for o in action.option_strings if o.startswith("--")]
     hints = []
     for word in extras:
         if word.startswith("--"):
             name = word.split("=", 1)[0]
-            near = difflib.get_close_matches(name.replace("_", "-").lower(), options, n=1, cutoff=0.8)
-            hints += [f"{name}: did you mean {near[0]}?"] if near and near[0] != name else []
+            near = nearest(name.replace("_", "-").lower(), options, cutoff=0.8)
+            hints += [f"{name}: did you mean {near}?"] if near is not None and near != name else []
     return f"unrecognized arguments: {' '.join(extras)}" + (f" ({'; '.join(hints)})" if hints else "")
 
 

@@ -28,7 +28,6 @@ by the constructor it feeds; errors are one line naming the table and the key.
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -44,7 +43,7 @@ from ..dynamics.environment.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
 from ..mass import Body
-from ..validation import check_direction, check_positive, check_rotation
+from ..validation import check_direction, check_positive, check_rotation, nearest
 from .controlorbit import Field, Orbit, geomagnetic_inclination
 from .keys import Key, Table
 
@@ -227,8 +226,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     if bad:
         mine = sorted(CONTROL_KINDS[kind])
         if not any(bad[0] in keys for keys in CONTROL_KINDS.values()):  # no kind's key: a typo, named with its nearest
-            near = difflib.get_close_matches(bad[0], mine, n=1, cutoff=0.6)
-            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            near = nearest(bad[0], mine)
+            hint = f" (did you mean {near!r}?)" if near is not None else ""
             raise ValueError(f"control: unknown key {bad[0]!r}{hint}; allowed with kind = {kind!r}: {', '.join(mine)}")
         raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: {', '.join(mine)}")
     args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}

@@ -44,7 +44,6 @@ an initial spin, with command-line values overriding the file's.
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -57,7 +56,7 @@ from ..dynamics.models.orbit_gravity import OrbitGravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
-from ..validation import NoSuchFileError
+from ..validation import NoSuchFileError, nearest
 from .bodyfile import body_from_table, load_body, read_toml
 from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
@@ -204,9 +203,9 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     """
     unknown = sorted(set(data) - set(SCENARIO_FORMAT.tables[0].names()))
     if unknown:
-        near = difflib.get_close_matches("control", unknown, n=1, cutoff=0.75)
-        if near:  # a control scenario's [control] table misspelt: its other tables would be named instead
-            raise ValueError(f"unknown table {near[0]!r}: did you mean [control] (a control scenario's controller)?")
+        near = nearest("control", unknown, cutoff=0.75)
+        if near is not None:  # a control scenario's [control] table misspelt: its other tables would be named instead
+            raise ValueError(f"unknown table {near!r}: did you mean [control] (a control scenario's controller)?")
         loop = [k for k in unknown if k in CONTROL_SECTIONS]
         if loop:
             raise ValueError(f"[{loop[0]}] belongs to a control scenario, which needs a [control] table (kind = ...; "

@@ -34,6 +34,7 @@ from .values import (
     check_vector,
     check_vectors,
     is_body,
+    nearest,
     refuse_body,
     refuse_first,
     short_repr,
@@ -70,6 +71,7 @@ __all__ = [
     "read_input_file",
     "refuse_body",
     "refuse_first",
+    "nearest",
     "short_repr",
     "triangle_excess",
 ]

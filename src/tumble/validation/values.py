@@ -8,8 +8,9 @@ other check of it calls that. Units are SI. Re-exported by :mod:`tumble.validati
 
 from __future__ import annotations
 
+import difflib
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from numbers import Real
 from typing import cast
 
@@ -37,6 +38,7 @@ __all__ = [
     "check_vectors",
     "is_body",
     "refuse_body",
+    "nearest",
     "refuse_first",
     "short_repr",
     "triangle_excess",
@@ -69,6 +71,20 @@ def short_repr(value: object, limit: int = 80) -> str:
     text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def nearest(word: str, choices: Iterable[str], cutoff: float = 0.6) -> str | None:
+    """The one of ``choices`` nearest to a misspelt ``word`` (difflib's ratio at least ``cutoff``),
+    or None: what every "did you mean" of tumble's messages names.
+
+    Examples
+    --------
+    >>> from tumble.validation import nearest
+    >>> nearest("perido", ["period", "gain", "form"]), nearest("bogus", ["period", "gain"])
+    ('period', None)
+    """
+    found = difflib.get_close_matches(word, list(choices), n=1, cutoff=cutoff)
+    return found[0] if found else None
 
 
 def refuse_first(field: str, values: ArrayLike, bad: ArrayLike, rule: str) -> None:
