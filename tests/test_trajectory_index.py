@@ -70,6 +70,9 @@ def test_drift_is_that_of_the_kept_samples():
     ([0.5, 1.0], TypeError, r"^traj\[\[0\.5, 1\.0\]\]: .* sample numbers"),
     (60, TypeError, r"^traj\[60\]: .*whole numbers from 0 to 50"),  # not "traj[60:] keeps the sample": it has none
     (slice(None, None, -1), IndexError, r"^traj\[::-1\]: a Trajectory keeps its samples in time order"),
+    ([5, 2], IndexError, r"^traj\[\[5, 2\]\]: a Trajectory keeps its samples in time order, each once"),
+    ([3, 3], IndexError, r"^traj\[\[3, 3\]\]: a Trajectory keeps its samples in time order, each once"),
+    ([0, 60], IndexError, r"^traj\[\[0, 60\]\]: a sample number beyond the 51 samples \(0 to 50\)$"),
 ])
 def test_indices_that_make_no_trajectory_are_refused(index, error, pattern):
     with pytest.raises(error, match=pattern):

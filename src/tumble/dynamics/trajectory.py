@@ -237,9 +237,6 @@ class Trajectory:
         if isinstance(index, slice):
             what = f"traj[{'' if index.start is None else index.start}:{'' if index.stop is None else index.stop}" \
                    f"{'' if index.step is None else f':{index.step}'}]"
-            if index.step is not None and index.step < 0:
-                raise IndexError(f"{what}: a Trajectory keeps its samples in time order; the arrays reverse "
-                                 f"(traj.omega[::-1])")
         else:
             if isinstance(index, (int, np.integer)) and -n <= index < n:
                 raise TypeError(f"traj[{index!r}]: a Trajectory is indexed by a slice, a boolean mask or a list of "
@@ -256,9 +253,15 @@ class Trajectory:
             if index.dtype == bool and len(index) != n:
                 raise IndexError(f"the mask has {len(index)} entries; the trajectory has {n} samples")
             what = "the mask" if index.dtype == bool else f"traj[{short_repr(index.tolist())}]"
-        t = self.t[index]
+        try:
+            t = self.t[index]
+        except IndexError:  # a sample number beyond the run
+            raise IndexError(f"{what}: a sample number beyond the {n} samples (0 to {n - 1})") from None
         if len(t) == 0:
             raise IndexError(f"{what} selects no sample of {n} (t = {self.t[0]:g}..{self.t[-1]:g} s)")
+        if not np.all(np.diff(t) > 0):  # a reversed slice, numbers out of order or twice: time would not increase
+            raise IndexError(f"{what}: a Trajectory keeps its samples in time order, each once; the arrays reverse "
+                             f"(traj.omega[::-1])")
         per_sample = {name: None if getattr(self, name) is None else getattr(self, name)[index]
                       for name in ("internal_momentum", "rotor_spin", "motor_work", "damper_omega", "dissipated")}
         return Trajectory(t=t, omega=self.omega[index], attitude=self.quat[index], moments=self.moments,

@@ -260,10 +260,10 @@ def _check_holes(parts: tuple[Part, ...]) -> None:
     material around it, so it has that material's density (a hole of steel's density in a body of
     water's removed more mass than was there; seen in a walkthrough, issue 40)."""
     solids = [cast(float, p.mass) / p.volume for p in parts if p.solid and not p.subtract and p.volume > 0]
+    densest = max(solids, default=0.0)
     for i, p in enumerate(parts):
         if p.subtract and p.volume > 0:
             rho = cast(float, p.mass) / p.volume
-            densest = max(solids, default=0.0)
             if rho > densest * (1.0 + 1e-9):
                 where = f"the densest is {densest:.6g} kg/m^3" if solids else "there is none"
                 raise ValueError(f"parts[{i}] (a {p.kind}, subtract = true) is {rho:.6g} kg/m^3, denser than every solid "
