@@ -82,6 +82,16 @@ def _rows(lines, sep, columns, width, label, head=None, decimal_comma=None, expe
     return rows
 
 
+def _refuse_cell(bad, rows, lines, columns, names, label, rule) -> None:
+    """Raise for the first cell where ``bad`` (shaped as ``rows``) holds, naming the file, its line and
+    column, the column's name in ``names`` (one per column of ``rows``) and the value as read:
+    ``rule(k, j)`` says what is wrong with cell ``(k, j)`` ("is not a finite number", ...)."""
+    if bad.any():
+        k, j = np.argwhere(bad)[0]
+        raise ValueError(f"{label}, line {lines[k][0]}, column {columns[j] + 1}: {names[j]} = {rows[k, j]:.6g} "
+                         f"{rule(k, j)}")
+
+
 def _check_order(t, lines, label) -> None:
     """Times must increase (irregular steps are fine): name the first line that goes back or repeats.
     Times that are no number or absurd are left to the fit's checks, which say so."""

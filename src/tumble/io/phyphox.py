@@ -13,7 +13,7 @@ import os
 import numpy as np
 
 from ..analysis.fit.freefall import MAX_ACCEL
-from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _separator, _split
+from ._delimited import _NUMBER, _check_order, _first_lines, _refuse_cell, _rows, _separator, _split
 from .gyrocolumns import match_accel
 
 __all__ = ["ACCEL_CSV", "ACCEL_SPAN_SLACK", "TIME_CSV", "accel_gap", "parse_accel_csv", "parse_time_csv"]
@@ -68,14 +68,12 @@ def _check_values(rows: np.ndarray, lines: list, head: list, columns: list, labe
     from ..analysis.fit.single import MAX_TIME
 
     limit = np.r_[MAX_TIME, np.full(rows.shape[1] - 1, MAX_ACCEL)]
-    bad = ~np.isfinite(rows) | (np.abs(rows) > limit)
-    if bad.any():
-        k, j = np.argwhere(bad)[0]
-        what = "a time" if j == 0 else "an accelerometer's reading"
-        unit = "s" if j == 0 else "m/s^2"
-        why = "not a finite number" if not np.isfinite(rows[k, j]) else f"beyond {what} (at most {limit[j]:.0e} {unit})"
-        raise ValueError(f"{label}, line {lines[k][0]}, column {columns[j] + 1}: {head[columns[j]]} = {rows[k, j]:.6g} "
-                         f"is {why}")
+
+    def rule(k: int, j: int) -> str:
+        what, unit = ("a time", "s") if j == 0 else ("an accelerometer's reading", "m/s^2")
+        return "is not a finite number" if not np.isfinite(rows[k, j]) else f"is beyond {what} (at most {limit[j]:.0e} {unit})"
+
+    _refuse_cell(~np.isfinite(rows) | (np.abs(rows) > limit), rows, lines, columns, [head[c] for c in columns], label, rule)
 
 
 def accel_gap(times: np.ndarray, t: np.ndarray, label: str) -> str:

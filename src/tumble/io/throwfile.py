@@ -47,7 +47,7 @@ from .examples import _read_input
 from .gyrocolumns import (ACCEL_UNITS, RATE_PREFIXES, RATE_UNITS, TIME_NAMES, TIME_UNITS, _factor, _name, match_accel,
                           match_header)
 from .keys import FileFormat, Key, Table
-from ._delimited import _NUMBER, _check_order, _first_lines, _rows
+from ._delimited import _NUMBER, _check_order, _first_lines, _refuse_cell, _rows
 from .throwread import ThrowRead
 
 __all__ = ["ACCEL_UNITS", "COMPACT_HEADER", "COMPACT_PLACES", "MAX_THROW_FILE_BYTES", "THROW_FORMAT", "THROW_HEADER",
@@ -206,11 +206,9 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
     rows = _rows(lines, sep, columns, width, label)
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a throw needs many samples")
-    if not np.all(np.isfinite(rows)):  # a logger's nan or inf, said where the file has it (not as a sample index)
-        k, j = np.argwhere(~np.isfinite(rows))[0]
-        unit = "" if units[j] in names[j] else f" ({units[j]})"  # a header's cell names its unit itself
-        raise ValueError(f"{label}, line {lines[k][0]}, column {columns[j] + 1}: {names[j]} = {rows[k, j]:g} is not a "
-                         f"finite number{unit}")
+    # a logger's nan or inf, said where the file has it (not as a sample index); a header's cell names its unit
+    _refuse_cell(~np.isfinite(rows), rows, lines, columns, names, label,
+                 lambda k, j: "is not a finite number" + ("" if units[j] in names[j] else f" ({units[j]})"))
     rows *= np.array(scale)
     t = rows[:, 0].copy()
     _check_order(t, lines, label)
