@@ -7,7 +7,9 @@ impulses (a throw's, a catch's, an impact's torque, or the hand's) that bound a 
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Sequence
+from numbers import Real
 
 import numpy as np
 
@@ -24,6 +26,10 @@ def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
     >>> from tumble.analysis.fit.segments import pause_times
     >>> pause_times([("START", 0.0), ("PAUSE", 12.5), ("START", 12.5), ("pause", 3.0)]), pause_times(None)
     ([3.0, 12.5], [])
+    >>> pause_times([("PAUSE", "12.5 s")])   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: events[0] = ('PAUSE', '12.5 s'): each event is a (name, time) pair, ...
     >>> pause_times([1, 2, 3])
     Traceback (most recent call last):
     ...
@@ -31,7 +37,8 @@ def pause_times(events: Sequence[tuple[str, float]] | None) -> list[float]:
     """
     pauses = []
     for i, event in enumerate(events or []):
-        if not (isinstance(event, (tuple, list)) and len(event) == 2 and isinstance(event[0], str)):
+        if not (isinstance(event, (tuple, list)) and len(event) == 2 and isinstance(event[0], str)
+                and isinstance(event[1], Real) and not isinstance(event[1], bool) and math.isfinite(event[1])):
             raise ValueError(f"events[{i}] = {event!r}: each event is a (name, time) pair, ('PAUSE', 12.5) "
                              f"(phyphox's meta/time.csv: name, experiment time in s)")
         if event[0].upper() == "PAUSE":
