@@ -20,6 +20,7 @@ import numpy as np
 from ..typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ..validation import check_moments, check_positive, check_vector, short_repr
 from . import _display
+from .holes import check_holes
 from .parts import Part
 from .rotor import Rotor
 from .tensor import (
@@ -236,7 +237,7 @@ def mass_properties(parts: Iterable[Part]) -> MassProperties:
     parts = tuple(parts)
     if not parts:
         raise ValueError("a body needs at least one part")
-    _check_holes(parts)
+    check_holes(parts)  # a hole removes material only where a solid has some
     m = np.array([p.signed_mass for p in parts])
     total = float(m.sum())
     scale = float(np.abs(m).sum())
@@ -253,22 +254,6 @@ def mass_properties(parts: Iterable[Part]) -> MassProperties:
     if not (np.isfinite(total) and np.all(np.isfinite(com))):
         raise ValueError("total mass or centre of mass overflows double precision; use SI units of a sensible size")
     return MassProperties.from_inertia(total, com, inertia)
-
-
-def _check_holes(parts: tuple[Part, ...]) -> None:
-    """Refuse a subtracted part denser than every solid it could be cut from: a hole removes the
-    material around it, so it has that material's density (a hole of steel's density in a body of
-    water's removed more mass than was there; seen in a walkthrough, issue 40)."""
-    solids = [cast(float, p.mass) / p.volume for p in parts if p.solid and not p.subtract and p.volume > 0]
-    densest = max(solids, default=0.0)
-    for i, p in enumerate(parts):
-        if p.subtract and p.volume > 0:
-            rho = cast(float, p.mass) / p.volume
-            if rho > densest * (1.0 + 1e-9):
-                where = f"the densest is {densest:.6g} kg/m^3" if solids else "there is none"
-                raise ValueError(f"parts[{i}] (a {p.kind}, subtract = true) is {rho:.6g} kg/m^3, denser than every solid "
-                                 f"part it could be cut from ({where}): a hole removes the material it is cut from; give "
-                                 f"it that part's density")
 
 
 @dataclass(frozen=True, eq=False)

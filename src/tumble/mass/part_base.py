@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
-from ..typing import ArrayLike, Matrix3, Vector3
+from ..typing import ArrayLike, BoolArray, FloatArray, Matrix3, Vector3
 from ..validation import check_direction, check_motion, check_positive, check_rotation, check_vector
 
 if TYPE_CHECKING:
@@ -192,6 +192,31 @@ class Part:
     def _unit_moments(self) -> Vector3:
         """Principal moments per unit mass in the part's own frame, m^2 (subclasses)."""
         raise NotImplementedError
+
+    # -- where the material is (a solid part's; tumble.mass.holes) ------------------------------
+    @property
+    def _frame_origin(self) -> Vector3:
+        """Where the part's own frame's origin lies in the design frame, m (its ``center``)."""
+        return np.array(self.center, dtype=float)
+
+    @property
+    def _triangles(self) -> int:
+        """How many triangles its inside test works through (a mesh's; 0 for a closed form)."""
+        return 0
+
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        """The corners (low, high) of a box in the part's own frame that holds it, m (solids)."""
+        raise NotImplementedError(f"a {self.kind} has no volume")
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        """Whether points ``x`` (n, 3) in the part's own frame lie in its solid, widened by
+        ``slack`` (m) so that a point on a shared face counts as inside (solids)."""
+        raise NotImplementedError(f"a {self.kind} has no volume")
+
+    def _inside(self, points: FloatArray, slack: float = 0.0) -> BoolArray:
+        """Whether design-frame points (n, 3), m, lie in the part's solid (widened by ``slack``, m)."""
+        local = self.orientation.inv().apply(np.asarray(points, dtype=float) - self._frame_origin)
+        return self._inside_local(np.atleast_2d(local), slack)
 
     def _local_inertia(self) -> Matrix3:
         """Tensor about the part's COM in its own frame, kg m^2 (positive mass)."""

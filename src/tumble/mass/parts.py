@@ -27,7 +27,7 @@ from typing import ClassVar, cast
 
 import numpy as np
 
-from ..typing import Vector3
+from ..typing import BoolArray, FloatArray, Vector3
 from ..validation import check_positive, check_vector
 from .part_base import Part, _Axisymmetric, _Oriented
 
@@ -113,6 +113,14 @@ class Cylinder(_Axisymmetric):
         p = (3.0 * r2 + L2) / 12.0
         return np.array([p, p, r2 / 2.0])
 
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        r, h = self.radius, 0.5 * self.length
+        return np.array([-r, -r, -h]), np.array([r, r, h])
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        r2 = x[:, 0] ** 2 + x[:, 1] ** 2
+        return (r2 <= (self.radius + slack) ** 2) & (np.abs(x[:, 2]) <= 0.5 * self.length + slack)
+
 
 @dataclass(frozen=True, kw_only=True)
 class Tube(_Axisymmetric):
@@ -163,6 +171,15 @@ class Tube(_Axisymmetric):
         s = self.inner_radius**2 + self.outer_radius**2
         p = (3.0 * s + self.length**2) / 12.0
         return np.array([p, p, s / 2.0])
+
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        b, h = self.outer_radius, 0.5 * self.length
+        return np.array([-b, -b, -h]), np.array([b, b, h])
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        r2 = x[:, 0] ** 2 + x[:, 1] ** 2
+        a = max(self.inner_radius - slack, 0.0)
+        return (r2 >= a * a) & (r2 <= (self.outer_radius + slack) ** 2) & (np.abs(x[:, 2]) <= 0.5 * self.length + slack)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -222,6 +239,15 @@ class Cone(_Axisymmetric):
         p = 3.0 * (4.0 * r2 + h2) / 80.0
         return np.array([p, p, 0.3 * r2])
 
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        r, h = self.radius, self.height  # the base a quarter of the height below the centre of mass
+        return np.array([-r, -r, -0.25 * h]), np.array([r, r, 0.75 * h])
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        r, h, z = self.radius, self.height, x[:, 2]
+        rho = np.hypot(x[:, 0], x[:, 1])
+        return (z >= -0.25 * h - slack) & (z <= 0.75 * h + slack) & (rho <= r * (0.75 * h - z) / h + slack)
+
 
 @dataclass(frozen=True, kw_only=True)
 class Box(_Oriented):
@@ -262,6 +288,13 @@ class Box(_Oriented):
     def _unit_moments(self) -> Vector3:
         s2: Vector3 = np.square(self.size)
         return cast(Vector3, (s2.sum() - s2) / 12.0)
+
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        half = 0.5 * np.array(self.size)
+        return -half, half
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        return cast(BoolArray, np.all(np.abs(x) <= 0.5 * np.array(self.size) + slack, axis=1))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -306,6 +339,13 @@ class Ellipsoid(_Oriented):
         s2: Vector3 = np.square(self.semi_axes)
         return cast(Vector3, (s2.sum() - s2) / 5.0)
 
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        a = np.array(self.semi_axes)
+        return -a, a
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        return cast(BoolArray, np.sum((x / (np.array(self.semi_axes) + slack)) ** 2, axis=1) <= 1.0)
+
 
 @dataclass(frozen=True, kw_only=True)
 class Sphere(Part):
@@ -339,6 +379,12 @@ class Sphere(Part):
 
     def _unit_moments(self) -> Vector3:
         return np.full(3, 0.4 * self.radius**2)
+
+    def _local_bounds(self) -> tuple[Vector3, Vector3]:
+        return np.full(3, -self.radius), np.full(3, self.radius)
+
+    def _inside_local(self, x: FloatArray, slack: float) -> BoolArray:
+        return cast(BoolArray, np.sum(x * x, axis=1) <= (self.radius + slack) ** 2)
 
 
 @dataclass(frozen=True, kw_only=True)
