@@ -237,3 +237,25 @@ def test_a_flight_that_does_not_fix_the_ratios_alone_is_used_in_the_joint_fit():
     assert np.max(short.fit.ratios_std) > 0.1 or "rod limit" in short.reason
     assert np.all(np.abs(fit.pooled.ratios - rec.ratios) < 3 * fit.pooled.ratios_std)  # the truth
     assert np.isnan(fit.chi2_dof)  # one flight states its own ratios: no scatter among flights to measure
+
+
+def test_a_recording_in_deg_s_read_as_rad_s_fails_naming_the_unit(tmp_path, capsys):
+    """deg/s numbers under a header that names no unit are read as rad/s, 57 times too fast: no
+    flight follows a free motion, and the failure said only that (a walkthrough, issue 40). Rates
+    past any MEMS gyroscope's 4000 deg/s now name the likely unit."""
+    from tumble.analysis.fit import NoFlightError
+    from tumble.analysis.fit.recording import DEG_S_HINT_RATE
+
+    rec = synthetic_recording(3, tosses=2)
+    assert np.max(np.linalg.norm(rec.omega, axis=1)) < DEG_S_HINT_RATE < np.max(np.linalg.norm(np.degrees(rec.omega), axis=1))
+    with pytest.raises(NoFlightError, match=r"; the rates reach [\d.]+ rad/s, beyond any MEMS gyroscope's range "
+                                            r"\(4000 deg/s = 69.81 rad/s\): are they in deg/s\? Name the unit in the header"):
+        fit_recording(rec.t, np.degrees(rec.omega))
+    path = tmp_path / "gyro.csv"
+    rows = np.column_stack([rec.t, np.degrees(rec.omega)])
+    path.write_text("t,wx,wy,wz\n" + "\n".join(",".join(f"{v:.6g}" for v in row) for row in rows) + "\n")
+    assert main(["fit", str(path), "--out", str(tmp_path / "fit")]) == 1
+    assert "are they in deg/s?" in capsys.readouterr().err
+    path.write_text("t,wx (deg/s),wy (deg/s),wz (deg/s)\n" + path.read_text().split("\n", 1)[1])  # the unit named
+    read = load_recording(path)
+    np.testing.assert_allclose(read.omega, rec.omega, rtol=1e-5, atol=1e-6)  # read back as the rad/s they are

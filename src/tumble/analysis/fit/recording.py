@@ -31,6 +31,7 @@ samples, :func:`samples_sha256`) is refused.
 
 from __future__ import annotations
 
+import math
 import os
 import warnings
 from collections import Counter
@@ -39,7 +40,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...typing import ArrayLike
+from ...typing import ArrayLike, FloatArray
 from .adequacy import InadequateFitWarning, judge, judge_flights
 from .flightmodel import FlightModel
 from .flights import Flight, find_flights
@@ -57,7 +58,22 @@ from .summary import flight_budgets
 from .tosses import RecordingFit, Toss
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
-__all__ = ["NoFlightError", "fit_recording"]
+__all__ = ["DEG_S_HINT_RATE", "NoFlightError", "fit_recording"]
+
+#: A rate no MEMS gyroscope reads, rad/s (4000 deg/s, twice a phone's 2000 deg/s full scale): a
+#: recording that fails with rates above it was most likely written in deg/s under a header that
+#: does not say so, and the failure names that (a walkthrough's deg/s data said only "no free flight").
+DEG_S_HINT_RATE = math.radians(4000.0)
+
+
+def _unit_hint(omega: FloatArray) -> str:
+    """``"; the rates reach ... are they in deg/s? ..."`` where they pass :data:`DEG_S_HINT_RATE`, else ``""``."""
+    peak = float(np.max(np.linalg.norm(omega, axis=1), initial=0.0))
+    if not peak > DEG_S_HINT_RATE:
+        return ""
+    return (f"; the rates reach {peak:.4g} rad/s, beyond any MEMS gyroscope's range (4000 deg/s = "
+            f"{DEG_S_HINT_RATE:.4g} rad/s): are they in deg/s? Name the unit in the header (\"gyro_x (deg/s)\") "
+            f"or convert them to rad/s")
 
 
 class NoFlightError(ValueError):
@@ -189,10 +205,10 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
                 f"{len(t)} samples in {len(parts)} recordings"
             pauses = sum(len(pause_times(p[3])) for p in parts)
             raise NoFlightError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
-                                f"({where}, {pauses} pauses)")
+                                f"({where}, {pauses} pauses){_unit_hint(omega)}")
         why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
         raise NoFlightError(f"no usable flight among {len(flights)} found: "
-                            + ", ".join(f"{n} {r}" for r, n in why.most_common()))
+                            + ", ".join(f"{n} {r}" for r, n in why.most_common()) + _unit_hint(omega))
     t0, w0 = series[0]
     joined, first_joint = _joined(flights, groups, t, omega, keep, drag, scale_uncertainty)
     if joined:
