@@ -174,8 +174,42 @@ def test_trajectory_of_one_body_and_derived_quantities(bodies):
     np.testing.assert_allclose(batch.angular_momentum_world, Lw, rtol=0, atol=1e-14 * np.max(np.abs(L)))
     with pytest.raises(IndexError, match="body 40 is out of range"):
         batch[len(I)]
+    # a slice, a mask and indices select smaller batches, body for body the same
+    for index in (slice(1, 3), np.arange(len(I)) % 3 == 0, [5, 0, -1]):
+        part = batch[index]
+        assert isinstance(part, tumble.BatchTrajectory) and part.method == batch.method
+        np.testing.assert_array_equal(part.omega, batch.omega[index])
+        np.testing.assert_array_equal(part.quat, batch.quat[index])
+        np.testing.assert_array_equal(part.moments, batch.moments[index])
+        np.testing.assert_array_equal(part[0].omega, batch.omega[index][0])
+    with pytest.raises(IndexError, match="selects no body of the 40"):
+        batch[5:5]
+    with pytest.raises(IndexError, match=r"bodies \[1, 40\] are out of range: this batch holds 40"):
+        batch[[1, 40]]
+    with pytest.raises(IndexError, match="a mask over the bodies has 40 entries"):
+        batch[np.ones(3, bool)]
+    with pytest.raises(TypeError, match="indexed by a whole number, a slice, a mask or indices"):
+        batch[0.5]
     with pytest.raises(TypeError):
-        batch[1:3]
+        batch[True]
+
+
+def test_a_batchs_drift_is_each_bodys_trajectory_drift():
+    """Per body, as each body's own Trajectory.drift; NaN where a body is at rest (None there)."""
+    w = np.array([[1.0, 0.1, 0.1], [0.1, 2.0, 0.1], [0.0, 0.0, 0.0]])
+    batch = tumble.simulate_batch([1.0, 2.0, 3.0], w, t_end=20.0, samples=200, method="rk4", step=0.02)
+    assert set(batch.drift) == {"energy", "L_norm", "L_world"}
+    for i in range(3):
+        own = batch[i].drift
+        for key, values in batch.drift.items():
+            if own[key] is None:
+                assert np.isnan(values[i]) and i == 2
+            else:
+                assert values[i] == pytest.approx(own[key], rel=1e-12) and 0 < values[i] < 1e-5
+    # RK4's energy error over a run grows as h^4: half the step, ~1/16 of the drift
+    fine = tumble.simulate_batch([1.0, 2.0, 3.0], w[:2], t_end=20.0, samples=200, method="rk4", step=0.01)
+    ratio = batch.drift["energy"][:2] / fine.drift["energy"]
+    assert np.all((ratio > 10) & (ratio < 24)), ratio
 
 
 def test_rotate_by_quaternion_matches_scipy(rng):

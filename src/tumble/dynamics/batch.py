@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
-from typing import Any, cast
+from dataclasses import dataclass, replace
+from typing import Any, cast, overload
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -43,7 +43,7 @@ from ..validation import (
     short_repr,
 )
 from . import _display
-from .euler import angular_momentum, kinetic_energy
+from .euler import angular_momentum, kinetic_energy, relative_drift
 from .engine.stepsize import check_rtol
 from .methods.auto import AUTO_RTOL, dop853_tolerances
 from .methods.bounds import spin_gain, spin_gains
@@ -119,11 +119,31 @@ class BatchTrajectory:
         """The batch's size, method and ranges as an HTML table (Jupyter's rich display)."""
         return _display.batch_html(self)
 
-    def __getitem__(self, i: int | np.integer[Any]) -> Trajectory:
-        """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory`
-        (its principal frame is its design frame)."""
-        if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
-            raise TypeError(f"a BatchTrajectory is indexed by a whole number, not {i!r}")
+    @overload
+    def __getitem__(self, i: int | np.integer[Any]) -> Trajectory: ...
+
+    @overload
+    def __getitem__(self, i: slice | ArrayLike) -> BatchTrajectory: ...
+
+    def __getitem__(self, i: int | np.integer[Any] | slice | ArrayLike) -> Trajectory | BatchTrajectory:
+        """The ``i``-th body's motion as a :class:`~tumble.dynamics.trajectory.Trajectory` (its
+        principal frame is its design frame); a slice, a boolean mask over the bodies or an array
+        of indices selects a smaller batch.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> batch = tumble.simulate_batch([1.0, 2.0, 3.0], [[1.0, 0.1, 0.1], [0.1, 1.0, 0.1], [0.1, 0.1, 1.0]],
+        ...                               t_end=10.0, samples=50)
+        >>> batch[1]
+        Trajectory('body 1', exact (auto), 50 samples, t = 0..10 s, torque-free)
+        >>> batch[batch.omega[:, 0, 1] < 0.5]   # the bodies not spun about the intermediate axis
+        BatchTrajectory(2 bodies, exact (auto), 50 samples, t = 0..10 s, torque-free)
+        """
+        if isinstance(i, (bool, np.bool_)) or isinstance(i, str):
+            raise TypeError(f"a BatchTrajectory is indexed by a whole number, a slice, a mask or indices, not {i!r}")
+        if not isinstance(i, (int, np.integer)):
+            return self._select(i)
         n = len(self)
         if not -n <= i < n:
             raise IndexError(f"body {i} is out of range: this batch holds {n}")
@@ -132,6 +152,39 @@ class BatchTrajectory:
             principal_axes=np.eye(3), method=self.method, torque_free=self.torque_free, body_name=f"body {int(i) % n}",
             auto=self.auto,
         )
+
+    def _select(self, index: slice | ArrayLike) -> BatchTrajectory:
+        """The bodies ``index`` picks (a slice, a mask of N booleans or whole numbers), as a batch."""
+        n, index = len(self), index if isinstance(index, slice) else np.asarray(index)
+        if isinstance(index, np.ndarray) and index.dtype == bool and index.shape != (n,):
+            raise IndexError(f"a mask over the bodies has {n} entries, not shape {index.shape}")
+        if isinstance(index, np.ndarray) and index.dtype != bool and (index.dtype.kind not in "iu" or index.ndim != 1):
+            raise TypeError(f"a BatchTrajectory is indexed by a whole number, a slice, a mask or indices, not {index!r}")
+        if isinstance(index, np.ndarray) and index.dtype != bool and index.size and not -n <= index.min() <= index.max() < n:
+            raise IndexError(f"bodies {short_repr(index.tolist())} are out of range: this batch holds {n}")
+        if len(self.moments[index]) == 0:
+            raise IndexError(f"{short_repr(index)} selects no body of the {n}")
+        return replace(self, omega=self.omega[index], quat=self.quat[index], moments=self.moments[index])
+
+    @functools.cached_property
+    def drift(self) -> dict[str, FloatArray]:
+        """Each body's largest relative departure from its initial energy, ``|L|`` and ``L_world``
+        (:func:`~tumble.dynamics.euler.relative_drift`, as :attr:`Trajectory.drift
+        <tumble.dynamics.trajectory.Trajectory.drift>`); arrays of shape (N,), NaN for a body at
+        rest. The integration's errors where the run is torque-free.
+
+        Examples
+        --------
+        >>> import tumble
+        >>> batch = tumble.simulate_batch([1.0, 2.0, 3.0], [[1.0, 0.1, 0.1], [0.1, 1.0, 0.1]], t_end=20.0,
+        ...                               samples=100, method="rk4", step=0.01)
+        >>> {k: v.shape for k, v in batch.drift.items()}
+        {'energy': (2,), 'L_norm': (2,), 'L_world': (2,)}
+        >>> bool((batch.drift["energy"] < 1e-8).all())   # RK4 at 0.01 s: small, not zero
+        True
+        """
+        norm = np.linalg.norm(self.angular_momentum, axis=-1)
+        return relative_drift(self.energy, norm, self.angular_momentum_world)
 
     @functools.cached_property
     def energy(self) -> FloatArray:

@@ -33,6 +33,7 @@ __all__ = [
     "euler_rhs_tensor",
     "kinetic_energy",
     "momentum_rate_components",
+    "relative_drift",
 ]
 
 
@@ -215,6 +216,49 @@ def kinetic_energy(omega: ArrayLike, moments: ArrayLike) -> FloatArray:
     """
     w = np.asarray(omega, float)
     return cast(FloatArray, 0.5 * np.sum(np.asarray(moments, float) * w * w, axis=-1))
+
+
+def relative_drift(energy: ArrayLike, momentum_norm: ArrayLike, momentum_world: ArrayLike) -> dict[str, FloatArray]:
+    """The largest relative departure of a run's invariants from their first sample.
+
+    ``energy``: max_t |E - E0| / E0; ``L_norm``: max_t ||L| - |L0|| / |L0|; ``L_world``:
+    max_t |L_world - L_world(0)| / |L0|. Conserved without an external torque (Landau &
+    Lifshitz, *Mechanics*, sec. 35-36), so for a torque-free run these are the integration's errors.
+
+    Parameters
+    ----------
+    energy : array_like, shape (..., T)
+        The energy (or energy balance) at each sample, J.
+    momentum_norm : array_like, shape (..., T)
+        ``|L|`` at each sample, kg m^2/s.
+    momentum_world : array_like, shape (..., T, 3)
+        ``L`` in the world frame at each sample, kg m^2/s.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (...)
+        NaN where the first value is zero (a body at rest: no relative drift) or a sample is not finite.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.euler import relative_drift
+    >>> d = relative_drift([2.0, 2.2, 1.9], [1.0, 1.0, 1.01], [[0, 0, 1.0], [0, 0, 1.0], [0, 0.02, 1.0]])
+    >>> {k: round(float(v), 6) for k, v in d.items()}
+    {'energy': 0.1, 'L_norm': 0.01, 'L_world': 0.02}
+    """
+    E, Ln = np.asarray(energy, float), np.asarray(momentum_norm, float)
+    Lw = np.asarray(momentum_world, float)
+
+    def rel(dev: FloatArray, ref: FloatArray) -> FloatArray:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            worst = np.max(dev, axis=-1) / ref
+        return cast(FloatArray, np.where((ref > 0) & np.all(np.isfinite(dev), axis=-1), worst, np.nan))
+
+    return {
+        "energy": rel(np.abs(E - E[..., :1]), E[..., 0]),
+        "L_norm": rel(np.abs(Ln - Ln[..., :1]), Ln[..., 0]),
+        "L_world": rel(np.linalg.norm(Lw - Lw[..., :1, :], axis=-1), Ln[..., 0]),
+    }
 
 
 def energy_momentum_gaps(omega: ArrayLike, moments: ArrayLike) -> Vector3:

@@ -19,7 +19,7 @@ from ..mass import INERTIA_RTOL
 from ..typing import ArrayLike, FloatArray
 from ..validation import short_repr
 from . import _display
-from .euler import angular_momentum, kinetic_energy
+from .euler import angular_momentum, kinetic_energy, relative_drift
 
 __all__ = ["Trajectory"]
 
@@ -467,14 +467,7 @@ class Trajectory:
         if self.dissipated is not None:
             E = E + self.dissipated
 
-        def rel(dev: FloatArray, ref: float) -> float | None:
-            return float(np.max(dev) / ref) if ref > 0 and np.all(np.isfinite(dev)) else None
-
-        return {
-            "energy": rel(np.abs(E - E[0]), E[0]),
-            "L_norm": rel(np.abs(Ln - Ln[0]), Ln[0]),
-            "L_world": rel(np.linalg.norm(Lw - Lw[0], axis=1), Ln[0]),
-        }
+        return {k: float(v) if np.isfinite(v) else None for k, v in relative_drift(E, Ln, Lw).items()}
 
     def design_attitude(self) -> Rotation:
         """Rotation of the *design* frame to world: ``attitude * principal_axes^T``.
