@@ -204,6 +204,12 @@ def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path,
     cosine = np.sum(after * field, axis=1) / np.linalg.norm(after, axis=1) / np.linalg.norm(field, axis=1)
     assert np.abs(cosine).max() < 0.02
     assert summary["pointing_error_final"] < math.radians(1.0)
+    # where the pointing starts: the angle of the principal frame (the file's quaternion) from the target
+    # at the switch; the start's error is the initial attitude's, not what the wheels had to turn through
+    target = load_scenario(_fast_mission(tmp_path)).target
+    at_switch = (target.inv() * Rotation.from_quat(data["quat"][k])).magnitude()
+    assert summary["pointing_error_switch"] == pytest.approx(at_switch, rel=1e-6)
+    assert summary["pointing_error_switch"] > 10 * summary["pointing_error_final"]
     for name in ("omega.png", *CONTROL_WRITES):
         assert (out / name).stat().st_size > 0, name
 

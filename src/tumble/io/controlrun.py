@@ -109,6 +109,9 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
         err = run.pointing_error(scenario.target)
         summary["pointing_error_final"] = float(err[-1])
         summary["pointing_error_initial"] = float(err[0])
+        switch = summary.get("switch_time")
+        if switch is not None:  # a mission's start is not what it points from: the tumble it detumbled is
+            summary["pointing_error_switch"] = float(err[min(int(np.searchsorted(run.t, switch)), len(err) - 1)])
     if scenario.orbit is not None and scenario.field is not None:
         summary["orbit"] = orbit_summary(scenario.orbit, scenario.field)
     return summary
