@@ -266,3 +266,28 @@ def test_bad_torque_tables_in_a_control_file(tmp_path, capsys, table, message):
     assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and re_search(message, err), err
+
+
+def test_point_examples_steady_error_is_its_wheels_coulomb_friction(tmp_path):
+    """point.toml's comment: "the wheels' Coulomb friction leaves a steady error of ~ 4 tau_c / K per
+    axis (no integral term)". With no integral term the loop holds where K |sigma_i| meets the
+    friction tau_c, an angle 4 sigma per axis (MRP, small angles; Schaub & Junkins ch. 8): at most
+    sqrt(3) 4 tau_c / K over three axes. Without the friction the error is a fraction of it, and
+    without the gravity gradient (the comment's earlier, wrong culprit) it is the same."""
+    import tumble
+    from tumble.io.controlrun import control_summary
+
+    text = (CONTROL / "point.toml").read_text()
+    assert "coulomb = 1e-7" in text and "K = 1.1e-3" in text and "gravity_gradient = true" in text
+    bound = math.sqrt(3) * 4 * 1e-7 / 1.1e-3
+
+    def final_error(changed: str) -> float:
+        path = tmp_path / "point.toml"
+        path.write_text(changed)
+        scenario = load_scenario(path)
+        return control_summary(scenario, tumble.run_scenario(scenario))["pointing_error_final"]
+
+    shipped = final_error(text)
+    assert 0.5 * bound < shipped < 1.2 * bound
+    assert final_error(text.replace("coulomb = 1e-7", "coulomb = 0.0")) < 0.25 * shipped
+    assert final_error(text.replace("gravity_gradient = true", "gravity_gradient = false")) == pytest.approx(shipped, rel=0.01)
