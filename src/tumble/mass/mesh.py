@@ -32,7 +32,7 @@ def _trimesh() -> ModuleType:
     return optional_import("trimesh", "mesh", "a mesh part (Mesh)")
 
 
-def winding_number(triangles: FloatArray, points: FloatArray) -> FloatArray:
+def winding_number(triangles: ArrayLike, points: ArrayLike) -> FloatArray:
     """The winding number of a closed, outward-wound triangle surface about each point: 1 inside, 0 outside.
 
     The sum of the solid angles the triangles subtend at the point over 4 pi, each from Van
