@@ -17,7 +17,8 @@ from tumble.viz import figure_stability_map
 
 handle = tumble.t_handle().principal_moments  # kg m^2
 ratios = (handle[0] / handle[2], handle[1] / handle[2])
-grid = stability_map(10.0, (0.01, 0.01), resolution=120)
+perturbation = (0.01 / 10.0, 0.01 / 10.0)  # 0.01 rad/s about each other axis, as fractions of the spin
+grid = stability_map(10.0, perturbation, resolution=120)
 interval = grid.flip_interval[grid.inside]
 print(f"{grid.inside.sum()} physical bodies on the grid; flip interval {np.nanmin(interval):.2f} to {np.nanmax(interval):.1f} s")
 print(f"the T-handle at I1/I3 = {ratios[0]:.3f}, I2/I3 = {ratios[1]:.3f}: "
@@ -26,4 +27,4 @@ print(f"the T-handle at I1/I3 = {ratios[0]:.3f}, I2/I3 = {ratios[1]:.3f}: "
 # %%
 # The map, with the T-handle marked.
 
-fig = figure_stability_map(10.0, (0.01, 0.01), resolution=120, points={"T-handle": ratios})
+fig = figure_stability_map(10.0, perturbation, resolution=120, points={"T-handle": ratios})

@@ -115,6 +115,8 @@ def test_plot_stability_map(run):
     np.testing.assert_array_equal(grid.inside, (x < y) & (y < 1) & (x + y > 1))
     assert np.isfinite(grid.flip_interval[grid.inside]).all()
     assert figures == 1
+    # the spin its text states: 10 rad/s, and 0.01 rad/s about each other axis (the map takes fractions of the spin)
+    np.testing.assert_allclose(grid.omega0, [0.01, 10.0, 0.01], rtol=1e-15)
 
 
 def test_plot_dask_sweep(run):

@@ -306,7 +306,7 @@ def test_a_running_dask_scheduler_writes_the_same_cases(tmp_path):
     assert here["criterion"] == there["criterion"]
 
 
-def test_the_sweep_and_map_commands(tmp_path, capsys):
+def test_the_sweep_and_map_commands(tmp_path, capsys, monkeypatch):
     """`tumble sweep` runs the shipped example through the CLI (one line, exit 0, the files);
     `tumble map` draws the map; bad options are one line and exit 2."""
     from tumble.cli import main
@@ -319,7 +319,28 @@ def test_the_sweep_and_map_commands(tmp_path, capsys):
     assert not (tmp_path / "sweep.resume").exists()
     assert main(["map", "--out", str(tmp_path / "map.png"), "--resolution", "40"]) == 0
     assert (tmp_path / "map.png").stat().st_size > 5_000
+    assert capsys.readouterr().out.rstrip().endswith("perturbation 0.01, 0.01 rad/s")
+    # what it says is what it draws: 0.01 rad/s about the minor and major axes of a 10 rad/s spin, a tenth of a
+    # percent of the spin (the map's own perturbation is in fractions of the spin); a zero one is allowed
+    import matplotlib.pyplot as plt
+
+    from tumble.viz import figure_stability_map
+
+    drawn = {}
+    real = figure_stability_map
+
+    def spy(spin, perturbation, **kw):
+        drawn.update(spin=spin, perturbation=perturbation)
+        return real(spin, perturbation, **kw)
+
+    import tumble.viz
+
+    monkeypatch.setattr(tumble.viz, "figure_stability_map", spy)
+    assert main(["map", "--out", str(tmp_path / "m0.png"), "--resolution", "20", "--perturbation", "0", "0.02"]) == 0
+    assert drawn == {"spin": 10.0, "perturbation": (0.0, 0.002)}
+    plt.close("all")
     for argv in (["map", "--out", str(tmp_path / "m.png"), "--spin", "-1"],
+                 ["map", "--out", str(tmp_path / "m.png"), "--perturbation", "0", "0"],
                  ["sweep", str(EXAMPLE), "--out", str(tmp_path / "s2"), "--workers", "2", "--scheduler", "tcp://x:1"]):
         capsys.readouterr()
         assert main(argv) == 2

@@ -135,13 +135,15 @@ def _cmd_map(args) -> int:
     suffix = os.path.splitext(str(args.out))[1].lower()
     out = check_output_file(args.out, suffix if suffix in (".png", ".svg") else ".png")
     spin = check_positive("--spin", args.spin, "rad/s")
-    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s") for i, p in enumerate(args.perturbation))
+    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True)
+                         for i, p in enumerate(args.perturbation))
     if not 20 <= args.resolution <= 2000:
         raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")
     from ..viz import figure_stability_map, save_figure
 
-    with _working("mapping"):
-        save_figure(figure_stability_map(spin, perturbation, resolution=args.resolution), out)
+    with _working("mapping"):  # the option is in rad/s, as its help says; the map takes fractions of the spin
+        fractions = (perturbation[0] / spin, perturbation[1] / spin)
+        save_figure(figure_stability_map(spin, fractions, resolution=args.resolution), out)
     print(f"wrote {out}: flip interval and circulation axis over (I1/I3, I2/I3), spin {spin:g} rad/s "
           f"about the intermediate axis, perturbation {perturbation[0]:g}, {perturbation[1]:g} rad/s")
     return EXIT_OK

@@ -310,6 +310,9 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     p = np.asarray(perturbation, dtype=float) if not isinstance(perturbation, (str, bytes)) else np.empty(0)
     if p.shape != (2,) or not np.all(np.isfinite(p)):
         raise ValueError(f"perturbation = {perturbation!r} must be two finite numbers (fractions of the spin)")
+    if not np.any(p):
+        raise ValueError(f"perturbation = {perturbation!r}: a spin exactly about the intermediate axis is an unstable "
+                         f"equilibrium that never flips; give a small perturbation along the minor or the major axis")
     if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or not 10 <= resolution <= 2000:
         raise ValueError(f"resolution = {resolution!r} must be a whole number from 10 to 2000")
     x = (np.arange(resolution) + 0.5) / resolution
