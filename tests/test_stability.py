@@ -391,3 +391,18 @@ def test_flips_counted_on_too_few_samples_are_said_to_be():
     assert not dense.aliased and dense["samples_per_flip"] > SAMPLES_PER_FLIP and "too few" not in repr(dense)
     assert abs(dense["flips"] - 2.0 / dense["flip_period_exact"]) <= 1  # right: one flip per closed-form interval
     assert sparse["flips"] < 0.75 * dense["flips"]  # wrong, as the report now says
+
+
+def test_the_simulate_line_gives_no_aliased_period_as_measured(tmp_path, capsys):
+    """The command's line gave the aliased count with the closed form's period as if measured ("293 flips
+    every 0.02835 s": 8.3 s of flips in a 20 s run); it now names the closed form's as such."""
+    from tumble.cli import main
+
+    argv = ["simulate", "t-handle", "--omega", "573", "5.7", "5.7", "--frame", "design", "--t-end", "2",
+            "--samples", "50", "--out", str(tmp_path / "run")]
+    assert main(argv) == 0
+    line = capsys.readouterr().out
+    exact = tumble.flip_interval(tumble.t_handle().principal_axes.T @ [573.0, 5.7, 5.7],
+                                 tumble.t_handle().principal_moments)
+    assert f"too few to count them: give more samples; the closed form flips every {float(exact):.4g} s)" in line
+    assert line.count("every") == 1  # the closed form's only: no period given as the run's

@@ -409,12 +409,21 @@ def _simulate_line(summary: dict, out) -> str:
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
     spin = "started at rest" if s["axis"] is None else (
         f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flip{'' if s['flips'] == 1 else 's'}")
-    period = s["flip_period_exact"] if s["flip_period_exact"] is not None else s["flip_period"]
-    if summary["torque_free"] and s["flips"] and period is not None:
-        spin += f" every {period:.4g} s"
-    if s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP:  # the count is aliased
+    measured, exact = s["flip_period"], s["flip_period_exact"]
+    aliased = s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP
+    if summary["torque_free"] and s["flips"] and (measured is not None or exact is not None):
+        # what the run did; the closed form beside it where they differ in the digits shown (a method's
+        # error, rk45's 0.9 % on the seed's flip), or alone where the samples are too few to measure it
+        if measured is not None and not aliased:
+            spin += f" every {measured:.4g} s"
+            if exact is not None and f"{exact:.4g}" != f"{measured:.4g}":
+                spin += f" (the closed form: {exact:.4g} s)"
+        elif exact is not None and not aliased:
+            spin += f" (the closed form: every {exact:.4g} s)"
+    if aliased:  # the count is aliased
+        closed = f"; the closed form flips every {exact:.4g} s" if exact is not None and summary["torque_free"] else ""
         spin += (f" (counted with {s['samples_per_flip']:.2g} samples a flip, too few to count them: give more "
-                 f"samples)")
+                 f"samples{closed})")
     if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is not None:
         g = summary["gravity_gradient"]
         tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
