@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -406,3 +408,26 @@ def test_the_simulate_line_gives_no_aliased_period_as_measured(tmp_path, capsys)
                                  tumble.t_handle().principal_moments)
     assert f"too few to count them: give more samples; the closed form flips every {float(exact):.4g} s)" in line
     assert line.count("every") == 1  # the closed form's only: no period given as the run's
+
+
+def test_a_symmetric_body_has_no_intermediate_axis_in_its_report():
+    """A cylinder (I2 = I3) spun about a transverse axis was reported "axis 2 (intermediate): unstable,
+    2 flips, period 39.98 s": the 39.98 s is its slow roll about the symmetry axis, pi I2 / ((I2 - I1)
+    omega1), not the tennis-racket flip (a walkthrough, issue 40)."""
+    cylinder = tumble.Body([tumble.Cylinder(mass=1.0, radius=0.1, length=0.5)])
+    I1, I2, _ = cylinder.principal_moments
+    report = tumble.stability_report(tumble.simulate(cylinder, [0.1, 10.0, 0.1], t_end=100.0))
+    assert report["role"] == "transverse, I2 = I3" and "slow roll about the symmetry axis" in repr(report)
+    assert report["flip_period"] == pytest.approx(math.pi * I2 / ((I2 - I1) * 0.1), rel=1e-3)
+    disc = tumble.Body([tumble.Cylinder(mass=1.0, radius=0.3, length=0.05)])  # oblate: I1 = I2
+    assert tumble.stability_report(tumble.simulate(disc, [0.1, 10.0, 0.1], t_end=10.0))["role"] == "transverse, I1 = I2"
+    about = tumble.stability_report(tumble.simulate(disc, [0.1, 0.1, 10.0], t_end=10.0))
+    assert (about["role"], about["predicted"], about["note"]) == ("major, the symmetry axis", "stable", None)
+    cube = tumble.Body([tumble.Box(mass=1.0, size=(1.0, 1.0, 1.0))])
+    assert tumble.stability_report(tumble.simulate(cube, [0.1, 10.0, 0.1], t_end=1.0))["role"] == "any axis: spherical"
+    # an asymmetric body's roles are unchanged; exactly on its intermediate axis it is said to need a perturbation
+    exact = tumble.stability_report(tumble.simulate(tumble.t_handle(), [0.0, 10.0, 0.0], t_end=10.0))
+    assert (exact["role"], exact["predicted"], exact["flips"]) == ("intermediate", "unstable", 0)
+    assert "flips only once perturbed" in exact["note"]
+    near = tumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0))
+    assert near["note"] is None and near["flips"] == 11

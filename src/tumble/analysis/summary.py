@@ -60,6 +60,8 @@ class StabilityReport(dict):  # type: ignore[type-arg]
             parts.append(f"period {fmt(self['flip_period'])} s")
         if self.aliased:
             parts.append(f"too few samples to count flips ({fmt(self['samples_per_flip'], 2)} per flip)")
+        if self.get("note"):
+            parts.append(self["note"])
         return parts
 
     @property
@@ -112,7 +114,8 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         Keys: ``axis`` (1, 2 or 3, principal, ascending moments: the largest ``|I_j omega_j|`` at
         the start; None for a body starting at rest, and then every prediction is None),
         ``role``, ``circulation`` (1 or 3, the axis omega circulates about, torque-free theory of
-        the initial state), ``predicted`` ("stable" or "unstable"), ``growth_rate`` (1/s) or
+        the initial state; for a symmetric body "transverse, I2 = I3" or the symmetry axis, as
+        it has no intermediate axis), ``predicted`` ("stable" or "unstable"), ``growth_rate`` (1/s) or
         ``wobble_frequency`` (rad/s) of the linearised theory about the spin axis (None where it
         does not say what the motion does), ``flips`` (sign changes of that component in the
         run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
@@ -125,7 +128,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         ``"gyrostat"`` for rotors whose momentum lies along the spin axis (the linearised
         theory), ``"energy sink"`` with a damper (the major-axis rule: only spin about the major
         axis is stable), or None when no theory applies, e.g. rotor momentum across the spin
-        axis; then ``predicted`` is None).
+        axis; then ``predicted`` is None), ``note`` (None, or what the numbers do not say: a
+        symmetric body's turning over is its slow roll, not the tennis-racket flip; a spin exactly
+        about the intermediate axis flips only once perturbed).
         Flip periods from the elliptic closed form are given for a rigid, torque-free body only.
 
     Examples
@@ -165,13 +170,21 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     if not np.any(w0):
         return StabilityReport(axis=None, role=None, circulation=None, predicted=None, growth_rate=None,
                                wobble_frequency=None, flips=0, flip_period=None, flip_period_exact=None,
-                               flip_period_asymptotic=None, theory=None, samples_per_flip=None)
+                               flip_period_asymptotic=None, theory=None, samples_per_flip=None, note=None)
     I = traj.moments
     motion = spin_prediction(w0, I)
     a, circulation = int(motion.axis), int(motion.circulation)  # 1, 2 or 3; 1 or 3
     theory, predicted, growth, wobble = _prediction(traj, motion)
-    distinct = moment_degeneracy(I) == "asymmetric"
+    degeneracy = moment_degeneracy(I)
+    distinct = degeneracy == "asymmetric"
     times = flip_times(traj.t, traj.omega[:, a - 1])
+    note = None
+    if not distinct and traj.rigid:
+        note = ("a spherical body: every axis is principal" if degeneracy == "spherical" else
+                "a symmetric body: what turns over is its slow roll about the symmetry axis, not the tennis-racket "
+                "flip" if len(times) else None)
+    elif predicted == "unstable" and not len(times) and np.count_nonzero(w0) == 1:
+        note = "a spin exactly about the axis: an unstable equilibrium, which flips only once perturbed"
     exact = asymptotic = None
     if traj.torque_free and traj.rigid and distinct:
         # the component about which omega circulates never changes sign; the other two flip
@@ -183,7 +196,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     spacing = float(np.max(np.diff(traj.t))) if len(traj.t) >= 2 else None
     return StabilityReport({
         "axis": a,
-        "role": AXIS_ROLES[a - 1],
+        "role": _role(I, a, degeneracy),
         "circulation": circulation,
         "predicted": predicted,
         "growth_rate": growth if growth > 0 else None,
@@ -195,7 +208,21 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         "theory": theory,
         # the flip interval over the widest sample spacing: below SAMPLES_PER_FLIP the flips counted are aliased
         "samples_per_flip": interval / spacing if interval is not None and spacing else None,
+        "note": note,
     })
+
+
+def _role(I: Any, a: int, degeneracy: str) -> str:
+    """Axis ``a``'s role: ``AXIS_ROLES``' for an asymmetric body; a symmetric one's symmetry axis or
+    a transverse axis (two equal moments: no intermediate axis); any axis of a spherical one."""
+    if degeneracy == "asymmetric":
+        return AXIS_ROLES[a - 1]
+    if degeneracy == "spherical":
+        return "any axis: spherical"
+    prolate = I[1] - I[0] > I[2] - I[1]  # I2 = I3: the symmetry axis is axis 1
+    if a == (1 if prolate else 3):
+        return f"{AXIS_ROLES[a - 1]}, the symmetry axis"
+    return "transverse, " + ("I2 = I3" if prolate else "I1 = I2")
 
 
 def _prediction(traj: Trajectory, motion: SpinPrediction) -> tuple[str | None, str | None, float, float]:

@@ -420,6 +420,8 @@ def _simulate_line(summary: dict, out) -> str:
                 spin += f" (the closed form: {exact:.4g} s)"
         elif exact is not None and not aliased:
             spin += f" (the closed form: every {exact:.4g} s)"
+    if s.get("note"):  # a symmetric body's roll, an unperturbed intermediate spin
+        spin += f" ({s['note']})"
     if aliased:  # the count is aliased
         closed = f"; the closed form flips every {exact:.4g} s" if exact is not None and summary["torque_free"] else ""
         spin += (f" (counted with {s['samples_per_flip']:.2g} samples a flip, too few to count them: give more "
