@@ -407,7 +407,7 @@ def simulate_controlled(
     grid = control_instants(T, period)
     steps = len(grid) - 1
     law = None if kernel is None else kernel.law(controller, sensors, wheels, field)
-    rods = magnetorquers.axes if magnetorquers is not None else _NO_ROWS
+    rods = magnetorquers.rods if magnetorquers is not None else _NO_ROWS
     limits = kernel_array(magnetorquers.max_dipole, (len(rods),)) if magnetorquers is not None else _NO_VALUES
     if kernel is not None and law is not None:  # the whole loop in one compiled call
         Y, D, U, F = kernel.run(y0, grid, law, rods, limits, carry_step, padded=True)

@@ -362,7 +362,7 @@ def detumble_batch(moments: ArrayLike, omega0: ArrayLike, attitude0: ArrayLike, 
         fp = field_form[1]
         for i0, i1, noise in errors.segments(steps):
             part, w, q = detumble_run(
-                I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.axes,
+                I, q, w, theta0, k, normalized=form == "normalized", axes=magnetorquers.rods,
                 limit=np.asarray(magnetorquers.max_dipole, float), fp=fp, period=float(D), steps=i1 - i0,
                 substeps=int(substeps), n_gg=n_gg, bias=errors.bias, noise=noise, step0=i0)
             rates[:, i0:i1 + 1] = part

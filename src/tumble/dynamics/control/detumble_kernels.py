@@ -51,7 +51,7 @@ from ..euler import euler_components
 from ..special.quaternion import quaternion_rate_components, to_body
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import fixed_step_source, state_layout
-from .loop_terms import _gravity_gradient, dipole as _dipole
+from .loop_terms import _gravity_gradient, dipole as _dipole, rod_dipole
 
 __all__ = ["detumble_parallel", "detumble_run", "detumble_serial"]
 
@@ -68,13 +68,7 @@ def _bdot(b0: float, b1: float, b2: float, w0: float, w1: float, w2: float, gain
     m0 = -k * (b1 * w2 - b2 * w1)
     m1 = -k * (b2 * w0 - b0 * w2)
     m2 = -k * (b0 * w1 - b1 * w0)
-    out0, out1, out2 = 0.0, 0.0, 0.0
-    for j in range(axes.shape[0]):
-        rod = min(max(m0 * axes[j, 0] + m1 * axes[j, 1] + m2 * axes[j, 2], -limit[j]), limit[j])
-        out0 += rod * axes[j, 0]
-        out1 += rod * axes[j, 1]
-        out2 += rod * axes[j, 2]
-    return out0, out1, out2
+    return rod_dipole(axes, limit, m0, m1, m2)  # axes: the rods' (k, 6) rows, Magnetorquers.rods
 
 
 @jit(error_model="numpy")

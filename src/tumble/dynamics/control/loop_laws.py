@@ -14,7 +14,7 @@ from ...typing import FloatArray
 from ..special.quaternion import to_body
 from .laws import (attitude_error_components, bdot_components, dumping_dipole_components, feedback_torque_components,
                    gyro_field_rate_components, tracking_feedforward_components)
-from .loop_terms import BODY, WHEEL, _wheel_torque
+from .loop_terms import BODY, WHEEL, _wheel_torque, rod_dipole
 
 __all__ = ["LAW_BDOT", "LAW_DUMPING", "LAW_MRP", "NO_MEMORY", "Law", "held", "law_command"]
 
@@ -100,14 +100,11 @@ def law_command(law: int, L: FloatArray, pinv: FloatArray, P0: Any, y: Any, t: f
 @jit(error_model="numpy")
 def held(rods: FloatArray, limits: FloatArray, m0: float, m1: float, m2: float, u: FloatArray, y: Any, P0: Any,
          D: FloatArray, U: FloatArray) -> tuple[float, float, float]:  # pragma: no cover - compiled
-    """What a command holds: the rods' dipole (A m^2), the dipole ``m`` asked for put on each rod
-    (``rods`` their axes) and clipped to its limit, into ``D`` (3,) and returned; the wheels'
+    """What a command holds: the rods' dipole (A m^2), the dipole ``m`` asked for allocated to the rods
+    (``rods``: :attr:`~tumble.dynamics.models.actuators.Magnetorquers.rods`) and clipped to each one's limit, into ``D`` (3,) and returned; the wheels'
     applied torques (N m) of the commands ``u`` at the spins ``y[7:]`` into ``U`` (limits and
     friction, :func:`~tumble.dynamics.models.actuators.wheel_torque`)."""
-    d0, d1, d2 = 0.0, 0.0, 0.0
-    for r in range(rods.shape[0]):
-        p = min(max(m0 * rods[r, 0] + m1 * rods[r, 1] + m2 * rods[r, 2], -limits[r]), limits[r])
-        d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
+    d0, d1, d2 = rod_dipole(rods, limits, m0, m1, m2)
     D[0], D[1], D[2] = d0, d1, d2
     for j in range(U.shape[0]):
         b = BODY + WHEEL * j

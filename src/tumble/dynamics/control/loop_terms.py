@@ -70,7 +70,7 @@ from ...typing import FloatArray
 from ..environment.earth import earth_angle
 from ..environment.magnetic import FIELD_DIPOLE, FIELD_NONE, FIELD_TABLE, FIELD_UNIFORM, dipole_components
 from ..environment.tabulated import horner
-from ..models.actuators import wheel_torque
+from ..models.actuators import rod_dipole_components, wheel_torque
 from ..models.gravity import gradient_components
 from ..euler import momentum_rate_components
 from ..special.quaternion import quaternion_rate_components, to_body
@@ -95,6 +95,8 @@ _gravity_gradient = jit(gradient_components, error_model="numpy")
 # a NaN): numba's NaN-keeping min and max cost 11 % of the right-hand side (63 -> 56 us for the
 # 1452 calls of a 60 s loop with three wheels, measured alternating in one process).
 _wheel_torque = jit(wheel_torque, error_model="numpy", fastmath={"nnan"})
+#: The rods' dipole for a command (:func:`~tumble.dynamics.models.actuators.rod_dipole_components`), compiled.
+rod_dipole = jit(rod_dipole_components, error_model="numpy", inline="always")
 
 
 @jit(error_model="numpy", _nrt=False)

@@ -38,7 +38,7 @@ from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import check_positive, check_vectors
 
-__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "wheel_torque"]
+__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "rod_dipole_components", "wheel_torque"]
 
 
 @dataclass(frozen=True)
@@ -121,8 +121,24 @@ class Magnetorquers:
         object.__setattr__(self, "axes", axes)
         object.__setattr__(self, "max_dipole", _per_axis("max_dipole", self.max_dipole, len(axes), "A m^2"))
 
+    @property
+    def rods(self) -> FloatArray:
+        """The rods as the compiled loops take them, shape (k, 6): each rod's axis, then its row of the
+        allocation ``G^+`` (:func:`rod_dipole_components`).
+
+        Examples
+        --------
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
+        >>> Magnetorquers(1.0, axes=[[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]).rods.round(12).tolist()   # two rods on x share it
+        [[1.0, 0.0, 0.0, 0.5, 0.0, 0.0], [1.0, 0.0, 0.0, 0.5, 0.0, 0.0]]
+        """
+        a = self.axes  # G^T; G^+ (k x 3): the least-norm rod dipoles that make m; for orthonormal rods G^T itself
+        allocation = a if np.array_equal(a @ a.T, np.eye(len(a))) else np.linalg.pinv(a.T)
+        return np.ascontiguousarray(np.hstack([self.axes, allocation]), dtype=float)
+
     def saturate(self, dipole: ArrayLike) -> Vector3:
-        """The dipole the rods make for a command (A m^2): projected on each rod and clipped; shape (..., 3).
+        """The dipole the rods make for a command (A m^2): allocated to the rods by ``G^+``, each clipped to
+        its limit (:func:`rod_dipole_components`); shape (..., 3).
 
         Examples
         --------
@@ -138,10 +154,15 @@ class Magnetorquers:
 
         >>> Magnetorquers(1.0, axes=[[1.0, 0.0, 0.0], [0.0, 2.0, 0.0]]).saturate([0.5, 0.5, 0.5]).tolist()
         [0.5, 0.5, 0.0]
+
+        Rods skewed or doubled make the dipole asked for, within their limits:
+
+        >>> Magnetorquers(10.0, axes=[[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).saturate([1.0, 0.0, 0.0]).round(12) + 0.0
+        array([1., 0., 0.])
         """
-        lim = np.asarray(self.max_dipole)
-        per_rod = np.clip(np.asarray(dipole, float) @ self.axes.T, -lim, lim)
-        return np.asarray(per_rod @ self.axes, float)
+        m = np.asarray(dipole, float)
+        d = rod_dipole_components(self.rods, np.asarray(self.max_dipole, float), m[..., 0], m[..., 1], m[..., 2])
+        return np.stack(np.broadcast_arrays(*d), axis=-1)
 
     def torque(self, dipole: ArrayLike, field_body: ArrayLike) -> Vector3:
         """``tau = m x B`` (N m) for the dipole ``m`` (A m^2) in ``B`` (T), both principal frame.
@@ -187,6 +208,32 @@ class Magnetorquers:
 #: Coulomb region is, Karnopp 1985), not a model of a particular drive: it keeps the right-hand
 #: side continuous, its relaxation rate ``u_max / (J band s_max)`` well within an explicit step.
 SPEED_LIMIT_BAND = 0.01
+
+
+def rod_dipole_components(rods: FloatArray, limits: FloatArray, m0: Any, m1: Any, m2: Any) -> tuple[Any, Any, Any]:
+    """The dipole (A m^2) magnetorquer rods make for a command ``m``: the one writing, over floats (the
+    compiled closed loop and B-dot batch) or arrays of one shape (:meth:`Magnetorquers.saturate`).
+
+    Each rod's share is its row of the allocation ``G^+ m`` (``G`` the 3 x k matrix of the rods' axes:
+    the least-norm dipoles that make ``m``, or its projection on the rods' span; for orthonormal rods
+    the projection on each), clipped to its limit, then summed along its axis: the Moore-Penrose
+    allocation the wheels' torques have here (``u = -G^+ L_r``, :class:`ReactionWheels`). ``rods`` (k, 6): each rod's axis, then its row of ``G^+``
+    (:attr:`Magnetorquers.rods`). Skewed or doubled rods projected one by one made another dipole
+    than the one asked for (twice it for two rods on one axis; a walkthrough, issue 40).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.actuators import Magnetorquers, rod_dipole_components
+    >>> rods = Magnetorquers(1.0, axes=[[1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]).rods
+    >>> [round(float(d), 12) for d in rod_dipole_components(rods, np.array([1.0, 1.0, 1.0]), 1.5, 0.0, 3.0)]
+    [1.5, 0.0, 1.0]
+    """
+    d0 = d1 = d2 = 0.0 * m0
+    for r in range(rods.shape[0]):
+        p = np.minimum(np.maximum(m0 * rods[r, 3] + m1 * rods[r, 4] + m2 * rods[r, 5], -limits[r]), limits[r])
+        d0, d1, d2 = d0 + p * rods[r, 0], d1 + p * rods[r, 1], d2 + p * rods[r, 2]
+    return d0, d1, d2
 
 
 def wheel_torque(command: Any, speed: Any, max_torque: Any, max_speed: Any, viscous: Any, coulomb: Any,
