@@ -30,11 +30,12 @@ def _on_sigterm(signum, frame):
 
 def _show_warning(fallback, message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
     """``warnings.showwarning`` for the commands: a likely slip of units (:class:`tumble.mass.UnitSlipWarning`:
-    a part's or a mesh's density or size no solid has) as one line, ``warning: ...``; any other
+    a part's or a mesh's density or size no solid has), or one whose class asks for it (``cli_one_line``:
+    an unstable control loop), as one line, ``warning: ...``; any other
     warning as ``fallback`` (the one in effect before) shows it."""
     from ..mass import UnitSlipWarning
 
-    if issubclass(category, UnitSlipWarning):
+    if issubclass(category, UnitSlipWarning) or getattr(category, "cli_one_line", False):
         print(f"warning: {message}", file=sys.stderr)
     else:
         fallback(message, category, filename, lineno, file, line)

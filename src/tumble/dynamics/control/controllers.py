@@ -54,6 +54,7 @@ from ..models.sensors import Measurement
 from .bdot import _three
 from .laws import dumping_dipole_components, feedback_torque_components, tracking_feedforward_components
 from .pointing import Reference, is_reference, tracking_error
+from .sampled import check_held_loop
 from ..special.mrp import mrp_from_quat
 
 __all__ = ["Controller", "MRPFeedback", "MomentumDumping", "PDResponse", "pd_response"]
@@ -175,6 +176,7 @@ class MRPFeedback:
                              "MRP feedback needs torque about every axis")
         self._pinv = np.linalg.pinv(G)
         self._I_rw = np.diag(np.asarray(self.moments, float)) - self.wheels.locked_axial()
+        check_held_loop(self.moments, self.K, self.P, self.period, self.Ki)  # warns where the held loop diverges
 
     def reset(self) -> None:
         """Clear the integral term (a new run; :func:`~tumble.dynamics.control.controlled.simulate_controlled` calls it).

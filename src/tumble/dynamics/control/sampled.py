@@ -1,0 +1,124 @@
+"""Whether MRP feedback held between control steps is stable: the sampled-data loop, axis by axis.
+
+Near its target the law ``L_r = -K sigma - P omega - z`` (``z = Ki K int sigma dt``) drives each
+principal axis as ``I theta'' = -(K / 4) (theta + Ki s) - P theta'`` with ``sigma ~ theta / 4`` and
+``s' = theta`` (Schaub & Junkins, *Analytical Mechanics of Space Systems*, 4th ed., secs. 8.2-8.4;
+docs/control.md). The controller reads the state every ``T`` s and holds its torque in between:
+the zero-order-hold equivalent of that double integrator (Franklin, Powell & Workman, *Digital
+Control of Dynamic Systems*, 3rd ed., 1998: ``x_{k+1} = Phi x_k + Gamma u_k`` with ``Phi`` and
+``Gamma`` of ``theta'' = u / I`` over ``T``), with the integral summed as the controller sums it
+(``s_{k+1} = s_k + T theta_k``, used from the next step), is
+
+    theta_{k+1} = theta_k + T omega_k + T^2 u_k / (2 I)
+    omega_{k+1} = omega_k + T u_k / I
+    s_{k+1}     = s_k + T theta_k,          u_k = -(K / 4) (theta_k + Ki s_k) - P omega_k,
+
+stable when every eigenvalue of its matrix lies inside the unit circle. Too long a period makes
+the rate loop overshoot (``omega_{k+1} ~ (1 - P T / I) omega_k``: unstable past ``P T / I = 2``); too
+large an integral gain destabilises even the continuous loop (``Ki < P / I``, Routh-Hurwitz). A
+walkthrough's 3U CubeSat held for 2.5 s (``P T / I1 = 2.24``) tumbled at 0.38 rad/s without a word
+(issue 40); :class:`~tumble.dynamics.control.controllers.MRPFeedback` now warns
+(:class:`UnstableLoopWarning`). Far from the target (saturated wheels, large angles) this linear
+check says nothing either way.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from ...typing import ArrayLike, FloatArray
+
+__all__ = ["UnstableLoopWarning", "check_held_loop", "held_loop_radius"]
+
+
+class UnstableLoopWarning(UserWarning):
+    """MRP feedback whose gains and period make the held loop unstable (:func:`check_held_loop`).
+
+    A command prints it on one line (``warning: ...``) and goes on: a study of an unstable loop is a
+    study one may want.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.sampled import UnstableLoopWarning
+    >>> issubclass(UnstableLoopWarning, UserWarning)
+    True
+    """
+
+    cli_one_line = True
+
+
+def _matrix(I: float, K: float, P: float, T: float, Ki: float) -> FloatArray:
+    c, p = 0.25 * K / I, P / I
+    return np.array([[1.0 - 0.5 * c * T * T, T - 0.5 * p * T * T, -0.5 * c * Ki * T * T],
+                     [-c * T, 1.0 - p * T, -c * Ki * T],
+                     [T, 0.0, 1.0]])
+
+
+def held_loop_radius(moments: ArrayLike, K: float, P: float, period: float, Ki: float = 0.0) -> FloatArray:
+    """The spectral radius of MRP feedback's held loop about each principal axis (module docstring).
+
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments, kg m^2.
+    K, P : float
+        The attitude (N m) and rate (N m s) gains.
+    period : float
+        The control period, s.
+    Ki : float
+        The integral gain, 1/s.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        Above 1 the loop about that axis diverges.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.sampled import held_loop_radius
+    >>> I = [0.00667, 0.0419, 0.0419]   # a 3U CubeSat, kg m^2
+    >>> bool(held_loop_radius(I, 1.1e-3, 6e-3, 2.0).max() < 1), bool(held_loop_radius(I, 1.1e-3, 6e-3, 2.5)[0] > 1)
+    (True, True)
+    """
+    values = []
+    for I in np.asarray(moments, float):
+        A = _matrix(float(I), K, P, period, Ki)
+        values.append(float(np.max(np.abs(np.linalg.eigvals(A if Ki > 0.0 else A[:2, :2])))))
+    return np.array(values)
+
+
+def check_held_loop(moments: ArrayLike, K: float, P: float, period: float, Ki: float = 0.0) -> None:
+    """Warn (:class:`UnstableLoopWarning`) where MRP feedback's held loop is unstable about an axis,
+    naming the setting to change: ``Ki`` where even the continuous loop is (``Ki >= P / I``), else
+    ``period``, with the longest that is stable.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.control.sampled import check_held_loop
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_held_loop([0.00667, 0.0419, 0.0419], 1.1e-3, 6e-3, 2.5)
+    >>> print(caught[0].message)   # doctest: +NORMALIZE_WHITESPACE
+    period = 2.5 s: MRP feedback held that long is unstable about principal axis 1 (I = 0.00667 kg m^2, a pole
+    of magnitude 1.26 > 1: P T / I = 2.25); the longest stable period is 2.22 s
+    """
+    I = np.asarray(moments, float)
+    radius = held_loop_radius(I, K, P, period, Ki)
+    if not np.any(radius > 1.0 + 1e-12):
+        return
+    axis = int(np.argmax(radius))
+    if Ki > 0.0 and Ki >= P / I[axis]:
+        message = (f"Ki = {Ki:g} 1/s: MRP feedback's integral term makes the loop unstable about principal axis "
+                   f"{axis + 1} (I = {I[axis]:.3g} kg m^2): it needs Ki < P / I = {P / I[axis]:.3g} 1/s")
+    else:
+        lo, hi = 0.0, float(period)  # the longest stable period, by bisection on the radius
+        for _ in range(50):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if held_loop_radius(I[axis:axis + 1], K, P, mid, Ki)[0] <= 1.0 else (lo, mid)
+        message = (f"period = {period:g} s: MRP feedback held that long is unstable about principal axis {axis + 1} "
+                   f"(I = {I[axis]:.3g} kg m^2, a pole of magnitude {radius[axis]:.3g} > 1: P T / I = "
+                   f"{P * period / I[axis]:.3g}); the longest stable period is {lo:.3g} s")
+    warnings.warn(message, UnstableLoopWarning, stacklevel=3)
