@@ -114,8 +114,8 @@ def test_a_part_sized_in_mm_warns_naming_the_file_and_the_part(tmp_path):
         tumble.load_body(path)
     assert len(caught) == 1
     assert str(caught[0].message) == (f"{path}: body.parts[0] (cylinder): a cylinder of 0.2 kg in 1.36e+04 m^3 is "
-                                      "1.47e-05 kg/m^3, less than a thousandth of air's: are its sizes in mm? Write "
-                                      "them in metres (SI units)")
+                                      "1.47e-05 kg/m^3, less than the lightest solid's (an aerogel, 0.16 kg/m^3): are "
+                                      "its sizes in mm or cm? Write them in metres (SI units)")
     written = MM_AS_METRES.replace("6.0", "0.006").replace("120.0", "0.12")  # the same in metres: no word
     path.write_text(written)
     with warnings.catch_warnings():
@@ -159,3 +159,21 @@ def test_a_mesh_part_in_mm_in_a_body_file_is_named_with_the_key_that_fixes_it(tm
     with warnings.catch_warnings():
         warnings.simplefilter("error", MeshScaleWarning)  # in metres now: no warning
         assert load_body(path).mass == pytest.approx(6.0)
+
+
+@pytest.mark.parametrize(("sizes", "mass", "words"), [
+    ([15.0, 7.5, 0.8], 0.2, "are its sizes in mm or cm?"),  # a phone in cm: 2.2e-3 kg/m^3
+    ([0.15, 0.075, 0.008], 200.0, "is its mass in grams?"),  # a phone of 200 g written 200: 2.2e6 kg/m^3
+])
+def test_a_phone_in_cm_or_in_grams_warns(tmp_path, sizes, mass, words):
+    """A walkthrough's phone in cm (10^4 times its moments) and in grams (a "200 kg phone", 100 times
+    osmium's density) loaded without a word; in metres and kg, none."""
+    text = f'[[body.parts]]\nkind = "box"\nmass = {mass}\nsize = {sizes}\n'
+    path = tmp_path / "phone.toml"
+    path.write_text(text)
+    with pytest.warns(tumble.mass.UnitSlipWarning, match=words):
+        tumble.load_body(path)
+    path.write_text('[[body.parts]]\nkind = "box"\nmass = 0.2\nsize = [0.15, 0.075, 0.008]\n')
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", tumble.mass.UnitSlipWarning)
+        assert tumble.load_body(path).mass == 0.2

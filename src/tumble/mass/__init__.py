@@ -1,7 +1,7 @@
 """Mass properties of rigid bodies built from parts (layer 1: numpy only, trimesh lazily)."""
 
 from .body import AXIS_ROLES, Body, MassProperties, mass_properties
-from .part_base import MIN_DENSITY, UnitSlipWarning
+from .part_base import MAX_DENSITY, MIN_DENSITY, UnitSlipWarning
 from .mesh import Mesh  # registers the 'mesh' kind; trimesh is imported on first use
 from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
 from .rotor import Rotor
@@ -28,6 +28,7 @@ __all__ = [
     "INERTIA_RTOL",
     "MassProperties",
     "Mesh",
+    "MAX_DENSITY",
     "MIN_DENSITY",
     "PART_KINDS",
     "PRESETS",

@@ -32,21 +32,27 @@ from ..validation import check_direction, check_motion, check_positive, check_ro
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
 
-__all__ = ["MIN_DENSITY", "Part", "UnitSlipWarning"]
+__all__ = ["MAX_DENSITY", "MIN_DENSITY", "Part", "UnitSlipWarning"]
 
 _Z = np.array([0.0, 0.0, 1.0])
 
 
-#: A solid part given by its mass whose density comes out below this (kg/m^3), a thousandth of
-#: air's, is most likely sized in mm (or cm) and written as metres: that makes a part 1e9 (1e6)
-#: times lighter than it is, 2.7e-6 kg/m^3 for aluminium. A textbook's unit example (1 kg, 1 m)
-#: stays far above it.
-MIN_DENSITY = 1e-3
+#: A solid part given by its mass whose density comes out below this (kg/m^3), under the lightest
+#: solid made (a graphene aerogel, 0.16 kg/m^3), is most likely sized in mm or cm and written as
+#: metres: that makes a part 1e9 (1e6) times lighter than it is, 2.7e-6 (2.7e-3) kg/m^3 for
+#: aluminium (a walkthrough's phone in cm passed the earlier bound, a thousandth of air's). A
+#: textbook's unit example (1 kg, 1 m) stays far above it.
+MIN_DENSITY = 0.1
+#: A solid part given by its mass whose density comes out above this (kg/m^3), past osmium's 22,590
+#: (the densest element), most likely has its mass in grams: a 200 g phone written ``mass = 200``
+#: is 2.2e6 kg/m^3. A concentrated mass drawn as a small solid is better a ``PointMass``.
+MAX_DENSITY = 3e4
 
 
 class UnitSlipWarning(UserWarning):
-    """A part or mesh whose size no hand-made solid has: most likely its sizes were written in mm
-    (or a mesh file read in the wrong unit); the message says how to write them.
+    """A value whose size no real object or sensor has: a part's or a mesh's sizes most likely written in
+    mm or cm (or a mesh file read in the wrong unit), its mass in grams, a gyroscope's rates in deg/s; the
+    message says how to write them.
 
     Examples
     --------
@@ -57,7 +63,7 @@ class UnitSlipWarning(UserWarning):
     ...     warnings.simplefilter("always", UnitSlipWarning)
     ...     _ = tumble.Cylinder(mass=0.2, radius=12.0, length=80.0)   # mm written as m
     >>> print(caught[0].message)
-    a cylinder of 0.2 kg in 3.62e+04 m^3 is 5.53e-06 kg/m^3, less than a thousandth of air's: are its sizes in mm? Write them in metres (SI units)
+    a cylinder of 0.2 kg in 3.62e+04 m^3 is 5.53e-06 kg/m^3, less than the lightest solid's (an aerogel, 0.16 kg/m^3): are its sizes in mm or cm? Write them in metres (SI units)
     """
 
 
@@ -122,10 +128,15 @@ class Part:
         self._check_representable()
         if self.solid and self.kind != "mesh" and self.density is None:  # a mesh: io.meshfile checks its size
             volume = self.volume
-            if volume > 0.0 and cast(float, self.mass) / volume < MIN_DENSITY:
-                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is "
-                              f"{cast(float, self.mass) / volume:.3g} kg/m^3, less than a thousandth of air's: are its "
-                              "sizes in mm? Write them in metres (SI units)", UnitSlipWarning, stacklevel=3)
+            rho = cast(float, self.mass) / volume if volume > 0.0 else None
+            if rho is not None and rho < MIN_DENSITY:
+                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {rho:.3g} kg/m^3, less than the "
+                              "lightest solid's (an aerogel, 0.16 kg/m^3): are its sizes in mm or cm? Write them in "
+                              "metres (SI units)", UnitSlipWarning, stacklevel=3)
+            elif rho is not None and rho > MAX_DENSITY:
+                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {rho:.3g} kg/m^3, more than "
+                              "osmium's (22,590 kg/m^3, the densest element): is its mass in grams? Write it in kg (SI "
+                              "units); a concentrated mass is a PointMass", UnitSlipWarning, stacklevel=3)
 
     def _check_representable(self) -> None:
         """Sizes and masses so large that volume or inertia overflow double precision."""
