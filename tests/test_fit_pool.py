@@ -259,3 +259,17 @@ def test_a_recording_in_deg_s_read_as_rad_s_fails_naming_the_unit(tmp_path, caps
     path.write_text("t,wx (deg/s),wy (deg/s),wz (deg/s)\n" + path.read_text().split("\n", 1)[1])  # the unit named
     read = load_recording(path)
     np.testing.assert_allclose(read.omega, rec.omega, rtol=1e-5, atol=1e-6)  # read back as the rad/s they are
+
+
+def test_deg_s_read_as_rad_s_that_fits_a_flight_is_not_adequate():
+    """At 14-16 rad/s a phone's rates in deg/s reach ~900 'rad/s', and a flight or two of them fit within
+    the 3 % relative misfit a flexing body is allowed: a walkthrough's file gave I1/I3 = 0.98 for 0.20,
+    "adequate", exit 0. Past any MEMS gyroscope's range the fit is now not adequate and says why."""
+    rec = synthetic_recording(4, body="phone", tosses=2, spin=(14.0, 16.0), rate=200.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InadequateFitWarning)
+        wrong = fit_recording(rec.t, np.degrees(rec.omega))
+        right = fit_recording(rec.t, rec.omega)
+    assert wrong.tosses_used >= 1 and abs(wrong.pooled.ratios[0] - rec.ratios[0]) > 0.5  # fitted, and wrong
+    assert not wrong.pooled.adequate and "are they in deg/s?" in wrong.pooled.adequacy
+    assert right.pooled.adequate and "deg/s" not in (right.pooled.adequacy or "")

@@ -223,8 +223,8 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         k = number[id(used[0])]
         only, sol = tosses[k], used[0].solution
         own = _flight_models(None, used, [k], groups)
-        return RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series, sol.ssr, sol.m,
-                            own)
+        return _unit_slip(RecordingFit(tosses, only.fit, float("nan"), 1, t0, w0, (only.fit.omega_model,), series,
+                                       sol.ssr, sol.m, own), omega)
     used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     joint, models, outliers = first_joint or joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
     if joint is None and joined:  # no joint fit to use them in: skipped after all, with their own reasons
@@ -253,7 +253,17 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
     if split:
         warnings.warn(f"pooled fit: {split}", InadequateFitWarning, stacklevel=2)
         fit = replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=split))
-    return fit
+    return _unit_slip(fit, omega)
+
+
+def _unit_slip(fit: RecordingFit, omega: FloatArray) -> RecordingFit:
+    """``fit``, not adequate and saying why, where its rates pass :data:`DEG_S_HINT_RATE`: deg/s read as rad/s fit some flights within the relative misfit a
+    flexing body is allowed (a walkthrough's: 2 of 5 flights, "adequate", I1/I3 = 0.98 for 0.20)."""
+    hint = _unit_hint(omega)
+    if not hint:
+        return fit
+    return replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy="; ".join(filter(None, (
+        hint[2:], fit.pooled.adequacy)))))
 
 
 #: The reason's first words of a flight used in the joint fit only (:func:`_joined`).
