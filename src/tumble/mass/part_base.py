@@ -128,13 +128,13 @@ class Part:
         self._check_representable()
         if self.solid and self.kind != "mesh" and self.density is None:  # a mesh: io.meshfile checks its size
             volume = self.volume
-            given: float | None = cast(float, self.mass) / volume if volume > 0.0 else None
-            if given is not None and given < MIN_DENSITY:
-                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {given:.3g} kg/m^3, less than the "
+            of_mass: float | None = cast(float, self.mass) / volume if volume > 0.0 else None
+            if of_mass is not None and of_mass < MIN_DENSITY:
+                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {of_mass:.3g} kg/m^3, less than the "
                               "lightest solid's (an aerogel, 0.16 kg/m^3): are its sizes in mm or cm? Write them in "
                               "metres (SI units)", UnitSlipWarning, stacklevel=3)
-            elif given is not None and given > MAX_DENSITY:
-                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {given:.3g} kg/m^3, more than "
+            elif of_mass is not None and of_mass > MAX_DENSITY:
+                warnings.warn(f"a {self.kind} of {self.mass:.3g} kg in {volume:.3g} m^3 is {of_mass:.3g} kg/m^3, more than "
                               "osmium's (22,590 kg/m^3, the densest element): is its mass in grams? Write it in kg (SI "
                               "units); a concentrated mass is a PointMass", UnitSlipWarning, stacklevel=3)
 
