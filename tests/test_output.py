@@ -276,7 +276,7 @@ def test_bad_options_name_the_option(tmp_path, capsys, argv, pattern):
 
 
 def test_debug_is_accepted_after_the_subcommand(tmp_path):
-    with pytest.raises(ValueError, match="neither a scenario or body file nor a preset"):
+    with pytest.raises(ValueError, match="is not a scenario file, a body file or a preset"):
         main(["simulate", "no-such-body", "--out", str(tmp_path / "r"), "--debug"])
 
 

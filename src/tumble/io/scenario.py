@@ -390,7 +390,7 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
     else:
         path = Path(source)
         if not path.exists() and not path.is_symlink() and path.suffix == "":
-            raise NoSuchFileError(f"{source!r} is neither a scenario or body file nor a preset (presets: "
+            raise NoSuchFileError(f"{source!r} is not a scenario file, a body file or a preset (presets: "
                                   f"{', '.join(PRESETS)}); {source}: no such file")
         data = read_toml(path)
         if set(data) != {"body"} or not isinstance(data["body"], dict):
