@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import copy
 import re
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tumble.cli import main
@@ -225,3 +227,20 @@ def test_a_missions_period_is_named_as_its_key():
                            "point": {"K": 1e-3, "P": 6e-3}}}
     with pytest.raises(ValueError, match=r"^control: period = 0\.0 must be a positive finite number \(s\)$"):
         control_scenario_from_table(mission, body_from_table(BODY))
+
+
+def test_wheel_friction_the_motor_cannot_overcome_is_refused(tmp_path, capsys):
+    """Coulomb friction of 1e-2 N m on a motor of 2e-3 N m: the wheel can never turn, and the run
+    crawled through its stiff linear zone (killed after 100 s; a walkthrough, issue 40)."""
+    from tumble.cli import main
+    from tumble.dynamics.models.actuators import ReactionWheels
+
+    with pytest.raises(ValueError, match=r"^coulomb\[1\] = 0.01 N m is at least max_torque\[1\] = 0.002 N m: the motor "
+                                         r"could never turn the wheel"):
+        ReactionWheels(np.eye(3), inertia=2e-5, max_torque=2e-3, coulomb=[1e-7, 1e-2, 1e-7])
+    ReactionWheels(np.eye(3), inertia=2e-5, max_torque=2e-3, coulomb=1e-4)  # a few % of it: taken
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "point.toml").read_text()
+    (tmp_path / "stuck.toml").write_text(text.replace("coulomb = 1e-7", "coulomb = 1e-2"))
+    assert main(["simulate", str(tmp_path / "stuck.toml"), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the motor could never turn the wheel" in err and not (tmp_path / "run").exists()
