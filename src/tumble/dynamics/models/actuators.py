@@ -319,10 +319,11 @@ class ReactionWheels:
         object.__setattr__(self, "viscous", _per_axis("viscous", self.viscous, k, "N m s/rad", allow_zero=True))
         object.__setattr__(self, "coulomb", _per_axis("coulomb", self.coulomb, k, "N m", allow_zero=True))
         object.__setattr__(self, "limit_cycle_speed", _per_axis("limit_cycle_speed", self.limit_cycle_speed, k, "rad/s"))
-        stuck = np.flatnonzero(self.coulomb >= self.max_torque)
+        coulomb, motor = np.asarray(self.coulomb, float), np.asarray(self.max_torque, float)
+        stuck = np.flatnonzero(coulomb >= motor)
         if len(stuck):  # the motor can never turn it (a walkthrough's 1e-2 N m against 2e-3 crawled, stiff, in silence)
             j = int(stuck[0])
-            raise ValueError(f"coulomb[{j}] = {self.coulomb[j]:g} N m is at least max_torque[{j}] = {self.max_torque[j]:g} "
+            raise ValueError(f"coulomb[{j}] = {coulomb[j]:g} N m is at least max_torque[{j}] = {motor[j]:g} "
                              f"N m: the motor could never turn the wheel against its friction; give a friction below "
                              f"the motor's torque (typically a few % of it)")
 
