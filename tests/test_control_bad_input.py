@@ -244,3 +244,17 @@ def test_wheel_friction_the_motor_cannot_overcome_is_refused(tmp_path, capsys):
     assert main(["simulate", str(tmp_path / "stuck.toml"), "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "the motor could never turn the wheel" in err and not (tmp_path / "run").exists()
+
+
+@pytest.mark.parametrize(("key", "value", "words"), [
+    ("magnetometer_noise", 100.0, r"magnetometer_noise = 100.0 T is more than the Earth's field .* is it in nT\?"),
+    ("attitude_noise", 4.0, r"attitude_noise = 4.0 rad: a spread past pi says nothing of an angle; .* arcsec or deg\?"),
+])
+def test_sensor_noise_no_sensor_has_is_refused_as_a_likely_unit_slip(key, value, words):
+    """100 'T' of magnetometer noise (meant 100 nT) hid the field and B-dot did nothing; 4 rad of star
+    tracker noise ran; both without a word (a walkthrough, issue 40)."""
+    from tumble.dynamics.models.sensors import MAX_MAGNETOMETER_NOISE, Sensors
+
+    with pytest.raises(ValueError, match=rf"^{words}"):
+        Sensors(**{key: value})
+    Sensors(magnetometer_noise=MAX_MAGNETOMETER_NOISE, attitude_noise=np.pi)  # the bounds themselves: taken

@@ -44,7 +44,7 @@ Every value is checked by the constructor it feeds; errors are one line naming t
 from __future__ import annotations
 
 import dataclasses
-import math  # noqa: F401 - the examples in the docstrings use it
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -146,12 +146,12 @@ _TABLES = (
         Key("gyro_noise", "number", "rad/s", "0.0", example="1e-4", low=0.0, low_included=True,
             doc="standard deviation of each gyroscope axis"),
         Key("gyro_bias", "3 numbers", "rad/s", "[0, 0, 0]", example="[1e-4, 0.0, 0.0]", doc="constant gyroscope bias"),
-        Key("magnetometer_noise", "number", "T", "0.0", example="1e-7", low=0.0, low_included=True,
+        Key("magnetometer_noise", "number", "T", "0.0", example="1e-7", low=0.0, low_included=True, high=1e-4,
             doc="standard deviation of each magnetometer axis"),
         Key("magnetometer_bias", "3 numbers", "T", "[0, 0, 0]", example="[0.0, 1e-7, 0.0]", doc="constant magnetometer bias"),
         Key("attitude", "string", "", '"ideal"', choices=("ideal", "star_tracker", "none"), example='"star_tracker"',
             doc="the attitude sensor: exact, noisy, or none fitted"),
-        Key("attitude_noise", "number", "rad", "0.0", example="1e-4", low=0.0, low_included=True,
+        Key("attitude_noise", "number", "rad", "0.0", example="1e-4", low=0.0, low_included=True, high=math.pi,
             doc="star tracker noise about each axis"),
         Key("seed", "whole number", "", "0", example="7", doc="seed of the noise: a run is reproducible"),
         Key("sun", "table", example='{noise = 2e-3, epoch = "2026-06-01T00:00:00"}', doc="[sensors.sun]: a sun sensor"),

@@ -16,6 +16,7 @@ A sun sensor reads the Sun's direction from :class:`~tumble.dynamics.environment
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,7 +29,11 @@ from ..environment.sun import Sunlight
 from ..special.quaternion import turned_by
 from .vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker, on_period
 
-__all__ = ["Measurement", "Sensors"]
+__all__ = ["MAX_MAGNETOMETER_NOISE", "Measurement", "Sensors"]
+
+#: The largest magnetometer noise taken, T: past the Earth's field itself (~6.5e-5 T at most at the
+#: surface, ~2-5e-5 T in low orbit) a reading says nothing of it; a noise in nT written as T is 1e9 times it.
+MAX_MAGNETOMETER_NOISE = 1e-4
 
 
 @dataclass(frozen=True)
@@ -139,6 +144,14 @@ class Sensors:
         check_positive("gyro_noise", self.gyro_noise, "rad/s", allow_zero=True)
         check_positive("magnetometer_noise", self.magnetometer_noise, "T", allow_zero=True)
         check_positive("attitude_noise", self.attitude_noise, "rad", allow_zero=True)
+        # noise no sensor has: most likely a unit slip (a walkthrough's 100 "T" for 100 nT ran, the field lost in it)
+        if self.magnetometer_noise > MAX_MAGNETOMETER_NOISE:
+            raise ValueError(f"magnetometer_noise = {self.magnetometer_noise!r} T is more than the Earth's field (at most "
+                             f"~6.5e-5 T at the surface); allowed: 0 to {MAX_MAGNETOMETER_NOISE:g} T: is it in nT? Give "
+                             f"tesla (100 nT = 1e-7 T)")
+        if self.attitude_noise > math.pi:
+            raise ValueError(f"attitude_noise = {self.attitude_noise!r} rad: a spread past pi says nothing of an angle; "
+                             f"allowed: 0 to pi rad: is it in arcsec or deg? Give radians (4 arcsec = 2e-5 rad)")
         object.__setattr__(self, "gyro_bias", check_vector("gyro_bias", self.gyro_bias, "rad/s"))
         object.__setattr__(self, "magnetometer_bias", check_vector("magnetometer_bias", self.magnetometer_bias, "T"))
         if self.attitude not in ("ideal", "star_tracker", "none"):
