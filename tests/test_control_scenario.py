@@ -291,3 +291,15 @@ def test_point_examples_steady_error_is_its_wheels_coulomb_friction(tmp_path):
     assert 0.5 * bound < shipped < 1.2 * bound
     assert final_error(text.replace("coulomb = 1e-7", "coulomb = 0.0")) < 0.25 * shipped
     assert final_error(text.replace("gravity_gradient = true", "gravity_gradient = false")) == pytest.approx(shipped, rel=0.01)
+
+
+def test_a_control_runs_csv_names_each_columns_unit_as_a_free_runs_does(tmp_path):
+    """A walkthrough read `t,omega1,...,m1,B1,Lx_world,Jx_world`: no units, another naming than the free
+    run's `t [s],omega_1 [rad/s],...` and the conventions'; `Jx_world` was the impulse, said nowhere."""
+    from tumble.io.export import CSV_COLUMNS
+
+    assert main(["simulate", str(CONTROL / "point.toml"), "--t-end", "2", "--out", str(tmp_path / "run")]) == 0
+    header = (tmp_path / "run" / "trajectory.csv").read_text().splitlines()[0].split(",")
+    assert header[:8] == list(CSV_COLUMNS[:8])
+    assert all(name.startswith("q_") or name.endswith("]") for name in header)
+    assert {"impulse_world_x [kg m^2/s]", "dipole_1 [A m^2]", "B_1 [T]", "wheel3_torque [N m]"} <= set(header)

@@ -149,7 +149,8 @@ def knowledge_summary(estimated: Estimated, run: ControlledRun) -> dict[str, Any
 
 def write_control_run(run: ControlledRun, folder: Path) -> None:
     """``trajectory.csv`` and ``trajectory.npz`` of a control run into ``folder``: time, omega,
-    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI).
+    quaternion, wheel speeds and torques, dipole, field, world momentum and external impulse (SI; each
+    CSV column's unit in its header, the body's vectors in the principal frame).
 
     Examples
     --------
@@ -173,7 +174,7 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     ...     with np.load(Path(tmp) / "trajectory.npz") as npz:
     ...         same = np.array_equal(npz["omega"], run.omega) and np.array_equal(npz["L_world"], run.momentum_world)
     >>> len(header), header[8:11], rows.shape, same
-    (26, ['wheel1_speed', 'wheel2_speed', 'wheel3_speed'], (21, 26), True)
+    (26, ['wheel1_speed [rad/s]', 'wheel2_speed [rad/s]', 'wheel3_speed [rad/s]'], (21, 26), True)
     >>> np.array_equal(rows[:, 1:4], run.omega)   # 17 significant digits: exact
     True
     """
@@ -181,9 +182,12 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
                "wheel_torque": run.wheel_torque, "dipole": run.dipole, "field": run.field,
                "L_world": run.momentum_world, "impulse_world": run.impulse_world}
-    names = ["t", "omega1", "omega2", "omega3", "qx", "qy", "qz", "qw", *[f"wheel{i + 1}_speed" for i in range(k)],
-             *[f"wheel{i + 1}_torque" for i in range(k)], "m1", "m2", "m3", "B1", "B2", "B3",
-             "Lx_world", "Ly_world", "Lz_world", "Jx_world", "Jy_world", "Jz_world"]
+    # each with its SI unit, as the free run's (tumble.io.export.CSV_COLUMNS); the body's vectors in its principal frame
+    names = ["t [s]", "omega_1 [rad/s]", "omega_2 [rad/s]", "omega_3 [rad/s]", "q_x", "q_y", "q_z", "q_w",
+             *[f"wheel{i + 1}_speed [rad/s]" for i in range(k)], *[f"wheel{i + 1}_torque [N m]" for i in range(k)],
+             "dipole_1 [A m^2]", "dipole_2 [A m^2]", "dipole_3 [A m^2]", "B_1 [T]", "B_2 [T]", "B_3 [T]",
+             "L_world_x [kg m^2/s]", "L_world_y [kg m^2/s]", "L_world_z [kg m^2/s]",
+             "impulse_world_x [kg m^2/s]", "impulse_world_y [kg m^2/s]", "impulse_world_z [kg m^2/s]"]
     table = np.hstack(list(columns.values()))
     np.savetxt(folder / "trajectory.csv", table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
     np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
