@@ -303,3 +303,7 @@ def test_a_control_runs_csv_names_each_columns_unit_as_a_free_runs_does(tmp_path
     assert header[:8] == list(CSV_COLUMNS[:8])
     assert all(name.startswith("q_") or name.endswith("]") for name in header)
     assert {"impulse_world_x [kg m^2/s]", "dipole_1 [A m^2]", "B_1 [T]", "wheel3_torque [N m]"} <= set(header)
+    # the summary gives the principal axes (it did not), which take the file's design-frame omega to the CSV's
+    axes = np.array(json.loads((tmp_path / "run" / "summary.json").read_text())["principal_axes"])
+    first = np.loadtxt(tmp_path / "run" / "trajectory.csv", delimiter=",", skiprows=1)[0]
+    np.testing.assert_allclose(first[1:4], axes.T @ [0.01, -0.01, 0.01], rtol=1e-12, atol=1e-15)

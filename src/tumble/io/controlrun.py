@@ -84,6 +84,9 @@ def control_summary(scenario: _Scenario, run: ControlledRun, controller: Control
         "body": scenario.body.name, "kind": scenario.kind, "t_end": float(run.t[-1]),
         "period": float(scenario.controller_args["period"]), "samples": len(run.t),
         "principal_moments": run.moments.tolist(),
+        # principal -> design (columns: the principal axes in the design frame), as a free run's summary: the
+        # file's vectors are design-frame, the run's principal
+        "principal_axes": np.asarray(scenario.body.principal_axes).tolist(),
         "final_rate": float(run.rate[-1]), "initial_rate": float(run.rate[0]),
         "threshold": scenario.threshold, "detumble_time": run.detumble_time(scenario.threshold),
         "detumbled": run.detumble_time(scenario.threshold) is not None,  # whether |omega| got below the threshold and stayed
