@@ -50,6 +50,21 @@ class StabilityReport(dict):  # type: ignore[type-arg]
 
     __slots__ = ()
 
+    def __getattr__(self, name: str) -> Any:
+        """Its keys as attributes too (``report.flips``, as ``report["flips"]``); a name that is no key is
+        refused naming the keys (a walkthrough's ``report.flips`` met a bare AttributeError).
+
+        Examples
+        --------
+        >>> import tumble
+        >>> report = tumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0))
+        >>> report.flips, report.role
+        (11, 'intermediate')
+        """
+        if name.startswith("__") or name not in self:
+            raise AttributeError(f"StabilityReport has no {name!r}; its keys: {', '.join(self)}")
+        return self[name]
+
     def _parts(self) -> list[str]:
         if self.get("axis") is None:
             return ["at rest: no spin axis", plural(int(self.get("flips", 0)), "flip")]
