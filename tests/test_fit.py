@@ -264,6 +264,10 @@ def test_read_phyphox_and_plain(tmp_path):
     ("0,1,2\n", r"line 1: 3 columns; expected 4"),
     ("", r"no data"),
     ("0,1,2,3\n", r"1 data rows"),
+    # a nan, an inf or past double named by line and column (they were named omega_measured[399], 0-based)
+    ("t,wx,wy,wz\n0,1,2,3\n0.01,1,nan,3\n0.02,1,2,3\n", r"line 3, column 3: wy = nan is not a finite number"),
+    ("0,1,2,3\n0.01,1,2,1e400\n0.02,1,2,3\n", r"line 2, column 4: column 4 = inf is not a finite number"),
+    ("0,1,2,3\n0.01,-inf,2,3\n", r"line 2, column 2: column 2 = -inf is not a finite number"),
 ])
 def test_bad_files_are_refused_in_one_line(tmp_path, text, message):
     path = tmp_path / "bad.csv"

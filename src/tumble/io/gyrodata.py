@@ -36,7 +36,7 @@ import numpy as np
 
 from .._html import fmt, plural, result_html, result_repr, short_name
 from .examples import _read_input
-from ._delimited import _NUMBER, _check_order, _first_lines, _rows, _split
+from ._delimited import _NUMBER, _check_order, _first_lines, _refuse_cell, _rows, _split
 from .gyrocolumns import ColumnsRead, match_accel, match_header
 from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, accel_gap, parse_accel_csv, parse_time_csv
 
@@ -136,7 +136,8 @@ def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarra
     names = {"time": "column 1", "time_unit": "s", "rates": ["column 2", "column 3", "column 4"],
              "rate_units": ["rad/s"] * 3, "ignored": []}
     magnitude = False
-    if not all(_NUMBER.match(c) for c in head):  # a header line
+    header = not all(_NUMBER.match(c) for c in head)
+    if header:  # a header line
         # phyphox's "Time (s)", "Gyroscope x (rad/s)" ... are names of the table like any (its deg/s too; a
         # column missing is refused naming the names allowed)
         columns, scale, names = match_header(head, label, first_no)
@@ -154,7 +155,12 @@ def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarra
                          "|omega|, or a header line naming the columns")
     else:
         width = 4
-    rows = _rows(lines, sep, columns + ([4] if magnitude else []), width, label)
+    read_columns = columns + ([4] if magnitude else [])
+    rows = _rows(lines, sep, read_columns, width, label)
+    # a nan, an inf or a number past double (1e400) named by its line and column, before anything else: the
+    # fit's own check named an array and a 0-based sample (omega_measured[399]; a walkthrough, issue 40)
+    labels = [head[c] if header else f"column {c + 1}" for c in read_columns]
+    _refuse_cell(~np.isfinite(rows), rows, lines, read_columns, labels, label, lambda k, j: "is not a finite number")
     if len(rows) < 2:
         raise ValueError(f"{label}: {len(rows)} data rows; a record needs many samples")
     if magnitude:
