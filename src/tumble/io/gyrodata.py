@@ -410,7 +410,10 @@ def _accel_csv(names: list[str], read: ColumnsRead) -> tuple[str | None, Columns
     found from the gyroscope alone rather than from a reading taken on trust."""
     lower = {n.lower().rsplit("/", 1)[-1] for n in names}
     acc = next((n for n in names if n.lower() == ACCEL_CSV.lower()), None)
-    if acc is not None and any(k in lower for k in SENSOR_LOGGER_ACCEL):
+    # Sensor Logger's by its other files, or by its Gyroscope.csv's own layout (its time column seconds_elapsed:
+    # a walkthrough's export without Metadata.csv was read as phyphox's and refused)
+    logger = any(k in lower for k in SENSOR_LOGGER_ACCEL) or read.time.strip().lower() == "seconds_elapsed"
+    if acc is not None and logger:
         return None, replace(read, accel_left_out="Sensor Logger's Accelerometer.csv has gravity taken out (not the "
                                                   "specific force): not used; the flights are found from the "
                                                   "gyroscope alone")
