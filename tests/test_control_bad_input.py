@@ -170,7 +170,7 @@ def test_mrp_pd_without_an_attitude_sensor_is_refused_when_the_file_is_read():
 def test_magnetorquers_without_an_orbit_are_refused_when_the_file_is_read():
     table = copy.deepcopy(POINT)
     table["actuators"]["magnetorquers"] = {"max_dipole": 0.2}
-    with pytest.raises(ValueError, match=r"^actuators\.magnetorquers need an \[orbit\] \(its magnetic field\)$"):
+    with pytest.raises(ValueError, match=r'^actuators\.magnetorquers need a field: a circular \[orbit\] \(its dipole\) or field = "igrf"$'):
         control_scenario_from_table(table, body_from_table(BODY))
 
 

@@ -4,6 +4,7 @@ import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -68,7 +69,7 @@ def test_kepler_orbit_normal_from_r_cross_v():
 @pytest.mark.parametrize(("orbit", "match"), [
     ({"altitude": 500e3, "tle": ISS}, "give exactly one of altitude .*, not altitude and tle"),
     ({"semi_major_axis": 7.2e6, "arg_latitude": 0.1}, "arg_latitude does not go with semi_major_axis"),
-    ({"semi_major_axis": 7.2e6}, 'field = "dipole" \\(the default\\) needs a circular orbit'),
+    ({"semi_major_axis": 7.2e6, "field": "dipole"}, 'field = "dipole" needs a circular orbit'),
     ({"altitude": 500e3, "field": "wmm"}, "field = 'wmm' is unknown; allowed: dipole, igrf"),
     ({"altitude": 500e3, "epoch": "2025-01-01T00:00:00"}, 'epoch goes with field = "igrf"'),
     ({"altitude": 500e3, "field": "igrf"}, "epoch is needed"),
@@ -99,3 +100,25 @@ def test_cli_runs_the_shipped_tle_example_briefly(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["orbit"]["kind"] == "tle" and summary["orbit"]["field"] == "igrf"
     assert summary["final_rate"] < summary["initial_rate"]
+
+
+CONTROL = Path(__file__).resolve().parents[1] / "examples" / "control"
+
+
+def test_wheels_alone_on_a_tle_need_no_field(tmp_path, capsys):
+    """A wheels-only pointing on a TLE orbit was refused for the default dipole field it did not use
+    ('field = "dipole" (the default) needs a circular orbit'; a walkthrough, issue 40): an ellipse or a TLE
+    has no field unless the file names one, and magnetorquers without one are refused naming the cure."""
+    from tumble.cli import main
+
+    point = (CONTROL / "point.toml").read_text()
+    tle = (CONTROL / "detumble_tle.toml").read_text().split("[orbit]\n", 1)[1].split("field =", 1)[0]
+    text = point.split("[orbit]\n", 1)[0] + "[orbit]\n" + tle + "gravity_gradient = true\n\n" + \
+        "[actuators.wheels]" + point.split("[actuators.wheels]", 1)[1]
+    (tmp_path / "tle_point.toml").write_text(text)
+    assert main(["simulate", str(tmp_path / "tle_point.toml"), "--t-end", "60", "--out", str(tmp_path / "run")]) == 0
+    assert "pointing error" in capsys.readouterr().out
+    rods = text.replace("[actuators.wheels]", "[actuators.magnetorquers]\nmax_dipole = 0.2\n\n[actuators.wheels]")
+    (tmp_path / "rods.toml").write_text(rods)
+    assert main(["simulate", str(tmp_path / "rods.toml"), "--out", str(tmp_path / "r2")]) == 2
+    assert 'magnetorquers need a field: a circular [orbit] (its dipole) or field = "igrf"' in capsys.readouterr().err

@@ -463,7 +463,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     except ValueError as exc:
         raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
     if mtq is not None and field is None:
-        raise ValueError("actuators.magnetorquers need an [orbit] (its magnetic field)")
+        raise ValueError('actuators.magnetorquers need a field: a circular [orbit] (its dipole) or field = "igrf"')
     heads = sensor_heads(t["sensors"], orbit=orbit, field=field, principal_to_design=principal_to_design)
     try:
         sensors = Sensors(**{k: v for k, v in t["sensors"].items() if k not in ("sun", "star_tracker")}, **heads)

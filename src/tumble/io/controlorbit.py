@@ -106,8 +106,10 @@ def orbit_of(table: dict[str, Any]) -> Orbit:
     return CircularOrbit(**elements) if kind == "altitude" else KeplerOrbit(**elements)
 
 
-def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
-    """The orbit and the field of an ``[orbit]`` table (module docstring); errors name the key.
+def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field | None]:
+    """The orbit and the field of an ``[orbit]`` table (module docstring); errors name the key. The field
+    is the dipole by default, on a circular orbit; an ellipse or a TLE has none unless ``field`` names one
+    (a wheels-only run there needs none, and was refused for the default it did not use).
 
     Examples
     --------
@@ -115,10 +117,12 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
     >>> orbit, field = orbit_from_table({"altitude": 500e3, "inclination": 1.7})
     >>> type(orbit).__name__, type(field).__name__
     ('CircularOrbit', 'DipoleField')
-    >>> orbit_from_table({"semi_major_axis": 7.2e6, "eccentricity": 0.01})
+    >>> orbit_from_table({"semi_major_axis": 7.2e6, "eccentricity": 0.01})[1] is None   # an ellipse: no field unless asked
+    True
+    >>> orbit_from_table({"semi_major_axis": 7.2e6, "eccentricity": 0.01, "field": "dipole"})
     Traceback (most recent call last):
     ...
-    ValueError: field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis or tle use field = "igrf" and an epoch
+    ValueError: field = "dipole" needs a circular orbit (altitude); with semi_major_axis or tle use field = "igrf" and an epoch
     """
     orbit = orbit_of(table)
     kind = table.get("field", "dipole")
@@ -127,7 +131,9 @@ def orbit_from_table(table: dict[str, Any]) -> tuple[Orbit, Field]:
         if extra:
             raise ValueError(f'{extra[0]} goes with field = "igrf", not "dipole"')
         if not isinstance(orbit, CircularOrbit):
-            raise ValueError('field = "dipole" (the default) needs a circular orbit (altitude); with semi_major_axis '
+            if "field" not in table:  # no field asked for: none, for a run that uses none (wheels alone on a TLE)
+                return orbit, None
+            raise ValueError('field = "dipole" needs a circular orbit (altitude); with semi_major_axis '
                              'or tle use field = "igrf" and an epoch')
         return orbit, DipoleField(orbit, gmst0=table.get("gmst0", 0.0),
                                   earth_rotation=table.get("earth_rotation", True))
