@@ -210,6 +210,7 @@ def test_a_user_controller_implements_the_interface():
     assert run.omega[-1, 2] == pytest.approx(-1e-4 * 2.0 / (I_PD[2] - 1e-4), rel=1e-10)
 
 
+@pytest.mark.filterwarnings("ignore::tumble.dynamics.control.sampled.UnstableLoopWarning")  # gains of no loop
 @pytest.mark.parametrize(("make", "message"), [
     (lambda: Magnetorquers(-0.2), r"max_dipole\[0\] = -0.2 must be a positive"),
     (lambda: ReactionWheels(np.eye(3), inertia=1e-4, max_speed=0.0), r"max_speed = 0.0 must be a positive number"),

@@ -60,9 +60,8 @@ from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
 __all__ = ["DEG_S_HINT_RATE", "NoFlightError", "fit_recording"]
 
-#: A rate no MEMS gyroscope reads, rad/s (4000 deg/s, twice a phone's 2000 deg/s full scale): a
-#: recording that fails with rates above it was most likely written in deg/s under a header that
-#: does not say so, and the failure names that (a walkthrough's deg/s data said only "no free flight").
+#: A rate no MEMS gyroscope reads, rad/s (4000 deg/s, twice a phone's full scale): a recording past it is most
+#: likely in deg/s under a header that does not say so, and its failure or its fit says that (:func:`_unit_slip`).
 DEG_S_HINT_RATE = math.radians(4000.0)
 
 
@@ -257,13 +256,11 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
 
 
 def _unit_slip(fit: RecordingFit, omega: FloatArray) -> RecordingFit:
-    """``fit``, not adequate and saying why, where its rates pass :data:`DEG_S_HINT_RATE`: deg/s read as rad/s fit some flights within the relative misfit a
-    flexing body is allowed (a walkthrough's: 2 of 5 flights, "adequate", I1/I3 = 0.98 for 0.20)."""
+    """``fit``, not adequate and saying why, where its rates pass :data:`DEG_S_HINT_RATE` (deg/s read as rad/s fit
+    flights within a flexing body's relative misfit: 2 of 5, "adequate", I1/I3 = 0.98 for 0.20; a walkthrough)."""
     hint = _unit_hint(omega)
-    if not hint:
-        return fit
-    return replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy="; ".join(filter(None, (
-        hint[2:], fit.pooled.adequacy)))))
+    why = "; ".join(filter(None, (hint[2:], fit.pooled.adequacy)))
+    return replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=why)) if hint else fit
 
 
 #: The reason's first words of a flight used in the joint fit only (:func:`_joined`).

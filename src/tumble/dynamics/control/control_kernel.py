@@ -435,7 +435,8 @@ class ControlKernel:
             padded: bool = False) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """The whole loop in one compiled call: the states at the control instants ``grid`` (s) from
         ``y0``, the dipoles held (A m^2), the wheels' applied torques (N m) and the fields (T, body
-        frame); ``law`` from :func:`compiled_law`, ``rods`` the magnetorquers' axes and ``limits``
+        frame); ``law`` from :func:`compiled_law`, ``rods`` the magnetorquers' rows (k, 6): axes and
+        allocation, :attr:`~tumble.dynamics.models.actuators.Magnetorquers.rods`) and ``limits``
         their largest dipoles (A m^2); ``carry``: each DOP853 interval starts from the step the
         last proposed (:mod:`~tumble.dynamics.control.compiled_loop`); ``padded``: the states as the
         kernels keep them (:func:`~tumble.dynamics.control.compiled_loop.padded`), not unpadded.
@@ -449,18 +450,23 @@ class ControlKernel:
         >>> from tumble.dynamics.control.control_kernel import ControlKernel
         >>> from tumble.dynamics.control.loop_laws import LAW_BDOT
         >>> from tumble.dynamics.environment.magnetic import UniformField
+        >>> from tumble.dynamics.models.actuators import Magnetorquers
         >>> I = np.array([0.01, 0.02, 0.03])
         >>> kernel = ControlKernel(I, np.diag(1 / I), None, UniformField((3e-5, 0.0, 0.0)), None, 1e-10, 1e-12)
         >>> law = (LAW_BDOT, np.array([2e-3, 1.0, 0.0]), np.zeros((0, 3)), None)
         >>> y0 = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0])
-        >>> Y, D, U, F = kernel.run(y0, np.arange(3) * 0.5, law, np.eye(3), np.full(3, 10.0))
+        >>> rods = Magnetorquers(10.0).rods   # three rods on the principal axes
+        >>> Y, D, U, F = kernel.run(y0, np.arange(3) * 0.5, law, rods, np.full(3, 10.0))
         >>> np.allclose(np.linalg.norm(Y[:, 4:7], axis=1), 0.1 * (1 - 2e-3 * 0.5 / 0.03) ** np.arange(3), rtol=1e-3)
         True
         """
+        rods = np.ascontiguousarray(rods, dtype=float)
+        if rods.ndim != 2 or (len(rods) and rods.shape[1] != 6):  # the kernel reads columns 3-5 unchecked; none: no rods
+            raise ValueError(f"rods has shape {rods.shape}; allowed: (k, 6), Magnetorquers.rods (axes, then G^+)")
         steps = len(grid)
         Y, D, U, F = np.empty((steps, _loop.N)), np.empty((steps, 3)), np.empty((steps, self.k)), np.empty((steps, 3))
         status = self.kernels["_loop"](_loop.padded(y0), np.ascontiguousarray(grid, dtype=float),
-                                       self.packed, law[0], law[1], law[2], np.ascontiguousarray(rods, dtype=float),
+                                       self.packed, law[0], law[1], law[2], rods,
                                        np.ascontiguousarray(limits, dtype=float), self.rtol, self.atol,
                                        *_loop.method_flags(self.method), self.step, bool(carry), Y, D, U, F, reference_table(law[3], grid))
         if status != 0:

@@ -304,8 +304,9 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
         Each body's Earth angle at t = 0 (rad) and B-dot gain.
     normalized : bool
         The normalised law (gain in N m s) or the classic one (A m^2 s/T).
-    axes, limit : ndarray, shapes (r, 3) and (r,)
-        The rods' unit axes and dipole limits, A m^2.
+    axes, limit : ndarray, shapes (r, 6) and (r,)
+        The rods' rows (unit axes, then their allocation:
+        :attr:`~tumble.dynamics.models.actuators.Magnetorquers.rods`) and dipole limits, A m^2.
     fp : ndarray, shape (16,)
         The dipole's :meth:`~tumble.dynamics.environment.magnetic.DipoleField.loop_form` (its ``gmst0`` unused).
     period : float
@@ -336,11 +337,13 @@ def detumble_run(I: FloatArray, q0: FloatArray, w0: FloatArray, gmst0: FloatArra
     >>> from tumble.dynamics.control.detumble_kernels import detumble_run
     >>> _, fp = DipoleField(CircularOrbit(altitude=500e3)).loop_form()
     >>> rates, w, q = detumble_run(np.ones((1, 3)), np.array([[0.0, 0.0, 0.0, 1.0]]), np.zeros((1, 3)),
-    ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.eye(3), limit=np.ones(3),
+    ...                            np.zeros(1), np.ones(1), normalized=True, axes=np.hstack([np.eye(3)] * 2), limit=np.ones(3),
     ...                            fp=fp, period=1.0, steps=3, substeps=2)
     >>> rates.tolist(), q.tolist()
     ([[0.0, 0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0, 1.0]])
     """
+    if axes.ndim != 2 or (len(axes) and axes.shape[1] != 6):  # the kernel reads columns 3-5 unchecked; none: no rods
+        raise ValueError(f"axes has shape {axes.shape}; allowed: (r, 6), Magnetorquers.rods (axes, then G^+)")
     N = len(I)
     rates, w_out, q_out = np.empty((N, steps + 1)), np.empty((N, 3)), np.empty((N, 4))
     kernel: Callable[..., None] = detumble_parallel if N >= PARALLEL_BODIES and cores() > 1 else detumble_serial

@@ -245,13 +245,13 @@ class DetumbleThenPoint:
         >>> from tumble.dynamics.control.controllers import MRPFeedback
         >>> from tumble.dynamics.control.mission import DetumbleThenPoint
         >>> from tumble.dynamics.environment.magnetic import UniformField
-        >>> from tumble.dynamics.models.actuators import ReactionWheels
+        >>> from tumble.dynamics.models.actuators import Magnetorquers, ReactionWheels
         >>> I, rw, field = np.array([0.01, 0.02, 0.03]), ReactionWheels(np.eye(3), inertia=2e-5), UniformField((3e-5, 0.0, 0.0))
         >>> mission = DetumbleThenPoint(BDot(gain=2e-3, period=0.5, form="normalized"),
         ...                             MRPFeedback(K=1e-4, P=6e-4, period=0.5, moments=I, wheels=rw), switch_rate=0.05, dwell=1.0)
         >>> kernel = ControlKernel(I, np.linalg.inv(np.diag(I) - rw.locked_axial()), rw, field, None, 1e-10, 1e-12)
         >>> y0 = np.array([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])   # 0.01 rad/s about z
-        >>> Y, D, U, F = mission.compiled_run(kernel, None, rw, field, y0, np.arange(21) * 0.5, np.eye(3), np.full(3, 0.1))
+        >>> Y, D, U, F = mission.compiled_run(kernel, None, rw, field, y0, np.arange(21) * 0.5, Magnetorquers(0.1).rods, np.full(3, 0.1))
         >>> mission.switch_time   # below 0.05 rad/s from t = 0: pointing after 1 s of dwell
         1.0
         >>> bool(np.all(D[:2, 1] != 0.0) and np.all(D[2:] == 0.0)), bool(np.any(U[2:] != 0.0))   # B-dot, then the wheels
