@@ -318,8 +318,8 @@ def test_a_flight_cut_at_the_free_fall_keeps_no_sample_of_the_catch():
 
 
 def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, capsys):
-    """A logger's accelerometer cell written "nan": tumble fit stops with one line naming the sample
-    and its value (exit 2), as for the gyroscope's."""
+    """A logger's accelerometer cell written "nan": tumble fit stops with one line naming the file's
+    line and column and the value (exit 2), as for the gyroscope's."""
     from tumble.cli import main
 
     rec = _recording(5, body="phone", tosses=2, accel=True)
@@ -329,7 +329,8 @@ def test_a_sample_of_the_accelerometer_that_is_no_number_is_named(tmp_path, caps
     (tmp_path / "log.csv").write_text("t,gx,gy,gz,ax,ay,az\n" + rows, encoding="utf-8")
     assert main(["fit", str(tmp_path / "log.csv"), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "accel[100] = [" in err and "nan] is not finite" in err
+    # by the file's line and column (the header is line 1, sample 100 line 102), as a gyroscope cell's
+    assert len(err.splitlines()) == 1 and err.endswith("log.csv, line 102, column 7: az = nan is not a finite number")
     assert not (tmp_path / "out").exists()
 
 

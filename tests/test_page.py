@@ -121,6 +121,18 @@ def test_view_works_for_every_example_within_the_size_limit(scenario, tmp_path):
     assert len(data["frames"]["t"]) == min(150, load_scenario(scenario).sample_count)
 
 
+def test_view_says_where_its_frames_are_too_far_apart_to_show_the_motion(tmp_path, capsys):
+    """omega in deg/s numbers (573 rad/s) over 20 s on 150 frames: ~77 rad between frames, and the page
+    showed another motion than the run's, without a word (a walkthrough, issue 40). The seed's own
+    flip (10 rad/s, 1.3 rad a frame) is shown without a note."""
+    assert main(["view", "t-handle", "--omega", "5.7", "573", "5.7", "--t-end", "20", "--out", str(tmp_path / "a.html")]) == 0
+    err = capsys.readouterr().err
+    turn = float(err.split("turns up to ", 1)[1].split(" rad")[0])
+    assert 573 * 20 / 149 * 0.95 < turn < 573 * 20 / 149 * 1.3 and "give more --frames or a shorter --t-end" in err
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(tmp_path / "b.html")]) == 0
+    assert "note:" not in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("frames", ["1", "-3", "5000"])
 def test_view_refuses_a_bad_frame_count_before_integrating(tmp_path, capsys, frames):
     out = tmp_path / "page.html"

@@ -310,7 +310,7 @@ def _cmd_plot(args) -> int:
 
 def _cmd_view(args) -> int:
     from ..io.output import check_output_file
-    from ..viz.scene import frame_indices
+    from ..viz.scene import MAX_FRAME_TURN, frame_indices, frame_turn
 
     if os.path.isdir(args.source):  # a tumble fit or tumble tensor output folder
         return _view_folder(args)
@@ -329,6 +329,12 @@ def _cmd_view(args) -> int:
 
     write_page(scenario.body, traj, out, frames=args.frames, title=_run_title(scenario, traj))
     print(f"wrote {out} (self-contained: open it in any browser, no network needed)")
+    indices = frame_indices(len(traj.t), args.frames, "--frames")
+    turn = frame_turn(traj.t, traj.omega, indices)
+    if turn > MAX_FRAME_TURN:  # a stroboscope's wheel: the page would show another motion than the run's
+        print(f"note: the body turns up to {turn:.3g} rad between the page's {len(indices)} frames, past half a turn: "
+              f"the animation shows another motion than the run's; give more --frames or a shorter --t-end",
+              file=sys.stderr)
     return EXIT_OK
 
 

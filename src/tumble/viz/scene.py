@@ -14,7 +14,8 @@ from ..mass import INERTIA_RTOL, Body
 from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
 from ..typing import ArrayLike
 
-__all__ = ["arrow_scale", "body_lines", "body_size", "check_body_and_run", "check_run", "frame_indices", "part_lines"]
+__all__ = ["MAX_FRAME_TURN", "arrow_scale", "body_lines", "body_size", "check_body_and_run", "check_run", "frame_indices",
+           "frame_turn", "part_lines"]
 
 
 def _circle(radius: float, n: int) -> np.ndarray:
@@ -164,6 +165,31 @@ def frame_indices(samples: int, frames: int, name: str = "frames") -> np.ndarray
 
 #: Most animation frames of a GIF or the page (each frame is stored).
 MAX_FRAMES = 2000
+
+#: The largest turn between two frames (rad) an animation shows as the motion: past half a turn the eye
+#: takes the other way round, and the body seems to stand or spin backwards (a stroboscope's aliasing).
+MAX_FRAME_TURN = np.pi
+
+
+def frame_turn(t: np.ndarray, omega: np.ndarray, indices: np.ndarray) -> float:
+    """The largest angle (rad) the body turns between consecutive frames ``indices``: ``int |omega| dt``
+    over the samples between them (the trapezoid rule). Not the angle between the frames' attitudes,
+    which is at most pi however far it turned. Above :data:`MAX_FRAME_TURN` an animation of them shows
+    another motion than the run's.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.viz.scene import frame_turn
+    >>> t = np.linspace(0.0, 10.0, 101)
+    >>> omega = np.tile([0.0, 0.0, 2.0], (101, 1))   # 2 rad/s: 0.2 rad a sample
+    >>> round(frame_turn(t, omega, np.arange(0, 101, 10)), 6), round(frame_turn(t, omega, np.arange(0, 101, 25)), 6)
+    (2.0, 5.0)
+    """
+    rate = np.linalg.norm(np.asarray(omega, float), axis=1)
+    turned = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(np.asarray(t, float)))])
+    at = turned[np.asarray(indices)]
+    return float(np.max(np.diff(at))) if len(at) >= 2 else 0.0
 
 
 def check_run(traj: object, name: str = "trajectory") -> None:
