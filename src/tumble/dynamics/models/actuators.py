@@ -29,6 +29,7 @@ stick-slip friction in mechanical dynamic systems", J. Dyn. Syst. Meas. Control 
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -121,10 +122,11 @@ class Magnetorquers:
         object.__setattr__(self, "axes", axes)
         object.__setattr__(self, "max_dipole", _per_axis("max_dipole", self.max_dipole, len(axes), "A m^2"))
 
-    @property
+    @functools.cached_property
     def rods(self) -> FloatArray:
         """The rods as the compiled loops take them, shape (k, 6): each rod's axis, then its row of the
-        allocation ``G^+`` (:func:`rod_dipole_components`).
+        allocation ``G^+`` (:func:`rod_dipole_components`); made once, as :meth:`saturate` runs at every
+        control step of the Python path (writeable, as numba's kernels take their arrays: not to be changed).
 
         Examples
         --------
