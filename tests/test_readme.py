@@ -24,8 +24,8 @@ GUIDE_CLAIMS = {"docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1"
                                     "ControlledRun(601 samples over 600 s, rate 20 -> 0.000163 deg/s, 3 wheels up to 213 rad/s, ...)",
                                     "2.0", "[0.0, 0.0, 160.0]"),
                 "docs/fitting.md": ("'12 flights found, 12 used (green), 0 skipped (grey)'",
-                                    "RecordingFit(12 of 12 flights, I1/I3 = 0.06495 +- 0.0045, I2/I3 = 0.9419 +- 0.0042, "
-                                    "chi2/dof 6.5, ...)")}
+                                    "RecordingFit(12 of 12 flights, I1/I3 = 0.06495 +- 0.004, I2/I3 = 0.9419 +- 0.0038, "
+                                    "chi2/dof 2.3, ...)")}
 
 
 def test_readme_python_blocks_run_and_hold_their_comments(monkeypatch):

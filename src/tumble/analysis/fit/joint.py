@@ -180,4 +180,5 @@ def first_flight_view(sol: Solution) -> Solution:
     rename = {m.names[k]: one.names[i] for i, k in enumerate(keep)}
     undetermined = tuple(rename[name] for name in sol.undetermined if name in rename)
     return Solution(one, sol.P[keep], sol.cov[np.ix_(keep, keep)], sol.cov_stat[np.ix_(keep, keep)],
-                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
+                    sol.residuals, sol.omega_model[:1, :n], undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m,
+                    scale_effect=None if sol.scale_effect is None else sol.scale_effect[keep])

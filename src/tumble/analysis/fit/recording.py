@@ -54,7 +54,7 @@ from .result import (
 )
 from .single import _check, _check_options, saturation_mask
 from .solve import Solution, without_drag_law_error
-from .summary import flight_budgets
+from .summary import flight_budgets, ratio_scale_effect
 from .tosses import RecordingFit, Toss
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
@@ -444,19 +444,14 @@ def _toss(f: Flight, t, omega, keep, recording: int = 0) -> Toss:
 
 
 def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit:
-    rat_joint = ratio_summary(sol)[0]
-    values, covs = [], []
-    for f in [f for f in used if not f.joinable] or used:  # the flights used in the joint fit only state no ratios
-        _, v, c = public_covariance(f.solution, statistical=True)
-        values.append(v[:2])
-        covs.append(c[:2, :2])
-    chi2, dof = birge_chi2(np.array(values), np.array(covs), rat_joint)
+    own = [f for f in used if not f.joinable] or used  # the flights used in the joint fit only state no ratios
+    values, covs, shared = _own_ratios(own)
+    chi2, dof = birge_chi2(values, covs, shared=shared)
     chi2_dof = chi2 / dof if len(values) > 1 else float("nan")  # one flight's own ratios: no scatter to measure
     scale = max(1.0, chi2_dof) if len(values) > 1 else 1.0
     # inflate the statistical part by chi2/dof, keep the systematic part as it is
     cov = sol.cov_stat * scale + (np.nan_to_num(sol.cov) - np.nan_to_num(sol.cov_stat))
-    inflated = Solution(sol.model, sol.P, cov, sol.cov_stat * scale, sol.residuals, sol.omega_model,
-                        sol.undetermined, sol.nfev, sol.autocorrelation_time, sol.ssr, sol.m)
+    inflated = replace(sol, cov=cov, cov_stat=sol.cov_stat * scale)
     first = used[0]
     sl = slice(first.first, first.stop)
     one = first_flight_view(inflated)
@@ -472,22 +467,26 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     return RecordingFit(tosses, pooled, chi2_dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
 
 
+def _own_ratios(flights) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The flights' own ratios, their statistical covariances and their answers to the gyroscope's
+    common scale error (:func:`~tumble.analysis.fit.summary.ratio_scale_effect`), for :func:`birge_chi2`."""
+    own = [public_covariance(f.solution, statistical=True) for f in flights]
+    return (np.array([v[:2] for _, v, _ in own]), np.array([c[:2, :2] for _, _, c in own]),
+            np.array([ratio_scale_effect(f.solution) for f in flights]))
+
+
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     """The pooled ratios as the flights' inverse-covariance weighted mean (when the joint fit
     cannot be made): statistical part scaled by the Birge ratio, the systematic part the
     flights' mean (it is common to them, not averaged down) without the drag law's model
     error, as the joint fit's (:mod:`~tumble.analysis.fit.joint`)."""
-    values, stats, totals = [], [], []
     used = [f for f in used if not f.joinable] or used  # a weighted mean of the flights' own ratios
-    for f in used:
-        _, v, c = public_covariance(f.solution, statistical=True)
-        _, _, ct = public_covariance(without_drag_law_error(f.solution))
-        values.append(v[:2]), stats.append(c[:2, :2]), totals.append(ct[:2, :2])
-    values, stats, totals = np.array(values), np.array(stats), np.array(totals)
+    values, stats, shared = _own_ratios(used)
+    totals = np.array([public_covariance(without_drag_law_error(f.solution))[2][:2, :2] for f in used])
     W = np.array([np.linalg.pinv(c) for c in stats])
     cov_stat = np.linalg.pinv(W.sum(axis=0))
     mean = cov_stat @ np.einsum("fij,fj->i", W, values)
-    chi2, dof = birge_chi2(values, stats, mean)
+    chi2, dof = birge_chi2(values, stats, shared=shared)
     cov = cov_stat * max(1.0, chi2 / dof) + np.mean(totals - stats, axis=0)
     ref = next(toss for toss in tosses if toss.status == "ok" and toss.fit is not None)
     std = np.minimum(np.sqrt(np.diag(cov)), (0.5, 0.25))

@@ -44,7 +44,7 @@ from scipy.optimize import least_squares
 from ..._html import headline_html, headline_repr
 from ...typing import ArrayLike
 from .model import DRAG_MODELS, Model
-from .uncertainty import effective_covariance, scale_covariance
+from .uncertainty import effective_covariance, scale_effect
 
 __all__ = ["RANK_TOL", "Solution", "check_drag", "solve", "solve_drag", "with_drag_law_error", "without_drag_law_error"]
 
@@ -98,6 +98,9 @@ class Solution:
     ssr: float
     m: int
     cov_drag_law: np.ndarray | None = None  # the part of ``cov`` that is the drag law's model error (with_drag_law_error)
+    #: the parameters' shift per standard uncertainty of each gyroscope axis's scale factor, shape (n, 3)
+    #: (:func:`~tumble.analysis.fit.uncertainty.scale_effect`; NaN rows undetermined): ``cov``'s scale part is ``B B^T``
+    scale_effect: np.ndarray | None = None
 
     @property
     def rms(self) -> float:
@@ -229,12 +232,12 @@ def solve(model: Model, data: np.ndarray, mask: np.ndarray, P0: np.ndarray, *, m
     cov_k, S = effective_covariance(Jk, r, per_sample, sample_index)
     cov_stat = np.full((model.n, model.n), np.nan)
     cov_stat[np.ix_(keep, keep)] = cov_k
-    if scale_uncertainty:
-        cov_k = cov_k + scale_covariance(Jk, data, mask, scale_uncertainty)
+    B = np.full((model.n, 3), np.nan)
+    B[keep] = scale_effect(Jk, data, mask, scale_uncertainty) if scale_uncertainty else 0.0
     cov = np.full((model.n, model.n), np.nan)
-    cov[np.ix_(keep, keep)] = cov_k
+    cov[np.ix_(keep, keep)] = cov_k + B[keep] @ B[keep].T
     return Solution(model, P, cov, cov_stat, r, omega_model, tuple(model.names[k] for k in fixed), int(res.nfev), S,
-                    float(r @ r), int(r.size))
+                    float(r @ r), int(r.size), scale_effect=B)
 
 
 def check_drag(drag: str) -> None:

@@ -16,7 +16,7 @@ from .solve import Solution, without_drag_law_error
 from .triangle import EDGES, S_MIN, edge_of, ratio_jacobian, ratios
 from .uncertainty import effective_dof, interval, noise_floor
 
-__all__ = ["DETERMINED_STD", "determination", "flight_budgets", "public_covariance", "ratio_summary", "solution_adequacy"]
+__all__ = ["DETERMINED_STD", "determination", "flight_budgets", "public_covariance", "ratio_scale_effect", "ratio_summary", "solution_adequacy"]
 
 #: Largest standard uncertainties reported for I1/I3 and I2/I3: half their ranges in the triangle.
 _STD_CAP = (0.5, 0.25)
@@ -69,6 +69,34 @@ def public_covariance(sol: Solution, statistical: bool = False) -> tuple[tuple[s
     x, y = ratios(P[0], P[1])
     values = np.concatenate([[float(x), float(y)], P[model.ns:], [P[idx[n]] for n in rest]])
     return tuple(names), values, cov
+
+
+def ratio_scale_effect(sol: Solution) -> np.ndarray:
+    """The ratios' shift per standard uncertainty of each gyroscope axis's scale factor, shape (2, 3).
+
+    The solution's :attr:`~tumble.analysis.fit.solve.Solution.scale_effect` carried to
+    ``(I1/I3, I2/I3)`` by the chain rule, as :func:`public_covariance` carries the covariance;
+    zero where the solution kept none. Flights of one gyroscope share the error and each answers
+    it in its own way: their ratios are compared with it
+    (:func:`~tumble.analysis.fit.uncertainty.birge_chi2`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.single import fit_solution
+    >>> from tumble.analysis.fit.summary import public_covariance, ratio_scale_effect
+    >>> from tumble.dynamics.methods.exact_omega import free_omega
+    >>> t = np.linspace(0.0, 2.0, 201)   # I1/I3 = 0.5, I2/I3 = 0.8; white noise of 0.01 rad/s
+    >>> w = free_omega([[0.5, 0.8, 1.0]], [[3.0, 1.0, 6.0]], t)[0] + np.random.default_rng(0).normal(0.0, 0.01, (201, 3))
+    >>> sol = fit_solution(t, w, np.ones(w.shape, bool), rotation=False, bias=False, drag="none", scale_uncertainty=0.005)
+    >>> B = ratio_scale_effect(sol)
+    >>> total, stat = public_covariance(sol)[2][:2, :2], public_covariance(sol, statistical=True)[2][:2, :2]
+    >>> B.shape, bool(np.allclose(B @ B.T, total - stat))   # the covariance's scale part, B B^T
+    ((2, 3), True)
+    """
+    if sol.scale_effect is None:
+        return np.zeros((2, 3))
+    return ratio_jacobian(sol.P[0], sol.P[1])[:, [0, 1]] @ np.nan_to_num(sol.scale_effect[:2])
 
 
 def ratio_summary(sol: Solution) -> tuple[np.ndarray, np.ndarray, np.ndarray, str | None]:

@@ -36,7 +36,7 @@ from scipy import sparse
 from ...typing import ArrayLike
 
 __all__ = ["SCALE_UNCERTAINTY", "autocorrelation_time", "birge_chi2", "effective_covariance", "effective_dof",
-           "interval", "noise_floor", "scale_covariance"]
+           "interval", "noise_floor", "scale_covariance", "scale_effect"]
 
 #: Standard uncertainty of a MEMS gyroscope's scale factor per axis (sensitivity tolerance,
 #: dimensionless): phones do not calibrate it, and datasheets give about +-1 % as limits.
@@ -99,14 +99,30 @@ def interval(value: float, std: float, lo: float, hi: float, *, on_low_edge: boo
     return max(lo, value - z * std), min(hi, value + z * std)
 
 
-def birge_chi2(values: ArrayLike, covariances: ArrayLike, pooled: ArrayLike) -> tuple[float, int]:
+def birge_chi2(values: ArrayLike, covariances: ArrayLike, pooled: ArrayLike | None = None,
+               shared: ArrayLike | None = None) -> tuple[float, int]:
     """``chi^2`` of per-flight estimates about the pooled value, and its degrees of freedom.
+
+    The flights' errors are their own (``covariances``, independent of one another) and, with
+    ``shared``, an error common to them all that moves each flight's estimate differently: the
+    gyroscope's scale factor ``e`` shifts flight ``f``'s estimate by ``B_f e`` (``B_f`` its
+    :func:`scale_effect` carried to the estimates, per standard uncertainty of ``e``), so the
+    stacked estimates have the covariance ``C = diag(C_f) + B B^T`` and ``chi^2 = d^T C^-1 d``
+    for the stacked differences ``d`` (the generalised least squares of correlated
+    measurements: Cowan, *Statistical Data Analysis*, 1998, sec. 7.6; the PDG's *Review of
+    Particle Physics*, Introduction, sec. 5.2). Without it the flights' scatter by that common
+    error, which differs from flight to flight as their motions differ, counts as disagreement:
+    three consistent tosses of a phone had ``chi^2 / dof = 6.7e3``. ``pooled`` None: about the
+    generalised least-squares mean ``(1^T C^-1 1)^-1 1^T C^-1 v``, the minimum of ``chi^2``,
+    with ``k (F - 1)`` degrees of freedom.
 
     Parameters
     ----------
     values : ndarray, shape (F, k)
     covariances : ndarray, shape (F, k, k)
-    pooled : ndarray, shape (k,)
+    pooled : ndarray, shape (k,), optional
+    shared : ndarray, shape (F, k, q), optional
+        Each flight's answer to ``q`` common errors of unit variance.
 
     Examples
     --------
@@ -115,13 +131,28 @@ def birge_chi2(values: ArrayLike, covariances: ArrayLike, pooled: ArrayLike) -> 
     >>> values = np.array([[1.0], [3.0]])   # two flights 2 sigma apart
     >>> birge_chi2(values, np.ones((2, 1, 1)), np.array([2.0]))   # chi^2 = 1 + 1, one degree of freedom
     (2.0, 1)
+    >>> birge_chi2(values, np.ones((2, 1, 1)))   # about their mean, the same
+    (2.0, 1)
+    >>> both = np.array([[[1.0]], [[-1.0]]])   # a common error of 1 sigma moves them 1 and -1 apart
+    >>> chi2, dof = birge_chi2(values, np.ones((2, 1, 1)), shared=both)
+    >>> round(chi2, 12), dof   # 2^2 / (1 + 1 + 2^2): the difference's variance holds the common error's
+    (0.666666666667, 1)
     """
-    chi2 = 0.0
-    for v, c in zip(values, covariances):
-        dv = v - pooled
-        chi2 += float(dv @ np.linalg.pinv(c) @ dv)
-    k = values.shape[1]
-    return chi2, max(k * (len(values) - 1), 1)
+    values = np.asarray(values, float)
+    F, k = values.shape
+    C = np.zeros((F * k, F * k))
+    for f, c in enumerate(np.asarray(covariances, float)):
+        C[f * k:(f + 1) * k, f * k:(f + 1) * k] = c
+    if shared is not None:
+        B = np.asarray(shared, float).reshape(F * k, -1)
+        C = C + B @ B.T
+    W = np.linalg.pinv(C, hermitian=True)
+    v = values.reshape(-1)
+    if pooled is None:
+        ones = np.tile(np.eye(k), (F, 1))  # the stacked design: every flight measures the same k values
+        pooled = np.linalg.pinv(ones.T @ W @ ones) @ (ones.T @ W @ v)
+    d = v - np.tile(np.asarray(pooled, float), F)
+    return float(d @ W @ d), max(k * (F - 1), 1)
 
 
 def autocorrelation_time(R: np.ndarray, starts: Sequence[int], block: int = 5) -> float:
@@ -246,17 +277,16 @@ def effective_covariance(J: np.ndarray | sparse.csr_matrix, r: np.ndarray, per_s
     return 0.5 * (cov + cov.T), tau
 
 
-def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: np.ndarray, sigma: float) -> np.ndarray:
-    """The parameters' covariance from the gyroscope's unknown scale factor on each axis.
+def scale_effect(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: np.ndarray, sigma: float) -> np.ndarray:
+    """The parameters' shift for a scale error of one standard uncertainty on each gyroscope axis.
 
     A scale error ``e_k`` on sensor axis ``k`` changes the samples by ``e_k omega_k``; the
     least-squares parameters answer linearly, ``dP = (J^T J)^-1 J^T D e`` with ``D`` the
-    samples of each axis in its own column. With independent ``e_k`` of standard uncertainty
-    ``sigma`` the covariance is ``sigma^2 A A^T``, ``A = (J^T J)^-1 J^T D``: a type B
-    evaluation, propagated by the law of propagation of uncertainty (JCGM 100:2008, the GUM,
-    secs. 4.3 and 5.1). It does not shrink with more samples or more flights: a bias of the
-    instrument is common to all of them. Near-planar bodies feel it most: their ``I3 - I2`` is
-    small, so a per-mille error in a rate is a per-cent error in it.
+    samples of each axis in its own column: the shift is ``sigma A``, ``A = (J^T J)^-1 J^T D``
+    (the sensitivity coefficients of the GUM, JCGM 100:2008, sec. 5.1.3). Kept beside the
+    covariance it makes (:func:`scale_covariance`) because the error is common to every flight
+    of one gyroscope while its effect is each flight's own: flights pooled are compared with it
+    (:func:`birge_chi2`).
 
     Parameters
     ----------
@@ -266,19 +296,23 @@ def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: 
     mask : ndarray of bool, shape (F, T, 3)
         The sample axes fitted (the rows of ``J``, in order).
     sigma : float
-        Standard uncertainty of each axis's scale factor.
+        Standard uncertainty of each axis's scale factor (dimensionless).
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        In the parameters' units per standard uncertainty of each axis's scale factor.
 
     Examples
     --------
     >>> import numpy as np
-    >>> from tumble.analysis.fit.uncertainty import scale_covariance
+    >>> from tumble.analysis.fit.uncertainty import scale_effect
     >>> data = np.zeros((1, 50, 3))
     >>> data[0, :, 0] = 4.0   # a constant 4 rad/s on axis 1, fitted as one parameter
     >>> mask = np.zeros(data.shape, bool)
     >>> mask[0, :, 0] = True
-    >>> J = np.ones((50, 1))
-    >>> np.sqrt(scale_covariance(J, data, mask, 0.005)).round(12).tolist()   # 0.5 % of 4 rad/s, however many samples
-    [[0.02]]
+    >>> scale_effect(np.ones((50, 1)), data, mask, 0.005).round(12).tolist()   # 0.5 % of 4 rad/s, axis 1 only
+    [[0.02, 0.0, 0.0]]
     """
     m, _n = J.shape
     axis = np.broadcast_to(np.arange(3), mask.shape)[mask]
@@ -289,8 +323,33 @@ def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: 
     JtD = np.asarray(J.T @ D)
     d = np.sqrt(np.diag(JtJ))
     d = np.where(d > 0, d, 1.0)
-    A = (np.linalg.pinv(JtJ / np.outer(d, d)) / np.outer(d, d)) @ JtD
-    return sigma ** 2 * (A @ A.T)
+    return sigma * ((np.linalg.pinv(JtJ / np.outer(d, d)) / np.outer(d, d)) @ JtD)
+
+
+def scale_covariance(J: np.ndarray | sparse.csr_matrix, data: np.ndarray, mask: np.ndarray, sigma: float) -> np.ndarray:
+    """The parameters' covariance from the gyroscope's unknown scale factor on each axis.
+
+    With independent scale errors ``e_k`` of standard uncertainty ``sigma`` the covariance is
+    ``B B^T``, ``B`` the :func:`scale_effect`: a type B evaluation, propagated by the law of
+    propagation of uncertainty (JCGM 100:2008, the GUM, secs. 4.3 and 5.1). It does not shrink
+    with more samples or more flights: a bias of the instrument is common to all of them.
+    Near-planar bodies feel it most: their ``I3 - I2`` is small, so a per-mille error in a rate
+    is a per-cent error in it. The parameters are :func:`scale_effect`'s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.uncertainty import scale_covariance
+    >>> for n in (10, 1000):   # 2 rad/s on two axes, fitted as one mean: 0.5 % / sqrt(2) of 2 rad/s, however many samples
+    ...     data = np.full((1, n, 3), 2.0)
+    ...     mask = np.zeros(data.shape, bool)
+    ...     mask[0, :, :2] = True
+    ...     print(np.sqrt(scale_covariance(np.ones((2 * n, 1)), data, mask, 0.005)).round(12).tolist())
+    [[0.007071067812]]
+    [[0.007071067812]]
+    """
+    B = scale_effect(J, data, mask, sigma)
+    return B @ B.T
 
 
 def effective_dof(var_stat: float, var_total: float, dof_stat: float) -> float:
