@@ -16,8 +16,9 @@
 #               notebook extra whose IPython the API pages name), then
 #               builds the site (guides, galleries, API reference) offline into site/, every
 #               warning an error (open site/index.html)
-#   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the benchmarks
-#               (ratios against a baseline in the same run)
+#   make bench  the test set-up plus the benchmark-only extra (MuJoCo), then the campaigns
+#               (benchmarks/campaigns: the many-seed checks too slow for make test) and the
+#               benchmarks (ratios against a baseline in the same run)
 # Each set-up is a stamp in .venv, remade when pyproject.toml changes; the test set-up holds the
 # demo's and the docs' too (the test extra has imageio-ffmpeg; it installs the docs extra, as the
 # tests build the site), so it stamps all three.
@@ -64,6 +65,7 @@ docs: $(DOCS_STAMP)
 
 bench: $(TEST_STAMP)
 	$(PY) -m pip install --quiet -e '.[bench]'
+	$(PY) -m pytest -q -p no:cacheprovider benchmarks/campaigns
 	$(PY) benchmarks/run.py
 
 clean:

@@ -118,23 +118,21 @@ def test_the_momentum_and_energy_budgets_of_a_rigid_body_pass_and_a_gyrostats_fa
 
 
 def test_a_toss_with_a_rotor_spinning_up_is_refused():
-    """A device whose flywheel spins up to 5-20 % of |L| during the flight (issue #39: >= 31 of 32
-    refused; before the gyrostat comparison of tumble.analysis.fit.rotor, 2 of 32 at 20 % and 6
-    of 32 at 5 % kept a flight taken for a rigid body's): of 32 one-toss recordings (phone and
-    racquet, 16 seeds, the rotor's share of |L| stepped from 5 to 20 %) at most one keeps a
-    flight taken for a rigid body's, and every refusal gives its reason."""
-    taken, reasons = 0, set()
-    for seed in range(16):
-        for body in ("phone", "racquet"):
-            rec = synthetic_recording(seed, body=body, tosses=1, rotor=0.05 + 0.01 * seed)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", InadequateFitWarning)
-                flights = find_flights(rec.t, rec.omega)
-            assert flights and all(f.reason for f in flights if f.status != "ok")
-            taken += any(f.status == "ok" for f in flights)
-            reasons |= {f.reason.split(":")[0] for f in flights if "rotor spinning up inside explains" in f.reason}
-    assert taken <= 1, taken
-    assert reasons == {"not a rigid body"}  # the gyrostat comparison refused some of them itself
+    """A device whose flywheel spins up during the flight (issue #39), three of the campaign's 32
+    one-toss recordings (benchmarks/campaigns/test_fit_campaigns.py: at most one of 32 kept): the
+    phone with 8 % and 16 % of |L| in its rotor, refused as not rigid (the gyrostat comparison of
+    tumble.analysis.fit.rotor, and the momentum budget), and the racquet at 20 %: none is taken
+    for a rigid body's flight, each refusal gives its reason."""
+    reasons = []
+    for seed, body in ((3, "phone"), (11, "phone"), (15, "racquet")):
+        rec = synthetic_recording(seed, body=body, tosses=1, rotor=0.05 + 0.01 * seed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", InadequateFitWarning)
+            flights = find_flights(rec.t, rec.omega)
+        assert flights and all(f.status != "ok" and f.reason for f in flights), (seed, body)
+        reasons += [f.reason for f in flights]
+    assert any(r.startswith("not a rigid body: a rotor spinning up inside explains") for r in reasons), reasons
+    assert any(r.startswith("not a rigid body: a rotor spun up or braked inside") for r in reasons), reasons
 
 
 def test_a_racquets_plate_drag_does_not_pass_for_a_rotor():

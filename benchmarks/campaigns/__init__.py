@@ -1,0 +1,1 @@
+"""Campaigns: the many-seed checks too slow for make test (conftest.py)."""

@@ -1,0 +1,12 @@
+"""Campaigns: statistical and many-seed checks too slow for ``make test`` (issue 40: the suite
+stays under ~6 minutes on two cores; slow checks belong in benchmarks). They are tests, run by
+``make bench`` (or ``python -m pytest benchmarks/campaigns``), each the whole of what a shorter
+check in tests/ samples; the helpers they share with the suite stay in tests/ (one home), put on
+the path here."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
