@@ -1,5 +1,5 @@
-"""The fits' campaigns: many seeded recordings and flights, the whole of what tests/test_fit.py,
-tests/test_fit_find.py and tests/test_fit_drag_law.py sample (benchmarks/campaigns/conftest.py)."""
+"""The fits' campaigns: many seeded recordings and flights, beside tests/test_fit.py,
+tests/test_fit_find.py and tests/test_fit_drag_law.py (benchmarks/campaigns/conftest.py)."""
 
 from __future__ import annotations
 
