@@ -39,7 +39,7 @@ if TYPE_CHECKING:  # the names, as the type checker sees them; each is imported 
         polhode_family,
         separatrices,
     )
-    from .plots import envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega
+    from .plots import AliasedSamplesWarning, envelope, figure_drift, figure_omega, figure_omega_grid, plot_omega, sample_phase
     from .scene import body_lines, body_size, part_lines
     from .spacecraft import (
         figure_energy,
@@ -54,6 +54,7 @@ lazy_package(__name__)
 
 __all__ = [
     "PHASE_PORTRAITS",
+    "AliasedSamplesWarning",
     "animate_body_frame",
     "animate_ground_frame",
     "animation_path",
@@ -88,6 +89,7 @@ __all__ = [
     "phase_portrait_problem",
     "plot_omega",
     "polhode_family",
+    "sample_phase",
     "save_figure",
     "separatrices",
     "show",

@@ -11,11 +11,13 @@ adds a second panel with its first few oscillations in detail.
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..dynamics import Trajectory
+from ..dynamics.euler import euler_rhs
 from ..mass import AXIS_ROLES
 from ..typing import ArrayLike
 from ._backend import figure_and_axes, legend_outside, new_figure
@@ -25,8 +27,8 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "ROUND_OFF", "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid",
-           "plot_omega"]
+__all__ = ["DETAIL_CYCLES", "ENVELOPE_BINS", "MAX_POINTS", "MAX_SAMPLE_PHASE", "ROUND_OFF", "AliasedSamplesWarning",
+           "detail_window", "envelope", "figure_drift", "figure_omega", "figure_omega_grid", "plot_omega", "sample_phase"]
 
 COLORS = ("tab:blue", "tab:orange", "tab:green")
 
@@ -38,6 +40,9 @@ ENVELOPE_BINS = 500
 #: panel of the first :data:`DETAIL_SHOWN` of them.
 DETAIL_CYCLES = 30
 DETAIL_SHOWN = 5
+#: The largest phase (rad) omega's fastest oscillation may advance between two samples for a plot of
+#: them to show it: past pi (Nyquist) the samples trace another, slower oscillation (aliasing).
+MAX_SAMPLE_PHASE = np.pi
 #: A relative drift below this (about 500 ulps of 1) is round-off: :func:`figure_drift` says so
 #: instead of drawing its noise.
 ROUND_OFF = 1e-13
@@ -67,6 +72,57 @@ def detail_window(traj: Trajectory) -> float | None:
     if len(busiest) <= 2 * DETAIL_CYCLES:
         return None
     return float(traj.t[busiest[2 * DETAIL_SHOWN]])
+
+
+class AliasedSamplesWarning(UserWarning):
+    """A run's samples are too far apart for its figure to show its motion (:func:`sample_phase`
+    past :data:`MAX_SAMPLE_PHASE`); the commands say it in one line.
+
+    Examples
+    --------
+    >>> from tumble.viz import AliasedSamplesWarning
+    >>> issubclass(AliasedSamplesWarning, UserWarning)
+    True
+    """
+
+    cli_one_line = True
+
+
+def sample_phase(traj: Trajectory) -> float:
+    """The largest phase (rad) by which a component of omega oscillates between two consecutive
+    samples, from Euler's equations' gyroscopic part (the oscillations of a free body's omega;
+    Landau & Lifshitz, Mechanics, sec. 36-37): a component swinging over its range ``ptp`` with the
+    rate ``|d omega_j / dt|`` turns at ``2 |d omega_j / dt| / ptp`` rad/s (``Omega`` for
+    ``A cos(Omega t)``), times the sample spacing. Above :data:`MAX_SAMPLE_PHASE` the samples
+    alias: drawn, they show another motion than the run's.
+
+    Examples
+    --------
+    A symmetric top's omega_1 and omega_2 turn at ``Omega = (I3 - I1) / I1 omega_3`` (Landau &
+    Lifshitz sec. 36): here 0.5 x 10 = 5 rad/s, 0.05 rad between samples 0.01 s apart; 0.8 s apart,
+    4 rad, and a plot of them shows a slower wobble than the body's.
+
+    >>> import numpy as np
+    >>> import tumble
+    >>> from tumble.viz.plots import sample_phase
+    >>> top = tumble.MassProperties.from_moments([2.0, 2.0, 3.0])   # kg m^2
+    >>> round(sample_phase(tumble.simulate(top, [0.1, 0.0, 10.0], t_end=2.0, dt=0.01)), 4)
+    0.05
+    >>> sparse = sample_phase(tumble.simulate(top, [0.1, 0.0, 10.0], t_end=40.0, dt=0.8))
+    >>> round(sparse, 1), bool(sparse > np.pi)
+    (4.0, True)
+    """
+    w = np.asarray(traj.omega, float)
+    if len(w) < 2:
+        return 0.0
+    rate = np.abs(euler_rhs(w, traj.moments))  # rad/s^2, principal frame
+    span = np.ptp(w, axis=0)
+    moving = span > 1e-9 * max(float(np.max(np.abs(w))), 1e-300)  # a component that stays put has no phase
+    if not np.any(moving):
+        return 0.0
+    turn = 2.0 * rate[:, moving] / span[moving]  # rad/s, at each sample
+    dt = np.diff(np.asarray(traj.t, float))
+    return float(np.max(np.maximum(turn[1:], turn[:-1]) * dt[:, None]))
 
 
 def envelope(t: ArrayLike, y: ArrayLike, bins: int = ENVELOPE_BINS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -178,6 +234,10 @@ def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     ('near the major axis', True, 'detail: the first 5 oscillations, t')
     """
     check_run(traj)
+    phase = sample_phase(traj)
+    if phase > MAX_SAMPLE_PHASE:  # a stroboscope: the curves would show a slower oscillation than the run's
+        warnings.warn(f"omega oscillates by up to {phase:.3g} rad between samples, past pi: the figure shows another "
+                      "motion than the run's; give more samples", AliasedSamplesWarning, stacklevel=2)
     end = detail_window(traj) if ax is None else None
     if end is None:
         fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
