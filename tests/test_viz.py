@@ -449,7 +449,7 @@ def test_a_figure_drawn_on_the_users_own_axes_keeps_its_legend_on_the_canvas():
                                                   ((1.2, 1.2, 2.0), 4.0, 2)])
 def test_sample_phase_is_a_symmetric_tops_nutation_per_sample(moments, spin, axis):
     """A free symmetric top: omega turns about the symmetry axis in the body at Omega = (I_a - I_t) / I_t
-    omega_a (Landau & Lifshitz, Mechanics, sec. 33), so the phase between samples dt apart is Omega dt,
+    omega_a (Landau & Lifshitz, Mechanics, sec. 36), so the phase between samples dt apart is Omega dt,
     for an oblate and a prolate top, finely and sparsely sampled."""
     I = np.array(moments)
     transverse = I[(axis + 1) % 3]
