@@ -76,7 +76,7 @@ def detail_window(traj: Trajectory) -> float | None:
 
 class AliasedSamplesWarning(UserWarning):
     """A run's samples are too far apart for its figure to show its motion (:func:`sample_phase`
-    past :data:`MAX_SAMPLE_PHASE`); the commands say it in one line.
+    past pi); the commands say it in one line.
 
     Examples
     --------
@@ -93,7 +93,7 @@ def sample_phase(traj: Trajectory) -> float:
     samples, from Euler's equations' gyroscopic part (the oscillations of a free body's omega;
     Landau & Lifshitz, Mechanics, sec. 36-37): a component swinging over its range ``ptp`` with the
     rate ``|d omega_j / dt|`` turns at ``2 |d omega_j / dt| / ptp`` rad/s (``Omega`` for
-    ``A cos(Omega t)``), times the sample spacing. Above :data:`MAX_SAMPLE_PHASE` the samples
+    ``A cos(Omega t)``), times the sample spacing. Above pi (``MAX_SAMPLE_PHASE``) the samples
     alias: drawn, they show another motion than the run's.
 
     Examples
