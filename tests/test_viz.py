@@ -486,3 +486,8 @@ def test_simulate_says_in_one_line_where_its_omega_png_aliases(tmp_path, capsys)
     assert float(err[0].split("up to ")[1].split(" rad")[0]) > np.pi and (out / "omega.png").is_file()
     assert main(["simulate", "t-handle", "--omega", "10", "0.1", "0.1", "--t-end", "20", "--out", str(tmp_path / "flip")]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_sample_phase_refuses_what_is_not_a_run_in_one_line():
+    with pytest.raises(ValueError, match=r"^trajectory = list object must be a tumble Trajectory"):
+        viz.sample_phase([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])

@@ -94,7 +94,8 @@ def sample_phase(traj: Trajectory) -> float:
     Landau & Lifshitz, Mechanics, sec. 36-37): a component swinging over its range ``ptp`` with the
     rate ``|d omega_j / dt|`` turns at ``2 |d omega_j / dt| / ptp`` rad/s (``Omega`` for
     ``A cos(Omega t)``), times the sample spacing. Above pi (``MAX_SAMPLE_PHASE``) the samples
-    alias: drawn, they show another motion than the run's.
+    alias: drawn, they show another motion than the run's. A torque's and rotors' parts are left
+    out: the estimate is of the body's own oscillation, not of a gyrostat's.
 
     Examples
     --------
@@ -112,6 +113,7 @@ def sample_phase(traj: Trajectory) -> float:
     >>> round(sparse, 1), bool(sparse > np.pi)
     (4.0, True)
     """
+    check_run(traj)  # anything but a run: one line saying so, not an AttributeError
     w = np.asarray(traj.omega, float)
     if len(w) < 2:
         return 0.0
