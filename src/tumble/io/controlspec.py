@@ -9,8 +9,8 @@ Three kinds (:mod:`tumble.io.controlfile` for the rest of the file)::
     # form, derivative, threshold (rad/s, for the detumble time)
 
     kind = "mrp_pd"             # MRP feedback with the wheels (needs [actuators.wheels])
-    # K (N m), P (N m s), target = [x, y, z, w] (design frame to world) or "nadir" (needs a circular
-    # [orbit]; nadir_axis, default "minor", and normal_axis, default "major": principal axis labels
+    # K (N m), P (N m s), target = [x, y, z, w] (design frame to world) or "nadir" (along the
+    # [orbit], circular, Keplerian or a TLE's; nadir_axis, default "minor", and normal_axis, default "major": principal axis labels
     # 1, 2, 3, minor, intermediate, major or design-frame vectors), gyroscopic,
     # Ki (1/s, integral term; default 0), integral_limit (N m)
 
@@ -39,7 +39,6 @@ from ..dynamics.control.bdot import BDot, bdot_gain
 from ..dynamics.control.controllers import MomentumDumping, MRPFeedback
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
-from ..dynamics.environment.orbit import CircularOrbit
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
 from ..mass import Body
@@ -72,7 +71,7 @@ _MRP = (
     Key("K", "number", "N m", required=True, example="1.1e-3", low=0.0, doc="the attitude gain"),
     Key("P", "number", "N m s", required=True, example="6e-3", low=0.0, doc="the rate gain"),
     Key("target", "4 numbers or string", "", "[0, 0, 0, 1]", allowed='a quaternion [x, y, z, w] or "nadir"',
-        example='"nadir"', doc="the target frame to world (design frame), or nadir (needs a circular [orbit])"),
+        example='"nadir"', doc="the target frame to world (design frame), or nadir along the [orbit]"),
     Key("gyroscopic", "true or false", "", "true", example="false", doc="add the feed-forward omega x (I omega + h)"),
     Key("Ki", "number", "1/s", "0.0", example="0.01", low=0.0, low_included=True, doc="the integral gain (0: the PD law)"),
     Key("integral_limit", "number", "N m", "(no limit)", example="1e-4", low=0.0,
@@ -164,9 +163,8 @@ def _mrp_args(args: dict[str, Any], body: Body, wheels: ReactionWheels | None, p
     if isinstance(given, str):
         if given != "nadir":
             raise ValueError(f'target = {given!r} is unknown; allowed: "nadir" or a quaternion [x, y, z, w]')
-        if not isinstance(orbit, CircularOrbit):
-            found = "there is none" if orbit is None else f"a {type(orbit).__name__} is not one"
-            raise ValueError(f'target = "nadir" needs a circular [orbit] (altitude, inclination, ...): {found}')  # noqa: TRY004 - one error type for bad input
+        if orbit is None:
+            raise ValueError('target = "nadir" needs an [orbit] (altitude, semi_major_axis or tle): there is none')
         to_principal = principal_to_design.inv()  # vectors are given in the design frame
         written = {"nadir_axis": "minor", "normal_axis": "major", **axes}  # as the file has them (or the defaults)
         axes = {k: v if np.ndim(v) == 0 else to_principal.apply(check_direction(k, v))

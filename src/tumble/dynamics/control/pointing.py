@@ -34,7 +34,10 @@ orbit-plane frame (:mod:`~tumble.dynamics.environment.orbit`): the radius at ``t
 (constant, ``omega_r' = 0``). The default, the minor axis on nadir and the major axis on the
 orbit normal (the intermediate axis along the velocity), is the gravity-gradient stable
 attitude (the Lagrange region; :mod:`~tumble.analysis.gravity_stability`): there the gravity
-gradient exerts no torque and the wheels hold the body with none of their momentum.
+gradient exerts no torque and the wheels hold the body with none of their momentum. Along an
+ellipse or a TLE's orbit (world frame ECI or TEME) the target follows the orbit's nadir frame
+(:mod:`~tumble.dynamics.environment.local_frame`): ``R(t)`` from the position and velocity, the
+rate ``h / |r|^2 + ((a . h) / |h|^2) r``, faster at the perigee, and its derivative.
 """
 
 from __future__ import annotations
@@ -49,6 +52,8 @@ from scipy.spatial.transform import Rotation
 from ..._html import Headline, headline_html, headline_repr
 from ...typing import ArrayLike, FloatArray
 from ...validation import axis_index, check_positive, check_rotation
+from ..environment.local_frame import nadir_frame, orbit_frame_acceleration, orbit_frame_rate
+from ..environment.orbit import CircularOrbit
 from ..special.mrp import mrp_from_quat
 
 __all__ = ["NadirTarget", "Reference", "TrackingError", "axis_direction", "check_square", "is_reference", "reference_table",
@@ -290,18 +295,22 @@ def check_square(nadir: FloatArray, normal: FloatArray, nadir_given: object, nor
 
 @dataclass(frozen=True)
 class NadirTarget:
-    """A body axis on nadir and another on the orbit normal, on a circular orbit (module docstring).
+    """A body axis on nadir and another on the orbit normal, along the orbit (module docstring).
 
     Parameters
     ----------
-    orbit : float or object with ``mean_motion``
-        The orbit's mean motion ``n`` (rad/s, > 0), or a
+    orbit : float or orbit
+        The orbit's mean motion ``n`` (rad/s, > 0) for a circular orbit in its orbit-plane frame; a
         :class:`~tumble.dynamics.environment.orbit.CircularOrbit` or
-        :class:`~tumble.dynamics.models.gravity.GravityGradient` (its ``mean_motion``).
+        :class:`~tumble.dynamics.models.gravity.GravityGradient` (its ``mean_motion``, the same);
+        or any other orbit with ``position_world``, ``velocity_world`` and ``mean_motion`` (a
+        :class:`~tumble.dynamics.environment.ephemeris.KeplerOrbit` or
+        :class:`~tumble.dynamics.environment.ephemeris.TLEOrbit`, or a torque model on one, such as
+        ``gravity_gradient_of(orbit)``), followed in its inertial world frame.
     nadir_axis : {1, 2, 3, "minor", "intermediate", "major"} or array_like, shape (3,)
         The body axis (principal frame) to point at nadir, ``-radius`` (default "minor").
     normal_axis : same
-        The body axis along the orbit normal, world +z (default "major"); square to ``nadir_axis``.
+        The body axis along the orbit normal, ``r x v`` (default "major"); square to ``nadir_axis``.
 
     Examples
     --------
@@ -315,6 +324,18 @@ class NadirTarget:
     [[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
     >>> np.round(nadir.attitude(1350.0).apply([1.0, 0.0, 0.0]), 12).tolist()
     [-0.0, -1.0, 0.0]
+
+    On an ellipse the minor axis stays on nadir, and the target turns faster at the perigee (t = 0
+    here) than the mean motion:
+
+    >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+    >>> orbit = KeplerOrbit(8000e3, 0.1, 0.9)
+    >>> nadir = NadirTarget(orbit)
+    >>> r = orbit.position_world(2000.0)
+    >>> bool(np.allclose(nadir.attitude(2000.0).apply([1.0, 0, 0]), -r / np.linalg.norm(r), atol=1e-14))
+    True
+    >>> round(float(np.linalg.norm(nadir.rate(0.0)) / orbit.mean_motion), 6)   # (1 + e)^2 / (1 - e^2)^1.5
+    1.22838
     >>> NadirTarget(1e-3, nadir_axis=[1.0, 1.0, 0.0], normal_axis=[1.0, 0.0, 0.0])
     Traceback (most recent call last):
     ...
@@ -326,13 +347,19 @@ class NadirTarget:
     normal_axis: int | str | ArrayLike = "major"
 
     def __post_init__(self) -> None:
-        n = self.orbit if isinstance(self.orbit, (int, float)) else getattr(self.orbit, "mean_motion", None)
+        source = getattr(self.orbit, "orbit", self.orbit)   # a torque model along an orbit: the orbit
+        follows = (not isinstance(source, CircularOrbit) and callable(getattr(source, "position_world", None))
+                   and callable(getattr(source, "velocity_world", None)))
+        n = self.orbit if isinstance(self.orbit, (int, float)) else getattr(source, "mean_motion", None)
         object.__setattr__(self, "_n", check_positive("orbit.mean_motion", n, "rad/s"))
+        object.__setattr__(self, "_path", source if follows else None)   # None: the circle's closed form
         a = axis_direction("nadir_axis", self.nadir_axis)
         b = axis_direction("normal_axis", self.normal_axis)
         check_square(a, b, self.nadir_axis, self.normal_axis)
-        # R(0) (principal to world): a -> -x (nadir at t = 0), b -> +z, a x b -> (-x) x z = +y
+        # the target's axes (nadir, normal, nadir x normal) in the principal frame, as columns
         body = np.column_stack([a, b, np.cross(a, b)])
+        object.__setattr__(self, "_body", body)
+        # R(0) (principal to world) on the circle: a -> -x (nadir at t = 0), b -> +z, a x b -> (-x) x z = +y
         world = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]).T
         object.__setattr__(self, "_r0", Rotation.from_matrix(world @ body.T))
 
@@ -351,7 +378,8 @@ class NadirTarget:
         return float(self._n)  # type: ignore[attr-defined]
 
     def attitude(self, t: ArrayLike) -> Rotation:
-        """The target frame (the body's principal axes on target) to world, ``R_z(n t) R(0)``.
+        """The target frame (the body's principal axes on target) to world: ``R_z(n t) R(0)`` on a
+        circle, the orbit's nadir frame times the body's axes along any other orbit.
 
         Examples
         --------
@@ -364,11 +392,16 @@ class NadirTarget:
         >>> np.allclose(nadir.attitude(t).apply([0.0, 0.0, 1.0]), -np.stack([np.cos(1e-3 * t), np.sin(1e-3 * t), 0 * t], -1))
         True
         """
+        path = self._path  # type: ignore[attr-defined]
+        if path is not None:
+            axes = nadir_frame(path.position_world(t), path.velocity_world(t))
+            return Rotation.from_matrix(axes @ self._body.T)  # type: ignore[attr-defined]
         nt = self.mean_motion * np.asarray(t, dtype=float)
         return Rotation.from_rotvec(nt[..., None] * np.array([0.0, 0.0, 1.0])) * self._r0  # type: ignore[attr-defined]
 
     def rate(self, t: ArrayLike) -> FloatArray:
-        """``omega_r = n z``, world frame, rad/s (shape ``t.shape + (3,)``).
+        """``omega_r``, world frame, rad/s (shape ``t.shape + (3,)``): ``n z`` on a circle, the
+        nadir frame's rate along any other orbit.
 
         Examples
         --------
@@ -376,11 +409,15 @@ class NadirTarget:
         >>> NadirTarget(1e-3).rate([0.0, 1.0]).tolist()
         [[0.0, 0.0, 0.001], [0.0, 0.0, 0.001]]
         """
+        path = self._path  # type: ignore[attr-defined]
+        if path is not None:
+            return orbit_frame_rate(path, t)
         shape = np.shape(t)
         return np.broadcast_to(np.array([0.0, 0.0, self.mean_motion]), shape + (3,)).copy()
 
     def rate_derivative(self, t: ArrayLike) -> FloatArray:
-        """``d omega_r / dt = 0`` (a circular orbit), world frame, rad/s^2.
+        """``d omega_r / dt``, world frame, rad/s^2: zero on a circle, the nadir frame's angular
+        acceleration along any other orbit.
 
         Examples
         --------
@@ -388,4 +425,7 @@ class NadirTarget:
         >>> NadirTarget(1e-3).rate_derivative(0.0).tolist()
         [0.0, 0.0, 0.0]
         """
+        path = self._path  # type: ignore[attr-defined]
+        if path is not None:
+            return orbit_frame_acceleration(path, t)
         return np.zeros(np.shape(t) + (3,))

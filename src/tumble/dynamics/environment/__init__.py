@@ -5,7 +5,8 @@
 - :mod:`~tumble.dynamics.environment.orbit`: the circular orbit of the control runs
   (:class:`~tumble.dynamics.environment.orbit.CircularOrbit`) and its orbit-plane world frame;
   :mod:`~tumble.dynamics.environment.ephemeris`: a Keplerian ellipse and a two-line element
-  set through SGP4.
+  set through SGP4; :mod:`~tumble.dynamics.environment.local_frame`: the orbit's nadir frame
+  along any of them, its rate and angular acceleration (the nadir target's).
 - :mod:`~tumble.dynamics.environment.magnetic`: the Earth's tilted dipole and a uniform field;
   :mod:`~tumble.dynamics.environment.igrf`: the full IGRF along an orbit, through ``ppigrf``.
 - :mod:`~tumble.dynamics.environment.sun`: the Sun's low-precision ephemeris and the Earth's

@@ -225,6 +225,23 @@ class KeplerOrbit:
         """
         return self.velocity_eci(t)
 
+    def acceleration_world(self, t: ArrayLike) -> Vector3:
+        """Acceleration in the world frame (ECI): ``-mu r / |r|^3``, the two-body problem's (Vallado
+        sec. 1.3), m/s^2; shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from tumble.dynamics.environment.ephemeris import KeplerOrbit
+        >>> k = KeplerOrbit(7000e3, 0.01)
+        >>> r, a = k.position_world(60.0), k.acceleration_world(60.0)
+        >>> math.isclose(float(np.linalg.norm(a)), k.mu / float(np.linalg.norm(r))**2, rel_tol=1e-14)
+        True
+        """
+        r = self.position_world(t)
+        return np.asarray(-self.mu * r / np.linalg.norm(r, axis=-1, keepdims=True) ** 3, dtype=np.float64)
+
 
 
 @dataclass(frozen=True, eq=False)
