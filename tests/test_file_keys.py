@@ -236,6 +236,7 @@ def test_a_key_not_in_the_table_is_refused_and_the_message_lists_the_tables_keys
 # the keys' examples put together: a mesh part's scale (0.001, a mm file's) on the shipped torus, in metres,
 # is a 0.04 mm solid, which the body file rightly warns of
 @pytest.mark.filterwarnings("ignore::tumble.io.meshfile.MeshScaleWarning")
+@pytest.mark.filterwarnings("ignore::tumble.dynamics.methods.arguments.IgnoredArgumentWarning")  # a key alone: step with dop853
 @pytest.mark.parametrize(("fmt", "table", "docs", "loader"), CASES, ids=IDS)
 def test_every_key_of_the_table_is_taken(tmp_path, fmt, table, docs, loader):
     for key in table.keys:
@@ -275,6 +276,7 @@ def _outside(key: Key) -> list:
 # the keys' examples put together: a mesh part's scale (0.001, a mm file's) on the shipped torus, in metres,
 # is a 0.04 mm solid, which the body file rightly warns of
 @pytest.mark.filterwarnings("ignore::tumble.io.meshfile.MeshScaleWarning")
+@pytest.mark.filterwarnings("ignore::tumble.dynamics.methods.arguments.IgnoredArgumentWarning")  # a key alone: step with dop853
 @pytest.mark.parametrize(("fmt", "table", "docs", "loader"), CASES, ids=IDS)
 def test_every_stated_bound_and_choice_is_the_parsers(tmp_path, fmt, table, docs, loader):
     checked = 0

@@ -28,15 +28,18 @@ def _on_sigterm(signum, frame):
     raise _Terminated
 
 
-def _show_warning(fallback, message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
+def _show_warning(fallback, said, message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
     """``warnings.showwarning`` for the commands: a likely slip of units (:class:`tumble.mass.UnitSlipWarning`:
     a part's or a mesh's density or size no solid has), or one whose class asks for it (``cli_one_line``:
-    an unstable control loop), as one line, ``warning: ...``; any other
+    an unstable control loop), as one line, ``warning: ...``, once a command (``said``: the lines
+    already printed; a scenario's inputs are checked before the run checks them again); any other
     warning as ``fallback`` (the one in effect before) shows it."""
     from ..mass import UnitSlipWarning
 
     if issubclass(category, UnitSlipWarning) or getattr(category, "cli_one_line", False):
-        print(f"warning: {message}", file=sys.stderr)
+        if str(message) not in said:
+            said.add(str(message))
+            print(f"warning: {message}", file=sys.stderr)
     else:
         fallback(message, category, filename, lineno, file, line)
 
@@ -89,7 +92,7 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
             warnings.simplefilter("error", RuntimeWarning)
-            warnings.showwarning = functools.partial(_show_warning, warnings.showwarning)  # restored on exit
+            warnings.showwarning = functools.partial(_show_warning, warnings.showwarning, set())  # restored on exit
             _named_files_exist(args)
             compiled = _compile_seconds()
             status = args.func(args)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import numbers
+import warnings
 from typing import Any, NamedTuple, cast
 
 import numpy as np
@@ -16,6 +17,7 @@ from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
 from .engine.stepsize import RTOL_RANGE, check_rtol
+from .methods.arguments import IgnoredArgumentWarning, ignored_arguments, ignored_message
 from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
 from .methods.engine_rk import COMPILED_MODELS, on_the_loop
@@ -140,8 +142,11 @@ def simulate(
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
     step : float, optional
-        Largest step of the fixed-step ``"geometric"`` methods, s (default: at most 0.05 rad
-        of rotation per step, counting the spin a torque builds up); ignored by the others.
+        Largest step of the fixed-step methods (``"rk4"``, ``"rk8"``, the ``"geometric"`` and
+        ``"exact_split"`` splittings), s (default: a rotation per step that depends on the method,
+        counting the spin a torque builds up). The others choose their own steps: ``step`` given to
+        them, or ``rtol``/``atol`` given to a fixed-step method, has no effect and warns
+        (:class:`~tumble.dynamics.methods.arguments.IgnoredArgumentWarning`).
     damper : SphericalDamper, optional
         A spherical nutation damper inside the body
         (:class:`~tumble.dynamics.models.internal.SphericalDamper`), starting with the body's
@@ -319,6 +324,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if rotors is not None or damper is not None:
         internal = InternalModel(props.principal_moments, rotors, damper)
     auto = method is None or isinstance(method, str) and method == AUTO
+    asked = {"rtol": rtol, "atol": atol, "step": step}  # as given: the method may not read some (below)
     if auto and model is None and internal is None:
         method = "exact"
     elif auto:  # refined between the engine's dop853 and rk8 once the spin is known
@@ -365,6 +371,9 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     rtol = spec.rtol if rtol is None else rtol
     if step is not None:
         step = check_positive("step", step, "s")
+    ignored = ignored_arguments(spec, auto=auto, **asked)
+    if ignored:
+        warnings.warn(ignored_message(spec, ignored, auto=auto), IgnoredArgumentWarning, stacklevel=3)
     moments = props.principal_moments
     I = moments.tolist()  # float arithmetic: these checks cost nothing for plain inputs
     if not max(I) <= MAX_INERTIA:

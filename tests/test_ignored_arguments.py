@@ -1,0 +1,62 @@
+"""``rtol``/``atol`` given to a fixed-step method and ``step`` given to an adaptive one (or to
+``"auto"``) have no effect: ``simulate`` says so (IgnoredArgumentWarning, one ``warning:`` line
+from the command line) and the run is the one without them, to the bit."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble.cli import main
+from tumble.dynamics.methods.arguments import IgnoredArgumentWarning
+
+BODY = tumble.MassProperties.from_moments([1.0, 2.0, 3.0])
+TORQUE = tumble.ConstantTorque((0.01, 0.02, -0.01))
+W0 = [0.1, 1.0, 0.1]
+
+
+def _run(**kw):
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        traj = tumble.simulate(BODY, W0, t_end=2.0, samples=21, **kw)
+    return traj, [w for w in seen if issubclass(w.category, IgnoredArgumentWarning)]
+
+
+@pytest.mark.parametrize(("kw", "plain", "named"), [
+    ({"method": "rk4", "torque": TORQUE, "rtol": 1e-12}, {"method": "rk4", "torque": TORQUE}, "rtol = 1e-12"),
+    ({"method": "rk8", "torque": TORQUE, "step": 0.05, "rtol": 1e-5, "atol": 1e-9},
+     {"method": "rk8", "torque": TORQUE, "step": 0.05}, "rtol = 1e-05 and atol = 1e-09 have"),
+    ({"method": "geometric", "atol": 1e-9}, {"method": "geometric"}, "atol = 1e-09 has"),
+    ({"method": "dop853", "torque": TORQUE, "step": 0.1}, {"method": "dop853", "torque": TORQUE}, "step = 0.1"),
+    ({"torque": TORQUE, "step": 0.1}, {"torque": TORQUE}, "method = 'auto'"),
+    ({"step": 0.1}, {}, "method = 'auto'"),
+])
+def test_what_a_method_does_not_read_warns_and_changes_nothing(kw, plain, named):
+    traj, seen = _run(**kw)
+    assert len(seen) == 1 and named in str(seen[0].message), [str(w.message) for w in seen]
+    assert seen[0].filename == __file__   # the user's line, not tumble's
+    ref, quiet = _run(**plain)
+    assert not quiet and traj.method == ref.method
+    assert np.array_equal(traj.omega, ref.omega) and np.array_equal(traj.quat, ref.quat)
+
+
+@pytest.mark.parametrize("kw", [
+    {"method": "rk8", "torque": TORQUE, "step": 0.05}, {"method": "dop853", "torque": TORQUE, "rtol": 1e-8},
+    {"torque": TORQUE, "rtol": 1e-8, "atol": 1e-9}, {"method": "rk45", "torque": TORQUE, "rtol": 1e-8},
+    {"method": "exact", "rtol": 1e-6, "step": 0.1},   # exact meets any tolerance and takes no steps
+])
+def test_what_a_method_reads_is_taken_without_a_word(kw):
+    assert _run(**kw)[1] == []
+
+
+def test_the_command_line_says_it_in_one_line(tmp_path, capsys):
+    scenario = tmp_path / "s.toml"
+    scenario.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n'
+                        '[simulation]\nt_end = 1.0\nmethod = "rk8"\nrtol = 1e-12\n', encoding="utf-8")
+    assert main(["simulate", str(scenario), "--out", str(tmp_path / "out")]) == 0
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "rtol = 1e-12 has no effect" in line]
+    assert len(lines) == 1 and lines[0].startswith("warning: ") and "Traceback" not in err, err
