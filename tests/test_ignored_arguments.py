@@ -1,6 +1,7 @@
-"""``rtol``/``atol`` given to a fixed-step method and ``step`` given to an adaptive one (or to
-``"auto"``) have no effect: ``simulate`` says so (IgnoredArgumentWarning, one ``warning:`` line
-from the command line) and the run is the one without them, to the bit."""
+"""An argument the method does not read (``rtol``/``atol`` given to a splitting, ``rtol`` beside a
+``step`` or ``atol`` to ``rk4``/``rk8``, ``step`` to an adaptive method or to ``"auto"``) has no
+effect: ``simulate`` says so (IgnoredArgumentWarning, one ``warning:`` line from the command line)
+and the run is the one without it, to the bit."""
 
 from __future__ import annotations
 
@@ -26,7 +27,9 @@ def _run(**kw):
 
 
 @pytest.mark.parametrize(("kw", "plain", "named"), [
-    ({"method": "rk4", "torque": TORQUE, "rtol": 1e-12}, {"method": "rk4", "torque": TORQUE}, "rtol = 1e-12"),
+    ({"method": "rk4", "torque": TORQUE, "rtol": 1e-12, "step": 0.01}, {"method": "rk4", "torque": TORQUE, "step": 0.01},
+     "rtol = 1e-12 has no effect with method = 'rk4', which steps by step (s) and takes from rtol alone"),
+    ({"method": "rk8", "torque": TORQUE, "atol": 1e-9}, {"method": "rk8", "torque": TORQUE}, "atol = 1e-09 has"),
     ({"method": "rk8", "torque": TORQUE, "step": 0.05, "rtol": 1e-5, "atol": 1e-9},
      {"method": "rk8", "torque": TORQUE, "step": 0.05}, "rtol = 1e-05 and atol = 1e-09 have"),
     ({"method": "geometric", "atol": 1e-9}, {"method": "geometric"}, "atol = 1e-09 has"),
@@ -45,6 +48,7 @@ def test_what_a_method_does_not_read_warns_and_changes_nothing(kw, plain, named)
 
 @pytest.mark.parametrize("kw", [
     {"method": "rk8", "torque": TORQUE, "step": 0.05}, {"method": "dop853", "torque": TORQUE, "rtol": 1e-8},
+    {"method": "rk4", "torque": TORQUE, "rtol": 1e-6},   # the step that meets it (test_simulate_auto.py)
     {"torque": TORQUE, "rtol": 1e-8, "atol": 1e-9}, {"method": "rk45", "torque": TORQUE, "rtol": 1e-8},
     {"method": "exact", "rtol": 1e-6, "step": 0.1},   # exact meets any tolerance and takes no steps
 ])
@@ -55,7 +59,7 @@ def test_what_a_method_reads_is_taken_without_a_word(kw):
 def test_the_command_line_says_it_in_one_line(tmp_path, capsys):
     scenario = tmp_path / "s.toml"
     scenario.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n'
-                        '[simulation]\nt_end = 1.0\nmethod = "rk8"\nrtol = 1e-12\n', encoding="utf-8")
+                        '[simulation]\nt_end = 1.0\nmethod = "rk8"\nstep = 0.01\nrtol = 1e-12\n', encoding="utf-8")
     assert main(["simulate", str(scenario), "--out", str(tmp_path / "out")]) == 0
     err = capsys.readouterr().err
     lines = [line for line in err.splitlines() if "rtol = 1e-12 has no effect" in line]

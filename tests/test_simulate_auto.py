@@ -236,3 +236,22 @@ def test_a_scenario_file_takes_auto_and_names_what_ran(tmp_path):
     path.write_text('body = "t-handle"\ninitial = { omega = [0.1, 5.0, 0.1] }\nsimulation = { t_end = 1.0, method = "autox" }\n')
     with pytest.raises(ValueError, match=r"simulation\.method = 'autox' is unknown; allowed: auto, exact"):
         load_scenario(path)
+
+
+
+@pytest.mark.parametrize("method", ["rk4", "rk8"])
+@pytest.mark.parametrize("name", ["constant torque, fast spin", "gravity gradient, fast spin"])
+def test_the_engines_fixed_steps_meet_an_rtol_given_without_a_step(name, method):
+    """rk4 and rk8 given an rtol and no step take the step that meets it (rk_angle over the fastest spin
+    the run reaches; issue 38: every method honours rtol); on the T-handle, where the steps' error
+    is above round-off, a looser rtol gives a larger error (the rtol sets the step)."""
+    moments, w0, t_end, samples, model, tau = CASES[name]
+    body = tumble.MassProperties.from_moments(moments)
+    worst = []
+    for rtol in (1e-4, 1e-6, 1e-9):
+        traj = tumble.simulate(body, w0, t_end=t_end, samples=samples, torque=model, attitude0=Q0, method=method,
+                               rtol=rtol)
+        worst.append(max(errors(traj, *case_reference(name, traj.t))))
+        assert worst[-1] <= rtol, (rtol, worst[-1])
+    if moments == T_HANDLE:
+        assert worst[0] > worst[1] > worst[2], worst

@@ -5,7 +5,6 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-import warnings
 from typing import Any, NamedTuple, cast
 
 import numpy as np
@@ -17,8 +16,8 @@ from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
 from .engine.stepsize import RTOL_RANGE, check_rtol
-from .methods.arguments import IgnoredArgumentWarning, ignored_arguments, ignored_message
-from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice
+from .methods.arguments import warn_ignored
+from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice, rk_step
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
 from .methods.engine_rk import COMPILED_MODELS, on_the_loop
 from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method
@@ -144,8 +143,11 @@ def simulate(
     step : float, optional
         Largest step of the fixed-step methods (``"rk4"``, ``"rk8"``, the ``"geometric"`` and
         ``"exact_split"`` splittings), s (default: a rotation per step that depends on the method,
-        counting the spin a torque builds up). The others choose their own steps: ``step`` given to
-        them, or ``rtol``/``atol`` given to a fixed-step method, has no effect and warns
+        counting the spin a torque builds up; for ``"rk4"`` and ``"rk8"`` given ``rtol``, the step
+        that meets it, :func:`~tumble.dynamics.methods.auto.rk_angle`). The others choose their own
+        steps. An argument the method does not read (``step`` given to an adaptive method or
+        ``"auto"``, ``rtol`` or ``atol`` to a splitting, ``rtol`` beside a ``step`` or ``atol`` to
+        ``"rk4"`` and ``"rk8"``) has no effect and warns
         (:class:`~tumble.dynamics.methods.arguments.IgnoredArgumentWarning`).
     damper : SphericalDamper, optional
         A spherical nutation damper inside the body
@@ -371,9 +373,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     rtol = spec.rtol if rtol is None else rtol
     if step is not None:
         step = check_positive("step", step, "s")
-    ignored = ignored_arguments(spec, auto=auto, **asked)
-    if ignored:
-        warnings.warn(ignored_message(spec, ignored, auto=auto), IgnoredArgumentWarning, stacklevel=3)
+    warn_ignored(spec, auto=auto, stacklevel=4, **asked)  # the user's line: simulate, check_inputs, warn_ignored
     moments = props.principal_moments
     I = moments.tolist()  # float arithmetic: these checks cost nothing for plain inputs
     if not max(I) <= MAX_INERTIA:
@@ -415,6 +415,8 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         else:
             gain = run_spin_gain(model, w0, q0, moments, t_end)
             gain = min(gain, quick) if auto and quick is not None else gain
+    if asked["rtol"] is not None and step is None and spec.fixed_step and spec.engine and not auto:
+        step = rk_step(spec.name, cast(float, rtol), spin + gain, internal)  # the step meeting rtol, as auto's rk8
     if auto and not spec.closed_form:
         engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes, and a damper
         # and the closed loop's kernel (an ellipse, a TLE, a dipole) takes both at the same steps

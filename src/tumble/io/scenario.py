@@ -12,9 +12,9 @@
     t_end = 20.0               # s
     samples = 500              # or dt = 0.01 (s), or times = [0.0, 0.5, 2.0] instead of t_end
     method = "auto"            # "auto" (the default), "exact", "dop853", "rk8", "rk4", "rk45", "geometric", ...
-    # rtol = 1e-12             # optional tolerances (dop853, rk45, seed)
+    # rtol = 1e-12             # optional tolerances (auto, dop853, rk45, seed; rk4 and rk8 without a step)
     # atol = 1e-12
-    # step = 1e-3              # optional largest step of the geometric methods, s
+    # step = 1e-3              # optional largest step of the fixed-step methods, s
 
     [torque]                   # optional: a constant torque
     vector = [0.0, 0.0, 0.01]  # N m
@@ -107,7 +107,7 @@ SCENARIO_FORMAT = FileFormat("scenario", (
         Key("dt", "number", "s", example="0.01", low=0.0, doc="the sample interval, instead of samples"),
         _TIMES, _METHOD,
         Key("rtol", "number", "", "(the method's)", example="1e-12", low=2.22e-14, low_included=True, high=0.1,
-            doc="relative tolerance (dop853, rk45, seed)"),
+            doc="relative tolerance (auto, dop853, rk45, seed; rk4 and rk8 without a step: the step that meets it)"),
         Key("atol", "number", "rad/s", "(the method's)", example="1e-12", low=0.0, doc="absolute tolerance"),
         _STEP,
     ), "When to sample and how to integrate."),

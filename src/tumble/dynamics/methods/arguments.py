@@ -1,20 +1,23 @@
 """Which of ``rtol``, ``atol`` and ``step`` a method reads, and the warning when one it does not is given.
 
-A fixed-step method (``rk4``, ``rk8``, the splittings) steps by ``step`` and never looks at a
-tolerance: ``simulate(method="rk4", rtol=1e-12)`` ran at the default step and returned 1.5e-11
-without a word. An adaptive method (``dop853``, ``rk45``, ``seed``) and ``"auto"`` choose their own
-steps from ``rtol``: a ``step`` given to them was dropped as silently. scipy's ``solve_ivp`` warns
-of options a solver does not take ("The following arguments have no effect for a chosen solver");
-so does :func:`~tumble.simulate`, naming the argument, its value and what reads it
-(:class:`IgnoredArgumentWarning`). ``exact`` is exempt: it meets any tolerance and takes no
+A fixed-step method steps by ``step``: the splittings (``geometric*``, ``exact_split*``) never look
+at a tolerance, and the engine's ``rk4`` and ``rk8`` take from ``rtol`` only the step that meets it
+(:func:`~tumble.dynamics.methods.auto.rk_angle`), when no ``step`` is given; before, their
+``rtol`` was dropped: ``simulate(method="rk4", rtol=1e-12)`` ran at the default step and returned
+1.5e-11 without a word. An adaptive method (``dop853``, ``rk45``, ``seed``) and ``"auto"`` choose
+their own steps from ``rtol``: a ``step`` given to them was dropped as silently. scipy's
+``solve_ivp`` warns of options a solver does not take ("The following arguments have no effect for
+a chosen solver"); so does :func:`~tumble.simulate`, naming the argument, its value and what reads
+it (:class:`IgnoredArgumentWarning`). ``exact`` is exempt: it meets any tolerance and takes no
 steps, so nothing given to it is lost.
 """
 
 from __future__ import annotations
 
+import warnings
 from typing import Protocol
 
-__all__ = ["IgnoredArgumentWarning", "ignored_arguments", "ignored_message"]
+__all__ = ["IgnoredArgumentWarning", "ignored_arguments", "ignored_message", "warn_ignored"]
 
 
 class IgnoredArgumentWarning(UserWarning):
@@ -46,6 +49,8 @@ class _Kind(Protocol):
     def fixed_step(self) -> bool: ...
     @property
     def closed_form(self) -> bool: ...
+    @property
+    def engine(self) -> bool: ...
 
 
 def ignored_arguments(method: _Kind, *, auto: bool = False, rtol: float | None = None, atol: float | None = None,
@@ -65,8 +70,10 @@ def ignored_arguments(method: _Kind, *, auto: bool = False, rtol: float | None =
     --------
     >>> from tumble.dynamics import METHODS
     >>> from tumble.dynamics.methods.arguments import ignored_arguments
-    >>> ignored_arguments(METHODS["rk8"], rtol=1e-12, step=0.01)
+    >>> ignored_arguments(METHODS["rk8"], rtol=1e-12, step=0.01)   # the step given: rtol would only choose one
     {'rtol': 1e-12}
+    >>> ignored_arguments(METHODS["rk8"], rtol=1e-12), ignored_arguments(METHODS["geometric"], rtol=1e-12)
+    ({}, {'rtol': 1e-12})
     >>> ignored_arguments(METHODS["dop853"], rtol=1e-12, step=0.01)
     {'step': 0.01}
     >>> ignored_arguments(METHODS["exact"], rtol=1e-12, step=0.01)   # exact meets any rtol, takes no steps
@@ -74,7 +81,10 @@ def ignored_arguments(method: _Kind, *, auto: bool = False, rtol: float | None =
     """
     if method.closed_form and not auto:
         return {}
-    given = {"rtol": rtol, "atol": atol} if method.fixed_step and not auto else {"step": step}
+    if method.fixed_step and not auto:  # the engine's rk4 and rk8 read rtol for their step, when none is given
+        given = {"atol": atol} if method.engine and step is None else {"rtol": rtol, "atol": atol}
+    else:
+        given = {"step": step}
     return {name: value for name, value in given.items() if value is not None}
 
 
@@ -85,8 +95,10 @@ def ignored_message(method: _Kind, ignored: dict[str, float], *, auto: bool = Fa
     --------
     >>> from tumble.dynamics import METHODS
     >>> from tumble.dynamics.methods.arguments import ignored_message
-    >>> ignored_message(METHODS["rk4"], {"rtol": 1e-12})
-    "rtol = 1e-12 has no effect with method = 'rk4', which steps by step (s): give step, or method 'auto' or 'dop853' to meet an rtol"
+    >>> ignored_message(METHODS["geometric6"], {"rtol": 1e-12})
+    "rtol = 1e-12 has no effect with method = 'geometric6', which steps by step (s): give step, or method 'auto' or 'dop853' to meet an rtol"
+    >>> ignored_message(METHODS["rk8"], {"rtol": 1e-12})
+    "rtol = 1e-12 has no effect with method = 'rk8', which steps by step (s) and takes from rtol alone, without a step, the step that meets it"
     >>> ignored_message(METHODS["dop853"], {"step": 0.01})
     "step = 0.01 has no effect with method = 'dop853', which chooses its steps to meet rtol: a fixed-step method (rk4, rk8, geometric...) takes step"
     """
@@ -96,5 +108,31 @@ def ignored_message(method: _Kind, ignored: dict[str, float], *, auto: bool = Fa
     if "step" in ignored:
         return (f"{said} {verb} no effect with method = {name!r}, which chooses its steps to meet rtol: a fixed-step "
                 f"method (rk4, rk8, geometric...) takes step")
+    if method.engine:
+        return (f"{said} {verb} no effect with method = {name!r}, which steps by step (s) and takes from rtol alone, "
+                f"without a step, the step that meets it")
     return (f"{said} {verb} no effect with method = {name!r}, which steps by step (s): give step, or method 'auto' "
             f"or 'dop853' to meet an rtol")
+
+
+def warn_ignored(method: _Kind, *, auto: bool = False, stacklevel: int = 2, rtol: float | None = None,
+                 atol: float | None = None, step: float | None = None) -> None:
+    """Warn (:class:`IgnoredArgumentWarning`) of what of ``rtol``, ``atol`` and ``step`` ``method``
+    does not read (:func:`ignored_arguments`); nothing when it reads them all. ``stacklevel`` as
+    :func:`warnings.warn`'s, counted from the caller of this function.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics import METHODS
+    >>> from tumble.dynamics.methods.arguments import warn_ignored
+    >>> with warnings.catch_warnings(record=True) as seen:
+    ...     warnings.simplefilter("always")
+    ...     warn_ignored(METHODS["dop853"], rtol=1e-9)   # read: nothing said
+    ...     warn_ignored(METHODS["dop853"], step=0.5)
+    >>> [str(w.message)[:47] for w in seen]
+    ["step = 0.5 has no effect with method = 'dop853'"]
+    """
+    ignored = ignored_arguments(method, auto=auto, rtol=rtol, atol=atol, step=step)
+    if ignored:
+        warnings.warn(ignored_message(method, ignored, auto=auto), IgnoredArgumentWarning, stacklevel=stacklevel + 1)
