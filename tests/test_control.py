@@ -235,7 +235,7 @@ def test_a_user_controller_implements_the_interface():
     (lambda: simulate_controlled(I_PD, [0, 0, 0.1], t_end=1.0, controller=MRPFeedback(
         K=1.0, P=1.0, period=0.5, moments=I_PD, wheels=ReactionWheels(np.eye(3), inertia=1e-4)),
         wheels=ReactionWheels(np.eye(3)[:2], inertia=1e-4)), r"drives 3 reaction wheels .* the run is given 2"),
-    (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=BDot(1.0, 1.0),
+    (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=2.0, controller=BDot(1.0, 1.0),
                                  field=UniformField((3e-5, 0.0, 0.0))),
      r"^controller = BDot commands magnetic dipoles in the field: give magnetorquers=Magnetorquers\(...\)"),
     (lambda: simulate_controlled([1, 2, 3], [0, 0, 1], t_end=1.0, controller=lambda t, m: Command()),

@@ -99,6 +99,7 @@ def test_a_wheel_driven_into_its_speed_limit_costs_ordinary_steps():
 
 
 @pytest.mark.filterwarnings("ignore::tumble.dynamics.control.sampled.UnstableLoopWarning")  # unstable as meant
+@pytest.mark.filterwarnings("ignore::tumble.dynamics.control.sampled.OneStepWarning")  # one command, as meant
 @pytest.mark.parametrize("period, speed0, Ki", [(40.0, None, 0.0), (0.5, [700.0, -700.0, 700.0], 0.0), (0.5, None, 100.0)],
                          ids=["period longer than t_end", "speed0 above max_speed", "Ki = 100"])
 def test_the_issues_other_saturating_runs_cost_ordinary_steps(period, speed0, Ki):

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -27,6 +28,7 @@ from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .estimated import Estimated
 from .mission import DetumbleThenPoint
+from .sampled import OneStepWarning
 
 __all__ = ["check_actuators", "checked", "control_instants", "locked_inverse", "moments_checked"]
 
@@ -63,9 +65,16 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     raw = (_raw(moments), _raw(omega0), _raw(attitude0), _raw(wheel_speed0))
     floats = type(t_end) is float and type(rtol) is float and type(atol) is float and type(period) is float
     if None in raw or not floats:
-        return _checked(moments, omega0, t_end, rtol, atol, period, attitude0, lone_rods, k, wheel_speed0)
-    I, T, rtol, atol, period, y0 = _checked_raw(raw, t_end, rtol, atol, period, lone_rods, k)
-    return I.copy(), T, rtol, atol, period, y0.copy()
+        I, T, rtol, atol, period, y0 = _checked(moments, omega0, t_end, rtol, atol, period, attitude0, lone_rods, k,
+                                                wheel_speed0)
+    else:
+        I, T, rtol, atol, period, y0 = _checked_raw(raw, t_end, rtol, atol, period, lone_rods, k)
+        I, y0 = I.copy(), y0.copy()
+    if period >= T:  # the samples are the control instants: two, and one command
+        warnings.warn(f"controller.period = {period:g} s is not shorter than t_end = {T:g} s: the controller acts "
+                      "once, at t = 0, and the run has two samples (a period in ms written as s?)", OneStepWarning,
+                      stacklevel=3)
+    return I, T, rtol, atol, period, y0
 
 
 def _raw(value: object) -> tuple[tuple[int, ...], bytes] | tuple[()] | None:

@@ -30,7 +30,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 
-__all__ = ["UnstableLoopWarning", "check_held_loop", "held_loop_radius"]
+__all__ = ["OneStepWarning", "UnstableLoopWarning", "check_held_loop", "held_loop_radius"]
 
 
 class UnstableLoopWarning(UserWarning):
@@ -44,6 +44,30 @@ class UnstableLoopWarning(UserWarning):
     >>> from tumble.dynamics.control.sampled import UnstableLoopWarning
     >>> issubclass(UnstableLoopWarning, UserWarning)
     True
+    """
+
+    cli_one_line = True
+
+
+class OneStepWarning(UserWarning):
+    """A controller whose period is not shorter than the run: it acts once, at t = 0, and the run
+    (whose samples are the control instants) has two samples. Likely a period in milliseconds
+    written as seconds; a command prints it on one line and goes on.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.control.bdot import BDot
+    >>> from tumble.dynamics.control.controlled import simulate_controlled
+    >>> from tumble.dynamics.control.sampled import OneStepWarning
+    >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> from tumble.dynamics.models.actuators import Magnetorquers
+    >>> with warnings.catch_warnings(record=True) as seen:
+    ...     warnings.simplefilter("always")
+    ...     run = simulate_controlled([0.03, 0.04, 0.05], [0.1, 0.2, 0.3], t_end=10.0, controller=BDot(gain=1e-3, period=500.0),
+    ...                               magnetorquers=Magnetorquers(0.2), field=UniformField((2e-5, 0.0, 0.0)))
+    >>> [w.category.__name__ for w in seen], len(run.t)
+    (['OneStepWarning'], 2)
     """
 
     cli_one_line = True
