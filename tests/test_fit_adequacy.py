@@ -187,3 +187,21 @@ def test_a_window_outside_the_recording_says_where_the_recording_runs(tmp_path, 
     assert err.count("\n") == 1 and "--start 1000.0 to --end 1001.0 holds 0 samples (at least 20 fit a flight); " \
         f"the recording runs from {t[0]:.6g} to {t[-1]:.6g} s" in err, err
     assert not out.exists()
+
+
+@pytest.mark.parametrize(("flag", "value", "kept"), [("--start", "0.5", lambda t: t >= 0.5),
+                                                     ("--end", "1.5", lambda t: t <= 1.5)])
+def test_one_bound_alone_runs_to_the_recordings_other_end(tmp_path, capsys, flag, value, kept):
+    """``--start`` without ``--end`` fits to the recording's end, ``--end`` alone from its start, as
+    ``--help`` says; fit.json holds the bound given and null for the other."""
+    t, w = _toss(duration=2.0)
+    data = tmp_path / "toss.csv"
+    _write_csv(data, t, w)
+    out = tmp_path / "fit"
+    assert main(["fit", str(data), "--out", str(out), flag, value]) == 0
+    record = json.loads((out / "fit.json").read_text(encoding="utf-8"))
+    assert record["samples"] == np.count_nonzero(kept(np.round(t, 4)))
+    assert record[flag[2:]] == float(value) and record["end" if flag == "--start" else "start"] is None
+    with pytest.raises(SystemExit):
+        main(["fit", "--help"])
+    assert "without --end, to the recording's end" in " ".join(capsys.readouterr().out.split())

@@ -231,8 +231,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--saturation", type=float, metavar="RAD_S",
                    help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
-    p.add_argument("--start", type=float, metavar="S", help="fit one flight: first time, s (one recording only)")
-    p.add_argument("--end", type=float, metavar="S", help="fit one flight: last time, s")
+    p.add_argument("--start", type=float, metavar="S",
+                   help="fit one flight: its first time, s (one recording only; without --end, to the recording's end)")
+    p.add_argument("--end", type=float, metavar="S",
+                   help="fit one flight: its last time, s (without --start, from the recording's start)")
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the data (by default such a fit is written "
                    "with \"adequate\": false, a warning printed and the exit status 1)")
