@@ -347,7 +347,8 @@ class NadirTarget:
     normal_axis: int | str | ArrayLike = "major"
 
     def __post_init__(self) -> None:
-        source = getattr(self.orbit, "orbit", self.orbit)   # a torque model along an orbit: the orbit
+        inner = getattr(self.orbit, "orbit", None)   # a torque model along an orbit: the orbit
+        source = self.orbit if inner is None else inner
         follows = (not isinstance(source, CircularOrbit) and callable(getattr(source, "position_world", None))
                    and callable(getattr(source, "velocity_world", None)))
         n = self.orbit if isinstance(self.orbit, (int, float)) else getattr(source, "mean_motion", None)

@@ -17,7 +17,7 @@ axis turned to nadir.
 with ``a`` the body's acceleration (m/s^2). Derived here: the radial axis turns about ``h`` at
 ``d(r/|r|)/dt . (h x r / |h x r|) = |h| / |r|^2`` (in the two-body problem the true anomaly's
 rate, ``f' = h / r^2``, the Hill frame's rate in Schaub & Junkins); the normal turns as
-``dh/dt = r x a``, about the radius at ``(r x a) . (h x r) / (|h|^2 |r|) = |r| (a . h) / |h|^2``,
+``dh/dt = r x a``, about the radius at ``(r x a) . (r x h) / (|h|^2 |r|) = |r| (a . h) / |h|^2``,
 so a frame whose normal is fixed (two-body motion, ``a`` along ``r``) turns about ``h`` alone.
 
 :func:`orbit_acceleration` is the orbit's own ``acceleration_world(t)`` where it has one, else the

@@ -21,9 +21,9 @@ __all__ = ["IgnoredArgumentWarning", "ignored_arguments", "ignored_message", "wa
 
 
 class IgnoredArgumentWarning(UserWarning):
-    """An argument was given that the chosen method does not read (``rtol`` or ``atol`` to a
-    fixed-step method, ``step`` to an adaptive one); the run goes on without it. The command line
-    prints it as one ``warning:`` line.
+    """An argument was given that the chosen method does not read (a tolerance to a splitting,
+    ``rtol`` beside a ``step`` or ``atol`` to ``rk4``/``rk8``, a ``step`` to an adaptive method or
+    to ``"auto"``); the run goes on without it. The command line prints it as one ``warning:`` line.
 
     Examples
     --------

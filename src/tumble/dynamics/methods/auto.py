@@ -66,7 +66,7 @@ DENSE_STAGES, SAMPLE_COST = 0.25, 0.2
 
 
 #: ``rk4``'s rotation per step (rad) at rtol 1e-10, at the fastest spin the run can reach: on the
-#: T-handle at 10 rad/s under a constant torque 0.03 rad left 2.6e-7, 0.01 rad 2.9e-9 (omega and
+#: T-handle at 10 rad/s under a small constant torque 0.03 rad left 2.6e-7, 0.01 rad 2.9e-9 (omega and
 #: attitude, measured against scipy's DOP853 at rtol 1e-13; the error goes as the step to the 4th
 #: power), so 0.004 rad ~1e-10; the spacecraft at 1 rad/s 0.01 rad 6.8e-11. Scaled as ``rtol ** (1/4)``.
 RK4_ANGLE = 0.004
@@ -204,5 +204,4 @@ def damped_step(internal: InternalModel, spin: float, gain: float, t_end: float,
     ratio, _ = internal.stiffness(spin + gain, t_end)
     if ratio > STIFF_RATIO:
         return None
-    top = max(spin + gain, internal.relaxation_rate)
-    return rk8_angle(rtol) / top if top > 0.0 and math.isfinite(top) else None
+    return rk_step("rk8", rtol, spin + gain, internal)
