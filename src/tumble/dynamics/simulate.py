@@ -416,7 +416,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
             gain = run_spin_gain(model, w0, q0, moments, t_end)
             gain = min(gain, quick) if auto and quick is not None else gain
     if asked["rtol"] is not None and step is None and spec.fixed_step and spec.engine and not auto:
-        step = rk_step(spec.name, cast(float, rtol), spin + gain, internal)  # the step meeting rtol, as auto's rk8
+        step = rk_step(spec.name, cast(float, rtol), spin + gain, internal, asked=True)  # meeting rtol, as auto's rk8
     if auto and not spec.closed_form:
         engine = METHODS["rk8"]  # the engine's fixed step takes what its dop853 takes, and a damper
         # and the closed loop's kernel (an ellipse, a TLE, a dipole) takes both at the same steps
