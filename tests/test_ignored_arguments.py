@@ -64,3 +64,30 @@ def test_the_command_line_says_it_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     lines = [line for line in err.splitlines() if "rtol = 1e-12 has no effect" in line]
     assert len(lines) == 1 and lines[0].startswith("warning: ") and "Traceback" not in err, err
+
+
+def test_a_batch_reads_what_a_lone_run_reads_and_says_the_rest_once():
+    """simulate_batch's rk8 given an rtol takes each body's step that meets it, as simulate does (each
+    row the lone run's to round-off: the batch steps bodies in vector lanes), not the default step;
+    what a method does not read warns once for the batch, also where it loops over simulate."""
+    I = np.array([[1.0, 2.0, 3.0], [0.125, 0.3125, 0.4375], [10.0, 12.0, 15.0]])
+    w0 = np.array([[0.1, 1.0, 0.1], [0.1, 10.0, 0.1], [0.05, 1.0, 0.05]])
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        batch = tumble.simulate_batch(I, w0, t_end=2.0, samples=21, method="rk8", torque=TORQUE, rtol=1e-6)
+        plain = tumble.simulate_batch(I, w0, t_end=2.0, samples=21, method="rk8", torque=TORQUE)
+    assert not [w for w in seen if issubclass(w.category, IgnoredArgumentWarning)]
+    for i in range(len(I)):
+        lone = tumble.simulate(tumble.MassProperties.from_moments(I[i]), w0[i], t_end=2.0, samples=21, method="rk8",
+                               torque=TORQUE, rtol=1e-6)
+        assert np.max(np.abs(batch.omega[i] - lone.omega)) <= 1e-12 * np.max(np.abs(lone.omega))
+    assert np.max(np.abs(batch.omega[1] - plain.omega[1])) > 1e-10   # not the default step
+    for torque in (TORQUE, lambda t, w, R: np.array([0.01, 0.02, -0.01])):   # the engine; the loop of simulate
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            tumble.simulate_batch(I, w0, t_end=2.0, samples=21, method="dop853", torque=torque, step=0.1)
+        said = [str(w.message) for w in seen if issubclass(w.category, IgnoredArgumentWarning)]
+        assert said == ["step = 0.1 has no effect with method = 'dop853', which chooses its steps to meet rtol: a "
+                        "fixed-step method (rk4, rk8, geometric...) takes step"], said
+    with pytest.raises(ValueError, match=r"^rtol = 1e-13 is below what rk8's fixed steps meet"):
+        tumble.simulate_batch(I, w0, t_end=2.0, samples=21, method="rk8", torque=TORQUE, rtol=1e-13)

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass, replace
 from typing import Any, cast, overload
 
@@ -45,17 +46,12 @@ from ..validation import (
 from . import _display
 from .euler import angular_momentum, kinetic_energy, relative_drift
 from .engine.stepsize import check_rtol
-from .methods.auto import AUTO_RTOL, dop853_tolerances
+from .methods.arguments import IgnoredArgumentWarning, warn_ignored
+from .methods.auto import AUTO_RTOL, dop853_tolerances, rk_step
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
 from .methods.names import ALLOWED, AUTO
-from .models.torques import (
-    TorqueLike,
-    TorqueModel,
-    as_torque,
-    bind_to_body,
-    kernel_form,
-)
+from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, kernel_form
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion
 from .trajectory import Trajectory
@@ -275,7 +271,8 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         of the batch (so each body gets at most the step a lone run would).
     rtol, atol : float, optional
         Tolerances of ``"dop853"`` (and ``"rk45"``), as :func:`tumble.simulate` takes them; the
-        method's defaults if not given.
+        method's defaults if not given. ``"rk4"`` and ``"rk8"`` given ``rtol`` and no ``step`` take
+        each body's step that meets it, as a lone run does; what a method does not read warns.
 
     Returns
     -------
@@ -306,6 +303,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
     spec = get_method(("exact" if model is None else "dop853") if auto else method)
     step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
+    warn_ignored(spec, auto=auto, rtol=rtol, atol=atol, step=step)  # as simulate does (its loop below says nothing)
     asked = rtol, atol  # what a lone simulate(method="auto") takes, for a torque of one's own
     if auto and model is not None:  # the engine's dop853, its local error control tighter than the accuracy asked for
         r = AUTO_RTOL if rtol is None else check_rtol("rtol", rtol)
@@ -471,8 +469,9 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
     spin = np.array([math.hypot(*w) for w in w0.tolist()])  # as simulate takes it, to the last bit
     gains = np.broadcast_to(spin_gains(model, 0.0, w0, Rotation.from_quat(q0), I, t_end), spin.shape)  # per body
     form = cast(tuple[int, tuple[float, ...]], kernel_form(model))
-    if spec.fixed_step:  # each body's own default step, as a lone run takes it
-        rule = cast(StepRule, spec.default_step)
+    if spec.fixed_step:  # each body's own step as a lone run takes it: the default, or the one meeting a given rtol
+        rule = cast(StepRule, spec.default_step) if rtol is None else (
+            lambda s, g, r=check_rtol("rtol", rtol): rk_step(spec.name, r, s + g, asked=True) or math.inf)
         h = np.full(len(I), step) if step is not None else np.array([rule(s, g) for s, g in zip(spin.tolist(),
                                                                                                  gains.tolist())])
         _bound_work(spec, float(np.max(spin)), float(np.max(gains)), t_end, float(np.min(h)))
@@ -489,12 +488,13 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
 
 def _loop(name: str, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray, torque: TorqueLike | None,
           step: float | None, rtol: float | None = None, atol: float | None = None) -> tuple[Vector3, Quaternion]:
-    """A loop of :func:`tumble.simulate`, one body at a time (the adaptive methods and the seed's, and
-    ``"auto"`` with a torque of one's own)."""
+    """A loop of :func:`tumble.simulate`, a body at a time (adaptive methods, the seed's, "auto" with a Python torque)."""
     omega, quat = np.empty((len(I), len(t), 3)), np.empty((len(I), len(t), 4))
     for i in range(len(I)):
         props = MassProperties(1.0, np.zeros(3), np.diag(I[i]), I[i].copy(), np.eye(3))
-        traj = simulate(props, w0[i], times=t, method=name, torque=torque, attitude0=q0[i], step=step, rtol=rtol,
-                        atol=atol)
+        with warnings.catch_warnings():  # what the method does not read: said once, by simulate_batch
+            warnings.simplefilter("ignore", IgnoredArgumentWarning)
+            traj = simulate(props, w0[i], times=t, method=name, torque=torque, attitude0=q0[i], step=step, rtol=rtol,
+                            atol=atol)
         omega[i], quat[i] = traj.omega, traj.quat
     return omega, quat
