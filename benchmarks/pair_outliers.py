@@ -23,7 +23,6 @@ from __future__ import annotations
 import json
 import sys
 import time
-import warnings
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
@@ -32,24 +31,16 @@ import numpy as np
 from tumble.analysis.fit import find_flights
 from tumble.analysis.fit.solve import without_drag_law_error
 from tumble.analysis.fit.summary import public_covariance, ratio_scale_effect
-from tumble.analysis.fit.synthetic import synthetic_recording
 
 sys.path.insert(0, str(Path(__file__).parent))
-from pool_coverage import KINDS  # noqa: E402  (the benchmarks' own module)
+from pool_coverage import KINDS, quietly, recording  # noqa: E402  (the benchmarks' own module)
 
 WAYS = ("statistical", "independent scale (the test's)", "common scale")
 
 
 def _pairs(job: tuple[str, str, int]) -> list[list[float]]:
     """chi^2 of every pair of one recording's flights, the three ways."""
-    body, kind, seed = job
-    rec = synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        try:
-            flights = find_flights(rec.t, rec.omega, events=rec.events)
-        except ValueError:  # no usable flight
-            return []
+    flights = quietly(find_flights, recording(*job)) or []
     sols = [f.solution for f in flights if f.solution is not None and f.status == "ok" and not f.joinable]
     out = []
     for i, a in enumerate(sols):

@@ -39,15 +39,27 @@ KINDS = {"tidy": FIT_KINDS["tidy"], "many": FIT_KINDS["many"],
          "slow": lambda rng: dict(tosses=3, rate=100.0, spin=(6.0, 10.0))}
 
 
-def _one_recording(body: str, kind: str, seed: int) -> dict | None:
-    """The pooled answer of one recording against the truth, or None when it pools fewer than two flights."""
-    rec = synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
+def recording(body: str, kind: str, seed: int):
+    """The synthetic recording of a cell's seed (:data:`KINDS`), each seed with its own gyroscope."""
+    return synthetic_recording(seed, body=body, **KINDS[kind](np.random.default_rng(seed)))
+
+
+def quietly(fit, rec):
+    """``fit(t, omega, events=...)`` of ``rec`` with its warnings silenced, or None where it finds no flight."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         try:
-            fit = fit_recording(rec.t, rec.omega, events=rec.events)
+            return fit(rec.t, rec.omega, events=rec.events)
         except ValueError:  # no usable flight
             return None
+
+
+def _one_recording(body: str, kind: str, seed: int) -> dict | None:
+    """The pooled answer of one recording against the truth, or None when it pools fewer than two flights."""
+    rec = recording(body, kind, seed)
+    fit = quietly(fit_recording, rec)
+    if fit is None:
+        return None
     own = [toss.fit.ratios_std for toss in fit.tosses if toss.status == "ok" and toss.fit is not None and not toss.reason]
     if fit.tosses_used < 2 or not own:
         return None
