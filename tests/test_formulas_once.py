@@ -66,6 +66,11 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
         (r"OMEGA_EARTH\*", r"\*OMEGA_EARTH\b"),
         ("theta = gmst0 + OMEGA_EARTH * t", "c = math.cos(t * OMEGA_EARTH)"),
     ),
+    "a circular orbit's direction over floats ((cos n t, sin n t))": (
+        "dynamics/environment/orbit.py",
+        (r"cos\((\w+)\*(\w+)\),\w*\.?sin\(\1\*\2\)",),
+        ("return math.cos(n * t), math.sin(n * t)", "u0, u1 = (math.cos(n * t), math.sin(n * t)) if n != 0.0 else (1.0, 0.0)"),
+    ),
     "the dipole field ((a/r)^3 (3 (g . r^) r^ - g))": (
         "dynamics/environment/magnetic.py",
         (r"3(\.0)?\*\(\w+\*g\w*\+\w+\*g\w*\+\w+\*g\w*\)", r"3(\.0)?\*\(\w+@g\w*\)"),

@@ -40,6 +40,7 @@ import numpy as np
 
 from ...jit import jit
 from ...typing import FloatArray
+from ..engine.kernels import _direction  # a circular orbit's direction, the engine's
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
@@ -67,14 +68,6 @@ _error_norm = jit(error_norm, error_model="numpy")
 _next_step = jit(next_step, error_model="numpy")
 _first_trial_step = jit(first_trial_step, error_model="numpy")
 _initial_step = jit(initial_step, error_model="numpy")
-
-
-@jit(error_model="numpy")
-def _direction(n: float, t: float) -> tuple[float, float]:  # pragma: no cover - compiled
-    """A circular orbit's direction ``(cos n t, sin n t)`` at ``t`` (s); ``(1, 0)`` without one (``n = 0``)."""
-    if n == 0.0:
-        return 1.0, 0.0
-    return math.cos(n * t), math.sin(n * t)
 
 
 def _sized_source() -> str:

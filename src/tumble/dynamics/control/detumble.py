@@ -57,6 +57,7 @@ from ..models.gravity import GravityGradient, gradient_torque
 from ..environment.earth import earth_angle
 from ..euler import euler_components
 from ..environment.magnetic import DipoleField
+from ..environment.orbit import plane_direction
 from ..engine.tableau import RK4_A, RK4_B, RK4_C
 from ..engine.unrolled import fixed_step_source, state_layout
 from ..models.sensors import Sensors
@@ -398,7 +399,7 @@ def _numpy_rhs(t: float, y: tuple[FloatArray, ...], P: tuple[()], X: tuple[Any, 
     field, I, m, theta0, n_gg, node = X
     if node[0] != t:
         node[:] = [t, _field_world(field, t, theta0),
-                   (n_gg, math.cos(n_gg * t), math.sin(n_gg * t)) if n_gg > 0.0 else None]
+                   (n_gg, *plane_direction(n_gg, t)) if n_gg > 0.0 else None]
     kq, kw = _rhs(node[1], I, m, np.array(y[:4]), np.array(y[4:]), node[2])
     return (*kq, *kw)
 

@@ -51,6 +51,7 @@ import numpy as np
 from numba import prange
 
 from ...jit import jit
+from ..environment.orbit import plane_direction
 from ..euler import euler_components
 from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD
@@ -91,6 +92,8 @@ _euler = jit(euler_components, error_model="numpy", inline="always")
 _quaternion_rate = jit(quaternion_rate_components, error_model="numpy", inline="always")
 _to_body = jit(to_body, error_model="numpy", inline="always")
 _gravity_gradient = jit(gradient_components, error_model="numpy", inline="always")
+#: A circular orbit's direction (cos n t, sin n t) at t (:func:`~tumble.dynamics.environment.orbit.plane_direction`).
+_direction = jit(plane_direction, error_model="numpy", inline="always")
 _error_norm = jit(error_norm, error_model="numpy", inline="always")
 _next_step = jit(next_step, error_model="numpy", inline="always")
 _first_trial_step = jit(first_trial_step, error_model="numpy", inline="always")
@@ -201,14 +204,6 @@ def _finite(y: tuple[float, ...]) -> bool:
     for v in y:
         total += v
     return math.isfinite(total)
-
-
-@jit(error_model="numpy", inline="always")
-def _direction(n: float, t: float) -> tuple[float, float]:
-    """The circular orbit's direction ``(cos nt, sin nt)`` at ``t`` (s); ``(1, 0)`` without an orbit."""
-    if n == 0.0:
-        return 1.0, 0.0
-    return math.cos(n * t), math.sin(n * t)
 
 
 @jit(error_model="numpy", inline="always")

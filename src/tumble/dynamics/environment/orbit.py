@@ -29,12 +29,32 @@ from ...typing import ArrayLike, Vector3
 from ...validation import check_number, check_positive
 from .earth import MU_EARTH, R_EARTH
 
-__all__ = ["MIN_ALTITUDE", "CircularOrbit"]
+__all__ = ["MIN_ALTITUDE", "CircularOrbit", "plane_direction"]
 
 
 #: The lowest altitude of an orbit around the Earth, m: the Karman line. Below it the air brings a
 #: satellite down within hours (the lowest held, SLATS's 167 km in 2019, took thrust against the drag).
 MIN_ALTITUDE = 100e3
+
+
+def plane_direction(n: float, t: float) -> tuple[float, float]:
+    """The radius's direction in the orbit-plane frame, ``(cos n t, sin n t)``, at ``t`` (s) on a
+    circular orbit of mean motion ``n`` (rad/s); ``(1, 0)`` without an orbit (``n = 0``).
+
+    Over floats: the one writing, which the engine's kernels compile (:mod:`tumble.dynamics.engine.kernels`)
+    and the numpy paths call.
+
+    Examples
+    --------
+    >>> import math
+    >>> from tumble.dynamics.environment.orbit import plane_direction
+    >>> n = 2.0 * math.pi / 5400.0   # a 90-minute orbit
+    >>> [round(x, 12) for x in plane_direction(n, 1350.0)], plane_direction(0.0, 10.0)   # a quarter on; no orbit
+    ([0.0, 1.0], (1.0, 0.0))
+    """
+    if n == 0.0:
+        return 1.0, 0.0
+    return math.cos(n * t), math.sin(n * t)
 
 
 @dataclass(frozen=True)

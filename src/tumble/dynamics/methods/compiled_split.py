@@ -28,7 +28,7 @@ from numba import prange
 
 from ...jit import jit
 from ...typing import FloatArray
-from ..engine.kernels import external_torque
+from ..engine.kernels import _direction, external_torque
 from ..engine.stepsize import equal_steps
 from .compiled_flow import WORK, free_flow_into
 
@@ -57,7 +57,7 @@ def kick_torque(body: tuple[float, ...], q: FloatArray, t: float, P: tuple[float
     >>> np.round(out, 12) + 0.0   # the world's x is the body's -y
     array([ 0., -1.,  0.])
     """
-    u0, u1 = (math.cos(n * t), math.sin(n * t)) if n != 0.0 else (1.0, 0.0)
+    u0, u1 = _direction(n, t)  # the circular orbit's direction, the engine's
     a0, a1, a2 = external_torque(body, 0.0, 0.0, 0.0, q[0], q[1], q[2], q[3], u0, u1, P)
     out[0], out[1], out[2] = a0, a1, a2
 
