@@ -245,7 +245,7 @@ def test_a_hold_interval_types_only_its_own_methods_steps(method, typed):
     (compiled_loop.method_flags): numba drops the other methods' branches before typing them, so a
     run compiles its own method's steps and not the others' (a first run along an ellipse with rk8
     compiled all three: 15.8 CPU-s, 7.7 without the DOP853 and RK4 steps). In a fresh process, an
-    uncached compile of the interval and of the fixed steps (the kernels' own may be in the cache,
+    uncached compile of the interval, of DOP853's step control and of the fixed steps (the kernels' own may be in the cache,
     whose callees numba then never types): the steps it typed, what numba lists as compiled or loaded."""
     import subprocess
     import sys
@@ -258,6 +258,7 @@ def test_a_hold_interval_types_only_its_own_methods_steps(method, typed):
         "from tumble.dynamics.control import compiled_loop as c\n"
         "from tumble.dynamics.control.loop_terms import packed\n"
         "c._fixed_steps = njit(error_model='numpy')(c._fixed_steps.py_func)\n"
+        "c.dop853_accept = njit(error_model='numpy')(c.dop853_accept.py_func)\n"
         "advance = njit(error_model='numpy')(c._advance.py_func)\n"
         "P = np.zeros(c.TABLES)\n"
         "P[:12] = (1.0, 2.0, 3.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 1 / 3)\n"

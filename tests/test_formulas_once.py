@@ -71,6 +71,12 @@ FORMULAS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
         (r"cos\((\w+)\*(\w+)\),\w*\.?sin\(\1\*\2\)",),
         ("return math.cos(n * t), math.sin(n * t)", "u0, u1 = (math.cos(n * t), math.sin(n * t)) if n != 0.0 else (1.0, 0.0)"),
     ),
+    "DOP853's step control (an accepted step and its rejections, scipy's RungeKutta._step_impl)": (
+        "dynamics/engine/unrolled.py",
+        (r"np\.nextafter\(t\w*,np\.inf\)-t", r"_next_step\(_error_norm\("),
+        ("min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)",
+         "accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, _size(P)), h_abs, rejected)"),
+    ),
     "the dipole field ((a/r)^3 (3 (g . r^) r^ - g))": (
         "dynamics/environment/magnetic.py",
         (r"3(\.0)?\*\(\w+\*g\w*\+\w+\*g\w*\+\w+\*g\w*\)", r"3(\.0)?\*\(\w+@g\w*\)"),

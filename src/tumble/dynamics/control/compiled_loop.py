@@ -16,7 +16,8 @@ loaded machine); the padded size with its right-hand side called, not inlined, c
 CPU-s (:func:`_generated`).
 
 **One hold interval** (:func:`_advance`): DOP853 with scipy's error norm, step control and
-starting step (:mod:`~tumble.dynamics.engine.stepsize`; Hairer, Norsett & Wanner, *Solving
+starting step, the engine's loop of tries (:func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`
+over this state) and its helpers (:mod:`~tumble.dynamics.engine.stepsize`; Hairer, Norsett & Wanner, *Solving
 ODEs I*, 2nd ed., sec. II.4 and II.10), step for step scipy's ``solve_ivp`` over the interval;
 or, with ``carry``, starting from the step the last interval's error control proposed
 (clipped to the interval) instead of a new starting-step estimate: where a step spans an
@@ -41,9 +42,10 @@ import numpy as np
 from ...jit import jit
 from ...typing import FloatArray
 from ..engine.kernels import _direction  # a circular orbit's direction, the engine's
+from ..engine.status import BUDGET_SPENT, OK as _OK, STEP_COLLAPSED as _STEP_COLLAPSED
 from ..engine.stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step, rms
 from ..engine.tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
-from ..engine.unrolled import Layout, dop853_sources, fixed_step_source, rotations_source
+from ..engine.unrolled import Layout, dop853_accept_source, dop853_sources, fixed_step_source, rotations_source
 from .loop_laws import NO_MEMORY, held, law_command
 from .loop_terms import BODY, FIELD_NONE, WHEEL, field_body, packed, rhs_namespace, rhs_source, tables
 
@@ -60,14 +62,20 @@ N = 10 + MAX_WHEELS
 TABLES = BODY + WHEEL * MAX_WHEELS
 #: The steps' layout: a state of :data:`N` floats, the right-hand side ``rhs(t, y, P, u0, u1)``.
 LAYOUT = Layout(N, "P", True)
-#: Statuses: done; the step fell below 10 ulp of t.
-OK, STEP_COLLAPSED = 0, 1
+#: Statuses (the engine's): done; the step fell below 10 ulp of t.
+OK, STEP_COLLAPSED = _OK, _STEP_COLLAPSED
 
 _rms = jit(rms, error_model="numpy")
 _error_norm = jit(error_norm, error_model="numpy")
 _next_step = jit(next_step, error_model="numpy")
 _first_trial_step = jit(first_trial_step, error_model="numpy")
 _initial_step = jit(initial_step, error_model="numpy")
+
+
+@jit(error_model="numpy")
+def _size(P: Any) -> int:  # pragma: no cover - compiled
+    """The run's own state size ``10 + k`` (``k = P[20]`` wheels)."""
+    return 10 + int(P[20])
 
 
 def _sized_source() -> str:
@@ -83,7 +91,8 @@ def _sized_source() -> str:
         fixed_step_source("rk4_step", RK4_A, RK4_B, RK4_C, LAYOUT),
         fixed_step_source("rk8_step", DOP853_A[:12, :12], DOP853_B, DOP853_C[:12], LAYOUT),
         rotations_source("rk4_turns", RK4_C), rotations_source("rk8_turns", DOP853_C[:12]),
-        rotations_source("dop853_turns", DOP853_C[:13])])
+        rotations_source("dop853_turns", DOP853_C[:13]),
+        dop853_accept_source(LAYOUT, "dop853_accept", "_size(P)")])
 
 
 def _generated() -> dict[str, Callable[..., Any]]:
@@ -99,12 +108,16 @@ def _generated() -> dict[str, Callable[..., Any]]:
     array argument cost two atomic operations a call. The steps have no wrapper for Python (only
     the loop calls them; the first closed loop's compile 14.6 -> 13.6 CPU-s, measured). The code
     object is named after this file, so numba's cache keys them on the sources (:func:`tumble.jit.jit`)."""
-    namespace: dict[str, Any] = dict(rhs_namespace())
+    namespace: dict[str, Any] = dict(rhs_namespace(), np=np, OK=OK, STEP_COLLAPSED=STEP_COLLAPSED, BUDGET_SPENT=BUDGET_SPENT,
+                                     _error_norm=_error_norm, _next_step=_next_step, _size=_size)
     exec(compile(_sized_source(), __file__, "exec"), namespace)  # noqa: S102 - our own generated source
     inlined = ("tuple_of", "store", "with_quaternion", "axpy", "rk4_turns", "rk8_turns", "dop853_turns")
     for name in (*inlined, "rhs", "dop853_step", "dop853_errors", "rk4_step", "rk8_step"):  # the steps call them by name
         namespace[name] = jit(namespace[name], error_model="numpy", inline="always" if name in inlined else "never",
                               _nrt=False, no_cpython_wrapper=name not in ("rhs", *inlined))
+    # DOP853's step control, the engine's one writing, inlined by LLVM into the hold interval
+    namespace["dop853_accept"] = jit(namespace["dop853_accept"], error_model="numpy", forceinline=True,
+                                     no_cpython_wrapper=True)
     return namespace
 
 
@@ -114,6 +127,7 @@ with_quaternion = _SIZED["with_quaternion"]
 dop853_step, dop853_errors, rk4_step, rk8_step = (_SIZED["dop853_step"], _SIZED["dop853_errors"], _SIZED["rk4_step"],
                                                   _SIZED["rk8_step"])
 rk4_turns, rk8_turns, dop853_turns = _SIZED["rk4_turns"], _SIZED["rk8_turns"], _SIZED["dop853_turns"]
+dop853_accept = _SIZED["dop853_accept"]
 
 
 @jit(error_model="numpy")
@@ -133,12 +147,6 @@ def set_command(P: FloatArray, d0: float, d1: float, d2: float, u: FloatArray) -
     P[12], P[13], P[14] = d0, d1, d2
     for j in range(MAX_WHEELS):
         P[BODY + WHEEL * j + 9] = u[j]
-
-
-@jit(error_model="numpy")
-def _size(P: Any) -> int:  # pragma: no cover - compiled
-    """The run's own state size ``10 + k`` (``k = P[20]`` wheels)."""
-    return 10 + int(P[20])
 
 
 @jit(error_model="numpy")
@@ -175,11 +183,13 @@ def _put(R: FloatArray, at: int, values: Any) -> None:  # pragma: no cover - com
         R[at + j] = values[j]
 
 
-#: Where each method's turns start in the array of :func:`_turns` (after the three steps they were
-#: made for), two floats a stage node: RK8's 12, RK4's 4, DOP853's 13; and the array's length.
-_RK8_AT = 3
+#: Where each method's turns start in the array of :func:`_turns` (RK8's and RK4's after the two steps
+#: they were made for, DOP853's after its own, as its step control takes them,
+#: :func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`), two floats a stage node: RK8's 12,
+#: RK4's 4, DOP853's 13; and the array's length.
+_RK8_AT = 2
 _RK4_AT = _RK8_AT + 2 * len(DOP853_C[:12])
-_DOP853_AT = _RK4_AT + 2 * len(RK4_C)
+_DOP853_AT = _RK4_AT + 2 * len(RK4_C) + 1
 _TURNS = _DOP853_AT + 2 * len(DOP853_C[:13])
 
 
@@ -187,11 +197,12 @@ _TURNS = _DOP853_AT + 2 * len(DOP853_C[:13])
 def _turns() -> FloatArray:  # pragma: no cover - compiled
     """Room for the turns of a circular orbit's direction to the stage nodes of each method, kept
     from step to step while the step ``h`` (s) stays the same (the fixed steps of equal intervals):
-    the steps ``h`` of RK8, RK4 and DOP853 they were made for (NaN: none yet, so the first step
-    makes them), then their turns (from ``_RK8_AT``, ``_RK4_AT``, ``_DOP853_AT``). An array the steps read
-    in place, not tuples passed to and returned from each interval (a third of an interval's call cost)."""
+    the steps ``h`` of RK8 and RK4 they were made for (NaN: none yet, so the first step makes them),
+    their turns (from ``_RK8_AT``, ``_RK4_AT``), DOP853's step and turns (from ``_DOP853_AT - 1``). An
+    array the steps read in place, not tuples passed to and returned from each interval (a third of
+    an interval's call cost)."""
     R = np.empty(_TURNS)
-    R[0], R[1], R[2] = math.nan, math.nan, math.nan
+    R[0], R[1], R[_DOP853_AT - 1] = math.nan, math.nan, math.nan
     return R
 
 
@@ -264,28 +275,12 @@ def _advance(y: Any, t0: float, t1: float, P: Any, rtol: float, atol: float, dop
     if h_abs <= 0.0:
         h_abs = _start(y, f, t0, t1, P, rtol, atol)
     t = t0
-    while True:  # one accepted step (scipy's RungeKutta._step_impl)
-        min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
-        h_abs = max(h_abs, min_step)
-        rejected = False
-        while True:
-            if h_abs < min_step:
-                return STEP_COLLAPSED, y, h_abs
-            t_new = t + h_abs
-            if t_new - t1 > 0.0:
-                t_new = t1
-            h = t_new - t
-            h_abs = abs(h)
-            if h != R[2]:  # the turns to the stage nodes, once per step length
-                R[2] = h
-                _put(R, _DOP853_AT, dop853_turns(n, h))
-            y_new, K = dop853_step(t, y, f, h, P, cs, ss, R[_DOP853_AT:_TURNS])
-            e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
-            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, _size(P)), h_abs, rejected)
-            if accepted:
-                break
-            rejected = True
-        t, y, f = t_new, y_new, K[12]
+    while True:  # one accepted step (the engine's step control), until the interval's end
+        status, t, y, K, h_abs, _ = dop853_accept(t, y, f, h_abs, t1, rtol, atol, P, cs, ss, n, R[_DOP853_AT - 1:], 0,
+                                                  math.inf)
+        if status != OK:
+            return status, y, h_abs
+        f = K[12]
         cs, ss = _direction(n, t)
         if t - t1 >= 0.0:
             return OK, y, h_abs

@@ -31,8 +31,10 @@ by :mod:`~tumble.dynamics.engine.unrolled`:
   step for step scipy's ``solve_ivp(method="DOP853", t_eval=...)``: its starting step
   (``select_initial_step``, HNW sec. II.4), error norm (the 5th- and 3rd-order estimates
   combined, RMS with ``scale = atol + rtol max(|y|, |y_new|)``), step control (safety 0.9,
-  factors in [0.2, 10], no growth after a rejection) and dense output. So the compiled and the
-  Python paths agree to round-off, not only to the tolerance (tests/test_engine.py).
+  factors in [0.2, 10], no growth after a rejection; the loop of tries written once,
+  :func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`, which the closed loop's hold
+  intervals take too) and dense output. So the compiled and the Python paths agree to round-off,
+  not only to the tolerance (tests/test_engine.py).
 - :data:`fixed_rk4`, :data:`fixed_rk8` (and :func:`fixed_rk`, either by number): RK4 or the 8th-order
   weights of DOP853 (:data:`RK4`, :data:`RK8`) at equal steps no longer than ``step`` in each sample
   interval, the one fixed-step loop of :func:`~tumble.dynamics.engine.unrolled.fixed_loop_source`.
@@ -59,7 +61,7 @@ from ..special.quaternion import quaternion_rate_components, to_body
 from .stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step
 from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
-from .unrolled import STATE, dop853_sources, fixed_loop_source, fixed_step_source, rotations_source
+from .unrolled import STATE, dop853_accept_source, dop853_sources, fixed_loop_source, fixed_step_source, rotations_source
 
 __all__ = ["RK4", "RK8", "dop853", "dop853_batch", "external_torque", "fixed_batch", "fixed_rk", "fixed_rk4", "fixed_rk8",
            "generated", "rhs"]
@@ -140,14 +142,15 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
 
 
 def generated(source: str, filename: str, module: str, *, parallel: bool = False, inner: bool = False,
-              **names: Any) -> dict[str, Any]:
+              forceinline: bool = False, **names: Any) -> dict[str, Any]:
     """The functions the generated ``source`` (:mod:`~tumble.dynamics.engine.unrolled`) defines,
     compiled, by name (``parallel``: with numba's ``prange`` over every core); ``names`` what they
     call (``rhs``, helpers), ``math`` always. ``inner``: functions that only compiled code calls (the
     steps), compiled without the wrapper through which Python calls a kernel (numba's
     ``no_cpython_wrapper``; :data:`tumble.jit._SPEED_ONLY`): a tenth of the first torque
     ``simulate``'s compile. Python must not call them: numba has no entry for it and the
-    interpreter crashes. The helpers of the steps (``rhs``, the formulas) keep theirs, as a
+    interpreter crashes. ``forceinline``: inlined by LLVM where they are called (as :func:`rhs`).
+    The helpers of the steps (``rhs``, the formulas) keep theirs, as a
     function's ``py_func`` run in Python calls them. The code object
     is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
     keys the kernels on the sources (:func:`tumble.jit.jit`).
@@ -168,7 +171,8 @@ def generated(source: str, filename: str, module: str, *, parallel: bool = False
     namespace: dict[str, Any] = {"math": math, "__name__": module, **names}
     given = set(namespace)
     exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
-    return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel, no_cpython_wrapper=inner)
+    return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel, no_cpython_wrapper=inner,
+                      **({"forceinline": True} if forceinline else {}))
             for name, f in namespace.items()
             if name not in given and name != "__builtins__"}
 
@@ -182,6 +186,14 @@ _rk4_step, _rk4_turns = _STEPS["rk4_step"], _STEPS["rk4_turns"]
 _rk8_step, _rk8_turns = _STEPS["rk8_step"], _STEPS["rk8_turns"]
 _dop853_step, _dop853_errors, _dop853_turns = _STEPS["dop853_step"], _STEPS["dop853_errors"], _STEPS["dop853_turns"]
 _dop853_dense, _dop853_interpolate = _STEPS["dop853_dense"], _STEPS["dop853_interpolate"]
+#: The length of the array of DOP853's turns to its stage nodes, the step they were made for first.
+_DOP853_TURNS = 1 + 2 * len(DOP853_C)
+#: One accepted DOP853 step with its rejections (:func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`,
+#: the closed loop's too), inlined by LLVM into the kernel's loop: the 13 slopes it returns are not copied again.
+_dop853_accept = generated(dop853_accept_source(), __file__, __name__, inner=True, forceinline=True, np=np, OK=OK,
+                           STEP_COLLAPSED=STEP_COLLAPSED, BUDGET_SPENT=BUDGET_SPENT, _error_norm=_error_norm,
+                           _next_step=_next_step, dop853_step=_dop853_step, dop853_errors=_dop853_errors,
+                           dop853_turns=_dop853_turns)["dop853_accept"]
 
 
 @jit(error_model="numpy", inline="always")
@@ -249,36 +261,22 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
     h_abs = _initial_step(y, f, t, t_bound, body, P, n, rtol, atol)
     k = 0  # the next sample
     samples = t_eval.shape[0]
+    R = np.empty(_DOP853_TURNS)  # the step the turns to the stage nodes were made for, and the turns
+    R[0] = math.nan
     while k < samples:
         if t == t_bound:  # a run of one sample, at the start
             _store(y, omega[k], quat[k])
             k += 1
             continue
-        min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
-        h_abs = max(h_abs, min_step)
-        rejected = False
         cs, ss = _direction(n, t)
-        while True:  # one accepted step (scipy's RungeKutta._step_impl)
-            if h_abs < min_step:
-                return STEP_COLLAPSED
-            if evaluations > MAX_EVALUATIONS:
-                return BUDGET_SPENT
-            t_new = t + h_abs
-            if t_new - t_bound > 0.0:
-                t_new = t_bound
-            h = t_new - t
-            h_abs = abs(h)
-            rot = _dop853_turns(n, h)
-            y_new, K = _dop853_step(y, f, h, body, P, cs, ss, rot)
-            evaluations += 12
-            e5, e3 = _dop853_errors(K, y, y_new, rtol, atol)
-            accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, STATE), h_abs, rejected)
-            if accepted:
-                break
-            rejected = True
+        status, t_new, y_new, K, h_abs, evaluations = _dop853_accept(t, y, f, h_abs, t_bound, rtol, atol, body, P, cs,
+                                                                     ss, n, R, evaluations, MAX_EVALUATIONS)
+        if status != OK:
+            return int(status)
+        h = t_new - t
         # samples in (t, t_new], and t itself for the first: scipy's searchsorted(t_eval, t_new, "right")
         if t_eval[k] <= t_new:
-            F = _dop853_dense(y, y_new, K, h, body, P, cs, ss, rot)
+            F = _dop853_dense(y, y_new, K, h, body, P, cs, ss, R[1:])
             evaluations += 3
             while k < samples and t_eval[k] <= t_new:
                 sample = _dop853_interpolate(F, y, (t_eval[k] - t) / h)

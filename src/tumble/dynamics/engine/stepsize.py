@@ -1,6 +1,7 @@
 """DOP853's step-size control as scipy runs it, over plain floats: written once, compiled by the
 engine's stepper (:func:`tumble.dynamics.engine.kernels.dop853`) and by the closed loop's
-(:mod:`tumble.dynamics.control.compiled_loop`).
+(:mod:`tumble.dynamics.control.compiled_loop`), both through the one loop of tries that calls them
+(:func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`).
 
 Hairer, Norsett & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., sec. II.4 and
 II.10, in the form of :class:`scipy.integrate.DOP853` (``_estimate_error_norm`` and

@@ -42,7 +42,8 @@ Coefficients = Union[Sequence[float], np.ndarray]
 
 from .tableau import DOP853_A, DOP853_B, DOP853_C, DOP853_D, DOP853_E3, DOP853_E5
 
-__all__ = ["LANE_ROWS", "LOOPED_TERMS", "RIGID_BODY", "STATE", "Layout", "dop853_errors_lines", "dop853_sources", "fixed_loop_source",
+__all__ = ["LANE_ROWS", "LOOPED_TERMS", "RIGID_BODY", "STATE", "Layout", "dop853_accept_source", "dop853_errors_lines",
+           "dop853_sources", "fixed_loop_source",
            "fixed_step_source", "lane_rows", "lane_step_source", "rotations_source", "state_layout"]
 
 #: Size of the rigid body's state ``(omega, q)``.
@@ -305,6 +306,65 @@ def dop853_sources(layout: Layout = RIGID_BODY, step: str = "dop853_step", error
         interpolate.append(f"    v{i} = {v} + y[{i}]")
     interpolate.append(f"    return ({', '.join(f'v{i}' for i in range(n))})")
     return "\n".join(["\n".join(lines), "\n".join(error_lines), "\n".join(dense_lines), "\n".join(interpolate)]) + "\n"
+
+
+def dop853_accept_source(layout: Layout = RIGID_BODY, name: str = "dop853_accept", size: str = str(STATE)) -> str:
+    """The source of one accepted DOP853 step with its rejections, as scipy's ``RungeKutta._step_impl``
+    takes it: the one writing of DOP853's step control, for every state the engine steps by it (the
+    rigid body's; the closed loop's, :mod:`~tumble.dynamics.control.compiled_loop`). Hairer, Norsett &
+    Wanner, *Solving ODEs I*, 2nd ed., sec. II.4.
+
+    ``name(t, y, f, h_abs, t_bound, rtol, atol, <params>, cs, ss, n, R, evaluations, budget)``: from
+    ``y`` at ``t`` (s) with its slope ``f``, the step ``h_abs`` (s) proposed, not past ``t_bound``;
+    ``cs, ss`` the circular orbit's direction at ``t`` and ``n`` its mean motion (rad/s); ``R`` an
+    array holding the step the turns to the stage nodes were made for (``R[0]``, NaN: none yet)
+    and the turns (``R[1:]``), remade only when the step changes (a closed loop's equal hold
+    intervals take one step each); ``evaluations`` the right-hand sides spent, at most ``budget``.
+    Returns ``(status, t_new, y_new, K, h_abs, evaluations)``: ``OK`` and the accepted step's
+    end, state, 13 slopes (``K[12]`` the new slope) and the next step proposed; or
+    ``STEP_COLLAPSED`` (the step fell below 10 ulp of t) or ``BUDGET_SPENT`` with the state as it
+    was. It calls ``dop853_step``, ``dop853_errors`` and ``dop853_turns`` (:func:`dop853_sources`,
+    :func:`rotations_source`) and the step size's helpers ``_error_norm`` and ``_next_step``
+    (:mod:`~tumble.dynamics.engine.stepsize`), the error norm over ``size`` components (an
+    expression: a padded state's own count).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.unrolled import dop853_accept_source
+    >>> source = dop853_accept_source()
+    >>> source.splitlines()[0]
+    'def dop853_accept(t, y, f, h_abs, t_bound, rtol, atol, I, P, cs, ss, n, R, evaluations, budget):'
+    >>> source.count("dop853_step(")   # one step a try, tried until one is accepted
+    1
+    """
+    slopes = "(" + ", ".join("f" for _ in range(13)) + ")"  # a K of the right type where none was made
+    return f"""def {name}(t, y, f, h_abs, t_bound, rtol, atol, {layout.params}, cs, ss, n, R, evaluations, budget):
+    min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
+    h_abs = max(h_abs, min_step)
+    rejected = False
+    while True:
+        if h_abs < min_step:
+            return STEP_COLLAPSED, t, y, {slopes}, h_abs, evaluations
+        if evaluations > budget:
+            return BUDGET_SPENT, t, y, {slopes}, h_abs, evaluations
+        t_new = t + h_abs
+        if t_new - t_bound > 0.0:
+            t_new = t_bound
+        h = t_new - t
+        h_abs = abs(h)
+        if h != R[0]:  # the turns to the stage nodes, once per step length
+            R[0] = h
+            rot = dop853_turns(n, h)
+            for j in range(len(rot)):
+                R[1 + j] = rot[j]
+        y_new, K = dop853_step({'t, ' if layout.timed else ''}y, f, h, {layout.params}, cs, ss, R[1:])
+        evaluations += 12
+        e5, e3 = dop853_errors(K, y, y_new, rtol, atol)
+        accepted, h_abs = _next_step(_error_norm(e5, e3, h_abs, {size}), h_abs, rejected)
+        if accepted:
+            return OK, t_new, y_new, K, h_abs, evaluations
+        rejected = True
+"""
 
 
 def fixed_loop_source(name: str, step: str, turns: str, load: str, store: str, outputs: str) -> str:
