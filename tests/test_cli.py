@@ -97,12 +97,25 @@ def test_an_unknown_option_is_answered_by_the_commands_nearest(capsys, argv, sai
     (["fit", str(EXAMPLES / "seed_flip.toml"), "--out", "{tmp}/run"],
      "seed_flip.toml: a TOML file (a scenario, body or device file), not a gyroscope recording: 'tumble simulate' "
      "runs a scenario; 'tumble fit' reads a CSV of the rates, or a phyphox or Sensor Logger export"),
+    (["inertia", str(EXAMPLES / "seed_flip.toml")],
+     "seed_flip.toml: a scenario file ([initial], [simulation]), not a body file; its body is 't-handle': try "
+     "'tumble inertia t-handle'"),
+    (["inertia", str(EXAMPLES / "explorer1.toml")],
+     f"explorer1.toml: a scenario file ([initial], [simulation]), not a body file; its body is 'bodies/explorer1.toml': "
+     f"try 'tumble inertia {EXAMPLES / 'bodies' / 'explorer1.toml'}'"),
+    (["inertia", str(EXAMPLES / "sweeps" / "t_handle_dimensions.toml")],
+     "t_handle_dimensions.toml: a sweep file ([sweep]), not a body file: a body file holds a [body] table alone (or "
+     "give a preset: t-handle, iss-t-handle)"),
+    (["inertia", str(EXAMPLES / "data" / "racquet_tosses.csv"), "--density", "1"],
+     "racquet_tosses.csv: a table of samples, not a body or scenario file (TOML): a gyroscope recording is fitted "
+     "with 'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'"),
 ])
 def test_a_file_given_to_the_wrong_command_names_the_right_one(tmp_path, capsys, argv, said):
     """A recording given to 'tumble view' said "not valid TOML: Expected '=' after a key ... (at line 7,
     column 11)", a sweep file given to 'tumble simulate' "unknown key 'criterion'", a scenario given to
     'tumble sweep' "sweep: missing key 'cases'", to 'tumble fit' "header 'body, =, t-handle' has no
-    time column" (seen 2026-11-30)."""
+    time column" (seen 2026-11-30); a scenario or sweep file given to 'tumble inertia' "unknown top-level key
+    'initial' (a body file has only [body])", a recording with --density "is a body file or preset" (2026-12-02)."""
     assert main([a.format(tmp=tmp_path) for a in argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.rstrip("\n").endswith(said), err
@@ -272,3 +285,16 @@ def test_the_process_clock_counts_what_numba_compiles():
     before = compile_seconds()
     assert fresh("x * 3.0")(1.0) == 3.0  # compiled now
     assert compile_seconds() > before
+
+
+@pytest.mark.parametrize(("example", "balance"), [
+    ("explorer1", "energy + dissipated"), ("wheel_t_handle", "energy - motor work"), ("seed_flip", "energy")])
+def test_the_printed_drift_names_the_energy_balance_it_measures(tmp_path, capsys, example, balance):
+    """The drift's energy is the balance E - motor work + dissipated (Trajectory.drift): Explorer 1's
+    line said "energy 8.9e-08" of a body whose energy fell 57-fold, the wheel's "energy 9.7e-15" where
+    the kinetic energy moves by 4e-6 (seen 2026-12-02). The number printed is the balance's drift."""
+    assert main(["simulate", str(EXAMPLES / f"{example}.toml"), "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out.strip().splitlines()[-1]
+    printed = float(line.split(f"relative drift: {balance} ")[1].split(",")[0])
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert printed == pytest.approx(summary["drift"]["energy"], rel=0.05)  # the .1e of the balance's drift

@@ -61,7 +61,7 @@ def test_dt_samples_every_dt_up_to_t_end():
         (dict(), r"t_end \(s\) or times = \[...\] is needed"),
         (dict(t_end=1.0, dt=0.1, samples=10), "give samples or dt, not both"),
         (dict(t_end=1.0, dt=0.0), r"dt = 0.0 must be a positive"),
-        (dict(t_end=1.0, dt=2.0), r"dt = 2.0 s gives 1 samples"),
+        (dict(t_end=1.0, dt=2.0), r"dt = 2.0 s gives 1 sample over 1 s"),
         (dict(t_end=1e6, dt=1e-9), r"dt = 1e-09 s gives 1000001 samples"),
         (dict(t_end=1.0, rtol=10), r"rtol = 10.0 must be from 2.22e-14 to 0.1"),
         (dict(t_end=1.0, rtol=1e-20, method="dop853"), r"rtol = 1e-20 must be from"),
@@ -80,6 +80,18 @@ def test_a_torque_that_spins_the_body_up_without_bound_is_refused_at_once(magnit
     """1e5 N m on the T-handle for 20 s: up to 1.6e7 rad/s, 1.6e8 rad of rotation (it hung)."""
     with pytest.raises(ValueError, match=r"rad of rotation, more than method .* follows"):
         simulate(BODY, [0.0, 1.0, 0.0], t_end=20.0, torque=ConstantTorque((magnitude, 0.0, 0.0)), method=method)
+
+
+def test_a_run_just_past_the_rotation_bound_says_so_in_digits_that_differ():
+    """1e6 rad and a hair: three digits read "up to 1e+06 rad of rotation ... (at most 1e+06 rad)"
+    (seen 2026-12-02); the digits that tell the two apart are given."""
+    w = 10.0
+    t_end = 1.0001e6 / w  # rad/s and s: 1.0001e6 rad at a steady spin about the major axis
+    with pytest.raises(ValueError, match=r"is up to 1\.0001e\+06 rad of rotation, more than method 'dop853' follows "
+                                         r"\(at most 1e\+06 rad\)"):
+        simulate(BODY, [0.0, 0.0, w], t_end=t_end, method="dop853")
+    with pytest.raises(ValueError, match=r"is up to 1\.0001e\+06 rad of rotation"):
+        tumble.simulate_batch([BODY.principal_moments], [[0.0, 0.0, w]], t_end=t_end, method="dop853")
 
 
 def test_a_torque_that_grows_later_hits_the_work_budget(monkeypatch):

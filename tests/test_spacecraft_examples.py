@@ -77,14 +77,15 @@ def test_explorer1_starts_about_the_minor_axis_with_the_damper_turning_along():
 
 
 def test_explorer1_ends_in_the_flat_spin():
-    """|w| = |L| / (I3 + J) about a major axis (measured 6e-15 relative), L at 1.7e-9 rad from
-    the major-axis plane, the sphere locked to the body, E = |L|^2 / (2 (I3 + J))."""
+    """|w| = |L| / (I3 + J) about a major axis (measured 2.8e-14 relative with |L| at the start, as
+    docs/tour.md quotes it: round-off), L at 4.3e-10 rad from the major-axis plane, the sphere locked
+    to the body, E = |L|^2 / (2 (I3 + J))."""
     scenario, traj = run("explorer1")
     I, J = traj.moments, scenario.damper.inertia
     L = traj.angular_momentum[-1]
     Ln = np.linalg.norm(L)
     assert Ln == pytest.approx(traj.angular_momentum_norm[0], rel=1e-12)  # |L| conserved
-    assert np.linalg.norm(traj.omega[-1]) == pytest.approx(Ln / (I[2] + J), rel=1e-6)
+    assert np.linalg.norm(traj.omega[-1]) == pytest.approx(traj.angular_momentum_norm[0] / (I[2] + J), rel=1e-13)
     assert np.arcsin(abs(L[0]) / Ln) < 1e-6  # L in the plane of the major axes (I2 = I3)
     assert traj.nutation_angle[-1] < 1e-6
     np.testing.assert_allclose(traj.damper_omega[-1], traj.omega[-1], rtol=0, atol=1e-6)
@@ -94,10 +95,11 @@ def test_explorer1_ends_in_the_flat_spin():
 
 
 def test_explorer1_energy_budget_closes():
-    """E + dissipated = E0 (measured 2.3e-7 of E0 with the example's step); L_world fixed."""
+    """E + dissipated = E0 to 9e-8, as docs/tour.md and the example say (measured 8.9e-8 of E0 with
+    the example's step, the splitting's own error: 9.1e-9 at half the step); L_world fixed."""
     _, traj = run("explorer1")
     E0 = traj.energy[0]
-    assert np.max(np.abs(traj.energy + traj.dissipated - E0)) / E0 < 1e-6
+    assert np.max(np.abs(traj.energy + traj.dissipated - E0)) / E0 < 9e-8
     assert np.all(np.diff(traj.dissipated) >= -1e-14 * E0)  # never gives energy back (to round-off)
     assert traj.drift["L_world"] < 1e-12
 

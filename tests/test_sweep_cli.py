@@ -347,6 +347,16 @@ def test_the_sweep_and_map_commands(tmp_path, capsys, monkeypatch):
         assert capsys.readouterr().err.count("\n") == 1
 
 
+def test_the_map_names_both_figure_suffixes_it_writes(tmp_path, capsys):
+    """--out map.pdf was told "written as one .png file" where --help says .png or .svg (seen 2026-12-02)."""
+    from tumble.cli import main
+
+    assert main(["map", "--out", str(tmp_path / "map.pdf")]) == 2
+    assert capsys.readouterr().err.rstrip("\n").endswith(
+        "map.pdf: the output is written as one .png or .svg file; give a name ending in .png or .svg")
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_a_geometric_sweep_is_byte_for_byte_the_same_whatever_the_chunk_size(tmp_path):
     text = SMALL.replace("t_end = 15.0\nsamples = 300", 't_end = 1.0\nsamples = 20\nmethod = "geometric"\nstep = 0.01')
     texts = []

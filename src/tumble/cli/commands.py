@@ -34,12 +34,12 @@ def _cmd_inertia(args) -> int:
         body = body_from_mesh(args.body, density=checked.get("--density"), mass=checked.get("--mass"),
                               scale=checked.get("--scale"), units=args.units)
     else:
+        body = load_body(args.body)  # first: a file of another kind (a recording, a scenario) is named as what it is
         if given:
             option, value = next(iter(given.items()))
             raise ValueError(f"{option} = {value} applies to a mesh file (.stl, .obj, .ply) only; "
                              f"{args.body} is a body file or preset, whose parts carry their own (mass or density; "
                              f"a mesh part its scale, metres per file unit)")
-        body = load_body(args.body)
     if args.json:
         print(json.dumps(mass_properties_dict(body), indent=2))
     else:
@@ -132,8 +132,7 @@ def _cmd_map(args) -> int:
     from ..io.output import check_output_file
     from ..validation import check_positive
 
-    suffix = os.path.splitext(str(args.out))[1].lower()
-    out = check_output_file(args.out, suffix if suffix in (".png", ".svg") else ".png")
+    out = check_output_file(args.out, (".png", ".svg"))
     spin = check_positive("--spin", args.spin, "rad/s")
     perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True)
                          for i, p in enumerate(args.perturbation))
@@ -442,7 +441,9 @@ def _simulate_line(summary: dict, out) -> str:
         if work is not None:
             tail += f"; the motors did {work:.3g} J of work"
     elif summary["torque_free"]:
-        drift = ", ".join(f"{k} {'n/a' if v is None else format(v, '.1e')}" for k, v in d.items())
+        # the drift's energy is the energy balance (Trajectory.drift): name what it sums
+        balance = "energy" + (" - motor work" if "rotors" in summary else "") + (" + dissipated" if "damper" in summary else "")
+        drift = ", ".join(f"{balance if k == 'energy' else k} {'n/a' if v is None else format(v, '.1e')}" for k, v in d.items())
         tail = f"relative drift: {drift}"
     elif summary.get("torque_budget") and not summary["torque_budget"]["resolved"]:
         tail = (f"torque acted (the samples, up to {summary['torque_budget']['turn_per_sample']:.2g} rad apart, are too "

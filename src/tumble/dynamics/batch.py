@@ -33,15 +33,8 @@ from scipy.spatial.transform import Rotation
 from ..mass import INERTIA_RTOL, MassProperties
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import (
-    BOUND_REASONS,
-    MAX_RATE,
-    QUAT_NORM_TOL,
-    check_moments,
-    check_positive,
-    check_rotation,
-    refuse_body,
-    refuse_first,
-    short_repr,
+    BOUND_REASONS, MAX_RATE, QUAT_NORM_TOL, beyond, check_moments, check_positive, check_rotation, refuse_body,
+    refuse_first, short_repr,
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy, relative_drift
@@ -452,9 +445,9 @@ def _bound_work(spec: Method, spin: float, gain: float, t_end: float, h: float |
     with np.errstate(over="ignore", invalid="ignore"):
         turns = spin * t_end + 0.5 * gain * t_end
     if not turns <= MAX_ROTATION:
-        raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} "
-                         f"rad/s) is up to {turns:.3g} rad of rotation, more than method {spec.name!r} follows (at "
-                         f"most {MAX_ROTATION:g} rad); use method exact or a shorter run")
+        raise ValueError(f"t_end = {t_end:g} s with max |omega0| = {spin:.6g} rad/s (and a torque gain of {gain:.3g} rad/s) is "
+                         f"up to {beyond(turns, MAX_ROTATION)} rad of rotation, more than method {spec.name!r} follows (at most "
+                         f"{MAX_ROTATION:g} rad); use method exact or a shorter run")
     if h is not None and t_end / h > MAX_STEPS:
         raise ValueError(f"step = {h:.3g} s makes {t_end / h:.3g} steps of a {t_end:g} s run; at most {MAX_STEPS:g}")
 

@@ -13,7 +13,7 @@ from scipy.spatial.transform import Rotation
 from ..mass import INERTIA_RTOL, Body, MassProperties
 from ..mass.body import properties_of
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
-from ..validation import MAX_INERTIA, MAX_RATE, check_increasing, check_positive, check_rotation, check_vector
+from ..validation import MAX_INERTIA, MAX_RATE, beyond, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
 from .engine.stepsize import RTOL_RANGE, check_rtol
 from .methods.arguments import warn_ignored
@@ -271,7 +271,7 @@ def sample_times(t_end: float | None = None, samples: int | None = None, dt: flo
         dt = check_positive("dt", dt, "s")
         n = math.floor(t_end / dt * (1 + 1e-12)) + 1 if t_end / dt < MAX_SAMPLES else MAX_SAMPLES + 1
         if not 2 <= n <= MAX_SAMPLES:
-            raise ValueError(f"dt = {dt!r} s gives {n} samples over {t_end:g} s; allowed: 2 to {MAX_SAMPLES}")
+            raise ValueError(f"dt = {dt!r} s gives {n} sample{'s' if n != 1 else ''} over {t_end:g} s; allowed: 2 to {MAX_SAMPLES}")
         t = dt * np.arange(n)
         t[-1] = min(t[-1], t_end)  # a whole t_end / dt ends exactly at t_end
         return cast(FloatArray, t), slice(None)
@@ -465,7 +465,7 @@ def _check_work(run: RunInputs) -> None:
         cause = f"{what} = {spin:.6g} rad/s" if gain == 0 else (
             f"{what} = {spin:.6g} rad/s and a torque that can spin it up by {gain:.3g} rad/s")
         raise ValueError(
-            f"t_end = {t_end:g} s with {cause} is up to {turns:.3g} rad of rotation, more than "
+            f"t_end = {t_end:g} s with {cause} is up to {beyond(turns, MAX_ROTATION)} rad of rotation, more than "
             f"method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); "
             f"{'shorten the run or weaken the torque' if gain else 'use method exact or a shorter run'}"
         )
@@ -496,5 +496,5 @@ def _check_stiffness(run: RunInputs, spin: float, turns: float) -> None:
         raise ValueError(f"{stiff}: method {spec.name!r} cannot follow it ({why}); use method {able}, which "
                          f"integrates a stiff damper with the implicit Radau")
     if turns > MAX_STIFF_ROTATION:
-        raise ValueError(f"{stiff}: t_end = {t_end:g} s is up to {turns:.3g} rad of rotation, more than the implicit "
+        raise ValueError(f"{stiff}: t_end = {t_end:g} s is up to {beyond(turns, MAX_STIFF_ROTATION)} rad of rotation, more than the implicit "
                          f"Radau that {spec.name} hands it to follows (at most {MAX_STIFF_ROTATION:g} rad); shorten the run")

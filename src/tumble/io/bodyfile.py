@@ -26,6 +26,7 @@ import os
 import tomllib
 import warnings
 from collections.abc import Iterator
+from typing import Any
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
@@ -345,6 +346,23 @@ def _preset_from_table(table: dict, where: str) -> Body:
         raise ValueError(f"{where} (preset {preset!r}): {exc}") from None
 
 
+def _refuse_a_run_file(path: Path, data: dict[str, Any]) -> None:
+    """A sweep, scenario or control file where a body file was asked for: say what it is and where
+    its body is (a scenario's ``body`` names a preset or a file beside it, or is a table of its own)."""
+    if "sweep" in data:
+        raise ValueError(f"{path}: a sweep file ([sweep]), not a body file: a body file holds a [body] table alone "
+                         f"(or give a preset: {', '.join(PRESETS)})")
+    if not ({"initial", "simulation", "control"} & set(data)):
+        return
+    spec = data.get("body")
+    if isinstance(spec, str):
+        named = spec if spec in PRESETS and not (path.parent / spec).exists() else str(path.parent / spec)
+        hint = f"; its body is {spec!r}: try 'tumble inertia {named}'"
+    else:
+        hint = "; its [body] table, in a file of its own, is a body file"
+    raise ValueError(f"{path}: a scenario file ([initial], [simulation]), not a body file{hint}")
+
+
 def load_body(source: str | os.PathLike[str]) -> Body:
     """A body from a body file (TOML) or a preset name (``"t-handle"``, ``"iss-t-handle"``).
 
@@ -379,6 +397,7 @@ def load_body(source: str | os.PathLike[str]) -> Body:
         )
     data = read_toml(path)
     unknown = sorted(set(data) - {"body"})
+    _refuse_a_run_file(path, data)
     if "body" not in data:
         raise ValueError(f"{path}: missing table [body]")
     if unknown:

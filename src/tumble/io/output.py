@@ -98,8 +98,9 @@ def _check_plain(path: Path) -> None:
                       "give a new or empty folder")
 
 
-def check_output_file(path: str | os.PathLike[str], suffix: str) -> Path:
-    """Check before computing that the single file ``path`` (with ``suffix``) can be written.
+def check_output_file(path: str | os.PathLike[str], suffix: str | tuple[str, ...]) -> Path:
+    """Check before computing that the single file ``path`` (with ``suffix``, or one of the
+    suffixes of a tuple) can be written.
 
     Examples
     --------
@@ -110,10 +111,16 @@ def check_output_file(path: str | os.PathLike[str], suffix: str) -> Path:
     Traceback (most recent call last):
     ...
     ValueError: --out figure.svg: the output is written as one .png file; give a name ending in .png
+    >>> check_output_file("map.pdf", (".png", ".svg"))
+    Traceback (most recent call last):
+    ...
+    ValueError: --out map.pdf: the output is written as one .png or .svg file; give a name ending in .png or .svg
     """
     path = Path(path)
-    if path.suffix.lower() != suffix:
-        raise _refuse(path, f"the output is written as one {suffix} file; give a name ending in {suffix}")
+    allowed = (suffix,) if isinstance(suffix, str) else suffix
+    if path.suffix.lower() not in allowed:
+        names = " or ".join(allowed)
+        raise _refuse(path, f"the output is written as one {names} file; give a name ending in {names}")
     if path.is_dir():
         raise _refuse(path, "is a folder; give a file name")
     _check_parent(path)

@@ -1,6 +1,7 @@
 """The checks of input every layer of tumble uses: one place, one wording per rule.
 
-Moments, axes, vectors, numbers (:mod:`~tumble.validation.values`), orientations
+Moments, axes, vectors, numbers (:mod:`~tumble.validation.values`), the messages' helpers
+(:mod:`~tumble.validation.messages`), orientations
 (:mod:`~tumble.validation.rotations`), input files (:mod:`~tumble.validation.files`) and functions
 (:mod:`~tumble.validation.callables`). Each
 checker returns the cleaned value or raises ``ValueError`` whose message names the field, the
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 from .callables import check_callable, check_torque_function, is_vector
 from .files import NoSuchFileError, read_input_file
+from .messages import beyond, nearest, short_repr
 from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
 from .values import (
     AXES_ALLOWED,
@@ -34,10 +36,8 @@ from .values import (
     check_vector,
     check_vectors,
     is_body,
-    nearest,
     refuse_body,
     refuse_first,
-    short_repr,
     triangle_excess,
 )
 
@@ -52,6 +52,7 @@ __all__ = [
     "QUAT_NORM_TOL",
     "NoSuchFileError",
     "axis_index",
+    "beyond",
     "breaks_triangle",
     "check_at_most",
     "check_bool",

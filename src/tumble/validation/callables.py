@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from .values import short_repr
+from .messages import short_repr
 
 __all__ = ["check_callable", "check_torque_function", "is_vector"]
 

@@ -8,7 +8,6 @@ other check of it calls that. Units are SI. Re-exported by :mod:`tumble.validati
 
 from __future__ import annotations
 
-import difflib
 import math
 from collections.abc import Iterable, Sequence
 from numbers import Real
@@ -17,6 +16,7 @@ from typing import cast
 import numpy as np
 
 from ..typing import ArrayLike, BoolArray, FloatArray, IntArray, Vector3
+from .messages import short_repr
 
 __all__ = [
     "AXES_ALLOWED",
@@ -38,9 +38,7 @@ __all__ = [
     "check_vectors",
     "is_body",
     "refuse_body",
-    "nearest",
     "refuse_first",
-    "short_repr",
     "triangle_excess",
 ]
 
@@ -53,38 +51,6 @@ AXIS_ROLES = ("minor", "intermediate", "major")
 #: violate it by a few ulps; 1e-9 of the trace is far above round-off (~1e-16) and far below
 #: any physical violation worth catching.
 INERTIA_RTOL = 1e-9
-
-
-def short_repr(value: object, limit: int = 80) -> str:
-    """``repr(value)`` on one line and at most ``limit`` characters, for error messages.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.validation import short_repr
-    >>> short_repr(np.array([[1.0, 2.0],
-    ...                      [3.0, 4.0]]))
-    'array([[1.0, 2.0], [3.0, 4.0]])'
-    >>> short_repr(list(range(100)), limit=20)
-    '[0, 1, 2, 3, 4, 5...'
-    """
-    text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
-    text = " ".join(text.split())
-    return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def nearest(word: str, choices: Iterable[str], cutoff: float = 0.6) -> str | None:
-    """The one of ``choices`` nearest to a misspelt ``word`` (difflib's ratio at least ``cutoff``),
-    or None: what every "did you mean" of tumble's messages names.
-
-    Examples
-    --------
-    >>> from tumble.validation import nearest
-    >>> nearest("perido", ["period", "gain", "form"]), nearest("bogus", ["period", "gain"])
-    ('period', None)
-    """
-    found = difflib.get_close_matches(word, list(choices), n=1, cutoff=cutoff)
-    return found[0] if found else None
 
 
 def refuse_first(field: str, values: ArrayLike, bad: ArrayLike, rule: str) -> None:

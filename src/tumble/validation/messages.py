@@ -1,0 +1,65 @@
+"""What tumble's messages share: a value shown short, the nearest of a list of names, and a value
+shown beside a limit it passes with the digits that tell them apart.
+
+Re-exported by :mod:`tumble.validation`.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+import numpy as np
+
+__all__ = ["beyond", "nearest", "short_repr"]
+
+
+def short_repr(value: object, limit: int = 80) -> str:
+    """``repr(value)`` on one line and at most ``limit`` characters, for error messages.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.validation import short_repr
+    >>> short_repr(np.array([[1.0, 2.0],
+    ...                      [3.0, 4.0]]))
+    'array([[1.0, 2.0], [3.0, 4.0]])'
+    >>> short_repr(list(range(100)), limit=20)
+    '[0, 1, 2, 3, 4, 5...'
+    """
+    text = f"array({value.tolist()!r})" if isinstance(value, np.ndarray) else repr(value)
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def nearest(word: str, choices: Iterable[str], cutoff: float = 0.6) -> str | None:
+    """The one of ``choices`` nearest to a misspelt ``word`` (difflib's ratio at least ``cutoff``),
+    or None: what every "did you mean" of tumble's messages names.
+
+    Examples
+    --------
+    >>> from tumble.validation import nearest
+    >>> nearest("perido", ["period", "gain", "form"]), nearest("bogus", ["period", "gain"])
+    ('period', None)
+    """
+    found = difflib.get_close_matches(word, list(choices), n=1, cutoff=cutoff)
+    return found[0] if found else None
+
+
+def beyond(value: float, limit: float) -> str:
+    """``value`` written as ``{:.3g}`` would, with more digits where that reads the same as ``limit``
+    written as ``{:g}``: a message saying "up to 1.0001e+06, at most 1e+06" where three digits gave
+    "up to 1e+06, at most 1e+06".
+
+    Examples
+    --------
+    >>> from tumble.validation import beyond
+    >>> beyond(2.5e6, 1e6), beyond(1.0001e6, 1e6), f"{1e6:g}"
+    ('2.5e+06', '1.0001e+06', '1e+06')
+    """
+    shown = f"{value:.3g}"
+    for digits in range(4, 18):
+        if shown != f"{limit:g}" and float(shown) != float(f"{limit:g}"):
+            break
+        shown = f"{value:.{digits}g}"
+    return shown
