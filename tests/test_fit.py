@@ -359,3 +359,19 @@ def test_a_phyphox_header_in_deg_per_s_or_with_an_alias_reads_as_any_header():
     alias = b"Time (s),Gyroscope x (rad/s),Gyro Y (rad/s),Gyroscope z (rad/s)\n0,1,2,3\n0.01,1,2,3\n"
     np.testing.assert_allclose(parse_recording_table(deg, "deg.csv")[1][0], [np.pi, np.pi / 2, 0.0], rtol=1e-15)
     assert parse_recording_table(alias, "alias.csv")[1][0].tolist() == [1.0, 2.0, 3.0]
+
+
+def test_tumbles_own_trajectory_csv_is_fitted_back_to_its_body(tmp_path):
+    """Simulate, then fit what was written: a new user's first self-check, refused as "header 't [s],
+    omega_1 [rad/s], ...' has no rate column for x" (seen 2026-12-02). The principal rates omega_1..3
+    are read as x, y, z, and the fit gives back the T-handle's ratios (0.125 / 0.4375, 0.3125 / 0.4375)
+    within its interval and, the data exact, to 1e-9."""
+    from tumble.cli import main
+
+    assert main(["simulate", "t-handle", "--omega", "0.1", "10", "0.1", "--t-end", "20", "--out", str(tmp_path / "run")]) == 0
+    assert run_fit_command(tmp_path / "run" / "trajectory.csv", tmp_path / "fit") == 0
+    data = json.loads((tmp_path / "fit" / "fit.json").read_text(encoding="utf-8"))
+    assert data["read"]["rates"] == ["omega_1 [rad/s]", "omega_2 [rad/s]", "omega_3 [rad/s]"]
+    for key, truth in (("I1_over_I3", 0.125 / 0.4375), ("I2_over_I3", 0.3125 / 0.4375)):
+        low, high = data[f"{key}_interval"]
+        assert low < truth < high and abs(data[key] - truth) < 1e-9

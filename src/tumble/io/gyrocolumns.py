@@ -10,7 +10,9 @@ alike (``gyro_x``, ``Gyro X`` and ``gyro-x`` are one name):
   ``time,seconds_elapsed,z,y,x``, the time in ns since 1970 and the rates in rad/s;
 - **rate** about axis ``x`` (``y``, ``z`` alike): ``x``, ``wx``, ``gx``, ``omega x``, ``gyro x``,
   ``gyroscope x``, ``rate x``, ``rotation rate x``, ``angular velocity x`` (a space, or none,
-  before the axis; ``x axis`` too); unit rad/s (default), deg/s, dps, rpm, rev/s or Hz;
+  before the axis; ``x axis`` too); unit rad/s (default), deg/s, dps, rpm, rev/s or Hz. tumble's own
+  ``trajectory.csv`` names them ``omega_1``, ``omega_2``, ``omega_3`` (the principal axes), read as
+  x, y and z: a simulated run is fitted as a recording;
 - **specific force** (a raw accelerometer, optional; all three axes or none) along ``x`` (``y``,
   ``z`` alike): ``ax``, ``acc x``, ``accel x``, ``accelerometer x``, ``acceleration x``,
   ``specific force x``, ``f x``; in m/s^2 (default), g (standard gravity, 9.80665 m/s^2) or mg
@@ -60,7 +62,8 @@ RECORDING_FORMAT = FileFormat("recording", (
             doc="the sample times; the unit in brackets after the name; beside a clock's column (time, timestamp) "
                 "an elapsed one is taken and the clock ignored (Sensor Logger's time,seconds_elapsed)"),
         *(Key(axis, "numbers", ", ".join(u for u in RATE_UNITS if u.isascii()), "rad/s",
-              allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally",
+              allowed=f"{axis} alone or after {', '.join(RATE_PREFIXES)}; then ' axis' optionally; or "
+                      f"omega_{'xyz'.index(axis) + 1} (tumble's trajectory.csv)",
               example=f'"gyro_{axis} [deg/s]"', doc=f"the angular velocity about the sensor's {axis} axis")
           for axis in "xyz"),
         *(Key(f"a{axis}", "numbers", ", ".join(u for u in ACCEL_UNITS if u.isascii()), "m/s^2",
@@ -89,13 +92,15 @@ _TIME = set(TIME_NAMES)
 #: The time names that count from the recording's start (taken beside a clock's column).
 _ELAPSED = {"elapsed", "elapsed time", "seconds elapsed"}
 _RATE = re.compile(r"^(?:(?:" + "|".join(re.escape(p) for p in RATE_PREFIXES) + r") ?)?([xyz])(?: axis)?$")
+#: tumble's trajectory.csv: omega about the principal axes 1, 2, 3, read as x, y, z.
+_PRINCIPAL = re.compile(r"^omega ?([123])$")
 _OTHER = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|linear acceleration|lin acc|gravity|m|mag|"
                     r"magnetometer|magnetic field|b) ?[xyz](?: axis)?$")
 _ACCEL = re.compile(r"^(?:a|acc|accel|accelerometer|acceleration|specific force|f) ?([xyz])(?: axis)?$")
 _LINEAR = re.compile(r"^(?:linear acceleration|lin acc|acceleration without g|user acceleration) ?[xyz](?: axis)?$")
 _MAGNITUDE = re.compile(r"^(?:\|.*\||abs|absolute|norm|magnitude|total)$")
 _ALLOWED = ("time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x "
-            "(rad/s, deg/s, rpm, rev/s, Hz), y and z alike")
+            "(rad/s, deg/s, rpm, rev/s, Hz), y and z alike, or omega_1, omega_2, omega_3")
 
 
 @dataclass(frozen=True)
@@ -303,6 +308,8 @@ def match_header(head: list[str], label: str, line: int) -> tuple[list[int], lis
         m = _RATE.match(n)
         if m and not _OTHER.match(n):
             axes[m.group(1)].append(j)
+        elif p := _PRINCIPAL.match(n):
+            axes["xyz"[int(p.group(1)) - 1]].append(j)
     if len(times) != 1:
         what = "no time column" if not times else \
             f"{len(times)} time columns ({', '.join(repr(head[j]) for j in times)}); keep one"
