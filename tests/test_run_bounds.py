@@ -88,10 +88,28 @@ def test_a_run_just_past_the_rotation_bound_says_so_in_digits_that_differ():
     w = 10.0
     t_end = 1.0001e6 / w  # rad/s and s: 1.0001e6 rad at a steady spin about the major axis
     with pytest.raises(ValueError, match=r"is up to 1\.0001e\+06 rad of rotation, more than method 'dop853' follows "
-                                         r"\(at most 1e\+06 rad\)"):
-        simulate(BODY, [0.0, 0.0, w], t_end=t_end, method="dop853")
+                                         r"\(at most 1e\+06 rad;"):  # a Python torque: scipy's DOP853
+        simulate(BODY, [0.0, 0.0, w], t_end=t_end, method="dop853", torque=lambda t, omega, R: [0.0, 0.0, 0.0])
     with pytest.raises(ValueError, match=r"is up to 1\.0001e\+06 rad of rotation"):
         tumble.simulate_batch([BODY.principal_moments], [[0.0, 0.0, w]], t_end=t_end, method="dop853")
+
+
+def test_the_compiled_engine_follows_more_rotation_than_the_python_path():
+    """1e6 rad was refused to every stepping method as "about half an hour of DOP853", which is the
+    Python path's time; the compiled engine took 1.0 s for it (seen 2026-12-02). A compiled run
+    follows up to MAX_COMPILED_ROTATION (here 1.5e6 rad, torque-free dop853: the energy and |L|
+    kept to 1e-7), a Python torque's run is still refused past MAX_ROTATION, naming the engine."""
+    from tumble.dynamics.simulate import MAX_COMPILED_ROTATION, MAX_ROTATION
+
+    assert MAX_COMPILED_ROTATION > MAX_ROTATION
+    traj = simulate(BODY, [0.0, 10.0, 0.01], t_end=1.5e5, samples=2, method="dop853")
+    assert traj.drift["energy"] < 1e-7 and traj.drift["L_norm"] < 1e-7
+    with pytest.raises(ValueError, match=r"is up to 1\.5e\+06 rad of rotation, more than method 'dop853' follows \(at "
+                                         r"most 1e\+06 rad; 1e\+08 on the compiled engine"):
+        simulate(BODY, [0.0, 10.0, 0.01], t_end=1.5e5, samples=2, method="dop853", torque=lambda t, w, R: [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match=r"is up to 1\.5e\+08 rad of rotation, more than method 'dop853' follows \(at "
+                                         r"most 1e\+08 rad\)"):
+        simulate(BODY, [0.0, 10.0, 0.01], t_end=1.5e7, samples=2, method="dop853")
 
 
 def test_a_torque_that_grows_later_hits_the_work_budget(monkeypatch):

@@ -40,10 +40,13 @@ FRAMES = ("principal", "design")
 MAX_SAMPLES = 1_000_000
 #: Longest run, s (about 30,000 years): beyond it the phase of any motion loses all its digits.
 MAX_T_END = 1e12
-#: Most rotation (rad) a stepping method is asked to follow, counting the spin a torque can
-#: build up: 1e6 rad (160,000 turns) is about 4e7 right-hand sides of DOP853 at rtol 1e-12
-#: (~40 per radian, measured), half an hour here; the exact solution has no such limit.
+#: Most rotation (rad) a stepping method is asked to follow, counting the spin a torque can build up:
+#: 1e6 rad is ~4e7 right-hand sides of DOP853 at rtol 1e-12, ~45 min with a Python torque (2.9 s a
+#: 1e3 rad, 2026-12-02); the exact solution has no such limit, the compiled engine the next one.
 MAX_ROTATION = 1e6
+#: The same on the compiled engine (dop853, rk4, rk8, the built-in torques, no rotors or damper): 1e6
+#: rad took it 1.0 s (the T-handle at 10 rad/s, rtol 1e-12), 1e8 a minute or two; steps: MAX_STEPS.
+MAX_COMPILED_ROTATION = 1e8
 #: Most rotation (rad) a run with a stiff damper is asked to follow (``"dop853"`` hands it to
 #: Radau, :data:`~tumble.dynamics.models.internal.STIFF_RATIO`): Radau at rtol 1e-12 takes ~1,200
 #: right-hand sides per radian (measured), so 1e4 rad is about a quarter of an hour here.
@@ -183,10 +186,8 @@ def simulate(
     >>> spun, spun.omega[-1].round(6).tolist()   # omega_3 = tau t / I3
     (Trajectory('body', dop853 (auto), 3 samples, t = 0..2 s, torqued), [0.0, 0.0, 2.0])
     """
-    run = check_inputs(
-        body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
-        rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0, damper=damper,
-    )
+    run = check_inputs(body, omega0, t_end=t_end, samples=samples, dt=dt, times=times, method=method, frame=frame,
+                       rtol=rtol, atol=atol, step=step, torque=torque, attitude0=attitude0, damper=damper)
     tol: float | FloatArray | None  # atol; per component where the method scales it
     spec, model, tol, internal = run.method, run.torque, run.atol, run.internal
     moments = run.props.principal_moments
@@ -205,8 +206,7 @@ def simulate(
         omega, quat, label = out.omega, out.quat, out.solver or spec.name
         extra = {k: (v[run.keep] if k not in ("rotor_axial_moments", "damper_inertia") else v)
                  for k, v in internal.trajectory_fields(run.t, out).items()}
-    # one sum each: a NaN or inf anywhere makes it non-finite (|omega| <= MAX_RATE cannot overflow a
-    # sum); the engine's kernels check their states themselves (status NON_FINITE)
+    # one sum each: a NaN or inf makes it non-finite; the engine's kernels check their states (status NON_FINITE)
     if not (internal is None and spec.name in ENGINE_METHODS and run.form is not None) \
             and not math.isfinite(float(omega.sum()) + float(quat.sum())):
         raise RuntimeError(f"the {label} integration produced non-finite values")
@@ -214,8 +214,7 @@ def simulate(
     return Trajectory.of_samples(  # the quaternions: the Rotation is built when first asked for
         run.t[keep] if keep.start else run.t, omega[keep] if keep.start else omega, quat[keep] if keep.start else quat,
         moments, run.props.principal_axes, label, model is None, body.name if isinstance(body, Body) else "body",
-        auto=run.auto, **extra,
-    )
+        auto=run.auto, **extra)
 
 
 if simulate.__doc__:  # every method of the registry, as help(tumble.simulate) and the API page list them
@@ -460,15 +459,16 @@ def _check_work(run: RunInputs) -> None:
         return
     spin, gain = run.spin, run.gain  # the spin the run starts from, and what the torque can add, rad/s
     turns = spin * t_end + 0.5 * gain * t_end  # Python floats: an overflow is inf, refused below
-    if not turns <= MAX_ROTATION:
+    compiled = spec.name in ENGINE_METHODS and run.internal is None and run.form is not None
+    limit = MAX_COMPILED_ROTATION if compiled else MAX_ROTATION
+    if not turns <= limit:
         what = "|omega0|" if run.internal is None or run.internal.rotors is None else "|omega0| + 2 max|h| / I1"
         cause = f"{what} = {spin:.6g} rad/s" if gain == 0 else (
             f"{what} = {spin:.6g} rad/s and a torque that can spin it up by {gain:.3g} rad/s")
-        raise ValueError(
-            f"t_end = {t_end:g} s with {cause} is up to {beyond(turns, MAX_ROTATION)} rad of rotation, more than "
-            f"method {spec.name!r} follows (at most {MAX_ROTATION:g} rad); "
-            f"{'shorten the run or weaken the torque' if gain else 'use method exact or a shorter run'}"
-        )
+        more = "" if compiled else f"; {MAX_COMPILED_ROTATION:g} on the compiled engine: dop853, rk4 or rk8, built-in torques"
+        raise ValueError(f"t_end = {t_end:g} s with {cause} is up to {beyond(turns, limit)} rad of rotation, more than method "
+                         f"{spec.name!r} follows (at most {limit:g} rad{more}); "
+                         f"{'shorten the run or weaken the torque' if gain else 'use method exact or a shorter run'}")
     if run.internal is not None and run.internal.damper is not None:
         _check_stiffness(run, spin + gain, turns)
     if spec.fixed_step:

@@ -16,7 +16,7 @@ import numpy as np
 from ...jit import PARALLEL_BODIES, cores, kernel_array
 from ...typing import FloatArray, IntArray
 from ..models.torque_protocols import Form, kernel_terms
-from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
+from .status import BUDGET_SPENT, MAX_ENGINE_EVALUATIONS, NON_FINITE, STEP_COLLAPSED
 
 __all__ = ["ENGINE_METHODS", "run_bodies", "run_body", "run_damped"]
 
@@ -76,7 +76,7 @@ def _raise_for(status: int, method: str, t_end: float, body: str = "") -> None:
     if status == NON_FINITE:
         raise RuntimeError(f"the {method} integration produced non-finite values{body}")
     if status == BUDGET_SPENT:
-        raise RuntimeError(f"{method} gave up{body} after {MAX_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
+        raise RuntimeError(f"{method} gave up{body} after {MAX_ENGINE_EVALUATIONS:,} evaluations of a {t_end:g} s run: "
                            f"the motion is too fast to follow (a torque spinning the body up?)")
 
 

@@ -59,7 +59,7 @@ from ..models.gravity import gradient_components
 from ..models.torques import KERNEL_BODY, KERNEL_CIRCULAR_GRAVITY, KERNEL_WORLD
 from ..special.quaternion import quaternion_rate_components, to_body
 from .stepsize import equal_steps, error_norm, first_trial_step, initial_step, next_step
-from .status import BUDGET_SPENT, MAX_EVALUATIONS, NON_FINITE, OK, STEP_COLLAPSED
+from .status import BUDGET_SPENT, MAX_ENGINE_EVALUATIONS, NON_FINITE, OK, STEP_COLLAPSED
 from .tableau import DOP853_A, DOP853_B, DOP853_C, RK4_A, RK4_B, RK4_C
 from .unrolled import STATE, dop853_accept_source, dop853_sources, fixed_loop_source, fixed_step_source, rotations_source
 
@@ -251,7 +251,7 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
     """DOP853 from ``t_eval[0]`` through ``t_eval[-1]`` (s), the samples into ``omega`` and ``quat``
     (len(t_eval) rows each), as scipy's ``solve_ivp`` takes it (module docstring); the torque
     terms ``P`` on an orbit of mean motion ``n`` (rad/s). Returns a status: 0 done, 1 the
-    step fell below 10 ulp of t, 2 :data:`MAX_EVALUATIONS` spent, 3 a sample not finite."""
+    step fell below 10 ulp of t, 2 :data:`~tumble.dynamics.engine.status.MAX_ENGINE_EVALUATIONS` spent, 3 a sample not finite."""
     body = (I[0], I[1], I[2], 1.0 / I[0], 1.0 / I[1], 1.0 / I[2])
     y = _state(y0)
     t, t_bound = t_eval[0], t_eval[-1]
@@ -270,7 +270,7 @@ def dop853(y0: np.ndarray, t_eval: np.ndarray, I: np.ndarray, P: tuple[float, ..
             continue
         cs, ss = _direction(n, t)
         status, t_new, y_new, K, h_abs, evaluations = _dop853_accept(t, y, f, h_abs, t_bound, rtol, atol, body, P, cs,
-                                                                     ss, n, R, evaluations, MAX_EVALUATIONS)
+                                                                     ss, n, R, evaluations, MAX_ENGINE_EVALUATIONS)
         if status != OK:
             return int(status)
         h = t_new - t

@@ -8,12 +8,16 @@ Examples
 (0, 2, 50000000)
 """
 
-__all__ = ["BUDGET_SPENT", "MAX_EVALUATIONS", "NON_FINITE", "OK", "STEP_COLLAPSED"]
+__all__ = ["BUDGET_SPENT", "MAX_ENGINE_EVALUATIONS", "MAX_EVALUATIONS", "NON_FINITE", "OK", "STEP_COLLAPSED"]
 
 #: Right-hand sides a run may take before it is given up (about 40 per radian of rotation for
 #: DOP853 at rtol 1e-12, so well above what ``simulate``'s rotation bound admits; it catches a
 #: torque that grows during the run).
 MAX_EVALUATIONS = 50_000_000
+#: The same for a run of the compiled engine (:func:`~tumble.dynamics.engine.kernels.dop853`), whose
+#: right-hand side costs ~30 ns against the Python path's ~20 us: about 3 minutes of it, above what
+#: ``simulate``'s bound on a compiled run's rotation admits (40 a radian of 1e8 rad).
+MAX_ENGINE_EVALUATIONS = 5_000_000_000
 #: A run's status: done.
 OK = 0
 #: A run's status: the step fell below 10 ulp of t (scipy's smallest step).
