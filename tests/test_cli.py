@@ -85,6 +85,17 @@ def test_an_unknown_option_is_answered_by_the_commands_nearest(capsys, argv, sai
     assert capsys.readouterr().err == said + "\n"
 
 
+@pytest.mark.parametrize(("word", "near"), [("simulat", "simulate"), ("Fit", "fit"), ("intertia", "inertia"), ("zzz", None)])
+def test_a_misspelt_command_is_answered_by_the_nearest(capsys, word, near):
+    """'tumble simulat' listed the twelve commands and named none of them (seen 2026-12-02)."""
+    with pytest.raises(SystemExit) as info:
+        main([word, "x"])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"tumble: error: argument COMMAND: invalid choice: '{word}' (choose from")
+    assert err.endswith(f"(did you mean {near}?)\n" if near else "'demo')\n")
+
+
 @pytest.mark.parametrize(("argv", "said"), [
     (["view", str(EXAMPLES / "data" / "racquet_tosses.csv"), "--out", "{tmp}/v.html"],
      "racquet_tosses.csv: a table of samples, not a body or scenario file (TOML): a gyroscope recording is fitted "

@@ -188,7 +188,11 @@ def test_other_files_in_the_folder_are_kept_and_stale_ones_dropped(tmp_path, cap
     assert simulate(out) == 0
     (out / "notes.txt").write_text("mine")
     assert main(["plot", SEED, "--out", str(out), "--format", "svg"]) == 0
+    capsys.readouterr()
     assert main(["plot", SEED, "--out", str(out), "--format", "png"]) == 0
+    # said, not done without a word (a walkthrough lost the tour's first figures so, 2026-12-02)
+    assert capsys.readouterr().out.splitlines()[-1] == ("removed an earlier run's drift.svg, herpolhode.svg, omega.svg, "
+                                                        "polhode.svg (the folder holds one run's figures)")
     names = {p.name for p in out.iterdir()}
     assert {"trajectory.csv", "trajectory.npz", "summary.json", "omega.png", "notes.txt", "polhode.png"} <= names
     assert not any(n.endswith(".svg") for n in names)  # the earlier plot's files, replaced as a set

@@ -84,6 +84,7 @@ BAD = [
     ("body = \n", "not valid TOML"),
     (INITIAL, "missing key 'body'"),
     ('body = "cube"\n' + INITIAL, "body = 'cube' is neither a preset"),
+    ('body = "bodies/none.toml"\n' + INITIAL, r"body = 'bodies/none.toml' is neither a preset .* nor a file: no .*/bodies/none\.toml$"),
     ("body = 3\n" + INITIAL, "body = 3 must be a preset name"),
     (BODY, "initial: missing key 'omega'"),
     (BODY + "[initial]\nomega = [1, 2]\n", r"initial.omega = \[1, 2\] must be a list of 3 numbers"),

@@ -9,6 +9,7 @@ import json
 import math
 import os
 import sys
+from pathlib import Path
 
 from ._common import EXIT_FAILURE, EXIT_OK, _run_title, _working
 from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_control
@@ -294,8 +295,10 @@ def _cmd_plot(args) -> int:
     skipped = viz.phase_portrait_problem(traj)
     names = [n for n in PLOTS if not (skipped and n in viz.PHASE_PORTRAITS)]
     extra = viz.spacecraft_figures(traj, scenario.torque)  # energy, nutation, orbit angles
-    written = []
-    with output_dir(out, [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]) as stage:
+    written: list[str] = []
+    owns = [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]  # the figures are replaced as a set
+    earlier = sorted({p.name for pattern in owns for p in Path(out).glob(pattern)}) if Path(out).is_dir() else []
+    with output_dir(out, owns) as stage:
         figures = [(name, makers[name](traj, title=title if name == "omega" else None)) for name in names]
         for name, fig in figures + [(name, make()) for name, make in extra]:
             for fmt in args.format:
@@ -304,6 +307,8 @@ def _cmd_plot(args) -> int:
     print(f"wrote {', '.join(written)} to {out}/")
     if skipped:
         print(f"skipped {', '.join(viz.PHASE_PORTRAITS)}: {skipped}")
+    if removed := [name for name in earlier if name not in written]:
+        print(f"removed an earlier run's {', '.join(removed)} (the folder holds one run's figures)")
     return EXIT_OK
 
 

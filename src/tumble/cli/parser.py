@@ -11,10 +11,18 @@ from ._common import EXIT_USAGE
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with tumble's one-line error format and exit status 2, and an option it does not
-    know answered by its command's nearest option (``--t_end``: did you mean ``--t-end``?)."""
+    """argparse with tumble's one-line error format and exit status 2, and an option or a command it
+    does not know answered by the nearest (``--t_end``: did you mean ``--t-end``?; ``simulat``:
+    did you mean ``simulate``?)."""
 
     def error(self, message: str):
+        for action in self._actions:  # a misspelt command (argparse names no alternative; Python 3.11)
+            if isinstance(action, argparse._SubParsersAction) and message.startswith("argument COMMAND: invalid choice:"):
+                from ..validation import nearest  # here: the parser's module imports no numpy
+
+                word = message.split("'")[1] if message.count("'") >= 2 else ""
+                near = nearest(word.lower(), action.choices, cutoff=0.6)
+                message += f" (did you mean {near}?)" if near is not None else ""
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
 
     def parse_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201 - argparse's signature

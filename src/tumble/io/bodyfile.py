@@ -43,6 +43,7 @@ __all__ = [
     "body_from_mesh",
     "body_from_table",
     "is_mesh_file",
+    "body_path",
     "load_body",
     "mesh_scale_note",
     "mesh_files",
@@ -344,6 +345,25 @@ def _preset_from_table(table: dict, where: str) -> Body:
         return fn(**kwargs)
     except ValueError as exc:
         raise ValueError(f"{where} (preset {preset!r}): {exc}") from None
+
+
+def body_path(spec: str, base_dir: Path | None) -> Path:
+    """The file a run file's ``body = "..."`` names (not a preset), relative to the run file's
+    folder ``base_dir``; a ValueError naming the path looked for where there is none.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from tumble.io.bodyfile import body_path
+    >>> body_path("bodies/none.toml", Path("runs"))
+    Traceback (most recent call last):
+    ...
+    ValueError: body = 'bodies/none.toml' is neither a preset (t-handle, iss-t-handle) nor a file: no runs/bodies/none.toml
+    """
+    path = Path(spec) if base_dir is None else base_dir / spec
+    if not path.exists():
+        raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(PRESETS)}) nor a file: no {path}")
+    return path
 
 
 def _refuse_a_run_file(path: Path, data: dict[str, Any]) -> None:

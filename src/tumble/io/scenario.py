@@ -57,7 +57,7 @@ from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
 from ..validation import NoSuchFileError, nearest
-from .bodyfile import body_from_table, load_body, read_toml
+from .bodyfile import body_from_table, body_path, load_body, read_toml
 from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .torquetables import TORQUE_TABLE, torque_of
@@ -268,10 +268,7 @@ def _body(spec, base_dir: Path | None) -> Body:
         raise ValueError(f"body = {spec!r} must be a preset name, a body file path or a [body] table")
     if spec in PRESETS:
         return PRESETS[spec]()
-    path = Path(spec) if base_dir is None else base_dir / spec
-    if not path.exists():
-        raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
-    return load_body(path)
+    return load_body(body_path(spec, base_dir))
 
 
 #: Where each argument of :func:`simulate` comes from in a scenario file and on the command line.

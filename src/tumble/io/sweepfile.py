@@ -68,7 +68,7 @@ from ..ensemble import (
 )
 from ..ensemble.sampling import MAX_CASES, SAMPLINGS
 from ..mass import PRESETS, Body
-from .bodyfile import body_from_table, mesh_files, read_toml
+from .bodyfile import body_from_table, body_path, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
@@ -207,9 +207,7 @@ def _nominal(spec, base_dir: Path | None) -> tuple[Body, str | None, dict, list[
     if isinstance(spec, str) and spec in PRESETS:
         return PRESETS[spec](), spec, {}, []
     if isinstance(spec, str):
-        path = Path(spec) if base_dir is None else base_dir / spec
-        if not path.exists():
-            raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(PRESETS)}) nor a file")
+        path = body_path(spec, base_dir)
         data = read_toml(path)
         if set(data) != {"body"}:
             raise ValueError(f"body = {spec!r}: a body file has one table, [body]")
