@@ -167,9 +167,23 @@ def test_a_flexing_racquets_file_of_25_tosses_exits_0(tmp_path, capsys):
     assert main(["fit", str(path), "--out", str(tmp_path / "out")]) == 0
     out = capsys.readouterr().out
     assert " of 25 flights" in out or " of 26 flights" in out
+    assert "skipped)" not in out  # a skip says why: "(1 skipped: too short)"
     fit = _fit(rec)
     assert fit.pooled.adequate and fit.pooled.adequacy.startswith(f"each of its {fit.tosses_used} flights described")
     assert np.all(np.abs(fit.pooled.ratios - rec.ratios) < 4 * fit.pooled.ratios_std)
+
+
+def test_the_fit_line_says_in_brief_why_flights_were_skipped():
+    """'3 of 4 flights (1 skipped)' left a user to open tosses.csv to learn that the fourth was a
+    0.03 s fragment (seen 2026-12-02): the line gives each reason's head and its count."""
+    from tumble.analysis.fit import RecordingFit, Toss
+
+    tosses = (Toss(0.0, 1.0, 100, "ok", ""),
+              Toss(2.0, 2.03, 3, "skipped", "too short (0.03 s, 3 samples; a flight needs 0.3 s and 30 samples)"),
+              Toss(3.0, 4.0, 100, "skipped", "saturated: |omega| at the gyroscope's range for 12 samples"),
+              Toss(5.0, 5.1, 10, "skipped", "too short (0.10 s of free flight, 10 samples)"))
+    fit = RecordingFit(tosses, None, 1.0, 1, np.zeros(0), np.zeros((0, 3)))
+    assert fit.flights_used() == "1 of 4 flights (3 skipped: 2 too short, saturated)"  # the repr's and the command's
 
 
 def _copies(tmp_path):

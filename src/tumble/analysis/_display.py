@@ -117,9 +117,12 @@ def toss_repr(toss: Any) -> str:
     return result_repr("Toss", parts)
 
 
-def _used(tosses: Any, used: int) -> str:
-    skipped = sum(t.status != "ok" for t in tosses)
-    return f"{used} of {plural(len(tosses), 'flight')}" + (f" ({skipped} skipped)" if skipped else "")
+def flights_used(tosses: Any, used: int) -> str:
+    """``3 of 4 flights (1 skipped: too short)``: each skipped flight's reason by its head (before a
+    bracket, a colon or a semicolon) and its count (:meth:`RecordingFit.flights_used`)."""
+    heads = [str(t.reason).split(" (")[0].split(";")[0].split(":")[0] for t in tosses if t.status != "ok"]
+    why = ", ".join(f"{heads.count(h)} {h}" if heads.count(h) > 1 else h for h in dict.fromkeys(heads))
+    return f"{used} of {plural(len(tosses), 'flight')}" + (f" ({len(heads)} skipped: {why})" if heads else "")
 
 
 def recording_repr(fit: Any) -> str:
@@ -134,7 +137,7 @@ def recording_repr(fit: Any) -> str:
     True
     """
     p = fit.pooled
-    parts = [_used(fit.tosses, fit.tosses_used), *_ratios(p), f"chi2/dof {fmt(fit.chi2_dof, 2)}",
+    parts = [flights_used(fit.tosses, fit.tosses_used), *_ratios(p), f"chi2/dof {fmt(fit.chi2_dof, 2)}",
              f"residual {fmt(p.residual_rms, 3)} rad/s", _verdict(p)]
     return result_repr("RecordingFit", parts)
 
@@ -161,7 +164,7 @@ def recording_html(fit: Any) -> str:
     >>> page.count("<table"), "chi2/dof" in page
     (2, True)
     """
-    rows = [("flights used", _used(fit.tosses, fit.tosses_used)),
+    rows = [("flights used", flights_used(fit.tosses, fit.tosses_used)),
             ("chi2/dof of the flights' ratios about the pooled ones", fmt(fit.chi2_dof)), *_rotation_rows(fit.pooled)]
     flights = html_table(_toss_rows(fit.tosses), header=("#", "time (s)", "samples", "status", "I1/I3", "I2/I3", "reason"),
                          caption="flights")

@@ -213,8 +213,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 files["tosses.csv"] = _tosses_csv(record["tosses"])
                 record["flight_models"] = [{"input": labels[m["recording"]], **m} for m in record["flight_models"]]
                 pooled = rec.pooled
-                skipped = len(rec.tosses) - rec.tosses_used
-                line = (f"{rec.tosses_used} of {len(rec.tosses)} flights" + (f" ({skipped} skipped)" if skipped else "")
+                line = (rec.flights_used()
                         + (f" in {len(paths)} recordings (sensor mount and bias per recording)" if several else "")
                         + (f", chi2/dof {rec.chi2_dof:.2g}" if np.isfinite(rec.chi2_dof) else ""))
                 draw = (lambda: recording_figure(rec)) if recording_figure is not None else None

@@ -148,6 +148,20 @@ class RecordingFit:
     def _repr_html_(self) -> str:
         return _display.recording_html(self)
 
+    def flights_used(self) -> str:
+        """How many flights the pooled fit used, of how many found, and why the others were left
+        out in brief (each reason's head and its count; :attr:`tosses` hold the whole reasons).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit import RecordingFit, Toss
+        >>> tosses = (Toss(0.0, 1.0, 100, "ok", ""), Toss(2.0, 2.03, 3, "skipped", "too short (0.03 s, 3 samples)"))
+        >>> RecordingFit(tosses, None, 1.0, 1, np.zeros(0), np.zeros((0, 3))).flights_used()
+        '1 of 2 flights (1 skipped: too short)'
+        """
+        return _display.flights_used(self.tosses, self.tosses_used)
+
     def summary(self) -> dict:
         """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"``, ``"pooled"``
         and ``"flight_models"`` (:meth:`FlightModel.summary <tumble.analysis.fit.flightmodel.FlightModel.summary>`
