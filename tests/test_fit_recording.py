@@ -488,6 +488,9 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     assert csv_lines[0] == ",".join(keys) and len(csv_lines) == 13
     assert (out / "fit.png").stat().st_size > 10_000
     assert data["body"]["I1_over_I3"] == pytest.approx(2 / 7) and data["body"]["I1_over_I3_sigmas"] > 10
+    b = data["body"]  # and the line says so, not fit.json alone (a walkthrough missed it there, 2026-12-02)
+    assert (f"; t-handle predicts I1/I3 = 0.2857 ({b['I1_over_I3_sigmas']:+.1f} sigma), I2/I3 = 0.7143 "
+            f"({b['I2_over_I3_sigmas']:+.1f} sigma); read ") in line
 
 
 def test_a_recording_without_a_usable_flight_exits_1_and_writes_nothing(tmp_path, capsys):

@@ -244,8 +244,14 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
     (x, y), (sx, sy) = pooled.ratios, pooled.ratios_std
     edge = f" [{pooled.edge}]" if pooled.edge else ""
     read = recs[0].read.brief() if not several else f"{sum(r.read.rows for r in recs)} rows from {len(recs)} files"
+    compared = ""  # --body: what it predicts and how far from the fit, as fit.json's "body" says
+    if body is not None:
+        b = record["body"]
+        compared = (f"; {b['source']} predicts I1/I3 = {b['I1_over_I3']:.4f} ({b['I1_over_I3_sigmas']:+.1f} sigma), "
+                    f"I2/I3 = {b['I2_over_I3']:.4f} ({b['I2_over_I3_sigmas']:+.1f} sigma)")
     print(f"fit {label}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
-          f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s; read {read}; wrote {written} in {os.fspath(out)}")
+          f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s{compared}; read {read}; wrote {written} in "
+          f"{os.fspath(out)}")
     if pooled.caveat:
         print(f"warning: {pooled.caveat}", file=sys.stderr)
     if not pooled.adequate:
