@@ -184,7 +184,7 @@ def test_a_window_outside_the_recording_says_where_the_recording_runs(tmp_path, 
     out = tmp_path / "fit"
     assert main(["fit", str(data), "--out", str(out), "--start", "1000", "--end", "1001"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "--start 1000.0 to --end 1001.0 holds 0 samples (at least 20 fit a flight); " \
+    assert err.count("\n") == 1 and "--start 1000 to --end 1001 holds 0 samples (at least 20 fit a flight); " \
         f"the recording runs from {t[0]:.6g} to {t[-1]:.6g} s" in err, err
     assert not out.exists()
 

@@ -264,7 +264,8 @@ def test_options_override_the_scenario_file(tmp_path, capsys):
     ("argv", "pattern"),
     [
         (["--omega", "nan", "1", "0"], r"--omega\[0\] = nan must be a finite number"),
-        (["--t-end", "-1"], "--t-end = -1.0 must be a positive"),
+        (["--t-end", "-1"], "--t-end = -1 must be a positive"),  # as written, not -1.0
+        (["--dt", "0"], "--dt = 0 must be a positive"),
         (["--samples", "1"], "--samples = 1 must be a whole number from 2"),
         (["--method", "euler"], "--method = 'euler' is unknown"),
         (["--dt", "0.1", "--samples", "5"], "give samples or dt, not both"),

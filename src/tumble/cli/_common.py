@@ -1,4 +1,4 @@
-"""What the command modules share: the exit statuses and the spinner."""
+"""What the command modules share: the exit statuses, the options' number type and the spinner."""
 
 from __future__ import annotations
 
@@ -10,6 +10,38 @@ EXIT_OK = 0
 EXIT_FAILURE = 1
 #: The exit status of bad input: one line naming the field, the value and what is allowed.
 EXIT_USAGE = 2
+
+
+class Written(float):
+    """A number of the command line that shows itself as it was written: a message about it reads
+    ``--t-end = -5`` (the value as the user wrote it), not ``-5.0``; a float everywhere else
+    (arithmetic, numpy, numba, JSON and ``str`` see the float). Made by :func:`number`.
+
+    Examples
+    --------
+    >>> from tumble.cli._common import number
+    >>> t = number("1e3")
+    >>> repr(t), str(t), t + 1.0, f"{t:g}"
+    ('1e3', '1000.0', 1001.0, '1000')
+    """
+
+    text: str
+
+    def __new__(cls, text: str) -> Written:
+        value = super().__new__(cls, text)
+        value.text = str(text)
+        return value
+
+    def __repr__(self) -> str:
+        return self.text
+
+    __str__ = float.__repr__
+
+
+def number(text: str) -> float:
+    """argparse's type of a numeric option: the float of ``text`` that shows itself as written
+    (:class:`Written`); a ValueError (argparse: "invalid number value") for text that is no number."""
+    return Written(text.strip())
 
 
 def _working(message: str):

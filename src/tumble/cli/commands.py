@@ -178,7 +178,7 @@ def _cmd_fit(args) -> int:
     from ..viz import figure_fit, figure_recording
 
     if args.saturation is not None and not (args.saturation > 0 and args.saturation < float("inf")):
-        raise ValueError(f"--saturation = {args.saturation} must be a positive number of rad/s")
+        raise ValueError(f"--saturation = {args.saturation!r} must be a positive number of rad/s")
     bar = _Bar()
     try:
         if len(args.data) > 1 and (args.start is not None or args.end is not None):

@@ -7,7 +7,7 @@ import argparse
 from .._version import __version__
 from ..dynamics.methods.names import method_list
 from . import commands as c
-from ._common import EXIT_USAGE
+from ._common import EXIT_USAGE, number
 
 
 class _Parser(argparse.ArgumentParser):
@@ -119,12 +119,12 @@ def build_parser() -> argparse.ArgumentParser:
                          help="a scenario file (TOML); or a body file or preset (t-handle, iss-t-handle) with --omega")
         cmd.add_argument("--out", required=True, metavar=out_metavar, help=out_help)
         run = cmd.add_argument_group("the run, without a scenario file (or overriding the file's values)")
-        run.add_argument("--omega", nargs=3, type=float, metavar=("W1", "W2", "W3"),
+        run.add_argument("--omega", nargs=3, type=number, metavar=("W1", "W2", "W3"),
                          help="initial angular velocity, rad/s (principal frame, axes ordered I1 <= I2 <= I3)")
         run.add_argument("--frame", metavar="FRAME", help="frame of --omega: principal (default) or design")
-        run.add_argument("--t-end", type=float, metavar="S", help="duration, s (default 20)")
+        run.add_argument("--t-end", type=number, metavar="S", help="duration, s (default 20)")
         run.add_argument("--samples", type=int, metavar="N", help="number of samples (default 500)")
-        run.add_argument("--dt", type=float, metavar="S", help="sample every S seconds instead of --samples")
+        run.add_argument("--dt", type=number, metavar="S", help="sample every S seconds instead of --samples")
         run.add_argument("--method", metavar="NAME", help=method_list())  # every method of the registry
         cmd.set_defaults(func=func, inputs=("source",))
         return cmd
@@ -208,8 +208,8 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Example: tumble map --out map.png --spin 10 --perturbation 0.01 0.01", parents=[debug],
     )
     p.add_argument("--out", required=True, metavar="FILE", help="the figure (.png or .svg)")
-    p.add_argument("--spin", type=float, default=10.0, metavar="W", help="spin about the intermediate axis, rad/s (default 10)")
-    p.add_argument("--perturbation", type=float, nargs=2, default=(0.01, 0.01), metavar=("W1", "W3"),
+    p.add_argument("--spin", type=number, default=10.0, metavar="W", help="spin about the intermediate axis, rad/s (default 10)")
+    p.add_argument("--perturbation", type=number, nargs=2, default=(0.01, 0.01), metavar=("W1", "W3"),
                    help="rates about the minor and major axes, rad/s (default 0.01 0.01)")
     p.add_argument("--resolution", type=int, default=300, metavar="N", help="grid points per side (default 300)")
     p.set_defaults(func=c._cmd_map)
@@ -236,12 +236,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-bias", action="store_true", help="assume an unbiased gyroscope")
     p.add_argument("--drag", choices=["auto", "none", "linear", "quadratic"], default="auto",
                    help="aerodynamic drag about each principal axis: chosen by the BIC (default), or as named")
-    p.add_argument("--saturation", type=float, metavar="RAD_S",
+    p.add_argument("--saturation", type=number, metavar="RAD_S",
                    help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
-    p.add_argument("--start", type=float, metavar="S",
+    p.add_argument("--start", type=number, metavar="S",
                    help="fit one flight: its first time, s (one recording only; without --end, to the recording's end)")
-    p.add_argument("--end", type=float, metavar="S",
+    p.add_argument("--end", type=number, metavar="S",
                    help="fit one flight: its last time, s (without --start, from the recording's start)")
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the data (by default such a fit is written "

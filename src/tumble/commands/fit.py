@@ -191,10 +191,10 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                 lo = -np.inf if start is None else check_number("--start", start, "s")
                 hi = np.inf if end is None else check_number("--end", end, "s")
                 if not lo < hi:
-                    raise ValueError(f"--start {start} must be before --end {end} (s)")
+                    raise ValueError(f"--start {start!r} must be before --end {end!r} (s)")
                 sel = (t >= lo) & (t <= hi)
                 if np.count_nonzero(sel) < MIN_SAMPLES:  # a window outside the recording: say where it is
-                    raise ValueError(f"--start {start} to --end {end} holds {np.count_nonzero(sel)} samples (at least "
+                    raise ValueError(f"--start {start!r} to --end {end!r} holds {np.count_nonzero(sel)} samples (at least "
                                      f"{MIN_SAMPLES} fit a flight); the recording runs from {t[0]:.6g} to {t[-1]:.6g} s")
                 fit = fit_rotation(t[sel], omega[sel], **options)
                 record.update({"start": start, "end": end, **fit.summary()})
