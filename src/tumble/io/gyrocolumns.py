@@ -293,7 +293,7 @@ def match_header(head: list[str], label: str, line: int) -> tuple[list[int], lis
     >>> match_header(["t", "ax", "ay", "az"], "a.csv", 1)
     Traceback (most recent call last):
     ...
-    ValueError: a.csv, line 1: header 't, ax, ay, az' has no rate column for x; allowed: time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x (rad/s, deg/s, rpm, rev/s, Hz), y and z alike
+    ValueError: a.csv, line 1: header 't, ax, ay, az' has no rate column for x; allowed: time: t, time, timestamp (s, ms, us, ns); rates: x, wx, gx, omega_x, gyro_x, gyroscope x (rad/s, deg/s, rpm, rev/s, Hz), y and z alike, or omega_1, omega_2, omega_3
     """
     parsed = [_name(cell) for cell in head]
     shown = ", ".join(head)
