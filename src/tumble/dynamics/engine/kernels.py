@@ -142,14 +142,14 @@ def rhs(y: tuple[float, ...], I: tuple[float, ...], P: tuple[float, ...], u0: fl
 
 
 def generated(source: str, filename: str, module: str, *, parallel: bool = False, inner: bool = False,
-              forceinline: bool = False, **names: Any) -> dict[str, Any]:
+              inline: bool = False, **names: Any) -> dict[str, Any]:
     """The functions the generated ``source`` (:mod:`~tumble.dynamics.engine.unrolled`) defines,
     compiled, by name (``parallel``: with numba's ``prange`` over every core); ``names`` what they
     call (``rhs``, helpers), ``math`` always. ``inner``: functions that only compiled code calls (the
     steps), compiled without the wrapper through which Python calls a kernel (numba's
     ``no_cpython_wrapper``; :data:`tumble.jit._SPEED_ONLY`): a tenth of the first torque
     ``simulate``'s compile. Python must not call them: numba has no entry for it and the
-    interpreter crashes. ``forceinline``: inlined by LLVM where they are called (as :func:`rhs`).
+    interpreter crashes. ``inline``: their code copied by numba where they are called (``inline="always"``).
     The helpers of the steps (``rhs``, the formulas) keep theirs, as a
     function's ``py_func`` run in Python calls them. The code object
     is named after ``filename`` (the module that compiles it, ``module`` its name), so numba's cache
@@ -172,7 +172,7 @@ def generated(source: str, filename: str, module: str, *, parallel: bool = False
     given = set(namespace)
     exec(compile(source, filename, "exec"), namespace)  # noqa: S102 - our own generated source
     return {name: jit(f, error_model="numpy", fastmath=_FAST, parallel=parallel, no_cpython_wrapper=inner,
-                      **({"forceinline": True} if forceinline else {}))
+                      **({"inline": "always"} if inline else {}))
             for name, f in namespace.items()
             if name not in given and name != "__builtins__"}
 
@@ -189,8 +189,11 @@ _dop853_dense, _dop853_interpolate = _STEPS["dop853_dense"], _STEPS["dop853_inte
 #: The length of the array of DOP853's turns to its stage nodes, the step they were made for first.
 _DOP853_TURNS = 1 + 2 * len(DOP853_C)
 #: One accepted DOP853 step with its rejections (:func:`~tumble.dynamics.engine.unrolled.dop853_accept_source`,
-#: the closed loop's too), inlined by LLVM into the kernel's loop: the 13 slopes it returns are not copied again.
-_dop853_accept = generated(dop853_accept_source(), __file__, __name__, inner=True, forceinline=True, np=np, OK=OK,
+#: the closed loop's too), its code copied by numba into the kernel's loop, as the loop's own was: as a function
+#: of its own (inlined by LLVM or not) the tour's first dop853 call compiled in 10.4-11.8 CPU-s against the own
+#: loop's 6.5-8.5; copied, 8.1-8.9 (fresh copies of the sources, benchmarks/bench_first_call.py's case,
+#: alternating, 2026-12-02; with the turns made for each try instead of kept, 8.1-9.1).
+_dop853_accept = generated(dop853_accept_source(), __file__, __name__, inner=True, inline=True, np=np, OK=OK,
                            STEP_COLLAPSED=STEP_COLLAPSED, BUDGET_SPENT=BUDGET_SPENT, _error_norm=_error_norm,
                            _next_step=_next_step, dop853_step=_dop853_step, dop853_errors=_dop853_errors,
                            dop853_turns=_dop853_turns)["dop853_accept"]
