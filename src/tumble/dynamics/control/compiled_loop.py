@@ -115,8 +115,10 @@ def _generated() -> dict[str, Callable[..., Any]]:
     for name in (*inlined, "rhs", "dop853_step", "dop853_errors", "rk4_step", "rk8_step"):  # the steps call them by name
         namespace[name] = jit(namespace[name], error_model="numpy", inline="always" if name in inlined else "never",
                               _nrt=False, no_cpython_wrapper=name not in ("rhs", *inlined))
-    # DOP853's step control, the engine's one writing, inlined by LLVM into the hold interval
-    namespace["dop853_accept"] = jit(namespace["dop853_accept"], error_model="numpy", forceinline=True,
+    # DOP853's step control, the engine's one writing, copied into the hold interval by numba as the engine's
+    # kernel takes it (engine.kernels._dop853_accept: as a function of its own, inlined by LLVM, the engine's
+    # first dop853 compile took ~3 CPU-s longer)
+    namespace["dop853_accept"] = jit(namespace["dop853_accept"], error_model="numpy", inline="always",
                                      no_cpython_wrapper=True)
     return namespace
 
