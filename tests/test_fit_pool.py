@@ -273,3 +273,20 @@ def test_deg_s_read_as_rad_s_that_fits_a_flight_is_not_adequate():
     assert wrong.tosses_used >= 1 and abs(wrong.pooled.ratios[0] - rec.ratios[0]) > 0.5  # fitted, and wrong
     assert not wrong.pooled.adequate and "are they in deg/s?" in wrong.pooled.adequacy
     assert right.pooled.adequate and "deg/s" not in (right.pooled.adequacy or "")
+
+
+def test_a_recording_none_of_whose_flights_entered_the_pool_is_named(tmp_path, capsys):
+    """A phone's recording pooled with two of a racquet: its flights disagree with the others and are
+    left out, and the fit said nothing of it, exit 0 (a walkthrough, 2026-12-02). A warning names the
+    recording whose every flight was left out, with the first reason."""
+    from tumble.analysis.fit.synthetic import synthetic_recording
+    from tumble.commands.fit import run_fit_command
+
+    paths = []
+    for i, (seed, body, tosses) in enumerate([(3, "racquet", 4), (4, "racquet", 4), (5, "phone", 2)]):
+        paths.append(tmp_path / f"rec{i}.csv")
+        paths[-1].write_text(synthetic_recording(seed, body=body, tosses=tosses).csv_text(), encoding="utf-8")
+    assert run_fit_command(paths, tmp_path / "out") == 0
+    err = capsys.readouterr().err
+    assert f"warning: {paths[2]}: none of its 2 flights entered the pooled fit (disagrees with the other flights" in err
+    assert str(paths[0]) not in err and str(paths[1]) not in err

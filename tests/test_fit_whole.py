@@ -183,7 +183,9 @@ def test_the_fit_line_says_in_brief_why_flights_were_skipped():
               Toss(3.0, 4.0, 100, "skipped", "saturated: |omega| at the gyroscope's range for 12 samples"),
               Toss(5.0, 5.1, 10, "skipped", "too short (0.10 s of free flight, 10 samples)"))
     fit = RecordingFit(tosses, None, 1.0, 1, np.zeros(0), np.zeros((0, 3)))
-    assert fit.flights_used() == "1 of 4 flights (3 skipped: 2 too short, saturated)"  # the repr's and the command's
+    assert fit.flights_used() == "1 of 4 flights (3 skipped: 2 too short, 1 saturated)"  # the repr's and the command's
+    alike = RecordingFit(tosses[:2] + tosses[3:], None, 1.0, 1, np.zeros(0), np.zeros((0, 3)))
+    assert alike.flights_used() == "1 of 3 flights (2 skipped: too short)"
 
 
 def _copies(tmp_path):

@@ -119,9 +119,10 @@ def toss_repr(toss: Any) -> str:
 
 def flights_used(tosses: Any, used: int) -> str:
     """``3 of 4 flights (1 skipped: too short)``: each skipped flight's reason by its head (before a
-    bracket, a colon or a semicolon) and its count (:meth:`RecordingFit.flights_used`)."""
+    bracket, a colon or a semicolon), counted where there are several (:meth:`RecordingFit.flights_used`)."""
     heads = [str(t.reason).split(" (")[0].split(";")[0].split(":")[0] for t in tosses if t.status != "ok"]
-    why = ", ".join(f"{heads.count(h)} {h}" if heads.count(h) > 1 else h for h in dict.fromkeys(heads))
+    kinds = list(dict.fromkeys(heads))
+    why = kinds[0] if len(kinds) == 1 else ", ".join(f"{heads.count(h)} {h}" for h in kinds)
     return f"{used} of {plural(len(tosses), 'flight')}" + (f" ({len(heads)} skipped: {why})" if heads else "")
 
 

@@ -194,7 +194,9 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                     raise ValueError(f"--start {start!r} must be before --end {end!r} (s)")
                 sel = (t >= lo) & (t <= hi)
                 if np.count_nonzero(sel) < MIN_SAMPLES:  # a window outside the recording: say where it is
-                    raise ValueError(f"--start {start!r} to --end {end!r} holds {np.count_nonzero(sel)} samples (at least "
+                    window = (f"--start {start!r}" if start is not None else "the start") + " to " + \
+                        (f"--end {end!r}" if end is not None else "the end")  # an option not given: the recording's own
+                    raise ValueError(f"{window} holds {np.count_nonzero(sel)} samples (at least "
                                      f"{MIN_SAMPLES} fit a flight); the recording runs from {t[0]:.6g} to {t[-1]:.6g} s")
                 fit = fit_rotation(t[sel], omega[sel], **options)
                 record.update({"start": start, "end": end, **fit.summary()})
@@ -254,6 +256,11 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
           f"{os.fspath(out)}")
     if pooled.caveat:
         print(f"warning: {pooled.caveat}", file=sys.stderr)
+    for k, name in enumerate(labels if several else ()):  # a recording whose every flight was left out
+        own = [toss for toss in rec.tosses if toss.recording == k]
+        if own and not any(toss.status == "ok" for toss in own):
+            print(f"warning: {name}: none of its {len(own)} flight{'s' if len(own) > 1 else ''} entered the pooled fit "
+                  f"({own[0].reason}; tosses.csv has each one's reason): is it a recording of this body?", file=sys.stderr)
     if not pooled.adequate:
         print(f"warning: {pooled.adequacy}" + ("" if accept_inadequate else
               " (fit.json says \"adequate\": false; --accept-inadequate to accept the fit)"), file=sys.stderr)

@@ -91,7 +91,7 @@ def read_fit_folder(path: str | os.PathLike[str]) -> FitFolder:
     except UnicodeDecodeError:
         raise ValueError(f"{file}: damaged: not UTF-8 text") from None
     except json.JSONDecodeError as err:
-        raise ValueError(f"{file}: damaged: not JSON ({err.msg} at line {err.lineno}, column {err.colno})") from None
+        raise ValueError(f"{file}: damaged: not JSON ({err.msg.removesuffix(' at')} at line {err.lineno}, column {err.colno})") from None
     if not isinstance(record, dict):
         raise ValueError(f"{file}: damaged: a JSON {type(record).__name__}, not the object tumble fit writes")
     if "flight_models" not in record:

@@ -281,7 +281,7 @@ def read_tensor_folder(path: str | os.PathLike[str]) -> TensorFolder:
     except UnicodeDecodeError:
         raise _damaged(file, "not UTF-8 text") from None
     except json.JSONDecodeError as err:
-        raise _damaged(file, f"not JSON ({err.msg} at line {err.lineno}, column {err.colno})") from None
+        raise _damaged(file, f"not JSON ({err.msg.removesuffix(' at')} at line {err.lineno}, column {err.colno})") from None
     record = _check_record(file, record)
     series_file = folder / THROWS_FILE
     if not series_file.is_file():
