@@ -100,6 +100,14 @@ TENSOR_BAD = {
 }
 
 
+def test_a_mass_beyond_the_bound_is_quoted_as_written(tmp_path, capsys):
+    """'--mass 482' (grams for kilograms) said "--mass = 482.0 is beyond 100 kg" (seen 2026-12-02)."""
+    dev, thr = _files(tmp_path)
+    code, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "482", "--out", str(tmp_path / "out"))
+    assert code == 2 and err.startswith("tumble: error: --mass = 482 is beyond 100 kg")
+    assert not (tmp_path / "out").exists()
+
+
 def test_a_bad_saturation_is_refused(tmp_path, capsys):
     dev, thr = _files(tmp_path)
     code, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "0.5", "--saturation", "-3",

@@ -11,7 +11,7 @@ import os
 import sys
 from pathlib import Path
 
-from ._common import EXIT_FAILURE, EXIT_OK, _run_title, _working
+from ._common import EXIT_FAILURE, EXIT_OK, _run_title, _working, number
 from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_control
 
 
@@ -49,9 +49,10 @@ def _cmd_inertia(args) -> int:
 
 
 def _positive(option: str, text: str, unit: str) -> float:
-    """An option's positive finite number, the error quoting the value as written."""
+    """An option's positive finite number, the error quoting the value as written (here and in the
+    checks after it: :func:`~tumble.cli._common.number`)."""
     try:
-        value = float(text)
+        value = number(text)
     except ValueError:
         value = math.nan
     if not (math.isfinite(value) and value > 0):

@@ -194,7 +194,8 @@ def check_number(field: str, value: object, unit: str, at_most: float | None = N
         x = math.inf
     if not math.isfinite(x):
         raise ValueError(f"{field} = {value!r} must be a finite number ({unit})")
-    check_at_most(field, x, unit, at_most)
+    # a Python float shown as given (the command line's keep their text), numpy's as the plain float
+    check_at_most(field, value if isinstance(value, float) and not isinstance(value, np.floating) else x, unit, at_most)
     return x
 
 
