@@ -336,5 +336,14 @@ def test_a_device_no_hand_throws_is_refused_where_it_is_given():
 def test_a_device_mass_that_makes_every_tensor_no_bodys_is_pointed_at():
     """The device's mass doubled (0.2 kg for 0.10067): every throw's tensor breaks the triangle
     inequality, and the refusal says what they share, the device."""
-    with pytest.raises(NoThrowError, match="every throw's tensor is no body's: check the device's mass, center_of_mass"):
+    with pytest.raises(NoThrowError, match="every throw's tensor is no body's: check the object's mass .* and the "
+                                           "device's mass, center_of_mass"):
         fit_tensor([throw(1), throw(2)], replace(calibrated_device(), mass=0.2), OBJECT.mass)
+
+
+def test_an_object_mass_that_makes_every_tensor_no_bodys_is_pointed_at():
+    """The object's mass a tenth of the real one (a walkthrough's --mass 0.0482 for 0.482, 2026-12-02):
+    the refusal named the device's numbers only; it names the object's mass first."""
+    with pytest.raises(NoThrowError, match=r"every throw's tensor is no body's: check the object's mass \(tumble "
+                                           r"tensor's --mass; a tenth of the real one does this\)"):
+        fit_tensor([throw(1), throw(2)], calibrated_device(), OBJECT.mass / 10)

@@ -446,7 +446,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
             lone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
             hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if lone
                     and any(f.reason.startswith(_BIAS_REASON) for f in fits) else "") + ("; every throw's tensor is no "
-                    "body's: check the device's mass, center_of_mass and rotor_inertia, which enter each of them" if all(
+                    "body's: check the object's mass (tumble tensor's --mass; a tenth of the real one does this) and the "
+                    "device's mass, center_of_mass and rotor_inertia, which enter each of them" if all(
                         f.reason.startswith(NOT_A_BODY) for f in fits) else "")
             raise NoThrowError(f"no throw{' ' + which if which else ''} could be fitted ({why}){hint}")
         joint, jf = _joint([fits[k] for k in used], errors, start)
