@@ -64,6 +64,23 @@ def test_an_integral_gain_past_p_over_i_is_named():
     assert held_loop_radius(MOMENTS, K, P, 0.05, 0.5 * limit).max() < 1
 
 
+def test_an_integral_gain_and_a_period_both_past_their_bounds_are_both_named():
+    """Ki = 5 and period = 100 s: the warning named Ki alone, and the run with Ki fixed would still have
+    diverged (a walkthrough of docs/control.md, 2026-12-02). The period is judged without the integral
+    term too, and its bound is the one the period alone gives."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_held_loop(MOMENTS, K, P, 100.0, 5.0)
+    message = str(caught[0].message)
+    assert len(caught) == 1 and message.startswith("Ki = 5 1/s: MRP feedback's integral term makes the loop unstable")
+    assert message.endswith(f"; and period = 100 s is unstable even without it about principal axis 1 (the longest "
+                            f"stable period without it is {_longest_stable():.3g} s)")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_held_loop(MOMENTS, K, P, 0.5, 5.0)  # a stable period: Ki alone is named
+    assert "and period" not in str(caught[0].message)
+
+
 def test_the_shipped_examples_are_stable_and_the_command_says_it_in_one_line(tmp_path, capsys):
     from tumble.cli import main
 

@@ -137,12 +137,25 @@ def check_held_loop(moments: ArrayLike, K: float, P: float, period: float, Ki: f
     if Ki > 0.0 and Ki >= P / I[axis]:
         message = (f"Ki = {Ki:g} 1/s: MRP feedback's integral term makes the loop unstable about principal axis "
                    f"{axis + 1} (I = {I[axis]:.3g} kg m^2): it needs Ki < P / I = {P / I[axis]:.3g} 1/s")
+        # the period too, judged without the integral term: both named, not the one that hides the other
+        free = held_loop_radius(I, K, P, period)
+        if np.any(free > 1.0 + 1e-12):
+            worst = int(np.argmax(free))
+            message += (f"; and period = {period:g} s is unstable even without it about principal axis {worst + 1} "
+                        f"(the longest stable period without it is {_longest_period(I[worst], K, P, period, 0.0):.3g} s)")
     else:
-        lo, hi = 0.0, float(period)  # the longest stable period, by bisection on the radius
-        for _ in range(50):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if held_loop_radius(I[axis:axis + 1], K, P, mid, Ki)[0] <= 1.0 else (lo, mid)
         message = (f"period = {period:g} s: MRP feedback held that long is unstable about principal axis {axis + 1} "
                    f"(I = {I[axis]:.3g} kg m^2, a pole of magnitude {radius[axis]:.3g} > 1: P T / I = "
-                   f"{P * period / I[axis]:.3g}); the longest stable period is {lo:.3g} s")
+                   f"{P * period / I[axis]:.3g}); the longest stable period is "
+                   f"{_longest_period(I[axis], K, P, period, Ki):.3g} s")
     warnings.warn(message, UnstableLoopWarning, stacklevel=3)
+
+
+def _longest_period(I: float, K: float, P: float, period: float, Ki: float) -> float:
+    """The longest stable hold period below ``period`` (s) about an axis of moment ``I``, by
+    bisection on :func:`held_loop_radius`."""
+    lo, hi = 0.0, float(period)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if held_loop_radius([I], K, P, mid, Ki)[0] <= 1.0 else (lo, mid)
+    return lo
