@@ -256,11 +256,10 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
           f"{os.fspath(out)}")
     if pooled.caveat:
         print(f"warning: {pooled.caveat}", file=sys.stderr)
-    for k, name in enumerate(labels if several else ()):  # a recording whose every flight was left out
-        own = [toss for toss in rec.tosses if toss.recording == k]
-        if own and not any(toss.status == "ok" for toss in own):
-            print(f"warning: {name}: none of its {len(own)} flight{'s' if len(own) > 1 else ''} entered the pooled fit "
-                  f"({own[0].reason}; tosses.csv has each one's reason): is it a recording of this body?", file=sys.stderr)
+    for k in rec.unused_recordings() if several else ():  # a recording whose every flight was left out
+        own = [toss for toss in rec.tosses if toss.recording == k]  # one at least (unused_recordings)
+        print(f"warning: {labels[k]}: none of its {len(own)} flight{'s' if len(own) > 1 else ''} entered the pooled fit "
+              f"({own[0].reason}; tosses.csv has each one's reason): is it a recording of this body?", file=sys.stderr)
     if not pooled.adequate:
         print(f"warning: {pooled.adequacy}" + ("" if accept_inadequate else
               " (fit.json says \"adequate\": false; --accept-inadequate to accept the fit)"), file=sys.stderr)

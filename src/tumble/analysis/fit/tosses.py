@@ -162,6 +162,21 @@ class RecordingFit:
         """
         return _display.flights_used(self.tosses, self.tosses_used)
 
+    def unused_recordings(self) -> list[int]:
+        """The recordings (their indices in the list given to :func:`fit_recording`) that had flights
+        of which none entered the pooled fit: another body's recording among this one's, say.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.fit import RecordingFit, Toss
+        >>> tosses = (Toss(0.0, 1.0, 100, "ok", ""), Toss(2.0, 3.0, 100, "skipped", "disagrees", recording=1))
+        >>> RecordingFit(tosses, None, 1.0, 1, np.zeros(0), np.zeros((0, 3))).unused_recordings()
+        [1]
+        """
+        found = sorted({toss.recording for toss in self.tosses})
+        return [k for k in found if not any(t.status == "ok" for t in self.tosses if t.recording == k)]
+
     def summary(self) -> dict:
         """JSON-ready: the pooled fit's keys (as :meth:`RotationFit.summary`), ``"tosses"``, ``"pooled"``
         and ``"flight_models"`` (:meth:`FlightModel.summary <tumble.analysis.fit.flightmodel.FlightModel.summary>`
