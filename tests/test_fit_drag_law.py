@@ -83,6 +83,11 @@ def test_the_weighted_mean_of_flights_leaves_the_drag_law_out_as_the_joint_fit_d
     assert np.all(np.array(wider) >= np.array(narrower)) and np.any(np.array(wider) > 1.05 * np.array(narrower))
     np.testing.assert_allclose(fit.pooled.ratios, bare.pooled.ratios, rtol=1e-12)
     np.testing.assert_allclose(fit.pooled.ratios_std, bare.pooled.ratios_std, rtol=1e-9)
+    # the ratios' covariance is the mean's, matching its stds (it was the first flight's: a correlation
+    # of -2.6 beside the mean's stds), and the reference flight's other parameters are not tied to it
+    block = fit.pooled.covariance[:2, :2]
+    np.testing.assert_allclose(np.sqrt(np.diag(block)), fit.pooled.ratios_std, rtol=1e-12)
+    assert abs(fit.summary()["ratios_correlation"]) <= 1.0 and np.all(np.isnan(fit.pooled.covariance[:2, 2:]))
 
 
 def test_a_flight_determined_but_for_the_drag_law_says_so():

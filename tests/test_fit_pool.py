@@ -286,7 +286,33 @@ def test_a_recording_none_of_whose_flights_entered_the_pool_is_named(tmp_path, c
     for i, (seed, body, tosses) in enumerate([(3, "racquet", 4), (4, "racquet", 4), (5, "phone", 2)]):
         paths.append(tmp_path / f"rec{i}.csv")
         paths[-1].write_text(synthetic_recording(seed, body=body, tosses=tosses).csv_text(), encoding="utf-8")
-    assert run_fit_command(paths, tmp_path / "out") == 0
+    assert run_fit_command(paths, tmp_path / "out") == 1  # and the pooled value is no answer: next test
     err = capsys.readouterr().err
     assert f"warning: {paths[2]}: none of its 2 flights entered the pooled fit (disagrees with the other flights" in err
+    assert "the recordings disagree: every fitted flight of recordings[2] lies" in err
     assert str(paths[0]) not in err and str(paths[1]) not in err
+
+
+def test_a_racquet_and_a_phone_pooled_are_no_answer():
+    """The shipped racquet's tosses pooled with the shipped phone's toss, as a user would try them:
+    the phone's flight made the joint fit fail, and the flights' weighted mean, I1/I3 = 0.20 (the
+    phone's) for the racquet's 0.06 at chi2/dof 943, was written as adequate with a correlation of
+    -2.6 (a walkthrough, 2026-12-02). The phone's flight is now left out as disagreeing, the pooled
+    ratios are the racquet flights', and the fit is not adequate, naming the recording that
+    disagrees. The racquet's first 12 s (three tosses) keep the test short; the whole file fails
+    alike."""
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "examples" / "data"
+    racquet, phone = load_recording(data / "racquet_tosses.csv"), load_recording(data / "phone_toss.csv")
+    k = racquet.t < 12.0
+    with pytest.warns(InadequateFitWarning, match=r"the recordings disagree: every fitted flight of recordings\[1\]"):
+        fit = fit_recording([(racquet.t[k], racquet.omega[k], [e for e in racquet.events if e[0] < 12.0]),
+                             (phone.t, phone.omega, list(phone.events))])
+    assert not fit.pooled.adequate and "fit each recording apart" in fit.pooled.adequacy
+    [left] = [toss for toss in fit.tosses if toss.recording == 1]
+    assert left.status == "skipped" and left.reason.startswith("disagrees with the other flights")
+    own = np.array([toss.fit.ratios for toss in fit.tosses if toss.status == "ok"])
+    assert len(own) >= 2 and np.all(own[:, 0] < 0.12) and abs(left.fit.ratios[0] - 0.20) < 0.01  # racquet, phone
+    assert np.all(np.abs(fit.pooled.ratios - np.median(own, axis=0)) < 5 * fit.pooled.ratios_std)
+    assert -1.0 <= fit.summary()["ratios_correlation"] <= 1.0

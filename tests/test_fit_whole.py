@@ -84,13 +84,13 @@ def test_the_stretch_after_the_catch_was_taken_for_a_flight_before(monkeypatch):
 
 
 def test_a_pooled_answer_outside_its_flights_values_names_the_flight_that_pulls_it():
-    """The caveat on its own (:func:`~tumble.analysis.fit.recording._outside`, the flights'
+    """The caveat on its own (:func:`~tumble.analysis.fit.disagreement.outside_caveat`, the flights'
     weighted mean standing in for a joint fit): three fitted flights of one body, a pooled I1/I3
     set 3 of the flights' largest standard uncertainties beyond their largest value is said to lie
     outside and names one of them; 1.5 of them beyond, or the flights' mean, is not."""
     from types import SimpleNamespace
 
-    from tumble.analysis.fit.recording import OUTSIDE_SIGMAS, _outside
+    from tumble.analysis.fit.disagreement import OUTSIDE_SIGMAS, outside_caveat as _outside
     from tumble.analysis.fit.summary import ratio_summary
 
     rec = synthetic_recording(4, tosses=3)

@@ -258,7 +258,8 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
         print(f"warning: {pooled.caveat}", file=sys.stderr)
     for k in rec.unused_recordings() if several else ():  # a recording whose every flight was left out
         own = [toss for toss in rec.tosses if toss.recording == k]  # one at least (unused_recordings)
-        print(f"warning: {labels[k]}: none of its {len(own)} flight{'s' if len(own) > 1 else ''} entered the pooled fit "
+        which = f"none of its {len(own)} flights entered" if len(own) > 1 else "its one flight did not enter"
+        print(f"warning: {labels[k]}: {which} the pooled fit "
               f"({own[0].reason}; tosses.csv has each one's reason): is it a recording of this body?", file=sys.stderr)
     if not pooled.adequate:
         print(f"warning: {pooled.adequacy}" + ("" if accept_inadequate else

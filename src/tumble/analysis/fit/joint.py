@@ -62,6 +62,18 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
     own = own if own.any() else np.ones(len(used), bool)
     near = np.sum((rat - np.median(rat[own], axis=0)) ** 2, axis=1) + np.where(own, 0.0, np.inf)
     ref = int(np.argmin(near))
+    # the gross outliers first, from the flights' own fits alone: left out before anything is
+    # refitted, so that a joint fit that goes astray still names them (a phone's flight pooled with
+    # a racquet's: the refit failed and the flights' weighted mean, I1/I3 0.20 for the racquet's
+    # 0.06 and chi2/dof 593, was written as adequate; a walkthrough, 2026-12-02)
+    agree = [bool(not own[j] or _agrees(sols[j], sols[ref])) for j in range(len(used))]
+    keep_idx = [j for j, ok in enumerate(agree) if ok]
+    if len(keep_idx) < len(used):
+        if len(keep_idx) < 2:
+            return None, [], [j for j in range(len(used)) if not agree[j]]
+        sub = [used[j] for j in keep_idx]
+        sol, models, _ = joint_solution(sub, groups[keep_idx], t, omega, keep, drag, scale_uncertainty)
+        return sol, models, [j for j in range(len(used)) if not agree[j]]
     kinds = Counter(s.model.drag for s in sols)
     kind = drag if drag != "auto" else kinds.most_common(1)[0][0]
     m_ref, P_ref = sols[ref].model, sols[ref].P
@@ -85,7 +97,6 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
     P0 = model.pack(P_ref[0], P_ref[1], rv, b, w0, drag0)
     # each flight's omega0 refitted under the shared parameters: near the separatrix another
     # flight's ratios move a flight onto another mode, and its own omega0 must follow
-    agree = []
     for j, f in enumerate(used):
         n = f.stop - f.first
         one = Model([model.tau[j, :n]], model.rotation, model.bias, kind, model.speeds[j:j + 1])
@@ -100,32 +111,6 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
         except ValueError:  # not finite at the start: the shared drag, integrated back from this
             return None, [], []  # flight's anchor to its first samples, diverges: astray (caller pools)
         P0[model.ns + 3 * j:model.ns + 3 * j + 3] = fitted.x
-        # a gross outlier: its own ratios five standard uncertainties (its own and the
-        # reference's) from the reference's; the Birge ratio deals with the rest. The
-        # uncertainties hold the gyroscope's scale-factor part: the scale errors are common to
-        # the flights of a recording, but each flight's motion maps them into its ratios
-        # differently, so they do not cancel in the difference. Taken as independent, which is a
-        # margin, not the covariance: on 684 pairs of agreeing synthetic flights
-        # (benchmarks/pair_outliers.py 40) the statistical part alone put 6.6 % beyond five
-        # (chi^2 > 25), the independent scale parts 0.7 % (median chi^2 0.40 where 1.39 is
-        # right), the common error's own (B_a - B_b)(B_a - B_b)^T 2.3 % (median 1.00): the
-        # flights' covariances miss part of some flights' error, and the margin keeps those
-        # flights from being dropped as outliers. Not the drag
-        # law's model error: the flights are pooled without it (tumble.analysis.fit.solve), and a
-        # flight it alone brings within five sigma swells the pooled ratios' Birge ratio (50
-        # racquet tosses: chi^2/dof 28 against 4).
-        dv = rat[j] - rat[ref]
-        C = sum(public_covariance(without_drag_law_error(sols[k]))[2][:2, :2] for k in (j, ref))
-        # a flight joined for the joint fit only states no ratios of its own to compare (its
-        # residuals under the joint fit are its test: tumble.analysis.fit.recording._joined)
-        agree.append(bool(not own[j] or dv @ np.linalg.pinv(C) @ dv <= 25.0))
-    keep_idx = [j for j, ok in enumerate(agree) if ok]
-    if len(keep_idx) < len(used):
-        if len(keep_idx) < 2:
-            return None, [], [j for j in range(len(used)) if not agree[j]]
-        sub = [used[j] for j in keep_idx]
-        sol, models, _ = joint_solution(sub, groups[keep_idx], t, omega, keep, drag, scale_uncertainty)
-        return sol, models, [j for j in range(len(used)) if not agree[j]]
     try:
         sol = solve(model, data, mask, P0, max_nfev=60, scale_uncertainty=scale_uncertainty)
     except (ValueError, np.linalg.LinAlgError):  # the solver failed numerically: astray, as below
@@ -134,6 +119,28 @@ def joint_solution(used: Sequence[Flight], groups: ArrayLike, t: np.ndarray, ome
     if np.sqrt(sol.ssr / sol.m) > 2.0 * own + 0.01 * np.sqrt(np.mean(data[mask] ** 2)):
         return None, [], []  # the joint fit went astray: the caller pools the flights' own fits
     return sol, [sol.omega_model[j, :f.stop - f.first] for j, f in enumerate(used)], []
+
+
+def _agrees(sol: Solution, ref: Solution) -> bool:
+    """Whether a flight's own ratios lie within five standard uncertainties (its own and the
+    reference flight's) of the reference's: the others are gross outliers, left out of a joint fit;
+    the Birge ratio deals with the rest.
+
+    The uncertainties hold the gyroscope's scale-factor part: the scale errors are common to the
+    flights of a recording, but each flight's motion maps them into its ratios differently, so they
+    do not cancel in the difference. Taken as independent, which is a margin, not the covariance:
+    on 684 pairs of agreeing synthetic flights (benchmarks/pair_outliers.py 40) the statistical part
+    alone put 6.6 % beyond five (chi^2 > 25), the independent scale parts 0.7 % (median chi^2 0.40
+    where 1.39 is right), the common error's own (B_a - B_b)(B_a - B_b)^T 2.3 % (median 1.00): the
+    flights' covariances miss part of some flights' error, and the margin keeps those flights from
+    being dropped as outliers. Not the drag law's model error: the flights are pooled without it
+    (:mod:`tumble.analysis.fit.solve`), and a flight it alone brings within five sigma swells the
+    pooled ratios' Birge ratio (50 racquet tosses: chi^2/dof 28 against 4). A flight joined for the
+    joint fit only states no ratios of its own to compare (its residuals under the joint fit are its
+    test: :func:`tumble.analysis.fit.recording._joined`); the caller passes it."""
+    dv = ratio_summary(sol)[0] - ratio_summary(ref)[0]
+    C = sum(public_covariance(without_drag_law_error(s))[2][:2, :2] for s in (sol, ref))
+    return bool(dv @ np.linalg.pinv(C) @ dv <= 25.0)
 
 
 def stack_flights(used: Sequence[Flight], omega: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

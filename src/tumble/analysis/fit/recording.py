@@ -42,6 +42,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 from .adequacy import InadequateFitWarning, judge, judge_flights
+from .disagreement import outside_caveat, split_verdict
 from .flightmodel import FlightModel
 from .flights import Flight, find_flights
 from .segments import pause_times
@@ -49,7 +50,6 @@ from .joint import first_flight_view, joint_solution, stack_flights
 from .result import (
     RotationFit,
     public_covariance,
-    ratio_summary,
     rotation_fit,
 )
 from .single import _check, _check_options, saturation_mask
@@ -226,16 +226,15 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
                                        sol.ssr, sol.m, own), omega)
     used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
     joint, models, outliers = first_joint or joint_solution(used, used_groups, t, omega, keep, drag, scale_uncertainty)
+    split = split_verdict(used, used_groups, outliers)
+    bad = {id(used[j]) for j in outliers}  # by identity: the list below may lose the flights joined
     if joint is None and joined:  # no joint fit to use them in: skipped after all, with their own reasons
         for j in joined:
             flights[j] = replace(flights[j], status="skipped", reason=flights[j].reason[len(JOINT_ONLY) + 2:])
         tosses = tuple(replace(toss, status="skipped", reason=flights[j].reason) if j in joined else toss
                        for j, toss in enumerate(tosses))
         used = [f for f in flights if f.status == "ok"]
-        used_groups = [r for f, r in zip(flights, groups) if f.status == "ok"]
-    split = _split_verdict(used, outliers)
-    if outliers:
-        bad = {id(used[j]) for j in outliers}
+    if bad:
         tosses = tuple(
             replace(toss, status="skipped", reason=(
                 "disagrees with the other flights: its own ratios lie more than five standard uncertainties "
@@ -246,7 +245,7 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
         _pooled(joint, used, tosses, t, omega, keep, models)
     fit = replace(fit, t=t0, omega=w0, recordings=series,
                   flight_models=_flight_models(joint, used, [number[id(f)] for f in used], groups))
-    outside = _outside(fit, used, [number[id(f)] for f in used], omega, keep, joint is not None)
+    outside = outside_caveat(fit, used, [number[id(f)] for f in used], omega, keep, joint is not None)
     if outside:
         fit = replace(fit, pooled=replace(fit.pooled, caveat="; ".join(filter(None, (fit.pooled.caveat, outside)))))
     if split:
@@ -357,73 +356,6 @@ def samples_sha256(t: np.ndarray, omega: np.ndarray) -> str:
     return h.hexdigest()
 
 
-#: Share of the fitted flights that may disagree with the others before the recording counts as
-#: holding more than one body: a third (one stray flight in twelve is a toss gone wrong; a third
-#: that agree among themselves is another body, a loose phone or a changed mount).
-MAX_DISAGREEING = 1.0 / 3.0
-
-
-def _split_verdict(used, outliers) -> str:
-    """The reason a recording's pooled value is no answer, or "" (:data:`MAX_DISAGREEING`)."""
-    if len(outliers) < 2 or len(outliers) < MAX_DISAGREEING * len(used):
-        return ""
-    own = np.array([ratio_summary(used[j].solution)[0] for j in outliers])
-    return (f"the flights disagree: {len(outliers)} of {len(used)} fitted flights lie more than five standard "
-            f"uncertainties from the others (their ratios I1/I3 {np.min(own[:, 0]):.4f} to {np.max(own[:, 0]):.4f}, "
-            f"I2/I3 {np.min(own[:, 1]):.4f} to {np.max(own[:, 1]):.4f}): the recording holds more than one body "
-            "or the phone moved on it; fit each group apart (--start/--end)")
-
-
-def _outside(fit: RecordingFit, used, numbers, omega, keep, joint: bool) -> str:
-    """What to say when the pooled ratios lie outside the range of the flights' own values, on
-    one side of them all, each more than :data:`OUTSIDE_SIGMAS` of its own standard uncertainties
-    away (a joint fit may fall a little outside the range by right, the shared mount and bias
-    pinning it better than any flight alone; not this far): some flight bends the shared mount,
-    bias or drag. It names the flight that pulls it: the one whose samples the joint model follows
-    worst against its own fit, ``(SSR_joint - SSR_own) / (SSR_own / m)`` largest (the rise of its
-    chi^2, its own residual variance taken as its noise), or, where the flights' weighted mean
-    stands in for a joint fit (``joint`` false), the flight whose leaving out moves it the most;
-    ``""`` otherwise."""
-    own = [(k, f) for k, f in zip(numbers, used) if not f.joinable]
-    if len(own) < 2 or len(fit.omega_models) != len(used):
-        return ""
-    summaries = [ratio_summary(f.solution) for _, f in own]
-    values, stds = np.array([r[0] for r in summaries]), np.array([r[1] for r in summaries])
-    p = fit.pooled.ratios
-    z = (p - values) / np.maximum(stds, 1e-300)
-    out = np.all(z > OUTSIDE_SIGMAS, axis=0) | np.all(z < -OUTSIDE_SIGMAS, axis=0)
-    if not out.any():
-        return ""
-    axis = int(np.flatnonzero(out)[0])
-    if joint:
-        rise = []
-        for f, model in zip(used, fit.omega_models):
-            sl = slice(f.first, f.first + len(model))
-            r2 = np.where(keep[sl], model - omega[sl], 0.0) ** 2
-            rise.append((float(np.sum(r2)) - f.solution.ssr) / max(f.solution.ssr / max(f.solution.m, 1), 1e-300))
-        j, why = int(np.argmax(rise)), f"its samples followed worst by the shared parameters (chi^2 up by {max(rise):.3g})"
-    else:  # the flights' weighted mean: the flight whose leaving out moves it back the most
-        W = np.array([np.linalg.pinv(public_covariance(f.solution, statistical=True)[2][:2, :2]) for _, f in own])
-        shift = []
-        for i in range(len(own)):
-            rest = np.arange(len(own)) != i
-            mean = np.linalg.pinv(W[rest].sum(axis=0)) @ np.einsum("fij,fj->i", W[rest], values[rest])
-            shift.append(abs(float(p[axis] - mean[axis])))
-        i = int(np.argmax(shift))
-        j = used.index(own[i][1])
-        why = f"the weighted mean without it moves by {shift[i]:.3g}"
-    lo, hi = values[:, axis].min(), values[:, axis].max()
-    return (f"the joint fit's {('I1/I3', 'I2/I3')[axis]} = {p[axis]:.4f} lies outside its flights' own values "
-            f"({lo:.4f} to {hi:.4f}; each more than {OUTSIDE_SIGMAS:g} of its standard uncertainties away): the flight "
-            f"at {used[j].start:.2f}-{used[j].end:.2f} s (tosses[{numbers[j]}]) pulls it ({why}); check that it is a free flight of this body, or "
-            f"fit the flights apart (--start/--end)")
-
-
-#: How many of its own standard uncertainties every flight's ratio must lie from the joint fit's,
-#: all on one side, for the joint fit to be said to lie outside its flights' values (:func:`_outside`).
-OUTSIDE_SIGMAS = 2.0
-
-
 def _flight_models(sol: Solution | None, used, numbers, groups) -> tuple:
     """Each used flight's :class:`FlightModel`: of the joint solution ``sol`` (its flights are
     ``used``, in order), or of the flight's own solution where there is none."""
@@ -492,7 +424,11 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     std = np.minimum(np.sqrt(np.diag(cov)), (0.5, 0.25))
     iv = np.array([[max(0.0, mean[0] - 1.96 * std[0]), min(1.0, mean[0] + 1.96 * std[0])],
                    [max(0.5, mean[1] - 1.96 * std[1]), min(1.0, mean[1] + 1.96 * std[1])]])
-    pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None,
+    # the ratios' block is the mean's; their covariance with the reference flight's other parameters is
+    # no one's (NaN), not the reference flight's own (that gave a correlation of -2.9 beside the mean's stds)
+    full = np.full_like(ref.fit.covariance, np.nan)
+    full[:2, :2], full[2:, 2:] = cov, ref.fit.covariance[2:, 2:]
+    pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None, covariance=full,
                      samples=int(sum(f.samples for f in used)))
     return RecordingFit(tosses, pooled, chi2 / dof if len(used) > 1 else float("nan"), len(used), t, omega,
                         tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"), (),
