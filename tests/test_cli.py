@@ -77,6 +77,11 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv):
      "tumble simulate: error: unrecognized arguments: --samplse=3 --bogus (--samplse: did you mean --samples?)"),
     (["inertia", "t-handle", "--jsn"], "tumble inertia: error: unrecognized arguments: --jsn (--jsn: did you mean --json?)"),
     (["--jsn"], "tumble: error: unrecognized arguments: --jsn"),
+    # the option misspelt is the one required: argparse said only that --out is missing (a walkthrough,
+    # 2026-12-02); an unambiguous start of an option is argparse's, not misspelt
+    (["fit", "rec.csv", "--otu", "x"], "tumble fit: error: unrecognized arguments: --otu (--otu: did you mean --out?); "
+     "and the following arguments are required: --out"),
+    (["simulate", "seed_flip.toml", "--t-e", "5"], "tumble simulate: error: the following arguments are required: --out"),
 ])
 def test_an_unknown_option_is_answered_by_the_commands_nearest(capsys, argv, said):
     with pytest.raises(SystemExit) as info:

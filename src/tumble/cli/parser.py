@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from .._version import __version__
 from ..dynamics.methods.names import method_list
@@ -15,7 +16,13 @@ class _Parser(argparse.ArgumentParser):
     does not know answered by the nearest (``--t_end``: did you mean ``--t-end``?; ``simulat``:
     did you mean ``simulate``?)."""
 
+    #: Set while :meth:`parse_args` runs: a missing required option is then raised as
+    #: :class:`_MissingRequired`, so that a misspelt option (``--otu`` for ``--out``) is named first.
+    _deferring = 0
+
     def error(self, message: str):
+        if _Parser._deferring and message.startswith("the following arguments are required"):
+            raise _MissingRequired(self, message)
         for action in self._actions:  # a misspelt command (argparse names no alternative; Python 3.11)
             if isinstance(action, argparse._SubParsersAction) and message.startswith("argument COMMAND: invalid choice:"):
                 from ..validation import nearest  # here: the parser's module imports no numpy
@@ -26,7 +33,20 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
 
     def parse_args(self, args=None, namespace=None):  # noqa: ANN001, ANN201 - argparse's signature
-        parsed, extras = self.parse_known_args(args, namespace)
+        missing = None
+        _Parser._deferring += 1
+        try:
+            parsed, extras = self.parse_known_args(args, namespace)
+        except _MissingRequired as raised:
+            missing = raised
+        finally:
+            _Parser._deferring -= 1
+        if missing is not None:  # "--out is required" hid "--otu": the option misspelt is said first
+            words = list(sys.argv[1:] if args is None else args)
+            words = words[:words.index("--")] if "--" in words else words
+            unknown = [w for w in words if w.startswith("--") and not _known(w, missing.parser)]
+            missing.parser.error(unrecognized(unknown, missing.parser) + f"; and {missing.message}" if unknown
+                                 else missing.message)
         if extras:
             command = self._command(getattr(parsed, "command", None))
             (command or self).error(unrecognized(extras, command or self))
@@ -38,6 +58,21 @@ class _Parser(argparse.ArgumentParser):
             if isinstance(action, argparse._SubParsersAction) and name in action.choices:
                 return action.choices[name]
         return None
+
+
+class _MissingRequired(Exception):
+    """A required option left out, raised by :meth:`_Parser.error` while :meth:`_Parser.parse_args` runs."""
+
+    def __init__(self, parser: argparse.ArgumentParser, message: str) -> None:
+        super().__init__(message)
+        self.parser, self.message = parser, message
+
+
+def _known(word: str, parser: argparse.ArgumentParser) -> bool:
+    """Whether the long option ``word`` (``--name`` or ``--name=value``) is one ``parser`` takes, whole or as the
+    unambiguous start that argparse accepts."""
+    name = word.split("=", 1)[0]
+    return any(o.startswith(name) for action in parser._actions for o in action.option_strings)
 
 
 def unrecognized(extras: list[str], parser: argparse.ArgumentParser) -> str:
