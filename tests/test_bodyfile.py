@@ -55,7 +55,7 @@ BAD_FILES = [
     ("[[body.parts]]\nmass = 1.0\n", r"body.parts\[0\]: missing key 'kind'"),
     ("[[body.parts]]\nkind = 'blob'\n", r"body.parts\[0\]: kind = 'blob' is unknown; allowed: rod"),
     ("[[body.parts]]\nkind = 'rod'\nmass = 1.0\n", r"body.parts\[0\] \(rod\): missing key 'length'"),
-    ("[[body.parts]]\n" + ROD + "lenght = 2.0\n", r"body.parts\[0\] \(rod\): unknown key 'lenght'; allowed: kind, axis, center, length, mass"),
+    ("[[body.parts]]\n" + ROD + "lenght = 2.0\n", r"body.parts\[0\] \(rod\): unknown key 'lenght' \(did you mean 'length'\?\); allowed: kind, axis, center, length, mass"),
     ("[[body.parts]]\n" + ROD + "[[body.parts]]\nkind = 'rod'\nmass = -1.0\nlength = 1.0\n", r"body.parts\[1\] \(rod\): mass = -1.0 must be a positive"),
     ("[[body.parts]]\nkind = 'rod'\nmass = nan\nlength = 1.0\n", r"mass = nan must be a finite number"),
     ("[[body.parts]]\nkind = 'rod'\nmass = inf\nlength = 1.0\n", r"mass = inf must be a finite number"),

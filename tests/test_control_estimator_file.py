@@ -45,7 +45,7 @@ def test_simulate_writes_the_knowledge(tmp_path, capsys):
 @pytest.mark.parametrize(("old", "new", "message"), [
     ('kind = "mekf"', 'kind = "ukf"', r"estimator: kind = 'ukf' is unknown; allowed: mekf"),
     ("bias_sigma = 1e-3", "bias_sigm = 1e-3",
-     r"estimator: unknown key 'bias_sigm'; allowed: attitude_sigma, bias_sigma, bias_walk, kind, magnetometer_period"),
+     r"estimator: unknown key 'bias_sigm' \(did you mean 'bias_sigma'\?\); allowed: attitude_sigma, bias_sigma, bias_walk, kind, magnetometer_period"),
     ("bias_sigma = 1e-3", "bias_sigma = -1e-3", r"estimator: bias_sigma = -0.001 must be a positive"),
     ("bias_sigma = 1e-3", "bias_walk = -1.0", r"estimator: bias_walk = -1.0 must be"),
     ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }', 'sun = { kind = "coarse", noise = 2e-3 }',

@@ -217,7 +217,7 @@ def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path,
 @pytest.mark.parametrize(("old", "new", "message"), [
     ("wheels = {", "# wheels = {", r'control: kind = "detumble_point" needs \[actuators.wheels\]'),
     ('attitude = "star_tracker"', 'attitude = "none"', r"control: kind = \"detumble_point\" points with the wheels"),
-    ("dumping_gain = 1e-3", "Kd = 1e-3", r"control.point: unknown key 'Kd'; allowed: K, Ki, P, dumping_gain"),
+    ("dumping_gain = 1e-3", "Kd = 1e-3", r"control.point: unknown key 'Kd' \(did you mean 'K'\?\); allowed: K, Ki, P, dumping_gain"),
     ("dumping_gain = 1e-3", "dumping_gain = -1.0", r"control.point: dumping_gain = -1.0 must be a positive finite number \(1/s\)"),
     ("switch_rate = 0.0175 ", "", r"control: missing key 'switch_rate' \(rad/s\)"),
     ("dwell = 60.0 ", "dwell = -1.0 ", r"control: dwell = -1.0 must be"),

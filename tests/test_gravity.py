@@ -525,7 +525,7 @@ def test_gravity_gradient_from_table():
     gg = gravity_gradient_from_table({"orbit_radius": 7e6, "mu": 4e14})
     assert (gg.orbit_radius, gg.mu) == (7e6, 4e14)
     for table, pattern in [
-        ({"orbit_period": 5400.0, "radius": 1}, r"^torque: unknown key 'radius'; allowed: kind, orbit_period, orbit_radius, mu, semi_major_axis, eccentricity, "
+        ({"orbit_period": 5400.0, "radius": 1}, r"^torque: unknown key 'radius' \(did you mean 'orbit_radius'\?\); allowed: kind, orbit_period, orbit_radius, mu, semi_major_axis, eccentricity, "
          r"inclination, raan, arg_perigee, mean_anomaly, tle$"),
         ({"mu": 4e14}, r"^torque: missing key 'orbit_period' \(s\) or 'orbit_radius' \(m\)"),
         ({"kind": "constant", "orbit_period": 5400.0}, r"^torque: kind = 'constant' is not 'gravity_gradient'$"),

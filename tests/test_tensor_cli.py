@@ -53,7 +53,7 @@ TENSOR_BAD = {
                       "device.toml: [device] mass = -0.1 must be a positive finite number (kg)"),
     "mass as text": (CALIBRATED.replace("mass = 0.10067", 'mass = "100 g"'), None, "0.5",
                      "device.toml: [device] mass = '100 g' must be a number (kg)"),
-    "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss'; allowed: "
+    "unknown key": (CALIBRATED + "masss = 1.0\n", None, "0.5", "device.toml: [device]: unknown key 'masss' (did you mean 'mass'?); allowed: "
                     "center_of_mass, center_of_mass_std, gyro_distortion, gyro_distortion_std, gyro_full_scale, "
                     "gyro_misalignment_std, gyro_resolution, "
                     "gyro_scale_std, inertia, inertia_std, mass, motor_index, motor_poles, rotor_axis, rotor_axis_std, "

@@ -30,6 +30,7 @@ from typing import Any
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
+from ..validation import unknown_name
 from .examples import _read_input
 from .keys import FileFormat, Key, Table
 from .meshfile import MESH_SUFFIXES, MESH_UNITS, MeshScaleWarning, body_from_mesh, is_mesh_file, mesh_scale_note
@@ -238,9 +239,7 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
     kwargs = {k: v for k, v in table.items() if k != "kind"}
     unknown = sorted(set(kwargs) - set(keys.names()))
     if unknown:
-        raise ValueError(
-            f"{where}: unknown key {unknown[0]!r}; allowed: kind, {', '.join(sorted(keys.names()[1:]))}"
-        )
+        raise ValueError(unknown_name(where, unknown[0], ["kind", *sorted(keys.names()[1:])]))
     missing = [k.name for k in keys.keys[1:] if k.required and k.name not in kwargs and k.name != "mass"]
     if missing:
         raise ValueError(f"{where}: missing key {missing[0]!r}")
@@ -293,7 +292,7 @@ def body_from_table(table: object, *, base_dir: Path | None = None, where: str =
         return _preset_from_table(table, where)
     unknown = sorted(set(table) - {"name", "parts"})
     if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r}; allowed: name, parts, preset")
+        raise ValueError(unknown_name(where, unknown[0], ["name", "parts", "preset"]))
     parts = table.get("parts")
     if parts is None:
         raise ValueError(f"{where}: missing key 'parts' (a list of [[{where}.parts]] tables) or 'preset'")
@@ -339,8 +338,8 @@ def _preset_from_table(table: dict, where: str) -> Body:
     allowed = list(PRESET_TABLES[preset].names()[1:])
     unknown = sorted(set(kwargs) - set(allowed))
     if unknown:
-        allowed_text = ", ".join(allowed) if allowed else "no parameters besides 'preset'"
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} for preset {preset!r}; allowed: {allowed_text}")
+        raise ValueError(unknown_name(where, unknown[0], allowed, after=f" for preset {preset!r}",
+                                      listed=None if allowed else "no parameters besides 'preset'"))
     try:
         return fn(**kwargs)
     except ValueError as exc:

@@ -66,13 +66,7 @@ from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget
 from ..dynamics.engine.stepsize import check_rtol
 from ..mass import Body
-from ..validation import (
-    check_bool,
-    check_positive,
-    check_rotation,
-    check_vector,
-    check_vectors,
-)
+from ..validation import check_bool, check_positive, check_rotation, check_vector, check_vectors, unknown_name
 from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
 from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
@@ -404,7 +398,8 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     """
     unknown = sorted(set(data) - {"body", "torque", *CONTROL_SECTIONS})
     if unknown:
-        raise ValueError(f"unknown key {unknown[0]!r}; allowed in a control scenario: body, {', '.join(CONTROL_SECTIONS)}, torque")
+        raise ValueError(unknown_name("", unknown[0], ["body", *CONTROL_SECTIONS, "torque"],
+                                      allowed_label="allowed in a control scenario"))
     kind = data["control"].get("kind") if isinstance(data.get("control"), dict) else None  # a known kind's keys: parse_control
     t = {s: dict(data[s]) if s == "control" and isinstance(kind, str) and kind in CONTROL_KINDS else _table(data, s)
          for s in CONTROL_SECTIONS}

@@ -42,7 +42,7 @@ from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
 from ..mass import Body
-from ..validation import check_direction, check_positive, check_rotation, nearest
+from ..validation import check_direction, check_positive, check_rotation, unknown_name
 from .controlorbit import Field, Orbit, geomagnetic_inclination
 from .keys import Key, Table
 
@@ -215,7 +215,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     ...               magnetorquers=Magnetorquers(0.2), wheels=wheels, sensors=Sensors(), principal_to_design=Rotation.identity())
     Traceback (most recent call last):
     ...
-    ValueError: control.point: unknown key 'Kd'; allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
+    ValueError: control.point: unknown key 'Kd' (did you mean 'K'?); allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
     """
     kind = control.get("kind")
     if not isinstance(kind, str) or kind not in CONTROL_KINDS:
@@ -224,9 +224,7 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     if bad:
         mine = sorted(CONTROL_KINDS[kind])
         if not any(bad[0] in keys for keys in CONTROL_KINDS.values()):  # no kind's key: a typo, named with its nearest
-            near = nearest(bad[0], mine)
-            hint = f" (did you mean {near!r}?)" if near is not None else ""
-            raise ValueError(f"control: unknown key {bad[0]!r}{hint}; allowed with kind = {kind!r}: {', '.join(mine)}")
+            raise ValueError(unknown_name("control", bad[0], mine, allowed_label=f"allowed with kind = {kind!r}"))
         raise ValueError(f"control: key {bad[0]!r} does not go with kind = {kind!r}; allowed: {', '.join(mine)}")
     args: dict[str, Any] = {k: v for k, v in control.items() if k not in ("kind", "threshold", "target")}
     target = None

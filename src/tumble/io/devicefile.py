@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from ..analysis.tensor import Device, Proof
-from ..validation import short_repr
+from ..validation import short_repr, unknown_name
 from .atomic import atomic_write_text
 from .bodyfile import read_toml
 from .keys import FileFormat, Key, Table
@@ -287,8 +287,7 @@ def load_device(path: str | os.PathLike[str], *, proof: bool = False) -> tuple[D
     unknown = sorted(set(data) - set(_TOP.names()))
     if unknown:
         what = "table" if isinstance(data[unknown[0]], dict) else "key"
-        raise ValueError(f"{path}: unknown {what} {unknown[0]!r}; a device file has [device], [proof] and [calibration]; "
-                         f"allowed: {', '.join(sorted(_TOP.names()))}")
+        raise ValueError(unknown_name(str(path), unknown[0], sorted(_TOP.names()), what=what))
     for name, needed in (("device", True), ("proof", proof)):
         if needed and name not in data:
             keys = DEVICE_FORMAT.table(f"[{name}]")

@@ -14,7 +14,7 @@ from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
 from ..dynamics.models.orbit_gravity import OrbitGravityGradient
 from ..mass import Body, MassProperties
-from ..validation import short_repr
+from ..validation import short_repr, unknown_name
 from .controlorbit import orbit_of
 from .keys import Key, Table
 
@@ -43,7 +43,7 @@ def _check_keys(where: str, table, allowed) -> None:
         raise ValueError(f"{where} must be a table, not {short_repr(table)}")
     for key in table:
         if key not in allowed:
-            raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(allowed)}")
+            raise ValueError(unknown_name(where, key, allowed))
 
 
 def gravity_gradient_from_table(table: dict, where: str = "torque") -> GravityGradient | OrbitGravityGradient:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..validation import short_repr
+from ..validation import short_repr, unknown_name
 
 __all__ = ["FileFormat", "Key", "Table"]
 
@@ -111,7 +111,7 @@ class Table:
     >>> damper.check("damper", {"inertia": 0.01, "dampin": 0.05})
     Traceback (most recent call last):
     ...
-    ValueError: damper: unknown key 'dampin'; allowed: damping, inertia
+    ValueError: damper: unknown key 'dampin' (did you mean 'damping'?); allowed: damping, inertia
     """
 
     #: How the file writes the table (``"[simulation]"``); a heading on the page.
@@ -171,7 +171,7 @@ class Table:
                 allowed = ", ".join(sorted(names))
                 if kind:
                     raise ValueError(f"{where}: key {key!r} does not go with kind = {kind!r}; allowed: {allowed}")
-                raise ValueError(f"{where}: unknown key {key!r}; allowed: {allowed}")
+                raise ValueError(unknown_name(where, key, sorted(names)))
         return table
 
 

@@ -56,7 +56,7 @@ from ..dynamics.models.orbit_gravity import OrbitGravityGradient
 from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
-from ..validation import NoSuchFileError, nearest
+from ..validation import NoSuchFileError, nearest, unknown_name
 from .bodyfile import body_from_table, body_path, load_body, read_toml
 from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
@@ -210,7 +210,7 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
         if loop:
             raise ValueError(f"[{loop[0]}] belongs to a control scenario, which needs a [control] table (kind = ...; "
                              f"see 'tumble examples', control/); a scenario without one allows: body, {', '.join(_SECTIONS)}")
-        raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, {', '.join(_SECTIONS)}")
+        raise ValueError(unknown_name("", unknown[0], ["body", *_SECTIONS]))
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
     body = _body(data["body"], base_dir)

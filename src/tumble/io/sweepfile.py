@@ -68,6 +68,7 @@ from ..ensemble import (
 )
 from ..ensemble.sampling import MAX_CASES, SAMPLINGS
 from ..mass import PRESETS, Body
+from ..validation import unknown_name
 from .bodyfile import body_from_table, body_path, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
@@ -284,7 +285,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     """
     unknown = sorted(set(data) - set(SWEEP_FORMAT.tables[0].names()))
     if unknown:
-        raise ValueError(f"unknown key {unknown[0]!r}; allowed: body, dispersion, {', '.join(_SECTIONS)}")
+        raise ValueError(unknown_name("", unknown[0], ["body", "dispersion", *_SECTIONS]))
     if "body" not in data:
         raise ValueError("missing key 'body' (a preset name, a body file or a [body] table)")
     tables = {section: _table(data, section) for section in _SECTIONS if section != "torque"}  # torque_of checks it

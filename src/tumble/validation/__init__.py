@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from .callables import check_callable, check_torque_function, is_vector
 from .files import NoSuchFileError, read_input_file
-from .messages import beyond, nearest, short_repr
+from .messages import beyond, nearest, short_repr, unknown_name
 from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
 from .values import (
     AXES_ALLOWED,
@@ -74,5 +74,6 @@ __all__ = [
     "refuse_first",
     "nearest",
     "short_repr",
+    "unknown_name",
     "triangle_excess",
 ]

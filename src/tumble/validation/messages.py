@@ -1,5 +1,6 @@
-"""What tumble's messages share: a value shown short, the nearest of a list of names, and a value
-shown beside a limit it passes with the digits that tell them apart.
+"""What tumble's messages share: a value shown short, the nearest of a list of names, an unknown
+key or table named with its nearest and what is allowed, and a value shown beside a limit it
+passes with the digits that tell them apart.
 
 Re-exported by :mod:`tumble.validation`.
 """
@@ -11,7 +12,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-__all__ = ["beyond", "nearest", "short_repr"]
+__all__ = ["beyond", "nearest", "short_repr", "unknown_name"]
 
 
 def short_repr(value: object, limit: int = 80) -> str:
@@ -44,6 +45,31 @@ def nearest(word: str, choices: Iterable[str], cutoff: float = 0.6) -> str | Non
     """
     found = difflib.get_close_matches(word, list(choices), n=1, cutoff=cutoff)
     return found[0] if found else None
+
+
+def unknown_name(where: str, name: object, allowed: Iterable[str], *, what: str = "key", after: str = "",
+                 allowed_label: str = "allowed", listed: str | None = None) -> str:
+    """The one line for an unknown key or table of an input file: where, the name as written, the
+    allowed name nearest to it (:func:`nearest`) and what is allowed, one home for every file
+    reader's message (the device file's ``mas`` was answered with eighteen names and not ``mass``).
+
+    ``where`` is the table or file ("" for a file's top level), ``after`` words that follow the name,
+    ``allowed_label`` the words before the list, ``listed`` the list as text (``allowed`` joined by
+    default).
+
+    Examples
+    --------
+    >>> from tumble.validation import unknown_name
+    >>> unknown_name("[device]", "mas", ["mass", "rotor_axis"])
+    "[device]: unknown key 'mas' (did you mean 'mass'?); allowed: mass, rotor_axis"
+    >>> unknown_name("", "bogus", ["body", "initial"], what="table")
+    "unknown table 'bogus'; allowed: body, initial"
+    """
+    allowed = [str(a) for a in allowed]
+    near = nearest(str(name), allowed) if isinstance(name, str) else None
+    hint = f" (did you mean {near!r}?)" if near is not None else ""
+    head = f"{where}: " if where else ""
+    return f"{head}unknown {what} {name!r}{after}{hint}; {allowed_label}: {', '.join(allowed) if listed is None else listed}"
 
 
 def beyond(value: float, limit: float) -> str:
