@@ -8,14 +8,13 @@ to ``tumble fit``, checked against the hash fit.json's provenance holds).
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from ..analysis.fit.flightmodel import FlightModel
-from ..validation import NoSuchFileError, read_input_file
+from ..validation import NoSuchFileError, json_object, read_input_file
 from .provenance import input_sha256
 
 __all__ = ["FIT_FILE", "FitFolder", "find_recording", "read_fit_folder"]
@@ -86,14 +85,7 @@ def read_fit_folder(path: str | os.PathLike[str]) -> FitFolder:
         raise ValueError(f"{os.fspath(path)}: a folder without {FIT_FILE}; give the output folder of tumble fit "
                          "(tumble fit REC --out DIR)")
     raw = read_input_file(file, limit=MAX_FIT_BYTES, what="a fit result (fit.json)")
-    try:
-        record = json.loads(raw.decode("utf-8"))
-    except UnicodeDecodeError:
-        raise ValueError(f"{file}: damaged: not UTF-8 text") from None
-    except json.JSONDecodeError as err:
-        raise ValueError(f"{file}: damaged: not JSON ({err.msg.removesuffix(' at')} at line {err.lineno}, column {err.colno})") from None
-    if not isinstance(record, dict):
-        raise ValueError(f"{file}: damaged: a JSON {type(record).__name__}, not the object tumble fit writes")
+    record = json_object(raw, file, writer="tumble fit")
     if "flight_models" not in record:
         raise ValueError(f'{file} has no "flight_models": it was written by an older tumble; run tumble fit again to '
                          "replay its flights")

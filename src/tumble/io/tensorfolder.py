@@ -25,7 +25,6 @@ write them): about 75 kB a throw of 0.65 s at 4 kHz.
 from __future__ import annotations
 
 import io
-import json
 import os
 import zipfile
 from collections.abc import Mapping, Sequence
@@ -36,7 +35,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from ..typing import ArrayLike, FloatArray
-from ..validation import read_input_file
+from ..validation import json_object, read_input_file
 
 __all__ = ["TENSOR_FILE", "THROWS_FILE", "TensorFolder", "ThrowSeries", "read_tensor_folder", "throw_series",
            "write_throw_series"]
@@ -200,9 +199,7 @@ def _check_estimate(file: Path, where: str, value: object) -> None:
                                  + ("a number" if shape == () else f"finite numbers of shape {shape}"))
 
 
-def _check_record(file: Path, record: object) -> dict[str, Any]:
-    if not isinstance(record, dict):
-        raise _damaged(file, f"a JSON {type(record).__name__}, not the object tumble tensor writes")
+def _check_record(file: Path, record: dict[str, Any]) -> dict[str, Any]:
     if "object" not in record or "throws" not in record:
         raise _damaged(file, 'no "object" or no "throws"')
     _check_estimate(file, "object", record["object"])
@@ -276,13 +273,7 @@ def read_tensor_folder(path: str | os.PathLike[str]) -> TensorFolder:
         raise ValueError(f"{os.fspath(path)}: a folder without {TENSOR_FILE}; give the output folder of tumble tensor "
                          "(tumble tensor THROW... --out DIR)")
     raw = read_input_file(file, limit=MAX_TENSOR_BYTES, what="a tensor result (tensor.json)")
-    try:
-        record = json.loads(raw.decode("utf-8"))
-    except UnicodeDecodeError:
-        raise _damaged(file, "not UTF-8 text") from None
-    except json.JSONDecodeError as err:
-        raise _damaged(file, f"not JSON ({err.msg.removesuffix(' at')} at line {err.lineno}, column {err.colno})") from None
-    record = _check_record(file, record)
+    record = _check_record(file, json_object(raw, file, writer="tumble tensor"))
     series_file = folder / THROWS_FILE
     if not series_file.is_file():
         raise ValueError(f"{os.fspath(path)}: no {THROWS_FILE} beside {TENSOR_FILE}: the folder was written by an "

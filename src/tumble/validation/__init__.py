@@ -14,7 +14,7 @@ contract keeps it so). Units are SI.
 from __future__ import annotations
 
 from .callables import check_callable, check_torque_function, is_vector
-from .files import NoSuchFileError, read_input_file
+from .files import NoSuchFileError, json_object, read_input_file
 from .messages import beyond, nearest, short_repr, unknown_name
 from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
 from .values import (
@@ -69,6 +69,7 @@ __all__ = [
     "check_vectors",
     "is_body",
     "is_vector",
+    "json_object",
     "read_input_file",
     "refuse_body",
     "refuse_first",

@@ -5,10 +5,12 @@ Re-exported by :mod:`tumble.validation`.
 
 from __future__ import annotations
 
+import json
 import os
 
 __all__ = [
     "NoSuchFileError",
+    "json_object",
     "read_input_file",
 ]
 
@@ -120,3 +122,31 @@ def read_input_file(path: str | os.PathLike[str], *, limit: int, what: str, labe
             raise ValueError(f"{label}: cannot be read: {exc.strerror}") from None
     _size(len(data), f"grew past {limit:,} bytes while being read")
     return data
+
+
+def json_object(raw: bytes, file: str | os.PathLike[str], *, writer: str) -> dict:
+    """The JSON object in ``raw``, a result file that ``writer`` wrote (``"tumble fit"``), or one line
+    that says how it is damaged and to run ``writer`` again: one home for every result folder's
+    reader.
+
+    Examples
+    --------
+    >>> from tumble.validation import json_object
+    >>> json_object(b'{"a": 1}', "fit.json", writer="tumble fit")
+    {'a': 1}
+    >>> json_object(b'{"a": ', "fit.json", writer="tumble fit")
+    Traceback (most recent call last):
+    ...
+    ValueError: fit.json: damaged: not JSON (Expecting value at line 1, column 7); run tumble fit again
+    """
+    try:
+        record = json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError:
+        why = "not UTF-8 text"
+    except json.JSONDecodeError as err:
+        why = f"not JSON ({err.msg.removesuffix(' at')} at line {err.lineno}, column {err.colno})"
+    else:
+        if isinstance(record, dict):
+            return record
+        why = f"a JSON {type(record).__name__}, not the object {writer} writes"
+    raise ValueError(f"{os.fspath(file)}: damaged: {why}; run {writer} again")
