@@ -244,10 +244,14 @@ def _shown(value: Any) -> str:
 
 
 def _headline(obj: Any) -> list[tuple[str, str]]:
-    """``(label, value with its unit)`` for each entry of ``obj.HEADLINE`` (:data:`Headline`)."""
+    """``(label, value with its unit)`` for each entry of ``obj.HEADLINE`` (:data:`Headline`), but an
+    empty text ("file none" said of a throw made in Python)."""
     rows = []
     for name, label, unit in obj.HEADLINE:
-        text = _shown(getattr(obj, name))
+        value = getattr(obj, name)
+        if isinstance(value, str) and not value:  # a text not given (a throw made in Python has no file): left out
+            continue
+        text = _shown(value)
         rows.append((label, text + (f" {unit}" if unit and not text.endswith(" values") else "")))  # a size has no unit
     return rows
 
@@ -265,6 +269,11 @@ def headline_repr(obj: Any) -> str:
     ...     stop, offset, t = 90, np.array([0.03, 0.0, 0.05]), np.zeros(400)
     >>> headline_repr(Span())
     'Span(stop 90, offset (0.03, 0, 0.05) m, times 400 values)'
+    >>> class Log:
+    ...     HEADLINE = (("input", "file", ""), ("samples", "samples", ""))
+    ...     input, samples = "", 3582
+    >>> headline_repr(Log())   # a text not given is left out, not "file none"
+    'Log(samples 3582)'
     """
     return result_repr(type(obj).__name__, [f"{label} {value}" for label, value in _headline(obj)])
 
