@@ -9,13 +9,16 @@ gross outlier, left out); what is said when many are, or every one of a recordin
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...typing import FloatArray
 from .result import public_covariance, ratio_summary
 
 if TYPE_CHECKING:
+    from .flights import Flight
     from .tosses import RecordingFit
 
 __all__ = ["MAX_DISAGREEING", "OUTSIDE_SIGMAS", "outside_caveat", "split_verdict"]
@@ -27,7 +30,7 @@ __all__ = ["MAX_DISAGREEING", "OUTSIDE_SIGMAS", "outside_caveat", "split_verdict
 MAX_DISAGREEING = 1.0 / 3.0
 
 
-def split_verdict(used, groups, outliers) -> str:
+def split_verdict(used: Sequence[Flight], groups: Sequence[int], outliers: Sequence[int]) -> str:
     """The reason a pooled value is no answer, or "": at least :data:`MAX_DISAGREEING` of the fitted
     flights (two at least) disagree with the others, or every fitted flight of one recording does
     while another recording's agree. The flights that agree are then one body's, but the recording
@@ -40,6 +43,7 @@ def split_verdict(used, groups, outliers) -> str:
 
     Examples
     --------
+    >>> from tumble.analysis.fit.disagreement import split_verdict
     >>> from tumble.analysis.fit.flights import find_flights
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))
@@ -72,7 +76,8 @@ def split_verdict(used, groups, outliers) -> str:
             "or the phone moved on it; fit each group apart (--start/--end)")
 
 
-def outside_caveat(fit: RecordingFit, used, numbers, omega, keep, joint: bool) -> str:
+def outside_caveat(fit: RecordingFit, used: Sequence[Flight], numbers: Sequence[int], omega: FloatArray | None,
+                   keep: np.ndarray | None, joint: bool) -> str:
     """What to say when the pooled ratios lie outside the range of the flights' own values, on
     one side of them all, each more than :data:`OUTSIDE_SIGMAS` of its own standard uncertainties
     away (a joint fit may fall a little outside the range by right, the shared mount and bias
@@ -87,6 +92,7 @@ def outside_caveat(fit: RecordingFit, used, numbers, omega, keep, joint: bool) -
     --------
     >>> import numpy as np
     >>> from tumble.analysis.fit import fit_recording
+    >>> from tumble.analysis.fit.disagreement import outside_caveat
     >>> from tumble.analysis.fit.flights import find_flights
     >>> from tumble.analysis.fit.synthetic import synthetic_recording
     >>> rec = synthetic_recording(11, tosses=2, flight=(0.5, 0.8))

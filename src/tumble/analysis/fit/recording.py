@@ -24,8 +24,8 @@ The verdicts are the flights': each flight's rigidity and adequacy by its own fi
 (:func:`~tumble.analysis.fit.find_flights`), the joint fit's residuals judged flight by flight
 (:func:`~tumble.analysis.fit.adequacy.judge_flights`), so that a file whose flights pass gives an
 answer. A joint fit whose ratios lie outside its flights' own values (every flight's more than
-:data:`OUTSIDE_SIGMAS` of its standard uncertainties away, on one side) says so in its caveat and
-names the flight that pulls it (:func:`_outside`). The same recording given twice (the same
+:data:`~tumble.analysis.fit.disagreement.OUTSIDE_SIGMAS` of its standard uncertainties away, on one side) says so in its caveat and
+names the flight that pulls it (:func:`~tumble.analysis.fit.disagreement.outside_caveat`). The same recording given twice (the same
 samples, :func:`samples_sha256`) is refused.
 """
 
