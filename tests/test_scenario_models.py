@@ -221,3 +221,29 @@ def test_simulate_refuses_a_body_beyond_the_inertia_bound():
     heavy = tumble.Body([tumble.Box(mass=1e300, size=(0.6, 0.4, 0.2))])
     with pytest.raises(ValueError, match=r"^principal moments \[.*\] kg m\^2: beyond 1e\+50 kg m\^2, more than any star's"):
         tumble.simulate(heavy, [0.1, 1.0, 0.0], t_end=1.0)
+
+
+@pytest.mark.parametrize(("axes", "words"), [("", "(pitch axis 3, yaw axis 1), linearly stable there (the Lagrange region)"),
+                                             ("yaw_axis = 2\n", "(pitch axis 3, yaw axis 2), unstable there in pitch")])
+def test_a_run_started_in_the_orbit_frame_is_judged_with_its_own_axes(tmp_path, capsys, axes, words):
+    """``tumble simulate`` on a run started in the orbiting frame with yaw_axis = 2 said "largest angle from the
+    orbiting frame 1.56 rad" for a body 0.01 rad off that barely moved (the angles taken about the default axes
+    3 and 1), and "predicted stable, 12 flips" of a body the page says tumbles in pitch (a walkthrough, 2026-12-02).
+    The angles are now the run's own axes', and the verdict the orbiting frame's: with yaw along the intermediate
+    axis, k_P = (I_roll - I_yaw) / I_pitch = (I1 - I2) / I3 < 0, pitch unstable (Hughes ch. 9)."""
+    import json
+
+    path = scenario(tmp_path, GG + f"[initial.orbit_frame]\npitch = 0.01\n{axes}[simulation]\nt_end = 100.0\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    assert f"started turning with the orbiting frame {words};" in line and "flip" not in line
+    g = json.loads((tmp_path / "run" / "summary.json").read_text())["gravity_gradient"]
+    traj = run_scenario(load_scenario(path))
+    yaw_axis = 2 if axes else 1
+    angles = tumble.orbit_frame_angles(traj, tumble.GravityGradient(orbit_period=5400.0).bind(traj.moments),
+                                       pitch_axis=3, yaw_axis=yaw_axis)
+    assert g["max_angle"]["pitch"] == pytest.approx(np.max(np.abs(angles.pitch)), rel=1e-9)
+    assert 0.01 - 1e-12 <= g["max_angle"]["pitch"] < 0.011 and f"largest angle from the orbiting frame {g['max_angle']['pitch']:.3g} rad" in line
+    roll, yaw = (0, 1) if axes else (1, 0)  # the third axis of the right-handed triple (pitch 3)
+    k_pitch = (traj.moments[roll] - traj.moments[yaw]) / traj.moments[2]
+    assert g["region"] == ("pitch unstable" if axes else "lagrange") and (k_pitch < 0) == bool(axes)

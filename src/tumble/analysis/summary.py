@@ -336,7 +336,9 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     run's error measure. Keys: ``orbit_period`` (s), ``orbits`` (run length in orbits),
     ``jacobi_drift`` (max |h - h0| over ``n^2 (I1 + I2 + I3)``, the scale of the potential),
     ``max_angle`` (rad: the largest |roll|, |pitch|, |yaw| from the orbiting frame, with
-    ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`). With other torques beside it
+    ``pitch_axis`` and ``yaw_axis`` as in :func:`tumble.lvlh_state`), ``pitch_axis`` and ``yaw_axis`` (as
+    given), ``region`` (the linear stability of the body at rest in the orbiting frame with those axes,
+    :func:`~tumble.analysis.gravity_stability.gravity_gradient_stability`: ``"lagrange"``, ...). With other torques beside it
     (``alone=False``, a :class:`~tumble.dynamics.TorqueSum`) the Jacobi integral is not conserved and
     ``jacobi_drift`` is None; the run's budgets are :func:`torque_budget`'s.
 
@@ -352,8 +354,11 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     (5400.0, 0.5, True)
     >>> max(out["max_angle"].values()) < 1e-9   # it stays at rest in the orbiting frame
     True
+    >>> out["region"]   # the shaft (axis 1, minor) along the vertical, pitch about the major axis: I_pitch > I_roll > I_yaw
+    'lagrange'
     """
     from ..dynamics.models.gravity import orbit_frame_angles
+    from .gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
 
     gg = gg.bind(traj.moments)
     h = gg.jacobi_integral(traj.t, traj.omega, traj.attitude)
@@ -364,6 +369,10 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
         "orbits": float(traj.t[-1] / gg.period),
         "jacobi_drift": float(np.max(np.abs(h - h[0])) / scale) if alone else None,
         "max_angle": {name: float(np.max(np.abs(getattr(angles, name)))) for name in ("roll", "pitch", "yaw")},
+        "pitch_axis": pitch_axis,
+        "yaw_axis": yaw_axis,
+        "region": str(gravity_gradient_stability(*gravity_gradient_ratios(traj.moments, pitch_axis=pitch_axis,
+                                                                          yaw_axis=yaw_axis)).region),
     }
 
 

@@ -246,7 +246,10 @@ def _cmd_simulate(args) -> int:
     if orbit is not None:  # the gravity gradient, alone (its Jacobi integral the error measure) or in a sum
         from ..analysis.summary import gravity_gradient_summary
 
-        summary["gravity_gradient"] = gravity_gradient_summary(traj, orbit, alone=orbit is scenario.torque)
+        pitch_axis, yaw_axis = scenario.orbit_axes or (3, 1)  # the run's own axes (they were taken as 3, 1 always)
+        summary["gravity_gradient"] = gravity_gradient_summary(traj, orbit, alone=orbit is scenario.torque,
+                                                               pitch_axis=pitch_axis, yaw_axis=yaw_axis)
+        summary["gravity_gradient"]["started_in_orbit_frame"] = scenario.orbit_axes is not None
     if scenario.torque is not None:  # the torque the run took, principal frame and bound (check_inputs')
         from ..analysis.summary import torque_budget
         from ..dynamics.simulate import check_inputs
@@ -412,6 +415,13 @@ def _budget_words(name: str, budget: dict) -> str:
     return f"{what} to {budget['gap'] / scale:.1e} of it{quadrature}"
 
 
+#: A body's linear stability at rest in the orbiting frame, in words (STABILITY_REGIONS, docs/gravity-gradient.md).
+_REGION_WORDS = {"lagrange": "linearly stable there (the Lagrange region)",
+                 "debra-delp": "linearly stable there by the gyroscopic coupling of roll and yaw (the DeBra-Delp region)",
+                 "pitch unstable": "unstable there in pitch", "roll-yaw unstable": "unstable there in roll and yaw",
+                 "unstable": "unstable there in pitch and in roll and yaw"}
+
+
 def _simulate_line(summary: dict, out) -> str:
     """One line for people: what the spin did and how well the invariants held."""
     from ..analysis.summary import SAMPLES_PER_FLIP
@@ -420,6 +430,10 @@ def _simulate_line(summary: dict, out) -> str:
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
     spin = "started at rest" if s["axis"] is None else (
         f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flip{'' if s['flips'] == 1 else 's'}")
+    g = summary.get("gravity_gradient") or {}
+    if g.get("started_in_orbit_frame"):  # librations in the orbiting frame: its stability, not the free body's nor flips
+        spin = (f"started turning with the orbiting frame (pitch axis {g['pitch_axis']}, yaw axis {g['yaw_axis']}), "
+                f"{_REGION_WORDS[g['region']]}")
     measured, exact = s["flip_period"], s["flip_period_exact"]
     aliased = s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP
     if summary["torque_free"] and s["flips"] and (measured is not None or exact is not None):

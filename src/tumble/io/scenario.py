@@ -154,6 +154,9 @@ class Scenario:
     #: Design frame to world at t = 0 (scipy Rotation), or None for the identity.
     attitude0: object = None
     damper: SphericalDamper | None = None
+    #: ``(pitch_axis, yaw_axis)`` of a run started at rest in the orbiting frame (``[initial.orbit_frame]``),
+    #: else None: the axes its angles from that frame and its stability are judged with.
+    orbit_axes: tuple[int | str, int | str] | None = None
 
     def arguments(self) -> dict[str, Any]:
         """The keyword arguments of :func:`tumble.simulate` that run this scenario.
@@ -218,7 +221,7 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
               if section != "torque"}  # one [torque] table or several [[torque]]: torque_of checks them
     initial, sim = tables["initial"], tables["simulation"]
     model = torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE)
-    omega, frame, attitude0 = _initial(initial, model, body)
+    omega, frame, attitude0, orbit_axes = _initial(initial, model, body)
     damper = None
     if tables["damper"]:
         missing = sorted(set(_SECTIONS["damper"].names()) - set(tables["damper"]))
@@ -234,17 +237,19 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
         t_end=sim.get("t_end", None if times is not None else DEFAULT_T_END),
         samples=sim.get("samples"), dt=sim.get("dt"), times=times, method=sim.get("method"), rtol=sim.get("rtol"),
         atol=sim.get("atol"), step=sim.get("step"), torque=model, name=name, attitude0=attitude0, damper=damper,
+        orbit_axes=orbit_axes,
     )
     _validate(scenario)
     return scenario
 
 
 def _initial(table: dict, model, body: Body):
-    """``omega``, its frame and the initial attitude (or None) from the ``[initial]`` table."""
+    """``omega``, its frame, the initial attitude (or None) and the orbiting frame's ``(pitch_axis, yaw_axis)``
+    (or None) from the ``[initial]`` table."""
     if "orbit_frame" not in table:
         if "omega" not in table:
             raise ValueError("initial: missing key 'omega' (rad/s), or an [initial.orbit_frame] table")
-        return table["omega"], table.get("frame", "principal"), None
+        return table["omega"], table.get("frame", "principal"), None, None
     if "omega" in table or "frame" in table:
         raise ValueError("initial: give omega (and frame) or [initial.orbit_frame], not both")
     circle = gravity_gradient_in(model)
@@ -258,7 +263,7 @@ def _initial(table: dict, model, body: Body):
     if not isinstance(sub, dict):
         raise ValueError("initial.orbit_frame must be a table [initial.orbit_frame]")
     start = lvlh_state_from_table(sub, model, body)
-    return tuple(start.omega0), "principal", start.attitude0
+    return tuple(start.omega0), "principal", start.attitude0, (sub.get("pitch_axis", 3), sub.get("yaw_axis", 1))
 
 
 def _body(spec, base_dir: Path | None) -> Body:
