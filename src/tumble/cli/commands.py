@@ -298,7 +298,8 @@ def _cmd_plot(args) -> int:
               "herpolhode": viz.figure_herpolhode, "drift": viz.figure_drift}
     skipped = viz.phase_portrait_problem(traj)
     names = [n for n in PLOTS if not (skipped and n in viz.PHASE_PORTRAITS)]
-    extra = viz.spacecraft_figures(traj, scenario.torque)  # energy, nutation, orbit angles
+    axes = dict(zip(("pitch_axis", "yaw_axis"), scenario.orbit_axes or ()))  # the run's own, as its summary's
+    extra = viz.spacecraft_figures(traj, scenario.torque, **axes)  # energy, nutation, orbit angles
     written: list[str] = []
     owns = [f"{name}.*" for name in (*PLOTS, *SPACECRAFT_PLOTS)]  # the figures are replaced as a set
     earlier = sorted({p.name for pattern in owns for p in Path(out).glob(pattern)}) if Path(out).is_dir() else []
