@@ -128,7 +128,23 @@ def test_view_says_where_its_frames_are_too_far_apart_to_show_the_motion(tmp_pat
     assert main(["view", "t-handle", "--omega", "5.7", "573", "5.7", "--t-end", "20", "--out", str(tmp_path / "a.html")]) == 0
     err = capsys.readouterr().err
     turn = float(err.split("turns up to ", 1)[1].split(" rad")[0])
-    assert 573 * 20 / 149 * 0.95 < turn < 573 * 20 / 149 * 1.3 and "give more --frames or a shorter --t-end" in err
+    assert 573 * 20 / 149 * 0.95 < turn < 573 * 20 / 149 * 1.3
+    # more than the 2000 frames a page holds (it said "give more --frames", and --frames 5000 was refused): the
+    # t_end it names, at 2000 frames, is shown without a note
+    t_end = float(err.split("give a shorter --t-end (at most about ", 1)[1].split(" s")[0])
+    assert 0.5 < t_end / (1999 * np.pi / 573) < 1.0  # half a turn a frame at 573 rad/s, 2000 frames: 10.96 s
+    assert "with --frames 2000 and --samples 2000)" in err
+    assert main(["view", "t-handle", "--omega", "5.7", "573", "5.7", "--t-end", str(t_end), "--frames", "2000",
+                 "--samples", "2000", "--out", str(tmp_path / "c.html")]) == 0
+    assert "note:" not in capsys.readouterr().err
+    # within them: the frames it names are enough
+    assert main(["view", "t-handle", "--omega", "0.57", "57", "0.57", "--t-end", "20", "--out", str(tmp_path / "d.html")]) == 0
+    err = capsys.readouterr().err
+    frames = int(err.split("give --frames ", 1)[1].split(" ")[0])
+    assert 150 < frames <= 500 and "--samples" not in err  # the run's 500 samples are enough
+    assert main(["view", "t-handle", "--omega", "0.57", "57", "0.57", "--t-end", "20", "--frames", str(frames),
+                 "--out", str(tmp_path / "e.html")]) == 0
+    assert "note:" not in capsys.readouterr().err
     assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", str(tmp_path / "b.html")]) == 0
     assert "note:" not in capsys.readouterr().err
 
