@@ -319,7 +319,7 @@ def _cmd_plot(args) -> int:
 
 def _cmd_view(args) -> int:
     from ..io.output import check_output_file
-    from ..viz.scene import MAX_FRAME_TURN, MAX_FRAMES, frame_indices, frame_turn
+    from ..viz.scene import MAX_FRAME_TURN, frame_indices, frame_turn, frames_advice
 
     if os.path.isdir(args.source):  # a tumble fit or tumble tensor output folder
         return _view_folder(args)
@@ -342,30 +342,9 @@ def _cmd_view(args) -> int:
     turn = frame_turn(traj.t, traj.omega, indices)
     if turn > MAX_FRAME_TURN:  # a stroboscope's wheel: the page would show another motion than the run's
         print(f"note: the body turns up to {turn:.3g} rad between the page's {len(indices)} frames, past half a turn: "
-              f"the animation shows another motion than the run's; {_frames_hint(traj, MAX_FRAMES, MAX_FRAME_TURN)}",
+              f"the animation shows another motion than the run's; {frames_advice(traj.t, traj.omega)}",
               file=sys.stderr)
     return EXIT_OK
-
-
-def _frames_hint(traj, max_frames: int, max_turn: float) -> str:
-    """What gives a page frames less than ``max_turn`` (rad) apart: a frame is a sample, so every
-    ``k``-th sample with ``k`` samples' turn under it (5 % to spare), more samples where one sample's
-    turn passes it, and a shorter --t-end where that takes more than ``max_frames``."""
-    import numpy as np
-
-    from ..viz.scene import frame_turn
-
-    n = len(traj.t)
-    per_sample = frame_turn(traj.t, traj.omega, np.arange(n)) * 1.05
-    if per_sample < max_turn:
-        samples, frames = n, math.ceil((n - 1) / math.floor(max_turn / per_sample)) + 1
-    else:
-        samples = frames = math.ceil((n - 1) * per_sample / max_turn) + 1
-    if frames <= max_frames:
-        return f"give --frames {frames}{f' and --samples {samples}' if samples > n else ''} or more"
-    span = float(traj.t[-1] - traj.t[0]) * (max_frames - 1) / ((n - 1) * per_sample / max_turn)  # the turn: ~ span
-    return (f"the page holds at most {max_frames} frames: give a shorter --t-end (at most about {span:.3g} s with "
-            f"--frames {max_frames}{f' and --samples {max_frames}' if n < max_frames else ''})")
 
 
 def _view_folder(args) -> int:

@@ -7,6 +7,8 @@ animations transform these lines by the attitude; numpy only, no plotting here.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..dynamics import Trajectory
@@ -15,7 +17,7 @@ from ..mass.parts import Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, S
 from ..typing import ArrayLike
 
 __all__ = ["MAX_FRAME_TURN", "arrow_scale", "body_lines", "body_size", "check_body_and_run", "check_run", "frame_indices",
-           "frame_turn", "part_lines"]
+           "frame_turn", "frames_advice", "part_lines"]
 
 
 def _circle(radius: float, n: int) -> np.ndarray:
@@ -236,3 +238,32 @@ def check_body_and_run(body: object, traj: object) -> None:
     if not np.allclose(body.principal_moments, traj.moments, rtol=0.0, atol=tol):
         raise ValueError(f"body = {body!r} is not the body of this trajectory: its principal moments "
                          f"{body.principal_moments.tolist()} kg m^2 differ from the run's {traj.moments.tolist()}")
+
+
+def frames_advice(t: np.ndarray, omega: np.ndarray) -> str:
+    """What gives a page of a run sampled at ``t`` (s) with rates ``omega`` (rad/s, shape ``(n, 3)``)
+    frames less than :data:`MAX_FRAME_TURN` apart: a frame is a sample, so every ``k``-th sample with
+    ``k`` samples' turn under it (5 % to spare), more samples where one sample's turn passes it, and a
+    shorter ``--t-end`` where that takes more than :data:`MAX_FRAMES` (the command line's words).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.viz.scene import frames_advice
+    >>> t = np.linspace(0.0, 20.0, 500)
+    >>> frames_advice(t, np.tile([0.0, 57.0, 0.0], (500, 1)))   # 2.3 rad a sample: every sample, one frame each
+    'give --frames 500 or more'
+    >>> frames_advice(t, np.tile([0.0, 573.0, 0.0], (500, 1)))[:73]
+    'the page holds at most 2000 frames: give a shorter --t-end (at most about'
+    """
+    n = len(t)
+    per_sample = frame_turn(t, omega, np.arange(n)) * 1.05
+    if per_sample < MAX_FRAME_TURN:
+        samples, frames = n, math.ceil((n - 1) / math.floor(MAX_FRAME_TURN / per_sample)) + 1
+    else:
+        samples = frames = math.ceil((n - 1) * per_sample / MAX_FRAME_TURN) + 1
+    if frames <= MAX_FRAMES:
+        return f"give --frames {frames}{f' and --samples {samples}' if samples > n else ''} or more"
+    span = float(t[-1] - t[0]) * (MAX_FRAMES - 1) / ((n - 1) * per_sample / MAX_FRAME_TURN)  # the turn: ~ span
+    return (f"the page holds at most {MAX_FRAMES} frames: give a shorter --t-end (at most about {span:.3g} s with "
+            f"--frames {MAX_FRAMES}{f' and --samples {MAX_FRAMES}' if n < MAX_FRAMES else ''})")
