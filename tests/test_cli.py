@@ -101,6 +101,26 @@ def test_a_misspelt_command_is_answered_by_the_nearest(capsys, word, near):
     assert err.endswith(f"(did you mean {near}?)\n" if near else "'demo')\n")
 
 
+def test_frame_written_for_frames_is_named(capsys):
+    """'tumble view seed_flip.toml --frame 300' said "--frame = '300' is not allowed; allowed: principal, design"
+    and named --frames nowhere (a walkthrough, 2026-12-02)."""
+    assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", "flip.html", "--frame", "300"]) == 2
+    assert capsys.readouterr().err == ("tumble: error: --frame = '300' is not allowed; allowed: principal, design (the "
+                                       "page's number of frames is --frames)\n")
+
+
+def test_a_result_file_given_for_its_folder_names_the_folder(tmp_path, capsys):
+    """'tumble view fitted/fit.json' said "not valid TOML: Invalid statement (at line 1, column 1)" (a
+    walkthrough, 2026-12-02): the folder is what the page shows."""
+    (tmp_path / "fitted").mkdir()
+    (tmp_path / "fitted" / "fit.json").write_text('{"I1_over_I3": 0.2}\n')
+    assert main(["view", str(tmp_path / "fitted" / "fit.json"), "--out", str(tmp_path / "v.html")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.rstrip("\n").endswith(
+        f"fit.json: a JSON file, not a body or scenario file (TOML); a fit's or a tensor's output folder is shown "
+        f"whole: 'tumble view {tmp_path / 'fitted'}'"), err
+
+
 @pytest.mark.parametrize(("argv", "said"), [
     (["view", str(EXAMPLES / "data" / "racquet_tosses.csv"), "--out", "{tmp}/v.html"],
      "racquet_tosses.csv: a table of samples, not a body or scenario file (TOML): a gyroscope recording is fitted "

@@ -6,6 +6,7 @@ written and what is allowed."""
 from __future__ import annotations
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -40,6 +41,9 @@ def test_simulate_writes_the_knowledge(tmp_path, capsys):
     assert summary["sensors_used"]["magnetometer"] == 1.0 and summary["sensors_used"]["star_tracker"] == 0.0
     assert summary["bias_estimate_final"] == pytest.approx([2e-4, -1e-4, 1.5e-4], abs=3e-5)
     assert (tmp_path / "run" / "knowledge.png").stat().st_size > 10_000
+    pointing = summary.get("pointing_error_final")  # in deg beside the knowledge's, where there is one (not rad and deg)
+    assert ("(pointing " in line) == (pointing is not None)
+    assert pointing is None or f"(pointing {math.degrees(pointing):.3g} deg)" in line
 
 
 @pytest.mark.parametrize(("old", "new", "message"), [

@@ -101,7 +101,7 @@ BAD = [
     (BODY + INITIAL + "[torque]\nframe = 'body'\n", r"torque: missing key 'vector'"),
     (BODY + INITIAL + "[torque]\nvector = [0, 0, 1]\nframe = 'lab'\n", r"torque: torque frame = 'lab' is not allowed"),
     (BODY + INITIAL + "[simulation]\nmethod = 'seed'\n[torque]\nvector = [0, 0, 1]\n", r"simulation.method = 'seed' cannot take a torque"),
-    (BODY + INITIAL + "[simulation]\nmethod = 'exact'\n[torque]\nvector = [0, 0, 1]\n", r"simulation.method = 'exact' cannot take a torque; use one of: dop853, rk45, geometric"),
+    (BODY + INITIAL + "[simulation]\nmethod = 'exact'\n[torque]\nvector = [0, 0, 1]\n", r"simulation.method = 'exact' cannot take a torque; use one of: auto \(the default\), dop853, rk45, geometric"),
     (BODY + INITIAL + "[extra]\n", r"unknown key 'extra'"),
     ("[body]\n[[body.parts]]\nkind = 'rod'\nmass = 1\nlength = 1\n" + INITIAL, r"zero moment"),
     ("[body]\n[[body.parts]]\nkind = 'rod'\nmass = -1\nlength = 1\n" + INITIAL, r"body.parts\[0\] \(rod\): mass = -1"),

@@ -152,9 +152,11 @@ def test_the_methods_a_refusal_names_take_that_torque(torque):
     with pytest.raises(ValueError, match="cannot take a torque; use one of: ") as info:
         tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method="exact", torque=torque)
     named = str(info.value).split("use one of: ")[1].split(", ")
-    assert ("rk8" in named) == isinstance(torque, tumble.ConstantTorque)
+    assert ("rk8" in named) == isinstance(torque, tumble.ConstantTorque) and named[0] == "auto (the default)"
+    named[0] = "auto"  # the default, named first (a walkthrough: the list left it out)
     for method in named:  # each one runs it
-        assert tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method=method, torque=torque).method == method
+        traj = tumble.simulate(body, [0.1, 1.0, 0.0], t_end=0.2, samples=3, method=method, torque=torque)
+        assert traj.method == method or method == "auto" and traj.auto
 
 
 def _walkthrough_mistakes():

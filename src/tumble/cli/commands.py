@@ -217,6 +217,9 @@ def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from ..io.scenario import resolve_run
 
+    if hasattr(args, "frames") and args.frame is not None and args.frame not in ("principal", "design"):
+        raise ValueError(f"--frame = {args.frame!r} is not allowed; allowed: principal, design (the page's number of "
+                         "frames is --frames)")  # --frame 300 for --frames 300: argparse took the option whole
     return resolve_run(args.source, omega=args.omega, frame=args.frame, t_end=args.t_end,
                        samples=args.samples, dt=args.dt, method=args.method)
 
@@ -363,7 +366,7 @@ def _view_folder(args) -> int:
              if getattr(args, k) is not None]
     if given:
         what = "a fit's output folder replays its fitted flights" if fit else "a tensor's output folder shows its throws"
-        raise ValueError(f"{args.source}: {what}; {', '.join(given)} apply to a scenario or a body")
+        raise ValueError(f"{args.source}: {what}; {', '.join(given)} {'applies' if len(given) == 1 else 'apply'} to a scenario or a body")
     return _view_fit(args) if fit else _view_tensor(args)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 from ._common import EXIT_OK, _run_title, _working
 
@@ -83,9 +84,11 @@ def simulate_control(args, scenario, out) -> int:
         if limit is not None and summary["max_wheel_speed"] > limit:  # speeds relative to a tumbling body
             line += (f", wheels up to {summary['max_wheel_speed']:.4g} rad/s, past their {limit:.4g} rad/s limit (the "
                      f"body's own turning carries them there; beyond it a motor gives no outward torque)")
-        if "knowledge_error_rms_deg" in summary:
+        if "knowledge_error_rms_deg" in summary:  # the pointing error beside it in deg too: one unit in one line
+            pointing = (f" (pointing {math.degrees(summary['pointing_error_final']):.3g} deg)"
+                        if "pointing_error_final" in summary else "")
             line += (f", knowledge error {summary['knowledge_error_rms_deg']:.3g} deg RMS, "
-                     f"{summary['knowledge_error_final_deg']:.3g} deg at the end")
+                     f"{summary['knowledge_error_final_deg']:.3g} deg at the end{pointing}")
         print(f"{line}; wrote {out}/")
     return EXIT_OK
 

@@ -303,7 +303,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
         rtol, atol = dop853_tolerances(r, r if atol is None else check_positive("atol", atol, "rad/s"))
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
-        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
+        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: auto (the default), {allowed}")
     I, w0, q0 = check_batch(moments, omega0, attitude0)
     t, keep = sample_times(t_end, samples, None, times)
     if len(I) * len(t) > MAX_BATCH_VALUES:

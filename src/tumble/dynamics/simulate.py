@@ -338,7 +338,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     if model is not None and not spec.supports_torque:  # those that take this torque: a Python one, not compiled only
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque and (
             not s.compiled_only or form is not None or on_the_loop(model)))
-        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: {allowed}")
+        raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: auto (the default), {allowed}")
     if spec.compiled_only and form is None:
         loop = on_the_loop(model)  # an ellipse's or a TLE's gravity gradient, a dipole in a field
         if loop and internal is not None and (internal.damper is not None or not cast(Rotors, rotors).constant):

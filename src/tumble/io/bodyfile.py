@@ -115,6 +115,9 @@ def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario f
             raise ValueError(f"{path}: a table of samples, not {what}: a gyroscope recording is fitted with "
                              "'tumble fit FILE --out DIR' (then 'tumble view DIR'), a throw's log with 'tumble tensor'") \
                 from None
+        if path.suffix.lower() == ".json":  # a result file given where its folder is read (tumble view fitted/fit.json)
+            raise ValueError(f"{path}: a JSON file, not {what}; a fit's or a tensor's output folder is shown whole: "
+                             f"'tumble view {path.parent}'") from None
         raise ValueError(f"{path}: not valid TOML: {exc}") from None
     except RecursionError:
         raise ValueError(
