@@ -78,3 +78,18 @@ def test_bad_input_one_line(tmp_path, capsys, old, new, message):
     assert code == 2 and len(err.strip().splitlines()) == 1, err
     assert re.search(message, err) and "bad.toml" in err, err
     assert not (tmp_path / "run").exists()
+
+
+def test_an_epoch_outside_the_suns_formulas_is_said_in_one_line(tmp_path, capsys):
+    """A sun epoch of 2300 ran silently, where the low-precision formulas state 0.01 deg for 1950-2050 only
+    (a walkthrough, 2026-12-02): one line says how far the precession alone moves the Sun there (50.29"/yr)."""
+    text = EXAMPLE.read_text().replace('epoch = "2026-03-20T14:46:00"', 'epoch = "2300-03-20T14:46:00"')
+    assert "2300-03-20" in text
+    path = tmp_path / "late.toml"
+    path.write_text(text)
+    assert main(["simulate", str(path), "--t-end", "20", "--out", str(tmp_path / "run")]) == 0
+    warned = [line for line in capsys.readouterr().err.splitlines() if line.startswith("warning: ")]
+    years = 300.0
+    assert warned == [f"warning: epoch = 2300-03-20T14:46:00 lies outside 1950-2050, the span of the Sun's low-precision "
+                      f"formulas (0.01 deg); the precession of the equinoxes, which this ECI leaves in, adds about "
+                      f"{years * 50.29 / 3600:.2g} deg to the Sun's direction there"], warned

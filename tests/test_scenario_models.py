@@ -247,3 +247,16 @@ def test_a_run_started_in_the_orbit_frame_is_judged_with_its_own_axes(tmp_path, 
     roll, yaw = (0, 1) if axes else (1, 0)  # the third axis of the right-handed triple (pitch 3)
     k_pitch = (traj.moments[roll] - traj.moments[yaw]) / traj.moments[2]
     assert g["region"] == ("pitch unstable" if axes else "lagrange") and (k_pitch < 0) == bool(axes)
+
+
+def test_an_orbit_frame_angle_past_half_a_turn_is_asked_about(tmp_path, capsys):
+    """pitch = 5.0 (meant as 5 deg) ran 286 deg off the orbiting frame without a word (a walkthrough,
+    2026-12-02): one line asks whether it is in degrees; the run is the one asked for."""
+    path = scenario(tmp_path, GG + "[initial.orbit_frame]\npitch = 5.0\n[simulation]\nt_end = 10.0\nsamples = 3\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
+    err = capsys.readouterr().err
+    assert err == ("warning: initial.orbit_frame: pitch = 5.0 rad is past half a turn: is it in degrees? Write radians "
+                   "(5.0 deg is 0.08727 rad)\n")
+    assert main(["simulate", str(scenario(tmp_path, GG + "[initial.orbit_frame]\npitch = 3.0\n[simulation]\n"
+                                                       "t_end = 10.0\nsamples = 3\n")), "--out", str(tmp_path / "b")]) == 0
+    assert capsys.readouterr().err == ""  # within half a turn: as written

@@ -10,10 +10,13 @@ line that names the table. :mod:`tumble.io.scenario` reads the rest of the file.
 
 from __future__ import annotations
 
+import math
+import warnings
+
 from ..dynamics.environment.earth import MU_EARTH
 from ..dynamics.models.gravity import GravityGradient, LVLHState, lvlh_state
 from ..dynamics.models.orbit_gravity import OrbitGravityGradient
-from ..mass import Body, MassProperties
+from ..mass import Body, MassProperties, UnitSlipWarning
 from ..validation import short_repr, unknown_name
 from .controlorbit import orbit_of
 from .keys import Key, Table
@@ -119,6 +122,10 @@ def lvlh_state_from_table(table: dict, gg: GravityGradient, body: Body | MassPro
     for key in ("roll", "pitch", "yaw"):
         if key in table and (isinstance(table[key], bool) or not isinstance(table[key], (int, float))):
             raise ValueError(f"initial.orbit_frame: {key} = {table[key]!r} must be a number (rad)")
+        if key in table and abs(table[key]) > math.pi:  # pitch = 5 meant as 5 deg ran 286 deg off without a word
+            warnings.warn(f"initial.orbit_frame: {key} = {table[key]!r} rad is past half a turn: is it in degrees? "
+                          f"Write radians ({table[key]!r} deg is {math.radians(table[key]):.4g} rad)", UnitSlipWarning,
+                          stacklevel=2)
     try:
         return lvlh_state(gg, body, **table)
     except ValueError as exc:

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -52,7 +53,27 @@ from ...typing import ArrayLike, FloatArray
 from .earth import R_EARTH
 from .sidereal import julian_date
 
-__all__ = ["AU", "R_SUN", "Sunlight", "shadow_fraction", "sun_direction_eci", "sun_position_eci"]
+__all__ = ["AU", "R_SUN", "EphemerisSpanWarning", "Sunlight", "shadow_fraction", "sun_direction_eci", "sun_position_eci"]
+
+class EphemerisSpanWarning(UserWarning):
+    """An epoch outside 1950-2050, the span the Sun's low-precision formulas state their 0.01 deg for;
+    the message says how far the precession moves the Sun's direction there. The command line says
+    it in one line.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.environment.orbit import CircularOrbit
+    >>> from tumble.dynamics.environment.sun import EphemerisSpanWarning, Sunlight
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     _ = Sunlight(CircularOrbit(altitude=500e3), "2300-03-20T14:46:00")
+    >>> caught[0].category is EphemerisSpanWarning, str(caught[0].message)[-47:]
+    (True, "adds about 4.2 deg to the Sun's direction there")
+    """
+
+    cli_one_line = True
+
 
 #: The astronomical unit, m (IAU 2012 resolution B2, exact).
 AU = 149597870700.0
@@ -197,6 +218,11 @@ class Sunlight:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_jd0", julian_date(self.epoch))
+        years = (self._jd0 - 2451545.0) / 365.25  # from J2000
+        if not -50.0 <= years <= 50.0:  # the formulas' stated span; the precession (50.3"/yr) grows past it
+            warnings.warn(f"epoch = {self.epoch!s} lies outside 1950-2050, the span of the Sun's low-precision formulas "
+                          f"(0.01 deg); the precession of the equinoxes, which this ECI leaves in, adds about "
+                          f"{abs(years) * 50.29 / 3600.0:.2g} deg to the Sun's direction there", EphemerisSpanWarning, stacklevel=3)
         if self.shadow not in ("conical", "cylindrical", "none"):
             raise ValueError(f"shadow = {self.shadow!r} is unknown; allowed: conical, cylindrical, none")
         for name in ("position_eci", "eci_from_world"):
