@@ -217,8 +217,9 @@ class Sunlight:
     shadow: str = "conical"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "_jd0", julian_date(self.epoch))
-        years = (self._jd0 - 2451545.0) / 365.25  # from J2000
+        jd0 = julian_date(self.epoch)
+        object.__setattr__(self, "_jd0", jd0)
+        years = (float(jd0) - 2451545.0) / 365.25  # from J2000
         if not -50.0 <= years <= 50.0:  # the formulas' stated span; the precession (50.3"/yr) grows past it
             warnings.warn(f"epoch = {self.epoch!s} lies outside 1950-2050, the span of the Sun's low-precision formulas "
                           f"(0.01 deg); the precession of the equinoxes, which this ECI leaves in, adds about "
