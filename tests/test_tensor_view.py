@@ -275,7 +275,7 @@ def test_a_folder_of_neither_kind_or_a_damaged_one_is_one_line_and_exit_2(made, 
     for name in ("tensor.json", "throws.npz"):
         (folder / name).write_bytes((out / name).read_bytes())
     assert main(["view", str(folder), "--out", str(page), "--omega", "1", "2", "3"]) == 2
-    assert f"{folder}: a tensor's output folder shows its throws; --omega apply to a scenario" in _one_line(capsys)
+    assert f"{folder}: a tensor's output folder shows its throws; --omega applies to a scenario" in _one_line(capsys)
     npz = (folder / "throws.npz").read_bytes()
     (folder / "throws.npz").write_bytes(npz[: len(npz) // 2])
     assert main(["view", str(folder), "--out", str(page)]) == 2
