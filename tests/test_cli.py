@@ -105,8 +105,8 @@ def test_frame_written_for_frames_is_named(capsys):
     """'tumble view seed_flip.toml --frame 300' said "--frame = '300' is not allowed; allowed: principal, design"
     and named --frames nowhere (a walkthrough, 2026-12-02)."""
     assert main(["view", str(EXAMPLES / "seed_flip.toml"), "--out", "flip.html", "--frame", "300"]) == 2
-    assert capsys.readouterr().err == ("tumble: error: --frame = '300' is not allowed; allowed: principal, design (the "
-                                       "page's number of frames is --frames)\n")
+    assert capsys.readouterr().err == (f"tumble: error: {EXAMPLES / 'seed_flip.toml'}: --frame = '300' is not allowed; "
+                                       "allowed: principal, design (the page's number of frames is --frames)\n")
 
 
 def test_a_result_file_given_for_its_folder_names_the_folder(tmp_path, capsys):

@@ -217,11 +217,13 @@ def _resolve(args):
     """The run a scenario command asks for (scenario file, or body + --omega; options override)."""
     from ..io.scenario import resolve_run
 
-    if hasattr(args, "frames") and args.frame is not None and args.frame not in ("principal", "design"):
-        raise ValueError(f"--frame = {args.frame!r} is not allowed; allowed: principal, design (the page's number of "
-                         "frames is --frames)")  # --frame 300 for --frames 300: argparse took the option whole
-    return resolve_run(args.source, omega=args.omega, frame=args.frame, t_end=args.t_end,
-                       samples=args.samples, dt=args.dt, method=args.method)
+    try:
+        return resolve_run(args.source, omega=args.omega, frame=args.frame, t_end=args.t_end,
+                           samples=args.samples, dt=args.dt, method=args.method)
+    except ValueError as exc:  # --frame 300 for --frames 300 (argparse took the option whole): name --frames
+        if hasattr(args, "frames") and f"--frame = {args.frame!r} is not allowed" in str(exc):
+            raise ValueError(f"{exc} (the page's number of frames is --frames)") from None
+        raise
 
 
 def _cmd_simulate(args) -> int:

@@ -220,7 +220,9 @@ class Sunlight:
         jd0 = julian_date(self.epoch)
         object.__setattr__(self, "_jd0", jd0)
         years = (float(jd0) - 2451545.0) / 365.25  # from J2000
-        if not -50.0 <= years <= 50.0:  # the formulas' stated span; the precession (50.3"/yr) grows past it
+        # the formulas' stated span; past it the general precession in longitude, 5028.796"/century (IAU 2006,
+        # Capitaine, Wallace & Chapront, A&A 412 (2003) 567, eq. 39), which this ECI of date leaves in, grows
+        if not -50.0 <= years <= 50.0:
             warnings.warn(f"epoch = {self.epoch!s} lies outside 1950-2050, the span of the Sun's low-precision formulas "
                           f"(0.01 deg); the precession of the equinoxes, which this ECI leaves in, adds about "
                           f"{abs(years) * 50.29 / 3600.0:.2g} deg to the Sun's direction there", EphemerisSpanWarning, stacklevel=3)
