@@ -254,8 +254,13 @@ def _installed_help(venv: Venv) -> dict[str, str]:
 
 
 def _key(argv: tuple[str, ...]) -> tuple[str, ...]:
-    """A command without its output names: two that differ only there are run once."""
-    return tuple("OUT" if i and argv[i - 1] in ("--out", "--copy") else a for i, a in enumerate(argv))
+    """A command without its output names: two that differ only there, or only in naming one
+    (``tumble demo`` and ``tumble demo --out DIR``: the demo, 15 s, ran twice), are run once."""
+    words = list(argv)
+    for i in range(len(words) - 2, -1, -1):
+        if words[i] == "--out":
+            del words[i:i + 2]
+    return tuple("OUT" if i and words[i - 1] == "--copy" else a for i, a in enumerate(words))
 
 
 def _parses(argv: tuple[str, ...]) -> bool:
