@@ -260,3 +260,28 @@ def test_an_orbit_frame_angle_past_half_a_turn_is_asked_about(tmp_path, capsys):
     assert main(["simulate", str(scenario(tmp_path, GG + "[initial.orbit_frame]\npitch = 3.0\n[simulation]\n"
                                                        "t_end = 10.0\nsamples = 3\n")), "--out", str(tmp_path / "b")]) == 0
     assert capsys.readouterr().err == ""  # within half a turn: as written
+
+
+@pytest.mark.parametrize(("over_n", "free_body"), [(2.0, False), (30.0, True)])
+def test_a_spin_slow_beside_the_orbit_rate_is_not_given_the_free_bodys_verdict(tmp_path, capsys, over_n, free_body):
+    """A T-handle spun near its intermediate axis under the gravity gradient: ``tumble simulate`` said "predicted
+    unstable" at any spin, the free body's theory (a walkthrough, 2026-12-02). At twice the orbit rate the
+    gradient's torque, some 3 (n / omega)^2 of the gyroscopic terms (Hughes 1986, sec. 8.1), is 75 % of them:
+    the line says so beside the free body's verdict, and the summary holds |omega0| / n and whether the free body's
+    prediction applies. Checked against the free body's closed form: the run's mean flip interval over eleven
+    orbits is within 2 % of the elliptic interval at thirty times the orbit rate, and more than 5 % off at twice."""
+    import json
+
+    gg = tumble.GravityGradient(orbit_period=5400.0)
+    omega0 = np.array([0.25, 1.0, 0.3]) / np.linalg.norm([0.25, 1.0, 0.3]) * over_n * gg.mean_motion
+    path = scenario(tmp_path, GG + f"[initial]\nomega = {omega0.tolist()}\n[simulation]\nt_end = 60000.0\nsamples = 6001\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    g = json.loads((tmp_path / "run" / "summary.json").read_text())["gravity_gradient"]
+    assert g["spin_over_n"] == pytest.approx(over_n, rel=1e-12) and g["free_body"] is free_body
+    slow = f"a free body would be unstable, but at {over_n:.2g} times the orbit rate the gravity gradient is not small"
+    assert (slow in line) is not free_body and ("predicted unstable" in line) is free_body, line
+    report = tumble.stability_report(run_scenario(load_scenario(path)))
+    closed_form = float(tumble.flip_interval(omega0, tumble.t_handle().principal_moments))
+    off = abs(report["flip_period"] - closed_form) / closed_form
+    assert off < 0.02 if free_body else off > 0.05, off

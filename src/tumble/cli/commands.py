@@ -440,6 +440,12 @@ def _simulate_line(summary: dict, out) -> str:
     if g.get("started_in_orbit_frame"):  # librations in the orbiting frame: its stability, not the free body's nor flips
         spin = (f"started turning with the orbiting frame (pitch axis {g['pitch_axis']}, yaw axis {g['yaw_axis']}), "
                 f"{_REGION_WORDS[g['region']]}")
+    elif g and s["axis"] is not None and not g["free_body"]:  # the gradient is not small beside the spin
+        spin = (f"spin mostly about axis {s['axis']} ({s['role']}), {s['flips']} flip{'' if s['flips'] == 1 else 's'}; "
+                f"{'a free body would be ' + s['predicted'] + ', but ' if s['predicted'] else ''}"
+                f"at {g['spin_over_n']:.2g} times the orbit rate the gravity "
+                f"gradient is not small beside the spin (its torque some 3 (n / omega)^2 = "
+                f"{3.0 / g['spin_over_n'] ** 2:.0%} of the gyroscopic terms)")
     measured, exact = s["flip_period"], s["flip_period_exact"]
     aliased = s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP
     if summary["torque_free"] and s["flips"] and (measured is not None or exact is not None):
