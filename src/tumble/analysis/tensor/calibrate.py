@@ -44,7 +44,7 @@ from realistic devices, whose accelerometers carry such errors (below).
 proof throws are of another object), each set's agreement about its joint fit (above
 :data:`MAX_SET_CHI2_DOF` its throws are not of one rigid body), a rotor inertia that is not
 positive (the sets swapped), and each throw's fitted gyroscope bias (a throw that needs more
-than a gyroscope has is left out: :func:`~tumble.analysis.tensor.pool.throw_verdict`).
+than a gyroscope has is left out: :func:`~tumble.analysis.tensor.verdicts.throw_verdict`).
 """
 
 from __future__ import annotations
@@ -63,7 +63,8 @@ from .equations import rotor_inertia_from
 from .estimate import tensor_of
 from .sensors import gyro_matrix, tilted_axis
 from .fit import full_scale, sensor_errors
-from .pool import Pooled, duplicate_throws, pool_throws
+from .pool import Pooled, pool_throws
+from .verdicts import duplicate_throws
 
 __all__ = ["MAX_CHI2_DOF", "MAX_SET_CHI2_DOF", "Calibration", "CalibrationError", "calibrate", "calibrate_device",
            "calibrated_sensors", "shared_center_covariance", "shared_sensor_covariance"]

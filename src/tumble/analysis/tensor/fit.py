@@ -5,7 +5,7 @@ Each throw is fitted on its own (:mod:`~tumble.analysis.tensor.throw`): the flow
 covariances (the sensors' stated uncertainties included: :func:`sensor_errors`). A throw whose
 object, the device taken away, is no body's (:func:`~tumble.analysis.tensor.estimate.not_physical`)
 is left out, named, with the throws that the fit cannot explain
-(:func:`~tumble.analysis.tensor.pool.throw_verdict`). The rest are fitted jointly, one tensor
+(:func:`~tumble.analysis.tensor.verdicts.throw_verdict`). The rest are fitted jointly, one tensor
 and one centre of mass for all (:mod:`~tumble.analysis.tensor.pool`). Then the systematic parts
 common to every throw are added: the rotor inertia's relative uncertainty scales the whole
 tensor (the gyrostat's equations are unchanged when ``I`` and ``J_r`` are multiplied by the same

@@ -3,7 +3,7 @@
 1. Each throw is fitted on its own (:func:`~tumble.analysis.tensor.throw.fit_flown`): where its
    flight lies, its own tensor and centre of mass with their covariances (kept as diagnostics).
 2. A throw is **left out with its reason** when its fit cannot be trusted
-   (:func:`throw_verdict`): no flight found, no accelerometer, or what the caller's check says
+   (:func:`~tumble.analysis.tensor.verdicts.throw_verdict`): no flight found, no accelerometer, or what the caller's check says
    (the object's tensor not physical: :func:`tumble.fit_tensor`).
 3. The throws left are **fitted jointly** (:mod:`~tumble.analysis.tensor.joint`): one tensor
    and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
@@ -11,11 +11,14 @@
    single throw of a calibrated device, :attr:`~tumble.analysis.tensor.sensors.SensorErrors.calibrated`,
    holds them at the calibration's values, their uncertainties carried). A throw whose part of it has
    residuals well above the gyroscope's noise (measured from the throw itself) or needs a gyroscope
-   bias beyond :data:`MAX_BIAS` is left out (:func:`joint_verdict`; a single throw's own fit may need a
+   bias beyond :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` is left out (:func:`~tumble.analysis.tensor.verdicts.joint_verdict`; a single throw's own fit may need a
    large bias to mimic the distortion that the joint fit explains), the one furthest beyond its limits
    first, and the rest refitted from the joint fit before; where only biases are beyond it and the fit
    with every bias held at 0 explains the throws as well, that fit is taken instead (:func:`_without_biases`:
-   the rotor's tilt trades with the biases).
+   the rotor's tilt trades with the biases). Once the others agree, a throw so left out is judged again
+   against their fit (its own motion fitted, the tensor and the sensors held: :func:`_against`) and taken
+   back where that explains it, once: a throw of another body pulls the joint tensor off, and a good
+   throw's residuals can then be the worst.
 4. A throw whose own estimate lies more than :data:`OUTLIER_SIGMA` standard uncertainties from the joint one (in
    its principal moments) is left out, naming that, and the rest refitted (3 or more throws: with two, neither
    can be called the outlier).
@@ -38,7 +41,6 @@ device's own tensor) are added by the caller: averaging does not reduce them.
 
 from __future__ import annotations
 
-import hashlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
@@ -54,17 +56,11 @@ from .joint import JointFit, JointModel, fit_joint
 from .sensors import SensorErrors
 from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
+from .verdicts import _BIAS_REASON, MAX_BIAS, duplicate_throws, joint_verdict, residual_verdict, throw_verdict
 
-__all__ = ["BIAS_FREE_RMS", "MAX_BIAS", "OUTLIER_SIGMA", "SENSOR_THROWS", "SHRINK_DOF", "NoThrowError", "Pooled", "agreement",
-           "birge_factor", "duplicate_throws", "joint_verdict", "outlier", "own_fits", "pool_throws", "residual_verdict", "throw_verdict"]
+__all__ = ["BIAS_FREE_RMS", "OUTLIER_SIGMA", "SENSOR_THROWS", "SHRINK_DOF", "NoThrowError", "Pooled", "agreement",
+           "birge_factor", "outlier", "own_fits", "pool_throws"]
 
-#: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
-#: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
-#: bound), and a flight controller removes it at rest; on realistic throws the joint fit needs at
-#: most 0.3 rad/s (benchmarks/tensor_coverage.py). A fit that needs more is explaining something
-#: else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
-MAX_BIAS = 0.6
-_BIAS_REASON = "the fit needs a gyroscope bias of"  # how joint_verdict begins that refusal (pool_throws reads it)
 #: A throw this many standard uncertainties from the joint fit is an outlier.
 OUTLIER_SIGMA = 5.0
 #: From this many throws on the joint fit determines the gyroscope's distortion and the rotor's
@@ -130,91 +126,6 @@ class Pooled:
     center_columns: FloatArray | None = None
 
 
-def throw_verdict(f: FlownFit, throw: Throw) -> str:
-    """Why a throw's own fit leaves it out, or ``""`` (module docstring, step 2; the residuals and
-    the bias are judged on the joint fit, where the gyroscope's distortion and the rotor's tilt
-    are explained: :func:`joint_verdict`; a lone throw's own fit at 35 rad/s leaves residuals 4-9
-    times the noise from a 0.9 % misalignment and a 2 degree tilt).
-
-    Examples
-    --------
-    >>> from tumble.analysis.tensor.pool import throw_verdict
-    >>> from tumble.analysis.tensor.throw import FlownFit
-    >>> from tumble.analysis.tensor.flight import Window
-    >>> throw_verdict(FlownFit(Window(0, 0, 0, 0.0, 0.0, "no rotor"), "no rotor"), None)
-    'no rotor'
-    """
-    if f.reason:
-        return f.reason
-    if f.center is None or throw.accel is None:
-        return "no accelerometer in the throw: its centre of mass is unknown"
-    return ""
-
-
-def residual_verdict(rms: float, noise: float) -> str:
-    """Why residuals ``rms`` (rad/s) against the gyroscope's ``noise`` say the model does not
-    explain a flight, or ``""``.
-
-    Examples
-    --------
-    >>> from tumble.analysis.tensor.pool import residual_verdict
-    >>> residual_verdict(0.012, 0.01), residual_verdict(0.047, 0.01)[:40]
-    ('', 'the free motion does not explain the fli')
-    """
-    if rms <= RESIDUAL_LIMIT * noise:
-        return ""
-    return (f"the free motion does not explain the flight: residuals {rms:.3g} rad/s, {rms / noise:.1f} times the "
-            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; a rate logged in deg/s read as rad/s, a "
-            f"rotor axis or speed that is wrong, a mount or body that is not rigid)")
-
-
-def joint_verdict(bias: FloatArray, rms: float, noise: float) -> str:
-    """Why a throw's part of the joint fit leaves it out, or ``""``: its residuals
-    (:func:`residual_verdict`) or a gyroscope bias beyond :data:`MAX_BIAS`.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.analysis.tensor.pool import joint_verdict
-    >>> joint_verdict(np.array([0.01, 0.0, -0.8]), 0.012, 0.01)[:44]
-    'the fit needs a gyroscope bias of 0.8 rad/s,'
-    """
-    why = residual_verdict(rms, noise)
-    if why:
-        return why
-    size = float(np.max(np.abs(bias)))
-    if size > MAX_BIAS:
-        return (f"{_BIAS_REASON} {size:.3g} rad/s, more than a gyroscope has ({MAX_BIAS:g}): the "
-                f"model explains the flight only by distorting it (a wrong unit, rotor axis or sign)")
-    return ""
-
-
-def duplicate_throws(throws: Sequence[Throw]) -> str:
-    """``""``, or a line naming two throws whose logs are the same samples (one throw given twice
-    counts twice and halves the stated std).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from tumble.analysis.tensor import Throw
-    >>> from tumble.analysis.tensor.pool import duplicate_throws
-    >>> t = np.arange(100) / 4000.0
-    >>> a = Throw(t, np.ones((100, 3)), np.zeros(100), None, "a.csv")
-    >>> duplicate_throws([a, Throw(t, np.ones((100, 3)), np.zeros(100), None, "copy.csv")])
-    'throws[1] (copy.csv) is the same log as throws[0] (a.csv): give each throw once'
-    """
-    seen: dict[str, int] = {}
-    for k, th in enumerate(throws):
-        digest = hashlib.sha256(b"".join(np.ascontiguousarray(x, float).tobytes() for x in (th.t, th.omega, th.rotor)))
-        key = digest.hexdigest()
-        if key in seen:
-            j = seen[key]
-            return (f"throws[{k}] ({throws[k].input or 'unnamed'}) is the same log as throws[{j}] "
-                    f"({throws[j].input or 'unnamed'}): give each throw once")
-        seen[key] = k
-    return ""
-
-
 def _joint(fits: list[FlownFit], errors: SensorErrors | None, start: FloatArray | None = None):
     """The joint fit of the throws ``fits`` (their models and optima as the start); the sensors
     fitted from :data:`SENSOR_THROWS` throws on (on readings a calibrated device has corrected:
@@ -244,14 +155,14 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None, start: FloatArray 
 def _without_biases(joint: JointModel, jf: JointFit, errors: SensorErrors | None) -> JointFit:
     """The joint fit ``jf`` refitted with every throw's gyroscope bias held at 0, if that explains
     each throw as well (its residuals' rms within :data:`BIAS_FREE_RMS` of the free fit's); else
-    ``jf``. For a fit whose biases exceed :data:`MAX_BIAS` while its residuals are at the noise:
+    ``jf``. For a fit whose biases exceed :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` while its residuals are at the noise:
     the rotor's tilt and the gyroscope's distortion trade with the biases, and a rotor tilted
     beyond its stated uncertainty left the fit in an optimum where biases of 0.3-0.7 rad/s stand
     in for a part of the tilt (device 78 of benchmarks/calibration_coverage.py, tilted 2.7 degrees
     against the stated 1: held at 0 its throws' residuals were 1.24-1.49 times the noise, free
     1.24-1.54; leaving out the throw of 0.66 rad/s drove the others' refit to 0.9-4 rad/s and left
     every throw out). A flight controller zeroes its gyroscope at rest (the residual bias about
-    0.05 rad/s, :data:`MAX_BIAS`'s sources), which the biases held at 0 leave out of the
+    0.05 rad/s, :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS`'s sources), which the biases held at 0 leave out of the
     covariance. A throw with a real offset (a bias of 0.8 rad/s) is not explained without it, and
     stays judged by its bias.
 
@@ -267,6 +178,25 @@ def _without_biases(joint: JointModel, jf: JointFit, errors: SensorErrors | None
     P0 = np.where(held, 0.0, jf.P)
     zero = fit_joint(joint, P0, errors, held)
     return zero if bool(np.all(zero.rms <= BIAS_FREE_RMS * jf.rms)) else jf
+
+
+def _against(joint: JointModel, jf: JointFit, f: FlownFit) -> str:
+    """Why a throw left out of a joint fit is not explained by the fit of the others, ``jf``, or ``""``:
+    its own motion (``L(t_0)``, bias, drag, lag) fitted with the tensor and the sensors held at ``jf``'s
+    and judged as in the joint fit (:func:`~tumble.analysis.tensor.verdicts.joint_verdict`). A throw of
+    another body in the joint fit pulls the tensor off, and the residuals of a good throw can then be
+    the worst: of three throws of an object and one of the proof body, the object's first was left
+    out before the proof body's, and then never judged again (a walkthrough of docs/tensor.md,
+    2026-12-02: 2 of 4 throws used, where the object's three alone agree at chi2/dof 0.57)."""
+    one = JointModel([f.model], sensor=joint.sensor)  # type: ignore[list-item]
+    assert f.model is not None and f.P is not None
+    w0 = f.model.omega(f.P[None])[0][0]
+    rest = np.r_[jf.inertia @ w0 + f.model.h[0], f.P[9:]]
+    held = np.zeros(one.n, bool)
+    held[:one.base] = True
+    P0 = one.pack(jf.P[:6], [rest], jf.P[6:joint.base] if joint.sensor else None)
+    g = fit_joint(one, P0, None, held)
+    return joint_verdict(one.throw_parameters(g.P, 0)[9:12], float(g.rms[0]), f.noise)
 
 
 def own_fits(joint: JointModel, jf: JointFit) -> list[JointFit]:
@@ -439,12 +369,15 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
         if why:
             fits[k] = replace(f, reason=why)
     start = None
+    lone = list(fits)  # each throw as its own fit left it: one left out by a joint fit may come back (below)
+    joint_out: list[int] = []  # left out by their part of a joint fit, in that order
+    readmitted: set[int] = set()
     while True:
         used = [k for k, f in enumerate(fits) if not f.reason]
         if not used:
             why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}" for k, (throw, f) in enumerate(zip(throws, fits)))
-            lone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
-            hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if lone
+            alone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
+            hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if alone
                     and any(f.reason.startswith(_BIAS_REASON) for f in fits) else "") + ("; every throw's tensor is no "
                     "body's: check the object's mass (tumble tensor's --mass; a tenth of the real one does this) and the "
                     "device's mass, center_of_mass and rotor_inertia, which enter each of them" if all(
@@ -465,15 +398,20 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
                 return max(bias, float(jf.rms[j]) / (RESIDUAL_LIMIT * fits[used[j]].noise)) if judged[j] else -1.0
             j = max(range(len(used)), key=beyond)
             fits[used[j]] = replace(fits[used[j]], reason=judged[j])
+            joint_out.append(used[j])
             continue
         own = own_fits(joint, jf) if len(used) > 1 else []
-        if len(used) < 3:
+        worst, z = outlier(own, jf.inertia) if len(used) >= 3 else (-1, 0.0)
+        if z > OUTLIER_SIGMA:
+            fits[used[worst]] = replace(fits[used[worst]], reason=f"its tensor lies {z:.3g} standard uncertainties from "
+                                                                  f"the other throws' joint fit (at most {OUTLIER_SIGMA:g})")
+            continue
+        back = [k for k in joint_out if k not in readmitted and fits[k].reason and not _against(joint, jf, lone[k])]
+        if not back:
             break
-        worst, z = outlier(own, jf.inertia)
-        if z <= OUTLIER_SIGMA:
-            break
-        fits[used[worst]] = replace(fits[used[worst]], reason=f"its tensor lies {z:.3g} standard uncertainties from "
-                                                              f"the other throws' joint fit (at most {OUTLIER_SIGMA:g})")
+        for k in back:  # each at most once: a throw that the refit leaves out again stays out
+            fits[k] = lone[k]
+            readmitted.add(k)
     chosen = [fits[k] for k in used]
     rates = joint.rates(jf.P)
     models, accels = [f.model for f in chosen], [f.accel for f in chosen]

@@ -1,0 +1,111 @@
+"""Why a throw is left out of a pooled tensor: the reasons :func:`~tumble.analysis.tensor.pool.pool_throws`
+gives, each a line for the user (``""``: no reason). A throw's own fit (:func:`throw_verdict`), its part of
+the joint fit (:func:`joint_verdict`: residuals above the gyroscope's noise, :func:`residual_verdict`, or a
+bias no gyroscope has), and a log given twice (:func:`duplicate_throws`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Sequence
+
+import numpy as np
+
+from ...typing import FloatArray
+from .throw import RESIDUAL_LIMIT, FlownFit
+from .throwlog import Throw
+
+__all__ = ["MAX_BIAS", "duplicate_throws", "joint_verdict", "residual_verdict", "throw_verdict"]
+
+#: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
+#: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
+#: bound), and a flight controller removes it at rest; on realistic throws the joint fit needs at
+#: most 0.3 rad/s (benchmarks/tensor_coverage.py). A fit that needs more is explaining something
+#: else (a wrong unit, a mount that flexes, a rotor axis that is wrong).
+MAX_BIAS = 0.6
+_BIAS_REASON = "the fit needs a gyroscope bias of"  # how joint_verdict begins that refusal (pool_throws reads it)
+
+
+def throw_verdict(f: FlownFit, throw: Throw) -> str:
+    """Why a throw's own fit leaves it out, or ``""`` (:mod:`~tumble.analysis.tensor.pool`, step 2; the residuals and
+    the bias are judged on the joint fit, where the gyroscope's distortion and the rotor's tilt
+    are explained: :func:`joint_verdict`; a lone throw's own fit at 35 rad/s leaves residuals 4-9
+    times the noise from a 0.9 % misalignment and a 2 degree tilt).
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.verdicts import throw_verdict
+    >>> from tumble.analysis.tensor.throw import FlownFit
+    >>> from tumble.analysis.tensor.flight import Window
+    >>> throw_verdict(FlownFit(Window(0, 0, 0, 0.0, 0.0, "no rotor"), "no rotor"), None)
+    'no rotor'
+    """
+    if f.reason:
+        return f.reason
+    if f.center is None or throw.accel is None:
+        return "no accelerometer in the throw: its centre of mass is unknown"
+    return ""
+
+
+def residual_verdict(rms: float, noise: float) -> str:
+    """Why residuals ``rms`` (rad/s) against the gyroscope's ``noise`` say the model does not
+    explain a flight, or ``""``.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.verdicts import residual_verdict
+    >>> residual_verdict(0.012, 0.01), residual_verdict(0.047, 0.01)[:40]
+    ('', 'the free motion does not explain the fli')
+    """
+    if rms <= RESIDUAL_LIMIT * noise:
+        return ""
+    return (f"the free motion does not explain the flight: residuals {rms:.3g} rad/s, {rms / noise:.1f} times the "
+            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; a rate logged in deg/s read as rad/s, a "
+            f"rotor axis or speed that is wrong, a mount or body that is not rigid)")
+
+
+def joint_verdict(bias: FloatArray, rms: float, noise: float) -> str:
+    """Why a throw's part of the joint fit leaves it out, or ``""``: its residuals
+    (:func:`residual_verdict`) or a gyroscope bias beyond :data:`MAX_BIAS`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.verdicts import joint_verdict
+    >>> joint_verdict(np.array([0.01, 0.0, -0.8]), 0.012, 0.01)[:44]
+    'the fit needs a gyroscope bias of 0.8 rad/s,'
+    """
+    why = residual_verdict(rms, noise)
+    if why:
+        return why
+    size = float(np.max(np.abs(bias)))
+    if size > MAX_BIAS:
+        return (f"{_BIAS_REASON} {size:.3g} rad/s, more than a gyroscope has ({MAX_BIAS:g}): the "
+                f"model explains the flight only by distorting it (a wrong unit, rotor axis or sign)")
+    return ""
+
+
+def duplicate_throws(throws: Sequence[Throw]) -> str:
+    """``""``, or a line naming two throws whose logs are the same samples (one throw given twice
+    counts twice and halves the stated std).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.analysis.tensor.verdicts import duplicate_throws
+    >>> t = np.arange(100) / 4000.0
+    >>> a = Throw(t, np.ones((100, 3)), np.zeros(100), None, "a.csv")
+    >>> duplicate_throws([a, Throw(t, np.ones((100, 3)), np.zeros(100), None, "copy.csv")])
+    'throws[1] (copy.csv) is the same log as throws[0] (a.csv): give each throw once'
+    """
+    seen: dict[str, int] = {}
+    for k, th in enumerate(throws):
+        digest = hashlib.sha256(b"".join(np.ascontiguousarray(x, float).tobytes() for x in (th.t, th.omega, th.rotor)))
+        key = digest.hexdigest()
+        if key in seen:
+            j = seen[key]
+            return (f"throws[{k}] ({throws[k].input or 'unnamed'}) is the same log as throws[{j}] "
+                    f"({throws[j].input or 'unnamed'}): give each throw once")
+        seen[key] = k
+    return ""
