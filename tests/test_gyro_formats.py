@@ -78,6 +78,30 @@ def test_header_names_in_many_forms(tmp_path, rec, header, sep, scale):
     assert abs(got.read.sample_rate - rec.rate) < 0.05 * rec.rate
 
 
+PHYPHOX_HEADER = ['"Time (s)"', '"Gyroscope x (rad/s)"', '"Gyroscope y (rad/s)"', '"Gyroscope z (rad/s)"']
+
+
+@pytest.mark.parametrize(("sep", "point"), [(",", "."), ("\t", "."), (";", "."), ("\t", ","), (";", ",")])
+def test_phyphox_five_csv_exports_read_alike(tmp_path, rec, sep, point):
+    """phyphox exports CSV five ways (its "Export data" menu: comma, tabulator or semicolon, decimal point or
+    comma); "Tabulator, decimal comma" was refused ("'1,2008110e+01' is not a number", a walkthrough of
+    fitting.md, 2026-12-02). Each reads as the numbers written."""
+    lines = [line.replace(".", point) for line in _table(rec.t, rec.omega, sep=sep)]
+    path = tmp_path / "Raw Data.csv"
+    path.write_text(sep.join(PHYPHOX_HEADER) + "\n" + "\n".join(lines) + "\n", encoding="utf-8")
+    got = load_recording(path)
+    assert np.allclose(got.t, rec.t, rtol=0, atol=1e-8) and np.allclose(got.omega, rec.omega, rtol=1e-8, atol=1e-9)
+
+
+@pytest.mark.parametrize("magic", [b"PK\x03\x04", b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"])
+def test_an_excel_export_is_named_and_csv_asked_for(tmp_path, magic):
+    path = tmp_path / "Raw Data.xls"
+    path.write_bytes(magic + bytes(range(128, 256)))
+    with pytest.raises(ValueError, match=r"^.*Raw Data\.xls: an Excel workbook or a zip, not text: export the recording "
+                                         r"as CSV$"):
+        read_gyro_csv(path)
+
+
 def test_accelerometer_read_and_other_sensors_columns_ignored_by_name(tmp_path, rec):
     """A raw accelerometer's columns are kept (#29: the specific force, for finding free fall); a
     phone's linear acceleration (its gravity estimate taken out) and the other sensors are ignored,

@@ -117,6 +117,12 @@ def test_a_bad_saturation_is_refused(tmp_path, capsys):
     code, _, err = _cli(capsys, "calibrate", str(dev), "--alone", str(thr), "--proof", str(thr), "--saturation", "nan",
                         "--out", str(tmp_path / "c.toml"))
     assert code == 2 and err == "tumble: error: --saturation = nan must be a positive finite number (rad/s)\n"
+    # a range in deg/s (the device file's unit) given as rad/s: past any MEMS gyroscope's, asked about in one line
+    for command in (("tensor", str(thr), "--device", str(dev), "--mass", "0.5", "--out", str(tmp_path / "out")),
+                    ("calibrate", str(dev), "--alone", str(thr), "--proof", str(thr), "--out", str(tmp_path / "c.toml"))):
+        code, _, err = _cli(capsys, *command, "--saturation", "2000")
+        assert code == 2 and err.count("\n") == 1 and "--saturation = 2000 rad/s is beyond any MEMS gyroscope's range" in err
+        assert "is it in deg/s?" in err
     assert not (tmp_path / "out").exists() and not (tmp_path / "c.toml").exists()
 
 

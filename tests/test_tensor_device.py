@@ -214,6 +214,17 @@ def test_a_rate_logged_in_degrees_read_as_radians_is_left_out_and_the_others_ans
     assert np.all(np.abs(fit.object.principal_moments / truth - 1) < 0.03)
 
 
+def test_a_gyroscope_range_written_in_rad_s_is_pointed_at(flown_once):
+    """``gyro_full_scale = 35.0`` in a device file (the guide's "2000 deg/s, ~35 rad/s" read as rad/s; the key is
+    deg/s): every sample after the rotor's start is at that range, and the throws failed with "too few samples
+    after the rotor start to find the flight" and no word of the range (a walkthrough of docs/tensor.md,
+    2026-12-02). The reason now counts the samples at the range and names both units."""
+    dev = replace(calibrated_device(), gyro_full_scale=35.0)
+    with pytest.raises(NoThrowError, match=r"samples there at the gyroscope's range: is the range too small\? A "
+                                           r"device file's gyro_full_scale is in deg/s, --saturation in rad/s"):
+        fit_tensor([throw(1), throw(2)], dev, OBJECT.mass)
+
+
 def test_a_gyroscope_bias_beyond_a_gyroscopes_is_left_out(flown_once):
     biased = _with(throw(3), omega=throw(3).omega + [0.0, -0.81, 0.0], input="biased.csv")
     fit = fit_tensor([throw(1), throw(2), biased], calibrated_device(), OBJECT.mass)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 
 #: The command line's exit status when the command did what it was asked.
@@ -60,3 +61,31 @@ def _run_title(scenario, traj) -> str:
     name = scenario.name if scenario.name != traj.body_name else None
     return ", ".join(filter(None, (f"{name}: {traj.body_name}" if name else traj.body_name,
                                 getattr(traj, "method_label", traj.method))))
+
+
+def _positive(option: str, text: str, unit: str) -> float:
+    """An option's positive finite number, the error quoting the value as written (here and in the
+    checks after it: :func:`~tumble.cli._common.number`)."""
+    try:
+        value = number(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{option} = {text} must be a positive finite number ({unit})")
+    return value
+
+
+def _saturation(text: str | float | None) -> float | None:
+    """``--saturation``: a gyroscope's range in rad/s, or None. Past any MEMS gyroscope's range
+    (:data:`~tumble.analysis.fit.recording.DEG_S_HINT_RATE`, 4000 deg/s) it is most likely deg/s,
+    which the device file's ``gyro_full_scale`` takes: 2000 was taken as rad/s without a word."""
+    if text is None:
+        return None
+    from ..analysis.fit.recording import DEG_S_HINT_RATE
+
+    value = _positive("--saturation", str(text), "rad/s")
+    if value > DEG_S_HINT_RATE:
+        raise ValueError(f"--saturation = {text} rad/s is beyond any MEMS gyroscope's range (4000 deg/s = "
+                         f"{DEG_S_HINT_RATE:.4g} rad/s): is it in deg/s? --saturation takes rad/s (a device file's "
+                         f"gyro_full_scale deg/s)")
+    return value

@@ -6,12 +6,11 @@ Heavy modules are imported inside the commands so that ``tumble --help`` answers
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 from pathlib import Path
 
-from ._common import EXIT_FAILURE, EXIT_OK, _run_title, _working, number
+from ._common import EXIT_FAILURE, EXIT_OK, _positive, _run_title, _saturation, _working
 from .control import SIMULATE_WRITES, refuse_control, simulate_control, view_control
 
 
@@ -46,18 +45,6 @@ def _cmd_inertia(args) -> int:
     else:
         print(mass_properties_table(body))
     return EXIT_OK
-
-
-def _positive(option: str, text: str, unit: str) -> float:
-    """An option's positive finite number, the error quoting the value as written (here and in the
-    checks after it: :func:`~tumble.cli._common.number`)."""
-    try:
-        value = number(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{option} = {text} must be a positive finite number ({unit})")
-    return value
 
 
 def _cmd_demo(args) -> int:
@@ -178,8 +165,7 @@ def _cmd_fit(args) -> int:
     from ..commands.fit import run_fit_command
     from ..viz import figure_fit, figure_recording
 
-    if args.saturation is not None and not (args.saturation > 0 and args.saturation < float("inf")):
-        raise ValueError(f"--saturation = {args.saturation!r} must be a positive number of rad/s")
+    saturation = _saturation(args.saturation)
     bar = _Bar()
     try:
         if len(args.data) > 1 and (args.start is not None or args.end is not None):
@@ -188,7 +174,7 @@ def _cmd_fit(args) -> int:
         return run_fit_command(data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
                                start=args.start, end=args.end, body=args.body, progress=bar,
                                sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
-                               saturation=args.saturation, accept_inadequate=args.accept_inadequate)
+                               saturation=saturation, accept_inadequate=args.accept_inadequate)
     finally:
         bar.close()
 
@@ -196,7 +182,7 @@ def _cmd_fit(args) -> int:
 def _cmd_calibrate(args) -> int:
     from ..commands.tensor import run_calibrate_command
 
-    saturation = None if args.saturation is None else _positive("--saturation", args.saturation, "rad/s")
+    saturation = _saturation(args.saturation)
     with _working("calibrating"):
         return run_calibrate_command(args.device, args.alone, args.proof, args.out, argv=args.argv,
                                      saturation=saturation, accept_inadequate=args.accept_inadequate)
@@ -207,7 +193,7 @@ def _cmd_tensor(args) -> int:
     from ..viz import figure_tensor
 
     mass = _positive("--mass", args.mass, "kg")
-    saturation = None if args.saturation is None else _positive("--saturation", args.saturation, "rad/s")
+    saturation = _saturation(args.saturation)
     with _working("fitting throws"):
         return run_tensor_command(args.throws, args.device, mass, args.out, argv=args.argv, figure=figure_tensor,
                                   accept_inadequate=args.accept_inadequate, saturation=saturation)

@@ -252,8 +252,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "fit",
         help="inertia ratios from a gyroscope recording (phyphox or Sensor Logger export, or t,wx,wy,wz CSV)",
-        description="Finds the free flights of a whole recording of tosses (gyroscope alone; phyphox's "
-        "pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
+        description="Finds the free flights of a whole recording of tosses (from the gyroscope, and where the "
+        "recording has one the accelerometer's free fall; phyphox's pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
         "jointly (shared ratios, sensor rotation, bias and drag; given several recordings, all their flights, "
         "with the sensor rotation and bias each recording's own) and writes DIR/fit.json (pooled values with "
         "standard uncertainties and 95 percent intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "
@@ -271,7 +271,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-bias", action="store_true", help="assume an unbiased gyroscope")
     p.add_argument("--drag", choices=["auto", "none", "linear", "quadratic"], default="auto",
                    help="aerodynamic drag about each principal axis: chosen by the BIC (default), or as named")
-    p.add_argument("--saturation", type=number, metavar="RAD_S",
+    p.add_argument("--saturation", metavar="RAD_S",
                    help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
     p.add_argument("--start", type=number, metavar="S",
@@ -328,9 +328,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the gyroscope's full scale, rad/s (default: the device's gyro_full_scale); samples at it "
                    "are left out")
     p.add_argument("--accept-inadequate", action="store_true",
-                   help="use a device whose calibration did not check out ([calibration] adequate = false), and exit "
-                   "0 even when the model does not describe the throws (by default such a fit is written with "
-                   "\"adequate\": false, a warning printed and the exit status 1)")
+                   help="use a device whose calibration did not check out ([calibration] adequate = false; by "
+                   "default it is refused, exit status 1, nothing written)")
     p.set_defaults(func=c._cmd_tensor, inputs=("throws", "device"))
 
     p = sub.add_parser(

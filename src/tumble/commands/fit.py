@@ -65,7 +65,7 @@ TOSS_COLUMNS = ("input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", 
 _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz sec. 37) or Euler's equations "
            "with per-axis drag (RK4); uncertainties: (J^T J)^-1 s^2 times the residuals' integrated "
            "autocorrelation time (Geyer's initial positive sequence), plus the gyroscope's scale-factor tolerance "
-           "(GUM 5.1); pooled: joint fit, statistical part scaled by the Birge ratio chi^2/dof when above 1; "
+           "(GUM 5.1); pooled: joint fit, statistical covariance times chi^2/dof when above 1 (the std times the Birge ratio, its square root); "
            "adequacy: the model's error beyond the noise at most 3 % of the rates")
 
 

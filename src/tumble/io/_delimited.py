@@ -2,7 +2,8 @@
 the header's cells, the rows of numbers and the order of the times.
 
 Written here rather than with :func:`numpy.loadtxt` or :mod:`csv`: the readers name the file,
-the line and the column of every error in one line, take a decimal comma where ``;`` separates,
+the line and the column of every error in one line, take a decimal comma where ``;``, a tab or
+spaces separate (phyphox's five CSV exports: comma or tab or semicolon, decimal point or comma),
 merge a space-separated ``t (ms)`` into one header cell and skip ``#`` comments anywhere, which
 neither does with such messages.
 """
@@ -34,6 +35,9 @@ def _data_lines(raw: bytes, label: str) -> list[tuple[int, str]]:
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as err:
+        # an Excel workbook (.xlsx a zip, .xls an OLE2 file: their magic numbers), which phyphox also exports
+        if raw[:4] == b"PK\x03\x04" or raw[:8] == b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1":
+            raise ValueError(f"{label}: an Excel workbook or a zip, not text: export the recording as CSV") from None
         raise ValueError(f"{label}: not a text file (UTF-8): byte {err.start} cannot be decoded") from None
     return [(i + 1, line) for i, line in enumerate(text.splitlines()) if line.strip() and not line.lstrip().startswith("#")]
 
@@ -62,10 +66,10 @@ def _first_lines(raw: bytes, label: str, expected: str) -> tuple[list[tuple[int,
 
 def _rows(lines, sep, columns, width, label, head=None, decimal_comma=None, expected="") -> np.ndarray:
     """The numbers of ``columns`` in each data line (``(line number, text)``), a decimal comma
-    with ``;`` as the separator (unless ``decimal_comma`` says otherwise); one line naming the
+    wherever the separator is not ``,`` (unless ``decimal_comma`` says otherwise); one line naming the
     file and the line for a row of the wrong length or a cell that is not a number (and its
     column's name in ``head``, when given)."""
-    comma = sep == ";" if decimal_comma is None else decimal_comma
+    comma = sep != "," if decimal_comma is None else decimal_comma
     rows = np.empty((len(lines), len(columns)))
     for k, (no, line) in enumerate(lines):
         cells = _split(line, sep)

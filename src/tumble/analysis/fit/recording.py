@@ -409,7 +409,7 @@ def _own_ratios(flights) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     """The pooled ratios as the flights' inverse-covariance weighted mean (when the joint fit
-    cannot be made): statistical part scaled by the Birge ratio, the systematic part the
+    cannot be made): statistical covariance scaled by the Birge ratio squared, the systematic part the
     flights' mean (it is common to them, not averaged down) without the drag law's model
     error, as the joint fit's (:mod:`~tumble.analysis.fit.joint`)."""
     used = [f for f in used if not f.joinable] or used  # a weighted mean of the flights' own ratios
