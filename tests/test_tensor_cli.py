@@ -146,6 +146,10 @@ CALIBRATE_BAD = {
                                "device.toml: [proof] inertia: principal moments"),
     "proof without inertia": (DEVICE + "[proof]\nmass = 0.346\n", "device.toml: [proof]: missing key 'inertia'"),
     "proof mass zero": (DEVICE + PROOF.replace("0.346", "0"), "device.toml: [proof] mass = 0 must be a positive"),
+    # the guide's proof in kg cm^2 (1.675805, ...): it was let through, and the calibrated device's own inertia
+    # then came out 0.42 kg m^2, refused as "device.inertia", a key the user never wrote (a walkthrough, 2026-12-02)
+    "proof in kg cm^2": (DEVICE + PROOF.replace("e-4", ""),
+                         "device.toml: [proof] inertia: a moment of 2.45083 kg m^2 is a radius of gyration of 2.66 m"),
 }
 
 
@@ -429,7 +433,7 @@ def test_tensor_on_synthetic_throws_writes_every_key_and_finds_the_object(tmp_pa
     assert set(record["object"]) >= ESTIMATE_KEYS and set(record["flown"]) >= ESTIMATE_KEYS
     obj, flown = record["object"], record["flown"]
     assert np.shape(obj["inertia"]) == (3, 3) and np.shape(obj["inertia_cov"]) == (6, 6)
-    assert np.shape(obj["principal_axes"]) == (3, 3) and obj["mass"] == pytest.approx(BOX_MASS, rel=1e-12)
+    assert np.shape(obj["principal_axes"]) == (3, 3) and obj["mass"] == BOX_MASS  # as given, not (m + m_d) - m_d
     assert flown["mass"] == pytest.approx(BOX_MASS + 0.10067, rel=1e-12)
     assert np.all(np.diff(obj["principal_moments"]) > 0)   # ascending
     assert [t["input"] for t in record["throws"]] == paths   # each file as given

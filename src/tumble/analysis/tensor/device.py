@@ -414,3 +414,8 @@ class Proof:
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg", at_most=MAX_THROWN_MASS))
         object.__setattr__(self, "inertia", _tensor("proof.inertia", self.inertia))
+        J = float(np.max(np.linalg.eigvalsh(self.inertia)))
+        if math.sqrt(J / self.mass) > MAX_DEVICE_SIZE:  # thrown by hand with the device: kg cm^2 read as kg m^2
+            raise ValueError(f"proof.inertia: a moment of {J:.6g} kg m^2 is a radius of gyration of "
+                             f"{math.sqrt(J / self.mass):.3g} m on a {self.mass:g} kg body, beyond any thrown by hand "
+                             f"({MAX_DEVICE_SIZE:g} m) (a unit slip: moments in kg cm^2 or g cm^2? They are kg m^2)")

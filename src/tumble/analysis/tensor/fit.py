@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -220,7 +220,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
         """A throw's own flown body and object."""
         one = flown_estimate(mass + device.mass, Pooled(vector_of(f.inertia), f.inertia_cov, f.center, f.center_cov,
                                                         float("nan"), 1), rel)
-        return one, subtract_body(one, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+        return one, _object(one, mass, device, cov_d, cov_c)
 
     def check(f: FlownFit) -> str:
         return "" if f.center is None else not_physical(of_throw(f)[1])
@@ -228,7 +228,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
     pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=full_scale(device, saturation),
                                errors=sensor_errors(device), check=check, gyro=gyro_response(device))
     flown = flown_estimate(mass + device.mass, pooled, rel)
-    obj = subtract_body(flown, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+    obj = _object(flown, mass, device, cov_d, cov_c)
     why = not_physical(obj)
     if why:
         raise NoThrowError(f"the object's tensor from {pooled.used} throw(s) is {why.split(': ', 1)[0]}: "
@@ -242,6 +242,13 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
         rows.append(ThrowFit(throw.input, "used", "", own, one, f.t, f.omega_measured, f.omega_model,
                              f.window.t_release, f.window.t_end, f.residual_rms))
     return TensorFit(obj, flown, tuple(rows), pooled.adequate, pooled.chi2_dof)
+
+
+def _object(flown: MassEstimate, mass: float, device: Device, cov_d: FloatArray, cov_c: FloatArray) -> MassEstimate:
+    """The object: the flown body less the device (:func:`~tumble.analysis.tensor.estimate.subtract_body`),
+    its mass the one given (``(m + m_d) - m_d`` is 0.48200000000000004 for 0.482)."""
+    rest = subtract_body(flown, device.mass, device.inertia, cov_d, device.center_of_mass, cov_c)
+    return replace(rest, mass=float(mass))
 
 
 def full_scale(device: Device, saturation: float | None = None) -> float:
