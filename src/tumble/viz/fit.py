@@ -67,7 +67,7 @@ def figure_fit(fit: RotationFit, omega_measured: ArrayLike, *, fig: Figure | Non
     for k, name in enumerate("xyz"):
         axes[3].plot(t, w[:, k] - fit.omega_model[:, k], ".", ms=1.5, color=f"C{k}", label=name)
     axes[3].set_ylabel("residual (rad/s)")
-    axes[3].set_xlabel(f"time since the first sample, t - {fit.t[0]:.3g} s (s)")
+    axes[3].set_xlabel(f"t - t0 (s), from the first sample at t0 = {fit.t[0]:.3g} s")
     legend_outside(axes[3], fontsize=8, markerscale=6)
     (x, y), (sx, sy) = fit.ratios, fit.ratios_std
     fig.suptitle(f"I1/I3 = {x:.5f} \u00b1 {sx:.1g},  I2/I3 = {y:.5f} \u00b1 {sy:.1g},  "
@@ -167,7 +167,7 @@ def figure_recording(rec: RecordingFit, *, fig: Figure | None = None, max_flight
         if toss.reason:  # why it was left out, or that it is used in the joint fit only, in a few words
             top.text(0.5 * (toss.start + toss.end) + off, 0.98, skip_label(toss.reason), rotation=90, fontsize=6,
                      ha="center", va="top", color="0.25", transform=top.get_xaxis_transform())
-    top.set_xlabel(f"time since the first sample, t - {t0:.3g} s (s)" if len(series) == 1 else
+    top.set_xlabel(f"t - t0 (s), from the first sample at t0 = {t0:.3g} s" if len(series) == 1 else
                    "time since each recording's first sample, the recordings one after another (s)")
     top.set_ylabel("angular velocity, sensor axes (rad/s)")
     top.set_title(f"{len(rec.tosses)} flights found, {rec.tosses_used} used (green), "

@@ -71,8 +71,8 @@ def _unit_hint(omega: FloatArray) -> str:
     if not peak > DEG_S_HINT_RATE:
         return ""
     return (f"; the rates reach {peak:.4g} rad/s, beyond any MEMS gyroscope's range (4000 deg/s = "
-            f"{DEG_S_HINT_RATE:.4g} rad/s): are they in deg/s? Name the unit in the header (\"gyro_x (deg/s)\") "
-            f"or convert them to rad/s")
+            f"{DEG_S_HINT_RATE:.4g} rad/s): are they in deg/s? Name the unit in the header (\"gyro_x (deg/s)\"; "
+            f"correct it where it says rad/s) or convert them to rad/s")
 
 
 class NoFlightError(ValueError):
