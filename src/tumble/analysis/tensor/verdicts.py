@@ -60,8 +60,9 @@ def residual_verdict(rms: float, noise: float) -> str:
     if rms <= RESIDUAL_LIMIT * noise:
         return ""
     return (f"the free motion does not explain the flight: residuals {rms:.3g} rad/s, {rms / noise:.1f} times the "
-            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; a rate logged in deg/s read as rad/s, a "
-            f"rotor axis or speed that is wrong, a mount or body that is not rigid)")
+            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; rates in another unit than the header "
+            f"says, deg/s for rad/s or the reverse, a rotor axis or speed that is wrong, a mount or body that is not "
+            f"rigid)")
 
 
 def joint_verdict(bias: FloatArray, rms: float, noise: float) -> str:
