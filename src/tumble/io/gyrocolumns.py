@@ -187,13 +187,17 @@ class ColumnsRead:
         >>> from tumble.io.gyrocolumns import ColumnsRead
         >>> ColumnsRead("a.csv", "Time", "ms", ("gx", "gy", "gz"), ("deg/s",) * 3, (), 900, 400.0).brief()
         'Time (ms), gx, gy, gz (deg/s), 900 rows at 400 Hz'
+        >>> ColumnsRead("a.csv", "t", "s", ("wx", "wy", "wz"), ("rad/s",) * 3, ("linear_acceleration_x",), 9, 100.0).brief()
+        "t (s), wx, wy, wz (rad/s), 1 ignored (1 a phone's linear acceleration, not the specific force), 9 rows at 100 Hz"
         """
         def bare(cell):
             match = _UNIT.search(cell)
             return cell[:match.start()].strip() if match else cell
 
         units = self.rate_units[0] if len(set(self.rate_units)) == 1 else "/".join(self.rate_units)
+        linear = [c for c in self.ignored if _LINEAR.match(_name(c)[0])]  # fit.json says why (summary)
         ignored = f", {len(self.ignored)} ignored" if self.ignored else ""
+        ignored += f" ({len(linear)} a phone's linear acceleration, not the specific force)" if linear else ""
         ignored += ", the accelerometer left out" if self.accel_left_out else ""
         accel = f", {', '.join(bare(a) for a in self.accel)} ({'/'.join(dict.fromkeys(self.accel_units))})" \
             if self.accel else ""
