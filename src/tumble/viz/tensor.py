@@ -77,15 +77,17 @@ def figure_tensor(fit: TensorFit, *, fig: Figure | None = None, max_throws: int 
         start = th.t_release if np.isfinite(th.t_release) else t[0]
         x = t - start + offset
         gap = gap or 0.08 * (x[-1] - x[0])
+        every = max(1, x.size // 40)  # 4 kHz of samples hid under the line: some 40 a throw, open, drawn over it
         for j in range(3):
-            top.plot(x, th.omega_measured[:, j], ".", ms=1.2, color="0.55")
             top.plot(x, th.omega_model[:, j], "-", lw=0.9, color=f"C{j}",
                      label=rf"fit $\omega_{'xyz'[j]}$" if offset == 0.0 else None)
+            top.plot(x[::every], th.omega_measured[::every, j], "o", ms=2.6, mfc="white", mec=f"C{j}", mew=0.7,
+                     zorder=3, label=f"samples (1 in {every})" if offset == 0.0 and j == 2 else None)
         top.text(x[0], 0.02, f"throw {k + 1}", transform=top.get_xaxis_transform(), fontsize=7, va="bottom")
         offset = x[-1] + gap
     skipped = [f"{k + 1} ({th.reason})" for k, th in enumerate(fit.throws) if th.status != "used"]
     shown = f"the first {max_throws} of {len(used)}" if len(used) > max_throws else f"{len(used)}"
-    title = f"{shown} used throw{'s' if len(used) != 1 else ''} from release, side by side: samples (dots), fit (lines)"
+    title = f"{shown} used throw{'s' if len(used) != 1 else ''} from release, side by side: samples (circles), fit (lines)"
     if skipped:
         text = "; ".join(skipped)
         title += f"\nskipped: {text if len(text) < 110 else text[:107] + '...'}"
