@@ -152,7 +152,7 @@ def test_the_single_input_output_is_unchanged_apart_from_the_new_keys(three, cap
     assert data["input"] == str(paths[0]) and data["read"]["rows"] == len(recs[0].t)
     assert data["read"]["rates"] == ["Gyroscope x (rad/s)", "Gyroscope y (rad/s)", "Gyroscope z (rad/s)"]
     keys = ["input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
-            "residual_rms", "status", "reason"]
+            "edge", "residual_rms", "status", "reason"]
     assert all(list(toss) == keys for toss in data["tosses"])
     assert (out / "tosses.csv").read_text(encoding="utf-8").splitlines()[0] == ",".join(keys)
     assert data["pooled"]["per_recording"] == [] and data["pooled"]["recordings"] == 1

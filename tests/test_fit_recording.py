@@ -480,8 +480,13 @@ def test_the_command_fits_the_example_recording(tmp_path, capsys):
     assert abs(pooled["I2_over_I3"] - truth[1]) < 2 * pooled["I2_over_I3_std"]
     assert data["I1_over_I3"] == pooled["I1_over_I3"]  # the one-flight keys hold the pooled values
     keys = ["input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
-            "residual_rms", "status", "reason"]
+            "edge", "residual_rms", "status", "reason"]
     assert len(data["tosses"]) == 12 and all(list(toss) == keys for toss in data["tosses"])
+    # a flight whose own optimum lies on the triangle's edge says so (its intervals are one-sided): the table gave
+    # flight 3 (I1 + I2 = I3 to round-off, its intervals missing the truth) as a plain "ok" (a walkthrough, 2026-12-02)
+    edged = [toss for toss in data["tosses"] if toss["edge"]]
+    assert [toss["edge"] for toss in edged] == ["planar (I1 + I2 = I3)"]
+    assert abs(edged[0]["I1_over_I3"] + edged[0]["I2_over_I3"] - 1.0) < 1e-9
     assert sum(toss["status"] == "ok" for toss in data["tosses"]) == used == pooled["tosses_used"]
     assert all(toss["reason"] for toss in data["tosses"] if toss["status"] != "ok")
     csv_lines = (out / "tosses.csv").read_text(encoding="utf-8").splitlines()

@@ -60,7 +60,7 @@ __all__ = ["OFFSET_COLUMNS", "TOSS_COLUMNS", "run_fit_command"]
 #: The columns of ``tosses.csv`` (and the keys of fit.json's ``"tosses"`` entries, which add
 #: ``"sensor_offset"`` and ``"sensor_offset_std"`` where the recording has an accelerometer).
 TOSS_COLUMNS = ("input", "start", "end", "samples", "I1_over_I3", "I2_over_I3", "I1_over_I3_std", "I2_over_I3_std",
-                "residual_rms", "status", "reason")
+                "edge", "residual_rms", "status", "reason")
 
 _METHOD = ("least squares on the exact torque-free solution (Landau & Lifshitz sec. 37) or Euler's equations "
            "with per-axis drag (RK4); uncertainties: (J^T J)^-1 s^2 times the residuals' integrated "

@@ -82,6 +82,7 @@ class Toss:
                 "I1_over_I3": num(f.ratios[0]) if f else None, "I2_over_I3": num(f.ratios[1]) if f else None,
                 "I1_over_I3_std": num(f.ratios_std[0]) if f else None,
                 "I2_over_I3_std": num(f.ratios_std[1]) if f else None,
+                "edge": f.edge if f else None,  # a flight on the triangle's edge: its intervals one-sided
                 "residual_rms": num(f.residual_rms) if f else None, "status": self.status, "reason": self.reason,
                 **({} if self.sensor_offset is None else {"sensor_offset": list(self.sensor_offset),
                                                           "sensor_offset_std": list(self.sensor_offset_std or ())})}
