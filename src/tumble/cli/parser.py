@@ -253,7 +253,8 @@ def build_parser() -> argparse.ArgumentParser:
         "fit",
         help="inertia ratios from a gyroscope recording (phyphox or Sensor Logger export, or t,wx,wy,wz CSV)",
         description="Finds the free flights of a whole recording of tosses (from the gyroscope, and where the "
-        "recording has one the accelerometer's free fall; phyphox's pauses honoured), fits each with the exact torque-free motion (or with per-axis drag), fits them "
+        "recording has one the accelerometer's free fall; phyphox's pauses honoured), fits each with the exact "
+        "torque-free motion (or with per-axis drag), fits them "
         "jointly (shared ratios, sensor rotation, bias and drag; given several recordings, all their flights, "
         "with the sensor rotation and bias each recording's own) and writes DIR/fit.json (pooled values with "
         "standard uncertainties and 95 percent intervals, every flight, provenance), DIR/tosses.csv and DIR/fit.png. "

@@ -3,15 +3,16 @@
 1. Each throw is fitted on its own (:func:`~tumble.analysis.tensor.throw.fit_flown`): where its
    flight lies, its own tensor and centre of mass with their covariances (kept as diagnostics).
 2. A throw is **left out with its reason** when its fit cannot be trusted
-   (:func:`~tumble.analysis.tensor.verdicts.throw_verdict`): no flight found, no accelerometer, or what the caller's check says
-   (the object's tensor not physical: :func:`tumble.fit_tensor`).
+   (:func:`~tumble.analysis.tensor.verdicts.throw_verdict`): no flight found, no accelerometer, or what
+   the caller's check says (the object's tensor not physical: :func:`tumble.fit_tensor`).
 3. The throws left are **fitted jointly** (:mod:`~tumble.analysis.tensor.joint`): one tensor
    and one centre of mass, each throw its own motion, bias, drag and rotor lag; from
    :data:`SENSOR_THROWS` throws on, the gyroscope's distortion and the rotor's tilt too (a
    single throw of a calibrated device, :attr:`~tumble.analysis.tensor.sensors.SensorErrors.calibrated`,
    holds them at the calibration's values, their uncertainties carried). A throw whose part of it has
    residuals well above the gyroscope's noise (measured from the throw itself) or needs a gyroscope
-   bias beyond :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` is left out (:func:`~tumble.analysis.tensor.verdicts.joint_verdict`; a single throw's own fit may need a
+   bias beyond :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` is left out
+   (:func:`~tumble.analysis.tensor.verdicts.joint_verdict`; a single throw's own fit may need a
    large bias to mimic the distortion that the joint fit explains), the one furthest beyond its limits
    first, and the rest refitted from the joint fit before; where only biases are beyond it and the fit
    with every bias held at 0 explains the throws as well, that fit is taken instead (:func:`_without_biases`:
@@ -155,15 +156,15 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None, start: FloatArray 
 def _without_biases(joint: JointModel, jf: JointFit, errors: SensorErrors | None) -> JointFit:
     """The joint fit ``jf`` refitted with every throw's gyroscope bias held at 0, if that explains
     each throw as well (its residuals' rms within :data:`BIAS_FREE_RMS` of the free fit's); else
-    ``jf``. For a fit whose biases exceed :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` while its residuals are at the noise:
-    the rotor's tilt and the gyroscope's distortion trade with the biases, and a rotor tilted
+    ``jf``. For a fit whose biases exceed :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS` while its
+    residuals are at the noise: the rotor's tilt and the gyroscope's distortion trade with the biases, and a rotor tilted
     beyond its stated uncertainty left the fit in an optimum where biases of 0.3-0.7 rad/s stand
     in for a part of the tilt (device 78 of benchmarks/calibration_coverage.py, tilted 2.7 degrees
     against the stated 1: held at 0 its throws' residuals were 1.24-1.49 times the noise, free
     1.24-1.54; leaving out the throw of 0.66 rad/s drove the others' refit to 0.9-4 rad/s and left
     every throw out). A flight controller zeroes its gyroscope at rest (the residual bias about
-    0.05 rad/s, :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS`'s sources), which the biases held at 0 leave out of the
-    covariance. A throw with a real offset (a bias of 0.8 rad/s) is not explained without it, and
+    0.05 rad/s, :data:`~tumble.analysis.tensor.verdicts.MAX_BIAS`'s sources), which the biases held at 0
+    leave out of the covariance. A throw with a real offset (a bias of 0.8 rad/s) is not explained without it, and
     stays judged by its bias.
 
     Examples
