@@ -182,6 +182,26 @@ def _fast_mission(tmp_path: Path) -> Path:
     return path
 
 
+@pytest.mark.parametrize("table", ['detumble = { gain = 2.95e-5 }', 'gain = 2.95e-5'])
+def test_a_bdot_gain_without_its_form_is_refused_naming_both(tmp_path, capsys, table):
+    """Avanzini & Giulietti's gain written into the mission's file (2.95e-5 N m s, the default's value) ran as the
+    classic form's A m^2 s/T, commanded 4.8e-10 A m^2 of the 0.2 the rods have, never detumbled and exited 0 (a
+    walkthrough of control.md, 2026-12-02): a gain given needs its form, in one line naming both units."""
+    if table.startswith("gain"):  # a B-dot run of its own (detumble.toml): the gain in [control], its form left out
+        text = (CONTROL / "detumble.toml").read_text()
+        assert 'form = "normalized"' in text
+        text = text.replace('form = "normalized"', table, 1)
+    else:
+        text = (CONTROL / "detumble_point.toml").read_text().replace('kind = "detumble_point"',
+                                                                      'kind = "detumble_point"\n' + table)
+    path = tmp_path / "mission.toml"
+    path.write_text(text)
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "gain = 2.95e-05 needs its form: form = \"normalized\" for a gain in N m s" in err
+    assert "form = \"classic\" for one in A m^2 s/T" in err and not (tmp_path / "run").exists()
+
+
 def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path, capsys):
     text = (CONTROL / "detumble_point.toml").read_text()
     assert len([line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]) <= 20

@@ -62,7 +62,7 @@ _COMMON = (
 _BDOT = (
     Key("gain", "number", "A m^2 s/T (classic) or N m s (normalized)",
         "Avanzini & Giulietti's 2 n (1 + sin xi_m) I_min, normalized", example="1e4", low=0.0, doc="the B-dot gain"),
-    Key("form", "string", "", '"classic" (or "normalized" with the default gain)', choices=("classic", "normalized"),
+    Key("form", "string", "", '"normalized" with the default gain; required with a gain given', choices=("classic", "normalized"),
         example='"normalized"', doc="m = -k dB/dt or m = -(k / |B|^2) dB/dt"),
     Key("derivative", "string", "", '"gyro"', choices=("gyro", "difference"), example='"difference"',
         doc="dB/dt from B x omega or from successive magnetometer readings"),
@@ -144,6 +144,11 @@ def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Fie
     if magnetorquers is None or orbit is None or field is None:
         raise ValueError(f'kind = "{kind}" needs [actuators.magnetorquers] and an [orbit] (the field)')
     args = dict(args)
+    if "gain" in args and "form" not in args:  # the two forms' gains differ by |B|^2, ~1e-9 T^2 in low orbit
+        raise ValueError(f"gain = {args['gain']!r} needs its form: form = \"normalized\" for a gain in N m s (Avanzini & "
+                         f"Giulietti's, the default gain's form) or form = \"classic\" for one in A m^2 s/T; the two "
+                         f"differ by |B|^2, some 1e-9 T^2 in low orbit, and the published gain taken as classic is "
+                         f"1e5 times too weak to detumble")
     if "gain" not in args:  # Avanzini & Giulietti 2012, xi_m the orbit's inclination to the dipole's equator
         args["gain"] = bdot_gain(orbit.mean_motion, geomagnetic_inclination(orbit, field),
                                  float(np.min(body.principal_moments)))
