@@ -202,6 +202,17 @@ def test_a_bdot_gain_without_its_form_is_refused_naming_both(tmp_path, capsys, t
     assert "form = \"classic\" for one in A m^2 s/T" in err and not (tmp_path / "run").exists()
 
 
+def test_a_mission_that_never_switched_says_so(tmp_path, capsys):
+    """The mission cut at 600 s, long before its switch (8258 s): the line gave "pointing error 2.77 rad" as though
+    the pointing had begun (a walkthrough of control.md, 2026-12-02). It says the mission never switched and that
+    the body was not detumbled, and gives no pointing error."""
+    assert main(["simulate", str(CONTROL / "detumble_point.toml"), "--t-end", "600", "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["switch_time"] is None and summary["detumble_time"] is None
+    assert "never switched to pointing" in line and "not detumbled" in line and "pointing error" not in line, line
+
+
 def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path, capsys):
     text = (CONTROL / "detumble_point.toml").read_text()
     assert len([line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]) <= 20

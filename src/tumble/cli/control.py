@@ -70,9 +70,12 @@ def simulate_control(args, scenario, out) -> int:
     else:
         done = summary["detumble_time"]
         line = f"{summary['body']} ({scenario.kind}, {summary['t_end']:g} s): final rate {summary['final_rate']:.3g} rad/s"
+        never = scenario.kind == "detumble_point" and summary.get("switch_time") is None  # a mission that failed
         if summary.get("switch_time") is not None:
             line += f", pointing from t = {summary['switch_time']:g} s"
-        if "pointing_error_final" in summary:
+        if never:  # its pointing error would read as the pointing's, which never began
+            line += ", never switched to pointing (the rate did not stay below switch_rate for the dwell)"
+        if "pointing_error_final" in summary and not never:
             line += f", pointing error {summary['pointing_error_final']:.3g} rad"
         elif done is not None:
             line += f", below {summary['threshold']:.3g} rad/s from t = {done:g} s"
