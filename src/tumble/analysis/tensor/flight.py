@@ -213,10 +213,10 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
         after = (t >= t[s] + 0.01) & (t <= t[s] + 0.15)
         fit = good & after
         if np.count_nonzero(fit) < 20:
-            railed = int(np.count_nonzero(after & ~good))
+            railed, there = int(np.count_nonzero(after & ~good)), int(np.count_nonzero(after))
             # a range given too small (gyro_full_scale = 35 meant as rad/s, read as deg/s) leaves every sample at it
-            why = "" if 2 * railed < np.count_nonzero(after) else (
-                f" ({railed} of its {np.count_nonzero(after)} samples there at the gyroscope's range: is the range too "
+            why = "" if 2 * railed < there else (
+                f" ({railed} of its {there} samples there at the gyroscope's range: is the range too "
                 f"small? A device file's gyro_full_scale is in deg/s, --saturation in rad/s)")
             return Window(0, 0, s, np.nan, np.nan, f"too few samples after the rotor start to find the flight{why}")
         A = np.concatenate([M[fit], np.broadcast_to(np.eye(3), (np.count_nonzero(fit), 3, 3))], axis=2).reshape(-1, 6)

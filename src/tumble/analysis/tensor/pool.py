@@ -127,6 +127,14 @@ class Pooled:
     center_columns: FloatArray | None = None
 
 
+def _own_start(f: FlownFit, inertia: FloatArray) -> FloatArray:
+    """A throw's own parameters in a joint fit (``L(t_0)``, bias, drag, lag), started from its lone fit:
+    its initial rate with the joint ``inertia`` makes ``L(t_0) = I omega_0 + h_0``."""
+    assert f.model is not None and f.P is not None
+    w0 = f.model.omega(f.P[None])[0][0]
+    return np.r_[inertia @ w0 + f.model.h[0], f.P[9:]]
+
+
 def _joint(fits: list[FlownFit], errors: SensorErrors | None, start: FloatArray | None = None):
     """The joint fit of the throws ``fits`` (their models and optima as the start); the sensors
     fitted from :data:`SENSOR_THROWS` throws on (on readings a calibrated device has corrected:
@@ -138,11 +146,7 @@ def _joint(fits: list[FlownFit], errors: SensorErrors | None, start: FloatArray 
     C0 = (cholesky_of(np.median(np.array([f.inertia for f in fits]), axis=0)) if start is None
           else np.asarray(start[:6], float))
     I0 = inertia_of(C0)
-    rest = []
-    for f in fits:
-        assert f.model is not None and f.P is not None
-        w0 = f.model.omega(f.P[None])[0][0]
-        rest.append(np.r_[I0 @ w0 + f.model.h[0], f.P[9:]])
+    rest = [_own_start(f, I0) for f in fits]
     fitted = len(fits) >= SENSOR_THROWS
     joint = JointModel([f.model for f in fits], sensor=fitted or (errors is not None and errors.calibrated))  # type: ignore[misc]
     held = None
@@ -190,9 +194,7 @@ def _against(joint: JointModel, jf: JointFit, f: FlownFit) -> str:
     out before the proof body's, and then never judged again (a walkthrough of docs/tensor.md,
     2026-12-02: 2 of 4 throws used, where the object's three alone agree at chi2/dof 0.57)."""
     one = JointModel([f.model], sensor=joint.sensor)  # type: ignore[list-item]
-    assert f.model is not None and f.P is not None
-    w0 = f.model.omega(f.P[None])[0][0]
-    rest = np.r_[jf.inertia @ w0 + f.model.h[0], f.P[9:]]
+    rest = _own_start(f, jf.inertia)
     held = np.zeros(one.n, bool)
     held[:one.base] = True
     P0 = one.pack(jf.P[:6], [rest], jf.P[6:joint.base] if joint.sensor else None)
