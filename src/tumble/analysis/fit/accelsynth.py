@@ -15,9 +15,11 @@ of the first hold; ``a_cm - g`` is the contact force per unit mass, drawn per ph
 - **hold**: ``-g`` (the hand carries the weight) plus the hand's motion, 0.5-2 m/s^2 below ~3 Hz;
 - **throw** (0.15-0.3 s): the hand's push up and forward, 1-4 g at its peak, its contact force
   falling to zero over the last tenth before the release;
-- **free flight**: only the air, ``-k |v| v`` with ``v`` the centre of mass's velocity (thrown up
-  for half the flight time) and ``k`` such that it is 0.02-0.15 m/s^2 (Hoerner, *Fluid-Dynamic
-  Drag*, 1965: a phone's ``C_D A / 2m`` at a few m/s), and none without air (``drag=0``);
+- **free flight**: only the air on the body's plate
+  (:func:`~tumble.analysis.fit.tossbody.plate_drag_force`) at the centre of mass's velocity ``v``
+  (thrown up for half the flight time, 0-1 m/s sideways): across the plate, so it turns with
+  the body, 0.3-2 m/s^2 at a phone's release and none at the top (Hoerner, *Fluid-Dynamic Drag*,
+  1965, ch. 3), and none without air (``body=None`` or a drag coefficient of 0);
 - **catch**: a jolt of 20-60 m/s^2 over the catch, then the hand's hold;
 - **caught and turned in the hand**: the grip's jolt, then the hand's force, 2-5 m/s^2, and ``-g``;
 - **landing**: an impact of 50-300 m/s^2 over 5-20 ms (its impulse spread over two samples at
@@ -47,6 +49,7 @@ from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...dynamics.special.quaternion import quat_multiply
 from .endings import _unit, smooth_noise
 from .freefall import rigid_acceleration
+from .tossbody import TossBody, plate_drag_force
 
 __all__ = ["ACCEL_FULL_SCALE", "SyntheticAccel", "attitude_from_rates", "phyphox_accel_csv", "synthetic_accel"]
 
@@ -131,7 +134,7 @@ def _bump(x: np.ndarray) -> np.ndarray:
 
 
 def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segments, dt: float,
-             drag: float) -> np.ndarray:
+             body: TossBody | None, attitude: Rotation) -> np.ndarray:
     """``a_cm - g`` (world axes, m/s^2) per phase (module docstring)."""
     g = STANDARD_GRAVITY
     n = len(tt)
@@ -149,8 +152,8 @@ def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segme
         elif kind == "flight":
             v0 = np.r_[rng.uniform(-1.0, 1.0, 2), 0.5 * g * length]  # up for half the flight, m/s
             v = v0 - g * _UP * tau[:, None]
-            k = rng.uniform(0.02, 0.15) / float(np.dot(v0, v0)) * drag
-            F[sel] = -k * np.linalg.norm(v, axis=1, keepdims=True) * v
+            turn = attitude[np.flatnonzero(sel)]
+            F[sel] = 0.0 if body is None else turn.apply(plate_drag_force(body, turn.inv().apply(v)))
         elif kind in ("catch", "hand", "landing", "turn", "table"):
             kind = {"turn": "hand", "table": "landing"}.get(kind, kind)  # in the fingers; on the table
             grip = min(length, rng.uniform(0.04, 0.12)) if kind != "landing" else rng.uniform(0.005, 0.02)
@@ -177,7 +180,7 @@ def _unit_up(rng: np.random.Generator) -> np.ndarray:
 
 def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, wdot_body: np.ndarray,
                     segments: Sequence[tuple[str, float, float, np.ndarray | float | None]],
-                    sensor: np.ndarray, drag: float = 1.0) -> SyntheticAccel:
+                    sensor: np.ndarray, body: TossBody | None = None) -> SyntheticAccel:
     """The accelerometer of a synthetic recording (module docstring).
 
     Parameters
@@ -195,8 +198,9 @@ def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray
         ``"hand"``, ``"landing"``, ``"turn"``, ``"table"``).
     sensor : ndarray, shape (3, 3)
         Sensor axes to principal axes (``omega_sensor = omega_principal @ sensor``).
-    drag : float
-        Factor on the air's force (0: none).
+    body : TossBody, optional
+        The body whose plate the air drags on (:func:`~tumble.analysis.fit.tossbody.plate_drag_force`);
+        None: no air.
 
     Returns
     -------
@@ -217,7 +221,7 @@ def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray
     wdot = np.where(np.isnan(wdot_body), np.gradient(w_body, tt, axis=0), wdot_body)
     r = _unit(rng) * rng.uniform(0.02, 0.10)
     attitude = _attitude(rng, tt, w_body)
-    F = _contact(rng, tt, w_body, segments, dt, drag)
+    F = _contact(rng, tt, w_body, segments, dt, body, attitude)
     f_body = attitude.inv().apply(F) + rigid_acceleration(w_body, wdot, r)
     f = f_body @ sensor * (1.0 + rng.normal(0, 0.005, 3))
     bias = rng.normal(0, rng.uniform(0.05, 0.2), 3)

@@ -10,8 +10,12 @@ frame), and in free flight the centre of mass falls, ``a_cm = g + F_drag / m``, 
     ``f = omega' x r + omega x (omega x r) + F_drag / m``,
 
 which is linear in ``r``: ``f = A(omega, omega') r + c`` with ``A = [omega']_x + [omega]_x^2``
-(:func:`offset_matrix`) and ``c`` the accelerometer's bias plus the air's force (about
-0.1 m/s^2 on a tossed phone at a few m/s; taken constant over a flight). From the samples of a
+(:func:`offset_matrix`) and ``c`` the accelerometer's bias plus the air's force, taken constant
+over a flight. The air's force is not: ``rho C_D A v^2 / 2m``, 0.3-2.4 m/s^2 on a tossed phone
+at its release and none at the top, across its face, so it turns with the body (Hoerner,
+*Fluid-Dynamic Drag*, 1965, ch. 3); the fit keeps its mean, the residuals the rest (smooth,
+widening the offset's uncertainty, :func:`fit_offset`), and the threshold that cuts a flight
+allows for it (:func:`air_allowance`). From the samples of a
 flight ``r`` and ``c`` follow by linear least squares (:func:`fit_offset`; ``omega`` the
 gyroscope's, ``omega'`` its derivative, :func:`rate_derivative`), and the residual
 ``|f - A r - c|`` of each sample (:func:`free_fall_residual`) is about the accelerometer's
@@ -28,16 +32,26 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..._html import headline_html, headline_repr
+from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...typing import ArrayLike
 from .uncertainty import SCALE_UNCERTAINTY, effective_covariance
 
-__all__ = ["ACCEL_SCALE_UNCERTAINTY", "FREE_FACTOR", "FREE_FLOOR", "MAX_ACCEL", "MAX_CONTACT", "MAX_OFFSET", "FreeSpan", "check_accel", "fit_offset", "free_fall_residual",
+__all__ = ["ACCEL_SCALE_UNCERTAINTY", "FREE_FACTOR", "FREE_FLOOR", "MAX_ACCEL", "MAX_CONTACT", "MAX_DRAG", "MAX_FALL",
+           "MAX_OFFSET", "FreeSpan", "air_allowance", "check_accel", "fit_offset", "free_fall_residual",
            "free_span", "offset_matrix", "rate_derivative", "rigid_acceleration"]
 
 #: The residual that ends a flight: this many times its median in the flight's middle ...
 FREE_FACTOR = 5.0
 #: ... plus this floor, m/s^2 (the derivative's error at high spin, the air's varying force).
 FREE_FLOOR = 1.0
+#: The largest drag per unit mass and squared speed of a body tossed by hand, ``rho C_D A / 2m``,
+#: 1/m: a phone broadside 0.045, a paperback 0.05-0.1, a racquet's head about 0.1 (Hoerner,
+#: *Fluid-Dynamic Drag*, 1965, ch. 3: a flat plate's ``C_D`` 1.17; a tennis ball's 0.02).
+MAX_DRAG = 0.1
+#: The time from the top of a toss, s, past which the air's allowance stops growing: half the
+#: longest hand toss (1.5 s, 7.4 m/s at the release and the catch; a hand's hold reads ``g``
+#: against the allowance's 5.4 m/s^2 there).
+MAX_FALL = 0.75
 #: The median residual, m/s^2, above which a candidate's middle is not in free fall (a hand's
 #: grip reads ~g; the free fall's residual is the noise and the derivative's error, ~0.1-0.5).
 MAX_CONTACT = 2.0
@@ -177,6 +191,22 @@ def _one_sided(t: np.ndarray, w: np.ndarray, side: int) -> np.ndarray:
     c2 = -h1 / (h2 * (h1 + h2))
     out[k] = c0[:, None] * w[k] + c1[:, None] * w[i1] + c2[:, None] * w[i2]
     return out
+
+
+def air_allowance(tau: ArrayLike) -> np.ndarray:
+    """The air's largest force per unit mass on a body ``tau`` seconds from the top of its toss,
+    m/s^2: ``MAX_DRAG (g tau)^2`` (the speed ``g tau`` it has gained falling, or has still to lose
+    rising), ``tau`` clipped at :data:`MAX_FALL`. The free fall's residual grows so towards a
+    flight's ends, as the air's force turns with the body (the fit's constant ``c`` holds only its
+    mean), and a threshold fixed at the middle's level would cut a fast flight early.
+
+    Examples
+    --------
+    >>> from tumble.analysis.fit.freefall import air_allowance
+    >>> air_allowance([0.0, 0.5, 2.0]).round(2).tolist()   # m/s^2: at the top, 0.5 s from it, and capped
+    [0.0, 2.4, 5.41]
+    """
+    return MAX_DRAG * (STANDARD_GRAVITY * np.minimum(np.abs(np.asarray(tau, float)), MAX_FALL)) ** 2
 
 
 def _design(omega: ArrayLike, omega_dot: ArrayLike) -> np.ndarray:
@@ -322,7 +352,7 @@ def free_span(t: ArrayLike, f: ArrayLike, omega: ArrayLike, a: int, b: int) -> F
     ``r`` and ``c`` are fitted on the candidate's middle (35-80 %; then its first and second
     half, :data:`MIDDLES`), refitted twice without the samples beyond the threshold; the flight then reaches, from the middle outwards, up to the first
     two samples in a row (from the centre of its free samples) whose residual exceeds :data:`FREE_FACTOR` times the middle's median
-    plus :data:`FREE_FLOOR` (the least of the residuals with ``omega'`` a central and a one-sided
+    plus :data:`FREE_FLOOR` and the air's allowance at its distance from the middle (:func:`air_allowance`; the least of the residuals with ``omega'`` a central and a one-sided
     difference: at the edge of a contact the central difference reaches across it). A middle whose median residual exceeds :data:`MAX_CONTACT` (or
     whose fitted offset exceeds :data:`MAX_OFFSET`) is not in free fall.
 
@@ -384,11 +414,20 @@ def free_span(t: ArrayLike, f: ArrayLike, omega: ArrayLike, a: int, b: int) -> F
             f"a sensor {np.linalg.norm(r):.2g} m from the centre of mass (at most {MAX_OFFSET} m)"
         return FreeSpan(a, b, False, f"not free: the accelerometer reads {what} where the gyroscope saw a "
                         f"candidate flight (the phone held or moved by the hand)", r, r_std, level)
-    bad = e > FREE_FACTOR * level + FREE_FLOOR
+    first, stop = _free_limits(t[a:b], e, level, i, j)
+    return FreeSpan(a + first, a + stop, True, "", r, r_std, level)
+
+
+def _free_limits(t: np.ndarray, e: np.ndarray, level: float, i: int, j: int) -> tuple[int, int]:
+    """The free samples ``[first, stop)`` about the middle ``[i, j)`` (:func:`free_span`): up to the
+    first two samples in a row whose residual ``e`` exceeds the threshold, which grows away from
+    the middle by the air's largest force at the speed the fall has gained since
+    (:func:`air_allowance`)."""
+    bad = e > FREE_FACTOR * level + FREE_FLOOR + air_allowance(t - 0.5 * (t[i] + t[j - 1]))
     pairs = bad[:-1] & bad[1:]
     core = i + int(np.median(np.flatnonzero(~bad[i:j])))  # the middle's free samples' centre
     before = np.flatnonzero(pairs[:core])
     after = np.flatnonzero(pairs[core:])
     first = int(before[-1]) + 2 if before.size else 0
-    stop = core + int(after[0]) if after.size else n
-    return FreeSpan(a + first, a + stop, True, "", r, r_std, level)
+    stop = core + int(after[0]) if after.size else len(e)
+    return first, stop

@@ -405,7 +405,7 @@ def synthetic_recording(seed: int, *, body: str | TossBody = "racquet", tosses: 
         events += [("PAUSE", te), ("START", te)]
     t_out = (tt - shift)[keep]
     w_out = w_s[keep]
-    acc = synthetic_accel(np.random.default_rng([seed, 29, 1]), tt, w_body, wdot, segments, R, drag) if accel else None
+    acc = synthetic_accel(np.random.default_rng([seed, 29, 1]), tt, w_body, wdot, segments, R, body) if accel else None
     return SyntheticRecording(t=t_out, omega=w_out, flights=flights - f_shift[:, None], omega0=np.array(omega0s),
                               ratios=I[:2] / I[2], sensor_rotation=mount, bias=b, events=events, body=body, rate=rate,
                               endings=tuple(ends), rotor=rotor,
