@@ -14,7 +14,9 @@ import numpy as np
 import pytest
 
 from tumble.analysis.fit import fit_recording
-from tumble.analysis.fit.freefall import fit_offset, free_span, rate_derivative, rigid_acceleration
+from tumble.analysis.fit.freefall import fit_offset, rate_derivative, rigid_acceleration
+from tumble.analysis.fit.freespan import free_span
+from tumble.analysis.fit.accelsynth import ACCEL_FULL_SCALE
 from tumble.analysis.fit.synthetic import synthetic_recording
 from tumble.dynamics.environment.earth import STANDARD_GRAVITY
 from made_once import made_once
@@ -33,16 +35,18 @@ def _inside(rec, a, b, margin=0.02):
 def test_free_flight_reads_rigid_body_kinematics(seed):
     """In free flight without air the accelerometer reads omega' x r + omega x (omega x r) (plus
     its bias), with omega' from Euler's equations of the body's true moments and omega the
-    gyroscope's samples turned to the principal axes: the residual is the two sensors' noise and
-    scale errors, a few per cent of a signal of several m/s^2."""
-    rec = _recording(seed, tosses=3, accel=True, drag=0.0, flex=False)
+    gyroscope's samples turned to the principal axes (its scale exact here: at the racquet's
+    handle, 0.2 m out, a 1 % scale error is 2 % of omega^2 r): the residual is the accelerometer's
+    noise and scale errors, a few per cent of a signal of several m/s^2."""
+    rec = _recording(seed, tosses=3, accel=True, drag=0.0, flex=False, scale_error=0.0)
     R = rec.sensor_rotation.as_matrix()
     I = np.array(rec.body.moments)
     w = (rec.omega - rec.bias) @ R.T  # principal axes
     wd = np.cross(I * w, w) / I  # Euler's equations, torque-free (Landau & Lifshitz sec. 36)
     f = rigid_acceleration(w, wd, R @ rec.accel.offset) @ R + rec.accel.bias
+    inside = np.all(np.abs(rec.accel.f) < ACCEL_FULL_SCALE, axis=1)  # a reading at the 16 g rail is no kinematics
     for a, b in rec.flights:
-        sel = _inside(rec, a, b)
+        sel = _inside(rec, a, b) & inside
         signal = np.sqrt(np.mean(np.sum(f[sel] ** 2, axis=1)))
         error = np.sqrt(np.mean(np.sum((rec.accel.f[sel] - f[sel]) ** 2, axis=1)))
         assert signal > 0.5
@@ -51,12 +55,15 @@ def test_free_flight_reads_rigid_body_kinematics(seed):
 
 @pytest.mark.parametrize("seed", [5, 6])
 def test_held_reads_g_and_contact_spikes(seed):
-    """Held, the accelerometer reads about g (the hand carries the weight); a catch is a jolt of
-    tens of m/s^2; a landing an impact above 2 g (in flight: the test above)."""
-    rec = _recording(seed, tosses=2, accel=True)
+    """Held, a phone's accelerometer reads about g (the hand carries the weight), within the
+    hand's own motion (the generator draws it at 0.5-2 m/s^2, below 3 Hz, so a one-second hold's
+    median may sit 1.2 m/s^2 off: 2 of 40 seeds pass 1; on a racquet's handle, 0.2 m out, the
+    hand's turning adds its own); a catch is a jolt of tens of m/s^2; a landing an impact above
+    2 g (in flight: the test above)."""
+    rec = _recording(seed, tosses=2, accel=True, body="phone")
     a = np.linalg.norm(rec.accel.f, axis=1)
     first_hold = rec.t < rec.flights[0, 0] - 0.35
-    assert abs(np.median(a[first_hold]) - STANDARD_GRAVITY) < 1.0
+    assert abs(np.median(a[first_hold]) - STANDARD_GRAVITY) < 2.0
     for _, end in rec.flights:
         catch = (rec.t >= end) & (rec.t < end + 0.15)
         assert a[catch].max() > 15.0
@@ -79,6 +86,23 @@ def test_without_accel_unchanged(kwargs):
         for name in ("t", "omega", "flights", "omega0", "bias"):
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
         assert a.events == b.events and a.endings == b.endings
+
+
+def test_an_accelerometer_at_its_rail_does_not_cut_the_flight():
+    """A phone strapped 0.2 m out on a racquet's handle and spun at 25 rad/s reads past its 16 g
+    rail through the middle of the flight (seed 4's second toss): those readings are censored,
+    not contact. The flight is cut at its release and its catch, within 15 ms, as those either
+    side of it are; it was cut to 0.26 s of its 0.87 and skipped as too short."""
+    from tumble.analysis.fit.flights import find_flights
+
+    rec = _recording(4, tosses=3, accel=True, drag=0.0, flex=False, scale_error=0.0)
+    a, b = rec.flights[1]
+    at_rail = np.any(np.abs(rec.accel.f) >= ACCEL_FULL_SCALE, axis=1)
+    assert np.count_nonzero(at_rail & (rec.t > a) & (rec.t < b)) >= 10
+    found = find_flights(rec.t, rec.omega, events=rec.events, accel=rec.accel.f)
+    assert len(found) == 3 and all(f.status == "ok" for f in found), [f.reason for f in found]
+    for f, (start, end) in zip(found, rec.flights):
+        assert abs(f.start - start) < 0.015 and abs(f.end - end) < 0.015, (f.start - start, f.end - end)
 
 
 def test_offset_fit_recovers_the_sensor_position():

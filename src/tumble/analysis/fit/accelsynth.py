@@ -3,7 +3,9 @@ with ``accel=True``): the specific force a phone's raw accelerometer reads throu
 
 A raw accelerometer reads ``f = a - g`` in its own axes (Titterton & Weston, *Strapdown Inertial
 Navigation Technology*, 2004, sec. 3.2). At the sensor, ``r`` from the centre of mass (fixed in
-the body: 2-10 cm on a phone or a racquet held at its handle), ``a = a_cm + omega' x r + omega x
+the body, anywhere on its plate within 80 % of its half-sides and 4 mm of its mid-plane: a
+phone's sensor inside its 8 mm body, or a phone strapped to a racquet, up to 0.27 m along its
+handle), ``a = a_cm + omega' x r + omega x
 (omega x r)`` (Goldstein, Poole & Safko 2002, eq. 4.104;
 :func:`~tumble.analysis.fit.freefall.rigid_acceleration`), so
 
@@ -19,7 +21,7 @@ of the first hold; ``a_cm - g`` is the contact force per unit mass, drawn per ph
   (:func:`~tumble.analysis.fit.tossbody.plate_drag_force`) at the centre of mass's velocity ``v``
   (thrown up for half the flight time, 0-1 m/s sideways): across the plate, so it turns with
   the body, 0.3-2 m/s^2 at a phone's release and none at the top (Hoerner, *Fluid-Dynamic Drag*,
-  1965, ch. 3), and none without air (``body=None`` or a drag coefficient of 0);
+  1965, ch. 3), and none without air (a drag coefficient of 0);
 - **catch**: a jolt of 20-60 m/s^2 over the catch, then the hand's hold;
 - **caught and turned in the hand**: the grip's jolt, then the hand's force, 2-5 m/s^2, and ``-g``;
 - **landing**: an impact of 50-300 m/s^2 over 5-20 ms (its impulse spread over two samples at
@@ -49,13 +51,14 @@ from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...dynamics.special.quaternion import quat_multiply
 from .endings import _unit, smooth_noise
 from .freefall import rigid_acceleration
-from .tossbody import TossBody, plate_drag_force
+from .tossbody import TOSS_BODIES, TossBody, plate_drag_force
 
 __all__ = ["ACCEL_FULL_SCALE", "SyntheticAccel", "attitude_from_rates", "phyphox_accel_csv", "synthetic_accel"]
 
 #: The accelerometer's full scale, +-16 g, m/s^2.
 ACCEL_FULL_SCALE = 16.0 * STANDARD_GRAVITY
 _UP = np.array([0.0, 0.0, 1.0])
+PHONE = TOSS_BODIES["phone"]
 
 
 @dataclass(frozen=True)
@@ -134,7 +137,7 @@ def _bump(x: np.ndarray) -> np.ndarray:
 
 
 def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segments, dt: float,
-             body: TossBody | None, attitude: Rotation) -> np.ndarray:
+             body: TossBody, attitude: Rotation) -> np.ndarray:
     """``a_cm - g`` (world axes, m/s^2) per phase (module docstring)."""
     g = STANDARD_GRAVITY
     n = len(tt)
@@ -153,7 +156,7 @@ def _contact(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, segme
             v0 = np.r_[rng.uniform(-1.0, 1.0, 2), 0.5 * g * length]  # up for half the flight, m/s
             v = v0 - g * _UP * tau[:, None]
             turn = attitude[np.flatnonzero(sel)]
-            F[sel] = 0.0 if body is None else turn.apply(plate_drag_force(body, turn.inv().apply(v)))
+            F[sel] = turn.apply(plate_drag_force(body, turn.inv().apply(v)))
         elif kind in ("catch", "hand", "landing", "turn", "table"):
             kind = {"turn": "hand", "table": "landing"}.get(kind, kind)  # in the fingers; on the table
             grip = min(length, rng.uniform(0.04, 0.12)) if kind != "landing" else rng.uniform(0.005, 0.02)
@@ -180,7 +183,7 @@ def _unit_up(rng: np.random.Generator) -> np.ndarray:
 
 def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray, wdot_body: np.ndarray,
                     segments: Sequence[tuple[str, float, float, np.ndarray | float | None]],
-                    sensor: np.ndarray, body: TossBody | None = None) -> SyntheticAccel:
+                    sensor: np.ndarray, body: TossBody = PHONE) -> SyntheticAccel:
     """The accelerometer of a synthetic recording (module docstring).
 
     Parameters
@@ -198,9 +201,9 @@ def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray
         ``"hand"``, ``"landing"``, ``"turn"``, ``"table"``).
     sensor : ndarray, shape (3, 3)
         Sensor axes to principal axes (``omega_sensor = omega_principal @ sensor``).
-    body : TossBody, optional
-        The body whose plate the air drags on (:func:`~tumble.analysis.fit.tossbody.plate_drag_force`);
-        None: no air.
+    body : TossBody
+        The body whose plate the air drags on (:func:`~tumble.analysis.fit.tossbody.plate_drag_force`;
+        a drag coefficient of 0: no air) and on which the sensor sits; default the phone.
 
     Returns
     -------
@@ -219,7 +222,7 @@ def synthetic_accel(rng: np.random.Generator, tt: np.ndarray, w_body: np.ndarray
     """
     dt = float(np.median(np.diff(tt)))
     wdot = np.where(np.isnan(wdot_body), np.gradient(w_body, tt, axis=0), wdot_body)
-    r = _unit(rng) * rng.uniform(0.02, 0.10)
+    r = rng.uniform(-1.0, 1.0, 3) * [0.4 * body.length, 0.4 * body.width, 0.004]
     attitude = _attitude(rng, tt, w_body)
     F = _contact(rng, tt, w_body, segments, dt, body, attitude)
     f_body = attitude.inv().apply(F) + rigid_acceleration(w_body, wdot, r)

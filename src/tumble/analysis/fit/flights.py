@@ -61,7 +61,7 @@ torque-free motion (with drag). The search (:func:`find_flights`):
    flight is released from a hand and ended by an impact.
 
 **With an accelerometer** (``accel``), each candidate of step 3 is first cut to its free fall
-(:func:`~tumble.analysis.fit.freefall.free_span`: the release and the catch or impact), or
+(:func:`~tumble.analysis.fit.freespan.free_span`: the release and the catch or impact), or
 skipped when its middle is not in free fall (the hand); step 4 then fits the whole free fall
 (its growth where that fails), and the flight keeps the sensor's offset (:attr:`Flight.free_fall`).
 """
@@ -77,7 +77,8 @@ from ..._html import fmt, result_html
 from ...typing import ArrayLike
 from .. import _display
 from .adequacy import _left_path
-from .freefall import FreeSpan, check_accel, free_span
+from .freefall import check_accel
+from .freespan import FreeSpan, grown_free_span
 from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
 from .rotor import rotor_check
@@ -284,7 +285,7 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     """
     t, omega = _check(t, omega)  # the fit's own checks: shapes, finite values, increasing times
     accel = None if accel is None else check_accel(accel, omega.shape)
-    keep, _ = saturation_mask(omega, saturation)
+    keep, accel_inside = saturation_mask(omega, saturation)[0], None if accel is None else saturation_mask(accel)[0]
     speed = np.linalg.norm(omega, axis=1)
     if len(speed) >= 3:
         speed = np.median(np.stack([np.r_[speed[0], speed[:-1]], speed, np.r_[speed[1:], speed[-1]]]), axis=0)
@@ -295,14 +296,13 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     for k, (a0, b0) in enumerate(stretches):
         free = [(a, b) for a, b, ok in _segments(a0, b0, kicked, t, min_duration) if ok]
         if not free and t[b0 - 1] - t[a0] >= min_duration:  # the whole stretch is torqued: one candidate, skipped
-            flights.append(_skip(t, a0, b0, f"no free flight: under impulses (no {min_duration} s between them in which "
-                                            f"the rate changes slower than a free rigid body's can: a throw, a catch, "
-                                            f"an impact or the hand)"))
+            flights.append(_skip(t, a0, b0, f"no free flight: under impulses (no {min_duration} s between them in which the "
+                                            f"rate changes slower than a free rigid body's can: a throw, a catch, an impact or the hand)"))
         else:
             for a, b in free or [(a0, b0)]:
                 margin = int(np.searchsorted(t, t[a] + 0.05) - a)  # the accelerometer's cut may lie in the impulse
-                span = free_span(t, accel, omega, max(a0, a - margin), min(b0, b + margin)) \
-                    if accel is not None and b - a >= 30 else None
+                span = grown_free_span(t, accel, omega, max(a0, a - margin), min(b0, b + margin), a0, b0,
+                                       accel_inside=accel_inside, omega_inside=keep) if accel is not None and b - a >= 30 else None
                 if span is not None and not span.free:
                     flights.append(replace(_skip(t, a, b, span.reason), free_fall=span))
                     continue
