@@ -299,7 +299,8 @@ def test_a_500_hz_throw_is_fitted():
 
 def test_the_commands_refuse_a_calibration_that_does_not_check_out(tmp_path, capsys):
     """tumble calibrate with the proof mounted turned: the file written with [calibration]
-    adequate = false, each problem on stderr, exit 1; tumble tensor refuses that device (exit 1,
+    adequate = false, and so said on its line (which does not call it calibrated), each problem on
+    stderr, exit 1; tumble tensor refuses that device (exit 1,
     nothing written) unless --accept-inadequate."""
     import json
 
@@ -314,7 +315,8 @@ def test_the_commands_refuse_a_calibration_that_does_not_check_out(tmp_path, cap
     calibrated = tmp_path / "calibrated.toml"
     code = main(["calibrate", str(device), "--alone", *paths["a"], "--proof", *paths["p"], "--out", str(calibrated)])
     out, err = capsys.readouterr()
-    assert code == 1 and out.startswith(f"calibrated {device}: rotor inertia ") and out.count("\n") == 1
+    assert code == 1 and out.startswith(f"not calibrated {device}: rotor inertia ") and out.count("\n") == 1
+    assert out.rstrip().endswith(f"wrote {calibrated}, adequate = false")
     assert "warning: the calibration does not check out: the parallel-axis equations disagree" in err
     checks = load_calibration(calibrated)
     assert checks["adequate"] is False and "mounted turned" in checks["problems"][0] and checks["chi2_dof"] > 100

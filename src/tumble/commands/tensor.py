@@ -150,11 +150,13 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     moments = np.linalg.eigvalsh(np.asarray(calibrated.inertia, float))
     agree = ", ".join(f"{name} {x:.2g}" for name, x in (("alone", result.alone_chi2_dof), ("proof", result.proof_chi2_dof))
                       if np.isfinite(x))
-    print(f"calibrated {os.fspath(device)}: rotor inertia {rotor} kg m^2, device principal moments "
+    # a calibration that does not check out is written (adequate = false) but not called calibrated
+    print(f"{'not calibrated' if result.problems else 'calibrated'} {os.fspath(device)}: rotor inertia {rotor} kg m^2, "
+          f"device principal moments "
           f"{', '.join(f'{x:.4g}' for x in moments)} kg m^2, centre of mass {_mm(calibrated.center_of_mass)} "
           f"from {result.alone_used} + {result.proof_used} of {len(alone)} + {len(proof)} throws; chi2/dof "
           f"{result.chi2_dof:.2g}" + (f" (sets: {agree})" if agree else "") + f", largest gyroscope bias "
-          f"{result.max_bias:.2g} rad/s; wrote {os.fspath(out)}")
+          f"{result.max_bias:.2g} rad/s; wrote {os.fspath(out)}" + (", adequate = false" if result.problems else ""))
     for why in result.left_out:
         print(f"warning: left out {why}", file=sys.stderr)
     if result.problems:
