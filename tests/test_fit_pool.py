@@ -242,7 +242,8 @@ def test_a_flight_that_does_not_fix_the_ratios_alone_is_used_in_the_joint_fit():
 def test_a_recording_in_deg_s_read_as_rad_s_fails_naming_the_unit(tmp_path, capsys):
     """deg/s numbers under a header that names no unit are read as rad/s, 57 times too fast: no
     flight follows a free motion, and the failure said only that (a walkthrough, issue 40). Rates
-    past any MEMS gyroscope's 4000 deg/s now name the likely unit."""
+    past any MEMS gyroscope's 4000 deg/s now name the likely unit: the command warns at once, as
+    soon as the file is read, not only when the fit fails some 20 s later."""
     from tumble.analysis.fit import NoFlightError
     from tumble.analysis.fit.recording import DEG_S_HINT_RATE
 
@@ -255,7 +256,9 @@ def test_a_recording_in_deg_s_read_as_rad_s_fails_naming_the_unit(tmp_path, caps
     rows = np.column_stack([rec.t, np.degrees(rec.omega)])
     path.write_text("t,wx,wy,wz\n" + "\n".join(",".join(f"{v:.6g}" for v in row) for row in rows) + "\n")
     assert main(["fit", str(path), "--out", str(tmp_path / "fit")]) == 1
-    assert "are they in deg/s?" in capsys.readouterr().err
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f"warning: {path}; the rates reach ") and "are they in deg/s?" in err[0]  # at once
+    assert "are they in deg/s?" in err[-1]  # and in the failure
     path.write_text("t,wx (deg/s),wy (deg/s),wz (deg/s)\n" + path.read_text().split("\n", 1)[1])  # the unit named
     read = load_recording(path)
     np.testing.assert_allclose(read.omega, rec.omega, rtol=1e-5, atol=1e-6)  # read back as the rad/s they are

@@ -48,7 +48,7 @@ from ..analysis.fit import (
 )
 from ..analysis.fit.flightmodel import FlightModel
 from ..analysis.fit.single import MIN_SAMPLES
-from ..analysis.fit.recording import samples_sha256
+from ..analysis.fit.recording import samples_sha256, unit_hint
 from ..io.gyrodata import load_recording
 from ..io.throwfile import is_rotor_column
 from ..io.output import FIGURE_DPI, check_output_dir, output_dir
@@ -177,6 +177,9 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
             same = "given twice" if labels[k] == labels[j] else f"the same recording as {labels[j]} (identical samples)"
             raise ValueError(f"{labels[k]}: {same}; a recording given twice counts its flights twice: give each "
                              "recording once")
+    for lab, r in zip(labels, recs):  # said at once, not only after a fit of some seconds fails
+        if hint := unit_hint(r.omega):
+            print(f"warning: {lab}{hint}", file=sys.stderr)
     several = len(paths) > 1
     label = labels[0] if not several else f"{len(paths)} recordings"
     t, omega, events = recs[0].t, recs[0].omega, list(recs[0].events)

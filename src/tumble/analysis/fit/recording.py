@@ -58,15 +58,25 @@ from .summary import flight_budgets, ratio_scale_effect
 from .tosses import RecordingFit, Toss
 from .uncertainty import SCALE_UNCERTAINTY, birge_chi2, noise_floor
 
-__all__ = ["DEG_S_HINT_RATE", "NoFlightError", "fit_recording"]
+__all__ = ["DEG_S_HINT_RATE", "NoFlightError", "fit_recording", "unit_hint"]
 
 #: A rate no MEMS gyroscope reads, rad/s (4000 deg/s, twice a phone's full scale): a recording past it is most
 #: likely in deg/s under a header that does not say so, and its failure or its fit says that (:func:`_unit_slip`).
 DEG_S_HINT_RATE = math.radians(4000.0)
 
 
-def _unit_hint(omega: FloatArray) -> str:
-    """``"; the rates reach ... are they in deg/s? ..."`` where they pass :data:`DEG_S_HINT_RATE`, else ``""``."""
+def unit_hint(omega: FloatArray) -> str:
+    """``"; the rates reach ... are they in deg/s? ..."`` where they pass :data:`DEG_S_HINT_RATE`, else ``""``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.recording import unit_hint
+    >>> unit_hint(np.array([[0.0, 12.0, 3.0]]))   # rad/s
+    ''
+    >>> unit_hint(np.array([[0.0, 690.0, 170.0]])).split(":")[0]   # deg/s under a header without a unit
+    "; the rates reach 710.6 rad/s, beyond any MEMS gyroscope's range (4000 deg/s = 69.81 rad/s)"
+    """
     peak = float(np.max(np.linalg.norm(omega, axis=1), initial=0.0))
     if not peak > DEG_S_HINT_RATE:
         return ""
@@ -204,10 +214,10 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
                 f"{len(t)} samples in {len(parts)} recordings"
             pauses = sum(len(pause_times(p[3])) for p in parts)
             raise NoFlightError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
-                                f"({where}, {pauses} pauses){_unit_hint(omega)}")
+                                f"({where}, {pauses} pauses){unit_hint(omega)}")
         why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
         raise NoFlightError(f"no usable flight among {len(flights)} found: "
-                            + ", ".join(f"{n} {r}" for r, n in why.most_common()) + _unit_hint(omega))
+                            + ", ".join(f"{n} {r}" for r, n in why.most_common()) + unit_hint(omega))
     t0, w0 = series[0]
     joined, first_joint = _joined(flights, groups, t, omega, keep, drag, scale_uncertainty)
     if joined:
@@ -257,7 +267,7 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
 def _unit_slip(fit: RecordingFit, omega: FloatArray) -> RecordingFit:
     """``fit``, not adequate and saying why, where its rates pass :data:`DEG_S_HINT_RATE` (deg/s read as rad/s fit
     flights within a flexing body's relative misfit: 2 of 5, "adequate", I1/I3 = 0.98 for 0.20; a walkthrough)."""
-    hint = _unit_hint(omega)
+    hint = unit_hint(omega)
     why = "; ".join(filter(None, (hint[2:], fit.pooled.adequacy)))
     return replace(fit, pooled=replace(fit.pooled, adequate=False, adequacy=why)) if hint else fit
 
