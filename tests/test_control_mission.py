@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -211,6 +212,22 @@ def test_a_mission_that_never_switched_says_so(tmp_path, capsys):
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert summary["switch_time"] is None and summary["detumble_time"] is None
     assert "never switched to pointing" in line and "not detumbled" in line and "pointing error" not in line, line
+
+
+def test_a_mission_that_started_below_its_switch_rate_says_so(tmp_path, capsys):
+    """A switch_rate above the body's initial rate (a walkthrough of control.md, 2026-12-02): the mission points
+    as soon as the dwell has passed and B-dot never acts; the line says it started below switch_rate, as a
+    detumbling that started below its threshold does."""
+    text = (CONTROL / "detumble_point.toml").read_text()
+    path = tmp_path / "mission.toml"
+    path.write_text(re.sub(r"switch_rate = [0-9.e-]+", "switch_rate = 10.0", text, count=1))
+    assert main(["simulate", str(path), "--t-end", "200", "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["initial_rate"] < 10.0 and summary["switch_time"] is not None
+    assert "(it started below switch_rate: nothing was detumbled)" in line, line
+    assert main(["simulate", str(CONTROL / "detumble_point.toml"), "--t-end", "200", "--out", str(tmp_path / "b")]) == 0
+    assert "started below" not in capsys.readouterr().out  # a mission that detumbles first: no such words
 
 
 def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path, capsys):

@@ -73,6 +73,8 @@ def simulate_control(args, scenario, out) -> int:
         never = scenario.kind == "detumble_point" and summary.get("switch_time") is None  # a mission that failed
         if summary.get("switch_time") is not None:
             line += f", pointing from t = {summary['switch_time']:g} s"
+            if summary["initial_rate"] < getattr(controller, "switch_rate", 0.0):  # as the detumbling above
+                line += " (it started below switch_rate: nothing was detumbled)"
         if never:  # its pointing error would read as the pointing's, which never began
             line += ", never switched to pointing (the rate did not stay below switch_rate for the dwell)"
         if "pointing_error_final" in summary and not never:
