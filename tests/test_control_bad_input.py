@@ -258,3 +258,55 @@ def test_sensor_noise_no_sensor_has_is_refused_as_a_likely_unit_slip(key, value,
     with pytest.raises(ValueError, match=rf"^{words}"):
         Sensors(**{key: value})
     Sensors(magnetometer_noise=MAX_MAGNETOMETER_NOISE, attitude_noise=np.pi)  # the bounds themselves: taken
+
+
+@pytest.mark.parametrize(("old", "new", "words"), [
+    ("gyro_noise = 1e-4", "gyro_noise = 5.0", r"gyro_noise = 5.0 rad/s is more than a gyroscope spreads; allowed: "
+                                              r"0 to 0.2 rad/s: is it in deg/s\?"),
+    ("gyro_bias = [2e-4, -1e-4, 1.5e-4]", "gyro_bias = [2.0, -1.0, 1.5]",
+     r"gyro_bias = \[2.0, -1.0, 1.5\] rad/s is more than any gyroscope's bias .* is it in deg/s\?"),
+    ('kind = "coarse", noise = 2e-3', 'kind = "fine", noise = 10.0',
+     r"noise = 10.0 rad is more than a fine sun sensor spreads; .* is it in arcsec or deg\?"),
+    ('kind = "coarse", noise = 2e-3', 'kind = "coarse", noise = 2.0',
+     r"noise = 2.0 is more than a cell's full-Sun current; allowed: 0 to 1 \(a fraction of it: 0.01 is 1 %\)"),
+    ('attitude = "none"', 'attitude = "none"\nstar_tracker = { cross = 5.0, roll = 40.0 }',
+     r"cross = 5.0 rad is more than a star tracker spreads; .* is it in arcsec or deg\?"),
+])
+def test_a_gyroscope_or_direction_sensor_noise_no_sensor_has_is_refused(tmp_path, capsys, old, new, words):
+    """A walkthrough of docs/estimation.md (2026-12-02) gave the example's sensors values in deg/s, arcsec or
+    per cent written as rad/s, rad or a fraction: a gyroscope bias of 2 'rad/s', 5 rad/s of noise, a fine sun
+    sensor of 10 rad, coarse cells at 200 % of their current, a star tracker of 5 and 40 rad; each ran, exit
+    0, the knowledge 50-122 deg off. Each is refused in one line naming the key, the value and the likely
+    unit, nothing written; the bounds' own values are taken."""
+    from tumble.dynamics.models.sensors import MAX_GYRO_ERROR, Sensors
+    from tumble.dynamics.models.vector_sensors import MAX_ANGLE_NOISE, CoarseSunSensor, FineSunSensor, StarTracker
+
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "estimate_point.toml").read_text()
+    assert old in text
+    (tmp_path / "slip.toml").write_text(text.replace(old, new, 1))
+    assert main(["simulate", str(tmp_path / "slip.toml"), "--t-end", "5", "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and re.search(words, err), err
+    assert not (tmp_path / "run").exists()
+    Sensors(gyro_noise=MAX_GYRO_ERROR, gyro_bias=(MAX_GYRO_ERROR, 0.0, -MAX_GYRO_ERROR))  # the bounds: taken
+    FineSunSensor(noise=MAX_ANGLE_NOISE), StarTracker(cross=MAX_ANGLE_NOISE, roll=MAX_ANGLE_NOISE), CoarseSunSensor(noise=1.0)
+
+
+def test_a_filter_started_with_an_attitude_spread_past_pi_is_refused():
+    """MEKF.start(attitude_sigma=5.0) was taken (a walkthrough, 2026-12-02): a spread past pi says nothing of an
+    angle. Refused in the filter and in the estimator's own start, naming the argument; pi itself is taken."""
+    from scipy.spatial.transform import Rotation
+
+    from tumble.dynamics.estimation.mekf import MEKF
+
+    with pytest.raises(ValueError, match=r"^attitude_sigma = 5.0 is beyond 3.14159 rad"):
+        MEKF.start(Rotation.identity(), attitude_sigma=5.0, bias_sigma=1e-3, gyro_noise=1e-4, bias_walk=1e-7)
+    MEKF.start(Rotation.identity(), attitude_sigma=np.pi, bias_sigma=1e-3, gyro_noise=1e-4, bias_walk=1e-7)
+
+def test_an_estimator_started_with_an_attitude_spread_past_pi_is_refused(tmp_path, capsys):
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "estimate_point.toml").read_text()
+    assert "attitude_sigma" not in text
+    (tmp_path / "wide.toml").write_text(text.replace("[estimator]\n", "[estimator]\nattitude_sigma = 5.0\n", 1))
+    assert main(["simulate", str(tmp_path / "wide.toml"), "--t-end", "5", "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "attitude_sigma = 5.0 is beyond 3.14159 rad" in err, err

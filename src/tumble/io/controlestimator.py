@@ -63,9 +63,10 @@ SUN_TABLE = Table("[sensors.sun]", (
 
 #: ``[sensors.star_tracker]``.
 STAR_TRACKER_TABLE = Table("[sensors.star_tracker]", (
-    Key("cross", "number", "rad", "0.0", example="2e-5", low=0.0, low_included=True,
+    Key("cross", "number", "rad", "0.0", example="2e-5", low=0.0, low_included=True, high=0.1,
         doc="noise about each axis across the boresight"),
-    Key("roll", "number", "rad", "0.0", example="2e-4", low=0.0, low_included=True, doc="noise about the boresight"),
+    Key("roll", "number", "rad", "0.0", example="2e-4", low=0.0, low_included=True, high=0.1,
+        doc="noise about the boresight"),
     Key("period", "number", "s", "0.0", example="10.0", low=0.0, low_included=True,
         doc="time between readings (0: every control step)"),
     Key("frame", "4 numbers", "", "[0, 0, 0, 1]", allowed="a unit quaternion [x, y, z, w]", example="[0.0, 0.0, 0.0, 1.0]",
@@ -78,7 +79,7 @@ ESTIMATOR_TABLE = Table("[estimator]", (
         doc="the multiplicative extended Kalman filter (attitude and gyroscope bias)"),
     Key("magnetometer_period", "number", "s", "0.0", example="1.0", low=0.0, low_included=True,
         doc="time between the magnetometer's updates (0: every control step)"),
-    Key("attitude_sigma", "number", "rad", "0.1", example="0.05", low=0.0,
+    Key("attitude_sigma", "number", "rad", "0.1", example="0.05", low=0.0, high=math.pi,
         doc="the first guess's standard deviation when it has none of its own"),
     Key("bias_sigma", "number", "rad/s", "1e-3", example="1e-3", low=0.0, doc="the first bias guess's (zero's)"),
     Key("bias_walk", "number", "rad/s^1.5", "1e-7", example="1e-6", low=0.0, low_included=True,

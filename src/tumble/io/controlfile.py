@@ -137,7 +137,7 @@ _TABLES = (
             doc="the wheels' speeds at t = 0"),
     )),
     Table("[sensors]", (
-        Key("gyro_noise", "number", "rad/s", "0.0", example="1e-4", low=0.0, low_included=True,
+        Key("gyro_noise", "number", "rad/s", "0.0", example="1e-4", low=0.0, low_included=True, high=0.2,
             doc="standard deviation of each gyroscope axis"),
         Key("gyro_bias", "3 numbers", "rad/s", "[0, 0, 0]", example="[1e-4, 0.0, 0.0]", doc="constant gyroscope bias"),
         Key("magnetometer_noise", "number", "T", "0.0", example="1e-7", low=0.0, low_included=True, high=1e-4,

@@ -32,6 +32,7 @@ __all__ = [
     "check_direction",
     "check_increasing",
     "check_moments",
+    "check_noise",
     "check_number",
     "check_positive",
     "check_vector",
@@ -215,6 +216,25 @@ def check_at_most(field: str, value: float, unit: str, at_most: float | None) ->
     if at_most is not None and not abs(value) <= at_most:
         why = f": {BOUND_REASONS[at_most]}" if at_most in BOUND_REASONS else ""
         raise ValueError(f"{field} = {value!r} is beyond {at_most:g} {unit}{why}")
+
+
+def check_noise(field: str, value: object, unit: str, at_most: float, what: str, hint: str) -> float:
+    """A noise ``>= 0``, refused past ``at_most`` (no sensor of ``what``) with ``hint`` (a unit slip).
+
+    Examples
+    --------
+    >>> from tumble.validation import check_noise
+    >>> check_noise("noise", 2e-3, "rad", 0.1, "a sun sensor", "is it in deg?")
+    0.002
+    >>> check_noise("noise", 10.0, "rad", 0.1, "a sun sensor", "is it in arcsec?")
+    Traceback (most recent call last):
+    ...
+    ValueError: noise = 10.0 rad is more than a sun sensor spreads; allowed: 0 to 0.1 rad: is it in arcsec?
+    """
+    x = check_positive(field, value, unit, allow_zero=True)
+    if x > at_most:
+        raise ValueError(f"{field} = {value!r} {unit} is more than {what} spreads; allowed: 0 to {at_most:g} {unit}: {hint}")
+    return x
 
 
 def check_increasing(field: str, t: FloatArray, unit: str = "s") -> None:

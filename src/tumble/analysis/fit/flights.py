@@ -117,7 +117,7 @@ class Flight:
         (:func:`~tumble.analysis.fit.fit_recording`).
     free_fall : FreeSpan or None
         Where the accelerometer says the candidate fell free, and the sensor's fitted offset from
-        the centre of mass (:class:`~tumble.analysis.fit.freefall.FreeSpan`); None without one.
+        the centre of mass (:class:`~tumble.analysis.fit.freespan.FreeSpan`); None without one.
 
     Examples
     --------

@@ -66,7 +66,10 @@ DEG_S_HINT_RATE = math.radians(4000.0)
 
 
 def unit_hint(omega: FloatArray) -> str:
-    """``"; the rates reach ... are they in deg/s? ..."`` where they pass :data:`DEG_S_HINT_RATE`, else ``""``.
+    """The hint that rates past :data:`DEG_S_HINT_RATE` may be in deg/s, or ``""`` below it.
+
+    It begins ``"; the rates reach"`` and asks ``"are they in deg/s?"``: for a failure's or a fit's
+    reason, or a warning.
 
     Examples
     --------

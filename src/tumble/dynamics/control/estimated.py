@@ -238,7 +238,7 @@ class Estimated:
         if not isinstance(self.sensors, Sensors):
             raise ValueError(f"sensors = {self.sensors!r} must be the run's Sensors")  # noqa: TRY004
         check_positive("magnetometer_period", self.magnetometer_period, "s", allow_zero=True)
-        check_positive("attitude_sigma", self.attitude_sigma, "rad")
+        check_positive("attitude_sigma", self.attitude_sigma, "rad", at_most=math.pi)
         check_positive("bias_sigma", self.bias_sigma, "rad/s")
         check_positive("bias_walk", self.bias_walk, "rad/s^1.5", allow_zero=True)
         check_positive("min_sigma", self.min_sigma, "rad")

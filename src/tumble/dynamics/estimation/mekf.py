@@ -71,6 +71,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -167,7 +169,7 @@ class MEKF:
         ((5, 4), (5, 6, 6))
         """
         q = attitude.as_quat() if isinstance(attitude, Rotation) else np.asarray(attitude, float)
-        s_att = check_positive("attitude_sigma", attitude_sigma, "rad")
+        s_att = check_positive("attitude_sigma", attitude_sigma, "rad", at_most=math.pi)
         s_b = check_positive("bias_sigma", bias_sigma, "rad/s")
         P = np.diag([s_att**2] * 3 + [s_b**2] * 3) * np.ones(q.shape[:-1] + (1, 1))
         b = np.broadcast_to(np.asarray(bias, float), q.shape[:-1] + (3,)).copy()

@@ -24,16 +24,21 @@ from scipy.spatial.transform import Rotation
 
 from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_positive, check_vector
+from ...validation import check_noise, check_positive, check_vector
 from ..environment.sun import Sunlight
 from ..special.quaternion import turned_by
 from .vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker, on_period
 
-__all__ = ["MAX_MAGNETOMETER_NOISE", "Measurement", "Sensors"]
+__all__ = ["MAX_GYRO_ERROR", "MAX_MAGNETOMETER_NOISE", "Measurement", "Sensors"]
 
 #: The largest magnetometer noise taken, T: past the Earth's field itself (~6.5e-5 T at most at the
 #: surface, ~2-5e-5 T in low orbit) a reading says nothing of it; a noise in nT written as T is 1e9 times it.
 MAX_MAGNETOMETER_NOISE = 1e-4
+#: The largest gyroscope noise or bias taken, rad/s (11 deg/s): a phone's MEMS gyroscope has up to
+#: ~0.1 rad/s of bias uncalibrated, a spacecraft's 1e-6-1e-4; past it a value in deg/s written as
+#: rad/s is most likely (a walkthrough's bias of 2 "rad/s" for 2 deg/s ran, the knowledge lost).
+MAX_GYRO_ERROR = 0.2
+_RATE_HINT = "is it in deg/s? Give rad/s (1 deg/s = 0.01745 rad/s)"
 
 
 @dataclass(frozen=True)
@@ -141,7 +146,7 @@ class Sensors:
     sunlight: Sunlight | None = None
 
     def __post_init__(self) -> None:
-        check_positive("gyro_noise", self.gyro_noise, "rad/s", allow_zero=True)
+        check_noise("gyro_noise", self.gyro_noise, "rad/s", MAX_GYRO_ERROR, "a gyroscope", _RATE_HINT)
         check_positive("magnetometer_noise", self.magnetometer_noise, "T", allow_zero=True)
         check_positive("attitude_noise", self.attitude_noise, "rad", allow_zero=True)
         # noise no sensor has: most likely a unit slip (a walkthrough's 100 "T" for 100 nT ran, the field lost in it)
@@ -153,6 +158,9 @@ class Sensors:
             raise ValueError(f"attitude_noise = {self.attitude_noise!r} rad: a spread past pi says nothing of an angle; "
                              f"allowed: 0 to pi rad: is it in arcsec or deg? Give radians (4 arcsec = 2e-5 rad)")
         object.__setattr__(self, "gyro_bias", check_vector("gyro_bias", self.gyro_bias, "rad/s"))
+        if max(map(abs, self.gyro_bias)) > MAX_GYRO_ERROR:
+            raise ValueError(f"gyro_bias = {list(self.gyro_bias)!r} rad/s is more than any gyroscope's bias (a phone's "
+                             f"MEMS gyroscope: up to ~0.1 rad/s); allowed: each within {MAX_GYRO_ERROR:g} rad/s: {_RATE_HINT}")
         object.__setattr__(self, "magnetometer_bias", check_vector("magnetometer_bias", self.magnetometer_bias, "T"))
         if self.attitude not in ("ideal", "star_tracker", "none"):
             raise ValueError(f"attitude = {self.attitude!r} is unknown; allowed: ideal, star_tracker, none")

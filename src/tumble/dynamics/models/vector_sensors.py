@@ -54,11 +54,11 @@ from scipy.spatial.transform import Rotation
 
 from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_positive, check_rotation, check_vectors
+from ...validation import check_noise, check_positive, check_rotation, check_vectors
 from ..special.quaternion import turned_by
 
-__all__ = ["CoarseSunSensor", "FineSunSensor", "StarTracker", "cell_currents", "coarse_reading", "on_period", "on_periods",
-           "fine_reading", "fine_view", "tracker_noise"]
+__all__ = ["MAX_ANGLE_NOISE", "CoarseSunSensor", "FineSunSensor", "StarTracker", "cell_currents", "coarse_reading",
+           "fine_reading", "fine_view", "on_period", "on_periods", "tracker_noise"]
 
 
 def on_periods(t: ArrayLike, period: float) -> np.ndarray:
@@ -229,6 +229,15 @@ def _period(value: object) -> float:
     return check_positive("period", value, "s", allow_zero=True)
 
 
+#: The largest angle noise a direction or attitude sensor is taken with, rad (5.7 deg): a fine sun
+#: sensor spreads 0.001-0.01 rad, a star tracker 5e-6-5e-4; past it the noise is most likely in
+#: arcsec or deg written as rad (a walkthrough's 10 "rad" for 10 arcsec ran, the knowledge lost).
+MAX_ANGLE_NOISE = 0.1
+
+
+_ANGLE_HINT = "is it in arcsec or deg? Give radians (10 arcsec = 4.8e-5 rad, 1 deg = 0.01745 rad)"
+
+
 def _frame(value: object) -> Rotation:
     if isinstance(value, Rotation):
         if not value.single:
@@ -275,7 +284,9 @@ class CoarseSunSensor:
         if A.ndim != 2 or A.shape[0] < 3 or np.linalg.matrix_rank(A) < 3:
             raise ValueError(f"axes = {A.tolist()!r} must be at least 3 directions spanning space, shape (k, 3)")
         object.__setattr__(self, "axes", A / np.linalg.norm(A, axis=1, keepdims=True))
-        check_positive("noise", self.noise, "fraction of a full-Sun current", allow_zero=True)
+        if check_positive("noise", self.noise, "fraction of a full-Sun current", allow_zero=True) > 1.0:
+            raise ValueError(f"noise = {self.noise!r} is more than a cell's full-Sun current; allowed: 0 to 1 (a "
+                             "fraction of it: 0.01 is 1 %)")
         _period(self.period)
 
     def tables(self) -> tuple[FloatArray, FloatArray]:
@@ -375,7 +386,7 @@ class FineSunSensor:
     def __post_init__(self) -> None:
         object.__setattr__(self, "frame", _frame(self.frame))
         check_positive("fov", self.fov, "rad", at_most=math.pi / 2 - 1e-6)
-        check_positive("noise", self.noise, "rad", allow_zero=True)
+        check_noise("noise", self.noise, "rad", MAX_ANGLE_NOISE, "a fine sun sensor", _ANGLE_HINT)
         _period(self.period)
 
     def measure(self, sun_body: FloatArray, light: float, rng: np.random.Generator) -> tuple[FloatArray, float] | None:
@@ -438,8 +449,8 @@ class StarTracker:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "frame", _frame(self.frame))
-        check_positive("cross", self.cross, "rad", allow_zero=True)
-        check_positive("roll", self.roll, "rad", allow_zero=True)
+        check_noise("cross", self.cross, "rad", MAX_ANGLE_NOISE, "a star tracker", _ANGLE_HINT)
+        check_noise("roll", self.roll, "rad", MAX_ANGLE_NOISE, "a star tracker", _ANGLE_HINT)
         _period(self.period)
 
     @property
