@@ -269,12 +269,12 @@ def test_growing_a_flight_backward_past_where_its_drag_model_exists_is_no_failur
 
 def test_a_flights_model_extrapolated_back_past_its_drags_blow_up_is_nan_without_a_warning():
     """A flight fitted with quadratic drag, extrapolated backward as the finder's growth does
-    (:func:`~tumble.analysis.fit.flights._extrapolate`): about the spin axis
+    (:func:`~tumble.analysis.fit.window._extrapolate`): about the spin axis
     ``omega(t) = omega0 / (1 + (b / I) omega0 t)``, which leaves every bound at
     ``t = -I / (b omega0)`` (here about -2.2 s). Before it the model is
     finite; well past it, NaN, with no numpy warning (the fit took "invalid value encountered
     in matmul" for an error)."""
-    from tumble.analysis.fit.flights import _extrapolate
+    from tumble.analysis.fit.window import _extrapolate
     from tumble.dynamics.models.drag import drag_omega
 
     t = np.linspace(0.0, 1.5, 301)

@@ -79,14 +79,14 @@ from .. import _display
 from .adequacy import _left_path
 from .freefall import check_accel
 from .freespan import FreeSpan, grown_free_span
-from .model import Model
 from .result import determination, ratio_summary, solution_adequacy
 from .rotor import rotor_check
 from .segments import _runs, _segments, _stretches, impulses, pause_times
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
-from .solve import Solution, solve
+from .solve import Solution
 from .triangle import EDGES, at_rod_limit
 from .uncertainty import SCALE_UNCERTAINTY, noise_floor
+from .window import _drag_free, _grow, _refit, _trim
 
 __all__ = ["Flight", "find_flights"]
 
@@ -162,63 +162,6 @@ class Flight:
         100
         """
         return self.stop - self.first
-
-
-def _extrapolate(sol: Solution, t, t0) -> np.ndarray:
-    """The solved flight's model in sensor axes at times ``t`` (s), its time origin ``t0``; NaN
-    where it does not exist: quadratic drag run backward in time, ``omega' = +c |omega| omega``,
-    blows up in finite time (the growth takes such samples as not following the model)."""
-    m = sol.model
-    probe = Model([np.asarray(t, float) - t0], m.rotation, m.bias, m.drag, m.speeds)
-    with np.errstate(over="ignore", invalid="ignore"):
-        out = probe.sensor(sol.P)[0]
-    out[~np.all(np.isfinite(out), axis=1)] = np.nan
-    return out
-
-
-def _grow(t, omega, keep, a, b, sol: Solution, lo, hi, anchor):
-    """Grow ``[a, b)`` while the extrapolated model follows the samples (module docstring)."""
-    rms = sol.rms
-    new = [a, b]
-    for side in (-1, 1):
-        idx = np.arange(a - 1, max(lo, a - 400) - 1, -1) if side < 0 else np.arange(b, min(hi, b + 400))
-        if not idx.size:
-            continue
-        pred = _extrapolate(sol, t[idx], anchor)
-        err = np.abs(pred - omega[idx])
-        tol = np.maximum(6.0 * rms, 0.03 * np.linalg.norm(pred, axis=1))[:, None]
-        # the stretch's end counts as a bad sample: one bad sample just before it ends the flight
-        bad = np.append(np.any((err > tol) & keep[idx], axis=1) | np.isnan(pred[:, 0]), True)
-        pairs = np.flatnonzero(bad[:-1] & bad[1:])
-        n_ok = int(pairs[0]) if pairs.size else len(idx)
-        if side < 0:
-            new[0] = a - n_ok
-        else:
-            new[1] = b + n_ok
-    return new[0], new[1]
-
-
-def _trim(omega, keep, a, b, sol: Solution, k: float = 5.0, rms: float | None = None):
-    """Drop end samples of ``[a, b)`` whose residual exceeds ``k`` times the fit's RMS (or ``rms``,
-    that of a fit without them): the last of the throw or the first of the catch that the
-    growth's tolerance, or the accelerometer's free fall, let in."""
-    model = sol.omega_model[0, :b - a]
-    err = np.max(np.where(keep[a:b], np.abs(model - omega[a:b]), 0.0), axis=1)
-    rms = sol.rms if rms is None else rms
-    lo, hi = 0, b - a
-    while hi - lo > 2 and err[lo] > k * rms:
-        lo += 1
-    while hi - lo > 2 and err[hi - 1] > k * rms:
-        hi -= 1
-    return a + lo, a + hi
-
-
-def _drag_free(sol: Solution) -> np.ndarray:
-    """The parameters of ``sol`` in the drag-free layout (a start for the next window)."""
-    m, P = sol.model, sol.P
-    free = Model([np.zeros(2)], m.rotation, m.bias)
-    rv = P[m.index["rotvec_x"]:m.index["rotvec_x"] + 3] if m.rotation else np.zeros(3)
-    return free.pack(P[0], P[1], rv, m.bias_vector(P), m.omega0(P))
 
 
 def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, float]] | None = None, saturation: float | None = None, min_spin: float = 3.0,
@@ -461,18 +404,15 @@ def _attempt(t, omega, keep, a0, b0, a, b, min_duration, max_std, drag, rotation
             if (a2, b2) == (a, b):
                 break
             a, b = a2, b2
-            m = sol.model
-            window = Model([t[a:b] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a:b], axis=1))])
-            sol = solve(window, omega[None, a:b], keep[None, a:b], sol.P, max_nfev=40, covariance=False)
+            sol = _refit(t, omega, keep, a, b, sol, anchor)
         grown = None
         if whole and (a, b) != (a0, b0):  # the accelerometer's free fall, whole: from the grown fit
-            m = sol.model
-            window = Model([t[a0:b0] - anchor], m.rotation, m.bias, m.drag, [np.max(np.linalg.norm(omega[a0:b0], axis=1))])
-            wide = solve(window, omega[None, a0:b0], keep[None, a0:b0], sol.P, max_nfev=40, covariance=False)
+            wide = _refit(t, omega, keep, a0, b0, sol, anchor)
             if wide.rms <= 0.1 * np.sqrt(np.mean(np.sum(omega[a0:b0] ** 2, axis=1)) / 3):
-                # a sample of the catch in the wide window swells its RMS: judge the ends by the grown fit's
-                grown = sol.rms
-                a, b, sol = a0, b0, wide
+                # a sample of the catch in the wide window swells its RMS: judge the ends by the grown fit's,
+                # once that sample, past the wide fit's own, is out and no longer bends the fit at its end
+                grown, (a, b) = sol.rms, _trim(omega, keep, a0, b0, wide)
+                sol = wide if (a, b) == (a0, b0) else _refit(t, omega, keep, a, b, wide, anchor)
         a, b = _trim(omega, keep, a, b, sol, rms=grown)
         length = t[b - 1] - t[a]
         if length < min_duration or b - a < 30:
