@@ -285,3 +285,43 @@ def test_a_spin_slow_beside_the_orbit_rate_is_not_given_the_free_bodys_verdict(t
     closed_form = float(tumble.flip_interval(omega0, tumble.t_handle().principal_moments))
     off = abs(report["flip_period"] - closed_form) / closed_form
     assert off < 0.02 if free_body else off > 0.05, off
+
+
+def test_an_ellipses_slow_spin_is_not_given_the_free_bodys_verdict_either(tmp_path, capsys):
+    """On an ellipse (12,000 km, e = 0.4) a body spun at twice its mean motion got the free body's bare "predicted
+    stable" and no gravity_gradient entry in summary.json (a walkthrough of docs/gravity-gradient.md, 2026-12-02),
+    where the circle said the gradient was not small. The ellipse's line says it too, its n the orbit's mean motion
+    (Kepler: sqrt(mu / a^3)); the summary holds the period, the orbits, |omega0| / n and no Jacobi integral (none
+    on an orbit whose radius changes)."""
+    import json
+
+    from tumble.dynamics.environment.earth import MU_EARTH
+
+    n = (MU_EARTH / 12e6**3) ** 0.5
+    text = ('[torque]\nkind = "gravity_gradient"\nsemi_major_axis = 12e6\neccentricity = 0.4\n'
+            f"inclination = 0.9\n[initial]\nomega = [0.0, 0.0, {2 * n!r}]\n[simulation]\nt_end = 3000.0\nsamples = 301\n")
+    path = scenario(tmp_path, text)
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
+    line = capsys.readouterr().out
+    g = json.loads((tmp_path / "run" / "summary.json").read_text())["gravity_gradient"]
+    assert g["spin_over_n"] == pytest.approx(2.0, rel=1e-9) and g["free_body"] is False and g["jacobi_drift"] is None
+    assert g["orbit_period"] == pytest.approx(2 * np.pi / n, rel=1e-9) and g["orbits"] == pytest.approx(3000 * n / (2 * np.pi))
+    assert "a free body would be stable, but at 2 times the orbit rate the gravity gradient is not small" in line, line
+
+
+def test_the_earths_mu_in_km3_s2_and_a_list_of_points_are_refused_naming_what_is_needed(tmp_path, capsys):
+    """mu = 398600.4418 (the Earth's in km^3/s^2) ran an orbit of 5.7 years with exit 0; both orbit keys were
+    refused without their values; figure_gravity_stability(points=[(k_R, k_Y)]) raised an AttributeError about
+    a list's items (a walkthrough of docs/gravity-gradient.md, 2026-12-02)."""
+    from tumble.viz.gravity import figure_gravity_stability
+
+    path = scenario(tmp_path, GG.replace("orbit_period = 5400.0", "orbit_radius = 6.9e6\nmu = 398600.4418")
+                    + "[simulation]\nt_end = 10.0\n")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "mu = 398600.4418 m^3/s^2 is the Earth's in km^3/s^2; give m^3/s^2 (3.986004418e+14)" in err
+    with pytest.raises(ValueError, match=r"not both: orbit_period = 5400.0, orbit_radius = 6900000.0$"):
+        tumble.GravityGradient(orbit_period=5400.0, orbit_radius=6.9e6)
+    tumble.GravityGradient(orbit_radius=6.9e6, mu=4.9048695e12)  # the Moon's, in m^3/s^2: taken
+    with pytest.raises(ValueError, match=r"^points = \[\(0.8, 0.6\)\] must be a dict of a label to its \(k_R, k_Y\)"):
+        figure_gravity_stability(points=[(0.8, 0.6)])

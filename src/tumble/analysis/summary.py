@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
     from ..dynamics.models.torques import TorqueModel
 
-__all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "gravity_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
+__all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "gravity_gradient_summary", "orbit_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
 
 #: Fewest samples per flip interval at which flips are counted (a sign change of a component between
 #: samples): below it the count and the measured period are aliased (:func:`stability_report`'s
@@ -392,6 +392,30 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
         "spin_over_n": spin,
         "free_body": spin >= FREE_BODY_SPIN,
     }
+
+
+def orbit_gradient_summary(traj: Trajectory, orbit: Any) -> dict[str, Any]:
+    """What a run under the gravity gradient of an ellipse or a TLE's orbit (``orbit``: its
+    :class:`~tumble.dynamics.models.orbit_gravity.OrbitGravityGradient`'s, with ``mean_motion``
+    and ``period``) did: ``orbit_period`` (s), ``orbits``, ``spin_over_n`` and ``free_body`` as in
+    :func:`gravity_gradient_summary`, ``n`` the mean motion; ``jacobi_drift``, ``max_angle`` and
+    ``region`` None (on an orbit whose radius changes there is no Jacobi integral, and the
+    circular orbit's frame and linear stability do not apply).
+
+    Examples
+    --------
+    >>> import tumble
+    >>> from tumble.analysis.summary import orbit_gradient_summary
+    >>> from tumble.dynamics import KeplerOrbit
+    >>> orbit = KeplerOrbit(8.0e6, 0.1, 0.9)   # a (m), e, inclination (rad)
+    >>> traj = tumble.simulate(tumble.t_handle(), [0.0, 0.0, 0.002], t_end=100.0, samples=3)
+    >>> out = orbit_gradient_summary(traj, orbit)
+    >>> round(out["spin_over_n"], 2), out["free_body"], out["jacobi_drift"]   # twice the orbit rate
+    (2.27, False, None)
+    """
+    spin = float(np.linalg.norm(traj.omega[0])) / orbit.mean_motion
+    return {"orbit_period": float(orbit.period), "orbits": float(traj.t[-1] / orbit.period), "jacobi_drift": None,
+            "max_angle": None, "region": None, "spin_over_n": spin, "free_body": spin >= FREE_BODY_SPIN}
 
 
 def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | None:

@@ -226,6 +226,8 @@ def _cmd_simulate(args) -> int:
 
     from ..analysis import trajectory_summary
     from ..dynamics.models.gravity import gravity_gradient_in
+    from ..dynamics.models.orbit_gravity import OrbitGravityGradient
+    from ..dynamics.models.torques import as_torque, terms_of
     from ..io.export import write_csv, write_json, write_npz
     from ..io.output import output_dir
     from ..io.provenance import provenance
@@ -241,6 +243,11 @@ def _cmd_simulate(args) -> int:
         summary["gravity_gradient"] = gravity_gradient_summary(traj, orbit, alone=orbit is scenario.torque,
                                                                pitch_axis=pitch_axis, yaw_axis=yaw_axis)
         summary["gravity_gradient"]["started_in_orbit_frame"] = scenario.orbit_axes is not None
+    elif (along := next((t for t in terms_of(as_torque(scenario.torque)) if isinstance(t, OrbitGravityGradient)),
+                        None)) is not None:  # an ellipse's or a TLE's: the spin beside its rate, no Jacobi integral
+        from ..analysis.summary import orbit_gradient_summary
+
+        summary["gravity_gradient"] = {**orbit_gradient_summary(traj, along.orbit), "started_in_orbit_frame": False}
     if scenario.torque is not None:  # the torque the run took, principal frame and bound (check_inputs')
         from ..analysis.summary import torque_budget
         from ..dynamics.simulate import check_inputs
@@ -472,7 +479,7 @@ def _simulate_line(summary: dict, out) -> str:
     else:
         tail = ("torque acted, so energy and L change (its budget is checked over 3 to 100,000 samples of a torque "
                 "that varies, any number of a constant one)")
-    if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is None:  # a sum: the orbit's angles too
+    if g and g["jacobi_drift"] is None and g["max_angle"] is not None:  # a sum: the orbit's angles too
         g = summary["gravity_gradient"]
         tail += f"; {g['orbits']:.3g} orbits, largest angle from the orbiting frame {max(g['max_angle'].values()):.3g} rad"
     return f"{head}: {spin}; {tail}; wrote {out}/"

@@ -188,13 +188,13 @@ def check_number(field: str, value: object, unit: str, at_most: float | None = N
     ValueError: mass = True must be a number (kg)
     """
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
-        raise ValueError(f"{field} = {value!r} must be a number ({unit})")
+        raise ValueError(f"{field} = {value!r} must be a number" + (f" ({unit})" if unit else ""))
     try:
         x = float(value)
     except OverflowError:  # a Python int beyond any float, e.g. 10**400
         x = math.inf
     if not math.isfinite(x):
-        raise ValueError(f"{field} = {value!r} must be a finite number ({unit})")
+        raise ValueError(f"{field} = {value!r} must be a finite number" + (f" ({unit})" if unit else ""))
     # a Python float shown as given (the command line's keep their text), numpy's as the plain float
     check_at_most(field, value if isinstance(value, float) and not isinstance(value, np.floating) else x, unit, at_most)
     return x

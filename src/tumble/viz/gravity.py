@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..analysis.gravity_stability import STABILITY_REGIONS, gravity_gradient_stability
+from ..validation import short_repr
 from ._backend import figure_and_axes
 
 if TYPE_CHECKING:
@@ -87,6 +88,9 @@ def figure_gravity_stability(*, ax: Axes | None = None,
     """
     from matplotlib.patches import Patch
 
+    if points is not None and not isinstance(points, dict):  # a list of pairs had no label to write
+        raise ValueError(f"points = {short_repr(points)} must be a dict of a label to its (k_R, k_Y), e.g. "
+                         "{'my body': (0.8, 0.6)}")
     fig, ax = figure_and_axes(ax, figsize=(7.6, 5.6))
     _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 601)
     ax.set_aspect("equal")

@@ -45,11 +45,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Vector3
-from ...validation import (
-    check_moments,
-    check_positive,
-    check_vectors,
-)
+from ...validation import check_moments, check_positive, check_vectors
 
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
@@ -181,10 +177,12 @@ class GravityGradient(AddsTorques):
 
     def __post_init__(self) -> None:
         mu = check_positive("mu", self.mu, "m^3/s^2")
+        if math.isclose(mu, MU_EARTH / 1e9, rel_tol=1e-4):  # the Earth's in km^3/s^2: its orbit 31,600 times slower
+            raise ValueError(f"mu = {self.mu!r} m^3/s^2 is the Earth's in km^3/s^2; give m^3/s^2 ({MU_EARTH:.10g})")
         given = [name for name in ("orbit_period", "orbit_radius") if getattr(self, name) is not None]
         if len(given) != 1:
-            raise ValueError("give exactly one of orbit_period (s) and orbit_radius (m)"
-                             + (", not both" if given else ""))
+            both = f": orbit_period = {self.orbit_period!r}, orbit_radius = {self.orbit_radius!r}" if given else ""
+            raise ValueError("give exactly one of orbit_period (s) and orbit_radius (m)" + (", not both" + both if given else ""))
         if given == ["orbit_period"]:  # Kepler's third law, n^2 r^3 = mu, n = 2 pi / T
             T = check_positive("orbit_period", self.orbit_period, "s")
             n = 2.0 * math.pi / T
