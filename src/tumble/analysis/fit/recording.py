@@ -52,7 +52,7 @@ from .result import (
     public_covariance,
     rotation_fit,
 )
-from .single import _check, _check_options, saturation_mask
+from .single import MAX_RATE, _check, _check_options, saturation_mask
 from .solve import Solution, without_drag_law_error
 from .summary import flight_budgets, ratio_scale_effect
 from .tosses import RecordingFit, Toss
@@ -79,7 +79,12 @@ def unit_hint(omega: FloatArray) -> str:
     ''
     >>> unit_hint(np.array([[0.0, 690.0, 170.0]])).split(":")[0]   # deg/s under a header without a unit
     "; the rates reach 710.6 rad/s, beyond any MEMS gyroscope's range (4000 deg/s = 69.81 rad/s)"
+    >>> unit_hint(np.array([[0.0, 1e308, 0.0]]))   # no reading at all (the fit refuses it as such): no hint
+    ''
     """
+    top = float(np.max(np.abs(omega), initial=0.0))
+    if not top <= MAX_RATE:  # beyond any reading at all (refused as such by the fit): no unit to hint
+        return ""
     peak = float(np.max(np.linalg.norm(omega, axis=1), initial=0.0))
     if not peak > DEG_S_HINT_RATE:
         return ""
