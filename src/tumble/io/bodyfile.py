@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import math
 import os
 import tomllib
 import warnings
@@ -37,6 +38,8 @@ from .meshfile import MESH_SUFFIXES, MESH_UNITS, MeshScaleWarning, body_from_mes
 
 __all__ = [
     "BODY_FORMAT",
+    "LARGEST_SPAN",
+    "LIGHTEST_WRITTEN",
     "MAX_TOML_BYTES",
     "MESH_SUFFIXES",
     "MESH_UNITS",
@@ -256,6 +259,10 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
             part = cls(**kwargs)
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
+        if kwargs.get("density") is not None and part.density < LIGHTEST_WRITTEN:
+            warnings.warn(f"density = {kwargs['density']!r} kg/m^3 is below any solid's but a foam's or an aerogel's "
+                          f"(expanded polystyrene 15-30 kg/m^3): is it in g/cm^3? Write kg/m^3 (7.85 g/cm^3 = 7850 "
+                          f"kg/m^3)", UnitSlipWarning, stacklevel=2)
         if kind == "mesh":  # a mesh's size, as tumble inertia checks a mesh file's (a part in mm weighed 6e9 kg)
             note = mesh_scale_note(kwargs["mesh"], part, part.scale, key="scale")
             if note:
@@ -273,6 +280,14 @@ def _slips_named(where: object) -> Iterator[None]:
     for slip in slips:
         named = f"{where}: " if issubclass(slip.category, UnitSlipWarning) else ""
         warnings.warn(f"{named}{slip.message}", slip.category, stacklevel=3)
+
+
+#: A density written in a body file below this (kg/m^3) is most likely in g/cm^3 (steel's 7.85,
+#: aluminium's 2.7, water's 1): a warning, since foams and aerogels are lighter still.
+LIGHTEST_WRITTEN = 25.0
+#: A body file's body under 1e6 kg whose radius of gyration passes this (m) is most likely sized in
+#: mm or cm: the International Space Station's is ~30 m (4.2e5 kg); an asteroid's mass is far above.
+LARGEST_SPAN = 100.0
 
 
 def body_from_table(table: object, *, base_dir: Path | None = None, where: str = "body") -> Body:
@@ -305,9 +320,15 @@ def body_from_table(table: object, *, base_dir: Path | None = None, where: str =
         part_from_table(p, base_dir=base_dir, where=f"{where}.parts[{i}]") for i, p in enumerate(parts)
     )
     try:
-        return Body(built, name=name)
+        body = Body(built, name=name)
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
+    gyration = math.sqrt(body.principal_moments[2] / body.mass)
+    if gyration > LARGEST_SPAN and body.mass < 1e6:  # a body file in mm: rods, spheres or points kilometres apart
+        warnings.warn(f"{where}: {body.mass:.3g} kg with a radius of gyration of {gyration:.3g} m (sqrt(I3 / m)), as "
+                      f"no spacecraft (the International Space Station's is ~30 m, at 4.2e5 kg): are its sizes in mm or "
+                      f"cm? Write them in metres (SI units)", UnitSlipWarning, stacklevel=2)
+    return body
 
 
 def mesh_files(table: dict, base_dir: Path | None = None) -> list[Path]:
