@@ -156,7 +156,8 @@ def test_a_relative_tolerance_out_of_range_is_refused_by_the_file_and_by_simulat
     with pytest.raises(ValueError, match=rf"^rtol = {rtol!r} must be from "):
         simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
                             rtol=rtol)
-    with pytest.raises(ValueError, match=r"^atol = -1\.0 must be a positive finite number \(absolute\)$"):
+    with pytest.raises(ValueError, match=r"^atol = -1\.0 must be a positive finite number \(absolute: rad/s for omega "
+                                         r"and the wheels, 1 for the quaternion\)$"):
         simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
                             atol=-1.0)
 

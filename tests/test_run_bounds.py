@@ -3,6 +3,8 @@ rotation a torque can build up, the default step of the splitting methods under 
 
 from __future__ import annotations
 
+import contextlib
+
 import numpy as np
 import pytest
 
@@ -65,6 +67,10 @@ def test_dt_samples_every_dt_up_to_t_end():
         (dict(t_end=1e6, dt=1e-9), r"dt = 1e-09 s gives 1000001 samples"),
         (dict(t_end=1.0, rtol=10), r"rtol = 10.0 must be from 2.22e-14 to 0.1"),
         (dict(t_end=1.0, rtol=1e-20, method="dop853"), r"rtol = 1e-20 must be from"),
+        (dict(t_end=1.0, atol=1e3, method="rk45"), r"^atol = 1000.0 must be above 0 and at most 0.1 \(rad/s, "),
+        (dict(t_end=1.0, atol=1e10, torque=ConstantTorque((0.0, 0.0, 0.01))), r"^atol = 10000000000.0 must be above 0 and "),
+        (dict(t_end=1.0, atol=0.5, method="dop853"), r"^atol = 0.5 must be above 0 and at most 0.1 "),
+        (dict(t_end=1.0, atol=0.0, method="dop853"), r"^atol = 0.0 must be a positive finite number"),
     ],
 )
 def test_bad_sampling_and_tolerances_are_refused(kwargs, pattern):
@@ -174,3 +180,31 @@ def test_simulate_binds_the_gravity_gradient_and_bounds_its_spin_by_the_jacobi_i
     np.testing.assert_array_equal(run.torque.moments, BODY.principal_moments)
     traj = simulate(BODY, start.omega0, t_end=5400.0, samples=5, torque=gg, attitude0=start.attitude0)
     assert np.all(np.linalg.norm(traj.omega, axis=1) <= gg.bind(BODY).max_spin(0.0, start.omega0, start.attitude))
+
+
+def test_an_atol_of_0_1_is_taken_and_the_batch_and_the_closed_loop_refuse_one_above():
+    assert simulate(BODY, [1.0, 0.0, 0.0], t_end=1.0, method="rk45", atol=0.1).method == "rk45"
+    with pytest.raises(ValueError, match=r"^atol = 2.0 must be above 0 and at most 0.1 \(rad/s, "):
+        tumble.simulate_batch([[1.0, 2.0, 3.0]], [[1.0, 0.0, 0.0]], t_end=1.0, torque=ConstantTorque((0.0, 0.0, 0.01)),
+                              atol=2.0)
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controlled import simulate_controlled
+
+    with pytest.raises(ValueError, match=r"^atol = 1.0 must be above 0 and at most 0.1 \(absolute: rad/s for omega"):
+        simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=1.0, controller=BDot(gain=1e-3, period=1.0),
+                            atol=1.0)
+
+
+@pytest.mark.parametrize("rtol", [1e-10, 1e-12])
+def test_auto_runs_rk8_only_down_to_the_rtol_rk8_meets(rtol):
+    from tumble.dynamics.methods.auto import RK_LOWEST_RTOL
+
+    # a spacecraft at 10 rad/s, samples 0.2 s apart: far apart next to rk8's step, so rk8 at 1e-10
+    traj = simulate(tumble.MassProperties.from_moments([10.0, 12.0, 15.0]), [0.5, 10.0, 0.5], t_end=20.0,
+                    samples=101, torque=ConstantTorque((0.01, -0.02, 0.015)), rtol=rtol)
+    assert traj.auto
+    assert traj.method == ("rk8" if rtol >= RK_LOWEST_RTOL["rk8"] else "dop853")
+    with pytest.raises(ValueError, match="is below what rk8's fixed steps meet") if rtol < RK_LOWEST_RTOL["rk8"] else (
+            contextlib.nullcontext()):
+        simulate(tumble.MassProperties.from_moments([10.0, 12.0, 15.0]), [0.5, 10.0, 0.5], t_end=1.0,
+                 torque=ConstantTorque((0.01, -0.02, 0.015)), method="rk8", rtol=rtol)

@@ -38,7 +38,7 @@ from ..validation import (
 )
 from . import _display
 from .euler import angular_momentum, kinetic_energy, relative_drift
-from .engine.stepsize import check_rtol
+from .engine.stepsize import check_atol, check_rtol
 from .methods.arguments import IgnoredArgumentWarning, warn_ignored
 from .methods.auto import AUTO_RTOL, dop853_tolerances, rk_step
 from .methods.bounds import spin_gain, spin_gains
@@ -300,7 +300,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     asked = rtol, atol  # what a lone simulate(method="auto") takes, for a torque of one's own
     if auto and model is not None:  # the engine's dop853, its local error control tighter than the accuracy asked for
         r = AUTO_RTOL if rtol is None else check_rtol("rtol", rtol)
-        rtol, atol = dop853_tolerances(r, r if atol is None else check_positive("atol", atol, "rad/s"))
+        rtol, atol = dop853_tolerances(r, r if atol is None else check_atol("atol", atol))
     if model is not None and not spec.supports_torque:
         allowed = ", ".join(m for m, s in METHODS.items() if s.supports_torque)
         raise ValueError(f"method = {spec.name!r} cannot take a torque; use one of: auto (the default), {allowed}")
@@ -472,7 +472,7 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
     else:
         _bound_work(spec, float(np.max(spin)), float(np.max(gains)), t_end, None)
         r = spec.rtol if rtol is None else check_rtol("rtol", rtol)
-        a = spec.atol if atol is None else check_positive("atol", atol, "rad/s")
+        a = spec.atol if atol is None else check_atol("atol", atol)
         scale = np.maximum(np.maximum(spin, gains), 1e-300)  # atol relative to each body's omega, as simulate's
         tol = np.column_stack([np.outer(a * scale, np.ones(3)), np.full((len(I), 4), a)])
         omega, quat = run_bodies(spec.name, I, w0, q0, t, form, rtol=r, atol=tol)

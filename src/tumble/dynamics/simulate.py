@@ -15,7 +15,7 @@ from ..mass.body import properties_of
 from ..typing import ArrayLike, FloatArray, Quaternion, Vector3
 from ..validation import MAX_INERTIA, MAX_RATE, beyond, check_increasing, check_positive, check_rotation, check_vector
 from .engine.front import ENGINE_METHODS
-from .engine.stepsize import RTOL_RANGE, check_rtol
+from .engine.stepsize import RTOL_RANGE, check_atol, check_rtol
 from .methods.arguments import warn_ignored
 from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice, rk_step
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
@@ -136,10 +136,10 @@ def simulate(
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
-        Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and
-        attitude, atol = rtol relative to the size of omega). ``rtol`` from 100 eps to 0.1. For
-        ``"dop853"`` ``atol`` is relative to the size of omega; an ``rtol`` given alone to ``"rk45"``
-        brings its ``atol`` down with it (scipy's default 1e-6 rad/s would cap a slow body's accuracy).
+        Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and attitude, atol =
+        rtol relative to |omega|). ``rtol`` from 100 eps (below ~1e-12 round-off sets the error) to 0.1, ``atol``
+        up to 0.1, for ``"dop853"`` relative to |omega|; an ``rtol`` given alone to ``"rk45"`` brings its
+        ``atol`` down with it (scipy's default 1e-6 rad/s would cap a slow body's accuracy).
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
@@ -367,7 +367,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     follows = atol is None and rtol is not None and spec.rtol is not None and not spec.atol_scaled
     atol_scaled = spec.atol_scaled or follows
     if atol is not None:
-        atol = check_positive("atol", atol, "rad/s")
+        atol = check_atol("atol", atol)
     atol = rtol if follows else spec.atol if atol is None else atol
     rtol = spec.rtol if rtol is None else rtol
     if step is not None:

@@ -64,7 +64,7 @@ from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.orbit_gravity import gravity_gradient_of
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget
-from ..dynamics.engine.stepsize import check_rtol
+from ..dynamics.engine.stepsize import check_atol, check_rtol
 from ..mass import Body
 from ..validation import check_bool, check_positive, check_rotation, check_vector, check_vectors, unknown_name
 from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
@@ -110,7 +110,8 @@ _TABLES = (
         Key("t_end", "number", "s", required=True, example="6000.0", low=0.0, doc="duration of the run"),
         Key("rtol", "number", "", "1e-10", example="1e-9", low=2.22e-14, low_included=True, high=0.1,
             doc="relative tolerance of DOP853 between control steps"),
-        Key("atol", "number", "", "1e-12", example="1e-11", low=0.0, doc="absolute tolerance"),
+        Key("atol", "number", "", "1e-12", example="1e-11", low=0.0, high=0.1,
+            doc="absolute tolerance: rad/s for omega and the wheels, 1 for the quaternion"),
     )),
     ORBIT_TABLE,
     CONTROL_TORQUE_TABLE,
@@ -478,7 +479,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,
         magnetorquers=mtq, wheels=wheels, speed0=speed0, sensors=sensors, threshold=spec.threshold, target=spec.target,
         rtol=check_rtol("simulation.rtol", sim.get("rtol", 1e-10)),
-        atol=check_positive("simulation.atol", sim.get("atol", 1e-12), "absolute"), name=name, estimator=estimator,
+        atol=check_atol("simulation.atol", sim.get("atol", 1e-12), "absolute: rad/s for omega and the wheels, 1 for the quaternion"), name=name, estimator=estimator,
         torque=torque)
 
 

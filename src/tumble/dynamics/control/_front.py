@@ -23,7 +23,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_moments, check_positive, check_rotation, check_vector, short_repr
-from ..engine.stepsize import check_rtol
+from ..engine.stepsize import check_atol, check_rtol
 from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .estimated import Estimated
@@ -106,7 +106,7 @@ def _checked(moments: Any, omega0: Any, t_end: float, rtol: float, atol: float, 
     w0 = check_vector("omega0", omega0, "rad/s")
     T = check_positive("t_end", t_end, "s")
     rtol = check_rtol("rtol", rtol)
-    atol = check_positive("atol", atol, "absolute")
+    atol = check_atol("atol", atol, "absolute: rad/s for omega and the wheels, 1 for the quaternion")
     period = check_positive("controller.period", period, "s")
     q0 = check_rotation("attitude0", attitude0) if attitude0 is not None else (0.0, 0.0, 0.0, 1.0)
     if lone_rods:

@@ -28,12 +28,18 @@ from typing import Any
 from ...jit import formula
 from ...validation import check_positive
 
-__all__ = ["RTOL_RANGE", "check_rtol", "equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
+__all__ = ["ATOL_MAX", "RTOL_RANGE", "check_atol", "check_rtol", "equal_steps", "error_norm", "first_trial_step", "initial_step", "next_step", "rms"]
 
 #: The range of a relative tolerance (every stepping method's, and the closed loop's): scipy clips
 #: rtol below 100 eps (with a warning), and above 0.1 an adaptive step control no longer controls
 #: anything.
 RTOL_RANGE = (100 * sys.float_info.epsilon, 0.1)
+#: The largest absolute tolerance: the quaternion's components, of size 1, take the same ``atol``
+#: as omega, so above 0.1 the attitude is no longer controlled (and omega's error, relative to the
+#: spin for ``dop853`` and ``"auto"``, no more than rtol's upper end allows).
+ATOL_MAX = 0.1
+#: :func:`tumble.simulate`'s ``atol``, in words.
+ATOL_UNIT = "rad/s, relative to the spin for dop853 and auto; the quaternion's components take it too"
 
 
 def check_rtol(field: str, value: object) -> float:
@@ -53,6 +59,27 @@ def check_rtol(field: str, value: object) -> float:
     if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
         raise ValueError(f"{field} = {rtol!r} must be from {RTOL_RANGE[0]:.3g} to {RTOL_RANGE[1]:g} (relative)")
     return rtol
+
+
+def check_atol(field: str, value: object, unit: str = ATOL_UNIT) -> float:
+    """An absolute tolerance above 0 and at most :data:`ATOL_MAX`, as a float; else one ValueError
+    naming ``field`` and ``unit``: by default :func:`tumble.simulate`'s, rad/s for omega (relative
+    to the spin for ``dop853`` and ``"auto"``) and 1 for the quaternion's components.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.engine.stepsize import check_atol
+    >>> check_atol("atol", 1e-12)
+    1e-12
+    >>> check_atol("atol", 1e3)
+    Traceback (most recent call last):
+    ...
+    ValueError: atol = 1000.0 must be above 0 and at most 0.1 (rad/s, relative to the spin for dop853 and auto; the quaternion's components take it too)
+    """
+    atol = check_positive(field, value, unit)
+    if not atol <= ATOL_MAX:
+        raise ValueError(f"{field} = {value!r} must be above 0 and at most {ATOL_MAX:g} ({unit})")
+    return atol
 
 
 def error_norm(e5: float, e3: float, h_abs: float, n: int) -> float:

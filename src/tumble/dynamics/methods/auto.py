@@ -153,7 +153,7 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float,
                   internal: InternalModel | None = None) -> float | None:
     """The engine's method for a run: ``rk8``'s step (s), or None for ``dop853``.
 
-    With a damper (``internal``), :func:`damped_step`: ``dop853`` would run it in scipy.
+    ``dop853`` below :data:`RK_LOWEST_RTOL` (what ``rk8`` refuses when asked for by name). With a damper (``internal``), :func:`damped_step`: ``dop853`` would run it in scipy.
 
     The cost of each in ``rk8`` steps, the cheaper chosen: ``rk8`` steps at :func:`rk8_angle` of
     rotation at the fastest spin the run can reach, ``spin + gain`` (rad/s), in equal steps within
@@ -180,9 +180,13 @@ def engine_choice(t: FloatArray, spin: float, gain: float, rtol: float,
     0.015
     >>> engine_choice(np.linspace(0.0, 20.0, 500), 1.0, 0.0, 1e-10) is None   # 1 rad/s, 0.04 s apart: dop853
     True
+    >>> engine_choice(np.linspace(0.0, 20.0, 101), 10.0, 0.0, 1e-12) is None   # below rk8's lowest rtol: dop853
+    True
     """
     top = spin + gain
     t_end = float(t[-1])
+    if rtol < RK_LOWEST_RTOL["rk8"]:  # below what rk8's steps meet (the rtol it refuses when asked by name)
+        return None
     if internal is not None and internal.damper is not None:
         return damped_step(internal, spin, gain, t_end, rtol)
     if not (top > 0.0 and t_end > 0.0 and math.isfinite(top)):
