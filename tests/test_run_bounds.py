@@ -208,3 +208,20 @@ def test_auto_runs_rk8_only_down_to_the_rtol_rk8_meets(rtol):
             contextlib.nullcontext()):
         simulate(tumble.MassProperties.from_moments([10.0, 12.0, 15.0]), [0.5, 10.0, 0.5], t_end=1.0,
                  torque=ConstantTorque((0.01, -0.02, 0.015)), method="rk8", rtol=rtol)
+
+
+def test_an_rtol_given_alone_to_dop853_brings_its_atol_down_with_it():
+    """dop853's atol (1e-12 of the spin) held a run at rtol 1e-13 to 2e-10 on the T-handle: an rtol
+    below it, given alone, is the atol too, in simulate and in the batch."""
+    torque = ConstantTorque((0.01, -0.02, 0.015))
+    body = tumble.MassProperties.from_moments([0.125, 0.3125, 0.4375])
+    kw = dict(t_end=2.0, samples=5, torque=torque, method="dop853")
+    alone = simulate(body, [0.1, 10.0, 0.1], rtol=1e-13, **kw)
+    assert np.array_equal(alone.omega, simulate(body, [0.1, 10.0, 0.1], rtol=1e-13, atol=1e-13, **kw).omega)
+    assert not np.array_equal(alone.omega, simulate(body, [0.1, 10.0, 0.1], rtol=1e-13, atol=1e-12, **kw).omega)
+    loose = simulate(body, [0.1, 10.0, 0.1], rtol=1e-8, **kw)  # above its atol: the atol stays 1e-12
+    assert np.array_equal(loose.omega, simulate(body, [0.1, 10.0, 0.1], rtol=1e-8, atol=1e-12, **kw).omega)
+
+    def batch(**extra):
+        return tumble.simulate_batch([[0.125, 0.3125, 0.4375]], [[0.1, 10.0, 0.1]], rtol=1e-13, **kw, **extra).omega
+    assert np.array_equal(batch(), batch(atol=1e-13)) and not np.array_equal(batch(), batch(atol=1e-12))

@@ -472,7 +472,8 @@ def _engine(spec: Method, I: Vector3, w0: Vector3, q0: Quaternion, t: FloatArray
     else:
         _bound_work(spec, float(np.max(spin)), float(np.max(gains)), t_end, None)
         r = spec.rtol if rtol is None else check_rtol("rtol", rtol)
-        a = spec.atol if atol is None else check_atol("atol", atol)
+        # an rtol given alone brings the atol down with it, as simulate's
+        a = min(cast(float, spec.atol), cast(float, r)) if atol is None else check_atol("atol", atol)
         scale = np.maximum(np.maximum(spin, gains), 1e-300)  # atol relative to each body's omega, as simulate's
         tol = np.column_stack([np.outer(a * scale, np.ones(3)), np.full((len(I), 4), a)])
         omega, quat = run_bodies(spec.name, I, w0, q0, t, form, rtol=r, atol=tol)

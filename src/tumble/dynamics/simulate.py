@@ -137,9 +137,9 @@ def simulate(
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
         Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and attitude, atol =
-        rtol relative to |omega|). ``rtol`` from 100 eps (below ~1e-12 round-off sets the error) to 0.1, ``atol``
-        up to 0.1, for ``"dop853"`` relative to |omega|; an ``rtol`` given alone to ``"rk45"`` brings its
-        ``atol`` down with it (scipy's default 1e-6 rad/s would cap a slow body's accuracy).
+        rtol relative to |omega|). ``rtol`` from 100 eps (below ~1e-11 round-off sets the error) to 0.1, ``atol``
+        up to 0.1, for ``"dop853"`` relative to |omega|; an ``rtol`` given alone to ``"rk45"`` (or below 1e-12
+        to ``"dop853"``) brings its ``atol`` down with it (a default atol would cap the accuracy).
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).
@@ -362,9 +362,9 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
     t_end = float(t[-1])
     if rtol is not None and not (type(rtol) is float and RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]):  # else checked here
         rtol = check_rtol("rtol", rtol)
-    # an rtol given alone is honoured by every adaptive method: its atol follows it, relative to the
-    # spin (rk45's scipy default, atol 1e-6 rad/s, would cap the accuracy of a slow body's run)
-    follows = atol is None and rtol is not None and spec.rtol is not None and not spec.atol_scaled
+    # an rtol given alone is honoured by every adaptive method: its atol follows it, relative to the spin (rk45's
+    # scipy default 1e-6 rad/s capped a slow body's run; dop853's 1e-12 of the spin at rtol 1e-13 left 2e-10)
+    follows = atol is None and rtol is not None and spec.rtol is not None and not (spec.atol_scaled and rtol >= (spec.atol or 0.0))
     atol_scaled = spec.atol_scaled or follows
     if atol is not None:
         atol = check_atol("atol", atol)
