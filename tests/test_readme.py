@@ -17,9 +17,11 @@ README = ROOT / "README.md"
 TOUR = ROOT / "docs" / "tour.md"
 #: Guides whose examples are run here (docs/architecture.md's has its own test; the gallery's
 #: pages are written by their tests).
-GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md", "docs/control.md", "docs/estimation.md")
+GUIDES = ("docs/index.md", "docs/gravity-gradient.md", "docs/fitting.md", "docs/control.md", "docs/estimation.md",
+          "docs/methods.md")
 #: Claims a guide's comments make that must have been checked.
-GUIDE_CLAIMS = {"docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1", "~1e-15", "~1e-8",
+GUIDE_CLAIMS = {"docs/methods.md": ("rk8 (auto)", "~2e-13", "rk4", "~1e-9", "11 flips", "exact (auto)"),
+                "docs/control.md": ("274.0", "325.0", "~0.07", "~1e-16", "151.1", "~1e-15", "~1e-8",
                                     "['attitude_error.png', 'rates.png', 'wheels.png', 'dipole.png', 'momentum.png']",
                                     "ControlledRun(601 samples over 600 s, rate 20 -> 0.000163 deg/s, 3 wheels up to 213 rad/s, ...)",
                                     "2.0", "[0.0, 0.0, 160.0]"),

@@ -274,3 +274,14 @@ def test_an_rtol_a_fixed_step_cannot_meet_is_refused_and_the_lowest_is_met(metho
         tumble.simulate(body, w0, t_end=t_end, samples=samples, torque=model, method=method, rtol=lowest / 3)
     traj = tumble.simulate(body, w0, t_end=t_end, samples=samples, torque=model, attitude0=Q0, method=method, rtol=lowest)
     assert max(errors(traj, *case_reference(name, traj.t))) <= lowest
+
+
+@pytest.mark.parametrize(("name", "claim"), [("constant torque, fast spin", 1e-10), ("constant torque, slow spin", 1e-13)])
+def test_dop853_at_its_defaults_is_as_accurate_as_the_methods_table_says(name, claim):
+    """docs/methods.md's table: omega to ~1e-10 per 20 s on the T-handle at 10 rad/s, ~1e-13 on the
+    spacecraft at 1 rad/s (~: within a factor of 10, as the guides' checked comments read it)."""
+    moments, w0, t_end, samples, model, tau = CASES[name]
+    traj = tumble.simulate(tumble.MassProperties.from_moments(moments), w0, t_end=t_end, samples=samples, torque=model,
+                           attitude0=Q0, method="dop853")
+    e_omega, _ = errors(traj, *case_reference(name, traj.t))
+    assert claim / 10 <= e_omega <= claim * 10, e_omega
