@@ -4,6 +4,7 @@ rotation a torque can build up, the default step of the splitting methods under 
 from __future__ import annotations
 
 import contextlib
+import re
 
 import numpy as np
 import pytest
@@ -225,3 +226,15 @@ def test_an_rtol_given_alone_to_dop853_brings_its_atol_down_with_it():
     def batch(**extra):
         return tumble.simulate_batch([[0.125, 0.3125, 0.4375]], [[0.1, 10.0, 0.1]], rtol=1e-13, **kw, **extra).omega
     assert np.array_equal(batch(), batch(atol=1e-13)) and not np.array_equal(batch(), batch(atol=1e-12))
+
+
+@pytest.mark.parametrize(("method", "instead"), [("radau", "give method dop853 or auto"),
+                                                 ("radau (auto)", "give method dop853 or auto"),
+                                                 ("rk8 (auto)", "give method 'rk8', or 'auto'")])
+def test_a_runs_label_given_as_its_method_says_which_name_to_give(method, instead):
+    """The repr and the command line's line say "radau (auto)" or "rk8 (auto)"; given back as a method,
+    the refusal names the method that asks for it (simulate and the batch alike)."""
+    with pytest.raises(ValueError, match=rf"^method = {re.escape(repr(method))} is unknown: .*{re.escape(instead)}"):
+        simulate(BODY, [1.0, 0.0, 0.0], t_end=1.0, method=method)
+    with pytest.raises(ValueError, match=rf"^method = {re.escape(repr(method))} is unknown: .*{re.escape(instead)}"):
+        tumble.simulate_batch([[1.0, 2.0, 3.0]], [[1.0, 0.0, 0.0]], t_end=1.0, method=method)

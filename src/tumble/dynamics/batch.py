@@ -43,7 +43,7 @@ from .methods.arguments import IgnoredArgumentWarning, warn_ignored
 from .methods.auto import AUTO_RTOL, dop853_tolerances, rk_step
 from .methods.bounds import spin_gain, spin_gains
 from .methods.integrators import METHODS, Method, Propagate, StepRule, get_method
-from .methods.names import ALLOWED, AUTO
+from .methods.names import AUTO, unknown_method
 from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, kernel_form
 from .simulate import MAX_ROTATION, MAX_STEPS, sample_times, simulate
 from .special.quaternion import rotate_by_quaternion
@@ -293,7 +293,7 @@ def simulate_batch(moments: ArrayLike, omega0: ArrayLike, *, t_end: float | None
     model = as_torque(torque)
     auto = isinstance(method, str) and method == AUTO
     if not auto and not (isinstance(method, str) and method in METHODS):
-        raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
+        raise ValueError(unknown_method(method))
     spec = get_method(("exact" if model is None else "dop853") if auto else method)
     step = None if step is None else check_positive("step", step, "s")  # once, for every method that steps
     warn_ignored(spec, auto=auto, rtol=rtol, atol=atol, step=step)  # as simulate does (its loop below says nothing)

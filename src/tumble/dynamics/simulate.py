@@ -21,7 +21,7 @@ from .methods.auto import AUTO_RTOL, dop853_tolerances, engine_choice, rk_step
 from .methods.bounds import design_torque, linear_gain, run_spin_gain, spin_bound
 from .methods.engine_rk import COMPILED_MODELS, on_the_loop
 from .methods.integrators import METHODS, IntegrateInternal, Method, StepRule, get_method
-from .methods.names import ALLOWED, AUTO, method_list
+from .methods.names import AUTO, method_list, unknown_method
 from .models.internal import STIFF_RATIO, InternalModel, Rotors, SphericalDamper
 from .models.torques import TorqueLike, TorqueModel, as_torque, bind_to_body, kernel_form
 from .trajectory import Trajectory
@@ -332,7 +332,7 @@ def check_inputs(body: Body | MassProperties, omega0: ArrayLike, *, t_end: float
         method, rtol = "dop853", AUTO_RTOL if rtol is None else rtol
         atol = rtol if atol is None else atol
     elif not isinstance(method, str) or method not in METHODS:
-        raise ValueError(f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}")
+        raise ValueError(unknown_method(method))
     spec = get_method(method)
     form = kernel_form(model)  # the torque's compiled form, None: Python's (again below if the frame turns it)
     if model is not None and not spec.supports_torque:  # those that take this torque: a Python one, not compiled only

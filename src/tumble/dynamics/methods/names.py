@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import textwrap
 
-__all__ = ["ALLOWED", "AUTO", "DEFAULT", "METHOD_NAMES", "method_list"]
+__all__ = ["ALLOWED", "AUTO", "DEFAULT", "METHOD_NAMES", "method_list", "unknown_method"]
 
 #: Every method ``simulate(method=...)`` accepts, in the registry's order.
 METHOD_NAMES = ("exact", "dop853", "rk45", "seed", "geometric", "geometric2", "geometric6", "exact_split2",
@@ -47,3 +47,27 @@ def method_list(quote: str = "", width: int | None = None, indent: str = "") -> 
     if width is None:
         return text
     return textwrap.fill(text, width=width, subsequent_indent=indent, break_long_words=False, break_on_hyphens=False)
+
+
+def unknown_method(method: object) -> str:
+    """The message refusing ``method``, a name ``simulate`` does not know: the names it does, and
+    for ``"radau"`` (a run's label where ``dop853`` handed a stiff damper to scipy's Radau) or a
+    label copied whole (``"rk8 (auto)"``) the name to give instead.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.methods.names import unknown_method
+    >>> unknown_method("radau")
+    "method = 'radau' is unknown: it is what dop853 runs a stiff damper with (a run's label); give method dop853 or auto"
+    >>> unknown_method("rk8 (auto)")
+    "method = 'rk8 (auto)' is unknown: a run's label; give method 'rk8', or 'auto' to let simulate choose again"
+    >>> unknown_method("rk5")[:60]
+    "method = 'rk5' is unknown; allowed: auto, exact, dop853, rk4"
+    """
+    if method == "radau" or method == "radau (auto)":
+        return (f"method = {method!r} is unknown: it is what dop853 runs a stiff damper with (a run's label); "
+                "give method dop853 or auto")
+    if isinstance(method, str) and method.endswith(" (auto)") and method[:-7] in METHOD_NAMES:
+        return (f"method = {method!r} is unknown: a run's label; give method {method[:-7]!r}, or 'auto' to let "
+                "simulate choose again")
+    return f"method = {method!r} is unknown; allowed: {', '.join(ALLOWED)}"
