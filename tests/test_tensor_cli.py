@@ -57,7 +57,7 @@ TENSOR_BAD = {
                     "center_of_mass, center_of_mass_std, gyro_distortion, gyro_distortion_std, gyro_full_scale, "
                     "gyro_misalignment_std, gyro_resolution, "
                     "gyro_scale_std, inertia, inertia_std, mass, motor_index, motor_poles, rotor_axis, rotor_axis_std, "
-                    "rotor_inertia, rotor_inertia_std, sensor_axes\n"),
+                    "rotor_inertia, rotor_inertia_std, rotor_speed_range, sensor_axes\n"),
     "unknown table": (CALIBRATED + "[body]\nname = 'x'\n", None, "0.5", "device.toml: unknown table 'body'"),
     "no [device]": (PROOF, None, "0.5", "device.toml: missing table [device]"),
     "no rotor axis": (CALIBRATED.replace("rotor_axis = [0.0, 0.0, -1.0]\n", ""), None, "0.5",

@@ -360,3 +360,63 @@ def test_an_object_mass_that_makes_every_tensor_no_bodys_is_pointed_at():
     with pytest.raises(NoThrowError, match=r"every throw's tensor is no body's: check the object's mass \(tumble "
                                            r"tensor's --mass; a tenth of the real one does this\)"):
         fit_tensor([throw(1), throw(2)], calibrated_device(), OBJECT.mass / 10)
+
+
+def test_the_calibration_records_the_rotors_top_speeds_and_a_set_in_rpm_is_named(pooled_once):
+    """The firmware spins the rotor to one plateau (1230-1360 rad/s on the real device): the
+    calibration writes the range its throws reached (``rotor_speed_range``), and a set logged in
+    rpm under a rad/s header (9.5 times faster) is a problem, not a calibration."""
+    proof, _, alone, with_proof = _calibration_throws()
+    cal = calibrate(DEVICE, alone, with_proof, proof)
+    low, high = cal.device.rotor_speed_range
+    speeds = [th.top_speed for th in (*alone, *with_proof)]
+    assert (low, high) == (min(speeds), max(speeds)) and 1150.0 < low <= high < 1450.0
+    rpm = [_with(th, rotor=th.rotor * 60.0 / (2.0 * np.pi)) for th in with_proof]
+    slipped = calibrate(DEVICE, alone, rpm, proof)
+    assert any("rotor's top speeds differ from throw to throw" in p and "rpm" in p for p in slipped.problems)
+
+
+def _speed_checked_device() -> Device:
+    """The synthetic calibrated device with the top speeds its calibration would record (1230-1360 rad/s)."""
+    return replace(calibrated_device(), rotor_speed_range=(min(throw(s).top_speed for s in (1, 2, 3)),
+                                                           max(throw(s).top_speed for s in (1, 2, 3))))
+
+
+@pytest.mark.parametrize("factor", [60.0 / (2.0 * np.pi), 2.0, 0.5])
+def test_a_throw_whose_rotor_speed_is_in_another_unit_is_left_out(flown_once, factor):
+    """A walkthrough of docs/tensor.md (2026-12-03): the rotor column in rpm under a rad/s header gave
+    moments 10-14 times too large with chi2/dof 0.84, written adequate (an eRPM turned with half the
+    poles, 2 times, passed too): the tensor's scale is the rotor's momentum, and nothing in the fit
+    shows it. A throw whose top speed lies more than ROTOR_SPEED_RATIO beyond the calibration's is
+    left out, named; every throw so: no answer."""
+    dev = _speed_checked_device()
+    odd = _with(throw(3), rotor=throw(3).rotor * factor, input="odd.csv")
+    fit = fit_tensor([throw(1), throw(2), odd], dev, OBJECT.mass)
+    assert [t.status for t in fit.throws] == ["used", "used", "skipped"]
+    assert fit.throws[2].reason.startswith("the rotor's top speed") and "another unit" in fit.throws[2].reason
+    with pytest.raises(NoThrowError, match="the rotor's top speed"):
+        fit_tensor([_with(throw(s), rotor=throw(s).rotor * factor) for s in (1, 2)], dev, OBJECT.mass)
+
+
+def test_a_rotor_that_really_ran_slower_is_used(flown_once):
+    """A plateau 15 % below the calibration's (a battery's sag), logged truly: within the range's
+    ROTOR_SPEED_RATIO, fitted and used, its answer the object's."""
+    slow = synthetic_throw(3, FLOWN, input="slow.csv", rotor_top=1080.0)
+    fit = fit_tensor([throw(1), throw(2), slow], _speed_checked_device(), OBJECT.mass)
+    assert [t.status for t in fit.throws] == ["used", "used", "used"], [t.reason for t in fit.throws]
+    truth = np.linalg.eigvalsh(OBJECT.inertia)
+    assert np.all(np.abs(fit.object.principal_moments / truth - 1) < 0.03)
+
+
+def test_the_rotor_speed_range_is_checked_and_survives_the_device_file(tmp_path):
+    from tumble.io.devicefile import load_device, write_device
+
+    with pytest.raises(ValueError, match=r"^device.rotor_speed_range = \[1300.0, 1200.0\] must be the lowest and the "
+                                         r"highest top speed, 0 < low <= high \(rad/s"):
+        Device(0.1, [0, 0, 1], rotor_speed_range=[1300.0, 1200.0])
+    with pytest.raises(ValueError, match=r"^device.rotor_speed_range = \[1200.0\] must have shape \(2,\) \(rad/s\)"):
+        Device(0.1, [0, 0, 1], rotor_speed_range=[1200.0])
+    dev = replace(calibrated_device(), rotor_speed_range=(1237.19, 1314.98))
+    write_device(tmp_path / "cal.toml", dev)
+    assert load_device(tmp_path / "cal.toml")[0].rotor_speed_range == (1237.19, 1314.98)
+    assert "rotor_speed_range = [1237.19, 1314.98]" in (tmp_path / "cal.toml").read_text()

@@ -113,6 +113,10 @@ DEVICE_FORMAT = FileFormat("device", (
         Key("gyro_distortion_std", "3 rows of 3", "", allowed=">= 0 each; only with gyro_distortion",
             example="[[2e-4, 1e-4, 1e-4], [1e-4, 2e-4, 1e-4], [1e-4, 1e-4, 3e-4]]",
             doc="the standard uncertainty of each entry"),
+        Key("rotor_speed_range", "2 numbers", "rad/s", "(none: calibrate the device)", allowed="0 < low <= high",
+            example="[1230.0, 1360.0]",
+            doc="the lowest and highest of the rotor's top speeds in the calibration's throws; tumble tensor leaves out a "
+                "throw whose top speed is more than 1.5 times beyond them (rpm or eRPM logged as rad/s)"),
     ), "The device: ``mass`` and ``rotor_axis`` are required; ``tumble calibrate`` writes the inertias and the "
        "centre of mass. The motor, gyroscope and mounting keys are how a flight controller's own log (a Betaflight "
        "blackbox CSV: the page on blackbox logs) is read; throw files in the sensor frame do not need them."),
@@ -420,6 +424,8 @@ def device_toml(device: Device, proof: Proof | None = None, *, header: str = "",
         std = getattr(device, f"{key}_std", None)
         if std is not None:
             item(f"{key}_std", write(std), f"{unit.split(',')[0]}, standard uncertainty")
+    if device.rotor_speed_range is not None:
+        item("rotor_speed_range", _row(device.rotor_speed_range), "rad/s, the calibration throws' rotor top speeds")
     if proof is not None:
         lines.append("")
         lines.append("[proof]")

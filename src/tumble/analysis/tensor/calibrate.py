@@ -57,7 +57,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from .. import _display
-from .device import Device, Proof
+from .device import ROTOR_SPEED_RATIO, Device, Proof
 from .throwlog import Throw
 from .equations import rotor_inertia_from
 from .estimate import tensor_of
@@ -245,11 +245,17 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
     # its flown centre's own columns (Pooled.center_columns), the same device's
     std[7:10] = np.sqrt(np.maximum(np.diag(cov_c), 0.0))
     problems = _problems(float(y[0]), ratio, a, p)
+    speeds = [t.top_speed for t, f in zip((*alone, *proof_throws), (*fits_a, *fits_p)) if not f.reason]
+    if max(speeds) > ROTOR_SPEED_RATIO * min(speeds):  # the firmware's plateau is the same in every throw
+        problems.append(f"the rotor's top speeds differ from throw to throw: {min(speeds):.5g} to {max(speeds):.5g} rad/s, "
+                        f"more than {ROTOR_SPEED_RATIO:g} times (the firmware's plateau is the same in every throw): some "
+                        "logs' rotor speed in another unit (rpm, rev/s) or an eRPM turned with another pole count?")
     if problems and not y[0] > 0:
         dev = device
     else:
         dev = replace(device, rotor_inertia=float(y[0]), rotor_inertia_std=float(std[0]), inertia=tensor_of(y[1:7]),
                       inertia_std=tensor_of(std[1:7]), center_of_mass=y[7:10], center_of_mass_std=std[7:10],
+                      rotor_speed_range=(min(speeds), max(speeds)),
                       **calibrated_sensors([a, p], device.rotor_axis, device.gyro_scale_std))
     max_bias = float(max(np.abs(a.biases).max(), np.abs(p.biases).max()))  # type: ignore[union-attr]
     left = tuple(f"{t.input or f'throw {k}'}: {f.reason}" for k, (t, f) in enumerate(zip((*alone, *proof_throws),

@@ -32,8 +32,8 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_THROWN_MASS", "Device", "Proof",
-           "axes_matrix"]
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_THROWN_MASS", "ROTOR_SPEED_RATIO",
+           "Device", "Proof", "axes_matrix"]
 
 #: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
 MAX_DEVICE_MASS = 10.0
@@ -43,6 +43,11 @@ MAX_DEVICE_MASS = 10.0
 MAX_DEVICE_SIZE = 0.5
 #: The heaviest proof body or object thrown with the device, kg.
 MAX_THROWN_MASS = 100.0
+#: How far beyond the calibration throws' top speeds (``Device.rotor_speed_range``) an object's
+#: throw's may lie, as a ratio: the firmware's plateau was 1230-1360 rad/s over the published
+#: device's throws (docs/tensor.md), a battery's sag slows an open-loop motor by ~10-20 %; rpm
+#: read as rad/s is 9.5 times, an eRPM turned with half or twice the poles 2 times.
+ROTOR_SPEED_RATIO = 1.5
 #: The signed axes ``Device.sensor_axes`` may name: an axis of the log, ``-`` for its opposite.
 AXIS_NAMES = ("x", "-x", "y", "-y", "z", "-z")
 _AXES_ALLOWED = ('3 of "x", "-x", "y", "-y", "z", "-z", one for each of the sensor frame\'s x, y, z, '
@@ -162,6 +167,17 @@ def _optional_array(field_name: str, value: object, shape: tuple[int, ...], unit
 MAX_DISTORTION = 0.1
 
 
+def _speed_range(value: object) -> tuple[float, float] | None:
+    """The calibration throws' lowest and highest rotor top speeds, rad/s: two numbers, 0 < low <= high."""
+    a = _optional_array("device.rotor_speed_range", value, (2,), "rad/s", nonnegative=True)
+    if a is None:
+        return None
+    if not 0.0 < a[0] <= a[1]:
+        raise ValueError(f"device.rotor_speed_range = {short_repr(value)} must be the lowest and the highest top speed, "
+                         "0 < low <= high (rad/s; tumble calibrate writes it)")
+    return float(a[0]), float(a[1])
+
+
 def _distortion(value: object) -> FloatArray | None:
     """A gyroscope's distortion: 3 x 3, symmetric, trace-free, entries within :data:`MAX_DISTORTION`."""
     D = _optional_array("device.gyro_distortion", value, (3, 3), "")
@@ -224,6 +240,13 @@ class Device:
         std: :func:`~tumble.analysis.tensor.calibrate.calibrated_sensors`), and each entry's
         standard uncertainty. With it, the readings are corrected before every fit and
         ``rotor_axis`` is the calibrated axis, whose uncertainty is ``rotor_axis_std``.
+    rotor_speed_range : (float, float) or None
+        The lowest and highest of the rotor's top speeds (:attr:`Throw.top_speed
+        <tumble.analysis.tensor.Throw.top_speed>`) in the calibration's throws, rad/s (``tumble
+        calibrate`` writes it). The firmware spins the rotor to the same plateau in every throw,
+        and the tensor's scale is the rotor's: :func:`~tumble.analysis.tensor.fit_tensor` leaves
+        out a throw whose top speed is more than :data:`ROTOR_SPEED_RATIO` times beyond this range
+        (a speed in rpm read as rad/s makes the tensor 9.5 times too large).
 
     Examples
     --------
@@ -261,6 +284,7 @@ class Device:
     rotor_axis_std: float = 0.0175
     gyro_distortion: Matrix3 | None = field(default=None, repr=False)
     gyro_distortion_std: Matrix3 | None = field(default=None, repr=False)
+    rotor_speed_range: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -295,6 +319,7 @@ class Device:
             given = "gyro_distortion" if self.gyro_distortion is not None else "gyro_distortion_std"
             raise ValueError(f"device.{given} given without the other: gyro_distortion and gyro_distortion_std come "
                              "together (tumble calibrate writes both)")
+        s(self, "rotor_speed_range", _speed_range(self.rotor_speed_range))
         axes_matrix(self.sensor_axes, "device.sensor_axes")  # the value as given in its messages
         s(self, "sensor_axes", _axis_names(self.sensor_axes, "device.sensor_axes"))
         self._check_sizes()

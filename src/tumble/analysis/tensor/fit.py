@@ -33,6 +33,7 @@ from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, 
 from .sensors import SensorErrors, distortion_coefficients
 from .pool import NoThrowError, Pooled, pool_throws
 from .throw import FlownFit
+from .verdicts import speed_verdict
 
 __all__ = ["TensorFit", "ThrowFit", "device_covariances", "fit_tensor", "flown_estimate", "full_scale", "gyro_response",
            "sensor_errors"]
@@ -222,8 +223,9 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
                                                         float("nan"), 1), rel)
         return one, _object(one, mass, device, cov_d, cov_c)
 
-    def check(f: FlownFit) -> str:
-        return "" if f.center is None else not_physical(of_throw(f)[1])
+    def check(f: FlownFit, throw: Throw) -> str:
+        return speed_verdict(throw.top_speed, device.rotor_speed_range) or (
+            "" if f.center is None else not_physical(of_throw(f)[1]))
 
     pooled, fits = pool_throws(throws, device.rotor_axis, J, saturation=full_scale(device, saturation),
                                errors=sensor_errors(device), check=check, gyro=gyro_response(device))

@@ -314,7 +314,7 @@ def outlier(own: Sequence[JointFit], inertia: FloatArray) -> tuple[int, float]:
 
 def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: float, *,
                 saturation: float | None = None, errors: SensorErrors | None = None,
-                check: Callable[[FlownFit], str] | None = None, gyro: FloatArray | None = None,
+                check: Callable[[FlownFit, Throw], str] | None = None, gyro: FloatArray | None = None,
                 which: str = "") -> tuple[Pooled, list[FlownFit]]:
     """Fit every throw and the usable ones jointly (module docstring).
 
@@ -329,7 +329,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     errors : SensorErrors, optional
         The sensors' stated uncertainties (type B; none by default).
     check : callable, optional
-        ``check(fit)`` -> a reason to leave a fitted throw out, or ``""``.
+        ``check(fit, throw)`` -> a reason to leave a fitted throw out, or ``""``.
     gyro : ndarray, shape (3, 3), optional
         The gyroscope's calibrated response (:func:`~tumble.analysis.tensor.throw.fit_flown`).
     which : str
@@ -368,7 +368,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     fits = [fit_flown(throw, rotor_axis, rotor_inertia, saturation=saturation, errors=errors, gyro=gyro)
             for throw in throws]
     for k, (throw, f) in enumerate(zip(throws, fits)):
-        why = throw_verdict(f, throw) or (check(f) if check is not None and not f.reason else "")
+        why = throw_verdict(f, throw) or (check(f, throw) if check is not None and not f.reason else "")
         if why:
             fits[k] = replace(f, reason=why)
     start = None

@@ -12,7 +12,7 @@ from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from ...validation import check_increasing, check_vectors, short_repr
 
-__all__ = ["MAX_INTERVAL", "MIN_THROW_SAMPLES", "Throw"]
+__all__ = ["MAX_INTERVAL", "MIN_THROW_SAMPLES", "TOP_SPEED_SAMPLES", "Throw"]
 
 #: The longest interval between a throw's samples, s: a logger writes hundreds a second.
 MAX_INTERVAL = 1.0
@@ -21,6 +21,8 @@ MAX_INTERVAL = 1.0
 _PLAUSIBLE = {"omega": 1e3, "rotor": 1e5, "accel": 1e4}
 #: The fewest samples a throw may have.
 MIN_THROW_SAMPLES = 20
+#: The running median's length that :attr:`Throw.top_speed` takes (samples; 1.25 ms at 4 kHz).
+TOP_SPEED_SAMPLES = 5
 
 
 @dataclass(frozen=True)
@@ -118,3 +120,25 @@ class Throw:
         0.02475
         """
         return float(self.t[-1] - self.t[0])
+
+    @property
+    def top_speed(self) -> float:
+        """The rotor's top speed in the log, rad/s: the largest of its speeds' running median over
+        :data:`TOP_SPEED_SAMPLES` samples (``scipy.ndimage.median_filter``), so that a telemetry
+        glitch of a sample or two is not taken for it. On the real device, its plateau (1230-1360
+        rad/s, docs/tensor.md), the same in every throw the firmware makes.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from tumble.analysis.tensor import Throw
+        >>> t = np.arange(100) / 4000.0
+        >>> rotor = np.where((t > 0.005) & (t < 0.02), 1300.0, 200.0)
+        >>> rotor[3] = 9e4   # one glitch
+        >>> Throw(t, np.zeros((100, 3)), rotor).top_speed
+        1300.0
+        """
+        from scipy.ndimage import median_filter
+
+        return float(np.max(median_filter(np.abs(self.rotor), size=TOP_SPEED_SAMPLES, mode="nearest")))
+

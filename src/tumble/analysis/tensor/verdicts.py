@@ -12,10 +12,11 @@ from collections.abc import Sequence
 import numpy as np
 
 from ...typing import FloatArray
+from .device import ROTOR_SPEED_RATIO
 from .throw import RESIDUAL_LIMIT, FlownFit
 from .throwlog import Throw
 
-__all__ = ["MAX_BIAS", "duplicate_throws", "joint_verdict", "residual_verdict", "throw_verdict"]
+__all__ = ["MAX_BIAS", "duplicate_throws", "joint_verdict", "residual_verdict", "speed_verdict", "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
@@ -45,6 +46,33 @@ def throw_verdict(f: FlownFit, throw: Throw) -> str:
     if f.center is None or throw.accel is None:
         return "no accelerometer in the throw: its centre of mass is unknown"
     return ""
+
+
+def speed_verdict(speed: float, calibrated: tuple[float, float] | None) -> str:
+    """Why a throw whose rotor's top speed is ``speed`` (rad/s, :attr:`Throw.top_speed
+    <tumble.analysis.tensor.Throw.top_speed>`) cannot be the calibrated device's, or ``""``: more
+    than :data:`~tumble.analysis.tensor.device.ROTOR_SPEED_RATIO` times beyond the calibration
+    throws' range ``calibrated`` (``Device.rotor_speed_range``; None: not known, nothing judged).
+    The tensor's scale is the rotor's momentum's: a speed in rpm read as rad/s gave an object's
+    moments 10-14 times too large, and the fit's residuals, bias and chi2/dof no sign of it.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.verdicts import speed_verdict
+    >>> speed_verdict(1290.0, (1230.0, 1360.0)), speed_verdict(1290.0, None)
+    ('', '')
+    >>> speed_verdict(12400.0, (1230.0, 1360.0))[:60]
+    "the rotor's top speed 1.24e+04 rad/s is 9.1 times the calibr"
+    """
+    if calibrated is None:
+        return ""
+    low, high = calibrated
+    if low / ROTOR_SPEED_RATIO <= speed <= high * ROTOR_SPEED_RATIO:
+        return ""
+    times = speed / high if speed > high else speed / low
+    return (f"the rotor's top speed {speed:.3g} rad/s is {times:.2g} times the calibration throws' ({low:.4g}-{high:.4g} "
+            f"rad/s; at most {ROTOR_SPEED_RATIO:g} times beyond them): its speed in another unit than the header says "
+            f"(rpm for rad/s is 9.5 times, rev/s 0.16) or an eRPM turned with another pole count (2 times)?")
 
 
 def residual_verdict(rms: float, noise: float) -> str:
