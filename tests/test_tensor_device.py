@@ -33,6 +33,7 @@ from tumble.analysis.tensor.synthetic import (
     true_proof,
 )
 from tumble.analysis.tensor.throw import fit_flown
+from tumble.analysis.tensor.verdicts import accel_hint
 from tumble.mass.tensor import rotate_inertia
 from test_tensor_fit import flown_once  # noqa: F401  (the fixture: pool_throws's fit of a throw made once)
 
@@ -420,3 +421,35 @@ def test_the_rotor_speed_range_is_checked_and_survives_the_device_file(tmp_path)
     write_device(tmp_path / "cal.toml", dev)
     assert load_device(tmp_path / "cal.toml")[0].rotor_speed_range == (1237.19, 1314.98)
     assert "rotor_speed_range = [1237.19, 1314.98]" in (tmp_path / "cal.toml").read_text()
+
+
+def test_unit_slips_in_the_accelerometer_the_gyroscope_and_the_clock_are_pointed_at(flown_once):
+    """A walkthrough of docs/tensor.md (2026-12-03): the accelerometer in g under an m/s^2 header was
+    blamed on the gyroscope ("rates in another unit ..."); rates in deg/s under a rad/s header were
+    told to check the gyroscope's range only; times in us under an ns header read "0 of its 0
+    samples there at the gyroscope's range". Each reason now names its likely slip."""
+    dev = calibrated_device()
+    in_g = [_with(throw(s), accel=throw(s).accel / 9.80665) for s in (1, 2)]
+    with pytest.raises(NoThrowError, match=r"its accelerometer reads at most \d\.\d+ m/s\^2 in the whole log, never the "
+                                           r"9\.8 of a hand holding the device: in g under an m/s\^2 header\?"):
+        fit_tensor(in_g, dev, OBJECT.mass)
+    in_deg = [_with(throw(s), omega=np.clip(np.rad2deg(throw(s).omega), -GYRO_RANGE, GYRO_RANGE)) for s in (1, 2)]
+    with pytest.raises(NoThrowError, match=r"at the gyroscope's range: .*or the rates in deg/s under a rad/s header\?"):
+        fit_tensor(in_deg, dev, OBJECT.mass)
+    fast_clock = [_with(throw(s), t=throw(s).t / 1e3) for s in (1, 2)]  # us read as ns: 1000 times too short
+    with pytest.raises(NoThrowError, match=r"none in the 0\.15 s after it: the log spans 0\.000\d+ s; its times in "
+                                           r"another unit than the header says\?"):
+        fit_tensor(fast_clock, dev, OBJECT.mass)
+    assert accel_hint(throw(1)) == ""
+
+
+def test_a_log_that_stops_before_the_rotors_spin_up_is_named(flown_once):
+    """A log cut 0.12 s after the rotor's start holds its idle only (~200 rad/s): the scale would come
+    from the idle's small momentum (a walkthrough: chi2/dof 43, uncertainties 40 times larger); the
+    throw is left out, its reason naming the cut before naming a unit."""
+    th, start = throw(3), throw_times(3).rotor
+    keep = th.t <= start + 0.12
+    cut = Throw(th.t[keep], th.omega[keep], th.rotor[keep], th.accel[keep], "cut.csv")
+    fit = fit_tensor([throw(1), throw(2), cut], _speed_checked_device(), OBJECT.mass)
+    assert fit.throws[2].status == "skipped"
+    assert "the log stops before the rotor's spin-up (its idle is ~200 rad/s)" in fit.throws[2].reason

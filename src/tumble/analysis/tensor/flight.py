@@ -214,10 +214,13 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
         fit = good & after
         if np.count_nonzero(fit) < 20:
             railed, there = int(np.count_nonzero(after & ~good)), int(np.count_nonzero(after))
-            # a range given too small (gyro_full_scale = 35 meant as rad/s, read as deg/s) leaves every sample at it
-            why = "" if 2 * railed < there else (
+            # a range given too small (gyro_full_scale = 35 meant as rad/s, read as deg/s) leaves every sample at it,
+            # and so do rates in deg/s read as rad/s; times in us read as ns leave no sample there at all
+            why = (f" (none in the 0.15 s after it: the log spans {t[-1] - t[0]:.3g} s; its times in another unit than "
+                   f"the header says?)") if there == 0 else "" if 2 * railed < there else (
                 f" ({railed} of its {there} samples there at the gyroscope's range: is the range too "
-                f"small? A device file's gyro_full_scale is in deg/s, --saturation in rad/s)")
+                f"small? A device file's gyro_full_scale is in deg/s, --saturation in rad/s; or the rates in deg/s "
+                f"under a rad/s header?)")
             return Window(0, 0, s, np.nan, np.nan, f"too few samples after the rotor start to find the flight{why}")
         A = np.concatenate([M[fit], np.broadcast_to(np.eye(3), (np.count_nonzero(fit), 3, 3))], axis=2).reshape(-1, 6)
         x = np.linalg.lstsq(A, throw.accel[fit].reshape(-1), rcond=None)[0]

@@ -11,12 +11,13 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...typing import FloatArray
 from .device import ROTOR_SPEED_RATIO
 from .throw import RESIDUAL_LIMIT, FlownFit
 from .throwlog import Throw
 
-__all__ = ["MAX_BIAS", "duplicate_throws", "joint_verdict", "residual_verdict", "speed_verdict", "throw_verdict"]
+__all__ = ["MAX_BIAS", "accel_hint", "duplicate_throws", "joint_verdict", "residual_verdict", "speed_verdict", "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
@@ -70,9 +71,39 @@ def speed_verdict(speed: float, calibrated: tuple[float, float] | None) -> str:
     if low / ROTOR_SPEED_RATIO <= speed <= high * ROTOR_SPEED_RATIO:
         return ""
     times = speed / high if speed > high else speed / low
+    why = ("its speed in another unit than the header says (rpm for rad/s is 9.5 times) or an eRPM turned with half "
+           "the poles (2 times)?") if speed > high else (
+        "the log stops before the rotor's spin-up (its idle is ~200 rad/s), or its speed is in another unit than the "
+        "header says (rev/s for rad/s is 0.16 times) or an eRPM turned with twice the poles (0.5 times)?")
     return (f"the rotor's top speed {speed:.3g} rad/s is {times:.2g} times the calibration throws' ({low:.4g}-{high:.4g} "
-            f"rad/s; at most {ROTOR_SPEED_RATIO:g} times beyond them): its speed in another unit than the header says "
-            f"(rpm for rad/s is 9.5 times, rev/s 0.16) or an eRPM turned with another pole count (2 times)?")
+            f"rad/s; at most {ROTOR_SPEED_RATIO:g} times beyond them): {why}")
+
+
+def accel_hint(throw: Throw) -> str:
+    """``""``, or a clause for a left-out throw's reason where its accelerometer reads in g what the
+    header says is m/s^2: never half of g in the whole log (the largest 5-sample running median of
+    its magnitude), though a hand holding and throwing the device pushes it with 9.8 m/s^2 and more
+    (the examples' throws: 14-22 m/s^2; in g they read 1.4-2.3). Read so, the free fall the flight
+    is found by starts in the hand, and the throw's residuals are blamed on the gyroscope.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.analysis.tensor.verdicts import accel_hint
+    >>> t = np.arange(100) / 4000.0
+    >>> accel_hint(Throw(t, np.zeros((100, 3)), np.zeros(100), np.full((100, 3), 0.6)))[:61]
+    '; its accelerometer reads at most 1.04 m/s^2 in the whole log'
+    """
+    if throw.accel is None:
+        return ""
+    from scipy.ndimage import median_filter
+
+    top = float(np.max(median_filter(np.linalg.norm(throw.accel, axis=1), size=5, mode="nearest")))
+    if top >= 0.5 * STANDARD_GRAVITY:
+        return ""
+    return (f"; its accelerometer reads at most {top:.3g} m/s^2 in the whole log, never the 9.8 of a hand holding the "
+            "device: in g under an m/s^2 header?")
 
 
 def residual_verdict(rms: float, noise: float) -> str:
