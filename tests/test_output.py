@@ -88,16 +88,18 @@ def _refused(*_, dir=None, prefix="", suffix="", **__):
                                   ["examples", "--copy", "{out}"]], ids=["folder", "file", "copy"])
 def test_a_folder_that_takes_no_new_file_is_named_as_the_user_wrote_it(tmp_path, monkeypatch, capsys, argv):
     """Seen as a user: ``--out /proc/r`` said "failed: /proc/.r.tmp-paxxzs8o: No such file or
-    directory", the name of a staging folder the user never asked for. The line names the output
-    the command was given (exit 1, nothing left behind)."""
+    directory", the name of a staging folder the user never asked for. The line names the option
+    and the output the command was given, as bad input (exit 2: a place the user named; nothing left
+    behind)."""
     out = tmp_path / "run"
     argv = [a.format(out=out) for a in argv]
     monkeypatch.setattr(tempfile, "mkdtemp", _refused)
     monkeypatch.setattr(tempfile, "mkstemp", _refused)
-    assert main(argv) == 1
+    assert main(argv) == 2
     err = capsys.readouterr().err
-    asked = argv[-1]
-    assert err == f"tumble: failed: {asked}: Permission denied; nothing written\n"
+    option, asked = argv[-2:]
+    assert err == (f"tumble: error: {option} {asked}: cannot be written there (Permission denied); give a place you "
+                   f"can write to; nothing written\n")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -297,3 +299,4 @@ def test_scenario_files_take_dt_and_times(tmp_path):
     path.write_text('body = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\ntimes = [1.0, 0.5]\n')
     with pytest.raises(ValueError, match=r"simulation.times must increase strictly"):
         load_scenario(path)
+

@@ -7,6 +7,7 @@ imported inside the commands so that ``tumble --help`` answers at once.
 
 from __future__ import annotations
 
+import errno
 import functools
 import os
 import signal
@@ -62,9 +63,9 @@ def _named_files_exist(args) -> None:  # noqa: ANN001
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``tumble`` console command; returns the exit status.
 
-    0: success; 2: bad input, or a missing optional extra named with its ``pip install`` line
-    (nothing written); 1: a failed computation or an I/O failure
-    (disk full, permissions: the path is named; nothing half-written); 130 / 143: interrupted
+    0: success; 2: bad input (an ``--out`` or ``--copy`` that cannot be written there among it), or a
+    missing optional extra named with its ``pip install`` line (nothing written); 1: a failed
+    computation or an I/O failure on the way (disk full: the path is named; nothing half-written); 130 / 143: interrupted
     by SIGINT / SIGTERM (nothing half-written). A reader that closes the pipe early
     (``tumble examples | head -2``) is a normal end: 0, quietly.
 
@@ -123,6 +124,10 @@ def main(argv: list[str] | None = None) -> int:
             return _reader_gone()
         if args.debug:
             raise
+        refused = _output_refused(args, exc)
+        if refused:
+            print(f"tumble: error: {refused}; nothing written{_kept(exc)}", file=sys.stderr)
+            return EXIT_USAGE
         where = f"{exc.filename}: " if exc.filename else ""
         print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written{_kept(exc)}", file=sys.stderr)
         return EXIT_FAILURE
@@ -165,6 +170,33 @@ def _reader_gone() -> int:
     os.dup2(devnull, sys.stdout.fileno())
     os.close(devnull)
     return EXIT_OK
+
+
+#: What creating an output where it cannot be made raises: a place the user named, so bad input (exit 2),
+#: not a write that failed on its way (a full disk, exit 1).
+_NOT_THERE = frozenset({errno.ENOENT, errno.ENOTDIR, errno.EACCES, errno.EPERM, errno.EROFS})
+
+
+def _output_refused(args, exc: OSError) -> str:  # noqa: ANN001
+    """The line for an output option (``--out``, ``--copy``) naming a place that cannot be written,
+    or ``""``: the error's path is that option's value or under it (a sweep's ``DIR.resume``).
+
+    Examples
+    --------
+    >>> import argparse, errno
+    >>> from tumble.cli import _output_refused
+    >>> exc = FileNotFoundError(errno.ENOENT, "No such file or directory", "/proc/x.resume")
+    >>> _output_refused(argparse.Namespace(out="/proc/x"), exc)
+    '--out /proc/x: cannot be written there (No such file or directory: /proc/x.resume); give a place you can write to'
+    """
+    if exc.errno not in _NOT_THERE or not exc.filename:
+        return ""
+    for option in ("out", "copy"):
+        value = getattr(args, option, None)
+        if isinstance(value, str) and value and os.fspath(exc.filename).startswith(value):
+            what = exc.strerror if os.fspath(exc.filename) == value else f"{exc.strerror}: {os.fspath(exc.filename)}"
+            return f"--{option} {value}: cannot be written there ({what}); give a place you can write to"
+    return ""
 
 
 def _kept(exc: BaseException) -> str:
