@@ -403,3 +403,48 @@ def test_a_sobol_sweep_of_other_than_a_power_of_two_is_said_to_be(tmp_path):
     said.clear()
     run_sweep(write(tmp_path, cases=16, chunk=4, sampling="sobol", name="b.toml"), tmp_path / "out16", warn=said.append)
     assert said == []
+
+
+def test_a_sweep_refuses_a_chunk_too_big_for_its_samples_before_it_starts_and_warns_of_axes_in_degrees(tmp_path):
+    """A walkthrough of the sweep docs (2026-12-03): samples = 100000 failed after the run began, naming
+    "the batch" and leaving DIR.resume behind; an axes spread of 5 (meant as degrees) ran silently,
+    the flip rate 98.7 % -> 44 %."""
+    import warnings
+
+    from tumble.ensemble.dispersions import Dispersion
+    from tumble.io.sweepfile import sweep_from_table
+    from tumble.mass import UnitSlipWarning
+
+    table = {"body": "t-handle", "sweep": {"cases": 2048}, "initial": {"omega": [0.1, 10.0, 0.1]},
+             "simulation": {"t_end": 20.0, "samples": 100000}}
+    with pytest.raises(ValueError, match=r"^simulation: 100000 samples a case with sweep.chunk = 1024 is 102,400,000 "
+                                         r"samples a chunk, more than 50,000,000; give chunk = 500 or less"):
+        sweep_from_table(table)
+    assert sweep_from_table({**table, "sweep": {"cases": 2048, "chunk": 500}}).chunk == 500
+    with pytest.warns(UnitSlipWarning, match=r'^target "axes": absolute spread = 5.0 rad is past 1 rad \(57 deg\), '
+                                             r"principal axes not known at all: is it in degrees\? Write radians "
+                                             r"\(5.0 deg is 0.08727 rad\)"):
+        Dispersion("axes", 5.0, relative=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Dispersion("axes", 0.02, relative=False)
+
+
+def test_a_long_sweep_says_after_its_first_chunk_how_long_the_rest_will_take(monkeypatch, capsys, tmp_path):
+    """67 million cases ran silently towards ~27 h (a walkthrough, 2026-12-03): after the first chunk,
+    a sweep whose rest takes more than LONG_SWEEP_S says how long, and how to stop and resume it."""
+    import tumble.commands.sweep as module
+
+    clock = iter([0.0, 1.5, 3.0, 4.5])
+    monkeypatch.setattr(module.time, "perf_counter", lambda: next(clock))
+    written = []
+    passed = module._timed(written.append, 1000, 1024, tmp_path / "o.resume")
+    passed({"case": [0]})
+    passed({"case": [1]})
+    assert written == [{"case": [0]}, {"case": [1]}]
+    err = capsys.readouterr().err
+    assert err == (f"note: a chunk of 1024 cases took 1.5 s: the other 999 take about 25 min more; Ctrl-C keeps the "
+                   f"finished chunks in {tmp_path / 'o.resume'}/, and the same command resumes\n")
+    clock = iter([0.0, 1.5])
+    module._timed(written.append, 10, 1024, tmp_path / "o.resume")({"case": [0]})   # 13.5 s more: nothing said
+    assert capsys.readouterr().err == ""

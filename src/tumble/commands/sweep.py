@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -141,6 +142,44 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     return data
 
 
+#: A sweep whose first chunk says the rest will take longer than this (s) says so, with how to stop it.
+LONG_SWEEP_S = 120.0
+
+
+def _timed(write: Callable[[dict], object], chunks: int, size: int, folder: Path) -> Callable[[dict], None]:
+    """``write`` for each chunk's columns; after the first, a note on stderr when the ``chunks`` to
+    compute will take more than :data:`LONG_SWEEP_S` at its pace (a walkthrough's 67 million cases
+    ran silently towards ~27 h)."""
+    start, seen = time.perf_counter(), [0]
+
+    def passed(columns: dict) -> None:
+        write(columns)
+        seen[0] += 1
+        spent = time.perf_counter() - start
+        left = (chunks - 1) * spent
+        if seen[0] == 1 and left > LONG_SWEEP_S:
+            print(f"note: a chunk of {size} cases took {spent:.2g} s: the other {chunks - 1:,} take about "
+                  f"{_duration(left)} more; Ctrl-C keeps the finished chunks in {folder}/, and the same command "
+                  "resumes", file=sys.stderr)
+
+    return passed
+
+
+def _duration(seconds: float) -> str:
+    """``seconds`` as a reader says it: ``"3 min"``, ``"27 h"``.
+
+    Examples
+    --------
+    >>> from tumble.commands.sweep import _duration
+    >>> _duration(200.0), _duration(97000.0), _duration(4e6)
+    ('3.3 min', '27 h', '46 days')
+    """
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= 2 * size or unit == "min":
+            return f"{seconds / size:.2g} {unit}" if seconds / size < 10 else f"{seconds / size:.0f} {unit}"
+    return f"{seconds:.0f} s"
+
+
 def _run(parsed: SweepFile, path, out: Path, store: ChunkFolder, workers, scheduler, argv, figure) -> dict:
     """:func:`run_sweep` under the resume folder's lock."""
     resumed = sum(store.has(k) for k in range(store.chunks))
@@ -151,7 +190,8 @@ def _run(parsed: SweepFile, path, out: Path, store: ChunkFolder, workers, schedu
             tables = CaseTables(stage)
             try:
                 summary = summarize(run_chunks(sweep, chunk=parsed.chunk, store=store, backend=backend),
-                                    sweep.ensemble.seed, sweep.criterion, on_chunk=tables)
+                                    sweep.ensemble.seed, sweep.criterion,
+                                    on_chunk=_timed(tables, store.chunks - resumed, parsed.chunk, store.folder))
             finally:
                 tables.close()
             settings = sweep.settings

@@ -33,20 +33,24 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties, principal_frame
+from ..mass import INERTIA_RTOL, PRESETS, Body, MassProperties, UnitSlipWarning, principal_frame
 from ..typing import ArrayLike
 from ._part_fields import _NOT_NUMBERS, _is_number, _perturb, _replace, _unit, _width
 from .sampling import DISTRIBUTIONS, deviates
 
-__all__ = ["TARGETS", "BodySampler", "Dispersion", "Sampled"]
+__all__ = ["MAX_AXES_SPREAD", "TARGETS", "BodySampler", "Dispersion", "Sampled"]
 
 #: What a dispersion can act on.
 TARGETS = ("preset", "part", "moments", "axes")
+#: The largest spread of ``target = "axes"`` taken without a word (rad, ~57 deg): past it the axes are
+#: not known at all, and a spread in degrees read as radians is likelier.
+MAX_AXES_SPREAD = 1.0
 
 
 @dataclass(frozen=True)
@@ -116,6 +120,10 @@ class Dispersion:
             raise ValueError("target 'moments' takes a relative spread only (a fraction of each moment)")
         if self.target == "axes" and self.relative:
             raise ValueError("target 'axes' takes an absolute spread only (rad, the small rotation's size)")
+        if self.target == "axes" and s > MAX_AXES_SPREAD:  # 5 meant as 5 deg turned the axes anywhere: 98.7 % -> 44 %
+            warnings.warn(f'target "axes": absolute spread = {s!r} rad is past {MAX_AXES_SPREAD:g} rad '
+                          f"({math.degrees(MAX_AXES_SPREAD):.0f} deg), principal axes not known at all: is it in "
+                          f"degrees? Write radians ({s!r} deg is {math.radians(s):.4g} rad)", UnitSlipWarning, stacklevel=3)
 
     @property
     def label(self) -> str:

@@ -55,6 +55,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dynamics.batch import MAX_BATCH_VALUES
 from ..dynamics.simulate import sample_times
 from ..ensemble import (
     DEFAULT_CHUNK,
@@ -308,13 +309,18 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     ensemble = _in("sweep", lambda: Ensemble(bodies, rates, **{k: v for k, v in sweep.items() if k != "chunk"}))
     times = sim.get("times")
     t_end = sim.get("t_end", None if times is not None else DEFAULT_T_END)
-    _in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))
+    n = len(_in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))[0])
     settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
                                                       method=sim.get("method"), torque=torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE),
                                                       step=sim.get("step")))
     chunk = sweep.get("chunk", DEFAULT_CHUNK)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise ValueError(f"sweep: chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
+    batch = min(chunk, ensemble.cases)  # a chunk's cases run as one batch: its samples are held at once
+    if batch * n > MAX_BATCH_VALUES:
+        raise ValueError(f"simulation: {n} samples a case with sweep.chunk = {chunk} is {batch * n:,} samples a chunk, more "
+                         f"than {MAX_BATCH_VALUES:,}; give chunk = {max(1, MAX_BATCH_VALUES // n)} or less (it changes "
+                         f"no result) or fewer samples")
     result = Sweep(ensemble, settings, _criterion(tables["criterion"]))
     return SweepFile(result, name, chunk, tuple((str(f), file_sha256(f)) for f in files), dict(data))
 
