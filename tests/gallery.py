@@ -131,4 +131,8 @@ def code(*functions) -> str:
     """The source of ``functions``, verbatim, as a fenced block, headed by the file they are in."""
     files = sorted({Path(inspect.getsourcefile(f)).name for f in functions})
     source = "\n\n".join(textwrap.dedent(inspect.getsource(f)).rstrip() for f in functions)
-    return f"**Code** (`tests/{', tests/'.join(files)}`):\n\n```python\n{source}\n```\n"
+    where = ", ".join(f"`tests/{f}`" for f in files)
+    run = " ".join(f"tests/{f}" for f in files)
+    return (f"**Code**, verbatim from {where} (the module's constants and `tests/gallery.py`'s helpers are not shown "
+            f"and are not part of tumble: in a checkout, `make .venv/.tumble-test && .venv/bin/python -m pytest {run}` "
+            f"runs it and checks this page):\n\n```python\n{source}\n```\n")

@@ -308,3 +308,17 @@ def test_the_offline_rule_refuses_and_records_every_outside_request(new_page):
     assert watched.page.evaluate("[document.images[0].naturalWidth, document.images[1].naturalWidth]") == [0, 1]
     assert watched.outside == ["http://example.invalid/a.png"]
     watched.outside.clear()  # seen: the fixture would fail the test for it
+
+
+def test_a_run_with_more_samples_than_frames_is_told_a_frame_a_sample(tmp_path, capsys):
+    """docs/page.md's long run (4001 samples over 1000 s) at --frames 2000 was told "at most about 526 s
+    with --frames 2000", and at 500 s the note came back (frames two or three samples apart, 4 rad): the
+    advice adds --samples 2000 (a frame a sample), and following it, no note (a walkthrough, 2026-12-03)."""
+    long_run = str(EXAMPLES / "long_run_geometric.toml")
+    assert main(["view", long_run, "--frames", "2000", "--out", str(tmp_path / "a.html")]) == 0
+    err = capsys.readouterr().err
+    assert "with --frames 2000 and --samples 2000)" in err
+    t_end = float(err.split("give a shorter --t-end (at most about ", 1)[1].split(" s")[0])
+    assert main(["view", long_run, "--frames", "2000", "--samples", "2000", "--t-end", str(t_end),
+                 "--out", str(tmp_path / "b.html")]) == 0
+    assert "note:" not in capsys.readouterr().err

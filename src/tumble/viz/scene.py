@@ -265,5 +265,6 @@ def frames_advice(t: np.ndarray, omega: np.ndarray) -> str:
     if frames <= MAX_FRAMES:
         return f"give --frames {frames}{f' and --samples {samples}' if samples > n else ''} or more"
     span = float(t[-1] - t[0]) * (MAX_FRAMES - 1) / ((n - 1) * per_sample / MAX_FRAME_TURN)  # the turn: ~ span
+    # a frame a sample: more samples than frames leave uneven gaps of two or three samples between them
     return (f"the page holds at most {MAX_FRAMES} frames: give a shorter --t-end (at most about {span:.3g} s with "
-            f"--frames {MAX_FRAMES}{f' and --samples {MAX_FRAMES}' if n < MAX_FRAMES else ''})")
+            f"--frames {MAX_FRAMES}{f' and --samples {MAX_FRAMES}' if n != MAX_FRAMES else ''})")
