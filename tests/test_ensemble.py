@@ -263,6 +263,9 @@ def test_bad_designs_are_refused_in_one_line(kwargs, message):
 def test_bad_rates_are_refused_in_one_line():
     with pytest.raises(ValueError, match=r"^initial rates need omega = \[w1, w2, w3\] \(rad/s\) or a grid of them, not both$"):
         InitialRates(omega=(1, 2, 3), grid=([1], [2], [3]))
+    with pytest.raises(ValueError, match=r"^initial rates need omega = \[w1, w2, w3\] \(rad/s\) or a grid of them, and "
+                                         r"neither is given$"):
+        InitialRates()
     with pytest.raises(ValueError, match=r"^frame = 'world' is unknown; allowed: principal, design$"):
         InitialRates(omega=(1, 2, 3), frame="world")
     with pytest.raises(ValueError, match=r"^grid\[1\] = \[\] must be a non-empty list of rates \(rad/s\)$"):

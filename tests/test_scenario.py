@@ -141,3 +141,14 @@ def test_failure_midway_leaves_no_half_written_file(tmp_path, monkeypatch, capsy
 def test_simulate_help_has_an_example():
     proc = subprocess.run([sys.executable, "-m", "tumble", "simulate", "--help"], capture_output=True, text=True)
     assert proc.returncode == 0 and "Examples: tumble simulate" in proc.stdout
+
+
+def test_both_samples_and_dt_in_a_file_name_the_files_keys(tmp_path):
+    """'give samples or dt, not both' named neither the table nor the file's keys (a walkthrough, 2026-12-03)."""
+    from tumble.io.scenario import load_scenario
+
+    path = tmp_path / "both.toml"
+    path.write_text('[body]\npreset = "t-handle"\n[initial]\nomega = [0.1, 10, 0.1]\n'
+                    "[simulation]\nt_end = 1.0\nsamples = 10\ndt = 0.1\n")
+    with pytest.raises(ValueError, match=r"both.toml: give simulation.samples or simulation.dt, not both$"):
+        load_scenario(path)

@@ -76,7 +76,7 @@ def test_a_damper_scenario_ends_in_the_flat_spin(tmp_path):
         ("[initial.orbit_frame]\npitch = 0.1\n", "initial.orbit_frame needs the orbit"),
         (GG + "[initial]\nomega = [1, 0, 0]\n[initial.orbit_frame]\n", "give omega \\(and frame\\) or \\[initial.orbit_frame\\], not both"),
         (GG + "[initial.orbit_frame]\nspin = 1\n", "initial.orbit_frame: unknown key 'spin'"),
-        ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 0.01\n", "damper: missing key 'damping'"),
+        ("[initial]\nomega = [1, 0, 0]\n[damper]\ninertia = 0.01\n", "damper: missing key 'damping' \\(the viscous coupling, N m s: >= 0\\)"),
         ('[[torque]]\nvector = [0, 0, 1]\n[[torque]]\nkind = "gravity_gradient"\n[initial]\nomega = [1, 0, 0]\n',
          "torque\\[1\\]: missing key 'orbit_period'"),
         ('[[torque]]\nvector = [0, 0, 1]\n[[torque]]\nvector = [0, 1]\n[initial]\nomega = [1, 0, 0]\n',

@@ -101,10 +101,12 @@ TENSOR_BAD = {
 
 
 def test_a_mass_beyond_the_bound_is_quoted_as_written(tmp_path, capsys):
-    """'--mass 482' (grams for kilograms) said "--mass = 482.0 is beyond 100 kg" (seen 2026-12-02)."""
+    """'--mass 482' (grams for kilograms) said "--mass = 482.0 is beyond 100 kg" (seen 2026-12-02), then
+    without a word of grams (2026-12-03)."""
     dev, thr = _files(tmp_path)
     code, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "482", "--out", str(tmp_path / "out"))
-    assert code == 2 and err.startswith("tumble: error: --mass = 482 is beyond 100 kg")
+    assert code == 2 and err == ("tumble: error: --mass = 482 kg is beyond 100 kg, more than anything thrown by hand: "
+                                 "in grams? (482 g is 0.482 kg)\n")
     assert not (tmp_path / "out").exists()
 
 

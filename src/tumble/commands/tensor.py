@@ -35,14 +35,13 @@ import numpy as np
 
 from ..analysis.tensor import Device, NoThrowError, fit_tensor
 from ..analysis.tensor.calibrate import calibrate
-from ..analysis.tensor.device import MAX_THROWN_MASS
+from ..analysis.tensor.device import check_thrown_mass
 from ..io.devicefile import load_calibration, load_device, write_device
 from ..io.inertial import mjcf_inertial, urdf_inertial
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
 from ..io.tensorfolder import THROWS_FILE, throw_series, write_throw_series
 from ..io.throwfile import load_throw, read_throw
-from ..validation import check_positive
 
 __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
 
@@ -216,7 +215,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     --mass = -1.0 must be a positive finite number (kg)
     """
     out = check_output_dir(out)
-    mass = check_positive("--mass", mass, "kg", at_most=MAX_THROWN_MASS)
+    mass = check_thrown_mass("--mass", mass)
     dev, _ = load_device(device)
     missing = _missing_calibration(dev)
     if missing:

@@ -76,7 +76,8 @@ class InitialRates:
         if not isinstance(self.frame, str) or self.frame not in FRAMES:
             raise ValueError(f"frame = {self.frame!r} is unknown; allowed: {', '.join(FRAMES)}")
         if (self.grid is None) == (self.omega is None):
-            raise ValueError("initial rates need omega = [w1, w2, w3] (rad/s) or a grid of them, not both")
+            raise ValueError("initial rates need omega = [w1, w2, w3] (rad/s) or a grid of them, " +
+                             ("not both" if self.grid is not None else "and neither is given"))
         if self.omega is not None:
             object.__setattr__(self, "omega", check_vector("omega", self.omega, "rad/s"))
         spread = check_vector("spread", self.spread, "rad/s")

@@ -227,7 +227,8 @@ def scenario_from_table(data: dict, *, base_dir: Path | None = None, name: str =
     if tables["damper"]:
         missing = sorted(set(_SECTIONS["damper"].names()) - set(tables["damper"]))
         if missing:
-            raise ValueError(f"damper: missing key {missing[0]!r}")
+            key = _SECTIONS["damper"].key(missing[0])
+            raise ValueError(f"damper: missing key {missing[0]!r} ({key.doc}, {key.unit}: {key.allowed_text()})")
         try:
             damper = SphericalDamper(**tables["damper"])
         except ValueError as exc:
@@ -304,6 +305,8 @@ def _validate(s: Scenario, options=()) -> None:
             if message.startswith(old):
                 message = new + message[len(old):]
                 break
+        else:  # the one message that names two arguments
+            message = message.replace("give samples or dt", f"give {keys['samples']} or {keys['dt']}", 1)
         raise ValueError(message) from None
 
 

@@ -33,7 +33,8 @@ from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_positive, check_vectors, short_repr
 
 __all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_THROWN_MASS", "ROTOR_SPEED_RATIO",
-           "Device", "Proof", "axes_matrix"]
+           "Device", "Proof", "axes_matrix",
+           "check_thrown_mass"]
 
 #: The heaviest device, kg: it is thrown by hand (a value beyond it is a unit slip).
 MAX_DEVICE_MASS = 10.0
@@ -48,6 +49,27 @@ MAX_THROWN_MASS = 100.0
 #: device's throws (docs/tensor.md), a battery's sag slows an open-loop motor by ~10-20 %; rpm
 #: read as rad/s is 9.5 times, an eRPM turned with half or twice the poles 2 times.
 ROTOR_SPEED_RATIO = 1.5
+def check_thrown_mass(field: str, value: object) -> float:
+    """An object's or a proof's mass, kg: positive and at most :data:`MAX_THROWN_MASS`; beyond it, a
+    mass in grams is likelier, and the message says so.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.device import check_thrown_mass
+    >>> check_thrown_mass("--mass", 0.482)
+    0.482
+    >>> check_thrown_mass("--mass", 482)
+    Traceback (most recent call last):
+    ...
+    ValueError: --mass = 482 kg is beyond 100 kg, more than anything thrown by hand: in grams? (482 g is 0.482 kg)
+    """
+    mass = check_positive(field, value, "kg")
+    if mass > MAX_THROWN_MASS:
+        raise ValueError(f"{field} = {value!r} kg is beyond {MAX_THROWN_MASS:g} kg, more than anything thrown by hand: "
+                         f"in grams? ({value!r} g is {mass / 1000:g} kg)")
+    return mass
+
+
 #: The signed axes ``Device.sensor_axes`` may name: an axis of the log, ``-`` for its opposite.
 AXIS_NAMES = ("x", "-x", "y", "-y", "z", "-z")
 _AXES_ALLOWED = ('3 of "x", "-x", "y", "-y", "z", "-z", one for each of the sensor frame\'s x, y, z, '
@@ -437,7 +459,7 @@ class Proof:
     inertia: Matrix3
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", check_positive("proof.mass", self.mass, "kg", at_most=MAX_THROWN_MASS))
+        object.__setattr__(self, "mass", check_thrown_mass("proof.mass", self.mass))
         object.__setattr__(self, "inertia", _tensor("proof.inertia", self.inertia))
         J = float(np.max(np.linalg.eigvalsh(self.inertia)))
         if math.sqrt(J / self.mass) > MAX_DEVICE_SIZE:  # thrown by hand with the device: kg cm^2 read as kg m^2

@@ -25,9 +25,8 @@ from typing import Any
 import numpy as np
 
 from ...typing import FloatArray
-from ...validation import check_positive
 from .. import _display
-from .device import MAX_THROWN_MASS, Device
+from .device import Device, check_thrown_mass
 from .throwlog import Throw
 from .estimate import MassEstimate, mass_estimate, not_physical, subtract_body, tensor_of, vector_of
 from .sensors import SensorErrors, distortion_coefficients
@@ -207,7 +206,7 @@ def fit_tensor(throws: Sequence[Throw], device: Device, mass: float, *, saturati
             isinstance(x, (str, os.PathLike)) for x in throws):
         raise ValueError("throws are Throw objects, not files' names: read each log with "
                          "tumble.io.throwfile.read_throw(path, device)")
-    mass = check_positive("mass", mass, "kg", at_most=MAX_THROWN_MASS)
+    mass = check_thrown_mass("mass", mass)
     if not isinstance(device, Device):
         raise ValueError(f"device must be a Device, got {type(device).__name__}")
     if not device.calibrated:
