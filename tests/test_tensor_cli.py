@@ -95,6 +95,12 @@ TENSOR_BAD = {
     "headerless nan": (None, _rows(3) + "0.1,0,0,0,nan,0,0,0\n", "0.5",
                        "o1.csv, line 4, column 5: column 5 = nan is not a finite number (rad/s)\n"),
     "too few samples": (None, HEADER + _rows(5), "0.5", "o1.csv: t must be a list of at least"),
+    # what Throw refuses by a sample's index, said at the file's line too (a walkthrough, 2026-12-03)
+    "a time that jumps": (None, HEADER + _rows(30) + "# a comment\n" + _rows(30).replace("0.00", "5.00"), "0.5",
+                          "o1.csv, line 33: t[30] = 5.0 s comes 4.99 s after the sample before it"),
+    "a rotor beyond any": (None, HEADER + _rows(30) + "0.0075,0.1,5.0,0.2,2e5,0.0,0.0,0.0\n" + "".join(
+                               _rows(40).splitlines(keepends=True)[31:]), "0.5",
+                           "o1.csv, line 32: rotor[30] = 200000.0 (rad/s) is beyond any sensor's range"),
     "negative object mass": (None, None, "-2", "--mass = -2 must be a positive finite number (kg)"),
     "object mass as text": (None, None, "heavy", "--mass = heavy must be a positive finite number (kg)"),
 }

@@ -213,7 +213,7 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
     t = rows[:, 0].copy()
     _check_order(t, lines, label)
     samples = {"t": t, "omega": rows[:, 1:4].copy(), "rotor": rows[:, 4].copy(),
-               "accel": rows[:, 5:8].copy() if len(columns) == 8 else None}
+               "accel": rows[:, 5:8].copy() if len(columns) == 8 else None, "line": [no for no, _ in lines]}
     return samples, ThrowRead(label, tuple(names), tuple(units), ignored, len(t))
 
 
@@ -247,9 +247,11 @@ def load_throw(path: str | os.PathLike[str], device: Device | None = None) -> tu
     try:
         throw = Throw(t=samples["t"], omega=samples["omega"], rotor=samples["rotor"], accel=samples["accel"],
                       input=label)
-    except ValueError as exc:  # "throw A1.csv omega ...": said as the file's
+    except ValueError as exc:  # "throw A1.csv omega ...": said as the file's, a sample's index with its line
         message = str(exc).removeprefix(f"throw {label} ").removeprefix("throw ")
-        raise ValueError(f"{label}: {message}") from None
+        at = re.match(r"(t|omega|rotor|accel)\[(\d+)\]", message)
+        where = f", line {samples['line'][int(at.group(2))]}" if at and samples.get("line") is not None else ""
+        raise ValueError(f"{label}{where}: {message}") from None
     return throw, read
 
 
