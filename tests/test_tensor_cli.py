@@ -539,3 +539,23 @@ def test_a_phones_recording_and_a_throws_log_each_name_the_command_that_reads_th
     assert code == 1 and err.count("\n") == 1, err
     assert "(its rotor column says it is a throw of the flywheel device: 'tumble tensor' fits those); nothing written" in err
     assert not (tmp_path / "t").exists() and not (tmp_path / "f").exists()
+
+
+def test_a_log_cut_in_its_last_line_loses_that_line_only(tmp_path, capsys):
+    """A logger that stops in flight can leave its last row half written; the whole log was refused
+    ("line 819: 2 columns; expected 8", a walkthrough, 2026-12-03). That row is left out with one
+    warning line; a short row elsewhere is still refused."""
+    import warnings
+
+    from tumble.io.throwfile import CutLogWarning
+
+    dev, thr = _files(tmp_path, throw=HEADER + _rows(40) + "0.01,0.1,5")
+    with pytest.warns(CutLogWarning, match=r"o1.csv, line 42: the last line holds 3 of 8 columns, a log cut while it "
+                                           r"was written: left out$"):
+        assert read_throw(thr).samples == 40
+    _, _, err = _cli(capsys, "tensor", str(thr), "--device", str(dev), "--mass", "0.5", "--out", str(tmp_path / "o"))
+    assert err.startswith(f"warning: {thr}, line 42: the last line holds 3 of 8 columns")
+    _, mid = _files(tmp_path, throw=HEADER + _rows(20) + "0.01,0.1,5\n" + _rows(40)[-800:])
+    with warnings.catch_warnings(), pytest.raises(ValueError, match=r"o1.csv, line 22: 3 columns; expected 8"):
+        warnings.simplefilter("error")
+        read_throw(mid)
