@@ -86,7 +86,7 @@ TENSOR_BAD = {
     "not a number": (None, HEADER + _rows(3) + "0.1,abc,0,0,0,0,0,0\n", "0.5", "o1.csv, line 5, column 2: 'abc' is not a number"),
     "time goes back": (None, HEADER + _rows(3) + "0.0001,0,0,0,0,0,0,0\n", "0.5",
                        "o1.csv, line 5: time 0.0001 s goes back before the time 0.0005 s of line 4"),
-    "short row": (None, HEADER + _rows(3) + "0.1,0,0\n", "0.5", "o1.csv, line 5: 3 columns; expected 8"),
+    "short row": (None, HEADER + _rows(3) + "0.1,0,0\n0.2,0,0,0,0,0,0,0\n", "0.5", "o1.csv, line 5: 3 columns; expected 8"),
     # a logger's nan or inf named where the file has it (it was "omega[300, 0] = nan", a sample's index)
     "a rate logged nan": (None, HEADER + _rows(3) + "0.1,nan,0,0,0,0,0,0\n", "0.5",
                           "o1.csv, line 5, column 2: wx (rad/s) = nan is not a finite number\n"),
