@@ -448,3 +448,25 @@ def test_a_long_sweep_says_after_its_first_chunk_how_long_the_rest_will_take(mon
     clock = iter([0.0, 1.5])
     module._timed(written.append, 10, 1024, tmp_path / "o.resume")({"case": [0]})   # 13.5 s more: nothing said
     assert capsys.readouterr().err == ""
+
+
+def test_a_sweep_takes_the_tolerances_a_scenario_takes():
+    """A sweep's [simulation] refused rtol ("unknown key"), leaving no way to set a dop853 sweep's
+    accuracy (a walkthrough, 2026-12-03): rtol and atol are taken, run by every case and part of
+    the fingerprint a resumed sweep is matched by."""
+    import numpy as np
+
+    from tumble import t_handle
+    from tumble.ensemble import BodySampler, Ensemble, InitialRates
+    from tumble.io.sweepfile import sweep_from_table
+
+    table = {"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 10.0, 0.1]},
+             "simulation": {"t_end": 2.0, "samples": 5, "method": "dop853", "rtol": 1e-6, "atol": 1e-6},
+             "torque": {"kind": "constant", "vector": [0.0, 0.0, 0.01]}}
+    loose = sweep_from_table(table)
+    assert (loose.sweep.settings.rtol, loose.sweep.settings.atol) == (1e-6, 1e-6)
+    tight = sweep_from_table({**table, "simulation": {**table["simulation"], "rtol": 1e-12, "atol": 1e-12}})
+    assert loose.fingerprint() != tight.fingerprint()
+    inputs = Ensemble(BodySampler(t_handle()), InitialRates(omega=(0.1, 10.0, 0.1)), cases=2).inputs()
+    a, b = loose.sweep.settings.run(inputs), tight.sweep.settings.run(inputs)
+    assert 1e-9 < float(np.max(np.abs(a.omega - b.omega))) < 1e-3  # the tolerance reaches the integration

@@ -97,6 +97,9 @@ class RunSettings:
     step : float, optional
         Step of the fixed-step methods, s, positive and finite: needed with them (see the
         module docstring).
+    rtol, atol : float, optional
+        The adaptive methods' tolerances, as :func:`tumble.simulate_batch` takes them (the
+        method's defaults if not given).
 
     Raises
     ------
@@ -124,6 +127,8 @@ class RunSettings:
     method: str | None = None
     torque: object = None
     step: float | None = None
+    rtol: float | None = None
+    atol: float | None = None
 
     def __post_init__(self) -> None:
         if self.times is not None:
@@ -165,7 +170,7 @@ class RunSettings:
                                    method=end.method, torque_free=end.torque_free)
         return simulate_batch(inputs.moments, inputs.omega0, t_end=self.t_end, times=self.times,
                               samples=self.samples, attitude0=inputs.quat0, method=self.method,
-                              torque=self.torque, step=self.step)
+                              torque=self.torque, step=self.step, rtol=self.rtol, atol=self.atol)
 
 
 @dataclass(frozen=True)

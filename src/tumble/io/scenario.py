@@ -85,6 +85,10 @@ _METHOD = Key("method", "string", "", '"auto"', example='"dop853"', choices=ALLO
               doc="the integration method (auto: chosen from what the run has, and named in the output)")
 _STEP = Key("step", "number", "s", "(the method's)", example="0.001", low=0.0,
             doc="the largest step of a fixed-step or splitting method")
+_RTOL = Key("rtol", "number", "", "(the method's)", example="1e-12", low=2.22e-14, low_included=True, high=0.1,
+            doc="relative tolerance (auto, dop853, rk45, seed; rk4 and rk8 without a step: the step that meets it)")
+_ATOL = Key("atol", "number", "rad/s", "(the method's)", example="1e-12", low=0.0, high=0.1,
+            doc="absolute tolerance (relative to the spin for auto and dop853; the quaternion's components take it too)")
 #: The tables of a scenario file (without ``[control]``; a closed-loop run's are
 #: :data:`tumble.io.controlfile.CONTROL_FORMAT`'s) and their keys.
 SCENARIO_FORMAT = FileFormat("scenario", (
@@ -106,10 +110,7 @@ SCENARIO_FORMAT = FileFormat("scenario", (
         _T_END, _SAMPLES,
         Key("dt", "number", "s", example="0.01", low=0.0, doc="the sample interval, instead of samples"),
         _TIMES, _METHOD,
-        Key("rtol", "number", "", "(the method's)", example="1e-12", low=2.22e-14, low_included=True, high=0.1,
-            doc="relative tolerance (auto, dop853, rk45, seed; rk4 and rk8 without a step: the step that meets it)"),
-        Key("atol", "number", "rad/s", "(the method's)", example="1e-12", low=0.0, high=0.1,
-            doc="absolute tolerance (relative to the spin for auto and dop853; the quaternion's components take it too)"),
+        _RTOL, _ATOL,
         _STEP,
     ), "When to sample and how to integrate."),
     TORQUE_TABLE,

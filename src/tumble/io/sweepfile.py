@@ -74,7 +74,7 @@ from .bodyfile import body_from_table, body_path, mesh_files, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
-from .scenario import _BODY, _METHOD, _OMEGA, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END
+from .scenario import _ATOL, _BODY, _METHOD, _OMEGA, _RTOL, _SAMPLES, _STEP, _T_END, _TIMES, DEFAULT_T_END
 from .torquetables import TORQUE_TABLE, torque_of
 
 #: Where a residual dipole is taken: a file with a magnetic field.
@@ -136,7 +136,8 @@ SWEEP_FORMAT = FileFormat("sweep", (
             doc="instead of omega: the Cartesian product, case i at point i mod G"),
     ), "The nominal initial angular velocity, or a grid of them; ``omega`` or ``grid`` is required."),
     Table("[simulation]", (_T_END, _SAMPLES, replace(_TIMES, doc="the sample times, instead of t_end and samples"), _METHOD,
-                           _STEP), "When to sample and how to integrate each case (no dt: every case shares its times)."),
+                           _RTOL, _ATOL, _STEP),
+          "When to sample and how to integrate each case (no dt: every case shares its times)."),
     TORQUE_TABLE,
     Table("[criterion]", (
         Key("column", "string", required=True, example='"flips"', doc="a column of cases.csv, without its unit"),
@@ -197,7 +198,7 @@ class SweepFile:
                 "inputs": [h for _, h in self.sources], "file": self.settings,
                 "cases": ensemble.cases, "seed": ensemble.seed, "sampling": ensemble.sampling,
                 "method": settings.method, "step": settings.step, "t_end": settings.t_end, "samples": settings.samples,
-                "times": settings.times}
+                "times": settings.times, "rtol": settings.rtol, "atol": settings.atol}
 
 
 def _table(data: dict, section: str) -> dict:
@@ -312,7 +313,7 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
     n = len(_in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))[0])
     settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
                                                       method=sim.get("method"), torque=torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE),
-                                                      step=sim.get("step")))
+                                                      step=sim.get("step"), rtol=sim.get("rtol"), atol=sim.get("atol")))
     chunk = sweep.get("chunk", DEFAULT_CHUNK)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise ValueError(f"sweep: chunk = {chunk!r} must be a whole number >= 1 (cases per chunk)")
