@@ -26,6 +26,7 @@ import numpy as np
 
 from ..dynamics import simulate_batch
 from ..dynamics.batch import BatchTrajectory
+from ..dynamics.engine.stepsize import check_atol, check_rtol
 from ..dynamics.methods.integrators import get_method
 from ..dynamics.methods.names import AUTO
 from ..dynamics.models.torques import as_torque
@@ -139,6 +140,10 @@ class RunSettings:
         if self.step is not None and (isinstance(self.step, bool) or not isinstance(self.step, (int, float))
                                       or not math.isfinite(self.step) or self.step <= 0):
             raise ValueError(f"step = {self.step!r} must be a positive finite number (s)")
+        if self.rtol is not None:
+            object.__setattr__(self, "rtol", check_rtol("rtol", self.rtol))
+        if self.atol is not None:
+            object.__setattr__(self, "atol", check_atol("atol", self.atol))
         if as_torque(self.torque) is not None and not spec.supports_torque:
             raise ValueError(f"method = {self.method!r} cannot take a torque")
         if spec.fixed_step and self.step is None:
