@@ -311,3 +311,21 @@ def test_an_estimator_started_with_an_attitude_spread_past_pi_is_refused(tmp_pat
     assert main(["simulate", str(tmp_path / "wide.toml"), "--t-end", "5", "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "attitude_sigma = 5.0 is beyond 3.14159 rad" in err, err
+
+
+def test_wheels_heavier_than_the_body_are_refused():
+    """A walkthrough of docs/control.md (2026-12-03): wheels of 0.5 kg m^2 in a body of 0.04 ran with
+    exit 0, the kinetic energy growing 130 times with the motors doing negative work (the body less its
+    wheels has a negative moment). Refused, in the file's words and in simulate_controlled's."""
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.controllers import MRPFeedback
+    from tumble.dynamics.models.actuators import ReactionWheels
+
+    with pytest.raises(ValueError, match=r"^actuators.wheels: inertia = \[0.5, 0.5, 0.5\] kg m\^2 is more than the body's "
+                                         r"moments .* hold: the body less its wheels would have a moment of -0\.\d+ kg m\^2"):
+        _build(POINT, "actuators", wheels={"inertia": 0.5, "max_torque": 2e-3})
+    moments = [0.0067, 0.0419, 0.0419]
+    big = ReactionWheels(np.eye(3), inertia=0.5, max_torque=2e-3)
+    with pytest.raises(ValueError, match=r"^wheels.inertia = \[0.5, 0.5, 0.5\] kg m\^2 is more than the body's moments"):
+        simulate_controlled(moments, [0.0, 0.0, 0.01], t_end=1.0, wheels=big,
+                            controller=MRPFeedback(K=1e-3, P=6e-3, period=0.5, moments=moments, wheels=big))

@@ -232,4 +232,8 @@ def test_wheels_turned_past_their_limit_by_the_body_are_said_to_be(tmp_path, cap
     assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 0
     top = json.loads((tmp_path / "out" / "summary.json").read_text())["max_wheel_speed"]
     assert top > 630.0
-    assert f"wheels up to {top:.4g} rad/s, past their 630 rad/s limit" in capsys.readouterr().out
+    assert f"wheels up to {top:.6g} rad/s, past their 630 rad/s limit (the body's own turning" in capsys.readouterr().out
+    # started there (speed0 past max_speed, issue 27's case): the line says the input put them there
+    path.write_text(path.read_text().replace("[actuators.wheels]", "[actuators.wheels]\nspeed0 = [700.0, 0.0, 0.0]", 1))
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out2")]) == 0
+    assert "wheels started at up to 700 rad/s, past their 630 rad/s limit (speed0;" in capsys.readouterr().out

@@ -86,8 +86,12 @@ def simulate_control(args, scenario, out) -> int:
         else:  # a run that ends before it detumbles says so, rather than nothing
             line += f", not below the threshold {summary['threshold']:.3g} rad/s by the end: not detumbled"
         limit = None if scenario.wheels is None else float(max(scenario.wheels.max_speed))
-        if limit is not None and summary["max_wheel_speed"] > limit:  # speeds relative to a tumbling body
-            line += (f", wheels up to {summary['max_wheel_speed']:.4g} rad/s, past their {limit:.4g} rad/s limit (the "
+        started = 0.0 if scenario.speed0 is None else max(abs(x) for x in scenario.speed0)
+        if limit is not None and started > limit:  # the input put them there; a motor brings them down (issue 27)
+            line += (f", wheels started at up to {started:.6g} rad/s, past their {limit:.6g} rad/s limit (speed0; "
+                     "beyond it a motor gives no outward torque)")
+        elif limit is not None and summary["max_wheel_speed"] > limit:  # speeds relative to a tumbling body
+            line += (f", wheels up to {summary['max_wheel_speed']:.6g} rad/s, past their {limit:.6g} rad/s limit (the "
                      f"body's own turning carries them there; beyond it a motor gives no outward torque)")
         if "knowledge_error_rms_deg" in summary:  # the pointing error beside it in deg too: one unit in one line
             pointing = (f" (pointing {math.degrees(summary['pointing_error_final']):.3g} deg)"

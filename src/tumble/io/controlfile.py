@@ -60,7 +60,7 @@ from ..dynamics.control.estimated import Estimated
 from ..dynamics.control.mission import DetumbleThenPoint
 from ..dynamics import TorqueModel
 from ..dynamics.methods.bounds import design_torque
-from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
+from ..dynamics.models.actuators import Magnetorquers, ReactionWheels, check_wheels
 from ..dynamics.models.orbit_gravity import gravity_gradient_of
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget
@@ -456,6 +456,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
                 raise ValueError(f"actuators.wheels: speed0 = {w['speed0']!r} must be {wheels.count} numbers (rad/s), "
                                  "one per wheel")
             speed0 = tuple(float(x) for x in s0)
+            check_wheels(body.principal_moments, wheels, inertia="inertia")
     except ValueError as exc:
         raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
     if mtq is not None and field is None:

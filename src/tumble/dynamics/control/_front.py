@@ -22,6 +22,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray
+from ..models.actuators import check_wheels
 from ...validation import check_moments, check_positive, check_rotation, check_vector, short_repr
 from ..engine.stepsize import check_atol, check_rtol
 from .bdot import BDot
@@ -70,6 +71,8 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     else:
         I, T, rtol, atol, period, y0 = _checked_raw(raw, t_end, rtol, atol, period, lone_rods, k)
         I, y0 = I.copy(), y0.copy()
+    if wheels is not None:
+        check_wheels(I, wheels)
     if period >= T:  # the samples are the control instants: two, and one command
         warnings.warn(f"controller.period = {period:g} s is not shorter than t_end = {T:g} s: the controller acts "
                       "once, at t = 0, and the run has two samples (a period in ms written as s?)", OneStepWarning,

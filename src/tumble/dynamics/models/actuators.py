@@ -39,7 +39,8 @@ from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import check_positive, check_vectors
 
-__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "rod_dipole_components", "wheel_torque"]
+__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "check_wheels", "rod_dipole_components",
+           "wheel_torque"]
 
 
 @dataclass(frozen=True)
@@ -427,3 +428,34 @@ class ReactionWheels:
                                         self.limit_cycle_speed), start=3):
             form[:, column] = value
         return form
+
+
+def check_wheels(moments: ArrayLike, wheels: ReactionWheels, *, inertia: str = "wheels.inertia") -> None:
+    """Refuse ``wheels`` that cannot be part of a body of principal ``moments`` (kg m^2); the message
+    names the field ``inertia`` as the caller's user wrote it.
+
+    The body's moments hold its wheels (Hughes, *Spacecraft Attitude Dynamics*, ch. 3: the
+    gyrostat's ``I``), so the body less its wheels' axial moments, ``I - sum_k J_k g_k g_k^T``, is
+    a body too: positive definite. A wheel of 0.5 kg m^2 in a 3U CubeSat of 0.04 kg m^2 (a unit
+    slip) made energy from nothing (4.5e-6 J to 6e-4 J, the motors doing -3e-4 J), exit 0. (A wheel
+    started past its ``max_speed`` is physical: its motor brings it down, issue 27.)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.dynamics.models.actuators import ReactionWheels, check_wheels
+    >>> rw = ReactionWheels(np.eye(3), inertia=1e-5)
+    >>> check_wheels([0.0067, 0.0419, 0.0419], rw)   # fine: nothing said
+    >>> check_wheels([0.0067, 0.0419, 0.0419], ReactionWheels(np.eye(3), inertia=0.5))
+    Traceback (most recent call last):
+    ...
+    ValueError: wheels.inertia = [0.5, 0.5, 0.5] kg m^2 is more than the body's moments [0.0067, 0.0419, 0.0419] kg m^2 hold: the body less its wheels would have a moment of -0.493 kg m^2; the body's moments include its wheels, each wheel's far below them (a moment in g cm^2?)
+    """
+    k = wheels.count
+    J = np.broadcast_to(np.asarray(wheels.inertia, float), (k,))
+    I = np.asarray(moments, float)
+    low = float(np.linalg.eigvalsh(np.diag(I) - (wheels.axes.T * J) @ wheels.axes)[0])
+    if not low > 0.0:
+        raise ValueError(f"{inertia} = {J.tolist()} kg m^2 is more than the body's moments {I.round(6).tolist()} kg m^2 "
+                         f"hold: the body less its wheels would have a moment of {low:.3g} kg m^2; the body's moments "
+                         "include its wheels, each wheel's far below them (a moment in g cm^2?)")
