@@ -270,7 +270,7 @@ def test_options_override_the_scenario_file(tmp_path, capsys):
         (["--dt", "0"], "--dt = 0 must be a positive"),
         (["--samples", "1"], "--samples = 1 must be a whole number from 2"),
         (["--method", "euler"], "--method = 'euler' is unknown"),
-        (["--dt", "0.1", "--samples", "5"], "give samples or dt, not both"),
+        (["--dt", "0.1", "--samples", "5"], "give --samples or --dt, not both"),
     ],
 )
 def test_bad_options_name_the_option(tmp_path, capsys, argv, pattern):
