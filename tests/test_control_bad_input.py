@@ -98,9 +98,21 @@ def test_an_empty_orbit_table_is_refused_not_read_as_no_orbit():
         control_scenario_from_table({**POINT, "orbit": {}}, body_from_table(BODY))
 
 
+#: The ISS's TLE of docs/control.md's example (examples/control/detumble_tle.toml), as published.
+ISS = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
+       "2 25544  51.6439 211.2001 0007417  17.6667  85.6398 15.50103472202482")
+
+
 @pytest.mark.parametrize(("tle", "message"), [
     ([1, 2], r"^orbit: tle = \[1, 2\] must be a list of the two lines of a TLE \(strings\)$"),
-    (["a", "b"], r"^orbit: tle\[0\] = 'a' must be the first line of a TLE \(a string of 69 characters\)$")])
+    (["a", "b"], r"^orbit: tle\[0\] = 'a' must be the first line of a TLE \(a string of 69 characters\)$"),
+    # a walkthrough (2026-12-03): sgp4 checks neither; an edited digit flew with exit 0, a space added failed
+    # with scipy's "`y` must contain only finite values"
+    ([ISS[0], ISS[1][:-1] + "9"], r"^orbit: tle\[1\]: checksum 9, its digits give 2: the line was changed after it "
+                                  r"was published \(give it exactly as published\)$"),
+    ([ISS[0].replace("25544U", "25544U "), ISS[1]], r"^orbit: tle\[0\] = '1 25544U  98067A .*' has 70 characters; the "
+                                                     r"first line of a TLE has 69 in fixed columns, starting with 1 "
+                                                     r"and ending with its checksum digit \(a space added or lost\?\)$")])
 def test_tle_lines_that_are_not_two_strings_are_named_by_the_file_key(tle, message):
     pytest.importorskip("sgp4")
     orbit = {"tle": tle, "field": "igrf"}

@@ -26,7 +26,7 @@ from tumble.dynamics.models.orbit_gravity import gravity_gradient_of
 ELLIPSE = KeplerOrbit(8000e3, 0.1, 0.9, raan=0.4, arg_perigee=0.3, mean_anomaly=0.2)
 TIMES = np.linspace(0.0, ELLIPSE.period, 37)
 ISS_2019 = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
-            "2 25544  51.6434 242.2052 0007185  10.4577  96.9855 15.50103472202482")
+            "2 25544  51.6434 242.2052 0007185  10.4577  96.9855 15.50103472202483")
 
 
 def _true_anomaly(orbit: KeplerOrbit, t: float) -> float:

@@ -244,6 +244,25 @@ class KeplerOrbit:
 
 
 
+def _check_tle_line(name: str, value: object, number: int) -> None:
+    """A TLE's line ``number`` (1 or 2) as NORAD's format fixes it: 69 characters in fixed columns,
+    starting with its number, the last its checksum (the sum of the digits of the first 68, each
+    ``-`` counting 1, modulo 10; CelesTrak, "FAQs: Two-Line Element Set Format"). sgp4 checks
+    neither: a TLE edited by hand (an inclination's digit, a space added) flew with exit 0, or
+    failed with scipy's "`y` must contain only finite values"."""
+    which = "first" if number == 1 else "second"
+    if not isinstance(value, str) or len(value.strip()) < 60:
+        raise ValueError(f"{name} = {value!r} must be the {which} line of a TLE (a string of 69 characters)")
+    line = value.strip()
+    if len(line) != 69 or line[0] != str(number) or not line[68].isdigit():
+        raise ValueError(f"{name} = {value!r} has {len(line)} characters; the {which} line of a TLE has 69 in fixed "
+                         f"columns, starting with {number} and ending with its checksum digit (a space added or lost?)")
+    checksum = sum(int(c) if c.isdigit() else c == "-" for c in line[:68]) % 10
+    if checksum != int(line[68]):
+        raise ValueError(f"{name}: checksum {line[68]}, its digits give {checksum}: the line was changed after it was "
+                         "published (give it exactly as published)")
+
+
 @dataclass(frozen=True, eq=False)
 class TLEOrbit:
     """An Earth orbit from a two-line element set, propagated by SGP4 (module docstring).
@@ -277,11 +296,8 @@ class TLEOrbit:
 
     def __post_init__(self) -> None:
         Satrec = optional_import("sgp4.api", "orbit", "a TLE orbit (TLEOrbit)").Satrec
-        for name in ("line1", "line2"):
-            value = getattr(self, name)
-            if not isinstance(value, str) or len(value.strip()) < 60:
-                raise ValueError(f"{name} = {value!r} must be the {'first' if name == 'line1' else 'second'} line of a TLE "
-                                 "(a string of 69 characters)")
+        for number, name in enumerate(("line1", "line2"), start=1):
+            _check_tle_line(name, getattr(self, name), number)
         try:
             sat = Satrec.twoline2rv(self.line1, self.line2)
         except (ValueError, IndexError) as exc:
