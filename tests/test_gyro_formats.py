@@ -225,3 +225,20 @@ def test_a_500_hz_irregular_recording_is_read_fitted_and_named_in_fit_json(tmp_p
     read = json.loads((out / "fit.json").read_text(encoding="utf-8"))["read"]
     assert read["time"] == {"column": "t (ms)", "unit": "ms"} and read["ignored"] == ["|omega|"]
     assert read["rows"] == len(rec.t) and abs(read["sample_rate_median_hz"] - 500.0) < 5.0
+
+
+@pytest.mark.parametrize(("header", "scale", "unit"), [("timestamp,gx,gy,gz", 1e3, "ms"), ("t,gx,gy,gz", 1e6, "us"),
+                                                       ("timestamp,gx,gy,gz", 1e9, "ns")])
+def test_a_time_in_another_unit_than_seconds_is_named_with_the_likely_one(header, scale, unit):
+    """A time column in ms with no unit (read as s) failed as "no usable flight among 357 found: 357 too
+    short", exit 1 (a walkthrough of docs/fitting.md, 2026-12-03): samples 10 s apart are no gyroscope's,
+    and the unit that puts them 10 ms apart is named."""
+    from tumble.io.gyrodata import parse_gyro_csv
+
+    t = (1.7e9 if unit == "ns" else 0.0) + np.arange(50) * 0.01
+    text = header + "\n" + "".join(f"{x * scale:.0f},0.1,0.2,0.3\n" for x in t)
+    name = header.split(",")[0]
+    with pytest.raises(ValueError, match=rf"^rec.csv: the time column '{name}', read in s, puts the samples "
+                                         rf"\S+ s apart .*; is it in {unit}\? Name its unit in the header: "
+                                         rf"'{name} \({unit}\)'$"):
+        parse_gyro_csv(text.encode(), "rec.csv")

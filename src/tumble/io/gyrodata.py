@@ -40,7 +40,7 @@ from ._delimited import _NUMBER, _check_order, _first_lines, _refuse_cell, _rows
 from .gyrocolumns import ColumnsRead, match_accel, match_header
 from .phyphox import ACCEL_CSV, TIME_CSV, _pick_csv, accel_gap, parse_accel_csv, parse_time_csv
 
-__all__ = ["MAX_GYRO_FILE_BYTES", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
+__all__ = ["MAX_GYRO_FILE_BYTES", "MAX_SAMPLE_INTERVAL", "GyroRecording", "load_recording", "parse_gyro_csv", "parse_gyro_table",
            "parse_recording_table", "read_gyro_csv", "read_recording"]
 
 #: The largest gyroscope file read, bytes (a day at 100 Hz is about 35 MB of text).
@@ -173,10 +173,31 @@ def parse_recording_table(raw: bytes, label: str) -> tuple[np.ndarray, np.ndarra
     if magnitude:
         _check_magnitude(omega, fifth, ulp, lines, label)
     _check_order(t, lines, label)
+    _check_sample_interval(t, names["time"], names["time_unit"], label)
     read = ColumnsRead(label, names["time"], names["time_unit"], tuple(names["rates"]), tuple(names["rate_units"]),
                        tuple(names["ignored"]), len(t), float(1.0 / np.median(np.diff(t))),
                        tuple(names.get("accel", ())), tuple(names.get("accel_units", ())))
     return t, omega, accel, read
+
+
+#: The longest median interval between a gyroscope's samples, s: phones sample at 50-500 Hz and
+#: loggers faster; a time in ms or us read as s is 1000 or 10^6 times longer (ms at 1 kHz or
+#: faster, read as s, is not caught).
+MAX_SAMPLE_INTERVAL = 1.0
+
+
+def _check_sample_interval(t: FloatArray, name: str, unit: str, label: str) -> None:
+    """Refuse times whose samples lie more than :data:`MAX_SAMPLE_INTERVAL` apart, naming the unit that
+    would put them 0.1 ms to 0.1 s apart: ``timestamp,gx,gy,gz`` in ms read as s found "357 flights,
+    357 too short" (a walkthrough of docs/fitting.md, 2026-12-03)."""
+    dt = float(np.median(np.diff(t)))
+    if dt <= MAX_SAMPLE_INTERVAL:
+        return
+    likely = next((u for u, f in (("ms", 1e-3), ("us", 1e-6), ("ns", 1e-9)) if 1e-4 <= dt * f <= 0.1), None)
+    bare = name.split("(")[0].split("[")[0].strip() or "t"
+    hint = f"; is it in {likely}? Name its unit in the header: '{bare} ({likely})'" if likely else ""
+    raise ValueError(f"{label}: the time column {name!r}, read in {unit}, puts the samples {dt:.3g} s apart "
+                     f"({1.0 / dt:.2g} Hz); a gyroscope samples tens to thousands of times a second{hint}")
 
 
 def _last_digit(cell: str) -> float:
