@@ -257,7 +257,7 @@ def test_a_recording_in_deg_s_read_as_rad_s_fails_naming_the_unit(tmp_path, caps
     path.write_text("t,wx,wy,wz\n" + "\n".join(",".join(f"{v:.6g}" for v in row) for row in rows) + "\n")
     assert main(["fit", str(path), "--out", str(tmp_path / "fit")]) == 1
     err = capsys.readouterr().err.splitlines()
-    assert err[0].startswith(f"warning: {path}; the rates reach ") and "are they in deg/s?" in err[0]  # at once
+    assert err[0].startswith(f"warning: {path}: the rates reach ") and "are they in deg/s?" in err[0]  # at once
     assert "are they in deg/s?" in err[-1]  # and in the failure
     path.write_text("t,wx (deg/s),wy (deg/s),wz (deg/s)\n" + path.read_text().split("\n", 1)[1])  # the unit named
     read = load_recording(path)
@@ -319,3 +319,19 @@ def test_a_racquet_and_a_phone_pooled_are_no_answer():
     assert len(own) >= 2 and np.all(own[:, 0] < 0.12) and abs(left.fit.ratios[0] - 0.20) < 0.01  # racquet, phone
     assert np.all(np.abs(fit.pooled.ratios - np.median(own, axis=0)) < 5 * fit.pooled.ratios_std)
     assert -1.0 <= fit.summary()["ratios_correlation"] <= 1.0
+
+
+def test_an_accelerometers_file_given_as_the_gyroscope_is_pointed_at(tmp_path, capsys):
+    """A phone's accelerometer on a table (9.81 on z) given as the gyroscope failed as "1 steady spin"
+    (a walkthrough of docs/fitting.md, 2026-12-03); the warning and the failure now name the likely cause."""
+    rng = np.random.default_rng(1)
+    t = np.arange(3000) * 0.01
+    a = np.array([0.01, -0.02, 9.81]) + rng.normal(0.0, 0.02, (3000, 3))
+    path = tmp_path / "table.csv"
+    path.write_text("t (s),x,y,z\n" + "".join(f"{x:.3f},{r[0]:.4f},{r[1]:.4f},{r[2]:.4f}\n" for x, r in zip(t, a)))
+    assert main(["fit", str(path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err.splitlines()
+    hint = ("|omega| stays within 0.5 of 9.81 in 100 % of the samples, as an accelerometer reads gravity at rest: is "
+            "this the accelerometer's file? Give the gyroscope's")
+    assert err[0] == f"warning: {path}: {hint}"
+    assert err[1].startswith("tumble: fit failed: ") and f"; {hint}; nothing written" in err[1]

@@ -179,7 +179,7 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
                              "recording once")
     for lab, r in zip(labels, recs):  # said at once, not only after a fit of some seconds fails
         if hint := unit_hint(r.omega):
-            print(f"warning: {lab}{hint}", file=sys.stderr)
+            print(f"warning: {lab}: {hint[2:]}", file=sys.stderr)
     several = len(paths) > 1
     label = labels[0] if not several else f"{len(paths)} recordings"
     t, omega, events = recs[0].t, recs[0].omega, list(recs[0].events)

@@ -40,6 +40,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...typing import ArrayLike, FloatArray
 from .adequacy import InadequateFitWarning, judge, judge_flights
 from .disagreement import outside_caveat, split_verdict
@@ -66,7 +67,8 @@ DEG_S_HINT_RATE = math.radians(4000.0)
 
 
 def unit_hint(omega: FloatArray) -> str:
-    """The hint that rates past :data:`DEG_S_HINT_RATE` may be in deg/s, or ``""`` below it.
+    """The hint that rates past :data:`DEG_S_HINT_RATE` may be in deg/s, or that rates near 9.81 in most samples are an
+    accelerometer's (gravity at rest); or ``""``.
 
     It begins ``"; the rates reach"`` and asks ``"are they in deg/s?"``: for a failure's or a fit's
     reason, or a warning.
@@ -81,11 +83,18 @@ def unit_hint(omega: FloatArray) -> str:
     "; the rates reach 710.6 rad/s, beyond any MEMS gyroscope's range (4000 deg/s = 69.81 rad/s)"
     >>> unit_hint(np.array([[0.0, 1e308, 0.0]]))   # no reading at all (the fit refuses it as such): no hint
     ''
+    >>> unit_hint(np.tile([0.1, -0.2, 9.8], (100, 1)))[:59]   # an accelerometer on a table
+    '; |omega| stays within 0.5 of 9.81 in 100 % of the samples,'
     """
     top = float(np.max(np.abs(omega), initial=0.0))
     if not top <= MAX_RATE:  # beyond any reading at all (refused as such by the fit): no unit to hint
         return ""
-    peak = float(np.max(np.linalg.norm(omega, axis=1), initial=0.0))
+    size = np.linalg.norm(omega, axis=1)
+    near = float(np.mean(np.abs(size - STANDARD_GRAVITY) < 0.5)) if len(size) else 0.0
+    if near > 0.6:  # an accelerometer's file: gravity's 9.8 m/s^2 at rest (a walkthrough's "30 s steady spin")
+        return (f"; |omega| stays within 0.5 of 9.81 in {100 * near:.0f} % of the samples, as an accelerometer reads "
+                "gravity at rest: is this the accelerometer's file? Give the gyroscope's")
+    peak = float(np.max(size, initial=0.0))
     if not peak > DEG_S_HINT_RATE:
         return ""
     return (f"; the rates reach {peak:.4g} rad/s, beyond any MEMS gyroscope's range (4000 deg/s = "
