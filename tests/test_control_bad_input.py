@@ -341,3 +341,25 @@ def test_wheels_heavier_than_the_body_are_refused():
     with pytest.raises(ValueError, match=r"^wheels.inertia = \[0.5, 0.5, 0.5\] kg m\^2 is more than the body's moments"):
         simulate_controlled(moments, [0.0, 0.0, 0.01], t_end=1.0, wheels=big,
                             controller=MRPFeedback(K=1e-3, P=6e-3, period=0.5, moments=moments, wheels=big))
+
+
+def test_an_unstable_bdot_gain_is_warned_of_and_a_stable_one_is_not():
+    """Normalised B-dot with gain 300 N m s held 1 s on a 3U CubeSat spun it from 0.017 to 92 rad/s,
+    reported only as "not detumbled" (a walkthrough of docs/control.md, 2026-12-03): its held loop
+    overshoots past k T / I = 2, and the run says so as MRP feedback's does."""
+    import warnings
+
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.sampled import UnstableLoopWarning
+    from tumble.dynamics.environment.magnetic import UniformField
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    moments = [0.00667, 0.0419, 0.0419]
+    kw = dict(t_end=3.0, magnetorquers=Magnetorquers(1e6), field=UniformField((2e-5, 0.0, 1e-5)))
+    with pytest.warns(UnstableLoopWarning, match=r"^gain = 300 N m s: B-dot held for period = 1 s is unstable about "
+                                                 r"principal axis 1 .*give a gain below 0.0133 N m s"):
+        simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=300.0, period=1.0, form="normalized"), **kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=1e-4, period=1.0, form="normalized"), **kw)

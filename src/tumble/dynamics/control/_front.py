@@ -29,7 +29,7 @@ from .bdot import BDot
 from .controllers import MomentumDumping, MRPFeedback
 from .estimated import Estimated
 from .mission import DetumbleThenPoint
-from .sampled import OneStepWarning
+from .sampled import OneStepWarning, check_bdot_loop
 
 __all__ = ["check_actuators", "checked", "control_instants", "locked_inverse", "moments_checked"]
 
@@ -73,6 +73,9 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
         I, y0 = I.copy(), y0.copy()
     if wheels is not None:
         check_wheels(I, wheels)
+    for law in (controller, getattr(controller, "detumble", None)):  # a B-dot alone or a mission's
+        if isinstance(law, BDot) and law.form == "normalized":
+            check_bdot_loop(I, law.gain, law.period)
     if period >= T:  # the samples are the control instants: two, and one command
         warnings.warn(f"controller.period = {period:g} s is not shorter than t_end = {T:g} s: the controller acts "
                       "once, at t = 0, and the run has two samples (a period in ms written as s?)", OneStepWarning,

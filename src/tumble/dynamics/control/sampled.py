@@ -30,7 +30,7 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 
-__all__ = ["OneStepWarning", "UnstableLoopWarning", "check_held_loop", "held_loop_radius"]
+__all__ = ["OneStepWarning", "UnstableLoopWarning", "check_bdot_loop", "check_held_loop", "held_loop_radius"]
 
 
 class UnstableLoopWarning(UserWarning):
@@ -159,3 +159,35 @@ def _longest_period(I: float, K: float, P: float, period: float, Ki: float) -> f
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if held_loop_radius([I], K, P, mid, Ki)[0] <= 1.0 else (lo, mid)
     return lo
+
+
+def check_bdot_loop(moments: ArrayLike, gain: float, period: float) -> None:
+    """Warn (:class:`UnstableLoopWarning`) where normalised B-dot held for ``period`` (s) overshoots:
+    its torque ``-k omega_perp`` (:mod:`~tumble.dynamics.control.bdot`) held over ``T`` takes each
+    rate across the field as ``omega_{k+1} ~ (1 - k T / I) omega_k``, which grows past ``k T / I =
+    2`` (the rate loop of the module docstring with ``P = k``); worst about the smallest moment. A
+    walkthrough's gain of 300 N m s on a 3U CubeSat, held 1 s (``k T / I1 = 4.5e4``), spun it from
+    0.017 to 92 rad/s and was reported only as "not detumbled". Saturated magnetorquers (far from
+    rest) hide it until the rate is small.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.control.sampled import check_bdot_loop
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 4.4e-5, 1.0)   # Avanzini & Giulietti's gain: stable
+    ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 300.0, 1.0)
+    >>> len(caught), str(caught[0].message)[:83]
+    (1, 'gain = 300 N m s: B-dot held for period = 1 s is unstable about principal axis 1 (I')
+    """
+    I = np.asarray(moments, float)
+    axis = int(np.argmin(I))
+    ratio = gain * period / float(I[axis])
+    if ratio <= 2.0:
+        return
+    warnings.warn(f"gain = {gain:g} N m s: B-dot held for period = {period:g} s is unstable about principal axis "
+                  f"{axis + 1} (I = {I[axis]:.3g} kg m^2: k T / I = {ratio:.3g} > 2), each step overshooting the "
+                  f"rate it damps; give a gain below {2.0 * float(I[axis]) / period:.3g} N m s or a shorter period "
+                  "(a gain in other units?)", UnstableLoopWarning, stacklevel=3)
+
