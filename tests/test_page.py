@@ -322,3 +322,11 @@ def test_a_run_with_more_samples_than_frames_is_told_a_frame_a_sample(tmp_path, 
     assert main(["view", long_run, "--frames", "2000", "--samples", "2000", "--t-end", str(t_end),
                  "--out", str(tmp_path / "b.html")]) == 0
     assert "note:" not in capsys.readouterr().err
+
+
+def test_view_of_a_name_that_is_nothing_names_the_folders_it_also_takes(tmp_path, capsys):
+    """'tumble view nothere' named scenario files, body files and presets, not the fit's and the tensor's
+    folders view also takes (a walkthrough of docs/tensor.md, 2026-12-03)."""
+    assert main(["view", str(tmp_path / "nothere"), "--out", str(tmp_path / "x.html")]) == 2
+    assert ("is not a scenario file, a body file, a preset, or the folder a tumble fit or tumble tensor wrote"
+            in capsys.readouterr().err)

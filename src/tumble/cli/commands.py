@@ -209,6 +209,9 @@ def _resolve(args):
     except ValueError as exc:  # --frame 300 for --frames 300 (argparse took the option whole): name --frames
         if hasattr(args, "frames") and f"--frame = {args.frame!r} is not allowed" in str(exc):
             raise ValueError(f"{exc} (the page's number of frames is --frames)") from None
+        if hasattr(args, "frames") and "is not a scenario file, a body file or a preset" in str(exc):
+            raise type(exc)(str(exc).replace("a body file or a preset", "a body file, a preset, or the folder a "
+                                                                          "tumble fit or tumble tensor wrote", 1)) from None
         raise
 
 
