@@ -442,3 +442,26 @@ def test_an_absurd_time_or_reading_in_phyphoxs_accelerometer_is_refused(tmp_path
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "Accelerometer.csv, line 501" in err and said in err, err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_phyphox_linear_acceleration_is_left_out_saying_why(tmp_path):
+    """docs/fitting.md: the linear acceleration ("without g") is read and left out, and the output says
+    why. A phyphox folder whose Accelerometer.csv held "Linear Acceleration x (m/s^2)" was refused whole
+    (exit 2), and one named "Linear Acceleration.csv" ignored without a word (a walkthrough, 2026-12-03)."""
+    import json
+
+    from tumble.analysis.fit.accelsynth import phyphox_accel_csv
+    from tumble.commands.fit import run_fit_command
+
+    rec = _recording(11, tosses=2, accel=True)
+    linear = phyphox_accel_csv(rec.t, rec.accel.f).replace("Acceleration ", "Linear Acceleration ")
+    for name in ("Accelerometer.csv", "Linear Acceleration.csv"):
+        export = tmp_path / name.split(".")[0].replace(" ", "_")
+        export.mkdir()
+        (export / "Gyroscope.csv").write_text(rec.csv_text(), encoding="utf-8")
+        (export / name).write_text(linear, encoding="utf-8")
+        assert run_fit_command(export, tmp_path / f"out-{export.name}") == 0
+        fit = json.loads((tmp_path / f"out-{export.name}" / "fit.json").read_text())
+        assert fit["accelerometer"] is False
+        assert fit["read"]["accel_left_out"].startswith(f"{name.split('.')[0]}") and "not the specific force" in \
+            fit["read"]["accel_left_out"]

@@ -438,12 +438,23 @@ def _accel_csv(names: list[str], read: ColumnsRead) -> tuple[str | None, Columns
         return None, replace(read, accel_left_out="Sensor Logger's Accelerometer.csv has gravity taken out (not the "
                                                   "specific force): not used; the flights are found from the "
                                                   "gyroscope alone")
+    if acc is None and "linear acceleration.csv" in lower:  # phyphox's "Acceleration without g", said as documented
+        return None, replace(read, accel_left_out="Linear Acceleration.csv has gravity taken out by the phone (not the "
+                                                  "specific force): not used; the flights are found from the "
+                                                  "gyroscope alone")
     return acc, read
 
 
 def _with_accel(raw: bytes, label: str, t: np.ndarray, read: ColumnsRead) -> tuple[np.ndarray | None, ColumnsRead]:
     """A phyphox export's accelerometer on the gyroscope's times, and what was read saying so;
     None, and why, when it does not cover the gyroscope's record."""
+    head = raw[:2000].decode("utf-8", "replace").lower()
+    if "linear acceleration" in head and "acceleration x" not in head.replace("linear acceleration x", ""):
+        # phyphox's "Acceleration without g" export: the phone's estimate of gravity taken out, not the
+        # specific force; left out as documented (docs/fitting.md), not the whole recording refused
+        return None, replace(read, accel_left_out=f"{os.path.basename(label)} holds the linear acceleration (gravity "
+                                                  "taken out by the phone, not the specific force): not used; the "
+                                                  "flights are found from the gyroscope alone")
     f, names, units, times = parse_accel_csv(raw, label, t)
     gap = accel_gap(times, t, label)
     if gap:
