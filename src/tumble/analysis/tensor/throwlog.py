@@ -12,7 +12,7 @@ from ..._html import headline_html, headline_repr
 from ...typing import FloatArray
 from ...validation import check_increasing, check_vectors, short_repr
 
-__all__ = ["MAX_INTERVAL", "MIN_THROW_SAMPLES", "TOP_SPEED_SAMPLES", "Throw"]
+__all__ = ["MAX_INTERVAL", "MIN_THROW_SAMPLES", "TOP_SPEED_SAMPLES", "Throw", "running_peak"]
 
 #: The longest interval between a throw's samples, s: a logger writes hundreds a second.
 MAX_INTERVAL = 1.0
@@ -21,7 +21,7 @@ MAX_INTERVAL = 1.0
 _PLAUSIBLE = {"omega": 1e3, "rotor": 1e5, "accel": 1e4}
 #: The fewest samples a throw may have.
 MIN_THROW_SAMPLES = 20
-#: The running median's length that :attr:`Throw.top_speed` takes (samples; 1.25 ms at 4 kHz).
+#: The running median's length of :func:`running_peak` (samples; 1.25 ms at 4 kHz).
 TOP_SPEED_SAMPLES = 5
 
 
@@ -138,7 +138,22 @@ class Throw:
         >>> Throw(t, np.zeros((100, 3)), rotor).top_speed
         1300.0
         """
-        from scipy.ndimage import median_filter
+        return running_peak(np.abs(self.rotor))
 
-        return float(np.max(median_filter(np.abs(self.rotor), size=TOP_SPEED_SAMPLES, mode="nearest")))
+
+def running_peak(values: FloatArray) -> float:
+    """The largest of ``values``' running median over :data:`TOP_SPEED_SAMPLES` samples
+    (``scipy.ndimage.median_filter``): a log's peak that a glitch of a sample or two does not make
+    (a rotor's top speed, an accelerometer's largest reading).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.throwlog import running_peak
+    >>> running_peak(np.array([1.0, 1.0, 9.0, 1.0, 2.0, 2.0, 2.0]))   # the lone 9 is a glitch
+    2.0
+    """
+    from scipy.ndimage import median_filter
+
+    return float(np.max(median_filter(np.asarray(values, float), size=TOP_SPEED_SAMPLES, mode="nearest")))
 

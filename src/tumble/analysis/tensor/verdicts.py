@@ -15,7 +15,7 @@ from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...typing import FloatArray
 from .device import ROTOR_SPEED_RATIO
 from .throw import RESIDUAL_LIMIT, FlownFit
-from .throwlog import Throw
+from .throwlog import Throw, running_peak
 
 __all__ = ["MAX_BIAS", "accel_hint", "duplicate_throws", "joint_verdict", "residual_verdict", "speed_verdict", "throw_verdict"]
 
@@ -81,9 +81,10 @@ def speed_verdict(speed: float, calibrated: tuple[float, float] | None) -> str:
 
 def accel_hint(throw: Throw) -> str:
     """``""``, or a clause for a left-out throw's reason where its accelerometer reads in g what the
-    header says is m/s^2: never half of g in the whole log (the largest 5-sample running median of
-    its magnitude), though a hand holding and throwing the device pushes it with 9.8 m/s^2 and more
-    (the examples' throws: 14-22 m/s^2; in g they read 1.4-2.3). Read so, the free fall the flight
+    header says is m/s^2: never half of g in the whole log (its magnitude's
+    :func:`~tumble.analysis.tensor.throwlog.running_peak`), though a hand holding and throwing the
+    device pushes it with 9.8 m/s^2 and more (the examples' throws: 14-22 m/s^2; in g they read
+    1.4-2.3). Read so, the free fall the flight
     is found by starts in the hand, and the throw's residuals are blamed on the gyroscope.
 
     Examples
@@ -97,9 +98,7 @@ def accel_hint(throw: Throw) -> str:
     """
     if throw.accel is None:
         return ""
-    from scipy.ndimage import median_filter
-
-    top = float(np.max(median_filter(np.linalg.norm(throw.accel, axis=1), size=5, mode="nearest")))
+    top = running_peak(np.linalg.norm(throw.accel, axis=1))
     if top >= 0.5 * STANDARD_GRAVITY:
         return ""
     return (f"; its accelerometer reads at most {top:.3g} m/s^2 in the whole log, never the 9.8 of a hand holding the "
