@@ -7,7 +7,9 @@ tumble.analysis.tensor.synthetic with one thing gone wrong, as the issue found i
 
 from __future__ import annotations
 
+
 import functools
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -395,8 +397,14 @@ def test_a_throw_whose_rotor_speed_is_in_another_unit_is_left_out(flown_once, fa
     fit = fit_tensor([throw(1), throw(2), odd], dev, OBJECT.mass)
     assert [t.status for t in fit.throws] == ["used", "used", "skipped"]
     assert fit.throws[2].reason.startswith("the rotor's top speed") and "another unit" in fit.throws[2].reason
-    with pytest.raises(NoThrowError, match="the rotor's top speed"):
-        fit_tensor([_with(throw(s), rotor=throw(s).rotor * factor) for s in (1, 2)], dev, OBJECT.mass)
+    with pytest.raises(NoThrowError, match="the rotor's top speed") as refused:
+        fit_tensor([_with(throw(s), rotor=throw(s).rotor * factor, input=f"t{s}.csv") for s in (1, 2)], dev, OBJECT.mass)
+    # each throw named with its own speed; the question they share asked once, at the end (it was asked
+    # once a throw: four throws in rpm made a line of ~950 characters)
+    line = str(refused.value)
+    assert re.search(r"t1\.csv: the rotor's top speed \S+ rad/s is \S+ times the calibration throws'; t2\.csv: the rotor's", line)
+    assert line.count("another unit") == 1 and line.count("at most 1.5 times beyond their") == 1
+    assert re.search(r"; for each: at most 1\.5 times beyond their \d+-\d+ rad/s is the device's; .*another unit", line)
 
 
 def test_a_rotor_that_really_ran_slower_is_used(flown_once):

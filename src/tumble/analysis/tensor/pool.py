@@ -57,7 +57,8 @@ from .joint import JointFit, JointModel, fit_joint
 from .sensors import SensorErrors
 from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
-from .verdicts import _BIAS_REASON, MAX_BIAS, accel_hint, duplicate_throws, joint_verdict, residual_verdict, throw_verdict
+from .verdicts import (_BIAS_REASON, MAX_BIAS, accel_hint, duplicate_throws, join_reasons, joint_verdict, residual_verdict,
+                       throw_verdict)
 
 __all__ = ["BIAS_FREE_RMS", "OUTLIER_SIGMA", "SENSOR_THROWS", "SHRINK_DOF", "NoThrowError", "Pooled", "agreement",
            "birge_factor", "outlier", "own_fits", "pool_throws"]
@@ -378,8 +379,8 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     while True:
         used = [k for k, f in enumerate(fits) if not f.reason]
         if not used:
-            why = "; ".join(f"{throw.input or f'throw {k}'}: {f.reason}{accel_hint(throw)}"
-                            for k, (throw, f) in enumerate(zip(throws, fits)))
+            why = join_reasons([(throw.input or f"throw {k}", f.reason + accel_hint(throw))
+                                for k, (throw, f) in enumerate(zip(throws, fits))])
             alone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
             hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if alone
                     and any(f.reason.startswith(_BIAS_REASON) for f in fits) else "") + ("; every throw's tensor is no "

@@ -7,6 +7,7 @@ bias no gyroscope has), and a log given twice (:func:`duplicate_throws`).
 from __future__ import annotations
 
 import hashlib
+import os
 from collections.abc import Sequence
 
 import numpy as np
@@ -17,7 +18,8 @@ from .device import ROTOR_SPEED_RATIO
 from .throw import RESIDUAL_LIMIT, FlownFit
 from .throwlog import Throw, running_peak
 
-__all__ = ["MAX_BIAS", "accel_hint", "duplicate_throws", "joint_verdict", "residual_verdict", "speed_verdict", "throw_verdict"]
+__all__ = ["MAX_BIAS", "accel_hint", "duplicate_throws", "join_reasons", "joint_verdict", "residual_verdict", "speed_verdict",
+           "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
@@ -75,8 +77,39 @@ def speed_verdict(speed: float, calibrated: tuple[float, float] | None) -> str:
            "the poles (2 times)?") if speed > high else (
         "the log stops before the rotor's spin-up (its idle is ~200 rad/s), or its speed is in another unit than the "
         "header says (rev/s for rad/s is 0.16 times) or an eRPM turned with twice the poles (0.5 times)?")
-    return (f"the rotor's top speed {speed:.3g} rad/s is {times:.2g} times the calibration throws' ({low:.4g}-{high:.4g} "
-            f"rad/s; at most {ROTOR_SPEED_RATIO:g} times beyond them): {why}")
+    return (f"the rotor's top speed {speed:.3g} rad/s is {times:.2g} times the calibration throws': at most "
+            f"{ROTOR_SPEED_RATIO:g} times beyond their {low:.4g}-{high:.4g} rad/s is the device's; {why}")
+
+
+#: The shortest hint :func:`join_reasons` writes once for all the throws that end with it, characters.
+SHARED_HINT = 40
+
+
+def join_reasons(named: Sequence[tuple[str, str]]) -> str:
+    """The reasons of several left-out throws, ``"NAME: REASON"`` joined by ``"; "``, with the hint
+    that every one of them ends with (the text after a ``": "`` they share, at least
+    :data:`SHARED_HINT` characters, outside any parenthesis) written once at the end, not once a throw: four throws in
+    rpm gave a line of ~950 characters, the same 110-character question four times.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.verdicts import join_reasons
+    >>> hint = "its speed in another unit than the header says (rpm for rad/s is 9.5 times)?"
+    >>> join_reasons([("o1.csv", f"top speed 9.9 times: {hint}"), ("o2.csv", f"top speed 9.4 times: {hint}")])
+    'o1.csv: top speed 9.9 times; o2.csv: top speed 9.4 times; for each: its speed in another unit than the header says (rpm for rad/s is 9.5 times)?'
+    >>> join_reasons([("o1.csv", "no rotor"), ("o2.csv", "no rotor")])
+    'o1.csv: no rotor; o2.csv: no rotor'
+    """
+    reasons = [reason for _, reason in named]
+    shared = os.path.commonprefix([reason[::-1] for reason in reasons])[::-1] if len(reasons) > 1 else ""
+    colon = shared.find(": ")
+    while colon >= 0 and len(shared) - colon - 2 >= SHARED_HINT:
+        heads = [reason[:len(reason) - len(shared) + colon] for reason in reasons]
+        if all(head.count("(") == head.count(")") for head in heads):  # not a colon inside a parenthesis
+            hint = shared[colon + 2:]
+            return "; ".join(f"{name}: {head}" for (name, _), head in zip(named, heads)) + f"; for each: {hint}"
+        colon = shared.find(": ", colon + 2)
+    return "; ".join(f"{name}: {reason}" for name, reason in named)
 
 
 def accel_hint(throw: Throw) -> str:
