@@ -363,3 +363,29 @@ def test_an_unstable_bdot_gain_is_warned_of_and_a_stable_one_is_not():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=1e-4, period=1.0, form="normalized"), **kw)
+
+
+def test_an_unstable_classic_bdot_gain_is_warned_of_and_it_is_unstable():
+    """Classic B-dot's torque m x B = -k_b |B|^2 omega_perp is the normalised loop with k = k_b |B|^2:
+    past k_b |B|^2 T / I = 2 (|B| the largest along the run) it overshoots. Only the normalised form
+    was checked; a classic gain just past the bound spun a 3U CubeSat from 0.017 to over 1 rad/s in a
+    minute without a word, while one just below it damps."""
+    import warnings
+
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.sampled import UnstableLoopWarning
+    from tumble.dynamics.environment.magnetic import UniformField
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    moments, B = [0.00667, 0.0419, 0.0419], 3e-5
+    bound = 2.0 * moments[0] / B**2  # A m^2 s/T, period 1 s
+    kw = dict(t_end=60.0, magnetorquers=Magnetorquers(1e6), field=UniformField((0.0, 0.0, B)))
+    with pytest.warns(UnstableLoopWarning, match=r"^gain = 1\.55633e\+07 A m\^2 s/T: classic B-dot held for period = 1 s "
+                                                 r"is unstable about principal axis 1 \(I = 0\.00667 kg m\^2: k_b \|B\|\^2 "
+                                                 r"T / I = 2\.1 > 2 with \|B\| up to 3e-05 T along the run\).*below 1\.48e\+07"):
+        past = simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=1.05 * bound, period=1.0), **kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        below = simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=0.95 * bound, period=1.0), **kw)
+    assert np.linalg.norm(past.omega[-1]) > 1.0 > 0.02 > np.linalg.norm(below.omega[-1])

@@ -31,7 +31,7 @@ from .estimated import Estimated
 from .mission import DetumbleThenPoint
 from .sampled import OneStepWarning, check_bdot_loop
 
-__all__ = ["check_actuators", "checked", "control_instants", "locked_inverse", "moments_checked"]
+__all__ = ["check_actuators", "checked", "control_instants", "field_max", "locked_inverse", "moments_checked"]
 
 
 def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, atol: float, controller: Any,
@@ -76,11 +76,36 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
     for law in (controller, getattr(controller, "detumble", None)):  # a B-dot alone or a mission's
         if isinstance(law, BDot) and law.form == "normalized":
             check_bdot_loop(I, law.gain, law.period)
+        elif isinstance(law, BDot) and field is not None and (largest := field_max(field, T)) is not None:
+            check_bdot_loop(I, law.gain, law.period, largest)  # classic: its gain is k_b |B|^2
     if period >= T:  # the samples are the control instants: two, and one command
         warnings.warn(f"controller.period = {period:g} s is not shorter than t_end = {T:g} s: the controller acts "
                       "once, at t = 0, and the run has two samples (a period in ms written as s?)", OneStepWarning,
                       stacklevel=3)
     return I, T, rtol, atol, period, y0
+
+
+#: Where :func:`field_max` looks at the field: this many instants over the run (at most one
+#: orbit's worth of them are needed; the dipole's |B| varies twofold from the equator to a pole).
+FIELD_LOOKS = 25
+
+
+def field_max(field: Any, t_end: float) -> float | None:
+    """The largest ``|B|`` (T) of ``field`` (``world(t)``) at :data:`FIELD_LOOKS` instants over
+    ``[0, t_end]`` s; None where the field cannot say (a user's field that fails here fails the run
+    with its own message).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control._front import field_max
+    >>> from tumble.dynamics.environment.magnetic import UniformField
+    >>> field_max(UniformField((3e-5, 0.0, 4e-5)), 60.0)
+    5e-05
+    """
+    try:
+        return max(float(np.linalg.norm(field.world(float(t)))) for t in np.linspace(0.0, t_end, FIELD_LOOKS))
+    except Exception:  # noqa: BLE001 - the run calls the field again and reports what it raises
+        return None
 
 
 def _raw(value: object) -> tuple[tuple[int, ...], bytes] | tuple[()] | None:

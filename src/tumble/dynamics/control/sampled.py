@@ -161,14 +161,18 @@ def _longest_period(I: float, K: float, P: float, period: float, Ki: float) -> f
     return lo
 
 
-def check_bdot_loop(moments: ArrayLike, gain: float, period: float) -> None:
-    """Warn (:class:`UnstableLoopWarning`) where normalised B-dot held for ``period`` (s) overshoots:
-    its torque ``-k omega_perp`` (:mod:`~tumble.dynamics.control.bdot`) held over ``T`` takes each
-    rate across the field as ``omega_{k+1} ~ (1 - k T / I) omega_k``, which grows past ``k T / I =
-    2`` (the rate loop of the module docstring with ``P = k``); worst about the smallest moment. A
-    walkthrough's gain of 300 N m s on a 3U CubeSat, held 1 s (``k T / I1 = 4.5e4``), spun it from
-    0.017 to 92 rad/s and was reported only as "not detumbled". Saturated magnetorquers (far from
-    rest) hide it until the rate is small.
+def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: float | None = None) -> None:
+    """Warn (:class:`UnstableLoopWarning`) where B-dot held for ``period`` (s) overshoots. Normalised
+    (``field_max`` None), its torque ``-k omega_perp`` (:mod:`~tumble.dynamics.control.bdot`) held
+    over ``T`` takes each rate across the field as ``omega_{k+1} ~ (1 - k T / I) omega_k``, which
+    grows past ``k T / I = 2`` (the rate loop of the module docstring with ``P = k``); worst about
+    the smallest moment. Classic (``m = -k_b dB/dt``, ``dB/dt = B x omega`` in the body), its torque
+    ``m x B = -k_b |B|^2 omega_perp`` is the same loop with ``k = k_b |B|^2``: ``field_max`` is the
+    largest ``|B|`` along the run, T. A walkthrough's normalised gain of 300 N m s on a 3U CubeSat,
+    held 1 s (``k T / I1 = 4.5e4``), spun it from 0.017 to 92 rad/s and was reported only as "not
+    detumbled"; a classic gain past the bound (``k_b |B|^2 T / I1 = 2.1``, a field of 30 uT across
+    the axis) spun one from 0.017 to 1.4 rad/s in a minute. Saturated magnetorquers (far from rest)
+    hide it until the rate is small.
 
     Examples
     --------
@@ -178,16 +182,24 @@ def check_bdot_loop(moments: ArrayLike, gain: float, period: float) -> None:
     ...     warnings.simplefilter("always")
     ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 4.4e-5, 1.0)   # Avanzini & Giulietti's gain: stable
     ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 300.0, 1.0)
+    ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 1e4, 1.0, field_max=5e-5)   # classic, A m^2 s/T: stable
+    ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 1e8, 1.0, field_max=5e-5)
     >>> len(caught), str(caught[0].message)[:83]
-    (1, 'gain = 300 N m s: B-dot held for period = 1 s is unstable about principal axis 1 (I')
+    (2, 'gain = 300 N m s: B-dot held for period = 1 s is unstable about principal axis 1 (I')
+    >>> str(caught[1].message)[:90]
+    'gain = 1e+08 A m^2 s/T: classic B-dot held for period = 1 s is unstable about principal ax'
     """
     I = np.asarray(moments, float)
     axis = int(np.argmin(I))
-    ratio = gain * period / float(I[axis])
+    if field_max is None:
+        ratio, unit, form, effective, beside = gain * period / float(I[axis]), "N m s", "", "k T / I", ""
+    else:
+        ratio, unit, form = gain * field_max**2 * period / float(I[axis]), "A m^2 s/T", "classic "
+        effective, beside = "k_b |B|^2 T / I", f" with |B| up to {field_max:.3g} T along the run"
     if ratio <= 2.0:
         return
-    warnings.warn(f"gain = {gain:g} N m s: B-dot held for period = {period:g} s is unstable about principal axis "
-                  f"{axis + 1} (I = {I[axis]:.3g} kg m^2: k T / I = {ratio:.3g} > 2), each step overshooting the "
-                  f"rate it damps; give a gain below {2.0 * float(I[axis]) / period:.3g} N m s or a shorter period "
-                  "(a gain in other units?)", UnstableLoopWarning, stacklevel=3)
-
+    bound = 2.0 * float(I[axis]) / period / (1.0 if field_max is None else field_max**2)
+    warnings.warn(f"gain = {gain:g} {unit}: {form}B-dot held for period = {period:g} s is unstable about principal axis "
+                  f"{axis + 1} (I = {I[axis]:.3g} kg m^2: {effective} = {ratio:.3g} > 2{beside}), each step overshooting "
+                  f"the rate it damps; give a gain below {bound:.3g} {unit} or a shorter period (a gain in other units?)",
+                  UnstableLoopWarning, stacklevel=3)
