@@ -10,7 +10,9 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 from tumble.cli import main
 from tumble.dynamics.control.estimated import Estimated
@@ -39,7 +41,9 @@ def test_simulate_writes_the_knowledge(tmp_path, capsys):
     assert 0.0 < summary["knowledge_error_rms_deg"] < 1.0 and summary["knowledge_error_final_deg"] < 1.0
     assert summary["knowledge_start"] == 0.0 and summary["sensors_used"]["sun"] == 1.0
     assert summary["sensors_used"]["magnetometer"] == 1.0 and summary["sensors_used"]["star_tracker"] == 0.0
-    assert summary["bias_estimate_final"] == pytest.approx([2e-4, -1e-4, 1.5e-4], abs=3e-5)
+    # the file's gyro_bias [2e-4, -1e-4, 1.5e-4] is in the design frame; the estimate about the principal
+    # axes, the first of which is the long axis, design z (it was added unturned: a walkthrough, 2026-12-03)
+    assert summary["bias_estimate_final"] == pytest.approx([1.5e-4, 2e-4, -1e-4], abs=3e-5)
     assert (tmp_path / "run" / "knowledge.png").stat().st_size > 10_000
     pointing = summary.get("pointing_error_final")  # in deg beside the knowledge's, where there is one (not rad and deg)
     assert ("(pointing " in line) == (pointing is not None)
@@ -93,3 +97,39 @@ def test_an_epoch_outside_the_suns_formulas_is_said_in_one_line(tmp_path, capsys
     assert warned == [f"warning: epoch = 2300-03-20T14:46:00 lies outside 1950-2050, the span of the Sun's low-precision "
                       f"formulas (0.01 deg); the precession of the equinoxes, which this ECI leaves in, adds about "
                       f"{years * 50.29 / 3600:.2g} deg to the Sun's direction there"], warned
+
+
+@pytest.mark.parametrize("size", [[0.1, 0.1, 0.34], [0.34, 0.1, 0.12]])
+def test_the_sensor_biases_are_given_in_the_design_frame(tmp_path, size):
+    """A control file's vectors are in the body's design frame (docs/formats/control.md); the gyroscope's
+    and magnetometer's biases were added unturned to the principal-frame rates and field (a walkthrough,
+    2026-12-03: gyro_bias = [5e-4, 0, 0], design x, landed on the long axis, design z). Each bias, taken
+    to the world by the run's attitude, is the design vector taken there by the design attitude."""
+    text = EXAMPLE.read_text().replace("size = [0.1, 0.1, 0.34]", f"size = {size}")
+    text = text.replace("gyro_bias = [2e-4, -1e-4, 1.5e-4]", "gyro_bias = [5e-4, 0.0, 0.0]\nmagnetometer_bias = [0.0, 0.0, 3e-7]")
+    assert f"size = {size}" in text and "magnetometer_bias" in text
+    path = tmp_path / "biased.toml"
+    path.write_text(text)
+    scenario = load_scenario(path)
+    design_to_world = scenario.attitude0 * Rotation.from_matrix(scenario.body.principal_axes).inv()
+    for name, design in (("gyro_bias", [5e-4, 0.0, 0.0]), ("magnetometer_bias", [0.0, 0.0, 3e-7])):
+        principal = np.array(getattr(scenario.sensors, name))
+        np.testing.assert_allclose(scenario.attitude0.apply(principal), design_to_world.apply(design), atol=1e-20)
+
+
+def test_attitude_sigma_raises_the_starts_uncertainty(tmp_path):
+    """``[estimator] attitude_sigma`` was checked and documented but read by nothing (a walkthrough,
+    2026-12-03: 1e-6 and 3.0 gave the same summary): it is now the least standard deviation of the
+    start's attitude about any axis, TRIAD's covariance raised to it; without it TRIAD's is taken."""
+    from tumble.dynamics.control.controlled import simulate_controlled
+
+    path = tmp_path / "wide.toml"
+    path.write_text(EXAMPLE.read_text().replace("[estimator]\n", "[estimator]\nattitude_sigma = 0.3\n", 1))
+    first = {}
+    for name, file in (("as TRIAD's", EXAMPLE), ("raised", path)):
+        scenario = load_scenario(file)
+        c = scenario.controller()
+        simulate_controlled(**{**scenario.arguments(c), "t_end": 20.0})
+        first[name] = c.knowledge().sigma[0, :3]
+    assert load_scenario(path).controller().attitude_sigma == 0.3 and load_scenario(EXAMPLE).controller().attitude_sigma is None
+    assert np.all(first["as TRIAD's"] < 0.01) and np.all(first["raised"] > 3 * first["as TRIAD's"]), first

@@ -25,6 +25,7 @@ feeds; a bad one is refused in one line naming the table, the key, the value and
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -32,6 +33,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..dynamics.environment.sun import Sunlight
+from ..dynamics.models.sensors import Sensors
 from ..dynamics.models.vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker
 from ..validation import check_rotation, check_vectors
 from .controlorbit import Field, Orbit
@@ -79,8 +81,8 @@ ESTIMATOR_TABLE = Table("[estimator]", (
         doc="the multiplicative extended Kalman filter (attitude and gyroscope bias)"),
     Key("magnetometer_period", "number", "s", "0.0", example="1.0", low=0.0, low_included=True,
         doc="time between the magnetometer's updates (0: every control step)"),
-    Key("attitude_sigma", "number", "rad", "0.1", example="0.05", low=0.0, high=math.pi,
-        doc="the first guess's standard deviation when it has none of its own"),
+    Key("attitude_sigma", "number", "rad", "TRIAD's or the tracker's", example="0.05", low=0.0, high=math.pi,
+        doc="the least standard deviation of the start's attitude about any axis (raises TRIAD's or the tracker's)"),
     Key("bias_sigma", "number", "rad/s", "1e-3", example="1e-3", low=0.0, doc="the first bias guess's (zero's)"),
     Key("bias_walk", "number", "rad/s^1.5", "1e-7", example="1e-6", low=0.0, low_included=True,
         doc="the gyroscope bias's random walk the filter assumes"),
@@ -154,6 +156,32 @@ def sensor_heads(table: dict[str, Any], *, orbit: Orbit | None, field: Field | N
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
     return out
+
+
+def sensors_from_table(table: dict[str, Any], *, orbit: Orbit | None, field: Field | None,
+                       principal_to_design: Rotation) -> tuple[Sensors, dict[str, Any]]:
+    """The run's :class:`~tumble.dynamics.models.sensors.Sensors` of a ``[sensors]`` table and its
+    heads (:func:`sensor_heads`). The biases, given like the file's other vectors in the body's
+    design frame, are turned into the principal frame the run adds them in.
+
+    Examples
+    --------
+    >>> from scipy.spatial.transform import Rotation
+    >>> from tumble.io.controlestimator import sensors_from_table
+    >>> principal_to_design = Rotation.from_matrix([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    >>> sensors, heads = sensors_from_table({"gyro_bias": [5e-4, 0.0, 0.0]}, orbit=None, field=None,
+    ...                                     principal_to_design=principal_to_design)
+    >>> (sensors.gyro_bias, heads)   # principal axes design y, z, x (the columns): design x is the third
+    ((0.0, 0.0, 0.0005), {})
+    """
+    heads = sensor_heads(table, orbit=orbit, field=field, principal_to_design=principal_to_design)
+    try:
+        sensors = Sensors(**{k: v for k, v in table.items() if k not in ("sun", "star_tracker")}, **heads)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"sensors: {exc}") from None
+    design_to_principal = principal_to_design.inv()
+    return dataclasses.replace(sensors, **{k: tuple(design_to_principal.apply(getattr(sensors, k)).tolist())
+                                           for k in ("gyro_bias", "magnetometer_bias")}), heads
 
 
 def estimator_from_table(table: dict[str, Any], *, heads: dict[str, Any], field: Field | None) -> dict[str, Any]:

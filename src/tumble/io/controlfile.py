@@ -67,7 +67,7 @@ from ..dynamics.control.pointing import NadirTarget
 from ..dynamics.engine.stepsize import check_atol, check_rtol
 from ..mass import Body
 from ..validation import check_bool, check_positive, check_rotation, check_vector, check_vectors, unknown_name
-from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensor_heads
+from .controlestimator import ESTIMATOR_TABLE, STAR_TRACKER_TABLE, SUN_TABLE, estimator_from_table, sensors_from_table
 from .controlorbit import ORBIT_KEYS, ORBIT_TABLE, Field, Orbit, orbit_from_table
 from .controlrun import control_summary, write_control_run
 from .torquetables import CONTROL_TORQUE_TABLE, torque_of
@@ -140,10 +140,12 @@ _TABLES = (
     Table("[sensors]", (
         Key("gyro_noise", "number", "rad/s", "0.0", example="1e-4", low=0.0, low_included=True, high=0.2,
             doc="standard deviation of each gyroscope axis"),
-        Key("gyro_bias", "3 numbers", "rad/s", "[0, 0, 0]", example="[1e-4, 0.0, 0.0]", doc="constant gyroscope bias"),
+        Key("gyro_bias", "3 numbers", "rad/s", "[0, 0, 0]", example="[1e-4, 0.0, 0.0]",
+            doc="constant gyroscope bias, design frame"),
         Key("magnetometer_noise", "number", "T", "0.0", example="1e-7", low=0.0, low_included=True, high=1e-4,
             doc="standard deviation of each magnetometer axis"),
-        Key("magnetometer_bias", "3 numbers", "T", "[0, 0, 0]", example="[0.0, 1e-7, 0.0]", doc="constant magnetometer bias"),
+        Key("magnetometer_bias", "3 numbers", "T", "[0, 0, 0]", example="[0.0, 1e-7, 0.0]",
+            doc="constant magnetometer bias, design frame"),
         Key("attitude", "string", "", '"ideal"', choices=("ideal", "star_tracker", "none"), example='"star_tracker"',
             doc="the attitude sensor: exact, noisy, or none fitted"),
         Key("attitude_noise", "number", "rad", "0.0", example="1e-4", low=0.0, low_included=True, high=math.pi,
@@ -461,11 +463,7 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
         raise ValueError(exc if str(exc).startswith("actuators") else f"{where}: {exc}") from None
     if mtq is not None and field is None:
         raise ValueError('actuators.magnetorquers need a field: a circular [orbit] (its dipole) or field = "igrf"')
-    heads = sensor_heads(t["sensors"], orbit=orbit, field=field, principal_to_design=principal_to_design)
-    try:
-        sensors = Sensors(**{k: v for k, v in t["sensors"].items() if k not in ("sun", "star_tracker")}, **heads)
-    except (ValueError, TypeError) as exc:
-        raise ValueError(f"sensors: {exc}") from None
+    sensors, heads = sensors_from_table(t["sensors"], orbit=orbit, field=field, principal_to_design=principal_to_design)
     estimator = estimator_from_table(t["estimator"], heads=heads, field=field) if "estimator" in data else None
     spec = parse_control(control, body=body, orbit=orbit, field=field, magnetorquers=mtq, wheels=wheels,
                          # with an estimator the law has an attitude whatever sensors.attitude says

@@ -190,9 +190,11 @@ class Estimated:
         it the magnetometer is not used.
     magnetometer_period : float
         Seconds between the magnetometer's updates (0: every step).
-    attitude_sigma : float
-        Standard deviation of a start without a covariance of its own, rad (unused when TRIAD or
-        the tracker starts it: theirs is taken).
+    attitude_sigma : float, optional
+        The least standard deviation of the start's attitude about any axis, rad (at most pi):
+        TRIAD's or the tracker's covariance, whose axes keep theirs, raised to it where smaller
+        (a start one trusts less than the sensors' noise says, for errors they do not model).
+        None (the default): theirs as it is.
     bias_sigma : float
         The first bias guess's (zero's) standard deviation, rad/s.
     bias_walk : float
@@ -224,7 +226,7 @@ class Estimated:
     sensors: Sensors
     field: MagneticField | None = None
     magnetometer_period: float = 0.0
-    attitude_sigma: float = 0.1
+    attitude_sigma: float | None = None
     bias_sigma: float = 1e-3
     bias_walk: float = 1e-7
     min_sigma: float = 1e-5
@@ -238,7 +240,8 @@ class Estimated:
         if not isinstance(self.sensors, Sensors):
             raise ValueError(f"sensors = {self.sensors!r} must be the run's Sensors")  # noqa: TRY004
         check_positive("magnetometer_period", self.magnetometer_period, "s", allow_zero=True)
-        check_positive("attitude_sigma", self.attitude_sigma, "rad", at_most=math.pi)
+        if self.attitude_sigma is not None:
+            check_positive("attitude_sigma", self.attitude_sigma, "rad", at_most=math.pi)
         check_positive("bias_sigma", self.bias_sigma, "rad/s")
         check_positive("bias_walk", self.bias_walk, "rad/s^1.5", allow_zero=True)
         check_positive("min_sigma", self.min_sigma, "rad")
@@ -298,6 +301,9 @@ class Estimated:
         >>> f = c.start(0.0, Measurement(0.0, np.zeros(3), None, None, star_tracker=Rotation.identity()))
         >>> f.sigma.round(6).tolist()
         [1.4e-05, 1.4e-05, 0.0001, 0.001, 0.001, 0.001]
+        >>> c = Estimated(BDot(gain=1e-3, period=0.5), c.sensors, attitude_sigma=5e-5)   # a start trusted less
+        >>> c.start(0.0, Measurement(0.0, np.zeros(3), None, None, star_tracker=Rotation.identity())).sigma.round(6).tolist()
+        [5e-05, 5e-05, 0.0001, 0.001, 0.001, 0.001]
         >>> c.start(0.0, Measurement(0.0, np.zeros(3), None, None)) is None
         True
         """
@@ -311,6 +317,9 @@ class Estimated:
             q = att.as_quat()
         else:
             return None
+        if self.attitude_sigma is not None:  # each of its axes' variances at least attitude_sigma^2
+            w, V = np.linalg.eigh(P)
+            P = (V * np.maximum(w, self.attitude_sigma**2)) @ V.T
         cov = np.zeros((6, 6))
         cov[:3, :3], cov[3:, 3:] = P, self.bias_sigma**2 * np.eye(3)
         return MEKF(q, np.zeros(3), cov, gyro_noise, self.bias_walk)

@@ -102,11 +102,12 @@ class Sensors:
     gyro_noise : float
         Standard deviation of each gyroscope axis, rad/s (>= 0).
     gyro_bias : array_like, shape (3,)
-        Constant gyroscope bias, rad/s.
+        Constant gyroscope bias, rad/s, principal frame (a control file's is in the design frame and
+        turned into this one).
     magnetometer_noise : float
         Standard deviation of each magnetometer axis, T (>= 0).
     magnetometer_bias : array_like, shape (3,)
-        Constant magnetometer bias, T.
+        Constant magnetometer bias, T, principal frame (as ``gyro_bias``).
     attitude : {"ideal", "star_tracker", "none"}
         The attitude sensor: exact, noisy, or none fitted.
     attitude_noise : float
