@@ -118,6 +118,14 @@ def test_quest_covariance_covers_the_truth():
      r"body_vectors\[0\] = \[0.0, 0.0, 0.0\] must not be zero"),
     (lambda: triad([[1, 0, 0], [0, 1, 0]], [[1, 0, 0], [0, 1, 0]], sigmas=(0.0, 1.0)),
      r"sigmas = \[0.0, 1.0\] must be two positive finite numbers \(rad\)"),
+    # swapped forms (a walkthrough of docs/estimation.md, 2026-12-03: sigmas of 1e4 and 1e6 rad, and 9.5-31.6 rad
+    # from weights of sigmas, were returned without a word)
+    (lambda: triad([[1, 0, 0], [0, 1, 0]], [[1, 0, 0], [0, 1, 0]], sigmas=(1e6, 1e4)),
+     r"^sigmas = \[1000000.0, 10000.0\]: each at most pi rad \(a direction's angular noise\); QUEST's weights 1/sigma\^2 "
+     r"given as TRIAD's sigmas\?$"),
+    (lambda: quest([[1, 0, 0], [0, 1, 0]], [[1, 0, 0], [0, 1, 0]], [1e-3, 1e-2]),
+     r"^weights = \[0.001, 0.01\]: each at least 1/pi\^2 rad\^-2 \(1/sigma\^2, sigma at most pi rad\); TRIAD's sigmas "
+     r"given as QUEST's weights\?$"),
     (lambda: quest([[1, 0, 0]], [[1, 0, 0]], [1.0]), r"must both have shape \(n, 3\) with n >= 2"),
     (lambda: quest([[1, 0, 0], [0, 1, 0]], [[1, 0, 0], [0, 1, 0]], [1.0, -1.0]),
      r"weights = \[1.0, -1.0\] must be 2 positive finite numbers"),

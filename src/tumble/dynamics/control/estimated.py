@@ -313,7 +313,8 @@ class Estimated:
             q = m.star_tracker.as_quat()
         elif m.sun is not None and m.field is not None and self.field is not None and self.sensors.sunlight is not None:
             sun_world, field_world = self.sensors.sunlight.world(t), self.field.world(t)
-            att, P = triad([m.sun, m.field], [sun_world, field_world], (max(m.sun_sigma, self.min_sigma), self._mag_sigma(m)))
+            sigmas = (min(max(m.sun_sigma, self.min_sigma), math.pi), min(self._mag_sigma(m), math.pi))  # pi: no direction
+            att, P = triad([m.sun, m.field], [sun_world, field_world], sigmas)
             q = att.as_quat()
         else:
             return None

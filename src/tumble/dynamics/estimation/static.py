@@ -45,6 +45,8 @@ The Sun and the field seen from a body turned 30 deg about z:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -72,8 +74,8 @@ def triad(body_vectors: ArrayLike, reference_vectors: ArrayLike, sigmas: ArrayLi
     reference_vectors : array_like, shape (..., 2, 3)
         The same directions in the reference (world) frame.
     sigmas : array_like, shape (..., 2)
-        The measurements' angular noise, rad (> 0; default 1 rad, so that the covariance is per
-        unit variance).
+        The measurements' angular noise, rad (> 0, at most pi; default 1 rad, so that the
+        covariance is per unit variance).
 
     Returns
     -------
@@ -86,7 +88,7 @@ def triad(body_vectors: ArrayLike, reference_vectors: ArrayLike, sigmas: ArrayLi
     ------
     ValueError
         For shapes other than (..., 2, 3), zero or non-finite vectors, parallel pairs or
-        non-positive sigmas, naming the argument and the first bad entry.
+        sigmas not in (0, pi] (QUEST's weights given as sigmas?), naming the argument and the first bad entry.
 
     Examples
     --------
@@ -108,6 +110,9 @@ def triad(body_vectors: ArrayLike, reference_vectors: ArrayLike, sigmas: ArrayLi
     s = np.asarray(sigmas, float)
     if s.shape[-1:] != (2,) or not np.all(np.isfinite(s) & (s > 0.0)):
         raise ValueError(f"sigmas = {s.tolist()!r} must be two positive finite numbers (rad) per pair")
+    if np.any(s > math.pi):  # an angle's spread past pi says nothing of the direction
+        raise ValueError(f"sigmas = {s.tolist()!r}: each at most pi rad (a direction's angular noise); QUEST's weights "
+                         "1/sigma^2 given as TRIAD's sigmas?")
 
     def frame(v: FloatArray, name: str) -> FloatArray:
         c = np.cross(v[..., 0, :], v[..., 1, :])
@@ -139,8 +144,8 @@ def quest(body_vectors: ArrayLike, reference_vectors: ArrayLike, weights: ArrayL
     reference_vectors : array_like, shape (n, 3)
         The same directions in the reference (world) frame.
     weights : array_like, shape (n,)
-        ``1 / sigma_i^2``, rad^-2 (> 0), ``sigma_i`` each measurement's angular noise: the
-        covariance is then in rad^2 (weights in other units scale it by the same factor).
+        ``1 / sigma_i^2``, rad^-2, ``sigma_i`` each measurement's angular noise (at most pi rad,
+        so each weight at least ``1 / pi^2``): the covariance is then in rad^2.
 
     Returns
     -------
@@ -152,8 +157,8 @@ def quest(body_vectors: ArrayLike, reference_vectors: ArrayLike, weights: ArrayL
     Raises
     ------
     ValueError
-        For fewer than two vectors, mismatched shapes, zero or non-finite vectors, weights not
-        positive, or directions all parallel (the attitude about them is then unobservable).
+        For fewer than two vectors, mismatched shapes, zero or non-finite vectors, weights below
+        ``1 / pi^2`` (TRIAD's sigmas given as weights?), or directions all parallel (the attitude about them is then unobservable).
 
     Examples
     --------
@@ -174,6 +179,9 @@ def quest(body_vectors: ArrayLike, reference_vectors: ArrayLike, weights: ArrayL
     w = np.asarray(weights, float)
     if w.shape != (b.shape[0],) or not np.all(np.isfinite(w) & (w > 0.0)):
         raise ValueError(f"weights = {w.tolist()!r} must be {b.shape[0]} positive finite numbers (1/sigma^2, rad^-2)")
+    if np.any(w < 1.0 / math.pi**2):  # sigma past pi says nothing of the direction
+        raise ValueError(f"weights = {w.tolist()!r}: each at least 1/pi^2 rad^-2 (1/sigma^2, sigma at most pi rad); "
+                         "TRIAD's sigmas given as QUEST's weights?")
     F = np.einsum("i,ij,ik->jk", w, b, b)
     info = np.sum(w) * np.eye(3) - F
     if np.linalg.cond(info) > 1e12:
