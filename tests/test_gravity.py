@@ -396,10 +396,12 @@ def test_ratios_of_real_bodies_fill_the_square_and_are_consistent(rng):
 
 def test_classification_on_the_boundaries_and_in_batches():
     cls = gravity_gradient_stability([0.5, 0.5, 0.0, -0.05], [0.0, 0.3 / 0.9, 0.0, -0.05], [0.5, 0.2, 0.0, 0.0])
-    # k_R = k_Y: pitch marginal, counted unstable; k_Y = 0 or k_R = 0: roll-yaw marginal, unstable
+    # k_R = k_Y: pitch marginal, counted unstable (but k_P = 0 exactly with roll-yaw stable is a body symmetric
+    # about pitch: "symmetric"); k_Y = 0 or k_R = 0: roll-yaw marginal, unstable where pitch is; a sphere: symmetric
     np.testing.assert_array_equal(cls.pitch, [False, True, False, False])
     np.testing.assert_array_equal(cls.roll_yaw, [True, True, False, False])
-    np.testing.assert_array_equal(cls.region, ["pitch unstable", "lagrange", "unstable", "unstable"])
+    np.testing.assert_array_equal(cls.region, ["symmetric", "lagrange", "symmetric", "unstable"])
+    assert str(gravity_gradient_stability(0.5, 1e-3, (0.5 - 1e-3) / (1 - 0.5e-3)).region) == "lagrange"  # off the line
     # on k_Y = -1, 1 + 3 k_R + k_R k_Y = 4 sqrt(k_R k_Y) reads, with k_R = -u^2,
     # 2 u^2 + 4 u - 1 = 0: the boundary is k_R = -0.0505 (and k_P = 1 all along k_Y = -1)
     u = (-4 + math.sqrt(24)) / 4
@@ -413,6 +415,35 @@ def test_classification_on_the_boundaries_and_in_batches():
         assert (kr, ky) == pytest.approx((1.0, 1.0))
         assert bool(gravity_gradient_stability(kr, kp, ky).pitch) is stable
     assert set(STABILITY_REGIONS) >= set(SAMPLES.values())
+
+
+@pytest.mark.parametrize(("moments", "free"), [((87.32, 87.32, 2.25), "yaw"), ((1.0, 1.5, 1.0), "pitch"),
+                                               ((1.5, 1.0, 1.0), "roll")], ids=["boom", "disk-to-normal", "disk-to-velocity"])
+def test_a_body_symmetric_about_an_axis_keeps_that_axis_and_turns_freely_about_it(moments, free):
+    """A walkthrough of docs/gravity-gradient.md (2026-12-03): a boom with a cylindrical bus (I_pitch = I_roll >
+    I_yaw) was reported "unstable there in roll and yaw", its largest angle 1.24 rad, though the boom never left
+    the vertical by more than 0.054 rad: the 1.24 rad was the free turn about its own axis. And moments equal
+    within 1e-9 of the trace gave the other verdict. Such a body is "symmetric": its symmetry axis, taken to the
+    world and measured against the orbiting frame written out by hand, stays within its start's offsets while the
+    turn about it drifts; the summary's tilt is that angle."""
+    from tumble.analysis.summary import gravity_gradient_summary
+
+    props, pa, ya = body_rpy(*moments)
+    kr, kp, ky = gravity_gradient_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya)
+    assert str(gravity_gradient_stability(kr, kp, ky).region) == "symmetric"
+    nudged = props.principal_moments + np.array([0.0, 0.0, 1e-10]) * np.sum(props.principal_moments)
+    assert str(gravity_gradient_stability(*gravity_gradient_ratios(np.sort(nudged), pitch_axis=pa, yaw_axis=ya)).region) \
+        == "symmetric"
+    traj, _ = run(props, pa, ya, t_end=5 * PERIOD, samples=501, roll=0.02, pitch=0.05, yaw=0.02)
+    g = gravity_gradient_summary(traj, GG, pitch_axis=pa, yaw_axis=ya)
+    assert g["region"] == "symmetric" and g["symmetry_axis"] == free
+    k = ("roll", "pitch", "yaw").index(free)
+    principal = {"roll": 6 - pa - ya, "pitch": pa, "yaw": ya}[free] - 1
+    axis = traj.attitude.apply(np.eye(3)[principal])  # the symmetry axis in the world
+    where = np.array([lvlh_matrix(t)[:, k] for t in traj.t])  # its place: velocity, orbit normal or radius
+    tilt = np.arccos(np.clip(np.abs(np.sum(axis * where, axis=1)), 0.0, 1.0))
+    assert g["symmetry_axis_tilt"] == pytest.approx(float(np.max(tilt)), abs=1e-9)
+    assert np.max(tilt) < 0.1, np.max(tilt)
 
 
 # -- the energy budget ---------------------------------------------------------------------------

@@ -262,18 +262,23 @@ def test_an_orbit_frame_angle_past_half_a_turn_is_asked_about(tmp_path, capsys):
     assert capsys.readouterr().err == ""  # within half a turn: as written
 
 
-@pytest.mark.parametrize(("over_n", "free_body"), [(2.0, False), (30.0, True)])
-def test_a_spin_slow_beside_the_orbit_rate_is_not_given_the_free_bodys_verdict(tmp_path, capsys, over_n, free_body):
+@pytest.mark.parametrize(("direction", "over_n", "free_body"), [
+    ((0.25, 1.0, 0.3), 2.0, False), ((0.25, 1.0, 0.3), 30.0, True), ((0.01, 1.0, 0.01), 10.02, False)])
+def test_a_spin_slow_beside_the_orbit_rate_is_not_given_the_free_bodys_verdict(tmp_path, capsys, direction, over_n,
+                                                                               free_body):
     """A T-handle spun near its intermediate axis under the gravity gradient: ``tumble simulate`` said "predicted
     unstable" at any spin, the free body's theory (a walkthrough, 2026-12-02). At twice the orbit rate the
     gradient's torque, some 3 (n / omega)^2 of the gyroscopic terms (Hughes 1986, sec. 8.1), is 75 % of them:
     the line says so beside the free body's verdict, and the summary holds |omega0| / n and whether the free body's
     prediction applies. Checked against the free body's closed form: the run's mean flip interval over eleven
-    orbits is within 2 % of the elliptic interval at thirty times the orbit rate, and more than 5 % off at twice."""
+    orbits is within 2 % of the elliptic interval at thirty times the orbit rate, and more than 5 % off at twice.
+    At ten times the rate but 0.01 rad from the intermediate axis (a walkthrough of docs/gravity-gradient.md,
+    2026-12-03), the spin starts 3.2e-5 from the separatrix and the gradient's 3 % moves it: called a free body,
+    it flipped 31 % faster than one. The summary's separatrix_offset says so and free_body is false."""
     import json
 
     gg = tumble.GravityGradient(orbit_period=5400.0)
-    omega0 = np.array([0.25, 1.0, 0.3]) / np.linalg.norm([0.25, 1.0, 0.3]) * over_n * gg.mean_motion
+    omega0 = np.array(direction) / np.linalg.norm(direction) * over_n * gg.mean_motion
     path = scenario(tmp_path, GG + f"[initial]\nomega = {omega0.tolist()}\n[simulation]\nt_end = 60000.0\nsamples = 6001\n")
     assert main(["simulate", str(path), "--out", str(tmp_path / "run")]) == 0
     line = capsys.readouterr().out
@@ -281,6 +286,8 @@ def test_a_spin_slow_beside_the_orbit_rate_is_not_given_the_free_bodys_verdict(t
     assert g["spin_over_n"] == pytest.approx(over_n, rel=1e-12) and g["free_body"] is free_body
     slow = f"a free body would be unstable, but at {over_n:.2g} times the orbit rate the gravity gradient is not small"
     assert (slow in line) is not free_body and ("predicted unstable" in line) is free_body, line
+    near = "times the spin's distance from the separatrix, 3.2e-05, which it moves" in line
+    assert near is (direction[0] == 0.01) and (g["separatrix_offset"] < 1e-4) is near, (line, g["separatrix_offset"])
     report = tumble.stability_report(run_scenario(load_scenario(path)))
     closed_form = float(tumble.flip_interval(omega0, tumble.t_handle().principal_moments))
     off = abs(report["flip_period"] - closed_form) / closed_form

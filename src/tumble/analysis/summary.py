@@ -22,14 +22,6 @@ __all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "gravity_gradient_summary", "o
 #: samples): below it the count and the measured period are aliased (:func:`stability_report`'s
 #: ``samples_per_flip``; 0.04 s samples on 0.031 s flips counted 357 of ~640, the period 80 % off).
 SAMPLES_PER_FLIP = 4.0
-#: Least spin, in units of the orbit's mean motion ``n`` (``|omega0| / n``), at which a run under the
-#: gravity gradient follows the free body's prediction for its initial spin. The gradient's torque is
-#: of order ``3 n^2 (I_k - I_j)`` (Hughes, *Spacecraft Attitude Dynamics*, 1986, sec. 8.1), against
-#: the gyroscopic ``omega^2 (I_k - I_j)`` of Euler's equations: 3 % of it at ten times the orbit rate.
-#: Measured on the T-handle spun near its intermediate axis (60,000 s in a 5,400 s orbit), the mean
-#: flip interval against the free body's closed form: 1.5 % off at 10 n, 4 % at 5 n, 9 % at 2 n,
-#: 35 % at n; tumble simulate said "predicted unstable" of all of them alike.
-FREE_BODY_SPIN = 10.0
 #: Most samples :func:`torque_budget` calls a torque that varies in time at, one call each (~10 us).
 BUDGET_SAMPLES = 100_000
 #: Most rotation between samples (rad, ``max |omega| max dt``) at which :func:`torque_budget`'s
@@ -349,9 +341,14 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     :func:`~tumble.analysis.gravity_stability.gravity_gradient_stability`: ``"lagrange"``, ...),
     ``spin_over_n`` (``|omega0| / n``, the initial spin in units of the orbit's mean motion: 1 for a
     body at rest in the orbiting frame) and ``free_body`` (whether that spin is fast enough,
-    :data:`FREE_BODY_SPIN` times ``n`` or more, for the free body's prediction in ``stability`` to
+    :data:`~tumble.analysis.gravity_stability.FREE_BODY_SPIN` times ``n`` or more, for the free body's prediction in ``stability`` to
     say what the run does; below it the gradient's torque is not small beside the spin's
-    gyroscopic terms). With other torques beside it
+    gyroscopic terms; nor where the spin starts so near the separatrix, ``separatrix_offset``,
+    that the gradient moves it: ``3 / spin_over_n^2`` at most
+    :data:`~tumble.analysis.gravity_stability.SEPARATRIX_REACH` times the offset), ``symmetry_axis`` (``"roll"``, ``"pitch"`` or ``"yaw"`` where the body is
+    symmetric about it, region ``"symmetric"``, else None) and ``symmetry_axis_tilt`` (rad, the
+    largest angle of that axis from its place in the orbiting frame; the turn about it, free,
+    shows in ``max_angle``). With other torques beside it
     (``alone=False``, a :class:`~tumble.dynamics.TorqueSum`) the Jacobi integral is not conserved and
     ``jacobi_drift`` is None; the run's budgets are :func:`torque_budget`'s.
 
@@ -372,14 +369,18 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
     >>> round(out["spin_over_n"], 9), out["free_body"]   # turning with the orbiting frame: once an orbit
     (1.0, False)
     """
-    from ..dynamics.models.gravity import orbit_frame_angles
-    from .gravity_stability import gravity_gradient_ratios, gravity_gradient_stability
+    from ..dynamics.models.gravity import orbit_frame_angles, relative_attitude
+    from .gravity_stability import gravity_gradient_ratios, gravity_gradient_stability, spin_beside_orbit
 
     gg = gg.bind(traj.moments)
     h = gg.jacobi_integral(traj.t, traj.omega, traj.attitude)
     scale = gg.mean_motion**2 * float(np.sum(traj.moments))
     angles = orbit_frame_angles(traj, gg, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
-    spin = float(np.linalg.norm(traj.omega[0])) / gg.mean_motion
+    ratios = gravity_gradient_ratios(traj.moments, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
+    region = str(gravity_gradient_stability(*ratios).region)
+    k = [j for j in (2, 0, 1) if ratios[j] == 0.0][0] if region == "symmetric" else None  # yaw, roll, pitch: the first free
+    tilt = None if k is None else float(np.max(np.arccos(np.clip(  # the rpy frame's axis k against the orbiting frame's
+        relative_attitude(gg, traj.t, traj.attitude, pitch_axis=pitch_axis, yaw_axis=yaw_axis).as_matrix()[:, k, k], -1, 1))))
     return {
         "orbit_period": gg.period,
         "orbits": float(traj.t[-1] / gg.period),
@@ -387,10 +388,10 @@ def gravity_gradient_summary(traj: Trajectory, gg: GravityGradient, *, pitch_axi
         "max_angle": {name: float(np.max(np.abs(getattr(angles, name)))) for name in ("roll", "pitch", "yaw")},
         "pitch_axis": pitch_axis,
         "yaw_axis": yaw_axis,
-        "region": str(gravity_gradient_stability(*gravity_gradient_ratios(traj.moments, pitch_axis=pitch_axis,
-                                                                          yaw_axis=yaw_axis)).region),
-        "spin_over_n": spin,
-        "free_body": spin >= FREE_BODY_SPIN,
+        "region": region,
+        **spin_beside_orbit(traj.moments, traj.omega[0], gg.mean_motion),
+        "symmetry_axis": None if k is None else ("roll", "pitch", "yaw")[k],
+        "symmetry_axis_tilt": tilt,
     }
 
 
@@ -413,9 +414,11 @@ def orbit_gradient_summary(traj: Trajectory, orbit: Any) -> dict[str, Any]:
     >>> round(out["spin_over_n"], 2), out["free_body"], out["jacobi_drift"]   # twice the orbit rate
     (2.27, False, None)
     """
-    spin = float(np.linalg.norm(traj.omega[0])) / orbit.mean_motion
+    from .gravity_stability import spin_beside_orbit
+
     return {"orbit_period": float(orbit.period), "orbits": float(traj.t[-1] / orbit.period), "jacobi_drift": None,
-            "max_angle": None, "region": None, "spin_over_n": spin, "free_body": spin >= FREE_BODY_SPIN}
+            "max_angle": None, "region": None, **spin_beside_orbit(traj.moments, traj.omega[0], orbit.mean_motion),
+            "symmetry_axis": None, "symmetry_axis_tilt": None}
 
 
 def torque_budget(traj: Trajectory, torque: TorqueModel) -> dict[str, Any] | None:

@@ -421,11 +421,13 @@ def _budget_words(name: str, budget: dict) -> str:
 _REGION_WORDS = {"lagrange": "linearly stable there (the Lagrange region)",
                  "debra-delp": "linearly stable there by the gyroscopic coupling of roll and yaw (the DeBra-Delp region)",
                  "pitch unstable": "unstable there in pitch", "roll-yaw unstable": "unstable there in roll and yaw",
-                 "unstable": "unstable there in pitch and in roll and yaw"}
+                 "unstable": "unstable there in pitch and in roll and yaw",
+                 "symmetric": "stable there but for a free turn about its symmetry axis"}
 
 
 def _simulate_line(summary: dict, out) -> str:
     """One line for people: what the spin did and how well the invariants held."""
+    from ..analysis.gravity_stability import FREE_BODY_SPIN
     from ..analysis.summary import SAMPLES_PER_FLIP
 
     s, d = summary["stability"], summary["drift"]
@@ -441,7 +443,10 @@ def _simulate_line(summary: dict, out) -> str:
                 f"{'a free body would be ' + s['predicted'] + ', but ' if s['predicted'] else ''}"
                 f"at {g['spin_over_n']:.2g} times the orbit rate the gravity "
                 f"gradient is not small beside the spin (its torque some 3 (n / omega)^2 = "
-                f"{3.0 / g['spin_over_n'] ** 2:.0%} of the gyroscopic terms)")
+                f"{3.0 / g['spin_over_n'] ** 2:.0%} of the gyroscopic terms"
+                + (f", {3.0 / g['spin_over_n'] ** 2 / g['separatrix_offset']:.2g} times the spin's distance from the "
+                   f"separatrix, {g['separatrix_offset']:.2g}, which it moves)" if g["separatrix_offset"] is not None
+                   and g["spin_over_n"] >= FREE_BODY_SPIN else ")"))
     measured, exact = s["flip_period"], s["flip_period_exact"]
     aliased = s.get("samples_per_flip") is not None and s["samples_per_flip"] < SAMPLES_PER_FLIP
     if summary["torque_free"] and s["flips"] and (measured is not None or exact is not None):
@@ -463,6 +468,9 @@ def _simulate_line(summary: dict, out) -> str:
         g = summary["gravity_gradient"]
         tail = (f"{g['orbits']:.3g} orbits, Jacobi integral drift {g['jacobi_drift']:.1e}, largest angle from the "
                 f"orbiting frame {max(g['max_angle'].values()):.3g} rad")
+        if g["symmetry_axis"] is not None:  # the turn about it changes nothing: how far the axis itself went
+            tail += (f"; its symmetry axis ({g['symmetry_axis']}), about which it turns freely, at most "
+                     f"{g['symmetry_axis_tilt']:.3g} rad from its place")
     elif summary["torque_free"] and all(v is None for v in d.values()):
         tail = "energy and L start at 0, so there is no relative drift to give"
         work = summary.get("rotors", {}).get("motor_work")

@@ -31,14 +31,15 @@ def _draw_regions(ax, kr_range, ky_range, n: int) -> None:
     """Fill the regions on an ``n`` x ``n`` grid over the ranges and draw their boundaries."""
     from matplotlib.colors import ListedColormap
 
-    def centres(lo, hi):  # cell centres: never the corners k_R = k_Y = +-1, where k_P is 0/0
-        return lo + (hi - lo) * (np.arange(n) + 0.5) / n
+    def centres(lo, hi, at):  # cell centres, k_Y's a quarter cell off k_R's: never on the lines k_R = 0, k_Y = 0
+        return lo + (hi - lo) * (np.arange(n) + at) / n  # and k_R = k_Y (k_P = 0), nor the corners, where k_P is 0/0
 
-    kr, ky = np.meshgrid(centres(*kr_range), centres(*ky_range))
+    kr, ky = np.meshgrid(centres(*kr_range, 0.5), centres(*ky_range, 0.25))
     region = gravity_gradient_stability(kr, (kr - ky) / (1.0 - kr * ky), ky).region
-    code = np.select([region == name for name in STABILITY_REGIONS], range(len(STABILITY_REGIONS)))
+    filled = STABILITY_REGIONS[:len(REGION_COLORS)]  # "symmetric" lies on those lines, drawn as boundaries
+    code = np.select([region == name for name in filled], range(len(filled)))
     ax.pcolormesh(kr, ky, code, cmap=ListedColormap(REGION_COLORS), vmin=-0.5,
-                  vmax=len(STABILITY_REGIONS) - 0.5, shading="nearest", rasterized=True)
+                  vmax=len(filled) - 0.5, shading="nearest", rasterized=True)
     with np.errstate(invalid="ignore"):  # the roll-yaw boundary, where k_R k_Y > 0
         prod = kr * ky
         margin = np.where(prod > 0, 1.0 + 3.0 * kr + prod - 4.0 * np.sqrt(np.abs(prod)), np.nan)
@@ -91,8 +92,12 @@ def figure_gravity_stability(*, ax: Axes | None = None,
     if points is not None and not isinstance(points, dict):  # a list of pairs had no label to write
         raise ValueError(f"points = {short_repr(points)} must be a dict of a label to its (k_R, k_Y), e.g. "
                          "{'my body': (0.8, 0.6)}")
+    for label, pair in (points or {}).items():  # gravity_gradient_ratios' three: "too many values to unpack"
+        if np.shape(pair) != (2,):
+            raise ValueError(f"points[{label!r}] = {short_repr(pair)} must be two numbers, (k_R, k_Y); of "
+                             "gravity_gradient_ratios' three (k_R, k_P, k_Y) give the first and the last")
     fig, ax = figure_and_axes(ax, figsize=(7.6, 5.6))
-    _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 601)
+    _draw_regions(ax, (-1.0, 1.0), (-1.0, 1.0), 600)
     ax.set_aspect("equal")
     ax.set_xlabel(r"$k_R = (I_{pitch} - I_{yaw}) / I_{roll}$ (dimensionless)")
     ax.set_ylabel(r"$k_Y = (I_{pitch} - I_{roll}) / I_{yaw}$ (dimensionless)")
