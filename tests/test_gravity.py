@@ -598,6 +598,10 @@ def test_stability_figure(tmp_path):
     assert labels[:2] == ["Lagrange (stable)", "DeBra-Delp (stable)"]
     ax = Figure().subplots()
     assert figure_gravity_stability(ax=ax) is ax.figure
+    # the three ratios where the pair goes (a walkthrough, 2026-12-03: "too many values to unpack")
+    with pytest.raises(ValueError, match=r"^points\['boom'\] = \(0.75, 0.4, 0.5\) must be two numbers, \(k_R, k_Y\); "
+                                         r"of gravity_gradient_ratios' three \(k_R, k_P, k_Y\) give the first and the last$"):
+        figure_gravity_stability(points={"boom": tuple(float(k) for k in gravity_gradient_ratios([1.0, 2.0, 2.5]))})
 
 
 def test_stability_lives_in_analysis_and_the_ratios_have_their_own_name():
