@@ -34,7 +34,8 @@ from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
 from ..validation import unknown_name
 from .examples import _read_input
 from .keys import FileFormat, Key, Table
-from .meshfile import MESH_SUFFIXES, MESH_UNITS, MeshScaleWarning, body_from_mesh, is_mesh_file, mesh_scale_note
+from .meshfile import (LIGHTEST_WRITTEN, MESH_SUFFIXES, MESH_UNITS, MeshScaleWarning, body_from_mesh, is_mesh_file, mesh_part,
+                       mesh_scale_note, written_density_note)
 
 __all__ = [
     "BODY_FORMAT",
@@ -49,12 +50,14 @@ __all__ = [
     "is_mesh_file",
     "body_path",
     "load_body",
+    "mesh_part",
     "mesh_scale_note",
     "mesh_files",
     "PART_TABLES",
     "PRESET_TABLES",
     "part_from_table",
     "read_toml",
+    "written_density_note",
 ]
 
 
@@ -255,18 +258,13 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
             raise ValueError(f"{where}: mesh = {mesh!r} must be a file path (a string)")
         kwargs["mesh"] = os.path.join(base_dir or ".", mesh)
     with _slips_named(where):  # a likely unit slip, named where it is written
-        try:
-            part = cls(**kwargs)
+        try:  # a mesh's size and density as tumble inertia checks a mesh file's (a part in mm weighed 6e9 kg)
+            part = mesh_part(kwargs.pop("mesh"), key="scale", **kwargs) if kind == "mesh" else cls(**kwargs)
         except ValueError as exc:
             raise ValueError(f"{where}: {exc}") from None
-        if kwargs.get("density") is not None and part.density < LIGHTEST_WRITTEN:
-            warnings.warn(f"density = {kwargs['density']!r} kg/m^3 is below any solid's but a foam's or an aerogel's "
-                          f"(expanded polystyrene 15-30 kg/m^3): is it in g/cm^3? Write kg/m^3 (7.85 g/cm^3 = 7850 "
-                          f"kg/m^3)", UnitSlipWarning, stacklevel=2)
-        if kind == "mesh":  # a mesh's size, as tumble inertia checks a mesh file's (a part in mm weighed 6e9 kg)
-            note = mesh_scale_note(kwargs["mesh"], part, part.scale, key="scale")
-            if note:
-                warnings.warn(note, MeshScaleWarning, stacklevel=2)
+        written = None if kind == "mesh" or part.density is None else written_density_note(part.density)
+        if written:
+            warnings.warn(written, UnitSlipWarning, stacklevel=2)
         return part
 
 
@@ -282,9 +280,6 @@ def _slips_named(where: object) -> Iterator[None]:
         warnings.warn(f"{named}{slip.message}", slip.category, stacklevel=3)
 
 
-#: A density written in a body file below this (kg/m^3) is most likely in g/cm^3 (steel's 7.85,
-#: aluminium's 2.7, water's 1): a warning, since foams and aerogels are lighter still.
-LIGHTEST_WRITTEN = 25.0
 #: A body file's body under 1e6 kg whose radius of gyration passes this (m) is most likely sized in
 #: mm or cm: the International Space Station's is ~30 m (4.2e5 kg); an asteroid's mass is far above.
 LARGEST_SPAN = 100.0

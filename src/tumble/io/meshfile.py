@@ -15,8 +15,8 @@ from pathlib import Path
 from ..mass import Body, Mesh, UnitSlipWarning
 from ..validation import NoSuchFileError
 
-__all__ = ["MESH_SUFFIXES", "MESH_UNITS", "MeshScaleWarning", "body_from_mesh", "is_mesh_file",
-           "mesh_scale_note"]
+__all__ = ["LIGHTEST_WRITTEN", "MESH_SUFFIXES", "MESH_UNITS", "MeshScaleWarning", "body_from_mesh", "is_mesh_file",
+           "mesh_part", "mesh_scale_note", "written_density_note"]
 
 
 #: The mesh files that :func:`body_from_mesh` (and ``tumble inertia``) read directly, by suffix
@@ -87,6 +87,61 @@ def mesh_scale_note(path: str | os.PathLike[str], part: Mesh, scale: float, *, k
     return None
 
 
+#: A density written in a file or on the command line below this (kg/m^3) is most likely in g/cm^3
+#: (steel's 7.85, aluminium's 2.7, water's 1): a warning, since foams and aerogels are lighter still.
+LIGHTEST_WRITTEN = 25.0
+
+
+def written_density_note(density: float) -> str | None:
+    """One line when a density as written (kg/m^3) is below :data:`LIGHTEST_WRITTEN`, else None.
+
+    Examples
+    --------
+    >>> from tumble.io.meshfile import written_density_note
+    >>> written_density_note(7850.0) is None, written_density_note(7.85)[:34]
+    (True, 'density = 7.85 kg/m^3 is below any')
+    """
+    if density >= LIGHTEST_WRITTEN:
+        return None
+    return (f"density = {density!r} kg/m^3 is below any solid's but a foam's or an aerogel's (expanded polystyrene "
+            f"15-30 kg/m^3): is it in g/cm^3? Write kg/m^3 (7.85 g/cm^3 = 7850 kg/m^3)")
+
+
+def mesh_part(path: str | os.PathLike[str], *, key: str = "units", **kwargs: object) -> Mesh:
+    """:class:`tumble.Mesh` ``(mesh=path, **kwargs)`` with its unit slips said once each: a size
+    no hand-made solid has (:func:`mesh_scale_note`, ``key`` as there), else the density its
+    mass gives (the part's own :class:`~tumble.mass.UnitSlipWarning`: grams for kg), and a
+    density written in g/cm^3 (:func:`written_density_note`). A mesh read in the wrong unit
+    also has a density no solid has; only its size is named then. A ValueError of the part as it
+    came.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, trimesh, warnings
+    >>> from tumble.io.meshfile import mesh_part
+    >>> with tempfile.TemporaryDirectory() as folder, warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     path = pathlib.Path(folder, "box.stl")
+    ...     _ = trimesh.creation.box(extents=(100.0, 200.0, 300.0)).export(path)   # in mm
+    ...     part = mesh_part(path, scale=0.001, mass=2000.0)   # 2 kg written as grams
+    >>> round(part.mass), [str(w.message)[:47] for w in caught]
+    (2000, ['a mesh of 2e+03 kg in 0.006 m^3 is 3.33e+05 kg/'])
+    """
+    with warnings.catch_warnings(record=True) as slips:
+        warnings.simplefilter("always", UnitSlipWarning)
+        part = Mesh(mesh=os.fspath(path), **kwargs)  # type: ignore[arg-type]
+    note = mesh_scale_note(path, part, part.scale, key=key)
+    if note:
+        warnings.warn(note, MeshScaleWarning, stacklevel=2)
+    for slip in slips:
+        if not (note and issubclass(slip.category, UnitSlipWarning)):
+            warnings.warn(slip.message, slip.category, stacklevel=2)
+    written = None if part.density is None else written_density_note(part.density)
+    if written:
+        warnings.warn(written, UnitSlipWarning, stacklevel=2)
+    return part
+
+
 def is_mesh_file(source: str | os.PathLike[str]) -> bool:
     """Whether ``source`` names a mesh file (by its suffix, any case: .stl, .obj, .ply).
 
@@ -153,11 +208,8 @@ def body_from_mesh(
             raise ValueError(f"{path}: units = {units!r} is unknown; allowed: {', '.join(MESH_UNITS)}")
         scale = MESH_UNITS[units]
     try:
-        part = Mesh(mesh=os.fspath(path), scale=1.0 if scale is None else scale, density=density, mass=mass)
+        part = mesh_part(path, scale=1.0 if scale is None else scale, density=density, mass=mass)
     except ValueError as exc:
         message = str(exc)
         raise (NoSuchFileError if isinstance(exc, FileNotFoundError) else ValueError)(message if os.fspath(path) in message else f"{path}: {message}") from None
-    note = mesh_scale_note(path, part, part.scale)
-    if note:
-        warnings.warn(note, MeshScaleWarning, stacklevel=2)
     return Body((part,), name=Path(path).stem)

@@ -126,7 +126,7 @@ class Part:
         else:
             self._set("mass", check_positive("mass", self.mass, "kg"))
         self._check_representable()
-        if self.solid and self.kind != "mesh" and self.density is None:  # a mesh: io.meshfile checks its size
+        if self.solid and self.density is None:  # a mesh's file read in the wrong unit: io.meshfile says that instead
             volume = self.volume
             of_mass: float | None = cast(float, self.mass) / volume if volume > 0.0 else None
             if of_mass is not None and of_mass < MIN_DENSITY:
