@@ -10,6 +10,7 @@ centrally symmetric hole centred on a face; (3/4)^3 of a cone whose centre of ma
 from __future__ import annotations
 
 import math
+import warnings
 import re
 
 import numpy as np
@@ -140,3 +141,31 @@ def test_the_command_refuses_a_hole_beside_its_plate_in_one_line(tmp_path, capsy
     assert main(["inertia", str(path)]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "parts[1] (a cylinder, subtract = true) removes material where there is none: 100 %" in err
+
+
+def test_a_hole_lighter_than_its_material_is_warned_of_and_a_bore_through_an_insert_takes_both_densities():
+    """A walkthrough of docs/formats/body.md (2026-12-03): a hole of 1000 kg/m^3 cut from steel left 6850 kg/m^3 in
+    it without a word, while a denser one was refused; and a bore through a steel insert pressed into plastic (their
+    densities add where they overlap, 9050 kg/m^3) could not be one hole: 9050 was refused as denser than every
+    part, 7850 left the plastic in the bore. The hole is judged by the material at its points: a lighter one is
+    warned of (a fill of another material, allowed), the sum is the bore, and a denser one is refused."""
+    from tumble.mass.holes import HoleFillWarning
+
+    steel = tumble.Box(density=7850.0, size=(1.0, 1.0, 1.0))
+    with pytest.warns(HoleFillWarning, match=r"^parts\[1\] \(a sphere, subtract = true\) leaves 6850 kg/m\^3 of the 7850 "
+                                             r"kg/m\^3 it is cut from \(1000 removed\)"):
+        light = tumble.Body([steel, tumble.Sphere(density=1000.0, radius=0.2, subtract=True)])
+    assert light.mass == pytest.approx(7850.0 - 1000.0 * 4 / 3 * math.pi * 0.2**3, rel=1e-12)
+    plastic, insert = tumble.Box(density=1200.0, size=(0.1, 0.1, 0.1)), tumble.Cylinder(density=7850.0, radius=0.01, length=0.1)
+    bore = dict(radius=0.005, length=0.1, subtract=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        drilled = tumble.Body([plastic, insert, tumble.Cylinder(density=9050.0, **bore)])
+    v_bore = math.pi * 0.005**2 * 0.1
+    expected = 1200.0 * 1e-3 + 7850.0 * math.pi * 0.01**2 * 0.1 - 9050.0 * v_bore  # by hand: nothing left in the bore
+    assert drilled.mass == pytest.approx(expected, rel=1e-12)
+    with pytest.warns(HoleFillWarning, match=r"leaves 1200 kg/m\^3 of the 9050 kg/m\^3 it is cut from \(7850 removed\)"):
+        tumble.Body([plastic, insert, tumble.Cylinder(density=7850.0, **bore)])
+    with pytest.raises(ValueError, match=r"^parts\[2\] \(a cylinder, subtract = true\) is 10000 kg/m\^3, denser than the "
+                                         r"9050 kg/m\^3 it is cut from"):
+        tumble.Body([plastic, insert, tumble.Cylinder(density=10000.0, **bore)])

@@ -31,6 +31,7 @@ from typing import Any
 from pathlib import Path
 
 from ..mass import PART_KINDS, PRESETS, Body, Part, UnitSlipWarning
+from ..mass.holes import HoleFillWarning
 from ..validation import unknown_name
 from .examples import _read_input
 from .keys import FileFormat, Key, Table
@@ -270,13 +271,13 @@ def part_from_table(table: object, *, base_dir: Path | None = None, where: str =
 
 @contextlib.contextmanager
 def _slips_named(where: object) -> Iterator[None]:
-    """The block's :class:`~tumble.mass.UnitSlipWarning` warnings again, ``where: `` before each
+    """The block's :class:`~tumble.mass.UnitSlipWarning` and hole-fill warnings again, ``where: `` before each
     (the file, the part); other warnings as they came."""
     with warnings.catch_warnings(record=True) as slips:
         warnings.simplefilter("always", UnitSlipWarning)
         yield
     for slip in slips:
-        named = f"{where}: " if issubclass(slip.category, UnitSlipWarning) else ""
+        named = f"{where}: " if issubclass(slip.category, (UnitSlipWarning, HoleFillWarning)) else ""
         warnings.warn(f"{named}{slip.message}", slip.category, stacklevel=3)
 
 
