@@ -37,6 +37,27 @@ def test_seed_printed_formula_differs():
     assert not np.allclose(seed, tumble.t_handle().inertia)
 
 
+def test_the_seed_codes_geometry_and_what_its_formula_says_of_each():
+    """docs/seed-errata.md secs. 2-3 (corrected after a walkthrough, 2026-12-03, which found "an L" to be a T on its
+    side): the seed's code has the crossbar along x centred at (L_s/2, 0, 0), its end at the shaft's middle. By hand:
+    COM (0.25, 0, 0); the shaft's 1/8 about x and y plus 1.5 * 0.25^2 about y and z, the crossbar's 1/8 about y and
+    z plus the same: diag(0.125, 0.4375, 0.3125): x minor (the seed's runs stable), z intermediate. The seed's
+    formula makes x intermediate there and minor in the derivation's T: wrong in both."""
+    m, L = 1.5, 1.0
+    code = tumble.Body([tumble.Rod(mass=m, length=L, axis=(0, 0, 1)), tumble.Rod(mass=m, length=L, center=(L / 2, 0, 0),
+                                                                               axis=(1, 0, 0))])
+    np.testing.assert_allclose(code.com, [0.25, 0.0, 0.0], atol=1e-15)
+    np.testing.assert_allclose(code.inertia, np.diag([0.125, 0.4375, 0.3125]), atol=1e-15)
+    np.testing.assert_allclose(code.properties.intermediate_axis, [0, 0, 1], atol=1e-15)
+
+    def seed_formula(d_x, d_z):
+        return np.array([m * L**2 / 12 + m * d_x**2, m * L**2 / 12 + m * L**2 / 12, m * L**2 / 12 + m * d_z**2])
+
+    assert np.argsort(seed_formula(0.25, 0.0))[1] == 0 != np.argsort(np.diag(code.inertia))[1]  # x "intermediate"
+    assert np.argsort(seed_formula(0.0, 0.25))[0] == 0  # x "minor" in the derivation's T, where it is intermediate
+    np.testing.assert_allclose(tumble.t_handle().properties.intermediate_axis, [1, 0, 0], atol=1e-15)
+
+
 def test_iss_handle_shaft_is_intermediate():
     body = tumble.iss_t_handle()
     np.testing.assert_allclose(body.properties.intermediate_axis, [0, 0, 1], atol=1e-12)
