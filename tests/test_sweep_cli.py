@@ -470,3 +470,25 @@ def test_a_sweep_takes_the_tolerances_a_scenario_takes():
     inputs = Ensemble(BodySampler(t_handle()), InitialRates(omega=(0.1, 10.0, 0.1)), cases=2).inputs()
     a, b = loose.sweep.settings.run(inputs), tight.sweep.settings.run(inputs)
     assert 1e-9 < float(np.max(np.abs(a.omega - b.omega))) < 1e-3  # the tolerance reaches the integration
+
+
+def test_a_sweep_sampled_too_coarsely_for_its_flips_says_so(tmp_path, capsys):
+    """A walkthrough of the sweeps (2026-12-03): spun 57 times faster (573 rad/s, a deg/s number typed as rad/s), the
+    seed's T-handle flips every ~0.03 s, and 300 samples over 15 s (0.05 s apart) counted a fraction of the flips and a
+    flip period twice too long without a word, where tumble simulate says "too few samples to count flips". Each case's
+    samples_per_flip is written (the exact interval over the spacing) and the line and summary.json count the cases
+    below 4; the flips they counted are indeed not the elliptic interval's."""
+    path = write(tmp_path, text=SMALL.replace("omega = [10.0, 0.1, 0.1]", "omega = [573.0, 5.7, 5.7]"))
+    assert run_sweep_command(path, tmp_path / "out") == 0
+    line = capsys.readouterr().out
+    data = json.loads((tmp_path / "out" / "summary.json").read_text())
+    _, cols = read_cases(tmp_path / "out" / "cases.csv")
+    spacing = 15.0 / 299
+    np.testing.assert_allclose(cols["samples_per_flip"], cols["flip_period_exact [s]"] / spacing, rtol=1e-9)
+    assert np.all(cols["samples_per_flip"] < 4) and data["flipped"]["aliased"] == 40
+    assert "40 cases sampled fewer than 4 times a flip" in line and "miscounted: give more samples" in line, line
+    assert "but 40 of the 40 cases were sampled fewer than 4 times a flip" in data["flipped"]["statement"]
+    assert np.all(np.abs(cols["flips"] - 15.0 / cols["flip_period_exact [s]"]) > 5)  # miscounted indeed
+    assert run_sweep_command(write(tmp_path, name="slow.toml"), tmp_path / "slow") == 0  # 36 samples a flip: no word
+    assert "miscounted" not in capsys.readouterr().out
+    assert json.loads((tmp_path / "slow" / "summary.json").read_text())["flipped"]["aliased"] == 0

@@ -10,7 +10,10 @@ The file's format is :mod:`tumble.io.sweepfile`'s; the cases are run by :mod:`tu
   per dispersed quantity, e.g. ``shaft_length [m]``), ``resampled``, then ``axis``, ``predicted``,
   ``growth_rate [1/s]``, ``wobble_frequency [rad/s]``, ``circulation``, ``flips``,
   ``flip_period [s]``, ``flip_period_exact [s]``, ``omega_end_1 [rad/s]`` to ``_3``, ``q_end_x``
-  to ``q_end_w``, ``max_nutation [rad]``, ``energy_change``, ``L_world_angle [rad]``. Floats are
+  to ``q_end_w``, ``max_nutation [rad]``, ``energy_change``, ``L_world_angle [rad]``,
+  ``samples_per_flip`` (the flip interval, exact or counted, over the widest sample spacing: below 4
+  the flips counted are aliased, and ``summary.json``'s ``"flipped"`` counts those cases,
+  ``aliased``). Floats are
   written as Python's shortest round-trip repr (``nan`` where a quantity does not apply);
 - ``cases.parquet``: the same table, when pyarrow is installed (``pip install 'tumble[table]'``);
 - ``summary.json``: the sweep's settings, the streaming statistics
@@ -280,6 +283,9 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
         low, high = f["interval"]
         text += (f"; {f['cases']} flipped ({100 * f['fraction']:.4g} %, {100 * f['confidence']:.4g} % interval "
                  f"{100 * low:.4g} to {100 * high:.4g} %)")
+        if f.get("aliased"):  # flips shorter than the samples resolve: the counts and periods are not the motion's
+            text += (f" but {f['aliased']} case{'' if f['aliased'] == 1 else 's'} sampled fewer than 4 times a flip "
+                     f"(min {stats['samples_per_flip']['min']:.2g}), their flips miscounted: give more samples")
     if period["count"]:
         q = period["quantiles"]
         text += (f"; flip period median {q['0.5']:.4g} s over {period['count']} flipping twice or more "

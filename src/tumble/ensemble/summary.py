@@ -14,6 +14,7 @@ from typing import Callable, Iterable, Iterator, Protocol
 
 import numpy as np
 
+from ..analysis.summary import SAMPLES_PER_FLIP
 from . import _display
 from .statistics import (
     Counts,
@@ -126,6 +127,9 @@ class SweepSummary:
         Body draws refused as unphysical and drawn again, in all.
     flipped : int
         Cases that flipped at least once (``flips >= 1``; 0 without a ``flips`` column).
+    aliased : int
+        Cases sampled fewer than :data:`~tumble.analysis.summary.SAMPLES_PER_FLIP` times a flip
+        (``samples_per_flip``): their flips and flip period are not what the motion did.
 
     Examples
     --------
@@ -146,6 +150,7 @@ class SweepSummary:
     failed: int = 0
     redraws: int = 0
     flipped: int = 0
+    aliased: int = 0
 
     def __repr__(self) -> str:
         return _display.sweep_repr(self)
@@ -174,7 +179,8 @@ class SweepSummary:
         ok = criterion.passed(columns) if criterion is not None else np.zeros(0, bool)
         return cls(names, RunningMoments.of(table), KeyedSample.of(case_keys(seed, columns["case"]), table, sample_size),
                    Counts.of({k: columns[k] for k in CATEGORICAL}), int(ok.sum()), int((~ok).sum()),
-                   int(np.sum(columns["resampled"])), int(np.sum(columns["flips"] >= 1)) if "flips" in columns else 0)
+                   int(np.sum(columns["resampled"])), int(np.sum(columns["flips"] >= 1)) if "flips" in columns else 0,
+                   int(np.sum(np.asarray(columns.get("samples_per_flip", ()), float) < SAMPLES_PER_FLIP)))
 
     def merge(self, other: SweepSummary) -> SweepSummary:
         """Both together (same columns).
@@ -195,7 +201,8 @@ class SweepSummary:
             raise ValueError("summaries of different columns cannot be merged")
         return SweepSummary(self.columns, self.moments.merge(other.moments), self.sample.merge(other.sample),
                             self.counts.merge(other.counts), self.passed + other.passed,
-                            self.failed + other.failed, self.redraws + other.redraws, self.flipped + other.flipped)
+                            self.failed + other.failed, self.redraws + other.redraws, self.flipped + other.flipped,
+                            self.aliased + other.aliased)
 
     @property
     def cases(self) -> int:
@@ -280,8 +287,11 @@ class SweepSummary:
             low, high = fraction_interval(n, k, FLIP_CONFIDENCE)
             out["flipped"] = {
                 "cases": k, "fraction": k / n, "confidence": FLIP_CONFIDENCE, "interval": [low, high],
+                "aliased": self.aliased,
                 "statement": (f"{k} of {n} cases flipped ({100 * k / n:.4g} %; {100 * low:.4g} % to {100 * high:.4g} % "
-                              f"at {100 * FLIP_CONFIDENCE:.4g} % confidence, Clopper-Pearson)"),
+                              f"at {100 * FLIP_CONFIDENCE:.4g} % confidence, Clopper-Pearson)" + (
+                                  f"; but {self.aliased} of the {n} cases were sampled fewer than {SAMPLES_PER_FLIP:g} "
+                                  f"times a flip, their flips miscounted: give more samples" if self.aliased else "")),
             }
         if criterion is not None:
             n = self.passed + self.failed

@@ -12,7 +12,7 @@ import os
 import warnings
 from pathlib import Path
 
-from ..mass import Body, Mesh, UnitSlipWarning
+from ..mass import Body, Mesh, Part, UnitSlipWarning
 from ..mass.part_base import MAX_SOLID_SIZE
 from ..validation import NoSuchFileError
 
@@ -109,8 +109,8 @@ def written_density_note(density: float) -> str | None:
             f"15-30 kg/m^3): is it in g/cm^3? Write kg/m^3 (7.85 g/cm^3 = 7850 kg/m^3)")
 
 
-def mesh_part(path: str | os.PathLike[str], *, key: str = "units", **kwargs: object) -> Mesh:
-    """:class:`tumble.Mesh` ``(mesh=path, **kwargs)`` with its unit slips said once each: a size
+def mesh_part(path: str | os.PathLike[str], *, key: str = "units", **kwargs: object) -> Part:
+    """A :class:`tumble.Mesh` part, ``Mesh(mesh=path, **kwargs)``, with its unit slips said once each: a size
     no hand-made solid has (:func:`mesh_scale_note`, ``key`` as there), else the density its
     mass gives (the part's own :class:`~tumble.mass.UnitSlipWarning`: grams for kg), and a
     density written in g/cm^3 (:func:`written_density_note`). A mesh read in the wrong unit
