@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import re
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -461,3 +462,28 @@ def test_a_log_that_stops_before_the_rotors_spin_up_is_named(flown_once):
     fit = fit_tensor([throw(1), throw(2), cut], _speed_checked_device(), OBJECT.mass)
     assert fit.throws[2].status == "skipped"
     assert "the log stops before the rotor's spin-up (its idle is ~200 rad/s)" in fit.throws[2].reason
+
+
+def test_a_second_throw_in_one_log_is_said_not_fitted():
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): two caught throws joined in one log, 0.8 s in the hand
+    between them, gave "from 2 of 2 throws" with the second throw of each log dropped without a word. The firmware
+    brakes the rotor after each flight and spins it up after the next release: a spin-up after the fitted flight
+    is said (MoreThrowsWarning), naming the log and the time; a log of one throw says nothing."""
+    from tumble.analysis.tensor.flight import MoreThrowsWarning
+
+    a, b = throw(1), throw(2)
+    dt = float(np.median(np.diff(a.t)))
+    hand = a.t[-1] + dt * np.arange(1, int(0.8 / dt))  # held: small rates, the idle rotor, gravity
+    rng = np.random.default_rng(0)
+    shift = hand[-1] + dt - b.t[0]
+    two = _with(a, t=np.r_[a.t, hand, b.t + shift], omega=np.r_[a.omega, 0.3 * rng.standard_normal((hand.size, 3)), b.omega],
+                rotor=np.r_[a.rotor, np.full(hand.size, 200.0), b.rotor], input="two.csv",
+                accel=np.r_[a.accel, [0.0, 0.0, 9.81] + 0.5 * rng.standard_normal((hand.size, 3)), b.accel])
+    again = b.t[np.argmax(b.rotor > 0.5 * a.rotor.max())] + shift  # half the first spin-up's top
+    with pytest.warns(MoreThrowsWarning, match=rf"^two\.csv: the rotor spins up again at t = {again:.4g} s, after this "
+                                               r"throw's flight \(to 0\.\d+ s\): a second throw in one log\? Only the first"):
+        fit = fit_tensor([two, throw(3)], calibrated_device(), OBJECT.mass)
+    assert [t.status for t in fit.throws] == ["used", "used"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", MoreThrowsWarning)
+        fit_tensor([throw(1), throw(3)], calibrated_device(), OBJECT.mass)

@@ -36,7 +36,7 @@ from ..fit.segments import IMPULSE_SPAN, impulses
 from .throwlog import Throw
 
 __all__ = ["END_MARGIN", "MIN_FLIGHT", "MISFIT", "SEARCH_BACK", "SPAN", "START_MARGIN", "Window", "catch_candidates",
-           "find_flight", "rotor_start", "skew"]
+           "MoreThrowsWarning", "find_flight", "rotor_start", "skew", "spin_up_after"]
 
 #: The misfit of the free-fall accelerometer model above which a sample is held, m/s^2 (g / 2).
 MISFIT = 0.5 * 9.80665
@@ -169,6 +169,42 @@ def catch_candidates(t: np.ndarray, omega: np.ndarray, rotor: int, keep: np.ndar
         if not out or t[k] - t[out[-1]] > SPAN:
             out.append(int(k))
     return out
+
+
+class MoreThrowsWarning(UserWarning):
+    """A throw's log in which the rotor spins up again after the fitted flight: most likely a second
+    throw in one log, which is not fitted (:func:`spin_up_after`); a command prints it in one line.
+
+    Examples
+    --------
+    >>> from tumble.analysis.tensor.flight import MoreThrowsWarning
+    >>> issubclass(MoreThrowsWarning, UserWarning), MoreThrowsWarning.cli_one_line
+    (True, True)
+    """
+
+    cli_one_line = True
+
+
+def spin_up_after(rotor: np.ndarray, k: int) -> int | None:
+    """The first sample after ``k`` at which the rotor, having slowed below a fifth of its top speed
+    up to ``k``, is back above half of it: the firmware's next spin-up (each throw's rotor is braked
+    after the catch and spun up after the next release), or None.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor.flight import spin_up_after
+    >>> one = np.r_[np.zeros(5), np.full(10, 1300.0), np.linspace(1300.0, 0.0, 10), np.zeros(5)]
+    >>> spin_up_after(one, 15), spin_up_after(np.r_[one, np.full(5, 1250.0)], 15)
+    (None, 30)
+    """
+    speed = np.abs(np.asarray(rotor, float))
+    top = float(speed[:k].max()) if k > 0 else 0.0
+    slow = np.flatnonzero(speed[k:] < 0.2 * top)
+    if top <= 0.0 or slow.size == 0:
+        return None
+    again = np.flatnonzero(speed[k + int(slow[0]):] > 0.5 * top)
+    return k + int(slow[0]) + int(again[0]) if again.size else None
 
 
 def find_flight(throw: Throw, keep: np.ndarray) -> Window:

@@ -30,6 +30,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -43,7 +45,8 @@ from ..fit.uncertainty import autocorrelation_time, noise_floor
 from .throwlog import Throw
 from .estimate import tensor_of
 from .center import center_of_mass, rate_part
-from .flight import END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, Window, catch_candidates, find_flight
+from .flight import (END_MARGIN, MIN_FLIGHT, SPAN, START_MARGIN, MoreThrowsWarning, Window, catch_candidates, find_flight,
+                     spin_up_after)
 from .joint import JointModel, fit_joint
 from .sensors import SensorErrors
 from .model import NONNEGATIVE, RotorInput, ThrowModel, cholesky_of, inertia_of, rotor_input, sample_means
@@ -333,6 +336,11 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
         P[6:9] = inertia_of(P[:6]) @ w + rotor.h(t_all[start])
         model, P = _solve(throw, keep_all, rotor, start, stop, drag, P)  # type: ignore[misc]
     win = replace(win, first=start, stop=stop, t_release=float(t_all[start]), t_end=float(t_all[stop - 1]))
+    again = spin_up_after(throw.rotor, stop)
+    if again is not None:  # a second throw in one log was dropped without a word (a walkthrough, 2026-12-03)
+        warnings.warn(f"{throw.input or 'a throw'}: the rotor spins up again at t = {t_all[again]:.4g} s, after this throw's "
+                      f"flight (to {win.t_end:.4g} s): a second throw in one log? Only the first is fitted: give each "
+                      "throw a file of its own", MoreThrowsWarning, stacklevel=2)
     return _finish(throw, win, model, P, errors)
 
 
