@@ -330,3 +330,21 @@ def test_the_page_lists_every_column_and_the_tensor_guide_points_to_it():
         assert key in page, key
     assert "\nblackbox\n" in (ROOT / "docs" / "formats" / "index.md").read_text(encoding="utf-8")
     assert "formats/blackbox.md" in (ROOT / "docs" / "tensor.md").read_text(encoding="utf-8")
+
+
+def test_the_rotor_on_another_motor_than_motor_index_names_it(tmp_path, capsys):
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): Betaflight logs every motor's eRPM, so with the flywheel
+    on motor 2 and the device file's motor_index = 0, eRPM[0] is there and stays 0, and tumble tensor said "the rotor
+    did not spin up (it never reached 50 rad/s)" with no word of motor_index. It names the motor that turns."""
+    text = blackbox_csv(_throw(7), _device(motor_index=2))  # one motor turns, the flywheel's: the others log 0
+    head, *rows = text.splitlines()
+    idle = {j for j, c in enumerate(head.split(",")) if c.strip() in ("eRPM[0]", "eRPM[1]", "eRPM[3]")}
+    rows = [", ".join("0" if k in idle else cell.strip() for k, cell in enumerate(row.split(","))) for row in rows]
+    path = tmp_path / "b1.csv"
+    path.write_text("\n".join([head, *rows]) + "\n")
+    device = write_device(tmp_path / "calibrated.toml", _device(motor_index=0))
+    top = max(int(row.split(", ")[[c.strip() for c in head.split(",")].index("eRPM[2]")]) for row in rows)
+    code, _, err = _cli(capsys, "tensor", str(path), "--device", str(device), "--mass", "0.6", "--out", str(tmp_path / "o"))
+    assert code == 2 and err.count("\n") == 1, err
+    assert err == (f"tumble: error: {path}: eRPM[0] (the rotor's, motor_index = 0) never turns while eRPM[2] reaches "
+                   f"{top} counts ({100 * top} eRPM): the flywheel on that motor? Set motor_index = 2 in the device file\n")

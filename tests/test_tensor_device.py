@@ -487,3 +487,20 @@ def test_a_second_throw_in_one_log_is_said_not_fitted():
     with warnings.catch_warnings():
         warnings.simplefilter("error", MoreThrowsWarning)
         fit_tensor([throw(1), throw(3)], calibrated_device(), OBJECT.mass)
+
+
+def test_a_throw_spun_past_the_gyroscopes_range_is_said_to_be():
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): throws spun at 36-40 rad/s with 4-36 % of their samples
+    at a 2000 deg/s rail were left out as "rates in another unit ..., a rotor axis or speed that is wrong, a mount or
+    body that is not rigid", saturation never named (unclipped, the same throws fit). A throw spun to 27 rad/s on a
+    24 rad/s gyroscope: its reason says how many of its flight samples lie at the range, and to throw slower."""
+    from tumble.analysis.tensor.synthetic import synthetic_throw
+
+    fast = synthetic_throw(7, FLOWN, input="fast.csv", spin=(30.0, 34.0))
+    assert np.abs(fast.omega).max() > 26.0
+    fast = _with(fast, omega=np.clip(fast.omega, -24.0, 24.0))
+    fit = fit_tensor([throw(1), throw(3), fast], calibrated_device(), OBJECT.mass, saturation=24.0)
+    assert [t.status for t in fit.throws] == ["used", "used", "skipped"]
+    assert re.search(r"; \d+ % of its flight samples at the gyroscope's range \(24 rad/s\): thrown faster than it reads\? "
+                     r"Throw it slower", fit.throws[2].reason), fit.throws[2].reason
+    assert "gyroscope's range" not in fit.throws[0].reason + fit.throws[1].reason

@@ -195,6 +195,29 @@ def _refuse_first(bad: BoolArray, lines: list[tuple[int, str]], sep: str | None,
     raise ValueError(f"{label}, line {no}, column {columns[i] + 1}: {head[columns[i]]} = {cell[:40]} {rule}")
 
 
+#: Fewest counts (x 100 eRPM) the rotor's motor reaches in a throw: below, it never turned.
+TURNING_COUNTS = 5
+
+
+def _other_motor(counts: np.ndarray, lines: list[tuple[int, str]], sep: str | None, head: list[str], rotor: int,
+                 label: str, motor: int) -> None:
+    """Refuse a log whose ``eRPM[motor]`` never turns while another motor's does: Betaflight logs every
+    motor's eRPM, so the column is there and stays 0 with the flywheel on another motor (a walkthrough,
+    2026-12-03: "the rotor did not spin up", with eRPM[2] at 900 counts and no word of motor_index)."""
+    if counts.size == 0 or float(counts.max()) >= TURNING_COUNTS:
+        return
+    others = [j for j, c in enumerate(head) if re.match(r"^erpm\[\d\]$", c, re.IGNORECASE) and j != rotor]
+    if not others:
+        return
+    tops = _rows(lines, sep, others, len(head), label, head=head, decimal_comma=False, expected=" as the header").max(axis=0)
+    turning = [(head[j], float(top)) for j, top in zip(others, tops) if top >= TURNING_COUNTS]
+    if turning:
+        name, top = max(turning, key=lambda item: item[1])
+        raise ValueError(f"{label}: eRPM[{motor}] (the rotor's, motor_index = {motor}) never turns while {name} reaches "
+                         f"{top:.0f} counts ({100 * top:.0f} eRPM): the flywheel on that motor? Set motor_index = "
+                         f"{name[5:-1]} in the device file")
+
+
 def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
                        ) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
     """The samples of a blackbox CSV already read (``label`` names it), in SI and the sensor
@@ -283,6 +306,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
         refuse(np.abs(values[:, 5:8]) > _INT16, f"is beyond the accelerometer's range; allowed: -{_INT16:.0f} to "
                f"{_INT16:.0f} (16 bits)", slice(5, 8))
 
+    _other_motor(values[:, 4], lines, sep, head, columns[4], label, motor)
     t = values[:, 0] / per_second
     _check_order(t, lines, label)
     take = np.argmax(np.abs(R), axis=1)   # R a signed permutation: v = R v_log exactly, a component each

@@ -256,7 +256,7 @@ def find_flight(throw: Throw, keep: np.ndarray) -> Window:
                    f"the header says?)") if there == 0 else "" if 2 * railed < there else (
                 f" ({railed} of its {there} samples there at the gyroscope's range: is the range too "
                 f"small? A device file's gyro_full_scale is in deg/s, --saturation in rad/s; or the rates in deg/s "
-                f"under a rad/s header?)")
+                f"under a rad/s header? Or thrown faster than the gyroscope reads: throw it slower)")
             return Window(0, 0, s, np.nan, np.nan, f"too few samples after the rotor start to find the flight{why}")
         A = np.concatenate([M[fit], np.broadcast_to(np.eye(3), (np.count_nonzero(fit), 3, 3))], axis=2).reshape(-1, 6)
         x = np.linalg.lstsq(A, throw.accel[fit].reshape(-1), rcond=None)[0]

@@ -57,8 +57,8 @@ from .joint import JointFit, JointModel, fit_joint
 from .sensors import SensorErrors
 from .model import cholesky_of, inertia_of
 from .throw import RESIDUAL_LIMIT, FlownFit, fit_flown
-from .verdicts import (_BIAS_REASON, MAX_BIAS, accel_hint, duplicate_throws, join_reasons, joint_verdict, residual_verdict,
-                       throw_verdict)
+from .verdicts import (_BIAS_REASON, MAX_BIAS, accel_hint, duplicate_throws, join_reasons, joint_verdict, rail_hint,
+                       residual_verdict, throw_verdict)
 
 __all__ = ["BIAS_FREE_RMS", "OUTLIER_SIGMA", "SENSOR_THROWS", "SHRINK_DOF", "NoThrowError", "Pooled", "agreement",
            "birge_factor", "outlier", "own_fits", "pool_throws"]
@@ -379,7 +379,7 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     while True:
         used = [k for k, f in enumerate(fits) if not f.reason]
         if not used:
-            why = join_reasons([(throw.input or f"throw {k}", f.reason + accel_hint(throw))
+            why = join_reasons([(throw.input or f"throw {k}", f.reason + accel_hint(throw) + rail_hint(throw, f, saturation))
                                 for k, (throw, f) in enumerate(zip(throws, fits))])
             alone = len(throws) < SENSOR_THROWS and not (errors is not None and errors.calibrated)  # no tilt fitted
             hint = ("; one throw cannot fit the rotor's tilt, for which its bias then stands in: give more throws" if alone
@@ -440,5 +440,6 @@ def pool_throws(throws: Sequence[Throw], rotor_axis: FloatArray, rotor_inertia: 
     if joint.sensor and len(chosen) >= SENSOR_THROWS:
         sensor, sensor_cov = jf.P[6:joint.base], jf.cov_P[6:joint.base, 6:joint.base]
         sensor_cov = sensor_cov * birge
-    fits = [replace(f, reason=f.reason + accel_hint(throw)) if f.reason else f for throw, f in zip(throws, fits)]
+    fits = [replace(f, reason=f.reason + accel_hint(throw) + rail_hint(throw, f, saturation)) if f.reason else f
+            for throw, f in zip(throws, fits)]
     return Pooled(I, cov_I, center, center_cov, chi2_dof, len(chosen), True, biases, S, sensor, sensor_cov, Sc), fits

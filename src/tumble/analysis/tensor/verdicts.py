@@ -18,8 +18,8 @@ from .device import ROTOR_SPEED_RATIO
 from .throw import RESIDUAL_LIMIT, FlownFit
 from .throwlog import Throw, running_peak
 
-__all__ = ["MAX_BIAS", "accel_hint", "duplicate_throws", "join_reasons", "joint_verdict", "residual_verdict", "speed_verdict",
-           "throw_verdict"]
+__all__ = ["MAX_BIAS", "RAIL_SHARE", "accel_hint", "duplicate_throws", "join_reasons", "joint_verdict", "rail_hint",
+           "residual_verdict", "speed_verdict", "throw_verdict"]
 
 #: The largest gyroscope bias a fit may find, rad/s: a MEMS gyroscope's zero-rate offset is
 #: about 3 deg/s, 0.05 rad/s (the data sheets :data:`tumble.analysis.fit.model` cites for its own
@@ -136,6 +136,45 @@ def accel_hint(throw: Throw) -> str:
         return ""
     return (f"; its accelerometer reads at most {top:.3g} m/s^2 in the whole log, never the 9.8 of a hand holding the "
             "device: in g under an m/s^2 header?")
+
+
+#: The share of a left-out throw's flight samples at the gyroscope's range above which its reason
+#: says so (:func:`rail_hint`).
+RAIL_SHARE = 0.1
+
+
+def rail_hint(throw: Throw, f: FlownFit, saturation: float | None) -> str:
+    """``""``, or a clause for a left-out throw's reason where more than :data:`RAIL_SHARE` of its
+    flight's samples lie at the gyroscope's range (``saturation``, rad/s, or the rail the samples
+    show: :func:`~tumble.analysis.fit.single.saturation_mask`): a throw spun faster than the
+    gyroscope reads. A walkthrough's throws at 36-40 rad/s with 4-36 % of their samples at a
+    2000 deg/s rail were blamed on units, a rotor axis or a mount; the same throws unclipped fit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.tensor import Throw
+    >>> from tumble.analysis.tensor.flight import Window
+    >>> from tumble.analysis.tensor.throw import FlownFit
+    >>> from tumble.analysis.tensor.verdicts import rail_hint
+    >>> t = np.arange(100) / 1000.0
+    >>> omega = np.clip(40.0 * np.sin(np.c_[t, t, t] * 60.0), -34.9, 34.9)
+    >>> thrown = Throw(t, omega, np.zeros(100), None)
+    >>> rail_hint(thrown, FlownFit(Window(0, 100, 0, 0.0, 0.099, "x"), "x"), 34.9)[:38]   # |sin| >= 0.87: a third
+    '; 35 % of its flight samples at the gy'
+    """
+    from ..fit.single import saturation_mask
+
+    if "gyroscope's range" in f.reason:  # the reason says it already (the flight not found for it)
+        return ""
+    keep, rail = saturation_mask(throw.omega, saturation)
+    w = f.window
+    inside = keep[w.first:w.stop] if w.stop > w.first else keep
+    share = 1.0 - float(np.mean(np.all(inside, axis=1))) if inside.size else 0.0
+    if rail is None or share <= RAIL_SHARE:
+        return ""
+    return (f"; {100 * share:.0f} % of its flight samples at the gyroscope's range ({rail:.3g} rad/s): thrown faster "
+            "than it reads? Throw it slower, or set a wider range on the device")
 
 
 def residual_verdict(rms: float, noise: float) -> str:
