@@ -348,3 +348,20 @@ def test_the_rotor_on_another_motor_than_motor_index_names_it(tmp_path, capsys):
     assert code == 2 and err.count("\n") == 1, err
     assert err == (f"tumble: error: {path}: eRPM[0] (the rotor's, motor_index = 0) never turns while eRPM[2] reaches "
                    f"{top} counts ({100 * top} eRPM): the flywheel on that motor? Set motor_index = 2 in the device file\n")
+
+
+def test_the_logs_own_acc_1g_scales_the_accelerometer():
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): an accelerometer at +-8 g logs 4096 counts per g, which
+    Blackbox Explorer's header block states ("acc_1G",4096); read at 2048 its specific force came out twice too large
+    and every throw was refused as no body's, the accelerometer never named. The log's own acc_1G is taken."""
+    from tumble.io.blackbox import parse_blackbox_csv
+
+    text = blackbox_csv(_throw(7), _device(), explorer=True)
+    assert '"acc_1G",2048' in text
+    at_2048, read_2048 = parse_blackbox_csv(text.encode(), "b.csv", _device())
+    at_4096, read_4096 = parse_blackbox_csv(text.replace('"acc_1G",2048', '"acc_1G",4096').encode(), "b.csv", _device())
+    np.testing.assert_array_equal(at_4096["accel"], 0.5 * at_2048["accel"])
+    np.testing.assert_array_equal(at_4096["omega"], at_2048["omega"])
+    assert read_4096.units[-1] == "1/4096 g" and read_2048.units[-1] == "1/2048 g"
+    with pytest.raises(ValueError, match=r"^b\.csv, line 7: acc_1G = 0 is not an accelerometer's counts per g; allowed: "):
+        parse_blackbox_csv(text.replace('"acc_1G",2048', '"acc_1G",0').encode(), "b.csv", _device())

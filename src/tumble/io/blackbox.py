@@ -21,7 +21,8 @@ names in the header line (``blackbox_decode`` writes it first; Blackbox Explorer
   ``gyro_resolution = 1.0`` (0.1) in the device file for such logs. A count beyond the full scale (``|count| * gyro_lsb >
   gyro_full_scale``) is refused;
 - ``accSmooth[0]``, ``accSmooth[1]``, ``accSmooth[2]`` (optional, all three or none): the
-  accelerometer's specific force, :data:`ACC_COUNTS_PER_G` counts per g (Betaflight's ``acc_1G``
+  accelerometer's specific force, the log's own ``acc_1G`` counts per g where its header block
+  states it (:func:`acc_counts_per_g`), else :data:`ACC_COUNTS_PER_G` (Betaflight's ``acc_1G``
   at +-16 g; g the standard gravity, 9.80665 m/s^2);
 - ``eRPM[0]`` (``eRPM[k]`` with ``motor_index = k`` in the device file): the motor's electrical
   speed from its bidirectional DShot telemetry, **logged divided by** :data:`ERPM_PER_COUNT`
@@ -61,7 +62,8 @@ from .keys import FileFormat, Key, Table
 from ._delimited import _check_order, _data_lines, _rows, _separator, _split
 from .throwread import ThrowRead
 
-__all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "looks_like_blackbox", "parse_blackbox_csv"]
+__all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "acc_counts_per_g", "looks_like_blackbox",
+           "parse_blackbox_csv"]
 
 #: Betaflight logs the motor's electrical speed (eRPM) divided by this: a count of ``eRPM[k]``
 #: is 100 eRPM (src/main/blackbox/blackbox.c: ``// eRPM / 100``; src/main/drivers/dshot.c:
@@ -129,6 +131,34 @@ def _reading(device: Device | None) -> tuple[int, int, float, float, Matrix3, tu
         return int(d["motor_poles"]), int(d["motor_index"]), full, full / _INT16, np.eye(3), tuple(d["sensor_axes"])
     return (device.motor_poles, device.motor_index, device.gyro_full_scale, device.gyro_lsb, device.sensor_rotation,
             device.sensor_axes)
+
+
+_ACC_1G = re.compile(r'^\s*"?acc_1G"?\s*,\s*"?\s*([0-9.eE+-]+)\s*"?\s*$', re.IGNORECASE)
+
+
+def acc_counts_per_g(lines: list[tuple[int, str]], k0: int, label: str) -> float:
+    """The accelerometer's counts per g: the log's own ``acc_1G`` (Blackbox Explorer writes the log's
+    header fields before the column names, ``"acc_1G",2048``), else :data:`ACC_COUNTS_PER_G`. An
+    accelerometer at +-8 g logs 4096 counts per g; read at 2048 its specific force came out twice
+    too large and every throw was refused as no body's (a walkthrough, 2026-12-03).
+
+    Examples
+    --------
+    >>> from tumble.io.blackbox import acc_counts_per_g
+    >>> acc_counts_per_g([(1, '"looptime",125'), (2, '"acc_1G",4096'), (3, "time, gyroADC[0]")], 2, "b.csv")
+    4096.0
+    >>> acc_counts_per_g([(1, "time (us), gyroADC[0]")], 0, "b.csv")
+    2048.0
+    """
+    for no, line in lines[:k0]:
+        match = _ACC_1G.match(line)
+        if match:
+            value = float(match.group(1))
+            if not (math.isfinite(value) and 100.0 <= value <= 100_000.0):
+                raise ValueError(f"{label}, line {no}: acc_1G = {match.group(1)} is not an accelerometer's counts per g; "
+                                 "allowed: 100 to 100000 (Betaflight logs 2048 at +-16 g, 4096 at +-8 g)")
+            return value
+    return ACC_COUNTS_PER_G
 
 
 def _header(lines: list[tuple[int, str]], label: str) -> int:
@@ -277,7 +307,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
     while len(head) > 1 and head[-1] == "":
         head.pop()
     columns, per_second, time_unit, has_acc = _columns(head, label, header_no, motor)
-    lines = lines[k0 + 1:]
+    raw_lines, lines = lines, lines[k0 + 1:]
     values = _rows(lines, sep, columns, len(head), label, head=head, decimal_comma=False, expected=" as the header")
     if len(values) < 2:
         raise ValueError(f"{label}: {len(values)} data rows after the header; a throw needs many samples")
@@ -313,10 +343,11 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
     sign = R[np.arange(3), take]
     omega = values[:, 1:4][:, take] * (sign * math.radians(lsb))
     rotor = values[:, 4] * (ERPM_PER_COUNT / (poles / 2) * 2.0 * math.pi / 60.0)
-    accel = values[:, 5:8][:, take] * (sign * (STANDARD_GRAVITY / ACC_COUNTS_PER_G)) if has_acc else None
+    per_g = acc_counts_per_g(raw_lines, k0, label)
+    accel = values[:, 5:8][:, take] * (sign * (STANDARD_GRAVITY / per_g)) if has_acc else None
     names = tuple(head[c] for c in columns)
     units = (time_unit, *(f"{lsb:.6g} deg/s",) * 3, f"{ERPM_PER_COUNT:g} eRPM, {poles} poles",
-             *(f"1/{ACC_COUNTS_PER_G:g} g",) * (3 if has_acc else 0))
+             *(f"1/{per_g:g} g",) * (3 if has_acc else 0))
     ignored = tuple(h for j, h in enumerate(head) if j not in columns)
     read = ThrowRead(label, names, units, ignored, len(t), axes=tuple(axes))
     return {"t": t, "omega": omega, "rotor": rotor, "accel": accel}, read
