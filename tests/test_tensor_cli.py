@@ -6,6 +6,7 @@ objects whose tensors are known (the core's generator, :mod:`tumble.analysis.ten
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -559,3 +560,21 @@ def test_a_log_cut_in_its_last_line_loses_that_line_only(tmp_path, capsys):
     with warnings.catch_warnings(), pytest.raises(ValueError, match=r"o1.csv, line 22: 3 columns; expected 8"):
         warnings.simplefilter("error")
         read_throw(mid)
+
+
+def test_a_rotor_inertia_in_the_device_file_is_said_to_be_replaced(guide_run, capsys):
+    """A walkthrough of docs/formats/device.md (2026-12-03): a device file's rotor_inertia (2e-6, or 0.017) was
+    replaced by the calibration's 1.699e-6 without a word, the file's comment reading "when known; otherwise
+    calibrated". The calibration says which value it replaced, how far apart they are, and in its own std."""
+    folder, _ = guide_run
+    ex = folder / "examples"
+    device = folder / "given.toml"
+    text = (ex / "devices" / "flywheel_device.toml").read_text(encoding="utf-8")
+    device.write_text(re.sub(r"(?m)^# rotor_inertia = 1\.7e-6.*$", "rotor_inertia = 2.0e-6", text), encoding="utf-8")
+    assert "\nrotor_inertia = 2.0e-6\n" in device.read_text(encoding="utf-8")
+    code, out, err = _cli(capsys, "calibrate", str(device), "--alone", *(str(ex / "throws" / f"a{k}.csv") for k in (1, 2, 3)),
+                          "--proof", *(str(ex / "throws" / f"p{k}.csv") for k in (1, 2, 3)), "--out", str(folder / "c2.toml"))
+    J = float(re.search(r"rotor inertia (\S+) \+- (\S+) kg m\^2", out).group(1))
+    assert code == 0 and abs(J / 1.7e-6 - 1) < 0.01, out + err
+    assert re.search(rf"^note: the device file's rotor_inertia 2e-06 kg m\^2 is replaced by the calibration's {J:.4g} "
+                     rf"\({100 * (J / 2e-6 - 1):+.2g} %, \S+ std\), which the proof body's known tensor fixes$", err, re.M), err

@@ -156,6 +156,11 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
           f"from {result.alone_used} + {result.proof_used} of {len(alone)} + {len(proof)} throws; chi2/dof "
           f"{result.chi2_dof:.2g}" + (f" (sets: {agree})" if agree else "") + f", largest gyroscope bias "
           f"{result.max_bias:.2g} rad/s; wrote {os.fspath(out)}" + (", adequate = false" if result.problems else ""))
+    if dev.rotor_inertia is not None:  # a value given in the file: estimated again, never used (a walkthrough, 2026-12-03)
+        apart = J / dev.rotor_inertia - 1.0
+        print(f"note: the device file's rotor_inertia {dev.rotor_inertia:.4g} kg m^2 is replaced by the calibration's "
+              f"{J:.4g} ({100 * apart:+.2g} %" + ("" if not Jstd else f", {abs(J - dev.rotor_inertia) / Jstd:.2g} std")
+              + "), which the proof body's known tensor fixes", file=sys.stderr)
     for why in result.left_out:
         print(f"warning: left out {why}", file=sys.stderr)
     if result.problems:
