@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -252,7 +253,9 @@ LOG_BAD = {
                               "allowed: accSmooth[0], accSmooth[1], accSmooth[2] together, or none"),
     "rates in deg/s": (lambda t: _renamed(t, "gyroADC[0]", "gyroADC[0] (deg/s)"), ", line 1, column 24: 'gyroADC[0] "
                        "(deg/s)' is converted to a unit; a blackbox CSV is read in the log's counts"),
-    "short row": (lambda t: t + "1, 2, 3\n", ": 3 columns; expected 44 as the header"),
+    # inside the log; a half-written last line is a log stopped in flight (below)
+    "short row": (lambda t: "\n".join(t.splitlines()[:6] + ["1, 2, 3"] + t.splitlines()[6:]) + "\n",
+                  ": 3 columns; expected 44 as the header"),
 }
 
 
@@ -365,3 +368,26 @@ def test_the_logs_own_acc_1g_scales_the_accelerometer():
     assert read_4096.units[-1] == "1/4096 g" and read_2048.units[-1] == "1/2048 g"
     with pytest.raises(ValueError, match=r"^b\.csv, line 7: acc_1G = 0 is not an accelerometer's counts per g; allowed: "):
         parse_blackbox_csv(text.replace('"acc_1G",2048', '"acc_1G",0').encode(), "b.csv", _device())
+
+
+def test_a_half_written_last_line_is_left_out_as_in_a_throw_file(tmp_path, capsys):
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): a blackbox log whose last line was cut while written
+    (the device's log stops in flight) was refused whole, exit 2, where a throw file leaves the line out with a
+    warning. Both now leave it out, saying so in one line, and read the rest."""
+    from tumble.io.throwfile import CutLogWarning, load_throw
+
+    text = blackbox_csv(_throw(7), _device())
+    lines = text.splitlines()
+    path = tmp_path / "b1.csv"
+    path.write_text("\n".join(lines[:-1] + [lines[-1][:30]]) + "\n")
+    with pytest.warns(CutLogWarning, match=rf"^{re.escape(str(path))}, line {len(lines)}: the last line holds \d+ of 44 "
+                                           r"columns, a log cut while it was written: left out$"):
+        throw, _ = load_throw(path, _device())
+    assert throw.t.size == len(lines) - 2
+    np.testing.assert_array_equal(throw.t, load_throw(_written(tmp_path, "\n".join(lines[:-1]) + "\n"), _device())[0].t)
+
+
+def _written(folder: Path, text: str) -> Path:
+    path = folder / "whole.csv"
+    path.write_text(text)
+    return path

@@ -11,6 +11,7 @@ neither does with such messages.
 from __future__ import annotations
 
 import re
+import warnings
 
 import numpy as np
 
@@ -109,3 +110,35 @@ def _check_order(t, lines, label) -> None:
         word = "repeats" if t[k] == t[k - 1] else "goes back before"
         raise ValueError(f"{label}, line {lines[k][0]}: time {t[k]:.9g} s {word} the time {t[k - 1]:.9g} s of line "
                          f"{lines[k - 1][0]}; times must increase")
+
+
+class CutLogWarning(UserWarning):
+    """A log's last line left out, half written: the logger stopped while writing it (the command
+    line says it in one line).
+
+    Examples
+    --------
+    >>> from tumble.io.throwfile import CutLogWarning   # its public home
+    >>> CutLogWarning.cli_one_line
+    True
+    """
+
+    cli_one_line = True
+
+
+def _without_a_cut_last_line(lines: list, sep: str, width: int, label: str) -> list:
+    """``lines`` (``(line number, text)``) without a last line that holds fewer cells than ``width``:
+    a logger that stops in flight, as the device's does, can leave its last row half written; that
+    row is left out with a warning, not the whole log refused. A short line elsewhere stays an
+    error (:func:`_rows`)."""
+    if not lines:
+        return lines
+    no, text = lines[-1]
+    cells = _split(text, sep)
+    while cells and cells[-1] == "":
+        cells.pop()
+    if len(cells) >= width:
+        return lines
+    warnings.warn(f"{label}, line {no}: the last line holds {len(cells)} of {width} columns, a log cut while it was "
+                  "written: left out", CutLogWarning, stacklevel=4)
+    return lines[:-1]

@@ -59,7 +59,7 @@ from ..analysis.tensor import Device
 from ..dynamics.environment.earth import STANDARD_GRAVITY
 from ..typing import BoolArray, Matrix3
 from .keys import FileFormat, Key, Table
-from ._delimited import _check_order, _data_lines, _rows, _separator, _split
+from ._delimited import _check_order, _data_lines, _rows, _separator, _split, _without_a_cut_last_line
 from .throwread import ThrowRead
 
 __all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "acc_counts_per_g", "looks_like_blackbox",
@@ -307,7 +307,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
     while len(head) > 1 and head[-1] == "":
         head.pop()
     columns, per_second, time_unit, has_acc = _columns(head, label, header_no, motor)
-    raw_lines, lines = lines, lines[k0 + 1:]
+    raw_lines, lines = lines, _without_a_cut_last_line(lines[k0 + 1:], sep, len(head), label)  # a log stopped in flight
     values = _rows(lines, sep, columns, len(head), label, head=head, decimal_comma=False, expected=" as the header")
     if len(values) < 2:
         raise ValueError(f"{label}: {len(values)} data rows after the header; a throw needs many samples")

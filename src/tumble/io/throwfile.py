@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import os
 import re
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -48,7 +47,7 @@ from .examples import _read_input
 from .gyrocolumns import (ACCEL_UNITS, RATE_PREFIXES, RATE_UNITS, TIME_NAMES, TIME_UNITS, _factor, _name, match_accel,
                           match_header)
 from .keys import FileFormat, Key, Table
-from ._delimited import _NUMBER, _check_order, _first_lines, _refuse_cell, _rows, _split
+from ._delimited import _NUMBER, CutLogWarning, _check_order, _first_lines, _refuse_cell, _rows, _split, _without_a_cut_last_line
 from .throwread import ThrowRead
 
 __all__ = ["ACCEL_UNITS", "COMPACT_HEADER", "COMPACT_PLACES", "CutLogWarning", "MAX_THROW_FILE_BYTES", "THROW_FORMAT", "THROW_HEADER",
@@ -217,38 +216,6 @@ def parse_throw_csv(raw: bytes, label: str, device: Device | None = None
     samples = {"t": t, "omega": rows[:, 1:4].copy(), "rotor": rows[:, 4].copy(),
                "accel": rows[:, 5:8].copy() if len(columns) == 8 else None, "line": [no for no, _ in lines]}
     return samples, ThrowRead(label, tuple(names), tuple(units), ignored, len(t))
-
-
-class CutLogWarning(UserWarning):
-    """A log's last line left out, half written: the logger stopped while writing it (the command
-    line says it in one line).
-
-    Examples
-    --------
-    >>> from tumble.io.throwfile import CutLogWarning
-    >>> CutLogWarning.cli_one_line
-    True
-    """
-
-    cli_one_line = True
-
-
-def _without_a_cut_last_line(lines: list, sep: str, width: int, label: str) -> list:
-    """``lines`` (``(line number, text)``) without a last line that holds fewer cells than ``width``:
-    a logger that stops in flight, as the device's does, can leave its last row half written; that
-    row is left out with a warning, not the whole log refused. A short line elsewhere stays an
-    error (:func:`_rows`)."""
-    if not lines:
-        return lines
-    no, text = lines[-1]
-    cells = _split(text, sep)
-    while cells and cells[-1] == "":
-        cells.pop()
-    if len(cells) >= width:
-        return lines
-    warnings.warn(f"{label}, line {no}: the last line holds {len(cells)} of {width} columns, a log cut while it was "
-                  "written: left out", CutLogWarning, stacklevel=4)
-    return lines[:-1]
 
 
 def load_throw(path: str | os.PathLike[str], device: Device | None = None) -> tuple[Throw, ThrowRead]:
