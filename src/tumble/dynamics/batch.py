@@ -160,7 +160,8 @@ class BatchTrajectory:
         """Each body's largest relative departure from its initial energy, ``|L|`` and ``L_world``
         (:func:`~tumble.dynamics.euler.relative_drift`, as :attr:`Trajectory.drift
         <tumble.dynamics.trajectory.Trajectory.drift>`); arrays of shape (N,), NaN for a body at
-        rest. The integration's errors where the run is torque-free.
+        rest. The integration's errors where the run is torque-free. It makes a few arrays of the
+        batch's size (measured: a 100,000-body, 250-sample batch of 1.5 GB peaked at 5 GB here).
 
         Examples
         --------
