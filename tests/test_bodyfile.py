@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import warnings
 from pathlib import Path
 
@@ -178,21 +177,6 @@ def test_a_phone_in_cm_or_in_grams_warns(tmp_path, sizes, mass, words):
     with warnings.catch_warnings():
         warnings.simplefilter("error", tumble.mass.UnitSlipWarning)
         assert tumble.load_body(path).mass == 0.2
-
-
-def test_a_part_given_by_density_and_sized_in_mm_warns(tmp_path):
-    """A walkthrough of docs/formats/body.md (2026-12-03): a steel cylinder of radius 20 and length 100, meant as mm,
-    weighed 9.86e8 kg without a word (given by its mass it warned). A solid given by its density that is more than
-    20 m across (the cube root of its volume, as a mesh's) is named; the same in metres is not."""
-    path = tmp_path / "pin.toml"
-    path.write_text('[[body.parts]]\nkind = "cylinder"\ndensity = 7850.0\nradius = 20.0\nlength = 100.0\n')
-    with pytest.warns(tumble.mass.UnitSlipWarning, match=r"body\.parts\[0\] \(cylinder\): a cylinder of density 7850 "
-                                                         r"kg/m\^3 is 50\.1 m across .*9\.86e\+08 kg\): are its sizes in mm"):
-        assert tumble.load_body(path).mass == pytest.approx(7850.0 * math.pi * 400.0 * 100.0)
-    path.write_text('[[body.parts]]\nkind = "cylinder"\ndensity = 7850.0\nradius = 0.02\nlength = 0.1\n')
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", tumble.mass.UnitSlipWarning)
-        assert tumble.load_body(path).mass == pytest.approx(7850.0 * math.pi * 4e-4 * 0.1)
 
 
 def test_a_body_file_in_mm_or_a_density_in_g_cm3_is_named_as_a_likely_unit_slip(tmp_path, capsys):

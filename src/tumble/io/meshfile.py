@@ -13,7 +13,6 @@ import warnings
 from pathlib import Path
 
 from ..mass import Body, Mesh, Part, UnitSlipWarning
-from ..mass.part_base import MAX_SOLID_SIZE
 from ..validation import NoSuchFileError
 
 __all__ = ["LIGHTEST_WRITTEN", "MESH_SUFFIXES", "MESH_UNITS", "MeshScaleWarning", "body_from_mesh", "is_mesh_file",
@@ -28,9 +27,8 @@ MESH_SUFFIXES = (".stl", ".obj", ".ply")
 MESH_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 
 
-#: A mesh solid smaller or larger than this, across (m), is most likely read in the wrong unit (the
-#: upper bound a primitive part given by its density has too, :data:`tumble.mass.part_base.MAX_SOLID_SIZE`).
-PLAUSIBLE_SIZE = (1e-3, MAX_SOLID_SIZE)
+#: A mesh solid smaller or larger than this, across (m), is most likely read in the wrong unit.
+PLAUSIBLE_SIZE = (1e-3, 20.0)
 
 
 class MeshScaleWarning(UnitSlipWarning):

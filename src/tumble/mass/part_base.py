@@ -32,7 +32,7 @@ from ..validation import check_direction, check_motion, check_positive, check_ro
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
 
-__all__ = ["MAX_DENSITY", "MAX_SOLID_SIZE", "MIN_DENSITY", "Part", "UnitSlipWarning"]
+__all__ = ["MAX_DENSITY", "MIN_DENSITY", "Part", "UnitSlipWarning"]
 
 _Z = np.array([0.0, 0.0, 1.0])
 
@@ -47,13 +47,6 @@ MIN_DENSITY = 0.1
 #: (the densest element), most likely has its mass in grams: a 200 g phone written ``mass = 200``
 #: is 2.2e6 kg/m^3. A concentrated mass drawn as a small solid is better a ``PointMass``.
 MAX_DENSITY = 3e4
-
-
-#: A solid part given by its density whose size (the cube root of its volume, m) passes this is most
-#: likely sized in mm or cm: a cylinder of 20 mm radius written as 20 (m) and steel's density weighed
-#: 9.9e8 kg (a walkthrough, 2026-12-03). A mesh read as one solid has the same bound
-#: (:data:`tumble.io.meshfile.PLAUSIBLE_SIZE`); a truss longer than this is mostly empty.
-MAX_SOLID_SIZE = 20.0
 
 
 class UnitSlipWarning(UserWarning):
@@ -133,10 +126,6 @@ class Part:
         else:
             self._set("mass", check_positive("mass", self.mass, "kg"))
         self._check_representable()
-        if self.solid and self.kind != "mesh" and self.density is not None and self.volume ** (1 / 3) > MAX_SOLID_SIZE:
-            warnings.warn(f"a {self.kind} of density {self.density:g} kg/m^3 is {self.volume ** (1 / 3):.3g} m across (the cube "
-                          f"root of its {self.volume:.3g} m^3; {self.mass:.3g} kg): are its sizes in mm or cm? Write them in "
-                          "metres (SI units)", UnitSlipWarning, stacklevel=3)
         if self.solid and self.density is None:  # a mesh's file read in the wrong unit: io.meshfile says that instead
             volume = self.volume
             of_mass: float | None = cast(float, self.mass) / volume if volume > 0.0 else None
