@@ -391,3 +391,24 @@ def _written(folder: Path, text: str) -> Path:
     path = folder / "whole.csv"
     path.write_text(text)
     return path
+
+
+def test_a_log_in_whole_deg_s_read_at_16_bit_counts_names_gyro_resolution():
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): a Betaflight 4.x log (gyroADC in whole deg/s) read
+    without gyro_resolution = 1.0 had rates 16.4 times too slow, and calibrate failed as "a gyroscope bias of 0.742
+    rad/s", tumble tensor as "rates in another unit", the key never named. A log whose gyroscope never passes a
+    throw's 2 rad/s says which key to set; read with it, nothing is said, and the default log says nothing either."""
+    import warnings
+
+    from tumble.io.blackbox import GyroResolutionWarning, parse_blackbox_csv
+
+    whole = blackbox_csv(_throw(7), _device(gyro_resolution=1.0)).encode()
+    with pytest.warns(GyroResolutionWarning, match=r"^b\.csv: the gyroscope reads at most 0\.\d+ rad/s in the whole log, "
+                                                   r"slower than a throw spins .*needs gyro_resolution = 1\.0 in the device"):
+        slow, _ = parse_blackbox_csv(whole, "b.csv", _device())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", GyroResolutionWarning)
+        right, _ = parse_blackbox_csv(whole, "b.csv", _device(gyro_resolution=1.0))
+        parse_blackbox_csv(blackbox_csv(_throw(7), _device()).encode(), "b.csv", _device())
+    assert np.linalg.norm(right["omega"], axis=1).max() > 10.0
+    np.testing.assert_allclose(slow["omega"] * (1.0 / _device().gyro_lsb), right["omega"], rtol=1e-12)

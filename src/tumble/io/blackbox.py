@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import fields
 from typing import Any
 
@@ -62,8 +63,8 @@ from .keys import FileFormat, Key, Table
 from ._delimited import _check_order, _data_lines, _rows, _separator, _split, _without_a_cut_last_line
 from .throwread import ThrowRead
 
-__all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "acc_counts_per_g", "looks_like_blackbox",
-           "parse_blackbox_csv"]
+__all__ = ["ACC_COUNTS_PER_G", "BLACKBOX_FORMAT", "ERPM_PER_COUNT", "GyroResolutionWarning", "SLOWEST_THROW",
+           "acc_counts_per_g", "looks_like_blackbox", "parse_blackbox_csv"]
 
 #: Betaflight logs the motor's electrical speed (eRPM) divided by this: a count of ``eRPM[k]``
 #: is 100 eRPM (src/main/blackbox/blackbox.c: ``// eRPM / 100``; src/main/drivers/dshot.c:
@@ -248,6 +249,39 @@ def _other_motor(counts: np.ndarray, lines: list[tuple[int, str]], sep: str | No
                          f"{name[5:-1]} in the device file")
 
 
+#: A throw's gyroscope passes this (rad/s) somewhere in its log: the device is thrown spinning at
+#: 10-18 rad/s. A log that never does was most likely read at the wrong gyro_resolution.
+SLOWEST_THROW = 2.0
+
+
+class GyroResolutionWarning(UserWarning):
+    """A blackbox log whose gyroscope never turns as fast as a throw does at the ``gyro_resolution``
+    it was read with (:func:`parse_blackbox_csv`); a command prints it in one line.
+
+    Examples
+    --------
+    >>> from tumble.io.blackbox import GyroResolutionWarning
+    >>> GyroResolutionWarning.cli_one_line
+    True
+    """
+
+    cli_one_line = True
+
+
+def _slow_gyroscope(omega: np.ndarray, lsb: float, label: str) -> None:
+    """Warn where the log's rates never pass :data:`SLOWEST_THROW`: Betaflight 4.x logs ``gyroADC`` in
+    whole deg/s, which read at the sensor's 16-bit counts (the default, 0.061 deg/s) are 16.4 times
+    too slow; the fit then failed as "a gyroscope bias of 0.742 rad/s" or "rates in another unit", the
+    key never named (a walkthrough, 2026-12-03)."""
+    top = float(np.max(np.linalg.norm(omega, axis=1))) if omega.size else 0.0  # |omega|, rad/s
+    if top >= SLOWEST_THROW:
+        return
+    warnings.warn(f"{label}: the gyroscope reads at most {top:.3g} rad/s in the whole log, slower than a throw spins "
+                  f"(10 rad/s and more) at gyro_resolution = {lsb:.6g} deg/s per count: a log in whole deg/s "
+                  "(Betaflight 4.x's gyroADC) needs gyro_resolution = 1.0 in the device file", GyroResolutionWarning,
+                  stacklevel=4)
+
+
 def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
                        ) -> tuple[dict[str, np.ndarray | None], ThrowRead]:
     """The samples of a blackbox CSV already read (``label`` names it), in SI and the sensor
@@ -345,6 +379,7 @@ def parse_blackbox_csv(raw: bytes, label: str, device: Device | None = None
     rotor = values[:, 4] * (ERPM_PER_COUNT / (poles / 2) * 2.0 * math.pi / 60.0)
     per_g = acc_counts_per_g(raw_lines, k0, label)
     accel = values[:, 5:8][:, take] * (sign * (STANDARD_GRAVITY / per_g)) if has_acc else None
+    _slow_gyroscope(omega, lsb, label)
     names = tuple(head[c] for c in columns)
     units = (time_unit, *(f"{lsb:.6g} deg/s",) * 3, f"{ERPM_PER_COUNT:g} eRPM, {poles} poles",
              *(f"1/{per_g:g} g",) * (3 if has_acc else 0))
