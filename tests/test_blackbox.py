@@ -412,3 +412,20 @@ def test_a_log_in_whole_deg_s_read_at_16_bit_counts_names_gyro_resolution():
         parse_blackbox_csv(blackbox_csv(_throw(7), _device()).encode(), "b.csv", _device())
     assert np.linalg.norm(right["omega"], axis=1).max() > 10.0
     np.testing.assert_allclose(slow["omega"] * (1.0 / _device().gyro_lsb), right["omega"], rtol=1e-12)
+
+
+@pytest.mark.parametrize(("before", "after", "says"), [
+    (4294967000, 500, r"\(a 32-bit microsecond clock wraps at 4294\.967296 s: add it to the times from this line on\)$"),
+    (None, 0, r"\(a second log section from this line on\? Give each its own file\)$"),
+])
+def test_a_clock_that_wraps_or_a_log_that_restarts_is_named(tmp_path, capsys, before, after, says):
+    """A walkthrough of docs/formats/blackbox.md (2026-12-03): a time that wrapped at 2^32 us or restarted (a new log
+    section) was refused as "goes back before the time ..." with no hint of why. The line says which it likely is."""
+    text = blackbox_csv(_throw(7), _device())
+    if before is not None:
+        text = _edited(text, 5, "time (us)", str(before))
+    path = tmp_path / "b1.csv"
+    path.write_text(_edited(text, 6, "time (us)", str(after)))
+    device = write_device(tmp_path / "calibrated.toml", _device())
+    code, _, err = _cli(capsys, "tensor", str(path), "--device", str(device), "--mass", "0.6", "--out", str(tmp_path / "o"))
+    assert code == 2 and err.count("\n") == 1 and re.search(says, err.strip()), err

@@ -98,8 +98,10 @@ def _refuse_cell(bad, rows, lines, columns, names, label, rule) -> None:
 
 
 def _check_order(t, lines, label) -> None:
-    """Times must increase (irregular steps are fine): name the first line that goes back or repeats.
-    Times that are no number or absurd are left to the fit's checks, which say so."""
+    """Times must increase (irregular steps are fine): name the first line that goes back or repeats,
+    and, where it goes back by more than a second, a clock that wrapped or a second log joined on
+    (a walkthrough, 2026-12-03). Times that are no number or absurd are left to the fit's checks,
+    which say so."""
     from ..analysis.fit.single import MAX_TIME
 
     if not np.all(np.abs(t) <= MAX_TIME):
@@ -108,8 +110,13 @@ def _check_order(t, lines, label) -> None:
     if bad.size:
         k = int(bad[0]) + 1
         word = "repeats" if t[k] == t[k - 1] else "goes back before"
+        wrap = 2.0**32 / 1e6  # s: a 32-bit microsecond clock's turn
+        why = ("" if t[k - 1] - t[k] <= 1.0 else  # a large jump back: the clock wrapped, or another log begins
+               f" (a 32-bit microsecond clock wraps at {wrap:.6f} s: add it to the times from this line on)"
+               if abs((t[k - 1] - t[k]) - wrap) < 1.0 else " (a second log section from this line on? Give each its "
+               "own file)")
         raise ValueError(f"{label}, line {lines[k][0]}: time {t[k]:.9g} s {word} the time {t[k - 1]:.9g} s of line "
-                         f"{lines[k - 1][0]}; times must increase")
+                         f"{lines[k - 1][0]}; times must increase{why}")
 
 
 class CutLogWarning(UserWarning):
