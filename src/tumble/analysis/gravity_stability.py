@@ -36,6 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..dynamics.euler import energy_momentum_gaps
 from ..dynamics.models.gravity import rpy_axes
 from ..typing import ArrayLike
 from ..validation import INERTIA_RTOL, check_moments, check_vectors, refuse_first
@@ -231,7 +232,7 @@ def separatrix_offset(moments: ArrayLike, omega: ArrayLike) -> float | None:
     L2 = float(np.sum((I * w) ** 2))
     if L2 == 0.0 or min(I[1] - I[0], I[2] - I[1]) <= INERTIA_RTOL * float(np.sum(I)):
         return None
-    return abs(float(np.sum(I * (I[1] - I) * w**2))) / L2
+    return abs(float(energy_momentum_gaps(w, I)[1])) / L2  # L^2 - 2 E I2, without cancellation
 
 
 #: Least spin, in units of the orbit's mean motion ``n`` (``|omega0| / n``), at which a run under the
