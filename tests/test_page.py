@@ -196,11 +196,14 @@ def test_missing_browser_skips_loudly_but_fails_in_ci(tmp_path):
         browser_or_skip({**empty, "CI": "true"})
 
 
-def open_viewer(new_page, url):
+def open_viewer(new_page, url, init=None):
     """A watched page of the shared Chromium (conftest's ``new_page``: console errors and refused
-    outside requests recorded) at ``url``, after the viewer's ``tumble:ready`` event."""
+    outside requests recorded) at ``url``, after the viewer's ``tumble:ready`` event; ``init``, a
+    script run in the page before its own."""
     watched = new_page(viewport={"width": 1300, "height": 1000})
     page = watched.page
+    if init:
+        page.add_init_script(init)
     page.add_init_script("document.addEventListener('tumble:ready', () => { window.readyEvents = (window.readyEvents || 0) + 1; })")
     page.goto(url)
     page.wait_for_function("window.readyEvents === 1 && window.tumbleViewer.ready", timeout=HANG_MS)

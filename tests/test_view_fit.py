@@ -247,14 +247,29 @@ def test_bad_input_exits_2_with_the_path_in_one_line(racquet, tmp_path, capsys):
     assert not page.exists()
 
 
+#: Counts the page's whole draws of each plot (``Plotly.react`` and ``newPlot``) in ``window.draws``.
+DRAWS_COUNTED = """window.draws = {}; let plotly;
+Object.defineProperty(window, 'Plotly', {configurable: true, get() { return plotly; }, set(v) {
+  plotly = v;
+  for (const name of ['react', 'newPlot']) {
+    const draw = v[name];
+    v[name] = function (gd, ...rest) { const id = typeof gd === 'string' ? gd : gd.id;
+      window.draws[id] = (window.draws[id] || 0) + 1; return draw.call(this, gd, ...rest); };
+  }
+}});"""
+
+
 def test_the_page_plays_the_chosen_flight_in_chromium(racquet, tmp_path, new_page):
     _, data, html = racquet
     page_file = tmp_path / "tosses.html"
     page_file.write_text(html, encoding="utf-8")
-    watched = open_viewer(new_page, page_file.as_uri())
+    watched = open_viewer(new_page, page_file.as_uri(), init=DRAWS_COUNTED)
     page = watched.page
     flights = data["fit"]["flights"]
-    page.wait_for_function("document.getElementById('tumble-polhode').data !== undefined", timeout=HANG_MS)
+    # drawn once on load, the first flight with its measured rates and polhode (it was drawn twice)
+    assert page.evaluate("window.draws") == {"tumble-ground": 1, "tumble-body": 1, "tumble-omega": 1, "tumble-polhode": 1}
+    assert page.evaluate("document.getElementById('tumble-title').textContent").endswith(flights[0]["label"])
+    assert page.evaluate("document.getElementById('tumble-omega').data.length") == 4 + 3
     assert page.evaluate("document.getElementById('tumble-flight').options.length") == len(flights)
     assert page.evaluate("tumbleViewer.state().frames") == min(40, len(flights[0]["t"]))
     assert page.evaluate("document.getElementById('tumble-omega').data.length") == 4 + 3  # model, now, measured

@@ -9,8 +9,9 @@
  * |L| = L_norm, the energy ellipsoid sum L_i^2 / I_i = energy2, the torque-free polhode through
  * the start, the separatrices, the flight's L traced on the sphere).
  *
- * Inlined before viewer.js; it waits for "tumble:ready", then fills the flight selector and plays
- * the chosen flight with window.tumbleViewer.setRun({..., extra}) (the interface is described at
+ * Inlined before viewer.js; it gives the viewer the first flight to draw (window.tumbleFirstRun),
+ * waits for "tumble:ready", then fills the flight selector and plays the chosen flight with
+ * window.tumbleViewer.setRun({..., extra}) (the interface is described at
  * the head of viewer.js): the extra adds the measured rates to the omega(t) plot, draws the
  * polhode plot and moves its marker with the frames.
  */
@@ -131,13 +132,15 @@
     return parts.join(", ");
   }
 
-  function play(k) {
+  function run(k) {
     var f = fit.flights[k];
-    return window.tumbleViewer.setRun({
+    return {
       t: f.t, quat: f.quat, omega: f.omega, moments: f.moments, box: f.box, frames: f.frames,
       torqueFree: f.torque_free, title: data.title + " \u2014 " + f.label, extra: extraFor(f),
-    });
+    };
   }
+  function play(k) { return window.tumbleViewer.setRun(run(k)); }
+  window.tumbleFirstRun = function () { return run(0); };  // the viewer draws the first flight first
 
   function start() {
     fit.flights.forEach(function (f, k) {
@@ -147,7 +150,6 @@
       select.appendChild(option);
     });
     select.addEventListener("change", function () { play(Number(select.value)); });
-    play(0);
   }
 
   if (window.tumbleViewer && window.tumbleViewer.ready) { start(); }

@@ -37,6 +37,11 @@
  *                of its traces at frame k (time t, s), M the drawn geometry's -> world rotation
  *                matrix (rows);
  *   translucent (optional, default true): the body drawn translucent (arrows inside it show).
+ *
+ * window.tumbleFirstRun (optional, set by a script inlined before this one: fitview.js) -> a
+ * setRun run: the run drawn first, in place of the page's own (reset() still restores the
+ * page's own). Without it a fit's page drew its first flight twice on load, once plain and once
+ * with the flight's extra (~40 % of its load in software WebGL).
  */
 (function () {
   "use strict";
@@ -411,7 +416,7 @@
     play: play, pause: pause, show: show, setSpeed: setSpeed,
   };
   setSpeed(1);
-  install(originalMotion()).then(function () {
+  install(window.tumbleFirstRun ? runMotion(window.tumbleFirstRun()) : originalMotion()).then(function () {
     window.tumbleViewer.ready = true;
     document.dispatchEvent(new Event("tumble:ready"));
   });
