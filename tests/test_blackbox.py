@@ -429,3 +429,26 @@ def test_a_clock_that_wraps_or_a_log_that_restarts_is_named(tmp_path, capsys, be
     device = write_device(tmp_path / "calibrated.toml", _device())
     code, _, err = _cli(capsys, "tensor", str(path), "--device", str(device), "--mass", "0.6", "--out", str(tmp_path / "o"))
     assert code == 2 and err.count("\n") == 1 and re.search(says, err.strip()), err
+
+
+@pytest.mark.parametrize("mounted", [("x", "-y", "-z"), ("z", "x", "y")], ids=["upside-down", "turned-about-a-diagonal"])
+def test_a_board_mounted_otherwise_than_sensor_axes_names_the_key(tmp_path, capsys, mounted):
+    """A walkthrough's finding (2026-12-03): logs of a board mounted upside down, read with the device file's default
+    sensor_axes, failed as "its tensor came out degenerate: the rotor's axis or the sign of its speed may be wrong", and
+    a board turned a third about a diagonal as residuals 15-87 times the noise; sensor_axes was never named. The line
+    names it; read with the mounting they were logged in, the same logs answer."""
+    paths = []
+    for k, seed in enumerate((31, 32)):
+        path = tmp_path / f"o{k + 1}.csv"
+        path.write_text(blackbox_csv(_throw(seed), _device(sensor_axes=mounted)))
+        paths.append(str(path))
+    mass = repr(example_object().mass)
+    plain = write_device(tmp_path / "plain.toml", _device())
+    code, _, err = _cli(capsys, "tensor", *paths, "--device", str(plain), "--mass", mass, "--out", str(tmp_path / "o"))
+    assert code == 1 and err.count("\n") == 1 and "rotor" in err, err
+    assert err.endswith("; the blackbox logs were turned by the device file's sensor_axes = [\"x\", \"y\", \"z\"]: a board "
+                        "mounted otherwise turns the rotor's axis too; nothing written\n"), err
+    assert not (tmp_path / "o").exists()
+    right = write_device(tmp_path / "right.toml", _device(sensor_axes=mounted))
+    code, out, err = _cli(capsys, "tensor", *paths, "--device", str(right), "--mass", mass, "--out", str(tmp_path / "r"))
+    assert code == 0 and out.startswith("tensor: principal moments ") and "from 2 of 2 throws" in out, err

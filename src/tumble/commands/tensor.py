@@ -41,7 +41,7 @@ from ..io.inertial import mjcf_inertial, urdf_inertial
 from ..io.output import FIGURE_DPI, check_output_dir, check_output_file, output_dir
 from ..io.provenance import file_sha256, provenance
 from ..io.tensorfolder import THROWS_FILE, throw_series, write_throw_series
-from ..io.throwfile import load_throw, read_throw
+from ..io.throwfile import load_throw
 
 __all__ = ["TENSOR_WRITES", "run_calibrate_command", "run_tensor_command"]
 
@@ -59,10 +59,26 @@ _METHOD = ("output-error least squares on the gyrostat's equations in the moment
 
 
 def _throws(paths: Sequence[str | os.PathLike[str]], option: str, device: Device | None = None) -> list:
-    """The throws of ``paths``, a blackbox log read with the device's motor, gyroscope and mounting."""
+    """The throws of ``paths`` and what was read of each (:func:`load_throw`), a blackbox log read
+    with the device's motor, gyroscope and mounting."""
     if not paths:
         raise ValueError(f"{option}: no throw given; name one or more throw files (CSV)")
-    return [read_throw(p, device) for p in paths]
+    return [load_throw(p, device) for p in paths]
+
+
+def _failed(err: BaseException, loaded: Sequence, device: Device) -> str:
+    """The one line of a fit that used no throw; where it suspects the rotor's axis and a throw
+    came from a blackbox log, it names the device file's ``sensor_axes`` too: a board mounted
+    otherwise than they say turns the rotor's axis in the sensor frame (a walkthrough's logs of a
+    board upside down failed as "degenerate: the rotor's axis or the sign of its speed may be
+    wrong", and turned a third about a diagonal as residuals 15-87 times the noise, the key never
+    named)."""
+    line = _one_line(err)
+    if "rotor's axis" in line or "rotor axis" in line:
+        if any(read.axes for _, read in loaded):
+            line += (f"; the blackbox logs were turned by the device file's sensor_axes = {json.dumps(list(device.sensor_axes))}: "
+                     "a board mounted otherwise turns the rotor's axis too")
+    return line
 
 
 def _missing_calibration(device: Device) -> list[str]:
@@ -125,13 +141,14 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     out = check_output_file(out, ".toml")
     dev, body = load_device(device, proof=True)
     assert body is not None  # required above
-    alone_throws = _throws(alone, "--alone", dev)
-    proof_throws = _throws(proof, "--proof", dev)
+    alone_loaded = _throws(alone, "--alone", dev)
+    proof_loaded = _throws(proof, "--proof", dev)
     inputs = [(os.fspath(p), file_sha256(p)) for p in (device, *alone, *proof)]
     try:
-        result = calibrate(dev, alone_throws, proof_throws, body, saturation=saturation)
+        result = calibrate(dev, [t for t, _ in alone_loaded], [t for t, _ in proof_loaded], body, saturation=saturation)
     except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
-        print(f"tumble: calibration failed: {_one_line(err)}; nothing written", file=sys.stderr)
+        print(f"tumble: calibration failed: {_failed(err, alone_loaded + proof_loaded, dev)}; nothing written",
+              file=sys.stderr)
         return 1
     calibrated = result.device
     if calibrated.rotor_inertia is None:  # no rotor inertia to write: the sets swapped
@@ -240,7 +257,7 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     try:
         fit = fit_tensor(thrown, dev, mass, saturation=saturation)
     except NoThrowError as err:  # well-formed throws, none of them fitted: the computation failed
-        print(f"tumble: tensor failed: {_one_line(err)}; nothing written", file=sys.stderr)
+        print(f"tumble: tensor failed: {_failed(err, loaded, dev)}; nothing written", file=sys.stderr)
         return 1
     record: dict[str, Any] = fit.as_dict()
     record["input"] = [os.fspath(p) for p in throws]
