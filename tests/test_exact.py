@@ -274,3 +274,15 @@ def test_one_body_and_the_batch_run_one_kernel():
         np.testing.assert_array_equal(Rotation.from_quat(lone[1][0]).as_quat(), one.attitude(t).as_quat())
         np.testing.assert_allclose(omega[i], one.omega(t), rtol=0, atol=4e-16 * np.max(np.abs(omega[i])))
         assert np.max((Rotation.from_quat(quat[i]).inv() * one.attitude(t)).magnitude()) <= 1e-14
+
+
+@pytest.mark.parametrize("omega0", [(0.05, 6.0, 0.05), (0.1, 1.0, 0.1), (0.3, -0.2, 0.1), (2.0, 0.0, 6.0), (0.0, 3.0, 0.0)])
+def test_the_first_sample_is_the_start_as_given(omega0):
+    """The closed form at t = 0 gave 6.000000000000001 for a given 6.0, which a scenario's summary.json then wrote
+    as its omega0 (a walkthrough). The start is the initial state, bit for bit; a moment later the closed form's."""
+    attitude0 = Rotation.from_rotvec([0.3, -1.0, 2.5])
+    traj = simulate(MassProperties.from_moments((1.0, 2.0, 3.0)), omega0, t_end=3.0, method="exact", attitude0=attitude0)
+    assert traj.omega[0].tolist() == list(omega0)
+    assert traj.quat[0].tolist() == attitude0.as_quat().tolist()
+    motion = FreeRotation(np.array([1.0, 2.0, 3.0]), np.array(omega0), attitude0)
+    np.testing.assert_allclose(traj.omega[1], motion.omega(traj.t[1]), rtol=0, atol=1e-15 * np.linalg.norm(omega0))

@@ -258,6 +258,7 @@ class FreeRotation:
         if self.steady:
             return np.broadcast_to(self.omega0, t.shape + (3,)).copy()
         omega: Vector3 = self._reduced(t.ravel())[1][0].reshape(t.shape + (3,))
+        omega[t == 0.0] = self.omega0  # the start as given, not the closed form's few ulps off it
         return omega
 
     def attitude(self, t: ArrayLike) -> Rotation:
@@ -280,4 +281,6 @@ class FreeRotation:
         if self.steady:
             return Rotation.from_quat(steady_attitude(self.omega0[None, :], self._quat0, t)[0])
         reduced, omega = self._reduced(t)
-        return Rotation.from_quat(self._motion.attitude(self._quat0, t, reduced, omega)[0])
+        quat = self._motion.attitude(self._quat0, t, reduced, omega)[0]
+        quat[t == 0.0] = self._quat0  # the start as given (the closed form's is within ~1e-16 of it)
+        return Rotation.from_quat(quat)

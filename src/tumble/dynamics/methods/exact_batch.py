@@ -96,16 +96,22 @@ def free_rotation_batch(
     t = np.asarray(t, float)
     if len(I) < COMPILED_BODIES:
         _check_phases(I, w, t, np.arange(len(I)))
-        return _double_double(I, w, q0, t, attitude)
-    omega = np.empty((len(I), len(t), 3))
-    quat = np.empty((len(I), len(t), 4))
-    left = _compiled(I, w, q0, t, attitude, omega, quat)
-    if left.size:  # the bodies double precision cannot take (compiled_exact's docstring)
-        _check_phases(I[left], w[left], t, left)  # the kernel takes no phase beyond 1000 rad
-        omega[left], rest = _double_double(I[left], w[left], q0[left], t, attitude)
-        if attitude:
-            quat[left] = rest
-    return omega, (quat if attitude else None)
+        omega, quat = _double_double(I, w, q0, t, attitude)
+    else:
+        omega = np.empty((len(I), len(t), 3))
+        quat = np.empty((len(I), len(t), 4))
+        left = _compiled(I, w, q0, t, attitude, omega, quat)
+        if left.size:  # the bodies double precision cannot take (compiled_exact's docstring)
+            _check_phases(I[left], w[left], t, left)  # the kernel takes no phase beyond 1000 rad
+            omega[left], rest = _double_double(I[left], w[left], q0[left], t, attitude)
+            if attitude:
+                quat[left] = rest
+        quat = quat if attitude else None
+    start = t == 0.0  # the start as given, as FreeRotation's, not the closed form's few ulps off it
+    omega[:, start] = w[:, None, :]
+    if quat is not None:
+        quat[:, start] = q0[:, None, :]
+    return omega, quat
 
 
 def _compiled(I: Vector3, w: Vector3, q0: Quaternion, t: FloatArray, attitude: bool, omega: Vector3,
