@@ -121,7 +121,7 @@ def test_constant_world_torque_changes_L_world_linearly():
 
 
 def test_symmetric_top_precession():
-    """Torque-free oblate top (I1 = I2 < I3), Landau & Lifshitz sec. 33:
+    """Torque-free oblate top (I1 = I2 < I3), Landau & Lifshitz secs. 36 and 33:
     in the body, omega_perp turns at (I3 - I1) omega_3 / I1; in space, the symmetry axis
     precesses about L at |L| / I1."""
     body = tumble.Body([tumble.Cylinder(mass=2.0, radius=0.5, length=0.1)])

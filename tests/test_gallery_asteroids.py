@@ -149,7 +149,10 @@ DOP853 (rtol 1e-12) over 6 `P_psi`, 20001 samples, and its periods measured by
 {_toutatis_rows(t)}
 
 At the ellipsoid's ratios each published pair has exactly one solution, in LAM, the published
-mode; the run reproduces both periods within the published uncertainty. Over the whole triangle
+mode. The run of that solution gives both periods back within the published uncertainty: a
+round trip, which checks the solve and the measurement of the periods, not the model (the
+periods went in). What the periods tell is the mode, and that at these ratios it is the only
+solution. Over the whole triangle
 of physical bodies (`periods_consistent`'s default grid, Zhao et al.'s pair) there are
 {t['grid_count']} solutions, all in {', '.join(t['grid_modes'])}, with `I1/I3` from
 {sig(t['grid_min'][0], 3)} to {sig(t['grid_max'][0], 3)} and `I2/I3` from

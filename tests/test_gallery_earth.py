@@ -33,7 +33,7 @@ def compute_earth():
     moments = [1.0 - H, 1.0 - H, 1.0]  # A = B = (1 - H) C with C = 1 kg m^2: only ratios matter
     omega0 = [1e-6 * w, 0.0, w]  # a small wobble about the figure axis
     day = 2 * np.pi / w  # one sidereal day (one turn of the Earth), s
-    closed_form = (1.0 - H) / H  # A / (C - A), sidereal days (Landau & Lifshitz sec. 33)
+    closed_form = (1.0 - H) / H  # A / (C - A), sidereal days (Landau & Lifshitz sec. 36)
     _, body_rate = symmetric_top_rates(omega0, moments)  # (C - A) w3 / A, rad/s
     traj = tumble.simulate(body(moments), omega0, t_end=2.2 * closed_form * day, samples=40001, method="dop853")
     up = upward_crossings(traj.t, traj.omega[:, 0])  # the wobble of omega in the body
@@ -42,6 +42,7 @@ def compute_earth():
         "closed_form": closed_form,
         "rates": 2 * np.pi / float(body_rate) / day,
         "measured": measured,
+        "crossings": len(up),
         "tolerance": EARTH_H_UNCERTAINTY / H**2,  # d/dH (1 - H) / H: the published range of H
     }
 
@@ -56,15 +57,16 @@ constants table that quotes them with this citation; the primary table was not r
 
 **What it predicts.** A rigid, axially symmetric Earth (`A = B < C`) spinning at `w` about its
 figure axis, slightly off it, wobbles in the body at `(C - A) w / A` (Landau & Lifshitz,
-*Mechanics*, sec. 33): the period is `A / (C - A) = (1 - H) / H` sidereal days, the Eulerian
-free nutation. The published uncertainty of `H` gives a range of
+*Mechanics*, sec. 36, Euler's equations for a free symmetrical top): the period is
+`A / (C - A) = (1 - H) / H` sidereal days ({r['closed_form'] * 2 * np.pi / EARTH_OMEGA / 86400.0:.1f} days of 86400 s), the
+Eulerian free nutation. The published uncertainty of `H` gives a range of
 ±{sig(r['tolerance'], 2)} sidereal days.
 
 **Conditions.** Moments `A = B = 1 - H`, `C = 1` (kg m^2; only ratios matter); spin
 `w = {EARTH_OMEGA}` rad/s (nominal, IERS Conventions (2010) Table 1.1, *not verified here*; the
 result in sidereal days does not depend on it); wobble `omega_1 = 1e-6 w`; DOP853 over 2.2
-periods, 40001 samples; the period is the mean interval between upward zero crossings of
-`omega_1`.
+periods, 40001 samples; the period is the mean interval between the upward zero crossings of
+`omega_1` ({r['crossings']} in the run).
 
 | | sidereal days |
 |---|---|
@@ -75,7 +77,7 @@ periods, 40001 samples; the period is the mean interval between upward zero cros
 | published range (from the uncertainty of `H`) | ±{sig(r['tolerance'], 2)} |
 
 **Why the observed Chandler wobble is longer.** The wobble observed in the Earth's polar
-motion, the Chandler wobble, has a period of about 433 days (Encyclopaedia Britannica,
+motion, the Chandler wobble, has a period of about 433 days of 86400 s (Encyclopaedia Britannica,
 "Chandler Wobble"), not ~305: the Earth is not rigid, and its elastic deformation lengthens the
 period (Love and Larmor, as summarised by O. Portilho, arXiv:0809.4506, sec. I).
 *Verification:* only the passages of these two sources quoted here were read; the primary

@@ -34,6 +34,7 @@ def compute_explorer():
     Ln = traj.angular_momentum_norm
     from_long_axis = np.arccos(np.abs(traj.angular_momentum[:, 0]) / Ln)  # angle of L from axis 1, rad
     E0 = traj.energy[0]
+    body_L0 = I * traj.omega[0]  # the body's own L at the start, without the damper's sphere
     return {
         "moments": I.tolist(),
         "L0": float(Ln[0]),
@@ -42,6 +43,10 @@ def compute_explorer():
         "budget": float(np.max(np.abs(traj.energy + traj.dissipated - E0)) / E0),
         "energy_rise": float(np.max(np.diff(traj.energy)) / E0),  # > 0 only by round-off
         "angle0": float(np.degrees(from_long_axis[0])),
+        "angle0_body": float(np.degrees(np.arccos(abs(body_L0[0]) / np.linalg.norm(body_L0)))),
+        # the turn-over: when L first stands 45 and 89 degrees from the long axis, s
+        "t45": float(traj.t[np.argmax(from_long_axis >= np.radians(45.0))]),
+        "t89": float(traj.t[np.argmax(from_long_axis >= np.radians(89.0))]),
         "angle_end": float(np.degrees(from_long_axis[-1])),
         "axis1_end": float(abs(traj.omega[-1, 0]) / np.linalg.norm(traj.omega[-1])),
         "rate_end": float(np.linalg.norm(traj.omega[-1])),
@@ -81,7 +86,8 @@ diameter 15.2 cm and mass 13.97 kg (NSSDCA 1958-001A, as cited by the example; c
 Wikipedia's "Explorer 1", read in a mirror) as a uniform cylinder, with four whip
 antennas whose length, mass and place are illustrative: `I1 = {sig(I1, 6)}`, `I2 = I3 =
 {sig(I3, 6)}` kg m^2. Spin {SPIN0_REV_S:g} rev/s (Bollay) about the long axis plus an illustrative
-{WOBBLE0} rad/s about an antenna axis, so `L` starts {sig(r['angle0'], 3)}° from the long axis. The
+{WOBBLE0} rad/s about an antenna axis, so `L` starts {sig(r['angle0'], 3)}° from the long axis (the whole `L`, the
+damper's sphere turning with the body included; the body's own `I omega` starts {sig(r['angle0_body'], 3)}° from it). The
 damper (illustrative, as in `examples/explorer1.toml`): `J = {J}` kg m^2, `c = {DAMPER.damping}`
 N m s. The geometric (splitting) integrator, step 0.01 s, 200 s, 1001 samples.
 
@@ -104,9 +110,12 @@ constant `|L|`, the energy falls monotonically, and the end rate is the closed f
 *not* reproduce the reported end rate: "about 2 cycles per second" after 10 rev/s means, for a
 rigid body at constant `|L|` turning from the minor to the major axis,
 `I3 / I1 ~ {SPIN0_REV_S / SPIN_AFTER_REV_S:g}`, whereas this model has `I3 / I1 = {sig(I3 / I1, 3)}` (a bare uniform
-cylinder of the published size, `(3 r^2 + l^2) / (6 r^2)`, has {sig(r['cylinder_ratio'], 3)}), hence {sig(r['rate_end'] / (2 * np.pi), 2)} rev/s. How the rate
-was read from the antenna pattern, and the real mass distribution, were not found; the time
-to turn over (about one orbit for Explorer 1, Bollay; about 100 s here) depends on the
+cylinder of the published size, `(3 r^2 + l^2) / (6 r^2)`, has {sig(r['cylinder_ratio'], 3)}). With the damper's sphere, which
+turns with the body at both ends, the rate falls by `(I3 + J) / (I1 + J) = {sig((I3 + J) / (I1 + J), 3)}`, hence
+{sig(r['rate_end'] / (2 * np.pi), 3)} rev/s: the illustrative `J`, {100 * J / I1:.0f} % of `I1`, raises the end rate by
+{100 * ((I1 + J) / (I3 + J) * I3 / I1 - 1):.0f} % over a rigid body's. How the rate was read from the antenna pattern, and the real
+mass distribution, were not found; the time to turn over (about one orbit for Explorer 1, Bollay;
+here `L` stands 45° from the long axis at {r['t45']:.3g} s and 89° at {r['t89']:.3g} s) depends on the
 damper, which is illustrative, and is not compared.
 
 {code(compute_explorer)}"""
@@ -128,6 +137,13 @@ def test_explorer1_turns_over_onto_a_major_axis_as_reported():
     assert r["angle0"] < 3.0  # starts within 3 degrees of the long (minor) axis
     assert r["angle_end"] == pytest.approx(90.0, abs=1e-4)  # measured: < 1e-7 degrees from 90
     assert r["axis1_end"] < 1e-6  # measured: < 1e-7 (omega_1 = L_1 / I1 is magnified by I3 / I1)
+    # the sphere turning with the body adds J omega_1 along the long axis: the whole L starts nearer it
+    I1, I2, _ = r["moments"]
+    J = DAMPER.inertia
+    w0 = 2 * np.pi * SPIN0_REV_S
+    assert np.tan(np.radians(r["angle0"])) == pytest.approx((I2 + J) * WOBBLE0 / ((I1 + J) * w0), rel=1e-9)
+    assert np.tan(np.radians(r["angle0_body"])) == pytest.approx(I2 * WOBBLE0 / (I1 * w0), rel=1e-9)
+    assert 0.0 < r["t45"] < r["t89"] < 200.0
 
 
 def test_explorer1_conserves_momentum_and_closes_the_energy_budget():

@@ -116,14 +116,15 @@ about it, the handle flips.
 
 **Flip interval against the unmeasured start.** Spun at {SPIN:g} rad/s about the shaft (illustrative)
 with `eps` rad/s about each of the other two axes, `omega0 = [eps, {SPIN:g}, eps]` (principal
-frame). Closed form `2 K(k^2) / p` (Landau & Lifshitz, *Mechanics*, sec. 37;
+frame). Closed form `2 K(m) / p` with the parameter `m = k^2` (Landau & Lifshitz, *Mechanics*, sec. 37;
 `tumble.analysis.flip_interval`); measured: DOP853 (rtol 1e-12) over 6.5 closed-form
 intervals, 40001 samples, the mean interval between sign changes of `omega_2` (tested to
 `1e-10 / eps` relative: near the separatrix the interval magnifies the integrator's error
 about as `1 / eps`); the same measurement on a run of tumble's exact (Jacobi elliptic)
 solution, whose error does not grow so; asymptotic:
 `ln(16 / (1 - k^2)) / p` (`flip_interval_asymptotic`, the separatrix limit of `K`). Each tenfold
-change of `eps` changes the interval by about the same amount, `(2 / lambda) ln 10`: the
+change of `eps` changes the interval by about the same amount, `(2 / lambda) ln 10`, with `lambda`
+the linearised growth rate off the shaft, `w sqrt((I3 - I2)(I2 - I1) / (I1 I3))`: the
 logarithmic sensitivity that kept Peterson & Schwalm from fitting the video's period.
 
 | `eps`, rad/s | closed form, s | measured (DOP853), s | relative difference (asserted) | exact run, relative difference (asserted) | asymptotic, s | flips |

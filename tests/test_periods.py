@@ -41,7 +41,7 @@ def test_period_is_twice_the_flip_interval_and_2pi_over_p_for_a_top():
     I = np.array([c[0] for c in CASES])
     w = np.array([c[1] for c in CASES])
     np.testing.assert_array_equal(P.period(w, I), 2.0 * flip_interval(w, I))
-    # oblate top: p = (I3 - I1) w3 / I1 (Landau & Lifshitz sec. 33), T = 2 pi / p
+    # oblate top: p = (I3 - I1) w3 / I1 (Landau & Lifshitz sec. 36), T = 2 pi / p
     assert P.period([0.3, 0.0, 1.0], [2.0, 2.0, 3.0]) == pytest.approx(2 * np.pi / ((3.0 - 2.0) * 1.0 / 2.0), rel=1e-15)
     # prolate top: p = (I_perp - I1) |w1| / I_perp
     assert P.period([1.0, 0.3, 0.1], [1.0, 3.0, 3.0]) == pytest.approx(2 * np.pi / (2.0 / 3.0), rel=1e-15)
@@ -190,7 +190,7 @@ def _azimuth_rate(traj, axis_body):
                                                ([2.0, 2.0, 3.0], [0.3, 0.4, -1.0], 2)])
 def test_symmetric_top_rates_against_dop853(moments, omega, s):
     """Precession of the symmetry axis about L and the rate of omega about the symmetry axis in
-    the body (Landau & Lifshitz sec. 33), measured on a DOP853 run."""
+    the body (Landau & Lifshitz secs. 33, 36), measured on a DOP853 run."""
     precession, body_rate = P.symmetric_top_rates(omega, moments)
     traj = tumble.simulate(body(moments), omega, t_end=20.0, samples=4001, method="dop853")
     axis = np.eye(3)[s]

@@ -9,7 +9,7 @@ other extreme axis; ``u = u0 + p t`` the elliptic argument and ``m = k^2`` its p
 - **Period of the body-frame motion** ``T = 4 K(m) / p`` (Landau & Lifshitz sec. 37): after
   ``T`` omega, L_body and the energy ellipsoid's polhode are back where they were; the flip
   interval of :func:`tumble.analysis.flip_interval` is ``T / 2``. For a symmetric top ``m = 0``
-  and ``T = 2 pi / p`` with ``p = |(I_s - I_perp) w_s / I_perp|`` (Landau & Lifshitz sec. 33).
+  and ``T = 2 pi / p`` with ``p = |(I_s - I_perp) w_s / I_perp|`` (Landau & Lifshitz sec. 36).
 - **Precession per period.** The exact solution writes the attitude as ``Rz(phi) Rx(theta)
   Rz(psi)`` about L (z-x-z Euler angles, Landau & Lifshitz sec. 35) with
   ``phi' = |L| / I_r + |L| (I_r - I_o) / (I1 I3) / (1 - n sn^2 u)``,
@@ -73,7 +73,7 @@ def period(omega: ArrayLike, moments: ArrayLike) -> np.ndarray:
     """Period of the body-frame motion, ``T = 4 K(m) / p``, s (module docstring).
 
     Twice :func:`tumble.analysis.flip_interval`. For a symmetric top ``2 pi / p``, the period of
-    omega's precession about the symmetry axis in the body (Landau & Lifshitz sec. 33).
+    omega's precession about the symmetry axis in the body (Landau & Lifshitz sec. 36).
 
     Parameters
     ----------
@@ -280,7 +280,7 @@ def rotation_per_period(traj: Trajectory, period_s: float | None = None) -> floa
 
 
 def symmetric_top_rates(omega: ArrayLike, moments: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """The two rates of a free symmetric top (Landau & Lifshitz, *Mechanics*, sec. 33), rad/s.
+    """The two rates of a free symmetric top (Landau & Lifshitz, *Mechanics*, secs. 33, 36), rad/s.
 
     For moments ``I_perp, I_perp, I_s`` (oblate, ``I1 = I2``, symmetry axis 3) or ``I_s,
     I_perp, I_perp`` (prolate, ``I2 = I3``, symmetry axis 1): the symmetry axis precesses about

@@ -200,7 +200,7 @@ def turned_in_hand(rng: np.random.Generator, tau: np.ndarray, length: float, w_e
     flight's last ``w_end`` to a turning about a random body axis ``a`` at ``spin`` rad/s whose
     direction cones about ``a`` (half-angle 5-25 deg) at ``k`` times the axial rate (``k``
     -0.9 to 0.9: the body-frame precession ``(I_a - I_t) / I_t`` of a free symmetric body,
-    Landau & Lifshitz, *Mechanics*, sec. 33), slowed as by a quadratic drag
+    Landau & Lifshitz, *Mechanics*, sec. 36), slowed as by a quadratic drag
     (``s / (1 + c s t)``, ``c s`` 0.5-3 /s) and blended into the hold's ``level`` over its last
     15 %. Such a stretch follows a torque-free motion with drag, of another body: only where it
     lies (right after an impact, no throw before it) says it is no flight.
