@@ -389,3 +389,33 @@ def test_an_unstable_classic_bdot_gain_is_warned_of_and_it_is_unstable():
         warnings.simplefilter("error")
         below = simulate_controlled(moments, [0.01, 0.01, 0.01], controller=BDot(gain=0.95 * bound, period=1.0), **kw)
     assert np.linalg.norm(past.omega[-1]) > 1.0 > 0.02 > np.linalg.norm(below.omega[-1])
+
+
+def test_a_normalised_gain_taken_as_classic_is_warned_of_and_a_short_run_of_a_right_gain_is_not(tmp_path, capsys):
+    """A walkthrough of docs/control.md (2026-12-03): Avanzini & Giulietti's gain (bdot_gain, N m s) given to BDot
+    without its form is read as classic (A m^2 s/T): in a 500 km, 97.4 deg orbit it commanded 2.4e-10 A m^2 and left
+    10 deg/s at 10 deg/s, without a word. Its time constant I3 / (k_b |B|^2), ~1e12 s, says so; the same gain in its
+    form detumbles, and a few seconds of a right gain (time constant ~1e3 s) say nothing."""
+    import warnings
+
+    from tumble.dynamics import CircularOrbit, DipoleField
+    from tumble.dynamics.control.bdot import BDot, bdot_gain
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.control.sampled import WeakLoopWarning
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    moments = [0.00667, 0.0419, 0.0419]
+    orbit = CircularOrbit(altitude=500e3, inclination=np.radians(97.4))
+    k = bdot_gain(orbit.mean_motion, orbit.inclination, moments[0])
+    w0 = np.radians([10.0, -8.0, 6.0])
+    kw = dict(t_end=3000.0, field=DipoleField(orbit), magnetorquers=Magnetorquers(0.2))
+    with pytest.warns(WeakLoopWarning, match=rf"^gain = {k:g} A m\^2 s/T: classic B-dot changes the rate about principal "
+                                             r"axis 3 \(I = 0\.0419 kg m\^2\) with a time constant of \d\.\d+e\+1[1-3] s or "
+                                             r"more .*it leaves the rate as it was; a normalised gain .*form = \"normalized\""):
+        slip = simulate_controlled(moments, w0, controller=BDot(gain=k, period=1.0), **kw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        right = simulate_controlled(moments, w0, controller=BDot(gain=k, period=1.0, form="normalized"), **kw)
+        simulate_controlled(moments, w0, controller=BDot(gain=k, period=1.0, form="normalized"), **{**kw, "t_end": 5.0})
+    assert np.linalg.norm(slip.omega[-1]) == pytest.approx(np.linalg.norm(w0), rel=1e-3)
+    assert np.linalg.norm(right.omega[-1]) < 0.5 * np.linalg.norm(w0)

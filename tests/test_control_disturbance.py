@@ -104,7 +104,7 @@ def test_a_disturbance_acts_beside_the_magnetorquers_dipole():
     from tumble.dynamics.models.actuators import Magnetorquers
 
     moments = [0.0067, 0.0419, 0.0419]
-    kw = dict(t_end=60.0, controller=BDot(gain=3e-5, period=1.0), field=UniformField((2e-5, 1e-5, -3e-5)),
+    kw = dict(t_end=60.0, controller=BDot(gain=3e-5, period=1.0, form="normalized"), field=UniformField((2e-5, 1e-5, -3e-5)),
               magnetorquers=Magnetorquers(0.2), torque=[ConstantTorque((1e-5, 0.0, 0.0)),
                                                         ConstantTorque((0.0, -4e-6, 2e-6), "world")])
     fast = simulate_controlled(moments, [0.05, -0.02, 0.03], compiled=True, **kw)
@@ -128,7 +128,7 @@ def test_a_residual_dipole_in_the_runs_field_runs_compiled_beside_b_dot():
 
     moments, w0 = [0.0067, 0.0419, 0.0419], [0.05, -0.02, 0.03]
     field = UniformField((2e-5, 1e-5, -3e-5))
-    kw = dict(t_end=60.0, controller=BDot(gain=3e-5, period=1.0), field=field, magnetorquers=Magnetorquers(0.2))
+    kw = dict(t_end=60.0, controller=BDot(gain=3e-5, period=1.0, form="normalized"), field=field, magnetorquers=Magnetorquers(0.2))
     residual = ResidualDipole((0.05, -0.02, 0.01), field)
     fast = simulate_controlled(moments, w0, compiled=True, torque=residual, **kw)
     slow = simulate_controlled(moments, w0, compiled=False, torque=residual, **kw)

@@ -176,7 +176,7 @@ class Ramp:
 
 
 def test_a_user_model_takes_scipys_path_and_compiled_true_names_it():
-    kw = {"moments": CUBESAT, "omega0": [0.1, 0.0, 0.1], "t_end": 3.0, "controller": BDot(gain=3e-5, period=1.0),
+    kw = {"moments": CUBESAT, "omega0": [0.1, 0.0, 0.1], "t_end": 3.0, "controller": BDot(gain=3e-5, period=1.0, form="normalized"),
               "field": Ramp(), "magnetorquers": Magnetorquers(0.2)}
     with pytest.raises(ValueError, match=r"compiled=True needs built-in models; field = Ramp \(a DipoleField, "
                                          r"UniformField or IGRFField\) is not one"):

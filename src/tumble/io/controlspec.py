@@ -148,7 +148,7 @@ def _bdot_args(args: dict[str, Any], body: Body, orbit: Orbit | None, field: Fie
         raise ValueError(f"gain = {args['gain']!r} needs its form: form = \"normalized\" for a gain in N m s (Avanzini & "
                          f"Giulietti's, the default gain's form) or form = \"classic\" for one in A m^2 s/T; the two "
                          f"differ by |B|^2, some 1e-9 T^2 in low orbit, and the published gain taken as classic is "
-                         f"1e5 times too weak to detumble")
+                         f"~1e9 times too weak to detumble")
     if "gain" not in args:  # Avanzini & Giulietti 2012, xi_m the orbit's inclination to the dipole's equator
         args["gain"] = bdot_gain(orbit.mean_motion, geomagnetic_inclination(orbit, field),
                                  float(np.min(body.principal_moments)))

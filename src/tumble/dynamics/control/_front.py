@@ -73,11 +73,12 @@ def checked(moments: ArrayLike, omega0: ArrayLike, t_end: float, rtol: float, at
         I, y0 = I.copy(), y0.copy()
     if wheels is not None:
         check_wheels(I, wheels)
-    for law in (controller, getattr(controller, "detumble", None)):  # a B-dot alone or a mission's
+    for law in (controller, getattr(controller, "detumble", None)) if magnetorquers is not None else ():
+        # a B-dot alone or a mission's (without magnetorquers the run is refused: nothing to say of its gain)
         if isinstance(law, BDot) and law.form == "normalized":
-            check_bdot_loop(I, law.gain, law.period)
+            check_bdot_loop(I, law.gain, law.period, t_end=T)
         elif isinstance(law, BDot) and field is not None and (largest := field_max(field, T)) is not None:
-            check_bdot_loop(I, law.gain, law.period, largest)  # classic: its gain is k_b |B|^2
+            check_bdot_loop(I, law.gain, law.period, largest, T)  # classic: its gain is k_b |B|^2
     if period >= T:  # the samples are the control instants: two, and one command
         warnings.warn(f"controller.period = {period:g} s is not shorter than t_end = {T:g} s: the controller acts "
                       "once, at t = 0, and the run has two samples (a period in ms written as s?)", OneStepWarning,

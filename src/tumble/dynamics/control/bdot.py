@@ -39,7 +39,7 @@ def _three(v: ArrayLike) -> tuple[float, float, float]:
 def bdot_gain(mean_motion: float, geomagnetic_inclination: float, min_moment: float) -> float:
     """Avanzini & Giulietti's B-dot gain ``k = 2 n (1 + sin xi_m) I_min``, N m s: the normalised
     form's, so give it to ``BDot(gain=..., form="normalized")`` (``BDot``'s default form, classic,
-    reads a gain in A m^2 s/T, and this one would be ~1e5 times too weak there).
+    reads a gain in A m^2 s/T, and this one would be ~1e9 times too weak there: ``|B|^2`` in low orbit).
 
     Parameters
     ----------

@@ -30,7 +30,16 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 
-__all__ = ["OneStepWarning", "UnstableLoopWarning", "check_bdot_loop", "check_held_loop", "held_loop_radius"]
+__all__ = ["OneStepWarning", "UnstableLoopWarning", "WeakLoopWarning", "check_bdot_loop", "check_held_loop",
+           "held_loop_radius"]
+
+#: :class:`WeakLoopWarning` where B-dot's slowest time constant is more than this many runs long
+#: and longer than :data:`WEAK_TIME`.
+WEAK_RUNS = 100.0
+#: A year, s: no detumble takes so long (Avanzini & Giulietti's gain: ``I3 / k`` ~ 500 ``I3 / I1``
+#: s), while a normalised gain read as classic gives 1e11-1e13 s in low orbit. A short run of a
+#: right gain (a few seconds of an hours-long detumble) is no slip.
+WEAK_TIME = 365.25 * 86400.0
 
 
 class UnstableLoopWarning(UserWarning):
@@ -43,6 +52,21 @@ class UnstableLoopWarning(UserWarning):
     --------
     >>> from tumble.dynamics.control.sampled import UnstableLoopWarning
     >>> issubclass(UnstableLoopWarning, UserWarning)
+    True
+    """
+
+    cli_one_line = True
+
+
+class WeakLoopWarning(UserWarning):
+    """B-dot whose gain is too weak to change the rate within the run (:func:`check_bdot_loop`):
+    most often a normalised gain (N m s, :func:`~tumble.dynamics.control.bdot.bdot_gain`'s) taken
+    as classic (A m^2 s/T), ~1e9 times too weak in low orbit. A command prints it on one line.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.sampled import WeakLoopWarning
+    >>> WeakLoopWarning.cli_one_line
     True
     """
 
@@ -64,7 +88,7 @@ class OneStepWarning(UserWarning):
     >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> with warnings.catch_warnings(record=True) as seen:
     ...     warnings.simplefilter("always")
-    ...     run = simulate_controlled([0.03, 0.04, 0.05], [0.1, 0.2, 0.3], t_end=10.0, controller=BDot(gain=1e-3, period=500.0),
+    ...     run = simulate_controlled([0.03, 0.04, 0.05], [0.1, 0.2, 0.3], t_end=100.0, controller=BDot(gain=1e5, period=500.0),
     ...                               magnetorquers=Magnetorquers(0.2), field=UniformField((2e-5, 0.0, 0.0)))
     >>> [w.category.__name__ for w in seen], len(run.t)
     (['OneStepWarning'], 2)
@@ -161,8 +185,13 @@ def _longest_period(I: float, K: float, P: float, period: float, Ki: float) -> f
     return lo
 
 
-def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: float | None = None) -> None:
-    """Warn (:class:`UnstableLoopWarning`) where B-dot held for ``period`` (s) overshoots. Normalised
+def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: float | None = None,
+                    t_end: float | None = None) -> None:
+    """Warn (:class:`UnstableLoopWarning`) where B-dot held for ``period`` (s) overshoots, and
+    (:class:`WeakLoopWarning`) where its slowest time constant, ``I3 / k`` (``I3 / (k_b |B|^2)``
+    classic, at the largest ``|B|``: the longest it can be is longer still), is more than
+    :data:`WEAK_RUNS` times the run's ``t_end`` (s) and longer than a year (:data:`WEAK_TIME`):
+    the rate is then left as it was. Normalised
     (``field_max`` None), its torque ``-k omega_perp`` (:mod:`~tumble.dynamics.control.bdot`) held
     over ``T`` takes each rate across the field as ``omega_{k+1} ~ (1 - k T / I) omega_k``, which
     grows past ``k T / I = 2`` (the rate loop of the module docstring with ``P = k``); worst about
@@ -172,7 +201,9 @@ def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: f
     held 1 s (``k T / I1 = 4.5e4``), spun it from 0.017 to 92 rad/s and was reported only as "not
     detumbled"; a classic gain past the bound (``k_b |B|^2 T / I1 = 2.1``, a field of 30 uT across
     the axis) spun one from 0.017 to 1.4 rad/s in a minute. Saturated magnetorquers (far from rest)
-    hide it until the rate is small.
+    hide it until the rate is small. A walkthrough's Avanzini & Giulietti gain (normalised, 6.7e-3
+    N m s) given to ``BDot`` without its form was read as classic: a dipole of 2.4e-10 A m^2, the
+    rate 10 deg/s at the start and the end, and no word.
 
     Examples
     --------
@@ -188,6 +219,11 @@ def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: f
     (2, 'gain = 300 N m s: B-dot held for period = 1 s is unstable about principal axis 1 (I')
     >>> str(caught[1].message)[:90]
     'gain = 1e+08 A m^2 s/T: classic B-dot held for period = 1 s is unstable about principal ax'
+    >>> with warnings.catch_warnings(record=True) as caught:   # a normalised gain taken as classic
+    ...     warnings.simplefilter("always")
+    ...     check_bdot_loop([0.00667, 0.0419, 0.0419], 6.7e-3, 1.0, field_max=4.7e-5, t_end=3000.0)
+    >>> str(caught[0].message)[:84]
+    'gain = 0.0067 A m^2 s/T: classic B-dot changes the rate about principal axis 3 (I = '
     """
     I = np.asarray(moments, float)
     axis = int(np.argmin(I))
@@ -196,6 +232,15 @@ def check_bdot_loop(moments: ArrayLike, gain: float, period: float, field_max: f
     else:
         ratio, unit, form = gain * field_max**2 * period / float(I[axis]), "A m^2 s/T", "classic "
         effective, beside = "k_b |B|^2 T / I", f" with |B| up to {field_max:.3g} T along the run"
+    k = gain if field_max is None else gain * field_max**2  # N m s: the torque -k omega_perp
+    slowest = float(I[-1]) / k if k > 0 else np.inf  # s, about the largest moment (the moments ascend)
+    if t_end is not None and slowest > max(WEAK_RUNS * t_end, WEAK_TIME):
+        other = (' a normalised gain (N m s, bdot_gain\'s) given as classic? Give form = "normalized"'
+                 if field_max is not None else " a gain in other units?")
+        field = "" if field_max is None else f" (|B| up to {field_max:.3g} T along the run)"
+        warnings.warn(f"gain = {gain:g} {unit}: {form}B-dot changes the rate about principal axis 3 (I = {I[-1]:.3g} "
+                      f"kg m^2) with a time constant of {slowest:.3g} s or more{field}, over {WEAK_RUNS:g} times the "
+                      f"run's t_end = {t_end:g} s and a year: it leaves the rate as it was;{other}", WeakLoopWarning, stacklevel=3)
     if ratio <= 2.0:
         return
     bound = 2.0 * float(I[axis]) / period / (1.0 if field_max is None else field_max**2)
