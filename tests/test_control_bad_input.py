@@ -261,16 +261,20 @@ def test_wheel_friction_the_motor_cannot_overcome_is_refused(tmp_path, capsys):
 
 @pytest.mark.parametrize(("key", "value", "words"), [
     ("magnetometer_noise", 100.0, r"magnetometer_noise = 100.0 T is more than the Earth's field .* is it in nT\?"),
+    ("magnetometer_bias", [100.0, 0.0, 0.0], r"magnetometer_bias = \[100.0, 0.0, 0.0\] T is more than the Earth's field "
+                                             r".* is it in nT\?"),
     ("attitude_noise", 4.0, r"attitude_noise = 4.0 rad: a spread past pi says nothing of an angle; .* arcsec or deg\?"),
 ])
 def test_sensor_noise_no_sensor_has_is_refused_as_a_likely_unit_slip(key, value, words):
     """100 'T' of magnetometer noise (meant 100 nT) hid the field and B-dot did nothing; 4 rad of star
-    tracker noise ran; both without a word (a walkthrough, issue 40)."""
+    tracker noise ran; both without a word (a walkthrough, issue 40). A bias of 100 'T' ran too, until
+    a walkthrough of docs/control.md (2026-12-03)."""
     from tumble.dynamics.models.sensors import MAX_MAGNETOMETER_NOISE, Sensors
 
     with pytest.raises(ValueError, match=rf"^{words}"):
         Sensors(**{key: value})
-    Sensors(magnetometer_noise=MAX_MAGNETOMETER_NOISE, attitude_noise=np.pi)  # the bounds themselves: taken
+    Sensors(magnetometer_noise=MAX_MAGNETOMETER_NOISE, attitude_noise=np.pi,   # the bounds themselves: taken
+            magnetometer_bias=[0.0, -MAX_MAGNETOMETER_NOISE, 0.0])
 
 
 @pytest.mark.parametrize(("old", "new", "words"), [
@@ -419,3 +423,22 @@ def test_a_normalised_gain_taken_as_classic_is_warned_of_and_a_short_run_of_a_ri
         simulate_controlled(moments, w0, controller=BDot(gain=k, period=1.0, form="normalized"), **{**kw, "t_end": 5.0})
     assert np.linalg.norm(slip.omega[-1]) == pytest.approx(np.linalg.norm(w0), rel=1e-3)
     assert np.linalg.norm(right.omega[-1]) < 0.5 * np.linalg.norm(w0)
+
+
+def test_a_wheel_speed_limit_in_rpm_is_refused(tmp_path, capsys):
+    """A walkthrough of docs/control.md (2026-12-03): point.toml's max_speed = 630 (rad/s) written as 6000 (rpm) ran,
+    and the wheels that saturated at 630 rad/s (3.08 rad off the target) reached 1210 rad/s and pointed, without a
+    word. A limit past any reaction wheel's is refused in one line, naming rpm; inf (no limit) is taken."""
+    from tumble.dynamics.models.actuators import MAX_WHEEL_SPEED, ReactionWheels
+
+    with pytest.raises(ValueError, match=r"^max_speed\[0\] = 6000 rad/s \(5.73e\+04 rpm\) is faster than a reaction wheel "
+                                         r"turns; allowed: up to 2500 rad/s, or inf for no limit: is it in rpm\? Give "
+                                         r"rad/s \(6000 rpm = 628.3 rad/s\)$"):
+        ReactionWheels(np.eye(3), inertia=2e-5, max_speed=6000.0)
+    ReactionWheels(np.eye(3), inertia=2e-5, max_speed=[MAX_WHEEL_SPEED, np.inf, 630.0])  # taken
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "point.toml").read_text()
+    assert "max_speed = 630.0" in text
+    (tmp_path / "rpm.toml").write_text(text.replace("max_speed = 630.0", "max_speed = 6000.0"))
+    assert main(["simulate", str(tmp_path / "rpm.toml"), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "is it in rpm?" in err and not (tmp_path / "run").exists()

@@ -39,7 +39,7 @@ from ..._html import field_repr
 from ...typing import ArrayLike, FloatArray, Matrix3, Vector3
 from ...validation import check_positive, check_vectors
 
-__all__ = ["SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "check_wheels", "rod_dipole_components",
+__all__ = ["MAX_WHEEL_SPEED", "SPEED_LIMIT_BAND", "Command", "Magnetorquers", "ReactionWheels", "check_wheels", "rod_dipole_components",
            "wheel_torque"]
 
 
@@ -203,6 +203,9 @@ class Magnetorquers:
         return np.ascontiguousarray(self.axes, dtype=float), np.asarray(self.max_dipole, dtype=float).copy()
 
 
+#: The fastest finite ``max_speed`` taken, rad/s (~24,000 rpm): reaction wheels turn at most
+#: ~6,000 rpm (spacecraft) to ~15,000 rpm (CubeSats'), so a limit past it is most likely in rpm.
+MAX_WHEEL_SPEED = 2500.0
 #: The part of ``max_speed`` over which a wheel's outward motor torque falls to zero: the last
 #: 1 %. A DC motor's available torque falls linearly to zero at its no-load speed, by its back-EMF
 #: (the steady-state torque-speed line: Hughes & Drury, *Electric Motors and Drives*, 4th ed.,
@@ -322,6 +325,13 @@ class ReactionWheels:
         object.__setattr__(self, "viscous", _per_axis("viscous", self.viscous, k, "N m s/rad", allow_zero=True))
         object.__setattr__(self, "coulomb", _per_axis("coulomb", self.coulomb, k, "N m", allow_zero=True))
         object.__setattr__(self, "limit_cycle_speed", _per_axis("limit_cycle_speed", self.limit_cycle_speed, k, "rad/s"))
+        fast = np.flatnonzero(np.isfinite(self.max_speed) & (self.max_speed > MAX_WHEEL_SPEED))
+        if len(fast):  # a walkthrough's 6000 (rpm) ran as 6000 rad/s, the wheels far past what saturated them
+            j = int(fast[0])
+            raise ValueError(f"max_speed[{j}] = {self.max_speed[j]:g} rad/s ({self.max_speed[j] * 30 / np.pi:.3g} rpm) is "
+                             f"faster than a reaction wheel turns; allowed: up to {MAX_WHEEL_SPEED:g} rad/s, or inf for no "
+                             f"limit: is it in rpm? Give rad/s ({self.max_speed[j]:g} rpm = "
+                             f"{self.max_speed[j] * np.pi / 30:.4g} rad/s)")
         coulomb, motor = np.asarray(self.coulomb, float), np.asarray(self.max_torque, float)
         stuck = np.flatnonzero(coulomb >= motor)
         if len(stuck):  # the motor can never turn it (a walkthrough's 1e-2 N m against 2e-3 crawled, stiff, in silence)

@@ -31,7 +31,7 @@ from .vector_sensors import CoarseSunSensor, FineSunSensor, StarTracker, on_peri
 
 __all__ = ["MAX_GYRO_ERROR", "MAX_MAGNETOMETER_NOISE", "Measurement", "Sensors"]
 
-#: The largest magnetometer noise taken, T: past the Earth's field itself (~6.5e-5 T at most at the
+#: The largest magnetometer noise, and bias component, taken, T: past the Earth's field itself (~6.5e-5 T at most at the
 #: surface, ~2-5e-5 T in low orbit) a reading says nothing of it; a noise in nT written as T is 1e9 times it.
 MAX_MAGNETOMETER_NOISE = 1e-4
 #: The largest gyroscope noise or bias taken, rad/s (11 deg/s): a phone's MEMS gyroscope has up to
@@ -163,6 +163,10 @@ class Sensors:
             raise ValueError(f"gyro_bias = {list(self.gyro_bias)!r} rad/s is more than any gyroscope's bias (a phone's "
                              f"MEMS gyroscope: up to ~0.1 rad/s); allowed: each within {MAX_GYRO_ERROR:g} rad/s: {_RATE_HINT}")
         object.__setattr__(self, "magnetometer_bias", check_vector("magnetometer_bias", self.magnetometer_bias, "T"))
+        if max(map(abs, self.magnetometer_bias)) > MAX_MAGNETOMETER_NOISE:  # a walkthrough's [100, 0, 0] "T" ran
+            raise ValueError(f"magnetometer_bias = {list(self.magnetometer_bias)!r} T is more than the Earth's field (at "
+                             f"most ~6.5e-5 T at the surface); allowed: each within {MAX_MAGNETOMETER_NOISE:g} T: is it in "
+                             f"nT? Give tesla (100 nT = 1e-7 T)")
         if self.attitude not in ("ideal", "star_tracker", "none"):
             raise ValueError(f"attitude = {self.attitude!r} is unknown; allowed: ideal, star_tracker, none")
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or self.seed < 0:
