@@ -325,13 +325,13 @@ class ReactionWheels:
         object.__setattr__(self, "viscous", _per_axis("viscous", self.viscous, k, "N m s/rad", allow_zero=True))
         object.__setattr__(self, "coulomb", _per_axis("coulomb", self.coulomb, k, "N m", allow_zero=True))
         object.__setattr__(self, "limit_cycle_speed", _per_axis("limit_cycle_speed", self.limit_cycle_speed, k, "rad/s"))
-        fast = np.flatnonzero(np.isfinite(self.max_speed) & (self.max_speed > MAX_WHEEL_SPEED))
+        speed = np.asarray(self.max_speed, float)
+        fast = np.flatnonzero(np.isfinite(speed) & (speed > MAX_WHEEL_SPEED))
         if len(fast):  # a walkthrough's 6000 (rpm) ran as 6000 rad/s, the wheels far past what saturated them
-            j = int(fast[0])
-            raise ValueError(f"max_speed[{j}] = {self.max_speed[j]:g} rad/s ({self.max_speed[j] * 30 / np.pi:.3g} rpm) is "
-                             f"faster than a reaction wheel turns; allowed: up to {MAX_WHEEL_SPEED:g} rad/s, or inf for no "
-                             f"limit: is it in rpm? Give rad/s ({self.max_speed[j]:g} rpm = "
-                             f"{self.max_speed[j] * np.pi / 30:.4g} rad/s)")
+            top = float(speed[int(fast[0])])
+            raise ValueError(f"max_speed[{int(fast[0])}] = {top:g} rad/s ({top * 30 / np.pi:.3g} rpm) is faster than a "
+                             f"reaction wheel turns; allowed: up to {MAX_WHEEL_SPEED:g} rad/s, or inf for no limit: is it "
+                             f"in rpm? Give rad/s ({top:g} rpm = {top * np.pi / 30:.4g} rad/s)")
         coulomb, motor = np.asarray(self.coulomb, float), np.asarray(self.max_torque, float)
         stuck = np.flatnonzero(coulomb >= motor)
         if len(stuck):  # the motor can never turn it (a walkthrough's 1e-2 N m against 2e-3 crawled, stiff, in silence)
