@@ -20,7 +20,7 @@ from tumble.io.scenario import load_scenario
 from pathlib import Path
 
 MOMENTS = np.array([4.0 * 0.02 / 12, 4.0 * 0.1256 / 12, 4.0 * 0.1256 / 12])  # the 3U CubeSat of point.toml, kg m^2
-WHEELS = ReactionWheels(np.eye(3), inertia=2e-5, max_torque=1.0, max_speed=1e4)
+WHEELS = ReactionWheels(np.eye(3), inertia=2e-5, max_torque=1.0, max_speed=np.inf)  # no limit: the loop alone
 K, P = 1.1e-3, 6e-3
 CONTROL = Path(__file__).resolve().parents[1] / "examples" / "control"
 
@@ -95,3 +95,13 @@ def test_the_shipped_examples_are_stable_and_the_command_says_it_in_one_line(tmp
     err = capsys.readouterr().err
     assert err.startswith("warning: period = 2.5 s: MRP feedback held that long is unstable about principal axis 1")
     assert err.count("\n") == 1
+
+
+def test_a_proportional_gain_in_mn_m_written_as_n_m_is_named_by_its_own_ratio():
+    """K = 1.1 (1.1 mN m written as N m) held 0.5 s: the warning said "a pole of magnitude 2.39 > 1: P T / I = 0.45",
+    the cause K not in it (a walkthrough of docs/control.md, 2026-12-03). It gives K T^2 / I beside P T / I."""
+    with pytest.warns(UnstableLoopWarning, match=r"a pole of magnitude \d\.\d+ > 1: P T / I = 0\.\d+, K T\^2 / I = "
+                                                 r"(\d+\.?\d*)\); the longest stable period is") as caught:
+        check_held_loop(MOMENTS, 1.1, P, 0.5)
+    ratio = float(str(caught[0].message).split("K T^2 / I = ")[1].split(")")[0])
+    assert ratio == pytest.approx(1.1 * 0.5**2 / MOMENTS[0], rel=1e-2)

@@ -271,6 +271,9 @@ def test_the_mission_example_is_short_listed_and_runs_through_simulate(tmp_path,
     ("dwell = 60.0 ", "dwell = -1.0 ", r"control: dwell = -1.0 must be"),
     ('kind = "detumble_point"', 'kind = "detumble_point"\ndetumble = { form = "fancy" }',
      r"control.detumble: form = 'fancy' is unknown"),
+    # a missing key said "= None" (a walkthrough of docs/formats/control.md, 2026-12-03)
+    ('kind = "detumble_point"', '', r"control: missing key 'kind' \(one of bdot, mrp_pd, detumble_point\)$"),
+    ("simulation = { t_end = 10800.0 }", "simulation = { }", r"simulation: missing key 't_end' \(s\)$"),
 ])
 def test_bad_mission_files_get_one_line_naming_the_table(tmp_path, capsys, old, new, message):
     text = (CONTROL / "detumble_point.toml").read_text()

@@ -469,10 +469,12 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
                          # with an estimator the law has an attitude whatever sensors.attitude says
                          sensors=sensors if estimator is None else dataclasses.replace(sensors, attitude="ideal"),
                          principal_to_design=principal_to_design)
+    if "t_end" not in sim:
+        raise ValueError("simulation: missing key 't_end' (s)")
     try:
-        t_end = check_positive("t_end", sim.get("t_end", 0.0) if "t_end" in sim else None, "s")
+        t_end = check_positive("t_end", sim["t_end"], "s")
     except ValueError:
-        raise ValueError(f"simulation: t_end = {sim.get('t_end')!r} must be a positive number (s)") from None
+        raise ValueError(f"simulation: t_end = {sim['t_end']!r} must be a positive number (s)") from None
     return ControlScenario(
         body=body, omega=tuple(float(x) for x in omega), attitude0=attitude0, t_end=t_end, kind=spec.kind,  # type: ignore[arg-type]
         controller_args=spec.args, orbit=orbit, field=field, gravity_gradient=gravity_gradient,

@@ -223,6 +223,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     ValueError: control.point: unknown key 'Kd' (did you mean 'K'?); allowed: K, Ki, P, dumping_gain, gyroscopic, integral_limit, nadir_axis, normal_axis, target
     """
     kind = control.get("kind")
+    if "kind" not in control:
+        raise ValueError(f"control: missing key 'kind' (one of {', '.join(CONTROL_KINDS)})")
     if not isinstance(kind, str) or kind not in CONTROL_KINDS:
         raise ValueError(f"control: kind = {kind!r} is unknown; allowed: {', '.join(CONTROL_KINDS)}")
     bad = sorted(set(control) - CONTROL_KINDS[kind])

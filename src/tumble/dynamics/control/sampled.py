@@ -170,7 +170,7 @@ def check_held_loop(moments: ArrayLike, K: float, P: float, period: float, Ki: f
     else:
         message = (f"period = {period:g} s: MRP feedback held that long is unstable about principal axis {axis + 1} "
                    f"(I = {I[axis]:.3g} kg m^2, a pole of magnitude {radius[axis]:.3g} > 1: P T / I = "
-                   f"{P * period / I[axis]:.3g}); the longest stable period is "
+                   f"{P * period / I[axis]:.3g}, K T^2 / I = {K * period**2 / I[axis]:.3g}); the longest stable period is "
                    f"{_longest_period(I[axis], K, P, period, Ki):.3g} s")
     warnings.warn(message, UnstableLoopWarning, stacklevel=3)
 
