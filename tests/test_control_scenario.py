@@ -55,7 +55,7 @@ def test_detumble_time_is_when_the_rate_stays_below_the_threshold(tmp_path, caps
     data = np.load(tmp_path / "run" / "trajectory.npz")
     rate = np.linalg.norm(data["omega"], axis=1)
     assert summary["detumble_time"] is not None
-    stays = data["t"][:, 0] >= summary["detumble_time"]
+    stays = data["t"] >= summary["detumble_time"]
     assert np.all(rate[stays] < 0.345) and rate[~stays][-1] >= 0.345
 
 

@@ -180,6 +180,11 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
     (26, ['wheel1_speed [rad/s]', 'wheel2_speed [rad/s]', 'wheel3_speed [rad/s]'], (21, 26), True)
     >>> np.array_equal(rows[:, 1:4], run.omega)   # 17 significant digits: exact
     True
+    >>> with tempfile.TemporaryDirectory() as tmp:   # the times one-dimensional, as a free run's
+    ...     write_control_run(run, Path(tmp))
+    ...     with np.load(Path(tmp) / "trajectory.npz") as npz:
+    ...         print(npz["t"].shape, npz["omega"].shape)
+    (21,) (21, 3)
     """
     k = run.wheel_speed.shape[1]
     columns = {"t": run.t[:, None], "omega": run.omega, "quat": run.attitude.as_quat(), "wheel_speed": run.wheel_speed,
@@ -193,6 +198,7 @@ def write_control_run(run: ControlledRun, folder: Path) -> None:
              "impulse_world_x [kg m^2/s]", "impulse_world_y [kg m^2/s]", "impulse_world_z [kg m^2/s]"]
     table = np.hstack(list(columns.values()))
     np.savetxt(folder / "trajectory.csv", table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+    columns["t"] = run.t  # shape (n,), as a free run's trajectory.npz (it was (n, 1): a walkthrough's polyfit broke)
     np.savez_compressed(folder / "trajectory.npz", **{k_: np.asarray(v) for k_, v in columns.items()})
 
 
