@@ -281,3 +281,24 @@ def test_momentum_dumping_refuses_a_bad_target_momentum_in_one_line():
         MomentumDumping(pointing, gain=1e-3, h_target=[1.0, 2.0])
     with pytest.raises(ValueError, match=r"gain = -1"):
         MomentumDumping(pointing, gain=-1.0)
+
+
+def test_the_control_guides_comment_on_the_gains_inclination_holds():
+    """docs/control.md: xi_m taken as the orbit's inclination, where a control file takes the magnetic equator's, "the
+    dipole's tilt, 9.4 deg (IGRF-13 2020) ... its gain 0.4 % apart here" (it said "~11 deg at most" and "0.1 %",
+    against tilt 9.41 deg and 0.40 %: a walkthrough, 2026-12-03)."""
+    import math
+    from pathlib import Path
+
+    from tumble.dynamics import CircularOrbit, DipoleField
+    from tumble.dynamics.control.bdot import bdot_gain
+    from tumble.io.controlorbit import geomagnetic_inclination
+
+    guide = (Path(__file__).resolve().parents[1] / "docs" / "control.md").read_text(encoding="utf-8")
+    assert "the dipole's tilt, 9.4 deg (IGRF-13 2020): a control file uses that one, its gain 0.4 % apart here" in guide
+    orbit = CircularOrbit(altitude=500e3, inclination=math.radians(97.4))
+    field = DipoleField(orbit)
+    assert math.degrees(field.dipole_tilt()) == pytest.approx(9.4, abs=0.05)
+    apart = bdot_gain(orbit.mean_motion, geomagnetic_inclination(orbit, field), 1.0) / bdot_gain(
+        orbit.mean_motion, orbit.inclination, 1.0) - 1.0
+    assert apart == pytest.approx(0.004, abs=0.0005)

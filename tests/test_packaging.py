@@ -189,6 +189,8 @@ def test_list_examples_names_every_file_it_copies_with_its_description():
         text = (PACKAGED / e.path).read_text(encoding="utf-8", errors="replace")
         if e.path.endswith(".toml"):
             assert text.splitlines()[0] == f"# {e.description}"
+            # a whole clause, not a line cut mid-sentence (nadir.toml's ended "points its long (minor) axis at nadir")
+            assert e.description.endswith((".", ":", ")")), e.path
     assert by_path["bodies/meshes/torus.stl"].description == "A triangle mesh (STL) that bodies/every_part.toml names"
     assert 'mesh = "meshes/torus.stl"' in (PACKAGED / "bodies" / "every_part.toml").read_text()
     assert by_path["data/racquet_tosses.csv"].description == (
