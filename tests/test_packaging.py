@@ -254,6 +254,17 @@ def test_copy_fills_an_existing_folder_without_overwriting(tmp_path):
     assert _tree(other) == {"bodies/t_handle.toml": b"mine", "notes.txt": b"keep"}  # nothing written
 
 
+def test_copy_alone_copies_into_the_folder_the_guides_name(tmp_path, monkeypatch, capsys):
+    """The guides say "tumble examples --copy examples" and run examples/...; issue 40 says "after tumble examples
+    --copy", which argparse refused ("expected one argument": a walkthrough of docs/control.md, 2026-12-03)."""
+    from tumble.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["examples", "--copy"]) == 0
+    assert _tree(tmp_path / "examples") == _tree(PACKAGED)
+    assert capsys.readouterr().out.startswith(f"copied {len(_tree(PACKAGED))} files to examples/")
+
+
 def test_copy_refuses_a_file_as_destination(tmp_path):
     target = tmp_path / "a_file"
     target.write_text("x")

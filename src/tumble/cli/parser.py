@@ -213,7 +213,9 @@ def build_parser() -> argparse.ArgumentParser:
         "(scenarios name their bodies and meshes by relative paths).",
         epilog="Examples: tumble examples | tumble examples --copy my-examples", parents=[debug],
     )
-    p.add_argument("--copy", metavar="DIR", help="copy every example into DIR (never overwrites a file)")
+    p.add_argument("--copy", metavar="DIR", nargs="?", const="examples",
+                   help="copy every example into DIR (never overwrites a file); --copy alone: into examples/, the "
+                        "folder the guides' commands name")
     p.set_defaults(func=c._cmd_examples)
 
     p = sub.add_parser(
