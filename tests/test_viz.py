@@ -472,8 +472,25 @@ def test_figure_omega_warns_where_the_samples_alias():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         viz.figure_omega(tumble.simulate(top, [0.1, 0.0, 10.0], t_end=40.0, dt=0.4))
-    with pytest.warns(viz.AliasedSamplesWarning, match=r"up to 4\.\d+ rad between samples, past pi"):
+    with pytest.warns(viz.AliasedSamplesWarning, match=r"up to 4\.\d+ rad between samples, past pi.*; give more samples$"):
         viz.figure_omega(tumble.simulate(top, [0.1, 0.0, 10.0], t_end=40.0, dt=0.8))
+
+
+def test_a_control_runs_aliased_omega_figure_names_the_controller_period():
+    """A control run's samples are its control instants: "give more samples" could not be followed (a walkthrough of
+    docs/control.md, 2026-12-03, whose omega in deg/s was read as rad/s). Its warning names the period."""
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.control.controlled import simulate_controlled
+    from tumble.dynamics.environment.magnetic import UniformField
+    from tumble.dynamics.models.actuators import Magnetorquers
+
+    run = simulate_controlled([0.03, 0.04, 0.05], [11.55, -11.55, 11.55], t_end=20.0, controller=BDot(gain=1e-5, period=1.0,
+                              form="normalized"), magnetorquers=Magnetorquers(0.2), field=UniformField((2e-5, 0.0, 1e-5)))
+    traj = tumble.Trajectory.of_samples(run.t, run.omega, run.attitude.as_quat(), run.moments, np.eye(3),
+                                        "dop853, bdot every 1 s")
+    with pytest.warns(viz.AliasedSamplesWarning, match=r"past pi: .*; give a shorter controller period than 1 s \(its "
+                                                       r"samples are the control instants\); or is omega in deg/s\?$"):
+        viz.figure_omega(traj, control_period=1.0)
 
 
 def test_simulate_says_in_one_line_where_its_omega_png_aliases(tmp_path, capsys):

@@ -61,7 +61,8 @@ def simulate_control(args, scenario, out) -> int:
                                                     bias=scenario.sensors.gyro_bias)
     with output_dir(out, (*SIMULATE_WRITES, *CONTROL_WRITES, *ESTIMATOR_WRITES)) as stage:
         write_control_run(run, stage)
-        save_figure(figure_omega(scenario.trajectory(run), title=scenario.name), stage / "omega.png")
+        save_figure(figure_omega(scenario.trajectory(run), title=scenario.name, control_period=controller.period),
+                    stage / "omega.png")
         for name, fig in figures.items():
             save_figure(fig, stage / name)
         write_json(summary, stage / "summary.json")

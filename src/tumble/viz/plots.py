@@ -202,7 +202,8 @@ def plot_omega(traj: Trajectory, ax: Axes, title: str | None = None) -> str | No
     return note
 
 
-def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None) -> Figure:
+def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None = None,
+                 control_period: float | None = None) -> Figure:
     """omega(t) of one run, principal frame (rad/s), against t (s).
 
     On a new figure, a run whose components oscillate more than :data:`DETAIL_CYCLES` times gets
@@ -217,6 +218,9 @@ def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
         Draw here instead of on a new figure (one panel, no detail).
     title : str, optional
         The axes' title.
+    control_period : float, optional
+        A control run's period, s (its samples are the control instants): where the samples alias
+        (:class:`AliasedSamplesWarning`), the warning says to shorten it, not to give more samples.
 
     Returns
     -------
@@ -238,8 +242,12 @@ def figure_omega(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     check_run(traj)
     phase = sample_phase(traj)
     if phase > MAX_SAMPLE_PHASE:  # a stroboscope: the curves would show a slower oscillation than the run's
+        # a control run's samples are its control instants: more of them is a shorter period (a walkthrough's
+        # "give more samples" could not be followed; its omega was in deg/s)
+        fix = (f"give a shorter controller period than {control_period:g} s (its samples are the control instants); "
+               "or is omega in deg/s?" if control_period is not None else "give more samples")
         warnings.warn(f"omega oscillates by up to {phase:.3g} rad between samples, past pi: the figure shows another "
-                      "motion than the run's; give more samples", AliasedSamplesWarning, stacklevel=2)
+                      f"motion than the run's; {fix}", AliasedSamplesWarning, stacklevel=2)
     end = detail_window(traj) if ax is None else None
     if end is None:
         fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
