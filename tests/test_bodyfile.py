@@ -137,7 +137,11 @@ def test_no_example_body_or_preset_warns_of_a_unit_slip():
         for path in sorted(EXAMPLES.glob("bodies/*.toml")):
             tumble.load_body(path)
         for name in tumble.mass.PRESETS:
-            tumble.load_body(name)
+            if name != "moments":  # by name it has no moments (below)
+                tumble.load_body(name)
+    with pytest.raises(ValueError, match=r"^preset 'moments' needs its moments, which a name cannot give: write a body "
+                                         r"file, \[body\] preset = \"moments\" with moments = \[1.0, 2.0, 3.0\]$"):
+        tumble.load_body("moments")
 
 
 def test_a_mesh_part_in_mm_in_a_body_file_is_named_with_the_key_that_fixes_it(tmp_path):
@@ -201,3 +205,37 @@ def test_a_body_file_in_mm_or_a_density_in_g_cm3_is_named_as_a_likely_unit_slip(
     for path in sorted(examples.glob("*.toml")):
         assert main(["inertia", str(path)]) == 0
         assert capsys.readouterr().err == "", path
+
+
+def test_a_body_of_given_moments_is_a_preset_of_a_body_file(tmp_path, capsys):
+    """A teacher's walkthrough (2026-12-03): a body file could not say I = 1, 2, 3 ("body: unknown key 'moments'"), only
+    Python's from_moments; a box had to be invented. The preset "moments" is three thin rods with those moments along
+    the design axes, exactly, the flat plate's I1 + I2 = I3 (a box of no thickness) included; moments no body has are
+    refused in one line."""
+    path = tmp_path / "textbook.toml"
+    path.write_text('[body]\nname = "textbook"\npreset = "moments"\nmoments = [1.0, 2.0, 3.0]\n')
+    body = tumble.load_body(path)
+    assert body.principal_moments.tolist() == pytest.approx([1.0, 2.0, 3.0], rel=1e-14)
+    np.testing.assert_array_equal(body.principal_axes, np.eye(3))
+    assert body.mass == 1.0 and body.name == "textbook"
+    assert main(["simulate", str(path), "--omega", "0.1", "2", "0.1", "--t-end", "20", "--out", str(tmp_path / "run")]) == 0
+    assert "predicted unstable" in capsys.readouterr().out
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[body]\npreset = "moments"\nmoments = [1.0, 2.0, 3.5]\nmass = 2.0\n')
+    assert main(["inertia", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "moments = [1.0, 2.0, 3.5] breaks the triangle inequality" in err
+
+
+@pytest.mark.parametrize("moments", [(1.0, 2.0, 3.0), (0.125, 0.3125, 0.4375), (2.0, 2.0, 3.0), (1.0, 1.0, 1.0),
+                                     (0.3, 0.4, 0.5), (1e-6, 0.5, 0.5)])
+def test_moments_body_has_the_moments_and_the_mass_it_is_given(moments):
+    """Its three rods' moments m l^2 / 12 (Meriam & Kraige Table D/4, written here) add to the given moments."""
+    body = tumble.moments_body(moments, mass=2.5)
+    assert body.mass == pytest.approx(2.5, rel=1e-15)
+    across = np.zeros(3)
+    for rod in body.parts:
+        k = int(np.argmax(np.abs(rod.axis)))
+        across += rod.mass * rod.length**2 / 12.0 * (1.0 - np.eye(3)[k])
+    np.testing.assert_allclose(across, moments, rtol=1e-13)
+    np.testing.assert_allclose(body.principal_moments, moments, rtol=1e-13, atol=1e-15)

@@ -34,6 +34,7 @@ _EXPORTS = {
     "Mesh": "tumble.mass",
     "t_handle": "tumble.mass",
     "iss_t_handle": "tumble.mass",
+    "moments_body": "tumble.mass",
     # dynamics and analysis
     "simulate": "tumble.dynamics",
     "simulate_batch": "tumble.dynamics",

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import json
 import math
 import os
 import tomllib
@@ -51,6 +52,8 @@ __all__ = [
     "is_mesh_file",
     "body_path",
     "load_body",
+    "named_presets",
+    "preset_body",
     "mesh_part",
     "mesh_scale_note",
     "mesh_files",
@@ -205,6 +208,14 @@ PRESET_TABLES = {
         Key("preset", "string", required=True, choices=tuple(PRESETS), example='"iss-t-handle"', doc="the preset"),
         Key("name", "string", "", '"ISS T-handle"', example='"handle"', doc="the body's name"),
     ), "The space station's T-handle (Dzhanibekov's wing nut)."),
+    "moments": Table('[body] preset = "moments"', (
+        Key("preset", "string", required=True, choices=tuple(PRESETS), example='"moments"', doc="the preset"),
+        Key("moments", "3 numbers", "kg m^2", required=True, example="[1.0, 2.0, 3.0]",
+            allowed="positive, ascending, I1 + I2 >= I3",
+            doc="the principal moments along design x, y, z (tumble.moments_body: three thin rods)"),
+        Key("mass", "number", "kg", "1.0", example="0.35", low=0.0, doc="the body's mass"),
+        Key("name", "string", "", '"body of given moments"', example='"book"', doc="the body's name"),
+    ), "A body known only by its principal moments (a textbook's, a published inertia)."),
 }
 #: The tables of a body file and their keys.
 BODY_FORMAT = FileFormat("body", (
@@ -366,6 +377,40 @@ def _preset_from_table(table: dict, where: str) -> Body:
         raise ValueError(f"{where} (preset {preset!r}): {exc}") from None
 
 
+def named_presets() -> list[str]:
+    """The presets a name alone gives (a command line's ``t-handle``), not those that need
+    parameters of their own (``moments``).
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import named_presets
+    >>> named_presets()
+    ['t-handle', 'iss-t-handle']
+    """
+    return [name for name in PRESETS if not any(k.required for k in PRESET_TABLES[name].keys[1:])]
+
+
+def preset_body(name: str) -> Body:
+    """The preset ``name`` (:data:`tumble.mass.PRESETS`) with its defaults, as a command line or a
+    run file's ``body = "NAME"`` names it; a ValueError for one that needs parameters of its own.
+
+    Examples
+    --------
+    >>> from tumble.io.bodyfile import preset_body
+    >>> preset_body("t-handle").name
+    'T-handle'
+    >>> preset_body("moments")
+    Traceback (most recent call last):
+    ...
+    ValueError: preset 'moments' needs its moments, which a name cannot give: write a body file, [body] preset = "moments" with moments = [1.0, 2.0, 3.0]
+    """
+    if name not in named_presets():  # the moments preset's moments
+        required = [k.name for k in PRESET_TABLES[name].keys[1:] if k.required]
+        raise ValueError(f"preset {name!r} needs its {', '.join(required)}, which a name cannot give: write a body "
+                         f"file, [body] preset = {json.dumps(name)} with {required[0]} = {PRESET_TABLES[name].keys[1].example}")
+    return PRESETS[name]()
+
+
 def body_path(spec: str, base_dir: Path | None) -> Path:
     """The file a run file's ``body = "..."`` names (not a preset), relative to the run file's
     folder ``base_dir``; a ValueError naming the path looked for where there is none.
@@ -381,7 +426,7 @@ def body_path(spec: str, base_dir: Path | None) -> Path:
     """
     path = Path(spec) if base_dir is None else base_dir / spec
     if not path.exists():
-        raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(PRESETS)}) nor a file: no {path}")
+        raise ValueError(f"body = {spec!r} is neither a preset ({', '.join(named_presets())}) nor a file: no {path}")
     return path
 
 
@@ -390,7 +435,7 @@ def _refuse_a_run_file(path: Path, data: dict[str, Any]) -> None:
     its body is (a scenario's ``body`` names a preset or a file beside it, or is a table of its own)."""
     if "sweep" in data:
         raise ValueError(f"{path}: a sweep file ([sweep]), not a body file: a body file holds a [body] table alone "
-                         f"(or give a preset: {', '.join(PRESETS)})")
+                         f"(or give a preset: {', '.join(named_presets())})")
     if not ({"initial", "simulation", "control"} & set(data)):
         return
     spec = data.get("body")
@@ -428,11 +473,11 @@ def load_body(source: str | os.PathLike[str]) -> Body:
     ('brick', [5.0, 10.0, 13.0])
     """
     if isinstance(source, str) and source in PRESETS and not os.path.exists(source):
-        return PRESETS[source]()
+        return preset_body(source)
     path = Path(source)
     if not path.exists() and isinstance(source, str) and path.suffix == "":
         raise ValueError(
-            f"{source!r} is neither a body file nor a preset; presets: {', '.join(PRESETS)}"
+            f"{source!r} is neither a body file nor a preset; presets: {', '.join(named_presets())}"
         )
     data = read_toml(path)
     unknown = sorted(set(data) - {"body"})

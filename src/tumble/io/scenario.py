@@ -57,7 +57,7 @@ from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
 from ..validation import NoSuchFileError, nearest, unknown_name
-from .bodyfile import body_from_table, body_path, load_body, read_toml
+from .bodyfile import body_from_table, body_path, load_body, preset_body, read_toml
 from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .torquetables import TORQUE_TABLE, torque_of
@@ -275,7 +275,7 @@ def _body(spec, base_dir: Path | None) -> Body:
     if not isinstance(spec, str):
         raise ValueError(f"body = {spec!r} must be a preset name, a body file path or a [body] table")
     if spec in PRESETS:
-        return PRESETS[spec]()
+        return preset_body(spec)
     return load_body(body_path(spec, base_dir))
 
 
@@ -393,7 +393,7 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
     given = {k: v for k, v in dict(omega=omega, frame=frame, t_end=t_end, samples=samples, dt=dt,
                                    method=method).items() if v is not None}
     if isinstance(source, str) and source in PRESETS and not Path(source).exists():
-        body, name, what, sources = PRESETS[source](), source, f"{source!r} is a preset body", ()
+        body, name, what, sources = preset_body(source), source, f"{source!r} is a preset body", ()
     else:
         path = Path(source)
         if not path.exists() and not path.is_symlink() and path.suffix == "":

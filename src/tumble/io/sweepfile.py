@@ -70,7 +70,7 @@ from ..ensemble import (
 from ..ensemble.sampling import MAX_CASES, SAMPLINGS
 from ..mass import PRESETS, Body
 from ..validation import unknown_name
-from .bodyfile import body_from_table, body_path, mesh_files, read_toml
+from .bodyfile import body_from_table, body_path, mesh_files, preset_body, read_toml
 from .provenance import file_sha256
 from .resume import ChunkFolder
 from .keys import FileFormat, Key, Table
@@ -208,7 +208,7 @@ def _table(data: dict, section: str) -> dict:
 def _nominal(spec, base_dir: Path | None) -> tuple[Body, str | None, dict, list[Path]]:
     """``(body, preset, parameters, files read)`` of the ``body`` key."""
     if isinstance(spec, str) and spec in PRESETS:
-        return PRESETS[spec](), spec, {}, []
+        return preset_body(spec), spec, {}, []
     if isinstance(spec, str):
         path = body_path(spec, base_dir)
         data = read_toml(path)

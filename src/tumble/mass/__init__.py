@@ -5,7 +5,7 @@ from .part_base import MAX_DENSITY, MIN_DENSITY, UnitSlipWarning
 from .mesh import Mesh  # registers the 'mesh' kind; trimesh is imported on first use
 from .parts import PART_KINDS, Box, Cone, Cylinder, Ellipsoid, Part, PointMass, Rod, Shell, Sphere, Tube
 from .rotor import Rotor
-from .presets import PRESETS, iss_t_handle, t_handle
+from .presets import PRESETS, iss_t_handle, moments_body, t_handle
 from .tensor import (
     INERTIA_RTOL,
     check_inertia,
@@ -43,6 +43,7 @@ __all__ = [
     "check_inertia",
     "inertia_about_point",
     "iss_t_handle",
+    "moments_body",
     "mass_properties",
     "moment_degeneracy",
     "parallel_axis",

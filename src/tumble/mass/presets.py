@@ -1,16 +1,20 @@
-"""Ready-made bodies: the seed's T-handle and the one that flips on the space station.
+"""Ready-made bodies: the seed's T-handle, the one that flips on the space station, and a body of
+given principal moments.
 
-Design frame of both: the shaft along z with its centre at the origin, the crossbar along x,
-y normal to the plane of the T.
+Design frame of the handles: the shaft along z with its centre at the origin, the crossbar along
+x, y normal to the plane of the T.
 """
 
 from __future__ import annotations
 
-from ..validation import check_positive
+import numpy as np
+
+from ..typing import ArrayLike
+from ..validation import check_moments, check_positive
 from .body import Body
 from .parts import Cylinder, Rod
 
-__all__ = ["PRESETS", "iss_t_handle", "t_handle"]
+__all__ = ["PRESETS", "iss_t_handle", "moments_body", "t_handle"]
 
 #: Density of steel used for the space-station handle, kg/m^3 (Peterson & Schwalm 2021).
 STEEL_DENSITY = 8050.0
@@ -138,5 +142,47 @@ def iss_t_handle(*, name: str = "ISS T-handle") -> Body:
     )
 
 
+def moments_body(moments: ArrayLike, *, mass: float = 1.0, name: str = "body of given moments") -> Body:
+    """A body whose principal moments are ``moments`` along the design x, y, z, for a body known
+    only by them (a textbook's ``I = 1, 2, 3``, a published inertia) in a body file: three thin rods
+    crossing at the centre of mass, one along each axis.
+
+    A rod of mass ``m_k`` and length ``l_k`` along axis ``k`` adds ``s_k = m_k l_k^2 / 12`` to the
+    two other moments (Meriam & Kraige Table D/4), so ``I1 = s2 + s3`` and its cyclic companions
+    give ``s_k = (I_i + I_j - I_k) / 2``: non-negative by the triangle inequality, and zero (no rod)
+    on its boundary, a flat plate's ``I1 + I2 = I3``, which a uniform box would draw with no
+    thickness. The mass is shared evenly among the rods there are.
+
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments ``I1 <= I2 <= I3``, kg m^2, within the triangle inequality.
+    mass : float, optional
+        Total mass, kg (default 1 kg; torque-free motion does not depend on it).
+    name : str, optional
+        Label of the body.
+
+    Returns
+    -------
+    Body
+        Its principal frame the design frame, its moments ``moments`` to round-off.
+
+    Examples
+    --------
+    >>> import tumble
+    >>> body = tumble.moments_body([1.0, 2.0, 3.0])   # a plate's moments: rods along x and y only
+    >>> body.principal_moments.round(12).tolist(), len(body.parts), body.mass
+    ([1.0, 2.0, 3.0], 2, 1.0)
+    """
+    I = check_moments("moments", moments)
+    mass = check_positive("mass", mass, "kg")
+    d = I[2] - I[1]  # s_k = (I_i + I_j - I_k) / 2, kg m^2, the small I1's through I3 - I2 (no cancellation)
+    shares = 0.5 * np.array([I[1] + I[2] - I[0], I[0] + d, I[0] - d])
+    present = [k for k in range(3) if shares[k] > 0.0]
+    rods = tuple(Rod(mass=mass / len(present), length=float(np.sqrt(12.0 * shares[k] * len(present) / mass)),
+                     axis=tuple(np.eye(3)[k])) for k in present)
+    return Body(rods, name=name)
+
+
 #: Presets by the name used on the command line and in body files.
-PRESETS = {"t-handle": t_handle, "iss-t-handle": iss_t_handle}
+PRESETS = {"t-handle": t_handle, "iss-t-handle": iss_t_handle, "moments": moments_body}
