@@ -105,8 +105,10 @@ def cases() -> list[tuple[str, Table, list[tuple[dict, tuple]], object]]:
     found = [("body", BODY_FORMAT.table("top level"), [(body(_SPHERE), ())], load_body),
              ("body", BODY_FORMAT.table("[body]"), [(body(_SPHERE), ("body",))], load_body)]
     solid = {"preset": "t-handle", "shaft_radius": 0.01, "crossbar_radius": 0.01}  # density needs the radii
+    given = {"moments": {"moments": [1.0, 2.0, 3.0]}}  # the parameters a preset needs (its required keys)
     found += [("body", PRESET_TABLES[p], [({"body": {"preset": p}}, ("body",)), ({"body": solid}, ("body",))]
-               if p == "t-handle" else [({"body": {"preset": p}}, ("body",))], load_body) for p in PRESET_TABLES]
+               if p == "t-handle" else [({"body": {"preset": p, **given.get(p, {})}}, ("body",))], load_body)
+              for p in PRESET_TABLES]
     found += [("body", PART_TABLES[k], [(body({"kind": k, **_PARTS[k]}), ("body", "parts", 0))], load_body)
               for k in PART_TABLES]
     torque = [({**_SPIN, "torque": {"vector": [0.0, 0.0, 0.01]}}, ("torque",)), (_ORBITING, ("torque",)),

@@ -67,10 +67,11 @@ class StabilityReport(dict):  # type: ignore[type-arg]
 
     def _parts(self) -> list[str]:
         if self.get("axis") is None:
-            return ["at rest: no spin axis", plural(int(self.get("flips", 0)), "flip")]
+            return ["at rest: no spin axis", plural(int(self.get("flips") or 0), "flip")]
         why = "" if self.get("theory") in ("rigid body", None) else f" ({self['theory']})"
-        parts = [f"axis {self['axis']} ({self['role']}): {self.get('predicted') or 'no prediction'}{why}",
-                 plural(int(self["flips"]), "flip")]
+        parts = [f"axis {self['axis']} ({self['role']}): {self.get('predicted') or 'no prediction'}{why}"]
+        if self.get("flips") is not None:
+            parts.append(plural(int(self["flips"]), "flip"))
         if self.get("flip_period") is not None:
             parts.append(f"period {fmt(self['flip_period'])} s")
         if self.aliased:
@@ -133,12 +134,14 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         it has no intermediate axis), ``predicted`` ("stable" or "unstable"), ``growth_rate`` (1/s) or
         ``wobble_frequency`` (rad/s) of the linearised theory about the spin axis (None where it
         does not say what the motion does), ``flips`` (sign changes of that component in the
-        run), ``flip_period`` (measured mean time between flips, s, or None with fewer than two
-        flips), ``flip_period_exact`` (the elliptic-function interval, s, when the spin axis is
+        run; None where the samples are too few to count them, below), ``flip_period`` (measured
+        mean time between flips, s, or None with fewer than two flips or too few samples),
+        ``flip_period_exact`` (the elliptic-function interval, s, when the spin axis is
         not the circulation axis; torque-free only), ``flip_period_asymptotic`` (its
         small-perturbation logarithmic form), ``samples_per_flip`` (the flip interval, exact or
-        measured, over the widest sample spacing; below :data:`SAMPLES_PER_FLIP` the flips counted
-        are aliased and the repr says so), ``theory`` (what the prediction rests on:
+        measured, over the widest sample spacing; below :data:`SAMPLES_PER_FLIP` the sign changes
+        seen are aliased, not the flips: ``flips`` and ``flip_period`` are None and the repr says
+        so), ``theory`` (what the prediction rests on:
         ``"rigid body"`` (the circulation; with a torque that of the initial state),
         ``"gyrostat"`` for rotors whose momentum lies along the spin axis (the linearised
         theory), ``"energy sink"`` with a damper (the major-axis rule: only spin about the major
@@ -209,6 +212,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
             asymptotic = float(flip_interval_asymptotic(w0, I))
     interval = exact if exact is not None else float(np.mean(np.diff(times))) if len(times) >= 2 else None
     spacing = float(np.max(np.diff(traj.t))) if len(traj.t) >= 2 else None
+    per_flip = interval / spacing if interval is not None and spacing else None
+    # aliased: the sign changes seen are not the flips (a 1e9 s run wrote "flips": 43 of ~5.6e8), so neither is given
+    counted = per_flip is None or per_flip >= SAMPLES_PER_FLIP
     return StabilityReport({
         "axis": a,
         "role": _role(I, a, degeneracy),
@@ -216,13 +222,13 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         "predicted": predicted,
         "growth_rate": growth if growth > 0 else None,
         "wobble_frequency": wobble if wobble > 0 else None,
-        "flips": len(times),
-        "flip_period": float(np.mean(np.diff(times))) if len(times) >= 2 else None,
+        "flips": len(times) if counted else None,
+        "flip_period": float(np.mean(np.diff(times))) if len(times) >= 2 and counted else None,
         "flip_period_exact": exact,
         "flip_period_asymptotic": asymptotic,
         "theory": theory,
         # the flip interval over the widest sample spacing: below SAMPLES_PER_FLIP the flips counted are aliased
-        "samples_per_flip": interval / spacing if interval is not None and spacing else None,
+        "samples_per_flip": per_flip,
         "note": note,
     })
 

@@ -432,14 +432,15 @@ def _simulate_line(summary: dict, out) -> str:
 
     s, d = summary["stability"], summary["drift"]
     head = f"{summary['body']} ({summary['method']}, {summary['t_end']:g} s)"
+    flips = "flips not counted" if s["flips"] is None else f"{s['flips']} flip{'' if s['flips'] == 1 else 's'}"
     spin = "started at rest" if s["axis"] is None else (
-        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {s['flips']} flip{'' if s['flips'] == 1 else 's'}")
+        f"spin mostly about axis {s['axis']} ({s['role']}), predicted {s['predicted']}, {flips}")
     g = summary.get("gravity_gradient") or {}
     if g.get("started_in_orbit_frame"):  # librations in the orbiting frame: its stability, not the free body's nor flips
         spin = (f"started turning with the orbiting frame (pitch axis {g['pitch_axis']}, yaw axis {g['yaw_axis']}), "
                 f"{_REGION_WORDS[g['region']]}")
     elif g and s["axis"] is not None and not g["free_body"]:  # the gradient is not small beside the spin
-        spin = (f"spin mostly about axis {s['axis']} ({s['role']}), {s['flips']} flip{'' if s['flips'] == 1 else 's'}; "
+        spin = (f"spin mostly about axis {s['axis']} ({s['role']}), {flips}; "
                 f"{'a free body would be ' + s['predicted'] + ', but ' if s['predicted'] else ''}"
                 f"at {g['spin_over_n']:.2g} times the orbit rate the gravity "
                 f"gradient is not small beside the spin (its torque some 3 (n / omega)^2 = "
@@ -462,7 +463,7 @@ def _simulate_line(summary: dict, out) -> str:
         spin += f" ({s['note']})"
     if aliased:  # the count is aliased
         closed = f"; the closed form flips every {exact:.4g} s" if exact is not None and summary["torque_free"] else ""
-        spin += (f" (counted with {s['samples_per_flip']:.2g} samples a flip, too few to count them: give more "
+        spin += (f" ({s['samples_per_flip']:.2g} samples a flip, too few to count them: give more "
                  f"samples{closed})")
     if "gravity_gradient" in summary and summary["gravity_gradient"]["jacobi_drift"] is not None:
         g = summary["gravity_gradient"]

@@ -371,6 +371,9 @@ def _preset_from_table(table: dict, where: str) -> Body:
     if unknown:
         raise ValueError(unknown_name(where, unknown[0], allowed, after=f" for preset {preset!r}",
                                       listed=None if allowed else "no parameters besides 'preset'"))
+    missing = [k for k in PRESET_TABLES[preset].keys[1:] if k.required and k.name not in kwargs]
+    if missing:  # the moments preset's moments (a TypeError of the function's call otherwise)
+        raise ValueError(f"{where}: missing key {missing[0].name!r} ({missing[0].unit}) for preset {preset!r}")
     try:
         return fn(**kwargs)
     except ValueError as exc:
