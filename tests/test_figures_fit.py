@@ -73,8 +73,8 @@ def _control_figures():
     c = MRPFeedback(K=1e-3, P=1e-2, period=0.5, moments=[0.03, 0.04, 0.05], wheels=rw)
     pointing = simulate_controlled([0.03, 0.04, 0.05], [0.01, 0.0, 0.0], t_end=10.0, controller=c, wheels=rw,
                                    attitude0=Rotation.from_rotvec([0.2, 0.0, 0.0]))
-    detumbling = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0),
-                                     field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
+    detumbling = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0,
+                                     form="normalized"), field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
     figures = {**viz.control_figures(pointing, target=Rotation.identity(), switch_time=4.0, title="point"),
                **{f"bdot {name}": fig for name, fig in viz.control_figures(detumbling, title="detumble").items()}}
     assert {name.split()[-1] for name in figures} == {"attitude_error.png", "rates.png", "wheels.png", "dipole.png",

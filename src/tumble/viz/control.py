@@ -290,7 +290,8 @@ def control_figures(run: ControlledRun, *, target: Rotation | Reference | None =
     >>> from tumble.dynamics.control.bdot import BDot
     >>> from tumble.dynamics.models.actuators import Magnetorquers
     >>> from tumble.dynamics.environment.magnetic import UniformField
-    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=BDot(gain=1e-3, period=1.0),
+    >>> bdot = BDot(gain=1e-3, period=1.0, form="normalized")   # N m s
+    >>> run = simulate_controlled([0.01, 0.02, 0.03], [0.0, 0.0, 0.1], t_end=10.0, controller=bdot,
     ...                           field=UniformField((3e-5, 0.0, 0.0)), magnetorquers=Magnetorquers(0.2))
     >>> figures = control_figures(run, title="spin")   # no wheels, no target
     >>> list(figures), figures["rates.png"].get_suptitle()

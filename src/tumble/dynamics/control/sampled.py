@@ -151,7 +151,7 @@ def check_held_loop(moments: ArrayLike, K: float, P: float, period: float, Ki: f
     ...     check_held_loop([0.00667, 0.0419, 0.0419], 1.1e-3, 6e-3, 2.5)
     >>> print(caught[0].message)   # doctest: +NORMALIZE_WHITESPACE
     period = 2.5 s: MRP feedback held that long is unstable about principal axis 1 (I = 0.00667 kg m^2, a pole
-    of magnitude 1.26 > 1: P T / I = 2.25); the longest stable period is 2.22 s
+    of magnitude 1.26 > 1: P T / I = 2.25, K T^2 / I = 1.03); the longest stable period is 2.22 s
     """
     I = np.asarray(moments, float)
     radius = held_loop_radius(I, K, P, period, Ki)
