@@ -35,7 +35,7 @@ import numpy as np
 import tumble
 
 _FLIPS = re.compile(r"\b(no|\d+) flips?\b")
-_PERIOD = re.compile(r"\bperiod (\d+\.\d+) s\b")
+_PERIOD = re.compile(r"\b(?:period|one every) (\d+\.\d+) s\b")  # a report's flip interval
 _PREDICTED = re.compile(r"\b(unstable|stable)\b")
 _AXIS = re.compile(r"\baxis (\d)\b")
 _DIAG = re.compile(r"diag\(([^()]*)\)")

@@ -35,8 +35,8 @@ def test_readme_python_blocks_run_and_hold_their_comments(monkeypatch):
     blocks = python_blocks(README.read_text(encoding="utf-8"))
     assert blocks
     checked = [claim for block in blocks for claim in run_checked(block, str(README))]
-    for claim in ("[0.125, 0.3125, 0.4375]", "(500, 3)", "11 flips", "period 1.786 s", "1.7864", "no flip",
-                  "StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)"):
+    for claim in ("[0.125, 0.3125, 0.4375]", "(500, 3)", "11 flips", "one every 1.786 s", "1.7864", "no flip",
+                  "StabilityReport(axis 2 (intermediate): unstable, 11 flips, one every 1.786 s)"):
         assert claim in checked, (claim, checked)
 
 
@@ -47,9 +47,9 @@ def test_tour_python_blocks_run_and_hold_their_comments(monkeypatch):
     checked = [claim for block in blocks for claim in run_checked(block, str(TOUR))]
     # the checker is not vacuous: the tour's claims about values and runs were all seen
     for claim in ("3.0", "[0, 0, 0.25]", "diag(0.3125, 0.4375, 0.125)", "[0.125, 0.3125, 0.4375]", "[1, 0, 0]",
-                  "(500, 3)", "~1e-16", "11 flips", "period 1.786 s", "1.7864", "no flip", "~0",
+                  "(500, 3)", "~1e-16", "11 flips", "one every 1.786 s", "1.7864", "no flip", "~0",
                   "['every_part_spin', 'explorer1']", "'dop853'", "rk8 (auto)",
-                  "StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)"):
+                  "StabilityReport(axis 2 (intermediate): unstable, 11 flips, one every 1.786 s)"):
         assert claim in checked, (claim, checked)
 
 
@@ -125,9 +125,9 @@ def test_the_commands_shown_write_where_git_does_not_look():
 def test_a_shown_repr_of_a_report_is_its_repr():
     """A stability report's comment that shows its repr is held to it, beside its flips and period."""
     code = ("import tumble\ntumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10, 0.1], t_end=20.0))"
-            "   # StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)\n")
-    assert run_checked(code, "snippet") == ["11 flips", "period 1.786 s", "unstable", "axis 2",
-                                            "StabilityReport(axis 2 (intermediate): unstable, 11 flips, period 1.786 s)"]
+            "   # StabilityReport(axis 2 (intermediate): unstable, 11 flips, one every 1.786 s)\n")
+    assert run_checked(code, "snippet") == ["11 flips", "one every 1.786 s", "unstable", "axis 2",
+                                            "StabilityReport(axis 2 (intermediate): unstable, 11 flips, one every 1.786 s)"]
     with pytest.raises(AssertionError, match="the repr is"):
         run_checked(code.replace("(intermediate)", "(minor)"), "snippet")
 

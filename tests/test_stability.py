@@ -437,3 +437,20 @@ def test_a_symmetric_body_has_no_intermediate_axis_in_its_report():
     assert "flips only once perturbed" in exact["note"]
     near = tumble.stability_report(tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=20.0))
     assert near["note"] is None and near["flips"] == 11
+
+
+def test_a_spin_within_round_off_of_the_unstable_axis_says_so():
+    """A teacher's book turned 30 deg in its body file, spun along its intermediate axis given in the design frame,
+    started 1.8e-16 off the axis in the principal frame and flipped twice in 30 s without a word; exactly on the axis it
+    is said to be an unstable equilibrium. Within round-off of it, the report says the round-off perturbs it."""
+    from scipy.spatial.transform import Rotation
+
+    book = tumble.Body([tumble.Box(mass=1.0, size=(0.15, 0.04, 0.22),
+                                   rotation=Rotation.from_rotvec([0.0, 0.0, np.radians(30.0)]))])
+    exact = tumble.stability_report(tumble.simulate(book, [0.0, 10.0, 0.0], t_end=30.0))
+    near = tumble.stability_report(tumble.simulate(book, [0.0, 10.0, 1.8e-15], t_end=30.0))
+    plain = tumble.stability_report(tumble.simulate(book, [0.0, 10.0, 1e-3], t_end=30.0))
+    assert "an unstable equilibrium" in exact["note"] and exact["flips"] == 0
+    assert near["flips"] >= 1 and near["note"].startswith("a spin within round-off of the axis (1.8e-16 of it off)")
+    assert plain["note"] is None and plain["flips"] >= 1
+    assert "one every " in repr(near)
