@@ -240,6 +240,9 @@ def test_page_plays_offline_in_chromium_with_a_shaded_body(flip_viewer):
     watched = flip_viewer
     page = watched.page
     assert page.evaluate("tumbleViewer.state()") == {"playing": False, "frame": 0, "frames": 60}
+    # the "now" line dashed: black and solid it was taken for the zero line at t = 0 (a teacher's walkthrough)
+    assert page.evaluate("(() => { const d = document.getElementById('tumble-omega').data[3];"
+                         " return [d.name, d.line.dash]; })()") == ["now", "dash"]
     page.click("#tumble-play")
     page.wait_for_function("tumbleViewer.state().frame >= 5", timeout=HANG_MS)
     page.wait_for_function("tumbleViewer.state().frame >= 20", timeout=HANG_MS)

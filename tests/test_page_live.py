@@ -307,6 +307,7 @@ BAD_FORM = [  # (field, typed value, what the form says)
 
 def test_live_bad_input_is_shown_in_the_form(live):
     page = live.page
+    own_t_end = page.input_value("#tumble-live-tend")
     for field, value, message in BAD_FORM:
         page.fill(field, value)
         page.click("#tumble-live-run")
@@ -316,6 +317,15 @@ def test_live_bad_input_is_shown_in_the_form(live):
         page.click("#tumble-live-reset")  # back to the page's body and run, error cleared
         page.wait_for_function("window.tumbleLive.error === ''", timeout=HANG_MS)
         assert page.input_value("#tumble-live-I3") == repr(SEED[2])
+        # t_end back too (a t_end of 1e9 stayed after Reset: a teacher's walkthrough, 2026-12-03)
+        assert page.input_value("#tumble-live-tend") == own_t_end, (field, value)
+    # exactly on the intermediate axis the run does not flip: the status says why, as tumble's report does
+    run_form(page, omega0=[0.0, 10.0, 0.0])
+    assert "an unstable equilibrium, which flips only once perturbed" in page.inner_text("#tumble-live-status")
+    run_form(page, omega0=[0.1, 10.0, 0.0])
+    assert "unstable equilibrium" not in page.inner_text("#tumble-live-status")
+    page.click("#tumble-live-reset")
+    page.wait_for_function("window.tumbleLive.error === ''", timeout=HANG_MS)
     assert live.clean(), (live.errors, live.outside)
 
 

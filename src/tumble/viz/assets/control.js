@@ -163,8 +163,8 @@
       lo = Math.min(lo, curve.threshold); hi = Math.max(hi, curve.threshold);
     }
     marker = lines.length;
-    lines.push({type: "scatter", mode: "lines", x: [0, 0], y: [lo, hi], name: "now",
-                line: {color: "black", width: 1}, hoverinfo: "skip"});
+    lines.push({type: "scatter", mode: "lines", x: [0, 0], y: [lo, hi], name: "now",  // dashed: not an axis line
+                line: {color: "black", width: 1, dash: "dash"}, hoverinfo: "skip"});
     var what = curve.name === "|omega|" ? "|omega|, the body's rate" : "attitude error: the angle from the target to the body";
     var layout = {
       margin: {l: 60, r: 10, t: 30, b: 45}, title: {text: what + " (log scale)", font: {size: 15}},

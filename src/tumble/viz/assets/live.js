@@ -140,8 +140,23 @@
     el.preset.addEventListener("change", function () { fill(live.presets[Number(el.preset.value)]); });
     el.run.addEventListener("click", function (event) { event.preventDefault(); run(); });
     el.reset.addEventListener("click", function (event) { event.preventDefault(); reset(); });
-    el.tEnd.value = String(data && data.t_end > 0 && data.t_end <= MAX_T_END ? round(data.t_end, 6) : 20);
+    el.tEnd.value = pageTEnd(data);
     if (live.presets.length) fill(live.presets[0]);
+  }
+
+  /** The t_end field's value for the page's own run: its duration, or 20 s where it has none the
+   * browser takes. Reset puts it back too (a t_end typed before it stayed: a teacher's walkthrough). */
+  function pageTEnd(data) {
+    return String(data && data.t_end > 0 && data.t_end <= MAX_T_END ? round(data.t_end, 6) : 20);
+  }
+
+  /** What the numbers do not say of a run started exactly on the intermediate axis (as tumble's
+   * stability report notes it): it stays there, an unstable equilibrium, until perturbed. */
+  function onAxisNote(moments, omega0, h) {
+    var spun = omega0.filter(function (x) { return x !== 0; }).length;
+    if (h || spun !== 1 || omega0[1] === 0 || !(moments[0] < moments[1] && moments[1] < moments[2])) return "";
+    return " A spin exactly about the intermediate axis: an unstable equilibrium, which flips only once perturbed " +
+      "(give omega_1 or omega_3 a little, 1 % of omega_2).";
   }
 
   function fill(preset) {
@@ -235,7 +250,8 @@
         (h ? " With the wheels' momentum h = [" + h.map(function (x) { return round(x, 4); }).join(", ") +
              "] kg m^2/s (principal frame), as in this page's run." :
          data && (data.torque_free === false || data.rigid === false)
-          ? " This page's own run has a torque, rotors or a damper; the live run is the free rigid body." : "");
+          ? " This page's own run has a torque, rotors or a damper; the live run is the free rigid body." : "") +
+        onAxisNote(moments, omega0, h);
       var title = "live run: I = [" + moments.join(", ") + "] kg m^2, omega0 = [" + omega0.join(", ") +
         "] rad/s, " + tEnd + " s";
       show({ t: t, quat: out.quat, omega: out.omega, moments: moments, box: box, title: title, momentum: h });
@@ -267,6 +283,7 @@
       el.preset.value = "0";
       fill(live.presets[0]);
     }
+    el.tEnd.value = pageTEnd(data);
     el.status.textContent = "";
     if (viewerReady()) {
       try {

@@ -314,8 +314,8 @@
       return {type: "scatter", mode: "lines", x: c.t, y: row, name: "omega_" + (j + 1) + " (" + ROLES[j] + ")",
               line: {color: CURVE_COLORS[j], width: 1.5}};
     });
-    curves.push({type: "scatter", mode: "lines", x: [0, 0], y: [-lim, lim], name: "now",
-                 line: {color: "black", width: 1}, hoverinfo: "skip"});
+    curves.push({type: "scatter", mode: "lines", x: [0, 0], y: [-lim, lim], name: "now",  // dashed: not the zero line
+                 line: {color: "black", width: 1, dash: "dash"}, hoverinfo: "skip"});
     if (m.extra && m.extra.omegaTraces) { curves.push.apply(curves, m.extra.omegaTraces()); }  // after "now" (index 3)
     var omegaLayout = {
       margin: {l: 60, r: 10, t: 30, b: 45}, title: {text: "omega in the principal frame", font: {size: 15}},
