@@ -368,7 +368,7 @@ def figure_drift(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
     True
     >>> exact = tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=2.0, samples=101)
     >>> [text.get_text() for text in figure_drift(exact).axes[0].texts]  # exact: one dashed line per invariant
-    ['at round-off: every drift below 1e-13']
+    ['at round-off:\\nevery drift below 1e-13']
     """
     check_run(traj)
     fig, ax = figure_and_axes(ax, figsize=(8.6, 3.6))
@@ -391,7 +391,8 @@ def figure_drift(traj: Trajectory, *, ax: Axes | None = None, title: str | None 
         else:
             ax.semilogy(traj.t, np.maximum(values, 1e-17), color=color, lw=1.1, label=label)
     if max(tops) < ROUND_OFF:
-        ax.text(0.5, 0.8, f"at round-off: every drift below {ROUND_OFF:.0e}", transform=ax.transAxes, ha="center",
+        # two lines: in a narrow panel (a notebook's half of 11 in) one ran over the tick labels
+        ax.text(0.5, 0.8, f"at round-off:\nevery drift below {ROUND_OFF:.0e}", transform=ax.transAxes, ha="center",
                 fontsize=10)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("relative drift (dimensionless)")
