@@ -442,3 +442,29 @@ def test_a_wheel_speed_limit_in_rpm_is_refused(tmp_path, capsys):
     assert main(["simulate", str(tmp_path / "rpm.toml"), "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "is it in rpm?" in err and not (tmp_path / "run").exists()
+
+
+def test_a_quaternion_written_scalar_first_is_warned_of(tmp_path, capsys):
+    """A walkthrough of docs/formats/control.md (2026-12-03): target = [1.0, 0.0, 0.0, 0.0], the identity written scalar
+    first, was read without a word as a half turn about x (tumble's quaternions are scalar last, as scipy's). [+-1, 0, 0, 0]
+    is warned of wherever a quaternion is read; a quaternion in scalar-last order is not."""
+    import warnings
+
+    from tumble.validation import check_rotation
+    from tumble.validation.rotations import ScalarFirstWarning
+
+    for written in ([1.0, 0.0, 0.0, 0.0], np.array([-1.0, 0.0, 0.0, 0.0]), (1, 0, 0, 0)):
+        with pytest.warns(ScalarFirstWarning, match=r"^attitude = \[-?1, 0, 0, 0\] is a half turn about x in tumble's "
+                                                    r"scalar-last order \[x, y, z, w\] \(scipy's\); the identity is "
+                                                    r"\[0, 0, 0, 1\]: written scalar first\?$"):
+            check_rotation("attitude", written)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for fine in ([0.0, 0.0, 0.0, 1.0], [0.7071067811865476, 0.0, 0.0, 0.7071067811865476], np.eye(3)):
+            check_rotation("attitude", fine)
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "point.toml").read_text()
+    target = next(line for line in text.splitlines() if line.startswith("target = "))
+    (tmp_path / "sf.toml").write_text(text.replace(target, "target = [1.0, 0.0, 0.0, 0.0]"))
+    assert main(["simulate", str(tmp_path / "sf.toml"), "--out", str(tmp_path / "run")]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith("warning: target = [1, 0, 0, 0] is a half turn about x") and err.count("\n") == 1

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -22,9 +23,39 @@ if TYPE_CHECKING:
 __all__ = [
     "MATRIX_ORTHO_TOL",
     "QUAT_NORM_TOL",
+    "ScalarFirstWarning",
     "check_motion",
     "check_rotation",
 ]
+
+
+class ScalarFirstWarning(UserWarning):
+    """A quaternion written ``[1, 0, 0, 0]`` (or its opposite): in tumble's scalar-last order
+    ``[x, y, z, w]`` (scipy's) a half turn about x, though most likely the identity written scalar
+    first (``[w, x, y, z]``, as Basilisk and many texts write it). A command prints it on one line.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.validation import check_rotation
+    >>> from tumble.validation.rotations import ScalarFirstWarning
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_rotation("attitude", [1.0, 0.0, 0.0, 0.0])
+    (1.0, 0.0, 0.0, 0.0)
+    >>> caught[0].category is ScalarFirstWarning
+    True
+    """
+
+    cli_one_line = True
+
+
+def _scalar_first(field: str, x: float, y: float, z: float, w: float) -> None:
+    """Warn (:class:`ScalarFirstWarning`) of ``[+-1, 0, 0, 0]``: a control file's ``target = [1.0,
+    0.0, 0.0, 0.0]`` was read, without a word, as a half turn about x (a walkthrough)."""
+    if abs(x) == 1.0 and y == 0.0 and z == 0.0 and w == 0.0:
+        warnings.warn(f"{field} = [{x:g}, 0, 0, 0] is a half turn about x in tumble's scalar-last order [x, y, z, w] "
+                      f"(scipy's); the identity is [0, 0, 0, 1]: written scalar first?", ScalarFirstWarning, stacklevel=3)
 
 
 #: A quaternion given by hand, e.g. [0, 0, 0.7071, 0.7071], is accepted and renormalised if its
@@ -69,6 +100,7 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
         # the plain case first: a quaternion near unit norm, in float arithmetic
         x, y, z, w = value.tolist()
         if abs(math.sqrt(x * x + y * y + z * z + w * w) - 1.0) <= QUAT_NORM_TOL:
+            _scalar_first(field, x, y, z, w)
             return _unit_quaternion(value.tobytes())
     try:
         arr = np.array(value, dtype=float)
@@ -85,6 +117,7 @@ def check_rotation(field: str, value: object) -> tuple[float, float, float, floa
                 f"{field} = {value!r} is a quaternion of norm {n:.6g}; a rotation needs a unit "
                 f"quaternion [x, y, z, w] (scalar last)"
             )
+        _scalar_first(field, *arr.tolist())
         return _unit_quaternion(arr.tobytes())
     if arr.shape == (3, 3):
         err = float(np.max(np.abs(arr.T @ arr - np.eye(3))))
