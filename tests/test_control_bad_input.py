@@ -468,3 +468,18 @@ def test_a_quaternion_written_scalar_first_is_warned_of(tmp_path, capsys):
     assert main(["simulate", str(tmp_path / "sf.toml"), "--out", str(tmp_path / "run")]) == 0
     err = capsys.readouterr().err
     assert err.startswith("warning: target = [1, 0, 0, 0] is a half turn about x") and err.count("\n") == 1
+
+
+def test_a_control_period_that_is_a_large_share_of_the_orbit_is_warned_of(tmp_path, capsys):
+    """A walkthrough of docs/control.md (2026-12-03): detumble.toml with period = 6000 s on its 5677 s orbit and a small
+    gain ran with no word but the figure's. A period past a tenth of the orbit warns, in one line naming the orbit."""
+    text = (Path(__file__).resolve().parents[1] / "examples" / "control" / "detumble.toml").read_text()
+    period = next(line for line in text.splitlines() if line.startswith("period = "))
+    (tmp_path / "long.toml").write_text(text.replace(period, "period = 6000.0"))
+    assert main(["simulate", str(tmp_path / "long.toml"), "--out", str(tmp_path / "run")]) == 0
+    err = capsys.readouterr().err
+    assert "warning: period = 6000 s is more than a tenth of the orbit (5677 s): the field and an orbiting target turn " \
+           "through 380 deg of the orbit between commands" in err
+    (tmp_path / "right.toml").write_text(text)
+    assert main(["simulate", str(tmp_path / "right.toml"), "--out", str(tmp_path / "run3")]) == 0
+    assert "tenth of the orbit" not in capsys.readouterr().err

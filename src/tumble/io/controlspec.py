@@ -38,6 +38,7 @@ from scipy.spatial.transform import Rotation
 from ..dynamics.control.bdot import BDot, bdot_gain
 from ..dynamics.control.controllers import MomentumDumping, MRPFeedback
 from ..dynamics.control.mission import DetumbleThenPoint
+from ..dynamics.control.sampled import check_period_in_orbit
 from ..dynamics.models.actuators import Magnetorquers, ReactionWheels
 from ..dynamics.models.sensors import Sensors
 from ..dynamics.control.pointing import NadirTarget, axis_direction, check_square
@@ -271,6 +272,8 @@ def parse_control(control: dict[str, Any], *, body: Body, orbit: Orbit | None, f
     except (ValueError, TypeError) as exc:
         text = str(exc)
         raise ValueError(text if text.startswith(("control:", "control.")) else f"{where}: {text}") from None
+    if orbit is not None:
+        check_period_in_orbit(float(args["period"]), orbit.period)
     return ControlSpec(kind, args, target, threshold)
 
 

@@ -30,8 +30,13 @@ import numpy as np
 
 from ...typing import ArrayLike, FloatArray
 
-__all__ = ["OneStepWarning", "UnstableLoopWarning", "WeakLoopWarning", "check_bdot_loop", "check_held_loop",
-           "held_loop_radius"]
+__all__ = ["LongPeriodWarning", "OneStepWarning", "UnstableLoopWarning", "WeakLoopWarning", "check_bdot_loop",
+           "check_held_loop", "check_period_in_orbit", "held_loop_radius"]
+
+#: The longest control period, as a share of the orbit's, that :func:`check_period_in_orbit` takes
+#: without a word: the field turns twice an orbit in the body of an inertially held spacecraft,
+#: and control periods are 0.1-10 s against orbits of 5,400 s and more.
+ORBIT_SHARE = 0.1
 
 #: :class:`WeakLoopWarning` where B-dot's slowest time constant is more than this many runs long
 #: and longer than :data:`WEAK_TIME`.
@@ -71,6 +76,42 @@ class WeakLoopWarning(UserWarning):
     """
 
     cli_one_line = True
+
+
+class LongPeriodWarning(UserWarning):
+    """A control period that is a large share of the orbit (:func:`check_period_in_orbit`): the
+    field and an orbiting target turn far between commands. A command prints it on one line.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.control.sampled import LongPeriodWarning
+    >>> LongPeriodWarning.cli_one_line
+    True
+    """
+
+    cli_one_line = True
+
+
+def check_period_in_orbit(period: float, orbit_period: float) -> None:
+    """Warn (:class:`LongPeriodWarning`) where the control ``period`` (s) is more than
+    :data:`ORBIT_SHARE` of the ``orbit_period`` (s). A walkthrough's B-dot held 6000 s on a 5677 s
+    orbit, with a small gain, ran with no word of it.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.control.sampled import check_period_in_orbit
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     check_period_in_orbit(1.0, 5677.0)
+    ...     check_period_in_orbit(6000.0, 5677.0)
+    >>> len(caught), str(caught[0].message)[:59]
+    (1, 'period = 6000 s is more than a tenth of the orbit (5677 s):')
+    """
+    if period > ORBIT_SHARE * orbit_period:
+        warnings.warn(f"period = {period:g} s is more than a tenth of the orbit ({orbit_period:.4g} s): the field and an "
+                      f"orbiting target turn through {360.0 * period / orbit_period:.3g} deg of the orbit between "
+                      "commands; give a period of seconds (one in ms written as s?)", LongPeriodWarning, stacklevel=3)
 
 
 class OneStepWarning(UserWarning):
