@@ -297,7 +297,8 @@ def figure_herpolhode(traj: Trajectory, *, ax: Axes | None = None, title: str | 
         return fig
     Lw = traj.angular_momentum_world[0]
     n = Lw / np.linalg.norm(Lw)
-    u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    across = "x" if abs(n[0]) < 0.9 else "y"  # a world axis not near L
+    u = np.cross(n, [1.0, 0.0, 0.0] if across == "x" else [0.0, 1.0, 0.0])
     u /= np.linalg.norm(u)
     v = np.cross(n, u)
     height = traj.omega_world @ n  # = 2 E / |L|, constant without torque (over the whole run)
@@ -307,8 +308,10 @@ def figure_herpolhode(traj: Trajectory, *, ax: Axes | None = None, title: str | 
     ax.scatter([w[0] @ u], [w[0] @ v], color="k", edgecolor="w", s=40, zorder=5, label="t = 0")
     ax.scatter([0.0], [0.0], marker="+", color="k", s=80, linewidths=1.5, zorder=5, label="foot of L")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(r"$\omega \cdot u$ (rad/s)")
-    ax.set_ylabel(r"$\omega \cdot v$ (rad/s)")
+    # u, v: two world axes in the invariable plane (u normal to L and the world x, or y where L is near x; v = L x u),
+    # named on the axes (a teacher's walkthrough: u and v were defined nowhere)
+    ax.set_xlabel(rf"$\omega \cdot u$, $u$ normal to $L$ and to the world {across} axis (rad/s)")
+    ax.set_ylabel(r"$\omega \cdot v$, $v = \hat{L} \times u$ (rad/s)")
     spread = float(np.ptp(height))
     ax.set_title((title or f"{traj.body_name}: herpolhode in the invariable plane\n"
                   f"(plane at omega . L/|L| = {height[0]:.6g} rad/s, varies by {spread:.1e} rad/s)") + shown, fontsize=9)

@@ -223,7 +223,7 @@
     var L0 = m.L[0], n = [0, 0, 1], name = "ground grid (plane z = " + fmt(-0.9 * size) + " m)";
     if (m.torqueFree && norm(L0) > 0) {
       n = scaled(L0, 1 / norm(L0));
-      name = "invariable plane direction (normal to L), drawn " + fmt(0.9 * size) + " m below the COM";
+      name = "invariable plane direction (normal to L), drawn " + fmt(0.9 * size) + " m from the COM along -L";
     }
     var a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
     var u = cross(n, a); u = scaled(u, 1 / norm(u));
