@@ -239,3 +239,19 @@ def test_moments_body_has_the_moments_and_the_mass_it_is_given(moments):
         across += rod.mass * rod.length**2 / 12.0 * (1.0 - np.eye(3)[k])
     np.testing.assert_allclose(across, moments, rtol=1e-13)
     np.testing.assert_allclose(body.principal_moments, moments, rtol=1e-13, atol=1e-15)
+
+
+def test_the_inertia_table_names_a_symmetric_bodys_axes_and_a_signs_reason(tmp_path, capsys):
+    """Two walkthroughs (2026-12-03): tumble inertia of Explorer 1 (I2 = I3) labelled I2 "intermediate" and then said
+    "symmetric body: no intermediate axis"; a racket's major axis came out "-x" with no word why. The roles are the
+    stability report's (symmetry axis, transverse), and a negative axis is said to keep the frame right-handed."""
+    assert main(["inertia", str(EXAMPLES / "bodies" / "explorer1.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "minor, the symmetry axis" in out and "transverse, I2 = I3" in out and "kg m^2  intermediate" not in out
+    flipped = tmp_path / "flipped.toml"  # a box turned a half turn about z: its axes come out signed
+    flipped.write_text('[body]\nname = "turned"\n[[body.parts]]\nkind = "box"\nmass = 1.0\nsize = [0.1, 0.2, 0.3]\n'
+                       'rotation = [0.0, 0.0, 1.0, 0.0]\n')
+    assert main(["inertia", str(flipped)]) == 0
+    out = capsys.readouterr().out
+    negative = any(line.rstrip().endswith(("axis -x", "axis -y", "axis -z")) for line in out.splitlines())
+    assert negative and "(an axis's sign keeps the principal frame right-handed)" in out  # z x y = -x

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from ..dynamics.models.gravity import GravityGradient
     from ..dynamics.models.torques import TorqueModel
 
-__all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "gravity_gradient_summary", "orbit_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
+__all__ = ["SAMPLES_PER_FLIP", "StabilityReport", "axis_role", "gravity_gradient_summary", "orbit_gradient_summary", "stability_report", "torque_budget", "trajectory_summary"]
 
 #: Fewest samples per flip interval at which flips are counted (a sign change of a component between
 #: samples): below it the count and the measured period are aliased (:func:`stability_report`'s
@@ -224,7 +224,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     counted = per_flip is None or per_flip >= SAMPLES_PER_FLIP
     return StabilityReport({
         "axis": a,
-        "role": _role(I, a, degeneracy),
+        "role": axis_role(I, a, degeneracy),
         "circulation": circulation,
         "predicted": predicted,
         "growth_rate": growth if growth > 0 else None,
@@ -240,9 +240,20 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     })
 
 
-def _role(I: Any, a: int, degeneracy: str) -> str:
-    """Axis ``a``'s role: ``AXIS_ROLES``' for an asymmetric body; a symmetric one's symmetry axis or
-    a transverse axis (two equal moments: no intermediate axis); any axis of a spherical one."""
+def axis_role(I: Any, a: int, degeneracy: str) -> str:
+    """Principal axis ``a``'s role (1, 2 or 3, moments ``I`` ascending, kg m^2, of
+    :func:`tumble.mass.moment_degeneracy` ``degeneracy``): ``AXIS_ROLES``' for an asymmetric body;
+    a symmetric one's symmetry axis or a transverse axis (two equal moments: no intermediate axis);
+    any axis of a spherical one.
+
+    Examples
+    --------
+    >>> from tumble.analysis.summary import axis_role
+    >>> [axis_role([1.0, 2.0, 3.0], a, "asymmetric") for a in (1, 2, 3)]
+    ['minor', 'intermediate', 'major']
+    >>> [axis_role([2.0, 2.0, 3.0], a, "symmetric") for a in (1, 2, 3)]
+    ['transverse, I1 = I2', 'transverse, I1 = I2', 'major, the symmetry axis']
+    """
     if degeneracy == "asymmetric":
         return AXIS_ROLES[a - 1]
     if degeneracy == "spherical":

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.stability import stable_spin_range
-from ..mass import AXIS_ROLES, Body
+from ..analysis.summary import axis_role
+from ..mass import Body
 from ..typing import ArrayLike
 
 __all__ = ["mass_properties_dict", "mass_properties_table", "rotor_stable_spin"]
@@ -141,11 +142,14 @@ def mass_properties_table(body: Body) -> str:
     ]
     lines += [f"                    {vec(row)}" for row in p.inertia]
     lines.append("  principal axes (design frame), ascending moments")
-    for j, role in enumerate(AXIS_ROLES):
+    for j in range(3):  # a symmetric body's roles: no "intermediate" beside "no intermediate axis" (a walkthrough)
+        role = axis_role(p.principal_moments, j + 1, p.degeneracy)
         axis = p.principal_axes[:, j]
         lines.append(
             f"    I{j + 1} {p.principal_moments[j]:12.6g} kg m^2  {role:<12}  axis {describe_axis(axis)}"
         )
+    if np.any(np.isclose(np.abs(p.principal_axes), 1.0) & (p.principal_axes < 0)):
+        lines.append("  (an axis's sign keeps the principal frame right-handed)")
     if p.intermediate_axis is None:
         lines.append(f"  {p.degeneracy} body: no intermediate axis, no tennis-racket flip")
     elif (spins := rotor_stable_spin(body)) is not None:
