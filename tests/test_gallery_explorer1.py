@@ -81,7 +81,8 @@ end state is the least energy at that `|L|`, a rigid spin about the major axis w
 sphere locked to the body: `|omega| = |L| / (I3 + J)`, `E = |L|^2 / (2 (I3 + J))`. Started close
 to the minor axis, `|L| ~ (I1 + J) omega0`, so the rate falls by `(I1 + J) / (I3 + J)`.
 
-**Conditions.** The body of `examples/bodies/explorer1.toml`: the published length 205.1 cm,
+**Conditions.** The body of `examples/bodies/explorer1.toml` (`tumble examples --copy` puts the examples in
+`examples/`): the published length 205.1 cm,
 diameter 15.2 cm and mass 13.97 kg (NSSDCA 1958-001A, as cited by the example; checked against
 Wikipedia's "Explorer 1", read in a mirror) as a uniform cylinder, with four whip
 antennas whose length, mass and place are illustrative: `I1 = {sig(I1, 6)}`, `I2 = I3 =
