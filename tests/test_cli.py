@@ -334,3 +334,38 @@ def test_the_printed_drift_names_the_energy_balance_it_measures(tmp_path, capsys
     printed = float(line.split(f"relative drift: {balance} ")[1].split(",")[0])
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert printed == pytest.approx(summary["drift"]["energy"], rel=0.05)  # the .1e of the balance's drift
+
+
+@pytest.mark.parametrize(("argv", "said"), [
+    # a file on the way of --copy's folder: it was "tumble: failed: afile: File exists", exit 1
+    (["examples", "--copy", "{tmp}/afile/sub"], "{tmp}/afile/sub: {tmp}/afile is a file, not a folder; give a new or "
+                                                  "existing folder"),
+    # the calibrated device written over the device file: it ran, exit 0, the file's comments lost
+    (["calibrate", "{tmp}/device.toml", "--alone", str(EXAMPLES / "throws" / "a1.csv"), "--proof",
+      str(EXAMPLES / "throws" / "p1.csv"), "--out", "{tmp}/device.toml"],
+     "--out {tmp}/device.toml: the device file itself; write the calibrated device to a new file"),
+    # simulate's bound, which map did not share (1e20 rad/s was mapped)
+    (["map", "--spin", "1e20", "--out", "{tmp}/map.png"], "--spin = 1e20 is beyond 1e+15 rad/s: faster than any rotation"),
+    # a mesh given where a scenario or body file is read: it was "not a text file (not valid UTF-8)"
+    (["simulate", str(EXAMPLES / "bodies" / "meshes" / "torus.stl"), "--omega", "1", "2", "3", "--out", "{tmp}/run"],
+     f"{EXAMPLES / 'bodies' / 'meshes' / 'torus.stl'}: a mesh file, not a scenario or body file: name it in a body "
+     "file's part"),
+    (["inertia", "{tmp}/bracket.step", "--mass", "1"],
+     "{tmp}/bracket.step: not a text file (not valid UTF-8), so not a body or scenario file (TOML) (.step files are "
+     "not read: meshes are .stl, .obj, .ply)"),
+    # a preset that needs parameters is not listed where a name is asked for
+    (["view", "{tmp}/fitted", "--out", "{tmp}/x.html"], "(presets: t-handle, iss-t-handle); {tmp}/fitted: no such file"),
+])
+def test_a_walkthroughs_command_line_slips_exit_2_in_one_line(tmp_path, capsys, argv, said):
+    """A walkthrough of the README and every command's --help (2026-12-03): each of these exited 1, ran, or named
+    the wrong cause; each now exits 2 with one line, and nothing is written."""
+    (tmp_path / "afile").write_text("x")
+    (tmp_path / "device.toml").write_text((EXAMPLES / "devices" / "flywheel_device.toml").read_text())
+    (tmp_path / "bracket.step").write_bytes(bytes(range(128, 256)) * 4)
+    before = sorted(p.name for p in tmp_path.iterdir())
+    device = (tmp_path / "device.toml").read_text()
+    code = main([a.replace("{tmp}", str(tmp_path)) for a in argv])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1, err
+    assert said.replace("{tmp}", str(tmp_path)) in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == before and (tmp_path / "device.toml").read_text() == device

@@ -119,11 +119,11 @@ def _cmd_sweep(args) -> int:
 
 def _cmd_map(args) -> int:
     from ..io.output import check_output_file
-    from ..validation import check_positive
+    from ..validation import MAX_RATE, check_positive
 
     out = check_output_file(args.out, (".png", ".svg"))
-    spin = check_positive("--spin", args.spin, "rad/s")
-    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True)
+    spin = check_positive("--spin", args.spin, "rad/s", at_most=MAX_RATE)  # simulate's bound (1e20 was taken)
+    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True, at_most=MAX_RATE)
                          for i, p in enumerate(args.perturbation))
     if not 20 <= args.resolution <= 2000:
         raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")

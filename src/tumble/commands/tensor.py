@@ -139,6 +139,9 @@ def run_calibrate_command(device: str | os.PathLike[str], alone: Sequence[str | 
     no such file
     """
     out = check_output_file(out, ".toml")
+    if Path(out).resolve() == Path(device).resolve():  # a walkthrough's --out over the input: its comments lost, no word
+        raise ValueError(f"--out {os.fspath(out)}: the device file itself; write the calibrated device to a new file "
+                         "(the device file is an input, and the calibration's record names it)")
     dev, body = load_device(device, proof=True)
     assert body is not None  # required above
     alone_loaded = _throws(alone, "--alone", dev)

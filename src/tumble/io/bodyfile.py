@@ -117,7 +117,10 @@ def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario f
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
-        raise ValueError(f"{path}: not a text file (not valid UTF-8)") from None
+        # a CAD or mesh file of another kind (.step, a binary .stl): its suffix said first (a walkthrough)
+        other = f" ({path.suffix} files are not read: meshes are {', '.join(MESH_SUFFIXES)})" if path.suffix.lower() not in (
+            "", ".toml") else ""
+        raise ValueError(f"{path}: not a text file (not valid UTF-8), so not {what}{other}") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -57,7 +57,7 @@ from ..dynamics.simulate import DEFAULT_SAMPLES, check_inputs, sample_times
 from ..mass import PRESETS, Body
 from ..typing import ArrayLike
 from ..validation import NoSuchFileError, nearest, unknown_name
-from .bodyfile import body_from_table, body_path, load_body, preset_body, read_toml
+from .bodyfile import body_from_table, body_path, is_mesh_file, load_body, named_presets, preset_body, read_toml
 from .controlfile import CONTROL_SECTIONS, ControlScenario, is_control_file, load_control_scenario
 from .gravitytables import ORBIT_FRAME_TABLE, gravity_gradient_from_table, lvlh_state_from_table
 from .torquetables import TORQUE_TABLE, torque_of
@@ -398,7 +398,11 @@ def resolve_run(source: str | os.PathLike[str], *, omega: ArrayLike | None = Non
         path = Path(source)
         if not path.exists() and not path.is_symlink() and path.suffix == "":
             raise NoSuchFileError(f"{source!r} is not a scenario file, a body file or a preset (presets: "
-                                  f"{', '.join(PRESETS)}); {source}: no such file")
+                                  f"{', '.join(named_presets())}); {source}: no such file")
+        if is_mesh_file(path):  # read as TOML it was "not a text file (not valid UTF-8)" (a walkthrough)
+            raise ValueError(f"{source}: a mesh file, not a scenario or body file: name it in a body file's part "
+                             f'([[body.parts]] kind = "mesh", mesh = "{path.name}", mass or density), or give it to '
+                             f"tumble inertia with --mass or --density")
         data = read_toml(path)
         if set(data) != {"body"} or not isinstance(data["body"], dict):
             scenario = load_scenario(path)
