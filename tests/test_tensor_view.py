@@ -276,6 +276,10 @@ def test_a_folder_of_neither_kind_or_a_damaged_one_is_one_line_and_exit_2(made, 
         (folder / name).write_bytes((out / name).read_bytes())
     assert main(["view", str(folder), "--out", str(page), "--omega", "1", "2", "3"]) == 2
     assert f"{folder}: a tensor's output folder shows its throws; --omega applies to a scenario" in _one_line(capsys)
+    # a tensor's page has no animation: --frames was ignored without a word (a walkthrough, 2026-12-03)
+    assert main(["view", str(folder), "--out", str(page), "--frames", "10"]) == 2
+    assert (f"{folder}: a tensor's output folder shows its throws; --frames applies to a scenario, a body or a fit's "
+            "folder (a tensor's page has no animation)") in _one_line(capsys)
     npz = (folder / "throws.npz").read_bytes()
     (folder / "throws.npz").write_bytes(npz[: len(npz) // 2])
     assert main(["view", str(folder), "--out", str(page)]) == 2

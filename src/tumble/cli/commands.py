@@ -322,8 +322,10 @@ def _cmd_view(args) -> int:
     from ..io.output import check_output_file
     from ..viz.scene import MAX_FRAME_TURN, frame_indices, frame_turn, frames_advice
 
+    frames_given = args.frames is not None
+    args.frames = 150 if args.frames is None else args.frames  # the pages' default
     if os.path.isdir(args.source):  # a tumble fit or tumble tensor output folder
-        return _view_folder(args)
+        return _view_folder(args, frames_given)
     out = check_output_file(args.out, ".html")
     scenario = _resolve(args)
     control = not hasattr(scenario, "method")  # a closed-loop (control) scenario
@@ -348,7 +350,7 @@ def _cmd_view(args) -> int:
     return EXIT_OK
 
 
-def _view_folder(args) -> int:
+def _view_folder(args, frames_given: bool = False) -> int:
     """`tumble view DIR`: a fit's output folder (fit.json) or a tensor's (tensor.json), else one line."""
     from ..io.fitfolder import FIT_FILE
     from ..io.tensorfolder import TENSOR_FILE
@@ -361,10 +363,13 @@ def _view_folder(args) -> int:
         raise ValueError(f"{args.source}: a folder without {FIT_FILE} or {TENSOR_FILE}; give the output folder of "
                          "tumble fit (tumble fit REC --out DIR) or of tumble tensor (tumble tensor THROW... --out DIR)")
     given = [f"--{k.replace('_', '-')}" for k in ("omega", "frame", "t_end", "samples", "dt", "method")
-             if getattr(args, k) is not None]
+             if getattr(args, k) is not None] + (["--frames"] if tensor and frames_given else [])  # a tensor page has
+    # no animation: --frames was ignored without a word (a walkthrough)
     if given:
         what = "a fit's output folder replays its fitted flights" if fit else "a tensor's output folder shows its throws"
-        raise ValueError(f"{args.source}: {what}; {', '.join(given)} {'applies' if len(given) == 1 else 'apply'} to a scenario or a body")
+        to = ("a scenario, a body or a fit's folder (a tensor's page has no animation)" if given == ["--frames"]
+              else "a scenario or a body")
+        raise ValueError(f"{args.source}: {what}; {', '.join(given)} {'applies' if len(given) == 1 else 'apply'} to {to}")
     return _view_fit(args) if fit else _view_tensor(args)
 
 

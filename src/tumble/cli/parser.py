@@ -202,7 +202,7 @@ def build_parser() -> argparse.ArgumentParser:
         "tumble view iss-t-handle --omega 0.1 0.1 8 --out iss.html | "
         "tumble view fitted --out tosses.html | tumble view bracket --out bracket.html", "FILE.html", "the page to write",
     )
-    p.add_argument("--frames", type=int, default=150, help="animation frames, 2 to 2000 (default 150)")
+    p.add_argument("--frames", type=int, help="animation frames, 2 to 2000 (default 150; not for a tensor's folder)")
 
     p = sub.add_parser(
         "examples",
