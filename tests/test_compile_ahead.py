@@ -133,6 +133,11 @@ def test_the_command_lists_the_groups_and_refuses_bad_input_in_one_line(capsys):
     assert capsys.readouterr().err == "tumble compile: error: argument --jobs: invalid int value: 'two'\n"
     assert main(["compile", "damper", "--jobs", "0"]) == EXIT_USAGE
     assert capsys.readouterr().err == "tumble: error: --jobs = 0 must be a whole number >= 1\n"
+    # --list lists the groups named and checks what it is given (a walkthrough: it listed all and took --jobs -1)
+    assert main(["compile", "--list", "damper"]) == EXIT_OK
+    assert [line.split()[0] for line in capsys.readouterr().out.splitlines()] == ["damper"]
+    assert main(["compile", "--list", "--jobs", "-1"]) == EXIT_USAGE
+    assert capsys.readouterr().err == "tumble: error: --jobs = -1 must be a whole number >= 1\n"
 
 
 def test_the_command_compiles_a_group_and_says_so_as_it_ends(capsys):

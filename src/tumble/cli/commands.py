@@ -77,12 +77,12 @@ def _cmd_compile(args) -> int:
 
     described = {group.name: group.description for group in GROUPS}
     width = max(len(name) for name in described)
-    if args.list:
-        for name, description in described.items():
-            print(f"{name:<{width}}  {description}")
-        return EXIT_OK
-    names = check_groups(args.groups, "GROUP")
+    names = check_groups(args.groups, "GROUP")  # checked with --list too: it skipped them (a walkthrough)
     at_once = processes(len(names), args.jobs, "--jobs")
+    if args.list:  # the groups named, or every group
+        for name in names if args.groups else described:
+            print(f"{name:<{width}}  {described[name]}")
+        return EXIT_OK
     folder = kernel_cache_folder()
     if folder is None:
         print("tumble: failed: no folder here can hold numba's cache (the package's, $NUMBA_CACHE_DIR, "
