@@ -353,6 +353,8 @@ def test_the_printed_drift_names_the_energy_balance_it_measures(tmp_path, capsys
     (["inertia", "{tmp}/bracket.step", "--mass", "1"],
      "{tmp}/bracket.step: not a text file (not valid UTF-8), so not a body or scenario file (TOML) (.step files are "
      "not read: meshes are .stl, .obj, .ply)"),
+    # a sweep's input named as a sweep file: it said "a body or scenario file (TOML) must be a regular file"
+    (["sweep", "{tmp}", "--out", "{tmp}/out"], "{tmp}: is a directory; a sweep file (TOML) must be a regular file"),
     # a preset that needs parameters is not listed where a name is asked for
     (["view", "{tmp}/fitted", "--out", "{tmp}/x.html"], "(presets: t-handle, iss-t-handle); {tmp}/fitted: no such file"),
 ])

@@ -338,7 +338,7 @@ def load_sweep(path: str | os.PathLike[str]) -> SweepFile:
     ('t_handle_dimensions', 4096, 'sobol', 1024)
     """
     path = Path(path)
-    data = read_toml(path)
+    data = read_toml(path, what="a sweep file (TOML)")  # named as such: it said "a body or scenario file"
     try:
         parsed = sweep_from_table(data, base_dir=path.parent, name=path.stem)
     except ValueError as exc:
