@@ -426,7 +426,7 @@ def test_a_body_symmetric_about_an_axis_keeps_that_axis_and_turns_freely_about_i
     within 1e-9 of the trace gave the other verdict. Such a body is "symmetric": its symmetry axis, taken to the
     world and measured against the orbiting frame written out by hand, stays within its start's offsets while the
     turn about it drifts; the summary's tilt is that angle."""
-    from tumble.analysis.summary import gravity_gradient_summary
+    from tumble.analysis.torque_summary import gravity_gradient_summary
 
     props, pa, ya = body_rpy(*moments)
     kr, kp, ky = gravity_gradient_ratios(props.principal_moments, pitch_axis=pa, yaw_axis=ya)

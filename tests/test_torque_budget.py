@@ -1,4 +1,4 @@
-"""The budgets of a torqued run against its torque (analysis.summary.torque_budget, and the line and
+"""The budgets of a torqued run against its torque (analysis.torque_summary.torque_budget, and the line and
 summary.json of ``tumble simulate``): closed where the samples resolve the torque, open for a torque
 that is not the run's, and flagged where the samples are too coarse to tell."""
 
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import tumble
-from tumble.analysis.summary import BUDGET_TURN, torque_budget
+from tumble.analysis.torque_summary import BUDGET_TURN, torque_budget
 from tumble.cli import main
 from tumble.dynamics.models.torques import as_torque, bind_to_body
 

@@ -240,7 +240,7 @@ def _cmd_simulate(args) -> int:
     summary["method"] = getattr(traj, "method_label", traj.method)  # "dop853 (auto)": the method auto chose
     orbit = gravity_gradient_in(scenario.torque)
     if orbit is not None:  # the gravity gradient, alone (its Jacobi integral the error measure) or in a sum
-        from ..analysis.summary import gravity_gradient_summary
+        from ..analysis.torque_summary import gravity_gradient_summary
 
         pitch_axis, yaw_axis = scenario.orbit_axes or (3, 1)  # the run's own axes (they were taken as 3, 1 always)
         summary["gravity_gradient"] = gravity_gradient_summary(traj, orbit, alone=orbit is scenario.torque,
@@ -248,11 +248,11 @@ def _cmd_simulate(args) -> int:
         summary["gravity_gradient"]["started_in_orbit_frame"] = scenario.orbit_axes is not None
     elif (along := next((t for t in terms_of(as_torque(scenario.torque)) if isinstance(t, OrbitGravityGradient)),
                         None)) is not None:  # an ellipse's or a TLE's: the spin beside its rate, no Jacobi integral
-        from ..analysis.summary import orbit_gradient_summary
+        from ..analysis.torque_summary import orbit_gradient_summary
 
         summary["gravity_gradient"] = {**orbit_gradient_summary(traj, along.orbit), "started_in_orbit_frame": False}
     if scenario.torque is not None:  # the torque the run took, principal frame and bound (check_inputs')
-        from ..analysis.summary import torque_budget
+        from ..analysis.torque_summary import torque_budget
         from ..dynamics.simulate import check_inputs
 
         summary["torque_budget"] = torque_budget(traj, check_inputs(**scenario.arguments()).torque)
@@ -322,8 +322,7 @@ def _cmd_view(args) -> int:
     from ..io.output import check_output_file
     from ..viz.scene import MAX_FRAME_TURN, frame_indices, frame_turn, frames_advice
 
-    frames_given = args.frames is not None
-    args.frames = 150 if args.frames is None else args.frames  # the pages' default
+    frames_given, args.frames = args.frames is not None, 150 if args.frames is None else args.frames  # the pages' default
     if os.path.isdir(args.source):  # a tumble fit or tumble tensor output folder
         return _view_folder(args, frames_given)
     out = check_output_file(args.out, ".html")
@@ -363,8 +362,7 @@ def _view_folder(args, frames_given: bool = False) -> int:
         raise ValueError(f"{args.source}: a folder without {FIT_FILE} or {TENSOR_FILE}; give the output folder of "
                          "tumble fit (tumble fit REC --out DIR) or of tumble tensor (tumble tensor THROW... --out DIR)")
     given = [f"--{k.replace('_', '-')}" for k in ("omega", "frame", "t_end", "samples", "dt", "method")
-             if getattr(args, k) is not None] + (["--frames"] if tensor and frames_given else [])  # a tensor page has
-    # no animation: --frames was ignored without a word (a walkthrough)
+             if getattr(args, k) is not None] + (["--frames"] if tensor and frames_given else [])  # it was ignored
     if given:
         what = "a fit's output folder replays its fitted flights" if fit else "a tensor's output folder shows its throws"
         to = ("a scenario, a body or a fit's folder (a tensor's page has no animation)" if given == ["--frames"]
@@ -413,7 +411,7 @@ def _view_fit(args) -> int:
 
 def _budget_words(name: str, budget: dict) -> str:
     """``L_world`` or the energy against the torque's impulse or work, as a fraction of it, and the
-    quadrature's own error (:func:`~tumble.analysis.summary.torque_budget`)."""
+    quadrature's own error (:func:`~tumble.analysis.torque_summary.torque_budget`)."""
     what = {"momentum": "L_world followed the impulse", "energy": "the energy followed the work"}[name]
     scale = budget["change"]
     if not scale:
