@@ -229,9 +229,11 @@ def test_a_missing_input_file_is_refused_before_the_command_loads_its_machinery(
         (tmp_path / "examples" / "data" / "racquet_tosses.csv").write_text("t,wx,wy,wz\n")
     proc = subprocess.run([sys.executable, "-c", code, *argv], cwd=tmp_path, capture_output=True, text=True,
                           timeout=HANG_S)
-    missing = next(a for a in argv[1:] if "." in a and not (tmp_path / a).exists())
+    k, missing = next((k, a) for k, a in enumerate(argv) if k and "." in a and not (tmp_path / a).exists())
+    option = argv[k - 1] if argv[k - 1] in ("--body", "--device") else None  # an option's file named with it
     assert proc.stdout.strip() == "2 []", proc.stdout + proc.stderr
-    assert proc.stderr.startswith(f"tumble: error: {missing}: no such file") and proc.stderr.count("\n") == 1
+    said = f"{option}: {missing}" if option else missing
+    assert proc.stderr.startswith(f"tumble: error: {said}: no such file") and proc.stderr.count("\n") == 1
 
 
 def test_demo_cli_writes_its_folder(tmp_path, capsys, monkeypatch):

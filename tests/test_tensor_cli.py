@@ -180,7 +180,7 @@ def test_calibrate_output_must_be_a_toml_file(tmp_path, capsys):
     assert code == 2 and "the output is written as one .toml file" in err
     code, _, err = _cli(capsys, "calibrate", str(dev), "--alone", str(tmp_path / "missing.csv"), "--proof", str(thr),
                         "--out", str(tmp_path / "c.toml"))
-    assert code == 2 and err == f"tumble: error: {tmp_path}/missing.csv: no such file\n"
+    assert code == 2 and err == f"tumble: error: --alone: {tmp_path}/missing.csv: no such file\n"  # the option named
     assert not (tmp_path / "c.toml").exists()
 
 

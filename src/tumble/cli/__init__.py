@@ -51,13 +51,13 @@ def _named_files_exist(args) -> None:  # noqa: ANN001
     (~0.05 s). The inputs are the command's ``inputs`` (its parser's defaults); only a name with a
     suffix is checked here, a file's: a preset (``t-handle``) or a folder is the command's to judge.
     The message is the one reading the file gives (:class:`tumble.validation.NoSuchFileError`)."""
-    for dest in getattr(args, "inputs", ()):
-        value = getattr(args, dest, None)
+    for name in getattr(args, "inputs", ()):  # an option's ("--body") named in the message, as its other errors are
+        value = getattr(args, name.lstrip("-"), None)
         for path in value if isinstance(value, list) else [value]:
             if isinstance(path, str) and os.path.splitext(path)[1] and not os.path.lexists(path):
                 from ..validation import NoSuchFileError
 
-                raise NoSuchFileError(f"{path}: no such file")
+                raise NoSuchFileError(f"{name}: {path}: no such file" if name.startswith("--") else f"{path}: no such file")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -284,7 +284,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 even when the model does not describe the data (by default such a fit is written "
                    "with \"adequate\": false, a warning printed and the exit status 1)")
-    p.set_defaults(func=c._cmd_fit, inputs=("data", "body"))
+    p.set_defaults(func=c._cmd_fit, inputs=("data", "--body"))
 
     p = sub.add_parser(
         "calibrate",
@@ -308,7 +308,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--accept-inadequate", action="store_true",
                    help="exit 0 for a calibration that does not check itself out (written with [calibration] "
                    "adequate = false either way)")
-    p.set_defaults(func=c._cmd_calibrate, inputs=("device", "alone", "proof"))
+    p.set_defaults(func=c._cmd_calibrate, inputs=("device", "--alone", "--proof"))
 
     p = sub.add_parser(
         "tensor",
@@ -333,7 +333,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--accept-inadequate", action="store_true",
                    help="use a device whose calibration did not check out ([calibration] adequate = false; by "
                    "default it is refused, exit status 1, nothing written)")
-    p.set_defaults(func=c._cmd_tensor, inputs=("throws", "device"))
+    p.set_defaults(func=c._cmd_tensor, inputs=("throws", "--device"))
 
     p = sub.add_parser(
         "compile",

@@ -168,7 +168,10 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
     if body is not None:
         from ..io.bodyfile import load_body
 
-        load_body(body)  # a bad body file is bad input before anything is computed
+        try:  # a bad body file is bad input before anything is computed, named as --body's (a walkthrough)
+            load_body(body)
+        except (ValueError, FileNotFoundError) as exc:  # the same kind (a missing file stays a FileNotFoundError)
+            raise type(exc)(f"--body: {exc}") from None
     digests = [input_sha256(p) for p in paths]
     first: dict[str, int] = {}
     for k, r in enumerate(recs):  # by content, not name: a copy, a symlink, a zip and its folder
