@@ -293,9 +293,11 @@ def build_parser() -> argparse.ArgumentParser:
         "frame) and its centre of mass, each with its standard uncertainty, from throws of the device alone and "
         "with the proof body of the device file's [proof], and writes them into [device] of CALIBRATED.toml as "
         "rotor_inertia, inertia, center_of_mass and their _std (whole or not at all). A throw is a CSV with t (s), "
-        "wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2) in the sensor frame.",
-        epilog="Example: tumble calibrate examples/devices/flywheel_device.toml --alone a1.csv a2.csv "
-        "--proof p1.csv p2.csv --out calibrated.toml", parents=[debug],
+        "wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2) in the sensor frame. The example below runs on the "
+        "shipped device and throws after tumble examples --copy.",
+        epilog="Example: tumble calibrate examples/devices/flywheel_device.toml "
+        "--alone examples/throws/a1.csv examples/throws/a2.csv --proof examples/throws/p1.csv examples/throws/p2.csv "
+        "--out calibrated.toml", parents=[debug],
     )
     p.add_argument("device", metavar="DEVICE.toml", help="the device file: [device] mass, rotor_axis; [proof] mass, inertia")
     p.add_argument("--alone", nargs="+", required=True, metavar="THROW", help="throws of the device alone (CSV)")
@@ -319,8 +321,10 @@ def build_parser() -> argparse.ArgumentParser:
         "moments with standard uncertainties, principal axes, centre of mass; every throw; adequate), "
         "DIR/tensor.png (the figure), DIR/throws.npz (each throw's fitted samples, the model's rates and the rotor's "
         "speed, for tumble view DIR), DIR/inertial.urdf and DIR/inertial.xml (the object as a URDF and a MuJoCo MJCF "
-        "<inertial> element, sensor frame, its uncertainties in a comment), whole or not at all.",
-        epilog="Example: tumble tensor o1.csv o2.csv o3.csv --device calibrated.toml --mass 0.482 --out bracket",
+        "<inertial> element, sensor frame, its uncertainties in a comment), whole or not at all. The example below "
+        "runs on the shipped throws of a 0.482 kg box after tumble examples --copy and tumble calibrate's example.",
+        epilog="Example: tumble tensor examples/throws/o1.csv examples/throws/o2.csv "
+        "examples/throws/o3.csv --device calibrated.toml --mass 0.482 --out bracket",
         parents=[debug],
     )
     p.add_argument("throws", nargs="+", metavar="THROW", help="throws of the object with the device (CSV)")
