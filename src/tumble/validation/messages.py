@@ -42,9 +42,13 @@ def nearest(word: str, choices: Iterable[str], cutoff: float = 0.6) -> str | Non
     >>> from tumble.validation import nearest
     >>> nearest("perido", ["period", "gain", "form"]), nearest("bogus", ["period", "gain"])
     ('period', None)
+    >>> nearest("--framse", ["--frame", "--frames"])   # two letters swapped: the same letters first
+    '--frames'
     """
-    found = difflib.get_close_matches(word, list(choices), n=1, cutoff=cutoff)
-    return found[0] if found else None
+    found = difflib.get_close_matches(word, list(choices), n=3, cutoff=cutoff)
+    # a typist's swap of two letters keeps them all: "--framse" is "--frames", though difflib ranks "--frame" nearer
+    swapped = [c for c in found if sorted(c) == sorted(word)]
+    return (swapped or found or [None])[0]
 
 
 def unknown_name(where: str, name: object, allowed: Iterable[str], *, what: str = "key", after: str = "",
