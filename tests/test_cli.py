@@ -373,3 +373,15 @@ def test_a_walkthroughs_command_line_slips_exit_2_in_one_line(tmp_path, capsys, 
     assert code == 2 and err.count("\n") == 1, err
     assert said.replace("{tmp}", str(tmp_path)) in err, err
     assert sorted(p.name for p in tmp_path.iterdir()) == before and (tmp_path / "device.toml").read_text() == device
+
+
+@pytest.mark.parametrize(("written", "said"), [("1,5", "'1,5' is not a number: write a decimal point, 1.5"),
+                                               ("abc", "'abc' is not a number (digits, a decimal point, an exponent")])
+def test_a_number_that_is_not_one_says_what_a_number_is(tmp_path, capsys, written, said):
+    """argparse said only "invalid number value: '1,5'" (a walkthrough of every --help, 2026-12-03): a decimal comma
+    is answered with its decimal point, other text with what a number is; one line, exit 2, nothing written."""
+    with pytest.raises(SystemExit) as exited:
+        main(["simulate", "t-handle", "--omega", "0", "1", "0", "--t-end", written, "--out", str(tmp_path / "run")])
+    err = capsys.readouterr().err
+    assert exited.value.code == 2 and err.count("\n") == 1 and f"argument --t-end: {said}" in err, err
+    assert not (tmp_path / "run").exists()

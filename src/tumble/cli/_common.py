@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 import sys
 
@@ -39,10 +40,41 @@ class Written(float):
     __str__ = float.__repr__
 
 
+class NotANumber(argparse.ArgumentTypeError, ValueError):
+    """Text given for a number that is none: argparse shows its message for an option, and a
+    command that reads a number itself (``--mass``) takes it as the bad input a ValueError is."""
+
+
+def _is_float(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def number(text: str) -> float:
     """argparse's type of a numeric option: the float of ``text`` that shows itself as written
-    (:class:`Written`); a ValueError (argparse: "invalid number value") for text that is no number."""
-    return Written(text.strip())
+    (:class:`Written`); for text that is no number a :class:`NotANumber` saying what a number is, and where a decimal comma was written, the decimal point (argparse's own was only
+    "invalid number value: '1,5'": a walkthrough).
+
+    Examples
+    --------
+    >>> from tumble.cli._common import number
+    >>> number("1.5"), number(" 2e3 ")
+    (1.5, 2e3)
+    >>> number("1,5")
+    Traceback (most recent call last):
+    ...
+    tumble.cli._common.NotANumber: '1,5' is not a number: write a decimal point, 1.5
+    """
+    try:
+        return Written(text.strip())
+    except ValueError:
+        comma = text.strip().replace(",", ".", 1) if text.count(",") == 1 else ""
+        if _is_float(comma):  # a decimal comma
+            raise NotANumber(f"{text!r} is not a number: write a decimal point, {comma}") from None
+        raise NotANumber(f"{text!r} is not a number (digits, a decimal point, an exponent: 2.5, 1e-3)") from None
 
 
 def _working(message: str):
