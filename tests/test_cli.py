@@ -340,8 +340,7 @@ def test_the_printed_drift_names_the_energy_balance_it_measures(tmp_path, capsys
 
 @pytest.mark.parametrize(("argv", "said"), [
     # a file on the way of --copy's folder: it was "tumble: failed: afile: File exists", exit 1
-    (["examples", "--copy", "{tmp}/afile/sub"], "{tmp}/afile/sub: {tmp}/afile is a file, not a folder; give a new or "
-                                                  "existing folder"),
+    (["examples", "--copy", "{tmp}/afile/sub"], "--copy {tmp}/afile/sub: {tmp}/afile is a file, not a folder"),
     # the calibrated device written over the device file: it ran, exit 0, the file's comments lost
     (["calibrate", "{tmp}/device.toml", "--alone", str(EXAMPLES / "throws" / "a1.csv"), "--proof",
       str(EXAMPLES / "throws" / "p1.csv"), "--out", "{tmp}/device.toml"],

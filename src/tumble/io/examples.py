@@ -24,6 +24,7 @@ from pathlib import Path
 
 from ..validation import NoSuchFileError, read_input_file
 from .atomic import atomic_folder
+from .output import check_parent
 
 __all__ = ["Example", "copy_examples", "example_hint", "list_examples"]
 
@@ -225,9 +226,7 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     """
     dest = Path(dest)
     files = list(_walk(_root()))
-    on_the_way = next((parent for parent in dest.parents if parent.exists() and not parent.is_dir()), None)
-    if on_the_way is not None:  # a file on the way: it was "File exists", exit 1 (a walkthrough)
-        raise ValueError(f"{dest}: {on_the_way} is a file, not a folder; give a new or existing folder")
+    check_parent(dest, "--copy")  # a file on the way: it was "File exists", exit 1 (a walkthrough)
     if dest.exists() or dest.is_symlink():
         if not dest.is_dir():
             raise ValueError(f"{dest}: exists and is not a folder; give a new or existing folder")

@@ -36,27 +36,43 @@ from pathlib import Path
 from .atomic import _umask, staging_folder
 from .lock import locked_folder
 
-__all__ = ["FIGURE_DPI", "check_output_dir", "check_output_file", "output_dir"]
+__all__ = ["FIGURE_DPI", "check_output_dir", "check_output_file", "check_parent", "output_dir"]
 
 #: Resolution of the raster figures the commands write, dots per inch.
 FIGURE_DPI = 110
 
 
-def _refuse(path: Path, why: str) -> ValueError:
-    return ValueError(f"--out {path}: {why}")
+def _refuse(path: Path, why: str, option: str = "--out") -> ValueError:
+    return ValueError(f"{option} {path}: {why}")
 
 
-def _check_parent(path: Path) -> None:
-    """The nearest existing ancestor must be a writable folder (a file on the way is refused)."""
+def check_parent(path: Path, option: str = "--out") -> None:
+    """The nearest existing ancestor of ``path`` must be a writable folder: a file on the way, a
+    folder that cannot be written or a broken link is refused, the message naming ``option``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from tumble.io.output import check_parent
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     (Path(folder) / "afile").write_text("x")
+    ...     try:
+    ...         check_parent(Path(folder) / "afile" / "sub", "--copy")
+    ...     except ValueError as exc:
+    ...         print(str(exc).replace(folder, "F"))
+    1
+    --copy F/afile/sub: F/afile is a file, not a folder
+    """
     for parent in path.parents:
         if parent.exists():
             if not parent.is_dir():
-                raise _refuse(path, f"{parent} is a file, not a folder")
+                raise _refuse(path, f"{parent} is a file, not a folder", option)
             if not os.access(parent, os.W_OK | os.X_OK):
-                raise _refuse(path, f"cannot write in {parent} (permission denied)")
+                raise _refuse(path, f"cannot write in {parent} (permission denied)", option)
             return
         if parent.is_symlink():  # a dangling link on the way
-            raise _refuse(path, f"{parent} is a broken symbolic link")
+            raise _refuse(path, f"{parent} is a broken symbolic link", option)
 
 
 def check_output_dir(path: str | os.PathLike[str]) -> Path:
@@ -87,7 +103,7 @@ def check_output_dir(path: str | os.PathLike[str]) -> Path:
         if path.is_symlink() or not path.is_dir():
             raise _refuse(path, "exists and is not a folder" if not path.is_dir() else "is a symbolic link; give the folder itself")
         _check_plain(path)
-    _check_parent(path)
+    check_parent(path)
     return path
 
 
@@ -123,7 +139,7 @@ def check_output_file(path: str | os.PathLike[str], suffix: str | tuple[str, ...
         raise _refuse(path, f"the output is written as one {names} file; give a name ending in {names}")
     if path.is_dir():
         raise _refuse(path, "is a folder; give a file name")
-    _check_parent(path)
+    check_parent(path)
     return path
 
 
