@@ -81,7 +81,11 @@ def test_bad_input_is_one_line_and_exit_2(capsys, argv):
     # 2026-12-02); an unambiguous start of an option is argparse's, not misspelt
     (["fit", "rec.csv", "--otu", "x"], "tumble fit: error: unrecognized arguments: --otu (--otu: did you mean --out?); "
      "and the following arguments are required: --out"),
-    (["simulate", "seed_flip.toml", "--t-e", "5"], "tumble simulate: error: the following arguments are required: --out"),
+    # an option is taken whole: argparse read "--t-e" as --t-end (and "--mas" as --mass) without a word
+    # (a walkthrough, 2026-12-03); a new option starting so would have changed what it meant
+    (["simulate", "seed_flip.toml", "--t-e", "5"], "tumble simulate: error: unrecognized arguments: --t-e "
+     "(--t-e: did you mean --t-end?); and the following arguments are required: --out"),
+    (["inertia", "t-handle", "--jso"], "tumble inertia: error: unrecognized arguments: --jso (--jso: did you mean --json?)"),
 ])
 def test_an_unknown_option_is_answered_by_the_commands_nearest(capsys, argv, said):
     with pytest.raises(SystemExit) as info:

@@ -14,7 +14,13 @@ from ._common import EXIT_USAGE, number
 class _Parser(argparse.ArgumentParser):
     """argparse with tumble's one-line error format and exit status 2, and an option or a command it
     does not know answered by the nearest (``--t_end``: did you mean ``--t-end``?; ``simulat``:
-    did you mean ``simulate``?)."""
+    did you mean ``simulate``?). Options are taken whole, never abbreviated (argparse's
+    ``allow_abbrev``): ``--mas`` read silently as ``--mass`` would stop working, or start meaning
+    another option, the day an option beginning ``--mas`` is added; it is answered by the nearest."""
+
+    def __init__(self, *args, **kwargs) -> None:  # noqa: ANN002, ANN003 - argparse's signature
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     #: Set while :meth:`parse_args` runs: a missing required option is then raised as
     #: :class:`_MissingRequired`, so that a misspelt option (``--otu`` for ``--out``) is named first.
@@ -69,10 +75,10 @@ class _MissingRequired(Exception):
 
 
 def _known(word: str, parser: argparse.ArgumentParser) -> bool:
-    """Whether the long option ``word`` (``--name`` or ``--name=value``) is one ``parser`` takes, whole or as the
-    unambiguous start that argparse accepts."""
+    """Whether the long option ``word`` (``--name`` or ``--name=value``) is one ``parser`` takes (whole: no
+    abbreviation)."""
     name = word.split("=", 1)[0]
-    return any(o.startswith(name) for action in parser._actions for o in action.option_strings)
+    return any(o == name for action in parser._actions for o in action.option_strings)
 
 
 def unrecognized(extras: list[str], parser: argparse.ArgumentParser) -> str:
