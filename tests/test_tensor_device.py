@@ -257,6 +257,21 @@ def test_never_a_non_physical_answer():
             assert row.object is None or not_physical(row.object) == "", name
 
 
+def test_a_stuck_gyroscope_is_named_not_fitted():
+    """A gyroscope that repeats one reading through a flight in which the rotor spins up (which must
+    turn the body) is named: it was fitted, for seconds, into "not a body's tensor" (moments -1.6e12)."""
+    stuck = [_with(throw(s), omega=np.broadcast_to(throw(s).omega[0], throw(s).omega.shape).copy()) for s in (1, 2)]
+    with pytest.raises(NoThrowError) as raised:
+        fit_tensor(stuck, calibrated_device(), OBJECT.mass)
+    said = str(raised.value)
+    assert said.count("the gyroscope reads the same") == 2 and "stuck gyroscope" in said, said
+    assert "not a body's tensor" not in said
+    # one stuck log among good ones costs only itself
+    fit = fit_tensor([stuck[0], throw(2), throw(3)], calibrated_device(), OBJECT.mass)
+    assert [row.status for row in fit.throws] == ["skipped", "used", "used"]
+    assert "reads the same" in fit.throws[0].reason and not_physical(fit.object) == ""
+
+
 def test_a_flipped_rotor_axis_gives_a_reason_not_a_linear_algebra_error():
     flipped = replace(calibrated_device(), rotor_axis=-np.asarray(ROTOR_AXIS, float))
     try:

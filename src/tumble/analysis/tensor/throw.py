@@ -37,7 +37,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
-from ..._html import headline_html, headline_repr
+from ..._html import fmt, headline_html, headline_repr
 from ...typing import FloatArray
 from ..fit.adequacy import Adequacy, judge
 from ..fit.single import saturation_mask
@@ -293,6 +293,15 @@ def fit_flown(throw: Throw, rotor_axis: FloatArray, rotor_inertia: float, *, sat
     if win.reason:
         return FlownFit(win, win.reason)
     t_all = throw.t
+    flown = throw.omega[win.first:win.stop]
+    if flown.shape[0] > 1 and np.all(flown == flown[0]):
+        # the rotor's spin-up in the flight turns the body (its momentum is taken from the body's), so a gyroscope
+        # whose every sample is the same is not reading: a stuck sensor, or a log of one repeated value. Fitted, it
+        # gave "not a body's tensor" after seconds of Levenberg-Marquardt's iterations (moments -1.6e12 kg m^2)
+        reading = ", ".join(fmt(float(v)) for v in flown[0])
+        return FlownFit(win, f"the gyroscope reads the same [{reading}] rad/s on all {flown.shape[0]} "
+                             "samples of the flight, while the rotor spins up in it: a stuck gyroscope, or a log "
+                             "that repeats one reading")
     gaps = np.flatnonzero(np.diff(t_all[win.first:win.stop]) > MAX_GAP)
     if gaps.size:
         k = win.first + int(gaps[0])
