@@ -126,8 +126,46 @@ def test_bad_input():
     with pytest.raises(ValueError, match=r"^dt = -0.1 must be a positive finite number \(s\)$"):
         MEKF.start(Rotation.identity(), attitude_sigma=0.1, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0).propagate(
             [0.0, 0.0, 0.0], -0.1)
-    with pytest.raises(ValueError, match=r"sigma = 0.0 must be positive finite numbers \(rad\)"):
+    with pytest.raises(ValueError, match=r"sigma = 0.0 must be positive finite numbers, at most pi \(rad\): an angle"):
         MEKF.start(Rotation.identity(), attitude_sigma=0.1, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0).update_vector(
             [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 0.0)
     with pytest.raises(ValueError, match=r"gyro_noise = -1.0 must be"):
         MEKF.start(Rotation.identity(), attitude_sigma=0.1, bias_sigma=1e-3, gyro_noise=-1.0, bias_walk=0.0)
+
+
+def test_slips_a_gnc_walkthrough_made_are_refused_or_warned_of():
+    """A walkthrough of docs/estimation.md (2026-12-03): a scalar-first star-tracker quaternion was taken as
+    a half turn (NIS 98,696, the estimate jumped ~115 deg), a negative or lopsided covariance gave NaN
+    sigmas, a zero quaternion NaN, three per-axis sigmas made a batch of three filters, sigma = 10 rad ran."""
+    from tumble.validation.rotations import ScalarFirstWarning
+
+    f = MEKF.start(Rotation.identity(), attitude_sigma=1e-3, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0)
+    with pytest.warns(ScalarFirstWarning, match=r"^measured = \[1, 0, 0, 0\] is a half turn about x"):
+        f.update_attitude([1.0, 0.0, 0.0, 0.0], 1e-10 * np.eye(3))
+    with pytest.warns(ScalarFirstWarning, match=r"^attitude = \[1, 0, 0, 0\]") as seen:
+        MEKF.start([1.0, 0.0, 0.0, 0.0], attitude_sigma=1e-3, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0)
+    assert len(seen) == 1  # once, not again as the state's quaternion
+    with pytest.raises(ValueError, match=r"^covariance = \[\[-1e-06, .* must be a symmetric positive-semidefinite 3 x 3 "
+                                         r"matrix \(rad\^2\): a negative eigenvalue"):
+        f.update_attitude(Rotation.identity(), -1e-6 * np.eye(3))
+    lopsided = np.diag([1e-6, 1e-6, 1e-6])
+    lopsided[0, 1] = 1e-7
+    with pytest.raises(ValueError, match=r"positive-semidefinite 3 x 3 matrix \(rad\^2\): not symmetric$"):
+        f.update_attitude(Rotation.identity(), lopsided)
+    with pytest.raises(ValueError, match=r"^measured = \[0.0, 0.0, 0.0, 0.0\] must be a rotation's quaternion .*not zero$"):
+        f.update_attitude([0.0, 0.0, 0.0, 0.0], 1e-6 * np.eye(3))
+    with pytest.raises(ValueError, match=r"^quaternion\[1\] = \[0.0, 0.0, 0.0, 0.0\] must be"):
+        MEKF(np.array([[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 0.0]]), np.zeros((2, 3)), np.eye(6), 0.0, 0.0)
+    with pytest.raises(ValueError, match=r"^sigma = \[0.001, 0.001, 0.001\] must be one angle \(rad\)"):
+        f.update_vector([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [1e-3] * 3)
+    with pytest.raises(ValueError, match=r"^sigma = 10.0 must be positive finite numbers, at most pi"):
+        f.update_vector([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], 10.0)
+    # what stays allowed: a bias known exactly (its variance 0), and one sigma per filter of a batch
+    known = MEKF(Rotation.identity().as_quat(), np.zeros(3), np.diag([1e-4] * 3 + [0.0] * 3), 0.0, 0.0)
+    assert known.sigma[3:].tolist() == [0.0, 0.0, 0.0]
+    batch = MEKF.start(Rotation.identity(), attitude_sigma=1e-2, bias_sigma=1e-3, gyro_noise=0.0, bias_walk=0.0)
+    g, nis = MEKF(np.tile(batch.quaternion, (3, 1)), np.zeros((3, 3)), np.tile(batch.covariance, (3, 1, 1)), 0.0,
+                  0.0).update_vector([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [1e-3, 2e-3, 4e-3])
+    # each filter of the three took its own sigma: the variance across the direction is s^2 P / (s^2 + P) of its own
+    P = 1e-4
+    assert np.allclose(g.sigma[:, 0] ** 2, [s * s * P / (s * s + P) for s in (1e-3, 2e-3, 4e-3)], rtol=1e-9)

@@ -16,7 +16,7 @@ from __future__ import annotations
 from .callables import check_callable, check_torque_function, is_vector
 from .files import NoSuchFileError, json_object, read_input_file
 from .messages import beyond, nearest, short_repr, unknown_name
-from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_motion, check_rotation
+from .rotations import MATRIX_ORTHO_TOL, QUAT_NORM_TOL, check_covariance, check_motion, check_quaternions, check_rotation
 from .values import (
     AXES_ALLOWED,
     AXIS_ROLES,
@@ -58,6 +58,7 @@ __all__ = [
     "check_at_most",
     "check_bool",
     "check_callable",
+    "check_covariance",
     "check_direction",
     "check_increasing",
     "check_moments",
@@ -65,6 +66,7 @@ __all__ = [
     "check_noise",
     "check_number",
     "check_positive",
+    "check_quaternions",
     "check_rotation",
     "check_torque_function",
     "check_vector",

@@ -14,8 +14,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..typing import Vector3
-from .values import check_vector
+from ..typing import ArrayLike, FloatArray, Vector3
+from .messages import short_repr
+from .values import check_vector, check_vectors
 
 if TYPE_CHECKING:
     from scipy.spatial.transform import Rotation
@@ -24,7 +25,9 @@ __all__ = [
     "MATRIX_ORTHO_TOL",
     "QUAT_NORM_TOL",
     "ScalarFirstWarning",
+    "check_covariance",
     "check_motion",
+    "check_quaternions",
     "check_rotation",
 ]
 
@@ -154,3 +157,71 @@ def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vecto
 
     R = Rotation.from_quat(check_rotation("rotation", rotation))
     return R, np.array(check_vector("translation", translation, "m"))
+
+
+def check_quaternions(field: str, value: ArrayLike) -> FloatArray:
+    """Quaternions, scalar last, of shape ``(..., 4)``, normalised: finite, none of them zero; a
+    ``[+-1, 0, 0, 0]`` among them warned of (:class:`ScalarFirstWarning`, as :func:`check_rotation`
+    does for one). The batched form, for the filters' states and measurements.
+
+    Examples
+    --------
+    >>> from tumble.validation import check_quaternions
+    >>> check_quaternions("attitude", [[0.0, 0.0, 0.0, 2.0], [0.0, 0.0, 1.0, 1.0]]).round(4).tolist()
+    [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.7071, 0.7071]]
+    >>> check_quaternions("attitude", [0.0, 0.0, 0.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: attitude = [0.0, 0.0, 0.0, 0.0] must be a rotation's quaternion [x, y, z, w], scalar last: not zero
+    """
+    q = check_vectors(field, value, "scalar last", size=4)
+    norm = np.linalg.norm(q, axis=-1, keepdims=True)
+    if np.any(norm == 0.0):
+        at = np.argwhere(norm[..., 0] == 0.0)[0] if q.ndim > 1 else ()
+        where = f"{field}[{', '.join(str(int(i)) for i in at)}]" if q.ndim > 1 else field
+        raise ValueError(f"{where} = {short_repr(q[tuple(at)].tolist())} must be a rotation's quaternion [x, y, z, w], scalar last: "
+                         "not zero")
+    first = np.all(q[..., 1:] == 0.0, axis=-1) & (np.abs(q[..., 0]) == 1.0)
+    if np.any(first):
+        _scalar_first(field, *q[tuple(np.argwhere(first)[0])] if q.ndim > 1 else q)
+    return np.asarray(q / norm, float)
+
+
+def check_covariance(field: str, value: ArrayLike, size: int, unit: str) -> FloatArray:
+    """Covariances of shape ``(..., size, size)``: finite, symmetric (to 1e-9 of the largest entry)
+    and positive semidefinite (no eigenvalue below -1e-12 of the largest entry: a zero variance is
+    a quantity known exactly), as floats.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.validation import check_covariance
+    >>> check_covariance("covariance", np.eye(3) * 1e-6, 3, "rad^2").shape
+    (3, 3)
+    >>> check_covariance("covariance", -np.eye(3) * 1e-6, 3, "rad^2")
+    Traceback (most recent call last):
+    ...
+    ValueError: covariance = [[-1e-06, -0.0, -0.0], [-0.0, -1e-06, -0.0], [-0.0, -0.0, -1e-06]] must be a symmetric positive-semidefinite 3 x 3 matrix (rad^2): a negative eigenvalue (a variance is the square of a standard deviation)
+    """
+    try:
+        R = np.asarray(value, float)
+    except (TypeError, ValueError):
+        R = np.full((1,), np.nan)
+    allowed = f"must be a symmetric positive-semidefinite {size} x {size} matrix ({unit})"
+    if R.shape[-2:] != (size, size) or not np.all(np.isfinite(R)):
+        raise ValueError(f"{field} = {short_repr(value)} {allowed}: finite numbers of shape (..., {size}, {size})")
+    scale = np.max(np.abs(R), axis=(-2, -1), keepdims=True)
+    bad = ~np.all(np.abs(R - np.swapaxes(R, -1, -2)) <= 1e-9 * scale, axis=(-2, -1))
+    why = "not symmetric"
+    if not np.any(bad):
+        try:
+            np.linalg.cholesky(R)
+        except np.linalg.LinAlgError:  # singular (a state known exactly: a zero variance) or not positive
+            lowest = np.linalg.eigvalsh(R)[..., 0]
+            bad = lowest < -1e-12 * scale[..., 0, 0]
+            why = "a negative eigenvalue (a variance is the square of a standard deviation)"
+    if np.any(bad):
+        at = tuple(int(i) for i in np.argwhere(np.atleast_1d(bad))[0]) if R.ndim > 2 else ()
+        where = f"{field}[{', '.join(map(str, at))}]" if R.ndim > 2 else field
+        raise ValueError(f"{where} = {short_repr(R[at].tolist())} {allowed}: {why}")
+    return R

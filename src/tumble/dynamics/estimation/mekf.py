@@ -72,6 +72,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import math
+import warnings
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -79,7 +80,8 @@ from scipy.spatial.transform import Rotation
 from ..._html import field_repr
 from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
-from ...validation import check_positive, check_vectors, refuse_first, short_repr
+from ...validation import check_covariance, check_positive, check_quaternions, check_vectors, refuse_first, short_repr
+from ...validation.rotations import ScalarFirstWarning
 
 __all__ = ["MEKF"]
 
@@ -133,13 +135,10 @@ class MEKF:
     def __post_init__(self) -> None:
         check_positive("gyro_noise", self.gyro_noise, "rad/s^0.5", allow_zero=True)
         check_positive("bias_walk", self.bias_walk, "rad/s^1.5", allow_zero=True)
-        q = check_vectors("quaternion", self.quaternion, "scalar last", size=4)
-        object.__setattr__(self, "quaternion", q / np.linalg.norm(q, axis=-1, keepdims=True))
+        # a zero quaternion (NaN) and a covariance not positive definite were taken (a walkthrough, 2026-12-03)
+        object.__setattr__(self, "quaternion", check_quaternions("quaternion", self.quaternion))
         object.__setattr__(self, "bias", check_vectors("bias", self.bias, "rad/s"))
-        P = np.asarray(self.covariance, float)
-        if P.shape[-2:] != (6, 6) or not np.all(np.isfinite(P)):
-            raise ValueError(f"covariance must be finite numbers of shape (..., 6, 6); got shape {P.shape}")
-        object.__setattr__(self, "covariance", P)
+        object.__setattr__(self, "covariance", check_covariance("covariance", self.covariance, 6, "rad^2, (rad/s)^2"))
 
     @classmethod
     def start(cls, attitude: Rotation | ArrayLike, *, attitude_sigma: float, bias_sigma: float, gyro_noise: float,
@@ -168,12 +167,14 @@ class MEKF:
         >>> f.quaternion.shape, f.covariance.shape
         ((5, 4), (5, 6, 6))
         """
-        q = attitude.as_quat() if isinstance(attitude, Rotation) else np.asarray(attitude, float)
+        q = attitude.as_quat() if isinstance(attitude, Rotation) else check_quaternions("attitude", attitude)
         s_att = check_positive("attitude_sigma", attitude_sigma, "rad", at_most=math.pi)
         s_b = check_positive("bias_sigma", bias_sigma, "rad/s")
         P = np.diag([s_att**2] * 3 + [s_b**2] * 3) * np.ones(q.shape[:-1] + (1, 1))
         b = np.broadcast_to(np.asarray(bias, float), q.shape[:-1] + (3,)).copy()
-        return cls(q, b, P, gyro_noise, bias_walk)
+        with warnings.catch_warnings():  # a scalar-first guess is warned of once, as attitude
+            warnings.simplefilter("ignore", ScalarFirstWarning)
+            return cls(q, b, P, gyro_noise, bias_walk)
 
     @property
     def attitude(self) -> Rotation:
@@ -303,8 +304,12 @@ class MEKF:
         if not (bm.shape[-1:] == r.shape[-1:] == (3,) and np.isfinite(bm).all() and np.isfinite(r).all()):
             check_vectors("body", body, "direction")   # the one-line message naming the argument
             check_vectors("reference", reference, "direction")
-        if not np.all(np.isfinite(s) & (s > 0.0)):
-            raise ValueError(f"sigma = {s.tolist()!r} must be positive finite numbers (rad)")
+        if not np.all(np.isfinite(s) & (s > 0.0) & (s <= math.pi)):
+            raise ValueError(f"sigma = {s.tolist()!r} must be positive finite numbers, at most pi (rad): an angle")
+        if s.ndim > 0 and bm.ndim == r.ndim == 1 and self.quaternion.ndim == 1 and valid is None:
+            # one filter, one direction: three sigmas made a batch of three filters (a walkthrough, 2026-12-03)
+            raise ValueError(f"sigma = {s.tolist()!r} must be one angle (rad), the noise across the direction, for one "
+                             "filter and one direction: not one per axis (a batch takes one per filter)")
         for name, vec in (("body", bm), ("reference", r)):
             refuse_first(name, vec, np.sum(vec * vec, axis=-1) == 0.0, "must not be zero: a direction is needed")
         shape = self.quaternion.shape[:-1]
@@ -334,10 +339,8 @@ class MEKF:
         >>> np.round(g.attitude.as_rotvec() * 1e3, 6).tolist(), round(float(g.sigma[0] ** 2 * 1e6), 9), round(float(nis), 6)
         ([1.0, 0.0, 0.0], 0.5, 2.0)
         """
-        qm = measured.as_quat() if isinstance(measured, Rotation) else np.asarray(measured, float)
-        R = np.asarray(covariance, float)
-        if R.shape[-2:] != (3, 3) or not np.all(np.isfinite(R)):
-            raise ValueError(f"covariance must be finite numbers of shape (..., 3, 3) (rad^2); got shape {R.shape}")
+        qm = measured.as_quat() if isinstance(measured, Rotation) else check_quaternions("measured", measured)
+        R = check_covariance("covariance", covariance, 3, "rad^2")
         shape = np.broadcast_shapes(self.quaternion.shape[:-1], qm.shape[:-1], R.shape[:-2],
                                     np.shape(np.asarray(valid, bool)) if valid is not None else ())
         n = int(np.prod(shape, dtype=int))
