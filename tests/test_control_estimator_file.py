@@ -71,6 +71,11 @@ def test_simulate_writes_the_knowledge(tmp_path, capsys):
     ("seed = 1", "seed = 1\nstar_tracker = { frame = [0, 0, 0, 0] }", r"sensors.star_tracker: frame = \[0, 0, 0, 0\]"),
     ('sun = { kind = "coarse", noise = 2e-3, epoch = "2026-03-20T14:46:00" }', "",
      r"estimator: the filter needs \[sensors.star_tracker\], or \[sensors.sun\] and an \[orbit\]"),
+    # the [sensors] attitude reading is not the filter's star tracker: written so, it ran with no tracker at all
+    # (sensors_used.star_tracker 0; a GNC walkthrough, 2026-12-03)
+    ('attitude = "none"', 'attitude = "star_tracker"\nattitude_noise = 1e-5',
+     r"sensors: attitude = 'star_tracker' is not read with an \[estimator\]: the filter takes a star tracker from "
+     r"\[sensors.star_tracker\] \(cross, roll, period\); write attitude = \"none\""),
 ])
 def test_bad_input_one_line(tmp_path, capsys, old, new, message):
     text = EXAMPLE.read_text()
@@ -133,3 +138,14 @@ def test_attitude_sigma_raises_the_starts_uncertainty(tmp_path):
         first[name] = c.knowledge().sigma[0, :3]
     assert load_scenario(path).controller().attitude_sigma == 0.3 and load_scenario(EXAMPLE).controller().attitude_sigma is None
     assert np.all(first["as TRIAD's"] < 0.01) and np.all(first["raised"] > 3 * first["as TRIAD's"]), first
+
+
+def test_estimated_refuses_the_attitude_reading_it_would_not_read():
+    """In Python as in the file: ``Sensors(attitude="star_tracker")`` under :class:`Estimated` fed no
+    filter; the MRP law's complaint then blamed ``sensors.attitude = 'none'``, which it was not."""
+    from tumble.dynamics.control.bdot import BDot
+    from tumble.dynamics.models.sensors import Sensors
+
+    with pytest.raises(ValueError, match=r"^sensors.attitude = 'star_tracker' is not read by Estimated: .*StarTracker"):
+        Estimated(BDot(gain=1e-3, period=0.5), Sensors(gyro_noise=1e-4, attitude="star_tracker", attitude_noise=1e-5))
+    Estimated(BDot(gain=1e-3, period=0.5), Sensors(attitude="none"))  # the filter's own sensors: fine

@@ -184,9 +184,13 @@ def sensors_from_table(table: dict[str, Any], *, orbit: Orbit | None, field: Fie
                                            for k in ("gyro_bias", "magnetometer_bias")}), heads
 
 
-def estimator_from_table(table: dict[str, Any], *, heads: dict[str, Any], field: Field | None) -> dict[str, Any]:
+def estimator_from_table(table: dict[str, Any], *, heads: dict[str, Any], field: Field | None,
+                         attitude: object = None) -> dict[str, Any]:
     """The keyword arguments of :class:`~tumble.dynamics.control.estimated.Estimated` (besides the
-    controller, the sensors and the field) of an ``[estimator]`` table, checked.
+    controller, the sensors and the field) of an ``[estimator]`` table, checked; ``attitude``, the
+    ``[sensors]`` table's ``attitude`` as written (None where left out): the filter does not read
+    it, so any other than ``"none"`` is refused (a walkthrough's ``attitude = "star_tracker"`` ran
+    with no tracker at all, its readings counted 0).
 
     Examples
     --------
@@ -197,7 +201,14 @@ def estimator_from_table(table: dict[str, Any], *, heads: dict[str, Any], field:
     Traceback (most recent call last):
     ...
     ValueError: estimator: kind = 'ukf' is unknown; allowed: mekf
+    >>> estimator_from_table({"kind": "mekf"}, heads={"star_tracker": object()}, field=None, attitude="star_tracker")
+    Traceback (most recent call last):
+    ...
+    ValueError: sensors: attitude = 'star_tracker' is not read with an [estimator]: the filter takes a star tracker from [sensors.star_tracker] (cross, roll, period); write attitude = "none"
     """
+    if attitude is not None and attitude != "none":
+        raise ValueError(f"sensors: attitude = {attitude!r} is not read with an [estimator]: the filter takes a star "
+                         'tracker from [sensors.star_tracker] (cross, roll, period); write attitude = "none"')
     where = "estimator"
     args = dict(ESTIMATOR_TABLE.check(where, table))
     if "kind" not in args:

@@ -464,7 +464,8 @@ def control_scenario_from_table(data: dict[str, Any], body: Body, *, name: str =
     if mtq is not None and field is None:
         raise ValueError('actuators.magnetorquers need a field: a circular [orbit] (its dipole) or field = "igrf"')
     sensors, heads = sensors_from_table(t["sensors"], orbit=orbit, field=field, principal_to_design=principal_to_design)
-    estimator = estimator_from_table(t["estimator"], heads=heads, field=field) if "estimator" in data else None
+    estimator = (estimator_from_table(t["estimator"], heads=heads, field=field, attitude=t["sensors"].get("attitude"))
+                 if "estimator" in data else None)
     spec = parse_control(control, body=body, orbit=orbit, field=field, magnetorquers=mtq, wheels=wheels,
                          # with an estimator the law has an attitude whatever sensors.attitude says
                          sensors=sensors if estimator is None else dataclasses.replace(sensors, attitude="ideal"),

@@ -252,10 +252,10 @@ class MRPFeedback:
         >>> c(0.0, Measurement(0.0, np.zeros(3), None, None, np.zeros(3)))
         Traceback (most recent call last):
         ...
-        ValueError: MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none
+        ValueError: MRP feedback needs an attitude reading and got none (sensors.attitude = 'none' gives none; an estimator none before its filter starts)
         """
         if measurement.attitude is None:
-            raise ValueError("MRP feedback needs an attitude sensor; sensors.attitude = 'none' gives none")
+            raise ValueError("MRP feedback needs an attitude reading and got none (sensors.attitude = 'none' gives none; an estimator none before its filter starts)")
         w = measurement.omega
         z = self._integral if self.Ki > 0.0 else np.zeros(3)  # z of the earlier steps
         # I_RW w + G h_s = I w + h: the total momentum, body frame, for the feed-forward

@@ -239,6 +239,9 @@ class Estimated:
     def __post_init__(self) -> None:
         if not isinstance(self.sensors, Sensors):
             raise ValueError(f"sensors = {self.sensors!r} must be the run's Sensors")  # noqa: TRY004
+        if self.sensors.attitude == "star_tracker":  # read by no one here: the filter's tracker is sensors.star_tracker
+            raise ValueError("sensors.attitude = 'star_tracker' is not read by Estimated: the filter takes a star "
+                             "tracker as Sensors(star_tracker=StarTracker(cross=..., roll=..., period=...))")
         check_positive("magnetometer_period", self.magnetometer_period, "s", allow_zero=True)
         if self.attitude_sigma is not None:
             check_positive("attitude_sigma", self.attitude_sigma, "rad", at_most=math.pi)
