@@ -173,8 +173,8 @@ def _cmd_fit(args) -> int:
         data = args.data[0] if len(args.data) == 1 else args.data
         return run_fit_command(data, args.out, argv=args.argv, figure=figure_fit, recording_figure=figure_recording,
                                start=args.start, end=args.end, body=args.body, progress=bar,
-                               sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag,
-                               saturation=saturation, accept_inadequate=args.accept_inadequate)
+                               sensor_rotation=args.sensor, bias=not args.no_bias, drag=args.drag, saturation=saturation,
+                               accept_inadequate=args.accept_inadequate, scale_uncertainty=args.scale_uncertainty)
     finally:
         bar.close()
 

@@ -282,6 +282,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="aerodynamic drag about each principal axis: chosen by the BIC (default), or as named")
     p.add_argument("--saturation", metavar="RAD_S",
                    help="the gyroscope's full scale, rad/s (default: found from the data); samples at it are left out")
+    p.add_argument("--scale-uncertainty", type=number, metavar="FRACTION",
+                   help="the gyroscope's scale-factor standard uncertainty per axis, a fraction propagated into the "
+                   "ratios (default 0.005: a datasheet's +-1 %% limits as two standard deviations; 0.01 for a "
+                   "gyroscope known to be worse)")
     p.add_argument("--body", metavar="FILE", help="a body file or preset: its ratios compared with the fit")
     p.add_argument("--start", type=number, metavar="S",
                    help="fit one flight: its first time, s (one recording only; without --end, to the recording's end)")
