@@ -290,7 +290,10 @@ def test_a_recording_none_of_whose_flights_entered_the_pool_is_named(tmp_path, c
         paths.append(tmp_path / f"rec{i}.csv")
         paths[-1].write_text(synthetic_recording(seed, body=body, tosses=tosses).csv_text(), encoding="utf-8")
     assert run_fit_command(paths, tmp_path / "out") == 1  # and the pooled value is no answer: next test
-    err = capsys.readouterr().err
+    said = capsys.readouterr()
+    err = said.err
+    # the line on stdout says so too: read without the warnings it looked like an answer (a walkthrough, 2026-12-03)
+    assert said.out.startswith("fit 3 recordings (not adequate: see the warning): I1/I3 = ")
     assert f"warning: {paths[2]}: none of its 2 flights entered the pooled fit (disagrees with the other flights" in err
     assert "the recordings disagree: every fitted flight of recordings[2] lies" in err
     assert str(paths[0]) not in err and str(paths[1]) not in err
@@ -335,3 +338,15 @@ def test_an_accelerometers_file_given_as_the_gyroscope_is_pointed_at(tmp_path, c
             "this the accelerometer's file? Give the gyroscope's")
     assert err[0] == f"warning: {path}: {hint}"
     assert err[1].startswith("tumble: fit failed: ") and f"; {hint}; nothing written" in err[1]
+
+
+def test_the_pooled_fit_counts_the_rail_of_every_flight_it_used():
+    """fit.json's ``saturated`` counted the first flight's sample axes at the rail only: 0 for a pool whose
+    second flight had 70 (a walkthrough, 2026-12-03). It is now the sum over the flights used."""
+    rec = synthetic_recording(7, body="phone", tosses=3, spin=(14.0, 16.0), saturation=15.0)  # the 2nd flight clips
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", InadequateFitWarning)
+        fit = fit_recording(rec.t, rec.omega, events=rec.events)
+    own = [toss.fit.saturated for toss in fit.tosses if toss.status == "ok"]
+    assert fit.tosses_used == len(own) >= 2 and sum(own) > 0
+    assert own[0] == 0 and fit.pooled.saturated == sum(own) > 0   # the first flight, whose view the pool is, clips not

@@ -267,7 +267,9 @@ def run_fit_command(path: str | os.PathLike[str] | Sequence[str | os.PathLike[st
         b = record["body"]
         compared = (f"; {b['source']} predicts I1/I3 = {b['I1_over_I3']:.4f} ({b['I1_over_I3_sigmas']:+.1f} sigma), "
                     f"I2/I3 = {b['I2_over_I3']:.4f} ({b['I2_over_I3_sigmas']:+.1f} sigma)")
-    print(f"fit {label}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
+    # an inadequate fit's line says so itself: read without stderr's warning, it looked like an answer (a walkthrough)
+    verdict = "" if pooled.adequate else " (not adequate: see the warning)"
+    print(f"fit {label}{verdict}: I1/I3 = {x:.4f} +- {sx:.2g}, I2/I3 = {y:.4f} +- {sy:.2g}{edge} from {line}, drag "
           f"{pooled.drag}, residual {pooled.residual_rms:.3g} rad/s{compared}; read {read}; wrote {written} in "
           f"{os.fspath(out)}")
     if pooled.caveat:

@@ -67,7 +67,8 @@ class RotationFit:
     samples : int
         Number of time samples (of every flight used, for a recording's pooled fit).
     saturated : int
-        Sample axes left out because they lie at the sensor's rail.
+        Sample axes left out because they lie at the sensor's rail (of every flight used, for a
+        recording's pooled fit).
     t : ndarray, shape (n,)
         The sample times, s.
     omega_model : ndarray, shape (n, 3)
