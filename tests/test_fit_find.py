@@ -345,3 +345,19 @@ def test_a_flight_whose_ratios_are_not_determined_is_not_judged_by_its_budgets(m
     monkeypatch.setattr(summary, "flight_budgets", lambda *flight: "not a rigid body: its energy rose (a stand-in)")
     verdict = solution_adequacy(sol, w[None], keep[None])
     assert verdict.adequate and not verdict.reason.startswith("not a rigid body"), verdict.reason
+
+
+def test_a_toss_too_short_to_fit_is_said_to_be():
+    """A toss of 0.15-0.18 s: "no usable flight among 1 found: 1 no free flight" (a walkthrough, 2026-12-03);
+    the one candidate's reason is now given whole, with the longest stretch between impulses, under the
+    0.3 s fitted, and what to do."""
+    from tumble.analysis.fit.recording import NoFlightError, fit_recording
+
+    rec = synthetic_recording(1, tosses=1, flight=(0.15, 0.18))
+    with pytest.raises(NoFlightError) as raised:
+        fit_recording(rec.t, rec.omega, events=rec.events)
+    said = str(raised.value)
+    quiet = float(re.search(r"the longest stretch between them lasts ([\d.]+) s: a toss too short to fit\? Throw higher",
+                            said).group(1))
+    assert said.startswith("no usable flight among 1 found: no free flight: under impulses (no 0.3 s between them")
+    assert max(b - a for a, b in rec.flights) <= quiet < 0.3   # the flight's free time, and its edges' quiet samples

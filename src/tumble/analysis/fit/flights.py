@@ -81,7 +81,7 @@ from .freefall import check_accel
 from .freespan import FreeSpan, grown_free_span
 from .result import determination, ratio_summary, solution_adequacy
 from .rotor import rotor_check
-from .segments import _runs, _segments, _stretches, impulses, pause_times
+from .segments import _runs, _segments, _stretches, impulses, longest_quiet, pause_times
 from .single import MIN_SAMPLES, _check, fit_solution, saturation_mask
 from .solve import Solution
 from .triangle import EDGES, at_rod_limit
@@ -239,8 +239,11 @@ def find_flights(t: ArrayLike, omega: ArrayLike, *, events: Sequence[tuple[str, 
     for k, (a0, b0) in enumerate(stretches):
         free = [(a, b) for a, b, ok in _segments(a0, b0, kicked, t, min_duration) if ok]
         if not free and t[b0 - 1] - t[a0] >= min_duration:  # the whole stretch is torqued: one candidate, skipped
+            quiet = longest_quiet(a0, b0, kicked, t)
             flights.append(_skip(t, a0, b0, f"no free flight: under impulses (no {min_duration} s between them in which the "
-                                            f"rate changes slower than a free rigid body's can: a throw, a catch, an impact or the hand)"))
+                                            f"rate changes slower than a free rigid body's can: a throw, a catch, an impact or the hand; "
+                                            f"the longest stretch between them lasts {quiet:.2g} s"
+                                            + (": a toss too short to fit? Throw higher)" if quiet >= 0.1 else ")")))
         else:
             for a, b in free or [(a0, b0)]:
                 margin = int(np.searchsorted(t, t[a] + 0.05) - a)  # the accelerometer's cut may lie in the impulse

@@ -236,8 +236,8 @@ def fit_recording(t: ArrayLike | Sequence[tuple], omega_measured: ArrayLike | No
             raise NoFlightError(f"no free flight found: |omega| never stays above {min_spin} rad/s for a flight "
                                 f"({where}, {pauses} pauses){unit_hint(omega)}")
         why = Counter(f.reason.split(":")[0].split(" (")[0] for f in flights)
-        raise NoFlightError(f"no usable flight among {len(flights)} found: "
-                            + ", ".join(f"{n} {r}" for r, n in why.most_common()) + unit_hint(omega))
+        said = ", ".join(f"{n} {r}" for r, n in why.most_common()) if len(flights) > 1 else flights[0].reason  # one: whole
+        raise NoFlightError(f"no usable flight among {len(flights)} found: {said}{unit_hint(omega)}")
     t0, w0 = series[0]
     joined, first_joint = _joined(flights, groups, t, omega, keep, drag, scale_uncertainty)
     if joined:

@@ -140,3 +140,24 @@ def _segments(a0: int, b0: int, kicked: np.ndarray, t, min_duration: float) -> l
     if cursor < b0:
         pieces.append((cursor, b0, False))
     return pieces
+
+
+def longest_quiet(a0: int, b0: int, kicked: np.ndarray, t) -> float:
+    """The longest stretch of samples ``[a0, b0)`` between impulses (``kicked``), s (0 for none): a
+    toss whose free flight is shorter than the fit's minimum is said to be so, not only "no free
+    flight" (a walkthrough's 0.15 s toss).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tumble.analysis.fit.segments import longest_quiet
+    >>> t = np.arange(100) / 100.0
+    >>> kicked = np.zeros(100, bool)
+    >>> kicked[[10, 11, 40, 41, 60]] = True   # quiet 12..39 (0.27 s), 42..59 and 61..99
+    >>> round(longest_quiet(0, 100, kicked, t), 2)
+    0.38
+    """
+    inside = ~np.asarray(kicked[a0:b0], bool)
+    d = np.diff(np.r_[0, inside.astype(int), 0])
+    return max((float(t[a0 + b - 1] - t[a0 + a]) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))),
+               default=0.0)
