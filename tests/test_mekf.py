@@ -160,6 +160,13 @@ def test_slips_a_gnc_walkthrough_made_are_refused_or_warned_of():
         f.update_vector([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [1e-3] * 3)
     with pytest.raises(ValueError, match=r"^sigma = 10.0 must be positive finite numbers, at most pi"):
         f.update_vector([0.0, 0.0, 1.0], [0.0, 0.0, 1.0], 10.0)
+    with pytest.raises(ValueError, match=r"^bias_sigma = 2.0 is beyond 0.2 rad/s"):   # 2 deg/s written as rad/s
+        MEKF.start(Rotation.identity(), attitude_sigma=1e-3, bias_sigma=2.0, gyro_noise=0.0, bias_walk=0.0)
+    with pytest.raises(ValueError, match=r"^bias has shape \(4, 3\): it must be \(3,\) or the filters' batch \(2,\)"):
+        MEKF.start(Rotation.random(2, random_state=1), attitude_sigma=1e-3, bias_sigma=1e-3, gyro_noise=0.0,
+                   bias_walk=0.0, bias=np.zeros((4, 3)))
+    with pytest.raises(ValueError, match=r"^bias = \[1.0, 2.0\] must be real numbers of shape \(\.\.\., 3\)"):
+        f.nees(Rotation.identity(), [1.0, 2.0])
     # what stays allowed: a bias known exactly (its variance 0), and one sigma per filter of a batch
     known = MEKF(Rotation.identity().as_quat(), np.zeros(3), np.diag([1e-4] * 3 + [0.0] * 3), 0.0, 0.0)
     assert known.sigma[3:].tolist() == [0.0, 0.0, 0.0]

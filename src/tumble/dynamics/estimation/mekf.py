@@ -82,6 +82,7 @@ from ...jit import kernel_array
 from ...typing import ArrayLike, FloatArray
 from ...validation import check_covariance, check_positive, check_quaternions, check_vectors, refuse_first, short_repr
 from ...validation.rotations import ScalarFirstWarning
+from ..models.sensors import MAX_GYRO_ERROR
 
 __all__ = ["MEKF"]
 
@@ -91,6 +92,15 @@ def _rows(a: FloatArray, shape: tuple[int, ...], tail: tuple[int, ...]) -> Float
     (:func:`~tumble.jit.kernel_array`: float, C-contiguous, writable; ``a`` itself where it is that)."""
     whole = a.shape == shape + tail
     return kernel_array(a.reshape((-1, *tail)) if whole else np.broadcast_to(a, shape + tail).reshape((-1, *tail)))
+
+
+def _batch(name: str, v: FloatArray, shape: tuple[int, ...]) -> FloatArray:
+    """``v`` (..., 3) broadcast to the filters' batch ``shape``, or a ValueError naming ``name`` (numpy's
+    own broadcast error named no argument)."""
+    try:
+        return np.broadcast_to(v, shape + (3,)).copy()
+    except ValueError:
+        raise ValueError(f"{name} has shape {v.shape}: it must be (3,) or the filters' batch {shape} + (3,) (rad/s)") from None
 
 
 @dataclass(frozen=True)
@@ -169,9 +179,10 @@ class MEKF:
         """
         q = attitude.as_quat() if isinstance(attitude, Rotation) else check_quaternions("attitude", attitude)
         s_att = check_positive("attitude_sigma", attitude_sigma, "rad", at_most=math.pi)
-        s_b = check_positive("bias_sigma", bias_sigma, "rad/s")
+        # past any gyroscope's bias (sensors' MAX_GYRO_ERROR, 11 deg/s): deg/s written as rad/s (a walkthrough's 2)
+        s_b = check_positive("bias_sigma", bias_sigma, "rad/s", at_most=MAX_GYRO_ERROR)
         P = np.diag([s_att**2] * 3 + [s_b**2] * 3) * np.ones(q.shape[:-1] + (1, 1))
-        b = np.broadcast_to(np.asarray(bias, float), q.shape[:-1] + (3,)).copy()
+        b = _batch("bias", check_vectors("bias", bias, "rad/s"), q.shape[:-1])
         with warnings.catch_warnings():  # a scalar-first guess is warned of once, as attitude
             warnings.simplefilter("ignore", ScalarFirstWarning)
             return cls(q, b, P, gyro_noise, bias_walk)
@@ -380,5 +391,5 @@ class MEKF:
         e = self.error(truth)
         if bias is None:
             return np.asarray(np.einsum("...i,...ij,...j->...", e, np.linalg.inv(self.covariance[..., :3, :3]), e), float)
-        x = np.concatenate([e, np.asarray(bias, float) - self.bias], axis=-1)
+        x = np.concatenate([e, _batch("bias", check_vectors("bias", bias, "rad/s"), e.shape[:-1]) - self.bias], axis=-1)
         return np.asarray(np.einsum("...i,...ij,...j->...", x, np.linalg.inv(self.covariance), x), float)
