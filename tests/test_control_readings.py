@@ -167,7 +167,7 @@ def test_what_the_readings_loop_cannot_run_stays_python():
     assert len(plan_readings(point, noisy, MOMENTS, RW, None)) == 1
     blind = Sensors(gyro_noise=1e-4, attitude="none")
     assert plan_readings(point, blind, MOMENTS, RW, None) is None
-    with pytest.raises(ValueError, match="MRP feedback needs an attitude sensor"):
+    with pytest.raises(ValueError, match="MRP feedback needs an attitude reading and got none"):
         simulate_controlled(MOMENTS, (0.0, 0.0, 0.01), t_end=2.0, controller=point, wheels=RW, sensors=blind)
     fine = Sensors(gyro_noise=1e-4, sun_sensor=FineSunSensor(), sunlight=Sunlight(ORBIT, EPOCH))
     assert len(plan_readings(BDot(gain=1.0, period=1.0), fine, MOMENTS, None, None)) == 1

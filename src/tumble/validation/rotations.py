@@ -161,8 +161,8 @@ def check_motion(rotation: object, translation: object) -> tuple[Rotation, Vecto
 
 def check_quaternions(field: str, value: ArrayLike) -> FloatArray:
     """Quaternions, scalar last, of shape ``(..., 4)``, normalised: finite, none of them zero; a
-    ``[+-1, 0, 0, 0]`` among them warned of (:class:`ScalarFirstWarning`, as :func:`check_rotation`
-    does for one). The batched form, for the filters' states and measurements.
+    ``[+-1, 0, 0, 0]`` among them warned of (:class:`~tumble.validation.rotations.ScalarFirstWarning`,
+    as :func:`~tumble.validation.check_rotation` does for one). The batched form, for the filters' states and measurements.
 
     Examples
     --------
