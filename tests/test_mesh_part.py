@@ -84,3 +84,55 @@ def test_missing_trimesh_is_an_import_error_with_the_install_hint(monkeypatch):
     with pytest.raises(ImportError, match=r"pip install 'tumble\[mesh\]'") as info:
         tumble.Mesh(mesh=EXAMPLES / "bodies" / "meshes" / "torus.stl", mass=1.0)
     assert not isinstance(info.value, ValueError) and info.value.name == "trimesh"
+
+
+def test_a_mesh_of_several_shells_is_one_solid_or_refused():
+    """A walkthrough (2026-12-03): a box with a cube beside it wound inward passed trimesh's per-edge
+    winding check, and the cube's volume was taken away (0.092 kg for 0.108, the centre of mass on the
+    wrong side); a sphere inside a sphere, both outward, counted the inner twice. Each shell is judged by
+    the others' winding number at it: an inward shell must be a cavity, an outward one not inside solid."""
+    trimesh = pytest.importorskip("trimesh")
+    from tumble import Mesh
+
+    def cube(size, at, inward=False):
+        m = trimesh.creation.box(extents=(size,) * 3)
+        m.apply_translation(at)
+        if inward:
+            m.invert()
+        return m
+
+    box = trimesh.creation.box(extents=(0.1, 0.05, 0.02))   # 1e-4 m^3
+    with pytest.raises(ValueError, match=r"^mesh mesh: shell 2 of 2 is wound inside out \(its volume -8e-06 m\^3 is "
+                                         r"negative\) and is no cavity inside another shell"):
+        Mesh(mesh=trimesh.util.concatenate([box, cube(0.02, (0.07, 0.0, 0.0), inward=True)]), density=1000.0)
+    with pytest.raises(ValueError, match=r"^mesh mesh: shell 2 of 2 lies inside another shell \(nested or overlapping\)"):
+        Mesh(mesh=trimesh.util.concatenate([box, cube(0.01, (0.02, 0.0, 0.0))]), density=1000.0)
+    # a cavity wound inward is right, and a cube loose in it too: the closed forms of their sum (Meriam & Kraige)
+    block = trimesh.creation.box(extents=(0.1, 0.1, 0.1))
+    hollow = Mesh(mesh=trimesh.util.concatenate([block, cube(0.06, (0.0, 0.0, 0.0), inward=True)]), density=1000.0)
+    assert hollow.mass == pytest.approx(1000.0 * (1e-3 - 0.06**3), rel=1e-12)
+    loose = Mesh(mesh=trimesh.util.concatenate([block, cube(0.06, (0.0, 0.0, 0.0), inward=True), cube(0.02, (0.01, 0.0, 0.0))]),
+                 density=1000.0)
+    assert loose.mass == pytest.approx(1000.0 * (1e-3 - 0.06**3 + 0.02**3), rel=1e-12)
+    side = 1000.0 * np.array([1e-3, -0.06**3, 0.02**3])   # masses of block, cavity, cube; I = m a^2 / 6 (+ m d^2)
+    Izz = side[0] * 0.1**2 / 6 + side[1] * 0.06**2 / 6 + side[2] * (0.02**2 / 6 + 0.01**2)
+    com_x = side[2] * 0.01 / side.sum()
+    assert loose.center[0] == pytest.approx(com_x, rel=1e-9)
+    assert loose.inertia[2, 2] == pytest.approx(Izz - side.sum() * com_x**2, rel=1e-9)
+
+
+def test_two_solids_on_one_edge_are_called_what_they_are():
+    """Two cubes sharing an edge were refused as "not watertight (it has open edges)": they have no open
+    edge; the shared edge has four faces (a walkthrough, 2026-12-03)."""
+    from tumble import Mesh
+
+    a = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    b = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    b.apply_translation((1.0, 1.0, 0.0))   # touching a along the edge x = y = 0.5
+    joined = trimesh.Trimesh(np.vstack([a.vertices, b.vertices]), np.vstack([a.faces, b.faces + 8]), process=True)
+    with pytest.raises(ValueError, match=r"^mesh mesh is not a manifold: 1 of its edges have more than two faces"):
+        Mesh(mesh=joined, density=1.0)
+    open_box = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    open_box.update_faces(np.arange(len(open_box.faces)) != 0)   # one triangle taken out: 3 open edges
+    with pytest.raises(ValueError, match=r"^mesh mesh is not watertight \(it has 3 open edges\)"):
+        Mesh(mesh=open_box, density=1.0)

@@ -95,10 +95,16 @@ class MassProperties:
         [1.0, 2.0, 3.0]
         >>> round(float(np.linalg.det(props.principal_axes)), 6)   # a proper rotation
         1.0
+        >>> MassProperties.from_inertia(-3.0, (0, 0, 0.25), np.diag([0.3125, 0.4375, 0.125]))
+        Traceback (most recent call last):
+        ...
+        ValueError: mass = -3.0 must be a positive finite number (kg)
         """
         I = check_inertia(inertia, what="inertia tensor about the centre of mass")
+        # as from_moments: a negative mass ran, and inertia_about's parallel axis turned the moments negative
+        mass, center = check_positive("mass", mass, "kg"), check_vector("com", com, "m")
         moments, axes = principal_frame(I)
-        return cls(float(mass), _array(com), _array(I), _array(moments), _array(axes))
+        return cls(mass, _array(center), _array(I), _array(moments), _array(axes))
 
     @classmethod
     def from_moments(cls, moments: ArrayLike, mass: float = 1.0, com: ArrayLike = (0.0, 0.0, 0.0)) -> MassProperties:
