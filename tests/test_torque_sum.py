@@ -161,17 +161,20 @@ def test_sum_on_a_splitting_method(python):
     assert errors[1] < 1e-6 and 12 < errors[0] / errors[1] < 24, errors
 
 
-@pytest.mark.parametrize(("method", "order"), [("geometric2", 2), ("geometric", 1), ("geometric6", 1),
-                                               ("exact_split4", 1)])
-def test_a_torque_that_depends_on_omega_lowers_a_splittings_order(method, order):
-    """What docs/methods.md says: a kick holds omega fixed, so under -c omega the error halves (1st order) or
-    quarters (geometric2 keeps its 2nd) with the step, against the dop853 run at rtol 1e-13."""
-    w0 = [0.05, 1.0, 0.05]
-    kw = dict(t_end=3.0, samples=4, attitude0=Q0, torque=_models(python=True))
-    tight = simulate(SPACECRAFT, w0, method="dop853", rtol=1e-13, **kw)
-    errors = [np.max(np.abs(simulate(SPACECRAFT, w0, method=method, step=h, **kw).omega - tight.omega))
-              for h in (0.02, 0.01)]
-    assert 2**order * 0.9 < errors[0] / errors[1] < 2**order * 1.1, errors
+@pytest.mark.parametrize(("method", "step"), [("geometric2", 0.005), ("geometric", 0.04), ("geometric6", 0.1),
+                                              ("exact_split4", 0.2)])
+def test_a_torque_that_depends_on_omega_lowers_a_splittings_order(method, step):
+    """What docs/methods.md says: a kick holds omega fixed (an explicit step of the torque's flow), so under
+    -c omega every splitting is of the first order: halving the step halves the error, against the dop853 run at
+    rtol 1e-13. geometric2 included: a short, weakly damped run had shown it at its 2nd order, where the free
+    flow's error still outweighed the kick's (a numerical analyst's walkthrough, 2026-12-03: ratios 2.27, 2.10,
+    2.05 from step 0.01 down)."""
+    body = MassProperties.from_moments([1.0, 2.0, 3.0])
+    kw = dict(t_end=10.0, samples=11, torque=lambda t, w, R: -0.05 * np.asarray(w))
+    tight = simulate(body, [0.3, 1.0, 0.2], method="dop853", rtol=1e-13, **kw)
+    errors = [np.max(np.abs(simulate(body, [0.3, 1.0, 0.2], method=method, step=h, **kw).omega - tight.omega))
+              for h in (step, step / 2)]   # each method's own steps: its first-order term dominates there
+    assert 1.8 < errors[0] / errors[1] < 2.2, errors
 
 
 def test_compiled_sum_on_a_splitting_is_its_numpy_path():

@@ -136,10 +136,10 @@ def simulate(
     torque : callable or torque model, optional
         ``tau(t, omega, attitude)`` in N m (see :mod:`tumble.dynamics.models.torques`).
     rtol, atol : float, optional
-        Tolerances; the method's defaults if not given (``"auto"``: rtol 1e-10 in omega and attitude, atol =
-        rtol relative to |omega|). ``rtol`` from 100 eps (below ~1e-11 round-off sets the error) to 0.1, ``atol``
-        up to 0.1, for ``"dop853"`` relative to |omega|; an ``rtol`` given alone to ``"rk45"`` (or below 1e-12
-        to ``"dop853"``) brings its ``atol`` down with it (a default atol would cap the accuracy).
+        Tolerances; the method's defaults if not given. ``"auto"`` meets rtol (1e-10) in the answer's omega and attitude,
+        atol = rtol relative to |omega|; to ``"dop853"`` and ``"rk45"`` they bound each step's error, and the end's is
+        10-1000 times larger (docs/methods.md). ``rtol`` from 100 eps to 0.1, ``atol`` up to 0.1 (``"dop853"``: relative
+        to |omega|); an ``rtol`` given alone to ``"rk45"`` (or below 1e-12 to ``"dop853"``) brings ``atol`` down with it.
     attitude0 : scipy Rotation, quaternion or matrix, optional
         Initial rotation of the *design* frame to the world frame; default identity (the body
         starts as it was designed).

@@ -47,7 +47,7 @@ AUTO_RTOL = 1e-10
 #: and ``(1e-10 / rtol) ** (1/2)`` below it (round-off grows its global error past the tolerance),
 #: and its ``atol`` 10 times tighter again: its local error control at rtol 1e-10 left 2.5e-9 in
 #: omega on the T-handle at 10 rad/s (20 s, 214 rad turned), at rtol 3.3e-12 and atol 3.3e-13
-#: 9.7e-12; at rtol 3.3e-8 2.3e-6, at 3.3e-10 1.0e-8 (measured against scipy's DOP853 at rtol
+#: 5.2e-11 (2026-12-03); at rtol 3.3e-8 2.3e-6, at 3.3e-10 1.0e-8 (measured against scipy's DOP853 at rtol
 #: 1e-13). Below 1e-10 the same quarter power left 1.5 rtol in omega at rtol 1e-11 on the
 #: T-handle under a constant torque (101 and 500 samples), the square root 0.43-0.49 rtol
 #: (measured 2026-12-03 against scipy's DOP853 at rtol 1e-13, atol 1e-14 on Euler's equations
