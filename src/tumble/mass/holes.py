@@ -133,6 +133,12 @@ def check_holes(parts: tuple[Part, ...]) -> None:
         for part, signed_rho in signed:
             there += signed_rho * part._inside(x, slack)
         absent = there <= 1e-9 * rho  # no solid there, or another hole took it
+        for j, part in enumerate(parts):  # a spinning wheel's momentum is its whole wheel's: a hole in it is refused
+            if part.kind == "rotor" and not part.subtract and np.mean(part._inside(x, slack)) > HOLE_OUTSIDE_TOLERANCE:
+                raise ValueError(f"parts[{i}] (a {hole.kind}, subtract = true) is cut from parts[{j}], a rotor: the rotor's "
+                                 "spin momentum is its whole wheel's (J = m r^2 / 2 about its axis), so the hole would leave "
+                                 "the wheel spinning as if uncut (a walkthrough's bored wheel carried 6.7 % too much momentum); "
+                                 "a Rotor is a solid disc: give one whose m r^2 / 2 is the bored wheel's axial moment")
         outside = float(np.mean(absent))
         short = float(np.mean(np.where(absent, 0.0, np.maximum(rho - there, 0.0)))) / rho
         left = float(np.mean(np.maximum(there - rho, 0.0)))
