@@ -276,7 +276,7 @@ def test_the_command_writes_fit_json_and_the_figure(tmp_path, capsys):
     bad.write_text("".join(f"{k * 0.01},0,0,5\n" for k in range(100)), encoding="utf-8")
     capsys.readouterr()
     assert run_fit_command(bad, out) == 1  # a failed fit, not bad input
-    assert re.search(r"steady\.csv: no usable flight among 1 found: 1 steady spin", capsys.readouterr().err)
+    assert re.search(r"steady\.csv: no usable flight among 1 found: steady spin \(omega nearly constant: no tumble", capsys.readouterr().err)
     assert json.loads((out / "fit.json").read_text(encoding="utf-8")) == data
     # a window of the record (the free flight of a toss)
     assert run_fit_command(data_file, tmp_path / "part", start=2.0, end=9.0) == 0
