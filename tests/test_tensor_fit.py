@@ -237,7 +237,7 @@ def test_fit_tensor_gives_the_object_and_its_json():
     assert np.abs(fit.object.center_of_mass - obj.center).max() < 2e-3
     assert fit.flown.mass == pytest.approx(obj.mass + 0.10067)
     d = json.loads(json.dumps(fit.as_dict()))
-    assert set(d) == {"object", "flown", "throws", "adequate", "chi2_dof"}
+    assert set(d) == {"object", "flown", "throws", "adequate", "chi2_dof", "on_edge"} and d["on_edge"] == 0.0
     assert set(d["object"]) == {"mass", "inertia", "inertia_cov", "principal_moments", "principal_moments_std",
                                 "principal_axes", "center_of_mass", "center_of_mass_std"}
     assert [t["input"] for t in d["throws"]] == ["throw1.csv", "throw2.csv", "throw3.csv"]
@@ -409,3 +409,40 @@ def test_the_centres_sensor_columns_are_what_an_accelerometer_scale_does():
     shift = centres[1] - centres[0]
     assert np.linalg.norm(shift) > 1e-4   # 1 % of the flown centre's ~40 mm moves it by a few 0.1 mm
     assert np.linalg.norm(shift - column) < 0.2 * np.linalg.norm(shift)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_an_estimate_over_the_triangles_edge_is_written_on_it(seed):
+    """A flat body's estimate lies on either side of the edge I1 + I2 = I3; one over it by less than
+    TRIANGLE_SIGMA was written as it was, not physical, as adequate (a 40 g box, 1.8 sigma; a walkthrough,
+    2026-12-03). onto_triangle puts it on the edge at the least Mahalanobis distance: checked against scipy's
+    SLSQP minimising (x - x0)^T C^-1 (x - x0) under lambda1 + lambda2 - lambda3 = 0, an independent route."""
+    from scipy.optimize import minimize
+    from scipy.spatial.transform import Rotation
+
+    from tumble.analysis.tensor.estimate import mass_estimate, not_physical, onto_triangle, tensor_of, vector_of
+    from tumble.mass.tensor import check_inertia
+
+    rng = np.random.default_rng(seed)
+    R = Rotation.random(random_state=seed).as_matrix()
+    moments = np.array([1.0, 2.0, 3.0]) * 1e-5 + np.array([-1.0, -1.0, 1.0]) * rng.uniform(0.5, 1.5) * 1e-7
+    A = rng.normal(size=(6, 6)) * 1e-7
+    C = A @ A.T + np.eye(6) * 1e-15
+    est = mass_estimate(0.04, R @ np.diag(moments) @ R.T, C, np.zeros(3), np.eye(3) * 1e-8)
+    edge, moved = onto_triangle(est)
+    if not_physical(est):   # beyond TRIANGLE_SIGMA: refused before, never moved
+        pytest.skip("this draw lies beyond the tolerance")
+    m = edge.principal_moments
+    assert m[0] + m[1] - m[2] >= -1e-12 * m.sum() and check_inertia(edge.inertia) is not None
+    x0, x = vector_of(est.inertia), vector_of(edge.inertia)
+    L = np.linalg.cholesky(C)   # x = x0 + L z: the distance is |z|, and SLSQP works on numbers of order 1
+
+    def gap(z):
+        w = np.linalg.eigvalsh(tensor_of(x0 + L @ z))
+        return (w[0] + w[1] - w[2]) / np.sqrt(np.max(np.diag(C)))
+
+    best = minimize(lambda z: z @ z, np.zeros(6), jac=lambda z: 2 * z, constraints=[{"type": "eq", "fun": gap}],
+                    method="SLSQP", options={"ftol": 1e-14, "maxiter": 500})
+    assert best.success and np.sqrt(best.fun) == pytest.approx(moved, rel=1e-4)
+    np.testing.assert_allclose(x, x0 + L @ best.x, rtol=0, atol=1e-3 * np.sqrt(np.max(np.diag(C))))
+    assert onto_triangle(edge)[1] == 0.0   # on the edge already: left as it is

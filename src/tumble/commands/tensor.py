@@ -289,6 +289,10 @@ def run_tensor_command(throws: Sequence[str | os.PathLike[str]], device: str | o
     for row in fit.throws:
         if row.status != "used":
             print(f"warning: left out {row.input}: {row.reason}", file=sys.stderr)
+    if fit.on_edge > 0:
+        print(f"note: the object's estimate broke the triangle inequality I1 + I2 >= I3 by {fit.on_edge:.2g} standard "
+              "uncertainties (a flat body's lies on either side of it): the tensor written is its nearest on the edge "
+              "I1 + I2 = I3 (tensor.json's \"on_edge\")", file=sys.stderr)
     if not fit.adequate:
         print("warning: the model does not describe the throws (tensor.json says \"adequate\": false; see each "
               "throw's reason)" + ("" if accept_inadequate else "; --accept-inadequate to accept the fit"),
