@@ -422,13 +422,19 @@ def _pooled(sol: Solution, used, tosses, t, omega, keep, models) -> RecordingFit
     data, mask = stack_flights(used, omega, keep)
     verdict = judge_flights(data, sol.omega_model, mask, sol.model.lengths, [f.start for f in used])[0]
     # the joint fit's sample count and sample axes at the rail (its times, model and residuals shown are the
-    # first flight's view: fit.json said "saturated": 0 of a pool whose second flight had 70; a walkthrough)
+    # first flight's view)
     pooled = replace(pooled, adequate=verdict.adequate, adequacy=verdict.reason, misfit=verdict.misfit,
                      samples=int(sum(f.samples for f in used)),
-                     saturated=int(sum(np.count_nonzero(~keep[f.first:f.stop]) for f in used)))
+                     saturated=_at_rail(used, keep))
     if not verdict.adequate:
         warnings.warn(f"pooled fit: {verdict.reason}", InadequateFitWarning, stacklevel=3)
     return RecordingFit(tosses, pooled, chi2_dof, len(used), t, omega, tuple(models), (), sol.ssr, sol.m)
+
+
+def _at_rail(used, keep) -> int:
+    """The sample axes at the gyroscope's rail in the flights ``used``, all of them (a pooled fit's
+    ``saturated``; the first flight's only was fit.json's 0 of a pool whose second flight had 70)."""
+    return int(sum(np.count_nonzero(~keep[f.first:f.stop]) for f in used))
 
 
 def _own_ratios(flights) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -462,7 +468,7 @@ def _weighted(used, tosses, t, omega, keep) -> RecordingFit:
     full[:2, :2], full[2:, 2:] = cov, ref.fit.covariance[2:, 2:]
     pooled = replace(ref.fit, ratios=mean, ratios_std=std, ratios_interval=iv, edge=None, covariance=full,
                      samples=int(sum(f.samples for f in used)),
-                     saturated=int(sum(np.count_nonzero(~keep[f.first:f.stop]) for f in used)))
+                     saturated=_at_rail(used, keep))
     return RecordingFit(tosses, pooled, chi2 / dof if len(used) > 1 else float("nan"), len(used), t, omega,
                         tuple(toss.fit.omega_model for toss in tosses if toss.status == "ok"), (),
                         float(sum(f.solution.ssr for f in used)), int(sum(f.solution.m for f in used)))

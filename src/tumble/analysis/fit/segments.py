@@ -127,10 +127,7 @@ def _segments(a0: int, b0: int, kicked: np.ndarray, t, min_duration: float) -> l
     """``[a0, b0)`` cut at the impulses: ``(a, b, free)`` pieces, in order. A piece between two
     impulses shorter than ``min_duration`` is joined with its short neighbours and the impulses
     between them into one piece that is not free (the throw, the catch, the hand's motion)."""
-    inside = ~kicked[a0:b0]
-    d = np.diff(np.r_[0, inside.astype(int), 0])
-    runs = [(a0 + a, a0 + b) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
-    long = [(a, b) for a, b in runs if t[b - 1] - t[a] >= min_duration]
+    long = [(a, b) for a, b in _quiet_runs(a0, b0, kicked) if t[b - 1] - t[a] >= min_duration]
     pieces, cursor = [], a0
     for a, b in long:
         if a > cursor:
@@ -157,7 +154,10 @@ def longest_quiet(a0: int, b0: int, kicked: np.ndarray, t) -> float:
     >>> round(longest_quiet(0, 100, kicked, t), 2)
     0.38
     """
-    inside = ~np.asarray(kicked[a0:b0], bool)
-    d = np.diff(np.r_[0, inside.astype(int), 0])
-    return max((float(t[a0 + b - 1] - t[a0 + a]) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))),
-               default=0.0)
+    return max((float(t[b - 1] - t[a]) for a, b in _quiet_runs(a0, b0, kicked)), default=0.0)
+
+
+def _quiet_runs(a0: int, b0: int, kicked: np.ndarray) -> list[tuple[int, int]]:
+    """The runs ``[a, b)`` of samples of ``[a0, b0)`` between impulses (``kicked`` False), in order."""
+    d = np.diff(np.r_[0, (~np.asarray(kicked[a0:b0], bool)).astype(int), 0])
+    return [(a0 + int(a), a0 + int(b)) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
