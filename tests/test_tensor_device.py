@@ -20,6 +20,7 @@ from scipy.spatial.transform import Rotation
 from tumble.analysis.tensor import Device, NoThrowError, Proof, Throw, fit_tensor
 from tumble.analysis.tensor.calibrate import calibrate
 from tumble.analysis.tensor.estimate import not_physical
+from tumble.analysis.tensor.device import MAX_ROTOR_SPEED
 from tumble.analysis.tensor.firmware import ERPM_STEP, Imperfections
 from tumble.analysis.tensor.synthetic import (
     GYRO_RANGE,
@@ -393,6 +394,13 @@ def test_the_calibration_records_the_rotors_top_speeds_and_a_set_in_rpm_is_named
     rpm = [_with(th, rotor=th.rotor * 60.0 / (2.0 * np.pi)) for th in with_proof]
     slipped = calibrate(DEVICE, alone, rpm, proof)
     assert any("rotor's top speeds differ from throw to throw" in p and "rpm" in p for p in slipped.problems)
+    # every throw in rpm agrees with itself: the rotor inertia came out 9.5 times too small (1.78e-7 for
+    # 1.70e-6 kg m^2) with chi2/dof as low, calibrated; a top speed beyond any small motor's is a problem
+    both = calibrate(DEVICE, [_with(th, rotor=th.rotor * 60.0 / (2.0 * np.pi)) for th in alone], rpm, proof)
+    assert both.device.rotor_inertia is None or both.device.rotor_inertia < cal.device.rotor_inertia / 9
+    assert [p for p in both.problems if "rpm" in p] == [p for p in both.problems if p.startswith(
+        f"the rotor's top speed {max(speeds) * 60 / (2 * np.pi):.4g} rad/s (")] != []
+    assert not both.adequate and MAX_ROTOR_SPEED > 6 * high   # the real plateau is far below the limit
 
 
 def _speed_checked_device() -> Device:

@@ -57,7 +57,7 @@ import numpy as np
 
 from ...typing import FloatArray
 from .. import _display
-from .device import ROTOR_SPEED_RATIO, Device, Proof
+from .device import MAX_ROTOR_SPEED, ROTOR_SPEED_RATIO, Device, Proof
 from .throwlog import Throw
 from .equations import rotor_inertia_from
 from .estimate import tensor_of
@@ -250,6 +250,10 @@ def calibrate(device: Device, alone: Sequence[Throw], proof_throws: Sequence[Thr
         problems.append(f"the rotor's top speeds differ from throw to throw: {min(speeds):.5g} to {max(speeds):.5g} rad/s, "
                         f"more than {ROTOR_SPEED_RATIO:g} times (the firmware's plateau is the same in every throw): some "
                         "logs' rotor speed in another unit (rpm, rev/s) or an eRPM turned with another pole count?")
+    if max(speeds) > MAX_ROTOR_SPEED:  # every log in rpm read as rad/s agrees with itself: J_r 9.5 times too small
+        problems.append(f"the rotor's top speed {max(speeds):.4g} rad/s ({round(max(speeds) * 30 / np.pi, -3):,.0f} rpm) "
+                        f"is beyond any small motor's {MAX_ROTOR_SPEED:g} rad/s: the logs' rotor speed in rpm read as "
+                        "rad/s (the rotor inertia then 9.5 times too small) or an eRPM?")
     if problems and not y[0] > 0:
         dev = device
     else:

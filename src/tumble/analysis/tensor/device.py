@@ -32,7 +32,7 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_THROWN_MASS", "ROTOR_SPEED_RATIO",
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_ROTOR_SPEED", "MAX_THROWN_MASS", "ROTOR_SPEED_RATIO",
            "Device", "Proof", "axes_matrix",
            "check_thrown_mass"]
 
@@ -49,6 +49,12 @@ MAX_THROWN_MASS = 100.0
 #: device's throws (docs/tensor.md), a battery's sag slows an open-loop motor by ~10-20 %; rpm
 #: read as rad/s is 9.5 times, an eRPM turned with half or twice the poles 2 times.
 ROTOR_SPEED_RATIO = 1.5
+#: The fastest a thrown device's flywheel is taken to spin, rad/s (95,000 rpm): the fastest small
+#: brushless motors turn ~83,000 rpm unloaded (19,000 rpm/V on a 4.35 V cell), a flywheel slows
+#: them, and the published device's plateau is 1230-1360 rad/s (docs/tensor.md). Beyond it, a rotor
+#: speed logged in rpm (9.5 times the rad/s) or eRPM and read as rad/s is likelier; read so in every
+#: throw, the calibration's rotor inertia comes out that many times too small and its checks pass.
+MAX_ROTOR_SPEED = 1.0e4
 def check_thrown_mass(field: str, value: object) -> float:
     """An object's or a proof's mass, kg: positive and at most :data:`MAX_THROWN_MASS`; beyond it, a
     mass in grams is likelier, and the message says so.
