@@ -15,6 +15,7 @@ import numpy as np
 from ...dynamics.environment.earth import STANDARD_GRAVITY
 from ...typing import FloatArray
 from .device import ROTOR_SPEED_RATIO
+from .model import MEAN_SPAN
 from .throw import RESIDUAL_LIMIT, FlownFit
 from .throwlog import Throw, running_peak
 
@@ -178,7 +179,8 @@ def rail_hint(throw: Throw, f: FlownFit, saturation: float | None) -> str:
 
 
 def residual_verdict(rms: float, noise: float) -> str:
-    """Why residuals ``rms`` (rad/s) against the gyroscope's ``noise`` say the model does not
+    """Why residuals ``rms`` (rad/s) against the ``noise`` of the fitted data, the rates' means over
+    :data:`~tumble.analysis.tensor.model.MEAN_SPAN` (a 4 kHz gyroscope's noise over 2), say the model does not
     explain a flight, or ``""``.
 
     Examples
@@ -190,7 +192,8 @@ def residual_verdict(rms: float, noise: float) -> str:
     if rms <= RESIDUAL_LIMIT * noise:
         return ""
     return (f"the free motion does not explain the flight: residuals {rms:.3g} rad/s, {rms / noise:.1f} times the "
-            f"gyroscope's noise {noise:.2g} rad/s (at most {RESIDUAL_LIMIT:g}; rates in another unit than the header "
+            f"noise {noise:.2g} rad/s of the rates' {1e3 * MEAN_SPAN:g} ms means that are fitted (at most "
+            f"{RESIDUAL_LIMIT:g}; rates in another unit than the header "
             f"says, deg/s for rad/s or the reverse, a rotor axis or speed that is wrong, a mount or body that is not "
             f"rigid)")
 
