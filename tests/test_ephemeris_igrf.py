@@ -22,6 +22,8 @@ from tumble.dynamics import (
     simulate_controlled,
 )
 from tumble.dynamics.environment.earth import MU_EARTH, R_EARTH
+from tumble.dynamics.models.gravity import GravityGradient
+from tumble.dynamics.models.orbit_gravity import OrbitGravityGradient
 from tumble.dynamics.environment.sidereal import greenwich_sidereal_angle, julian_date
 
 ISS_2019 = ("1 25544U 98067A   19343.69339541  .00001764  00000-0  38792-4 0  9991",
@@ -181,3 +183,77 @@ def test_bdot_detumbles_in_igrf_on_an_elliptic_orbit():
                               gravity_gradient=gravity_gradient_of(orbit))
     assert run.rate[-1] < 0.6 * run.rate[0]
     assert run.budget_error().max() < 1e-12 * np.linalg.norm(run.momentum_world[0]) + 1e-15
+
+
+# -- a walkthrough of the orbits by a spacecraft engineer (2026-12-03) ---------------------------
+
+def _with_checksum(line: str) -> str:
+    """``line`` with its last digit the checksum of the first 68 (CelesTrak's rule, computed here)."""
+    return line[:68] + str(sum(int(c) if c.isdigit() else c == "-" for c in line[:68]) % 10)
+
+
+def test_a_tle_line_with_a_leading_space_flies_as_without_it():
+    """sgp4 reads fixed columns: a line pasted with a leading space passed the checks (which strip it)
+    and every position came out NaN, a scenario then failing with "`y` must contain only finite values"."""
+    pytest.importorskip("sgp4")
+    clean = TLEOrbit(*ISS_2019).position_eci([0.0, 60.0])
+    for lines in ((" " + ISS_2019[0], ISS_2019[1]), (ISS_2019[0], ISS_2019[1] + " \n")):
+        np.testing.assert_array_equal(TLEOrbit(*lines).position_eci([0.0, 60.0]), clean)
+    assert np.all(np.isfinite(clean)) and 6.6e6 < np.linalg.norm(clean[0]) < 6.9e6   # m: the ISS's ~420 km
+
+
+def test_a_tle_of_two_satellites_lines_is_refused():
+    pytest.importorskip("sgp4")
+    other = _with_checksum(ISS_2019[1].replace("25544", "25545", 1))
+    with pytest.raises(ValueError, match="line1's satellite number '25544' is not line2's '25545'"):
+        TLEOrbit(ISS_2019[0], other)
+
+
+def test_a_field_epoch_other_than_the_tles_is_refused():
+    """The orbit's t = 0 is the TLE's epoch; an IGRF field given another epoch read the Earth's angle 6 h
+    off (the field's direction up to 25 degrees off over an orbit) and summary.json wrote that epoch as
+    the orbit's."""
+    pytest.importorskip("sgp4")
+    pytest.importorskip("ppigrf")
+    tle = TLEOrbit(*ISS_2019)
+    later = (tle.epoch + dt.timedelta(hours=6)).replace(tzinfo=None).isoformat(timespec="seconds")
+    with pytest.raises(ValueError, match=r"epoch = '2019-12-09T22:38:29' is not the TLE's own epoch 2019-12-09T16:38:29"):
+        IGRFField(tle, epoch=later)
+    assert IGRFField(tle, epoch=tle.epoch.isoformat()).epoch == IGRFField(tle).epoch == tle.epoch
+
+
+@pytest.mark.parametrize("mu", [3.986e14, 3.986008e14])   # a rounded value, SGP4's WGS 72
+def test_an_orbit_inside_the_earth_is_refused_for_any_earth_mu(mu):
+    """The checks held only for mu == MU_EARTH exactly: mu = 3.986e14 put a circle 930 km underground."""
+    with pytest.raises(ValueError, match="inside the Earth"):
+        KeplerOrbit(6.0e6, 0.0, mu=mu)
+    with pytest.raises(ValueError, match="inside the Earth"):
+        GravityGradient(orbit_period=4000.0, mu=mu)
+    with pytest.raises(ValueError, match="below 100 km"):
+        CircularOrbit(altitude=10.0, mu=mu)
+    moon = 4.9048695e12   # another body's mu leaves the Earth's radius out
+    assert KeplerOrbit(2.0e6, 0.0, mu=moon).mean_motion == pytest.approx(math.sqrt(moon / 2.0e6**3), rel=1e-15)
+
+
+@pytest.mark.parametrize("make", [
+    lambda mu: CircularOrbit(500e3, mu=mu), lambda mu: KeplerOrbit(8e6, 0.1, mu=mu),
+    lambda mu: GravityGradient(orbit_radius=7e6, mu=mu), lambda mu: OrbitGravityGradient(KeplerOrbit(8e6, 0.1), mu=mu),
+])
+def test_the_earths_mu_in_km3_s2_is_refused_everywhere(make):
+    """398600.4418 (km^3/s^2) was refused by GravityGradient only: a circle's period came out 1.8e8 s, an
+    ellipse's gravity-gradient torque 1e9 times too weak."""
+    with pytest.raises(ValueError, match=r"mu = 398600.4418 m\^3/s\^2 is the Earth's in km\^3/s\^2"):
+        make(398600.4418)
+
+
+def test_a_torque_mu_other_than_its_orbits_is_refused():
+    with pytest.raises(ValueError, match="differs from the orbit's mu"):
+        OrbitGravityGradient(KeplerOrbit(8e6, 0.1), mu=3.9e14)
+    assert gravity_gradient_of(KeplerOrbit(8e6, 0.1, mu=3.986e14)).mu == 3.986e14
+
+
+def test_an_altitude_in_metres_below_the_karman_line_is_not_told_to_be_km():
+    with pytest.raises(ValueError, match=r"below 100 km, where no orbit lasts \(the air brings it down within hours\)$"):
+        CircularOrbit(altitude=50e3)   # 50 km, written in metres
+    with pytest.raises(ValueError, match="give metres, 500000 for 500 km"):
+        CircularOrbit(altitude=500)

@@ -623,3 +623,29 @@ def test_stability_lives_in_analysis_and_the_ratios_have_their_own_name():
     (a, b, c), P = gravity.rpy_axes(1, 3)  # (2, 1, 3) is odd: roll along minus axis 2
     assert (a, b, c) == (1, 0, 2) and P[1, 0] == -1.0
     assert np.linalg.det(P) == 1.0
+
+
+@pytest.mark.parametrize("pitch_axis, yaw_axis", [(1, 2), (1, 3), (2, 1), (3, 1)])
+def test_a_flat_plates_ratios_as_computed_are_classified(pitch_axis, yaw_axis):
+    """A plate, I3 = I1 + I2: its ratio of 1 came out of gravity_gradient_ratios as 1 + 2e-16 and
+    gravity_gradient_stability refused it ("k_pitch = 1.0000000000000002 must be from -1 to 1"), the call
+    the guide shows for the planar bodies at the triangle's edge; the verdict is the edge's, computed here."""
+    moments = [1 / 3, 2 / 3, 1.0]
+    k = gravity_gradient_ratios(moments, pitch_axis=pitch_axis, yaw_axis=yaw_axis)
+    cls = gravity_gradient_stability(*k)
+    exact = {name: np.clip(float(v), -1.0, 1.0) for name, v in zip(("kr", "kp", "ky"), k)}
+    # Hughes, Spacecraft Attitude Dynamics, ch. 9: pitch needs k_P > 0; roll-yaw k_R k_Y > 0 and
+    # 1 + 3 k_R + k_R k_Y > 4 sqrt(k_R k_Y)
+    prod = exact["kr"] * exact["ky"]
+    assert bool(cls.pitch) == (exact["kp"] > 0)
+    assert bool(cls.roll_yaw) == (prod > 0 and 1 + 3 * exact["kr"] + prod > 4 * math.sqrt(prod))
+    with pytest.raises(ValueError, match="k_pitch = 1.01 must be from -1 to 1"):
+        gravity_gradient_stability(0.5, 1.01, 0.5)
+
+
+def test_orbit_frame_angles_of_an_ellipse_is_refused_naming_the_model():
+    from tumble.dynamics import KeplerOrbit, OrbitGravityGradient, orbit_frame_angles
+
+    run = tumble.simulate(tumble.t_handle(), [0.1, 2.0, 0.1], t_end=1.0, samples=3)
+    with pytest.raises(ValueError, match=r"gg = .* must be a GravityGradient \(a circular orbit's\)"):
+        orbit_frame_angles(run, OrbitGravityGradient(KeplerOrbit(8e6, 0.1)))

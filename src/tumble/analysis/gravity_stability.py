@@ -176,8 +176,9 @@ def gravity_gradient_stability(k_roll: ArrayLike, k_pitch: ArrayLike, k_yaw: Arr
     """
     ks = {name: check_vectors(name, k, "dimensionless", size=None)
           for name, k in (("k_roll", k_roll), ("k_pitch", k_pitch), ("k_yaw", k_yaw))}
-    for name, k in ks.items():
-        refuse_first(name, k, np.abs(k) > 1.0, "must be from -1 to 1 (the triangle inequality of the moments)")
+    for name, k in ks.items():  # a planar body's ratio is 1 but may round to 1 + 2e-16 (gravity_gradient_ratios)
+        refuse_first(name, k, np.abs(k) > 1.0 + RATIO_ATOL, "must be from -1 to 1 (the triangle inequality of the moments)")
+        ks[name] = np.clip(k, -1.0, 1.0)
     try:
         kr, kp, ky = np.broadcast_arrays(*ks.values())
     except ValueError:

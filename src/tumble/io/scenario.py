@@ -259,7 +259,7 @@ def _initial(table: dict, model, body: Body):
     if circle is None:
         if any(isinstance(term, OrbitGravityGradient) for term in getattr(model, "terms", (model,))):
             raise ValueError("initial.orbit_frame needs a circular orbit (orbit_period or orbit_radius); along an "
-                             "ellipse or a TLE give omega (the principal axes start along the inertial frame's)")
+                             "ellipse or a TLE give omega (the design axes start along the inertial frame's)")
         raise ValueError('initial.orbit_frame needs the orbit: a [torque] table with kind = "gravity_gradient"')
     model = circle
     sub = table["orbit_frame"]

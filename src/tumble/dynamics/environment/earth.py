@@ -32,9 +32,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...jit import formula
+import math
 
-__all__ = ["MU_EARTH", "OMEGA_EARTH", "R_EARTH", "STANDARD_GRAVITY", "earth_angle"]
+from ...jit import formula
+from ...validation import check_positive
+
+__all__ = ["EARTH_MU_TOLERANCE", "MU_EARTH", "OMEGA_EARTH", "R_EARTH", "STANDARD_GRAVITY", "check_mu", "earth_angle",
+           "is_earth"]
 
 #: The Earth's gravitational parameter GM, m^3/s^2 (IERS Conventions 2010, table 1.1; WGS 84).
 MU_EARTH = 3.986004418e14
@@ -46,6 +50,42 @@ OMEGA_EARTH = 7.292115e-5
 #: Standard gravity ``g_n``, m/s^2, exact by definition (3rd CGPM, 1901; ISO 80000-3): the unit
 #: ``g`` in which accelerometers report, not the local gravity.
 STANDARD_GRAVITY = 9.80665
+#: How near :data:`MU_EARTH` (relative) a gravitational parameter is the Earth's: the rounded values in
+#: use (3.986e14, SGP4's WGS 72 3.986008e14) are, and an orbit about them must then lie above :data:`R_EARTH`
+#: (an orbit check keyed to the exact value let ``mu = 3.986e14`` put one 930 km underground).
+EARTH_MU_TOLERANCE = 0.01
+
+
+def is_earth(mu: float) -> bool:
+    """Whether ``mu`` (m^3/s^2) is the Earth's gravitational parameter, to within :data:`EARTH_MU_TOLERANCE`.
+
+    Examples
+    --------
+    >>> from tumble.dynamics.environment.earth import is_earth
+    >>> is_earth(3.986004418e14), is_earth(3.986e14), is_earth(4.9048695e12)   # the Moon's is not
+    (True, True, False)
+    """
+    return math.isclose(mu, MU_EARTH, rel_tol=EARTH_MU_TOLERANCE)
+
+
+def check_mu(value: object, field: str = "mu") -> float:
+    """A gravitational parameter, m^3/s^2: a positive finite number, and not the Earth's written in
+    km^3/s^2 (398600.4418: an orbit 31,600 times slower, a gravity-gradient torque 1e9 times weaker).
+
+    Examples
+    --------
+    >>> from tumble.dynamics.environment.earth import check_mu
+    >>> check_mu(3.986e14)
+    398600000000000.0
+    >>> check_mu(398600.4418)
+    Traceback (most recent call last):
+    ...
+    ValueError: mu = 398600.4418 m^3/s^2 is the Earth's in km^3/s^2; give m^3/s^2 (3.986004418e+14)
+    """
+    mu = check_positive(field, value, "m^3/s^2")
+    if math.isclose(mu, MU_EARTH / 1e9, rel_tol=EARTH_MU_TOLERANCE):
+        raise ValueError(f"{field} = {value!r} m^3/s^2 is the Earth's in km^3/s^2; give m^3/s^2 ({MU_EARTH:.10g})")
+    return mu
 
 
 @formula

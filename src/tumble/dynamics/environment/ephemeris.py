@@ -38,7 +38,7 @@ from scipy.spatial.transform import Rotation
 from ..._optional import optional_import
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_number, check_positive
-from .earth import MU_EARTH, R_EARTH
+from .earth import MU_EARTH, R_EARTH, check_mu, is_earth
 from .sidereal import J2000
 
 __all__ = ["KeplerOrbit", "TLEOrbit"]
@@ -107,8 +107,7 @@ class KeplerOrbit:
             raise ValueError(f"inclination = {self.inclination!r} must lie in [0, pi] (rad)")
         for name in ("raan", "arg_perigee", "mean_anomaly"):
             check_number(name, getattr(self, name), "rad")
-        check_positive("mu", self.mu, "m^3/s^2")
-        if self.mu == MU_EARTH and a * (1.0 - e) <= R_EARTH:
+        if is_earth(check_mu(self.mu)) and a * (1.0 - e) <= R_EARTH:
             raise ValueError(f"semi_major_axis = {a!r} m with eccentricity = {e!r} puts the perigee at "
                              f"{a * (1 - e):.6g} m, inside the Earth (R_E = {R_EARTH:g} m)")
 
@@ -298,6 +297,11 @@ class TLEOrbit:
         Satrec = optional_import("sgp4.api", "orbit", "a TLE orbit (TLEOrbit)").Satrec
         for number, name in enumerate(("line1", "line2"), start=1):
             _check_tle_line(name, getattr(self, name), number)
+            object.__setattr__(self, name, getattr(self, name).strip())  # sgp4 reads fixed columns: a leading space
+            # shifted them, and the positions came out NaN with no error
+        if self.line1[2:7] != self.line2[2:7]:
+            raise ValueError(f"line1's satellite number {self.line1[2:7].strip()!r} is not line2's "
+                             f"{self.line2[2:7].strip()!r}: the two lines of one TLE name one satellite")
         try:
             sat = Satrec.twoline2rv(self.line1, self.line2)
         except (ValueError, IndexError) as exc:

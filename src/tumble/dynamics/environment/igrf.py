@@ -103,10 +103,14 @@ class IGRFField:
     def __post_init__(self) -> None:
         if not callable(getattr(self.orbit, "position_eci", None)) or not hasattr(self.orbit, "eci_from_world"):
             raise ValueError(f"orbit = {self.orbit!r} must be a CircularOrbit, KeplerOrbit or TLEOrbit")
-        epoch = self.epoch if self.epoch is not None else getattr(self.orbit, "epoch", None)
+        own = getattr(self.orbit, "epoch", None)  # a TLE's: its times count from it
+        epoch = self.epoch if self.epoch is not None else own
         if epoch is None:
             raise ValueError("epoch is needed (the UTC date and time at t = 0, e.g. '2026-11-25T00:00:00')")
         when = utc_datetime(epoch, "epoch")
+        if own is not None and abs((when - own).total_seconds()) > 1e-3:  # the Earth's angle read at another t = 0
+            raise ValueError(f"epoch = {self.epoch!r} is not the TLE's own epoch {own.isoformat()}, from which its "
+                             "orbit's times count: the field's must count from it too; leave epoch out")
         g, _ = _coefficients()
         first, last = g.index[0].to_pydatetime(), g.index[-1].to_pydatetime()
         if not first <= when.replace(tzinfo=None) <= last + _dt.timedelta(days=5 * 365.25):

@@ -27,7 +27,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, Vector3
 from ...validation import check_number, check_positive
-from .earth import MU_EARTH, R_EARTH
+from .earth import MU_EARTH, R_EARTH, check_mu, is_earth
 
 __all__ = ["MIN_ALTITUDE", "CircularOrbit", "plane_direction"]
 
@@ -35,6 +35,9 @@ __all__ = ["MIN_ALTITUDE", "CircularOrbit", "plane_direction"]
 #: The lowest altitude of an orbit around the Earth, m: the Karman line. Below it the air brings a
 #: satellite down within hours (the lowest held, SLATS's 167 km in 2019, took thrust against the drag).
 MIN_ALTITUDE = 100e3
+#: The highest altitude, m, that an altitude below :data:`MIN_ALTITUDE` read as km is taken to mean (a
+#: little above the geostationary 35,786 km): ``altitude = 50e3`` is 50 km in metres, not 50,000 km.
+_KM_HINT = 40e6
 
 
 def plane_direction(n: float, t: float) -> tuple[float, float]:
@@ -100,10 +103,11 @@ class CircularOrbit:
 
     def __post_init__(self) -> None:
         altitude = check_positive("altitude", self.altitude, "m")
-        if altitude < MIN_ALTITUDE and self.mu == MU_EARTH:  # 500 for 500 km: an "orbit" in the air
+        mu = check_mu(self.mu)
+        if altitude < MIN_ALTITUDE and is_earth(mu):  # 500 for 500 km: an "orbit" in the air
             raise ValueError(f"altitude = {self.altitude!r} m is below {MIN_ALTITUDE / 1e3:g} km, where no orbit lasts "
-                             f"(the air brings it down within hours): give metres, {altitude * 1e3:g} for {altitude:g} km")
-        check_positive("mu", self.mu, "m^3/s^2")
+                             f"(the air brings it down within hours)" + (f": give metres, {altitude * 1e3:g} for "
+                             f"{altitude:g} km" if MIN_ALTITUDE <= altitude * 1e3 <= _KM_HINT else ""))
         inc = check_number("inclination", self.inclination, "rad")
         if not 0.0 <= inc <= math.pi:
             raise ValueError(f"inclination = {self.inclination!r} must lie in [0, pi] (rad)")

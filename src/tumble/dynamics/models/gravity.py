@@ -50,7 +50,7 @@ from ...validation import check_moments, check_positive, check_vectors
 if TYPE_CHECKING:
     from ...mass import Body, MassProperties
 
-from ..environment.earth import MU_EARTH, R_EARTH
+from ..environment.earth import MU_EARTH, R_EARTH, check_mu, is_earth
 from ..special.quaternion import to_body
 from .torques import KERNEL_CIRCULAR_GRAVITY, AddsTorques, as_torque, terms_of
 from .lvlh import (
@@ -176,9 +176,7 @@ class GravityGradient(AddsTorques):
     _I: np.ndarray | None = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        mu = check_positive("mu", self.mu, "m^3/s^2")
-        if math.isclose(mu, MU_EARTH / 1e9, rel_tol=1e-4):  # the Earth's in km^3/s^2: its orbit 31,600 times slower
-            raise ValueError(f"mu = {self.mu!r} m^3/s^2 is the Earth's in km^3/s^2; give m^3/s^2 ({MU_EARTH:.10g})")
+        mu = check_mu(self.mu)
         given = [name for name in ("orbit_period", "orbit_radius") if getattr(self, name) is not None]
         if len(given) != 1:
             both = f": orbit_period = {self.orbit_period!r}, orbit_radius = {self.orbit_radius!r}" if given else ""
@@ -193,8 +191,8 @@ class GravityGradient(AddsTorques):
         name, value = given[0], getattr(self, given[0])
         if not (0.0 < n < math.inf and 0.0 < r < math.inf):
             raise ValueError(f"{name} = {value!r} gives a mean motion of {n!r} rad/s; it must be a positive finite number")
-        if mu == MU_EARTH and r <= R_EARTH:
-            shortest = 2.0 * math.pi * math.sqrt(R_EARTH**3 / MU_EARTH)
+        if is_earth(mu) and r <= R_EARTH:
+            shortest = 2.0 * math.pi * math.sqrt(R_EARTH**3 / mu)
             raise ValueError(
                 f"{name} = {value!r} puts the orbit at radius {r:.6g} m, inside the Earth (equatorial "
                 f"radius R_E = {R_EARTH:g} m); allowed: orbit_radius > {R_EARTH:g} m, orbit_period > "

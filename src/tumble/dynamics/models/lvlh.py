@@ -224,7 +224,7 @@ def lvlh_state(
     ...                        t_end=5400.0, method="dop853")
     """
     if not _is_circular_orbit(gg):  # by its attributes: gravity.py imports this module, not the reverse
-        raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient")
+        raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient (a circular orbit's)")
     axes = properties_of(body).principal_axes
     _, P = rpy_axes(pitch_axis, yaw_axis)
     r, p, y = np.broadcast_arrays(_angles("roll", roll), _angles("pitch", pitch), _angles("yaw", yaw))
@@ -258,6 +258,8 @@ def relative_attitude(
     >>> relative_attitude(gg, t, moved).as_euler("YXZ").round(12).tolist()
     [0.2, 0.1, 0.3]
     """
+    if not _is_circular_orbit(gg):  # an OrbitGravityGradient has no orbit_frame: an AttributeError named nothing
+        raise ValueError(f"gg = {short_repr(gg)} must be a GravityGradient (a circular orbit's)")
     _, P = rpy_axes(pitch_axis, yaw_axis)
     return gg.orbit_frame(t).inv() * attitude * Rotation.from_matrix(P)
 

@@ -18,6 +18,7 @@ The orbits themselves exert no torque and know nothing of the models: they live 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import Any, cast
 
@@ -26,7 +27,7 @@ from scipy.spatial.transform import Rotation
 
 from ...typing import ArrayLike, FloatArray, Vector3
 from ...validation import check_moments, check_positive
-from ..environment.earth import MU_EARTH
+from ..environment.earth import MU_EARTH, check_mu
 from ..environment.ephemeris import KeplerOrbit, TLEOrbit
 from ..environment.orbit import CircularOrbit
 from .gravity import GravityGradient, gradient_torque
@@ -131,8 +132,12 @@ class OrbitGravityGradient(AddsTorques):
     def __post_init__(self) -> None:
         if not callable(getattr(self.orbit, "position_world", None)):
             raise ValueError(f"orbit = {self.orbit!r} must give position_world(t) (m): a KeplerOrbit or TLEOrbit")  # noqa: TRY004
-        mu = self.mu if self.mu is not None else getattr(self.orbit, "mu", MU_EARTH)
-        object.__setattr__(self, "mu", check_positive("mu", mu, "m^3/s^2"))
+        own = getattr(self.orbit, "mu", None)  # a Keplerian orbit's own, which its positions obey
+        mu = check_mu(self.mu if self.mu is not None else MU_EARTH if own is None else own)
+        if own is not None and not math.isclose(mu, own, rel_tol=1e-12):
+            raise ValueError(f"mu = {self.mu!r} m^3/s^2 differs from the orbit's mu = {own!r}, by which it moves: one body "
+                             "attracts both; leave mu out (the orbit's is taken)")
+        object.__setattr__(self, "mu", mu)
         if self.moments is not None:
             object.__setattr__(self, "moments", _as_tuples(check_moments("moments", self.moments)))
 
