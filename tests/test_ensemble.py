@@ -721,3 +721,20 @@ def test_the_columns_of_a_random_rate_sweep_agree_with_each_other():
     assert summary["flipped"]["cases"] == k and summary["flipped"]["fraction"] == k / 200
     low, high = summary["flipped"]["interval"]
     assert low < k / 200 < high and summary["flipped"]["confidence"] == 0.95
+
+
+def test_a_preset_dispersion_of_a_body_not_made_so_is_refused():
+    """A walkthrough of the sweeps (2026-12-03): a 0.5 m by 1.2 m T-handle given with preset="t-handle" but
+    without its parameters was swept as the default 1 m handle (moments ~0.125, 0.3125, 0.4375 for
+    0.078, 0.18, 0.258 kg m^2), and a Box as a T-handle, without a word."""
+    body = tumble.t_handle(shaft_length=0.5, crossbar_length=1.2)
+    spread = (Dispersion("preset", 0.01, field="crossbar_length"),)
+    with pytest.raises(ValueError, match=r"body = 'T-handle' \(mass 3 kg, moments 0.078125, 0.18, 0.258125 kg m\^2\) is "
+                                         r"not preset 't-handle' made with parameters = \{\}"):
+        BodySampler(body, spread, preset="t-handle")
+    with pytest.raises(ValueError, match="is not preset 't-handle'"):
+        BodySampler(tumble.Body([tumble.Box(mass=3.0, size=(1.0, 2.0, 3.0))]), (), preset="t-handle")
+    given = BodySampler(body, spread, preset="t-handle", parameters={"shaft_length": 0.5, "crossbar_length": 1.2})
+    moments = Ensemble(given, InitialRates(omega=(10.0, 0.1, 0.1)), cases=64, seed=1).inputs().moments
+    # a 1 % spread of the crossbar about 1.2 m: the moments spread about the body's own, 2 % for those it enters
+    assert np.all(np.abs(np.median(moments, axis=0) / body.principal_moments - 1) < 0.01)

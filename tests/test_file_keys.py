@@ -79,6 +79,7 @@ _ORBITING = {"body": "t-handle", "initial": {"orbit_frame": {"pitch": 0.01}},
              "torque": {"kind": "gravity_gradient", "orbit_period": 5400.0},
              "simulation": {"t_end": 1.0, "samples": 11, "method": "dop853"}}
 _SWEEP = {"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 5.0, 0.1]},
+          "dispersion": [{"target": "moments", "relative": 0.01}],   # cases of one run are refused
           "simulation": {"t_end": 1.0, "method": "dop853"}}
 _PROOF = {"mass": 0.346, "inertia": [1.675805e-4, 1.300972e-4, 2.450833e-4]}
 _DEVICE = {"device": {"mass": 0.10067, "rotor_axis": [0.0, 0.0, -1.0]}, "proof": _PROOF}

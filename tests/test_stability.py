@@ -454,3 +454,17 @@ def test_a_spin_within_round_off_of_the_unstable_axis_says_so():
     assert near["flips"] >= 1 and near["note"].startswith("a spin within round-off of the axis (1.8e-16 of it off)")
     assert plain["note"] is None and plain["flips"] >= 1
     assert "one every " in repr(near)
+
+
+def test_flips_under_a_torque_on_too_few_samples_are_said_to_be():
+    """Under a torque only a counted interval was judged: 2 samples over 20 s count no flip, give no
+    interval, and the report said "0 flips" of a T-handle that flips every ~1.8 s. The start's torque-free
+    interval (the closed form, L&L sec. 37, here from the report's own exact value of the torque-free run)
+    bounds it now; finely sampled, the torqued run's flips are counted."""
+    body, w0, torque = tumble.t_handle(), [10.0, 0.1, 0.1], tumble.ConstantTorque([0.0, 0.0, 1e-4])
+    free = tumble.stability_report(tumble.simulate(body, w0, frame="design", t_end=20.0, samples=4001))
+    sparse = tumble.stability_report(tumble.simulate(body, w0, frame="design", t_end=20.0, samples=2, torque=torque))
+    dense = tumble.stability_report(tumble.simulate(body, w0, frame="design", t_end=20.0, samples=4001, torque=torque))
+    assert sparse.aliased and sparse["flips"] is None and sparse["samples_per_flip"] == pytest.approx(
+        free["flip_period_exact"] / 20.0, rel=1e-12)
+    assert not dense.aliased and dense["flips"] >= 10 and dense["flip_period_exact"] is None

@@ -375,7 +375,8 @@ def test_torque_tables_in_a_sweep_act_as_their_sum(tmp_path):
     from tumble.dynamics import TorqueSum
 
     method = 't_end = 15.0\nmethod = "dop853"'
-    base = SMALL.replace("t_end = 15.0", method)
+    base = SMALL.replace("t_end = 15.0", method).replace('frame = "design"', 'frame = "principal"').replace(
+        "omega = [10.0, 0.1, 0.1]", "omega = [0.1, 10.0, 0.1]")   # a body-frame torque: principal axes
     two = base + '[[torque]]\nvector = [0.0, 0.0, 0.25]\n[[torque]]\nvector = [0.5, 0.0, 0.0]\n'
     one = base + "[torque]\nvector = [0.5, 0.0, 0.25]\n"
     paths = [write(tmp_path, cases=8, name=f"{name}.toml", text=text)
@@ -415,8 +416,8 @@ def test_a_sweep_refuses_a_chunk_too_big_for_its_samples_before_it_starts_and_wa
     from tumble.io.sweepfile import sweep_from_table
     from tumble.mass import UnitSlipWarning
 
-    table = {"body": "t-handle", "sweep": {"cases": 2048}, "initial": {"omega": [0.1, 10.0, 0.1]},
-             "simulation": {"t_end": 20.0, "samples": 100000}}
+    table = {"body": "t-handle", "sweep": {"cases": 2048}, "simulation": {"t_end": 20.0, "samples": 100000},
+             "initial": {"omega": [0.1, 10.0, 0.1], "distribution": "normal", "spread": [0.01, 0.0, 0.01]}}
     with pytest.raises(ValueError, match=r"^simulation: 100000 samples a case with sweep.chunk = 1024 is 102,400,000 "
                                          r"samples a chunk, more than 50,000,000; give chunk = 500 or less"):
         sweep_from_table(table)
@@ -460,7 +461,7 @@ def test_a_sweep_takes_the_tolerances_a_scenario_takes():
     from tumble.ensemble import BodySampler, Ensemble, InitialRates
     from tumble.io.sweepfile import sweep_from_table
 
-    table = {"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 10.0, 0.1]},
+    table = {"body": "t-handle", "sweep": {"cases": 1}, "initial": {"omega": [0.1, 10.0, 0.1]},
              "simulation": {"t_end": 2.0, "samples": 5, "method": "dop853", "rtol": 1e-6, "atol": 1e-6},
              "torque": {"kind": "constant", "vector": [0.0, 0.0, 0.01]}}
     loose = sweep_from_table(table)
@@ -486,9 +487,102 @@ def test_a_sweep_sampled_too_coarsely_for_its_flips_says_so(tmp_path, capsys):
     spacing = 15.0 / 299
     np.testing.assert_allclose(cols["samples_per_flip"], cols["flip_period_exact [s]"] / spacing, rtol=1e-9)
     assert np.all(cols["samples_per_flip"] < 4) and data["flipped"]["aliased"] == 40
-    assert "40 cases sampled fewer than 4 times a flip" in line and "miscounted: give more samples" in line, line
+    assert "40 cases sampled fewer than 4 times a flip" in line and "may be miscounted, give more samples" in line, line
     assert "but 40 of the 40 cases were sampled fewer than 4 times a flip" in data["flipped"]["statement"]
     assert np.all(np.abs(cols["flips"] - 15.0 / cols["flip_period_exact [s]"]) > 5)  # miscounted indeed
     assert run_sweep_command(write(tmp_path, name="slow.toml"), tmp_path / "slow") == 0  # 36 samples a flip: no word
     assert "miscounted" not in capsys.readouterr().out
     assert json.loads((tmp_path / "slow" / "summary.json").read_text())["flipped"]["aliased"] == 0
+
+
+def _elliptic_flip_interval(I: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The torque-free time between flips, s, written here: T/2 = 2 K(m) / p with p and m from the
+    energy and momentum (Landau & Lifshitz, Mechanics, sec. 37), for spins that circulate either axis."""
+    from scipy.special import ellipk
+
+    I1, I2, I3 = I.T
+    L2, E2 = np.sum((I * w) ** 2, axis=1), np.sum(I * w * w, axis=1)
+    major = L2 > E2 * I2   # circulating the major axis: L&L's case; else 1 and 3 swap
+    a, c = np.where(major, I3, I1), np.where(major, I1, I3)
+    p = np.sqrt((a - I2) * (L2 - c * E2) / (I1 * I2 * I3))
+    m = (I2 - c) * (a * E2 - L2) / ((a - I2) * (L2 - c * E2))
+    return 2.0 * ellipk(m) / p
+
+
+def test_a_torqued_sweep_sampled_too_coarsely_says_so(tmp_path, capsys):
+    """A walkthrough of the sweeps (2026-12-03): the T-handles under a small body torque, 2 samples over 20 s,
+    "9 flipped (56.25 %)" with no word, where each flipped 10-13 times (its DOP853): under a torque only a
+    counted interval was judged, and aliased samples count none. The start's torque-free interval (computed
+    here) now bounds it: every case is said to be aliased."""
+    text = (SMALL.replace("samples = 300", "samples = 2").replace("t_end = 15.0", "t_end = 20.0")
+            .replace('frame = "design"', 'frame = "principal"').replace("omega = [10.0, 0.1, 0.1]", "omega = [0.1, 10.0, 0.1]")
+            + '\n[torque]\nvector = [0.0, 0.0, 1e-4]\nframe = "body"\n')
+    path = write(tmp_path, cases=16, text=text)
+    assert run_sweep_command(path, tmp_path / "out") == 0
+    line = capsys.readouterr().out
+    _, cols = read_cases(tmp_path / "out" / "cases.csv")
+    I = np.column_stack([cols[f"I{k} [kg m^2]"] for k in (1, 2, 3)])
+    w = np.column_stack([cols[f"omega0_{k} [rad/s]"] for k in (1, 2, 3)])
+    free = _elliptic_flip_interval(I, w)
+    assert np.all(20.0 / free > 9)   # each flips ~10 times in the run: 2 samples cannot count them
+    assert np.all(cols["samples_per_flip"] <= free / 20.0 * (1 + 1e-9))
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["flipped"]["aliased"] == 16
+    assert "16 cases sampled fewer than 4 times a flip" in line, line
+
+
+def test_a_body_at_rest_is_not_predicted_unstable(tmp_path, capsys):
+    """omega = 0 came out "predicted unstable" about axis 1 (stability_report: at rest, no spin axis)."""
+    text = SMALL.replace("omega = [10.0, 0.1, 0.1]", "omega = [0.0, 0.0, 0.0]").replace(
+        'distribution = "normal"\nspread = [0.0, 0.05, 0.05]\n', "")
+    assert run_sweep_command(write(tmp_path, cases=8, text=text), tmp_path / "out") != 2
+    line = capsys.readouterr().out
+    _, cols = read_cases(tmp_path / "out" / "cases.csv")
+    assert cols["predicted"].tolist() == ["at rest"] * 8 and np.all(cols["axis"] == 0) and np.all(cols["circulation"] == 0)
+    assert line.startswith("8 cases (exact): 0 predicted unstable (8 at rest)"), line
+
+
+def test_copies_of_a_deterministic_run_are_not_counted_as_trials(tmp_path):
+    """A walkthrough of the sweeps (2026-12-03): a grid of 2 points with cases = 1000 and nothing dispersed
+    reported "95 % interval 99.63 to 100 %" over 1000 copies of 2 runs; refused, naming what to give."""
+    text = SMALL.replace("omega = [10.0, 0.1, 0.1]", "grid = [[10.0], [0.01, 0.5], [0.01]]").replace(
+        'distribution = "normal"\nspread = [0.0, 0.05, 0.05]\n', "")
+    text = text.split("[[dispersion]]")[0] + "[initial]" + text.split("[initial]")[1]
+    with pytest.raises(ValueError, match=r"sweep: cases = 1000 repeats the 2 initial rate\(s\) with nothing dispersed: "
+                                         r"copies of one deterministic run are not trials.*give cases = 2"):
+        load_sweep(write(tmp_path, cases=1000, text=text))
+    assert load_sweep(write(tmp_path, cases=2, text=text, name="two.toml")).sweep.ensemble.cases == 2
+
+
+def test_a_body_frame_torque_in_design_axes_is_refused(tmp_path):
+    """A sweep's body-frame vector acts along each case's principal axes, which its dispersions turn and
+    reorder; initial.frame = "design" made a scenario file read it in design axes, and the sweep did not:
+    a thruster along design x in one case pushed along the shaft in another (a walkthrough, 2026-12-03)."""
+    torque = '\n[torque]\nvector = [0.0, 0.0, 1e-4]\nframe = "body"\n'
+    with pytest.raises(ValueError, match=r'torque: a body-frame vector in a sweep acts along each case\'s principal axes'):
+        load_sweep(write(tmp_path, text=SMALL + torque))
+    load_sweep(write(tmp_path, text=SMALL + torque.replace('"body"', '"world"'), name="world.toml"))
+    load_sweep(write(tmp_path, text=SMALL.replace('frame = "design"', 'frame = "principal"') + torque, name="p.toml"))
+
+
+def test_a_criterion_on_a_text_column_is_refused_naming_it(tmp_path):
+    """column = "predicted" (stable / unstable) failed with numpy's "could not convert string to float:
+    np.str_('unstable')"."""
+    text = SMALL.replace('column = "flips"', 'column = "predicted"')
+    with pytest.raises(ValueError, match=r"column = 'predicted' holds text \(unstable\), not numbers to bound with min "
+                                         r"and max; allowed: .*flips"):
+        run_sweep(write(tmp_path, cases=4, text=text), tmp_path / "out", argv=["sweep"])
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_map_takes_what_stability_map_takes_and_no_perturbation_beyond_the_spin(tmp_path, capsys):
+    """--perturbation 20 0.01 on a 10 rad/s spin was mapped and titled "spin 10 rad/s about the intermediate
+    axis"; --resolution took 20 to 2000 where stability_map takes 10 to 2000 (a walkthrough, 2026-12-03)."""
+    from tumble.cli import main
+    from tumble.ensemble.reductions import stability_map
+
+    assert main(["map", "--out", str(tmp_path / "m.png"), "--perturbation", "20", "0.01"]) == 2
+    assert "--perturbation[0] = 20 is beyond 9.99 rad/s" in capsys.readouterr().err
+    assert not (tmp_path / "m.png").exists()
+    with pytest.raises(ValueError, match="must be fractions of the spin below 1"):
+        stability_map(10.0, (2.0, 0.001))
+    assert main(["map", "--out", str(tmp_path / "m.png"), "--resolution", "10"]) == 0 and (tmp_path / "m.png").is_file()

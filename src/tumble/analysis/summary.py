@@ -130,8 +130,9 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         mean time between flips, s, or None with fewer than two flips or too few samples),
         ``flip_period_exact`` (the elliptic-function interval, s, when the spin axis is
         not the circulation axis; torque-free only), ``flip_period_asymptotic`` (its
-        small-perturbation logarithmic form), ``samples_per_flip`` (the flip interval, exact or
-        measured, over the widest sample spacing; below :data:`SAMPLES_PER_FLIP` the sign changes
+        small-perturbation logarithmic form), ``samples_per_flip`` (the flip interval, exact, or
+        under a torque the shorter of the measured one and the start's torque-free one, over the widest
+        sample spacing; below :data:`SAMPLES_PER_FLIP` the sign changes
         seen are aliased, not the flips: ``flips`` and ``flip_period`` are None and the repr says
         so), ``theory`` (what the prediction rests on:
         ``"rigid body"`` (the circulation; with a torque that of the initial state),
@@ -199,14 +200,18 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         # a spin meant to be exact, turned from the design frame (a teacher's box turned 30 deg: 8.9e-16 off), flips
         note = (f"a spin within round-off of the axis ({off / abs(w0[a - 1]):.1e} of it off): it flips as a perturbed one "
                 "does, the perturbation the round-off of its start")
-    exact = asymptotic = None
-    if traj.torque_free and traj.rigid and distinct:
+    exact = asymptotic = free = None
+    if traj.rigid and distinct and a != circulation:
         # the component about which omega circulates never changes sign; the other two flip
         value = float(flip_interval(w0, I))
-        if a != circulation and np.isfinite(value):
-            exact = value
+        free = value if np.isfinite(value) else None
+        if traj.torque_free and free is not None:
+            exact = free
             asymptotic = float(flip_interval_asymptotic(w0, I))
-    interval = exact if exact is not None else float(np.mean(np.diff(times))) if len(times) >= 2 else None
+    measured = float(np.mean(np.diff(times))) if len(times) >= 2 else None
+    # under a torque, the start's torque-free interval too, the shorter: aliased samples count few sign changes
+    # and give no interval (reduce_cases' rule)
+    interval = exact if exact is not None else min((x for x in (measured, free) if x is not None), default=None)
     spacing = float(np.max(np.diff(traj.t))) if len(traj.t) >= 2 else None
     per_flip = interval / spacing if interval is not None and spacing else None
     # aliased: the sign changes seen are not the flips (a 1e9 s run wrote "flips": 43 of ~5.6e8), so neither is given

@@ -123,10 +123,10 @@ def _cmd_map(args) -> int:
 
     out = check_output_file(args.out, (".png", ".svg"))
     spin = check_positive("--spin", args.spin, "rad/s", at_most=MAX_RATE)  # simulate's bound (1e20 was taken)
-    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True, at_most=MAX_RATE)
-                         for i, p in enumerate(args.perturbation))
-    if not 20 <= args.resolution <= 2000:
-        raise ValueError(f"--resolution = {args.resolution} must be from 20 to 2000")
+    perturbation = tuple(check_positive(f"--perturbation[{i}]", p, "rad/s", allow_zero=True, at_most=0.999 * spin)
+                         for i, p in enumerate(args.perturbation))  # below the spin: a spin about the intermediate axis
+    if not 10 <= args.resolution <= 2000:  # stability_map's range
+        raise ValueError(f"--resolution = {args.resolution} must be from 10 to 2000")
     from ..viz import figure_stability_map, save_figure
 
     with _working("mapping"):  # the option is in rad/s, as its help says; the map takes fractions of the spin

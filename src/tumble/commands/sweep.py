@@ -11,7 +11,8 @@ The file's format is :mod:`tumble.io.sweepfile`'s; the cases are run by :mod:`tu
   ``growth_rate [1/s]``, ``wobble_frequency [rad/s]``, ``circulation``, ``flips``,
   ``flip_period [s]``, ``flip_period_exact [s]``, ``omega_end_1 [rad/s]`` to ``_3``, ``q_end_x``
   to ``q_end_w``, ``max_nutation [rad]``, ``energy_change``, ``L_world_angle [rad]``,
-  ``samples_per_flip`` (the flip interval, exact or counted, over the widest sample spacing: below 4
+  ``samples_per_flip`` (the flip interval, exact, or under a torque the shorter of the counted one and
+  the start's torque-free one, over the widest sample spacing: below 4
   the flips counted are aliased, and ``summary.json``'s ``"flipped"`` counts those cases,
   ``aliased``). Floats are
   written as Python's shortest round-trip repr (``nan`` where a quantity does not apply);
@@ -278,6 +279,8 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
     flips = stats["flips"]
     period = stats["flip_period"]
     text = f"{data['cases']} cases ({data['method']}): {unstable} predicted unstable"
+    if rest := counts["predicted"].get("at rest", 0):  # no spin axis: neither stable nor unstable
+        text += f" ({rest} at rest)"
     if "flipped" in data:
         f = data["flipped"]
         low, high = f["interval"]
@@ -285,7 +288,7 @@ def sweep_line(data: dict, out: str | os.PathLike[str]) -> str:
                  f"{100 * low:.4g} to {100 * high:.4g} %)")
         if f.get("aliased"):  # flips shorter than the samples resolve: the counts and periods are not the motion's
             text += (f" but {f['aliased']} case{'' if f['aliased'] == 1 else 's'} sampled fewer than 4 times a flip "
-                     f"(min {stats['samples_per_flip']['min']:.2g}), their flips miscounted: give more samples")
+                     f"(min {stats['samples_per_flip']['min']:.2g}): their flips may be miscounted, give more samples")
     if period["count"]:
         q = period["quantiles"]
         text += (f"; flip period median {q['0.5']:.4g} s over {period['count']} flipping twice or more "

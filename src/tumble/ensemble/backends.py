@@ -88,6 +88,11 @@ class DaskBackend:
     A local cluster's workers start without Dask's ``MALLOC_TRIM_THRESHOLD_`` (it made large
     chunks 5x slower); workers of a running scheduler are as their nannies start them.
 
+    A script that starts a local cluster must do so under ``if __name__ == "__main__":`` (as in
+    the example below): each worker is a new Python process that imports the script again
+    (multiprocessing's "spawn"), and without the guard it runs the script's top level once more,
+    starting clusters of its own; Dask then fails with "Nanny failed to start".
+
     Parameters
     ----------
     workers : int, optional
@@ -108,7 +113,17 @@ class DaskBackend:
 
     Examples
     --------
+    In a script (``sweep.py``), a local cluster of two processes:
+
     >>> from tumble.ensemble.backends import DaskBackend
+    >>> if __name__ == "__main__":   # doctest: +SKIP
+    ...     backend = DaskBackend(workers=2)
+    ...     print(sorted(backend.map(pow, [(2, 10), (3, 4)])))
+    ...     backend.close()
+    [(0, 1024), (1, 81)]
+
+    Interactively (a notebook, where there is no script to import again):
+
     >>> backend = DaskBackend(workers=2)  # doctest: +SKIP
     >>> sorted(backend.map(pow, [(2, 10), (3, 4)]))  # doctest: +SKIP
     [(0, 1024), (1, 81)]

@@ -35,6 +35,7 @@ import inspect
 import math
 import warnings
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -225,8 +226,28 @@ class BodySampler:
             raise ValueError(f"preset = {self.preset!r} is unknown; allowed: {', '.join(PRESETS)}")
         object.__setattr__(self, "dispersions", items)
         object.__setattr__(self, "parameters", dict(self.parameters or {}))
+        if self.preset is not None:
+            self._check_preset_body()
         widths = [self._width(k, d) for k, d in enumerate(items)]
         object.__setattr__(self, "_widths", tuple(widths))
+
+    def _check_preset_body(self) -> None:
+        """Refuse a ``body`` that is not ``preset`` made with ``parameters``: a "preset" dispersion remakes the
+        body from them, and a walkthrough's 0.5 m by 1.2 m T-handle (moments 0.078, 0.18, 0.258 kg m^2), given
+        without its parameters, was swept as the default 1 m handle (0.125, 0.3125, 0.4375) without a word."""
+        try:
+            made = PRESETS[cast(str, self.preset)](**self.parameters)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"parameters = {self.parameters!r} do not make preset {self.preset!r}: {exc}") from None
+        mine, theirs = self.body, made
+        if not (math.isclose(mine.mass, theirs.mass, rel_tol=1e-9) and np.allclose(
+                mine.principal_moments, theirs.principal_moments, rtol=1e-9, atol=0.0)):
+            raise ValueError(
+                f"body = {self.body.name!r} (mass {mine.mass:.6g} kg, moments "
+                f"{', '.join(f'{x:.6g}' for x in mine.principal_moments)} kg m^2) is not preset {self.preset!r} made "
+                f"with parameters = {self.parameters!r} ({theirs.mass:.6g} kg; "
+                f"{', '.join(f'{x:.6g}' for x in theirs.principal_moments)}), which its 'preset' dispersions remake: "
+                "give the keyword arguments the body was made with as parameters")
 
     def _nominal_parameters(self) -> dict:
         signature = inspect.signature(PRESETS[self.preset])

@@ -192,12 +192,17 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     asymmetric = (I[:, 1] - I[:, 0] > tol) & (I[:, 2] - I[:, 1] > tol)
     spin = batch.omega[np.arange(m), :, axis - 1]
     flips, period = _flips(batch.t, spin)
-    exact = flip_interval(w0, I)
-    exact = np.where(batch.torque_free & asymmetric & (axis != circulation) & np.isfinite(exact), exact, np.nan)
+    at_rest = ~np.any(w0 != 0.0, axis=1)  # no spin axis: neither stable nor unstable (stability_report's None)
+    free = flip_interval(w0, I)
+    free = np.where(asymmetric & (axis != circulation) & np.isfinite(free) & ~at_rest, free, np.nan)
+    exact = np.where(batch.torque_free, free, np.nan)
     # the flip interval (exact, else counted) over the widest sample spacing, as stability_report's: below
-    # SAMPLES_PER_FLIP the flips counted are aliased (a walkthrough's 0.05 s flips at 0.067 s samples: 123 of 475)
+    # SAMPLES_PER_FLIP the flips counted are aliased (a walkthrough's 0.05 s flips at 0.067 s samples: 123 of 475).
+    # Under a torque, the torque-free interval of the start too, the shorter of the two: aliased samples count
+    # few sign changes, and no interval (a walkthrough's torqued T-handles at 2 samples: 9 of 16 "flipped", no
+    # warning, where each flipped 10-13 times)
     spacing = float(np.max(np.diff(batch.t))) if len(batch.t) >= 2 else np.nan
-    per_flip = np.where(np.isfinite(exact), exact, period) / spacing
+    per_flip = np.where(np.isfinite(exact), exact, np.fmin(period, free)) / spacing
     end = Rotation.from_quat(batch.quat[:, -1]) * Rotation.from_matrix(inputs.axes).inv()
     E0 = 0.5 * np.sum(I * w0 * w0, axis=1)
     E1 = 0.5 * np.sum(I * batch.omega[:, -1] ** 2, axis=1)
@@ -208,7 +213,8 @@ def reduce_cases(inputs: CaseInputs, batch: BatchTrajectory, names: Sequence[str
     turned = np.arctan2(np.linalg.norm(np.cross(L0, L1), axis=1), np.sum(L0 * L1, axis=1))
     cols = input_columns(inputs, names)
     results = [
-        axis, np.where(stable, "stable", "unstable"), growth, wobble, circulation, flips, period, exact,
+        np.where(at_rest, 0, axis), np.where(at_rest, "at rest", np.where(stable, "stable", "unstable")), growth, wobble,
+        np.where(at_rest, 0, circulation), flips, period, exact,
         *batch.omega[:, -1].T, *end.as_quat(canonical=True).reshape(m, 4).T,
         np.fmax.reduce(nutation_angle(batch.omega, I), axis=1), energy_change,
         np.where(np.any(L0 != 0, axis=1), turned, np.nan), per_flip,
@@ -314,6 +320,9 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     p = np.asarray(perturbation, dtype=float) if not isinstance(perturbation, (str, bytes)) else np.empty(0)
     if p.shape != (2,) or not np.all(np.isfinite(p)):
         raise ValueError(f"perturbation = {perturbation!r} must be two finite numbers (fractions of the spin)")
+    if np.any(np.abs(p) >= 1.0):  # the map's title and its flips are those of a spin about the intermediate axis
+        raise ValueError(f"perturbation = {perturbation!r} must be fractions of the spin below 1: the map is of a spin "
+                         "about the intermediate axis, perturbed")
     if not np.any(p):
         raise ValueError(f"perturbation = {perturbation!r}: a spin exactly about the intermediate axis is an unstable "
                          f"equilibrium that never flips; give a small perturbation along the minor or the major axis")

@@ -291,7 +291,7 @@ class SweepSummary:
                 "statement": (f"{k} of {n} cases flipped ({100 * k / n:.4g} %; {100 * low:.4g} % to {100 * high:.4g} % "
                               f"at {100 * FLIP_CONFIDENCE:.4g} % confidence, Clopper-Pearson)" + (
                                   f"; but {self.aliased} of the {n} cases were sampled fewer than {SAMPLES_PER_FLIP:g} "
-                                  f"times a flip, their flips miscounted: give more samples" if self.aliased else "")),
+                                  f"times a flip: their flips may be miscounted, give more samples" if self.aliased else "")),
             }
         if criterion is not None:
             n = self.passed + self.failed

@@ -234,7 +234,12 @@ class Criterion:
         found = {base_name(k): k for k in columns}
         if self.column not in found:
             raise ValueError(f"column = {self.column!r} is not a column of the cases; allowed: {', '.join(found)}")
-        x = np.asarray(columns[found[self.column]], dtype=float)
+        values = np.asarray(columns[found[self.column]])
+        if values.dtype.kind not in "biuf":  # numpy's "could not convert string to float" named no column
+            numbers = [base_name(k) for k in columns if np.asarray(columns[k]).dtype.kind in "biuf"]
+            raise ValueError(f"column = {self.column!r} holds text ({', '.join(sorted(set(map(str, values)))[:4])}), "
+                             f"not numbers to bound with min and max; allowed: {', '.join(numbers)}")
+        x = values.astype(float)
         ok = np.isfinite(x)
         if self.minimum is not None:
             ok &= x >= self.minimum

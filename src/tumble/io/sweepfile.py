@@ -159,7 +159,8 @@ class SweepFile:
     Examples
     --------
     >>> from tumble.io.sweepfile import sweep_from_table
-    >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 4}, "initial": {"omega": [0.1, 5.0, 0.1]},
+    >>> spread = {"omega": [0.1, 5.0, 0.1], "distribution": "normal", "spread": [0.01, 0.0, 0.01]}   # rad/s
+    >>> parsed = sweep_from_table({"body": "t-handle", "sweep": {"cases": 4}, "initial": spread,
     ...                            "simulation": {"t_end": 5.0}}, name="spin")
     >>> parsed.name, parsed.chunk, parsed.sweep.ensemble.cases
     ('spin', 1024, 4)
@@ -183,7 +184,8 @@ class SweepFile:
         Examples
         --------
         >>> from tumble.io.sweepfile import sweep_from_table
-        >>> spin = {"body": "t-handle", "initial": {"omega": [0.1, 5.0, 0.1]}}
+        >>> spin = {"body": "t-handle", "initial": {"omega": [0.1, 5.0, 0.1], "distribution": "normal",
+        ...                                         "spread": [0.01, 0.0, 0.01]}}   # rad/s
         >>> parsed = sweep_from_table({**spin, "sweep": {"cases": 4}})
         >>> other = sweep_from_table({**spin, "sweep": {"cases": 4, "chunk": 2}})
         >>> parsed.fingerprint()["cases"], parsed.fingerprint() == other.fingerprint()
@@ -308,11 +310,25 @@ def sweep_from_table(data: dict, *, base_dir: Path | None = None, name: str = "s
         raise ValueError(str(exc).replace("dispersions[", "dispersion[", 1)) from None
     rates = _in("initial", lambda: InitialRates(**initial))
     ensemble = _in("sweep", lambda: Ensemble(bodies, rates, **{k: v for k, v in sweep.items() if k != "chunk"}))
+    if ensemble.design.dims == 0 and ensemble.cases > rates.points:  # nothing drawn: case i is point i mod G
+        raise ValueError(f"sweep: cases = {ensemble.cases} repeats the {rates.points} initial rate(s) with nothing "
+                         "dispersed: copies of one deterministic run are not trials, and the fraction flipped and its "
+                         f"confidence would count them (1000 copies of 2 grid points: 99.63 to 100 %); give cases = "
+                         f"{rates.points}, or a [[dispersion]] or an [initial] spread")
+    torque = _in("simulation", lambda: torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE))
+    terms = getattr(torque, "terms", (torque,)) if torque is not None else ()
+    if rates.frame == "design" and any(getattr(term, "frame", None) == "body" for term in terms):
+        # a scenario reads a body-frame vector in initial.frame; a sweep's batch takes one vector for every case, in
+        # each case's principal frame, which its dispersions turn and reorder (a walkthrough, 2026-12-03: a
+        # thruster's torque along design x in one case, along the shaft in another)
+        raise ValueError('torque: a body-frame vector in a sweep acts along each case\'s principal axes (1 minor, 3 major), '
+                         'not initial.frame = "design"\'s: give initial.frame = "principal" (omega too in principal '
+                         'axes), or the torque in frame = "world"')
     times = sim.get("times")
     t_end = sim.get("t_end", None if times is not None else DEFAULT_T_END)
     n = len(_in("simulation", lambda: sample_times(t_end, sim.get("samples"), None, times))[0])
     settings = _in("simulation", lambda: RunSettings(t_end=t_end, samples=sim.get("samples"), times=times,
-                                                      method=sim.get("method"), torque=torque_of(data.get("torque"), elsewhere=_DIPOLE_ELSEWHERE),
+                                                      method=sim.get("method"), torque=torque,
                                                       step=sim.get("step"), rtol=sim.get("rtol"), atol=sim.get("atol")))
     chunk = sweep.get("chunk", DEFAULT_CHUNK)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
