@@ -257,3 +257,18 @@ def test_an_altitude_in_metres_below_the_karman_line_is_not_told_to_be_km():
         CircularOrbit(altitude=50e3)   # 50 km, written in metres
     with pytest.raises(ValueError, match="give metres, 500000 for 500 km"):
         CircularOrbit(altitude=500)
+
+
+def test_a_tle_propagated_far_from_its_epoch_is_warned_of():
+    """A TLE run ten years past its epoch gave positions with no word (SGP4's error grows ~1-3 km a day)."""
+    import warnings
+
+    from tumble.dynamics.environment.ephemeris import MAX_TLE_AGE, TLEAgeWarning
+
+    pytest.importorskip("sgp4")
+    tle = TLEOrbit(*ISS_2019)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tle.position_eci([0.0, MAX_TLE_AGE * 0.99, -MAX_TLE_AGE * 0.99])
+    with pytest.warns(TLEAgeWarning, match=r"the TLE is propagated 40 days from its epoch 2019-12-09"):
+        tle.position_eci(-40 * 86400.0)

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -41,7 +42,33 @@ from ...validation import check_number, check_positive
 from .earth import MU_EARTH, R_EARTH, check_mu, is_earth
 from .sidereal import J2000
 
-__all__ = ["KeplerOrbit", "TLEOrbit"]
+__all__ = ["MAX_TLE_AGE", "KeplerOrbit", "TLEAgeWarning", "TLEOrbit"]
+
+#: How far from its epoch (s, either way) a TLE is propagated without a warning: 30 days. SGP4's
+#: error grows from ~1 km at the epoch by ~1-3 km a day (Vallado, Crawford, Hujsak & Kelso, "Revisiting
+#: Spacetrack Report #3", AIAA 2006-6753), and the drag terms of an element set hold for days.
+MAX_TLE_AGE = 30 * 86400.0
+
+
+class TLEAgeWarning(UserWarning):
+    """A TLE propagated more than :data:`MAX_TLE_AGE` from its epoch: the orbit is SGP4's extrapolation,
+    its position off by ~1-3 km a day; a newer element set gives the orbit of that time. The command line
+    says it in one line.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from tumble.dynamics.environment.ephemeris import TLEAgeWarning, TLEOrbit
+    >>> iss = TLEOrbit("1 25544U 98067A   08264.51782528 -.00002182  00000-0 -11606-4 0  2927",
+    ...                "2 25544  51.6416 247.4627 0006703 130.5360 325.0288 15.72125391563537")
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     _ = iss.position_eci(90 * 86400.0)   # 90 days on
+    >>> caught[0].category is TLEAgeWarning, str(caught[0].message)[:50]
+    (True, 'the TLE is propagated 90 days from its epoch 2008-')
+    """
+
+    cli_one_line = True
 
 
 def _kepler_eccentric(M: FloatArray, e: float) -> FloatArray:
@@ -388,6 +415,12 @@ class TLEOrbit:
         if not np.all(np.isfinite(flat)):
             raise ValueError(f"t = {t!r} must be finite times, s from the TLE epoch")
         sat = self._satrec
+        far = float(np.max(np.abs(flat))) if flat.size else 0.0
+        if far > MAX_TLE_AGE:
+            warnings.warn(TLEAgeWarning(
+                f"the TLE is propagated {far / 86400:.3g} days from its epoch {self.epoch.date().isoformat()}: SGP4's "
+                f"position drifts ~1-3 km a day from an element set's epoch (more than {MAX_TLE_AGE / 86400:g} days here); "
+                "give a TLE of the run's time"), stacklevel=3)
         days = flat / 86400.0 + sat.jdsatepochF
         whole = np.floor(days)
         err, r, v = sat.sgp4_array(np.full_like(flat, sat.jdsatepoch) + whole, days - whole)
