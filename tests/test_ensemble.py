@@ -738,3 +738,16 @@ def test_a_preset_dispersion_of_a_body_not_made_so_is_refused():
     moments = Ensemble(given, InitialRates(omega=(10.0, 0.1, 0.1)), cases=64, seed=1).inputs().moments
     # a 1 % spread of the crossbar about 1.2 m: the moments spread about the body's own, 2 % for those it enters
     assert np.all(np.abs(np.median(moments, axis=0) / body.principal_moments - 1) < 0.01)
+
+
+@pytest.mark.parametrize("resolution", [40, 200])
+def test_the_maps_cells_on_the_diagonal_are_symmetric_bodies_left_out(resolution):
+    """At an even resolution cells fall on the diagonal I1 = I2 (to an ulp) and were mapped with flip intervals
+    up to 8.7e3 s, stretching the colour scale (a walkthrough, 2026-12-03): such a body is symmetric, with no
+    intermediate axis; the interval off the diagonal grows only as the log of the distance to it."""
+    from tumble.ensemble.reductions import stability_map
+
+    m = stability_map(10.0, resolution=resolution)
+    X, Y = np.meshgrid(m.x, m.y)
+    assert np.all(Y[m.inside] - X[m.inside] > 1e-6) and np.any(np.isclose(X, Y, rtol=0, atol=1e-12))
+    assert np.nanmax(m.flip_interval) < 400.0   # s: the cells nearest the edges, 10 rad/s spins

@@ -112,7 +112,9 @@ def test_plot_stability_map(run):
     scope, figures = run("plot_stability_map.py")
     grid = scope["grid"]
     x, y = np.meshgrid(grid.x, grid.y)
-    np.testing.assert_array_equal(grid.inside, (x < y) & (y < 1) & (x + y > 1))
+    # asymmetric bodies: two moments equal to round-off (cells on the diagonal) have no intermediate axis
+    tol = 1e-9 * (x + y + 1)
+    np.testing.assert_array_equal(grid.inside, (y - x > tol) & (1 - y > tol) & (x + y > 1))
     assert np.isfinite(grid.flip_interval[grid.inside]).all()
     assert figures == 1
     # the spin its text states: 10 rad/s, and 0.01 rad/s about each other axis (the map takes fractions of the spin)

@@ -332,7 +332,9 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     ny = resolution // 2
     y = 0.5 + 0.5 * (np.arange(ny) + 0.5) / ny
     X, Y = np.meshgrid(x, y)
-    inside = (X < Y) & (Y < 1.0) & (triangle_excess(np.stack([X, Y, np.ones_like(X)], axis=-1)) < 0.0)
+    tol = INERTIA_RTOL * (X + Y + 1.0)  # two moments equal to round-off: a symmetric body, which has no
+    # intermediate axis to flip about (the cells on the diagonal x = y had intervals of ~1e4 s, stretching the scale)
+    inside = (Y - X > tol) & (1.0 - Y > tol) & (triangle_excess(np.stack([X, Y, np.ones_like(X)], axis=-1)) < 0.0)
     moments = np.stack([X[inside], Y[inside], np.ones(inside.sum())], axis=-1)
     w0 = float(spin) * np.array([p[0], 1.0, p[1]])
     interval, growth, gap = (np.full(X.shape, np.nan) for _ in range(3))
