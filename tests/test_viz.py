@@ -508,3 +508,26 @@ def test_simulate_says_in_one_line_where_its_omega_png_aliases(tmp_path, capsys)
 def test_sample_phase_refuses_what_is_not_a_run_in_one_line():
     with pytest.raises(ValueError, match=r"^trajectory = list object must be a tumble Trajectory"):
         viz.sample_phase([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]])
+
+
+def test_the_maps_edges_name_a_disc_oblate_and_a_rod_prolate():
+    """The legend called I1 = I2 prolate and I2 = I3 oblate (a teacher's walkthrough, 2026-12-03). A disc
+    (flat cylinder) has I1 = I2 < I3, an oblate top; a rod (long cylinder) I1 < I2 = I3, a prolate one: each
+    edge's label is checked on the ratios of the body drawn on it (moments from the cylinder's formulas)."""
+    from tumble.ensemble.reductions import stability_map
+    from tumble.viz import figure_stability_map
+
+    def edge_of(r: float, h: float) -> str:   # m r^2 / 2 about the axis, m (3 r^2 + h^2) / 12 across it
+        moments = np.sort([0.5 * r**2, (3 * r**2 + h**2) / 12, (3 * r**2 + h**2) / 12])
+        x, y = moments[0] / moments[2], moments[1] / moments[2]
+        fig = figure_stability_map(10.0, (0.001, 0.001), resolution=20)
+        lines = [line for line in fig.axes[0].get_lines() if line.get_label().startswith("$I")]
+        def off(line) -> float:   # the point's distance from the line through the edge's two ends (2D cross product)
+            (x0, y0), (x1, y1) = line.get_xydata()[:2]
+            return abs((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0))
+
+        on = [line.get_label() for line in lines if off(line) < 1e-9]
+        return on[0]
+
+    assert "oblate" in edge_of(0.2, 0.01) and "prolate" in edge_of(0.01, 0.5)
+    assert stability_map(10.0, resolution=20).x.size == 20

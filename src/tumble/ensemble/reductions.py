@@ -281,7 +281,7 @@ def stability_map(spin: float = 10.0, perturbation: tuple[float, float] = (0.01,
     ``(x, y, 1) I3``: every quantity here is homogeneous of degree 0 in the moments, so the
     ratios decide it (:func:`tumble.analysis.flip_interval`, Landau & Lifshitz sec. 37). The
     triangle: ``0 < x <= y <= 1`` with ``x + y >= 1``; its edges are the planar bodies
-    (``x + y = 1``), the prolate (``x = y``) and the oblate (``y = 1``) symmetric ones.
+    (``x + y = 1``), the oblate (``x = y``: a disc) and the prolate (``y = 1``: a rod) symmetric ones.
 
     Parameters
     ----------

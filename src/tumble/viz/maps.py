@@ -4,8 +4,8 @@
   intermediate axis over ``(I1/I3, I2/I3)``, and which axis omega then circulates about
   (:func:`tumble.ensemble.stability_map`; Landau & Lifshitz sec. 37). Every body lies in the
   triangle ``I1 <= I2 <= I3``, ``I1 + I2 >= I3``: its lower-left edge is the triangle
-  inequality (planar bodies), the diagonal the prolate symmetric bodies (``I1 = I2``), the top
-  edge the oblate ones (``I2 = I3``).
+  inequality (planar bodies), the diagonal the oblate symmetric bodies (``I1 = I2``: a disc), the
+  top edge the prolate ones (``I2 = I3``: a rod).
 - :func:`figure_sweep`: what a sweep's cases did (its bounded sample,
   :meth:`tumble.ensemble.SweepSummary.sample_columns`): the distribution of flip periods and the
   cases on the inertia-ratio plane.
@@ -32,8 +32,8 @@ __all__ = ["figure_stability_map", "figure_sweep"]
 #: The edges of the triangle of inertia ratios: (label, x pair, y pair, line width).
 _EDGES = (
     (r"$I_1 + I_2 = I_3$: planar bodies (triangle inequality)", (0.0, 0.5), (1.0, 0.5), 1.6),
-    (r"$I_1 = I_2$: prolate symmetric", (0.5, 1.0), (0.5, 1.0), 0.8),
-    (r"$I_2 = I_3$: oblate symmetric", (0.0, 1.0), (1.0, 1.0), 0.8),
+    (r"$I_1 = I_2$: oblate symmetric", (0.5, 1.0), (0.5, 1.0), 0.8),
+    (r"$I_2 = I_3$: prolate symmetric", (0.0, 1.0), (1.0, 1.0), 0.8),
 )
 _RATIO_LABELS = (r"$I_1 / I_3$ (dimensionless)", r"$I_2 / I_3$ (dimensionless)")
 
