@@ -95,11 +95,11 @@ def test_explorer1_ends_in_the_flat_spin():
 
 
 def test_explorer1_energy_budget_closes():
-    """E + dissipated = E0 to 9e-8, as docs/tour.md and the example say (measured 8.9e-8 of E0 with
-    the example's step, the splitting's own error: 9.1e-9 at half the step); L_world fixed."""
+    """E + dissipated = E0 to 6e-8, as docs/tour.md and the example say (measured 5.4e-8 of E0 with
+    the example's 0.015 s step, the splitting's own error: 9.1e-9 at 0.01 s); L_world fixed."""
     _, traj = run("explorer1")
     E0 = traj.energy[0]
-    assert np.max(np.abs(traj.energy + traj.dissipated - E0)) / E0 < 9e-8
+    assert np.max(np.abs(traj.energy + traj.dissipated - E0)) / E0 < 6e-8
     assert np.all(np.diff(traj.dissipated) >= -1e-14 * E0)  # never gives energy back (to round-off)
     assert traj.drift["L_world"] < 1e-12
 
