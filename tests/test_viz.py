@@ -282,7 +282,7 @@ def test_animation_tick_labels_do_not_overlap():
 
 @pytest.fixture(scope="module")
 def short_flip():
-    return tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=1.0, samples=20)
+    return tumble.simulate(tumble.t_handle(), [0.1, 10.0, 0.1], t_end=0.15, samples=20)   # ~0.4 rad of spin a frame of 5
 
 
 @pytest.mark.skipif(viz.ffmpeg_path() is None, reason="no ffmpeg (tumble[video])")
