@@ -388,3 +388,69 @@ def test_a_number_that_is_not_one_says_what_a_number_is(tmp_path, capsys, writte
     err = capsys.readouterr().err
     assert exited.value.code == 2 and err.count("\n") == 1 and f"argument --t-end: {said}" in err, err
     assert not (tmp_path / "run").exists()
+
+
+# -- a QA engineer's walkthrough of the command line (2026-12-03) --------------------------------
+
+def test_no_command_is_one_line_on_stderr(capsys):
+    """Without a command the whole help went to stdout (exit 2, stderr empty): bad input is one line."""
+    assert main([]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and err.startswith("tumble: error: give a command: inertia, simulate")
+
+
+def test_a_negative_number_with_an_exponent_is_a_number(tmp_path, capsys):
+    """argparse read "-1e-2" as an option: "argument --omega: expected 3 arguments", though 3 were given."""
+    assert main(["simulate", "t-handle", "--omega", "-1e-2", "10", "0.1", "--t-end", "1", "--out", str(tmp_path / "r")]) == 0
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["omega0"] == [-0.01, 10.0, 0.1]
+    assert main(["map", "--out", str(tmp_path / "m.png"), "--perturbation", "1e-2", "-1e-2"]) == 2   # rad/s >= 0
+    assert "--perturbation[1] = -1e-2 must be a non-negative" in capsys.readouterr().err   # as written
+
+
+def test_a_closed_or_full_stdout_is_not_taken_for_a_failed_run(tmp_path):
+    """Standard output closed (>&-) gave exit 1 "AttributeError: 'NoneType' object has no attribute 'flush'",
+    a full one (>/dev/full) "No space left on device; nothing written", both of runs whose files were written."""
+    seed = str(Path(tumble.__file__).parent / "examples" / "seed_flip.toml")
+    argv = [sys.executable, "-m", "tumble", "simulate", seed, "--t-end", "1", "--out"]
+    closed = subprocess.run(["sh", "-c", 'exec "$@" >&-', "sh", *argv, str(tmp_path / "closed")],
+                            capture_output=False, stderr=subprocess.PIPE, text=True, timeout=HANG_S)
+    assert closed.returncode == 0 and closed.stderr == "" and (tmp_path / "closed" / "summary.json").is_file()
+    if not Path("/dev/full").exists():
+        return
+    with open("/dev/full", "w") as full:
+        proc = subprocess.run([*argv, str(tmp_path / "full")], stdout=full, stderr=subprocess.PIPE, text=True,
+                              timeout=HANG_S)
+    assert proc.returncode == 1 and (tmp_path / "full" / "summary.json").is_file()
+    assert proc.stderr == "tumble: failed: standard output: No space left on device; the outputs were written\n"
+
+
+def test_a_toml_file_with_a_byte_order_mark_is_read(tmp_path, capsys):
+    """A scenario saved by a Windows editor with a UTF-8 byte-order mark was "not valid TOML: Invalid statement
+    (at line 1, column 1)", where CSV files with one were read."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b'\xef\xbb\xbfbody = "t-handle"\n[initial]\nomega = [0.1, 10.0, 0.1]\n[simulation]\nt_end = 1.0\n')
+    assert main(["simulate", str(path), "--out", str(tmp_path / "r")]) == 0
+    assert json.loads((tmp_path / "r" / "summary.json").read_text())["omega0"] == [0.1, 10.0, 0.1]
+
+
+def test_a_mesh_given_as_a_body_file_says_where_a_mesh_goes(tmp_path, capsys):
+    """It said "(.stl files are not read: meshes are .stl, .obj, .ply)", contradicting itself."""
+    examples = Path(tumble.__file__).parent / "examples"
+    mesh = examples / "bodies" / "meshes" / "torus.stl"
+    assert main(["fit", str(examples / "data" / "phone_toss.csv"), "--body", str(mesh), "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "a mesh: give it to 'tumble inertia', or as a part of a body file" in err
+
+
+def test_an_empty_copy_folder_and_a_mass_of_nothing_are_refused(tmp_path, capsys, monkeypatch):
+    """--copy "" listed the examples and copied nothing, exit 0; tensor --mass 1e-300 said "the part's mass
+    0.10067 kg must be less than the whole's 0.10067 kg" (a QA walkthrough, 2026-12-03)."""
+    from tumble.analysis.tensor.device import check_thrown_mass
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["examples", "--copy", ""]) == 2 and list(tmp_path.iterdir()) == []
+    assert "--copy = '' names no folder" in capsys.readouterr().err
+    with pytest.raises(ValueError, match=r"--mass = 1e-300 kg is below 0.001 kg \(a gram\)"):
+        check_thrown_mass("--mass", 1e-300)
+    assert check_thrown_mass("--mass", 0.482) == 0.482

@@ -300,3 +300,34 @@ def test_scenario_files_take_dt_and_times(tmp_path):
     with pytest.raises(ValueError, match=r"simulation.times must increase strictly"):
         load_scenario(path)
 
+
+
+def test_an_existing_folder_this_user_cannot_write_is_refused_before_computing(tmp_path, monkeypatch, capsys):
+    """A QA walkthrough (2026-12-03, a non-root user): --out an existing folder of mode 555 exited 1 after the
+    run, "Permission denied; nothing written", and left .x.tmp-* (every output, its mode copied, so that it
+    could not be removed) and an empty .x.old-* behind, a pair a retry. (The suite may run as root, whom no
+    mode stops: the permission is what os.access says.)"""
+    out = tmp_path / "x"
+    out.mkdir()
+    real = os.access
+    monkeypatch.setattr(tumble.io.output.os, "access", lambda p, mode: False if Path(p) == out else real(p, mode))
+    assert simulate(out) == 2
+    assert "is a folder this user cannot write to" in capsys.readouterr().err
+    assert leftovers(tmp_path, "x") == [] and list(out.iterdir()) == []
+
+
+def test_a_swap_that_cannot_move_the_old_folder_leaves_nothing_behind(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "run"
+    assert simulate(out) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    real = os.rename
+
+    def refuse_old(src, dst):
+        if Path(src) == out:
+            raise PermissionError(errno.EACCES, "Permission denied", str(src))
+        return real(src, dst)
+
+    monkeypatch.setattr(tumble.io.output.os, "rename", refuse_old)
+    assert simulate(out) in (1, 2)
+    capsys.readouterr()
+    assert leftovers(tmp_path, "run") == [] and {p.name: p.read_bytes() for p in out.iterdir()} == before

@@ -586,3 +586,14 @@ def test_the_map_takes_what_stability_map_takes_and_no_perturbation_beyond_the_s
     with pytest.raises(ValueError, match="must be fractions of the spin below 1"):
         stability_map(10.0, (2.0, 0.001))
     assert main(["map", "--out", str(tmp_path / "m.png"), "--resolution", "10"]) == 0 and (tmp_path / "m.png").is_file()
+
+
+def test_a_sweep_refused_before_its_first_chunk_leaves_no_resume_folder(tmp_path, capsys):
+    """A refused scheduler (exit 2, "nothing written") left DIR.resume/ with its fingerprint and lock behind
+    (a QA walkthrough, 2026-12-03); with finished chunks, the folder stays for the next run."""
+    from tumble.cli import main
+
+    path = write(tmp_path, cases=8)
+    assert main(["sweep", str(path), "--out", str(tmp_path / "y"), "--scheduler", "nonsense"]) == 2
+    capsys.readouterr()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["small.toml"]

@@ -12,6 +12,7 @@ import functools
 import os
 import signal
 import sys
+import time
 import warnings
 
 from ._common import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
@@ -81,10 +82,16 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
     args = parser.parse_args(argv)
-    if args.command is None:
-        parser.print_help()
+    if args.command is None:  # one line on stderr, as every other bad input
+        print(f"tumble: error: give a command: {', '.join(_commands(parser))} (tumble --help says what each does)",
+              file=sys.stderr)
         return EXIT_USAGE
     args.argv = argv
+    started = time.time() - 1.0  # a file system's times may be a second coarse
+    if sys.stdout is None:  # started with standard output closed (>&-): the outputs are written, the line goes nowhere
+        sys.stdout = open(os.devnull, "w", encoding="utf-8")  # noqa: SIM115 - the process's own, for its lifetime
+    stdout = sys.stdout
+    sys.stdout = _Stdout(stdout)  # type: ignore[assignment]
     try:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
     except ValueError:  # not the main thread: leave signals alone
@@ -124,6 +131,13 @@ def main(argv: list[str] | None = None) -> int:
             return _reader_gone()
         if args.debug:
             raise
+        if isinstance(exc, _StdoutFailed):  # >/dev/full: the line, not the files, could not be written
+            out = getattr(args, "out", None)
+            written = out is not None and os.path.exists(out) and os.path.getmtime(out) >= started
+            print(f"tumble: failed: standard output: {exc.strerror or _one_line(exc)}"
+                  + ("; the outputs were written" if written else f"; nothing written{_kept(exc)}"), file=sys.stderr)
+            _reader_gone()
+            return EXIT_FAILURE
         refused = _output_refused(args, exc)
         if refused:
             print(f"tumble: error: {refused}; nothing written{_kept(exc)}", file=sys.stderr)
@@ -137,6 +151,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tumble: computation failed: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
         return EXIT_FAILURE
     finally:
+        if isinstance(sys.stdout, _Stdout):
+            sys.stdout = stdout
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
 
@@ -158,6 +174,42 @@ def _compile_note(command: str, seconds: float) -> None:
     if command != "compile" and seconds >= COMPILE_NOTE_S and sys.stderr.isatty():
         print(f"tumble: this run waited {seconds:.0f} s for numba to compile its kernels, once per install: "
               f"'tumble compile' compiles them all ahead", file=sys.stderr)
+
+
+class _StdoutFailed(OSError):
+    """Standard output could not take the command's line (a full device): its files may be written."""
+
+
+class _Stdout:
+    """Standard output, its write errors (other than a closed pipe) raised as :class:`_StdoutFailed`: an
+    OSError names no file, and one of standard output read "nothing written" of a run whose files were."""
+
+    def __init__(self, stream) -> None:  # noqa: ANN001 - any text stream
+        self._stream = stream
+
+    def __getattr__(self, name: str):  # noqa: ANN204 - the stream's own
+        return getattr(self._stream, name)
+
+    def _guarded(self, call, *args):  # noqa: ANN001, ANN002, ANN202
+        try:
+            return call(*args)
+        except BrokenPipeError:
+            raise
+        except OSError as exc:
+            raise _StdoutFailed(exc.errno, exc.strerror) from exc
+
+    def write(self, text: str) -> int:
+        return self._guarded(self._stream.write, text)
+
+    def flush(self) -> None:
+        self._guarded(self._stream.flush)
+
+
+def _commands(parser) -> list[str]:
+    """The parser's command names, in the order its help lists them."""
+    import argparse
+
+    return next((list(a.choices) for a in parser._actions if isinstance(a, argparse._SubParsersAction)), [])
 
 
 def _reader_gone() -> int:

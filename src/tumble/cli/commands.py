@@ -57,7 +57,7 @@ def _cmd_demo(args) -> int:
 def _cmd_examples(args) -> int:
     from ..io.examples import copy_examples, list_examples
 
-    if args.copy:
+    if args.copy is not None:
         written = copy_examples(args.copy)
         print(f"copied {len(written)} files to {args.copy}/; try: tumble simulate {args.copy}/seed_flip.toml --out run")
         return EXIT_OK

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 
 from .._version import __version__
@@ -21,6 +22,9 @@ class _Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs) -> None:  # noqa: ANN002, ANN003 - argparse's signature
         kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
+        # a negative number with an exponent (--omega -1e-2 10 0.1) is a number, not an option: argparse's own
+        # pattern knows -1 and -0.01 only, and "-1e-2" ended the list ("expected 3 arguments")
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
     #: Set while :meth:`parse_args` runs: a missing required option is then raised as
     #: :class:`_MissingRequired`, so that a misspelt option (``--otu`` for ``--out``) is named first.

@@ -138,9 +138,11 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     try:
         data = _run(parsed, path, out, store, workers, scheduler, argv, figure)
     except BaseException as exc:
-        store.close()  # the finished chunks stay for the next run, and the message says where
-        if any(store.has(k) for k in range(store.chunks)):
+        if any(store.has(k) for k in range(store.chunks)):  # they stay for the next run, and the message says where
+            store.close()
             exc.add_note(f"the finished chunks are kept in {store.folder}/: the same sweep run again resumes")
+        else:  # none finished: "nothing written" left DIR.resume/ (its fingerprint and lock) behind
+            store.remove()
         raise
     store.remove()
     return data

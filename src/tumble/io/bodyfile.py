@@ -115,11 +115,12 @@ def read_toml(path: str | os.PathLike[str], *, what: str = "a body or scenario f
     path = Path(path)
     raw = _read_input(path, limit=MAX_TOML_BYTES, what=what)
     try:
-        text = raw.decode("utf-8")
+        text = raw.decode("utf-8-sig")  # a byte-order mark, as Windows editors write it, is no TOML statement
     except UnicodeDecodeError:
         # a CAD or mesh file of another kind (.step, a binary .stl): its suffix said first (a walkthrough)
-        other = f" ({path.suffix} files are not read: meshes are {', '.join(MESH_SUFFIXES)})" if path.suffix.lower() not in (
-            "", ".toml") else ""
+        other = "" if path.suffix.lower() in ("", ".toml") else f" ({path.suffix} files are not read: meshes are " \
+            f"{', '.join(MESH_SUFFIXES)})" if path.suffix.lower() not in MESH_SUFFIXES else " (a mesh: give it to " \
+            "'tumble inertia', or as a part of a body file, kind = \"mesh\")"
         raise ValueError(f"{path}: not a text file (not valid UTF-8), so not {what}{other}") from None
     try:
         data = tomllib.loads(text)

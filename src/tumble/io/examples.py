@@ -224,6 +224,8 @@ def copy_examples(dest: str | os.PathLike[str]) -> list[Path]:
     ...     print(Path(folder, "examples", "bodies", "t_handle.toml") in written, len(written) == len(list_examples()))
     True True
     """
+    if not os.fspath(dest).strip():  # Path("") is the current folder: --copy "" listed instead, or would copy there
+        raise ValueError(f"--copy = {os.fspath(dest)!r} names no folder; give a folder's name, e.g. --copy examples")
     dest = Path(dest)
     files = list(_walk(_root()))
     check_parent(dest, "--copy")  # a file on the way: it was "File exists", exit 1 (a walkthrough)

@@ -102,6 +102,8 @@ def check_output_dir(path: str | os.PathLike[str]) -> Path:
     if path.exists() or path.is_symlink():
         if path.is_symlink() or not path.is_dir():
             raise _refuse(path, "exists and is not a folder" if not path.is_dir() else "is a symbolic link; give the folder itself")
+        if not os.access(path, os.W_OK | os.X_OK):  # the swap renames it, which needs its write permission
+            raise _refuse(path, "is a folder this user cannot write to (its permissions); give another folder")
         _check_plain(path)
     check_parent(path)
     return path
@@ -193,13 +195,19 @@ def _swap_in(stage: Path, path: Path, owns: tuple[str, ...]) -> None:
                 os.link(entry, stage / entry.name)
             except OSError:  # a file system without hard links
                 shutil.copy2(entry, stage / entry.name)
-    os.chmod(stage, path.stat().st_mode & 0o7777)
+    mode = path.stat().st_mode & 0o7777  # given to the new folder once in place: a stage without write
+    # permission could not be removed after a failed swap (a read-only --out left .run.tmp-* folders behind)
     old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old-", dir=path.parent))
-    os.rename(path, old / "previous")
+    try:
+        os.rename(path, old / "previous")
+    except BaseException:
+        os.rmdir(old)
+        raise
     try:
         os.rename(stage, path)
     except BaseException:
         os.rename(old / "previous", path)  # put the previous output back
         os.rmdir(old)
         raise
+    os.chmod(path, mode)
     shutil.rmtree(old, ignore_errors=True)

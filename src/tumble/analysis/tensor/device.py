@@ -32,7 +32,7 @@ from ...mass.tensor import check_inertia
 from ...typing import FloatArray, Matrix3, Vector3
 from ...validation import check_direction, check_positive, check_vectors, short_repr
 
-__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_ROTOR_SPEED", "MAX_THROWN_MASS", "ROTOR_SPEED_RATIO",
+__all__ = ["AXIS_NAMES", "MAX_DEVICE_MASS", "MAX_DEVICE_SIZE", "MAX_DISTORTION", "MAX_ROTOR_SPEED", "MAX_THROWN_MASS", "MIN_THROWN_MASS", "ROTOR_SPEED_RATIO",
            "Device", "Proof", "axes_matrix",
            "check_thrown_mass"]
 
@@ -44,6 +44,9 @@ MAX_DEVICE_MASS = 10.0
 MAX_DEVICE_SIZE = 0.5
 #: The heaviest proof body or object thrown with the device, kg.
 MAX_THROWN_MASS = 100.0
+#: The lightest, kg: a gram 3 cm across has moments ~1e-7 kg m^2 against the device's ~5e-5, far below what
+#: its throws resolve (the tensor's standard uncertainties there ~3e-6 kg m^2, docs/tensor.md).
+MIN_THROWN_MASS = 1e-3
 #: How far beyond the calibration throws' top speeds (``Device.rotor_speed_range``) an object's
 #: throw's may lie, as a ratio: the firmware's plateau was 1230-1360 rad/s over the published
 #: device's throws (docs/tensor.md), a battery's sag slows an open-loop motor by ~10-20 %; rpm
@@ -70,6 +73,9 @@ def check_thrown_mass(field: str, value: object) -> float:
     ValueError: --mass = 482 kg is beyond 100 kg, more than anything thrown by hand: in grams? (482 g is 0.482 kg)
     """
     mass = check_positive(field, value, "kg")
+    if mass < MIN_THROWN_MASS:  # 1e-300 read as "the part's mass 0.10067 kg must be less than the whole's 0.10067 kg"
+        raise ValueError(f"{field} = {value!r} kg is below {MIN_THROWN_MASS:g} kg (a gram), too light to show in a throw "
+                         f"with a device: in tonnes? ({value!r} t is {mass * 1000:g} kg)")
     if mass > MAX_THROWN_MASS:
         raise ValueError(f"{field} = {value!r} kg is beyond {MAX_THROWN_MASS:g} kg, more than anything thrown by hand: "
                          f"in grams? ({value!r} g is {mass / 1000:g} kg)")
