@@ -62,6 +62,8 @@ seed = 5
 
 [initial]
 omega = [0.1, 5.0, 0.1]
+distribution = "normal"
+spread = [0.01, 0.0, 0.01]
 
 [simulation]
 t_end = 10.0

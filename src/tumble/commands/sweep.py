@@ -116,7 +116,8 @@ def run_sweep(path: str | os.PathLike[str], out: str | os.PathLike[str], *, work
     >>> from tumble.commands.sweep import run_sweep
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 8\\n[initial]\\n'
-    ...                                              'omega = [0.1, 5.0, 0.1]\\n[criterion]\\ncolumn = "flips"\\nmin = 1\\n')
+    ...                                              'omega = [0.1, 5.0, 0.1]\\ndistribution = "normal"\\n'
+    ...                                              'spread = [0.01, 0.0, 0.01]\\n[criterion]\\ncolumn = "flips"\\nmin = 1\\n')
     ...     data = run_sweep(Path(folder, "spin.toml"), Path(folder, "out"))
     ...     written = sorted(p.name for p in Path(folder, "out").iterdir())
     >>> data["cases"], data["counts"]["predicted"], data["criterion"]["passed"]  # spun about the intermediate axis
@@ -248,7 +249,8 @@ def run_sweep_command(path: str | os.PathLike[str], out: str | os.PathLike[str],
     >>> from tumble.commands.sweep import run_sweep_command
     >>> with tempfile.TemporaryDirectory() as folder:
     ...     _ = Path(folder, "spin.toml").write_text('body = "t-handle"\\n[sweep]\\ncases = 4\\n[initial]\\n'
-    ...                                              'omega = [0.1, 5.0, 0.1]\\n')
+    ...                                              'omega = [0.1, 5.0, 0.1]\\ndistribution = "normal"\\n'
+    ...                                              'spread = [0.01, 0.0, 0.01]\\n')
     ...     status = run_sweep_command(Path(folder, "spin.toml"), Path(folder, "out"))  # doctest: +ELLIPSIS
     4 cases (exact): 4 predicted unstable; 4 flipped (100 %, 95 % interval 39.76 to 100 %); flip period median ...; wrote .../out/
     >>> status
