@@ -454,3 +454,13 @@ def test_an_empty_copy_folder_and_a_mass_of_nothing_are_refused(tmp_path, capsys
     with pytest.raises(ValueError, match=r"--mass = 1e-300 kg is below 0.001 kg \(a gram\)"):
         check_thrown_mass("--mass", 1e-300)
     assert check_thrown_mass("--mass", 0.482) == 0.482
+
+
+def test_the_summary_records_omega_as_given_and_its_frame(tmp_path, capsys):
+    """summary.json held omega0 in the principal frame only: a run given --frame design could not be told
+    from one given its principal rates (a teacher's walkthrough, 2026-12-03)."""
+    assert main(["simulate", "t-handle", "--omega", "10", "0.1", "0.1", "--frame", "design", "--t-end", "1",
+                 "--out", str(tmp_path / "r")]) == 0
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["frame"] == "design" and summary["omega0_given"] == [10.0, 0.1, 0.1]
+    assert summary["omega0"] == [0.1, 10.0, 0.1]   # the crossbar (design x) is the T-handle's intermediate axis

@@ -468,3 +468,20 @@ def test_flips_under_a_torque_on_too_few_samples_are_said_to_be():
     assert sparse.aliased and sparse["flips"] is None and sparse["samples_per_flip"] == pytest.approx(
         free["flip_period_exact"] / 20.0, rel=1e-12)
     assert not dense.aliased and dense["flips"] >= 10 and dense["flip_period_exact"] is None
+
+
+def test_a_rod_spun_end_over_end_is_said_to_roll_not_to_grow():
+    """A rod (I2 = I3) spun about a transverse axis was "unstable, 0 flips" with no word (a teacher's
+    walkthrough, 2026-12-03): nothing grows; omega rolls about the symmetry axis at the free top's body rate
+    (I3 - I1) w1 / I3 (Landau & Lifshitz sec. 33), the transverse component turning over every pi / that.
+    The moments from the cylinder's formulas here; the roll's interval counted on a faster roll."""
+    m, r, h = 1.0, 0.1, 0.5
+    I1, I3 = m * r**2 / 2, m * (3 * r**2 + h**2) / 12
+    rod = tumble.Body([tumble.Cylinder(mass=m, radius=r, length=h)])
+    np.testing.assert_allclose(rod.principal_moments, [I1, I3, I3], rtol=1e-12)
+    slow = tumble.stability_report(tumble.simulate(rod, [1e-4, 0.1, 10.0], t_end=200.0))
+    assert slow["flips"] == 0 and "no perturbation grows" in slow["note"]
+    assert f"turns over every {np.pi / ((I3 - I1) / I3 * 1e-4):.4g} s" in slow["note"]
+    fast = tumble.simulate(rod, [0.5, 0.1, 10.0], t_end=40.0, samples=4001)
+    times = tumble.analysis.flip_times(fast.t, fast.omega[:, 2])
+    assert np.allclose(np.diff(times), np.pi / ((I3 - I1) / I3 * 0.5), rtol=1e-3)

@@ -37,7 +37,7 @@ __all__ = ["CASES", "Case", "animation_suffix", "run_demo"]
 
 T_END, SAMPLES = 20.0, 500
 #: The animations show the first ``FLIPS`` flips of the run (its exact flip interval), a frame each
-#: ``FRAME_TURN`` rad of spin: the whole 20 s in 100 frames turned the handle up to 148 deg a frame, and it
+#: ``FRAME_TURN`` rad of spin: the whole 20 s in 100 frames turned the handle up to 160 deg a frame, and it
 #: seemed to jump (a teacher's walkthrough, 2026-12-03). At 20 frames a second they play slowed ~1.7 times.
 FLIPS, FRAME_TURN = 2.2, 0.3
 

@@ -193,7 +193,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     if not distinct and traj.rigid:
         note = ("a spherical body: every axis is principal" if degeneracy == "spherical" else
                 "a symmetric body: what turns over is its slow roll about the symmetry axis, not the tennis-racket "
-                "flip" if len(times) else None)
+                "flip" if len(times) else _roll_note(w0, I, a, degeneracy))
     elif predicted == "unstable" and not len(times) and np.count_nonzero(w0) == 1:
         note = "a spin exactly about the axis: an unstable equilibrium, which flips only once perturbed"
     elif predicted == "unstable" and (off := float(np.hypot(*np.delete(w0, a - 1)))) <= ROUND_OFF_AXIS * abs(w0[a - 1]):
@@ -232,6 +232,21 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
         "samples_per_flip": per_flip,
         "note": note,
     })
+
+
+def _roll_note(w0: Any, I: Any, a: int, degeneracy: str) -> str | None:
+    """For a symmetric body spun across its symmetry axis with no flip seen: that nothing grows, and when its
+    spin turns over, rolling about the symmetry axis at the body rate of a free top (Landau & Lifshitz
+    sec. 33; a teacher's walkthrough found a rod's end-over-end spin called "unstable, 0 flips" with no word)."""
+    from .periods import symmetric_top_rates
+
+    prolate = I[1] - I[0] > I[2] - I[1]  # I2 = I3: the symmetry axis is axis 1 (axis_role's rule)
+    if a == (1 if prolate else 3):  # about the symmetry axis itself: nothing to say
+        return None
+    rate = abs(float(symmetric_top_rates(w0, I)[1]))
+    when = f"every {np.pi / rate:.4g} s" if rate > 0 else "never"
+    return (f"a symmetric body spun across its symmetry axis: no perturbation grows; the spin rolls about the "
+            f"symmetry axis and turns over {when}, not the tennis-racket flip")
 
 
 def axis_role(I: Any, a: int, degeneracy: str) -> str:

@@ -237,7 +237,7 @@ def _cmd_simulate(args) -> int:
     from ..viz import figure_omega, save_figure
 
     summary = trajectory_summary(traj)
-    summary["method"] = getattr(traj, "method_label", traj.method)  # "dop853 (auto)": the method auto chose
+    summary.update(method=getattr(traj, "method_label", traj.method), frame=scenario.frame, omega0_given=list(scenario.omega))
     orbit = gravity_gradient_in(scenario.torque)
     if orbit is not None:  # the gravity gradient, alone (its Jacobi integral the error measure) or in a sum
         from ..analysis.torque_summary import gravity_gradient_summary

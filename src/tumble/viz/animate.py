@@ -18,27 +18,27 @@ from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from ..dynamics import Trajectory
 from ..io.atomic import atomic_path
 from ..mass import Body
 from ._backend import new_figure
-from .scene import arrow_scale, body_lines, body_size, check_body_and_run, frame_indices
+from .scene import arrow_scale, body_lines, body_size, check_body_and_run, frame_indices, frame_turn
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["ANIMATION_SUFFIXES", "MAX_FRAME_TURN", "animate_body_frame", "animate_ground_frame", "animation_path", "ffmpeg_path",
+__all__ = ["ANIMATION_SUFFIXES", "SMOOTH_TURN", "animate_body_frame", "animate_ground_frame", "animation_path", "ffmpeg_path",
            "scene_axes", "writer_for"]
 
 #: The formats the animations are written in, by suffix.
 ANIMATION_SUFFIXES = (".mp4", ".gif")
-#: The most an animated body turns between two frames, rad (30 deg) without a warning: beyond it the
-#: eye no longer follows it as one motion (the demo's 100 frames over 20 s at 10 rad/s: up to 148 deg).
-MAX_FRAME_TURN = np.pi / 6
+#: The most an animated body turns between two frames, rad (30 deg), without a warning: beyond it the eye no
+#: longer follows it as one motion, though below :data:`~tumble.viz.scene.MAX_FRAME_TURN` it is not yet aliased
+#: (the demo's 100 frames over 20 s at 10 rad/s turned it up to 160 deg a frame).
+SMOOTH_TURN = np.pi / 6
 
 
 def ffmpeg_path() -> str | None:
@@ -276,16 +276,14 @@ def _prepare(body: Body, traj: Trajectory, path, max_frames: int, fps: int, dpi:
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 1 <= value <= 1000:
             raise ValueError(f"{name} = {value!r} must be a whole number from 1 to 1000")
     frames = frame_indices(len(traj), max_frames, "max_frames")
-    if len(frames) >= 2:  # a body that turns far between frames seems to jump, or turn the other way
-        steps = Rotation.from_quat(traj.quat[frames[1:]]) * Rotation.from_quat(traj.quat[frames[:-1]]).inv()
-        turn = float(np.max(steps.magnitude()))
-        if turn > MAX_FRAME_TURN:
-            from .plots import AliasedSamplesWarning
+    turn = frame_turn(traj.t, traj.omega, frames) if len(frames) >= 2 else 0.0
+    if turn > SMOOTH_TURN:  # a body that turns far between frames seems to jump, or turn the other way
+        from .plots import AliasedSamplesWarning
 
-            warnings.warn(AliasedSamplesWarning(
-                f"the body turns up to {np.degrees(turn):.0f} deg between the animation's frames (more than "
-                f"{np.degrees(MAX_FRAME_TURN):.0f}): it will seem to jump; animate a shorter run or give more frames "
-                f"(max_frames) and samples"), stacklevel=3)
+        warnings.warn(AliasedSamplesWarning(
+            f"the body turns up to {np.degrees(turn):.0f} deg between the animation's frames (more than "
+            f"{np.degrees(SMOOTH_TURN):.0f}): it will seem to jump; animate a shorter run or give more frames "
+            f"(max_frames) and samples"), stacklevel=3)
     path, note = animation_path(path)
     if note:
         warnings.warn(f"{path.with_suffix('.mp4')}: {note}", stacklevel=3)
