@@ -464,3 +464,31 @@ def test_the_summary_records_omega_as_given_and_its_frame(tmp_path, capsys):
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["frame"] == "design" and summary["omega0_given"] == [10.0, 0.1, 0.1]
     assert summary["omega0"] == [0.1, 10.0, 0.1]   # the crossbar (design x) is the T-handle's intermediate axis
+
+
+def test_a_subprocess_stopped_by_the_same_ctrl_c_is_an_interruption(tmp_path, monkeypatch, capsys):
+    """Ctrl-C during the demo's MP4s stopped ffmpeg too, whose failure came first: exit 1 "computation failed:
+    CalledProcessError" (a QA walkthrough, 2026-12-03). A failure after a signal the run received is the
+    signal's: 130 (or 143), one line."""
+    import signal as signals
+
+    import tumble.cli as cli
+    import tumble.cli.parser as parser
+
+    def stopped(args):
+        cli._signalled.append(signals.SIGINT)   # what the handler records, before KeyboardInterrupt can show
+        raise subprocess.CalledProcessError(255, ["ffmpeg"])
+
+    real = parser.build_parser
+
+    def build():
+        p = real()
+        for action in p._actions:
+            if getattr(action, "choices", None) and "map" in action.choices:
+                action.choices["map"].set_defaults(func=stopped)
+        return p
+
+    monkeypatch.setattr(cli, "build_parser", build)
+    assert main(["map", "--out", str(tmp_path / "m.png")]) == 130
+    assert capsys.readouterr().err == "tumble: interrupted; nothing written\n"
+    assert main(["inertia", "t-handle"]) == 0   # the next run starts with no signal

@@ -26,8 +26,28 @@ class _Terminated(BaseException):
     """Raised by the SIGTERM handler, so that partial output is cleaned up as on Ctrl-C."""
 
 
+#: The signals the running command received: a subprocess the same Ctrl-C stopped (the demo's ffmpeg) can fail
+#: before Python raises KeyboardInterrupt, and its error read "computation failed: CalledProcessError", exit 1.
+_signalled: list[int] = []
+
+
 def _on_sigterm(signum, frame):
+    _signalled.append(signum)
     raise _Terminated
+
+
+def _on_sigint(signum, frame):
+    _signalled.append(signum)
+    raise KeyboardInterrupt
+
+
+def _after_signal(exc: BaseException) -> int | None:
+    """Exit 130 or 143, said in one line, where ``exc`` came of a signal this run received; else None."""
+    if not _signalled:
+        return None
+    interrupted = _signalled[-1] == signal.SIGINT
+    print(f"tumble: {'interrupted' if interrupted else 'terminated'}; nothing written{_kept(exc)}", file=sys.stderr)
+    return 130 if interrupted else 143
 
 
 def _show_warning(fallback, said, message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
@@ -93,9 +113,11 @@ def main(argv: list[str] | None = None) -> int:
     stdout = sys.stdout
     sys.stdout = _Stdout(stdout)  # type: ignore[assignment]
     try:
+        _signalled.clear()
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        previous_int = signal.signal(signal.SIGINT, _on_sigint)
     except ValueError:  # not the main thread: leave signals alone
-        previous = None
+        previous = previous_int = None
     try:
         with warnings.catch_warnings():
             # numeric trouble (overflow, invalid values) becomes a one-line failure, not noise
@@ -127,6 +149,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tumble: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # the input was fine; writing failed (disk full, permissions)
+        if (code := _after_signal(exc)) is not None:
+            return code
         if isinstance(exc, BrokenPipeError) and exc.filename is None:
             return _reader_gone()
         if args.debug:
@@ -146,6 +170,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tumble: failed: {where}{exc.strerror or _one_line(exc)}; nothing written{_kept(exc)}", file=sys.stderr)
         return EXIT_FAILURE
     except Exception as exc:  # a failure of the computation, not of the input
+        if (code := _after_signal(exc)) is not None:
+            return code
         if args.debug:
             raise
         print(f"tumble: computation failed: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
@@ -155,6 +181,7 @@ def main(argv: list[str] | None = None) -> int:
             sys.stdout = stdout
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+            signal.signal(signal.SIGINT, previous_int)
 
 
 #: A run that waited this long (s) for numba to compile its kernels says so, with the cure.
