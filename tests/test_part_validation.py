@@ -58,3 +58,18 @@ def test_a_rotors_spin_function_is_checked_where_it_is_given(spin, said):
     simulate, with Python's own TypeError naming neither spin_rate nor the rotor."""
     with pytest.raises(ValueError, match=f"^{re.escape(said)}$"):
         tumble.Rotor(mass=1.0, radius=0.1, length=0.03, **spin)
+
+
+def test_a_density_or_a_mesh_scale_no_solid_has_is_refused_naming_it():
+    """tumble inertia --density 1e308 failed with numpy's "overflow encountered in multiply", --scale 1e-200 with
+    "invalid value encountered in divide" (exit 1), and --density 1e-320 gave a centre of mass 0.249258 for 0.25
+    (subnormal masses): a QA walkthrough, 2026-12-03."""
+    import pathlib
+
+    torus = pathlib.Path(tumble.__file__).parent / "examples" / "bodies" / "meshes" / "torus.stl"
+    for rho in (1e308, 1e-320):
+        with pytest.raises(ValueError, match=re.escape(f"density = {rho!r} kg/m^3 is beyond any solid's")):
+            tumble.Box(density=rho, size=(0.1, 0.2, 0.3))
+    with pytest.raises(ValueError, match=r"with scale = 1e-200 is 1e-201 m across: beyond what tumble weighs"):
+        tumble.Mesh(mesh=str(torus), density=1000.0, scale=1e-200)
+    assert tumble.Box(density=0.16, size=(1.0, 1.0, 1.0)).mass == pytest.approx(0.16)   # an aerogel

@@ -178,6 +178,10 @@ class Mesh(_Oriented):
         mesh = _load(self.mesh)
         if scale != 1.0:
             mesh.apply_scale(scale)
+        size = float(np.max(mesh.extents)) if len(mesh.vertices) else 0.0
+        if not 1e-6 <= size <= 1e7:  # 1e-200 made every product of its coordinates NaN (numpy's "invalid value")
+            raise ValueError(f"mesh {self.mesh!s} with scale = {self.scale!r} is {size:.3g} m across: beyond what tumble "
+                             "weighs (1 um to 10,000 km); scale is metres per file unit (1e-3 for a file in mm)")
         if not mesh.is_watertight:
             _, uses = np.unique(mesh.edges_sorted, axis=0, return_counts=True)
             if np.all(uses >= 2):  # no open edge: some edge has more than two faces (a walkthrough's two cubes on an edge)

@@ -117,6 +117,9 @@ class Part:
                     f"a {self.kind} has no volume, so 'density' cannot give its mass; give 'mass' (kg)"
                 )
             rho = check_positive("density", self.density, "kg/m^3")
+            if not 1e-3 <= rho <= 1e5:  # 1e-320 lost the centre's digits to subnormal masses; 1e308 overflowed
+                raise ValueError(f"density = {self.density!r} kg/m^3 is beyond any solid's (1e-3 to 1e5 kg/m^3: aerogels "
+                                 "0.16, osmium 22,590); give it in kg/m^3")
             self._set("density", rho)
             try:
                 mass = rho * self.volume
