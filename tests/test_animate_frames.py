@@ -52,6 +52,7 @@ def _frames(monkeypatch, make, run, folder, blit: bool) -> np.ndarray:
 
 
 @pytest.mark.parametrize("make", [animate.animate_ground_frame, animate.animate_body_frame])
+@pytest.mark.filterwarnings("ignore::tumble.viz.plots.AliasedSamplesWarning")   # 4 frames: the pixels are the test
 def test_blitted_frames_are_the_full_draws(monkeypatch, tmp_path, run, make):
     full = _frames(monkeypatch, make, run, tmp_path, blit=False)
     blitted = _frames(monkeypatch, make, run, tmp_path, blit=True)

@@ -235,6 +235,7 @@ def test_every_figure_function_is_drawn_here():
 
 
 @pytest.mark.parametrize("name", FIGURES)
+@pytest.mark.filterwarnings("ignore::tumble.viz.plots.AliasedSamplesWarning")   # 2 frames of a flip: the text's the test
 def test_no_text_outside_the_canvas(name):
     made = FIGURES[name]()
     for fig in made if isinstance(made, list) else [made]:
