@@ -578,3 +578,14 @@ def test_a_rotor_inertia_in_the_device_file_is_said_to_be_replaced(guide_run, ca
     assert code == 0 and abs(J / 1.7e-6 - 1) < 0.01, out + err
     assert re.search(rf"^note: the device file's rotor_inertia 2e-06 kg m\^2 is replaced by the calibration's {J:.4g} "
                      rf"\({100 * (J / 2e-6 - 1):+.2g} %, \S+ std\), which the proof body's known tensor fixes$", err, re.M), err
+
+
+def test_a_toml_file_given_as_a_throw_is_named_for_what_it_is(tmp_path, capsys):
+    """tumble tensor examples/seed_flip.toml ... parsed the TOML as a CSV: "line 4: header 'body, =, t-handle'
+    has no time column" (a QA walkthrough, 2026-12-03); tumble fit already named a TOML file."""
+    import tumble
+    from tumble.io.throwfile import read_throw
+
+    seed = Path(tumble.__file__).parent / "examples" / "seed_flip.toml"
+    with pytest.raises(ValueError, match=r"seed_flip.toml: a TOML file \(a scenario, body or device file\), not a throw's log"):
+        read_throw(seed)

@@ -243,6 +243,9 @@ def load_throw(path: str | os.PathLike[str], device: Device | None = None) -> tu
     ((50, 3), 't (s), wx, wy, wz (rad/s), rotor (rad/s), ax, ay, az (m/s^2), 1 ignored, 50 rows')
     """
     label = os.fspath(path)
+    if label.lower().endswith(".toml"):  # it read "header 'body, =, t-handle' has no time column" (a QA walkthrough)
+        raise ValueError(f"{label}: a TOML file (a scenario, body or device file), not a throw's log: 'tumble tensor' "
+                         "and 'tumble calibrate' read each throw's CSV; the device file goes with --device")
     raw = _read_input(path, limit=MAX_THROW_FILE_BYTES, what="a throw file (CSV)")  # "no such file" hints at examples/
     samples, read = parse_throw_csv(raw, label, device)
     try:
