@@ -492,3 +492,12 @@ def test_a_subprocess_stopped_by_the_same_ctrl_c_is_an_interruption(tmp_path, mo
     assert main(["map", "--out", str(tmp_path / "m.png")]) == 130
     assert capsys.readouterr().err == "tumble: interrupted; nothing written\n"
     assert main(["inertia", "t-handle"]) == 0   # the next run starts with no signal
+
+
+@pytest.mark.parametrize("text", ["1_0", "\uff11", "\u0661"])   # an underscore, a full-width 1, an Arabic-Indic 1
+def test_a_number_is_written_as_the_docs_write_one(text, tmp_path, capsys):
+    """float() takes them; the command line took "--omega 1_0" as 10 (a QA walkthrough, 2026-12-03)."""
+    with pytest.raises(SystemExit) as stopped:   # argparse's exit, in one line
+        main(["simulate", "t-handle", "--omega", text, "0.1", "0.1", "--out", str(tmp_path / "r")])
+    assert stopped.value.code == 2 and not (tmp_path / "r").exists()
+    assert f"{text!r} is not a number" in capsys.readouterr().err

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 import sys
 
 #: The command line's exit status when the command did what it was asked.
@@ -53,6 +54,11 @@ def _is_float(text: str) -> bool:
     return True
 
 
+#: A number as the docs write one: ASCII digits, a point, an exponent; inf and nan in any case (refused later,
+#: naming the option).
+_PLAIN = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(inf|infinity|nan)", re.IGNORECASE | re.ASCII)
+
+
 def number(text: str) -> float:
     """argparse's type of a numeric option: the float of ``text`` that shows itself as written
     (:class:`Written`); for text that is no number a :class:`NotANumber` saying what a number is, and where a decimal comma was written, the decimal point (argparse's own was only
@@ -69,6 +75,8 @@ def number(text: str) -> float:
     tumble.cli._common.NotANumber: '1,5' is not a number: write a decimal point, 1.5
     """
     try:
+        if not _PLAIN.fullmatch(text.strip()):  # Python's float takes "1_0" and full-width digits: not the docs' numbers
+            raise ValueError(text)
         return Written(text.strip())
     except ValueError:
         comma = text.strip().replace(",", ".", 1) if text.count(",") == 1 else ""
