@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -136,3 +137,20 @@ def test_two_solids_on_one_edge_are_called_what_they_are():
     open_box.update_faces(np.arange(len(open_box.faces)) != 0)   # one triangle taken out: 3 open edges
     with pytest.raises(ValueError, match=r"^mesh mesh is not watertight \(it has 3 open edges\)"):
         Mesh(mesh=open_box, density=1.0)
+
+
+@pytest.mark.parametrize(("text", "suffix", "says"), [
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 nan\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n", ".obj",
+     "has vertices that are not finite numbers"),   # it was "not watertight (it has 3 open edges)"
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 9\nf 1 4 3\nf 2 3 4\n", ".obj",
+     "a face names a vertex the file does not have"),   # it was numpy's "index 8 is out of bounds"
+    ("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nelement face 1\nproperty list uchar int vertex_indices\n"
+     "end_header\n0\n1\n2\n3 0 1 2\n", ".ply", "a vertex lacks the coordinate 'y'"),   # it was "could not be read: 'y'"
+])
+def test_a_malformed_mesh_file_is_named_for_what_is_wrong(tmp_path, text, suffix, says):
+    """A QA walkthrough (2026-12-03): trimesh's own words named its internals, and a NaN vertex, dropped in
+    processing, was called an open edge."""
+    path = tmp_path / f"bad{suffix}"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=re.escape(says)):
+        tumble.Mesh(mesh=str(path), density=1000.0)

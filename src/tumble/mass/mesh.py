@@ -118,14 +118,18 @@ def _load(source: Any) -> Any:
     data = read_input_file(path, limit=MAX_MESH_BYTES, what="a mesh file", label=label)
     file_type = os.path.splitext(path)[1].lstrip(".").lower()
     try:
-        # process=True merges the duplicated vertices of STL files, without which no STL is
-        # watertight; the watertightness check below catches what merging cannot mend.
-        mesh = trimesh.load(io.BytesIO(data), file_type=file_type, force="mesh", process=True)
-    except Exception as exc:  # trimesh raises many types for malformed files
-        raise ValueError(f"{label} could not be read: {exc}") from None
+        # processed below (process(): the duplicated vertices of STL files merged, without which no STL is
+        # watertight), once its vertices are checked; the watertightness check catches what merging cannot mend.
+        mesh = trimesh.load(io.BytesIO(data), file_type=file_type, force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many types for malformed files; its words named its internals
+        why = (f"a vertex lacks the coordinate {exc}" if isinstance(exc, KeyError) else
+               f"a face names a vertex the file does not have ({exc})" if isinstance(exc, IndexError) else str(exc))
+        raise ValueError(f"{label} could not be read: {why}") from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
         raise ValueError(f"{label} holds no triangles")
-    return mesh
+    if not np.all(np.isfinite(mesh.vertices)):  # processing drops them, and it was "not watertight (3 open edges)"
+        raise ValueError(f"{label} has vertices that are not finite numbers (nan or inf): it bounds no solid")
+    return mesh.process()
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
