@@ -331,3 +331,12 @@ def test_a_swap_that_cannot_move_the_old_folder_leaves_nothing_behind(tmp_path, 
     assert simulate(out) in (1, 2)
     capsys.readouterr()
     assert leftovers(tmp_path, "run") == [] and {p.name: p.read_bytes() for p in out.iterdir()} == before
+
+
+def test_a_name_too_long_for_the_file_system_is_refused_before_computing(tmp_path, capsys):
+    """--out with a 300-character name failed after the run, "File name too long", exit 1 (a QA walkthrough,
+    2026-12-03)."""
+    assert simulate(tmp_path / ("a" * 300)) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "is 300 bytes, more than this file system's" in err and list(tmp_path.iterdir()) == []
+    assert simulate(tmp_path / ("a" * 200)) == 0

@@ -70,6 +70,14 @@ def check_parent(path: Path, option: str = "--out") -> None:
                 raise _refuse(path, f"{parent} is a file, not a folder", option)
             if not os.access(parent, os.W_OK | os.X_OK):
                 raise _refuse(path, f"cannot write in {parent} (permission denied)", option)
+            try:  # a name the file system cannot hold failed after the run ("File name too long", exit 1)
+                longest = os.pathconf(parent, "PC_NAME_MAX")
+            except (OSError, ValueError):
+                longest = 255
+            # the staging names add a prefix and a suffix of ~16 characters (output_dir, atomic_path)
+            if (long := next((n for n in path.relative_to(parent).parts if len(os.fsencode(n)) + 16 > longest), None)):
+                raise _refuse(path, f"the name {long[:40]!r}... is {len(os.fsencode(long))} bytes, more than this file "
+                              f"system's {longest} (less {16} for the files written beside it)", option)
             return
         if parent.is_symlink():  # a dangling link on the way
             raise _refuse(path, f"{parent} is a broken symbolic link", option)
@@ -99,13 +107,13 @@ def check_output_dir(path: str | os.PathLike[str]) -> Path:
     path = Path(path)
     if Path(os.path.abspath(path)).name == "" or path.name in ("", ".", ".."):  # "/", ".", "x/..": no name to write under
         raise _refuse(path, "does not name a folder of its own (it is the root or ends in '.' or '..'); give a new folder's name")
+    check_parent(path)  # first: a name too long for the file system fails path.exists() itself
     if path.exists() or path.is_symlink():
         if path.is_symlink() or not path.is_dir():
             raise _refuse(path, "exists and is not a folder" if not path.is_dir() else "is a symbolic link; give the folder itself")
         if not os.access(path, os.W_OK | os.X_OK):  # the swap renames it, which needs its write permission
             raise _refuse(path, "is a folder this user cannot write to (its permissions); give another folder")
         _check_plain(path)
-    check_parent(path)
     return path
 
 
@@ -139,9 +147,9 @@ def check_output_file(path: str | os.PathLike[str], suffix: str | tuple[str, ...
     if path.suffix.lower() not in allowed:
         names = " or ".join(allowed)
         raise _refuse(path, f"the output is written as one {names} file; give a name ending in {names}")
+    check_parent(path)  # first: a name too long for the file system fails path.is_dir() itself
     if path.is_dir():
         raise _refuse(path, "is a folder; give a file name")
-    check_parent(path)
     return path
 
 
