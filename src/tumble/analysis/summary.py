@@ -193,7 +193,7 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     if not distinct and traj.rigid:
         note = ("a spherical body: every axis is principal" if degeneracy == "spherical" else
                 "a symmetric body: what turns over is its slow roll about the symmetry axis, not the tennis-racket "
-                "flip" if len(times) else _roll_note(w0, I, a, degeneracy))
+                "flip" if len(times) else _roll_note(w0, I, a))
     elif predicted == "unstable" and not len(times) and np.count_nonzero(w0) == 1:
         note = "a spin exactly about the axis: an unstable equilibrium, which flips only once perturbed"
     elif predicted == "unstable" and (off := float(np.hypot(*np.delete(w0, a - 1)))) <= ROUND_OFF_AXIS * abs(w0[a - 1]):
@@ -234,14 +234,19 @@ def stability_report(traj: Trajectory | BatchTrajectory) -> StabilityReport | li
     })
 
 
-def _roll_note(w0: Any, I: Any, a: int, degeneracy: str) -> str | None:
+def _symmetry_axis(I: Any) -> int:
+    """The symmetry axis (1 or 3) of a symmetric body of moments ``I`` (ascending): 1 where I2 = I3 (prolate),
+    else 3 (oblate, I1 = I2): the pair nearer equal decides."""
+    return 1 if I[1] - I[0] > I[2] - I[1] else 3
+
+
+def _roll_note(w0: Any, I: Any, a: int) -> str | None:
     """For a symmetric body spun across its symmetry axis with no flip seen: that nothing grows, and when its
     spin turns over, rolling about the symmetry axis at the body rate of a free top (Landau & Lifshitz
     sec. 33; a teacher's walkthrough found a rod's end-over-end spin called "unstable, 0 flips" with no word)."""
     from .periods import symmetric_top_rates
 
-    prolate = I[1] - I[0] > I[2] - I[1]  # I2 = I3: the symmetry axis is axis 1 (axis_role's rule)
-    if a == (1 if prolate else 3):  # about the symmetry axis itself: nothing to say
+    if a == _symmetry_axis(I):  # about the symmetry axis itself: nothing to say
         return None
     rate = abs(float(symmetric_top_rates(w0, I)[1]))
     when = f"every {np.pi / rate:.4g} s" if rate > 0 else "never"
@@ -267,10 +272,9 @@ def axis_role(I: Any, a: int, degeneracy: str) -> str:
         return AXIS_ROLES[a - 1]
     if degeneracy == "spherical":
         return "any axis: spherical"
-    prolate = I[1] - I[0] > I[2] - I[1]  # I2 = I3: the symmetry axis is axis 1
-    if a == (1 if prolate else 3):
+    if a == _symmetry_axis(I):
         return f"{AXIS_ROLES[a - 1]}, the symmetry axis"
-    return "transverse, " + ("I2 = I3" if prolate else "I1 = I2")
+    return "transverse, " + ("I2 = I3" if _symmetry_axis(I) == 1 else "I1 = I2")
 
 
 def _prediction(traj: Trajectory, motion: SpinPrediction) -> tuple[str | None, str | None, float, float]:
